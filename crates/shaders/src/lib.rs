@@ -1,0 +1,21 @@
+//! Stratus's shader pipeline: the WGSL under `wgsl/` is the one source of truth for every GPU
+//! stage. This crate loads it (from disk or embedded at build time), validates it with naga
+//! (diagnostics point at the original `file:line:col`), resolves a variant's override
+//! constants, translates it to SPIR-V, GLSL, HLSL and MSL with fixed options, and reflects it
+//! into the manifest written to `spirv-out/`.
+
+#![deny(missing_docs)]
+
+pub mod compile;
+pub mod diagnostic;
+pub mod manifest;
+pub mod source;
+pub mod translate;
+
+pub use compile::{CompiledModule, compile, compile_all};
+pub use diagnostic::{Diagnostic, Diagnostics};
+pub use manifest::Manifest;
+pub use source::{ModuleSpec, ShaderTree, VariantSpec};
+pub use translate::{build_outputs, spv_options};
+
+include!(concat!(env!("OUT_DIR"), "/embedded.rs"));

@@ -1,0 +1,157 @@
+//! Translation of every variant to SPIR-V, GLSL, HLSL and MSL with fixed options, so that the
+//! bytes in `spirv-out/` depend only on the WGSL and the naga version.
+
+use std::collections::BTreeMap;
+
+use naga::{ShaderStage, back, valid::ModuleInfo};
+
+use crate::{
+    compile::{CompiledModule, compile_all},
+    diagnostic::{Diagnostic, Diagnostics},
+    manifest::Manifest,
+    source::{ShaderTree, VariantSpec},
+};
+
+/// The SPIR-V writer options used for `spirv-out/` and (by the ash backend) at run time.
+///
+/// No `DEBUG` flag: debug and release builds of the tool must write the same bytes, and
+/// Debian's validation layer misreads naga's debug info. SPIR-V 1.0 for the widest reach.
+pub fn spv_options() -> back::spv::Options<'static> {
+    back::spv::Options {
+        lang_version: (1, 0),
+        flags: back::spv::WriterFlags::empty(),
+        ..Default::default()
+    }
+}
+
+/// GLSL `#version 450` core. Bindings are flattened to `group * 16 + binding` and written as
+/// explicit `layout(binding = N)`, so the GLSL can be compiled without re-mapping.
+fn glsl_options(module: &naga::Module) -> back::glsl::Options {
+    let mut binding_map = back::glsl::BindingMap::default();
+    for (_, var) in module.global_variables.iter() {
+        if let Some(rb) = &var.binding {
+            binding_map.insert(*rb, (rb.group * 16 + rb.binding) as u8);
+        }
+    }
+    back::glsl::Options {
+        version: back::glsl::Version::Desktop(450),
+        writer_flags: back::glsl::WriterFlags::empty(),
+        binding_map,
+        zero_initialize_workgroup_memory: true,
+    }
+}
+
+/// Bounds-check policies: naga's defaults, the same for every target.
+fn policies() -> naga::proc::BoundsCheckPolicies {
+    naga::proc::BoundsCheckPolicies::default()
+}
+
+/// The file name of a variant's output in a language (`ext` like `spv`, `hlsl`, `metal`).
+pub fn output_name(module: &str, variant: &str, ext: &str) -> String {
+    format!("{module}.{variant}.{ext}")
+}
+
+/// The file name of a variant's GLSL for one compute entry point.
+pub fn glsl_name(module: &str, variant: &str, entry: &str) -> String {
+    format!("{module}.{variant}.{entry}.comp.glsl")
+}
+
+/// Translates one variant to all four languages. Returns `(file name, bytes)` pairs.
+pub fn translate_variant(
+    compiled: &CompiledModule,
+    variant: &VariantSpec,
+) -> Result<Vec<(String, Vec<u8>)>, Diagnostics> {
+    let (module, info) = compiled.resolve(&variant.overrides)?;
+    let name = &compiled.spec.name;
+    let fail = |lang: &str, e: &dyn std::fmt::Display| {
+        Diagnostics(vec![Diagnostic::from_spans(
+            &compiled.composed,
+            format!(
+                "module `{name}` variant `{}`: {lang} translation failed: {e}",
+                variant.name
+            ),
+            [],
+        )])
+    };
+    let mut out = Vec::new();
+
+    let words = back::spv::write_vec(&module, &info, &spv_options(), None)
+        .map_err(|e| fail("SPIR-V", &e))?;
+    out.push((
+        output_name(name, &variant.name, "spv"),
+        bytemuck_words(&words),
+    ));
+
+    for ep in &module.entry_points {
+        if ep.stage != ShaderStage::Compute {
+            continue;
+        }
+        let text = glsl(&module, &info, &ep.name).map_err(|e| fail("GLSL", &e))?;
+        out.push((glsl_name(name, &variant.name, &ep.name), text.into_bytes()));
+    }
+
+    let mut hlsl = String::new();
+    back::hlsl::Writer::new(
+        &mut hlsl,
+        &back::hlsl::Options::default(),
+        &back::hlsl::PipelineOptions::default(),
+    )
+    .write(&module, &info, None)
+    .map_err(|e| fail("HLSL", &e))?;
+    out.push((output_name(name, &variant.name, "hlsl"), hlsl.into_bytes()));
+
+    let msl_options = back::msl::Options {
+        lang_version: (2, 1),
+        ..Default::default()
+    };
+    let (msl, _) = back::msl::write_string(
+        &module,
+        &info,
+        &msl_options,
+        &back::msl::PipelineOptions::default(),
+    )
+    .map_err(|e| fail("MSL", &e))?;
+    out.push((output_name(name, &variant.name, "metal"), msl.into_bytes()));
+    Ok(out)
+}
+
+fn glsl(
+    module: &naga::Module,
+    info: &ModuleInfo,
+    entry: &str,
+) -> Result<String, back::glsl::Error> {
+    let options = glsl_options(module);
+    let pipeline = back::glsl::PipelineOptions {
+        shader_stage: ShaderStage::Compute,
+        entry_point: entry.to_string(),
+        multiview: None,
+    };
+    let mut text = String::new();
+    back::glsl::Writer::new(&mut text, module, info, &options, &pipeline, policies())?.write()?;
+    Ok(text)
+}
+
+fn bytemuck_words(words: &[u32]) -> Vec<u8> {
+    words.iter().flat_map(|w| w.to_le_bytes()).collect()
+}
+
+/// Everything `cargo xtask build-shaders` writes: file name -> bytes, `manifest.json` included.
+pub fn build_outputs(tree: &ShaderTree) -> Result<BTreeMap<String, Vec<u8>>, Diagnostics> {
+    let compiled = compile_all(tree)?;
+    let mut files = BTreeMap::new();
+    let mut errors = Vec::new();
+    for m in &compiled {
+        for v in &m.spec.variants {
+            match translate_variant(m, v) {
+                Ok(list) => files.extend(list),
+                Err(d) => errors.extend(d.0),
+            }
+        }
+    }
+    if !errors.is_empty() {
+        return Err(Diagnostics(errors));
+    }
+    let manifest = Manifest::build(tree, &compiled)?;
+    files.insert("manifest.json".into(), manifest.to_json().into_bytes());
+    Ok(files)
+}

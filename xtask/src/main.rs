@@ -1,0 +1,453 @@
+//! `cargo xtask`: the project's build and check tasks (matklad's cargo-xtask convention).
+//!
+//! - `build-shaders`: validate `wgsl/` with naga and write `spirv-out/` (or `--check` it);
+//! - `validate`: run the external validators over `spirv-out/`;
+//! - `ci`: install missing system tools, then fmt, clippy, `build-shaders --check`,
+//!   `validate` and every test.
+
+use std::{
+    collections::BTreeMap,
+    path::{Path, PathBuf},
+    process::{Command, ExitCode},
+    time::Instant,
+};
+
+use anyhow::{Context, Result, bail};
+use clap::{Parser, Subcommand};
+use stratus_shaders::{ShaderTree, build_outputs};
+
+#[derive(Parser)]
+#[command(name = "cargo xtask", about = "Stratus build and check tasks", version)]
+struct Cli {
+    #[command(subcommand)]
+    task: Task,
+}
+
+#[derive(Subcommand)]
+enum Task {
+    /// Validate the WGSL with naga and write SPIR-V, GLSL, HLSL, MSL and manifest.json.
+    BuildShaders {
+        /// Folder holding the WGSL and `modules.toml` [default: <workspace>/wgsl].
+        #[arg(long)]
+        wgsl: Option<PathBuf>,
+        /// Output folder [default: <workspace>/spirv-out].
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// Change nothing; fail and name every stale, missing or extra file.
+        #[arg(long)]
+        check: bool,
+    },
+    /// Run spirv-val and glslangValidator over `spirv-out/` and print a table.
+    Validate {
+        /// Folder with the generated shaders [default: <workspace>/spirv-out].
+        #[arg(long)]
+        out: Option<PathBuf>,
+    },
+    /// Everything CI runs: tools, fmt, clippy, build-shaders --check, validate, tests.
+    Ci,
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let root = workspace_root();
+    let result = match cli.task {
+        Task::BuildShaders { wgsl, out, check } => build_shaders(
+            &root,
+            &wgsl.unwrap_or_else(|| root.join("wgsl")),
+            &out.unwrap_or_else(|| root.join("spirv-out")),
+            check,
+        ),
+        Task::Validate { out } => validate(&out.unwrap_or_else(|| root.join("spirv-out"))),
+        Task::Ci => ci(&root),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e:#}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+fn workspace_root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .parent()
+        .expect("xtask lives in the workspace")
+        .to_path_buf()
+}
+
+/// How a folder is named in diagnostics: relative to the workspace root when inside it.
+fn label(root: &Path, dir: &Path) -> String {
+    let abs = dir.canonicalize().unwrap_or_else(|_| dir.to_path_buf());
+    let root = root.canonicalize().unwrap_or_else(|_| root.to_path_buf());
+    abs.strip_prefix(&root)
+        .map(|p| p.display().to_string())
+        .unwrap_or_else(|_| dir.display().to_string())
+}
+
+fn build_shaders(root: &Path, wgsl: &Path, out: &Path, check: bool) -> Result<()> {
+    let tree = ShaderTree::from_dir(wgsl, &label(root, wgsl))?;
+    let outputs = match build_outputs(&tree) {
+        Ok(o) => o,
+        Err(diags) => {
+            eprintln!("{diags}");
+            bail!("{} WGSL error(s) in {}", diags.0.len(), wgsl.display());
+        }
+    };
+    let existing = list_generated(out)?;
+    let mut problems = Vec::new();
+    for (name, bytes) in &outputs {
+        match existing.get(name) {
+            None => problems.push(format!("missing: {}", out.join(name).display())),
+            Some(old) if old != bytes => {
+                problems.push(format!("stale: {}", out.join(name).display()))
+            }
+            _ => {}
+        }
+    }
+    for name in existing.keys().filter(|n| !outputs.contains_key(*n)) {
+        problems.push(format!(
+            "extra (no longer generated): {}",
+            out.join(name).display()
+        ));
+    }
+    if check {
+        if problems.is_empty() {
+            println!("{} is fresh ({} files)", out.display(), outputs.len());
+            return Ok(());
+        }
+        for p in &problems {
+            eprintln!("{p}");
+        }
+        bail!(
+            "{} is out of date with {} ({} file(s)); run `cargo xtask build-shaders`",
+            out.display(),
+            wgsl.display(),
+            problems.len()
+        );
+    }
+    std::fs::create_dir_all(out).with_context(|| format!("creating {}", out.display()))?;
+    for name in existing.keys().filter(|n| !outputs.contains_key(*n)) {
+        std::fs::remove_file(out.join(name))?;
+    }
+    for (name, bytes) in &outputs {
+        if existing.get(name) != Some(bytes) {
+            std::fs::write(out.join(name), bytes)
+                .with_context(|| format!("writing {}", out.join(name).display()))?;
+        }
+    }
+    println!(
+        "wrote {} files to {} ({} changed)",
+        outputs.len(),
+        out.display(),
+        problems.len()
+    );
+    Ok(())
+}
+
+/// The files in `out` that build-shaders owns (so stray README files are left alone).
+fn list_generated(out: &Path) -> Result<BTreeMap<String, Vec<u8>>> {
+    let mut files = BTreeMap::new();
+    let Ok(entries) = std::fs::read_dir(out) else {
+        return Ok(files);
+    };
+    for e in entries {
+        let path = e?.path();
+        let name = path.file_name().unwrap().to_string_lossy().into_owned();
+        let owned = [".spv", ".glsl", ".hlsl", ".metal", "manifest.json"]
+            .iter()
+            .any(|ext| name.ends_with(ext));
+        if owned && path.is_file() {
+            files.insert(name, std::fs::read(&path)?);
+        }
+    }
+    Ok(files)
+}
+
+#[derive(Clone, Copy, PartialEq)]
+enum Verdict {
+    Pass,
+    Fail,
+    Skipped,
+}
+
+struct Row {
+    file: String,
+    tool: String,
+    verdict: Verdict,
+    detail: String,
+}
+
+fn run_tool(cmd: &mut Command) -> (Verdict, String) {
+    match cmd.output() {
+        Ok(o) if o.status.success() => (Verdict::Pass, String::new()),
+        Ok(o) => (
+            Verdict::Fail,
+            format!(
+                "{}{}",
+                String::from_utf8_lossy(&o.stdout),
+                String::from_utf8_lossy(&o.stderr)
+            ),
+        ),
+        Err(e) => (
+            Verdict::Fail,
+            format!("could not run {:?}: {e}", cmd.get_program()),
+        ),
+    }
+}
+
+fn validate(out: &Path) -> Result<()> {
+    let manifest_path = out.join("manifest.json");
+    let manifest = stratus_shaders::Manifest::from_json(
+        &std::fs::read_to_string(&manifest_path)
+            .with_context(|| format!("reading {}", manifest_path.display()))?,
+    )
+    .with_context(|| format!("parsing {}", manifest_path.display()))?;
+    let tmp = std::env::temp_dir().join(format!("stratus-validate-{}", std::process::id()));
+    std::fs::create_dir_all(&tmp)?;
+    let has_metal = Command::new("xcrun")
+        .arg("--find")
+        .arg("metal")
+        .output()
+        .is_ok_and(|o| o.status.success());
+    let mut rows = Vec::new();
+    for m in &manifest.modules {
+        let computes: Vec<_> = m
+            .entry_points
+            .iter()
+            .filter(|e| e.stage == "compute")
+            .collect();
+        for v in &m.variants {
+            let f = &v.files;
+            let (verdict, detail) = run_tool(Command::new("spirv-val").arg(out.join(&f.spv)));
+            rows.push(Row {
+                file: f.spv.clone(),
+                tool: "spirv-val".into(),
+                verdict,
+                detail,
+            });
+            for file in f.glsl.values() {
+                let (verdict, detail) = run_tool(
+                    Command::new("glslangValidator")
+                        .args(["-S", "comp"])
+                        .arg(out.join(file)),
+                );
+                rows.push(Row {
+                    file: file.clone(),
+                    tool: "glslangValidator".into(),
+                    verdict,
+                    detail,
+                });
+            }
+            for ep in &computes {
+                let spv = tmp.join(format!("{}.{}.spv", v.name, ep.name));
+                let (mut verdict, mut detail) = run_tool(
+                    Command::new("glslangValidator")
+                        .args(["-D", "-V", "-e", &ep.name, "-S", "comp", "-o"])
+                        .arg(&spv)
+                        .arg(out.join(&f.hlsl)),
+                );
+                if verdict == Verdict::Pass {
+                    (verdict, detail) = run_tool(Command::new("spirv-val").arg(&spv));
+                }
+                rows.push(Row {
+                    file: format!("{} ({})", f.hlsl, ep.name),
+                    tool: "glslangValidator -D -V + spirv-val".into(),
+                    verdict,
+                    detail,
+                });
+            }
+            if has_metal {
+                let (verdict, detail) = run_tool(
+                    Command::new("xcrun")
+                        .args(["-sdk", "macosx", "metal", "-c", "-o"])
+                        .arg(tmp.join("out.air"))
+                        .arg(out.join(&f.metal)),
+                );
+                rows.push(Row {
+                    file: f.metal.clone(),
+                    tool: "xcrun metal".into(),
+                    verdict,
+                    detail,
+                });
+            } else {
+                rows.push(Row {
+                    file: f.metal.clone(),
+                    tool: "xcrun metal".into(),
+                    verdict: Verdict::Skipped,
+                    detail: "not compiled: no Metal toolchain here".into(),
+                });
+            }
+        }
+    }
+    let _ = std::fs::remove_dir_all(&tmp);
+
+    let wf = rows.iter().map(|r| r.file.len()).max().unwrap_or(4).max(4);
+    let wt = rows.iter().map(|r| r.tool.len()).max().unwrap_or(4).max(4);
+    println!("{:wf$}  {:wt$}  result", "file", "tool");
+    println!("{}  {}  {}", "-".repeat(wf), "-".repeat(wt), "-".repeat(7));
+    for r in &rows {
+        let v = match r.verdict {
+            Verdict::Pass => "PASS".to_string(),
+            Verdict::Fail => "FAIL".to_string(),
+            Verdict::Skipped => format!("SKIPPED ({})", r.detail),
+        };
+        println!("{:wf$}  {:wt$}  {v}", r.file, r.tool);
+    }
+    let failed: Vec<_> = rows.iter().filter(|r| r.verdict == Verdict::Fail).collect();
+    for r in &failed {
+        eprintln!("\n--- {} ({}) ---\n{}", r.file, r.tool, r.detail.trim_end());
+    }
+    let pass = rows.iter().filter(|r| r.verdict == Verdict::Pass).count();
+    let skipped = rows
+        .iter()
+        .filter(|r| r.verdict == Verdict::Skipped)
+        .count();
+    println!(
+        "validate: {pass} passed, {} failed, {skipped} skipped",
+        failed.len()
+    );
+    if !failed.is_empty() {
+        bail!("{} validation(s) failed", failed.len());
+    }
+    Ok(())
+}
+
+/// System packages the project needs, and why (also listed in the README).
+const APT_PACKAGES: &[&str] = &[
+    "mesa-vulkan-drivers",
+    "libvulkan1",
+    "vulkan-tools",
+    "vulkan-validationlayers",
+    "spirv-tools",
+    "glslang-tools",
+    "spirv-cross",
+    "libegl1",
+    "libgl1-mesa-dri",
+];
+
+fn missing_tools() -> Vec<String> {
+    let mut missing = Vec::new();
+    for tool in ["spirv-val", "glslangValidator", "vulkaninfo"] {
+        if Command::new(tool).arg("--version").output().is_err() {
+            missing.push(format!("`{tool}`"));
+        }
+    }
+    let icd_dirs = ["/usr/share/vulkan/icd.d", "/etc/vulkan/icd.d"];
+    let has_lavapipe = icd_dirs.iter().any(|d| {
+        std::fs::read_dir(d).is_ok_and(|rd| {
+            rd.flatten()
+                .any(|e| e.file_name().to_string_lossy().starts_with("lvp_icd"))
+        })
+    });
+    if !has_lavapipe {
+        missing.push("a Vulkan ICD (lavapipe)".into());
+    }
+    if !Path::new("/usr/share/vulkan/explicit_layer.d/VkLayer_khronos_validation.json").exists() {
+        missing.push("the Vulkan validation layer".into());
+    }
+    if !Path::new("/usr/lib/x86_64-linux-gnu/libEGL.so.1").exists()
+        && !Path::new("/usr/lib/aarch64-linux-gnu/libEGL.so.1").exists()
+    {
+        missing.push("libEGL (for wgpu's GL backend)".into());
+    }
+    missing
+}
+
+fn ensure_tools() -> Result<()> {
+    let missing = missing_tools();
+    if missing.is_empty() {
+        println!("system tools: all present");
+        return Ok(());
+    }
+    let install = format!(
+        "apt-get update && apt-get install -y --no-install-recommends {}",
+        APT_PACKAGES.join(" ")
+    );
+    println!("system tools missing: {}", missing.join(", "));
+    let is_root = Command::new("id")
+        .arg("-u")
+        .output()
+        .is_ok_and(|o| o.stdout.starts_with(b"0"));
+    let sudo = !is_root
+        && Command::new("sudo")
+            .args(["-n", "true"])
+            .output()
+            .is_ok_and(|o| o.status.success());
+    if !is_root && !sudo {
+        bail!("cannot install system packages without root; run:\n    sudo sh -c '{install}'");
+    }
+    println!("installing: {}", APT_PACKAGES.join(" "));
+    let mut cmd = if sudo {
+        let mut c = Command::new("sudo");
+        c.args(["sh", "-c", &install]);
+        c
+    } else {
+        let mut c = Command::new("sh");
+        c.args(["-c", &install]);
+        c
+    };
+    cmd.env("DEBIAN_FRONTEND", "noninteractive");
+    let status = cmd.status().context("running apt-get")?;
+    if !status.success() {
+        bail!("apt-get failed ({status}); run it by hand:\n    {install}");
+    }
+    let still = missing_tools();
+    if !still.is_empty() {
+        bail!("still missing after installing: {}", still.join(", "));
+    }
+    Ok(())
+}
+
+fn cargo(root: &Path, args: &[&str]) -> Result<()> {
+    let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
+    let status = Command::new(&cargo)
+        .args(args)
+        .current_dir(root)
+        .status()
+        .with_context(|| format!("running cargo {}", args.join(" ")))?;
+    if !status.success() {
+        bail!("`cargo {}` failed ({status})", args.join(" "));
+    }
+    Ok(())
+}
+
+fn step(name: &str, f: impl FnOnce() -> Result<()>) -> Result<()> {
+    println!("\n==> {name}");
+    let t = Instant::now();
+    let r = f();
+    println!(
+        "<== {name}: {} in {:.0?}",
+        if r.is_ok() { "ok" } else { "FAILED" },
+        t.elapsed()
+    );
+    r
+}
+
+fn ci(root: &Path) -> Result<()> {
+    let t = Instant::now();
+    step("system tools", ensure_tools)?;
+    step("cargo fmt --check", || {
+        cargo(root, &["fmt", "--all", "--check"])
+    })?;
+    step("cargo clippy", || {
+        cargo(
+            root,
+            &[
+                "clippy",
+                "--workspace",
+                "--all-targets",
+                "--",
+                "-D",
+                "warnings",
+            ],
+        )
+    })?;
+    step("build-shaders --check", || {
+        build_shaders(root, &root.join("wgsl"), &root.join("spirv-out"), true)
+    })?;
+    step("validate", || validate(&root.join("spirv-out")))?;
+    step("cargo test", || cargo(root, &["test", "--workspace"]))?;
+    println!("\nci: all steps passed in {:.0?}", t.elapsed());
+    Ok(())
+}
