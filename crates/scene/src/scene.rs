@@ -1,0 +1,468 @@
+//! The scene description: plain data, serde-derived, one struct per TOML section.
+//!
+//! Every field has a default; the defaults are the `cumulus-noon` preset. Angles are in degrees,
+//! lengths in metres, times in seconds, colours in linear RGB.
+
+use serde::{Deserialize, Serialize};
+
+/// A complete scene: everything one frame of the cloud renderer needs.
+///
+/// Coordinate system (seed 001): X points east, Y up, Z north, in metres. The world origin lies
+/// on the ground (altitude 0) below the camera's x/z = 0; positions are `[x, altitude, z]`.
+/// Load one with [`Scene::from_toml_str`], [`Scene::from_file`] or [`Scene::preset`]; the
+/// [`Default`] scene is the `cumulus-noon` preset.
+#[derive(Serialize, Deserialize, Clone, Debug, PartialEq, Default)]
+#[serde(default, deny_unknown_fields)]
+pub struct Scene {
+    /// Viewpoint, orientation, image size and exposure.
+    pub camera: Camera,
+    /// The sun: direction, colour and size.
+    pub sun: Sun,
+    /// Planet and the spherical shell that holds the clouds.
+    pub atmosphere: Atmosphere,
+    /// The cloud model: coverage, type, wind, noise scales and erosion.
+    pub clouds: Clouds,
+    /// Procedural noise generation.
+    pub noise: Noise,
+    /// Scattering, phase function, multiple scattering and ambient light.
+    pub lighting: Lighting,
+    /// Ray-marching quality and integration method.
+    pub quality: Quality,
+}
+
+/// The camera (section `[camera]`).
+#[derive(Serialize, Deserialize, Clone, Debug, PartialEq)]
+#[serde(default, deny_unknown_fields)]
+pub struct Camera {
+    /// Camera position `[x (east), altitude above ground, z (north)]`, metres. The altitude
+    /// must be >= 0; it may be below, inside or above the cloud layer.
+    pub position: [f64; 3],
+    /// Heading in degrees, clockwise seen from above: 0 looks north (+Z), 90 east (+X).
+    pub yaw_deg: f64,
+    /// Elevation of the view direction in degrees, within [-90, 90]; positive looks up.
+    pub pitch_deg: f64,
+    /// Vertical field of view in degrees, within (0, 180).
+    pub fov_y_deg: f64,
+    /// Image size `[width, height]` in pixels, each within [1, 16384]. The CLI's `--size`
+    /// overrides it (see [`Scene::with_size`]).
+    pub resolution: [u32; 2],
+    /// Linear exposure multiplier applied to radiance before tone mapping (> 0).
+    pub exposure: f64,
+}
+
+impl Default for Camera {
+    fn default() -> Self {
+        Self {
+            position: [0.0, 200.0, 0.0],
+            yaw_deg: 0.0,
+            pitch_deg: 12.0,
+            fov_y_deg: 60.0,
+            resolution: [800, 450],
+            exposure: 1.0,
+        }
+    }
+}
+
+/// The sun (section `[sun]`).
+#[derive(Serialize, Deserialize, Clone, Debug, PartialEq)]
+#[serde(default, deny_unknown_fields)]
+pub struct Sun {
+    /// Angle of the sun above the horizon in degrees, within [-90, 90] (90 = zenith).
+    pub elevation_deg: f64,
+    /// Compass bearing of the sun in degrees, clockwise from north: 0 north, 90 east,
+    /// 180 south, 270 west.
+    pub azimuth_deg: f64,
+    /// Optional explicit direction `[x, y, z]` pointing from the scene toward the sun (need
+    /// not be normalised; must be non-zero). Overrides `elevation_deg`/`azimuth_deg` if given.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub direction: Option<[f64; 3]>,
+    /// Sun illuminance at the top of the cloud layer, linear RGB in the renderer's relative
+    /// units (each >= 0): with `exposure = 1`, a value near 10 gives a well-exposed day.
+    pub illuminance: [f64; 3],
+    /// Angular radius of the sun disc in degrees, within [0, 45] (the real sun: 0.2665).
+    pub angular_radius_deg: f64,
+}
+
+impl Default for Sun {
+    fn default() -> Self {
+        Self {
+            elevation_deg: 60.0,
+            azimuth_deg: 150.0,
+            direction: None,
+            illuminance: [10.0, 9.6, 9.0],
+            angular_radius_deg: 0.2665,
+        }
+    }
+}
+
+/// Planet and cloud layer geometry (section `[atmosphere]`).
+#[derive(Serialize, Deserialize, Clone, Debug, PartialEq)]
+#[serde(default, deny_unknown_fields)]
+pub struct Atmosphere {
+    /// Planet radius in metres (> 0); the ground is a sphere of this radius.
+    pub planet_radius_m: f64,
+    /// Altitude of the bottom of the cloud layer above the ground, metres (>= 0).
+    pub cloud_bottom_m: f64,
+    /// Altitude of the top of the cloud layer above the ground, metres (> `cloud_bottom_m`).
+    pub cloud_top_m: f64,
+}
+
+impl Default for Atmosphere {
+    fn default() -> Self {
+        Self {
+            planet_radius_m: 6_360_000.0,
+            cloud_bottom_m: 1500.0,
+            cloud_top_m: 4000.0,
+        }
+    }
+}
+
+/// How the density falls off toward the bottom and top of a cloud (thesis 5.4 vs HZD).
+#[derive(Serialize, Deserialize, Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
+#[serde(rename_all = "kebab-case")]
+pub enum HeightModel {
+    /// The thesis' parabola `(x - a)(x - a - h)(-4 / h^2)`, peak 1 (eq. 5.1). TOML `"parabola"`.
+    #[default]
+    Parabola,
+    /// Horizon Zero Dawn's per-type gradients (stratus, stratocumulus, cumulus) blended by
+    /// `clouds.cloud_type`. TOML `"cloud-types"`.
+    CloudTypes,
+}
+
+impl HeightModel {
+    /// GPU code of [`HeightModel::Parabola`] (`FrameUniforms::modes.z`).
+    pub const PARABOLA: u32 = 0;
+    /// GPU code of [`HeightModel::CloudTypes`] (`FrameUniforms::modes.z`).
+    pub const CLOUD_TYPES: u32 = 1;
+
+    /// The code the WGSL uses for this model (`FrameUniforms::modes.z`).
+    pub const fn code(self) -> u32 {
+        match self {
+            Self::Parabola => Self::PARABOLA,
+            Self::CloudTypes => Self::CLOUD_TYPES,
+        }
+    }
+}
+
+/// The cloud model (section `[clouds]`).
+#[derive(Serialize, Deserialize, Clone, Debug, PartialEq)]
+#[serde(default, deny_unknown_fields)]
+pub struct Clouds {
+    /// Global cloud coverage, within [0, 1]: 0 clear sky, 1 overcast. Remaps the base shape.
+    pub coverage: f64,
+    /// Density multiplier applied to the final density (> 0; 1 = as modelled).
+    pub density: f64,
+    /// Cloud type, within [0, 1]: 0 stratus, 0.5 stratocumulus, 1 cumulus (HZD weather map B).
+    pub cloud_type: f64,
+    /// Precipitation, within [0, 1]: darkens cloud bottoms (thesis 4.4.1, HZD weather map G).
+    pub precipitation: f64,
+    /// Height signal: `"parabola"` (thesis eq. 5.1) or `"cloud-types"` (HZD gradients).
+    pub height_model: HeightModel,
+    /// Compass direction the wind blows *toward*, degrees clockwise from north (0 = north,
+    /// 90 = east).
+    pub wind_direction_deg: f64,
+    /// Wind speed in metres per second (>= 0). Moves the weather map and the noise.
+    pub wind_speed_m_s: f64,
+    /// Animation time in seconds; wind offsets are `direction * speed * time`, wrapped by each
+    /// texture's period (see [`Scene::wind_offsets`]).
+    pub time_s: f64,
+    /// World size in metres of one tile of the weather map (> 0).
+    pub weather_period_m: f64,
+    /// World size in metres of the shape texture's x (and z) axis (> 0).
+    pub shape_period_m: f64,
+    /// World size in metres of one tile of the detail texture (> 0).
+    pub detail_period_m: f64,
+    /// World size in metres of one tile of the 2D curl-noise texture (> 0).
+    pub curl_period_m: f64,
+    /// Amount of detail erosion at cloud edges, within [0, 1] (0 = no detail noise).
+    pub detail_strength: f64,
+    /// Base-density level within [0, 1] below which the detail noise erodes (thesis alg. 4.1,
+    /// "edge detail threshold"): denser cores are left intact.
+    pub erosion_threshold: f64,
+    /// Maximum displacement of the detail-noise lookup by curl noise, metres (>= 0; HZD).
+    pub curl_strength_m: f64,
+    /// Strength of the linear "denser toward the top" gradient (thesis 4.5.1), within [0, 1]:
+    /// 0 = uniform, 1 = zero density at the bottom of a cloud.
+    pub height_gradient: f64,
+    /// Edge character within [0, 1]: 0 wispy (Worley detail), 1 billowy (inverted Worley).
+    pub wispy_billowy: f64,
+}
+
+impl Default for Clouds {
+    fn default() -> Self {
+        Self {
+            coverage: 0.45,
+            density: 1.0,
+            cloud_type: 1.0,
+            precipitation: 0.0,
+            height_model: HeightModel::Parabola,
+            wind_direction_deg: 90.0,
+            wind_speed_m_s: 10.0,
+            time_s: 0.0,
+            weather_period_m: 60_000.0,
+            shape_period_m: 9_600.0,
+            detail_period_m: 1_200.0,
+            curl_period_m: 6_000.0,
+            detail_strength: 0.35,
+            erosion_threshold: 0.4,
+            curl_strength_m: 150.0,
+            height_gradient: 0.5,
+            wispy_billowy: 0.5,
+        }
+    }
+}
+
+/// Size of the Perlin-Worley shape texture.
+#[derive(Serialize, Deserialize, Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
+pub enum ShapeTexture {
+    /// 128 x 32 x 128 texels (Högfeldt's thesis, 4.2). TOML `"128x32x128"`.
+    #[default]
+    #[serde(rename = "128x32x128")]
+    Thesis,
+    /// 128 x 128 x 128 texels (Horizon Zero Dawn). TOML `"128x128x128"`.
+    #[serde(rename = "128x128x128")]
+    Hzd,
+}
+
+impl ShapeTexture {
+    /// Texture size `[x, y, z]` in texels (y is the vertical axis).
+    pub const fn dims(self) -> [u32; 3] {
+        match self {
+            Self::Thesis => [128, 32, 128],
+            Self::Hzd => [128, 128, 128],
+        }
+    }
+}
+
+/// Procedural noise generation (section `[noise]`).
+#[derive(Serialize, Deserialize, Clone, Debug, PartialEq, Default)]
+#[serde(default, deny_unknown_fields)]
+pub struct Noise {
+    /// Seed of every generated texture (shape, detail, curl, weather). Must be <= 2^63 - 1
+    /// because TOML integers are signed 64-bit.
+    pub seed: u64,
+    /// Shape texture size: `"128x32x128"` (thesis) or `"128x128x128"` (HZD).
+    pub shape_texture: ShapeTexture,
+}
+
+/// Phase function family.
+#[derive(Serialize, Deserialize, Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
+#[serde(rename_all = "kebab-case")]
+pub enum PhaseModel {
+    /// Henyey-Greenstein with eccentricity `g` (thesis eq. 5.4). TOML `"hg"`.
+    #[default]
+    Hg,
+    /// Blend of two HG lobes, `(1 - blend) * HG(g) + blend * HG(g2)`: the silver lining
+    /// (seed 001). TOML `"two-lobe-hg"`.
+    TwoLobeHg,
+    /// Cornette-Shanks with eccentricity `g` (thesis eq. 5.5). TOML `"cornette-shanks"`.
+    CornetteShanks,
+}
+
+impl PhaseModel {
+    /// GPU code of [`PhaseModel::Hg`] (`FrameUniforms::modes.x`).
+    pub const HG: u32 = 0;
+    /// GPU code of [`PhaseModel::TwoLobeHg`] (`FrameUniforms::modes.x`).
+    pub const TWO_LOBE_HG: u32 = 1;
+    /// GPU code of [`PhaseModel::CornetteShanks`] (`FrameUniforms::modes.x`).
+    pub const CORNETTE_SHANKS: u32 = 2;
+
+    /// The code the WGSL uses for this model (`FrameUniforms::modes.x`).
+    pub const fn code(self) -> u32 {
+        match self {
+            Self::Hg => Self::HG,
+            Self::TwoLobeHg => Self::TWO_LOBE_HG,
+            Self::CornetteShanks => Self::CORNETTE_SHANKS,
+        }
+    }
+}
+
+/// Phase function parameters (section `[lighting.phase]`).
+#[derive(Serialize, Deserialize, Clone, Debug, PartialEq)]
+#[serde(default, deny_unknown_fields)]
+pub struct Phase {
+    /// `"hg"`, `"two-lobe-hg"` or `"cornette-shanks"`.
+    pub model: PhaseModel,
+    /// Eccentricity of the (first) lobe, within (-1, 1); > 0 scatters forward.
+    pub g: f64,
+    /// Eccentricity of the second lobe of `"two-lobe-hg"`, within (-1, 1).
+    pub g2: f64,
+    /// Weight of the second lobe of `"two-lobe-hg"`, within [0, 1].
+    pub blend: f64,
+}
+
+impl Default for Phase {
+    fn default() -> Self {
+        Self {
+            model: PhaseModel::Hg,
+            g: 0.6,
+            g2: -0.3,
+            blend: 0.5,
+        }
+    }
+}
+
+/// Multiple-scattering approximation by octaves (Wrenninge 2013; Hillaire, Frostbite 2016),
+/// section `[lighting.multiple_scattering]`.
+///
+/// Octave `i` (0 = single scattering) adds the single-scattering term computed with the
+/// scattering coefficient times `a^i`, the extinction toward the sun times `b^i` and the phase
+/// eccentricity times `c^i`. Energy conservation requires `a <= b`.
+#[derive(Serialize, Deserialize, Clone, Debug, PartialEq)]
+#[serde(default, deny_unknown_fields)]
+pub struct MultipleScattering {
+    /// Number of octaves *beyond* single scattering, within [0, 8] (0 = single scattering
+    /// only).
+    pub octaves: u32,
+    /// Per-octave attenuation of the scattering contribution, within (0, 1]; must be <= `b`.
+    pub a: f64,
+    /// Per-octave attenuation of the extinction toward the sun, within (0, 1].
+    pub b: f64,
+    /// Per-octave attenuation of the phase eccentricity, within (0, 1].
+    pub c: f64,
+}
+
+impl Default for MultipleScattering {
+    fn default() -> Self {
+        Self {
+            octaves: 2,
+            a: 0.5,
+            b: 0.5,
+            c: 0.5,
+        }
+    }
+}
+
+/// Light transport parameters (section `[lighting]`).
+#[derive(Serialize, Deserialize, Clone, Debug, PartialEq)]
+#[serde(default, deny_unknown_fields)]
+pub struct Lighting {
+    /// Scattering coefficient sigma_s in 1/m at density 1 (>= 0).
+    pub scattering: f64,
+    /// Absorption coefficient sigma_a in 1/m at density 1 (>= 0); extinction sigma_t =
+    /// sigma_s + sigma_a must be > 0.
+    pub absorption: f64,
+    /// Apply HZD's Beer-Powder term (darkens thin edges seen with the sun behind the viewer).
+    pub beer_powder: bool,
+    /// Scale `k` of the powder term `1 - exp(-k * optical depth)` (>= 0; HZD uses 2).
+    pub powder_strength: f64,
+    /// Ambient radiance at the bottom of the cloud layer, linear RGB (each >= 0), same units
+    /// as the sun illuminance.
+    pub ambient_bottom: [f64; 3],
+    /// Ambient radiance at the top of the cloud layer, linear RGB (each >= 0).
+    pub ambient_top: [f64; 3],
+    /// Multiplier of the ambient term (>= 0; thesis "ambient multiplier").
+    pub ambient_strength: f64,
+    /// How strongly precipitation darkens the bottom of clouds (thesis 4.4.1), within [0, 1].
+    pub precipitation_darkening: f64,
+    /// Phase function.
+    pub phase: Phase,
+    /// Multiple-scattering octaves.
+    pub multiple_scattering: MultipleScattering,
+}
+
+impl Default for Lighting {
+    fn default() -> Self {
+        Self {
+            scattering: 0.04,
+            absorption: 0.0,
+            beer_powder: false,
+            powder_strength: 2.0,
+            ambient_bottom: [0.25, 0.3, 0.4],
+            ambient_top: [0.6, 0.75, 1.0],
+            ambient_strength: 1.0,
+            precipitation_darkening: 0.5,
+            phase: Phase::default(),
+            multiple_scattering: MultipleScattering::default(),
+        }
+    }
+}
+
+/// How the in-scattered light over one view step is integrated.
+#[derive(Serialize, Deserialize, Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
+#[serde(rename_all = "kebab-case")]
+pub enum Integration {
+    /// Hillaire's energy-conserving analytic step integral `(S - S * Tr) / sigma_t` (thesis
+    /// alg. 5.4). TOML `"analytic"`.
+    #[default]
+    Analytic,
+    /// Naive Riemann sum `S * T * dt`, kept to show where it fails. TOML `"riemann"`.
+    Riemann,
+}
+
+impl Integration {
+    /// GPU code of [`Integration::Analytic`] (`FrameUniforms::modes.y`).
+    pub const ANALYTIC: u32 = 0;
+    /// GPU code of [`Integration::Riemann`] (`FrameUniforms::modes.y`).
+    pub const RIEMANN: u32 = 1;
+
+    /// The code the WGSL uses for this method (`FrameUniforms::modes.y`).
+    pub const fn code(self) -> u32 {
+        match self {
+            Self::Analytic => Self::ANALYTIC,
+            Self::Riemann => Self::RIEMANN,
+        }
+    }
+}
+
+/// Ray-marching quality (section `[quality]`).
+#[derive(Serialize, Deserialize, Clone, Debug, PartialEq)]
+#[serde(default, deny_unknown_fields)]
+pub struct Quality {
+    /// Number of view steps through the layer, within [1, 65536]: step length =
+    /// min(layer depth along the ray, cut-off distance) / view_steps (thesis alg. 5.1).
+    pub view_steps: u32,
+    /// Optional fixed view step length in metres (> 0); if given, used instead of
+    /// `view_steps`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub step_length_m: Option<f64>,
+    /// Light-march steps toward the sun per view sample, within [0, 16] (0 = no self-shadowing).
+    pub light_steps: u32,
+    /// Each light step is this many times longer than the previous one, within [1, 16].
+    pub light_step_growth: f64,
+    /// Length of the first light step in metres (> 0).
+    pub first_light_step_m: f64,
+    /// Clouds farther than this from the camera are not marched, metres (> 0; thesis alg. 5.1).
+    pub cutoff_distance_m: f64,
+    /// Stop marching once the view transmittance drops below this, within [0, 1) (0 = never).
+    pub early_exit_transmittance: f64,
+    /// Jitter each pixel's start offset by a fraction of a step (removes banding).
+    pub jitter: bool,
+    /// Step integral: `"analytic"` (energy-conserving) or `"riemann"`.
+    pub integration: Integration,
+    /// Frame number: seeds the per-pixel jitter sequence.
+    pub frame: u32,
+}
+
+impl Default for Quality {
+    fn default() -> Self {
+        Self {
+            view_steps: 64,
+            step_length_m: None,
+            light_steps: 6,
+            light_step_growth: 2.0,
+            first_light_step_m: 50.0,
+            cutoff_distance_m: 60_000.0,
+            early_exit_transmittance: 0.01,
+            jitter: true,
+            integration: Integration::Analytic,
+            frame: 0,
+        }
+    }
+}
+
+impl Scene {
+    /// This scene with the image size replaced (the CLI's `--size WxH`).
+    pub fn with_size(mut self, width: u32, height: u32) -> Self {
+        self.camera.resolution = [width, height];
+        self
+    }
+
+    /// The scene with every optional field filled in: its TOML form lists every known key.
+    pub(crate) fn schema() -> Self {
+        let mut scene = Self::default();
+        scene.sun.direction = Some([0.0, 1.0, 0.0]);
+        scene.quality.step_length_m = Some(100.0);
+        scene
+    }
+}

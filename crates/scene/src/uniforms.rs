@@ -1,0 +1,278 @@
+//! Geometry derived from a scene (sun direction, camera basis, wind offsets) and the per-frame
+//! GPU uniform block.
+
+use crate::scene::Scene;
+
+/// Per-frame uniforms, std140/WGSL-uniform compatible: only 16-byte vec4 members.
+///
+/// The WGSL mirrors this struct member for member ([`FrameUniforms::MEMBERS`]); member `i`
+/// lies at byte offset `16 * i`. Build it with [`Scene::uniforms`].
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct FrameUniforms {
+    /// x, altitude, z (m); w = tan(fov_y / 2).
+    pub camera_position: [f32; 4],
+    /// Unit view direction; w = width / height.
+    pub camera_forward: [f32; 4],
+    /// Unit, image right; w = exposure.
+    pub camera_right: [f32; 4],
+    /// Unit, image up; w = 0.
+    pub camera_up: [f32; 4],
+    /// Unit vector toward the sun; w = cos(sun angular radius).
+    pub sun_direction: [f32; 4],
+    /// Linear rgb; w = 0.
+    pub sun_illuminance: [f32; 4],
+    /// Planet radius, layer bottom, layer top (altitudes, m), cut-off distance (m).
+    pub atmosphere: [f32; 4],
+    /// Coverage, density multiplier, cloud type, precipitation.
+    pub clouds: [f32; 4],
+    /// Detail strength, erosion threshold, curl strength (m), height gradient strength.
+    pub erosion: [f32; 4],
+    /// Weather period, shape period (x axis), detail period, curl period (m).
+    pub periods: [f32; 4],
+    /// Weather offset xz, shape offset xz (m), each within [0, period).
+    pub wind_offsets0: [f32; 4],
+    /// Detail offset xz, curl offset xz (m), each within [0, period).
+    pub wind_offsets1: [f32; 4],
+    /// sigma_s, sigma_a (1/m at density 1), precipitation darkening, wispy_billowy.
+    pub extinction: [f32; 4],
+    /// g, g2, blend, powder strength.
+    pub phase: [f32; 4],
+    /// a (contribution), b (extinction), c (eccentricity) attenuation per octave, 0.
+    pub multiple_scattering: [f32; 4],
+    /// Linear rgb; w = ambient strength.
+    pub ambient_bottom: [f32; 4],
+    /// Linear rgb; w = 0.
+    pub ambient_top: [f32; 4],
+    /// Step length (m, 0 = derive from view steps), light step growth, first light step (m),
+    /// early-exit transmittance.
+    pub march: [f32; 4],
+    /// Width, height, view steps, light steps.
+    pub counts: [u32; 4],
+    /// Phase model ([`PhaseModel::code`](crate::PhaseModel::code)), integration
+    /// ([`Integration::code`](crate::Integration::code)), height model
+    /// ([`HeightModel::code`](crate::HeightModel::code)), flags
+    /// ([`FrameUniforms::FLAG_BEER_POWDER`], [`FrameUniforms::FLAG_JITTER`]).
+    pub modes: [u32; 4],
+    /// Octaves (beyond single scattering), frame (jitter seed), 0, 0.
+    pub misc: [u32; 4],
+}
+
+impl FrameUniforms {
+    /// Size of the block in bytes (21 vec4 members).
+    pub const SIZE: usize = std::mem::size_of::<Self>();
+
+    /// `modes.w` bit: apply the Beer-Powder term.
+    pub const FLAG_BEER_POWDER: u32 = 1 << 0;
+    /// `modes.w` bit: jitter the view-ray start offset per pixel.
+    pub const FLAG_JITTER: u32 = 1 << 1;
+
+    /// Every member in declaration order with its WGSL type; member `i` is at offset `16 * i`.
+    /// The shader-reflection test compares the WGSL struct against this list.
+    pub const MEMBERS: [(&'static str, &'static str); 21] = [
+        ("camera_position", "vec4<f32>"),
+        ("camera_forward", "vec4<f32>"),
+        ("camera_right", "vec4<f32>"),
+        ("camera_up", "vec4<f32>"),
+        ("sun_direction", "vec4<f32>"),
+        ("sun_illuminance", "vec4<f32>"),
+        ("atmosphere", "vec4<f32>"),
+        ("clouds", "vec4<f32>"),
+        ("erosion", "vec4<f32>"),
+        ("periods", "vec4<f32>"),
+        ("wind_offsets0", "vec4<f32>"),
+        ("wind_offsets1", "vec4<f32>"),
+        ("extinction", "vec4<f32>"),
+        ("phase", "vec4<f32>"),
+        ("multiple_scattering", "vec4<f32>"),
+        ("ambient_bottom", "vec4<f32>"),
+        ("ambient_top", "vec4<f32>"),
+        ("march", "vec4<f32>"),
+        ("counts", "vec4<u32>"),
+        ("modes", "vec4<u32>"),
+        ("misc", "vec4<u32>"),
+    ];
+
+    /// The block's bytes, ready to upload.
+    pub fn as_bytes(&self) -> &[u8] {
+        bytemuck::bytes_of(self)
+    }
+}
+
+fn v4(v: [f64; 3], w: f64) -> [f32; 4] {
+    [v[0] as f32, v[1] as f32, v[2] as f32, w as f32]
+}
+
+fn normalize(v: [f64; 3]) -> Option<[f64; 3]> {
+    let len = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+    (len > 0.0 && len.is_finite()).then(|| [v[0] / len, v[1] / len, v[2] / len])
+}
+
+/// `x.rem_euclid(period)` guaranteed to lie in `[0, period)` (0 for a non-positive period).
+fn wrap(x: f64, period: f64) -> f64 {
+    if period.is_nan() || period <= 0.0 {
+        return 0.0;
+    }
+    let r = x.rem_euclid(period);
+    // rem_euclid can round up to exactly `period` for tiny negative x.
+    if r >= period { 0.0 } else { r }
+}
+
+/// [`wrap`] after conversion to f32, where a value just below the period may round up to it.
+fn wrap_f32(x: f64, period: f64) -> f32 {
+    let r = wrap(x, period) as f32;
+    if r >= period as f32 { 0.0 } else { r }
+}
+
+impl Scene {
+    /// Unit vector from the scene toward the sun, in world axes (X east, Y up, Z north).
+    ///
+    /// `sun.direction` if it is given (normalised), otherwise from elevation and azimuth:
+    /// `(sin az * cos el, sin el, cos az * cos el)`.
+    pub fn sun_direction(&self) -> [f64; 3] {
+        if let Some(d) = self.sun.direction.and_then(normalize) {
+            return d;
+        }
+        let (el, az) = (
+            self.sun.elevation_deg.to_radians(),
+            self.sun.azimuth_deg.to_radians(),
+        );
+        [az.sin() * el.cos(), el.sin(), az.cos() * el.cos()]
+    }
+
+    /// The camera's unit `(forward, right, up)` vectors in world axes.
+    ///
+    /// forward = `(sin yaw * cos pitch, sin pitch, cos yaw * cos pitch)`; right =
+    /// `(cos yaw, 0, -sin yaw)` (always horizontal, well defined even looking straight up);
+    /// up = forward x right. For yaw = pitch = 0 they are +Z, +X and +Y. Algebraically
+    /// right x up = forward, like the world's X x Y = Z: the camera frame is the world frame
+    /// rotated, and both are left-handed in physical space (X east, Y up, Z north; seed 001),
+    /// like Direct3D's view space.
+    pub fn camera_basis(&self) -> ([f64; 3], [f64; 3], [f64; 3]) {
+        let (yaw, pitch) = (
+            self.camera.yaw_deg.to_radians(),
+            self.camera.pitch_deg.to_radians(),
+        );
+        let (sy, cy) = yaw.sin_cos();
+        let (sp, cp) = pitch.sin_cos();
+        let forward = [sy * cp, sp, cy * cp];
+        let right = [cy, 0.0, -sy];
+        let up = [-sp * sy, cp, -sp * cy];
+        (forward, right, up)
+    }
+
+    /// Wind offsets in metres `[x, z]` for the weather map, shape, detail and curl textures.
+    ///
+    /// Offset = wind direction (unit, toward which the wind blows) * speed * time, computed in
+    /// f64 and wrapped into `[0, period)` by each texture's own period, so hours of animation
+    /// lose no precision. Cloud features travel with the wind when the shader samples texture
+    /// coordinates at `(p.xz - offset) / period`.
+    pub fn wind_offsets(&self) -> [[f64; 2]; 4] {
+        let c = &self.clouds;
+        let (dx, dz) = c.wind_direction_deg.to_radians().sin_cos();
+        let distance = c.wind_speed_m_s * c.time_s;
+        let (x, z) = (dx * distance, dz * distance);
+        [
+            c.weather_period_m,
+            c.shape_period_m,
+            c.detail_period_m,
+            c.curl_period_m,
+        ]
+        .map(|p| [wrap(x, p), wrap(z, p)])
+    }
+
+    /// The per-frame uniform block for this scene. Meant for a validated scene; any scene
+    /// gives some block without panicking.
+    pub fn uniforms(&self) -> FrameUniforms {
+        let cam = &self.camera;
+        let (forward, right, up) = self.camera_basis();
+        let [width, height] = cam.resolution;
+        let aspect = f64::from(width) / f64::from(height.max(1));
+        let tan_half_fov = (cam.fov_y_deg.to_radians() * 0.5).tan();
+
+        let c = &self.clouds;
+        let periods = [
+            c.weather_period_m,
+            c.shape_period_m,
+            c.detail_period_m,
+            c.curl_period_m,
+        ];
+        let (dx, dz) = c.wind_direction_deg.to_radians().sin_cos();
+        let distance = c.wind_speed_m_s * c.time_s;
+        let offs = periods.map(|p| [wrap_f32(dx * distance, p), wrap_f32(dz * distance, p)]);
+
+        let atm = &self.atmosphere;
+        let li = &self.lighting;
+        let ms = &li.multiple_scattering;
+        let q = &self.quality;
+        let mut flags = 0;
+        if li.beer_powder {
+            flags |= FrameUniforms::FLAG_BEER_POWDER;
+        }
+        if q.jitter {
+            flags |= FrameUniforms::FLAG_JITTER;
+        }
+
+        FrameUniforms {
+            camera_position: v4(cam.position, tan_half_fov),
+            camera_forward: v4(forward, aspect),
+            camera_right: v4(right, cam.exposure),
+            camera_up: v4(up, 0.0),
+            sun_direction: v4(
+                self.sun_direction(),
+                self.sun.angular_radius_deg.to_radians().cos(),
+            ),
+            sun_illuminance: v4(self.sun.illuminance, 0.0),
+            atmosphere: [
+                atm.planet_radius_m as f32,
+                atm.cloud_bottom_m as f32,
+                atm.cloud_top_m as f32,
+                q.cutoff_distance_m as f32,
+            ],
+            clouds: [
+                c.coverage as f32,
+                c.density as f32,
+                c.cloud_type as f32,
+                c.precipitation as f32,
+            ],
+            erosion: [
+                c.detail_strength as f32,
+                c.erosion_threshold as f32,
+                c.curl_strength_m as f32,
+                c.height_gradient as f32,
+            ],
+            periods: periods.map(|p| p as f32),
+            wind_offsets0: [offs[0][0], offs[0][1], offs[1][0], offs[1][1]],
+            wind_offsets1: [offs[2][0], offs[2][1], offs[3][0], offs[3][1]],
+            extinction: [
+                li.scattering as f32,
+                li.absorption as f32,
+                li.precipitation_darkening as f32,
+                c.wispy_billowy as f32,
+            ],
+            phase: [
+                li.phase.g as f32,
+                li.phase.g2 as f32,
+                li.phase.blend as f32,
+                li.powder_strength as f32,
+            ],
+            multiple_scattering: [ms.a as f32, ms.b as f32, ms.c as f32, 0.0],
+            ambient_bottom: v4(li.ambient_bottom, li.ambient_strength),
+            ambient_top: v4(li.ambient_top, 0.0),
+            march: [
+                q.step_length_m.unwrap_or(0.0) as f32,
+                q.light_step_growth as f32,
+                q.first_light_step_m as f32,
+                q.early_exit_transmittance as f32,
+            ],
+            counts: [width, height, q.view_steps, q.light_steps],
+            modes: [
+                li.phase.model.code(),
+                q.integration.code(),
+                c.height_model.code(),
+                flags,
+            ],
+            misc: [ms.octaves, q.frame, 0, 0],
+        }
+    }
+}

@@ -1,0 +1,331 @@
+//! Validation rules for every field of a [`Scene`].
+
+use crate::error::{Problem, ProblemKind};
+use crate::scene::Scene;
+use crate::text::{num, nums};
+
+/// One broken rule. `path` is the field the message names. A rule between two fields also has
+/// `related`: the other field and the same problem told from its side, used when a file
+/// spells only that field (`cloud_top_m = 1000` is the culprit, not the default bottom).
+pub(crate) struct Issue {
+    pub path: &'static str,
+    pub message: String,
+    pub related: Option<(&'static str, String)>,
+}
+
+impl Issue {
+    /// The problem, told from the side of `related` instead of `path` if asked.
+    pub(crate) fn into_problem(self, from_related_side: bool) -> Problem {
+        let (path, message) = match self.related {
+            Some(related) if from_related_side => related,
+            _ => (self.path, self.message),
+        };
+        Problem::new(ProblemKind::InvalidValue, Some(path.to_owned()), message)
+    }
+}
+
+/// An interval end: inclusive or exclusive, or absent.
+#[derive(Clone, Copy)]
+enum End {
+    Incl(f64),
+    Excl(f64),
+    None,
+}
+use End::{Excl, Incl};
+
+#[derive(Default)]
+struct Checker {
+    issues: Vec<Issue>,
+}
+
+impl Checker {
+    fn push(&mut self, path: &'static str, value: String, rule: impl Into<String>) {
+        self.issues.push(Issue {
+            path,
+            message: format!("{path} = {value}: {}", rule.into()),
+            related: None,
+        });
+    }
+
+    /// A broken rule between `path` and `other`, told from both sides: `(value, rule)` each.
+    fn push_pair(
+        &mut self,
+        (path, value, rule): (&'static str, String, String),
+        (other, other_value, other_rule): (&'static str, String, String),
+    ) {
+        self.issues.push(Issue {
+            path,
+            message: format!("{path} = {value}: {rule}"),
+            related: Some((other, format!("{other} = {other_value}: {other_rule}"))),
+        });
+    }
+
+    /// `v` must be finite and inside the interval; returns whether it is.
+    fn float(&mut self, path: &'static str, v: f64, lo: End, hi: End) -> bool {
+        if !v.is_finite() {
+            self.push(path, num(v), "must be a finite number");
+            return false;
+        }
+        let lo_ok = match lo {
+            Incl(l) => v >= l,
+            Excl(l) => v > l,
+            End::None => true,
+        };
+        let hi_ok = match hi {
+            Incl(h) => v <= h,
+            Excl(h) => v < h,
+            End::None => true,
+        };
+        if !(lo_ok && hi_ok) {
+            self.push(path, num(v), interval_rule(lo, hi));
+            return false;
+        }
+        true
+    }
+
+    fn finite(&mut self, path: &'static str, v: f64) -> bool {
+        self.float(path, v, End::None, End::None)
+    }
+
+    fn unit(&mut self, path: &'static str, v: f64) -> bool {
+        self.float(path, v, Incl(0.0), Incl(1.0))
+    }
+
+    fn positive(&mut self, path: &'static str, v: f64) -> bool {
+        self.float(path, v, Excl(0.0), End::None)
+    }
+
+    fn non_negative(&mut self, path: &'static str, v: f64) -> bool {
+        self.float(path, v, Incl(0.0), End::None)
+    }
+
+    fn uint(&mut self, path: &'static str, v: u64, lo: u64, hi: u64) {
+        if v < lo || v > hi {
+            self.push(path, v.to_string(), format!("must be within [{lo}, {hi}]"));
+        }
+    }
+
+    /// Every component finite; returns whether they are.
+    fn finite_vec(&mut self, path: &'static str, v: &[f64]) -> bool {
+        if v.iter().all(|x| x.is_finite()) {
+            true
+        } else {
+            self.push(path, nums(v), "every component must be a finite number");
+            false
+        }
+    }
+
+    /// A colour: every component finite and >= 0.
+    fn colour(&mut self, path: &'static str, v: &[f64; 3]) {
+        if self.finite_vec(path, v) && v.iter().any(|&x| x < 0.0) {
+            self.push(path, nums(v), "every component must be >= 0");
+        }
+    }
+}
+
+fn interval_rule(lo: End, hi: End) -> String {
+    match (lo, hi) {
+        (Incl(l), End::None) => format!("must be >= {}", num(l)),
+        (Excl(l), End::None) => format!("must be > {}", num(l)),
+        (End::None, Incl(h)) => format!("must be <= {}", num(h)),
+        (End::None, Excl(h)) => format!("must be < {}", num(h)),
+        (End::None, End::None) => "must be a finite number".to_owned(),
+        (lo, hi) => {
+            let (open, l) = match lo {
+                Incl(l) => ('[', l),
+                Excl(l) => ('(', l),
+                End::None => unreachable!(),
+            };
+            let (close, h) = match hi {
+                Incl(h) => (']', h),
+                Excl(h) => (')', h),
+                End::None => unreachable!(),
+            };
+            format!("must be within {open}{}, {}{close}", num(l), num(h))
+        }
+    }
+}
+
+/// Checks every field of `scene`; returns the broken rules in field order.
+pub(crate) fn check(scene: &Scene) -> Vec<Issue> {
+    let mut c = Checker::default();
+
+    let cam = &scene.camera;
+    if c.finite_vec("camera.position", &cam.position) && cam.position[1] < 0.0 {
+        c.push(
+            "camera.position",
+            nums(&cam.position),
+            "the altitude (second component) must be >= 0: the camera cannot be below the ground",
+        );
+    }
+    c.finite("camera.yaw_deg", cam.yaw_deg);
+    c.float("camera.pitch_deg", cam.pitch_deg, Incl(-90.0), Incl(90.0));
+    c.float("camera.fov_y_deg", cam.fov_y_deg, Excl(0.0), Excl(180.0));
+    let [w, h] = cam.resolution;
+    if !(1..=MAX_RESOLUTION).contains(&w) || !(1..=MAX_RESOLUTION).contains(&h) {
+        c.push(
+            "camera.resolution",
+            format!("[{w}, {h}]"),
+            format!("width and height must be within [1, {MAX_RESOLUTION}]"),
+        );
+    }
+    c.positive("camera.exposure", cam.exposure);
+
+    let sun = &scene.sun;
+    c.float(
+        "sun.elevation_deg",
+        sun.elevation_deg,
+        Incl(-90.0),
+        Incl(90.0),
+    );
+    c.finite("sun.azimuth_deg", sun.azimuth_deg);
+    if let Some(d) = &sun.direction {
+        if c.finite_vec("sun.direction", d) && d.iter().all(|&x| x == 0.0) {
+            c.push("sun.direction", nums(d), "must not be the zero vector");
+        }
+    }
+    c.colour("sun.illuminance", &sun.illuminance);
+    c.float(
+        "sun.angular_radius_deg",
+        sun.angular_radius_deg,
+        Incl(0.0),
+        Incl(45.0),
+    );
+
+    let atm = &scene.atmosphere;
+    c.positive("atmosphere.planet_radius_m", atm.planet_radius_m);
+    let bottom_ok = c.non_negative("atmosphere.cloud_bottom_m", atm.cloud_bottom_m);
+    let top_ok = c.positive("atmosphere.cloud_top_m", atm.cloud_top_m);
+    if bottom_ok && top_ok && atm.cloud_bottom_m >= atm.cloud_top_m {
+        let (bottom, top) = (num(atm.cloud_bottom_m), num(atm.cloud_top_m));
+        c.push_pair(
+            (
+                "atmosphere.cloud_bottom_m",
+                bottom.clone(),
+                format!("must be below atmosphere.cloud_top_m ({top})"),
+            ),
+            (
+                "atmosphere.cloud_top_m",
+                top,
+                format!("must be above atmosphere.cloud_bottom_m ({bottom})"),
+            ),
+        );
+    }
+
+    let cl = &scene.clouds;
+    c.unit("clouds.coverage", cl.coverage);
+    c.positive("clouds.density", cl.density);
+    c.unit("clouds.cloud_type", cl.cloud_type);
+    c.unit("clouds.precipitation", cl.precipitation);
+    c.finite("clouds.wind_direction_deg", cl.wind_direction_deg);
+    c.non_negative("clouds.wind_speed_m_s", cl.wind_speed_m_s);
+    c.finite("clouds.time_s", cl.time_s);
+    c.positive("clouds.weather_period_m", cl.weather_period_m);
+    c.positive("clouds.shape_period_m", cl.shape_period_m);
+    c.positive("clouds.detail_period_m", cl.detail_period_m);
+    c.positive("clouds.curl_period_m", cl.curl_period_m);
+    c.unit("clouds.detail_strength", cl.detail_strength);
+    c.unit("clouds.erosion_threshold", cl.erosion_threshold);
+    c.non_negative("clouds.curl_strength_m", cl.curl_strength_m);
+    c.unit("clouds.height_gradient", cl.height_gradient);
+    c.unit("clouds.wispy_billowy", cl.wispy_billowy);
+
+    if scene.noise.seed > i64::MAX as u64 {
+        c.push(
+            "noise.seed",
+            scene.noise.seed.to_string(),
+            format!("must be <= {} (TOML integers are signed 64-bit)", i64::MAX),
+        );
+    }
+
+    let li = &scene.lighting;
+    let s_ok = c.non_negative("lighting.scattering", li.scattering);
+    let a_ok = c.non_negative("lighting.absorption", li.absorption);
+    if s_ok && a_ok && li.scattering + li.absorption <= 0.0 {
+        let rule = "lighting.scattering + lighting.absorption must be > 0 (the clouds would be \
+                    invisible)";
+        c.push_pair(
+            ("lighting.scattering", num(li.scattering), rule.to_owned()),
+            ("lighting.absorption", num(li.absorption), rule.to_owned()),
+        );
+    }
+    c.non_negative("lighting.powder_strength", li.powder_strength);
+    c.colour("lighting.ambient_bottom", &li.ambient_bottom);
+    c.colour("lighting.ambient_top", &li.ambient_top);
+    c.non_negative("lighting.ambient_strength", li.ambient_strength);
+    c.unit(
+        "lighting.precipitation_darkening",
+        li.precipitation_darkening,
+    );
+    c.float("lighting.phase.g", li.phase.g, Excl(-1.0), Excl(1.0));
+    c.float("lighting.phase.g2", li.phase.g2, Excl(-1.0), Excl(1.0));
+    c.unit("lighting.phase.blend", li.phase.blend);
+    let ms = &li.multiple_scattering;
+    c.uint(
+        "lighting.multiple_scattering.octaves",
+        ms.octaves.into(),
+        0,
+        MAX_OCTAVES.into(),
+    );
+    let a_ok = c.float("lighting.multiple_scattering.a", ms.a, Excl(0.0), Incl(1.0));
+    let b_ok = c.float("lighting.multiple_scattering.b", ms.b, Excl(0.0), Incl(1.0));
+    c.float("lighting.multiple_scattering.c", ms.c, Excl(0.0), Incl(1.0));
+    if a_ok && b_ok && ms.a > ms.b {
+        let (a, b) = (num(ms.a), num(ms.b));
+        let why = "for energy conservation (Wrenninge 2013)";
+        c.push_pair(
+            (
+                "lighting.multiple_scattering.a",
+                a.clone(),
+                format!("must be <= lighting.multiple_scattering.b ({b}) {why}"),
+            ),
+            (
+                "lighting.multiple_scattering.b",
+                b,
+                format!("must be >= lighting.multiple_scattering.a ({a}) {why}"),
+            ),
+        );
+    }
+
+    let q = &scene.quality;
+    c.uint(
+        "quality.view_steps",
+        q.view_steps.into(),
+        1,
+        MAX_VIEW_STEPS.into(),
+    );
+    if let Some(step) = q.step_length_m {
+        c.positive("quality.step_length_m", step);
+    }
+    c.uint(
+        "quality.light_steps",
+        q.light_steps.into(),
+        0,
+        MAX_LIGHT_STEPS.into(),
+    );
+    c.float(
+        "quality.light_step_growth",
+        q.light_step_growth,
+        Incl(1.0),
+        Incl(16.0),
+    );
+    c.positive("quality.first_light_step_m", q.first_light_step_m);
+    c.positive("quality.cutoff_distance_m", q.cutoff_distance_m);
+    c.float(
+        "quality.early_exit_transmittance",
+        q.early_exit_transmittance,
+        Incl(0.0),
+        Excl(1.0),
+    );
+
+    c.issues
+}
+
+/// Largest accepted image width or height, pixels.
+pub const MAX_RESOLUTION: u32 = 16384;
+/// Largest accepted `quality.view_steps`.
+pub const MAX_VIEW_STEPS: u32 = 65536;
+/// Largest accepted `quality.light_steps`.
+pub const MAX_LIGHT_STEPS: u32 = 16;
+/// Largest accepted `lighting.multiple_scattering.octaves`.
+pub const MAX_OCTAVES: u32 = 8;

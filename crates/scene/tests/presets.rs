@@ -1,0 +1,102 @@
+//! The built-in presets: they load, validate, round-trip and show what their names promise.
+
+use stratus_scene::{DEFAULT_PRESET, PhaseModel, Scene, presets};
+
+#[test]
+fn every_preset_loads_validates_and_round_trips() {
+    assert!(presets().len() >= 6);
+    for preset in presets() {
+        let scene = Scene::preset(preset.name).unwrap_or_else(|e| panic!("{}:\n{e}", preset.name));
+        scene.validate().unwrap();
+        let text = scene.to_toml();
+        let back = Scene::from_toml_str(&text, preset.name).unwrap_or_else(|e| panic!("{e}"));
+        assert_eq!(back, scene, "{} does not round-trip", preset.name);
+        assert!(
+            !preset.description.is_empty() && !preset.description.contains('\n'),
+            "{} needs a one-line description",
+            preset.name
+        );
+    }
+}
+
+#[test]
+fn preset_names_are_unique_and_the_default_comes_first() {
+    let mut names: Vec<&str> = presets().iter().map(|p| p.name).collect();
+    assert_eq!(names[0], DEFAULT_PRESET);
+    names.sort_unstable();
+    names.dedup();
+    assert_eq!(names.len(), presets().len());
+}
+
+#[test]
+fn default_is_cumulus_noon() {
+    assert_eq!(Scene::preset("cumulus-noon").unwrap(), Scene::default());
+    assert_eq!(
+        Scene::from_toml_str("", "empty.toml").unwrap(),
+        Scene::default()
+    );
+}
+
+#[test]
+fn presets_show_what_their_names_promise() {
+    let p = |name| Scene::preset(name).unwrap();
+
+    let above = p("above-clouds");
+    assert!(above.camera.position[1] > above.atmosphere.cloud_top_m);
+    assert!(above.camera.pitch_deg < 0.0);
+
+    let inside = p("inside-layer");
+    let alt = inside.camera.position[1];
+    assert!(inside.atmosphere.cloud_bottom_m < alt && alt < inside.atmosphere.cloud_top_m);
+
+    let sunset = p("sunset");
+    assert!(sunset.sun.elevation_deg < 10.0);
+    let facing = (sunset.camera.yaw_deg - sunset.sun.azimuth_deg).rem_euclid(360.0);
+    assert!(
+        facing.min(360.0 - facing) < 30.0,
+        "camera must face the sun"
+    );
+    assert_eq!(sunset.lighting.phase.model, PhaseModel::TwoLobeHg);
+
+    let storm = p("storm");
+    assert!(storm.clouds.coverage >= 0.85 && storm.clouds.precipitation >= 0.5);
+    assert!(storm.clouds.density > 1.0);
+
+    let overcast = p("stratocumulus-overcast");
+    assert!(overcast.clouds.coverage >= 0.75);
+    assert_eq!(overcast.clouds.cloud_type, 0.5);
+}
+
+#[test]
+fn base_is_deep_merged() {
+    let src = "base = \"sunset\"\n\n[lighting.phase]\ng = 0.7\n\n[clouds]\ncoverage = 0.6\n";
+    let scene = Scene::from_toml_str(src, "mine.toml").unwrap();
+    let sunset = Scene::preset("sunset").unwrap();
+    assert_eq!(scene.lighting.phase.g, 0.7);
+    assert_eq!(scene.lighting.phase.model, sunset.lighting.phase.model);
+    assert_eq!(scene.lighting.phase.blend, sunset.lighting.phase.blend);
+    assert_eq!(scene.clouds.coverage, 0.6);
+    assert_eq!(scene.sun, sunset.sun);
+}
+
+#[test]
+fn optional_fields_round_trip() {
+    let mut scene = Scene::default().with_size(320, 180);
+    scene.sun.direction = Some([1.0, 2.0, -0.5]);
+    scene.quality.step_length_m = Some(75.0);
+    scene.noise.seed = 42;
+    let back = Scene::from_toml_str(&scene.to_toml(), "round-trip").unwrap();
+    assert_eq!(back, scene);
+    assert_eq!(back.camera.resolution, [320, 180]);
+}
+
+#[test]
+fn from_file_reads_a_scene() {
+    let path = std::env::temp_dir().join(format!("stratus-scene-{}.toml", std::process::id()));
+    std::fs::write(&path, "base = \"storm\"\n[camera]\nresolution = [64, 32]\n").unwrap();
+    let scene = Scene::from_file(&path);
+    std::fs::remove_file(&path).unwrap();
+    let scene = scene.unwrap();
+    assert_eq!(scene.camera.resolution, [64, 32]);
+    assert_eq!(scene.clouds, Scene::preset("storm").unwrap().clouds);
+}

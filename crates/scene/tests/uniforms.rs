@@ -1,0 +1,181 @@
+//! The GPU uniform block and the geometry helpers behind it.
+
+use std::mem::{offset_of, size_of};
+
+use stratus_scene::{FrameUniforms, HeightModel, Integration, PhaseModel, Scene};
+
+fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+fn assert_close(a: [f64; 3], b: [f64; 3]) {
+    for i in 0..3 {
+        assert!((a[i] - b[i]).abs() < 1e-12, "{a:?} != {b:?}");
+    }
+}
+
+#[test]
+fn layout_is_vec4_aligned_and_matches_members() {
+    assert_eq!(size_of::<FrameUniforms>() % 16, 0);
+    assert_eq!(FrameUniforms::SIZE, 16 * FrameUniforms::MEMBERS.len());
+    let offsets = [
+        offset_of!(FrameUniforms, camera_position),
+        offset_of!(FrameUniforms, camera_forward),
+        offset_of!(FrameUniforms, camera_right),
+        offset_of!(FrameUniforms, camera_up),
+        offset_of!(FrameUniforms, sun_direction),
+        offset_of!(FrameUniforms, sun_illuminance),
+        offset_of!(FrameUniforms, atmosphere),
+        offset_of!(FrameUniforms, clouds),
+        offset_of!(FrameUniforms, erosion),
+        offset_of!(FrameUniforms, periods),
+        offset_of!(FrameUniforms, wind_offsets0),
+        offset_of!(FrameUniforms, wind_offsets1),
+        offset_of!(FrameUniforms, extinction),
+        offset_of!(FrameUniforms, phase),
+        offset_of!(FrameUniforms, multiple_scattering),
+        offset_of!(FrameUniforms, ambient_bottom),
+        offset_of!(FrameUniforms, ambient_top),
+        offset_of!(FrameUniforms, march),
+        offset_of!(FrameUniforms, counts),
+        offset_of!(FrameUniforms, modes),
+        offset_of!(FrameUniforms, misc),
+    ];
+    for (i, offset) in offsets.into_iter().enumerate() {
+        assert_eq!(offset, 16 * i, "member {}", FrameUniforms::MEMBERS[i].0);
+    }
+    assert_eq!(
+        Scene::default().uniforms().as_bytes().len(),
+        FrameUniforms::SIZE
+    );
+}
+
+#[test]
+fn wind_offsets_wrap_after_a_million_seconds() {
+    for direction in [0.0, 37.0, 90.0, 180.0, 225.0, 300.0] {
+        for time in [1e6, -1e6, 3.6e3 * 24.0, 0.0] {
+            let mut scene = Scene::default();
+            scene.clouds.wind_direction_deg = direction;
+            scene.clouds.wind_speed_m_s = 17.3;
+            scene.clouds.time_s = time;
+            let c = &scene.clouds;
+            let periods = [
+                c.weather_period_m,
+                c.shape_period_m,
+                c.detail_period_m,
+                c.curl_period_m,
+            ];
+            let offsets = scene.wind_offsets();
+            let (dx, dz) = direction.to_radians().sin_cos();
+            let distance = c.wind_speed_m_s * time;
+            for (offset, period) in offsets.iter().zip(periods) {
+                for (o, unwrapped) in offset.iter().zip([dx * distance, dz * distance]) {
+                    assert!((0.0..period).contains(o), "{o} not in [0, {period})");
+                    // Same point of the tiling texture as the unwrapped offset.
+                    let turns = (unwrapped - o) / period;
+                    assert!((turns - turns.round()).abs() < 1e-9, "{unwrapped} vs {o}");
+                }
+            }
+            let u = scene.uniforms();
+            let flat = [u.wind_offsets0, u.wind_offsets1].concat();
+            for (i, o) in flat.iter().enumerate() {
+                let period = periods[i / 2] as f32;
+                assert!((0.0..period).contains(o), "{o} not in [0, {period})");
+                // Equal up to f32 rounding, on the circle of the period (period == 0).
+                let diff = (f64::from(*o) - offsets[i / 2][i % 2]).rem_euclid(f64::from(period));
+                assert!(
+                    diff.min(f64::from(period) - diff) < 1e-2,
+                    "{o} vs {:?}",
+                    offsets[i / 2]
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn wind_blows_toward_its_direction() {
+    let mut scene = Scene::default();
+    scene.clouds.wind_direction_deg = 90.0; // toward the east, +X
+    scene.clouds.wind_speed_m_s = 10.0;
+    scene.clouds.time_s = 2.0;
+    let [x, z] = scene.wind_offsets()[0];
+    assert!((x - 20.0).abs() < 1e-9 && z.abs() < 1e-9, "{x} {z}");
+}
+
+#[test]
+fn sun_direction() {
+    let mut scene = Scene::default();
+    scene.sun.elevation_deg = 90.0;
+    assert_close(scene.sun_direction(), [0.0, 1.0, 0.0]);
+    scene.sun.elevation_deg = 0.0;
+    scene.sun.azimuth_deg = 90.0;
+    assert_close(scene.sun_direction(), [1.0, 0.0, 0.0]);
+    scene.sun.azimuth_deg = 0.0;
+    assert_close(scene.sun_direction(), [0.0, 0.0, 1.0]);
+    scene.sun.direction = Some([0.0, 3.0, -4.0]);
+    assert_close(scene.sun_direction(), [0.0, 0.6, -0.8]);
+}
+
+#[test]
+fn camera_basis_is_orthonormal() {
+    let mut scene = Scene::default();
+    for yaw in [0.0, 33.0, 90.0, 180.0, -135.0, 400.0] {
+        for pitch in [-90.0, -45.0, -12.5, 0.0, 12.0, 60.0, 90.0] {
+            scene.camera.yaw_deg = yaw;
+            scene.camera.pitch_deg = pitch;
+            let (f, r, u) = scene.camera_basis();
+            for v in [f, r, u] {
+                assert!((dot(v, v) - 1.0).abs() < 1e-12);
+            }
+            assert!(dot(f, r).abs() < 1e-12 && dot(f, u).abs() < 1e-12 && dot(r, u).abs() < 1e-12);
+            assert_close(cross(r, u), f);
+            assert!(r[1] == 0.0, "right stays horizontal");
+        }
+    }
+    scene.camera.yaw_deg = 0.0;
+    scene.camera.pitch_deg = 0.0;
+    let (f, r, u) = scene.camera_basis();
+    assert_close(f, [0.0, 0.0, 1.0]);
+    assert_close(r, [1.0, 0.0, 0.0]);
+    assert_close(u, [0.0, 1.0, 0.0]);
+    scene.camera.yaw_deg = 90.0;
+    let (f, r, _) = scene.camera_basis();
+    assert_close(f, [1.0, 0.0, 0.0]);
+    assert_close(r, [0.0, 0.0, -1.0]);
+}
+
+#[test]
+fn uniforms_carry_the_scene() {
+    let mut scene = Scene::preset("sunset").unwrap().with_size(640, 320);
+    scene.lighting.beer_powder = true;
+    scene.quality.integration = Integration::Riemann;
+    scene.clouds.height_model = HeightModel::CloudTypes;
+    let u = scene.uniforms();
+    assert_eq!(u.counts, [640, 320, 64, 6]);
+    assert_eq!(
+        u.modes,
+        [
+            PhaseModel::TWO_LOBE_HG,
+            Integration::RIEMANN,
+            HeightModel::CLOUD_TYPES,
+            FrameUniforms::FLAG_BEER_POWDER | FrameUniforms::FLAG_JITTER,
+        ]
+    );
+    assert_eq!(u.camera_forward[3], 2.0);
+    assert!((u.camera_position[3] - 30f32.to_radians().tan()).abs() < 1e-6);
+    assert_eq!(u.atmosphere, [6_360_000.0, 1500.0, 4000.0, 60_000.0]);
+    assert_eq!(u.march[0], 0.0, "no fixed step length");
+    assert_eq!(u.misc, [2, 0, 0, 0]);
+    let s = scene.sun_direction();
+    assert_eq!(&u.sun_direction[..3], &s.map(|x| x as f32));
+    assert!((u.sun_direction[3] - 0.2665f32.to_radians().cos()).abs() < 1e-7);
+}
