@@ -1,22 +1,111 @@
-// The view march (placeholder until the cloud model lands).
+// The view march (thesis alg. 5.1): one invocation per pixel marches its ray through the
+// cloud layer and writes linear in-scattered radiance and transmittance.
 
-override STATS: bool = false;
+@group(0) @binding(6) var cloud_out: texture_storage_2d<rgba32float, write>; // radiance rgb, transmittance
+@group(0) @binding(7) var depth_out: texture_storage_2d<r32float, write>;    // transmittance-weighted depth (m), 0 where no cloud
+
+// Work counters (the statistics variant). Indices are shared with `stats::COUNTERS` in the
+// shaders crate.
+const STAT_PIXELS: u32 = 0u;           // pixels processed
+const STAT_MARCHED: u32 = 1u;          // pixels whose ray marched the layer
+const STAT_VIEW_STEPS: u32 = 2u;       // view-ray steps taken
+const STAT_DENSITY: u32 = 3u;          // density evaluations (view and light)
+const STAT_DETAIL: u32 = 4u;           // detail-noise evaluations
+const STAT_LIGHT: u32 = 5u;            // light-march samples
+const STAT_EXIT_TRANSMITTANCE: u32 = 6u; // marches ended early: transmittance below threshold
+const STAT_EXIT_MISSED: u32 = 7u;      // rays that miss the layer (nothing to march)
+const STAT_EXIT_GROUND: u32 = 8u;      // rays that hit the ground before the layer
+const STAT_COUNT: u32 = 9u;
 
 struct Stats {
-    pixels: atomic<u32>,
+    counters: array<atomic<u32>, STAT_COUNT>,
 }
 
-@group(0) @binding(1) var out_image: texture_storage_2d<rgba16float, write>;
-@group(0) @binding(2) var<storage, read_write> stats: Stats;
+@group(0) @binding(8) var<storage, read_write> stats: Stats;
+
+fn count(index: u32, value: u32) {
+    if STATS && value != 0u {
+        atomicAdd(&stats.counters[index], value);
+    }
+}
+
+// Scattering integrated over one step of length `dt` with extinction `sigma_t`, for a source
+// `source` (radiance per unit length) that is constant over the step.
+fn step_integral(source: vec3<f32>, sigma_t: f32, dt: f32) -> vec3<f32> {
+    if frame.modes.y == INTEGRATION_RIEMANN {
+        // Naive Riemann sum: overshoots when sigma_t * dt is large (kept to show where it fails).
+        return source * dt;
+    }
+    // Hillaire's energy-conserving form (thesis alg. 5.4): (S - S Tr) / sigma_t, written as
+    // S dt (1 - e^-x) / x with x = sigma_t dt and a series near 0, so it never divides by 0.
+    let x = sigma_t * dt;
+    let f = select((1.0 - exp(-x)) / x, 1.0 - 0.5 * x, x < 1e-3);
+    return source * (dt * f);
+}
 
 @compute @workgroup_size(8, 8, 1)
 fn march(@builtin(global_invocation_id) id: vec3<u32>) {
-    if any(id.xy >= frame.resolution.xy) {
+    if any(id.xy >= frame.counts.xy) {
         return;
     }
-    if STATS {
-        atomicAdd(&stats.pixels, 1u);
+    let pixel = id.xy;
+    let view = view_ray(pixel);
+    let cam_alt = frame.camera_position.y;
+    let cam_xz = frame.camera_position.xz;
+    var counters = Counters(0u, 0u, 0u, 0u);
+    count(STAT_PIXELS, 1u);
+
+    var radiance = vec3<f32>(0.0);
+    var transmittance = 1.0;
+    var depth_sum = 0.0;
+    let span = layer_interval(cam_alt, view);
+    if span.kind == RAY_MISSES_LAYER {
+        count(STAT_EXIT_MISSED, 1u);
+    } else if span.kind == RAY_HITS_GROUND {
+        count(STAT_EXIT_GROUND, 1u);
+    } else {
+        count(STAT_MARCHED, 1u);
+        var steps = frame.counts.z;
+        if frame.march.x > 0.0 {
+            steps = clamp(u32(ceil(span.length / frame.march.x)), 1u, MAX_VIEW_STEPS);
+        }
+        let dt = span.length / f32(steps);
+        var jitter = 0.5;
+        if (frame.modes.w & FLAG_JITTER) != 0u {
+            jitter = hash_unit(pixel, frame.misc.y);
+        }
+        let sigma_e = frame.extinction.x + frame.extinction.y;
+        for (var i = 0u; i < steps; i++) {
+            counters.view_steps += 1u;
+            let t = span.start + (f32(i) + jitter) * dt;
+            let rel = view * t + vec3<f32>(0.0, cam_alt, 0.0);
+            let p = vec3<f32>(rel.x + cam_xz.x, rel.y, rel.z + cam_xz.y);
+            let alt = altitude_of(rel);
+            let density = cloud_density(p, alt, &counters);
+            if density <= 0.0 {
+                continue;
+            }
+            let sigma_t = sigma_e * density;
+            let source = scattered_light(rel, p, alt, density, view, &counters);
+            radiance += transmittance * step_integral(source, sigma_t, dt);
+            let step_t = exp(-sigma_t * dt);
+            depth_sum += t * transmittance * (1.0 - step_t);
+            transmittance *= step_t;
+            if transmittance < frame.march.w {
+                count(STAT_EXIT_TRANSMITTANCE, 1u);
+                break;
+            }
+        }
     }
-    let uv = (vec2<f32>(id.xy) + 0.5) / vec2<f32>(frame.resolution.xy);
-    textureStore(out_image, id.xy, vec4<f32>(uv, 0.0, 1.0));
+
+    count(STAT_VIEW_STEPS, counters.view_steps);
+    count(STAT_DENSITY, counters.density);
+    count(STAT_DETAIL, counters.detail);
+    count(STAT_LIGHT, counters.light);
+    var depth = 0.0;
+    if transmittance < 1.0 {
+        depth = depth_sum / (1.0 - transmittance);
+    }
+    textureStore(cloud_out, pixel, vec4<f32>(radiance, transmittance));
+    textureStore(depth_out, pixel, vec4<f32>(depth, 0.0, 0.0, 0.0));
 }

@@ -36,6 +36,18 @@ fn main() {
     out.push_str(&format!(
         "/// The naga version this crate was built against (from Cargo.lock).\npub const NAGA_VERSION: &str = {version:?};\n"
     ));
+    // The committed reflection manifest drives the frame plan. It may be absent while
+    // `cargo xtask build-shaders` (which uses this crate) creates it for the first time.
+    let manifest = root.join("spirv-out/manifest.json");
+    println!("cargo:rerun-if-changed={}", manifest.display());
+    out.push_str("/// `spirv-out/manifest.json` as committed (empty if absent at build time).\n");
+    match fs::canonicalize(&manifest) {
+        Ok(abs) => out.push_str(&format!(
+            "pub static EMBEDDED_MANIFEST: &str = include_str!({:?});\n",
+            abs.to_string_lossy()
+        )),
+        Err(_) => out.push_str("pub static EMBEDDED_MANIFEST: &str = \"\";\n"),
+    }
     fs::write(
         Path::new(&env::var("OUT_DIR").unwrap()).join("embedded.rs"),
         out,

@@ -1,11 +1,14 @@
 //! `stratus`: render, inspect and compare volumetric clouds.
 
-use std::process::ExitCode;
+mod output;
+mod render;
+
+use std::{path::PathBuf, process::ExitCode};
 
 use clap::{Parser, Subcommand};
 
-/// Stratus renders physically grounded volumetric clouds from one WGSL source on wgpu, raw
-/// Vulkan and the CPU.
+/// Stratus renders physically grounded volumetric clouds from one WGSL source on wgpu (Vulkan
+/// or GL), raw Vulkan and the CPU.
 #[derive(Parser)]
 #[command(name = "stratus", version, about, long_about = None)]
 struct Cli {
@@ -15,13 +18,32 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
+    /// Render a scene to a PNG (tone-mapped) or EXR (linear radiance, alpha = transmittance).
+    Render(render::RenderArgs),
+    /// List the built-in scene presets.
+    Presets,
+    /// Work with scene files.
+    #[command(subcommand)]
+    Scene(SceneCommand),
     /// Validate the embedded WGSL with naga and list its modules, variants and entry points.
     Shaders,
+}
+
+#[derive(Subcommand)]
+enum SceneCommand {
+    /// Validate a scene file and print it in full (defaults filled in), or print every error.
+    Check {
+        /// The scene file (TOML). It may be partial and name a `base` preset.
+        file: PathBuf,
+    },
 }
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
+        Command::Render(args) => render::run(args),
+        Command::Presets => presets(),
+        Command::Scene(SceneCommand::Check { file }) => scene_check(&file),
         Command::Shaders => shaders(),
     };
     match result {
@@ -29,6 +51,34 @@ fn main() -> ExitCode {
         Err(e) => {
             eprintln!("error: {e:#}");
             ExitCode::FAILURE
+        }
+    }
+}
+
+fn presets() -> anyhow::Result<()> {
+    let list = stratus_scene::presets();
+    let width = list.iter().map(|p| p.name.len()).max().unwrap_or(0);
+    for p in list {
+        let default = if p.name == stratus_scene::DEFAULT_PRESET {
+            " (default)"
+        } else {
+            ""
+        };
+        println!("{:width$}  {}{default}", p.name, p.description);
+    }
+    Ok(())
+}
+
+fn scene_check(file: &std::path::Path) -> anyhow::Result<()> {
+    match stratus_scene::Scene::from_file(file) {
+        Ok(scene) => {
+            print!("{}", scene.to_toml());
+            eprintln!("{}: ok", file.display());
+            Ok(())
+        }
+        Err(e) => {
+            eprintln!("{e}");
+            anyhow::bail!("{}: {} problem(s)", file.display(), e.problems().len())
         }
     }
 }
@@ -50,7 +100,7 @@ fn shaders() -> anyhow::Result<()> {
             entries.join(", ")
         );
         for v in &m.spec.variants {
-            println!("  variant {:<12} {}", v.name, v.description);
+            println!("  variant {:<18} {}", v.name, v.description);
         }
     }
     Ok(())

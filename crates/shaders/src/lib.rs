@@ -9,12 +9,14 @@
 pub mod compile;
 pub mod diagnostic;
 pub mod manifest;
+pub mod plan;
 pub mod source;
 pub mod translate;
 
 pub use compile::{CompiledModule, compile, compile_all};
 pub use diagnostic::{Diagnostic, Diagnostics};
 pub use manifest::Manifest;
+pub use plan::{FrameOutput, FramePlan, PassTiming, PlanError, Resource};
 pub use source::{ModuleSpec, ShaderTree, VariantSpec};
 pub use translate::{build_outputs, spv_options};
 

@@ -1,0 +1,54 @@
+//! Writing what a render produced: PNG (display image), EXR (linear radiance and
+//! transmittance), JSON (work counters and pass times).
+
+use std::path::Path;
+
+use anyhow::{Context, Result, bail};
+use stratus_shaders::FrameOutput;
+
+/// Writes the frame to `path`: `.png` gets the tone-mapped image, `.exr` the linear radiance
+/// with transmittance as alpha.
+pub fn write_image(path: &Path, frame: &FrameOutput) -> Result<()> {
+    let ext = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase);
+    match ext.as_deref() {
+        Some("png") => image::save_buffer(
+            path,
+            &frame.image,
+            frame.width,
+            frame.height,
+            image::ExtendedColorType::Rgba8,
+        )
+        .with_context(|| format!("writing {}", path.display())),
+        Some("exr") => {
+            let w = frame.width as usize;
+            let px = &frame.radiance;
+            exr::prelude::write_rgba_file(path, w, frame.height as usize, |x, y| {
+                let i = 4 * (y * w + x);
+                (px[i], px[i + 1], px[i + 2], px[i + 3])
+            })
+            .with_context(|| format!("writing {}", path.display()))
+        }
+        _ => bail!(
+            "--out {}: unknown image type; use a .png (tone-mapped) or .exr (linear) file name",
+            path.display()
+        ),
+    }
+}
+
+/// Checks that an output file name has a type we can write, before any work is done.
+pub fn check_image_path(path: &Path) -> Result<()> {
+    let ok = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .is_some_and(|e| e.eq_ignore_ascii_case("png") || e.eq_ignore_ascii_case("exr"));
+    if !ok {
+        bail!(
+            "--out {}: unknown image type; use a .png (tone-mapped) or .exr (linear) file name",
+            path.display()
+        );
+    }
+    Ok(())
+}

@@ -1,0 +1,428 @@
+#version 450 core
+#extension GL_ARB_compute_shader : require
+layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
+
+struct Frame {
+    vec4 camera_position;
+    vec4 camera_forward;
+    vec4 camera_right;
+    vec4 camera_up;
+    vec4 sun_direction;
+    vec4 sun_illuminance;
+    vec4 atmosphere;
+    vec4 clouds;
+    vec4 erosion;
+    vec4 periods;
+    vec4 wind_offsets0_;
+    vec4 wind_offsets1_;
+    vec4 extinction;
+    vec4 phase;
+    vec4 multiple_scattering;
+    vec4 ambient_bottom;
+    vec4 ambient_top;
+    vec4 march;
+    uvec4 counts;
+    uvec4 modes;
+    uvec4 misc;
+};
+struct Roots {
+    float t0_;
+    float t1_;
+    bool hit;
+};
+struct Interval {
+    float start;
+    float length_;
+    uint kind;
+};
+struct Counters {
+    uint view_steps;
+    uint density;
+    uint detail;
+    uint light;
+};
+struct Weather {
+    float coverage;
+    float cloud_type;
+    float precipitation;
+};
+struct Stats {
+    uint counters[9];
+};
+const uint PHASE_HG = 0u;
+const uint PHASE_TWO_LOBE_HG = 1u;
+const uint PHASE_CORNETTE_SHANKS = 2u;
+const uint INTEGRATION_ANALYTIC = 0u;
+const uint INTEGRATION_RIEMANN = 1u;
+const uint HEIGHT_PARABOLA = 0u;
+const uint HEIGHT_CLOUD_TYPES = 1u;
+const uint FLAG_BEER_POWDER = 1u;
+const uint FLAG_JITTER = 2u;
+const float PI = 3.1415927;
+const uint MAX_VIEW_STEPS = 1024u;
+const uint RAY_MARCH = 0u;
+const uint RAY_MISSES_LAYER = 1u;
+const uint RAY_HITS_GROUND = 2u;
+const uint STAT_PIXELS = 0u;
+const uint STAT_MARCHED = 1u;
+const uint STAT_VIEW_STEPS = 2u;
+const uint STAT_DENSITY = 3u;
+const uint STAT_DETAIL = 4u;
+const uint STAT_LIGHT = 5u;
+const uint STAT_EXIT_TRANSMITTANCE = 6u;
+const uint STAT_EXIT_MISSED = 7u;
+const uint STAT_EXIT_GROUND = 8u;
+const uint STAT_COUNT = 9u;
+const bool LIGHT_MARCH = true;
+const uint MAX_OCTAVES = 8u;
+const bool DETAIL = true;
+const bool CURL = true;
+const bool STATS = false;
+
+layout(std140, binding = 0) uniform Frame_block_0Compute { Frame _group_0_binding_0_cs; };
+
+layout(binding = 9) uniform sampler2D _group_0_binding_9_cs;
+
+layout(binding = 10,rgba8) writeonly uniform image2D _group_0_binding_10_cs;
+
+
+float saturate(float x) {
+    return clamp(x, 0.0, 1.0);
+}
+
+float remap(float x_1, float lo0_, float hi0_, float lo1_, float hi1_) {
+    return (lo1_ + (((x_1 - lo0_) * (hi1_ - lo1_)) / (hi0_ - lo0_)));
+}
+
+uint pcg(uint v) {
+    uint state = ((v * 747796405u) + 2891336453u);
+    uint word = (((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u);
+    return ((word >> 22u) ^ word);
+}
+
+float hash_unit(uvec2 pixel, uint frame_index) {
+    uint _e4 = pcg(frame_index);
+    uint _e6 = pcg((pixel.y ^ _e4));
+    uint _e8 = pcg((pixel.x ^ _e6));
+    return (float((_e8 >> 8u)) * 5.9604645e-8);
+}
+
+vec3 view_ray(uvec2 pixel_1) {
+    uvec4 _e3 = _group_0_binding_0_cs.counts;
+    vec2 size = vec2(_e3.xy);
+    vec2 ndc = ((((vec2(pixel_1) + vec2(0.5)) / size) * 2.0) - vec2(1.0));
+    float tan_half = _group_0_binding_0_cs.camera_position.w;
+    float aspect = _group_0_binding_0_cs.camera_forward.w;
+    vec4 _e26 = _group_0_binding_0_cs.camera_forward;
+    vec4 _e30 = _group_0_binding_0_cs.camera_right;
+    vec4 _e39 = _group_0_binding_0_cs.camera_up;
+    vec3 d_5 = ((_e26.xyz + (_e30.xyz * ((ndc.x * tan_half) * aspect))) - (_e39.xyz * (ndc.y * tan_half)));
+    return normalize(d_5);
+}
+
+Roots solve_sphere(float b, float c) {
+    float disc = ((b * b) - c);
+    if ((disc < 0.0)) {
+        return Roots(0.0, 0.0, false);
+    }
+    float s = sqrt(disc);
+    float r0_1 = -((b + ((b >= 0.0) ? s : -(s))));
+    if ((r0_1 == 0.0)) {
+        return Roots(0.0, 0.0, true);
+    }
+    float r1_1 = (c / r0_1);
+    return Roots(min(r0_1, r1_1), max(r0_1, r1_1), true);
+}
+
+Roots ray_shell(float alt, vec3 d, float radius_alt) {
+    float rp = _group_0_binding_0_cs.atmosphere.x;
+    float b_1 = (d.y * (alt + rp));
+    float c_1 = ((alt - radius_alt) * ((alt + radius_alt) + (2.0 * rp)));
+    Roots _e16 = solve_sphere(b_1, c_1);
+    return _e16;
+}
+
+float altitude_of(vec3 p) {
+    float rp_1 = _group_0_binding_0_cs.atmosphere.x;
+    float n = (((p.x * p.x) + (p.z * p.z)) + (p.y * (p.y + (2.0 * rp_1))));
+    vec3 q = vec3(p.x, (p.y + rp_1), p.z);
+    return (n / (length(q) + rp_1));
+}
+
+bool hits_ground(vec3 p_1, float alt_1, vec3 d_1) {
+    bool local = false;
+    float rp_2 = _group_0_binding_0_cs.atmosphere.x;
+    float b_2 = dot(d_1, vec3(p_1.x, (p_1.y + rp_2), p_1.z));
+    float c_2 = (alt_1 * (alt_1 + (2.0 * rp_2)));
+    if ((b_2 < 0.0)) {
+        local = ((b_2 * b_2) >= c_2);
+    } else {
+        local = false;
+    }
+    bool _e24 = local;
+    return _e24;
+}
+
+Interval layer_interval(float alt_2, vec3 d_2) {
+    float start = 0.0;
+    float end = 0.0;
+    bool local_1 = false;
+    bool local_2 = false;
+    bool local_3 = false;
+    float bottom = _group_0_binding_0_cs.atmosphere.y;
+    float top = _group_0_binding_0_cs.atmosphere.z;
+    float cutoff = _group_0_binding_0_cs.atmosphere.w;
+    Roots _e14 = ray_shell(alt_2, d_2, bottom);
+    Roots _e15 = ray_shell(alt_2, d_2, top);
+    if ((alt_2 < bottom)) {
+        bool _e24 = hits_ground(vec3(0.0, alt_2, 0.0), alt_2, d_2);
+        if (_e24) {
+            return Interval(0.0, 0.0, 2u);
+        }
+        start = _e14.t1_;
+        end = _e15.t1_;
+    } else {
+        if ((alt_2 <= top)) {
+            end = _e15.t1_;
+            if (_e14.hit) {
+                local_1 = (_e14.t0_ > 0.0);
+            } else {
+                local_1 = false;
+            }
+            bool _e40 = local_1;
+            if (_e40) {
+                float _e41 = end;
+                end = min(_e41, _e14.t0_);
+            }
+        } else {
+            if (!(!(_e15.hit))) {
+                local_2 = (_e15.t1_ <= 0.0);
+            } else {
+                local_2 = true;
+            }
+            bool _e53 = local_2;
+            if (_e53) {
+                return Interval(0.0, 0.0, 1u);
+            }
+            start = max(_e15.t0_, 0.0);
+            end = _e15.t1_;
+            if (_e14.hit) {
+                local_3 = (_e14.t0_ > 0.0);
+            } else {
+                local_3 = false;
+            }
+            bool _e69 = local_3;
+            if (_e69) {
+                float _e70 = end;
+                end = min(_e70, _e14.t0_);
+            }
+        }
+    }
+    float _e73 = end;
+    float _e74 = start;
+    float len = min((_e73 - _e74), cutoff);
+    if (!((len > 0.0))) {
+        return Interval(0.0, 0.0, 1u);
+    }
+    float _e84 = start;
+    return Interval(_e84, len, RAY_MARCH);
+}
+
+float height_parabola(float h, float cloud_type) {
+    float height = mix(0.35, 1.0, cloud_type);
+    float _e11 = saturate(((h * (h - height)) * (-4.0 / (height * height))));
+    return _e11;
+}
+
+float gradient(float h_1, float r0_, float r1_, float f0_, float f1_) {
+    return (smoothstep(r0_, r1_, h_1) * (1.0 - smoothstep(f0_, f1_, h_1)));
+}
+
+float height_cloud_types(float h_2, float cloud_type_1) {
+    float _e6 = gradient(h_2, 0.0, 0.08, 0.15, 0.25);
+    float _e11 = gradient(h_2, 0.0, 0.2, 0.4, 0.65);
+    float _e16 = gradient(h_2, 0.0, 0.1, 0.6, 0.95);
+    float _e19 = saturate((cloud_type_1 * 2.0));
+    float lo = mix(_e6, _e11, _e19);
+    float _e25 = saturate(((cloud_type_1 * 2.0) - 1.0));
+    return mix(lo, _e16, _e25);
+}
+
+float height_signal(float h_3, float cloud_type_2) {
+    uint _e5 = _group_0_binding_0_cs.modes.z;
+    if ((_e5 == HEIGHT_CLOUD_TYPES)) {
+        float _e8 = height_cloud_types(h_3, cloud_type_2);
+        return _e8;
+    }
+    float _e9 = height_parabola(h_3, cloud_type_2);
+    return _e9;
+}
+
+float phase_hg(float cos_theta, float g) {
+    float g2_ = (g * g);
+    float denom = max(((1.0 + g2_) - ((2.0 * g) * cos_theta)), 1e-6);
+    return ((1.0 - g2_) / ((12.566371 * denom) * sqrt(denom)));
+}
+
+float phase_cornette_shanks(float cos_theta_1, float g_1) {
+    float g2_1 = (g_1 * g_1);
+    float denom_1 = max(((1.0 + g2_1) - ((2.0 * g_1) * cos_theta_1)), 1e-6);
+    return (((3.0 * (1.0 - g2_1)) * (1.0 + (cos_theta_1 * cos_theta_1))) / (((25.132742 * (2.0 + g2_1)) * denom_1) * sqrt(denom_1)));
+}
+
+float phase(float cos_theta_2, float scale) {
+    float _e5 = _group_0_binding_0_cs.phase.x;
+    float g_2 = (_e5 * scale);
+    uint _e10 = _group_0_binding_0_cs.modes.x;
+    switch(_e10) {
+        case 1u: {
+            float _e14 = _group_0_binding_0_cs.phase.y;
+            float g2_2 = (_e14 * scale);
+            float _e16 = phase_hg(cos_theta_2, g_2);
+            float _e17 = phase_hg(cos_theta_2, g2_2);
+            float _e21 = _group_0_binding_0_cs.phase.z;
+            return mix(_e16, _e17, _e21);
+        }
+        case 2u: {
+            float _e23 = phase_cornette_shanks(cos_theta_2, g_2);
+            return _e23;
+        }
+        default: {
+            float _e24 = phase_hg(cos_theta_2, g_2);
+            return _e24;
+        }
+    }
+}
+
+float sun_scattering(float cos_theta_3, float tau_1) {
+    float total = 0.0;
+    float ka = 1.0;
+    float kb = 1.0;
+    float kc = 1.0;
+    uint i_2 = 0u;
+    float a = _group_0_binding_0_cs.multiple_scattering.x;
+    float b_3 = _group_0_binding_0_cs.multiple_scattering.y;
+    float c_3 = _group_0_binding_0_cs.multiple_scattering.z;
+    uint _e17 = _group_0_binding_0_cs.misc.x;
+    uint octaves = min(_e17, MAX_OCTAVES);
+    float _e21 = phase(cos_theta_3, 1.0);
+    total = (_e21 * exp(-(tau_1)));
+    bool loop_init = true;
+    while(true) {
+        if (!loop_init) {
+            uint _e54 = i_2;
+            i_2 = (_e54 + 1u);
+        }
+        loop_init = false;
+        uint _e34 = i_2;
+        if ((_e34 < octaves)) {
+        } else {
+            break;
+        }
+        {
+            float _e36 = ka;
+            ka = (_e36 * a);
+            float _e38 = kb;
+            kb = (_e38 * b_3);
+            float _e40 = kc;
+            kc = (_e40 * c_3);
+            float _e42 = total;
+            float _e43 = ka;
+            float _e44 = kc;
+            float _e45 = phase(cos_theta_3, _e44);
+            float _e47 = kb;
+            total = (_e42 + ((_e43 * _e45) * exp((-(_e47) * tau_1))));
+        }
+    }
+    uint _e59 = _group_0_binding_0_cs.modes.w;
+    if (((_e59 & FLAG_BEER_POWDER) != 0u)) {
+        float _e64 = total;
+        float _e68 = _group_0_binding_0_cs.phase.w;
+        total = (_e64 * (1.0 - exp((-(_e68) * tau_1))));
+    }
+    float _e75 = total;
+    return _e75;
+}
+
+vec3 ambient(float h_4) {
+    vec4 _e3 = _group_0_binding_0_cs.ambient_bottom;
+    vec4 _e7 = _group_0_binding_0_cs.ambient_top;
+    float _e13 = _group_0_binding_0_cs.ambient_bottom.w;
+    return (mix(_e3.xyz, _e7.xyz, h_4) * _e13);
+}
+
+vec3 step_integral(vec3 source, float sigma_t, float dt) {
+    uint _e6 = _group_0_binding_0_cs.modes.y;
+    if ((_e6 == INTEGRATION_RIEMANN)) {
+        return (source * dt);
+    }
+    float x_3 = (sigma_t * dt);
+    float f = ((x_3 < 0.001) ? (1.0 - (0.5 * x_3)) : ((1.0 - exp(-(x_3))) / x_3));
+    return (source * (dt * f));
+}
+
+vec3 sky_radiance(vec3 d_3, float alt_5) {
+    vec4 _e4 = _group_0_binding_0_cs.sun_direction;
+    vec3 sun = _e4.xyz;
+    vec4 _e8 = _group_0_binding_0_cs.sun_illuminance;
+    vec3 e = _e8.xyz;
+    float _e15 = saturate(((sun.y * 4.0) + 0.3));
+    bool _e19 = hits_ground(vec3(0.0, alt_5, 0.0), alt_5, d_3);
+    if (_e19) {
+        vec3 ground_albedo = vec3(0.035, 0.035, 0.03);
+        return (ground_albedo * (((e * max(sun.y, 0.0)) / vec3(3.1415927)) + ((0.05 * e) * _e15)));
+    }
+    vec3 zenith = vec3(0.018, 0.04, 0.1);
+    vec3 horizon = vec3(0.07, 0.085, 0.11);
+    float _e45 = saturate(d_3.y);
+    vec3 gradient_1 = mix(horizon, zenith, sqrt(_e45));
+    vec3 sunset = (((1.0 - (_e15 * 0.8)) * pow((1.0 - _e45), 6.0)) * vec3(0.25, 0.1, 0.0));
+    float _e64 = phase_hg(dot(d_3, sun), 0.76);
+    float glow = (_e64 * 0.02);
+    float _e73 = saturate(((sun.y * 10.0) + 1.0));
+    return (e * (((gradient_1 * _e15) + (sunset * _e73)) + vec3((glow * _e15))));
+}
+
+vec3 sun_disk(vec3 d_4) {
+    float cos_r = _group_0_binding_0_cs.sun_direction.w;
+    vec4 _e7 = _group_0_binding_0_cs.sun_direction;
+    if ((dot(d_4, _e7.xyz) < cos_r)) {
+        return vec3(0.0);
+    }
+    vec4 _e15 = _group_0_binding_0_cs.sun_illuminance;
+    return (_e15.xyz / vec3((6.2831855 * max((1.0 - cos_r), 1e-6))));
+}
+
+vec3 aces_fitted(vec3 x_2) {
+    return clamp(((x_2 * ((2.51 * x_2) + vec3(0.03))) / ((x_2 * ((2.43 * x_2) + vec3(0.59))) + vec3(0.14))), vec3(0.0), vec3(1.0));
+}
+
+void main() {
+    uvec3 id_1 = gl_GlobalInvocationID;
+    vec3 background = vec3(0.0);
+    uvec4 _e4 = _group_0_binding_0_cs.counts;
+    if (any(greaterThanEqual(id_1.xy, _e4.xy))) {
+        return;
+    }
+    uvec2 pixel_2 = id_1.xy;
+    vec3 _e9 = view_ray(pixel_2);
+    float alt_6 = _group_0_binding_0_cs.camera_position.y;
+    vec4 cloud = texelFetch(_group_0_binding_9_cs, ivec2(pixel_2), 0);
+    vec3 _e17 = sky_radiance(_e9, alt_6);
+    background = _e17;
+    bool _e22 = hits_ground(vec3(0.0, alt_6, 0.0), alt_6, _e9);
+    if (!(_e22)) {
+        vec3 _e24 = background;
+        vec3 _e25 = sun_disk(_e9);
+        background = (_e24 + _e25);
+    }
+    vec3 _e27 = background;
+    vec3 radiance_1 = ((_e27 * cloud.w) + cloud.xyz);
+    float _e35 = _group_0_binding_0_cs.camera_right.w;
+    vec3 exposed = (radiance_1 * _e35);
+    vec3 _e37 = aces_fitted(exposed);
+    vec3 display = pow(_e37, vec3(0.45454547));
+    imageStore(_group_0_binding_10_cs, ivec2(pixel_2), vec4(display, 1.0));
+    return;
+}
+

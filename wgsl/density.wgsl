@@ -1,0 +1,127 @@
+// The cloud density field (thesis alg. 4.1 with HZD's noise, weather and cloud types).
+//
+// Positions are in metres: `p` is the world position (x, z horizontal) used for texture
+// lookups, `alt` its altitude above the ground. Textures tile; wind offsets arrive already
+// wrapped by each texture's period, so hours of animation lose no precision.
+
+@group(0) @binding(1) var shape_tex: texture_3d<f32>;   // RGBA8: Perlin-Worley, Worley FBM x3
+@group(0) @binding(2) var detail_tex: texture_3d<f32>;  // RGBA8: Worley FBM x3
+@group(0) @binding(3) var weather_tex: texture_2d<f32>; // RGBA8: coverage, precipitation, cloud type
+@group(0) @binding(4) var curl_tex: texture_2d<f32>;    // RGBA8: curl xy encoded as 0.5 v + 0.5
+@group(0) @binding(5) var noise_sampler: sampler;       // linear, repeat
+
+// Work counters of one invocation, added to the statistics buffer once at the end.
+struct Counters {
+    view_steps: u32,
+    density: u32,
+    detail: u32,
+    light: u32,
+}
+
+// What the weather map says at a point, after the scene's global controls.
+struct Weather {
+    coverage: f32,
+    cloud_type: f32,
+    precipitation: f32,
+}
+
+fn sample_weather(p: vec3<f32>) -> Weather {
+    let uv = (p.xz - frame.wind_offsets0.xy) / frame.periods.x;
+    let w = textureSampleLevel(weather_tex, noise_sampler, uv, 0.0);
+    // The scene's coverage shifts the map's local coverage: 0 clears the sky, 1 fills it.
+    let coverage = saturate(w.r + 2.0 * (frame.clouds.x - 0.5));
+    // The scene's cloud type is the mean; the map varies it locally (HZD: B = cloud type).
+    let cloud_type = saturate(frame.clouds.z + (w.b - 0.5) * 0.5);
+    let precipitation = frame.clouds.w * saturate(0.5 + w.g);
+    return Weather(coverage, cloud_type, precipitation);
+}
+
+// Thesis eq. 5.1: a parabola with roots at the cloud's start and top, peak 1 between them.
+// The cloud starts at the layer bottom; its height grows with cloud type (stratus low,
+// cumulus the whole layer).
+fn height_parabola(h: f32, cloud_type: f32) -> f32 {
+    let height = mix(0.35, 1.0, cloud_type);
+    return saturate(h * (h - height) * (-4.0 / (height * height)));
+}
+
+// Density-height gradient of one cloud type: rise over [r0, r1], fall over [f0, f1].
+fn gradient(h: f32, r0: f32, r1: f32, f0: f32, f1: f32) -> f32 {
+    return smoothstep(r0, r1, h) * (1.0 - smoothstep(f0, f1, h));
+}
+
+// HZD's cloud-type gradients (stratus, stratocumulus, cumulus), blended by type in [0, 1].
+// The breakpoints follow the shapes of the HZD talk's gradient figure (seed 004).
+fn height_cloud_types(h: f32, cloud_type: f32) -> f32 {
+    let stratus = gradient(h, 0.0, 0.08, 0.15, 0.25);
+    let stratocumulus = gradient(h, 0.0, 0.2, 0.4, 0.65);
+    let cumulus = gradient(h, 0.0, 0.1, 0.6, 0.95);
+    let lo = mix(stratus, stratocumulus, saturate(cloud_type * 2.0));
+    return mix(lo, cumulus, saturate(cloud_type * 2.0 - 1.0));
+}
+
+fn height_signal(h: f32, cloud_type: f32) -> f32 {
+    if frame.modes.z == HEIGHT_CLOUD_TYPES {
+        return height_cloud_types(h, cloud_type);
+    }
+    return height_parabola(h, cloud_type);
+}
+
+// Density in [0, 1] at world position `p` with altitude `alt`. `counters` counts density and
+// detail evaluations.
+fn cloud_density(p: vec3<f32>, alt: f32, counters: ptr<function, Counters>) -> f32 {
+    let bottom = frame.atmosphere.y;
+    let top = frame.atmosphere.z;
+    let h = (alt - bottom) / (top - bottom); // height fraction in the layer
+    if h < 0.0 || h > 1.0 {
+        return 0.0;
+    }
+    (*counters).density += 1u;
+    let weather = sample_weather(p);
+    let signal = height_signal(h, weather.cloud_type);
+    if weather.coverage <= 0.0 || signal <= 0.0 {
+        return 0.0;
+    }
+
+    // Base shape: Perlin-Worley remapped by low-frequency Worley FBM (HZD), isotropic texels:
+    // the texture's y period is its x period scaled by its aspect (128x32x128 thesis layout).
+    let dims = vec3<f32>(textureDimensions(shape_tex));
+    let period = frame.periods.y * vec3<f32>(1.0, dims.y / dims.x, 1.0);
+    let shape_pos = vec3<f32>(p.x - frame.wind_offsets0.z, alt, p.z - frame.wind_offsets0.w);
+    let s = textureSampleLevel(shape_tex, noise_sampler, shape_pos / period, 0.0);
+    let low_fbm = s.g * 0.625 + s.b * 0.25 + s.a * 0.125;
+    var base = saturate(remap(s.r, low_fbm - 1.0, 1.0, 0.0, 1.0)) * signal;
+
+    // Coverage (HZD): remap so that low coverage keeps only the densest parts, then scale.
+    base = saturate(remap(base, 1.0 - weather.coverage, 1.0, 0.0, 1.0)) * weather.coverage;
+    if base <= 0.0 {
+        return 0.0;
+    }
+
+    // Detail erosion at the edges only: below the threshold (thesis alg. 4.1). The amount
+    // fades to zero at the threshold so the density stays continuous.
+    var density = base;
+    let strength = frame.erosion.x;
+    let threshold = frame.erosion.y;
+    if DETAIL && strength > 0.0 && base < threshold {
+        (*counters).detail += 1u;
+        var detail_pos = vec3<f32>(p.x, alt, p.z);
+        if CURL {
+            // Curl noise distorts the detail lookup, more at the cloud base (HZD, seed 001).
+            let cuv = (p.xz - frame.wind_offsets1.zw) / frame.periods.w;
+            let curl = textureSampleLevel(curl_tex, noise_sampler, cuv, 0.0).xy * 2.0 - 1.0;
+            detail_pos = detail_pos + vec3<f32>(curl.x, 0.0, curl.y) * (frame.erosion.z * (1.0 - h));
+        }
+        detail_pos = detail_pos - vec3<f32>(frame.wind_offsets1.x, 0.0, frame.wind_offsets1.y);
+        let dn = textureSampleLevel(detail_tex, noise_sampler, detail_pos / frame.periods.z, 0.0);
+        let high_fbm = dn.r * 0.625 + dn.g * 0.25 + dn.b * 0.125;
+        // Inverted Worley is billowy, plain Worley wispy (HZD).
+        let shape = mix(1.0 - high_fbm, high_fbm, frame.extinction.w);
+        let erosion = strength * shape * (1.0 - base / threshold);
+        density = saturate(remap(base, erosion, 1.0, 0.0, 1.0));
+    }
+
+    // Denser toward the top (thesis 4.5.1), global density and precipitation, clamp.
+    density = density * mix(1.0, h, frame.erosion.w);
+    density = density * frame.clouds.y * (1.0 + weather.precipitation);
+    return clamp(density, 0.0, 1.0);
+}

@@ -1,0 +1,111 @@
+// Light: phase functions, the light march toward the sun, multiple-scattering octaves,
+// ambient and precipitation darkening (thesis 5.5, Hillaire 2016, Wrenninge 2013).
+
+// Henyey-Greenstein (thesis eq. 5.4), normalised over the sphere.
+fn phase_hg(cos_theta: f32, g: f32) -> f32 {
+    let g2 = g * g;
+    let denom = max(1.0 + g2 - 2.0 * g * cos_theta, 1e-6);
+    return (1.0 - g2) / (4.0 * PI * denom * sqrt(denom));
+}
+
+// Cornette-Shanks (thesis eq. 5.5).
+fn phase_cornette_shanks(cos_theta: f32, g: f32) -> f32 {
+    let g2 = g * g;
+    let denom = max(1.0 + g2 - 2.0 * g * cos_theta, 1e-6);
+    return 3.0 * (1.0 - g2) * (1.0 + cos_theta * cos_theta)
+        / (8.0 * PI * (2.0 + g2) * denom * sqrt(denom));
+}
+
+// The scene's phase model with eccentricities scaled by `scale` (c^i for octave i).
+fn phase(cos_theta: f32, scale: f32) -> f32 {
+    let g = frame.phase.x * scale;
+    switch frame.modes.x {
+        case PHASE_TWO_LOBE_HG: {
+            // Two lobes for the silver lining (seed 001): forward g and backward g2.
+            let g2 = frame.phase.y * scale;
+            return mix(phase_hg(cos_theta, g), phase_hg(cos_theta, g2), frame.phase.z);
+        }
+        case PHASE_CORNETTE_SHANKS: {
+            return phase_cornette_shanks(cos_theta, g);
+        }
+        default: {
+            return phase_hg(cos_theta, g);
+        }
+    }
+}
+
+// Optical depth toward the sun from `rel` (camera-relative position, world position `p`):
+// `light_steps` segments of exponentially growing length (thesis 5.5.2), density sampled at
+// each segment's midpoint. Samples that leave the layer contribute nothing.
+fn sun_optical_depth(rel: vec3<f32>, p: vec3<f32>, counters: ptr<function, Counters>) -> f32 {
+    let sun = frame.sun_direction.xyz;
+    let sigma_t = frame.extinction.x + frame.extinction.y;
+    let steps = frame.counts.w;
+    let growth = frame.march.y;
+    var seg = frame.march.z;
+    var dist = 0.0;
+    var tau = 0.0;
+    for (var i = 0u; i < steps; i++) {
+        let s = dist + 0.5 * seg;
+        let q = rel + sun * s;
+        let alt = altitude_of(q);
+        if alt > frame.atmosphere.z || alt < frame.atmosphere.y {
+            break;
+        }
+        (*counters).light += 1u;
+        tau += cloud_density(p + sun * s, alt, counters) * sigma_t * seg;
+        dist += seg;
+        seg *= growth;
+    }
+    return tau;
+}
+
+// Sun light scattered toward the viewer per unit illuminance and unit sigma_s, summed over
+// octaves: sum_i a^i phase(cos, c^i) exp(-b^i tau) (a: contribution, b: extinction,
+// c: eccentricity; a <= b conserves energy).
+fn sun_scattering(cos_theta: f32, tau: f32) -> f32 {
+    let a = frame.multiple_scattering.x;
+    let b = frame.multiple_scattering.y;
+    let c = frame.multiple_scattering.z;
+    let octaves = min(frame.misc.x, MAX_OCTAVES);
+    var total = phase(cos_theta, 1.0) * exp(-tau);
+    var ka = 1.0;
+    var kb = 1.0;
+    var kc = 1.0;
+    for (var i = 0u; i < octaves; i++) {
+        ka *= a;
+        kb *= b;
+        kc *= c;
+        total += ka * phase(cos_theta, kc) * exp(-kb * tau);
+    }
+    if (frame.modes.w & FLAG_BEER_POWDER) != 0u {
+        // Beer-Powder (HZD): in-scattering builds up with depth into the cloud, darkening
+        // the thin edges. Kept <= 1 so it only removes energy.
+        total *= 1.0 - exp(-frame.phase.w * tau);
+    }
+    return total;
+}
+
+// Ambient light at height fraction `h` (thesis 5.5.3): a gradient from bottom to top colour.
+fn ambient(h: f32) -> vec3<f32> {
+    return mix(frame.ambient_bottom.rgb, frame.ambient_top.rgb, h) * frame.ambient_bottom.w;
+}
+
+// In-scattered radiance per unit length at a view sample: sigma_s * density * (sun + ambient),
+// darkened toward the base of raining clouds (thesis 4.4.1).
+fn scattered_light(rel: vec3<f32>, p: vec3<f32>, alt: f32, density: f32, view: vec3<f32>,
+                   counters: ptr<function, Counters>) -> vec3<f32> {
+    let sun = frame.sun_direction.xyz;
+    let h = saturate((alt - frame.atmosphere.y) / (frame.atmosphere.z - frame.atmosphere.y));
+    var sun_light = vec3<f32>(0.0);
+    if !hits_ground(rel, alt, sun) {
+        var tau = 0.0;
+        if LIGHT_MARCH {
+            tau = sun_optical_depth(rel, p, counters);
+        }
+        sun_light = frame.sun_illuminance.rgb * sun_scattering(dot(view, sun), tau);
+    }
+    let weather = sample_weather(p);
+    let darkening = saturate(1.0 - frame.extinction.z * weather.precipitation * (1.0 - h));
+    return frame.extinction.x * density * (sun_light + ambient(h)) * darkening;
+}
