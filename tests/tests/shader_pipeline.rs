@@ -87,3 +87,26 @@ fn spirv_out_is_fresh() {
         );
     }
 }
+
+/// The Rust uniform block and the WGSL `Frame` struct agree member for member: same names,
+/// types, offsets and total size as naga lays the WGSL out. A drift fails here instead of
+/// drawing garbage.
+#[test]
+fn frame_uniforms_match_the_wgsl_layout() {
+    use stratus_scene::FrameUniforms;
+    let manifest = stratus_shaders::plan::embedded_manifest().unwrap();
+    let module = manifest.module(stratus_shaders::plan::MODULE).unwrap();
+    let frame = module
+        .struct_layout("Frame")
+        .expect("WGSL declares struct Frame");
+    assert_eq!(frame.size as usize, FrameUniforms::SIZE, "size");
+    assert_eq!(
+        frame.members.len(),
+        FrameUniforms::MEMBERS.len(),
+        "member count"
+    );
+    for (i, (m, (name, ty))) in frame.members.iter().zip(FrameUniforms::MEMBERS).enumerate() {
+        assert_eq!((m.name.as_str(), m.ty.as_str()), (name, ty), "member {i}");
+        assert_eq!(m.offset as usize, 16 * i, "offset of {name}");
+    }
+}

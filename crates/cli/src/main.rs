@@ -39,6 +39,7 @@ enum SceneCommand {
 }
 
 fn main() -> ExitCode {
+    quiet_headless_wsi();
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Render(args) => render::run(args),
@@ -51,6 +52,19 @@ fn main() -> ExitCode {
         Err(e) => {
             eprintln!("error: {e:#}");
             ExitCode::FAILURE
+        }
+    }
+}
+
+/// Headless, the Vulkan loader's Wayland WSI prints "error: XDG_RUNTIME_DIR is invalid or not
+/// set" when it probes for a compositor. Stratus never opens a window, so give it a private
+/// runtime dir to probe instead of alarming the user with an error that is not one.
+fn quiet_headless_wsi() {
+    if std::env::var_os("XDG_RUNTIME_DIR").is_none() {
+        let dir = std::env::temp_dir().join("stratus-runtime");
+        if std::fs::create_dir_all(&dir).is_ok() {
+            // SAFETY: called first thing in main, before any other thread exists.
+            unsafe { std::env::set_var("XDG_RUNTIME_DIR", &dir) };
         }
     }
 }
