@@ -230,9 +230,15 @@ impl Renderer {
             mipmap_filter: wgpu::MipmapFilterMode::Nearest,
             ..Default::default()
         });
+        // COPY_DST lets wgpu zero-initialise these images with a copy. Without it wgpu clears
+        // them with a render pass, which leaves a framebuffer bound in llvmpipe; lavapipe then
+        // bins timestamps into its tiles and takes them at the next flush, so the march pass
+        // measured ~0 ms and its cost landed in the composite pass (found with a perf probe on
+        // clock_gettime; ash, which never binds a framebuffer, times the passes correctly).
         let image_usage = wgpu::TextureUsages::STORAGE_BINDING
             | wgpu::TextureUsages::TEXTURE_BINDING
-            | wgpu::TextureUsages::COPY_SRC;
+            | wgpu::TextureUsages::COPY_SRC
+            | wgpu::TextureUsages::COPY_DST;
         let cloud = self.image("cloud", w, h, wgpu::TextureFormat::Rgba32Float, image_usage);
         let depth = self.image("depth", w, h, wgpu::TextureFormat::R32Float, image_usage);
         let image = self.image("image", w, h, wgpu::TextureFormat::Rgba8Unorm, image_usage);

@@ -21,6 +21,8 @@ pub enum Backend {
     Wgpu,
     /// wgpu on OpenGL through EGL.
     WgpuGl,
+    /// Raw Vulkan (ash), running the committed SPIR-V in spirv-out/.
+    Ash,
 }
 
 /// Options of `stratus render`.
@@ -119,10 +121,29 @@ impl FrameRenderer for backend_wgpu::Renderer {
     }
 }
 
+impl FrameRenderer for stratus_backend_ash::Renderer {
+    fn render(&mut self, plan: &FramePlan, scene: &Scene, noise: &NoiseSet) -> Result<FrameOutput> {
+        Ok(stratus_backend_ash::Renderer::render(
+            self,
+            plan,
+            &scene.uniforms(),
+            noise,
+        )?)
+    }
+    fn describe(&self) -> String {
+        format!("ash (Vulkan) on {}", self.adapter())
+    }
+}
+
+/// `STRATUS_VALIDATION=1` turns on the backends' validation (wgpu's and the Vulkan layer).
+fn validation() -> bool {
+    std::env::var_os("STRATUS_VALIDATION").is_some()
+}
+
 fn wgpu(api: backend_wgpu::Api) -> Result<backend_wgpu::Renderer, backend_wgpu::Error> {
     backend_wgpu::Renderer::new(backend_wgpu::Options {
         api,
-        validation: std::env::var_os("STRATUS_VALIDATION").is_some(),
+        validation: validation(),
     })
 }
 
@@ -130,6 +151,11 @@ fn open_backend(backend: Backend) -> Result<Box<dyn FrameRenderer>> {
     Ok(match backend {
         Backend::Wgpu => Box::new(wgpu(backend_wgpu::Api::Vulkan)?),
         Backend::WgpuGl => Box::new(wgpu(backend_wgpu::Api::Gl)?),
+        Backend::Ash => Box::new(stratus_backend_ash::Renderer::new(
+            stratus_backend_ash::Options {
+                validation: validation(),
+            },
+        )?),
         Backend::Auto => match wgpu(backend_wgpu::Api::Vulkan) {
             Ok(r) => Box::new(r),
             Err(vk) => match wgpu(backend_wgpu::Api::Gl) {
