@@ -86,9 +86,9 @@ Texture3D<float4> shape_tex : register(t1);
 Texture3D<float4> detail_tex : register(t2);
 Texture2D<float4> weather_tex : register(t3);
 Texture2D<float4> curl_tex : register(t4);
-SamplerState nagaSamplerHeap[2048]: register(s0, space0);
-SamplerComparisonState nagaComparisonSamplerHeap[2048]: register(s0, space1);
-StructuredBuffer<uint> nagaGroup0SamplerIndexArray : register(t0, space255);
+SamplerState nagaSamplerHeap[2048]: register(s16, space0);
+SamplerComparisonState nagaComparisonSamplerHeap[2048]: register(s17, space0);
+StructuredBuffer<uint> nagaGroup0SamplerIndexArray : register(t18, space0);
 static const SamplerState noise_sampler = nagaSamplerHeap[nagaGroup0SamplerIndexArray[5]];
 RWTexture2D<float4> cloud_out : register(u6);
 RWTexture2D<float> depth_out : register(u7);
@@ -433,23 +433,25 @@ float cloud_density(float3 p_3, float alt_3, inout Counters counters_1)
         float _e196 = frame.periods.z;
         float4 dn = detail_tex.SampleLevel(noise_sampler, (_e192 / (_e196).xxx), 0.0);
         float high_fbm = (((dn.x * 0.625) + (dn.y * 0.25)) + (dn.z * 0.125));
-        float _e217 = frame.extinction.w;
-        float shape = lerp((1.0 - high_fbm), high_fbm, _e217);
-        float _e220 = base;
-        float erosion = ((strength * shape) * (1.0 - (_e220 / threshold)));
-        float _e225 = base;
-        const float _e229 = remap(_e225, erosion, 1.0, 0.0, 1.0);
-        const float _e230 = saturate_(_e229);
-        density = _e230;
+        float _e215 = frame.extinction.w;
+        const float _e220 = saturate_((h_5 * 10.0));
+        const float _e222 = saturate_(((2.0 * _e215) * _e220));
+        float shape = lerp((1.0 - high_fbm), high_fbm, _e222);
+        float _e227 = base;
+        float erosion = ((strength * shape) * (1.0 - (_e227 / threshold)));
+        float _e232 = base;
+        const float _e236 = remap(_e232, erosion, 1.0, 0.0, 1.0);
+        const float _e237 = saturate_(_e236);
+        density = _e237;
     }
-    float _e231 = density;
-    float _e235 = frame.erosion.w;
-    density = (_e231 * lerp(1.0, h_5, _e235));
-    float _e239 = density;
-    float _e243 = frame.clouds.y;
-    density = ((_e239 * _e243) * (1.0 + _e28.precipitation));
-    float _e249 = density;
-    return clamp(_e249, 0.0, 1.0);
+    float _e238 = density;
+    float _e242 = frame.erosion.w;
+    density = (_e238 * lerp(1.0, h_5, _e242));
+    float _e246 = density;
+    float _e250 = frame.clouds.y;
+    density = ((_e246 * _e250) * (1.0 + _e28.precipitation));
+    float _e256 = density;
+    return clamp(_e256, 0.0, 1.0);
 }
 
 float phase_hg(float cos_theta, float g)

@@ -375,23 +375,25 @@ float cloud_density(vec3 p_3, float alt_3, inout Counters counters_1) {
         float _e196 = _group_0_binding_0_cs.periods.z;
         vec4 dn = textureLod(_group_0_binding_2_cs, vec3((_e192 / vec3(_e196))), 0.0);
         float high_fbm = (((dn.x * 0.625) + (dn.y * 0.25)) + (dn.z * 0.125));
-        float _e217 = _group_0_binding_0_cs.extinction.w;
-        float shape = mix((1.0 - high_fbm), high_fbm, _e217);
-        float _e220 = base;
-        float erosion = ((strength * shape) * (1.0 - (_e220 / threshold)));
-        float _e225 = base;
-        float _e229 = remap(_e225, erosion, 1.0, 0.0, 1.0);
-        float _e230 = saturate(_e229);
-        density = _e230;
+        float _e215 = _group_0_binding_0_cs.extinction.w;
+        float _e220 = saturate((h_5 * 10.0));
+        float _e222 = saturate(((2.0 * _e215) * _e220));
+        float shape = mix((1.0 - high_fbm), high_fbm, _e222);
+        float _e227 = base;
+        float erosion = ((strength * shape) * (1.0 - (_e227 / threshold)));
+        float _e232 = base;
+        float _e236 = remap(_e232, erosion, 1.0, 0.0, 1.0);
+        float _e237 = saturate(_e236);
+        density = _e237;
     }
-    float _e231 = density;
-    float _e235 = _group_0_binding_0_cs.erosion.w;
-    density = (_e231 * mix(1.0, h_5, _e235));
-    float _e239 = density;
-    float _e243 = _group_0_binding_0_cs.clouds.y;
-    density = ((_e239 * _e243) * (1.0 + _e28.precipitation));
-    float _e249 = density;
-    return clamp(_e249, 0.0, 1.0);
+    float _e238 = density;
+    float _e242 = _group_0_binding_0_cs.erosion.w;
+    density = (_e238 * mix(1.0, h_5, _e242));
+    float _e246 = density;
+    float _e250 = _group_0_binding_0_cs.clouds.y;
+    density = ((_e246 * _e250) * (1.0 + _e28.precipitation));
+    float _e256 = density;
+    return clamp(_e256, 0.0, 1.0);
 }
 
 float phase_hg(float cos_theta, float g) {

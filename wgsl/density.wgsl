@@ -114,8 +114,12 @@ fn cloud_density(p: vec3<f32>, alt: f32, counters: ptr<function, Counters>) -> f
         detail_pos = detail_pos - vec3<f32>(frame.wind_offsets1.x, 0.0, frame.wind_offsets1.y);
         let dn = textureSampleLevel(detail_tex, noise_sampler, detail_pos / frame.periods.z, 0.0);
         let high_fbm = dn.r * 0.625 + dn.g * 0.25 + dn.b * 0.125;
-        // Inverted Worley is billowy, plain Worley wispy (HZD).
-        let shape = mix(1.0 - high_fbm, high_fbm, frame.extinction.w);
+        // Inverted Worley is billowy, plain Worley wispy. HZD turns wispy bases into billowy
+        // tops over the lowest tenth of the cloud; `wispy_billowy` scales that (0.5: HZD's
+        // ramp, 0: wispy everywhere, 1: billowy almost from the base). A constant blend would
+        // not do: at 0.5 it cancels the detail noise entirely.
+        let billowy = saturate(2.0 * frame.extinction.w * saturate(h * 10.0));
+        let shape = mix(1.0 - high_fbm, high_fbm, billowy);
         let erosion = strength * shape * (1.0 - base / threshold);
         density = saturate(remap(base, erosion, 1.0, 0.0, 1.0));
     }

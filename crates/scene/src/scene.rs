@@ -184,7 +184,9 @@ pub struct Clouds {
     /// Strength of the linear "denser toward the top" gradient (thesis 4.5.1), within [0, 1]:
     /// 0 = uniform, 1 = zero density at the bottom of a cloud.
     pub height_gradient: f64,
-    /// Edge character within [0, 1]: 0 wispy (Worley detail), 1 billowy (inverted Worley).
+    /// Edge character within [0, 1]: 0 wispy (Worley detail) everywhere, 0.5 HZD's ramp from
+    /// wispy bases to billowy (inverted Worley) tops over the lowest tenth of a cloud, 1
+    /// billowy almost from the base.
     pub wispy_billowy: f64,
 }
 

@@ -41,6 +41,45 @@ fn glsl_options(module: &naga::Module) -> back::glsl::Options {
     }
 }
 
+/// First register (in space 0) of the HLSL's sampler heaps and sampler index buffers: above
+/// every WGSL binding of a group (fewer than 16, as the GLSL's `group * 16 + binding` assumes).
+const HLSL_SAMPLER_REGISTER: u32 = 16;
+
+/// Shader model 5.1 and naga's defaults (`@group` = space, `@binding` = register), except
+/// where the sampler heap lives. naga's HLSL reaches every sampler through a heap (an array of
+/// 2048 samplers) and, per bind group, a buffer of heap indices; naga puts them at `s0,
+/// space0` and `t<group>, space255`. Both defeat glslang's HLSL front end, which maps register
+/// to binding and space to descriptor set: `s0` shares binding 0 with the `b0` uniform block,
+/// and space 255 is out of its range (it keeps 7 bits of the set, and any re-mapping option
+/// fails with "mapped set out of range"). So they move to space 0 above the groups' bindings:
+/// the heap at `s16`, the comparison heap at `s17`, group `g`'s index buffer at `t(18 + g)`.
+fn hlsl_options(module: &naga::Module) -> back::hlsl::Options {
+    let at = |register: u32| back::hlsl::BindTarget {
+        space: 0,
+        register,
+        binding_array_size: None,
+        dynamic_storage_buffer_offsets_index: None,
+        restrict_indexing: false,
+    };
+    let mut sampler_buffer_binding_map = back::hlsl::SamplerIndexBufferBindingMap::default();
+    for (_, var) in module.global_variables.iter() {
+        if let Some(rb) = &var.binding {
+            sampler_buffer_binding_map.insert(
+                back::hlsl::SamplerIndexBufferKey { group: rb.group },
+                at(HLSL_SAMPLER_REGISTER + 2 + rb.group),
+            );
+        }
+    }
+    back::hlsl::Options {
+        sampler_heap_target: back::hlsl::SamplerHeapBindTargets {
+            standard_samplers: at(HLSL_SAMPLER_REGISTER),
+            comparison_samplers: at(HLSL_SAMPLER_REGISTER + 1),
+        },
+        sampler_buffer_binding_map,
+        ..Default::default()
+    }
+}
+
 /// Bounds-check policies: naga's defaults, the same for every target.
 fn policies() -> naga::proc::BoundsCheckPolicies {
     naga::proc::BoundsCheckPolicies::default()
@@ -93,7 +132,7 @@ pub fn translate_variant(
     let mut hlsl = String::new();
     back::hlsl::Writer::new(
         &mut hlsl,
-        &back::hlsl::Options::default(),
+        &hlsl_options(&module),
         &back::hlsl::PipelineOptions::default(),
     )
     .write(&module, &info, None)

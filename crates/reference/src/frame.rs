@@ -1,0 +1,135 @@
+//! The CPU twin of `common.wgsl`: the `Frame` uniform block widened to f64, the mode codes and
+//! the PCG jitter hash.
+
+use stratus_scene::FrameUniforms;
+
+use crate::math::V3;
+
+// WGSL: common.wgsl (constants). Must agree with the WGSL and with the scene crate's codes.
+pub(crate) const PHASE_TWO_LOBE_HG: u32 = 1;
+pub(crate) const PHASE_CORNETTE_SHANKS: u32 = 2;
+pub(crate) const INTEGRATION_ANALYTIC: u32 = 0;
+pub(crate) const INTEGRATION_RIEMANN: u32 = 1;
+pub(crate) const HEIGHT_CLOUD_TYPES: u32 = 1;
+pub(crate) const FLAG_BEER_POWDER: u32 = 1;
+pub(crate) const FLAG_JITTER: u32 = 2;
+pub(crate) const PI: f64 = std::f64::consts::PI;
+// WGSL: common.wgsl::MAX_VIEW_STEPS (the bound in step-length mode).
+pub(crate) const MAX_VIEW_STEPS: u32 = 1024;
+
+/// `Frame` of `common.wgsl`, member for member, every f32 widened to f64 so that the CPU sees
+/// exactly the values the GPU gets (read from [`stratus_scene::Scene::uniforms`]).
+#[derive(Clone, Debug)]
+pub(crate) struct Frame {
+    pub camera_position: [f64; 4],
+    pub camera_forward: [f64; 4],
+    pub camera_right: [f64; 4],
+    pub camera_up: [f64; 4],
+    pub sun_direction: [f64; 4],
+    pub sun_illuminance: [f64; 4],
+    pub atmosphere: [f64; 4],
+    pub clouds: [f64; 4],
+    pub erosion: [f64; 4],
+    pub periods: [f64; 4],
+    pub wind_offsets0: [f64; 4],
+    pub wind_offsets1: [f64; 4],
+    pub extinction: [f64; 4],
+    pub phase: [f64; 4],
+    pub multiple_scattering: [f64; 4],
+    pub ambient_bottom: [f64; 4],
+    pub ambient_top: [f64; 4],
+    pub march: [f64; 4],
+    pub counts: [u32; 4],
+    pub modes: [u32; 4],
+    pub misc: [u32; 4],
+}
+
+fn w(v: [f32; 4]) -> [f64; 4] {
+    v.map(f64::from)
+}
+
+impl Frame {
+    /// The uniform block widened to f64.
+    pub fn from_uniforms(u: &FrameUniforms) -> Self {
+        Self {
+            camera_position: w(u.camera_position),
+            camera_forward: w(u.camera_forward),
+            camera_right: w(u.camera_right),
+            camera_up: w(u.camera_up),
+            sun_direction: w(u.sun_direction),
+            sun_illuminance: w(u.sun_illuminance),
+            atmosphere: w(u.atmosphere),
+            clouds: w(u.clouds),
+            erosion: w(u.erosion),
+            periods: w(u.periods),
+            wind_offsets0: w(u.wind_offsets0),
+            wind_offsets1: w(u.wind_offsets1),
+            extinction: w(u.extinction),
+            phase: w(u.phase),
+            multiple_scattering: w(u.multiple_scattering),
+            ambient_bottom: w(u.ambient_bottom),
+            ambient_top: w(u.ambient_top),
+            march: w(u.march),
+            counts: u.counts,
+            modes: u.modes,
+            misc: u.misc,
+        }
+    }
+
+    /// `frame.sun_direction.xyz`.
+    pub fn sun(&self) -> V3 {
+        xyz(self.sun_direction)
+    }
+
+    /// `frame.sun_illuminance.rgb`.
+    pub fn sun_illuminance(&self) -> V3 {
+        xyz(self.sun_illuminance)
+    }
+}
+
+/// `v.xyz` of a widened vec4.
+pub(crate) fn xyz(v: [f64; 4]) -> V3 {
+    V3::new(v[0], v[1], v[2])
+}
+
+// WGSL: common.wgsl::pcg
+// Must agree bit for bit: u32 arithmetic that wraps (WGSL's u32 `*` and `+` wrap), and the same
+// shifts. `tests::pcg_matches_reference_values` pins a few outputs.
+/// PCG hash (O'Neill), the per-pixel jitter hash of the WGSL.
+pub(crate) fn pcg(v: u32) -> u32 {
+    let state = v.wrapping_mul(747_796_405).wrapping_add(2_891_336_453);
+    let word = ((state >> ((state >> 28) + 4)) ^ state).wrapping_mul(277_803_737);
+    (word >> 22) ^ word
+}
+
+// WGSL: common.wgsl::hash_unit
+// Must agree exactly: 24 bits times 2^-24 is exact in f32 and in f64, so the jitter offsets of the
+// CPU and the GPU are the same numbers.
+/// A value in `[0, 1)` from a pixel and a frame index.
+pub(crate) fn hash_unit(pixel: [u32; 2], frame_index: u32) -> f64 {
+    let h = pcg(pixel[0] ^ pcg(pixel[1] ^ pcg(frame_index)));
+    f64::from(h >> 8) * (1.0 / 16_777_216.0)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The PCG hash computed by hand for a few inputs (u64 arithmetic reduced mod 2^32, an
+    /// independent evaluation of the same formula).
+    #[test]
+    fn pcg_matches_reference_values() {
+        fn pcg64(v: u64) -> u64 {
+            let m = 1u64 << 32;
+            let state = (v * 747_796_405 + 2_891_336_453) % m;
+            let word = (((state >> ((state >> 28) + 4)) ^ state) * 277_803_737) % m;
+            (word >> 22) ^ word
+        }
+        for v in [0u32, 1, 2, 77, 12345, u32::MAX, 0x8000_0000] {
+            assert_eq!(u64::from(pcg(v)), pcg64(u64::from(v)), "pcg({v})");
+        }
+        let u = hash_unit([3, 5], 0);
+        assert!((0.0..1.0).contains(&u));
+        assert_eq!(u * 16_777_216.0, (u * 16_777_216.0).floor());
+    }
+}

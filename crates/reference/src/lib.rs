@@ -1,0 +1,526 @@
+//! The CPU reference renderer of Stratus: the same scene as the WGSL, in f64, from the same
+//! noise texels.
+//!
+//! Two integrators share the model:
+//!
+//! * [`Integrator::Quadrature`]: the WGSL's view march line by line (`march.wgsl`,
+//!   `lighting.wgsl`, `density.wgsl`, `geometry.wgsl`, `composite.wgsl`, each mirrored by the
+//!   module of the same name; every function carries a `// WGSL: <file>::<fn>` comment). With
+//!   [`QuadratureSettings::realtime`] it takes the scene's view steps, light steps and jitter, so
+//!   a GPU frame and its CPU twin can be compared pixel for pixel, work counters included. With
+//!   [`QuadratureSettings::converged`] it is the model's converged answer (see there for the
+//!   definition and its measurement).
+//! * [`Integrator::MonteCarlo`]: a volumetric path tracer through the same density field (see
+//!   the [`montecarlo`] module for the estimators, how the ambient maps to an environment and
+//!   which real-time-only terms it ignores).
+//!
+//! Parameters are read from [`Scene::uniforms`], the f32 values the GPU gets, widened to f64,
+//! so both see identical inputs. A [`Medium`] other than the clouds (a homogeneous slab or
+//! ball) lets the same integrators run on media with closed-form answers.
+//!
+//! ```no_run
+//! use stratus_reference::{Integrator, QuadratureSettings, render};
+//! use stratus_noise::{NoiseConfig, NoiseSet};
+//! use stratus_scene::Scene;
+//!
+//! let scene = Scene::default().with_size(256, 144);
+//! let noise = NoiseSet::generate(&NoiseConfig::default());
+//! let frame = render(&scene, &noise, &Integrator::Quadrature(QuadratureSettings::realtime()), true);
+//! assert_eq!(frame.radiance.len(), 256 * 144 * 4);
+//! ```
+
+#![warn(missing_docs)]
+
+mod composite;
+mod density;
+mod frame;
+mod geometry;
+mod lighting;
+mod march;
+mod math;
+mod medium;
+pub mod montecarlo;
+mod texture;
+
+use std::collections::BTreeMap;
+use std::time::Instant;
+
+use indicatif::{ProgressBar, ProgressStyle};
+use rayon::prelude::*;
+use stratus_noise::NoiseSet;
+use stratus_scene::{Integration, Scene};
+use stratus_shaders::plan::COUNTERS;
+use stratus_shaders::{FrameOutput, PassTiming};
+
+use crate::density::Counters;
+use crate::frame::{FLAG_JITTER, Frame, INTEGRATION_ANALYTIC, INTEGRATION_RIEMANN};
+use crate::geometry::{RayKind, view_ray};
+use crate::lighting::LightMarch;
+use crate::march::{MarchSettings, march, march_ray};
+use crate::math::V3;
+use crate::medium::Model;
+use crate::montecarlo::{Accumulator, Rng, camera_interval, trace};
+
+pub use crate::medium::{Medium, Shape};
+
+/// How the radiance of a pixel is computed.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Integrator {
+    /// The WGSL's ray march in f64 (deterministic).
+    Quadrature(QuadratureSettings),
+    /// Volumetric path tracing with `spp` samples a pixel and `orders` scattering orders
+    /// (1 = single scattering; 0 = all), see [`montecarlo`]. The frame's radiance is the mean
+    /// in-scattered radiance, its alpha the mean (ratio-tracking) transmittance of the camera
+    /// ray, its depth the mean distance of the first collision; [`Rendering::std_error`] holds
+    /// the standard errors. Counters: `pixels`, `marched_pixels`, `exit_missed_layer` and
+    /// `exit_ground` mean what they mean on the GPU; `view_steps` counts tentative collisions
+    /// on camera rays, `light_samples` those of shadow, environment and scattered rays,
+    /// `density_evaluations` and `detail_evaluations` every evaluation; `exit_transmittance`
+    /// is 0.
+    MonteCarlo {
+        /// Samples per pixel (at least 1).
+        spp: u32,
+        /// Scattering orders that contribute (1 = single scattering, 0 = all).
+        orders: u32,
+    },
+}
+
+/// Discretisation of the quadrature. `None` takes the scene's value.
+#[derive(Clone, Debug, PartialEq)]
+pub struct QuadratureSettings {
+    /// Exactly this many view steps per ray (otherwise the scene's `view_steps`, or its step
+    /// length when it has one, as the WGSL).
+    pub view_steps: Option<u32>,
+    /// Light-march steps (otherwise the scene's).
+    pub light_steps: Option<u32>,
+    /// Growth of successive light steps (otherwise the scene's).
+    pub light_step_growth: Option<f64>,
+    /// `false`: the light march starts with the scene's first light step, as the WGSL. `true`
+    /// (not in the WGSL): the light steps exactly cover the sun ray's path to where it leaves
+    /// the layer (with growth 1: equal steps over the whole path to the layer top).
+    pub light_to_layer_exit: bool,
+    /// Jitter the start offset per pixel (otherwise the scene's flag). Without jitter the
+    /// samples are at step midpoints.
+    pub jitter: Option<bool>,
+    /// Early-exit transmittance (otherwise the scene's; 0 marches the whole interval).
+    pub early_exit: Option<f64>,
+    /// Step integral (otherwise the scene's).
+    pub integration: Option<Integration>,
+}
+
+impl QuadratureSettings {
+    /// Exactly what the GPU does for the scene: its view steps (or step length), light steps,
+    /// light step growth, jitter, early exit and step integral.
+    pub fn realtime() -> Self {
+        Self {
+            view_steps: None,
+            light_steps: None,
+            light_step_growth: None,
+            light_to_layer_exit: false,
+            jitter: None,
+            early_exit: None,
+            integration: None,
+        }
+    }
+
+    /// The converged reference of the real-time model: 1024 view steps, 128 light steps of
+    /// equal length covering the whole sun path to where it leaves the layer, no jitter
+    /// (midpoint samples), no early exit, the analytic step integral.
+    ///
+    /// "Converged" means: doubling both the view and the light steps changes the image's mean
+    /// linear radiance by less than 0.1%, and no pixel's radiance by more than 1% of the
+    /// image's largest radiance. Measured at 64x36 with the `converge` example (`cargo run
+    /// --release -p stratus-reference --example converge -- <preset> 64x36 2 both 1024 128`),
+    /// 1024x128 against 2048x256 steps:
+    ///
+    /// | preset | mean change | mean abs change | max change |
+    /// |---|---|---|---|
+    /// | cumulus-noon | 0.0027% | 0.0084% | 0.19% |
+    /// | sunset (sun 4 degrees up: 36 km light paths) | 0.029% | 0.070% | 0.39% |
+    /// | above-clouds | 0.0013% | 0.0041% | 0.17% |
+    /// | storm | 0.0004% | 0.0009% | 0.05% |
+    ///
+    /// The light steps matter most at a low sun: for `sunset`, 64 light steps miss the criterion
+    /// (doubling them changes the mean by 0.14%), 128 meet it (0.03%); the view steps at 1024
+    /// change the mean by 0.003% when doubled. The quadrature's error against closed forms is
+    /// second order in the step (`tests/analytic.rs`).
+    pub fn converged() -> Self {
+        Self {
+            view_steps: Some(1024),
+            light_steps: Some(128),
+            light_step_growth: Some(1.0),
+            light_to_layer_exit: true,
+            jitter: Some(false),
+            early_exit: Some(0.0),
+            integration: Some(Integration::Analytic),
+        }
+    }
+
+    fn resolve(&self, f: &Frame) -> MarchSettings {
+        MarchSettings {
+            view_steps: self.view_steps,
+            light: LightMarch {
+                steps: self.light_steps.unwrap_or(f.counts[3]),
+                growth: self.light_step_growth.unwrap_or(f.march[1]),
+                first: f.march[2],
+                to_layer_exit: self.light_to_layer_exit,
+            },
+            jitter: self.jitter.unwrap_or(f.modes[3] & FLAG_JITTER != 0),
+            early_exit: self.early_exit.unwrap_or(f.march[3]),
+            integration: match self.integration {
+                Some(Integration::Analytic) => INTEGRATION_ANALYTIC,
+                Some(Integration::Riemann) => INTEGRATION_RIEMANN,
+                None => f.modes[1],
+            },
+        }
+    }
+}
+
+/// Options of a render that do not change the image.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct RenderOptions {
+    /// Show a progress bar on stderr.
+    pub progress: bool,
+    /// Render on a pool of this many threads (default: rayon's global pool). The image does not
+    /// depend on it.
+    pub threads: Option<usize>,
+}
+
+/// A render: the frame, plus the Monte Carlo standard errors.
+#[derive(Clone, Debug)]
+pub struct Rendering {
+    /// Radiance and transmittance, depth, the composited image, counters and timings.
+    pub output: FrameOutput,
+    /// Monte Carlo only: the standard error of each pixel's mean, 4 floats a pixel (radiance
+    /// rgb, transmittance), row-major like `output.radiance`. `None` for the quadrature.
+    pub std_error: Option<Vec<f32>>,
+}
+
+/// Mean and standard error of a block of pixels of a [`Rendering`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct Block {
+    /// Left column.
+    pub x: u32,
+    /// Top row.
+    pub y: u32,
+    /// Width in pixels (smaller at the right edge).
+    pub width: u32,
+    /// Height in pixels (smaller at the bottom edge).
+    pub height: u32,
+    /// Mean radiance rgb and transmittance over the block.
+    pub mean: [f64; 4],
+    /// Standard error of `mean` (pixels are independent: `sqrt(sum se_i^2) / n`); 0 for the
+    /// quadrature.
+    pub std_error: [f64; 4],
+}
+
+impl Rendering {
+    /// Means and standard errors over `size` x `size` blocks, row by row (edge blocks are
+    /// smaller).
+    pub fn blocks(&self, size: u32) -> Vec<Block> {
+        let (w, h) = (self.output.width, self.output.height);
+        let mut out = Vec::new();
+        for by in (0..h).step_by(size as usize) {
+            for bx in (0..w).step_by(size as usize) {
+                let (bw, bh) = (size.min(w - bx), size.min(h - by));
+                let n = f64::from(bw * bh);
+                let mut mean = [0.0; 4];
+                let mut var = [0.0; 4];
+                for y in by..by + bh {
+                    for x in bx..bx + bw {
+                        let i = 4 * (y * w + x) as usize;
+                        for c in 0..4 {
+                            mean[c] += f64::from(self.output.radiance[i + c]) / n;
+                            if let Some(se) = &self.std_error {
+                                var[c] += f64::from(se[i + c]).powi(2);
+                            }
+                        }
+                    }
+                }
+                out.push(Block {
+                    x: bx,
+                    y: by,
+                    width: bw,
+                    height: bh,
+                    mean,
+                    std_error: var.map(|v| v.sqrt() / n),
+                });
+            }
+        }
+        out
+    }
+}
+
+/// The radiance along one ray, with its standard error (0 for the quadrature).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RayEstimate {
+    /// In-scattered radiance, linear rgb.
+    pub radiance: [f64; 3],
+    /// Transmittance of the ray's interval in the medium.
+    pub transmittance: f64,
+    /// Standard error of radiance rgb and transmittance.
+    pub std_error: [f64; 4],
+}
+
+/// A scene and a medium ready to trace single rays from the scene's camera (for tests and
+/// measurements that need directions other than the camera's pixels).
+pub struct Tracer<'a> {
+    model: Model<'a>,
+}
+
+impl<'a> Tracer<'a> {
+    /// The scene's frame (its uniforms widened to f64) with `medium`.
+    pub fn new(scene: &Scene, medium: Medium<'a>) -> Self {
+        Self {
+            model: Model::new(scene, medium),
+        }
+    }
+
+    /// The quadrature along unit `direction` from the camera (jitter, if on, uses pixel 0, 0).
+    pub fn quadrature(&self, direction: [f64; 3], settings: &QuadratureSettings) -> RayEstimate {
+        let s = settings.resolve(&self.model.f);
+        let jitter = if s.jitter {
+            frame::hash_unit([0, 0], self.model.f.misc[1])
+        } else {
+            0.5
+        };
+        let r = march_ray(
+            &self.model,
+            &s,
+            V3::from_array(direction).normalize(),
+            jitter,
+        );
+        RayEstimate {
+            radiance: r.radiance.to_array(),
+            transmittance: r.transmittance,
+            std_error: [0.0; 4],
+        }
+    }
+
+    /// `spp` path-traced samples along unit `direction` from the camera, with `orders`
+    /// scattering orders (0 = all); `key` selects the random streams (like a pixel index).
+    pub fn monte_carlo(&self, direction: [f64; 3], spp: u32, orders: u32, key: u64) -> RayEstimate {
+        let view = V3::from_array(direction).normalize();
+        let span = camera_interval(&self.model, view);
+        let mut acc = Accumulator::default();
+        let mut counters = Counters::default();
+        for s in 0..spp.max(1) {
+            let mut rng = Rng::new(key, u64::from(s), u64::from(self.model.f.misc[1]));
+            acc.add(&trace(
+                &self.model,
+                view,
+                &span,
+                orders,
+                &mut rng,
+                &mut counters,
+            ));
+        }
+        let m = acc.mean();
+        RayEstimate {
+            radiance: [m[0], m[1], m[2]],
+            transmittance: m[3],
+            std_error: acc.std_error(),
+        }
+    }
+}
+
+/// Renders the scene's clouds with `integrator` (rayon's global pool; a progress bar on stderr
+/// if `progress`).
+pub fn render(
+    scene: &Scene,
+    noise: &NoiseSet,
+    integrator: &Integrator,
+    progress: bool,
+) -> FrameOutput {
+    render_medium(
+        scene,
+        Medium::Clouds(noise),
+        integrator,
+        &RenderOptions {
+            progress,
+            threads: None,
+        },
+    )
+    .output
+}
+
+/// What one pixel contributes.
+#[derive(Clone, Copy, Default)]
+struct PixelOut {
+    value: [f64; 4],
+    std_error: [f64; 4],
+    depth: f64,
+    counters: Counters,
+    kind: Option<RayKind>,
+    exited_early: bool,
+}
+
+/// Renders `medium` in `scene` with `integrator`.
+pub fn render_medium(
+    scene: &Scene,
+    medium: Medium,
+    integrator: &Integrator,
+    options: &RenderOptions,
+) -> Rendering {
+    match options.threads {
+        Some(n) => rayon::ThreadPoolBuilder::new()
+            .num_threads(n.max(1))
+            .build()
+            .expect("building a rayon thread pool")
+            .install(|| render_in_pool(scene, medium, integrator, options.progress)),
+        None => render_in_pool(scene, medium, integrator, options.progress),
+    }
+}
+
+fn render_in_pool(
+    scene: &Scene,
+    medium: Medium,
+    integrator: &Integrator,
+    progress: bool,
+) -> Rendering {
+    let model = Model::new(scene, medium);
+    let f = &model.f;
+    let (w, h) = (f.counts[0], f.counts[1]);
+    let bar = if progress {
+        let bar = ProgressBar::new(u64::from(h));
+        if let Ok(style) = ProgressStyle::with_template(
+            "{msg} [{elapsed_precise}] {wide_bar} {pos}/{len} rows (eta {eta})",
+        ) {
+            bar.set_style(style);
+        }
+        bar.set_message(match integrator {
+            Integrator::Quadrature(_) => "quadrature".to_string(),
+            Integrator::MonteCarlo { spp, orders } => {
+                format!("path tracing {spp} spp, orders {orders}")
+            }
+        });
+        bar
+    } else {
+        ProgressBar::hidden()
+    };
+
+    let t0 = Instant::now();
+    let pixel = |x: u32, y: u32| -> PixelOut {
+        match integrator {
+            Integrator::Quadrature(settings) => {
+                let s = settings.resolve(f);
+                let r = march(&model, &s, [x, y]);
+                PixelOut {
+                    value: [r.radiance.x, r.radiance.y, r.radiance.z, r.transmittance],
+                    std_error: [0.0; 4],
+                    depth: r.depth,
+                    counters: r.counters,
+                    kind: r.kind,
+                    exited_early: r.exited_early,
+                }
+            }
+            Integrator::MonteCarlo { spp, orders } => {
+                let view = view_ray(f, [x, y]);
+                let span = camera_interval(&model, view);
+                let mut acc = Accumulator::default();
+                let mut counters = Counters::default();
+                let key = u64::from(y) * u64::from(w) + u64::from(x);
+                for s in 0..(*spp).max(1) {
+                    // Must be independent of scheduling: one stream per (pixel, sample, frame).
+                    let mut rng = Rng::new(key, u64::from(s), u64::from(f.misc[1]));
+                    acc.add(&trace(
+                        &model,
+                        view,
+                        &span,
+                        *orders,
+                        &mut rng,
+                        &mut counters,
+                    ));
+                }
+                PixelOut {
+                    value: acc.mean(),
+                    std_error: acc.std_error(),
+                    depth: acc.depth(),
+                    counters,
+                    kind: Some(span.kind),
+                    exited_early: false,
+                }
+            }
+        }
+    };
+    let rows: Vec<Vec<PixelOut>> = (0..h)
+        .into_par_iter()
+        .map(|y| {
+            let row = (0..w).map(|x| pixel(x, y)).collect();
+            bar.inc(1);
+            row
+        })
+        .collect();
+    bar.finish_and_clear();
+    let march_ms = t0.elapsed().as_secs_f64() * 1e3;
+
+    let n = (w * h) as usize;
+    let mut radiance = Vec::with_capacity(4 * n);
+    let mut std_error = Vec::with_capacity(4 * n);
+    let mut depth = Vec::with_capacity(n);
+    // Must agree with march.wgsl's STAT_* indices (the order of `COUNTERS`).
+    let mut raw = [0u64; 9];
+    for p in rows.iter().flatten() {
+        radiance.extend(p.value.map(|v| v as f32));
+        std_error.extend(p.std_error.map(|v| v as f32));
+        depth.push(p.depth as f32);
+        raw[0] += 1;
+        match p.kind {
+            Some(RayKind::March) => raw[1] += 1,
+            Some(RayKind::MissesLayer) => raw[7] += 1,
+            Some(RayKind::HitsGround) => raw[8] += 1,
+            None => {}
+        }
+        raw[2] += p.counters.view_steps;
+        raw[3] += p.counters.density;
+        raw[4] += p.counters.detail;
+        raw[5] += p.counters.light;
+        raw[6] += u64::from(p.exited_early);
+    }
+    let stats: BTreeMap<String, u64> = COUNTERS
+        .iter()
+        .zip(raw)
+        .map(|(name, v)| (name.to_string(), v))
+        .collect();
+
+    let t1 = Instant::now();
+    // The composite reads the stored (f32) march output, as the GPU's composite pass does.
+    let image: Vec<u8> = (0..h)
+        .into_par_iter()
+        .flat_map_iter(|y| {
+            let radiance = &radiance;
+            (0..w).flat_map(move |x| {
+                let i = 4 * (y * w + x) as usize;
+                let cloud = [0, 1, 2, 3].map(|c| f64::from(radiance[i + c]));
+                composite::composite(f, [x, y], cloud)
+            })
+        })
+        .collect();
+    let composite_ms = t1.elapsed().as_secs_f64() * 1e3;
+
+    let is_mc = matches!(integrator, Integrator::MonteCarlo { .. });
+    Rendering {
+        output: FrameOutput {
+            width: w,
+            height: h,
+            radiance,
+            depth,
+            image,
+            stats: Some(stats),
+            timings: vec![
+                PassTiming {
+                    pass: "march".to_string(),
+                    ms: march_ms,
+                    source: "cpu-wall",
+                },
+                PassTiming {
+                    pass: "composite".to_string(),
+                    ms: composite_ms,
+                    source: "cpu-wall",
+                },
+            ],
+            device: format!("cpu ({} threads)", rayon::current_num_threads()),
+        },
+        std_error: is_mc.then_some(std_error),
+    }
+}

@@ -1,0 +1,201 @@
+//! The CPU twin of `lighting.wgsl`: phase functions, the light march toward the sun,
+//! multiple-scattering octaves, ambient and precipitation darkening.
+
+use crate::density::Counters;
+use crate::frame::{FLAG_BEER_POWDER, Frame, PHASE_CORNETTE_SHANKS, PHASE_TWO_LOBE_HG, PI};
+use crate::geometry::{altitude_of, hits_ground, ray_shell_from};
+use crate::math::{V3, mix, mix_v, saturate};
+use crate::medium::Model;
+
+// WGSL: lighting.wgsl::phase_hg
+/// Henyey-Greenstein, normalised over the sphere (thesis eq. 5.4).
+pub(crate) fn phase_hg(cos_theta: f64, g: f64) -> f64 {
+    let g2 = g * g;
+    let denom = (1.0 + g2 - 2.0 * g * cos_theta).max(1e-6);
+    (1.0 - g2) / (4.0 * PI * denom * denom.sqrt())
+}
+
+// WGSL: lighting.wgsl::phase_cornette_shanks
+/// Cornette-Shanks (thesis eq. 5.5).
+pub(crate) fn phase_cornette_shanks(cos_theta: f64, g: f64) -> f64 {
+    let g2 = g * g;
+    let denom = (1.0 + g2 - 2.0 * g * cos_theta).max(1e-6);
+    3.0 * (1.0 - g2) * (1.0 + cos_theta * cos_theta)
+        / (8.0 * PI * (2.0 + g2) * denom * denom.sqrt())
+}
+
+// WGSL: lighting.wgsl::phase
+/// The scene's phase model with eccentricities scaled by `scale`.
+pub(crate) fn phase(f: &Frame, cos_theta: f64, scale: f64) -> f64 {
+    let g = f.phase[0] * scale;
+    match f.modes[0] {
+        PHASE_TWO_LOBE_HG => {
+            let g2 = f.phase[1] * scale;
+            mix(phase_hg(cos_theta, g), phase_hg(cos_theta, g2), f.phase[2])
+        }
+        PHASE_CORNETTE_SHANKS => phase_cornette_shanks(cos_theta, g),
+        _ => phase_hg(cos_theta, g),
+    }
+}
+
+/// How the light march toward the sun is discretised.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct LightMarch {
+    /// Number of segments (`frame.counts.w` in the WGSL).
+    pub steps: u32,
+    /// Each segment is this many times longer than the previous (`frame.march.y`).
+    pub growth: f64,
+    /// Length of the first segment, metres (`frame.march.z`); ignored with `to_layer_exit`.
+    pub first: f64,
+    /// Not in the WGSL (converged reference): the `steps` segments cover exactly the sun ray's
+    /// path to where it leaves the layer, the first one sized so that they add up to it.
+    pub to_layer_exit: bool,
+}
+
+/// Distance from camera-relative `rel` (altitude `alt`) along unit `d` to where the ray leaves
+/// the cloud layer (through the top, or through the bottom if it goes down into it).
+pub(crate) fn distance_to_layer_exit(f: &Frame, rel: V3, alt: f64, d: V3) -> f64 {
+    let inner = ray_shell_from(f, rel, alt, d, f.atmosphere[1]);
+    if inner.hit && inner.t0 > 0.0 {
+        return inner.t0;
+    }
+    let outer = ray_shell_from(f, rel, alt, d, f.atmosphere[2]);
+    outer.t1.max(0.0)
+}
+
+// WGSL: lighting.wgsl::sun_optical_depth
+// Must agree: midpoint samples of segments growing by `growth`, the loop ends at the first
+// sample outside the layer, each evaluated sample counts one light sample.
+/// Optical depth toward the sun from camera-relative `rel` (world position `p`).
+pub(crate) fn sun_optical_depth(
+    m: &Model,
+    lm: &LightMarch,
+    rel: V3,
+    p: V3,
+    counters: &mut Counters,
+) -> f64 {
+    let f = &m.f;
+    let sun = f.sun();
+    let sigma_t = f.extinction[0] + f.extinction[1];
+    let steps = lm.steps;
+    let growth = lm.growth;
+    let mut seg = lm.first;
+    if lm.to_layer_exit {
+        let len = distance_to_layer_exit(f, rel, altitude_of(f, rel), sun);
+        seg = if growth == 1.0 {
+            len / f64::from(steps)
+        } else {
+            len * (growth - 1.0) / (growth.powi(steps as i32) - 1.0)
+        };
+    }
+    let mut dist = 0.0;
+    let mut tau = 0.0;
+    for _ in 0..steps {
+        let s = dist + 0.5 * seg;
+        let q = rel + sun * s;
+        let alt = altitude_of(f, q);
+        if alt > f.atmosphere[2] || alt < f.atmosphere[1] {
+            break;
+        }
+        counters.light += 1;
+        tau += m.density(p + sun * s, alt, counters) * sigma_t * seg;
+        dist += seg;
+        seg *= growth;
+    }
+    tau
+}
+
+// WGSL: lighting.wgsl::sun_scattering
+/// Sun light scattered toward the viewer per unit illuminance and unit sigma_s, summed over
+/// octaves, with the optional Beer-Powder factor.
+pub(crate) fn sun_scattering(f: &Frame, cos_theta: f64, tau: f64) -> f64 {
+    let a = f.multiple_scattering[0];
+    let b = f.multiple_scattering[1];
+    let c = f.multiple_scattering[2];
+    // WGSL: min(frame.misc.x, MAX_OCTAVES); the plan always picks a variant with MAX_OCTAVES
+    // >= the scene's octaves, and the largest variant compiles 8.
+    let octaves = f.misc[0].min(8);
+    let mut total = phase(f, cos_theta, 1.0) * (-tau).exp();
+    let (mut ka, mut kb, mut kc) = (1.0, 1.0, 1.0);
+    for _ in 0..octaves {
+        ka *= a;
+        kb *= b;
+        kc *= c;
+        total += ka * phase(f, cos_theta, kc) * (-kb * tau).exp();
+    }
+    if f.modes[3] & FLAG_BEER_POWDER != 0 {
+        total *= 1.0 - (-f.phase[3] * tau).exp();
+    }
+    total
+}
+
+// WGSL: lighting.wgsl::ambient
+/// Ambient light at height fraction `h`: a gradient from the bottom to the top colour.
+pub(crate) fn ambient(f: &Frame, h: f64) -> V3 {
+    let bottom = V3::new(
+        f.ambient_bottom[0],
+        f.ambient_bottom[1],
+        f.ambient_bottom[2],
+    );
+    let top = V3::new(f.ambient_top[0], f.ambient_top[1], f.ambient_top[2]);
+    mix_v(bottom, top, h) * f.ambient_bottom[3]
+}
+
+// WGSL: lighting.wgsl::scattered_light
+/// In-scattered radiance per unit length at a view sample: sigma_s * density * (sun + ambient),
+/// darkened toward the base of raining clouds.
+// The WGSL's parameters plus the model and the light-march settings (uniforms there).
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn scattered_light(
+    m: &Model,
+    lm: &LightMarch,
+    rel: V3,
+    p: V3,
+    alt: f64,
+    density: f64,
+    view: V3,
+    counters: &mut Counters,
+) -> V3 {
+    let f = &m.f;
+    let sun = f.sun();
+    let h = saturate((alt - f.atmosphere[1]) / (f.atmosphere[2] - f.atmosphere[1]));
+    let mut sun_light = V3::ZERO;
+    if !hits_ground(f, rel, alt, sun) {
+        // LIGHT_MARCH: with 0 light steps the march returns 0, as the switched-off WGSL does.
+        let tau = sun_optical_depth(m, lm, rel, p, counters);
+        sun_light = f.sun_illuminance() * sun_scattering(f, view.dot(sun), tau);
+    }
+    let weather = m.weather(p);
+    let darkening = saturate(1.0 - f.extinction[2] * weather.precipitation * (1.0 - h));
+    (sun_light + ambient(f, h)) * (f.extinction[0] * density * darkening)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Integral over the sphere of a phase function of cos(theta), by the midpoint rule in cos.
+    fn integral(p: impl Fn(f64) -> f64) -> f64 {
+        let n = 200_000;
+        (0..n)
+            .map(|i| {
+                let c = -1.0 + (i as f64 + 0.5) * 2.0 / n as f64;
+                p(c) * 2.0 * PI * 2.0 / n as f64
+            })
+            .sum()
+    }
+
+    #[test]
+    fn phase_functions_are_normalised() {
+        for g in [-0.5, 0.0, 0.3, 0.76] {
+            assert!(
+                (integral(|c| phase_hg(c, g)) - 1.0).abs() < 1e-6,
+                "HG g={g}"
+            );
+            assert!(
+                (integral(|c| phase_cornette_shanks(c, g)) - 1.0).abs() < 1e-6,
+                "CS g={g}"
+            );
+        }
+    }
+}

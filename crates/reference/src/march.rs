@@ -1,0 +1,156 @@
+//! The CPU twin of `march.wgsl`: the view march (thesis alg. 5.1) of one pixel, with the
+//! analytic or Riemann step integral, jitter, early exit and the work counters.
+
+use crate::density::Counters;
+use crate::frame::{INTEGRATION_RIEMANN, MAX_VIEW_STEPS, hash_unit};
+use crate::geometry::{Interval, RayKind, altitude_of, layer_interval, view_ray};
+use crate::lighting::{LightMarch, scattered_light};
+use crate::math::V3;
+use crate::medium::Model;
+
+/// The discretisation of one quadrature render, resolved from the scene and the settings.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct MarchSettings {
+    /// `Some(n)`: exactly `n` view steps; `None`: as the WGSL (`frame.counts.z`, or the step
+    /// length `frame.march.x` when it is > 0).
+    pub view_steps: Option<u32>,
+    /// The light march.
+    pub light: LightMarch,
+    /// Jittered start offset (`FLAG_JITTER`).
+    pub jitter: bool,
+    /// Early-exit transmittance (`frame.march.w`; 0 = never).
+    pub early_exit: f64,
+    /// `INTEGRATION_ANALYTIC` or `INTEGRATION_RIEMANN` (`frame.modes.y`).
+    pub integration: u32,
+}
+
+/// What the march of one pixel produced.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct PixelResult {
+    pub radiance: V3,
+    pub transmittance: f64,
+    pub depth: f64,
+    pub counters: Counters,
+    /// Which `STAT_EXIT_*` / `STAT_MARCHED` counter the pixel adds to.
+    pub kind: Option<RayKind>,
+    pub exited_early: bool,
+}
+
+// WGSL: march.wgsl::step_integral
+/// Scattering integrated over one step of length `dt` with extinction `sigma_t`, for a source
+/// constant over the step.
+pub(crate) fn step_integral(integration: u32, source: V3, sigma_t: f64, dt: f64) -> V3 {
+    if integration == INTEGRATION_RIEMANN {
+        return source * dt;
+    }
+    // Must agree: the same series below x = 1e-3 (in f64 the exact form would do, but the
+    // switch point is kept so that the two compute the same function).
+    let x = sigma_t * dt;
+    let f = if x < 1e-3 {
+        1.0 - 0.5 * x
+    } else {
+        (1.0 - (-x).exp()) / x
+    };
+    source * (dt * f)
+}
+
+/// The view ray's interval in the medium: `layer_interval`, clipped to the medium's support.
+pub(crate) fn medium_interval(m: &Model, cam_alt: f64, view: V3) -> Interval {
+    let span = layer_interval(&m.f, cam_alt, view);
+    if span.kind != RayKind::March {
+        return span;
+    }
+    match m.clip(
+        V3::new(0.0, cam_alt, 0.0),
+        view,
+        span.start,
+        span.start + span.length,
+    ) {
+        Some((t0, t1)) => Interval {
+            start: t0,
+            length: t1 - t0,
+            kind: RayKind::March,
+        },
+        None => Interval {
+            start: 0.0,
+            length: 0.0,
+            kind: RayKind::MissesLayer,
+        },
+    }
+}
+
+// WGSL: march.wgsl::march
+/// The march of one pixel.
+pub(crate) fn march(m: &Model, s: &MarchSettings, pixel: [u32; 2]) -> PixelResult {
+    let view = view_ray(&m.f, pixel);
+    let jitter = if s.jitter {
+        // Must agree: the same PCG hash of the pixel and the frame index (`frame.misc.y`).
+        hash_unit(pixel, m.f.misc[1])
+    } else {
+        0.5
+    };
+    march_ray(m, s, view, jitter)
+}
+
+/// The march of one view ray from the camera with start offset `jitter` (in steps).
+pub(crate) fn march_ray(m: &Model, s: &MarchSettings, view: V3, jitter: f64) -> PixelResult {
+    let f = &m.f;
+    let cam_alt = f.camera_position[1];
+    let cam_xz = [f.camera_position[0], f.camera_position[2]];
+    let mut counters = Counters::default();
+
+    let mut radiance = V3::ZERO;
+    let mut transmittance = 1.0;
+    let mut depth_sum = 0.0;
+    let mut exited_early = false;
+    let span = medium_interval(m, cam_alt, view);
+    if span.kind == RayKind::March {
+        // Must agree: in step-length mode ceil(length / step), clamped to [1, MAX_VIEW_STEPS].
+        let steps = match s.view_steps {
+            Some(n) => n.max(1),
+            None if f.march[0] > 0.0 => {
+                ((span.length / f.march[0]).ceil() as u32).clamp(1, MAX_VIEW_STEPS)
+            }
+            None => f.counts[2],
+        };
+        let dt = span.length / f64::from(steps);
+        let sigma_e = f.extinction[0] + f.extinction[1];
+        for i in 0..steps {
+            // Must agree: one view step counted per loop iteration, also for empty samples.
+            counters.view_steps += 1;
+            let t = span.start + (f64::from(i) + jitter) * dt;
+            let rel = view * t + V3::new(0.0, cam_alt, 0.0);
+            let p = V3::new(rel.x + cam_xz[0], rel.y, rel.z + cam_xz[1]);
+            let alt = altitude_of(f, rel);
+            let density = m.density(p, alt, &mut counters);
+            if density <= 0.0 {
+                continue;
+            }
+            let sigma_t = sigma_e * density;
+            let source = scattered_light(m, &s.light, rel, p, alt, density, view, &mut counters);
+            radiance += step_integral(s.integration, source, sigma_t, dt) * transmittance;
+            let step_t = (-sigma_t * dt).exp();
+            depth_sum += t * transmittance * (1.0 - step_t);
+            transmittance *= step_t;
+            // Must agree: the early exit is tested after the step that crossed the threshold
+            // (STAT_EXIT_TRANSMITTANCE).
+            if transmittance < s.early_exit {
+                exited_early = true;
+                break;
+            }
+        }
+    }
+    let depth = if transmittance < 1.0 {
+        depth_sum / (1.0 - transmittance)
+    } else {
+        0.0
+    };
+    PixelResult {
+        radiance,
+        transmittance,
+        depth,
+        counters,
+        kind: Some(span.kind),
+        exited_early,
+    }
+}
