@@ -3,7 +3,9 @@
 //! - `build-shaders`: validate `wgsl/` with naga and write `spirv-out/` (or `--check` it);
 //! - `validate`: run the external validators over `spirv-out/`;
 //! - `ci`: install missing system tools, then fmt, clippy, `build-shaders --check`,
-//!   `validate` and every test.
+//!   `validate` and every test;
+//! - `conformance`: the cross-backend conformance suite alone (`tests/tests/conformance`),
+//!   which prints its results table and writes it as Markdown.
 
 use std::{
     collections::BTreeMap,
@@ -45,6 +47,9 @@ enum Task {
     },
     /// Everything CI runs: tools, fmt, clippy, build-shaders --check, validate, tests.
     Ci,
+    /// Run only the conformance suite (scenes x execution paths); print its table and write
+    /// it to <target>/conformance.md. `STRATUS_UPDATE_GOLDENS=1` rewrites tests/golden/.
+    Conformance,
 }
 
 fn main() -> ExitCode {
@@ -59,6 +64,7 @@ fn main() -> ExitCode {
         ),
         Task::Validate { out } => validate(&out.unwrap_or_else(|| root.join("spirv-out"))),
         Task::Ci => ci(&root),
+        Task::Conformance => conformance(&root),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -450,4 +456,35 @@ fn ci(root: &Path) -> Result<()> {
     step("cargo test", || cargo(root, &["test", "--workspace"]))?;
     println!("\nci: all steps passed in {:.0?}", t.elapsed());
     Ok(())
+}
+
+/// Runs the conformance suite alone. The suite itself prints the table and writes the
+/// Markdown (to the target folder it was built in); this says where, pass or fail.
+fn conformance(root: &Path) -> Result<()> {
+    let t = Instant::now();
+    let target = std::env::var_os("CARGO_TARGET_DIR")
+        .map(PathBuf::from)
+        .map(|d| if d.is_absolute() { d } else { root.join(d) })
+        .unwrap_or_else(|| root.join("target"));
+    let table = target.join("conformance.md");
+    // A table from an earlier run must not pass for this one's.
+    let _ = std::fs::remove_file(&table);
+    let result = cargo(
+        root,
+        &["test", "-p", "stratus-tests", "--test", "conformance"],
+    );
+    println!(
+        "\nconformance: {} in {:.0?}",
+        if result.is_ok() { "passed" } else { "FAILED" },
+        t.elapsed()
+    );
+    if table.exists() {
+        println!("Markdown table: {}", table.display());
+    } else {
+        println!(
+            "no Markdown table was written ({} is missing)",
+            table.display()
+        );
+    }
+    result
 }

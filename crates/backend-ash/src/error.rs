@@ -84,6 +84,18 @@ pub enum Error {
         /// gpu-allocator's message.
         message: String,
     },
+    /// The device cannot bind what a supplied shader module declares.
+    #[error(
+        "the Vulkan device {device} cannot run pass `{pass}` of the supplied shaders: {reason}"
+    )]
+    Unsupported {
+        /// The device, in words.
+        device: String,
+        /// The pass.
+        pass: String,
+        /// Which limit or feature is missing, in words.
+        reason: String,
+    },
     /// The committed SPIR-V, the manifest or the frame plan is unusable.
     #[error("{0}")]
     Shader(String),

@@ -109,6 +109,9 @@ pub(crate) struct Frame {
     images: Vec<(vk::Image, Allocation)>,
     views: Vec<vk::ImageView>,
     pub sampler: vk::Sampler,
+    /// A nearest-filtering twin of `sampler`, for supplied modules that read non-filterable
+    /// images through combined image samplers (null otherwise).
+    pub nearest_sampler: vk::Sampler,
     pub descriptor_pool: vk::DescriptorPool,
     pub query_pool: vk::QueryPool,
 }
@@ -262,6 +265,7 @@ impl Frame {
             // Frees the descriptor sets too.
             device.destroy_descriptor_pool(std::mem::take(&mut self.descriptor_pool), None);
             device.destroy_sampler(std::mem::take(&mut self.sampler), None);
+            device.destroy_sampler(std::mem::take(&mut self.nearest_sampler), None);
             for view in self.views.drain(..) {
                 device.destroy_image_view(view, None);
             }

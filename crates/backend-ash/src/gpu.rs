@@ -78,6 +78,11 @@ pub(crate) struct DeviceInfo {
     pub timestamp_bits: u32,
     /// `maxImageDimension2D`.
     pub max_image_2d: u32,
+    /// `maxPerStageDescriptorSamplers`.
+    pub max_stage_samplers: u32,
+    /// Whether arrays of samplers may be indexed by dynamically uniform values
+    /// (`shaderSampledImageArrayDynamicIndexing`; enabled when offered).
+    pub sampler_array_indexing: bool,
 }
 
 /// Everything that lives as long as the renderer.
@@ -209,6 +214,8 @@ fn candidate(instance: &ash::Instance, physical: vk::PhysicalDevice) -> Result<C
             });
         }
     }
+    // SAFETY: as above.
+    let features = unsafe { instance.get_physical_device_features(physical) };
     Ok(Candidate {
         physical,
         family: family as u32,
@@ -217,6 +224,9 @@ fn candidate(instance: &ash::Instance, physical: vk::PhysicalDevice) -> Result<C
             timestamp_period: f64::from(props.limits.timestamp_period),
             timestamp_bits: families[family].timestamp_valid_bits,
             max_image_2d: props.limits.max_image_dimension2_d,
+            max_stage_samplers: props.limits.max_per_stage_descriptor_samplers,
+            sampler_array_indexing: features.shader_sampled_image_array_dynamic_indexing
+                == vk::TRUE,
         },
     })
 }
@@ -369,10 +379,15 @@ impl Gpu {
         let queues = [vk::DeviceQueueCreateInfo::default()
             .queue_family_index(chosen.family)
             .queue_priorities(&priorities)];
-        // No optional features: the shaders need none. (wgpu turns on robust buffer and image
-        // access where offered; every access of these shaders is in bounds, so it changes
-        // nothing here.)
-        let device_info = vk::DeviceCreateInfo::default().queue_create_infos(&queues);
+        // The committed shaders need no optional feature. (wgpu turns on robust buffer and
+        // image access where offered; every access of these shaders is in bounds, so it
+        // changes nothing here.) Supplied modules may index an array of samplers (naga's HLSL
+        // sampler heap), so that is enabled where the device offers it.
+        let features = vk::PhysicalDeviceFeatures::default()
+            .shader_sampled_image_array_dynamic_indexing(chosen.info.sampler_array_indexing);
+        let device_info = vk::DeviceCreateInfo::default()
+            .queue_create_infos(&queues)
+            .enabled_features(&features);
         // SAFETY: `chosen.physical` belongs to `instance`; the info outlives the call.
         let device = unsafe { instance.create_device(chosen.physical, &device_info, None) }
             .map_err(vk("vkCreateDevice"))?;

@@ -9,6 +9,10 @@
 //! from the plan's bindings, which are the manifest's reflection of the WGSL; nothing here
 //! keeps a copy of the shader interface by hand.
 //!
+//! [`Renderer::render_with`] runs the same frame from SPIR-V supplied per pass instead (naga's
+//! GLSL or HLSL compiled by glslang, in the conformance suite); each [`PassShader`] lists the
+//! descriptors its module declares (see [`Shaders`]).
+//!
 //! With [`Options::validation`] the Khronos validation layer runs with synchronization
 //! validation, and every warning or error it reports (leaked objects at device destruction
 //! included) turns into an [`Error::Validation`] from [`Renderer::new`], [`Renderer::render`]
@@ -19,9 +23,14 @@
 mod error;
 mod frame;
 mod gpu;
+mod interface;
 mod pipeline;
 
-use std::{collections::HashMap, time::Instant};
+use std::{
+    collections::HashMap,
+    hash::{Hash, Hasher},
+    time::Instant,
+};
 
 use ash::vk;
 use gpu_allocator::MemoryLocation;
@@ -32,12 +41,16 @@ use stratus_shaders::{
     plan::{COUNTERS, Pass, named_counters},
 };
 
-pub use crate::error::Error;
+pub use crate::{
+    error::Error,
+    interface::{PassShader, Shaders, Slot, SlotContent},
+};
 use crate::{
     error::vk,
     frame::{COLOR_LAYER, Frame, Image, Tracker, Use, image_needs, texel_size},
     gpu::Gpu,
-    pipeline::{PassPipeline, descriptor_type, shader_module, view_type},
+    interface::{Descriptor, descriptors},
+    pipeline::{PassPipeline, module_from_words, shader_module, view_type},
 };
 
 /// How to create the renderer.
@@ -60,17 +73,52 @@ pub struct Options {
 /// lavapipe against each pass submitted alone (`examples/timestamps.rs`).
 const TIMESTAMP_STAGE: vk::PipelineStageFlags = vk::PipelineStageFlags::BOTTOM_OF_PIPE;
 
-/// What a frame binds besides the sampler (which the [`Frame`] holds).
+/// What a frame binds besides the samplers (which the [`Frame`] holds).
 struct Bound<'a> {
     uniform: frame::Buffer,
     stats: frame::Buffer,
+    /// Zeros for naga's HLSL sampler index buffers, where a supplied module has one.
+    indices: Option<frame::Buffer>,
     images: &'a HashMap<Resource, Image>,
 }
 
-/// A Vulkan device ready to render frames. Pipelines are cached per (variant, entry point).
+/// Which pipeline a pass runs: the committed SPIR-V's, by variant and entry point, or a
+/// supplied module's, by a hash of the [`PassShader`] (words, entry point and slots).
+#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+enum PipelineKey {
+    Committed { variant: String, entry: String },
+    Supplied(u64),
+}
+
+impl PipelineKey {
+    fn of(plan: &FramePlan, pass: &Pass, shader: Option<&PassShader>) -> Self {
+        match shader {
+            None => Self::Committed {
+                variant: plan.variant.clone(),
+                entry: pass.entry_point.clone(),
+            },
+            Some(s) => {
+                let mut h = std::collections::hash_map::DefaultHasher::new();
+                s.hash(&mut h);
+                Self::Supplied(h.finish())
+            }
+        }
+    }
+}
+
+/// The supplied module of pass `i`, if the frame runs supplied modules.
+fn pass_shader(shaders: &Shaders, i: usize) -> Option<&PassShader> {
+    match shaders {
+        Shaders::Committed => None,
+        Shaders::PerPass(list) => list.get(i),
+    }
+}
+
+/// A Vulkan device ready to render frames. Pipelines are cached per (variant, entry point),
+/// and per supplied module.
 pub struct Renderer {
     modules: HashMap<String, vk::ShaderModule>,
-    pipelines: HashMap<(String, String), PassPipeline>,
+    pipelines: HashMap<PipelineKey, PassPipeline>,
     cpu_timing: bool,
     torn_down: bool,
     gpu: Gpu,
@@ -109,16 +157,40 @@ impl Renderer {
         self.cpu_timing = on;
     }
 
-    /// Renders one frame of `plan` with these uniforms and noise textures.
+    /// Renders one frame of `plan` with these uniforms and noise textures, from the committed
+    /// SPIR-V.
     pub fn render(
         &mut self,
         plan: &FramePlan,
         uniforms: &FrameUniforms,
         noise: &NoiseSet,
     ) -> Result<FrameOutput, Error> {
+        self.render_with(plan, &Shaders::Committed, uniforms, noise)
+    }
+
+    /// Renders one frame of `plan` from `shaders`: the committed SPIR-V (as
+    /// [`Renderer::render`]) or one supplied module per pass. Everything but the modules and
+    /// their descriptor layouts is the same frame: resources, barriers, timestamps, readback.
+    pub fn render_with(
+        &mut self,
+        plan: &FramePlan,
+        shaders: &Shaders,
+        uniforms: &FrameUniforms,
+        noise: &NoiseSet,
+    ) -> Result<FrameOutput, Error> {
+        match shaders {
+            Shaders::PerPass(list) if list.len() != plan.passes.len() => {
+                return Err(Error::Shader(format!(
+                    "{} supplied shader module(s) for a plan of {} passes",
+                    list.len(),
+                    plan.passes.len()
+                )));
+            }
+            _ => {}
+        }
         self.gpu.check_messages()?;
         let mut frame = Frame::default();
-        let result = self.render_inner(&mut frame, plan, uniforms, noise);
+        let result = self.render_inner(&mut frame, plan, shaders, uniforms, noise);
         if result.is_err() {
             // SAFETY: valid device. The frame may still be in flight after a failed step;
             // nothing can be done about a failure to wait but destroy regardless.
@@ -164,12 +236,14 @@ impl Renderer {
         &mut self,
         frame: &mut Frame,
         plan: &FramePlan,
+        shaders: &Shaders,
         uniforms: &FrameUniforms,
         noise: &NoiseSet,
     ) -> Result<FrameOutput, Error> {
-        // 1. Pipelines for the plan's variant (cached).
-        for pass in &plan.passes {
-            self.pipeline(plan, pass)?;
+        // 1. Pipelines for the plan's variant or the supplied modules (cached).
+        let mut keys = Vec::new();
+        for (i, pass) in plan.passes.iter().enumerate() {
+            keys.push(self.pipeline(plan, pass, pass_shader(shaders, i))?);
         }
         let (w, h) = (plan.width, plan.height);
         let info = &self.gpu.info;
@@ -272,6 +346,45 @@ impl Renderer {
         // SAFETY: valid device and info.
         frame.sampler =
             unsafe { device.create_sampler(&sampler_info, None) }.map_err(vk("vkCreateSampler"))?;
+        let supplied = matches!(shaders, Shaders::PerPass(_));
+        if supplied {
+            // For images that a supplied module reads through a combined image sampler but
+            // that are not filterable (GLSL has no image without a sampler to load from).
+            let nearest = sampler_info
+                .mag_filter(vk::Filter::NEAREST)
+                .min_filter(vk::Filter::NEAREST);
+            // SAFETY: valid device and info.
+            frame.nearest_sampler =
+                unsafe { device.create_sampler(&nearest, None) }.map_err(vk("vkCreateSampler"))?;
+        }
+        // Zeros for naga's HLSL sampler index buffers: every sampler is heap element 0.
+        let index_words = match shaders {
+            Shaders::Committed => 0,
+            Shaders::PerPass(list) => list
+                .iter()
+                .flat_map(|s| &s.slots)
+                .filter_map(|slot| match slot.content {
+                    SlotContent::SamplerIndices(n) => Some(n),
+                    _ => None,
+                })
+                .max()
+                .unwrap_or(0),
+        };
+        let indices = if index_words > 0 {
+            let size = u64::from(index_words) * 4;
+            let buffer = frame.buffer(
+                device,
+                allocator,
+                "sampler indices",
+                size,
+                vk::BufferUsageFlags::STORAGE_BUFFER,
+                host,
+            )?;
+            frame.mapped(buffer)?.fill(0);
+            Some(buffer)
+        } else {
+            None
+        };
         let targets = [Resource::Cloud, Resource::Depth, Resource::Image];
         for resource in targets {
             let image = frame.image(
@@ -337,9 +450,12 @@ impl Renderer {
         let sets = self.descriptor_sets(
             frame,
             plan,
+            shaders,
+            &keys,
             &Bound {
                 uniform,
                 stats,
+                indices,
                 images: &images,
             },
         )?;
@@ -395,7 +511,7 @@ impl Renderer {
                 .iter()
                 .filter_map(|b| Use::of_binding(b).transpose().map(|u| Ok((b.resource, u?))))
                 .collect::<Result<Vec<_>, Error>>()?;
-            let p = self.pass_pipeline(plan, pass)?;
+            let p = self.pass_pipeline(&keys[i], pass)?;
             let device = &self.gpu.device;
             let query = 2 * i as u32;
             // SAFETY: as above.
@@ -502,23 +618,32 @@ impl Renderer {
         })
     }
 
-    /// Creates the frame's descriptor pool and one descriptor set per pass and group, and
-    /// writes every binding of the plan: what is bound where comes from the plan (the
-    /// manifest's reflection), the image layouts from [`Use::of_binding`].
+    /// Creates the frame's descriptor pool and one descriptor set per pass and set number, and
+    /// writes every descriptor: what is bound where comes from the plan (the manifest's
+    /// reflection) or from a supplied module's slots, the image layouts from
+    /// [`Use::of_binding`].
     fn descriptor_sets(
         &self,
         frame: &mut Frame,
         plan: &FramePlan,
+        shaders: &Shaders,
+        keys: &[PipelineKey],
         bound: &Bound<'_>,
     ) -> Result<Vec<Vec<vk::DescriptorSet>>, Error> {
         let device = &self.gpu.device;
+        let per_pass = plan
+            .passes
+            .iter()
+            .enumerate()
+            .map(|(i, pass)| descriptors(pass, pass_shader(shaders, i).map(|s| &s.slots[..])))
+            .collect::<Result<Vec<_>, Error>>()?;
         let mut counts: HashMap<vk::DescriptorType, u32> = HashMap::new();
         let mut max_sets = 0;
-        for pass in &plan.passes {
-            for b in &pass.bindings {
-                *counts.entry(descriptor_type(b)?).or_default() += 1;
+        for (i, (pass, list)) in plan.passes.iter().zip(&per_pass).enumerate() {
+            for d in list {
+                *counts.entry(d.ty).or_default() += d.count;
             }
-            max_sets += self.pass_pipeline(plan, pass)?.set_layouts.len() as u32;
+            max_sets += self.pass_pipeline(&keys[i], pass)?.set_layouts.len() as u32;
         }
         let sizes: Vec<vk::DescriptorPoolSize> = counts
             .iter()
@@ -533,8 +658,8 @@ impl Renderer {
             frame.descriptor_pool = unsafe { device.create_descriptor_pool(&info, None) }
                 .map_err(vk("vkCreateDescriptorPool"))?;
         }
-        for pass in &plan.passes {
-            let layouts = &self.pass_pipeline(plan, pass)?.set_layouts;
+        for (i, pass) in plan.passes.iter().enumerate() {
+            let layouts = &self.pass_pipeline(&keys[i], pass)?.set_layouts;
             if layouts.is_empty() {
                 sets.push(Vec::new());
                 continue;
@@ -550,57 +675,85 @@ impl Renderer {
         }
         enum Info {
             Buffer(vk::DescriptorBufferInfo),
-            Image(vk::DescriptorImageInfo),
+            Images(Vec<vk::DescriptorImageInfo>),
         }
+        let buffer = |buf: &frame::Buffer| {
+            Info::Buffer(
+                vk::DescriptorBufferInfo::default()
+                    .buffer(buf.buffer)
+                    .offset(0)
+                    .range(vk::WHOLE_SIZE),
+            )
+        };
         let mut infos = Vec::new();
-        for (pass, pass_sets) in plan.passes.iter().zip(&sets) {
-            for b in &pass.bindings {
-                let missing = || {
+        for ((pass, pass_sets), list) in plan.passes.iter().zip(&sets).zip(&per_pass) {
+            for d in list {
+                let missing = |what: String| {
                     Error::Shader(format!(
-                        "binding `{}` of pass `{}` names {:?}, which the frame does not have",
-                        b.info.name, pass.name, b.resource
+                        "set {} binding {} of pass `{}` needs {what}, which the frame does not have",
+                        d.set, d.binding, pass.name
                     ))
                 };
-                let buffer = |buf: &frame::Buffer| {
-                    Info::Buffer(
-                        vk::DescriptorBufferInfo::default()
-                            .buffer(buf.buffer)
-                            .offset(0)
-                            .range(vk::WHOLE_SIZE),
-                    )
+                // The image view and layout of a plan binding that names an image.
+                let image = |r: Resource| -> Result<vk::DescriptorImageInfo, Error> {
+                    let image = bound
+                        .images
+                        .get(&r)
+                        .ok_or_else(|| missing(format!("{r:?}")))?;
+                    let b = d.plan.ok_or_else(|| missing(format!("{r:?}")))?;
+                    let layout = Use::of_binding(b)?
+                        .ok_or_else(|| missing(format!("{r:?}")))?
+                        .layout;
+                    Ok(vk::DescriptorImageInfo::default()
+                        .image_view(image.view)
+                        .image_layout(layout))
                 };
-                let info = match b.resource {
-                    Resource::Frame => buffer(&bound.uniform),
-                    Resource::Stats => buffer(&bound.stats),
-                    Resource::NoiseSampler => {
-                        Info::Image(vk::DescriptorImageInfo::default().sampler(frame.sampler))
+                let info = match d.content {
+                    SlotContent::Plan(Resource::Frame) => buffer(&bound.uniform),
+                    SlotContent::Plan(Resource::Stats) => buffer(&bound.stats),
+                    SlotContent::Plan(Resource::NoiseSampler) => Info::Images(vec![
+                        vk::DescriptorImageInfo::default().sampler(frame.sampler),
+                    ]),
+                    SlotContent::Plan(r) => Info::Images(vec![image(r)?]),
+                    SlotContent::CombinedWithSampler(r) => {
+                        let sampler = if r.filterable() {
+                            frame.sampler
+                        } else {
+                            frame.nearest_sampler
+                        };
+                        Info::Images(vec![image(r)?.sampler(sampler)])
                     }
-                    r => {
-                        let image = bound.images.get(&r).ok_or_else(missing)?;
-                        let layout = Use::of_binding(b)?.ok_or_else(missing)?.layout;
-                        Info::Image(
-                            vk::DescriptorImageInfo::default()
-                                .image_view(image.view)
-                                .image_layout(layout),
-                        )
-                    }
+                    SlotContent::SamplerArray(n) => Info::Images(vec![
+                        vk::DescriptorImageInfo::default()
+                            .sampler(frame.sampler);
+                        n as usize
+                    ]),
+                    SlotContent::SamplerIndices(_) => buffer(
+                        bound
+                            .indices
+                            .as_ref()
+                            .ok_or_else(|| missing("a sampler index buffer".into()))?,
+                    ),
                 };
-                infos.push((pass_sets[b.group as usize], b, info));
+                let set = *pass_sets
+                    .get(d.set as usize)
+                    .ok_or_else(|| missing(format!("descriptor set {}", d.set)))?;
+                infos.push((set, d.binding, d.ty, info));
             }
         }
-        let writes = infos
+        let writes: Vec<_> = infos
             .iter()
-            .map(|(set, b, info)| {
+            .map(|(set, binding, ty, info)| {
                 let write = vk::WriteDescriptorSet::default()
                     .dst_set(*set)
-                    .dst_binding(b.binding)
-                    .descriptor_type(descriptor_type(b)?);
-                Ok(match info {
+                    .dst_binding(*binding)
+                    .descriptor_type(*ty);
+                match info {
                     Info::Buffer(i) => write.buffer_info(std::slice::from_ref(i)),
-                    Info::Image(i) => write.image_info(std::slice::from_ref(i)),
-                })
+                    Info::Images(i) => write.image_info(i),
+                }
             })
-            .collect::<Result<Vec<_>, Error>>()?;
+            .collect();
         // SAFETY: every set, buffer, view and sampler is alive and matches its layout.
         unsafe { device.update_descriptor_sets(&writes, &[]) };
         Ok(sets)
@@ -681,30 +834,89 @@ impl Renderer {
         }
     }
 
-    fn pass_pipeline(&self, plan: &FramePlan, pass: &Pass) -> Result<&PassPipeline, Error> {
+    /// Fails with [`Error::Unsupported`] where the descriptors need more samplers per stage
+    /// than the device allows, or index an array of samplers that the device cannot index:
+    /// creating such a pipeline is invalid, and crashes some drivers (lavapipe).
+    fn check_limits(&self, pass: &Pass, list: &[Descriptor<'_>]) -> Result<(), Error> {
+        let info = &self.gpu.info;
+        let unsupported = |reason: String| Error::Unsupported {
+            device: info.name.clone(),
+            pass: pass.name.clone(),
+            reason,
+        };
+        let samplers: u32 = list
+            .iter()
+            .filter(|d| {
+                matches!(
+                    d.ty,
+                    vk::DescriptorType::SAMPLER | vk::DescriptorType::COMBINED_IMAGE_SAMPLER
+                )
+            })
+            .map(|d| d.count)
+            .sum();
+        if samplers > info.max_stage_samplers {
+            return Err(unsupported(format!(
+                "its layout has {samplers} samplers, more than the {} per shader stage the device allows (maxPerStageDescriptorSamplers)",
+                info.max_stage_samplers
+            )));
+        }
+        if !info.sampler_array_indexing
+            && list
+                .iter()
+                .any(|d| matches!(d.content, SlotContent::SamplerArray(n) if n > 1))
+        {
+            return Err(unsupported(
+                "it indexes an array of samplers, and the device cannot (no shaderSampledImageArrayDynamicIndexing)".into(),
+            ));
+        }
+        Ok(())
+    }
+
+    fn pass_pipeline(&self, key: &PipelineKey, pass: &Pass) -> Result<&PassPipeline, Error> {
         self.pipelines
-            .get(&(plan.variant.clone(), pass.entry_point.clone()))
+            .get(key)
             .ok_or_else(|| Error::Shader(format!("no pipeline for pass `{}`", pass.name)))
     }
 
-    /// Creates (once per variant and entry point) the shader module of the variant's SPIR-V,
-    /// the descriptor set layouts from the plan's bindings, and the compute pipeline.
-    fn pipeline(&mut self, plan: &FramePlan, pass: &Pass) -> Result<(), Error> {
-        let key = (plan.variant.clone(), pass.entry_point.clone());
+    /// Creates (once per variant and entry point, or per supplied module) the shader module,
+    /// the descriptor set layouts (from the plan's bindings or the module's slots) and the
+    /// compute pipeline of a pass. Returns its key.
+    fn pipeline(
+        &mut self,
+        plan: &FramePlan,
+        pass: &Pass,
+        shader: Option<&PassShader>,
+    ) -> Result<PipelineKey, Error> {
+        let key = PipelineKey::of(plan, pass, shader);
         if self.pipelines.contains_key(&key) {
-            return Ok(());
+            return Ok(key);
         }
-        let module = match self.modules.get(&plan.spv_file) {
-            Some(&m) => m,
+        let list = descriptors(pass, shader.map(|s| &s.slots[..]))?;
+        self.check_limits(pass, &list)?;
+        let device = &self.gpu.device;
+        let p = match shader {
             None => {
-                let m = shader_module(&self.gpu.device, &plan.spv_file)?;
-                self.modules.insert(plan.spv_file.clone(), m);
-                m
+                let module = match self.modules.get(&plan.spv_file) {
+                    Some(&m) => m,
+                    None => {
+                        let m = shader_module(device, &plan.spv_file)?;
+                        self.modules.insert(plan.spv_file.clone(), m);
+                        m
+                    }
+                };
+                PassPipeline::new(device, module, &pass.entry_point, &list)?
+            }
+            Some(s) => {
+                // The pipeline keeps what it needs; the module can go right away.
+                let module = module_from_words(device, &s.spirv)?;
+                let p = PassPipeline::new(device, module, &s.entry, &list);
+                // SAFETY: only the pipeline creation used the module.
+                unsafe { device.destroy_shader_module(module, None) };
+                p?
             }
         };
-        let p = PassPipeline::new(&self.gpu.device, module, pass)?;
-        self.pipelines.insert(key, p);
-        Ok(())
+        self.pipelines.insert(key.clone(), p);
+        Ok(key)
     }
 }
 

@@ -1,18 +1,16 @@
-//! Shader modules from the embedded committed SPIR-V, and per pass the descriptor set
-//! layouts (built from the plan's bindings, i.e. the manifest's reflection), the pipeline
-//! layout and the compute pipeline.
+//! Shader modules from the embedded committed SPIR-V (or from supplied words), and per pass
+//! the descriptor set layouts (built from the plan's bindings, i.e. the manifest's reflection,
+//! or from a supplied module's slots), the pipeline layout and the compute pipeline.
 
 use std::{collections::BTreeMap, ffi::CString, io::Cursor};
 
 use ash::vk;
-use stratus_shaders::{
-    Resource,
-    plan::{Binding, Pass},
-};
+use stratus_shaders::{Resource, plan::Binding};
 
 use crate::{
     error::{Error, vk},
     frame::is_noise,
+    interface::Descriptor,
 };
 
 include!(concat!(env!("OUT_DIR"), "/spirv.rs"));
@@ -61,7 +59,7 @@ pub(crate) fn view_type(resource: Resource) -> vk::ImageViewType {
 /// Checks that what the WGSL declares at a binding is what the backend binds there: the
 /// dimension of a texture, the format of a storage texture, the kind of resource. A drift
 /// between the WGSL and the plan's resources fails here, not as garbage on screen.
-fn check_binding(b: &Binding) -> Result<(), Error> {
+pub(crate) fn check_binding(b: &Binding) -> Result<(), Error> {
     let wrong = |what: String| {
         Error::Shader(format!(
             "binding {}/{} `{}` declares {what}, but the frame binds {:?} there",
@@ -112,15 +110,20 @@ pub(crate) struct PassPipeline {
 }
 
 impl PassPipeline {
-    /// Builds the set layouts from `pass.bindings`, the pipeline layout, and the compute
-    /// pipeline of `pass.entry_point` in `module`.
-    pub fn new(device: &ash::Device, module: vk::ShaderModule, pass: &Pass) -> Result<Self, Error> {
+    /// Builds the set layouts from the pass's descriptors, the pipeline layout, and the
+    /// compute pipeline of `entry` in `module`.
+    pub fn new(
+        device: &ash::Device,
+        module: vk::ShaderModule,
+        entry: &str,
+        descriptors: &[Descriptor<'_>],
+    ) -> Result<Self, Error> {
         let mut built = Self {
             set_layouts: Vec::new(),
             layout: vk::PipelineLayout::null(),
             pipeline: vk::Pipeline::null(),
         };
-        match built.build(device, module, pass) {
+        match built.build(device, module, entry, descriptors) {
             Ok(()) => Ok(built),
             Err(e) => {
                 built.destroy(device);
@@ -133,16 +136,16 @@ impl PassPipeline {
         &mut self,
         device: &ash::Device,
         module: vk::ShaderModule,
-        pass: &Pass,
+        entry: &str,
+        descriptors: &[Descriptor<'_>],
     ) -> Result<(), Error> {
         let mut groups: BTreeMap<u32, Vec<vk::DescriptorSetLayoutBinding>> = BTreeMap::new();
-        for b in &pass.bindings {
-            check_binding(b)?;
-            groups.entry(b.group).or_default().push(
+        for d in descriptors {
+            groups.entry(d.set).or_default().push(
                 vk::DescriptorSetLayoutBinding::default()
-                    .binding(b.binding)
-                    .descriptor_type(descriptor_type(b)?)
-                    .descriptor_count(1)
+                    .binding(d.binding)
+                    .descriptor_type(d.ty)
+                    .descriptor_count(d.count)
                     .stage_flags(vk::ShaderStageFlags::COMPUTE),
             );
         }
@@ -159,9 +162,8 @@ impl PassPipeline {
         // SAFETY: valid device; the set layouts are alive.
         self.layout = unsafe { device.create_pipeline_layout(&info, None) }
             .map_err(vk("vkCreatePipelineLayout"))?;
-        let entry = CString::new(pass.entry_point.as_str()).map_err(|_| {
-            Error::Shader(format!("entry point `{}` contains NUL", pass.entry_point))
-        })?;
+        let entry = CString::new(entry)
+            .map_err(|_| Error::Shader(format!("entry point `{entry}` contains NUL")))?;
         let stage = vk::PipelineShaderStageCreateInfo::default()
             .stage(vk::ShaderStageFlags::COMPUTE)
             .module(module)
@@ -195,8 +197,20 @@ impl PassPipeline {
 
 /// Creates a shader module from the embedded SPIR-V file `name`.
 pub(crate) fn shader_module(device: &ash::Device, name: &str) -> Result<vk::ShaderModule, Error> {
-    let words = spirv_words(name)?;
-    let info = vk::ShaderModuleCreateInfo::default().code(&words);
-    // SAFETY: valid device; `words` is SPIR-V (checked by `read_spv`) and outlives the call.
+    module_from_words(device, &spirv_words(name)?)
+}
+
+/// Creates a shader module from SPIR-V words.
+pub(crate) fn module_from_words(
+    device: &ash::Device,
+    words: &[u32],
+) -> Result<vk::ShaderModule, Error> {
+    if words.first() != Some(&0x0723_0203) {
+        return Err(Error::Shader(
+            "the supplied shader is not SPIR-V (no magic number)".into(),
+        ));
+    }
+    let info = vk::ShaderModuleCreateInfo::default().code(words);
+    // SAFETY: valid device; `words` is SPIR-V (magic number checked) and outlives the call.
     unsafe { device.create_shader_module(&info, None) }.map_err(vk("vkCreateShaderModule"))
 }

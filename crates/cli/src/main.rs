@@ -1,5 +1,7 @@
 //! `stratus`: render, inspect and compare volumetric clouds.
 
+mod bench;
+mod compare;
 mod output;
 mod render;
 
@@ -20,11 +22,17 @@ struct Cli {
 enum Command {
     /// Render a scene to a PNG (tone-mapped) or EXR (linear radiance, alpha = transmittance).
     Render(render::RenderArgs),
+    /// Compare two images (PNG or EXR): FLIP on the tone-mapped images; RMSE, max abs and the
+    /// worst pixel on linear values when both are EXR.
+    Compare(compare::CompareArgs),
     /// List the built-in scene presets.
     Presets,
     /// Work with scene files.
     #[command(subcommand)]
     Scene(SceneCommand),
+    /// Speed against accuracy: sweep quality and method settings over a scene set, measure
+    /// error against the CPU reference and GPU cost, write results.csv/json and a chart.
+    Bench(bench::BenchArgs),
     /// Validate the embedded WGSL with naga and list its modules, variants and entry points.
     Shaders,
 }
@@ -43,6 +51,8 @@ fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Render(args) => render::run(args),
+        Command::Compare(args) => compare::run(args),
+        Command::Bench(args) => bench::run(args),
         Command::Presets => presets(),
         Command::Scene(SceneCommand::Check { file }) => scene_check(&file),
         Command::Shaders => shaders(),

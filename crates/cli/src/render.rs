@@ -23,6 +23,20 @@ pub enum Backend {
     WgpuGl,
     /// Raw Vulkan (ash), running the committed SPIR-V in spirv-out/.
     Ash,
+    /// The CPU renderer with the real-time settings (the GPU's steps and jitter, in f64).
+    Cpu,
+    /// The CPU reference: converged quadrature, or Monte Carlo with --integrator montecarlo.
+    Reference,
+}
+
+/// How the `reference` backend integrates.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum IntegratorArg {
+    /// Deterministic quadrature refined until the image stops changing (single scattering of
+    /// the real-time model, with its octaves and ambient).
+    Quadrature,
+    /// Volumetric path tracing (delta/ratio tracking, next-event estimation to the sun).
+    Montecarlo,
 }
 
 /// Options of `stratus render`.
@@ -46,9 +60,27 @@ pub struct RenderArgs {
     /// Also write the work counters and per-pass times as JSON to this file.
     #[arg(long)]
     stats: Option<PathBuf>,
+    /// `--backend reference`: the integrator.
+    #[arg(long, value_enum, default_value_t = IntegratorArg::Quadrature)]
+    integrator: IntegratorArg,
+    /// `--backend reference --integrator montecarlo`: samples per pixel.
+    #[arg(long, default_value_t = 64, value_parser = clap::value_parser!(u32).range(1..))]
+    spp: u32,
+    /// `--backend reference --integrator montecarlo`: scattering orders (1 = single
+    /// scattering, 0 = all).
+    #[arg(long, default_value_t = 0)]
+    orders: u32,
+    /// Auto quality: render with the cheapest configuration `stratus bench` measured whose
+    /// FLIP against the reference is at most E (for this scene; other scenes: on every
+    /// measured scene).
+    #[arg(long, value_name = "E")]
+    max_error: Option<f64>,
+    /// The bench results `--max-error` reads.
+    #[arg(long, value_name = "FILE", default_value = crate::bench::DEFAULT_RESULTS)]
+    bench_results: PathBuf,
 }
 
-fn parse_size(s: &str) -> Result<(u32, u32), String> {
+pub(crate) fn parse_size(s: &str) -> Result<(u32, u32), String> {
     let (w, h) = s
         .split_once(['x', 'X'])
         .ok_or_else(|| format!("`{s}`: expected WIDTHxHEIGHT, e.g. 256x144"))?;
@@ -102,7 +134,7 @@ pub fn noise_for(scene: &Scene) -> NoiseSet {
 }
 
 /// A renderer the CLI can drive: one frame from a plan.
-trait FrameRenderer {
+pub(crate) trait FrameRenderer {
     fn render(&mut self, plan: &FramePlan, scene: &Scene, noise: &NoiseSet) -> Result<FrameOutput>;
     fn describe(&self) -> String;
 }
@@ -135,6 +167,45 @@ impl FrameRenderer for stratus_backend_ash::Renderer {
     }
 }
 
+/// The CPU renderers: the real-time settings (`cpu`) or the reference integrators.
+struct Cpu {
+    integrator: stratus_reference::Integrator,
+    label: &'static str,
+}
+
+impl FrameRenderer for Cpu {
+    fn render(
+        &mut self,
+        _plan: &FramePlan,
+        scene: &Scene,
+        noise: &NoiseSet,
+    ) -> Result<FrameOutput> {
+        // The CPU runs the model directly; the plan's variant only matters to the GPU.
+        Ok(stratus_reference::render(
+            scene,
+            noise,
+            &self.integrator,
+            true,
+        ))
+    }
+    fn describe(&self) -> String {
+        format!(
+            "{} on the CPU ({} threads)",
+            self.label,
+            rayon::current_num_threads()
+        )
+    }
+}
+
+fn cpu_realtime() -> Cpu {
+    Cpu {
+        integrator: stratus_reference::Integrator::Quadrature(
+            stratus_reference::QuadratureSettings::realtime(),
+        ),
+        label: "cpu (real-time settings)",
+    }
+}
+
 /// `STRATUS_VALIDATION=1` turns on the backends' validation (wgpu's and the Vulkan layer).
 fn validation() -> bool {
     std::env::var_os("STRATUS_VALIDATION").is_some()
@@ -147,7 +218,7 @@ fn wgpu(api: backend_wgpu::Api) -> Result<backend_wgpu::Renderer, backend_wgpu::
     })
 }
 
-fn open_backend(backend: Backend) -> Result<Box<dyn FrameRenderer>> {
+fn open_backend(backend: Backend, args: &RenderArgs) -> Result<Box<dyn FrameRenderer>> {
     Ok(match backend {
         Backend::Wgpu => Box::new(wgpu(backend_wgpu::Api::Vulkan)?),
         Backend::WgpuGl => Box::new(wgpu(backend_wgpu::Api::Gl)?),
@@ -156,14 +227,37 @@ fn open_backend(backend: Backend) -> Result<Box<dyn FrameRenderer>> {
                 validation: validation(),
             },
         )?),
+        Backend::Cpu => Box::new(cpu_realtime()),
+        Backend::Reference => Box::new(match args.integrator {
+            IntegratorArg::Quadrature => Cpu {
+                integrator: stratus_reference::Integrator::Quadrature(
+                    stratus_reference::QuadratureSettings::converged(),
+                ),
+                label: "reference (converged quadrature)",
+            },
+            IntegratorArg::Montecarlo => Cpu {
+                integrator: stratus_reference::Integrator::MonteCarlo {
+                    spp: args.spp,
+                    orders: args.orders,
+                },
+                label: "reference (Monte Carlo)",
+            },
+        }),
         Backend::Auto => match wgpu(backend_wgpu::Api::Vulkan) {
             Ok(r) => Box::new(r),
-            Err(vk) => match wgpu(backend_wgpu::Api::Gl) {
+            Err(_) => match wgpu(backend_wgpu::Api::Gl) {
                 Ok(r) => {
-                    eprintln!("note: no Vulkan device ({vk}); using wgpu's GL backend");
+                    eprintln!(
+                        "note: no Vulkan device; using wgpu's GL backend (install mesa-vulkan-drivers for a Vulkan device)"
+                    );
                     Box::new(r)
                 }
-                Err(gl) => bail!("no GPU device: {vk}; {gl}"),
+                Err(_) => {
+                    eprintln!(
+                        "note: no Vulkan or GL device; rendering on the CPU (install mesa-vulkan-drivers for a Vulkan device)"
+                    );
+                    Box::new(cpu_realtime())
+                }
             },
         },
     })
@@ -173,10 +267,18 @@ fn open_backend(backend: Backend) -> Result<Box<dyn FrameRenderer>> {
 pub fn run(args: RenderArgs) -> Result<()> {
     check_image_path(&args.out)?;
     let (scene, name) = load_scene(args.preset.as_deref(), args.scene.as_ref(), args.size)?;
+    let scene = match args.max_error {
+        Some(e) => {
+            let (picked, why) = crate::bench::auto_quality(&scene, &name, e, &args.bench_results)?;
+            println!("{why}");
+            picked
+        }
+        None => scene,
+    };
     let t0 = Instant::now();
     let noise = noise_for(&scene);
     let noise_ms = t0.elapsed().as_secs_f64() * 1e3;
-    let mut renderer = open_backend(args.backend)?;
+    let mut renderer = open_backend(args.backend, &args)?;
     let plan = FramePlan::for_scene(&scene, false)?;
     let t = Instant::now();
     let frame = renderer.render(&plan, &scene, &noise)?;
@@ -211,7 +313,11 @@ pub fn run(args: RenderArgs) -> Result<()> {
         // Counters come from the statistics variant; times from the normal one above, which
         // pays nothing for counting.
         let stats_plan = FramePlan::for_scene(&scene, true)?;
-        let counted = renderer.render(&stats_plan, &scene, &noise)?;
+        let counted = match frame.stats {
+            // The CPU renderers always count; no second render needed.
+            Some(_) => frame.clone(),
+            None => renderer.render(&stats_plan, &scene, &noise)?,
+        };
         let doc = json!({
             "scene": name,
             "backend": renderer.describe(),

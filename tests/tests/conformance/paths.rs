@@ -1,0 +1,322 @@
+//! The execution paths and the renderers behind them, each created once per test binary.
+
+use std::{
+    collections::HashMap,
+    path::PathBuf,
+    sync::{Mutex, OnceLock},
+};
+
+use stratus_backend_ash as ash_backend;
+use stratus_backend_wgpu as wgpu_backend;
+use stratus_noise::NoiseSet;
+use stratus_reference::{Integrator, QuadratureSettings};
+use stratus_scene::Scene;
+use stratus_shaders::{FrameOutput, FramePlan};
+
+use crate::spirv::{self, Lang};
+
+/// An execution path. The labels are the ones the issue fixes for tables and test names.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub enum Path {
+    /// 1. wgpu on Vulkan, from the WGSL (wgpu's own naga translation).
+    WgpuVulkan,
+    /// 2. ash, from the committed `spirv-out/<module>.<variant>.spv`.
+    AshSpv,
+    /// 3. wgpu on GL (naga's GLSL inside wgpu, Mesa's GLSL compiler).
+    WgpuGl,
+    /// 4. ash, from naga's GLSL in `spirv-out/` compiled by glslangValidator.
+    AshGlsl,
+    /// 5. ash, from naga's HLSL in `spirv-out/` compiled by glslang's HLSL front end.
+    AshHlsl,
+    /// 6. The CPU reference (quadrature at the scene's real-time settings).
+    Cpu,
+    /// naga's MSL: pinned by a snapshot, not executed (no Metal runtime here).
+    Msl,
+}
+
+impl Path {
+    /// Every path, in table order.
+    pub const ALL: [Path; 7] = [
+        Path::WgpuVulkan,
+        Path::AshSpv,
+        Path::WgpuGl,
+        Path::AshGlsl,
+        Path::AshHlsl,
+        Path::Cpu,
+        Path::Msl,
+    ];
+
+    /// The label in tables and test names.
+    pub fn label(self) -> &'static str {
+        match self {
+            Path::WgpuVulkan => "wgpu-vulkan",
+            Path::AshSpv => "ash-spv",
+            Path::WgpuGl => "wgpu-gl",
+            Path::AshGlsl => "ash-glsl",
+            Path::AshHlsl => "ash-hlsl",
+            Path::Cpu => "cpu",
+            Path::Msl => "msl",
+        }
+    }
+
+    /// What runs, in words.
+    pub fn about(self) -> &'static str {
+        match self {
+            Path::WgpuVulkan => "wgpu on Vulkan, from the WGSL (wgpu's own naga translation)",
+            Path::AshSpv => "ash, from the committed spirv-out/<module>.<variant>.spv",
+            Path::WgpuGl => "wgpu on GL (naga's GLSL inside wgpu, Mesa's GLSL compiler)",
+            Path::AshGlsl => "ash, naga's GLSL from spirv-out/ compiled by glslangValidator -V",
+            Path::AshHlsl => {
+                "ash, naga's HLSL from spirv-out/ compiled by glslangValidator -D -V -e <entry> (HLSL front end), legalized by spirv-opt --legalize-hlsl"
+            }
+            Path::Cpu => "the CPU reference, quadrature at the scene's real-time settings",
+            Path::Msl => "naga's MSL: pinned by a snapshot, not executed (no Metal runtime here)",
+        }
+    }
+}
+
+/// Records every warning or error wgpu logs (the Vulkan validation layer's messages about
+/// wgpu's calls arrive this way); any of them fails the path that caused it.
+struct Recorder(Mutex<Vec<String>>);
+
+impl log::Log for Recorder {
+    fn enabled(&self, m: &log::Metadata) -> bool {
+        // EGL start-up logs the platforms it tries before settling on one that works; that is
+        // not a validation message (the same filter as backend-wgpu's tests).
+        m.level() <= log::Level::Warn
+            && m.target().starts_with("wgpu")
+            && !m.target().starts_with("wgpu_hal::gles::egl")
+    }
+    fn log(&self, r: &log::Record) {
+        if self.enabled(r.metadata()) {
+            if let Ok(mut v) = self.0.lock() {
+                v.push(format!("{} {}: {}", r.level(), r.target(), r.args()));
+            }
+        }
+    }
+    fn flush(&self) {}
+}
+
+static RECORDER: Recorder = Recorder(Mutex::new(Vec::new()));
+
+/// Messages logged since the last call.
+fn logged() -> Vec<String> {
+    RECORDER
+        .0
+        .lock()
+        .map(|mut v| std::mem::take(&mut *v))
+        .unwrap_or_default()
+}
+
+fn init_logging() {
+    static ONCE: OnceLock<()> = OnceLock::new();
+    ONCE.get_or_init(|| {
+        if log::set_logger(&RECORDER).is_ok() {
+            log::set_max_level(log::LevelFilter::Warn);
+        }
+    });
+}
+
+/// Fails with what wgpu logged, if anything.
+fn check_log(what: &str) -> Result<(), String> {
+    let msgs = logged();
+    if msgs.is_empty() {
+        Ok(())
+    } else {
+        Err(format!("{what}: validation messages:\n{}", msgs.join("\n")))
+    }
+}
+
+fn wgpu_renderer(api: wgpu_backend::Api) -> Result<wgpu_backend::Renderer, String> {
+    let r = wgpu_backend::Renderer::new(wgpu_backend::Options {
+        api,
+        validation: true,
+    })
+    .map_err(|e| e.to_string())?;
+    check_log(&format!("creating the wgpu {api:?} renderer"))?;
+    Ok(r)
+}
+
+/// A frame, and the passes that did not run from the path's own shaders.
+pub struct Rendered {
+    pub frame: FrameOutput,
+    /// `(pass, why)` for every pass that ran from the committed SPIR-V instead, because the
+    /// device cannot bind what the path's module declares.
+    pub substituted: Vec<(String, String)>,
+}
+
+/// The supplied modules of a variant: glslang's output, with the passes the device cannot
+/// bind replaced by the committed SPIR-V's.
+struct Prepared {
+    shaders: ash_backend::Shaders,
+    substituted: Vec<(String, String)>,
+}
+
+/// The renderers, each created once, and the glslang output per variant.
+pub struct Renderers {
+    wgpu_vulkan: Result<wgpu_backend::Renderer, String>,
+    wgpu_gl: Result<wgpu_backend::Renderer, String>,
+    ash: Result<ash_backend::Renderer, String>,
+    compiled: HashMap<(String, Lang), Result<Prepared, String>>,
+    scratch: PathBuf,
+}
+
+impl Renderers {
+    /// Creates every renderer, all with validation on. `scratch` receives glslang's output.
+    pub fn new(scratch: PathBuf) -> Self {
+        init_logging();
+        Self {
+            wgpu_vulkan: wgpu_renderer(wgpu_backend::Api::Vulkan),
+            wgpu_gl: wgpu_renderer(wgpu_backend::Api::Gl),
+            ash: ash_backend::Renderer::new(ash_backend::Options { validation: true })
+                .map_err(|e| e.to_string()),
+            compiled: HashMap::new(),
+            scratch,
+        }
+    }
+
+    /// The device of each GPU path, in words.
+    pub fn devices(&self) -> Vec<(Path, String)> {
+        let d = |r: &Result<String, String>| match r {
+            Ok(s) => s.clone(),
+            Err(e) => format!("unavailable: {e}"),
+        };
+        vec![
+            (
+                Path::WgpuVulkan,
+                d(&self
+                    .wgpu_vulkan
+                    .as_ref()
+                    .map(|r| r.adapter())
+                    .map_err(Clone::clone)),
+            ),
+            (
+                Path::WgpuGl,
+                d(&self
+                    .wgpu_gl
+                    .as_ref()
+                    .map(|r| r.adapter())
+                    .map_err(Clone::clone)),
+            ),
+            (
+                Path::AshSpv,
+                d(&self.ash.as_ref().map(|r| r.adapter()).map_err(Clone::clone)),
+            ),
+        ]
+    }
+
+    /// Renders `scene` on `path` (with the statistics variant if `stats`; the CPU always
+    /// counts). Any validation message is an error.
+    pub fn render(
+        &mut self,
+        path: Path,
+        scene: &Scene,
+        noise: &NoiseSet,
+        stats: bool,
+    ) -> Result<Rendered, String> {
+        let plan = FramePlan::for_scene(scene, stats).map_err(|e| e.to_string())?;
+        let uniforms = scene.uniforms();
+        let whole = |frame| Rendered {
+            frame,
+            substituted: Vec::new(),
+        };
+        match path {
+            Path::WgpuVulkan | Path::WgpuGl => {
+                let r = if path == Path::WgpuVulkan {
+                    &mut self.wgpu_vulkan
+                } else {
+                    &mut self.wgpu_gl
+                };
+                let r = r.as_mut().map_err(|e| e.clone())?;
+                let out = r.render(&plan, &uniforms, noise).map_err(|e| e.to_string());
+                check_log(path.label())?;
+                out.map(whole)
+            }
+            Path::AshSpv => {
+                let r = self.ash.as_mut().map_err(|e| e.clone())?;
+                r.render(&plan, &uniforms, noise)
+                    .map(whole)
+                    .map_err(|e| e.to_string())
+            }
+            Path::AshGlsl | Path::AshHlsl => {
+                let lang = if path == Path::AshGlsl {
+                    Lang::Glsl
+                } else {
+                    Lang::Hlsl
+                };
+                let r = self.ash.as_mut().map_err(|e| e.clone())?;
+                let key = (plan.variant.clone(), lang);
+                if !self.compiled.contains_key(&key) {
+                    let prepared = spirv::compile(&plan, lang, &self.scratch)
+                        .and_then(|list| prepare(r, &plan, list, &uniforms, noise));
+                    self.compiled.insert(key.clone(), prepared);
+                }
+                let p = self.compiled[&key].as_ref().map_err(|e| e.clone())?;
+                let frame = r
+                    .render_with(&plan, &p.shaders, &uniforms, noise)
+                    .map_err(|e| e.to_string())?;
+                Ok(Rendered {
+                    frame,
+                    substituted: p.substituted.clone(),
+                })
+            }
+            Path::Cpu => Ok(whole(stratus_reference::render(
+                scene,
+                noise,
+                &Integrator::Quadrature(QuadratureSettings::realtime()),
+                false,
+            ))),
+            Path::Msl => Err("MSL is not executed here (no Metal runtime)".into()),
+        }
+    }
+
+    /// Tears the renderers down; returns what validation reported while doing so (leaks).
+    pub fn finish(self) -> Vec<String> {
+        let mut problems = Vec::new();
+        if let Ok(ash) = self.ash {
+            if let Err(e) = ash.finish() {
+                problems.push(format!("ash teardown: {e}"));
+            }
+        }
+        drop(self.wgpu_vulkan);
+        drop(self.wgpu_gl);
+        problems.extend(logged());
+        problems
+    }
+}
+
+/// Renders once to find the passes whose module the device cannot bind (the backend says so
+/// with `Error::Unsupported` before creating anything), and runs those from the committed
+/// SPIR-V instead, so that the rest of the path's shaders still run.
+fn prepare(
+    r: &mut ash_backend::Renderer,
+    plan: &FramePlan,
+    mut list: Vec<ash_backend::PassShader>,
+    uniforms: &stratus_scene::FrameUniforms,
+    noise: &NoiseSet,
+) -> Result<Prepared, String> {
+    let mut substituted: Vec<(String, String)> = Vec::new();
+    loop {
+        let shaders = ash_backend::Shaders::PerPass(list.clone());
+        match r.render_with(plan, &shaders, uniforms, noise) {
+            Ok(_) => {
+                return Ok(Prepared {
+                    shaders,
+                    substituted,
+                });
+            }
+            Err(ash_backend::Error::Unsupported { pass, reason, .. })
+                if !substituted.iter().any(|(p, _)| *p == pass) =>
+            {
+                let i = plan
+                    .passes
+                    .iter()
+                    .position(|p| p.name == pass)
+                    .ok_or_else(|| format!("the backend named an unknown pass {pass}"))?;
+                list[i] = spirv::committed(plan, &plan.passes[i])?;
+                substituted.push((pass, reason));
+            }
+            Err(e) => return Err(e.to_string()),
+        }
+    }
+}

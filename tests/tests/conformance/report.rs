@@ -1,0 +1,630 @@
+//! Measures between frames, the thresholds each path is held to, golden images, and the
+//! results table (printed, and written as Markdown).
+
+use std::{
+    collections::BTreeMap,
+    fmt::Write as _,
+    path::{Path as FsPath, PathBuf},
+};
+
+use stratus_compare::{CompareOptions, Image, compare, write_heatmap};
+use stratus_shaders::FrameOutput;
+
+use crate::{
+    Run,
+    paths::Path,
+    scenes::{HEIGHT, WIDTH},
+};
+
+/// How far a frame is from another.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Metrics {
+    /// Mean FLIP of the display images (tone-mapped, composited over the sky).
+    pub flip_mean: f64,
+    /// 99th percentile of the per-pixel FLIP.
+    pub flip_p99: f64,
+    /// Largest absolute difference of the linear march output (radiance rgb and
+    /// transmittance).
+    pub max_abs: f64,
+    /// RMSE over the same values.
+    pub rmse: f64,
+    /// Where `max_abs` is: `(x, y) channel: reference -> test`.
+    pub worst: String,
+}
+
+impl Metrics {
+    /// `test` against `reference`: FLIP on the display images, max abs and RMSE on the
+    /// linear radiance and transmittance.
+    pub fn between(reference: &FrameOutput, test: &FrameOutput) -> Result<Self, String> {
+        let display = compare(
+            &Image::from_frame_display(reference),
+            &Image::from_frame_display(test),
+            &CompareOptions::default(),
+        )
+        .map_err(|e| e.to_string())?;
+        let linear = compare(
+            &Image::from_frame_radiance(reference),
+            &Image::from_frame_radiance(test),
+            &CompareOptions {
+                include_alpha: true,
+                ..Default::default()
+            },
+        )
+        .map_err(|e| e.to_string())?;
+        Ok(Self {
+            flip_mean: display.flip.mean,
+            flip_p99: display.flip.p99,
+            max_abs: linear.max_abs,
+            rmse: linear.rmse,
+            worst: worst(&linear.worst),
+        })
+    }
+}
+
+fn worst(w: &stratus_compare::WorstPixel) -> String {
+    let ch = ["r", "g", "b", "a"][w.channel.min(3)];
+    format!(
+        "({}, {}) {ch}: {:.4} -> {:.4}",
+        w.x, w.y, w.reference[w.channel], w.test[w.channel]
+    )
+}
+
+/// What a path may differ from wgpu-vulkan by. Every bound is the largest value measured
+/// over the suite's scenes (lavapipe / llvmpipe, Mesa 22.3.6, LLVM 15.0.6; every path is
+/// deterministic there, so one run measures it) with a margin of about 2-5x for other drivers,
+/// and the measurement is written next to it. A bound is never raised to make a failure pass:
+/// a difference beyond it is a bug until explained.
+#[derive(Clone, Copy, Debug)]
+pub struct Thresholds {
+    pub flip_mean: f64,
+    pub flip_p99: f64,
+    pub max_abs: f64,
+    pub rmse: f64,
+}
+
+impl Thresholds {
+    /// The problems of `m`, one line per bound exceeded.
+    pub fn check(&self, m: &Metrics) -> Vec<String> {
+        let mut out = Vec::new();
+        let mut bound = |what: &str, v: f64, max: f64| {
+            if !within(v, max) {
+                out.push(format!("{what} {v:.3e} exceeds its bound {max:.1e}"));
+            }
+        };
+        bound("FLIP mean", m.flip_mean, self.flip_mean);
+        bound("FLIP p99", m.flip_p99, self.flip_p99);
+        bound("max abs", m.max_abs, self.max_abs);
+        bound("RMSE", m.rmse, self.rmse);
+        out
+    }
+}
+
+/// `v <= max`, false for NaN.
+pub fn within(v: f64, max: f64) -> bool {
+    v.partial_cmp(&max).is_some_and(|o| o.is_le())
+}
+
+/// wgpu on GL: the same WGSL through naga's GLSL and Mesa's GLSL compiler. Rounding only.
+/// Measured (largest over the scenes): FLIP mean 2.37e-5 and p99 5.10e-4 (cumulus-noon),
+/// max abs 1.39e-2 and RMSE 1.29e-4 (stress-riemann, on a radiance of 1.29).
+const WGPU_GL: Thresholds = Thresholds {
+    flip_mean: 1e-4,
+    flip_p99: 2e-3,
+    max_abs: 5e-2,
+    rmse: 5e-4,
+};
+
+/// naga's GLSL (ash-glsl) or HLSL (ash-hlsl) compiled by glslang and run by ash. Measured: 0
+/// on every scene for all four (bit-identical to wgpu-vulkan: glslang's SPIR-V and naga's
+/// compile to the same code in lavapipe). The bound is not 0 but the rounding bound measured
+/// for wgpu-gl, the other path through a second compiler: another driver may round glslang's
+/// code differently, and a structural error is orders of magnitude above it either way.
+const GLSLANG: Thresholds = WGPU_GL;
+
+/// The CPU reference (f64) at the scene's real-time settings against the GPU (f32): the same
+/// sample positions, but a few early exits and cloud-edge samples land differently.
+/// Measured: FLIP mean 1.07e-2 and p99 4.84e-2 (inside-layer); RMSE 2.00e-2
+/// (stress-one-view-step); max abs 3.46e-1 (stress-riemann: 4.17 vs 3.82) on
+/// every scene but the two in [`CPU_MAX_ABS`].
+const CPU: Thresholds = Thresholds {
+    flip_mean: 2e-2,
+    flip_p99: 8e-2,
+    max_abs: 7e-1,
+    rmse: 4e-2,
+};
+
+/// Scenes where the CPU's max abs is a single pixel's discontinuity, bounded alone:
+/// - `sunset`, measured 1.07: the brightest pixel, on the sun-lit rim (10.37 vs 9.30);
+/// - `stress-one-view-step`, measured 1.30: with one sample per ray, a pixel's sample falls in
+///   cloud on one side and just outside it on the other (1.30 vs 0), as large as any radiance
+///   in the image can be.
+const CPU_MAX_ABS: [(&str, f64); 2] = [("sunset", 2.0), ("stress-one-view-step", 2.5)];
+
+/// The largest relative difference of the CPU reference's counters from wgpu-vulkan's. The
+/// GPU paths must count exactly alike. Measured: 0.225% (stress-one-view-step: 6651 vs 6666
+/// light samples), at most 0.136% elsewhere.
+pub const CPU_COUNTERS: f64 = 5e-3;
+
+/// The bounds of paths 3-6 on `scene` against path 1 (paths 1 and 2 must be bit-identical).
+pub fn thresholds(path: Path, scene: &str) -> Option<Thresholds> {
+    match path {
+        Path::WgpuGl => Some(WGPU_GL),
+        Path::AshGlsl | Path::AshHlsl => Some(GLSLANG),
+        Path::Cpu => Some(Thresholds {
+            max_abs: CPU_MAX_ABS
+                .iter()
+                .find(|(s, _)| *s == scene)
+                .map_or(CPU.max_abs, |(_, b)| *b),
+            ..CPU
+        }),
+        _ => None,
+    }
+}
+
+/// The golden image comparison: wgpu-vulkan's display image against `tests/golden/<scene>.png`
+/// by FLIP. Measured: 0 (the same device renders the goldens bit for bit). Bounds: the
+/// rounding bounds of wgpu-gl, so that another driver's rounding passes and a change to the
+/// image fails. Max abs and RMSE (of the 8-bit display values) are reported, not bounded.
+pub const GOLDEN: Thresholds = Thresholds {
+    flip_mean: WGPU_GL.flip_mean,
+    flip_p99: WGPU_GL.flip_p99,
+    max_abs: f64::INFINITY,
+    rmse: f64::INFINITY,
+};
+
+/// The folder of the golden images.
+pub fn golden_dir() -> PathBuf {
+    FsPath::new(env!("CARGO_MANIFEST_DIR")).join("golden")
+}
+
+/// The target folder (where failures and the Markdown table go).
+pub fn target_dir() -> PathBuf {
+    FsPath::new(env!("CARGO_TARGET_TMPDIR"))
+        .parent()
+        .map(FsPath::to_path_buf)
+        .unwrap_or_else(|| PathBuf::from("target"))
+}
+
+/// Where a failed golden comparison leaves its images.
+pub fn failure_dir() -> PathBuf {
+    target_dir().join("conformance-failures")
+}
+
+/// Set to `1` to (re)write the golden images from this run's wgpu-vulkan frames.
+pub const UPDATE_GOLDENS: &str = "STRATUS_UPDATE_GOLDENS";
+
+fn save_rgba8(path: &FsPath, w: u32, h: u32, rgba: &[u8]) -> Result<(), String> {
+    image::save_buffer(path, rgba, w, h, image::ExtendedColorType::Rgba8)
+        .map_err(|e| format!("writing {}: {e}", path.display()))
+}
+
+/// Compares `frame`'s display image with the scene's golden PNG (writing the golden instead
+/// when [`UPDATE_GOLDENS`] is set). On a mismatch writes `<scene>.actual.png`,
+/// `<scene>.golden.png` and `<scene>.diff.png` (the FLIP heat map) to [`failure_dir`] and
+/// says so.
+pub fn check_golden(scene: &str, frame: &FrameOutput) -> (Option<Metrics>, Vec<String>) {
+    let path = golden_dir().join(format!("{scene}.png"));
+    let (w, h) = (frame.width, frame.height);
+    if std::env::var(UPDATE_GOLDENS).is_ok_and(|v| v == "1") {
+        let written = std::fs::create_dir_all(golden_dir())
+            .map_err(|e| e.to_string())
+            .and_then(|()| save_rgba8(&path, w, h, &frame.image));
+        return match written {
+            Ok(()) => (Some(Metrics::default()), Vec::new()),
+            Err(e) => (None, vec![e]),
+        };
+    }
+    let golden = match image::open(&path) {
+        Ok(img) => img.to_rgba8(),
+        Err(e) => {
+            return (
+                None,
+                vec![format!(
+                    "no usable golden image {} ({e}); render the goldens with `{UPDATE_GOLDENS}=1 cargo xtask conformance` and review them",
+                    path.display()
+                )],
+            );
+        }
+    };
+    if (golden.width(), golden.height()) != (w, h) {
+        return (
+            None,
+            vec![format!(
+                "golden {} is {}x{}, the frame {w}x{h}; regenerate the goldens ({UPDATE_GOLDENS}=1)",
+                path.display(),
+                golden.width(),
+                golden.height()
+            )],
+        );
+    }
+    let reference = Image::from_display_rgba8(w, h, golden.as_raw());
+    let actual = Image::from_frame_display(frame);
+    let c = match compare(&reference, &actual, &CompareOptions::default()) {
+        Ok(c) => c,
+        Err(e) => return (None, vec![e.to_string()]),
+    };
+    let m = Metrics {
+        flip_mean: c.flip.mean,
+        flip_p99: c.flip.p99,
+        max_abs: c.max_abs,
+        rmse: c.rmse,
+        worst: worst(&c.worst),
+    };
+    let problems = GOLDEN.check(&m);
+    if problems.is_empty() {
+        return (Some(m), problems);
+    }
+    let dir = failure_dir();
+    let files = [
+        dir.join(format!("{scene}.actual.png")),
+        dir.join(format!("{scene}.golden.png")),
+        dir.join(format!("{scene}.diff.png")),
+    ];
+    let written = std::fs::create_dir_all(&dir)
+        .map_err(|e| e.to_string())
+        .and_then(|()| save_rgba8(&files[0], w, h, &frame.image))
+        .and_then(|()| save_rgba8(&files[1], w, h, golden.as_raw()))
+        .and_then(|()| write_heatmap(&files[2], w, h, &c.flip_map).map_err(|e| e.to_string()));
+    let mut message = format!(
+        "the display image differs from its golden {} ({}); worst pixel ({}, {}).\n  actual: {}\n  golden: {}\n  diff (FLIP heat map): {}\n  If the change is intended, review the images and update the goldens with `{UPDATE_GOLDENS}=1 cargo xtask conformance`.",
+        path.display(),
+        problems.join(", "),
+        c.worst.x,
+        c.worst.y,
+        files[0].display(),
+        files[1].display(),
+        files[2].display(),
+    );
+    if let Err(e) = written {
+        let _ = write!(message, "\n  (writing the images failed: {e})");
+    }
+    (Some(m), vec![message])
+}
+
+/// The text of one table cell.
+fn cell_text(run: &Run, scene: usize, path: Path) -> String {
+    let cell = &run.scenes[scene].cells[&path];
+    if let Some(why) = cell.not_executed {
+        return why.to_string();
+    }
+    let verdict = if cell.problems.is_empty() {
+        "PASS"
+    } else {
+        "FAIL"
+    };
+    let partial = if cell.substituted.is_empty() { "" } else { "*" };
+    match &cell.metrics {
+        Some(m) => format!("{:.4} {:.1e} {verdict}{partial}", m.flip_mean, m.max_abs),
+        None => format!("- - {verdict}{partial}"),
+    }
+}
+
+/// The results grid: scene x path, each cell `FLIP-mean max-abs PASS|FAIL`.
+pub fn grid(run: &Run, markdown: bool) -> String {
+    let mut rows: Vec<Vec<String>> = Vec::new();
+    let mut header = vec!["scene".to_string()];
+    header.extend(Path::ALL.iter().map(|p| p.label().to_string()));
+    rows.push(header);
+    for (i, s) in run.scenes.iter().enumerate() {
+        let mut row = vec![s.name.clone()];
+        row.extend(Path::ALL.iter().map(|&p| cell_text(run, i, p)));
+        rows.push(row);
+    }
+    let mut out = table(&rows, markdown);
+    let mut notes: Vec<String> = run
+        .scenes
+        .iter()
+        .flat_map(|s| s.cells.iter())
+        .flat_map(|(p, c)| {
+            c.substituted.iter().map(move |(pass, why)| {
+                format!(
+                    "* {}: pass `{pass}` ran from the committed .spv, not from the path's own module: {why}",
+                    p.label()
+                )
+            })
+        })
+        .collect();
+    notes.sort();
+    notes.dedup();
+    for n in notes {
+        out.push_str(&n);
+        out.push('\n');
+    }
+    out
+}
+
+/// Every measure of every cell, one row per scene and path.
+pub fn details(run: &Run, markdown: bool) -> String {
+    let mut rows = vec![
+        [
+            "scene",
+            "path",
+            "FLIP mean",
+            "FLIP p99",
+            "max abs",
+            "RMSE",
+            "worst pixel",
+            "counters",
+            "result",
+        ]
+        .map(String::from)
+        .to_vec(),
+    ];
+    for s in &run.scenes {
+        for p in Path::ALL {
+            let c = &s.cells[&p];
+            let (a, b, m, r, w) = match &c.metrics {
+                Some(m) => (
+                    format!("{:.2e}", m.flip_mean),
+                    format!("{:.2e}", m.flip_p99),
+                    format!("{:.2e}", m.max_abs),
+                    format!("{:.2e}", m.rmse),
+                    if m.max_abs > 0.0 {
+                        m.worst.clone()
+                    } else {
+                        String::new()
+                    },
+                ),
+                None => Default::default(),
+            };
+            let mut result = match (c.not_executed, c.problems.is_empty()) {
+                (Some(why), _) => why.to_string(),
+                (None, true) => "PASS".into(),
+                (None, false) => format!("FAIL: {}", c.problems.join("; ").replace('\n', " ")),
+            };
+            for (pass, _) in &c.substituted {
+                result.push_str(&format!(" ({pass} from .spv)"));
+            }
+            rows.push(vec![
+                s.name.clone(),
+                p.label().into(),
+                a,
+                b,
+                m,
+                r,
+                w,
+                c.counters_note.clone(),
+                result,
+            ]);
+        }
+    }
+    table(&rows, markdown)
+}
+
+/// Per path, the largest value of each measure over the scenes (with the scene) and its
+/// bound: what the thresholds were set from.
+pub fn maxima(run: &Run, markdown: bool) -> String {
+    let mut rows = vec![
+        [
+            "path",
+            "FLIP mean",
+            "FLIP p99",
+            "max abs",
+            "RMSE",
+            "bounds (mean, p99, max abs, RMSE)",
+        ]
+        .map(String::from)
+        .to_vec(),
+    ];
+    for p in Path::ALL {
+        let measured: Vec<(&str, &Metrics)> = run
+            .scenes
+            .iter()
+            .filter_map(|s| s.cells[&p].metrics.as_ref().map(|m| (s.name.as_str(), m)))
+            .collect();
+        if measured.is_empty() {
+            continue;
+        }
+        let top = |f: fn(&Metrics) -> f64| {
+            measured
+                .iter()
+                .max_by(|a, b| f(a.1).total_cmp(&f(b.1)))
+                .map(|(s, m)| match f(m) {
+                    0.0 => "0 (every scene)".to_string(),
+                    v => format!("{v:.2e} ({s})"),
+                })
+                .unwrap_or_default()
+        };
+        let bound = match p {
+            Path::WgpuVulkan => Some(GOLDEN),
+            _ => thresholds(p, ""),
+        };
+        let label = if p == Path::WgpuVulkan {
+            "wgpu-vulkan vs golden".to_string()
+        } else {
+            p.label().to_string()
+        };
+        rows.push(vec![
+            label,
+            top(|m| m.flip_mean),
+            top(|m| m.flip_p99),
+            top(|m| m.max_abs),
+            top(|m| m.rmse),
+            match bound {
+                Some(t) => {
+                    let mut text = format!(
+                        "{:.0e}, {:.0e}, {:.0e}, {:.0e}",
+                        t.flip_mean, t.flip_p99, t.max_abs, t.rmse
+                    );
+                    if p == Path::Cpu {
+                        for (scene, b) in CPU_MAX_ABS {
+                            text.push_str(&format!(" (max abs {b} on {scene})"));
+                        }
+                    }
+                    text
+                }
+                None if p == Path::AshSpv => "bit-identical".into(),
+                None => String::new(),
+            },
+        ]);
+    }
+    table(&rows, markdown)
+}
+
+/// The interleaved ash/wgpu time measurement, one row per scene and pass.
+pub fn ratios(run: &Run, markdown: bool) -> String {
+    let mut rows = vec![
+        [
+            "scene",
+            "pass",
+            "ash-spv ms (min / median)",
+            "wgpu-vulkan ms (min / median)",
+            "ash/wgpu (of the minima)",
+            "runs each",
+        ]
+        .map(String::from)
+        .to_vec(),
+    ];
+    for s in &run.scenes {
+        for r in &s.ratios {
+            rows.push(vec![
+                s.name.clone(),
+                r.pass.clone(),
+                format!("{:.3} / {:.3}", r.ash_ms, r.ash_median_ms),
+                format!("{:.3} / {:.3}", r.wgpu_ms, r.wgpu_median_ms),
+                format!("{:.2}", r.ratio),
+                r.rounds.to_string(),
+            ]);
+        }
+    }
+    table(&rows, markdown)
+}
+
+/// One line: the range of the ash/wgpu ratios over every scene and pass.
+pub fn ratio_summary(run: &Run) -> String {
+    let all: Vec<(f64, &str, &str)> = run
+        .scenes
+        .iter()
+        .flat_map(|s| {
+            s.ratios
+                .iter()
+                .map(move |r| (r.ratio, s.name.as_str(), r.pass.as_str()))
+        })
+        .collect();
+    let lo = all.iter().min_by(|a, b| a.0.total_cmp(&b.0));
+    let hi = all.iter().max_by(|a, b| a.0.total_cmp(&b.0));
+    match (lo, hi) {
+        (Some(lo), Some(hi)) => format!(
+            "\nash/wgpu time ratio per pass (interleaved, of the shortest runs): {:.2} ({} {}) to {:.2} ({} {}); every scene and pass in target/conformance.md\n",
+            lo.0, lo.1, lo.2, hi.0, hi.1, hi.2
+        ),
+        _ => "\nno ash/wgpu time ratio was measured\n".into(),
+    }
+}
+
+fn table(rows: &[Vec<String>], markdown: bool) -> String {
+    let cols = rows.first().map_or(0, Vec::len);
+    let widths: Vec<usize> = (0..cols)
+        .map(|c| rows.iter().map(|r| r[c].chars().count()).max().unwrap_or(0))
+        .collect();
+    let mut out = String::new();
+    for (i, row) in rows.iter().enumerate() {
+        let cells: Vec<String> = row
+            .iter()
+            .zip(&widths)
+            .map(|(v, &w)| format!("{v:w$}"))
+            .collect();
+        if markdown {
+            let _ = writeln!(out, "| {} |", cells.join(" | "));
+            if i == 0 {
+                let rule: Vec<String> = widths.iter().map(|&w| "-".repeat(w.max(3))).collect();
+                let _ = writeln!(out, "|-{}-|", rule.join("-|-"));
+            }
+        } else {
+            let _ = writeln!(out, "{}", cells.join("  ").trim_end());
+            if i == 0 {
+                let rule: Vec<String> = widths.iter().map(|&w| "-".repeat(w)).collect();
+                let _ = writeln!(out, "{}", rule.join("  "));
+            }
+        }
+    }
+    out
+}
+
+/// The whole report as Markdown (`target/conformance.md`).
+pub fn markdown(run: &Run) -> String {
+    let mut out = String::new();
+    let _ = writeln!(out, "# Stratus conformance\n");
+    let _ = writeln!(
+        out,
+        "{} scenes at {WIDTH}x{HEIGHT}, {} paths; suite time {:.1} s.\n",
+        run.scenes.len(),
+        Path::ALL.len(),
+        run.seconds
+    );
+    for (p, d) in &run.devices {
+        let _ = writeln!(out, "- {}: {d}", p.label());
+    }
+    let _ = writeln!(out, "\n## Paths\n");
+    for p in Path::ALL {
+        let _ = writeln!(out, "- `{}`: {}", p.label(), p.about());
+    }
+    let _ = writeln!(
+        out,
+        "\nCells: FLIP mean of the display image, max abs of the linear radiance and \
+         transmittance, verdict. `wgpu-vulkan` is the reference: its numbers are against its \
+         golden image; every other path is against `wgpu-vulkan`.\n"
+    );
+    out.push_str(&grid(run, true));
+    let _ = writeln!(out, "\n## Largest difference per path\n");
+    out.push_str(&maxima(run, true));
+    let _ = writeln!(out, "\n## Every measure\n");
+    out.push_str(&details(run, true));
+    let _ = writeln!(out, "\n## ash/wgpu time per pass (interleaved)\n");
+    out.push_str(&ratios(run, true));
+    out
+}
+
+/// The largest `|test - reference| / max(reference, 1)` over the counters (a counter missing
+/// from either side counts as 1).
+pub fn counters_relative_difference(
+    reference: &BTreeMap<String, u64>,
+    test: &BTreeMap<String, u64>,
+) -> f64 {
+    let keys: std::collections::BTreeSet<&String> = reference.keys().chain(test.keys()).collect();
+    keys.into_iter()
+        .map(|k| match (reference.get(k), test.get(k)) {
+            (Some(&r), Some(&t)) => r.abs_diff(t) as f64 / r.max(1) as f64,
+            _ => 1.0,
+        })
+        .fold(0.0, f64::max)
+}
+
+/// Counters of `test` against the reference's, in a few words: `identical` or
+/// `differ by <= x%` (the table's column).
+pub fn counters_short(
+    reference: Option<&BTreeMap<String, u64>>,
+    test: Option<&BTreeMap<String, u64>>,
+) -> String {
+    match (reference, test) {
+        (Some(r), Some(t)) if r == t => "identical".into(),
+        (Some(r), Some(t)) => format!(
+            "differ by <= {:.3}%",
+            100.0 * counters_relative_difference(r, t)
+        ),
+        _ => String::new(),
+    }
+}
+
+/// Counters of `test` against the reference's, every difference named.
+pub fn counters_note(
+    reference: Option<&BTreeMap<String, u64>>,
+    test: Option<&BTreeMap<String, u64>>,
+) -> String {
+    match (reference, test) {
+        (Some(r), Some(t)) if r == t => "identical".into(),
+        (Some(r), Some(t)) => {
+            let rel = counters_relative_difference(r, t);
+            let diffs: Vec<String> = r
+                .iter()
+                .filter(|(k, v)| t.get(*k) != Some(*v))
+                .map(|(k, v)| {
+                    let o = t.get(k).copied().unwrap_or(0);
+                    format!("{k} {v} vs {o}")
+                })
+                .collect();
+            format!("differ by <= {:.3}%: {}", 100.0 * rel, diffs.join(", "))
+        }
+        _ => String::new(),
+    }
+}

@@ -1,0 +1,86 @@
+//! The scenes of the suite: every preset, and stress variants of `cumulus-noon` where
+//! methods fail, all at [`WIDTH`] x [`HEIGHT`].
+
+use stratus_scene::{Integration, Scene, ShapeTexture};
+
+/// Image width of every scene (16:9, a quarter of 256x144 in pixels: the suite's ~60 GPU
+/// frames and 12 CPU frames cost seconds, not minutes, on lavapipe in the dev profile).
+pub const WIDTH: u32 = 128;
+/// Image height of every scene.
+pub const HEIGHT: u32 = 72;
+
+/// A named scene of the suite.
+pub struct Case {
+    /// File-name-safe name (snapshots, goldens, table rows).
+    pub name: String,
+    /// What it stresses.
+    pub about: &'static str,
+    pub scene: Scene,
+}
+
+fn stress(name: &str, about: &'static str, edit: impl FnOnce(&mut Scene)) -> Case {
+    let mut scene = Scene::preset("cumulus-noon")
+        .expect("preset")
+        .with_size(WIDTH, HEIGHT);
+    edit(&mut scene);
+    Case {
+        name: format!("stress-{name}"),
+        about,
+        scene,
+    }
+}
+
+/// Every preset, then the stress variants. Each scene is validated.
+pub fn all() -> Vec<Case> {
+    let mut cases: Vec<Case> = stratus_scene::presets()
+        .iter()
+        .map(|p| Case {
+            name: p.name.to_string(),
+            about: "preset",
+            scene: Scene::preset(p.name)
+                .expect("preset")
+                .with_size(WIDTH, HEIGHT),
+        })
+        .collect();
+    cases.extend([
+        stress(
+            "sun-horizon",
+            "sun at 0 degrees: grazing light paths through the layer",
+            |s| s.sun.elevation_deg = 0.0,
+        ),
+        stress(
+            "camera-at-layer-bottom",
+            "camera exactly on the lower boundary of the layer",
+            |s| s.camera.position[1] = s.atmosphere.cloud_bottom_m,
+        ),
+        stress("full-coverage", "coverage 1: overcast", |s| {
+            s.clouds.coverage = 1.0
+        }),
+        stress("zero-coverage", "coverage 0: clear sky", |s| {
+            s.clouds.coverage = 0.0
+        }),
+        stress(
+            "riemann",
+            "the naive Riemann step integral instead of the analytic one",
+            |s| s.quality.integration = Integration::Riemann,
+        ),
+        stress(
+            "one-view-step",
+            "a single view step through the layer",
+            |s| s.quality.view_steps = 1,
+        ),
+    ]);
+    for c in &cases {
+        if let Err(e) = c.scene.validate() {
+            panic!("scene {} is invalid: {e}", c.name);
+        }
+        assert_eq!(c.scene.noise.seed, 0, "{}: the suite shares seed 0", c.name);
+        assert_eq!(
+            c.scene.noise.shape_texture,
+            ShapeTexture::Thesis,
+            "{}: the suite shares the thesis-size shape texture",
+            c.name
+        );
+    }
+    cases
+}
