@@ -5,7 +5,9 @@
 //! - `ci`: install missing system tools, then fmt, clippy, `build-shaders --check`,
 //!   `validate` and every test;
 //! - `conformance`: the cross-backend conformance suite alone (`tests/tests/conformance`),
-//!   which prints its results table and writes it as Markdown.
+//!   which prints its results table and writes it as Markdown;
+//! - `mitsuba-check` (opt-in, not in CI): the CPU reference against Mitsuba 3 on a gridded
+//!   cloud (see [`mitsuba_check`]).
 
 use std::{
     collections::BTreeMap,
@@ -50,6 +52,27 @@ enum Task {
     /// Run only the conformance suite (scenes x execution paths); print its table and write
     /// it to <target>/conformance.md. `STRATUS_UPDATE_GOLDENS=1` rewrites tests/golden/.
     Conformance,
+    /// Opt-in, not in CI (needs the network once): install Mitsuba 3 in a virtual environment
+    /// under target/, export a gridded cloud with `stratus export-volume`, render it with
+    /// Mitsuba and with the reference's path tracer, and compare block averages (single
+    /// scattering within 1%, all orders within the Monte Carlo noise).
+    MitsubaCheck {
+        /// Reference samples per pixel.
+        #[arg(long, default_value_t = 4096)]
+        reference_spp: u32,
+        /// Mitsuba samples per pixel of each independent pass.
+        #[arg(long, default_value_t = 1024)]
+        mitsuba_spp: u32,
+        /// Independent Mitsuba passes (their spread gives Mitsuba's standard error).
+        #[arg(long, default_value_t = 8)]
+        passes: u32,
+        /// Block size in pixels.
+        #[arg(long, default_value_t = 8)]
+        block: u32,
+        /// Extra arguments for `stratus export-volume` (e.g. `--preset storm`).
+        #[arg(last = true)]
+        export_args: Vec<String>,
+    },
 }
 
 fn main() -> ExitCode {
@@ -65,6 +88,22 @@ fn main() -> ExitCode {
         Task::Validate { out } => validate(&out.unwrap_or_else(|| root.join("spirv-out"))),
         Task::Ci => ci(&root),
         Task::Conformance => conformance(&root),
+        Task::MitsubaCheck {
+            reference_spp,
+            mitsuba_spp,
+            passes,
+            block,
+            export_args,
+        } => mitsuba_check(
+            &root,
+            &MitsubaSettings {
+                reference_spp,
+                mitsuba_spp,
+                passes,
+                block,
+                export_args,
+            },
+        ),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -407,9 +446,18 @@ fn ensure_tools() -> Result<()> {
 
 fn cargo(root: &Path, args: &[&str]) -> Result<()> {
     let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
-    let status = Command::new(&cargo)
-        .args(args)
-        .current_dir(root)
+    let mut cmd = Command::new(&cargo);
+    cmd.args(args).current_dir(root);
+    // Headless, the Vulkan loader's Wayland WSI prints "error: XDG_RUNTIME_DIR is invalid or
+    // not set" whenever a test creates an instance; give it a private dir so that real errors
+    // stand out in the log (the `stratus` CLI does the same).
+    if std::env::var_os("XDG_RUNTIME_DIR").is_none() {
+        let dir = std::env::temp_dir().join("stratus-runtime");
+        if std::fs::create_dir_all(&dir).is_ok() {
+            cmd.env("XDG_RUNTIME_DIR", dir);
+        }
+    }
+    let status = cmd
         .status()
         .with_context(|| format!("running cargo {}", args.join(" ")))?;
     if !status.success() {
@@ -487,4 +535,119 @@ fn conformance(root: &Path) -> Result<()> {
         );
     }
     result
+}
+
+/// The Mitsuba version `mitsuba-check` installs.
+const MITSUBA: &str = "mitsuba==3.9.1";
+
+/// The renders and comparison of `mitsuba-check` (written to target/mitsuba-check/check.py).
+const MITSUBA_SCRIPT: &str = include_str!("mitsuba_check.py");
+
+/// Settings of `mitsuba-check`.
+struct MitsubaSettings {
+    reference_spp: u32,
+    mitsuba_spp: u32,
+    passes: u32,
+    block: u32,
+    export_args: Vec<String>,
+}
+
+/// `cargo xtask mitsuba-check`: the CPU reference's path tracer against Mitsuba 3 (scalar_rgb
+/// variant) on the same gridded medium, sun and constant sky. Mitsuba's `volpath` with
+/// `max_depth=2` is single scattering, `volpathmis` with `max_depth=-1` all orders; the reference
+/// renders `orders = 1` and `orders = 0` (its radiance plus transmittance times the sky, which
+/// the camera sees through the medium in Mitsuba). The reference averages 4x4 pixel-centre
+/// sub-pixels per pixel to match Mitsuba's box filter (with one ray per pixel centre, blocks of
+/// a back-lit cloud differed by up to 3%).
+///
+/// Measured (32x32, 8x8 blocks, 64^3 cells over 4 km x layer x 4 km, sigma_s 0.01/m, sigma_a
+/// 0.001/m, HG g = 0.6; Mitsuba 8 passes x 1024 spp, reference 4096 spp), largest block
+/// difference relative to Mitsuba, and in combined standard errors:
+///
+/// | scene | single scattering | all orders |
+/// |---|---|---|
+/// | cumulus-noon (sun behind the camera) | 0.04% (0.8 sigma) | 0.49% (2.0 sigma) |
+/// | cumulus-noon, sun `[0.2, 0.35, 0.9]` (back-lit) | 0.28% (1.0 sigma) | 0.63% (1.7 sigma) |
+fn mitsuba_check(root: &Path, s: &MitsubaSettings) -> Result<()> {
+    let t = Instant::now();
+    let target = std::env::var_os("CARGO_TARGET_DIR")
+        .map(PathBuf::from)
+        .map(|d| if d.is_absolute() { d } else { root.join(d) })
+        .unwrap_or_else(|| root.join("target"));
+    let venv = target.join("mitsuba-venv");
+    let python = venv.join("bin").join("python");
+    let work = target.join("mitsuba-check");
+    std::fs::create_dir_all(&work).with_context(|| format!("creating {}", work.display()))?;
+
+    step("mitsuba virtual environment", || {
+        if !python.exists() {
+            run(Command::new("python3").args(["-m", "venv"]).arg(&venv))?;
+        }
+        let have = Command::new(&python)
+            .args(["-c", "import mitsuba, numpy; print(mitsuba.__version__)"])
+            .output();
+        match have {
+            Ok(o) if o.status.success() && String::from_utf8_lossy(&o.stdout).trim() == "3.9.1" => {
+                Ok(())
+            }
+            _ => run(Command::new(&python).args([
+                "-m",
+                "pip",
+                "install",
+                "--disable-pip-version-check",
+                MITSUBA,
+                "numpy",
+            ]))
+            .context("pip could not install Mitsuba 3 (it needs the network once)"),
+        }
+    })?;
+    step("cargo build --release -p stratus-cli", || {
+        cargo(root, &["build", "--release", "-p", "stratus-cli"])
+    })?;
+    step("stratus export-volume + reference renders", || {
+        let spp = s.reference_spp.to_string();
+        run(Command::new(target.join("release").join("stratus"))
+            .current_dir(&work)
+            .args([
+                "export-volume",
+                "--out",
+                "volume.vol",
+                "--json",
+                "setup.json",
+                "--reference-spp",
+                &spp,
+                "--reference-out",
+                "reference.json",
+            ])
+            .args(&s.export_args))
+    })?;
+    let result = step("mitsuba renders and comparison", || {
+        std::fs::write(work.join("check.py"), MITSUBA_SCRIPT)?;
+        run(Command::new(&python).current_dir(&work).args([
+            "check.py".to_string(),
+            "setup.json".to_string(),
+            "reference.json".to_string(),
+            s.mitsuba_spp.to_string(),
+            s.passes.to_string(),
+            s.block.to_string(),
+        ]))
+    });
+    println!(
+        "\nmitsuba-check: {} in {:.0?} (files in {})",
+        if result.is_ok() { "passed" } else { "FAILED" },
+        t.elapsed(),
+        work.display()
+    );
+    result
+}
+
+/// Runs a command, failing if it does.
+fn run(cmd: &mut Command) -> Result<()> {
+    let status = cmd
+        .status()
+        .with_context(|| format!("running {:?}", cmd.get_program()))?;
+    if !status.success() {
+        bail!("{:?} failed ({status})", cmd.get_program());
+    }
+    Ok(())
 }

@@ -2,6 +2,7 @@
 
 mod bench;
 mod compare;
+mod export;
 mod output;
 mod render;
 
@@ -33,6 +34,9 @@ enum Command {
     /// Speed against accuracy: sweep quality and method settings over a scene set, measure
     /// error against the CPU reference and GPU cost, write results.csv/json and a chart.
     Bench(bench::BenchArgs),
+    /// Sample the scene's cloud density on a grid and write it as a Mitsuba 3 `.vol` file
+    /// (with the flat, single-lobe setup `cargo xtask mitsuba-check` renders).
+    ExportVolume(export::ExportArgs),
     /// Validate the embedded WGSL with naga and list its modules, variants and entry points.
     Shaders,
 }
@@ -56,6 +60,7 @@ fn main() -> ExitCode {
         Command::Presets => presets(),
         Command::Scene(SceneCommand::Check { file }) => scene_check(&file),
         Command::Shaders => shaders(),
+        Command::ExportVolume(args) => export::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

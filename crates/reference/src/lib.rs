@@ -61,7 +61,7 @@ use crate::math::V3;
 use crate::medium::Model;
 use crate::montecarlo::{Accumulator, Rng, camera_interval, trace};
 
-pub use crate::medium::{Medium, Shape};
+pub use crate::medium::{DensityGrid, Medium, Shape, sample_density_grid};
 
 /// How the radiance of a pixel is computed.
 #[derive(Clone, Debug, PartialEq)]

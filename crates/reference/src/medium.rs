@@ -6,7 +6,7 @@ use stratus_scene::Scene;
 
 use crate::density::{Counters, Weather, cloud_density, sample_weather, uniform_weather};
 use crate::frame::Frame;
-use crate::geometry::solve_sphere;
+use crate::geometry::{altitude_of, solve_sphere};
 use crate::math::V3;
 
 /// The participating medium a render integrates.
@@ -26,6 +26,104 @@ pub enum Medium<'a> {
         /// Where the medium is.
         shape: Shape,
     },
+    /// A gridded density (e.g. the clouds sampled by [`sample_density_grid`]) with the scene's
+    /// `sigma_s` and `sigma_a`, 0 outside its box. The weather is the scene's global values, as
+    /// for [`Medium::Homogeneous`].
+    Grid(&'a DensityGrid),
+}
+
+/// A dense density grid over an axis-aligned box in the world's flat coordinates (see
+/// [`Shape::Sphere`] for the axes), looked up like Mitsuba 3's `gridvolume`: cell-centred
+/// trilinear interpolation with clamped edges.
+#[derive(Clone, Debug, PartialEq)]
+pub struct DensityGrid {
+    /// Cells along x, y, z.
+    pub dims: [usize; 3],
+    /// Lower corner `[x, y, z]` of the box, metres.
+    pub min: [f64; 3],
+    /// Upper corner `[x, y, z]` of the box, metres.
+    pub max: [f64; 3],
+    /// Densities, x fastest, then y, then z (`data[(z * ny + y) * nx + x]`).
+    pub data: Vec<f32>,
+}
+
+impl DensityGrid {
+    /// The largest density in the grid (0 for an empty grid).
+    pub fn max_density(&self) -> f64 {
+        self.data.iter().fold(0.0f64, |m, &v| m.max(f64::from(v)))
+    }
+
+    /// The density at world position `p` (`[x, y, z]`, metres): trilinear between cell centres,
+    /// clamped to the edge cells inside the box, 0 outside it.
+    pub fn lookup(&self, p: [f64; 3]) -> f64 {
+        let mut i0 = [0usize; 3];
+        let mut i1 = [0usize; 3];
+        let mut t = [0.0f64; 3];
+        for a in 0..3 {
+            let u = (p[a] - self.min[a]) / (self.max[a] - self.min[a]);
+            if !(0.0..=1.0).contains(&u) {
+                return 0.0;
+            }
+            let n = self.dims[a];
+            let x = u * n as f64 - 0.5;
+            let lo = x.floor();
+            t[a] = x - lo;
+            let clamp = |i: f64| i.clamp(0.0, (n - 1) as f64) as usize;
+            i0[a] = clamp(lo);
+            i1[a] = clamp(lo + 1.0);
+        }
+        let [nx, ny, _] = self.dims;
+        let at = |x: usize, y: usize, z: usize| f64::from(self.data[(z * ny + y) * nx + x]);
+        let mut v = 0.0;
+        for (cz, wz) in [(i0[2], 1.0 - t[2]), (i1[2], t[2])] {
+            for (cy, wy) in [(i0[1], 1.0 - t[1]), (i1[1], t[1])] {
+                for (cx, wx) in [(i0[0], 1.0 - t[0]), (i1[0], t[0])] {
+                    v += wx * wy * wz * at(cx, cy, cz);
+                }
+            }
+        }
+        v
+    }
+
+    /// The world position of the centre of cell `[x, y, z]`.
+    pub fn cell_center(&self, cell: [usize; 3]) -> [f64; 3] {
+        std::array::from_fn(|a| {
+            self.min[a] + (cell[a] as f64 + 0.5) / self.dims[a] as f64 * (self.max[a] - self.min[a])
+        })
+    }
+}
+
+/// Samples the scene's cloud density (`density.wgsl::cloud_density` over `noise`) at the cell
+/// centres of a `dims` grid over the box `min`..`max` (world flat coordinates, metres; with a
+/// very large planet radius y is the altitude).
+pub fn sample_density_grid(
+    scene: &Scene,
+    noise: &NoiseSet,
+    min: [f64; 3],
+    max: [f64; 3],
+    dims: [usize; 3],
+) -> DensityGrid {
+    let f = Frame::from_uniforms(&scene.uniforms());
+    let mut grid = DensityGrid {
+        dims,
+        min,
+        max,
+        data: Vec::with_capacity(dims[0] * dims[1] * dims[2]),
+    };
+    for z in 0..dims[2] {
+        for y in 0..dims[1] {
+            for x in 0..dims[0] {
+                let p = V3::from_array(grid.cell_center([x, y, z]));
+                // Altitude of the camera-relative point (x/z relative to the camera's ground
+                // point), as the integrators compute it.
+                let rel = V3::new(p.x - f.camera_position[0], p.y, p.z - f.camera_position[2]);
+                let alt = altitude_of(&f, rel);
+                let d = cloud_density(&f, noise, p, alt, &mut Counters::default());
+                grid.data.push(d as f32);
+            }
+        }
+    }
+    grid
 }
 
 /// The support of a [`Medium::Homogeneous`].
@@ -71,6 +169,7 @@ impl<'a> Model<'a> {
                 f.extinction[1] = sigma_a;
                 (1.0, 1.0)
             }
+            Medium::Grid(grid) => (0.0, grid.max_density()),
         };
         Self {
             f,
@@ -98,6 +197,10 @@ impl<'a> Model<'a> {
                     }
                 }
             }
+            Medium::Grid(grid) => {
+                counters.density += 1;
+                grid.lookup(p.to_array())
+            }
         }
     }
 
@@ -105,7 +208,7 @@ impl<'a> Model<'a> {
     pub fn weather(&self, p: V3) -> Weather {
         match self.medium {
             Medium::Clouds(noise) => sample_weather(&self.f, noise, p),
-            Medium::Homogeneous { .. } => uniform_weather(&self.f),
+            Medium::Homogeneous { .. } | Medium::Grid(_) => uniform_weather(&self.f),
         }
     }
 
@@ -129,8 +232,82 @@ impl<'a> Model<'a> {
                 }
                 (t0.max(r.t0), t1.min(r.t1))
             }
+            Medium::Grid(grid) => {
+                // The box relative to the camera's ground point; slab test.
+                let cam = [self.f.camera_position[0], 0.0, self.f.camera_position[2]];
+                let (o, d) = (origin.to_array(), d.to_array());
+                let (mut lo, mut hi) = (t0, t1);
+                for a in 0..3 {
+                    let (bmin, bmax) = (grid.min[a] - cam[a], grid.max[a] - cam[a]);
+                    if d[a] == 0.0 {
+                        if o[a] < bmin || o[a] > bmax {
+                            return None;
+                        }
+                    } else {
+                        let (ta, tb) = ((bmin - o[a]) / d[a], (bmax - o[a]) / d[a]);
+                        lo = lo.max(ta.min(tb));
+                        hi = hi.min(ta.max(tb));
+                    }
+                }
+                (lo, hi)
+            }
             _ => (t0, t1),
         };
         (hi > lo).then_some((lo, hi))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A 4x3x2 grid over [0, 4] x [10, 16] x [-2, 2] whose cell values are a linear function
+    /// of the cell centre.
+    fn grid() -> (DensityGrid, impl Fn([f64; 3]) -> f64) {
+        let linear = |p: [f64; 3]| 0.5 + 0.1 * p[0] - 0.03 * p[1] + 0.07 * p[2];
+        let mut g = DensityGrid {
+            dims: [4, 3, 2],
+            min: [0.0, 10.0, -2.0],
+            max: [4.0, 16.0, 2.0],
+            data: Vec::new(),
+        };
+        for z in 0..2 {
+            for y in 0..3 {
+                for x in 0..4 {
+                    g.data.push(linear(g.cell_center([x, y, z])) as f32);
+                }
+            }
+        }
+        (g, linear)
+    }
+
+    #[test]
+    fn grid_lookup_is_cell_centred_trilinear_with_clamped_edges() {
+        let (g, linear) = grid();
+        // x fastest, then y, then z.
+        assert_eq!(g.cell_center([1, 2, 1]), [1.5, 15.0, 1.0]);
+        assert_eq!(g.data[(2 * 4) + 1 + 4 * 3], linear([1.5, 15.0, 1.0]) as f32);
+        // Cell centres give the cell's value; between centres, trilinear reproduces a linear
+        // function exactly.
+        for p in [
+            [0.5, 11.0, -1.0],
+            [3.5, 15.0, 1.0],
+            [1.0, 12.0, 0.0],
+            [2.3, 13.7, -0.4],
+        ] {
+            assert!((g.lookup(p) - linear(p)).abs() < 1e-6, "{p:?}");
+        }
+        // Within half a cell of the box's faces the edge cells' values hold (clamped).
+        let edge = g.lookup([0.5, 11.0, -1.0]);
+        assert!((g.lookup([0.0, 10.0, -2.0]) - edge).abs() < 1e-9);
+        assert!((g.lookup([0.2, 10.4, -1.7]) - edge).abs() < 1e-9);
+        let (lo, hi) = (g.lookup([3.5, 12.0, 0.0]), g.lookup([4.0, 12.0, 0.0]));
+        assert!((lo - hi).abs() < 1e-9);
+        // Outside the box: 0.
+        assert_eq!(g.lookup([-0.01, 12.0, 0.0]), 0.0);
+        assert_eq!(g.lookup([2.0, 16.5, 0.0]), 0.0);
+        assert!(
+            (g.max_density() - f64::from(g.data.iter().copied().fold(0.0, f32::max))).abs() < 1e-12
+        );
     }
 }
