@@ -22,22 +22,10 @@ pub fn write_image(path: &Path, frame: &FrameOutput) -> Result<()> {
             image::ExtendedColorType::Rgba8,
         )
         .with_context(|| format!("writing {}", path.display())),
-        Some("exr") => {
-            let w = frame.width as usize;
-            let px = &frame.radiance;
-            use exr::prelude::*;
-            let channels = SpecificChannels::rgba(|Vec2(x, y): Vec2<usize>| {
-                let i = 4 * (y * w + x);
-                (px[i], px[i + 1], px[i + 2], px[i + 3])
-            });
-            // Written on one thread: exr's parallel writer stores blocks in completion order,
-            // which makes the file bytes differ between runs of the same frame.
-            Image::from_channels((w, frame.height as usize), channels)
-                .write()
-                .non_parallel()
-                .to_file(path)
-                .with_context(|| format!("writing {}", path.display()))
-        }
+        // One EXR writer for the project (deterministic bytes): the compare crate's.
+        Some("exr") => stratus_compare::Image::from_frame_radiance(frame)
+            .save(path)
+            .with_context(|| format!("writing {}", path.display())),
         _ => bail!(
             "--out {}: unknown image type; use a .png (tone-mapped) or .exr (linear) file name",
             path.display()

@@ -185,13 +185,20 @@ impl Image {
             )
             .map_err(|e| werr(e.to_string())),
             Some("exr") => {
+                use exr::prelude::*;
                 let w = self.width as usize;
                 let px = &self.rgba;
-                exr::prelude::write_rgba_file(path, w, self.height as usize, |x, y| {
+                let channels = SpecificChannels::rgba(|Vec2(x, y): Vec2<usize>| {
                     let i = 4 * (y * w + x);
                     (px[i], px[i + 1], px[i + 2], px[i + 3])
-                })
-                .map_err(|e| werr(e.to_string()))
+                });
+                // Written on one thread: exr's parallel writer stores blocks in completion
+                // order, which makes the file bytes differ between runs of the same image.
+                exr::image::Image::from_channels((w, self.height as usize), channels)
+                    .write()
+                    .non_parallel()
+                    .to_file(path)
+                    .map_err(|e| werr(e.to_string()))
             }
             _ => Err(CompareError::UnknownType(path.display().to_string())),
         }
