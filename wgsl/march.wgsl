@@ -4,8 +4,8 @@
 @group(0) @binding(6) var cloud_out: texture_storage_2d<rgba32float, write>; // radiance rgb, transmittance
 @group(0) @binding(7) var depth_out: texture_storage_2d<r32float, write>;    // transmittance-weighted depth (m), 0 where no cloud
 
-// Work counters (the statistics variant). Indices are shared with `stats::COUNTERS` in the
-// shaders crate.
+// Work counters (the statistics variant). Indices are named by the `stats` resource in the
+// frame graph (wgsl/graph.toml), checked against these values at build time.
 const STAT_PIXELS: u32 = 0u;           // pixels processed
 const STAT_MARCHED: u32 = 1u;          // pixels whose ray marched the layer
 const STAT_VIEW_STEPS: u32 = 2u;       // view-ray steps taken

@@ -1,5 +1,5 @@
-//! Embeds every file under the workspace's `wgsl/` folder, so that the renderer carries the
-//! exact WGSL it was built from (one source of truth) and needs no files at run time.
+//! Embeds every file under the workspace's `wgsl/` folder, so that the tools carry the
+//! exact WGSL they were built from (one source of truth) and need no files at run time.
 
 use std::{env, fs, path::Path};
 
@@ -36,18 +36,6 @@ fn main() {
     out.push_str(&format!(
         "/// The naga version this crate was built against (from Cargo.lock).\npub const NAGA_VERSION: &str = {version:?};\n"
     ));
-    // The committed reflection manifest drives the frame plan. It may be absent while
-    // `cargo xtask build-shaders` (which uses this crate) creates it for the first time.
-    let manifest = root.join("spirv-out/manifest.json");
-    println!("cargo:rerun-if-changed={}", manifest.display());
-    out.push_str("/// `spirv-out/manifest.json` as committed (empty if absent at build time).\n");
-    match fs::canonicalize(&manifest) {
-        Ok(abs) => out.push_str(&format!(
-            "pub static EMBEDDED_MANIFEST: &str = include_str!({:?});\n",
-            abs.to_string_lossy()
-        )),
-        Err(_) => out.push_str("pub static EMBEDDED_MANIFEST: &str = \"\";\n"),
-    }
     fs::write(
         Path::new(&env::var("OUT_DIR").unwrap()).join("embedded.rs"),
         out,

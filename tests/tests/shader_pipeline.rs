@@ -94,8 +94,8 @@ fn spirv_out_is_fresh() {
 #[test]
 fn frame_uniforms_match_the_wgsl_layout() {
     use stratus_scene::FrameUniforms;
-    let manifest = stratus_shaders::plan::embedded_manifest().unwrap();
-    let module = manifest.module(stratus_shaders::plan::MODULE).unwrap();
+    let program = stratus_graph::Program::embedded().unwrap();
+    let module = program.manifest.module("clouds").unwrap();
     let frame = module
         .struct_layout("Frame")
         .expect("WGSL declares struct Frame");
@@ -108,5 +108,85 @@ fn frame_uniforms_match_the_wgsl_layout() {
     for (i, (m, (name, ty))) in frame.members.iter().zip(FrameUniforms::MEMBERS).enumerate() {
         assert_eq!((m.name.as_str(), m.ty.as_str()), (name, ty), "member {i}");
         assert_eq!(m.offset as usize, 16 * i, "offset of {name}");
+    }
+}
+
+/// The mode codes and flags the Rust uniform block writes are the WGSL's constants, by name
+/// and value (naga reads the constants from the composed module): a renumbering on either
+/// side fails here.
+#[test]
+fn mode_codes_and_flags_match_the_wgsl_constants() {
+    use stratus_scene::{FrameUniforms, HeightModel, Integration, PhaseModel};
+    let tree = ShaderTree::embedded().unwrap();
+    let compiled = stratus_shaders::compile_all(&tree).unwrap();
+    let clouds = compiled.iter().find(|m| m.spec.name == "clouds").unwrap();
+    let constant = |name: &str| -> u32 {
+        let (_, c) = clouds
+            .module
+            .constants
+            .iter()
+            .find(|(_, c)| c.name.as_deref() == Some(name))
+            .unwrap_or_else(|| panic!("the WGSL declares no const {name}"));
+        match clouds.module.global_expressions[c.init] {
+            naga::Expression::Literal(naga::Literal::U32(v)) => v,
+            ref other => panic!("{name} is {other:?}, not a u32 literal"),
+        }
+    };
+    let pairs = [
+        ("PHASE_HG", PhaseModel::Hg.code()),
+        ("PHASE_TWO_LOBE_HG", PhaseModel::TwoLobeHg.code()),
+        ("PHASE_CORNETTE_SHANKS", PhaseModel::CornetteShanks.code()),
+        ("INTEGRATION_ANALYTIC", Integration::Analytic.code()),
+        ("INTEGRATION_RIEMANN", Integration::Riemann.code()),
+        ("HEIGHT_PARABOLA", HeightModel::Parabola.code()),
+        ("HEIGHT_CLOUD_TYPES", HeightModel::CloudTypes.code()),
+        ("FLAG_BEER_POWDER", FrameUniforms::FLAG_BEER_POWDER),
+        ("FLAG_JITTER", FrameUniforms::FLAG_JITTER),
+    ];
+    for (name, rust) in pairs {
+        assert_eq!(constant(name), rust, "{name}");
+    }
+}
+
+/// The frame graph is checked against the reflection at build time: a graph that binds a
+/// WGSL global to a resource of the wrong kind, forgets a binding, or numbers a counter
+/// differently from the WGSL is refused with a message naming the pass or resource.
+#[test]
+fn a_graph_that_disagrees_with_the_wgsl_is_refused() {
+    let tree = ShaderTree::embedded().unwrap();
+    let graph = &tree.files["graph.toml"];
+    let cases = [
+        (
+            graph.replace("cloud_out = \"cloud\"", "cloud_out = \"depth\""),
+            "stores Some(\"rgba32float\") texels",
+        ),
+        (
+            graph.replace("depth_out = \"depth\"\n", ""),
+            "the WGSL uses `depth_out`",
+        ),
+        (
+            graph.replace(
+                "{ name = \"pixels\", wgsl = \"STAT_PIXELS\" },\n    { name = \"marched_pixels\", wgsl = \"STAT_MARCHED\" },",
+                "{ name = \"marched_pixels\", wgsl = \"STAT_MARCHED\" },\n    { name = \"pixels\", wgsl = \"STAT_PIXELS\" },",
+            ),
+            "counter `marched_pixels` is number 0 here",
+        ),
+        (
+            graph.replace("frame = \"frame\"\nshape_tex", "frame = \"shape\"\nshape_tex"),
+            "`frame` is a uniform buffer in the WGSL",
+        ),
+    ];
+    for (text, expected) in cases {
+        assert_ne!(&text, graph, "the case changes the graph");
+        let mut files = tree.files.clone();
+        files.insert("graph.toml".into(), text);
+        let bad = ShaderTree::from_files("wgsl", files).unwrap();
+        let err = build_outputs(&bad)
+            .expect_err("a bad graph is refused")
+            .to_string();
+        assert!(
+            err.contains("wgsl/graph.toml") && err.contains(expected),
+            "expected {expected:?} in:\n{err}"
+        );
     }
 }

@@ -199,7 +199,7 @@ fn list_generated(out: &Path) -> Result<BTreeMap<String, Vec<u8>>> {
     for e in entries {
         let path = e?.path();
         let name = path.file_name().unwrap().to_string_lossy().into_owned();
-        let owned = [".spv", ".glsl", ".hlsl", ".metal", "manifest.json"]
+        let owned = [".spv", ".glsl", ".hlsl", ".metal", ".wgsl", "manifest.json"]
             .iter()
             .any(|ext| name.ends_with(ext));
         if owned && path.is_file() {
@@ -257,11 +257,6 @@ fn validate(out: &Path) -> Result<()> {
         .is_ok_and(|o| o.status.success());
     let mut rows = Vec::new();
     for m in &manifest.modules {
-        let computes: Vec<_> = m
-            .entry_points
-            .iter()
-            .filter(|e| e.stage == "compute")
-            .collect();
         for v in &m.variants {
             let f = &v.files;
             let (verdict, detail) = run_tool(Command::new("spirv-val").arg(out.join(&f.spv)));
@@ -271,10 +266,13 @@ fn validate(out: &Path) -> Result<()> {
                 verdict,
                 detail,
             });
-            for file in f.glsl.values() {
+            for (entry, file) in &f.glsl {
+                let stage = m
+                    .entry_point(entry)
+                    .map_or("comp", |e| e.stage.glsl_suffix());
                 let (verdict, detail) = run_tool(
                     Command::new("glslangValidator")
-                        .args(["-S", "comp"])
+                        .args(["-S", stage])
                         .arg(out.join(file)),
                 );
                 rows.push(Row {
@@ -284,11 +282,12 @@ fn validate(out: &Path) -> Result<()> {
                     detail,
                 });
             }
-            for ep in &computes {
-                let spv = tmp.join(format!("{}.{}.spv", v.name, ep.name));
+            for ep in &m.entry_points {
+                let spv = tmp.join(format!("{}.{}.{}.spv", m.name, v.name, ep.name));
+                let stage = ep.stage.glsl_suffix();
                 let (mut verdict, mut detail) = run_tool(
                     Command::new("glslangValidator")
-                        .args(["-D", "-V", "-e", &ep.name, "-S", "comp", "-o"])
+                        .args(["-D", "-V", "-e", &ep.name, "-S", stage, "-o"])
                         .arg(&spv)
                         .arg(out.join(&f.hlsl)),
                 );

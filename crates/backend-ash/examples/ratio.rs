@@ -1,21 +1,17 @@
-//! The ash/wgpu time ratio on one device, measured in one process with the two backends
-//! interleaved (ash, wgpu, ash, wgpu, ...) so that both see the same machine load: the march
-//! pass by GPU timestamps, and the whole `render()` call by wall clock. Prints the median of
-//! each and the ratios.
+//! What a frame costs on each backend, measured in one process with the two persistent
+//! renderers interleaved (ash, wgpu, ash, wgpu, ...) so that both see the same machine load:
+//! the march pass by GPU timestamps, the CPU time of recording and submitting a frame (not the
+//! wait), and the whole `render()` call by wall clock. Nothing is read back (a real-time loop);
+//! the wind moves every frame. Prints the median of each and the ash/wgpu ratios.
 //!
-//! `cargo run --release -p stratus-backend-ash --example ratio [repeats] [preset] [WxH]`
-//! (defaults: 9, cumulus-noon, 256x144).
+//! `cargo run --release -p stratus-backend-ash --example ratio [frames] [preset] [WxH]`
+//! (defaults: 300, cumulus-noon, 256x144).
 
-use std::time::Instant;
+use std::{sync::Arc, time::Instant};
 
+use stratus_graph::{FrameInput, FrameOutput, FramePlan, Readback, output::median};
 use stratus_noise::{NoiseConfig, NoiseSet};
 use stratus_scene::Scene;
-use stratus_shaders::{FrameOutput, FramePlan};
-
-fn median(mut v: Vec<f64>) -> f64 {
-    v.sort_by(f64::total_cmp);
-    v[v.len() / 2]
-}
 
 fn march_ms(out: &FrameOutput) -> f64 {
     out.timings
@@ -24,9 +20,31 @@ fn march_ms(out: &FrameOutput) -> f64 {
         .map_or(f64::NAN, |t| t.ms)
 }
 
+#[derive(Default)]
+struct Samples {
+    march: Vec<f64>,
+    cpu: Vec<f64>,
+    wall: Vec<f64>,
+}
+
+impl Samples {
+    fn push(&mut self, out: &FrameOutput, wall_ms: f64) {
+        self.march.push(march_ms(out));
+        self.cpu.push(out.cpu_ms);
+        self.wall.push(wall_ms);
+    }
+    fn medians(&self) -> [f64; 3] {
+        [
+            median(self.march.clone()),
+            median(self.cpu.clone()),
+            median(self.wall.clone()),
+        ]
+    }
+}
+
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut args = std::env::args().skip(1);
-    let repeats: usize = args.next().map_or(Ok(9), |a| a.parse())?;
+    let frames: usize = args.next().map_or(Ok(300), |a| a.parse())?;
     let preset = args.next().unwrap_or_else(|| "cumulus-noon".into());
     let (w, h) = match args.next() {
         Some(s) => {
@@ -35,13 +53,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         }
         None => (256, 144),
     };
-    let scene = Scene::preset(&preset)?.with_size(w, h);
-    let plan = FramePlan::for_scene(&scene, false)?;
-    let uniforms = scene.uniforms();
-    let noise = NoiseSet::generate(&NoiseConfig {
-        seed: scene.noise.seed,
+    let base = Scene::preset(&preset)?.with_size(w, h);
+    let plan = FramePlan::for_scene(&base, false)?;
+    let noise = Arc::new(NoiseSet::generate(&NoiseConfig {
+        seed: base.noise.seed,
         ..Default::default()
-    });
+    }));
     let mut ash =
         stratus_backend_ash::Renderer::new(stratus_backend_ash::Options { validation: false })?;
     let mut wgpu = stratus_backend_wgpu::Renderer::new(stratus_backend_wgpu::Options {
@@ -49,14 +66,14 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         validation: false,
     })?;
     println!(
-        "{preset} {w}x{h}, variant {}, {repeats} interleaved repeats each\nash:  {}\nwgpu: {}",
+        "{preset} {w}x{h}, variant {}, {frames} interleaved frames each\nash:  {}\nwgpu: {}",
         plan.variant,
         ash.adapter(),
         wgpu.adapter()
     );
-    // Warm up: pipeline creation and the drivers' shader compilation.
-    let first = ash.render(&plan, &uniforms, &noise)?;
-    let other = wgpu.render(&plan, &uniforms, &noise)?;
+    // Warm up: resources, pipelines and the drivers' shader compilation; both must agree.
+    let first = ash.render(&FrameInput::new(&plan, &base, &noise))?;
+    let other = wgpu.render(&FrameInput::new(&plan, &base, &noise))?;
     let same = first.radiance.len() == other.radiance.len()
         && first
             .radiance
@@ -64,42 +81,43 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             .zip(&other.radiance)
             .all(|(a, b)| a.to_bits() == b.to_bits())
         && first.image == other.image;
-    println!("outputs bit-identical: {same}");
-
-    let (mut ash_march, mut wgpu_march, mut ash_wall, mut wgpu_wall) =
-        (Vec::new(), Vec::new(), Vec::new(), Vec::new());
-    let mut sources = (first.timings[0].source, other.timings[0].source);
-    for _ in 0..repeats {
-        let t = Instant::now();
-        let a = ash.render(&plan, &uniforms, &noise)?;
-        ash_wall.push(t.elapsed().as_secs_f64() * 1e3);
-        let t = Instant::now();
-        let b = wgpu.render(&plan, &uniforms, &noise)?;
-        wgpu_wall.push(t.elapsed().as_secs_f64() * 1e3);
-        ash_march.push(march_ms(&a));
-        wgpu_march.push(march_ms(&b));
-        sources = (a.timings[0].source, b.timings[0].source);
-    }
-    let (am, wm) = (median(ash_march.clone()), median(wgpu_march.clone()));
-    let (aw, ww) = (median(ash_wall), median(wgpu_wall));
     println!(
-        "march ({} / {}): ash {am:.3} ms, wgpu {wm:.3} ms, ash/wgpu {:.3}",
-        sources.0,
-        sources.1,
-        am / wm
+        "first frame: {}",
+        if same {
+            "bit-identical"
+        } else {
+            "DIFFERENT images"
+        }
     );
-    println!("  ash  runs: {ash_march:.3?}\n  wgpu runs: {wgpu_march:.3?}");
-    println!(
-        "whole render() call (wall): ash {aw:.1} ms, wgpu {ww:.1} ms, ash/wgpu {:.3}",
-        aw / ww
-    );
-    if wm < 0.1 * am {
-        println!(
-            "note: wgpu's march timestamps cannot be right (the frame took {ww:.0} ms); on lavapipe \
-             they are taken late when a render pass has bound a framebuffer (see the ash backend's \
-             TIMESTAMP_STAGE notes), so only the wall-clock ratio means something here"
-        );
+    let (created_ash, created_wgpu) = (ash.objects_created(), wgpu.objects_created());
+    let (mut a, mut b) = (Samples::default(), Samples::default());
+    for i in 0..frames {
+        let mut scene = base.clone();
+        scene.clouds.time_s += i as f64 / 60.0;
+        let frame = FrameInput::new(&plan, &scene, &noise).with_readback(Readback::none());
+        let t = Instant::now();
+        let out = ash.render(&frame)?;
+        a.push(&out, t.elapsed().as_secs_f64() * 1e3);
+        let t = Instant::now();
+        let out = wgpu.render(&frame)?;
+        b.push(&out, t.elapsed().as_secs_f64() * 1e3);
     }
+    let [am, ac, aw] = a.medians();
+    let [bm, bc, bw] = b.medians();
+    println!("median of {frames}:        march GPU ms   CPU ms/frame   render() wall ms");
+    println!("ash                    {am:12.3} {ac:14.3} {aw:18.3}");
+    println!("wgpu                   {bm:12.3} {bc:14.3} {bw:18.3}");
+    println!(
+        "ash/wgpu               {:12.2} {:14.2} {:18.2}",
+        am / bm,
+        ac / bc,
+        aw / bw
+    );
+    println!(
+        "GPU objects created after the first frame: ash {}, wgpu {}",
+        ash.objects_created() - created_ash,
+        wgpu.objects_created() - created_wgpu
+    );
     ash.finish()?;
     Ok(())
 }

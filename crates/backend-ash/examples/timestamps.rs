@@ -4,16 +4,12 @@
 //!
 //! `cargo run --release -p stratus-backend-ash --example timestamps [repeats]`
 
+use std::sync::Arc;
+
 use stratus_backend_ash::{Options, Renderer};
+use stratus_graph::{FrameInput, FrameOutput, FramePlan, Readback, output::median};
 use stratus_noise::{NoiseConfig, NoiseSet};
 use stratus_scene::Scene;
-use stratus_shaders::FrameOutput;
-use stratus_shaders::FramePlan;
-
-fn median(mut v: Vec<f64>) -> f64 {
-    v.sort_by(f64::total_cmp);
-    v[v.len() / 2]
-}
 
 fn summary(label: &str, runs: &[FrameOutput]) {
     let passes: Vec<String> = runs[0]
@@ -36,11 +32,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let repeats: usize = std::env::args().nth(1).map_or(Ok(7), |a| a.parse())?;
     let scene = Scene::preset("cumulus-noon")?.with_size(256, 144);
     let plan = FramePlan::for_scene(&scene, false)?;
-    let uniforms = scene.uniforms();
-    let noise = NoiseSet::generate(&NoiseConfig {
+    let noise = Arc::new(NoiseSet::generate(&NoiseConfig {
         seed: scene.noise.seed,
         ..Default::default()
-    });
+    }));
+    let frame = FrameInput::new(&plan, &scene, &noise).with_readback(Readback::none());
     let mut ash = Renderer::new(Options { validation: false })?;
     let mut wgpu = stratus_backend_wgpu::Renderer::new(stratus_backend_wgpu::Options {
         api: stratus_backend_wgpu::Api::Vulkan,
@@ -54,18 +50,18 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         plan.variant
     );
     // Warm up (pipeline compilation).
-    ash.render(&plan, &uniforms, &noise)?;
-    wgpu.render(&plan, &uniforms, &noise)?;
+    ash.render(&frame)?;
+    wgpu.render(&frame)?;
     let run = |ash: &mut Renderer| {
         (0..repeats)
-            .map(|_| ash.render(&plan, &uniforms, &noise))
+            .map(|_| ash.render(&frame))
             .collect::<Result<Vec<_>, _>>()
     };
     summary("ash, timestamps", &run(&mut ash)?);
     ash.set_cpu_wall_timing(true);
     summary("ash, each pass submitted alone", &run(&mut ash)?);
     let runs = (0..repeats)
-        .map(|_| wgpu.render(&plan, &uniforms, &noise))
+        .map(|_| wgpu.render(&frame))
         .collect::<Result<Vec<_>, _>>()?;
     summary("wgpu, timestamps", &runs);
     ash.finish()?;

@@ -10,12 +10,20 @@ use std::{
 
 use ash::vk;
 use gpu_allocator::vulkan::{Allocator, AllocatorCreateDesc};
-use stratus_shaders::Resource;
-
-use crate::{
-    error::{Error, vk},
-    frame::{IMAGES, image_needs, vk_format},
+use stratus_graph::{
+    backend::{DeviceClass, best_device, describe_device},
+    desc::TexelFormat,
 };
+
+use crate::error::{Error, vk};
+
+/// A format the frame needs and the features it needs of it, with the resource it is for.
+pub(crate) struct FormatNeed {
+    pub resource: String,
+    pub format: TexelFormat,
+    pub vk_format: vk::Format,
+    pub features: vk::FormatFeatureFlags,
+}
 
 const VALIDATION_LAYER: &CStr = c"VK_LAYER_KHRONOS_validation";
 
@@ -133,25 +141,14 @@ impl Drop for Unwind {
     }
 }
 
-/// The device type the way wgpu spells it, so both backends describe a device alike.
-fn type_name(t: vk::PhysicalDeviceType) -> &'static str {
+/// The device class, as the shared ranking and description know it.
+fn class_of(t: vk::PhysicalDeviceType) -> DeviceClass {
     match t {
-        vk::PhysicalDeviceType::DISCRETE_GPU => "DiscreteGpu",
-        vk::PhysicalDeviceType::INTEGRATED_GPU => "IntegratedGpu",
-        vk::PhysicalDeviceType::VIRTUAL_GPU => "VirtualGpu",
-        vk::PhysicalDeviceType::CPU => "Cpu",
-        _ => "Other",
-    }
-}
-
-/// backend-wgpu's adapter order: a real GPU before a CPU driver.
-fn rank(t: vk::PhysicalDeviceType) -> u8 {
-    match t {
-        vk::PhysicalDeviceType::DISCRETE_GPU => 0,
-        vk::PhysicalDeviceType::INTEGRATED_GPU => 1,
-        vk::PhysicalDeviceType::VIRTUAL_GPU => 2,
-        vk::PhysicalDeviceType::CPU => 4,
-        _ => 3,
+        vk::PhysicalDeviceType::DISCRETE_GPU => DeviceClass::Discrete,
+        vk::PhysicalDeviceType::INTEGRATED_GPU => DeviceClass::Integrated,
+        vk::PhysicalDeviceType::VIRTUAL_GPU => DeviceClass::Virtual,
+        vk::PhysicalDeviceType::CPU => DeviceClass::Cpu,
+        _ => DeviceClass::Other,
     }
 }
 
@@ -167,14 +164,18 @@ struct Candidate {
 
 /// Whether `physical` can run the frame: Vulkan 1.1, a compute queue, and every image format
 /// with the features the frame uses (see [`image_needs`]).
-fn candidate(instance: &ash::Instance, physical: vk::PhysicalDevice) -> Result<Candidate, Error> {
+fn candidate(
+    instance: &ash::Instance,
+    physical: vk::PhysicalDevice,
+    needs: &[FormatNeed],
+) -> Result<Candidate, Error> {
     // SAFETY: `physical` was enumerated from `instance`.
     let props = unsafe { instance.get_physical_device_properties(physical) };
     let device_name = props
         .device_name_as_c_str()
         .map(|s| s.to_string_lossy().into_owned())
         .unwrap_or_else(|_| "(unnamed)".into());
-    let name = format!("{device_name} (Vulkan, {})", type_name(props.device_type));
+    let name = describe_device(&device_name, "Vulkan", class_of(props.device_type));
     if props.api_version < API_VERSION {
         return Err(Error::NoDevice(format!(
             " ({name} implements Vulkan {}, {} is needed)",
@@ -184,33 +185,33 @@ fn candidate(instance: &ash::Instance, physical: vk::PhysicalDevice) -> Result<C
     }
     // SAFETY: as above.
     let families = unsafe { instance.get_physical_device_queue_family_properties(physical) };
-    // Prefer a compute family with timestamps; any compute family otherwise.
-    let compute = |f: &vk::QueueFamilyProperties| {
-        f.queue_flags.contains(vk::QueueFlags::COMPUTE) && f.queue_count > 0
+    // Compute and raster passes share one queue: prefer such a family with timestamps.
+    let usable = |f: &vk::QueueFamilyProperties| {
+        f.queue_flags
+            .contains(vk::QueueFlags::COMPUTE | vk::QueueFlags::GRAPHICS)
+            && f.queue_count > 0
     };
     let family = families
         .iter()
-        .position(|f| compute(f) && f.timestamp_valid_bits > 0)
-        .or_else(|| families.iter().position(compute))
-        .ok_or_else(|| Error::NoDevice(format!(" ({name} has no compute queue)")))?;
-    for (resource, label) in IMAGES {
-        let wgsl = resource.texture_format().unwrap_or_default();
-        let Some(format) = vk_format(wgsl) else {
-            return Err(Error::Shader(format!(
-                "the {label} image has format `{wgsl}`, which the ash backend does not know"
-            )));
-        };
+        .position(|f| usable(f) && f.timestamp_valid_bits > 0)
+        .or_else(|| families.iter().position(usable))
+        .ok_or_else(|| {
+            Error::NoDevice(format!(
+                " ({name} has no queue for both compute and graphics)"
+            ))
+        })?;
+    for need in needs {
         // SAFETY: as above.
-        let have = unsafe { instance.get_physical_device_format_properties(physical, format) }
-            .optimal_tiling_features;
-        let need = image_needs(resource).1;
-        if !have.contains(need) {
+        let have =
+            unsafe { instance.get_physical_device_format_properties(physical, need.vk_format) }
+                .optimal_tiling_features;
+        if !have.contains(need.features) {
             return Err(Error::Format {
                 device: name,
-                format: wgsl.to_string(),
-                vk_format: format,
-                missing: describe_features(need & !have),
-                resource: label.to_string(),
+                format: need.format.wgsl().to_string(),
+                vk_format: need.vk_format,
+                missing: describe_features(need.features & !have),
+                resource: need.resource.clone(),
             });
         }
     }
@@ -239,6 +240,14 @@ fn describe_features(missing: vk::FormatFeatureFlags) -> String {
             vk::FormatFeatureFlags::SAMPLED_IMAGE_FILTER_LINEAR,
             "with linear filtering",
         ),
+        (
+            vk::FormatFeatureFlags::COLOR_ATTACHMENT,
+            "as a colour target",
+        ),
+        (
+            vk::FormatFeatureFlags::DEPTH_STENCIL_ATTACHMENT,
+            "as a depth target",
+        ),
         (vk::FormatFeatureFlags::TRANSFER_SRC, "as a copy source"),
         (
             vk::FormatFeatureFlags::TRANSFER_DST,
@@ -261,7 +270,7 @@ fn has_extension(list: &[vk::ExtensionProperties], name: &CStr) -> bool {
 impl Gpu {
     /// Loads Vulkan, creates the instance (with validation and its messenger when asked),
     /// picks a device and creates the device, queue, command pool, fence and allocator.
-    pub fn new(validation: bool) -> Result<Self, Error> {
+    pub fn new(validation: bool, needs: &[FormatNeed]) -> Result<Self, Error> {
         // SAFETY: loading the system's Vulkan loader runs its initialisers; nothing else
         // holds it.
         let entry = unsafe { ash::Entry::load() }.map_err(|e| Error::NoLoader(e.to_string()))?;
@@ -355,22 +364,31 @@ impl Gpu {
         // SAFETY: valid instance.
         let physicals = unsafe { instance.enumerate_physical_devices() }
             .map_err(vk("vkEnumeratePhysicalDevices"))?;
-        let mut candidates: Vec<(u8, Result<Candidate, Error>)> = physicals
+        let mut candidates: Vec<(DeviceClass, Result<Candidate, Error>)> = physicals
             .iter()
             .map(|&p| {
                 // SAFETY: enumerated from this instance.
                 let t = unsafe { instance.get_physical_device_properties(p) }.device_type;
-                (rank(t), candidate(&instance, p))
+                (class_of(t), candidate(&instance, p, needs))
             })
             .collect();
-        candidates.sort_by_key(|(r, _)| *r);
-        let chosen = match candidates.iter().position(|(_, c)| c.is_ok()) {
-            Some(i) => candidates.swap_remove(i).1?,
-            // Report why the best device is unusable, or that there is none.
+        // The best usable device in the shared order; else why the best device is unusable.
+        let usable: Vec<usize> = (0..candidates.len())
+            .filter(|&i| candidates[i].1.is_ok())
+            .collect();
+        let classes = |list: &[usize]| -> Vec<DeviceClass> {
+            list.iter().map(|&i| candidates[i].0).collect()
+        };
+        let chosen = match best_device(&classes(&usable)) {
+            Some(k) => candidates.swap_remove(usable[k]).1?,
             None => {
-                return Err(match candidates.into_iter().next() {
-                    Some((_, Err(e))) => e,
-                    _ => Error::NoDevice(String::new()),
+                let all: Vec<usize> = (0..candidates.len()).collect();
+                return Err(match best_device(&classes(&all)) {
+                    Some(i) => match candidates.swap_remove(i).1 {
+                        Err(e) => e,
+                        Ok(_) => Error::NoDevice(String::new()),
+                    },
+                    None => Error::NoDevice(String::new()),
                 });
             }
         };
@@ -483,17 +501,6 @@ impl Gpu {
             }
             self.instance.destroy_instance(None);
         }
-    }
-
-    /// The Vulkan format of an image resource (every one was checked against the device's
-    /// format features when the device was chosen).
-    pub fn format_of(resource: Resource) -> Result<vk::Format, Error> {
-        let wgsl = resource.texture_format().unwrap_or_default();
-        vk_format(wgsl).ok_or_else(|| {
-            Error::Shader(format!(
-                "resource {resource:?} has format `{wgsl}`, which the ash backend does not know"
-            ))
-        })
     }
 }
 

@@ -1,9 +1,9 @@
 //! Where a frame's SPIR-V comes from, and what each pass's pipeline binds where.
 //!
-//! [`Renderer::render`](crate::Renderer::render) runs the committed
-//! `spirv-out/<module>.<variant>.spv`, whose interface is the plan's bindings (set = `@group`,
-//! binding = `@binding`, separate samplers). [`Renderer::render_with`](crate::Renderer::render_with)
-//! can instead run SPIR-V supplied per pass, such as naga's GLSL or HLSL compiled by
+//! [`Renderer::render`](crate::Renderer::render) runs the program's
+//! `<module>.<variant>.spv`, whose interface is the plan's bindings (set = `@group`,
+//! binding = `@binding`, separate samplers). With the `conformance` feature,
+//! `Renderer::render_with` can instead run SPIR-V supplied per pass, such as naga's GLSL or HLSL compiled by
 //! glslang, whose interface differs from the WGSL's: GLSL has no separate samplers (each
 //! sampled texture is a combined image sampler), and naga's HLSL reaches its samplers through
 //! a sampler heap and an index buffer. A [`PassShader`] therefore lists every descriptor its
@@ -12,20 +12,24 @@
 //! pipeline is created and when it is dispatched.
 
 use ash::vk;
-use stratus_shaders::{
-    Resource,
+use stratus_graph::{
+    FramePlan,
+    manifest::BindingKind,
     plan::{Binding, Pass},
 };
 
 use crate::{error::Error, pipeline::descriptor_type};
 
 /// The SPIR-V a frame runs.
-#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+#[cfg_attr(not(feature = "conformance"), allow(dead_code))]
+#[derive(Clone, Debug, Default, PartialEq, Eq, Hash)]
 pub enum Shaders {
-    /// The committed `spirv-out/<module>.<variant>.spv` the plan names, bound as the plan's
-    /// bindings say (what [`Renderer::render`](crate::Renderer::render) runs).
+    /// The program's `<module>.<variant>.spv` the plan names, bound as the plan's bindings
+    /// say (what [`Renderer::render`](crate::Renderer::render) runs).
+    #[default]
     Committed,
-    /// One module per pass of the plan, in plan order.
+    /// One module per compute pass of the plan, in plan order (raster passes run the
+    /// program's SPIR-V).
     PerPass(Vec<PassShader>),
 }
 
@@ -43,7 +47,7 @@ pub struct PassShader {
 
 /// One descriptor of a supplied module: its `DescriptorSet` and `Binding` decorations, and
 /// what the frame binds there.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[derive(Clone, Debug, PartialEq, Eq, Hash)]
 pub struct Slot {
     /// Descriptor set.
     pub set: u32,
@@ -54,14 +58,15 @@ pub struct Slot {
 }
 
 /// What the frame binds at a [`Slot`].
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[cfg_attr(not(feature = "conformance"), allow(dead_code))]
+#[derive(Clone, Debug, PartialEq, Eq, Hash)]
 pub enum SlotContent {
-    /// The frame's resource, of the kind the pass's plan binding declares (uniform buffer,
-    /// sampled or storage image, storage buffer, sampler).
-    Plan(Resource),
+    /// The frame's resource of this name, of the kind the pass's plan binding declares
+    /// (uniform buffer, sampled or storage image, storage buffer, sampler).
+    Plan(String),
     /// A sampled image of the frame combined with a sampler (GLSL's `sampler2D`): the noise
     /// sampler for filterable images, a nearest one for the others (which the WGSL only loads).
-    CombinedWithSampler(Resource),
+    CombinedWithSampler(String),
     /// An array of this many samplers, every element the noise sampler (naga's HLSL
     /// `nagaSamplerHeap`).
     SamplerArray(u32),
@@ -81,8 +86,9 @@ pub(crate) struct Descriptor<'p> {
     pub plan: Option<&'p Binding>,
 }
 
-/// The descriptors of `pass`: the plan's bindings for the committed SPIR-V, else `slots`.
+/// The descriptors of `pass`: the plan's bindings for the program's SPIR-V, else `slots`.
 pub(crate) fn descriptors<'p>(
+    plan: &FramePlan,
     pass: &'p Pass,
     slots: Option<&[Slot]>,
 ) -> Result<Vec<Descriptor<'p>>, Error> {
@@ -91,13 +97,12 @@ pub(crate) fn descriptors<'p>(
             .bindings
             .iter()
             .map(|b| {
-                crate::pipeline::check_binding(b)?;
                 Ok(Descriptor {
                     set: b.group,
                     binding: b.binding,
                     ty: descriptor_type(b)?,
                     count: 1,
-                    content: SlotContent::Plan(b.resource),
+                    content: SlotContent::Plan(plan.resources[b.resource].name.clone()),
                     plan: Some(b),
                 })
             })
@@ -114,29 +119,27 @@ pub(crate) fn descriptors<'p>(
                 pass.name, slot.set, slot.binding
             )));
         }
-        let plan_binding = |r: Resource| {
+        let plan_binding = |r: &str| {
             pass.bindings
                 .iter()
-                .find(|b| b.resource == r)
+                .find(|b| plan.resources[b.resource].name == r)
                 .ok_or_else(|| {
                     Error::Shader(format!(
-                        "pass `{}`: slot {}/{} binds {r:?}, which the pass's plan does not use",
+                        "pass `{}`: slot {}/{} binds `{r}`, which the pass's plan does not use",
                         pass.name, slot.set, slot.binding
                     ))
                 })
         };
-        let (ty, count, plan) = match slot.content {
+        let (ty, count, bound) = match &slot.content {
             SlotContent::Plan(r) => {
                 let b = plan_binding(r)?;
-                crate::pipeline::check_binding(b)?;
                 (descriptor_type(b)?, 1, Some(b))
             }
             SlotContent::CombinedWithSampler(r) => {
                 let b = plan_binding(r)?;
-                crate::pipeline::check_binding(b)?;
-                if b.info.kind != "sampled-texture" {
+                if b.info.kind != BindingKind::SampledTexture {
                     return Err(Error::Shader(format!(
-                        "pass `{}`: slot {}/{} combines {r:?} with a sampler, but the WGSL declares a {}",
+                        "pass `{}`: slot {}/{} combines `{r}` with a sampler, but the WGSL declares a {:?}",
                         pass.name, slot.set, slot.binding, b.info.kind
                     )));
                 }
@@ -148,7 +151,7 @@ pub(crate) fn descriptors<'p>(
                     pass.name, slot.set, slot.binding
                 )));
             }
-            SlotContent::SamplerArray(n) => (vk::DescriptorType::SAMPLER, n, None),
+            SlotContent::SamplerArray(n) => (vk::DescriptorType::SAMPLER, *n, None),
             SlotContent::SamplerIndices(_) => (vk::DescriptorType::STORAGE_BUFFER, 1, None),
         };
         out.push(Descriptor {
@@ -156,8 +159,8 @@ pub(crate) fn descriptors<'p>(
             binding: slot.binding,
             ty,
             count,
-            content: slot.content,
-            plan,
+            content: slot.content.clone(),
+            plan: bound,
         });
     }
     Ok(out)

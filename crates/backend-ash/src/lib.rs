@@ -1,56 +1,67 @@
-//! Runs Stratus's frame plan on raw Vulkan (ash), from the committed SPIR-V in `spirv-out/`.
+//! Runs Stratus's frame graph on raw Vulkan (ash), from the program's SPIR-V (the committed
+//! `spirv-out/`, embedded).
 //!
-//! The steps mirror backend-wgpu's, in the same order: pick a device, build the variant's
-//! pipelines, upload the uniforms and noise, create the frame's images and the statistics
-//! buffer, record every pass of the plan with timestamps around it, read back. The one
-//! difference in what runs: wgpu translates the WGSL itself (with the plan's override values),
-//! while this backend loads the exact bytes of `spirv-out/<module>.<variant>.spv`, where
-//! `cargo xtask build-shaders` baked the same values in. The descriptor set layouts come
-//! from the plan's bindings, which are the manifest's reflection of the WGSL; nothing here
-//! keeps a copy of the shader interface by hand.
-//!
-//! [`Renderer::render_with`] runs the same frame from SPIR-V supplied per pass instead (naga's
-//! GLSL or HLSL compiled by glslang, in the conformance suite); each [`PassShader`] lists the
-//! descriptors its module declares (see [`Shaders`]).
+//! The renderer is persistent and reads like backend-wgpu: the first frame of a plan creates
+//! what it needs (resources by name, a pipeline and render pass per pass, descriptor sets,
+//! framebuffers, a query pool); later frames only write the uniform block and record commands.
+//! A new plan rebuilds only the resources whose size, format or usage changed and the pipelines
+//! it lacks. Noise is uploaded when a different `Arc<NoiseSet>` arrives. History resources
+//! ping-pong: frame N's `name.previous` is what frame N-1 wrote as `name`. The one difference
+//! in what runs: wgpu translates the WGSL itself (with the plan's override values), while this
+//! backend loads the exact bytes of `<module>.<variant>.spv`, where `cargo xtask
+//! build-shaders` baked the same values in. Descriptor set layouts come from the plan's
+//! bindings (the manifest's reflection); barriers come from the same reflection (what every
+//! binding reads or writes).
 //!
 //! With [`Options::validation`] the Khronos validation layer runs with synchronization
 //! validation, and every warning or error it reports (leaked objects at device destruction
 //! included) turns into an [`Error::Validation`] from [`Renderer::new`], [`Renderer::render`]
 //! or [`Renderer::finish`].
+//!
+//! With the `conformance` feature, `Renderer::render_with` runs the same frames from SPIR-V
+//! supplied per pass (naga's GLSL or HLSL compiled by glslang): the conformance suite's paths.
 
 #![deny(missing_docs)]
 
 mod error;
-mod frame;
 mod gpu;
 mod interface;
 mod pipeline;
+mod resources;
 
 use std::{
     collections::HashMap,
     hash::{Hash, Hasher},
+    sync::Arc,
     time::Instant,
 };
 
 use ash::vk;
 use gpu_allocator::MemoryLocation;
+use stratus_graph::{
+    Backend, BackendError, FrameInput, FrameOutput, FramePlan, PassTiming, Program,
+    backend::{cpu_wall_timings, frame_flags, history_half, timings_from_ticks, upload_data},
+    desc::{Lifetime, OutputRole, ResourceKind},
+    named_counters,
+    plan::{Pass, PassKind, PlanResource, Requirements},
+};
 use stratus_noise::NoiseSet;
 use stratus_scene::FrameUniforms;
-use stratus_shaders::{
-    FrameOutput, FramePlan, PassTiming, Resource,
-    plan::{COUNTERS, Pass, named_counters},
-};
 
-pub use crate::{
-    error::Error,
-    interface::{PassShader, Shaders, Slot, SlotContent},
-};
+pub use crate::error::Error;
+#[cfg(not(feature = "conformance"))]
+use crate::interface::{PassShader, Shaders};
+#[cfg(feature = "conformance")]
+pub use crate::interface::{PassShader, Shaders, Slot, SlotContent};
 use crate::{
     error::vk,
-    frame::{COLOR_LAYER, Frame, Image, Tracker, Use, image_needs, texel_size},
-    gpu::Gpu,
-    interface::{Descriptor, descriptors},
-    pipeline::{PassPipeline, module_from_words, shader_module, view_type},
+    gpu::{FormatNeed, Gpu},
+    interface::{Descriptor, SlotContent as Content, descriptors},
+    pipeline::{Entries, PassPipeline, RasterTargets, module_from_words},
+    resources::{
+        COLOR_LAYER, GpuBuffer, GpuImage, Key, Tracker, Use, image_needs, range, view_type,
+        vk_format,
+    },
 };
 
 /// How to create the renderer.
@@ -61,64 +72,75 @@ pub struct Options {
     pub validation: bool,
 }
 
-/// The stage of the timestamps written before and after every dispatch: BOTTOM_OF_PIPE, as
+/// The stage of the timestamps written before and after every pass: BOTTOM_OF_PIPE, as
 /// wgpu-hal writes its pass timestamps, so both backends measure the same span.
 ///
 /// On lavapipe (llvmpipe) a dispatch runs synchronously and a non-TOP_OF_PIPE timestamp
 /// flushes first, so these stamps bracket the dispatch exactly, as long as llvmpipe has no
-/// framebuffer bound. With a framebuffer bound (any render pass, e.g. wgpu's zero-initialising
-/// clear of a texture that lacks COPY_DST), llvmpipe bins the timestamp into the rasteriser's
-/// tiles and only takes the time at the *next* flush, which moves a pass's cost out of its
-/// window. This backend never begins a render pass, so its stamps stay exact; measured on
-/// lavapipe against each pass submitted alone (`examples/timestamps.rs`).
+/// framebuffer bound. With a framebuffer bound (a raster pass), llvmpipe bins the timestamp
+/// into the rasteriser's tiles and only takes the time at the *next* flush, so on lavapipe a
+/// raster pass's own time is not exact (compute passes before it are unaffected); measured
+/// against each pass submitted alone (`examples/timestamps.rs`).
 const TIMESTAMP_STAGE: vk::PipelineStageFlags = vk::PipelineStageFlags::BOTTOM_OF_PIPE;
 
-/// What a frame binds besides the samplers (which the [`Frame`] holds).
-struct Bound<'a> {
-    uniform: frame::Buffer,
-    stats: frame::Buffer,
-    /// Zeros for naga's HLSL sampler index buffers, where a supplied module has one.
-    indices: Option<frame::Buffer>,
-    images: &'a HashMap<Resource, Image>,
-}
-
-/// Which pipeline a pass runs: the committed SPIR-V's, by variant and entry point, or a
-/// supplied module's, by a hash of the [`PassShader`] (words, entry point and slots).
+/// Which pipeline a pass runs: the program's SPIR-V, by file and pass, or a supplied module's,
+/// by a hash of the [`PassShader`] (words, entry point and slots).
 #[derive(Clone, Debug, PartialEq, Eq, Hash)]
 enum PipelineKey {
-    Committed { variant: String, entry: String },
+    Program { spv: String, pass: String },
     Supplied(u64),
 }
 
-impl PipelineKey {
-    fn of(plan: &FramePlan, pass: &Pass, shader: Option<&PassShader>) -> Self {
-        match shader {
-            None => Self::Committed {
-                variant: plan.variant.clone(),
-                entry: pass.entry_point.clone(),
-            },
-            Some(s) => {
-                let mut h = std::collections::hash_map::DefaultHasher::new();
-                s.hash(&mut h);
-                Self::Supplied(h.finish())
-            }
-        }
-    }
+/// The GPU side of a resource of the plan.
+struct Resource {
+    desc: PlanResource,
+    uploaded: Option<[u32; 3]>,
+    object: Object,
 }
 
-/// The supplied module of pass `i`, if the frame runs supplied modules.
-fn pass_shader(shaders: &Shaders, i: usize) -> Option<&PassShader> {
-    match shaders {
-        Shaders::Committed => None,
-        Shaders::PerPass(list) => list.get(i),
-    }
+enum Object {
+    /// The renderer's one uniform block.
+    Uniform,
+    Buffer(GpuBuffer),
+    /// One image, or two for a history pair.
+    Images(Vec<GpuImage>),
+    Sampler(vk::Sampler),
 }
 
-/// A Vulkan device ready to render frames. Pipelines are cached per (variant, entry point),
-/// and per supplied module.
+/// What was built for one plan (and set of shaders): descriptor sets and framebuffers.
+struct State {
+    plan: FramePlan,
+    shaders: Shaders,
+    keys: Vec<PipelineKey>,
+    pool: vk::DescriptorPool,
+    /// Per pass, per history parity, one set per `@group`.
+    sets: Vec<Vec<Vec<vk::DescriptorSet>>>,
+    /// Per raster pass, per history parity (empty for compute passes).
+    framebuffers: Vec<Vec<vk::Framebuffer>>,
+    /// Supplied modules only: a nearest sampler for non-filterable combined images, and the
+    /// zeros naga's HLSL sampler index buffers read.
+    nearest: vk::Sampler,
+    indices: Option<GpuBuffer>,
+}
+
+/// A Vulkan device ready to render frames of Stratus's frame graph.
 pub struct Renderer {
+    program: Arc<Program>,
     modules: HashMap<String, vk::ShaderModule>,
     pipelines: HashMap<PipelineKey, PassPipeline>,
+    resources: HashMap<String, Resource>,
+    uniform: Option<GpuBuffer>,
+    state: Option<State>,
+    tracker: Tracker,
+    noise: Option<Arc<NoiseSet>>,
+    query_pool: vk::QueryPool,
+    query_count: u32,
+    readbacks: HashMap<String, GpuBuffer>,
+    /// Frames rendered since the history resources were (re)created.
+    history_frames: u64,
+    /// Frames rendered.
+    frame: u64,
+    created: u64,
     cpu_timing: bool,
     torn_down: bool,
     gpu: Gpu,
@@ -127,13 +149,32 @@ pub struct Renderer {
 impl Renderer {
     /// Loads the Vulkan loader, creates an instance (with validation when asked), picks a
     /// device (a real GPU before a CPU driver such as lavapipe, as backend-wgpu does) that
-    /// has a compute queue and every image format the frame needs, and creates the device,
-    /// its command pool and memory allocator.
+    /// has a compute and graphics queue and every image format the frame graph needs, and
+    /// creates the device, its command pool and memory allocator.
     pub fn new(options: Options) -> Result<Self, Error> {
-        let gpu = Gpu::new(options.validation)?;
+        let program = Program::embedded().map_err(|e| Error::Shader(e.to_string()))?;
+        Self::with_program(options, program)
+    }
+
+    /// As [`Renderer::new`], running `program` (a test's own graph and shaders).
+    pub fn with_program(options: Options, program: Arc<Program>) -> Result<Self, Error> {
+        let needs = format_needs(&program)?;
+        let gpu = Gpu::new(options.validation, &needs)?;
         Ok(Self {
+            program,
             modules: HashMap::new(),
             pipelines: HashMap::new(),
+            resources: HashMap::new(),
+            uniform: None,
+            state: None,
+            tracker: Tracker::default(),
+            noise: None,
+            query_pool: vk::QueryPool::null(),
+            query_count: 0,
+            readbacks: HashMap::new(),
+            history_frames: 0,
+            frame: 0,
+            created: 0,
             cpu_timing: false,
             torn_down: false,
             gpu,
@@ -157,43 +198,53 @@ impl Renderer {
         self.cpu_timing = on;
     }
 
-    /// Renders one frame of `plan` with these uniforms and noise textures, from the committed
-    /// SPIR-V.
-    pub fn render(
-        &mut self,
-        plan: &FramePlan,
-        uniforms: &FrameUniforms,
-        noise: &NoiseSet,
-    ) -> Result<FrameOutput, Error> {
-        self.render_with(plan, &Shaders::Committed, uniforms, noise)
+    /// GPU objects this renderer has created so far.
+    pub fn objects_created(&self) -> u64 {
+        self.created
     }
 
-    /// Renders one frame of `plan` from `shaders`: the committed SPIR-V (as
-    /// [`Renderer::render`]) or one supplied module per pass. Everything but the modules and
-    /// their descriptor layouts is the same frame: resources, barriers, timestamps, readback.
+    /// Renders one frame from the program's SPIR-V, waits for it, and reads back what
+    /// `frame.readback` asks for.
+    pub fn render(&mut self, frame: &FrameInput<'_>) -> Result<FrameOutput, Error> {
+        self.render_shaders(frame, &Shaders::Committed)
+    }
+
+    /// Renders one frame from `shaders`: the program's SPIR-V (as [`Renderer::render`]) or one
+    /// supplied module per pass. Everything but the modules and their descriptor layouts is
+    /// the same frame: resources, barriers, timestamps, readback.
+    #[cfg(feature = "conformance")]
     pub fn render_with(
         &mut self,
-        plan: &FramePlan,
+        frame: &FrameInput<'_>,
         shaders: &Shaders,
-        uniforms: &FrameUniforms,
-        noise: &NoiseSet,
     ) -> Result<FrameOutput, Error> {
-        match shaders {
-            Shaders::PerPass(list) if list.len() != plan.passes.len() => {
-                return Err(Error::Shader(format!(
-                    "{} supplied shader module(s) for a plan of {} passes",
-                    list.len(),
-                    plan.passes.len()
-                )));
-            }
-            _ => {}
+        self.render_shaders(frame, shaders)
+    }
+
+    fn render_shaders(
+        &mut self,
+        frame: &FrameInput<'_>,
+        shaders: &Shaders,
+    ) -> Result<FrameOutput, Error> {
+        let computes = frame
+            .plan
+            .passes
+            .iter()
+            .filter(|p| matches!(p.kind, PassKind::Compute { .. }))
+            .count();
+        if let Shaders::PerPass(list) = shaders
+            && list.len() != computes
+        {
+            return Err(Error::Shader(format!(
+                "{} supplied shader module(s) for a plan of {computes} compute passes",
+                list.len(),
+            )));
         }
         self.gpu.check_messages()?;
-        let mut frame = Frame::default();
-        let result = self.render_inner(&mut frame, plan, shaders, uniforms, noise);
+        let result = self.render_inner(frame, shaders);
         if result.is_err() {
             // SAFETY: valid device. The frame may still be in flight after a failed step;
-            // nothing can be done about a failure to wait but destroy regardless.
+            // wait, and build everything anew next time (the tracker's states may be stale).
             unsafe {
                 let _ = self.gpu.device.device_wait_idle();
                 let _ = self.gpu.device.reset_command_buffer(
@@ -201,8 +252,9 @@ impl Renderer {
                     vk::CommandBufferResetFlags::empty(),
                 );
             }
+            self.drop_state();
+            self.drop_resources();
         }
-        frame.destroy(&self.gpu.device, &mut self.gpu.allocator);
         self.gpu.check_messages()?;
         result
     }
@@ -222,524 +274,656 @@ impl Renderer {
         // SAFETY: waiting first; then nothing uses the pipelines or modules.
         unsafe {
             let _ = self.gpu.device.device_wait_idle();
+        }
+        self.drop_state();
+        self.drop_resources();
+        let device = &self.gpu.device;
+        // SAFETY: idle (above); each object is destroyed once (drained or taken).
+        unsafe {
             for (_, mut p) in self.pipelines.drain() {
-                p.destroy(&self.gpu.device);
+                p.destroy(device);
             }
             for (_, m) in self.modules.drain() {
-                self.gpu.device.destroy_shader_module(m, None);
+                device.destroy_shader_module(m, None);
             }
+            device.destroy_query_pool(std::mem::take(&mut self.query_pool), None);
+        }
+        for (_, mut b) in self.readbacks.drain() {
+            b.destroy(device, &mut self.gpu.allocator);
+        }
+        if let Some(mut u) = self.uniform.take() {
+            u.destroy(device, &mut self.gpu.allocator);
         }
         self.gpu.destroy();
     }
 
+    /// Destroys what was built for the current plan (the GPU is idle).
+    fn drop_state(&mut self) {
+        if let Some(mut state) = self.state.take() {
+            let device = &self.gpu.device;
+            // SAFETY: the GPU is idle (every submit is waited for); frees the sets too.
+            unsafe {
+                device.destroy_descriptor_pool(state.pool, None);
+                for fb in state.framebuffers.iter().flatten() {
+                    device.destroy_framebuffer(*fb, None);
+                }
+                device.destroy_sampler(state.nearest, None);
+            }
+            if let Some(mut b) = state.indices.take() {
+                b.destroy(device, &mut self.gpu.allocator);
+            }
+        }
+    }
+
+    /// Destroys every resource (the GPU is idle).
+    fn drop_resources(&mut self) {
+        let names: Vec<String> = self.resources.keys().cloned().collect();
+        for name in names {
+            self.drop_resource(&name);
+        }
+        self.noise = None;
+    }
+
+    fn drop_resource(&mut self, name: &str) {
+        let Some(r) = self.resources.remove(name) else {
+            return;
+        };
+        let device = &self.gpu.device;
+        match r.object {
+            Object::Uniform => {}
+            Object::Buffer(mut b) => b.destroy(device, &mut self.gpu.allocator),
+            Object::Images(list) => {
+                for mut i in list {
+                    i.destroy(device, &mut self.gpu.allocator);
+                }
+            }
+            // SAFETY: the GPU is idle.
+            Object::Sampler(s) => unsafe { device.destroy_sampler(s, None) },
+        }
+        self.tracker.remove(name);
+    }
+
     fn render_inner(
         &mut self,
-        frame: &mut Frame,
-        plan: &FramePlan,
+        frame: &FrameInput<'_>,
         shaders: &Shaders,
-        uniforms: &FrameUniforms,
-        noise: &NoiseSet,
     ) -> Result<FrameOutput, Error> {
-        // 1. Pipelines for the plan's variant or the supplied modules (cached).
-        let mut keys = Vec::new();
-        for (i, pass) in plan.passes.iter().enumerate() {
-            keys.push(self.pipeline(plan, pass, pass_shader(shaders, i))?);
-        }
-        let (w, h) = (plan.width, plan.height);
-        let info = &self.gpu.info;
-        if w.max(h) > info.max_image_2d {
-            return Err(Error::Size {
-                width: w,
-                height: h,
-                max: info.max_image_2d,
-                device: info.name.clone(),
-            });
-        }
+        let t0 = Instant::now();
+        self.prepare(frame, shaders)?;
+        let plan = frame.plan;
+        let flags = frame_flags(frame, self.history_frames > 0);
+        let run: Vec<usize> = (0..plan.passes.len())
+            .filter(|&i| plan.passes[i].runs(&flags))
+            .collect();
         let timestamps = self.has_timestamps();
 
-        // 2. Resources: uniforms, noise, the frame's images and the statistics buffer.
-        let device = &self.gpu.device;
-        let allocator = &mut *self.gpu.allocator;
-        let host = MemoryLocation::CpuToGpu;
-        let bytes = bytemuck::bytes_of(uniforms);
-        let uniform = frame.buffer(
-            device,
-            allocator,
-            "frame",
-            bytes.len() as u64,
-            vk::BufferUsageFlags::UNIFORM_BUFFER,
-            host,
-        )?;
-        frame.mapped(uniform)?.copy_from_slice(bytes);
+        // 1. The uniform block (host-visible; the previous frame was waited for).
+        let uniforms: FrameUniforms = frame.scene.uniforms();
+        self.uniform
+            .as_mut()
+            .expect("created by prepare")
+            .mapped()?
+            .copy_from_slice(bytemuck::bytes_of(&uniforms));
 
-        // backend-wgpu's `create_texture_with_data` stages through a buffer too; here all
-        // four textures share one staging buffer and are copied in one command buffer.
-        let uploads: [(Resource, [u32; 3], &[u8]); 4] = [
-            (Resource::Shape, noise.shape.size, &noise.shape.data),
-            (Resource::Detail, noise.detail.size, &noise.detail.data),
-            (
-                Resource::Weather,
-                [noise.weather.size[0], noise.weather.size[1], 1],
-                &noise.weather.data,
-            ),
-            (
-                Resource::Curl,
-                [noise.curl.size[0], noise.curl.size[1], 1],
-                &noise.curl.data,
-            ),
-        ];
-        let mut offsets = Vec::new();
-        let mut staging_size = 0u64;
-        for (resource, [x, y, z], data) in &uploads {
-            let expected = u64::from(*x) * u64::from(*y) * u64::from(*z) * 4;
-            if data.len() as u64 != expected || expected == 0 {
-                return Err(Error::Shader(format!(
-                    "the {resource:?} noise texture has {} bytes, {expected} expected for {x}x{y}x{z} RGBA8",
-                    data.len()
-                )));
-            }
-            offsets.push(staging_size);
-            staging_size += expected;
-        }
-        let staging = frame.buffer(
-            device,
-            allocator,
-            "noise staging",
-            staging_size,
-            vk::BufferUsageFlags::TRANSFER_SRC,
-            host,
-        )?;
-        {
-            let mapped = frame.mapped(staging)?;
-            for ((_, _, data), &offset) in uploads.iter().zip(&offsets) {
-                let start = offset as usize;
-                mapped[start..start + data.len()].copy_from_slice(data);
-            }
-        }
-        let mut images: HashMap<Resource, Image> = HashMap::new();
-        for (resource, [x, y, z], _) in &uploads {
-            let image = frame.image(
-                device,
-                allocator,
-                &format!("{resource:?}"),
-                view_type(*resource),
-                Gpu::format_of(*resource)?,
-                vk::Extent3D {
-                    width: *x,
-                    height: *y,
-                    depth: *z,
-                },
-                image_needs(*resource).0,
-            )?;
-            images.insert(*resource, image);
-        }
-        // As backend-wgpu: linear, repeating, one mip level, lod clamp [0, 32], no anisotropy.
-        let sampler_info = vk::SamplerCreateInfo::default()
-            .mag_filter(vk::Filter::LINEAR)
-            .min_filter(vk::Filter::LINEAR)
-            .mipmap_mode(vk::SamplerMipmapMode::NEAREST)
-            .address_mode_u(vk::SamplerAddressMode::REPEAT)
-            .address_mode_v(vk::SamplerAddressMode::REPEAT)
-            .address_mode_w(vk::SamplerAddressMode::REPEAT)
-            .min_lod(0.0)
-            .max_lod(32.0);
-        // SAFETY: valid device and info.
-        frame.sampler =
-            unsafe { device.create_sampler(&sampler_info, None) }.map_err(vk("vkCreateSampler"))?;
-        let supplied = matches!(shaders, Shaders::PerPass(_));
-        if supplied {
-            // For images that a supplied module reads through a combined image sampler but
-            // that are not filterable (GLSL has no image without a sampler to load from).
-            let nearest = sampler_info
-                .mag_filter(vk::Filter::NEAREST)
-                .min_filter(vk::Filter::NEAREST);
-            // SAFETY: valid device and info.
-            frame.nearest_sampler =
-                unsafe { device.create_sampler(&nearest, None) }.map_err(vk("vkCreateSampler"))?;
-        }
-        // Zeros for naga's HLSL sampler index buffers: every sampler is heap element 0.
-        let index_words = match shaders {
-            Shaders::Committed => 0,
-            Shaders::PerPass(list) => list
-                .iter()
-                .flat_map(|s| &s.slots)
-                .filter_map(|slot| match slot.content {
-                    SlotContent::SamplerIndices(n) => Some(n),
-                    _ => None,
-                })
-                .max()
-                .unwrap_or(0),
-        };
-        let indices = if index_words > 0 {
-            let size = u64::from(index_words) * 4;
-            let buffer = frame.buffer(
-                device,
-                allocator,
-                "sampler indices",
-                size,
-                vk::BufferUsageFlags::STORAGE_BUFFER,
-                host,
-            )?;
-            frame.mapped(buffer)?.fill(0);
-            Some(buffer)
-        } else {
-            None
-        };
-        let targets = [Resource::Cloud, Resource::Depth, Resource::Image];
-        for resource in targets {
-            let image = frame.image(
-                device,
-                allocator,
-                &format!("{resource:?}"),
-                vk::ImageViewType::TYPE_2D,
-                Gpu::format_of(resource)?,
-                vk::Extent3D {
-                    width: w,
-                    height: h,
-                    depth: 1,
-                },
-                image_needs(resource).0,
-            )?;
-            images.insert(resource, image);
-        }
-        let stats_size = (COUNTERS.len() * 4) as u64;
-        let stats = frame.buffer(
-            device,
-            allocator,
-            "stats",
-            stats_size,
-            vk::BufferUsageFlags::STORAGE_BUFFER
-                | vk::BufferUsageFlags::TRANSFER_DST
-                | vk::BufferUsageFlags::TRANSFER_SRC,
-            MemoryLocation::GpuOnly,
-        )?;
-        // Readback buffers, rows tightly packed (Vulkan, unlike WebGPU, needs no 256-byte
-        // row alignment, so there is nothing to strip when reading).
-        let mut readbacks = Vec::new();
-        for resource in targets {
-            let image = images[&resource];
-            let size = u64::from(w) * u64::from(h) * texel_size(image.format);
-            let buffer = frame.buffer(
-                device,
-                allocator,
-                "readback",
-                size,
-                vk::BufferUsageFlags::TRANSFER_DST,
-                MemoryLocation::GpuToCpu,
-            )?;
-            readbacks.push((image, buffer));
-        }
-        let stats_rb = frame.buffer(
-            device,
-            allocator,
-            "stats readback",
-            stats_size,
-            vk::BufferUsageFlags::TRANSFER_DST,
-            MemoryLocation::GpuToCpu,
-        )?;
-        let query_count = 2 * plan.passes.len() as u32;
-        if timestamps && query_count > 0 {
-            let info = vk::QueryPoolCreateInfo::default()
-                .query_type(vk::QueryType::TIMESTAMP)
-                .query_count(query_count);
-            // SAFETY: valid device and info.
-            frame.query_pool = unsafe { device.create_query_pool(&info, None) }
-                .map_err(vk("vkCreateQueryPool"))?;
-        }
-
-        let sets = self.descriptor_sets(
-            frame,
-            plan,
-            shaders,
-            &keys,
-            &Bound {
-                uniform,
-                stats,
-                indices,
-                images: &images,
-            },
-        )?;
-
-        // 3. Record: uploads, then every pass with barriers between and timestamps around.
+        // 2. Record: counters cleared, then every pass with barriers before and timestamps
+        // around it.
         let cb = self.gpu.command_buffer;
-        let mut tracker = Tracker::default();
-        for (&resource, image) in &images {
-            tracker.add_image(resource, image.image, Use::NEW);
-        }
-        tracker.add_buffer(Resource::Stats, stats.buffer, Use::NEW);
         self.begin()?;
-        let device = &self.gpu.device;
+        let mut waited = 0.0;
         // SAFETY (this block and the recording below): `cb` is recording; every handle
-        // belongs to this device and lives until the frame is destroyed after the wait.
+        // belongs to this device and lives until the renderer changes plan after a wait.
         unsafe {
-            if timestamps && query_count > 0 {
-                device.cmd_reset_query_pool(cb, frame.query_pool, 0, query_count);
+            if timestamps {
+                self.gpu
+                    .device
+                    .cmd_reset_query_pool(cb, self.query_pool, 0, self.query_count);
             }
-            let wants: Vec<_> = uploads.iter().map(|u| (u.0, Use::COPY_DST)).collect();
-            tracker.barrier(device, cb, &wants);
-            for ((resource, _, _), &offset) in uploads.iter().zip(&offsets) {
-                let image = images[resource];
-                let region = vk::BufferImageCopy::default()
-                    .buffer_offset(offset)
-                    .image_subresource(COLOR_LAYER)
-                    .image_extent(image.extent);
-                device.cmd_copy_buffer_to_image(
-                    cb,
-                    staging.buffer,
-                    image.image,
-                    vk::ImageLayout::TRANSFER_DST_OPTIMAL,
-                    &[region],
-                );
+            if plan.stats {
+                for r in plan
+                    .resources
+                    .iter()
+                    .filter(|r| r.kind == ResourceKind::Counters)
+                {
+                    if let Some(Object::Buffer(b)) = self.resources.get(&r.name).map(|r| &r.object)
+                    {
+                        let fill = Use {
+                            layout: vk::ImageLayout::UNDEFINED,
+                            ..Use::COPY_DST
+                        };
+                        self.tracker
+                            .barrier(&self.gpu.device, cb, &[((r.name.clone(), 0), fill)]);
+                        self.gpu
+                            .device
+                            .cmd_fill_buffer(cb, b.buffer, 0, vk::WHOLE_SIZE, 0);
+                    }
+                }
             }
-            let fill = Use {
-                layout: vk::ImageLayout::UNDEFINED,
-                ..Use::COPY_DST
-            };
-            tracker.barrier(device, cb, &[(Resource::Stats, fill)]);
-            device.cmd_fill_buffer(cb, stats.buffer, 0, vk::WHOLE_SIZE, 0);
         }
         let mut wall = Vec::new();
         if !timestamps {
-            // Unlike backend-wgpu, the upload is submitted on its own first, so that the
-            // first pass's CPU time is the pass alone.
-            self.submit_and_wait()?;
+            // The clear is submitted on its own first, so that the first pass's CPU time is
+            // the pass alone.
+            waited += self.submit_and_wait()?;
             self.begin()?;
         }
-        for (i, pass) in plan.passes.iter().enumerate() {
-            let wants = pass
-                .bindings
-                .iter()
-                .filter_map(|b| Use::of_binding(b).transpose().map(|u| Ok((b.resource, u?))))
-                .collect::<Result<Vec<_>, Error>>()?;
-            let p = self.pass_pipeline(&keys[i], pass)?;
-            let device = &self.gpu.device;
-            let query = 2 * i as u32;
-            // SAFETY: as above.
-            unsafe {
-                tracker.barrier(device, cb, &wants);
-                if timestamps {
-                    device.cmd_write_timestamp(cb, TIMESTAMP_STAGE, frame.query_pool, query);
-                }
-                device.cmd_bind_pipeline(cb, vk::PipelineBindPoint::COMPUTE, p.pipeline);
-                if !sets[i].is_empty() {
-                    device.cmd_bind_descriptor_sets(
-                        cb,
-                        vk::PipelineBindPoint::COMPUTE,
-                        p.layout,
-                        0,
-                        &sets[i],
-                        &[],
-                    );
-                }
-                let [x, y, z] = pass.dispatch;
-                device.cmd_dispatch(cb, x, y, z);
-                if timestamps {
-                    device.cmd_write_timestamp(cb, TIMESTAMP_STAGE, frame.query_pool, query + 1);
-                }
-            }
+        for (k, &i) in run.iter().enumerate() {
+            self.record_pass(plan, i, timestamps.then_some(2 * k as u32))?;
             if !timestamps {
                 // No timestamps: submit this pass alone and time it on the CPU.
                 let t = Instant::now();
-                self.submit_and_wait()?;
-                wall.push(t.elapsed().as_secs_f64() * 1e3);
+                let w = self.submit_and_wait()?;
+                let ms = t.elapsed().as_secs_f64() * 1e3;
+                wall.push(ms);
+                waited += w;
                 self.begin()?;
             }
         }
 
-        // 4. Copy the images and counters to host-visible buffers, submit, wait, read back.
-        let device = &self.gpu.device;
-        let mut wants: Vec<_> = targets.iter().map(|&r| (r, Use::COPY_SRC)).collect();
-        wants.push((
-            Resource::Stats,
-            Use {
-                layout: vk::ImageLayout::UNDEFINED,
-                ..Use::COPY_SRC
-            },
-        ));
-        // SAFETY: as above.
-        unsafe {
-            tracker.barrier(device, cb, &wants);
-            for (image, buffer) in &readbacks {
-                let region = vk::BufferImageCopy::default()
-                    .image_subresource(COLOR_LAYER)
-                    .image_extent(image.extent);
-                device.cmd_copy_image_to_buffer(
-                    cb,
-                    image.image,
-                    vk::ImageLayout::TRANSFER_SRC_OPTIMAL,
-                    buffer.buffer,
-                    &[region],
-                );
-            }
-            let region = vk::BufferCopy::default().size(stats_size);
-            device.cmd_copy_buffer(cb, stats.buffer, stats_rb.buffer, &[region]);
-            let to_host = vk::MemoryBarrier::default()
-                .src_access_mask(vk::AccessFlags::TRANSFER_WRITE)
-                .dst_access_mask(vk::AccessFlags::HOST_READ);
-            device.cmd_pipeline_barrier(
-                cb,
-                vk::PipelineStageFlags::TRANSFER,
-                vk::PipelineStageFlags::HOST,
-                vk::DependencyFlags::empty(),
-                &[to_host],
-                &[],
-                &[],
-            );
-        }
-        self.submit_and_wait()?;
+        // 3. Copy what the frame reads back to host-visible buffers, submit, wait, read.
+        let copies = self.copy_readbacks(frame)?;
+        let t_submit = Instant::now();
+        let w = self.submit_and_wait()?;
+        let cpu_ms = t_submit.duration_since(t0).as_secs_f64() * 1e3 - waited
+            + (t_submit.elapsed().as_secs_f64() * 1e3 - w).max(0.0);
+        self.frame += 1;
+        self.history_frames += 1;
 
-        // gpu-allocator picks HOST_COHERENT memory for GpuToCpu, so no invalidation is needed.
-        let radiance = bytemuck::pod_collect_to_vec::<u8, f32>(frame.mapped(readbacks[0].1)?);
-        let depth = bytemuck::pod_collect_to_vec::<u8, f32>(frame.mapped(readbacks[1].1)?);
-        let image = frame.mapped(readbacks[2].1)?.to_vec();
-        let raw_stats = bytemuck::pod_collect_to_vec::<u8, u32>(frame.mapped(stats_rb)?);
-        let timings = if timestamps {
-            self.timestamps(frame, plan)?
-        } else {
-            plan.passes
-                .iter()
-                .zip(wall)
-                .map(|(p, ms)| PassTiming {
-                    pass: p.name.clone(),
-                    ms,
-                    source: "cpu-wall",
-                })
-                .collect()
-        };
-        Ok(FrameOutput {
-            width: w,
-            height: h,
-            radiance,
-            depth,
-            image,
-            stats: plan.stats.then(|| named_counters(&raw_stats)),
-            timings,
+        let mut out = FrameOutput {
+            width: plan.width,
+            height: plan.height,
+            cpu_ms,
             device: self.adapter(),
+            ..Default::default()
+        };
+        // gpu-allocator picks HOST_COHERENT memory for GpuToCpu, so no invalidation is needed.
+        for (name, role) in copies {
+            let bytes = self
+                .readbacks
+                .get_mut(&name)
+                .expect("created by copy_readbacks")
+                .mapped()?
+                .to_vec();
+            match role {
+                Some(Readout::Output(OutputRole::Radiance)) => {
+                    out.radiance = bytemuck::pod_collect_to_vec(&bytes)
+                }
+                Some(Readout::Output(OutputRole::Depth)) => {
+                    out.depth = bytemuck::pod_collect_to_vec(&bytes)
+                }
+                Some(Readout::Output(OutputRole::Image)) => out.image = bytes,
+                Some(Readout::Counters) => {
+                    let raw: Vec<u32> = bytemuck::pod_collect_to_vec(&bytes);
+                    out.stats = Some(named_counters(plan.counters(), &raw));
+                }
+                None => {
+                    out.resources.insert(name, bytes);
+                }
+            }
+        }
+        let ran: Vec<&Pass> = run.iter().map(|&i| &plan.passes[i]).collect();
+        out.timings = if timestamps {
+            self.timestamps(&ran)?
+        } else {
+            cpu_wall_timings(&ran, &wall)
+        };
+        Ok(out)
+    }
+
+    /// Creates or updates what `frame` needs: resources, uploads, pipelines, descriptor sets,
+    /// framebuffers, queries. Nothing when neither the plan, the shaders nor the noise changed.
+    fn prepare(&mut self, frame: &FrameInput<'_>, shaders: &Shaders) -> Result<(), Error> {
+        let plan = frame.plan;
+        let noise_changed = !self
+            .noise
+            .as_ref()
+            .is_some_and(|n| Arc::ptr_eq(n, frame.noise));
+        let plan_changed = self
+            .state
+            .as_ref()
+            .is_none_or(|s| &s.plan != plan || &s.shaders != shaders);
+        if !plan_changed && !noise_changed {
+            return Ok(());
+        }
+        let info = &self.gpu.info;
+        if plan.width.max(plan.height) > info.max_image_2d {
+            return Err(Error::Size {
+                width: plan.width,
+                height: plan.height,
+                max: info.max_image_2d,
+                device: info.name.clone(),
+            });
+        }
+        if plan_changed {
+            self.drop_state();
+        }
+        if self.uniform.is_none() {
+            let size = std::mem::size_of::<FrameUniforms>() as u64;
+            self.uniform = Some(GpuBuffer::new(
+                &self.gpu.device,
+                &mut self.gpu.allocator,
+                "frame",
+                size,
+                vk::BufferUsageFlags::UNIFORM_BUFFER,
+                MemoryLocation::CpuToGpu,
+            )?);
+            self.created += 1;
+        }
+
+        // Resources: keep those whose signature is unchanged.
+        let mut rebuilt = false;
+        for r in &plan.resources {
+            let uploaded = match &r.upload {
+                Some(src) if r.kind == ResourceKind::Texture => Some(
+                    upload_data(src, frame.noise)
+                        .map_err(|e| Error::Shader(format!("resource `{}`: {e}", r.name)))?
+                        .0,
+                ),
+                _ => None,
+            };
+            let keep = self.resources.get(&r.name).is_some_and(|have| {
+                have.desc.signature() == r.signature() && have.uploaded == uploaded
+            });
+            if keep {
+                continue;
+            }
+            self.drop_resource(&r.name);
+            let object = self.create_resource(r, uploaded)?;
+            match &object {
+                Object::Images(list) => {
+                    for (half, image) in list.iter().enumerate() {
+                        self.tracker
+                            .add_image((r.name.clone(), half), image, Use::NEW);
+                    }
+                }
+                Object::Buffer(b) => {
+                    self.tracker
+                        .add_buffer((r.name.clone(), 0), b.buffer, Use::NEW)
+                }
+                _ => {}
+            }
+            self.resources.insert(
+                r.name.clone(),
+                Resource {
+                    desc: r.clone(),
+                    uploaded,
+                    object,
+                },
+            );
+            rebuilt = true;
+            if r.lifetime == Lifetime::History {
+                self.history_frames = 0;
+            }
+        }
+        let stale: Vec<String> = self
+            .resources
+            .keys()
+            .filter(|n| !plan.resources.iter().any(|r| &r.name == *n))
+            .cloned()
+            .collect();
+        for name in stale {
+            self.drop_resource(&name);
+        }
+        if rebuilt || noise_changed {
+            self.upload(plan, frame.noise)?;
+            self.noise = Some(frame.noise.clone());
+        }
+        if self.state.is_none() || rebuilt {
+            self.drop_state();
+            self.build_state(plan, shaders)?;
+        }
+        let queries = 2 * plan.passes.len() as u32;
+        if self.has_timestamps() && self.query_count < queries {
+            let device = &self.gpu.device;
+            // SAFETY: idle (every frame is waited for); the old pool is no longer used.
+            unsafe { device.destroy_query_pool(self.query_pool, None) };
+            let info = vk::QueryPoolCreateInfo::default()
+                .query_type(vk::QueryType::TIMESTAMP)
+                .query_count(queries);
+            // SAFETY: valid device and info.
+            self.query_pool = unsafe { device.create_query_pool(&info, None) }
+                .map_err(vk("vkCreateQueryPool"))?;
+            self.query_count = queries;
+            self.created += 1;
+        }
+        Ok(())
+    }
+
+    fn create_resource(
+        &mut self,
+        r: &PlanResource,
+        uploaded: Option<[u32; 3]>,
+    ) -> Result<Object, Error> {
+        let device = &self.gpu.device;
+        let allocator = &mut *self.gpu.allocator;
+        Ok(match r.kind {
+            ResourceKind::Uniform => Object::Uniform,
+            ResourceKind::Counters => {
+                self.created += 1;
+                Object::Buffer(GpuBuffer::new(
+                    device,
+                    allocator,
+                    &r.name,
+                    r.buffer_size().max(4),
+                    vk::BufferUsageFlags::STORAGE_BUFFER
+                        | vk::BufferUsageFlags::TRANSFER_DST
+                        | vk::BufferUsageFlags::TRANSFER_SRC,
+                    MemoryLocation::GpuOnly,
+                )?)
+            }
+            ResourceKind::Sampler => {
+                let s = r
+                    .sampler
+                    .ok_or_else(|| Error::Shader(format!("sampler `{}` has no state", r.name)))?;
+                let info = sampler_info(s);
+                self.created += 1;
+                // SAFETY: valid device and info.
+                Object::Sampler(
+                    unsafe { device.create_sampler(&info, None) }.map_err(vk("vkCreateSampler"))?,
+                )
+            }
+            ResourceKind::Texture => {
+                let [width, height, depth] = uploaded
+                    .or(r.extent)
+                    .ok_or_else(|| Error::Shader(format!("texture `{}` has no size", r.name)))?;
+                let f = r
+                    .format
+                    .ok_or_else(|| Error::Shader(format!("texture `{}` has no format", r.name)))?;
+                let count = if r.lifetime == Lifetime::History {
+                    2
+                } else {
+                    1
+                };
+                let mut list = Vec::new();
+                for _ in 0..count {
+                    list.push(GpuImage::new(
+                        device,
+                        allocator,
+                        &r.name,
+                        view_type(r.dimension),
+                        vk_format(f),
+                        vk::Extent3D {
+                            width,
+                            height,
+                            depth,
+                        },
+                        image_needs(r.usage, f).0,
+                    )?);
+                    self.created += 2;
+                }
+                Object::Images(list)
+            }
         })
     }
 
-    /// Creates the frame's descriptor pool and one descriptor set per pass and set number, and
-    /// writes every descriptor: what is bound where comes from the plan (the manifest's
-    /// reflection) or from a supplied module's slots, the image layouts from
-    /// [`Use::of_binding`].
-    fn descriptor_sets(
-        &self,
-        frame: &mut Frame,
-        plan: &FramePlan,
-        shaders: &Shaders,
-        keys: &[PipelineKey],
-        bound: &Bound<'_>,
-    ) -> Result<Vec<Vec<vk::DescriptorSet>>, Error> {
+    /// Uploads every uploaded texture through one staging buffer, in one submission.
+    fn upload(&mut self, plan: &FramePlan, noise: &NoiseSet) -> Result<(), Error> {
+        let mut list = Vec::new();
+        let mut size = 0u64;
+        for r in plan.resources.iter().filter(|r| r.usage.upload) {
+            let src = r.upload.as_deref().unwrap_or_default();
+            let (_, data) = upload_data(src, noise)
+                .map_err(|e| Error::Shader(format!("resource `{}`: {e}", r.name)))?;
+            list.push((r.name.clone(), size, data));
+            size += data.len() as u64;
+        }
+        if list.is_empty() {
+            return Ok(());
+        }
+        let mut staging = GpuBuffer::new(
+            &self.gpu.device,
+            &mut self.gpu.allocator,
+            "noise staging",
+            size,
+            vk::BufferUsageFlags::TRANSFER_SRC,
+            MemoryLocation::CpuToGpu,
+        )?;
+        self.created += 1;
+        let result = (|| {
+            let mapped = staging.mapped()?;
+            for (_, offset, data) in &list {
+                let start = *offset as usize;
+                mapped[start..start + data.len()].copy_from_slice(data);
+            }
+            self.begin()?;
+            let cb = self.gpu.command_buffer;
+            let wants: Vec<(Key, Use)> = list
+                .iter()
+                .map(|(n, _, _)| ((n.clone(), 0), Use::COPY_DST))
+                .collect();
+            let device = &self.gpu.device;
+            self.tracker.barrier(device, cb, &wants);
+            for (name, offset, _) in &list {
+                let Some(Object::Images(images)) = self.resources.get(name).map(|r| &r.object)
+                else {
+                    continue;
+                };
+                let image = &images[0];
+                let region = vk::BufferImageCopy::default()
+                    .buffer_offset(*offset)
+                    .image_subresource(COLOR_LAYER)
+                    .image_extent(image.extent);
+                // SAFETY: recording; the staging buffer lives until after the wait.
+                unsafe {
+                    device.cmd_copy_buffer_to_image(
+                        cb,
+                        staging.buffer,
+                        image.image,
+                        vk::ImageLayout::TRANSFER_DST_OPTIMAL,
+                        &[region],
+                    );
+                }
+            }
+            self.submit_and_wait().map(|_| ())
+        })();
+        staging.destroy(&self.gpu.device, &mut self.gpu.allocator);
+        result
+    }
+
+    /// Pipelines (cached), the descriptor pool and sets (one per pass, parity and group),
+    /// and the framebuffers of raster passes.
+    fn build_state(&mut self, plan: &FramePlan, shaders: &Shaders) -> Result<(), Error> {
+        let mut keys = Vec::new();
+        for (i, pass) in plan.passes.iter().enumerate() {
+            keys.push(self.pipeline(plan, pass, supplied(shaders, plan, i))?);
+        }
+        let mut state = State {
+            plan: plan.clone(),
+            shaders: shaders.clone(),
+            keys,
+            pool: vk::DescriptorPool::null(),
+            sets: Vec::new(),
+            framebuffers: Vec::new(),
+            nearest: vk::Sampler::null(),
+            indices: None,
+        };
+        let result = self.build_sets(&mut state, shaders);
+        let result = result.and_then(|()| self.build_framebuffers(&mut state));
+        self.state = Some(state);
+        result
+    }
+
+    fn build_sets(&mut self, state: &mut State, shaders: &Shaders) -> Result<(), Error> {
+        let plan = &state.plan;
+        let parities = if plan.has_history() { 2 } else { 1 };
         let device = &self.gpu.device;
         let per_pass = plan
             .passes
             .iter()
             .enumerate()
-            .map(|(i, pass)| descriptors(pass, pass_shader(shaders, i).map(|s| &s.slots[..])))
+            .map(|(i, pass)| {
+                let slots = supplied(shaders, plan, i).map(|s| &s.slots[..]);
+                descriptors(plan, pass, slots)
+            })
             .collect::<Result<Vec<_>, Error>>()?;
+        if let Shaders::PerPass(_) = shaders {
+            // For images that a supplied module reads through a combined image sampler but
+            // that are not filterable (GLSL has no image without a sampler to load from).
+            let info = sampler_info(stratus_graph::plan::SamplerDesc {
+                filter: stratus_graph::desc::Filter::Nearest,
+                address: stratus_graph::desc::AddressMode::Repeat,
+            });
+            // SAFETY: valid device and info.
+            state.nearest =
+                unsafe { device.create_sampler(&info, None) }.map_err(vk("vkCreateSampler"))?;
+            self.created += 1;
+            let words = per_pass
+                .iter()
+                .flatten()
+                .filter_map(|d| match d.content {
+                    Content::SamplerIndices(n) => Some(n),
+                    _ => None,
+                })
+                .max()
+                .unwrap_or(0);
+            if words > 0 {
+                let mut b = GpuBuffer::new(
+                    device,
+                    &mut self.gpu.allocator,
+                    "sampler indices",
+                    u64::from(words) * 4,
+                    vk::BufferUsageFlags::STORAGE_BUFFER,
+                    MemoryLocation::CpuToGpu,
+                )?;
+                b.mapped()?.fill(0);
+                state.indices = Some(b);
+                self.created += 1;
+            }
+        }
+        for (i, list) in per_pass.iter().enumerate() {
+            self.check_limits(&plan.passes[i], list)?;
+        }
         let mut counts: HashMap<vk::DescriptorType, u32> = HashMap::new();
         let mut max_sets = 0;
-        for (i, (pass, list)) in plan.passes.iter().zip(&per_pass).enumerate() {
+        for (key, list) in state.keys.iter().zip(&per_pass) {
             for d in list {
-                *counts.entry(d.ty).or_default() += d.count;
+                *counts.entry(d.ty).or_default() += d.count * parities;
             }
-            max_sets += self.pass_pipeline(&keys[i], pass)?.set_layouts.len() as u32;
+            max_sets += self.pipelines[key].set_layouts.len() as u32 * parities;
         }
         let sizes: Vec<vk::DescriptorPoolSize> = counts
             .iter()
             .map(|(&ty, &n)| vk::DescriptorPoolSize::default().ty(ty).descriptor_count(n))
             .collect();
-        let mut sets: Vec<Vec<vk::DescriptorSet>> = Vec::new();
         if max_sets > 0 && !sizes.is_empty() {
             let info = vk::DescriptorPoolCreateInfo::default()
                 .max_sets(max_sets)
                 .pool_sizes(&sizes);
             // SAFETY: valid device and info.
-            frame.descriptor_pool = unsafe { device.create_descriptor_pool(&info, None) }
+            state.pool = unsafe { device.create_descriptor_pool(&info, None) }
                 .map_err(vk("vkCreateDescriptorPool"))?;
+            self.created += 1;
         }
-        for (i, pass) in plan.passes.iter().enumerate() {
-            let layouts = &self.pass_pipeline(&keys[i], pass)?.set_layouts;
-            if layouts.is_empty() {
-                sets.push(Vec::new());
-                continue;
-            }
-            let info = vk::DescriptorSetAllocateInfo::default()
-                .descriptor_pool(frame.descriptor_pool)
-                .set_layouts(layouts);
-            // SAFETY: the pool has room for every set of the plan.
-            sets.push(
-                unsafe { device.allocate_descriptor_sets(&info) }
-                    .map_err(vk("vkAllocateDescriptorSets"))?,
-            );
-        }
+        let first_sampler = plan
+            .resources
+            .iter()
+            .find_map(|r| match self.resources.get(&r.name).map(|g| &g.object) {
+                Some(Object::Sampler(s)) => Some(*s),
+                _ => None,
+            })
+            .unwrap_or_default();
         enum Info {
             Buffer(vk::DescriptorBufferInfo),
             Images(Vec<vk::DescriptorImageInfo>),
         }
-        let buffer = |buf: &frame::Buffer| {
+        let buffer = |b: vk::Buffer| {
             Info::Buffer(
                 vk::DescriptorBufferInfo::default()
-                    .buffer(buf.buffer)
+                    .buffer(b)
                     .offset(0)
                     .range(vk::WHOLE_SIZE),
             )
         };
         let mut infos = Vec::new();
-        for ((pass, pass_sets), list) in plan.passes.iter().zip(&sets).zip(&per_pass) {
-            for d in list {
-                let missing = |what: String| {
-                    Error::Shader(format!(
-                        "set {} binding {} of pass `{}` needs {what}, which the frame does not have",
-                        d.set, d.binding, pass.name
-                    ))
-                };
-                // The image view and layout of a plan binding that names an image.
-                let image = |r: Resource| -> Result<vk::DescriptorImageInfo, Error> {
-                    let image = bound
-                        .images
-                        .get(&r)
-                        .ok_or_else(|| missing(format!("{r:?}")))?;
-                    let b = d.plan.ok_or_else(|| missing(format!("{r:?}")))?;
-                    let layout = Use::of_binding(b)?
-                        .ok_or_else(|| missing(format!("{r:?}")))?
-                        .layout;
-                    Ok(vk::DescriptorImageInfo::default()
-                        .image_view(image.view)
-                        .image_layout(layout))
-                };
-                let info = match d.content {
-                    SlotContent::Plan(Resource::Frame) => buffer(&bound.uniform),
-                    SlotContent::Plan(Resource::Stats) => buffer(&bound.stats),
-                    SlotContent::Plan(Resource::NoiseSampler) => Info::Images(vec![
-                        vk::DescriptorImageInfo::default().sampler(frame.sampler),
-                    ]),
-                    SlotContent::Plan(r) => Info::Images(vec![image(r)?]),
-                    SlotContent::CombinedWithSampler(r) => {
-                        let sampler = if r.filterable() {
-                            frame.sampler
-                        } else {
-                            frame.nearest_sampler
+        for (i, (pass, list)) in plan.passes.iter().zip(&per_pass).enumerate() {
+            let layouts = &self.pipelines[&state.keys[i]].set_layouts;
+            let raster = matches!(pass.kind, PassKind::Raster { .. });
+            let mut per_parity = Vec::new();
+            for parity in 0..parities {
+                if layouts.is_empty() {
+                    per_parity.push(Vec::new());
+                    continue;
+                }
+                let info = vk::DescriptorSetAllocateInfo::default()
+                    .descriptor_pool(state.pool)
+                    .set_layouts(layouts);
+                // SAFETY: the pool has room for every set of the plan.
+                let sets = unsafe { device.allocate_descriptor_sets(&info) }
+                    .map_err(vk("vkAllocateDescriptorSets"))?;
+                self.created += sets.len() as u64;
+                for d in list {
+                    let missing = |what: String| {
+                        Error::Shader(format!(
+                            "set {} binding {} of pass `{}` needs {what}, which the frame does not have",
+                            d.set, d.binding, pass.name
+                        ))
+                    };
+                    let image = |name: &str| -> Result<(vk::DescriptorImageInfo, bool), Error> {
+                        let r = self
+                            .resources
+                            .get(name)
+                            .ok_or_else(|| missing(format!("`{name}`")))?;
+                        let Object::Images(images) = &r.object else {
+                            return Err(missing(format!("image `{name}`")));
                         };
-                        Info::Images(vec![image(r)?.sampler(sampler)])
-                    }
-                    SlotContent::SamplerArray(n) => Info::Images(vec![
-                        vk::DescriptorImageInfo::default()
-                            .sampler(frame.sampler);
-                        n as usize
-                    ]),
-                    SlotContent::SamplerIndices(_) => buffer(
-                        bound
-                            .indices
-                            .as_ref()
-                            .ok_or_else(|| missing("a sampler index buffer".into()))?,
-                    ),
-                };
-                let set = *pass_sets
-                    .get(d.set as usize)
-                    .ok_or_else(|| missing(format!("descriptor set {}", d.set)))?;
-                infos.push((set, d.binding, d.ty, info));
+                        let b = d.plan.ok_or_else(|| missing(format!("`{name}`")))?;
+                        let half = if r.desc.lifetime == Lifetime::History {
+                            history_half(parity as u64, b.previous)
+                        } else {
+                            0
+                        };
+                        let layout = Use::of_binding(b, shader_stage(raster))
+                            .ok_or_else(|| missing(format!("`{name}`")))?
+                            .layout;
+                        let filterable = r.desc.format.is_some_and(|f| f.filterable());
+                        Ok((
+                            vk::DescriptorImageInfo::default()
+                                .image_view(images[half].view)
+                                .image_layout(layout),
+                            filterable,
+                        ))
+                    };
+                    let info = match &d.content {
+                        Content::Plan(name) => match self.resources.get(name).map(|r| &r.object) {
+                            Some(Object::Uniform) => {
+                                buffer(self.uniform.as_ref().expect("created by prepare").buffer)
+                            }
+                            Some(Object::Buffer(b)) => buffer(b.buffer),
+                            Some(Object::Sampler(s)) => {
+                                Info::Images(vec![vk::DescriptorImageInfo::default().sampler(*s)])
+                            }
+                            Some(Object::Images(_)) => Info::Images(vec![image(name)?.0]),
+                            None => return Err(missing(format!("`{name}`"))),
+                        },
+                        Content::CombinedWithSampler(name) => {
+                            let (info, filterable) = image(name)?;
+                            let sampler = if filterable {
+                                first_sampler
+                            } else {
+                                state.nearest
+                            };
+                            Info::Images(vec![info.sampler(sampler)])
+                        }
+                        Content::SamplerArray(n) => Info::Images(vec![
+                            vk::DescriptorImageInfo::default()
+                                .sampler(first_sampler);
+                            *n as usize
+                        ]),
+                        Content::SamplerIndices(_) => buffer(
+                            state
+                                .indices
+                                .as_ref()
+                                .ok_or_else(|| missing("a sampler index buffer".into()))?
+                                .buffer,
+                        ),
+                    };
+                    let set = *sets
+                        .get(d.set as usize)
+                        .ok_or_else(|| missing(format!("descriptor set {}", d.set)))?;
+                    infos.push((set, d.binding, d.ty, info));
+                }
+                per_parity.push(sets);
             }
+            state.sets.push(per_parity);
         }
         let writes: Vec<_> = infos
             .iter()
@@ -756,42 +940,340 @@ impl Renderer {
             .collect();
         // SAFETY: every set, buffer, view and sampler is alive and matches its layout.
         unsafe { device.update_descriptor_sets(&writes, &[]) };
-        Ok(sets)
+        Ok(())
     }
 
-    /// The time of every pass from the frame's timestamp queries (all complete: the caller
-    /// waited for the fence).
-    fn timestamps(&self, frame: &Frame, plan: &FramePlan) -> Result<Vec<PassTiming>, Error> {
-        let mut ticks = vec![0u64; 2 * plan.passes.len()];
-        // SAFETY: the pool has one query per entry of `ticks`, all written and complete.
+    fn build_framebuffers(&mut self, state: &mut State) -> Result<(), Error> {
+        let plan = &state.plan;
+        let parities = if plan.has_history() { 2 } else { 1 };
+        for (i, pass) in plan.passes.iter().enumerate() {
+            let PassKind::Raster { colors, depth, .. } = &pass.kind else {
+                state.framebuffers.push(Vec::new());
+                continue;
+            };
+            let mut list = Vec::new();
+            for parity in 0..parities {
+                let targets = colors
+                    .iter()
+                    .map(|c| c.resource)
+                    .chain(depth.iter().map(|d| d.resource));
+                let mut views = Vec::new();
+                let mut extent = vk::Extent3D::default();
+                for index in targets {
+                    let image = self.target(plan, index, parity as u64)?;
+                    views.push(image.view);
+                    extent = image.extent;
+                }
+                let info = vk::FramebufferCreateInfo::default()
+                    .render_pass(self.pipelines[&state.keys[i]].render_pass)
+                    .attachments(&views)
+                    .width(extent.width)
+                    .height(extent.height)
+                    .layers(1);
+                // SAFETY: the render pass and views are alive and compatible.
+                let fb = unsafe { self.gpu.device.create_framebuffer(&info, None) }
+                    .map_err(vk("vkCreateFramebuffer"))?;
+                self.created += 1;
+                list.push(fb);
+            }
+            state.framebuffers.push(list);
+        }
+        Ok(())
+    }
+
+    /// The image of texture resource `index` a frame of this parity writes (the current half
+    /// of a history pair).
+    fn target(&self, plan: &FramePlan, index: usize, parity: u64) -> Result<&GpuImage, Error> {
+        let r = &plan.resources[index];
+        match self.resources.get(&r.name).map(|g| &g.object) {
+            Some(Object::Images(images)) => {
+                Ok(&images[history_half(parity, false).min(images.len() - 1)])
+            }
+            _ => Err(Error::Shader(format!("`{}` is not a texture", r.name))),
+        }
+    }
+
+    /// The tracker key of texture resource `index` in this frame (which half of a history
+    /// pair, `previous` or not).
+    fn key(&self, plan: &FramePlan, index: usize, previous: bool) -> Key {
+        let r = &plan.resources[index];
+        let half = if r.lifetime == Lifetime::History {
+            history_half(self.frame, previous)
+        } else {
+            0
+        };
+        (r.name.clone(), half)
+    }
+
+    /// Records pass `i`: barriers for what it binds and draws into, timestamps at `query`.
+    fn record_pass(&mut self, plan: &FramePlan, i: usize, query: Option<u32>) -> Result<(), Error> {
+        let state = self.state.as_ref().expect("prepared");
+        let pass = &plan.passes[i];
+        let raster = matches!(pass.kind, PassKind::Raster { .. });
+        let mut wants: Vec<(Key, Use)> = pass
+            .bindings
+            .iter()
+            .filter_map(|b| {
+                Use::of_binding(b, shader_stage(raster))
+                    .map(|u| (self.key(plan, b.resource, b.previous), u))
+            })
+            .collect();
+        if let PassKind::Raster { colors, depth, .. } = &pass.kind {
+            for c in colors {
+                wants.push((self.key(plan, c.resource, false), Use::COLOR_TARGET));
+            }
+            if let Some(d) = depth {
+                wants.push((self.key(plan, d.resource, false), Use::DEPTH_TARGET));
+            }
+        }
+        let p = &self.pipelines[&state.keys[i]];
+        let parity = if plan.has_history() {
+            (self.frame % 2) as usize
+        } else {
+            0
+        };
+        let sets = &state.sets[i][parity];
+        let device = &self.gpu.device;
+        let cb = self.gpu.command_buffer;
+        // SAFETY: `cb` is recording; every handle is alive (see render_inner).
+        unsafe {
+            self.tracker.barrier(device, cb, &wants);
+            if let Some(q) = query {
+                device.cmd_write_timestamp(cb, TIMESTAMP_STAGE, self.query_pool, q);
+            }
+            let bind_point = if raster {
+                vk::PipelineBindPoint::GRAPHICS
+            } else {
+                vk::PipelineBindPoint::COMPUTE
+            };
+            match &pass.kind {
+                PassKind::Compute { dispatch, .. } => {
+                    device.cmd_bind_pipeline(cb, bind_point, p.pipeline);
+                    if !sets.is_empty() {
+                        device.cmd_bind_descriptor_sets(cb, bind_point, p.layout, 0, sets, &[]);
+                    }
+                    let [x, y, z] = *dispatch;
+                    device.cmd_dispatch(cb, x, y, z);
+                }
+                PassKind::Raster {
+                    vertices,
+                    colors,
+                    depth,
+                    ..
+                } => {
+                    let [w, h] = pass.extent;
+                    let mut clears: Vec<vk::ClearValue> = colors
+                        .iter()
+                        .map(|_| vk::ClearValue {
+                            color: vk::ClearColorValue { float32: [0.0; 4] },
+                        })
+                        .collect();
+                    if depth.is_some() {
+                        clears.push(vk::ClearValue {
+                            depth_stencil: vk::ClearDepthStencilValue {
+                                depth: 1.0,
+                                stencil: 0,
+                            },
+                        });
+                    }
+                    let area = vk::Rect2D {
+                        offset: vk::Offset2D { x: 0, y: 0 },
+                        extent: vk::Extent2D {
+                            width: w,
+                            height: h,
+                        },
+                    };
+                    let begin = vk::RenderPassBeginInfo::default()
+                        .render_pass(p.render_pass)
+                        .framebuffer(state.framebuffers[i][parity])
+                        .render_area(area)
+                        .clear_values(&clears);
+                    device.cmd_begin_render_pass(cb, &begin, vk::SubpassContents::INLINE);
+                    device.cmd_bind_pipeline(cb, bind_point, p.pipeline);
+                    if !sets.is_empty() {
+                        device.cmd_bind_descriptor_sets(cb, bind_point, p.layout, 0, sets, &[]);
+                    }
+                    // A negative height gives WebGPU's y-up clip space, as wgpu does (the
+                    // SPIR-V is written without naga's coordinate-space adjustment).
+                    let viewport = vk::Viewport {
+                        x: 0.0,
+                        y: h as f32,
+                        width: w as f32,
+                        height: -(h as f32),
+                        min_depth: 0.0,
+                        max_depth: 1.0,
+                    };
+                    device.cmd_set_viewport(cb, 0, &[viewport]);
+                    device.cmd_set_scissor(cb, 0, &[area]);
+                    device.cmd_draw(cb, *vertices, 1, 0, 0);
+                    device.cmd_end_render_pass(cb);
+                }
+            }
+            if let Some(q) = query {
+                device.cmd_write_timestamp(cb, TIMESTAMP_STAGE, self.query_pool, q + 1);
+            }
+        }
+        Ok(())
+    }
+
+    /// Records the copies a frame's readback asks for into persistent host-visible buffers
+    /// (rows tightly packed: Vulkan, unlike WebGPU, needs no 256-byte row alignment).
+    fn copy_readbacks(
+        &mut self,
+        frame: &FrameInput<'_>,
+    ) -> Result<Vec<(String, Option<Readout>)>, Error> {
+        let plan = frame.plan;
+        let mut wanted: Vec<(usize, Option<Readout>)> = Vec::new();
+        if frame.readback.output {
+            for (i, r) in plan.resources.iter().enumerate() {
+                if let Some(role) = r.output {
+                    wanted.push((i, Some(Readout::Output(role))));
+                } else if r.kind == ResourceKind::Counters && plan.stats {
+                    wanted.push((i, Some(Readout::Counters)));
+                }
+            }
+        }
+        for name in &frame.readback.resources {
+            let (i, _) = plan.resource(name).ok_or_else(|| {
+                Error::Shader(format!(
+                    "readback of `{name}`: the plan has no such resource"
+                ))
+            })?;
+            wanted.push((i, None));
+        }
+        if wanted.is_empty() {
+            return Ok(Vec::new());
+        }
+        let mut out = Vec::new();
+        let mut copies = Vec::new();
+        for (i, role) in wanted {
+            let r = &plan.resources[i];
+            let (size, key) = match self.resources.get(&r.name).map(|g| &g.object) {
+                Some(Object::Buffer(b)) => (b.size, (r.name.clone(), 0)),
+                Some(Object::Images(_)) => {
+                    let image = self.target(plan, i, self.frame)?;
+                    let f = r
+                        .format
+                        .unwrap_or(stratus_graph::desc::TexelFormat::Rgba8Unorm);
+                    let e = image.extent;
+                    (
+                        u64::from(e.width)
+                            * u64::from(e.height)
+                            * u64::from(e.depth)
+                            * u64::from(f.texel_size()),
+                        self.key(plan, i, false),
+                    )
+                }
+                _ => {
+                    return Err(Error::Shader(format!(
+                        "readback of `{}`: it holds no data the host can read",
+                        r.name
+                    )));
+                }
+            };
+            if self.readbacks.get(&r.name).is_none_or(|b| b.size != size) {
+                if let Some(mut old) = self.readbacks.remove(&r.name) {
+                    old.destroy(&self.gpu.device, &mut self.gpu.allocator);
+                }
+                let b = GpuBuffer::new(
+                    &self.gpu.device,
+                    &mut self.gpu.allocator,
+                    "readback",
+                    size,
+                    vk::BufferUsageFlags::TRANSFER_DST,
+                    MemoryLocation::GpuToCpu,
+                )?;
+                self.created += 1;
+                self.readbacks.insert(r.name.clone(), b);
+            }
+            copies.push((i, key));
+            out.push((r.name.clone(), role));
+        }
+        let cb = self.gpu.command_buffer;
+        let wants: Vec<(Key, Use)> = copies
+            .iter()
+            .map(|(i, key)| {
+                let u = if plan.resources[*i].kind == ResourceKind::Texture {
+                    Use::COPY_SRC
+                } else {
+                    Use {
+                        layout: vk::ImageLayout::UNDEFINED,
+                        ..Use::COPY_SRC
+                    }
+                };
+                (key.clone(), u)
+            })
+            .collect();
+        let device = &self.gpu.device;
+        // SAFETY: recording; every handle is alive until after the wait.
+        unsafe {
+            self.tracker.barrier(device, cb, &wants);
+            for (i, _) in &copies {
+                let r = &plan.resources[*i];
+                let dst = self.readbacks[&r.name].buffer;
+                match self.resources.get(&r.name).map(|g| &g.object) {
+                    Some(Object::Buffer(b)) => {
+                        let region = vk::BufferCopy::default().size(b.size);
+                        device.cmd_copy_buffer(cb, b.buffer, dst, &[region]);
+                    }
+                    _ => {
+                        let image = self.target(plan, *i, self.frame)?;
+                        let region = vk::BufferImageCopy::default()
+                            .image_subresource(vk::ImageSubresourceLayers {
+                                aspect_mask: range(image.format).aspect_mask,
+                                ..COLOR_LAYER
+                            })
+                            .image_extent(image.extent);
+                        device.cmd_copy_image_to_buffer(
+                            cb,
+                            image.image,
+                            vk::ImageLayout::TRANSFER_SRC_OPTIMAL,
+                            dst,
+                            &[region],
+                        );
+                    }
+                }
+            }
+            let to_host = vk::MemoryBarrier::default()
+                .src_access_mask(vk::AccessFlags::TRANSFER_WRITE)
+                .dst_access_mask(vk::AccessFlags::HOST_READ);
+            device.cmd_pipeline_barrier(
+                cb,
+                vk::PipelineStageFlags::TRANSFER,
+                vk::PipelineStageFlags::HOST,
+                vk::DependencyFlags::empty(),
+                &[to_host],
+                &[],
+                &[],
+            );
+        }
+        Ok(out)
+    }
+
+    /// The time of every pass that ran, from the frame's timestamp queries (all complete:
+    /// the caller waited for the fence).
+    fn timestamps(&self, ran: &[&Pass]) -> Result<Vec<PassTiming>, Error> {
+        let mut ticks = vec![0u64; 2 * ran.len()];
+        if ticks.is_empty() {
+            return Ok(Vec::new());
+        }
+        // SAFETY: the pool has at least one query per entry of `ticks`, all written and
+        // complete.
         unsafe {
             self.gpu.device.get_query_pool_results(
-                frame.query_pool,
+                self.query_pool,
                 0,
                 &mut ticks,
                 vk::QueryResultFlags::TYPE_64 | vk::QueryResultFlags::WAIT,
             )
         }
         .map_err(vk("vkGetQueryPoolResults"))?;
-        // Only the valid bits count, and the counter may wrap between the two stamps
-        // (backend-wgpu subtracts with saturation instead; the same for all but a wrap).
-        let bits = self.gpu.info.timestamp_bits;
-        let mask = if bits >= 64 {
-            u64::MAX
-        } else {
-            (1u64 << bits) - 1
-        };
-        let period_ns = self.gpu.info.timestamp_period;
-        Ok(plan
-            .passes
-            .iter()
-            .enumerate()
-            .map(|(i, p)| PassTiming {
-                pass: p.name.clone(),
-                ms: (ticks[2 * i + 1].wrapping_sub(ticks[2 * i]) & mask) as f64 * period_ns * 1e-6,
-                source: "gpu-timestamp",
-            })
-            .collect())
+        Ok(timings_from_ticks(
+            ran,
+            &ticks,
+            self.gpu.info.timestamp_period,
+            self.gpu.info.timestamp_bits,
+        ))
     }
 
     /// Resets and begins the renderer's command buffer.
@@ -812,8 +1294,9 @@ impl Renderer {
         }
     }
 
-    /// Ends the command buffer, submits it and waits for the fence.
-    fn submit_and_wait(&self) -> Result<(), Error> {
+    /// Ends the command buffer, submits it and waits for the fence. Returns the milliseconds
+    /// spent waiting.
+    fn submit_and_wait(&self) -> Result<f64, Error> {
         let gpu = &self.gpu;
         let cbs = [gpu.command_buffer];
         let submit = vk::SubmitInfo::default().command_buffers(&cbs);
@@ -828,9 +1311,11 @@ impl Renderer {
             gpu.device
                 .queue_submit(gpu.queue, &[submit], gpu.fence)
                 .map_err(vk("vkQueueSubmit"))?;
+            let t = Instant::now();
             gpu.device
                 .wait_for_fences(&[gpu.fence], true, u64::MAX)
-                .map_err(vk("vkWaitForFences"))
+                .map_err(vk("vkWaitForFences"))?;
+            Ok(t.elapsed().as_secs_f64() * 1e3)
         }
     }
 
@@ -863,7 +1348,7 @@ impl Renderer {
         if !info.sampler_array_indexing
             && list
                 .iter()
-                .any(|d| matches!(d.content, SlotContent::SamplerArray(n) if n > 1))
+                .any(|d| matches!(d.content, Content::SamplerArray(n) if n > 1))
         {
             return Err(unsupported(
                 "it indexes an array of samplers, and the device cannot (no shaderSampledImageArrayDynamicIndexing)".into(),
@@ -872,51 +1357,200 @@ impl Renderer {
         Ok(())
     }
 
-    fn pass_pipeline(&self, key: &PipelineKey, pass: &Pass) -> Result<&PassPipeline, Error> {
-        self.pipelines
-            .get(key)
-            .ok_or_else(|| Error::Shader(format!("no pipeline for pass `{}`", pass.name)))
-    }
-
-    /// Creates (once per variant and entry point, or per supplied module) the shader module,
+    /// Creates (once per SPIR-V file and pass, or per supplied module) the shader module,
     /// the descriptor set layouts (from the plan's bindings or the module's slots) and the
-    /// compute pipeline of a pass. Returns its key.
+    /// pipeline of a pass. Returns its key.
     fn pipeline(
         &mut self,
         plan: &FramePlan,
         pass: &Pass,
         shader: Option<&PassShader>,
     ) -> Result<PipelineKey, Error> {
-        let key = PipelineKey::of(plan, pass, shader);
+        let spv = plan
+            .modules
+            .get(&pass.module)
+            .map(|m| m.spv_file.clone())
+            .ok_or_else(|| {
+                Error::Shader(format!(
+                    "pass `{}`: no variant of module `{}`",
+                    pass.name, pass.module
+                ))
+            })?;
+        let key = match shader {
+            None => PipelineKey::Program {
+                spv: spv.clone(),
+                pass: pass.name.clone(),
+            },
+            Some(s) => {
+                let mut h = std::collections::hash_map::DefaultHasher::new();
+                s.hash(&mut h);
+                pass.name.hash(&mut h);
+                PipelineKey::Supplied(h.finish())
+            }
+        };
         if self.pipelines.contains_key(&key) {
             return Ok(key);
         }
-        let list = descriptors(pass, shader.map(|s| &s.slots[..]))?;
+        let list = descriptors(plan, pass, shader.map(|s| &s.slots[..]))?;
         self.check_limits(pass, &list)?;
+        let colors: Vec<_>;
+        let entries = match &pass.kind {
+            PassKind::Compute { entry, .. } => {
+                Entries::Compute(shader.map_or(entry.as_str(), |s| s.entry.as_str()))
+            }
+            PassKind::Raster {
+                vertex,
+                fragment,
+                colors: targets,
+                depth,
+                ..
+            } => {
+                if shader.is_some() {
+                    return Err(Error::Shader(format!(
+                        "pass `{}`: supplied modules run compute passes only",
+                        pass.name
+                    )));
+                }
+                colors = targets
+                    .iter()
+                    .map(|c| {
+                        let f = plan.resources[c.resource]
+                            .format
+                            .unwrap_or(stratus_graph::desc::TexelFormat::Rgba8Unorm);
+                        (vk_format(f), c)
+                    })
+                    .collect();
+                Entries::Raster {
+                    vertex,
+                    fragment,
+                    targets: RasterTargets {
+                        colors,
+                        depth: depth.as_ref(),
+                    },
+                }
+            }
+        };
         let device = &self.gpu.device;
         let p = match shader {
             None => {
-                let module = match self.modules.get(&plan.spv_file) {
+                let module = match self.modules.get(&spv) {
                     Some(&m) => m,
                     None => {
-                        let m = shader_module(device, &plan.spv_file)?;
-                        self.modules.insert(plan.spv_file.clone(), m);
+                        let words = self.program.spirv.get(&spv).ok_or_else(|| {
+                            Error::Shader(format!(
+                                "the program has no {spv}; run `cargo xtask build-shaders` and rebuild"
+                            ))
+                        })?;
+                        let m = module_from_words(device, words)?;
+                        self.created += 1;
+                        self.modules.insert(spv.clone(), m);
                         m
                     }
                 };
-                PassPipeline::new(device, module, &pass.entry_point, &list)?
+                PassPipeline::new(device, module, &entries, &list)?
             }
             Some(s) => {
                 // The pipeline keeps what it needs; the module can go right away.
                 let module = module_from_words(device, &s.spirv)?;
-                let p = PassPipeline::new(device, module, &s.entry, &list);
+                let p = PassPipeline::new(device, module, &entries, &list);
                 // SAFETY: only the pipeline creation used the module.
                 unsafe { device.destroy_shader_module(module, None) };
                 p?
             }
         };
+        self.created += 3;
         self.pipelines.insert(key.clone(), p);
         Ok(key)
+    }
+}
+
+/// The supplied module of pass `i`: supplied modules replace the compute passes, in order;
+/// raster passes run the program's SPIR-V.
+fn supplied<'s>(shaders: &'s Shaders, plan: &FramePlan, i: usize) -> Option<&'s PassShader> {
+    let Shaders::PerPass(list) = shaders else {
+        return None;
+    };
+    if !matches!(plan.passes[i].kind, PassKind::Compute { .. }) {
+        return None;
+    }
+    let k = plan.passes[..i]
+        .iter()
+        .filter(|p| matches!(p.kind, PassKind::Compute { .. }))
+        .count();
+    list.get(k)
+}
+
+/// Where a read-back resource goes in the frame output.
+#[derive(Clone, Copy)]
+enum Readout {
+    Output(OutputRole),
+    Counters,
+}
+
+/// The pipeline stage of a pass's shaders.
+fn shader_stage(raster: bool) -> vk::PipelineStageFlags {
+    if raster {
+        vk::PipelineStageFlags::VERTEX_SHADER | vk::PipelineStageFlags::FRAGMENT_SHADER
+    } else {
+        vk::PipelineStageFlags::COMPUTE_SHADER
+    }
+}
+
+/// As backend-wgpu's: one mip level, the shared LOD clamp, no anisotropy.
+fn sampler_info(s: stratus_graph::plan::SamplerDesc) -> vk::SamplerCreateInfo<'static> {
+    use stratus_graph::desc::{AddressMode, Filter};
+    let filter = match s.filter {
+        Filter::Linear => vk::Filter::LINEAR,
+        Filter::Nearest => vk::Filter::NEAREST,
+    };
+    let address = match s.address {
+        AddressMode::Repeat => vk::SamplerAddressMode::REPEAT,
+        AddressMode::ClampToEdge => vk::SamplerAddressMode::CLAMP_TO_EDGE,
+    };
+    let [min_lod, max_lod] = stratus_graph::plan::SamplerDesc::LOD_CLAMP;
+    vk::SamplerCreateInfo::default()
+        .mag_filter(filter)
+        .min_filter(filter)
+        .mipmap_mode(vk::SamplerMipmapMode::NEAREST)
+        .address_mode_u(address)
+        .address_mode_v(address)
+        .address_mode_w(address)
+        .min_lod(min_lod)
+        .max_lod(max_lod)
+}
+
+/// Every image format the program's graph uses and the features its passes need of it, so a
+/// device that lacks one is passed over when the device is chosen (not found out mid-frame).
+fn format_needs(program: &Program) -> Result<Vec<FormatNeed>, Error> {
+    let plan = FramePlan::new(program, &Requirements(Default::default()), 1, 1)
+        .map_err(|e| Error::Shader(e.to_string()))?;
+    Ok(plan
+        .resources
+        .iter()
+        .filter_map(|r| {
+            let f = r.format?;
+            Some(FormatNeed {
+                resource: r.name.clone(),
+                format: f,
+                vk_format: vk_format(f),
+                features: image_needs(r.usage, f).1,
+            })
+        })
+        .collect())
+}
+
+impl Backend for Renderer {
+    fn describe(&self) -> String {
+        format!("ash (Vulkan) on {}", self.adapter())
+    }
+    fn has_timestamps(&self) -> bool {
+        Renderer::has_timestamps(self)
+    }
+    fn render(&mut self, frame: &FrameInput<'_>) -> Result<FrameOutput, BackendError> {
+        Ok(Renderer::render(self, frame)?)
+    }
+    fn objects_created(&self) -> u64 {
+        self.created
     }
 }
 
@@ -955,17 +1589,15 @@ mod tests {
     #[test]
     fn a_missing_barrier_is_a_synchronization_error() {
         let mut renderer = Renderer::new(Options { validation: true }).expect("renderer");
-        let mut frame = Frame::default();
-        let buffer = frame
-            .buffer(
-                &renderer.gpu.device,
-                &mut renderer.gpu.allocator,
-                "hazard",
-                256,
-                vk::BufferUsageFlags::TRANSFER_DST,
-                MemoryLocation::GpuOnly,
-            )
-            .expect("buffer");
+        let mut buffer = GpuBuffer::new(
+            &renderer.gpu.device,
+            &mut renderer.gpu.allocator,
+            "hazard",
+            256,
+            vk::BufferUsageFlags::TRANSFER_DST,
+            MemoryLocation::GpuOnly,
+        )
+        .expect("buffer");
         renderer.begin().expect("begin");
         let cb = renderer.gpu.command_buffer;
         // SAFETY: recording; the buffer lives until after the wait. Two writes with no
@@ -981,7 +1613,7 @@ mod tests {
                 .cmd_fill_buffer(cb, buffer.buffer, 0, vk::WHOLE_SIZE, 2);
         }
         renderer.submit_and_wait().expect("submit");
-        frame.destroy(&renderer.gpu.device, &mut renderer.gpu.allocator);
+        buffer.destroy(&renderer.gpu.device, &mut renderer.gpu.allocator);
         match renderer.gpu.check_messages() {
             Err(Error::Validation(messages)) => assert!(
                 messages

@@ -1,129 +1,90 @@
-//! Shader modules from the embedded committed SPIR-V (or from supplied words), and per pass
-//! the descriptor set layouts (built from the plan's bindings, i.e. the manifest's reflection,
-//! or from a supplied module's slots), the pipeline layout and the compute pipeline.
+//! Shader modules (from the program's SPIR-V, or supplied words), and per pass the descriptor
+//! set layouts (built from the plan's bindings, i.e. the manifest's reflection, or from a
+//! supplied module's slots), the pipeline layout and the pipeline: compute, or graphics with
+//! its render pass (one subpass; attachments as the graph's colour and depth targets say).
 
-use std::{collections::BTreeMap, ffi::CString, io::Cursor};
+use std::{collections::BTreeMap, ffi::CString};
 
 use ash::vk;
-use stratus_shaders::{Resource, plan::Binding};
+use stratus_graph::{
+    desc::{Blend, Compare, LoadOp},
+    manifest::BindingKind,
+    plan::{Binding, ColorTarget, DepthTarget},
+};
 
 use crate::{
     error::{Error, vk},
-    frame::is_noise,
     interface::Descriptor,
 };
 
-include!(concat!(env!("OUT_DIR"), "/spirv.rs"));
-
-/// The words of the committed SPIR-V file `name` (as the plan's `spv_file` names it).
-pub(crate) fn spirv_words(name: &str) -> Result<Vec<u32>, Error> {
-    let bytes = EMBEDDED_SPIRV
-        .iter()
-        .find(|(n, _)| *n == name)
-        .map(|(_, b)| *b)
-        .ok_or_else(|| {
-            Error::Shader(format!(
-                "spirv-out/{name} was not embedded when stratus-backend-ash was built; run `cargo xtask build-shaders` and rebuild"
-            ))
-        })?;
-    // `read_spv` copies into aligned words and checks the magic number and length.
-    ash::util::read_spv(&mut Cursor::new(bytes))
-        .map_err(|e| Error::Shader(format!("spirv-out/{name} is not SPIR-V: {e}")))
-}
-
 /// The descriptor type of a binding, from its reflected kind.
 pub(crate) fn descriptor_type(b: &Binding) -> Result<vk::DescriptorType, Error> {
-    Ok(match b.info.kind.as_str() {
-        "uniform-buffer" => vk::DescriptorType::UNIFORM_BUFFER,
-        "storage-buffer" => vk::DescriptorType::STORAGE_BUFFER,
-        "sampled-texture" => vk::DescriptorType::SAMPLED_IMAGE,
-        "storage-texture" => vk::DescriptorType::STORAGE_IMAGE,
-        "sampler" => vk::DescriptorType::SAMPLER,
-        other => {
+    Ok(match b.info.kind {
+        BindingKind::UniformBuffer => vk::DescriptorType::UNIFORM_BUFFER,
+        BindingKind::StorageBuffer => vk::DescriptorType::STORAGE_BUFFER,
+        BindingKind::SampledTexture => vk::DescriptorType::SAMPLED_IMAGE,
+        BindingKind::StorageTexture => vk::DescriptorType::STORAGE_IMAGE,
+        BindingKind::Sampler => vk::DescriptorType::SAMPLER,
+        BindingKind::Other => {
             return Err(Error::Shader(format!(
-                "binding {}/{} `{}` has kind `{other}`, which the ash backend cannot bind",
+                "binding {}/{} `{}` has a type the ash backend cannot bind",
                 b.group, b.binding, b.info.name
             )));
         }
     })
 }
 
-/// The view type of an image resource: the 3D noise textures, 2D for the rest.
-pub(crate) fn view_type(resource: Resource) -> vk::ImageViewType {
-    match resource {
-        Resource::Shape | Resource::Detail => vk::ImageViewType::TYPE_3D,
-        _ => vk::ImageViewType::TYPE_2D,
+/// The shader stages a pass's descriptors are visible to.
+pub(crate) fn stages(raster: bool) -> vk::ShaderStageFlags {
+    if raster {
+        vk::ShaderStageFlags::VERTEX | vk::ShaderStageFlags::FRAGMENT
+    } else {
+        vk::ShaderStageFlags::COMPUTE
     }
 }
 
-/// Checks that what the WGSL declares at a binding is what the backend binds there: the
-/// dimension of a texture, the format of a storage texture, the kind of resource. A drift
-/// between the WGSL and the plan's resources fails here, not as garbage on screen.
-pub(crate) fn check_binding(b: &Binding) -> Result<(), Error> {
-    let wrong = |what: String| {
-        Error::Shader(format!(
-            "binding {}/{} `{}` declares {what}, but the frame binds {:?} there",
-            b.group, b.binding, b.info.name, b.resource
-        ))
-    };
-    let is_image = b.resource.texture_format().is_some();
-    let kind = b.info.kind.as_str();
-    match kind {
-        "sampled-texture" | "storage-texture" if !is_image => {
-            return Err(wrong(format!("a {kind}")));
-        }
-        "uniform-buffer" if b.resource != Resource::Frame => return Err(wrong(kind.into())),
-        "storage-buffer" if b.resource != Resource::Stats => return Err(wrong(kind.into())),
-        "sampler" if b.resource != Resource::NoiseSampler => return Err(wrong(kind.into())),
-        _ => {}
-    }
-    if is_image {
-        let dim = match view_type(b.resource) {
-            vk::ImageViewType::TYPE_3D => "3d",
-            _ => "2d",
-        };
-        if b.info.dimension.as_deref() != Some(dim) {
-            return Err(wrong(format!(
-                "dimension {:?}",
-                b.info.dimension.as_deref().unwrap_or("none")
-            )));
-        }
-        if kind == "storage-texture" && b.info.format.as_deref() != b.resource.texture_format() {
-            return Err(wrong(format!(
-                "format {:?}",
-                b.info.format.as_deref().unwrap_or("none")
-            )));
-        }
-        if kind == "storage-texture" && is_noise(b.resource) {
-            return Err(wrong("a storage texture".into()));
-        }
-    }
-    Ok(())
+/// What a graphics pipeline draws into: formats, blend, depth state, load operations.
+pub(crate) struct RasterTargets<'a> {
+    pub colors: Vec<(vk::Format, &'a ColorTarget)>,
+    pub depth: Option<&'a DepthTarget>,
 }
 
-/// The pipeline of one pass of one variant.
+/// Which entry points a pass's pipeline runs.
+pub(crate) enum Entries<'a> {
+    Compute(&'a str),
+    Raster {
+        vertex: &'a str,
+        fragment: &'a str,
+        targets: RasterTargets<'a>,
+    },
+}
+
+/// The pipeline of one pass of one variant (and its render pass, for a raster pass).
 pub(crate) struct PassPipeline {
     /// One layout per descriptor set (`@group`), 0 to the highest group the pass uses.
     pub set_layouts: Vec<vk::DescriptorSetLayout>,
     pub layout: vk::PipelineLayout,
     pub pipeline: vk::Pipeline,
+    /// Null for a compute pass.
+    pub render_pass: vk::RenderPass,
 }
 
 impl PassPipeline {
     /// Builds the set layouts from the pass's descriptors, the pipeline layout, and the
-    /// compute pipeline of `entry` in `module`.
+    /// pipeline of `entries` in `module`.
     pub fn new(
         device: &ash::Device,
         module: vk::ShaderModule,
-        entry: &str,
+        entries: &Entries<'_>,
         descriptors: &[Descriptor<'_>],
     ) -> Result<Self, Error> {
         let mut built = Self {
             set_layouts: Vec::new(),
             layout: vk::PipelineLayout::null(),
             pipeline: vk::Pipeline::null(),
+            render_pass: vk::RenderPass::null(),
         };
-        match built.build(device, module, entry, descriptors) {
+        match built.build(device, module, entries, descriptors) {
             Ok(()) => Ok(built),
             Err(e) => {
                 built.destroy(device);
@@ -136,9 +97,10 @@ impl PassPipeline {
         &mut self,
         device: &ash::Device,
         module: vk::ShaderModule,
-        entry: &str,
+        entries: &Entries<'_>,
         descriptors: &[Descriptor<'_>],
     ) -> Result<(), Error> {
+        let visible = stages(matches!(entries, Entries::Raster { .. }));
         let mut groups: BTreeMap<u32, Vec<vk::DescriptorSetLayoutBinding>> = BTreeMap::new();
         for d in descriptors {
             groups.entry(d.set).or_default().push(
@@ -146,7 +108,7 @@ impl PassPipeline {
                     .binding(d.binding)
                     .descriptor_type(d.ty)
                     .descriptor_count(d.count)
-                    .stage_flags(vk::ShaderStageFlags::COMPUTE),
+                    .stage_flags(visible),
             );
         }
         let sets = groups.keys().next_back().map_or(0, |g| g + 1);
@@ -162,32 +124,109 @@ impl PassPipeline {
         // SAFETY: valid device; the set layouts are alive.
         self.layout = unsafe { device.create_pipeline_layout(&info, None) }
             .map_err(vk("vkCreatePipelineLayout"))?;
-        let entry = CString::new(entry)
-            .map_err(|_| Error::Shader(format!("entry point `{entry}` contains NUL")))?;
-        let stage = vk::PipelineShaderStageCreateInfo::default()
-            .stage(vk::ShaderStageFlags::COMPUTE)
-            .module(module)
-            .name(&entry);
-        let info = vk::ComputePipelineCreateInfo::default()
-            .stage(stage)
-            .layout(self.layout);
-        // SAFETY: the module and layout are alive; the entry name outlives the call.
-        let pipelines =
-            unsafe { device.create_compute_pipelines(vk::PipelineCache::null(), &[info], None) }
+        let name = |entry: &str| {
+            CString::new(entry)
+                .map_err(|_| Error::Shader(format!("entry point `{entry}` contains NUL")))
+        };
+        match entries {
+            Entries::Compute(entry) => {
+                let entry = name(entry)?;
+                let stage = vk::PipelineShaderStageCreateInfo::default()
+                    .stage(vk::ShaderStageFlags::COMPUTE)
+                    .module(module)
+                    .name(&entry);
+                let info = vk::ComputePipelineCreateInfo::default()
+                    .stage(stage)
+                    .layout(self.layout);
+                // SAFETY: the module and layout are alive; the entry name outlives the call.
+                let pipelines = unsafe {
+                    device.create_compute_pipelines(vk::PipelineCache::null(), &[info], None)
+                }
                 .map_err(|(_, result)| Error::Vulkan {
                     call: "vkCreateComputePipelines",
                     result,
                 })?;
-        self.pipeline = pipelines.first().copied().unwrap_or_default();
+                self.pipeline = pipelines.first().copied().unwrap_or_default();
+            }
+            Entries::Raster {
+                vertex,
+                fragment,
+                targets,
+            } => {
+                self.render_pass = render_pass(device, targets)?;
+                let (vertex, fragment) = (name(vertex)?, name(fragment)?);
+                let stages = [
+                    vk::PipelineShaderStageCreateInfo::default()
+                        .stage(vk::ShaderStageFlags::VERTEX)
+                        .module(module)
+                        .name(&vertex),
+                    vk::PipelineShaderStageCreateInfo::default()
+                        .stage(vk::ShaderStageFlags::FRAGMENT)
+                        .module(module)
+                        .name(&fragment),
+                ];
+                let vertex_input = vk::PipelineVertexInputStateCreateInfo::default();
+                let assembly = vk::PipelineInputAssemblyStateCreateInfo::default()
+                    .topology(vk::PrimitiveTopology::TRIANGLE_LIST);
+                let viewport = vk::PipelineViewportStateCreateInfo::default()
+                    .viewport_count(1)
+                    .scissor_count(1);
+                // As wgpu's default primitive state: no culling, counter-clockwise front.
+                let raster = vk::PipelineRasterizationStateCreateInfo::default()
+                    .polygon_mode(vk::PolygonMode::FILL)
+                    .cull_mode(vk::CullModeFlags::NONE)
+                    .front_face(vk::FrontFace::COUNTER_CLOCKWISE)
+                    .line_width(1.0);
+                let multisample = vk::PipelineMultisampleStateCreateInfo::default()
+                    .rasterization_samples(vk::SampleCountFlags::TYPE_1);
+                let depth = targets.depth.map(|d| {
+                    vk::PipelineDepthStencilStateCreateInfo::default()
+                        .depth_test_enable(true)
+                        .depth_write_enable(d.write)
+                        .depth_compare_op(compare(d.compare))
+                });
+                let blends: Vec<_> = targets.colors.iter().map(|(_, c)| blend(c.blend)).collect();
+                let blend_state =
+                    vk::PipelineColorBlendStateCreateInfo::default().attachments(&blends);
+                let dynamic = [vk::DynamicState::VIEWPORT, vk::DynamicState::SCISSOR];
+                let dynamic =
+                    vk::PipelineDynamicStateCreateInfo::default().dynamic_states(&dynamic);
+                let mut info = vk::GraphicsPipelineCreateInfo::default()
+                    .stages(&stages)
+                    .vertex_input_state(&vertex_input)
+                    .input_assembly_state(&assembly)
+                    .viewport_state(&viewport)
+                    .rasterization_state(&raster)
+                    .multisample_state(&multisample)
+                    .color_blend_state(&blend_state)
+                    .dynamic_state(&dynamic)
+                    .layout(self.layout)
+                    .render_pass(self.render_pass)
+                    .subpass(0);
+                if let Some(depth) = &depth {
+                    info = info.depth_stencil_state(depth);
+                }
+                // SAFETY: every state, the module, layout and render pass are alive.
+                let pipelines = unsafe {
+                    device.create_graphics_pipelines(vk::PipelineCache::null(), &[info], None)
+                }
+                .map_err(|(_, result)| Error::Vulkan {
+                    call: "vkCreateGraphicsPipelines",
+                    result,
+                })?;
+                self.pipeline = pipelines.first().copied().unwrap_or_default();
+            }
+        }
         Ok(())
     }
 
-    /// Destroys the pipeline and its layouts (null handles are skipped by Vulkan).
+    /// Destroys the pipeline, its layouts and render pass (null handles are skipped).
     pub fn destroy(&mut self, device: &ash::Device) {
         // SAFETY: the caller guarantees the GPU no longer uses them.
         unsafe {
             device.destroy_pipeline(std::mem::take(&mut self.pipeline), None);
             device.destroy_pipeline_layout(std::mem::take(&mut self.layout), None);
+            device.destroy_render_pass(std::mem::take(&mut self.render_pass), None);
             for layout in self.set_layouts.drain(..) {
                 device.destroy_descriptor_set_layout(layout, None);
             }
@@ -195,9 +234,96 @@ impl PassPipeline {
     }
 }
 
-/// Creates a shader module from the embedded SPIR-V file `name`.
-pub(crate) fn shader_module(device: &ash::Device, name: &str) -> Result<vk::ShaderModule, Error> {
-    module_from_words(device, &spirv_words(name)?)
+/// One subpass writing the colour targets (and depth). The tracker moves every attachment to
+/// its attachment layout before the pass begins, so the render pass itself changes no layout.
+fn render_pass(device: &ash::Device, targets: &RasterTargets<'_>) -> Result<vk::RenderPass, Error> {
+    let load = |l: LoadOp| match l {
+        LoadOp::Clear => vk::AttachmentLoadOp::CLEAR,
+        LoadOp::Load => vk::AttachmentLoadOp::LOAD,
+    };
+    let mut attachments = Vec::new();
+    let mut color_refs = Vec::new();
+    for (format, c) in &targets.colors {
+        color_refs.push(
+            vk::AttachmentReference::default()
+                .attachment(attachments.len() as u32)
+                .layout(vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL),
+        );
+        attachments.push(
+            vk::AttachmentDescription::default()
+                .format(*format)
+                .samples(vk::SampleCountFlags::TYPE_1)
+                .load_op(load(c.load))
+                .store_op(vk::AttachmentStoreOp::STORE)
+                .stencil_load_op(vk::AttachmentLoadOp::DONT_CARE)
+                .stencil_store_op(vk::AttachmentStoreOp::DONT_CARE)
+                .initial_layout(vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL)
+                .final_layout(vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL),
+        );
+    }
+    let depth_ref = targets.depth.map(|d| {
+        let r = vk::AttachmentReference::default()
+            .attachment(attachments.len() as u32)
+            .layout(vk::ImageLayout::DEPTH_STENCIL_ATTACHMENT_OPTIMAL);
+        attachments.push(
+            vk::AttachmentDescription::default()
+                .format(vk::Format::D32_SFLOAT)
+                .samples(vk::SampleCountFlags::TYPE_1)
+                .load_op(load(d.load))
+                .store_op(vk::AttachmentStoreOp::STORE)
+                .stencil_load_op(vk::AttachmentLoadOp::DONT_CARE)
+                .stencil_store_op(vk::AttachmentStoreOp::DONT_CARE)
+                .initial_layout(vk::ImageLayout::DEPTH_STENCIL_ATTACHMENT_OPTIMAL)
+                .final_layout(vk::ImageLayout::DEPTH_STENCIL_ATTACHMENT_OPTIMAL),
+        );
+        r
+    });
+    let mut subpass = vk::SubpassDescription::default()
+        .pipeline_bind_point(vk::PipelineBindPoint::GRAPHICS)
+        .color_attachments(&color_refs);
+    if let Some(r) = &depth_ref {
+        subpass = subpass.depth_stencil_attachment(r);
+    }
+    let subpasses = [subpass];
+    let info = vk::RenderPassCreateInfo::default()
+        .attachments(&attachments)
+        .subpasses(&subpasses);
+    // SAFETY: valid device; everything the info points at outlives the call.
+    unsafe { device.create_render_pass(&info, None) }.map_err(vk("vkCreateRenderPass"))
+}
+
+/// The blend state of a colour target (as backend-wgpu's).
+fn blend(b: Blend) -> vk::PipelineColorBlendAttachmentState {
+    let all = vk::ColorComponentFlags::RGBA;
+    let state = vk::PipelineColorBlendAttachmentState::default().color_write_mask(all);
+    match b {
+        Blend::Replace => state,
+        Blend::Transmittance => state
+            .blend_enable(true)
+            .src_color_blend_factor(vk::BlendFactor::ONE)
+            .dst_color_blend_factor(vk::BlendFactor::SRC_ALPHA)
+            .color_blend_op(vk::BlendOp::ADD)
+            .src_alpha_blend_factor(vk::BlendFactor::ZERO)
+            .dst_alpha_blend_factor(vk::BlendFactor::ONE)
+            .alpha_blend_op(vk::BlendOp::ADD),
+        Blend::Additive => state
+            .blend_enable(true)
+            .src_color_blend_factor(vk::BlendFactor::ONE)
+            .dst_color_blend_factor(vk::BlendFactor::ONE)
+            .color_blend_op(vk::BlendOp::ADD)
+            .src_alpha_blend_factor(vk::BlendFactor::ONE)
+            .dst_alpha_blend_factor(vk::BlendFactor::ONE)
+            .alpha_blend_op(vk::BlendOp::ADD),
+    }
+}
+
+fn compare(c: Compare) -> vk::CompareOp {
+    match c {
+        Compare::Always => vk::CompareOp::ALWAYS,
+        Compare::Less => vk::CompareOp::LESS,
+        Compare::LessEqual => vk::CompareOp::LESS_OR_EQUAL,
+        Compare::Greater => vk::CompareOp::GREATER,
+    }
 }
 
 /// Creates a shader module from SPIR-V words.

@@ -2,33 +2,25 @@
 //! reports live objects when the device is destroyed, and `finish` turns that into an error),
 //! with and without frames rendered in between.
 
-mod common;
-
 use stratus_backend_ash::{Options, Renderer};
-use stratus_shaders::FramePlan;
+use stratus_graph::{FrameInput, FramePlan};
+use stratus_test_support::{small, small_noise};
 
 #[test]
 fn create_render_destroy_twenty_times() {
-    let scene = common::small("cumulus-noon", 16, 9);
+    let scene = small("cumulus-noon", 16, 9);
     let plan = FramePlan::for_scene(&scene, true).expect("plan");
-    let uniforms = scene.uniforms();
     // Small noise: this test is about the life cycle, not the clouds.
-    let noise = stratus_noise::NoiseSet::generate(&stratus_noise::NoiseConfig {
-        seed: scene.noise.seed,
-        shape: stratus_noise::ShapeSize::Thesis,
-        weather_size: 64,
-        curl_size: 16,
-        detail_size: 8,
-    });
+    let noise = small_noise(scene.noise.seed);
     let mut reference = None;
     for i in 0..20 {
         let mut renderer = Renderer::new(Options { validation: true })
             .unwrap_or_else(|e| panic!("creation {i}: {e}"));
         if i % 4 == 0 {
-            // Twice in a row in the same renderer: the cached pipelines are reused.
+            // Twice in a row in the same renderer: everything built for the plan is reused.
             for _ in 0..2 {
                 let out = renderer
-                    .render(&plan, &uniforms, &noise)
+                    .render(&FrameInput::new(&plan, &scene, &noise))
                     .unwrap_or_else(|e| panic!("render {i}: {e}"));
                 assert_eq!(out.stats.as_ref().map(|s| s["pixels"]), Some(16 * 9));
                 let reference = reference.get_or_insert_with(|| out.clone());
@@ -45,4 +37,30 @@ fn create_render_destroy_twenty_times() {
             drop(renderer);
         }
     }
+}
+
+#[test]
+fn changing_size_and_variant_rebuilds_and_leaks_nothing() {
+    let scene = small("cumulus-noon", 16, 9);
+    let noise = small_noise(scene.noise.seed);
+    let mut renderer = Renderer::new(Options { validation: true }).expect("renderer");
+    let mut outputs = Vec::new();
+    for (w, h, stats) in [
+        (16, 9, false),
+        (24, 12, false),
+        (24, 12, true),
+        (16, 9, false),
+    ] {
+        let scene = scene.clone().with_size(w, h);
+        let plan = FramePlan::for_scene(&scene, stats).expect("plan");
+        let out = renderer
+            .render(&FrameInput::new(&plan, &scene, &noise))
+            .expect("render");
+        assert_eq!(out.radiance.len(), (w * h * 4) as usize);
+        assert_eq!(out.stats.is_some(), stats);
+        outputs.push(out);
+    }
+    // Back to the first plan: the same image as the first time.
+    assert_eq!(outputs[0].image, outputs[3].image);
+    renderer.finish().expect("clean teardown");
 }

@@ -1,38 +1,35 @@
-//! `Renderer::render_with`: the committed SPIR-V supplied per pass, with the plan's bindings as
-//! its slots, draws exactly what `render` draws (so everything but the modules and layouts is
-//! the same frame), and a wrong number of modules is an error, not a crash.
-
-mod common;
+//! `Renderer::render_with` (the `conformance` feature): the program's SPIR-V supplied per
+//! compute pass, with the plan's bindings as its slots, draws exactly what `render` draws (so
+//! everything but the modules and layouts is the same frame), and a wrong number of modules is
+//! an error, not a crash.
 
 use stratus_backend_ash::{Error, Options, PassShader, Renderer, Shaders, Slot, SlotContent};
-use stratus_shaders::FramePlan;
+use stratus_graph::{FrameInput, FramePlan, Program, plan::PassKind};
+use stratus_test_support::{NoiseCache, small};
 
-/// The committed module of the plan's variant for every pass, bound as the plan says.
+/// The program's module of the plan's variant for every compute pass, bound as the plan says.
 fn committed_per_pass(plan: &FramePlan) -> Vec<PassShader> {
-    let path = format!(
-        "{}/../../spirv-out/{}",
-        env!("CARGO_MANIFEST_DIR"),
-        plan.spv_file
-    );
-    let bytes = std::fs::read(&path).unwrap_or_else(|e| panic!("{path}: {e}"));
-    let words: Vec<u32> = bytes
-        .chunks_exact(4)
-        .map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]]))
-        .collect();
+    let program = Program::embedded().expect("program");
     plan.passes
         .iter()
-        .map(|pass| PassShader {
-            spirv: words.clone(),
-            entry: pass.entry_point.clone(),
-            slots: pass
-                .bindings
-                .iter()
-                .map(|b| Slot {
-                    set: b.group,
-                    binding: b.binding,
-                    content: SlotContent::Plan(b.resource),
-                })
-                .collect(),
+        .filter_map(|pass| {
+            let PassKind::Compute { entry, .. } = &pass.kind else {
+                return None;
+            };
+            let spv = &plan.modules[&pass.module].spv_file;
+            Some(PassShader {
+                spirv: program.spirv[spv].clone(),
+                entry: entry.clone(),
+                slots: pass
+                    .bindings
+                    .iter()
+                    .map(|b| Slot {
+                        set: b.group,
+                        binding: b.binding,
+                        content: SlotContent::Plan(plan.resources[b.resource].name.clone()),
+                    })
+                    .collect(),
+            })
         })
         .collect()
 }
@@ -40,23 +37,18 @@ fn committed_per_pass(plan: &FramePlan) -> Vec<PassShader> {
 #[test]
 fn supplied_modules_draw_what_render_draws() {
     let mut renderer = Renderer::new(Options { validation: true }).expect("renderer");
-    let mut noise = common::NoiseCache::default();
-    let scene = common::small("cumulus-noon", 64, 36);
+    let mut noise = NoiseCache::default();
+    let scene = small("cumulus-noon", 64, 36);
     let plan = FramePlan::for_scene(&scene, true).expect("plan");
-    let uniforms = scene.uniforms();
     let noise = noise.get(&scene);
+    let frame = FrameInput::new(&plan, &scene, &noise);
 
-    let plain = renderer.render(&plan, &uniforms, noise).expect("render");
+    let plain = renderer.render(&frame).expect("render");
     let committed = renderer
-        .render_with(&plan, &Shaders::Committed, &uniforms, noise)
+        .render_with(&frame, &Shaders::Committed)
         .expect("render_with committed");
     let supplied = renderer
-        .render_with(
-            &plan,
-            &Shaders::PerPass(committed_per_pass(&plan)),
-            &uniforms,
-            noise,
-        )
+        .render_with(&frame, &Shaders::PerPass(committed_per_pass(&plan)))
         .expect("render_with per pass");
     let bits = |v: &[f32]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
     for other in [&committed, &supplied] {
@@ -68,7 +60,7 @@ fn supplied_modules_draw_what_render_draws() {
     }
 
     let one = Shaders::PerPass(committed_per_pass(&plan).into_iter().take(1).collect());
-    match renderer.render_with(&plan, &one, &uniforms, noise) {
+    match renderer.render_with(&frame, &one) {
         Err(Error::Shader(m)) => assert!(m.contains("1 supplied shader module"), "{m}"),
         other => panic!("one module for two passes: {:?}", other.map(|_| ())),
     }

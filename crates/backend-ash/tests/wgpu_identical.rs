@@ -4,76 +4,19 @@
 //! scene so that every committed `.spv` runs. Both run with validation; any validation
 //! message fails the test.
 
-mod common;
-
-use std::{collections::BTreeSet, sync::Mutex};
+use std::collections::BTreeSet;
 
 use stratus_backend_ash as ash_backend;
 use stratus_backend_wgpu as wgpu_backend;
+use stratus_graph::{FrameInput, FramePlan, Readback};
 use stratus_scene::Scene;
-use stratus_shaders::{FrameOutput, FramePlan};
-
-/// Records every warning or error wgpu logs (the Vulkan validation layer's messages about
-/// wgpu's calls arrive this way), so the wgpu side is held to the same standard.
-struct Recorder(Mutex<Vec<String>>);
-
-impl log::Log for Recorder {
-    fn enabled(&self, m: &log::Metadata) -> bool {
-        m.level() <= log::Level::Warn && m.target().starts_with("wgpu")
-    }
-    fn log(&self, r: &log::Record) {
-        if self.enabled(r.metadata()) {
-            if let Ok(mut v) = self.0.lock() {
-                v.push(format!("{} {}: {}", r.level(), r.target(), r.args()));
-            }
-        }
-    }
-    fn flush(&self) {}
-}
-
-static RECORDER: Recorder = Recorder(Mutex::new(Vec::new()));
-
-fn first_difference(name: &str, what: &str, a: &[f32], b: &[f32]) -> Option<String> {
-    let differing = a
-        .iter()
-        .zip(b)
-        .filter(|(x, y)| x.to_bits() != y.to_bits())
-        .count();
-    if differing == 0 && a.len() == b.len() {
-        return None;
-    }
-    let max = a
-        .iter()
-        .zip(b)
-        .map(|(x, y)| (x - y).abs())
-        .fold(0.0f32, f32::max);
-    Some(format!(
-        "{name}: {what}: {differing} of {} floats differ, max abs difference {max:e}",
-        a.len()
-    ))
-}
-
-fn compare(name: &str, a: &FrameOutput, w: &FrameOutput) -> Vec<String> {
-    let mut problems = Vec::new();
-    problems.extend(first_difference(name, "radiance", &a.radiance, &w.radiance));
-    problems.extend(first_difference(name, "depth", &a.depth, &w.depth));
-    if a.image != w.image {
-        let n = a.image.iter().zip(&w.image).filter(|(x, y)| x != y).count();
-        problems.push(format!("{name}: image: {n} bytes differ"));
-    }
-    if a.stats != w.stats {
-        problems.push(format!(
-            "{name}: counters differ: ash {:?}, wgpu {:?}",
-            a.stats, w.stats
-        ));
-    }
-    problems
-}
+use stratus_test_support::{
+    NoiseCache, assert_no_wgpu_messages, frame_differences, record_wgpu_log, small,
+};
 
 #[test]
 fn ash_and_wgpu_are_bit_identical_on_every_preset() {
-    log::set_logger(&RECORDER).expect("the only logger in this test binary");
-    log::set_max_level(log::LevelFilter::Warn);
+    record_wgpu_log();
     let mut ash = ash_backend::Renderer::new(ash_backend::Options { validation: true })
         .expect("ash renderer");
     let mut wgpu = wgpu_backend::Renderer::new(wgpu_backend::Options {
@@ -82,13 +25,13 @@ fn ash_and_wgpu_are_bit_identical_on_every_preset() {
     })
     .expect("wgpu renderer");
     assert_eq!(ash.adapter(), wgpu.adapter(), "both backends on one device");
-    let mut noise = common::NoiseCache::default();
+    let mut noise = NoiseCache::default();
     let mut scenes: Vec<(String, Scene)> = stratus_scene::presets()
         .iter()
-        .map(|p| (p.name.to_string(), common::small(p.name, 64, 36)))
+        .map(|p| (p.name.to_string(), small(p.name, 64, 36)))
         .collect();
     // No preset is unshadowed; this one picks the `unshadowed` variants.
-    let mut flat = common::small("cumulus-noon", 64, 36);
+    let mut flat = small("cumulus-noon", 64, 36);
     flat.quality.light_steps = 0;
     flat.lighting.multiple_scattering.octaves = 0;
     flat.clouds.detail_strength = 0.0;
@@ -97,12 +40,12 @@ fn ash_and_wgpu_are_bit_identical_on_every_preset() {
     let mut problems = Vec::new();
     let mut variants = BTreeSet::new();
     for (name, scene) in &scenes {
-        let uniforms = scene.uniforms();
         let noise = noise.get(scene);
         for stats in [true, false] {
             let plan = FramePlan::for_scene(scene, stats).expect("plan");
-            let a = ash.render(&plan, &uniforms, noise).expect("ash render");
-            let w = wgpu.render(&plan, &uniforms, noise).expect("wgpu render");
+            let frame = FrameInput::new(&plan, scene, &noise);
+            let a = ash.render(&frame).expect("ash render");
+            let w = wgpu.render(&frame).expect("wgpu render");
             assert_eq!(a.radiance.len(), 64 * 36 * 4);
             assert_eq!(a.stats.is_some(), stats);
             if let Some(s) = &a.stats {
@@ -112,20 +55,98 @@ fn ash_and_wgpu_are_bit_identical_on_every_preset() {
                 a.radiance.iter().any(|&v| v > 0.0) && a.image.iter().any(|&v| v > 0),
                 "{name}: an empty frame proves nothing"
             );
-            assert_eq!(a.timings.len(), plan.passes.len());
+            // Every pass but the present pass (it runs only when the host asks for a target).
+            assert_eq!(a.timings.len(), plan.passes.len() - 1);
             assert_eq!(a.device, w.device);
-            problems.extend(compare(&format!("{name} ({})", plan.variant), &a, &w));
-            variants.insert(plan.spv_file.clone());
+            problems.extend(frame_differences(
+                &format!("{name} ({})", plan.variant),
+                &a,
+                &w,
+            ));
+            variants.insert(plan.modules["clouds"].spv_file.clone());
         }
     }
     ash.finish().expect("ash teardown");
     drop(wgpu);
-    let logged = std::mem::take(&mut *RECORDER.0.lock().expect("log"));
-    assert!(logged.is_empty(), "wgpu logged:\n{}", logged.join("\n"));
+    assert_no_wgpu_messages();
     assert_eq!(
         variants.len(),
         6,
         "every committed SPIR-V ran: {variants:?}"
     );
     assert!(problems.is_empty(), "{}", problems.join("\n"));
+}
+
+/// A real-time loop: both backends render the same 24 frames (wind moving, statistics counted,
+/// the display target presented by the raster pass) bit for bit alike, frame by frame, and
+/// neither creates a GPU object after the first frame.
+#[test]
+fn a_steady_loop_is_bit_identical_frame_by_frame_and_creates_nothing() {
+    record_wgpu_log();
+    let mut ash = ash_backend::Renderer::new(ash_backend::Options { validation: true })
+        .expect("ash renderer");
+    let mut wgpu = wgpu_backend::Renderer::new(wgpu_backend::Options {
+        api: wgpu_backend::Api::Vulkan,
+        validation: true,
+    })
+    .expect("wgpu renderer");
+    let base = small("cumulus-noon", 48, 27);
+    let noise = NoiseCache::default().get(&base);
+    let plan = FramePlan::for_scene(&base, true).expect("plan");
+    let mut after_first = None;
+    let mut problems = Vec::new();
+    for i in 0..24 {
+        let mut scene = base.clone();
+        scene.clouds.time_s += f64::from(i) * 5.0;
+        // Read back every 6th frame only (and the display target, which only the present
+        // pass writes, so it must equal the composite's image).
+        let readback = if i % 6 == 5 {
+            Readback {
+                output: true,
+                resources: vec!["display".into()],
+            }
+        } else {
+            Readback::none()
+        };
+        let frame = FrameInput::new(&plan, &scene, &noise)
+            .with_readback(readback)
+            .with_flags(&["present"]);
+        let a = ash.render(&frame).expect("ash render");
+        let w = wgpu.render(&frame).expect("wgpu render");
+        assert_eq!(
+            a.timings.len(),
+            plan.passes.len(),
+            "frame {i}: every pass ran"
+        );
+        if i % 6 == 5 {
+            assert_eq!(
+                a.resources["display"], a.image,
+                "frame {i}: present copies the image"
+            );
+            problems.extend(frame_differences(&format!("frame {i}"), &a, &w));
+        } else {
+            assert!(
+                a.image.is_empty() && a.radiance.is_empty(),
+                "frame {i} read nothing back"
+            );
+        }
+        let now = (ash.objects_created(), wgpu.objects_created());
+        match i {
+            0 => after_first = Some(now),
+            // Frames 1-4 read nothing back: nothing new at all.
+            4 => assert_eq!(after_first, Some(now), "objects created in frames 1-4"),
+            // Frame 5 reads back for the first time: its readback buffers are new.
+            5 => after_first = Some(now),
+            _ => {}
+        }
+    }
+    assert_eq!(
+        after_first,
+        Some((ash.objects_created(), wgpu.objects_created())),
+        "GPU objects created after the first read-back frame (frames 6-23)"
+    );
+    assert!(problems.is_empty(), "{}", problems.join("\n"));
+    ash.finish().expect("ash teardown");
+    drop(wgpu);
+    assert_no_wgpu_messages();
 }

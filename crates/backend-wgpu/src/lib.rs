@@ -1,12 +1,20 @@
-//! Runs Stratus's frame plan on wgpu, headless: Vulkan first, GL (EGL) on request.
+//! Runs Stratus's frame graph on wgpu: on a device of its own (Vulkan first, GL on request),
+//! or on an application's device, recording into the application's command encoder.
 //!
-//! The steps mirror the ash backend's, in the same order: pick an adapter, compile the
-//! variant's pipelines, upload the uniforms and noise, create the frame's images and the
-//! statistics buffer, record every pass of the plan with timestamps around it, read back.
-//! wgpu compiles the WGSL itself (its own naga translation) with exactly the plan's override
-//! values, so it runs the same code as the committed SPIR-V the ash backend loads.
+//! The renderer is persistent. The first frame of a plan creates what the plan needs (resources
+//! by name, a pipeline per pass and variant, bind groups, timestamp queries); later frames only
+//! write the uniform block and record commands. A new plan (another size or variant) rebuilds
+//! only the resources whose size, format or usage changed, and the pipelines it lacks. Noise is
+//! uploaded when a different `Arc<NoiseSet>` arrives. History resources ping-pong: frame N's
+//! `name.previous` is what frame N-1 wrote as `name`.
+//!
+//! The steps mirror the ash backend's: the same plan, the same order, the same shared helpers
+//! from `stratus-graph`. wgpu compiles the composed WGSL itself with exactly the plan's
+//! override values, so it runs the code the committed SPIR-V (which ash loads) holds.
 
 #![deny(missing_docs)]
+
+mod convert;
 
 use std::{
     collections::HashMap,
@@ -14,13 +22,18 @@ use std::{
     time::Instant,
 };
 
-use stratus_noise::{NoiseSet, Texture2, Texture3};
-use stratus_scene::FrameUniforms;
-use stratus_shaders::{
-    FrameOutput, FramePlan, PassTiming, Resource, ShaderTree,
-    plan::{COUNTERS, Pass, named_counters},
+use stratus_graph::{
+    Backend, BackendError, FrameInput, FrameOutput, FramePlan, Program,
+    backend::{
+        DeviceClass, best_device, cpu_wall_timings, describe_device, frame_flags, history_half,
+        passes_to_run, timings_from_ticks, upload_data,
+    },
+    desc::{Lifetime, OutputRole, ResourceKind},
+    named_counters,
+    plan::{PassKind, PlanResource},
 };
-use wgpu::util::DeviceExt;
+use stratus_noise::NoiseSet;
+use stratus_scene::FrameUniforms;
 
 /// Which graphics API wgpu runs on.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -63,31 +76,88 @@ pub enum Error {
     /// wgpu reported a validation or out-of-memory error.
     #[error("wgpu reported an error: {0}")]
     Wgpu(String),
-    /// The shader tree or frame plan is unusable.
+    /// The shaders, graph or plan are unusable, or a frame asks for what the plan lacks.
     #[error("{0}")]
     Shader(String),
 }
 
+/// A pipeline of one pass of one variant, with its bind group layout.
 struct Pipeline {
     layout: wgpu::BindGroupLayout,
-    pipeline: wgpu::ComputePipeline,
+    kind: PipelineKind,
 }
 
-/// A wgpu device ready to render frames. Pipelines are cached per variant.
+enum PipelineKind {
+    Compute(wgpu::ComputePipeline),
+    Raster(wgpu::RenderPipeline),
+}
+
+/// Module, variant, pass, and the formats of its colour targets (an external target may
+/// differ from the graph's).
+type PipelineKey = (String, String, String, Vec<wgpu::TextureFormat>);
+
+/// The GPU side of a resource of the plan.
+struct Resource {
+    /// The plan's description it was created from (compared by signature).
+    desc: PlanResource,
+    /// Size of an uploaded texture (from its data).
+    uploaded: Option<[u32; 3]>,
+    object: Object,
+}
+
+enum Object {
+    Buffer(wgpu::Buffer),
+    /// One texture, or two for a history pair.
+    Textures(Vec<(wgpu::Texture, wgpu::TextureView)>),
+    Sampler(wgpu::Sampler),
+}
+
+/// Timestamp queries and the buffers their results travel through.
+struct Queries {
+    set: wgpu::QuerySet,
+    resolve: wgpu::Buffer,
+    read: wgpu::Buffer,
+    count: u32,
+}
+
+/// A wgpu device ready to render frames of Stratus's frame graph.
 pub struct Renderer {
     device: wgpu::Device,
     queue: wgpu::Queue,
-    info: wgpu::AdapterInfo,
+    description: String,
     timestamps: bool,
-    module: wgpu::ShaderModule,
-    pipelines: HashMap<(String, String), Pipeline>,
-    errors: Arc<Mutex<Vec<String>>>,
+    program: Arc<Program>,
+    modules: HashMap<String, wgpu::ShaderModule>,
+    pipelines: HashMap<PipelineKey, Pipeline>,
+    resources: HashMap<String, Resource>,
+    /// The plan the bind groups were built for.
+    plan: Option<FramePlan>,
+    /// Per pass of `plan`, one bind group per history parity.
+    groups: Vec<Vec<wgpu::BindGroup>>,
+    uniform: Option<wgpu::Buffer>,
+    noise: Option<Arc<NoiseSet>>,
+    /// Frames rendered since the history resources were (re)created.
+    history_frames: u64,
+    /// Frames rendered.
+    frame: u64,
+    queries: Option<Queries>,
+    readbacks: HashMap<String, wgpu::Buffer>,
+    /// Uncaptured errors, where the renderer owns the device (an application keeps its own
+    /// handler).
+    errors: Option<Arc<Mutex<Vec<String>>>>,
+    created: u64,
 }
 
 impl Renderer {
-    /// Picks an adapter for `options.api` (a real GPU before a CPU driver) and creates the
-    /// device and the shader module from the embedded WGSL.
+    /// Picks an adapter for `options.api` (a real GPU before a CPU driver), creates a device of
+    /// its own, and runs the embedded shaders.
     pub fn new(options: Options) -> Result<Self, Error> {
+        let program = Program::embedded().map_err(|e| Error::Shader(e.to_string()))?;
+        Self::with_program(options, program)
+    }
+
+    /// As [`Renderer::new`], running `program` (a test's own graph and shaders).
+    pub fn with_program(options: Options, program: Arc<Program>) -> Result<Self, Error> {
         let backends = match options.api {
             Api::Vulkan => wgpu::Backends::VULKAN,
             Api::Gl => wgpu::Backends::GL,
@@ -101,26 +171,26 @@ impl Renderer {
         };
         let instance = wgpu::Instance::new(desc);
         let mut adapters = pollster::block_on(instance.enumerate_adapters(backends));
-        adapters.sort_by_key(|a| match a.get_info().device_type {
-            wgpu::DeviceType::DiscreteGpu => 0,
-            wgpu::DeviceType::IntegratedGpu => 1,
-            wgpu::DeviceType::VirtualGpu => 2,
-            wgpu::DeviceType::Other => 3,
-            wgpu::DeviceType::Cpu => 4,
-        });
-        let adapter = adapters.into_iter().next().ok_or(Error::NoAdapter {
-            api: options.api,
-            hint: match options.api {
-                Api::Vulkan => {
-                    " (install a Vulkan driver: `apt-get install mesa-vulkan-drivers libvulkan1` gives lavapipe)"
-                }
-                Api::Gl => " (install EGL and a GL driver: `apt-get install libegl1 libgl1-mesa-dri`)",
-            },
-        })?;
+        let classes: Vec<DeviceClass> = adapters
+            .iter()
+            .map(|a| class_of(a.get_info().device_type))
+            .collect();
+        let adapter = best_device(&classes)
+            .map(|i| adapters.swap_remove(i))
+            .ok_or(Error::NoAdapter {
+                api: options.api,
+                hint: match options.api {
+                    Api::Vulkan => {
+                        " (install a Vulkan driver: `apt-get install mesa-vulkan-drivers libvulkan1` gives lavapipe)"
+                    }
+                    Api::Gl => {
+                        " (install EGL and a GL driver: `apt-get install libegl1 libgl1-mesa-dri`)"
+                    }
+                },
+            })?;
         let info = adapter.get_info();
-        let timestamps = adapter.features().contains(wgpu::Features::TIMESTAMP_QUERY);
         let mut required_features = wgpu::Features::empty();
-        if timestamps {
+        if adapter.features().contains(wgpu::Features::TIMESTAMP_QUERY) {
             required_features |= wgpu::Features::TIMESTAMP_QUERY;
         }
         let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
@@ -138,32 +208,59 @@ impl Renderer {
         device.on_uncaptured_error(Arc::new(move |e: wgpu::Error| {
             sink.lock().unwrap().push(e.to_string());
         }));
-
-        let tree = ShaderTree::embedded().map_err(|e| Error::Shader(e.to_string()))?;
-        let spec = tree
-            .module(stratus_shaders::plan::MODULE)
-            .ok_or_else(|| Error::Shader("the embedded WGSL has no `clouds` module".into()))?;
-        let source = tree.compose(spec).text;
-        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some("clouds"),
-            source: wgpu::ShaderSource::Wgsl(source.into()),
-        });
-        let renderer = Self {
-            device,
-            queue,
-            info,
-            timestamps,
-            module,
-            pipelines: HashMap::new(),
-            errors,
-        };
+        let mut renderer = Self::build(device, queue, describe(&info), program);
+        renderer.errors = Some(errors);
         renderer.check_errors()?;
         Ok(renderer)
     }
 
+    /// A renderer on an application's device and queue (the application keeps them, and its
+    /// own error handler). Passes are timed where the device has `TIMESTAMP_QUERY`.
+    pub fn from_device(
+        device: wgpu::Device,
+        queue: wgpu::Queue,
+        program: Arc<Program>,
+    ) -> Result<Self, Error> {
+        Ok(Self::build(
+            device,
+            queue,
+            "the application's wgpu device".into(),
+            program,
+        ))
+    }
+
+    fn build(
+        device: wgpu::Device,
+        queue: wgpu::Queue,
+        description: String,
+        program: Arc<Program>,
+    ) -> Self {
+        let timestamps = device.features().contains(wgpu::Features::TIMESTAMP_QUERY);
+        Self {
+            device,
+            queue,
+            description,
+            timestamps,
+            program,
+            modules: HashMap::new(),
+            pipelines: HashMap::new(),
+            resources: HashMap::new(),
+            plan: None,
+            groups: Vec::new(),
+            uniform: None,
+            noise: None,
+            history_frames: 0,
+            frame: 0,
+            queries: None,
+            readbacks: HashMap::new(),
+            errors: None,
+            created: 0,
+        }
+    }
+
     /// The adapter in words, e.g. `llvmpipe (LLVM 15.0.6, 256 bits) (Vulkan, Cpu)`.
     pub fn adapter(&self) -> String {
-        describe(&self.info)
+        self.description.clone()
     }
 
     /// Whether passes are timed with GPU timestamp queries (else by CPU wall time).
@@ -171,8 +268,21 @@ impl Renderer {
         self.timestamps
     }
 
+    /// GPU objects this renderer has created so far.
+    pub fn objects_created(&self) -> u64 {
+        self.created
+    }
+
+    /// The program the renderer runs.
+    pub fn program(&self) -> &Arc<Program> {
+        &self.program
+    }
+
     fn check_errors(&self) -> Result<(), Error> {
-        let errors = std::mem::take(&mut *self.errors.lock().unwrap());
+        let Some(errors) = &self.errors else {
+            return Ok(());
+        };
+        let errors = std::mem::take(&mut *errors.lock().unwrap());
         if errors.is_empty() {
             Ok(())
         } else {
@@ -180,15 +290,12 @@ impl Renderer {
         }
     }
 
-    /// Renders one frame of `plan` with these uniforms and noise textures.
-    pub fn render(
-        &mut self,
-        plan: &FramePlan,
-        uniforms: &FrameUniforms,
-        noise: &NoiseSet,
-    ) -> Result<FrameOutput, Error> {
+    /// Renders one frame on the renderer's queue, waits for it, and reads back what
+    /// `frame.readback` asks for. Without timestamp queries every pass is submitted alone and
+    /// timed on the CPU.
+    pub fn render(&mut self, frame: &FrameInput<'_>) -> Result<FrameOutput, Error> {
         let scope = self.device.push_error_scope(wgpu::ErrorFilter::Validation);
-        let result = self.render_inner(plan, uniforms, noise);
+        let result = self.render_inner(frame);
         let scoped = pollster::block_on(scope.pop());
         self.check_errors()?;
         if let Some(e) = scoped {
@@ -197,194 +304,158 @@ impl Renderer {
         result
     }
 
-    fn render_inner(
+    /// Records one frame into the application's `encoder`, drawing passes whose colour target
+    /// is an external resource (the graph's `display`) into `target` where one is given. The
+    /// application submits; [`Renderer::last_timings`] reads the pass times after that.
+    pub fn record(
         &mut self,
-        plan: &FramePlan,
-        uniforms: &FrameUniforms,
-        noise: &NoiseSet,
-    ) -> Result<FrameOutput, Error> {
-        // 1. Pipelines for the plan's variant (cached).
-        for pass in &plan.passes {
-            self.pipeline(plan, pass);
+        encoder: &mut wgpu::CommandEncoder,
+        frame: &FrameInput<'_>,
+        target: Option<&wgpu::TextureView>,
+    ) -> Result<Vec<String>, Error> {
+        let scope = self.device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let result = self.record_frame(encoder, frame, target);
+        let scoped = pollster::block_on(scope.pop());
+        if let Some(e) = scoped {
+            return Err(Error::Wgpu(e.to_string()));
         }
+        result
+    }
 
-        // 2. Resources: uniforms, noise, the frame's images and the statistics buffer.
-        let (w, h) = (plan.width, plan.height);
-        let device = &self.device;
-        let frame = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("frame"),
-            contents: bytemuck::bytes_of(uniforms),
-            usage: wgpu::BufferUsages::UNIFORM,
-        });
-        let shape = self.texture3("shape", &noise.shape);
-        let detail = self.texture3("detail", &noise.detail);
-        let weather = self.texture2("weather", &noise.weather);
-        let curl = self.texture2("curl", &noise.curl);
-        let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
-            label: Some("noise"),
-            address_mode_u: wgpu::AddressMode::Repeat,
-            address_mode_v: wgpu::AddressMode::Repeat,
-            address_mode_w: wgpu::AddressMode::Repeat,
-            mag_filter: wgpu::FilterMode::Linear,
-            min_filter: wgpu::FilterMode::Linear,
-            mipmap_filter: wgpu::MipmapFilterMode::Nearest,
-            ..Default::default()
-        });
-        // COPY_DST lets wgpu zero-initialise these images with a copy. Without it wgpu clears
-        // them with a render pass, which leaves a framebuffer bound in llvmpipe; lavapipe then
-        // bins timestamps into its tiles and takes them at the next flush, so the march pass
-        // measured ~0 ms and its cost landed in the composite pass (found with a perf probe on
-        // clock_gettime; ash, which never binds a framebuffer, times the passes correctly).
-        let image_usage = wgpu::TextureUsages::STORAGE_BINDING
-            | wgpu::TextureUsages::TEXTURE_BINDING
-            | wgpu::TextureUsages::COPY_SRC
-            | wgpu::TextureUsages::COPY_DST;
-        let cloud = self.image("cloud", w, h, wgpu::TextureFormat::Rgba32Float, image_usage);
-        let depth = self.image("depth", w, h, wgpu::TextureFormat::R32Float, image_usage);
-        let image = self.image("image", w, h, wgpu::TextureFormat::Rgba8Unorm, image_usage);
-        let stats = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("stats"),
-            contents: &[0u8; COUNTERS.len() * 4],
-            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
-        });
-        let views: HashMap<Resource, wgpu::BindingResource> = HashMap::from([
-            (Resource::Frame, frame.as_entire_binding()),
-            (Resource::Shape, wgpu::BindingResource::TextureView(&shape)),
-            (
-                Resource::Detail,
-                wgpu::BindingResource::TextureView(&detail),
-            ),
-            (
-                Resource::Weather,
-                wgpu::BindingResource::TextureView(&weather),
-            ),
-            (Resource::Curl, wgpu::BindingResource::TextureView(&curl)),
-            (
-                Resource::NoiseSampler,
-                wgpu::BindingResource::Sampler(&sampler),
-            ),
-            (
-                Resource::Cloud,
-                wgpu::BindingResource::TextureView(&cloud.1),
-            ),
-            (
-                Resource::Depth,
-                wgpu::BindingResource::TextureView(&depth.1),
-            ),
-            (
-                Resource::Image,
-                wgpu::BindingResource::TextureView(&image.1),
-            ),
-            (Resource::Stats, stats.as_entire_binding()),
-        ]);
+    /// The GPU time of every pass of the last recorded frame, once the application has
+    /// submitted it (this waits for the GPU). Empty without timestamp queries.
+    pub fn last_timings(
+        &mut self,
+        passes: &[String],
+    ) -> Result<Vec<stratus_graph::PassTiming>, Error> {
+        let Some(plan) = &self.plan else {
+            return Ok(Vec::new());
+        };
+        if !self.timestamps || passes.is_empty() {
+            return Ok(Vec::new());
+        }
+        let ran: Vec<&stratus_graph::plan::Pass> = plan
+            .passes
+            .iter()
+            .filter(|p| passes.contains(&p.name))
+            .collect();
+        let q = self
+            .queries
+            .as_ref()
+            .expect("queries exist with timestamps");
+        let bytes = read_buffer(&self.device, &q.read, None)?;
+        let ticks: Vec<u64> = bytes
+            .chunks_exact(8)
+            .map(|c| u64::from_le_bytes(c.try_into().expect("8 bytes")))
+            .collect();
+        let period_ns = f64::from(self.queue.get_timestamp_period());
+        Ok(timings_from_ticks(&ran, &ticks, period_ns, 64))
+    }
 
-        // 3. Passes, each bracketed by timestamps (or submitted alone and timed on the CPU).
-        let queries = self.timestamps.then(|| {
-            device.create_query_set(&wgpu::QuerySetDescriptor {
-                label: Some("pass times"),
-                ty: wgpu::QueryType::Timestamp,
-                count: 2 * plan.passes.len() as u32,
-            })
-        });
+    fn record_frame(
+        &mut self,
+        encoder: &mut wgpu::CommandEncoder,
+        frame: &FrameInput<'_>,
+        target: Option<&wgpu::TextureView>,
+    ) -> Result<Vec<String>, Error> {
+        let target_format = target.map(|t| t.texture().format());
+        self.prepare(frame, target_format)?;
+        let plan = frame.plan;
+        let flags = frame_flags(frame, self.history_frames > 0);
+        let run: Vec<usize> = (0..plan.passes.len())
+            .filter(|&i| plan.passes[i].runs(&flags))
+            .collect();
+        self.begin_frame(encoder, frame);
+        for (k, &i) in run.iter().enumerate() {
+            self.record_pass(encoder, i, Some(k as u32), target, target_format)?;
+        }
+        self.resolve_queries(encoder, run.len() as u32);
+        self.end_frame();
+        Ok(run.iter().map(|&i| plan.passes[i].name.clone()).collect())
+    }
+
+    fn render_inner(&mut self, frame: &FrameInput<'_>) -> Result<FrameOutput, Error> {
+        let t0 = Instant::now();
+        self.prepare(frame, None)?;
+        let plan = frame.plan;
+        let flags = frame_flags(frame, self.history_frames > 0);
+        let run = passes_to_run(plan, &flags);
+        let indices: Vec<usize> = (0..plan.passes.len())
+            .filter(|&i| plan.passes[i].runs(&flags))
+            .collect();
+        let mut encoder = self.device.create_command_encoder(&Default::default());
+        self.begin_frame(&mut encoder, frame);
         let mut wall = Vec::new();
-        let mut encoder = device.create_command_encoder(&Default::default());
-        for (i, pass) in plan.passes.iter().enumerate() {
-            let p = &self.pipelines[&(plan.variant.clone(), pass.entry_point.clone())];
-            let entries: Vec<_> = pass
-                .bindings
-                .iter()
-                .map(|b| wgpu::BindGroupEntry {
-                    binding: b.binding,
-                    resource: views[&b.resource].clone(),
-                })
-                .collect();
-            let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some(&pass.name),
-                layout: &p.layout,
-                entries: &entries,
-            });
-            {
-                let mut cpass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-                    label: Some(&pass.name),
-                    timestamp_writes: queries.as_ref().map(|q| wgpu::ComputePassTimestampWrites {
-                        query_set: q,
-                        beginning_of_pass_write_index: Some(2 * i as u32),
-                        end_of_pass_write_index: Some(2 * i as u32 + 1),
-                    }),
-                });
-                cpass.set_pipeline(&p.pipeline);
-                cpass.set_bind_group(0, &group, &[]);
-                let [x, y, z] = pass.dispatch;
-                cpass.dispatch_workgroups(x, y, z);
+        // CPU time of recording and submitting: the waits of the CPU-wall fallback excluded.
+        let mut waited = 0.0;
+        if self.timestamps {
+            for (k, &i) in indices.iter().enumerate() {
+                self.record_pass(&mut encoder, i, Some(k as u32), None, None)?;
             }
-            if queries.is_none() {
-                // No timestamps: submit this pass alone and time it on the CPU.
+            self.resolve_queries(&mut encoder, indices.len() as u32);
+        } else {
+            // No timestamps: submit every pass alone and time it on the CPU.
+            for &i in &indices {
+                self.queue.submit([encoder.finish()]);
                 let t = Instant::now();
+                self.wait()?;
+                waited += t.elapsed().as_secs_f64() * 1e3;
+                let t = Instant::now();
+                encoder = self.device.create_command_encoder(&Default::default());
+                self.record_pass(&mut encoder, i, None, None, None)?;
                 self.queue.submit([encoder.finish()]);
                 self.wait()?;
-                wall.push(t.elapsed().as_secs_f64() * 1e3);
-                encoder = device.create_command_encoder(&Default::default());
+                let ms = t.elapsed().as_secs_f64() * 1e3;
+                wall.push(ms);
+                waited += ms;
+                encoder = self.device.create_command_encoder(&Default::default());
             }
         }
-
-        // 4. Read back images, statistics and timestamps.
-        let cloud_rb = Readback::texture(device, &mut encoder, &cloud.0, 16);
-        let depth_rb = Readback::texture(device, &mut encoder, &depth.0, 4);
-        let image_rb = Readback::texture(device, &mut encoder, &image.0, 4);
-        let stats_rb = Readback::buffer(device, &mut encoder, &stats, (COUNTERS.len() * 4) as u64);
-        let time_rb = queries.as_ref().map(|q| {
-            let n = 2 * plan.passes.len() as u32;
-            let resolve = device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some("timestamps"),
-                size: u64::from(n) * 8,
-                usage: wgpu::BufferUsages::QUERY_RESOLVE | wgpu::BufferUsages::COPY_SRC,
-                mapped_at_creation: false,
-            });
-            encoder.resolve_query_set(q, 0..n, &resolve, 0);
-            Readback::buffer(device, &mut encoder, &resolve, u64::from(n) * 8)
-        });
+        let copies = self.copy_readbacks(&mut encoder, frame)?;
         self.queue.submit([encoder.finish()]);
+        let cpu_ms = t0.elapsed().as_secs_f64() * 1e3 - waited;
+        self.end_frame();
         self.wait()?;
 
-        let radiance: Vec<f32> = bytemuck::cast_slice(&cloud_rb.read(device)?).to_vec();
-        let depth: Vec<f32> = bytemuck::cast_slice(&depth_rb.read(device)?).to_vec();
-        let image = image_rb.read(device)?;
-        let raw_stats: Vec<u32> = bytemuck::cast_slice(&stats_rb.read(device)?).to_vec();
-        let timings = match time_rb {
-            Some(rb) => {
-                let ticks: Vec<u64> = bytemuck::cast_slice(&rb.read(device)?).to_vec();
-                let period_ns = f64::from(self.queue.get_timestamp_period());
-                plan.passes
-                    .iter()
-                    .enumerate()
-                    .map(|(i, p)| PassTiming {
-                        pass: p.name.clone(),
-                        ms: ticks[2 * i + 1].saturating_sub(ticks[2 * i]) as f64 * period_ns * 1e-6,
-                        source: "gpu-timestamp",
-                    })
-                    .collect()
-            }
-            None => plan
-                .passes
-                .iter()
-                .zip(wall)
-                .map(|(p, ms)| PassTiming {
-                    pass: p.name.clone(),
-                    ms,
-                    source: "cpu-wall",
-                })
-                .collect(),
-        };
-        Ok(FrameOutput {
-            width: w,
-            height: h,
-            radiance,
-            depth,
-            image,
-            stats: plan.stats.then(|| named_counters(&raw_stats)),
-            timings,
+        let mut out = FrameOutput {
+            width: plan.width,
+            height: plan.height,
+            cpu_ms,
             device: self.adapter(),
-        })
+            ..Default::default()
+        };
+        for Copied { name, role, rows } in copies {
+            let bytes = read_buffer(&self.device, &self.readbacks[&name], rows)?;
+            match role {
+                Some(Readout::Output(OutputRole::Radiance)) => {
+                    out.radiance = bytemuck::pod_collect_to_vec(&bytes)
+                }
+                Some(Readout::Output(OutputRole::Depth)) => {
+                    out.depth = bytemuck::pod_collect_to_vec(&bytes)
+                }
+                Some(Readout::Output(OutputRole::Image)) => out.image = bytes,
+                Some(Readout::Counters) => {
+                    let raw: Vec<u32> = bytemuck::pod_collect_to_vec(&bytes);
+                    out.stats = Some(named_counters(plan.counters(), &raw));
+                }
+                None => {
+                    out.resources.insert(name, bytes);
+                }
+            }
+        }
+        out.timings = if self.timestamps {
+            let q = self
+                .queries
+                .as_ref()
+                .expect("queries exist with timestamps");
+            let bytes = read_buffer(&self.device, &q.read, None)?;
+            let ticks: Vec<u64> = bytemuck::pod_collect_to_vec(&bytes);
+            let period_ns = f64::from(self.queue.get_timestamp_period());
+            timings_from_ticks(&run, &ticks, period_ns, 64)
+        } else {
+            cpu_wall_timings(&run, &wall)
+        };
+        Ok(out)
     }
 
     fn wait(&self) -> Result<(), Error> {
@@ -394,19 +465,321 @@ impl Renderer {
             .map_err(|e| Error::Wgpu(e.to_string()))
     }
 
-    /// Creates (once per variant) the bind group layout and pipeline of a pass from the plan.
-    fn pipeline(&mut self, plan: &FramePlan, pass: &Pass) {
-        let key = (plan.variant.clone(), pass.entry_point.clone());
-        if self.pipelines.contains_key(&key) {
+    /// Writes the uniforms and clears the counters of a counting frame.
+    fn begin_frame(&self, encoder: &mut wgpu::CommandEncoder, frame: &FrameInput<'_>) {
+        let uniforms: FrameUniforms = frame.scene.uniforms();
+        if let Some(u) = &self.uniform {
+            self.queue.write_buffer(u, 0, bytemuck::bytes_of(&uniforms));
+        }
+        if frame.plan.stats {
+            for r in self.resources.values() {
+                if let (ResourceKind::Counters, Object::Buffer(b)) = (r.desc.kind, &r.object) {
+                    encoder.clear_buffer(b, 0, None);
+                }
+            }
+        }
+    }
+
+    fn end_frame(&mut self) {
+        self.frame += 1;
+        self.history_frames += 1;
+    }
+
+    /// Creates or updates what `frame` needs: resources, pipelines, bind groups, uploads.
+    fn prepare(
+        &mut self,
+        frame: &FrameInput<'_>,
+        target_format: Option<wgpu::TextureFormat>,
+    ) -> Result<(), Error> {
+        let plan = frame.plan;
+        let noise_changed = !self
+            .noise
+            .as_ref()
+            .is_some_and(|n| Arc::ptr_eq(n, frame.noise));
+        let plan_changed = self.plan.as_ref() != Some(plan);
+        if !plan_changed && !noise_changed {
+            if let Some(format) = target_format {
+                // Another external target format needs its own raster pipelines.
+                for (i, pass) in plan.passes.iter().enumerate() {
+                    if matches!(pass.kind, PassKind::Raster { .. }) {
+                        self.pipeline(plan, i, Some(format))?;
+                    }
+                }
+            }
+            return Ok(());
+        }
+        if plan_changed {
+            self.groups.clear();
+            self.plan = None;
+            if self.uniform.is_none() {
+                self.uniform = Some(self.device.create_buffer(&wgpu::BufferDescriptor {
+                    label: Some("frame"),
+                    size: std::mem::size_of::<FrameUniforms>() as u64,
+                    usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+                    mapped_at_creation: false,
+                }));
+                self.created += 1;
+            }
+        }
+        let mut rebuilt = false;
+        for r in &plan.resources {
+            let uploaded = match &r.upload {
+                Some(src) if r.kind == ResourceKind::Texture => Some(
+                    upload_data(src, frame.noise)
+                        .map_err(|e| Error::Shader(format!("resource `{}`: {e}", r.name)))?
+                        .0,
+                ),
+                _ => None,
+            };
+            let keep = self.resources.get(&r.name).is_some_and(|have| {
+                have.desc.signature() == r.signature() && have.uploaded == uploaded
+            });
+            if !keep {
+                let object = self.create_resource(r, uploaded)?;
+                self.resources.insert(
+                    r.name.clone(),
+                    Resource {
+                        desc: r.clone(),
+                        uploaded,
+                        object,
+                    },
+                );
+                rebuilt = true;
+                if r.lifetime == Lifetime::History {
+                    self.history_frames = 0;
+                }
+            }
+        }
+        self.resources
+            .retain(|name, _| plan.resources.iter().any(|r| &r.name == name));
+        if rebuilt || noise_changed {
+            for r in plan.resources.iter().filter(|r| r.usage.upload) {
+                let src = r.upload.as_deref().unwrap_or_default();
+                let (size, data) = upload_data(src, frame.noise)
+                    .map_err(|e| Error::Shader(format!("resource `{}`: {e}", r.name)))?;
+                let Object::Textures(t) = &self.resources[&r.name].object else {
+                    continue;
+                };
+                self.queue.write_texture(
+                    t[0].0.as_image_copy(),
+                    data,
+                    wgpu::TexelCopyBufferLayout {
+                        offset: 0,
+                        bytes_per_row: Some(size[0] * 4),
+                        rows_per_image: Some(size[1]),
+                    },
+                    extent3d(size),
+                );
+            }
+            self.noise = Some(frame.noise.clone());
+        }
+        if plan_changed || rebuilt {
+            for i in 0..plan.passes.len() {
+                self.pipeline(plan, i, None)?;
+                if let Some(format) = target_format {
+                    self.pipeline(plan, i, Some(format))?;
+                }
+            }
+            self.build_groups(plan)?;
+            self.ensure_queries(2 * plan.passes.len() as u32);
+            self.plan = Some(plan.clone());
+        }
+        Ok(())
+    }
+
+    fn create_resource(
+        &mut self,
+        r: &PlanResource,
+        uploaded: Option<[u32; 3]>,
+    ) -> Result<Object, Error> {
+        Ok(match r.kind {
+            ResourceKind::Uniform => {
+                // The one uniform block, created with the renderer's first plan.
+                Object::Buffer(self.uniform.clone().expect("created before resources"))
+            }
+            ResourceKind::Counters => {
+                self.created += 1;
+                Object::Buffer(self.device.create_buffer(&wgpu::BufferDescriptor {
+                    label: Some(&r.name),
+                    size: r.buffer_size().max(4),
+                    usage: wgpu::BufferUsages::STORAGE
+                        | wgpu::BufferUsages::COPY_SRC
+                        | wgpu::BufferUsages::COPY_DST,
+                    mapped_at_creation: false,
+                }))
+            }
+            ResourceKind::Sampler => {
+                self.created += 1;
+                let s = r
+                    .sampler
+                    .ok_or_else(|| Error::Shader(format!("sampler `{}` has no state", r.name)))?;
+                Object::Sampler(self.device.create_sampler(&convert::sampler(s)))
+            }
+            ResourceKind::Texture => {
+                let size = uploaded
+                    .or(r.extent)
+                    .ok_or_else(|| Error::Shader(format!("texture `{}` has no size", r.name)))?;
+                let f = r
+                    .format
+                    .ok_or_else(|| Error::Shader(format!("texture `{}` has no format", r.name)))?;
+                let (dimension, view_dimension) = convert::dimension(r.dimension);
+                let count = if r.lifetime == Lifetime::History {
+                    2
+                } else {
+                    1
+                };
+                let mut list = Vec::new();
+                for half in 0..count {
+                    let label = if count == 2 {
+                        format!("{}[{half}]", r.name)
+                    } else {
+                        r.name.clone()
+                    };
+                    let texture = self.device.create_texture(&wgpu::TextureDescriptor {
+                        label: Some(&label),
+                        size: extent3d(size),
+                        mip_level_count: 1,
+                        sample_count: 1,
+                        dimension,
+                        format: convert::format(f),
+                        usage: convert::texture_usage(r.usage, f),
+                        view_formats: &[],
+                    });
+                    let view = texture.create_view(&wgpu::TextureViewDescriptor {
+                        dimension: Some(view_dimension),
+                        ..Default::default()
+                    });
+                    self.created += 2;
+                    list.push((texture, view));
+                }
+                Object::Textures(list)
+            }
+        })
+    }
+
+    fn ensure_queries(&mut self, count: u32) {
+        if !self.timestamps || count == 0 || self.queries.as_ref().is_some_and(|q| q.count >= count)
+        {
             return;
+        }
+        let size = u64::from(count) * 8;
+        let set = self.device.create_query_set(&wgpu::QuerySetDescriptor {
+            label: Some("pass times"),
+            ty: wgpu::QueryType::Timestamp,
+            count,
+        });
+        let resolve = self.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("timestamps"),
+            size,
+            usage: wgpu::BufferUsages::QUERY_RESOLVE | wgpu::BufferUsages::COPY_SRC,
+            mapped_at_creation: false,
+        });
+        let read = self.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("timestamps readback"),
+            size,
+            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        self.created += 3;
+        self.queries = Some(Queries {
+            set,
+            resolve,
+            read,
+            count,
+        });
+    }
+
+    fn resolve_queries(&self, encoder: &mut wgpu::CommandEncoder, passes: u32) {
+        if let Some(q) = &self.queries
+            && passes > 0
+        {
+            let n = 2 * passes;
+            encoder.resolve_query_set(&q.set, 0..n, &q.resolve, 0);
+            encoder.copy_buffer_to_buffer(&q.resolve, 0, &q.read, 0, u64::from(n) * 8);
+        }
+    }
+
+    /// The shader module of a WGSL module (created once).
+    fn module(&mut self, name: &str) -> Result<wgpu::ShaderModule, Error> {
+        if let Some(m) = self.modules.get(name) {
+            return Ok(m.clone());
+        }
+        let source = self
+            .program
+            .wgsl
+            .get(name)
+            .ok_or_else(|| Error::Shader(format!("the program has no WGSL module `{name}`")))?;
+        let m = self
+            .device
+            .create_shader_module(wgpu::ShaderModuleDescriptor {
+                label: Some(name),
+                source: wgpu::ShaderSource::Wgsl(source.clone().into()),
+            });
+        self.created += 1;
+        self.modules.insert(name.into(), m.clone());
+        Ok(m)
+    }
+
+    fn pipeline_key(
+        plan: &FramePlan,
+        i: usize,
+        target: Option<wgpu::TextureFormat>,
+    ) -> PipelineKey {
+        let pass = &plan.passes[i];
+        let variant = plan
+            .modules
+            .get(&pass.module)
+            .map(|m| m.variant.clone())
+            .unwrap_or_default();
+        let formats = match &pass.kind {
+            PassKind::Compute { .. } => Vec::new(),
+            PassKind::Raster { colors, .. } => colors
+                .iter()
+                .map(|c| {
+                    let r = &plan.resources[c.resource];
+                    match target {
+                        Some(f) if r.external => f,
+                        _ => convert::format(
+                            r.format
+                                .unwrap_or(stratus_graph::desc::TexelFormat::Rgba8Unorm),
+                        ),
+                    }
+                })
+                .collect(),
+        };
+        (pass.module.clone(), variant, pass.name.clone(), formats)
+    }
+
+    /// Creates (once per module variant, pass and target formats) a pass's pipeline.
+    fn pipeline(
+        &mut self,
+        plan: &FramePlan,
+        i: usize,
+        target: Option<wgpu::TextureFormat>,
+    ) -> Result<(), Error> {
+        let key = Self::pipeline_key(plan, i, target);
+        if self.pipelines.contains_key(&key) {
+            return Ok(());
+        }
+        let pass = &plan.passes[i];
+        let module = self.module(&pass.module)?;
+        let visibility = match pass.kind {
+            PassKind::Compute { .. } => wgpu::ShaderStages::COMPUTE,
+            PassKind::Raster { .. } => wgpu::ShaderStages::VERTEX_FRAGMENT,
+        };
+        if let Some(b) = pass.bindings.iter().find(|b| b.group != 0) {
+            return Err(Error::Shader(format!(
+                "pass `{}`: `{}` is in @group({}); the backends bind group 0 only",
+                pass.name, b.info.name, b.group
+            )));
         }
         let entries: Vec<_> = pass
             .bindings
             .iter()
             .map(|b| wgpu::BindGroupLayoutEntry {
                 binding: b.binding,
-                visibility: wgpu::ShaderStages::COMPUTE,
-                ty: binding_type(b),
+                visibility,
+                ty: convert::binding_type(b, plan),
                 count: None,
             })
             .collect();
@@ -424,229 +797,433 @@ impl Renderer {
                 immediate_size: 0,
             });
         // Exactly the variant's override values, so wgpu runs the code the SPIR-V holds.
-        let constants: Vec<(&str, f64)> = plan
-            .overrides
-            .iter()
+        let overrides = plan.modules.get(&pass.module).map(|m| &m.overrides);
+        let constants: Vec<(&str, f64)> = overrides
+            .into_iter()
+            .flatten()
             .map(|(k, v)| (k.as_str(), *v))
             .collect();
-        let pipeline = self
-            .device
-            .create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-                label: Some(&pass.name),
-                layout: Some(&pipeline_layout),
-                module: &self.module,
-                entry_point: Some(&pass.entry_point),
-                compilation_options: wgpu::PipelineCompilationOptions {
-                    constants: &constants,
-                    zero_initialize_workgroup_memory: true,
-                },
-                cache: None,
-            });
-        self.pipelines.insert(key, Pipeline { layout, pipeline });
+        let options = || wgpu::PipelineCompilationOptions {
+            constants: &constants,
+            zero_initialize_workgroup_memory: true,
+        };
+        let kind = match &pass.kind {
+            PassKind::Compute { entry, .. } => PipelineKind::Compute(
+                self.device
+                    .create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                        label: Some(&pass.name),
+                        layout: Some(&pipeline_layout),
+                        module: &module,
+                        entry_point: Some(entry),
+                        compilation_options: options(),
+                        cache: None,
+                    }),
+            ),
+            PassKind::Raster {
+                vertex,
+                fragment,
+                colors,
+                depth,
+                ..
+            } => {
+                let targets: Vec<Option<wgpu::ColorTargetState>> = colors
+                    .iter()
+                    .zip(&key.3)
+                    .map(|(c, &format)| {
+                        Some(wgpu::ColorTargetState {
+                            format,
+                            blend: convert::blend(c.blend),
+                            write_mask: wgpu::ColorWrites::ALL,
+                        })
+                    })
+                    .collect();
+                let depth_stencil = depth.as_ref().map(|d| wgpu::DepthStencilState {
+                    format: wgpu::TextureFormat::Depth32Float,
+                    depth_write_enabled: Some(d.write),
+                    depth_compare: Some(convert::compare(d.compare)),
+                    stencil: Default::default(),
+                    bias: Default::default(),
+                });
+                PipelineKind::Raster(self.device.create_render_pipeline(
+                    &wgpu::RenderPipelineDescriptor {
+                        label: Some(&pass.name),
+                        layout: Some(&pipeline_layout),
+                        vertex: wgpu::VertexState {
+                            module: &module,
+                            entry_point: Some(vertex),
+                            compilation_options: options(),
+                            buffers: &[],
+                        },
+                        primitive: wgpu::PrimitiveState::default(),
+                        depth_stencil,
+                        multisample: wgpu::MultisampleState::default(),
+                        fragment: Some(wgpu::FragmentState {
+                            module: &module,
+                            entry_point: Some(fragment),
+                            compilation_options: options(),
+                            targets: &targets,
+                        }),
+                        multiview_mask: None,
+                        cache: None,
+                    },
+                ))
+            }
+        };
+        self.created += 3;
+        self.pipelines.insert(key, Pipeline { layout, kind });
+        Ok(())
     }
 
-    fn texture3(&self, label: &str, t: &Texture3) -> wgpu::TextureView {
-        let [x, y, z] = t.size;
-        self.upload(label, wgpu::TextureDimension::D3, [x, y, z], &t.data)
+    /// One bind group per pass and history parity (two where the plan has history resources:
+    /// frame N binds half N % 2 as `name` and the other as `name.previous`).
+    fn build_groups(&mut self, plan: &FramePlan) -> Result<(), Error> {
+        let parities = if plan.has_history() { 2 } else { 1 };
+        let mut groups = Vec::new();
+        for (i, pass) in plan.passes.iter().enumerate() {
+            let key = Self::pipeline_key(plan, i, None);
+            let layout = &self.pipelines[&key].layout;
+            let mut per_parity = Vec::new();
+            for parity in 0..parities {
+                let mut entries = Vec::new();
+                for b in &pass.bindings {
+                    let r = &plan.resources[b.resource];
+                    let object = &self.resources[&r.name].object;
+                    let resource = match object {
+                        Object::Buffer(buf) => buf.as_entire_binding(),
+                        Object::Sampler(s) => wgpu::BindingResource::Sampler(s),
+                        Object::Textures(t) => {
+                            let half = if r.lifetime == Lifetime::History {
+                                history_half(parity, b.previous)
+                            } else {
+                                0
+                            };
+                            wgpu::BindingResource::TextureView(&t[half].1)
+                        }
+                    };
+                    entries.push(wgpu::BindGroupEntry {
+                        binding: b.binding,
+                        resource,
+                    });
+                }
+                per_parity.push(self.device.create_bind_group(&wgpu::BindGroupDescriptor {
+                    label: Some(&pass.name),
+                    layout,
+                    entries: &entries,
+                }));
+                self.created += 1;
+            }
+            groups.push(per_parity);
+        }
+        self.groups = groups;
+        Ok(())
     }
 
-    fn texture2(&self, label: &str, t: &Texture2) -> wgpu::TextureView {
-        let [x, y] = t.size;
-        self.upload(label, wgpu::TextureDimension::D2, [x, y, 1], &t.data)
-    }
-
-    fn upload(
-        &self,
-        label: &str,
-        dimension: wgpu::TextureDimension,
-        [x, y, z]: [u32; 3],
-        data: &[u8],
-    ) -> wgpu::TextureView {
-        let texture = self.device.create_texture_with_data(
-            &self.queue,
-            &wgpu::TextureDescriptor {
-                label: Some(label),
-                size: wgpu::Extent3d {
-                    width: x,
-                    height: y,
-                    depth_or_array_layers: z,
-                },
-                mip_level_count: 1,
-                sample_count: 1,
-                dimension,
-                format: wgpu::TextureFormat::Rgba8Unorm,
-                usage: wgpu::TextureUsages::TEXTURE_BINDING,
-                view_formats: &[],
-            },
-            wgpu::util::TextureDataOrder::LayerMajor,
-            data,
-        );
-        texture.create_view(&Default::default())
-    }
-
-    fn image(
-        &self,
-        label: &str,
-        w: u32,
-        h: u32,
-        format: wgpu::TextureFormat,
-        usage: wgpu::TextureUsages,
-    ) -> (wgpu::Texture, wgpu::TextureView) {
-        let texture = self.device.create_texture(&wgpu::TextureDescriptor {
-            label: Some(label),
-            size: wgpu::Extent3d {
-                width: w,
-                height: h,
-                depth_or_array_layers: 1,
-            },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format,
-            usage,
-            view_formats: &[],
-        });
-        let view = texture.create_view(&Default::default());
-        (texture, view)
-    }
-}
-
-/// The wgpu binding type for a plan binding, from the manifest's reflection.
-fn binding_type(b: &stratus_shaders::plan::Binding) -> wgpu::BindingType {
-    let dim = match b.info.dimension.as_deref() {
-        Some("3d") => wgpu::TextureViewDimension::D3,
-        _ => wgpu::TextureViewDimension::D2,
-    };
-    match b.info.kind.as_str() {
-        "uniform-buffer" => wgpu::BindingType::Buffer {
-            ty: wgpu::BufferBindingType::Uniform,
-            has_dynamic_offset: false,
-            min_binding_size: None,
-        },
-        "storage-buffer" => wgpu::BindingType::Buffer {
-            ty: wgpu::BufferBindingType::Storage {
-                read_only: b.info.access.as_deref() == Some("read"),
-            },
-            has_dynamic_offset: false,
-            min_binding_size: None,
-        },
-        "sampled-texture" => wgpu::BindingType::Texture {
-            sample_type: wgpu::TextureSampleType::Float {
-                filterable: b.resource.filterable(),
-            },
-            view_dimension: dim,
-            multisampled: false,
-        },
-        "storage-texture" => wgpu::BindingType::StorageTexture {
-            access: match b.info.access.as_deref() {
-                Some("read") => wgpu::StorageTextureAccess::ReadOnly,
-                Some("read-write") => wgpu::StorageTextureAccess::ReadWrite,
-                _ => wgpu::StorageTextureAccess::WriteOnly,
-            },
-            format: texture_format(b.info.format.as_deref().unwrap_or_default()),
-            view_dimension: dim,
-        },
-        _ => wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
-    }
-}
-
-fn texture_format(wgsl: &str) -> wgpu::TextureFormat {
-    match wgsl {
-        "rgba32float" => wgpu::TextureFormat::Rgba32Float,
-        "r32float" => wgpu::TextureFormat::R32Float,
-        "rgba16float" => wgpu::TextureFormat::Rgba16Float,
-        _ => wgpu::TextureFormat::Rgba8Unorm,
-    }
-}
-
-fn describe(info: &wgpu::AdapterInfo) -> String {
-    format!("{} ({:?}, {:?})", info.name, info.backend, info.device_type)
-}
-
-/// A buffer that a copy lands in, to be mapped and read after the submit.
-struct Readback {
-    buffer: wgpu::Buffer,
-    /// Row layout for textures: (bytes per row in the buffer, bytes per row of data, rows).
-    rows: Option<(u32, u32, u32)>,
-}
-
-impl Readback {
-    fn texture(
-        device: &wgpu::Device,
-        encoder: &mut wgpu::CommandEncoder,
-        texture: &wgpu::Texture,
-        texel: u32,
-    ) -> Self {
-        let (w, h) = (texture.width(), texture.height());
-        let row = w * texel;
-        let padded =
-            row.div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
-        let buffer = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("readback"),
-            size: u64::from(padded * h),
-            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
-        encoder.copy_texture_to_buffer(
-            texture.as_image_copy(),
-            wgpu::TexelCopyBufferInfo {
-                buffer: &buffer,
-                layout: wgpu::TexelCopyBufferLayout {
-                    offset: 0,
-                    bytes_per_row: Some(padded),
-                    rows_per_image: Some(h),
-                },
-            },
-            texture.size(),
-        );
-        Self {
-            buffer,
-            rows: Some((padded, row, h)),
+    /// The view of a texture resource for this frame (the current half of a history pair).
+    fn view(&self, plan: &FramePlan, index: usize) -> Result<&wgpu::TextureView, Error> {
+        let r = &plan.resources[index];
+        match &self.resources[&r.name].object {
+            Object::Textures(t) => {
+                let half = if r.lifetime == Lifetime::History {
+                    history_half(self.frame, false)
+                } else {
+                    0
+                };
+                Ok(&t[half].1)
+            }
+            _ => Err(Error::Shader(format!("`{}` is not a texture", r.name))),
         }
     }
 
-    fn buffer(
-        device: &wgpu::Device,
+    /// Records pass `i` of the current plan, with timestamps at `query` (pair index).
+    fn record_pass(
+        &self,
         encoder: &mut wgpu::CommandEncoder,
-        src: &wgpu::Buffer,
-        size: u64,
-    ) -> Self {
-        let buffer = device.create_buffer(&wgpu::BufferDescriptor {
+        i: usize,
+        query: Option<u32>,
+        target: Option<&wgpu::TextureView>,
+        target_format: Option<wgpu::TextureFormat>,
+    ) -> Result<(), Error> {
+        let plan = self.plan.as_ref().expect("prepared");
+        let pass = &plan.passes[i];
+        let parity = if plan.has_history() {
+            (self.frame % 2) as usize
+        } else {
+            0
+        };
+        let group = &self.groups[i][parity];
+        let pipeline = &self.pipelines[&Self::pipeline_key(plan, i, target_format)];
+        let queries = query.and_then(|k| self.queries.as_ref().map(|q| (k, &q.set)));
+        match (&pass.kind, &pipeline.kind) {
+            (PassKind::Compute { dispatch, .. }, PipelineKind::Compute(p)) => {
+                let mut cpass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                    label: Some(&pass.name),
+                    timestamp_writes: queries.map(|(k, set)| wgpu::ComputePassTimestampWrites {
+                        query_set: set,
+                        beginning_of_pass_write_index: Some(2 * k),
+                        end_of_pass_write_index: Some(2 * k + 1),
+                    }),
+                });
+                cpass.set_pipeline(p);
+                cpass.set_bind_group(0, group, &[]);
+                let [x, y, z] = *dispatch;
+                cpass.dispatch_workgroups(x, y, z);
+            }
+            (
+                PassKind::Raster {
+                    vertices,
+                    colors,
+                    depth,
+                    ..
+                },
+                PipelineKind::Raster(p),
+            ) => {
+                let mut attachments = Vec::new();
+                for c in colors {
+                    let view = match target {
+                        Some(t) if plan.resources[c.resource].external => t,
+                        _ => self.view(plan, c.resource)?,
+                    };
+                    attachments.push(Some(wgpu::RenderPassColorAttachment {
+                        view,
+                        depth_slice: None,
+                        resolve_target: None,
+                        ops: wgpu::Operations {
+                            load: convert::color_load(c.load),
+                            store: wgpu::StoreOp::Store,
+                        },
+                    }));
+                }
+                let depth_view = match depth {
+                    Some(d) => Some((d, self.view(plan, d.resource)?)),
+                    None => None,
+                };
+                let mut rpass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                    label: Some(&pass.name),
+                    color_attachments: &attachments,
+                    depth_stencil_attachment: depth_view.map(|(d, view)| {
+                        wgpu::RenderPassDepthStencilAttachment {
+                            view,
+                            depth_ops: Some(wgpu::Operations {
+                                load: convert::depth_load(d.load),
+                                store: wgpu::StoreOp::Store,
+                            }),
+                            stencil_ops: None,
+                        }
+                    }),
+                    timestamp_writes: queries.map(|(k, set)| wgpu::RenderPassTimestampWrites {
+                        query_set: set,
+                        beginning_of_pass_write_index: Some(2 * k),
+                        end_of_pass_write_index: Some(2 * k + 1),
+                    }),
+                    occlusion_query_set: None,
+                    multiview_mask: None,
+                });
+                let [w, h] = pass.extent;
+                rpass.set_viewport(0.0, 0.0, w as f32, h as f32, 0.0, 1.0);
+                rpass.set_pipeline(p);
+                rpass.set_bind_group(0, group, &[]);
+                rpass.draw(0..*vertices, 0..1);
+            }
+            _ => {
+                return Err(Error::Shader(format!(
+                    "pass `{}`: pipeline kind does not match the pass",
+                    pass.name
+                )));
+            }
+        }
+        Ok(())
+    }
+
+    /// Records the copies a frame's readback asks for into persistent readback buffers.
+    fn copy_readbacks(
+        &mut self,
+        encoder: &mut wgpu::CommandEncoder,
+        frame: &FrameInput<'_>,
+    ) -> Result<Vec<Copied>, Error> {
+        let plan = frame.plan;
+        let mut wanted: Vec<(usize, Option<Readout>)> = Vec::new();
+        if frame.readback.output {
+            for (i, r) in plan.resources.iter().enumerate() {
+                if let Some(role) = r.output {
+                    wanted.push((i, Some(Readout::Output(role))));
+                } else if r.kind == ResourceKind::Counters && plan.stats {
+                    wanted.push((i, Some(Readout::Counters)));
+                }
+            }
+        }
+        for name in &frame.readback.resources {
+            let (i, _) = plan.resource(name).ok_or_else(|| {
+                Error::Shader(format!(
+                    "readback of `{name}`: the plan has no such resource"
+                ))
+            })?;
+            wanted.push((i, None));
+        }
+        let mut out = Vec::new();
+        for (i, role) in wanted {
+            let r = &plan.resources[i];
+            let buffer = match &self.resources[&r.name].object {
+                Object::Buffer(b) => Some(b.clone()),
+                _ => None,
+            };
+            match &self.resources[&r.name].object {
+                Object::Buffer(_) => {
+                    let b = buffer.expect("a buffer");
+                    let size = b.size();
+                    let rb = self.readback_buffer(&r.name, size);
+                    encoder.copy_buffer_to_buffer(&b, 0, &rb, 0, size);
+                    out.push(Copied {
+                        name: r.name.clone(),
+                        role,
+                        rows: None,
+                    });
+                }
+                Object::Textures(_) => {
+                    let texture = self.view(plan, i)?.texture().clone();
+                    let f = r
+                        .format
+                        .unwrap_or(stratus_graph::desc::TexelFormat::Rgba8Unorm);
+                    let [w, h, d] = self.resources[&r.name]
+                        .uploaded
+                        .or(r.extent)
+                        .unwrap_or([1, 1, 1]);
+                    let row = w * f.texel_size();
+                    let padded = row.div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT)
+                        * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
+                    let rb = self.readback_buffer(&r.name, u64::from(padded * h * d));
+                    encoder.copy_texture_to_buffer(
+                        texture.as_image_copy(),
+                        wgpu::TexelCopyBufferInfo {
+                            buffer: &rb,
+                            layout: wgpu::TexelCopyBufferLayout {
+                                offset: 0,
+                                bytes_per_row: Some(padded),
+                                rows_per_image: Some(h),
+                            },
+                        },
+                        texture.size(),
+                    );
+                    out.push(Copied {
+                        name: r.name.clone(),
+                        role,
+                        rows: Some((padded, row, h * d)),
+                    });
+                }
+                Object::Sampler(_) => {
+                    return Err(Error::Shader(format!(
+                        "readback of `{}`: a sampler holds no data",
+                        r.name
+                    )));
+                }
+            }
+        }
+        Ok(out)
+    }
+
+    fn readback_buffer(&mut self, name: &str, size: u64) -> wgpu::Buffer {
+        if let Some(b) = self.readbacks.get(name)
+            && b.size() == size
+        {
+            return b.clone();
+        }
+        let b = self.device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("readback"),
             size,
             usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
-        encoder.copy_buffer_to_buffer(src, 0, &buffer, 0, size);
-        Self { buffer, rows: None }
+        self.created += 1;
+        self.readbacks.insert(name.into(), b.clone());
+        b
     }
+}
 
-    fn read(self, device: &wgpu::Device) -> Result<Vec<u8>, Error> {
-        let slice = self.buffer.slice(..);
-        let (tx, rx) = std::sync::mpsc::channel();
-        slice.map_async(wgpu::MapMode::Read, move |r| {
-            let _ = tx.send(r);
-        });
-        device
-            .poll(wgpu::PollType::wait_indefinitely())
-            .map_err(|e| Error::Wgpu(e.to_string()))?;
-        rx.recv()
-            .map_err(|e| Error::Wgpu(e.to_string()))?
-            .map_err(|e| Error::Wgpu(e.to_string()))?;
-        let data = slice
-            .get_mapped_range()
-            .map_err(|e| Error::Wgpu(e.to_string()))?;
-        let out = match self.rows {
-            Some((padded, row, h)) => (0..h)
-                .flat_map(|y| {
-                    let start = (y * padded) as usize;
-                    data[start..start + row as usize].iter().copied()
-                })
-                .collect(),
-            None => data.to_vec(),
-        };
-        drop(data);
-        self.buffer.unmap();
-        Ok(out)
+/// A copy recorded for readback: the resource (and its readback buffer), where it goes in the
+/// output, and the row layout of a texture (padded row bytes, row bytes, rows).
+struct Copied {
+    name: String,
+    role: Option<Readout>,
+    rows: Option<(u32, u32, u32)>,
+}
+
+/// Where a read-back resource goes in the frame output.
+#[derive(Clone, Copy)]
+enum Readout {
+    Output(OutputRole),
+    Counters,
+}
+
+impl Backend for Renderer {
+    fn describe(&self) -> String {
+        format!("wgpu on {}", self.adapter())
     }
+    fn has_timestamps(&self) -> bool {
+        self.timestamps
+    }
+    fn render(&mut self, frame: &FrameInput<'_>) -> Result<FrameOutput, BackendError> {
+        Ok(Renderer::render(self, frame)?)
+    }
+    fn objects_created(&self) -> u64 {
+        self.created
+    }
+}
+
+fn extent3d([width, height, depth_or_array_layers]: [u32; 3]) -> wgpu::Extent3d {
+    wgpu::Extent3d {
+        width,
+        height,
+        depth_or_array_layers,
+    }
+}
+
+fn class_of(t: wgpu::DeviceType) -> DeviceClass {
+    match t {
+        wgpu::DeviceType::DiscreteGpu => DeviceClass::Discrete,
+        wgpu::DeviceType::IntegratedGpu => DeviceClass::Integrated,
+        wgpu::DeviceType::VirtualGpu => DeviceClass::Virtual,
+        wgpu::DeviceType::Other => DeviceClass::Other,
+        wgpu::DeviceType::Cpu => DeviceClass::Cpu,
+    }
+}
+
+fn describe(info: &wgpu::AdapterInfo) -> String {
+    describe_device(
+        &info.name,
+        &format!("{:?}", info.backend),
+        class_of(info.device_type),
+    )
+}
+
+/// Maps a readback buffer, copies its data out (dropping row padding), and unmaps it.
+fn read_buffer(
+    device: &wgpu::Device,
+    buffer: &wgpu::Buffer,
+    rows: Option<(u32, u32, u32)>,
+) -> Result<Vec<u8>, Error> {
+    let slice = buffer.slice(..);
+    let (tx, rx) = std::sync::mpsc::channel();
+    slice.map_async(wgpu::MapMode::Read, move |r| {
+        let _ = tx.send(r);
+    });
+    device
+        .poll(wgpu::PollType::wait_indefinitely())
+        .map_err(|e| Error::Wgpu(e.to_string()))?;
+    rx.recv()
+        .map_err(|e| Error::Wgpu(e.to_string()))?
+        .map_err(|e| Error::Wgpu(e.to_string()))?;
+    let data = slice
+        .get_mapped_range()
+        .map_err(|e| Error::Wgpu(e.to_string()))?;
+    let out = match rows {
+        Some((padded, row, h)) => (0..h)
+            .flat_map(|y| {
+                let start = (y * padded) as usize;
+                data[start..start + row as usize].iter().copied()
+            })
+            .collect(),
+        None => data.to_vec(),
+    };
+    drop(data);
+    buffer.unmap();
+    Ok(out)
 }

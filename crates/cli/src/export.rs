@@ -14,7 +14,7 @@ use stratus_reference::{
 };
 use stratus_scene::{PhaseModel, Scene};
 
-use crate::render::{load_scene, noise_for};
+use crate::scene_io::load_scene;
 
 #[derive(Args)]
 pub struct ExportArgs {
@@ -149,7 +149,7 @@ pub fn run(args: ExportArgs) -> Result<()> {
     let (scene, _) = load_scene(args.preset.as_deref(), args.scene.as_ref(), None)?;
     let (scene, min, max) = check_scene(scene, &args);
     scene.validate().map_err(|e| anyhow::anyhow!("{e}"))?;
-    let noise = noise_for(&scene);
+    let noise = stratus::noise_for(&scene);
     let grid = sample_density_grid(&scene, &noise, min, max, args.dims);
     write_vol(&args.out, &grid)?;
     eprintln!(

@@ -5,6 +5,7 @@ mod compare;
 mod export;
 mod output;
 mod render;
+mod scene_io;
 
 use std::{path::PathBuf, process::ExitCode};
 

@@ -4,7 +4,7 @@
 use std::path::Path;
 
 use anyhow::{Context, Result, bail};
-use stratus_shaders::FrameOutput;
+use stratus_graph::FrameOutput;
 
 /// Writes the frame to `path`: `.png` gets the tone-mapped image, `.exr` the linear radiance
 /// with transmittance as alpha.

@@ -1,16 +1,22 @@
-//! `stratus render`: pick a backend, plan the frame, render, write the outputs.
+//! `stratus render`: pick a backend, plan the frame, render one frame or a real-time loop of
+//! frames with one persistent renderer, write the last frame and the statistics.
 
-use std::{path::PathBuf, time::Instant};
+use std::{collections::BTreeMap, io::IsTerminal as _, path::PathBuf, sync::Arc, time::Instant};
 
-use anyhow::{Context, Result, bail};
+use anyhow::{Context, Result};
 use clap::{Args, ValueEnum};
+use indicatif::{ProgressBar, ProgressStyle};
 use serde_json::json;
+use stratus::quality::{DEFAULT_RESULTS, Results, auto_quality};
 use stratus_backend_wgpu as backend_wgpu;
-use stratus_noise::{NoiseConfig, NoiseSet, ShapeSize};
-use stratus_scene::{Scene, ShapeTexture};
-use stratus_shaders::{FrameOutput, FramePlan};
+use stratus_graph::{FrameInput, FrameOutput, FramePlan, Readback, output::median};
+use stratus_reference::CpuBackend;
+use stratus_scene::Scene;
 
-use crate::output::{check_image_path, write_image};
+use crate::{
+    output::{check_image_path, write_image},
+    scene_io::{check_finite, load_scene, parse_size},
+};
 
 /// Which renderer runs the frame.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -54,12 +60,19 @@ pub struct RenderArgs {
     /// Image size as WIDTHxHEIGHT (overrides the scene's camera.resolution).
     #[arg(long, value_parser = parse_size)]
     size: Option<(u32, u32)>,
-    /// Output image: .png (tone-mapped) or .exr (linear radiance, alpha = transmittance).
+    /// Output image: .png (tone-mapped) or .exr (linear radiance, alpha = transmittance). With
+    /// --frames, the last frame.
     #[arg(long, default_value = "clouds.png")]
     out: PathBuf,
-    /// Also write the work counters and per-pass times as JSON to this file.
+    /// Also write the work counters, per-pass times and (one entry per frame) each frame's
+    /// pass times and CPU time as JSON to this file.
     #[arg(long)]
     stats: Option<PathBuf>,
+    /// Render N frames with one persistent renderer, as a real-time loop does: the wind
+    /// advances 1/60 s and the jitter sequence one step per frame, the camera stays; only the
+    /// last frame is read back.
+    #[arg(long, default_value_t = 1, value_name = "N", value_parser = clap::value_parser!(u32).range(1..))]
+    frames: u32,
     /// `--backend reference`: the integrator.
     #[arg(long, value_enum, default_value_t = IntegratorArg::Quadrature)]
     integrator: IntegratorArg,
@@ -76,134 +89,8 @@ pub struct RenderArgs {
     #[arg(long, value_name = "E")]
     max_error: Option<f64>,
     /// The bench results `--max-error` reads.
-    #[arg(long, value_name = "FILE", default_value = crate::bench::DEFAULT_RESULTS)]
+    #[arg(long, value_name = "FILE", default_value = DEFAULT_RESULTS)]
     bench_results: PathBuf,
-}
-
-pub(crate) fn parse_size(s: &str) -> Result<(u32, u32), String> {
-    let (w, h) = s
-        .split_once(['x', 'X'])
-        .ok_or_else(|| format!("`{s}`: expected WIDTHxHEIGHT, e.g. 256x144"))?;
-    let p = |v: &str| {
-        v.trim()
-            .parse::<u32>()
-            .ok()
-            .filter(|n| (1..=16384).contains(n))
-            .ok_or_else(|| {
-                format!("`{s}`: width and height must be whole numbers within [1, 16384]")
-            })
-    };
-    Ok((p(w)?, p(h)?))
-}
-
-/// Loads the scene the arguments name (default: the default preset) at the requested size.
-pub fn load_scene(
-    preset: Option<&str>,
-    file: Option<&PathBuf>,
-    size: Option<(u32, u32)>,
-) -> Result<(Scene, String)> {
-    let (scene, name) = match (preset, file) {
-        (_, Some(f)) => (
-            Scene::from_file(f).map_err(|e| anyhow::anyhow!("{e}"))?,
-            f.display().to_string(),
-        ),
-        (Some(p), None) => (
-            Scene::preset(p).map_err(|e| anyhow::anyhow!("{e}"))?,
-            p.to_string(),
-        ),
-        (None, None) => (Scene::default(), stratus_scene::DEFAULT_PRESET.to_string()),
-    };
-    let scene = match size {
-        Some((w, h)) => scene.with_size(w, h),
-        None => scene,
-    };
-    scene.validate().map_err(|e| anyhow::anyhow!("{e}"))?;
-    Ok((scene, name))
-}
-
-/// The noise textures a scene reads.
-pub fn noise_for(scene: &Scene) -> NoiseSet {
-    NoiseSet::generate(&NoiseConfig {
-        seed: scene.noise.seed,
-        shape: match scene.noise.shape_texture {
-            ShapeTexture::Thesis => ShapeSize::Thesis,
-            ShapeTexture::Hzd => ShapeSize::Hzd,
-        },
-        ..NoiseConfig::default()
-    })
-}
-
-/// A renderer the CLI can drive: one frame from a plan.
-pub(crate) trait FrameRenderer {
-    fn render(&mut self, plan: &FramePlan, scene: &Scene, noise: &NoiseSet) -> Result<FrameOutput>;
-    fn describe(&self) -> String;
-}
-
-impl FrameRenderer for backend_wgpu::Renderer {
-    fn render(&mut self, plan: &FramePlan, scene: &Scene, noise: &NoiseSet) -> Result<FrameOutput> {
-        Ok(backend_wgpu::Renderer::render(
-            self,
-            plan,
-            &scene.uniforms(),
-            noise,
-        )?)
-    }
-    fn describe(&self) -> String {
-        format!("wgpu on {}", self.adapter())
-    }
-}
-
-impl FrameRenderer for stratus_backend_ash::Renderer {
-    fn render(&mut self, plan: &FramePlan, scene: &Scene, noise: &NoiseSet) -> Result<FrameOutput> {
-        Ok(stratus_backend_ash::Renderer::render(
-            self,
-            plan,
-            &scene.uniforms(),
-            noise,
-        )?)
-    }
-    fn describe(&self) -> String {
-        format!("ash (Vulkan) on {}", self.adapter())
-    }
-}
-
-/// The CPU renderers: the real-time settings (`cpu`) or the reference integrators.
-struct Cpu {
-    integrator: stratus_reference::Integrator,
-    label: &'static str,
-}
-
-impl FrameRenderer for Cpu {
-    fn render(
-        &mut self,
-        _plan: &FramePlan,
-        scene: &Scene,
-        noise: &NoiseSet,
-    ) -> Result<FrameOutput> {
-        // The CPU runs the model directly; the plan's variant only matters to the GPU.
-        Ok(stratus_reference::render(
-            scene,
-            noise,
-            &self.integrator,
-            true,
-        ))
-    }
-    fn describe(&self) -> String {
-        format!(
-            "{} on the CPU ({} threads)",
-            self.label,
-            rayon::current_num_threads()
-        )
-    }
-}
-
-fn cpu_realtime() -> Cpu {
-    Cpu {
-        integrator: stratus_reference::Integrator::Quadrature(
-            stratus_reference::QuadratureSettings::realtime(),
-        ),
-        label: "cpu (real-time settings)",
-    }
 }
 
 /// `STRATUS_VALIDATION=1` turns on the backends' validation (wgpu's and the Vulkan layer).
@@ -218,7 +105,18 @@ fn wgpu(api: backend_wgpu::Api) -> Result<backend_wgpu::Renderer, backend_wgpu::
     })
 }
 
-fn open_backend(backend: Backend, args: &RenderArgs) -> Result<Box<dyn FrameRenderer>> {
+fn cpu_realtime() -> CpuBackend {
+    CpuBackend {
+        integrator: stratus_reference::Integrator::Quadrature(
+            stratus_reference::QuadratureSettings::realtime(),
+        ),
+        label: "cpu (real-time settings)",
+        progress: true,
+    }
+}
+
+/// The renderer `backend` names; `auto` falls back from Vulkan to GL to the CPU, saying so.
+fn open_backend(backend: Backend, args: &RenderArgs) -> Result<Box<dyn stratus_graph::Backend>> {
     Ok(match backend {
         Backend::Wgpu => Box::new(wgpu(backend_wgpu::Api::Vulkan)?),
         Backend::WgpuGl => Box::new(wgpu(backend_wgpu::Api::Gl)?),
@@ -229,18 +127,20 @@ fn open_backend(backend: Backend, args: &RenderArgs) -> Result<Box<dyn FrameRend
         )?),
         Backend::Cpu => Box::new(cpu_realtime()),
         Backend::Reference => Box::new(match args.integrator {
-            IntegratorArg::Quadrature => Cpu {
+            IntegratorArg::Quadrature => CpuBackend {
                 integrator: stratus_reference::Integrator::Quadrature(
                     stratus_reference::QuadratureSettings::converged(),
                 ),
                 label: "reference (converged quadrature)",
+                progress: true,
             },
-            IntegratorArg::Montecarlo => Cpu {
+            IntegratorArg::Montecarlo => CpuBackend {
                 integrator: stratus_reference::Integrator::MonteCarlo {
                     spp: args.spp,
                     orders: args.orders,
                 },
                 label: "reference (Monte Carlo)",
+                progress: true,
             },
         }),
         Backend::Auto => match wgpu(backend_wgpu::Api::Vulkan) {
@@ -263,51 +163,130 @@ fn open_backend(backend: Backend, args: &RenderArgs) -> Result<Box<dyn FrameRend
     })
 }
 
+/// Frame `i` of a loop starting at `scene`: the wind 1/60 s further and the jitter sequence one
+/// step on per frame.
+fn frame_scene(scene: &Scene, i: u32) -> Scene {
+    let mut s = scene.clone();
+    s.clouds.time_s += f64::from(i) / 60.0;
+    s.quality.frame = s.quality.frame.wrapping_add(i);
+    s
+}
+
+/// A progress bar for long loops, on a terminal only.
+fn progress(frames: u32) -> Option<ProgressBar> {
+    if frames < 2 || !std::io::stderr().is_terminal() {
+        return None;
+    }
+    let bar = ProgressBar::new(u64::from(frames));
+    if let Ok(style) =
+        ProgressStyle::with_template("{msg} [{elapsed_precise}] {wide_bar} {pos}/{len} frames")
+    {
+        bar.set_style(style);
+    }
+    bar.set_message("rendering");
+    Some(bar)
+}
+
 /// Runs `stratus render`.
 pub fn run(args: RenderArgs) -> Result<()> {
     check_image_path(&args.out)?;
     let (scene, name) = load_scene(args.preset.as_deref(), args.scene.as_ref(), args.size)?;
     let scene = match args.max_error {
         Some(e) => {
-            let (picked, why) = crate::bench::auto_quality(&scene, &name, e, &args.bench_results)?;
+            let results = Results::load(&args.bench_results)?;
+            let (picked, why) = auto_quality(&scene, &name, e, &results)?;
             println!("{why}");
             picked
         }
         None => scene,
     };
     let t0 = Instant::now();
-    let noise = noise_for(&scene);
+    let noise = Arc::new(stratus::noise_for(&scene));
     let noise_ms = t0.elapsed().as_secs_f64() * 1e3;
     let mut renderer = open_backend(args.backend, &args)?;
     let plan = FramePlan::for_scene(&scene, false)?;
+    let render = |r: &mut Box<dyn stratus_graph::Backend>, input: &FrameInput<'_>| {
+        r.render(input).map_err(|e| anyhow::anyhow!("{e}"))
+    };
+
+    let bar = progress(args.frames);
     let t = Instant::now();
-    let frame = renderer.render(&plan, &scene, &noise)?;
-    let frame_ms = t.elapsed().as_secs_f64() * 1e3;
+    let mut frames: Vec<(f64, Vec<stratus_graph::PassTiming>)> = Vec::new();
+    let mut last: Option<(Scene, FrameOutput)> = None;
+    for i in 0..args.frames {
+        let s = frame_scene(&scene, i);
+        let is_last = i + 1 == args.frames;
+        let readback = if is_last {
+            Readback::output()
+        } else {
+            Readback::none()
+        };
+        let out = render(
+            &mut renderer,
+            &FrameInput::new(&plan, &s, &noise).with_readback(readback),
+        )?;
+        frames.push((out.cpu_ms, out.timings.clone()));
+        if let Some(bar) = &bar {
+            bar.inc(1);
+        }
+        if is_last {
+            last = Some((s, out));
+        }
+    }
+    if let Some(bar) = bar {
+        bar.finish_and_clear();
+    }
+    let wall_ms = t.elapsed().as_secs_f64() * 1e3;
+    let (last_scene, frame) = last.expect("at least one frame");
     check_finite(&frame)?;
     write_image(&args.out, &frame)?;
 
-    let gpu_ms: f64 = frame.timings.iter().map(|t| t.ms).sum();
     println!(
-        "wrote {} ({}x{}, scene {name})",
+        "wrote {} ({}x{}, scene {name}{})",
         args.out.display(),
         frame.width,
-        frame.height
+        frame.height,
+        if args.frames > 1 {
+            format!(", the last of {} frames", args.frames)
+        } else {
+            String::new()
+        }
     );
     println!(
         "backend: {} | variant {}",
         renderer.describe(),
         plan.variant
     );
-    let passes: Vec<String> = frame
-        .timings
-        .iter()
-        .map(|t| format!("{} {:.2} ms", t.pass, t.ms))
-        .collect();
-    println!(
-        "frame: {frame_ms:.1} ms wall, passes {gpu_ms:.2} ms ({}, {}); noise generated in {noise_ms:.0} ms",
-        passes.join(", "),
-        frame.timings.first().map_or("untimed", |t| t.source)
-    );
+    let source = frame.timings.first().map_or("untimed", |t| t.source);
+    if args.frames == 1 {
+        let gpu_ms: f64 = frame.timings.iter().map(|t| t.ms).sum();
+        let passes: Vec<String> = frame
+            .timings
+            .iter()
+            .map(|t| format!("{} {:.2} ms", t.pass, t.ms))
+            .collect();
+        println!(
+            "frame: {wall_ms:.1} ms wall, passes {gpu_ms:.2} ms ({}, {source}); noise generated in {noise_ms:.0} ms",
+            passes.join(", "),
+        );
+    } else {
+        let mut per_pass: BTreeMap<&str, Vec<f64>> = BTreeMap::new();
+        for (_, timings) in &frames {
+            for t in timings {
+                per_pass.entry(t.pass.as_str()).or_default().push(t.ms);
+            }
+        }
+        let passes: Vec<String> = per_pass
+            .iter()
+            .map(|(p, v)| format!("{p} {:.3} ms", median(v.clone())))
+            .collect();
+        println!(
+            "{} frames in {wall_ms:.0} ms: median CPU {:.3} ms/frame (record + submit); median GPU per pass: {} ({source}); noise generated in {noise_ms:.0} ms",
+            args.frames,
+            median(frames.iter().map(|f| f.0).collect()),
+            passes.join(", "),
+        );
+    }
 
     if let Some(path) = &args.stats {
         // Counters come from the statistics variant; times from the normal one above, which
@@ -316,8 +295,13 @@ pub fn run(args: RenderArgs) -> Result<()> {
         let counted = match frame.stats {
             // The CPU renderers always count; no second render needed.
             Some(_) => frame.clone(),
-            None => renderer.render(&stats_plan, &scene, &noise)?,
+            None => render(
+                &mut renderer,
+                &FrameInput::new(&stats_plan, &last_scene, &noise),
+            )?,
         };
+        let timing =
+            |t: &stratus_graph::PassTiming| json!({"pass": t.pass, "ms": t.ms, "source": t.source});
         let doc = json!({
             "scene": name,
             "backend": renderer.describe(),
@@ -326,26 +310,17 @@ pub fn run(args: RenderArgs) -> Result<()> {
             "width": frame.width,
             "height": frame.height,
             "counters": counted.stats,
-            "passes": frame.timings.iter().map(|t| json!({"pass": t.pass, "ms": t.ms, "source": t.source})).collect::<Vec<_>>(),
-            "frame_ms": frame_ms,
+            "passes": frame.timings.iter().map(timing).collect::<Vec<_>>(),
+            "frame_ms": wall_ms / f64::from(args.frames),
+            "frames": frames.iter().enumerate().map(|(i, (cpu_ms, timings))| json!({
+                "frame": i,
+                "cpu_ms": cpu_ms,
+                "passes": timings.iter().map(timing).collect::<Vec<_>>(),
+            })).collect::<Vec<_>>(),
         });
         std::fs::write(path, serde_json::to_string_pretty(&doc)? + "\n")
             .with_context(|| format!("writing {}", path.display()))?;
         println!("wrote {}", path.display());
-    }
-    Ok(())
-}
-
-/// No NaN or Inf may leave the renderer.
-pub fn check_finite(frame: &FrameOutput) -> Result<()> {
-    if let Some(i) = frame.radiance.iter().position(|v| !v.is_finite()) {
-        let p = i / 4;
-        bail!(
-            "the renderer produced a non-finite value ({}) at pixel ({}, {}); this is a bug",
-            frame.radiance[i],
-            p as u32 % frame.width,
-            p as u32 / frame.width
-        );
     }
     Ok(())
 }

@@ -25,7 +25,7 @@
 
 use std::path::Path;
 
-use stratus_shaders::FrameOutput;
+use stratus_graph::FrameOutput;
 
 /// How an [`Image`]'s values are encoded.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -12,10 +12,10 @@
 //! pixel's transmittance.
 
 use anyhow::{Context, Result};
+use stratus_graph::FrameOutput;
 use stratus_noise::{NoiseConfig, NoiseSet, ShapeSize};
 use stratus_reference::{Integrator, QuadratureSettings, render};
 use stratus_scene::{Scene, ShapeTexture};
-use stratus_shaders::FrameOutput;
 
 fn main() -> Result<()> {
     let args: Vec<String> = std::env::args().skip(1).collect();

@@ -11,10 +11,10 @@ use std::path::PathBuf;
 use anyhow::{Context, Result};
 use stratus_backend_wgpu::{Api, Options, Renderer};
 use stratus_compare::{CompareOptions, Image, compare, write_heatmap};
+use stratus_graph::{FrameInput, FramePlan};
 use stratus_noise::{NoiseConfig, NoiseSet, ShapeSize};
 use stratus_reference::{Integrator, QuadratureSettings, render};
 use stratus_scene::{Scene, ShapeTexture};
-use stratus_shaders::FramePlan;
 
 fn main() -> Result<()> {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -29,30 +29,24 @@ fn main() -> Result<()> {
     }
     .map_err(|e| anyhow::anyhow!("{e}"))?
     .with_size(w.parse()?, h.parse()?);
-    let noise = NoiseSet::generate(&NoiseConfig {
+    let noise = std::sync::Arc::new(NoiseSet::generate(&NoiseConfig {
         seed: scene.noise.seed,
         shape: match scene.noise.shape_texture {
             ShapeTexture::Thesis => ShapeSize::Thesis,
             ShapeTexture::Hzd => ShapeSize::Hzd,
         },
         ..NoiseConfig::default()
-    });
+    }));
 
     let mut gpu = Renderer::new(Options {
         api: Api::Vulkan,
         validation: false,
     })?;
-    let gpu_frame = gpu.render(
-        &FramePlan::for_scene(&scene, false)?,
-        &scene.uniforms(),
-        &noise,
-    )?;
+    let plan = FramePlan::for_scene(&scene, false)?;
+    let gpu_frame = gpu.render(&FrameInput::new(&plan, &scene, &noise))?;
+    let counting = FramePlan::for_scene(&scene, true)?;
     let gpu_stats = gpu
-        .render(
-            &FramePlan::for_scene(&scene, true)?,
-            &scene.uniforms(),
-            &noise,
-        )?
+        .render(&FrameInput::new(&counting, &scene, &noise))?
         .stats
         .unwrap_or_default();
     let cpu_frame = render(
@@ -152,7 +146,7 @@ fn main() -> Result<()> {
 
     if let Some(dir) = out_dir {
         std::fs::create_dir_all(&dir)?;
-        let save = |name: &str, frame: &stratus_shaders::FrameOutput| -> Result<()> {
+        let save = |name: &str, frame: &stratus_graph::FrameOutput| -> Result<()> {
             Image::from_frame_display(frame).save(&dir.join(name))?;
             Ok(())
         };

@@ -47,10 +47,9 @@ use std::time::Instant;
 
 use indicatif::{ProgressBar, ProgressStyle};
 use rayon::prelude::*;
+use stratus_graph::{FrameOutput, PassTiming};
 use stratus_noise::NoiseSet;
 use stratus_scene::{Integration, Scene};
-use stratus_shaders::plan::COUNTERS;
-use stratus_shaders::{FrameOutput, PassTiming};
 
 use crate::density::Counters;
 use crate::frame::{FLAG_JITTER, Frame, INTEGRATION_ANALYTIC, INTEGRATION_RIEMANN};
@@ -324,6 +323,20 @@ impl<'a> Tracer<'a> {
     }
 }
 
+/// The work counters the CPU renderers report, named and ordered as the GPU's (the frame
+/// graph's `stats` resource).
+pub const COUNTER_NAMES: [&str; 9] = [
+    "pixels",
+    "marched_pixels",
+    "view_steps",
+    "density_evaluations",
+    "detail_evaluations",
+    "light_samples",
+    "exit_transmittance",
+    "exit_missed_layer",
+    "exit_ground",
+];
+
 /// Renders the scene's clouds with `integrator` (rayon's global pool; a progress bar on stderr
 /// if `progress`).
 pub fn render(
@@ -458,7 +471,8 @@ fn render_in_pool(
     let mut radiance = Vec::with_capacity(4 * n);
     let mut std_error = Vec::with_capacity(4 * n);
     let mut depth = Vec::with_capacity(n);
-    // Must agree with march.wgsl's STAT_* indices (the order of `COUNTERS`).
+    // In the order of COUNTER_NAMES (a test holds them to the frame graph's counters, which
+    // the build holds to march.wgsl's STAT_* indices).
     let mut raw = [0u64; 9];
     for p in rows.iter().flatten() {
         radiance.extend(p.value.map(|v| v as f32));
@@ -477,7 +491,7 @@ fn render_in_pool(
         raw[5] += p.counters.light;
         raw[6] += u64::from(p.exited_early);
     }
-    let stats: BTreeMap<String, u64> = COUNTERS
+    let stats: BTreeMap<String, u64> = COUNTER_NAMES
         .iter()
         .zip(raw)
         .map(|(name, v)| (name.to_string(), v))
@@ -520,7 +534,42 @@ fn render_in_pool(
                 },
             ],
             device: format!("cpu ({} threads)", rayon::current_num_threads()),
+            ..Default::default()
         },
         std_error: is_mc.then_some(std_error),
+    }
+}
+
+/// The CPU renderers behind the one backend trait, so a caller drives them like the GPU
+/// backends: the scene's clouds with `integrator`, ignoring the plan's variant (the CPU runs
+/// the whole model). Always counts work; times are CPU wall clock.
+pub struct CpuBackend {
+    /// How pixels are integrated.
+    pub integrator: Integrator,
+    /// What to call it, e.g. `reference (converged quadrature)`.
+    pub label: &'static str,
+    /// A progress bar on stderr.
+    pub progress: bool,
+}
+
+impl stratus_graph::Backend for CpuBackend {
+    fn describe(&self) -> String {
+        format!(
+            "{} on the CPU ({} threads)",
+            self.label,
+            rayon::current_num_threads()
+        )
+    }
+    fn has_timestamps(&self) -> bool {
+        false
+    }
+    fn render(
+        &mut self,
+        frame: &stratus_graph::FrameInput<'_>,
+    ) -> Result<FrameOutput, stratus_graph::BackendError> {
+        let t = Instant::now();
+        let mut out = render(frame.scene, frame.noise, &self.integrator, self.progress);
+        out.cpu_ms = t.elapsed().as_secs_f64() * 1e3;
+        Ok(out)
     }
 }

@@ -149,7 +149,16 @@ fn realtime_frame_has_the_gpu_layout_and_counters() {
     assert!(frame.timings.iter().all(|t| t.source == "cpu-wall"));
     assert!(frame.device.starts_with("cpu ("));
     let stats = frame.stats.unwrap();
-    assert_eq!(stats.len(), stratus_shaders::plan::COUNTERS.len());
+    let gpu = stratus_graph::Program::embedded()
+        .unwrap()
+        .graph
+        .counter_names();
+    assert_eq!(
+        stratus_reference::COUNTER_NAMES.to_vec(),
+        gpu,
+        "the CPU's counters are the GPU's"
+    );
+    assert_eq!(stats.len(), gpu.len());
     let n = 24 * 16;
     assert_eq!(stats["pixels"], n);
     assert_eq!(

@@ -22,57 +22,34 @@
 //! 1e-4 relative plus 1e-6 absolute for f32 rounding. The Riemann sum `S T dt` has no such
 //! bound: with `sigma_t d dt >> 1` it overshoots by up to a factor `sigma_t dt`.
 
-use std::sync::{Mutex, OnceLock};
+use std::sync::{Arc, Mutex, OnceLock};
 
 use stratus_backend_wgpu::{Api, Options, Renderer};
 use stratus_compare::{CompareOptions, Image, compare};
+use stratus_graph::{FrameInput, FrameOutput, FramePlan};
 use stratus_noise::{NoiseConfig, NoiseSet, ShapeSize};
 use stratus_reference::{Integrator, QuadratureSettings, render};
 use stratus_scene::{Integration, PhaseModel, Scene, ShapeTexture};
-use stratus_shaders::{FrameOutput, FramePlan};
+use stratus_test_support::{assert_no_wgpu_messages, record_wgpu_log};
 
 const W: u32 = 64;
 const H: u32 = 36;
 
-/// Records every warning or error that wgpu (and through it the validation layer) logs.
-struct Recorder(Mutex<Vec<String>>);
-
-impl log::Log for Recorder {
-    fn enabled(&self, m: &log::Metadata) -> bool {
-        m.level() <= log::Level::Warn && m.target().starts_with("wgpu")
-    }
-    fn log(&self, r: &log::Record) {
-        if self.enabled(r.metadata()) {
-            self.0
-                .lock()
-                .unwrap()
-                .push(format!("{} {}: {}", r.level(), r.target(), r.args()));
-        }
-    }
-    fn flush(&self) {}
-}
-
-static RECORDER: Recorder = Recorder(Mutex::new(Vec::new()));
-
-fn noise() -> &'static NoiseSet {
-    static NOISE: OnceLock<NoiseSet> = OnceLock::new();
+fn noise() -> &'static Arc<NoiseSet> {
+    static NOISE: OnceLock<Arc<NoiseSet>> = OnceLock::new();
     NOISE.get_or_init(|| {
-        NoiseSet::generate(&NoiseConfig {
+        Arc::new(NoiseSet::generate(&NoiseConfig {
             seed: 0,
             shape: ShapeSize::Thesis,
             ..NoiseConfig::default()
-        })
+        }))
     })
 }
 
 /// One validated Vulkan renderer per test binary (device creation is the slow part).
 fn gpu(scene: &Scene) -> FrameOutput {
     static VK: OnceLock<Mutex<Renderer>> = OnceLock::new();
-    static LOG: OnceLock<()> = OnceLock::new();
-    LOG.get_or_init(|| {
-        log::set_logger(&RECORDER).unwrap();
-        log::set_max_level(log::LevelFilter::Warn);
-    });
+    record_wgpu_log();
     assert_eq!(scene.noise.seed, 0, "the suite shares the seed-0 noise");
     assert_eq!(scene.noise.shape_texture, ShapeTexture::Thesis);
     scene.validate().unwrap_or_else(|e| panic!("{e}"));
@@ -88,11 +65,10 @@ fn gpu(scene: &Scene) -> FrameOutput {
     let plan = FramePlan::for_scene(scene, false).unwrap();
     let out = {
         let mut r = m.lock().unwrap_or_else(|e| e.into_inner());
-        r.render(&plan, &scene.uniforms(), noise())
+        r.render(&FrameInput::new(&plan, scene, noise()))
             .unwrap_or_else(|e| panic!("{e}"))
     };
-    let msgs = std::mem::take(&mut *RECORDER.0.lock().unwrap());
-    assert!(msgs.is_empty(), "validation messages:\n{}", msgs.join("\n"));
+    assert_no_wgpu_messages();
     out
 }
 

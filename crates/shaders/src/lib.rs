@@ -2,22 +2,22 @@
 //! stage. This crate loads it (from disk or embedded at build time), validates it with naga
 //! (diagnostics point at the original `file:line:col`), resolves a variant's override
 //! constants, translates it to SPIR-V, GLSL, HLSL and MSL with fixed options, and reflects it
-//! into the manifest written to `spirv-out/`.
+//! into the manifest written to `spirv-out/`, and checks the frame graph (`wgsl/graph.toml`)
+//! against that reflection. Build time only: the renderer reads the results through
+//! `stratus-graph`, without naga.
 
 #![deny(missing_docs)]
 
 pub mod compile;
 pub mod diagnostic;
 pub mod manifest;
-pub mod plan;
 pub mod source;
 pub mod translate;
 
 pub use compile::{CompiledModule, compile, compile_all};
 pub use diagnostic::{Diagnostic, Diagnostics};
-pub use manifest::Manifest;
-pub use plan::{FrameOutput, FramePlan, PassTiming, PlanError, Resource};
 pub use source::{ModuleSpec, ShaderTree, VariantSpec};
+pub use stratus_graph::Manifest;
 pub use translate::{build_outputs, spv_options};
 
 include!(concat!(env!("OUT_DIR"), "/embedded.rs"));

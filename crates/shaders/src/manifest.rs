@@ -1,190 +1,68 @@
-//! The reflection manifest (`spirv-out/manifest.json`): entry points, resources, struct
-//! layouts as naga computes them, override constants, variants and their files.
-//!
-//! Other engines read it to bind the exported shaders; the ash backend reads it to build its
-//! descriptor set layouts; a test checks the Rust uniform struct against its layout.
+//! Reflection: naga's view of every compiled module, written as the manifest
+//! (`spirv-out/manifest.json`; its types live in `stratus-graph`, which reads it at run time
+//! without naga), with the frame graph checked against it.
 
 use std::collections::BTreeMap;
 
 use naga::{AddressSpace, ImageClass, ImageDimension, ScalarKind, StorageAccess, TypeInner};
-use serde::{Deserialize, Serialize};
+use stratus_graph::{
+    GraphDesc,
+    manifest::{
+        Access, BindingKind, Dimension, EntryPointInfo, Manifest, MemberInfo, ModuleManifest,
+        OverrideInfo, ResourceInfo, Stage, StructInfo, VariantFiles, VariantInfo, glsl_name,
+        output_name,
+    },
+};
 
 use crate::{
     compile::CompiledModule,
-    diagnostic::Diagnostics,
+    diagnostic::{Diagnostic, Diagnostics},
     source::ShaderTree,
-    translate::{glsl_name, output_name},
 };
 
-/// The whole manifest.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub struct Manifest {
-    /// The naga version that translated the shaders.
-    pub naga_version: String,
-    /// SHA-256 of every file under `wgsl/` (see [`ShaderTree::sha256`]).
-    pub wgsl_sha256: String,
-    /// One entry per module.
-    pub modules: Vec<ModuleManifest>,
-}
+/// The name of the frame graph file under `wgsl/`.
+pub const GRAPH_FILE: &str = "graph.toml";
 
-/// Reflection of one module.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub struct ModuleManifest {
-    /// Module name.
-    pub name: String,
-    /// Source files, in composition order.
-    pub sources: Vec<String>,
-    /// Entry points with their stage and workgroup size.
-    pub entry_points: Vec<EntryPointInfo>,
-    /// Every bound resource.
-    pub resources: Vec<ResourceInfo>,
-    /// Layout of every struct used by a uniform or storage resource, as naga lays it out.
-    pub structs: Vec<StructInfo>,
-    /// Pipeline-overridable constants with their WGSL defaults.
-    pub overrides: Vec<OverrideInfo>,
-    /// The exported variants.
-    pub variants: Vec<VariantInfo>,
-}
-
-/// An entry point.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub struct EntryPointInfo {
-    /// Function name.
-    pub name: String,
-    /// `compute`, `vertex`, ...
-    pub stage: String,
-    /// Workgroup size (after override resolution with the defaults).
-    pub workgroup_size: [u32; 3],
-    /// Resources (by `group`/`binding`) that this entry point uses.
-    pub uses: Vec<[u32; 2]>,
-}
-
-/// A bound resource.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub struct ResourceInfo {
-    /// WGSL variable name.
-    pub name: String,
-    /// `@group`.
-    pub group: u32,
-    /// `@binding`.
-    pub binding: u32,
-    /// `uniform-buffer`, `storage-buffer`, `sampled-texture`, `storage-texture`, `sampler`.
-    pub kind: String,
-    /// Storage texture format (WGSL spelling) or `null`.
-    pub format: Option<String>,
-    /// `read`, `read-write`, `write` for storage resources, `null` otherwise.
-    pub access: Option<String>,
-    /// Texture dimension (`1d`, `2d`, `3d`, `cube`) or `null`.
-    pub dimension: Option<String>,
-    /// The WGSL type.
-    #[serde(rename = "type")]
-    pub ty: String,
-}
-
-/// A struct's layout.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub struct StructInfo {
-    /// Struct name.
-    pub name: String,
-    /// Size in bytes (naga's span).
-    pub size: u32,
-    /// Alignment in bytes.
-    pub alignment: u32,
-    /// Members in order.
-    pub members: Vec<MemberInfo>,
-}
-
-/// A struct member's layout.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub struct MemberInfo {
-    /// Member name.
-    pub name: String,
-    /// Byte offset.
-    pub offset: u32,
-    /// Size in bytes.
-    pub size: u32,
-    /// Alignment in bytes.
-    pub alignment: u32,
-    /// The WGSL type.
-    #[serde(rename = "type")]
-    pub ty: String,
-}
-
-/// An override constant.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub struct OverrideInfo {
-    /// WGSL identifier.
-    pub name: String,
-    /// Its type.
-    #[serde(rename = "type")]
-    pub ty: String,
-    /// Its default value (booleans as 0/1), if it has a literal default.
-    pub default: Option<f64>,
-}
-
-/// An exported variant.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub struct VariantInfo {
-    /// Variant name.
-    pub name: String,
-    /// What it is for.
-    pub description: String,
-    /// The override values it sets (others keep their defaults).
-    pub overrides: BTreeMap<String, f64>,
-    /// Output files: `spv`, `hlsl`, `metal` and `glsl` (entry point -> file).
-    pub files: VariantFiles,
-}
-
-/// The files of one variant in `spirv-out/`.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub struct VariantFiles {
-    /// SPIR-V binary.
-    pub spv: String,
-    /// GLSL per compute entry point.
-    pub glsl: BTreeMap<String, String>,
-    /// HLSL (all entry points).
-    pub hlsl: String,
-    /// Metal Shading Language (all entry points).
-    pub metal: String,
-}
-
-impl Manifest {
-    /// Reflects every compiled module.
-    pub fn build(tree: &ShaderTree, compiled: &[CompiledModule]) -> Result<Self, Diagnostics> {
-        let mut modules = Vec::new();
-        for m in compiled {
-            modules.push(reflect(tree, m)?);
-        }
-        Ok(Self {
-            naga_version: crate::NAGA_VERSION.to_string(),
-            wgsl_sha256: tree.sha256(),
-            modules,
-        })
+/// Reflects every compiled module and, where the tree has a [`GRAPH_FILE`], checks the frame
+/// graph against that reflection and puts it in the manifest.
+pub fn build(tree: &ShaderTree, compiled: &[CompiledModule]) -> Result<Manifest, Diagnostics> {
+    let mut modules = Vec::new();
+    for m in compiled {
+        modules.push(reflect(tree, m)?);
     }
-
-    /// Pretty JSON with a trailing newline (byte-deterministic: fields in declaration order).
-    pub fn to_json(&self) -> String {
-        let mut s = serde_json::to_string_pretty(self).expect("manifest serialises");
-        s.push('\n');
-        s
+    let mut manifest = Manifest {
+        naga_version: crate::NAGA_VERSION.to_string(),
+        wgsl_sha256: tree.sha256(),
+        modules,
+        graph: None,
+    };
+    if let Some(text) = tree.files.get(GRAPH_FILE) {
+        let origin = format!("{}/{GRAPH_FILE}", tree.label);
+        let fail = |e: stratus_graph::GraphError| {
+            Diagnostics(vec![Diagnostic {
+                location: None,
+                file: e.origin.clone(),
+                message: e.to_string(),
+                label: String::new(),
+                width: 1,
+                notes: Vec::new(),
+            }])
+        };
+        let graph = GraphDesc::from_toml(text, &origin).map_err(fail)?;
+        let constant = |module: &str, name: &str| -> Option<f64> {
+            let m = compiled.iter().find(|c| c.spec.name == module)?;
+            m.module
+                .constants
+                .iter()
+                .find(|(_, c)| c.name.as_deref() == Some(name))
+                .and_then(|(_, c)| literal_value(&m.module.global_expressions[c.init]))
+        };
+        graph
+            .check(&manifest, &origin, Some(&constant))
+            .map_err(fail)?;
+        manifest.graph = Some(graph);
     }
-
-    /// Parses a manifest.
-    pub fn from_json(text: &str) -> Result<Self, serde_json::Error> {
-        serde_json::from_str(text)
-    }
-
-    /// The module called `name`.
-    pub fn module(&self, name: &str) -> Option<&ModuleManifest> {
-        self.modules.iter().find(|m| m.name == name)
-    }
-}
-
-impl ModuleManifest {
-    /// The struct layout called `name`.
-    pub fn struct_layout(&self, name: &str) -> Option<&StructInfo> {
-        self.structs.iter().find(|s| s.name == name)
-    }
+    Ok(manifest)
 }
 
 fn reflect(tree: &ShaderTree, m: &CompiledModule) -> Result<ModuleManifest, Diagnostics> {
@@ -201,21 +79,29 @@ fn reflect(tree: &ShaderTree, m: &CompiledModule) -> Result<ModuleManifest, Diag
         let Some(rb) = &var.binding else { continue };
         let inner = &module.types[var.ty].inner;
         let (kind, format, access, dimension) = match (var.space, inner) {
-            (AddressSpace::Uniform, _) => ("uniform-buffer", None, None, None),
-            (AddressSpace::Storage { access }, _) => {
-                ("storage-buffer", None, Some(access_name(access)), None)
-            }
+            (AddressSpace::Uniform, _) => (BindingKind::UniformBuffer, None, None, None),
+            (AddressSpace::Storage { access }, _) => (
+                BindingKind::StorageBuffer,
+                None,
+                Some(access_of(access)),
+                None,
+            ),
             (_, TypeInner::Image { dim, class, .. }) => match class {
                 ImageClass::Storage { format, access } => (
-                    "storage-texture",
+                    BindingKind::StorageTexture,
                     Some(format!("{format:?}").to_lowercase()),
-                    Some(access_name(*access)),
-                    Some(dim_name(*dim)),
+                    Some(access_of(*access)),
+                    Some(dimension_of(*dim)),
                 ),
-                _ => ("sampled-texture", None, None, Some(dim_name(*dim))),
+                _ => (
+                    BindingKind::SampledTexture,
+                    None,
+                    None,
+                    Some(dimension_of(*dim)),
+                ),
             },
-            (_, TypeInner::Sampler { .. }) => ("sampler", None, None, None),
-            _ => ("other", None, None, None),
+            (_, TypeInner::Sampler { .. }) => (BindingKind::Sampler, None, None, None),
+            _ => (BindingKind::Other, None, None, None),
         };
         if matches!(
             var.space,
@@ -227,10 +113,10 @@ fn reflect(tree: &ShaderTree, m: &CompiledModule) -> Result<ModuleManifest, Diag
             name: var.name.clone().unwrap_or_default(),
             group: rb.group,
             binding: rb.binding,
-            kind: kind.into(),
+            kind,
             format,
-            access: access.map(Into::into),
-            dimension: dimension.map(Into::into),
+            access,
+            dimension,
             ty: type_name(&module, var.ty),
         });
     }
@@ -267,7 +153,7 @@ fn reflect(tree: &ShaderTree, m: &CompiledModule) -> Result<ModuleManifest, Diag
         .iter()
         .map(|ep| EntryPointInfo {
             name: ep.name.clone(),
-            stage: format!("{:?}", ep.stage).to_lowercase(),
+            stage: stage_of(ep.stage),
             workgroup_size: ep.workgroup_size,
             uses: uses(&module, ep),
         })
@@ -299,8 +185,12 @@ fn reflect(tree: &ShaderTree, m: &CompiledModule) -> Result<ModuleManifest, Diag
                 glsl: module
                     .entry_points
                     .iter()
-                    .filter(|ep| ep.stage == naga::ShaderStage::Compute)
-                    .map(|ep| (ep.name.clone(), glsl_name(&m.spec.name, &v.name, &ep.name)))
+                    .map(|ep| {
+                        (
+                            ep.name.clone(),
+                            glsl_name(&m.spec.name, &v.name, &ep.name, stage_of(ep.stage)),
+                        )
+                    })
                     .collect(),
                 hlsl: output_name(&m.spec.name, &v.name, "hlsl"),
                 metal: output_name(&m.spec.name, &v.name, "metal"),
@@ -410,6 +300,33 @@ fn access_name(a: StorageAccess) -> &'static str {
         (true, true) => "read-write",
         (false, true) => "write",
         _ => "read",
+    }
+}
+
+/// The manifest's stage of a naga stage.
+pub fn stage_of(s: naga::ShaderStage) -> Stage {
+    match s {
+        naga::ShaderStage::Vertex => Stage::Vertex,
+        naga::ShaderStage::Fragment => Stage::Fragment,
+        naga::ShaderStage::Compute => Stage::Compute,
+        _ => Stage::Other,
+    }
+}
+
+fn access_of(a: StorageAccess) -> Access {
+    match access_name(a) {
+        "read-write" => Access::ReadWrite,
+        "write" => Access::Write,
+        _ => Access::Read,
+    }
+}
+
+fn dimension_of(d: ImageDimension) -> Dimension {
+    match d {
+        ImageDimension::D1 => Dimension::D1,
+        ImageDimension::D2 => Dimension::D2,
+        ImageDimension::D3 => Dimension::D3,
+        ImageDimension::Cube => Dimension::Cube,
     }
 }
 

@@ -104,7 +104,7 @@ impl ShaderTree {
         Self::from_files("wgsl", files)
     }
 
-    /// Reads every `.wgsl` file and `modules.toml` below `dir`. `label` is how the folder is
+    /// Reads every `.wgsl` file, `modules.toml` and `graph.toml` below `dir`. `label` is how the folder is
     /// named in diagnostics.
     pub fn from_dir(dir: &Path, label: &str) -> Result<Self, TreeError> {
         let mut files = BTreeMap::new();
@@ -240,7 +240,9 @@ fn read_dir_into(
         if path.is_dir() {
             read_dir_into(base, &path, out)?;
         } else if path.extension().is_some_and(|x| x == "wgsl")
-            || path.file_name().is_some_and(|n| n == MODULES_FILE)
+            || path
+                .file_name()
+                .is_some_and(|n| n == MODULES_FILE || n == crate::manifest::GRAPH_FILE)
         {
             let text = std::fs::read_to_string(&path).map_err(io(&path))?;
             let rel = path

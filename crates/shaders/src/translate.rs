@@ -5,10 +5,12 @@ use std::collections::BTreeMap;
 
 use naga::{ShaderStage, back, valid::ModuleInfo};
 
+use stratus_graph::manifest::{glsl_name, output_name, wgsl_name};
+
 use crate::{
     compile::{CompiledModule, compile_all},
     diagnostic::{Diagnostic, Diagnostics},
-    manifest::Manifest,
+    manifest::stage_of,
     source::{ShaderTree, VariantSpec},
 };
 
@@ -85,16 +87,6 @@ fn policies() -> naga::proc::BoundsCheckPolicies {
     naga::proc::BoundsCheckPolicies::default()
 }
 
-/// The file name of a variant's output in a language (`ext` like `spv`, `hlsl`, `metal`).
-pub fn output_name(module: &str, variant: &str, ext: &str) -> String {
-    format!("{module}.{variant}.{ext}")
-}
-
-/// The file name of a variant's GLSL for one compute entry point.
-pub fn glsl_name(module: &str, variant: &str, entry: &str) -> String {
-    format!("{module}.{variant}.{entry}.comp.glsl")
-}
-
 /// Translates one variant to all four languages. Returns `(file name, bytes)` pairs.
 pub fn translate_variant(
     compiled: &CompiledModule,
@@ -122,11 +114,11 @@ pub fn translate_variant(
     ));
 
     for ep in &module.entry_points {
-        if ep.stage != ShaderStage::Compute {
-            continue;
-        }
-        let text = glsl(&module, &info, &ep.name).map_err(|e| fail("GLSL", &e))?;
-        out.push((glsl_name(name, &variant.name, &ep.name), text.into_bytes()));
+        let text = glsl(&module, &info, ep.stage, &ep.name).map_err(|e| fail("GLSL", &e))?;
+        out.push((
+            glsl_name(name, &variant.name, &ep.name, stage_of(ep.stage)),
+            text.into_bytes(),
+        ));
     }
 
     let mut hlsl = String::new();
@@ -157,11 +149,12 @@ pub fn translate_variant(
 fn glsl(
     module: &naga::Module,
     info: &ModuleInfo,
+    stage: ShaderStage,
     entry: &str,
 ) -> Result<String, back::glsl::Error> {
     let options = glsl_options(module);
     let pipeline = back::glsl::PipelineOptions {
-        shader_stage: ShaderStage::Compute,
+        shader_stage: stage,
         entry_point: entry.to_string(),
         multiview: None,
     };
@@ -190,7 +183,15 @@ pub fn build_outputs(tree: &ShaderTree) -> Result<BTreeMap<String, Vec<u8>>, Dia
     if !errors.is_empty() {
         return Err(Diagnostics(errors));
     }
-    let manifest = Manifest::build(tree, &compiled)?;
+    for m in &compiled {
+        // The composed WGSL (overrides unresolved) is what wgpu compiles at run time, with
+        // the plan's override values; other engines and browsers can take it too.
+        files.insert(
+            wgsl_name(&m.spec.name),
+            m.composed.text.clone().into_bytes(),
+        );
+    }
+    let manifest = crate::manifest::build(tree, &compiled)?;
     files.insert("manifest.json".into(), manifest.to_json().into_bytes());
     Ok(files)
 }

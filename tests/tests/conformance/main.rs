@@ -28,13 +28,14 @@ mod spirv;
 use std::{
     collections::BTreeMap,
     io::Write as _,
-    sync::OnceLock,
+    sync::{Arc, OnceLock},
     time::{Duration, Instant},
 };
 
+use stratus_graph::{FrameOutput, PassTiming, Program};
 use stratus_noise::{NoiseConfig, NoiseSet, ShapeSize};
 use stratus_scene::Scene;
-use stratus_shaders::{FrameOutput, PassTiming};
+use stratus_test_support::{frame_differences, median};
 
 use crate::{
     paths::{Path, Renderers},
@@ -90,7 +91,7 @@ pub struct Ratio {
 fn interleaved(
     r: &mut Renderers,
     scene: &Scene,
-    noise: &NoiseSet,
+    noise: &Arc<NoiseSet>,
     problems: &mut Vec<String>,
 ) -> BTreeMap<String, Vec<(f64, f64)>> {
     let mut out: BTreeMap<String, Vec<(f64, f64)>> = BTreeMap::new();
@@ -188,39 +189,17 @@ fn sanity(f: &FrameOutput) -> Vec<String> {
 
 /// Bit-for-bit comparison of ash-spv with wgpu-vulkan.
 fn bit_differences(a: &FrameOutput, w: &FrameOutput) -> Vec<String> {
-    let mut out = Vec::new();
-    let floats = |what: &str, x: &[f32], y: &[f32], out: &mut Vec<String>| {
-        let n = x
-            .iter()
-            .zip(y)
-            .filter(|(p, q)| p.to_bits() != q.to_bits())
-            .count();
-        if n > 0 || x.len() != y.len() {
-            out.push(format!("{what}: {n} of {} floats differ", x.len()));
-        }
-    };
-    floats("radiance", &a.radiance, &w.radiance, &mut out);
-    floats("depth", &a.depth, &w.depth, &mut out);
-    if a.image != w.image {
-        let n = a.image.iter().zip(&w.image).filter(|(x, y)| x != y).count();
-        out.push(format!("display image: {n} bytes differ"));
-    }
-    out
-}
-
-fn median(mut v: Vec<f64>) -> f64 {
-    v.sort_by(f64::total_cmp);
-    v.get(v.len() / 2).copied().unwrap_or(f64::NAN)
+    frame_differences("ash-spv against wgpu-vulkan", a, w)
 }
 
 impl Run {
     fn execute() -> Run {
         let t0 = Instant::now();
-        let noise = NoiseSet::generate(&NoiseConfig {
+        let noise = Arc::new(NoiseSet::generate(&NoiseConfig {
             seed: 0,
             shape: ShapeSize::Thesis,
             ..NoiseConfig::default()
-        });
+        }));
         let t_noise = t0.elapsed();
         // Images of an earlier run's failures must not be mistaken for this run's.
         let _ = std::fs::remove_dir_all(report::failure_dir());
@@ -281,7 +260,7 @@ impl SceneResult {
         about: &'static str,
         scene: &Scene,
         r: &mut Renderers,
-        noise: &NoiseSet,
+        noise: &Arc<NoiseSet>,
         spent: &mut BTreeMap<Path, Duration>,
     ) -> SceneResult {
         let mut timed = |r: &mut Renderers, path: Path, stats: bool| {
@@ -614,6 +593,16 @@ fn summary(s: &SceneResult) -> serde_json::Value {
 fn every_scene_matches_its_snapshot() {
     let run = run();
     let mut problems = Vec::new();
+    // The passes every frame runs (the graph's unconditional ones), in order.
+    let always: Vec<String> = Program::embedded()
+        .expect("program")
+        .graph
+        .passes
+        .iter()
+        .filter(|p| p.when.is_none())
+        .map(|p| p.name.clone())
+        .collect();
+    assert_eq!(always, ["march", "composite"]);
     for s in &run.scenes {
         // Every pass present, in plan order, with a positive time, on every executed path.
         for (p, cell) in &s.cells {
@@ -621,7 +610,7 @@ fn every_scene_matches_its_snapshot() {
                 continue;
             }
             let passes: Vec<&str> = cell.timings.iter().map(|t| t.pass.as_str()).collect();
-            if passes != stratus_shaders::plan::PASSES {
+            if passes != always {
                 problems.push(format!(
                     "{}: {}: passes timed: {passes:?}",
                     s.name,
@@ -656,10 +645,8 @@ fn every_scene_matches_its_snapshot() {
 /// variants differ only in their override constants).
 #[test]
 fn msl_is_pinned_by_a_snapshot_and_not_executed() {
-    let manifest = stratus_shaders::plan::embedded_manifest().expect("manifest");
-    let module = manifest
-        .module(stratus_shaders::plan::MODULE)
-        .expect("clouds module");
+    let program = Program::embedded().expect("program");
+    let module = program.manifest.module("clouds").expect("clouds module");
     let read = |file: &str| {
         std::fs::read_to_string(spirv::spirv_out().join(file))
             .unwrap_or_else(|e| panic!("reading spirv-out/{file}: {e}"))

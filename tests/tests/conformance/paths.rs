@@ -1,17 +1,13 @@
 //! The execution paths and the renderers behind them, each created once per test binary.
 
-use std::{
-    collections::HashMap,
-    path::PathBuf,
-    sync::{Mutex, OnceLock},
-};
+use std::{collections::HashMap, path::PathBuf, sync::Arc};
 
 use stratus_backend_ash as ash_backend;
 use stratus_backend_wgpu as wgpu_backend;
+use stratus_graph::{FrameInput, FrameOutput, FramePlan, plan::PassKind};
 use stratus_noise::NoiseSet;
 use stratus_reference::{Integrator, QuadratureSettings};
 use stratus_scene::Scene;
-use stratus_shaders::{FrameOutput, FramePlan};
 
 use crate::spirv::{self, Lang};
 
@@ -75,46 +71,15 @@ impl Path {
     }
 }
 
-/// Records every warning or error wgpu logs (the Vulkan validation layer's messages about
-/// wgpu's calls arrive this way); any of them fails the path that caused it.
-struct Recorder(Mutex<Vec<String>>);
-
-impl log::Log for Recorder {
-    fn enabled(&self, m: &log::Metadata) -> bool {
-        // EGL start-up logs the platforms it tries before settling on one that works; that is
-        // not a validation message (the same filter as backend-wgpu's tests).
-        m.level() <= log::Level::Warn
-            && m.target().starts_with("wgpu")
-            && !m.target().starts_with("wgpu_hal::gles::egl")
-    }
-    fn log(&self, r: &log::Record) {
-        if self.enabled(r.metadata()) {
-            if let Ok(mut v) = self.0.lock() {
-                v.push(format!("{} {}: {}", r.level(), r.target(), r.args()));
-            }
-        }
-    }
-    fn flush(&self) {}
-}
-
-static RECORDER: Recorder = Recorder(Mutex::new(Vec::new()));
-
-/// Messages logged since the last call.
+/// Messages wgpu logged since the last call (the shared recorder: the Vulkan validation
+/// layer's messages about wgpu's calls arrive this way); any of them fails the path that
+/// caused it.
 fn logged() -> Vec<String> {
-    RECORDER
-        .0
-        .lock()
-        .map(|mut v| std::mem::take(&mut *v))
-        .unwrap_or_default()
+    stratus_test_support::take_wgpu_log()
 }
 
 fn init_logging() {
-    static ONCE: OnceLock<()> = OnceLock::new();
-    ONCE.get_or_init(|| {
-        if log::set_logger(&RECORDER).is_ok() {
-            log::set_max_level(log::LevelFilter::Warn);
-        }
-    });
+    stratus_test_support::record_wgpu_log();
 }
 
 /// Fails with what wgpu logged, if anything.
@@ -211,11 +176,11 @@ impl Renderers {
         &mut self,
         path: Path,
         scene: &Scene,
-        noise: &NoiseSet,
+        noise: &Arc<NoiseSet>,
         stats: bool,
     ) -> Result<Rendered, String> {
         let plan = FramePlan::for_scene(scene, stats).map_err(|e| e.to_string())?;
-        let uniforms = scene.uniforms();
+        let frame = FrameInput::new(&plan, scene, noise);
         let whole = |frame| Rendered {
             frame,
             substituted: Vec::new(),
@@ -228,15 +193,13 @@ impl Renderers {
                     &mut self.wgpu_gl
                 };
                 let r = r.as_mut().map_err(|e| e.clone())?;
-                let out = r.render(&plan, &uniforms, noise).map_err(|e| e.to_string());
+                let out = r.render(&frame).map_err(|e| e.to_string());
                 check_log(path.label())?;
                 out.map(whole)
             }
             Path::AshSpv => {
                 let r = self.ash.as_mut().map_err(|e| e.clone())?;
-                r.render(&plan, &uniforms, noise)
-                    .map(whole)
-                    .map_err(|e| e.to_string())
+                r.render(&frame).map(whole).map_err(|e| e.to_string())
             }
             Path::AshGlsl | Path::AshHlsl => {
                 let lang = if path == Path::AshGlsl {
@@ -248,12 +211,12 @@ impl Renderers {
                 let key = (plan.variant.clone(), lang);
                 if !self.compiled.contains_key(&key) {
                     let prepared = spirv::compile(&plan, lang, &self.scratch)
-                        .and_then(|list| prepare(r, &plan, list, &uniforms, noise));
+                        .and_then(|list| prepare(r, &frame, list));
                     self.compiled.insert(key.clone(), prepared);
                 }
                 let p = self.compiled[&key].as_ref().map_err(|e| e.clone())?;
                 let frame = r
-                    .render_with(&plan, &p.shaders, &uniforms, noise)
+                    .render_with(&frame, &p.shaders)
                     .map_err(|e| e.to_string())?;
                 Ok(Rendered {
                     frame,
@@ -290,15 +253,14 @@ impl Renderers {
 /// SPIR-V instead, so that the rest of the path's shaders still run.
 fn prepare(
     r: &mut ash_backend::Renderer,
-    plan: &FramePlan,
+    frame: &FrameInput<'_>,
     mut list: Vec<ash_backend::PassShader>,
-    uniforms: &stratus_scene::FrameUniforms,
-    noise: &NoiseSet,
 ) -> Result<Prepared, String> {
+    let plan = frame.plan;
     let mut substituted: Vec<(String, String)> = Vec::new();
     loop {
         let shaders = ash_backend::Shaders::PerPass(list.clone());
-        match r.render_with(plan, &shaders, uniforms, noise) {
+        match r.render_with(frame, &shaders) {
             Ok(_) => {
                 return Ok(Prepared {
                     shaders,
@@ -308,12 +270,17 @@ fn prepare(
             Err(ash_backend::Error::Unsupported { pass, reason, .. })
                 if !substituted.iter().any(|(p, _)| *p == pass) =>
             {
-                let i = plan
+                // The supplied list holds the compute passes, in plan order.
+                let computes: Vec<_> = plan
                     .passes
+                    .iter()
+                    .filter(|p| matches!(p.kind, PassKind::Compute { .. }))
+                    .collect();
+                let i = computes
                     .iter()
                     .position(|p| p.name == pass)
                     .ok_or_else(|| format!("the backend named an unknown pass {pass}"))?;
-                list[i] = spirv::committed(plan, &plan.passes[i])?;
+                list[i] = spirv::committed(plan, computes[i])?;
                 substituted.push((pass, reason));
             }
             Err(e) => return Err(e.to_string()),

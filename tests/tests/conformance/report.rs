@@ -8,7 +8,7 @@ use std::{
 };
 
 use stratus_compare::{CompareOptions, Image, compare, write_heatmap};
-use stratus_shaders::FrameOutput;
+use stratus_graph::FrameOutput;
 
 use crate::{
     Run,

@@ -8,10 +8,25 @@ use std::{
 };
 
 use stratus_backend_ash::{PassShader, Slot, SlotContent};
-use stratus_shaders::{
-    FramePlan, Resource,
-    plan::{MODULE, Pass},
+use stratus_graph::{
+    FramePlan, Program,
+    desc::ResourceKind,
+    manifest::BindingKind,
+    plan::{Pass, PassKind},
 };
+
+/// The entry point of a compute pass (supplied modules replace compute passes only).
+fn compute_entry(pass: &Pass) -> Option<&str> {
+    match &pass.kind {
+        PassKind::Compute { entry, .. } => Some(entry),
+        PassKind::Raster { .. } => None,
+    }
+}
+
+/// The name of the resource a binding binds.
+fn bound(plan: &FramePlan, b: &stratus_graph::plan::Binding) -> String {
+    plan.resources[b.resource].name.clone()
+}
 
 /// Which of naga's texts a module was compiled from.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
@@ -174,70 +189,72 @@ fn glslang(args: &[&str], source: &Path, out: &Path, legalize: bool) -> Result<V
 /// The committed `spirv-out/<spv_file>` module's pass `pass`, bound as the plan says (what
 /// `Renderer::render` runs), as a supplied module.
 pub fn committed(plan: &FramePlan, pass: &Pass) -> Result<PassShader, String> {
-    let file = spirv_out().join(&plan.spv_file);
+    let entry = compute_entry(pass).ok_or_else(|| format!("pass {} is not compute", pass.name))?;
+    let file = spirv_out().join(&plan.modules[&pass.module].spv_file);
     let bytes = std::fs::read(&file).map_err(|e| format!("reading {}: {e}", file.display()))?;
     Ok(PassShader {
         spirv: bytes
             .chunks_exact(4)
             .map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]]))
             .collect(),
-        entry: pass.entry_point.clone(),
+        entry: entry.to_string(),
         slots: pass
             .bindings
             .iter()
             .map(|b| Slot {
                 set: b.group,
                 binding: b.binding,
-                content: SlotContent::Plan(b.resource),
+                content: SlotContent::Plan(bound(plan, b)),
             })
             .collect(),
     })
 }
 
-/// Compiles naga's `lang` text of the plan's variant for every pass, and lists the slots of
-/// each module. `scratch` receives the `.spv` files.
+/// Compiles naga's `lang` text of the plan's variant for every compute pass, and lists the
+/// slots of each module. `scratch` receives the `.spv` files.
 pub fn compile(plan: &FramePlan, lang: Lang, scratch: &Path) -> Result<Vec<PassShader>, String> {
-    let manifest = stratus_shaders::plan::embedded_manifest().map_err(|e| e.to_string())?;
-    let module = manifest
-        .module(MODULE)
-        .ok_or("the manifest has no clouds module")?;
-    let variant = module
-        .variants
-        .iter()
-        .find(|v| v.name == plan.variant)
-        .ok_or_else(|| format!("the manifest has no variant {}", plan.variant))?;
+    let program = Program::embedded().map_err(|e| e.to_string())?;
     std::fs::create_dir_all(scratch).map_err(|e| e.to_string())?;
     let dir = spirv_out();
     let mut shaders = Vec::new();
     for pass in &plan.passes {
+        let Some(entry_point) = compute_entry(pass) else {
+            continue;
+        };
+        let chosen = &plan.modules[&pass.module].variant;
+        let variant = program
+            .manifest
+            .module(&pass.module)
+            .and_then(|m| m.variants.iter().find(|v| &v.name == chosen))
+            .ok_or_else(|| format!("the manifest has no variant {}.{chosen}", pass.module))?;
         let out = scratch.join(format!(
-            "{}.{}.{}.{lang:?}.spv",
-            plan.module, plan.variant, pass.entry_point
+            "{}.{chosen}.{entry_point}.{lang:?}.spv",
+            pass.module
         ));
         let (words, slots, entry) = match lang {
             Lang::Glsl => {
                 let file = variant
                     .files
                     .glsl
-                    .get(&pass.entry_point)
-                    .ok_or_else(|| format!("no GLSL for entry point {}", pass.entry_point))?;
+                    .get(entry_point)
+                    .ok_or_else(|| format!("no GLSL for entry point {entry_point}"))?;
                 let words = glslang(&["-V", "-S", "comp"], &dir.join(file), &out, false)?;
                 let r = reflect(&words)?;
-                (words, glsl_slots(pass, &r)?, entry_of(&r, &["main"])?)
+                (words, glsl_slots(plan, pass, &r)?, entry_of(&r, &["main"])?)
             }
             Lang::Hlsl => {
                 let file = dir.join(&variant.files.hlsl);
                 let text = std::fs::read_to_string(&file)
                     .map_err(|e| format!("reading {}: {e}", file.display()))?;
                 let words = glslang(
-                    &["-D", "-V", "-e", &pass.entry_point, "-S", "comp"],
+                    &["-D", "-V", "-e", entry_point, "-S", "comp"],
                     &file,
                     &out,
                     true,
                 )?;
                 let r = reflect(&words)?;
-                let entry = entry_of(&r, &[&pass.entry_point, "main"])?;
-                (words, hlsl_slots(pass, &text, &r)?, entry)
+                let entry = entry_of(&r, &[entry_point, "main"])?;
+                (words, hlsl_slots(plan, pass, &text, &r)?, entry)
             }
         };
         shaders.push(PassShader {
@@ -290,7 +307,7 @@ fn slots_for(
 /// naga's GLSL: every binding at `group * 16 + binding` in set 0 (translate.rs), sampled
 /// textures combined with the sampler (GLSL has no separate sampler objects; naga drops the
 /// sampler binding). The names naga gives (`_group_G_binding_B_cs`) are checked against this.
-fn glsl_slots(pass: &Pass, r: &Reflection) -> Result<Vec<Slot>, String> {
+fn glsl_slots(plan: &FramePlan, pass: &Pass, r: &Reflection) -> Result<Vec<Slot>, String> {
     for d in &r.descriptors {
         let parsed = d
             .name
@@ -316,10 +333,10 @@ fn glsl_slots(pass: &Pass, r: &Reflection) -> Result<Vec<Slot>, String> {
             .bindings
             .iter()
             .find(|b| d.set == 0 && b.group * 16 + b.binding == d.binding)?;
-        Some(if b.info.kind == "sampled-texture" {
-            SlotContent::CombinedWithSampler(b.resource)
+        Some(if b.info.kind == BindingKind::SampledTexture {
+            SlotContent::CombinedWithSampler(bound(plan, b))
         } else {
-            SlotContent::Plan(b.resource)
+            SlotContent::Plan(bound(plan, b))
         })
     })
 }
@@ -348,7 +365,12 @@ fn hlsl_register(text: &str, name: &str) -> Option<(String, u32, u32)> {
 /// the HLSL declares them: the heap filled with the noise sampler, the index buffer with
 /// zeros. (naga's own HLSL options put them at `s0, space0` and `t0, space255`, which glslang
 /// cannot bind: see `hlsl_options` in crates/shaders/src/translate.rs.)
-fn hlsl_slots(pass: &Pass, text: &str, r: &Reflection) -> Result<Vec<Slot>, String> {
+fn hlsl_slots(
+    plan: &FramePlan,
+    pass: &Pass,
+    text: &str,
+    r: &Reflection,
+) -> Result<Vec<Slot>, String> {
     let heap_size = text
         .split_once("nagaSamplerHeap[")
         .and_then(|(_, rest)| rest.split_once(']'))
@@ -380,6 +402,7 @@ fn hlsl_slots(pass: &Pass, text: &str, r: &Reflection) -> Result<Vec<Slot>, Stri
             .bindings
             .iter()
             .find(|b| (b.group, b.binding) == (d.set, d.binding))?;
-        (b.resource != Resource::NoiseSampler).then_some(SlotContent::Plan(b.resource))
+        (plan.resources[b.resource].kind != ResourceKind::Sampler)
+            .then_some(SlotContent::Plan(bound(plan, b)))
     })
 }

@@ -1,5 +1,6 @@
-//! The resources of one frame (created per render, like backend-wgpu does, and destroyed when
-//! the frame has been read back) and the barrier tracker that orders their uses.
+//! GPU objects of the frame graph's resources (buffers, images and their views, created with
+//! memory from the allocator, destroyed one by one when a new plan changes them), the graph's
+//! formats and usages in Vulkan's terms, and the barrier tracker that orders their uses.
 
 use std::collections::HashMap;
 
@@ -8,72 +9,78 @@ use gpu_allocator::{
     MemoryLocation,
     vulkan::{Allocation, AllocationCreateDesc, AllocationScheme, Allocator},
 };
-use stratus_shaders::{Resource, plan::Binding};
+use stratus_graph::{
+    desc::TexelFormat,
+    manifest::{Access, BindingKind, Dimension},
+    plan::{Binding, Usage},
+};
 
 use crate::error::{Error, memory, vk};
 
-/// Every image the frame creates, with its name in messages.
-pub(crate) const IMAGES: [(Resource, &str); 7] = [
-    (Resource::Shape, "shape noise"),
-    (Resource::Detail, "detail noise"),
-    (Resource::Weather, "weather map"),
-    (Resource::Curl, "curl noise"),
-    (Resource::Cloud, "cloud"),
-    (Resource::Depth, "depth"),
-    (Resource::Image, "display"),
-];
-
-/// Whether `resource` is a noise texture (uploaded once per frame and only sampled).
-pub(crate) fn is_noise(resource: Resource) -> bool {
-    matches!(
-        resource,
-        Resource::Shape | Resource::Detail | Resource::Weather | Resource::Curl
-    )
-}
-
-/// The usage an image resource is created with and the format features that needs. Noise is
-/// uploaded and sampled (linearly, where the plan says it is filterable); the frame's images
-/// are written as storage images, sampled by a later pass and copied out, as in backend-wgpu.
-pub(crate) fn image_needs(resource: Resource) -> (vk::ImageUsageFlags, vk::FormatFeatureFlags) {
-    let filter = if resource.filterable() {
-        vk::FormatFeatureFlags::SAMPLED_IMAGE_FILTER_LINEAR
-    } else {
-        vk::FormatFeatureFlags::empty()
-    };
-    if is_noise(resource) {
-        (
-            vk::ImageUsageFlags::SAMPLED | vk::ImageUsageFlags::TRANSFER_DST,
-            vk::FormatFeatureFlags::SAMPLED_IMAGE | vk::FormatFeatureFlags::TRANSFER_DST | filter,
-        )
-    } else {
-        (
-            vk::ImageUsageFlags::STORAGE
-                | vk::ImageUsageFlags::SAMPLED
-                | vk::ImageUsageFlags::TRANSFER_SRC,
-            vk::FormatFeatureFlags::STORAGE_IMAGE
-                | vk::FormatFeatureFlags::SAMPLED_IMAGE
-                | vk::FormatFeatureFlags::TRANSFER_SRC,
-        )
+/// The Vulkan format of a graph format.
+pub(crate) fn vk_format(f: TexelFormat) -> vk::Format {
+    match f {
+        TexelFormat::Rgba8Unorm => vk::Format::R8G8B8A8_UNORM,
+        TexelFormat::Rgba16Float => vk::Format::R16G16B16A16_SFLOAT,
+        TexelFormat::Rgba32Float => vk::Format::R32G32B32A32_SFLOAT,
+        TexelFormat::R32Float => vk::Format::R32_SFLOAT,
+        TexelFormat::Depth32Float => vk::Format::D32_SFLOAT,
     }
 }
 
-/// The Vulkan format for a WGSL texel format.
-pub(crate) fn vk_format(wgsl: &str) -> Option<vk::Format> {
-    Some(match wgsl {
-        "rgba8unorm" => vk::Format::R8G8B8A8_UNORM,
-        "rgba32float" => vk::Format::R32G32B32A32_SFLOAT,
-        "r32float" => vk::Format::R32_SFLOAT,
-        "rgba16float" => vk::Format::R16G16B16A16_SFLOAT,
-        _ => return None,
-    })
+/// The image usage a resource is created with and the format features that needs, from what
+/// the passes use it for. Colour images can also be copied out (readback on request).
+pub(crate) fn image_needs(
+    usage: Usage,
+    f: TexelFormat,
+) -> (vk::ImageUsageFlags, vk::FormatFeatureFlags) {
+    let mut u = vk::ImageUsageFlags::empty();
+    let mut need = vk::FormatFeatureFlags::empty();
+    if usage.sampled {
+        u |= vk::ImageUsageFlags::SAMPLED;
+        need |= vk::FormatFeatureFlags::SAMPLED_IMAGE;
+        if f.filterable() && usage.upload {
+            need |= vk::FormatFeatureFlags::SAMPLED_IMAGE_FILTER_LINEAR;
+        }
+    }
+    if usage.storage {
+        u |= vk::ImageUsageFlags::STORAGE;
+        need |= vk::FormatFeatureFlags::STORAGE_IMAGE;
+    }
+    if usage.color {
+        u |= vk::ImageUsageFlags::COLOR_ATTACHMENT;
+        need |= vk::FormatFeatureFlags::COLOR_ATTACHMENT;
+    }
+    if usage.depth {
+        u |= vk::ImageUsageFlags::DEPTH_STENCIL_ATTACHMENT;
+        need |= vk::FormatFeatureFlags::DEPTH_STENCIL_ATTACHMENT;
+    }
+    if usage.upload {
+        u |= vk::ImageUsageFlags::TRANSFER_DST;
+        need |= vk::FormatFeatureFlags::TRANSFER_DST;
+    }
+    if !f.is_depth() {
+        u |= vk::ImageUsageFlags::TRANSFER_SRC;
+        need |= vk::FormatFeatureFlags::TRANSFER_SRC;
+    }
+    (u, need)
 }
 
-/// Bytes per texel of a format the frame reads back.
-pub(crate) fn texel_size(format: vk::Format) -> u64 {
-    match format {
-        vk::Format::R32G32B32A32_SFLOAT => 16,
-        vk::Format::R16G16B16A16_SFLOAT => 8,
-        _ => 4,
+/// The view type of a texture of this dimension.
+pub(crate) fn view_type(d: Dimension) -> vk::ImageViewType {
+    match d {
+        Dimension::D1 => vk::ImageViewType::TYPE_1D,
+        Dimension::D3 => vk::ImageViewType::TYPE_3D,
+        Dimension::D2 | Dimension::Cube => vk::ImageViewType::TYPE_2D,
+    }
+}
+
+/// The aspect of a format's images.
+pub(crate) fn aspect(f: vk::Format) -> vk::ImageAspectFlags {
+    if f == vk::Format::D32_SFLOAT {
+        vk::ImageAspectFlags::DEPTH
+    } else {
+        vk::ImageAspectFlags::COLOR
     }
 }
 
@@ -92,49 +99,23 @@ pub(crate) const COLOR_LAYER: vk::ImageSubresourceLayers = vk::ImageSubresourceL
     layer_count: 1,
 };
 
-/// An image of the frame with its view.
-#[derive(Clone, Copy)]
-pub(crate) struct Image {
-    pub image: vk::Image,
-    pub view: vk::ImageView,
-    pub format: vk::Format,
-    pub extent: vk::Extent3D,
-}
-
-/// The objects of one frame. Everything is destroyed by [`Frame::destroy`], whatever step
-/// failed; destroying null handles is a no-op.
-#[derive(Default)]
-pub(crate) struct Frame {
-    buffers: Vec<(vk::Buffer, Allocation)>,
-    images: Vec<(vk::Image, Allocation)>,
-    views: Vec<vk::ImageView>,
-    pub sampler: vk::Sampler,
-    /// A nearest-filtering twin of `sampler`, for supplied modules that read non-filterable
-    /// images through combined image samplers (null otherwise).
-    pub nearest_sampler: vk::Sampler,
-    pub descriptor_pool: vk::DescriptorPool,
-    pub query_pool: vk::QueryPool,
-}
-
-/// A buffer of the frame: its handle and where its allocation is kept.
-#[derive(Clone, Copy)]
-pub(crate) struct Buffer {
+/// A buffer with its memory.
+pub(crate) struct GpuBuffer {
     pub buffer: vk::Buffer,
     pub size: u64,
-    index: usize,
+    allocation: Option<Allocation>,
 }
 
-impl Frame {
+impl GpuBuffer {
     /// Creates a buffer with memory from `location`.
-    pub fn buffer(
-        &mut self,
+    pub fn new(
         device: &ash::Device,
         allocator: &mut Allocator,
         name: &str,
         size: u64,
         usage: vk::BufferUsageFlags,
         location: MemoryLocation,
-    ) -> Result<Buffer, Error> {
+    ) -> Result<Self, Error> {
         let info = vk::BufferCreateInfo::default()
             .size(size)
             .usage(usage)
@@ -163,21 +144,24 @@ impl Frame {
         // SAFETY: the allocation satisfies the requirements (gpu-allocator's contract).
         let bound =
             unsafe { device.bind_buffer_memory(buffer, allocation.memory(), allocation.offset()) };
-        self.buffers.push((buffer, allocation));
-        bound.map_err(vk("vkBindBufferMemory"))?;
-        Ok(Buffer {
+        let mut made = Self {
             buffer,
             size,
-            index: self.buffers.len() - 1,
-        })
+            allocation: Some(allocation),
+        };
+        if let Err(e) = bound {
+            made.destroy(device, allocator);
+            return Err(vk("vkBindBufferMemory")(e));
+        }
+        Ok(made)
     }
 
     /// The mapped bytes of a host-visible buffer.
-    pub fn mapped(&mut self, buffer: Buffer) -> Result<&mut [u8], Error> {
-        let size = buffer.size as usize;
-        self.buffers[buffer.index]
-            .1
-            .mapped_slice_mut()
+    pub fn mapped(&mut self) -> Result<&mut [u8], Error> {
+        let size = self.size as usize;
+        self.allocation
+            .as_mut()
+            .and_then(|a| a.mapped_slice_mut())
             .map(|s| &mut s[..size])
             .ok_or_else(|| Error::Memory {
                 what: "a host-visible buffer".into(),
@@ -185,10 +169,29 @@ impl Frame {
             })
     }
 
-    /// Creates an image (optimal tiling, one mip level) and a view of all of it.
-    #[allow(clippy::too_many_arguments)]
-    pub fn image(
-        &mut self,
+    /// Destroys the buffer and frees its memory. The caller has waited for the GPU.
+    pub fn destroy(&mut self, device: &ash::Device, allocator: &mut Allocator) {
+        // SAFETY: the GPU no longer uses it (the caller waited); destroyed once (taken).
+        unsafe { device.destroy_buffer(std::mem::take(&mut self.buffer), None) };
+        if let Some(a) = self.allocation.take() {
+            // A failure here is a bookkeeping bug in gpu-allocator; nothing to act on.
+            let _ = allocator.free(a);
+        }
+    }
+}
+
+/// An image (optimal tiling, one mip level) with a view of all of it.
+pub(crate) struct GpuImage {
+    pub image: vk::Image,
+    pub view: vk::ImageView,
+    pub format: vk::Format,
+    pub extent: vk::Extent3D,
+    allocation: Option<Allocation>,
+}
+
+impl GpuImage {
+    /// Creates the image, its memory and its view.
+    pub fn new(
         device: &ash::Device,
         allocator: &mut Allocator,
         name: &str,
@@ -196,11 +199,11 @@ impl Frame {
         format: vk::Format,
         extent: vk::Extent3D,
         usage: vk::ImageUsageFlags,
-    ) -> Result<Image, Error> {
-        let image_type = if view_type == vk::ImageViewType::TYPE_3D {
-            vk::ImageType::TYPE_3D
-        } else {
-            vk::ImageType::TYPE_2D
+    ) -> Result<Self, Error> {
+        let image_type = match view_type {
+            vk::ImageViewType::TYPE_3D => vk::ImageType::TYPE_3D,
+            vk::ImageViewType::TYPE_1D => vk::ImageType::TYPE_1D,
+            _ => vk::ImageType::TYPE_2D,
         };
         let info = vk::ImageCreateInfo::default()
             .image_type(image_type)
@@ -215,6 +218,13 @@ impl Frame {
             .initial_layout(vk::ImageLayout::UNDEFINED);
         // SAFETY: valid device and info.
         let image = unsafe { device.create_image(&info, None) }.map_err(vk("vkCreateImage"))?;
+        let mut made = Self {
+            image,
+            view: vk::ImageView::null(),
+            format,
+            extent,
+            allocation: None,
+        };
         // SAFETY: `image` was just created from `device`.
         let requirements = unsafe { device.get_image_memory_requirements(image) };
         let allocation = allocator
@@ -229,56 +239,52 @@ impl Frame {
         let allocation = match allocation {
             Ok(a) => a,
             Err(e) => {
-                // SAFETY: not bound or used yet.
-                unsafe { device.destroy_image(image, None) };
+                made.destroy(device, allocator);
                 return Err(e);
             }
         };
         // SAFETY: the allocation satisfies the requirements (gpu-allocator's contract).
         let bound =
             unsafe { device.bind_image_memory(image, allocation.memory(), allocation.offset()) };
-        self.images.push((image, allocation));
-        bound.map_err(vk("vkBindImageMemory"))?;
+        made.allocation = Some(allocation);
+        if let Err(e) = bound {
+            made.destroy(device, allocator);
+            return Err(vk("vkBindImageMemory")(e));
+        }
         let view_info = vk::ImageViewCreateInfo::default()
             .image(image)
             .view_type(view_type)
             .format(format)
-            .subresource_range(COLOR);
+            .subresource_range(range(format));
         // SAFETY: the image is bound to memory; the view matches its type and format.
-        let view = unsafe { device.create_image_view(&view_info, None) }
-            .map_err(vk("vkCreateImageView"))?;
-        self.views.push(view);
-        Ok(Image {
-            image,
-            view,
-            format,
-            extent,
-        })
-    }
-
-    /// Destroys every object and frees every allocation. The caller has waited for the GPU.
-    pub fn destroy(&mut self, device: &ash::Device, allocator: &mut Allocator) {
-        // SAFETY: the GPU no longer uses the frame (the caller waited); each object is
-        // destroyed once (the vectors are drained, the handles reset).
-        unsafe {
-            device.destroy_query_pool(std::mem::take(&mut self.query_pool), None);
-            // Frees the descriptor sets too.
-            device.destroy_descriptor_pool(std::mem::take(&mut self.descriptor_pool), None);
-            device.destroy_sampler(std::mem::take(&mut self.sampler), None);
-            device.destroy_sampler(std::mem::take(&mut self.nearest_sampler), None);
-            for view in self.views.drain(..) {
-                device.destroy_image_view(view, None);
-            }
-            for (image, allocation) in self.images.drain(..) {
-                device.destroy_image(image, None);
-                // A failure here is a bookkeeping bug in gpu-allocator; nothing to act on.
-                let _ = allocator.free(allocation);
-            }
-            for (buffer, allocation) in self.buffers.drain(..) {
-                device.destroy_buffer(buffer, None);
-                let _ = allocator.free(allocation);
+        match unsafe { device.create_image_view(&view_info, None) } {
+            Ok(view) => made.view = view,
+            Err(e) => {
+                made.destroy(device, allocator);
+                return Err(vk("vkCreateImageView")(e));
             }
         }
+        Ok(made)
+    }
+
+    /// Destroys the view and image and frees the memory. The caller has waited for the GPU.
+    pub fn destroy(&mut self, device: &ash::Device, allocator: &mut Allocator) {
+        // SAFETY: the GPU no longer uses them; each is destroyed once (taken).
+        unsafe {
+            device.destroy_image_view(std::mem::take(&mut self.view), None);
+            device.destroy_image(std::mem::take(&mut self.image), None);
+        }
+        if let Some(a) = self.allocation.take() {
+            let _ = allocator.free(a);
+        }
+    }
+}
+
+/// The whole of an image of this format.
+pub(crate) fn range(format: vk::Format) -> vk::ImageSubresourceRange {
+    vk::ImageSubresourceRange {
+        aspect_mask: aspect(format),
+        ..COLOR
     }
 }
 
@@ -314,52 +320,63 @@ impl Use {
         writes: false,
     };
 
-    /// How a compute pass uses what `binding` names, from the manifest's reflection; `None`
-    /// where no barrier is ever needed (the uniform block is written by the host before the
-    /// submit, which makes it visible; samplers have no memory).
-    pub fn of_binding(b: &Binding) -> Result<Option<Self>, Error> {
-        let stage = vk::PipelineStageFlags::COMPUTE_SHADER;
-        let (access, writes) = match b.info.access.as_deref() {
-            Some("read") | None => (vk::AccessFlags::SHADER_READ, false),
-            Some("write") => (vk::AccessFlags::SHADER_WRITE, true),
-            Some("read-write") => (
+    /// A raster pass's colour target (read too where it loads or blends).
+    pub const COLOR_TARGET: Self = Self {
+        stage: vk::PipelineStageFlags::COLOR_ATTACHMENT_OUTPUT,
+        access: vk::AccessFlags::from_raw(
+            vk::AccessFlags::COLOR_ATTACHMENT_READ.as_raw()
+                | vk::AccessFlags::COLOR_ATTACHMENT_WRITE.as_raw(),
+        ),
+        layout: vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL,
+        writes: true,
+    };
+    /// A raster pass's depth target.
+    pub const DEPTH_TARGET: Self = Self {
+        stage: vk::PipelineStageFlags::from_raw(
+            vk::PipelineStageFlags::EARLY_FRAGMENT_TESTS.as_raw()
+                | vk::PipelineStageFlags::LATE_FRAGMENT_TESTS.as_raw(),
+        ),
+        access: vk::AccessFlags::from_raw(
+            vk::AccessFlags::DEPTH_STENCIL_ATTACHMENT_READ.as_raw()
+                | vk::AccessFlags::DEPTH_STENCIL_ATTACHMENT_WRITE.as_raw(),
+        ),
+        layout: vk::ImageLayout::DEPTH_STENCIL_ATTACHMENT_OPTIMAL,
+        writes: true,
+    };
+
+    /// How a pass whose shaders run at `stage` uses what `binding` names, from the manifest's
+    /// reflection; `None` where no barrier is ever needed (the uniform block is written by the
+    /// host before the submit, which makes it visible; samplers have no memory).
+    pub fn of_binding(b: &Binding, stage: vk::PipelineStageFlags) -> Option<Self> {
+        let (access, writes) = match b.info.access {
+            Some(Access::Read) | None => (vk::AccessFlags::SHADER_READ, false),
+            Some(Access::Write) => (vk::AccessFlags::SHADER_WRITE, true),
+            Some(Access::ReadWrite) => (
                 vk::AccessFlags::SHADER_READ | vk::AccessFlags::SHADER_WRITE,
                 true,
             ),
-            Some(other) => {
-                return Err(Error::Shader(format!(
-                    "binding `{}` has access `{other}`, which the ash backend does not know",
-                    b.info.name
-                )));
-            }
         };
-        Ok(match b.info.kind.as_str() {
-            "uniform-buffer" | "sampler" => None,
-            "sampled-texture" => Some(Self {
+        match b.info.kind {
+            BindingKind::UniformBuffer | BindingKind::Sampler | BindingKind::Other => None,
+            BindingKind::SampledTexture => Some(Self {
                 stage,
                 access: vk::AccessFlags::SHADER_READ,
                 layout: vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL,
                 writes: false,
             }),
-            "storage-texture" => Some(Self {
+            BindingKind::StorageTexture => Some(Self {
                 stage,
                 access,
                 layout: vk::ImageLayout::GENERAL,
                 writes,
             }),
-            "storage-buffer" => Some(Self {
+            BindingKind::StorageBuffer => Some(Self {
                 stage,
                 access,
                 layout: vk::ImageLayout::UNDEFINED,
                 writes,
             }),
-            other => {
-                return Err(Error::Shader(format!(
-                    "binding `{}` has kind `{other}`, which the ash backend cannot bind",
-                    b.info.name
-                )));
-            }
-        })
+        }
     }
 }
 
@@ -369,7 +386,10 @@ enum Target {
     Buffer(vk::Buffer),
 }
 
-/// The last use of every image and GPU buffer of the frame. [`Tracker::barrier`] records the
+/// What the tracker knows by: a resource's name and which half of a history pair (0 else).
+pub(crate) type Key = (String, usize);
+
+/// The last use of every image and GPU buffer. [`Tracker::barrier`] records the
 /// one pipeline barrier that makes a set of new uses safe (memory dependencies after writes,
 /// execution dependencies before overwriting what was read, layout transitions).
 ///
@@ -377,32 +397,38 @@ enum Target {
 /// access of every binding) says what each pass does, so the barriers follow the plan.
 #[derive(Default)]
 pub(crate) struct Tracker {
-    states: HashMap<Resource, (Target, Use)>,
+    states: HashMap<Key, (Target, vk::ImageAspectFlags, Use)>,
 }
 
 impl Tracker {
-    pub fn add_image(&mut self, resource: Resource, image: vk::Image, state: Use) {
-        self.states.insert(resource, (Target::Image(image), state));
+    pub fn add_image(&mut self, key: Key, image: &GpuImage, state: Use) {
+        self.states.insert(
+            key,
+            (Target::Image(image.image), aspect(image.format), state),
+        );
     }
 
-    pub fn add_buffer(&mut self, resource: Resource, buffer: vk::Buffer, state: Use) {
-        self.states
-            .insert(resource, (Target::Buffer(buffer), state));
+    pub fn add_buffer(&mut self, key: Key, buffer: vk::Buffer, state: Use) {
+        self.states.insert(
+            key,
+            (Target::Buffer(buffer), vk::ImageAspectFlags::empty(), state),
+        );
+    }
+
+    /// Forgets every resource called `name` (it was destroyed).
+    pub fn remove(&mut self, name: &str) {
+        self.states.retain(|(n, _), _| n != name);
     }
 
     /// Records one barrier before the uses `wants` (untracked resources are skipped).
-    pub fn barrier(
-        &mut self,
-        device: &ash::Device,
-        cb: vk::CommandBuffer,
-        wants: &[(Resource, Use)],
-    ) {
+    pub fn barrier(&mut self, device: &ash::Device, cb: vk::CommandBuffer, wants: &[(Key, Use)]) {
         let mut src = vk::PipelineStageFlags::empty();
         let mut dst = vk::PipelineStageFlags::empty();
         let mut images = Vec::new();
         let mut buffers = Vec::new();
-        for &(resource, want) in wants {
-            let Some((target, have)) = self.states.get_mut(&resource) else {
+        for (key, want) in wants {
+            let want = *want;
+            let Some((target, aspect_mask, have)) = self.states.get_mut(key) else {
                 continue;
             };
             let relayout = matches!(target, Target::Image(_)) && have.layout != want.layout;
@@ -430,7 +456,10 @@ impl Tracker {
                         .src_queue_family_index(vk::QUEUE_FAMILY_IGNORED)
                         .dst_queue_family_index(vk::QUEUE_FAMILY_IGNORED)
                         .image(image)
-                        .subresource_range(COLOR),
+                        .subresource_range(vk::ImageSubresourceRange {
+                            aspect_mask: *aspect_mask,
+                            ..COLOR
+                        }),
                 ),
                 Target::Buffer(buffer) => buffers.push(
                     vk::BufferMemoryBarrier::default()

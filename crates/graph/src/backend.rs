@@ -1,0 +1,239 @@
+//! The one backend trait (wgpu, ash and the CPU renderers implement it) and the code every
+//! backend shares: ranking devices, turning timestamps into pass timings, the CPU-wall
+//! fallback, the frame flags, and where uploaded data comes from.
+
+use std::sync::Arc;
+
+use stratus_noise::NoiseSet;
+use stratus_scene::Scene;
+
+use crate::{
+    output::{FrameOutput, PassTiming},
+    plan::{FramePlan, Pass},
+};
+
+/// A backend's error, boxed so that one trait object serves every backend.
+pub type BackendError = Box<dyn std::error::Error + Send + Sync + 'static>;
+
+/// What to copy back to the host after a frame. Reading back costs a wait and a copy, so a
+/// real-time loop asks for nothing.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct Readback {
+    /// The resources with an output role (radiance, depth, image) and the counters.
+    pub output: bool,
+    /// Further resources by name, into [`FrameOutput::resources`].
+    pub resources: Vec<String>,
+}
+
+impl Readback {
+    /// Nothing (timings only).
+    pub fn none() -> Self {
+        Self::default()
+    }
+
+    /// The frame's output images and counters.
+    pub fn output() -> Self {
+        Self {
+            output: true,
+            resources: Vec::new(),
+        }
+    }
+}
+
+/// One frame to render.
+#[derive(Clone)]
+pub struct FrameInput<'a> {
+    /// The plan (a backend keeps what it built for the last plan, and rebuilds only what a
+    /// new plan changes).
+    pub plan: &'a FramePlan,
+    /// The scene: the uniforms are derived from it.
+    pub scene: &'a Scene,
+    /// Noise textures; uploaded when a different `Arc` arrives (or a texture is rebuilt).
+    pub noise: &'a Arc<NoiseSet>,
+    /// What to read back.
+    pub readback: Readback,
+    /// Host flags for conditional passes (the backend adds `stats` and `history`).
+    pub flags: &'a [&'a str],
+}
+
+impl<'a> FrameInput<'a> {
+    /// A frame that reads its output back and sets no host flags.
+    pub fn new(plan: &'a FramePlan, scene: &'a Scene, noise: &'a Arc<NoiseSet>) -> Self {
+        Self {
+            plan,
+            scene,
+            noise,
+            readback: Readback::output(),
+            flags: &[],
+        }
+    }
+
+    /// The same frame, reading back `readback` instead.
+    pub fn with_readback(self, readback: Readback) -> Self {
+        Self { readback, ..self }
+    }
+
+    /// The same frame with these host flags.
+    pub fn with_flags(self, flags: &'a [&'a str]) -> Self {
+        Self { flags, ..self }
+    }
+}
+
+/// A renderer that executes frame plans.
+pub trait Backend {
+    /// The renderer and device in words, e.g. `wgpu on llvmpipe (...) (Vulkan, Cpu)`.
+    fn describe(&self) -> String;
+    /// Whether passes are timed with GPU timestamp queries (else by CPU wall time).
+    fn has_timestamps(&self) -> bool;
+    /// Renders one frame and waits for it; reads back what `frame.readback` asks for.
+    fn render(&mut self, frame: &FrameInput<'_>) -> Result<FrameOutput, BackendError>;
+    /// GPU objects (resources, views, pipelines, descriptor sets, queries...) this renderer
+    /// has created so far: a steady loop creates none after its first frame.
+    fn objects_created(&self) -> u64 {
+        0
+    }
+}
+
+/// What kind of device an adapter is.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum DeviceClass {
+    /// A discrete GPU.
+    Discrete,
+    /// An integrated GPU.
+    Integrated,
+    /// A virtual GPU.
+    Virtual,
+    /// Unknown.
+    Other,
+    /// A CPU driver (lavapipe, llvmpipe, SwiftShader).
+    Cpu,
+}
+
+/// Of several devices, the index of the one to use: a real GPU before a CPU driver, the first
+/// of equals (both backends rank alike).
+pub fn best_device(classes: &[DeviceClass]) -> Option<usize> {
+    let rank = |c: &DeviceClass| match c {
+        DeviceClass::Discrete => 0,
+        DeviceClass::Integrated => 1,
+        DeviceClass::Virtual => 2,
+        DeviceClass::Other => 3,
+        DeviceClass::Cpu => 4,
+    };
+    (0..classes.len()).min_by_key(|&i| (rank(&classes[i]), i))
+}
+
+/// The device in words, the same from both backends: `name (Vulkan, Cpu)`.
+pub fn describe_device(name: &str, api: &str, class: DeviceClass) -> String {
+    format!("{name} ({api}, {class:?})")
+}
+
+/// Pass timings from a begin and an end timestamp per pass (`ticks[2i]`, `ticks[2i+1]`).
+/// Only `valid_bits` of a timestamp count, and the counter may wrap between the two.
+pub fn timings_from_ticks(
+    passes: &[&Pass],
+    ticks: &[u64],
+    period_ns: f64,
+    valid_bits: u32,
+) -> Vec<PassTiming> {
+    let mask = if valid_bits >= 64 {
+        u64::MAX
+    } else {
+        (1u64 << valid_bits) - 1
+    };
+    passes
+        .iter()
+        .enumerate()
+        .map(|(i, p)| PassTiming {
+            pass: p.name.clone(),
+            ms: (ticks[2 * i + 1].wrapping_sub(ticks[2 * i]) & mask) as f64 * period_ns * 1e-6,
+            source: "gpu-timestamp",
+        })
+        .collect()
+}
+
+/// Pass timings measured on the CPU, each pass submitted alone and waited for (devices
+/// without timestamp queries).
+pub fn cpu_wall_timings(passes: &[&Pass], ms: &[f64]) -> Vec<PassTiming> {
+    passes
+        .iter()
+        .zip(ms)
+        .map(|(p, &ms)| PassTiming {
+            pass: p.name.clone(),
+            ms,
+            source: "cpu-wall",
+        })
+        .collect()
+}
+
+/// The flags of a frame: the host's, `stats` when the plan counts, `history` once last
+/// frame's history is valid.
+pub fn frame_flags<'a>(frame: &FrameInput<'a>, history_valid: bool) -> Vec<&'a str> {
+    let mut flags = frame.flags.to_vec();
+    if frame.plan.stats {
+        flags.push("stats");
+    }
+    if history_valid {
+        flags.push("history");
+    }
+    flags
+}
+
+/// The passes of `plan` that run with `flags`, in order.
+pub fn passes_to_run<'p>(plan: &'p FramePlan, flags: &[&str]) -> Vec<&'p Pass> {
+    plan.passes.iter().filter(|p| p.runs(flags)).collect()
+}
+
+/// The size (x, y, z) and RGBA8 bytes of the host data an upload names, checked against each
+/// other.
+pub fn upload_data<'n>(source: &str, noise: &'n NoiseSet) -> Result<([u32; 3], &'n [u8]), String> {
+    let (size, data) = match source {
+        "noise.shape" => (noise.shape.size, &noise.shape.data[..]),
+        "noise.detail" => (noise.detail.size, &noise.detail.data[..]),
+        "noise.weather" => (
+            [noise.weather.size[0], noise.weather.size[1], 1],
+            &noise.weather.data[..],
+        ),
+        "noise.curl" => (
+            [noise.curl.size[0], noise.curl.size[1], 1],
+            &noise.curl.data[..],
+        ),
+        other => return Err(format!("no host data called `{other}`")),
+    };
+    let expected = size.iter().map(|&n| u64::from(n)).product::<u64>() * 4;
+    if data.len() as u64 != expected || expected == 0 {
+        return Err(format!(
+            "the {source} texture has {} bytes, {expected} expected for {}x{}x{} RGBA8",
+            data.len(),
+            size[0],
+            size[1],
+            size[2]
+        ));
+    }
+    Ok((size, data))
+}
+
+/// Which half of a history pair is "current" in frame `frame` (the other is `.previous`).
+pub fn history_half(frame: u64, previous: bool) -> usize {
+    ((frame % 2) as usize) ^ usize::from(previous)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn ranks_gpus_before_cpu_drivers() {
+        use DeviceClass::*;
+        assert_eq!(best_device(&[Cpu, Discrete, Integrated]), Some(1));
+        assert_eq!(best_device(&[Cpu, Cpu]), Some(0));
+        assert_eq!(best_device(&[]), None);
+    }
+
+    #[test]
+    fn history_halves_alternate() {
+        assert_eq!(history_half(0, false), 0);
+        assert_eq!(history_half(0, true), 1);
+        assert_eq!(history_half(1, false), 1);
+        assert_eq!(history_half(1, true), 0);
+    }
+}

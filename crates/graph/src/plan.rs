@@ -1,0 +1,703 @@
+//! A frame plan: the graph resolved for one scene and output size. Which variant of each
+//! module runs (the cheapest that has every feature the scene uses), every resource with its
+//! concrete size and derived usage, every pass with its workgroups or viewport and its
+//! bindings. Both backends execute a plan step by step; nothing in it is backend-specific.
+
+use std::collections::BTreeMap;
+
+use stratus_scene::Scene;
+
+use crate::{
+    desc::{
+        AddressMode, Blend, ColorDesc, Compare, DepthDesc, Filter, Lifetime, LoadOp, OutputRole,
+        PREVIOUS, ResourceKind, TexelFormat,
+    },
+    manifest::{BindingKind, Dimension, ModuleManifest, ResourceInfo, VariantInfo},
+    program::Program,
+};
+
+/// The largest width or height of an output image: the scene's limit, the one every backend,
+/// plan and the CLI check.
+pub use stratus_scene::MAX_RESOLUTION;
+
+/// What a resource is used for, derived from the passes that bind it.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub struct Usage {
+    /// Sampled (or loaded) by a shader.
+    pub sampled: bool,
+    /// Bound as a storage texture or buffer.
+    pub storage: bool,
+    /// A raster pass's colour target.
+    pub color: bool,
+    /// A raster pass's depth target.
+    pub depth: bool,
+    /// Written by an upload from the host.
+    pub upload: bool,
+}
+
+/// A sampler's state.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct SamplerDesc {
+    /// Minification and magnification filter (mipmaps: nearest; there is one level).
+    pub filter: Filter,
+    /// Addressing on every axis.
+    pub address: AddressMode,
+}
+
+impl SamplerDesc {
+    /// The LOD clamp every backend sets: [0, 32], as wgpu's defaults.
+    pub const LOD_CLAMP: [f32; 2] = [0.0, 32.0];
+}
+
+/// One resource of the plan.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PlanResource {
+    /// Name.
+    pub name: String,
+    /// What it is.
+    pub kind: ResourceKind,
+    /// Texture dimension.
+    pub dimension: Dimension,
+    /// Texel format of a texture.
+    pub format: Option<TexelFormat>,
+    /// Size of a texture; `None` for an uploaded one (the data's size).
+    pub extent: Option<[u32; 3]>,
+    /// How long its contents live.
+    pub lifetime: Lifetime,
+    /// What the passes use it for.
+    pub usage: Usage,
+    /// Host data it comes from.
+    pub upload: Option<String>,
+    /// Frame output field it is read back into.
+    pub output: Option<OutputRole>,
+    /// Counter names of a counters buffer.
+    pub counters: Vec<String>,
+    /// Sampler state.
+    pub sampler: Option<SamplerDesc>,
+    /// The host may supply its own texture.
+    pub external: bool,
+}
+
+impl PlanResource {
+    /// Bytes of a buffer resource (4 per counter; the uniform block's size is the host's).
+    pub fn buffer_size(&self) -> u64 {
+        (self.counters.len() * 4) as u64
+    }
+
+    /// What a backend must agree on to keep the resource across plans: if this is equal,
+    /// the existing GPU object serves the new plan.
+    pub fn signature(&self) -> impl PartialEq + '_ {
+        (
+            self.kind,
+            self.dimension,
+            self.format,
+            self.extent,
+            self.lifetime,
+            self.usage,
+            self.counters.len(),
+            self.sampler,
+        )
+    }
+}
+
+/// A frame condition: a flag that must be set (or, negated, unset) for a pass to run.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Condition {
+    /// The flag.
+    pub flag: String,
+    /// Run when the flag is *not* set.
+    pub negate: bool,
+}
+
+impl Condition {
+    fn parse(s: &str) -> Self {
+        match s.trim().strip_prefix('!') {
+            Some(f) => Self {
+                flag: f.trim().into(),
+                negate: true,
+            },
+            None => Self {
+                flag: s.trim().into(),
+                negate: false,
+            },
+        }
+    }
+
+    /// Whether the condition holds with these flags set.
+    pub fn holds(&self, flags: &[&str]) -> bool {
+        flags.contains(&self.flag.as_str()) != self.negate
+    }
+}
+
+/// One binding of a pass: the manifest's reflection plus the resource bound there.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Binding {
+    /// `@group`.
+    pub group: u32,
+    /// `@binding`.
+    pub binding: u32,
+    /// What the WGSL declares (kind, format, access, dimension).
+    pub info: ResourceInfo,
+    /// Index of the resource in [`FramePlan::resources`].
+    pub resource: usize,
+    /// Binds last frame's half of a history resource.
+    pub previous: bool,
+}
+
+/// A colour target of a raster pass, resolved.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ColorTarget {
+    /// Index of the texture in [`FramePlan::resources`].
+    pub resource: usize,
+    /// Blend state.
+    pub blend: Blend,
+    /// Load operation.
+    pub load: LoadOp,
+}
+
+/// The depth target of a raster pass, resolved.
+#[derive(Clone, Debug, PartialEq)]
+pub struct DepthTarget {
+    /// Index of the texture in [`FramePlan::resources`].
+    pub resource: usize,
+    /// Depth test.
+    pub compare: Compare,
+    /// Depth writes.
+    pub write: bool,
+    /// Load operation.
+    pub load: LoadOp,
+}
+
+/// What kind of work a pass does.
+#[derive(Clone, Debug, PartialEq)]
+pub enum PassKind {
+    /// A compute dispatch.
+    Compute {
+        /// Entry point.
+        entry: String,
+        /// Workgroup size from the manifest.
+        workgroup_size: [u32; 3],
+        /// Workgroups to dispatch over the pass's extent.
+        dispatch: [u32; 3],
+    },
+    /// A draw of `vertices` vertices with no vertex buffers, over the pass's extent.
+    Raster {
+        /// Vertex entry point.
+        vertex: String,
+        /// Fragment entry point.
+        fragment: String,
+        /// Vertex count.
+        vertices: u32,
+        /// Colour targets by `@location`.
+        colors: Vec<ColorTarget>,
+        /// Depth target.
+        depth: Option<DepthTarget>,
+    },
+}
+
+/// One pass.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Pass {
+    /// Name.
+    pub name: String,
+    /// WGSL module.
+    pub module: String,
+    /// Compute or raster.
+    pub kind: PassKind,
+    /// Width and height it covers.
+    pub extent: [u32; 2],
+    /// Runs only when this holds.
+    pub when: Option<Condition>,
+    /// Bindings the entry points use, by group and binding.
+    pub bindings: Vec<Binding>,
+}
+
+impl Pass {
+    /// Whether the pass runs in a frame with these flags.
+    pub fn runs(&self, flags: &[&str]) -> bool {
+        self.when.as_ref().is_none_or(|c| c.holds(flags))
+    }
+}
+
+/// The variant of a module a plan runs.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ModulePlan {
+    /// Variant name.
+    pub variant: String,
+    /// Every override value of the variant (defaults filled in): wgpu is given exactly these;
+    /// the ash backend loads the variant's SPIR-V, where they are baked in.
+    pub overrides: BTreeMap<String, f64>,
+    /// The variant's SPIR-V file in `spirv-out/`.
+    pub spv_file: String,
+}
+
+/// A whole frame.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FramePlan {
+    /// The variant the first pass's module runs (the cloud model's, in words for people).
+    pub variant: String,
+    /// Per module: the chosen variant.
+    pub modules: BTreeMap<String, ModulePlan>,
+    /// Output width.
+    pub width: u32,
+    /// Output height.
+    pub height: u32,
+    /// Whether the statistics counters are gathered.
+    pub stats: bool,
+    /// Every resource.
+    pub resources: Vec<PlanResource>,
+    /// Passes in execution order.
+    pub passes: Vec<Pass>,
+}
+
+impl FramePlan {
+    /// The resource called `name`.
+    pub fn resource(&self, name: &str) -> Option<(usize, &PlanResource)> {
+        self.resources
+            .iter()
+            .enumerate()
+            .find(|(_, r)| r.name == name)
+    }
+
+    /// The names of the work counters (empty where the graph has none).
+    pub fn counters(&self) -> &[String] {
+        self.resources
+            .iter()
+            .find(|r| r.kind == ResourceKind::Counters)
+            .map_or(&[], |r| &r.counters[..])
+    }
+
+    /// Whether any resource is a history pair.
+    pub fn has_history(&self) -> bool {
+        self.resources
+            .iter()
+            .any(|r| r.lifetime == Lifetime::History)
+    }
+}
+
+/// What a scene needs from the shader: each feature as the minimum value of its override.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Requirements(pub BTreeMap<&'static str, f64>);
+
+impl Requirements {
+    /// The features `scene` uses (and whether the counters are wanted).
+    pub fn of(scene: &Scene, stats: bool) -> Self {
+        let detail = scene.clouds.detail_strength > 0.0;
+        Self(BTreeMap::from([
+            (
+                "LIGHT_MARCH",
+                f64::from(u8::from(scene.quality.light_steps > 0)),
+            ),
+            (
+                "MAX_OCTAVES",
+                f64::from(scene.lighting.multiple_scattering.octaves),
+            ),
+            ("DETAIL", f64::from(u8::from(detail))),
+            (
+                "CURL",
+                f64::from(u8::from(detail && scene.clouds.curl_strength_m > 0.0)),
+            ),
+            ("STATS", f64::from(u8::from(stats))),
+        ]))
+    }
+}
+
+/// Why no plan could be made.
+#[derive(Debug, thiserror::Error)]
+pub enum PlanError {
+    /// The manifest or graph is missing or unreadable.
+    #[error("the shaders are unusable ({0}); run `cargo xtask build-shaders`")]
+    Manifest(String),
+    /// No exported variant has every feature the scene uses.
+    #[error(
+        "no exported variant of module `{module}` has every feature this scene uses ({wanted}); add one to wgsl/modules.toml"
+    )]
+    NoVariant {
+        /// The module.
+        module: String,
+        /// What the scene needs.
+        wanted: String,
+    },
+    /// The image size is out of range.
+    #[error("image size {0}x{1}: width and height must be within [1, {MAX_RESOLUTION}]")]
+    Size(u32, u32),
+}
+
+impl FramePlan {
+    /// The plan for `scene` at its resolution, with the embedded shaders.
+    pub fn for_scene(scene: &Scene, stats: bool) -> Result<Self, PlanError> {
+        let [w, h] = scene.camera.resolution;
+        Self::new(
+            &*Program::embedded()?,
+            &Requirements::of(scene, stats),
+            w,
+            h,
+        )
+    }
+
+    /// The plan of `program`'s graph for the given requirements and size.
+    pub fn new(
+        program: &Program,
+        req: &Requirements,
+        width: u32,
+        height: u32,
+    ) -> Result<Self, PlanError> {
+        if !(1..=MAX_RESOLUTION).contains(&width) || !(1..=MAX_RESOLUTION).contains(&height) {
+            return Err(PlanError::Size(width, height));
+        }
+        let manifest = &program.manifest;
+        let graph = &program.graph;
+        let bad = |m: String| PlanError::Manifest(m);
+        let mut modules = BTreeMap::new();
+        for pass in &graph.passes {
+            if modules.contains_key(&pass.module) {
+                continue;
+            }
+            let module = manifest
+                .module(&pass.module)
+                .ok_or_else(|| bad(format!("no module `{}`", pass.module)))?;
+            let (variant, overrides) = choose_variant(module, req)?;
+            modules.insert(
+                pass.module.clone(),
+                ModulePlan {
+                    variant: variant.name.clone(),
+                    overrides,
+                    spv_file: variant.files.spv.clone(),
+                },
+            );
+        }
+        let mut resources: Vec<PlanResource> = graph
+            .resources
+            .iter()
+            .map(|r| {
+                let extent = match (&r.extent, r.kind, &r.upload) {
+                    (_, ResourceKind::Texture, Some(_)) => None,
+                    (e, ResourceKind::Texture, None) => Some(
+                        e.clone()
+                            .unwrap_or_default()
+                            .resolve(width, height)
+                            .map_err(|e| bad(format!("resource `{}`: {e}", r.name)))?,
+                    ),
+                    _ => None,
+                };
+                Ok(PlanResource {
+                    name: r.name.clone(),
+                    kind: r.kind,
+                    dimension: r.dimension.unwrap_or(Dimension::D2),
+                    format: r.format,
+                    extent,
+                    lifetime: r.lifetime,
+                    usage: Usage {
+                        upload: r.upload.is_some() && r.kind == ResourceKind::Texture,
+                        ..Usage::default()
+                    },
+                    upload: r.upload.clone(),
+                    output: r.output,
+                    counters: r.counters.iter().map(|c| c.name.clone()).collect(),
+                    sampler: (r.kind == ResourceKind::Sampler).then(|| SamplerDesc {
+                        filter: r.filter.unwrap_or_default(),
+                        address: r.address.unwrap_or_default(),
+                    }),
+                    external: r.external,
+                })
+            })
+            .collect::<Result<_, PlanError>>()?;
+        let index = |name: &str| -> Result<usize, PlanError> {
+            graph
+                .resources
+                .iter()
+                .position(|r| r.name == name)
+                .ok_or_else(|| bad(format!("no resource `{name}`")))
+        };
+        let mut passes = Vec::new();
+        for pd in &graph.passes {
+            let module = manifest
+                .module(&pd.module)
+                .ok_or_else(|| bad(format!("no module `{}`", pd.module)))?;
+            let [ew, eh, _] = pd
+                .extent
+                .resolve(width, height)
+                .map_err(|e| bad(format!("pass `{}`: {e}", pd.name)))?;
+            let entries: Vec<&str> = [&pd.compute, &pd.vertex, &pd.fragment]
+                .into_iter()
+                .flatten()
+                .map(String::as_str)
+                .collect();
+            let mut uses = std::collections::BTreeSet::new();
+            for e in &entries {
+                let ep = module
+                    .entry_point(e)
+                    .ok_or_else(|| bad(format!("pass `{}`: no entry point `{e}`", pd.name)))?;
+                uses.extend(ep.uses.iter().copied());
+            }
+            let mut bindings = Vec::new();
+            for [group, binding] in uses {
+                let info = module.resource_at(group, binding).ok_or_else(|| {
+                    bad(format!(
+                        "pass `{}` uses unknown binding {group}/{binding}",
+                        pd.name
+                    ))
+                })?;
+                let target = pd.bind.get(&info.name).ok_or_else(|| {
+                    bad(format!("pass `{}`: `{}` is not bound", pd.name, info.name))
+                })?;
+                let (name, previous) = match target.strip_suffix(PREVIOUS) {
+                    Some(n) => (n, true),
+                    None => (target.as_str(), false),
+                };
+                let resource = index(name)?;
+                let usage = &mut resources[resource].usage;
+                match info.kind {
+                    BindingKind::SampledTexture => usage.sampled = true,
+                    BindingKind::StorageTexture | BindingKind::StorageBuffer => {
+                        usage.storage = true
+                    }
+                    _ => {}
+                }
+                bindings.push(Binding {
+                    group,
+                    binding,
+                    info: info.clone(),
+                    resource,
+                    previous,
+                });
+            }
+            let kind = match &pd.compute {
+                Some(entry) => {
+                    let wg = module
+                        .entry_point(entry)
+                        .map(|e| e.workgroup_size)
+                        .unwrap_or([1, 1, 1])
+                        .map(|n| n.max(1));
+                    PassKind::Compute {
+                        entry: entry.clone(),
+                        workgroup_size: wg,
+                        dispatch: [ew.div_ceil(wg[0]), eh.div_ceil(wg[1]), 1],
+                    }
+                }
+                None => {
+                    let colors = pd
+                        .color
+                        .iter()
+                        .map(
+                            |ColorDesc {
+                                 target,
+                                 blend,
+                                 load,
+                             }| {
+                                let resource = index(target)?;
+                                resources[resource].usage.color = true;
+                                Ok(ColorTarget {
+                                    resource,
+                                    blend: *blend,
+                                    load: *load,
+                                })
+                            },
+                        )
+                        .collect::<Result<_, PlanError>>()?;
+                    let depth = match &pd.depth {
+                        Some(DepthDesc {
+                            target,
+                            compare,
+                            write,
+                            load,
+                        }) => {
+                            let resource = index(target)?;
+                            resources[resource].usage.depth = true;
+                            Some(DepthTarget {
+                                resource,
+                                compare: *compare,
+                                write: *write,
+                                load: *load,
+                            })
+                        }
+                        None => None,
+                    };
+                    PassKind::Raster {
+                        vertex: pd.vertex.clone().unwrap_or_default(),
+                        fragment: pd.fragment.clone().unwrap_or_default(),
+                        vertices: pd.vertices,
+                        colors,
+                        depth,
+                    }
+                }
+            };
+            passes.push(Pass {
+                name: pd.name.clone(),
+                module: pd.module.clone(),
+                kind,
+                extent: [ew, eh],
+                when: pd.when.as_deref().map(Condition::parse),
+                bindings,
+            });
+        }
+        let variant = graph
+            .passes
+            .first()
+            .and_then(|p| modules.get(&p.module))
+            .map(|m| m.variant.clone())
+            .unwrap_or_default();
+        Ok(Self {
+            variant,
+            modules,
+            width,
+            height,
+            stats: req.0.get("STATS").is_some_and(|&s| s > 0.0),
+            resources,
+            passes,
+        })
+    }
+}
+
+/// The cheapest variant whose every override value is at least what the scene requires
+/// (requirements the module declares no override for do not apply to it); STATS must match
+/// exactly (the counting variant is never chosen silently, nor dropped). Cost: the sum of the
+/// feature values, each as a fraction of its largest exported value.
+fn choose_variant<'m>(
+    module: &'m ModuleManifest,
+    req: &Requirements,
+) -> Result<(&'m VariantInfo, BTreeMap<String, f64>), PlanError> {
+    let defaults: BTreeMap<String, f64> = module
+        .overrides
+        .iter()
+        .filter_map(|o| Some((o.name.clone(), o.default?)))
+        .collect();
+    let declared = |name: &str| module.overrides.iter().any(|o| o.name == name);
+    let max_of = |name: &str| {
+        module
+            .variants
+            .iter()
+            .filter_map(|v| v.overrides.get(name).or(defaults.get(name)))
+            .fold(1.0f64, |a, &b| a.max(b))
+    };
+    let mut best: Option<(f64, &VariantInfo, BTreeMap<String, f64>)> = None;
+    for v in &module.variants {
+        let mut values = defaults.clone();
+        values.extend(v.overrides.clone());
+        let covers = req
+            .0
+            .iter()
+            .filter(|(n, _)| declared(n))
+            .all(|(name, &need)| {
+                let have = values.get(*name).copied().unwrap_or(0.0);
+                if *name == "STATS" {
+                    have == need
+                } else {
+                    have >= need
+                }
+            });
+        if !covers {
+            continue;
+        }
+        let cost: f64 = req
+            .0
+            .keys()
+            .filter(|n| **n != "STATS" && declared(n))
+            .map(|n| values.get(*n).copied().unwrap_or(0.0) / max_of(n))
+            .sum();
+        if best.as_ref().is_none_or(|(c, _, _)| cost < *c) {
+            best = Some((cost, v, values));
+        }
+    }
+    best.map(|(_, v, values)| (v, values)).ok_or_else(|| {
+        let wanted: Vec<String> = req
+            .0
+            .iter()
+            .filter(|(n, v)| **v > 0.0 && declared(n))
+            .map(|(k, v)| format!("{k} >= {v}"))
+            .collect();
+        PlanError::NoVariant {
+            module: module.name.clone(),
+            wanted: wanted.join(", "),
+        }
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn req(light: f64, octaves: f64, detail: f64, curl: f64, stats: f64) -> Requirements {
+        Requirements(BTreeMap::from([
+            ("LIGHT_MARCH", light),
+            ("MAX_OCTAVES", octaves),
+            ("DETAIL", detail),
+            ("CURL", curl),
+            ("STATS", stats),
+        ]))
+    }
+
+    fn plan(r: &Requirements) -> Result<FramePlan, PlanError> {
+        FramePlan::new(&Program::embedded().unwrap(), r, 64, 32)
+    }
+
+    #[test]
+    fn picks_the_cheapest_variant_that_covers_the_scene() {
+        let p = |r: &Requirements| plan(r).unwrap().variant;
+        assert_eq!(p(&req(1.0, 2.0, 1.0, 1.0, 0.0)), "full");
+        assert_eq!(p(&req(1.0, 2.0, 0.0, 0.0, 0.0)), "soft");
+        assert_eq!(p(&req(0.0, 0.0, 0.0, 0.0, 0.0)), "unshadowed");
+        assert_eq!(p(&req(0.0, 0.0, 0.0, 0.0, 1.0)), "unshadowed-stats");
+        assert_eq!(p(&req(1.0, 2.0, 1.0, 1.0, 1.0)), "full-stats");
+    }
+
+    #[test]
+    fn never_drops_a_feature() {
+        let err = plan(&req(1.0, 99.0, 1.0, 1.0, 0.0)).unwrap_err();
+        assert!(err.to_string().contains("MAX_OCTAVES >= 99"), "{err}");
+    }
+
+    #[test]
+    fn rejects_sizes_out_of_range() {
+        let program = Program::embedded().unwrap();
+        let r = req(1.0, 2.0, 1.0, 1.0, 0.0);
+        for (w, h) in [(0, 16), (16, 0), (MAX_RESOLUTION + 1, 16)] {
+            let err = FramePlan::new(&program, &r, w, h).unwrap_err();
+            assert!(matches!(err, PlanError::Size(..)), "{err}");
+        }
+    }
+
+    #[test]
+    fn every_preset_plans_march_then_composite_over_one_cloud_image() {
+        for p in stratus_scene::presets() {
+            let scene = Scene::preset(p.name).unwrap();
+            let plan = FramePlan::for_scene(&scene, false).unwrap();
+            let always: Vec<&str> = plan
+                .passes
+                .iter()
+                .filter(|p| p.when.is_none())
+                .map(|p| p.name.as_str())
+                .collect();
+            assert_eq!(always, ["march", "composite"]);
+            let [w, h] = scene.camera.resolution;
+            let PassKind::Compute { dispatch, .. } = &plan.passes[0].kind else {
+                panic!("march is a compute pass");
+            };
+            assert_eq!(*dispatch, [w.div_ceil(8), h.div_ceil(8), 1]);
+            // The march output is the composite input: one resource.
+            let (cloud, _) = plan.resource("cloud").unwrap();
+            for pass in &plan.passes[..2] {
+                assert!(pass.bindings.iter().any(|b| b.resource == cloud));
+            }
+        }
+    }
+
+    #[test]
+    fn usage_is_derived_from_the_passes() {
+        let plan = plan(&req(1.0, 2.0, 1.0, 1.0, 0.0)).unwrap();
+        let usage = |n: &str| plan.resource(n).unwrap().1.usage;
+        let cloud = usage("cloud");
+        assert!(cloud.storage && cloud.sampled && !cloud.color);
+        let shape = usage("shape");
+        assert!(shape.sampled && shape.upload && !shape.storage);
+        assert!(usage("display").color);
+    }
+
+    #[test]
+    fn conditions_negate() {
+        let c = Condition::parse("!history");
+        assert!(c.holds(&[]));
+        assert!(!c.holds(&["history"]));
+        assert!(Condition::parse("stats").holds(&["stats"]));
+    }
+}

@@ -1,0 +1,91 @@
+//! An application that owns its wgpu device renders 300 frames of clouds, headless, into its
+//! own texture while the camera turns and climbs, then prints the median GPU time of each pass
+//! and the median CPU time per frame (recording and submitting; not waiting for the GPU).
+//!
+//! `cargo run --release -p stratus --example embed [WxH]` (default 256x144).
+
+use std::time::Instant;
+
+use stratus::{Clouds, Scene, Update};
+use stratus_graph::output::median;
+
+fn main() -> Result<(), Box<dyn std::error::Error>> {
+    let (w, h) = match std::env::args().nth(1) {
+        Some(s) => {
+            let (w, h) = s.split_once('x').ok_or("size must be WxH, e.g. 256x144")?;
+            (w.parse()?, h.parse()?)
+        }
+        None => (256, 144),
+    };
+    // The application's device: the best Vulkan adapter, with timestamps where offered.
+    let instance = wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle());
+    let adapter = pollster::block_on(instance.request_adapter(&Default::default()))?;
+    let features = adapter.features() & wgpu::Features::TIMESTAMP_QUERY;
+    let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
+        required_features: features,
+        ..Default::default()
+    }))?;
+    let target = device.create_texture(&wgpu::TextureDescriptor {
+        label: Some("app target"),
+        size: wgpu::Extent3d {
+            width: w,
+            height: h,
+            depth_or_array_layers: 1,
+        },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format: wgpu::TextureFormat::Rgba8Unorm,
+        usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+        view_formats: &[],
+    });
+    let view = target.create_view(&Default::default());
+
+    let scene = Scene::preset("cumulus-noon")?.with_size(w, h);
+    let start = scene.camera.position;
+    let mut clouds = Clouds::new(&device, &queue, scene)?;
+    let (mut cpu, mut passes) = (Vec::new(), std::collections::BTreeMap::new());
+    let mut created_after_first = 0;
+    for i in 0..300 {
+        let t = i as f64 / 60.0;
+        clouds.update(Update {
+            camera_position: Some([start[0], start[1] + 20.0 * t, start[2] + 50.0 * t]),
+            camera_yaw_pitch_deg: Some([10.0 * t, 12.0 - 2.0 * t]),
+            time_s: Some(1.0 / 60.0),
+            ..Default::default()
+        })?;
+        let clock = Instant::now();
+        let mut encoder = device.create_command_encoder(&Default::default());
+        clouds.render(&mut encoder, &view)?;
+        queue.submit([encoder.finish()]);
+        cpu.push(clock.elapsed().as_secs_f64() * 1e3);
+        for timing in clouds.pass_timings()? {
+            passes
+                .entry(timing.pass)
+                .or_insert_with(Vec::new)
+                .push(timing.ms);
+        }
+        if i == 0 {
+            created_after_first = clouds.objects_created();
+        }
+    }
+    let info = adapter.get_info();
+    println!(
+        "300 frames at {w}x{h} on {} ({:?}), variant {}",
+        info.name,
+        info.backend,
+        clouds.plan().variant
+    );
+    for (pass, ms) in passes {
+        println!("  {pass:<10} median GPU {:8.3} ms", median(ms));
+    }
+    println!(
+        "  CPU per frame (record + submit), median {:.3} ms",
+        median(cpu)
+    );
+    println!(
+        "  GPU objects created after frame 1: {}",
+        clouds.objects_created() - created_after_first
+    );
+    Ok(())
+}

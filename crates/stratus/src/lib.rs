@@ -1,0 +1,201 @@
+//! Stratus for a wgpu application: physically based volumetric clouds, rendered on the
+//! application's own `wgpu::Device` into a texture the application owns.
+//!
+//! ```no_run
+//! # fn frame(device: &wgpu::Device, queue: &wgpu::Queue, view: &wgpu::TextureView) -> Result<(), stratus::Error> {
+//! let scene = stratus::Scene::preset("cumulus-noon")?;
+//! let mut clouds = stratus::Clouds::new(device, queue, scene)?;
+//! // Every frame:
+//! clouds.update(stratus::Update { time_s: Some(1.0 / 60.0), ..Default::default() })?;
+//! let mut encoder = device.create_command_encoder(&Default::default());
+//! clouds.render(&mut encoder, view)?;
+//! queue.submit([encoder.finish()]);
+//! # Ok(()) }
+//! ```
+//!
+//! [`Clouds`] is persistent: its first frame creates pipelines, textures and bind groups and
+//! uploads the noise; later frames write one uniform block and record the passes of the frame
+//! graph. The clouds reach the application's texture through the graph's raster present pass,
+//! so any renderable UNORM colour format works (sRGB views are refused: the image is already
+//! gamma-encoded). Pass times come from GPU timestamps where the device has
+//! `TIMESTAMP_QUERY` ([`Clouds::pass_timings`]).
+
+#![deny(missing_docs)]
+
+pub mod quality;
+
+use std::sync::Arc;
+
+use stratus_backend_wgpu::Renderer;
+use stratus_graph::{FrameInput, Requirements};
+pub use stratus_graph::{FramePlan, PassTiming, PlanError, Program, Readback};
+use stratus_noise::{NoiseConfig, NoiseSet, ShapeSize};
+pub use stratus_scene::Scene;
+use stratus_scene::ShapeTexture;
+
+/// What can go wrong, each with a sentence an application developer can act on.
+#[derive(Debug, thiserror::Error)]
+pub enum Error {
+    /// The scene is invalid (names the field and why).
+    #[error("{0}")]
+    Scene(String),
+    /// No frame plan for the scene (size out of range, or no shader variant has a feature).
+    #[error(transparent)]
+    Plan(#[from] PlanError),
+    /// The renderer failed (wgpu validation, shaders).
+    #[error(transparent)]
+    Render(#[from] stratus_backend_wgpu::Error),
+    /// The target texture cannot take the clouds.
+    #[error("the target texture {0}")]
+    Target(String),
+}
+
+impl From<stratus_scene::SceneError> for Error {
+    fn from(e: stratus_scene::SceneError) -> Self {
+        Self::Scene(e.to_string())
+    }
+}
+
+/// A per-frame change: whatever is `Some` replaces the current value.
+#[derive(Clone, Debug, Default)]
+pub struct Update {
+    /// A whole new scene (weather, lighting, quality...).
+    pub scene: Option<Scene>,
+    /// Camera position `[x (east), altitude, z (north)]` in metres.
+    pub camera_position: Option<[f64; 3]>,
+    /// Camera heading in degrees (0 north, 90 east) and elevation in degrees.
+    pub camera_yaw_pitch_deg: Option<[f64; 2]>,
+    /// Seconds to advance the clouds' time (the wind moves them).
+    pub time_s: Option<f64>,
+}
+
+/// Persistent volumetric clouds on an application's wgpu device.
+pub struct Clouds {
+    renderer: Renderer,
+    scene: Scene,
+    noise: Arc<NoiseSet>,
+    plan: FramePlan,
+    /// Passes recorded in the last frame, for [`Clouds::pass_timings`].
+    recorded: Vec<String>,
+}
+
+impl Clouds {
+    /// Clouds for `scene` on the application's device and queue (cloned handles; the
+    /// application keeps its own). Generates the scene's noise textures (a few seconds on a
+    /// CPU in debug builds; once per seed).
+    pub fn new(device: &wgpu::Device, queue: &wgpu::Queue, scene: Scene) -> Result<Self, Error> {
+        scene.validate()?;
+        let program = Program::embedded()?;
+        let renderer = Renderer::from_device(device.clone(), queue.clone(), program)?;
+        let plan = FramePlan::for_scene(&scene, false)?;
+        let noise = Arc::new(noise_for(&scene));
+        Ok(Self {
+            renderer,
+            scene,
+            noise,
+            plan,
+            recorded: Vec::new(),
+        })
+    }
+
+    /// The current scene.
+    pub fn scene(&self) -> &Scene {
+        &self.scene
+    }
+
+    /// The current plan (variant, passes, resources).
+    pub fn plan(&self) -> &FramePlan {
+        &self.plan
+    }
+
+    /// GPU objects created so far: a steady loop creates none after its first frame.
+    pub fn objects_created(&self) -> u64 {
+        self.renderer.objects_created()
+    }
+
+    /// Applies a per-frame change. A new plan (variant or size) is made only when the scene's
+    /// features or size change, and new noise only when its seed or shape size does.
+    pub fn update(&mut self, update: Update) -> Result<(), Error> {
+        let mut scene = update.scene.unwrap_or_else(|| self.scene.clone());
+        if let Some(p) = update.camera_position {
+            scene.camera.position = p;
+        }
+        if let Some([yaw, pitch]) = update.camera_yaw_pitch_deg {
+            scene.camera.yaw_deg = yaw;
+            scene.camera.pitch_deg = pitch;
+        }
+        if let Some(dt) = update.time_s {
+            scene.clouds.time_s += dt;
+        }
+        scene.validate()?;
+        self.set_scene(scene)
+    }
+
+    fn set_scene(&mut self, scene: Scene) -> Result<(), Error> {
+        if Requirements::of(&scene, false) != Requirements::of(&self.scene, false)
+            || scene.camera.resolution != self.scene.camera.resolution
+        {
+            self.plan = FramePlan::for_scene(&scene, false)?;
+        }
+        if scene.noise != self.scene.noise {
+            self.noise = Arc::new(noise_for(&scene));
+        }
+        self.scene = scene;
+        Ok(())
+    }
+
+    /// Records the frame into `encoder`, drawing the clouds (over the analytic sky) into
+    /// `target`, which must be a 2D view of a texture with `RENDER_ATTACHMENT` usage and a
+    /// UNORM colour format. The scene's resolution follows the target's size. The application
+    /// submits the encoder.
+    pub fn render(
+        &mut self,
+        encoder: &mut wgpu::CommandEncoder,
+        target: &wgpu::TextureView,
+    ) -> Result<(), Error> {
+        let texture = target.texture();
+        if !texture
+            .usage()
+            .contains(wgpu::TextureUsages::RENDER_ATTACHMENT)
+        {
+            return Err(Error::Target(
+                "lacks RENDER_ATTACHMENT usage; create it with that usage".into(),
+            ));
+        }
+        let format = texture.format();
+        if format.is_srgb() {
+            return Err(Error::Target(format!(
+                "is {format:?}, an sRGB format: the clouds are already gamma-encoded; render into a view with the UNORM format ({:?})",
+                format.remove_srgb_suffix()
+            )));
+        }
+        let size = [texture.width(), texture.height()];
+        if size != self.scene.camera.resolution {
+            let scene = self.scene.clone().with_size(size[0], size[1]);
+            self.set_scene(scene)?;
+        }
+        let frame = FrameInput::new(&self.plan, &self.scene, &self.noise)
+            .with_readback(Readback::none())
+            .with_flags(&["present"]);
+        self.recorded = self.renderer.record(encoder, &frame, Some(target))?;
+        Ok(())
+    }
+
+    /// The GPU time of every pass of the last frame, once the application has submitted it
+    /// (this waits for the GPU). Empty where the device has no `TIMESTAMP_QUERY`.
+    pub fn pass_timings(&mut self) -> Result<Vec<PassTiming>, Error> {
+        Ok(self.renderer.last_timings(&self.recorded)?)
+    }
+}
+
+/// The noise textures a scene reads (deterministic from its seed).
+pub fn noise_for(scene: &Scene) -> NoiseSet {
+    NoiseSet::generate(&NoiseConfig {
+        seed: scene.noise.seed,
+        shape: match scene.noise.shape_texture {
+            ShapeTexture::Thesis => ShapeSize::Thesis,
+            ShapeTexture::Hzd => ShapeSize::Hzd,
+        },
+        ..NoiseConfig::default()
+    })
+}

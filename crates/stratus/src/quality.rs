@@ -1,0 +1,372 @@
+//! Auto quality: the cheapest configuration whose error, as `stratus bench` measured it against
+//! the CPU reference, meets a budget. The bench's results (`results.json`) are the data; this
+//! module picks from them, so an application can choose its quality the way `stratus render
+//! --max-error` does.
+
+use std::{collections::BTreeMap, path::Path};
+
+use serde::{Deserialize, Serialize};
+use stratus_scene::{Integration, PhaseModel, Scene, ShapeTexture};
+
+/// One point of the sweep: the quality and method settings a configuration overrides.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Config {
+    /// View steps per ray.
+    pub view_steps: u32,
+    /// Light-march steps.
+    pub light_steps: u32,
+    /// Step integral.
+    pub integration: Integration,
+    /// Phase function.
+    pub phase: PhaseModel,
+    /// Beer-Powder term.
+    pub beer_powder: bool,
+    /// Multiple-scattering octaves beyond single scattering.
+    pub octaves: u32,
+    /// Per-pixel jitter.
+    pub jitter: bool,
+    /// Shape texture size.
+    pub shape_texture: ShapeTexture,
+}
+
+impl Config {
+    /// The scene's own settings.
+    pub fn of(scene: &Scene) -> Self {
+        Self {
+            view_steps: scene.quality.view_steps,
+            light_steps: scene.quality.light_steps,
+            integration: scene.quality.integration,
+            phase: scene.lighting.phase.model,
+            beer_powder: scene.lighting.beer_powder,
+            octaves: scene.lighting.multiple_scattering.octaves,
+            jitter: scene.quality.jitter,
+            shape_texture: scene.noise.shape_texture,
+        }
+    }
+
+    /// `scene` with these settings (a fixed step length is dropped: the view steps rule).
+    pub fn apply(&self, scene: &Scene) -> Scene {
+        let mut s = scene.clone();
+        s.quality.view_steps = self.view_steps;
+        s.quality.step_length_m = None;
+        s.quality.light_steps = self.light_steps;
+        s.quality.integration = self.integration;
+        s.lighting.phase.model = self.phase;
+        s.lighting.beer_powder = self.beer_powder;
+        s.lighting.multiple_scattering.octaves = self.octaves;
+        s.quality.jitter = self.jitter;
+        s.noise.shape_texture = self.shape_texture;
+        s
+    }
+
+    /// A short name: every setting, e.g. `v64 l6 analytic hg o2 jitter thesis`.
+    pub fn name(&self) -> String {
+        format!(
+            "v{} l{} {} {} o{}{}{} {}",
+            self.view_steps,
+            self.light_steps,
+            match self.integration {
+                Integration::Analytic => "analytic",
+                Integration::Riemann => "riemann",
+            },
+            phase_name(self.phase),
+            self.octaves,
+            if self.beer_powder { " powder" } else { "" },
+            if self.jitter { " jitter" } else { "" },
+            match self.shape_texture {
+                ShapeTexture::Thesis => "128x32x128",
+                ShapeTexture::Hzd => "128^3",
+            }
+        )
+    }
+}
+
+/// The phase model in the short form configuration names use (`hg`, `2hg`, `cs`).
+pub fn phase_name(p: PhaseModel) -> &'static str {
+    match p {
+        PhaseModel::Hg => "hg",
+        PhaseModel::TwoLobeHg => "2hg",
+        PhaseModel::CornetteShanks => "cs",
+    }
+}
+
+/// One measured configuration.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct Row {
+    /// The scene (preset name).
+    pub scene: String,
+    /// The configuration's name ([`Config::name`]).
+    pub name: String,
+    /// Whether this is the scene's own (preset) configuration.
+    pub preset: bool,
+    /// The settings.
+    pub config: Config,
+    /// Median GPU time of all passes, ms.
+    pub gpu_ms: f64,
+    /// Median GPU time of each pass, ms.
+    pub passes: BTreeMap<String, f64>,
+    /// `gpu_ms` over the preset configuration's.
+    pub time_vs_preset: f64,
+    /// View steps per pixel.
+    pub view_steps_pp: f64,
+    /// Light samples per pixel.
+    pub light_samples_pp: f64,
+    /// Density evaluations (view and light samples) per pixel: "samples per pixel".
+    pub samples_pp: f64,
+    /// RMSE of linear radiance (rgb) against the reference.
+    pub rmse: f64,
+    /// Mean FLIP of the composited, tone-mapped image against the reference's.
+    pub flip: f64,
+    /// 95th percentile of FLIP.
+    pub flip_p95: f64,
+    /// The reference: `quadrature` or `montecarlo-<spp>spp`.
+    pub reference: String,
+    /// On the scene's Pareto front of (gpu_ms, flip).
+    pub pareto: bool,
+}
+
+/// What `results.json` holds.
+#[derive(Debug, Serialize, Deserialize)]
+pub struct Results {
+    /// The device that ran the frames.
+    pub device: String,
+    /// `wgpu` or `ash`.
+    pub backend: String,
+    /// Image size.
+    pub size: [u32; 2],
+    /// Timed repeats per configuration.
+    pub repeats: u32,
+    /// Monte Carlo samples per pixel of the references.
+    pub mc_spp: u32,
+    /// Every measurement.
+    pub rows: Vec<Row>,
+}
+
+/// The default location of the bench's results (where `stratus bench` writes by default).
+pub const DEFAULT_RESULTS: &str = "target/stratus-bench/results.json";
+
+/// Why no configuration was picked.
+#[derive(Debug, thiserror::Error)]
+pub enum QualityError {
+    /// The results file could not be read.
+    #[error(
+        "reading bench results {path} ({message}); run `stratus bench` first, or pass --bench-results FILE"
+    )]
+    Read {
+        /// The file.
+        path: String,
+        /// The system's message.
+        message: String,
+    },
+    /// The results file is not the bench's JSON.
+    #[error("parsing bench results {path}: {message}")]
+    Parse {
+        /// The file.
+        path: String,
+        /// The parser's message.
+        message: String,
+    },
+    /// The results hold no configuration.
+    #[error("the bench results hold no configuration")]
+    Empty,
+    /// No configuration meets the budget (says the best achievable).
+    #[error("{0}")]
+    Unmet(String),
+}
+
+impl Results {
+    /// Reads `results.json` as `stratus bench` writes it.
+    pub fn load(path: &Path) -> Result<Self, QualityError> {
+        let text = std::fs::read_to_string(path).map_err(|e| QualityError::Read {
+            path: path.display().to_string(),
+            message: e.to_string(),
+        })?;
+        serde_json::from_str(&text).map_err(|e| QualityError::Parse {
+            path: path.display().to_string(),
+            message: e.to_string(),
+        })
+    }
+}
+
+/// A coarse scene class: where the camera is against the layer, and whether the sun is low.
+fn scene_class(scene: &Scene) -> &'static str {
+    let alt = scene.camera.position[1];
+    let low_sun = match scene.sun.direction {
+        Some(d) => d[1] / (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt() < 0.17,
+        None => scene.sun.elevation_deg < 10.0,
+    };
+    if alt > scene.atmosphere.cloud_top_m {
+        "camera above the layer"
+    } else if alt >= scene.atmosphere.cloud_bottom_m {
+        "camera inside the layer"
+    } else if low_sun {
+        "camera below, low sun"
+    } else {
+        "camera below, high sun"
+    }
+}
+
+/// Auto quality (`stratus render --max-error E`): the cheapest measured configuration whose FLIP is at most
+/// `max_error` for this scene. A scene the bench measured uses its own rows; any other scene
+/// uses the first measured preset of its class ([`scene_class`]), else needs the configuration
+/// to meet `max_error` on every measured scene (the worst case). The error was measured at
+/// the bench's image size against its reference; the pick is as good as that measurement.
+/// Returns the
+/// scene with the configuration applied and a sentence saying what was picked and why.
+pub fn auto_quality(
+    scene: &Scene,
+    name: &str,
+    max_error: f64,
+    results: &Results,
+) -> Result<(Scene, String), QualityError> {
+    let own: Vec<&Row> = results.rows.iter().filter(|r| r.scene == name).collect();
+    // Per configuration: worst error and mean time over the scenes that count.
+    let mut table: BTreeMap<String, (Config, f64, f64, f64, usize)> = BTreeMap::new();
+    let (rows, basis): (Vec<&Row>, String) = if !own.is_empty() {
+        (own, format!("scene {name} as measured"))
+    } else {
+        // Nearest class: a measured preset whose camera is on the same side of the layer
+        // and whose sun is as low (or not); failing that, the worst case over all of them.
+        let class = scene_class(scene);
+        let same: Vec<&Row> = results
+            .rows
+            .iter()
+            .filter(|r| Scene::preset(&r.scene).is_ok_and(|s| scene_class(&s) == class))
+            .collect();
+        match same.first().map(|r| r.scene.clone()) {
+            Some(near) => (
+                same.into_iter().filter(|r| r.scene == near).collect(),
+                format!(
+                    "measured scene {near}, the nearest class ({class}) to {name}, which was not measured"
+                ),
+            ),
+            None => (
+                results.rows.iter().collect(),
+                format!(
+                    "the worst case over every measured scene ({name} was not measured and no measured scene is of its class, {class})"
+                ),
+            ),
+        }
+    };
+    for r in &rows {
+        let e = table
+            .entry(r.name.clone())
+            .or_insert((r.config.clone(), 0.0, 0.0, 0.0, 0));
+        e.1 = e.1.max(r.flip);
+        e.2 += r.gpu_ms;
+        e.3 += r.samples_pp;
+        e.4 += 1;
+    }
+    let scenes = {
+        let mut s: Vec<&str> = rows.iter().map(|r| r.scene.as_str()).collect();
+        s.sort();
+        s.dedup();
+        s.len()
+    };
+    let candidates: Vec<_> = table
+        .iter()
+        .filter(|(_, v)| v.4 == scenes)
+        .map(|(n, v)| (n, &v.0, v.1, v.2 / v.4 as f64, v.3 / v.4 as f64))
+        .collect();
+    let best = candidates
+        .iter()
+        .min_by(|a, b| a.2.total_cmp(&b.2))
+        .ok_or(QualityError::Empty)?;
+    let Some(pick) = candidates
+        .iter()
+        .filter(|c| c.2 <= max_error)
+        .min_by(|a, b| a.3.total_cmp(&b.3))
+    else {
+        return Err(QualityError::Unmet(format!(
+            "no measured configuration meets FLIP <= {max_error} on {basis}; the best achievable is {:.4} ({})",
+            best.2, best.0
+        )));
+    };
+    let why = format!(
+        "auto quality: picked `{}` for FLIP <= {max_error}: measured FLIP {:.4}, {:.3} ms, {:.1} samples/px on {} ({}, {}x{}); the cheapest of {} measured configurations within the budget",
+        pick.0,
+        pick.2,
+        pick.3,
+        pick.4,
+        basis,
+        results.device,
+        results.size[0],
+        results.size[1],
+        candidates.len()
+    );
+    Ok((pick.1.apply(scene), why))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn row(scene: &str, view_steps: u32, gpu_ms: f64, flip: f64) -> Row {
+        let base = Config::of(&Scene::default());
+        let config = Config {
+            view_steps,
+            ..base.clone()
+        };
+        Row {
+            scene: scene.into(),
+            name: config.name(),
+            preset: config == base,
+            config,
+            gpu_ms,
+            passes: BTreeMap::new(),
+            time_vs_preset: 1.0,
+            view_steps_pp: 0.0,
+            light_samples_pp: 0.0,
+            samples_pp: f64::from(view_steps),
+            rmse: flip,
+            flip,
+            flip_p95: flip,
+            reference: "quadrature".into(),
+            pareto: false,
+        }
+    }
+
+    fn results() -> Results {
+        Results {
+            device: "test".into(),
+            backend: "wgpu".into(),
+            size: [64, 36],
+            repeats: 1,
+            mc_spp: 1,
+            rows: vec![
+                row("cumulus-noon", 8, 1.0, 0.2),
+                row("cumulus-noon", 16, 2.0, 0.1),
+                row("cumulus-noon", 32, 5.0, 0.12),
+                row("cumulus-noon", 64, 8.0, 0.01),
+                row("sunset", 8, 1.0, 0.3),
+                row("sunset", 64, 8.0, 0.05),
+            ],
+        }
+    }
+
+    #[test]
+    fn auto_quality_picks_the_cheapest_within_budget_and_never_exceeds_it() {
+        let r = results();
+        let scene = Scene::default();
+        let (s, why) = auto_quality(&scene, "cumulus-noon", 0.15, &r).unwrap();
+        assert_eq!(s.quality.view_steps, 16, "{why}");
+        let (s, _) = auto_quality(&scene, "cumulus-noon", 0.05, &r).unwrap();
+        assert_eq!(s.quality.view_steps, 64);
+        let e = auto_quality(&scene, "cumulus-noon", 0.001, &r).unwrap_err();
+        assert!(e.to_string().contains("best achievable is 0.0100"), "{e}");
+        // `storm` was not measured: the nearest class (camera below, high sun) is cumulus-noon.
+        let (s, why) = auto_quality(&scene, "storm", 0.15, &r).unwrap();
+        assert_eq!(s.quality.view_steps, 16);
+        assert!(why.contains("nearest class"), "{why}");
+    }
+
+    #[test]
+    fn results_load_names_the_file_and_what_to_do() {
+        let e = Results::load(Path::new("/nonexistent/results.json")).unwrap_err();
+        let m = e.to_string();
+        assert!(
+            m.contains("/nonexistent/results.json") && m.contains("stratus bench"),
+            "{m}"
+        );
+    }
+}

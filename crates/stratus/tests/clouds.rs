@@ -1,0 +1,152 @@
+//! The library face on an application's own device: frames drawn into the application's
+//! texture are exactly what the backend's own renderer draws for the same scene, a steady loop
+//! creates no GPU object after its first frame, and targets that cannot take the clouds are
+//! refused with a sentence saying what to do.
+
+use std::sync::Arc;
+
+use stratus::{Clouds, Error, Scene, Update};
+use stratus_graph::{FrameInput, FramePlan};
+use stratus_test_support::{assert_no_wgpu_messages, record_wgpu_log};
+
+/// The application's device and queue (wgpu validation on, as an application in development).
+fn device() -> (wgpu::Device, wgpu::Queue) {
+    let mut desc = wgpu::InstanceDescriptor::new_without_display_handle();
+    desc.backends = wgpu::Backends::VULKAN;
+    desc.flags = wgpu::InstanceFlags::VALIDATION;
+    let instance = wgpu::Instance::new(desc);
+    let adapter =
+        pollster::block_on(instance.request_adapter(&Default::default())).expect("an adapter");
+    let features = adapter.features() & wgpu::Features::TIMESTAMP_QUERY;
+    pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
+        required_features: features,
+        ..Default::default()
+    }))
+    .expect("a device")
+}
+
+fn target(device: &wgpu::Device, format: wgpu::TextureFormat, w: u32, h: u32) -> wgpu::Texture {
+    device.create_texture(&wgpu::TextureDescriptor {
+        label: Some("app target"),
+        size: wgpu::Extent3d {
+            width: w,
+            height: h,
+            depth_or_array_layers: 1,
+        },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format,
+        usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+        view_formats: &[],
+    })
+}
+
+/// The RGBA8 texels of `texture`.
+fn read(device: &wgpu::Device, queue: &wgpu::Queue, texture: &wgpu::Texture) -> Vec<u8> {
+    let (w, h) = (texture.width(), texture.height());
+    let padded = (w * 4).div_ceil(256) * 256;
+    let buffer = device.create_buffer(&wgpu::BufferDescriptor {
+        label: None,
+        size: u64::from(padded * h),
+        usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+        mapped_at_creation: false,
+    });
+    let mut encoder = device.create_command_encoder(&Default::default());
+    encoder.copy_texture_to_buffer(
+        texture.as_image_copy(),
+        wgpu::TexelCopyBufferInfo {
+            buffer: &buffer,
+            layout: wgpu::TexelCopyBufferLayout {
+                offset: 0,
+                bytes_per_row: Some(padded),
+                rows_per_image: Some(h),
+            },
+        },
+        texture.size(),
+    );
+    queue.submit([encoder.finish()]);
+    buffer
+        .slice(..)
+        .map_async(wgpu::MapMode::Read, |r| r.expect("map"));
+    device
+        .poll(wgpu::PollType::wait_indefinitely())
+        .expect("poll");
+    let data = buffer.slice(..).get_mapped_range().expect("mapped");
+    (0..h as usize)
+        .flat_map(|y| data[y * padded as usize..][..w as usize * 4].to_vec())
+        .collect()
+}
+
+#[test]
+fn frames_in_the_app_texture_match_the_renderer_and_create_nothing_after_the_first() {
+    record_wgpu_log();
+    let (device, queue) = device();
+    let (w, h) = (40, 24);
+    let texture = target(&device, wgpu::TextureFormat::Rgba8Unorm, w, h);
+    let view = texture.create_view(&Default::default());
+    let scene = Scene::preset("cumulus-noon").unwrap().with_size(w, h);
+    let mut clouds = Clouds::new(&device, &queue, scene).expect("clouds");
+    let mut reference = stratus_backend_wgpu::Renderer::new(stratus_backend_wgpu::Options {
+        api: stratus_backend_wgpu::Api::Vulkan,
+        validation: true,
+    })
+    .expect("renderer");
+    let noise = Arc::new(stratus::noise_for(clouds.scene()));
+    let mut after_first = 0;
+    for i in 0..6 {
+        clouds
+            .update(Update {
+                camera_yaw_pitch_deg: Some([5.0 * f64::from(i), 10.0]),
+                time_s: Some(2.0),
+                ..Default::default()
+            })
+            .expect("update");
+        let mut encoder = device.create_command_encoder(&Default::default());
+        clouds.render(&mut encoder, &view).expect("render");
+        queue.submit([encoder.finish()]);
+        let timings = clouds.pass_timings().expect("timings");
+        assert_eq!(
+            timings.iter().map(|t| t.pass.as_str()).collect::<Vec<_>>(),
+            ["march", "composite", "present"]
+        );
+        if i == 0 {
+            after_first = clouds.objects_created();
+        }
+        if i % 3 == 2 {
+            let plan = FramePlan::for_scene(clouds.scene(), false).unwrap();
+            let expected = reference
+                .render(&FrameInput::new(&plan, clouds.scene(), &noise))
+                .expect("reference frame");
+            assert_eq!(read(&device, &queue, &texture), expected.image, "frame {i}");
+        }
+    }
+    assert_eq!(
+        clouds.objects_created(),
+        after_first,
+        "objects after frame 1"
+    );
+    assert_no_wgpu_messages();
+}
+
+#[test]
+fn targets_that_cannot_take_the_clouds_are_refused() {
+    let (device, queue) = device();
+    let scene = Scene::preset("cumulus-noon").unwrap().with_size(16, 8);
+    let mut clouds = Clouds::new(&device, &queue, scene).expect("clouds");
+    let srgb = target(&device, wgpu::TextureFormat::Rgba8UnormSrgb, 16, 8);
+    let mut encoder = device.create_command_encoder(&Default::default());
+    match clouds.render(&mut encoder, &srgb.create_view(&Default::default())) {
+        Err(Error::Target(m)) => assert!(m.contains("sRGB") && m.contains("Rgba8Unorm"), "{m}"),
+        other => panic!("an sRGB target: {:?}", other.map(|_| ())),
+    }
+    let mut bad = Scene::preset("cumulus-noon").unwrap();
+    bad.camera.fov_y_deg = 0.0;
+    match clouds.update(Update {
+        scene: Some(bad),
+        ..Default::default()
+    }) {
+        Err(Error::Scene(m)) => assert!(m.contains("fov_y_deg"), "{m}"),
+        other => panic!("an invalid scene: {other:?}"),
+    }
+}

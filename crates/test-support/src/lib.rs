@@ -1,0 +1,149 @@
+//! Helpers every Stratus test shares, written once: the recorder that turns wgpu's (and through
+//! it the Vulkan validation layer's) warnings into test failures, bit-exact frame diffs, noise
+//! generated once per seed, and small scenes. Dev-only: no renderer depends on it.
+
+#![deny(missing_docs)]
+
+use std::{
+    collections::HashMap,
+    sync::{Arc, Mutex, OnceLock},
+};
+
+use stratus_graph::FrameOutput;
+pub use stratus_graph::output::median;
+use stratus_noise::{NoiseConfig, NoiseSet, ShapeSize};
+use stratus_scene::Scene;
+
+/// Records every warning or error that wgpu logs (the Vulkan validation layer's messages about
+/// wgpu's calls arrive this way), so that wgpu is held to the same standard as the ash
+/// backend's validation. EGL start-up logs the platforms it tries before settling on one that
+/// works (e.g. "DRI2: failed to load driver" without /dev/dri); those are not validation
+/// messages and are ignored.
+struct Recorder(Mutex<Vec<String>>);
+
+impl log::Log for Recorder {
+    fn enabled(&self, m: &log::Metadata) -> bool {
+        m.level() <= log::Level::Warn
+            && m.target().starts_with("wgpu")
+            && !m.target().starts_with("wgpu_hal::gles::egl")
+    }
+    fn log(&self, r: &log::Record) {
+        if self.enabled(r.metadata())
+            && let Ok(mut v) = self.0.lock()
+        {
+            v.push(format!("{} {}: {}", r.level(), r.target(), r.args()));
+        }
+    }
+    fn flush(&self) {}
+}
+
+static RECORDER: Recorder = Recorder(Mutex::new(Vec::new()));
+
+/// Installs the recorder as the test binary's logger (once; later calls do nothing).
+pub fn record_wgpu_log() {
+    static ONCE: OnceLock<()> = OnceLock::new();
+    ONCE.get_or_init(|| {
+        log::set_logger(&RECORDER).expect("the only logger in this test binary");
+        log::set_max_level(log::LevelFilter::Warn);
+    });
+}
+
+/// The messages logged since the last call (and forgets them).
+pub fn take_wgpu_log() -> Vec<String> {
+    std::mem::take(&mut *RECORDER.0.lock().unwrap_or_else(|e| e.into_inner()))
+}
+
+/// Fails with every message logged since the last call.
+pub fn assert_no_wgpu_messages() {
+    let msgs = take_wgpu_log();
+    assert!(msgs.is_empty(), "wgpu logged:\n{}", msgs.join("\n"));
+}
+
+fn float_difference(name: &str, what: &str, a: &[f32], b: &[f32]) -> Option<String> {
+    let differing = a
+        .iter()
+        .zip(b)
+        .filter(|(x, y)| x.to_bits() != y.to_bits())
+        .count();
+    if differing == 0 && a.len() == b.len() {
+        return None;
+    }
+    let max = a
+        .iter()
+        .zip(b)
+        .map(|(x, y)| (x - y).abs())
+        .fold(0.0f32, f32::max);
+    Some(format!(
+        "{name}: {what}: {differing} of {} floats differ (lengths {} and {}), max abs difference {max:e}",
+        a.len().min(b.len()),
+        a.len(),
+        b.len()
+    ))
+}
+
+/// Every way two frames differ bit for bit (radiance, depth, image, counters, other
+/// read-back resources), each as a sentence starting with `name`; empty when identical.
+pub fn frame_differences(name: &str, a: &FrameOutput, b: &FrameOutput) -> Vec<String> {
+    let mut problems = Vec::new();
+    problems.extend(float_difference(name, "radiance", &a.radiance, &b.radiance));
+    problems.extend(float_difference(name, "depth", &a.depth, &b.depth));
+    if a.image != b.image {
+        let n = a.image.iter().zip(&b.image).filter(|(x, y)| x != y).count();
+        problems.push(format!("{name}: image: {n} bytes differ"));
+    }
+    if a.stats != b.stats {
+        problems.push(format!(
+            "{name}: counters differ: {:?} and {:?}",
+            a.stats, b.stats
+        ));
+    }
+    if a.resources != b.resources {
+        problems.push(format!("{name}: read-back resources differ"));
+    }
+    problems
+}
+
+/// Noise sets by seed (and shape size), generated once each: slow in debug builds. Shared as
+/// `Arc`s, so that a persistent renderer uploads each once.
+#[derive(Default)]
+pub struct NoiseCache(HashMap<(u64, bool), Arc<NoiseSet>>);
+
+impl NoiseCache {
+    /// The noise set of `scene`'s seed and shape texture.
+    pub fn get(&mut self, scene: &Scene) -> Arc<NoiseSet> {
+        let seed = scene.noise.seed;
+        let hzd = scene.noise.shape_texture == stratus_scene::ShapeTexture::Hzd;
+        self.0
+            .entry((seed, hzd))
+            .or_insert_with(|| {
+                Arc::new(NoiseSet::generate(&NoiseConfig {
+                    seed,
+                    shape: if hzd {
+                        ShapeSize::Hzd
+                    } else {
+                        ShapeSize::Thesis
+                    },
+                    ..Default::default()
+                }))
+            })
+            .clone()
+    }
+}
+
+/// Small noise textures, quick to make, for tests about life cycles rather than clouds.
+pub fn small_noise(seed: u64) -> Arc<NoiseSet> {
+    Arc::new(NoiseSet::generate(&NoiseConfig {
+        seed,
+        shape: ShapeSize::Thesis,
+        weather_size: 64,
+        curl_size: 16,
+        detail_size: 8,
+    }))
+}
+
+/// The preset `name` at a small size.
+pub fn small(name: &str, w: u32, h: u32) -> Scene {
+    Scene::preset(name)
+        .unwrap_or_else(|e| panic!("preset {name}: {e}"))
+        .with_size(w, h)
+}

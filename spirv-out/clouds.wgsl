@@ -1,0 +1,614 @@
+// Shared declarations of the `clouds` module: the per-frame uniforms, the resources, the
+// feature switches and small math helpers.
+//
+// `Frame` mirrors `FrameUniforms` in crates/scene/src/uniforms.rs member for member (a test
+// compares naga's reflection of this struct with the Rust one). Every member is a vec4, so the
+// layout is the same under WGSL, std140 and HLSL cbuffer rules.
+
+struct Frame {
+    camera_position: vec4<f32>,     // x, altitude, z (m); w = tan(fov_y / 2)
+    camera_forward: vec4<f32>,      // unit; w = width / height
+    camera_right: vec4<f32>,        // unit; w = exposure
+    camera_up: vec4<f32>,           // unit; w = 0
+    sun_direction: vec4<f32>,       // unit, toward the sun; w = cos(sun angular radius)
+    sun_illuminance: vec4<f32>,     // linear rgb
+    atmosphere: vec4<f32>,          // planet radius, layer bottom, layer top (altitudes), cut-off distance (m)
+    clouds: vec4<f32>,              // coverage, density multiplier, cloud type, precipitation
+    erosion: vec4<f32>,             // detail strength, erosion threshold, curl strength (m), height gradient strength
+    periods: vec4<f32>,             // weather, shape (x axis), detail, curl periods (m)
+    wind_offsets0: vec4<f32>,       // weather offset xz, shape offset xz (m, wrapped by the period)
+    wind_offsets1: vec4<f32>,       // detail offset xz, curl offset xz (m, wrapped by the period)
+    extinction: vec4<f32>,          // sigma_s, sigma_a (1/m at density 1), precipitation darkening, wispy/billowy
+    phase: vec4<f32>,               // g, g2, blend (weight of the g2 lobe), powder strength
+    multiple_scattering: vec4<f32>, // a (contribution), b (extinction), c (eccentricity) per octave
+    ambient_bottom: vec4<f32>,      // linear rgb; w = ambient strength
+    ambient_top: vec4<f32>,         // linear rgb
+    march: vec4<f32>,               // step length (m, 0 = from view steps), light step growth, first light step (m), early-exit transmittance
+    counts: vec4<u32>,              // width, height, view steps, light steps
+    modes: vec4<u32>,               // phase model, integration, height model, flags
+    misc: vec4<u32>,                // octaves beyond single scattering, frame (jitter seed)
+}
+
+// Codes shared with the scene crate (`PhaseModel::code`, `Integration::code`, ...).
+const PHASE_HG: u32 = 0u;
+const PHASE_TWO_LOBE_HG: u32 = 1u;
+const PHASE_CORNETTE_SHANKS: u32 = 2u;
+const INTEGRATION_ANALYTIC: u32 = 0u;
+const INTEGRATION_RIEMANN: u32 = 1u;
+const HEIGHT_PARABOLA: u32 = 0u;
+const HEIGHT_CLOUD_TYPES: u32 = 1u;
+const FLAG_BEER_POWDER: u32 = 1u;
+const FLAG_JITTER: u32 = 2u;
+
+// Feature switches. A variant in modules.toml sets these; code behind a `false` switch is
+// removed by naga before translation, so a scene that does not use a feature pays nothing.
+override LIGHT_MARCH: bool = true;  // march toward the sun for self-shadowing (thesis 5.5.2)
+override MAX_OCTAVES: u32 = 8u;     // multiple-scattering octaves compiled in (0 = single scattering)
+override DETAIL: bool = true;       // detail-noise erosion of the base shape (thesis alg. 4.1)
+override CURL: bool = true;         // curl-noise distortion of the detail lookup (HZD, seed 001)
+override STATS: bool = false;       // count work with atomics (the statistics variant)
+
+const PI: f32 = 3.14159265358979;
+const MAX_VIEW_STEPS: u32 = 1024u;  // bound for step-length mode, so a pixel's work is finite
+
+@group(0) @binding(0) var<uniform> frame: Frame;
+
+fn saturate(x: f32) -> f32 {
+    return clamp(x, 0.0, 1.0);
+}
+
+// Linear remap of `x` from [lo0, hi0] to [lo1, hi1] (HZD's remap), unclamped.
+fn remap(x: f32, lo0: f32, hi0: f32, lo1: f32, hi1: f32) -> f32 {
+    return lo1 + (x - lo0) * (hi1 - lo1) / (hi0 - lo0);
+}
+
+// PCG hash (O'Neill), used for per-pixel jitter: deterministic on every backend.
+fn pcg(v: u32) -> u32 {
+    let state = v * 747796405u + 2891336453u;
+    let word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
+    return (word >> 22u) ^ word;
+}
+
+// A value in [0, 1) from a pixel and a frame index; 24 bits so the conversion is exact.
+fn hash_unit(pixel: vec2<u32>, frame_index: u32) -> f32 {
+    let h = pcg(pixel.x ^ pcg(pixel.y ^ pcg(frame_index)));
+    return f32(h >> 8u) * (1.0 / 16777216.0);
+}
+// Geometry at planet scale in f32: camera rays, ray-sphere intersection in the stable
+// quadratic form, altitude without cancellation, and the ray's interval in the cloud layer.
+//
+// Everything is relative to the point on the planet's surface straight below the camera: the
+// planet's centre is at (0, -Rp, 0) in these coordinates and the camera at (0, altitude, 0), so
+// no quantity of size Rp is ever subtracted from another of size Rp.
+
+// The view ray through the centre of pixel `pixel` (y down in the image).
+fn view_ray(pixel: vec2<u32>) -> vec3<f32> {
+    let size = vec2<f32>(frame.counts.xy);
+    let ndc = (vec2<f32>(pixel) + 0.5) / size * 2.0 - 1.0;
+    let tan_half = frame.camera_position.w;
+    let aspect = frame.camera_forward.w;
+    let d = frame.camera_forward.xyz
+        + frame.camera_right.xyz * (ndc.x * tan_half * aspect)
+        - frame.camera_up.xyz * (ndc.y * tan_half);
+    return normalize(d);
+}
+
+// Roots of |o + t d - centre|^2 = R^2 for a unit `d`, written t^2 + 2 b t + c = 0 with
+// b = dot(d, o - centre) and c = |o - centre|^2 - R^2 passed in precomputed (so that the caller
+// can form c without cancellation). Returns (t0, t1), t0 <= t1, or (-inf... ) via `hit`.
+struct Roots {
+    t0: f32,
+    t1: f32,
+    hit: bool,
+}
+
+fn solve_sphere(b: f32, c: f32) -> Roots {
+    let disc = b * b - c;
+    if disc < 0.0 {
+        return Roots(0.0, 0.0, false);
+    }
+    // Stable form: q = -(b + sign(b) sqrt(disc)); the roots are q and c / q (no subtraction
+    // of nearly equal numbers, which would lose the near root at grazing angles).
+    let s = sqrt(disc);
+    let q = -(b + select(-s, s, b >= 0.0));
+    if q == 0.0 {
+        return Roots(0.0, 0.0, true);
+    }
+    let r0 = q;
+    let r1 = c / q;
+    return Roots(min(r0, r1), max(r0, r1), true);
+}
+
+// Intersection of the ray from the camera (altitude `alt`) along unit `d` with the sphere of
+// altitude `radius_alt` (radius Rp + radius_alt). c = (alt - r)(alt + r + 2 Rp) exactly.
+fn ray_shell(alt: f32, d: vec3<f32>, radius_alt: f32) -> Roots {
+    let rp = frame.atmosphere.x;
+    let b = d.y * (alt + rp);
+    let c = (alt - radius_alt) * (alt + radius_alt + 2.0 * rp);
+    return solve_sphere(b, c);
+}
+
+// Altitude of a point given relative to the ground point below the camera:
+// |q|^2 - Rp^2 = x^2 + z^2 + y (y + 2 Rp) with q = p + (0, Rp, 0), divided by |q| + Rp.
+fn altitude_of(p: vec3<f32>) -> f32 {
+    let rp = frame.atmosphere.x;
+    let n = p.x * p.x + p.z * p.z + p.y * (p.y + 2.0 * rp);
+    let q = vec3<f32>(p.x, p.y + rp, p.z);
+    return n / (length(q) + rp);
+}
+
+// Whether the ray from `p` (camera-relative, altitude `alt`) along unit `d` hits the ground.
+fn hits_ground(p: vec3<f32>, alt: f32, d: vec3<f32>) -> bool {
+    let rp = frame.atmosphere.x;
+    let b = dot(d, vec3<f32>(p.x, p.y + rp, p.z));
+    let c = alt * (alt + 2.0 * rp);
+    return b < 0.0 && b * b >= c;
+}
+
+// Why a ray does or does not march the layer.
+const RAY_MARCH: u32 = 0u;
+const RAY_MISSES_LAYER: u32 = 1u;
+const RAY_HITS_GROUND: u32 = 2u;
+
+struct Interval {
+    start: f32,
+    length: f32,
+    kind: u32,
+}
+
+// The part of the view ray inside the cloud layer, cut to the cut-off distance (thesis
+// alg. 5.1: march min(layer depth, cut-off)). Handles cameras below, inside and above the
+// layer (thesis 5.2).
+fn layer_interval(alt: f32, d: vec3<f32>) -> Interval {
+    let bottom = frame.atmosphere.y;
+    let top = frame.atmosphere.z;
+    let cutoff = frame.atmosphere.w;
+    let inner = ray_shell(alt, d, bottom);
+    let outer = ray_shell(alt, d, top);
+    var start = 0.0;
+    var end = 0.0;
+    if alt < bottom {
+        // Below: the ground is inside the inner shell, so a ray that meets it never enters.
+        if hits_ground(vec3<f32>(0.0, alt, 0.0), alt, d) {
+            return Interval(0.0, 0.0, RAY_HITS_GROUND);
+        }
+        start = inner.t1;
+        end = outer.t1;
+    } else if alt <= top {
+        end = outer.t1;
+        if inner.hit && inner.t0 > 0.0 {
+            end = min(end, inner.t0);
+        }
+    } else {
+        if !outer.hit || outer.t1 <= 0.0 {
+            return Interval(0.0, 0.0, RAY_MISSES_LAYER);
+        }
+        start = max(outer.t0, 0.0);
+        end = outer.t1;
+        if inner.hit && inner.t0 > 0.0 {
+            end = min(end, inner.t0);
+        }
+    }
+    let len = min(end - start, cutoff);
+    if !(len > 0.0) {
+        return Interval(0.0, 0.0, RAY_MISSES_LAYER);
+    }
+    return Interval(start, len, RAY_MARCH);
+}
+// The cloud density field (thesis alg. 4.1 with HZD's noise, weather and cloud types).
+//
+// Positions are in metres: `p` is the world position (x, z horizontal) used for texture
+// lookups, `alt` its altitude above the ground. Textures tile; wind offsets arrive already
+// wrapped by each texture's period, so hours of animation lose no precision.
+
+@group(0) @binding(1) var shape_tex: texture_3d<f32>;   // RGBA8: Perlin-Worley, Worley FBM x3
+@group(0) @binding(2) var detail_tex: texture_3d<f32>;  // RGBA8: Worley FBM x3
+@group(0) @binding(3) var weather_tex: texture_2d<f32>; // RGBA8: coverage, precipitation, cloud type
+@group(0) @binding(4) var curl_tex: texture_2d<f32>;    // RGBA8: curl xy encoded as 0.5 v + 0.5
+@group(0) @binding(5) var noise_sampler: sampler;       // linear, repeat
+
+// Work counters of one invocation, added to the statistics buffer once at the end.
+struct Counters {
+    view_steps: u32,
+    density: u32,
+    detail: u32,
+    light: u32,
+}
+
+// What the weather map says at a point, after the scene's global controls.
+struct Weather {
+    coverage: f32,
+    cloud_type: f32,
+    precipitation: f32,
+}
+
+fn sample_weather(p: vec3<f32>) -> Weather {
+    let uv = (p.xz - frame.wind_offsets0.xy) / frame.periods.x;
+    let w = textureSampleLevel(weather_tex, noise_sampler, uv, 0.0);
+    // The scene's coverage shifts the map's local coverage: 0 clears the sky, 1 fills it.
+    let coverage = saturate(w.r + 2.0 * (frame.clouds.x - 0.5));
+    // The scene's cloud type is the mean; the map varies it locally (HZD: B = cloud type).
+    let cloud_type = saturate(frame.clouds.z + (w.b - 0.5) * 0.5);
+    let precipitation = frame.clouds.w * saturate(0.5 + w.g);
+    return Weather(coverage, cloud_type, precipitation);
+}
+
+// Thesis eq. 5.1: a parabola with roots at the cloud's start and top, peak 1 between them.
+// The cloud starts at the layer bottom; its height grows with cloud type (stratus low,
+// cumulus the whole layer).
+fn height_parabola(h: f32, cloud_type: f32) -> f32 {
+    let height = mix(0.35, 1.0, cloud_type);
+    return saturate(h * (h - height) * (-4.0 / (height * height)));
+}
+
+// Density-height gradient of one cloud type: rise over [r0, r1], fall over [f0, f1].
+fn gradient(h: f32, r0: f32, r1: f32, f0: f32, f1: f32) -> f32 {
+    return smoothstep(r0, r1, h) * (1.0 - smoothstep(f0, f1, h));
+}
+
+// HZD's cloud-type gradients (stratus, stratocumulus, cumulus), blended by type in [0, 1].
+// The breakpoints follow the shapes of the HZD talk's gradient figure (seed 004).
+fn height_cloud_types(h: f32, cloud_type: f32) -> f32 {
+    let stratus = gradient(h, 0.0, 0.08, 0.15, 0.25);
+    let stratocumulus = gradient(h, 0.0, 0.2, 0.4, 0.65);
+    let cumulus = gradient(h, 0.0, 0.1, 0.6, 0.95);
+    let lo = mix(stratus, stratocumulus, saturate(cloud_type * 2.0));
+    return mix(lo, cumulus, saturate(cloud_type * 2.0 - 1.0));
+}
+
+fn height_signal(h: f32, cloud_type: f32) -> f32 {
+    if frame.modes.z == HEIGHT_CLOUD_TYPES {
+        return height_cloud_types(h, cloud_type);
+    }
+    return height_parabola(h, cloud_type);
+}
+
+// Density in [0, 1] at world position `p` with altitude `alt`. `counters` counts density and
+// detail evaluations.
+fn cloud_density(p: vec3<f32>, alt: f32, counters: ptr<function, Counters>) -> f32 {
+    let bottom = frame.atmosphere.y;
+    let top = frame.atmosphere.z;
+    let h = (alt - bottom) / (top - bottom); // height fraction in the layer
+    if h < 0.0 || h > 1.0 {
+        return 0.0;
+    }
+    (*counters).density += 1u;
+    let weather = sample_weather(p);
+    let signal = height_signal(h, weather.cloud_type);
+    if weather.coverage <= 0.0 || signal <= 0.0 {
+        return 0.0;
+    }
+
+    // Base shape: Perlin-Worley remapped by low-frequency Worley FBM (HZD), isotropic texels:
+    // the texture's y period is its x period scaled by its aspect (128x32x128 thesis layout).
+    let dims = vec3<f32>(textureDimensions(shape_tex));
+    let period = frame.periods.y * vec3<f32>(1.0, dims.y / dims.x, 1.0);
+    let shape_pos = vec3<f32>(p.x - frame.wind_offsets0.z, alt, p.z - frame.wind_offsets0.w);
+    let s = textureSampleLevel(shape_tex, noise_sampler, shape_pos / period, 0.0);
+    let low_fbm = s.g * 0.625 + s.b * 0.25 + s.a * 0.125;
+    var base = saturate(remap(s.r, low_fbm - 1.0, 1.0, 0.0, 1.0)) * signal;
+
+    // Coverage (HZD): remap so that low coverage keeps only the densest parts, then scale.
+    base = saturate(remap(base, 1.0 - weather.coverage, 1.0, 0.0, 1.0)) * weather.coverage;
+    if base <= 0.0 {
+        return 0.0;
+    }
+
+    // Detail erosion at the edges only: below the threshold (thesis alg. 4.1). The amount
+    // fades to zero at the threshold so the density stays continuous.
+    var density = base;
+    let strength = frame.erosion.x;
+    let threshold = frame.erosion.y;
+    if DETAIL && strength > 0.0 && base < threshold {
+        (*counters).detail += 1u;
+        var detail_pos = vec3<f32>(p.x, alt, p.z);
+        if CURL {
+            // Curl noise distorts the detail lookup, more at the cloud base (HZD, seed 001).
+            let cuv = (p.xz - frame.wind_offsets1.zw) / frame.periods.w;
+            let curl = textureSampleLevel(curl_tex, noise_sampler, cuv, 0.0).xy * 2.0 - 1.0;
+            detail_pos = detail_pos + vec3<f32>(curl.x, 0.0, curl.y) * (frame.erosion.z * (1.0 - h));
+        }
+        detail_pos = detail_pos - vec3<f32>(frame.wind_offsets1.x, 0.0, frame.wind_offsets1.y);
+        let dn = textureSampleLevel(detail_tex, noise_sampler, detail_pos / frame.periods.z, 0.0);
+        let high_fbm = dn.r * 0.625 + dn.g * 0.25 + dn.b * 0.125;
+        // Inverted Worley is billowy, plain Worley wispy. HZD turns wispy bases into billowy
+        // tops over the lowest tenth of the cloud; `wispy_billowy` scales that (0.5: HZD's
+        // ramp, 0: wispy everywhere, 1: billowy almost from the base). A constant blend would
+        // not do: at 0.5 it cancels the detail noise entirely.
+        let billowy = saturate(2.0 * frame.extinction.w * saturate(h * 10.0));
+        let shape = mix(1.0 - high_fbm, high_fbm, billowy);
+        let erosion = strength * shape * (1.0 - base / threshold);
+        density = saturate(remap(base, erosion, 1.0, 0.0, 1.0));
+    }
+
+    // Denser toward the top (thesis 4.5.1), global density and precipitation, clamp.
+    density = density * mix(1.0, h, frame.erosion.w);
+    density = density * frame.clouds.y * (1.0 + weather.precipitation);
+    return clamp(density, 0.0, 1.0);
+}
+// Light: phase functions, the light march toward the sun, multiple-scattering octaves,
+// ambient and precipitation darkening (thesis 5.5, Hillaire 2016, Wrenninge 2013).
+
+// Henyey-Greenstein (thesis eq. 5.4), normalised over the sphere.
+fn phase_hg(cos_theta: f32, g: f32) -> f32 {
+    let g2 = g * g;
+    let denom = max(1.0 + g2 - 2.0 * g * cos_theta, 1e-6);
+    return (1.0 - g2) / (4.0 * PI * denom * sqrt(denom));
+}
+
+// Cornette-Shanks (thesis eq. 5.5).
+fn phase_cornette_shanks(cos_theta: f32, g: f32) -> f32 {
+    let g2 = g * g;
+    let denom = max(1.0 + g2 - 2.0 * g * cos_theta, 1e-6);
+    return 3.0 * (1.0 - g2) * (1.0 + cos_theta * cos_theta)
+        / (8.0 * PI * (2.0 + g2) * denom * sqrt(denom));
+}
+
+// The scene's phase model with eccentricities scaled by `scale` (c^i for octave i).
+fn phase(cos_theta: f32, scale: f32) -> f32 {
+    let g = frame.phase.x * scale;
+    switch frame.modes.x {
+        case PHASE_TWO_LOBE_HG: {
+            // Two lobes for the silver lining (seed 001): forward g and backward g2.
+            let g2 = frame.phase.y * scale;
+            return mix(phase_hg(cos_theta, g), phase_hg(cos_theta, g2), frame.phase.z);
+        }
+        case PHASE_CORNETTE_SHANKS: {
+            return phase_cornette_shanks(cos_theta, g);
+        }
+        default: {
+            return phase_hg(cos_theta, g);
+        }
+    }
+}
+
+// Optical depth toward the sun from `rel` (camera-relative position, world position `p`):
+// `light_steps` segments of exponentially growing length (thesis 5.5.2), density sampled at
+// each segment's midpoint. Samples that leave the layer contribute nothing.
+fn sun_optical_depth(rel: vec3<f32>, p: vec3<f32>, counters: ptr<function, Counters>) -> f32 {
+    let sun = frame.sun_direction.xyz;
+    let sigma_t = frame.extinction.x + frame.extinction.y;
+    let steps = frame.counts.w;
+    let growth = frame.march.y;
+    var seg = frame.march.z;
+    var dist = 0.0;
+    var tau = 0.0;
+    for (var i = 0u; i < steps; i++) {
+        let s = dist + 0.5 * seg;
+        let q = rel + sun * s;
+        let alt = altitude_of(q);
+        if alt > frame.atmosphere.z || alt < frame.atmosphere.y {
+            break;
+        }
+        (*counters).light += 1u;
+        tau += cloud_density(p + sun * s, alt, counters) * sigma_t * seg;
+        dist += seg;
+        seg *= growth;
+    }
+    return tau;
+}
+
+// Sun light scattered toward the viewer per unit illuminance and unit sigma_s, summed over
+// octaves: sum_i a^i phase(cos, c^i) exp(-b^i tau) (a: contribution, b: extinction,
+// c: eccentricity; a <= b conserves energy).
+fn sun_scattering(cos_theta: f32, tau: f32) -> f32 {
+    let a = frame.multiple_scattering.x;
+    let b = frame.multiple_scattering.y;
+    let c = frame.multiple_scattering.z;
+    let octaves = min(frame.misc.x, MAX_OCTAVES);
+    var total = phase(cos_theta, 1.0) * exp(-tau);
+    var ka = 1.0;
+    var kb = 1.0;
+    var kc = 1.0;
+    for (var i = 0u; i < octaves; i++) {
+        ka *= a;
+        kb *= b;
+        kc *= c;
+        total += ka * phase(cos_theta, kc) * exp(-kb * tau);
+    }
+    if (frame.modes.w & FLAG_BEER_POWDER) != 0u {
+        // Beer-Powder (HZD): in-scattering builds up with depth into the cloud, darkening
+        // the thin edges. Kept <= 1 so it only removes energy.
+        total *= 1.0 - exp(-frame.phase.w * tau);
+    }
+    return total;
+}
+
+// Ambient light at height fraction `h` (thesis 5.5.3): a gradient from bottom to top colour.
+fn ambient(h: f32) -> vec3<f32> {
+    return mix(frame.ambient_bottom.rgb, frame.ambient_top.rgb, h) * frame.ambient_bottom.w;
+}
+
+// In-scattered radiance per unit length at a view sample: sigma_s * density * (sun + ambient),
+// darkened toward the base of raining clouds (thesis 4.4.1).
+fn scattered_light(rel: vec3<f32>, p: vec3<f32>, alt: f32, density: f32, view: vec3<f32>,
+                   counters: ptr<function, Counters>) -> vec3<f32> {
+    let sun = frame.sun_direction.xyz;
+    let h = saturate((alt - frame.atmosphere.y) / (frame.atmosphere.z - frame.atmosphere.y));
+    var sun_light = vec3<f32>(0.0);
+    if !hits_ground(rel, alt, sun) {
+        var tau = 0.0;
+        if LIGHT_MARCH {
+            tau = sun_optical_depth(rel, p, counters);
+        }
+        sun_light = frame.sun_illuminance.rgb * sun_scattering(dot(view, sun), tau);
+    }
+    let weather = sample_weather(p);
+    let darkening = saturate(1.0 - frame.extinction.z * weather.precipitation * (1.0 - h));
+    return frame.extinction.x * density * (sun_light + ambient(h)) * darkening;
+}
+// The view march (thesis alg. 5.1): one invocation per pixel marches its ray through the
+// cloud layer and writes linear in-scattered radiance and transmittance.
+
+@group(0) @binding(6) var cloud_out: texture_storage_2d<rgba32float, write>; // radiance rgb, transmittance
+@group(0) @binding(7) var depth_out: texture_storage_2d<r32float, write>;    // transmittance-weighted depth (m), 0 where no cloud
+
+// Work counters (the statistics variant). Indices are named by the `stats` resource in the
+// frame graph (wgsl/graph.toml), checked against these values at build time.
+const STAT_PIXELS: u32 = 0u;           // pixels processed
+const STAT_MARCHED: u32 = 1u;          // pixels whose ray marched the layer
+const STAT_VIEW_STEPS: u32 = 2u;       // view-ray steps taken
+const STAT_DENSITY: u32 = 3u;          // density evaluations (view and light)
+const STAT_DETAIL: u32 = 4u;           // detail-noise evaluations
+const STAT_LIGHT: u32 = 5u;            // light-march samples
+const STAT_EXIT_TRANSMITTANCE: u32 = 6u; // marches ended early: transmittance below threshold
+const STAT_EXIT_MISSED: u32 = 7u;      // rays that miss the layer (nothing to march)
+const STAT_EXIT_GROUND: u32 = 8u;      // rays that hit the ground before the layer
+const STAT_COUNT: u32 = 9u;
+
+struct Stats {
+    counters: array<atomic<u32>, STAT_COUNT>,
+}
+
+@group(0) @binding(8) var<storage, read_write> stats: Stats;
+
+fn count(index: u32, value: u32) {
+    if STATS && value != 0u {
+        atomicAdd(&stats.counters[index], value);
+    }
+}
+
+// Scattering integrated over one step of length `dt` with extinction `sigma_t`, for a source
+// `source` (radiance per unit length) that is constant over the step.
+fn step_integral(source: vec3<f32>, sigma_t: f32, dt: f32) -> vec3<f32> {
+    if frame.modes.y == INTEGRATION_RIEMANN {
+        // Naive Riemann sum: overshoots when sigma_t * dt is large (kept to show where it fails).
+        return source * dt;
+    }
+    // Hillaire's energy-conserving form (thesis alg. 5.4): (S - S Tr) / sigma_t, written as
+    // S dt (1 - e^-x) / x with x = sigma_t dt and a series near 0, so it never divides by 0.
+    let x = sigma_t * dt;
+    let f = select((1.0 - exp(-x)) / x, 1.0 - 0.5 * x, x < 1e-3);
+    return source * (dt * f);
+}
+
+@compute @workgroup_size(8, 8, 1)
+fn march(@builtin(global_invocation_id) id: vec3<u32>) {
+    if any(id.xy >= frame.counts.xy) {
+        return;
+    }
+    let pixel = id.xy;
+    let view = view_ray(pixel);
+    let cam_alt = frame.camera_position.y;
+    let cam_xz = frame.camera_position.xz;
+    var counters = Counters(0u, 0u, 0u, 0u);
+    count(STAT_PIXELS, 1u);
+
+    var radiance = vec3<f32>(0.0);
+    var transmittance = 1.0;
+    var depth_sum = 0.0;
+    let span = layer_interval(cam_alt, view);
+    if span.kind == RAY_MISSES_LAYER {
+        count(STAT_EXIT_MISSED, 1u);
+    } else if span.kind == RAY_HITS_GROUND {
+        count(STAT_EXIT_GROUND, 1u);
+    } else {
+        count(STAT_MARCHED, 1u);
+        var steps = frame.counts.z;
+        if frame.march.x > 0.0 {
+            steps = clamp(u32(ceil(span.length / frame.march.x)), 1u, MAX_VIEW_STEPS);
+        }
+        let dt = span.length / f32(steps);
+        var jitter = 0.5;
+        if (frame.modes.w & FLAG_JITTER) != 0u {
+            jitter = hash_unit(pixel, frame.misc.y);
+        }
+        let sigma_e = frame.extinction.x + frame.extinction.y;
+        for (var i = 0u; i < steps; i++) {
+            counters.view_steps += 1u;
+            let t = span.start + (f32(i) + jitter) * dt;
+            let rel = view * t + vec3<f32>(0.0, cam_alt, 0.0);
+            let p = vec3<f32>(rel.x + cam_xz.x, rel.y, rel.z + cam_xz.y);
+            let alt = altitude_of(rel);
+            let density = cloud_density(p, alt, &counters);
+            if density <= 0.0 {
+                continue;
+            }
+            let sigma_t = sigma_e * density;
+            let source = scattered_light(rel, p, alt, density, view, &counters);
+            radiance += transmittance * step_integral(source, sigma_t, dt);
+            let step_t = exp(-sigma_t * dt);
+            depth_sum += t * transmittance * (1.0 - step_t);
+            transmittance *= step_t;
+            if transmittance < frame.march.w {
+                count(STAT_EXIT_TRANSMITTANCE, 1u);
+                break;
+            }
+        }
+    }
+
+    count(STAT_VIEW_STEPS, counters.view_steps);
+    count(STAT_DENSITY, counters.density);
+    count(STAT_DETAIL, counters.detail);
+    count(STAT_LIGHT, counters.light);
+    var depth = 0.0;
+    if transmittance < 1.0 {
+        depth = depth_sum / (1.0 - transmittance);
+    }
+    textureStore(cloud_out, pixel, vec4<f32>(radiance, transmittance));
+    textureStore(depth_out, pixel, vec4<f32>(depth, 0.0, 0.0, 0.0));
+}
+// Composite: a simple analytic sky and sun disk behind the clouds, the clouds over it,
+// exposure, the ACES fitted tone curve and gamma (seed 001), to an 8-bit image.
+
+@group(0) @binding(9) var cloud_in: texture_2d<f32>;                          // march output
+@group(0) @binding(10) var image_out: texture_storage_2d<rgba8unorm, write>; // display image
+
+// Sky radiance along unit `d` for a camera at altitude `alt`: a zenith-to-horizon gradient
+// scaled by the sun's illuminance and elevation, a forward glow around the sun, and a dark
+// ground below the horizon. Deliberately simple (DESIGN: a simple analytic sky first).
+fn sky_radiance(d: vec3<f32>, alt: f32) -> vec3<f32> {
+    let sun = frame.sun_direction.xyz;
+    let e = frame.sun_illuminance.rgb;
+    let day = saturate(sun.y * 4.0 + 0.3);
+    if hits_ground(vec3<f32>(0.0, alt, 0.0), alt, d) {
+        let ground_albedo = vec3<f32>(0.035, 0.035, 0.03);
+        return ground_albedo * (e * max(sun.y, 0.0) / PI + 0.05 * e * day);
+    }
+    let zenith = vec3<f32>(0.018, 0.04, 0.1);
+    let horizon = vec3<f32>(0.07, 0.085, 0.11);
+    let up = saturate(d.y);
+    let gradient = mix(horizon, zenith, sqrt(up));
+    // Warm the horizon as the sun sets (longer light paths redden it).
+    let sunset = (1.0 - day * 0.8) * pow(1.0 - up, 6.0) * vec3<f32>(0.25, 0.1, 0.0);
+    let glow = phase_hg(dot(d, sun), 0.76) * 0.02;
+    return e * (gradient * day + sunset * saturate(sun.y * 10.0 + 1.0) + glow * day);
+}
+
+// Radiance of the sun's disk: illuminance over its solid angle 2 pi (1 - cos r).
+fn sun_disk(d: vec3<f32>) -> vec3<f32> {
+    let cos_r = frame.sun_direction.w;
+    if dot(d, frame.sun_direction.xyz) < cos_r {
+        return vec3<f32>(0.0);
+    }
+    return frame.sun_illuminance.rgb / (2.0 * PI * max(1.0 - cos_r, 1e-6));
+}
+
+// ACES filmic curve fitted by Narkowicz (seed 001), input pre-exposed so 1 maps to ~0.8.
+fn aces_fitted(x: vec3<f32>) -> vec3<f32> {
+    let a = 2.51;
+    let b = 0.03;
+    let c = 2.43;
+    let d = 0.59;
+    let e = 0.14;
+    return clamp((x * (a * x + b)) / (x * (c * x + d) + e), vec3<f32>(0.0), vec3<f32>(1.0));
+}
+
+@compute @workgroup_size(8, 8, 1)
+fn composite(@builtin(global_invocation_id) id: vec3<u32>) {
+    if any(id.xy >= frame.counts.xy) {
+        return;
+    }
+    let pixel = id.xy;
+    let view = view_ray(pixel);
+    let alt = frame.camera_position.y;
+    let cloud = textureLoad(cloud_in, pixel, 0);
+    var background = sky_radiance(view, alt);
+    if !hits_ground(vec3<f32>(0.0, alt, 0.0), alt, view) {
+        background += sun_disk(view);
+    }
+    let radiance = background * cloud.a + cloud.rgb;
+    let exposed = radiance * frame.camera_right.w;
+    let display = pow(aces_fitted(exposed), vec3<f32>(1.0 / 2.2));
+    textureStore(image_out, pixel, vec4<f32>(display, 1.0));
+}
