@@ -18,7 +18,7 @@ use stratus_graph::{
     plan::{Binding, Pass},
 };
 
-use crate::{error::Error, pipeline::descriptor_type};
+use crate::error::Error;
 
 /// The SPIR-V a frame runs.
 #[cfg_attr(not(feature = "conformance"), allow(dead_code))]
@@ -73,6 +73,23 @@ pub enum SlotContent {
     /// A read-only storage buffer of this many `u32` zeros (naga's HLSL
     /// `nagaGroup<N>SamplerIndexArray`: the sampler of every binding is heap element 0).
     SamplerIndices(u32),
+}
+
+/// The descriptor type of a binding, from its reflected kind.
+pub(crate) fn descriptor_type(b: &Binding) -> Result<vk::DescriptorType, Error> {
+    Ok(match b.info.kind {
+        BindingKind::UniformBuffer => vk::DescriptorType::UNIFORM_BUFFER,
+        BindingKind::StorageBuffer => vk::DescriptorType::STORAGE_BUFFER,
+        BindingKind::SampledTexture => vk::DescriptorType::SAMPLED_IMAGE,
+        BindingKind::StorageTexture => vk::DescriptorType::STORAGE_IMAGE,
+        BindingKind::Sampler => vk::DescriptorType::SAMPLER,
+        BindingKind::Other => {
+            return Err(Error::Shader(format!(
+                "binding {}/{} `{}` has a type the ash backend cannot bind",
+                b.group, b.binding, b.info.name
+            )));
+        }
+    })
 }
 
 /// A slot resolved against the pass: its Vulkan descriptor type and count, and the plan

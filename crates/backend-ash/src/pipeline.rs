@@ -8,31 +8,13 @@ use std::{collections::BTreeMap, ffi::CString};
 use ash::vk;
 use stratus_graph::{
     desc::{Blend, Compare, LoadOp},
-    manifest::BindingKind,
-    plan::{Binding, ColorTarget, DepthTarget},
+    plan::{ColorTarget, DepthTarget},
 };
 
 use crate::{
     error::{Error, vk},
     interface::Descriptor,
 };
-
-/// The descriptor type of a binding, from its reflected kind.
-pub(crate) fn descriptor_type(b: &Binding) -> Result<vk::DescriptorType, Error> {
-    Ok(match b.info.kind {
-        BindingKind::UniformBuffer => vk::DescriptorType::UNIFORM_BUFFER,
-        BindingKind::StorageBuffer => vk::DescriptorType::STORAGE_BUFFER,
-        BindingKind::SampledTexture => vk::DescriptorType::SAMPLED_IMAGE,
-        BindingKind::StorageTexture => vk::DescriptorType::STORAGE_IMAGE,
-        BindingKind::Sampler => vk::DescriptorType::SAMPLER,
-        BindingKind::Other => {
-            return Err(Error::Shader(format!(
-                "binding {}/{} `{}` has a type the ash backend cannot bind",
-                b.group, b.binding, b.info.name
-            )));
-        }
-    })
-}
 
 /// The shader stages a pass's descriptors are visible to.
 pub(crate) fn stages(raster: bool) -> vk::ShaderStageFlags {
