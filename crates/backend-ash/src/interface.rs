@@ -13,9 +13,9 @@
 
 use ash::vk;
 use stratus_graph::{
-    FramePlan,
+    FramePlan, Program,
     manifest::BindingKind,
-    plan::{Binding, Pass},
+    plan::{Binding, Pass, PassKind},
 };
 
 use crate::error::Error;
@@ -43,6 +43,44 @@ pub struct PassShader {
     /// Every descriptor the module declares, and what to bind there. Descriptors the module
     /// does not use may be listed too; one it uses and this list lacks is a validation error.
     pub slots: Vec<Slot>,
+}
+
+impl PassShader {
+    /// The program's module of compute pass `pass`, bound as the plan says: what
+    /// [`Renderer::render`](crate::Renderer::render) runs, as a supplied module.
+    #[cfg_attr(not(feature = "conformance"), allow(dead_code))]
+    pub fn from_program(program: &Program, plan: &FramePlan, pass: &Pass) -> Result<Self, Error> {
+        let PassKind::Compute { entry, .. } = &pass.kind else {
+            return Err(Error::Shader(format!(
+                "pass `{}`: supplied modules run compute passes only",
+                pass.name
+            )));
+        };
+        let spv = plan
+            .modules
+            .get(&pass.module)
+            .map(|m| &m.spv_file)
+            .and_then(|f| program.spirv.get(f))
+            .ok_or_else(|| {
+                Error::Shader(format!(
+                    "the program has no SPIR-V for pass `{}`",
+                    pass.name
+                ))
+            })?;
+        Ok(Self {
+            spirv: spv.clone(),
+            entry: entry.clone(),
+            slots: pass
+                .bindings
+                .iter()
+                .map(|b| Slot {
+                    set: b.group,
+                    binding: b.binding,
+                    content: SlotContent::Plan(plan.resources[b.resource].name.clone()),
+                })
+                .collect(),
+        })
+    }
 }
 
 /// One descriptor of a supplied module: its `DescriptorSet` and `Binding` decorations, and

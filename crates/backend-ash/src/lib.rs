@@ -40,9 +40,10 @@ use ash::vk;
 use gpu_allocator::MemoryLocation;
 use stratus_graph::{
     Backend, BackendError, FrameInput, FrameOutput, FramePlan, PassTiming, Program,
-    backend::{cpu_wall_timings, frame_flags, history_half, timings_from_ticks, upload_data},
-    desc::{Lifetime, OutputRole, ResourceKind},
-    named_counters,
+    backend::{
+        Readout, cpu_wall_timings, frame_flags, history_half, timings_from_ticks, upload_data,
+    },
+    desc::{Lifetime, ResourceKind},
     plan::{Pass, PassKind, PlanResource, Requirements},
 };
 use stratus_noise::NoiseSet;
@@ -436,29 +437,14 @@ impl Renderer {
             ..Default::default()
         };
         // gpu-allocator picks HOST_COHERENT memory for GpuToCpu, so no invalidation is needed.
-        for (name, role) in copies {
+        for (index, readout) in copies {
             let bytes = self
                 .readbacks
-                .get_mut(&name)
+                .get_mut(&plan.resources[index].name)
                 .expect("created by copy_readbacks")
                 .mapped()?
                 .to_vec();
-            match role {
-                Some(Readout::Output(OutputRole::Radiance)) => {
-                    out.radiance = bytemuck::pod_collect_to_vec(&bytes)
-                }
-                Some(Readout::Output(OutputRole::Depth)) => {
-                    out.depth = bytemuck::pod_collect_to_vec(&bytes)
-                }
-                Some(Readout::Output(OutputRole::Image)) => out.image = bytes,
-                Some(Readout::Counters) => {
-                    let raw: Vec<u32> = bytemuck::pod_collect_to_vec(&bytes);
-                    out.stats = Some(named_counters(plan.counters(), &raw));
-                }
-                None => {
-                    out.resources.insert(name, bytes);
-                }
-            }
+            out.store(plan, index, readout, bytes);
         }
         let ran: Vec<&Pass> = run.iter().map(|&i| &plan.passes[i]).collect();
         out.timings = if timestamps {
@@ -1118,35 +1104,15 @@ impl Renderer {
 
     /// Records the copies a frame's readback asks for into persistent host-visible buffers
     /// (rows tightly packed: Vulkan, unlike WebGPU, needs no 256-byte row alignment).
-    fn copy_readbacks(
-        &mut self,
-        frame: &FrameInput<'_>,
-    ) -> Result<Vec<(String, Option<Readout>)>, Error> {
+    fn copy_readbacks(&mut self, frame: &FrameInput<'_>) -> Result<Vec<(usize, Readout)>, Error> {
         let plan = frame.plan;
-        let mut wanted: Vec<(usize, Option<Readout>)> = Vec::new();
-        if frame.readback.output {
-            for (i, r) in plan.resources.iter().enumerate() {
-                if let Some(role) = r.output {
-                    wanted.push((i, Some(Readout::Output(role))));
-                } else if r.kind == ResourceKind::Counters && plan.stats {
-                    wanted.push((i, Some(Readout::Counters)));
-                }
-            }
-        }
-        for name in &frame.readback.resources {
-            let (i, _) = plan.resource(name).ok_or_else(|| {
-                Error::Shader(format!(
-                    "readback of `{name}`: the plan has no such resource"
-                ))
-            })?;
-            wanted.push((i, None));
-        }
+        let wanted = frame.readback.targets(plan).map_err(Error::Shader)?;
         if wanted.is_empty() {
             return Ok(Vec::new());
         }
         let mut out = Vec::new();
         let mut copies = Vec::new();
-        for (i, role) in wanted {
+        for (i, readout) in wanted {
             let r = &plan.resources[i];
             let (size, key) = match self.resources.get(&r.name).map(|g| &g.object) {
                 Some(Object::Buffer(b)) => (b.size, (r.name.clone(), 0)),
@@ -1166,7 +1132,7 @@ impl Renderer {
                 }
                 _ => {
                     return Err(Error::Shader(format!(
-                        "readback of `{}`: it holds no data the host can read",
+                        "readback of `{}`: it holds no data the host can read (checked by the plan)",
                         r.name
                     )));
                 }
@@ -1187,7 +1153,7 @@ impl Renderer {
                 self.readbacks.insert(r.name.clone(), b);
             }
             copies.push((i, key));
-            out.push((r.name.clone(), role));
+            out.push((i, readout));
         }
         let cb = self.gpu.command_buffer;
         let wants: Vec<(Key, Use)> = copies
@@ -1478,13 +1444,6 @@ fn supplied<'s>(shaders: &'s Shaders, plan: &FramePlan, i: usize) -> Option<&'s 
         .filter(|p| matches!(p.kind, PassKind::Compute { .. }))
         .count();
     list.get(k)
-}
-
-/// Where a read-back resource goes in the frame output.
-#[derive(Clone, Copy)]
-enum Readout {
-    Output(OutputRole),
-    Counters,
 }
 
 /// The pipeline stage of a pass's shaders.

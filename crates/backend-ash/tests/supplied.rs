@@ -3,7 +3,7 @@
 //! everything but the modules and layouts is the same frame), and a wrong number of modules is
 //! an error, not a crash.
 
-use stratus_backend_ash::{Error, Options, PassShader, Renderer, Shaders, Slot, SlotContent};
+use stratus_backend_ash::{Error, Options, PassShader, Renderer, Shaders};
 use stratus_graph::{FrameInput, FramePlan, Program, plan::PassKind};
 use stratus_test_support::{NoiseCache, small};
 
@@ -12,25 +12,8 @@ fn committed_per_pass(plan: &FramePlan) -> Vec<PassShader> {
     let program = Program::embedded().expect("program");
     plan.passes
         .iter()
-        .filter_map(|pass| {
-            let PassKind::Compute { entry, .. } = &pass.kind else {
-                return None;
-            };
-            let spv = &plan.modules[&pass.module].spv_file;
-            Some(PassShader {
-                spirv: program.spirv[spv].clone(),
-                entry: entry.clone(),
-                slots: pass
-                    .bindings
-                    .iter()
-                    .map(|b| Slot {
-                        set: b.group,
-                        binding: b.binding,
-                        content: SlotContent::Plan(plan.resources[b.resource].name.clone()),
-                    })
-                    .collect(),
-            })
-        })
+        .filter(|p| matches!(p.kind, PassKind::Compute { .. }))
+        .map(|pass| PassShader::from_program(&program, plan, pass).expect("module"))
         .collect()
 }
 

@@ -14,16 +14,22 @@ use stratus_test_support::{
     NoiseCache, assert_no_wgpu_messages, frame_differences, record_wgpu_log, small,
 };
 
-#[test]
-fn ash_and_wgpu_are_bit_identical_on_every_preset() {
-    record_wgpu_log();
-    let mut ash = ash_backend::Renderer::new(ash_backend::Options { validation: true })
+/// Both renderers on the same device, with validation.
+fn renderers() -> (ash_backend::Renderer, wgpu_backend::Renderer) {
+    let ash = ash_backend::Renderer::new(ash_backend::Options { validation: true })
         .expect("ash renderer");
-    let mut wgpu = wgpu_backend::Renderer::new(wgpu_backend::Options {
+    let wgpu = wgpu_backend::Renderer::new(wgpu_backend::Options {
         api: wgpu_backend::Api::Vulkan,
         validation: true,
     })
     .expect("wgpu renderer");
+    (ash, wgpu)
+}
+
+#[test]
+fn ash_and_wgpu_are_bit_identical_on_every_preset() {
+    record_wgpu_log();
+    let (mut ash, mut wgpu) = renderers();
     assert_eq!(ash.adapter(), wgpu.adapter(), "both backends on one device");
     let mut noise = NoiseCache::default();
     let mut scenes: Vec<(String, Scene)> = stratus_scene::presets()
@@ -83,13 +89,7 @@ fn ash_and_wgpu_are_bit_identical_on_every_preset() {
 #[test]
 fn a_steady_loop_is_bit_identical_frame_by_frame_and_creates_nothing() {
     record_wgpu_log();
-    let mut ash = ash_backend::Renderer::new(ash_backend::Options { validation: true })
-        .expect("ash renderer");
-    let mut wgpu = wgpu_backend::Renderer::new(wgpu_backend::Options {
-        api: wgpu_backend::Api::Vulkan,
-        validation: true,
-    })
-    .expect("wgpu renderer");
+    let (mut ash, mut wgpu) = renderers();
     let base = small("cumulus-noon", 48, 27);
     let noise = NoiseCache::default().get(&base);
     let plan = FramePlan::for_scene(&base, true).expect("plan");

@@ -25,11 +25,10 @@ use std::{
 use stratus_graph::{
     Backend, BackendError, FrameInput, FrameOutput, FramePlan, Program,
     backend::{
-        DeviceClass, best_device, cpu_wall_timings, describe_device, frame_flags, history_half,
-        passes_to_run, timings_from_ticks, upload_data,
+        DeviceClass, Readout, best_device, cpu_wall_timings, describe_device, frame_flags,
+        history_half, passes_to_run, timings_from_ticks, upload_data,
     },
-    desc::{Lifetime, OutputRole, ResourceKind},
-    named_counters,
+    desc::{Lifetime, ResourceKind},
     plan::{PassKind, PlanResource},
 };
 use stratus_noise::NoiseSet;
@@ -424,24 +423,15 @@ impl Renderer {
             device: self.adapter(),
             ..Default::default()
         };
-        for Copied { name, role, rows } in copies {
-            let bytes = read_buffer(&self.device, &self.readbacks[&name], rows)?;
-            match role {
-                Some(Readout::Output(OutputRole::Radiance)) => {
-                    out.radiance = bytemuck::pod_collect_to_vec(&bytes)
-                }
-                Some(Readout::Output(OutputRole::Depth)) => {
-                    out.depth = bytemuck::pod_collect_to_vec(&bytes)
-                }
-                Some(Readout::Output(OutputRole::Image)) => out.image = bytes,
-                Some(Readout::Counters) => {
-                    let raw: Vec<u32> = bytemuck::pod_collect_to_vec(&bytes);
-                    out.stats = Some(named_counters(plan.counters(), &raw));
-                }
-                None => {
-                    out.resources.insert(name, bytes);
-                }
-            }
+        for Copied {
+            index,
+            readout,
+            rows,
+        } in copies
+        {
+            let name = &plan.resources[index].name;
+            let bytes = read_buffer(&self.device, &self.readbacks[name], rows)?;
+            out.store(plan, index, readout, bytes);
         }
         out.timings = if self.timestamps {
             let q = self
@@ -783,12 +773,18 @@ impl Renderer {
                 count: None,
             })
             .collect();
-        let layout = self
-            .device
-            .create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-                label: Some(&pass.name),
-                entries: &entries,
-            });
+        // A pipeline for another target format shares the pass's bind group layout, so the
+        // pass's bind groups serve both.
+        let base = Self::pipeline_key(plan, i, None);
+        let layout = match self.pipelines.get(&base) {
+            Some(p) if base != key => p.layout.clone(),
+            _ => self
+                .device
+                .create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+                    label: Some(&pass.name),
+                    entries: &entries,
+                }),
+        };
         let pipeline_layout = self
             .device
             .create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
@@ -1041,26 +1037,9 @@ impl Renderer {
         frame: &FrameInput<'_>,
     ) -> Result<Vec<Copied>, Error> {
         let plan = frame.plan;
-        let mut wanted: Vec<(usize, Option<Readout>)> = Vec::new();
-        if frame.readback.output {
-            for (i, r) in plan.resources.iter().enumerate() {
-                if let Some(role) = r.output {
-                    wanted.push((i, Some(Readout::Output(role))));
-                } else if r.kind == ResourceKind::Counters && plan.stats {
-                    wanted.push((i, Some(Readout::Counters)));
-                }
-            }
-        }
-        for name in &frame.readback.resources {
-            let (i, _) = plan.resource(name).ok_or_else(|| {
-                Error::Shader(format!(
-                    "readback of `{name}`: the plan has no such resource"
-                ))
-            })?;
-            wanted.push((i, None));
-        }
+        let wanted = frame.readback.targets(plan).map_err(Error::Shader)?;
         let mut out = Vec::new();
-        for (i, role) in wanted {
+        for (i, readout) in wanted {
             let r = &plan.resources[i];
             let buffer = match &self.resources[&r.name].object {
                 Object::Buffer(b) => Some(b.clone()),
@@ -1073,8 +1052,8 @@ impl Renderer {
                     let rb = self.readback_buffer(&r.name, size);
                     encoder.copy_buffer_to_buffer(&b, 0, &rb, 0, size);
                     out.push(Copied {
-                        name: r.name.clone(),
-                        role,
+                        index: i,
+                        readout,
                         rows: None,
                     });
                 }
@@ -1104,8 +1083,8 @@ impl Renderer {
                         texture.size(),
                     );
                     out.push(Copied {
-                        name: r.name.clone(),
-                        role,
+                        index: i,
+                        readout,
                         rows: Some((padded, row, h * d)),
                     });
                 }
@@ -1138,19 +1117,13 @@ impl Renderer {
     }
 }
 
-/// A copy recorded for readback: the resource (and its readback buffer), where it goes in the
-/// output, and the row layout of a texture (padded row bytes, row bytes, rows).
+/// A copy recorded for readback: the resource (by index into the plan's; its readback buffer
+/// goes by its name), where it goes in the output, and the row layout of a texture (padded row
+/// bytes, row bytes, rows).
 struct Copied {
-    name: String,
-    role: Option<Readout>,
+    index: usize,
+    readout: Readout,
     rows: Option<(u32, u32, u32)>,
-}
-
-/// Where a read-back resource goes in the frame output.
-#[derive(Clone, Copy)]
-enum Readout {
-    Output(OutputRole),
-    Counters,
 }
 
 impl Backend for Renderer {

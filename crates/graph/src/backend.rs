@@ -8,6 +8,8 @@ use stratus_noise::NoiseSet;
 use stratus_scene::Scene;
 
 use crate::{
+    desc::{OutputRole, ResourceKind},
+    named_counters,
     output::{FrameOutput, PassTiming},
     plan::{FramePlan, Pass},
 };
@@ -38,6 +40,81 @@ impl Readback {
             resources: Vec::new(),
         }
     }
+}
+
+/// Where a read-back resource goes in the frame's output.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Readout {
+    /// An output image (radiance, depth, display image).
+    Output(OutputRole),
+    /// The work counters.
+    Counters,
+    /// [`FrameOutput::resources`], by name.
+    Named,
+}
+
+impl Readback {
+    /// The resources of `plan` this readback copies (by index into the plan's resources), and
+    /// where each goes; the same list on every backend.
+    pub fn targets(&self, plan: &FramePlan) -> Result<Vec<(usize, Readout)>, String> {
+        let mut wanted = Vec::new();
+        if self.output {
+            for (i, r) in plan.resources.iter().enumerate() {
+                if let Some(role) = r.output {
+                    wanted.push((i, Readout::Output(role)));
+                } else if r.kind == ResourceKind::Counters && plan.stats {
+                    wanted.push((i, Readout::Counters));
+                }
+            }
+        }
+        for name in &self.resources {
+            let (i, r) = plan
+                .resource(name)
+                .ok_or_else(|| format!("readback of `{name}`: the plan has no such resource"))?;
+            match r.kind {
+                ResourceKind::Sampler => {
+                    return Err(format!("readback of `{name}`: a sampler holds no data"));
+                }
+                ResourceKind::Uniform => {
+                    return Err(format!(
+                        "readback of `{name}`: the uniform block is written by the host"
+                    ));
+                }
+                _ => {}
+            }
+            wanted.push((i, Readout::Named));
+        }
+        Ok(wanted)
+    }
+}
+
+impl FrameOutput {
+    /// Puts the bytes read back from resource `index` of `plan` where `readout` says.
+    pub fn store(&mut self, plan: &FramePlan, index: usize, readout: Readout, bytes: Vec<u8>) {
+        match readout {
+            Readout::Output(OutputRole::Radiance) => self.radiance = floats(&bytes),
+            Readout::Output(OutputRole::Depth) => self.depth = floats(&bytes),
+            Readout::Output(OutputRole::Image) => self.image = bytes,
+            Readout::Counters => {
+                let raw: Vec<u32> = bytes
+                    .chunks_exact(4)
+                    .map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]]))
+                    .collect();
+                self.stats = Some(named_counters(plan.counters(), &raw));
+            }
+            Readout::Named => {
+                self.resources
+                    .insert(plan.resources[index].name.clone(), bytes);
+            }
+        }
+    }
+}
+
+fn floats(bytes: &[u8]) -> Vec<f32> {
+    bytes
+        .chunks_exact(4)
+        .map(|c| f32::from_le_bytes([c[0], c[1], c[2], c[3]]))
+        .collect()
 }
 
 /// One frame to render.

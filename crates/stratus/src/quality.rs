@@ -145,6 +145,21 @@ pub struct Results {
 /// The default location of the bench's results (where `stratus bench` writes by default).
 pub const DEFAULT_RESULTS: &str = "target/stratus-bench/results.json";
 
+/// Marks the Pareto front of (gpu_ms, flip) per scene: no other row of the scene is at least
+/// as fast and at least as accurate and better in one.
+pub fn mark_pareto(rows: &mut [Row]) {
+    let keys: Vec<(String, f64, f64)> = rows
+        .iter()
+        .map(|r| (r.scene.clone(), r.gpu_ms, r.flip))
+        .collect();
+    for (i, r) in rows.iter_mut().enumerate() {
+        let (scene, t, e) = &keys[i];
+        r.pareto = !keys.iter().enumerate().any(|(j, (s, t2, e2))| {
+            j != i && s == scene && t2 <= t && e2 <= e && (t2 < t || e2 < e)
+        });
+    }
+}
+
 /// Why no configuration was picked.
 #[derive(Debug, thiserror::Error)]
 pub enum QualityError {
@@ -342,6 +357,17 @@ mod tests {
                 row("sunset", 64, 8.0, 0.05),
             ],
         }
+    }
+
+    #[test]
+    fn pareto_front_drops_dominated_rows() {
+        let mut r = results();
+        mark_pareto(&mut r.rows);
+        let front: Vec<(u32, bool)> = r.rows[..4]
+            .iter()
+            .map(|r| (r.config.view_steps, r.pareto))
+            .collect();
+        assert_eq!(front, [(8, true), (16, true), (32, false), (64, true)]);
     }
 
     #[test]

@@ -150,3 +150,36 @@ fn targets_that_cannot_take_the_clouds_are_refused() {
         other => panic!("an invalid scene: {other:?}"),
     }
 }
+
+/// A swapchain-like BGRA target gets the same image, its channels in BGRA order (the present
+/// pass's pipeline for that format shares the pass's bind group layout and bind groups).
+#[test]
+fn a_bgra_target_gets_the_same_image() {
+    record_wgpu_log();
+    let (device, queue) = device();
+    let scene = Scene::preset("cumulus-noon").unwrap().with_size(24, 12);
+    let mut clouds = Clouds::new(&device, &queue, scene).expect("clouds");
+    let mut images = Vec::new();
+    for format in [
+        wgpu::TextureFormat::Rgba8Unorm,
+        wgpu::TextureFormat::Bgra8Unorm,
+    ] {
+        let texture = target(&device, format, 24, 12);
+        let mut encoder = device.create_command_encoder(&Default::default());
+        clouds
+            .render(&mut encoder, &texture.create_view(&Default::default()))
+            .expect("render");
+        queue.submit([encoder.finish()]);
+        images.push(read(&device, &queue, &texture));
+    }
+    let swizzled: Vec<u8> = images[1]
+        .chunks_exact(4)
+        .flat_map(|p| [p[2], p[1], p[0], p[3]])
+        .collect();
+    assert_eq!(images[0], swizzled);
+    assert!(
+        images[0].iter().any(|&v| v > 0),
+        "an empty image proves nothing"
+    );
+    assert_no_wgpu_messages();
+}

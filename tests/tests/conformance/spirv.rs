@@ -186,28 +186,11 @@ fn glslang(args: &[&str], source: &Path, out: &Path, legalize: bool) -> Result<V
         .collect())
 }
 
-/// The committed `spirv-out/<spv_file>` module's pass `pass`, bound as the plan says (what
+/// The committed module of compute pass `pass`, bound as the plan says (what
 /// `Renderer::render` runs), as a supplied module.
 pub fn committed(plan: &FramePlan, pass: &Pass) -> Result<PassShader, String> {
-    let entry = compute_entry(pass).ok_or_else(|| format!("pass {} is not compute", pass.name))?;
-    let file = spirv_out().join(&plan.modules[&pass.module].spv_file);
-    let bytes = std::fs::read(&file).map_err(|e| format!("reading {}: {e}", file.display()))?;
-    Ok(PassShader {
-        spirv: bytes
-            .chunks_exact(4)
-            .map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]]))
-            .collect(),
-        entry: entry.to_string(),
-        slots: pass
-            .bindings
-            .iter()
-            .map(|b| Slot {
-                set: b.group,
-                binding: b.binding,
-                content: SlotContent::Plan(bound(plan, b)),
-            })
-            .collect(),
-    })
+    let program = Program::embedded().map_err(|e| e.to_string())?;
+    PassShader::from_program(&program, plan, pass).map_err(|e| e.to_string())
 }
 
 /// Compiles naga's `lang` text of the plan's variant for every compute pass, and lists the

@@ -31,7 +31,7 @@ use std::{
 use anyhow::{Context, Result};
 use clap::{Args, ValueEnum};
 use indicatif::{ProgressBar, ProgressStyle};
-use stratus::quality::{Config, Results, Row, phase_name};
+use stratus::quality::{Config, Results, Row, mark_pareto, phase_name};
 use stratus_compare::{CompareOptions, Image, compare};
 use stratus_graph::{Backend, FrameInput, FramePlan, output::median};
 use stratus_noise::NoiseSet;
@@ -84,21 +84,6 @@ pub struct BenchArgs {
     /// Samples per pixel of the Monte Carlo references (default 24 with --quick, else 128).
     #[arg(long)]
     mc_spp: Option<u32>,
-}
-
-/// Marks the Pareto front of (gpu_ms, flip) per scene: no other row of the scene is at least
-/// as fast and at least as accurate and better in one.
-fn mark_pareto(rows: &mut [Row]) {
-    let keys: Vec<(String, f64, f64)> = rows
-        .iter()
-        .map(|r| (r.scene.clone(), r.gpu_ms, r.flip))
-        .collect();
-    for (i, r) in rows.iter_mut().enumerate() {
-        let (scene, t, e) = &keys[i];
-        r.pareto = !keys.iter().enumerate().any(|(j, (s, t2, e2))| {
-            j != i && s == scene && t2 <= t && e2 <= e && (t2 < t || e2 < e)
-        });
-    }
 }
 
 /// A stability case charted next to the presets: `cumulus-noon` with ten times the
@@ -354,53 +339,5 @@ fn summary(results: &Results) {
             ),
             None => println!("  no configuration within FLIP 0.05"),
         }
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn row(scene: &str, view_steps: u32, gpu_ms: f64, flip: f64) -> Row {
-        let base = Config::of(&Scene::default());
-        let config = Config {
-            view_steps,
-            ..base.clone()
-        };
-        Row {
-            scene: scene.into(),
-            name: config.name(),
-            preset: config == base,
-            config,
-            gpu_ms,
-            passes: BTreeMap::new(),
-            time_vs_preset: 1.0,
-            view_steps_pp: 0.0,
-            light_samples_pp: 0.0,
-            samples_pp: f64::from(view_steps),
-            rmse: flip,
-            flip,
-            flip_p95: flip,
-            reference: "quadrature".into(),
-            pareto: false,
-        }
-    }
-
-    #[test]
-    fn pareto_front_drops_dominated_rows() {
-        let mut rows = vec![
-            row("cumulus-noon", 8, 1.0, 0.2),
-            row("cumulus-noon", 16, 2.0, 0.1),
-            row("cumulus-noon", 32, 5.0, 0.12),
-            row("cumulus-noon", 64, 8.0, 0.01),
-            row("sunset", 8, 1.0, 0.3),
-            row("sunset", 64, 8.0, 0.05),
-        ];
-        mark_pareto(&mut rows);
-        let front: Vec<(u32, bool)> = rows[..4]
-            .iter()
-            .map(|r| (r.config.view_steps, r.pareto))
-            .collect();
-        assert_eq!(front, [(8, true), (16, true), (32, false), (64, true)]);
     }
 }
