@@ -1,7 +1,7 @@
 //! Adding a pass touches the WGSL and the graph file, and no backend code: this test adds a
-//! WGSL module and three passes to a copy of the real tree (a compute pass that accumulates a
-//! history resource, a conditional one that starts it, and a raster pass with a depth target,
-//! blending and a fixed extent), builds it with the real tool chain (naga, the graph check), and runs it on
+//! WGSL module and four passes to a copy of the real tree (a compute pass that accumulates a
+//! history resource, a conditional one that starts it, one that computes a persistent LUT only
+//! while it is stale, and a raster pass with a depth target, blending and a fixed extent), builds it with the real tool chain (naga, the graph check), and runs it on
 //! both backends under validation. They must agree bit for bit, frame by frame, and the
 //! values must be what the WGSL computes.
 
@@ -17,6 +17,15 @@ const PROBE_WGSL: &str = r#"
 @group(0) @binding(1) var image_in: texture_2d<f32>;
 @group(0) @binding(2) var count_in: texture_2d<f32>;
 @group(0) @binding(3) var count_out: texture_storage_2d<r32float, write>;
+@group(0) @binding(4) var lut_out: texture_storage_2d<r32float, write>;
+@group(0) @binding(5) var lut_in: texture_2d<f32>;
+
+// A "LUT", computed once and again only when the host invalidates it: every texel 1.
+@compute @workgroup_size(8, 8, 1)
+fn bake(@builtin(global_invocation_id) id: vec3<u32>) {
+    if any(id.xy >= textureDimensions(lut_out)) { return; }
+    textureStore(lut_out, id.xy, vec4<f32>(1.0, 0.0, 0.0, 1.0));
+}
 
 // First frame (no history yet): every texel starts at the red of the display image.
 @compute @workgroup_size(8, 8, 1)
@@ -25,12 +34,13 @@ fn start(@builtin(global_invocation_id) id: vec3<u32>) {
     textureStore(count_out, id.xy, vec4<f32>(textureLoad(image_in, id.xy, 0).r, 0.0, 0.0, 1.0));
 }
 
-// Later frames: last frame's value plus one.
+// Later frames: last frame's value plus the LUT's (one): the LUT must have kept its contents.
 @compute @workgroup_size(8, 8, 1)
 fn accumulate(@builtin(global_invocation_id) id: vec3<u32>) {
     if any(id.xy >= textureDimensions(count_out)) { return; }
     let previous = textureLoad(count_in, id.xy, 0).r;
-    textureStore(count_out, id.xy, vec4<f32>(previous + 1.0, 0.0, 0.0, 1.0));
+    let step = textureLoad(lut_in, vec2<u32>(id.x % 4u, 0u), 0).r;
+    textureStore(count_out, id.xy, vec4<f32>(previous + step, 0.0, 0.0, 1.0));
 }
 
 // Vertices 0-2: a triangle over the top-left quadrant (x < 0, y > 0 in clip space, y up) at
@@ -60,6 +70,13 @@ extent = "output/2"
 lifetime = "history"
 
 [[resource]]
+name = "lut"
+kind = "texture"
+format = "r32float"
+extent = [4, 1]
+lifetime = "persistent"
+
+[[resource]]
 name = "probe-target"
 kind = "texture"
 format = "rgba8unorm"
@@ -70,6 +87,15 @@ name = "probe-depth"
 kind = "texture"
 format = "depth32float"
 extent = [16, 8]
+
+[[pass]]
+name = "bake"
+module = "probe"
+compute = "bake"
+extent = [4, 1]
+when = "stale:lut"
+[pass.bind]
+lut_out = "lut"
 
 [[pass]]
 name = "start"
@@ -90,6 +116,7 @@ when = "history"
 [pass.bind]
 count_in = "count.previous"
 count_out = "count"
+lut_in = "lut"
 
 [[pass]]
 name = "cover"
@@ -141,13 +168,23 @@ fn a_pass_added_only_through_the_graph_runs_on_both_backends() {
         resources: vec!["count".into(), "probe-target".into()],
     };
     let mut expected: Vec<f32> = Vec::new();
-    for i in 0..4 {
-        let frame = FrameInput::new(&plan, &scene, &noise).with_readback(readback.clone());
+    for i in 0..5 {
+        // Frame 3 invalidates the LUT (its inputs changed): it is baked again then only.
+        let invalidate: &[&str] = if i == 3 { &["lut"] } else { &[] };
+        let frame = FrameInput::new(&plan, &scene, &noise)
+            .with_readback(readback.clone())
+            .with_invalidated(invalidate);
         let a = ash.render(&frame).expect("ash frame");
         let w = wgpu.render(&frame).expect("wgpu frame");
         let ran: Vec<&str> = a.timings.iter().map(|t| t.pass.as_str()).collect();
-        let counting = if i == 0 { "start" } else { "accumulate" };
-        assert_eq!(ran, ["march", "composite", counting, "cover"], "frame {i}");
+        let expected_passes: &[&str] = match i {
+            0 => &["march", "composite", "bake", "start", "cover"],
+            3 => &["march", "composite", "bake", "accumulate", "cover"],
+            _ => &["march", "composite", "accumulate", "cover"],
+        };
+        assert_eq!(ran, expected_passes, "frame {i}");
+        let ran_wgpu: Vec<&str> = w.timings.iter().map(|t| t.pass.as_str()).collect();
+        assert_eq!(ran_wgpu, ran, "frame {i}: the same passes on wgpu");
         let diffs = stratus_test_support::frame_differences(&format!("frame {i}"), &a, &w);
         assert!(diffs.is_empty(), "{}", diffs.join("\n"));
 

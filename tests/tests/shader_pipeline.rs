@@ -175,6 +175,10 @@ fn a_graph_that_disagrees_with_the_wgsl_is_refused() {
             graph.replace("frame = \"frame\"\nshape_tex", "frame = \"shape\"\nshape_tex"),
             "`frame` is a uniform buffer in the WGSL",
         ),
+        (
+            graph.replace("when = \"present\"", "when = \"stale:cloud\""),
+            "names no computed persistent resource",
+        ),
     ];
     for (text, expected) in cases {
         assert_ne!(&text, graph, "the case changes the graph");

@@ -41,7 +41,7 @@ use gpu_allocator::MemoryLocation;
 use stratus_graph::{
     Backend, BackendError, FrameInput, FrameOutput, FramePlan, PassTiming, Program,
     backend::{
-        Readout, cpu_wall_timings, frame_flags, history_half, timings_from_ticks, upload_data,
+        FrameState, Readout, cpu_wall_timings, history_half, timings_from_ticks, upload_data,
     },
     desc::{Lifetime, ResourceKind},
     plan::{Pass, PassKind, PlanResource, Requirements},
@@ -137,10 +137,8 @@ pub struct Renderer {
     query_pool: vk::QueryPool,
     query_count: u32,
     readbacks: HashMap<String, GpuBuffer>,
-    /// Frames rendered since the history resources were (re)created.
-    history_frames: u64,
-    /// Frames rendered.
-    frame: u64,
+    /// Frame count, history validity, computed persistent resources (the shared rules).
+    frames: FrameState,
     created: u64,
     cpu_timing: bool,
     torn_down: bool,
@@ -173,8 +171,7 @@ impl Renderer {
             query_pool: vk::QueryPool::null(),
             query_count: 0,
             readbacks: HashMap::new(),
-            history_frames: 0,
-            frame: 0,
+            frames: FrameState::default(),
             created: 0,
             cpu_timing: false,
             torn_down: false,
@@ -352,10 +349,7 @@ impl Renderer {
         let t0 = Instant::now();
         self.prepare(frame, shaders)?;
         let plan = frame.plan;
-        let flags = frame_flags(frame, self.history_frames > 0);
-        let run: Vec<usize> = (0..plan.passes.len())
-            .filter(|&i| plan.passes[i].runs(&flags))
-            .collect();
+        let run = self.frames.passes(frame);
         let timestamps = self.has_timestamps();
 
         // 1. The uniform block (host-visible; the previous frame was waited for).
@@ -426,8 +420,7 @@ impl Renderer {
         let w = self.submit_and_wait()?;
         let cpu_ms = t_submit.duration_since(t0).as_secs_f64() * 1e3 - waited
             + (t_submit.elapsed().as_secs_f64() * 1e3 - w).max(0.0);
-        self.frame += 1;
-        self.history_frames += 1;
+        self.frames.finished(plan, &run);
 
         let mut out = FrameOutput {
             width: plan.width,
@@ -536,9 +529,7 @@ impl Renderer {
                 },
             );
             rebuilt = true;
-            if r.lifetime == Lifetime::History {
-                self.history_frames = 0;
-            }
+            self.frames.created(r);
         }
         let stale: Vec<String> = self
             .resources
@@ -984,7 +975,7 @@ impl Renderer {
     fn key(&self, plan: &FramePlan, index: usize, previous: bool) -> Key {
         let r = &plan.resources[index];
         let half = if r.lifetime == Lifetime::History {
-            history_half(self.frame, previous)
+            history_half(self.frames.frame(), previous)
         } else {
             0
         };
@@ -1014,7 +1005,7 @@ impl Renderer {
         }
         let p = &self.pipelines[&state.keys[i]];
         let parity = if plan.has_history() {
-            (self.frame % 2) as usize
+            (self.frames.frame() % 2) as usize
         } else {
             0
         };
@@ -1117,7 +1108,7 @@ impl Renderer {
             let (size, key) = match self.resources.get(&r.name).map(|g| &g.object) {
                 Some(Object::Buffer(b)) => (b.size, (r.name.clone(), 0)),
                 Some(Object::Images(_)) => {
-                    let image = self.target(plan, i, self.frame)?;
+                    let image = self.target(plan, i, self.frames.frame())?;
                     let f = r
                         .format
                         .unwrap_or(stratus_graph::desc::TexelFormat::Rgba8Unorm);
@@ -1183,7 +1174,7 @@ impl Renderer {
                         device.cmd_copy_buffer(cb, b.buffer, dst, &[region]);
                     }
                     _ => {
-                        let image = self.target(plan, *i, self.frame)?;
+                        let image = self.target(plan, *i, self.frames.frame())?;
                         let region = vk::BufferImageCopy::default()
                             .image_subresource(vk::ImageSubresourceLayers {
                                 aspect_mask: range(image.format).aspect_mask,

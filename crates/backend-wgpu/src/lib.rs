@@ -25,8 +25,8 @@ use std::{
 use stratus_graph::{
     Backend, BackendError, FrameInput, FrameOutput, FramePlan, Program,
     backend::{
-        DeviceClass, Readout, best_device, cpu_wall_timings, describe_device, frame_flags,
-        history_half, passes_to_run, timings_from_ticks, upload_data,
+        DeviceClass, FrameState, Readout, best_device, cpu_wall_timings, describe_device,
+        history_half, timings_from_ticks, upload_data,
     },
     desc::{Lifetime, ResourceKind},
     plan::{PassKind, PlanResource},
@@ -135,10 +135,8 @@ pub struct Renderer {
     groups: Vec<Vec<wgpu::BindGroup>>,
     uniform: Option<wgpu::Buffer>,
     noise: Option<Arc<NoiseSet>>,
-    /// Frames rendered since the history resources were (re)created.
-    history_frames: u64,
-    /// Frames rendered.
-    frame: u64,
+    /// Frame count, history validity, computed persistent resources (the shared rules).
+    frames: FrameState,
     queries: Option<Queries>,
     readbacks: HashMap<String, wgpu::Buffer>,
     /// Uncaptured errors, where the renderer owns the device (an application keeps its own
@@ -248,8 +246,7 @@ impl Renderer {
             groups: Vec::new(),
             uniform: None,
             noise: None,
-            history_frames: 0,
-            frame: 0,
+            frames: FrameState::default(),
             queries: None,
             readbacks: HashMap::new(),
             errors: None,
@@ -360,16 +357,13 @@ impl Renderer {
         let target_format = target.map(|t| t.texture().format());
         self.prepare(frame, target_format)?;
         let plan = frame.plan;
-        let flags = frame_flags(frame, self.history_frames > 0);
-        let run: Vec<usize> = (0..plan.passes.len())
-            .filter(|&i| plan.passes[i].runs(&flags))
-            .collect();
+        let run = self.frames.passes(frame);
         self.begin_frame(encoder, frame);
         for (k, &i) in run.iter().enumerate() {
             self.record_pass(encoder, i, Some(k as u32), target, target_format)?;
         }
         self.resolve_queries(encoder, run.len() as u32);
-        self.end_frame();
+        self.frames.finished(plan, &run);
         Ok(run.iter().map(|&i| plan.passes[i].name.clone()).collect())
     }
 
@@ -377,11 +371,9 @@ impl Renderer {
         let t0 = Instant::now();
         self.prepare(frame, None)?;
         let plan = frame.plan;
-        let flags = frame_flags(frame, self.history_frames > 0);
-        let run = passes_to_run(plan, &flags);
-        let indices: Vec<usize> = (0..plan.passes.len())
-            .filter(|&i| plan.passes[i].runs(&flags))
-            .collect();
+        let indices = self.frames.passes(frame);
+        let run: Vec<&stratus_graph::plan::Pass> =
+            indices.iter().map(|&i| &plan.passes[i]).collect();
         let mut encoder = self.device.create_command_encoder(&Default::default());
         self.begin_frame(&mut encoder, frame);
         let mut wall = Vec::new();
@@ -413,7 +405,7 @@ impl Renderer {
         let copies = self.copy_readbacks(&mut encoder, frame)?;
         self.queue.submit([encoder.finish()]);
         let cpu_ms = t0.elapsed().as_secs_f64() * 1e3 - waited;
-        self.end_frame();
+        self.frames.finished(plan, &indices);
         self.wait()?;
 
         let mut out = FrameOutput {
@@ -468,11 +460,6 @@ impl Renderer {
                 }
             }
         }
-    }
-
-    fn end_frame(&mut self) {
-        self.frame += 1;
-        self.history_frames += 1;
     }
 
     /// Creates or updates what `frame` needs: resources, pipelines, bind groups, uploads.
@@ -535,9 +522,7 @@ impl Renderer {
                     },
                 );
                 rebuilt = true;
-                if r.lifetime == Lifetime::History {
-                    self.history_frames = 0;
-                }
+                self.frames.created(r);
             }
         }
         self.resources
@@ -920,7 +905,7 @@ impl Renderer {
         match &self.resources[&r.name].object {
             Object::Textures(t) => {
                 let half = if r.lifetime == Lifetime::History {
-                    history_half(self.frame, false)
+                    history_half(self.frames.frame(), false)
                 } else {
                     0
                 };
@@ -942,7 +927,7 @@ impl Renderer {
         let plan = self.plan.as_ref().expect("prepared");
         let pass = &plan.passes[i];
         let parity = if plan.has_history() {
-            (self.frame % 2) as usize
+            (self.frames.frame() % 2) as usize
         } else {
             0
         };

@@ -105,18 +105,22 @@ fn wgpu(api: backend_wgpu::Api) -> Result<backend_wgpu::Renderer, backend_wgpu::
     })
 }
 
-fn cpu_realtime() -> CpuBackend {
+/// The CPU renderer with the GPU's real-time settings; `progress`: a progress bar per frame.
+fn cpu_realtime(progress: bool) -> CpuBackend {
     CpuBackend {
         integrator: stratus_reference::Integrator::Quadrature(
             stratus_reference::QuadratureSettings::realtime(),
         ),
         label: "cpu (real-time settings)",
-        progress: true,
+        progress,
     }
 }
 
 /// The renderer `backend` names; `auto` falls back from Vulkan to GL to the CPU, saying so.
 fn open_backend(backend: Backend, args: &RenderArgs) -> Result<Box<dyn stratus_graph::Backend>> {
+    // A CPU frame's own progress bar (rows) for a single frame; a loop shows one bar of
+    // frames instead.
+    let progress = args.frames == 1;
     Ok(match backend {
         Backend::Wgpu => Box::new(wgpu(backend_wgpu::Api::Vulkan)?),
         Backend::WgpuGl => Box::new(wgpu(backend_wgpu::Api::Gl)?),
@@ -125,14 +129,14 @@ fn open_backend(backend: Backend, args: &RenderArgs) -> Result<Box<dyn stratus_g
                 validation: validation(),
             },
         )?),
-        Backend::Cpu => Box::new(cpu_realtime()),
+        Backend::Cpu => Box::new(cpu_realtime(progress)),
         Backend::Reference => Box::new(match args.integrator {
             IntegratorArg::Quadrature => CpuBackend {
                 integrator: stratus_reference::Integrator::Quadrature(
                     stratus_reference::QuadratureSettings::converged(),
                 ),
                 label: "reference (converged quadrature)",
-                progress: true,
+                progress,
             },
             IntegratorArg::Montecarlo => CpuBackend {
                 integrator: stratus_reference::Integrator::MonteCarlo {
@@ -140,7 +144,7 @@ fn open_backend(backend: Backend, args: &RenderArgs) -> Result<Box<dyn stratus_g
                     orders: args.orders,
                 },
                 label: "reference (Monte Carlo)",
-                progress: true,
+                progress,
             },
         }),
         Backend::Auto => match wgpu(backend_wgpu::Api::Vulkan) {
@@ -156,7 +160,7 @@ fn open_backend(backend: Backend, args: &RenderArgs) -> Result<Box<dyn stratus_g
                     eprintln!(
                         "note: no Vulkan or GL device; rendering on the CPU (install mesa-vulkan-drivers for a Vulkan device)"
                     );
-                    Box::new(cpu_realtime())
+                    Box::new(cpu_realtime(progress))
                 }
             },
         },

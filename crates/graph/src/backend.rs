@@ -8,10 +8,10 @@ use stratus_noise::NoiseSet;
 use stratus_scene::Scene;
 
 use crate::{
-    desc::{OutputRole, ResourceKind},
+    desc::{Lifetime, OutputRole, ResourceKind},
     named_counters,
     output::{FrameOutput, PassTiming},
-    plan::{FramePlan, Pass},
+    plan::{FramePlan, Pass, PlanResource},
 };
 
 /// A backend's error, boxed so that one trait object serves every backend.
@@ -129,8 +129,12 @@ pub struct FrameInput<'a> {
     pub noise: &'a Arc<NoiseSet>,
     /// What to read back.
     pub readback: Readback,
-    /// Host flags for conditional passes (the backend adds `stats` and `history`).
+    /// Host flags for conditional passes (the backend adds `stats`, `history` and
+    /// `stale:NAME`).
     pub flags: &'a [&'a str],
+    /// Computed persistent resources whose inputs changed (a LUT when the sun moved): the
+    /// passes that compute them run again (`when = "stale:NAME"`).
+    pub invalidate: &'a [&'a str],
 }
 
 impl<'a> FrameInput<'a> {
@@ -142,6 +146,7 @@ impl<'a> FrameInput<'a> {
             noise,
             readback: Readback::output(),
             flags: &[],
+            invalidate: &[],
         }
     }
 
@@ -153,6 +158,11 @@ impl<'a> FrameInput<'a> {
     /// The same frame with these host flags.
     pub fn with_flags(self, flags: &'a [&'a str]) -> Self {
         Self { flags, ..self }
+    }
+
+    /// The same frame, recomputing these computed persistent resources.
+    pub fn with_invalidated(self, invalidate: &'a [&'a str]) -> Self {
+        Self { invalidate, ..self }
     }
 }
 
@@ -242,22 +252,79 @@ pub fn cpu_wall_timings(passes: &[&Pass], ms: &[f64]) -> Vec<PassTiming> {
         .collect()
 }
 
-/// The flags of a frame: the host's, `stats` when the plan counts, `history` once last
-/// frame's history is valid.
-pub fn frame_flags<'a>(frame: &FrameInput<'a>, history_valid: bool) -> Vec<&'a str> {
-    let mut flags = frame.flags.to_vec();
-    if frame.plan.stats {
-        flags.push("stats");
-    }
-    if history_valid {
-        flags.push("history");
-    }
-    flags
+/// What a backend remembers between frames that decides which passes run and which half of a
+/// history pair is current: the frame count, frames since the history resources were made,
+/// and which computed persistent resources hold their results. Both backends keep one and
+/// tell it what they create; the rules live here once.
+#[derive(Clone, Debug, Default)]
+pub struct FrameState {
+    frame: u64,
+    history_frames: u64,
+    computed: std::collections::BTreeSet<String>,
 }
 
-/// The passes of `plan` that run with `flags`, in order.
-pub fn passes_to_run<'p>(plan: &'p FramePlan, flags: &[&str]) -> Vec<&'p Pass> {
-    plan.passes.iter().filter(|p| p.runs(flags)).collect()
+impl FrameState {
+    /// Frames rendered so far (its parity picks the current half of history pairs).
+    pub fn frame(&self) -> u64 {
+        self.frame
+    }
+
+    /// A resource was (re)created: a history pair starts without history, a computed
+    /// persistent resource without its result.
+    pub fn created(&mut self, r: &PlanResource) {
+        if r.lifetime == Lifetime::History {
+            self.history_frames = 0;
+        }
+        self.computed.remove(&r.name);
+    }
+
+    /// The flags of this frame: the host's; `stats` when the plan counts; `history` once last
+    /// frame's history is valid; `stale:NAME` for every computed persistent resource that has
+    /// no result yet or that the host invalidated.
+    pub fn flags(&self, frame: &FrameInput<'_>) -> Vec<String> {
+        let mut flags: Vec<String> = frame.flags.iter().map(|f| f.to_string()).collect();
+        if frame.plan.stats {
+            flags.push("stats".into());
+        }
+        if self.history_frames > 0 {
+            flags.push("history".into());
+        }
+        for r in frame
+            .plan
+            .resources
+            .iter()
+            .filter(|r| r.is_computed_persistent())
+        {
+            if !self.computed.contains(&r.name) || frame.invalidate.contains(&r.name.as_str()) {
+                flags.push(format!("stale:{}", r.name));
+            }
+        }
+        flags
+    }
+
+    /// The passes of the plan that run in this frame, by index, in order.
+    pub fn passes(&self, frame: &FrameInput<'_>) -> Vec<usize> {
+        let flags = self.flags(frame);
+        let flags: Vec<&str> = flags.iter().map(String::as_str).collect();
+        (0..frame.plan.passes.len())
+            .filter(|&i| frame.plan.passes[i].runs(&flags))
+            .collect()
+    }
+
+    /// The frame ran `ran` (indices into the plan's passes): computed persistent resources
+    /// they wrote now hold results, and history moves on.
+    pub fn finished(&mut self, plan: &FramePlan, ran: &[usize]) {
+        for &i in ran {
+            for r in plan.passes[i].writes() {
+                let r = &plan.resources[r];
+                if r.is_computed_persistent() {
+                    self.computed.insert(r.name.clone());
+                }
+            }
+        }
+        self.frame += 1;
+        self.history_frames += 1;
+    }
 }
 
 /// The size (x, y, z) and RGBA8 bytes of the host data an upload names, checked against each

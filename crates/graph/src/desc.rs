@@ -344,8 +344,9 @@ pub struct PassDesc {
     #[serde(default)]
     pub extent: ExtentDesc,
     /// Runs only when this frame flag is set (`!flag`: only when it is not). Frames set
-    /// `stats` when counting, `history` once last frame's history is valid, `present` when
-    /// the host asked for the display target; hosts may set their own.
+    /// `stats` when counting, `history` once last frame's history is valid, `stale:NAME` while
+    /// the computed persistent resource NAME has no result (new, or invalidated by the host),
+    /// `present` when the host asked for the display target; hosts may set their own.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub when: Option<String>,
     /// WGSL global name -> resource name (`name.previous` for last frame's half of a history
@@ -520,6 +521,21 @@ impl GraphDesc {
                 p.push(format!("{at}: a compute pass has no raster targets"))
             }
             _ => {}
+        }
+        if let Some(name) = pass
+            .when
+            .as_deref()
+            .map(|w| w.trim().trim_start_matches('!').trim())
+            .and_then(|w| w.strip_prefix("stale:"))
+        {
+            let computed = self
+                .resource(name)
+                .is_some_and(|r| r.lifetime == Lifetime::Persistent && r.upload.is_none());
+            if !computed {
+                p.push(format!(
+                    "{at}: `when = \"stale:{name}\"` names no computed persistent resource (lifetime = \"persistent\", not uploaded)"
+                ));
+            }
         }
         if raster && pass.vertices == 0 {
             p.push(format!("{at}: `vertices` must be at least 1"));

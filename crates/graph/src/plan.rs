@@ -84,6 +84,12 @@ impl PlanResource {
         (self.counters.len() * 4) as u64
     }
 
+    /// Whether a pass computes its contents, once and again only when they go stale: a
+    /// persistent resource that is not uploaded (a LUT).
+    pub fn is_computed_persistent(&self) -> bool {
+        self.lifetime == Lifetime::Persistent && self.upload.is_none()
+    }
+
     /// What a backend must agree on to keep the resource across plans: if this is equal,
     /// the existing GPU object serves the new plan.
     pub fn signature(&self) -> impl PartialEq + '_ {
@@ -213,6 +219,21 @@ pub struct Pass {
 }
 
 impl Pass {
+    /// The resources the pass writes (storage writes, raster targets), by index.
+    pub fn writes(&self) -> Vec<usize> {
+        let mut out: Vec<usize> = self
+            .bindings
+            .iter()
+            .filter(|b| b.info.access.is_some_and(crate::manifest::Access::writes))
+            .map(|b| b.resource)
+            .collect();
+        if let PassKind::Raster { colors, depth, .. } = &self.kind {
+            out.extend(colors.iter().map(|c| c.resource));
+            out.extend(depth.iter().map(|d| d.resource));
+        }
+        out
+    }
+
     /// Whether the pass runs in a frame with these flags.
     pub fn runs(&self, flags: &[&str]) -> bool {
         self.when.as_ref().is_none_or(|c| c.holds(flags))

@@ -21,32 +21,27 @@
 //! `stratus render --max-error` reads it) and `chart.png` / `chart.svg` (FLIP against GPU time
 //! per scene, front joined and named; the PNG has no text, the SVG names everything).
 
-use std::{
-    collections::BTreeMap,
-    io::Write as _,
-    path::{Path, PathBuf},
-    sync::Arc,
-};
+use std::path::PathBuf;
 
 use anyhow::{Context, Result};
 use clap::{Args, ValueEnum};
 use indicatif::{ProgressBar, ProgressStyle};
-use stratus::quality::{Config, Results, Row, mark_pareto, phase_name};
-use stratus_compare::{CompareOptions, Image, compare};
-use stratus_graph::{Backend, FrameInput, FramePlan, output::median};
-use stratus_noise::NoiseSet;
-use stratus_scene::{Scene, ShapeTexture};
+use stratus::quality::{Config, Results, mark_pareto};
+use stratus_graph::Backend;
+use stratus_scene::Scene;
 
-use crate::scene_io::{check_finite, parse_size};
+use crate::scene_io::parse_size;
 
 mod chart;
 mod reference_cache;
+mod report;
 mod sweep;
 
 use self::{
     chart::chart,
-    reference_cache::{cache_dir, reference},
-    sweep::sweep,
+    reference_cache::cache_dir,
+    report::{summary, write_csv},
+    sweep::{MeasureSettings, SceneSweep, measure, sweep},
 };
 
 /// The GPU backend the bench times.
@@ -152,9 +147,14 @@ pub fn run(args: BenchArgs) -> Result<()> {
             // path tracer in a medium this dense would take far too long for a sweep.
             configs.retain(|c| c.octaves == 0);
         }
-        plan_scenes.push((name.clone(), scene, configs, base));
+        plan_scenes.push(SceneSweep {
+            name: name.clone(),
+            scene,
+            configs,
+            base,
+        });
     }
-    let total: usize = plan_scenes.iter().map(|p| p.2.len()).sum();
+    let total: usize = plan_scenes.iter().map(|p| p.configs.len()).sum();
     let bar = ProgressBar::new(total as u64);
     if let Ok(style) = ProgressStyle::with_template(
         "{msg:40} [{elapsed_precise}] {wide_bar} {pos}/{len} configurations",
@@ -162,90 +162,12 @@ pub fn run(args: BenchArgs) -> Result<()> {
         bar.set_style(style);
     }
 
-    let mut noises: BTreeMap<(u64, bool), Arc<NoiseSet>> = BTreeMap::new();
-    let mut rows = Vec::new();
-    for (name, scene, configs, base) in &plan_scenes {
-        let mut scene_rows: Vec<Row> = Vec::new();
-        for config in configs {
-            bar.set_message(format!("{name}: {}", config.name()));
-            let s = config.apply(scene);
-            s.validate().map_err(|e| anyhow::anyhow!("{e}"))?;
-            let hzd = s.noise.shape_texture == ShapeTexture::Hzd;
-            let noise = noises
-                .entry((s.noise.seed, hzd))
-                .or_insert_with(|| Arc::new(stratus::noise_for(&s)));
-            let (reference, label) = reference(&s, noise, mc_spp)?;
-            let plan = FramePlan::for_scene(&s, false)?;
-            let mut frame = None;
-            let mut totals = Vec::new();
-            let mut passes: BTreeMap<String, Vec<f64>> = BTreeMap::new();
-            // One warm-up render (resources, pipeline compilation), then the timed repeats.
-            let input = FrameInput::new(&plan, &s, noise);
-            renderer
-                .render(&input)
-                .map_err(|e| anyhow::anyhow!("{e}"))?;
-            for _ in 0..repeats {
-                let f = renderer
-                    .render(&input)
-                    .map_err(|e| anyhow::anyhow!("{e}"))?;
-                check_finite(&f)?;
-                totals.push(f.timings.iter().map(|t| t.ms).sum());
-                for t in &f.timings {
-                    passes.entry(t.pass.clone()).or_default().push(t.ms);
-                }
-                frame = Some(f);
-            }
-            let frame = frame.expect("at least one repeat");
-            let stats_plan = FramePlan::for_scene(&s, true)?;
-            let counted = renderer
-                .render(&FrameInput::new(&stats_plan, &s, noise))
-                .map_err(|e| anyhow::anyhow!("{e}"))?;
-            let c = counted.stats.unwrap_or_default();
-            let pixels = c.get("pixels").copied().unwrap_or(1).max(1) as f64;
-            let per = |k: &str| c.get(k).copied().unwrap_or(0) as f64 / pixels;
-
-            let options = CompareOptions {
-                exposure: 1.0,
-                ..CompareOptions::default()
-            };
-            let linear = compare(
-                &Image::from_frame_radiance(&reference),
-                &Image::from_frame_radiance(&frame),
-                &options,
-            )?;
-            let display = compare(
-                &Image::from_frame_display(&reference),
-                &Image::from_frame_display(&frame),
-                &options,
-            )?;
-            scene_rows.push(Row {
-                scene: name.clone(),
-                name: config.name(),
-                preset: config == base,
-                config: config.clone(),
-                gpu_ms: median(totals),
-                passes: passes.into_iter().map(|(k, v)| (k, median(v))).collect(),
-                time_vs_preset: 0.0,
-                view_steps_pp: per("view_steps"),
-                light_samples_pp: per("light_samples"),
-                samples_pp: per("density_evaluations"),
-                rmse: linear.rmse,
-                flip: display.flip.mean,
-                flip_p95: display.flip.p95,
-                reference: label,
-                pareto: false,
-            });
-            bar.inc(1);
-        }
-        let preset_ms = scene_rows
-            .iter()
-            .find(|r| r.preset)
-            .map_or(1.0, |r| r.gpu_ms.max(1e-9));
-        for r in &mut scene_rows {
-            r.time_vs_preset = r.gpu_ms / preset_ms;
-        }
-        rows.extend(scene_rows);
-    }
+    let mut rows = measure(
+        renderer.as_mut(),
+        &plan_scenes,
+        MeasureSettings { repeats, mc_spp },
+        &bar,
+    )?;
     bar.finish_and_clear();
     mark_pareto(&mut rows);
 
@@ -270,74 +192,4 @@ pub fn run(args: BenchArgs) -> Result<()> {
         args.out.display()
     );
     Ok(())
-}
-
-fn write_csv(path: &Path, rows: &[Row]) -> Result<()> {
-    let mut f = std::io::BufWriter::new(
-        std::fs::File::create(path).with_context(|| format!("writing {}", path.display()))?,
-    );
-    writeln!(
-        f,
-        "scene,config,preset,view_steps,light_steps,integration,phase,beer_powder,octaves,jitter,shape_texture,gpu_ms,march_ms,composite_ms,time_vs_preset,view_steps_pp,light_samples_pp,samples_pp,rmse,flip,flip_p95,reference,pareto"
-    )?;
-    for r in rows {
-        let c = &r.config;
-        writeln!(
-            f,
-            "{},{},{},{},{},{:?},{},{},{},{},{:?},{:.4},{:.4},{:.4},{:.3},{:.2},{:.2},{:.2},{:.6},{:.5},{:.5},{},{}",
-            r.scene,
-            r.name,
-            r.preset,
-            c.view_steps,
-            c.light_steps,
-            c.integration,
-            phase_name(c.phase),
-            c.beer_powder,
-            c.octaves,
-            c.jitter,
-            c.shape_texture,
-            r.gpu_ms,
-            r.passes.get("march").copied().unwrap_or(0.0),
-            r.passes.get("composite").copied().unwrap_or(0.0),
-            r.time_vs_preset,
-            r.view_steps_pp,
-            r.light_samples_pp,
-            r.samples_pp,
-            r.rmse,
-            r.flip,
-            r.flip_p95,
-            r.reference,
-            r.pareto
-        )?;
-    }
-    Ok(())
-}
-
-/// Prints, per scene, the front and the cheapest configuration within FLIP 0.05.
-fn summary(results: &Results) {
-    let mut scenes: Vec<&str> = results.rows.iter().map(|r| r.scene.as_str()).collect();
-    scenes.dedup();
-    for scene in scenes {
-        let rows: Vec<&Row> = results.rows.iter().filter(|r| r.scene == scene).collect();
-        println!("{scene}:");
-        let mut front: Vec<&&Row> = rows.iter().filter(|r| r.pareto).collect();
-        front.sort_by(|a, b| a.gpu_ms.total_cmp(&b.gpu_ms));
-        for r in front {
-            println!(
-                "  front  {:42} {:7.3} ms ({:4.2}x preset) {:7.1} samples/px  FLIP {:.4}  RMSE {:.4} ({})",
-                r.name, r.gpu_ms, r.time_vs_preset, r.samples_pp, r.flip, r.rmse, r.reference
-            );
-        }
-        match rows
-            .iter()
-            .filter(|r| r.flip <= 0.05)
-            .min_by(|a, b| a.gpu_ms.total_cmp(&b.gpu_ms))
-        {
-            Some(r) => println!(
-                "  cheapest within FLIP 0.05: {} ({:.3} ms, {:.2}x preset, {:.1} samples/px, FLIP {:.4})",
-                r.name, r.gpu_ms, r.time_vs_preset, r.samples_pp, r.flip
-            ),
-            None => println!("  no configuration within FLIP 0.05"),
-        }
-    }
 }

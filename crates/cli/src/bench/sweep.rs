@@ -1,8 +1,20 @@
-//! The configurations a scene is measured with: one axis at a time around its own settings,
-//! plus cheap combinations.
+//! The measurement sweep: the configurations a scene is measured with (one axis at a time
+//! around its own settings, plus cheap combinations), and measuring each one: its GPU time
+//! (median of timed repeats after a warm-up), its work counters (statistics variant) and its
+//! error against the cached CPU reference.
 
-use stratus::quality::Config;
-use stratus_scene::{Integration, PhaseModel, ShapeTexture};
+use std::{collections::BTreeMap, sync::Arc};
+
+use anyhow::Result;
+use indicatif::ProgressBar;
+use stratus::quality::{Config, Row};
+use stratus_compare::{CompareOptions, Image, compare};
+use stratus_graph::{Backend, FrameInput, FramePlan, output::median};
+use stratus_noise::NoiseSet;
+use stratus_scene::{Integration, PhaseModel, Scene, ShapeTexture};
+
+use super::reference_cache::reference;
+use crate::scene_io::check_finite;
 
 /// The sweep for a scene whose own settings are `base`: one axis at a time around `base`,
 /// plus cheap combinations.
@@ -106,4 +118,152 @@ pub(super) fn sweep(base: &Config, quick: bool) -> Vec<Config> {
         });
     }
     out
+}
+
+/// One scene of the bench: its name, the scene at the bench's image size, the configurations
+/// it is measured with, and its own (preset) configuration.
+pub(super) struct SceneSweep {
+    /// The preset name (or `stress-thick`).
+    pub name: String,
+    /// The scene at the bench's size.
+    pub scene: Scene,
+    /// The configurations to measure.
+    pub configs: Vec<Config>,
+    /// The scene's own settings.
+    pub base: Config,
+}
+
+/// How each configuration is measured.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct MeasureSettings {
+    /// Timed repeats (median reported), after one warm-up frame.
+    pub repeats: u32,
+    /// Samples per pixel of the Monte Carlo references.
+    pub mc_spp: u32,
+}
+
+/// Measures every configuration of every scene on `renderer`, in order, advancing `bar` by
+/// one per configuration. Each scene's rows get `time_vs_preset`; the Pareto front is left to
+/// the caller.
+pub(super) fn measure(
+    renderer: &mut dyn Backend,
+    scenes: &[SceneSweep],
+    settings: MeasureSettings,
+    bar: &ProgressBar,
+) -> Result<Vec<Row>> {
+    // One noise set per seed and shape texture, shared by every frame that reads it (the
+    // renderer uploads noise only when a different one arrives).
+    let mut noises: BTreeMap<(u64, bool), Arc<NoiseSet>> = BTreeMap::new();
+    let mut rows = Vec::new();
+    for SceneSweep {
+        name,
+        scene,
+        configs,
+        base,
+    } in scenes
+    {
+        let mut scene_rows: Vec<Row> = Vec::new();
+        for config in configs {
+            bar.set_message(format!("{name}: {}", config.name()));
+            let s = config.apply(scene);
+            s.validate().map_err(|e| anyhow::anyhow!("{e}"))?;
+            let hzd = s.noise.shape_texture == ShapeTexture::Hzd;
+            let noise = noises
+                .entry((s.noise.seed, hzd))
+                .or_insert_with(|| Arc::new(stratus::noise_for(&s)));
+            scene_rows.push(measure_config(
+                renderer,
+                name,
+                &s,
+                config,
+                config == base,
+                noise,
+                settings,
+            )?);
+            bar.inc(1);
+        }
+        let preset_ms = scene_rows
+            .iter()
+            .find(|r| r.preset)
+            .map_or(1.0, |r| r.gpu_ms.max(1e-9));
+        for r in &mut scene_rows {
+            r.time_vs_preset = r.gpu_ms / preset_ms;
+        }
+        rows.extend(scene_rows);
+    }
+    Ok(rows)
+}
+
+/// Measures one configuration: `s` is the scene with `config` applied, `preset` whether
+/// `config` is the scene's own.
+fn measure_config(
+    renderer: &mut dyn Backend,
+    name: &str,
+    s: &Scene,
+    config: &Config,
+    preset: bool,
+    noise: &Arc<NoiseSet>,
+    settings: MeasureSettings,
+) -> Result<Row> {
+    let (reference, label) = reference(s, noise, settings.mc_spp)?;
+    let plan = FramePlan::for_scene(s, false)?;
+    let mut frame = None;
+    let mut totals = Vec::new();
+    let mut passes: BTreeMap<String, Vec<f64>> = BTreeMap::new();
+    // One warm-up render (resources, pipeline compilation), then the timed repeats.
+    let input = FrameInput::new(&plan, s, noise);
+    renderer
+        .render(&input)
+        .map_err(|e| anyhow::anyhow!("{e}"))?;
+    for _ in 0..settings.repeats {
+        let f = renderer
+            .render(&input)
+            .map_err(|e| anyhow::anyhow!("{e}"))?;
+        check_finite(&f)?;
+        totals.push(f.timings.iter().map(|t| t.ms).sum());
+        for t in &f.timings {
+            passes.entry(t.pass.clone()).or_default().push(t.ms);
+        }
+        frame = Some(f);
+    }
+    let frame = frame.expect("at least one repeat");
+    let stats_plan = FramePlan::for_scene(s, true)?;
+    let counted = renderer
+        .render(&FrameInput::new(&stats_plan, s, noise))
+        .map_err(|e| anyhow::anyhow!("{e}"))?;
+    let c = counted.stats.unwrap_or_default();
+    let pixels = c.get("pixels").copied().unwrap_or(1).max(1) as f64;
+    let per = |k: &str| c.get(k).copied().unwrap_or(0) as f64 / pixels;
+
+    let options = CompareOptions {
+        exposure: 1.0,
+        ..CompareOptions::default()
+    };
+    let linear = compare(
+        &Image::from_frame_radiance(&reference),
+        &Image::from_frame_radiance(&frame),
+        &options,
+    )?;
+    let display = compare(
+        &Image::from_frame_display(&reference),
+        &Image::from_frame_display(&frame),
+        &options,
+    )?;
+    Ok(Row {
+        scene: name.to_string(),
+        name: config.name(),
+        preset,
+        config: config.clone(),
+        gpu_ms: median(totals),
+        passes: passes.into_iter().map(|(k, v)| (k, median(v))).collect(),
+        time_vs_preset: 0.0,
+        view_steps_pp: per("view_steps"),
+        light_samples_pp: per("light_samples"),
+        samples_pp: per("density_evaluations"),
+        rmse: linear.rmse,
+        flip: display.flip.mean,
+        flip_p95: display.flip.p95,
+        reference: label,
+        pareto: false,
+    })
 }
