@@ -41,10 +41,10 @@ use gpu_allocator::MemoryLocation;
 use stratus_graph::{
     Backend, BackendError, FrameInput, FrameOutput, FramePlan, PassTiming, Program,
     backend::{
-        FrameState, Readout, cpu_wall_timings, history_half, timings_from_ticks, upload_data,
+        FrameState, Made, Readout, cpu_wall_timings, history_half, timings_from_ticks, upload_data,
     },
     desc::{Lifetime, ResourceKind},
-    plan::{Pass, PassKind, PlanResource, Requirements},
+    plan::{Pass, PassKind, Requirements},
 };
 use stratus_noise::NoiseSet;
 use stratus_scene::FrameUniforms;
@@ -94,8 +94,8 @@ enum PipelineKey {
 
 /// The GPU side of a resource of the plan.
 struct Resource {
-    desc: PlanResource,
-    uploaded: Option<[u32; 3]>,
+    /// What it was made from (kept while it serves the plan).
+    made: Made,
     object: Object,
 }
 
@@ -491,22 +491,16 @@ impl Renderer {
         // Resources: keep those whose signature is unchanged.
         let mut rebuilt = false;
         for r in &plan.resources {
-            let uploaded = match &r.upload {
-                Some(src) if r.kind == ResourceKind::Texture => Some(
-                    upload_data(src, frame.noise)
-                        .map_err(|e| Error::Shader(format!("resource `{}`: {e}", r.name)))?
-                        .0,
-                ),
-                _ => None,
-            };
-            let keep = self.resources.get(&r.name).is_some_and(|have| {
-                have.desc.signature() == r.signature() && have.uploaded == uploaded
-            });
+            let want = Made::for_frame(r, frame.noise).map_err(Error::Shader)?;
+            let keep = self
+                .resources
+                .get(&r.name)
+                .is_some_and(|have| have.made.serves(&want));
             if keep {
                 continue;
             }
             self.drop_resource(&r.name);
-            let object = self.create_resource(r, uploaded)?;
+            let object = self.create_resource(&want)?;
             match &object {
                 Object::Images(list) => {
                     for (half, image) in list.iter().enumerate() {
@@ -520,14 +514,8 @@ impl Renderer {
                 }
                 _ => {}
             }
-            self.resources.insert(
-                r.name.clone(),
-                Resource {
-                    desc: r.clone(),
-                    uploaded,
-                    object,
-                },
-            );
+            self.resources
+                .insert(r.name.clone(), Resource { made: want, object });
             rebuilt = true;
             self.frames.created(r);
         }
@@ -565,11 +553,8 @@ impl Renderer {
         Ok(())
     }
 
-    fn create_resource(
-        &mut self,
-        r: &PlanResource,
-        uploaded: Option<[u32; 3]>,
-    ) -> Result<Object, Error> {
+    fn create_resource(&mut self, made: &Made) -> Result<Object, Error> {
+        let r = &made.desc;
         let device = &self.gpu.device;
         let allocator = &mut *self.gpu.allocator;
         Ok(match r.kind {
@@ -599,9 +584,7 @@ impl Renderer {
                 )
             }
             ResourceKind::Texture => {
-                let [width, height, depth] = uploaded
-                    .or(r.extent)
-                    .ok_or_else(|| Error::Shader(format!("texture `{}` has no size", r.name)))?;
+                let [width, height, depth] = made.size().map_err(Error::Shader)?;
                 let f = r
                     .format
                     .ok_or_else(|| Error::Shader(format!("texture `{}` has no format", r.name)))?;
@@ -843,7 +826,7 @@ impl Renderer {
                             return Err(missing(format!("image `{name}`")));
                         };
                         let b = d.plan.ok_or_else(|| missing(format!("`{name}`")))?;
-                        let half = if r.desc.lifetime == Lifetime::History {
+                        let half = if r.made.desc.lifetime == Lifetime::History {
                             history_half(parity as u64, b.previous)
                         } else {
                             0
@@ -851,7 +834,7 @@ impl Renderer {
                         let layout = Use::of_binding(b, shader_stage(raster))
                             .ok_or_else(|| missing(format!("`{name}`")))?
                             .layout;
-                        let filterable = r.desc.format.is_some_and(|f| f.filterable());
+                        let filterable = r.made.desc.format.is_some_and(|f| f.filterable());
                         Ok((
                             vk::DescriptorImageInfo::default()
                                 .image_view(images[half].view)

@@ -25,11 +25,11 @@ use std::{
 use stratus_graph::{
     Backend, BackendError, FrameInput, FrameOutput, FramePlan, Program,
     backend::{
-        DeviceClass, FrameState, Readout, best_device, cpu_wall_timings, describe_device,
+        DeviceClass, FrameState, Made, Readout, best_device, cpu_wall_timings, describe_device,
         history_half, timings_from_ticks, upload_data,
     },
     desc::{Lifetime, ResourceKind},
-    plan::{PassKind, PlanResource},
+    plan::PassKind,
 };
 use stratus_noise::NoiseSet;
 use stratus_scene::FrameUniforms;
@@ -97,10 +97,8 @@ type PipelineKey = (String, String, String, Vec<wgpu::TextureFormat>);
 
 /// The GPU side of a resource of the plan.
 struct Resource {
-    /// The plan's description it was created from (compared by signature).
-    desc: PlanResource,
-    /// Size of an uploaded texture (from its data).
-    uploaded: Option<[u32; 3]>,
+    /// What it was made from (kept while it serves the plan).
+    made: Made,
     object: Object,
 }
 
@@ -133,6 +131,9 @@ pub struct Renderer {
     plan: Option<FramePlan>,
     /// Per pass of `plan`, one bind group per history parity.
     groups: Vec<Vec<wgpu::BindGroup>>,
+    /// Per pass of `plan`, its pipeline's key (with the graph's own target formats), made
+    /// once per plan so that recording a frame builds no key.
+    keys: Vec<PipelineKey>,
     uniform: Option<wgpu::Buffer>,
     noise: Option<Arc<NoiseSet>>,
     /// Frame count, history validity, computed persistent resources (the shared rules).
@@ -244,6 +245,7 @@ impl Renderer {
             resources: HashMap::new(),
             plan: None,
             groups: Vec::new(),
+            keys: Vec::new(),
             uniform: None,
             noise: None,
             frames: FrameState::default(),
@@ -455,7 +457,7 @@ impl Renderer {
         }
         if frame.plan.stats {
             for r in self.resources.values() {
-                if let (ResourceKind::Counters, Object::Buffer(b)) = (r.desc.kind, &r.object) {
+                if let (ResourceKind::Counters, Object::Buffer(b)) = (r.made.desc.kind, &r.object) {
                     encoder.clear_buffer(b, 0, None);
                 }
             }
@@ -500,27 +502,15 @@ impl Renderer {
         }
         let mut rebuilt = false;
         for r in &plan.resources {
-            let uploaded = match &r.upload {
-                Some(src) if r.kind == ResourceKind::Texture => Some(
-                    upload_data(src, frame.noise)
-                        .map_err(|e| Error::Shader(format!("resource `{}`: {e}", r.name)))?
-                        .0,
-                ),
-                _ => None,
-            };
-            let keep = self.resources.get(&r.name).is_some_and(|have| {
-                have.desc.signature() == r.signature() && have.uploaded == uploaded
-            });
+            let want = Made::for_frame(r, frame.noise).map_err(Error::Shader)?;
+            let keep = self
+                .resources
+                .get(&r.name)
+                .is_some_and(|have| have.made.serves(&want));
             if !keep {
-                let object = self.create_resource(r, uploaded)?;
-                self.resources.insert(
-                    r.name.clone(),
-                    Resource {
-                        desc: r.clone(),
-                        uploaded,
-                        object,
-                    },
-                );
+                let object = self.create_resource(&want)?;
+                self.resources
+                    .insert(r.name.clone(), Resource { made: want, object });
                 rebuilt = true;
                 self.frames.created(r);
             }
@@ -555,6 +545,9 @@ impl Renderer {
                     self.pipeline(plan, i, Some(format))?;
                 }
             }
+            self.keys = (0..plan.passes.len())
+                .map(|i| Self::pipeline_key(plan, i, None))
+                .collect();
             self.build_groups(plan)?;
             self.ensure_queries(2 * plan.passes.len() as u32);
             self.plan = Some(plan.clone());
@@ -562,11 +555,8 @@ impl Renderer {
         Ok(())
     }
 
-    fn create_resource(
-        &mut self,
-        r: &PlanResource,
-        uploaded: Option<[u32; 3]>,
-    ) -> Result<Object, Error> {
+    fn create_resource(&mut self, made: &Made) -> Result<Object, Error> {
+        let r = &made.desc;
         Ok(match r.kind {
             ResourceKind::Uniform => {
                 // The one uniform block, created with the renderer's first plan.
@@ -591,9 +581,7 @@ impl Renderer {
                 Object::Sampler(self.device.create_sampler(&convert::sampler(s)))
             }
             ResourceKind::Texture => {
-                let size = uploaded
-                    .or(r.extent)
-                    .ok_or_else(|| Error::Shader(format!("texture `{}` has no size", r.name)))?;
+                let size = made.size().map_err(Error::Shader)?;
                 let f = r
                     .format
                     .ok_or_else(|| Error::Shader(format!("texture `{}` has no format", r.name)))?;
@@ -861,8 +849,7 @@ impl Renderer {
         let parities = if plan.has_history() { 2 } else { 1 };
         let mut groups = Vec::new();
         for (i, pass) in plan.passes.iter().enumerate() {
-            let key = Self::pipeline_key(plan, i, None);
-            let layout = &self.pipelines[&key].layout;
+            let layout = &self.pipelines[&self.keys[i]].layout;
             let mut per_parity = Vec::new();
             for parity in 0..parities {
                 let mut entries = Vec::new();
@@ -932,7 +919,16 @@ impl Renderer {
             0
         };
         let group = &self.groups[i][parity];
-        let pipeline = &self.pipelines[&Self::pipeline_key(plan, i, target_format)];
+        // Only a raster pass drawing into a host's target of another format has another key.
+        let external;
+        let key = match (&pass.kind, target_format) {
+            (PassKind::Raster { .. }, Some(format)) => {
+                external = Self::pipeline_key(plan, i, Some(format));
+                &external
+            }
+            _ => &self.keys[i],
+        };
+        let pipeline = &self.pipelines[key];
         let queries = query.and_then(|k| self.queries.as_ref().map(|q| (k, &q.set)));
         match (&pass.kind, &pipeline.kind) {
             (PassKind::Compute { dispatch, .. }, PipelineKind::Compute(p)) => {
@@ -1047,10 +1043,7 @@ impl Renderer {
                     let f = r
                         .format
                         .unwrap_or(stratus_graph::desc::TexelFormat::Rgba8Unorm);
-                    let [w, h, d] = self.resources[&r.name]
-                        .uploaded
-                        .or(r.extent)
-                        .unwrap_or([1, 1, 1]);
+                    let [w, h, d] = self.resources[&r.name].made.size().map_err(Error::Shader)?;
                     let row = w * f.texel_size();
                     let padded = row.div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT)
                         * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;

@@ -356,6 +356,47 @@ pub fn upload_data<'n>(source: &str, noise: &'n NoiseSet) -> Result<([u32; 3], &
     Ok((size, data))
 }
 
+/// What a resource's GPU object was made from: the plan's description and, for an uploaded
+/// texture, its data's size. A backend keeps the object, across frames and plans, while it
+/// [serves](Made::serves) what the plan asks for.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Made {
+    /// The plan's description.
+    pub desc: PlanResource,
+    /// The size of an uploaded texture (from its data).
+    pub uploaded: Option<[u32; 3]>,
+}
+
+impl Made {
+    /// What `r` needs this frame (an uploaded texture takes the size of `noise`'s data).
+    pub fn for_frame(r: &PlanResource, noise: &NoiseSet) -> Result<Self, String> {
+        let uploaded = match &r.upload {
+            Some(src) if r.kind == ResourceKind::Texture => Some(
+                upload_data(src, noise)
+                    .map_err(|e| format!("resource `{}`: {e}", r.name))?
+                    .0,
+            ),
+            _ => None,
+        };
+        Ok(Self {
+            desc: r.clone(),
+            uploaded,
+        })
+    }
+
+    /// Whether an object made for `self` serves `want` (same kind, size, format, usage...).
+    pub fn serves(&self, want: &Made) -> bool {
+        self.desc.signature() == want.desc.signature() && self.uploaded == want.uploaded
+    }
+
+    /// The texture's size, or why it has none.
+    pub fn size(&self) -> Result<[u32; 3], String> {
+        self.uploaded
+            .or(self.desc.extent)
+            .ok_or_else(|| format!("texture `{}` has no size", self.desc.name))
+    }
+}
+
 /// Which half of a history pair is "current" in frame `frame` (the other is `.previous`).
 pub fn history_half(frame: u64, previous: bool) -> usize {
     ((frame % 2) as usize) ^ usize::from(previous)
