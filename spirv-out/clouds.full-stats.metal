@@ -26,6 +26,11 @@ struct Frame {
     metal::uint4 counts;
     metal::uint4 modes;
     metal::uint4 misc;
+    metal::float4 previous_position;
+    metal::float4 previous_forward;
+    metal::float4 previous_right;
+    metal::float4 previous_up;
+    metal::uint4 temporal;
 };
 struct Roots {
     float t0_;
@@ -49,11 +54,23 @@ struct Weather {
     float cloud_type;
     float precipitation;
 };
-struct type_14 {
+struct type_18 {
     metal::atomic_uint inner[9];
 };
 struct Stats {
-    type_14 counters;
+    type_18 counters;
+};
+struct MarchResult {
+    metal::packed_float3 radiance;
+    float transmittance;
+    float depth;
+    char _pad3[12];
+};
+struct type_19 {
+    metal::uint2 inner[4];
+};
+struct type_20 {
+    metal::uint2 inner[16];
 };
 constant uint PHASE_HG = 0u;
 constant uint PHASE_TWO_LOBE_HG = 1u;
@@ -64,11 +81,15 @@ constant uint HEIGHT_PARABOLA = 0u;
 constant uint HEIGHT_CLOUD_TYPES = 1u;
 constant uint FLAG_BEER_POWDER = 1u;
 constant uint FLAG_JITTER = 2u;
+constant uint FLAG_DYNAMIC_STEP = 4u;
+constant uint FLAG_CHECKERBOARD = 8u;
+constant uint FLAG_EMPTY_SKIP = 16u;
 constant float PI = 3.1415927;
 constant uint MAX_VIEW_STEPS = 1024u;
 constant uint RAY_MARCH = 0u;
 constant uint RAY_MISSES_LAYER = 1u;
 constant uint RAY_HITS_GROUND = 2u;
+constant uint OCCUPANCY_CELLS = 64u;
 constant uint STAT_PIXELS = 0u;
 constant uint STAT_MARCHED = 1u;
 constant uint STAT_VIEW_STEPS = 2u;
@@ -79,6 +100,9 @@ constant uint STAT_EXIT_TRANSMITTANCE = 6u;
 constant uint STAT_EXIT_MISSED = 7u;
 constant uint STAT_EXIT_GROUND = 8u;
 constant uint STAT_COUNT = 9u;
+constant float HISTORY_SAMPLES = 16.0;
+constant float HISTORY_SAMPLES_MOVING = 2.0;
+constant float DISOCCLUSION_DEPTH = 0.2;
 constant bool LIGHT_MARCH = true;
 constant uint MAX_OCTAVES = 8u;
 constant bool DETAIL = true;
@@ -86,19 +110,19 @@ constant bool CURL = true;
 constant bool STATS = true;
 
 float saturate(
-    float x
+    float x_1
 ) {
-    return metal::clamp(x, 0.0, 1.0);
+    return metal::clamp(x_1, 0.0, 1.0);
 }
 
 float remap(
-    float x_1,
+    float x_2,
     float lo0_,
     float hi0_,
     float lo1_,
     float hi1_
 ) {
-    return lo1_ + (((x_1 - lo0_) * (hi1_ - lo1_)) / (hi0_ - lo0_));
+    return lo1_ + (((x_2 - lo0_) * (hi1_ - lo1_)) / (hi0_ - lo0_));
 }
 
 uint pcg(
@@ -107,6 +131,12 @@ uint pcg(
     uint state = (v * 747796405u) + 2891336453u;
     uint word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
     return (word >> 22u) ^ word;
+}
+
+float van_der_corput(
+    uint n
+) {
+    return static_cast<float>(metal::reverse_bits(n) >> 8u) * 0.000000059604645;
 }
 
 float hash_unit(
@@ -131,8 +161,8 @@ metal::float3 view_ray(
     metal::float4 _e26 = frame.camera_forward;
     metal::float4 _e30 = frame.camera_right;
     metal::float4 _e39 = frame.camera_up;
-    metal::float3 d_5 = (_e26.xyz + (_e30.xyz * ((ndc.x * tan_half) * aspect))) - (_e39.xyz * (ndc.y * tan_half));
-    return metal::normalize(d_5);
+    metal::float3 d_6 = (_e26.xyz + (_e30.xyz * ((ndc.x * tan_half) * aspect))) - (_e39.xyz * (ndc.y * tan_half));
+    return metal::normalize(d_6);
 }
 
 Roots solve_sphere(
@@ -170,9 +200,9 @@ float altitude_of(
     constant Frame& frame
 ) {
     float rp_1 = frame.atmosphere.x;
-    float n = ((p.x * p.x) + (p.z * p.z)) + (p.y * (p.y + (2.0 * rp_1)));
-    metal::float3 q = metal::float3(p.x, p.y + rp_1, p.z);
-    return n / (metal::length(q) + rp_1);
+    float n_1 = ((p.x * p.x) + (p.z * p.z)) + (p.y * (p.y + (2.0 * rp_1)));
+    metal::float3 q_3 = metal::float3(p.x, p.y + rp_1, p.z);
+    return n_1 / (metal::length(q_3) + rp_1);
 }
 
 bool hits_ground(
@@ -181,16 +211,16 @@ bool hits_ground(
     metal::float3 d_1,
     constant Frame& frame
 ) {
-    bool local = {};
+    bool local_9 = {};
     float rp_2 = frame.atmosphere.x;
     float b_2 = metal::dot(d_1, metal::float3(p_1.x, p_1.y + rp_2, p_1.z));
     float c_2 = alt_1 * (alt_1 + (2.0 * rp_2));
     if (b_2 < 0.0) {
-        local = (b_2 * b_2) >= c_2;
+        local_9 = (b_2 * b_2) >= c_2;
     } else {
-        local = false;
+        local_9 = false;
     }
-    bool _e24 = local;
+    bool _e24 = local_9;
     return _e24;
 }
 
@@ -201,9 +231,9 @@ Interval layer_interval(
 ) {
     float start = 0.0;
     float end = 0.0;
-    bool local_1 = {};
-    bool local_2 = {};
-    bool local_3 = {};
+    bool local_10 = {};
+    bool local_11 = {};
+    bool local_12 = {};
     float bottom = frame.atmosphere.y;
     float top = frame.atmosphere.z;
     float cutoff = frame.atmosphere.w;
@@ -220,33 +250,33 @@ Interval layer_interval(
         if (alt_2 <= top) {
             end = _e15.t1_;
             if (_e14.hit) {
-                local_1 = _e14.t0_ > 0.0;
+                local_10 = _e14.t0_ > 0.0;
             } else {
-                local_1 = false;
+                local_10 = false;
             }
-            bool _e40 = local_1;
+            bool _e40 = local_10;
             if (_e40) {
                 float _e41 = end;
                 end = metal::min(_e41, _e14.t0_);
             }
         } else {
             if (!(!(_e15.hit))) {
-                local_2 = _e15.t1_ <= 0.0;
+                local_11 = _e15.t1_ <= 0.0;
             } else {
-                local_2 = true;
+                local_11 = true;
             }
-            bool _e53 = local_2;
+            bool _e53 = local_11;
             if (_e53) {
                 return Interval {0.0, 0.0, 1u};
             }
             start = metal::max(_e15.t0_, 0.0);
             end = _e15.t1_;
             if (_e14.hit) {
-                local_3 = _e14.t0_ > 0.0;
+                local_12 = _e14.t0_ > 0.0;
             } else {
-                local_3 = false;
+                local_12 = false;
             }
-            bool _e69 = local_3;
+            bool _e69 = local_12;
             if (_e69) {
                 float _e70 = end;
                 end = metal::min(_e70, _e14.t0_);
@@ -310,9 +340,9 @@ float height_cloud_types(
     float _e11 = gradient(h_2, 0.0, 0.2, 0.4, 0.65);
     float _e16 = gradient(h_2, 0.0, 0.1, 0.6, 0.95);
     float _e19 = saturate(cloud_type_1 * 2.0);
-    float lo = metal::mix(_e6, _e11, _e19);
+    float lo_1 = metal::mix(_e6, _e11, _e19);
     float _e25 = saturate((cloud_type_1 * 2.0) - 1.0);
-    return metal::mix(lo, _e16, _e25);
+    return metal::mix(lo_1, _e16, _e25);
 }
 
 float height_signal(
@@ -332,7 +362,7 @@ float height_signal(
 float cloud_density(
     metal::float3 p_3,
     float alt_3,
-    thread Counters& counters_1,
+    thread Counters& counters,
     constant Frame& frame,
     metal::texture3d<float, metal::access::sample> shape_tex,
     metal::texture3d<float, metal::access::sample> detail_tex,
@@ -340,35 +370,35 @@ float cloud_density(
     metal::texture2d<float, metal::access::sample> curl_tex,
     metal::sampler noise_sampler
 ) {
-    bool local_4 = {};
-    bool local_5 = {};
+    bool local_13 = {};
+    bool local_14 = {};
     float base = {};
     float density = {};
-    bool local_6 = {};
-    bool local_7 = {};
+    bool local_15 = {};
+    bool local_16 = {};
     metal::float3 detail_pos = {};
     float bottom_1 = frame.atmosphere.y;
     float top_1 = frame.atmosphere.z;
     float h_5 = (alt_3 - bottom_1) / (top_1 - bottom_1);
     if (!((h_5 < 0.0))) {
-        local_4 = h_5 > 1.0;
+        local_13 = h_5 > 1.0;
     } else {
-        local_4 = true;
+        local_13 = true;
     }
-    bool _e22 = local_4;
+    bool _e22 = local_13;
     if (_e22) {
         return 0.0;
     }
-    uint _e25 = counters_1.density;
-    counters_1.density = _e25 + 1u;
+    uint _e25 = counters.density;
+    counters.density = _e25 + 1u;
     Weather _e28 = sample_weather(p_3, frame, weather_tex, noise_sampler);
     float _e30 = height_signal(h_5, _e28.cloud_type, frame);
     if (!((_e28.coverage <= 0.0))) {
-        local_5 = _e30 <= 0.0;
+        local_14 = _e30 <= 0.0;
     } else {
-        local_5 = true;
+        local_14 = true;
     }
-    bool _e40 = local_5;
+    bool _e40 = local_14;
     if (_e40) {
         return 0.0;
     }
@@ -396,21 +426,21 @@ float cloud_density(
     float strength = frame.erosion.x;
     float threshold = frame.erosion.y;
     if (DETAIL) {
-        local_6 = strength > 0.0;
+        local_15 = strength > 0.0;
     } else {
-        local_6 = false;
+        local_15 = false;
     }
-    bool _e126 = local_6;
+    bool _e126 = local_15;
     if (_e126) {
         float _e129 = base;
-        local_7 = _e129 < threshold;
+        local_16 = _e129 < threshold;
     } else {
-        local_7 = false;
+        local_16 = false;
     }
-    bool _e132 = local_7;
+    bool _e132 = local_16;
     if (_e132) {
-        uint _e134 = counters_1.detail;
-        counters_1.detail = _e134 + 1u;
+        uint _e134 = counters.detail;
+        counters.detail = _e134 + 1u;
         detail_pos = metal::float3(p_3.x, alt_3, p_3.z);
         if (CURL) {
             metal::float4 _e145 = frame.wind_offsets1_;
@@ -500,7 +530,7 @@ float phase(
 float sun_optical_depth(
     metal::float3 rel,
     metal::float3 p_4,
-    thread Counters& counters_2,
+    thread Counters& counters_1,
     constant Frame& frame,
     metal::texture3d<float, metal::access::sample> shape_tex,
     metal::texture3d<float, metal::access::sample> detail_tex,
@@ -511,8 +541,8 @@ float sun_optical_depth(
     float seg = {};
     float dist = 0.0;
     float tau = 0.0;
-    uint i_1 = 0u;
-    bool local_8 = {};
+    uint i = 0u;
+    bool local_17 = {};
     metal::float4 _e5 = frame.sun_direction;
     metal::float3 sun = _e5.xyz;
     float _e10 = frame.extinction.x;
@@ -528,11 +558,11 @@ float sun_optical_depth(
         if (metal::all(loop_bound == uint2(0u))) { break; }
         loop_bound -= uint2(loop_bound.y == 0u, 1u);
         if (!loop_init) {
-            uint _e78 = i_1;
-            i_1 = _e78 + 1u;
+            uint _e78 = i;
+            i = _e78 + 1u;
         }
         loop_init = false;
-        uint _e35 = i_1;
+        uint _e35 = i;
         if (_e35 < steps_1) {
         } else {
             break;
@@ -541,23 +571,23 @@ float sun_optical_depth(
             float _e37 = dist;
             float _e38 = seg;
             float s_2 = _e37 + (0.5 * _e38);
-            metal::float3 q_1 = rel + (sun * s_2);
-            float _e44 = altitude_of(q_1, frame);
+            metal::float3 q_4 = rel + (sun * s_2);
+            float _e44 = altitude_of(q_4, frame);
             float _e48 = frame.atmosphere.z;
             if (!((_e44 > _e48))) {
                 float _e56 = frame.atmosphere.y;
-                local_8 = _e44 < _e56;
+                local_17 = _e44 < _e56;
             } else {
-                local_8 = true;
+                local_17 = true;
             }
-            bool _e59 = local_8;
+            bool _e59 = local_17;
             if (_e59) {
                 break;
             }
-            uint _e61 = counters_2.light;
-            counters_2.light = _e61 + 1u;
+            uint _e61 = counters_1.light;
+            counters_1.light = _e61 + 1u;
             float _e64 = tau;
-            float _e67 = cloud_density(p_4 + (sun * s_2), _e44, counters_2, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+            float _e67 = cloud_density(p_4 + (sun * s_2), _e44, counters_1, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
             float _e69 = seg;
             tau = _e64 + ((_e67 * sigma_t_1) * _e69);
             float _e72 = dist;
@@ -580,7 +610,7 @@ float sun_scattering(
     float ka = 1.0;
     float kb = 1.0;
     float kc = 1.0;
-    uint i_2 = 0u;
+    uint i_1 = 0u;
     float a = frame.multiple_scattering.x;
     float b_3 = frame.multiple_scattering.y;
     float c_3 = frame.multiple_scattering.z;
@@ -594,11 +624,11 @@ float sun_scattering(
         if (metal::all(loop_bound_1 == uint2(0u))) { break; }
         loop_bound_1 -= uint2(loop_bound_1.y == 0u, 1u);
         if (!loop_init_1) {
-            uint _e54 = i_2;
-            i_2 = _e54 + 1u;
+            uint _e54 = i_1;
+            i_1 = _e54 + 1u;
         }
         loop_init_1 = false;
-        uint _e34 = i_2;
+        uint _e34 = i_1;
         if (_e34 < octaves) {
         } else {
             break;
@@ -644,7 +674,7 @@ metal::float3 scattered_light(
     float alt_4,
     float density_1,
     metal::float3 view,
-    thread Counters& counters_3,
+    thread Counters& counters_2,
     constant Frame& frame,
     metal::texture3d<float, metal::access::sample> shape_tex,
     metal::texture3d<float, metal::access::sample> detail_tex,
@@ -663,7 +693,7 @@ metal::float3 scattered_light(
     bool _e29 = hits_ground(rel_1, alt_4, sun_1, frame);
     if (!(_e29)) {
         if (LIGHT_MARCH) {
-            float _e34 = sun_optical_depth(rel_1, p_5, counters_3, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+            float _e34 = sun_optical_depth(rel_1, p_5, counters_2, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
             tau_2 = _e34;
         }
         metal::float4 _e37 = frame.sun_illuminance;
@@ -680,18 +710,64 @@ metal::float3 scattered_light(
     return ((_e59 * density_1) * (_e61 + _e62)) * _e55;
 }
 
+metal::uint2 naga_f2u32(metal::float2 value) {
+    return static_cast<metal::uint2>(metal::clamp(value, 0.0, 4294967000.0));
+}
+
+float empty_cell_exit(
+    metal::float3 p_6,
+    metal::float3 d_3,
+    constant Frame& frame,
+    metal::texture2d<float, metal::access::sample> occupancy_in
+) {
+    float exit = 1000000000000000000000000000000.0;
+    metal::float4 _e6 = frame.wind_offsets0_;
+    float _e12 = frame.periods.x;
+    metal::float2 uv_1 = metal::fract((p_6.xz - _e6.xy) / metal::float2(_e12)) * 64.0;
+    metal::uint2 cell = metal::min(naga_f2u32(uv_1), metal::uint2(63u));
+    metal::float4 _e23 = occupancy_in.read(metal::uint2(cell), 0);
+    float m_1 = _e23.x;
+    float _e28 = frame.clouds.x;
+    if ((m_1 + (2.0 * (_e28 - 0.5))) > -0.003921569) {
+        return 0.0;
+    }
+    float _e40 = frame.periods.x;
+    float cell_m = _e40 / 64.0;
+    metal::float2 inside = (uv_1 - static_cast<metal::float2>(cell)) * cell_m;
+    if (d_3.x > 0.000001) {
+        float _e50 = exit;
+        exit = metal::min(_e50, (cell_m - inside.x) / d_3.x);
+    } else {
+        if (d_3.x < -0.000001) {
+            float _e59 = exit;
+            exit = metal::min(_e59, inside.x / -(d_3.x));
+        }
+    }
+    if (d_3.z > 0.000001) {
+        float _e68 = exit;
+        exit = metal::min(_e68, (cell_m - inside.y) / d_3.z);
+    } else {
+        if (d_3.z < -0.000001) {
+            float _e77 = exit;
+            exit = metal::min(_e77, inside.y / -(d_3.z));
+        }
+    }
+    float _e83 = exit;
+    return metal::max(_e83, 0.0);
+}
+
 void count(
     uint index,
     uint value,
     device Stats& stats
 ) {
-    bool local_9 = {};
+    bool local_18 = {};
     if (STATS) {
-        local_9 = value != 0u;
+        local_18 = value != 0u;
     } else {
-        local_9 = false;
+        local_18 = false;
     }
-    bool _e8 = local_9;
+    bool _e8 = local_18;
     if (_e8) {
         uint _e12 = metal::atomic_fetch_add_explicit(&stats.counters.inner[index], value, metal::memory_order_relaxed);
         return;
@@ -710,13 +786,381 @@ metal::float3 step_integral(
     if (_e6 == INTEGRATION_RIEMANN) {
         return source * dt;
     }
-    float x_3 = sigma_t * dt;
-    float f = (x_3 < 0.001) ? (1.0 - (0.5 * x_3)) : ((1.0 - metal::exp(-(x_3))) / x_3);
-    return source * (dt * f);
+    float x_4 = sigma_t * dt;
+    float f_1 = (x_4 < 0.001) ? (1.0 - (0.5 * x_4)) : ((1.0 - metal::exp(-(x_4))) / x_4);
+    return source * (dt * f_1);
+}
+
+uint naga_div(uint lhs, uint rhs) {
+    return lhs / metal::select(rhs, 1u, rhs == 0u);
+}
+
+float start_offset(
+    metal::uint2 pixel_2,
+    constant Frame& frame
+) {
+    uint _e4 = frame.modes.w;
+    bool jitter = (_e4 & FLAG_JITTER) != 0u;
+    uint k_1 = frame.temporal.x;
+    if (k_1 <= 1u) {
+        uint _e18 = frame.misc.y;
+        float _e19 = hash_unit(pixel_2, _e18);
+        return jitter ? _e19 : 0.5;
+    }
+    float _e23 = hash_unit(pixel_2, 0u);
+    float base_1 = jitter ? _e23 : 0.5;
+    uint _e29 = frame.misc.y;
+    float _e32 = van_der_corput(naga_div(_e29, k_1 * k_1));
+    return metal::fract(base_1 + _e32);
+}
+
+uint naga_f2u32(float value) {
+    return static_cast<uint>(metal::clamp(value, 0.0, 4294967000.0));
+}
+
+MarchResult march_pixel(
+    metal::uint2 pixel_3,
+    constant Frame& frame,
+    metal::texture3d<float, metal::access::sample> shape_tex,
+    metal::texture3d<float, metal::access::sample> detail_tex,
+    metal::texture2d<float, metal::access::sample> weather_tex,
+    metal::texture2d<float, metal::access::sample> curl_tex,
+    metal::sampler noise_sampler,
+    metal::texture2d<float, metal::access::sample> occupancy_in,
+    device Stats& stats
+) {
+    Counters counters_3 = Counters {0u, 0u, 0u, 0u};
+    metal::float3 radiance = metal::float3(0.0);
+    float transmittance = 1.0;
+    float depth_sum = 0.0;
+    uint steps = {};
+    uint i_2 = 0u;
+    uint stride = 1u;
+    uint empty = 0u;
+    bool local_19 = {};
+    float depth_1 = 0.0;
+    metal::float3 _e1 = view_ray(pixel_3, frame);
+    float cam_alt = frame.camera_position.y;
+    metal::float4 _e8 = frame.camera_position;
+    metal::float2 cam_xz = _e8.xz;
+    count(STAT_PIXELS, 1u, stats);
+    Interval _e25 = layer_interval(cam_alt, _e1, frame);
+    if (_e25.kind == RAY_MISSES_LAYER) {
+        count(STAT_EXIT_MISSED, 1u, stats);
+    } else {
+        if (_e25.kind == RAY_HITS_GROUND) {
+            count(STAT_EXIT_GROUND, 1u, stats);
+        } else {
+            count(STAT_MARCHED, 1u, stats);
+            uint _e41 = frame.counts.z;
+            steps = _e41;
+            float _e46 = frame.march.x;
+            if (_e46 > 0.0) {
+                float _e53 = frame.march.x;
+                steps = metal::clamp(naga_f2u32(metal::ceil(_e25.length / _e53)), 1u, MAX_VIEW_STEPS);
+            }
+            uint _e61 = steps;
+            float dt_1 = _e25.length / static_cast<float>(_e61);
+            float _e64 = start_offset(pixel_3, frame);
+            float _e68 = frame.extinction.x;
+            float _e72 = frame.extinction.y;
+            float sigma_e = _e68 + _e72;
+            uint _e77 = frame.modes.w;
+            bool dynamic_step = (_e77 & FLAG_DYNAMIC_STEP) != 0u;
+            uint _e85 = frame.modes.w;
+            bool empty_skip = (_e85 & FLAG_EMPTY_SKIP) != 0u;
+            uint2 loop_bound_2 = uint2(4294967295u);
+            while(true) {
+                if (metal::all(loop_bound_2 == uint2(0u))) { break; }
+                loop_bound_2 -= uint2(loop_bound_2.y == 0u, 1u);
+                uint _e96 = i_2;
+                uint _e97 = steps;
+                if (_e96 >= _e97) {
+                    break;
+                }
+                uint _e100 = counters_3.view_steps;
+                counters_3.view_steps = _e100 + 1u;
+                uint _e104 = i_2;
+                float t_1 = _e25.start + ((static_cast<float>(_e104) + _e64) * dt_1);
+                metal::float3 rel_2 = (_e1 * t_1) + metal::float3(0.0, cam_alt, 0.0);
+                metal::float3 p_7 = metal::float3(rel_2.x + cam_xz.x, rel_2.y, rel_2.z + cam_xz.y);
+                if (empty_skip) {
+                    float _e122 = empty_cell_exit(p_7, _e1, frame, occupancy_in);
+                    if (_e122 > 0.0) {
+                        uint _e131 = steps;
+                        uint next = naga_f2u32(metal::clamp(metal::ceil((((t_1 + _e122) - _e25.start) / dt_1) - _e64), 0.0, static_cast<float>(_e131)));
+                        uint _e136 = i_2;
+                        i_2 = metal::max(_e136 + 1u, next);
+                        continue;
+                    }
+                }
+                float _e140 = altitude_of(rel_2, frame);
+                float _e141 = cloud_density(p_7, _e140, counters_3, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+                if (_e141 <= 0.0) {
+                    uint _e144 = empty;
+                    empty = _e144 + 1u;
+                    if (dynamic_step) {
+                        uint _e149 = empty;
+                        local_19 = _e149 >= 8u;
+                    } else {
+                        local_19 = false;
+                    }
+                    bool _e153 = local_19;
+                    if (_e153) {
+                        stride = 2u;
+                    }
+                    uint _e155 = i_2;
+                    uint _e156 = stride;
+                    i_2 = _e155 + _e156;
+                    continue;
+                }
+                uint _e158 = stride;
+                if (_e158 > 1u) {
+                    uint _e161 = i_2;
+                    uint _e162 = stride;
+                    i_2 = _e161 - (_e162 - 1u);
+                    stride = 1u;
+                    empty = 0u;
+                    continue;
+                }
+                empty = 0u;
+                float sigma_t_2 = sigma_e * _e141;
+                metal::float3 _e170 = scattered_light(rel_2, p_7, _e140, _e141, _e1, counters_3, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+                metal::float3 _e171 = radiance;
+                float _e172 = transmittance;
+                metal::float3 _e173 = step_integral(_e170, sigma_t_2, dt_1, frame);
+                radiance = _e171 + (_e172 * _e173);
+                float step_t = metal::exp(-(sigma_t_2) * dt_1);
+                float _e179 = depth_sum;
+                float _e180 = transmittance;
+                depth_sum = _e179 + ((t_1 * _e180) * (1.0 - step_t));
+                float _e186 = transmittance;
+                transmittance = _e186 * step_t;
+                float _e188 = transmittance;
+                float _e192 = frame.march.w;
+                if (_e188 < _e192) {
+                    count(STAT_EXIT_TRANSMITTANCE, 1u, stats);
+                    break;
+                }
+                uint _e196 = i_2;
+                i_2 = _e196 + 1u;
+            }
+        }
+    }
+    uint _e201 = counters_3.view_steps;
+    count(STAT_VIEW_STEPS, _e201, stats);
+    uint _e204 = counters_3.density;
+    count(STAT_DENSITY, _e204, stats);
+    uint _e207 = counters_3.detail;
+    count(STAT_DETAIL, _e207, stats);
+    uint _e210 = counters_3.light;
+    count(STAT_LIGHT, _e210, stats);
+    float _e213 = transmittance;
+    if (_e213 < 1.0) {
+        float _e216 = depth_sum;
+        float _e217 = transmittance;
+        depth_1 = _e216 / (1.0 - _e217);
+    }
+    metal::float3 _e221 = radiance;
+    float _e222 = transmittance;
+    float _e223 = depth_1;
+    return MarchResult {_e221, _e222, _e223};
+}
+
+uint naga_mod(uint lhs, uint rhs) {
+    return lhs % metal::select(rhs, 1u, rhs == 0u);
+}
+
+metal::uint2 block_offset(
+    uint f,
+    uint k
+) {
+    type_19 b2_ = type_19 {{metal::uint2(0u, 0u), metal::uint2(1u, 1u), metal::uint2(1u, 0u), metal::uint2(0u, 1u)}};
+    type_20 b4_ = type_20 {{metal::uint2(0u, 0u), metal::uint2(2u, 2u), metal::uint2(2u, 0u), metal::uint2(0u, 2u), metal::uint2(1u, 1u), metal::uint2(3u, 3u), metal::uint2(3u, 1u), metal::uint2(1u, 3u), metal::uint2(1u, 0u), metal::uint2(3u, 2u), metal::uint2(3u, 0u), metal::uint2(1u, 2u), metal::uint2(0u, 1u), metal::uint2(2u, 3u), metal::uint2(2u, 1u), metal::uint2(0u, 3u)}};
+    if (k == 2u) {
+        metal::uint2 _e21 = b2_.inner[naga_mod(f, 4u)];
+        return _e21;
+    }
+    if (k == 4u) {
+        metal::uint2 _e77 = b4_.inner[naga_mod(f, 16u)];
+        return _e77;
+    }
+    return metal::uint2(0u);
+}
+
+metal::float2 reproject(
+    metal::uint2 pixel_4,
+    float depth_2,
+    constant Frame& frame
+) {
+    bool local_20 = {};
+    bool local_21 = {};
+    bool local_22 = {};
+    metal::float3 dir = {};
+    metal::float4 _e4 = frame.previous_position;
+    metal::float4 _e7 = frame.camera_position;
+    if (metal::all(_e4 == _e7)) {
+        metal::float4 _e14 = frame.previous_forward;
+        metal::float4 _e17 = frame.camera_forward;
+        local_20 = metal::all(_e14 == _e17);
+    } else {
+        local_20 = false;
+    }
+    bool _e21 = local_20;
+    if (_e21) {
+        metal::float4 _e26 = frame.previous_right;
+        metal::float4 _e29 = frame.camera_right;
+        local_21 = metal::all(_e26 == _e29);
+    } else {
+        local_21 = false;
+    }
+    bool _e33 = local_21;
+    if (_e33) {
+        metal::float4 _e38 = frame.previous_up;
+        metal::float4 _e41 = frame.camera_up;
+        local_22 = metal::all(_e38 == _e41);
+    } else {
+        local_22 = false;
+    }
+    bool same = local_22;
+    if (same) {
+        return static_cast<metal::float2>(pixel_4);
+    }
+    metal::float3 _e47 = view_ray(pixel_4, frame);
+    dir = _e47;
+    if (depth_2 > 0.0) {
+        metal::float4 _e54 = frame.camera_position;
+        metal::float4 _e58 = frame.previous_position;
+        dir = (_e47 * depth_2) + (_e54.xyz - _e58.xyz);
+    }
+    metal::float3 _e62 = dir;
+    metal::float4 _e65 = frame.previous_forward;
+    float z = metal::dot(_e62, _e65.xyz);
+    if (z <= 0.0) {
+        return metal::float2(-1000000000.0);
+    }
+    float tan_half_1 = frame.previous_position.w;
+    float aspect_1 = frame.previous_forward.w;
+    metal::float3 _e80 = dir;
+    metal::float4 _e83 = frame.previous_right;
+    metal::float3 _e89 = dir;
+    metal::float4 _e92 = frame.previous_up;
+    metal::float2 ndc_1 = metal::float2(metal::dot(_e80, _e83.xyz) / ((z * tan_half_1) * aspect_1), -(metal::dot(_e89, _e92.xyz)) / (z * tan_half_1));
+    metal::uint4 _e106 = frame.counts;
+    return (((ndc_1 * 0.5) + metal::float2(0.5)) * static_cast<metal::float2>(_e106.xy)) - metal::float2(0.5);
+}
+
+bool on_screen(
+    metal::float2 q,
+    constant Frame& frame
+) {
+    bool local_23 = {};
+    metal::uint4 _e3 = frame.counts;
+    metal::float2 size_1 = static_cast<metal::float2>(_e3.xy);
+    if (metal::all(q >= metal::float2(-0.5))) {
+        local_23 = metal::all(q <= (size_1 - metal::float2(0.5)));
+    } else {
+        local_23 = false;
+    }
+    bool _e18 = local_23;
+    return _e18;
+}
+
+metal::float4 catmull_rom(
+    float t
+) {
+    return metal::float4(t * (-0.5 + (t * (1.0 - (0.5 * t)))), 1.0 + ((t * t) * (-2.5 + (1.5 * t))), t * (0.5 + (t * (2.0 - (1.5 * t)))), (t * t) * (-0.5 + (0.5 * t)));
+}
+
+metal::int2 naga_f2i32(metal::float2 value) {
+    return static_cast<metal::int2>(metal::clamp(value, -2147483600.0, 2147483500.0));
+}
+
+metal::float4 history_at(
+    metal::float2 q_1,
+    constant Frame& frame,
+    metal::texture2d<float, metal::access::sample> history_in
+) {
+    metal::float4 sum = metal::float4(0.0);
+    int j = 0;
+    metal::float4 row = {};
+    int i_3 = {};
+    metal::uint4 _e3 = frame.counts;
+    metal::int2 size_2 = static_cast<metal::int2>(_e3.xy);
+    metal::float2 c_4 = metal::clamp(q_1, metal::float2(0.0), static_cast<metal::float2>(as_type<metal::int2>(as_type<metal::uint2>(size_2) - as_type<metal::uint2>(metal::int2(1)))));
+    metal::int2 base_2 = naga_f2i32(metal::floor(c_4));
+    metal::float2 f_2 = c_4 - static_cast<metal::float2>(base_2);
+    metal::float4 _e18 = catmull_rom(f_2.x);
+    metal::float4 _e20 = catmull_rom(f_2.y);
+    uint2 loop_bound_3 = uint2(4294967295u);
+    bool loop_init_2 = true;
+    while(true) {
+        if (metal::all(loop_bound_3 == uint2(0u))) { break; }
+        loop_bound_3 -= uint2(loop_bound_3.y == 0u, 1u);
+        if (!loop_init_2) {
+            int _e69 = j;
+            j = as_type<int>(as_type<uint>(_e69) + as_type<uint>(1));
+        }
+        loop_init_2 = false;
+        int _e26 = j;
+        if (_e26 < 4) {
+        } else {
+            break;
+        }
+        {
+            row = metal::float4(0.0);
+            i_3 = 0;
+            uint2 loop_bound_4 = uint2(4294967295u);
+            bool loop_init_3 = true;
+            while(true) {
+                if (metal::all(loop_bound_4 == uint2(0u))) { break; }
+                loop_bound_4 -= uint2(loop_bound_4.y == 0u, 1u);
+                if (!loop_init_3) {
+                    int _e60 = i_3;
+                    i_3 = as_type<int>(as_type<uint>(_e60) + as_type<uint>(1));
+                }
+                loop_init_3 = false;
+                int _e34 = i_3;
+                if (_e34 < 4) {
+                } else {
+                    break;
+                }
+                {
+                    int _e37 = i_3;
+                    int _e40 = j;
+                    metal::int2 t_2 = metal::clamp(as_type<metal::int2>(as_type<metal::uint2>(base_2) + as_type<metal::uint2>(metal::int2(as_type<int>(as_type<uint>(_e37) - as_type<uint>(1)), as_type<int>(as_type<uint>(_e40) - as_type<uint>(1))))), metal::int2(0), as_type<metal::int2>(as_type<metal::uint2>(size_2) - as_type<metal::uint2>(metal::int2(1))));
+                    metal::float4 _e51 = row;
+                    metal::float4 _e54 = history_in.read(metal::uint2(t_2), 0);
+                    int _e55 = i_3;
+                    row = _e51 + (_e54 * _e18[_e55]);
+                }
+            }
+            metal::float4 _e62 = sum;
+            metal::float4 _e63 = row;
+            int _e64 = j;
+            sum = _e62 + (_e63 * _e20[_e64]);
+        }
+    }
+    metal::float4 _e71 = sum;
+    float _e77 = sum.w;
+    float _e78 = saturate(_e77);
+    return metal::float4(metal::max(_e71.xyz, metal::float3(0.0)), _e78);
+}
+
+metal::float4 meta_at(
+    metal::float2 q_2,
+    constant Frame& frame,
+    metal::texture2d<float, metal::access::sample> meta_in
+) {
+    metal::uint4 _e3 = frame.counts;
+    metal::int2 size_3 = static_cast<metal::int2>(_e3.xy);
+    metal::int2 p_8 = metal::clamp(naga_f2i32(metal::rint(q_2)), metal::int2(0), as_type<metal::int2>(as_type<metal::uint2>(size_3) - as_type<metal::uint2>(metal::int2(1))));
+    metal::float4 _e16 = meta_in.read(metal::uint2(p_8), 0);
+    return _e16;
 }
 
 metal::float3 sky_radiance(
-    metal::float3 d_3,
+    metal::float3 d_4,
     float alt_5,
     constant Frame& frame
 ) {
@@ -725,29 +1169,29 @@ metal::float3 sky_radiance(
     metal::float4 _e8 = frame.sun_illuminance;
     metal::float3 e = _e8.xyz;
     float _e15 = saturate((sun_2.y * 4.0) + 0.3);
-    bool _e19 = hits_ground(metal::float3(0.0, alt_5, 0.0), alt_5, d_3, frame);
+    bool _e19 = hits_ground(metal::float3(0.0, alt_5, 0.0), alt_5, d_4, frame);
     if (_e19) {
         metal::float3 ground_albedo = metal::float3(0.035, 0.035, 0.03);
         return ground_albedo * (((e * metal::max(sun_2.y, 0.0)) / metal::float3(3.1415927)) + ((0.05 * e) * _e15));
     }
     metal::float3 zenith = metal::float3(0.018, 0.04, 0.1);
     metal::float3 horizon = metal::float3(0.07, 0.085, 0.11);
-    float _e45 = saturate(d_3.y);
+    float _e45 = saturate(d_4.y);
     metal::float3 gradient_1 = metal::mix(horizon, zenith, metal::sqrt(_e45));
     metal::float3 sunset = ((1.0 - (_e15 * 0.8)) * metal::pow(1.0 - _e45, 6.0)) * metal::float3(0.25, 0.1, 0.0);
-    float _e64 = phase_hg(metal::dot(d_3, sun_2), 0.76);
+    float _e64 = phase_hg(metal::dot(d_4, sun_2), 0.76);
     float glow = _e64 * 0.02;
     float _e73 = saturate((sun_2.y * 10.0) + 1.0);
     return e * (((gradient_1 * _e15) + (sunset * _e73)) + metal::float3(glow * _e15));
 }
 
 metal::float3 sun_disk(
-    metal::float3 d_4,
+    metal::float3 d_5,
     constant Frame& frame
 ) {
     float cos_r = frame.sun_direction.w;
     metal::float4 _e7 = frame.sun_direction;
-    if (metal::dot(d_4, _e7.xyz) < cos_r) {
+    if (metal::dot(d_5, _e7.xyz) < cos_r) {
         return metal::float3(0.0);
     }
     metal::float4 _e15 = frame.sun_illuminance;
@@ -755,143 +1199,406 @@ metal::float3 sun_disk(
 }
 
 metal::float3 aces_fitted(
-    metal::float3 x_2
+    metal::float3 x_3
 ) {
-    return metal::clamp((x_2 * ((2.51 * x_2) + metal::float3(0.03))) / ((x_2 * ((2.43 * x_2) + metal::float3(0.59))) + metal::float3(0.14)), metal::float3(0.0), metal::float3(1.0));
+    return metal::clamp((x_3 * ((2.51 * x_3) + metal::float3(0.03))) / ((x_3 * ((2.43 * x_3) + metal::float3(0.59))) + metal::float3(0.14)), metal::float3(0.0), metal::float3(1.0));
 }
-uint naga_f2u32(float value) {
-    return static_cast<uint>(metal::clamp(value, 0.0, 4294967000.0));
+metal::int2 naga_div(metal::int2 lhs, metal::int2 rhs) {
+    return lhs / metal::select(rhs, 1, (lhs == (-2147483647 - 1) & rhs == -1) | (rhs == 0));
+}
+
+metal::int2 naga_mod(metal::int2 lhs, metal::int2 rhs) {
+    metal::int2 divisor = metal::select(rhs, 1, (lhs == (-2147483647 - 1) & rhs == -1) | (rhs == 0));
+    return lhs - (lhs / divisor) * divisor;
+}
+
+
+struct occupancyInput {
+};
+[[max_total_threads_per_threadgroup(64)]] kernel void occupancy(
+  metal::uint3 id [[thread_position_in_grid]]
+, metal::texture2d<float, metal::access::sample> weather_tex [[user(fake0)]]
+, metal::texture2d<float, metal::access::write> occupancy_out [[user(fake0)]]
+) {
+    float m = 0.0;
+    int y = {};
+    int x = {};
+    if (metal::any(id.xy >= metal::uint2(64u))) {
+        return;
+    }
+    metal::int2 size_4 = static_cast<metal::int2>(metal::uint2(weather_tex.get_width(), weather_tex.get_height()));
+    metal::int2 lo_2 = as_type<metal::int2>(as_type<metal::uint2>(naga_div(as_type<metal::int2>(as_type<metal::uint2>(static_cast<metal::int2>(id.xy)) * as_type<metal::uint2>(size_4)), metal::int2(64))) - as_type<metal::uint2>(metal::int2(1)));
+    metal::int2 hi_1 = naga_div(as_type<metal::int2>(as_type<metal::uint2>(as_type<metal::int2>(as_type<metal::uint2>(static_cast<metal::int2>(id.xy)) + as_type<metal::uint2>(metal::int2(1)))) * as_type<metal::uint2>(size_4)), metal::int2(64));
+    y = lo_2.y;
+    uint2 loop_bound_5 = uint2(4294967295u);
+    bool loop_init_4 = true;
+    while(true) {
+        if (metal::all(loop_bound_5 == uint2(0u))) { break; }
+        loop_bound_5 -= uint2(loop_bound_5.y == 0u, 1u);
+        if (!loop_init_4) {
+            int _e54 = y;
+            y = as_type<int>(as_type<uint>(_e54) + as_type<uint>(1));
+        }
+        loop_init_4 = false;
+        int _e30 = y;
+        if (_e30 <= hi_1.y) {
+        } else {
+            break;
+        }
+        {
+            x = lo_2.x;
+            uint2 loop_bound_6 = uint2(4294967295u);
+            bool loop_init_5 = true;
+            while(true) {
+                if (metal::all(loop_bound_6 == uint2(0u))) { break; }
+                loop_bound_6 -= uint2(loop_bound_6.y == 0u, 1u);
+                if (!loop_init_5) {
+                    int _e51 = x;
+                    x = as_type<int>(as_type<uint>(_e51) + as_type<uint>(1));
+                }
+                loop_init_5 = false;
+                int _e35 = x;
+                if (_e35 <= hi_1.x) {
+                } else {
+                    break;
+                }
+                {
+                    int _e38 = x;
+                    int _e39 = y;
+                    metal::int2 t_3 = naga_mod(as_type<metal::int2>(as_type<metal::uint2>(naga_mod(metal::int2(_e38, _e39), size_4)) + as_type<metal::uint2>(size_4)), size_4);
+                    float _e44 = m;
+                    metal::float4 _e47 = weather_tex.read(metal::uint2(t_3), 0);
+                    m = metal::max(_e44, _e47.x);
+                }
+            }
+        }
+    }
+    float _e58 = m;
+    occupancy_out.write(metal::float4(_e58, 0.0, 0.0, 0.0), metal::uint2(id.xy));
+    return;
 }
 
 
 struct marchInput {
 };
 [[max_total_threads_per_threadgroup(64)]] kernel void march(
-  metal::uint3 id [[thread_position_in_grid]]
+  metal::uint3 id_1 [[thread_position_in_grid]]
 , constant Frame& frame [[user(fake0)]]
 , metal::texture3d<float, metal::access::sample> shape_tex [[user(fake0)]]
 , metal::texture3d<float, metal::access::sample> detail_tex [[user(fake0)]]
 , metal::texture2d<float, metal::access::sample> weather_tex [[user(fake0)]]
 , metal::texture2d<float, metal::access::sample> curl_tex [[user(fake0)]]
 , metal::sampler noise_sampler [[user(fake0)]]
+, metal::texture2d<float, metal::access::sample> occupancy_in [[user(fake0)]]
 , metal::texture2d<float, metal::access::write> cloud_out [[user(fake0)]]
 , metal::texture2d<float, metal::access::write> depth_out [[user(fake0)]]
 , device Stats& stats [[user(fake0)]]
 ) {
-    Counters counters = Counters {0u, 0u, 0u, 0u};
-    metal::float3 radiance = metal::float3(0.0);
-    float transmittance = 1.0;
-    float depth_sum = 0.0;
-    uint steps = {};
-    float jitter = 0.5;
-    uint i = 0u;
-    float depth = 0.0;
     metal::uint4 _e4 = frame.counts;
-    if (metal::any(id.xy >= _e4.xy)) {
+    if (metal::any(id_1.xy >= _e4.xy)) {
         return;
     }
-    metal::uint2 pixel_2 = id.xy;
-    metal::float3 _e9 = view_ray(pixel_2, frame);
-    float cam_alt = frame.camera_position.y;
-    metal::float4 _e16 = frame.camera_position;
-    metal::float2 cam_xz = _e16.xz;
-    count(STAT_PIXELS, 1u, stats);
-    Interval _e33 = layer_interval(cam_alt, _e9, frame);
-    if (_e33.kind == RAY_MISSES_LAYER) {
-        count(STAT_EXIT_MISSED, 1u, stats);
+    MarchResult _e9 = march_pixel(id_1.xy, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler, occupancy_in, stats);
+    cloud_out.write(metal::float4(_e9.radiance, _e9.transmittance), metal::uint2(id_1.xy));
+    depth_out.write(metal::float4(_e9.depth, 0.0, 0.0, 0.0), metal::uint2(id_1.xy));
+    return;
+}
+
+metal::uint2 naga_div(metal::uint2 lhs, metal::uint2 rhs) {
+    return lhs / metal::select(rhs, 1u, rhs == 0u);
+}
+
+
+struct march_sparseInput {
+};
+[[max_total_threads_per_threadgroup(64)]] kernel void march_sparse(
+  metal::uint3 id_2 [[thread_position_in_grid]]
+, constant Frame& frame [[user(fake0)]]
+, metal::texture3d<float, metal::access::sample> shape_tex [[user(fake0)]]
+, metal::texture3d<float, metal::access::sample> detail_tex [[user(fake0)]]
+, metal::texture2d<float, metal::access::sample> weather_tex [[user(fake0)]]
+, metal::texture2d<float, metal::access::sample> curl_tex [[user(fake0)]]
+, metal::sampler noise_sampler [[user(fake0)]]
+, metal::texture2d<float, metal::access::sample> occupancy_in [[user(fake0)]]
+, metal::texture2d<float, metal::access::write> cloud_out [[user(fake0)]]
+, metal::texture2d<float, metal::access::write> depth_out [[user(fake0)]]
+, device Stats& stats [[user(fake0)]]
+, metal::texture2d<float, metal::access::sample> history_in [[user(fake0)]]
+) {
+    MarchResult r = MarchResult {metal::float3(0.0), 1.0, 0.0};
+    bool skip = {};
+    bool local = {};
+    bool local_1 = {};
+    bool local_2 = {};
+    bool local_3 = {};
+    uint k_2 = frame.temporal.x;
+    metal::uint4 _e7 = frame.counts;
+    metal::uint2 blocks = naga_div((_e7.xy + metal::uint2(k_2)) - metal::uint2(1u), metal::uint2(k_2));
+    if (metal::any(id_2.xy >= blocks)) {
+        return;
+    }
+    uint _e24 = frame.misc.y;
+    metal::uint2 _e25 = block_offset(_e24, k_2);
+    metal::uint2 pixel_5 = (id_2.xy * k_2) + _e25;
+    metal::uint4 _e35 = frame.counts;
+    skip = metal::any(pixel_5 >= _e35.xy);
+    bool _e40 = skip;
+    if (!(_e40)) {
+        uint _e47 = frame.modes.w;
+        local = (_e47 & FLAG_CHECKERBOARD) != 0u;
     } else {
-        if (_e33.kind == RAY_HITS_GROUND) {
-            count(STAT_EXIT_GROUND, 1u, stats);
+        local = false;
+    }
+    bool _e53 = local;
+    if (_e53) {
+        uint _e59 = frame.temporal.y;
+        local_1 = _e59 != 0u;
+    } else {
+        local_1 = false;
+    }
+    bool _e63 = local_1;
+    if (_e63) {
+        uint _e67 = frame.misc.y;
+        uint turn = naga_div(_e67, k_2 * k_2);
+        metal::float2 _e71 = reproject(pixel_5, 0.0, frame);
+        if ((((id_2.x + id_2.y) + turn) & 1u) == 0u) {
+            bool _e82 = on_screen(_e71, frame);
+            local_2 = _e82;
         } else {
-            count(STAT_MARCHED, 1u, stats);
-            uint _e49 = frame.counts.z;
-            steps = _e49;
-            float _e54 = frame.march.x;
-            if (_e54 > 0.0) {
-                float _e61 = frame.march.x;
-                steps = metal::clamp(naga_f2u32(metal::ceil(_e33.length / _e61)), 1u, MAX_VIEW_STEPS);
+            local_2 = false;
+        }
+        bool _e84 = local_2;
+        if (_e84) {
+            metal::float4 _e87 = history_at(_e71, frame, history_in);
+            local_3 = _e87.w >= 1.0;
+        } else {
+            local_3 = false;
+        }
+        bool _e92 = local_3;
+        if (_e92) {
+            skip = true;
+        }
+    }
+    bool _e94 = skip;
+    if (!(_e94)) {
+        MarchResult _e96 = march_pixel(pixel_5, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler, occupancy_in, stats);
+        r = _e96;
+    }
+    metal::float3 _e100 = r.radiance;
+    float _e102 = r.transmittance;
+    cloud_out.write(metal::float4(_e100, _e102), metal::uint2(id_2.xy));
+    float _e107 = r.depth;
+    depth_out.write(metal::float4(_e107, 0.0, 0.0, 0.0), metal::uint2(id_2.xy));
+    return;
+}
+
+
+struct resolveInput {
+};
+[[max_total_threads_per_threadgroup(64)]] kernel void resolve(
+  metal::uint3 id_3 [[thread_position_in_grid]]
+, constant Frame& frame [[user(fake0)]]
+, metal::texture3d<float, metal::access::sample> shape_tex [[user(fake0)]]
+, metal::texture3d<float, metal::access::sample> detail_tex [[user(fake0)]]
+, metal::texture2d<float, metal::access::sample> weather_tex [[user(fake0)]]
+, metal::texture2d<float, metal::access::sample> curl_tex [[user(fake0)]]
+, metal::sampler noise_sampler [[user(fake0)]]
+, metal::texture2d<float, metal::access::sample> occupancy_in [[user(fake0)]]
+, metal::texture2d<float, metal::access::write> cloud_out [[user(fake0)]]
+, metal::texture2d<float, metal::access::write> depth_out [[user(fake0)]]
+, device Stats& stats [[user(fake0)]]
+, metal::texture2d<float, metal::access::sample> history_in [[user(fake0)]]
+, metal::texture2d<float, metal::access::sample> meta_in [[user(fake0)]]
+, metal::texture2d<float, metal::access::sample> sparse_in [[user(fake0)]]
+, metal::texture2d<float, metal::access::sample> sparse_depth_in [[user(fake0)]]
+, metal::texture2d<float, metal::access::write> history_out [[user(fake0)]]
+, metal::texture2d<float, metal::access::write> meta_out [[user(fake0)]]
+) {
+    float depth = {};
+    bool local_4 = {};
+    bool valid = {};
+    metal::float4 history = metal::float4(0.0, 0.0, 0.0, 1.0);
+    metal::float4 past = metal::float4(0.0);
+    bool local_5 = {};
+    bool local_6 = {};
+    bool local_7 = {};
+    metal::float4 lo = metal::float4(1000000000000000000000000000000.0);
+    metal::float4 hi = metal::float4(-1000000000000000000000000000000.0);
+    int dy = -1;
+    int dx = {};
+    metal::float4 result = {};
+    float samples = {};
+    float out_depth = {};
+    bool local_8 = {};
+    metal::uint4 _e4 = frame.counts;
+    if (metal::any(id_3.xy >= _e4.xy)) {
+        return;
+    }
+    metal::uint2 pixel_6 = id_3.xy;
+    uint k_3 = frame.temporal.x;
+    metal::uint2 block = naga_div(pixel_6, metal::uint2(k_3));
+    uint _e19 = frame.misc.y;
+    metal::uint2 _e20 = block_offset(_e19, k_3);
+    bool marched = metal::all(pixel_6 == ((block * k_3) + _e20));
+    metal::float4 current = sparse_in.read(metal::uint2(block), 0);
+    metal::float4 _e29 = sparse_depth_in.read(metal::uint2(block), 0);
+    float current_depth = _e29.x;
+    depth = current_depth;
+    float _e32 = depth;
+    if (_e32 <= 0.0) {
+        float _e38 = frame.camera_position.y;
+        metal::float3 _e39 = view_ray(pixel_6, frame);
+        Interval _e40 = layer_interval(_e38, _e39, frame);
+        if (_e40.kind == RAY_MARCH) {
+            depth = _e40.start + (0.5 * _e40.length);
+        }
+    }
+    float _e49 = depth;
+    metal::float2 _e50 = reproject(pixel_6, _e49, frame);
+    uint _e54 = frame.temporal.y;
+    if (_e54 != 0u) {
+        bool _e59 = on_screen(_e50, frame);
+        local_4 = _e59;
+    } else {
+        local_4 = false;
+    }
+    bool _e61 = local_4;
+    valid = _e61;
+    bool moving = metal::any(_e50 != static_cast<metal::float2>(pixel_6));
+    bool _e75 = valid;
+    if (_e75) {
+        metal::float4 _e76 = history_at(_e50, frame, history_in);
+        history = _e76;
+        metal::float4 _e77 = meta_at(_e50, frame, meta_in);
+        past = _e77;
+        if (moving) {
+            local_5 = current_depth > 0.0;
+        } else {
+            local_5 = false;
+        }
+        bool _e83 = local_5;
+        if (_e83) {
+            float _e87 = past.x;
+            local_6 = _e87 > 0.0;
+        } else {
+            local_6 = false;
+        }
+        bool _e91 = local_6;
+        if (_e91) {
+            metal::float4 _e94 = frame.camera_position;
+            metal::float3 _e96 = view_ray(pixel_6, frame);
+            metal::float4 _e101 = frame.previous_position;
+            float expected = metal::distance(_e94.xyz + (_e96 * current_depth), _e101.xyz);
+            float _e105 = past.x;
+            valid = metal::abs(_e105 - expected) <= (DISOCCLUSION_DEPTH * expected);
+        }
+    }
+    bool _e111 = valid;
+    if (_e111) {
+        local_7 = moving;
+    } else {
+        local_7 = false;
+    }
+    bool _e115 = local_7;
+    if (_e115) {
+        metal::uint4 _e118 = frame.counts;
+        metal::int2 blocks_1 = static_cast<metal::int2>(naga_div((_e118.xy + metal::uint2(k_3)) - metal::uint2(1u), metal::uint2(k_3)));
+        uint2 loop_bound_7 = uint2(4294967295u);
+        bool loop_init_6 = true;
+        while(true) {
+            if (metal::all(loop_bound_7 == uint2(0u))) { break; }
+            loop_bound_7 -= uint2(loop_bound_7.y == 0u, 1u);
+            if (!loop_init_6) {
+                int _e166 = dy;
+                dy = as_type<int>(as_type<uint>(_e166) + as_type<uint>(1));
             }
-            uint _e69 = steps;
-            float dt_1 = _e33.length / static_cast<float>(_e69);
-            uint _e77 = frame.modes.w;
-            if ((_e77 & FLAG_JITTER) != 0u) {
-                uint _e85 = frame.misc.y;
-                float _e86 = hash_unit(pixel_2, _e85);
-                jitter = _e86;
+            loop_init_6 = false;
+            int _e136 = dy;
+            if (_e136 <= 1) {
+            } else {
+                break;
             }
-            float _e90 = frame.extinction.x;
-            float _e94 = frame.extinction.y;
-            float sigma_e = _e90 + _e94;
-            uint2 loop_bound_2 = uint2(4294967295u);
-            bool loop_init_2 = true;
-            while(true) {
-                if (metal::all(loop_bound_2 == uint2(0u))) { break; }
-                loop_bound_2 -= uint2(loop_bound_2.y == 0u, 1u);
-                if (!loop_init_2) {
-                    uint _e157 = i;
-                    i = _e157 + 1u;
-                }
-                loop_init_2 = false;
-                uint _e98 = i;
-                uint _e99 = steps;
-                if (_e98 < _e99) {
-                } else {
-                    break;
-                }
-                {
-                    uint _e102 = counters.view_steps;
-                    counters.view_steps = _e102 + 1u;
-                    uint _e106 = i;
-                    float _e108 = jitter;
-                    float t = _e33.start + ((static_cast<float>(_e106) + _e108) * dt_1);
-                    metal::float3 rel_2 = (_e9 * t) + metal::float3(0.0, cam_alt, 0.0);
-                    metal::float3 p_6 = metal::float3(rel_2.x + cam_xz.x, rel_2.y, rel_2.z + cam_xz.y);
-                    float _e125 = altitude_of(rel_2, frame);
-                    float _e126 = cloud_density(p_6, _e125, counters, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
-                    if (_e126 <= 0.0) {
-                        continue;
+            {
+                dx = -1;
+                uint2 loop_bound_8 = uint2(4294967295u);
+                bool loop_init_7 = true;
+                while(true) {
+                    if (metal::all(loop_bound_8 == uint2(0u))) { break; }
+                    loop_bound_8 -= uint2(loop_bound_8.y == 0u, 1u);
+                    if (!loop_init_7) {
+                        int _e163 = dx;
+                        dx = as_type<int>(as_type<uint>(_e163) + as_type<uint>(1));
                     }
-                    float sigma_t_2 = sigma_e * _e126;
-                    metal::float3 _e130 = scattered_light(rel_2, p_6, _e125, _e126, _e9, counters, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
-                    metal::float3 _e131 = radiance;
-                    float _e132 = transmittance;
-                    metal::float3 _e133 = step_integral(_e130, sigma_t_2, dt_1, frame);
-                    radiance = _e131 + (_e132 * _e133);
-                    float step_t = metal::exp(-(sigma_t_2) * dt_1);
-                    float _e139 = depth_sum;
-                    float _e140 = transmittance;
-                    depth_sum = _e139 + ((t * _e140) * (1.0 - step_t));
-                    float _e146 = transmittance;
-                    transmittance = _e146 * step_t;
-                    float _e148 = transmittance;
-                    float _e152 = frame.march.w;
-                    if (_e148 < _e152) {
-                        count(STAT_EXIT_TRANSMITTANCE, 1u, stats);
+                    loop_init_7 = false;
+                    int _e141 = dx;
+                    if (_e141 <= 1) {
+                    } else {
                         break;
+                    }
+                    {
+                        int _e145 = dx;
+                        int _e146 = dy;
+                        metal::int2 b_4 = metal::clamp(as_type<metal::int2>(as_type<metal::uint2>(static_cast<metal::int2>(block)) + as_type<metal::uint2>(metal::int2(_e145, _e146))), metal::int2(0), as_type<metal::int2>(as_type<metal::uint2>(blocks_1) - as_type<metal::uint2>(metal::int2(1))));
+                        metal::float4 s_3 = sparse_in.read(metal::uint2(b_4), 0);
+                        metal::float4 _e158 = lo;
+                        lo = metal::min(_e158, s_3);
+                        metal::float4 _e160 = hi;
+                        hi = metal::max(_e160, s_3);
                     }
                 }
             }
         }
+        metal::float4 _e168 = history;
+        metal::float4 _e169 = lo;
+        metal::float4 _e170 = hi;
+        history = metal::clamp(_e168, _e169, _e170);
     }
-    uint _e161 = counters.view_steps;
-    count(STAT_VIEW_STEPS, _e161, stats);
-    uint _e164 = counters.density;
-    count(STAT_DENSITY, _e164, stats);
-    uint _e167 = counters.detail;
-    count(STAT_DETAIL, _e167, stats);
-    uint _e170 = counters.light;
-    count(STAT_LIGHT, _e170, stats);
-    float _e173 = transmittance;
-    if (_e173 < 1.0) {
-        float _e176 = depth_sum;
-        float _e177 = transmittance;
-        depth = _e176 / (1.0 - _e177);
+    if (marched) {
+        bool _e175 = valid;
+        if (_e175) {
+            float _e177 = past.y;
+            samples = metal::min(_e177 + 1.0, moving ? HISTORY_SAMPLES_MOVING : HISTORY_SAMPLES);
+            metal::float4 _e184 = history;
+            float _e185 = samples;
+            result = metal::mix(_e184, current, 1.0 / _e185);
+        } else {
+            samples = 1.0;
+            result = current;
+        }
+        float _e191 = past.x;
+        if (!((current_depth > 0.0))) {
+            bool _e197 = valid;
+            local_8 = !(_e197);
+        } else {
+            local_8 = true;
+        }
+        bool _e200 = local_8;
+        out_depth = _e200 ? current_depth : _e191;
+    } else {
+        bool _e202 = valid;
+        if (_e202) {
+            float _e204 = past.y;
+            samples = _e204;
+            metal::float4 _e205 = history;
+            result = _e205;
+            float _e207 = past.x;
+            out_depth = _e207;
+        } else {
+            MarchResult _e208 = march_pixel(pixel_6, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler, occupancy_in, stats);
+            samples = 1.0;
+            result = metal::float4(_e208.radiance, _e208.transmittance);
+            out_depth = _e208.depth;
+        }
     }
-    metal::float3 _e182 = radiance;
-    float _e183 = transmittance;
-    cloud_out.write(metal::float4(_e182, _e183), metal::uint2(pixel_2));
-    float _e186 = depth;
-    depth_out.write(metal::float4(_e186, 0.0, 0.0, 0.0), metal::uint2(pixel_2));
+    metal::float4 _e215 = result;
+    history_out.write(_e215, metal::uint2(pixel_6));
+    float _e217 = out_depth;
+    float _e218 = samples;
+    meta_out.write(metal::float4(_e217, _e218, 0.0, 0.0), metal::uint2(pixel_6));
+    metal::float4 _e223 = result;
+    cloud_out.write(_e223, metal::uint2(pixel_6));
+    float _e225 = out_depth;
+    depth_out.write(metal::float4(_e225, 0.0, 0.0, 0.0), metal::uint2(pixel_6));
     return;
 }
 
@@ -899,20 +1606,20 @@ struct marchInput {
 struct compositeInput {
 };
 [[max_total_threads_per_threadgroup(64)]] kernel void composite(
-  metal::uint3 id_1 [[thread_position_in_grid]]
+  metal::uint3 id_4 [[thread_position_in_grid]]
 , constant Frame& frame [[user(fake0)]]
 , metal::texture2d<float, metal::access::sample> cloud_in [[user(fake0)]]
 , metal::texture2d<float, metal::access::write> image_out [[user(fake0)]]
 ) {
     metal::float3 background = {};
     metal::uint4 _e4 = frame.counts;
-    if (metal::any(id_1.xy >= _e4.xy)) {
+    if (metal::any(id_4.xy >= _e4.xy)) {
         return;
     }
-    metal::uint2 pixel_3 = id_1.xy;
-    metal::float3 _e9 = view_ray(pixel_3, frame);
+    metal::uint2 pixel_7 = id_4.xy;
+    metal::float3 _e9 = view_ray(pixel_7, frame);
     float alt_6 = frame.camera_position.y;
-    metal::float4 cloud = cloud_in.read(metal::uint2(pixel_3), 0);
+    metal::float4 cloud = cloud_in.read(metal::uint2(pixel_7), 0);
     metal::float3 _e17 = sky_radiance(_e9, alt_6, frame);
     background = _e17;
     bool _e22 = hits_ground(metal::float3(0.0, alt_6, 0.0), alt_6, _e9, frame);
@@ -927,6 +1634,6 @@ struct compositeInput {
     metal::float3 exposed = radiance_1 * _e35;
     metal::float3 _e37 = aces_fitted(exposed);
     metal::float3 display = metal::pow(_e37, metal::float3(0.45454547));
-    image_out.write(metal::float4(display, 1.0), metal::uint2(pixel_3));
+    image_out.write(metal::float4(display, 1.0), metal::uint2(pixel_7));
     return;
 }

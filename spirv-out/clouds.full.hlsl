@@ -20,6 +20,11 @@ struct Frame {
     uint4 counts;
     uint4 modes;
     uint4 misc;
+    float4 previous_position;
+    float4 previous_forward;
+    float4 previous_right;
+    float4 previous_up;
+    uint4 temporal;
 };
 
 struct Roots {
@@ -51,6 +56,15 @@ struct Stats {
     uint counters[9];
 };
 
+struct MarchResult {
+    float3 radiance;
+    float transmittance;
+    float depth;
+    int _end_pad_0;
+    int _end_pad_1;
+    int _end_pad_2;
+};
+
 static const uint PHASE_HG = 0u;
 static const uint PHASE_TWO_LOBE_HG = 1u;
 static const uint PHASE_CORNETTE_SHANKS = 2u;
@@ -60,11 +74,15 @@ static const uint HEIGHT_PARABOLA = 0u;
 static const uint HEIGHT_CLOUD_TYPES = 1u;
 static const uint FLAG_BEER_POWDER = 1u;
 static const uint FLAG_JITTER = 2u;
+static const uint FLAG_DYNAMIC_STEP = 4u;
+static const uint FLAG_CHECKERBOARD = 8u;
+static const uint FLAG_EMPTY_SKIP = 16u;
 static const float PI = 3.1415927;
 static const uint MAX_VIEW_STEPS = 1024u;
 static const uint RAY_MARCH = 0u;
 static const uint RAY_MISSES_LAYER = 1u;
 static const uint RAY_HITS_GROUND = 2u;
+static const uint OCCUPANCY_CELLS = 64u;
 static const uint STAT_PIXELS = 0u;
 static const uint STAT_MARCHED = 1u;
 static const uint STAT_VIEW_STEPS = 2u;
@@ -75,6 +93,9 @@ static const uint STAT_EXIT_TRANSMITTANCE = 6u;
 static const uint STAT_EXIT_MISSED = 7u;
 static const uint STAT_EXIT_GROUND = 8u;
 static const uint STAT_COUNT = 9u;
+static const float HISTORY_SAMPLES = 16.0;
+static const float HISTORY_SAMPLES_MOVING = 2.0;
+static const float DISOCCLUSION_DEPTH = 0.2;
 static const bool LIGHT_MARCH = true;
 static const uint MAX_OCTAVES = 8u;
 static const bool DETAIL = true;
@@ -90,20 +111,28 @@ SamplerState nagaSamplerHeap[2048]: register(s16, space0);
 SamplerComparisonState nagaComparisonSamplerHeap[2048]: register(s17, space0);
 StructuredBuffer<uint> nagaGroup0SamplerIndexArray : register(t18, space0);
 static const SamplerState noise_sampler = nagaSamplerHeap[nagaGroup0SamplerIndexArray[5]];
+Texture2D<float4> occupancy_in : register(t11);
+RWTexture2D<float> occupancy_out : register(u12);
 RWTexture2D<float4> cloud_out : register(u6);
 RWTexture2D<float> depth_out : register(u7);
 RWByteAddressBuffer stats : register(u8);
+Texture2D<float4> history_in : register(t13);
+Texture2D<float4> meta_in : register(t14);
+Texture2D<float4> sparse_in : register(t15);
+Texture2D<float4> sparse_depth_in : register(t16);
+RWTexture2D<float4> history_out : register(u17);
+RWTexture2D<float4> meta_out : register(u18);
 Texture2D<float4> cloud_in : register(t9);
 RWTexture2D<unorm float4> image_out : register(u10);
 
-float saturate_(float x)
+float saturate_(float x_1)
 {
-    return clamp(x, 0.0, 1.0);
+    return clamp(x_1, 0.0, 1.0);
 }
 
-float remap(float x_1, float lo0_, float hi0_, float lo1_, float hi1_)
+float remap(float x_2, float lo0_, float hi0_, float lo1_, float hi1_)
 {
-    return (lo1_ + (((x_1 - lo0_) * (hi1_ - lo1_)) / (hi0_ - lo0_)));
+    return (lo1_ + (((x_2 - lo0_) * (hi1_ - lo1_)) / (hi0_ - lo0_)));
 }
 
 uint pcg(uint v)
@@ -111,6 +140,11 @@ uint pcg(uint v)
     uint state = ((v * 747796405u) + 2891336453u);
     uint word = (((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u);
     return ((word >> 22u) ^ word);
+}
+
+float van_der_corput(uint n)
+{
+    return (float((reversebits(n) >> 8u)) * 5.9604645e-8);
 }
 
 float hash_unit(uint2 pixel, uint frame_index)
@@ -131,8 +165,8 @@ float3 view_ray(uint2 pixel_1)
     float4 _e26 = frame.camera_forward;
     float4 _e30 = frame.camera_right;
     float4 _e39 = frame.camera_up;
-    float3 d_5 = ((_e26.xyz + (_e30.xyz * ((ndc.x * tan_half) * aspect))) - (_e39.xyz * (ndc.y * tan_half)));
-    return normalize(d_5);
+    float3 d_6 = ((_e26.xyz + (_e30.xyz * ((ndc.x * tan_half) * aspect))) - (_e39.xyz * (ndc.y * tan_half)));
+    return normalize(d_6);
 }
 
 Roots ConstructRoots(float arg0, float arg1, bool arg2) {
@@ -174,24 +208,24 @@ Roots ray_shell(float alt, float3 d, float radius_alt)
 float altitude_of(float3 p)
 {
     float rp_1 = frame.atmosphere.x;
-    float n = (((p.x * p.x) + (p.z * p.z)) + (p.y * (p.y + (2.0 * rp_1))));
-    float3 q = float3(p.x, (p.y + rp_1), p.z);
-    return (n / (length(q) + rp_1));
+    float n_1 = (((p.x * p.x) + (p.z * p.z)) + (p.y * (p.y + (2.0 * rp_1))));
+    float3 q_3 = float3(p.x, (p.y + rp_1), p.z);
+    return (n_1 / (length(q_3) + rp_1));
 }
 
 bool hits_ground(float3 p_1, float alt_1, float3 d_1)
 {
-    bool local = (bool)0;
+    bool local_9 = (bool)0;
 
     float rp_2 = frame.atmosphere.x;
     float b_2 = dot(d_1, float3(p_1.x, (p_1.y + rp_2), p_1.z));
     float c_2 = (alt_1 * (alt_1 + (2.0 * rp_2)));
     if ((b_2 < 0.0)) {
-        local = ((b_2 * b_2) >= c_2);
+        local_9 = ((b_2 * b_2) >= c_2);
     } else {
-        local = false;
+        local_9 = false;
     }
-    bool _e24 = local;
+    bool _e24 = local_9;
     return _e24;
 }
 
@@ -207,9 +241,9 @@ Interval layer_interval(float alt_2, float3 d_2)
 {
     float start = 0.0;
     float end = 0.0;
-    bool local_1 = (bool)0;
-    bool local_2 = (bool)0;
-    bool local_3 = (bool)0;
+    bool local_10 = (bool)0;
+    bool local_11 = (bool)0;
+    bool local_12 = (bool)0;
 
     float bottom = frame.atmosphere.y;
     float top = frame.atmosphere.z;
@@ -228,22 +262,22 @@ Interval layer_interval(float alt_2, float3 d_2)
         if ((alt_2 <= top)) {
             end = _e15.t1_;
             if (_e14.hit) {
-                local_1 = (_e14.t0_ > 0.0);
+                local_10 = (_e14.t0_ > 0.0);
             } else {
-                local_1 = false;
+                local_10 = false;
             }
-            bool _e40 = local_1;
+            bool _e40 = local_10;
             if (_e40) {
                 float _e41 = end;
                 end = min(_e41, _e14.t0_);
             }
         } else {
             if (!(!(_e15.hit))) {
-                local_2 = (_e15.t1_ <= 0.0);
+                local_11 = (_e15.t1_ <= 0.0);
             } else {
-                local_2 = true;
+                local_11 = true;
             }
-            bool _e53 = local_2;
+            bool _e53 = local_11;
             if (_e53) {
                 const Interval interval_1 = ConstructInterval(0.0, 0.0, 1u);
                 return interval_1;
@@ -251,11 +285,11 @@ Interval layer_interval(float alt_2, float3 d_2)
             start = max(_e15.t0_, 0.0);
             end = _e15.t1_;
             if (_e14.hit) {
-                local_3 = (_e14.t0_ > 0.0);
+                local_12 = (_e14.t0_ > 0.0);
             } else {
-                local_3 = false;
+                local_12 = false;
             }
-            bool _e69 = local_3;
+            bool _e69 = local_12;
             if (_e69) {
                 float _e70 = end;
                 end = min(_e70, _e14.t0_);
@@ -317,9 +351,9 @@ float height_cloud_types(float h_2, float cloud_type_1)
     const float _e11 = gradient(h_2, 0.0, 0.2, 0.4, 0.65);
     const float _e16 = gradient(h_2, 0.0, 0.1, 0.6, 0.95);
     const float _e19 = saturate_((cloud_type_1 * 2.0));
-    float lo = lerp(_e6, _e11, _e19);
+    float lo_1 = lerp(_e6, _e11, _e19);
     const float _e25 = saturate_(((cloud_type_1 * 2.0) - 1.0));
-    return lerp(lo, _e16, _e25);
+    return lerp(lo_1, _e16, _e25);
 }
 
 float height_signal(float h_3, float cloud_type_2)
@@ -340,38 +374,38 @@ uint3 NagaDimensions3D(Texture3D<float4> tex)
     return ret.xyz;
 }
 
-float cloud_density(float3 p_3, float alt_3, inout Counters counters_1)
+float cloud_density(float3 p_3, float alt_3, inout Counters counters)
 {
-    bool local_4 = (bool)0;
-    bool local_5 = (bool)0;
+    bool local_13 = (bool)0;
+    bool local_14 = (bool)0;
     float base = (float)0;
     float density = (float)0;
-    bool local_6 = (bool)0;
-    bool local_7 = (bool)0;
+    bool local_15 = (bool)0;
+    bool local_16 = (bool)0;
     float3 detail_pos = (float3)0;
 
     float bottom_1 = frame.atmosphere.y;
     float top_1 = frame.atmosphere.z;
     float h_5 = ((alt_3 - bottom_1) / (top_1 - bottom_1));
     if (!((h_5 < 0.0))) {
-        local_4 = (h_5 > 1.0);
+        local_13 = (h_5 > 1.0);
     } else {
-        local_4 = true;
+        local_13 = true;
     }
-    bool _e22 = local_4;
+    bool _e22 = local_13;
     if (_e22) {
         return 0.0;
     }
-    uint _e25 = counters_1.density;
-    counters_1.density = (_e25 + 1u);
+    uint _e25 = counters.density;
+    counters.density = (_e25 + 1u);
     const Weather _e28 = sample_weather(p_3);
     const float _e30 = height_signal(h_5, _e28.cloud_type);
     if (!((_e28.coverage <= 0.0))) {
-        local_5 = (_e30 <= 0.0);
+        local_14 = (_e30 <= 0.0);
     } else {
-        local_5 = true;
+        local_14 = true;
     }
-    bool _e40 = local_5;
+    bool _e40 = local_14;
     if (_e40) {
         return 0.0;
     }
@@ -399,21 +433,21 @@ float cloud_density(float3 p_3, float alt_3, inout Counters counters_1)
     float strength = frame.erosion.x;
     float threshold = frame.erosion.y;
     if (DETAIL) {
-        local_6 = (strength > 0.0);
+        local_15 = (strength > 0.0);
     } else {
-        local_6 = false;
+        local_15 = false;
     }
-    bool _e126 = local_6;
+    bool _e126 = local_15;
     if (_e126) {
         float _e129 = base;
-        local_7 = (_e129 < threshold);
+        local_16 = (_e129 < threshold);
     } else {
-        local_7 = false;
+        local_16 = false;
     }
-    bool _e132 = local_7;
+    bool _e132 = local_16;
     if (_e132) {
-        uint _e134 = counters_1.detail;
-        counters_1.detail = (_e134 + 1u);
+        uint _e134 = counters.detail;
+        counters.detail = (_e134 + 1u);
         detail_pos = float3(p_3.x, alt_3, p_3.z);
         if (CURL) {
             float4 _e145 = frame.wind_offsets1_;
@@ -493,13 +527,13 @@ float phase(float cos_theta_2, float scale)
     }
 }
 
-float sun_optical_depth(float3 rel, float3 p_4, inout Counters counters_2)
+float sun_optical_depth(float3 rel, float3 p_4, inout Counters counters_1)
 {
     float seg = (float)0;
     float dist = 0.0;
     float tau = 0.0;
-    uint i_1 = 0u;
-    bool local_8 = (bool)0;
+    uint i = 0u;
+    bool local_17 = (bool)0;
 
     float4 _e5 = frame.sun_direction;
     float3 sun = _e5.xyz;
@@ -516,11 +550,11 @@ float sun_optical_depth(float3 rel, float3 p_4, inout Counters counters_2)
         if (all(loop_bound == uint2(0u, 0u))) { break; }
         loop_bound -= uint2(loop_bound.y == 0u, 1u);
         if (!loop_init) {
-            uint _e78 = i_1;
-            i_1 = (_e78 + 1u);
+            uint _e78 = i;
+            i = (_e78 + 1u);
         }
         loop_init = false;
-        uint _e35 = i_1;
+        uint _e35 = i;
         if ((_e35 < steps_1)) {
         } else {
             break;
@@ -529,23 +563,23 @@ float sun_optical_depth(float3 rel, float3 p_4, inout Counters counters_2)
             float _e37 = dist;
             float _e38 = seg;
             float s_2 = (_e37 + (0.5 * _e38));
-            float3 q_1 = (rel + (sun * s_2));
-            const float _e44 = altitude_of(q_1);
+            float3 q_4 = (rel + (sun * s_2));
+            const float _e44 = altitude_of(q_4);
             float _e48 = frame.atmosphere.z;
             if (!((_e44 > _e48))) {
                 float _e56 = frame.atmosphere.y;
-                local_8 = (_e44 < _e56);
+                local_17 = (_e44 < _e56);
             } else {
-                local_8 = true;
+                local_17 = true;
             }
-            bool _e59 = local_8;
+            bool _e59 = local_17;
             if (_e59) {
                 break;
             }
-            uint _e61 = counters_2.light;
-            counters_2.light = (_e61 + 1u);
+            uint _e61 = counters_1.light;
+            counters_1.light = (_e61 + 1u);
             float _e64 = tau;
-            const float _e67 = cloud_density((p_4 + (sun * s_2)), _e44, counters_2);
+            const float _e67 = cloud_density((p_4 + (sun * s_2)), _e44, counters_1);
             float _e69 = seg;
             tau = (_e64 + ((_e67 * sigma_t_1) * _e69));
             float _e72 = dist;
@@ -565,7 +599,7 @@ float sun_scattering(float cos_theta_3, float tau_1)
     float ka = 1.0;
     float kb = 1.0;
     float kc = 1.0;
-    uint i_2 = 0u;
+    uint i_1 = 0u;
 
     float a = frame.multiple_scattering.x;
     float b_3 = frame.multiple_scattering.y;
@@ -580,11 +614,11 @@ float sun_scattering(float cos_theta_3, float tau_1)
         if (all(loop_bound_1 == uint2(0u, 0u))) { break; }
         loop_bound_1 -= uint2(loop_bound_1.y == 0u, 1u);
         if (!loop_init_1) {
-            uint _e54 = i_2;
-            i_2 = (_e54 + 1u);
+            uint _e54 = i_1;
+            i_1 = (_e54 + 1u);
         }
         loop_init_1 = false;
-        uint _e34 = i_2;
+        uint _e34 = i_1;
         if ((_e34 < octaves)) {
         } else {
             break;
@@ -622,7 +656,7 @@ float3 ambient(float h_4)
     return (lerp(_e3.xyz, _e7.xyz, h_4) * _e13);
 }
 
-float3 scattered_light(float3 rel_1, float3 p_5, float alt_4, float density_1, float3 view, inout Counters counters_3)
+float3 scattered_light(float3 rel_1, float3 p_5, float alt_4, float density_1, float3 view, inout Counters counters_2)
 {
     float3 sun_light = (0.0).xxx;
     float tau_2 = 0.0;
@@ -636,7 +670,7 @@ float3 scattered_light(float3 rel_1, float3 p_5, float alt_4, float density_1, f
     const bool _e29 = hits_ground(rel_1, alt_4, sun_1);
     if (!(_e29)) {
         if (LIGHT_MARCH) {
-            const float _e34 = sun_optical_depth(rel_1, p_5, counters_3);
+            const float _e34 = sun_optical_depth(rel_1, p_5, counters_2);
             tau_2 = _e34;
         }
         float4 _e37 = frame.sun_illuminance;
@@ -653,16 +687,59 @@ float3 scattered_light(float3 rel_1, float3 p_5, float alt_4, float density_1, f
     return (((_e59 * density_1) * (_e61 + _e62)) * _e55);
 }
 
+uint2 naga_f2u32(float2 value) {
+    return uint2(clamp(value, 0.0, 4294967000.0));
+}
+
+float empty_cell_exit(float3 p_6, float3 d_3)
+{
+    float exit = 1e30;
+
+    float4 _e6 = frame.wind_offsets0_;
+    float _e12 = frame.periods.x;
+    float2 uv_1 = (frac(((p_6.xz - _e6.xy) / (_e12).xx)) * 64.0);
+    uint2 cell = min(naga_f2u32(uv_1), (63u).xx);
+    float4 _e23 = occupancy_in.Load(int3(cell, int(0)));
+    float m_1 = _e23.x;
+    float _e28 = frame.clouds.x;
+    if (((m_1 + (2.0 * (_e28 - 0.5))) > -0.003921569)) {
+        return 0.0;
+    }
+    float _e40 = frame.periods.x;
+    float cell_m = (_e40 / 64.0);
+    float2 inside = ((uv_1 - float2(cell)) * cell_m);
+    if ((d_3.x > 1e-6)) {
+        float _e50 = exit;
+        exit = min(_e50, ((cell_m - inside.x) / d_3.x));
+    } else {
+        if ((d_3.x < -1e-6)) {
+            float _e59 = exit;
+            exit = min(_e59, (inside.x / -(d_3.x)));
+        }
+    }
+    if ((d_3.z > 1e-6)) {
+        float _e68 = exit;
+        exit = min(_e68, ((cell_m - inside.y) / d_3.z));
+    } else {
+        if ((d_3.z < -1e-6)) {
+            float _e77 = exit;
+            exit = min(_e77, (inside.y / -(d_3.z)));
+        }
+    }
+    float _e83 = exit;
+    return max(_e83, 0.0);
+}
+
 void count(uint index, uint value)
 {
-    bool local_9 = (bool)0;
+    bool local_18 = (bool)0;
 
     if (STATS) {
-        local_9 = (value != 0u);
+        local_18 = (value != 0u);
     } else {
-        local_9 = false;
+        local_18 = false;
     }
-    bool _e8 = local_9;
+    bool _e8 = local_18;
     if (_e8) {
         uint _e12; stats.InterlockedAdd(index*4+0, value, _e12);
         return;
@@ -677,48 +754,30 @@ float3 step_integral(float3 source, float sigma_t, float dt)
     if ((_e6 == INTEGRATION_RIEMANN)) {
         return (source * dt);
     }
-    float x_3 = (sigma_t * dt);
-    float f = ((x_3 < 0.001) ? (1.0 - (0.5 * x_3)) : ((1.0 - exp(-(x_3))) / x_3));
-    return (source * (dt * f));
+    float x_4 = (sigma_t * dt);
+    float f_1 = ((x_4 < 0.001) ? (1.0 - (0.5 * x_4)) : ((1.0 - exp(-(x_4))) / x_4));
+    return (source * (dt * f_1));
 }
 
-float3 sky_radiance(float3 d_3, float alt_5)
+uint naga_div(uint lhs, uint rhs) {
+    return lhs / (rhs == 0u ? 1u : rhs);
+}
+
+float start_offset(uint2 pixel_2)
 {
-    float4 _e4 = frame.sun_direction;
-    float3 sun_2 = _e4.xyz;
-    float4 _e8 = frame.sun_illuminance;
-    float3 e = _e8.xyz;
-    const float _e15 = saturate_(((sun_2.y * 4.0) + 0.3));
-    const bool _e19 = hits_ground(float3(0.0, alt_5, 0.0), alt_5, d_3);
-    if (_e19) {
-        float3 ground_albedo = float3(0.035, 0.035, 0.03);
-        return (ground_albedo * (((e * max(sun_2.y, 0.0)) / (3.1415927).xxx) + ((0.05 * e) * _e15)));
+    uint _e4 = frame.modes.w;
+    bool jitter = ((_e4 & FLAG_JITTER) != 0u);
+    uint k_1 = frame.temporal.x;
+    if ((k_1 <= 1u)) {
+        uint _e18 = frame.misc.y;
+        const float _e19 = hash_unit(pixel_2, _e18);
+        return (jitter ? _e19 : 0.5);
     }
-    float3 zenith = float3(0.018, 0.04, 0.1);
-    float3 horizon = float3(0.07, 0.085, 0.11);
-    const float _e45 = saturate_(d_3.y);
-    float3 gradient_1 = lerp(horizon, zenith, sqrt(_e45));
-    float3 sunset = (((1.0 - (_e15 * 0.8)) * pow((1.0 - _e45), 6.0)) * float3(0.25, 0.1, 0.0));
-    const float _e64 = phase_hg(dot(d_3, sun_2), 0.76);
-    float glow = (_e64 * 0.02);
-    const float _e73 = saturate_(((sun_2.y * 10.0) + 1.0));
-    return (e * (((gradient_1 * _e15) + (sunset * _e73)) + ((glow * _e15)).xxx));
-}
-
-float3 sun_disk(float3 d_4)
-{
-    float cos_r = frame.sun_direction.w;
-    float4 _e7 = frame.sun_direction;
-    if ((dot(d_4, _e7.xyz) < cos_r)) {
-        return (0.0).xxx;
-    }
-    float4 _e15 = frame.sun_illuminance;
-    return (_e15.xyz / ((6.2831855 * max((1.0 - cos_r), 1e-6))).xxx);
-}
-
-float3 aces_fitted(float3 x_2)
-{
-    return clamp(((x_2 * ((2.51 * x_2) + (0.03).xxx)) / ((x_2 * ((2.43 * x_2) + (0.59).xxx)) + (0.14).xxx)), (0.0).xxx, (1.0).xxx);
+    const float _e23 = hash_unit(pixel_2, 0u);
+    float base_1 = (jitter ? _e23 : 0.5);
+    uint _e29 = frame.misc.y;
+    const float _e32 = van_der_corput(naga_div(_e29, (k_1 * k_1)));
+    return frac((base_1 + _e32));
 }
 
 Counters ConstructCounters(uint arg0, uint arg1, uint arg2, uint arg3) {
@@ -730,144 +789,764 @@ Counters ConstructCounters(uint arg0, uint arg1, uint arg2, uint arg3) {
     return ret;
 }
 
+MarchResult ConstructMarchResult(float3 arg0, float arg1, float arg2) {
+    MarchResult ret = (MarchResult)0;
+    ret.radiance = arg0;
+    ret.transmittance = arg1;
+    ret.depth = arg2;
+    return ret;
+}
+
 uint naga_f2u32(float value) {
     return uint(clamp(value, 0.0, 4294967000.0));
 }
 
-[numthreads(8, 8, 1)]
-void march(uint3 id : SV_DispatchThreadID)
+MarchResult march_pixel(uint2 pixel_3)
 {
-    Counters counters = ConstructCounters(0u, 0u, 0u, 0u);
+    Counters counters_3 = ConstructCounters(0u, 0u, 0u, 0u);
     float3 radiance = (0.0).xxx;
     float transmittance = 1.0;
     float depth_sum = 0.0;
     uint steps = (uint)0;
-    float jitter = 0.5;
-    uint i = 0u;
-    float depth = 0.0;
+    uint i_2 = 0u;
+    uint stride = 1u;
+    uint empty = 0u;
+    bool local_19 = (bool)0;
+    float depth_1 = 0.0;
 
-    uint4 _e4 = frame.counts;
-    if (any((id.xy >= _e4.xy))) {
-        return;
-    }
-    uint2 pixel_2 = id.xy;
-    const float3 _e9 = view_ray(pixel_2);
+    const float3 _e1 = view_ray(pixel_3);
     float cam_alt = frame.camera_position.y;
-    float4 _e16 = frame.camera_position;
-    float2 cam_xz = _e16.xz;
+    float4 _e8 = frame.camera_position;
+    float2 cam_xz = _e8.xz;
     count(STAT_PIXELS, 1u);
-    const Interval _e33 = layer_interval(cam_alt, _e9);
-    if ((_e33.kind == RAY_MISSES_LAYER)) {
+    const Interval _e25 = layer_interval(cam_alt, _e1);
+    if ((_e25.kind == RAY_MISSES_LAYER)) {
         count(STAT_EXIT_MISSED, 1u);
     } else {
-        if ((_e33.kind == RAY_HITS_GROUND)) {
+        if ((_e25.kind == RAY_HITS_GROUND)) {
             count(STAT_EXIT_GROUND, 1u);
         } else {
             count(STAT_MARCHED, 1u);
-            uint _e49 = frame.counts.z;
-            steps = _e49;
-            float _e54 = frame.march.x;
-            if ((_e54 > 0.0)) {
-                float _e61 = frame.march.x;
-                steps = clamp(naga_f2u32(ceil((_e33.length_ / _e61))), 1u, MAX_VIEW_STEPS);
+            uint _e41 = frame.counts.z;
+            steps = _e41;
+            float _e46 = frame.march.x;
+            if ((_e46 > 0.0)) {
+                float _e53 = frame.march.x;
+                steps = clamp(naga_f2u32(ceil((_e25.length_ / _e53))), 1u, MAX_VIEW_STEPS);
             }
-            uint _e69 = steps;
-            float dt_1 = (_e33.length_ / float(_e69));
+            uint _e61 = steps;
+            float dt_1 = (_e25.length_ / float(_e61));
+            const float _e64 = start_offset(pixel_3);
+            float _e68 = frame.extinction.x;
+            float _e72 = frame.extinction.y;
+            float sigma_e = (_e68 + _e72);
             uint _e77 = frame.modes.w;
-            if (((_e77 & FLAG_JITTER) != 0u)) {
-                uint _e85 = frame.misc.y;
-                const float _e86 = hash_unit(pixel_2, _e85);
-                jitter = _e86;
-            }
-            float _e90 = frame.extinction.x;
-            float _e94 = frame.extinction.y;
-            float sigma_e = (_e90 + _e94);
+            bool dynamic_step = ((_e77 & FLAG_DYNAMIC_STEP) != 0u);
+            uint _e85 = frame.modes.w;
+            bool empty_skip = ((_e85 & FLAG_EMPTY_SKIP) != 0u);
             uint2 loop_bound_2 = uint2(4294967295u, 4294967295u);
-            bool loop_init_2 = true;
             while(true) {
                 if (all(loop_bound_2 == uint2(0u, 0u))) { break; }
                 loop_bound_2 -= uint2(loop_bound_2.y == 0u, 1u);
-                if (!loop_init_2) {
-                    uint _e157 = i;
-                    i = (_e157 + 1u);
+                uint _e96 = i_2;
+                uint _e97 = steps;
+                if ((_e96 >= _e97)) {
+                    break;
                 }
-                loop_init_2 = false;
-                uint _e98 = i;
-                uint _e99 = steps;
-                if ((_e98 < _e99)) {
+                uint _e100 = counters_3.view_steps;
+                counters_3.view_steps = (_e100 + 1u);
+                uint _e104 = i_2;
+                float t_1 = (_e25.start + ((float(_e104) + _e64) * dt_1));
+                float3 rel_2 = ((_e1 * t_1) + float3(0.0, cam_alt, 0.0));
+                float3 p_7 = float3((rel_2.x + cam_xz.x), rel_2.y, (rel_2.z + cam_xz.y));
+                if (empty_skip) {
+                    const float _e122 = empty_cell_exit(p_7, _e1);
+                    if ((_e122 > 0.0)) {
+                        uint _e131 = steps;
+                        uint next = naga_f2u32(clamp(ceil(((((t_1 + _e122) - _e25.start) / dt_1) - _e64)), 0.0, float(_e131)));
+                        uint _e136 = i_2;
+                        i_2 = max((_e136 + 1u), next);
+                        continue;
+                    }
+                }
+                const float _e140 = altitude_of(rel_2);
+                const float _e141 = cloud_density(p_7, _e140, counters_3);
+                if ((_e141 <= 0.0)) {
+                    uint _e144 = empty;
+                    empty = (_e144 + 1u);
+                    if (dynamic_step) {
+                        uint _e149 = empty;
+                        local_19 = (_e149 >= 8u);
+                    } else {
+                        local_19 = false;
+                    }
+                    bool _e153 = local_19;
+                    if (_e153) {
+                        stride = 2u;
+                    }
+                    uint _e155 = i_2;
+                    uint _e156 = stride;
+                    i_2 = (_e155 + _e156);
+                    continue;
+                }
+                uint _e158 = stride;
+                if ((_e158 > 1u)) {
+                    uint _e161 = i_2;
+                    uint _e162 = stride;
+                    i_2 = (_e161 - (_e162 - 1u));
+                    stride = 1u;
+                    empty = 0u;
+                    continue;
+                }
+                empty = 0u;
+                float sigma_t_2 = (sigma_e * _e141);
+                const float3 _e170 = scattered_light(rel_2, p_7, _e140, _e141, _e1, counters_3);
+                float3 _e171 = radiance;
+                float _e172 = transmittance;
+                const float3 _e173 = step_integral(_e170, sigma_t_2, dt_1);
+                radiance = (_e171 + (_e172 * _e173));
+                float step_t = exp((-(sigma_t_2) * dt_1));
+                float _e179 = depth_sum;
+                float _e180 = transmittance;
+                depth_sum = (_e179 + ((t_1 * _e180) * (1.0 - step_t)));
+                float _e186 = transmittance;
+                transmittance = (_e186 * step_t);
+                float _e188 = transmittance;
+                float _e192 = frame.march.w;
+                if ((_e188 < _e192)) {
+                    count(STAT_EXIT_TRANSMITTANCE, 1u);
+                    break;
+                }
+                uint _e196 = i_2;
+                i_2 = (_e196 + 1u);
+            }
+        }
+    }
+    uint _e201 = counters_3.view_steps;
+    count(STAT_VIEW_STEPS, _e201);
+    uint _e204 = counters_3.density;
+    count(STAT_DENSITY, _e204);
+    uint _e207 = counters_3.detail;
+    count(STAT_DETAIL, _e207);
+    uint _e210 = counters_3.light;
+    count(STAT_LIGHT, _e210);
+    float _e213 = transmittance;
+    if ((_e213 < 1.0)) {
+        float _e216 = depth_sum;
+        float _e217 = transmittance;
+        depth_1 = (_e216 / (1.0 - _e217));
+    }
+    float3 _e221 = radiance;
+    float _e222 = transmittance;
+    float _e223 = depth_1;
+    const MarchResult marchresult = ConstructMarchResult(_e221, _e222, _e223);
+    return marchresult;
+}
+
+uint naga_mod(uint lhs, uint rhs) {
+    return lhs % (rhs == 0u ? 1u : rhs);
+}
+
+typedef uint2 ret_Constructarray4_uint2_[4];
+ret_Constructarray4_uint2_ Constructarray4_uint2_(uint2 arg0, uint2 arg1, uint2 arg2, uint2 arg3) {
+    uint2 ret[4] = { arg0, arg1, arg2, arg3 };
+    return ret;
+}
+
+typedef uint2 ret_Constructarray16_uint2_[16];
+ret_Constructarray16_uint2_ Constructarray16_uint2_(uint2 arg0, uint2 arg1, uint2 arg2, uint2 arg3, uint2 arg4, uint2 arg5, uint2 arg6, uint2 arg7, uint2 arg8, uint2 arg9, uint2 arg10, uint2 arg11, uint2 arg12, uint2 arg13, uint2 arg14, uint2 arg15) {
+    uint2 ret[16] = { arg0, arg1, arg2, arg3, arg4, arg5, arg6, arg7, arg8, arg9, arg10, arg11, arg12, arg13, arg14, arg15 };
+    return ret;
+}
+
+uint2 block_offset(uint f, uint k)
+{
+    uint2 b2_[4] = Constructarray4_uint2_(uint2(0u, 0u), uint2(1u, 1u), uint2(1u, 0u), uint2(0u, 1u));
+    uint2 b4_[16] = Constructarray16_uint2_(uint2(0u, 0u), uint2(2u, 2u), uint2(2u, 0u), uint2(0u, 2u), uint2(1u, 1u), uint2(3u, 3u), uint2(3u, 1u), uint2(1u, 3u), uint2(1u, 0u), uint2(3u, 2u), uint2(3u, 0u), uint2(1u, 2u), uint2(0u, 1u), uint2(2u, 3u), uint2(2u, 1u), uint2(0u, 3u));
+
+    if ((k == 2u)) {
+        uint2 _e21 = b2_[min(uint(naga_mod(f, 4u)), 3u)];
+        return _e21;
+    }
+    if ((k == 4u)) {
+        uint2 _e77 = b4_[min(uint(naga_mod(f, 16u)), 15u)];
+        return _e77;
+    }
+    return (0u).xx;
+}
+
+float2 reproject(uint2 pixel_4, float depth_2)
+{
+    bool local_20 = (bool)0;
+    bool local_21 = (bool)0;
+    bool local_22 = (bool)0;
+    float3 dir = (float3)0;
+
+    float4 _e4 = frame.previous_position;
+    float4 _e7 = frame.camera_position;
+    if (all((_e4 == _e7))) {
+        float4 _e14 = frame.previous_forward;
+        float4 _e17 = frame.camera_forward;
+        local_20 = all((_e14 == _e17));
+    } else {
+        local_20 = false;
+    }
+    bool _e21 = local_20;
+    if (_e21) {
+        float4 _e26 = frame.previous_right;
+        float4 _e29 = frame.camera_right;
+        local_21 = all((_e26 == _e29));
+    } else {
+        local_21 = false;
+    }
+    bool _e33 = local_21;
+    if (_e33) {
+        float4 _e38 = frame.previous_up;
+        float4 _e41 = frame.camera_up;
+        local_22 = all((_e38 == _e41));
+    } else {
+        local_22 = false;
+    }
+    bool same = local_22;
+    if (same) {
+        return float2(pixel_4);
+    }
+    const float3 _e47 = view_ray(pixel_4);
+    dir = _e47;
+    if ((depth_2 > 0.0)) {
+        float4 _e54 = frame.camera_position;
+        float4 _e58 = frame.previous_position;
+        dir = ((_e47 * depth_2) + (_e54.xyz - _e58.xyz));
+    }
+    float3 _e62 = dir;
+    float4 _e65 = frame.previous_forward;
+    float z = dot(_e62, _e65.xyz);
+    if ((z <= 0.0)) {
+        return (-1000000000.0).xx;
+    }
+    float tan_half_1 = frame.previous_position.w;
+    float aspect_1 = frame.previous_forward.w;
+    float3 _e80 = dir;
+    float4 _e83 = frame.previous_right;
+    float3 _e89 = dir;
+    float4 _e92 = frame.previous_up;
+    float2 ndc_1 = float2((dot(_e80, _e83.xyz) / ((z * tan_half_1) * aspect_1)), (-(dot(_e89, _e92.xyz)) / (z * tan_half_1)));
+    uint4 _e106 = frame.counts;
+    return ((((ndc_1 * 0.5) + (0.5).xx) * float2(_e106.xy)) - (0.5).xx);
+}
+
+bool on_screen(float2 q)
+{
+    bool local_23 = (bool)0;
+
+    uint4 _e3 = frame.counts;
+    float2 size_1 = float2(_e3.xy);
+    if (all((q >= (-0.5).xx))) {
+        local_23 = all((q <= (size_1 - (0.5).xx)));
+    } else {
+        local_23 = false;
+    }
+    bool _e18 = local_23;
+    return _e18;
+}
+
+float4 catmull_rom(float t)
+{
+    return float4((t * (-0.5 + (t * (1.0 - (0.5 * t))))), (1.0 + ((t * t) * (-2.5 + (1.5 * t)))), (t * (0.5 + (t * (2.0 - (1.5 * t))))), ((t * t) * (-0.5 + (0.5 * t))));
+}
+
+int2 naga_f2i32(float2 value) {
+    return int2(clamp(value, -2147483600.0, 2147483500.0));
+}
+
+float4 history_at(float2 q_1)
+{
+    float4 sum = (0.0).xxxx;
+    int j = int(0);
+    float4 row = (float4)0;
+    int i_3 = (int)0;
+
+    uint4 _e3 = frame.counts;
+    int2 size_2 = int2(_e3.xy);
+    float2 c_4 = clamp(q_1, (0.0).xx, float2(asint(asuint(size_2) - asuint((int(1)).xx))));
+    int2 base_2 = naga_f2i32(floor(c_4));
+    float2 f_2 = (c_4 - float2(base_2));
+    const float4 _e18 = catmull_rom(f_2.x);
+    const float4 _e20 = catmull_rom(f_2.y);
+    uint2 loop_bound_3 = uint2(4294967295u, 4294967295u);
+    bool loop_init_2 = true;
+    while(true) {
+        if (all(loop_bound_3 == uint2(0u, 0u))) { break; }
+        loop_bound_3 -= uint2(loop_bound_3.y == 0u, 1u);
+        if (!loop_init_2) {
+            int _e69 = j;
+            j = asint(asuint(_e69) + asuint(int(1)));
+        }
+        loop_init_2 = false;
+        int _e26 = j;
+        if ((_e26 < int(4))) {
+        } else {
+            break;
+        }
+        {
+            row = (0.0).xxxx;
+            i_3 = int(0);
+            uint2 loop_bound_4 = uint2(4294967295u, 4294967295u);
+            bool loop_init_3 = true;
+            while(true) {
+                if (all(loop_bound_4 == uint2(0u, 0u))) { break; }
+                loop_bound_4 -= uint2(loop_bound_4.y == 0u, 1u);
+                if (!loop_init_3) {
+                    int _e60 = i_3;
+                    i_3 = asint(asuint(_e60) + asuint(int(1)));
+                }
+                loop_init_3 = false;
+                int _e34 = i_3;
+                if ((_e34 < int(4))) {
                 } else {
                     break;
                 }
                 {
-                    uint _e102 = counters.view_steps;
-                    counters.view_steps = (_e102 + 1u);
-                    uint _e106 = i;
-                    float _e108 = jitter;
-                    float t = (_e33.start + ((float(_e106) + _e108) * dt_1));
-                    float3 rel_2 = ((_e9 * t) + float3(0.0, cam_alt, 0.0));
-                    float3 p_6 = float3((rel_2.x + cam_xz.x), rel_2.y, (rel_2.z + cam_xz.y));
-                    const float _e125 = altitude_of(rel_2);
-                    const float _e126 = cloud_density(p_6, _e125, counters);
-                    if ((_e126 <= 0.0)) {
-                        continue;
-                    }
-                    float sigma_t_2 = (sigma_e * _e126);
-                    const float3 _e130 = scattered_light(rel_2, p_6, _e125, _e126, _e9, counters);
-                    float3 _e131 = radiance;
-                    float _e132 = transmittance;
-                    const float3 _e133 = step_integral(_e130, sigma_t_2, dt_1);
-                    radiance = (_e131 + (_e132 * _e133));
-                    float step_t = exp((-(sigma_t_2) * dt_1));
-                    float _e139 = depth_sum;
-                    float _e140 = transmittance;
-                    depth_sum = (_e139 + ((t * _e140) * (1.0 - step_t)));
-                    float _e146 = transmittance;
-                    transmittance = (_e146 * step_t);
-                    float _e148 = transmittance;
-                    float _e152 = frame.march.w;
-                    if ((_e148 < _e152)) {
-                        count(STAT_EXIT_TRANSMITTANCE, 1u);
-                        break;
-                    }
+                    int _e37 = i_3;
+                    int _e40 = j;
+                    int2 t_2 = clamp(asint(asuint(base_2) + asuint(int2(asint(asuint(_e37) - asuint(int(1))), asint(asuint(_e40) - asuint(int(1)))))), (int(0)).xx, asint(asuint(size_2) - asuint((int(1)).xx)));
+                    float4 _e51 = row;
+                    float4 _e54 = history_in.Load(int3(t_2, int(0)));
+                    int _e55 = i_3;
+                    row = (_e51 + (_e54 * _e18[min(uint(_e55), 3u)]));
+                }
+            }
+            float4 _e62 = sum;
+            float4 _e63 = row;
+            int _e64 = j;
+            sum = (_e62 + (_e63 * _e20[min(uint(_e64), 3u)]));
+        }
+    }
+    float4 _e71 = sum;
+    float _e77 = sum.w;
+    const float _e78 = saturate_(_e77);
+    return float4(max(_e71.xyz, (0.0).xxx), _e78);
+}
+
+float4 meta_at(float2 q_2)
+{
+    uint4 _e3 = frame.counts;
+    int2 size_3 = int2(_e3.xy);
+    int2 p_8 = clamp(naga_f2i32(round(q_2)), (int(0)).xx, asint(asuint(size_3) - asuint((int(1)).xx)));
+    float4 _e16 = meta_in.Load(int3(p_8, int(0)));
+    return _e16;
+}
+
+float3 sky_radiance(float3 d_4, float alt_5)
+{
+    float4 _e4 = frame.sun_direction;
+    float3 sun_2 = _e4.xyz;
+    float4 _e8 = frame.sun_illuminance;
+    float3 e = _e8.xyz;
+    const float _e15 = saturate_(((sun_2.y * 4.0) + 0.3));
+    const bool _e19 = hits_ground(float3(0.0, alt_5, 0.0), alt_5, d_4);
+    if (_e19) {
+        float3 ground_albedo = float3(0.035, 0.035, 0.03);
+        return (ground_albedo * (((e * max(sun_2.y, 0.0)) / (3.1415927).xxx) + ((0.05 * e) * _e15)));
+    }
+    float3 zenith = float3(0.018, 0.04, 0.1);
+    float3 horizon = float3(0.07, 0.085, 0.11);
+    const float _e45 = saturate_(d_4.y);
+    float3 gradient_1 = lerp(horizon, zenith, sqrt(_e45));
+    float3 sunset = (((1.0 - (_e15 * 0.8)) * pow((1.0 - _e45), 6.0)) * float3(0.25, 0.1, 0.0));
+    const float _e64 = phase_hg(dot(d_4, sun_2), 0.76);
+    float glow = (_e64 * 0.02);
+    const float _e73 = saturate_(((sun_2.y * 10.0) + 1.0));
+    return (e * (((gradient_1 * _e15) + (sunset * _e73)) + ((glow * _e15)).xxx));
+}
+
+float3 sun_disk(float3 d_5)
+{
+    float cos_r = frame.sun_direction.w;
+    float4 _e7 = frame.sun_direction;
+    if ((dot(d_5, _e7.xyz) < cos_r)) {
+        return (0.0).xxx;
+    }
+    float4 _e15 = frame.sun_illuminance;
+    return (_e15.xyz / ((6.2831855 * max((1.0 - cos_r), 1e-6))).xxx);
+}
+
+float3 aces_fitted(float3 x_3)
+{
+    return clamp(((x_3 * ((2.51 * x_3) + (0.03).xxx)) / ((x_3 * ((2.43 * x_3) + (0.59).xxx)) + (0.14).xxx)), (0.0).xxx, (1.0).xxx);
+}
+
+int2 naga_div(int2 lhs, int2 rhs) {
+    return lhs / (((lhs == int(-2147483647 - 1) & rhs == -1) | (rhs == 0)) ? 1 : rhs);
+}
+
+int2 naga_mod(int2 lhs, int2 rhs) {
+    int2 divisor = ((lhs == int(-2147483647 - 1) & rhs == -1) | (rhs == 0)) ? 1 : rhs;
+    return lhs - (lhs / divisor) * divisor;
+}
+
+uint2 NagaDimensions2D(Texture2D<float4> tex)
+{
+    uint4 ret;
+    tex.GetDimensions(0, ret.x, ret.y, ret.z);
+    return ret.xy;
+}
+
+[numthreads(8, 8, 1)]
+void occupancy(uint3 id : SV_DispatchThreadID)
+{
+    float m = 0.0;
+    int y = (int)0;
+    int x = (int)0;
+
+    if (any((id.xy >= (64u).xx))) {
+        return;
+    }
+    int2 size_4 = int2(NagaDimensions2D(weather_tex));
+    int2 lo_2 = asint(asuint(naga_div(asint(asuint(int2(id.xy)) * asuint(size_4)), (int(64)).xx)) - asuint((int(1)).xx));
+    int2 hi_1 = naga_div(asint(asuint(asint(asuint(int2(id.xy)) + asuint((int(1)).xx))) * asuint(size_4)), (int(64)).xx);
+    y = lo_2.y;
+    uint2 loop_bound_5 = uint2(4294967295u, 4294967295u);
+    bool loop_init_4 = true;
+    while(true) {
+        if (all(loop_bound_5 == uint2(0u, 0u))) { break; }
+        loop_bound_5 -= uint2(loop_bound_5.y == 0u, 1u);
+        if (!loop_init_4) {
+            int _e54 = y;
+            y = asint(asuint(_e54) + asuint(int(1)));
+        }
+        loop_init_4 = false;
+        int _e30 = y;
+        if ((_e30 <= hi_1.y)) {
+        } else {
+            break;
+        }
+        {
+            x = lo_2.x;
+            uint2 loop_bound_6 = uint2(4294967295u, 4294967295u);
+            bool loop_init_5 = true;
+            while(true) {
+                if (all(loop_bound_6 == uint2(0u, 0u))) { break; }
+                loop_bound_6 -= uint2(loop_bound_6.y == 0u, 1u);
+                if (!loop_init_5) {
+                    int _e51 = x;
+                    x = asint(asuint(_e51) + asuint(int(1)));
+                }
+                loop_init_5 = false;
+                int _e35 = x;
+                if ((_e35 <= hi_1.x)) {
+                } else {
+                    break;
+                }
+                {
+                    int _e38 = x;
+                    int _e39 = y;
+                    int2 t_3 = naga_mod(asint(asuint(naga_mod(int2(_e38, _e39), size_4)) + asuint(size_4)), size_4);
+                    float _e44 = m;
+                    float4 _e47 = weather_tex.Load(int3(t_3, int(0)));
+                    m = max(_e44, _e47.x);
                 }
             }
         }
     }
-    uint _e161 = counters.view_steps;
-    count(STAT_VIEW_STEPS, _e161);
-    uint _e164 = counters.density;
-    count(STAT_DENSITY, _e164);
-    uint _e167 = counters.detail;
-    count(STAT_DETAIL, _e167);
-    uint _e170 = counters.light;
-    count(STAT_LIGHT, _e170);
-    float _e173 = transmittance;
-    if ((_e173 < 1.0)) {
-        float _e176 = depth_sum;
-        float _e177 = transmittance;
-        depth = (_e176 / (1.0 - _e177));
-    }
-    float3 _e182 = radiance;
-    float _e183 = transmittance;
-    cloud_out[pixel_2] = float4(_e182, _e183);
-    float _e186 = depth;
-    depth_out[pixel_2] = float4(_e186, 0.0, 0.0, 0.0);
+    float _e58 = m;
+    occupancy_out[id.xy] = float4(_e58, 0.0, 0.0, 0.0);
     return;
 }
 
 [numthreads(8, 8, 1)]
-void composite(uint3 id_1 : SV_DispatchThreadID)
+void march(uint3 id_1 : SV_DispatchThreadID)
 {
-    float3 background = (float3)0;
-
     uint4 _e4 = frame.counts;
     if (any((id_1.xy >= _e4.xy))) {
         return;
     }
-    uint2 pixel_3 = id_1.xy;
-    const float3 _e9 = view_ray(pixel_3);
+    const MarchResult _e9 = march_pixel(id_1.xy);
+    cloud_out[id_1.xy] = float4(_e9.radiance, _e9.transmittance);
+    depth_out[id_1.xy] = float4(_e9.depth, 0.0, 0.0, 0.0);
+    return;
+}
+
+uint2 naga_div(uint2 lhs, uint2 rhs) {
+    return lhs / (rhs == 0u ? 1u : rhs);
+}
+
+[numthreads(8, 8, 1)]
+void march_sparse(uint3 id_2 : SV_DispatchThreadID)
+{
+    MarchResult r = ConstructMarchResult((0.0).xxx, 1.0, 0.0);
+    bool skip = (bool)0;
+    bool local = (bool)0;
+    bool local_1 = (bool)0;
+    bool local_2 = (bool)0;
+    bool local_3 = (bool)0;
+
+    uint k_2 = frame.temporal.x;
+    uint4 _e7 = frame.counts;
+    uint2 blocks = naga_div(((_e7.xy + (k_2).xx) - (1u).xx), (k_2).xx);
+    if (any((id_2.xy >= blocks))) {
+        return;
+    }
+    uint _e24 = frame.misc.y;
+    const uint2 _e25 = block_offset(_e24, k_2);
+    uint2 pixel_5 = ((id_2.xy * k_2) + _e25);
+    uint4 _e35 = frame.counts;
+    skip = any((pixel_5 >= _e35.xy));
+    bool _e40 = skip;
+    if (!(_e40)) {
+        uint _e47 = frame.modes.w;
+        local = ((_e47 & FLAG_CHECKERBOARD) != 0u);
+    } else {
+        local = false;
+    }
+    bool _e53 = local;
+    if (_e53) {
+        uint _e59 = frame.temporal.y;
+        local_1 = (_e59 != 0u);
+    } else {
+        local_1 = false;
+    }
+    bool _e63 = local_1;
+    if (_e63) {
+        uint _e67 = frame.misc.y;
+        uint turn = naga_div(_e67, (k_2 * k_2));
+        const float2 _e71 = reproject(pixel_5, 0.0);
+        if (((((id_2.x + id_2.y) + turn) & 1u) == 0u)) {
+            const bool _e82 = on_screen(_e71);
+            local_2 = _e82;
+        } else {
+            local_2 = false;
+        }
+        bool _e84 = local_2;
+        if (_e84) {
+            const float4 _e87 = history_at(_e71);
+            local_3 = (_e87.w >= 1.0);
+        } else {
+            local_3 = false;
+        }
+        bool _e92 = local_3;
+        if (_e92) {
+            skip = true;
+        }
+    }
+    bool _e94 = skip;
+    if (!(_e94)) {
+        const MarchResult _e96 = march_pixel(pixel_5);
+        r = _e96;
+    }
+    float3 _e100 = r.radiance;
+    float _e102 = r.transmittance;
+    cloud_out[id_2.xy] = float4(_e100, _e102);
+    float _e107 = r.depth;
+    depth_out[id_2.xy] = float4(_e107, 0.0, 0.0, 0.0);
+    return;
+}
+
+[numthreads(8, 8, 1)]
+void resolve(uint3 id_3 : SV_DispatchThreadID)
+{
+    float depth = (float)0;
+    bool local_4 = (bool)0;
+    bool valid = (bool)0;
+    float4 history = float4(0.0, 0.0, 0.0, 1.0);
+    float4 past = (0.0).xxxx;
+    bool local_5 = (bool)0;
+    bool local_6 = (bool)0;
+    bool local_7 = (bool)0;
+    float4 lo = (1e30).xxxx;
+    float4 hi = (-1e30).xxxx;
+    int dy = int(-1);
+    int dx = (int)0;
+    float4 result = (float4)0;
+    float samples = (float)0;
+    float out_depth = (float)0;
+    bool local_8 = (bool)0;
+
+    uint4 _e4 = frame.counts;
+    if (any((id_3.xy >= _e4.xy))) {
+        return;
+    }
+    uint2 pixel_6 = id_3.xy;
+    uint k_3 = frame.temporal.x;
+    uint2 block = naga_div(pixel_6, (k_3).xx);
+    uint _e19 = frame.misc.y;
+    const uint2 _e20 = block_offset(_e19, k_3);
+    bool marched = all((pixel_6 == ((block * k_3) + _e20)));
+    float4 current = sparse_in.Load(int3(block, int(0)));
+    float4 _e29 = sparse_depth_in.Load(int3(block, int(0)));
+    float current_depth = _e29.x;
+    depth = current_depth;
+    float _e32 = depth;
+    if ((_e32 <= 0.0)) {
+        float _e38 = frame.camera_position.y;
+        const float3 _e39 = view_ray(pixel_6);
+        const Interval _e40 = layer_interval(_e38, _e39);
+        if ((_e40.kind == RAY_MARCH)) {
+            depth = (_e40.start + (0.5 * _e40.length_));
+        }
+    }
+    float _e49 = depth;
+    const float2 _e50 = reproject(pixel_6, _e49);
+    uint _e54 = frame.temporal.y;
+    if ((_e54 != 0u)) {
+        const bool _e59 = on_screen(_e50);
+        local_4 = _e59;
+    } else {
+        local_4 = false;
+    }
+    bool _e61 = local_4;
+    valid = _e61;
+    bool moving = any((_e50 != float2(pixel_6)));
+    bool _e75 = valid;
+    if (_e75) {
+        const float4 _e76 = history_at(_e50);
+        history = _e76;
+        const float4 _e77 = meta_at(_e50);
+        past = _e77;
+        if (moving) {
+            local_5 = (current_depth > 0.0);
+        } else {
+            local_5 = false;
+        }
+        bool _e83 = local_5;
+        if (_e83) {
+            float _e87 = past.x;
+            local_6 = (_e87 > 0.0);
+        } else {
+            local_6 = false;
+        }
+        bool _e91 = local_6;
+        if (_e91) {
+            float4 _e94 = frame.camera_position;
+            const float3 _e96 = view_ray(pixel_6);
+            float4 _e101 = frame.previous_position;
+            float expected = distance((_e94.xyz + (_e96 * current_depth)), _e101.xyz);
+            float _e105 = past.x;
+            valid = (abs((_e105 - expected)) <= (DISOCCLUSION_DEPTH * expected));
+        }
+    }
+    bool _e111 = valid;
+    if (_e111) {
+        local_7 = moving;
+    } else {
+        local_7 = false;
+    }
+    bool _e115 = local_7;
+    if (_e115) {
+        uint4 _e118 = frame.counts;
+        int2 blocks_1 = int2(naga_div(((_e118.xy + (k_3).xx) - (1u).xx), (k_3).xx));
+        uint2 loop_bound_7 = uint2(4294967295u, 4294967295u);
+        bool loop_init_6 = true;
+        while(true) {
+            if (all(loop_bound_7 == uint2(0u, 0u))) { break; }
+            loop_bound_7 -= uint2(loop_bound_7.y == 0u, 1u);
+            if (!loop_init_6) {
+                int _e166 = dy;
+                dy = asint(asuint(_e166) + asuint(int(1)));
+            }
+            loop_init_6 = false;
+            int _e136 = dy;
+            if ((_e136 <= int(1))) {
+            } else {
+                break;
+            }
+            {
+                dx = int(-1);
+                uint2 loop_bound_8 = uint2(4294967295u, 4294967295u);
+                bool loop_init_7 = true;
+                while(true) {
+                    if (all(loop_bound_8 == uint2(0u, 0u))) { break; }
+                    loop_bound_8 -= uint2(loop_bound_8.y == 0u, 1u);
+                    if (!loop_init_7) {
+                        int _e163 = dx;
+                        dx = asint(asuint(_e163) + asuint(int(1)));
+                    }
+                    loop_init_7 = false;
+                    int _e141 = dx;
+                    if ((_e141 <= int(1))) {
+                    } else {
+                        break;
+                    }
+                    {
+                        int _e145 = dx;
+                        int _e146 = dy;
+                        int2 b_4 = clamp(asint(asuint(int2(block)) + asuint(int2(_e145, _e146))), (int(0)).xx, asint(asuint(blocks_1) - asuint((int(1)).xx)));
+                        float4 s_3 = sparse_in.Load(int3(b_4, int(0)));
+                        float4 _e158 = lo;
+                        lo = min(_e158, s_3);
+                        float4 _e160 = hi;
+                        hi = max(_e160, s_3);
+                    }
+                }
+            }
+        }
+        float4 _e168 = history;
+        float4 _e169 = lo;
+        float4 _e170 = hi;
+        history = clamp(_e168, _e169, _e170);
+    }
+    if (marched) {
+        bool _e175 = valid;
+        if (_e175) {
+            float _e177 = past.y;
+            samples = min((_e177 + 1.0), (moving ? HISTORY_SAMPLES_MOVING : HISTORY_SAMPLES));
+            float4 _e184 = history;
+            float _e185 = samples;
+            result = lerp(_e184, current, (1.0 / _e185));
+        } else {
+            samples = 1.0;
+            result = current;
+        }
+        float _e191 = past.x;
+        if (!((current_depth > 0.0))) {
+            bool _e197 = valid;
+            local_8 = !(_e197);
+        } else {
+            local_8 = true;
+        }
+        bool _e200 = local_8;
+        out_depth = (_e200 ? current_depth : _e191);
+    } else {
+        bool _e202 = valid;
+        if (_e202) {
+            float _e204 = past.y;
+            samples = _e204;
+            float4 _e205 = history;
+            result = _e205;
+            float _e207 = past.x;
+            out_depth = _e207;
+        } else {
+            const MarchResult _e208 = march_pixel(pixel_6);
+            samples = 1.0;
+            result = float4(_e208.radiance, _e208.transmittance);
+            out_depth = _e208.depth;
+        }
+    }
+    float4 _e215 = result;
+    history_out[pixel_6] = _e215;
+    float _e217 = out_depth;
+    float _e218 = samples;
+    meta_out[pixel_6] = float4(_e217, _e218, 0.0, 0.0);
+    float4 _e223 = result;
+    cloud_out[pixel_6] = _e223;
+    float _e225 = out_depth;
+    depth_out[pixel_6] = float4(_e225, 0.0, 0.0, 0.0);
+    return;
+}
+
+[numthreads(8, 8, 1)]
+void composite(uint3 id_4 : SV_DispatchThreadID)
+{
+    float3 background = (float3)0;
+
+    uint4 _e4 = frame.counts;
+    if (any((id_4.xy >= _e4.xy))) {
+        return;
+    }
+    uint2 pixel_7 = id_4.xy;
+    const float3 _e9 = view_ray(pixel_7);
     float alt_6 = frame.camera_position.y;
-    float4 cloud = cloud_in.Load(int3(pixel_3, int(0)));
+    float4 cloud = cloud_in.Load(int3(pixel_7, int(0)));
     const float3 _e17 = sky_radiance(_e9, alt_6);
     background = _e17;
     const bool _e22 = hits_ground(float3(0.0, alt_6, 0.0), alt_6, _e9);
@@ -882,6 +1561,6 @@ void composite(uint3 id_1 : SV_DispatchThreadID)
     float3 exposed = (radiance_1 * _e35);
     const float3 _e37 = aces_fitted(exposed);
     float3 display = pow(_e37, (0.45454547).xxx);
-    image_out[pixel_3] = float4(display, 1.0);
+    image_out[pixel_7] = float4(display, 1.0);
     return;
 }

@@ -25,6 +25,11 @@ struct Frame {
     uvec4 counts;
     uvec4 modes;
     uvec4 misc;
+    vec4 previous_position;
+    vec4 previous_forward;
+    vec4 previous_right;
+    vec4 previous_up;
+    uvec4 temporal;
 };
 struct Roots {
     float t0_;
@@ -50,6 +55,11 @@ struct Weather {
 struct Stats {
     uint counters[9];
 };
+struct MarchResult {
+    vec3 radiance;
+    float transmittance;
+    float depth;
+};
 const uint PHASE_HG = 0u;
 const uint PHASE_TWO_LOBE_HG = 1u;
 const uint PHASE_CORNETTE_SHANKS = 2u;
@@ -59,11 +69,15 @@ const uint HEIGHT_PARABOLA = 0u;
 const uint HEIGHT_CLOUD_TYPES = 1u;
 const uint FLAG_BEER_POWDER = 1u;
 const uint FLAG_JITTER = 2u;
+const uint FLAG_DYNAMIC_STEP = 4u;
+const uint FLAG_CHECKERBOARD = 8u;
+const uint FLAG_EMPTY_SKIP = 16u;
 const float PI = 3.1415927;
 const uint MAX_VIEW_STEPS = 1024u;
 const uint RAY_MARCH = 0u;
 const uint RAY_MISSES_LAYER = 1u;
 const uint RAY_HITS_GROUND = 2u;
+const uint OCCUPANCY_CELLS = 64u;
 const uint STAT_PIXELS = 0u;
 const uint STAT_MARCHED = 1u;
 const uint STAT_VIEW_STEPS = 2u;
@@ -74,6 +88,9 @@ const uint STAT_EXIT_TRANSMITTANCE = 6u;
 const uint STAT_EXIT_MISSED = 7u;
 const uint STAT_EXIT_GROUND = 8u;
 const uint STAT_COUNT = 9u;
+const float HISTORY_SAMPLES = 16.0;
+const float HISTORY_SAMPLES_MOVING = 2.0;
+const float DISOCCLUSION_DEPTH = 0.2;
 const bool LIGHT_MARCH = true;
 const uint MAX_OCTAVES = 8u;
 const bool DETAIL = true;
@@ -90,6 +107,8 @@ layout(binding = 3) uniform sampler2D _group_0_binding_3_cs;
 
 layout(binding = 4) uniform sampler2D _group_0_binding_4_cs;
 
+layout(binding = 11) uniform sampler2D _group_0_binding_11_cs;
+
 layout(binding = 6,rgba32f) writeonly uniform image2D _group_0_binding_6_cs;
 
 layout(binding = 7,r32f) writeonly uniform image2D _group_0_binding_7_cs;
@@ -97,18 +116,22 @@ layout(binding = 7,r32f) writeonly uniform image2D _group_0_binding_7_cs;
 layout(std430, binding = 8) buffer Stats_block_1Compute { Stats _group_0_binding_8_cs; };
 
 
-float saturate(float x) {
-    return clamp(x, 0.0, 1.0);
+float saturate(float x_1) {
+    return clamp(x_1, 0.0, 1.0);
 }
 
-float remap(float x_1, float lo0_, float hi0_, float lo1_, float hi1_) {
-    return (lo1_ + (((x_1 - lo0_) * (hi1_ - lo1_)) / (hi0_ - lo0_)));
+float remap(float x_2, float lo0_, float hi0_, float lo1_, float hi1_) {
+    return (lo1_ + (((x_2 - lo0_) * (hi1_ - lo1_)) / (hi0_ - lo0_)));
 }
 
 uint pcg(uint v) {
     uint state = ((v * 747796405u) + 2891336453u);
     uint word = (((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u);
     return ((word >> 22u) ^ word);
+}
+
+float van_der_corput(uint n) {
+    return (float((bitfieldReverse(n) >> 8u)) * 5.9604645e-8);
 }
 
 float hash_unit(uvec2 pixel, uint frame_index) {
@@ -127,8 +150,8 @@ vec3 view_ray(uvec2 pixel_1) {
     vec4 _e26 = _group_0_binding_0_cs.camera_forward;
     vec4 _e30 = _group_0_binding_0_cs.camera_right;
     vec4 _e39 = _group_0_binding_0_cs.camera_up;
-    vec3 d_5 = ((_e26.xyz + (_e30.xyz * ((ndc.x * tan_half) * aspect))) - (_e39.xyz * (ndc.y * tan_half)));
-    return normalize(d_5);
+    vec3 d_6 = ((_e26.xyz + (_e30.xyz * ((ndc.x * tan_half) * aspect))) - (_e39.xyz * (ndc.y * tan_half)));
+    return normalize(d_6);
 }
 
 Roots solve_sphere(float b, float c) {
@@ -155,31 +178,31 @@ Roots ray_shell(float alt, vec3 d, float radius_alt) {
 
 float altitude_of(vec3 p) {
     float rp_1 = _group_0_binding_0_cs.atmosphere.x;
-    float n = (((p.x * p.x) + (p.z * p.z)) + (p.y * (p.y + (2.0 * rp_1))));
-    vec3 q = vec3(p.x, (p.y + rp_1), p.z);
-    return (n / (length(q) + rp_1));
+    float n_1 = (((p.x * p.x) + (p.z * p.z)) + (p.y * (p.y + (2.0 * rp_1))));
+    vec3 q_3 = vec3(p.x, (p.y + rp_1), p.z);
+    return (n_1 / (length(q_3) + rp_1));
 }
 
 bool hits_ground(vec3 p_1, float alt_1, vec3 d_1) {
-    bool local = false;
+    bool local_9 = false;
     float rp_2 = _group_0_binding_0_cs.atmosphere.x;
     float b_2 = dot(d_1, vec3(p_1.x, (p_1.y + rp_2), p_1.z));
     float c_2 = (alt_1 * (alt_1 + (2.0 * rp_2)));
     if ((b_2 < 0.0)) {
-        local = ((b_2 * b_2) >= c_2);
+        local_9 = ((b_2 * b_2) >= c_2);
     } else {
-        local = false;
+        local_9 = false;
     }
-    bool _e24 = local;
+    bool _e24 = local_9;
     return _e24;
 }
 
 Interval layer_interval(float alt_2, vec3 d_2) {
     float start = 0.0;
     float end = 0.0;
-    bool local_1 = false;
-    bool local_2 = false;
-    bool local_3 = false;
+    bool local_10 = false;
+    bool local_11 = false;
+    bool local_12 = false;
     float bottom = _group_0_binding_0_cs.atmosphere.y;
     float top = _group_0_binding_0_cs.atmosphere.z;
     float cutoff = _group_0_binding_0_cs.atmosphere.w;
@@ -196,33 +219,33 @@ Interval layer_interval(float alt_2, vec3 d_2) {
         if ((alt_2 <= top)) {
             end = _e15.t1_;
             if (_e14.hit) {
-                local_1 = (_e14.t0_ > 0.0);
+                local_10 = (_e14.t0_ > 0.0);
             } else {
-                local_1 = false;
+                local_10 = false;
             }
-            bool _e40 = local_1;
+            bool _e40 = local_10;
             if (_e40) {
                 float _e41 = end;
                 end = min(_e41, _e14.t0_);
             }
         } else {
             if (!(!(_e15.hit))) {
-                local_2 = (_e15.t1_ <= 0.0);
+                local_11 = (_e15.t1_ <= 0.0);
             } else {
-                local_2 = true;
+                local_11 = true;
             }
-            bool _e53 = local_2;
+            bool _e53 = local_11;
             if (_e53) {
                 return Interval(0.0, 0.0, 1u);
             }
             start = max(_e15.t0_, 0.0);
             end = _e15.t1_;
             if (_e14.hit) {
-                local_3 = (_e14.t0_ > 0.0);
+                local_12 = (_e14.t0_ > 0.0);
             } else {
-                local_3 = false;
+                local_12 = false;
             }
-            bool _e69 = local_3;
+            bool _e69 = local_12;
             if (_e69) {
                 float _e70 = end;
                 end = min(_e70, _e14.t0_);
@@ -269,9 +292,9 @@ float height_cloud_types(float h_2, float cloud_type_1) {
     float _e11 = gradient(h_2, 0.0, 0.2, 0.4, 0.65);
     float _e16 = gradient(h_2, 0.0, 0.1, 0.6, 0.95);
     float _e19 = saturate((cloud_type_1 * 2.0));
-    float lo = mix(_e6, _e11, _e19);
+    float lo_1 = mix(_e6, _e11, _e19);
     float _e25 = saturate(((cloud_type_1 * 2.0) - 1.0));
-    return mix(lo, _e16, _e25);
+    return mix(lo_1, _e16, _e25);
 }
 
 float height_signal(float h_3, float cloud_type_2) {
@@ -284,36 +307,36 @@ float height_signal(float h_3, float cloud_type_2) {
     return _e9;
 }
 
-float cloud_density(vec3 p_3, float alt_3, inout Counters counters_1) {
-    bool local_4 = false;
-    bool local_5 = false;
+float cloud_density(vec3 p_3, float alt_3, inout Counters counters) {
+    bool local_13 = false;
+    bool local_14 = false;
     float base = 0.0;
     float density = 0.0;
-    bool local_6 = false;
-    bool local_7 = false;
+    bool local_15 = false;
+    bool local_16 = false;
     vec3 detail_pos = vec3(0.0);
     float bottom_1 = _group_0_binding_0_cs.atmosphere.y;
     float top_1 = _group_0_binding_0_cs.atmosphere.z;
     float h_5 = ((alt_3 - bottom_1) / (top_1 - bottom_1));
     if (!((h_5 < 0.0))) {
-        local_4 = (h_5 > 1.0);
+        local_13 = (h_5 > 1.0);
     } else {
-        local_4 = true;
+        local_13 = true;
     }
-    bool _e22 = local_4;
+    bool _e22 = local_13;
     if (_e22) {
         return 0.0;
     }
-    uint _e25 = counters_1.density;
-    counters_1.density = (_e25 + 1u);
+    uint _e25 = counters.density;
+    counters.density = (_e25 + 1u);
     Weather _e28 = sample_weather(p_3);
     float _e30 = height_signal(h_5, _e28.cloud_type);
     if (!((_e28.coverage <= 0.0))) {
-        local_5 = (_e30 <= 0.0);
+        local_14 = (_e30 <= 0.0);
     } else {
-        local_5 = true;
+        local_14 = true;
     }
-    bool _e40 = local_5;
+    bool _e40 = local_14;
     if (_e40) {
         return 0.0;
     }
@@ -341,21 +364,21 @@ float cloud_density(vec3 p_3, float alt_3, inout Counters counters_1) {
     float strength = _group_0_binding_0_cs.erosion.x;
     float threshold = _group_0_binding_0_cs.erosion.y;
     if (DETAIL) {
-        local_6 = (strength > 0.0);
+        local_15 = (strength > 0.0);
     } else {
-        local_6 = false;
+        local_15 = false;
     }
-    bool _e126 = local_6;
+    bool _e126 = local_15;
     if (_e126) {
         float _e129 = base;
-        local_7 = (_e129 < threshold);
+        local_16 = (_e129 < threshold);
     } else {
-        local_7 = false;
+        local_16 = false;
     }
-    bool _e132 = local_7;
+    bool _e132 = local_16;
     if (_e132) {
-        uint _e134 = counters_1.detail;
-        counters_1.detail = (_e134 + 1u);
+        uint _e134 = counters.detail;
+        counters.detail = (_e134 + 1u);
         detail_pos = vec3(p_3.x, alt_3, p_3.z);
         if (CURL) {
             vec4 _e145 = _group_0_binding_0_cs.wind_offsets1_;
@@ -432,12 +455,12 @@ float phase(float cos_theta_2, float scale) {
     }
 }
 
-float sun_optical_depth(vec3 rel, vec3 p_4, inout Counters counters_2) {
+float sun_optical_depth(vec3 rel, vec3 p_4, inout Counters counters_1) {
     float seg = 0.0;
     float dist = 0.0;
     float tau = 0.0;
-    uint i_1 = 0u;
-    bool local_8 = false;
+    uint i = 0u;
+    bool local_17 = false;
     vec4 _e5 = _group_0_binding_0_cs.sun_direction;
     vec3 sun = _e5.xyz;
     float _e10 = _group_0_binding_0_cs.extinction.x;
@@ -450,11 +473,11 @@ float sun_optical_depth(vec3 rel, vec3 p_4, inout Counters counters_2) {
     bool loop_init = true;
     while(true) {
         if (!loop_init) {
-            uint _e78 = i_1;
-            i_1 = (_e78 + 1u);
+            uint _e78 = i;
+            i = (_e78 + 1u);
         }
         loop_init = false;
-        uint _e35 = i_1;
+        uint _e35 = i;
         if ((_e35 < steps_1)) {
         } else {
             break;
@@ -463,23 +486,23 @@ float sun_optical_depth(vec3 rel, vec3 p_4, inout Counters counters_2) {
             float _e37 = dist;
             float _e38 = seg;
             float s_2 = (_e37 + (0.5 * _e38));
-            vec3 q_1 = (rel + (sun * s_2));
-            float _e44 = altitude_of(q_1);
+            vec3 q_4 = (rel + (sun * s_2));
+            float _e44 = altitude_of(q_4);
             float _e48 = _group_0_binding_0_cs.atmosphere.z;
             if (!((_e44 > _e48))) {
                 float _e56 = _group_0_binding_0_cs.atmosphere.y;
-                local_8 = (_e44 < _e56);
+                local_17 = (_e44 < _e56);
             } else {
-                local_8 = true;
+                local_17 = true;
             }
-            bool _e59 = local_8;
+            bool _e59 = local_17;
             if (_e59) {
                 break;
             }
-            uint _e61 = counters_2.light;
-            counters_2.light = (_e61 + 1u);
+            uint _e61 = counters_1.light;
+            counters_1.light = (_e61 + 1u);
             float _e64 = tau;
-            float _e67 = cloud_density((p_4 + (sun * s_2)), _e44, counters_2);
+            float _e67 = cloud_density((p_4 + (sun * s_2)), _e44, counters_1);
             float _e69 = seg;
             tau = (_e64 + ((_e67 * sigma_t_1) * _e69));
             float _e72 = dist;
@@ -498,7 +521,7 @@ float sun_scattering(float cos_theta_3, float tau_1) {
     float ka = 1.0;
     float kb = 1.0;
     float kc = 1.0;
-    uint i_2 = 0u;
+    uint i_1 = 0u;
     float a = _group_0_binding_0_cs.multiple_scattering.x;
     float b_3 = _group_0_binding_0_cs.multiple_scattering.y;
     float c_3 = _group_0_binding_0_cs.multiple_scattering.z;
@@ -509,11 +532,11 @@ float sun_scattering(float cos_theta_3, float tau_1) {
     bool loop_init_1 = true;
     while(true) {
         if (!loop_init_1) {
-            uint _e54 = i_2;
-            i_2 = (_e54 + 1u);
+            uint _e54 = i_1;
+            i_1 = (_e54 + 1u);
         }
         loop_init_1 = false;
-        uint _e34 = i_2;
+        uint _e34 = i_1;
         if ((_e34 < octaves)) {
         } else {
             break;
@@ -550,7 +573,7 @@ vec3 ambient(float h_4) {
     return (mix(_e3.xyz, _e7.xyz, h_4) * _e13);
 }
 
-vec3 scattered_light(vec3 rel_1, vec3 p_5, float alt_4, float density_1, vec3 view, inout Counters counters_3) {
+vec3 scattered_light(vec3 rel_1, vec3 p_5, float alt_4, float density_1, vec3 view, inout Counters counters_2) {
     vec3 sun_light = vec3(0.0);
     float tau_2 = 0.0;
     vec4 _e8 = _group_0_binding_0_cs.sun_direction;
@@ -562,7 +585,7 @@ vec3 scattered_light(vec3 rel_1, vec3 p_5, float alt_4, float density_1, vec3 vi
     bool _e29 = hits_ground(rel_1, alt_4, sun_1);
     if (!(_e29)) {
         if (LIGHT_MARCH) {
-            float _e34 = sun_optical_depth(rel_1, p_5, counters_3);
+            float _e34 = sun_optical_depth(rel_1, p_5, counters_2);
             tau_2 = _e34;
         }
         vec4 _e37 = _group_0_binding_0_cs.sun_illuminance;
@@ -579,14 +602,51 @@ vec3 scattered_light(vec3 rel_1, vec3 p_5, float alt_4, float density_1, vec3 vi
     return (((_e59 * density_1) * (_e61 + _e62)) * _e55);
 }
 
-void count(uint index, uint value) {
-    bool local_9 = false;
-    if (STATS) {
-        local_9 = (value != 0u);
-    } else {
-        local_9 = false;
+float empty_cell_exit(vec3 p_6, vec3 d_3) {
+    float exit = 1e30;
+    vec4 _e6 = _group_0_binding_0_cs.wind_offsets0_;
+    float _e12 = _group_0_binding_0_cs.periods.x;
+    vec2 uv_1 = (fract(((p_6.xz - _e6.xy) / vec2(_e12))) * 64.0);
+    uvec2 cell = min(uvec2(uv_1), uvec2(63u));
+    vec4 _e23 = texelFetch(_group_0_binding_11_cs, ivec2(cell), 0);
+    float m_1 = _e23.x;
+    float _e28 = _group_0_binding_0_cs.clouds.x;
+    if (((m_1 + (2.0 * (_e28 - 0.5))) > -0.003921569)) {
+        return 0.0;
     }
-    bool _e8 = local_9;
+    float _e40 = _group_0_binding_0_cs.periods.x;
+    float cell_m = (_e40 / 64.0);
+    vec2 inside = ((uv_1 - vec2(cell)) * cell_m);
+    if ((d_3.x > 1e-6)) {
+        float _e50 = exit;
+        exit = min(_e50, ((cell_m - inside.x) / d_3.x));
+    } else {
+        if ((d_3.x < -1e-6)) {
+            float _e59 = exit;
+            exit = min(_e59, (inside.x / -(d_3.x)));
+        }
+    }
+    if ((d_3.z > 1e-6)) {
+        float _e68 = exit;
+        exit = min(_e68, ((cell_m - inside.y) / d_3.z));
+    } else {
+        if ((d_3.z < -1e-6)) {
+            float _e77 = exit;
+            exit = min(_e77, (inside.y / -(d_3.z)));
+        }
+    }
+    float _e83 = exit;
+    return max(_e83, 0.0);
+}
+
+void count(uint index, uint value) {
+    bool local_18 = false;
+    if (STATS) {
+        local_18 = (value != 0u);
+    } else {
+        local_18 = false;
+    }
+    bool _e8 = local_18;
     if (_e8) {
         uint _e12 = atomicAdd(_group_0_binding_8_cs.counters[index], value);
         return;
@@ -600,160 +660,297 @@ vec3 step_integral(vec3 source, float sigma_t, float dt) {
     if ((_e6 == INTEGRATION_RIEMANN)) {
         return (source * dt);
     }
-    float x_3 = (sigma_t * dt);
-    float f = ((x_3 < 0.001) ? (1.0 - (0.5 * x_3)) : ((1.0 - exp(-(x_3))) / x_3));
-    return (source * (dt * f));
+    float x_4 = (sigma_t * dt);
+    float f_1 = ((x_4 < 0.001) ? (1.0 - (0.5 * x_4)) : ((1.0 - exp(-(x_4))) / x_4));
+    return (source * (dt * f_1));
 }
 
-vec3 sky_radiance(vec3 d_3, float alt_5) {
+float start_offset(uvec2 pixel_2) {
+    uint _e4 = _group_0_binding_0_cs.modes.w;
+    bool jitter = ((_e4 & FLAG_JITTER) != 0u);
+    uint k_1 = _group_0_binding_0_cs.temporal.x;
+    if ((k_1 <= 1u)) {
+        uint _e18 = _group_0_binding_0_cs.misc.y;
+        float _e19 = hash_unit(pixel_2, _e18);
+        return (jitter ? _e19 : 0.5);
+    }
+    float _e23 = hash_unit(pixel_2, 0u);
+    float base_1 = (jitter ? _e23 : 0.5);
+    uint _e29 = _group_0_binding_0_cs.misc.y;
+    float _e32 = van_der_corput((_e29 / (k_1 * k_1)));
+    return fract((base_1 + _e32));
+}
+
+MarchResult march_pixel(uvec2 pixel_3) {
+    Counters counters_3 = Counters(0u, 0u, 0u, 0u);
+    vec3 radiance = vec3(0.0);
+    float transmittance = 1.0;
+    float depth_sum = 0.0;
+    uint steps = 0u;
+    uint i_2 = 0u;
+    uint stride = 1u;
+    uint empty = 0u;
+    bool local_19 = false;
+    float depth_1 = 0.0;
+    vec3 _e1 = view_ray(pixel_3);
+    float cam_alt = _group_0_binding_0_cs.camera_position.y;
+    vec4 _e8 = _group_0_binding_0_cs.camera_position;
+    vec2 cam_xz = _e8.xz;
+    count(STAT_PIXELS, 1u);
+    Interval _e25 = layer_interval(cam_alt, _e1);
+    if ((_e25.kind == RAY_MISSES_LAYER)) {
+        count(STAT_EXIT_MISSED, 1u);
+    } else {
+        if ((_e25.kind == RAY_HITS_GROUND)) {
+            count(STAT_EXIT_GROUND, 1u);
+        } else {
+            count(STAT_MARCHED, 1u);
+            uint _e41 = _group_0_binding_0_cs.counts.z;
+            steps = _e41;
+            float _e46 = _group_0_binding_0_cs.march.x;
+            if ((_e46 > 0.0)) {
+                float _e53 = _group_0_binding_0_cs.march.x;
+                steps = min(max(uint(ceil((_e25.length_ / _e53))), 1u), MAX_VIEW_STEPS);
+            }
+            uint _e61 = steps;
+            float dt_1 = (_e25.length_ / float(_e61));
+            float _e64 = start_offset(pixel_3);
+            float _e68 = _group_0_binding_0_cs.extinction.x;
+            float _e72 = _group_0_binding_0_cs.extinction.y;
+            float sigma_e = (_e68 + _e72);
+            uint _e77 = _group_0_binding_0_cs.modes.w;
+            bool dynamic_step = ((_e77 & FLAG_DYNAMIC_STEP) != 0u);
+            uint _e85 = _group_0_binding_0_cs.modes.w;
+            bool empty_skip = ((_e85 & FLAG_EMPTY_SKIP) != 0u);
+            while(true) {
+                uint _e96 = i_2;
+                uint _e97 = steps;
+                if ((_e96 >= _e97)) {
+                    break;
+                }
+                uint _e100 = counters_3.view_steps;
+                counters_3.view_steps = (_e100 + 1u);
+                uint _e104 = i_2;
+                float t_1 = (_e25.start + ((float(_e104) + _e64) * dt_1));
+                vec3 rel_2 = ((_e1 * t_1) + vec3(0.0, cam_alt, 0.0));
+                vec3 p_7 = vec3((rel_2.x + cam_xz.x), rel_2.y, (rel_2.z + cam_xz.y));
+                if (empty_skip) {
+                    float _e122 = empty_cell_exit(p_7, _e1);
+                    if ((_e122 > 0.0)) {
+                        uint _e131 = steps;
+                        uint next = uint(clamp(ceil(((((t_1 + _e122) - _e25.start) / dt_1) - _e64)), 0.0, float(_e131)));
+                        uint _e136 = i_2;
+                        i_2 = max((_e136 + 1u), next);
+                        continue;
+                    }
+                }
+                float _e140 = altitude_of(rel_2);
+                float _e141 = cloud_density(p_7, _e140, counters_3);
+                if ((_e141 <= 0.0)) {
+                    uint _e144 = empty;
+                    empty = (_e144 + 1u);
+                    if (dynamic_step) {
+                        uint _e149 = empty;
+                        local_19 = (_e149 >= 8u);
+                    } else {
+                        local_19 = false;
+                    }
+                    bool _e153 = local_19;
+                    if (_e153) {
+                        stride = 2u;
+                    }
+                    uint _e155 = i_2;
+                    uint _e156 = stride;
+                    i_2 = (_e155 + _e156);
+                    continue;
+                }
+                uint _e158 = stride;
+                if ((_e158 > 1u)) {
+                    uint _e161 = i_2;
+                    uint _e162 = stride;
+                    i_2 = (_e161 - (_e162 - 1u));
+                    stride = 1u;
+                    empty = 0u;
+                    continue;
+                }
+                empty = 0u;
+                float sigma_t_2 = (sigma_e * _e141);
+                vec3 _e170 = scattered_light(rel_2, p_7, _e140, _e141, _e1, counters_3);
+                vec3 _e171 = radiance;
+                float _e172 = transmittance;
+                vec3 _e173 = step_integral(_e170, sigma_t_2, dt_1);
+                radiance = (_e171 + (_e172 * _e173));
+                float step_t = exp((-(sigma_t_2) * dt_1));
+                float _e179 = depth_sum;
+                float _e180 = transmittance;
+                depth_sum = (_e179 + ((t_1 * _e180) * (1.0 - step_t)));
+                float _e186 = transmittance;
+                transmittance = (_e186 * step_t);
+                float _e188 = transmittance;
+                float _e192 = _group_0_binding_0_cs.march.w;
+                if ((_e188 < _e192)) {
+                    count(STAT_EXIT_TRANSMITTANCE, 1u);
+                    break;
+                }
+                uint _e196 = i_2;
+                i_2 = (_e196 + 1u);
+            }
+        }
+    }
+    uint _e201 = counters_3.view_steps;
+    count(STAT_VIEW_STEPS, _e201);
+    uint _e204 = counters_3.density;
+    count(STAT_DENSITY, _e204);
+    uint _e207 = counters_3.detail;
+    count(STAT_DETAIL, _e207);
+    uint _e210 = counters_3.light;
+    count(STAT_LIGHT, _e210);
+    float _e213 = transmittance;
+    if ((_e213 < 1.0)) {
+        float _e216 = depth_sum;
+        float _e217 = transmittance;
+        depth_1 = (_e216 / (1.0 - _e217));
+    }
+    vec3 _e221 = radiance;
+    float _e222 = transmittance;
+    float _e223 = depth_1;
+    return MarchResult(_e221, _e222, _e223);
+}
+
+uvec2 block_offset(uint f, uint k) {
+    uvec2 b2_[4] = uvec2[4](uvec2(0u, 0u), uvec2(1u, 1u), uvec2(1u, 0u), uvec2(0u, 1u));
+    uvec2 b4_[16] = uvec2[16](uvec2(0u, 0u), uvec2(2u, 2u), uvec2(2u, 0u), uvec2(0u, 2u), uvec2(1u, 1u), uvec2(3u, 3u), uvec2(3u, 1u), uvec2(1u, 3u), uvec2(1u, 0u), uvec2(3u, 2u), uvec2(3u, 0u), uvec2(1u, 2u), uvec2(0u, 1u), uvec2(2u, 3u), uvec2(2u, 1u), uvec2(0u, 3u));
+    if ((k == 2u)) {
+        uvec2 _e21 = b2_[(f % 4u)];
+        return _e21;
+    }
+    if ((k == 4u)) {
+        uvec2 _e77 = b4_[(f % 16u)];
+        return _e77;
+    }
+    return uvec2(0u);
+}
+
+vec2 reproject(uvec2 pixel_4, float depth_2) {
+    bool local_20 = false;
+    bool local_21 = false;
+    bool local_22 = false;
+    vec3 dir = vec3(0.0);
+    vec4 _e4 = _group_0_binding_0_cs.previous_position;
+    vec4 _e7 = _group_0_binding_0_cs.camera_position;
+    if (all(equal(_e4, _e7))) {
+        vec4 _e14 = _group_0_binding_0_cs.previous_forward;
+        vec4 _e17 = _group_0_binding_0_cs.camera_forward;
+        local_20 = all(equal(_e14, _e17));
+    } else {
+        local_20 = false;
+    }
+    bool _e21 = local_20;
+    if (_e21) {
+        vec4 _e26 = _group_0_binding_0_cs.previous_right;
+        vec4 _e29 = _group_0_binding_0_cs.camera_right;
+        local_21 = all(equal(_e26, _e29));
+    } else {
+        local_21 = false;
+    }
+    bool _e33 = local_21;
+    if (_e33) {
+        vec4 _e38 = _group_0_binding_0_cs.previous_up;
+        vec4 _e41 = _group_0_binding_0_cs.camera_up;
+        local_22 = all(equal(_e38, _e41));
+    } else {
+        local_22 = false;
+    }
+    bool same = local_22;
+    if (same) {
+        return vec2(pixel_4);
+    }
+    vec3 _e47 = view_ray(pixel_4);
+    dir = _e47;
+    if ((depth_2 > 0.0)) {
+        vec4 _e54 = _group_0_binding_0_cs.camera_position;
+        vec4 _e58 = _group_0_binding_0_cs.previous_position;
+        dir = ((_e47 * depth_2) + (_e54.xyz - _e58.xyz));
+    }
+    vec3 _e62 = dir;
+    vec4 _e65 = _group_0_binding_0_cs.previous_forward;
+    float z = dot(_e62, _e65.xyz);
+    if ((z <= 0.0)) {
+        return vec2(-1000000000.0);
+    }
+    float tan_half_1 = _group_0_binding_0_cs.previous_position.w;
+    float aspect_1 = _group_0_binding_0_cs.previous_forward.w;
+    vec3 _e80 = dir;
+    vec4 _e83 = _group_0_binding_0_cs.previous_right;
+    vec3 _e89 = dir;
+    vec4 _e92 = _group_0_binding_0_cs.previous_up;
+    vec2 ndc_1 = vec2((dot(_e80, _e83.xyz) / ((z * tan_half_1) * aspect_1)), (-(dot(_e89, _e92.xyz)) / (z * tan_half_1)));
+    uvec4 _e106 = _group_0_binding_0_cs.counts;
+    return ((((ndc_1 * 0.5) + vec2(0.5)) * vec2(_e106.xy)) - vec2(0.5));
+}
+
+bool on_screen(vec2 q) {
+    bool local_23 = false;
+    uvec4 _e3 = _group_0_binding_0_cs.counts;
+    vec2 size_1 = vec2(_e3.xy);
+    if (all(greaterThanEqual(q, vec2(-0.5)))) {
+        local_23 = all(lessThanEqual(q, (size_1 - vec2(0.5))));
+    } else {
+        local_23 = false;
+    }
+    bool _e18 = local_23;
+    return _e18;
+}
+
+vec4 catmull_rom(float t) {
+    return vec4((t * (-0.5 + (t * (1.0 - (0.5 * t))))), (1.0 + ((t * t) * (-2.5 + (1.5 * t)))), (t * (0.5 + (t * (2.0 - (1.5 * t))))), ((t * t) * (-0.5 + (0.5 * t))));
+}
+
+vec3 sky_radiance(vec3 d_4, float alt_5) {
     vec4 _e4 = _group_0_binding_0_cs.sun_direction;
     vec3 sun_2 = _e4.xyz;
     vec4 _e8 = _group_0_binding_0_cs.sun_illuminance;
     vec3 e = _e8.xyz;
     float _e15 = saturate(((sun_2.y * 4.0) + 0.3));
-    bool _e19 = hits_ground(vec3(0.0, alt_5, 0.0), alt_5, d_3);
+    bool _e19 = hits_ground(vec3(0.0, alt_5, 0.0), alt_5, d_4);
     if (_e19) {
         vec3 ground_albedo = vec3(0.035, 0.035, 0.03);
         return (ground_albedo * (((e * max(sun_2.y, 0.0)) / vec3(3.1415927)) + ((0.05 * e) * _e15)));
     }
     vec3 zenith = vec3(0.018, 0.04, 0.1);
     vec3 horizon = vec3(0.07, 0.085, 0.11);
-    float _e45 = saturate(d_3.y);
+    float _e45 = saturate(d_4.y);
     vec3 gradient_1 = mix(horizon, zenith, sqrt(_e45));
     vec3 sunset = (((1.0 - (_e15 * 0.8)) * pow((1.0 - _e45), 6.0)) * vec3(0.25, 0.1, 0.0));
-    float _e64 = phase_hg(dot(d_3, sun_2), 0.76);
+    float _e64 = phase_hg(dot(d_4, sun_2), 0.76);
     float glow = (_e64 * 0.02);
     float _e73 = saturate(((sun_2.y * 10.0) + 1.0));
     return (e * (((gradient_1 * _e15) + (sunset * _e73)) + vec3((glow * _e15))));
 }
 
-vec3 sun_disk(vec3 d_4) {
+vec3 sun_disk(vec3 d_5) {
     float cos_r = _group_0_binding_0_cs.sun_direction.w;
     vec4 _e7 = _group_0_binding_0_cs.sun_direction;
-    if ((dot(d_4, _e7.xyz) < cos_r)) {
+    if ((dot(d_5, _e7.xyz) < cos_r)) {
         return vec3(0.0);
     }
     vec4 _e15 = _group_0_binding_0_cs.sun_illuminance;
     return (_e15.xyz / vec3((6.2831855 * max((1.0 - cos_r), 1e-6))));
 }
 
-vec3 aces_fitted(vec3 x_2) {
-    return clamp(((x_2 * ((2.51 * x_2) + vec3(0.03))) / ((x_2 * ((2.43 * x_2) + vec3(0.59))) + vec3(0.14))), vec3(0.0), vec3(1.0));
+vec3 aces_fitted(vec3 x_3) {
+    return clamp(((x_3 * ((2.51 * x_3) + vec3(0.03))) / ((x_3 * ((2.43 * x_3) + vec3(0.59))) + vec3(0.14))), vec3(0.0), vec3(1.0));
 }
 
 void main() {
-    uvec3 id = gl_GlobalInvocationID;
-    Counters counters = Counters(0u, 0u, 0u, 0u);
-    vec3 radiance = vec3(0.0);
-    float transmittance = 1.0;
-    float depth_sum = 0.0;
-    uint steps = 0u;
-    float jitter = 0.5;
-    uint i = 0u;
-    float depth = 0.0;
+    uvec3 id_1 = gl_GlobalInvocationID;
     uvec4 _e4 = _group_0_binding_0_cs.counts;
-    if (any(greaterThanEqual(id.xy, _e4.xy))) {
+    if (any(greaterThanEqual(id_1.xy, _e4.xy))) {
         return;
     }
-    uvec2 pixel_2 = id.xy;
-    vec3 _e9 = view_ray(pixel_2);
-    float cam_alt = _group_0_binding_0_cs.camera_position.y;
-    vec4 _e16 = _group_0_binding_0_cs.camera_position;
-    vec2 cam_xz = _e16.xz;
-    count(STAT_PIXELS, 1u);
-    Interval _e33 = layer_interval(cam_alt, _e9);
-    if ((_e33.kind == RAY_MISSES_LAYER)) {
-        count(STAT_EXIT_MISSED, 1u);
-    } else {
-        if ((_e33.kind == RAY_HITS_GROUND)) {
-            count(STAT_EXIT_GROUND, 1u);
-        } else {
-            count(STAT_MARCHED, 1u);
-            uint _e49 = _group_0_binding_0_cs.counts.z;
-            steps = _e49;
-            float _e54 = _group_0_binding_0_cs.march.x;
-            if ((_e54 > 0.0)) {
-                float _e61 = _group_0_binding_0_cs.march.x;
-                steps = min(max(uint(ceil((_e33.length_ / _e61))), 1u), MAX_VIEW_STEPS);
-            }
-            uint _e69 = steps;
-            float dt_1 = (_e33.length_ / float(_e69));
-            uint _e77 = _group_0_binding_0_cs.modes.w;
-            if (((_e77 & FLAG_JITTER) != 0u)) {
-                uint _e85 = _group_0_binding_0_cs.misc.y;
-                float _e86 = hash_unit(pixel_2, _e85);
-                jitter = _e86;
-            }
-            float _e90 = _group_0_binding_0_cs.extinction.x;
-            float _e94 = _group_0_binding_0_cs.extinction.y;
-            float sigma_e = (_e90 + _e94);
-            bool loop_init_2 = true;
-            while(true) {
-                if (!loop_init_2) {
-                    uint _e157 = i;
-                    i = (_e157 + 1u);
-                }
-                loop_init_2 = false;
-                uint _e98 = i;
-                uint _e99 = steps;
-                if ((_e98 < _e99)) {
-                } else {
-                    break;
-                }
-                {
-                    uint _e102 = counters.view_steps;
-                    counters.view_steps = (_e102 + 1u);
-                    uint _e106 = i;
-                    float _e108 = jitter;
-                    float t = (_e33.start + ((float(_e106) + _e108) * dt_1));
-                    vec3 rel_2 = ((_e9 * t) + vec3(0.0, cam_alt, 0.0));
-                    vec3 p_6 = vec3((rel_2.x + cam_xz.x), rel_2.y, (rel_2.z + cam_xz.y));
-                    float _e125 = altitude_of(rel_2);
-                    float _e126 = cloud_density(p_6, _e125, counters);
-                    if ((_e126 <= 0.0)) {
-                        continue;
-                    }
-                    float sigma_t_2 = (sigma_e * _e126);
-                    vec3 _e130 = scattered_light(rel_2, p_6, _e125, _e126, _e9, counters);
-                    vec3 _e131 = radiance;
-                    float _e132 = transmittance;
-                    vec3 _e133 = step_integral(_e130, sigma_t_2, dt_1);
-                    radiance = (_e131 + (_e132 * _e133));
-                    float step_t = exp((-(sigma_t_2) * dt_1));
-                    float _e139 = depth_sum;
-                    float _e140 = transmittance;
-                    depth_sum = (_e139 + ((t * _e140) * (1.0 - step_t)));
-                    float _e146 = transmittance;
-                    transmittance = (_e146 * step_t);
-                    float _e148 = transmittance;
-                    float _e152 = _group_0_binding_0_cs.march.w;
-                    if ((_e148 < _e152)) {
-                        count(STAT_EXIT_TRANSMITTANCE, 1u);
-                        break;
-                    }
-                }
-            }
-        }
-    }
-    uint _e161 = counters.view_steps;
-    count(STAT_VIEW_STEPS, _e161);
-    uint _e164 = counters.density;
-    count(STAT_DENSITY, _e164);
-    uint _e167 = counters.detail;
-    count(STAT_DETAIL, _e167);
-    uint _e170 = counters.light;
-    count(STAT_LIGHT, _e170);
-    float _e173 = transmittance;
-    if ((_e173 < 1.0)) {
-        float _e176 = depth_sum;
-        float _e177 = transmittance;
-        depth = (_e176 / (1.0 - _e177));
-    }
-    vec3 _e182 = radiance;
-    float _e183 = transmittance;
-    imageStore(_group_0_binding_6_cs, ivec2(pixel_2), vec4(_e182, _e183));
-    float _e186 = depth;
-    imageStore(_group_0_binding_7_cs, ivec2(pixel_2), vec4(_e186, 0.0, 0.0, 0.0));
+    MarchResult _e9 = march_pixel(id_1.xy);
+    imageStore(_group_0_binding_6_cs, ivec2(id_1.xy), vec4(_e9.radiance, _e9.transmittance));
+    imageStore(_group_0_binding_7_cs, ivec2(id_1.xy), vec4(_e9.depth, 0.0, 0.0, 0.0));
     return;
 }
 

@@ -24,6 +24,11 @@ struct Frame {
     uvec4 counts;
     uvec4 modes;
     uvec4 misc;
+    vec4 previous_position;
+    vec4 previous_forward;
+    vec4 previous_right;
+    vec4 previous_up;
+    uvec4 temporal;
 };
 struct Roots {
     float t0_;
@@ -49,6 +54,11 @@ struct Weather {
 struct Stats {
     uint counters[9];
 };
+struct MarchResult {
+    vec3 radiance;
+    float transmittance;
+    float depth;
+};
 const uint PHASE_HG = 0u;
 const uint PHASE_TWO_LOBE_HG = 1u;
 const uint PHASE_CORNETTE_SHANKS = 2u;
@@ -58,11 +68,15 @@ const uint HEIGHT_PARABOLA = 0u;
 const uint HEIGHT_CLOUD_TYPES = 1u;
 const uint FLAG_BEER_POWDER = 1u;
 const uint FLAG_JITTER = 2u;
+const uint FLAG_DYNAMIC_STEP = 4u;
+const uint FLAG_CHECKERBOARD = 8u;
+const uint FLAG_EMPTY_SKIP = 16u;
 const float PI = 3.1415927;
 const uint MAX_VIEW_STEPS = 1024u;
 const uint RAY_MARCH = 0u;
 const uint RAY_MISSES_LAYER = 1u;
 const uint RAY_HITS_GROUND = 2u;
+const uint OCCUPANCY_CELLS = 64u;
 const uint STAT_PIXELS = 0u;
 const uint STAT_MARCHED = 1u;
 const uint STAT_VIEW_STEPS = 2u;
@@ -73,6 +87,9 @@ const uint STAT_EXIT_TRANSMITTANCE = 6u;
 const uint STAT_EXIT_MISSED = 7u;
 const uint STAT_EXIT_GROUND = 8u;
 const uint STAT_COUNT = 9u;
+const float HISTORY_SAMPLES = 16.0;
+const float HISTORY_SAMPLES_MOVING = 2.0;
+const float DISOCCLUSION_DEPTH = 0.2;
 const bool LIGHT_MARCH = false;
 const uint MAX_OCTAVES = 0u;
 const bool DETAIL = false;
@@ -86,18 +103,22 @@ layout(binding = 9) uniform sampler2D _group_0_binding_9_cs;
 layout(binding = 10,rgba8) writeonly uniform image2D _group_0_binding_10_cs;
 
 
-float saturate(float x) {
-    return clamp(x, 0.0, 1.0);
+float saturate(float x_1) {
+    return clamp(x_1, 0.0, 1.0);
 }
 
-float remap(float x_1, float lo0_, float hi0_, float lo1_, float hi1_) {
-    return (lo1_ + (((x_1 - lo0_) * (hi1_ - lo1_)) / (hi0_ - lo0_)));
+float remap(float x_2, float lo0_, float hi0_, float lo1_, float hi1_) {
+    return (lo1_ + (((x_2 - lo0_) * (hi1_ - lo1_)) / (hi0_ - lo0_)));
 }
 
 uint pcg(uint v) {
     uint state = ((v * 747796405u) + 2891336453u);
     uint word = (((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u);
     return ((word >> 22u) ^ word);
+}
+
+float van_der_corput(uint n) {
+    return (float((bitfieldReverse(n) >> 8u)) * 5.9604645e-8);
 }
 
 float hash_unit(uvec2 pixel, uint frame_index) {
@@ -116,8 +137,8 @@ vec3 view_ray(uvec2 pixel_1) {
     vec4 _e26 = _group_0_binding_0_cs.camera_forward;
     vec4 _e30 = _group_0_binding_0_cs.camera_right;
     vec4 _e39 = _group_0_binding_0_cs.camera_up;
-    vec3 d_5 = ((_e26.xyz + (_e30.xyz * ((ndc.x * tan_half) * aspect))) - (_e39.xyz * (ndc.y * tan_half)));
-    return normalize(d_5);
+    vec3 d_6 = ((_e26.xyz + (_e30.xyz * ((ndc.x * tan_half) * aspect))) - (_e39.xyz * (ndc.y * tan_half)));
+    return normalize(d_6);
 }
 
 Roots solve_sphere(float b, float c) {
@@ -144,31 +165,31 @@ Roots ray_shell(float alt, vec3 d, float radius_alt) {
 
 float altitude_of(vec3 p) {
     float rp_1 = _group_0_binding_0_cs.atmosphere.x;
-    float n = (((p.x * p.x) + (p.z * p.z)) + (p.y * (p.y + (2.0 * rp_1))));
-    vec3 q = vec3(p.x, (p.y + rp_1), p.z);
-    return (n / (length(q) + rp_1));
+    float n_1 = (((p.x * p.x) + (p.z * p.z)) + (p.y * (p.y + (2.0 * rp_1))));
+    vec3 q_3 = vec3(p.x, (p.y + rp_1), p.z);
+    return (n_1 / (length(q_3) + rp_1));
 }
 
 bool hits_ground(vec3 p_1, float alt_1, vec3 d_1) {
-    bool local = false;
+    bool local_9 = false;
     float rp_2 = _group_0_binding_0_cs.atmosphere.x;
     float b_2 = dot(d_1, vec3(p_1.x, (p_1.y + rp_2), p_1.z));
     float c_2 = (alt_1 * (alt_1 + (2.0 * rp_2)));
     if ((b_2 < 0.0)) {
-        local = ((b_2 * b_2) >= c_2);
+        local_9 = ((b_2 * b_2) >= c_2);
     } else {
-        local = false;
+        local_9 = false;
     }
-    bool _e24 = local;
+    bool _e24 = local_9;
     return _e24;
 }
 
 Interval layer_interval(float alt_2, vec3 d_2) {
     float start = 0.0;
     float end = 0.0;
-    bool local_1 = false;
-    bool local_2 = false;
-    bool local_3 = false;
+    bool local_10 = false;
+    bool local_11 = false;
+    bool local_12 = false;
     float bottom = _group_0_binding_0_cs.atmosphere.y;
     float top = _group_0_binding_0_cs.atmosphere.z;
     float cutoff = _group_0_binding_0_cs.atmosphere.w;
@@ -185,33 +206,33 @@ Interval layer_interval(float alt_2, vec3 d_2) {
         if ((alt_2 <= top)) {
             end = _e15.t1_;
             if (_e14.hit) {
-                local_1 = (_e14.t0_ > 0.0);
+                local_10 = (_e14.t0_ > 0.0);
             } else {
-                local_1 = false;
+                local_10 = false;
             }
-            bool _e40 = local_1;
+            bool _e40 = local_10;
             if (_e40) {
                 float _e41 = end;
                 end = min(_e41, _e14.t0_);
             }
         } else {
             if (!(!(_e15.hit))) {
-                local_2 = (_e15.t1_ <= 0.0);
+                local_11 = (_e15.t1_ <= 0.0);
             } else {
-                local_2 = true;
+                local_11 = true;
             }
-            bool _e53 = local_2;
+            bool _e53 = local_11;
             if (_e53) {
                 return Interval(0.0, 0.0, 1u);
             }
             start = max(_e15.t0_, 0.0);
             end = _e15.t1_;
             if (_e14.hit) {
-                local_3 = (_e14.t0_ > 0.0);
+                local_12 = (_e14.t0_ > 0.0);
             } else {
-                local_3 = false;
+                local_12 = false;
             }
-            bool _e69 = local_3;
+            bool _e69 = local_12;
             if (_e69) {
                 float _e70 = end;
                 end = min(_e70, _e14.t0_);
@@ -243,9 +264,9 @@ float height_cloud_types(float h_2, float cloud_type_1) {
     float _e11 = gradient(h_2, 0.0, 0.2, 0.4, 0.65);
     float _e16 = gradient(h_2, 0.0, 0.1, 0.6, 0.95);
     float _e19 = saturate((cloud_type_1 * 2.0));
-    float lo = mix(_e6, _e11, _e19);
+    float lo_1 = mix(_e6, _e11, _e19);
     float _e25 = saturate(((cloud_type_1 * 2.0) - 1.0));
-    return mix(lo, _e16, _e25);
+    return mix(lo_1, _e16, _e25);
 }
 
 float height_signal(float h_3, float cloud_type_2) {
@@ -299,7 +320,7 @@ float sun_scattering(float cos_theta_3, float tau_1) {
     float ka = 1.0;
     float kb = 1.0;
     float kc = 1.0;
-    uint i_2 = 0u;
+    uint i_1 = 0u;
     float a = _group_0_binding_0_cs.multiple_scattering.x;
     float b_3 = _group_0_binding_0_cs.multiple_scattering.y;
     float c_3 = _group_0_binding_0_cs.multiple_scattering.z;
@@ -310,11 +331,11 @@ float sun_scattering(float cos_theta_3, float tau_1) {
     bool loop_init = true;
     while(true) {
         if (!loop_init) {
-            uint _e54 = i_2;
-            i_2 = (_e54 + 1u);
+            uint _e54 = i_1;
+            i_1 = (_e54 + 1u);
         }
         loop_init = false;
-        uint _e34 = i_2;
+        uint _e34 = i_1;
         if ((_e34 < octaves)) {
         } else {
             break;
@@ -356,58 +377,163 @@ vec3 step_integral(vec3 source, float sigma_t, float dt) {
     if ((_e6 == INTEGRATION_RIEMANN)) {
         return (source * dt);
     }
-    float x_3 = (sigma_t * dt);
-    float f = ((x_3 < 0.001) ? (1.0 - (0.5 * x_3)) : ((1.0 - exp(-(x_3))) / x_3));
-    return (source * (dt * f));
+    float x_4 = (sigma_t * dt);
+    float f_1 = ((x_4 < 0.001) ? (1.0 - (0.5 * x_4)) : ((1.0 - exp(-(x_4))) / x_4));
+    return (source * (dt * f_1));
 }
 
-vec3 sky_radiance(vec3 d_3, float alt_5) {
+float start_offset(uvec2 pixel_2) {
+    uint _e4 = _group_0_binding_0_cs.modes.w;
+    bool jitter = ((_e4 & FLAG_JITTER) != 0u);
+    uint k_1 = _group_0_binding_0_cs.temporal.x;
+    if ((k_1 <= 1u)) {
+        uint _e18 = _group_0_binding_0_cs.misc.y;
+        float _e19 = hash_unit(pixel_2, _e18);
+        return (jitter ? _e19 : 0.5);
+    }
+    float _e23 = hash_unit(pixel_2, 0u);
+    float base_1 = (jitter ? _e23 : 0.5);
+    uint _e29 = _group_0_binding_0_cs.misc.y;
+    float _e32 = van_der_corput((_e29 / (k_1 * k_1)));
+    return fract((base_1 + _e32));
+}
+
+uvec2 block_offset(uint f, uint k) {
+    uvec2 b2_[4] = uvec2[4](uvec2(0u, 0u), uvec2(1u, 1u), uvec2(1u, 0u), uvec2(0u, 1u));
+    uvec2 b4_[16] = uvec2[16](uvec2(0u, 0u), uvec2(2u, 2u), uvec2(2u, 0u), uvec2(0u, 2u), uvec2(1u, 1u), uvec2(3u, 3u), uvec2(3u, 1u), uvec2(1u, 3u), uvec2(1u, 0u), uvec2(3u, 2u), uvec2(3u, 0u), uvec2(1u, 2u), uvec2(0u, 1u), uvec2(2u, 3u), uvec2(2u, 1u), uvec2(0u, 3u));
+    if ((k == 2u)) {
+        uvec2 _e21 = b2_[(f % 4u)];
+        return _e21;
+    }
+    if ((k == 4u)) {
+        uvec2 _e77 = b4_[(f % 16u)];
+        return _e77;
+    }
+    return uvec2(0u);
+}
+
+vec2 reproject(uvec2 pixel_4, float depth_2) {
+    bool local_20 = false;
+    bool local_21 = false;
+    bool local_22 = false;
+    vec3 dir = vec3(0.0);
+    vec4 _e4 = _group_0_binding_0_cs.previous_position;
+    vec4 _e7 = _group_0_binding_0_cs.camera_position;
+    if (all(equal(_e4, _e7))) {
+        vec4 _e14 = _group_0_binding_0_cs.previous_forward;
+        vec4 _e17 = _group_0_binding_0_cs.camera_forward;
+        local_20 = all(equal(_e14, _e17));
+    } else {
+        local_20 = false;
+    }
+    bool _e21 = local_20;
+    if (_e21) {
+        vec4 _e26 = _group_0_binding_0_cs.previous_right;
+        vec4 _e29 = _group_0_binding_0_cs.camera_right;
+        local_21 = all(equal(_e26, _e29));
+    } else {
+        local_21 = false;
+    }
+    bool _e33 = local_21;
+    if (_e33) {
+        vec4 _e38 = _group_0_binding_0_cs.previous_up;
+        vec4 _e41 = _group_0_binding_0_cs.camera_up;
+        local_22 = all(equal(_e38, _e41));
+    } else {
+        local_22 = false;
+    }
+    bool same = local_22;
+    if (same) {
+        return vec2(pixel_4);
+    }
+    vec3 _e47 = view_ray(pixel_4);
+    dir = _e47;
+    if ((depth_2 > 0.0)) {
+        vec4 _e54 = _group_0_binding_0_cs.camera_position;
+        vec4 _e58 = _group_0_binding_0_cs.previous_position;
+        dir = ((_e47 * depth_2) + (_e54.xyz - _e58.xyz));
+    }
+    vec3 _e62 = dir;
+    vec4 _e65 = _group_0_binding_0_cs.previous_forward;
+    float z = dot(_e62, _e65.xyz);
+    if ((z <= 0.0)) {
+        return vec2(-1000000000.0);
+    }
+    float tan_half_1 = _group_0_binding_0_cs.previous_position.w;
+    float aspect_1 = _group_0_binding_0_cs.previous_forward.w;
+    vec3 _e80 = dir;
+    vec4 _e83 = _group_0_binding_0_cs.previous_right;
+    vec3 _e89 = dir;
+    vec4 _e92 = _group_0_binding_0_cs.previous_up;
+    vec2 ndc_1 = vec2((dot(_e80, _e83.xyz) / ((z * tan_half_1) * aspect_1)), (-(dot(_e89, _e92.xyz)) / (z * tan_half_1)));
+    uvec4 _e106 = _group_0_binding_0_cs.counts;
+    return ((((ndc_1 * 0.5) + vec2(0.5)) * vec2(_e106.xy)) - vec2(0.5));
+}
+
+bool on_screen(vec2 q) {
+    bool local_23 = false;
+    uvec4 _e3 = _group_0_binding_0_cs.counts;
+    vec2 size_1 = vec2(_e3.xy);
+    if (all(greaterThanEqual(q, vec2(-0.5)))) {
+        local_23 = all(lessThanEqual(q, (size_1 - vec2(0.5))));
+    } else {
+        local_23 = false;
+    }
+    bool _e18 = local_23;
+    return _e18;
+}
+
+vec4 catmull_rom(float t) {
+    return vec4((t * (-0.5 + (t * (1.0 - (0.5 * t))))), (1.0 + ((t * t) * (-2.5 + (1.5 * t)))), (t * (0.5 + (t * (2.0 - (1.5 * t))))), ((t * t) * (-0.5 + (0.5 * t))));
+}
+
+vec3 sky_radiance(vec3 d_4, float alt_5) {
     vec4 _e4 = _group_0_binding_0_cs.sun_direction;
     vec3 sun = _e4.xyz;
     vec4 _e8 = _group_0_binding_0_cs.sun_illuminance;
     vec3 e = _e8.xyz;
     float _e15 = saturate(((sun.y * 4.0) + 0.3));
-    bool _e19 = hits_ground(vec3(0.0, alt_5, 0.0), alt_5, d_3);
+    bool _e19 = hits_ground(vec3(0.0, alt_5, 0.0), alt_5, d_4);
     if (_e19) {
         vec3 ground_albedo = vec3(0.035, 0.035, 0.03);
         return (ground_albedo * (((e * max(sun.y, 0.0)) / vec3(3.1415927)) + ((0.05 * e) * _e15)));
     }
     vec3 zenith = vec3(0.018, 0.04, 0.1);
     vec3 horizon = vec3(0.07, 0.085, 0.11);
-    float _e45 = saturate(d_3.y);
+    float _e45 = saturate(d_4.y);
     vec3 gradient_1 = mix(horizon, zenith, sqrt(_e45));
     vec3 sunset = (((1.0 - (_e15 * 0.8)) * pow((1.0 - _e45), 6.0)) * vec3(0.25, 0.1, 0.0));
-    float _e64 = phase_hg(dot(d_3, sun), 0.76);
+    float _e64 = phase_hg(dot(d_4, sun), 0.76);
     float glow = (_e64 * 0.02);
     float _e73 = saturate(((sun.y * 10.0) + 1.0));
     return (e * (((gradient_1 * _e15) + (sunset * _e73)) + vec3((glow * _e15))));
 }
 
-vec3 sun_disk(vec3 d_4) {
+vec3 sun_disk(vec3 d_5) {
     float cos_r = _group_0_binding_0_cs.sun_direction.w;
     vec4 _e7 = _group_0_binding_0_cs.sun_direction;
-    if ((dot(d_4, _e7.xyz) < cos_r)) {
+    if ((dot(d_5, _e7.xyz) < cos_r)) {
         return vec3(0.0);
     }
     vec4 _e15 = _group_0_binding_0_cs.sun_illuminance;
     return (_e15.xyz / vec3((6.2831855 * max((1.0 - cos_r), 1e-6))));
 }
 
-vec3 aces_fitted(vec3 x_2) {
-    return clamp(((x_2 * ((2.51 * x_2) + vec3(0.03))) / ((x_2 * ((2.43 * x_2) + vec3(0.59))) + vec3(0.14))), vec3(0.0), vec3(1.0));
+vec3 aces_fitted(vec3 x_3) {
+    return clamp(((x_3 * ((2.51 * x_3) + vec3(0.03))) / ((x_3 * ((2.43 * x_3) + vec3(0.59))) + vec3(0.14))), vec3(0.0), vec3(1.0));
 }
 
 void main() {
-    uvec3 id_1 = gl_GlobalInvocationID;
+    uvec3 id_4 = gl_GlobalInvocationID;
     vec3 background = vec3(0.0);
     uvec4 _e4 = _group_0_binding_0_cs.counts;
-    if (any(greaterThanEqual(id_1.xy, _e4.xy))) {
+    if (any(greaterThanEqual(id_4.xy, _e4.xy))) {
         return;
     }
-    uvec2 pixel_2 = id_1.xy;
-    vec3 _e9 = view_ray(pixel_2);
+    uvec2 pixel_5 = id_4.xy;
+    vec3 _e9 = view_ray(pixel_5);
     float alt_6 = _group_0_binding_0_cs.camera_position.y;
-    vec4 cloud = texelFetch(_group_0_binding_9_cs, ivec2(pixel_2), 0);
+    vec4 cloud = texelFetch(_group_0_binding_9_cs, ivec2(pixel_5), 0);
     vec3 _e17 = sky_radiance(_e9, alt_6);
     background = _e17;
     bool _e22 = hits_ground(vec3(0.0, alt_6, 0.0), alt_6, _e9);
@@ -422,7 +548,7 @@ void main() {
     vec3 exposed = (radiance_1 * _e35);
     vec3 _e37 = aces_fitted(exposed);
     vec3 display = pow(_e37, vec3(0.45454547));
-    imageStore(_group_0_binding_10_cs, ivec2(pixel_2), vec4(display, 1.0));
+    imageStore(_group_0_binding_10_cs, ivec2(pixel_5), vec4(display, 1.0));
     return;
 }
 

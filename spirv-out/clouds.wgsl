@@ -27,6 +27,11 @@ struct Frame {
     counts: vec4<u32>,              // width, height, view steps, light steps
     modes: vec4<u32>,               // phase model, integration, height model, flags
     misc: vec4<u32>,                // octaves beyond single scattering, frame (jitter seed)
+    previous_position: vec4<f32>,   // last frame's camera (as camera_position): reprojection
+    previous_forward: vec4<f32>,    // last frame's forward; w = aspect
+    previous_right: vec4<f32>,      // last frame's right
+    previous_up: vec4<f32>,         // last frame's up
+    temporal: vec4<u32>,            // block side (1 off, 2 = 1/4, 4 = 1/16), history valid (0/1)
 }
 
 // Codes shared with the scene crate (`PhaseModel::code`, `Integration::code`, ...).
@@ -39,6 +44,9 @@ const HEIGHT_PARABOLA: u32 = 0u;
 const HEIGHT_CLOUD_TYPES: u32 = 1u;
 const FLAG_BEER_POWDER: u32 = 1u;
 const FLAG_JITTER: u32 = 2u;
+const FLAG_DYNAMIC_STEP: u32 = 4u;  // double the view step after 8 empty samples (seed 001)
+const FLAG_CHECKERBOARD: u32 = 8u;  // skip clear-history pixels every other turn (thesis 6.2.2)
+const FLAG_EMPTY_SKIP: u32 = 16u;   // jump over empty cells of the weather occupancy grid
 
 // Feature switches. A variant in modules.toml sets these; code behind a `false` switch is
 // removed by naga before translation, so a scene that does not use a feature pays nothing.
@@ -67,6 +75,12 @@ fn pcg(v: u32) -> u32 {
     let state = v * 747796405u + 2891336453u;
     let word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
     return (word >> 22u) ^ word;
+}
+
+// The base-2 van der Corput sequence (the radical inverse of n): the thesis's start offsets
+// for successive marches of one pixel. 24 bits so the conversion is exact.
+fn van_der_corput(n: u32) -> f32 {
+    return f32(reverseBits(n) >> 8u) * (1.0 / 16777216.0);
 }
 
 // A value in [0, 1) from a pixel and a frame index; 24 bits so the conversion is exact.
@@ -437,6 +451,66 @@ fn scattered_light(rel: vec3<f32>, p: vec3<f32>, alt: f32, density: f32, view: v
     let darkening = saturate(1.0 - frame.extinction.z * weather.precipitation * (1.0 - h));
     return frame.extinction.x * density * (sun_light + ambient(h)) * darkening;
 }
+// Empty-space skipping: a coarse occupancy grid over one tile of the weather map. Each cell
+// holds the largest coverage value (the map's R) that a bilinear lookup inside the cell can
+// return; where even that leaves no cloud under the scene's coverage, the density is 0 in the
+// whole cell, at every altitude, and the view ray jumps to the cell's edge.
+
+const OCCUPANCY_CELLS: u32 = 64u; // cells per side of the grid (one weather-map tile)
+
+@group(0) @binding(11) var occupancy_in: texture_2d<f32>;                         // max coverage per cell
+@group(0) @binding(12) var occupancy_out: texture_storage_2d<r32float, write>;   // the same, written once
+
+// Builds the grid (a computed persistent resource: once, and again only when invalidated).
+@compute @workgroup_size(8, 8, 1)
+fn occupancy(@builtin(global_invocation_id) id: vec3<u32>) {
+    if any(id.xy >= vec2<u32>(OCCUPANCY_CELLS)) {
+        return;
+    }
+    let size = vec2<i32>(textureDimensions(weather_tex));
+    let cells = i32(OCCUPANCY_CELLS);
+    // Texels whose bilinear footprint reaches into the cell: the cell's own and a one-texel
+    // border (wrapping, as the sampler repeats).
+    let lo = vec2<i32>(id.xy) * size / cells - 1;
+    let hi = (vec2<i32>(id.xy) + 1) * size / cells;
+    var m = 0.0;
+    for (var y = lo.y; y <= hi.y; y++) {
+        for (var x = lo.x; x <= hi.x; x++) {
+            let t = (vec2<i32>(x, y) % size + size) % size;
+            m = max(m, textureLoad(weather_tex, t, 0).r);
+        }
+    }
+    textureStore(occupancy_out, id.xy, vec4<f32>(m, 0.0, 0.0, 0.0));
+}
+
+// At world position `p` on a ray along unit `d`: the distance to the edge of p's cell if
+// the cell is empty (no cloud at any altitude), else 0.
+fn empty_cell_exit(p: vec3<f32>, d: vec3<f32>) -> f32 {
+    let cells = f32(OCCUPANCY_CELLS);
+    let uv = fract((p.xz - frame.wind_offsets0.xy) / frame.periods.x) * cells;
+    let cell = min(vec2<u32>(uv), vec2<u32>(OCCUPANCY_CELLS - 1u));
+    let m = textureLoad(occupancy_in, cell, 0).r;
+    // sample_weather's coverage: saturate(r + 2 (coverage - 0.5)); a margin of one 8-bit
+    // step covers rounding in the filtered lookup.
+    if m + 2.0 * (frame.clouds.x - 0.5) > -1.0 / 255.0 {
+        return 0.0;
+    }
+    // The ray's horizontal motion is linear in t: the nearer of the two cell walls it heads to.
+    let cell_m = frame.periods.x / cells;
+    let inside = (uv - vec2<f32>(cell)) * cell_m; // metres from the cell's low corner
+    var exit = 1e30;
+    if d.x > 1e-6 {
+        exit = min(exit, (cell_m - inside.x) / d.x);
+    } else if d.x < -1e-6 {
+        exit = min(exit, inside.x / -d.x);
+    }
+    if d.z > 1e-6 {
+        exit = min(exit, (cell_m - inside.y) / d.z);
+    } else if d.z < -1e-6 {
+        exit = min(exit, inside.y / -d.z);
+    }
+    return max(exit, 0.0);
+}
 // The view march (thesis alg. 5.1): one invocation per pixel marches its ray through the
 // cloud layer and writes linear in-scattered radiance and transmittance.
 
@@ -482,12 +556,29 @@ fn step_integral(source: vec3<f32>, sigma_t: f32, dt: f32) -> vec3<f32> {
     return source * (dt * f);
 }
 
-@compute @workgroup_size(8, 8, 1)
-fn march(@builtin(global_invocation_id) id: vec3<u32>) {
-    if any(id.xy >= frame.counts.xy) {
-        return;
+// What the march of one view ray produced.
+struct MarchResult {
+    radiance: vec3<f32>,   // in-scattered radiance
+    transmittance: f32,
+    depth: f32,            // transmittance-weighted depth (m), 0 where no cloud
+}
+
+// The view march's start offset (in steps, [0, 1)) for `pixel`. Without temporal upsampling:
+// 0.5, or the per-pixel, per-frame hash with jitter. With it, the thesis's van der Corput
+// sequence over the pixel's successive marches (one per `block^2` frames), shifted by a fixed
+// per-pixel hash with jitter: each pixel's marches stratify its step interval.
+fn start_offset(pixel: vec2<u32>) -> f32 {
+    let jitter = (frame.modes.w & FLAG_JITTER) != 0u;
+    let k = frame.temporal.x;
+    if k <= 1u {
+        return select(0.5, hash_unit(pixel, frame.misc.y), jitter);
     }
-    let pixel = id.xy;
+    let base = select(0.5, hash_unit(pixel, 0u), jitter);
+    return fract(base + van_der_corput(frame.misc.y / (k * k)));
+}
+
+// The view march (thesis alg. 5.1) of the ray through `pixel`, counting its work.
+fn march_pixel(pixel: vec2<u32>) -> MarchResult {
     let view = view_ray(pixel);
     let cam_alt = frame.camera_position.y;
     let cam_xz = frame.camera_position.xz;
@@ -509,21 +600,52 @@ fn march(@builtin(global_invocation_id) id: vec3<u32>) {
             steps = clamp(u32(ceil(span.length / frame.march.x)), 1u, MAX_VIEW_STEPS);
         }
         let dt = span.length / f32(steps);
-        var jitter = 0.5;
-        if (frame.modes.w & FLAG_JITTER) != 0u {
-            jitter = hash_unit(pixel, frame.misc.y);
-        }
+        let jitter = start_offset(pixel);
         let sigma_e = frame.extinction.x + frame.extinction.y;
-        for (var i = 0u; i < steps; i++) {
+        let dynamic_step = (frame.modes.w & FLAG_DYNAMIC_STEP) != 0u;
+        let empty_skip = (frame.modes.w & FLAG_EMPTY_SKIP) != 0u;
+        // Samples lie on one grid, t_i = start + (i + jitter) dt; the cheap-march techniques
+        // only choose which i to visit, so they never move a sample.
+        var i = 0u;
+        var stride = 1u;   // 2 after 8 empty samples with the dynamic step
+        var empty = 0u;    // empty samples in a row
+        loop {
+            if i >= steps {
+                break;
+            }
             counters.view_steps += 1u;
             let t = span.start + (f32(i) + jitter) * dt;
             let rel = view * t + vec3<f32>(0.0, cam_alt, 0.0);
             let p = vec3<f32>(rel.x + cam_xz.x, rel.y, rel.z + cam_xz.y);
+            if empty_skip {
+                // In a cell where the weather leaves no cloud: jump to the first sample past
+                // the cell's edge.
+                let exit = empty_cell_exit(p, view);
+                if exit > 0.0 {
+                    let next = u32(clamp(ceil((t + exit - span.start) / dt - jitter), 0.0, f32(steps)));
+                    i = max(i + 1u, next);
+                    continue;
+                }
+            }
             let alt = altitude_of(rel);
             let density = cloud_density(p, alt, &counters);
             if density <= 0.0 {
+                empty += 1u;
+                if dynamic_step && empty >= 8u {
+                    stride = 2u;
+                }
+                i += stride;
                 continue;
             }
+            if stride > 1u {
+                // Entered cloud on a long step: go back to the sample skipped over and
+                // continue at the fine step.
+                i -= stride - 1u;
+                stride = 1u;
+                empty = 0u;
+                continue;
+            }
+            empty = 0u;
             let sigma_t = sigma_e * density;
             let source = scattered_light(rel, p, alt, density, view, &counters);
             radiance += transmittance * step_integral(source, sigma_t, dt);
@@ -534,6 +656,7 @@ fn march(@builtin(global_invocation_id) id: vec3<u32>) {
                 count(STAT_EXIT_TRANSMITTANCE, 1u);
                 break;
             }
+            i += 1u;
         }
     }
 
@@ -545,8 +668,252 @@ fn march(@builtin(global_invocation_id) id: vec3<u32>) {
     if transmittance < 1.0 {
         depth = depth_sum / (1.0 - transmittance);
     }
-    textureStore(cloud_out, pixel, vec4<f32>(radiance, transmittance));
-    textureStore(depth_out, pixel, vec4<f32>(depth, 0.0, 0.0, 0.0));
+    return MarchResult(radiance, transmittance, depth);
+}
+
+// Every pixel, every frame.
+@compute @workgroup_size(8, 8, 1)
+fn march(@builtin(global_invocation_id) id: vec3<u32>) {
+    if any(id.xy >= frame.counts.xy) {
+        return;
+    }
+    let r = march_pixel(id.xy);
+    textureStore(cloud_out, id.xy, vec4<f32>(r.radiance, r.transmittance));
+    textureStore(depth_out, id.xy, vec4<f32>(r.depth, 0.0, 0.0, 0.0));
+}
+// Temporal upsampling (thesis 6.1; Horizon Zero Dawn's 1-in-16 update). Each frame marches
+// one pixel of every k x k block (k = frame.temporal.x), visiting the block's pixels in Bayer
+// order, each march with the next van der Corput start offset. The resolve pass rebuilds the
+// full-resolution image: the marched pixel blends into its history; every other pixel takes
+// last frame's result, reprojected through last frame's camera at the clouds' transmittance-
+// weighted depth and clamped to the current frame's neighbourhood while the camera moves;
+// pixels whose history is off screen or disoccluded are marched in full.
+
+@group(0) @binding(13) var history_in: texture_2d<f32>;                         // last frame: radiance, transmittance
+@group(0) @binding(14) var meta_in: texture_2d<f32>;                            // last frame: depth (m), samples
+@group(0) @binding(15) var sparse_in: texture_2d<f32>;                          // this frame's marched pixels
+@group(0) @binding(16) var sparse_depth_in: texture_2d<f32>;                    // their depth
+@group(0) @binding(17) var history_out: texture_storage_2d<rgba32float, write>; // this frame: radiance, transmittance
+@group(0) @binding(18) var meta_out: texture_storage_2d<rgba32float, write>;    // this frame: depth, samples
+
+// Samples a pixel's history averages at most: a running mean of its marches (so a still
+// camera converges to the mean over the van der Corput offsets), then an exponential blend of
+// 1/16, near the thesis's 5% (its appendix B). While the camera moves, 2: a new march weighs
+// half, so less ghosting (measured on scenes/flythrough.toml at 1/16: mean FLIP against the
+// full march of the same frame 0.052 with 4, 0.046 with 2, at frame 119).
+const HISTORY_SAMPLES: f32 = 16.0;
+const HISTORY_SAMPLES_MOVING: f32 = 2.0;
+// History whose depth differs from the reprojected point's by more than this fraction is
+// something else: disoccluded.
+const DISOCCLUSION_DEPTH: f32 = 0.2;
+
+// The pixel of each k x k block marched in frame `f`: Bayer order (the 2x2 and 4x4 ordered-
+// dither matrices), so consecutive frames spread over the block.
+fn block_offset(f: u32, k: u32) -> vec2<u32> {
+    if k == 2u {
+        var b2 = array<vec2<u32>, 4>(
+            vec2<u32>(0u, 0u), vec2<u32>(1u, 1u), vec2<u32>(1u, 0u), vec2<u32>(0u, 1u),
+        );
+        return b2[f % 4u];
+    }
+    if k == 4u {
+        var b4 = array<vec2<u32>, 16>(
+            vec2<u32>(0u, 0u), vec2<u32>(2u, 2u), vec2<u32>(2u, 0u), vec2<u32>(0u, 2u),
+            vec2<u32>(1u, 1u), vec2<u32>(3u, 3u), vec2<u32>(3u, 1u), vec2<u32>(1u, 3u),
+            vec2<u32>(1u, 0u), vec2<u32>(3u, 2u), vec2<u32>(3u, 0u), vec2<u32>(1u, 2u),
+            vec2<u32>(0u, 1u), vec2<u32>(2u, 3u), vec2<u32>(2u, 1u), vec2<u32>(0u, 3u),
+        );
+        return b4[f % 16u];
+    }
+    return vec2<u32>(0u);
+}
+
+// Where the point at distance `depth` along the current view ray of `pixel` was in last
+// frame's image (pixel coordinates, centres at integers + 0.5 - 0.5 = integers). `depth` 0:
+// a point at infinity (only the direction moves). x = -1e9 when it was behind the camera.
+fn reproject(pixel: vec2<u32>, depth: f32) -> vec2<f32> {
+    let same = all(frame.previous_position == frame.camera_position)
+        && all(frame.previous_forward == frame.camera_forward)
+        && all(frame.previous_right == frame.camera_right)
+        && all(frame.previous_up == frame.camera_up);
+    if same {
+        // A still camera reprojects exactly onto itself (no resampling blur).
+        return vec2<f32>(pixel);
+    }
+    let view = view_ray(pixel);
+    var dir = view;
+    if depth > 0.0 {
+        dir = view * depth + (frame.camera_position.xyz - frame.previous_position.xyz);
+    }
+    let z = dot(dir, frame.previous_forward.xyz);
+    if z <= 0.0 {
+        return vec2<f32>(-1e9);
+    }
+    let tan_half = frame.previous_position.w;
+    let aspect = frame.previous_forward.w;
+    let ndc = vec2<f32>(
+        dot(dir, frame.previous_right.xyz) / (z * tan_half * aspect),
+        -dot(dir, frame.previous_up.xyz) / (z * tan_half),
+    );
+    return (ndc * 0.5 + 0.5) * vec2<f32>(frame.counts.xy) - 0.5;
+}
+
+fn on_screen(q: vec2<f32>) -> bool {
+    let size = vec2<f32>(frame.counts.xy);
+    return all(q >= vec2<f32>(-0.5)) && all(q <= size - 0.5);
+}
+
+// Catmull-Rom weights of the four taps around a sample at fraction `t` past the second.
+fn catmull_rom(t: f32) -> vec4<f32> {
+    return vec4<f32>(
+        t * (-0.5 + t * (1.0 - 0.5 * t)),
+        1.0 + t * t * (-2.5 + 1.5 * t),
+        t * (0.5 + t * (2.0 - 1.5 * t)),
+        t * t * (-0.5 + 0.5 * t),
+    );
+}
+
+// Last frame's radiance and transmittance at `q`: Catmull-Rom over 4 x 4 texels (by hand:
+// loads, the same on every backend and for float formats that cannot be filtered). A bicubic
+// keeps the detail that bilinear resampling would blur away a little more every frame the
+// camera moves; its overshoot is clamped to the physical range.
+fn history_at(q: vec2<f32>) -> vec4<f32> {
+    let size = vec2<i32>(frame.counts.xy);
+    let c = clamp(q, vec2<f32>(0.0), vec2<f32>(size - 1));
+    let base = vec2<i32>(floor(c));
+    let f = c - vec2<f32>(base);
+    let wx = catmull_rom(f.x);
+    let wy = catmull_rom(f.y);
+    var sum = vec4<f32>(0.0);
+    for (var j = 0; j < 4; j++) {
+        var row = vec4<f32>(0.0);
+        for (var i = 0; i < 4; i++) {
+            let t = clamp(base + vec2<i32>(i - 1, j - 1), vec2<i32>(0), size - 1);
+            row += textureLoad(history_in, t, 0) * wx[i];
+        }
+        sum += row * wy[j];
+    }
+    return vec4<f32>(max(sum.rgb, vec3<f32>(0.0)), saturate(sum.a));
+}
+
+fn meta_at(q: vec2<f32>) -> vec4<f32> {
+    let size = vec2<i32>(frame.counts.xy);
+    let p = clamp(vec2<i32>(round(q)), vec2<i32>(0), size - 1);
+    return textureLoad(meta_in, p, 0);
+}
+
+// The marching pass: one pixel per block.
+@compute @workgroup_size(8, 8, 1)
+fn march_sparse(@builtin(global_invocation_id) id: vec3<u32>) {
+    let k = frame.temporal.x;
+    let blocks = (frame.counts.xy + k - 1u) / k;
+    if any(id.xy >= blocks) {
+        return;
+    }
+    let pixel = id.xy * k + block_offset(frame.misc.y, k);
+    var r = MarchResult(vec3<f32>(0.0), 1.0, 0.0);
+    var skip = any(pixel >= frame.counts.xy);
+    if !skip && (frame.modes.w & FLAG_CHECKERBOARD) != 0u && frame.temporal.y != 0u {
+        // Thesis 6.2.2: where last frame saw clear sky in this direction, skip the march
+        // in every other turn of the pixel, alternating between neighbouring blocks, so
+        // clouds that the wind moves in are found within two turns.
+        let turn = frame.misc.y / (k * k);
+        let q = reproject(pixel, 0.0);
+        if ((id.x + id.y + turn) & 1u) == 0u && on_screen(q) && history_at(q).a >= 1.0 {
+            skip = true;
+        }
+    }
+    if !skip {
+        r = march_pixel(pixel);
+    }
+    textureStore(cloud_out, id.xy, vec4<f32>(r.radiance, r.transmittance));
+    textureStore(depth_out, id.xy, vec4<f32>(r.depth, 0.0, 0.0, 0.0));
+}
+
+// The resolve pass: every pixel of the output.
+@compute @workgroup_size(8, 8, 1)
+fn resolve(@builtin(global_invocation_id) id: vec3<u32>) {
+    if any(id.xy >= frame.counts.xy) {
+        return;
+    }
+    let pixel = id.xy;
+    let k = frame.temporal.x;
+    let block = pixel / k;
+    let marched = all(pixel == block * k + block_offset(frame.misc.y, k));
+    let current = textureLoad(sparse_in, block, 0);
+    let current_depth = textureLoad(sparse_depth_in, block, 0).r;
+
+    // The depth to reproject at: this block's march; where it saw no cloud, the middle of
+    // the layer along the ray (where clouds would be); a ray that misses the layer has only
+    // sky, which moves with the direction.
+    var depth = current_depth;
+    if depth <= 0.0 {
+        let span = layer_interval(frame.camera_position.y, view_ray(pixel));
+        if span.kind == RAY_MARCH {
+            depth = span.start + 0.5 * span.length;
+        }
+    }
+    let q = reproject(pixel, depth);
+    var valid = frame.temporal.y != 0u && on_screen(q);
+    var history = vec4<f32>(0.0, 0.0, 0.0, 1.0);
+    var past = vec4<f32>(0.0);
+    let moving = any(q != vec2<f32>(pixel));
+    if valid {
+        history = history_at(q);
+        past = meta_at(q);
+        // Disoccluded: while the camera moves, history seen at another depth than where this
+        // frame's march puts the cloud. (A still camera uncovers nothing; and this block's
+        // depth is another pixel's, which at cloud edges would reject good history.)
+        if moving && current_depth > 0.0 && past.x > 0.0 {
+            let expected = distance(frame.camera_position.xyz + view_ray(pixel) * current_depth,
+                frame.previous_position.xyz);
+            valid = abs(past.x - expected) <= DISOCCLUSION_DEPTH * expected;
+        }
+    }
+    if valid && moving {
+        // Neighbourhood clamp: last frame's value may not leave the range of this frame's
+        // marches around the pixel (3 x 3 blocks), which rejects stale, ghosting history.
+        let blocks = vec2<i32>((frame.counts.xy + k - 1u) / k);
+        var lo = vec4<f32>(1e30);
+        var hi = vec4<f32>(-1e30);
+        for (var dy = -1; dy <= 1; dy++) {
+            for (var dx = -1; dx <= 1; dx++) {
+                let b = clamp(vec2<i32>(block) + vec2<i32>(dx, dy), vec2<i32>(0), blocks - 1);
+                let s = textureLoad(sparse_in, b, 0);
+                lo = min(lo, s);
+                hi = max(hi, s);
+            }
+        }
+        history = clamp(history, lo, hi);
+    }
+
+    var result: vec4<f32>;
+    var samples: f32;
+    var out_depth: f32;
+    if marched {
+        if valid {
+            samples = min(past.y + 1.0, select(HISTORY_SAMPLES, HISTORY_SAMPLES_MOVING, moving));
+            result = mix(history, current, 1.0 / samples);
+        } else {
+            samples = 1.0;
+            result = current;
+        }
+        out_depth = select(past.x, current_depth, current_depth > 0.0 || !valid);
+    } else if valid {
+        samples = past.y;
+        result = history;
+        out_depth = past.x;
+    } else {
+        // Off screen or disoccluded, and not this pixel's turn: march it now.
+        let r = march_pixel(pixel);
+        samples = 1.0;
+        result = vec4<f32>(r.radiance, r.transmittance);
+        out_depth = r.depth;
+    }
+    textureStore(history_out, pixel, result);
+    textureStore(meta_out, pixel, vec4<f32>(out_depth, samples, 0.0, 0.0));
+    textureStore(cloud_out, pixel, result);
+    textureStore(depth_out, pixel, vec4<f32>(out_depth, 0.0, 0.0, 0.0));
 }
 // Composite: a simple analytic sky and sun disk behind the clouds, the clouds over it,
 // exposure, the ACES fitted tone curve and gamma (seed 001), to an 8-bit image.

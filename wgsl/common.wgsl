@@ -27,6 +27,11 @@ struct Frame {
     counts: vec4<u32>,              // width, height, view steps, light steps
     modes: vec4<u32>,               // phase model, integration, height model, flags
     misc: vec4<u32>,                // octaves beyond single scattering, frame (jitter seed)
+    previous_position: vec4<f32>,   // last frame's camera (as camera_position): reprojection
+    previous_forward: vec4<f32>,    // last frame's forward; w = aspect
+    previous_right: vec4<f32>,      // last frame's right
+    previous_up: vec4<f32>,         // last frame's up
+    temporal: vec4<u32>,            // block side (1 off, 2 = 1/4, 4 = 1/16), history valid (0/1)
 }
 
 // Codes shared with the scene crate (`PhaseModel::code`, `Integration::code`, ...).
@@ -39,6 +44,9 @@ const HEIGHT_PARABOLA: u32 = 0u;
 const HEIGHT_CLOUD_TYPES: u32 = 1u;
 const FLAG_BEER_POWDER: u32 = 1u;
 const FLAG_JITTER: u32 = 2u;
+const FLAG_DYNAMIC_STEP: u32 = 4u;  // double the view step after 8 empty samples (seed 001)
+const FLAG_CHECKERBOARD: u32 = 8u;  // skip clear-history pixels every other turn (thesis 6.2.2)
+const FLAG_EMPTY_SKIP: u32 = 16u;   // jump over empty cells of the weather occupancy grid
 
 // Feature switches. A variant in modules.toml sets these; code behind a `false` switch is
 // removed by naga before translation, so a scene that does not use a feature pays nothing.
@@ -67,6 +75,12 @@ fn pcg(v: u32) -> u32 {
     let state = v * 747796405u + 2891336453u;
     let word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
     return (word >> 22u) ^ word;
+}
+
+// The base-2 van der Corput sequence (the radical inverse of n): the thesis's start offsets
+// for successive marches of one pixel. 24 bits so the conversion is exact.
+fn van_der_corput(n: u32) -> f32 {
+    return f32(reverseBits(n) >> 8u) * (1.0 / 16777216.0);
 }
 
 // A value in [0, 1) from a pixel and a frame index; 24 bits so the conversion is exact.

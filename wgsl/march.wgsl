@@ -43,12 +43,29 @@ fn step_integral(source: vec3<f32>, sigma_t: f32, dt: f32) -> vec3<f32> {
     return source * (dt * f);
 }
 
-@compute @workgroup_size(8, 8, 1)
-fn march(@builtin(global_invocation_id) id: vec3<u32>) {
-    if any(id.xy >= frame.counts.xy) {
-        return;
+// What the march of one view ray produced.
+struct MarchResult {
+    radiance: vec3<f32>,   // in-scattered radiance
+    transmittance: f32,
+    depth: f32,            // transmittance-weighted depth (m), 0 where no cloud
+}
+
+// The view march's start offset (in steps, [0, 1)) for `pixel`. Without temporal upsampling:
+// 0.5, or the per-pixel, per-frame hash with jitter. With it, the thesis's van der Corput
+// sequence over the pixel's successive marches (one per `block^2` frames), shifted by a fixed
+// per-pixel hash with jitter: each pixel's marches stratify its step interval.
+fn start_offset(pixel: vec2<u32>) -> f32 {
+    let jitter = (frame.modes.w & FLAG_JITTER) != 0u;
+    let k = frame.temporal.x;
+    if k <= 1u {
+        return select(0.5, hash_unit(pixel, frame.misc.y), jitter);
     }
-    let pixel = id.xy;
+    let base = select(0.5, hash_unit(pixel, 0u), jitter);
+    return fract(base + van_der_corput(frame.misc.y / (k * k)));
+}
+
+// The view march (thesis alg. 5.1) of the ray through `pixel`, counting its work.
+fn march_pixel(pixel: vec2<u32>) -> MarchResult {
     let view = view_ray(pixel);
     let cam_alt = frame.camera_position.y;
     let cam_xz = frame.camera_position.xz;
@@ -70,21 +87,52 @@ fn march(@builtin(global_invocation_id) id: vec3<u32>) {
             steps = clamp(u32(ceil(span.length / frame.march.x)), 1u, MAX_VIEW_STEPS);
         }
         let dt = span.length / f32(steps);
-        var jitter = 0.5;
-        if (frame.modes.w & FLAG_JITTER) != 0u {
-            jitter = hash_unit(pixel, frame.misc.y);
-        }
+        let jitter = start_offset(pixel);
         let sigma_e = frame.extinction.x + frame.extinction.y;
-        for (var i = 0u; i < steps; i++) {
+        let dynamic_step = (frame.modes.w & FLAG_DYNAMIC_STEP) != 0u;
+        let empty_skip = (frame.modes.w & FLAG_EMPTY_SKIP) != 0u;
+        // Samples lie on one grid, t_i = start + (i + jitter) dt; the cheap-march techniques
+        // only choose which i to visit, so they never move a sample.
+        var i = 0u;
+        var stride = 1u;   // 2 after 8 empty samples with the dynamic step
+        var empty = 0u;    // empty samples in a row
+        loop {
+            if i >= steps {
+                break;
+            }
             counters.view_steps += 1u;
             let t = span.start + (f32(i) + jitter) * dt;
             let rel = view * t + vec3<f32>(0.0, cam_alt, 0.0);
             let p = vec3<f32>(rel.x + cam_xz.x, rel.y, rel.z + cam_xz.y);
+            if empty_skip {
+                // In a cell where the weather leaves no cloud: jump to the first sample past
+                // the cell's edge.
+                let exit = empty_cell_exit(p, view);
+                if exit > 0.0 {
+                    let next = u32(clamp(ceil((t + exit - span.start) / dt - jitter), 0.0, f32(steps)));
+                    i = max(i + 1u, next);
+                    continue;
+                }
+            }
             let alt = altitude_of(rel);
             let density = cloud_density(p, alt, &counters);
             if density <= 0.0 {
+                empty += 1u;
+                if dynamic_step && empty >= 8u {
+                    stride = 2u;
+                }
+                i += stride;
                 continue;
             }
+            if stride > 1u {
+                // Entered cloud on a long step: go back to the sample skipped over and
+                // continue at the fine step.
+                i -= stride - 1u;
+                stride = 1u;
+                empty = 0u;
+                continue;
+            }
+            empty = 0u;
             let sigma_t = sigma_e * density;
             let source = scattered_light(rel, p, alt, density, view, &counters);
             radiance += transmittance * step_integral(source, sigma_t, dt);
@@ -95,6 +143,7 @@ fn march(@builtin(global_invocation_id) id: vec3<u32>) {
                 count(STAT_EXIT_TRANSMITTANCE, 1u);
                 break;
             }
+            i += 1u;
         }
     }
 
@@ -106,6 +155,16 @@ fn march(@builtin(global_invocation_id) id: vec3<u32>) {
     if transmittance < 1.0 {
         depth = depth_sum / (1.0 - transmittance);
     }
-    textureStore(cloud_out, pixel, vec4<f32>(radiance, transmittance));
-    textureStore(depth_out, pixel, vec4<f32>(depth, 0.0, 0.0, 0.0));
+    return MarchResult(radiance, transmittance, depth);
+}
+
+// Every pixel, every frame.
+@compute @workgroup_size(8, 8, 1)
+fn march(@builtin(global_invocation_id) id: vec3<u32>) {
+    if any(id.xy >= frame.counts.xy) {
+        return;
+    }
+    let r = march_pixel(id.xy);
+    textureStore(cloud_out, id.xy, vec4<f32>(r.radiance, r.transmittance));
+    textureStore(depth_out, id.xy, vec4<f32>(r.depth, 0.0, 0.0, 0.0));
 }

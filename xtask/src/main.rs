@@ -368,11 +368,13 @@ const APT_PACKAGES: &[&str] = &[
     "spirv-cross",
     "libegl1",
     "libgl1-mesa-dri",
+    "ffmpeg",
 ];
 
 fn missing_tools() -> Vec<String> {
     let mut missing = Vec::new();
-    for tool in ["spirv-val", "glslangValidator", "vulkaninfo"] {
+    for tool in ["spirv-val", "glslangValidator", "vulkaninfo", "ffmpeg"] {
+        // ffmpeg takes -version, the others --version; both only need to start.
         if Command::new(tool).arg("--version").output().is_err() {
             missing.push(format!("`{tool}`"));
         }

@@ -360,12 +360,12 @@ impl Renderer {
         self.prepare(frame, target_format)?;
         let plan = frame.plan;
         let run = self.frames.passes(frame);
-        self.begin_frame(encoder, frame);
+        let uniforms = self.begin_frame(encoder, frame);
         for (k, &i) in run.iter().enumerate() {
             self.record_pass(encoder, i, Some(k as u32), target, target_format)?;
         }
         self.resolve_queries(encoder, run.len() as u32);
-        self.frames.finished(plan, &run);
+        self.frames.finished(plan, &run, &uniforms);
         Ok(run.iter().map(|&i| plan.passes[i].name.clone()).collect())
     }
 
@@ -377,7 +377,7 @@ impl Renderer {
         let run: Vec<&stratus_graph::plan::Pass> =
             indices.iter().map(|&i| &plan.passes[i]).collect();
         let mut encoder = self.device.create_command_encoder(&Default::default());
-        self.begin_frame(&mut encoder, frame);
+        let uniforms = self.begin_frame(&mut encoder, frame);
         let mut wall = Vec::new();
         // CPU time of recording and submitting: the waits of the CPU-wall fallback excluded.
         let mut waited = 0.0;
@@ -407,7 +407,7 @@ impl Renderer {
         let copies = self.copy_readbacks(&mut encoder, frame)?;
         self.queue.submit([encoder.finish()]);
         let cpu_ms = t0.elapsed().as_secs_f64() * 1e3 - waited;
-        self.frames.finished(plan, &indices);
+        self.frames.finished(plan, &indices, &uniforms);
         self.wait()?;
 
         let mut out = FrameOutput {
@@ -449,9 +449,13 @@ impl Renderer {
             .map_err(|e| Error::Wgpu(e.to_string()))
     }
 
-    /// Writes the uniforms and clears the counters of a counting frame.
-    fn begin_frame(&self, encoder: &mut wgpu::CommandEncoder, frame: &FrameInput<'_>) {
-        let uniforms: FrameUniforms = frame.scene.uniforms();
+    /// Writes the uniforms and clears the counters of a counting frame; returns the uniforms.
+    fn begin_frame(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        frame: &FrameInput<'_>,
+    ) -> FrameUniforms {
+        let uniforms: FrameUniforms = self.frames.uniforms(frame);
         if let Some(u) = &self.uniform {
             self.queue.write_buffer(u, 0, bytemuck::bytes_of(&uniforms));
         }
@@ -462,6 +466,7 @@ impl Renderer {
                 }
             }
         }
+        uniforms
     }
 
     /// Creates or updates what `frame` needs: resources, pipelines, bind groups, uploads.

@@ -1,5 +1,6 @@
 //! `stratus`: render, inspect and compare volumetric clouds.
 
+mod animate;
 mod bench;
 mod compare;
 mod export;
@@ -24,6 +25,9 @@ struct Cli {
 enum Command {
     /// Render a scene to a PNG (tone-mapped) or EXR (linear radiance, alpha = transmittance).
     Render(render::RenderArgs),
+    /// Render a scene's animation (camera keyframes, wind) to a video: .mp4 through ffmpeg,
+    /// or .gif.
+    Animate(animate::AnimateArgs),
     /// Compare two images (PNG or EXR): FLIP on the tone-mapped images; RMSE, max abs and the
     /// worst pixel on linear values when both are EXR.
     Compare(compare::CompareArgs),
@@ -56,6 +60,7 @@ fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Render(args) => render::run(args),
+        Command::Animate(args) => animate::run(args),
         Command::Compare(args) => compare::run(args),
         Command::Bench(args) => bench::run(args),
         Command::Presets => presets(),

@@ -11,7 +11,7 @@ use stratus::quality::{DEFAULT_RESULTS, Results, auto_quality};
 use stratus_backend_wgpu as backend_wgpu;
 use stratus_graph::{FrameInput, FrameOutput, FramePlan, Readback, output::median};
 use stratus_reference::CpuBackend;
-use stratus_scene::Scene;
+use stratus_scene::{Scene, Temporal};
 
 use crate::{
     output::{check_image_path, write_image},
@@ -68,11 +68,20 @@ pub struct RenderArgs {
     /// pass times and CPU time as JSON to this file.
     #[arg(long)]
     stats: Option<PathBuf>,
-    /// Render N frames with one persistent renderer, as a real-time loop does: the wind
-    /// advances 1/60 s and the jitter sequence one step per frame, the camera stays; only the
-    /// last frame is read back.
+    /// Render N frames with one persistent renderer, as a real-time loop does, at 60 frames a
+    /// second of scene time: the wind advances 1/60 s and the jitter sequence one step per
+    /// frame; the camera follows the scene's [animation] (or stays). Only the last frame is
+    /// read back, unless --sequence asks for every one.
     #[arg(long, default_value_t = 1, value_name = "N", value_parser = clap::value_parser!(u32).range(1..))]
     frames: u32,
+    /// Temporal upsampling: march every pixel every frame (`off`), or one pixel in 4 (`1/4`)
+    /// or in 16 (`1/16`) and reproject the rest from the last frame (overrides the scene's
+    /// quality.temporal). Pays off over --frames.
+    #[arg(long, value_name = "MODE", value_parser = parse_temporal)]
+    temporal: Option<Temporal>,
+    /// With --frames: also write every frame's display image to DIR/frame_NNNN.png.
+    #[arg(long, value_name = "DIR")]
+    sequence: Option<PathBuf>,
     /// `--backend reference`: the integrator.
     #[arg(long, value_enum, default_value_t = IntegratorArg::Quadrature)]
     integrator: IntegratorArg,
@@ -113,6 +122,7 @@ fn cpu_realtime(progress: bool) -> CpuBackend {
         ),
         label: "cpu (real-time settings)",
         progress,
+        ..CpuBackend::default()
     }
 }
 
@@ -122,14 +132,6 @@ fn open_backend(backend: Backend, args: &RenderArgs) -> Result<Box<dyn stratus_g
     // frames instead.
     let progress = args.frames == 1;
     Ok(match backend {
-        Backend::Wgpu => Box::new(wgpu(backend_wgpu::Api::Vulkan)?),
-        Backend::WgpuGl => Box::new(wgpu(backend_wgpu::Api::Gl)?),
-        Backend::Ash => Box::new(stratus_backend_ash::Renderer::new(
-            stratus_backend_ash::Options {
-                validation: validation(),
-            },
-        )?),
-        Backend::Cpu => Box::new(cpu_realtime(progress)),
         Backend::Reference => Box::new(match args.integrator {
             IntegratorArg::Quadrature => CpuBackend {
                 integrator: stratus_reference::Integrator::Quadrature(
@@ -137,6 +139,7 @@ fn open_backend(backend: Backend, args: &RenderArgs) -> Result<Box<dyn stratus_g
                 ),
                 label: "reference (converged quadrature)",
                 progress,
+                ..CpuBackend::default()
             },
             IntegratorArg::Montecarlo => CpuBackend {
                 integrator: stratus_reference::Integrator::MonteCarlo {
@@ -145,8 +148,28 @@ fn open_backend(backend: Backend, args: &RenderArgs) -> Result<Box<dyn stratus_g
                 },
                 label: "reference (Monte Carlo)",
                 progress,
+                ..CpuBackend::default()
             },
         }),
+        other => open_realtime(other, progress)?,
+    })
+}
+
+/// A real-time renderer (not the reference): `auto` falls back from Vulkan to GL to the CPU,
+/// saying so. `progress`: the CPU renderer's per-frame progress bar.
+pub fn open_realtime(backend: Backend, progress: bool) -> Result<Box<dyn stratus_graph::Backend>> {
+    Ok(match backend {
+        Backend::Wgpu => Box::new(wgpu(backend_wgpu::Api::Vulkan)?),
+        Backend::WgpuGl => Box::new(wgpu(backend_wgpu::Api::Gl)?),
+        Backend::Ash => Box::new(stratus_backend_ash::Renderer::new(
+            stratus_backend_ash::Options {
+                validation: validation(),
+            },
+        )?),
+        Backend::Cpu => Box::new(cpu_realtime(progress)),
+        Backend::Reference => anyhow::bail!(
+            "--backend reference renders stills only; use cpu, wgpu, wgpu-gl, ash or auto"
+        ),
         Backend::Auto => match wgpu(backend_wgpu::Api::Vulkan) {
             Ok(r) => Box::new(r),
             Err(_) => match wgpu(backend_wgpu::Api::Gl) {
@@ -167,13 +190,29 @@ fn open_backend(backend: Backend, args: &RenderArgs) -> Result<Box<dyn stratus_g
     })
 }
 
-/// Frame `i` of a loop starting at `scene`: the wind 1/60 s further and the jitter sequence one
-/// step on per frame.
-fn frame_scene(scene: &Scene, i: u32) -> Scene {
-    let mut s = scene.clone();
-    s.clouds.time_s += f64::from(i) / 60.0;
+/// `--temporal`'s values.
+pub fn parse_temporal(s: &str) -> Result<Temporal, String> {
+    s.parse()
+}
+
+/// Frame `i` of a loop starting at `scene` at `fps` frames per second of scene time: the
+/// camera on its animation path and the wind `i / fps` seconds on, the jitter sequence `i`
+/// steps on.
+pub fn frame_scene(scene: &Scene, i: u32, fps: f64) -> Scene {
+    let mut s = scene.at_time(f64::from(i) / fps);
     s.quality.frame = s.quality.frame.wrapping_add(i);
     s
+}
+
+/// Each pass's median time over the frames it ran in.
+fn median_per_pass(frames: &[(f64, Vec<stratus_graph::PassTiming>)]) -> BTreeMap<String, f64> {
+    let mut per_pass: BTreeMap<String, Vec<f64>> = BTreeMap::new();
+    for (_, timings) in frames {
+        for t in timings {
+            per_pass.entry(t.pass.clone()).or_default().push(t.ms);
+        }
+    }
+    per_pass.into_iter().map(|(p, v)| (p, median(v))).collect()
 }
 
 /// A progress bar for long loops, on a terminal only.
@@ -194,7 +233,14 @@ fn progress(frames: u32) -> Option<ProgressBar> {
 /// Runs `stratus render`.
 pub fn run(args: RenderArgs) -> Result<()> {
     check_image_path(&args.out)?;
-    let (scene, name) = load_scene(args.preset.as_deref(), args.scene.as_ref(), args.size)?;
+    let (mut scene, name) = load_scene(args.preset.as_deref(), args.scene.as_ref(), args.size)?;
+    if let Some(t) = args.temporal {
+        scene.quality.temporal = t;
+    }
+    if let Some(dir) = &args.sequence {
+        std::fs::create_dir_all(dir)
+            .with_context(|| format!("--sequence {}: creating the folder", dir.display()))?;
+    }
     let scene = match args.max_error {
         Some(e) => {
             let results = Results::load(&args.bench_results)?;
@@ -218,9 +264,9 @@ pub fn run(args: RenderArgs) -> Result<()> {
     let mut frames: Vec<(f64, Vec<stratus_graph::PassTiming>)> = Vec::new();
     let mut last: Option<(Scene, FrameOutput)> = None;
     for i in 0..args.frames {
-        let s = frame_scene(&scene, i);
+        let s = frame_scene(&scene, i, 60.0);
         let is_last = i + 1 == args.frames;
-        let readback = if is_last {
+        let readback = if is_last || args.sequence.is_some() {
             Readback::output()
         } else {
             Readback::none()
@@ -230,6 +276,10 @@ pub fn run(args: RenderArgs) -> Result<()> {
             &FrameInput::new(&plan, &s, &noise).with_readback(readback),
         )?;
         frames.push((out.cpu_ms, out.timings.clone()));
+        if let Some(dir) = &args.sequence {
+            check_finite(&out).with_context(|| format!("frame {i}"))?;
+            write_image(&dir.join(format!("frame_{i:04}.png")), &out)?;
+        }
         if let Some(bar) = &bar {
             bar.inc(1);
         }
@@ -274,15 +324,9 @@ pub fn run(args: RenderArgs) -> Result<()> {
             passes.join(", "),
         );
     } else {
-        let mut per_pass: BTreeMap<&str, Vec<f64>> = BTreeMap::new();
-        for (_, timings) in &frames {
-            for t in timings {
-                per_pass.entry(t.pass.as_str()).or_default().push(t.ms);
-            }
-        }
-        let passes: Vec<String> = per_pass
+        let passes: Vec<String> = median_per_pass(&frames)
             .iter()
-            .map(|(p, v)| format!("{p} {:.3} ms", median(v.clone())))
+            .map(|(p, v)| format!("{p} {v:.3} ms"))
             .collect();
         println!(
             "{} frames in {wall_ms:.0} ms: median CPU {:.3} ms/frame (record + submit); median GPU per pass: {} ({source}); noise generated in {noise_ms:.0} ms",
@@ -316,6 +360,8 @@ pub fn run(args: RenderArgs) -> Result<()> {
             "counters": counted.stats,
             "passes": frame.timings.iter().map(timing).collect::<Vec<_>>(),
             "frame_ms": wall_ms / f64::from(args.frames),
+            "temporal": scene.quality.temporal.name(),
+            "median_ms": median_per_pass(&frames),
             "frames": frames.iter().enumerate().map(|(i, (cpu_ms, timings))| json!({
                 "frame": i,
                 "cpu_ms": cpu_ms,

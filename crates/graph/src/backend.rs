@@ -261,6 +261,9 @@ pub struct FrameState {
     frame: u64,
     history_frames: u64,
     computed: std::collections::BTreeSet<String>,
+    /// The uniform block of the last frame rendered: its camera is the next frame's
+    /// `previous_*` (temporal reprojection).
+    last: Option<stratus_scene::FrameUniforms>,
 }
 
 impl FrameState {
@@ -302,6 +305,20 @@ impl FrameState {
         flags
     }
 
+    /// The uniform block of `frame`: the scene's, with last frame's camera and
+    /// `temporal.y` = 1 once the history holds last frame (temporal reprojection reads both).
+    pub fn uniforms(&self, frame: &FrameInput<'_>) -> stratus_scene::FrameUniforms {
+        let mut u = frame.scene.uniforms();
+        if let Some(last) = &self.last
+            && self.history_frames > 0
+            && frame.plan.has_history()
+        {
+            u = u.with_previous_camera(last);
+            u.temporal[1] = 1;
+        }
+        u
+    }
+
     /// The passes of the plan that run in this frame, by index, in order.
     pub fn passes(&self, frame: &FrameInput<'_>) -> Vec<usize> {
         let flags = self.flags(frame);
@@ -312,8 +329,15 @@ impl FrameState {
     }
 
     /// The frame ran `ran` (indices into the plan's passes): computed persistent resources
-    /// they wrote now hold results, and history moves on.
-    pub fn finished(&mut self, plan: &FramePlan, ran: &[usize]) {
+    /// they wrote now hold results, history moves on, and `uniforms` (the block the frame
+    /// used) holds the camera the next frame reprojects from.
+    pub fn finished(
+        &mut self,
+        plan: &FramePlan,
+        ran: &[usize],
+        uniforms: &stratus_scene::FrameUniforms,
+    ) {
+        self.last = Some(*uniforms);
         for &i in ran {
             for r in plan.passes[i].writes() {
                 let r = &plan.resources[r];

@@ -106,7 +106,8 @@ impl TexelFormat {
     }
 }
 
-/// An extent as written: `"output"`, `"output/4"` (rounded up), or fixed `[w, h]` / `[w, h, d]`.
+/// An extent as written: `"output"`, `"output/4"` (rounded up), `"output/temporal"` (divided
+/// by the temporal upsampling block side, rounded up), or fixed `[w, h]` / `[w, h, d]`.
 #[derive(Clone, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(untagged)]
 pub enum ExtentDesc {
@@ -123,8 +124,14 @@ impl Default for ExtentDesc {
 }
 
 impl ExtentDesc {
-    /// The size for an output of `width` x `height`, or why the extent is malformed.
+    /// The size for an output of `width` x `height` without temporal upsampling, or why the
+    /// extent is malformed.
     pub fn resolve(&self, width: u32, height: u32) -> Result<[u32; 3], String> {
+        self.resolve_in(width, height, 1)
+    }
+
+    /// The size for an output of `width` x `height` with temporal blocks of side `block`.
+    pub fn resolve_in(&self, width: u32, height: u32, block: u32) -> Result<[u32; 3], String> {
         match self {
             Self::Relative(s) => {
                 let div = match s.trim().strip_prefix("output") {
@@ -132,10 +139,15 @@ impl ExtentDesc {
                     Some(rest) => rest
                         .trim()
                         .strip_prefix('/')
-                        .and_then(|d| d.trim().parse::<u32>().ok())
+                        .and_then(|d| match d.trim() {
+                            "temporal" => Some(block.max(1)),
+                            d => d.parse::<u32>().ok(),
+                        })
                         .filter(|&d| d >= 1)
                         .ok_or_else(|| {
-                            format!("extent `{s}`: expected `output` or `output/N` with N >= 1")
+                            format!(
+                                "extent `{s}`: expected `output`, `output/N` with N >= 1 or `output/temporal`"
+                            )
                         })?,
                     None => {
                         return Err(format!(
@@ -349,6 +361,13 @@ pub struct PassDesc {
     /// `present` when the host asked for the display target; hosts may set their own.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub when: Option<String>,
+    /// In the plan only when this plan option holds (`!option`: only when it does not):
+    /// `temporal` while temporal upsampling is on, `empty_skip` while empty-space skipping is.
+    /// Unlike `when`, decided once per plan, so a
+    /// resource that no planned pass binds is not made at all. Two passes may share a name
+    /// when they are planned under opposite options (the march, full or sparse).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub plan: Option<String>,
     /// WGSL global name -> resource name (`name.previous` for last frame's half of a history
     /// resource).
     #[serde(default)]
@@ -367,6 +386,9 @@ pub type ConstantLookup<'a> = dyn Fn(&str, &str) -> Option<f64> + 'a;
 
 /// The suffix that names last frame's half of a history resource.
 pub const PREVIOUS: &str = ".previous";
+
+/// Plan options a pass's `plan` may name.
+pub const PLAN_OPTIONS: [&str; 2] = ["temporal", "empty_skip"];
 
 /// Upload sources the host provides.
 pub const UPLOADS: [&str; 5] = [
@@ -437,7 +459,30 @@ impl GraphDesc {
         for pass in &self.passes {
             let at = format!("pass `{}`", pass.name);
             if !pass_names.insert(pass.name.as_str()) {
-                p.push(format!("{at} is declared twice"));
+                // Allowed for two passes planned under opposite options.
+                let opposite = |a: &PassDesc, b: &PassDesc| match (&a.plan, &b.plan) {
+                    (Some(x), Some(y)) => {
+                        x.trim().trim_start_matches('!') == y.trim().trim_start_matches('!')
+                            && x.trim().starts_with('!') != y.trim().starts_with('!')
+                    }
+                    _ => false,
+                };
+                let same: Vec<&PassDesc> =
+                    self.passes.iter().filter(|q| q.name == pass.name).collect();
+                if !(same.len() == 2 && opposite(same[0], same[1])) {
+                    p.push(format!(
+                        "{at} is declared twice (allowed only for two passes planned under opposite options, `plan = \"x\"` and `plan = \"!x\"`)"
+                    ));
+                }
+            }
+            if let Some(option) = &pass.plan {
+                let name = option.trim().trim_start_matches('!').trim();
+                if !PLAN_OPTIONS.contains(&name) {
+                    p.push(format!(
+                        "{at}: `plan = \"{option}\"` names no plan option (known: {})",
+                        PLAN_OPTIONS.join(", ")
+                    ));
+                }
             }
             let Some(module) = manifest.module(&pass.module) else {
                 p.push(format!(

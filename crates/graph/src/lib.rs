@@ -22,5 +22,5 @@ pub use backend::{Backend, BackendError, FrameInput, Readback};
 pub use desc::{GraphDesc, GraphError};
 pub use manifest::Manifest;
 pub use output::{FrameOutput, PassTiming, named_counters};
-pub use plan::{FramePlan, MAX_RESOLUTION, PlanError, Requirements};
+pub use plan::{FramePlan, MAX_RESOLUTION, PlanError, PlanOptions, Requirements};
 pub use program::Program;

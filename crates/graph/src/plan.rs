@@ -10,7 +10,7 @@ use stratus_scene::Scene;
 use crate::{
     desc::{
         AddressMode, Blend, ColorDesc, Compare, DepthDesc, Filter, Lifetime, LoadOp, OutputRole,
-        PREVIOUS, ResourceKind, TexelFormat,
+        PREVIOUS, PassDesc, ResourceKind, TexelFormat,
     },
     manifest::{BindingKind, Dimension, ModuleManifest, ResourceInfo, VariantInfo},
     program::Program,
@@ -344,24 +344,84 @@ pub enum PlanError {
     Size(u32, u32),
 }
 
+/// What a plan is made for beyond the shader features: the plan options passes name in
+/// `plan = "..."`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct PlanOptions {
+    /// Temporal upsampling block side: 1 = off, 2 = 1/4, 4 = 1/16 of the pixels marched per
+    /// frame (option `temporal` holds when > 1; extent `output/temporal` divides by it).
+    pub temporal: u32,
+    /// Empty-space skipping is on (option `empty_skip`: the occupancy grid is computed).
+    pub empty_skip: bool,
+}
+
+impl Default for PlanOptions {
+    fn default() -> Self {
+        Self {
+            temporal: 1,
+            empty_skip: false,
+        }
+    }
+}
+
+impl PlanOptions {
+    /// The options `scene` asks for.
+    pub fn of(scene: &Scene) -> Self {
+        Self {
+            temporal: scene.quality.temporal.divisor(),
+            empty_skip: scene.quality.empty_space_skip,
+        }
+    }
+
+    fn holds(&self, option: &str) -> bool {
+        let (name, negate) = match option.trim().strip_prefix('!') {
+            Some(n) => (n.trim(), true),
+            None => (option.trim(), false),
+        };
+        let set = match name {
+            "temporal" => self.temporal > 1,
+            "empty_skip" => self.empty_skip,
+            _ => false,
+        };
+        set != negate
+    }
+
+    /// Whether `pass` is in a plan made with these options.
+    pub fn plans(&self, pass: &PassDesc) -> bool {
+        pass.plan.as_deref().is_none_or(|o| self.holds(o))
+    }
+}
+
 impl FramePlan {
     /// The plan for `scene` at its resolution, with the embedded shaders.
     pub fn for_scene(scene: &Scene, stats: bool) -> Result<Self, PlanError> {
         let [w, h] = scene.camera.resolution;
-        Self::new(
+        Self::with_options(
             &*Program::embedded()?,
             &Requirements::of(scene, stats),
             w,
             h,
+            PlanOptions::of(scene),
         )
     }
 
-    /// The plan of `program`'s graph for the given requirements and size.
+    /// The plan of `program`'s graph for the given requirements and size, default options.
     pub fn new(
         program: &Program,
         req: &Requirements,
         width: u32,
         height: u32,
+    ) -> Result<Self, PlanError> {
+        Self::with_options(program, req, width, height, PlanOptions::default())
+    }
+
+    /// The plan of `program`'s graph for the given requirements, size and options.
+    pub fn with_options(
+        program: &Program,
+        req: &Requirements,
+        width: u32,
+        height: u32,
+        options: PlanOptions,
     ) -> Result<Self, PlanError> {
         if !(1..=MAX_RESOLUTION).contains(&width) || !(1..=MAX_RESOLUTION).contains(&height) {
             return Err(PlanError::Size(width, height));
@@ -369,8 +429,25 @@ impl FramePlan {
         let manifest = &program.manifest;
         let graph = &program.graph;
         let bad = |m: String| PlanError::Manifest(m);
+        let planned: Vec<&PassDesc> = graph.passes.iter().filter(|p| options.plans(p)).collect();
+        // Resources some planned pass binds or draws into (the rest are not made), external
+        // ones and the uniform block.
+        let referenced = |name: &str| {
+            planned.iter().any(|p| {
+                p.bind
+                    .values()
+                    .any(|v| v.strip_suffix(PREVIOUS).unwrap_or(v) == name)
+                    || p.color.iter().any(|c| c.target == name)
+                    || p.depth.as_ref().is_some_and(|d| d.target == name)
+            })
+        };
+        let graph_resources: Vec<_> = graph
+            .resources
+            .iter()
+            .filter(|r| r.external || r.upload.as_deref() == Some("frame") || referenced(&r.name))
+            .collect();
         let mut modules = BTreeMap::new();
-        for pass in &graph.passes {
+        for pass in &planned {
             if modules.contains_key(&pass.module) {
                 continue;
             }
@@ -387,8 +464,7 @@ impl FramePlan {
                 },
             );
         }
-        let mut resources: Vec<PlanResource> = graph
-            .resources
+        let mut resources: Vec<PlanResource> = graph_resources
             .iter()
             .map(|r| {
                 let extent = match (&r.extent, r.kind, &r.upload) {
@@ -396,7 +472,7 @@ impl FramePlan {
                     (e, ResourceKind::Texture, None) => Some(
                         e.clone()
                             .unwrap_or_default()
-                            .resolve(width, height)
+                            .resolve_in(width, height, options.temporal)
                             .map_err(|e| bad(format!("resource `{}`: {e}", r.name)))?,
                     ),
                     _ => None,
@@ -424,20 +500,19 @@ impl FramePlan {
             })
             .collect::<Result<_, PlanError>>()?;
         let index = |name: &str| -> Result<usize, PlanError> {
-            graph
-                .resources
+            graph_resources
                 .iter()
                 .position(|r| r.name == name)
                 .ok_or_else(|| bad(format!("no resource `{name}`")))
         };
         let mut passes = Vec::new();
-        for pd in &graph.passes {
+        for pd in planned.iter().copied() {
             let module = manifest
                 .module(&pd.module)
                 .ok_or_else(|| bad(format!("no module `{}`", pd.module)))?;
             let [ew, eh, _] = pd
                 .extent
-                .resolve(width, height)
+                .resolve_in(width, height, options.temporal)
                 .map_err(|e| bad(format!("pass `{}`: {e}", pd.name)))?;
             let entries: Vec<&str> = [&pd.compute, &pd.vertex, &pd.fragment]
                 .into_iter()
@@ -552,8 +627,7 @@ impl FramePlan {
                 bindings,
             });
         }
-        let variant = graph
-            .passes
+        let variant = planned
             .first()
             .and_then(|p| modules.get(&p.module))
             .map(|m| m.variant.clone())

@@ -13,6 +13,9 @@ pub(crate) const INTEGRATION_RIEMANN: u32 = 1;
 pub(crate) const HEIGHT_CLOUD_TYPES: u32 = 1;
 pub(crate) const FLAG_BEER_POWDER: u32 = 1;
 pub(crate) const FLAG_JITTER: u32 = 2;
+pub(crate) const FLAG_DYNAMIC_STEP: u32 = 4;
+pub(crate) const FLAG_CHECKERBOARD: u32 = 8;
+pub(crate) const FLAG_EMPTY_SKIP: u32 = 16;
 pub(crate) const PI: f64 = std::f64::consts::PI;
 // WGSL: common.wgsl::MAX_VIEW_STEPS (the bound in step-length mode).
 pub(crate) const MAX_VIEW_STEPS: u32 = 1024;
@@ -42,6 +45,11 @@ pub(crate) struct Frame {
     pub counts: [u32; 4],
     pub modes: [u32; 4],
     pub misc: [u32; 4],
+    pub previous_position: [f64; 4],
+    pub previous_forward: [f64; 4],
+    pub previous_right: [f64; 4],
+    pub previous_up: [f64; 4],
+    pub temporal: [u32; 4],
 }
 
 fn w(v: [f32; 4]) -> [f64; 4] {
@@ -73,6 +81,11 @@ impl Frame {
             counts: u.counts,
             modes: u.modes,
             misc: u.misc,
+            previous_position: w(u.previous_position),
+            previous_forward: w(u.previous_forward),
+            previous_right: w(u.previous_right),
+            previous_up: w(u.previous_up),
+            temporal: u.temporal,
         }
     }
 
@@ -109,6 +122,13 @@ pub(crate) fn pcg(v: u32) -> u32 {
 pub(crate) fn hash_unit(pixel: [u32; 2], frame_index: u32) -> f64 {
     let h = pcg(pixel[0] ^ pcg(pixel[1] ^ pcg(frame_index)));
     f64::from(h >> 8) * (1.0 / 16_777_216.0)
+}
+
+// WGSL: common.wgsl::van_der_corput
+// Must agree exactly: the top 24 bits of the reversed index times 2^-24.
+/// The base-2 radical inverse of `n`.
+pub(crate) fn van_der_corput(n: u32) -> f64 {
+    f64::from(n.reverse_bits() >> 8) * (1.0 / 16_777_216.0)
 }
 
 #[cfg(test)]

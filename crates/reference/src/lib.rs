@@ -40,6 +40,7 @@ mod march;
 mod math;
 mod medium;
 pub mod montecarlo;
+mod temporal;
 mod texture;
 
 use std::collections::BTreeMap;
@@ -52,7 +53,10 @@ use stratus_noise::NoiseSet;
 use stratus_scene::{Integration, Scene};
 
 use crate::density::Counters;
-use crate::frame::{FLAG_JITTER, Frame, INTEGRATION_ANALYTIC, INTEGRATION_RIEMANN};
+use crate::frame::{
+    FLAG_DYNAMIC_STEP, FLAG_EMPTY_SKIP, FLAG_JITTER, Frame, INTEGRATION_ANALYTIC,
+    INTEGRATION_RIEMANN,
+};
 use crate::geometry::{RayKind, view_ray};
 use crate::lighting::LightMarch;
 use crate::march::{MarchSettings, march, march_ray};
@@ -61,6 +65,7 @@ use crate::medium::Model;
 use crate::montecarlo::{Accumulator, Rng, camera_interval, trace};
 
 pub use crate::medium::{DensityGrid, Medium, Shape, sample_density_grid};
+pub use crate::temporal::TemporalState;
 
 /// How the radiance of a pixel is computed.
 #[derive(Clone, Debug, PartialEq)]
@@ -105,6 +110,9 @@ pub struct QuadratureSettings {
     pub early_exit: Option<f64>,
     /// Step integral (otherwise the scene's).
     pub integration: Option<Integration>,
+    /// The cheap-march techniques, dynamic step length and empty-space skipping (otherwise
+    /// the scene's flags).
+    pub cheap_march: Option<bool>,
 }
 
 impl QuadratureSettings {
@@ -119,6 +127,7 @@ impl QuadratureSettings {
             jitter: None,
             early_exit: None,
             integration: None,
+            cheap_march: None,
         }
     }
 
@@ -152,6 +161,7 @@ impl QuadratureSettings {
             jitter: Some(false),
             early_exit: Some(0.0),
             integration: Some(Integration::Analytic),
+            cheap_march: Some(false),
         }
     }
 
@@ -171,6 +181,12 @@ impl QuadratureSettings {
                 Some(Integration::Riemann) => INTEGRATION_RIEMANN,
                 None => f.modes[1],
             },
+            dynamic_step: self
+                .cheap_march
+                .unwrap_or(f.modes[3] & FLAG_DYNAMIC_STEP != 0),
+            empty_skip: self
+                .cheap_march
+                .unwrap_or(f.modes[3] & FLAG_EMPTY_SKIP != 0),
         }
     }
 }
@@ -550,6 +566,20 @@ pub struct CpuBackend {
     pub label: &'static str,
     /// A progress bar on stderr.
     pub progress: bool,
+    /// Temporal upsampling's history between frames (used when a scene asks for it).
+    pub temporal: temporal::TemporalState,
+}
+
+impl Default for CpuBackend {
+    /// The real-time settings (the GPU's steps and jitter, in f64), no progress bar.
+    fn default() -> Self {
+        Self {
+            integrator: Integrator::Quadrature(QuadratureSettings::realtime()),
+            label: "cpu (real-time settings)",
+            progress: false,
+            temporal: temporal::TemporalState::default(),
+        }
+    }
 }
 
 impl stratus_graph::Backend for CpuBackend {
@@ -568,7 +598,17 @@ impl stratus_graph::Backend for CpuBackend {
         frame: &stratus_graph::FrameInput<'_>,
     ) -> Result<FrameOutput, stratus_graph::BackendError> {
         let t = Instant::now();
-        let mut out = render(frame.scene, frame.noise, &self.integrator, self.progress);
+        let temporal = frame.scene.quality.temporal != stratus_scene::Temporal::Off;
+        let mut out = match &self.integrator {
+            Integrator::Quadrature(settings) if temporal => {
+                temporal::render(frame.scene, frame.noise, settings, &mut self.temporal)
+            }
+            _ => {
+                // A frame without temporal upsampling leaves no usable history.
+                self.temporal = temporal::TemporalState::default();
+                render(frame.scene, frame.noise, &self.integrator, self.progress)
+            }
+        };
         out.cpu_ms = t.elapsed().as_secs_f64() * 1e3;
         Ok(out)
     }

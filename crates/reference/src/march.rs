@@ -2,7 +2,7 @@
 //! analytic or Riemann step integral, jitter, early exit and the work counters.
 
 use crate::density::Counters;
-use crate::frame::{INTEGRATION_RIEMANN, MAX_VIEW_STEPS, hash_unit};
+use crate::frame::{Frame, INTEGRATION_RIEMANN, MAX_VIEW_STEPS, hash_unit, van_der_corput};
 use crate::geometry::{Interval, RayKind, altitude_of, layer_interval, view_ray};
 use crate::lighting::{LightMarch, scattered_light};
 use crate::math::V3;
@@ -22,6 +22,10 @@ pub(crate) struct MarchSettings {
     pub early_exit: f64,
     /// `INTEGRATION_ANALYTIC` or `INTEGRATION_RIEMANN` (`frame.modes.y`).
     pub integration: u32,
+    /// Dynamic step length (`FLAG_DYNAMIC_STEP`).
+    pub dynamic_step: bool,
+    /// Empty-space skipping (`FLAG_EMPTY_SKIP`).
+    pub empty_skip: bool,
 }
 
 /// What the march of one pixel produced.
@@ -79,17 +83,30 @@ pub(crate) fn medium_interval(m: &Model, cam_alt: f64, view: V3) -> Interval {
     }
 }
 
-// WGSL: march.wgsl::march
+// WGSL: march.wgsl::start_offset
+/// The view march's start offset in steps: without temporal upsampling 0.5 or the PCG hash of
+/// the pixel and frame; with it, the van der Corput sequence over the pixel's marches,
+/// shifted by a per-pixel hash with jitter.
+pub(crate) fn start_offset(f: &Frame, pixel: [u32; 2], jitter: bool) -> f64 {
+    let k = f.temporal[0];
+    if k <= 1 {
+        // Must agree: the same PCG hash of the pixel and the frame index (`frame.misc.y`).
+        return if jitter {
+            hash_unit(pixel, f.misc[1])
+        } else {
+            0.5
+        };
+    }
+    let base = if jitter { hash_unit(pixel, 0) } else { 0.5 };
+    // Differs in the last bit: the f32 sum may round where the f64 one is exact.
+    (base + van_der_corput(f.misc[1] / (k * k))).fract()
+}
+
+// WGSL: march.wgsl::march_pixel
 /// The march of one pixel.
 pub(crate) fn march(m: &Model, s: &MarchSettings, pixel: [u32; 2]) -> PixelResult {
     let view = view_ray(&m.f, pixel);
-    let jitter = if s.jitter {
-        // Must agree: the same PCG hash of the pixel and the frame index (`frame.misc.y`).
-        hash_unit(pixel, m.f.misc[1])
-    } else {
-        0.5
-    };
-    march_ray(m, s, view, jitter)
+    march_ray(m, s, view, start_offset(&m.f, pixel, s.jitter))
 }
 
 /// The march of one view ray from the camera with start offset `jitter` (in steps).
@@ -115,17 +132,45 @@ pub(crate) fn march_ray(m: &Model, s: &MarchSettings, view: V3, jitter: f64) -> 
         };
         let dt = span.length / f64::from(steps);
         let sigma_e = f.extinction[0] + f.extinction[1];
-        for i in 0..steps {
+        // Must agree: samples on one grid t_i = start + (i + jitter) dt; the cheap-march
+        // techniques choose which i to visit (stride 2 after 8 empty samples, back one on
+        // entering cloud; jumps over empty occupancy cells).
+        let mut i = 0u32;
+        let mut stride = 1u32;
+        let mut empty = 0u32;
+        while i < steps {
             // Must agree: one view step counted per loop iteration, also for empty samples.
             counters.view_steps += 1;
             let t = span.start + (f64::from(i) + jitter) * dt;
             let rel = view * t + V3::new(0.0, cam_alt, 0.0);
             let p = V3::new(rel.x + cam_xz[0], rel.y, rel.z + cam_xz[1]);
+            if s.empty_skip {
+                let exit = m.empty_cell_exit(p, view);
+                if exit > 0.0 {
+                    let next = ((t + exit - span.start) / dt - jitter)
+                        .ceil()
+                        .clamp(0.0, f64::from(steps)) as u32;
+                    i = (i + 1).max(next);
+                    continue;
+                }
+            }
             let alt = altitude_of(f, rel);
             let density = m.density(p, alt, &mut counters);
             if density <= 0.0 {
+                empty += 1;
+                if s.dynamic_step && empty >= 8 {
+                    stride = 2;
+                }
+                i += stride;
                 continue;
             }
+            if stride > 1 {
+                i -= stride - 1;
+                stride = 1;
+                empty = 0;
+                continue;
+            }
+            empty = 0;
             let sigma_t = sigma_e * density;
             let source = scattered_light(m, &s.light, rel, p, alt, density, view, &mut counters);
             radiance += step_integral(s.integration, source, sigma_t, dt) * transmittance;
@@ -138,6 +183,7 @@ pub(crate) fn march_ray(m: &Model, s: &MarchSettings, view: V3, jitter: f64) -> 
                 exited_early = true;
                 break;
             }
+            i += 1;
         }
     }
     let depth = if transmittance < 1.0 {

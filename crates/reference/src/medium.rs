@@ -126,6 +126,33 @@ pub fn sample_density_grid(
     grid
 }
 
+// WGSL: skip.wgsl::OCCUPANCY_CELLS
+const OCCUPANCY_CELLS: u32 = 64;
+
+// WGSL: skip.wgsl::occupancy
+/// Per cell of a 64x64 grid over the weather map: the largest R texel (as unorm) a bilinear
+/// lookup inside the cell can touch (the cell's texels and a one-texel border, wrapping).
+fn occupancy_grid(weather: &stratus_noise::Texture2) -> Vec<f64> {
+    let [w, h] = weather.size.map(|v| v as i64);
+    let cells = i64::from(OCCUPANCY_CELLS);
+    let mut grid = Vec::with_capacity((cells * cells) as usize);
+    for cy in 0..cells {
+        for cx in 0..cells {
+            let (lo_x, hi_x) = (cx * w / cells - 1, (cx + 1) * w / cells);
+            let (lo_y, hi_y) = (cy * h / cells - 1, (cy + 1) * h / cells);
+            let mut m = 0u8;
+            for y in lo_y..=hi_y {
+                for x in lo_x..=hi_x {
+                    let (tx, ty) = (x.rem_euclid(w), y.rem_euclid(h));
+                    m = m.max(weather.data[((ty * w + tx) * 4) as usize]);
+                }
+            }
+            grid.push(f64::from(m) / 255.0);
+        }
+    }
+    grid
+}
+
 /// The support of a [`Medium::Homogeneous`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Shape {
@@ -147,6 +174,8 @@ pub enum Shape {
 pub(crate) struct Model<'a> {
     pub f: Frame,
     medium: Medium<'a>,
+    /// The weather map's occupancy grid (max coverage per cell), for empty-space skipping.
+    occupancy: Option<Vec<f64>>,
     /// Lower and upper bound of the density anywhere inside the medium's support.
     pub density_bounds: (f64, f64),
 }
@@ -155,7 +184,12 @@ impl<'a> Model<'a> {
     /// The frame of `scene` (its uniforms widened to f64) and the medium. A homogeneous medium
     /// replaces the scene's sigma_s and sigma_a in the frame.
     pub fn new(scene: &Scene, medium: Medium<'a>) -> Self {
-        let mut f = Frame::from_uniforms(&scene.uniforms());
+        Self::with_uniforms(&scene.uniforms(), medium)
+    }
+
+    /// [`Model::new`] from a uniform block (a renderer's, with last frame's camera).
+    pub fn with_uniforms(u: &stratus_scene::FrameUniforms, medium: Medium<'a>) -> Self {
+        let mut f = Frame::from_uniforms(u);
         let density_bounds = match medium {
             Medium::Clouds(_) => {
                 // density = eroded base (<= 1) * height gradient (<= 1) * multiplier *
@@ -171,11 +205,51 @@ impl<'a> Model<'a> {
             }
             Medium::Grid(grid) => (0.0, grid.max_density()),
         };
+        let occupancy = match medium {
+            Medium::Clouds(noise) => Some(occupancy_grid(&noise.weather)),
+            _ => None,
+        };
         Self {
             f,
             medium,
+            occupancy,
             density_bounds,
         }
+    }
+
+    // WGSL: skip.wgsl::empty_cell_exit
+    /// At world position `p` on a ray along unit `d`: the distance to the edge of p's
+    /// occupancy cell if the weather leaves the cell empty, else 0.
+    pub fn empty_cell_exit(&self, p: V3, d: V3) -> f64 {
+        let Some(grid) = &self.occupancy else {
+            return 0.0;
+        };
+        let f = &self.f;
+        let cells = f64::from(OCCUPANCY_CELLS);
+        let fract = |x: f64| x - x.floor();
+        let uv = [
+            fract((p.x - f.wind_offsets0[0]) / f.periods[0]) * cells,
+            fract((p.z - f.wind_offsets0[1]) / f.periods[0]) * cells,
+        ];
+        let cell = uv.map(|c| (c as u32).min(OCCUPANCY_CELLS - 1));
+        let m = grid[(cell[1] * OCCUPANCY_CELLS + cell[0]) as usize];
+        if m + 2.0 * (f.clouds[0] - 0.5) > -1.0 / 255.0 {
+            return 0.0;
+        }
+        let cell_m = f.periods[0] / cells;
+        let inside = [
+            (uv[0] - f64::from(cell[0])) * cell_m,
+            (uv[1] - f64::from(cell[1])) * cell_m,
+        ];
+        let mut exit = 1e30f64;
+        for (dir, pos) in [(d.x, inside[0]), (d.z, inside[1])] {
+            if dir > 1e-6 {
+                exit = exit.min((cell_m - pos) / dir);
+            } else if dir < -1e-6 {
+                exit = exit.min(pos / -dir);
+            }
+        }
+        exit.max(0.0)
     }
 
     /// Density at world position `p` (altitude `alt`); counts like `cloud_density`.

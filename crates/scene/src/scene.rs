@@ -28,6 +28,106 @@ pub struct Scene {
     pub lighting: Lighting,
     /// Ray-marching quality and integration method.
     pub quality: Quality,
+    /// Camera keyframes and a time span for sequences (`stratus render --frames`,
+    /// `stratus animate`); absent: the camera stays where `[camera]` puts it.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub animation: Option<Animation>,
+}
+
+/// A camera path over time (section `[animation]`).
+#[derive(Serialize, Deserialize, Clone, Debug, PartialEq)]
+#[serde(default, deny_unknown_fields)]
+pub struct Animation {
+    /// Length of the animation in seconds (> 0). Keyframe times lie within [0, duration_s].
+    pub duration_s: f64,
+    /// Camera keyframes in time order (at least one). Between keyframes position, yaw and
+    /// pitch are interpolated with a smoothstep-eased linear blend; yaw takes the short way
+    /// round. Before the first or after the last keyframe the camera holds still.
+    pub keyframes: Vec<Keyframe>,
+}
+
+impl Default for Animation {
+    fn default() -> Self {
+        Self {
+            duration_s: 10.0,
+            keyframes: vec![Keyframe::default()],
+        }
+    }
+}
+
+/// One camera keyframe of an [`Animation`] (`[[animation.keyframes]]`).
+#[derive(Serialize, Deserialize, Clone, Debug, PartialEq)]
+#[serde(default, deny_unknown_fields)]
+pub struct Keyframe {
+    /// Time in seconds from the start of the animation (>= 0).
+    pub time_s: f64,
+    /// Camera position `[x, altitude, z]`, metres (altitude >= 0).
+    pub position: [f64; 3],
+    /// Heading in degrees (as `camera.yaw_deg`).
+    pub yaw_deg: f64,
+    /// Elevation of the view in degrees, within [-90, 90] (as `camera.pitch_deg`).
+    pub pitch_deg: f64,
+}
+
+impl Default for Keyframe {
+    fn default() -> Self {
+        let c = Camera::default();
+        Self {
+            time_s: 0.0,
+            position: c.position,
+            yaw_deg: c.yaw_deg,
+            pitch_deg: c.pitch_deg,
+        }
+    }
+}
+
+/// Temporal upsampling (thesis 6.1, Horizon Zero Dawn): how many pixels a frame marches.
+#[derive(Serialize, Deserialize, Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
+pub enum Temporal {
+    /// Every pixel every frame; no history. TOML `"off"`.
+    #[default]
+    #[serde(rename = "off")]
+    Off,
+    /// One pixel of each 2x2 block per frame, the rest reprojected. TOML `"1/4"`.
+    #[serde(rename = "1/4")]
+    Quarter,
+    /// One pixel of each 4x4 block per frame, the rest reprojected. TOML `"1/16"`.
+    #[serde(rename = "1/16")]
+    Sixteenth,
+}
+
+impl Temporal {
+    /// Side of the pixel block one marched pixel stands for (1, 2 or 4): the frame marches
+    /// one pixel in `divisor()^2` (`FrameUniforms::temporal.x`).
+    pub const fn divisor(self) -> u32 {
+        match self {
+            Self::Off => 1,
+            Self::Quarter => 2,
+            Self::Sixteenth => 4,
+        }
+    }
+
+    /// The TOML and command-line spelling.
+    pub const fn name(self) -> &'static str {
+        match self {
+            Self::Off => "off",
+            Self::Quarter => "1/4",
+            Self::Sixteenth => "1/16",
+        }
+    }
+
+    /// Every mode, cheapest last.
+    pub const ALL: [Self; 3] = [Self::Off, Self::Quarter, Self::Sixteenth];
+}
+
+impl std::str::FromStr for Temporal {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        Self::ALL
+            .into_iter()
+            .find(|t| t.name() == s)
+            .ok_or_else(|| format!("unknown temporal mode `{s}`: expected off, 1/4 or 1/16"))
+    }
 }
 
 /// The camera (section `[camera]`).
@@ -432,8 +532,21 @@ pub struct Quality {
     pub jitter: bool,
     /// Step integral: `"analytic"` (energy-conserving) or `"riemann"`.
     pub integration: Integration,
-    /// Frame number: seeds the per-pixel jitter sequence.
+    /// Frame number: seeds the per-pixel jitter sequence, and with temporal upsampling picks
+    /// which pixel of each block is marched and its van der Corput start offset.
     pub frame: u32,
+    /// Temporal upsampling: `"off"`, `"1/4"` or `"1/16"` of the pixels marched per frame.
+    pub temporal: Temporal,
+    /// Dynamic step length: after 8 empty samples in a row the view step doubles; a sample
+    /// in cloud steps back and returns to the fine step.
+    pub dynamic_step: bool,
+    /// High-transmittance checkerboard skipping (thesis 6.2.2, needs `temporal`): a pixel
+    /// whose reprojected history is clear (transmittance 1) is not marched in every other
+    /// of its turns, alternating like a checkerboard so no pixel is skipped twice running.
+    pub checkerboard: bool,
+    /// Empty-space skipping: the ray jumps over cells of a coarse occupancy grid of the
+    /// weather map where the coverage leaves no cloud.
+    pub empty_space_skip: bool,
 }
 
 impl Default for Quality {
@@ -449,6 +562,10 @@ impl Default for Quality {
             jitter: true,
             integration: Integration::Analytic,
             frame: 0,
+            temporal: Temporal::Off,
+            dynamic_step: false,
+            checkerboard: false,
+            empty_space_skip: false,
         }
     }
 }
@@ -460,11 +577,49 @@ impl Scene {
         self
     }
 
+    /// The scene `t` seconds into its animation: the camera from the `[animation]` keyframes
+    /// (unchanged without an animation) and the wind `t` seconds on (`clouds.time_s + t`).
+    pub fn at_time(&self, t: f64) -> Self {
+        let mut s = self.clone();
+        s.clouds.time_s += t;
+        let Some(a) = &self.animation else {
+            return s;
+        };
+        let (Some(first), Some(last)) = (a.keyframes.first(), a.keyframes.last()) else {
+            return s;
+        };
+        let (k0, k1, u) = if t <= first.time_s {
+            (first, first, 0.0)
+        } else if t >= last.time_s {
+            (last, last, 0.0)
+        } else {
+            let i = a.keyframes.partition_point(|k| k.time_s <= t).max(1);
+            let (k0, k1) = (&a.keyframes[i - 1], &a.keyframes[i]);
+            let span = k1.time_s - k0.time_s;
+            let u = if span > 0.0 {
+                (t - k0.time_s) / span
+            } else {
+                1.0
+            };
+            (k0, k1, u)
+        };
+        // Smoothstep easing: the camera starts and stops at each keyframe without a jolt.
+        let e = u * u * (3.0 - 2.0 * u);
+        let lerp = |a: f64, b: f64| a + (b - a) * e;
+        s.camera.position = [0, 1, 2].map(|i| lerp(k0.position[i], k1.position[i]));
+        // Yaw the short way round: the difference wrapped into [-180, 180).
+        let dyaw = (k1.yaw_deg - k0.yaw_deg + 180.0).rem_euclid(360.0) - 180.0;
+        s.camera.yaw_deg = k0.yaw_deg + dyaw * e;
+        s.camera.pitch_deg = lerp(k0.pitch_deg, k1.pitch_deg);
+        s
+    }
+
     /// The scene with every optional field filled in: its TOML form lists every known key.
     pub(crate) fn schema() -> Self {
         let mut scene = Self::default();
         scene.sun.direction = Some([0.0, 1.0, 0.0]);
         scene.quality.step_length_m = Some(100.0);
+        scene.animation = Some(Animation::default());
         scene
     }
 }

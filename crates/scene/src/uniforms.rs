@@ -56,20 +56,38 @@ pub struct FrameUniforms {
     pub modes: [u32; 4],
     /// Octaves (beyond single scattering), frame (jitter seed), 0, 0.
     pub misc: [u32; 4],
+    /// Last frame's camera position (as `camera_position`, w = its tan(fov_y / 2)): temporal
+    /// upsampling reprojects through it. [`Scene::uniforms`] sets the current camera; a
+    /// renderer that keeps history replaces it with the one it rendered last.
+    pub previous_position: [f32; 4],
+    /// Last frame's unit view direction; w = its width / height.
+    pub previous_forward: [f32; 4],
+    /// Last frame's unit image right; w = 0.
+    pub previous_right: [f32; 4],
+    /// Last frame's unit image up; w = 0.
+    pub previous_up: [f32; 4],
+    /// Temporal upsampling: block side (1 = off, 2 = 1/4, 4 = 1/16), 0, 0, 0.
+    pub temporal: [u32; 4],
 }
 
 impl FrameUniforms {
-    /// Size of the block in bytes (21 vec4 members).
+    /// Size of the block in bytes (26 vec4 members).
     pub const SIZE: usize = std::mem::size_of::<Self>();
 
     /// `modes.w` bit: apply the Beer-Powder term.
     pub const FLAG_BEER_POWDER: u32 = 1 << 0;
     /// `modes.w` bit: jitter the view-ray start offset per pixel.
     pub const FLAG_JITTER: u32 = 1 << 1;
+    /// `modes.w` bit: dynamic step length (double after 8 empty samples).
+    pub const FLAG_DYNAMIC_STEP: u32 = 1 << 2;
+    /// `modes.w` bit: high-transmittance checkerboard skipping (temporal only).
+    pub const FLAG_CHECKERBOARD: u32 = 1 << 3;
+    /// `modes.w` bit: empty-space skipping over the weather map's occupancy grid.
+    pub const FLAG_EMPTY_SKIP: u32 = 1 << 4;
 
     /// Every member in declaration order with its WGSL type; member `i` is at offset `16 * i`.
     /// The shader-reflection test compares the WGSL struct against this list.
-    pub const MEMBERS: [(&'static str, &'static str); 21] = [
+    pub const MEMBERS: [(&'static str, &'static str); 26] = [
         ("camera_position", "vec4<f32>"),
         ("camera_forward", "vec4<f32>"),
         ("camera_right", "vec4<f32>"),
@@ -91,7 +109,22 @@ impl FrameUniforms {
         ("counts", "vec4<u32>"),
         ("modes", "vec4<u32>"),
         ("misc", "vec4<u32>"),
+        ("previous_position", "vec4<f32>"),
+        ("previous_forward", "vec4<f32>"),
+        ("previous_right", "vec4<f32>"),
+        ("previous_up", "vec4<f32>"),
+        ("temporal", "vec4<u32>"),
     ];
+
+    /// This block with `previous`'s camera as last frame's camera (what a renderer keeping
+    /// history does before uploading).
+    pub fn with_previous_camera(mut self, previous: &FrameUniforms) -> Self {
+        self.previous_position = previous.camera_position;
+        self.previous_forward = previous.camera_forward;
+        self.previous_right = previous.camera_right;
+        self.previous_up = previous.camera_up;
+        self
+    }
 
     /// The block's bytes, ready to upload.
     pub fn as_bytes(&self) -> &[u8] {
@@ -212,8 +245,17 @@ impl Scene {
         if q.jitter {
             flags |= FrameUniforms::FLAG_JITTER;
         }
+        if q.dynamic_step {
+            flags |= FrameUniforms::FLAG_DYNAMIC_STEP;
+        }
+        if q.checkerboard {
+            flags |= FrameUniforms::FLAG_CHECKERBOARD;
+        }
+        if q.empty_space_skip {
+            flags |= FrameUniforms::FLAG_EMPTY_SKIP;
+        }
 
-        FrameUniforms {
+        let block = FrameUniforms {
             camera_position: v4(cam.position, tan_half_fov),
             camera_forward: v4(forward, aspect),
             camera_right: v4(right, cam.exposure),
@@ -273,6 +315,12 @@ impl Scene {
                 flags,
             ],
             misc: [ms.octaves, q.frame, 0, 0],
-        }
+            previous_position: [0.0; 4],
+            previous_forward: [0.0; 4],
+            previous_right: [0.0; 4],
+            previous_up: [0.0; 4],
+            temporal: [q.temporal.divisor(), 0, 0, 0],
+        };
+        block.with_previous_camera(&block)
     }
 }

@@ -317,6 +317,65 @@ pub(crate) fn check(scene: &Scene) -> Vec<Issue> {
         Incl(0.0),
         Excl(1.0),
     );
+    if q.checkerboard && q.temporal == crate::Temporal::Off {
+        c.push(
+            "quality.checkerboard",
+            "true".into(),
+            "needs quality.temporal = \"1/4\" or \"1/16\": it skips pixels whose reprojected history is clear",
+        );
+    }
+
+    if let Some(a) = &scene.animation {
+        c.positive("animation.duration_s", a.duration_s);
+        if a.keyframes.is_empty() {
+            c.push(
+                "animation.keyframes",
+                "[]".into(),
+                "needs at least one keyframe ([[animation.keyframes]] with time_s, position, yaw_deg, pitch_deg)",
+            );
+        }
+        let mut last = f64::NEG_INFINITY;
+        for (i, k) in a.keyframes.iter().enumerate() {
+            let values = [
+                k.time_s,
+                k.yaw_deg,
+                k.pitch_deg,
+                k.position[0],
+                k.position[1],
+                k.position[2],
+            ];
+            if values.iter().any(|v| !v.is_finite()) {
+                c.push(
+                    "animation.keyframes",
+                    format!("keyframe {i}"),
+                    "every value must be a finite number",
+                );
+                continue;
+            }
+            if k.time_s < 0.0 || k.time_s < last || k.time_s > a.duration_s.max(0.0) {
+                c.push(
+                    "animation.keyframes",
+                    format!("keyframe {i}: time_s = {}", num(k.time_s)),
+                    "keyframe times must be in increasing order within [0, animation.duration_s]",
+                );
+            }
+            if k.position[1] < 0.0 {
+                c.push(
+                    "animation.keyframes",
+                    format!("keyframe {i}: position = {}", nums(&k.position)),
+                    "the altitude (second component) must be >= 0",
+                );
+            }
+            if !(-90.0..=90.0).contains(&k.pitch_deg) {
+                c.push(
+                    "animation.keyframes",
+                    format!("keyframe {i}: pitch_deg = {}", num(k.pitch_deg)),
+                    "must be within [-90, 90]",
+                );
+            }
+            last = k.time_s;
+        }
+    }
 
     c.issues
 }

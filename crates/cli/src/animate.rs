@@ -1,0 +1,151 @@
+//! `stratus animate`: render a scene's animation with one persistent renderer and encode the
+//! frames as a video (MP4 through ffmpeg) or an animated GIF.
+
+use std::{
+    io::Write as _,
+    path::PathBuf,
+    process::{Command, Stdio},
+    sync::Arc,
+};
+
+use anyhow::{Context, Result, bail};
+use clap::Args;
+use indicatif::{ProgressBar, ProgressStyle};
+use stratus_graph::{FrameInput, FramePlan, Readback};
+use stratus_scene::Temporal;
+
+use crate::{
+    render::{Backend, frame_scene, open_realtime, parse_temporal},
+    scene_io::{check_finite, load_scene, parse_size},
+};
+
+/// Options of `stratus animate`.
+#[derive(Args, Debug)]
+pub struct AnimateArgs {
+    /// A built-in preset (see `stratus presets`).
+    #[arg(long, conflicts_with = "scene")]
+    preset: Option<String>,
+    /// A scene file (TOML); its [animation] moves the camera, and the wind moves with time.
+    #[arg(long)]
+    scene: Option<PathBuf>,
+    /// Seconds of animation to render (default: the scene's animation.duration_s, else 4).
+    #[arg(long)]
+    seconds: Option<f64>,
+    /// Frames per second of the video; scene time advances 1/fps per frame.
+    #[arg(long, default_value_t = 30, value_parser = clap::value_parser!(u32).range(1..=240))]
+    fps: u32,
+    /// Output: .mp4 (H.264, through ffmpeg) or .gif.
+    #[arg(long, default_value = "clouds.mp4")]
+    out: PathBuf,
+    /// Image size as WIDTHxHEIGHT (overrides the scene's camera.resolution).
+    #[arg(long, value_parser = parse_size)]
+    size: Option<(u32, u32)>,
+    /// The renderer (a real-time one).
+    #[arg(long, value_enum, default_value_t = Backend::Auto)]
+    backend: Backend,
+    /// Temporal upsampling (overrides the scene's quality.temporal).
+    #[arg(long, value_name = "MODE", value_parser = parse_temporal)]
+    temporal: Option<Temporal>,
+}
+
+/// Runs `stratus animate`.
+pub fn run(args: AnimateArgs) -> Result<()> {
+    let ext = args
+        .out
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase);
+    let codec: &[&str] = match ext.as_deref() {
+        // yuv420p needs even sizes: pad by one pixel where the image is odd.
+        Some("mp4") => &[
+            "-vf",
+            "pad=ceil(iw/2)*2:ceil(ih/2)*2",
+            "-c:v",
+            "libx264",
+            "-pix_fmt",
+            "yuv420p",
+            "-crf",
+            "20",
+            "-movflags",
+            "+faststart",
+        ],
+        Some("gif") => &[
+            "-vf",
+            "split[a][b];[a]palettegen=stats_mode=diff[p];[b][p]paletteuse=dither=bayer",
+            "-loop",
+            "0",
+        ],
+        _ => bail!(
+            "--out {}: unknown video type; use a .mp4 or .gif file name",
+            args.out.display()
+        ),
+    };
+    let (mut scene, name) = load_scene(args.preset.as_deref(), args.scene.as_ref(), args.size)?;
+    if let Some(t) = args.temporal {
+        scene.quality.temporal = t;
+    }
+    let seconds = args
+        .seconds
+        .or(scene.animation.as_ref().map(|a| a.duration_s))
+        .unwrap_or(4.0);
+    if !(seconds.is_finite() && seconds > 0.0) {
+        bail!("--seconds {seconds}: must be a positive number");
+    }
+    let frames = ((seconds * f64::from(args.fps)).round() as u32).max(1);
+    let [w, h] = scene.camera.resolution;
+
+    // ffmpeg first: a missing encoder fails before any rendering.
+    let mut ffmpeg = Command::new("ffmpeg")
+        .args(["-hide_banner", "-loglevel", "error", "-y"])
+        .args([
+            "-f",
+            "rawvideo",
+            "-pix_fmt",
+            "rgba",
+            "-s",
+            &format!("{w}x{h}"),
+        ])
+        .args(["-r", &args.fps.to_string(), "-i", "-"])
+        .args(codec)
+        .arg(&args.out)
+        .stdin(Stdio::piped())
+        .spawn()
+        .context("starting ffmpeg (install it: apt-get install ffmpeg)")?;
+    let mut stdin = ffmpeg.stdin.take().context("ffmpeg's stdin")?;
+
+    let noise = Arc::new(stratus::noise_for(&scene));
+    let mut renderer = open_realtime(args.backend, false)?;
+    let plan = FramePlan::for_scene(&scene, false)?;
+    let bar = ProgressBar::new(u64::from(frames));
+    if let Ok(style) =
+        ProgressStyle::with_template("{msg} [{elapsed_precise}] {wide_bar} {pos}/{len} frames")
+    {
+        bar.set_style(style);
+    }
+    bar.set_message("rendering");
+    for i in 0..frames {
+        let s = frame_scene(&scene, i, f64::from(args.fps));
+        let out = renderer
+            .render(&FrameInput::new(&plan, &s, &noise).with_readback(Readback::output()))
+            .map_err(|e| anyhow::anyhow!("frame {i}: {e}"))?;
+        check_finite(&out).with_context(|| format!("frame {i}"))?;
+        stdin
+            .write_all(&out.image)
+            .context("writing a frame to ffmpeg")?;
+        bar.inc(1);
+    }
+    bar.finish_and_clear();
+    drop(stdin);
+    let status = ffmpeg.wait().context("waiting for ffmpeg")?;
+    if !status.success() {
+        bail!("ffmpeg failed ({status}) writing {}", args.out.display());
+    }
+    println!(
+        "wrote {} ({frames} frames, {w}x{h}, {} fps, {seconds} s of scene {name}; backend {}, temporal {})",
+        args.out.display(),
+        args.fps,
+        renderer.describe(),
+        scene.quality.temporal.name()
+    );
+    Ok(())
+}

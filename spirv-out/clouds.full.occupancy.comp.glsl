@@ -1,0 +1,250 @@
+#version 450 core
+#extension GL_ARB_compute_shader : require
+layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
+
+struct Frame {
+    vec4 camera_position;
+    vec4 camera_forward;
+    vec4 camera_right;
+    vec4 camera_up;
+    vec4 sun_direction;
+    vec4 sun_illuminance;
+    vec4 atmosphere;
+    vec4 clouds;
+    vec4 erosion;
+    vec4 periods;
+    vec4 wind_offsets0_;
+    vec4 wind_offsets1_;
+    vec4 extinction;
+    vec4 phase;
+    vec4 multiple_scattering;
+    vec4 ambient_bottom;
+    vec4 ambient_top;
+    vec4 march;
+    uvec4 counts;
+    uvec4 modes;
+    uvec4 misc;
+    vec4 previous_position;
+    vec4 previous_forward;
+    vec4 previous_right;
+    vec4 previous_up;
+    uvec4 temporal;
+};
+struct Roots {
+    float t0_;
+    float t1_;
+    bool hit;
+};
+struct Interval {
+    float start;
+    float length_;
+    uint kind;
+};
+struct Counters {
+    uint view_steps;
+    uint density;
+    uint detail;
+    uint light;
+};
+struct Weather {
+    float coverage;
+    float cloud_type;
+    float precipitation;
+};
+struct Stats {
+    uint counters[9];
+};
+struct MarchResult {
+    vec3 radiance;
+    float transmittance;
+    float depth;
+};
+const uint PHASE_HG = 0u;
+const uint PHASE_TWO_LOBE_HG = 1u;
+const uint PHASE_CORNETTE_SHANKS = 2u;
+const uint INTEGRATION_ANALYTIC = 0u;
+const uint INTEGRATION_RIEMANN = 1u;
+const uint HEIGHT_PARABOLA = 0u;
+const uint HEIGHT_CLOUD_TYPES = 1u;
+const uint FLAG_BEER_POWDER = 1u;
+const uint FLAG_JITTER = 2u;
+const uint FLAG_DYNAMIC_STEP = 4u;
+const uint FLAG_CHECKERBOARD = 8u;
+const uint FLAG_EMPTY_SKIP = 16u;
+const float PI = 3.1415927;
+const uint MAX_VIEW_STEPS = 1024u;
+const uint RAY_MARCH = 0u;
+const uint RAY_MISSES_LAYER = 1u;
+const uint RAY_HITS_GROUND = 2u;
+const uint OCCUPANCY_CELLS = 64u;
+const uint STAT_PIXELS = 0u;
+const uint STAT_MARCHED = 1u;
+const uint STAT_VIEW_STEPS = 2u;
+const uint STAT_DENSITY = 3u;
+const uint STAT_DETAIL = 4u;
+const uint STAT_LIGHT = 5u;
+const uint STAT_EXIT_TRANSMITTANCE = 6u;
+const uint STAT_EXIT_MISSED = 7u;
+const uint STAT_EXIT_GROUND = 8u;
+const uint STAT_COUNT = 9u;
+const float HISTORY_SAMPLES = 16.0;
+const float HISTORY_SAMPLES_MOVING = 2.0;
+const float DISOCCLUSION_DEPTH = 0.2;
+const bool LIGHT_MARCH = true;
+const uint MAX_OCTAVES = 8u;
+const bool DETAIL = true;
+const bool CURL = true;
+const bool STATS = false;
+
+layout(binding = 3) uniform sampler2D _group_0_binding_3_cs;
+
+layout(binding = 12,r32f) writeonly uniform image2D _group_0_binding_12_cs;
+
+
+float saturate(float x_1) {
+    return clamp(x_1, 0.0, 1.0);
+}
+
+float remap(float x_2, float lo0_, float hi0_, float lo1_, float hi1_) {
+    return (lo1_ + (((x_2 - lo0_) * (hi1_ - lo1_)) / (hi0_ - lo0_)));
+}
+
+uint pcg(uint v) {
+    uint state = ((v * 747796405u) + 2891336453u);
+    uint word = (((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u);
+    return ((word >> 22u) ^ word);
+}
+
+float van_der_corput(uint n) {
+    return (float((bitfieldReverse(n) >> 8u)) * 5.9604645e-8);
+}
+
+float hash_unit(uvec2 pixel, uint frame_index) {
+    uint _e4 = pcg(frame_index);
+    uint _e6 = pcg((pixel.y ^ _e4));
+    uint _e8 = pcg((pixel.x ^ _e6));
+    return (float((_e8 >> 8u)) * 5.9604645e-8);
+}
+
+Roots solve_sphere(float b, float c) {
+    float disc = ((b * b) - c);
+    if ((disc < 0.0)) {
+        return Roots(0.0, 0.0, false);
+    }
+    float s = sqrt(disc);
+    float r0_1 = -((b + ((b >= 0.0) ? s : -(s))));
+    if ((r0_1 == 0.0)) {
+        return Roots(0.0, 0.0, true);
+    }
+    float r1_1 = (c / r0_1);
+    return Roots(min(r0_1, r1_1), max(r0_1, r1_1), true);
+}
+
+float height_parabola(float h, float cloud_type) {
+    float height = mix(0.35, 1.0, cloud_type);
+    float _e11 = saturate(((h * (h - height)) * (-4.0 / (height * height))));
+    return _e11;
+}
+
+float gradient(float h_1, float r0_, float r1_, float f0_, float f1_) {
+    return (smoothstep(r0_, r1_, h_1) * (1.0 - smoothstep(f0_, f1_, h_1)));
+}
+
+float height_cloud_types(float h_2, float cloud_type_1) {
+    float _e6 = gradient(h_2, 0.0, 0.08, 0.15, 0.25);
+    float _e11 = gradient(h_2, 0.0, 0.2, 0.4, 0.65);
+    float _e16 = gradient(h_2, 0.0, 0.1, 0.6, 0.95);
+    float _e19 = saturate((cloud_type_1 * 2.0));
+    float lo_1 = mix(_e6, _e11, _e19);
+    float _e25 = saturate(((cloud_type_1 * 2.0) - 1.0));
+    return mix(lo_1, _e16, _e25);
+}
+
+float phase_hg(float cos_theta, float g) {
+    float g2_ = (g * g);
+    float denom = max(((1.0 + g2_) - ((2.0 * g) * cos_theta)), 1e-6);
+    return ((1.0 - g2_) / ((12.566371 * denom) * sqrt(denom)));
+}
+
+float phase_cornette_shanks(float cos_theta_1, float g_1) {
+    float g2_1 = (g_1 * g_1);
+    float denom_1 = max(((1.0 + g2_1) - ((2.0 * g_1) * cos_theta_1)), 1e-6);
+    return (((3.0 * (1.0 - g2_1)) * (1.0 + (cos_theta_1 * cos_theta_1))) / (((25.132742 * (2.0 + g2_1)) * denom_1) * sqrt(denom_1)));
+}
+
+uvec2 block_offset(uint f, uint k) {
+    uvec2 b2_[4] = uvec2[4](uvec2(0u, 0u), uvec2(1u, 1u), uvec2(1u, 0u), uvec2(0u, 1u));
+    uvec2 b4_[16] = uvec2[16](uvec2(0u, 0u), uvec2(2u, 2u), uvec2(2u, 0u), uvec2(0u, 2u), uvec2(1u, 1u), uvec2(3u, 3u), uvec2(3u, 1u), uvec2(1u, 3u), uvec2(1u, 0u), uvec2(3u, 2u), uvec2(3u, 0u), uvec2(1u, 2u), uvec2(0u, 1u), uvec2(2u, 3u), uvec2(2u, 1u), uvec2(0u, 3u));
+    if ((k == 2u)) {
+        uvec2 _e21 = b2_[(f % 4u)];
+        return _e21;
+    }
+    if ((k == 4u)) {
+        uvec2 _e77 = b4_[(f % 16u)];
+        return _e77;
+    }
+    return uvec2(0u);
+}
+
+vec4 catmull_rom(float t) {
+    return vec4((t * (-0.5 + (t * (1.0 - (0.5 * t))))), (1.0 + ((t * t) * (-2.5 + (1.5 * t)))), (t * (0.5 + (t * (2.0 - (1.5 * t))))), ((t * t) * (-0.5 + (0.5 * t))));
+}
+
+vec3 aces_fitted(vec3 x_3) {
+    return clamp(((x_3 * ((2.51 * x_3) + vec3(0.03))) / ((x_3 * ((2.43 * x_3) + vec3(0.59))) + vec3(0.14))), vec3(0.0), vec3(1.0));
+}
+
+void main() {
+    uvec3 id = gl_GlobalInvocationID;
+    float m = 0.0;
+    int y = 0;
+    int x = 0;
+    if (any(greaterThanEqual(id.xy, uvec2(64u)))) {
+        return;
+    }
+    ivec2 size = ivec2(uvec2(textureSize(_group_0_binding_3_cs, 0).xy));
+    ivec2 lo_2 = (((ivec2(id.xy) * size) / ivec2(64)) - ivec2(1));
+    ivec2 hi_1 = (((ivec2(id.xy) + ivec2(1)) * size) / ivec2(64));
+    y = lo_2.y;
+    bool loop_init = true;
+    while(true) {
+        if (!loop_init) {
+            int _e54 = y;
+            y = (_e54 + 1);
+        }
+        loop_init = false;
+        int _e30 = y;
+        if ((_e30 <= hi_1.y)) {
+        } else {
+            break;
+        }
+        {
+            x = lo_2.x;
+            bool loop_init_1 = true;
+            while(true) {
+                if (!loop_init_1) {
+                    int _e51 = x;
+                    x = (_e51 + 1);
+                }
+                loop_init_1 = false;
+                int _e35 = x;
+                if ((_e35 <= hi_1.x)) {
+                } else {
+                    break;
+                }
+                {
+                    int _e38 = x;
+                    int _e39 = y;
+                    ivec2 t_1 = (((ivec2(_e38, _e39) % size) + size) % size);
+                    float _e44 = m;
+                    vec4 _e47 = texelFetch(_group_0_binding_3_cs, t_1, 0);
+                    m = max(_e44, _e47.x);
+                }
+            }
+        }
+    }
+    float _e58 = m;
+    imageStore(_group_0_binding_12_cs, ivec2(id.xy), vec4(_e58, 0.0, 0.0, 0.0));
+    return;
+}
+
