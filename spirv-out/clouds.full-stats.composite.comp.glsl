@@ -264,9 +264,9 @@ float height_cloud_types(float h_2, float cloud_type_1) {
     float _e11 = gradient(h_2, 0.0, 0.2, 0.4, 0.65);
     float _e16 = gradient(h_2, 0.0, 0.1, 0.6, 0.95);
     float _e19 = saturate((cloud_type_1 * 2.0));
-    float lo_1 = mix(_e6, _e11, _e19);
+    float lo = mix(_e6, _e11, _e19);
     float _e25 = saturate(((cloud_type_1 * 2.0) - 1.0));
-    return mix(lo_1, _e16, _e25);
+    return mix(lo, _e16, _e25);
 }
 
 float height_signal(float h_3, float cloud_type_2) {
@@ -392,22 +392,26 @@ float start_offset(uvec2 pixel_2) {
         return (jitter ? _e19 : 0.5);
     }
     float _e23 = hash_unit(pixel_2, 0u);
-    float base_1 = (jitter ? _e23 : 0.5);
+    float base_2 = (jitter ? _e23 : 0.5);
     uint _e29 = _group_0_binding_0_cs.misc.y;
     float _e32 = van_der_corput((_e29 / (k_1 * k_1)));
-    return fract((base_1 + _e32));
+    return fract((base_2 + _e32));
+}
+
+uvec2 bayer2_(uint v_1) {
+    return uvec2(((v_1 ^ (v_1 >> 1u)) & 1u), (v_1 & 1u));
 }
 
 uvec2 block_offset(uint f, uint k) {
-    uvec2 b2_[4] = uvec2[4](uvec2(0u, 0u), uvec2(1u, 1u), uvec2(1u, 0u), uvec2(0u, 1u));
-    uvec2 b4_[16] = uvec2[16](uvec2(0u, 0u), uvec2(2u, 2u), uvec2(2u, 0u), uvec2(0u, 2u), uvec2(1u, 1u), uvec2(3u, 3u), uvec2(3u, 1u), uvec2(1u, 3u), uvec2(1u, 0u), uvec2(3u, 2u), uvec2(3u, 0u), uvec2(1u, 2u), uvec2(0u, 1u), uvec2(2u, 3u), uvec2(2u, 1u), uvec2(0u, 3u));
     if ((k == 2u)) {
-        uvec2 _e21 = b2_[(f % 4u)];
-        return _e21;
+        uvec2 _e6 = bayer2_((f % 4u));
+        return _e6;
     }
     if ((k == 4u)) {
-        uvec2 _e77 = b4_[(f % 16u)];
-        return _e77;
+        uint b_4 = (f % 16u);
+        uvec2 _e13 = bayer2_((b_4 >> 2u));
+        uvec2 _e17 = bayer2_((b_4 & 3u));
+        return (_e13 + (2u * _e17));
     }
     return uvec2(0u);
 }

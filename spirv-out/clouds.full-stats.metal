@@ -66,12 +66,6 @@ struct MarchResult {
     float depth;
     char _pad3[12];
 };
-struct type_19 {
-    metal::uint2 inner[4];
-};
-struct type_20 {
-    metal::uint2 inner[16];
-};
 constant uint PHASE_HG = 0u;
 constant uint PHASE_TWO_LOBE_HG = 1u;
 constant uint PHASE_CORNETTE_SHANKS = 2u;
@@ -340,9 +334,9 @@ float height_cloud_types(
     float _e11 = gradient(h_2, 0.0, 0.2, 0.4, 0.65);
     float _e16 = gradient(h_2, 0.0, 0.1, 0.6, 0.95);
     float _e19 = saturate(cloud_type_1 * 2.0);
-    float lo_1 = metal::mix(_e6, _e11, _e19);
+    float lo = metal::mix(_e6, _e11, _e19);
     float _e25 = saturate((cloud_type_1 * 2.0) - 1.0);
-    return metal::mix(lo_1, _e16, _e25);
+    return metal::mix(lo, _e16, _e25);
 }
 
 float height_signal(
@@ -808,10 +802,10 @@ float start_offset(
         return jitter ? _e19 : 0.5;
     }
     float _e23 = hash_unit(pixel_2, 0u);
-    float base_1 = jitter ? _e23 : 0.5;
+    float base_2 = jitter ? _e23 : 0.5;
     uint _e29 = frame.misc.y;
     float _e32 = van_der_corput(naga_div(_e29, k_1 * k_1));
-    return metal::fract(base_1 + _e32);
+    return metal::fract(base_2 + _e32);
 }
 
 uint naga_f2u32(float value) {
@@ -967,6 +961,12 @@ MarchResult march_pixel(
     return MarchResult {_e221, _e222, _e223};
 }
 
+metal::uint2 bayer2_(
+    uint v_1
+) {
+    return metal::uint2((v_1 ^ (v_1 >> 1u)) & 1u, v_1 & 1u);
+}
+
 uint naga_mod(uint lhs, uint rhs) {
     return lhs % metal::select(rhs, 1u, rhs == 0u);
 }
@@ -975,15 +975,15 @@ metal::uint2 block_offset(
     uint f,
     uint k
 ) {
-    type_19 b2_ = type_19 {{metal::uint2(0u, 0u), metal::uint2(1u, 1u), metal::uint2(1u, 0u), metal::uint2(0u, 1u)}};
-    type_20 b4_ = type_20 {{metal::uint2(0u, 0u), metal::uint2(2u, 2u), metal::uint2(2u, 0u), metal::uint2(0u, 2u), metal::uint2(1u, 1u), metal::uint2(3u, 3u), metal::uint2(3u, 1u), metal::uint2(1u, 3u), metal::uint2(1u, 0u), metal::uint2(3u, 2u), metal::uint2(3u, 0u), metal::uint2(1u, 2u), metal::uint2(0u, 1u), metal::uint2(2u, 3u), metal::uint2(2u, 1u), metal::uint2(0u, 3u)}};
     if (k == 2u) {
-        metal::uint2 _e21 = b2_.inner[naga_mod(f, 4u)];
-        return _e21;
+        metal::uint2 _e6 = bayer2_(naga_mod(f, 4u));
+        return _e6;
     }
     if (k == 4u) {
-        metal::uint2 _e77 = b4_.inner[naga_mod(f, 16u)];
-        return _e77;
+        uint b_4 = naga_mod(f, 16u);
+        metal::uint2 _e13 = bayer2_(b_4 >> 2u);
+        metal::uint2 _e17 = bayer2_(b_4 & 3u);
+        return _e13 + (2u * _e17);
     }
     return metal::uint2(0u);
 }
@@ -1072,6 +1072,27 @@ metal::float4 catmull_rom(
     return metal::float4(t * (-0.5 + (t * (1.0 - (0.5 * t)))), 1.0 + ((t * t) * (-2.5 + (1.5 * t))), t * (0.5 + (t * (2.0 - (1.5 * t)))), (t * t) * (-0.5 + (0.5 * t)));
 }
 
+metal::float4 history_row(
+    metal::int2 base_1,
+    int dy,
+    metal::float4 wx,
+    constant Frame& frame,
+    metal::texture2d<float, metal::access::sample> history_in
+) {
+    metal::uint4 _e5 = frame.counts;
+    metal::int2 size_2 = static_cast<metal::int2>(_e5.xy);
+    int y_1 = metal::clamp(as_type<int>(as_type<uint>(base_1.y) + as_type<uint>(dy)), 0, as_type<int>(as_type<uint>(size_2.y) - as_type<uint>(1)));
+    int x0_ = metal::clamp(as_type<int>(as_type<uint>(base_1.x) - as_type<uint>(1)), 0, as_type<int>(as_type<uint>(size_2.x) - as_type<uint>(1)));
+    int x1_ = metal::clamp(base_1.x, 0, as_type<int>(as_type<uint>(size_2.x) - as_type<uint>(1)));
+    int x2_ = metal::clamp(as_type<int>(as_type<uint>(base_1.x) + as_type<uint>(1)), 0, as_type<int>(as_type<uint>(size_2.x) - as_type<uint>(1)));
+    int x3_ = metal::clamp(as_type<int>(as_type<uint>(base_1.x) + as_type<uint>(2)), 0, as_type<int>(as_type<uint>(size_2.x) - as_type<uint>(1)));
+    metal::float4 _e48 = history_in.read(metal::uint2(metal::int2(x0_, y_1)), 0);
+    metal::float4 _e54 = history_in.read(metal::uint2(metal::int2(x1_, y_1)), 0);
+    metal::float4 _e61 = history_in.read(metal::uint2(metal::int2(x2_, y_1)), 0);
+    metal::float4 _e68 = history_in.read(metal::uint2(metal::int2(x3_, y_1)), 0);
+    return (((_e48 * wx.x) + (_e54 * wx.y)) + (_e61 * wx.z)) + (_e68 * wx.w);
+}
+
 metal::int2 naga_f2i32(metal::float2 value) {
     return static_cast<metal::int2>(metal::clamp(value, -2147483600.0, 2147483500.0));
 }
@@ -1081,70 +1102,20 @@ metal::float4 history_at(
     constant Frame& frame,
     metal::texture2d<float, metal::access::sample> history_in
 ) {
-    metal::float4 sum = metal::float4(0.0);
-    int j = 0;
-    metal::float4 row = {};
-    int i_3 = {};
     metal::uint4 _e3 = frame.counts;
-    metal::int2 size_2 = static_cast<metal::int2>(_e3.xy);
-    metal::float2 c_4 = metal::clamp(q_1, metal::float2(0.0), static_cast<metal::float2>(as_type<metal::int2>(as_type<metal::uint2>(size_2) - as_type<metal::uint2>(metal::int2(1)))));
-    metal::int2 base_2 = naga_f2i32(metal::floor(c_4));
-    metal::float2 f_2 = c_4 - static_cast<metal::float2>(base_2);
+    metal::int2 size_3 = static_cast<metal::int2>(_e3.xy);
+    metal::float2 c_4 = metal::clamp(q_1, metal::float2(0.0), static_cast<metal::float2>(as_type<metal::int2>(as_type<metal::uint2>(size_3) - as_type<metal::uint2>(metal::int2(1)))));
+    metal::int2 base_3 = naga_f2i32(metal::floor(c_4));
+    metal::float2 f_2 = c_4 - static_cast<metal::float2>(base_3);
     metal::float4 _e18 = catmull_rom(f_2.x);
     metal::float4 _e20 = catmull_rom(f_2.y);
-    uint2 loop_bound_3 = uint2(4294967295u);
-    bool loop_init_2 = true;
-    while(true) {
-        if (metal::all(loop_bound_3 == uint2(0u))) { break; }
-        loop_bound_3 -= uint2(loop_bound_3.y == 0u, 1u);
-        if (!loop_init_2) {
-            int _e69 = j;
-            j = as_type<int>(as_type<uint>(_e69) + as_type<uint>(1));
-        }
-        loop_init_2 = false;
-        int _e26 = j;
-        if (_e26 < 4) {
-        } else {
-            break;
-        }
-        {
-            row = metal::float4(0.0);
-            i_3 = 0;
-            uint2 loop_bound_4 = uint2(4294967295u);
-            bool loop_init_3 = true;
-            while(true) {
-                if (metal::all(loop_bound_4 == uint2(0u))) { break; }
-                loop_bound_4 -= uint2(loop_bound_4.y == 0u, 1u);
-                if (!loop_init_3) {
-                    int _e60 = i_3;
-                    i_3 = as_type<int>(as_type<uint>(_e60) + as_type<uint>(1));
-                }
-                loop_init_3 = false;
-                int _e34 = i_3;
-                if (_e34 < 4) {
-                } else {
-                    break;
-                }
-                {
-                    int _e37 = i_3;
-                    int _e40 = j;
-                    metal::int2 t_2 = metal::clamp(as_type<metal::int2>(as_type<metal::uint2>(base_2) + as_type<metal::uint2>(metal::int2(as_type<int>(as_type<uint>(_e37) - as_type<uint>(1)), as_type<int>(as_type<uint>(_e40) - as_type<uint>(1))))), metal::int2(0), as_type<metal::int2>(as_type<metal::uint2>(size_2) - as_type<metal::uint2>(metal::int2(1))));
-                    metal::float4 _e51 = row;
-                    metal::float4 _e54 = history_in.read(metal::uint2(t_2), 0);
-                    int _e55 = i_3;
-                    row = _e51 + (_e54 * _e18[_e55]);
-                }
-            }
-            metal::float4 _e62 = sum;
-            metal::float4 _e63 = row;
-            int _e64 = j;
-            sum = _e62 + (_e63 * _e20[_e64]);
-        }
-    }
-    metal::float4 _e71 = sum;
-    float _e77 = sum.w;
-    float _e78 = saturate(_e77);
-    return metal::float4(metal::max(_e71.xyz, metal::float3(0.0)), _e78);
+    metal::float4 _e22 = history_row(base_3, -1, _e18, frame, history_in);
+    metal::float4 _e26 = history_row(base_3, 0, _e18, frame, history_in);
+    metal::float4 _e31 = history_row(base_3, 1, _e18, frame, history_in);
+    metal::float4 _e36 = history_row(base_3, 2, _e18, frame, history_in);
+    metal::float4 sum = (((_e22 * _e20.x) + (_e26 * _e20.y)) + (_e31 * _e20.z)) + (_e36 * _e20.w);
+    float _e45 = saturate(sum.w);
+    return metal::float4(metal::max(sum.xyz, metal::float3(0.0)), _e45);
 }
 
 metal::float4 meta_at(
@@ -1153,8 +1124,8 @@ metal::float4 meta_at(
     metal::texture2d<float, metal::access::sample> meta_in
 ) {
     metal::uint4 _e3 = frame.counts;
-    metal::int2 size_3 = static_cast<metal::int2>(_e3.xy);
-    metal::int2 p_8 = metal::clamp(naga_f2i32(metal::rint(q_2)), metal::int2(0), as_type<metal::int2>(as_type<metal::uint2>(size_3) - as_type<metal::uint2>(metal::int2(1))));
+    metal::int2 size_4 = static_cast<metal::int2>(_e3.xy);
+    metal::int2 p_8 = metal::clamp(naga_f2i32(metal::rint(q_2)), metal::int2(0), as_type<metal::int2>(as_type<metal::uint2>(size_4) - as_type<metal::uint2>(metal::int2(1))));
     metal::float4 _e16 = meta_in.read(metal::uint2(p_8), 0);
     return _e16;
 }
@@ -1226,48 +1197,48 @@ struct occupancyInput {
     if (metal::any(id.xy >= metal::uint2(64u))) {
         return;
     }
-    metal::int2 size_4 = static_cast<metal::int2>(metal::uint2(weather_tex.get_width(), weather_tex.get_height()));
-    metal::int2 lo_2 = as_type<metal::int2>(as_type<metal::uint2>(naga_div(as_type<metal::int2>(as_type<metal::uint2>(static_cast<metal::int2>(id.xy)) * as_type<metal::uint2>(size_4)), metal::int2(64))) - as_type<metal::uint2>(metal::int2(1)));
-    metal::int2 hi_1 = naga_div(as_type<metal::int2>(as_type<metal::uint2>(as_type<metal::int2>(as_type<metal::uint2>(static_cast<metal::int2>(id.xy)) + as_type<metal::uint2>(metal::int2(1)))) * as_type<metal::uint2>(size_4)), metal::int2(64));
-    y = lo_2.y;
-    uint2 loop_bound_5 = uint2(4294967295u);
-    bool loop_init_4 = true;
+    metal::int2 size_5 = static_cast<metal::int2>(metal::uint2(weather_tex.get_width(), weather_tex.get_height()));
+    metal::int2 lo_1 = as_type<metal::int2>(as_type<metal::uint2>(naga_div(as_type<metal::int2>(as_type<metal::uint2>(static_cast<metal::int2>(id.xy)) * as_type<metal::uint2>(size_5)), metal::int2(64))) - as_type<metal::uint2>(metal::int2(1)));
+    metal::int2 hi = naga_div(as_type<metal::int2>(as_type<metal::uint2>(as_type<metal::int2>(as_type<metal::uint2>(static_cast<metal::int2>(id.xy)) + as_type<metal::uint2>(metal::int2(1)))) * as_type<metal::uint2>(size_5)), metal::int2(64));
+    y = lo_1.y;
+    uint2 loop_bound_3 = uint2(4294967295u);
+    bool loop_init_2 = true;
     while(true) {
-        if (metal::all(loop_bound_5 == uint2(0u))) { break; }
-        loop_bound_5 -= uint2(loop_bound_5.y == 0u, 1u);
-        if (!loop_init_4) {
+        if (metal::all(loop_bound_3 == uint2(0u))) { break; }
+        loop_bound_3 -= uint2(loop_bound_3.y == 0u, 1u);
+        if (!loop_init_2) {
             int _e54 = y;
             y = as_type<int>(as_type<uint>(_e54) + as_type<uint>(1));
         }
-        loop_init_4 = false;
+        loop_init_2 = false;
         int _e30 = y;
-        if (_e30 <= hi_1.y) {
+        if (_e30 <= hi.y) {
         } else {
             break;
         }
         {
-            x = lo_2.x;
-            uint2 loop_bound_6 = uint2(4294967295u);
-            bool loop_init_5 = true;
+            x = lo_1.x;
+            uint2 loop_bound_4 = uint2(4294967295u);
+            bool loop_init_3 = true;
             while(true) {
-                if (metal::all(loop_bound_6 == uint2(0u))) { break; }
-                loop_bound_6 -= uint2(loop_bound_6.y == 0u, 1u);
-                if (!loop_init_5) {
+                if (metal::all(loop_bound_4 == uint2(0u))) { break; }
+                loop_bound_4 -= uint2(loop_bound_4.y == 0u, 1u);
+                if (!loop_init_3) {
                     int _e51 = x;
                     x = as_type<int>(as_type<uint>(_e51) + as_type<uint>(1));
                 }
-                loop_init_5 = false;
+                loop_init_3 = false;
                 int _e35 = x;
-                if (_e35 <= hi_1.x) {
+                if (_e35 <= hi.x) {
                 } else {
                     break;
                 }
                 {
                     int _e38 = x;
                     int _e39 = y;
-                    metal::int2 t_3 = naga_mod(as_type<metal::int2>(as_type<metal::uint2>(naga_mod(metal::int2(_e38, _e39), size_4)) + as_type<metal::uint2>(size_4)), size_4);
+                    metal::int2 t_2 = naga_mod(as_type<metal::int2>(as_type<metal::uint2>(naga_mod(metal::int2(_e38, _e39), size_5)) + as_type<metal::uint2>(size_5)), size_5);
                     float _e44 = m;
-                    metal::float4 _e47 = weather_tex.read(metal::uint2(t_3), 0);
+                    metal::float4 _e47 = weather_tex.read(metal::uint2(t_2), 0);
                     m = metal::max(_e44, _e47.x);
                 }
             }
@@ -1422,10 +1393,6 @@ struct resolveInput {
     bool local_5 = {};
     bool local_6 = {};
     bool local_7 = {};
-    metal::float4 lo = metal::float4(1000000000000000000000000000000.0);
-    metal::float4 hi = metal::float4(-1000000000000000000000000000000.0);
-    int dy = -1;
-    int dx = {};
     metal::float4 result = {};
     float samples = {};
     float out_depth = {};
@@ -1503,102 +1470,71 @@ struct resolveInput {
     if (_e115) {
         metal::uint4 _e118 = frame.counts;
         metal::int2 blocks_1 = static_cast<metal::int2>(naga_div((_e118.xy + metal::uint2(k_3)) - metal::uint2(1u), metal::uint2(k_3)));
-        uint2 loop_bound_7 = uint2(4294967295u);
-        bool loop_init_6 = true;
-        while(true) {
-            if (metal::all(loop_bound_7 == uint2(0u))) { break; }
-            loop_bound_7 -= uint2(loop_bound_7.y == 0u, 1u);
-            if (!loop_init_6) {
-                int _e166 = dy;
-                dy = as_type<int>(as_type<uint>(_e166) + as_type<uint>(1));
-            }
-            loop_init_6 = false;
-            int _e136 = dy;
-            if (_e136 <= 1) {
-            } else {
-                break;
-            }
-            {
-                dx = -1;
-                uint2 loop_bound_8 = uint2(4294967295u);
-                bool loop_init_7 = true;
-                while(true) {
-                    if (metal::all(loop_bound_8 == uint2(0u))) { break; }
-                    loop_bound_8 -= uint2(loop_bound_8.y == 0u, 1u);
-                    if (!loop_init_7) {
-                        int _e163 = dx;
-                        dx = as_type<int>(as_type<uint>(_e163) + as_type<uint>(1));
-                    }
-                    loop_init_7 = false;
-                    int _e141 = dx;
-                    if (_e141 <= 1) {
-                    } else {
-                        break;
-                    }
-                    {
-                        int _e145 = dx;
-                        int _e146 = dy;
-                        metal::int2 b_4 = metal::clamp(as_type<metal::int2>(as_type<metal::uint2>(static_cast<metal::int2>(block)) + as_type<metal::uint2>(metal::int2(_e145, _e146))), metal::int2(0), as_type<metal::int2>(as_type<metal::uint2>(blocks_1) - as_type<metal::uint2>(metal::int2(1))));
-                        metal::float4 s_3 = sparse_in.read(metal::uint2(b_4), 0);
-                        metal::float4 _e158 = lo;
-                        lo = metal::min(_e158, s_3);
-                        metal::float4 _e160 = hi;
-                        hi = metal::max(_e160, s_3);
-                    }
-                }
-            }
-        }
-        metal::float4 _e168 = history;
-        metal::float4 _e169 = lo;
-        metal::float4 _e170 = hi;
-        history = metal::clamp(_e168, _e169, _e170);
+        metal::int2 b_5 = static_cast<metal::int2>(block);
+        int x0_1 = metal::max(as_type<int>(as_type<uint>(b_5.x) - as_type<uint>(1)), 0);
+        int x2_1 = metal::min(as_type<int>(as_type<uint>(b_5.x) + as_type<uint>(1)), as_type<int>(as_type<uint>(blocks_1.x) - as_type<uint>(1)));
+        int y0_ = metal::max(as_type<int>(as_type<uint>(b_5.y) - as_type<uint>(1)), 0);
+        int y2_ = metal::min(as_type<int>(as_type<uint>(b_5.y) + as_type<uint>(1)), as_type<int>(as_type<uint>(blocks_1.y) - as_type<uint>(1)));
+        metal::float4 s00_ = sparse_in.read(metal::uint2(metal::int2(x0_1, y0_)), 0);
+        metal::float4 s10_ = sparse_in.read(metal::uint2(metal::int2(b_5.x, y0_)), 0);
+        metal::float4 s20_ = sparse_in.read(metal::uint2(metal::int2(x2_1, y0_)), 0);
+        metal::float4 s01_ = sparse_in.read(metal::uint2(metal::int2(x0_1, b_5.y)), 0);
+        metal::float4 s11_ = sparse_in.read(metal::uint2(b_5), 0);
+        metal::float4 s21_ = sparse_in.read(metal::uint2(metal::int2(x2_1, b_5.y)), 0);
+        metal::float4 s02_ = sparse_in.read(metal::uint2(metal::int2(x0_1, y2_)), 0);
+        metal::float4 s12_ = sparse_in.read(metal::uint2(metal::int2(b_5.x, y2_)), 0);
+        metal::float4 s22_ = sparse_in.read(metal::uint2(metal::int2(x2_1, y2_)), 0);
+        metal::float4 lo_2 = metal::min(metal::min(metal::min(s00_, s10_), metal::min(s20_, s01_)), metal::min(metal::min(s11_, s21_), metal::min(metal::min(s02_, s12_), s22_)));
+        metal::float4 hi_1 = metal::max(metal::max(metal::max(s00_, s10_), metal::max(s20_, s01_)), metal::max(metal::max(s11_, s21_), metal::max(metal::max(s02_, s12_), s22_)));
+        metal::float4 _e208 = history;
+        history = metal::clamp(_e208, lo_2, hi_1);
     }
     if (marched) {
-        bool _e175 = valid;
-        if (_e175) {
-            float _e177 = past.y;
-            samples = metal::min(_e177 + 1.0, moving ? HISTORY_SAMPLES_MOVING : HISTORY_SAMPLES);
-            metal::float4 _e184 = history;
-            float _e185 = samples;
-            result = metal::mix(_e184, current, 1.0 / _e185);
+        bool _e213 = valid;
+        if (_e213) {
+            float _e215 = past.y;
+            samples = metal::min(_e215 + 1.0, moving ? HISTORY_SAMPLES_MOVING : HISTORY_SAMPLES);
+            metal::float4 _e222 = history;
+            float _e223 = samples;
+            result = metal::mix(_e222, current, 1.0 / _e223);
         } else {
             samples = 1.0;
             result = current;
         }
-        float _e191 = past.x;
+        float _e229 = past.x;
         if (!((current_depth > 0.0))) {
-            bool _e197 = valid;
-            local_8 = !(_e197);
+            bool _e235 = valid;
+            local_8 = !(_e235);
         } else {
             local_8 = true;
         }
-        bool _e200 = local_8;
-        out_depth = _e200 ? current_depth : _e191;
+        bool _e238 = local_8;
+        out_depth = _e238 ? current_depth : _e229;
     } else {
-        bool _e202 = valid;
-        if (_e202) {
-            float _e204 = past.y;
-            samples = _e204;
-            metal::float4 _e205 = history;
-            result = _e205;
-            float _e207 = past.x;
-            out_depth = _e207;
+        bool _e240 = valid;
+        if (_e240) {
+            float _e242 = past.y;
+            samples = _e242;
+            metal::float4 _e243 = history;
+            result = _e243;
+            float _e245 = past.x;
+            out_depth = _e245;
         } else {
-            MarchResult _e208 = march_pixel(pixel_6, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler, occupancy_in, stats);
+            MarchResult _e246 = march_pixel(pixel_6, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler, occupancy_in, stats);
             samples = 1.0;
-            result = metal::float4(_e208.radiance, _e208.transmittance);
-            out_depth = _e208.depth;
+            result = metal::float4(_e246.radiance, _e246.transmittance);
+            out_depth = _e246.depth;
         }
     }
-    metal::float4 _e215 = result;
-    history_out.write(_e215, metal::uint2(pixel_6));
-    float _e217 = out_depth;
-    float _e218 = samples;
-    meta_out.write(metal::float4(_e217, _e218, 0.0, 0.0), metal::uint2(pixel_6));
-    metal::float4 _e223 = result;
-    cloud_out.write(_e223, metal::uint2(pixel_6));
-    float _e225 = out_depth;
-    depth_out.write(metal::float4(_e225, 0.0, 0.0, 0.0), metal::uint2(pixel_6));
+    metal::float4 _e253 = result;
+    history_out.write(_e253, metal::uint2(pixel_6));
+    float _e255 = out_depth;
+    float _e256 = samples;
+    meta_out.write(metal::float4(_e255, _e256, 0.0, 0.0), metal::uint2(pixel_6));
+    metal::float4 _e261 = result;
+    cloud_out.write(_e261, metal::uint2(pixel_6));
+    float _e263 = out_depth;
+    depth_out.write(metal::float4(_e263, 0.0, 0.0, 0.0), metal::uint2(pixel_6));
     return;
 }
 

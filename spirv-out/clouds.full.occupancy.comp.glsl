@@ -155,9 +155,9 @@ float height_cloud_types(float h_2, float cloud_type_1) {
     float _e11 = gradient(h_2, 0.0, 0.2, 0.4, 0.65);
     float _e16 = gradient(h_2, 0.0, 0.1, 0.6, 0.95);
     float _e19 = saturate((cloud_type_1 * 2.0));
-    float lo_1 = mix(_e6, _e11, _e19);
+    float lo = mix(_e6, _e11, _e19);
     float _e25 = saturate(((cloud_type_1 * 2.0) - 1.0));
-    return mix(lo_1, _e16, _e25);
+    return mix(lo, _e16, _e25);
 }
 
 float phase_hg(float cos_theta, float g) {
@@ -172,16 +172,20 @@ float phase_cornette_shanks(float cos_theta_1, float g_1) {
     return (((3.0 * (1.0 - g2_1)) * (1.0 + (cos_theta_1 * cos_theta_1))) / (((25.132742 * (2.0 + g2_1)) * denom_1) * sqrt(denom_1)));
 }
 
+uvec2 bayer2_(uint v_1) {
+    return uvec2(((v_1 ^ (v_1 >> 1u)) & 1u), (v_1 & 1u));
+}
+
 uvec2 block_offset(uint f, uint k) {
-    uvec2 b2_[4] = uvec2[4](uvec2(0u, 0u), uvec2(1u, 1u), uvec2(1u, 0u), uvec2(0u, 1u));
-    uvec2 b4_[16] = uvec2[16](uvec2(0u, 0u), uvec2(2u, 2u), uvec2(2u, 0u), uvec2(0u, 2u), uvec2(1u, 1u), uvec2(3u, 3u), uvec2(3u, 1u), uvec2(1u, 3u), uvec2(1u, 0u), uvec2(3u, 2u), uvec2(3u, 0u), uvec2(1u, 2u), uvec2(0u, 1u), uvec2(2u, 3u), uvec2(2u, 1u), uvec2(0u, 3u));
     if ((k == 2u)) {
-        uvec2 _e21 = b2_[(f % 4u)];
-        return _e21;
+        uvec2 _e6 = bayer2_((f % 4u));
+        return _e6;
     }
     if ((k == 4u)) {
-        uvec2 _e77 = b4_[(f % 16u)];
-        return _e77;
+        uint b_1 = (f % 16u);
+        uvec2 _e13 = bayer2_((b_1 >> 2u));
+        uvec2 _e17 = bayer2_((b_1 & 3u));
+        return (_e13 + (2u * _e17));
     }
     return uvec2(0u);
 }
@@ -203,9 +207,9 @@ void main() {
         return;
     }
     ivec2 size = ivec2(uvec2(textureSize(_group_0_binding_3_cs, 0).xy));
-    ivec2 lo_2 = (((ivec2(id.xy) * size) / ivec2(64)) - ivec2(1));
-    ivec2 hi_1 = (((ivec2(id.xy) + ivec2(1)) * size) / ivec2(64));
-    y = lo_2.y;
+    ivec2 lo_1 = (((ivec2(id.xy) * size) / ivec2(64)) - ivec2(1));
+    ivec2 hi = (((ivec2(id.xy) + ivec2(1)) * size) / ivec2(64));
+    y = lo_1.y;
     bool loop_init = true;
     while(true) {
         if (!loop_init) {
@@ -214,12 +218,12 @@ void main() {
         }
         loop_init = false;
         int _e30 = y;
-        if ((_e30 <= hi_1.y)) {
+        if ((_e30 <= hi.y)) {
         } else {
             break;
         }
         {
-            x = lo_2.x;
+            x = lo_1.x;
             bool loop_init_1 = true;
             while(true) {
                 if (!loop_init_1) {
@@ -228,7 +232,7 @@ void main() {
                 }
                 loop_init_1 = false;
                 int _e35 = x;
-                if ((_e35 <= hi_1.x)) {
+                if ((_e35 <= hi.x)) {
                 } else {
                     break;
                 }

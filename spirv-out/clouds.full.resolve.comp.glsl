@@ -304,9 +304,9 @@ float height_cloud_types(float h_2, float cloud_type_1) {
     float _e11 = gradient(h_2, 0.0, 0.2, 0.4, 0.65);
     float _e16 = gradient(h_2, 0.0, 0.1, 0.6, 0.95);
     float _e19 = saturate((cloud_type_1 * 2.0));
-    float lo_1 = mix(_e6, _e11, _e19);
+    float lo = mix(_e6, _e11, _e19);
     float _e25 = saturate(((cloud_type_1 * 2.0) - 1.0));
-    return mix(lo_1, _e16, _e25);
+    return mix(lo, _e16, _e25);
 }
 
 float height_signal(float h_3, float cloud_type_2) {
@@ -687,10 +687,10 @@ float start_offset(uvec2 pixel_2) {
         return (jitter ? _e19 : 0.5);
     }
     float _e23 = hash_unit(pixel_2, 0u);
-    float base_1 = (jitter ? _e23 : 0.5);
+    float base_2 = (jitter ? _e23 : 0.5);
     uint _e29 = _group_0_binding_0_cs.misc.y;
     float _e32 = van_der_corput((_e29 / (k_1 * k_1)));
-    return fract((base_1 + _e32));
+    return fract((base_2 + _e32));
 }
 
 MarchResult march_pixel(uvec2 pixel_3) {
@@ -829,16 +829,20 @@ MarchResult march_pixel(uvec2 pixel_3) {
     return MarchResult(_e221, _e222, _e223);
 }
 
+uvec2 bayer2_(uint v_1) {
+    return uvec2(((v_1 ^ (v_1 >> 1u)) & 1u), (v_1 & 1u));
+}
+
 uvec2 block_offset(uint f, uint k) {
-    uvec2 b2_[4] = uvec2[4](uvec2(0u, 0u), uvec2(1u, 1u), uvec2(1u, 0u), uvec2(0u, 1u));
-    uvec2 b4_[16] = uvec2[16](uvec2(0u, 0u), uvec2(2u, 2u), uvec2(2u, 0u), uvec2(0u, 2u), uvec2(1u, 1u), uvec2(3u, 3u), uvec2(3u, 1u), uvec2(1u, 3u), uvec2(1u, 0u), uvec2(3u, 2u), uvec2(3u, 0u), uvec2(1u, 2u), uvec2(0u, 1u), uvec2(2u, 3u), uvec2(2u, 1u), uvec2(0u, 3u));
     if ((k == 2u)) {
-        uvec2 _e21 = b2_[(f % 4u)];
-        return _e21;
+        uvec2 _e6 = bayer2_((f % 4u));
+        return _e6;
     }
     if ((k == 4u)) {
-        uvec2 _e77 = b4_[(f % 16u)];
-        return _e77;
+        uint b_4 = (f % 16u);
+        uvec2 _e13 = bayer2_((b_4 >> 2u));
+        uvec2 _e17 = bayer2_((b_4 & 3u));
+        return (_e13 + (2u * _e17));
     }
     return uvec2(0u);
 }
@@ -918,71 +922,42 @@ vec4 catmull_rom(float t) {
     return vec4((t * (-0.5 + (t * (1.0 - (0.5 * t))))), (1.0 + ((t * t) * (-2.5 + (1.5 * t)))), (t * (0.5 + (t * (2.0 - (1.5 * t))))), ((t * t) * (-0.5 + (0.5 * t))));
 }
 
+vec4 history_row(ivec2 base_1, int dy, vec4 wx) {
+    uvec4 _e5 = _group_0_binding_0_cs.counts;
+    ivec2 size_2 = ivec2(_e5.xy);
+    int y_1 = min(max((base_1.y + dy), 0), (size_2.y - 1));
+    int x0_ = min(max((base_1.x - 1), 0), (size_2.x - 1));
+    int x1_ = min(max(base_1.x, 0), (size_2.x - 1));
+    int x2_ = min(max((base_1.x + 1), 0), (size_2.x - 1));
+    int x3_ = min(max((base_1.x + 2), 0), (size_2.x - 1));
+    vec4 _e48 = texelFetch(_group_0_binding_13_cs, ivec2(x0_, y_1), 0);
+    vec4 _e54 = texelFetch(_group_0_binding_13_cs, ivec2(x1_, y_1), 0);
+    vec4 _e61 = texelFetch(_group_0_binding_13_cs, ivec2(x2_, y_1), 0);
+    vec4 _e68 = texelFetch(_group_0_binding_13_cs, ivec2(x3_, y_1), 0);
+    return ((((_e48 * wx.x) + (_e54 * wx.y)) + (_e61 * wx.z)) + (_e68 * wx.w));
+}
+
 vec4 history_at(vec2 q_1) {
-    vec4 sum = vec4(0.0);
-    int j = 0;
-    vec4 row = vec4(0.0);
-    int i_3 = 0;
     uvec4 _e3 = _group_0_binding_0_cs.counts;
-    ivec2 size_2 = ivec2(_e3.xy);
-    vec2 c_4 = clamp(q_1, vec2(0.0), vec2((size_2 - ivec2(1))));
-    ivec2 base_2 = ivec2(floor(c_4));
-    vec2 f_2 = (c_4 - vec2(base_2));
+    ivec2 size_3 = ivec2(_e3.xy);
+    vec2 c_4 = clamp(q_1, vec2(0.0), vec2((size_3 - ivec2(1))));
+    ivec2 base_3 = ivec2(floor(c_4));
+    vec2 f_2 = (c_4 - vec2(base_3));
     vec4 _e18 = catmull_rom(f_2.x);
     vec4 _e20 = catmull_rom(f_2.y);
-    bool loop_init_2 = true;
-    while(true) {
-        if (!loop_init_2) {
-            int _e69 = j;
-            j = (_e69 + 1);
-        }
-        loop_init_2 = false;
-        int _e26 = j;
-        if ((_e26 < 4)) {
-        } else {
-            break;
-        }
-        {
-            row = vec4(0.0);
-            i_3 = 0;
-            bool loop_init_3 = true;
-            while(true) {
-                if (!loop_init_3) {
-                    int _e60 = i_3;
-                    i_3 = (_e60 + 1);
-                }
-                loop_init_3 = false;
-                int _e34 = i_3;
-                if ((_e34 < 4)) {
-                } else {
-                    break;
-                }
-                {
-                    int _e37 = i_3;
-                    int _e40 = j;
-                    ivec2 t_2 = min(max((base_2 + ivec2((_e37 - 1), (_e40 - 1))), ivec2(0)), (size_2 - ivec2(1)));
-                    vec4 _e51 = row;
-                    vec4 _e54 = texelFetch(_group_0_binding_13_cs, t_2, 0);
-                    int _e55 = i_3;
-                    row = (_e51 + (_e54 * _e18[_e55]));
-                }
-            }
-            vec4 _e62 = sum;
-            vec4 _e63 = row;
-            int _e64 = j;
-            sum = (_e62 + (_e63 * _e20[_e64]));
-        }
-    }
-    vec4 _e71 = sum;
-    float _e77 = sum.w;
-    float _e78 = saturate(_e77);
-    return vec4(max(_e71.xyz, vec3(0.0)), _e78);
+    vec4 _e22 = history_row(base_3, -1, _e18);
+    vec4 _e26 = history_row(base_3, 0, _e18);
+    vec4 _e31 = history_row(base_3, 1, _e18);
+    vec4 _e36 = history_row(base_3, 2, _e18);
+    vec4 sum = ((((_e22 * _e20.x) + (_e26 * _e20.y)) + (_e31 * _e20.z)) + (_e36 * _e20.w));
+    float _e45 = saturate(sum.w);
+    return vec4(max(sum.xyz, vec3(0.0)), _e45);
 }
 
 vec4 meta_at(vec2 q_2) {
     uvec4 _e3 = _group_0_binding_0_cs.counts;
-    ivec2 size_3 = ivec2(_e3.xy);
-    ivec2 p_8 = min(max(ivec2(roundEven(q_2)), ivec2(0)), (size_3 - ivec2(1)));
+    ivec2 size_4 = ivec2(_e3.xy);
+    ivec2 p_8 = min(max(ivec2(roundEven(q_2)), ivec2(0)), (size_4 - ivec2(1)));
     vec4 _e16 = texelFetch(_group_0_binding_14_cs, p_8, 0);
     return _e16;
 }
@@ -1033,10 +1008,6 @@ void main() {
     bool local_5 = false;
     bool local_6 = false;
     bool local_7 = false;
-    vec4 lo = vec4(1e30);
-    vec4 hi = vec4(-1e30);
-    int dy = -1;
-    int dx = 0;
     vec4 result = vec4(0.0);
     float samples = 0.0;
     float out_depth = 0.0;
@@ -1114,96 +1085,71 @@ void main() {
     if (_e115) {
         uvec4 _e118 = _group_0_binding_0_cs.counts;
         ivec2 blocks = ivec2((((_e118.xy + uvec2(k_2)) - uvec2(1u)) / uvec2(k_2)));
-        bool loop_init_4 = true;
-        while(true) {
-            if (!loop_init_4) {
-                int _e166 = dy;
-                dy = (_e166 + 1);
-            }
-            loop_init_4 = false;
-            int _e136 = dy;
-            if ((_e136 <= 1)) {
-            } else {
-                break;
-            }
-            {
-                dx = -1;
-                bool loop_init_5 = true;
-                while(true) {
-                    if (!loop_init_5) {
-                        int _e163 = dx;
-                        dx = (_e163 + 1);
-                    }
-                    loop_init_5 = false;
-                    int _e141 = dx;
-                    if ((_e141 <= 1)) {
-                    } else {
-                        break;
-                    }
-                    {
-                        int _e145 = dx;
-                        int _e146 = dy;
-                        ivec2 b_4 = min(max((ivec2(block) + ivec2(_e145, _e146)), ivec2(0)), (blocks - ivec2(1)));
-                        vec4 s_3 = texelFetch(_group_0_binding_15_cs, b_4, 0);
-                        vec4 _e158 = lo;
-                        lo = min(_e158, s_3);
-                        vec4 _e160 = hi;
-                        hi = max(_e160, s_3);
-                    }
-                }
-            }
-        }
-        vec4 _e168 = history;
-        vec4 _e169 = lo;
-        vec4 _e170 = hi;
-        history = clamp(_e168, _e169, _e170);
+        ivec2 b_5 = ivec2(block);
+        int x0_1 = max((b_5.x - 1), 0);
+        int x2_1 = min((b_5.x + 1), (blocks.x - 1));
+        int y0_ = max((b_5.y - 1), 0);
+        int y2_ = min((b_5.y + 1), (blocks.y - 1));
+        vec4 s00_ = texelFetch(_group_0_binding_15_cs, ivec2(x0_1, y0_), 0);
+        vec4 s10_ = texelFetch(_group_0_binding_15_cs, ivec2(b_5.x, y0_), 0);
+        vec4 s20_ = texelFetch(_group_0_binding_15_cs, ivec2(x2_1, y0_), 0);
+        vec4 s01_ = texelFetch(_group_0_binding_15_cs, ivec2(x0_1, b_5.y), 0);
+        vec4 s11_ = texelFetch(_group_0_binding_15_cs, b_5, 0);
+        vec4 s21_ = texelFetch(_group_0_binding_15_cs, ivec2(x2_1, b_5.y), 0);
+        vec4 s02_ = texelFetch(_group_0_binding_15_cs, ivec2(x0_1, y2_), 0);
+        vec4 s12_ = texelFetch(_group_0_binding_15_cs, ivec2(b_5.x, y2_), 0);
+        vec4 s22_ = texelFetch(_group_0_binding_15_cs, ivec2(x2_1, y2_), 0);
+        vec4 lo_1 = min(min(min(s00_, s10_), min(s20_, s01_)), min(min(s11_, s21_), min(min(s02_, s12_), s22_)));
+        vec4 hi = max(max(max(s00_, s10_), max(s20_, s01_)), max(max(s11_, s21_), max(max(s02_, s12_), s22_)));
+        vec4 _e208 = history;
+        history = clamp(_e208, lo_1, hi);
     }
     if (marched) {
-        bool _e175 = valid;
-        if (_e175) {
-            float _e177 = past.y;
-            samples = min((_e177 + 1.0), (moving ? HISTORY_SAMPLES_MOVING : HISTORY_SAMPLES));
-            vec4 _e184 = history;
-            float _e185 = samples;
-            result = mix(_e184, current, (1.0 / _e185));
+        bool _e213 = valid;
+        if (_e213) {
+            float _e215 = past.y;
+            samples = min((_e215 + 1.0), (moving ? HISTORY_SAMPLES_MOVING : HISTORY_SAMPLES));
+            vec4 _e222 = history;
+            float _e223 = samples;
+            result = mix(_e222, current, (1.0 / _e223));
         } else {
             samples = 1.0;
             result = current;
         }
-        float _e191 = past.x;
+        float _e229 = past.x;
         if (!((current_depth > 0.0))) {
-            bool _e197 = valid;
-            local_8 = !(_e197);
+            bool _e235 = valid;
+            local_8 = !(_e235);
         } else {
             local_8 = true;
         }
-        bool _e200 = local_8;
-        out_depth = (_e200 ? current_depth : _e191);
+        bool _e238 = local_8;
+        out_depth = (_e238 ? current_depth : _e229);
     } else {
-        bool _e202 = valid;
-        if (_e202) {
-            float _e204 = past.y;
-            samples = _e204;
-            vec4 _e205 = history;
-            result = _e205;
-            float _e207 = past.x;
-            out_depth = _e207;
+        bool _e240 = valid;
+        if (_e240) {
+            float _e242 = past.y;
+            samples = _e242;
+            vec4 _e243 = history;
+            result = _e243;
+            float _e245 = past.x;
+            out_depth = _e245;
         } else {
-            MarchResult _e208 = march_pixel(pixel_5);
+            MarchResult _e246 = march_pixel(pixel_5);
             samples = 1.0;
-            result = vec4(_e208.radiance, _e208.transmittance);
-            out_depth = _e208.depth;
+            result = vec4(_e246.radiance, _e246.transmittance);
+            out_depth = _e246.depth;
         }
     }
-    vec4 _e215 = result;
-    imageStore(_group_0_binding_17_cs, ivec2(pixel_5), _e215);
-    float _e217 = out_depth;
-    float _e218 = samples;
-    imageStore(_group_0_binding_18_cs, ivec2(pixel_5), vec4(_e217, _e218, 0.0, 0.0));
-    vec4 _e223 = result;
-    imageStore(_group_0_binding_6_cs, ivec2(pixel_5), _e223);
-    float _e225 = out_depth;
-    imageStore(_group_0_binding_7_cs, ivec2(pixel_5), vec4(_e225, 0.0, 0.0, 0.0));
+    vec4 _e253 = result;
+    imageStore(_group_0_binding_17_cs, ivec2(pixel_5), _e253);
+    float _e255 = out_depth;
+    float _e256 = samples;
+    imageStore(_group_0_binding_18_cs, ivec2(pixel_5), vec4(_e255, _e256, 0.0, 0.0));
+    vec4 _e261 = result;
+    imageStore(_group_0_binding_6_cs, ivec2(pixel_5), _e261);
+    float _e263 = out_depth;
+    imageStore(_group_0_binding_7_cs, ivec2(pixel_5), vec4(_e263, 0.0, 0.0, 0.0));
     return;
 }
 

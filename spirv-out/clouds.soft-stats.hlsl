@@ -107,9 +107,9 @@ Texture3D<float4> shape_tex : register(t1);
 Texture3D<float4> detail_tex : register(t2);
 Texture2D<float4> weather_tex : register(t3);
 Texture2D<float4> curl_tex : register(t4);
-SamplerState nagaSamplerHeap[2048]: register(s16, space0);
-SamplerComparisonState nagaComparisonSamplerHeap[2048]: register(s17, space0);
-StructuredBuffer<uint> nagaGroup0SamplerIndexArray : register(t18, space0);
+SamplerState nagaSamplerHeap[2048]: register(s32, space0);
+SamplerComparisonState nagaComparisonSamplerHeap[2048]: register(s33, space0);
+StructuredBuffer<uint> nagaGroup0SamplerIndexArray : register(t34, space0);
 static const SamplerState noise_sampler = nagaSamplerHeap[nagaGroup0SamplerIndexArray[5]];
 Texture2D<float4> occupancy_in : register(t11);
 RWTexture2D<float> occupancy_out : register(u12);
@@ -351,9 +351,9 @@ float height_cloud_types(float h_2, float cloud_type_1)
     const float _e11 = gradient(h_2, 0.0, 0.2, 0.4, 0.65);
     const float _e16 = gradient(h_2, 0.0, 0.1, 0.6, 0.95);
     const float _e19 = saturate_((cloud_type_1 * 2.0));
-    float lo_1 = lerp(_e6, _e11, _e19);
+    float lo = lerp(_e6, _e11, _e19);
     const float _e25 = saturate_(((cloud_type_1 * 2.0) - 1.0));
-    return lerp(lo_1, _e16, _e25);
+    return lerp(lo, _e16, _e25);
 }
 
 float height_signal(float h_3, float cloud_type_2)
@@ -774,10 +774,10 @@ float start_offset(uint2 pixel_2)
         return (jitter ? _e19 : 0.5);
     }
     const float _e23 = hash_unit(pixel_2, 0u);
-    float base_1 = (jitter ? _e23 : 0.5);
+    float base_2 = (jitter ? _e23 : 0.5);
     uint _e29 = frame.misc.y;
     const float _e32 = van_der_corput(naga_div(_e29, (k_1 * k_1)));
-    return frac((base_1 + _e32));
+    return frac((base_2 + _e32));
 }
 
 Counters ConstructCounters(uint arg0, uint arg1, uint arg2, uint arg3) {
@@ -943,34 +943,26 @@ MarchResult march_pixel(uint2 pixel_3)
     return marchresult;
 }
 
+uint2 bayer2_(uint v_1)
+{
+    return uint2(((v_1 ^ (v_1 >> 1u)) & 1u), (v_1 & 1u));
+}
+
 uint naga_mod(uint lhs, uint rhs) {
     return lhs % (rhs == 0u ? 1u : rhs);
 }
 
-typedef uint2 ret_Constructarray4_uint2_[4];
-ret_Constructarray4_uint2_ Constructarray4_uint2_(uint2 arg0, uint2 arg1, uint2 arg2, uint2 arg3) {
-    uint2 ret[4] = { arg0, arg1, arg2, arg3 };
-    return ret;
-}
-
-typedef uint2 ret_Constructarray16_uint2_[16];
-ret_Constructarray16_uint2_ Constructarray16_uint2_(uint2 arg0, uint2 arg1, uint2 arg2, uint2 arg3, uint2 arg4, uint2 arg5, uint2 arg6, uint2 arg7, uint2 arg8, uint2 arg9, uint2 arg10, uint2 arg11, uint2 arg12, uint2 arg13, uint2 arg14, uint2 arg15) {
-    uint2 ret[16] = { arg0, arg1, arg2, arg3, arg4, arg5, arg6, arg7, arg8, arg9, arg10, arg11, arg12, arg13, arg14, arg15 };
-    return ret;
-}
-
 uint2 block_offset(uint f, uint k)
 {
-    uint2 b2_[4] = Constructarray4_uint2_(uint2(0u, 0u), uint2(1u, 1u), uint2(1u, 0u), uint2(0u, 1u));
-    uint2 b4_[16] = Constructarray16_uint2_(uint2(0u, 0u), uint2(2u, 2u), uint2(2u, 0u), uint2(0u, 2u), uint2(1u, 1u), uint2(3u, 3u), uint2(3u, 1u), uint2(1u, 3u), uint2(1u, 0u), uint2(3u, 2u), uint2(3u, 0u), uint2(1u, 2u), uint2(0u, 1u), uint2(2u, 3u), uint2(2u, 1u), uint2(0u, 3u));
-
     if ((k == 2u)) {
-        uint2 _e21 = b2_[min(uint(naga_mod(f, 4u)), 3u)];
-        return _e21;
+        const uint2 _e6 = bayer2_(naga_mod(f, 4u));
+        return _e6;
     }
     if ((k == 4u)) {
-        uint2 _e77 = b4_[min(uint(naga_mod(f, 16u)), 15u)];
-        return _e77;
+        uint b_4 = naga_mod(f, 16u);
+        const uint2 _e13 = bayer2_((b_4 >> 2u));
+        const uint2 _e17 = bayer2_((b_4 & 3u));
+        return (_e13 + (2u * _e17));
     }
     return (0u).xx;
 }
@@ -1055,84 +1047,49 @@ float4 catmull_rom(float t)
     return float4((t * (-0.5 + (t * (1.0 - (0.5 * t))))), (1.0 + ((t * t) * (-2.5 + (1.5 * t)))), (t * (0.5 + (t * (2.0 - (1.5 * t))))), ((t * t) * (-0.5 + (0.5 * t))));
 }
 
+float4 history_row(int2 base_1, int dy, float4 wx)
+{
+    uint4 _e5 = frame.counts;
+    int2 size_2 = int2(_e5.xy);
+    int y_1 = clamp(asint(asuint(base_1.y) + asuint(dy)), int(0), asint(asuint(size_2.y) - asuint(int(1))));
+    int x0_ = clamp(asint(asuint(base_1.x) - asuint(int(1))), int(0), asint(asuint(size_2.x) - asuint(int(1))));
+    int x1_ = clamp(base_1.x, int(0), asint(asuint(size_2.x) - asuint(int(1))));
+    int x2_ = clamp(asint(asuint(base_1.x) + asuint(int(1))), int(0), asint(asuint(size_2.x) - asuint(int(1))));
+    int x3_ = clamp(asint(asuint(base_1.x) + asuint(int(2))), int(0), asint(asuint(size_2.x) - asuint(int(1))));
+    float4 _e48 = history_in.Load(int3(int2(x0_, y_1), int(0)));
+    float4 _e54 = history_in.Load(int3(int2(x1_, y_1), int(0)));
+    float4 _e61 = history_in.Load(int3(int2(x2_, y_1), int(0)));
+    float4 _e68 = history_in.Load(int3(int2(x3_, y_1), int(0)));
+    return ((((_e48 * wx.x) + (_e54 * wx.y)) + (_e61 * wx.z)) + (_e68 * wx.w));
+}
+
 int2 naga_f2i32(float2 value) {
     return int2(clamp(value, -2147483600.0, 2147483500.0));
 }
 
 float4 history_at(float2 q_1)
 {
-    float4 sum = (0.0).xxxx;
-    int j = int(0);
-    float4 row = (float4)0;
-    int i_3 = (int)0;
-
     uint4 _e3 = frame.counts;
-    int2 size_2 = int2(_e3.xy);
-    float2 c_4 = clamp(q_1, (0.0).xx, float2(asint(asuint(size_2) - asuint((int(1)).xx))));
-    int2 base_2 = naga_f2i32(floor(c_4));
-    float2 f_2 = (c_4 - float2(base_2));
+    int2 size_3 = int2(_e3.xy);
+    float2 c_4 = clamp(q_1, (0.0).xx, float2(asint(asuint(size_3) - asuint((int(1)).xx))));
+    int2 base_3 = naga_f2i32(floor(c_4));
+    float2 f_2 = (c_4 - float2(base_3));
     const float4 _e18 = catmull_rom(f_2.x);
     const float4 _e20 = catmull_rom(f_2.y);
-    uint2 loop_bound_3 = uint2(4294967295u, 4294967295u);
-    bool loop_init_2 = true;
-    while(true) {
-        if (all(loop_bound_3 == uint2(0u, 0u))) { break; }
-        loop_bound_3 -= uint2(loop_bound_3.y == 0u, 1u);
-        if (!loop_init_2) {
-            int _e69 = j;
-            j = asint(asuint(_e69) + asuint(int(1)));
-        }
-        loop_init_2 = false;
-        int _e26 = j;
-        if ((_e26 < int(4))) {
-        } else {
-            break;
-        }
-        {
-            row = (0.0).xxxx;
-            i_3 = int(0);
-            uint2 loop_bound_4 = uint2(4294967295u, 4294967295u);
-            bool loop_init_3 = true;
-            while(true) {
-                if (all(loop_bound_4 == uint2(0u, 0u))) { break; }
-                loop_bound_4 -= uint2(loop_bound_4.y == 0u, 1u);
-                if (!loop_init_3) {
-                    int _e60 = i_3;
-                    i_3 = asint(asuint(_e60) + asuint(int(1)));
-                }
-                loop_init_3 = false;
-                int _e34 = i_3;
-                if ((_e34 < int(4))) {
-                } else {
-                    break;
-                }
-                {
-                    int _e37 = i_3;
-                    int _e40 = j;
-                    int2 t_2 = clamp(asint(asuint(base_2) + asuint(int2(asint(asuint(_e37) - asuint(int(1))), asint(asuint(_e40) - asuint(int(1)))))), (int(0)).xx, asint(asuint(size_2) - asuint((int(1)).xx)));
-                    float4 _e51 = row;
-                    float4 _e54 = history_in.Load(int3(t_2, int(0)));
-                    int _e55 = i_3;
-                    row = (_e51 + (_e54 * _e18[min(uint(_e55), 3u)]));
-                }
-            }
-            float4 _e62 = sum;
-            float4 _e63 = row;
-            int _e64 = j;
-            sum = (_e62 + (_e63 * _e20[min(uint(_e64), 3u)]));
-        }
-    }
-    float4 _e71 = sum;
-    float _e77 = sum.w;
-    const float _e78 = saturate_(_e77);
-    return float4(max(_e71.xyz, (0.0).xxx), _e78);
+    const float4 _e22 = history_row(base_3, int(-1), _e18);
+    const float4 _e26 = history_row(base_3, int(0), _e18);
+    const float4 _e31 = history_row(base_3, int(1), _e18);
+    const float4 _e36 = history_row(base_3, int(2), _e18);
+    float4 sum = ((((_e22 * _e20.x) + (_e26 * _e20.y)) + (_e31 * _e20.z)) + (_e36 * _e20.w));
+    const float _e45 = saturate_(sum.w);
+    return float4(max(sum.xyz, (0.0).xxx), _e45);
 }
 
 float4 meta_at(float2 q_2)
 {
     uint4 _e3 = frame.counts;
-    int2 size_3 = int2(_e3.xy);
-    int2 p_8 = clamp(naga_f2i32(round(q_2)), (int(0)).xx, asint(asuint(size_3) - asuint((int(1)).xx)));
+    int2 size_4 = int2(_e3.xy);
+    int2 p_8 = clamp(naga_f2i32(round(q_2)), (int(0)).xx, asint(asuint(size_4) - asuint((int(1)).xx)));
     float4 _e16 = meta_in.Load(int3(p_8, int(0)));
     return _e16;
 }
@@ -1202,48 +1159,48 @@ void occupancy(uint3 id : SV_DispatchThreadID)
     if (any((id.xy >= (64u).xx))) {
         return;
     }
-    int2 size_4 = int2(NagaDimensions2D(weather_tex));
-    int2 lo_2 = asint(asuint(naga_div(asint(asuint(int2(id.xy)) * asuint(size_4)), (int(64)).xx)) - asuint((int(1)).xx));
-    int2 hi_1 = naga_div(asint(asuint(asint(asuint(int2(id.xy)) + asuint((int(1)).xx))) * asuint(size_4)), (int(64)).xx);
-    y = lo_2.y;
-    uint2 loop_bound_5 = uint2(4294967295u, 4294967295u);
-    bool loop_init_4 = true;
+    int2 size_5 = int2(NagaDimensions2D(weather_tex));
+    int2 lo_1 = asint(asuint(naga_div(asint(asuint(int2(id.xy)) * asuint(size_5)), (int(64)).xx)) - asuint((int(1)).xx));
+    int2 hi = naga_div(asint(asuint(asint(asuint(int2(id.xy)) + asuint((int(1)).xx))) * asuint(size_5)), (int(64)).xx);
+    y = lo_1.y;
+    uint2 loop_bound_3 = uint2(4294967295u, 4294967295u);
+    bool loop_init_2 = true;
     while(true) {
-        if (all(loop_bound_5 == uint2(0u, 0u))) { break; }
-        loop_bound_5 -= uint2(loop_bound_5.y == 0u, 1u);
-        if (!loop_init_4) {
+        if (all(loop_bound_3 == uint2(0u, 0u))) { break; }
+        loop_bound_3 -= uint2(loop_bound_3.y == 0u, 1u);
+        if (!loop_init_2) {
             int _e54 = y;
             y = asint(asuint(_e54) + asuint(int(1)));
         }
-        loop_init_4 = false;
+        loop_init_2 = false;
         int _e30 = y;
-        if ((_e30 <= hi_1.y)) {
+        if ((_e30 <= hi.y)) {
         } else {
             break;
         }
         {
-            x = lo_2.x;
-            uint2 loop_bound_6 = uint2(4294967295u, 4294967295u);
-            bool loop_init_5 = true;
+            x = lo_1.x;
+            uint2 loop_bound_4 = uint2(4294967295u, 4294967295u);
+            bool loop_init_3 = true;
             while(true) {
-                if (all(loop_bound_6 == uint2(0u, 0u))) { break; }
-                loop_bound_6 -= uint2(loop_bound_6.y == 0u, 1u);
-                if (!loop_init_5) {
+                if (all(loop_bound_4 == uint2(0u, 0u))) { break; }
+                loop_bound_4 -= uint2(loop_bound_4.y == 0u, 1u);
+                if (!loop_init_3) {
                     int _e51 = x;
                     x = asint(asuint(_e51) + asuint(int(1)));
                 }
-                loop_init_5 = false;
+                loop_init_3 = false;
                 int _e35 = x;
-                if ((_e35 <= hi_1.x)) {
+                if ((_e35 <= hi.x)) {
                 } else {
                     break;
                 }
                 {
                     int _e38 = x;
                     int _e39 = y;
-                    int2 t_3 = naga_mod(asint(asuint(naga_mod(int2(_e38, _e39), size_4)) + asuint(size_4)), size_4);
+                    int2 t_2 = naga_mod(asint(asuint(naga_mod(int2(_e38, _e39), size_5)) + asuint(size_5)), size_5);
                     float _e44 = m;
-                    float4 _e47 = weather_tex.Load(int3(t_3, int(0)));
+                    float4 _e47 = weather_tex.Load(int3(t_2, int(0)));
                     m = max(_e44, _e47.x);
                 }
             }
@@ -1353,10 +1310,6 @@ void resolve(uint3 id_3 : SV_DispatchThreadID)
     bool local_5 = (bool)0;
     bool local_6 = (bool)0;
     bool local_7 = (bool)0;
-    float4 lo = (1e30).xxxx;
-    float4 hi = (-1e30).xxxx;
-    int dy = int(-1);
-    int dx = (int)0;
     float4 result = (float4)0;
     float samples = (float)0;
     float out_depth = (float)0;
@@ -1435,102 +1388,71 @@ void resolve(uint3 id_3 : SV_DispatchThreadID)
     if (_e115) {
         uint4 _e118 = frame.counts;
         int2 blocks_1 = int2(naga_div(((_e118.xy + (k_3).xx) - (1u).xx), (k_3).xx));
-        uint2 loop_bound_7 = uint2(4294967295u, 4294967295u);
-        bool loop_init_6 = true;
-        while(true) {
-            if (all(loop_bound_7 == uint2(0u, 0u))) { break; }
-            loop_bound_7 -= uint2(loop_bound_7.y == 0u, 1u);
-            if (!loop_init_6) {
-                int _e166 = dy;
-                dy = asint(asuint(_e166) + asuint(int(1)));
-            }
-            loop_init_6 = false;
-            int _e136 = dy;
-            if ((_e136 <= int(1))) {
-            } else {
-                break;
-            }
-            {
-                dx = int(-1);
-                uint2 loop_bound_8 = uint2(4294967295u, 4294967295u);
-                bool loop_init_7 = true;
-                while(true) {
-                    if (all(loop_bound_8 == uint2(0u, 0u))) { break; }
-                    loop_bound_8 -= uint2(loop_bound_8.y == 0u, 1u);
-                    if (!loop_init_7) {
-                        int _e163 = dx;
-                        dx = asint(asuint(_e163) + asuint(int(1)));
-                    }
-                    loop_init_7 = false;
-                    int _e141 = dx;
-                    if ((_e141 <= int(1))) {
-                    } else {
-                        break;
-                    }
-                    {
-                        int _e145 = dx;
-                        int _e146 = dy;
-                        int2 b_4 = clamp(asint(asuint(int2(block)) + asuint(int2(_e145, _e146))), (int(0)).xx, asint(asuint(blocks_1) - asuint((int(1)).xx)));
-                        float4 s_3 = sparse_in.Load(int3(b_4, int(0)));
-                        float4 _e158 = lo;
-                        lo = min(_e158, s_3);
-                        float4 _e160 = hi;
-                        hi = max(_e160, s_3);
-                    }
-                }
-            }
-        }
-        float4 _e168 = history;
-        float4 _e169 = lo;
-        float4 _e170 = hi;
-        history = clamp(_e168, _e169, _e170);
+        int2 b_5 = int2(block);
+        int x0_1 = max(asint(asuint(b_5.x) - asuint(int(1))), int(0));
+        int x2_1 = min(asint(asuint(b_5.x) + asuint(int(1))), asint(asuint(blocks_1.x) - asuint(int(1))));
+        int y0_ = max(asint(asuint(b_5.y) - asuint(int(1))), int(0));
+        int y2_ = min(asint(asuint(b_5.y) + asuint(int(1))), asint(asuint(blocks_1.y) - asuint(int(1))));
+        float4 s00_ = sparse_in.Load(int3(int2(x0_1, y0_), int(0)));
+        float4 s10_ = sparse_in.Load(int3(int2(b_5.x, y0_), int(0)));
+        float4 s20_ = sparse_in.Load(int3(int2(x2_1, y0_), int(0)));
+        float4 s01_ = sparse_in.Load(int3(int2(x0_1, b_5.y), int(0)));
+        float4 s11_ = sparse_in.Load(int3(b_5, int(0)));
+        float4 s21_ = sparse_in.Load(int3(int2(x2_1, b_5.y), int(0)));
+        float4 s02_ = sparse_in.Load(int3(int2(x0_1, y2_), int(0)));
+        float4 s12_ = sparse_in.Load(int3(int2(b_5.x, y2_), int(0)));
+        float4 s22_ = sparse_in.Load(int3(int2(x2_1, y2_), int(0)));
+        float4 lo_2 = min(min(min(s00_, s10_), min(s20_, s01_)), min(min(s11_, s21_), min(min(s02_, s12_), s22_)));
+        float4 hi_1 = max(max(max(s00_, s10_), max(s20_, s01_)), max(max(s11_, s21_), max(max(s02_, s12_), s22_)));
+        float4 _e208 = history;
+        history = clamp(_e208, lo_2, hi_1);
     }
     if (marched) {
-        bool _e175 = valid;
-        if (_e175) {
-            float _e177 = past.y;
-            samples = min((_e177 + 1.0), (moving ? HISTORY_SAMPLES_MOVING : HISTORY_SAMPLES));
-            float4 _e184 = history;
-            float _e185 = samples;
-            result = lerp(_e184, current, (1.0 / _e185));
+        bool _e213 = valid;
+        if (_e213) {
+            float _e215 = past.y;
+            samples = min((_e215 + 1.0), (moving ? HISTORY_SAMPLES_MOVING : HISTORY_SAMPLES));
+            float4 _e222 = history;
+            float _e223 = samples;
+            result = lerp(_e222, current, (1.0 / _e223));
         } else {
             samples = 1.0;
             result = current;
         }
-        float _e191 = past.x;
+        float _e229 = past.x;
         if (!((current_depth > 0.0))) {
-            bool _e197 = valid;
-            local_8 = !(_e197);
+            bool _e235 = valid;
+            local_8 = !(_e235);
         } else {
             local_8 = true;
         }
-        bool _e200 = local_8;
-        out_depth = (_e200 ? current_depth : _e191);
+        bool _e238 = local_8;
+        out_depth = (_e238 ? current_depth : _e229);
     } else {
-        bool _e202 = valid;
-        if (_e202) {
-            float _e204 = past.y;
-            samples = _e204;
-            float4 _e205 = history;
-            result = _e205;
-            float _e207 = past.x;
-            out_depth = _e207;
+        bool _e240 = valid;
+        if (_e240) {
+            float _e242 = past.y;
+            samples = _e242;
+            float4 _e243 = history;
+            result = _e243;
+            float _e245 = past.x;
+            out_depth = _e245;
         } else {
-            const MarchResult _e208 = march_pixel(pixel_6);
+            const MarchResult _e246 = march_pixel(pixel_6);
             samples = 1.0;
-            result = float4(_e208.radiance, _e208.transmittance);
-            out_depth = _e208.depth;
+            result = float4(_e246.radiance, _e246.transmittance);
+            out_depth = _e246.depth;
         }
     }
-    float4 _e215 = result;
-    history_out[pixel_6] = _e215;
-    float _e217 = out_depth;
-    float _e218 = samples;
-    meta_out[pixel_6] = float4(_e217, _e218, 0.0, 0.0);
-    float4 _e223 = result;
-    cloud_out[pixel_6] = _e223;
-    float _e225 = out_depth;
-    depth_out[pixel_6] = float4(_e225, 0.0, 0.0, 0.0);
+    float4 _e253 = result;
+    history_out[pixel_6] = _e253;
+    float _e255 = out_depth;
+    float _e256 = samples;
+    meta_out[pixel_6] = float4(_e255, _e256, 0.0, 0.0);
+    float4 _e261 = result;
+    cloud_out[pixel_6] = _e261;
+    float _e263 = out_depth;
+    depth_out[pixel_6] = float4(_e263, 0.0, 0.0, 0.0);
     return;
 }
 

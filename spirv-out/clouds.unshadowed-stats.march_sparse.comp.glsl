@@ -294,9 +294,9 @@ float height_cloud_types(float h_2, float cloud_type_1) {
     float _e11 = gradient(h_2, 0.0, 0.2, 0.4, 0.65);
     float _e16 = gradient(h_2, 0.0, 0.1, 0.6, 0.95);
     float _e19 = saturate((cloud_type_1 * 2.0));
-    float lo_1 = mix(_e6, _e11, _e19);
+    float lo = mix(_e6, _e11, _e19);
     float _e25 = saturate(((cloud_type_1 * 2.0) - 1.0));
-    return mix(lo_1, _e16, _e25);
+    return mix(lo, _e16, _e25);
 }
 
 float height_signal(float h_3, float cloud_type_2) {
@@ -677,10 +677,10 @@ float start_offset(uvec2 pixel_2) {
         return (jitter ? _e19 : 0.5);
     }
     float _e23 = hash_unit(pixel_2, 0u);
-    float base_1 = (jitter ? _e23 : 0.5);
+    float base_2 = (jitter ? _e23 : 0.5);
     uint _e29 = _group_0_binding_0_cs.misc.y;
     float _e32 = van_der_corput((_e29 / (k_1 * k_1)));
-    return fract((base_1 + _e32));
+    return fract((base_2 + _e32));
 }
 
 MarchResult march_pixel(uvec2 pixel_3) {
@@ -819,16 +819,20 @@ MarchResult march_pixel(uvec2 pixel_3) {
     return MarchResult(_e221, _e222, _e223);
 }
 
+uvec2 bayer2_(uint v_1) {
+    return uvec2(((v_1 ^ (v_1 >> 1u)) & 1u), (v_1 & 1u));
+}
+
 uvec2 block_offset(uint f, uint k) {
-    uvec2 b2_[4] = uvec2[4](uvec2(0u, 0u), uvec2(1u, 1u), uvec2(1u, 0u), uvec2(0u, 1u));
-    uvec2 b4_[16] = uvec2[16](uvec2(0u, 0u), uvec2(2u, 2u), uvec2(2u, 0u), uvec2(0u, 2u), uvec2(1u, 1u), uvec2(3u, 3u), uvec2(3u, 1u), uvec2(1u, 3u), uvec2(1u, 0u), uvec2(3u, 2u), uvec2(3u, 0u), uvec2(1u, 2u), uvec2(0u, 1u), uvec2(2u, 3u), uvec2(2u, 1u), uvec2(0u, 3u));
     if ((k == 2u)) {
-        uvec2 _e21 = b2_[(f % 4u)];
-        return _e21;
+        uvec2 _e6 = bayer2_((f % 4u));
+        return _e6;
     }
     if ((k == 4u)) {
-        uvec2 _e77 = b4_[(f % 16u)];
-        return _e77;
+        uint b_4 = (f % 16u);
+        uvec2 _e13 = bayer2_((b_4 >> 2u));
+        uvec2 _e17 = bayer2_((b_4 & 3u));
+        return (_e13 + (2u * _e17));
     }
     return uvec2(0u);
 }
@@ -908,65 +912,36 @@ vec4 catmull_rom(float t) {
     return vec4((t * (-0.5 + (t * (1.0 - (0.5 * t))))), (1.0 + ((t * t) * (-2.5 + (1.5 * t)))), (t * (0.5 + (t * (2.0 - (1.5 * t))))), ((t * t) * (-0.5 + (0.5 * t))));
 }
 
+vec4 history_row(ivec2 base_1, int dy, vec4 wx) {
+    uvec4 _e5 = _group_0_binding_0_cs.counts;
+    ivec2 size_2 = ivec2(_e5.xy);
+    int y_1 = min(max((base_1.y + dy), 0), (size_2.y - 1));
+    int x0_ = min(max((base_1.x - 1), 0), (size_2.x - 1));
+    int x1_ = min(max(base_1.x, 0), (size_2.x - 1));
+    int x2_ = min(max((base_1.x + 1), 0), (size_2.x - 1));
+    int x3_ = min(max((base_1.x + 2), 0), (size_2.x - 1));
+    vec4 _e48 = texelFetch(_group_0_binding_13_cs, ivec2(x0_, y_1), 0);
+    vec4 _e54 = texelFetch(_group_0_binding_13_cs, ivec2(x1_, y_1), 0);
+    vec4 _e61 = texelFetch(_group_0_binding_13_cs, ivec2(x2_, y_1), 0);
+    vec4 _e68 = texelFetch(_group_0_binding_13_cs, ivec2(x3_, y_1), 0);
+    return ((((_e48 * wx.x) + (_e54 * wx.y)) + (_e61 * wx.z)) + (_e68 * wx.w));
+}
+
 vec4 history_at(vec2 q_1) {
-    vec4 sum = vec4(0.0);
-    int j = 0;
-    vec4 row = vec4(0.0);
-    int i_3 = 0;
     uvec4 _e3 = _group_0_binding_0_cs.counts;
-    ivec2 size_2 = ivec2(_e3.xy);
-    vec2 c_4 = clamp(q_1, vec2(0.0), vec2((size_2 - ivec2(1))));
-    ivec2 base_2 = ivec2(floor(c_4));
-    vec2 f_2 = (c_4 - vec2(base_2));
+    ivec2 size_3 = ivec2(_e3.xy);
+    vec2 c_4 = clamp(q_1, vec2(0.0), vec2((size_3 - ivec2(1))));
+    ivec2 base_3 = ivec2(floor(c_4));
+    vec2 f_2 = (c_4 - vec2(base_3));
     vec4 _e18 = catmull_rom(f_2.x);
     vec4 _e20 = catmull_rom(f_2.y);
-    bool loop_init_2 = true;
-    while(true) {
-        if (!loop_init_2) {
-            int _e69 = j;
-            j = (_e69 + 1);
-        }
-        loop_init_2 = false;
-        int _e26 = j;
-        if ((_e26 < 4)) {
-        } else {
-            break;
-        }
-        {
-            row = vec4(0.0);
-            i_3 = 0;
-            bool loop_init_3 = true;
-            while(true) {
-                if (!loop_init_3) {
-                    int _e60 = i_3;
-                    i_3 = (_e60 + 1);
-                }
-                loop_init_3 = false;
-                int _e34 = i_3;
-                if ((_e34 < 4)) {
-                } else {
-                    break;
-                }
-                {
-                    int _e37 = i_3;
-                    int _e40 = j;
-                    ivec2 t_2 = min(max((base_2 + ivec2((_e37 - 1), (_e40 - 1))), ivec2(0)), (size_2 - ivec2(1)));
-                    vec4 _e51 = row;
-                    vec4 _e54 = texelFetch(_group_0_binding_13_cs, t_2, 0);
-                    int _e55 = i_3;
-                    row = (_e51 + (_e54 * _e18[_e55]));
-                }
-            }
-            vec4 _e62 = sum;
-            vec4 _e63 = row;
-            int _e64 = j;
-            sum = (_e62 + (_e63 * _e20[_e64]));
-        }
-    }
-    vec4 _e71 = sum;
-    float _e77 = sum.w;
-    float _e78 = saturate(_e77);
-    return vec4(max(_e71.xyz, vec3(0.0)), _e78);
+    vec4 _e22 = history_row(base_3, -1, _e18);
+    vec4 _e26 = history_row(base_3, 0, _e18);
+    vec4 _e31 = history_row(base_3, 1, _e18);
+    vec4 _e36 = history_row(base_3, 2, _e18);
+    vec4 sum = ((((_e22 * _e20.x) + (_e26 * _e20.y)) + (_e31 * _e20.z)) + (_e36 * _e20.w));
+    float _e45 = saturate(sum.w);
+    return vec4(max(sum.xyz, vec3(0.0)), _e45);
 }
 
 vec3 sky_radiance(vec3 d_4, float alt_5) {

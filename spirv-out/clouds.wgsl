@@ -707,23 +707,23 @@ const HISTORY_SAMPLES_MOVING: f32 = 2.0;
 // something else: disoccluded.
 const DISOCCLUSION_DEPTH: f32 = 0.2;
 
-// The pixel of each k x k block marched in frame `f`: Bayer order (the 2x2 and 4x4 ordered-
-// dither matrices), so consecutive frames spread over the block.
+// The position in a 2 x 2 block of the pixel with Bayer rank `v` (the ordered-dither matrix
+// [[0, 2], [3, 1]]: rank 0 at (0, 0), 1 at (1, 1), 2 at (1, 0), 3 at (0, 1)).
+fn bayer2(v: u32) -> vec2<u32> {
+    return vec2<u32>((v ^ (v >> 1u)) & 1u, v & 1u);
+}
+
+// The pixel of each k x k block marched in frame `f`: Bayer order, so consecutive frames
+// spread over the block. The 4 x 4 matrix is 4 M2(x mod 2, y mod 2) + M2(x / 2, y / 2), so
+// rank b sits at bayer2(b / 4) + 2 bayer2(b mod 4). (Arithmetic, not a table: lavapipe
+// crashed compiling glslang's SPIR-V for a dynamically indexed local array.)
 fn block_offset(f: u32, k: u32) -> vec2<u32> {
     if k == 2u {
-        var b2 = array<vec2<u32>, 4>(
-            vec2<u32>(0u, 0u), vec2<u32>(1u, 1u), vec2<u32>(1u, 0u), vec2<u32>(0u, 1u),
-        );
-        return b2[f % 4u];
+        return bayer2(f % 4u);
     }
     if k == 4u {
-        var b4 = array<vec2<u32>, 16>(
-            vec2<u32>(0u, 0u), vec2<u32>(2u, 2u), vec2<u32>(2u, 0u), vec2<u32>(0u, 2u),
-            vec2<u32>(1u, 1u), vec2<u32>(3u, 3u), vec2<u32>(3u, 1u), vec2<u32>(1u, 3u),
-            vec2<u32>(1u, 0u), vec2<u32>(3u, 2u), vec2<u32>(3u, 0u), vec2<u32>(1u, 2u),
-            vec2<u32>(0u, 1u), vec2<u32>(2u, 3u), vec2<u32>(2u, 1u), vec2<u32>(0u, 3u),
-        );
-        return b4[f % 16u];
+        let b = f % 16u;
+        return bayer2(b >> 2u) + 2u * bayer2(b & 3u);
     }
     return vec2<u32>(0u);
 }
@@ -784,16 +784,26 @@ fn history_at(q: vec2<f32>) -> vec4<f32> {
     let f = c - vec2<f32>(base);
     let wx = catmull_rom(f.x);
     let wy = catmull_rom(f.y);
-    var sum = vec4<f32>(0.0);
-    for (var j = 0; j < 4; j++) {
-        var row = vec4<f32>(0.0);
-        for (var i = 0; i < 4; i++) {
-            let t = clamp(base + vec2<i32>(i - 1, j - 1), vec2<i32>(0), size - 1);
-            row += textureLoad(history_in, t, 0) * wx[i];
-        }
-        sum += row * wy[j];
-    }
+    // Written out, no dynamically indexed vectors (lavapipe crashed compiling glslang's
+    // SPIR-V for those).
+    let sum = history_row(base, -1, wx) * wy.x + history_row(base, 0, wx) * wy.y
+        + history_row(base, 1, wx) * wy.z + history_row(base, 2, wx) * wy.w;
     return vec4<f32>(max(sum.rgb, vec3<f32>(0.0)), saturate(sum.a));
+}
+
+// One row (`dy` from `base`) of the Catmull-Rom footprint, weighted by `wx`; clamped at the
+// image's edges.
+fn history_row(base: vec2<i32>, dy: i32, wx: vec4<f32>) -> vec4<f32> {
+    let size = vec2<i32>(frame.counts.xy);
+    let y = clamp(base.y + dy, 0, size.y - 1);
+    let x0 = clamp(base.x - 1, 0, size.x - 1);
+    let x1 = clamp(base.x, 0, size.x - 1);
+    let x2 = clamp(base.x + 1, 0, size.x - 1);
+    let x3 = clamp(base.x + 2, 0, size.x - 1);
+    return textureLoad(history_in, vec2<i32>(x0, y), 0) * wx.x
+        + textureLoad(history_in, vec2<i32>(x1, y), 0) * wx.y
+        + textureLoad(history_in, vec2<i32>(x2, y), 0) * wx.z
+        + textureLoad(history_in, vec2<i32>(x3, y), 0) * wx.w;
 }
 
 fn meta_at(q: vec2<f32>) -> vec4<f32> {
@@ -874,16 +884,22 @@ fn resolve(@builtin(global_invocation_id) id: vec3<u32>) {
         // Neighbourhood clamp: last frame's value may not leave the range of this frame's
         // marches around the pixel (3 x 3 blocks), which rejects stale, ghosting history.
         let blocks = vec2<i32>((frame.counts.xy + k - 1u) / k);
-        var lo = vec4<f32>(1e30);
-        var hi = vec4<f32>(-1e30);
-        for (var dy = -1; dy <= 1; dy++) {
-            for (var dx = -1; dx <= 1; dx++) {
-                let b = clamp(vec2<i32>(block) + vec2<i32>(dx, dy), vec2<i32>(0), blocks - 1);
-                let s = textureLoad(sparse_in, b, 0);
-                lo = min(lo, s);
-                hi = max(hi, s);
-            }
-        }
+        let b = vec2<i32>(block);
+        let x0 = max(b.x - 1, 0);
+        let x2 = min(b.x + 1, blocks.x - 1);
+        let y0 = max(b.y - 1, 0);
+        let y2 = min(b.y + 1, blocks.y - 1);
+        let s00 = textureLoad(sparse_in, vec2<i32>(x0, y0), 0);
+        let s10 = textureLoad(sparse_in, vec2<i32>(b.x, y0), 0);
+        let s20 = textureLoad(sparse_in, vec2<i32>(x2, y0), 0);
+        let s01 = textureLoad(sparse_in, vec2<i32>(x0, b.y), 0);
+        let s11 = textureLoad(sparse_in, b, 0);
+        let s21 = textureLoad(sparse_in, vec2<i32>(x2, b.y), 0);
+        let s02 = textureLoad(sparse_in, vec2<i32>(x0, y2), 0);
+        let s12 = textureLoad(sparse_in, vec2<i32>(b.x, y2), 0);
+        let s22 = textureLoad(sparse_in, vec2<i32>(x2, y2), 0);
+        let lo = min(min(min(s00, s10), min(s20, s01)), min(min(s11, s21), min(min(s02, s12), s22)));
+        let hi = max(max(max(s00, s10), max(s20, s01)), max(max(s11, s21), max(max(s02, s12), s22)));
         history = clamp(history, lo, hi);
     }
 

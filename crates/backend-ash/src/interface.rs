@@ -15,7 +15,7 @@ use ash::vk;
 use stratus_graph::{
     FramePlan, Program,
     manifest::BindingKind,
-    plan::{Binding, Pass, PassKind},
+    plan::{Binding, Pass, PassKind, bound_name},
 };
 
 use crate::error::Error;
@@ -76,7 +76,7 @@ impl PassShader {
                 .map(|b| Slot {
                     set: b.group,
                     binding: b.binding,
-                    content: SlotContent::Plan(plan.resources[b.resource].name.clone()),
+                    content: SlotContent::Plan(bound_name(plan, b)),
                 })
                 .collect(),
         })
@@ -99,7 +99,8 @@ pub struct Slot {
 #[cfg_attr(not(feature = "conformance"), allow(dead_code))]
 #[derive(Clone, Debug, PartialEq, Eq, Hash)]
 pub enum SlotContent {
-    /// The frame's resource of this name, of the kind the pass's plan binding declares
+    /// The frame's resource of this name (`name.previous`: last frame's half of a history
+    /// pair), of the kind the pass's plan binding declares
     /// (uniform buffer, sampled or storage image, storage buffer, sampler).
     Plan(String),
     /// A sampled image of the frame combined with a sampler (GLSL's `sampler2D`): the noise
@@ -157,7 +158,7 @@ pub(crate) fn descriptors<'p>(
                     binding: b.binding,
                     ty: descriptor_type(b)?,
                     count: 1,
-                    content: SlotContent::Plan(plan.resources[b.resource].name.clone()),
+                    content: SlotContent::Plan(bound_name(plan, b)),
                     plan: Some(b),
                 })
             })
@@ -177,7 +178,7 @@ pub(crate) fn descriptors<'p>(
         let plan_binding = |r: &str| {
             pass.bindings
                 .iter()
-                .find(|b| plan.resources[b.resource].name == r)
+                .find(|b| bound_name(plan, b) == r)
                 .ok_or_else(|| {
                     Error::Shader(format!(
                         "pass `{}`: slot {}/{} binds `{r}`, which the pass's plan does not use",

@@ -43,7 +43,7 @@ use stratus_graph::{
     backend::{
         FrameState, Made, Readout, cpu_wall_timings, history_half, timings_from_ticks, upload_data,
     },
-    desc::{Lifetime, ResourceKind},
+    desc::{Lifetime, PREVIOUS, ResourceKind},
     plan::{Pass, PassKind, Requirements},
 };
 use stratus_noise::NoiseSet;
@@ -818,9 +818,10 @@ impl Renderer {
                         ))
                     };
                     let image = |name: &str| -> Result<(vk::DescriptorImageInfo, bool), Error> {
+                        // `name.previous`: the pair's resource; the binding picks the half.
                         let r = self
                             .resources
-                            .get(name)
+                            .get(name.strip_suffix(PREVIOUS).unwrap_or(name))
                             .ok_or_else(|| missing(format!("`{name}`")))?;
                         let Object::Images(images) = &r.object else {
                             return Err(missing(format!("image `{name}`")));
@@ -843,7 +844,11 @@ impl Renderer {
                         ))
                     };
                     let info = match &d.content {
-                        Content::Plan(name) => match self.resources.get(name).map(|r| &r.object) {
+                        Content::Plan(name) => match self
+                            .resources
+                            .get(name.strip_suffix(PREVIOUS).unwrap_or(name))
+                            .map(|r| &r.object)
+                        {
                             Some(Object::Uniform) => {
                                 buffer(self.uniform.as_ref().expect("created by prepare").buffer)
                             }
@@ -1319,7 +1324,7 @@ impl Renderer {
         let key = match shader {
             None => PipelineKey::Program {
                 spv: spv.clone(),
-                pass: pass.name.clone(),
+                pass: pass.pipeline_name(),
             },
             Some(s) => {
                 let mut h = std::collections::hash_map::DefaultHasher::new();

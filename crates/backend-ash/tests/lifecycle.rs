@@ -64,3 +64,28 @@ fn changing_size_and_variant_rebuilds_and_leaks_nothing() {
     assert_eq!(outputs[0].image, outputs[3].image);
     renderer.finish().expect("clean teardown");
 }
+
+#[test]
+fn switching_temporal_upsampling_on_and_off_rebuilds_and_leaks_nothing() {
+    let scene = small("cumulus-noon", 16, 9);
+    let noise = small_noise(scene.noise.seed);
+    let mut renderer = Renderer::new(Options { validation: true }).expect("renderer");
+    for (temporal, stats) in [
+        (stratus_scene::Temporal::Off, false),
+        (stratus_scene::Temporal::Sixteenth, false),
+        (stratus_scene::Temporal::Sixteenth, true),
+        (stratus_scene::Temporal::Off, true),
+        (stratus_scene::Temporal::Quarter, false),
+    ] {
+        let mut scene = scene.clone();
+        scene.quality.temporal = temporal;
+        let plan = FramePlan::for_scene(&scene, stats).expect("plan");
+        for _ in 0..2 {
+            let out = renderer
+                .render(&FrameInput::new(&plan, &scene, &noise))
+                .unwrap_or_else(|e| panic!("{temporal:?}: {e}"));
+            assert_eq!(out.radiance.len(), 16 * 9 * 4);
+        }
+    }
+    renderer.finish().expect("teardown without leaks");
+}

@@ -715,7 +715,7 @@ impl Renderer {
                 })
                 .collect(),
         };
-        (pass.module.clone(), variant, pass.name.clone(), formats)
+        (pass.module.clone(), variant, pass.pipeline_name(), formats)
     }
 
     /// Creates (once per module variant, pass and target formats) a pass's pipeline.

@@ -135,6 +135,9 @@ pub struct FrameInput<'a> {
     /// Computed persistent resources whose inputs changed (a LUT when the sun moved): the
     /// passes that compute them run again (`when = "stale:NAME"`).
     pub invalidate: &'a [&'a str],
+    /// A camera cut: last frame's history is not used (no `history` flag, temporal
+    /// upsampling starts over) although it is valid.
+    pub cut: bool,
 }
 
 impl<'a> FrameInput<'a> {
@@ -147,7 +150,13 @@ impl<'a> FrameInput<'a> {
             readback: Readback::output(),
             flags: &[],
             invalidate: &[],
+            cut: false,
         }
+    }
+
+    /// The same frame after a camera cut: history starts over.
+    pub fn with_cut(self) -> Self {
+        Self { cut: true, ..self }
     }
 
     /// The same frame, reading back `readback` instead.
@@ -289,7 +298,7 @@ impl FrameState {
         if frame.plan.stats {
             flags.push("stats".into());
         }
-        if self.history_frames > 0 {
+        if self.history_frames > 0 && !frame.cut {
             flags.push("history".into());
         }
         for r in frame
@@ -311,6 +320,7 @@ impl FrameState {
         let mut u = frame.scene.uniforms();
         if let Some(last) = &self.last
             && self.history_frames > 0
+            && !frame.cut
             && frame.plan.has_history()
         {
             u = u.with_previous_camera(last);

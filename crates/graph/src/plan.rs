@@ -174,6 +174,17 @@ pub struct DepthTarget {
     pub load: LoadOp,
 }
 
+/// The resource a binding binds, as the graph names it: `name`, or `name.previous` for last
+/// frame's half of a history pair (a pass may bind both halves).
+pub fn bound_name(plan: &FramePlan, b: &Binding) -> String {
+    let name = &plan.resources[b.resource].name;
+    if b.previous {
+        format!("{name}{PREVIOUS}")
+    } else {
+        name.clone()
+    }
+}
+
 /// What kind of work a pass does.
 #[derive(Clone, Debug, PartialEq)]
 pub enum PassKind {
@@ -232,6 +243,17 @@ impl Pass {
             out.extend(depth.iter().map(|d| d.resource));
         }
         out
+    }
+
+    /// What names the pass's pipeline within a module variant: its name and entry points (two
+    /// passes share a name under opposite plan options, with other entry points).
+    pub fn pipeline_name(&self) -> String {
+        match &self.kind {
+            PassKind::Compute { entry, .. } => format!("{}:{entry}", self.name),
+            PassKind::Raster {
+                vertex, fragment, ..
+            } => format!("{}:{vertex}+{fragment}", self.name),
+        }
     }
 
     /// Whether the pass runs in a frame with these flags.

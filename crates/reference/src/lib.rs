@@ -601,6 +601,9 @@ impl stratus_graph::Backend for CpuBackend {
         let temporal = frame.scene.quality.temporal != stratus_scene::Temporal::Off;
         let mut out = match &self.integrator {
             Integrator::Quadrature(settings) if temporal => {
+                if frame.cut {
+                    self.temporal = temporal::TemporalState::default();
+                }
                 temporal::render(frame.scene, frame.noise, settings, &mut self.temporal)
             }
             _ => {

@@ -40,30 +40,20 @@ struct History {
     meta: Vec<[f32; 2]>,
 }
 
+// WGSL: temporal.wgsl::bayer2
+fn bayer2(v: u32) -> [u32; 2] {
+    [(v ^ (v >> 1)) & 1, v & 1]
+}
+
 // WGSL: temporal.wgsl::block_offset
 fn block_offset(f: u32, k: u32) -> [u32; 2] {
-    const B2: [[u32; 2]; 4] = [[0, 0], [1, 1], [1, 0], [0, 1]];
-    const B4: [[u32; 2]; 16] = [
-        [0, 0],
-        [2, 2],
-        [2, 0],
-        [0, 2],
-        [1, 1],
-        [3, 3],
-        [3, 1],
-        [1, 3],
-        [1, 0],
-        [3, 2],
-        [3, 0],
-        [1, 2],
-        [0, 1],
-        [2, 3],
-        [2, 1],
-        [0, 3],
-    ];
     match k {
-        2 => B2[(f % 4) as usize],
-        4 => B4[(f % 16) as usize],
+        2 => bayer2(f % 4),
+        4 => {
+            let b = f % 16;
+            let (fine, coarse) = (bayer2(b >> 2), bayer2(b & 3));
+            [fine[0] + 2 * coarse[0], fine[1] + 2 * coarse[1]]
+        }
         _ => [0, 0],
     }
 }
@@ -398,5 +388,25 @@ pub(crate) fn render(
         ],
         device: format!("cpu ({} threads)", rayon::current_num_threads()),
         ..Default::default()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The 4x4 and 2x2 ordered-dither (Bayer) matrices, written out: rank at (x, y).
+    #[test]
+    fn block_offsets_follow_the_bayer_matrices() {
+        let m4 = [[0, 8, 2, 10], [12, 4, 14, 6], [3, 11, 1, 9], [15, 7, 13, 5]];
+        for b in 0..16 {
+            let [x, y] = block_offset(b, 4);
+            assert_eq!(m4[y as usize][x as usize], b, "rank {b}");
+        }
+        let m2 = [[0, 2], [3, 1]];
+        for b in 0..4 {
+            let [x, y] = block_offset(b, 2);
+            assert_eq!(m2[y as usize][x as usize], b, "rank {b}");
+        }
     }
 }

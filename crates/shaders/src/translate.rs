@@ -26,13 +26,18 @@ pub fn spv_options() -> back::spv::Options<'static> {
     }
 }
 
-/// GLSL `#version 450` core. Bindings are flattened to `group * 16 + binding` and written as
-/// explicit `layout(binding = N)`, so the GLSL can be compiled without re-mapping.
+/// Binding numbers a bind group may use (`@binding` below this): the GLSL flattens bindings
+/// to `group * BINDINGS_PER_GROUP + binding`, and the HLSL's sampler heap sits above them.
+pub const BINDINGS_PER_GROUP: u32 = 32;
+
+/// GLSL `#version 450` core. Bindings are flattened to `group * BINDINGS_PER_GROUP + binding`
+/// and written as explicit `layout(binding = N)`, so the GLSL can be compiled without
+/// re-mapping.
 fn glsl_options(module: &naga::Module) -> back::glsl::Options {
     let mut binding_map = back::glsl::BindingMap::default();
     for (_, var) in module.global_variables.iter() {
         if let Some(rb) = &var.binding {
-            binding_map.insert(*rb, (rb.group * 16 + rb.binding) as u8);
+            binding_map.insert(*rb, (rb.group * BINDINGS_PER_GROUP + rb.binding) as u8);
         }
     }
     back::glsl::Options {
@@ -44,8 +49,8 @@ fn glsl_options(module: &naga::Module) -> back::glsl::Options {
 }
 
 /// First register (in space 0) of the HLSL's sampler heaps and sampler index buffers: above
-/// every WGSL binding of a group (fewer than 16, as the GLSL's `group * 16 + binding` assumes).
-const HLSL_SAMPLER_REGISTER: u32 = 16;
+/// every WGSL binding of a group.
+const HLSL_SAMPLER_REGISTER: u32 = BINDINGS_PER_GROUP;
 
 /// Shader model 5.1 and naga's defaults (`@group` = space, `@binding` = register), except
 /// where the sampler heap lives. naga's HLSL reaches every sampler through a heap (an array of
@@ -54,7 +59,7 @@ const HLSL_SAMPLER_REGISTER: u32 = 16;
 /// to binding and space to descriptor set: `s0` shares binding 0 with the `b0` uniform block,
 /// and space 255 is out of its range (it keeps 7 bits of the set, and any re-mapping option
 /// fails with "mapped set out of range"). So they move to space 0 above the groups' bindings:
-/// the heap at `s16`, the comparison heap at `s17`, group `g`'s index buffer at `t(18 + g)`.
+/// the heap at `s32`, the comparison heap at `s33`, group `g`'s index buffer at `t(34 + g)`.
 fn hlsl_options(module: &naga::Module) -> back::hlsl::Options {
     let at = |register: u32| back::hlsl::BindTarget {
         space: 0,

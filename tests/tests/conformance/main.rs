@@ -23,6 +23,7 @@
 mod paths;
 mod report;
 mod scenes;
+mod sequence;
 mod spirv;
 
 use std::{
@@ -144,6 +145,8 @@ pub struct Run {
     /// What validation reported when the renderers were torn down.
     pub teardown: Vec<String>,
     pub seconds: f64,
+    /// The moving-camera temporal sequence on every path.
+    pub sequence: sequence::SequenceResult,
 }
 
 /// Writes straight to stderr, past the test harness's output capture, so that the table is
@@ -219,12 +222,16 @@ impl Run {
                 &mut spent,
             ));
         }
+        let t_sequence = Instant::now();
+        let sequence = sequence::execute(&mut renderers, &noise);
+        let t_sequence = t_sequence.elapsed();
         let teardown = renderers.finish();
         let run = Run {
             scenes,
             devices,
             teardown,
             seconds: t0.elapsed().as_secs_f64(),
+            sequence,
         };
         let mut text = format!(
             "\nconformance: {} scenes at {}x{} in {:.1} s (noise {:.1} s, devices {:.1} s; rendering per path: {})\n\n",
@@ -244,8 +251,14 @@ impl Run {
         text.push('\n');
         text.push_str(&report::maxima(&run, false));
         text.push_str(&report::ratio_summary(&run));
+        let sequence_text = sequence::summary(&run.sequence);
+        text.push_str(&sequence_text);
+        text.push_str(&format!(
+            "(the sequence took {:.1} s)\n",
+            t_sequence.as_secs_f64()
+        ));
         let md = report::target_dir().join("conformance.md");
-        match std::fs::write(&md, report::markdown(&run)) {
+        match std::fs::write(&md, report::markdown(&run) + &sequence_text) {
             Ok(()) => text.push_str(&format!("\ntable written to {}\n", md.display())),
             Err(e) => text.push_str(&format!("\ncould not write {}: {e}\n", md.display())),
         }
@@ -490,6 +503,21 @@ fn ash_hlsl_is_within_its_bounds_of_wgpu_vulkan() {
 #[test]
 fn cpu_is_within_its_bounds_of_wgpu_vulkan() {
     assert_path(Path::Cpu);
+}
+
+#[test]
+fn a_moving_temporal_sequence_agrees_on_every_path() {
+    let problems: Vec<String> = run()
+        .sequence
+        .problems
+        .iter()
+        .flat_map(|(path, list)| list.iter().map(move |p| format!("{}: {p}", path.label())))
+        .collect();
+    assert!(
+        problems.is_empty(),
+        "the temporal sequence:\n{}",
+        problems.join("\n")
+    );
 }
 
 #[test]

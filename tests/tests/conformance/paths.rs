@@ -6,7 +6,6 @@ use stratus_backend_ash as ash_backend;
 use stratus_backend_wgpu as wgpu_backend;
 use stratus_graph::{FrameInput, FrameOutput, FramePlan, plan::PassKind};
 use stratus_noise::NoiseSet;
-use stratus_reference::{Integrator, QuadratureSettings};
 use stratus_scene::Scene;
 
 use crate::spirv::{self, Lang};
@@ -122,7 +121,8 @@ pub struct Renderers {
     wgpu_vulkan: Result<wgpu_backend::Renderer, String>,
     wgpu_gl: Result<wgpu_backend::Renderer, String>,
     ash: Result<ash_backend::Renderer, String>,
-    compiled: HashMap<(String, Lang), Result<Prepared, String>>,
+    cpu: stratus_reference::CpuBackend,
+    compiled: HashMap<(String, String, Lang), Result<Prepared, String>>,
     scratch: PathBuf,
 }
 
@@ -135,6 +135,7 @@ impl Renderers {
             wgpu_gl: wgpu_renderer(wgpu_backend::Api::Gl),
             ash: ash_backend::Renderer::new(ash_backend::Options { validation: true })
                 .map_err(|e| e.to_string()),
+            cpu: stratus_reference::CpuBackend::default(),
             compiled: HashMap::new(),
             scratch,
         }
@@ -179,8 +180,24 @@ impl Renderers {
         noise: &Arc<NoiseSet>,
         stats: bool,
     ) -> Result<Rendered, String> {
+        self.render_frame(path, scene, noise, stats, false)
+    }
+
+    /// [`Renderers::render`] as a frame of a sequence: `cut` starts the history over (the
+    /// first frame of a path's sequence), otherwise the renderer reprojects last frame's.
+    pub fn render_frame(
+        &mut self,
+        path: Path,
+        scene: &Scene,
+        noise: &Arc<NoiseSet>,
+        stats: bool,
+        cut: bool,
+    ) -> Result<Rendered, String> {
         let plan = FramePlan::for_scene(scene, stats).map_err(|e| e.to_string())?;
-        let frame = FrameInput::new(&plan, scene, noise);
+        let mut frame = FrameInput::new(&plan, scene, noise);
+        if cut {
+            frame = frame.with_cut();
+        }
         let whole = |frame| Rendered {
             frame,
             substituted: Vec::new(),
@@ -208,7 +225,9 @@ impl Renderers {
                     Lang::Hlsl
                 };
                 let r = self.ash.as_mut().map_err(|e| e.clone())?;
-                let key = (plan.variant.clone(), lang);
+                // A variant's shaders per pass list: temporal plans run other entry points.
+                let passes: Vec<&str> = plan.passes.iter().map(|p| p.name.as_str()).collect();
+                let key = (plan.variant.clone(), passes.join(","), lang);
                 if !self.compiled.contains_key(&key) {
                     let prepared = spirv::compile(&plan, lang, &self.scratch)
                         .and_then(|list| prepare(r, &frame, list));
@@ -223,12 +242,15 @@ impl Renderers {
                     substituted: p.substituted.clone(),
                 })
             }
-            Path::Cpu => Ok(whole(stratus_reference::render(
-                scene,
-                noise,
-                &Integrator::Quadrature(QuadratureSettings::realtime()),
-                false,
-            ))),
+            // The CPU renderer at the real-time settings, keeping temporal history as the GPU
+            // renderers do.
+            Path::Cpu => {
+                use stratus_graph::Backend as _;
+                self.cpu
+                    .render(&frame)
+                    .map(whole)
+                    .map_err(|e| e.to_string())
+            }
             Path::Msl => Err("MSL is not executed here (no Metal runtime)".into()),
         }
     }

@@ -25,7 +25,7 @@ fn compute_entry(pass: &Pass) -> Option<&str> {
 
 /// The name of the resource a binding binds.
 fn bound(plan: &FramePlan, b: &stratus_graph::plan::Binding) -> String {
-    plan.resources[b.resource].name.clone()
+    stratus_graph::plan::bound_name(plan, b)
 }
 
 /// Which of naga's texts a module was compiled from.
@@ -287,7 +287,10 @@ fn slots_for(
         .collect()
 }
 
-/// naga's GLSL: every binding at `group * 16 + binding` in set 0 (translate.rs), sampled
+/// The GLSL's bindings per group (translate.rs).
+const PER_GROUP: u32 = stratus_shaders::translate::BINDINGS_PER_GROUP;
+
+/// naga's GLSL: every binding at `group * BINDINGS_PER_GROUP + binding` in set 0 (translate.rs), sampled
 /// textures combined with the sampler (GLSL has no separate sampler objects; naga drops the
 /// sampler binding). The names naga gives (`_group_G_binding_B_cs`) are checked against this.
 fn glsl_slots(plan: &FramePlan, pass: &Pass, r: &Reflection) -> Result<Vec<Slot>, String> {
@@ -299,13 +302,13 @@ fn glsl_slots(plan: &FramePlan, pass: &Pass, r: &Reflection) -> Result<Vec<Slot>
             .and_then(|s| s.split_once("_binding_"))
             .and_then(|(g, b)| Some((g.parse::<u32>().ok()?, b.parse::<u32>().ok()?)));
         match parsed {
-            Some((g, b)) if (d.set, d.binding) != (0, g * 16 + b) => {
+            Some((g, b)) if (d.set, d.binding) != (0, g * PER_GROUP + b) => {
                 return Err(format!(
-                    "`{}` is at set {} binding {}, not at binding {} (group * 16 + binding)",
+                    "`{}` is at set {} binding {}, not at binding {} (group * BINDINGS_PER_GROUP + binding)",
                     d.name,
                     d.set,
                     d.binding,
-                    g * 16 + b
+                    g * PER_GROUP + b
                 ));
             }
             _ => {}
@@ -315,7 +318,7 @@ fn glsl_slots(plan: &FramePlan, pass: &Pass, r: &Reflection) -> Result<Vec<Slot>
         let b = pass
             .bindings
             .iter()
-            .find(|b| d.set == 0 && b.group * 16 + b.binding == d.binding)?;
+            .find(|b| d.set == 0 && b.group * PER_GROUP + b.binding == d.binding)?;
         Some(if b.info.kind == BindingKind::SampledTexture {
             SlotContent::CombinedWithSampler(bound(plan, b))
         } else {
@@ -324,7 +327,7 @@ fn glsl_slots(plan: &FramePlan, pass: &Pass, r: &Reflection) -> Result<Vec<Slot>
     })
 }
 
-/// `register(<class><n>, space<m>)` of the HLSL declaration of `name`, e.g. `("s", 16, 0)`.
+/// `register(<class><n>, space<m>)` of the HLSL declaration of `name`, e.g. `("s", 32, 0)`.
 fn hlsl_register(text: &str, name: &str) -> Option<(String, u32, u32)> {
     let line = text.lines().find(|l| {
         l.split(|c: char| !(c.is_alphanumeric() || c == '_'))
