@@ -6,7 +6,7 @@
 use std::{collections::BTreeMap, path::Path};
 
 use serde::{Deserialize, Serialize};
-use stratus_scene::{Integration, PhaseModel, Scene, ShapeTexture};
+use stratus_scene::{Animation, Integration, Keyframe, PhaseModel, Scene, ShapeTexture, Temporal};
 
 /// One point of the sweep: the quality and method settings a configuration overrides.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -27,6 +27,18 @@ pub struct Config {
     pub jitter: bool,
     /// Shape texture size.
     pub shape_texture: ShapeTexture,
+    /// Temporal upsampling.
+    #[serde(default)]
+    pub temporal: Temporal,
+    /// Dynamic step length.
+    #[serde(default)]
+    pub dynamic_step: bool,
+    /// High-transmittance checkerboard skipping (with temporal upsampling).
+    #[serde(default)]
+    pub checkerboard: bool,
+    /// Empty-space skipping.
+    #[serde(default)]
+    pub empty_space_skip: bool,
 }
 
 impl Config {
@@ -41,7 +53,20 @@ impl Config {
             octaves: scene.lighting.multiple_scattering.octaves,
             jitter: scene.quality.jitter,
             shape_texture: scene.noise.shape_texture,
+            temporal: scene.quality.temporal,
+            dynamic_step: scene.quality.dynamic_step,
+            checkerboard: scene.quality.checkerboard,
+            empty_space_skip: scene.quality.empty_space_skip,
         }
+    }
+
+    /// Whether the configuration uses temporal upsampling or a cheap-march technique: its
+    /// error is also measured on a moving camera against the full march of each frame.
+    pub fn is_method(&self) -> bool {
+        self.temporal != Temporal::Off
+            || self.dynamic_step
+            || self.checkerboard
+            || self.empty_space_skip
     }
 
     /// `scene` with these settings (a fixed step length is dropped: the view steps rule).
@@ -56,13 +81,31 @@ impl Config {
         s.lighting.multiple_scattering.octaves = self.octaves;
         s.quality.jitter = self.jitter;
         s.noise.shape_texture = self.shape_texture;
+        s.quality.temporal = self.temporal;
+        s.quality.dynamic_step = self.dynamic_step;
+        s.quality.checkerboard = self.checkerboard;
+        s.quality.empty_space_skip = self.empty_space_skip;
         s
     }
 
-    /// A short name: every setting, e.g. `v64 l6 analytic hg o2 jitter thesis`.
+    /// A short name: every setting, e.g. `v64 l6 analytic hg o2 jitter 128x32x128`, then the
+    /// methods in use (`temporal 1/16`, `dynamic-step`, `checkerboard`, `skip`).
     pub fn name(&self) -> String {
+        let mut methods = String::new();
+        if self.temporal != Temporal::Off {
+            methods.push_str(&format!(" temporal {}", self.temporal.name()));
+        }
+        for (on, name) in [
+            (self.dynamic_step, " dynamic-step"),
+            (self.checkerboard, " checkerboard"),
+            (self.empty_space_skip, " skip"),
+        ] {
+            if on {
+                methods.push_str(name);
+            }
+        }
         format!(
-            "v{} l{} {} {} o{}{}{} {}",
+            "v{} l{} {} {} o{}{}{} {}{methods}",
             self.view_steps,
             self.light_steps,
             match self.integration {
@@ -123,6 +166,49 @@ pub struct Row {
     pub reference: String,
     /// On the scene's Pareto front of (gpu_ms, flip).
     pub pareto: bool,
+    /// Methods (temporal upsampling, cheap marching) only: on a moving camera
+    /// ([`moving_camera`]), the mean over frames of the mean FLIP against the full march of
+    /// the same frame; `gpu_ms` is then the median frame of that sequence (amortised).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub motion_flip: Option<f64>,
+    /// Methods only: the worst frame's mean FLIP in that sequence.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub motion_flip_worst: Option<f64>,
+}
+
+/// Frames of the bench's moving-camera sequence.
+pub const MOVING_FRAMES: u32 = 48;
+
+/// `scene` with a camera move for measuring methods in motion: over [`MOVING_FRAMES`] frames
+/// at 30 per second, a pan of 0.5 degrees a frame while the camera climbs 2 m and moves 4 m
+/// forward a frame. Frame `i` is `at_time(i / 30)`.
+pub fn moving_camera(scene: &Scene) -> Scene {
+    let mut s = scene.clone();
+    let c = &scene.camera;
+    let n = f64::from(MOVING_FRAMES);
+    let (sy, cy) = c.yaw_deg.to_radians().sin_cos();
+    s.animation = Some(Animation {
+        duration_s: n / 30.0,
+        keyframes: vec![
+            Keyframe {
+                time_s: 0.0,
+                position: c.position,
+                yaw_deg: c.yaw_deg,
+                pitch_deg: c.pitch_deg,
+            },
+            Keyframe {
+                time_s: n / 30.0,
+                position: [
+                    c.position[0] + 4.0 * n * sy,
+                    c.position[1] + 2.0 * n,
+                    c.position[2] + 4.0 * n * cy,
+                ],
+                yaw_deg: c.yaw_deg + 0.5 * n,
+                pitch_deg: c.pitch_deg,
+            },
+        ],
+    });
+    s
 }
 
 /// What `results.json` holds.
@@ -263,7 +349,9 @@ pub fn auto_quality(
             ),
         }
     };
-    for r in &rows {
+    // A single still frame gains nothing from temporal upsampling, and the methods' still error
+    // is not their error in motion: auto quality picks among the per-frame settings.
+    for r in rows.iter().filter(|r| !r.config.is_method()) {
         let e = table
             .entry(r.name.clone())
             .or_insert((r.config.clone(), 0.0, 0.0, 0.0, 0));
@@ -338,6 +426,8 @@ mod tests {
             flip_p95: flip,
             reference: "quadrature".into(),
             pareto: false,
+            motion_flip: None,
+            motion_flip_worst: None,
         }
     }
 

@@ -33,6 +33,13 @@ fn reference_for(scene: &Scene) -> (Integrator, Scene, bool) {
     s.quality.early_exit_transmittance = d.early_exit_transmittance;
     s.quality.light_step_growth = d.light_step_growth;
     s.quality.first_light_step_m = d.first_light_step_m;
+    // Cost-only and amortising methods, and the frame (which seeds the path tracer): the
+    // reference of every frame of a still camera is the same image.
+    s.quality.temporal = d.temporal;
+    s.quality.dynamic_step = d.dynamic_step;
+    s.quality.checkerboard = d.checkerboard;
+    s.quality.empty_space_skip = d.empty_space_skip;
+    s.quality.frame = d.frame;
     let mc = scene.lighting.multiple_scattering.octaves > 0;
     if mc {
         // Real-time-only terms the path tracer does not model.

@@ -9,9 +9,9 @@ use anyhow::Result;
 use indicatif::ProgressBar;
 use stratus::quality::{Config, Row};
 use stratus_compare::{CompareOptions, Image, compare};
-use stratus_graph::{Backend, FrameInput, FramePlan, output::median};
+use stratus_graph::{Backend, FrameInput, FrameOutput, FramePlan, output::median};
 use stratus_noise::NoiseSet;
-use stratus_scene::{Integration, PhaseModel, Scene, ShapeTexture};
+use stratus_scene::{Integration, PhaseModel, Scene, ShapeTexture, Temporal};
 
 use super::reference_cache::reference;
 use crate::scene_io::check_finite;
@@ -117,6 +117,27 @@ pub(super) fn sweep(base: &Config, quick: bool) -> Vec<Config> {
             ..base.clone()
         });
     }
+    // Methods: temporal upsampling and each cheap-march technique on its own (checkerboard
+    // skipping needs temporal upsampling: with 1/16).
+    for temporal in [Temporal::Quarter, Temporal::Sixteenth] {
+        push(Config {
+            temporal,
+            ..base.clone()
+        });
+    }
+    push(Config {
+        dynamic_step: true,
+        ..base.clone()
+    });
+    push(Config {
+        empty_space_skip: true,
+        ..base.clone()
+    });
+    push(Config {
+        temporal: Temporal::Sixteenth,
+        checkerboard: true,
+        ..base.clone()
+    });
     out
 }
 
@@ -206,6 +227,9 @@ fn measure_config(
     settings: MeasureSettings,
 ) -> Result<Row> {
     let (reference, label) = reference(s, noise, settings.mc_spp)?;
+    if config.is_method() {
+        return measure_method(renderer, name, s, config, preset, noise, reference, label);
+    }
     let plan = FramePlan::for_scene(s, false)?;
     let mut frame = None;
     let mut totals = Vec::new();
@@ -231,7 +255,32 @@ fn measure_config(
     let counted = renderer
         .render(&FrameInput::new(&stats_plan, s, noise))
         .map_err(|e| anyhow::anyhow!("{e}"))?;
-    let c = counted.stats.unwrap_or_default();
+    let mut row = row(
+        name,
+        config,
+        preset,
+        &reference,
+        &frame,
+        counted.stats,
+        label,
+    )?;
+    row.gpu_ms = median(totals);
+    row.passes = passes.into_iter().map(|(k, v)| (k, median(v))).collect();
+    Ok(row)
+}
+
+/// A row's counters and errors: `frame` against `reference` (times left at 0).
+#[allow(clippy::too_many_arguments)]
+fn row(
+    name: &str,
+    config: &Config,
+    preset: bool,
+    reference: &FrameOutput,
+    frame: &FrameOutput,
+    stats: Option<BTreeMap<String, u64>>,
+    label: String,
+) -> Result<Row> {
+    let c = stats.unwrap_or_default();
     let pixels = c.get("pixels").copied().unwrap_or(1).max(1) as f64;
     let per = |k: &str| c.get(k).copied().unwrap_or(0) as f64 / pixels;
 
@@ -240,13 +289,13 @@ fn measure_config(
         ..CompareOptions::default()
     };
     let linear = compare(
-        &Image::from_frame_radiance(&reference),
-        &Image::from_frame_radiance(&frame),
+        &Image::from_frame_radiance(reference),
+        &Image::from_frame_radiance(frame),
         &options,
     )?;
     let display = compare(
-        &Image::from_frame_display(&reference),
-        &Image::from_frame_display(&frame),
+        &Image::from_frame_display(reference),
+        &Image::from_frame_display(frame),
         &options,
     )?;
     Ok(Row {
@@ -254,8 +303,8 @@ fn measure_config(
         name: config.name(),
         preset,
         config: config.clone(),
-        gpu_ms: median(totals),
-        passes: passes.into_iter().map(|(k, v)| (k, median(v))).collect(),
+        gpu_ms: 0.0,
+        passes: BTreeMap::new(),
         time_vs_preset: 0.0,
         view_steps_pp: per("view_steps"),
         light_samples_pp: per("light_samples"),
@@ -265,5 +314,103 @@ fn measure_config(
         flip_p95: display.flip.p95,
         reference: label,
         pareto: false,
+        motion_flip: None,
+        motion_flip_worst: None,
     })
+}
+
+/// Frames a still camera renders before a method's image is compared with the reference:
+/// every pixel of a 1/16 block marched four times.
+const STILL_FRAMES: u32 = 64;
+
+/// Measures a method (temporal upsampling, a cheap-march technique): the cost is the median
+/// frame of a moving-camera sequence ([`stratus::quality::moving_camera`]), its motion error
+/// the FLIP of every frame against the full march of the same frame; its still error is
+/// against the reference after [`STILL_FRAMES`] frames of a still camera, as for the others.
+#[allow(clippy::too_many_arguments)]
+fn measure_method(
+    renderer: &mut dyn Backend,
+    name: &str,
+    s: &Scene,
+    config: &Config,
+    preset: bool,
+    noise: &Arc<NoiseSet>,
+    reference: FrameOutput,
+    label: String,
+) -> Result<Row> {
+    let render = |r: &mut dyn Backend, scene: &Scene, cut: bool| -> Result<FrameOutput> {
+        let plan = FramePlan::for_scene(scene, false)?;
+        let mut input = FrameInput::new(&plan, scene, noise);
+        if cut {
+            input = input.with_cut();
+        }
+        let f = r.render(&input).map_err(|e| anyhow::anyhow!("{e}"))?;
+        check_finite(&f)?;
+        Ok(f)
+    };
+    let moving = stratus::quality::moving_camera(s);
+    let frame_at = |i: u32| {
+        let mut f = moving.at_time(f64::from(i) / 30.0);
+        f.quality.frame = i;
+        f
+    };
+    // The full march of every frame first (one plan at a time keeps the method's history).
+    let mut full = Vec::new();
+    for i in 0..stratus::quality::MOVING_FRAMES {
+        let mut f = frame_at(i);
+        f.quality.temporal = Temporal::Off;
+        f.quality.dynamic_step = false;
+        f.quality.checkerboard = false;
+        f.quality.empty_space_skip = false;
+        full.push(render(renderer, &f, i == 0)?);
+    }
+    let options = CompareOptions {
+        exposure: 1.0,
+        ..CompareOptions::default()
+    };
+    let mut flips = Vec::new();
+    let mut totals = Vec::new();
+    let mut passes: BTreeMap<String, Vec<f64>> = BTreeMap::new();
+    for (i, want) in full.iter().enumerate() {
+        let f = render(renderer, &frame_at(i as u32), i == 0)?;
+        if i > 0 {
+            // The first frame of a temporal sequence marches everything.
+            totals.push(f.timings.iter().map(|t| t.ms).sum());
+            for t in &f.timings {
+                passes.entry(t.pass.clone()).or_default().push(t.ms);
+            }
+        }
+        let d = compare(
+            &Image::from_frame_display(want),
+            &Image::from_frame_display(&f),
+            &options,
+        )?;
+        flips.push(d.flip.mean);
+    }
+    // The still image, converged.
+    let mut still = s.clone();
+    let mut frame = None;
+    for i in 0..STILL_FRAMES {
+        still.quality.frame = s.quality.frame.wrapping_add(i);
+        frame = Some(render(renderer, &still, i == 0)?);
+    }
+    let frame = frame.expect("frames");
+    let stats_plan = FramePlan::for_scene(&still, true)?;
+    let counted = renderer
+        .render(&FrameInput::new(&stats_plan, &still, noise))
+        .map_err(|e| anyhow::anyhow!("{e}"))?;
+    let mut row = row(
+        name,
+        config,
+        preset,
+        &reference,
+        &frame,
+        counted.stats,
+        label,
+    )?;
+    row.gpu_ms = median(totals);
+    row.passes = passes.into_iter().map(|(k, v)| (k, median(v))).collect();
+    row.motion_flip = Some(flips.iter().sum::<f64>() / flips.len() as f64);
+    row.motion_flip_worst = Some(flips.iter().copied().fold(0.0, f64::max));
+    Ok(row)
 }
