@@ -166,30 +166,30 @@ Roots ray_shell(float alt, vec3 d, float radius_alt) {
 float altitude_of(vec3 p) {
     float rp_1 = _group_0_binding_0_cs.atmosphere.x;
     float n_1 = (((p.x * p.x) + (p.z * p.z)) + (p.y * (p.y + (2.0 * rp_1))));
-    vec3 q_3 = vec3(p.x, (p.y + rp_1), p.z);
-    return (n_1 / (length(q_3) + rp_1));
+    vec3 q_4 = vec3(p.x, (p.y + rp_1), p.z);
+    return (n_1 / (length(q_4) + rp_1));
 }
 
 bool hits_ground(vec3 p_1, float alt_1, vec3 d_1) {
-    bool local_9 = false;
+    bool local_8 = false;
     float rp_2 = _group_0_binding_0_cs.atmosphere.x;
     float b_2 = dot(d_1, vec3(p_1.x, (p_1.y + rp_2), p_1.z));
     float c_2 = (alt_1 * (alt_1 + (2.0 * rp_2)));
     if ((b_2 < 0.0)) {
-        local_9 = ((b_2 * b_2) >= c_2);
+        local_8 = ((b_2 * b_2) >= c_2);
     } else {
-        local_9 = false;
+        local_8 = false;
     }
-    bool _e24 = local_9;
+    bool _e24 = local_8;
     return _e24;
 }
 
 Interval layer_interval(float alt_2, vec3 d_2) {
     float start = 0.0;
     float end = 0.0;
+    bool local_9 = false;
     bool local_10 = false;
     bool local_11 = false;
-    bool local_12 = false;
     float bottom = _group_0_binding_0_cs.atmosphere.y;
     float top = _group_0_binding_0_cs.atmosphere.z;
     float cutoff = _group_0_binding_0_cs.atmosphere.w;
@@ -206,33 +206,33 @@ Interval layer_interval(float alt_2, vec3 d_2) {
         if ((alt_2 <= top)) {
             end = _e15.t1_;
             if (_e14.hit) {
-                local_10 = (_e14.t0_ > 0.0);
+                local_9 = (_e14.t0_ > 0.0);
             } else {
-                local_10 = false;
+                local_9 = false;
             }
-            bool _e40 = local_10;
+            bool _e40 = local_9;
             if (_e40) {
                 float _e41 = end;
                 end = min(_e41, _e14.t0_);
             }
         } else {
             if (!(!(_e15.hit))) {
-                local_11 = (_e15.t1_ <= 0.0);
+                local_10 = (_e15.t1_ <= 0.0);
             } else {
-                local_11 = true;
+                local_10 = true;
             }
-            bool _e53 = local_11;
+            bool _e53 = local_10;
             if (_e53) {
                 return Interval(0.0, 0.0, 1u);
             }
             start = max(_e15.t0_, 0.0);
             end = _e15.t1_;
             if (_e14.hit) {
-                local_12 = (_e14.t0_ > 0.0);
+                local_11 = (_e14.t0_ > 0.0);
             } else {
-                local_12 = false;
+                local_11 = false;
             }
-            bool _e69 = local_12;
+            bool _e69 = local_11;
             if (_e69) {
                 float _e70 = end;
                 end = min(_e70, _e14.t0_);
@@ -417,36 +417,36 @@ uvec2 block_offset(uint f, uint k) {
 }
 
 vec2 reproject(uvec2 pixel_4, float depth_2) {
+    bool local_19 = false;
     bool local_20 = false;
     bool local_21 = false;
-    bool local_22 = false;
     vec3 dir = vec3(0.0);
     vec4 _e4 = _group_0_binding_0_cs.previous_position;
     vec4 _e7 = _group_0_binding_0_cs.camera_position;
     if (all(equal(_e4, _e7))) {
         vec4 _e14 = _group_0_binding_0_cs.previous_forward;
         vec4 _e17 = _group_0_binding_0_cs.camera_forward;
-        local_20 = all(equal(_e14, _e17));
+        local_19 = all(equal(_e14, _e17));
     } else {
-        local_20 = false;
+        local_19 = false;
     }
-    bool _e21 = local_20;
+    bool _e21 = local_19;
     if (_e21) {
         vec4 _e26 = _group_0_binding_0_cs.previous_right;
         vec4 _e29 = _group_0_binding_0_cs.camera_right;
-        local_21 = all(equal(_e26, _e29));
+        local_20 = all(equal(_e26, _e29));
     } else {
-        local_21 = false;
+        local_20 = false;
     }
-    bool _e33 = local_21;
+    bool _e33 = local_20;
     if (_e33) {
         vec4 _e38 = _group_0_binding_0_cs.previous_up;
         vec4 _e41 = _group_0_binding_0_cs.camera_up;
-        local_22 = all(equal(_e38, _e41));
+        local_21 = all(equal(_e38, _e41));
     } else {
-        local_22 = false;
+        local_21 = false;
     }
-    bool same = local_22;
+    bool same = local_21;
     if (same) {
         return vec2(pixel_4);
     }
@@ -475,20 +475,33 @@ vec2 reproject(uvec2 pixel_4, float depth_2) {
 }
 
 bool on_screen(vec2 q) {
-    bool local_23 = false;
+    bool local_22 = false;
     uvec4 _e3 = _group_0_binding_0_cs.counts;
     vec2 size_1 = vec2(_e3.xy);
     if (all(greaterThanEqual(q, vec2(-0.5)))) {
-        local_23 = all(lessThanEqual(q, (size_1 - vec2(0.5))));
+        local_22 = all(lessThanEqual(q, (size_1 - vec2(0.5))));
     } else {
-        local_23 = false;
+        local_22 = false;
     }
-    bool _e18 = local_23;
+    bool _e18 = local_22;
     return _e18;
 }
 
 vec4 catmull_rom(float t) {
     return vec4((t * (-0.5 + (t * (1.0 - (0.5 * t))))), (1.0 + ((t * t) * (-2.5 + (1.5 * t)))), (t * (0.5 + (t * (2.0 - (1.5 * t))))), ((t * t) * (-0.5 + (0.5 * t))));
+}
+
+bool in_blocks(uvec2 id_6) {
+    uint k_2 = _group_0_binding_0_cs.temporal.x;
+    uvec4 _e7 = _group_0_binding_0_cs.counts;
+    return all(lessThan(id_6, (((_e7.xy + uvec2(k_2)) - uvec2(1u)) / uvec2(k_2))));
+}
+
+uvec2 sparse_pixel(uvec2 id_7) {
+    uint k_3 = _group_0_binding_0_cs.temporal.x;
+    uint _e9 = _group_0_binding_0_cs.misc.y;
+    uvec2 _e10 = block_offset(_e9, k_3);
+    return ((id_7 * k_3) + _e10);
 }
 
 vec3 sky_radiance(vec3 d_4, float alt_5) {
@@ -528,13 +541,13 @@ vec3 aces_fitted(vec3 x_3) {
 }
 
 void main() {
-    uvec3 id_4 = gl_GlobalInvocationID;
+    uvec3 id_5 = gl_GlobalInvocationID;
     vec3 background = vec3(0.0);
     uvec4 _e4 = _group_0_binding_0_cs.counts;
-    if (any(greaterThanEqual(id_4.xy, _e4.xy))) {
+    if (any(greaterThanEqual(id_5.xy, _e4.xy))) {
         return;
     }
-    uvec2 pixel_5 = id_4.xy;
+    uvec2 pixel_5 = id_5.xy;
     vec3 _e9 = view_ray(pixel_5);
     float alt_6 = _group_0_binding_0_cs.camera_position.y;
     vec4 cloud = texelFetch(_group_0_binding_9_cs, ivec2(pixel_5), 0);

@@ -209,23 +209,23 @@ float altitude_of(float3 p)
 {
     float rp_1 = frame.atmosphere.x;
     float n_1 = (((p.x * p.x) + (p.z * p.z)) + (p.y * (p.y + (2.0 * rp_1))));
-    float3 q_3 = float3(p.x, (p.y + rp_1), p.z);
-    return (n_1 / (length(q_3) + rp_1));
+    float3 q_4 = float3(p.x, (p.y + rp_1), p.z);
+    return (n_1 / (length(q_4) + rp_1));
 }
 
 bool hits_ground(float3 p_1, float alt_1, float3 d_1)
 {
-    bool local_9 = (bool)0;
+    bool local_8 = (bool)0;
 
     float rp_2 = frame.atmosphere.x;
     float b_2 = dot(d_1, float3(p_1.x, (p_1.y + rp_2), p_1.z));
     float c_2 = (alt_1 * (alt_1 + (2.0 * rp_2)));
     if ((b_2 < 0.0)) {
-        local_9 = ((b_2 * b_2) >= c_2);
+        local_8 = ((b_2 * b_2) >= c_2);
     } else {
-        local_9 = false;
+        local_8 = false;
     }
-    bool _e24 = local_9;
+    bool _e24 = local_8;
     return _e24;
 }
 
@@ -241,9 +241,9 @@ Interval layer_interval(float alt_2, float3 d_2)
 {
     float start = 0.0;
     float end = 0.0;
+    bool local_9 = (bool)0;
     bool local_10 = (bool)0;
     bool local_11 = (bool)0;
-    bool local_12 = (bool)0;
 
     float bottom = frame.atmosphere.y;
     float top = frame.atmosphere.z;
@@ -262,22 +262,22 @@ Interval layer_interval(float alt_2, float3 d_2)
         if ((alt_2 <= top)) {
             end = _e15.t1_;
             if (_e14.hit) {
-                local_10 = (_e14.t0_ > 0.0);
+                local_9 = (_e14.t0_ > 0.0);
             } else {
-                local_10 = false;
+                local_9 = false;
             }
-            bool _e40 = local_10;
+            bool _e40 = local_9;
             if (_e40) {
                 float _e41 = end;
                 end = min(_e41, _e14.t0_);
             }
         } else {
             if (!(!(_e15.hit))) {
-                local_11 = (_e15.t1_ <= 0.0);
+                local_10 = (_e15.t1_ <= 0.0);
             } else {
-                local_11 = true;
+                local_10 = true;
             }
-            bool _e53 = local_11;
+            bool _e53 = local_10;
             if (_e53) {
                 const Interval interval_1 = ConstructInterval(0.0, 0.0, 1u);
                 return interval_1;
@@ -285,11 +285,11 @@ Interval layer_interval(float alt_2, float3 d_2)
             start = max(_e15.t0_, 0.0);
             end = _e15.t1_;
             if (_e14.hit) {
-                local_12 = (_e14.t0_ > 0.0);
+                local_11 = (_e14.t0_ > 0.0);
             } else {
-                local_12 = false;
+                local_11 = false;
             }
-            bool _e69 = local_12;
+            bool _e69 = local_11;
             if (_e69) {
                 float _e70 = end;
                 end = min(_e70, _e14.t0_);
@@ -376,23 +376,23 @@ uint3 NagaDimensions3D(Texture3D<float4> tex)
 
 float cloud_density(float3 p_3, float alt_3, inout Counters counters)
 {
+    bool local_12 = (bool)0;
     bool local_13 = (bool)0;
-    bool local_14 = (bool)0;
     float base = (float)0;
     float density = (float)0;
+    bool local_14 = (bool)0;
     bool local_15 = (bool)0;
-    bool local_16 = (bool)0;
     float3 detail_pos = (float3)0;
 
     float bottom_1 = frame.atmosphere.y;
     float top_1 = frame.atmosphere.z;
     float h_5 = ((alt_3 - bottom_1) / (top_1 - bottom_1));
     if (!((h_5 < 0.0))) {
-        local_13 = (h_5 > 1.0);
+        local_12 = (h_5 > 1.0);
     } else {
-        local_13 = true;
+        local_12 = true;
     }
-    bool _e22 = local_13;
+    bool _e22 = local_12;
     if (_e22) {
         return 0.0;
     }
@@ -401,11 +401,11 @@ float cloud_density(float3 p_3, float alt_3, inout Counters counters)
     const Weather _e28 = sample_weather(p_3);
     const float _e30 = height_signal(h_5, _e28.cloud_type);
     if (!((_e28.coverage <= 0.0))) {
-        local_14 = (_e30 <= 0.0);
+        local_13 = (_e30 <= 0.0);
     } else {
-        local_14 = true;
+        local_13 = true;
     }
-    bool _e40 = local_14;
+    bool _e40 = local_13;
     if (_e40) {
         return 0.0;
     }
@@ -433,18 +433,18 @@ float cloud_density(float3 p_3, float alt_3, inout Counters counters)
     float strength = frame.erosion.x;
     float threshold = frame.erosion.y;
     if (DETAIL) {
-        local_15 = (strength > 0.0);
+        local_14 = (strength > 0.0);
+    } else {
+        local_14 = false;
+    }
+    bool _e126 = local_14;
+    if (_e126) {
+        float _e129 = base;
+        local_15 = (_e129 < threshold);
     } else {
         local_15 = false;
     }
-    bool _e126 = local_15;
-    if (_e126) {
-        float _e129 = base;
-        local_16 = (_e129 < threshold);
-    } else {
-        local_16 = false;
-    }
-    bool _e132 = local_16;
+    bool _e132 = local_15;
     if (_e132) {
         uint _e134 = counters.detail;
         counters.detail = (_e134 + 1u);
@@ -533,7 +533,7 @@ float sun_optical_depth(float3 rel, float3 p_4, inout Counters counters_1)
     float dist = 0.0;
     float tau = 0.0;
     uint i = 0u;
-    bool local_17 = (bool)0;
+    bool local_16 = (bool)0;
 
     float4 _e5 = frame.sun_direction;
     float3 sun = _e5.xyz;
@@ -563,16 +563,16 @@ float sun_optical_depth(float3 rel, float3 p_4, inout Counters counters_1)
             float _e37 = dist;
             float _e38 = seg;
             float s_2 = (_e37 + (0.5 * _e38));
-            float3 q_4 = (rel + (sun * s_2));
-            const float _e44 = altitude_of(q_4);
+            float3 q_5 = (rel + (sun * s_2));
+            const float _e44 = altitude_of(q_5);
             float _e48 = frame.atmosphere.z;
             if (!((_e44 > _e48))) {
                 float _e56 = frame.atmosphere.y;
-                local_17 = (_e44 < _e56);
+                local_16 = (_e44 < _e56);
             } else {
-                local_17 = true;
+                local_16 = true;
             }
-            bool _e59 = local_17;
+            bool _e59 = local_16;
             if (_e59) {
                 break;
             }
@@ -732,14 +732,14 @@ float empty_cell_exit(float3 p_6, float3 d_3)
 
 void count(uint index, uint value)
 {
-    bool local_18 = (bool)0;
+    bool local_17 = (bool)0;
 
     if (STATS) {
-        local_18 = (value != 0u);
+        local_17 = (value != 0u);
     } else {
-        local_18 = false;
+        local_17 = false;
     }
-    bool _e8 = local_18;
+    bool _e8 = local_17;
     if (_e8) {
         uint _e12; stats.InterlockedAdd(index*4+0, value, _e12);
         return;
@@ -811,7 +811,7 @@ MarchResult march_pixel(uint2 pixel_3)
     uint i_2 = 0u;
     uint stride = 1u;
     uint empty = 0u;
-    bool local_19 = (bool)0;
+    bool local_18 = (bool)0;
     float depth_1 = 0.0;
 
     const float3 _e1 = view_ray(pixel_3);
@@ -876,11 +876,11 @@ MarchResult march_pixel(uint2 pixel_3)
                     empty = (_e144 + 1u);
                     if (dynamic_step) {
                         uint _e149 = empty;
-                        local_19 = (_e149 >= 8u);
+                        local_18 = (_e149 >= 8u);
                     } else {
-                        local_19 = false;
+                        local_18 = false;
                     }
-                    bool _e153 = local_19;
+                    bool _e153 = local_18;
                     if (_e153) {
                         stride = 2u;
                     }
@@ -969,9 +969,9 @@ uint2 block_offset(uint f, uint k)
 
 float2 reproject(uint2 pixel_4, float depth_2)
 {
+    bool local_19 = (bool)0;
     bool local_20 = (bool)0;
     bool local_21 = (bool)0;
-    bool local_22 = (bool)0;
     float3 dir = (float3)0;
 
     float4 _e4 = frame.previous_position;
@@ -979,27 +979,27 @@ float2 reproject(uint2 pixel_4, float depth_2)
     if (all((_e4 == _e7))) {
         float4 _e14 = frame.previous_forward;
         float4 _e17 = frame.camera_forward;
-        local_20 = all((_e14 == _e17));
+        local_19 = all((_e14 == _e17));
     } else {
-        local_20 = false;
+        local_19 = false;
     }
-    bool _e21 = local_20;
+    bool _e21 = local_19;
     if (_e21) {
         float4 _e26 = frame.previous_right;
         float4 _e29 = frame.camera_right;
-        local_21 = all((_e26 == _e29));
+        local_20 = all((_e26 == _e29));
     } else {
-        local_21 = false;
+        local_20 = false;
     }
-    bool _e33 = local_21;
+    bool _e33 = local_20;
     if (_e33) {
         float4 _e38 = frame.previous_up;
         float4 _e41 = frame.camera_up;
-        local_22 = all((_e38 == _e41));
+        local_21 = all((_e38 == _e41));
     } else {
-        local_22 = false;
+        local_21 = false;
     }
-    bool same = local_22;
+    bool same = local_21;
     if (same) {
         return float2(pixel_4);
     }
@@ -1029,16 +1029,16 @@ float2 reproject(uint2 pixel_4, float depth_2)
 
 bool on_screen(float2 q)
 {
-    bool local_23 = (bool)0;
+    bool local_22 = (bool)0;
 
     uint4 _e3 = frame.counts;
     float2 size_1 = float2(_e3.xy);
     if (all((q >= (-0.5).xx))) {
-        local_23 = all((q <= (size_1 - (0.5).xx)));
+        local_22 = all((q <= (size_1 - (0.5).xx)));
     } else {
-        local_23 = false;
+        local_22 = false;
     }
-    bool _e18 = local_23;
+    bool _e18 = local_22;
     return _e18;
 }
 
@@ -1085,13 +1085,48 @@ float4 history_at(float2 q_1)
     return float4(max(sum.xyz, (0.0).xxx), _e45);
 }
 
-float4 meta_at(float2 q_2)
+float4 history_nearest(float2 q_2)
 {
     uint4 _e3 = frame.counts;
     int2 size_4 = int2(_e3.xy);
     int2 p_8 = clamp(naga_f2i32(round(q_2)), (int(0)).xx, asint(asuint(size_4) - asuint((int(1)).xx)));
-    float4 _e16 = meta_in.Load(int3(p_8, int(0)));
+    float4 _e16 = history_in.Load(int3(p_8, int(0)));
     return _e16;
+}
+
+float4 meta_at(float2 q_3)
+{
+    uint4 _e3 = frame.counts;
+    int2 size_5 = int2(_e3.xy);
+    int2 p_9 = clamp(naga_f2i32(round(q_3)), (int(0)).xx, asint(asuint(size_5) - asuint((int(1)).xx)));
+    float4 _e16 = meta_in.Load(int3(p_9, int(0)));
+    return _e16;
+}
+
+uint2 naga_div(uint2 lhs, uint2 rhs) {
+    return lhs / (rhs == 0u ? 1u : rhs);
+}
+
+bool in_blocks(uint2 id_6)
+{
+    uint k_2 = frame.temporal.x;
+    uint4 _e7 = frame.counts;
+    return all((id_6 < naga_div(((_e7.xy + (k_2).xx) - (1u).xx), (k_2).xx)));
+}
+
+uint2 sparse_pixel(uint2 id_7)
+{
+    uint k_3 = frame.temporal.x;
+    uint _e9 = frame.misc.y;
+    const uint2 _e10 = block_offset(_e9, k_3);
+    return ((id_7 * k_3) + _e10);
+}
+
+void store_sparse(uint2 id_8, MarchResult r_2)
+{
+    cloud_out[id_8] = float4(r_2.radiance, r_2.transmittance);
+    depth_out[id_8] = float4(r_2.depth, 0.0, 0.0, 0.0);
+    return;
 }
 
 float3 sky_radiance(float3 d_4, float alt_5)
@@ -1159,9 +1194,9 @@ void occupancy(uint3 id : SV_DispatchThreadID)
     if (any((id.xy >= (64u).xx))) {
         return;
     }
-    int2 size_5 = int2(NagaDimensions2D(weather_tex));
-    int2 lo_1 = asint(asuint(naga_div(asint(asuint(int2(id.xy)) * asuint(size_5)), (int(64)).xx)) - asuint((int(1)).xx));
-    int2 hi = naga_div(asint(asuint(asint(asuint(int2(id.xy)) + asuint((int(1)).xx))) * asuint(size_5)), (int(64)).xx);
+    int2 size_6 = int2(NagaDimensions2D(weather_tex));
+    int2 lo_1 = asint(asuint(naga_div(asint(asuint(int2(id.xy)) * asuint(size_6)), (int(64)).xx)) - asuint((int(1)).xx));
+    int2 hi = naga_div(asint(asuint(asint(asuint(int2(id.xy)) + asuint((int(1)).xx))) * asuint(size_6)), (int(64)).xx);
     y = lo_1.y;
     uint2 loop_bound_3 = uint2(4294967295u, 4294967295u);
     bool loop_init_2 = true;
@@ -1198,7 +1233,7 @@ void occupancy(uint3 id : SV_DispatchThreadID)
                 {
                     int _e38 = x;
                     int _e39 = y;
-                    int2 t_2 = naga_mod(asint(asuint(naga_mod(int2(_e38, _e39), size_5)) + asuint(size_5)), size_5);
+                    int2 t_2 = naga_mod(asint(asuint(naga_mod(int2(_e38, _e39), size_6)) + asuint(size_6)), size_6);
                     float _e44 = m;
                     float4 _e47 = weather_tex.Load(int3(t_2, int(0)));
                     m = max(_e44, _e47.x);
@@ -1224,107 +1259,109 @@ void march(uint3 id_1 : SV_DispatchThreadID)
     return;
 }
 
-uint2 naga_div(uint2 lhs, uint2 rhs) {
-    return lhs / (rhs == 0u ? 1u : rhs);
-}
-
 [numthreads(8, 8, 1)]
 void march_sparse(uint3 id_2 : SV_DispatchThreadID)
 {
     MarchResult r = ConstructMarchResult((0.0).xxx, 1.0, 0.0);
-    bool skip = (bool)0;
-    bool local = (bool)0;
-    bool local_1 = (bool)0;
-    bool local_2 = (bool)0;
-    bool local_3 = (bool)0;
 
-    uint k_2 = frame.temporal.x;
-    uint4 _e7 = frame.counts;
-    uint2 blocks = naga_div(((_e7.xy + (k_2).xx) - (1u).xx), (k_2).xx);
-    if (any((id_2.xy >= blocks))) {
+    const bool _e2 = in_blocks(id_2.xy);
+    if (!(_e2)) {
         return;
     }
-    uint _e24 = frame.misc.y;
-    const uint2 _e25 = block_offset(_e24, k_2);
-    uint2 pixel_5 = ((id_2.xy * k_2) + _e25);
-    uint4 _e35 = frame.counts;
-    skip = any((pixel_5 >= _e35.xy));
-    bool _e40 = skip;
-    if (!(_e40)) {
-        uint _e47 = frame.modes.w;
-        local = ((_e47 & FLAG_CHECKERBOARD) != 0u);
-    } else {
-        local = false;
+    const uint2 _e5 = sparse_pixel(id_2.xy);
+    uint4 _e14 = frame.counts;
+    if (all((_e5 < _e14.xy))) {
+        const MarchResult _e18 = march_pixel(_e5);
+        r = _e18;
     }
-    bool _e53 = local;
-    if (_e53) {
-        uint _e59 = frame.temporal.y;
-        local_1 = (_e59 != 0u);
-    } else {
-        local_1 = false;
-    }
-    bool _e63 = local_1;
-    if (_e63) {
-        uint _e67 = frame.misc.y;
-        uint turn = naga_div(_e67, (k_2 * k_2));
-        const float2 _e71 = reproject(pixel_5, 0.0);
-        if (((((id_2.x + id_2.y) + turn) & 1u) == 0u)) {
-            const bool _e82 = on_screen(_e71);
-            local_2 = _e82;
-        } else {
-            local_2 = false;
-        }
-        bool _e84 = local_2;
-        if (_e84) {
-            const float4 _e87 = history_at(_e71);
-            local_3 = (_e87.w >= 1.0);
-        } else {
-            local_3 = false;
-        }
-        bool _e92 = local_3;
-        if (_e92) {
-            skip = true;
-        }
-    }
-    bool _e94 = skip;
-    if (!(_e94)) {
-        const MarchResult _e96 = march_pixel(pixel_5);
-        r = _e96;
-    }
-    float3 _e100 = r.radiance;
-    float _e102 = r.transmittance;
-    cloud_out[id_2.xy] = float4(_e100, _e102);
-    float _e107 = r.depth;
-    depth_out[id_2.xy] = float4(_e107, 0.0, 0.0, 0.0);
+    MarchResult _e20 = r;
+    store_sparse(id_2.xy, _e20);
     return;
 }
 
 [numthreads(8, 8, 1)]
-void resolve(uint3 id_3 : SV_DispatchThreadID)
+void march_sparse_checkerboard(uint3 id_3 : SV_DispatchThreadID)
+{
+    MarchResult r_1 = ConstructMarchResult((0.0).xxx, 1.0, 0.0);
+    bool skip = (bool)0;
+    bool local = (bool)0;
+    bool local_1 = (bool)0;
+    bool local_2 = (bool)0;
+
+    const bool _e2 = in_blocks(id_3.xy);
+    if (!(_e2)) {
+        return;
+    }
+    const uint2 _e5 = sparse_pixel(id_3.xy);
+    uint4 _e14 = frame.counts;
+    skip = any((_e5 >= _e14.xy));
+    bool _e19 = skip;
+    if (!(_e19)) {
+        uint _e26 = frame.temporal.y;
+        local = (_e26 != 0u);
+    } else {
+        local = false;
+    }
+    bool _e30 = local;
+    if (_e30) {
+        uint k_4 = frame.temporal.x;
+        uint _e38 = frame.misc.y;
+        uint turn = naga_div(_e38, (k_4 * k_4));
+        const float2 _e42 = reproject(_e5, 0.0);
+        if (((((id_3.x + id_3.y) + turn) & 1u) == 0u)) {
+            const bool _e53 = on_screen(_e42);
+            local_1 = _e53;
+        } else {
+            local_1 = false;
+        }
+        bool _e55 = local_1;
+        if (_e55) {
+            const float4 _e58 = history_nearest(_e42);
+            local_2 = (_e58.w >= 1.0);
+        } else {
+            local_2 = false;
+        }
+        bool _e63 = local_2;
+        if (_e63) {
+            skip = true;
+        }
+    }
+    bool _e65 = skip;
+    if (!(_e65)) {
+        const MarchResult _e67 = march_pixel(_e5);
+        r_1 = _e67;
+    }
+    MarchResult _e69 = r_1;
+    store_sparse(id_3.xy, _e69);
+    return;
+}
+
+[numthreads(8, 8, 1)]
+void resolve(uint3 id_4 : SV_DispatchThreadID)
 {
     float depth = (float)0;
-    bool local_4 = (bool)0;
+    bool local_3 = (bool)0;
     bool valid = (bool)0;
     float4 history = float4(0.0, 0.0, 0.0, 1.0);
     float4 past = (0.0).xxxx;
+    bool local_4 = (bool)0;
     bool local_5 = (bool)0;
     bool local_6 = (bool)0;
-    bool local_7 = (bool)0;
     float4 result = (float4)0;
     float samples = (float)0;
     float out_depth = (float)0;
-    bool local_8 = (bool)0;
+    bool local_7 = (bool)0;
 
     uint4 _e4 = frame.counts;
-    if (any((id_3.xy >= _e4.xy))) {
+    if (any((id_4.xy >= _e4.xy))) {
         return;
     }
-    uint2 pixel_6 = id_3.xy;
-    uint k_3 = frame.temporal.x;
-    uint2 block = naga_div(pixel_6, (k_3).xx);
+    uint2 pixel_5 = id_4.xy;
+    uint k_5 = frame.temporal.x;
+    uint2 block = naga_div(pixel_5, (k_5).xx);
     uint _e19 = frame.misc.y;
-    const uint2 _e20 = block_offset(_e19, k_3);
-    bool marched = all((pixel_6 == ((block * k_3) + _e20)));
+    const uint2 _e20 = block_offset(_e19, k_5);
+    bool marched = all((pixel_5 == ((block * k_5) + _e20)));
     float4 current = sparse_in.Load(int3(block, int(0)));
     float4 _e29 = sparse_depth_in.Load(int3(block, int(0)));
     float current_depth = _e29.x;
@@ -1332,24 +1369,24 @@ void resolve(uint3 id_3 : SV_DispatchThreadID)
     float _e32 = depth;
     if ((_e32 <= 0.0)) {
         float _e38 = frame.camera_position.y;
-        const float3 _e39 = view_ray(pixel_6);
+        const float3 _e39 = view_ray(pixel_5);
         const Interval _e40 = layer_interval(_e38, _e39);
         if ((_e40.kind == RAY_MARCH)) {
             depth = (_e40.start + (0.5 * _e40.length_));
         }
     }
     float _e49 = depth;
-    const float2 _e50 = reproject(pixel_6, _e49);
+    const float2 _e50 = reproject(pixel_5, _e49);
     uint _e54 = frame.temporal.y;
     if ((_e54 != 0u)) {
         const bool _e59 = on_screen(_e50);
-        local_4 = _e59;
+        local_3 = _e59;
     } else {
-        local_4 = false;
+        local_3 = false;
     }
-    bool _e61 = local_4;
+    bool _e61 = local_3;
     valid = _e61;
-    bool moving = any((_e50 != float2(pixel_6)));
+    bool moving = any((_e50 != float2(pixel_5)));
     bool _e75 = valid;
     if (_e75) {
         const float4 _e76 = history_at(_e50);
@@ -1357,21 +1394,21 @@ void resolve(uint3 id_3 : SV_DispatchThreadID)
         const float4 _e77 = meta_at(_e50);
         past = _e77;
         if (moving) {
-            local_5 = (current_depth > 0.0);
+            local_4 = (current_depth > 0.0);
+        } else {
+            local_4 = false;
+        }
+        bool _e83 = local_4;
+        if (_e83) {
+            float _e87 = past.x;
+            local_5 = (_e87 > 0.0);
         } else {
             local_5 = false;
         }
-        bool _e83 = local_5;
-        if (_e83) {
-            float _e87 = past.x;
-            local_6 = (_e87 > 0.0);
-        } else {
-            local_6 = false;
-        }
-        bool _e91 = local_6;
+        bool _e91 = local_5;
         if (_e91) {
             float4 _e94 = frame.camera_position;
-            const float3 _e96 = view_ray(pixel_6);
+            const float3 _e96 = view_ray(pixel_5);
             float4 _e101 = frame.previous_position;
             float expected = distance((_e94.xyz + (_e96 * current_depth)), _e101.xyz);
             float _e105 = past.x;
@@ -1380,19 +1417,19 @@ void resolve(uint3 id_3 : SV_DispatchThreadID)
     }
     bool _e111 = valid;
     if (_e111) {
-        local_7 = moving;
+        local_6 = moving;
     } else {
-        local_7 = false;
+        local_6 = false;
     }
-    bool _e115 = local_7;
+    bool _e115 = local_6;
     if (_e115) {
         uint4 _e118 = frame.counts;
-        int2 blocks_1 = int2(naga_div(((_e118.xy + (k_3).xx) - (1u).xx), (k_3).xx));
+        int2 blocks = int2(naga_div(((_e118.xy + (k_5).xx) - (1u).xx), (k_5).xx));
         int2 b_5 = int2(block);
         int x0_1 = max(asint(asuint(b_5.x) - asuint(int(1))), int(0));
-        int x2_1 = min(asint(asuint(b_5.x) + asuint(int(1))), asint(asuint(blocks_1.x) - asuint(int(1))));
+        int x2_1 = min(asint(asuint(b_5.x) + asuint(int(1))), asint(asuint(blocks.x) - asuint(int(1))));
         int y0_ = max(asint(asuint(b_5.y) - asuint(int(1))), int(0));
-        int y2_ = min(asint(asuint(b_5.y) + asuint(int(1))), asint(asuint(blocks_1.y) - asuint(int(1))));
+        int y2_ = min(asint(asuint(b_5.y) + asuint(int(1))), asint(asuint(blocks.y) - asuint(int(1))));
         float4 s00_ = sparse_in.Load(int3(int2(x0_1, y0_), int(0)));
         float4 s10_ = sparse_in.Load(int3(int2(b_5.x, y0_), int(0)));
         float4 s20_ = sparse_in.Load(int3(int2(x2_1, y0_), int(0)));
@@ -1422,11 +1459,11 @@ void resolve(uint3 id_3 : SV_DispatchThreadID)
         float _e229 = past.x;
         if (!((current_depth > 0.0))) {
             bool _e235 = valid;
-            local_8 = !(_e235);
+            local_7 = !(_e235);
         } else {
-            local_8 = true;
+            local_7 = true;
         }
-        bool _e238 = local_8;
+        bool _e238 = local_7;
         out_depth = (_e238 ? current_depth : _e229);
     } else {
         bool _e240 = valid;
@@ -1438,37 +1475,37 @@ void resolve(uint3 id_3 : SV_DispatchThreadID)
             float _e245 = past.x;
             out_depth = _e245;
         } else {
-            const MarchResult _e246 = march_pixel(pixel_6);
+            const MarchResult _e246 = march_pixel(pixel_5);
             samples = 1.0;
             result = float4(_e246.radiance, _e246.transmittance);
             out_depth = _e246.depth;
         }
     }
     float4 _e253 = result;
-    history_out[pixel_6] = _e253;
+    history_out[pixel_5] = _e253;
     float _e255 = out_depth;
     float _e256 = samples;
-    meta_out[pixel_6] = float4(_e255, _e256, 0.0, 0.0);
+    meta_out[pixel_5] = float4(_e255, _e256, 0.0, 0.0);
     float4 _e261 = result;
-    cloud_out[pixel_6] = _e261;
+    cloud_out[pixel_5] = _e261;
     float _e263 = out_depth;
-    depth_out[pixel_6] = float4(_e263, 0.0, 0.0, 0.0);
+    depth_out[pixel_5] = float4(_e263, 0.0, 0.0, 0.0);
     return;
 }
 
 [numthreads(8, 8, 1)]
-void composite(uint3 id_4 : SV_DispatchThreadID)
+void composite(uint3 id_5 : SV_DispatchThreadID)
 {
     float3 background = (float3)0;
 
     uint4 _e4 = frame.counts;
-    if (any((id_4.xy >= _e4.xy))) {
+    if (any((id_5.xy >= _e4.xy))) {
         return;
     }
-    uint2 pixel_7 = id_4.xy;
-    const float3 _e9 = view_ray(pixel_7);
+    uint2 pixel_6 = id_5.xy;
+    const float3 _e9 = view_ray(pixel_6);
     float alt_6 = frame.camera_position.y;
-    float4 cloud = cloud_in.Load(int3(pixel_7, int(0)));
+    float4 cloud = cloud_in.Load(int3(pixel_6, int(0)));
     const float3 _e17 = sky_radiance(_e9, alt_6);
     background = _e17;
     const bool _e22 = hits_ground(float3(0.0, alt_6, 0.0), alt_6, _e9);
@@ -1483,6 +1520,6 @@ void composite(uint3 id_4 : SV_DispatchThreadID)
     float3 exposed = (radiance_1 * _e35);
     const float3 _e37 = aces_fitted(exposed);
     float3 display = pow(_e37, (0.45454547).xxx);
-    image_out[pixel_7] = float4(display, 1.0);
+    image_out[pixel_6] = float4(display, 1.0);
     return;
 }

@@ -191,30 +191,30 @@ Roots ray_shell(float alt, vec3 d, float radius_alt) {
 float altitude_of(vec3 p) {
     float rp_1 = _group_0_binding_0_cs.atmosphere.x;
     float n_1 = (((p.x * p.x) + (p.z * p.z)) + (p.y * (p.y + (2.0 * rp_1))));
-    vec3 q_3 = vec3(p.x, (p.y + rp_1), p.z);
-    return (n_1 / (length(q_3) + rp_1));
+    vec3 q_4 = vec3(p.x, (p.y + rp_1), p.z);
+    return (n_1 / (length(q_4) + rp_1));
 }
 
 bool hits_ground(vec3 p_1, float alt_1, vec3 d_1) {
-    bool local_9 = false;
+    bool local_8 = false;
     float rp_2 = _group_0_binding_0_cs.atmosphere.x;
     float b_2 = dot(d_1, vec3(p_1.x, (p_1.y + rp_2), p_1.z));
     float c_2 = (alt_1 * (alt_1 + (2.0 * rp_2)));
     if ((b_2 < 0.0)) {
-        local_9 = ((b_2 * b_2) >= c_2);
+        local_8 = ((b_2 * b_2) >= c_2);
     } else {
-        local_9 = false;
+        local_8 = false;
     }
-    bool _e24 = local_9;
+    bool _e24 = local_8;
     return _e24;
 }
 
 Interval layer_interval(float alt_2, vec3 d_2) {
     float start = 0.0;
     float end = 0.0;
+    bool local_9 = false;
     bool local_10 = false;
     bool local_11 = false;
-    bool local_12 = false;
     float bottom = _group_0_binding_0_cs.atmosphere.y;
     float top = _group_0_binding_0_cs.atmosphere.z;
     float cutoff = _group_0_binding_0_cs.atmosphere.w;
@@ -231,33 +231,33 @@ Interval layer_interval(float alt_2, vec3 d_2) {
         if ((alt_2 <= top)) {
             end = _e15.t1_;
             if (_e14.hit) {
-                local_10 = (_e14.t0_ > 0.0);
+                local_9 = (_e14.t0_ > 0.0);
             } else {
-                local_10 = false;
+                local_9 = false;
             }
-            bool _e40 = local_10;
+            bool _e40 = local_9;
             if (_e40) {
                 float _e41 = end;
                 end = min(_e41, _e14.t0_);
             }
         } else {
             if (!(!(_e15.hit))) {
-                local_11 = (_e15.t1_ <= 0.0);
+                local_10 = (_e15.t1_ <= 0.0);
             } else {
-                local_11 = true;
+                local_10 = true;
             }
-            bool _e53 = local_11;
+            bool _e53 = local_10;
             if (_e53) {
                 return Interval(0.0, 0.0, 1u);
             }
             start = max(_e15.t0_, 0.0);
             end = _e15.t1_;
             if (_e14.hit) {
-                local_12 = (_e14.t0_ > 0.0);
+                local_11 = (_e14.t0_ > 0.0);
             } else {
-                local_12 = false;
+                local_11 = false;
             }
-            bool _e69 = local_12;
+            bool _e69 = local_11;
             if (_e69) {
                 float _e70 = end;
                 end = min(_e70, _e14.t0_);
@@ -320,22 +320,22 @@ float height_signal(float h_3, float cloud_type_2) {
 }
 
 float cloud_density(vec3 p_3, float alt_3, inout Counters counters) {
+    bool local_12 = false;
     bool local_13 = false;
-    bool local_14 = false;
     float base = 0.0;
     float density = 0.0;
+    bool local_14 = false;
     bool local_15 = false;
-    bool local_16 = false;
     vec3 detail_pos = vec3(0.0);
     float bottom_1 = _group_0_binding_0_cs.atmosphere.y;
     float top_1 = _group_0_binding_0_cs.atmosphere.z;
     float h_5 = ((alt_3 - bottom_1) / (top_1 - bottom_1));
     if (!((h_5 < 0.0))) {
-        local_13 = (h_5 > 1.0);
+        local_12 = (h_5 > 1.0);
     } else {
-        local_13 = true;
+        local_12 = true;
     }
-    bool _e22 = local_13;
+    bool _e22 = local_12;
     if (_e22) {
         return 0.0;
     }
@@ -344,11 +344,11 @@ float cloud_density(vec3 p_3, float alt_3, inout Counters counters) {
     Weather _e28 = sample_weather(p_3);
     float _e30 = height_signal(h_5, _e28.cloud_type);
     if (!((_e28.coverage <= 0.0))) {
-        local_14 = (_e30 <= 0.0);
+        local_13 = (_e30 <= 0.0);
     } else {
-        local_14 = true;
+        local_13 = true;
     }
-    bool _e40 = local_14;
+    bool _e40 = local_13;
     if (_e40) {
         return 0.0;
     }
@@ -376,18 +376,18 @@ float cloud_density(vec3 p_3, float alt_3, inout Counters counters) {
     float strength = _group_0_binding_0_cs.erosion.x;
     float threshold = _group_0_binding_0_cs.erosion.y;
     if (DETAIL) {
-        local_15 = (strength > 0.0);
+        local_14 = (strength > 0.0);
+    } else {
+        local_14 = false;
+    }
+    bool _e126 = local_14;
+    if (_e126) {
+        float _e129 = base;
+        local_15 = (_e129 < threshold);
     } else {
         local_15 = false;
     }
-    bool _e126 = local_15;
-    if (_e126) {
-        float _e129 = base;
-        local_16 = (_e129 < threshold);
-    } else {
-        local_16 = false;
-    }
-    bool _e132 = local_16;
+    bool _e132 = local_15;
     if (_e132) {
         uint _e134 = counters.detail;
         counters.detail = (_e134 + 1u);
@@ -472,7 +472,7 @@ float sun_optical_depth(vec3 rel, vec3 p_4, inout Counters counters_1) {
     float dist = 0.0;
     float tau = 0.0;
     uint i = 0u;
-    bool local_17 = false;
+    bool local_16 = false;
     vec4 _e5 = _group_0_binding_0_cs.sun_direction;
     vec3 sun = _e5.xyz;
     float _e10 = _group_0_binding_0_cs.extinction.x;
@@ -498,16 +498,16 @@ float sun_optical_depth(vec3 rel, vec3 p_4, inout Counters counters_1) {
             float _e37 = dist;
             float _e38 = seg;
             float s_2 = (_e37 + (0.5 * _e38));
-            vec3 q_4 = (rel + (sun * s_2));
-            float _e44 = altitude_of(q_4);
+            vec3 q_5 = (rel + (sun * s_2));
+            float _e44 = altitude_of(q_5);
             float _e48 = _group_0_binding_0_cs.atmosphere.z;
             if (!((_e44 > _e48))) {
                 float _e56 = _group_0_binding_0_cs.atmosphere.y;
-                local_17 = (_e44 < _e56);
+                local_16 = (_e44 < _e56);
             } else {
-                local_17 = true;
+                local_16 = true;
             }
-            bool _e59 = local_17;
+            bool _e59 = local_16;
             if (_e59) {
                 break;
             }
@@ -652,13 +652,13 @@ float empty_cell_exit(vec3 p_6, vec3 d_3) {
 }
 
 void count(uint index, uint value) {
-    bool local_18 = false;
+    bool local_17 = false;
     if (STATS) {
-        local_18 = (value != 0u);
+        local_17 = (value != 0u);
     } else {
-        local_18 = false;
+        local_17 = false;
     }
-    bool _e8 = local_18;
+    bool _e8 = local_17;
     if (_e8) {
         uint _e12 = atomicAdd(_group_0_binding_8_cs.counters[index], value);
         return;
@@ -702,7 +702,7 @@ MarchResult march_pixel(uvec2 pixel_3) {
     uint i_2 = 0u;
     uint stride = 1u;
     uint empty = 0u;
-    bool local_19 = false;
+    bool local_18 = false;
     float depth_1 = 0.0;
     vec3 _e1 = view_ray(pixel_3);
     float cam_alt = _group_0_binding_0_cs.camera_position.y;
@@ -763,11 +763,11 @@ MarchResult march_pixel(uvec2 pixel_3) {
                     empty = (_e144 + 1u);
                     if (dynamic_step) {
                         uint _e149 = empty;
-                        local_19 = (_e149 >= 8u);
+                        local_18 = (_e149 >= 8u);
                     } else {
-                        local_19 = false;
+                        local_18 = false;
                     }
-                    bool _e153 = local_19;
+                    bool _e153 = local_18;
                     if (_e153) {
                         stride = 2u;
                     }
@@ -848,36 +848,36 @@ uvec2 block_offset(uint f, uint k) {
 }
 
 vec2 reproject(uvec2 pixel_4, float depth_2) {
+    bool local_19 = false;
     bool local_20 = false;
     bool local_21 = false;
-    bool local_22 = false;
     vec3 dir = vec3(0.0);
     vec4 _e4 = _group_0_binding_0_cs.previous_position;
     vec4 _e7 = _group_0_binding_0_cs.camera_position;
     if (all(equal(_e4, _e7))) {
         vec4 _e14 = _group_0_binding_0_cs.previous_forward;
         vec4 _e17 = _group_0_binding_0_cs.camera_forward;
-        local_20 = all(equal(_e14, _e17));
+        local_19 = all(equal(_e14, _e17));
     } else {
-        local_20 = false;
+        local_19 = false;
     }
-    bool _e21 = local_20;
+    bool _e21 = local_19;
     if (_e21) {
         vec4 _e26 = _group_0_binding_0_cs.previous_right;
         vec4 _e29 = _group_0_binding_0_cs.camera_right;
-        local_21 = all(equal(_e26, _e29));
+        local_20 = all(equal(_e26, _e29));
     } else {
-        local_21 = false;
+        local_20 = false;
     }
-    bool _e33 = local_21;
+    bool _e33 = local_20;
     if (_e33) {
         vec4 _e38 = _group_0_binding_0_cs.previous_up;
         vec4 _e41 = _group_0_binding_0_cs.camera_up;
-        local_22 = all(equal(_e38, _e41));
+        local_21 = all(equal(_e38, _e41));
     } else {
-        local_22 = false;
+        local_21 = false;
     }
-    bool same = local_22;
+    bool same = local_21;
     if (same) {
         return vec2(pixel_4);
     }
@@ -906,15 +906,15 @@ vec2 reproject(uvec2 pixel_4, float depth_2) {
 }
 
 bool on_screen(vec2 q) {
-    bool local_23 = false;
+    bool local_22 = false;
     uvec4 _e3 = _group_0_binding_0_cs.counts;
     vec2 size_1 = vec2(_e3.xy);
     if (all(greaterThanEqual(q, vec2(-0.5)))) {
-        local_23 = all(lessThanEqual(q, (size_1 - vec2(0.5))));
+        local_22 = all(lessThanEqual(q, (size_1 - vec2(0.5))));
     } else {
-        local_23 = false;
+        local_22 = false;
     }
-    bool _e18 = local_23;
+    bool _e18 = local_22;
     return _e18;
 }
 
@@ -954,12 +954,39 @@ vec4 history_at(vec2 q_1) {
     return vec4(max(sum.xyz, vec3(0.0)), _e45);
 }
 
-vec4 meta_at(vec2 q_2) {
+vec4 history_nearest(vec2 q_2) {
     uvec4 _e3 = _group_0_binding_0_cs.counts;
     ivec2 size_4 = ivec2(_e3.xy);
     ivec2 p_8 = min(max(ivec2(roundEven(q_2)), ivec2(0)), (size_4 - ivec2(1)));
-    vec4 _e16 = texelFetch(_group_0_binding_14_cs, p_8, 0);
+    vec4 _e16 = texelFetch(_group_0_binding_13_cs, p_8, 0);
     return _e16;
+}
+
+vec4 meta_at(vec2 q_3) {
+    uvec4 _e3 = _group_0_binding_0_cs.counts;
+    ivec2 size_5 = ivec2(_e3.xy);
+    ivec2 p_9 = min(max(ivec2(roundEven(q_3)), ivec2(0)), (size_5 - ivec2(1)));
+    vec4 _e16 = texelFetch(_group_0_binding_14_cs, p_9, 0);
+    return _e16;
+}
+
+bool in_blocks(uvec2 id_6) {
+    uint k_2 = _group_0_binding_0_cs.temporal.x;
+    uvec4 _e7 = _group_0_binding_0_cs.counts;
+    return all(lessThan(id_6, (((_e7.xy + uvec2(k_2)) - uvec2(1u)) / uvec2(k_2))));
+}
+
+uvec2 sparse_pixel(uvec2 id_7) {
+    uint k_3 = _group_0_binding_0_cs.temporal.x;
+    uint _e9 = _group_0_binding_0_cs.misc.y;
+    uvec2 _e10 = block_offset(_e9, k_3);
+    return ((id_7 * k_3) + _e10);
+}
+
+void store_sparse(uvec2 id_8, MarchResult r_2) {
+    imageStore(_group_0_binding_6_cs, ivec2(id_8), vec4(r_2.radiance, r_2.transmittance));
+    imageStore(_group_0_binding_7_cs, ivec2(id_8), vec4(r_2.depth, 0.0, 0.0, 0.0));
+    return;
 }
 
 vec3 sky_radiance(vec3 d_4, float alt_5) {
@@ -999,29 +1026,29 @@ vec3 aces_fitted(vec3 x_3) {
 }
 
 void main() {
-    uvec3 id_3 = gl_GlobalInvocationID;
+    uvec3 id_4 = gl_GlobalInvocationID;
     float depth = 0.0;
-    bool local_4 = false;
+    bool local_3 = false;
     bool valid = false;
     vec4 history = vec4(0.0, 0.0, 0.0, 1.0);
     vec4 past = vec4(0.0);
+    bool local_4 = false;
     bool local_5 = false;
     bool local_6 = false;
-    bool local_7 = false;
     vec4 result = vec4(0.0);
     float samples = 0.0;
     float out_depth = 0.0;
-    bool local_8 = false;
+    bool local_7 = false;
     uvec4 _e4 = _group_0_binding_0_cs.counts;
-    if (any(greaterThanEqual(id_3.xy, _e4.xy))) {
+    if (any(greaterThanEqual(id_4.xy, _e4.xy))) {
         return;
     }
-    uvec2 pixel_5 = id_3.xy;
-    uint k_2 = _group_0_binding_0_cs.temporal.x;
-    uvec2 block = (pixel_5 / uvec2(k_2));
+    uvec2 pixel_5 = id_4.xy;
+    uint k_4 = _group_0_binding_0_cs.temporal.x;
+    uvec2 block = (pixel_5 / uvec2(k_4));
     uint _e19 = _group_0_binding_0_cs.misc.y;
-    uvec2 _e20 = block_offset(_e19, k_2);
-    bool marched = all(equal(pixel_5, ((block * k_2) + _e20)));
+    uvec2 _e20 = block_offset(_e19, k_4);
+    bool marched = all(equal(pixel_5, ((block * k_4) + _e20)));
     vec4 current = texelFetch(_group_0_binding_15_cs, ivec2(block), 0);
     vec4 _e29 = texelFetch(_group_0_binding_16_cs, ivec2(block), 0);
     float current_depth = _e29.x;
@@ -1040,11 +1067,11 @@ void main() {
     uint _e54 = _group_0_binding_0_cs.temporal.y;
     if ((_e54 != 0u)) {
         bool _e59 = on_screen(_e50);
-        local_4 = _e59;
+        local_3 = _e59;
     } else {
-        local_4 = false;
+        local_3 = false;
     }
-    bool _e61 = local_4;
+    bool _e61 = local_3;
     valid = _e61;
     bool moving = any(notEqual(_e50, vec2(pixel_5)));
     bool _e75 = valid;
@@ -1054,18 +1081,18 @@ void main() {
         vec4 _e77 = meta_at(_e50);
         past = _e77;
         if (moving) {
-            local_5 = (current_depth > 0.0);
+            local_4 = (current_depth > 0.0);
+        } else {
+            local_4 = false;
+        }
+        bool _e83 = local_4;
+        if (_e83) {
+            float _e87 = past.x;
+            local_5 = (_e87 > 0.0);
         } else {
             local_5 = false;
         }
-        bool _e83 = local_5;
-        if (_e83) {
-            float _e87 = past.x;
-            local_6 = (_e87 > 0.0);
-        } else {
-            local_6 = false;
-        }
-        bool _e91 = local_6;
+        bool _e91 = local_5;
         if (_e91) {
             vec4 _e94 = _group_0_binding_0_cs.camera_position;
             vec3 _e96 = view_ray(pixel_5);
@@ -1077,14 +1104,14 @@ void main() {
     }
     bool _e111 = valid;
     if (_e111) {
-        local_7 = moving;
+        local_6 = moving;
     } else {
-        local_7 = false;
+        local_6 = false;
     }
-    bool _e115 = local_7;
+    bool _e115 = local_6;
     if (_e115) {
         uvec4 _e118 = _group_0_binding_0_cs.counts;
-        ivec2 blocks = ivec2((((_e118.xy + uvec2(k_2)) - uvec2(1u)) / uvec2(k_2)));
+        ivec2 blocks = ivec2((((_e118.xy + uvec2(k_4)) - uvec2(1u)) / uvec2(k_4)));
         ivec2 b_5 = ivec2(block);
         int x0_1 = max((b_5.x - 1), 0);
         int x2_1 = min((b_5.x + 1), (blocks.x - 1));
@@ -1119,11 +1146,11 @@ void main() {
         float _e229 = past.x;
         if (!((current_depth > 0.0))) {
             bool _e235 = valid;
-            local_8 = !(_e235);
+            local_7 = !(_e235);
         } else {
-            local_8 = true;
+            local_7 = true;
         }
-        bool _e238 = local_8;
+        bool _e238 = local_7;
         out_depth = (_e238 ? current_depth : _e229);
     } else {
         bool _e240 = valid;

@@ -195,8 +195,8 @@ float altitude_of(
 ) {
     float rp_1 = frame.atmosphere.x;
     float n_1 = ((p.x * p.x) + (p.z * p.z)) + (p.y * (p.y + (2.0 * rp_1)));
-    metal::float3 q_3 = metal::float3(p.x, p.y + rp_1, p.z);
-    return n_1 / (metal::length(q_3) + rp_1);
+    metal::float3 q_4 = metal::float3(p.x, p.y + rp_1, p.z);
+    return n_1 / (metal::length(q_4) + rp_1);
 }
 
 bool hits_ground(
@@ -205,16 +205,16 @@ bool hits_ground(
     metal::float3 d_1,
     constant Frame& frame
 ) {
-    bool local_9 = {};
+    bool local_8 = {};
     float rp_2 = frame.atmosphere.x;
     float b_2 = metal::dot(d_1, metal::float3(p_1.x, p_1.y + rp_2, p_1.z));
     float c_2 = alt_1 * (alt_1 + (2.0 * rp_2));
     if (b_2 < 0.0) {
-        local_9 = (b_2 * b_2) >= c_2;
+        local_8 = (b_2 * b_2) >= c_2;
     } else {
-        local_9 = false;
+        local_8 = false;
     }
-    bool _e24 = local_9;
+    bool _e24 = local_8;
     return _e24;
 }
 
@@ -225,9 +225,9 @@ Interval layer_interval(
 ) {
     float start = 0.0;
     float end = 0.0;
+    bool local_9 = {};
     bool local_10 = {};
     bool local_11 = {};
-    bool local_12 = {};
     float bottom = frame.atmosphere.y;
     float top = frame.atmosphere.z;
     float cutoff = frame.atmosphere.w;
@@ -244,33 +244,33 @@ Interval layer_interval(
         if (alt_2 <= top) {
             end = _e15.t1_;
             if (_e14.hit) {
-                local_10 = _e14.t0_ > 0.0;
+                local_9 = _e14.t0_ > 0.0;
             } else {
-                local_10 = false;
+                local_9 = false;
             }
-            bool _e40 = local_10;
+            bool _e40 = local_9;
             if (_e40) {
                 float _e41 = end;
                 end = metal::min(_e41, _e14.t0_);
             }
         } else {
             if (!(!(_e15.hit))) {
-                local_11 = _e15.t1_ <= 0.0;
+                local_10 = _e15.t1_ <= 0.0;
             } else {
-                local_11 = true;
+                local_10 = true;
             }
-            bool _e53 = local_11;
+            bool _e53 = local_10;
             if (_e53) {
                 return Interval {0.0, 0.0, 1u};
             }
             start = metal::max(_e15.t0_, 0.0);
             end = _e15.t1_;
             if (_e14.hit) {
-                local_12 = _e14.t0_ > 0.0;
+                local_11 = _e14.t0_ > 0.0;
             } else {
-                local_12 = false;
+                local_11 = false;
             }
-            bool _e69 = local_12;
+            bool _e69 = local_11;
             if (_e69) {
                 float _e70 = end;
                 end = metal::min(_e70, _e14.t0_);
@@ -364,22 +364,22 @@ float cloud_density(
     metal::texture2d<float, metal::access::sample> curl_tex,
     metal::sampler noise_sampler
 ) {
+    bool local_12 = {};
     bool local_13 = {};
-    bool local_14 = {};
     float base = {};
     float density = {};
+    bool local_14 = {};
     bool local_15 = {};
-    bool local_16 = {};
     metal::float3 detail_pos = {};
     float bottom_1 = frame.atmosphere.y;
     float top_1 = frame.atmosphere.z;
     float h_5 = (alt_3 - bottom_1) / (top_1 - bottom_1);
     if (!((h_5 < 0.0))) {
-        local_13 = h_5 > 1.0;
+        local_12 = h_5 > 1.0;
     } else {
-        local_13 = true;
+        local_12 = true;
     }
-    bool _e22 = local_13;
+    bool _e22 = local_12;
     if (_e22) {
         return 0.0;
     }
@@ -388,11 +388,11 @@ float cloud_density(
     Weather _e28 = sample_weather(p_3, frame, weather_tex, noise_sampler);
     float _e30 = height_signal(h_5, _e28.cloud_type, frame);
     if (!((_e28.coverage <= 0.0))) {
-        local_14 = _e30 <= 0.0;
+        local_13 = _e30 <= 0.0;
     } else {
-        local_14 = true;
+        local_13 = true;
     }
-    bool _e40 = local_14;
+    bool _e40 = local_13;
     if (_e40) {
         return 0.0;
     }
@@ -420,18 +420,18 @@ float cloud_density(
     float strength = frame.erosion.x;
     float threshold = frame.erosion.y;
     if (DETAIL) {
-        local_15 = strength > 0.0;
+        local_14 = strength > 0.0;
+    } else {
+        local_14 = false;
+    }
+    bool _e126 = local_14;
+    if (_e126) {
+        float _e129 = base;
+        local_15 = _e129 < threshold;
     } else {
         local_15 = false;
     }
-    bool _e126 = local_15;
-    if (_e126) {
-        float _e129 = base;
-        local_16 = _e129 < threshold;
-    } else {
-        local_16 = false;
-    }
-    bool _e132 = local_16;
+    bool _e132 = local_15;
     if (_e132) {
         uint _e134 = counters.detail;
         counters.detail = _e134 + 1u;
@@ -536,7 +536,7 @@ float sun_optical_depth(
     float dist = 0.0;
     float tau = 0.0;
     uint i = 0u;
-    bool local_17 = {};
+    bool local_16 = {};
     metal::float4 _e5 = frame.sun_direction;
     metal::float3 sun = _e5.xyz;
     float _e10 = frame.extinction.x;
@@ -565,16 +565,16 @@ float sun_optical_depth(
             float _e37 = dist;
             float _e38 = seg;
             float s_2 = _e37 + (0.5 * _e38);
-            metal::float3 q_4 = rel + (sun * s_2);
-            float _e44 = altitude_of(q_4, frame);
+            metal::float3 q_5 = rel + (sun * s_2);
+            float _e44 = altitude_of(q_5, frame);
             float _e48 = frame.atmosphere.z;
             if (!((_e44 > _e48))) {
                 float _e56 = frame.atmosphere.y;
-                local_17 = _e44 < _e56;
+                local_16 = _e44 < _e56;
             } else {
-                local_17 = true;
+                local_16 = true;
             }
-            bool _e59 = local_17;
+            bool _e59 = local_16;
             if (_e59) {
                 break;
             }
@@ -755,13 +755,13 @@ void count(
     uint value,
     device Stats& stats
 ) {
-    bool local_18 = {};
+    bool local_17 = {};
     if (STATS) {
-        local_18 = value != 0u;
+        local_17 = value != 0u;
     } else {
-        local_18 = false;
+        local_17 = false;
     }
-    bool _e8 = local_18;
+    bool _e8 = local_17;
     if (_e8) {
         uint _e12 = metal::atomic_fetch_add_explicit(&stats.counters.inner[index], value, metal::memory_order_relaxed);
         return;
@@ -831,7 +831,7 @@ MarchResult march_pixel(
     uint i_2 = 0u;
     uint stride = 1u;
     uint empty = 0u;
-    bool local_19 = {};
+    bool local_18 = {};
     float depth_1 = 0.0;
     metal::float3 _e1 = view_ray(pixel_3, frame);
     float cam_alt = frame.camera_position.y;
@@ -895,11 +895,11 @@ MarchResult march_pixel(
                     empty = _e144 + 1u;
                     if (dynamic_step) {
                         uint _e149 = empty;
-                        local_19 = _e149 >= 8u;
+                        local_18 = _e149 >= 8u;
                     } else {
-                        local_19 = false;
+                        local_18 = false;
                     }
-                    bool _e153 = local_19;
+                    bool _e153 = local_18;
                     if (_e153) {
                         stride = 2u;
                     }
@@ -993,36 +993,36 @@ metal::float2 reproject(
     float depth_2,
     constant Frame& frame
 ) {
+    bool local_19 = {};
     bool local_20 = {};
     bool local_21 = {};
-    bool local_22 = {};
     metal::float3 dir = {};
     metal::float4 _e4 = frame.previous_position;
     metal::float4 _e7 = frame.camera_position;
     if (metal::all(_e4 == _e7)) {
         metal::float4 _e14 = frame.previous_forward;
         metal::float4 _e17 = frame.camera_forward;
-        local_20 = metal::all(_e14 == _e17);
+        local_19 = metal::all(_e14 == _e17);
     } else {
-        local_20 = false;
+        local_19 = false;
     }
-    bool _e21 = local_20;
+    bool _e21 = local_19;
     if (_e21) {
         metal::float4 _e26 = frame.previous_right;
         metal::float4 _e29 = frame.camera_right;
-        local_21 = metal::all(_e26 == _e29);
+        local_20 = metal::all(_e26 == _e29);
     } else {
-        local_21 = false;
+        local_20 = false;
     }
-    bool _e33 = local_21;
+    bool _e33 = local_20;
     if (_e33) {
         metal::float4 _e38 = frame.previous_up;
         metal::float4 _e41 = frame.camera_up;
-        local_22 = metal::all(_e38 == _e41);
+        local_21 = metal::all(_e38 == _e41);
     } else {
-        local_22 = false;
+        local_21 = false;
     }
-    bool same = local_22;
+    bool same = local_21;
     if (same) {
         return static_cast<metal::float2>(pixel_4);
     }
@@ -1054,15 +1054,15 @@ bool on_screen(
     metal::float2 q,
     constant Frame& frame
 ) {
-    bool local_23 = {};
+    bool local_22 = {};
     metal::uint4 _e3 = frame.counts;
     metal::float2 size_1 = static_cast<metal::float2>(_e3.xy);
     if (metal::all(q >= metal::float2(-0.5))) {
-        local_23 = metal::all(q <= (size_1 - metal::float2(0.5)));
+        local_22 = metal::all(q <= (size_1 - metal::float2(0.5)));
     } else {
-        local_23 = false;
+        local_22 = false;
     }
-    bool _e18 = local_23;
+    bool _e18 = local_22;
     return _e18;
 }
 
@@ -1118,16 +1118,62 @@ metal::float4 history_at(
     return metal::float4(metal::max(sum.xyz, metal::float3(0.0)), _e45);
 }
 
-metal::float4 meta_at(
+metal::float4 history_nearest(
     metal::float2 q_2,
     constant Frame& frame,
-    metal::texture2d<float, metal::access::sample> meta_in
+    metal::texture2d<float, metal::access::sample> history_in
 ) {
     metal::uint4 _e3 = frame.counts;
     metal::int2 size_4 = static_cast<metal::int2>(_e3.xy);
     metal::int2 p_8 = metal::clamp(naga_f2i32(metal::rint(q_2)), metal::int2(0), as_type<metal::int2>(as_type<metal::uint2>(size_4) - as_type<metal::uint2>(metal::int2(1))));
-    metal::float4 _e16 = meta_in.read(metal::uint2(p_8), 0);
+    metal::float4 _e16 = history_in.read(metal::uint2(p_8), 0);
     return _e16;
+}
+
+metal::float4 meta_at(
+    metal::float2 q_3,
+    constant Frame& frame,
+    metal::texture2d<float, metal::access::sample> meta_in
+) {
+    metal::uint4 _e3 = frame.counts;
+    metal::int2 size_5 = static_cast<metal::int2>(_e3.xy);
+    metal::int2 p_9 = metal::clamp(naga_f2i32(metal::rint(q_3)), metal::int2(0), as_type<metal::int2>(as_type<metal::uint2>(size_5) - as_type<metal::uint2>(metal::int2(1))));
+    metal::float4 _e16 = meta_in.read(metal::uint2(p_9), 0);
+    return _e16;
+}
+
+metal::uint2 naga_div(metal::uint2 lhs, metal::uint2 rhs) {
+    return lhs / metal::select(rhs, 1u, rhs == 0u);
+}
+
+bool in_blocks(
+    metal::uint2 id_6,
+    constant Frame& frame
+) {
+    uint k_2 = frame.temporal.x;
+    metal::uint4 _e7 = frame.counts;
+    return metal::all(id_6 < naga_div((_e7.xy + metal::uint2(k_2)) - metal::uint2(1u), metal::uint2(k_2)));
+}
+
+metal::uint2 sparse_pixel(
+    metal::uint2 id_7,
+    constant Frame& frame
+) {
+    uint k_3 = frame.temporal.x;
+    uint _e9 = frame.misc.y;
+    metal::uint2 _e10 = block_offset(_e9, k_3);
+    return (id_7 * k_3) + _e10;
+}
+
+void store_sparse(
+    metal::uint2 id_8,
+    MarchResult r_2,
+    metal::texture2d<float, metal::access::write> cloud_out,
+    metal::texture2d<float, metal::access::write> depth_out
+) {
+    cloud_out.write(metal::float4(r_2.radiance, r_2.transmittance), metal::uint2(id_8));
+    depth_out.write(metal::float4(r_2.depth, 0.0, 0.0, 0.0), metal::uint2(id_8));
+    return;
 }
 
 metal::float3 sky_radiance(
@@ -1197,9 +1243,9 @@ struct occupancyInput {
     if (metal::any(id.xy >= metal::uint2(64u))) {
         return;
     }
-    metal::int2 size_5 = static_cast<metal::int2>(metal::uint2(weather_tex.get_width(), weather_tex.get_height()));
-    metal::int2 lo_1 = as_type<metal::int2>(as_type<metal::uint2>(naga_div(as_type<metal::int2>(as_type<metal::uint2>(static_cast<metal::int2>(id.xy)) * as_type<metal::uint2>(size_5)), metal::int2(64))) - as_type<metal::uint2>(metal::int2(1)));
-    metal::int2 hi = naga_div(as_type<metal::int2>(as_type<metal::uint2>(as_type<metal::int2>(as_type<metal::uint2>(static_cast<metal::int2>(id.xy)) + as_type<metal::uint2>(metal::int2(1)))) * as_type<metal::uint2>(size_5)), metal::int2(64));
+    metal::int2 size_6 = static_cast<metal::int2>(metal::uint2(weather_tex.get_width(), weather_tex.get_height()));
+    metal::int2 lo_1 = as_type<metal::int2>(as_type<metal::uint2>(naga_div(as_type<metal::int2>(as_type<metal::uint2>(static_cast<metal::int2>(id.xy)) * as_type<metal::uint2>(size_6)), metal::int2(64))) - as_type<metal::uint2>(metal::int2(1)));
+    metal::int2 hi = naga_div(as_type<metal::int2>(as_type<metal::uint2>(as_type<metal::int2>(as_type<metal::uint2>(static_cast<metal::int2>(id.xy)) + as_type<metal::uint2>(metal::int2(1)))) * as_type<metal::uint2>(size_6)), metal::int2(64));
     y = lo_1.y;
     uint2 loop_bound_3 = uint2(4294967295u);
     bool loop_init_2 = true;
@@ -1236,7 +1282,7 @@ struct occupancyInput {
                 {
                     int _e38 = x;
                     int _e39 = y;
-                    metal::int2 t_2 = naga_mod(as_type<metal::int2>(as_type<metal::uint2>(naga_mod(metal::int2(_e38, _e39), size_5)) + as_type<metal::uint2>(size_5)), size_5);
+                    metal::int2 t_2 = naga_mod(as_type<metal::int2>(as_type<metal::uint2>(naga_mod(metal::int2(_e38, _e39), size_6)) + as_type<metal::uint2>(size_6)), size_6);
                     float _e44 = m;
                     metal::float4 _e47 = weather_tex.read(metal::uint2(t_2), 0);
                     m = metal::max(_e44, _e47.x);
@@ -1275,10 +1321,6 @@ struct marchInput {
     return;
 }
 
-metal::uint2 naga_div(metal::uint2 lhs, metal::uint2 rhs) {
-    return lhs / metal::select(rhs, 1u, rhs == 0u);
-}
-
 
 struct march_sparseInput {
 };
@@ -1294,72 +1336,90 @@ struct march_sparseInput {
 , metal::texture2d<float, metal::access::write> cloud_out [[user(fake0)]]
 , metal::texture2d<float, metal::access::write> depth_out [[user(fake0)]]
 , device Stats& stats [[user(fake0)]]
-, metal::texture2d<float, metal::access::sample> history_in [[user(fake0)]]
 ) {
     MarchResult r = MarchResult {metal::float3(0.0), 1.0, 0.0};
+    bool _e2 = in_blocks(id_2.xy, frame);
+    if (!(_e2)) {
+        return;
+    }
+    metal::uint2 _e5 = sparse_pixel(id_2.xy, frame);
+    metal::uint4 _e14 = frame.counts;
+    if (metal::all(_e5 < _e14.xy)) {
+        MarchResult _e18 = march_pixel(_e5, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler, occupancy_in, stats);
+        r = _e18;
+    }
+    MarchResult _e20 = r;
+    store_sparse(id_2.xy, _e20, cloud_out, depth_out);
+    return;
+}
+
+
+struct march_sparse_checkerboardInput {
+};
+[[max_total_threads_per_threadgroup(64)]] kernel void march_sparse_checkerboard(
+  metal::uint3 id_3 [[thread_position_in_grid]]
+, constant Frame& frame [[user(fake0)]]
+, metal::texture3d<float, metal::access::sample> shape_tex [[user(fake0)]]
+, metal::texture3d<float, metal::access::sample> detail_tex [[user(fake0)]]
+, metal::texture2d<float, metal::access::sample> weather_tex [[user(fake0)]]
+, metal::texture2d<float, metal::access::sample> curl_tex [[user(fake0)]]
+, metal::sampler noise_sampler [[user(fake0)]]
+, metal::texture2d<float, metal::access::sample> occupancy_in [[user(fake0)]]
+, metal::texture2d<float, metal::access::write> cloud_out [[user(fake0)]]
+, metal::texture2d<float, metal::access::write> depth_out [[user(fake0)]]
+, device Stats& stats [[user(fake0)]]
+, metal::texture2d<float, metal::access::sample> history_in [[user(fake0)]]
+) {
+    MarchResult r_1 = MarchResult {metal::float3(0.0), 1.0, 0.0};
     bool skip = {};
     bool local = {};
     bool local_1 = {};
     bool local_2 = {};
-    bool local_3 = {};
-    uint k_2 = frame.temporal.x;
-    metal::uint4 _e7 = frame.counts;
-    metal::uint2 blocks = naga_div((_e7.xy + metal::uint2(k_2)) - metal::uint2(1u), metal::uint2(k_2));
-    if (metal::any(id_2.xy >= blocks)) {
+    bool _e2 = in_blocks(id_3.xy, frame);
+    if (!(_e2)) {
         return;
     }
-    uint _e24 = frame.misc.y;
-    metal::uint2 _e25 = block_offset(_e24, k_2);
-    metal::uint2 pixel_5 = (id_2.xy * k_2) + _e25;
-    metal::uint4 _e35 = frame.counts;
-    skip = metal::any(pixel_5 >= _e35.xy);
-    bool _e40 = skip;
-    if (!(_e40)) {
-        uint _e47 = frame.modes.w;
-        local = (_e47 & FLAG_CHECKERBOARD) != 0u;
+    metal::uint2 _e5 = sparse_pixel(id_3.xy, frame);
+    metal::uint4 _e14 = frame.counts;
+    skip = metal::any(_e5 >= _e14.xy);
+    bool _e19 = skip;
+    if (!(_e19)) {
+        uint _e26 = frame.temporal.y;
+        local = _e26 != 0u;
     } else {
         local = false;
     }
-    bool _e53 = local;
-    if (_e53) {
-        uint _e59 = frame.temporal.y;
-        local_1 = _e59 != 0u;
-    } else {
-        local_1 = false;
-    }
-    bool _e63 = local_1;
-    if (_e63) {
-        uint _e67 = frame.misc.y;
-        uint turn = naga_div(_e67, k_2 * k_2);
-        metal::float2 _e71 = reproject(pixel_5, 0.0, frame);
-        if ((((id_2.x + id_2.y) + turn) & 1u) == 0u) {
-            bool _e82 = on_screen(_e71, frame);
-            local_2 = _e82;
+    bool _e30 = local;
+    if (_e30) {
+        uint k_4 = frame.temporal.x;
+        uint _e38 = frame.misc.y;
+        uint turn = naga_div(_e38, k_4 * k_4);
+        metal::float2 _e42 = reproject(_e5, 0.0, frame);
+        if ((((id_3.x + id_3.y) + turn) & 1u) == 0u) {
+            bool _e53 = on_screen(_e42, frame);
+            local_1 = _e53;
+        } else {
+            local_1 = false;
+        }
+        bool _e55 = local_1;
+        if (_e55) {
+            metal::float4 _e58 = history_nearest(_e42, frame, history_in);
+            local_2 = _e58.w >= 1.0;
         } else {
             local_2 = false;
         }
-        bool _e84 = local_2;
-        if (_e84) {
-            metal::float4 _e87 = history_at(_e71, frame, history_in);
-            local_3 = _e87.w >= 1.0;
-        } else {
-            local_3 = false;
-        }
-        bool _e92 = local_3;
-        if (_e92) {
+        bool _e63 = local_2;
+        if (_e63) {
             skip = true;
         }
     }
-    bool _e94 = skip;
-    if (!(_e94)) {
-        MarchResult _e96 = march_pixel(pixel_5, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler, occupancy_in, stats);
-        r = _e96;
+    bool _e65 = skip;
+    if (!(_e65)) {
+        MarchResult _e67 = march_pixel(_e5, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler, occupancy_in, stats);
+        r_1 = _e67;
     }
-    metal::float3 _e100 = r.radiance;
-    float _e102 = r.transmittance;
-    cloud_out.write(metal::float4(_e100, _e102), metal::uint2(id_2.xy));
-    float _e107 = r.depth;
-    depth_out.write(metal::float4(_e107, 0.0, 0.0, 0.0), metal::uint2(id_2.xy));
+    MarchResult _e69 = r_1;
+    store_sparse(id_3.xy, _e69, cloud_out, depth_out);
     return;
 }
 
@@ -1367,7 +1427,7 @@ struct march_sparseInput {
 struct resolveInput {
 };
 [[max_total_threads_per_threadgroup(64)]] kernel void resolve(
-  metal::uint3 id_3 [[thread_position_in_grid]]
+  metal::uint3 id_4 [[thread_position_in_grid]]
 , constant Frame& frame [[user(fake0)]]
 , metal::texture3d<float, metal::access::sample> shape_tex [[user(fake0)]]
 , metal::texture3d<float, metal::access::sample> detail_tex [[user(fake0)]]
@@ -1386,27 +1446,27 @@ struct resolveInput {
 , metal::texture2d<float, metal::access::write> meta_out [[user(fake0)]]
 ) {
     float depth = {};
-    bool local_4 = {};
+    bool local_3 = {};
     bool valid = {};
     metal::float4 history = metal::float4(0.0, 0.0, 0.0, 1.0);
     metal::float4 past = metal::float4(0.0);
+    bool local_4 = {};
     bool local_5 = {};
     bool local_6 = {};
-    bool local_7 = {};
     metal::float4 result = {};
     float samples = {};
     float out_depth = {};
-    bool local_8 = {};
+    bool local_7 = {};
     metal::uint4 _e4 = frame.counts;
-    if (metal::any(id_3.xy >= _e4.xy)) {
+    if (metal::any(id_4.xy >= _e4.xy)) {
         return;
     }
-    metal::uint2 pixel_6 = id_3.xy;
-    uint k_3 = frame.temporal.x;
-    metal::uint2 block = naga_div(pixel_6, metal::uint2(k_3));
+    metal::uint2 pixel_5 = id_4.xy;
+    uint k_5 = frame.temporal.x;
+    metal::uint2 block = naga_div(pixel_5, metal::uint2(k_5));
     uint _e19 = frame.misc.y;
-    metal::uint2 _e20 = block_offset(_e19, k_3);
-    bool marched = metal::all(pixel_6 == ((block * k_3) + _e20));
+    metal::uint2 _e20 = block_offset(_e19, k_5);
+    bool marched = metal::all(pixel_5 == ((block * k_5) + _e20));
     metal::float4 current = sparse_in.read(metal::uint2(block), 0);
     metal::float4 _e29 = sparse_depth_in.read(metal::uint2(block), 0);
     float current_depth = _e29.x;
@@ -1414,24 +1474,24 @@ struct resolveInput {
     float _e32 = depth;
     if (_e32 <= 0.0) {
         float _e38 = frame.camera_position.y;
-        metal::float3 _e39 = view_ray(pixel_6, frame);
+        metal::float3 _e39 = view_ray(pixel_5, frame);
         Interval _e40 = layer_interval(_e38, _e39, frame);
         if (_e40.kind == RAY_MARCH) {
             depth = _e40.start + (0.5 * _e40.length);
         }
     }
     float _e49 = depth;
-    metal::float2 _e50 = reproject(pixel_6, _e49, frame);
+    metal::float2 _e50 = reproject(pixel_5, _e49, frame);
     uint _e54 = frame.temporal.y;
     if (_e54 != 0u) {
         bool _e59 = on_screen(_e50, frame);
-        local_4 = _e59;
+        local_3 = _e59;
     } else {
-        local_4 = false;
+        local_3 = false;
     }
-    bool _e61 = local_4;
+    bool _e61 = local_3;
     valid = _e61;
-    bool moving = metal::any(_e50 != static_cast<metal::float2>(pixel_6));
+    bool moving = metal::any(_e50 != static_cast<metal::float2>(pixel_5));
     bool _e75 = valid;
     if (_e75) {
         metal::float4 _e76 = history_at(_e50, frame, history_in);
@@ -1439,21 +1499,21 @@ struct resolveInput {
         metal::float4 _e77 = meta_at(_e50, frame, meta_in);
         past = _e77;
         if (moving) {
-            local_5 = current_depth > 0.0;
+            local_4 = current_depth > 0.0;
+        } else {
+            local_4 = false;
+        }
+        bool _e83 = local_4;
+        if (_e83) {
+            float _e87 = past.x;
+            local_5 = _e87 > 0.0;
         } else {
             local_5 = false;
         }
-        bool _e83 = local_5;
-        if (_e83) {
-            float _e87 = past.x;
-            local_6 = _e87 > 0.0;
-        } else {
-            local_6 = false;
-        }
-        bool _e91 = local_6;
+        bool _e91 = local_5;
         if (_e91) {
             metal::float4 _e94 = frame.camera_position;
-            metal::float3 _e96 = view_ray(pixel_6, frame);
+            metal::float3 _e96 = view_ray(pixel_5, frame);
             metal::float4 _e101 = frame.previous_position;
             float expected = metal::distance(_e94.xyz + (_e96 * current_depth), _e101.xyz);
             float _e105 = past.x;
@@ -1462,19 +1522,19 @@ struct resolveInput {
     }
     bool _e111 = valid;
     if (_e111) {
-        local_7 = moving;
+        local_6 = moving;
     } else {
-        local_7 = false;
+        local_6 = false;
     }
-    bool _e115 = local_7;
+    bool _e115 = local_6;
     if (_e115) {
         metal::uint4 _e118 = frame.counts;
-        metal::int2 blocks_1 = static_cast<metal::int2>(naga_div((_e118.xy + metal::uint2(k_3)) - metal::uint2(1u), metal::uint2(k_3)));
+        metal::int2 blocks = static_cast<metal::int2>(naga_div((_e118.xy + metal::uint2(k_5)) - metal::uint2(1u), metal::uint2(k_5)));
         metal::int2 b_5 = static_cast<metal::int2>(block);
         int x0_1 = metal::max(as_type<int>(as_type<uint>(b_5.x) - as_type<uint>(1)), 0);
-        int x2_1 = metal::min(as_type<int>(as_type<uint>(b_5.x) + as_type<uint>(1)), as_type<int>(as_type<uint>(blocks_1.x) - as_type<uint>(1)));
+        int x2_1 = metal::min(as_type<int>(as_type<uint>(b_5.x) + as_type<uint>(1)), as_type<int>(as_type<uint>(blocks.x) - as_type<uint>(1)));
         int y0_ = metal::max(as_type<int>(as_type<uint>(b_5.y) - as_type<uint>(1)), 0);
-        int y2_ = metal::min(as_type<int>(as_type<uint>(b_5.y) + as_type<uint>(1)), as_type<int>(as_type<uint>(blocks_1.y) - as_type<uint>(1)));
+        int y2_ = metal::min(as_type<int>(as_type<uint>(b_5.y) + as_type<uint>(1)), as_type<int>(as_type<uint>(blocks.y) - as_type<uint>(1)));
         metal::float4 s00_ = sparse_in.read(metal::uint2(metal::int2(x0_1, y0_)), 0);
         metal::float4 s10_ = sparse_in.read(metal::uint2(metal::int2(b_5.x, y0_)), 0);
         metal::float4 s20_ = sparse_in.read(metal::uint2(metal::int2(x2_1, y0_)), 0);
@@ -1504,11 +1564,11 @@ struct resolveInput {
         float _e229 = past.x;
         if (!((current_depth > 0.0))) {
             bool _e235 = valid;
-            local_8 = !(_e235);
+            local_7 = !(_e235);
         } else {
-            local_8 = true;
+            local_7 = true;
         }
-        bool _e238 = local_8;
+        bool _e238 = local_7;
         out_depth = _e238 ? current_depth : _e229;
     } else {
         bool _e240 = valid;
@@ -1520,21 +1580,21 @@ struct resolveInput {
             float _e245 = past.x;
             out_depth = _e245;
         } else {
-            MarchResult _e246 = march_pixel(pixel_6, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler, occupancy_in, stats);
+            MarchResult _e246 = march_pixel(pixel_5, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler, occupancy_in, stats);
             samples = 1.0;
             result = metal::float4(_e246.radiance, _e246.transmittance);
             out_depth = _e246.depth;
         }
     }
     metal::float4 _e253 = result;
-    history_out.write(_e253, metal::uint2(pixel_6));
+    history_out.write(_e253, metal::uint2(pixel_5));
     float _e255 = out_depth;
     float _e256 = samples;
-    meta_out.write(metal::float4(_e255, _e256, 0.0, 0.0), metal::uint2(pixel_6));
+    meta_out.write(metal::float4(_e255, _e256, 0.0, 0.0), metal::uint2(pixel_5));
     metal::float4 _e261 = result;
-    cloud_out.write(_e261, metal::uint2(pixel_6));
+    cloud_out.write(_e261, metal::uint2(pixel_5));
     float _e263 = out_depth;
-    depth_out.write(metal::float4(_e263, 0.0, 0.0, 0.0), metal::uint2(pixel_6));
+    depth_out.write(metal::float4(_e263, 0.0, 0.0, 0.0), metal::uint2(pixel_5));
     return;
 }
 
@@ -1542,20 +1602,20 @@ struct resolveInput {
 struct compositeInput {
 };
 [[max_total_threads_per_threadgroup(64)]] kernel void composite(
-  metal::uint3 id_4 [[thread_position_in_grid]]
+  metal::uint3 id_5 [[thread_position_in_grid]]
 , constant Frame& frame [[user(fake0)]]
 , metal::texture2d<float, metal::access::sample> cloud_in [[user(fake0)]]
 , metal::texture2d<float, metal::access::write> image_out [[user(fake0)]]
 ) {
     metal::float3 background = {};
     metal::uint4 _e4 = frame.counts;
-    if (metal::any(id_4.xy >= _e4.xy)) {
+    if (metal::any(id_5.xy >= _e4.xy)) {
         return;
     }
-    metal::uint2 pixel_7 = id_4.xy;
-    metal::float3 _e9 = view_ray(pixel_7, frame);
+    metal::uint2 pixel_6 = id_5.xy;
+    metal::float3 _e9 = view_ray(pixel_6, frame);
     float alt_6 = frame.camera_position.y;
-    metal::float4 cloud = cloud_in.read(metal::uint2(pixel_7), 0);
+    metal::float4 cloud = cloud_in.read(metal::uint2(pixel_6), 0);
     metal::float3 _e17 = sky_radiance(_e9, alt_6, frame);
     background = _e17;
     bool _e22 = hits_ground(metal::float3(0.0, alt_6, 0.0), alt_6, _e9, frame);
@@ -1570,6 +1630,6 @@ struct compositeInput {
     metal::float3 exposed = radiance_1 * _e35;
     metal::float3 _e37 = aces_fitted(exposed);
     metal::float3 display = metal::pow(_e37, metal::float3(0.45454547));
-    image_out.write(metal::float4(display, 1.0), metal::uint2(pixel_7));
+    image_out.write(metal::float4(display, 1.0), metal::uint2(pixel_6));
     return;
 }

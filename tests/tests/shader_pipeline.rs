@@ -142,6 +142,9 @@ fn mode_codes_and_flags_match_the_wgsl_constants() {
         ("HEIGHT_CLOUD_TYPES", HeightModel::CloudTypes.code()),
         ("FLAG_BEER_POWDER", FrameUniforms::FLAG_BEER_POWDER),
         ("FLAG_JITTER", FrameUniforms::FLAG_JITTER),
+        ("FLAG_DYNAMIC_STEP", FrameUniforms::FLAG_DYNAMIC_STEP),
+        ("FLAG_CHECKERBOARD", FrameUniforms::FLAG_CHECKERBOARD),
+        ("FLAG_EMPTY_SKIP", FrameUniforms::FLAG_EMPTY_SKIP),
     ];
     for (name, rust) in pairs {
         assert_eq!(constant(name), rust, "{name}");
@@ -178,6 +181,15 @@ fn a_graph_that_disagrees_with_the_wgsl_is_refused() {
         (
             graph.replace("when = \"present\"", "when = \"stale:cloud\""),
             "names no computed persistent resource",
+        ),
+        (
+            // Two passes named `march` planned together once temporal upsampling is on.
+            graph.replace("plan = \"!temporal\"", "plan = \"!empty_skip\""),
+            "pass `march` is declared more than once, and some plan options plan two of them",
+        ),
+        (
+            graph.replace("plan = \"empty_skip\"", "plan = \"emptyskip\""),
+            "names `emptyskip`, which is no plan option",
         ),
     ];
     for (text, expected) in cases {

@@ -388,7 +388,19 @@ pub type ConstantLookup<'a> = dyn Fn(&str, &str) -> Option<f64> + 'a;
 pub const PREVIOUS: &str = ".previous";
 
 /// Plan options a pass's `plan` may name.
-pub const PLAN_OPTIONS: [&str; 2] = ["temporal", "empty_skip"];
+pub const PLAN_OPTIONS: [&str; 3] = ["temporal", "empty_skip", "checkerboard"];
+
+/// Whether a pass's `plan` condition (`option`, `!option`, several joined by `&`) holds when
+/// `set` says which options are on.
+pub fn plan_condition_holds(condition: &str, set: &dyn Fn(&str) -> bool) -> bool {
+    condition.split('&').all(|term| {
+        let term = term.trim();
+        match term.strip_prefix('!') {
+            Some(name) => !set(name.trim()),
+            None => set(term),
+        }
+    })
+}
 
 /// Upload sources the host provides.
 pub const UPLOADS: [&str; 5] = [
@@ -459,29 +471,45 @@ impl GraphDesc {
         for pass in &self.passes {
             let at = format!("pass `{}`", pass.name);
             if !pass_names.insert(pass.name.as_str()) {
-                // Allowed for two passes planned under opposite options.
-                let opposite = |a: &PassDesc, b: &PassDesc| match (&a.plan, &b.plan) {
-                    (Some(x), Some(y)) => {
-                        x.trim().trim_start_matches('!') == y.trim().trim_start_matches('!')
-                            && x.trim().starts_with('!') != y.trim().starts_with('!')
-                    }
-                    _ => false,
-                };
+                // Allowed for passes that no combination of plan options plans together.
                 let same: Vec<&PassDesc> =
                     self.passes.iter().filter(|q| q.name == pass.name).collect();
-                if !(same.len() == 2 && opposite(same[0], same[1])) {
+                let together = (0..1u32 << PLAN_OPTIONS.len()).any(|bits| {
+                    let set = |name: &str| {
+                        PLAN_OPTIONS
+                            .iter()
+                            .position(|o| *o == name)
+                            .is_some_and(|i| bits & (1 << i) != 0)
+                    };
+                    same.iter()
+                        .filter(|q| {
+                            q.plan
+                                .as_deref()
+                                .is_none_or(|c| plan_condition_holds(c, &set))
+                        })
+                        .count()
+                        > 1
+                });
+                // Once per name: at its second declaration.
+                if together
+                    && same
+                        .get(1)
+                        .is_some_and(|second| std::ptr::eq(*second, pass))
+                {
                     p.push(format!(
-                        "{at} is declared twice (allowed only for two passes planned under opposite options, `plan = \"x\"` and `plan = \"!x\"`)"
+                        "{at} is declared more than once, and some plan options plan two of them (passes may share a name only under exclusive `plan` conditions)"
                     ));
                 }
             }
-            if let Some(option) = &pass.plan {
-                let name = option.trim().trim_start_matches('!').trim();
-                if !PLAN_OPTIONS.contains(&name) {
-                    p.push(format!(
-                        "{at}: `plan = \"{option}\"` names no plan option (known: {})",
-                        PLAN_OPTIONS.join(", ")
-                    ));
+            if let Some(condition) = &pass.plan {
+                for term in condition.split('&') {
+                    let name = term.trim().trim_start_matches('!').trim();
+                    if !PLAN_OPTIONS.contains(&name) {
+                        p.push(format!(
+                            "{at}: `plan = \"{condition}\"` names `{name}`, which is no plan option (known: {})",
+                            PLAN_OPTIONS.join(", ")
+                        ));
+                    }
                 }
             }
             let Some(module) = manifest.module(&pass.module) else {

@@ -375,6 +375,8 @@ pub struct PlanOptions {
     pub temporal: u32,
     /// Empty-space skipping is on (option `empty_skip`: the occupancy grid is computed).
     pub empty_skip: bool,
+    /// Checkerboard skipping is on (option `checkerboard`: the sparse march reads history).
+    pub checkerboard: bool,
 }
 
 impl Default for PlanOptions {
@@ -382,6 +384,7 @@ impl Default for PlanOptions {
         Self {
             temporal: 1,
             empty_skip: false,
+            checkerboard: false,
         }
     }
 }
@@ -392,25 +395,25 @@ impl PlanOptions {
         Self {
             temporal: scene.quality.temporal.divisor(),
             empty_skip: scene.quality.empty_space_skip,
+            checkerboard: scene.quality.checkerboard,
         }
     }
 
-    fn holds(&self, option: &str) -> bool {
-        let (name, negate) = match option.trim().strip_prefix('!') {
-            Some(n) => (n.trim(), true),
-            None => (option.trim(), false),
-        };
-        let set = match name {
+    /// Whether the plan option `name` is on.
+    pub fn is_set(&self, name: &str) -> bool {
+        match name {
             "temporal" => self.temporal > 1,
             "empty_skip" => self.empty_skip,
+            "checkerboard" => self.checkerboard,
             _ => false,
-        };
-        set != negate
+        }
     }
 
     /// Whether `pass` is in a plan made with these options.
     pub fn plans(&self, pass: &PassDesc) -> bool {
-        pass.plan.as_deref().is_none_or(|o| self.holds(o))
+        pass.plan
+            .as_deref()
+            .is_none_or(|c| crate::desc::plan_condition_holds(c, &|o| self.is_set(o)))
     }
 }
 
@@ -808,6 +811,63 @@ mod tests {
         let shape = usage("shape");
         assert!(shape.sampled && shape.upload && !shape.storage);
         assert!(usage("display").color);
+    }
+
+    #[test]
+    fn plan_options_choose_the_passes_and_the_sparse_extent() {
+        let program = Program::embedded().unwrap();
+        let r = req(1.0, 2.0, 1.0, 1.0, 0.0);
+        let names = |o: PlanOptions| {
+            let plan = FramePlan::with_options(&program, &r, 66, 35, o).unwrap();
+            let passes: Vec<(String, String)> = plan
+                .passes
+                .iter()
+                .filter(|p| p.when.is_none())
+                .map(|p| (p.name.clone(), p.pipeline_name()))
+                .collect();
+            (plan, passes)
+        };
+        let (full, passes) = names(PlanOptions::default());
+        assert_eq!(
+            passes.iter().map(|p| p.1.as_str()).collect::<Vec<_>>(),
+            ["march:march", "composite:composite"]
+        );
+        // No history and no sparse targets are made without temporal upsampling.
+        assert!(!full.has_history());
+        assert!(full.resource("cloud-sparse").is_none());
+        for (block, extent) in [(2, [33, 18]), (4, [17, 9])] {
+            let (plan, passes) = names(PlanOptions {
+                temporal: block,
+                ..PlanOptions::default()
+            });
+            assert_eq!(
+                passes.iter().map(|p| p.1.as_str()).collect::<Vec<_>>(),
+                [
+                    "march:march_sparse",
+                    "resolve:resolve",
+                    "composite:composite"
+                ]
+            );
+            assert!(plan.has_history());
+            let sparse = plan.resource("cloud-sparse").unwrap().1;
+            assert_eq!(sparse.extent, Some([extent[0], extent[1], 1]));
+            assert_eq!(plan.passes[0].extent, extent);
+        }
+        let (_, passes) = names(PlanOptions {
+            temporal: 4,
+            checkerboard: true,
+            ..PlanOptions::default()
+        });
+        assert_eq!(passes[0].1, "march:march_sparse_checkerboard");
+        let (skip, _) = names(PlanOptions {
+            empty_skip: true,
+            ..PlanOptions::default()
+        });
+        assert_eq!(skip.passes[0].name, "occupancy");
+        assert_eq!(
+            skip.passes[0].when,
+            Some(Condition::parse("stale:occupancy"))
+        );
     }
 
     #[test]

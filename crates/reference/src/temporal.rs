@@ -134,6 +134,14 @@ impl History {
         ]
     }
 
+    // WGSL: temporal.wgsl::history_nearest
+    fn nearest(&self, q: [f64; 2]) -> [f64; 4] {
+        let [w, h] = self.size.map(|v| v as i64);
+        let x = (q[0].round_ties_even() as i64).clamp(0, w - 1);
+        let y = (q[1].round_ties_even() as i64).clamp(0, h - 1);
+        self.color[(y * w + x) as usize].map(f64::from)
+    }
+
     // WGSL: temporal.wgsl::meta_at
     fn meta_at(&self, q: [f64; 2]) -> [f64; 2] {
         let [w, h] = self.size.map(|v| v as i64);
@@ -200,7 +208,7 @@ pub(crate) fn render(
                         && on_screen(f, q)
                         && history
                             .as_ref()
-                            .is_some_and(|hist| hist.color_at(q)[3] >= 1.0)
+                            .is_some_and(|hist| hist.nearest(q)[3] >= 1.0)
                     {
                         skip = true;
                     }

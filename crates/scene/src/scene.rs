@@ -623,3 +623,64 @@ impl Scene {
         scene
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn animated() -> Scene {
+        Scene {
+            animation: Some(Animation {
+                duration_s: 4.0,
+                keyframes: vec![
+                    Keyframe {
+                        time_s: 0.0,
+                        position: [0.0, 100.0, 0.0],
+                        yaw_deg: 350.0,
+                        pitch_deg: 0.0,
+                    },
+                    Keyframe {
+                        time_s: 2.0,
+                        position: [200.0, 300.0, 0.0],
+                        yaw_deg: 10.0,
+                        pitch_deg: 20.0,
+                    },
+                ],
+            }),
+            ..Scene::default()
+        }
+    }
+
+    #[test]
+    fn the_camera_follows_its_keyframes_and_holds_outside_them() {
+        let s = animated();
+        let at = |t: f64| s.at_time(t).camera;
+        assert_eq!(at(0.0).position, [0.0, 100.0, 0.0]);
+        assert_eq!(at(-1.0).position, [0.0, 100.0, 0.0]);
+        assert_eq!(at(2.0).position, [200.0, 300.0, 0.0]);
+        assert_eq!(at(3.5).position, [200.0, 300.0, 0.0]);
+        // Halfway (smoothstep(0.5) = 0.5); yaw the short way round, through north.
+        let mid = at(1.0);
+        assert_eq!(mid.position, [100.0, 200.0, 0.0]);
+        assert!((mid.yaw_deg - 360.0).abs() < 1e-9, "{}", mid.yaw_deg);
+        assert!((mid.pitch_deg - 10.0).abs() < 1e-9);
+        // Eased: a quarter of the time covers less than a quarter of the way.
+        assert!(at(0.5).position[0] < 50.0);
+        // The wind moves with time.
+        assert_eq!(s.at_time(3.0).clouds.time_s, s.clouds.time_s + 3.0);
+    }
+
+    #[test]
+    fn temporal_modes_parse_and_name_themselves() {
+        for t in Temporal::ALL {
+            assert_eq!(t.name().parse::<Temporal>(), Ok(t));
+        }
+        assert_eq!(Temporal::Sixteenth.divisor(), 4);
+        assert!(
+            "1/8"
+                .parse::<Temporal>()
+                .unwrap_err()
+                .contains("off, 1/4 or 1/16")
+        );
+    }
+}

@@ -167,3 +167,20 @@ fn unreadable_file_names_the_path() {
         "{err}"
     );
 }
+
+#[test]
+fn bad_animation_and_temporal_settings_are_named() {
+    let err = snapshot(
+        "bad_animation_and_temporal",
+        "[quality]\ntemporal = \"1/8\"\n",
+    );
+    assert_eq!(kinds(&err), [ProblemKind::WrongType]);
+    let err = snapshot(
+        "checkerboard_without_temporal_and_keyframes_out_of_order",
+        "[quality]\ncheckerboard = true\n\n[animation]\nduration_s = 2.0\n\n[[animation.keyframes]]\ntime_s = 1.5\n\n[[animation.keyframes]]\ntime_s = 0.5\nposition = [0.0, -5.0, 0.0]\n",
+    );
+    let text = err.to_string();
+    assert!(text.contains("quality.checkerboard"), "{text}");
+    assert!(text.contains("keyframe 1: time_s = 0.5"), "{text}");
+    assert!(text.contains("keyframe 1: position"), "{text}");
+}

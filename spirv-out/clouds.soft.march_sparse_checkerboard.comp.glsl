@@ -1,0 +1,1064 @@
+#version 450 core
+#extension GL_ARB_compute_shader : require
+#extension GL_ARB_shader_storage_buffer_object : require
+layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
+
+struct Frame {
+    vec4 camera_position;
+    vec4 camera_forward;
+    vec4 camera_right;
+    vec4 camera_up;
+    vec4 sun_direction;
+    vec4 sun_illuminance;
+    vec4 atmosphere;
+    vec4 clouds;
+    vec4 erosion;
+    vec4 periods;
+    vec4 wind_offsets0_;
+    vec4 wind_offsets1_;
+    vec4 extinction;
+    vec4 phase;
+    vec4 multiple_scattering;
+    vec4 ambient_bottom;
+    vec4 ambient_top;
+    vec4 march;
+    uvec4 counts;
+    uvec4 modes;
+    uvec4 misc;
+    vec4 previous_position;
+    vec4 previous_forward;
+    vec4 previous_right;
+    vec4 previous_up;
+    uvec4 temporal;
+};
+struct Roots {
+    float t0_;
+    float t1_;
+    bool hit;
+};
+struct Interval {
+    float start;
+    float length_;
+    uint kind;
+};
+struct Counters {
+    uint view_steps;
+    uint density;
+    uint detail;
+    uint light;
+};
+struct Weather {
+    float coverage;
+    float cloud_type;
+    float precipitation;
+};
+struct Stats {
+    uint counters[9];
+};
+struct MarchResult {
+    vec3 radiance;
+    float transmittance;
+    float depth;
+};
+const uint PHASE_HG = 0u;
+const uint PHASE_TWO_LOBE_HG = 1u;
+const uint PHASE_CORNETTE_SHANKS = 2u;
+const uint INTEGRATION_ANALYTIC = 0u;
+const uint INTEGRATION_RIEMANN = 1u;
+const uint HEIGHT_PARABOLA = 0u;
+const uint HEIGHT_CLOUD_TYPES = 1u;
+const uint FLAG_BEER_POWDER = 1u;
+const uint FLAG_JITTER = 2u;
+const uint FLAG_DYNAMIC_STEP = 4u;
+const uint FLAG_CHECKERBOARD = 8u;
+const uint FLAG_EMPTY_SKIP = 16u;
+const float PI = 3.1415927;
+const uint MAX_VIEW_STEPS = 1024u;
+const uint RAY_MARCH = 0u;
+const uint RAY_MISSES_LAYER = 1u;
+const uint RAY_HITS_GROUND = 2u;
+const uint OCCUPANCY_CELLS = 64u;
+const uint STAT_PIXELS = 0u;
+const uint STAT_MARCHED = 1u;
+const uint STAT_VIEW_STEPS = 2u;
+const uint STAT_DENSITY = 3u;
+const uint STAT_DETAIL = 4u;
+const uint STAT_LIGHT = 5u;
+const uint STAT_EXIT_TRANSMITTANCE = 6u;
+const uint STAT_EXIT_MISSED = 7u;
+const uint STAT_EXIT_GROUND = 8u;
+const uint STAT_COUNT = 9u;
+const float HISTORY_SAMPLES = 16.0;
+const float HISTORY_SAMPLES_MOVING = 2.0;
+const float DISOCCLUSION_DEPTH = 0.2;
+const bool LIGHT_MARCH = true;
+const uint MAX_OCTAVES = 8u;
+const bool DETAIL = false;
+const bool CURL = false;
+const bool STATS = false;
+
+layout(std140, binding = 0) uniform Frame_block_0Compute { Frame _group_0_binding_0_cs; };
+
+layout(binding = 1) uniform sampler3D _group_0_binding_1_cs;
+
+layout(binding = 2) uniform sampler3D _group_0_binding_2_cs;
+
+layout(binding = 3) uniform sampler2D _group_0_binding_3_cs;
+
+layout(binding = 4) uniform sampler2D _group_0_binding_4_cs;
+
+layout(binding = 11) uniform sampler2D _group_0_binding_11_cs;
+
+layout(binding = 6,rgba32f) writeonly uniform image2D _group_0_binding_6_cs;
+
+layout(binding = 7,r32f) writeonly uniform image2D _group_0_binding_7_cs;
+
+layout(std430, binding = 8) buffer Stats_block_1Compute { Stats _group_0_binding_8_cs; };
+
+layout(binding = 13) uniform sampler2D _group_0_binding_13_cs;
+
+
+float saturate(float x_1) {
+    return clamp(x_1, 0.0, 1.0);
+}
+
+float remap(float x_2, float lo0_, float hi0_, float lo1_, float hi1_) {
+    return (lo1_ + (((x_2 - lo0_) * (hi1_ - lo1_)) / (hi0_ - lo0_)));
+}
+
+uint pcg(uint v) {
+    uint state = ((v * 747796405u) + 2891336453u);
+    uint word = (((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u);
+    return ((word >> 22u) ^ word);
+}
+
+float van_der_corput(uint n) {
+    return (float((bitfieldReverse(n) >> 8u)) * 5.9604645e-8);
+}
+
+float hash_unit(uvec2 pixel, uint frame_index) {
+    uint _e4 = pcg(frame_index);
+    uint _e6 = pcg((pixel.y ^ _e4));
+    uint _e8 = pcg((pixel.x ^ _e6));
+    return (float((_e8 >> 8u)) * 5.9604645e-8);
+}
+
+vec3 view_ray(uvec2 pixel_1) {
+    uvec4 _e3 = _group_0_binding_0_cs.counts;
+    vec2 size = vec2(_e3.xy);
+    vec2 ndc = ((((vec2(pixel_1) + vec2(0.5)) / size) * 2.0) - vec2(1.0));
+    float tan_half = _group_0_binding_0_cs.camera_position.w;
+    float aspect = _group_0_binding_0_cs.camera_forward.w;
+    vec4 _e26 = _group_0_binding_0_cs.camera_forward;
+    vec4 _e30 = _group_0_binding_0_cs.camera_right;
+    vec4 _e39 = _group_0_binding_0_cs.camera_up;
+    vec3 d_6 = ((_e26.xyz + (_e30.xyz * ((ndc.x * tan_half) * aspect))) - (_e39.xyz * (ndc.y * tan_half)));
+    return normalize(d_6);
+}
+
+Roots solve_sphere(float b, float c) {
+    float disc = ((b * b) - c);
+    if ((disc < 0.0)) {
+        return Roots(0.0, 0.0, false);
+    }
+    float s = sqrt(disc);
+    float r0_1 = -((b + ((b >= 0.0) ? s : -(s))));
+    if ((r0_1 == 0.0)) {
+        return Roots(0.0, 0.0, true);
+    }
+    float r1_1 = (c / r0_1);
+    return Roots(min(r0_1, r1_1), max(r0_1, r1_1), true);
+}
+
+Roots ray_shell(float alt, vec3 d, float radius_alt) {
+    float rp = _group_0_binding_0_cs.atmosphere.x;
+    float b_1 = (d.y * (alt + rp));
+    float c_1 = ((alt - radius_alt) * ((alt + radius_alt) + (2.0 * rp)));
+    Roots _e16 = solve_sphere(b_1, c_1);
+    return _e16;
+}
+
+float altitude_of(vec3 p) {
+    float rp_1 = _group_0_binding_0_cs.atmosphere.x;
+    float n_1 = (((p.x * p.x) + (p.z * p.z)) + (p.y * (p.y + (2.0 * rp_1))));
+    vec3 q_4 = vec3(p.x, (p.y + rp_1), p.z);
+    return (n_1 / (length(q_4) + rp_1));
+}
+
+bool hits_ground(vec3 p_1, float alt_1, vec3 d_1) {
+    bool local_8 = false;
+    float rp_2 = _group_0_binding_0_cs.atmosphere.x;
+    float b_2 = dot(d_1, vec3(p_1.x, (p_1.y + rp_2), p_1.z));
+    float c_2 = (alt_1 * (alt_1 + (2.0 * rp_2)));
+    if ((b_2 < 0.0)) {
+        local_8 = ((b_2 * b_2) >= c_2);
+    } else {
+        local_8 = false;
+    }
+    bool _e24 = local_8;
+    return _e24;
+}
+
+Interval layer_interval(float alt_2, vec3 d_2) {
+    float start = 0.0;
+    float end = 0.0;
+    bool local_9 = false;
+    bool local_10 = false;
+    bool local_11 = false;
+    float bottom = _group_0_binding_0_cs.atmosphere.y;
+    float top = _group_0_binding_0_cs.atmosphere.z;
+    float cutoff = _group_0_binding_0_cs.atmosphere.w;
+    Roots _e14 = ray_shell(alt_2, d_2, bottom);
+    Roots _e15 = ray_shell(alt_2, d_2, top);
+    if ((alt_2 < bottom)) {
+        bool _e24 = hits_ground(vec3(0.0, alt_2, 0.0), alt_2, d_2);
+        if (_e24) {
+            return Interval(0.0, 0.0, 2u);
+        }
+        start = _e14.t1_;
+        end = _e15.t1_;
+    } else {
+        if ((alt_2 <= top)) {
+            end = _e15.t1_;
+            if (_e14.hit) {
+                local_9 = (_e14.t0_ > 0.0);
+            } else {
+                local_9 = false;
+            }
+            bool _e40 = local_9;
+            if (_e40) {
+                float _e41 = end;
+                end = min(_e41, _e14.t0_);
+            }
+        } else {
+            if (!(!(_e15.hit))) {
+                local_10 = (_e15.t1_ <= 0.0);
+            } else {
+                local_10 = true;
+            }
+            bool _e53 = local_10;
+            if (_e53) {
+                return Interval(0.0, 0.0, 1u);
+            }
+            start = max(_e15.t0_, 0.0);
+            end = _e15.t1_;
+            if (_e14.hit) {
+                local_11 = (_e14.t0_ > 0.0);
+            } else {
+                local_11 = false;
+            }
+            bool _e69 = local_11;
+            if (_e69) {
+                float _e70 = end;
+                end = min(_e70, _e14.t0_);
+            }
+        }
+    }
+    float _e73 = end;
+    float _e74 = start;
+    float len = min((_e73 - _e74), cutoff);
+    if (!((len > 0.0))) {
+        return Interval(0.0, 0.0, 1u);
+    }
+    float _e84 = start;
+    return Interval(_e84, len, RAY_MARCH);
+}
+
+Weather sample_weather(vec3 p_2) {
+    vec4 _e4 = _group_0_binding_0_cs.wind_offsets0_;
+    float _e10 = _group_0_binding_0_cs.periods.x;
+    vec2 uv = ((p_2.xz - _e4.xy) / vec2(_e10));
+    vec4 w = textureLod(_group_0_binding_3_cs, vec2(uv), 0.0);
+    float _e21 = _group_0_binding_0_cs.clouds.x;
+    float _e27 = saturate((w.x + (2.0 * (_e21 - 0.5))));
+    float _e31 = _group_0_binding_0_cs.clouds.z;
+    float _e38 = saturate((_e31 + ((w.z - 0.5) * 0.5)));
+    float _e42 = _group_0_binding_0_cs.clouds.w;
+    float _e46 = saturate((0.5 + w.y));
+    float precipitation = (_e42 * _e46);
+    return Weather(_e27, _e38, precipitation);
+}
+
+float height_parabola(float h, float cloud_type) {
+    float height = mix(0.35, 1.0, cloud_type);
+    float _e11 = saturate(((h * (h - height)) * (-4.0 / (height * height))));
+    return _e11;
+}
+
+float gradient(float h_1, float r0_, float r1_, float f0_, float f1_) {
+    return (smoothstep(r0_, r1_, h_1) * (1.0 - smoothstep(f0_, f1_, h_1)));
+}
+
+float height_cloud_types(float h_2, float cloud_type_1) {
+    float _e6 = gradient(h_2, 0.0, 0.08, 0.15, 0.25);
+    float _e11 = gradient(h_2, 0.0, 0.2, 0.4, 0.65);
+    float _e16 = gradient(h_2, 0.0, 0.1, 0.6, 0.95);
+    float _e19 = saturate((cloud_type_1 * 2.0));
+    float lo = mix(_e6, _e11, _e19);
+    float _e25 = saturate(((cloud_type_1 * 2.0) - 1.0));
+    return mix(lo, _e16, _e25);
+}
+
+float height_signal(float h_3, float cloud_type_2) {
+    uint _e5 = _group_0_binding_0_cs.modes.z;
+    if ((_e5 == HEIGHT_CLOUD_TYPES)) {
+        float _e8 = height_cloud_types(h_3, cloud_type_2);
+        return _e8;
+    }
+    float _e9 = height_parabola(h_3, cloud_type_2);
+    return _e9;
+}
+
+float cloud_density(vec3 p_3, float alt_3, inout Counters counters) {
+    bool local_12 = false;
+    bool local_13 = false;
+    float base = 0.0;
+    float density = 0.0;
+    bool local_14 = false;
+    bool local_15 = false;
+    vec3 detail_pos = vec3(0.0);
+    float bottom_1 = _group_0_binding_0_cs.atmosphere.y;
+    float top_1 = _group_0_binding_0_cs.atmosphere.z;
+    float h_5 = ((alt_3 - bottom_1) / (top_1 - bottom_1));
+    if (!((h_5 < 0.0))) {
+        local_12 = (h_5 > 1.0);
+    } else {
+        local_12 = true;
+    }
+    bool _e22 = local_12;
+    if (_e22) {
+        return 0.0;
+    }
+    uint _e25 = counters.density;
+    counters.density = (_e25 + 1u);
+    Weather _e28 = sample_weather(p_3);
+    float _e30 = height_signal(h_5, _e28.cloud_type);
+    if (!((_e28.coverage <= 0.0))) {
+        local_13 = (_e30 <= 0.0);
+    } else {
+        local_13 = true;
+    }
+    bool _e40 = local_13;
+    if (_e40) {
+        return 0.0;
+    }
+    vec3 dims = vec3(uvec3(textureSize(_group_0_binding_1_cs, 0).xyz));
+    float _e48 = _group_0_binding_0_cs.periods.y;
+    vec3 period = (_e48 * vec3(1.0, (dims.y / dims.x), 1.0));
+    float _e60 = _group_0_binding_0_cs.wind_offsets0_.z;
+    float _e66 = _group_0_binding_0_cs.wind_offsets0_.w;
+    vec3 shape_pos = vec3((p_3.x - _e60), alt_3, (p_3.z - _e66));
+    vec4 s_1 = textureLod(_group_0_binding_1_cs, vec3((shape_pos / period)), 0.0);
+    float low_fbm = (((s_1.y * 0.625) + (s_1.z * 0.25)) + (s_1.w * 0.125));
+    float _e91 = remap(s_1.x, (low_fbm - 1.0), 1.0, 0.0, 1.0);
+    float _e92 = saturate(_e91);
+    base = (_e92 * _e30);
+    float _e95 = base;
+    float _e102 = remap(_e95, (1.0 - _e28.coverage), 1.0, 0.0, 1.0);
+    float _e103 = saturate(_e102);
+    base = (_e103 * _e28.coverage);
+    float _e106 = base;
+    if ((_e106 <= 0.0)) {
+        return 0.0;
+    }
+    float _e110 = base;
+    density = _e110;
+    float strength = _group_0_binding_0_cs.erosion.x;
+    float threshold = _group_0_binding_0_cs.erosion.y;
+    if (DETAIL) {
+        local_14 = (strength > 0.0);
+    } else {
+        local_14 = false;
+    }
+    bool _e126 = local_14;
+    if (_e126) {
+        float _e129 = base;
+        local_15 = (_e129 < threshold);
+    } else {
+        local_15 = false;
+    }
+    bool _e132 = local_15;
+    if (_e132) {
+        uint _e134 = counters.detail;
+        counters.detail = (_e134 + 1u);
+        detail_pos = vec3(p_3.x, alt_3, p_3.z);
+        if (CURL) {
+            vec4 _e145 = _group_0_binding_0_cs.wind_offsets1_;
+            float _e151 = _group_0_binding_0_cs.periods.w;
+            vec2 cuv = ((p_3.xz - _e145.zw) / vec2(_e151));
+            vec4 _e157 = textureLod(_group_0_binding_4_cs, vec2(cuv), 0.0);
+            vec2 curl = ((_e157.xy * 2.0) - vec2(1.0));
+            vec3 _e164 = detail_pos;
+            float _e172 = _group_0_binding_0_cs.erosion.z;
+            detail_pos = (_e164 + (vec3(curl.x, 0.0, curl.y) * (_e172 * (1.0 - h_5))));
+        }
+        vec3 _e178 = detail_pos;
+        float _e182 = _group_0_binding_0_cs.wind_offsets1_.x;
+        float _e186 = _group_0_binding_0_cs.wind_offsets1_.y;
+        detail_pos = (_e178 - vec3(_e182, 0.0, _e186));
+        vec3 _e192 = detail_pos;
+        float _e196 = _group_0_binding_0_cs.periods.z;
+        vec4 dn = textureLod(_group_0_binding_2_cs, vec3((_e192 / vec3(_e196))), 0.0);
+        float high_fbm = (((dn.x * 0.625) + (dn.y * 0.25)) + (dn.z * 0.125));
+        float _e215 = _group_0_binding_0_cs.extinction.w;
+        float _e220 = saturate((h_5 * 10.0));
+        float _e222 = saturate(((2.0 * _e215) * _e220));
+        float shape = mix((1.0 - high_fbm), high_fbm, _e222);
+        float _e227 = base;
+        float erosion = ((strength * shape) * (1.0 - (_e227 / threshold)));
+        float _e232 = base;
+        float _e236 = remap(_e232, erosion, 1.0, 0.0, 1.0);
+        float _e237 = saturate(_e236);
+        density = _e237;
+    }
+    float _e238 = density;
+    float _e242 = _group_0_binding_0_cs.erosion.w;
+    density = (_e238 * mix(1.0, h_5, _e242));
+    float _e246 = density;
+    float _e250 = _group_0_binding_0_cs.clouds.y;
+    density = ((_e246 * _e250) * (1.0 + _e28.precipitation));
+    float _e256 = density;
+    return clamp(_e256, 0.0, 1.0);
+}
+
+float phase_hg(float cos_theta, float g) {
+    float g2_ = (g * g);
+    float denom = max(((1.0 + g2_) - ((2.0 * g) * cos_theta)), 1e-6);
+    return ((1.0 - g2_) / ((12.566371 * denom) * sqrt(denom)));
+}
+
+float phase_cornette_shanks(float cos_theta_1, float g_1) {
+    float g2_1 = (g_1 * g_1);
+    float denom_1 = max(((1.0 + g2_1) - ((2.0 * g_1) * cos_theta_1)), 1e-6);
+    return (((3.0 * (1.0 - g2_1)) * (1.0 + (cos_theta_1 * cos_theta_1))) / (((25.132742 * (2.0 + g2_1)) * denom_1) * sqrt(denom_1)));
+}
+
+float phase(float cos_theta_2, float scale) {
+    float _e5 = _group_0_binding_0_cs.phase.x;
+    float g_2 = (_e5 * scale);
+    uint _e10 = _group_0_binding_0_cs.modes.x;
+    switch(_e10) {
+        case 1u: {
+            float _e14 = _group_0_binding_0_cs.phase.y;
+            float g2_2 = (_e14 * scale);
+            float _e16 = phase_hg(cos_theta_2, g_2);
+            float _e17 = phase_hg(cos_theta_2, g2_2);
+            float _e21 = _group_0_binding_0_cs.phase.z;
+            return mix(_e16, _e17, _e21);
+        }
+        case 2u: {
+            float _e23 = phase_cornette_shanks(cos_theta_2, g_2);
+            return _e23;
+        }
+        default: {
+            float _e24 = phase_hg(cos_theta_2, g_2);
+            return _e24;
+        }
+    }
+}
+
+float sun_optical_depth(vec3 rel, vec3 p_4, inout Counters counters_1) {
+    float seg = 0.0;
+    float dist = 0.0;
+    float tau = 0.0;
+    uint i = 0u;
+    bool local_16 = false;
+    vec4 _e5 = _group_0_binding_0_cs.sun_direction;
+    vec3 sun = _e5.xyz;
+    float _e10 = _group_0_binding_0_cs.extinction.x;
+    float _e14 = _group_0_binding_0_cs.extinction.y;
+    float sigma_t_1 = (_e10 + _e14);
+    uint steps_1 = _group_0_binding_0_cs.counts.w;
+    float growth = _group_0_binding_0_cs.march.y;
+    float _e27 = _group_0_binding_0_cs.march.z;
+    seg = _e27;
+    bool loop_init = true;
+    while(true) {
+        if (!loop_init) {
+            uint _e78 = i;
+            i = (_e78 + 1u);
+        }
+        loop_init = false;
+        uint _e35 = i;
+        if ((_e35 < steps_1)) {
+        } else {
+            break;
+        }
+        {
+            float _e37 = dist;
+            float _e38 = seg;
+            float s_2 = (_e37 + (0.5 * _e38));
+            vec3 q_5 = (rel + (sun * s_2));
+            float _e44 = altitude_of(q_5);
+            float _e48 = _group_0_binding_0_cs.atmosphere.z;
+            if (!((_e44 > _e48))) {
+                float _e56 = _group_0_binding_0_cs.atmosphere.y;
+                local_16 = (_e44 < _e56);
+            } else {
+                local_16 = true;
+            }
+            bool _e59 = local_16;
+            if (_e59) {
+                break;
+            }
+            uint _e61 = counters_1.light;
+            counters_1.light = (_e61 + 1u);
+            float _e64 = tau;
+            float _e67 = cloud_density((p_4 + (sun * s_2)), _e44, counters_1);
+            float _e69 = seg;
+            tau = (_e64 + ((_e67 * sigma_t_1) * _e69));
+            float _e72 = dist;
+            float _e73 = seg;
+            dist = (_e72 + _e73);
+            float _e75 = seg;
+            seg = (_e75 * growth);
+        }
+    }
+    float _e80 = tau;
+    return _e80;
+}
+
+float sun_scattering(float cos_theta_3, float tau_1) {
+    float total = 0.0;
+    float ka = 1.0;
+    float kb = 1.0;
+    float kc = 1.0;
+    uint i_1 = 0u;
+    float a = _group_0_binding_0_cs.multiple_scattering.x;
+    float b_3 = _group_0_binding_0_cs.multiple_scattering.y;
+    float c_3 = _group_0_binding_0_cs.multiple_scattering.z;
+    uint _e17 = _group_0_binding_0_cs.misc.x;
+    uint octaves = min(_e17, MAX_OCTAVES);
+    float _e21 = phase(cos_theta_3, 1.0);
+    total = (_e21 * exp(-(tau_1)));
+    bool loop_init_1 = true;
+    while(true) {
+        if (!loop_init_1) {
+            uint _e54 = i_1;
+            i_1 = (_e54 + 1u);
+        }
+        loop_init_1 = false;
+        uint _e34 = i_1;
+        if ((_e34 < octaves)) {
+        } else {
+            break;
+        }
+        {
+            float _e36 = ka;
+            ka = (_e36 * a);
+            float _e38 = kb;
+            kb = (_e38 * b_3);
+            float _e40 = kc;
+            kc = (_e40 * c_3);
+            float _e42 = total;
+            float _e43 = ka;
+            float _e44 = kc;
+            float _e45 = phase(cos_theta_3, _e44);
+            float _e47 = kb;
+            total = (_e42 + ((_e43 * _e45) * exp((-(_e47) * tau_1))));
+        }
+    }
+    uint _e59 = _group_0_binding_0_cs.modes.w;
+    if (((_e59 & FLAG_BEER_POWDER) != 0u)) {
+        float _e64 = total;
+        float _e68 = _group_0_binding_0_cs.phase.w;
+        total = (_e64 * (1.0 - exp((-(_e68) * tau_1))));
+    }
+    float _e75 = total;
+    return _e75;
+}
+
+vec3 ambient(float h_4) {
+    vec4 _e3 = _group_0_binding_0_cs.ambient_bottom;
+    vec4 _e7 = _group_0_binding_0_cs.ambient_top;
+    float _e13 = _group_0_binding_0_cs.ambient_bottom.w;
+    return (mix(_e3.xyz, _e7.xyz, h_4) * _e13);
+}
+
+vec3 scattered_light(vec3 rel_1, vec3 p_5, float alt_4, float density_1, vec3 view, inout Counters counters_2) {
+    vec3 sun_light = vec3(0.0);
+    float tau_2 = 0.0;
+    vec4 _e8 = _group_0_binding_0_cs.sun_direction;
+    vec3 sun_1 = _e8.xyz;
+    float _e13 = _group_0_binding_0_cs.atmosphere.y;
+    float _e18 = _group_0_binding_0_cs.atmosphere.z;
+    float _e22 = _group_0_binding_0_cs.atmosphere.y;
+    float _e25 = saturate(((alt_4 - _e13) / (_e18 - _e22)));
+    bool _e29 = hits_ground(rel_1, alt_4, sun_1);
+    if (!(_e29)) {
+        if (LIGHT_MARCH) {
+            float _e34 = sun_optical_depth(rel_1, p_5, counters_2);
+            tau_2 = _e34;
+        }
+        vec4 _e37 = _group_0_binding_0_cs.sun_illuminance;
+        float _e40 = tau_2;
+        float _e41 = sun_scattering(dot(view, sun_1), _e40);
+        sun_light = (_e37.xyz * _e41);
+    }
+    Weather _e43 = sample_weather(p_5);
+    float _e47 = _group_0_binding_0_cs.extinction.z;
+    float _e55 = saturate((1.0 - ((_e47 * _e43.precipitation) * (1.0 - _e25))));
+    float _e59 = _group_0_binding_0_cs.extinction.x;
+    vec3 _e61 = sun_light;
+    vec3 _e62 = ambient(_e25);
+    return (((_e59 * density_1) * (_e61 + _e62)) * _e55);
+}
+
+float empty_cell_exit(vec3 p_6, vec3 d_3) {
+    float exit = 1e30;
+    vec4 _e6 = _group_0_binding_0_cs.wind_offsets0_;
+    float _e12 = _group_0_binding_0_cs.periods.x;
+    vec2 uv_1 = (fract(((p_6.xz - _e6.xy) / vec2(_e12))) * 64.0);
+    uvec2 cell = min(uvec2(uv_1), uvec2(63u));
+    vec4 _e23 = texelFetch(_group_0_binding_11_cs, ivec2(cell), 0);
+    float m_1 = _e23.x;
+    float _e28 = _group_0_binding_0_cs.clouds.x;
+    if (((m_1 + (2.0 * (_e28 - 0.5))) > -0.003921569)) {
+        return 0.0;
+    }
+    float _e40 = _group_0_binding_0_cs.periods.x;
+    float cell_m = (_e40 / 64.0);
+    vec2 inside = ((uv_1 - vec2(cell)) * cell_m);
+    if ((d_3.x > 1e-6)) {
+        float _e50 = exit;
+        exit = min(_e50, ((cell_m - inside.x) / d_3.x));
+    } else {
+        if ((d_3.x < -1e-6)) {
+            float _e59 = exit;
+            exit = min(_e59, (inside.x / -(d_3.x)));
+        }
+    }
+    if ((d_3.z > 1e-6)) {
+        float _e68 = exit;
+        exit = min(_e68, ((cell_m - inside.y) / d_3.z));
+    } else {
+        if ((d_3.z < -1e-6)) {
+            float _e77 = exit;
+            exit = min(_e77, (inside.y / -(d_3.z)));
+        }
+    }
+    float _e83 = exit;
+    return max(_e83, 0.0);
+}
+
+void count(uint index, uint value) {
+    bool local_17 = false;
+    if (STATS) {
+        local_17 = (value != 0u);
+    } else {
+        local_17 = false;
+    }
+    bool _e8 = local_17;
+    if (_e8) {
+        uint _e12 = atomicAdd(_group_0_binding_8_cs.counters[index], value);
+        return;
+    } else {
+        return;
+    }
+}
+
+vec3 step_integral(vec3 source, float sigma_t, float dt) {
+    uint _e6 = _group_0_binding_0_cs.modes.y;
+    if ((_e6 == INTEGRATION_RIEMANN)) {
+        return (source * dt);
+    }
+    float x_4 = (sigma_t * dt);
+    float f_1 = ((x_4 < 0.001) ? (1.0 - (0.5 * x_4)) : ((1.0 - exp(-(x_4))) / x_4));
+    return (source * (dt * f_1));
+}
+
+float start_offset(uvec2 pixel_2) {
+    uint _e4 = _group_0_binding_0_cs.modes.w;
+    bool jitter = ((_e4 & FLAG_JITTER) != 0u);
+    uint k_1 = _group_0_binding_0_cs.temporal.x;
+    if ((k_1 <= 1u)) {
+        uint _e18 = _group_0_binding_0_cs.misc.y;
+        float _e19 = hash_unit(pixel_2, _e18);
+        return (jitter ? _e19 : 0.5);
+    }
+    float _e23 = hash_unit(pixel_2, 0u);
+    float base_2 = (jitter ? _e23 : 0.5);
+    uint _e29 = _group_0_binding_0_cs.misc.y;
+    float _e32 = van_der_corput((_e29 / (k_1 * k_1)));
+    return fract((base_2 + _e32));
+}
+
+MarchResult march_pixel(uvec2 pixel_3) {
+    Counters counters_3 = Counters(0u, 0u, 0u, 0u);
+    vec3 radiance = vec3(0.0);
+    float transmittance = 1.0;
+    float depth_sum = 0.0;
+    uint steps = 0u;
+    uint i_2 = 0u;
+    uint stride = 1u;
+    uint empty = 0u;
+    bool local_18 = false;
+    float depth_1 = 0.0;
+    vec3 _e1 = view_ray(pixel_3);
+    float cam_alt = _group_0_binding_0_cs.camera_position.y;
+    vec4 _e8 = _group_0_binding_0_cs.camera_position;
+    vec2 cam_xz = _e8.xz;
+    count(STAT_PIXELS, 1u);
+    Interval _e25 = layer_interval(cam_alt, _e1);
+    if ((_e25.kind == RAY_MISSES_LAYER)) {
+        count(STAT_EXIT_MISSED, 1u);
+    } else {
+        if ((_e25.kind == RAY_HITS_GROUND)) {
+            count(STAT_EXIT_GROUND, 1u);
+        } else {
+            count(STAT_MARCHED, 1u);
+            uint _e41 = _group_0_binding_0_cs.counts.z;
+            steps = _e41;
+            float _e46 = _group_0_binding_0_cs.march.x;
+            if ((_e46 > 0.0)) {
+                float _e53 = _group_0_binding_0_cs.march.x;
+                steps = min(max(uint(ceil((_e25.length_ / _e53))), 1u), MAX_VIEW_STEPS);
+            }
+            uint _e61 = steps;
+            float dt_1 = (_e25.length_ / float(_e61));
+            float _e64 = start_offset(pixel_3);
+            float _e68 = _group_0_binding_0_cs.extinction.x;
+            float _e72 = _group_0_binding_0_cs.extinction.y;
+            float sigma_e = (_e68 + _e72);
+            uint _e77 = _group_0_binding_0_cs.modes.w;
+            bool dynamic_step = ((_e77 & FLAG_DYNAMIC_STEP) != 0u);
+            uint _e85 = _group_0_binding_0_cs.modes.w;
+            bool empty_skip = ((_e85 & FLAG_EMPTY_SKIP) != 0u);
+            while(true) {
+                uint _e96 = i_2;
+                uint _e97 = steps;
+                if ((_e96 >= _e97)) {
+                    break;
+                }
+                uint _e100 = counters_3.view_steps;
+                counters_3.view_steps = (_e100 + 1u);
+                uint _e104 = i_2;
+                float t_1 = (_e25.start + ((float(_e104) + _e64) * dt_1));
+                vec3 rel_2 = ((_e1 * t_1) + vec3(0.0, cam_alt, 0.0));
+                vec3 p_7 = vec3((rel_2.x + cam_xz.x), rel_2.y, (rel_2.z + cam_xz.y));
+                if (empty_skip) {
+                    float _e122 = empty_cell_exit(p_7, _e1);
+                    if ((_e122 > 0.0)) {
+                        uint _e131 = steps;
+                        uint next = uint(clamp(ceil(((((t_1 + _e122) - _e25.start) / dt_1) - _e64)), 0.0, float(_e131)));
+                        uint _e136 = i_2;
+                        i_2 = max((_e136 + 1u), next);
+                        continue;
+                    }
+                }
+                float _e140 = altitude_of(rel_2);
+                float _e141 = cloud_density(p_7, _e140, counters_3);
+                if ((_e141 <= 0.0)) {
+                    uint _e144 = empty;
+                    empty = (_e144 + 1u);
+                    if (dynamic_step) {
+                        uint _e149 = empty;
+                        local_18 = (_e149 >= 8u);
+                    } else {
+                        local_18 = false;
+                    }
+                    bool _e153 = local_18;
+                    if (_e153) {
+                        stride = 2u;
+                    }
+                    uint _e155 = i_2;
+                    uint _e156 = stride;
+                    i_2 = (_e155 + _e156);
+                    continue;
+                }
+                uint _e158 = stride;
+                if ((_e158 > 1u)) {
+                    uint _e161 = i_2;
+                    uint _e162 = stride;
+                    i_2 = (_e161 - (_e162 - 1u));
+                    stride = 1u;
+                    empty = 0u;
+                    continue;
+                }
+                empty = 0u;
+                float sigma_t_2 = (sigma_e * _e141);
+                vec3 _e170 = scattered_light(rel_2, p_7, _e140, _e141, _e1, counters_3);
+                vec3 _e171 = radiance;
+                float _e172 = transmittance;
+                vec3 _e173 = step_integral(_e170, sigma_t_2, dt_1);
+                radiance = (_e171 + (_e172 * _e173));
+                float step_t = exp((-(sigma_t_2) * dt_1));
+                float _e179 = depth_sum;
+                float _e180 = transmittance;
+                depth_sum = (_e179 + ((t_1 * _e180) * (1.0 - step_t)));
+                float _e186 = transmittance;
+                transmittance = (_e186 * step_t);
+                float _e188 = transmittance;
+                float _e192 = _group_0_binding_0_cs.march.w;
+                if ((_e188 < _e192)) {
+                    count(STAT_EXIT_TRANSMITTANCE, 1u);
+                    break;
+                }
+                uint _e196 = i_2;
+                i_2 = (_e196 + 1u);
+            }
+        }
+    }
+    uint _e201 = counters_3.view_steps;
+    count(STAT_VIEW_STEPS, _e201);
+    uint _e204 = counters_3.density;
+    count(STAT_DENSITY, _e204);
+    uint _e207 = counters_3.detail;
+    count(STAT_DETAIL, _e207);
+    uint _e210 = counters_3.light;
+    count(STAT_LIGHT, _e210);
+    float _e213 = transmittance;
+    if ((_e213 < 1.0)) {
+        float _e216 = depth_sum;
+        float _e217 = transmittance;
+        depth_1 = (_e216 / (1.0 - _e217));
+    }
+    vec3 _e221 = radiance;
+    float _e222 = transmittance;
+    float _e223 = depth_1;
+    return MarchResult(_e221, _e222, _e223);
+}
+
+uvec2 bayer2_(uint v_1) {
+    return uvec2(((v_1 ^ (v_1 >> 1u)) & 1u), (v_1 & 1u));
+}
+
+uvec2 block_offset(uint f, uint k) {
+    if ((k == 2u)) {
+        uvec2 _e6 = bayer2_((f % 4u));
+        return _e6;
+    }
+    if ((k == 4u)) {
+        uint b_4 = (f % 16u);
+        uvec2 _e13 = bayer2_((b_4 >> 2u));
+        uvec2 _e17 = bayer2_((b_4 & 3u));
+        return (_e13 + (2u * _e17));
+    }
+    return uvec2(0u);
+}
+
+vec2 reproject(uvec2 pixel_4, float depth_2) {
+    bool local_19 = false;
+    bool local_20 = false;
+    bool local_21 = false;
+    vec3 dir = vec3(0.0);
+    vec4 _e4 = _group_0_binding_0_cs.previous_position;
+    vec4 _e7 = _group_0_binding_0_cs.camera_position;
+    if (all(equal(_e4, _e7))) {
+        vec4 _e14 = _group_0_binding_0_cs.previous_forward;
+        vec4 _e17 = _group_0_binding_0_cs.camera_forward;
+        local_19 = all(equal(_e14, _e17));
+    } else {
+        local_19 = false;
+    }
+    bool _e21 = local_19;
+    if (_e21) {
+        vec4 _e26 = _group_0_binding_0_cs.previous_right;
+        vec4 _e29 = _group_0_binding_0_cs.camera_right;
+        local_20 = all(equal(_e26, _e29));
+    } else {
+        local_20 = false;
+    }
+    bool _e33 = local_20;
+    if (_e33) {
+        vec4 _e38 = _group_0_binding_0_cs.previous_up;
+        vec4 _e41 = _group_0_binding_0_cs.camera_up;
+        local_21 = all(equal(_e38, _e41));
+    } else {
+        local_21 = false;
+    }
+    bool same = local_21;
+    if (same) {
+        return vec2(pixel_4);
+    }
+    vec3 _e47 = view_ray(pixel_4);
+    dir = _e47;
+    if ((depth_2 > 0.0)) {
+        vec4 _e54 = _group_0_binding_0_cs.camera_position;
+        vec4 _e58 = _group_0_binding_0_cs.previous_position;
+        dir = ((_e47 * depth_2) + (_e54.xyz - _e58.xyz));
+    }
+    vec3 _e62 = dir;
+    vec4 _e65 = _group_0_binding_0_cs.previous_forward;
+    float z = dot(_e62, _e65.xyz);
+    if ((z <= 0.0)) {
+        return vec2(-1000000000.0);
+    }
+    float tan_half_1 = _group_0_binding_0_cs.previous_position.w;
+    float aspect_1 = _group_0_binding_0_cs.previous_forward.w;
+    vec3 _e80 = dir;
+    vec4 _e83 = _group_0_binding_0_cs.previous_right;
+    vec3 _e89 = dir;
+    vec4 _e92 = _group_0_binding_0_cs.previous_up;
+    vec2 ndc_1 = vec2((dot(_e80, _e83.xyz) / ((z * tan_half_1) * aspect_1)), (-(dot(_e89, _e92.xyz)) / (z * tan_half_1)));
+    uvec4 _e106 = _group_0_binding_0_cs.counts;
+    return ((((ndc_1 * 0.5) + vec2(0.5)) * vec2(_e106.xy)) - vec2(0.5));
+}
+
+bool on_screen(vec2 q) {
+    bool local_22 = false;
+    uvec4 _e3 = _group_0_binding_0_cs.counts;
+    vec2 size_1 = vec2(_e3.xy);
+    if (all(greaterThanEqual(q, vec2(-0.5)))) {
+        local_22 = all(lessThanEqual(q, (size_1 - vec2(0.5))));
+    } else {
+        local_22 = false;
+    }
+    bool _e18 = local_22;
+    return _e18;
+}
+
+vec4 catmull_rom(float t) {
+    return vec4((t * (-0.5 + (t * (1.0 - (0.5 * t))))), (1.0 + ((t * t) * (-2.5 + (1.5 * t)))), (t * (0.5 + (t * (2.0 - (1.5 * t))))), ((t * t) * (-0.5 + (0.5 * t))));
+}
+
+vec4 history_row(ivec2 base_1, int dy, vec4 wx) {
+    uvec4 _e5 = _group_0_binding_0_cs.counts;
+    ivec2 size_2 = ivec2(_e5.xy);
+    int y_1 = min(max((base_1.y + dy), 0), (size_2.y - 1));
+    int x0_ = min(max((base_1.x - 1), 0), (size_2.x - 1));
+    int x1_ = min(max(base_1.x, 0), (size_2.x - 1));
+    int x2_ = min(max((base_1.x + 1), 0), (size_2.x - 1));
+    int x3_ = min(max((base_1.x + 2), 0), (size_2.x - 1));
+    vec4 _e48 = texelFetch(_group_0_binding_13_cs, ivec2(x0_, y_1), 0);
+    vec4 _e54 = texelFetch(_group_0_binding_13_cs, ivec2(x1_, y_1), 0);
+    vec4 _e61 = texelFetch(_group_0_binding_13_cs, ivec2(x2_, y_1), 0);
+    vec4 _e68 = texelFetch(_group_0_binding_13_cs, ivec2(x3_, y_1), 0);
+    return ((((_e48 * wx.x) + (_e54 * wx.y)) + (_e61 * wx.z)) + (_e68 * wx.w));
+}
+
+vec4 history_at(vec2 q_1) {
+    uvec4 _e3 = _group_0_binding_0_cs.counts;
+    ivec2 size_3 = ivec2(_e3.xy);
+    vec2 c_4 = clamp(q_1, vec2(0.0), vec2((size_3 - ivec2(1))));
+    ivec2 base_3 = ivec2(floor(c_4));
+    vec2 f_2 = (c_4 - vec2(base_3));
+    vec4 _e18 = catmull_rom(f_2.x);
+    vec4 _e20 = catmull_rom(f_2.y);
+    vec4 _e22 = history_row(base_3, -1, _e18);
+    vec4 _e26 = history_row(base_3, 0, _e18);
+    vec4 _e31 = history_row(base_3, 1, _e18);
+    vec4 _e36 = history_row(base_3, 2, _e18);
+    vec4 sum = ((((_e22 * _e20.x) + (_e26 * _e20.y)) + (_e31 * _e20.z)) + (_e36 * _e20.w));
+    float _e45 = saturate(sum.w);
+    return vec4(max(sum.xyz, vec3(0.0)), _e45);
+}
+
+vec4 history_nearest(vec2 q_2) {
+    uvec4 _e3 = _group_0_binding_0_cs.counts;
+    ivec2 size_4 = ivec2(_e3.xy);
+    ivec2 p_8 = min(max(ivec2(roundEven(q_2)), ivec2(0)), (size_4 - ivec2(1)));
+    vec4 _e16 = texelFetch(_group_0_binding_13_cs, p_8, 0);
+    return _e16;
+}
+
+bool in_blocks(uvec2 id_6) {
+    uint k_2 = _group_0_binding_0_cs.temporal.x;
+    uvec4 _e7 = _group_0_binding_0_cs.counts;
+    return all(lessThan(id_6, (((_e7.xy + uvec2(k_2)) - uvec2(1u)) / uvec2(k_2))));
+}
+
+uvec2 sparse_pixel(uvec2 id_7) {
+    uint k_3 = _group_0_binding_0_cs.temporal.x;
+    uint _e9 = _group_0_binding_0_cs.misc.y;
+    uvec2 _e10 = block_offset(_e9, k_3);
+    return ((id_7 * k_3) + _e10);
+}
+
+void store_sparse(uvec2 id_8, MarchResult r_2) {
+    imageStore(_group_0_binding_6_cs, ivec2(id_8), vec4(r_2.radiance, r_2.transmittance));
+    imageStore(_group_0_binding_7_cs, ivec2(id_8), vec4(r_2.depth, 0.0, 0.0, 0.0));
+    return;
+}
+
+vec3 sky_radiance(vec3 d_4, float alt_5) {
+    vec4 _e4 = _group_0_binding_0_cs.sun_direction;
+    vec3 sun_2 = _e4.xyz;
+    vec4 _e8 = _group_0_binding_0_cs.sun_illuminance;
+    vec3 e = _e8.xyz;
+    float _e15 = saturate(((sun_2.y * 4.0) + 0.3));
+    bool _e19 = hits_ground(vec3(0.0, alt_5, 0.0), alt_5, d_4);
+    if (_e19) {
+        vec3 ground_albedo = vec3(0.035, 0.035, 0.03);
+        return (ground_albedo * (((e * max(sun_2.y, 0.0)) / vec3(3.1415927)) + ((0.05 * e) * _e15)));
+    }
+    vec3 zenith = vec3(0.018, 0.04, 0.1);
+    vec3 horizon = vec3(0.07, 0.085, 0.11);
+    float _e45 = saturate(d_4.y);
+    vec3 gradient_1 = mix(horizon, zenith, sqrt(_e45));
+    vec3 sunset = (((1.0 - (_e15 * 0.8)) * pow((1.0 - _e45), 6.0)) * vec3(0.25, 0.1, 0.0));
+    float _e64 = phase_hg(dot(d_4, sun_2), 0.76);
+    float glow = (_e64 * 0.02);
+    float _e73 = saturate(((sun_2.y * 10.0) + 1.0));
+    return (e * (((gradient_1 * _e15) + (sunset * _e73)) + vec3((glow * _e15))));
+}
+
+vec3 sun_disk(vec3 d_5) {
+    float cos_r = _group_0_binding_0_cs.sun_direction.w;
+    vec4 _e7 = _group_0_binding_0_cs.sun_direction;
+    if ((dot(d_5, _e7.xyz) < cos_r)) {
+        return vec3(0.0);
+    }
+    vec4 _e15 = _group_0_binding_0_cs.sun_illuminance;
+    return (_e15.xyz / vec3((6.2831855 * max((1.0 - cos_r), 1e-6))));
+}
+
+vec3 aces_fitted(vec3 x_3) {
+    return clamp(((x_3 * ((2.51 * x_3) + vec3(0.03))) / ((x_3 * ((2.43 * x_3) + vec3(0.59))) + vec3(0.14))), vec3(0.0), vec3(1.0));
+}
+
+void main() {
+    uvec3 id_3 = gl_GlobalInvocationID;
+    MarchResult r_1 = MarchResult(vec3(0.0), 1.0, 0.0);
+    bool skip = false;
+    bool local = false;
+    bool local_1 = false;
+    bool local_2 = false;
+    bool _e2 = in_blocks(id_3.xy);
+    if (!(_e2)) {
+        return;
+    }
+    uvec2 _e5 = sparse_pixel(id_3.xy);
+    uvec4 _e14 = _group_0_binding_0_cs.counts;
+    skip = any(greaterThanEqual(_e5, _e14.xy));
+    bool _e19 = skip;
+    if (!(_e19)) {
+        uint _e26 = _group_0_binding_0_cs.temporal.y;
+        local = (_e26 != 0u);
+    } else {
+        local = false;
+    }
+    bool _e30 = local;
+    if (_e30) {
+        uint k_4 = _group_0_binding_0_cs.temporal.x;
+        uint _e38 = _group_0_binding_0_cs.misc.y;
+        uint turn = (_e38 / (k_4 * k_4));
+        vec2 _e42 = reproject(_e5, 0.0);
+        if (((((id_3.x + id_3.y) + turn) & 1u) == 0u)) {
+            bool _e53 = on_screen(_e42);
+            local_1 = _e53;
+        } else {
+            local_1 = false;
+        }
+        bool _e55 = local_1;
+        if (_e55) {
+            vec4 _e58 = history_nearest(_e42);
+            local_2 = (_e58.w >= 1.0);
+        } else {
+            local_2 = false;
+        }
+        bool _e63 = local_2;
+        if (_e63) {
+            skip = true;
+        }
+    }
+    bool _e65 = skip;
+    if (!(_e65)) {
+        MarchResult _e67 = march_pixel(_e5);
+        r_1 = _e67;
+    }
+    MarchResult _e69 = r_1;
+    store_sparse(id_3.xy, _e69);
+    return;
+}
+
