@@ -96,7 +96,7 @@ constant uint STAT_EXIT_GROUND = 8u;
 constant uint STAT_COUNT = 9u;
 constant float HISTORY_SAMPLES = 16.0;
 constant float HISTORY_SAMPLES_MOVING = 2.0;
-constant float DISOCCLUSION_DEPTH = 0.2;
+constant float DISOCCLUSION_DEPTH = 0.5;
 constant bool LIGHT_MARCH = true;
 constant uint MAX_OCTAVES = 8u;
 constant bool DETAIL = true;
@@ -1574,27 +1574,27 @@ struct resolveInput {
         bool _e240 = valid;
         if (_e240) {
             float _e242 = past.y;
-            samples = _e242;
-            metal::float4 _e243 = history;
-            result = _e243;
-            float _e245 = past.x;
-            out_depth = _e245;
+            samples = moving ? 0.0 : _e242;
+            metal::float4 _e245 = history;
+            result = _e245;
+            float _e247 = past.x;
+            out_depth = _e247;
         } else {
-            MarchResult _e246 = march_pixel(pixel_5, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler, occupancy_in, stats);
+            MarchResult _e248 = march_pixel(pixel_5, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler, occupancy_in, stats);
             samples = 1.0;
-            result = metal::float4(_e246.radiance, _e246.transmittance);
-            out_depth = _e246.depth;
+            result = metal::float4(_e248.radiance, _e248.transmittance);
+            out_depth = _e248.depth;
         }
     }
-    metal::float4 _e253 = result;
-    history_out.write(_e253, metal::uint2(pixel_5));
-    float _e255 = out_depth;
-    float _e256 = samples;
-    meta_out.write(metal::float4(_e255, _e256, 0.0, 0.0), metal::uint2(pixel_5));
-    metal::float4 _e261 = result;
-    cloud_out.write(_e261, metal::uint2(pixel_5));
-    float _e263 = out_depth;
-    depth_out.write(metal::float4(_e263, 0.0, 0.0, 0.0), metal::uint2(pixel_5));
+    metal::float4 _e255 = result;
+    history_out.write(_e255, metal::uint2(pixel_5));
+    float _e257 = out_depth;
+    float _e258 = samples;
+    meta_out.write(metal::float4(_e257, _e258, 0.0, 0.0), metal::uint2(pixel_5));
+    metal::float4 _e263 = result;
+    cloud_out.write(_e263, metal::uint2(pixel_5));
+    float _e265 = out_depth;
+    depth_out.write(metal::float4(_e265, 0.0, 0.0, 0.0), metal::uint2(pixel_5));
     return;
 }
 

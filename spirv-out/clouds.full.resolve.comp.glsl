@@ -90,7 +90,7 @@ const uint STAT_EXIT_GROUND = 8u;
 const uint STAT_COUNT = 9u;
 const float HISTORY_SAMPLES = 16.0;
 const float HISTORY_SAMPLES_MOVING = 2.0;
-const float DISOCCLUSION_DEPTH = 0.2;
+const float DISOCCLUSION_DEPTH = 0.5;
 const bool LIGHT_MARCH = true;
 const uint MAX_OCTAVES = 8u;
 const bool DETAIL = true;
@@ -1156,27 +1156,27 @@ void main() {
         bool _e240 = valid;
         if (_e240) {
             float _e242 = past.y;
-            samples = _e242;
-            vec4 _e243 = history;
-            result = _e243;
-            float _e245 = past.x;
-            out_depth = _e245;
+            samples = (moving ? 0.0 : _e242);
+            vec4 _e245 = history;
+            result = _e245;
+            float _e247 = past.x;
+            out_depth = _e247;
         } else {
-            MarchResult _e246 = march_pixel(pixel_5);
+            MarchResult _e248 = march_pixel(pixel_5);
             samples = 1.0;
-            result = vec4(_e246.radiance, _e246.transmittance);
-            out_depth = _e246.depth;
+            result = vec4(_e248.radiance, _e248.transmittance);
+            out_depth = _e248.depth;
         }
     }
-    vec4 _e253 = result;
-    imageStore(_group_0_binding_17_cs, ivec2(pixel_5), _e253);
-    float _e255 = out_depth;
-    float _e256 = samples;
-    imageStore(_group_0_binding_18_cs, ivec2(pixel_5), vec4(_e255, _e256, 0.0, 0.0));
-    vec4 _e261 = result;
-    imageStore(_group_0_binding_6_cs, ivec2(pixel_5), _e261);
-    float _e263 = out_depth;
-    imageStore(_group_0_binding_7_cs, ivec2(pixel_5), vec4(_e263, 0.0, 0.0, 0.0));
+    vec4 _e255 = result;
+    imageStore(_group_0_binding_17_cs, ivec2(pixel_5), _e255);
+    float _e257 = out_depth;
+    float _e258 = samples;
+    imageStore(_group_0_binding_18_cs, ivec2(pixel_5), vec4(_e257, _e258, 0.0, 0.0));
+    vec4 _e263 = result;
+    imageStore(_group_0_binding_6_cs, ivec2(pixel_5), _e263);
+    float _e265 = out_depth;
+    imageStore(_group_0_binding_7_cs, ivec2(pixel_5), vec4(_e265, 0.0, 0.0, 0.0));
     return;
 }
 

@@ -95,7 +95,7 @@ static const uint STAT_EXIT_GROUND = 8u;
 static const uint STAT_COUNT = 9u;
 static const float HISTORY_SAMPLES = 16.0;
 static const float HISTORY_SAMPLES_MOVING = 2.0;
-static const float DISOCCLUSION_DEPTH = 0.2;
+static const float DISOCCLUSION_DEPTH = 0.5;
 static const bool LIGHT_MARCH = false;
 static const uint MAX_OCTAVES = 0u;
 static const bool DETAIL = false;
@@ -1469,27 +1469,27 @@ void resolve(uint3 id_4 : SV_DispatchThreadID)
         bool _e240 = valid;
         if (_e240) {
             float _e242 = past.y;
-            samples = _e242;
-            float4 _e243 = history;
-            result = _e243;
-            float _e245 = past.x;
-            out_depth = _e245;
+            samples = (moving ? 0.0 : _e242);
+            float4 _e245 = history;
+            result = _e245;
+            float _e247 = past.x;
+            out_depth = _e247;
         } else {
-            const MarchResult _e246 = march_pixel(pixel_5);
+            const MarchResult _e248 = march_pixel(pixel_5);
             samples = 1.0;
-            result = float4(_e246.radiance, _e246.transmittance);
-            out_depth = _e246.depth;
+            result = float4(_e248.radiance, _e248.transmittance);
+            out_depth = _e248.depth;
         }
     }
-    float4 _e253 = result;
-    history_out[pixel_5] = _e253;
-    float _e255 = out_depth;
-    float _e256 = samples;
-    meta_out[pixel_5] = float4(_e255, _e256, 0.0, 0.0);
-    float4 _e261 = result;
-    cloud_out[pixel_5] = _e261;
-    float _e263 = out_depth;
-    depth_out[pixel_5] = float4(_e263, 0.0, 0.0, 0.0);
+    float4 _e255 = result;
+    history_out[pixel_5] = _e255;
+    float _e257 = out_depth;
+    float _e258 = samples;
+    meta_out[pixel_5] = float4(_e257, _e258, 0.0, 0.0);
+    float4 _e263 = result;
+    cloud_out[pixel_5] = _e263;
+    float _e265 = out_depth;
+    depth_out[pixel_5] = float4(_e265, 0.0, 0.0, 0.0);
     return;
 }
 

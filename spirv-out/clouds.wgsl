@@ -698,14 +698,16 @@ fn march(@builtin(global_invocation_id) id: vec3<u32>) {
 
 // Samples a pixel's history averages at most: a running mean of its marches (so a still
 // camera converges to the mean over the van der Corput offsets), then an exponential blend of
-// 1/16, near the thesis's 5% (its appendix B). While the camera moves, 2: a new march weighs
-// half, so less ghosting (measured on scenes/flythrough.toml at 1/16: mean FLIP against the
-// full march of the same frame 0.052 with 4, 0.046 with 2, at frame 119).
+// 1/16, near the thesis's 5% (its appendix B). While the camera moves, 2 (and history that was
+// only resampled counts as none, so a march replaces it): new marches weigh more, so less
+// ghosting.
 const HISTORY_SAMPLES: f32 = 16.0;
 const HISTORY_SAMPLES_MOVING: f32 = 2.0;
 // History whose depth differs from the reprojected point's by more than this fraction is
-// something else: disoccluded.
-const DISOCCLUSION_DEPTH: f32 = 0.2;
+// something else: disoccluded, marched again. (0.2 re-marched much of every cloud edge while
+// moving, where the block's depth is another pixel's: at 1/16 the resolve cost more than the
+// sparse march.)
+const DISOCCLUSION_DEPTH: f32 = 0.5;
 
 // The position in a 2 x 2 block of the pixel with Bayer rank `v` (the ordered-dither matrix
 // [[0, 2], [3, 1]]: rank 0 at (0, 0), 1 at (1, 1), 2 at (1, 0), 3 at (0, 1)).
@@ -954,7 +956,10 @@ fn resolve(@builtin(global_invocation_id) id: vec3<u32>) {
         }
         out_depth = select(past.x, current_depth, current_depth > 0.0 || !valid);
     } else if valid {
-        samples = past.y;
+        // History resampled while the camera moves counts as no march: the pixel's next
+        // march replaces it. (Counted on, a blurred history outweighed the marches after a
+        // stop: at 1/16 more than 128 frames to come within FLIP 0.01 of the still.)
+        samples = select(past.y, 0.0, moving);
         result = history;
         out_depth = past.x;
     } else {

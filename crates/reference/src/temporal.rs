@@ -21,7 +21,7 @@ use crate::{
 // WGSL: temporal.wgsl (constants).
 const HISTORY_SAMPLES: f64 = 16.0;
 const HISTORY_SAMPLES_MOVING: f64 = 2.0;
-const DISOCCLUSION_DEPTH: f64 = 0.2;
+const DISOCCLUSION_DEPTH: f64 = 0.5;
 
 /// What the CPU renderer keeps between temporal frames.
 #[derive(Clone, Debug, Default)]
@@ -311,7 +311,7 @@ pub(crate) fn render(
                         (current, 1.0, current_depth)
                     }
                 } else if valid {
-                    (hist_color, past[1], past[0])
+                    (hist_color, if moving { 0.0 } else { past[1] }, past[0])
                 } else {
                     let r = march(model, s, pixel);
                     let out = [r.radiance.x, r.radiance.y, r.radiance.z, r.transmittance];

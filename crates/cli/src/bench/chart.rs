@@ -111,7 +111,9 @@ const MARGIN: (f64, f64, f64, f64) = (56.0, 24.0, 30.0, 44.0); // left, right, t
 
 /// FLIP (log) against GPU time (log) per scene, one panel each: every configuration a grey
 /// dot, the preset a blue ring, the Pareto front red and joined, each front point numbered
-/// and named (SVG).
+/// and named (SVG). Methods (temporal upsampling, cheap marching) are green and labelled: a
+/// dot for their error on a still camera, joined to a ring for their error in motion (against
+/// the full march of each frame).
 fn draw(canvas: &mut dyn Canvas, results: &Results) {
     let mut scenes: Vec<&str> = results.rows.iter().map(|r| r.scene.as_str()).collect();
     scenes.dedup();
@@ -119,6 +121,7 @@ fn draw(canvas: &mut dyn Canvas, results: &Results) {
     let black = (0, 0, 0);
     let red = (200, 30, 30);
     let blue = (30, 80, 200);
+    let green = (20, 140, 60);
     for (k, scene) in scenes.iter().enumerate() {
         let ox = k as f64 * PANEL_W;
         let rows: Vec<&Row> = results.rows.iter().filter(|r| r.scene == *scene).collect();
@@ -135,7 +138,22 @@ fn draw(canvas: &mut dyn Canvas, results: &Results) {
                 .log10()
         };
         let (x0, x1) = (lo(|r| r.gpu_ms) - 0.05, hi(|r| r.gpu_ms) + 0.05);
-        let (y0, y1) = (lo(|r| r.flip) - 0.05, hi(|r| r.flip) + 0.05);
+        // A motion error of 0 (a method that changes no sample) is labelled, not plotted.
+        let motion = |r: &Row| r.motion_flip.filter(|m| *m > 0.0);
+        let flip_or_motion = |r: &Row| motion(r).map_or(r.flip, |m| m.max(r.flip));
+        let flip_or_motion_lo = |r: &Row| motion(r).map_or(r.flip, |m| m.min(r.flip));
+        let y0 = rows
+            .iter()
+            .map(|r| flip_or_motion_lo(r).max(1e-5))
+            .fold(f64::INFINITY, f64::min)
+            .log10()
+            - 0.05;
+        let y1 = rows
+            .iter()
+            .map(|r| flip_or_motion(r).max(1e-5))
+            .fold(0.0, f64::max)
+            .log10()
+            + 0.05;
         let (l, r_, t, b) = MARGIN;
         let px = |v: f64| ox + l + (v.max(1e-5).log10() - x0) / (x1 - x0) * (PANEL_W - l - r_);
         let py = |v: f64| PANEL_H - b - (v.max(1e-5).log10() - y0) / (y1 - y0) * (PANEL_H - t - b);
@@ -183,6 +201,33 @@ fn draw(canvas: &mut dyn Canvas, results: &Results) {
                 canvas.circle((px(r.gpu_ms), py(r.flip)), 6.0, blue, false);
             }
         }
+        for r in rows.iter().filter(|r| r.config.is_method()) {
+            let still = (px(r.gpu_ms), py(r.flip));
+            canvas.circle(still, 3.5, green, true);
+            let label = method_label(&r.config);
+            if r.motion_flip == Some(0.0) {
+                canvas.text(
+                    (still.0 + 6.0, still.1 + 13.0),
+                    "(exact in motion)",
+                    9,
+                    green,
+                    "start",
+                );
+            }
+            if let Some(m) = motion(r) {
+                let moving = (px(r.gpu_ms), py(m));
+                canvas.line(still, moving, green, 1);
+                canvas.circle(moving, 4.0, green, false);
+                canvas.text(
+                    (moving.0 + 6.0, moving.1 + 3.0),
+                    &format!("{label} moving"),
+                    9,
+                    green,
+                    "start",
+                );
+            }
+            canvas.text((still.0 + 6.0, still.1 + 3.0), &label, 9, green, "start");
+        }
         let mut front: Vec<&&Row> = rows.iter().filter(|r| r.pareto).collect();
         front.sort_by(|a, b| a.gpu_ms.total_cmp(&b.gpu_ms));
         for w in front.windows(2) {
@@ -214,13 +259,31 @@ fn draw(canvas: &mut dyn Canvas, results: &Results) {
     }
 }
 
+/// A method's short label: `1/16`, `1/4 chk`, `dyn`, `skip`.
+fn method_label(c: &stratus::quality::Config) -> String {
+    let mut parts = Vec::new();
+    if c.temporal != stratus_scene::Temporal::Off {
+        parts.push(c.temporal.name().to_string());
+    }
+    for (on, name) in [
+        (c.checkerboard, "chk"),
+        (c.dynamic_step, "dyn"),
+        (c.empty_space_skip, "skip"),
+    ] {
+        if on {
+            parts.push(name.to_string());
+        }
+    }
+    parts.join(" ")
+}
+
 pub(super) fn chart(out: &Path, results: &Results) -> Result<()> {
     let mut n: Vec<&str> = results.rows.iter().map(|r| r.scene.as_str()).collect();
     n.dedup();
     let (w, h) = ((PANEL_W * n.len().max(1) as f64) as u32, PANEL_H as u32);
     let mut svg = Svg(format!(
         r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{h}" viewBox="0 0 {w} {h}">
-<title>Stratus: FLIP against GPU time ({} at {}x{}); red = Pareto front, blue ring = preset settings</title>
+<title>Stratus: FLIP against GPU time ({} at {}x{}); red = Pareto front, blue ring = preset settings, green = methods (dot: still camera; ring: in motion, against the full march of each frame)</title>
 <rect width="100%" height="100%" fill="white"/>
 "#,
         xml(&results.device),

@@ -63,7 +63,7 @@ pub struct BenchArgs {
     /// above-clouds, storm without --quick, and the stability case stress-thick).
     #[arg(long, value_delimiter = ',')]
     scenes: Option<Vec<String>>,
-    /// A few minutes on lavapipe: 64x36 images, 9 repeats, ~23 configurations a scene,
+    /// A few minutes on lavapipe: 64x36 images, 9 repeats, ~28 configurations a scene,
     /// 24-spp Monte Carlo references.
     #[arg(long)]
     quick: bool,
@@ -79,6 +79,9 @@ pub struct BenchArgs {
     /// Samples per pixel of the Monte Carlo references (default 24 with --quick, else 128).
     #[arg(long)]
     mc_spp: Option<u32>,
+    /// Measure nothing: redraw chart.png and chart.svg from the results.json in --out.
+    #[arg(long)]
+    replot: bool,
 }
 
 /// A stability case charted next to the presets: `cumulus-noon` with ten times the
@@ -100,6 +103,15 @@ fn bench_scene(name: &str) -> Result<Scene> {
 
 /// Runs `stratus bench`.
 pub fn run(args: BenchArgs) -> Result<()> {
+    if args.replot {
+        let results = stratus::quality::Results::load(&args.out.join("results.json"))?;
+        chart::chart(&args.out, &results)?;
+        println!(
+            "wrote {0}/chart.png, {0}/chart.svg from {0}/results.json",
+            args.out.display()
+        );
+        return Ok(());
+    }
     let scenes = args.scenes.clone().unwrap_or_else(|| {
         let mut v = vec!["cumulus-noon", "sunset", "above-clouds"];
         if !args.quick {

@@ -281,7 +281,9 @@ fn row(
     label: String,
 ) -> Result<Row> {
     let c = stats.unwrap_or_default();
-    let pixels = c.get("pixels").copied().unwrap_or(1).max(1) as f64;
+    // Per output pixel (the `pixels` counter counts marched pixels: with temporal upsampling
+    // a fraction of them).
+    let pixels = f64::from(frame.width * frame.height).max(1.0);
     let per = |k: &str| c.get(k).copied().unwrap_or(0) as f64 / pixels;
 
     let options = CompareOptions {
