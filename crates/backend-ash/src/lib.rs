@@ -420,7 +420,7 @@ impl Renderer {
         let w = self.submit_and_wait()?;
         let cpu_ms = t_submit.duration_since(t0).as_secs_f64() * 1e3 - waited
             + (t_submit.elapsed().as_secs_f64() * 1e3 - w).max(0.0);
-        self.frames.finished(plan, &run, &uniforms);
+        self.frames.finished(frame, &run, &uniforms);
 
         let mut out = FrameOutput {
             width: plan.width,

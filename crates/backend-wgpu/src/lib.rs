@@ -365,7 +365,7 @@ impl Renderer {
             self.record_pass(encoder, i, Some(k as u32), target, target_format)?;
         }
         self.resolve_queries(encoder, run.len() as u32);
-        self.frames.finished(plan, &run, &uniforms);
+        self.frames.finished(frame, &run, &uniforms);
         Ok(run.iter().map(|&i| plan.passes[i].name.clone()).collect())
     }
 
@@ -407,7 +407,7 @@ impl Renderer {
         let copies = self.copy_readbacks(&mut encoder, frame)?;
         self.queue.submit([encoder.finish()]);
         let cpu_ms = t0.elapsed().as_secs_f64() * 1e3 - waited;
-        self.frames.finished(plan, &indices, &uniforms);
+        self.frames.finished(frame, &indices, &uniforms);
         self.wait()?;
 
         let mut out = FrameOutput {

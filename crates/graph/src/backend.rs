@@ -273,6 +273,9 @@ pub struct FrameState {
     /// The uniform block of the last frame rendered: its camera is the next frame's
     /// `previous_*` (temporal reprojection).
     last: Option<stratus_scene::FrameUniforms>,
+    /// The noise the computed resources were computed from (they may read uploaded
+    /// textures: the occupancy grid reads the weather map): another noise set makes them stale.
+    computed_from: Option<std::sync::Weak<NoiseSet>>,
 }
 
 impl FrameState {
@@ -307,7 +310,14 @@ impl FrameState {
             .iter()
             .filter(|r| r.is_computed_persistent())
         {
-            if !self.computed.contains(&r.name) || frame.invalidate.contains(&r.name.as_str()) {
+            let new_noise = !self
+                .computed_from
+                .as_ref()
+                .is_some_and(|w| std::sync::Weak::ptr_eq(w, &Arc::downgrade(frame.noise)));
+            if !self.computed.contains(&r.name)
+                || new_noise
+                || frame.invalidate.contains(&r.name.as_str())
+            {
                 flags.push(format!("stale:{}", r.name));
             }
         }
@@ -339,22 +349,28 @@ impl FrameState {
     }
 
     /// The frame ran `ran` (indices into the plan's passes): computed persistent resources
-    /// they wrote now hold results, history moves on, and `uniforms` (the block the frame
-    /// used) holds the camera the next frame reprojects from.
+    /// they wrote now hold results (computed from this frame's noise), history moves on, and
+    /// `uniforms` (the block the frame used) holds the camera the next frame reprojects from.
     pub fn finished(
         &mut self,
-        plan: &FramePlan,
+        frame: &FrameInput<'_>,
         ran: &[usize],
         uniforms: &stratus_scene::FrameUniforms,
     ) {
+        let plan = frame.plan;
         self.last = Some(*uniforms);
+        let mut computed_any = false;
         for &i in ran {
             for r in plan.passes[i].writes() {
                 let r = &plan.resources[r];
                 if r.is_computed_persistent() {
                     self.computed.insert(r.name.clone());
+                    computed_any = true;
                 }
             }
+        }
+        if computed_any || self.computed_from.is_none() {
+            self.computed_from = Some(Arc::downgrade(frame.noise));
         }
         self.frame += 1;
         self.history_frames += 1;
@@ -439,6 +455,52 @@ pub fn history_half(frame: u64, previous: bool) -> usize {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A computed resource (the occupancy grid reads the weather map) is computed once, and
+    /// again when another noise set arrives.
+    #[test]
+    fn computed_resources_go_stale_with_other_noise() {
+        let program = crate::Program::embedded().unwrap();
+        let scene = Scene::default();
+        let plan = FramePlan::with_options(
+            &program,
+            &crate::Requirements::of(&scene, false),
+            8,
+            8,
+            crate::PlanOptions {
+                empty_skip: true,
+                ..Default::default()
+            },
+        )
+        .unwrap();
+        let noise = NoiseSet::generate(&stratus_noise::NoiseConfig {
+            weather_size: 16,
+            curl_size: 8,
+            detail_size: 8,
+            ..Default::default()
+        });
+        let (a, b) = (Arc::new(noise.clone()), Arc::new(noise));
+        let mut state = FrameState::default();
+        let names = |state: &FrameState, noise: &Arc<NoiseSet>| -> Vec<String> {
+            state
+                .passes(&FrameInput::new(&plan, &scene, noise))
+                .into_iter()
+                .map(|i| plan.passes[i].name.clone())
+                .collect()
+        };
+        let run = |state: &mut FrameState, noise: &Arc<NoiseSet>| {
+            let frame = FrameInput::new(&plan, &scene, noise);
+            let ran = state.passes(&frame);
+            let u = state.uniforms(&frame);
+            state.finished(&frame, &ran, &u);
+        };
+        assert_eq!(names(&state, &a)[0], "occupancy");
+        run(&mut state, &a);
+        assert!(!names(&state, &a).contains(&"occupancy".to_string()));
+        assert_eq!(names(&state, &b)[0], "occupancy");
+        run(&mut state, &b);
+        assert!(!names(&state, &b).contains(&"occupancy".to_string()));
+    }
 
     #[test]
     fn ranks_gpus_before_cpu_drivers() {

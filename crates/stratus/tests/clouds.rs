@@ -183,3 +183,46 @@ fn a_bgra_target_gets_the_same_image() {
     );
     assert_no_wgpu_messages();
 }
+
+/// With temporal upsampling the library keeps the history between the application's frames:
+/// a turning camera gives, frame by frame, the image a standalone renderer gives for the same
+/// frames.
+#[test]
+fn temporal_frames_in_the_app_texture_match_the_renderer_frame_by_frame() {
+    record_wgpu_log();
+    let (device, queue) = device();
+    let (w, h) = (40, 24);
+    let texture = target(&device, wgpu::TextureFormat::Rgba8Unorm, w, h);
+    let view = texture.create_view(&Default::default());
+    let mut scene = Scene::preset("cumulus-noon").unwrap().with_size(w, h);
+    scene.quality.temporal = stratus_scene::Temporal::Sixteenth;
+    let mut clouds = Clouds::new(&device, &queue, scene).expect("clouds");
+    let mut reference = stratus_backend_wgpu::Renderer::new(stratus_backend_wgpu::Options {
+        api: stratus_backend_wgpu::Api::Vulkan,
+        validation: true,
+    })
+    .expect("renderer");
+    let noise = Arc::new(stratus::noise_for(clouds.scene()));
+    for i in 0..8 {
+        clouds
+            .update(Update {
+                camera_yaw_pitch_deg: Some([2.0 * f64::from(i), 10.0]),
+                ..Default::default()
+            })
+            .expect("update");
+        let mut encoder = device.create_command_encoder(&Default::default());
+        clouds.render(&mut encoder, &view).expect("render");
+        queue.submit([encoder.finish()]);
+        let timings = clouds.pass_timings().expect("timings");
+        assert_eq!(
+            timings.iter().map(|t| t.pass.as_str()).collect::<Vec<_>>(),
+            ["march", "resolve", "composite", "present"]
+        );
+        let plan = FramePlan::for_scene(clouds.scene(), false).unwrap();
+        let expected = reference
+            .render(&FrameInput::new(&plan, clouds.scene(), &noise))
+            .expect("reference frame");
+        assert_eq!(read(&device, &queue, &texture), expected.image, "frame {i}");
+    }
+    assert_no_wgpu_messages();
+}
