@@ -237,6 +237,15 @@ pub fn run(args: RenderArgs) -> Result<()> {
     if let Some(t) = args.temporal {
         scene.quality.temporal = t;
     }
+    if scene.quality.temporal != Temporal::Off
+        && args.backend == Backend::Reference
+        && args.integrator == IntegratorArg::Montecarlo
+    {
+        anyhow::bail!(
+            "temporal upsampling ({}) amortises the real-time march; the Monte Carlo reference has no history: use --temporal off",
+            scene.quality.temporal.name()
+        );
+    }
     if let Some(dir) = &args.sequence {
         std::fs::create_dir_all(dir)
             .with_context(|| format!("--sequence {}: creating the folder", dir.display()))?;
