@@ -66,6 +66,22 @@ struct MarchResult {
     float depth;
     char _pad3[12];
 };
+struct Segments {
+    metal::float2 a;
+    metal::float2 b;
+    uint count;
+    char _pad3[4];
+};
+struct PhaseSample {
+    metal::packed_float3 dir;
+    float weight;
+};
+struct PathResult {
+    metal::packed_float3 radiance;
+    float transmittance;
+    float depth;
+    char _pad3[12];
+};
 constant uint PHASE_HG = 0u;
 constant uint PHASE_TWO_LOBE_HG = 1u;
 constant uint PHASE_CORNETTE_SHANKS = 2u;
@@ -97,6 +113,7 @@ constant uint STAT_COUNT = 9u;
 constant float HISTORY_SAMPLES = 16.0;
 constant float HISTORY_SAMPLES_MOVING = 2.0;
 constant float DISOCCLUSION_DEPTH = 0.5;
+constant uint MAX_PATH_ORDERS = 16384u;
 constant bool LIGHT_MARCH = true;
 constant uint MAX_OCTAVES = 8u;
 constant bool DETAIL = true;
@@ -155,8 +172,8 @@ metal::float3 view_ray(
     metal::float4 _e26 = frame.camera_forward;
     metal::float4 _e30 = frame.camera_right;
     metal::float4 _e39 = frame.camera_up;
-    metal::float3 d_6 = (_e26.xyz + (_e30.xyz * ((ndc.x * tan_half) * aspect))) - (_e39.xyz * (ndc.y * tan_half));
-    return metal::normalize(d_6);
+    metal::float3 d_8 = (_e26.xyz + (_e30.xyz * ((ndc.x * tan_half) * aspect))) - (_e39.xyz * (ndc.y * tan_half));
+    return metal::normalize(d_8);
 }
 
 Roots solve_sphere(
@@ -167,8 +184,8 @@ Roots solve_sphere(
     if (disc < 0.0) {
         return Roots {0.0, 0.0, false};
     }
-    float s = metal::sqrt(disc);
-    float r0_1 = -((b + ((b >= 0.0) ? s : -(s))));
+    float s_1 = metal::sqrt(disc);
+    float r0_1 = -((b + ((b >= 0.0) ? s_1 : -(s_1))));
     if (r0_1 == 0.0) {
         return Roots {0.0, 0.0, true};
     }
@@ -183,9 +200,9 @@ Roots ray_shell(
     constant Frame& frame
 ) {
     float rp = frame.atmosphere.x;
-    float b_1 = d.y * (alt + rp);
-    float c_1 = (alt - radius_alt) * ((alt + radius_alt) + (2.0 * rp));
-    Roots _e16 = solve_sphere(b_1, c_1);
+    float b_2 = d.y * (alt + rp);
+    float c_2 = (alt - radius_alt) * ((alt + radius_alt) + (2.0 * rp));
+    Roots _e16 = solve_sphere(b_2, c_2);
     return _e16;
 }
 
@@ -194,9 +211,9 @@ float altitude_of(
     constant Frame& frame
 ) {
     float rp_1 = frame.atmosphere.x;
-    float n_1 = ((p.x * p.x) + (p.z * p.z)) + (p.y * (p.y + (2.0 * rp_1)));
+    float n_2 = ((p.x * p.x) + (p.z * p.z)) + (p.y * (p.y + (2.0 * rp_1)));
     metal::float3 q_4 = metal::float3(p.x, p.y + rp_1, p.z);
-    return n_1 / (metal::length(q_4) + rp_1);
+    return n_2 / (metal::length(q_4) + rp_1);
 }
 
 bool hits_ground(
@@ -205,16 +222,16 @@ bool hits_ground(
     metal::float3 d_1,
     constant Frame& frame
 ) {
-    bool local_8 = {};
+    bool local_9 = {};
     float rp_2 = frame.atmosphere.x;
-    float b_2 = metal::dot(d_1, metal::float3(p_1.x, p_1.y + rp_2, p_1.z));
-    float c_2 = alt_1 * (alt_1 + (2.0 * rp_2));
-    if (b_2 < 0.0) {
-        local_8 = (b_2 * b_2) >= c_2;
+    float b_3 = metal::dot(d_1, metal::float3(p_1.x, p_1.y + rp_2, p_1.z));
+    float c_3 = alt_1 * (alt_1 + (2.0 * rp_2));
+    if (b_3 < 0.0) {
+        local_9 = (b_3 * b_3) >= c_3;
     } else {
-        local_8 = false;
+        local_9 = false;
     }
-    bool _e24 = local_8;
+    bool _e24 = local_9;
     return _e24;
 }
 
@@ -225,9 +242,9 @@ Interval layer_interval(
 ) {
     float start = 0.0;
     float end = 0.0;
-    bool local_9 = {};
     bool local_10 = {};
     bool local_11 = {};
+    bool local_12 = {};
     float bottom = frame.atmosphere.y;
     float top = frame.atmosphere.z;
     float cutoff = frame.atmosphere.w;
@@ -244,33 +261,33 @@ Interval layer_interval(
         if (alt_2 <= top) {
             end = _e15.t1_;
             if (_e14.hit) {
-                local_9 = _e14.t0_ > 0.0;
+                local_10 = _e14.t0_ > 0.0;
             } else {
-                local_9 = false;
+                local_10 = false;
             }
-            bool _e40 = local_9;
+            bool _e40 = local_10;
             if (_e40) {
                 float _e41 = end;
                 end = metal::min(_e41, _e14.t0_);
             }
         } else {
             if (!(!(_e15.hit))) {
-                local_10 = _e15.t1_ <= 0.0;
+                local_11 = _e15.t1_ <= 0.0;
             } else {
-                local_10 = true;
+                local_11 = true;
             }
-            bool _e53 = local_10;
+            bool _e53 = local_11;
             if (_e53) {
                 return Interval {0.0, 0.0, 1u};
             }
             start = metal::max(_e15.t0_, 0.0);
             end = _e15.t1_;
             if (_e14.hit) {
-                local_11 = _e14.t0_ > 0.0;
+                local_12 = _e14.t0_ > 0.0;
             } else {
-                local_11 = false;
+                local_12 = false;
             }
-            bool _e69 = local_11;
+            bool _e69 = local_12;
             if (_e69) {
                 float _e70 = end;
                 end = metal::min(_e70, _e14.t0_);
@@ -356,7 +373,7 @@ float height_signal(
 float cloud_density(
     metal::float3 p_3,
     float alt_3,
-    thread Counters& counters,
+    thread Counters& counters_1,
     constant Frame& frame,
     metal::texture3d<float, metal::access::sample> shape_tex,
     metal::texture3d<float, metal::access::sample> detail_tex,
@@ -364,35 +381,35 @@ float cloud_density(
     metal::texture2d<float, metal::access::sample> curl_tex,
     metal::sampler noise_sampler
 ) {
-    bool local_12 = {};
     bool local_13 = {};
+    bool local_14 = {};
     float base = {};
     float density = {};
-    bool local_14 = {};
     bool local_15 = {};
+    bool local_16 = {};
     metal::float3 detail_pos = {};
     float bottom_1 = frame.atmosphere.y;
     float top_1 = frame.atmosphere.z;
     float h_5 = (alt_3 - bottom_1) / (top_1 - bottom_1);
     if (!((h_5 < 0.0))) {
-        local_12 = h_5 > 1.0;
-    } else {
-        local_12 = true;
-    }
-    bool _e22 = local_12;
-    if (_e22) {
-        return 0.0;
-    }
-    uint _e25 = counters.density;
-    counters.density = _e25 + 1u;
-    Weather _e28 = sample_weather(p_3, frame, weather_tex, noise_sampler);
-    float _e30 = height_signal(h_5, _e28.cloud_type, frame);
-    if (!((_e28.coverage <= 0.0))) {
-        local_13 = _e30 <= 0.0;
+        local_13 = h_5 > 1.0;
     } else {
         local_13 = true;
     }
-    bool _e40 = local_13;
+    bool _e22 = local_13;
+    if (_e22) {
+        return 0.0;
+    }
+    uint _e25 = counters_1.density;
+    counters_1.density = _e25 + 1u;
+    Weather _e28 = sample_weather(p_3, frame, weather_tex, noise_sampler);
+    float _e30 = height_signal(h_5, _e28.cloud_type, frame);
+    if (!((_e28.coverage <= 0.0))) {
+        local_14 = _e30 <= 0.0;
+    } else {
+        local_14 = true;
+    }
+    bool _e40 = local_14;
     if (_e40) {
         return 0.0;
     }
@@ -402,9 +419,9 @@ float cloud_density(
     float _e60 = frame.wind_offsets0_.z;
     float _e66 = frame.wind_offsets0_.w;
     metal::float3 shape_pos = metal::float3(p_3.x - _e60, alt_3, p_3.z - _e66);
-    metal::float4 s_1 = shape_tex.sample(noise_sampler, shape_pos / period, metal::level(0.0));
-    float low_fbm = ((s_1.y * 0.625) + (s_1.z * 0.25)) + (s_1.w * 0.125);
-    float _e91 = remap(s_1.x, low_fbm - 1.0, 1.0, 0.0, 1.0);
+    metal::float4 s_2 = shape_tex.sample(noise_sampler, shape_pos / period, metal::level(0.0));
+    float low_fbm = ((s_2.y * 0.625) + (s_2.z * 0.25)) + (s_2.w * 0.125);
+    float _e91 = remap(s_2.x, low_fbm - 1.0, 1.0, 0.0, 1.0);
     float _e92 = saturate(_e91);
     base = _e92 * _e30;
     float _e95 = base;
@@ -420,21 +437,21 @@ float cloud_density(
     float strength = frame.erosion.x;
     float threshold = frame.erosion.y;
     if (DETAIL) {
-        local_14 = strength > 0.0;
-    } else {
-        local_14 = false;
-    }
-    bool _e126 = local_14;
-    if (_e126) {
-        float _e129 = base;
-        local_15 = _e129 < threshold;
+        local_15 = strength > 0.0;
     } else {
         local_15 = false;
     }
-    bool _e132 = local_15;
+    bool _e126 = local_15;
+    if (_e126) {
+        float _e129 = base;
+        local_16 = _e129 < threshold;
+    } else {
+        local_16 = false;
+    }
+    bool _e132 = local_16;
     if (_e132) {
-        uint _e134 = counters.detail;
-        counters.detail = _e134 + 1u;
+        uint _e134 = counters_1.detail;
+        counters_1.detail = _e134 + 1u;
         detail_pos = metal::float3(p_3.x, alt_3, p_3.z);
         if (CURL) {
             metal::float4 _e145 = frame.wind_offsets1_;
@@ -499,23 +516,23 @@ float phase(
     constant Frame& frame
 ) {
     float _e5 = frame.phase.x;
-    float g_2 = _e5 * scale;
+    float g_3 = _e5 * scale;
     uint _e10 = frame.modes.x;
     switch(_e10) {
         case 1u: {
             float _e14 = frame.phase.y;
             float g2_2 = _e14 * scale;
-            float _e16 = phase_hg(cos_theta_2, g_2);
+            float _e16 = phase_hg(cos_theta_2, g_3);
             float _e17 = phase_hg(cos_theta_2, g2_2);
             float _e21 = frame.phase.z;
             return metal::mix(_e16, _e17, _e21);
         }
         case 2u: {
-            float _e23 = phase_cornette_shanks(cos_theta_2, g_2);
+            float _e23 = phase_cornette_shanks(cos_theta_2, g_3);
             return _e23;
         }
         default: {
-            float _e24 = phase_hg(cos_theta_2, g_2);
+            float _e24 = phase_hg(cos_theta_2, g_3);
             return _e24;
         }
     }
@@ -524,7 +541,7 @@ float phase(
 float sun_optical_depth(
     metal::float3 rel,
     metal::float3 p_4,
-    thread Counters& counters_1,
+    thread Counters& counters_2,
     constant Frame& frame,
     metal::texture3d<float, metal::access::sample> shape_tex,
     metal::texture3d<float, metal::access::sample> detail_tex,
@@ -536,7 +553,7 @@ float sun_optical_depth(
     float dist = 0.0;
     float tau = 0.0;
     uint i = 0u;
-    bool local_16 = {};
+    bool local_17 = {};
     metal::float4 _e5 = frame.sun_direction;
     metal::float3 sun = _e5.xyz;
     float _e10 = frame.extinction.x;
@@ -564,24 +581,24 @@ float sun_optical_depth(
         {
             float _e37 = dist;
             float _e38 = seg;
-            float s_2 = _e37 + (0.5 * _e38);
-            metal::float3 q_5 = rel + (sun * s_2);
+            float s_3 = _e37 + (0.5 * _e38);
+            metal::float3 q_5 = rel + (sun * s_3);
             float _e44 = altitude_of(q_5, frame);
             float _e48 = frame.atmosphere.z;
             if (!((_e44 > _e48))) {
                 float _e56 = frame.atmosphere.y;
-                local_16 = _e44 < _e56;
+                local_17 = _e44 < _e56;
             } else {
-                local_16 = true;
+                local_17 = true;
             }
-            bool _e59 = local_16;
+            bool _e59 = local_17;
             if (_e59) {
                 break;
             }
-            uint _e61 = counters_1.light;
-            counters_1.light = _e61 + 1u;
+            uint _e61 = counters_2.light;
+            counters_2.light = _e61 + 1u;
             float _e64 = tau;
-            float _e67 = cloud_density(p_4 + (sun * s_2), _e44, counters_1, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+            float _e67 = cloud_density(p_4 + (sun * s_3), _e44, counters_2, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
             float _e69 = seg;
             tau = _e64 + ((_e67 * sigma_t_1) * _e69);
             float _e72 = dist;
@@ -605,9 +622,9 @@ float sun_scattering(
     float kb = 1.0;
     float kc = 1.0;
     uint i_1 = 0u;
-    float a = frame.multiple_scattering.x;
-    float b_3 = frame.multiple_scattering.y;
-    float c_3 = frame.multiple_scattering.z;
+    float a_1 = frame.multiple_scattering.x;
+    float b_4 = frame.multiple_scattering.y;
+    float c_4 = frame.multiple_scattering.z;
     uint _e17 = frame.misc.x;
     uint octaves = metal::min(_e17, MAX_OCTAVES);
     float _e21 = phase(cos_theta_3, 1.0, frame);
@@ -629,11 +646,11 @@ float sun_scattering(
         }
         {
             float _e36 = ka;
-            ka = _e36 * a;
+            ka = _e36 * a_1;
             float _e38 = kb;
-            kb = _e38 * b_3;
+            kb = _e38 * b_4;
             float _e40 = kc;
-            kc = _e40 * c_3;
+            kc = _e40 * c_4;
             float _e42 = total;
             float _e43 = ka;
             float _e44 = kc;
@@ -668,7 +685,7 @@ metal::float3 scattered_light(
     float alt_4,
     float density_1,
     metal::float3 view,
-    thread Counters& counters_2,
+    thread Counters& counters_3,
     constant Frame& frame,
     metal::texture3d<float, metal::access::sample> shape_tex,
     metal::texture3d<float, metal::access::sample> detail_tex,
@@ -687,7 +704,7 @@ metal::float3 scattered_light(
     bool _e29 = hits_ground(rel_1, alt_4, sun_1, frame);
     if (!(_e29)) {
         if (LIGHT_MARCH) {
-            float _e34 = sun_optical_depth(rel_1, p_5, counters_2, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+            float _e34 = sun_optical_depth(rel_1, p_5, counters_3, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
             tau_2 = _e34;
         }
         metal::float4 _e37 = frame.sun_illuminance;
@@ -755,13 +772,13 @@ void count(
     uint value,
     device Stats& stats
 ) {
-    bool local_17 = {};
+    bool local_18 = {};
     if (STATS) {
-        local_17 = value != 0u;
+        local_18 = value != 0u;
     } else {
-        local_17 = false;
+        local_18 = false;
     }
-    bool _e8 = local_17;
+    bool _e8 = local_18;
     if (_e8) {
         uint _e12 = metal::atomic_fetch_add_explicit(&stats.counters.inner[index], value, metal::memory_order_relaxed);
         return;
@@ -795,8 +812,8 @@ float start_offset(
 ) {
     uint _e4 = frame.modes.w;
     bool jitter = (_e4 & FLAG_JITTER) != 0u;
-    uint k_1 = frame.temporal.x;
-    if (k_1 <= 1u) {
+    uint k_3 = frame.temporal.x;
+    if (k_3 <= 1u) {
         uint _e18 = frame.misc.y;
         float _e19 = hash_unit(pixel_2, _e18);
         return jitter ? _e19 : 0.5;
@@ -804,7 +821,7 @@ float start_offset(
     float _e23 = hash_unit(pixel_2, 0u);
     float base_2 = jitter ? _e23 : 0.5;
     uint _e29 = frame.misc.y;
-    float _e32 = van_der_corput(naga_div(_e29, k_1 * k_1));
+    float _e32 = van_der_corput(naga_div(_e29, k_3 * k_3));
     return metal::fract(base_2 + _e32);
 }
 
@@ -823,7 +840,7 @@ MarchResult march_pixel(
     metal::texture2d<float, metal::access::sample> occupancy_in,
     device Stats& stats
 ) {
-    Counters counters_3 = Counters {0u, 0u, 0u, 0u};
+    Counters counters_4 = Counters {0u, 0u, 0u, 0u};
     metal::float3 radiance = metal::float3(0.0);
     float transmittance = 1.0;
     float depth_sum = 0.0;
@@ -831,7 +848,7 @@ MarchResult march_pixel(
     uint i_2 = 0u;
     uint stride = 1u;
     uint empty = 0u;
-    bool local_18 = {};
+    bool local_19 = {};
     float depth_1 = 0.0;
     metal::float3 _e1 = view_ray(pixel_3, frame);
     float cam_alt = frame.camera_position.y;
@@ -872,34 +889,34 @@ MarchResult march_pixel(
                 if (_e96 >= _e97) {
                     break;
                 }
-                uint _e100 = counters_3.view_steps;
-                counters_3.view_steps = _e100 + 1u;
+                uint _e100 = counters_4.view_steps;
+                counters_4.view_steps = _e100 + 1u;
                 uint _e104 = i_2;
-                float t_1 = _e25.start + ((static_cast<float>(_e104) + _e64) * dt_1);
-                metal::float3 rel_2 = (_e1 * t_1) + metal::float3(0.0, cam_alt, 0.0);
-                metal::float3 p_7 = metal::float3(rel_2.x + cam_xz.x, rel_2.y, rel_2.z + cam_xz.y);
+                float t_4 = _e25.start + ((static_cast<float>(_e104) + _e64) * dt_1);
+                metal::float3 rel_3 = (_e1 * t_4) + metal::float3(0.0, cam_alt, 0.0);
+                metal::float3 p_9 = metal::float3(rel_3.x + cam_xz.x, rel_3.y, rel_3.z + cam_xz.y);
                 if (empty_skip) {
-                    float _e122 = empty_cell_exit(p_7, _e1, frame, occupancy_in);
+                    float _e122 = empty_cell_exit(p_9, _e1, frame, occupancy_in);
                     if (_e122 > 0.0) {
                         uint _e131 = steps;
-                        uint next = naga_f2u32(metal::clamp(metal::ceil((((t_1 + _e122) - _e25.start) / dt_1) - _e64), 0.0, static_cast<float>(_e131)));
+                        uint next = naga_f2u32(metal::clamp(metal::ceil((((t_4 + _e122) - _e25.start) / dt_1) - _e64), 0.0, static_cast<float>(_e131)));
                         uint _e136 = i_2;
                         i_2 = metal::max(_e136 + 1u, next);
                         continue;
                     }
                 }
-                float _e140 = altitude_of(rel_2, frame);
-                float _e141 = cloud_density(p_7, _e140, counters_3, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+                float _e140 = altitude_of(rel_3, frame);
+                float _e141 = cloud_density(p_9, _e140, counters_4, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
                 if (_e141 <= 0.0) {
                     uint _e144 = empty;
                     empty = _e144 + 1u;
                     if (dynamic_step) {
                         uint _e149 = empty;
-                        local_18 = _e149 >= 8u;
+                        local_19 = _e149 >= 8u;
                     } else {
-                        local_18 = false;
+                        local_19 = false;
                     }
-                    bool _e153 = local_18;
+                    bool _e153 = local_19;
                     if (_e153) {
                         stride = 2u;
                     }
@@ -919,7 +936,7 @@ MarchResult march_pixel(
                 }
                 empty = 0u;
                 float sigma_t_2 = sigma_e * _e141;
-                metal::float3 _e170 = scattered_light(rel_2, p_7, _e140, _e141, _e1, counters_3, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+                metal::float3 _e170 = scattered_light(rel_3, p_9, _e140, _e141, _e1, counters_4, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
                 metal::float3 _e171 = radiance;
                 float _e172 = transmittance;
                 metal::float3 _e173 = step_integral(_e170, sigma_t_2, dt_1, frame);
@@ -927,7 +944,7 @@ MarchResult march_pixel(
                 float step_t = metal::exp(-(sigma_t_2) * dt_1);
                 float _e179 = depth_sum;
                 float _e180 = transmittance;
-                depth_sum = _e179 + ((t_1 * _e180) * (1.0 - step_t));
+                depth_sum = _e179 + ((t_4 * _e180) * (1.0 - step_t));
                 float _e186 = transmittance;
                 transmittance = _e186 * step_t;
                 float _e188 = transmittance;
@@ -941,13 +958,13 @@ MarchResult march_pixel(
             }
         }
     }
-    uint _e201 = counters_3.view_steps;
+    uint _e201 = counters_4.view_steps;
     count(STAT_VIEW_STEPS, _e201, stats);
-    uint _e204 = counters_3.density;
+    uint _e204 = counters_4.density;
     count(STAT_DENSITY, _e204, stats);
-    uint _e207 = counters_3.detail;
+    uint _e207 = counters_4.detail;
     count(STAT_DETAIL, _e207, stats);
-    uint _e210 = counters_3.light;
+    uint _e210 = counters_4.light;
     count(STAT_LIGHT, _e210, stats);
     float _e213 = transmittance;
     if (_e213 < 1.0) {
@@ -980,9 +997,9 @@ metal::uint2 block_offset(
         return _e6;
     }
     if (k == 4u) {
-        uint b_4 = naga_mod(f, 16u);
-        metal::uint2 _e13 = bayer2_(b_4 >> 2u);
-        metal::uint2 _e17 = bayer2_(b_4 & 3u);
+        uint b_5 = naga_mod(f, 16u);
+        metal::uint2 _e13 = bayer2_(b_5 >> 2u);
+        metal::uint2 _e17 = bayer2_(b_5 & 3u);
         return _e13 + (2u * _e17);
     }
     return metal::uint2(0u);
@@ -993,36 +1010,36 @@ metal::float2 reproject(
     float depth_2,
     constant Frame& frame
 ) {
-    bool local_19 = {};
     bool local_20 = {};
     bool local_21 = {};
+    bool local_22 = {};
     metal::float3 dir = {};
     metal::float4 _e4 = frame.previous_position;
     metal::float4 _e7 = frame.camera_position;
     if (metal::all(_e4 == _e7)) {
         metal::float4 _e14 = frame.previous_forward;
         metal::float4 _e17 = frame.camera_forward;
-        local_19 = metal::all(_e14 == _e17);
-    } else {
-        local_19 = false;
-    }
-    bool _e21 = local_19;
-    if (_e21) {
-        metal::float4 _e26 = frame.previous_right;
-        metal::float4 _e29 = frame.camera_right;
-        local_20 = metal::all(_e26 == _e29);
+        local_20 = metal::all(_e14 == _e17);
     } else {
         local_20 = false;
     }
-    bool _e33 = local_20;
-    if (_e33) {
-        metal::float4 _e38 = frame.previous_up;
-        metal::float4 _e41 = frame.camera_up;
-        local_21 = metal::all(_e38 == _e41);
+    bool _e21 = local_20;
+    if (_e21) {
+        metal::float4 _e26 = frame.previous_right;
+        metal::float4 _e29 = frame.camera_right;
+        local_21 = metal::all(_e26 == _e29);
     } else {
         local_21 = false;
     }
-    bool same = local_21;
+    bool _e33 = local_21;
+    if (_e33) {
+        metal::float4 _e38 = frame.previous_up;
+        metal::float4 _e41 = frame.camera_up;
+        local_22 = metal::all(_e38 == _e41);
+    } else {
+        local_22 = false;
+    }
+    bool same = local_22;
     if (same) {
         return static_cast<metal::float2>(pixel_4);
     }
@@ -1054,15 +1071,15 @@ bool on_screen(
     metal::float2 q,
     constant Frame& frame
 ) {
-    bool local_22 = {};
+    bool local_23 = {};
     metal::uint4 _e3 = frame.counts;
     metal::float2 size_1 = static_cast<metal::float2>(_e3.xy);
     if (metal::all(q >= metal::float2(-0.5))) {
-        local_22 = metal::all(q <= (size_1 - metal::float2(0.5)));
+        local_23 = metal::all(q <= (size_1 - metal::float2(0.5)));
     } else {
-        local_22 = false;
+        local_23 = false;
     }
-    bool _e18 = local_22;
+    bool _e18 = local_23;
     return _e18;
 }
 
@@ -1104,9 +1121,9 @@ metal::float4 history_at(
 ) {
     metal::uint4 _e3 = frame.counts;
     metal::int2 size_3 = static_cast<metal::int2>(_e3.xy);
-    metal::float2 c_4 = metal::clamp(q_1, metal::float2(0.0), static_cast<metal::float2>(as_type<metal::int2>(as_type<metal::uint2>(size_3) - as_type<metal::uint2>(metal::int2(1)))));
-    metal::int2 base_3 = naga_f2i32(metal::floor(c_4));
-    metal::float2 f_2 = c_4 - static_cast<metal::float2>(base_3);
+    metal::float2 c_5 = metal::clamp(q_1, metal::float2(0.0), static_cast<metal::float2>(as_type<metal::int2>(as_type<metal::uint2>(size_3) - as_type<metal::uint2>(metal::int2(1)))));
+    metal::int2 base_3 = naga_f2i32(metal::floor(c_5));
+    metal::float2 f_2 = c_5 - static_cast<metal::float2>(base_3);
     metal::float4 _e18 = catmull_rom(f_2.x);
     metal::float4 _e20 = catmull_rom(f_2.y);
     metal::float4 _e22 = history_row(base_3, -1, _e18, frame, history_in);
@@ -1125,8 +1142,8 @@ metal::float4 history_nearest(
 ) {
     metal::uint4 _e3 = frame.counts;
     metal::int2 size_4 = static_cast<metal::int2>(_e3.xy);
-    metal::int2 p_8 = metal::clamp(naga_f2i32(metal::rint(q_2)), metal::int2(0), as_type<metal::int2>(as_type<metal::uint2>(size_4) - as_type<metal::uint2>(metal::int2(1))));
-    metal::float4 _e16 = history_in.read(metal::uint2(p_8), 0);
+    metal::int2 p_10 = metal::clamp(naga_f2i32(metal::rint(q_2)), metal::int2(0), as_type<metal::int2>(as_type<metal::uint2>(size_4) - as_type<metal::uint2>(metal::int2(1))));
+    metal::float4 _e16 = history_in.read(metal::uint2(p_10), 0);
     return _e16;
 }
 
@@ -1137,8 +1154,8 @@ metal::float4 meta_at(
 ) {
     metal::uint4 _e3 = frame.counts;
     metal::int2 size_5 = static_cast<metal::int2>(_e3.xy);
-    metal::int2 p_9 = metal::clamp(naga_f2i32(metal::rint(q_3)), metal::int2(0), as_type<metal::int2>(as_type<metal::uint2>(size_5) - as_type<metal::uint2>(metal::int2(1))));
-    metal::float4 _e16 = meta_in.read(metal::uint2(p_9), 0);
+    metal::int2 p_11 = metal::clamp(naga_f2i32(metal::rint(q_3)), metal::int2(0), as_type<metal::int2>(as_type<metal::uint2>(size_5) - as_type<metal::uint2>(metal::int2(1))));
+    metal::float4 _e16 = meta_in.read(metal::uint2(p_11), 0);
     return _e16;
 }
 
@@ -1147,68 +1164,670 @@ metal::uint2 naga_div(metal::uint2 lhs, metal::uint2 rhs) {
 }
 
 bool in_blocks(
-    metal::uint2 id_6,
-    constant Frame& frame
-) {
-    uint k_2 = frame.temporal.x;
-    metal::uint4 _e7 = frame.counts;
-    return metal::all(id_6 < naga_div((_e7.xy + metal::uint2(k_2)) - metal::uint2(1u), metal::uint2(k_2)));
-}
-
-metal::uint2 sparse_pixel(
     metal::uint2 id_7,
     constant Frame& frame
 ) {
-    uint k_3 = frame.temporal.x;
+    uint k_4 = frame.temporal.x;
+    metal::uint4 _e7 = frame.counts;
+    return metal::all(id_7 < naga_div((_e7.xy + metal::uint2(k_4)) - metal::uint2(1u), metal::uint2(k_4)));
+}
+
+metal::uint2 sparse_pixel(
+    metal::uint2 id_8,
+    constant Frame& frame
+) {
+    uint k_5 = frame.temporal.x;
     uint _e9 = frame.misc.y;
-    metal::uint2 _e10 = block_offset(_e9, k_3);
-    return (id_7 * k_3) + _e10;
+    metal::uint2 _e10 = block_offset(_e9, k_5);
+    return (id_8 * k_5) + _e10;
 }
 
 void store_sparse(
-    metal::uint2 id_8,
+    metal::uint2 id_9,
     MarchResult r_2,
     metal::texture2d<float, metal::access::write> cloud_out,
     metal::texture2d<float, metal::access::write> depth_out
 ) {
-    cloud_out.write(metal::float4(r_2.radiance, r_2.transmittance), metal::uint2(id_8));
-    depth_out.write(metal::float4(r_2.depth, 0.0, 0.0, 0.0), metal::uint2(id_8));
+    cloud_out.write(metal::float4(r_2.radiance, r_2.transmittance), metal::uint2(id_9));
+    depth_out.write(metal::float4(r_2.depth, 0.0, 0.0, 0.0), metal::uint2(id_9));
     return;
 }
 
-metal::float3 sky_radiance(
-    metal::float3 d_4,
+uint rng_seed(
+    metal::uint2 pixel_5,
+    uint frame_index_1
+) {
+    uint _e4 = pcg(frame_index_1);
+    uint _e6 = pcg(pixel_5.y ^ _e4);
+    uint _e8 = pcg(pixel_5.x ^ _e6);
+    return _e8;
+}
+
+float rng_next(
+    thread uint& rng_1
+) {
+    uint _e1 = rng_1;
+    rng_1 = (_e1 * 747796405u) + 2891336453u;
+    uint s_4 = rng_1;
+    uint word_1 = ((s_4 >> ((s_4 >> 28u) + 4u)) ^ s_4) * 277803737u;
+    return static_cast<float>(((word_1 >> 22u) ^ word_1) >> 8u) * 0.000000059604645;
+}
+
+float rng_exponential(
+    thread uint& rng_2,
+    float sigma
+) {
+    float _e2 = rng_next(rng_2);
+    return -(metal::log(1.0 - _e2)) / sigma;
+}
+
+Roots ray_shell_from(
+    metal::float3 p_7,
     float alt_5,
+    metal::float3 d_4,
+    float radius_alt_1,
+    constant Frame& frame
+) {
+    float rp_3 = frame.atmosphere.x;
+    float b_6 = metal::dot(d_4, metal::float3(p_7.x, p_7.y + rp_3, p_7.z));
+    float c_6 = (alt_5 - radius_alt_1) * ((alt_5 + radius_alt_1) + (2.0 * rp_3));
+    Roots _e20 = solve_sphere(b_6, c_6);
+    return _e20;
+}
+
+Segments layer_segments(
+    metal::float3 p_8,
+    float alt_6,
+    metal::float3 d_5,
+    constant Frame& frame
+) {
+    Segments s = Segments {metal::float2(0.0), metal::float2(0.0), 0u};
+    bool local_24 = {};
+    metal::float2 a = metal::float2(0.0);
+    metal::float2 b_1 = metal::float2(0.0);
+    uint n_1 = 0u;
+    bool local_25 = {};
+    bool local_26 = {};
+    bool local_27 = {};
+    bool local_28 = {};
+    float bottom_2 = frame.atmosphere.y;
+    Roots _e14 = ray_shell_from(p_8, alt_6, d_5, bottom_2, frame);
+    float _e18 = frame.atmosphere.z;
+    Roots _e19 = ray_shell_from(p_8, alt_6, d_5, _e18, frame);
+    bool _e20 = hits_ground(p_8, alt_6, d_5, frame);
+    if (!(!(_e19.hit))) {
+        local_24 = _e19.t1_ <= 0.0;
+    } else {
+        local_24 = true;
+    }
+    bool _e30 = local_24;
+    if (_e30) {
+        Segments _e31 = s;
+        return _e31;
+    }
+    float entry = metal::max(_e19.t0_, 0.0);
+    if (_e14.hit) {
+        local_25 = _e14.t0_ > 0.0;
+    } else {
+        local_25 = false;
+    }
+    bool _e50 = local_25;
+    if (_e50) {
+        local_26 = alt_6 >= bottom_2;
+    } else {
+        local_26 = false;
+    }
+    bool _e55 = local_26;
+    if (_e55) {
+        uint _e56 = n_1;
+        a[_e56] = entry;
+        uint _e58 = n_1;
+        b_1[_e58] = _e14.t0_;
+        uint _e61 = n_1;
+        n_1 = _e61 + static_cast<uint>(_e14.t0_ > entry);
+        if (!(_e20)) {
+            local_27 = _e19.t1_ > _e14.t1_;
+        } else {
+            local_27 = false;
+        }
+        bool _e73 = local_27;
+        if (_e73) {
+            uint _e74 = n_1;
+            a[_e74] = metal::max(_e14.t1_, entry);
+            uint _e78 = n_1;
+            b_1[_e78] = _e19.t1_;
+            uint _e81 = n_1;
+            n_1 = _e81 + 1u;
+        }
+    } else {
+        if (alt_6 < bottom_2) {
+            if (!(_e20)) {
+                local_28 = _e14.hit;
+            } else {
+                local_28 = false;
+            }
+            bool _e90 = local_28;
+            if (_e90) {
+                a.x = metal::max(_e14.t1_, 0.0);
+                b_1.x = _e19.t1_;
+                n_1 = 1u;
+            }
+        } else {
+            a.x = entry;
+            b_1.x = _e19.t1_;
+            n_1 = 1u;
+        }
+    }
+    metal::float2 _e103 = a;
+    s.a = _e103;
+    metal::float2 _e105 = b_1;
+    s.b = _e105;
+    uint _e107 = n_1;
+    s.count = _e107;
+    Segments _e108 = s;
+    return _e108;
+}
+
+float density_at(
+    metal::float3 rel_2,
+    thread Counters& counters_5,
+    constant Frame& frame,
+    metal::texture3d<float, metal::access::sample> shape_tex,
+    metal::texture3d<float, metal::access::sample> detail_tex,
+    metal::texture2d<float, metal::access::sample> weather_tex,
+    metal::texture2d<float, metal::access::sample> curl_tex,
+    metal::sampler noise_sampler
+) {
+    float _e6 = frame.camera_position.x;
+    float _e13 = frame.camera_position.z;
+    metal::float3 p_12 = metal::float3(rel_2.x + _e6, rel_2.y, rel_2.z + _e13);
+    float _e16 = altitude_of(rel_2, frame);
+    float _e17 = cloud_density(p_12, _e16, counters_5, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+    return _e17;
+}
+
+float empty_cell_skip(
+    metal::float3 origin,
+    metal::float3 dir_1,
+    float t_1,
+    constant Frame& frame,
+    metal::texture2d<float, metal::access::sample> occupancy_in
+) {
+    metal::float3 rel_4 = origin + (dir_1 * t_1);
+    float _e9 = frame.camera_position.x;
+    float _e16 = frame.camera_position.z;
+    metal::float3 p_13 = metal::float3(rel_4.x + _e9, rel_4.y, rel_4.z + _e16);
+    float _e19 = empty_cell_exit(p_13, dir_1, frame, occupancy_in);
+    if (_e19 <= 0.0) {
+        return 0.0;
+    }
+    return _e19 + 0.05;
+}
+
+float density_max(
+    constant Frame& frame
+) {
+    float _e3 = frame.clouds.y;
+    float _e7 = frame.clouds.w;
+    return metal::clamp(_e3 * (1.0 + _e7), 0.0, 1.0);
+}
+
+float free_flight(
+    metal::float3 origin_1,
+    metal::float3 dir_2,
+    Segments segs,
+    thread uint& rng_3,
+    thread Counters& counters_6,
+    constant Frame& frame,
+    metal::texture3d<float, metal::access::sample> shape_tex,
+    metal::texture3d<float, metal::access::sample> detail_tex,
+    metal::texture2d<float, metal::access::sample> weather_tex,
+    metal::texture2d<float, metal::access::sample> curl_tex,
+    metal::sampler noise_sampler,
+    metal::texture2d<float, metal::access::sample> occupancy_in
+) {
+    uint k_1 = 0u;
+    float t_2 = {};
+    float _e5 = density_max(frame);
+    float _e9 = frame.extinction.x;
+    float _e13 = frame.extinction.y;
+    float majorant = (_e9 + _e13) * _e5;
+    if (majorant <= 0.0) {
+        return -1.0;
+    }
+    uint2 loop_bound_3 = uint2(4294967295u);
+    bool loop_init_2 = true;
+    while(true) {
+        if (metal::all(loop_bound_3 == uint2(0u))) { break; }
+        loop_bound_3 -= uint2(loop_bound_3.y == 0u, 1u);
+        if (!loop_init_2) {
+            uint _e60 = k_1;
+            k_1 = _e60 + 1u;
+        }
+        loop_init_2 = false;
+        uint _e21 = k_1;
+        if (_e21 < segs.count) {
+        } else {
+            break;
+        }
+        {
+            uint _e25 = k_1;
+            t_2 = segs.a[_e25];
+            uint2 loop_bound_4 = uint2(4294967295u);
+            while(true) {
+                if (metal::all(loop_bound_4 == uint2(0u))) { break; }
+                loop_bound_4 -= uint2(loop_bound_4.y == 0u, 1u);
+                float _e28 = t_2;
+                float _e29 = empty_cell_skip(origin_1, dir_2, _e28, frame, occupancy_in);
+                if (_e29 > 0.0) {
+                    float _e32 = t_2;
+                    t_2 = _e32 + _e29;
+                    float _e34 = t_2;
+                    uint _e36 = k_1;
+                    if (_e34 >= segs.b[_e36]) {
+                        break;
+                    }
+                    continue;
+                }
+                float _e39 = t_2;
+                float _e40 = rng_exponential(rng_3, majorant);
+                t_2 = _e39 + _e40;
+                float _e42 = t_2;
+                uint _e44 = k_1;
+                if (_e42 >= segs.b[_e44]) {
+                    break;
+                }
+                uint _e48 = counters_6.view_steps;
+                counters_6.view_steps = _e48 + 1u;
+                float _e51 = t_2;
+                float _e54 = density_at(origin_1 + (dir_2 * _e51), counters_6, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+                float _e55 = rng_next(rng_3);
+                if ((_e55 * _e5) < _e54) {
+                    float _e58 = t_2;
+                    return _e58;
+                }
+            }
+        }
+    }
+    return -1.0;
+}
+
+float transmittance_along(
+    metal::float3 origin_2,
+    metal::float3 dir_3,
+    Segments segs_1,
+    thread uint& rng_4,
+    thread Counters& counters_7,
+    constant Frame& frame,
+    metal::texture3d<float, metal::access::sample> shape_tex,
+    metal::texture3d<float, metal::access::sample> detail_tex,
+    metal::texture2d<float, metal::access::sample> weather_tex,
+    metal::texture2d<float, metal::access::sample> curl_tex,
+    metal::sampler noise_sampler,
+    metal::texture2d<float, metal::access::sample> occupancy_in
+) {
+    float tr = 1.0;
+    uint k_2 = 0u;
+    float t_3 = {};
+    float _e8 = frame.extinction.x;
+    float _e12 = frame.extinction.y;
+    float sigma_t_3 = _e8 + _e12;
+    float _e14 = density_max(frame);
+    float majorant_1 = sigma_t_3 * _e14;
+    if (majorant_1 <= 0.0) {
+        return 1.0;
+    }
+    uint2 loop_bound_5 = uint2(4294967295u);
+    bool loop_init_3 = true;
+    while(true) {
+        if (metal::all(loop_bound_5 == uint2(0u))) { break; }
+        loop_bound_5 -= uint2(loop_bound_5.y == 0u, 1u);
+        if (!loop_init_3) {
+            uint _e78 = k_2;
+            k_2 = _e78 + 1u;
+        }
+        loop_init_3 = false;
+        uint _e23 = k_2;
+        if (_e23 < segs_1.count) {
+        } else {
+            break;
+        }
+        {
+            uint _e27 = k_2;
+            t_3 = segs_1.a[_e27];
+            uint2 loop_bound_6 = uint2(4294967295u);
+            while(true) {
+                if (metal::all(loop_bound_6 == uint2(0u))) { break; }
+                loop_bound_6 -= uint2(loop_bound_6.y == 0u, 1u);
+                float _e30 = t_3;
+                float _e31 = empty_cell_skip(origin_2, dir_3, _e30, frame, occupancy_in);
+                if (_e31 > 0.0) {
+                    float _e34 = t_3;
+                    t_3 = _e34 + _e31;
+                    float _e36 = t_3;
+                    uint _e38 = k_2;
+                    if (_e36 >= segs_1.b[_e38]) {
+                        break;
+                    }
+                    continue;
+                }
+                float _e41 = t_3;
+                float _e42 = rng_exponential(rng_4, majorant_1);
+                t_3 = _e41 + _e42;
+                float _e44 = t_3;
+                uint _e46 = k_2;
+                if (_e44 >= segs_1.b[_e46]) {
+                    break;
+                }
+                uint _e50 = counters_7.light;
+                counters_7.light = _e50 + 1u;
+                float _e53 = t_3;
+                float _e56 = density_at(origin_2 + (dir_3 * _e53), counters_7, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+                float _e57 = tr;
+                tr = _e57 * (1.0 - ((sigma_t_3 * _e56) / majorant_1));
+                float _e63 = tr;
+                if (_e63 <= 0.0) {
+                    return 0.0;
+                }
+                float _e67 = tr;
+                if (_e67 < 0.01) {
+                    float _e70 = rng_next(rng_4);
+                    if (_e70 < 0.75) {
+                        return 0.0;
+                    }
+                    float _e74 = tr;
+                    tr = _e74 * 4.0;
+                }
+            }
+        }
+    }
+    float _e80 = tr;
+    return _e80;
+}
+
+float sample_hg_cos(
+    float g_2,
+    float u
+) {
+    if (metal::abs(g_2) < 0.0001) {
+        return 1.0 - (2.0 * u);
+    }
+    float s_5 = (1.0 - (g_2 * g_2)) / ((1.0 - g_2) + ((2.0 * g_2) * u));
+    return metal::clamp(((1.0 + (g_2 * g_2)) - (s_5 * s_5)) / (2.0 * g_2), -1.0, 1.0);
+}
+
+PhaseSample sample_phase(
+    metal::float3 dir_4,
+    thread uint& rng_5,
+    constant Frame& frame
+) {
+    float cos_theta_4 = 0.0;
+    float pdf = 0.0;
+    float _e2 = rng_next(rng_5);
+    float _e3 = rng_next(rng_5);
+    float _e5 = rng_next(rng_5);
+    float phi = 6.2831855 * _e5;
+    uint _e14 = frame.modes.x;
+    if (_e14 == PHASE_TWO_LOBE_HG) {
+        float _e20 = frame.phase.x;
+        float _e24 = frame.phase.y;
+        float _e28 = frame.phase.z;
+        float g_4 = (_e2 < _e28) ? _e24 : _e20;
+        float _e31 = sample_hg_cos(g_4, _e3);
+        cos_theta_4 = _e31;
+        float _e32 = cos_theta_4;
+        float _e36 = frame.phase.x;
+        float _e37 = phase_hg(_e32, _e36);
+        float _e38 = cos_theta_4;
+        float _e42 = frame.phase.y;
+        float _e43 = phase_hg(_e38, _e42);
+        float _e47 = frame.phase.z;
+        pdf = metal::mix(_e37, _e43, _e47);
+    } else {
+        float _e52 = frame.phase.x;
+        float _e53 = sample_hg_cos(_e52, _e3);
+        cos_theta_4 = _e53;
+        float _e54 = cos_theta_4;
+        float _e58 = frame.phase.x;
+        float _e59 = phase_hg(_e54, _e58);
+        pdf = _e59;
+    }
+    float _e60 = cos_theta_4;
+    float _e61 = cos_theta_4;
+    float sin_theta = metal::sqrt(metal::max(1.0 - (_e60 * _e61), 0.0));
+    float sign = (dir_4.z >= 0.0) ? 1.0 : -1.0;
+    float a_2 = -1.0 / (sign + dir_4.z);
+    float bb = (dir_4.x * dir_4.y) * a_2;
+    metal::float3 t_5 = metal::float3(1.0 + (((sign * dir_4.x) * dir_4.x) * a_2), sign * bb, -(sign) * dir_4.x);
+    metal::float3 b_7 = metal::float3(bb, sign + ((dir_4.y * dir_4.y) * a_2), -(dir_4.y));
+    float _e109 = cos_theta_4;
+    metal::float3 w_1 = metal::normalize(((t_5 * (sin_theta * metal::cos(phi))) + (b_7 * (sin_theta * metal::sin(phi)))) + (dir_4 * _e109));
+    float _e113 = cos_theta_4;
+    float _e115 = phase(_e113, 1.0, frame);
+    float _e116 = pdf;
+    float _e118 = pdf;
+    return PhaseSample {w_1, (_e118 > 0.0) ? (_e115 / _e116) : 0.0};
+}
+
+PathResult trace_path(
+    metal::float3 view_1,
+    Interval span,
+    thread uint& rng_6,
+    thread Counters& counters_8,
+    constant Frame& frame,
+    metal::texture3d<float, metal::access::sample> shape_tex,
+    metal::texture3d<float, metal::access::sample> detail_tex,
+    metal::texture2d<float, metal::access::sample> weather_tex,
+    metal::texture2d<float, metal::access::sample> curl_tex,
+    metal::sampler noise_sampler,
+    metal::texture2d<float, metal::access::sample> occupancy_in
+) {
+    PathResult out = PathResult {metal::float3(0.0), 1.0, -1.0};
+    bool local_29 = {};
+    bool local_30 = {};
+    uint max_orders = MAX_PATH_ORDERS;
+    metal::float3 pos = {};
+    metal::float3 dir_5 = {};
+    float throughput = 1.0;
+    uint order = 0u;
+    bool local_31 = {};
+    if (span.kind != RAY_MARCH) {
+        PathResult _e13 = out;
+        return _e13;
+    }
+    float _e17 = frame.camera_position.y;
+    metal::float3 cam = metal::float3(0.0, _e17, 0.0);
+    Segments primary = Segments {metal::float2(span.start, 0.0), metal::float2(span.start + span.length, 0.0), 1u};
+    float _e32 = transmittance_along(cam, view_1, primary, rng_6, counters_8, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler, occupancy_in);
+    out.transmittance = _e32;
+    float _e33 = free_flight(cam, view_1, primary, rng_6, counters_8, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler, occupancy_in);
+    if (_e33 < 0.0) {
+        PathResult _e36 = out;
+        return _e36;
+    }
+    out.depth = _e33;
+    metal::float4 _e40 = frame.sun_direction;
+    metal::float3 sun_2 = _e40.xyz;
+    float _e45 = frame.extinction.x;
+    float _e49 = frame.extinction.y;
+    float sigma_t_4 = _e45 + _e49;
+    float _e54 = frame.extinction.x;
+    float albedo = (sigma_t_4 > 0.0) ? (_e54 / sigma_t_4) : 0.0;
+    float _e63 = frame.ambient_bottom.w;
+    if (_e63 > 0.0) {
+        metal::float4 _e70 = frame.ambient_bottom;
+        if (!(metal::any(_e70.xyz > metal::float3(0.0)))) {
+            metal::float4 _e81 = frame.ambient_top;
+            local_30 = metal::any(_e81.xyz > metal::float3(0.0));
+        } else {
+            local_30 = true;
+        }
+        bool _e88 = local_30;
+        local_29 = _e88;
+    } else {
+        local_29 = false;
+    }
+    bool ambient_on = local_29;
+    uint _e96 = frame.misc.z;
+    if (_e96 > 0u) {
+        uint _e102 = frame.misc.z;
+        max_orders = metal::min(_e102, MAX_PATH_ORDERS);
+    }
+    pos = cam + (view_1 * _e33);
+    dir_5 = view_1;
+    uint2 loop_bound_7 = uint2(4294967295u);
+    while(true) {
+        if (metal::all(loop_bound_7 == uint2(0u))) { break; }
+        loop_bound_7 -= uint2(loop_bound_7.y == 0u, 1u);
+        float _e113 = throughput;
+        throughput = _e113 * albedo;
+        uint _e115 = order;
+        order = _e115 + 1u;
+        metal::float3 _e118 = pos;
+        float _e119 = altitude_of(_e118, frame);
+        float _e123 = frame.atmosphere.y;
+        float _e128 = frame.atmosphere.z;
+        float _e132 = frame.atmosphere.y;
+        float _e135 = saturate((_e119 - _e123) / (_e128 - _e132));
+        metal::float3 _e136 = pos;
+        bool _e137 = hits_ground(_e136, _e119, sun_2, frame);
+        if (!(_e137)) {
+            metal::float3 _e139 = pos;
+            metal::float3 _e140 = pos;
+            Segments _e141 = layer_segments(_e140, _e119, sun_2, frame);
+            float _e142 = transmittance_along(_e139, sun_2, _e141, rng_6, counters_8, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler, occupancy_in);
+            metal::float3 _e144 = out.radiance;
+            metal::float4 _e147 = frame.sun_illuminance;
+            float _e149 = throughput;
+            metal::float3 _e150 = dir_5;
+            float _e153 = phase(metal::dot(_e150, sun_2), 1.0, frame);
+            out.radiance = _e144 + (_e147.xyz * ((_e149 * _e153) * _e142));
+        }
+        metal::float3 _e158 = dir_5;
+        PhaseSample _e159 = sample_phase(_e158, rng_6, frame);
+        metal::float3 _e160 = pos;
+        metal::float3 _e162 = pos;
+        Segments _e164 = layer_segments(_e162, _e119, _e159.dir, frame);
+        float _e165 = free_flight(_e160, _e159.dir, _e164, rng_6, counters_8, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler, occupancy_in);
+        if (_e165 < 0.0) {
+            if (ambient_on) {
+                metal::float3 _e169 = out.radiance;
+                metal::float3 _e170 = ambient(_e135, frame);
+                float _e171 = throughput;
+                out.radiance = _e169 + (_e170 * (_e171 * _e159.weight));
+            }
+            break;
+        }
+        uint _e176 = order;
+        uint _e177 = max_orders;
+        if (_e176 >= _e177) {
+            break;
+        }
+        float _e179 = throughput;
+        throughput = _e179 * _e159.weight;
+        dir_5 = _e159.dir;
+        uint _e183 = order;
+        if (_e183 >= 3u) {
+            float _e188 = throughput;
+            local_31 = _e188 < 0.1;
+        } else {
+            local_31 = false;
+        }
+        bool _e192 = local_31;
+        if (_e192) {
+            float _e193 = rng_next(rng_6);
+            float _e194 = throughput;
+            if (_e193 >= (_e194 / 0.1)) {
+                break;
+            }
+            throughput = 0.1;
+        }
+        float _e199 = throughput;
+        if (_e199 <= 0.0) {
+            break;
+        }
+        metal::float3 _e202 = pos;
+        metal::float3 _e203 = dir_5;
+        pos = _e202 + (_e203 * _e165);
+    }
+    PathResult _e206 = out;
+    return _e206;
+}
+
+bool camera_still(
+    constant Frame& frame
+) {
+    bool local_32 = {};
+    bool local_33 = {};
+    bool local_34 = {};
+    metal::float4 _e2 = frame.camera_position;
+    metal::float4 _e5 = frame.previous_position;
+    if (metal::all(_e2 == _e5)) {
+        metal::float4 _e12 = frame.camera_forward;
+        metal::float4 _e15 = frame.previous_forward;
+        local_32 = metal::all(_e12 == _e15);
+    } else {
+        local_32 = false;
+    }
+    bool _e19 = local_32;
+    if (_e19) {
+        metal::float4 _e24 = frame.camera_right;
+        metal::float4 _e28 = frame.previous_right;
+        local_33 = metal::all(_e24.xyz == _e28.xyz);
+    } else {
+        local_33 = false;
+    }
+    bool _e33 = local_33;
+    if (_e33) {
+        metal::float4 _e38 = frame.camera_up;
+        metal::float4 _e42 = frame.previous_up;
+        local_34 = metal::all(_e38.xyz == _e42.xyz);
+    } else {
+        local_34 = false;
+    }
+    bool _e47 = local_34;
+    return _e47;
+}
+
+float luminance(
+    metal::float3 c_1
+) {
+    return metal::dot(c_1, metal::float3(0.2126, 0.7152, 0.0722));
+}
+
+metal::float3 sky_radiance(
+    metal::float3 d_6,
+    float alt_7,
     constant Frame& frame
 ) {
     metal::float4 _e4 = frame.sun_direction;
-    metal::float3 sun_2 = _e4.xyz;
+    metal::float3 sun_3 = _e4.xyz;
     metal::float4 _e8 = frame.sun_illuminance;
     metal::float3 e = _e8.xyz;
-    float _e15 = saturate((sun_2.y * 4.0) + 0.3);
-    bool _e19 = hits_ground(metal::float3(0.0, alt_5, 0.0), alt_5, d_4, frame);
+    float _e15 = saturate((sun_3.y * 4.0) + 0.3);
+    bool _e19 = hits_ground(metal::float3(0.0, alt_7, 0.0), alt_7, d_6, frame);
     if (_e19) {
         metal::float3 ground_albedo = metal::float3(0.035, 0.035, 0.03);
-        return ground_albedo * (((e * metal::max(sun_2.y, 0.0)) / metal::float3(3.1415927)) + ((0.05 * e) * _e15));
+        return ground_albedo * (((e * metal::max(sun_3.y, 0.0)) / metal::float3(3.1415927)) + ((0.05 * e) * _e15));
     }
     metal::float3 zenith = metal::float3(0.018, 0.04, 0.1);
     metal::float3 horizon = metal::float3(0.07, 0.085, 0.11);
-    float _e45 = saturate(d_4.y);
+    float _e45 = saturate(d_6.y);
     metal::float3 gradient_1 = metal::mix(horizon, zenith, metal::sqrt(_e45));
     metal::float3 sunset = ((1.0 - (_e15 * 0.8)) * metal::pow(1.0 - _e45, 6.0)) * metal::float3(0.25, 0.1, 0.0);
-    float _e64 = phase_hg(metal::dot(d_4, sun_2), 0.76);
+    float _e64 = phase_hg(metal::dot(d_6, sun_3), 0.76);
     float glow = _e64 * 0.02;
-    float _e73 = saturate((sun_2.y * 10.0) + 1.0);
+    float _e73 = saturate((sun_3.y * 10.0) + 1.0);
     return e * (((gradient_1 * _e15) + (sunset * _e73)) + metal::float3(glow * _e15));
 }
 
 metal::float3 sun_disk(
-    metal::float3 d_5,
+    metal::float3 d_7,
     constant Frame& frame
 ) {
     float cos_r = frame.sun_direction.w;
     metal::float4 _e7 = frame.sun_direction;
-    if (metal::dot(d_5, _e7.xyz) < cos_r) {
+    if (metal::dot(d_7, _e7.xyz) < cos_r) {
         return metal::float3(0.0);
     }
     metal::float4 _e15 = frame.sun_illuminance;
@@ -1247,16 +1866,16 @@ struct occupancyInput {
     metal::int2 lo_1 = as_type<metal::int2>(as_type<metal::uint2>(naga_div(as_type<metal::int2>(as_type<metal::uint2>(static_cast<metal::int2>(id.xy)) * as_type<metal::uint2>(size_6)), metal::int2(64))) - as_type<metal::uint2>(metal::int2(1)));
     metal::int2 hi = naga_div(as_type<metal::int2>(as_type<metal::uint2>(as_type<metal::int2>(as_type<metal::uint2>(static_cast<metal::int2>(id.xy)) + as_type<metal::uint2>(metal::int2(1)))) * as_type<metal::uint2>(size_6)), metal::int2(64));
     y = lo_1.y;
-    uint2 loop_bound_3 = uint2(4294967295u);
-    bool loop_init_2 = true;
+    uint2 loop_bound_8 = uint2(4294967295u);
+    bool loop_init_4 = true;
     while(true) {
-        if (metal::all(loop_bound_3 == uint2(0u))) { break; }
-        loop_bound_3 -= uint2(loop_bound_3.y == 0u, 1u);
-        if (!loop_init_2) {
+        if (metal::all(loop_bound_8 == uint2(0u))) { break; }
+        loop_bound_8 -= uint2(loop_bound_8.y == 0u, 1u);
+        if (!loop_init_4) {
             int _e54 = y;
             y = as_type<int>(as_type<uint>(_e54) + as_type<uint>(1));
         }
-        loop_init_2 = false;
+        loop_init_4 = false;
         int _e30 = y;
         if (_e30 <= hi.y) {
         } else {
@@ -1264,16 +1883,16 @@ struct occupancyInput {
         }
         {
             x = lo_1.x;
-            uint2 loop_bound_4 = uint2(4294967295u);
-            bool loop_init_3 = true;
+            uint2 loop_bound_9 = uint2(4294967295u);
+            bool loop_init_5 = true;
             while(true) {
-                if (metal::all(loop_bound_4 == uint2(0u))) { break; }
-                loop_bound_4 -= uint2(loop_bound_4.y == 0u, 1u);
-                if (!loop_init_3) {
+                if (metal::all(loop_bound_9 == uint2(0u))) { break; }
+                loop_bound_9 -= uint2(loop_bound_9.y == 0u, 1u);
+                if (!loop_init_5) {
                     int _e51 = x;
                     x = as_type<int>(as_type<uint>(_e51) + as_type<uint>(1));
                 }
-                loop_init_3 = false;
+                loop_init_5 = false;
                 int _e35 = x;
                 if (_e35 <= hi.x) {
                 } else {
@@ -1282,9 +1901,9 @@ struct occupancyInput {
                 {
                     int _e38 = x;
                     int _e39 = y;
-                    metal::int2 t_2 = naga_mod(as_type<metal::int2>(as_type<metal::uint2>(naga_mod(metal::int2(_e38, _e39), size_6)) + as_type<metal::uint2>(size_6)), size_6);
+                    metal::int2 t_6 = naga_mod(as_type<metal::int2>(as_type<metal::uint2>(naga_mod(metal::int2(_e38, _e39), size_6)) + as_type<metal::uint2>(size_6)), size_6);
                     float _e44 = m;
-                    metal::float4 _e47 = weather_tex.read(metal::uint2(t_2), 0);
+                    metal::float4 _e47 = weather_tex.read(metal::uint2(t_6), 0);
                     m = metal::max(_e44, _e47.x);
                 }
             }
@@ -1391,9 +2010,9 @@ struct march_sparse_checkerboardInput {
     }
     bool _e30 = local;
     if (_e30) {
-        uint k_4 = frame.temporal.x;
+        uint k_6 = frame.temporal.x;
         uint _e38 = frame.misc.y;
-        uint turn = naga_div(_e38, k_4 * k_4);
+        uint turn = naga_div(_e38, k_6 * k_6);
         metal::float2 _e42 = reproject(_e5, 0.0, frame);
         if ((((id_3.x + id_3.y) + turn) & 1u) == 0u) {
             bool _e53 = on_screen(_e42, frame);
@@ -1461,12 +2080,12 @@ struct resolveInput {
     if (metal::any(id_4.xy >= _e4.xy)) {
         return;
     }
-    metal::uint2 pixel_5 = id_4.xy;
-    uint k_5 = frame.temporal.x;
-    metal::uint2 block = naga_div(pixel_5, metal::uint2(k_5));
+    metal::uint2 pixel_6 = id_4.xy;
+    uint k_7 = frame.temporal.x;
+    metal::uint2 block = naga_div(pixel_6, metal::uint2(k_7));
     uint _e19 = frame.misc.y;
-    metal::uint2 _e20 = block_offset(_e19, k_5);
-    bool marched = metal::all(pixel_5 == ((block * k_5) + _e20));
+    metal::uint2 _e20 = block_offset(_e19, k_7);
+    bool marched = metal::all(pixel_6 == ((block * k_7) + _e20));
     metal::float4 current = sparse_in.read(metal::uint2(block), 0);
     metal::float4 _e29 = sparse_depth_in.read(metal::uint2(block), 0);
     float current_depth = _e29.x;
@@ -1474,14 +2093,14 @@ struct resolveInput {
     float _e32 = depth;
     if (_e32 <= 0.0) {
         float _e38 = frame.camera_position.y;
-        metal::float3 _e39 = view_ray(pixel_5, frame);
+        metal::float3 _e39 = view_ray(pixel_6, frame);
         Interval _e40 = layer_interval(_e38, _e39, frame);
         if (_e40.kind == RAY_MARCH) {
             depth = _e40.start + (0.5 * _e40.length);
         }
     }
     float _e49 = depth;
-    metal::float2 _e50 = reproject(pixel_5, _e49, frame);
+    metal::float2 _e50 = reproject(pixel_6, _e49, frame);
     uint _e54 = frame.temporal.y;
     if (_e54 != 0u) {
         bool _e59 = on_screen(_e50, frame);
@@ -1491,7 +2110,7 @@ struct resolveInput {
     }
     bool _e61 = local_3;
     valid = _e61;
-    bool moving = metal::any(_e50 != static_cast<metal::float2>(pixel_5));
+    bool moving = metal::any(_e50 != static_cast<metal::float2>(pixel_6));
     bool _e75 = valid;
     if (_e75) {
         metal::float4 _e76 = history_at(_e50, frame, history_in);
@@ -1513,7 +2132,7 @@ struct resolveInput {
         bool _e91 = local_5;
         if (_e91) {
             metal::float4 _e94 = frame.camera_position;
-            metal::float3 _e96 = view_ray(pixel_5, frame);
+            metal::float3 _e96 = view_ray(pixel_6, frame);
             metal::float4 _e101 = frame.previous_position;
             float expected = metal::distance(_e94.xyz + (_e96 * current_depth), _e101.xyz);
             float _e105 = past.x;
@@ -1529,20 +2148,20 @@ struct resolveInput {
     bool _e115 = local_6;
     if (_e115) {
         metal::uint4 _e118 = frame.counts;
-        metal::int2 blocks = static_cast<metal::int2>(naga_div((_e118.xy + metal::uint2(k_5)) - metal::uint2(1u), metal::uint2(k_5)));
-        metal::int2 b_5 = static_cast<metal::int2>(block);
-        int x0_1 = metal::max(as_type<int>(as_type<uint>(b_5.x) - as_type<uint>(1)), 0);
-        int x2_1 = metal::min(as_type<int>(as_type<uint>(b_5.x) + as_type<uint>(1)), as_type<int>(as_type<uint>(blocks.x) - as_type<uint>(1)));
-        int y0_ = metal::max(as_type<int>(as_type<uint>(b_5.y) - as_type<uint>(1)), 0);
-        int y2_ = metal::min(as_type<int>(as_type<uint>(b_5.y) + as_type<uint>(1)), as_type<int>(as_type<uint>(blocks.y) - as_type<uint>(1)));
+        metal::int2 blocks = static_cast<metal::int2>(naga_div((_e118.xy + metal::uint2(k_7)) - metal::uint2(1u), metal::uint2(k_7)));
+        metal::int2 b_8 = static_cast<metal::int2>(block);
+        int x0_1 = metal::max(as_type<int>(as_type<uint>(b_8.x) - as_type<uint>(1)), 0);
+        int x2_1 = metal::min(as_type<int>(as_type<uint>(b_8.x) + as_type<uint>(1)), as_type<int>(as_type<uint>(blocks.x) - as_type<uint>(1)));
+        int y0_ = metal::max(as_type<int>(as_type<uint>(b_8.y) - as_type<uint>(1)), 0);
+        int y2_ = metal::min(as_type<int>(as_type<uint>(b_8.y) + as_type<uint>(1)), as_type<int>(as_type<uint>(blocks.y) - as_type<uint>(1)));
         metal::float4 s00_ = sparse_in.read(metal::uint2(metal::int2(x0_1, y0_)), 0);
-        metal::float4 s10_ = sparse_in.read(metal::uint2(metal::int2(b_5.x, y0_)), 0);
+        metal::float4 s10_ = sparse_in.read(metal::uint2(metal::int2(b_8.x, y0_)), 0);
         metal::float4 s20_ = sparse_in.read(metal::uint2(metal::int2(x2_1, y0_)), 0);
-        metal::float4 s01_ = sparse_in.read(metal::uint2(metal::int2(x0_1, b_5.y)), 0);
-        metal::float4 s11_ = sparse_in.read(metal::uint2(b_5), 0);
-        metal::float4 s21_ = sparse_in.read(metal::uint2(metal::int2(x2_1, b_5.y)), 0);
+        metal::float4 s01_ = sparse_in.read(metal::uint2(metal::int2(x0_1, b_8.y)), 0);
+        metal::float4 s11_ = sparse_in.read(metal::uint2(b_8), 0);
+        metal::float4 s21_ = sparse_in.read(metal::uint2(metal::int2(x2_1, b_8.y)), 0);
         metal::float4 s02_ = sparse_in.read(metal::uint2(metal::int2(x0_1, y2_)), 0);
-        metal::float4 s12_ = sparse_in.read(metal::uint2(metal::int2(b_5.x, y2_)), 0);
+        metal::float4 s12_ = sparse_in.read(metal::uint2(metal::int2(b_8.x, y2_)), 0);
         metal::float4 s22_ = sparse_in.read(metal::uint2(metal::int2(x2_1, y2_)), 0);
         metal::float4 lo_2 = metal::min(metal::min(metal::min(s00_, s10_), metal::min(s20_, s01_)), metal::min(metal::min(s11_, s21_), metal::min(metal::min(s02_, s12_), s22_)));
         metal::float4 hi_1 = metal::max(metal::max(metal::max(s00_, s10_), metal::max(s20_, s01_)), metal::max(metal::max(s11_, s21_), metal::max(metal::max(s02_, s12_), s22_)));
@@ -1580,21 +2199,113 @@ struct resolveInput {
             float _e247 = past.x;
             out_depth = _e247;
         } else {
-            MarchResult _e248 = march_pixel(pixel_5, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler, occupancy_in, stats);
+            MarchResult _e248 = march_pixel(pixel_6, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler, occupancy_in, stats);
             samples = 1.0;
             result = metal::float4(_e248.radiance, _e248.transmittance);
             out_depth = _e248.depth;
         }
     }
     metal::float4 _e255 = result;
-    history_out.write(_e255, metal::uint2(pixel_5));
+    history_out.write(_e255, metal::uint2(pixel_6));
     float _e257 = out_depth;
     float _e258 = samples;
-    meta_out.write(metal::float4(_e257, _e258, 0.0, 0.0), metal::uint2(pixel_5));
+    meta_out.write(metal::float4(_e257, _e258, 0.0, 0.0), metal::uint2(pixel_6));
     metal::float4 _e263 = result;
-    cloud_out.write(_e263, metal::uint2(pixel_5));
+    cloud_out.write(_e263, metal::uint2(pixel_6));
     float _e265 = out_depth;
-    depth_out.write(metal::float4(_e265, 0.0, 0.0, 0.0), metal::uint2(pixel_5));
+    depth_out.write(metal::float4(_e265, 0.0, 0.0, 0.0), metal::uint2(pixel_6));
+    return;
+}
+
+
+struct pathtraceInput {
+};
+[[max_total_threads_per_threadgroup(64)]] kernel void pathtrace(
+  metal::uint3 id_5 [[thread_position_in_grid]]
+, constant Frame& frame [[user(fake0)]]
+, metal::texture3d<float, metal::access::sample> shape_tex [[user(fake0)]]
+, metal::texture3d<float, metal::access::sample> detail_tex [[user(fake0)]]
+, metal::texture2d<float, metal::access::sample> weather_tex [[user(fake0)]]
+, metal::texture2d<float, metal::access::sample> curl_tex [[user(fake0)]]
+, metal::sampler noise_sampler [[user(fake0)]]
+, metal::texture2d<float, metal::access::sample> occupancy_in [[user(fake0)]]
+, metal::texture2d<float, metal::access::write> cloud_out [[user(fake0)]]
+, metal::texture2d<float, metal::access::write> depth_out [[user(fake0)]]
+, device Stats& stats [[user(fake0)]]
+, metal::texture2d<float, metal::access::sample> history_in [[user(fake0)]]
+, metal::texture2d<float, metal::access::sample> meta_in [[user(fake0)]]
+, metal::texture2d<float, metal::access::write> history_out [[user(fake0)]]
+, metal::texture2d<float, metal::access::write> meta_out [[user(fake0)]]
+) {
+    Counters counters = Counters {0u, 0u, 0u, 0u};
+    uint rng = {};
+    metal::float4 mean = metal::float4(0.0);
+    metal::float4 moments = metal::float4(0.0);
+    bool local_8 = {};
+    metal::uint4 _e4 = frame.counts;
+    if (metal::any(id_5.xy >= _e4.xy)) {
+        return;
+    }
+    metal::uint2 pixel_7 = id_5.xy;
+    metal::float3 _e9 = view_ray(pixel_7, frame);
+    float _e13 = frame.camera_position.y;
+    Interval _e14 = layer_interval(_e13, _e9, frame);
+    count(STAT_PIXELS, 1u, stats);
+    count(STAT_MARCHED, static_cast<uint>(_e14.kind == RAY_MARCH), stats);
+    count(STAT_EXIT_MISSED, static_cast<uint>(_e14.kind == RAY_MISSES_LAYER), stats);
+    count(STAT_EXIT_GROUND, static_cast<uint>(_e14.kind == RAY_HITS_GROUND), stats);
+    uint _e41 = frame.misc.y;
+    uint _e42 = rng_seed(pixel_7, _e41);
+    rng = _e42;
+    PathResult _e44 = trace_path(_e9, _e14, rng, counters, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler, occupancy_in);
+    float _e46 = luminance(_e44.radiance);
+    uint _e56 = frame.temporal.y;
+    if (_e56 == 1u) {
+        bool _e61 = camera_still(frame);
+        local_8 = _e61;
+    } else {
+        local_8 = false;
+    }
+    bool _e63 = local_8;
+    if (_e63) {
+        metal::float4 _e66 = history_in.read(metal::uint2(pixel_7), 0);
+        mean = _e66;
+        metal::float4 _e69 = meta_in.read(metal::uint2(pixel_7), 0);
+        moments = _e69;
+    }
+    float _e71 = moments.y;
+    float n_3 = _e71 + 1.0;
+    metal::float4 _e74 = mean;
+    metal::float4 _e78 = mean;
+    mean = _e74 + ((metal::float4(_e44.radiance, _e44.transmittance) - _e78) / metal::float4(n_3));
+    float _e84 = moments.z;
+    float _e87 = moments.z;
+    moments.z = _e84 + (((_e46 * _e46) - _e87) / n_3);
+    if (_e44.depth >= 0.0) {
+        float _e95 = moments.w;
+        moments.w = _e95 + 1.0;
+        float _e99 = moments.x;
+        float _e102 = moments.x;
+        float _e105 = moments.w;
+        moments.x = _e99 + ((_e44.depth - _e102) / _e105);
+    }
+    moments.y = n_3;
+    metal::float4 _e110 = mean;
+    history_out.write(_e110, metal::uint2(pixel_7));
+    metal::float4 _e112 = moments;
+    meta_out.write(_e112, metal::uint2(pixel_7));
+    metal::float4 _e114 = mean;
+    cloud_out.write(_e114, metal::uint2(pixel_7));
+    float _e117 = moments.x;
+    depth_out.write(metal::float4(_e117, 0.0, 0.0, 0.0), metal::uint2(pixel_7));
+    uint _e124 = counters.view_steps;
+    count(STAT_VIEW_STEPS, _e124, stats);
+    uint _e127 = counters.density;
+    count(STAT_DENSITY, _e127, stats);
+    uint _e130 = counters.detail;
+    count(STAT_DETAIL, _e130, stats);
+    uint _e133 = counters.light;
+    count(STAT_LIGHT, _e133, stats);
     return;
 }
 
@@ -1602,23 +2313,23 @@ struct resolveInput {
 struct compositeInput {
 };
 [[max_total_threads_per_threadgroup(64)]] kernel void composite(
-  metal::uint3 id_5 [[thread_position_in_grid]]
+  metal::uint3 id_6 [[thread_position_in_grid]]
 , constant Frame& frame [[user(fake0)]]
 , metal::texture2d<float, metal::access::sample> cloud_in [[user(fake0)]]
 , metal::texture2d<float, metal::access::write> image_out [[user(fake0)]]
 ) {
     metal::float3 background = {};
     metal::uint4 _e4 = frame.counts;
-    if (metal::any(id_5.xy >= _e4.xy)) {
+    if (metal::any(id_6.xy >= _e4.xy)) {
         return;
     }
-    metal::uint2 pixel_6 = id_5.xy;
-    metal::float3 _e9 = view_ray(pixel_6, frame);
-    float alt_6 = frame.camera_position.y;
-    metal::float4 cloud = cloud_in.read(metal::uint2(pixel_6), 0);
-    metal::float3 _e17 = sky_radiance(_e9, alt_6, frame);
+    metal::uint2 pixel_8 = id_6.xy;
+    metal::float3 _e9 = view_ray(pixel_8, frame);
+    float alt_8 = frame.camera_position.y;
+    metal::float4 cloud = cloud_in.read(metal::uint2(pixel_8), 0);
+    metal::float3 _e17 = sky_radiance(_e9, alt_8, frame);
     background = _e17;
-    bool _e22 = hits_ground(metal::float3(0.0, alt_6, 0.0), alt_6, _e9, frame);
+    bool _e22 = hits_ground(metal::float3(0.0, alt_8, 0.0), alt_8, _e9, frame);
     if (!(_e22)) {
         metal::float3 _e24 = background;
         metal::float3 _e25 = sun_disk(_e9, frame);
@@ -1630,6 +2341,6 @@ struct compositeInput {
     metal::float3 exposed = radiance_1 * _e35;
     metal::float3 _e37 = aces_fitted(exposed);
     metal::float3 display = metal::pow(_e37, metal::float3(0.45454547));
-    image_out.write(metal::float4(display, 1.0), metal::uint2(pixel_6));
+    image_out.write(metal::float4(display, 1.0), metal::uint2(pixel_8));
     return;
 }

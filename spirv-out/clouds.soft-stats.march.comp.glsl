@@ -60,6 +60,20 @@ struct MarchResult {
     float transmittance;
     float depth;
 };
+struct Segments {
+    vec2 a;
+    vec2 b;
+    uint count;
+};
+struct PhaseSample {
+    vec3 dir;
+    float weight;
+};
+struct PathResult {
+    vec3 radiance;
+    float transmittance;
+    float depth;
+};
 const uint PHASE_HG = 0u;
 const uint PHASE_TWO_LOBE_HG = 1u;
 const uint PHASE_CORNETTE_SHANKS = 2u;
@@ -91,6 +105,7 @@ const uint STAT_COUNT = 9u;
 const float HISTORY_SAMPLES = 16.0;
 const float HISTORY_SAMPLES_MOVING = 2.0;
 const float DISOCCLUSION_DEPTH = 0.5;
+const uint MAX_PATH_ORDERS = 16384u;
 const bool LIGHT_MARCH = true;
 const uint MAX_OCTAVES = 8u;
 const bool DETAIL = false;
@@ -150,8 +165,8 @@ vec3 view_ray(uvec2 pixel_1) {
     vec4 _e26 = _group_0_binding_0_cs.camera_forward;
     vec4 _e30 = _group_0_binding_0_cs.camera_right;
     vec4 _e39 = _group_0_binding_0_cs.camera_up;
-    vec3 d_6 = ((_e26.xyz + (_e30.xyz * ((ndc.x * tan_half) * aspect))) - (_e39.xyz * (ndc.y * tan_half)));
-    return normalize(d_6);
+    vec3 d_8 = ((_e26.xyz + (_e30.xyz * ((ndc.x * tan_half) * aspect))) - (_e39.xyz * (ndc.y * tan_half)));
+    return normalize(d_8);
 }
 
 Roots solve_sphere(float b, float c) {
@@ -159,8 +174,8 @@ Roots solve_sphere(float b, float c) {
     if ((disc < 0.0)) {
         return Roots(0.0, 0.0, false);
     }
-    float s = sqrt(disc);
-    float r0_1 = -((b + ((b >= 0.0) ? s : -(s))));
+    float s_1 = sqrt(disc);
+    float r0_1 = -((b + ((b >= 0.0) ? s_1 : -(s_1))));
     if ((r0_1 == 0.0)) {
         return Roots(0.0, 0.0, true);
     }
@@ -170,39 +185,39 @@ Roots solve_sphere(float b, float c) {
 
 Roots ray_shell(float alt, vec3 d, float radius_alt) {
     float rp = _group_0_binding_0_cs.atmosphere.x;
-    float b_1 = (d.y * (alt + rp));
-    float c_1 = ((alt - radius_alt) * ((alt + radius_alt) + (2.0 * rp)));
-    Roots _e16 = solve_sphere(b_1, c_1);
+    float b_2 = (d.y * (alt + rp));
+    float c_2 = ((alt - radius_alt) * ((alt + radius_alt) + (2.0 * rp)));
+    Roots _e16 = solve_sphere(b_2, c_2);
     return _e16;
 }
 
 float altitude_of(vec3 p) {
     float rp_1 = _group_0_binding_0_cs.atmosphere.x;
-    float n_1 = (((p.x * p.x) + (p.z * p.z)) + (p.y * (p.y + (2.0 * rp_1))));
+    float n_2 = (((p.x * p.x) + (p.z * p.z)) + (p.y * (p.y + (2.0 * rp_1))));
     vec3 q_4 = vec3(p.x, (p.y + rp_1), p.z);
-    return (n_1 / (length(q_4) + rp_1));
+    return (n_2 / (length(q_4) + rp_1));
 }
 
 bool hits_ground(vec3 p_1, float alt_1, vec3 d_1) {
-    bool local_8 = false;
+    bool local_9 = false;
     float rp_2 = _group_0_binding_0_cs.atmosphere.x;
-    float b_2 = dot(d_1, vec3(p_1.x, (p_1.y + rp_2), p_1.z));
-    float c_2 = (alt_1 * (alt_1 + (2.0 * rp_2)));
-    if ((b_2 < 0.0)) {
-        local_8 = ((b_2 * b_2) >= c_2);
+    float b_3 = dot(d_1, vec3(p_1.x, (p_1.y + rp_2), p_1.z));
+    float c_3 = (alt_1 * (alt_1 + (2.0 * rp_2)));
+    if ((b_3 < 0.0)) {
+        local_9 = ((b_3 * b_3) >= c_3);
     } else {
-        local_8 = false;
+        local_9 = false;
     }
-    bool _e24 = local_8;
+    bool _e24 = local_9;
     return _e24;
 }
 
 Interval layer_interval(float alt_2, vec3 d_2) {
     float start = 0.0;
     float end = 0.0;
-    bool local_9 = false;
     bool local_10 = false;
     bool local_11 = false;
+    bool local_12 = false;
     float bottom = _group_0_binding_0_cs.atmosphere.y;
     float top = _group_0_binding_0_cs.atmosphere.z;
     float cutoff = _group_0_binding_0_cs.atmosphere.w;
@@ -219,33 +234,33 @@ Interval layer_interval(float alt_2, vec3 d_2) {
         if ((alt_2 <= top)) {
             end = _e15.t1_;
             if (_e14.hit) {
-                local_9 = (_e14.t0_ > 0.0);
+                local_10 = (_e14.t0_ > 0.0);
             } else {
-                local_9 = false;
+                local_10 = false;
             }
-            bool _e40 = local_9;
+            bool _e40 = local_10;
             if (_e40) {
                 float _e41 = end;
                 end = min(_e41, _e14.t0_);
             }
         } else {
             if (!(!(_e15.hit))) {
-                local_10 = (_e15.t1_ <= 0.0);
+                local_11 = (_e15.t1_ <= 0.0);
             } else {
-                local_10 = true;
+                local_11 = true;
             }
-            bool _e53 = local_10;
+            bool _e53 = local_11;
             if (_e53) {
                 return Interval(0.0, 0.0, 1u);
             }
             start = max(_e15.t0_, 0.0);
             end = _e15.t1_;
             if (_e14.hit) {
-                local_11 = (_e14.t0_ > 0.0);
+                local_12 = (_e14.t0_ > 0.0);
             } else {
-                local_11 = false;
+                local_12 = false;
             }
-            bool _e69 = local_11;
+            bool _e69 = local_12;
             if (_e69) {
                 float _e70 = end;
                 end = min(_e70, _e14.t0_);
@@ -307,36 +322,36 @@ float height_signal(float h_3, float cloud_type_2) {
     return _e9;
 }
 
-float cloud_density(vec3 p_3, float alt_3, inout Counters counters) {
-    bool local_12 = false;
+float cloud_density(vec3 p_3, float alt_3, inout Counters counters_1) {
     bool local_13 = false;
+    bool local_14 = false;
     float base = 0.0;
     float density = 0.0;
-    bool local_14 = false;
     bool local_15 = false;
+    bool local_16 = false;
     vec3 detail_pos = vec3(0.0);
     float bottom_1 = _group_0_binding_0_cs.atmosphere.y;
     float top_1 = _group_0_binding_0_cs.atmosphere.z;
     float h_5 = ((alt_3 - bottom_1) / (top_1 - bottom_1));
     if (!((h_5 < 0.0))) {
-        local_12 = (h_5 > 1.0);
-    } else {
-        local_12 = true;
-    }
-    bool _e22 = local_12;
-    if (_e22) {
-        return 0.0;
-    }
-    uint _e25 = counters.density;
-    counters.density = (_e25 + 1u);
-    Weather _e28 = sample_weather(p_3);
-    float _e30 = height_signal(h_5, _e28.cloud_type);
-    if (!((_e28.coverage <= 0.0))) {
-        local_13 = (_e30 <= 0.0);
+        local_13 = (h_5 > 1.0);
     } else {
         local_13 = true;
     }
-    bool _e40 = local_13;
+    bool _e22 = local_13;
+    if (_e22) {
+        return 0.0;
+    }
+    uint _e25 = counters_1.density;
+    counters_1.density = (_e25 + 1u);
+    Weather _e28 = sample_weather(p_3);
+    float _e30 = height_signal(h_5, _e28.cloud_type);
+    if (!((_e28.coverage <= 0.0))) {
+        local_14 = (_e30 <= 0.0);
+    } else {
+        local_14 = true;
+    }
+    bool _e40 = local_14;
     if (_e40) {
         return 0.0;
     }
@@ -346,9 +361,9 @@ float cloud_density(vec3 p_3, float alt_3, inout Counters counters) {
     float _e60 = _group_0_binding_0_cs.wind_offsets0_.z;
     float _e66 = _group_0_binding_0_cs.wind_offsets0_.w;
     vec3 shape_pos = vec3((p_3.x - _e60), alt_3, (p_3.z - _e66));
-    vec4 s_1 = textureLod(_group_0_binding_1_cs, vec3((shape_pos / period)), 0.0);
-    float low_fbm = (((s_1.y * 0.625) + (s_1.z * 0.25)) + (s_1.w * 0.125));
-    float _e91 = remap(s_1.x, (low_fbm - 1.0), 1.0, 0.0, 1.0);
+    vec4 s_2 = textureLod(_group_0_binding_1_cs, vec3((shape_pos / period)), 0.0);
+    float low_fbm = (((s_2.y * 0.625) + (s_2.z * 0.25)) + (s_2.w * 0.125));
+    float _e91 = remap(s_2.x, (low_fbm - 1.0), 1.0, 0.0, 1.0);
     float _e92 = saturate(_e91);
     base = (_e92 * _e30);
     float _e95 = base;
@@ -364,21 +379,21 @@ float cloud_density(vec3 p_3, float alt_3, inout Counters counters) {
     float strength = _group_0_binding_0_cs.erosion.x;
     float threshold = _group_0_binding_0_cs.erosion.y;
     if (DETAIL) {
-        local_14 = (strength > 0.0);
-    } else {
-        local_14 = false;
-    }
-    bool _e126 = local_14;
-    if (_e126) {
-        float _e129 = base;
-        local_15 = (_e129 < threshold);
+        local_15 = (strength > 0.0);
     } else {
         local_15 = false;
     }
-    bool _e132 = local_15;
+    bool _e126 = local_15;
+    if (_e126) {
+        float _e129 = base;
+        local_16 = (_e129 < threshold);
+    } else {
+        local_16 = false;
+    }
+    bool _e132 = local_16;
     if (_e132) {
-        uint _e134 = counters.detail;
-        counters.detail = (_e134 + 1u);
+        uint _e134 = counters_1.detail;
+        counters_1.detail = (_e134 + 1u);
         detail_pos = vec3(p_3.x, alt_3, p_3.z);
         if (CURL) {
             vec4 _e145 = _group_0_binding_0_cs.wind_offsets1_;
@@ -433,34 +448,34 @@ float phase_cornette_shanks(float cos_theta_1, float g_1) {
 
 float phase(float cos_theta_2, float scale) {
     float _e5 = _group_0_binding_0_cs.phase.x;
-    float g_2 = (_e5 * scale);
+    float g_3 = (_e5 * scale);
     uint _e10 = _group_0_binding_0_cs.modes.x;
     switch(_e10) {
         case 1u: {
             float _e14 = _group_0_binding_0_cs.phase.y;
             float g2_2 = (_e14 * scale);
-            float _e16 = phase_hg(cos_theta_2, g_2);
+            float _e16 = phase_hg(cos_theta_2, g_3);
             float _e17 = phase_hg(cos_theta_2, g2_2);
             float _e21 = _group_0_binding_0_cs.phase.z;
             return mix(_e16, _e17, _e21);
         }
         case 2u: {
-            float _e23 = phase_cornette_shanks(cos_theta_2, g_2);
+            float _e23 = phase_cornette_shanks(cos_theta_2, g_3);
             return _e23;
         }
         default: {
-            float _e24 = phase_hg(cos_theta_2, g_2);
+            float _e24 = phase_hg(cos_theta_2, g_3);
             return _e24;
         }
     }
 }
 
-float sun_optical_depth(vec3 rel, vec3 p_4, inout Counters counters_1) {
+float sun_optical_depth(vec3 rel, vec3 p_4, inout Counters counters_2) {
     float seg = 0.0;
     float dist = 0.0;
     float tau = 0.0;
     uint i = 0u;
-    bool local_16 = false;
+    bool local_17 = false;
     vec4 _e5 = _group_0_binding_0_cs.sun_direction;
     vec3 sun = _e5.xyz;
     float _e10 = _group_0_binding_0_cs.extinction.x;
@@ -485,24 +500,24 @@ float sun_optical_depth(vec3 rel, vec3 p_4, inout Counters counters_1) {
         {
             float _e37 = dist;
             float _e38 = seg;
-            float s_2 = (_e37 + (0.5 * _e38));
-            vec3 q_5 = (rel + (sun * s_2));
+            float s_3 = (_e37 + (0.5 * _e38));
+            vec3 q_5 = (rel + (sun * s_3));
             float _e44 = altitude_of(q_5);
             float _e48 = _group_0_binding_0_cs.atmosphere.z;
             if (!((_e44 > _e48))) {
                 float _e56 = _group_0_binding_0_cs.atmosphere.y;
-                local_16 = (_e44 < _e56);
+                local_17 = (_e44 < _e56);
             } else {
-                local_16 = true;
+                local_17 = true;
             }
-            bool _e59 = local_16;
+            bool _e59 = local_17;
             if (_e59) {
                 break;
             }
-            uint _e61 = counters_1.light;
-            counters_1.light = (_e61 + 1u);
+            uint _e61 = counters_2.light;
+            counters_2.light = (_e61 + 1u);
             float _e64 = tau;
-            float _e67 = cloud_density((p_4 + (sun * s_2)), _e44, counters_1);
+            float _e67 = cloud_density((p_4 + (sun * s_3)), _e44, counters_2);
             float _e69 = seg;
             tau = (_e64 + ((_e67 * sigma_t_1) * _e69));
             float _e72 = dist;
@@ -522,9 +537,9 @@ float sun_scattering(float cos_theta_3, float tau_1) {
     float kb = 1.0;
     float kc = 1.0;
     uint i_1 = 0u;
-    float a = _group_0_binding_0_cs.multiple_scattering.x;
-    float b_3 = _group_0_binding_0_cs.multiple_scattering.y;
-    float c_3 = _group_0_binding_0_cs.multiple_scattering.z;
+    float a_1 = _group_0_binding_0_cs.multiple_scattering.x;
+    float b_4 = _group_0_binding_0_cs.multiple_scattering.y;
+    float c_4 = _group_0_binding_0_cs.multiple_scattering.z;
     uint _e17 = _group_0_binding_0_cs.misc.x;
     uint octaves = min(_e17, MAX_OCTAVES);
     float _e21 = phase(cos_theta_3, 1.0);
@@ -543,11 +558,11 @@ float sun_scattering(float cos_theta_3, float tau_1) {
         }
         {
             float _e36 = ka;
-            ka = (_e36 * a);
+            ka = (_e36 * a_1);
             float _e38 = kb;
-            kb = (_e38 * b_3);
+            kb = (_e38 * b_4);
             float _e40 = kc;
-            kc = (_e40 * c_3);
+            kc = (_e40 * c_4);
             float _e42 = total;
             float _e43 = ka;
             float _e44 = kc;
@@ -573,7 +588,7 @@ vec3 ambient(float h_4) {
     return (mix(_e3.xyz, _e7.xyz, h_4) * _e13);
 }
 
-vec3 scattered_light(vec3 rel_1, vec3 p_5, float alt_4, float density_1, vec3 view, inout Counters counters_2) {
+vec3 scattered_light(vec3 rel_1, vec3 p_5, float alt_4, float density_1, vec3 view, inout Counters counters_3) {
     vec3 sun_light = vec3(0.0);
     float tau_2 = 0.0;
     vec4 _e8 = _group_0_binding_0_cs.sun_direction;
@@ -585,7 +600,7 @@ vec3 scattered_light(vec3 rel_1, vec3 p_5, float alt_4, float density_1, vec3 vi
     bool _e29 = hits_ground(rel_1, alt_4, sun_1);
     if (!(_e29)) {
         if (LIGHT_MARCH) {
-            float _e34 = sun_optical_depth(rel_1, p_5, counters_2);
+            float _e34 = sun_optical_depth(rel_1, p_5, counters_3);
             tau_2 = _e34;
         }
         vec4 _e37 = _group_0_binding_0_cs.sun_illuminance;
@@ -640,13 +655,13 @@ float empty_cell_exit(vec3 p_6, vec3 d_3) {
 }
 
 void count(uint index, uint value) {
-    bool local_17 = false;
+    bool local_18 = false;
     if (STATS) {
-        local_17 = (value != 0u);
+        local_18 = (value != 0u);
     } else {
-        local_17 = false;
+        local_18 = false;
     }
-    bool _e8 = local_17;
+    bool _e8 = local_18;
     if (_e8) {
         uint _e12 = atomicAdd(_group_0_binding_8_cs.counters[index], value);
         return;
@@ -668,8 +683,8 @@ vec3 step_integral(vec3 source, float sigma_t, float dt) {
 float start_offset(uvec2 pixel_2) {
     uint _e4 = _group_0_binding_0_cs.modes.w;
     bool jitter = ((_e4 & FLAG_JITTER) != 0u);
-    uint k_1 = _group_0_binding_0_cs.temporal.x;
-    if ((k_1 <= 1u)) {
+    uint k_3 = _group_0_binding_0_cs.temporal.x;
+    if ((k_3 <= 1u)) {
         uint _e18 = _group_0_binding_0_cs.misc.y;
         float _e19 = hash_unit(pixel_2, _e18);
         return (jitter ? _e19 : 0.5);
@@ -677,12 +692,12 @@ float start_offset(uvec2 pixel_2) {
     float _e23 = hash_unit(pixel_2, 0u);
     float base_2 = (jitter ? _e23 : 0.5);
     uint _e29 = _group_0_binding_0_cs.misc.y;
-    float _e32 = van_der_corput((_e29 / (k_1 * k_1)));
+    float _e32 = van_der_corput((_e29 / (k_3 * k_3)));
     return fract((base_2 + _e32));
 }
 
 MarchResult march_pixel(uvec2 pixel_3) {
-    Counters counters_3 = Counters(0u, 0u, 0u, 0u);
+    Counters counters_4 = Counters(0u, 0u, 0u, 0u);
     vec3 radiance = vec3(0.0);
     float transmittance = 1.0;
     float depth_sum = 0.0;
@@ -690,7 +705,7 @@ MarchResult march_pixel(uvec2 pixel_3) {
     uint i_2 = 0u;
     uint stride = 1u;
     uint empty = 0u;
-    bool local_18 = false;
+    bool local_19 = false;
     float depth_1 = 0.0;
     vec3 _e1 = view_ray(pixel_3);
     float cam_alt = _group_0_binding_0_cs.camera_position.y;
@@ -728,34 +743,34 @@ MarchResult march_pixel(uvec2 pixel_3) {
                 if ((_e96 >= _e97)) {
                     break;
                 }
-                uint _e100 = counters_3.view_steps;
-                counters_3.view_steps = (_e100 + 1u);
+                uint _e100 = counters_4.view_steps;
+                counters_4.view_steps = (_e100 + 1u);
                 uint _e104 = i_2;
-                float t_1 = (_e25.start + ((float(_e104) + _e64) * dt_1));
-                vec3 rel_2 = ((_e1 * t_1) + vec3(0.0, cam_alt, 0.0));
-                vec3 p_7 = vec3((rel_2.x + cam_xz.x), rel_2.y, (rel_2.z + cam_xz.y));
+                float t_4 = (_e25.start + ((float(_e104) + _e64) * dt_1));
+                vec3 rel_3 = ((_e1 * t_4) + vec3(0.0, cam_alt, 0.0));
+                vec3 p_9 = vec3((rel_3.x + cam_xz.x), rel_3.y, (rel_3.z + cam_xz.y));
                 if (empty_skip) {
-                    float _e122 = empty_cell_exit(p_7, _e1);
+                    float _e122 = empty_cell_exit(p_9, _e1);
                     if ((_e122 > 0.0)) {
                         uint _e131 = steps;
-                        uint next = uint(clamp(ceil(((((t_1 + _e122) - _e25.start) / dt_1) - _e64)), 0.0, float(_e131)));
+                        uint next = uint(clamp(ceil(((((t_4 + _e122) - _e25.start) / dt_1) - _e64)), 0.0, float(_e131)));
                         uint _e136 = i_2;
                         i_2 = max((_e136 + 1u), next);
                         continue;
                     }
                 }
-                float _e140 = altitude_of(rel_2);
-                float _e141 = cloud_density(p_7, _e140, counters_3);
+                float _e140 = altitude_of(rel_3);
+                float _e141 = cloud_density(p_9, _e140, counters_4);
                 if ((_e141 <= 0.0)) {
                     uint _e144 = empty;
                     empty = (_e144 + 1u);
                     if (dynamic_step) {
                         uint _e149 = empty;
-                        local_18 = (_e149 >= 8u);
+                        local_19 = (_e149 >= 8u);
                     } else {
-                        local_18 = false;
+                        local_19 = false;
                     }
-                    bool _e153 = local_18;
+                    bool _e153 = local_19;
                     if (_e153) {
                         stride = 2u;
                     }
@@ -775,7 +790,7 @@ MarchResult march_pixel(uvec2 pixel_3) {
                 }
                 empty = 0u;
                 float sigma_t_2 = (sigma_e * _e141);
-                vec3 _e170 = scattered_light(rel_2, p_7, _e140, _e141, _e1, counters_3);
+                vec3 _e170 = scattered_light(rel_3, p_9, _e140, _e141, _e1, counters_4);
                 vec3 _e171 = radiance;
                 float _e172 = transmittance;
                 vec3 _e173 = step_integral(_e170, sigma_t_2, dt_1);
@@ -783,7 +798,7 @@ MarchResult march_pixel(uvec2 pixel_3) {
                 float step_t = exp((-(sigma_t_2) * dt_1));
                 float _e179 = depth_sum;
                 float _e180 = transmittance;
-                depth_sum = (_e179 + ((t_1 * _e180) * (1.0 - step_t)));
+                depth_sum = (_e179 + ((t_4 * _e180) * (1.0 - step_t)));
                 float _e186 = transmittance;
                 transmittance = (_e186 * step_t);
                 float _e188 = transmittance;
@@ -797,13 +812,13 @@ MarchResult march_pixel(uvec2 pixel_3) {
             }
         }
     }
-    uint _e201 = counters_3.view_steps;
+    uint _e201 = counters_4.view_steps;
     count(STAT_VIEW_STEPS, _e201);
-    uint _e204 = counters_3.density;
+    uint _e204 = counters_4.density;
     count(STAT_DENSITY, _e204);
-    uint _e207 = counters_3.detail;
+    uint _e207 = counters_4.detail;
     count(STAT_DETAIL, _e207);
-    uint _e210 = counters_3.light;
+    uint _e210 = counters_4.light;
     count(STAT_LIGHT, _e210);
     float _e213 = transmittance;
     if ((_e213 < 1.0)) {
@@ -827,45 +842,45 @@ uvec2 block_offset(uint f, uint k) {
         return _e6;
     }
     if ((k == 4u)) {
-        uint b_4 = (f % 16u);
-        uvec2 _e13 = bayer2_((b_4 >> 2u));
-        uvec2 _e17 = bayer2_((b_4 & 3u));
+        uint b_5 = (f % 16u);
+        uvec2 _e13 = bayer2_((b_5 >> 2u));
+        uvec2 _e17 = bayer2_((b_5 & 3u));
         return (_e13 + (2u * _e17));
     }
     return uvec2(0u);
 }
 
 vec2 reproject(uvec2 pixel_4, float depth_2) {
-    bool local_19 = false;
     bool local_20 = false;
     bool local_21 = false;
+    bool local_22 = false;
     vec3 dir = vec3(0.0);
     vec4 _e4 = _group_0_binding_0_cs.previous_position;
     vec4 _e7 = _group_0_binding_0_cs.camera_position;
     if (all(equal(_e4, _e7))) {
         vec4 _e14 = _group_0_binding_0_cs.previous_forward;
         vec4 _e17 = _group_0_binding_0_cs.camera_forward;
-        local_19 = all(equal(_e14, _e17));
-    } else {
-        local_19 = false;
-    }
-    bool _e21 = local_19;
-    if (_e21) {
-        vec4 _e26 = _group_0_binding_0_cs.previous_right;
-        vec4 _e29 = _group_0_binding_0_cs.camera_right;
-        local_20 = all(equal(_e26, _e29));
+        local_20 = all(equal(_e14, _e17));
     } else {
         local_20 = false;
     }
-    bool _e33 = local_20;
-    if (_e33) {
-        vec4 _e38 = _group_0_binding_0_cs.previous_up;
-        vec4 _e41 = _group_0_binding_0_cs.camera_up;
-        local_21 = all(equal(_e38, _e41));
+    bool _e21 = local_20;
+    if (_e21) {
+        vec4 _e26 = _group_0_binding_0_cs.previous_right;
+        vec4 _e29 = _group_0_binding_0_cs.camera_right;
+        local_21 = all(equal(_e26, _e29));
     } else {
         local_21 = false;
     }
-    bool same = local_21;
+    bool _e33 = local_21;
+    if (_e33) {
+        vec4 _e38 = _group_0_binding_0_cs.previous_up;
+        vec4 _e41 = _group_0_binding_0_cs.camera_up;
+        local_22 = all(equal(_e38, _e41));
+    } else {
+        local_22 = false;
+    }
+    bool same = local_22;
     if (same) {
         return vec2(pixel_4);
     }
@@ -894,15 +909,15 @@ vec2 reproject(uvec2 pixel_4, float depth_2) {
 }
 
 bool on_screen(vec2 q) {
-    bool local_22 = false;
+    bool local_23 = false;
     uvec4 _e3 = _group_0_binding_0_cs.counts;
     vec2 size_1 = vec2(_e3.xy);
     if (all(greaterThanEqual(q, vec2(-0.5)))) {
-        local_22 = all(lessThanEqual(q, (size_1 - vec2(0.5))));
+        local_23 = all(lessThanEqual(q, (size_1 - vec2(0.5))));
     } else {
-        local_22 = false;
+        local_23 = false;
     }
-    bool _e18 = local_22;
+    bool _e18 = local_23;
     return _e18;
 }
 
@@ -910,51 +925,553 @@ vec4 catmull_rom(float t) {
     return vec4((t * (-0.5 + (t * (1.0 - (0.5 * t))))), (1.0 + ((t * t) * (-2.5 + (1.5 * t)))), (t * (0.5 + (t * (2.0 - (1.5 * t))))), ((t * t) * (-0.5 + (0.5 * t))));
 }
 
-bool in_blocks(uvec2 id_6) {
-    uint k_2 = _group_0_binding_0_cs.temporal.x;
+bool in_blocks(uvec2 id_7) {
+    uint k_4 = _group_0_binding_0_cs.temporal.x;
     uvec4 _e7 = _group_0_binding_0_cs.counts;
-    return all(lessThan(id_6, (((_e7.xy + uvec2(k_2)) - uvec2(1u)) / uvec2(k_2))));
+    return all(lessThan(id_7, (((_e7.xy + uvec2(k_4)) - uvec2(1u)) / uvec2(k_4))));
 }
 
-uvec2 sparse_pixel(uvec2 id_7) {
-    uint k_3 = _group_0_binding_0_cs.temporal.x;
+uvec2 sparse_pixel(uvec2 id_8) {
+    uint k_5 = _group_0_binding_0_cs.temporal.x;
     uint _e9 = _group_0_binding_0_cs.misc.y;
-    uvec2 _e10 = block_offset(_e9, k_3);
-    return ((id_7 * k_3) + _e10);
+    uvec2 _e10 = block_offset(_e9, k_5);
+    return ((id_8 * k_5) + _e10);
 }
 
-void store_sparse(uvec2 id_8, MarchResult r_2) {
-    imageStore(_group_0_binding_6_cs, ivec2(id_8), vec4(r_2.radiance, r_2.transmittance));
-    imageStore(_group_0_binding_7_cs, ivec2(id_8), vec4(r_2.depth, 0.0, 0.0, 0.0));
+void store_sparse(uvec2 id_9, MarchResult r_2) {
+    imageStore(_group_0_binding_6_cs, ivec2(id_9), vec4(r_2.radiance, r_2.transmittance));
+    imageStore(_group_0_binding_7_cs, ivec2(id_9), vec4(r_2.depth, 0.0, 0.0, 0.0));
     return;
 }
 
-vec3 sky_radiance(vec3 d_4, float alt_5) {
+uint rng_seed(uvec2 pixel_5, uint frame_index_1) {
+    uint _e4 = pcg(frame_index_1);
+    uint _e6 = pcg((pixel_5.y ^ _e4));
+    uint _e8 = pcg((pixel_5.x ^ _e6));
+    return _e8;
+}
+
+float rng_next(inout uint rng_1) {
+    uint _e1 = rng_1;
+    rng_1 = ((_e1 * 747796405u) + 2891336453u);
+    uint s_4 = rng_1;
+    uint word_1 = (((s_4 >> ((s_4 >> 28u) + 4u)) ^ s_4) * 277803737u);
+    return (float((((word_1 >> 22u) ^ word_1) >> 8u)) * 5.9604645e-8);
+}
+
+float rng_exponential(inout uint rng_2, float sigma) {
+    float _e2 = rng_next(rng_2);
+    return (-(log((1.0 - _e2))) / sigma);
+}
+
+Roots ray_shell_from(vec3 p_7, float alt_5, vec3 d_4, float radius_alt_1) {
+    float rp_3 = _group_0_binding_0_cs.atmosphere.x;
+    float b_6 = dot(d_4, vec3(p_7.x, (p_7.y + rp_3), p_7.z));
+    float c_5 = ((alt_5 - radius_alt_1) * ((alt_5 + radius_alt_1) + (2.0 * rp_3)));
+    Roots _e20 = solve_sphere(b_6, c_5);
+    return _e20;
+}
+
+Segments layer_segments(vec3 p_8, float alt_6, vec3 d_5) {
+    Segments s = Segments(vec2(0.0), vec2(0.0), 0u);
+    bool local_24 = false;
+    vec2 a = vec2(0.0);
+    vec2 b_1 = vec2(0.0);
+    uint n_1 = 0u;
+    bool local_25 = false;
+    bool local_26 = false;
+    bool local_27 = false;
+    bool local_28 = false;
+    float bottom_2 = _group_0_binding_0_cs.atmosphere.y;
+    Roots _e14 = ray_shell_from(p_8, alt_6, d_5, bottom_2);
+    float _e18 = _group_0_binding_0_cs.atmosphere.z;
+    Roots _e19 = ray_shell_from(p_8, alt_6, d_5, _e18);
+    bool _e20 = hits_ground(p_8, alt_6, d_5);
+    if (!(!(_e19.hit))) {
+        local_24 = (_e19.t1_ <= 0.0);
+    } else {
+        local_24 = true;
+    }
+    bool _e30 = local_24;
+    if (_e30) {
+        Segments _e31 = s;
+        return _e31;
+    }
+    float entry = max(_e19.t0_, 0.0);
+    if (_e14.hit) {
+        local_25 = (_e14.t0_ > 0.0);
+    } else {
+        local_25 = false;
+    }
+    bool _e50 = local_25;
+    if (_e50) {
+        local_26 = (alt_6 >= bottom_2);
+    } else {
+        local_26 = false;
+    }
+    bool _e55 = local_26;
+    if (_e55) {
+        uint _e56 = n_1;
+        a[_e56] = entry;
+        uint _e58 = n_1;
+        b_1[_e58] = _e14.t0_;
+        uint _e61 = n_1;
+        n_1 = (_e61 + uint((_e14.t0_ > entry)));
+        if (!(_e20)) {
+            local_27 = (_e19.t1_ > _e14.t1_);
+        } else {
+            local_27 = false;
+        }
+        bool _e73 = local_27;
+        if (_e73) {
+            uint _e74 = n_1;
+            a[_e74] = max(_e14.t1_, entry);
+            uint _e78 = n_1;
+            b_1[_e78] = _e19.t1_;
+            uint _e81 = n_1;
+            n_1 = (_e81 + 1u);
+        }
+    } else {
+        if ((alt_6 < bottom_2)) {
+            if (!(_e20)) {
+                local_28 = _e14.hit;
+            } else {
+                local_28 = false;
+            }
+            bool _e90 = local_28;
+            if (_e90) {
+                a.x = max(_e14.t1_, 0.0);
+                b_1.x = _e19.t1_;
+                n_1 = 1u;
+            }
+        } else {
+            a.x = entry;
+            b_1.x = _e19.t1_;
+            n_1 = 1u;
+        }
+    }
+    vec2 _e103 = a;
+    s.a = _e103;
+    vec2 _e105 = b_1;
+    s.b = _e105;
+    uint _e107 = n_1;
+    s.count = _e107;
+    Segments _e108 = s;
+    return _e108;
+}
+
+float density_at(vec3 rel_2, inout Counters counters_5) {
+    float _e6 = _group_0_binding_0_cs.camera_position.x;
+    float _e13 = _group_0_binding_0_cs.camera_position.z;
+    vec3 p_10 = vec3((rel_2.x + _e6), rel_2.y, (rel_2.z + _e13));
+    float _e16 = altitude_of(rel_2);
+    float _e17 = cloud_density(p_10, _e16, counters_5);
+    return _e17;
+}
+
+float empty_cell_skip(vec3 origin, vec3 dir_1, float t_1) {
+    vec3 rel_4 = (origin + (dir_1 * t_1));
+    float _e9 = _group_0_binding_0_cs.camera_position.x;
+    float _e16 = _group_0_binding_0_cs.camera_position.z;
+    vec3 p_11 = vec3((rel_4.x + _e9), rel_4.y, (rel_4.z + _e16));
+    float _e19 = empty_cell_exit(p_11, dir_1);
+    if ((_e19 <= 0.0)) {
+        return 0.0;
+    }
+    return (_e19 + 0.05);
+}
+
+float density_max() {
+    float _e3 = _group_0_binding_0_cs.clouds.y;
+    float _e7 = _group_0_binding_0_cs.clouds.w;
+    return clamp((_e3 * (1.0 + _e7)), 0.0, 1.0);
+}
+
+float free_flight(vec3 origin_1, vec3 dir_2, Segments segs, inout uint rng_3, inout Counters counters_6) {
+    uint k_1 = 0u;
+    float t_2 = 0.0;
+    float _e5 = density_max();
+    float _e9 = _group_0_binding_0_cs.extinction.x;
+    float _e13 = _group_0_binding_0_cs.extinction.y;
+    float majorant = ((_e9 + _e13) * _e5);
+    if ((majorant <= 0.0)) {
+        return -1.0;
+    }
+    bool loop_init_2 = true;
+    while(true) {
+        if (!loop_init_2) {
+            uint _e60 = k_1;
+            k_1 = (_e60 + 1u);
+        }
+        loop_init_2 = false;
+        uint _e21 = k_1;
+        if ((_e21 < segs.count)) {
+        } else {
+            break;
+        }
+        {
+            uint _e25 = k_1;
+            t_2 = segs.a[_e25];
+            while(true) {
+                float _e28 = t_2;
+                float _e29 = empty_cell_skip(origin_1, dir_2, _e28);
+                if ((_e29 > 0.0)) {
+                    float _e32 = t_2;
+                    t_2 = (_e32 + _e29);
+                    float _e34 = t_2;
+                    uint _e36 = k_1;
+                    if ((_e34 >= segs.b[_e36])) {
+                        break;
+                    }
+                    continue;
+                }
+                float _e39 = t_2;
+                float _e40 = rng_exponential(rng_3, majorant);
+                t_2 = (_e39 + _e40);
+                float _e42 = t_2;
+                uint _e44 = k_1;
+                if ((_e42 >= segs.b[_e44])) {
+                    break;
+                }
+                uint _e48 = counters_6.view_steps;
+                counters_6.view_steps = (_e48 + 1u);
+                float _e51 = t_2;
+                float _e54 = density_at((origin_1 + (dir_2 * _e51)), counters_6);
+                float _e55 = rng_next(rng_3);
+                if (((_e55 * _e5) < _e54)) {
+                    float _e58 = t_2;
+                    return _e58;
+                }
+            }
+        }
+    }
+    return -1.0;
+}
+
+float transmittance_along(vec3 origin_2, vec3 dir_3, Segments segs_1, inout uint rng_4, inout Counters counters_7) {
+    float tr = 1.0;
+    uint k_2 = 0u;
+    float t_3 = 0.0;
+    float _e8 = _group_0_binding_0_cs.extinction.x;
+    float _e12 = _group_0_binding_0_cs.extinction.y;
+    float sigma_t_3 = (_e8 + _e12);
+    float _e14 = density_max();
+    float majorant_1 = (sigma_t_3 * _e14);
+    if ((majorant_1 <= 0.0)) {
+        return 1.0;
+    }
+    bool loop_init_3 = true;
+    while(true) {
+        if (!loop_init_3) {
+            uint _e78 = k_2;
+            k_2 = (_e78 + 1u);
+        }
+        loop_init_3 = false;
+        uint _e23 = k_2;
+        if ((_e23 < segs_1.count)) {
+        } else {
+            break;
+        }
+        {
+            uint _e27 = k_2;
+            t_3 = segs_1.a[_e27];
+            while(true) {
+                float _e30 = t_3;
+                float _e31 = empty_cell_skip(origin_2, dir_3, _e30);
+                if ((_e31 > 0.0)) {
+                    float _e34 = t_3;
+                    t_3 = (_e34 + _e31);
+                    float _e36 = t_3;
+                    uint _e38 = k_2;
+                    if ((_e36 >= segs_1.b[_e38])) {
+                        break;
+                    }
+                    continue;
+                }
+                float _e41 = t_3;
+                float _e42 = rng_exponential(rng_4, majorant_1);
+                t_3 = (_e41 + _e42);
+                float _e44 = t_3;
+                uint _e46 = k_2;
+                if ((_e44 >= segs_1.b[_e46])) {
+                    break;
+                }
+                uint _e50 = counters_7.light;
+                counters_7.light = (_e50 + 1u);
+                float _e53 = t_3;
+                float _e56 = density_at((origin_2 + (dir_3 * _e53)), counters_7);
+                float _e57 = tr;
+                tr = (_e57 * (1.0 - ((sigma_t_3 * _e56) / majorant_1)));
+                float _e63 = tr;
+                if ((_e63 <= 0.0)) {
+                    return 0.0;
+                }
+                float _e67 = tr;
+                if ((_e67 < 0.01)) {
+                    float _e70 = rng_next(rng_4);
+                    if ((_e70 < 0.75)) {
+                        return 0.0;
+                    }
+                    float _e74 = tr;
+                    tr = (_e74 * 4.0);
+                }
+            }
+        }
+    }
+    float _e80 = tr;
+    return _e80;
+}
+
+float sample_hg_cos(float g_2, float u) {
+    if ((abs(g_2) < 0.0001)) {
+        return (1.0 - (2.0 * u));
+    }
+    float s_5 = ((1.0 - (g_2 * g_2)) / ((1.0 - g_2) + ((2.0 * g_2) * u)));
+    return clamp((((1.0 + (g_2 * g_2)) - (s_5 * s_5)) / (2.0 * g_2)), -1.0, 1.0);
+}
+
+PhaseSample sample_phase(vec3 dir_4, inout uint rng_5) {
+    float cos_theta_4 = 0.0;
+    float pdf = 0.0;
+    float _e2 = rng_next(rng_5);
+    float _e3 = rng_next(rng_5);
+    float _e5 = rng_next(rng_5);
+    float phi = (6.2831855 * _e5);
+    uint _e14 = _group_0_binding_0_cs.modes.x;
+    if ((_e14 == PHASE_TWO_LOBE_HG)) {
+        float _e20 = _group_0_binding_0_cs.phase.x;
+        float _e24 = _group_0_binding_0_cs.phase.y;
+        float _e28 = _group_0_binding_0_cs.phase.z;
+        float g_4 = ((_e2 < _e28) ? _e24 : _e20);
+        float _e31 = sample_hg_cos(g_4, _e3);
+        cos_theta_4 = _e31;
+        float _e32 = cos_theta_4;
+        float _e36 = _group_0_binding_0_cs.phase.x;
+        float _e37 = phase_hg(_e32, _e36);
+        float _e38 = cos_theta_4;
+        float _e42 = _group_0_binding_0_cs.phase.y;
+        float _e43 = phase_hg(_e38, _e42);
+        float _e47 = _group_0_binding_0_cs.phase.z;
+        pdf = mix(_e37, _e43, _e47);
+    } else {
+        float _e52 = _group_0_binding_0_cs.phase.x;
+        float _e53 = sample_hg_cos(_e52, _e3);
+        cos_theta_4 = _e53;
+        float _e54 = cos_theta_4;
+        float _e58 = _group_0_binding_0_cs.phase.x;
+        float _e59 = phase_hg(_e54, _e58);
+        pdf = _e59;
+    }
+    float _e60 = cos_theta_4;
+    float _e61 = cos_theta_4;
+    float sin_theta = sqrt(max((1.0 - (_e60 * _e61)), 0.0));
+    float sign_ = ((dir_4.z >= 0.0) ? 1.0 : -1.0);
+    float a_2 = (-1.0 / (sign_ + dir_4.z));
+    float bb = ((dir_4.x * dir_4.y) * a_2);
+    vec3 t_5 = vec3((1.0 + (((sign_ * dir_4.x) * dir_4.x) * a_2)), (sign_ * bb), (-(sign_) * dir_4.x));
+    vec3 b_7 = vec3(bb, (sign_ + ((dir_4.y * dir_4.y) * a_2)), -(dir_4.y));
+    float _e109 = cos_theta_4;
+    vec3 w_1 = normalize((((t_5 * (sin_theta * cos(phi))) + (b_7 * (sin_theta * sin(phi)))) + (dir_4 * _e109)));
+    float _e113 = cos_theta_4;
+    float _e115 = phase(_e113, 1.0);
+    float _e116 = pdf;
+    float _e118 = pdf;
+    return PhaseSample(w_1, ((_e118 > 0.0) ? (_e115 / _e116) : 0.0));
+}
+
+PathResult trace_path(vec3 view_1, Interval span, inout uint rng_6, inout Counters counters_8) {
+    PathResult out_ = PathResult(vec3(0.0), 1.0, -1.0);
+    bool local_29 = false;
+    bool local_30 = false;
+    uint max_orders = MAX_PATH_ORDERS;
+    vec3 pos = vec3(0.0);
+    vec3 dir_5 = vec3(0.0);
+    float throughput = 1.0;
+    uint order = 0u;
+    bool local_31 = false;
+    if ((span.kind != RAY_MARCH)) {
+        PathResult _e13 = out_;
+        return _e13;
+    }
+    float _e17 = _group_0_binding_0_cs.camera_position.y;
+    vec3 cam = vec3(0.0, _e17, 0.0);
+    Segments primary = Segments(vec2(span.start, 0.0), vec2((span.start + span.length_), 0.0), 1u);
+    float _e32 = transmittance_along(cam, view_1, primary, rng_6, counters_8);
+    out_.transmittance = _e32;
+    float _e33 = free_flight(cam, view_1, primary, rng_6, counters_8);
+    if ((_e33 < 0.0)) {
+        PathResult _e36 = out_;
+        return _e36;
+    }
+    out_.depth = _e33;
+    vec4 _e40 = _group_0_binding_0_cs.sun_direction;
+    vec3 sun_2 = _e40.xyz;
+    float _e45 = _group_0_binding_0_cs.extinction.x;
+    float _e49 = _group_0_binding_0_cs.extinction.y;
+    float sigma_t_4 = (_e45 + _e49);
+    float _e54 = _group_0_binding_0_cs.extinction.x;
+    float albedo = ((sigma_t_4 > 0.0) ? (_e54 / sigma_t_4) : 0.0);
+    float _e63 = _group_0_binding_0_cs.ambient_bottom.w;
+    if ((_e63 > 0.0)) {
+        vec4 _e70 = _group_0_binding_0_cs.ambient_bottom;
+        if (!(any(greaterThan(_e70.xyz, vec3(0.0))))) {
+            vec4 _e81 = _group_0_binding_0_cs.ambient_top;
+            local_30 = any(greaterThan(_e81.xyz, vec3(0.0)));
+        } else {
+            local_30 = true;
+        }
+        bool _e88 = local_30;
+        local_29 = _e88;
+    } else {
+        local_29 = false;
+    }
+    bool ambient_on = local_29;
+    uint _e96 = _group_0_binding_0_cs.misc.z;
+    if ((_e96 > 0u)) {
+        uint _e102 = _group_0_binding_0_cs.misc.z;
+        max_orders = min(_e102, MAX_PATH_ORDERS);
+    }
+    pos = (cam + (view_1 * _e33));
+    dir_5 = view_1;
+    while(true) {
+        float _e113 = throughput;
+        throughput = (_e113 * albedo);
+        uint _e115 = order;
+        order = (_e115 + 1u);
+        vec3 _e118 = pos;
+        float _e119 = altitude_of(_e118);
+        float _e123 = _group_0_binding_0_cs.atmosphere.y;
+        float _e128 = _group_0_binding_0_cs.atmosphere.z;
+        float _e132 = _group_0_binding_0_cs.atmosphere.y;
+        float _e135 = saturate(((_e119 - _e123) / (_e128 - _e132)));
+        vec3 _e136 = pos;
+        bool _e137 = hits_ground(_e136, _e119, sun_2);
+        if (!(_e137)) {
+            vec3 _e139 = pos;
+            vec3 _e140 = pos;
+            Segments _e141 = layer_segments(_e140, _e119, sun_2);
+            float _e142 = transmittance_along(_e139, sun_2, _e141, rng_6, counters_8);
+            vec3 _e144 = out_.radiance;
+            vec4 _e147 = _group_0_binding_0_cs.sun_illuminance;
+            float _e149 = throughput;
+            vec3 _e150 = dir_5;
+            float _e153 = phase(dot(_e150, sun_2), 1.0);
+            out_.radiance = (_e144 + (_e147.xyz * ((_e149 * _e153) * _e142)));
+        }
+        vec3 _e158 = dir_5;
+        PhaseSample _e159 = sample_phase(_e158, rng_6);
+        vec3 _e160 = pos;
+        vec3 _e162 = pos;
+        Segments _e164 = layer_segments(_e162, _e119, _e159.dir);
+        float _e165 = free_flight(_e160, _e159.dir, _e164, rng_6, counters_8);
+        if ((_e165 < 0.0)) {
+            if (ambient_on) {
+                vec3 _e169 = out_.radiance;
+                vec3 _e170 = ambient(_e135);
+                float _e171 = throughput;
+                out_.radiance = (_e169 + (_e170 * (_e171 * _e159.weight)));
+            }
+            break;
+        }
+        uint _e176 = order;
+        uint _e177 = max_orders;
+        if ((_e176 >= _e177)) {
+            break;
+        }
+        float _e179 = throughput;
+        throughput = (_e179 * _e159.weight);
+        dir_5 = _e159.dir;
+        uint _e183 = order;
+        if ((_e183 >= 3u)) {
+            float _e188 = throughput;
+            local_31 = (_e188 < 0.1);
+        } else {
+            local_31 = false;
+        }
+        bool _e192 = local_31;
+        if (_e192) {
+            float _e193 = rng_next(rng_6);
+            float _e194 = throughput;
+            if ((_e193 >= (_e194 / 0.1))) {
+                break;
+            }
+            throughput = 0.1;
+        }
+        float _e199 = throughput;
+        if ((_e199 <= 0.0)) {
+            break;
+        }
+        vec3 _e202 = pos;
+        vec3 _e203 = dir_5;
+        pos = (_e202 + (_e203 * _e165));
+    }
+    PathResult _e206 = out_;
+    return _e206;
+}
+
+bool camera_still() {
+    bool local_32 = false;
+    bool local_33 = false;
+    bool local_34 = false;
+    vec4 _e2 = _group_0_binding_0_cs.camera_position;
+    vec4 _e5 = _group_0_binding_0_cs.previous_position;
+    if (all(equal(_e2, _e5))) {
+        vec4 _e12 = _group_0_binding_0_cs.camera_forward;
+        vec4 _e15 = _group_0_binding_0_cs.previous_forward;
+        local_32 = all(equal(_e12, _e15));
+    } else {
+        local_32 = false;
+    }
+    bool _e19 = local_32;
+    if (_e19) {
+        vec4 _e24 = _group_0_binding_0_cs.camera_right;
+        vec4 _e28 = _group_0_binding_0_cs.previous_right;
+        local_33 = all(equal(_e24.xyz, _e28.xyz));
+    } else {
+        local_33 = false;
+    }
+    bool _e33 = local_33;
+    if (_e33) {
+        vec4 _e38 = _group_0_binding_0_cs.camera_up;
+        vec4 _e42 = _group_0_binding_0_cs.previous_up;
+        local_34 = all(equal(_e38.xyz, _e42.xyz));
+    } else {
+        local_34 = false;
+    }
+    bool _e47 = local_34;
+    return _e47;
+}
+
+float luminance(vec3 c_1) {
+    return dot(c_1, vec3(0.2126, 0.7152, 0.0722));
+}
+
+vec3 sky_radiance(vec3 d_6, float alt_7) {
     vec4 _e4 = _group_0_binding_0_cs.sun_direction;
-    vec3 sun_2 = _e4.xyz;
+    vec3 sun_3 = _e4.xyz;
     vec4 _e8 = _group_0_binding_0_cs.sun_illuminance;
     vec3 e = _e8.xyz;
-    float _e15 = saturate(((sun_2.y * 4.0) + 0.3));
-    bool _e19 = hits_ground(vec3(0.0, alt_5, 0.0), alt_5, d_4);
+    float _e15 = saturate(((sun_3.y * 4.0) + 0.3));
+    bool _e19 = hits_ground(vec3(0.0, alt_7, 0.0), alt_7, d_6);
     if (_e19) {
         vec3 ground_albedo = vec3(0.035, 0.035, 0.03);
-        return (ground_albedo * (((e * max(sun_2.y, 0.0)) / vec3(3.1415927)) + ((0.05 * e) * _e15)));
+        return (ground_albedo * (((e * max(sun_3.y, 0.0)) / vec3(3.1415927)) + ((0.05 * e) * _e15)));
     }
     vec3 zenith = vec3(0.018, 0.04, 0.1);
     vec3 horizon = vec3(0.07, 0.085, 0.11);
-    float _e45 = saturate(d_4.y);
+    float _e45 = saturate(d_6.y);
     vec3 gradient_1 = mix(horizon, zenith, sqrt(_e45));
     vec3 sunset = (((1.0 - (_e15 * 0.8)) * pow((1.0 - _e45), 6.0)) * vec3(0.25, 0.1, 0.0));
-    float _e64 = phase_hg(dot(d_4, sun_2), 0.76);
+    float _e64 = phase_hg(dot(d_6, sun_3), 0.76);
     float glow = (_e64 * 0.02);
-    float _e73 = saturate(((sun_2.y * 10.0) + 1.0));
+    float _e73 = saturate(((sun_3.y * 10.0) + 1.0));
     return (e * (((gradient_1 * _e15) + (sunset * _e73)) + vec3((glow * _e15))));
 }
 
-vec3 sun_disk(vec3 d_5) {
+vec3 sun_disk(vec3 d_7) {
     float cos_r = _group_0_binding_0_cs.sun_direction.w;
     vec4 _e7 = _group_0_binding_0_cs.sun_direction;
-    if ((dot(d_5, _e7.xyz) < cos_r)) {
+    if ((dot(d_7, _e7.xyz) < cos_r)) {
         return vec3(0.0);
     }
     vec4 _e15 = _group_0_binding_0_cs.sun_illuminance;

@@ -59,6 +59,20 @@ struct MarchResult {
     float transmittance;
     float depth;
 };
+struct Segments {
+    vec2 a;
+    vec2 b;
+    uint count;
+};
+struct PhaseSample {
+    vec3 dir;
+    float weight;
+};
+struct PathResult {
+    vec3 radiance;
+    float transmittance;
+    float depth;
+};
 const uint PHASE_HG = 0u;
 const uint PHASE_TWO_LOBE_HG = 1u;
 const uint PHASE_CORNETTE_SHANKS = 2u;
@@ -90,6 +104,7 @@ const uint STAT_COUNT = 9u;
 const float HISTORY_SAMPLES = 16.0;
 const float HISTORY_SAMPLES_MOVING = 2.0;
 const float DISOCCLUSION_DEPTH = 0.5;
+const uint MAX_PATH_ORDERS = 16384u;
 const bool LIGHT_MARCH = true;
 const uint MAX_OCTAVES = 8u;
 const bool DETAIL = false;
@@ -131,8 +146,8 @@ Roots solve_sphere(float b, float c) {
     if ((disc < 0.0)) {
         return Roots(0.0, 0.0, false);
     }
-    float s = sqrt(disc);
-    float r0_1 = -((b + ((b >= 0.0) ? s : -(s))));
+    float s_1 = sqrt(disc);
+    float r0_1 = -((b + ((b >= 0.0) ? s_1 : -(s_1))));
     if ((r0_1 == 0.0)) {
         return Roots(0.0, 0.0, true);
     }
@@ -182,9 +197,9 @@ uvec2 block_offset(uint f, uint k) {
         return _e6;
     }
     if ((k == 4u)) {
-        uint b_1 = (f % 16u);
-        uvec2 _e13 = bayer2_((b_1 >> 2u));
-        uvec2 _e17 = bayer2_((b_1 & 3u));
+        uint b_2 = (f % 16u);
+        uvec2 _e13 = bayer2_((b_2 >> 2u));
+        uvec2 _e17 = bayer2_((b_2 & 3u));
         return (_e13 + (2u * _e17));
     }
     return uvec2(0u);
@@ -192,6 +207,38 @@ uvec2 block_offset(uint f, uint k) {
 
 vec4 catmull_rom(float t) {
     return vec4((t * (-0.5 + (t * (1.0 - (0.5 * t))))), (1.0 + ((t * t) * (-2.5 + (1.5 * t)))), (t * (0.5 + (t * (2.0 - (1.5 * t))))), ((t * t) * (-0.5 + (0.5 * t))));
+}
+
+uint rng_seed(uvec2 pixel_5, uint frame_index_1) {
+    uint _e4 = pcg(frame_index_1);
+    uint _e6 = pcg((pixel_5.y ^ _e4));
+    uint _e8 = pcg((pixel_5.x ^ _e6));
+    return _e8;
+}
+
+float rng_next(inout uint rng_1) {
+    uint _e1 = rng_1;
+    rng_1 = ((_e1 * 747796405u) + 2891336453u);
+    uint s_2 = rng_1;
+    uint word_1 = (((s_2 >> ((s_2 >> 28u) + 4u)) ^ s_2) * 277803737u);
+    return (float((((word_1 >> 22u) ^ word_1) >> 8u)) * 5.9604645e-8);
+}
+
+float rng_exponential(inout uint rng_2, float sigma) {
+    float _e2 = rng_next(rng_2);
+    return (-(log((1.0 - _e2))) / sigma);
+}
+
+float sample_hg_cos(float g_2, float u) {
+    if ((abs(g_2) < 0.0001)) {
+        return (1.0 - (2.0 * u));
+    }
+    float s_3 = ((1.0 - (g_2 * g_2)) / ((1.0 - g_2) + ((2.0 * g_2) * u)));
+    return clamp((((1.0 + (g_2 * g_2)) - (s_3 * s_3)) / (2.0 * g_2)), -1.0, 1.0);
+}
+
+float luminance(vec3 c_1) {
+    return dot(c_1, vec3(0.2126, 0.7152, 0.0722));
 }
 
 vec3 aces_fitted(vec3 x_3) {
@@ -239,9 +286,9 @@ void main() {
                 {
                     int _e38 = x;
                     int _e39 = y;
-                    ivec2 t_1 = (((ivec2(_e38, _e39) % size) + size) % size);
+                    ivec2 t_4 = (((ivec2(_e38, _e39) % size) + size) % size);
                     float _e44 = m;
-                    vec4 _e47 = texelFetch(_group_0_binding_3_cs, t_1, 0);
+                    vec4 _e47 = texelFetch(_group_0_binding_3_cs, t_4, 0);
                     m = max(_e44, _e47.x);
                 }
             }

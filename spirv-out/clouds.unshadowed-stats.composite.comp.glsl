@@ -59,6 +59,20 @@ struct MarchResult {
     float transmittance;
     float depth;
 };
+struct Segments {
+    vec2 a;
+    vec2 b;
+    uint count;
+};
+struct PhaseSample {
+    vec3 dir;
+    float weight;
+};
+struct PathResult {
+    vec3 radiance;
+    float transmittance;
+    float depth;
+};
 const uint PHASE_HG = 0u;
 const uint PHASE_TWO_LOBE_HG = 1u;
 const uint PHASE_CORNETTE_SHANKS = 2u;
@@ -90,6 +104,7 @@ const uint STAT_COUNT = 9u;
 const float HISTORY_SAMPLES = 16.0;
 const float HISTORY_SAMPLES_MOVING = 2.0;
 const float DISOCCLUSION_DEPTH = 0.5;
+const uint MAX_PATH_ORDERS = 16384u;
 const bool LIGHT_MARCH = false;
 const uint MAX_OCTAVES = 0u;
 const bool DETAIL = false;
@@ -137,8 +152,8 @@ vec3 view_ray(uvec2 pixel_1) {
     vec4 _e26 = _group_0_binding_0_cs.camera_forward;
     vec4 _e30 = _group_0_binding_0_cs.camera_right;
     vec4 _e39 = _group_0_binding_0_cs.camera_up;
-    vec3 d_6 = ((_e26.xyz + (_e30.xyz * ((ndc.x * tan_half) * aspect))) - (_e39.xyz * (ndc.y * tan_half)));
-    return normalize(d_6);
+    vec3 d_8 = ((_e26.xyz + (_e30.xyz * ((ndc.x * tan_half) * aspect))) - (_e39.xyz * (ndc.y * tan_half)));
+    return normalize(d_8);
 }
 
 Roots solve_sphere(float b, float c) {
@@ -146,8 +161,8 @@ Roots solve_sphere(float b, float c) {
     if ((disc < 0.0)) {
         return Roots(0.0, 0.0, false);
     }
-    float s = sqrt(disc);
-    float r0_1 = -((b + ((b >= 0.0) ? s : -(s))));
+    float s_1 = sqrt(disc);
+    float r0_1 = -((b + ((b >= 0.0) ? s_1 : -(s_1))));
     if ((r0_1 == 0.0)) {
         return Roots(0.0, 0.0, true);
     }
@@ -157,39 +172,39 @@ Roots solve_sphere(float b, float c) {
 
 Roots ray_shell(float alt, vec3 d, float radius_alt) {
     float rp = _group_0_binding_0_cs.atmosphere.x;
-    float b_1 = (d.y * (alt + rp));
-    float c_1 = ((alt - radius_alt) * ((alt + radius_alt) + (2.0 * rp)));
-    Roots _e16 = solve_sphere(b_1, c_1);
+    float b_2 = (d.y * (alt + rp));
+    float c_2 = ((alt - radius_alt) * ((alt + radius_alt) + (2.0 * rp)));
+    Roots _e16 = solve_sphere(b_2, c_2);
     return _e16;
 }
 
 float altitude_of(vec3 p) {
     float rp_1 = _group_0_binding_0_cs.atmosphere.x;
-    float n_1 = (((p.x * p.x) + (p.z * p.z)) + (p.y * (p.y + (2.0 * rp_1))));
+    float n_2 = (((p.x * p.x) + (p.z * p.z)) + (p.y * (p.y + (2.0 * rp_1))));
     vec3 q_4 = vec3(p.x, (p.y + rp_1), p.z);
-    return (n_1 / (length(q_4) + rp_1));
+    return (n_2 / (length(q_4) + rp_1));
 }
 
 bool hits_ground(vec3 p_1, float alt_1, vec3 d_1) {
-    bool local_8 = false;
+    bool local_9 = false;
     float rp_2 = _group_0_binding_0_cs.atmosphere.x;
-    float b_2 = dot(d_1, vec3(p_1.x, (p_1.y + rp_2), p_1.z));
-    float c_2 = (alt_1 * (alt_1 + (2.0 * rp_2)));
-    if ((b_2 < 0.0)) {
-        local_8 = ((b_2 * b_2) >= c_2);
+    float b_3 = dot(d_1, vec3(p_1.x, (p_1.y + rp_2), p_1.z));
+    float c_3 = (alt_1 * (alt_1 + (2.0 * rp_2)));
+    if ((b_3 < 0.0)) {
+        local_9 = ((b_3 * b_3) >= c_3);
     } else {
-        local_8 = false;
+        local_9 = false;
     }
-    bool _e24 = local_8;
+    bool _e24 = local_9;
     return _e24;
 }
 
 Interval layer_interval(float alt_2, vec3 d_2) {
     float start = 0.0;
     float end = 0.0;
-    bool local_9 = false;
     bool local_10 = false;
     bool local_11 = false;
+    bool local_12 = false;
     float bottom = _group_0_binding_0_cs.atmosphere.y;
     float top = _group_0_binding_0_cs.atmosphere.z;
     float cutoff = _group_0_binding_0_cs.atmosphere.w;
@@ -206,33 +221,33 @@ Interval layer_interval(float alt_2, vec3 d_2) {
         if ((alt_2 <= top)) {
             end = _e15.t1_;
             if (_e14.hit) {
-                local_9 = (_e14.t0_ > 0.0);
+                local_10 = (_e14.t0_ > 0.0);
             } else {
-                local_9 = false;
+                local_10 = false;
             }
-            bool _e40 = local_9;
+            bool _e40 = local_10;
             if (_e40) {
                 float _e41 = end;
                 end = min(_e41, _e14.t0_);
             }
         } else {
             if (!(!(_e15.hit))) {
-                local_10 = (_e15.t1_ <= 0.0);
+                local_11 = (_e15.t1_ <= 0.0);
             } else {
-                local_10 = true;
+                local_11 = true;
             }
-            bool _e53 = local_10;
+            bool _e53 = local_11;
             if (_e53) {
                 return Interval(0.0, 0.0, 1u);
             }
             start = max(_e15.t0_, 0.0);
             end = _e15.t1_;
             if (_e14.hit) {
-                local_11 = (_e14.t0_ > 0.0);
+                local_12 = (_e14.t0_ > 0.0);
             } else {
-                local_11 = false;
+                local_12 = false;
             }
-            bool _e69 = local_11;
+            bool _e69 = local_12;
             if (_e69) {
                 float _e70 = end;
                 end = min(_e70, _e14.t0_);
@@ -293,23 +308,23 @@ float phase_cornette_shanks(float cos_theta_1, float g_1) {
 
 float phase(float cos_theta_2, float scale) {
     float _e5 = _group_0_binding_0_cs.phase.x;
-    float g_2 = (_e5 * scale);
+    float g_3 = (_e5 * scale);
     uint _e10 = _group_0_binding_0_cs.modes.x;
     switch(_e10) {
         case 1u: {
             float _e14 = _group_0_binding_0_cs.phase.y;
             float g2_2 = (_e14 * scale);
-            float _e16 = phase_hg(cos_theta_2, g_2);
+            float _e16 = phase_hg(cos_theta_2, g_3);
             float _e17 = phase_hg(cos_theta_2, g2_2);
             float _e21 = _group_0_binding_0_cs.phase.z;
             return mix(_e16, _e17, _e21);
         }
         case 2u: {
-            float _e23 = phase_cornette_shanks(cos_theta_2, g_2);
+            float _e23 = phase_cornette_shanks(cos_theta_2, g_3);
             return _e23;
         }
         default: {
-            float _e24 = phase_hg(cos_theta_2, g_2);
+            float _e24 = phase_hg(cos_theta_2, g_3);
             return _e24;
         }
     }
@@ -321,9 +336,9 @@ float sun_scattering(float cos_theta_3, float tau_1) {
     float kb = 1.0;
     float kc = 1.0;
     uint i_1 = 0u;
-    float a = _group_0_binding_0_cs.multiple_scattering.x;
-    float b_3 = _group_0_binding_0_cs.multiple_scattering.y;
-    float c_3 = _group_0_binding_0_cs.multiple_scattering.z;
+    float a_1 = _group_0_binding_0_cs.multiple_scattering.x;
+    float b_4 = _group_0_binding_0_cs.multiple_scattering.y;
+    float c_4 = _group_0_binding_0_cs.multiple_scattering.z;
     uint _e17 = _group_0_binding_0_cs.misc.x;
     uint octaves = min(_e17, MAX_OCTAVES);
     float _e21 = phase(cos_theta_3, 1.0);
@@ -342,11 +357,11 @@ float sun_scattering(float cos_theta_3, float tau_1) {
         }
         {
             float _e36 = ka;
-            ka = (_e36 * a);
+            ka = (_e36 * a_1);
             float _e38 = kb;
-            kb = (_e38 * b_3);
+            kb = (_e38 * b_4);
             float _e40 = kc;
-            kc = (_e40 * c_3);
+            kc = (_e40 * c_4);
             float _e42 = total;
             float _e43 = ka;
             float _e44 = kc;
@@ -385,8 +400,8 @@ vec3 step_integral(vec3 source, float sigma_t, float dt) {
 float start_offset(uvec2 pixel_2) {
     uint _e4 = _group_0_binding_0_cs.modes.w;
     bool jitter = ((_e4 & FLAG_JITTER) != 0u);
-    uint k_1 = _group_0_binding_0_cs.temporal.x;
-    if ((k_1 <= 1u)) {
+    uint k_3 = _group_0_binding_0_cs.temporal.x;
+    if ((k_3 <= 1u)) {
         uint _e18 = _group_0_binding_0_cs.misc.y;
         float _e19 = hash_unit(pixel_2, _e18);
         return (jitter ? _e19 : 0.5);
@@ -394,7 +409,7 @@ float start_offset(uvec2 pixel_2) {
     float _e23 = hash_unit(pixel_2, 0u);
     float base_2 = (jitter ? _e23 : 0.5);
     uint _e29 = _group_0_binding_0_cs.misc.y;
-    float _e32 = van_der_corput((_e29 / (k_1 * k_1)));
+    float _e32 = van_der_corput((_e29 / (k_3 * k_3)));
     return fract((base_2 + _e32));
 }
 
@@ -408,45 +423,45 @@ uvec2 block_offset(uint f, uint k) {
         return _e6;
     }
     if ((k == 4u)) {
-        uint b_4 = (f % 16u);
-        uvec2 _e13 = bayer2_((b_4 >> 2u));
-        uvec2 _e17 = bayer2_((b_4 & 3u));
+        uint b_5 = (f % 16u);
+        uvec2 _e13 = bayer2_((b_5 >> 2u));
+        uvec2 _e17 = bayer2_((b_5 & 3u));
         return (_e13 + (2u * _e17));
     }
     return uvec2(0u);
 }
 
 vec2 reproject(uvec2 pixel_4, float depth_2) {
-    bool local_19 = false;
     bool local_20 = false;
     bool local_21 = false;
+    bool local_22 = false;
     vec3 dir = vec3(0.0);
     vec4 _e4 = _group_0_binding_0_cs.previous_position;
     vec4 _e7 = _group_0_binding_0_cs.camera_position;
     if (all(equal(_e4, _e7))) {
         vec4 _e14 = _group_0_binding_0_cs.previous_forward;
         vec4 _e17 = _group_0_binding_0_cs.camera_forward;
-        local_19 = all(equal(_e14, _e17));
-    } else {
-        local_19 = false;
-    }
-    bool _e21 = local_19;
-    if (_e21) {
-        vec4 _e26 = _group_0_binding_0_cs.previous_right;
-        vec4 _e29 = _group_0_binding_0_cs.camera_right;
-        local_20 = all(equal(_e26, _e29));
+        local_20 = all(equal(_e14, _e17));
     } else {
         local_20 = false;
     }
-    bool _e33 = local_20;
-    if (_e33) {
-        vec4 _e38 = _group_0_binding_0_cs.previous_up;
-        vec4 _e41 = _group_0_binding_0_cs.camera_up;
-        local_21 = all(equal(_e38, _e41));
+    bool _e21 = local_20;
+    if (_e21) {
+        vec4 _e26 = _group_0_binding_0_cs.previous_right;
+        vec4 _e29 = _group_0_binding_0_cs.camera_right;
+        local_21 = all(equal(_e26, _e29));
     } else {
         local_21 = false;
     }
-    bool same = local_21;
+    bool _e33 = local_21;
+    if (_e33) {
+        vec4 _e38 = _group_0_binding_0_cs.previous_up;
+        vec4 _e41 = _group_0_binding_0_cs.camera_up;
+        local_22 = all(equal(_e38, _e41));
+    } else {
+        local_22 = false;
+    }
+    bool same = local_22;
     if (same) {
         return vec2(pixel_4);
     }
@@ -475,15 +490,15 @@ vec2 reproject(uvec2 pixel_4, float depth_2) {
 }
 
 bool on_screen(vec2 q) {
-    bool local_22 = false;
+    bool local_23 = false;
     uvec4 _e3 = _group_0_binding_0_cs.counts;
     vec2 size_1 = vec2(_e3.xy);
     if (all(greaterThanEqual(q, vec2(-0.5)))) {
-        local_22 = all(lessThanEqual(q, (size_1 - vec2(0.5))));
+        local_23 = all(lessThanEqual(q, (size_1 - vec2(0.5))));
     } else {
-        local_22 = false;
+        local_23 = false;
     }
-    bool _e18 = local_22;
+    bool _e18 = local_23;
     return _e18;
 }
 
@@ -491,45 +506,261 @@ vec4 catmull_rom(float t) {
     return vec4((t * (-0.5 + (t * (1.0 - (0.5 * t))))), (1.0 + ((t * t) * (-2.5 + (1.5 * t)))), (t * (0.5 + (t * (2.0 - (1.5 * t))))), ((t * t) * (-0.5 + (0.5 * t))));
 }
 
-bool in_blocks(uvec2 id_6) {
-    uint k_2 = _group_0_binding_0_cs.temporal.x;
+bool in_blocks(uvec2 id_7) {
+    uint k_4 = _group_0_binding_0_cs.temporal.x;
     uvec4 _e7 = _group_0_binding_0_cs.counts;
-    return all(lessThan(id_6, (((_e7.xy + uvec2(k_2)) - uvec2(1u)) / uvec2(k_2))));
+    return all(lessThan(id_7, (((_e7.xy + uvec2(k_4)) - uvec2(1u)) / uvec2(k_4))));
 }
 
-uvec2 sparse_pixel(uvec2 id_7) {
-    uint k_3 = _group_0_binding_0_cs.temporal.x;
+uvec2 sparse_pixel(uvec2 id_8) {
+    uint k_5 = _group_0_binding_0_cs.temporal.x;
     uint _e9 = _group_0_binding_0_cs.misc.y;
-    uvec2 _e10 = block_offset(_e9, k_3);
-    return ((id_7 * k_3) + _e10);
+    uvec2 _e10 = block_offset(_e9, k_5);
+    return ((id_8 * k_5) + _e10);
 }
 
-vec3 sky_radiance(vec3 d_4, float alt_5) {
+uint rng_seed(uvec2 pixel_5, uint frame_index_1) {
+    uint _e4 = pcg(frame_index_1);
+    uint _e6 = pcg((pixel_5.y ^ _e4));
+    uint _e8 = pcg((pixel_5.x ^ _e6));
+    return _e8;
+}
+
+float rng_next(inout uint rng_1) {
+    uint _e1 = rng_1;
+    rng_1 = ((_e1 * 747796405u) + 2891336453u);
+    uint s_2 = rng_1;
+    uint word_1 = (((s_2 >> ((s_2 >> 28u) + 4u)) ^ s_2) * 277803737u);
+    return (float((((word_1 >> 22u) ^ word_1) >> 8u)) * 5.9604645e-8);
+}
+
+float rng_exponential(inout uint rng_2, float sigma) {
+    float _e2 = rng_next(rng_2);
+    return (-(log((1.0 - _e2))) / sigma);
+}
+
+Roots ray_shell_from(vec3 p_7, float alt_5, vec3 d_4, float radius_alt_1) {
+    float rp_3 = _group_0_binding_0_cs.atmosphere.x;
+    float b_6 = dot(d_4, vec3(p_7.x, (p_7.y + rp_3), p_7.z));
+    float c_5 = ((alt_5 - radius_alt_1) * ((alt_5 + radius_alt_1) + (2.0 * rp_3)));
+    Roots _e20 = solve_sphere(b_6, c_5);
+    return _e20;
+}
+
+Segments layer_segments(vec3 p_8, float alt_6, vec3 d_5) {
+    Segments s = Segments(vec2(0.0), vec2(0.0), 0u);
+    bool local_24 = false;
+    vec2 a = vec2(0.0);
+    vec2 b_1 = vec2(0.0);
+    uint n_1 = 0u;
+    bool local_25 = false;
+    bool local_26 = false;
+    bool local_27 = false;
+    bool local_28 = false;
+    float bottom_1 = _group_0_binding_0_cs.atmosphere.y;
+    Roots _e14 = ray_shell_from(p_8, alt_6, d_5, bottom_1);
+    float _e18 = _group_0_binding_0_cs.atmosphere.z;
+    Roots _e19 = ray_shell_from(p_8, alt_6, d_5, _e18);
+    bool _e20 = hits_ground(p_8, alt_6, d_5);
+    if (!(!(_e19.hit))) {
+        local_24 = (_e19.t1_ <= 0.0);
+    } else {
+        local_24 = true;
+    }
+    bool _e30 = local_24;
+    if (_e30) {
+        Segments _e31 = s;
+        return _e31;
+    }
+    float entry = max(_e19.t0_, 0.0);
+    if (_e14.hit) {
+        local_25 = (_e14.t0_ > 0.0);
+    } else {
+        local_25 = false;
+    }
+    bool _e50 = local_25;
+    if (_e50) {
+        local_26 = (alt_6 >= bottom_1);
+    } else {
+        local_26 = false;
+    }
+    bool _e55 = local_26;
+    if (_e55) {
+        uint _e56 = n_1;
+        a[_e56] = entry;
+        uint _e58 = n_1;
+        b_1[_e58] = _e14.t0_;
+        uint _e61 = n_1;
+        n_1 = (_e61 + uint((_e14.t0_ > entry)));
+        if (!(_e20)) {
+            local_27 = (_e19.t1_ > _e14.t1_);
+        } else {
+            local_27 = false;
+        }
+        bool _e73 = local_27;
+        if (_e73) {
+            uint _e74 = n_1;
+            a[_e74] = max(_e14.t1_, entry);
+            uint _e78 = n_1;
+            b_1[_e78] = _e19.t1_;
+            uint _e81 = n_1;
+            n_1 = (_e81 + 1u);
+        }
+    } else {
+        if ((alt_6 < bottom_1)) {
+            if (!(_e20)) {
+                local_28 = _e14.hit;
+            } else {
+                local_28 = false;
+            }
+            bool _e90 = local_28;
+            if (_e90) {
+                a.x = max(_e14.t1_, 0.0);
+                b_1.x = _e19.t1_;
+                n_1 = 1u;
+            }
+        } else {
+            a.x = entry;
+            b_1.x = _e19.t1_;
+            n_1 = 1u;
+        }
+    }
+    vec2 _e103 = a;
+    s.a = _e103;
+    vec2 _e105 = b_1;
+    s.b = _e105;
+    uint _e107 = n_1;
+    s.count = _e107;
+    Segments _e108 = s;
+    return _e108;
+}
+
+float density_max() {
+    float _e3 = _group_0_binding_0_cs.clouds.y;
+    float _e7 = _group_0_binding_0_cs.clouds.w;
+    return clamp((_e3 * (1.0 + _e7)), 0.0, 1.0);
+}
+
+float sample_hg_cos(float g_2, float u) {
+    if ((abs(g_2) < 0.0001)) {
+        return (1.0 - (2.0 * u));
+    }
+    float s_3 = ((1.0 - (g_2 * g_2)) / ((1.0 - g_2) + ((2.0 * g_2) * u)));
+    return clamp((((1.0 + (g_2 * g_2)) - (s_3 * s_3)) / (2.0 * g_2)), -1.0, 1.0);
+}
+
+PhaseSample sample_phase(vec3 dir_4, inout uint rng_5) {
+    float cos_theta_4 = 0.0;
+    float pdf = 0.0;
+    float _e2 = rng_next(rng_5);
+    float _e3 = rng_next(rng_5);
+    float _e5 = rng_next(rng_5);
+    float phi = (6.2831855 * _e5);
+    uint _e14 = _group_0_binding_0_cs.modes.x;
+    if ((_e14 == PHASE_TWO_LOBE_HG)) {
+        float _e20 = _group_0_binding_0_cs.phase.x;
+        float _e24 = _group_0_binding_0_cs.phase.y;
+        float _e28 = _group_0_binding_0_cs.phase.z;
+        float g_4 = ((_e2 < _e28) ? _e24 : _e20);
+        float _e31 = sample_hg_cos(g_4, _e3);
+        cos_theta_4 = _e31;
+        float _e32 = cos_theta_4;
+        float _e36 = _group_0_binding_0_cs.phase.x;
+        float _e37 = phase_hg(_e32, _e36);
+        float _e38 = cos_theta_4;
+        float _e42 = _group_0_binding_0_cs.phase.y;
+        float _e43 = phase_hg(_e38, _e42);
+        float _e47 = _group_0_binding_0_cs.phase.z;
+        pdf = mix(_e37, _e43, _e47);
+    } else {
+        float _e52 = _group_0_binding_0_cs.phase.x;
+        float _e53 = sample_hg_cos(_e52, _e3);
+        cos_theta_4 = _e53;
+        float _e54 = cos_theta_4;
+        float _e58 = _group_0_binding_0_cs.phase.x;
+        float _e59 = phase_hg(_e54, _e58);
+        pdf = _e59;
+    }
+    float _e60 = cos_theta_4;
+    float _e61 = cos_theta_4;
+    float sin_theta = sqrt(max((1.0 - (_e60 * _e61)), 0.0));
+    float sign_ = ((dir_4.z >= 0.0) ? 1.0 : -1.0);
+    float a_2 = (-1.0 / (sign_ + dir_4.z));
+    float bb = ((dir_4.x * dir_4.y) * a_2);
+    vec3 t_4 = vec3((1.0 + (((sign_ * dir_4.x) * dir_4.x) * a_2)), (sign_ * bb), (-(sign_) * dir_4.x));
+    vec3 b_7 = vec3(bb, (sign_ + ((dir_4.y * dir_4.y) * a_2)), -(dir_4.y));
+    float _e109 = cos_theta_4;
+    vec3 w = normalize((((t_4 * (sin_theta * cos(phi))) + (b_7 * (sin_theta * sin(phi)))) + (dir_4 * _e109)));
+    float _e113 = cos_theta_4;
+    float _e115 = phase(_e113, 1.0);
+    float _e116 = pdf;
+    float _e118 = pdf;
+    return PhaseSample(w, ((_e118 > 0.0) ? (_e115 / _e116) : 0.0));
+}
+
+bool camera_still() {
+    bool local_32 = false;
+    bool local_33 = false;
+    bool local_34 = false;
+    vec4 _e2 = _group_0_binding_0_cs.camera_position;
+    vec4 _e5 = _group_0_binding_0_cs.previous_position;
+    if (all(equal(_e2, _e5))) {
+        vec4 _e12 = _group_0_binding_0_cs.camera_forward;
+        vec4 _e15 = _group_0_binding_0_cs.previous_forward;
+        local_32 = all(equal(_e12, _e15));
+    } else {
+        local_32 = false;
+    }
+    bool _e19 = local_32;
+    if (_e19) {
+        vec4 _e24 = _group_0_binding_0_cs.camera_right;
+        vec4 _e28 = _group_0_binding_0_cs.previous_right;
+        local_33 = all(equal(_e24.xyz, _e28.xyz));
+    } else {
+        local_33 = false;
+    }
+    bool _e33 = local_33;
+    if (_e33) {
+        vec4 _e38 = _group_0_binding_0_cs.camera_up;
+        vec4 _e42 = _group_0_binding_0_cs.previous_up;
+        local_34 = all(equal(_e38.xyz, _e42.xyz));
+    } else {
+        local_34 = false;
+    }
+    bool _e47 = local_34;
+    return _e47;
+}
+
+float luminance(vec3 c_1) {
+    return dot(c_1, vec3(0.2126, 0.7152, 0.0722));
+}
+
+vec3 sky_radiance(vec3 d_6, float alt_7) {
     vec4 _e4 = _group_0_binding_0_cs.sun_direction;
     vec3 sun = _e4.xyz;
     vec4 _e8 = _group_0_binding_0_cs.sun_illuminance;
     vec3 e = _e8.xyz;
     float _e15 = saturate(((sun.y * 4.0) + 0.3));
-    bool _e19 = hits_ground(vec3(0.0, alt_5, 0.0), alt_5, d_4);
+    bool _e19 = hits_ground(vec3(0.0, alt_7, 0.0), alt_7, d_6);
     if (_e19) {
         vec3 ground_albedo = vec3(0.035, 0.035, 0.03);
         return (ground_albedo * (((e * max(sun.y, 0.0)) / vec3(3.1415927)) + ((0.05 * e) * _e15)));
     }
     vec3 zenith = vec3(0.018, 0.04, 0.1);
     vec3 horizon = vec3(0.07, 0.085, 0.11);
-    float _e45 = saturate(d_4.y);
+    float _e45 = saturate(d_6.y);
     vec3 gradient_1 = mix(horizon, zenith, sqrt(_e45));
     vec3 sunset = (((1.0 - (_e15 * 0.8)) * pow((1.0 - _e45), 6.0)) * vec3(0.25, 0.1, 0.0));
-    float _e64 = phase_hg(dot(d_4, sun), 0.76);
+    float _e64 = phase_hg(dot(d_6, sun), 0.76);
     float glow = (_e64 * 0.02);
     float _e73 = saturate(((sun.y * 10.0) + 1.0));
     return (e * (((gradient_1 * _e15) + (sunset * _e73)) + vec3((glow * _e15))));
 }
 
-vec3 sun_disk(vec3 d_5) {
+vec3 sun_disk(vec3 d_7) {
     float cos_r = _group_0_binding_0_cs.sun_direction.w;
     vec4 _e7 = _group_0_binding_0_cs.sun_direction;
-    if ((dot(d_5, _e7.xyz) < cos_r)) {
+    if ((dot(d_7, _e7.xyz) < cos_r)) {
         return vec3(0.0);
     }
     vec4 _e15 = _group_0_binding_0_cs.sun_illuminance;
@@ -541,19 +772,19 @@ vec3 aces_fitted(vec3 x_3) {
 }
 
 void main() {
-    uvec3 id_5 = gl_GlobalInvocationID;
+    uvec3 id_6 = gl_GlobalInvocationID;
     vec3 background = vec3(0.0);
     uvec4 _e4 = _group_0_binding_0_cs.counts;
-    if (any(greaterThanEqual(id_5.xy, _e4.xy))) {
+    if (any(greaterThanEqual(id_6.xy, _e4.xy))) {
         return;
     }
-    uvec2 pixel_5 = id_5.xy;
-    vec3 _e9 = view_ray(pixel_5);
-    float alt_6 = _group_0_binding_0_cs.camera_position.y;
-    vec4 cloud = texelFetch(_group_0_binding_9_cs, ivec2(pixel_5), 0);
-    vec3 _e17 = sky_radiance(_e9, alt_6);
+    uvec2 pixel_6 = id_6.xy;
+    vec3 _e9 = view_ray(pixel_6);
+    float alt_8 = _group_0_binding_0_cs.camera_position.y;
+    vec4 cloud = texelFetch(_group_0_binding_9_cs, ivec2(pixel_6), 0);
+    vec3 _e17 = sky_radiance(_e9, alt_8);
     background = _e17;
-    bool _e22 = hits_ground(vec3(0.0, alt_6, 0.0), alt_6, _e9);
+    bool _e22 = hits_ground(vec3(0.0, alt_8, 0.0), alt_8, _e9);
     if (!(_e22)) {
         vec3 _e24 = background;
         vec3 _e25 = sun_disk(_e9);
@@ -565,7 +796,7 @@ void main() {
     vec3 exposed = (radiance_1 * _e35);
     vec3 _e37 = aces_fitted(exposed);
     vec3 display = pow(_e37, vec3(0.45454547));
-    imageStore(_group_0_binding_10_cs, ivec2(pixel_5), vec4(display, 1.0));
+    imageStore(_group_0_binding_10_cs, ivec2(pixel_6), vec4(display, 1.0));
     return;
 }
 

@@ -65,6 +65,27 @@ struct MarchResult {
     int _end_pad_2;
 };
 
+struct Segments {
+    float2 a;
+    float2 b;
+    uint count;
+    int _end_pad_0;
+};
+
+struct PhaseSample {
+    float3 dir;
+    float weight;
+};
+
+struct PathResult {
+    float3 radiance;
+    float transmittance;
+    float depth;
+    int _end_pad_0;
+    int _end_pad_1;
+    int _end_pad_2;
+};
+
 static const uint PHASE_HG = 0u;
 static const uint PHASE_TWO_LOBE_HG = 1u;
 static const uint PHASE_CORNETTE_SHANKS = 2u;
@@ -96,6 +117,7 @@ static const uint STAT_COUNT = 9u;
 static const float HISTORY_SAMPLES = 16.0;
 static const float HISTORY_SAMPLES_MOVING = 2.0;
 static const float DISOCCLUSION_DEPTH = 0.5;
+static const uint MAX_PATH_ORDERS = 16384u;
 static const bool LIGHT_MARCH = false;
 static const uint MAX_OCTAVES = 0u;
 static const bool DETAIL = false;
@@ -165,8 +187,8 @@ float3 view_ray(uint2 pixel_1)
     float4 _e26 = frame.camera_forward;
     float4 _e30 = frame.camera_right;
     float4 _e39 = frame.camera_up;
-    float3 d_6 = ((_e26.xyz + (_e30.xyz * ((ndc.x * tan_half) * aspect))) - (_e39.xyz * (ndc.y * tan_half)));
-    return normalize(d_6);
+    float3 d_8 = ((_e26.xyz + (_e30.xyz * ((ndc.x * tan_half) * aspect))) - (_e39.xyz * (ndc.y * tan_half)));
+    return normalize(d_8);
 }
 
 Roots ConstructRoots(float arg0, float arg1, bool arg2) {
@@ -184,8 +206,8 @@ Roots solve_sphere(float b, float c)
         const Roots roots = ConstructRoots(0.0, 0.0, false);
         return roots;
     }
-    float s = sqrt(disc);
-    float r0_1 = -((b + ((b >= 0.0) ? s : -(s))));
+    float s_1 = sqrt(disc);
+    float r0_1 = -((b + ((b >= 0.0) ? s_1 : -(s_1))));
     if ((r0_1 == 0.0)) {
         const Roots roots_1 = ConstructRoots(0.0, 0.0, true);
         return roots_1;
@@ -198,9 +220,9 @@ Roots solve_sphere(float b, float c)
 Roots ray_shell(float alt, float3 d, float radius_alt)
 {
     float rp = frame.atmosphere.x;
-    float b_1 = (d.y * (alt + rp));
-    float c_1 = ((alt - radius_alt) * ((alt + radius_alt) + (2.0 * rp)));
-    const Roots _e16 = solve_sphere(b_1, c_1);
+    float b_2 = (d.y * (alt + rp));
+    float c_2 = ((alt - radius_alt) * ((alt + radius_alt) + (2.0 * rp)));
+    const Roots _e16 = solve_sphere(b_2, c_2);
     const Roots roots_3 = _e16;
     return roots_3;
 }
@@ -208,24 +230,24 @@ Roots ray_shell(float alt, float3 d, float radius_alt)
 float altitude_of(float3 p)
 {
     float rp_1 = frame.atmosphere.x;
-    float n_1 = (((p.x * p.x) + (p.z * p.z)) + (p.y * (p.y + (2.0 * rp_1))));
+    float n_2 = (((p.x * p.x) + (p.z * p.z)) + (p.y * (p.y + (2.0 * rp_1))));
     float3 q_4 = float3(p.x, (p.y + rp_1), p.z);
-    return (n_1 / (length(q_4) + rp_1));
+    return (n_2 / (length(q_4) + rp_1));
 }
 
 bool hits_ground(float3 p_1, float alt_1, float3 d_1)
 {
-    bool local_8 = (bool)0;
+    bool local_9 = (bool)0;
 
     float rp_2 = frame.atmosphere.x;
-    float b_2 = dot(d_1, float3(p_1.x, (p_1.y + rp_2), p_1.z));
-    float c_2 = (alt_1 * (alt_1 + (2.0 * rp_2)));
-    if ((b_2 < 0.0)) {
-        local_8 = ((b_2 * b_2) >= c_2);
+    float b_3 = dot(d_1, float3(p_1.x, (p_1.y + rp_2), p_1.z));
+    float c_3 = (alt_1 * (alt_1 + (2.0 * rp_2)));
+    if ((b_3 < 0.0)) {
+        local_9 = ((b_3 * b_3) >= c_3);
     } else {
-        local_8 = false;
+        local_9 = false;
     }
-    bool _e24 = local_8;
+    bool _e24 = local_9;
     return _e24;
 }
 
@@ -241,9 +263,9 @@ Interval layer_interval(float alt_2, float3 d_2)
 {
     float start = 0.0;
     float end = 0.0;
-    bool local_9 = (bool)0;
     bool local_10 = (bool)0;
     bool local_11 = (bool)0;
+    bool local_12 = (bool)0;
 
     float bottom = frame.atmosphere.y;
     float top = frame.atmosphere.z;
@@ -262,22 +284,22 @@ Interval layer_interval(float alt_2, float3 d_2)
         if ((alt_2 <= top)) {
             end = _e15.t1_;
             if (_e14.hit) {
-                local_9 = (_e14.t0_ > 0.0);
+                local_10 = (_e14.t0_ > 0.0);
             } else {
-                local_9 = false;
+                local_10 = false;
             }
-            bool _e40 = local_9;
+            bool _e40 = local_10;
             if (_e40) {
                 float _e41 = end;
                 end = min(_e41, _e14.t0_);
             }
         } else {
             if (!(!(_e15.hit))) {
-                local_10 = (_e15.t1_ <= 0.0);
+                local_11 = (_e15.t1_ <= 0.0);
             } else {
-                local_10 = true;
+                local_11 = true;
             }
-            bool _e53 = local_10;
+            bool _e53 = local_11;
             if (_e53) {
                 const Interval interval_1 = ConstructInterval(0.0, 0.0, 1u);
                 return interval_1;
@@ -285,11 +307,11 @@ Interval layer_interval(float alt_2, float3 d_2)
             start = max(_e15.t0_, 0.0);
             end = _e15.t1_;
             if (_e14.hit) {
-                local_11 = (_e14.t0_ > 0.0);
+                local_12 = (_e14.t0_ > 0.0);
             } else {
-                local_11 = false;
+                local_12 = false;
             }
-            bool _e69 = local_11;
+            bool _e69 = local_12;
             if (_e69) {
                 float _e70 = end;
                 end = min(_e70, _e14.t0_);
@@ -374,38 +396,38 @@ uint3 NagaDimensions3D(Texture3D<float4> tex)
     return ret.xyz;
 }
 
-float cloud_density(float3 p_3, float alt_3, inout Counters counters)
+float cloud_density(float3 p_3, float alt_3, inout Counters counters_1)
 {
-    bool local_12 = (bool)0;
     bool local_13 = (bool)0;
+    bool local_14 = (bool)0;
     float base = (float)0;
     float density = (float)0;
-    bool local_14 = (bool)0;
     bool local_15 = (bool)0;
+    bool local_16 = (bool)0;
     float3 detail_pos = (float3)0;
 
     float bottom_1 = frame.atmosphere.y;
     float top_1 = frame.atmosphere.z;
     float h_5 = ((alt_3 - bottom_1) / (top_1 - bottom_1));
     if (!((h_5 < 0.0))) {
-        local_12 = (h_5 > 1.0);
-    } else {
-        local_12 = true;
-    }
-    bool _e22 = local_12;
-    if (_e22) {
-        return 0.0;
-    }
-    uint _e25 = counters.density;
-    counters.density = (_e25 + 1u);
-    const Weather _e28 = sample_weather(p_3);
-    const float _e30 = height_signal(h_5, _e28.cloud_type);
-    if (!((_e28.coverage <= 0.0))) {
-        local_13 = (_e30 <= 0.0);
+        local_13 = (h_5 > 1.0);
     } else {
         local_13 = true;
     }
-    bool _e40 = local_13;
+    bool _e22 = local_13;
+    if (_e22) {
+        return 0.0;
+    }
+    uint _e25 = counters_1.density;
+    counters_1.density = (_e25 + 1u);
+    const Weather _e28 = sample_weather(p_3);
+    const float _e30 = height_signal(h_5, _e28.cloud_type);
+    if (!((_e28.coverage <= 0.0))) {
+        local_14 = (_e30 <= 0.0);
+    } else {
+        local_14 = true;
+    }
+    bool _e40 = local_14;
     if (_e40) {
         return 0.0;
     }
@@ -415,9 +437,9 @@ float cloud_density(float3 p_3, float alt_3, inout Counters counters)
     float _e60 = frame.wind_offsets0_.z;
     float _e66 = frame.wind_offsets0_.w;
     float3 shape_pos = float3((p_3.x - _e60), alt_3, (p_3.z - _e66));
-    float4 s_1 = shape_tex.SampleLevel(noise_sampler, (shape_pos / period), 0.0);
-    float low_fbm = (((s_1.y * 0.625) + (s_1.z * 0.25)) + (s_1.w * 0.125));
-    const float _e91 = remap(s_1.x, (low_fbm - 1.0), 1.0, 0.0, 1.0);
+    float4 s_2 = shape_tex.SampleLevel(noise_sampler, (shape_pos / period), 0.0);
+    float low_fbm = (((s_2.y * 0.625) + (s_2.z * 0.25)) + (s_2.w * 0.125));
+    const float _e91 = remap(s_2.x, (low_fbm - 1.0), 1.0, 0.0, 1.0);
     const float _e92 = saturate_(_e91);
     base = (_e92 * _e30);
     float _e95 = base;
@@ -433,21 +455,21 @@ float cloud_density(float3 p_3, float alt_3, inout Counters counters)
     float strength = frame.erosion.x;
     float threshold = frame.erosion.y;
     if (DETAIL) {
-        local_14 = (strength > 0.0);
-    } else {
-        local_14 = false;
-    }
-    bool _e126 = local_14;
-    if (_e126) {
-        float _e129 = base;
-        local_15 = (_e129 < threshold);
+        local_15 = (strength > 0.0);
     } else {
         local_15 = false;
     }
-    bool _e132 = local_15;
+    bool _e126 = local_15;
+    if (_e126) {
+        float _e129 = base;
+        local_16 = (_e129 < threshold);
+    } else {
+        local_16 = false;
+    }
+    bool _e132 = local_16;
     if (_e132) {
-        uint _e134 = counters.detail;
-        counters.detail = (_e134 + 1u);
+        uint _e134 = counters_1.detail;
+        counters_1.detail = (_e134 + 1u);
         detail_pos = float3(p_3.x, alt_3, p_3.z);
         if (CURL) {
             float4 _e145 = frame.wind_offsets1_;
@@ -505,35 +527,35 @@ float phase_cornette_shanks(float cos_theta_1, float g_1)
 float phase(float cos_theta_2, float scale)
 {
     float _e5 = frame.phase.x;
-    float g_2 = (_e5 * scale);
+    float g_3 = (_e5 * scale);
     uint _e10 = frame.modes.x;
     switch(_e10) {
         case 1u: {
             float _e14 = frame.phase.y;
             float g2_2 = (_e14 * scale);
-            const float _e16 = phase_hg(cos_theta_2, g_2);
+            const float _e16 = phase_hg(cos_theta_2, g_3);
             const float _e17 = phase_hg(cos_theta_2, g2_2);
             float _e21 = frame.phase.z;
             return lerp(_e16, _e17, _e21);
         }
         case 2u: {
-            const float _e23 = phase_cornette_shanks(cos_theta_2, g_2);
+            const float _e23 = phase_cornette_shanks(cos_theta_2, g_3);
             return _e23;
         }
         default: {
-            const float _e24 = phase_hg(cos_theta_2, g_2);
+            const float _e24 = phase_hg(cos_theta_2, g_3);
             return _e24;
         }
     }
 }
 
-float sun_optical_depth(float3 rel, float3 p_4, inout Counters counters_1)
+float sun_optical_depth(float3 rel, float3 p_4, inout Counters counters_2)
 {
     float seg = (float)0;
     float dist = 0.0;
     float tau = 0.0;
     uint i = 0u;
-    bool local_16 = (bool)0;
+    bool local_17 = (bool)0;
 
     float4 _e5 = frame.sun_direction;
     float3 sun = _e5.xyz;
@@ -562,24 +584,24 @@ float sun_optical_depth(float3 rel, float3 p_4, inout Counters counters_1)
         {
             float _e37 = dist;
             float _e38 = seg;
-            float s_2 = (_e37 + (0.5 * _e38));
-            float3 q_5 = (rel + (sun * s_2));
+            float s_3 = (_e37 + (0.5 * _e38));
+            float3 q_5 = (rel + (sun * s_3));
             const float _e44 = altitude_of(q_5);
             float _e48 = frame.atmosphere.z;
             if (!((_e44 > _e48))) {
                 float _e56 = frame.atmosphere.y;
-                local_16 = (_e44 < _e56);
+                local_17 = (_e44 < _e56);
             } else {
-                local_16 = true;
+                local_17 = true;
             }
-            bool _e59 = local_16;
+            bool _e59 = local_17;
             if (_e59) {
                 break;
             }
-            uint _e61 = counters_1.light;
-            counters_1.light = (_e61 + 1u);
+            uint _e61 = counters_2.light;
+            counters_2.light = (_e61 + 1u);
             float _e64 = tau;
-            const float _e67 = cloud_density((p_4 + (sun * s_2)), _e44, counters_1);
+            const float _e67 = cloud_density((p_4 + (sun * s_3)), _e44, counters_2);
             float _e69 = seg;
             tau = (_e64 + ((_e67 * sigma_t_1) * _e69));
             float _e72 = dist;
@@ -601,9 +623,9 @@ float sun_scattering(float cos_theta_3, float tau_1)
     float kc = 1.0;
     uint i_1 = 0u;
 
-    float a = frame.multiple_scattering.x;
-    float b_3 = frame.multiple_scattering.y;
-    float c_3 = frame.multiple_scattering.z;
+    float a_1 = frame.multiple_scattering.x;
+    float b_4 = frame.multiple_scattering.y;
+    float c_4 = frame.multiple_scattering.z;
     uint _e17 = frame.misc.x;
     uint octaves = min(_e17, MAX_OCTAVES);
     const float _e21 = phase(cos_theta_3, 1.0);
@@ -625,11 +647,11 @@ float sun_scattering(float cos_theta_3, float tau_1)
         }
         {
             float _e36 = ka;
-            ka = (_e36 * a);
+            ka = (_e36 * a_1);
             float _e38 = kb;
-            kb = (_e38 * b_3);
+            kb = (_e38 * b_4);
             float _e40 = kc;
-            kc = (_e40 * c_3);
+            kc = (_e40 * c_4);
             float _e42 = total;
             float _e43 = ka;
             float _e44 = kc;
@@ -656,7 +678,7 @@ float3 ambient(float h_4)
     return (lerp(_e3.xyz, _e7.xyz, h_4) * _e13);
 }
 
-float3 scattered_light(float3 rel_1, float3 p_5, float alt_4, float density_1, float3 view, inout Counters counters_2)
+float3 scattered_light(float3 rel_1, float3 p_5, float alt_4, float density_1, float3 view, inout Counters counters_3)
 {
     float3 sun_light = (0.0).xxx;
     float tau_2 = 0.0;
@@ -670,7 +692,7 @@ float3 scattered_light(float3 rel_1, float3 p_5, float alt_4, float density_1, f
     const bool _e29 = hits_ground(rel_1, alt_4, sun_1);
     if (!(_e29)) {
         if (LIGHT_MARCH) {
-            const float _e34 = sun_optical_depth(rel_1, p_5, counters_2);
+            const float _e34 = sun_optical_depth(rel_1, p_5, counters_3);
             tau_2 = _e34;
         }
         float4 _e37 = frame.sun_illuminance;
@@ -732,14 +754,14 @@ float empty_cell_exit(float3 p_6, float3 d_3)
 
 void count(uint index, uint value)
 {
-    bool local_17 = (bool)0;
+    bool local_18 = (bool)0;
 
     if (STATS) {
-        local_17 = (value != 0u);
+        local_18 = (value != 0u);
     } else {
-        local_17 = false;
+        local_18 = false;
     }
-    bool _e8 = local_17;
+    bool _e8 = local_18;
     if (_e8) {
         uint _e12; stats.InterlockedAdd(index*4+0, value, _e12);
         return;
@@ -767,8 +789,8 @@ float start_offset(uint2 pixel_2)
 {
     uint _e4 = frame.modes.w;
     bool jitter = ((_e4 & FLAG_JITTER) != 0u);
-    uint k_1 = frame.temporal.x;
-    if ((k_1 <= 1u)) {
+    uint k_3 = frame.temporal.x;
+    if ((k_3 <= 1u)) {
         uint _e18 = frame.misc.y;
         const float _e19 = hash_unit(pixel_2, _e18);
         return (jitter ? _e19 : 0.5);
@@ -776,7 +798,7 @@ float start_offset(uint2 pixel_2)
     const float _e23 = hash_unit(pixel_2, 0u);
     float base_2 = (jitter ? _e23 : 0.5);
     uint _e29 = frame.misc.y;
-    const float _e32 = van_der_corput(naga_div(_e29, (k_1 * k_1)));
+    const float _e32 = van_der_corput(naga_div(_e29, (k_3 * k_3)));
     return frac((base_2 + _e32));
 }
 
@@ -803,7 +825,7 @@ uint naga_f2u32(float value) {
 
 MarchResult march_pixel(uint2 pixel_3)
 {
-    Counters counters_3 = ConstructCounters(0u, 0u, 0u, 0u);
+    Counters counters_4 = ConstructCounters(0u, 0u, 0u, 0u);
     float3 radiance = (0.0).xxx;
     float transmittance = 1.0;
     float depth_sum = 0.0;
@@ -811,7 +833,7 @@ MarchResult march_pixel(uint2 pixel_3)
     uint i_2 = 0u;
     uint stride = 1u;
     uint empty = 0u;
-    bool local_18 = (bool)0;
+    bool local_19 = (bool)0;
     float depth_1 = 0.0;
 
     const float3 _e1 = view_ray(pixel_3);
@@ -853,34 +875,34 @@ MarchResult march_pixel(uint2 pixel_3)
                 if ((_e96 >= _e97)) {
                     break;
                 }
-                uint _e100 = counters_3.view_steps;
-                counters_3.view_steps = (_e100 + 1u);
+                uint _e100 = counters_4.view_steps;
+                counters_4.view_steps = (_e100 + 1u);
                 uint _e104 = i_2;
-                float t_1 = (_e25.start + ((float(_e104) + _e64) * dt_1));
-                float3 rel_2 = ((_e1 * t_1) + float3(0.0, cam_alt, 0.0));
-                float3 p_7 = float3((rel_2.x + cam_xz.x), rel_2.y, (rel_2.z + cam_xz.y));
+                float t_4 = (_e25.start + ((float(_e104) + _e64) * dt_1));
+                float3 rel_3 = ((_e1 * t_4) + float3(0.0, cam_alt, 0.0));
+                float3 p_9 = float3((rel_3.x + cam_xz.x), rel_3.y, (rel_3.z + cam_xz.y));
                 if (empty_skip) {
-                    const float _e122 = empty_cell_exit(p_7, _e1);
+                    const float _e122 = empty_cell_exit(p_9, _e1);
                     if ((_e122 > 0.0)) {
                         uint _e131 = steps;
-                        uint next = naga_f2u32(clamp(ceil(((((t_1 + _e122) - _e25.start) / dt_1) - _e64)), 0.0, float(_e131)));
+                        uint next = naga_f2u32(clamp(ceil(((((t_4 + _e122) - _e25.start) / dt_1) - _e64)), 0.0, float(_e131)));
                         uint _e136 = i_2;
                         i_2 = max((_e136 + 1u), next);
                         continue;
                     }
                 }
-                const float _e140 = altitude_of(rel_2);
-                const float _e141 = cloud_density(p_7, _e140, counters_3);
+                const float _e140 = altitude_of(rel_3);
+                const float _e141 = cloud_density(p_9, _e140, counters_4);
                 if ((_e141 <= 0.0)) {
                     uint _e144 = empty;
                     empty = (_e144 + 1u);
                     if (dynamic_step) {
                         uint _e149 = empty;
-                        local_18 = (_e149 >= 8u);
+                        local_19 = (_e149 >= 8u);
                     } else {
-                        local_18 = false;
+                        local_19 = false;
                     }
-                    bool _e153 = local_18;
+                    bool _e153 = local_19;
                     if (_e153) {
                         stride = 2u;
                     }
@@ -900,7 +922,7 @@ MarchResult march_pixel(uint2 pixel_3)
                 }
                 empty = 0u;
                 float sigma_t_2 = (sigma_e * _e141);
-                const float3 _e170 = scattered_light(rel_2, p_7, _e140, _e141, _e1, counters_3);
+                const float3 _e170 = scattered_light(rel_3, p_9, _e140, _e141, _e1, counters_4);
                 float3 _e171 = radiance;
                 float _e172 = transmittance;
                 const float3 _e173 = step_integral(_e170, sigma_t_2, dt_1);
@@ -908,7 +930,7 @@ MarchResult march_pixel(uint2 pixel_3)
                 float step_t = exp((-(sigma_t_2) * dt_1));
                 float _e179 = depth_sum;
                 float _e180 = transmittance;
-                depth_sum = (_e179 + ((t_1 * _e180) * (1.0 - step_t)));
+                depth_sum = (_e179 + ((t_4 * _e180) * (1.0 - step_t)));
                 float _e186 = transmittance;
                 transmittance = (_e186 * step_t);
                 float _e188 = transmittance;
@@ -922,13 +944,13 @@ MarchResult march_pixel(uint2 pixel_3)
             }
         }
     }
-    uint _e201 = counters_3.view_steps;
+    uint _e201 = counters_4.view_steps;
     count(STAT_VIEW_STEPS, _e201);
-    uint _e204 = counters_3.density;
+    uint _e204 = counters_4.density;
     count(STAT_DENSITY, _e204);
-    uint _e207 = counters_3.detail;
+    uint _e207 = counters_4.detail;
     count(STAT_DETAIL, _e207);
-    uint _e210 = counters_3.light;
+    uint _e210 = counters_4.light;
     count(STAT_LIGHT, _e210);
     float _e213 = transmittance;
     if ((_e213 < 1.0)) {
@@ -959,9 +981,9 @@ uint2 block_offset(uint f, uint k)
         return _e6;
     }
     if ((k == 4u)) {
-        uint b_4 = naga_mod(f, 16u);
-        const uint2 _e13 = bayer2_((b_4 >> 2u));
-        const uint2 _e17 = bayer2_((b_4 & 3u));
+        uint b_5 = naga_mod(f, 16u);
+        const uint2 _e13 = bayer2_((b_5 >> 2u));
+        const uint2 _e17 = bayer2_((b_5 & 3u));
         return (_e13 + (2u * _e17));
     }
     return (0u).xx;
@@ -969,9 +991,9 @@ uint2 block_offset(uint f, uint k)
 
 float2 reproject(uint2 pixel_4, float depth_2)
 {
-    bool local_19 = (bool)0;
     bool local_20 = (bool)0;
     bool local_21 = (bool)0;
+    bool local_22 = (bool)0;
     float3 dir = (float3)0;
 
     float4 _e4 = frame.previous_position;
@@ -979,27 +1001,27 @@ float2 reproject(uint2 pixel_4, float depth_2)
     if (all((_e4 == _e7))) {
         float4 _e14 = frame.previous_forward;
         float4 _e17 = frame.camera_forward;
-        local_19 = all((_e14 == _e17));
-    } else {
-        local_19 = false;
-    }
-    bool _e21 = local_19;
-    if (_e21) {
-        float4 _e26 = frame.previous_right;
-        float4 _e29 = frame.camera_right;
-        local_20 = all((_e26 == _e29));
+        local_20 = all((_e14 == _e17));
     } else {
         local_20 = false;
     }
-    bool _e33 = local_20;
-    if (_e33) {
-        float4 _e38 = frame.previous_up;
-        float4 _e41 = frame.camera_up;
-        local_21 = all((_e38 == _e41));
+    bool _e21 = local_20;
+    if (_e21) {
+        float4 _e26 = frame.previous_right;
+        float4 _e29 = frame.camera_right;
+        local_21 = all((_e26 == _e29));
     } else {
         local_21 = false;
     }
-    bool same = local_21;
+    bool _e33 = local_21;
+    if (_e33) {
+        float4 _e38 = frame.previous_up;
+        float4 _e41 = frame.camera_up;
+        local_22 = all((_e38 == _e41));
+    } else {
+        local_22 = false;
+    }
+    bool same = local_22;
     if (same) {
         return float2(pixel_4);
     }
@@ -1029,16 +1051,16 @@ float2 reproject(uint2 pixel_4, float depth_2)
 
 bool on_screen(float2 q)
 {
-    bool local_22 = (bool)0;
+    bool local_23 = (bool)0;
 
     uint4 _e3 = frame.counts;
     float2 size_1 = float2(_e3.xy);
     if (all((q >= (-0.5).xx))) {
-        local_22 = all((q <= (size_1 - (0.5).xx)));
+        local_23 = all((q <= (size_1 - (0.5).xx)));
     } else {
-        local_22 = false;
+        local_23 = false;
     }
-    bool _e18 = local_22;
+    bool _e18 = local_23;
     return _e18;
 }
 
@@ -1071,9 +1093,9 @@ float4 history_at(float2 q_1)
 {
     uint4 _e3 = frame.counts;
     int2 size_3 = int2(_e3.xy);
-    float2 c_4 = clamp(q_1, (0.0).xx, float2(asint(asuint(size_3) - asuint((int(1)).xx))));
-    int2 base_3 = naga_f2i32(floor(c_4));
-    float2 f_2 = (c_4 - float2(base_3));
+    float2 c_5 = clamp(q_1, (0.0).xx, float2(asint(asuint(size_3) - asuint((int(1)).xx))));
+    int2 base_3 = naga_f2i32(floor(c_5));
+    float2 f_2 = (c_5 - float2(base_3));
     const float4 _e18 = catmull_rom(f_2.x);
     const float4 _e20 = catmull_rom(f_2.y);
     const float4 _e22 = history_row(base_3, int(-1), _e18);
@@ -1089,8 +1111,8 @@ float4 history_nearest(float2 q_2)
 {
     uint4 _e3 = frame.counts;
     int2 size_4 = int2(_e3.xy);
-    int2 p_8 = clamp(naga_f2i32(round(q_2)), (int(0)).xx, asint(asuint(size_4) - asuint((int(1)).xx)));
-    float4 _e16 = history_in.Load(int3(p_8, int(0)));
+    int2 p_10 = clamp(naga_f2i32(round(q_2)), (int(0)).xx, asint(asuint(size_4) - asuint((int(1)).xx)));
+    float4 _e16 = history_in.Load(int3(p_10, int(0)));
     return _e16;
 }
 
@@ -1098,8 +1120,8 @@ float4 meta_at(float2 q_3)
 {
     uint4 _e3 = frame.counts;
     int2 size_5 = int2(_e3.xy);
-    int2 p_9 = clamp(naga_f2i32(round(q_3)), (int(0)).xx, asint(asuint(size_5) - asuint((int(1)).xx)));
-    float4 _e16 = meta_in.Load(int3(p_9, int(0)));
+    int2 p_11 = clamp(naga_f2i32(round(q_3)), (int(0)).xx, asint(asuint(size_5) - asuint((int(1)).xx)));
+    float4 _e16 = meta_in.Load(int3(p_11, int(0)));
     return _e16;
 }
 
@@ -1107,56 +1129,624 @@ uint2 naga_div(uint2 lhs, uint2 rhs) {
     return lhs / (rhs == 0u ? 1u : rhs);
 }
 
-bool in_blocks(uint2 id_6)
+bool in_blocks(uint2 id_7)
 {
-    uint k_2 = frame.temporal.x;
+    uint k_4 = frame.temporal.x;
     uint4 _e7 = frame.counts;
-    return all((id_6 < naga_div(((_e7.xy + (k_2).xx) - (1u).xx), (k_2).xx)));
+    return all((id_7 < naga_div(((_e7.xy + (k_4).xx) - (1u).xx), (k_4).xx)));
 }
 
-uint2 sparse_pixel(uint2 id_7)
+uint2 sparse_pixel(uint2 id_8)
 {
-    uint k_3 = frame.temporal.x;
+    uint k_5 = frame.temporal.x;
     uint _e9 = frame.misc.y;
-    const uint2 _e10 = block_offset(_e9, k_3);
-    return ((id_7 * k_3) + _e10);
+    const uint2 _e10 = block_offset(_e9, k_5);
+    return ((id_8 * k_5) + _e10);
 }
 
-void store_sparse(uint2 id_8, MarchResult r_2)
+void store_sparse(uint2 id_9, MarchResult r_2)
 {
-    cloud_out[id_8] = float4(r_2.radiance, r_2.transmittance);
-    depth_out[id_8] = float4(r_2.depth, 0.0, 0.0, 0.0);
+    cloud_out[id_9] = float4(r_2.radiance, r_2.transmittance);
+    depth_out[id_9] = float4(r_2.depth, 0.0, 0.0, 0.0);
     return;
 }
 
-float3 sky_radiance(float3 d_4, float alt_5)
+uint rng_seed(uint2 pixel_5, uint frame_index_1)
+{
+    const uint _e4 = pcg(frame_index_1);
+    const uint _e6 = pcg((pixel_5.y ^ _e4));
+    const uint _e8 = pcg((pixel_5.x ^ _e6));
+    return _e8;
+}
+
+float rng_next(inout uint rng_1)
+{
+    uint _e1 = rng_1;
+    rng_1 = ((_e1 * 747796405u) + 2891336453u);
+    uint s_4 = rng_1;
+    uint word_1 = (((s_4 >> ((s_4 >> 28u) + 4u)) ^ s_4) * 277803737u);
+    return (float((((word_1 >> 22u) ^ word_1) >> 8u)) * 5.9604645e-8);
+}
+
+float rng_exponential(inout uint rng_2, float sigma)
+{
+    const float _e2 = rng_next(rng_2);
+    return (-(log((1.0 - _e2))) / sigma);
+}
+
+Roots ray_shell_from(float3 p_7, float alt_5, float3 d_4, float radius_alt_1)
+{
+    float rp_3 = frame.atmosphere.x;
+    float b_6 = dot(d_4, float3(p_7.x, (p_7.y + rp_3), p_7.z));
+    float c_6 = ((alt_5 - radius_alt_1) * ((alt_5 + radius_alt_1) + (2.0 * rp_3)));
+    const Roots _e20 = solve_sphere(b_6, c_6);
+    const Roots roots_4 = _e20;
+    return roots_4;
+}
+
+Segments ConstructSegments(float2 arg0, float2 arg1, uint arg2) {
+    Segments ret = (Segments)0;
+    ret.a = arg0;
+    ret.b = arg1;
+    ret.count = arg2;
+    return ret;
+}
+
+Segments layer_segments(float3 p_8, float alt_6, float3 d_5)
+{
+    Segments s = ConstructSegments((0.0).xx, (0.0).xx, 0u);
+    bool local_24 = (bool)0;
+    float2 a = (0.0).xx;
+    float2 b_1 = (0.0).xx;
+    uint n_1 = 0u;
+    bool local_25 = (bool)0;
+    bool local_26 = (bool)0;
+    bool local_27 = (bool)0;
+    bool local_28 = (bool)0;
+
+    float bottom_2 = frame.atmosphere.y;
+    const Roots _e14 = ray_shell_from(p_8, alt_6, d_5, bottom_2);
+    float _e18 = frame.atmosphere.z;
+    const Roots _e19 = ray_shell_from(p_8, alt_6, d_5, _e18);
+    const bool _e20 = hits_ground(p_8, alt_6, d_5);
+    if (!(!(_e19.hit))) {
+        local_24 = (_e19.t1_ <= 0.0);
+    } else {
+        local_24 = true;
+    }
+    bool _e30 = local_24;
+    if (_e30) {
+        Segments _e31 = s;
+        const Segments segments = _e31;
+        return segments;
+    }
+    float entry = max(_e19.t0_, 0.0);
+    if (_e14.hit) {
+        local_25 = (_e14.t0_ > 0.0);
+    } else {
+        local_25 = false;
+    }
+    bool _e50 = local_25;
+    if (_e50) {
+        local_26 = (alt_6 >= bottom_2);
+    } else {
+        local_26 = false;
+    }
+    bool _e55 = local_26;
+    if (_e55) {
+        uint _e56 = n_1;
+        a[min(uint(_e56), 1u)] = entry;
+        uint _e58 = n_1;
+        b_1[min(uint(_e58), 1u)] = _e14.t0_;
+        uint _e61 = n_1;
+        n_1 = (_e61 + uint((_e14.t0_ > entry)));
+        if (!(_e20)) {
+            local_27 = (_e19.t1_ > _e14.t1_);
+        } else {
+            local_27 = false;
+        }
+        bool _e73 = local_27;
+        if (_e73) {
+            uint _e74 = n_1;
+            a[min(uint(_e74), 1u)] = max(_e14.t1_, entry);
+            uint _e78 = n_1;
+            b_1[min(uint(_e78), 1u)] = _e19.t1_;
+            uint _e81 = n_1;
+            n_1 = (_e81 + 1u);
+        }
+    } else {
+        if ((alt_6 < bottom_2)) {
+            if (!(_e20)) {
+                local_28 = _e14.hit;
+            } else {
+                local_28 = false;
+            }
+            bool _e90 = local_28;
+            if (_e90) {
+                a.x = max(_e14.t1_, 0.0);
+                b_1.x = _e19.t1_;
+                n_1 = 1u;
+            }
+        } else {
+            a.x = entry;
+            b_1.x = _e19.t1_;
+            n_1 = 1u;
+        }
+    }
+    float2 _e103 = a;
+    s.a = _e103;
+    float2 _e105 = b_1;
+    s.b = _e105;
+    uint _e107 = n_1;
+    s.count = _e107;
+    Segments _e108 = s;
+    const Segments segments_1 = _e108;
+    return segments_1;
+}
+
+float density_at(float3 rel_2, inout Counters counters_5)
+{
+    float _e6 = frame.camera_position.x;
+    float _e13 = frame.camera_position.z;
+    float3 p_12 = float3((rel_2.x + _e6), rel_2.y, (rel_2.z + _e13));
+    const float _e16 = altitude_of(rel_2);
+    const float _e17 = cloud_density(p_12, _e16, counters_5);
+    return _e17;
+}
+
+float empty_cell_skip(float3 origin, float3 dir_1, float t_1)
+{
+    float3 rel_4 = (origin + (dir_1 * t_1));
+    float _e9 = frame.camera_position.x;
+    float _e16 = frame.camera_position.z;
+    float3 p_13 = float3((rel_4.x + _e9), rel_4.y, (rel_4.z + _e16));
+    const float _e19 = empty_cell_exit(p_13, dir_1);
+    if ((_e19 <= 0.0)) {
+        return 0.0;
+    }
+    return (_e19 + 0.05);
+}
+
+float density_max()
+{
+    float _e3 = frame.clouds.y;
+    float _e7 = frame.clouds.w;
+    return clamp((_e3 * (1.0 + _e7)), 0.0, 1.0);
+}
+
+float free_flight(float3 origin_1, float3 dir_2, Segments segs, inout uint rng_3, inout Counters counters_6)
+{
+    uint k_1 = 0u;
+    float t_2 = (float)0;
+
+    const float _e5 = density_max();
+    float _e9 = frame.extinction.x;
+    float _e13 = frame.extinction.y;
+    float majorant = ((_e9 + _e13) * _e5);
+    if ((majorant <= 0.0)) {
+        return -1.0;
+    }
+    uint2 loop_bound_3 = uint2(4294967295u, 4294967295u);
+    bool loop_init_2 = true;
+    while(true) {
+        if (all(loop_bound_3 == uint2(0u, 0u))) { break; }
+        loop_bound_3 -= uint2(loop_bound_3.y == 0u, 1u);
+        if (!loop_init_2) {
+            uint _e60 = k_1;
+            k_1 = (_e60 + 1u);
+        }
+        loop_init_2 = false;
+        uint _e21 = k_1;
+        if ((_e21 < segs.count)) {
+        } else {
+            break;
+        }
+        {
+            uint _e25 = k_1;
+            t_2 = segs.a[min(uint(_e25), 1u)];
+            uint2 loop_bound_4 = uint2(4294967295u, 4294967295u);
+            while(true) {
+                if (all(loop_bound_4 == uint2(0u, 0u))) { break; }
+                loop_bound_4 -= uint2(loop_bound_4.y == 0u, 1u);
+                float _e28 = t_2;
+                const float _e29 = empty_cell_skip(origin_1, dir_2, _e28);
+                if ((_e29 > 0.0)) {
+                    float _e32 = t_2;
+                    t_2 = (_e32 + _e29);
+                    float _e34 = t_2;
+                    uint _e36 = k_1;
+                    if ((_e34 >= segs.b[min(uint(_e36), 1u)])) {
+                        break;
+                    }
+                    continue;
+                }
+                float _e39 = t_2;
+                const float _e40 = rng_exponential(rng_3, majorant);
+                t_2 = (_e39 + _e40);
+                float _e42 = t_2;
+                uint _e44 = k_1;
+                if ((_e42 >= segs.b[min(uint(_e44), 1u)])) {
+                    break;
+                }
+                uint _e48 = counters_6.view_steps;
+                counters_6.view_steps = (_e48 + 1u);
+                float _e51 = t_2;
+                const float _e54 = density_at((origin_1 + (dir_2 * _e51)), counters_6);
+                const float _e55 = rng_next(rng_3);
+                if (((_e55 * _e5) < _e54)) {
+                    float _e58 = t_2;
+                    return _e58;
+                }
+            }
+        }
+    }
+    return -1.0;
+}
+
+float transmittance_along(float3 origin_2, float3 dir_3, Segments segs_1, inout uint rng_4, inout Counters counters_7)
+{
+    float tr = 1.0;
+    uint k_2 = 0u;
+    float t_3 = (float)0;
+
+    float _e8 = frame.extinction.x;
+    float _e12 = frame.extinction.y;
+    float sigma_t_3 = (_e8 + _e12);
+    const float _e14 = density_max();
+    float majorant_1 = (sigma_t_3 * _e14);
+    if ((majorant_1 <= 0.0)) {
+        return 1.0;
+    }
+    uint2 loop_bound_5 = uint2(4294967295u, 4294967295u);
+    bool loop_init_3 = true;
+    while(true) {
+        if (all(loop_bound_5 == uint2(0u, 0u))) { break; }
+        loop_bound_5 -= uint2(loop_bound_5.y == 0u, 1u);
+        if (!loop_init_3) {
+            uint _e78 = k_2;
+            k_2 = (_e78 + 1u);
+        }
+        loop_init_3 = false;
+        uint _e23 = k_2;
+        if ((_e23 < segs_1.count)) {
+        } else {
+            break;
+        }
+        {
+            uint _e27 = k_2;
+            t_3 = segs_1.a[min(uint(_e27), 1u)];
+            uint2 loop_bound_6 = uint2(4294967295u, 4294967295u);
+            while(true) {
+                if (all(loop_bound_6 == uint2(0u, 0u))) { break; }
+                loop_bound_6 -= uint2(loop_bound_6.y == 0u, 1u);
+                float _e30 = t_3;
+                const float _e31 = empty_cell_skip(origin_2, dir_3, _e30);
+                if ((_e31 > 0.0)) {
+                    float _e34 = t_3;
+                    t_3 = (_e34 + _e31);
+                    float _e36 = t_3;
+                    uint _e38 = k_2;
+                    if ((_e36 >= segs_1.b[min(uint(_e38), 1u)])) {
+                        break;
+                    }
+                    continue;
+                }
+                float _e41 = t_3;
+                const float _e42 = rng_exponential(rng_4, majorant_1);
+                t_3 = (_e41 + _e42);
+                float _e44 = t_3;
+                uint _e46 = k_2;
+                if ((_e44 >= segs_1.b[min(uint(_e46), 1u)])) {
+                    break;
+                }
+                uint _e50 = counters_7.light;
+                counters_7.light = (_e50 + 1u);
+                float _e53 = t_3;
+                const float _e56 = density_at((origin_2 + (dir_3 * _e53)), counters_7);
+                float _e57 = tr;
+                tr = (_e57 * (1.0 - ((sigma_t_3 * _e56) / majorant_1)));
+                float _e63 = tr;
+                if ((_e63 <= 0.0)) {
+                    return 0.0;
+                }
+                float _e67 = tr;
+                if ((_e67 < 0.01)) {
+                    const float _e70 = rng_next(rng_4);
+                    if ((_e70 < 0.75)) {
+                        return 0.0;
+                    }
+                    float _e74 = tr;
+                    tr = (_e74 * 4.0);
+                }
+            }
+        }
+    }
+    float _e80 = tr;
+    return _e80;
+}
+
+float sample_hg_cos(float g_2, float u)
+{
+    if ((abs(g_2) < 0.0001)) {
+        return (1.0 - (2.0 * u));
+    }
+    float s_5 = ((1.0 - (g_2 * g_2)) / ((1.0 - g_2) + ((2.0 * g_2) * u)));
+    return clamp((((1.0 + (g_2 * g_2)) - (s_5 * s_5)) / (2.0 * g_2)), -1.0, 1.0);
+}
+
+PhaseSample ConstructPhaseSample(float3 arg0, float arg1) {
+    PhaseSample ret = (PhaseSample)0;
+    ret.dir = arg0;
+    ret.weight = arg1;
+    return ret;
+}
+
+PhaseSample sample_phase(float3 dir_4, inout uint rng_5)
+{
+    float cos_theta_4 = 0.0;
+    float pdf = 0.0;
+
+    const float _e2 = rng_next(rng_5);
+    const float _e3 = rng_next(rng_5);
+    const float _e5 = rng_next(rng_5);
+    float phi = (6.2831855 * _e5);
+    uint _e14 = frame.modes.x;
+    if ((_e14 == PHASE_TWO_LOBE_HG)) {
+        float _e20 = frame.phase.x;
+        float _e24 = frame.phase.y;
+        float _e28 = frame.phase.z;
+        float g_4 = ((_e2 < _e28) ? _e24 : _e20);
+        const float _e31 = sample_hg_cos(g_4, _e3);
+        cos_theta_4 = _e31;
+        float _e32 = cos_theta_4;
+        float _e36 = frame.phase.x;
+        const float _e37 = phase_hg(_e32, _e36);
+        float _e38 = cos_theta_4;
+        float _e42 = frame.phase.y;
+        const float _e43 = phase_hg(_e38, _e42);
+        float _e47 = frame.phase.z;
+        pdf = lerp(_e37, _e43, _e47);
+    } else {
+        float _e52 = frame.phase.x;
+        const float _e53 = sample_hg_cos(_e52, _e3);
+        cos_theta_4 = _e53;
+        float _e54 = cos_theta_4;
+        float _e58 = frame.phase.x;
+        const float _e59 = phase_hg(_e54, _e58);
+        pdf = _e59;
+    }
+    float _e60 = cos_theta_4;
+    float _e61 = cos_theta_4;
+    float sin_theta = sqrt(max((1.0 - (_e60 * _e61)), 0.0));
+    float sign_ = ((dir_4.z >= 0.0) ? 1.0 : -1.0);
+    float a_2 = (-1.0 / (sign_ + dir_4.z));
+    float bb = ((dir_4.x * dir_4.y) * a_2);
+    float3 t_5 = float3((1.0 + (((sign_ * dir_4.x) * dir_4.x) * a_2)), (sign_ * bb), (-(sign_) * dir_4.x));
+    float3 b_7 = float3(bb, (sign_ + ((dir_4.y * dir_4.y) * a_2)), -(dir_4.y));
+    float _e109 = cos_theta_4;
+    float3 w_1 = normalize((((t_5 * (sin_theta * cos(phi))) + (b_7 * (sin_theta * sin(phi)))) + (dir_4 * _e109)));
+    float _e113 = cos_theta_4;
+    const float _e115 = phase(_e113, 1.0);
+    float _e116 = pdf;
+    float _e118 = pdf;
+    const PhaseSample phasesample = ConstructPhaseSample(w_1, ((_e118 > 0.0) ? (_e115 / _e116) : 0.0));
+    return phasesample;
+}
+
+PathResult ConstructPathResult(float3 arg0, float arg1, float arg2) {
+    PathResult ret = (PathResult)0;
+    ret.radiance = arg0;
+    ret.transmittance = arg1;
+    ret.depth = arg2;
+    return ret;
+}
+
+PathResult trace_path(float3 view_1, Interval span, inout uint rng_6, inout Counters counters_8)
+{
+    PathResult out_ = ConstructPathResult((0.0).xxx, 1.0, -1.0);
+    bool local_29 = (bool)0;
+    bool local_30 = (bool)0;
+    uint max_orders = MAX_PATH_ORDERS;
+    float3 pos = (float3)0;
+    float3 dir_5 = (float3)0;
+    float throughput = 1.0;
+    uint order = 0u;
+    bool local_31 = (bool)0;
+
+    if ((span.kind != RAY_MARCH)) {
+        PathResult _e13 = out_;
+        const PathResult pathresult = _e13;
+        return pathresult;
+    }
+    float _e17 = frame.camera_position.y;
+    float3 cam = float3(0.0, _e17, 0.0);
+    Segments primary = ConstructSegments(float2(span.start, 0.0), float2((span.start + span.length_), 0.0), 1u);
+    const float _e32 = transmittance_along(cam, view_1, primary, rng_6, counters_8);
+    out_.transmittance = _e32;
+    const float _e33 = free_flight(cam, view_1, primary, rng_6, counters_8);
+    if ((_e33 < 0.0)) {
+        PathResult _e36 = out_;
+        const PathResult pathresult_1 = _e36;
+        return pathresult_1;
+    }
+    out_.depth = _e33;
+    float4 _e40 = frame.sun_direction;
+    float3 sun_2 = _e40.xyz;
+    float _e45 = frame.extinction.x;
+    float _e49 = frame.extinction.y;
+    float sigma_t_4 = (_e45 + _e49);
+    float _e54 = frame.extinction.x;
+    float albedo = ((sigma_t_4 > 0.0) ? (_e54 / sigma_t_4) : 0.0);
+    float _e63 = frame.ambient_bottom.w;
+    if ((_e63 > 0.0)) {
+        float4 _e70 = frame.ambient_bottom;
+        if (!(any((_e70.xyz > (0.0).xxx)))) {
+            float4 _e81 = frame.ambient_top;
+            local_30 = any((_e81.xyz > (0.0).xxx));
+        } else {
+            local_30 = true;
+        }
+        bool _e88 = local_30;
+        local_29 = _e88;
+    } else {
+        local_29 = false;
+    }
+    bool ambient_on = local_29;
+    uint _e96 = frame.misc.z;
+    if ((_e96 > 0u)) {
+        uint _e102 = frame.misc.z;
+        max_orders = min(_e102, MAX_PATH_ORDERS);
+    }
+    pos = (cam + (view_1 * _e33));
+    dir_5 = view_1;
+    uint2 loop_bound_7 = uint2(4294967295u, 4294967295u);
+    while(true) {
+        if (all(loop_bound_7 == uint2(0u, 0u))) { break; }
+        loop_bound_7 -= uint2(loop_bound_7.y == 0u, 1u);
+        float _e113 = throughput;
+        throughput = (_e113 * albedo);
+        uint _e115 = order;
+        order = (_e115 + 1u);
+        float3 _e118 = pos;
+        const float _e119 = altitude_of(_e118);
+        float _e123 = frame.atmosphere.y;
+        float _e128 = frame.atmosphere.z;
+        float _e132 = frame.atmosphere.y;
+        const float _e135 = saturate_(((_e119 - _e123) / (_e128 - _e132)));
+        float3 _e136 = pos;
+        const bool _e137 = hits_ground(_e136, _e119, sun_2);
+        if (!(_e137)) {
+            float3 _e139 = pos;
+            float3 _e140 = pos;
+            const Segments _e141 = layer_segments(_e140, _e119, sun_2);
+            const float _e142 = transmittance_along(_e139, sun_2, _e141, rng_6, counters_8);
+            float3 _e144 = out_.radiance;
+            float4 _e147 = frame.sun_illuminance;
+            float _e149 = throughput;
+            float3 _e150 = dir_5;
+            const float _e153 = phase(dot(_e150, sun_2), 1.0);
+            out_.radiance = (_e144 + (_e147.xyz * ((_e149 * _e153) * _e142)));
+        }
+        float3 _e158 = dir_5;
+        const PhaseSample _e159 = sample_phase(_e158, rng_6);
+        float3 _e160 = pos;
+        float3 _e162 = pos;
+        const Segments _e164 = layer_segments(_e162, _e119, _e159.dir);
+        const float _e165 = free_flight(_e160, _e159.dir, _e164, rng_6, counters_8);
+        if ((_e165 < 0.0)) {
+            if (ambient_on) {
+                float3 _e169 = out_.radiance;
+                const float3 _e170 = ambient(_e135);
+                float _e171 = throughput;
+                out_.radiance = (_e169 + (_e170 * (_e171 * _e159.weight)));
+            }
+            break;
+        }
+        uint _e176 = order;
+        uint _e177 = max_orders;
+        if ((_e176 >= _e177)) {
+            break;
+        }
+        float _e179 = throughput;
+        throughput = (_e179 * _e159.weight);
+        dir_5 = _e159.dir;
+        uint _e183 = order;
+        if ((_e183 >= 3u)) {
+            float _e188 = throughput;
+            local_31 = (_e188 < 0.1);
+        } else {
+            local_31 = false;
+        }
+        bool _e192 = local_31;
+        if (_e192) {
+            const float _e193 = rng_next(rng_6);
+            float _e194 = throughput;
+            if ((_e193 >= (_e194 / 0.1))) {
+                break;
+            }
+            throughput = 0.1;
+        }
+        float _e199 = throughput;
+        if ((_e199 <= 0.0)) {
+            break;
+        }
+        float3 _e202 = pos;
+        float3 _e203 = dir_5;
+        pos = (_e202 + (_e203 * _e165));
+    }
+    PathResult _e206 = out_;
+    const PathResult pathresult_2 = _e206;
+    return pathresult_2;
+}
+
+bool camera_still()
+{
+    bool local_32 = (bool)0;
+    bool local_33 = (bool)0;
+    bool local_34 = (bool)0;
+
+    float4 _e2 = frame.camera_position;
+    float4 _e5 = frame.previous_position;
+    if (all((_e2 == _e5))) {
+        float4 _e12 = frame.camera_forward;
+        float4 _e15 = frame.previous_forward;
+        local_32 = all((_e12 == _e15));
+    } else {
+        local_32 = false;
+    }
+    bool _e19 = local_32;
+    if (_e19) {
+        float4 _e24 = frame.camera_right;
+        float4 _e28 = frame.previous_right;
+        local_33 = all((_e24.xyz == _e28.xyz));
+    } else {
+        local_33 = false;
+    }
+    bool _e33 = local_33;
+    if (_e33) {
+        float4 _e38 = frame.camera_up;
+        float4 _e42 = frame.previous_up;
+        local_34 = all((_e38.xyz == _e42.xyz));
+    } else {
+        local_34 = false;
+    }
+    bool _e47 = local_34;
+    return _e47;
+}
+
+float luminance(float3 c_1)
+{
+    return dot(c_1, float3(0.2126, 0.7152, 0.0722));
+}
+
+float3 sky_radiance(float3 d_6, float alt_7)
 {
     float4 _e4 = frame.sun_direction;
-    float3 sun_2 = _e4.xyz;
+    float3 sun_3 = _e4.xyz;
     float4 _e8 = frame.sun_illuminance;
     float3 e = _e8.xyz;
-    const float _e15 = saturate_(((sun_2.y * 4.0) + 0.3));
-    const bool _e19 = hits_ground(float3(0.0, alt_5, 0.0), alt_5, d_4);
+    const float _e15 = saturate_(((sun_3.y * 4.0) + 0.3));
+    const bool _e19 = hits_ground(float3(0.0, alt_7, 0.0), alt_7, d_6);
     if (_e19) {
         float3 ground_albedo = float3(0.035, 0.035, 0.03);
-        return (ground_albedo * (((e * max(sun_2.y, 0.0)) / (3.1415927).xxx) + ((0.05 * e) * _e15)));
+        return (ground_albedo * (((e * max(sun_3.y, 0.0)) / (3.1415927).xxx) + ((0.05 * e) * _e15)));
     }
     float3 zenith = float3(0.018, 0.04, 0.1);
     float3 horizon = float3(0.07, 0.085, 0.11);
-    const float _e45 = saturate_(d_4.y);
+    const float _e45 = saturate_(d_6.y);
     float3 gradient_1 = lerp(horizon, zenith, sqrt(_e45));
     float3 sunset = (((1.0 - (_e15 * 0.8)) * pow((1.0 - _e45), 6.0)) * float3(0.25, 0.1, 0.0));
-    const float _e64 = phase_hg(dot(d_4, sun_2), 0.76);
+    const float _e64 = phase_hg(dot(d_6, sun_3), 0.76);
     float glow = (_e64 * 0.02);
-    const float _e73 = saturate_(((sun_2.y * 10.0) + 1.0));
+    const float _e73 = saturate_(((sun_3.y * 10.0) + 1.0));
     return (e * (((gradient_1 * _e15) + (sunset * _e73)) + ((glow * _e15)).xxx));
 }
 
-float3 sun_disk(float3 d_5)
+float3 sun_disk(float3 d_7)
 {
     float cos_r = frame.sun_direction.w;
     float4 _e7 = frame.sun_direction;
-    if ((dot(d_5, _e7.xyz) < cos_r)) {
+    if ((dot(d_7, _e7.xyz) < cos_r)) {
         return (0.0).xxx;
     }
     float4 _e15 = frame.sun_illuminance;
@@ -1198,16 +1788,16 @@ void occupancy(uint3 id : SV_DispatchThreadID)
     int2 lo_1 = asint(asuint(naga_div(asint(asuint(int2(id.xy)) * asuint(size_6)), (int(64)).xx)) - asuint((int(1)).xx));
     int2 hi = naga_div(asint(asuint(asint(asuint(int2(id.xy)) + asuint((int(1)).xx))) * asuint(size_6)), (int(64)).xx);
     y = lo_1.y;
-    uint2 loop_bound_3 = uint2(4294967295u, 4294967295u);
-    bool loop_init_2 = true;
+    uint2 loop_bound_8 = uint2(4294967295u, 4294967295u);
+    bool loop_init_4 = true;
     while(true) {
-        if (all(loop_bound_3 == uint2(0u, 0u))) { break; }
-        loop_bound_3 -= uint2(loop_bound_3.y == 0u, 1u);
-        if (!loop_init_2) {
+        if (all(loop_bound_8 == uint2(0u, 0u))) { break; }
+        loop_bound_8 -= uint2(loop_bound_8.y == 0u, 1u);
+        if (!loop_init_4) {
             int _e54 = y;
             y = asint(asuint(_e54) + asuint(int(1)));
         }
-        loop_init_2 = false;
+        loop_init_4 = false;
         int _e30 = y;
         if ((_e30 <= hi.y)) {
         } else {
@@ -1215,16 +1805,16 @@ void occupancy(uint3 id : SV_DispatchThreadID)
         }
         {
             x = lo_1.x;
-            uint2 loop_bound_4 = uint2(4294967295u, 4294967295u);
-            bool loop_init_3 = true;
+            uint2 loop_bound_9 = uint2(4294967295u, 4294967295u);
+            bool loop_init_5 = true;
             while(true) {
-                if (all(loop_bound_4 == uint2(0u, 0u))) { break; }
-                loop_bound_4 -= uint2(loop_bound_4.y == 0u, 1u);
-                if (!loop_init_3) {
+                if (all(loop_bound_9 == uint2(0u, 0u))) { break; }
+                loop_bound_9 -= uint2(loop_bound_9.y == 0u, 1u);
+                if (!loop_init_5) {
                     int _e51 = x;
                     x = asint(asuint(_e51) + asuint(int(1)));
                 }
-                loop_init_3 = false;
+                loop_init_5 = false;
                 int _e35 = x;
                 if ((_e35 <= hi.x)) {
                 } else {
@@ -1233,9 +1823,9 @@ void occupancy(uint3 id : SV_DispatchThreadID)
                 {
                     int _e38 = x;
                     int _e39 = y;
-                    int2 t_2 = naga_mod(asint(asuint(naga_mod(int2(_e38, _e39), size_6)) + asuint(size_6)), size_6);
+                    int2 t_6 = naga_mod(asint(asuint(naga_mod(int2(_e38, _e39), size_6)) + asuint(size_6)), size_6);
                     float _e44 = m;
-                    float4 _e47 = weather_tex.Load(int3(t_2, int(0)));
+                    float4 _e47 = weather_tex.Load(int3(t_6, int(0)));
                     m = max(_e44, _e47.x);
                 }
             }
@@ -1304,9 +1894,9 @@ void march_sparse_checkerboard(uint3 id_3 : SV_DispatchThreadID)
     }
     bool _e30 = local;
     if (_e30) {
-        uint k_4 = frame.temporal.x;
+        uint k_6 = frame.temporal.x;
         uint _e38 = frame.misc.y;
-        uint turn = naga_div(_e38, (k_4 * k_4));
+        uint turn = naga_div(_e38, (k_6 * k_6));
         const float2 _e42 = reproject(_e5, 0.0);
         if (((((id_3.x + id_3.y) + turn) & 1u) == 0u)) {
             const bool _e53 = on_screen(_e42);
@@ -1356,12 +1946,12 @@ void resolve(uint3 id_4 : SV_DispatchThreadID)
     if (any((id_4.xy >= _e4.xy))) {
         return;
     }
-    uint2 pixel_5 = id_4.xy;
-    uint k_5 = frame.temporal.x;
-    uint2 block = naga_div(pixel_5, (k_5).xx);
+    uint2 pixel_6 = id_4.xy;
+    uint k_7 = frame.temporal.x;
+    uint2 block = naga_div(pixel_6, (k_7).xx);
     uint _e19 = frame.misc.y;
-    const uint2 _e20 = block_offset(_e19, k_5);
-    bool marched = all((pixel_5 == ((block * k_5) + _e20)));
+    const uint2 _e20 = block_offset(_e19, k_7);
+    bool marched = all((pixel_6 == ((block * k_7) + _e20)));
     float4 current = sparse_in.Load(int3(block, int(0)));
     float4 _e29 = sparse_depth_in.Load(int3(block, int(0)));
     float current_depth = _e29.x;
@@ -1369,14 +1959,14 @@ void resolve(uint3 id_4 : SV_DispatchThreadID)
     float _e32 = depth;
     if ((_e32 <= 0.0)) {
         float _e38 = frame.camera_position.y;
-        const float3 _e39 = view_ray(pixel_5);
+        const float3 _e39 = view_ray(pixel_6);
         const Interval _e40 = layer_interval(_e38, _e39);
         if ((_e40.kind == RAY_MARCH)) {
             depth = (_e40.start + (0.5 * _e40.length_));
         }
     }
     float _e49 = depth;
-    const float2 _e50 = reproject(pixel_5, _e49);
+    const float2 _e50 = reproject(pixel_6, _e49);
     uint _e54 = frame.temporal.y;
     if ((_e54 != 0u)) {
         const bool _e59 = on_screen(_e50);
@@ -1386,7 +1976,7 @@ void resolve(uint3 id_4 : SV_DispatchThreadID)
     }
     bool _e61 = local_3;
     valid = _e61;
-    bool moving = any((_e50 != float2(pixel_5)));
+    bool moving = any((_e50 != float2(pixel_6)));
     bool _e75 = valid;
     if (_e75) {
         const float4 _e76 = history_at(_e50);
@@ -1408,7 +1998,7 @@ void resolve(uint3 id_4 : SV_DispatchThreadID)
         bool _e91 = local_5;
         if (_e91) {
             float4 _e94 = frame.camera_position;
-            const float3 _e96 = view_ray(pixel_5);
+            const float3 _e96 = view_ray(pixel_6);
             float4 _e101 = frame.previous_position;
             float expected = distance((_e94.xyz + (_e96 * current_depth)), _e101.xyz);
             float _e105 = past.x;
@@ -1424,20 +2014,20 @@ void resolve(uint3 id_4 : SV_DispatchThreadID)
     bool _e115 = local_6;
     if (_e115) {
         uint4 _e118 = frame.counts;
-        int2 blocks = int2(naga_div(((_e118.xy + (k_5).xx) - (1u).xx), (k_5).xx));
-        int2 b_5 = int2(block);
-        int x0_1 = max(asint(asuint(b_5.x) - asuint(int(1))), int(0));
-        int x2_1 = min(asint(asuint(b_5.x) + asuint(int(1))), asint(asuint(blocks.x) - asuint(int(1))));
-        int y0_ = max(asint(asuint(b_5.y) - asuint(int(1))), int(0));
-        int y2_ = min(asint(asuint(b_5.y) + asuint(int(1))), asint(asuint(blocks.y) - asuint(int(1))));
+        int2 blocks = int2(naga_div(((_e118.xy + (k_7).xx) - (1u).xx), (k_7).xx));
+        int2 b_8 = int2(block);
+        int x0_1 = max(asint(asuint(b_8.x) - asuint(int(1))), int(0));
+        int x2_1 = min(asint(asuint(b_8.x) + asuint(int(1))), asint(asuint(blocks.x) - asuint(int(1))));
+        int y0_ = max(asint(asuint(b_8.y) - asuint(int(1))), int(0));
+        int y2_ = min(asint(asuint(b_8.y) + asuint(int(1))), asint(asuint(blocks.y) - asuint(int(1))));
         float4 s00_ = sparse_in.Load(int3(int2(x0_1, y0_), int(0)));
-        float4 s10_ = sparse_in.Load(int3(int2(b_5.x, y0_), int(0)));
+        float4 s10_ = sparse_in.Load(int3(int2(b_8.x, y0_), int(0)));
         float4 s20_ = sparse_in.Load(int3(int2(x2_1, y0_), int(0)));
-        float4 s01_ = sparse_in.Load(int3(int2(x0_1, b_5.y), int(0)));
-        float4 s11_ = sparse_in.Load(int3(b_5, int(0)));
-        float4 s21_ = sparse_in.Load(int3(int2(x2_1, b_5.y), int(0)));
+        float4 s01_ = sparse_in.Load(int3(int2(x0_1, b_8.y), int(0)));
+        float4 s11_ = sparse_in.Load(int3(b_8, int(0)));
+        float4 s21_ = sparse_in.Load(int3(int2(x2_1, b_8.y), int(0)));
         float4 s02_ = sparse_in.Load(int3(int2(x0_1, y2_), int(0)));
-        float4 s12_ = sparse_in.Load(int3(int2(b_5.x, y2_), int(0)));
+        float4 s12_ = sparse_in.Load(int3(int2(b_8.x, y2_), int(0)));
         float4 s22_ = sparse_in.Load(int3(int2(x2_1, y2_), int(0)));
         float4 lo_2 = min(min(min(s00_, s10_), min(s20_, s01_)), min(min(s11_, s21_), min(min(s02_, s12_), s22_)));
         float4 hi_1 = max(max(max(s00_, s10_), max(s20_, s01_)), max(max(s11_, s21_), max(max(s02_, s12_), s22_)));
@@ -1475,40 +2065,116 @@ void resolve(uint3 id_4 : SV_DispatchThreadID)
             float _e247 = past.x;
             out_depth = _e247;
         } else {
-            const MarchResult _e248 = march_pixel(pixel_5);
+            const MarchResult _e248 = march_pixel(pixel_6);
             samples = 1.0;
             result = float4(_e248.radiance, _e248.transmittance);
             out_depth = _e248.depth;
         }
     }
     float4 _e255 = result;
-    history_out[pixel_5] = _e255;
+    history_out[pixel_6] = _e255;
     float _e257 = out_depth;
     float _e258 = samples;
-    meta_out[pixel_5] = float4(_e257, _e258, 0.0, 0.0);
+    meta_out[pixel_6] = float4(_e257, _e258, 0.0, 0.0);
     float4 _e263 = result;
-    cloud_out[pixel_5] = _e263;
+    cloud_out[pixel_6] = _e263;
     float _e265 = out_depth;
-    depth_out[pixel_5] = float4(_e265, 0.0, 0.0, 0.0);
+    depth_out[pixel_6] = float4(_e265, 0.0, 0.0, 0.0);
     return;
 }
 
 [numthreads(8, 8, 1)]
-void composite(uint3 id_5 : SV_DispatchThreadID)
+void pathtrace(uint3 id_5 : SV_DispatchThreadID)
 {
-    float3 background = (float3)0;
+    Counters counters = ConstructCounters(0u, 0u, 0u, 0u);
+    uint rng = (uint)0;
+    float4 mean = (0.0).xxxx;
+    float4 moments = (0.0).xxxx;
+    bool local_8 = (bool)0;
 
     uint4 _e4 = frame.counts;
     if (any((id_5.xy >= _e4.xy))) {
         return;
     }
-    uint2 pixel_6 = id_5.xy;
-    const float3 _e9 = view_ray(pixel_6);
-    float alt_6 = frame.camera_position.y;
-    float4 cloud = cloud_in.Load(int3(pixel_6, int(0)));
-    const float3 _e17 = sky_radiance(_e9, alt_6);
+    uint2 pixel_7 = id_5.xy;
+    const float3 _e9 = view_ray(pixel_7);
+    float _e13 = frame.camera_position.y;
+    const Interval _e14 = layer_interval(_e13, _e9);
+    count(STAT_PIXELS, 1u);
+    count(STAT_MARCHED, uint((_e14.kind == RAY_MARCH)));
+    count(STAT_EXIT_MISSED, uint((_e14.kind == RAY_MISSES_LAYER)));
+    count(STAT_EXIT_GROUND, uint((_e14.kind == RAY_HITS_GROUND)));
+    uint _e41 = frame.misc.y;
+    const uint _e42 = rng_seed(pixel_7, _e41);
+    rng = _e42;
+    const PathResult _e44 = trace_path(_e9, _e14, rng, counters);
+    const float _e46 = luminance(_e44.radiance);
+    uint _e56 = frame.temporal.y;
+    if ((_e56 == 1u)) {
+        const bool _e61 = camera_still();
+        local_8 = _e61;
+    } else {
+        local_8 = false;
+    }
+    bool _e63 = local_8;
+    if (_e63) {
+        float4 _e66 = history_in.Load(int3(pixel_7, int(0)));
+        mean = _e66;
+        float4 _e69 = meta_in.Load(int3(pixel_7, int(0)));
+        moments = _e69;
+    }
+    float _e71 = moments.y;
+    float n_3 = (_e71 + 1.0);
+    float4 _e74 = mean;
+    float4 _e78 = mean;
+    mean = (_e74 + ((float4(_e44.radiance, _e44.transmittance) - _e78) / (n_3).xxxx));
+    float _e84 = moments.z;
+    float _e87 = moments.z;
+    moments.z = (_e84 + (((_e46 * _e46) - _e87) / n_3));
+    if ((_e44.depth >= 0.0)) {
+        float _e95 = moments.w;
+        moments.w = (_e95 + 1.0);
+        float _e99 = moments.x;
+        float _e102 = moments.x;
+        float _e105 = moments.w;
+        moments.x = (_e99 + ((_e44.depth - _e102) / _e105));
+    }
+    moments.y = n_3;
+    float4 _e110 = mean;
+    history_out[pixel_7] = _e110;
+    float4 _e112 = moments;
+    meta_out[pixel_7] = _e112;
+    float4 _e114 = mean;
+    cloud_out[pixel_7] = _e114;
+    float _e117 = moments.x;
+    depth_out[pixel_7] = float4(_e117, 0.0, 0.0, 0.0);
+    uint _e124 = counters.view_steps;
+    count(STAT_VIEW_STEPS, _e124);
+    uint _e127 = counters.density;
+    count(STAT_DENSITY, _e127);
+    uint _e130 = counters.detail;
+    count(STAT_DETAIL, _e130);
+    uint _e133 = counters.light;
+    count(STAT_LIGHT, _e133);
+    return;
+}
+
+[numthreads(8, 8, 1)]
+void composite(uint3 id_6 : SV_DispatchThreadID)
+{
+    float3 background = (float3)0;
+
+    uint4 _e4 = frame.counts;
+    if (any((id_6.xy >= _e4.xy))) {
+        return;
+    }
+    uint2 pixel_8 = id_6.xy;
+    const float3 _e9 = view_ray(pixel_8);
+    float alt_8 = frame.camera_position.y;
+    float4 cloud = cloud_in.Load(int3(pixel_8, int(0)));
+    const float3 _e17 = sky_radiance(_e9, alt_8);
     background = _e17;
-    const bool _e22 = hits_ground(float3(0.0, alt_6, 0.0), alt_6, _e9);
+    const bool _e22 = hits_ground(float3(0.0, alt_8, 0.0), alt_8, _e9);
     if (!(_e22)) {
         float3 _e24 = background;
         const float3 _e25 = sun_disk(_e9);
@@ -1520,6 +2186,6 @@ void composite(uint3 id_5 : SV_DispatchThreadID)
     float3 exposed = (radiance_1 * _e35);
     const float3 _e37 = aces_fitted(exposed);
     float3 display = pow(_e37, (0.45454547).xxx);
-    image_out[pixel_6] = float4(display, 1.0);
+    image_out[pixel_8] = float4(display, 1.0);
     return;
 }

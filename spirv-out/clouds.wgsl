@@ -974,6 +974,390 @@ fn resolve(@builtin(global_invocation_id) id: vec3<u32>) {
     textureStore(cloud_out, pixel, result);
     textureStore(depth_out, pixel, vec4<f32>(out_depth, 0.0, 0.0, 0.0));
 }
+// A volumetric path tracer through the same density field as the march: the all-orders truth
+// the march's multiple-scattering approximation is measured against, accumulated over frames.
+//
+// Estimators (Novák et al. 2018, "Monte Carlo methods for volumetric light transport
+// simulation"; the CPU path tracer, crates/reference/src/montecarlo.rs, is the same algorithm
+// in f64 and explains each choice at length):
+// * free flight: delta tracking (Woodcock) with the majorant sigma_t * d_max, d_max bounding
+//   the density (multiplier * (1 + precipitation), at most 1);
+// * transmittance (toward the sun, toward the environment, and the camera ray's alpha): ratio
+//   tracking (Novák et al. 2014), with Russian roulette once below 0.01;
+// * at a collision the throughput takes the single-scattering albedo; next-event estimation
+//   to the sun; the path goes on along a phase-sampled direction, and where it leaves the
+//   layer it sees the ambient, a uniform environment of radiance ambient(h) (h: the height of
+//   the collision it left); Russian roulette on the throughput after the third order;
+// * directions from Henyey-Greenstein (the two-lobe model samples its mixture; Cornette-Shanks
+//   samples HG(g) weighted by CS/HG).
+// The octaves, Beer-Powder and precipitation darkening are the march's approximations and are
+// not used here; `orders` (misc.z) caps the scattering orders (0 = all, up to MAX_PATH_ORDERS).
+//
+// Progressive: each frame adds one path per pixel (its random stream seeded by the frame,
+// misc.y) to the running means in `history` (radiance, transmittance) and `history-meta`
+// (depth, paths, mean squared luminance, paths that hit cloud). A cut, a new plan or a moved
+// camera starts over; a host that changes anything else (sun, wind) cuts the history itself.
+
+// A path of more orders than this ends (a conservative thick cloud needs hundreds; this only
+// bounds pathological cases so that an invocation's work is finite).
+const MAX_PATH_ORDERS: u32 = 16384u;
+
+// One random stream per path: a 32-bit LCG with PCG's RXS-M-XS output (O'Neill 2014), seeded
+// by the pixel and the frame.
+fn rng_seed(pixel: vec2<u32>, frame_index: u32) -> u32 {
+    return pcg(pixel.x ^ pcg(pixel.y ^ pcg(frame_index)));
+}
+
+// Uniform in [0, 1), 24 bits.
+fn rng_next(rng: ptr<function, u32>) -> f32 {
+    *rng = *rng * 747796405u + 2891336453u;
+    let s = *rng;
+    let word = ((s >> ((s >> 28u) + 4u)) ^ s) * 277803737u;
+    return f32(((word >> 22u) ^ word) >> 8u) * (1.0 / 16777216.0);
+}
+
+// An exponential distance of rate `sigma` (1 - u > 0 always).
+fn rng_exponential(rng: ptr<function, u32>, sigma: f32) -> f32 {
+    return -log(1.0 - rng_next(rng)) / sigma;
+}
+
+// Up to two parts of a ray inside the cloud layer (a ray from inside that dips below the
+// layer without meeting the ground comes back up through it).
+struct Segments {
+    a: vec2<f32>,   // starts
+    b: vec2<f32>,   // ends
+    count: u32,
+}
+
+// `ray_shell` from any camera-relative point `p` of altitude `alt`.
+fn ray_shell_from(p: vec3<f32>, alt: f32, d: vec3<f32>, radius_alt: f32) -> Roots {
+    let rp = frame.atmosphere.x;
+    let b = dot(d, vec3<f32>(p.x, p.y + rp, p.z));
+    let c = (alt - radius_alt) * (alt + radius_alt + 2.0 * rp);
+    return solve_sphere(b, c);
+}
+
+// The parts of the ray from `p` along unit `d` inside the layer (no cut-off: scattered light
+// sees the whole layer).
+fn layer_segments(p: vec3<f32>, alt: f32, d: vec3<f32>) -> Segments {
+    var s = Segments(vec2<f32>(0.0), vec2<f32>(0.0), 0u);
+    let bottom = frame.atmosphere.y;
+    let inner = ray_shell_from(p, alt, d, bottom);
+    let outer = ray_shell_from(p, alt, d, frame.atmosphere.z);
+    let ground = hits_ground(p, alt, d);
+    if !outer.hit || outer.t1 <= 0.0 {
+        return s;
+    }
+    let entry = max(outer.t0, 0.0);
+    var a = vec2<f32>(0.0);
+    var b = vec2<f32>(0.0);
+    var n = 0u;
+    if inner.hit && inner.t0 > 0.0 && alt >= bottom {
+        // Down into the bottom shell; back up unless the ground stops it.
+        a[n] = entry;
+        b[n] = inner.t0;
+        n += u32(inner.t0 > entry);
+        if !ground && outer.t1 > inner.t1 {
+            a[n] = max(inner.t1, entry);
+            b[n] = outer.t1;
+            n += 1u;
+        }
+    } else if alt < bottom {
+        if !ground && inner.hit {
+            a[0] = max(inner.t1, 0.0);
+            b[0] = outer.t1;
+            n = 1u;
+        }
+    } else {
+        a[0] = entry;
+        b[0] = outer.t1;
+        n = 1u;
+    }
+    s.a = a;
+    s.b = b;
+    s.count = n;
+    return s;
+}
+
+// Density at camera-relative `rel`.
+fn density_at(rel: vec3<f32>, counters: ptr<function, Counters>) -> f32 {
+    let p = vec3<f32>(rel.x + frame.camera_position.x, rel.y, rel.z + frame.camera_position.z);
+    return cloud_density(p, altitude_of(rel), counters);
+}
+
+// How far the ray from camera-relative `origin` along `dir` may jump from distance `t`: past
+// the edge of an empty occupancy cell (no cloud at any altitude), else 0. Both trackers sample
+// distances afresh after a jump, which the exponential's lack of memory allows. The jump ends
+// 5 cm inside the next cell so that rounding cannot leave the ray on the wall (the density of
+// those 5 cm is not sampled: a bias below 0.2% of one mean free path per wall).
+fn empty_cell_skip(origin: vec3<f32>, dir: vec3<f32>, t: f32) -> f32 {
+    let rel = origin + dir * t;
+    let p = vec3<f32>(rel.x + frame.camera_position.x, rel.y, rel.z + frame.camera_position.z);
+    let exit = empty_cell_exit(p, dir);
+    if exit <= 0.0 {
+        return 0.0;
+    }
+    return exit + 0.05;
+}
+
+// The bound of the density delta and ratio tracking rely on.
+fn density_max() -> f32 {
+    return clamp(frame.clouds.y * (1.0 + frame.clouds.w), 0.0, 1.0);
+}
+
+// Delta tracking: the distance of the first real collision along the ray, or -1.
+fn free_flight(origin: vec3<f32>, dir: vec3<f32>, segs: Segments, rng: ptr<function, u32>,
+               counters: ptr<function, Counters>) -> f32 {
+    let d_max = density_max();
+    let majorant = (frame.extinction.x + frame.extinction.y) * d_max;
+    if majorant <= 0.0 {
+        return -1.0;
+    }
+    for (var k = 0u; k < segs.count; k++) {
+        var t = segs.a[k];
+        loop {
+            let skip = empty_cell_skip(origin, dir, t);
+            if skip > 0.0 {
+                t += skip;
+                if t >= segs.b[k] {
+                    break;
+                }
+                continue;
+            }
+            t += rng_exponential(rng, majorant);
+            if t >= segs.b[k] {
+                break;
+            }
+            (*counters).view_steps += 1u;
+            let d = density_at(origin + dir * t, counters);
+            if rng_next(rng) * d_max < d {
+                return t;
+            }
+        }
+    }
+    return -1.0;
+}
+
+// Ratio tracking: an unbiased estimate of the transmittance along the ray.
+fn transmittance_along(origin: vec3<f32>, dir: vec3<f32>, segs: Segments,
+                       rng: ptr<function, u32>, counters: ptr<function, Counters>) -> f32 {
+    let sigma_t = frame.extinction.x + frame.extinction.y;
+    let majorant = sigma_t * density_max();
+    if majorant <= 0.0 {
+        return 1.0;
+    }
+    var tr = 1.0;
+    for (var k = 0u; k < segs.count; k++) {
+        var t = segs.a[k];
+        loop {
+            let skip = empty_cell_skip(origin, dir, t);
+            if skip > 0.0 {
+                t += skip;
+                if t >= segs.b[k] {
+                    break;
+                }
+                continue;
+            }
+            t += rng_exponential(rng, majorant);
+            if t >= segs.b[k] {
+                break;
+            }
+            (*counters).light += 1u;
+            let d = density_at(origin + dir * t, counters);
+            tr *= 1.0 - sigma_t * d / majorant;
+            if tr <= 0.0 {
+                return 0.0;
+            }
+            if tr < 0.01 {
+                // Russian roulette on nearly opaque rays (unbiased).
+                if rng_next(rng) < 0.75 {
+                    return 0.0;
+                }
+                tr *= 4.0;
+            }
+        }
+    }
+    return tr;
+}
+
+// Henyey-Greenstein's cosine for eccentricity `g` from a uniform `u`.
+fn sample_hg_cos(g: f32, u: f32) -> f32 {
+    if abs(g) < 1e-4 {
+        return 1.0 - 2.0 * u;
+    }
+    let s = (1.0 - g * g) / (1.0 - g + 2.0 * g * u);
+    return clamp((1.0 + g * g - s * s) / (2.0 * g), -1.0, 1.0);
+}
+
+// A direction drawn from the scene's phase function around `dir` (the direction the path
+// travels) and its weight phase / pdf.
+struct PhaseSample {
+    dir: vec3<f32>,
+    weight: f32,
+}
+
+fn sample_phase(dir: vec3<f32>, rng: ptr<function, u32>) -> PhaseSample {
+    let u_lobe = rng_next(rng);
+    let u = rng_next(rng);
+    let phi = 2.0 * PI * rng_next(rng);
+    var cos_theta = 0.0;
+    var pdf = 0.0;
+    if frame.modes.x == PHASE_TWO_LOBE_HG {
+        let g = select(frame.phase.x, frame.phase.y, u_lobe < frame.phase.z);
+        cos_theta = sample_hg_cos(g, u);
+        pdf = mix(phase_hg(cos_theta, frame.phase.x), phase_hg(cos_theta, frame.phase.y),
+                  frame.phase.z);
+    } else {
+        cos_theta = sample_hg_cos(frame.phase.x, u);
+        pdf = phase_hg(cos_theta, frame.phase.x);
+    }
+    let sin_theta = sqrt(max(1.0 - cos_theta * cos_theta, 0.0));
+    // An orthonormal basis around `dir` (Duff et al. 2017).
+    let sign = select(-1.0, 1.0, dir.z >= 0.0);
+    let a = -1.0 / (sign + dir.z);
+    let bb = dir.x * dir.y * a;
+    let t = vec3<f32>(1.0 + sign * dir.x * dir.x * a, sign * bb, -sign * dir.x);
+    let b = vec3<f32>(bb, sign + dir.y * dir.y * a, -dir.y);
+    let w = normalize(t * (sin_theta * cos(phi)) + b * (sin_theta * sin(phi)) + dir * cos_theta);
+    return PhaseSample(w, select(0.0, phase(cos_theta, 1.0) / pdf, pdf > 0.0));
+}
+
+// One path through `pixel`'s ray over the march's interval.
+struct PathResult {
+    radiance: vec3<f32>,
+    transmittance: f32,
+    depth: f32,          // distance of the first collision, -1 if none
+}
+
+fn trace_path(view: vec3<f32>, span: Interval, rng: ptr<function, u32>,
+              counters: ptr<function, Counters>) -> PathResult {
+    var out = PathResult(vec3<f32>(0.0), 1.0, -1.0);
+    if span.kind != RAY_MARCH {
+        return out;
+    }
+    let cam = vec3<f32>(0.0, frame.camera_position.y, 0.0);
+    let primary = Segments(vec2<f32>(span.start, 0.0), vec2<f32>(span.start + span.length, 0.0), 1u);
+    out.transmittance = transmittance_along(cam, view, primary, rng, counters);
+    let first = free_flight(cam, view, primary, rng, counters);
+    if first < 0.0 {
+        return out;
+    }
+    out.depth = first;
+
+    let sun = frame.sun_direction.xyz;
+    let sigma_t = frame.extinction.x + frame.extinction.y;
+    let albedo = select(0.0, frame.extinction.x / sigma_t, sigma_t > 0.0);
+    let ambient_on = frame.ambient_bottom.w > 0.0
+        && (any(frame.ambient_bottom.rgb > vec3<f32>(0.0)) || any(frame.ambient_top.rgb > vec3<f32>(0.0)));
+    var max_orders = MAX_PATH_ORDERS;
+    if frame.misc.z > 0u {
+        max_orders = min(frame.misc.z, MAX_PATH_ORDERS);
+    }
+
+    var pos = cam + view * first;
+    var dir = view;
+    var throughput = 1.0;
+    var order = 0u;
+    loop {
+        throughput *= albedo;
+        order += 1u;
+        let alt = altitude_of(pos);
+        let h = saturate((alt - frame.atmosphere.y) / (frame.atmosphere.z - frame.atmosphere.y));
+        // Next event toward the sun (a directional light).
+        if !hits_ground(pos, alt, sun) {
+            let tr = transmittance_along(pos, sun, layer_segments(pos, alt, sun), rng, counters);
+            out.radiance += frame.sun_illuminance.rgb * (throughput * phase(dot(dir, sun), 1.0) * tr);
+        }
+        // The next direction, from the phase function. Its free flight also estimates the
+        // ambient (a uniform environment seen through the medium): a path that leaves the
+        // layer along it sees ambient(h). That is the expectation of the CPU path tracer's
+        // separate ratio-tracked ray toward the environment, for one tracked ray instead of
+        // two per collision.
+        let next = sample_phase(dir, rng);
+        let t = free_flight(pos, next.dir, layer_segments(pos, alt, next.dir), rng, counters);
+        if t < 0.0 {
+            if ambient_on {
+                out.radiance += ambient(h) * (throughput * next.weight);
+            }
+            break;
+        }
+        if order >= max_orders {
+            break;
+        }
+        throughput *= next.weight;
+        dir = next.dir;
+        if order >= 3u && throughput < 0.1 {
+            if rng_next(rng) >= throughput / 0.1 {
+                break;
+            }
+            throughput = 0.1;
+        }
+        if throughput <= 0.0 {
+            break;
+        }
+        pos += dir * t;
+    }
+    return out;
+}
+
+// Whether this frame's camera is last frame's (a moved camera restarts the accumulation).
+fn camera_still() -> bool {
+    return all(frame.camera_position == frame.previous_position)
+        && all(frame.camera_forward == frame.previous_forward)
+        && all(frame.camera_right.xyz == frame.previous_right.xyz)
+        && all(frame.camera_up.xyz == frame.previous_up.xyz);
+}
+
+fn luminance(c: vec3<f32>) -> f32 {
+    return dot(c, vec3<f32>(0.2126, 0.7152, 0.0722));
+}
+
+// One more path for every pixel, joined to the running means.
+@compute @workgroup_size(8, 8, 1)
+fn pathtrace(@builtin(global_invocation_id) id: vec3<u32>) {
+    if any(id.xy >= frame.counts.xy) {
+        return;
+    }
+    let pixel = id.xy;
+    let view = view_ray(pixel);
+    let span = layer_interval(frame.camera_position.y, view);
+    var counters = Counters(0u, 0u, 0u, 0u);
+    count(STAT_PIXELS, 1u);
+    count(STAT_MARCHED, u32(span.kind == RAY_MARCH));
+    count(STAT_EXIT_MISSED, u32(span.kind == RAY_MISSES_LAYER));
+    count(STAT_EXIT_GROUND, u32(span.kind == RAY_HITS_GROUND));
+
+    // One path per pixel per frame. Tracing several in a loop here gave wrong images on
+    // lavapipe from about 10 paths an invocation on (8x8 blocks too dark, the same bits
+    // whichever single path was kept), so paths accumulate across frames only.
+    var rng = rng_seed(pixel, frame.misc.y);
+    let r = trace_path(view, span, &rng, &counters);
+    let l = luminance(r.radiance);
+
+    var mean = vec4<f32>(0.0);
+    var moments = vec4<f32>(0.0);
+    if frame.temporal.y == 1u && camera_still() {
+        mean = textureLoad(history_in, pixel, 0);
+        moments = textureLoad(meta_in, pixel, 0);
+    }
+    let n = moments.y + 1.0;
+    mean += (vec4<f32>(r.radiance, r.transmittance) - mean) / n;
+    moments.z += (l * l - moments.z) / n;
+    if r.depth >= 0.0 {
+        moments.w += 1.0;
+        moments.x += (r.depth - moments.x) / moments.w;
+    }
+    moments.y = n;
+    textureStore(history_out, pixel, mean);
+    textureStore(meta_out, pixel, moments);
+    textureStore(cloud_out, pixel, mean);
+    textureStore(depth_out, pixel, vec4<f32>(moments.x, 0.0, 0.0, 0.0));
+
+    count(STAT_VIEW_STEPS, counters.view_steps);
+    count(STAT_DENSITY, counters.density);
+    count(STAT_DETAIL, counters.detail);
+    count(STAT_LIGHT, counters.light);
+}
 // Composite: a simple analytic sky and sun disk behind the clouds, the clouds over it,
 // exposure, the ACES fitted tone curve and gamma (seed 001), to an 8-bit image.
 

@@ -4,6 +4,7 @@ mod animate;
 mod bench;
 mod compare;
 mod export;
+mod fit;
 mod output;
 mod render;
 mod scene_io;
@@ -39,6 +40,9 @@ enum Command {
     /// Speed against accuracy: sweep quality and method settings over a scene set, measure
     /// error against the CPU reference and GPU cost, write results.csv/json and a chart.
     Bench(bench::BenchArgs),
+    /// Fit the march's multiple-scattering octaves to the GPU path tracer's all-orders truth
+    /// over training scenes, and measure the fit on the presets (held out).
+    FitScattering(fit::FitArgs),
     /// Sample the scene's cloud density on a grid and write it as a Mitsuba 3 `.vol` file
     /// (with the flat, single-lobe setup `cargo xtask mitsuba-check` renders).
     ExportVolume(export::ExportArgs),
@@ -63,6 +67,7 @@ fn main() -> ExitCode {
         Command::Animate(args) => animate::run(args),
         Command::Compare(args) => compare::run(args),
         Command::Bench(args) => bench::run(args),
+        Command::FitScattering(args) => fit::run(args),
         Command::Presets => presets(),
         Command::Scene(SceneCommand::Check { file }) => scene_check(&file),
         Command::Shaders => shaders(),

@@ -43,6 +43,9 @@ pub enum IntegratorArg {
     Quadrature,
     /// Volumetric path tracing (delta/ratio tracking, next-event estimation to the sun).
     Montecarlo,
+    /// The path tracer on the chosen backend (GPU or cpu), accumulating --spp paths per pixel,
+    /// one a frame; with `--backend reference`, the same as `montecarlo`.
+    Pathtrace,
 }
 
 /// Options of `stratus render`.
@@ -82,14 +85,16 @@ pub struct RenderArgs {
     /// With --frames: also write every frame's display image to DIR/frame_NNNN.png.
     #[arg(long, value_name = "DIR")]
     sequence: Option<PathBuf>,
-    /// `--backend reference`: the integrator.
+    /// The integrator: the real-time march (`quadrature`, the default; converged with
+    /// `--backend reference`), or the all-orders path tracer (`pathtrace` on any backend,
+    /// `montecarlo` on the reference).
     #[arg(long, value_enum, default_value_t = IntegratorArg::Quadrature)]
     integrator: IntegratorArg,
-    /// `--backend reference --integrator montecarlo`: samples per pixel.
+    /// `--integrator montecarlo|pathtrace`: samples (paths) per pixel.
     #[arg(long, default_value_t = 64, value_parser = clap::value_parser!(u32).range(1..))]
     spp: u32,
-    /// `--backend reference --integrator montecarlo`: scattering orders (1 = single
-    /// scattering, 0 = all).
+    /// `--integrator montecarlo|pathtrace`: scattering orders (1 = single scattering, 0 =
+    /// all).
     #[arg(long, default_value_t = 0)]
     orders: u32,
     /// Auto quality: render with the cheapest configuration `stratus bench` measured whose
@@ -141,7 +146,7 @@ fn open_backend(backend: Backend, args: &RenderArgs) -> Result<Box<dyn stratus_g
                 progress,
                 ..CpuBackend::default()
             },
-            IntegratorArg::Montecarlo => CpuBackend {
+            IntegratorArg::Montecarlo | IntegratorArg::Pathtrace => CpuBackend {
                 integrator: stratus_reference::Integrator::MonteCarlo {
                     spp: args.spp,
                     orders: args.orders,
@@ -237,15 +242,33 @@ pub fn run(args: RenderArgs) -> Result<()> {
     if let Some(t) = args.temporal {
         scene.quality.temporal = t;
     }
-    if scene.quality.temporal != Temporal::Off
-        && args.backend == Backend::Reference
-        && args.integrator == IntegratorArg::Montecarlo
-    {
+    let path_traced = args.integrator != IntegratorArg::Quadrature;
+    if path_traced && scene.quality.temporal != Temporal::Off {
         anyhow::bail!(
-            "temporal upsampling ({}) amortises the real-time march; the Monte Carlo reference has no history: use --temporal off",
+            "temporal upsampling ({}) amortises the real-time march; the path tracer accumulates every pixel itself: use --temporal off",
             scene.quality.temporal.name()
         );
     }
+    if args.integrator == IntegratorArg::Montecarlo && args.backend != Backend::Reference {
+        anyhow::bail!(
+            "--integrator montecarlo is the CPU reference's path tracer: add --backend reference, or use --integrator pathtrace to path trace on this backend"
+        );
+    }
+    // The path tracer on a real-time backend: one path per pixel a frame, --spp frames.
+    let progressive =
+        args.integrator == IntegratorArg::Pathtrace && args.backend != Backend::Reference;
+    if progressive {
+        if args.frames != 1 {
+            anyhow::bail!(
+                "--frames {}: the path tracer renders one frame per path, --spp {} frames",
+                args.frames,
+                args.spp,
+            );
+        }
+        scene.quality.integrator = stratus_scene::Integrator::Pathtrace;
+        scene.quality.path_orders = args.orders;
+    }
+    let frame_count = if progressive { args.spp } else { args.frames };
     if let Some(dir) = &args.sequence {
         std::fs::create_dir_all(dir)
             .with_context(|| format!("--sequence {}: creating the folder", dir.display()))?;
@@ -268,13 +291,20 @@ pub fn run(args: RenderArgs) -> Result<()> {
         r.render(input).map_err(|e| anyhow::anyhow!("{e}"))
     };
 
-    let bar = progress(args.frames);
+    let bar = progress(frame_count);
     let t = Instant::now();
     let mut frames: Vec<(f64, Vec<stratus_graph::PassTiming>)> = Vec::new();
     let mut last: Option<(Scene, FrameOutput)> = None;
-    for i in 0..args.frames {
-        let s = frame_scene(&scene, i, 60.0);
-        let is_last = i + 1 == args.frames;
+    for i in 0..frame_count {
+        let s = if progressive {
+            // A still scene; each frame draws new paths (their streams follow quality.frame).
+            let mut s = scene.clone();
+            s.quality.frame = s.quality.frame.wrapping_add(i);
+            s
+        } else {
+            frame_scene(&scene, i, 60.0)
+        };
+        let is_last = i + 1 == frame_count;
         let readback = if is_last || args.sequence.is_some() {
             Readback::output()
         } else {
@@ -309,7 +339,9 @@ pub fn run(args: RenderArgs) -> Result<()> {
         args.out.display(),
         frame.width,
         frame.height,
-        if args.frames > 1 {
+        if progressive {
+            format!(", {} paths per pixel in {frame_count} frames", args.spp)
+        } else if args.frames > 1 {
             format!(", the last of {} frames", args.frames)
         } else {
             String::new()
@@ -321,7 +353,19 @@ pub fn run(args: RenderArgs) -> Result<()> {
         plan.variant
     );
     let source = frame.timings.first().map_or("untimed", |t| t.source);
-    if args.frames == 1 {
+    if progressive {
+        let pass_ms: f64 = frames
+            .iter()
+            .flat_map(|f| &f.1)
+            .filter(|t| t.pass == "pathtrace")
+            .map(|t| t.ms)
+            .sum();
+        let paths = f64::from(frame.width) * f64::from(frame.height) * f64::from(args.spp);
+        println!(
+            "path tracer: {:.3} Mpaths/s ({paths:.0} paths in {pass_ms:.0} ms of pathtrace passes, {source}); {wall_ms:.0} ms wall",
+            paths / pass_ms.max(1e-9) / 1e3,
+        );
+    } else if args.frames == 1 {
         let gpu_ms: f64 = frame.timings.iter().map(|t| t.ms).sum();
         let passes: Vec<String> = frame
             .timings
@@ -368,7 +412,8 @@ pub fn run(args: RenderArgs) -> Result<()> {
             "height": frame.height,
             "counters": counted.stats,
             "passes": frame.timings.iter().map(timing).collect::<Vec<_>>(),
-            "frame_ms": wall_ms / f64::from(args.frames),
+            "frame_ms": wall_ms / f64::from(frame_count),
+            "integrator": scene.quality.integrator.name(),
             "temporal": scene.quality.temporal.name(),
             "median_ms": median_per_pass(&frames),
             "frames": frames.iter().enumerate().map(|(i, (cpu_ms, timings))| json!({

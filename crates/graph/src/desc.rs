@@ -388,7 +388,7 @@ pub type ConstantLookup<'a> = dyn Fn(&str, &str) -> Option<f64> + 'a;
 pub const PREVIOUS: &str = ".previous";
 
 /// Plan options a pass's `plan` may name.
-pub const PLAN_OPTIONS: [&str; 3] = ["temporal", "empty_skip", "checkerboard"];
+pub const PLAN_OPTIONS: [&str; 4] = ["temporal", "empty_skip", "checkerboard", "pathtrace"];
 
 /// Whether a pass's `plan` condition (`option`, `!option`, several joined by `&`) holds when
 /// `set` says which options are on.

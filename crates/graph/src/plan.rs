@@ -377,6 +377,8 @@ pub struct PlanOptions {
     pub empty_skip: bool,
     /// Checkerboard skipping is on (option `checkerboard`: the sparse march reads history).
     pub checkerboard: bool,
+    /// The path tracer runs instead of the march (option `pathtrace`).
+    pub pathtrace: bool,
 }
 
 impl Default for PlanOptions {
@@ -385,6 +387,7 @@ impl Default for PlanOptions {
             temporal: 1,
             empty_skip: false,
             checkerboard: false,
+            pathtrace: false,
         }
     }
 }
@@ -392,10 +395,21 @@ impl Default for PlanOptions {
 impl PlanOptions {
     /// The options `scene` asks for.
     pub fn of(scene: &Scene) -> Self {
+        let q = &scene.quality;
+        if q.integrator == stratus_scene::Integrator::Pathtrace {
+            // The march's methods do not apply to the path tracer; it skips empty space always
+            // (exactly: only cells without cloud), so it needs the occupancy grid.
+            return Self {
+                pathtrace: true,
+                empty_skip: true,
+                ..Self::default()
+            };
+        }
         Self {
-            temporal: scene.quality.temporal.divisor(),
-            empty_skip: scene.quality.empty_space_skip,
-            checkerboard: scene.quality.checkerboard,
+            temporal: q.temporal.divisor(),
+            empty_skip: q.empty_space_skip,
+            checkerboard: q.checkerboard,
+            pathtrace: false,
         }
     }
 
@@ -405,6 +419,7 @@ impl PlanOptions {
             "temporal" => self.temporal > 1,
             "empty_skip" => self.empty_skip,
             "checkerboard" => self.checkerboard,
+            "pathtrace" => self.pathtrace,
             _ => false,
         }
     }
@@ -868,6 +883,34 @@ mod tests {
             skip.passes[0].when,
             Some(Condition::parse("stale:occupancy"))
         );
+        // The path tracer replaces the march, keeps its means in the history pair and skips
+        // empty space with the occupancy grid.
+        let (pt, passes) = names(PlanOptions {
+            pathtrace: true,
+            empty_skip: true,
+            ..PlanOptions::default()
+        });
+        assert_eq!(
+            passes.iter().map(|p| p.1.as_str()).collect::<Vec<_>>(),
+            ["pathtrace:pathtrace", "composite:composite"]
+        );
+        assert!(pt.has_history());
+        assert_eq!(pt.passes[0].name, "occupancy");
+        assert!(pt.resource("cloud-sparse").is_none());
+    }
+
+    /// A scene that asks for the path tracer plans it with empty-space skipping and none of
+    /// the march's methods.
+    #[test]
+    fn pathtrace_scenes_plan_the_path_tracer() {
+        let mut scene = Scene::default();
+        scene.quality.integrator = stratus_scene::Integrator::Pathtrace;
+        scene.quality.dynamic_step = true;
+        let o = PlanOptions::of(&scene);
+        assert!(o.pathtrace && o.empty_skip && o.temporal == 1 && !o.checkerboard);
+        let plan = FramePlan::for_scene(&scene.with_size(16, 8), false).unwrap();
+        assert!(plan.passes.iter().any(|p| p.name == "pathtrace"));
+        assert!(!plan.passes.iter().any(|p| p.name == "march"));
     }
 
     #[test]

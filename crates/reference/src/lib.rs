@@ -40,6 +40,7 @@ mod march;
 mod math;
 mod medium;
 pub mod montecarlo;
+mod progressive;
 mod temporal;
 mod texture;
 
@@ -65,7 +66,7 @@ use crate::medium::Model;
 use crate::montecarlo::{Accumulator, Rng, camera_interval, trace};
 
 pub use crate::medium::{DensityGrid, Medium, Shape, sample_density_grid};
-pub use crate::temporal::TemporalState;
+pub use crate::{progressive::PathState, temporal::TemporalState};
 
 /// How the radiance of a pixel is computed.
 #[derive(Clone, Debug, PartialEq)]
@@ -568,6 +569,9 @@ pub struct CpuBackend {
     pub progress: bool,
     /// Temporal upsampling's history between frames (used when a scene asks for it).
     pub temporal: temporal::TemporalState,
+    /// The progressive path tracer's means between frames (`quality.integrator =
+    /// "pathtrace"`).
+    pub pathtrace: progressive::PathState,
 }
 
 impl Default for CpuBackend {
@@ -578,6 +582,7 @@ impl Default for CpuBackend {
             label: "cpu (real-time settings)",
             progress: false,
             temporal: temporal::TemporalState::default(),
+            pathtrace: progressive::PathState::default(),
         }
     }
 }
@@ -599,7 +604,17 @@ impl stratus_graph::Backend for CpuBackend {
     ) -> Result<FrameOutput, stratus_graph::BackendError> {
         let t = Instant::now();
         let temporal = frame.scene.quality.temporal != stratus_scene::Temporal::Off;
+        let pathtrace = frame.scene.quality.integrator == stratus_scene::Integrator::Pathtrace;
+        if !pathtrace {
+            self.pathtrace = progressive::PathState::default();
+        }
         let mut out = match &self.integrator {
+            // The scene asks for the path tracer: the real-time renderer runs it progressively
+            // (the reference's own Monte Carlo integrator renders a still in one go).
+            Integrator::Quadrature(_) if pathtrace => {
+                self.temporal = temporal::TemporalState::default();
+                progressive::render(frame.scene, frame.noise, frame.cut, &mut self.pathtrace)
+            }
             Integrator::Quadrature(settings) if temporal => {
                 if frame.cut {
                     self.temporal = temporal::TemporalState::default();

@@ -77,8 +77,8 @@ impl Scene {
     }
 
     /// Checks every field against its rule (finite numbers, ranges, `cloud_bottom_m <
-    /// cloud_top_m`, non-zero directions, multiple-scattering `a <= b`, ...) and reports every
-    /// broken rule, each as `path = value: rule`.
+    /// cloud_top_m`, non-zero directions, ...) and reports every broken rule, each as
+    /// `path = value: rule`.
     pub fn validate(&self) -> Result<(), SceneError> {
         let problems: Vec<Problem> = validate::check(self)
             .into_iter()

@@ -409,14 +409,15 @@ impl Default for Phase {
 ///
 /// Octave `i` (0 = single scattering) adds the single-scattering term computed with the
 /// scattering coefficient times `a^i`, the extinction toward the sun times `b^i` and the phase
-/// eccentricity times `c^i`. Energy conservation requires `a <= b`.
-#[derive(Serialize, Deserialize, Clone, Debug, PartialEq)]
+/// eccentricity times `c^i`. The defaults are fitted to the path tracer's all-orders truth by
+/// `stratus fit-scattering` (docs/fit); `a > b` is allowed.
+#[derive(Serialize, Deserialize, Clone, Copy, Debug, PartialEq)]
 #[serde(default, deny_unknown_fields)]
 pub struct MultipleScattering {
     /// Number of octaves *beyond* single scattering, within [0, 8] (0 = single scattering
     /// only).
     pub octaves: u32,
-    /// Per-octave attenuation of the scattering contribution, within (0, 1]; must be <= `b`.
+    /// Per-octave attenuation of the scattering contribution, within (0, 1].
     pub a: f64,
     /// Per-octave attenuation of the extinction toward the sun, within (0, 1].
     pub b: f64,
@@ -476,6 +477,29 @@ impl Default for Lighting {
             precipitation_darkening: 0.5,
             phase: Phase::default(),
             multiple_scattering: MultipleScattering::default(),
+        }
+    }
+}
+
+/// What computes the clouds' light.
+#[derive(Serialize, Deserialize, Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
+#[serde(rename_all = "kebab-case")]
+pub enum Integrator {
+    /// The real-time ray march: single scattering with the octave approximation of multiple
+    /// scattering and the ambient term. TOML `"march"`.
+    #[default]
+    March,
+    /// The Monte Carlo path tracer (all scattering orders), accumulating paths over frames
+    /// while the camera stays. TOML `"pathtrace"`.
+    Pathtrace,
+}
+
+impl Integrator {
+    /// The TOML and command-line name.
+    pub const fn name(self) -> &'static str {
+        match self {
+            Self::March => "march",
+            Self::Pathtrace => "pathtrace",
         }
     }
 }
@@ -547,6 +571,12 @@ pub struct Quality {
     /// Empty-space skipping: the ray jumps over cells of a coarse occupancy grid of the
     /// weather map where the coverage leaves no cloud.
     pub empty_space_skip: bool,
+    /// `"march"` (real time) or `"pathtrace"` (the all-orders Monte Carlo truth, accumulated
+    /// over frames; the march's step settings and methods do not apply).
+    pub integrator: Integrator,
+    /// Path tracer: the most scattering orders a path contributes (0 = all). Each frame adds
+    /// one path per pixel.
+    pub path_orders: u32,
 }
 
 impl Default for Quality {
@@ -566,6 +596,8 @@ impl Default for Quality {
             dynamic_step: false,
             checkerboard: false,
             empty_space_skip: false,
+            integrator: Integrator::March,
+            path_orders: 0,
         }
     }
 }

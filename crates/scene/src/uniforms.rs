@@ -54,7 +54,8 @@ pub struct FrameUniforms {
     /// ([`HeightModel::code`](crate::HeightModel::code)), flags
     /// ([`FrameUniforms::FLAG_BEER_POWDER`], [`FrameUniforms::FLAG_JITTER`]).
     pub modes: [u32; 4],
-    /// Octaves (beyond single scattering), frame (jitter seed), 0, 0.
+    /// Octaves (beyond single scattering), frame (jitter seed, path tracer's random streams),
+    /// path tracer's scattering orders (0 = all), 0.
     pub misc: [u32; 4],
     /// Last frame's camera position (as `camera_position`, w = its tan(fov_y / 2)): temporal
     /// upsampling reprojects through it. [`Scene::uniforms`] sets the current camera; a
@@ -314,7 +315,7 @@ impl Scene {
                 c.height_model.code(),
                 flags,
             ],
-            misc: [ms.octaves, q.frame, 0, 0],
+            misc: [ms.octaves, q.frame, q.path_orders, 0],
             previous_position: [0.0; 4],
             previous_forward: [0.0; 4],
             previous_right: [0.0; 4],

@@ -138,11 +138,12 @@ fn fields_in_the_wrong_place() {
     );
 }
 
+/// a > b is allowed (the fitted octaves have it); out-of-range constants are not.
 #[test]
-fn energy_conservation_of_multiple_scattering() {
+fn multiple_scattering_constants_are_bounded() {
     snapshot(
-        "multiple_scattering_a_above_b",
-        "[lighting.multiple_scattering]\na = 0.9\nb = 0.4\noctaves = 9\n",
+        "multiple_scattering_out_of_range",
+        "[lighting.multiple_scattering]\na = 1.2\nb = 0.4\noctaves = 9\n",
     );
 }
 
@@ -183,4 +184,27 @@ fn bad_animation_and_temporal_settings_are_named() {
     assert!(text.contains("quality.checkerboard"), "{text}");
     assert!(text.contains("keyframe 1: time_s = 0.5"), "{text}");
     assert!(text.contains("keyframe 1: position"), "{text}");
+}
+
+/// The path tracer accumulates every pixel itself: temporal upsampling with it is refused,
+/// and an unknown integrator is named.
+#[test]
+fn path_tracer_with_temporal_upsampling_is_refused() {
+    let err = snapshot(
+        "pathtrace_with_temporal",
+        "[quality]\nintegrator = \"pathtrace\"\ntemporal = \"1/4\"\n",
+    );
+    assert!(err.to_string().contains("quality.temporal"), "{err}");
+    let err = snapshot(
+        "unknown_integrator",
+        "[quality]\nintegrator = \"photon-mapping\"\n",
+    );
+    assert!(err.to_string().contains("quality.integrator"), "{err}");
+    let ok = stratus_scene::Scene::from_toml_str(
+        "[quality]\nintegrator = \"pathtrace\"\npath_orders = 1\n",
+        "ok.toml",
+    )
+    .expect("a valid path-traced scene");
+    assert_eq!(ok.quality.integrator, stratus_scene::Integrator::Pathtrace);
+    assert_eq!(ok.uniforms().misc[2], 1);
 }

@@ -37,6 +37,17 @@ mod reference_cache;
 mod report;
 mod sweep;
 
+/// The all-orders truth of `scene` from the GPU path tracer on `renderer` (cached with the
+/// bench's references), and its label.
+pub(crate) fn reference_for_fit(
+    scene: &Scene,
+    noise: &std::sync::Arc<stratus_noise::NoiseSet>,
+    spp: u32,
+    renderer: &mut dyn Backend,
+) -> Result<(stratus_graph::FrameOutput, String)> {
+    reference_cache::reference(scene, noise, spp, Some(renderer))
+}
+
 use self::{
     chart::chart,
     reference_cache::cache_dir,
@@ -76,7 +87,9 @@ pub struct BenchArgs {
     /// Timed repeats per configuration (median reported; default 9 with --quick, else 15).
     #[arg(long)]
     repeats: Option<u32>,
-    /// Samples per pixel of the Monte Carlo references (default 24 with --quick, else 128).
+    /// Paths per pixel of the all-orders references, rendered by the GPU path tracer on the
+    /// bench's backend (default 512, as `stratus fit-scattering`, whose cached truths it
+    /// shares; minutes a scene on lavapipe, cached).
     #[arg(long)]
     mc_spp: Option<u32>,
     /// Measure nothing: redraw chart.png and chart.svg from the results.json in --out.
@@ -127,10 +140,7 @@ pub fn run(args: BenchArgs) -> Result<()> {
         .repeats
         .unwrap_or(if args.quick { 9 } else { 15 })
         .max(1);
-    let mc_spp = args
-        .mc_spp
-        .unwrap_or(if args.quick { 24 } else { 128 })
-        .max(1);
+    let mc_spp = args.mc_spp.unwrap_or(512).max(1);
     let validation = std::env::var_os("STRATUS_VALIDATION").is_some();
     let mut renderer: Box<dyn Backend> = match args.backend {
         BenchBackend::Wgpu => Box::new(stratus_backend_wgpu::Renderer::new(

@@ -3,14 +3,16 @@
 //! `$XDG_CACHE_HOME/stratus` or else `target/stratus-cache/` (relative to the working
 //! directory).
 
-use std::{fmt::Write as _, path::PathBuf};
+use std::{fmt::Write as _, path::PathBuf, sync::Arc};
 
 use anyhow::{Context, Result};
 use sha2::{Digest, Sha256};
-use stratus_graph::FrameOutput;
+use stratus_graph::{Backend, FrameInput, FrameOutput, FramePlan, Readback};
 use stratus_noise::NoiseSet;
 use stratus_reference::{Integrator, QuadratureSettings};
 use stratus_scene::Scene;
+
+use crate::scene_io::check_finite;
 
 pub(super) fn cache_dir() -> PathBuf {
     match std::env::var_os("XDG_CACHE_HOME") {
@@ -55,20 +57,67 @@ fn reference_for(scene: &Scene) -> (Integrator, Scene, bool) {
     }
 }
 
-/// Renders (or loads from the cache) the reference of `scene`.
-pub(super) fn reference(
+/// `spp` paths per pixel of the GPU path tracer (`wgsl/pathtrace.wgsl`) on `renderer`, one
+/// frame each, accumulated in its history: the all-orders truth of `scene` (whose octaves and
+/// Beer-Powder the path tracer ignores). `progress` is told each frame.
+pub(crate) fn pathtrace_gpu(
+    renderer: &mut dyn Backend,
     scene: &Scene,
-    noise: &NoiseSet,
+    noise: &Arc<NoiseSet>,
+    spp: u32,
+    progress: &dyn Fn(u32),
+) -> Result<FrameOutput> {
+    let mut s = scene.clone();
+    s.quality.temporal = stratus_scene::Temporal::Off;
+    s.quality.checkerboard = false;
+    s.quality.integrator = stratus_scene::Integrator::Pathtrace;
+    s.quality.path_orders = 0;
+    let plan = FramePlan::for_scene(&s, false)?;
+    let mut last = None;
+    for i in 0..spp.max(1) {
+        let mut f = s.clone();
+        f.quality.frame = i;
+        // The first frame starts over: the renderer may hold another scene's paths.
+        let mut input = FrameInput::new(&plan, &f, noise).with_readback(if i + 1 == spp.max(1) {
+            Readback::output()
+        } else {
+            Readback::none()
+        });
+        if i == 0 {
+            input = input.with_cut();
+        }
+        last = Some(
+            renderer
+                .render(&input)
+                .map_err(|e| anyhow::anyhow!("{e}"))?,
+        );
+        progress(i + 1);
+    }
+    let out = last.expect("at least one path");
+    check_finite(&out)?;
+    Ok(out)
+}
+
+/// Renders (or loads from the cache) the reference of `scene`. The all-orders truth comes
+/// from the GPU path tracer on `gpu` where one is given, else from the CPU path tracer.
+pub(crate) fn reference(
+    scene: &Scene,
+    noise: &Arc<NoiseSet>,
     mc_spp: u32,
+    gpu: Option<&mut dyn Backend>,
 ) -> Result<(FrameOutput, String)> {
     let (mut integrator, s, mc) = reference_for(scene);
     if let Integrator::MonteCarlo { spp, .. } = &mut integrator {
         *spp = mc_spp;
     }
+    let on_gpu = mc && gpu.is_some();
     let key = {
         let mut h = Sha256::new();
         h.update(s.to_toml().as_bytes());
         h.update(format!("{integrator:?}").as_bytes());
+        if on_gpu {
+            h.update(b"gpu-pathtrace");
+        }
         h.update(b"stratus-reference-cache-v1");
         h.finalize()
             .iter()
@@ -78,7 +127,9 @@ pub(super) fn reference(
                 acc
             })
     };
-    let label = if mc {
+    let label = if on_gpu {
+        format!("pathtrace-gpu-{mc_spp}spp")
+    } else if mc {
         format!("montecarlo-{mc_spp}spp")
     } else {
         "quadrature".to_string()
@@ -91,7 +142,21 @@ pub(super) fn reference(
             return Ok((f, label));
         }
     }
-    let f = stratus_reference::render(&s, noise, &integrator, false);
+    let f = match gpu {
+        Some(r) if mc => {
+            // Minutes on lavapipe: a bar of paths (drawn on a terminal only).
+            let bar = indicatif::ProgressBar::new(u64::from(mc_spp));
+            if let Ok(style) = indicatif::ProgressStyle::with_template(
+                "all-orders truth [{elapsed_precise}] {wide_bar} {pos}/{len} paths per pixel",
+            ) {
+                bar.set_style(style);
+            }
+            let f = pathtrace_gpu(r, &s, noise, mc_spp, &|i| bar.set_position(u64::from(i)))?;
+            bar.finish_and_clear();
+            f
+        }
+        _ => stratus_reference::render(&s, noise, &integrator, false),
+    };
     std::fs::create_dir_all(&dir).with_context(|| format!("creating {}", dir.display()))?;
     std::fs::write(&path, encode(&f)).with_context(|| format!("writing {}", path.display()))?;
     Ok((f, label))

@@ -1,0 +1,163 @@
+//! The path tracer as a real-time renderer runs it (`quality.integrator = "pathtrace"`): every
+//! frame adds one path per pixel (streams seeded by `quality.frame`) to running means kept
+//! between frames, as `wgsl/pathtrace.wgsl` does in its history. A cut, a
+//! new size or a moved camera starts over.
+
+use std::time::Instant;
+
+use stratus_graph::{FrameOutput, PassTiming};
+use stratus_noise::NoiseSet;
+use stratus_scene::{FrameUniforms, Scene};
+
+use crate::{Integrator, Medium, RenderOptions, composite, frame::Frame, render_medium};
+
+/// What the CPU renderer keeps between path-traced frames.
+#[derive(Clone, Debug, Default)]
+pub struct PathState {
+    /// Paths per pixel so far, the uniform block they were traced with, and their mean
+    /// radiance and transmittance (f32, as the GPU's rgba32float history).
+    history: Option<(u32, FrameUniforms, Vec<f32>)>,
+}
+
+/// Whether two uniform blocks have the same camera and size (the GPU's `camera_still`).
+fn same_view(a: &FrameUniforms, b: &FrameUniforms) -> bool {
+    a.camera_position == b.camera_position
+        && a.camera_forward == b.camera_forward
+        && a.camera_right[..3] == b.camera_right[..3]
+        && a.camera_up[..3] == b.camera_up[..3]
+        && a.counts[..2] == b.counts[..2]
+}
+
+/// One frame of the progressive path tracer: one more path per pixel.
+pub(crate) fn render(
+    scene: &Scene,
+    noise: &NoiseSet,
+    cut: bool,
+    state: &mut PathState,
+) -> FrameOutput {
+    let q = &scene.quality;
+    let u = scene.uniforms();
+    let t = Instant::now();
+    let mut out = render_medium(
+        scene,
+        Medium::Clouds(noise),
+        &Integrator::MonteCarlo {
+            spp: 1,
+            orders: q.path_orders,
+        },
+        &RenderOptions {
+            progress: false,
+            threads: None,
+        },
+    )
+    .output;
+    let paths = 1;
+    let (n, mean) = match state.history.take() {
+        Some((n, last, mut mean)) if !cut && same_view(&last, &u) => {
+            let total = n + paths;
+            let w = paths as f32 / total as f32;
+            for (m, x) in mean.iter_mut().zip(&out.radiance) {
+                *m += (x - *m) * w;
+            }
+            (total, mean)
+        }
+        _ => (paths, out.radiance.clone()),
+    };
+    out.radiance.clone_from(&mean);
+    state.history = Some((n, u, mean));
+    let march_ms = t.elapsed().as_secs_f64() * 1e3;
+
+    let t1 = Instant::now();
+    // The composite reads the stored (f32) means, as the GPU's composite pass does.
+    let f = Frame::from_uniforms(&u);
+    let (w, h) = (out.width, out.height);
+    let radiance = &out.radiance;
+    out.image = (0..h)
+        .flat_map(|y| (0..w).map(move |x| (x, y)))
+        .flat_map(|(x, y)| {
+            let i = 4 * (y * w + x) as usize;
+            composite::composite(&f, [x, y], [0, 1, 2, 3].map(|c| f64::from(radiance[i + c])))
+        })
+        .collect();
+    out.timings = vec![
+        PassTiming {
+            pass: "pathtrace".into(),
+            ms: march_ms,
+            source: "cpu-wall",
+        },
+        PassTiming {
+            pass: "composite".into(),
+            ms: t1.elapsed().as_secs_f64() * 1e3,
+            source: "cpu-wall",
+        },
+    ];
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use stratus_graph::{Backend, FrameInput, FramePlan};
+
+    fn single(scene: &Scene, noise: &NoiseSet) -> Vec<f32> {
+        render_medium(
+            scene,
+            Medium::Clouds(noise),
+            &Integrator::MonteCarlo { spp: 1, orders: 0 },
+            &RenderOptions {
+                progress: false,
+                threads: None,
+            },
+        )
+        .output
+        .radiance
+    }
+
+    /// Frames join the running mean of one-path frames; a moved camera or a cut starts over.
+    #[test]
+    fn frames_accumulate_until_the_camera_moves() {
+        let noise = std::sync::Arc::new(NoiseSet::generate(&stratus_noise::NoiseConfig {
+            weather_size: 32,
+            curl_size: 8,
+            detail_size: 8,
+            ..Default::default()
+        }));
+        let mut scene = Scene::default().with_size(8, 4);
+        scene.camera.pitch_deg = 20.0;
+        scene.quality.integrator = stratus_scene::Integrator::Pathtrace;
+        let plan = FramePlan::for_scene(&scene, false).unwrap();
+        let mut cpu = crate::CpuBackend::default();
+        let frame = |i: u32, s: &Scene| {
+            let mut s = s.clone();
+            s.quality.frame = i;
+            s
+        };
+        let mut last = Vec::new();
+        for i in 0..3 {
+            let s = frame(i, &scene);
+            last = cpu
+                .render(&FrameInput::new(&plan, &s, &noise))
+                .unwrap()
+                .radiance;
+        }
+        let singles: Vec<Vec<f32>> = (0..3).map(|i| single(&frame(i, &scene), &noise)).collect();
+        assert!(singles[0] != singles[1], "frames draw different paths");
+        for (k, v) in last.iter().enumerate() {
+            let mean = (singles[0][k] + singles[1][k] + singles[2][k]) / 3.0;
+            assert!(
+                (v - mean).abs() <= 1e-5 * mean.abs().max(1.0),
+                "{k}: {v} vs {mean}"
+            );
+        }
+
+        let mut moved = frame(3, &scene);
+        moved.camera.yaw_deg += 1.0;
+        let out = cpu.render(&FrameInput::new(&plan, &moved, &noise)).unwrap();
+        assert_eq!(out.radiance, single(&moved, &noise));
+        let cut = frame(4, &moved);
+        let out = cpu
+            .render(&FrameInput::new(&plan, &cut, &noise).with_cut())
+            .unwrap();
+        assert_eq!(out.radiance, single(&cut, &noise));
+    }
+}

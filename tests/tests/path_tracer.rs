@@ -1,0 +1,186 @@
+//! The GPU path tracer (`wgsl/pathtrace.wgsl`) against the CPU path tracer: the same estimator
+//! in f32 on the GPU and f64 on the CPU, with independent random streams, so they agree within
+//! noise. Per 8x8 block the difference of the mean luminance is measured in combined standard
+//! errors (the GPU's from the per-pixel second moment it accumulates in `history-meta`, the
+//! CPU's from its per-sample variance), as `cargo xtask mitsuba-check` measures the CPU path
+//! tracer against Mitsuba. ash (the committed SPIR-V) must match wgpu bit for bit. Validation
+//! is on; any message fails the test.
+
+use std::sync::Arc;
+
+use stratus_graph::{Backend, FrameInput, FrameOutput, FramePlan, Readback};
+use stratus_noise::{NoiseConfig, NoiseSet};
+use stratus_scene::{Integrator, Scene};
+
+const WIDTH: u32 = 32;
+const HEIGHT: u32 = 24;
+const BLOCK: u32 = 8;
+/// Paths per pixel on each side.
+const SPP: u32 = 192;
+/// The largest |z| allowed over the 12 blocks. With independent normal errors, P(max |z| >
+/// 4.0) over 12 blocks is below 0.1%.
+const MAX_Z: f64 = 4.0;
+
+const LUMA: [f64; 3] = [0.2126, 0.7152, 0.0722];
+
+fn noise() -> Arc<NoiseSet> {
+    Arc::new(NoiseSet::generate(&NoiseConfig::default()))
+}
+
+fn scene() -> Scene {
+    let mut s = Scene::preset("cumulus-noon")
+        .expect("preset")
+        .with_size(WIDTH, HEIGHT);
+    // Look up into the clouds, so that most blocks hold cloud.
+    s.camera.pitch_deg = 25.0;
+    s
+}
+
+/// SPP paths per pixel accumulated over frames on `r`: the output and `history-meta`
+/// (depth, paths, mean squared luminance, hits) as floats.
+fn gpu(r: &mut dyn Backend, scene: &Scene, noise: &Arc<NoiseSet>) -> (FrameOutput, Vec<f32>) {
+    let mut s = scene.clone();
+    s.quality.integrator = Integrator::Pathtrace;
+    let plan = FramePlan::for_scene(&s, false).expect("plan");
+    let frames = SPP;
+    let mut last = None;
+    for i in 0..frames {
+        let mut f = s.clone();
+        f.quality.frame = i;
+        let readback = if i + 1 == frames {
+            Readback {
+                output: true,
+                resources: vec!["history-meta".into()],
+            }
+        } else {
+            Readback::none()
+        };
+        let out = r
+            .render(&FrameInput::new(&plan, &f, noise).with_readback(readback))
+            .expect("render");
+        last = Some(out);
+    }
+    let out = last.expect("frames");
+    let meta: Vec<f32> = out.resources["history-meta"]
+        .chunks(4)
+        .map(|c| f32::from_le_bytes([c[0], c[1], c[2], c[3]]))
+        .collect();
+    (out, meta)
+}
+
+fn luma(v: &[f32]) -> f64 {
+    (0..3).map(|c| LUMA[c] * f64::from(v[c])).sum()
+}
+
+/// Per block: GPU mean luminance and its standard error.
+fn gpu_blocks(out: &FrameOutput, meta: &[f32]) -> Vec<(f64, f64)> {
+    let mut blocks = Vec::new();
+    for by in (0..HEIGHT).step_by(BLOCK as usize) {
+        for bx in (0..WIDTH).step_by(BLOCK as usize) {
+            let (mut mean, mut var) = (0.0, 0.0);
+            let n = f64::from(BLOCK * BLOCK);
+            for y in by..by + BLOCK {
+                for x in bx..bx + BLOCK {
+                    let i = (y * WIDTH + x) as usize;
+                    let l = luma(&out.radiance[4 * i..4 * i + 3]);
+                    let paths = f64::from(meta[4 * i + 1]);
+                    assert_eq!(
+                        paths,
+                        f64::from(SPP),
+                        "pixel ({x}, {y}) accumulated {paths} paths"
+                    );
+                    let second = f64::from(meta[4 * i + 2]);
+                    mean += l / n;
+                    // The per-path variance of the luminance over the pixel's paths.
+                    let v = (second - l * l).max(0.0) * paths / (paths - 1.0);
+                    var += v / paths;
+                }
+            }
+            blocks.push((mean, var.sqrt() / n));
+        }
+    }
+    blocks
+}
+
+#[test]
+fn gpu_path_tracer_agrees_with_the_cpu_path_tracer() {
+    stratus_test_support::record_wgpu_log();
+    let noise = noise();
+    let scene = scene();
+
+    let mut wgpu = stratus_backend_wgpu::Renderer::new(stratus_backend_wgpu::Options {
+        api: stratus_backend_wgpu::Api::Vulkan,
+        validation: true,
+    })
+    .expect("a Vulkan device (lavapipe)");
+    let (w_out, w_meta) = gpu(&mut wgpu, &scene, &noise);
+    let log = stratus_test_support::take_wgpu_log();
+    assert!(log.is_empty(), "wgpu validation: {log:?}");
+
+    let mut ash =
+        stratus_backend_ash::Renderer::new(stratus_backend_ash::Options { validation: true })
+            .expect("ash on lavapipe");
+    let (a_out, a_meta) = gpu(&mut ash, &scene, &noise);
+    ash.finish().expect("ash: no validation messages");
+    assert!(
+        a_out.radiance == w_out.radiance && a_meta == w_meta && a_out.image == w_out.image,
+        "ash (committed SPIR-V) and wgpu path traced different bits"
+    );
+
+    // No pixel is NaN or infinite, and transmittance is a fraction.
+    for (i, v) in w_out.radiance.chunks(4).enumerate() {
+        assert!(v.iter().all(|x| x.is_finite()), "pixel {i}: {v:?}");
+        assert!(
+            (0.0..=1.0).contains(&v[3]),
+            "pixel {i}: transmittance {}",
+            v[3]
+        );
+    }
+
+    let cpu = stratus_reference::render_medium(
+        &scene,
+        stratus_reference::Medium::Clouds(&noise),
+        &stratus_reference::Integrator::MonteCarlo {
+            spp: SPP,
+            orders: 0,
+        },
+        &stratus_reference::RenderOptions {
+            progress: false,
+            threads: None,
+        },
+    );
+    let cpu_blocks = cpu.blocks(BLOCK);
+    let gpu_blocks = gpu_blocks(&w_out, &w_meta);
+    assert_eq!(cpu_blocks.len(), gpu_blocks.len());
+    let mut worst: (f64, String) = (0.0, String::new());
+    let mut cloudy = 0;
+    let mut report = Vec::new();
+    for (c, &(g, g_se)) in cpu_blocks.iter().zip(&gpu_blocks) {
+        let c_mean: f64 = (0..3).map(|k| LUMA[k] * c.mean[k]).sum();
+        // Channels of one path are strongly correlated: the luminance's standard error is at
+        // most the weighted sum of the channels'.
+        let c_se: f64 = (0..3).map(|k| LUMA[k] * c.std_error[k]).sum();
+        if c_mean < 0.02 {
+            // Clear sky on the CPU: the GPU must see none either.
+            assert!(g < 0.02, "block ({}, {}): gpu {g}, cpu {c_mean}", c.x, c.y);
+            continue;
+        }
+        cloudy += 1;
+        let z = (g - c_mean) / (g_se * g_se + c_se * c_se).sqrt();
+        let line = format!(
+            "block ({:2}, {:2}): gpu {g:.4} +- {g_se:.4}, cpu {c_mean:.4} +- {c_se:.4}, z {z:+.2}",
+            c.x, c.y
+        );
+        if z.abs() > worst.0 {
+            worst = (z.abs(), line.clone());
+        }
+        report.push(line);
+    }
+    println!("{}", report.join("\n"));
+    assert!(cloudy >= 6, "only {cloudy} blocks hold cloud");
+    assert!(
+        worst.0 < MAX_Z,
+        "GPU and CPU path tracers differ beyond noise: {}",
+        worst.1
+    );
+}
