@@ -39,7 +39,14 @@ pub struct Config {
     /// Empty-space skipping.
     #[serde(default)]
     pub empty_space_skip: bool,
+    /// The octave constants from before `stratus fit-scattering` (a = b = c = 0.5, the
+    /// thesis's), instead of the scene's: the bench charts the preset before and after the fit.
+    #[serde(default)]
+    pub prefit: bool,
 }
+
+/// The octave constants before the fit: a = b = c = 0.5 (Hillaire 2016's example values).
+pub const PREFIT_OCTAVE_CONSTANT: f64 = 0.5;
 
 impl Config {
     /// The scene's own settings.
@@ -57,6 +64,7 @@ impl Config {
             dynamic_step: scene.quality.dynamic_step,
             checkerboard: scene.quality.checkerboard,
             empty_space_skip: scene.quality.empty_space_skip,
+            prefit: false,
         }
     }
 
@@ -85,6 +93,12 @@ impl Config {
         s.quality.dynamic_step = self.dynamic_step;
         s.quality.checkerboard = self.checkerboard;
         s.quality.empty_space_skip = self.empty_space_skip;
+        if self.prefit {
+            let ms = &mut s.lighting.multiple_scattering;
+            ms.a = PREFIT_OCTAVE_CONSTANT;
+            ms.b = PREFIT_OCTAVE_CONSTANT;
+            ms.c = PREFIT_OCTAVE_CONSTANT;
+        }
         s
     }
 
@@ -99,6 +113,7 @@ impl Config {
             (self.dynamic_step, " dynamic-step"),
             (self.checkerboard, " checkerboard"),
             (self.empty_space_skip, " skip"),
+            (self.prefit, " pre-fit"),
         ] {
             if on {
                 methods.push_str(name);

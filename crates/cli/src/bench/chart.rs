@@ -113,7 +113,8 @@ const MARGIN: (f64, f64, f64, f64) = (56.0, 24.0, 30.0, 44.0); // left, right, t
 /// dot, the preset a blue ring, the Pareto front red and joined, each front point numbered
 /// and named (SVG). Methods (temporal upsampling, cheap marching) are green and labelled: a
 /// dot for their error on a still camera, joined to a ring for their error in motion (against
-/// the full march of each frame).
+/// the full march of each frame). An orange ring joined to the preset is the preset with the
+/// octave constants from before the multiple-scattering fit.
 fn draw(canvas: &mut dyn Canvas, results: &Results) {
     let mut scenes: Vec<&str> = results.rows.iter().map(|r| r.scene.as_str()).collect();
     scenes.dedup();
@@ -122,6 +123,7 @@ fn draw(canvas: &mut dyn Canvas, results: &Results) {
     let red = (200, 30, 30);
     let blue = (30, 80, 200);
     let green = (20, 140, 60);
+    let orange = (225, 120, 0);
     for (k, scene) in scenes.iter().enumerate() {
         let ox = k as f64 * PANEL_W;
         let rows: Vec<&Row> = results.rows.iter().filter(|r| r.scene == *scene).collect();
@@ -199,6 +201,21 @@ fn draw(canvas: &mut dyn Canvas, results: &Results) {
             canvas.circle((px(r.gpu_ms), py(r.flip)), 2.5, grey, true);
             if r.preset {
                 canvas.circle((px(r.gpu_ms), py(r.flip)), 6.0, blue, false);
+            }
+        }
+        // Each preset before the multiple-scattering fit, joined to the preset (after).
+        if let Some(now) = rows.iter().find(|r| r.preset) {
+            for r in rows.iter().filter(|r| r.config.prefit) {
+                let before = (px(r.gpu_ms), py(r.flip));
+                canvas.line(before, (px(now.gpu_ms), py(now.flip)), orange, 1);
+                canvas.circle(before, 5.0, orange, false);
+                canvas.text(
+                    (before.0 + 7.0, before.1 + 3.0),
+                    &format!("preset before the fit: FLIP {:.3}", r.flip),
+                    9,
+                    orange,
+                    "start",
+                );
             }
         }
         for r in rows.iter().filter(|r| r.config.is_method()) {
@@ -283,7 +300,7 @@ pub(super) fn chart(out: &Path, results: &Results) -> Result<()> {
     let (w, h) = ((PANEL_W * n.len().max(1) as f64) as u32, PANEL_H as u32);
     let mut svg = Svg(format!(
         r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{h}" viewBox="0 0 {w} {h}">
-<title>Stratus: FLIP against GPU time ({} at {}x{}); red = Pareto front, blue ring = preset settings, green = methods (dot: still camera; ring: in motion, against the full march of each frame)</title>
+<title>Stratus: FLIP against GPU time ({} at {}x{}); red = Pareto front, blue ring = preset settings, orange ring = preset before the multiple-scattering fit, green = methods (dot: still camera; ring: in motion, against the full march of each frame)</title>
 <rect width="100%" height="100%" fill="white"/>
 "#,
         xml(&results.device),

@@ -44,8 +44,14 @@ fn reference_for(scene: &Scene) -> (Integrator, Scene, bool) {
     s.quality.frame = d.frame;
     let mc = scene.lighting.multiple_scattering.octaves > 0;
     if mc {
-        // Real-time-only terms the path tracer does not model.
-        s.lighting.multiple_scattering = Default::default();
+        // Real-time-only terms the path tracer does not model, set to fixed values (not the
+        // defaults, which the multiple-scattering fit changes) so that the key stays put.
+        s.lighting.multiple_scattering = stratus_scene::MultipleScattering {
+            octaves: 2,
+            a: 0.5,
+            b: 0.5,
+            c: 0.5,
+        };
         s.lighting.beer_powder = false;
         (Integrator::MonteCarlo { spp: 0, orders: 0 }, s, true)
     } else {

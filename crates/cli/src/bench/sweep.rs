@@ -117,6 +117,14 @@ pub(super) fn sweep(base: &Config, quick: bool) -> Vec<Config> {
             ..base.clone()
         });
     }
+    // The preset before the multiple-scattering fit: the thesis's 2 octaves of a = b = c = 0.5.
+    if base.octaves > 0 {
+        push(Config {
+            octaves: 2,
+            prefit: true,
+            ..base.clone()
+        });
+    }
     // Methods: temporal upsampling and each cheap-march technique on its own (checkerboard
     // skipping needs temporal upsampling: with 1/16).
     for temporal in [Temporal::Quarter, Temporal::Sixteenth] {
