@@ -617,56 +617,60 @@ float sun_scattering(
     float tau_1,
     constant Frame& frame
 ) {
-    float total = {};
+    float octave_sum = 0.0;
     float ka = 1.0;
     float kb = 1.0;
     float kc = 1.0;
     uint i_1 = 0u;
+    float total = {};
     float a_1 = frame.multiple_scattering.x;
     float b_4 = frame.multiple_scattering.y;
     float c_4 = frame.multiple_scattering.z;
     uint _e17 = frame.misc.x;
     uint octaves = metal::min(_e17, MAX_OCTAVES);
-    float _e21 = phase(cos_theta_3, 1.0, frame);
-    total = _e21 * metal::exp(-(tau_1));
     uint2 loop_bound_1 = uint2(4294967295u);
     bool loop_init_1 = true;
     while(true) {
         if (metal::all(loop_bound_1 == uint2(0u))) { break; }
         loop_bound_1 -= uint2(loop_bound_1.y == 0u, 1u);
         if (!loop_init_1) {
-            uint _e54 = i_1;
-            i_1 = _e54 + 1u;
+            uint _e50 = i_1;
+            i_1 = _e50 + 1u;
         }
         loop_init_1 = false;
-        uint _e34 = i_1;
-        if (_e34 < octaves) {
+        uint _e30 = i_1;
+        if (_e30 < octaves) {
         } else {
             break;
         }
         {
-            float _e36 = ka;
-            ka = _e36 * a_1;
-            float _e38 = kb;
-            kb = _e38 * b_4;
+            float _e32 = ka;
+            ka = _e32 * a_1;
+            float _e34 = kb;
+            kb = _e34 * b_4;
+            float _e36 = kc;
+            kc = _e36 * c_4;
+            float _e38 = octave_sum;
+            float _e39 = ka;
             float _e40 = kc;
-            kc = _e40 * c_4;
-            float _e42 = total;
-            float _e43 = ka;
-            float _e44 = kc;
-            float _e45 = phase(cos_theta_3, _e44, frame);
-            float _e47 = kb;
-            total = _e42 + ((_e43 * _e45) * metal::exp(-(_e47) * tau_1));
+            float _e41 = phase(cos_theta_3, _e40, frame);
+            float _e43 = kb;
+            octave_sum = _e38 + ((_e39 * _e41) * metal::exp(-(_e43) * tau_1));
         }
     }
-    uint _e59 = frame.modes.w;
-    if ((_e59 & FLAG_BEER_POWDER) != 0u) {
-        float _e64 = total;
-        float _e68 = frame.phase.w;
-        total = _e64 * (1.0 - metal::exp(-(_e68) * tau_1));
+    float _e55 = frame.sun_direction.y;
+    float _e56 = saturate(_e55);
+    float _e58 = phase(cos_theta_3, 1.0, frame);
+    float _e62 = octave_sum;
+    total = (_e58 * metal::exp(-(tau_1))) + (_e56 * _e62);
+    uint _e69 = frame.modes.w;
+    if ((_e69 & FLAG_BEER_POWDER) != 0u) {
+        float _e74 = total;
+        float _e78 = frame.phase.w;
+        total = _e74 * (1.0 - metal::exp(-(_e78) * tau_1));
     }
-    float _e75 = total;
-    return _e75;
+    float _e85 = total;
+    return _e85;
 }
 
 metal::float3 ambient(

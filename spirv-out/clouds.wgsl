@@ -402,15 +402,15 @@ fn sun_optical_depth(rel: vec3<f32>, p: vec3<f32>, counters: ptr<function, Count
     return tau;
 }
 
-// Sun light scattered toward the viewer per unit illuminance and unit sigma_s, summed over
-// octaves: sum_i a^i phase(cos, c^i) exp(-b^i tau) (a: contribution, b: extinction,
-// c: eccentricity; a <= b conserves energy).
+// Sun light scattered toward the viewer per unit illuminance and unit sigma_s: single
+// scattering plus the octaves mu0 sum_{i>=1} a^i phase(cos, c^i) exp(-b^i tau) (a:
+// contribution, b: extinction, c: eccentricity; fitted to the path tracer, docs/fit).
 fn sun_scattering(cos_theta: f32, tau: f32) -> f32 {
     let a = frame.multiple_scattering.x;
     let b = frame.multiple_scattering.y;
     let c = frame.multiple_scattering.z;
     let octaves = min(frame.misc.x, MAX_OCTAVES);
-    var total = phase(cos_theta, 1.0) * exp(-tau);
+    var octave_sum = 0.0;
     var ka = 1.0;
     var kb = 1.0;
     var kc = 1.0;
@@ -418,8 +418,15 @@ fn sun_scattering(cos_theta: f32, tau: f32) -> f32 {
         ka *= a;
         kb *= b;
         kc *= c;
-        total += ka * phase(cos_theta, kc) * exp(-kb * tau);
+        octave_sum += ka * phase(cos_theta, kc) * exp(-kb * tau);
     }
+    // The octaves stand for the multiply scattered, diffuse light of the layer, which the flux
+    // through the layer's top feeds: E mu0 for a plane-parallel layer, mu0 the cosine of the
+    // sun's zenith angle. The light march sees a few kilometres toward a low sun, not the tens
+    // of kilometres of cloud layer its light crosses, so without mu0 the octaves lit a sunset
+    // as brightly as noon (measured against the path tracer, docs/fit).
+    let mu0 = saturate(frame.sun_direction.y);
+    var total = phase(cos_theta, 1.0) * exp(-tau) + mu0 * octave_sum;
     if (frame.modes.w & FLAG_BEER_POWDER) != 0u {
         // Beer-Powder (HZD): in-scattering builds up with depth into the cloud, darkening
         // the thin edges. Kept <= 1 so it only removes energy.

@@ -115,14 +115,17 @@ pub(crate) fn sun_scattering(f: &Frame, cos_theta: f64, tau: f64) -> f64 {
     // WGSL: min(frame.misc.x, MAX_OCTAVES); the plan always picks a variant with MAX_OCTAVES
     // >= the scene's octaves, and the largest variant compiles 8.
     let octaves = f.misc[0].min(8);
-    let mut total = phase(f, cos_theta, 1.0) * (-tau).exp();
+    let mut octave_sum = 0.0;
     let (mut ka, mut kb, mut kc) = (1.0, 1.0, 1.0);
     for _ in 0..octaves {
         ka *= a;
         kb *= b;
         kc *= c;
-        total += ka * phase(f, cos_theta, kc) * (-kb * tau).exp();
+        octave_sum += ka * phase(f, cos_theta, kc) * (-kb * tau).exp();
     }
+    // The octaves stand for the diffuse field, fed by the flux through the layer's top.
+    let mu0 = saturate(f.sun().y);
+    let mut total = phase(f, cos_theta, 1.0) * (-tau).exp() + mu0 * octave_sum;
     if f.modes[3] & FLAG_BEER_POWDER != 0 {
         total *= 1.0 - (-f.phase[3] * tau).exp();
     }
