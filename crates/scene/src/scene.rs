@@ -430,10 +430,10 @@ impl Default for MultipleScattering {
     /// fit-scattering` (docs/fit; the thesis's 2 octaves of a = b = c = 0.5 before).
     fn default() -> Self {
         Self {
-            octaves: 6,
-            a: 0.8,
-            b: 0.5,
-            c: 0.04,
+            octaves: 2,
+            a: 1.0,
+            b: 0.2,
+            c: 0.3,
         }
     }
 }

@@ -124,22 +124,22 @@ const GLSLANG: Thresholds = WGPU_GL;
 /// The CPU reference (f64) at the scene's real-time settings against the GPU (f32): the same
 /// sample positions, but a few early exits and cloud-edge samples land differently.
 /// Measured: FLIP mean 1.07e-2 and p99 4.84e-2 (inside-layer); RMSE 2.00e-2
-/// (stress-one-view-step); max abs 7.08e-1 (stress-riemann: 8.68 vs 7.97, the same 8% as
-/// 4.17 vs 3.82 before the fitted octaves doubled the radiance) on every scene but the two in
-/// [`CPU_MAX_ABS`].
+/// (stress-one-view-step); max abs 6.05e-1 (stress-riemann: 6.97 vs 6.37, the same 9% as
+/// 4.17 vs 3.82 before the fitted octaves brightened the clouds) on every scene but the two
+/// in [`CPU_MAX_ABS`].
 const CPU: Thresholds = Thresholds {
     flip_mean: 2e-2,
     flip_p99: 8e-2,
-    max_abs: 1.4,
+    max_abs: 1.2,
     rmse: 4e-2,
 };
 
 /// Scenes where the CPU's max abs is a single pixel's discontinuity, bounded alone:
 /// - `sunset`, measured 1.07: the brightest pixel, on the sun-lit rim (10.37 vs 9.30);
-/// - `stress-one-view-step`, measured 2.69 (1.30 before the fitted octaves): with one sample
+/// - `stress-one-view-step`, measured 1.97 (1.30 before the fitted octaves): with one sample
 ///   per ray, a pixel's sample falls in cloud on one side and just outside it on the other
-///   (2.69 vs 0), as large as any radiance in the image can be.
-const CPU_MAX_ABS: [(&str, f64); 2] = [("sunset", 2.0), ("stress-one-view-step", 5.0)];
+///   (1.97 vs 0), as large as any radiance in the image can be.
+const CPU_MAX_ABS: [(&str, f64); 2] = [("sunset", 2.0), ("stress-one-view-step", 4.0)];
 
 /// The largest relative difference of the CPU reference's counters from wgpu-vulkan's. The
 /// GPU paths must count exactly alike. Measured: 0.225% (stress-one-view-step: 6651 vs 6666

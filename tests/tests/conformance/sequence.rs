@@ -91,12 +91,12 @@ const GPU_SEQUENCE: Thresholds = Thresholds {
 
 /// The CPU renderer's temporal frames against wgpu-vulkan's, set at about twice what was
 /// measured on lavapipe (worst of the 32 frames): FLIP mean 4.08e-3, p99 2.55e-2, max abs
-/// 2.37 (one cloud-edge pixel whose march differs, carried on by the history; 1.13 before the
-/// fitted octaves doubled the radiance), RMSE 1.09e-2.
+/// 1.80 (one cloud-edge pixel whose march differs, carried on by the history; 1.13 before the
+/// fitted octaves brightened the clouds), RMSE 1.73e-2.
 const CPU_SEQUENCE: Thresholds = Thresholds {
     flip_mean: 1e-2,
     flip_p99: 5e-2,
-    max_abs: 4.5,
+    max_abs: 3.5,
     rmse: 2.5e-2,
 };
 

@@ -55,6 +55,13 @@ fn reference_for(scene: &Scene) -> (Integrator, Scene, bool) {
         s.lighting.beer_powder = false;
         (Integrator::MonteCarlo { spp: 0, orders: 0 }, s, true)
     } else {
+        // Single scattering: the octave constants do nothing (fixed, as above).
+        s.lighting.multiple_scattering = stratus_scene::MultipleScattering {
+            octaves: 0,
+            a: 0.5,
+            b: 0.5,
+            c: 0.5,
+        };
         (
             Integrator::Quadrature(QuadratureSettings::converged()),
             s,
