@@ -266,10 +266,7 @@ pub fn run(args: FitArgs) -> Result<()> {
     bar.finish_and_clear();
     // Each octave costs time in every light sample: the fewest octaves whose mean FLIP is
     // within 1% of the best count's.
-    let lowest = per_count
-        .iter()
-        .map(|p| p.1)
-        .fold(f64::INFINITY, f64::min);
+    let lowest = per_count.iter().map(|p| p.1).fold(f64::INFINITY, f64::min);
     let (fit, _) = per_count
         .iter()
         .filter(|p| p.1 <= lowest * 1.01)

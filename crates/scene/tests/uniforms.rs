@@ -174,7 +174,10 @@ fn uniforms_carry_the_scene() {
     assert!((u.camera_position[3] - 30f32.to_radians().tan()).abs() < 1e-6);
     assert_eq!(u.atmosphere, [6_360_000.0, 1500.0, 4000.0, 60_000.0]);
     assert_eq!(u.march[0], 0.0, "no fixed step length");
-    assert_eq!(u.misc, [scene.lighting.multiple_scattering.octaves, 0, 0, 0]);
+    assert_eq!(
+        u.misc,
+        [scene.lighting.multiple_scattering.octaves, 0, 0, 0]
+    );
     let s = scene.sun_direction();
     assert_eq!(&u.sun_direction[..3], &s.map(|x| x as f32));
     assert!((u.sun_direction[3] - 0.2665f32.to_radians().cos()).abs() < 1e-7);
