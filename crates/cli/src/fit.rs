@@ -19,12 +19,11 @@ use std::{collections::BTreeMap, fmt::Write as _, path::PathBuf, sync::Arc};
 use anyhow::{Context, Result};
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
-use stratus_compare::{CompareOptions, Image, compare};
 use stratus_graph::{Backend, FrameInput, FrameOutput, FramePlan};
 use stratus_noise::NoiseSet;
 use stratus_scene::{MultipleScattering, Scene};
 
-use crate::{bench::reference_for_fit, scene_io::parse_size};
+use crate::{bench, scene_io::parse_size};
 
 /// Options of `stratus fit-scattering`.
 #[derive(Args, Debug)]
@@ -101,21 +100,8 @@ struct Case {
 
 /// FLIP (mean, display images) and RMSE (linear radiance) of `frame` against `truth`.
 fn errors(truth: &FrameOutput, frame: &FrameOutput) -> Result<(f64, f64)> {
-    let options = CompareOptions {
-        exposure: 1.0,
-        ..CompareOptions::default()
-    };
-    let display = compare(
-        &Image::from_frame_display(truth),
-        &Image::from_frame_display(frame),
-        &options,
-    )?;
-    let linear = compare(
-        &Image::from_frame_radiance(truth),
-        &Image::from_frame_radiance(frame),
-        &options,
-    )?;
-    Ok((display.flip.mean, linear.rmse))
+    let e = bench::errors(truth, frame)?;
+    Ok((e.flip, e.rmse))
 }
 
 /// The real-time frame of `case` with octaves `ms`.
@@ -239,7 +225,7 @@ pub fn run(args: FitArgs) -> Result<()> {
             let scene = scene.with_size(w, h);
             let noise = Arc::new(stratus::noise_for(&scene));
             eprintln!("truth: {name}");
-            let (truth, _) = reference_for_fit(&scene, &noise, args.spp, &mut renderer)?;
+            let (truth, _) = bench::reference(&scene, &noise, args.spp, Some(&mut renderer))?;
             out.push(Case {
                 name,
                 scene,
@@ -273,14 +259,8 @@ pub fn run(args: FitArgs) -> Result<()> {
         .min_by_key(|p| p.0.octaves)
         .copied()
         .context("--octaves names no count")?;
-    // Before: the thesis's two octaves of a = b = c = 0.5 (the defaults until this fit).
-    let k = stratus::quality::PREFIT_OCTAVE_CONSTANT;
-    let before = MultipleScattering {
-        octaves: 2,
-        a: k,
-        b: k,
-        c: k,
-    };
+    // Before: the thesis's constants (the defaults until this fit).
+    let before = stratus::quality::PREFIT_OCTAVES;
 
     std::fs::create_dir_all(&args.out)
         .with_context(|| format!("creating {}", args.out.display()))?;

@@ -1,6 +1,8 @@
 //! The CPU twin of `composite.wgsl`: the analytic sky and sun disk behind the clouds, exposure,
 //! the ACES fitted curve and gamma 2.2, to 8 bits.
 
+use rayon::prelude::*;
+
 use crate::frame::{Frame, PI};
 use crate::geometry::{hits_ground, view_ray};
 use crate::lighting::phase_hg;
@@ -69,4 +71,19 @@ pub(crate) fn composite(f: &Frame, pixel: [u32; 2], cloud: [f64; 4]) -> [u8; 4] 
         unorm8(display.z.powf(g)),
         255,
     ]
+}
+
+/// The display image of a `width` x `height` frame from its stored (f32) radiance and
+/// transmittance, 4 floats a pixel, as the GPU's composite pass reads the march output.
+pub(crate) fn composite_image(f: &Frame, width: u32, height: u32, radiance: &[f32]) -> Vec<u8> {
+    (0..height)
+        .into_par_iter()
+        .flat_map_iter(|y| {
+            (0..width).flat_map(move |x| {
+                let i = 4 * (y * width + x) as usize;
+                let cloud = [0, 1, 2, 3].map(|c| f64::from(radiance[i + c]));
+                composite(f, [x, y], cloud)
+            })
+        })
+        .collect()
 }

@@ -515,18 +515,7 @@ fn render_in_pool(
         .collect();
 
     let t1 = Instant::now();
-    // The composite reads the stored (f32) march output, as the GPU's composite pass does.
-    let image: Vec<u8> = (0..h)
-        .into_par_iter()
-        .flat_map_iter(|y| {
-            let radiance = &radiance;
-            (0..w).flat_map(move |x| {
-                let i = 4 * (y * w + x) as usize;
-                let cloud = [0, 1, 2, 3].map(|c| f64::from(radiance[i + c]));
-                composite::composite(f, [x, y], cloud)
-            })
-        })
-        .collect();
+    let image = composite::composite_image(f, w, h, &radiance);
     let composite_ms = t1.elapsed().as_secs_f64() * 1e3;
 
     let is_mc = matches!(integrator, Integrator::MonteCarlo { .. });

@@ -51,34 +51,24 @@ pub(crate) fn render(
         },
     )
     .output;
-    let paths = 1;
+    // One more path per pixel joins the running mean.
     let (n, mean) = match state.history.take() {
         Some((n, last, mut mean)) if !cut && same_view(&last, &u) => {
-            let total = n + paths;
-            let w = paths as f32 / total as f32;
+            let w = 1.0 / (n + 1) as f32;
             for (m, x) in mean.iter_mut().zip(&out.radiance) {
                 *m += (x - *m) * w;
             }
-            (total, mean)
+            (n + 1, mean)
         }
-        _ => (paths, out.radiance.clone()),
+        _ => (1, out.radiance.clone()),
     };
     out.radiance.clone_from(&mean);
     state.history = Some((n, u, mean));
     let march_ms = t.elapsed().as_secs_f64() * 1e3;
 
     let t1 = Instant::now();
-    // The composite reads the stored (f32) means, as the GPU's composite pass does.
     let f = Frame::from_uniforms(&u);
-    let (w, h) = (out.width, out.height);
-    let radiance = &out.radiance;
-    out.image = (0..h)
-        .flat_map(|y| (0..w).map(move |x| (x, y)))
-        .flat_map(|(x, y)| {
-            let i = 4 * (y * w + x) as usize;
-            composite::composite(&f, [x, y], [0, 1, 2, 3].map(|c| f64::from(radiance[i + c])))
-        })
-        .collect();
+    out.image = composite::composite_image(&f, out.width, out.height, &out.radiance);
     out.timings = vec![
         PassTiming {
             pass: "pathtrace".into(),

@@ -358,16 +358,7 @@ pub(crate) fn render(
     let depth: Vec<f32> = meta.iter().map(|m| m[0]).collect();
 
     let t2 = Instant::now();
-    let image: Vec<u8> = (0..h)
-        .into_par_iter()
-        .flat_map_iter(|y| {
-            let (color, f) = (&color, &model.f);
-            (0..w).flat_map(move |x| {
-                let c = color[(y * w + x) as usize].map(f64::from);
-                composite::composite(f, [x, y], c)
-            })
-        })
-        .collect();
+    let image = composite::composite_image(&model.f, w, h, &radiance);
     let composite_ms = t2.elapsed().as_secs_f64() * 1e3;
 
     state.history = Some(History {

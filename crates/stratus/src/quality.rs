@@ -6,7 +6,9 @@
 use std::{collections::BTreeMap, path::Path};
 
 use serde::{Deserialize, Serialize};
-use stratus_scene::{Animation, Integration, Keyframe, PhaseModel, Scene, ShapeTexture, Temporal};
+use stratus_scene::{
+    Animation, Integration, Keyframe, MultipleScattering, PhaseModel, Scene, ShapeTexture, Temporal,
+};
 
 /// One point of the sweep: the quality and method settings a configuration overrides.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -39,14 +41,20 @@ pub struct Config {
     /// Empty-space skipping.
     #[serde(default)]
     pub empty_space_skip: bool,
-    /// The octave constants from before `stratus fit-scattering` (a = b = c = 0.5, the
-    /// thesis's), instead of the scene's: the bench charts the preset before and after the fit.
+    /// The octave constants of [`PREFIT_OCTAVES`] instead of the scene's: the bench charts the
+    /// preset before and after `stratus fit-scattering`.
     #[serde(default)]
     pub prefit: bool,
 }
 
-/// The octave constants before the fit: a = b = c = 0.5 (Hillaire 2016's example values).
-pub const PREFIT_OCTAVE_CONSTANT: f64 = 0.5;
+/// The multiple-scattering octaves before `stratus fit-scattering`: the thesis's 2 octaves of
+/// a = b = c = 0.5 (Hillaire 2016's example values).
+pub const PREFIT_OCTAVES: MultipleScattering = MultipleScattering {
+    octaves: 2,
+    a: 0.5,
+    b: 0.5,
+    c: 0.5,
+};
 
 impl Config {
     /// The scene's own settings.
@@ -94,10 +102,10 @@ impl Config {
         s.quality.checkerboard = self.checkerboard;
         s.quality.empty_space_skip = self.empty_space_skip;
         if self.prefit {
-            let ms = &mut s.lighting.multiple_scattering;
-            ms.a = PREFIT_OCTAVE_CONSTANT;
-            ms.b = PREFIT_OCTAVE_CONSTANT;
-            ms.c = PREFIT_OCTAVE_CONSTANT;
+            s.lighting.multiple_scattering = MultipleScattering {
+                octaves: self.octaves,
+                ..PREFIT_OCTAVES
+            };
         }
         s
     }

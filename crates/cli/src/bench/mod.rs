@@ -37,16 +37,7 @@ mod reference_cache;
 mod report;
 mod sweep;
 
-/// The all-orders truth of `scene` from the GPU path tracer on `renderer` (cached with the
-/// bench's references), and its label.
-pub(crate) fn reference_for_fit(
-    scene: &Scene,
-    noise: &std::sync::Arc<stratus_noise::NoiseSet>,
-    spp: u32,
-    renderer: &mut dyn Backend,
-) -> Result<(stratus_graph::FrameOutput, String)> {
-    reference_cache::reference(scene, noise, spp, Some(renderer))
-}
+pub(crate) use self::{reference_cache::reference, sweep::errors};
 
 use self::{
     chart::chart,

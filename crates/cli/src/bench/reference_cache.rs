@@ -7,6 +7,7 @@ use std::{fmt::Write as _, path::PathBuf, sync::Arc};
 
 use anyhow::{Context, Result};
 use sha2::{Digest, Sha256};
+use stratus::quality::PREFIT_OCTAVES;
 use stratus_graph::{Backend, FrameInput, FrameOutput, FramePlan, Readback};
 use stratus_noise::NoiseSet;
 use stratus_reference::{Integrator, QuadratureSettings};
@@ -46,21 +47,14 @@ fn reference_for(scene: &Scene) -> (Integrator, Scene, bool) {
     if mc {
         // Real-time-only terms the path tracer does not model, set to fixed values (not the
         // defaults, which the multiple-scattering fit changes) so that the key stays put.
-        s.lighting.multiple_scattering = stratus_scene::MultipleScattering {
-            octaves: 2,
-            a: 0.5,
-            b: 0.5,
-            c: 0.5,
-        };
+        s.lighting.multiple_scattering = PREFIT_OCTAVES;
         s.lighting.beer_powder = false;
         (Integrator::MonteCarlo { spp: 0, orders: 0 }, s, true)
     } else {
         // Single scattering: the octave constants do nothing (fixed, as above).
         s.lighting.multiple_scattering = stratus_scene::MultipleScattering {
             octaves: 0,
-            a: 0.5,
-            b: 0.5,
-            c: 0.5,
+            ..PREFIT_OCTAVES
         };
         (
             Integrator::Quadrature(QuadratureSettings::converged()),
@@ -80,9 +74,8 @@ pub(crate) fn pathtrace_gpu(
     spp: u32,
     progress: &dyn Fn(u32),
 ) -> Result<FrameOutput> {
+    // The plan of a path-traced scene leaves out the march's methods.
     let mut s = scene.clone();
-    s.quality.temporal = stratus_scene::Temporal::Off;
-    s.quality.checkerboard = false;
     s.quality.integrator = stratus_scene::Integrator::Pathtrace;
     s.quality.path_orders = 0;
     let plan = FramePlan::for_scene(&s, false)?;

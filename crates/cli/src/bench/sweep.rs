@@ -117,10 +117,10 @@ pub(super) fn sweep(base: &Config, quick: bool) -> Vec<Config> {
             ..base.clone()
         });
     }
-    // The preset before the multiple-scattering fit: the thesis's 2 octaves of a = b = c = 0.5.
+    // The preset before the multiple-scattering fit.
     if base.octaves > 0 {
         push(Config {
-            octaves: 2,
+            octaves: stratus::quality::PREFIT_OCTAVES.octaves,
             prefit: true,
             ..base.clone()
         });
@@ -277,6 +277,39 @@ fn measure_config(
     Ok(row)
 }
 
+/// The error of a frame against its reference.
+pub(crate) struct Errors {
+    /// FLIP (mean) of the composited, tone-mapped images.
+    pub flip: f64,
+    /// Its 95th percentile.
+    pub flip_p95: f64,
+    /// RMSE of the linear radiance (rgb).
+    pub rmse: f64,
+}
+
+/// `frame` against `reference`: FLIP on the display images, RMSE on the linear radiance.
+pub(crate) fn errors(reference: &FrameOutput, frame: &FrameOutput) -> Result<Errors> {
+    let options = CompareOptions {
+        exposure: 1.0,
+        ..CompareOptions::default()
+    };
+    let linear = compare(
+        &Image::from_frame_radiance(reference),
+        &Image::from_frame_radiance(frame),
+        &options,
+    )?;
+    let display = compare(
+        &Image::from_frame_display(reference),
+        &Image::from_frame_display(frame),
+        &options,
+    )?;
+    Ok(Errors {
+        flip: display.flip.mean,
+        flip_p95: display.flip.p95,
+        rmse: linear.rmse,
+    })
+}
+
 /// A row's counters and errors: `frame` against `reference` (times left at 0).
 #[allow(clippy::too_many_arguments)]
 fn row(
@@ -294,20 +327,7 @@ fn row(
     let pixels = f64::from(frame.width * frame.height).max(1.0);
     let per = |k: &str| c.get(k).copied().unwrap_or(0) as f64 / pixels;
 
-    let options = CompareOptions {
-        exposure: 1.0,
-        ..CompareOptions::default()
-    };
-    let linear = compare(
-        &Image::from_frame_radiance(reference),
-        &Image::from_frame_radiance(frame),
-        &options,
-    )?;
-    let display = compare(
-        &Image::from_frame_display(reference),
-        &Image::from_frame_display(frame),
-        &options,
-    )?;
+    let e = errors(reference, frame)?;
     Ok(Row {
         scene: name.to_string(),
         name: config.name(),
@@ -319,9 +339,9 @@ fn row(
         view_steps_pp: per("view_steps"),
         light_samples_pp: per("light_samples"),
         samples_pp: per("density_evaluations"),
-        rmse: linear.rmse,
-        flip: display.flip.mean,
-        flip_p95: display.flip.p95,
+        rmse: e.rmse,
+        flip: e.flip,
+        flip_p95: e.flip_p95,
         reference: label,
         pareto: false,
         motion_flip: None,
