@@ -74,6 +74,31 @@ struct PathResult {
     float transmittance;
     float depth;
 };
+struct SpriteCell {
+    ivec2 index;
+    float size;
+    bool covered;
+};
+struct SpriteCandidate {
+    vec2 xz;
+    float alt;
+    float h;
+    float size_hash;
+    float texture_hash;
+    float rotation_hash;
+    float density;
+};
+struct SpriteVertex {
+    vec4 position;
+    vec2 uv;
+    uint tile;
+    vec4 colour;
+    float distance_;
+};
+struct SpriteTargets {
+    vec4 radiance;
+    vec4 depth;
+};
 const uint PHASE_HG = 0u;
 const uint PHASE_TWO_LOBE_HG = 1u;
 const uint PHASE_CORNETTE_SHANKS = 2u;
@@ -106,6 +131,23 @@ const float HISTORY_SAMPLES = 16.0;
 const float HISTORY_SAMPLES_MOVING = 2.0;
 const float DISOCCLUSION_DEPTH = 0.5;
 const uint MAX_PATH_ORDERS = 16384u;
+const uint SPRITE_LEVELS = 4u;
+const int SPRITE_CELLS_PER_SIDE = 8;
+const uint SPRITES_PER_CELL = 16u;
+const uint SPRITE_COUNT = 4096u;
+const float SPRITE_CELL0_ = 1500.0;
+const float SPRITE_ALPHA = 0.7;
+const float SPRITE_MAX_DISTANCE = 131072.0;
+const uint ATLAS_TILE = 64u;
+const float SPRITE_C_MIN = 0.22;
+const float SPRITE_C_MED = 0.55;
+const float SPRITE_C_MAX = 1.0;
+const float SPRITE_SKY = 0.35;
+const vec3 SKY_LEVEL0_ = vec3(0.42, 0.46, 0.55);
+const vec3 SKY_LEVEL1_ = vec3(0.55, 0.59, 0.67);
+const vec3 SKY_LEVEL2_ = vec3(0.7, 0.73, 0.8);
+const vec3 SKY_LEVEL3_ = vec3(0.84, 0.86, 0.9);
+const vec3 SKY_LEVEL4_ = vec3(0.95, 0.96, 0.98);
 const bool LIGHT_MARCH = true;
 const uint MAX_OCTAVES = 8u;
 const bool DETAIL = true;
@@ -182,8 +224,8 @@ Roots solve_sphere(float b, float c) {
     if ((disc < 0.0)) {
         return Roots(0.0, 0.0, false);
     }
-    float s_1 = sqrt(disc);
-    float r0_1 = -((b + ((b >= 0.0) ? s_1 : -(s_1))));
+    float s_2 = sqrt(disc);
+    float r0_1 = -((b + ((b >= 0.0) ? s_2 : -(s_2))));
     if ((r0_1 == 0.0)) {
         return Roots(0.0, 0.0, true);
     }
@@ -193,39 +235,39 @@ Roots solve_sphere(float b, float c) {
 
 Roots ray_shell(float alt, vec3 d, float radius_alt) {
     float rp = _group_0_binding_0_cs.atmosphere.x;
-    float b_2 = (d.y * (alt + rp));
-    float c_2 = ((alt - radius_alt) * ((alt + radius_alt) + (2.0 * rp)));
-    Roots _e16 = solve_sphere(b_2, c_2);
+    float b_3 = (d.y * (alt + rp));
+    float c_3 = ((alt - radius_alt) * ((alt + radius_alt) + (2.0 * rp)));
+    Roots _e16 = solve_sphere(b_3, c_3);
     return _e16;
 }
 
 float altitude_of(vec3 p) {
     float rp_1 = _group_0_binding_0_cs.atmosphere.x;
     float n_2 = (((p.x * p.x) + (p.z * p.z)) + (p.y * (p.y + (2.0 * rp_1))));
-    vec3 q_4 = vec3(p.x, (p.y + rp_1), p.z);
-    return (n_2 / (length(q_4) + rp_1));
+    vec3 q_5 = vec3(p.x, (p.y + rp_1), p.z);
+    return (n_2 / (length(q_5) + rp_1));
 }
 
 bool hits_ground(vec3 p_1, float alt_1, vec3 d_1) {
-    bool local_9 = false;
+    bool local_12 = false;
     float rp_2 = _group_0_binding_0_cs.atmosphere.x;
-    float b_3 = dot(d_1, vec3(p_1.x, (p_1.y + rp_2), p_1.z));
-    float c_3 = (alt_1 * (alt_1 + (2.0 * rp_2)));
-    if ((b_3 < 0.0)) {
-        local_9 = ((b_3 * b_3) >= c_3);
+    float b_4 = dot(d_1, vec3(p_1.x, (p_1.y + rp_2), p_1.z));
+    float c_4 = (alt_1 * (alt_1 + (2.0 * rp_2)));
+    if ((b_4 < 0.0)) {
+        local_12 = ((b_4 * b_4) >= c_4);
     } else {
-        local_9 = false;
+        local_12 = false;
     }
-    bool _e24 = local_9;
+    bool _e24 = local_12;
     return _e24;
 }
 
 Interval layer_interval(float alt_2, vec3 d_2) {
     float start = 0.0;
     float end = 0.0;
-    bool local_10 = false;
-    bool local_11 = false;
-    bool local_12 = false;
+    bool local_13 = false;
+    bool local_14 = false;
+    bool local_15 = false;
     float bottom = _group_0_binding_0_cs.atmosphere.y;
     float top = _group_0_binding_0_cs.atmosphere.z;
     float cutoff = _group_0_binding_0_cs.atmosphere.w;
@@ -242,33 +284,33 @@ Interval layer_interval(float alt_2, vec3 d_2) {
         if ((alt_2 <= top)) {
             end = _e15.t1_;
             if (_e14.hit) {
-                local_10 = (_e14.t0_ > 0.0);
+                local_13 = (_e14.t0_ > 0.0);
             } else {
-                local_10 = false;
+                local_13 = false;
             }
-            bool _e40 = local_10;
+            bool _e40 = local_13;
             if (_e40) {
                 float _e41 = end;
                 end = min(_e41, _e14.t0_);
             }
         } else {
             if (!(!(_e15.hit))) {
-                local_11 = (_e15.t1_ <= 0.0);
+                local_14 = (_e15.t1_ <= 0.0);
             } else {
-                local_11 = true;
+                local_14 = true;
             }
-            bool _e53 = local_11;
+            bool _e53 = local_14;
             if (_e53) {
                 return Interval(0.0, 0.0, 1u);
             }
             start = max(_e15.t0_, 0.0);
             end = _e15.t1_;
             if (_e14.hit) {
-                local_12 = (_e14.t0_ > 0.0);
+                local_15 = (_e14.t0_ > 0.0);
             } else {
-                local_12 = false;
+                local_15 = false;
             }
-            bool _e69 = local_12;
+            bool _e69 = local_15;
             if (_e69) {
                 float _e70 = end;
                 end = min(_e70, _e14.t0_);
@@ -288,8 +330,8 @@ Interval layer_interval(float alt_2, vec3 d_2) {
 Weather sample_weather(vec3 p_2) {
     vec4 _e4 = _group_0_binding_0_cs.wind_offsets0_;
     float _e10 = _group_0_binding_0_cs.periods.x;
-    vec2 uv = ((p_2.xz - _e4.xy) / vec2(_e10));
-    vec4 w = textureLod(_group_0_binding_3_cs, vec2(uv), 0.0);
+    vec2 uv_1 = ((p_2.xz - _e4.xy) / vec2(_e10));
+    vec4 w = textureLod(_group_0_binding_3_cs, vec2(uv_1), 0.0);
     float _e21 = _group_0_binding_0_cs.clouds.x;
     float _e27 = saturate((w.x + (2.0 * (_e21 - 0.5))));
     float _e31 = _group_0_binding_0_cs.clouds.z;
@@ -330,36 +372,36 @@ float height_signal(float h_3, float cloud_type_2) {
     return _e9;
 }
 
-float cloud_density(vec3 p_3, float alt_3, inout Counters counters_1) {
-    bool local_13 = false;
-    bool local_14 = false;
+float cloud_density(vec3 p_3, float alt_3, inout Counters counters_2) {
+    bool local_16 = false;
+    bool local_17 = false;
     float base = 0.0;
     float density = 0.0;
-    bool local_15 = false;
-    bool local_16 = false;
+    bool local_18 = false;
+    bool local_19 = false;
     vec3 detail_pos = vec3(0.0);
     float bottom_1 = _group_0_binding_0_cs.atmosphere.y;
     float top_1 = _group_0_binding_0_cs.atmosphere.z;
-    float h_5 = ((alt_3 - bottom_1) / (top_1 - bottom_1));
-    if (!((h_5 < 0.0))) {
-        local_13 = (h_5 > 1.0);
+    float h_6 = ((alt_3 - bottom_1) / (top_1 - bottom_1));
+    if (!((h_6 < 0.0))) {
+        local_16 = (h_6 > 1.0);
     } else {
-        local_13 = true;
+        local_16 = true;
     }
-    bool _e22 = local_13;
+    bool _e22 = local_16;
     if (_e22) {
         return 0.0;
     }
-    uint _e25 = counters_1.density;
-    counters_1.density = (_e25 + 1u);
+    uint _e25 = counters_2.density;
+    counters_2.density = (_e25 + 1u);
     Weather _e28 = sample_weather(p_3);
-    float _e30 = height_signal(h_5, _e28.cloud_type);
+    float _e30 = height_signal(h_6, _e28.cloud_type);
     if (!((_e28.coverage <= 0.0))) {
-        local_14 = (_e30 <= 0.0);
+        local_17 = (_e30 <= 0.0);
     } else {
-        local_14 = true;
+        local_17 = true;
     }
-    bool _e40 = local_14;
+    bool _e40 = local_17;
     if (_e40) {
         return 0.0;
     }
@@ -369,9 +411,9 @@ float cloud_density(vec3 p_3, float alt_3, inout Counters counters_1) {
     float _e60 = _group_0_binding_0_cs.wind_offsets0_.z;
     float _e66 = _group_0_binding_0_cs.wind_offsets0_.w;
     vec3 shape_pos = vec3((p_3.x - _e60), alt_3, (p_3.z - _e66));
-    vec4 s_2 = textureLod(_group_0_binding_1_cs, vec3((shape_pos / period)), 0.0);
-    float low_fbm = (((s_2.y * 0.625) + (s_2.z * 0.25)) + (s_2.w * 0.125));
-    float _e91 = remap(s_2.x, (low_fbm - 1.0), 1.0, 0.0, 1.0);
+    vec4 s_3 = textureLod(_group_0_binding_1_cs, vec3((shape_pos / period)), 0.0);
+    float low_fbm = (((s_3.y * 0.625) + (s_3.z * 0.25)) + (s_3.w * 0.125));
+    float _e91 = remap(s_3.x, (low_fbm - 1.0), 1.0, 0.0, 1.0);
     float _e92 = saturate(_e91);
     base = (_e92 * _e30);
     float _e95 = base;
@@ -387,21 +429,21 @@ float cloud_density(vec3 p_3, float alt_3, inout Counters counters_1) {
     float strength = _group_0_binding_0_cs.erosion.x;
     float threshold = _group_0_binding_0_cs.erosion.y;
     if (DETAIL) {
-        local_15 = (strength > 0.0);
+        local_18 = (strength > 0.0);
     } else {
-        local_15 = false;
+        local_18 = false;
     }
-    bool _e126 = local_15;
+    bool _e126 = local_18;
     if (_e126) {
         float _e129 = base;
-        local_16 = (_e129 < threshold);
+        local_19 = (_e129 < threshold);
     } else {
-        local_16 = false;
+        local_19 = false;
     }
-    bool _e132 = local_16;
+    bool _e132 = local_19;
     if (_e132) {
-        uint _e134 = counters_1.detail;
-        counters_1.detail = (_e134 + 1u);
+        uint _e134 = counters_2.detail;
+        counters_2.detail = (_e134 + 1u);
         detail_pos = vec3(p_3.x, alt_3, p_3.z);
         if (CURL) {
             vec4 _e145 = _group_0_binding_0_cs.wind_offsets1_;
@@ -411,7 +453,7 @@ float cloud_density(vec3 p_3, float alt_3, inout Counters counters_1) {
             vec2 curl = ((_e157.xy * 2.0) - vec2(1.0));
             vec3 _e164 = detail_pos;
             float _e172 = _group_0_binding_0_cs.erosion.z;
-            detail_pos = (_e164 + (vec3(curl.x, 0.0, curl.y) * (_e172 * (1.0 - h_5))));
+            detail_pos = (_e164 + (vec3(curl.x, 0.0, curl.y) * (_e172 * (1.0 - h_6))));
         }
         vec3 _e178 = detail_pos;
         float _e182 = _group_0_binding_0_cs.wind_offsets1_.x;
@@ -422,7 +464,7 @@ float cloud_density(vec3 p_3, float alt_3, inout Counters counters_1) {
         vec4 dn = textureLod(_group_0_binding_2_cs, vec3((_e192 / vec3(_e196))), 0.0);
         float high_fbm = (((dn.x * 0.625) + (dn.y * 0.25)) + (dn.z * 0.125));
         float _e215 = _group_0_binding_0_cs.extinction.w;
-        float _e220 = saturate((h_5 * 10.0));
+        float _e220 = saturate((h_6 * 10.0));
         float _e222 = saturate(((2.0 * _e215) * _e220));
         float shape = mix((1.0 - high_fbm), high_fbm, _e222);
         float _e227 = base;
@@ -434,7 +476,7 @@ float cloud_density(vec3 p_3, float alt_3, inout Counters counters_1) {
     }
     float _e238 = density;
     float _e242 = _group_0_binding_0_cs.erosion.w;
-    density = (_e238 * mix(1.0, h_5, _e242));
+    density = (_e238 * mix(1.0, h_6, _e242));
     float _e246 = density;
     float _e250 = _group_0_binding_0_cs.clouds.y;
     density = ((_e246 * _e250) * (1.0 + _e28.precipitation));
@@ -478,12 +520,12 @@ float phase(float cos_theta_2, float scale) {
     }
 }
 
-float sun_optical_depth(vec3 rel, vec3 p_4, inout Counters counters_2) {
+float sun_optical_depth(vec3 rel, vec3 p_4, inout Counters counters_3) {
     float seg = 0.0;
     float dist = 0.0;
     float tau = 0.0;
-    uint i = 0u;
-    bool local_17 = false;
+    uint i_1 = 0u;
+    bool local_20 = false;
     vec4 _e5 = _group_0_binding_0_cs.sun_direction;
     vec3 sun = _e5.xyz;
     float _e10 = _group_0_binding_0_cs.extinction.x;
@@ -496,11 +538,11 @@ float sun_optical_depth(vec3 rel, vec3 p_4, inout Counters counters_2) {
     bool loop_init = true;
     while(true) {
         if (!loop_init) {
-            uint _e78 = i;
-            i = (_e78 + 1u);
+            uint _e78 = i_1;
+            i_1 = (_e78 + 1u);
         }
         loop_init = false;
-        uint _e35 = i;
+        uint _e35 = i_1;
         if ((_e35 < steps_1)) {
         } else {
             break;
@@ -508,24 +550,24 @@ float sun_optical_depth(vec3 rel, vec3 p_4, inout Counters counters_2) {
         {
             float _e37 = dist;
             float _e38 = seg;
-            float s_3 = (_e37 + (0.5 * _e38));
-            vec3 q_5 = (rel + (sun * s_3));
-            float _e44 = altitude_of(q_5);
+            float s_4 = (_e37 + (0.5 * _e38));
+            vec3 q_6 = (rel + (sun * s_4));
+            float _e44 = altitude_of(q_6);
             float _e48 = _group_0_binding_0_cs.atmosphere.z;
             if (!((_e44 > _e48))) {
                 float _e56 = _group_0_binding_0_cs.atmosphere.y;
-                local_17 = (_e44 < _e56);
+                local_20 = (_e44 < _e56);
             } else {
-                local_17 = true;
+                local_20 = true;
             }
-            bool _e59 = local_17;
+            bool _e59 = local_20;
             if (_e59) {
                 break;
             }
-            uint _e61 = counters_2.light;
-            counters_2.light = (_e61 + 1u);
+            uint _e61 = counters_3.light;
+            counters_3.light = (_e61 + 1u);
             float _e64 = tau;
-            float _e67 = cloud_density((p_4 + (sun * s_3)), _e44, counters_2);
+            float _e67 = cloud_density((p_4 + (sun * s_4)), _e44, counters_3);
             float _e69 = seg;
             tau = (_e64 + ((_e67 * sigma_t_1) * _e69));
             float _e72 = dist;
@@ -544,32 +586,32 @@ float sun_scattering(float cos_theta_3, float tau_1) {
     float ka = 1.0;
     float kb = 1.0;
     float kc = 1.0;
-    uint i_1 = 0u;
+    uint i_2 = 0u;
     float total = 0.0;
-    float a_1 = _group_0_binding_0_cs.multiple_scattering.x;
-    float b_4 = _group_0_binding_0_cs.multiple_scattering.y;
-    float c_4 = _group_0_binding_0_cs.multiple_scattering.z;
+    float a_4 = _group_0_binding_0_cs.multiple_scattering.x;
+    float b_5 = _group_0_binding_0_cs.multiple_scattering.y;
+    float c_5 = _group_0_binding_0_cs.multiple_scattering.z;
     uint _e17 = _group_0_binding_0_cs.misc.x;
     uint octaves = min(_e17, MAX_OCTAVES);
     bool loop_init_1 = true;
     while(true) {
         if (!loop_init_1) {
-            uint _e50 = i_1;
-            i_1 = (_e50 + 1u);
+            uint _e50 = i_2;
+            i_2 = (_e50 + 1u);
         }
         loop_init_1 = false;
-        uint _e30 = i_1;
+        uint _e30 = i_2;
         if ((_e30 < octaves)) {
         } else {
             break;
         }
         {
             float _e32 = ka;
-            ka = (_e32 * a_1);
+            ka = (_e32 * a_4);
             float _e34 = kb;
-            kb = (_e34 * b_4);
+            kb = (_e34 * b_5);
             float _e36 = kc;
-            kc = (_e36 * c_4);
+            kc = (_e36 * c_5);
             float _e38 = octave_sum;
             float _e39 = ka;
             float _e40 = kc;
@@ -600,7 +642,7 @@ vec3 ambient(float h_4) {
     return (mix(_e3.xyz, _e7.xyz, h_4) * _e13);
 }
 
-vec3 scattered_light(vec3 rel_1, vec3 p_5, float alt_4, float density_1, vec3 view, inout Counters counters_3) {
+vec3 scattered_light(vec3 rel_1, vec3 p_5, float alt_4, float density_1, vec3 view, inout Counters counters_4) {
     vec3 sun_light = vec3(0.0);
     float tau_2 = 0.0;
     vec4 _e8 = _group_0_binding_0_cs.sun_direction;
@@ -612,7 +654,7 @@ vec3 scattered_light(vec3 rel_1, vec3 p_5, float alt_4, float density_1, vec3 vi
     bool _e29 = hits_ground(rel_1, alt_4, sun_1);
     if (!(_e29)) {
         if (LIGHT_MARCH) {
-            float _e34 = sun_optical_depth(rel_1, p_5, counters_3);
+            float _e34 = sun_optical_depth(rel_1, p_5, counters_4);
             tau_2 = _e34;
         }
         vec4 _e37 = _group_0_binding_0_cs.sun_illuminance;
@@ -633,9 +675,9 @@ float empty_cell_exit(vec3 p_6, vec3 d_3) {
     float exit = 1e30;
     vec4 _e6 = _group_0_binding_0_cs.wind_offsets0_;
     float _e12 = _group_0_binding_0_cs.periods.x;
-    vec2 uv_1 = (fract(((p_6.xz - _e6.xy) / vec2(_e12))) * 64.0);
-    uvec2 cell = min(uvec2(uv_1), uvec2(63u));
-    vec4 _e23 = texelFetch(_group_0_binding_11_cs, ivec2(cell), 0);
+    vec2 uv_2 = (fract(((p_6.xz - _e6.xy) / vec2(_e12))) * 64.0);
+    uvec2 cell_1 = min(uvec2(uv_2), uvec2(63u));
+    vec4 _e23 = texelFetch(_group_0_binding_11_cs, ivec2(cell_1), 0);
     float m_1 = _e23.x;
     float _e28 = _group_0_binding_0_cs.clouds.x;
     if (((m_1 + (2.0 * (_e28 - 0.5))) > -0.003921569)) {
@@ -643,7 +685,7 @@ float empty_cell_exit(vec3 p_6, vec3 d_3) {
     }
     float _e40 = _group_0_binding_0_cs.periods.x;
     float cell_m = (_e40 / 64.0);
-    vec2 inside = ((uv_1 - vec2(cell)) * cell_m);
+    vec2 inside = ((uv_2 - vec2(cell_1)) * cell_m);
     if ((d_3.x > 1e-6)) {
         float _e50 = exit;
         exit = min(_e50, ((cell_m - inside.x) / d_3.x));
@@ -666,16 +708,16 @@ float empty_cell_exit(vec3 p_6, vec3 d_3) {
     return max(_e83, 0.0);
 }
 
-void count(uint index, uint value) {
-    bool local_18 = false;
+void count(uint index_1, uint value) {
+    bool local_21 = false;
     if (STATS) {
-        local_18 = (value != 0u);
+        local_21 = (value != 0u);
     } else {
-        local_18 = false;
+        local_21 = false;
     }
-    bool _e8 = local_18;
+    bool _e8 = local_21;
     if (_e8) {
-        uint _e12 = atomicAdd(_group_0_binding_8_cs.counters[index], value);
+        uint _e12 = atomicAdd(_group_0_binding_8_cs.counters[index_1], value);
         return;
     } else {
         return;
@@ -695,8 +737,8 @@ vec3 step_integral(vec3 source, float sigma_t, float dt) {
 float start_offset(uvec2 pixel_2) {
     uint _e4 = _group_0_binding_0_cs.modes.w;
     bool jitter = ((_e4 & FLAG_JITTER) != 0u);
-    uint k_3 = _group_0_binding_0_cs.temporal.x;
-    if ((k_3 <= 1u)) {
+    uint k_5 = _group_0_binding_0_cs.temporal.x;
+    if ((k_5 <= 1u)) {
         uint _e18 = _group_0_binding_0_cs.misc.y;
         float _e19 = hash_unit(pixel_2, _e18);
         return (jitter ? _e19 : 0.5);
@@ -704,20 +746,20 @@ float start_offset(uvec2 pixel_2) {
     float _e23 = hash_unit(pixel_2, 0u);
     float base_2 = (jitter ? _e23 : 0.5);
     uint _e29 = _group_0_binding_0_cs.misc.y;
-    float _e32 = van_der_corput((_e29 / (k_3 * k_3)));
+    float _e32 = van_der_corput((_e29 / (k_5 * k_5)));
     return fract((base_2 + _e32));
 }
 
 MarchResult march_pixel(uvec2 pixel_3) {
-    Counters counters_4 = Counters(0u, 0u, 0u, 0u);
+    Counters counters_5 = Counters(0u, 0u, 0u, 0u);
     vec3 radiance = vec3(0.0);
     float transmittance = 1.0;
     float depth_sum = 0.0;
     uint steps = 0u;
-    uint i_2 = 0u;
+    uint i_3 = 0u;
     uint stride = 1u;
     uint empty = 0u;
-    bool local_19 = false;
+    bool local_22 = false;
     float depth_1 = 0.0;
     vec3 _e1 = view_ray(pixel_3);
     float cam_alt = _group_0_binding_0_cs.camera_position.y;
@@ -750,59 +792,59 @@ MarchResult march_pixel(uvec2 pixel_3) {
             uint _e85 = _group_0_binding_0_cs.modes.w;
             bool empty_skip = ((_e85 & FLAG_EMPTY_SKIP) != 0u);
             while(true) {
-                uint _e96 = i_2;
+                uint _e96 = i_3;
                 uint _e97 = steps;
                 if ((_e96 >= _e97)) {
                     break;
                 }
-                uint _e100 = counters_4.view_steps;
-                counters_4.view_steps = (_e100 + 1u);
-                uint _e104 = i_2;
+                uint _e100 = counters_5.view_steps;
+                counters_5.view_steps = (_e100 + 1u);
+                uint _e104 = i_3;
                 float t_4 = (_e25.start + ((float(_e104) + _e64) * dt_1));
-                vec3 rel_3 = ((_e1 * t_4) + vec3(0.0, cam_alt, 0.0));
-                vec3 p_9 = vec3((rel_3.x + cam_xz.x), rel_3.y, (rel_3.z + cam_xz.y));
+                vec3 rel_4 = ((_e1 * t_4) + vec3(0.0, cam_alt, 0.0));
+                vec3 p_11 = vec3((rel_4.x + cam_xz.x), rel_4.y, (rel_4.z + cam_xz.y));
                 if (empty_skip) {
-                    float _e122 = empty_cell_exit(p_9, _e1);
+                    float _e122 = empty_cell_exit(p_11, _e1);
                     if ((_e122 > 0.0)) {
                         uint _e131 = steps;
                         uint next = uint(clamp(ceil(((((t_4 + _e122) - _e25.start) / dt_1) - _e64)), 0.0, float(_e131)));
-                        uint _e136 = i_2;
-                        i_2 = max((_e136 + 1u), next);
+                        uint _e136 = i_3;
+                        i_3 = max((_e136 + 1u), next);
                         continue;
                     }
                 }
-                float _e140 = altitude_of(rel_3);
-                float _e141 = cloud_density(p_9, _e140, counters_4);
+                float _e140 = altitude_of(rel_4);
+                float _e141 = cloud_density(p_11, _e140, counters_5);
                 if ((_e141 <= 0.0)) {
                     uint _e144 = empty;
                     empty = (_e144 + 1u);
                     if (dynamic_step) {
                         uint _e149 = empty;
-                        local_19 = (_e149 >= 8u);
+                        local_22 = (_e149 >= 8u);
                     } else {
-                        local_19 = false;
+                        local_22 = false;
                     }
-                    bool _e153 = local_19;
+                    bool _e153 = local_22;
                     if (_e153) {
                         stride = 2u;
                     }
-                    uint _e155 = i_2;
+                    uint _e155 = i_3;
                     uint _e156 = stride;
-                    i_2 = (_e155 + _e156);
+                    i_3 = (_e155 + _e156);
                     continue;
                 }
                 uint _e158 = stride;
                 if ((_e158 > 1u)) {
-                    uint _e161 = i_2;
+                    uint _e161 = i_3;
                     uint _e162 = stride;
-                    i_2 = (_e161 - (_e162 - 1u));
+                    i_3 = (_e161 - (_e162 - 1u));
                     stride = 1u;
                     empty = 0u;
                     continue;
                 }
                 empty = 0u;
                 float sigma_t_2 = (sigma_e * _e141);
-                vec3 _e170 = scattered_light(rel_3, p_9, _e140, _e141, _e1, counters_4);
+                vec3 _e170 = scattered_light(rel_4, p_11, _e140, _e141, _e1, counters_5);
                 vec3 _e171 = radiance;
                 float _e172 = transmittance;
                 vec3 _e173 = step_integral(_e170, sigma_t_2, dt_1);
@@ -819,18 +861,18 @@ MarchResult march_pixel(uvec2 pixel_3) {
                     count(STAT_EXIT_TRANSMITTANCE, 1u);
                     break;
                 }
-                uint _e196 = i_2;
-                i_2 = (_e196 + 1u);
+                uint _e196 = i_3;
+                i_3 = (_e196 + 1u);
             }
         }
     }
-    uint _e201 = counters_4.view_steps;
+    uint _e201 = counters_5.view_steps;
     count(STAT_VIEW_STEPS, _e201);
-    uint _e204 = counters_4.density;
+    uint _e204 = counters_5.density;
     count(STAT_DENSITY, _e204);
-    uint _e207 = counters_4.detail;
+    uint _e207 = counters_5.detail;
     count(STAT_DETAIL, _e207);
-    uint _e210 = counters_4.light;
+    uint _e210 = counters_5.light;
     count(STAT_LIGHT, _e210);
     float _e213 = transmittance;
     if ((_e213 < 1.0)) {
@@ -854,45 +896,45 @@ uvec2 block_offset(uint f, uint k) {
         return _e6;
     }
     if ((k == 4u)) {
-        uint b_5 = (f % 16u);
-        uvec2 _e13 = bayer2_((b_5 >> 2u));
-        uvec2 _e17 = bayer2_((b_5 & 3u));
+        uint b_6 = (f % 16u);
+        uvec2 _e13 = bayer2_((b_6 >> 2u));
+        uvec2 _e17 = bayer2_((b_6 & 3u));
         return (_e13 + (2u * _e17));
     }
     return uvec2(0u);
 }
 
 vec2 reproject(uvec2 pixel_4, float depth_2) {
-    bool local_20 = false;
-    bool local_21 = false;
-    bool local_22 = false;
+    bool local_23 = false;
+    bool local_24 = false;
+    bool local_25 = false;
     vec3 dir = vec3(0.0);
     vec4 _e4 = _group_0_binding_0_cs.previous_position;
     vec4 _e7 = _group_0_binding_0_cs.camera_position;
     if (all(equal(_e4, _e7))) {
         vec4 _e14 = _group_0_binding_0_cs.previous_forward;
         vec4 _e17 = _group_0_binding_0_cs.camera_forward;
-        local_20 = all(equal(_e14, _e17));
+        local_23 = all(equal(_e14, _e17));
     } else {
-        local_20 = false;
+        local_23 = false;
     }
-    bool _e21 = local_20;
+    bool _e21 = local_23;
     if (_e21) {
         vec4 _e26 = _group_0_binding_0_cs.previous_right;
         vec4 _e29 = _group_0_binding_0_cs.camera_right;
-        local_21 = all(equal(_e26, _e29));
+        local_24 = all(equal(_e26, _e29));
     } else {
-        local_21 = false;
+        local_24 = false;
     }
-    bool _e33 = local_21;
+    bool _e33 = local_24;
     if (_e33) {
         vec4 _e38 = _group_0_binding_0_cs.previous_up;
         vec4 _e41 = _group_0_binding_0_cs.camera_up;
-        local_22 = all(equal(_e38, _e41));
+        local_25 = all(equal(_e38, _e41));
     } else {
-        local_22 = false;
+        local_25 = false;
     }
-    bool same = local_22;
+    bool same = local_25;
     if (same) {
         return vec2(pixel_4);
     }
@@ -921,15 +963,15 @@ vec2 reproject(uvec2 pixel_4, float depth_2) {
 }
 
 bool on_screen(vec2 q) {
-    bool local_23 = false;
+    bool local_26 = false;
     uvec4 _e3 = _group_0_binding_0_cs.counts;
     vec2 size_1 = vec2(_e3.xy);
     if (all(greaterThanEqual(q, vec2(-0.5)))) {
-        local_23 = all(lessThanEqual(q, (size_1 - vec2(0.5))));
+        local_26 = all(lessThanEqual(q, (size_1 - vec2(0.5))));
     } else {
-        local_23 = false;
+        local_26 = false;
     }
-    bool _e18 = local_23;
+    bool _e18 = local_26;
     return _e18;
 }
 
@@ -955,52 +997,52 @@ vec4 history_row(ivec2 base_1, int dy, vec4 wx) {
 vec4 history_at(vec2 q_1) {
     uvec4 _e3 = _group_0_binding_0_cs.counts;
     ivec2 size_3 = ivec2(_e3.xy);
-    vec2 c_5 = clamp(q_1, vec2(0.0), vec2((size_3 - ivec2(1))));
-    ivec2 base_3 = ivec2(floor(c_5));
-    vec2 f_2 = (c_5 - vec2(base_3));
+    vec2 c_6 = clamp(q_1, vec2(0.0), vec2((size_3 - ivec2(1))));
+    ivec2 base_3 = ivec2(floor(c_6));
+    vec2 f_2 = (c_6 - vec2(base_3));
     vec4 _e18 = catmull_rom(f_2.x);
     vec4 _e20 = catmull_rom(f_2.y);
     vec4 _e22 = history_row(base_3, -1, _e18);
     vec4 _e26 = history_row(base_3, 0, _e18);
     vec4 _e31 = history_row(base_3, 1, _e18);
     vec4 _e36 = history_row(base_3, 2, _e18);
-    vec4 sum = ((((_e22 * _e20.x) + (_e26 * _e20.y)) + (_e31 * _e20.z)) + (_e36 * _e20.w));
-    float _e45 = saturate(sum.w);
-    return vec4(max(sum.xyz, vec3(0.0)), _e45);
+    vec4 sum_2 = ((((_e22 * _e20.x) + (_e26 * _e20.y)) + (_e31 * _e20.z)) + (_e36 * _e20.w));
+    float _e45 = saturate(sum_2.w);
+    return vec4(max(sum_2.xyz, vec3(0.0)), _e45);
 }
 
 vec4 history_nearest(vec2 q_2) {
     uvec4 _e3 = _group_0_binding_0_cs.counts;
     ivec2 size_4 = ivec2(_e3.xy);
-    ivec2 p_10 = min(max(ivec2(roundEven(q_2)), ivec2(0)), (size_4 - ivec2(1)));
-    vec4 _e16 = texelFetch(_group_0_binding_13_cs, p_10, 0);
+    ivec2 p_12 = min(max(ivec2(roundEven(q_2)), ivec2(0)), (size_4 - ivec2(1)));
+    vec4 _e16 = texelFetch(_group_0_binding_13_cs, p_12, 0);
     return _e16;
 }
 
 vec4 meta_at(vec2 q_3) {
     uvec4 _e3 = _group_0_binding_0_cs.counts;
     ivec2 size_5 = ivec2(_e3.xy);
-    ivec2 p_11 = min(max(ivec2(roundEven(q_3)), ivec2(0)), (size_5 - ivec2(1)));
-    vec4 _e16 = texelFetch(_group_0_binding_14_cs, p_11, 0);
+    ivec2 p_13 = min(max(ivec2(roundEven(q_3)), ivec2(0)), (size_5 - ivec2(1)));
+    vec4 _e16 = texelFetch(_group_0_binding_14_cs, p_13, 0);
     return _e16;
 }
 
-bool in_blocks(uvec2 id_7) {
-    uint k_4 = _group_0_binding_0_cs.temporal.x;
+bool in_blocks(uvec2 id_12) {
+    uint k_6 = _group_0_binding_0_cs.temporal.x;
     uvec4 _e7 = _group_0_binding_0_cs.counts;
-    return all(lessThan(id_7, (((_e7.xy + uvec2(k_4)) - uvec2(1u)) / uvec2(k_4))));
+    return all(lessThan(id_12, (((_e7.xy + uvec2(k_6)) - uvec2(1u)) / uvec2(k_6))));
 }
 
-uvec2 sparse_pixel(uvec2 id_8) {
-    uint k_5 = _group_0_binding_0_cs.temporal.x;
+uvec2 sparse_pixel(uvec2 id_13) {
+    uint k_7 = _group_0_binding_0_cs.temporal.x;
     uint _e9 = _group_0_binding_0_cs.misc.y;
-    uvec2 _e10 = block_offset(_e9, k_5);
-    return ((id_8 * k_5) + _e10);
+    uvec2 _e10 = block_offset(_e9, k_7);
+    return ((id_13 * k_7) + _e10);
 }
 
-void store_sparse(uvec2 id_9, MarchResult r_2) {
-    imageStore(_group_0_binding_6_cs, ivec2(id_9), vec4(r_2.radiance, r_2.transmittance));
-    imageStore(_group_0_binding_7_cs, ivec2(id_9), vec4(r_2.depth, 0.0, 0.0, 0.0));
+void store_sparse(uvec2 id_14, MarchResult r_2) {
+    imageStore(_group_0_binding_6_cs, ivec2(id_14), vec4(r_2.radiance, r_2.transmittance));
+    imageStore(_group_0_binding_7_cs, ivec2(id_14), vec4(r_2.depth, 0.0, 0.0, 0.0));
     return;
 }
 
@@ -1014,8 +1056,8 @@ uint rng_seed(uvec2 pixel_5, uint frame_index_1) {
 float rng_next(inout uint rng_1) {
     uint _e1 = rng_1;
     rng_1 = ((_e1 * 747796405u) + 2891336453u);
-    uint s_4 = rng_1;
-    uint word_1 = (((s_4 >> ((s_4 >> 28u) + 4u)) ^ s_4) * 277803737u);
+    uint s_5 = rng_1;
+    uint word_1 = (((s_5 >> ((s_5 >> 28u) + 4u)) ^ s_5) * 277803737u);
     return (float((((word_1 >> 22u) ^ word_1) >> 8u)) * 5.9604645e-8);
 }
 
@@ -1026,66 +1068,66 @@ float rng_exponential(inout uint rng_2, float sigma) {
 
 Roots ray_shell_from(vec3 p_7, float alt_5, vec3 d_4, float radius_alt_1) {
     float rp_3 = _group_0_binding_0_cs.atmosphere.x;
-    float b_6 = dot(d_4, vec3(p_7.x, (p_7.y + rp_3), p_7.z));
-    float c_6 = ((alt_5 - radius_alt_1) * ((alt_5 + radius_alt_1) + (2.0 * rp_3)));
-    Roots _e20 = solve_sphere(b_6, c_6);
+    float b_7 = dot(d_4, vec3(p_7.x, (p_7.y + rp_3), p_7.z));
+    float c_7 = ((alt_5 - radius_alt_1) * ((alt_5 + radius_alt_1) + (2.0 * rp_3)));
+    Roots _e20 = solve_sphere(b_7, c_7);
     return _e20;
 }
 
 Segments layer_segments(vec3 p_8, float alt_6, vec3 d_5) {
     Segments s = Segments(vec2(0.0), vec2(0.0), 0u);
-    bool local_24 = false;
-    vec2 a = vec2(0.0);
+    bool local_27 = false;
+    vec2 a_1 = vec2(0.0);
     vec2 b_1 = vec2(0.0);
     uint n_1 = 0u;
-    bool local_25 = false;
-    bool local_26 = false;
-    bool local_27 = false;
     bool local_28 = false;
+    bool local_29 = false;
+    bool local_30 = false;
+    bool local_31 = false;
     float bottom_2 = _group_0_binding_0_cs.atmosphere.y;
     Roots _e14 = ray_shell_from(p_8, alt_6, d_5, bottom_2);
     float _e18 = _group_0_binding_0_cs.atmosphere.z;
     Roots _e19 = ray_shell_from(p_8, alt_6, d_5, _e18);
     bool _e20 = hits_ground(p_8, alt_6, d_5);
     if (!(!(_e19.hit))) {
-        local_24 = (_e19.t1_ <= 0.0);
+        local_27 = (_e19.t1_ <= 0.0);
     } else {
-        local_24 = true;
+        local_27 = true;
     }
-    bool _e30 = local_24;
+    bool _e30 = local_27;
     if (_e30) {
         Segments _e31 = s;
         return _e31;
     }
     float entry = max(_e19.t0_, 0.0);
     if (_e14.hit) {
-        local_25 = (_e14.t0_ > 0.0);
+        local_28 = (_e14.t0_ > 0.0);
     } else {
-        local_25 = false;
+        local_28 = false;
     }
-    bool _e50 = local_25;
+    bool _e50 = local_28;
     if (_e50) {
-        local_26 = (alt_6 >= bottom_2);
+        local_29 = (alt_6 >= bottom_2);
     } else {
-        local_26 = false;
+        local_29 = false;
     }
-    bool _e55 = local_26;
+    bool _e55 = local_29;
     if (_e55) {
         uint _e56 = n_1;
-        a[_e56] = entry;
+        a_1[_e56] = entry;
         uint _e58 = n_1;
         b_1[_e58] = _e14.t0_;
         uint _e61 = n_1;
         n_1 = (_e61 + uint((_e14.t0_ > entry)));
         if (!(_e20)) {
-            local_27 = (_e19.t1_ > _e14.t1_);
+            local_30 = (_e19.t1_ > _e14.t1_);
         } else {
-            local_27 = false;
+            local_30 = false;
         }
-        bool _e73 = local_27;
+        bool _e73 = local_30;
         if (_e73) {
             uint _e74 = n_1;
-            a[_e74] = max(_e14.t1_, entry);
+            a_1[_e74] = max(_e14.t1_, entry);
             uint _e78 = n_1;
             b_1[_e78] = _e19.t1_;
             uint _e81 = n_1;
@@ -1094,23 +1136,23 @@ Segments layer_segments(vec3 p_8, float alt_6, vec3 d_5) {
     } else {
         if ((alt_6 < bottom_2)) {
             if (!(_e20)) {
-                local_28 = _e14.hit;
+                local_31 = _e14.hit;
             } else {
-                local_28 = false;
+                local_31 = false;
             }
-            bool _e90 = local_28;
+            bool _e90 = local_31;
             if (_e90) {
-                a.x = max(_e14.t1_, 0.0);
+                a_1.x = max(_e14.t1_, 0.0);
                 b_1.x = _e19.t1_;
                 n_1 = 1u;
             }
         } else {
-            a.x = entry;
+            a_1.x = entry;
             b_1.x = _e19.t1_;
             n_1 = 1u;
         }
     }
-    vec2 _e103 = a;
+    vec2 _e103 = a_1;
     s.a = _e103;
     vec2 _e105 = b_1;
     s.b = _e105;
@@ -1120,21 +1162,21 @@ Segments layer_segments(vec3 p_8, float alt_6, vec3 d_5) {
     return _e108;
 }
 
-float density_at(vec3 rel_2, inout Counters counters_5) {
+float density_at(vec3 rel_2, inout Counters counters_6) {
     float _e6 = _group_0_binding_0_cs.camera_position.x;
     float _e13 = _group_0_binding_0_cs.camera_position.z;
-    vec3 p_12 = vec3((rel_2.x + _e6), rel_2.y, (rel_2.z + _e13));
+    vec3 p_14 = vec3((rel_2.x + _e6), rel_2.y, (rel_2.z + _e13));
     float _e16 = altitude_of(rel_2);
-    float _e17 = cloud_density(p_12, _e16, counters_5);
+    float _e17 = cloud_density(p_14, _e16, counters_6);
     return _e17;
 }
 
 float empty_cell_skip(vec3 origin, vec3 dir_1, float t_1) {
-    vec3 rel_4 = (origin + (dir_1 * t_1));
+    vec3 rel_5 = (origin + (dir_1 * t_1));
     float _e9 = _group_0_binding_0_cs.camera_position.x;
     float _e16 = _group_0_binding_0_cs.camera_position.z;
-    vec3 p_13 = vec3((rel_4.x + _e9), rel_4.y, (rel_4.z + _e16));
-    float _e19 = empty_cell_exit(p_13, dir_1);
+    vec3 p_15 = vec3((rel_5.x + _e9), rel_5.y, (rel_5.z + _e16));
+    float _e19 = empty_cell_exit(p_15, dir_1);
     if ((_e19 <= 0.0)) {
         return 0.0;
     }
@@ -1147,7 +1189,7 @@ float density_max() {
     return clamp((_e3 * (1.0 + _e7)), 0.0, 1.0);
 }
 
-float free_flight(vec3 origin_1, vec3 dir_2, Segments segs, inout uint rng_3, inout Counters counters_6) {
+float free_flight(vec3 origin_1, vec3 dir_2, Segments segs, inout uint rng_3, inout Counters counters_7) {
     uint k_1 = 0u;
     float t_2 = 0.0;
     float _e5 = density_max();
@@ -1193,10 +1235,10 @@ float free_flight(vec3 origin_1, vec3 dir_2, Segments segs, inout uint rng_3, in
                 if ((_e42 >= segs.b[_e44])) {
                     break;
                 }
-                uint _e48 = counters_6.view_steps;
-                counters_6.view_steps = (_e48 + 1u);
+                uint _e48 = counters_7.view_steps;
+                counters_7.view_steps = (_e48 + 1u);
                 float _e51 = t_2;
-                float _e54 = density_at((origin_1 + (dir_2 * _e51)), counters_6);
+                float _e54 = density_at((origin_1 + (dir_2 * _e51)), counters_7);
                 float _e55 = rng_next(rng_3);
                 if (((_e55 * _e5) < _e54)) {
                     float _e58 = t_2;
@@ -1208,7 +1250,7 @@ float free_flight(vec3 origin_1, vec3 dir_2, Segments segs, inout uint rng_3, in
     return -1.0;
 }
 
-float transmittance_along(vec3 origin_2, vec3 dir_3, Segments segs_1, inout uint rng_4, inout Counters counters_7) {
+float transmittance_along(vec3 origin_2, vec3 dir_3, Segments segs_1, inout uint rng_4, inout Counters counters_8) {
     float tr = 1.0;
     uint k_2 = 0u;
     float t_3 = 0.0;
@@ -1256,10 +1298,10 @@ float transmittance_along(vec3 origin_2, vec3 dir_3, Segments segs_1, inout uint
                 if ((_e44 >= segs_1.b[_e46])) {
                     break;
                 }
-                uint _e50 = counters_7.light;
-                counters_7.light = (_e50 + 1u);
+                uint _e50 = counters_8.light;
+                counters_8.light = (_e50 + 1u);
                 float _e53 = t_3;
-                float _e56 = density_at((origin_2 + (dir_3 * _e53)), counters_7);
+                float _e56 = density_at((origin_2 + (dir_3 * _e53)), counters_8);
                 float _e57 = tr;
                 tr = (_e57 * (1.0 - ((sigma_t_3 * _e56) / majorant_1)));
                 float _e63 = tr;
@@ -1286,8 +1328,8 @@ float sample_hg_cos(float g_2, float u) {
     if ((abs(g_2) < 0.0001)) {
         return (1.0 - (2.0 * u));
     }
-    float s_5 = ((1.0 - (g_2 * g_2)) / ((1.0 - g_2) + ((2.0 * g_2) * u)));
-    return clamp((((1.0 + (g_2 * g_2)) - (s_5 * s_5)) / (2.0 * g_2)), -1.0, 1.0);
+    float s_6 = ((1.0 - (g_2 * g_2)) / ((1.0 - g_2) + ((2.0 * g_2) * u)));
+    return clamp((((1.0 + (g_2 * g_2)) - (s_6 * s_6)) / (2.0 * g_2)), -1.0, 1.0);
 }
 
 PhaseSample sample_phase(vec3 dir_4, inout uint rng_5) {
@@ -1326,12 +1368,12 @@ PhaseSample sample_phase(vec3 dir_4, inout uint rng_5) {
     float _e61 = cos_theta_4;
     float sin_theta = sqrt(max((1.0 - (_e60 * _e61)), 0.0));
     float sign_ = ((dir_4.z >= 0.0) ? 1.0 : -1.0);
-    float a_2 = (-1.0 / (sign_ + dir_4.z));
-    float bb = ((dir_4.x * dir_4.y) * a_2);
-    vec3 t_5 = vec3((1.0 + (((sign_ * dir_4.x) * dir_4.x) * a_2)), (sign_ * bb), (-(sign_) * dir_4.x));
-    vec3 b_7 = vec3(bb, (sign_ + ((dir_4.y * dir_4.y) * a_2)), -(dir_4.y));
+    float a_5 = (-1.0 / (sign_ + dir_4.z));
+    float bb = ((dir_4.x * dir_4.y) * a_5);
+    vec3 t_5 = vec3((1.0 + (((sign_ * dir_4.x) * dir_4.x) * a_5)), (sign_ * bb), (-(sign_) * dir_4.x));
+    vec3 b_8 = vec3(bb, (sign_ + ((dir_4.y * dir_4.y) * a_5)), -(dir_4.y));
     float _e109 = cos_theta_4;
-    vec3 w_1 = normalize((((t_5 * (sin_theta * cos(phi))) + (b_7 * (sin_theta * sin(phi)))) + (dir_4 * _e109)));
+    vec3 w_1 = normalize((((t_5 * (sin_theta * cos(phi))) + (b_8 * (sin_theta * sin(phi)))) + (dir_4 * _e109)));
     float _e113 = cos_theta_4;
     float _e115 = phase(_e113, 1.0);
     float _e116 = pdf;
@@ -1339,31 +1381,31 @@ PhaseSample sample_phase(vec3 dir_4, inout uint rng_5) {
     return PhaseSample(w_1, ((_e118 > 0.0) ? (_e115 / _e116) : 0.0));
 }
 
-PathResult trace_path(vec3 view_1, Interval span, inout uint rng_6, inout Counters counters_8) {
-    PathResult out_ = PathResult(vec3(0.0), 1.0, -1.0);
-    bool local_29 = false;
-    bool local_30 = false;
+PathResult trace_path(vec3 view_1, Interval span, inout uint rng_6, inout Counters counters_9) {
+    PathResult out_2 = PathResult(vec3(0.0), 1.0, -1.0);
+    bool local_32 = false;
+    bool local_33 = false;
     uint max_orders = MAX_PATH_ORDERS;
     vec3 pos = vec3(0.0);
     vec3 dir_5 = vec3(0.0);
     float throughput = 1.0;
     uint order = 0u;
-    bool local_31 = false;
+    bool local_34 = false;
     if ((span.kind != RAY_MARCH)) {
-        PathResult _e13 = out_;
+        PathResult _e13 = out_2;
         return _e13;
     }
     float _e17 = _group_0_binding_0_cs.camera_position.y;
     vec3 cam = vec3(0.0, _e17, 0.0);
     Segments primary = Segments(vec2(span.start, 0.0), vec2((span.start + span.length_), 0.0), 1u);
-    float _e32 = transmittance_along(cam, view_1, primary, rng_6, counters_8);
-    out_.transmittance = _e32;
-    float _e33 = free_flight(cam, view_1, primary, rng_6, counters_8);
+    float _e32 = transmittance_along(cam, view_1, primary, rng_6, counters_9);
+    out_2.transmittance = _e32;
+    float _e33 = free_flight(cam, view_1, primary, rng_6, counters_9);
     if ((_e33 < 0.0)) {
-        PathResult _e36 = out_;
+        PathResult _e36 = out_2;
         return _e36;
     }
-    out_.depth = _e33;
+    out_2.depth = _e33;
     vec4 _e40 = _group_0_binding_0_cs.sun_direction;
     vec3 sun_2 = _e40.xyz;
     float _e45 = _group_0_binding_0_cs.extinction.x;
@@ -1376,16 +1418,16 @@ PathResult trace_path(vec3 view_1, Interval span, inout uint rng_6, inout Counte
         vec4 _e70 = _group_0_binding_0_cs.ambient_bottom;
         if (!(any(greaterThan(_e70.xyz, vec3(0.0))))) {
             vec4 _e81 = _group_0_binding_0_cs.ambient_top;
-            local_30 = any(greaterThan(_e81.xyz, vec3(0.0)));
+            local_33 = any(greaterThan(_e81.xyz, vec3(0.0)));
         } else {
-            local_30 = true;
+            local_33 = true;
         }
-        bool _e88 = local_30;
-        local_29 = _e88;
+        bool _e88 = local_33;
+        local_32 = _e88;
     } else {
-        local_29 = false;
+        local_32 = false;
     }
-    bool ambient_on = local_29;
+    bool ambient_on = local_32;
     uint _e96 = _group_0_binding_0_cs.misc.z;
     if ((_e96 > 0u)) {
         uint _e102 = _group_0_binding_0_cs.misc.z;
@@ -1410,26 +1452,26 @@ PathResult trace_path(vec3 view_1, Interval span, inout uint rng_6, inout Counte
             vec3 _e139 = pos;
             vec3 _e140 = pos;
             Segments _e141 = layer_segments(_e140, _e119, sun_2);
-            float _e142 = transmittance_along(_e139, sun_2, _e141, rng_6, counters_8);
-            vec3 _e144 = out_.radiance;
+            float _e142 = transmittance_along(_e139, sun_2, _e141, rng_6, counters_9);
+            vec3 _e144 = out_2.radiance;
             vec4 _e147 = _group_0_binding_0_cs.sun_illuminance;
             float _e149 = throughput;
             vec3 _e150 = dir_5;
             float _e153 = phase(dot(_e150, sun_2), 1.0);
-            out_.radiance = (_e144 + (_e147.xyz * ((_e149 * _e153) * _e142)));
+            out_2.radiance = (_e144 + (_e147.xyz * ((_e149 * _e153) * _e142)));
         }
         vec3 _e158 = dir_5;
         PhaseSample _e159 = sample_phase(_e158, rng_6);
         vec3 _e160 = pos;
         vec3 _e162 = pos;
         Segments _e164 = layer_segments(_e162, _e119, _e159.dir);
-        float _e165 = free_flight(_e160, _e159.dir, _e164, rng_6, counters_8);
+        float _e165 = free_flight(_e160, _e159.dir, _e164, rng_6, counters_9);
         if ((_e165 < 0.0)) {
             if (ambient_on) {
-                vec3 _e169 = out_.radiance;
+                vec3 _e169 = out_2.radiance;
                 vec3 _e170 = ambient(_e135);
                 float _e171 = throughput;
-                out_.radiance = (_e169 + (_e170 * (_e171 * _e159.weight)));
+                out_2.radiance = (_e169 + (_e170 * (_e171 * _e159.weight)));
             }
             break;
         }
@@ -1444,11 +1486,11 @@ PathResult trace_path(vec3 view_1, Interval span, inout uint rng_6, inout Counte
         uint _e183 = order;
         if ((_e183 >= 3u)) {
             float _e188 = throughput;
-            local_31 = (_e188 < 0.1);
+            local_34 = (_e188 < 0.1);
         } else {
-            local_31 = false;
+            local_34 = false;
         }
-        bool _e192 = local_31;
+        bool _e192 = local_34;
         if (_e192) {
             float _e193 = rng_next(rng_6);
             float _e194 = throughput;
@@ -1465,40 +1507,40 @@ PathResult trace_path(vec3 view_1, Interval span, inout uint rng_6, inout Counte
         vec3 _e203 = dir_5;
         pos = (_e202 + (_e203 * _e165));
     }
-    PathResult _e206 = out_;
+    PathResult _e206 = out_2;
     return _e206;
 }
 
 bool camera_still() {
-    bool local_32 = false;
-    bool local_33 = false;
-    bool local_34 = false;
+    bool local_35 = false;
+    bool local_36 = false;
+    bool local_37 = false;
     vec4 _e2 = _group_0_binding_0_cs.camera_position;
     vec4 _e5 = _group_0_binding_0_cs.previous_position;
     if (all(equal(_e2, _e5))) {
         vec4 _e12 = _group_0_binding_0_cs.camera_forward;
         vec4 _e15 = _group_0_binding_0_cs.previous_forward;
-        local_32 = all(equal(_e12, _e15));
+        local_35 = all(equal(_e12, _e15));
     } else {
-        local_32 = false;
+        local_35 = false;
     }
-    bool _e19 = local_32;
+    bool _e19 = local_35;
     if (_e19) {
         vec4 _e24 = _group_0_binding_0_cs.camera_right;
         vec4 _e28 = _group_0_binding_0_cs.previous_right;
-        local_33 = all(equal(_e24.xyz, _e28.xyz));
+        local_36 = all(equal(_e24.xyz, _e28.xyz));
     } else {
-        local_33 = false;
+        local_36 = false;
     }
-    bool _e33 = local_33;
+    bool _e33 = local_36;
     if (_e33) {
         vec4 _e38 = _group_0_binding_0_cs.camera_up;
         vec4 _e42 = _group_0_binding_0_cs.previous_up;
-        local_34 = all(equal(_e38.xyz, _e42.xyz));
+        local_37 = all(equal(_e38.xyz, _e42.xyz));
     } else {
-        local_34 = false;
+        local_37 = false;
     }
-    bool _e47 = local_34;
+    bool _e47 = local_37;
     return _e47;
 }
 
@@ -1506,25 +1548,389 @@ float luminance(vec3 c_1) {
     return dot(c_1, vec3(0.2126, 0.7152, 0.0722));
 }
 
-vec3 sky_radiance(vec3 d_6, float alt_7) {
+float basic_sun_depth(vec3 rel_3, float alt_7, inout Counters counters_10) {
+    float tau_3 = 0.0;
+    uint i_4 = 1u;
+    uint steps_2 = _group_0_binding_0_cs.counts.w;
+    if ((steps_2 == 0u)) {
+        return 0.0;
+    }
+    vec4 _e12 = _group_0_binding_0_cs.sun_direction;
+    vec3 sun_3 = _e12.xyz;
+    float rp_4 = _group_0_binding_0_cs.atmosphere.x;
+    float top_2 = _group_0_binding_0_cs.atmosphere.z;
+    float _e25 = _group_0_binding_0_cs.atmosphere.y;
+    float thickness = (top_2 - _e25);
+    Roots _e39 = solve_sphere(dot(sun_3, vec3(rel_3.x, (rel_3.y + rp_4), rel_3.z)), ((alt_7 - top_2) * ((alt_7 + top_2) + (2.0 * rp_4))));
+    float length_ = min(max(_e39.t1_, 0.0), (3.0 * thickness));
+    float dt_2 = (length_ / float(steps_2));
+    float _e51 = _group_0_binding_0_cs.extinction.x;
+    float _e55 = _group_0_binding_0_cs.extinction.y;
+    float sigma_t_5 = (_e51 + _e55);
+    vec4 _e59 = _group_0_binding_0_cs.camera_position;
+    vec2 cam_xz_1 = _e59.xz;
+    bool loop_init_4 = true;
+    while(true) {
+        if (!loop_init_4) {
+            uint _e90 = i_4;
+            i_4 = (_e90 + 1u);
+        }
+        loop_init_4 = false;
+        uint _e65 = i_4;
+        if ((_e65 <= steps_2)) {
+        } else {
+            break;
+        }
+        {
+            uint _e68 = counters_10.light;
+            counters_10.light = (_e68 + 1u);
+            uint _e71 = i_4;
+            vec3 q_7 = (rel_3 + (sun_3 * (float(_e71) * dt_2)));
+            vec3 p_16 = vec3((q_7.x + cam_xz_1.x), q_7.y, (q_7.z + cam_xz_1.y));
+            float _e84 = tau_3;
+            float _e85 = altitude_of(q_7);
+            float _e86 = cloud_density(p_16, _e85, counters_10);
+            tau_3 = (_e84 + ((sigma_t_5 * _e86) * dt_2));
+        }
+    }
+    float _e93 = tau_3;
+    return _e93;
+}
+
+MarchResult basic_pixel(uvec2 pixel_6) {
+    Counters counters_11 = Counters(0u, 0u, 0u, 0u);
+    vec3 radiance_1 = vec3(0.0);
+    float transmittance_1 = 1.0;
+    float depth_sum_1 = 0.0;
+    uint i_5 = 0u;
+    float depth_3 = 0.0;
+    vec3 _e1 = view_ray(pixel_6);
+    float cam_alt_1 = _group_0_binding_0_cs.camera_position.y;
+    vec4 _e8 = _group_0_binding_0_cs.camera_position;
+    vec2 cam_xz_2 = _e8.xz;
+    count(STAT_PIXELS, 1u);
+    Interval _e25 = layer_interval(cam_alt_1, _e1);
+    if ((_e25.kind == RAY_MISSES_LAYER)) {
+        count(STAT_EXIT_MISSED, 1u);
+    } else {
+        if ((_e25.kind == RAY_HITS_GROUND)) {
+            count(STAT_EXIT_GROUND, 1u);
+        } else {
+            count(STAT_MARCHED, 1u);
+            uint steps_3 = _group_0_binding_0_cs.counts.z;
+            float dt_3 = (_e25.length_ / float(steps_3));
+            float sigma_s = _group_0_binding_0_cs.extinction.x;
+            float _e52 = _group_0_binding_0_cs.extinction.y;
+            float sigma_t_6 = (sigma_s + _e52);
+            vec4 _e56 = _group_0_binding_0_cs.sun_illuminance;
+            vec4 _e60 = _group_0_binding_0_cs.sun_direction;
+            float _e66 = _group_0_binding_0_cs.phase.x;
+            float _e67 = phase_hg(dot(_e1, _e60.xyz), _e66);
+            vec3 sun_phase = (_e56.xyz * _e67);
+            bool loop_init_5 = true;
+            while(true) {
+                if (!loop_init_5) {
+                    uint _e131 = i_5;
+                    i_5 = (_e131 + 1u);
+                }
+                loop_init_5 = false;
+                uint _e71 = i_5;
+                if ((_e71 < steps_3)) {
+                } else {
+                    break;
+                }
+                {
+                    uint _e74 = counters_11.view_steps;
+                    counters_11.view_steps = (_e74 + 1u);
+                    uint _e78 = i_5;
+                    float t_6 = (_e25.start + (float(_e78) * dt_3));
+                    vec3 rel_6 = ((_e1 * t_6) + vec3(0.0, cam_alt_1, 0.0));
+                    vec3 p_17 = vec3((rel_6.x + cam_xz_2.x), rel_6.y, (rel_6.z + cam_xz_2.y));
+                    float _e95 = altitude_of(rel_6);
+                    float _e96 = cloud_density(p_17, _e95, counters_11);
+                    if ((_e96 <= 0.0)) {
+                        continue;
+                    }
+                    float _e99 = basic_sun_depth(rel_6, _e95, counters_11);
+                    float beer_powder = ((2.0 * exp(-(_e99))) * (1.0 - exp((-2.0 * _e99))));
+                    vec3 _e110 = radiance_1;
+                    float _e111 = transmittance_1;
+                    radiance_1 = (_e110 + (sun_phase * ((((beer_powder * _e111) * sigma_s) * _e96) * dt_3)));
+                    float step_t_1 = exp(((-(sigma_t_6) * _e96) * dt_3));
+                    float _e122 = depth_sum_1;
+                    float _e123 = transmittance_1;
+                    depth_sum_1 = (_e122 + ((t_6 * _e123) * (1.0 - step_t_1)));
+                    float _e129 = transmittance_1;
+                    transmittance_1 = (_e129 * step_t_1);
+                }
+            }
+        }
+    }
+    uint _e136 = counters_11.view_steps;
+    count(STAT_VIEW_STEPS, _e136);
+    uint _e139 = counters_11.density;
+    count(STAT_DENSITY, _e139);
+    uint _e142 = counters_11.detail;
+    count(STAT_DETAIL, _e142);
+    uint _e145 = counters_11.light;
+    count(STAT_LIGHT, _e145);
+    float _e148 = transmittance_1;
+    if ((_e148 < 1.0)) {
+        float _e151 = depth_sum_1;
+        float _e152 = transmittance_1;
+        depth_3 = (_e151 / (1.0 - _e152));
+    }
+    vec3 _e156 = radiance_1;
+    float _e157 = transmittance_1;
+    float _e158 = depth_3;
+    return MarchResult(_e156, _e157, _e158);
+}
+
+float atlas_hash(uint a_2, uint b_2) {
+    uint _e2 = pcg(b_2);
+    uint _e4 = pcg((a_2 ^ _e2));
+    return (float((_e4 >> 8u)) * 5.9604645e-8);
+}
+
+float value_noise(vec2 p_9, uint seed) {
+    uvec2 i_7 = uvec2(floor(p_9));
+    vec2 f_3 = fract(p_9);
+    vec2 s_7 = ((f_3 * f_3) * (vec2(3.0) - (2.0 * f_3)));
+    uint h_7 = (seed * 7919u);
+    float _e17 = atlas_hash((i_7.x + h_7), i_7.y);
+    float _e23 = atlas_hash(((i_7.x + 1u) + h_7), i_7.y);
+    float _e29 = atlas_hash((i_7.x + h_7), (i_7.y + 1u));
+    float _e37 = atlas_hash(((i_7.x + 1u) + h_7), (i_7.y + 1u));
+    return mix(mix(_e17, _e23, s_7.x), mix(_e29, _e37, s_7.x), s_7.y);
+}
+
+float value_fbm(vec2 p_10, uint seed_1) {
+    float sum_1 = 0.0;
+    float weight = 0.5;
+    vec2 q_4 = vec2(0.0);
+    uint o = 0u;
+    q_4 = p_10;
+    bool loop_init_6 = true;
+    while(true) {
+        if (!loop_init_6) {
+            uint _e26 = o;
+            o = (_e26 + 1u);
+        }
+        loop_init_6 = false;
+        uint _e9 = o;
+        if ((_e9 < 4u)) {
+        } else {
+            break;
+        }
+        {
+            float _e12 = sum_1;
+            float _e13 = weight;
+            vec2 _e14 = q_4;
+            uint _e15 = o;
+            float _e17 = value_noise(_e14, (seed_1 + _e15));
+            sum_1 = (_e12 + (_e13 * _e17));
+            vec2 _e20 = q_4;
+            q_4 = (_e20 * 2.0);
+            float _e23 = weight;
+            weight = (_e23 * 0.5);
+        }
+    }
+    float _e29 = sum_1;
+    return (_e29 / 0.9375);
+}
+
+float sprite_texture(uint tile_1, vec2 uv) {
+    float billow = 0.0;
+    uint i_6 = 0u;
+    vec2 at = vec2(0.0);
+    float a_3 = 0.0;
+    vec2 c_8 = (uv - vec2(0.5));
+    float mask = smoothstep(0.48, 0.36, length(c_8));
+    float _e16 = value_fbm(((uv * 6.0) + vec2((float(tile_1) * 13.0))), tile_1);
+    if ((tile_1 < 4u)) {
+        vec2 q_8 = (c_8 * vec2(1.0, 3.2));
+        float streak = (1.0 - smoothstep(0.05, 0.45, length(q_8)));
+        float _e40 = value_fbm(((uv * vec2(3.0, 12.0)) + vec2((float(tile_1) * 5.0))), (tile_1 + 16u));
+        float _e46 = saturate(((_e40 * 1.6) - 0.3));
+        return (((mask * streak) * _e46) * 0.8);
+    }
+    uint blobs = (5u + (tile_1 % 4u));
+    bool loop_init_7 = true;
+    while(true) {
+        if (!loop_init_7) {
+            uint _e108 = i_6;
+            i_6 = (_e108 + 1u);
+        }
+        loop_init_7 = false;
+        uint _e58 = i_6;
+        if ((_e58 < blobs)) {
+        } else {
+            break;
+        }
+        {
+            uint _e61 = i_6;
+            float _e63 = atlas_hash(tile_1, (2u * _e61));
+            uint _e65 = i_6;
+            float _e69 = atlas_hash(tile_1, ((2u * _e65) + 1u));
+            vec2 centre_1 = (vec2(_e63, _e69) - vec2(0.5));
+            at = (vec2(0.5) + (centre_1 * 0.34));
+            if ((tile_1 == 4u)) {
+                at.y = (0.5 + ((centre_1.y - 0.5) * 0.24));
+            }
+            uint _e91 = i_6;
+            float _e93 = atlas_hash(tile_1, (100u + _e91));
+            float r_3 = (0.14 + (0.1 * _e93));
+            vec2 _e98 = at;
+            float d_9 = (length((uv - _e98)) / r_3);
+            float _e102 = billow;
+            float _e106 = saturate((1.0 - (d_9 * d_9)));
+            billow = max(_e102, _e106);
+        }
+    }
+    float _e111 = billow;
+    float _e114 = saturate((_e111 * 1.5));
+    a_3 = ((mask * _e114) * (0.55 + (0.45 * _e16)));
+    if ((tile_1 == 4u)) {
+        float _e124 = a_3;
+        a_3 = (_e124 * smoothstep(0.62, 0.54, uv.y));
+    }
+    float _e130 = a_3;
+    return _e130;
+}
+
+vec3 sprite_rel(vec2 xz, float alt_8) {
+    float rp_5 = _group_0_binding_0_cs.atmosphere.x;
+    vec4 _e8 = _group_0_binding_0_cs.camera_position;
+    vec2 d_10 = (xz - _e8.xz);
+    float k_8 = ((alt_8 * (alt_8 + (2.0 * rp_5))) - dot(d_10, d_10));
+    float y_2 = (k_8 / (rp_5 + sqrt(max(((rp_5 * rp_5) + k_8), 0.0))));
+    return vec3(d_10.x, y_2, d_10.y);
+}
+
+SpriteCell sprite_cell(uint cell) {
+    ivec2 start_1 = ivec2(0);
+    uint k_3 = 3u;
+    bool local_38 = false;
+    bool local_39 = false;
+    uint level_1 = (cell / 64u);
+    ivec2 local_41 = ivec2(int((cell % 8u)), int(((cell / 8u) % 8u)));
+    vec4 _e15 = _group_0_binding_0_cs.camera_position;
+    start_1 = (ivec2(floor((_e15.xz / vec2(12000.0)))) - ivec2(4));
+    bool loop_init_8 = true;
+    while(true) {
+        if (!loop_init_8) {
+            uint _e35 = k_3;
+            k_3 = (_e35 - 1u);
+        }
+        loop_init_8 = false;
+        uint _e27 = k_3;
+        if ((_e27 > level_1)) {
+        } else {
+            break;
+        }
+        {
+            ivec2 _e29 = start_1;
+            start_1 = (2 * (_e29 + ivec2(2)));
+        }
+    }
+    if ((level_1 > 0u)) {
+        local_38 = all(greaterThanEqual(local_41, ivec2(2)));
+    } else {
+        local_38 = false;
+    }
+    bool _e47 = local_38;
+    if (_e47) {
+        local_39 = all(lessThan(local_41, ivec2(6)));
+    } else {
+        local_39 = false;
+    }
+    bool covered = local_39;
+    ivec2 _e56 = start_1;
+    return SpriteCell((_e56 + local_41), (SPRITE_CELL0_ * float((1u << level_1))), covered);
+}
+
+SpriteCandidate sprite_candidate(SpriteCell c_2, uint level, uint s_1, inout Counters counters_12) {
+    float density_2 = 0.0;
+    uint _e10 = pcg(level);
+    uint _e12 = pcg((uint(c_2.index.y) ^ _e10));
+    uint _e14 = pcg((uint(c_2.index.x) ^ _e12));
+    float _e17 = atlas_hash(_e14, (8u * s_1));
+    float _e22 = atlas_hash(_e14, ((8u * s_1) + 1u));
+    float _e27 = atlas_hash(_e14, ((8u * s_1) + 2u));
+    float _e32 = atlas_hash(_e14, ((8u * s_1) + 3u));
+    vec4 u_1 = vec4(_e17, _e22, _e27, _e32);
+    float _e38 = atlas_hash(_e14, ((8u * s_1) + 4u));
+    float _e43 = atlas_hash(_e14, ((8u * s_1) + 5u));
+    vec2 v_2 = vec2(_e38, _e43);
+    vec2 xz_1 = ((vec2(c_2.index) + u_1.xy) * c_2.size);
+    Weather _e55 = sample_weather(vec3(xz_1.x, 0.0, xz_1.y));
+    float h_8 = (0.04 + (u_1.z * (mix(0.3, 0.95, _e55.cloud_type) - 0.04)));
+    float _e69 = _group_0_binding_0_cs.atmosphere.y;
+    float _e73 = _group_0_binding_0_cs.atmosphere.z;
+    float _e77 = _group_0_binding_0_cs.atmosphere.y;
+    float alt_10 = (_e69 + (h_8 * (_e73 - _e77)));
+    if (!(c_2.covered)) {
+        vec3 _e85 = sprite_rel(xz_1, alt_10);
+        float _e90 = cloud_density(vec3(xz_1.x, _e85.y, xz_1.y), alt_10, counters_12);
+        density_2 = _e90;
+    }
+    float _e94 = density_2;
+    return SpriteCandidate(xz_1, alt_10, h_8, u_1.w, v_2.x, v_2.y, _e94);
+}
+
+vec3 sprite_sky_level(float h_5) {
+    float _e1 = saturate(h_5);
+    float x_5 = (_e1 * 4.0);
+    if ((x_5 < 1.0)) {
+        return mix(SKY_LEVEL0_, SKY_LEVEL1_, x_5);
+    }
+    if ((x_5 < 2.0)) {
+        return mix(SKY_LEVEL1_, SKY_LEVEL2_, (x_5 - 1.0));
+    }
+    if ((x_5 < 3.0)) {
+        return mix(SKY_LEVEL2_, SKY_LEVEL3_, (x_5 - 2.0));
+    }
+    return mix(SKY_LEVEL3_, SKY_LEVEL4_, (x_5 - 3.0));
+}
+
+float sprite_sun_level(float cos_angle) {
+    if ((cos_angle < 0.0)) {
+        return mix(SPRITE_C_MIN, SPRITE_C_MED, (cos_angle + 1.0));
+    }
+    return mix(SPRITE_C_MED, SPRITE_C_MAX, cos_angle);
+}
+
+vec2 sprite_corner(uint k_4) {
+    bool local_40 = false;
+    uint q_9 = ((k_4 >= 3u) ? ((k_4 == 3u) ? 0u : (k_4 - 2u)) : k_4);
+    if (!((q_9 == 1u))) {
+        local_40 = (q_9 == 2u);
+    } else {
+        local_40 = true;
+    }
+    bool _e18 = local_40;
+    return vec2((_e18 ? 1.0 : -1.0), ((q_9 >= 2u) ? 1.0 : -1.0));
+}
+
+vec3 sky_radiance(vec3 d_6, float alt_9) {
     vec4 _e4 = _group_0_binding_0_cs.sun_direction;
-    vec3 sun_3 = _e4.xyz;
+    vec3 sun_4 = _e4.xyz;
     vec4 _e8 = _group_0_binding_0_cs.sun_illuminance;
     vec3 e = _e8.xyz;
-    float _e15 = saturate(((sun_3.y * 4.0) + 0.3));
-    bool _e19 = hits_ground(vec3(0.0, alt_7, 0.0), alt_7, d_6);
+    float _e15 = saturate(((sun_4.y * 4.0) + 0.3));
+    bool _e19 = hits_ground(vec3(0.0, alt_9, 0.0), alt_9, d_6);
     if (_e19) {
         vec3 ground_albedo = vec3(0.035, 0.035, 0.03);
-        return (ground_albedo * (((e * max(sun_3.y, 0.0)) / vec3(3.1415927)) + ((0.05 * e) * _e15)));
+        return (ground_albedo * (((e * max(sun_4.y, 0.0)) / vec3(3.1415927)) + ((0.05 * e) * _e15)));
     }
     vec3 zenith = vec3(0.018, 0.04, 0.1);
     vec3 horizon = vec3(0.07, 0.085, 0.11);
     float _e45 = saturate(d_6.y);
     vec3 gradient_1 = mix(horizon, zenith, sqrt(_e45));
     vec3 sunset = (((1.0 - (_e15 * 0.8)) * pow((1.0 - _e45), 6.0)) * vec3(0.25, 0.1, 0.0));
-    float _e64 = phase_hg(dot(d_6, sun_3), 0.76);
+    float _e64 = phase_hg(dot(d_6, sun_4), 0.76);
     float glow = (_e64 * 0.02);
-    float _e73 = saturate(((sun_3.y * 10.0) + 1.0));
+    float _e73 = saturate(((sun_4.y * 10.0) + 1.0));
     return (e * (((gradient_1 * _e15) + (sunset * _e73)) + vec3((glow * _e15))));
 }
 
@@ -1553,8 +1959,8 @@ void main() {
     if (any(greaterThanEqual(id_5.xy, _e4.xy))) {
         return;
     }
-    uvec2 pixel_6 = id_5.xy;
-    vec3 _e9 = view_ray(pixel_6);
+    uvec2 pixel_7 = id_5.xy;
+    vec3 _e9 = view_ray(pixel_7);
     float _e13 = _group_0_binding_0_cs.camera_position.y;
     Interval _e14 = layer_interval(_e13, _e9);
     count(STAT_PIXELS, 1u);
@@ -1562,7 +1968,7 @@ void main() {
     count(STAT_EXIT_MISSED, uint((_e14.kind == RAY_MISSES_LAYER)));
     count(STAT_EXIT_GROUND, uint((_e14.kind == RAY_HITS_GROUND)));
     uint _e41 = _group_0_binding_0_cs.misc.y;
-    uint _e42 = rng_seed(pixel_6, _e41);
+    uint _e42 = rng_seed(pixel_7, _e41);
     rng = _e42;
     PathResult _e44 = trace_path(_e9, _e14, rng, counters);
     float _e46 = luminance(_e44.radiance);
@@ -1575,9 +1981,9 @@ void main() {
     }
     bool _e63 = local_8;
     if (_e63) {
-        vec4 _e66 = texelFetch(_group_0_binding_13_cs, ivec2(pixel_6), 0);
+        vec4 _e66 = texelFetch(_group_0_binding_13_cs, ivec2(pixel_7), 0);
         mean = _e66;
-        vec4 _e69 = texelFetch(_group_0_binding_14_cs, ivec2(pixel_6), 0);
+        vec4 _e69 = texelFetch(_group_0_binding_14_cs, ivec2(pixel_7), 0);
         moments = _e69;
     }
     float _e71 = moments.y;
@@ -1598,13 +2004,13 @@ void main() {
     }
     moments.y = n_3;
     vec4 _e110 = mean;
-    imageStore(_group_0_binding_17_cs, ivec2(pixel_6), _e110);
+    imageStore(_group_0_binding_17_cs, ivec2(pixel_7), _e110);
     vec4 _e112 = moments;
-    imageStore(_group_0_binding_18_cs, ivec2(pixel_6), _e112);
+    imageStore(_group_0_binding_18_cs, ivec2(pixel_7), _e112);
     vec4 _e114 = mean;
-    imageStore(_group_0_binding_6_cs, ivec2(pixel_6), _e114);
+    imageStore(_group_0_binding_6_cs, ivec2(pixel_7), _e114);
     float _e117 = moments.x;
-    imageStore(_group_0_binding_7_cs, ivec2(pixel_6), vec4(_e117, 0.0, 0.0, 0.0));
+    imageStore(_group_0_binding_7_cs, ivec2(pixel_7), vec4(_e117, 0.0, 0.0, 0.0));
     uint _e124 = counters.view_steps;
     count(STAT_VIEW_STEPS, _e124);
     uint _e127 = counters.density;

@@ -82,6 +82,34 @@ struct PathResult {
     float depth;
     char _pad3[12];
 };
+struct SpriteCell {
+    metal::int2 index;
+    float size;
+    bool covered;
+    char _pad3[3];
+};
+struct SpriteCandidate {
+    metal::float2 xz;
+    float alt;
+    float h;
+    float size_hash;
+    float texture_hash;
+    float rotation_hash;
+    float density;
+};
+struct SpriteVertex {
+    metal::float4 position;
+    metal::float2 uv;
+    uint tile;
+    char _pad3[4];
+    metal::float4 colour;
+    float distance;
+    char _pad5[12];
+};
+struct SpriteTargets {
+    metal::float4 radiance;
+    metal::float4 depth;
+};
 constant uint PHASE_HG = 0u;
 constant uint PHASE_TWO_LOBE_HG = 1u;
 constant uint PHASE_CORNETTE_SHANKS = 2u;
@@ -114,6 +142,23 @@ constant float HISTORY_SAMPLES = 16.0;
 constant float HISTORY_SAMPLES_MOVING = 2.0;
 constant float DISOCCLUSION_DEPTH = 0.5;
 constant uint MAX_PATH_ORDERS = 16384u;
+constant uint SPRITE_LEVELS = 4u;
+constant int SPRITE_CELLS_PER_SIDE = 8;
+constant uint SPRITES_PER_CELL = 16u;
+constant uint SPRITE_COUNT = 4096u;
+constant float SPRITE_CELL0_ = 1500.0;
+constant float SPRITE_ALPHA = 0.7;
+constant float SPRITE_MAX_DISTANCE = 131072.0;
+constant uint ATLAS_TILE = 64u;
+constant float SPRITE_C_MIN = 0.22;
+constant float SPRITE_C_MED = 0.55;
+constant float SPRITE_C_MAX = 1.0;
+constant float SPRITE_SKY = 0.35;
+constant metal::float3 SKY_LEVEL0_ = metal::float3(0.42, 0.46, 0.55);
+constant metal::float3 SKY_LEVEL1_ = metal::float3(0.55, 0.59, 0.67);
+constant metal::float3 SKY_LEVEL2_ = metal::float3(0.7, 0.73, 0.8);
+constant metal::float3 SKY_LEVEL3_ = metal::float3(0.84, 0.86, 0.9);
+constant metal::float3 SKY_LEVEL4_ = metal::float3(0.95, 0.96, 0.98);
 constant bool LIGHT_MARCH = true;
 constant uint MAX_OCTAVES = 8u;
 constant bool DETAIL = true;
@@ -184,8 +229,8 @@ Roots solve_sphere(
     if (disc < 0.0) {
         return Roots {0.0, 0.0, false};
     }
-    float s_1 = metal::sqrt(disc);
-    float r0_1 = -((b + ((b >= 0.0) ? s_1 : -(s_1))));
+    float s_2 = metal::sqrt(disc);
+    float r0_1 = -((b + ((b >= 0.0) ? s_2 : -(s_2))));
     if (r0_1 == 0.0) {
         return Roots {0.0, 0.0, true};
     }
@@ -200,9 +245,9 @@ Roots ray_shell(
     constant Frame& frame
 ) {
     float rp = frame.atmosphere.x;
-    float b_2 = d.y * (alt + rp);
-    float c_2 = (alt - radius_alt) * ((alt + radius_alt) + (2.0 * rp));
-    Roots _e16 = solve_sphere(b_2, c_2);
+    float b_3 = d.y * (alt + rp);
+    float c_3 = (alt - radius_alt) * ((alt + radius_alt) + (2.0 * rp));
+    Roots _e16 = solve_sphere(b_3, c_3);
     return _e16;
 }
 
@@ -212,8 +257,8 @@ float altitude_of(
 ) {
     float rp_1 = frame.atmosphere.x;
     float n_2 = ((p.x * p.x) + (p.z * p.z)) + (p.y * (p.y + (2.0 * rp_1)));
-    metal::float3 q_4 = metal::float3(p.x, p.y + rp_1, p.z);
-    return n_2 / (metal::length(q_4) + rp_1);
+    metal::float3 q_5 = metal::float3(p.x, p.y + rp_1, p.z);
+    return n_2 / (metal::length(q_5) + rp_1);
 }
 
 bool hits_ground(
@@ -222,16 +267,16 @@ bool hits_ground(
     metal::float3 d_1,
     constant Frame& frame
 ) {
-    bool local_9 = {};
+    bool local_12 = {};
     float rp_2 = frame.atmosphere.x;
-    float b_3 = metal::dot(d_1, metal::float3(p_1.x, p_1.y + rp_2, p_1.z));
-    float c_3 = alt_1 * (alt_1 + (2.0 * rp_2));
-    if (b_3 < 0.0) {
-        local_9 = (b_3 * b_3) >= c_3;
+    float b_4 = metal::dot(d_1, metal::float3(p_1.x, p_1.y + rp_2, p_1.z));
+    float c_4 = alt_1 * (alt_1 + (2.0 * rp_2));
+    if (b_4 < 0.0) {
+        local_12 = (b_4 * b_4) >= c_4;
     } else {
-        local_9 = false;
+        local_12 = false;
     }
-    bool _e24 = local_9;
+    bool _e24 = local_12;
     return _e24;
 }
 
@@ -242,9 +287,9 @@ Interval layer_interval(
 ) {
     float start = 0.0;
     float end = 0.0;
-    bool local_10 = {};
-    bool local_11 = {};
-    bool local_12 = {};
+    bool local_13 = {};
+    bool local_14 = {};
+    bool local_15 = {};
     float bottom = frame.atmosphere.y;
     float top = frame.atmosphere.z;
     float cutoff = frame.atmosphere.w;
@@ -261,33 +306,33 @@ Interval layer_interval(
         if (alt_2 <= top) {
             end = _e15.t1_;
             if (_e14.hit) {
-                local_10 = _e14.t0_ > 0.0;
+                local_13 = _e14.t0_ > 0.0;
             } else {
-                local_10 = false;
+                local_13 = false;
             }
-            bool _e40 = local_10;
+            bool _e40 = local_13;
             if (_e40) {
                 float _e41 = end;
                 end = metal::min(_e41, _e14.t0_);
             }
         } else {
             if (!(!(_e15.hit))) {
-                local_11 = _e15.t1_ <= 0.0;
+                local_14 = _e15.t1_ <= 0.0;
             } else {
-                local_11 = true;
+                local_14 = true;
             }
-            bool _e53 = local_11;
+            bool _e53 = local_14;
             if (_e53) {
                 return Interval {0.0, 0.0, 1u};
             }
             start = metal::max(_e15.t0_, 0.0);
             end = _e15.t1_;
             if (_e14.hit) {
-                local_12 = _e14.t0_ > 0.0;
+                local_15 = _e14.t0_ > 0.0;
             } else {
-                local_12 = false;
+                local_15 = false;
             }
-            bool _e69 = local_12;
+            bool _e69 = local_15;
             if (_e69) {
                 float _e70 = end;
                 end = metal::min(_e70, _e14.t0_);
@@ -312,8 +357,8 @@ Weather sample_weather(
 ) {
     metal::float4 _e4 = frame.wind_offsets0_;
     float _e10 = frame.periods.x;
-    metal::float2 uv = (p_2.xz - _e4.xy) / metal::float2(_e10);
-    metal::float4 w = weather_tex.sample(noise_sampler, uv, metal::level(0.0));
+    metal::float2 uv_1 = (p_2.xz - _e4.xy) / metal::float2(_e10);
+    metal::float4 w = weather_tex.sample(noise_sampler, uv_1, metal::level(0.0));
     float _e21 = frame.clouds.x;
     float _e27 = saturate(w.x + (2.0 * (_e21 - 0.5)));
     float _e31 = frame.clouds.z;
@@ -373,7 +418,7 @@ float height_signal(
 float cloud_density(
     metal::float3 p_3,
     float alt_3,
-    thread Counters& counters_1,
+    thread Counters& counters_2,
     constant Frame& frame,
     metal::texture3d<float, metal::access::sample> shape_tex,
     metal::texture3d<float, metal::access::sample> detail_tex,
@@ -381,35 +426,35 @@ float cloud_density(
     metal::texture2d<float, metal::access::sample> curl_tex,
     metal::sampler noise_sampler
 ) {
-    bool local_13 = {};
-    bool local_14 = {};
+    bool local_16 = {};
+    bool local_17 = {};
     float base = {};
     float density = {};
-    bool local_15 = {};
-    bool local_16 = {};
+    bool local_18 = {};
+    bool local_19 = {};
     metal::float3 detail_pos = {};
     float bottom_1 = frame.atmosphere.y;
     float top_1 = frame.atmosphere.z;
-    float h_5 = (alt_3 - bottom_1) / (top_1 - bottom_1);
-    if (!((h_5 < 0.0))) {
-        local_13 = h_5 > 1.0;
+    float h_6 = (alt_3 - bottom_1) / (top_1 - bottom_1);
+    if (!((h_6 < 0.0))) {
+        local_16 = h_6 > 1.0;
     } else {
-        local_13 = true;
+        local_16 = true;
     }
-    bool _e22 = local_13;
+    bool _e22 = local_16;
     if (_e22) {
         return 0.0;
     }
-    uint _e25 = counters_1.density;
-    counters_1.density = _e25 + 1u;
+    uint _e25 = counters_2.density;
+    counters_2.density = _e25 + 1u;
     Weather _e28 = sample_weather(p_3, frame, weather_tex, noise_sampler);
-    float _e30 = height_signal(h_5, _e28.cloud_type, frame);
+    float _e30 = height_signal(h_6, _e28.cloud_type, frame);
     if (!((_e28.coverage <= 0.0))) {
-        local_14 = _e30 <= 0.0;
+        local_17 = _e30 <= 0.0;
     } else {
-        local_14 = true;
+        local_17 = true;
     }
-    bool _e40 = local_14;
+    bool _e40 = local_17;
     if (_e40) {
         return 0.0;
     }
@@ -419,9 +464,9 @@ float cloud_density(
     float _e60 = frame.wind_offsets0_.z;
     float _e66 = frame.wind_offsets0_.w;
     metal::float3 shape_pos = metal::float3(p_3.x - _e60, alt_3, p_3.z - _e66);
-    metal::float4 s_2 = shape_tex.sample(noise_sampler, shape_pos / period, metal::level(0.0));
-    float low_fbm = ((s_2.y * 0.625) + (s_2.z * 0.25)) + (s_2.w * 0.125);
-    float _e91 = remap(s_2.x, low_fbm - 1.0, 1.0, 0.0, 1.0);
+    metal::float4 s_3 = shape_tex.sample(noise_sampler, shape_pos / period, metal::level(0.0));
+    float low_fbm = ((s_3.y * 0.625) + (s_3.z * 0.25)) + (s_3.w * 0.125);
+    float _e91 = remap(s_3.x, low_fbm - 1.0, 1.0, 0.0, 1.0);
     float _e92 = saturate(_e91);
     base = _e92 * _e30;
     float _e95 = base;
@@ -437,21 +482,21 @@ float cloud_density(
     float strength = frame.erosion.x;
     float threshold = frame.erosion.y;
     if (DETAIL) {
-        local_15 = strength > 0.0;
+        local_18 = strength > 0.0;
     } else {
-        local_15 = false;
+        local_18 = false;
     }
-    bool _e126 = local_15;
+    bool _e126 = local_18;
     if (_e126) {
         float _e129 = base;
-        local_16 = _e129 < threshold;
+        local_19 = _e129 < threshold;
     } else {
-        local_16 = false;
+        local_19 = false;
     }
-    bool _e132 = local_16;
+    bool _e132 = local_19;
     if (_e132) {
-        uint _e134 = counters_1.detail;
-        counters_1.detail = _e134 + 1u;
+        uint _e134 = counters_2.detail;
+        counters_2.detail = _e134 + 1u;
         detail_pos = metal::float3(p_3.x, alt_3, p_3.z);
         if (CURL) {
             metal::float4 _e145 = frame.wind_offsets1_;
@@ -461,7 +506,7 @@ float cloud_density(
             metal::float2 curl = (_e157.xy * 2.0) - metal::float2(1.0);
             metal::float3 _e164 = detail_pos;
             float _e172 = frame.erosion.z;
-            detail_pos = _e164 + (metal::float3(curl.x, 0.0, curl.y) * (_e172 * (1.0 - h_5)));
+            detail_pos = _e164 + (metal::float3(curl.x, 0.0, curl.y) * (_e172 * (1.0 - h_6)));
         }
         metal::float3 _e178 = detail_pos;
         float _e182 = frame.wind_offsets1_.x;
@@ -472,7 +517,7 @@ float cloud_density(
         metal::float4 dn = detail_tex.sample(noise_sampler, _e192 / metal::float3(_e196), metal::level(0.0));
         float high_fbm = ((dn.x * 0.625) + (dn.y * 0.25)) + (dn.z * 0.125);
         float _e215 = frame.extinction.w;
-        float _e220 = saturate(h_5 * 10.0);
+        float _e220 = saturate(h_6 * 10.0);
         float _e222 = saturate((2.0 * _e215) * _e220);
         float shape = metal::mix(1.0 - high_fbm, high_fbm, _e222);
         float _e227 = base;
@@ -484,7 +529,7 @@ float cloud_density(
     }
     float _e238 = density;
     float _e242 = frame.erosion.w;
-    density = _e238 * metal::mix(1.0, h_5, _e242);
+    density = _e238 * metal::mix(1.0, h_6, _e242);
     float _e246 = density;
     float _e250 = frame.clouds.y;
     density = (_e246 * _e250) * (1.0 + _e28.precipitation);
@@ -541,7 +586,7 @@ float phase(
 float sun_optical_depth(
     metal::float3 rel,
     metal::float3 p_4,
-    thread Counters& counters_2,
+    thread Counters& counters_3,
     constant Frame& frame,
     metal::texture3d<float, metal::access::sample> shape_tex,
     metal::texture3d<float, metal::access::sample> detail_tex,
@@ -552,8 +597,8 @@ float sun_optical_depth(
     float seg = {};
     float dist = 0.0;
     float tau = 0.0;
-    uint i = 0u;
-    bool local_17 = {};
+    uint i_1 = 0u;
+    bool local_20 = {};
     metal::float4 _e5 = frame.sun_direction;
     metal::float3 sun = _e5.xyz;
     float _e10 = frame.extinction.x;
@@ -569,11 +614,11 @@ float sun_optical_depth(
         if (metal::all(loop_bound == uint2(0u))) { break; }
         loop_bound -= uint2(loop_bound.y == 0u, 1u);
         if (!loop_init) {
-            uint _e78 = i;
-            i = _e78 + 1u;
+            uint _e78 = i_1;
+            i_1 = _e78 + 1u;
         }
         loop_init = false;
-        uint _e35 = i;
+        uint _e35 = i_1;
         if (_e35 < steps_1) {
         } else {
             break;
@@ -581,24 +626,24 @@ float sun_optical_depth(
         {
             float _e37 = dist;
             float _e38 = seg;
-            float s_3 = _e37 + (0.5 * _e38);
-            metal::float3 q_5 = rel + (sun * s_3);
-            float _e44 = altitude_of(q_5, frame);
+            float s_4 = _e37 + (0.5 * _e38);
+            metal::float3 q_6 = rel + (sun * s_4);
+            float _e44 = altitude_of(q_6, frame);
             float _e48 = frame.atmosphere.z;
             if (!((_e44 > _e48))) {
                 float _e56 = frame.atmosphere.y;
-                local_17 = _e44 < _e56;
+                local_20 = _e44 < _e56;
             } else {
-                local_17 = true;
+                local_20 = true;
             }
-            bool _e59 = local_17;
+            bool _e59 = local_20;
             if (_e59) {
                 break;
             }
-            uint _e61 = counters_2.light;
-            counters_2.light = _e61 + 1u;
+            uint _e61 = counters_3.light;
+            counters_3.light = _e61 + 1u;
             float _e64 = tau;
-            float _e67 = cloud_density(p_4 + (sun * s_3), _e44, counters_2, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+            float _e67 = cloud_density(p_4 + (sun * s_4), _e44, counters_3, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
             float _e69 = seg;
             tau = _e64 + ((_e67 * sigma_t_1) * _e69);
             float _e72 = dist;
@@ -621,11 +666,11 @@ float sun_scattering(
     float ka = 1.0;
     float kb = 1.0;
     float kc = 1.0;
-    uint i_1 = 0u;
+    uint i_2 = 0u;
     float total = {};
-    float a_1 = frame.multiple_scattering.x;
-    float b_4 = frame.multiple_scattering.y;
-    float c_4 = frame.multiple_scattering.z;
+    float a_4 = frame.multiple_scattering.x;
+    float b_5 = frame.multiple_scattering.y;
+    float c_5 = frame.multiple_scattering.z;
     uint _e17 = frame.misc.x;
     uint octaves = metal::min(_e17, MAX_OCTAVES);
     uint2 loop_bound_1 = uint2(4294967295u);
@@ -634,22 +679,22 @@ float sun_scattering(
         if (metal::all(loop_bound_1 == uint2(0u))) { break; }
         loop_bound_1 -= uint2(loop_bound_1.y == 0u, 1u);
         if (!loop_init_1) {
-            uint _e50 = i_1;
-            i_1 = _e50 + 1u;
+            uint _e50 = i_2;
+            i_2 = _e50 + 1u;
         }
         loop_init_1 = false;
-        uint _e30 = i_1;
+        uint _e30 = i_2;
         if (_e30 < octaves) {
         } else {
             break;
         }
         {
             float _e32 = ka;
-            ka = _e32 * a_1;
+            ka = _e32 * a_4;
             float _e34 = kb;
-            kb = _e34 * b_4;
+            kb = _e34 * b_5;
             float _e36 = kc;
-            kc = _e36 * c_4;
+            kc = _e36 * c_5;
             float _e38 = octave_sum;
             float _e39 = ka;
             float _e40 = kc;
@@ -689,7 +734,7 @@ metal::float3 scattered_light(
     float alt_4,
     float density_1,
     metal::float3 view,
-    thread Counters& counters_3,
+    thread Counters& counters_4,
     constant Frame& frame,
     metal::texture3d<float, metal::access::sample> shape_tex,
     metal::texture3d<float, metal::access::sample> detail_tex,
@@ -708,7 +753,7 @@ metal::float3 scattered_light(
     bool _e29 = hits_ground(rel_1, alt_4, sun_1, frame);
     if (!(_e29)) {
         if (LIGHT_MARCH) {
-            float _e34 = sun_optical_depth(rel_1, p_5, counters_3, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+            float _e34 = sun_optical_depth(rel_1, p_5, counters_4, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
             tau_2 = _e34;
         }
         metal::float4 _e37 = frame.sun_illuminance;
@@ -738,9 +783,9 @@ float empty_cell_exit(
     float exit = 1000000000000000000000000000000.0;
     metal::float4 _e6 = frame.wind_offsets0_;
     float _e12 = frame.periods.x;
-    metal::float2 uv_1 = metal::fract((p_6.xz - _e6.xy) / metal::float2(_e12)) * 64.0;
-    metal::uint2 cell = metal::min(naga_f2u32(uv_1), metal::uint2(63u));
-    metal::float4 _e23 = occupancy_in.read(metal::uint2(cell), 0);
+    metal::float2 uv_2 = metal::fract((p_6.xz - _e6.xy) / metal::float2(_e12)) * 64.0;
+    metal::uint2 cell_1 = metal::min(naga_f2u32(uv_2), metal::uint2(63u));
+    metal::float4 _e23 = occupancy_in.read(metal::uint2(cell_1), 0);
     float m_1 = _e23.x;
     float _e28 = frame.clouds.x;
     if ((m_1 + (2.0 * (_e28 - 0.5))) > -0.003921569) {
@@ -748,7 +793,7 @@ float empty_cell_exit(
     }
     float _e40 = frame.periods.x;
     float cell_m = _e40 / 64.0;
-    metal::float2 inside = (uv_1 - static_cast<metal::float2>(cell)) * cell_m;
+    metal::float2 inside = (uv_2 - static_cast<metal::float2>(cell_1)) * cell_m;
     if (d_3.x > 0.000001) {
         float _e50 = exit;
         exit = metal::min(_e50, (cell_m - inside.x) / d_3.x);
@@ -772,19 +817,19 @@ float empty_cell_exit(
 }
 
 void count(
-    uint index,
+    uint index_1,
     uint value,
     device Stats& stats
 ) {
-    bool local_18 = {};
+    bool local_21 = {};
     if (STATS) {
-        local_18 = value != 0u;
+        local_21 = value != 0u;
     } else {
-        local_18 = false;
+        local_21 = false;
     }
-    bool _e8 = local_18;
+    bool _e8 = local_21;
     if (_e8) {
-        uint _e12 = metal::atomic_fetch_add_explicit(&stats.counters.inner[index], value, metal::memory_order_relaxed);
+        uint _e12 = metal::atomic_fetch_add_explicit(&stats.counters.inner[index_1], value, metal::memory_order_relaxed);
         return;
     } else {
         return;
@@ -816,8 +861,8 @@ float start_offset(
 ) {
     uint _e4 = frame.modes.w;
     bool jitter = (_e4 & FLAG_JITTER) != 0u;
-    uint k_3 = frame.temporal.x;
-    if (k_3 <= 1u) {
+    uint k_5 = frame.temporal.x;
+    if (k_5 <= 1u) {
         uint _e18 = frame.misc.y;
         float _e19 = hash_unit(pixel_2, _e18);
         return jitter ? _e19 : 0.5;
@@ -825,7 +870,7 @@ float start_offset(
     float _e23 = hash_unit(pixel_2, 0u);
     float base_2 = jitter ? _e23 : 0.5;
     uint _e29 = frame.misc.y;
-    float _e32 = van_der_corput(naga_div(_e29, k_3 * k_3));
+    float _e32 = van_der_corput(naga_div(_e29, k_5 * k_5));
     return metal::fract(base_2 + _e32);
 }
 
@@ -844,15 +889,15 @@ MarchResult march_pixel(
     metal::texture2d<float, metal::access::sample> occupancy_in,
     device Stats& stats
 ) {
-    Counters counters_4 = Counters {0u, 0u, 0u, 0u};
+    Counters counters_5 = Counters {0u, 0u, 0u, 0u};
     metal::float3 radiance = metal::float3(0.0);
     float transmittance = 1.0;
     float depth_sum = 0.0;
     uint steps = {};
-    uint i_2 = 0u;
+    uint i_3 = 0u;
     uint stride = 1u;
     uint empty = 0u;
-    bool local_19 = {};
+    bool local_22 = {};
     float depth_1 = 0.0;
     metal::float3 _e1 = view_ray(pixel_3, frame);
     float cam_alt = frame.camera_position.y;
@@ -888,59 +933,59 @@ MarchResult march_pixel(
             while(true) {
                 if (metal::all(loop_bound_2 == uint2(0u))) { break; }
                 loop_bound_2 -= uint2(loop_bound_2.y == 0u, 1u);
-                uint _e96 = i_2;
+                uint _e96 = i_3;
                 uint _e97 = steps;
                 if (_e96 >= _e97) {
                     break;
                 }
-                uint _e100 = counters_4.view_steps;
-                counters_4.view_steps = _e100 + 1u;
-                uint _e104 = i_2;
+                uint _e100 = counters_5.view_steps;
+                counters_5.view_steps = _e100 + 1u;
+                uint _e104 = i_3;
                 float t_4 = _e25.start + ((static_cast<float>(_e104) + _e64) * dt_1);
-                metal::float3 rel_3 = (_e1 * t_4) + metal::float3(0.0, cam_alt, 0.0);
-                metal::float3 p_9 = metal::float3(rel_3.x + cam_xz.x, rel_3.y, rel_3.z + cam_xz.y);
+                metal::float3 rel_4 = (_e1 * t_4) + metal::float3(0.0, cam_alt, 0.0);
+                metal::float3 p_11 = metal::float3(rel_4.x + cam_xz.x, rel_4.y, rel_4.z + cam_xz.y);
                 if (empty_skip) {
-                    float _e122 = empty_cell_exit(p_9, _e1, frame, occupancy_in);
+                    float _e122 = empty_cell_exit(p_11, _e1, frame, occupancy_in);
                     if (_e122 > 0.0) {
                         uint _e131 = steps;
                         uint next = naga_f2u32(metal::clamp(metal::ceil((((t_4 + _e122) - _e25.start) / dt_1) - _e64), 0.0, static_cast<float>(_e131)));
-                        uint _e136 = i_2;
-                        i_2 = metal::max(_e136 + 1u, next);
+                        uint _e136 = i_3;
+                        i_3 = metal::max(_e136 + 1u, next);
                         continue;
                     }
                 }
-                float _e140 = altitude_of(rel_3, frame);
-                float _e141 = cloud_density(p_9, _e140, counters_4, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+                float _e140 = altitude_of(rel_4, frame);
+                float _e141 = cloud_density(p_11, _e140, counters_5, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
                 if (_e141 <= 0.0) {
                     uint _e144 = empty;
                     empty = _e144 + 1u;
                     if (dynamic_step) {
                         uint _e149 = empty;
-                        local_19 = _e149 >= 8u;
+                        local_22 = _e149 >= 8u;
                     } else {
-                        local_19 = false;
+                        local_22 = false;
                     }
-                    bool _e153 = local_19;
+                    bool _e153 = local_22;
                     if (_e153) {
                         stride = 2u;
                     }
-                    uint _e155 = i_2;
+                    uint _e155 = i_3;
                     uint _e156 = stride;
-                    i_2 = _e155 + _e156;
+                    i_3 = _e155 + _e156;
                     continue;
                 }
                 uint _e158 = stride;
                 if (_e158 > 1u) {
-                    uint _e161 = i_2;
+                    uint _e161 = i_3;
                     uint _e162 = stride;
-                    i_2 = _e161 - (_e162 - 1u);
+                    i_3 = _e161 - (_e162 - 1u);
                     stride = 1u;
                     empty = 0u;
                     continue;
                 }
                 empty = 0u;
                 float sigma_t_2 = sigma_e * _e141;
-                metal::float3 _e170 = scattered_light(rel_3, p_9, _e140, _e141, _e1, counters_4, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+                metal::float3 _e170 = scattered_light(rel_4, p_11, _e140, _e141, _e1, counters_5, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
                 metal::float3 _e171 = radiance;
                 float _e172 = transmittance;
                 metal::float3 _e173 = step_integral(_e170, sigma_t_2, dt_1, frame);
@@ -957,18 +1002,18 @@ MarchResult march_pixel(
                     count(STAT_EXIT_TRANSMITTANCE, 1u, stats);
                     break;
                 }
-                uint _e196 = i_2;
-                i_2 = _e196 + 1u;
+                uint _e196 = i_3;
+                i_3 = _e196 + 1u;
             }
         }
     }
-    uint _e201 = counters_4.view_steps;
+    uint _e201 = counters_5.view_steps;
     count(STAT_VIEW_STEPS, _e201, stats);
-    uint _e204 = counters_4.density;
+    uint _e204 = counters_5.density;
     count(STAT_DENSITY, _e204, stats);
-    uint _e207 = counters_4.detail;
+    uint _e207 = counters_5.detail;
     count(STAT_DETAIL, _e207, stats);
-    uint _e210 = counters_4.light;
+    uint _e210 = counters_5.light;
     count(STAT_LIGHT, _e210, stats);
     float _e213 = transmittance;
     if (_e213 < 1.0) {
@@ -1001,9 +1046,9 @@ metal::uint2 block_offset(
         return _e6;
     }
     if (k == 4u) {
-        uint b_5 = naga_mod(f, 16u);
-        metal::uint2 _e13 = bayer2_(b_5 >> 2u);
-        metal::uint2 _e17 = bayer2_(b_5 & 3u);
+        uint b_6 = naga_mod(f, 16u);
+        metal::uint2 _e13 = bayer2_(b_6 >> 2u);
+        metal::uint2 _e17 = bayer2_(b_6 & 3u);
         return _e13 + (2u * _e17);
     }
     return metal::uint2(0u);
@@ -1014,36 +1059,36 @@ metal::float2 reproject(
     float depth_2,
     constant Frame& frame
 ) {
-    bool local_20 = {};
-    bool local_21 = {};
-    bool local_22 = {};
+    bool local_23 = {};
+    bool local_24 = {};
+    bool local_25 = {};
     metal::float3 dir = {};
     metal::float4 _e4 = frame.previous_position;
     metal::float4 _e7 = frame.camera_position;
     if (metal::all(_e4 == _e7)) {
         metal::float4 _e14 = frame.previous_forward;
         metal::float4 _e17 = frame.camera_forward;
-        local_20 = metal::all(_e14 == _e17);
+        local_23 = metal::all(_e14 == _e17);
     } else {
-        local_20 = false;
+        local_23 = false;
     }
-    bool _e21 = local_20;
+    bool _e21 = local_23;
     if (_e21) {
         metal::float4 _e26 = frame.previous_right;
         metal::float4 _e29 = frame.camera_right;
-        local_21 = metal::all(_e26 == _e29);
+        local_24 = metal::all(_e26 == _e29);
     } else {
-        local_21 = false;
+        local_24 = false;
     }
-    bool _e33 = local_21;
+    bool _e33 = local_24;
     if (_e33) {
         metal::float4 _e38 = frame.previous_up;
         metal::float4 _e41 = frame.camera_up;
-        local_22 = metal::all(_e38 == _e41);
+        local_25 = metal::all(_e38 == _e41);
     } else {
-        local_22 = false;
+        local_25 = false;
     }
-    bool same = local_22;
+    bool same = local_25;
     if (same) {
         return static_cast<metal::float2>(pixel_4);
     }
@@ -1075,15 +1120,15 @@ bool on_screen(
     metal::float2 q,
     constant Frame& frame
 ) {
-    bool local_23 = {};
+    bool local_26 = {};
     metal::uint4 _e3 = frame.counts;
     metal::float2 size_1 = static_cast<metal::float2>(_e3.xy);
     if (metal::all(q >= metal::float2(-0.5))) {
-        local_23 = metal::all(q <= (size_1 - metal::float2(0.5)));
+        local_26 = metal::all(q <= (size_1 - metal::float2(0.5)));
     } else {
-        local_23 = false;
+        local_26 = false;
     }
-    bool _e18 = local_23;
+    bool _e18 = local_26;
     return _e18;
 }
 
@@ -1125,18 +1170,18 @@ metal::float4 history_at(
 ) {
     metal::uint4 _e3 = frame.counts;
     metal::int2 size_3 = static_cast<metal::int2>(_e3.xy);
-    metal::float2 c_5 = metal::clamp(q_1, metal::float2(0.0), static_cast<metal::float2>(as_type<metal::int2>(as_type<metal::uint2>(size_3) - as_type<metal::uint2>(metal::int2(1)))));
-    metal::int2 base_3 = naga_f2i32(metal::floor(c_5));
-    metal::float2 f_2 = c_5 - static_cast<metal::float2>(base_3);
+    metal::float2 c_6 = metal::clamp(q_1, metal::float2(0.0), static_cast<metal::float2>(as_type<metal::int2>(as_type<metal::uint2>(size_3) - as_type<metal::uint2>(metal::int2(1)))));
+    metal::int2 base_3 = naga_f2i32(metal::floor(c_6));
+    metal::float2 f_2 = c_6 - static_cast<metal::float2>(base_3);
     metal::float4 _e18 = catmull_rom(f_2.x);
     metal::float4 _e20 = catmull_rom(f_2.y);
     metal::float4 _e22 = history_row(base_3, -1, _e18, frame, history_in);
     metal::float4 _e26 = history_row(base_3, 0, _e18, frame, history_in);
     metal::float4 _e31 = history_row(base_3, 1, _e18, frame, history_in);
     metal::float4 _e36 = history_row(base_3, 2, _e18, frame, history_in);
-    metal::float4 sum = (((_e22 * _e20.x) + (_e26 * _e20.y)) + (_e31 * _e20.z)) + (_e36 * _e20.w);
-    float _e45 = saturate(sum.w);
-    return metal::float4(metal::max(sum.xyz, metal::float3(0.0)), _e45);
+    metal::float4 sum_2 = (((_e22 * _e20.x) + (_e26 * _e20.y)) + (_e31 * _e20.z)) + (_e36 * _e20.w);
+    float _e45 = saturate(sum_2.w);
+    return metal::float4(metal::max(sum_2.xyz, metal::float3(0.0)), _e45);
 }
 
 metal::float4 history_nearest(
@@ -1146,8 +1191,8 @@ metal::float4 history_nearest(
 ) {
     metal::uint4 _e3 = frame.counts;
     metal::int2 size_4 = static_cast<metal::int2>(_e3.xy);
-    metal::int2 p_10 = metal::clamp(naga_f2i32(metal::rint(q_2)), metal::int2(0), as_type<metal::int2>(as_type<metal::uint2>(size_4) - as_type<metal::uint2>(metal::int2(1))));
-    metal::float4 _e16 = history_in.read(metal::uint2(p_10), 0);
+    metal::int2 p_12 = metal::clamp(naga_f2i32(metal::rint(q_2)), metal::int2(0), as_type<metal::int2>(as_type<metal::uint2>(size_4) - as_type<metal::uint2>(metal::int2(1))));
+    metal::float4 _e16 = history_in.read(metal::uint2(p_12), 0);
     return _e16;
 }
 
@@ -1158,8 +1203,8 @@ metal::float4 meta_at(
 ) {
     metal::uint4 _e3 = frame.counts;
     metal::int2 size_5 = static_cast<metal::int2>(_e3.xy);
-    metal::int2 p_11 = metal::clamp(naga_f2i32(metal::rint(q_3)), metal::int2(0), as_type<metal::int2>(as_type<metal::uint2>(size_5) - as_type<metal::uint2>(metal::int2(1))));
-    metal::float4 _e16 = meta_in.read(metal::uint2(p_11), 0);
+    metal::int2 p_13 = metal::clamp(naga_f2i32(metal::rint(q_3)), metal::int2(0), as_type<metal::int2>(as_type<metal::uint2>(size_5) - as_type<metal::uint2>(metal::int2(1))));
+    metal::float4 _e16 = meta_in.read(metal::uint2(p_13), 0);
     return _e16;
 }
 
@@ -1168,32 +1213,32 @@ metal::uint2 naga_div(metal::uint2 lhs, metal::uint2 rhs) {
 }
 
 bool in_blocks(
-    metal::uint2 id_7,
+    metal::uint2 id_12,
     constant Frame& frame
 ) {
-    uint k_4 = frame.temporal.x;
+    uint k_6 = frame.temporal.x;
     metal::uint4 _e7 = frame.counts;
-    return metal::all(id_7 < naga_div((_e7.xy + metal::uint2(k_4)) - metal::uint2(1u), metal::uint2(k_4)));
+    return metal::all(id_12 < naga_div((_e7.xy + metal::uint2(k_6)) - metal::uint2(1u), metal::uint2(k_6)));
 }
 
 metal::uint2 sparse_pixel(
-    metal::uint2 id_8,
+    metal::uint2 id_13,
     constant Frame& frame
 ) {
-    uint k_5 = frame.temporal.x;
+    uint k_7 = frame.temporal.x;
     uint _e9 = frame.misc.y;
-    metal::uint2 _e10 = block_offset(_e9, k_5);
-    return (id_8 * k_5) + _e10;
+    metal::uint2 _e10 = block_offset(_e9, k_7);
+    return (id_13 * k_7) + _e10;
 }
 
 void store_sparse(
-    metal::uint2 id_9,
+    metal::uint2 id_14,
     MarchResult r_2,
     metal::texture2d<float, metal::access::write> cloud_out,
     metal::texture2d<float, metal::access::write> depth_out
 ) {
-    cloud_out.write(metal::float4(r_2.radiance, r_2.transmittance), metal::uint2(id_9));
-    depth_out.write(metal::float4(r_2.depth, 0.0, 0.0, 0.0), metal::uint2(id_9));
+    cloud_out.write(metal::float4(r_2.radiance, r_2.transmittance), metal::uint2(id_14));
+    depth_out.write(metal::float4(r_2.depth, 0.0, 0.0, 0.0), metal::uint2(id_14));
     return;
 }
 
@@ -1212,8 +1257,8 @@ float rng_next(
 ) {
     uint _e1 = rng_1;
     rng_1 = (_e1 * 747796405u) + 2891336453u;
-    uint s_4 = rng_1;
-    uint word_1 = ((s_4 >> ((s_4 >> 28u) + 4u)) ^ s_4) * 277803737u;
+    uint s_5 = rng_1;
+    uint word_1 = ((s_5 >> ((s_5 >> 28u) + 4u)) ^ s_5) * 277803737u;
     return static_cast<float>(((word_1 >> 22u) ^ word_1) >> 8u) * 0.000000059604645;
 }
 
@@ -1233,9 +1278,9 @@ Roots ray_shell_from(
     constant Frame& frame
 ) {
     float rp_3 = frame.atmosphere.x;
-    float b_6 = metal::dot(d_4, metal::float3(p_7.x, p_7.y + rp_3, p_7.z));
-    float c_6 = (alt_5 - radius_alt_1) * ((alt_5 + radius_alt_1) + (2.0 * rp_3));
-    Roots _e20 = solve_sphere(b_6, c_6);
+    float b_7 = metal::dot(d_4, metal::float3(p_7.x, p_7.y + rp_3, p_7.z));
+    float c_7 = (alt_5 - radius_alt_1) * ((alt_5 + radius_alt_1) + (2.0 * rp_3));
+    Roots _e20 = solve_sphere(b_7, c_7);
     return _e20;
 }
 
@@ -1246,58 +1291,58 @@ Segments layer_segments(
     constant Frame& frame
 ) {
     Segments s = Segments {metal::float2(0.0), metal::float2(0.0), 0u};
-    bool local_24 = {};
-    metal::float2 a = metal::float2(0.0);
+    bool local_27 = {};
+    metal::float2 a_1 = metal::float2(0.0);
     metal::float2 b_1 = metal::float2(0.0);
     uint n_1 = 0u;
-    bool local_25 = {};
-    bool local_26 = {};
-    bool local_27 = {};
     bool local_28 = {};
+    bool local_29 = {};
+    bool local_30 = {};
+    bool local_31 = {};
     float bottom_2 = frame.atmosphere.y;
     Roots _e14 = ray_shell_from(p_8, alt_6, d_5, bottom_2, frame);
     float _e18 = frame.atmosphere.z;
     Roots _e19 = ray_shell_from(p_8, alt_6, d_5, _e18, frame);
     bool _e20 = hits_ground(p_8, alt_6, d_5, frame);
     if (!(!(_e19.hit))) {
-        local_24 = _e19.t1_ <= 0.0;
+        local_27 = _e19.t1_ <= 0.0;
     } else {
-        local_24 = true;
+        local_27 = true;
     }
-    bool _e30 = local_24;
+    bool _e30 = local_27;
     if (_e30) {
         Segments _e31 = s;
         return _e31;
     }
     float entry = metal::max(_e19.t0_, 0.0);
     if (_e14.hit) {
-        local_25 = _e14.t0_ > 0.0;
+        local_28 = _e14.t0_ > 0.0;
     } else {
-        local_25 = false;
+        local_28 = false;
     }
-    bool _e50 = local_25;
+    bool _e50 = local_28;
     if (_e50) {
-        local_26 = alt_6 >= bottom_2;
+        local_29 = alt_6 >= bottom_2;
     } else {
-        local_26 = false;
+        local_29 = false;
     }
-    bool _e55 = local_26;
+    bool _e55 = local_29;
     if (_e55) {
         uint _e56 = n_1;
-        a[_e56] = entry;
+        a_1[_e56] = entry;
         uint _e58 = n_1;
         b_1[_e58] = _e14.t0_;
         uint _e61 = n_1;
         n_1 = _e61 + static_cast<uint>(_e14.t0_ > entry);
         if (!(_e20)) {
-            local_27 = _e19.t1_ > _e14.t1_;
+            local_30 = _e19.t1_ > _e14.t1_;
         } else {
-            local_27 = false;
+            local_30 = false;
         }
-        bool _e73 = local_27;
+        bool _e73 = local_30;
         if (_e73) {
             uint _e74 = n_1;
-            a[_e74] = metal::max(_e14.t1_, entry);
+            a_1[_e74] = metal::max(_e14.t1_, entry);
             uint _e78 = n_1;
             b_1[_e78] = _e19.t1_;
             uint _e81 = n_1;
@@ -1306,23 +1351,23 @@ Segments layer_segments(
     } else {
         if (alt_6 < bottom_2) {
             if (!(_e20)) {
-                local_28 = _e14.hit;
+                local_31 = _e14.hit;
             } else {
-                local_28 = false;
+                local_31 = false;
             }
-            bool _e90 = local_28;
+            bool _e90 = local_31;
             if (_e90) {
-                a.x = metal::max(_e14.t1_, 0.0);
+                a_1.x = metal::max(_e14.t1_, 0.0);
                 b_1.x = _e19.t1_;
                 n_1 = 1u;
             }
         } else {
-            a.x = entry;
+            a_1.x = entry;
             b_1.x = _e19.t1_;
             n_1 = 1u;
         }
     }
-    metal::float2 _e103 = a;
+    metal::float2 _e103 = a_1;
     s.a = _e103;
     metal::float2 _e105 = b_1;
     s.b = _e105;
@@ -1334,7 +1379,7 @@ Segments layer_segments(
 
 float density_at(
     metal::float3 rel_2,
-    thread Counters& counters_5,
+    thread Counters& counters_6,
     constant Frame& frame,
     metal::texture3d<float, metal::access::sample> shape_tex,
     metal::texture3d<float, metal::access::sample> detail_tex,
@@ -1344,9 +1389,9 @@ float density_at(
 ) {
     float _e6 = frame.camera_position.x;
     float _e13 = frame.camera_position.z;
-    metal::float3 p_12 = metal::float3(rel_2.x + _e6, rel_2.y, rel_2.z + _e13);
+    metal::float3 p_14 = metal::float3(rel_2.x + _e6, rel_2.y, rel_2.z + _e13);
     float _e16 = altitude_of(rel_2, frame);
-    float _e17 = cloud_density(p_12, _e16, counters_5, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+    float _e17 = cloud_density(p_14, _e16, counters_6, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
     return _e17;
 }
 
@@ -1357,11 +1402,11 @@ float empty_cell_skip(
     constant Frame& frame,
     metal::texture2d<float, metal::access::sample> occupancy_in
 ) {
-    metal::float3 rel_4 = origin + (dir_1 * t_1);
+    metal::float3 rel_5 = origin + (dir_1 * t_1);
     float _e9 = frame.camera_position.x;
     float _e16 = frame.camera_position.z;
-    metal::float3 p_13 = metal::float3(rel_4.x + _e9, rel_4.y, rel_4.z + _e16);
-    float _e19 = empty_cell_exit(p_13, dir_1, frame, occupancy_in);
+    metal::float3 p_15 = metal::float3(rel_5.x + _e9, rel_5.y, rel_5.z + _e16);
+    float _e19 = empty_cell_exit(p_15, dir_1, frame, occupancy_in);
     if (_e19 <= 0.0) {
         return 0.0;
     }
@@ -1381,7 +1426,7 @@ float free_flight(
     metal::float3 dir_2,
     Segments segs,
     thread uint& rng_3,
-    thread Counters& counters_6,
+    thread Counters& counters_7,
     constant Frame& frame,
     metal::texture3d<float, metal::access::sample> shape_tex,
     metal::texture3d<float, metal::access::sample> detail_tex,
@@ -1441,10 +1486,10 @@ float free_flight(
                 if (_e42 >= segs.b[_e44]) {
                     break;
                 }
-                uint _e48 = counters_6.view_steps;
-                counters_6.view_steps = _e48 + 1u;
+                uint _e48 = counters_7.view_steps;
+                counters_7.view_steps = _e48 + 1u;
                 float _e51 = t_2;
-                float _e54 = density_at(origin_1 + (dir_2 * _e51), counters_6, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+                float _e54 = density_at(origin_1 + (dir_2 * _e51), counters_7, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
                 float _e55 = rng_next(rng_3);
                 if ((_e55 * _e5) < _e54) {
                     float _e58 = t_2;
@@ -1461,7 +1506,7 @@ float transmittance_along(
     metal::float3 dir_3,
     Segments segs_1,
     thread uint& rng_4,
-    thread Counters& counters_7,
+    thread Counters& counters_8,
     constant Frame& frame,
     metal::texture3d<float, metal::access::sample> shape_tex,
     metal::texture3d<float, metal::access::sample> detail_tex,
@@ -1523,10 +1568,10 @@ float transmittance_along(
                 if (_e44 >= segs_1.b[_e46]) {
                     break;
                 }
-                uint _e50 = counters_7.light;
-                counters_7.light = _e50 + 1u;
+                uint _e50 = counters_8.light;
+                counters_8.light = _e50 + 1u;
                 float _e53 = t_3;
-                float _e56 = density_at(origin_2 + (dir_3 * _e53), counters_7, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+                float _e56 = density_at(origin_2 + (dir_3 * _e53), counters_8, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
                 float _e57 = tr;
                 tr = _e57 * (1.0 - ((sigma_t_3 * _e56) / majorant_1));
                 float _e63 = tr;
@@ -1556,8 +1601,8 @@ float sample_hg_cos(
     if (metal::abs(g_2) < 0.0001) {
         return 1.0 - (2.0 * u);
     }
-    float s_5 = (1.0 - (g_2 * g_2)) / ((1.0 - g_2) + ((2.0 * g_2) * u));
-    return metal::clamp(((1.0 + (g_2 * g_2)) - (s_5 * s_5)) / (2.0 * g_2), -1.0, 1.0);
+    float s_6 = (1.0 - (g_2 * g_2)) / ((1.0 - g_2) + ((2.0 * g_2) * u));
+    return metal::clamp(((1.0 + (g_2 * g_2)) - (s_6 * s_6)) / (2.0 * g_2), -1.0, 1.0);
 }
 
 PhaseSample sample_phase(
@@ -1600,12 +1645,12 @@ PhaseSample sample_phase(
     float _e61 = cos_theta_4;
     float sin_theta = metal::sqrt(metal::max(1.0 - (_e60 * _e61), 0.0));
     float sign = (dir_4.z >= 0.0) ? 1.0 : -1.0;
-    float a_2 = -1.0 / (sign + dir_4.z);
-    float bb = (dir_4.x * dir_4.y) * a_2;
-    metal::float3 t_5 = metal::float3(1.0 + (((sign * dir_4.x) * dir_4.x) * a_2), sign * bb, -(sign) * dir_4.x);
-    metal::float3 b_7 = metal::float3(bb, sign + ((dir_4.y * dir_4.y) * a_2), -(dir_4.y));
+    float a_5 = -1.0 / (sign + dir_4.z);
+    float bb = (dir_4.x * dir_4.y) * a_5;
+    metal::float3 t_5 = metal::float3(1.0 + (((sign * dir_4.x) * dir_4.x) * a_5), sign * bb, -(sign) * dir_4.x);
+    metal::float3 b_8 = metal::float3(bb, sign + ((dir_4.y * dir_4.y) * a_5), -(dir_4.y));
     float _e109 = cos_theta_4;
-    metal::float3 w_1 = metal::normalize(((t_5 * (sin_theta * metal::cos(phi))) + (b_7 * (sin_theta * metal::sin(phi)))) + (dir_4 * _e109));
+    metal::float3 w_1 = metal::normalize(((t_5 * (sin_theta * metal::cos(phi))) + (b_8 * (sin_theta * metal::sin(phi)))) + (dir_4 * _e109));
     float _e113 = cos_theta_4;
     float _e115 = phase(_e113, 1.0, frame);
     float _e116 = pdf;
@@ -1617,7 +1662,7 @@ PathResult trace_path(
     metal::float3 view_1,
     Interval span,
     thread uint& rng_6,
-    thread Counters& counters_8,
+    thread Counters& counters_9,
     constant Frame& frame,
     metal::texture3d<float, metal::access::sample> shape_tex,
     metal::texture3d<float, metal::access::sample> detail_tex,
@@ -1626,30 +1671,30 @@ PathResult trace_path(
     metal::sampler noise_sampler,
     metal::texture2d<float, metal::access::sample> occupancy_in
 ) {
-    PathResult out = PathResult {metal::float3(0.0), 1.0, -1.0};
-    bool local_29 = {};
-    bool local_30 = {};
+    PathResult out_2 = PathResult {metal::float3(0.0), 1.0, -1.0};
+    bool local_32 = {};
+    bool local_33 = {};
     uint max_orders = MAX_PATH_ORDERS;
     metal::float3 pos = {};
     metal::float3 dir_5 = {};
     float throughput = 1.0;
     uint order = 0u;
-    bool local_31 = {};
+    bool local_34 = {};
     if (span.kind != RAY_MARCH) {
-        PathResult _e13 = out;
+        PathResult _e13 = out_2;
         return _e13;
     }
     float _e17 = frame.camera_position.y;
     metal::float3 cam = metal::float3(0.0, _e17, 0.0);
     Segments primary = Segments {metal::float2(span.start, 0.0), metal::float2(span.start + span.length, 0.0), 1u};
-    float _e32 = transmittance_along(cam, view_1, primary, rng_6, counters_8, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler, occupancy_in);
-    out.transmittance = _e32;
-    float _e33 = free_flight(cam, view_1, primary, rng_6, counters_8, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler, occupancy_in);
+    float _e32 = transmittance_along(cam, view_1, primary, rng_6, counters_9, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler, occupancy_in);
+    out_2.transmittance = _e32;
+    float _e33 = free_flight(cam, view_1, primary, rng_6, counters_9, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler, occupancy_in);
     if (_e33 < 0.0) {
-        PathResult _e36 = out;
+        PathResult _e36 = out_2;
         return _e36;
     }
-    out.depth = _e33;
+    out_2.depth = _e33;
     metal::float4 _e40 = frame.sun_direction;
     metal::float3 sun_2 = _e40.xyz;
     float _e45 = frame.extinction.x;
@@ -1662,16 +1707,16 @@ PathResult trace_path(
         metal::float4 _e70 = frame.ambient_bottom;
         if (!(metal::any(_e70.xyz > metal::float3(0.0)))) {
             metal::float4 _e81 = frame.ambient_top;
-            local_30 = metal::any(_e81.xyz > metal::float3(0.0));
+            local_33 = metal::any(_e81.xyz > metal::float3(0.0));
         } else {
-            local_30 = true;
+            local_33 = true;
         }
-        bool _e88 = local_30;
-        local_29 = _e88;
+        bool _e88 = local_33;
+        local_32 = _e88;
     } else {
-        local_29 = false;
+        local_32 = false;
     }
-    bool ambient_on = local_29;
+    bool ambient_on = local_32;
     uint _e96 = frame.misc.z;
     if (_e96 > 0u) {
         uint _e102 = frame.misc.z;
@@ -1699,26 +1744,26 @@ PathResult trace_path(
             metal::float3 _e139 = pos;
             metal::float3 _e140 = pos;
             Segments _e141 = layer_segments(_e140, _e119, sun_2, frame);
-            float _e142 = transmittance_along(_e139, sun_2, _e141, rng_6, counters_8, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler, occupancy_in);
-            metal::float3 _e144 = out.radiance;
+            float _e142 = transmittance_along(_e139, sun_2, _e141, rng_6, counters_9, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler, occupancy_in);
+            metal::float3 _e144 = out_2.radiance;
             metal::float4 _e147 = frame.sun_illuminance;
             float _e149 = throughput;
             metal::float3 _e150 = dir_5;
             float _e153 = phase(metal::dot(_e150, sun_2), 1.0, frame);
-            out.radiance = _e144 + (_e147.xyz * ((_e149 * _e153) * _e142));
+            out_2.radiance = _e144 + (_e147.xyz * ((_e149 * _e153) * _e142));
         }
         metal::float3 _e158 = dir_5;
         PhaseSample _e159 = sample_phase(_e158, rng_6, frame);
         metal::float3 _e160 = pos;
         metal::float3 _e162 = pos;
         Segments _e164 = layer_segments(_e162, _e119, _e159.dir, frame);
-        float _e165 = free_flight(_e160, _e159.dir, _e164, rng_6, counters_8, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler, occupancy_in);
+        float _e165 = free_flight(_e160, _e159.dir, _e164, rng_6, counters_9, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler, occupancy_in);
         if (_e165 < 0.0) {
             if (ambient_on) {
-                metal::float3 _e169 = out.radiance;
+                metal::float3 _e169 = out_2.radiance;
                 metal::float3 _e170 = ambient(_e135, frame);
                 float _e171 = throughput;
-                out.radiance = _e169 + (_e170 * (_e171 * _e159.weight));
+                out_2.radiance = _e169 + (_e170 * (_e171 * _e159.weight));
             }
             break;
         }
@@ -1733,11 +1778,11 @@ PathResult trace_path(
         uint _e183 = order;
         if (_e183 >= 3u) {
             float _e188 = throughput;
-            local_31 = _e188 < 0.1;
+            local_34 = _e188 < 0.1;
         } else {
-            local_31 = false;
+            local_34 = false;
         }
-        bool _e192 = local_31;
+        bool _e192 = local_34;
         if (_e192) {
             float _e193 = rng_next(rng_6);
             float _e194 = throughput;
@@ -1754,42 +1799,42 @@ PathResult trace_path(
         metal::float3 _e203 = dir_5;
         pos = _e202 + (_e203 * _e165);
     }
-    PathResult _e206 = out;
+    PathResult _e206 = out_2;
     return _e206;
 }
 
 bool camera_still(
     constant Frame& frame
 ) {
-    bool local_32 = {};
-    bool local_33 = {};
-    bool local_34 = {};
+    bool local_35 = {};
+    bool local_36 = {};
+    bool local_37 = {};
     metal::float4 _e2 = frame.camera_position;
     metal::float4 _e5 = frame.previous_position;
     if (metal::all(_e2 == _e5)) {
         metal::float4 _e12 = frame.camera_forward;
         metal::float4 _e15 = frame.previous_forward;
-        local_32 = metal::all(_e12 == _e15);
+        local_35 = metal::all(_e12 == _e15);
     } else {
-        local_32 = false;
+        local_35 = false;
     }
-    bool _e19 = local_32;
+    bool _e19 = local_35;
     if (_e19) {
         metal::float4 _e24 = frame.camera_right;
         metal::float4 _e28 = frame.previous_right;
-        local_33 = metal::all(_e24.xyz == _e28.xyz);
+        local_36 = metal::all(_e24.xyz == _e28.xyz);
     } else {
-        local_33 = false;
+        local_36 = false;
     }
-    bool _e33 = local_33;
+    bool _e33 = local_36;
     if (_e33) {
         metal::float4 _e38 = frame.camera_up;
         metal::float4 _e42 = frame.previous_up;
-        local_34 = metal::all(_e38.xyz == _e42.xyz);
+        local_37 = metal::all(_e38.xyz == _e42.xyz);
     } else {
-        local_34 = false;
+        local_37 = false;
     }
-    bool _e47 = local_34;
+    bool _e47 = local_37;
     return _e47;
 }
 
@@ -1799,29 +1844,463 @@ float luminance(
     return metal::dot(c_1, metal::float3(0.2126, 0.7152, 0.0722));
 }
 
+float basic_sun_depth(
+    metal::float3 rel_3,
+    float alt_7,
+    thread Counters& counters_10,
+    constant Frame& frame,
+    metal::texture3d<float, metal::access::sample> shape_tex,
+    metal::texture3d<float, metal::access::sample> detail_tex,
+    metal::texture2d<float, metal::access::sample> weather_tex,
+    metal::texture2d<float, metal::access::sample> curl_tex,
+    metal::sampler noise_sampler
+) {
+    float tau_3 = 0.0;
+    uint i_4 = 1u;
+    uint steps_2 = frame.counts.w;
+    if (steps_2 == 0u) {
+        return 0.0;
+    }
+    metal::float4 _e12 = frame.sun_direction;
+    metal::float3 sun_3 = _e12.xyz;
+    float rp_4 = frame.atmosphere.x;
+    float top_2 = frame.atmosphere.z;
+    float _e25 = frame.atmosphere.y;
+    float thickness = top_2 - _e25;
+    Roots _e39 = solve_sphere(metal::dot(sun_3, metal::float3(rel_3.x, rel_3.y + rp_4, rel_3.z)), (alt_7 - top_2) * ((alt_7 + top_2) + (2.0 * rp_4)));
+    float length = metal::min(metal::max(_e39.t1_, 0.0), 3.0 * thickness);
+    float dt_2 = length / static_cast<float>(steps_2);
+    float _e51 = frame.extinction.x;
+    float _e55 = frame.extinction.y;
+    float sigma_t_5 = _e51 + _e55;
+    metal::float4 _e59 = frame.camera_position;
+    metal::float2 cam_xz_1 = _e59.xz;
+    uint2 loop_bound_8 = uint2(4294967295u);
+    bool loop_init_4 = true;
+    while(true) {
+        if (metal::all(loop_bound_8 == uint2(0u))) { break; }
+        loop_bound_8 -= uint2(loop_bound_8.y == 0u, 1u);
+        if (!loop_init_4) {
+            uint _e90 = i_4;
+            i_4 = _e90 + 1u;
+        }
+        loop_init_4 = false;
+        uint _e65 = i_4;
+        if (_e65 <= steps_2) {
+        } else {
+            break;
+        }
+        {
+            uint _e68 = counters_10.light;
+            counters_10.light = _e68 + 1u;
+            uint _e71 = i_4;
+            metal::float3 q_7 = rel_3 + (sun_3 * (static_cast<float>(_e71) * dt_2));
+            metal::float3 p_16 = metal::float3(q_7.x + cam_xz_1.x, q_7.y, q_7.z + cam_xz_1.y);
+            float _e84 = tau_3;
+            float _e85 = altitude_of(q_7, frame);
+            float _e86 = cloud_density(p_16, _e85, counters_10, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+            tau_3 = _e84 + ((sigma_t_5 * _e86) * dt_2);
+        }
+    }
+    float _e93 = tau_3;
+    return _e93;
+}
+
+MarchResult basic_pixel(
+    metal::uint2 pixel_6,
+    constant Frame& frame,
+    metal::texture3d<float, metal::access::sample> shape_tex,
+    metal::texture3d<float, metal::access::sample> detail_tex,
+    metal::texture2d<float, metal::access::sample> weather_tex,
+    metal::texture2d<float, metal::access::sample> curl_tex,
+    metal::sampler noise_sampler,
+    device Stats& stats
+) {
+    Counters counters_11 = Counters {0u, 0u, 0u, 0u};
+    metal::float3 radiance_1 = metal::float3(0.0);
+    float transmittance_1 = 1.0;
+    float depth_sum_1 = 0.0;
+    uint i_5 = 0u;
+    float depth_3 = 0.0;
+    metal::float3 _e1 = view_ray(pixel_6, frame);
+    float cam_alt_1 = frame.camera_position.y;
+    metal::float4 _e8 = frame.camera_position;
+    metal::float2 cam_xz_2 = _e8.xz;
+    count(STAT_PIXELS, 1u, stats);
+    Interval _e25 = layer_interval(cam_alt_1, _e1, frame);
+    if (_e25.kind == RAY_MISSES_LAYER) {
+        count(STAT_EXIT_MISSED, 1u, stats);
+    } else {
+        if (_e25.kind == RAY_HITS_GROUND) {
+            count(STAT_EXIT_GROUND, 1u, stats);
+        } else {
+            count(STAT_MARCHED, 1u, stats);
+            uint steps_3 = frame.counts.z;
+            float dt_3 = _e25.length / static_cast<float>(steps_3);
+            float sigma_s = frame.extinction.x;
+            float _e52 = frame.extinction.y;
+            float sigma_t_6 = sigma_s + _e52;
+            metal::float4 _e56 = frame.sun_illuminance;
+            metal::float4 _e60 = frame.sun_direction;
+            float _e66 = frame.phase.x;
+            float _e67 = phase_hg(metal::dot(_e1, _e60.xyz), _e66);
+            metal::float3 sun_phase = _e56.xyz * _e67;
+            uint2 loop_bound_9 = uint2(4294967295u);
+            bool loop_init_5 = true;
+            while(true) {
+                if (metal::all(loop_bound_9 == uint2(0u))) { break; }
+                loop_bound_9 -= uint2(loop_bound_9.y == 0u, 1u);
+                if (!loop_init_5) {
+                    uint _e131 = i_5;
+                    i_5 = _e131 + 1u;
+                }
+                loop_init_5 = false;
+                uint _e71 = i_5;
+                if (_e71 < steps_3) {
+                } else {
+                    break;
+                }
+                {
+                    uint _e74 = counters_11.view_steps;
+                    counters_11.view_steps = _e74 + 1u;
+                    uint _e78 = i_5;
+                    float t_6 = _e25.start + (static_cast<float>(_e78) * dt_3);
+                    metal::float3 rel_6 = (_e1 * t_6) + metal::float3(0.0, cam_alt_1, 0.0);
+                    metal::float3 p_17 = metal::float3(rel_6.x + cam_xz_2.x, rel_6.y, rel_6.z + cam_xz_2.y);
+                    float _e95 = altitude_of(rel_6, frame);
+                    float _e96 = cloud_density(p_17, _e95, counters_11, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+                    if (_e96 <= 0.0) {
+                        continue;
+                    }
+                    float _e99 = basic_sun_depth(rel_6, _e95, counters_11, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+                    float beer_powder = (2.0 * metal::exp(-(_e99))) * (1.0 - metal::exp(-2.0 * _e99));
+                    metal::float3 _e110 = radiance_1;
+                    float _e111 = transmittance_1;
+                    radiance_1 = _e110 + (sun_phase * ((((beer_powder * _e111) * sigma_s) * _e96) * dt_3));
+                    float step_t_1 = metal::exp((-(sigma_t_6) * _e96) * dt_3);
+                    float _e122 = depth_sum_1;
+                    float _e123 = transmittance_1;
+                    depth_sum_1 = _e122 + ((t_6 * _e123) * (1.0 - step_t_1));
+                    float _e129 = transmittance_1;
+                    transmittance_1 = _e129 * step_t_1;
+                }
+            }
+        }
+    }
+    uint _e136 = counters_11.view_steps;
+    count(STAT_VIEW_STEPS, _e136, stats);
+    uint _e139 = counters_11.density;
+    count(STAT_DENSITY, _e139, stats);
+    uint _e142 = counters_11.detail;
+    count(STAT_DETAIL, _e142, stats);
+    uint _e145 = counters_11.light;
+    count(STAT_LIGHT, _e145, stats);
+    float _e148 = transmittance_1;
+    if (_e148 < 1.0) {
+        float _e151 = depth_sum_1;
+        float _e152 = transmittance_1;
+        depth_3 = _e151 / (1.0 - _e152);
+    }
+    metal::float3 _e156 = radiance_1;
+    float _e157 = transmittance_1;
+    float _e158 = depth_3;
+    return MarchResult {_e156, _e157, _e158};
+}
+
+float atlas_hash(
+    uint a_2,
+    uint b_2
+) {
+    uint _e2 = pcg(b_2);
+    uint _e4 = pcg(a_2 ^ _e2);
+    return static_cast<float>(_e4 >> 8u) * 0.000000059604645;
+}
+
+float value_noise(
+    metal::float2 p_9,
+    uint seed
+) {
+    metal::uint2 i_7 = naga_f2u32(metal::floor(p_9));
+    metal::float2 f_3 = metal::fract(p_9);
+    metal::float2 s_7 = (f_3 * f_3) * (metal::float2(3.0) - (2.0 * f_3));
+    uint h_7 = seed * 7919u;
+    float _e17 = atlas_hash(i_7.x + h_7, i_7.y);
+    float _e23 = atlas_hash((i_7.x + 1u) + h_7, i_7.y);
+    float _e29 = atlas_hash(i_7.x + h_7, i_7.y + 1u);
+    float _e37 = atlas_hash((i_7.x + 1u) + h_7, i_7.y + 1u);
+    return metal::mix(metal::mix(_e17, _e23, s_7.x), metal::mix(_e29, _e37, s_7.x), s_7.y);
+}
+
+float value_fbm(
+    metal::float2 p_10,
+    uint seed_1
+) {
+    float sum_1 = 0.0;
+    float weight = 0.5;
+    metal::float2 q_4 = {};
+    uint o = 0u;
+    q_4 = p_10;
+    uint2 loop_bound_10 = uint2(4294967295u);
+    bool loop_init_6 = true;
+    while(true) {
+        if (metal::all(loop_bound_10 == uint2(0u))) { break; }
+        loop_bound_10 -= uint2(loop_bound_10.y == 0u, 1u);
+        if (!loop_init_6) {
+            uint _e26 = o;
+            o = _e26 + 1u;
+        }
+        loop_init_6 = false;
+        uint _e9 = o;
+        if (_e9 < 4u) {
+        } else {
+            break;
+        }
+        {
+            float _e12 = sum_1;
+            float _e13 = weight;
+            metal::float2 _e14 = q_4;
+            uint _e15 = o;
+            float _e17 = value_noise(_e14, seed_1 + _e15);
+            sum_1 = _e12 + (_e13 * _e17);
+            metal::float2 _e20 = q_4;
+            q_4 = _e20 * 2.0;
+            float _e23 = weight;
+            weight = _e23 * 0.5;
+        }
+    }
+    float _e29 = sum_1;
+    return _e29 / 0.9375;
+}
+
+float sprite_texture(
+    uint tile_1,
+    metal::float2 uv
+) {
+    float billow = 0.0;
+    uint i_6 = 0u;
+    metal::float2 at = {};
+    float a_3 = {};
+    metal::float2 c_8 = uv - metal::float2(0.5);
+    float mask = metal::smoothstep(0.48, 0.36, metal::length(c_8));
+    float _e16 = value_fbm((uv * 6.0) + metal::float2(static_cast<float>(tile_1) * 13.0), tile_1);
+    if (tile_1 < 4u) {
+        metal::float2 q_8 = c_8 * metal::float2(1.0, 3.2);
+        float streak = 1.0 - metal::smoothstep(0.05, 0.45, metal::length(q_8));
+        float _e40 = value_fbm((uv * metal::float2(3.0, 12.0)) + metal::float2(static_cast<float>(tile_1) * 5.0), tile_1 + 16u);
+        float _e46 = saturate((_e40 * 1.6) - 0.3);
+        return ((mask * streak) * _e46) * 0.8;
+    }
+    uint blobs = 5u + naga_mod(tile_1, 4u);
+    uint2 loop_bound_11 = uint2(4294967295u);
+    bool loop_init_7 = true;
+    while(true) {
+        if (metal::all(loop_bound_11 == uint2(0u))) { break; }
+        loop_bound_11 -= uint2(loop_bound_11.y == 0u, 1u);
+        if (!loop_init_7) {
+            uint _e108 = i_6;
+            i_6 = _e108 + 1u;
+        }
+        loop_init_7 = false;
+        uint _e58 = i_6;
+        if (_e58 < blobs) {
+        } else {
+            break;
+        }
+        {
+            uint _e61 = i_6;
+            float _e63 = atlas_hash(tile_1, 2u * _e61);
+            uint _e65 = i_6;
+            float _e69 = atlas_hash(tile_1, (2u * _e65) + 1u);
+            metal::float2 centre_1 = metal::float2(_e63, _e69) - metal::float2(0.5);
+            at = metal::float2(0.5) + (centre_1 * 0.34);
+            if (tile_1 == 4u) {
+                at.y = 0.5 + ((centre_1.y - 0.5) * 0.24);
+            }
+            uint _e91 = i_6;
+            float _e93 = atlas_hash(tile_1, 100u + _e91);
+            float r_3 = 0.14 + (0.1 * _e93);
+            metal::float2 _e98 = at;
+            float d_9 = metal::length(uv - _e98) / r_3;
+            float _e102 = billow;
+            float _e106 = saturate(1.0 - (d_9 * d_9));
+            billow = metal::max(_e102, _e106);
+        }
+    }
+    float _e111 = billow;
+    float _e114 = saturate(_e111 * 1.5);
+    a_3 = (mask * _e114) * (0.55 + (0.45 * _e16));
+    if (tile_1 == 4u) {
+        float _e124 = a_3;
+        a_3 = _e124 * metal::smoothstep(0.62, 0.54, uv.y);
+    }
+    float _e130 = a_3;
+    return _e130;
+}
+
+metal::float3 sprite_rel(
+    metal::float2 xz,
+    float alt_8,
+    constant Frame& frame
+) {
+    float rp_5 = frame.atmosphere.x;
+    metal::float4 _e8 = frame.camera_position;
+    metal::float2 d_10 = xz - _e8.xz;
+    float k_8 = (alt_8 * (alt_8 + (2.0 * rp_5))) - metal::dot(d_10, d_10);
+    float y_2 = k_8 / (rp_5 + metal::sqrt(metal::max((rp_5 * rp_5) + k_8, 0.0)));
+    return metal::float3(d_10.x, y_2, d_10.y);
+}
+
+SpriteCell sprite_cell(
+    uint cell,
+    constant Frame& frame
+) {
+    metal::int2 start_1 = {};
+    uint k_3 = 3u;
+    bool local_38 = {};
+    bool local_39 = {};
+    uint level_1 = naga_div(cell, 64u);
+    metal::int2 local_41 = metal::int2(static_cast<int>(naga_mod(cell, 8u)), static_cast<int>(naga_mod(naga_div(cell, 8u), 8u)));
+    metal::float4 _e15 = frame.camera_position;
+    start_1 = as_type<metal::int2>(as_type<metal::uint2>(naga_f2i32(metal::floor(_e15.xz / metal::float2(12000.0)))) - as_type<metal::uint2>(metal::int2(4)));
+    uint2 loop_bound_12 = uint2(4294967295u);
+    bool loop_init_8 = true;
+    while(true) {
+        if (metal::all(loop_bound_12 == uint2(0u))) { break; }
+        loop_bound_12 -= uint2(loop_bound_12.y == 0u, 1u);
+        if (!loop_init_8) {
+            uint _e35 = k_3;
+            k_3 = _e35 - 1u;
+        }
+        loop_init_8 = false;
+        uint _e27 = k_3;
+        if (_e27 > level_1) {
+        } else {
+            break;
+        }
+        {
+            metal::int2 _e29 = start_1;
+            start_1 = as_type<metal::int2>(as_type<uint>(2) * as_type<metal::uint2>(as_type<metal::int2>(as_type<metal::uint2>(_e29) + as_type<metal::uint2>(metal::int2(2)))));
+        }
+    }
+    if (level_1 > 0u) {
+        local_38 = metal::all(local_41 >= metal::int2(2));
+    } else {
+        local_38 = false;
+    }
+    bool _e47 = local_38;
+    if (_e47) {
+        local_39 = metal::all(local_41 < metal::int2(6));
+    } else {
+        local_39 = false;
+    }
+    bool covered = local_39;
+    metal::int2 _e56 = start_1;
+    return SpriteCell {as_type<metal::int2>(as_type<metal::uint2>(_e56) + as_type<metal::uint2>(local_41)), SPRITE_CELL0_ * static_cast<float>(1u << level_1), covered};
+}
+
+SpriteCandidate sprite_candidate(
+    SpriteCell c_2,
+    uint level,
+    uint s_1,
+    thread Counters& counters_12,
+    constant Frame& frame,
+    metal::texture3d<float, metal::access::sample> shape_tex,
+    metal::texture3d<float, metal::access::sample> detail_tex,
+    metal::texture2d<float, metal::access::sample> weather_tex,
+    metal::texture2d<float, metal::access::sample> curl_tex,
+    metal::sampler noise_sampler
+) {
+    float density_2 = 0.0;
+    uint _e10 = pcg(level);
+    uint _e12 = pcg(as_type<uint>(c_2.index.y) ^ _e10);
+    uint _e14 = pcg(as_type<uint>(c_2.index.x) ^ _e12);
+    float _e17 = atlas_hash(_e14, 8u * s_1);
+    float _e22 = atlas_hash(_e14, (8u * s_1) + 1u);
+    float _e27 = atlas_hash(_e14, (8u * s_1) + 2u);
+    float _e32 = atlas_hash(_e14, (8u * s_1) + 3u);
+    metal::float4 u_1 = metal::float4(_e17, _e22, _e27, _e32);
+    float _e38 = atlas_hash(_e14, (8u * s_1) + 4u);
+    float _e43 = atlas_hash(_e14, (8u * s_1) + 5u);
+    metal::float2 v_2 = metal::float2(_e38, _e43);
+    metal::float2 xz_1 = (static_cast<metal::float2>(c_2.index) + u_1.xy) * c_2.size;
+    Weather _e55 = sample_weather(metal::float3(xz_1.x, 0.0, xz_1.y), frame, weather_tex, noise_sampler);
+    float h_8 = 0.04 + (u_1.z * (metal::mix(0.3, 0.95, _e55.cloud_type) - 0.04));
+    float _e69 = frame.atmosphere.y;
+    float _e73 = frame.atmosphere.z;
+    float _e77 = frame.atmosphere.y;
+    float alt_10 = _e69 + (h_8 * (_e73 - _e77));
+    if (!(c_2.covered)) {
+        metal::float3 _e85 = sprite_rel(xz_1, alt_10, frame);
+        float _e90 = cloud_density(metal::float3(xz_1.x, _e85.y, xz_1.y), alt_10, counters_12, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+        density_2 = _e90;
+    }
+    float _e94 = density_2;
+    return SpriteCandidate {xz_1, alt_10, h_8, u_1.w, v_2.x, v_2.y, _e94};
+}
+
+metal::float3 sprite_sky_level(
+    float h_5
+) {
+    float _e1 = saturate(h_5);
+    float x_5 = _e1 * 4.0;
+    if (x_5 < 1.0) {
+        return metal::mix(SKY_LEVEL0_, SKY_LEVEL1_, x_5);
+    }
+    if (x_5 < 2.0) {
+        return metal::mix(SKY_LEVEL1_, SKY_LEVEL2_, x_5 - 1.0);
+    }
+    if (x_5 < 3.0) {
+        return metal::mix(SKY_LEVEL2_, SKY_LEVEL3_, x_5 - 2.0);
+    }
+    return metal::mix(SKY_LEVEL3_, SKY_LEVEL4_, x_5 - 3.0);
+}
+
+float sprite_sun_level(
+    float cos_angle
+) {
+    if (cos_angle < 0.0) {
+        return metal::mix(SPRITE_C_MIN, SPRITE_C_MED, cos_angle + 1.0);
+    }
+    return metal::mix(SPRITE_C_MED, SPRITE_C_MAX, cos_angle);
+}
+
+metal::float2 sprite_corner(
+    uint k_4
+) {
+    bool local_40 = {};
+    uint q_9 = (k_4 >= 3u) ? ((k_4 == 3u) ? 0u : (k_4 - 2u)) : k_4;
+    if (!((q_9 == 1u))) {
+        local_40 = q_9 == 2u;
+    } else {
+        local_40 = true;
+    }
+    bool _e18 = local_40;
+    return metal::float2(_e18 ? 1.0 : -1.0, (q_9 >= 2u) ? 1.0 : -1.0);
+}
+
 metal::float3 sky_radiance(
     metal::float3 d_6,
-    float alt_7,
+    float alt_9,
     constant Frame& frame
 ) {
     metal::float4 _e4 = frame.sun_direction;
-    metal::float3 sun_3 = _e4.xyz;
+    metal::float3 sun_4 = _e4.xyz;
     metal::float4 _e8 = frame.sun_illuminance;
     metal::float3 e = _e8.xyz;
-    float _e15 = saturate((sun_3.y * 4.0) + 0.3);
-    bool _e19 = hits_ground(metal::float3(0.0, alt_7, 0.0), alt_7, d_6, frame);
+    float _e15 = saturate((sun_4.y * 4.0) + 0.3);
+    bool _e19 = hits_ground(metal::float3(0.0, alt_9, 0.0), alt_9, d_6, frame);
     if (_e19) {
         metal::float3 ground_albedo = metal::float3(0.035, 0.035, 0.03);
-        return ground_albedo * (((e * metal::max(sun_3.y, 0.0)) / metal::float3(3.1415927)) + ((0.05 * e) * _e15));
+        return ground_albedo * (((e * metal::max(sun_4.y, 0.0)) / metal::float3(3.1415927)) + ((0.05 * e) * _e15));
     }
     metal::float3 zenith = metal::float3(0.018, 0.04, 0.1);
     metal::float3 horizon = metal::float3(0.07, 0.085, 0.11);
     float _e45 = saturate(d_6.y);
     metal::float3 gradient_1 = metal::mix(horizon, zenith, metal::sqrt(_e45));
     metal::float3 sunset = ((1.0 - (_e15 * 0.8)) * metal::pow(1.0 - _e45, 6.0)) * metal::float3(0.25, 0.1, 0.0);
-    float _e64 = phase_hg(metal::dot(d_6, sun_3), 0.76);
+    float _e64 = phase_hg(metal::dot(d_6, sun_4), 0.76);
     float glow = _e64 * 0.02;
-    float _e73 = saturate((sun_3.y * 10.0) + 1.0);
+    float _e73 = saturate((sun_4.y * 10.0) + 1.0);
     return e * (((gradient_1 * _e15) + (sunset * _e73)) + metal::float3(glow * _e15));
 }
 
@@ -1870,16 +2349,16 @@ struct occupancyInput {
     metal::int2 lo_1 = as_type<metal::int2>(as_type<metal::uint2>(naga_div(as_type<metal::int2>(as_type<metal::uint2>(static_cast<metal::int2>(id.xy)) * as_type<metal::uint2>(size_6)), metal::int2(64))) - as_type<metal::uint2>(metal::int2(1)));
     metal::int2 hi = naga_div(as_type<metal::int2>(as_type<metal::uint2>(as_type<metal::int2>(as_type<metal::uint2>(static_cast<metal::int2>(id.xy)) + as_type<metal::uint2>(metal::int2(1)))) * as_type<metal::uint2>(size_6)), metal::int2(64));
     y = lo_1.y;
-    uint2 loop_bound_8 = uint2(4294967295u);
-    bool loop_init_4 = true;
+    uint2 loop_bound_13 = uint2(4294967295u);
+    bool loop_init_9 = true;
     while(true) {
-        if (metal::all(loop_bound_8 == uint2(0u))) { break; }
-        loop_bound_8 -= uint2(loop_bound_8.y == 0u, 1u);
-        if (!loop_init_4) {
+        if (metal::all(loop_bound_13 == uint2(0u))) { break; }
+        loop_bound_13 -= uint2(loop_bound_13.y == 0u, 1u);
+        if (!loop_init_9) {
             int _e54 = y;
             y = as_type<int>(as_type<uint>(_e54) + as_type<uint>(1));
         }
-        loop_init_4 = false;
+        loop_init_9 = false;
         int _e30 = y;
         if (_e30 <= hi.y) {
         } else {
@@ -1887,16 +2366,16 @@ struct occupancyInput {
         }
         {
             x = lo_1.x;
-            uint2 loop_bound_9 = uint2(4294967295u);
-            bool loop_init_5 = true;
+            uint2 loop_bound_14 = uint2(4294967295u);
+            bool loop_init_10 = true;
             while(true) {
-                if (metal::all(loop_bound_9 == uint2(0u))) { break; }
-                loop_bound_9 -= uint2(loop_bound_9.y == 0u, 1u);
-                if (!loop_init_5) {
+                if (metal::all(loop_bound_14 == uint2(0u))) { break; }
+                loop_bound_14 -= uint2(loop_bound_14.y == 0u, 1u);
+                if (!loop_init_10) {
                     int _e51 = x;
                     x = as_type<int>(as_type<uint>(_e51) + as_type<uint>(1));
                 }
-                loop_init_5 = false;
+                loop_init_10 = false;
                 int _e35 = x;
                 if (_e35 <= hi.x) {
                 } else {
@@ -1905,9 +2384,9 @@ struct occupancyInput {
                 {
                     int _e38 = x;
                     int _e39 = y;
-                    metal::int2 t_6 = naga_mod(as_type<metal::int2>(as_type<metal::uint2>(naga_mod(metal::int2(_e38, _e39), size_6)) + as_type<metal::uint2>(size_6)), size_6);
+                    metal::int2 t_7 = naga_mod(as_type<metal::int2>(as_type<metal::uint2>(naga_mod(metal::int2(_e38, _e39), size_6)) + as_type<metal::uint2>(size_6)), size_6);
                     float _e44 = m;
-                    metal::float4 _e47 = weather_tex.read(metal::uint2(t_6), 0);
+                    metal::float4 _e47 = weather_tex.read(metal::uint2(t_7), 0);
                     m = metal::max(_e44, _e47.x);
                 }
             }
@@ -2014,9 +2493,9 @@ struct march_sparse_checkerboardInput {
     }
     bool _e30 = local;
     if (_e30) {
-        uint k_6 = frame.temporal.x;
+        uint k_9 = frame.temporal.x;
         uint _e38 = frame.misc.y;
-        uint turn = naga_div(_e38, k_6 * k_6);
+        uint turn = naga_div(_e38, k_9 * k_9);
         metal::float2 _e42 = reproject(_e5, 0.0, frame);
         if ((((id_3.x + id_3.y) + turn) & 1u) == 0u) {
             bool _e53 = on_screen(_e42, frame);
@@ -2084,12 +2563,12 @@ struct resolveInput {
     if (metal::any(id_4.xy >= _e4.xy)) {
         return;
     }
-    metal::uint2 pixel_6 = id_4.xy;
-    uint k_7 = frame.temporal.x;
-    metal::uint2 block = naga_div(pixel_6, metal::uint2(k_7));
+    metal::uint2 pixel_7 = id_4.xy;
+    uint k_10 = frame.temporal.x;
+    metal::uint2 block = naga_div(pixel_7, metal::uint2(k_10));
     uint _e19 = frame.misc.y;
-    metal::uint2 _e20 = block_offset(_e19, k_7);
-    bool marched = metal::all(pixel_6 == ((block * k_7) + _e20));
+    metal::uint2 _e20 = block_offset(_e19, k_10);
+    bool marched = metal::all(pixel_7 == ((block * k_10) + _e20));
     metal::float4 current = sparse_in.read(metal::uint2(block), 0);
     metal::float4 _e29 = sparse_depth_in.read(metal::uint2(block), 0);
     float current_depth = _e29.x;
@@ -2097,14 +2576,14 @@ struct resolveInput {
     float _e32 = depth;
     if (_e32 <= 0.0) {
         float _e38 = frame.camera_position.y;
-        metal::float3 _e39 = view_ray(pixel_6, frame);
+        metal::float3 _e39 = view_ray(pixel_7, frame);
         Interval _e40 = layer_interval(_e38, _e39, frame);
         if (_e40.kind == RAY_MARCH) {
             depth = _e40.start + (0.5 * _e40.length);
         }
     }
     float _e49 = depth;
-    metal::float2 _e50 = reproject(pixel_6, _e49, frame);
+    metal::float2 _e50 = reproject(pixel_7, _e49, frame);
     uint _e54 = frame.temporal.y;
     if (_e54 != 0u) {
         bool _e59 = on_screen(_e50, frame);
@@ -2114,7 +2593,7 @@ struct resolveInput {
     }
     bool _e61 = local_3;
     valid = _e61;
-    bool moving = metal::any(_e50 != static_cast<metal::float2>(pixel_6));
+    bool moving = metal::any(_e50 != static_cast<metal::float2>(pixel_7));
     bool _e75 = valid;
     if (_e75) {
         metal::float4 _e76 = history_at(_e50, frame, history_in);
@@ -2136,7 +2615,7 @@ struct resolveInput {
         bool _e91 = local_5;
         if (_e91) {
             metal::float4 _e94 = frame.camera_position;
-            metal::float3 _e96 = view_ray(pixel_6, frame);
+            metal::float3 _e96 = view_ray(pixel_7, frame);
             metal::float4 _e101 = frame.previous_position;
             float expected = metal::distance(_e94.xyz + (_e96 * current_depth), _e101.xyz);
             float _e105 = past.x;
@@ -2152,20 +2631,20 @@ struct resolveInput {
     bool _e115 = local_6;
     if (_e115) {
         metal::uint4 _e118 = frame.counts;
-        metal::int2 blocks = static_cast<metal::int2>(naga_div((_e118.xy + metal::uint2(k_7)) - metal::uint2(1u), metal::uint2(k_7)));
-        metal::int2 b_8 = static_cast<metal::int2>(block);
-        int x0_1 = metal::max(as_type<int>(as_type<uint>(b_8.x) - as_type<uint>(1)), 0);
-        int x2_1 = metal::min(as_type<int>(as_type<uint>(b_8.x) + as_type<uint>(1)), as_type<int>(as_type<uint>(blocks.x) - as_type<uint>(1)));
-        int y0_ = metal::max(as_type<int>(as_type<uint>(b_8.y) - as_type<uint>(1)), 0);
-        int y2_ = metal::min(as_type<int>(as_type<uint>(b_8.y) + as_type<uint>(1)), as_type<int>(as_type<uint>(blocks.y) - as_type<uint>(1)));
+        metal::int2 blocks = static_cast<metal::int2>(naga_div((_e118.xy + metal::uint2(k_10)) - metal::uint2(1u), metal::uint2(k_10)));
+        metal::int2 b_9 = static_cast<metal::int2>(block);
+        int x0_1 = metal::max(as_type<int>(as_type<uint>(b_9.x) - as_type<uint>(1)), 0);
+        int x2_1 = metal::min(as_type<int>(as_type<uint>(b_9.x) + as_type<uint>(1)), as_type<int>(as_type<uint>(blocks.x) - as_type<uint>(1)));
+        int y0_ = metal::max(as_type<int>(as_type<uint>(b_9.y) - as_type<uint>(1)), 0);
+        int y2_ = metal::min(as_type<int>(as_type<uint>(b_9.y) + as_type<uint>(1)), as_type<int>(as_type<uint>(blocks.y) - as_type<uint>(1)));
         metal::float4 s00_ = sparse_in.read(metal::uint2(metal::int2(x0_1, y0_)), 0);
-        metal::float4 s10_ = sparse_in.read(metal::uint2(metal::int2(b_8.x, y0_)), 0);
+        metal::float4 s10_ = sparse_in.read(metal::uint2(metal::int2(b_9.x, y0_)), 0);
         metal::float4 s20_ = sparse_in.read(metal::uint2(metal::int2(x2_1, y0_)), 0);
-        metal::float4 s01_ = sparse_in.read(metal::uint2(metal::int2(x0_1, b_8.y)), 0);
-        metal::float4 s11_ = sparse_in.read(metal::uint2(b_8), 0);
-        metal::float4 s21_ = sparse_in.read(metal::uint2(metal::int2(x2_1, b_8.y)), 0);
+        metal::float4 s01_ = sparse_in.read(metal::uint2(metal::int2(x0_1, b_9.y)), 0);
+        metal::float4 s11_ = sparse_in.read(metal::uint2(b_9), 0);
+        metal::float4 s21_ = sparse_in.read(metal::uint2(metal::int2(x2_1, b_9.y)), 0);
         metal::float4 s02_ = sparse_in.read(metal::uint2(metal::int2(x0_1, y2_)), 0);
-        metal::float4 s12_ = sparse_in.read(metal::uint2(metal::int2(b_8.x, y2_)), 0);
+        metal::float4 s12_ = sparse_in.read(metal::uint2(metal::int2(b_9.x, y2_)), 0);
         metal::float4 s22_ = sparse_in.read(metal::uint2(metal::int2(x2_1, y2_)), 0);
         metal::float4 lo_2 = metal::min(metal::min(metal::min(s00_, s10_), metal::min(s20_, s01_)), metal::min(metal::min(s11_, s21_), metal::min(metal::min(s02_, s12_), s22_)));
         metal::float4 hi_1 = metal::max(metal::max(metal::max(s00_, s10_), metal::max(s20_, s01_)), metal::max(metal::max(s11_, s21_), metal::max(metal::max(s02_, s12_), s22_)));
@@ -2203,21 +2682,21 @@ struct resolveInput {
             float _e247 = past.x;
             out_depth = _e247;
         } else {
-            MarchResult _e248 = march_pixel(pixel_6, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler, occupancy_in, stats);
+            MarchResult _e248 = march_pixel(pixel_7, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler, occupancy_in, stats);
             samples = 1.0;
             result = metal::float4(_e248.radiance, _e248.transmittance);
             out_depth = _e248.depth;
         }
     }
     metal::float4 _e255 = result;
-    history_out.write(_e255, metal::uint2(pixel_6));
+    history_out.write(_e255, metal::uint2(pixel_7));
     float _e257 = out_depth;
     float _e258 = samples;
-    meta_out.write(metal::float4(_e257, _e258, 0.0, 0.0), metal::uint2(pixel_6));
+    meta_out.write(metal::float4(_e257, _e258, 0.0, 0.0), metal::uint2(pixel_7));
     metal::float4 _e263 = result;
-    cloud_out.write(_e263, metal::uint2(pixel_6));
+    cloud_out.write(_e263, metal::uint2(pixel_7));
     float _e265 = out_depth;
-    depth_out.write(metal::float4(_e265, 0.0, 0.0, 0.0), metal::uint2(pixel_6));
+    depth_out.write(metal::float4(_e265, 0.0, 0.0, 0.0), metal::uint2(pixel_7));
     return;
 }
 
@@ -2250,8 +2729,8 @@ struct pathtraceInput {
     if (metal::any(id_5.xy >= _e4.xy)) {
         return;
     }
-    metal::uint2 pixel_7 = id_5.xy;
-    metal::float3 _e9 = view_ray(pixel_7, frame);
+    metal::uint2 pixel_8 = id_5.xy;
+    metal::float3 _e9 = view_ray(pixel_8, frame);
     float _e13 = frame.camera_position.y;
     Interval _e14 = layer_interval(_e13, _e9, frame);
     count(STAT_PIXELS, 1u, stats);
@@ -2259,7 +2738,7 @@ struct pathtraceInput {
     count(STAT_EXIT_MISSED, static_cast<uint>(_e14.kind == RAY_MISSES_LAYER), stats);
     count(STAT_EXIT_GROUND, static_cast<uint>(_e14.kind == RAY_HITS_GROUND), stats);
     uint _e41 = frame.misc.y;
-    uint _e42 = rng_seed(pixel_7, _e41);
+    uint _e42 = rng_seed(pixel_8, _e41);
     rng = _e42;
     PathResult _e44 = trace_path(_e9, _e14, rng, counters, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler, occupancy_in);
     float _e46 = luminance(_e44.radiance);
@@ -2272,9 +2751,9 @@ struct pathtraceInput {
     }
     bool _e63 = local_8;
     if (_e63) {
-        metal::float4 _e66 = history_in.read(metal::uint2(pixel_7), 0);
+        metal::float4 _e66 = history_in.read(metal::uint2(pixel_8), 0);
         mean = _e66;
-        metal::float4 _e69 = meta_in.read(metal::uint2(pixel_7), 0);
+        metal::float4 _e69 = meta_in.read(metal::uint2(pixel_8), 0);
         moments = _e69;
     }
     float _e71 = moments.y;
@@ -2295,13 +2774,13 @@ struct pathtraceInput {
     }
     moments.y = n_3;
     metal::float4 _e110 = mean;
-    history_out.write(_e110, metal::uint2(pixel_7));
+    history_out.write(_e110, metal::uint2(pixel_8));
     metal::float4 _e112 = moments;
-    meta_out.write(_e112, metal::uint2(pixel_7));
+    meta_out.write(_e112, metal::uint2(pixel_8));
     metal::float4 _e114 = mean;
-    cloud_out.write(_e114, metal::uint2(pixel_7));
+    cloud_out.write(_e114, metal::uint2(pixel_8));
     float _e117 = moments.x;
-    depth_out.write(metal::float4(_e117, 0.0, 0.0, 0.0), metal::uint2(pixel_7));
+    depth_out.write(metal::float4(_e117, 0.0, 0.0, 0.0), metal::uint2(pixel_8));
     uint _e124 = counters.view_steps;
     count(STAT_VIEW_STEPS, _e124, stats);
     uint _e127 = counters.density;
@@ -2314,37 +2793,413 @@ struct pathtraceInput {
 }
 
 
+struct march_basicInput {
+};
+[[max_total_threads_per_threadgroup(64)]] kernel void march_basic(
+  metal::uint3 id_6 [[thread_position_in_grid]]
+, constant Frame& frame [[user(fake0)]]
+, metal::texture3d<float, metal::access::sample> shape_tex [[user(fake0)]]
+, metal::texture3d<float, metal::access::sample> detail_tex [[user(fake0)]]
+, metal::texture2d<float, metal::access::sample> weather_tex [[user(fake0)]]
+, metal::texture2d<float, metal::access::sample> curl_tex [[user(fake0)]]
+, metal::sampler noise_sampler [[user(fake0)]]
+, metal::texture2d<float, metal::access::write> cloud_out [[user(fake0)]]
+, metal::texture2d<float, metal::access::write> depth_out [[user(fake0)]]
+, device Stats& stats [[user(fake0)]]
+) {
+    metal::uint4 _e4 = frame.counts;
+    if (metal::any(id_6.xy >= _e4.xy)) {
+        return;
+    }
+    MarchResult _e9 = basic_pixel(id_6.xy, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler, stats);
+    cloud_out.write(metal::float4(_e9.radiance, _e9.transmittance), metal::uint2(id_6.xy));
+    depth_out.write(metal::float4(_e9.depth, 0.0, 0.0, 0.0), metal::uint2(id_6.xy));
+    return;
+}
+
+metal::uint2 naga_mod(metal::uint2 lhs, metal::uint2 rhs) {
+    return lhs % metal::select(rhs, 1u, rhs == 0u);
+}
+
+
+struct sprite_atlasInput {
+};
+[[max_total_threads_per_threadgroup(64)]] kernel void sprite_atlas(
+  metal::uint3 id_7 [[thread_position_in_grid]]
+, metal::texture2d<float, metal::access::write> sprite_atlas_out [[user(fake0)]]
+) {
+    uint tile_2 = (naga_div(id_7.y, ATLAS_TILE) * 4u) + naga_div(id_7.x, ATLAS_TILE);
+    metal::float2 uv_3 = (static_cast<metal::float2>(naga_mod(id_7.xy, metal::uint2(64u))) + metal::float2(0.5)) / metal::float2(64.0);
+    float _e21 = sprite_texture(tile_2, uv_3);
+    sprite_atlas_out.write(metal::float4(_e21, _e21, _e21, _e21), metal::uint2(id_7.xy));
+    return;
+}
+
+
+struct sprite_buildInput {
+};
+[[max_total_threads_per_threadgroup(64)]] kernel void sprite_build(
+  metal::uint3 id_8 [[thread_position_in_grid]]
+, constant Frame& frame [[user(fake0)]]
+, metal::texture3d<float, metal::access::sample> shape_tex [[user(fake0)]]
+, metal::texture3d<float, metal::access::sample> detail_tex [[user(fake0)]]
+, metal::texture2d<float, metal::access::sample> weather_tex [[user(fake0)]]
+, metal::texture2d<float, metal::access::sample> curl_tex [[user(fake0)]]
+, metal::sampler noise_sampler [[user(fake0)]]
+, device Stats& stats [[user(fake0)]]
+, metal::texture2d<float, metal::access::write> sprites_out [[user(fake0)]]
+) {
+    Counters counters_1 = Counters {0u, 0u, 0u, 0u};
+    metal::float4 sum = metal::float4(0.0);
+    SpriteCandidate me = {};
+    uint i = 0u;
+    metal::float3 centre = {};
+    uint tile = {};
+    float rotation = {};
+    bool local_9 = {};
+    float key = 0.0;
+    uint slot = id_8.x;
+    uint cell_index = naga_div(slot, SPRITES_PER_CELL);
+    uint level_2 = naga_div(cell_index, 64u);
+    SpriteCell _e6 = sprite_cell(cell_index, frame);
+    uint own = naga_mod(slot, SPRITES_PER_CELL);
+    SpriteCandidate _e18 = sprite_candidate(_e6, level_2, own, counters_1, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+    me = _e18;
+    uint2 loop_bound_15 = uint2(4294967295u);
+    bool loop_init_11 = true;
+    while(true) {
+        if (metal::all(loop_bound_15 == uint2(0u))) { break; }
+        loop_bound_15 -= uint2(loop_bound_15.y == 0u, 1u);
+        if (!loop_init_11) {
+            uint _e38 = i;
+            i = _e38 + 1u;
+        }
+        loop_init_11 = false;
+        uint _e22 = i;
+        if (_e22 < SPRITES_PER_CELL) {
+        } else {
+            break;
+        }
+        {
+            uint _e25 = i;
+            SpriteCandidate _e26 = sprite_candidate(_e6, level_2, _e25, counters_1, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+            metal::float4 _e27 = sum;
+            sum = _e27 + (metal::float4(_e26.xz.x, _e26.alt, _e26.xz.y, 1.0) * _e26.density);
+        }
+    }
+    uint _e43 = counters_1.density;
+    count(STAT_DENSITY, _e43, stats);
+    uint _e46 = counters_1.detail;
+    count(STAT_DETAIL, _e46, stats);
+    float bottom_3 = frame.atmosphere.y;
+    float _e54 = frame.atmosphere.z;
+    float thickness_1 = _e54 - bottom_3;
+    metal::float2 middle = (static_cast<metal::float2>(_e6.index) + metal::float2(0.5)) * _e6.size;
+    centre = metal::float3(middle.x, bottom_3 + (0.4 * thickness_1), middle.y);
+    float _e71 = sum.w;
+    if (_e71 > 0.0) {
+        metal::float4 _e74 = sum;
+        float _e77 = sum.w;
+        centre = _e74.xyz / metal::float3(_e77);
+    }
+    metal::float2 _e81 = me.xz;
+    metal::float3 _e82 = centre;
+    bool inner = metal::length(_e81 - _e82.xz) < (0.25 * _e6.size);
+    float _e91 = me.density;
+    float _e96 = me.density;
+    float morph = inner ? metal::smoothstep(0.0, 0.06, _e96) : metal::smoothstep(0.03, 0.15, _e91);
+    float alpha = SPRITE_ALPHA * morph;
+    float _e107 = me.size_hash;
+    float half_width = (0.5 * _e6.size) * (0.7 + (0.6 * _e107));
+    float half_height = metal::min(half_width, 0.35 * thickness_1);
+    float _e118 = me.texture_hash;
+    tile = 5u + metal::min(naga_f2u32(_e118 * 11.0), 10u);
+    float _e127 = me.rotation_hash;
+    rotation = (_e127 * 2.0) * PI;
+    float _e134 = me.h;
+    if (_e134 < 0.12) {
+        tile = 4u;
+        float _e139 = me.rotation_hash;
+        rotation = (_e139 - 0.5) * 0.17453294;
+    } else {
+        if (!(inner)) {
+            float _e148 = me.density;
+            local_9 = _e148 < 0.1;
+        } else {
+            local_9 = false;
+        }
+        bool _e152 = local_9;
+        if (_e152) {
+            float _e154 = me.texture_hash;
+            tile = metal::min(naga_f2u32(_e154 * 4.0), 3u);
+        }
+    }
+    if (alpha > 0.0) {
+        metal::float2 _e165 = me.xz;
+        float _e167 = me.alt;
+        metal::float3 _e168 = sprite_rel(_e165, _e167, frame);
+        float _e172 = frame.camera_position.y;
+        metal::float3 rel_7 = _e168 - metal::float3(0.0, _e172, 0.0);
+        float _e180 = saturate(metal::length(rel_7) / SPRITE_MAX_DISTANCE);
+        key = 1048576.0 - metal::floor(_e180 * 1048575.0);
+    }
+    float _e191 = me.xz.x;
+    float _e193 = me.alt;
+    float _e196 = me.xz.y;
+    sprites_out.write(metal::float4(_e191, _e193, _e196, half_width), metal::uint2(metal::uint2(slot, 0u)));
+    metal::float3 _e201 = centre;
+    sprites_out.write(metal::float4(_e201, alpha), metal::uint2(metal::uint2(slot, 1u)));
+    uint _e206 = tile;
+    float _e208 = rotation;
+    float _e210 = me.h;
+    sprites_out.write(metal::float4(static_cast<float>(_e206), _e208, half_height, _e210), metal::uint2(metal::uint2(slot, 2u)));
+    float _e215 = key;
+    sprites_out.write(metal::float4(_e215, 0.0, 0.0, 0.0), metal::uint2(metal::uint2(slot, 3u)));
+    return;
+}
+
+
+struct sprite_sortInput {
+};
+[[max_total_threads_per_threadgroup(64)]] kernel void sprite_sort(
+  metal::uint3 id_9 [[thread_position_in_grid]]
+, metal::texture2d<float, metal::access::sample> sprites_in [[user(fake0)]]
+, metal::texture2d<float, metal::access::write> sprite_order_out [[user(fake0)]]
+) {
+    uint rank = 0u;
+    uint j = 0u;
+    bool local_10 = {};
+    bool local_11 = {};
+    uint slot_1 = id_9.x;
+    metal::float4 _e6 = sprites_in.read(metal::uint2(metal::uint2(slot_1, 3u)), 0);
+    float key_1 = _e6.x;
+    uint2 loop_bound_16 = uint2(4294967295u);
+    bool loop_init_12 = true;
+    while(true) {
+        if (metal::all(loop_bound_16 == uint2(0u))) { break; }
+        loop_bound_16 -= uint2(loop_bound_16.y == 0u, 1u);
+        if (!loop_init_12) {
+            uint _e40 = j;
+            j = _e40 + 1u;
+        }
+        loop_init_12 = false;
+        uint _e12 = j;
+        if (_e12 < SPRITE_COUNT) {
+        } else {
+            break;
+        }
+        {
+            uint _e16 = j;
+            metal::float4 _e20 = sprites_in.read(metal::uint2(metal::uint2(_e16, 3u)), 0);
+            float other = _e20.x;
+            uint _e22 = rank;
+            if (!((other < key_1))) {
+                if (other == key_1) {
+                    uint _e32 = j;
+                    local_11 = _e32 < slot_1;
+                } else {
+                    local_11 = false;
+                }
+                bool _e35 = local_11;
+                local_10 = _e35;
+            } else {
+                local_10 = true;
+            }
+            bool _e37 = local_10;
+            rank = _e22 + (_e37 ? 1u : 0u);
+        }
+    }
+    uint _e44 = rank;
+    sprite_order_out.write(metal::float4(static_cast<float>(slot_1), 0.0, 0.0, 0.0), metal::uint2(metal::uint2(_e44, 0u)));
+    return;
+}
+
+
+struct sprite_vertexInput {
+};
+struct sprite_vertexOutput {
+    metal::float4 position [[position]];
+    metal::float2 uv [[user(loc0), center_perspective]];
+    uint tile [[user(loc1), flat]];
+    metal::float4 colour [[user(loc2), center_perspective]];
+    float distance [[user(loc3), center_perspective]];
+};
+vertex sprite_vertexOutput sprite_vertex(
+  uint index [[vertex_id]]
+, constant Frame& frame [[user(fake0)]]
+, metal::texture2d<float, metal::access::sample> sprites_in [[user(fake0)]]
+, metal::texture2d<float, metal::access::sample> sprite_order_in [[user(fake0)]]
+) {
+    SpriteVertex out = {};
+    metal::float3 right = {};
+    metal::float4 _e8 = sprite_order_in.read(metal::uint2(metal::uint2(naga_div(index, 6u), 0u)), 0);
+    uint slot_2 = naga_f2u32(_e8.x);
+    metal::float4 a_6 = sprites_in.read(metal::uint2(metal::uint2(slot_2, 0u)), 0);
+    metal::float4 b_10 = sprites_in.read(metal::uint2(metal::uint2(slot_2, 1u)), 0);
+    metal::float4 c_9 = sprites_in.read(metal::uint2(metal::uint2(slot_2, 2u)), 0);
+    if (b_10.w <= 0.0) {
+        out.position = metal::float4(0.0, 0.0, -1.0, 1.0);
+        SpriteVertex _e35 = out;
+        const auto _tmp = _e35;
+        return sprite_vertexOutput { _tmp.position, _tmp.uv, _tmp.tile, _tmp.colour, _tmp.distance };
+    }
+    float _e39 = frame.camera_position.y;
+    metal::float3 cam_1 = metal::float3(0.0, _e39, 0.0);
+    metal::float3 _e45 = sprite_rel(a_6.xz, a_6.y, frame);
+    metal::float3 to_sprite = _e45 - cam_1;
+    float distance = metal::length(to_sprite);
+    float half_width_1 = a_6.w;
+    float facing = metal::smoothstep(0.5 * half_width_1, half_width_1, distance);
+    metal::float3 to_camera = -(to_sprite) / metal::float3(metal::max(distance, 0.001));
+    metal::float4 _e59 = frame.camera_forward;
+    metal::float3 n_4 = metal::normalize(metal::mix(-(_e59.xyz), to_camera, facing));
+    float _e67 = frame.atmosphere.x;
+    metal::float3 radial = metal::normalize(_e45 + metal::float3(0.0, _e67, 0.0));
+    right = metal::cross(radial, n_4);
+    metal::float3 _e75 = right;
+    if (metal::length(_e75) < 0.001) {
+        metal::float4 _e81 = frame.camera_right;
+        right = _e81.xyz;
+    }
+    metal::float3 _e83 = right;
+    right = metal::normalize(_e83);
+    metal::float3 _e85 = right;
+    metal::float3 up = metal::cross(n_4, _e85);
+    metal::float2 _e89 = sprite_corner(naga_mod(index, 6u));
+    metal::float3 _e90 = right;
+    metal::float3 offset = (_e90 * (_e89.x * half_width_1)) + (up * (_e89.y * c_9.z));
+    metal::float3 vertex_ = to_sprite + offset;
+    metal::float4 _e102 = frame.camera_right;
+    float x_6 = metal::dot(vertex_, _e102.xyz);
+    metal::float4 _e107 = frame.camera_up;
+    float y_3 = metal::dot(vertex_, _e107.xyz);
+    metal::float4 _e112 = frame.camera_forward;
+    float z_1 = metal::dot(vertex_, _e112.xyz);
+    float tan_half_2 = frame.camera_position.w;
+    float _e123 = frame.camera_forward.w;
+    out.position = metal::float4(x_6 / (tan_half_2 * _e123), y_3 / tan_half_2, 0.5 * z_1, z_1);
+    metal::float2 cs = metal::float2(metal::cos(c_9.y), metal::sin(c_9.y));
+    metal::float2 t_8 = metal::float2(_e89.x, -(_e89.y));
+    out.uv = metal::float2((t_8.x * cs.x) - (t_8.y * cs.y), (t_8.x * cs.y) + (t_8.y * cs.x));
+    out.tile = naga_f2u32(c_9.x);
+    metal::float4 _e160 = frame.sun_direction;
+    metal::float3 sun_5 = _e160.xyz;
+    metal::float3 _e164 = sprite_rel(b_10.xz, b_10.y, frame);
+    metal::float3 centre_2 = _e164 - cam_1;
+    metal::float3 from_centre = vertex_ - centre_2;
+    float cos_angle_1 = metal::dot(from_centre, sun_5) / metal::max(metal::length(from_centre), 0.001);
+    float _e177 = saturate((sun_5.y * 4.0) + 0.3);
+    float _e179 = altitude_of(vertex_ + cam_1, frame);
+    float _e183 = frame.atmosphere.y;
+    float _e188 = frame.atmosphere.z;
+    float _e192 = frame.atmosphere.y;
+    float _e195 = saturate((_e179 - _e183) / (_e188 - _e192));
+    metal::float4 _e198 = frame.sun_illuminance;
+    metal::float3 e_1 = _e198.xyz;
+    metal::float3 _e200 = sprite_sky_level(_e195);
+    float _e204 = sprite_sun_level(cos_angle_1);
+    metal::float3 light = (e_1 * ((_e200 * (SPRITE_SKY * _e177)) + metal::float3(_e204))) / metal::float3(3.1415927);
+    out.colour = metal::float4(light, b_10.w);
+    out.distance = metal::length(vertex_);
+    SpriteVertex _e216 = out;
+    const auto _tmp_1 = _e216;
+    return sprite_vertexOutput { _tmp_1.position, _tmp_1.uv, _tmp_1.tile, _tmp_1.colour, _tmp_1.distance };
+}
+
+
+struct sprite_fragmentInput {
+    metal::float2 uv_1 [[user(loc0), center_perspective]];
+    uint tile_2 [[user(loc1), flat]];
+    metal::float4 colour [[user(loc2), center_perspective]];
+    float distance [[user(loc3), center_perspective]];
+};
+struct sprite_fragmentOutput {
+    metal::float4 radiance [[color(0)]];
+    metal::float4 depth [[color(1)]];
+};
+fragment sprite_fragmentOutput sprite_fragment(
+  sprite_fragmentInput varyings_11 [[stage_in]]
+, metal::float4 position [[position]]
+, metal::sampler noise_sampler [[user(fake0)]]
+, metal::texture2d<float, metal::access::sample> sprite_atlas_in [[user(fake0)]]
+) {
+    const SpriteVertex in = { position, varyings_11.uv_1, varyings_11.tile_2, {}, varyings_11.colour, varyings_11.distance };
+    SpriteTargets out_1 = {};
+    float a = 0.0;
+    if (metal::all(metal::abs(in.uv) <= metal::float2(1.0))) {
+        metal::float2 tile_3 = metal::float2(static_cast<float>(naga_mod(in.tile, 4u)), static_cast<float>(naga_div(in.tile, 4u)));
+        metal::float2 uv_4 = ((tile_3 + metal::float2(0.5)) + (0.5 * in.uv)) * 0.25;
+        metal::float4 _e31 = sprite_atlas_in.sample(noise_sampler, uv_4, metal::level(0.0));
+        a = _e31.x * in.colour.w;
+    }
+    float _e39 = a;
+    float _e41 = a;
+    out_1.radiance = metal::float4(in.colour.xyz * _e39, _e41);
+    float _e45 = a;
+    float _e47 = a;
+    out_1.depth = metal::float4(in.distance * _e45, 0.0, 0.0, _e47);
+    SpriteTargets _e51 = out_1;
+    const auto _tmp_2 = _e51;
+    return sprite_fragmentOutput { _tmp_2.radiance, _tmp_2.depth };
+}
+
+
+struct sprite_resolveInput {
+};
+[[max_total_threads_per_threadgroup(64)]] kernel void sprite_resolve(
+  metal::uint3 id_10 [[thread_position_in_grid]]
+, constant Frame& frame [[user(fake0)]]
+, metal::texture2d<float, metal::access::write> cloud_out [[user(fake0)]]
+, metal::texture2d<float, metal::access::write> depth_out [[user(fake0)]]
+, device Stats& stats [[user(fake0)]]
+, metal::texture2d<float, metal::access::sample> sprite_radiance_in [[user(fake0)]]
+, metal::texture2d<float, metal::access::sample> sprite_depth_in [[user(fake0)]]
+) {
+    metal::uint4 _e4 = frame.counts;
+    if (metal::any(id_10.xy >= _e4.xy)) {
+        return;
+    }
+    count(STAT_PIXELS, 1u, stats);
+    metal::float4 c_10 = sprite_radiance_in.read(metal::uint2(id_10.xy), 0);
+    metal::float4 d_11 = sprite_depth_in.read(metal::uint2(id_10.xy), 0);
+    float _e19 = saturate(c_10.w);
+    cloud_out.write(metal::float4(c_10.xyz, 1.0 - _e19), metal::uint2(id_10.xy));
+    depth_out.write(metal::float4((d_11.w > 0.0001) ? (d_11.x / d_11.w) : 0.0, 0.0, 0.0, 0.0), metal::uint2(id_10.xy));
+    return;
+}
+
+
 struct compositeInput {
 };
 [[max_total_threads_per_threadgroup(64)]] kernel void composite(
-  metal::uint3 id_6 [[thread_position_in_grid]]
+  metal::uint3 id_11 [[thread_position_in_grid]]
 , constant Frame& frame [[user(fake0)]]
 , metal::texture2d<float, metal::access::sample> cloud_in [[user(fake0)]]
 , metal::texture2d<float, metal::access::write> image_out [[user(fake0)]]
 ) {
     metal::float3 background = {};
     metal::uint4 _e4 = frame.counts;
-    if (metal::any(id_6.xy >= _e4.xy)) {
+    if (metal::any(id_11.xy >= _e4.xy)) {
         return;
     }
-    metal::uint2 pixel_8 = id_6.xy;
-    metal::float3 _e9 = view_ray(pixel_8, frame);
-    float alt_8 = frame.camera_position.y;
-    metal::float4 cloud = cloud_in.read(metal::uint2(pixel_8), 0);
-    metal::float3 _e17 = sky_radiance(_e9, alt_8, frame);
+    metal::uint2 pixel_9 = id_11.xy;
+    metal::float3 _e9 = view_ray(pixel_9, frame);
+    float alt_11 = frame.camera_position.y;
+    metal::float4 cloud = cloud_in.read(metal::uint2(pixel_9), 0);
+    metal::float3 _e17 = sky_radiance(_e9, alt_11, frame);
     background = _e17;
-    bool _e22 = hits_ground(metal::float3(0.0, alt_8, 0.0), alt_8, _e9, frame);
+    bool _e22 = hits_ground(metal::float3(0.0, alt_11, 0.0), alt_11, _e9, frame);
     if (!(_e22)) {
         metal::float3 _e24 = background;
         metal::float3 _e25 = sun_disk(_e9, frame);
         background = _e24 + _e25;
     }
     metal::float3 _e27 = background;
-    metal::float3 radiance_1 = (_e27 * cloud.w) + cloud.xyz;
+    metal::float3 radiance_2 = (_e27 * cloud.w) + cloud.xyz;
     float _e35 = frame.camera_right.w;
-    metal::float3 exposed = radiance_1 * _e35;
+    metal::float3 exposed = radiance_2 * _e35;
     metal::float3 _e37 = aces_fitted(exposed);
     metal::float3 display = metal::pow(_e37, metal::float3(0.45454547));
-    image_out.write(metal::float4(display, 1.0), metal::uint2(pixel_8));
+    image_out.write(metal::float4(display, 1.0), metal::uint2(pixel_9));
     return;
 }

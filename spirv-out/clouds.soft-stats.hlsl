@@ -86,6 +86,35 @@ struct PathResult {
     int _end_pad_2;
 };
 
+struct SpriteCell {
+    int2 index;
+    float size;
+    bool covered;
+};
+
+struct SpriteCandidate {
+    float2 xz;
+    float alt;
+    float h;
+    float size_hash;
+    float texture_hash;
+    float rotation_hash;
+    float density;
+};
+
+struct SpriteVertex {
+    float4 position : SV_Position;
+    float2 uv : LOC0;
+    nointerpolation uint tile : LOC1;
+    float4 colour : LOC2;
+    float distance_ : LOC3;
+};
+
+struct SpriteTargets {
+    float4 radiance : SV_Target0;
+    float4 depth : SV_Target1;
+};
+
 static const uint PHASE_HG = 0u;
 static const uint PHASE_TWO_LOBE_HG = 1u;
 static const uint PHASE_CORNETTE_SHANKS = 2u;
@@ -118,6 +147,23 @@ static const float HISTORY_SAMPLES = 16.0;
 static const float HISTORY_SAMPLES_MOVING = 2.0;
 static const float DISOCCLUSION_DEPTH = 0.5;
 static const uint MAX_PATH_ORDERS = 16384u;
+static const uint SPRITE_LEVELS = 4u;
+static const int SPRITE_CELLS_PER_SIDE = int(8);
+static const uint SPRITES_PER_CELL = 16u;
+static const uint SPRITE_COUNT = 4096u;
+static const float SPRITE_CELL0_ = 1500.0;
+static const float SPRITE_ALPHA = 0.7;
+static const float SPRITE_MAX_DISTANCE = 131072.0;
+static const uint ATLAS_TILE = 64u;
+static const float SPRITE_C_MIN = 0.22;
+static const float SPRITE_C_MED = 0.55;
+static const float SPRITE_C_MAX = 1.0;
+static const float SPRITE_SKY = 0.35;
+static const float3 SKY_LEVEL0_ = float3(0.42, 0.46, 0.55);
+static const float3 SKY_LEVEL1_ = float3(0.55, 0.59, 0.67);
+static const float3 SKY_LEVEL2_ = float3(0.7, 0.73, 0.8);
+static const float3 SKY_LEVEL3_ = float3(0.84, 0.86, 0.9);
+static const float3 SKY_LEVEL4_ = float3(0.95, 0.96, 0.98);
 static const bool LIGHT_MARCH = true;
 static const uint MAX_OCTAVES = 8u;
 static const bool DETAIL = false;
@@ -144,8 +190,32 @@ Texture2D<float4> sparse_in : register(t15);
 Texture2D<float4> sparse_depth_in : register(t16);
 RWTexture2D<float4> history_out : register(u17);
 RWTexture2D<float4> meta_out : register(u18);
+RWTexture2D<float4> sprites_out : register(u19);
+Texture2D<float4> sprites_in : register(t20);
+RWTexture2D<float> sprite_order_out : register(u21);
+Texture2D<float4> sprite_order_in : register(t22);
+RWTexture2D<unorm float4> sprite_atlas_out : register(u23);
+Texture2D<float4> sprite_atlas_in : register(t24);
+Texture2D<float4> sprite_radiance_in : register(t25);
+Texture2D<float4> sprite_depth_in : register(t26);
 Texture2D<float4> cloud_in : register(t9);
 RWTexture2D<unorm float4> image_out : register(u10);
+
+struct VertexOutput_sprite_vertex {
+    float2 uv_1 : LOC0;
+    nointerpolation uint tile_2 : LOC1;
+    float4 colour : LOC2;
+    float distance_ : LOC3;
+    float4 position : SV_Position;
+};
+
+struct FragmentInput_sprite_fragment {
+    float2 uv_2 : LOC0;
+    nointerpolation uint tile_3 : LOC1;
+    float4 colour_1 : LOC2;
+    float distance_1 : LOC3;
+    float4 position_1 : SV_Position;
+};
 
 float saturate_(float x_1)
 {
@@ -206,8 +276,8 @@ Roots solve_sphere(float b, float c)
         const Roots roots = ConstructRoots(0.0, 0.0, false);
         return roots;
     }
-    float s_1 = sqrt(disc);
-    float r0_1 = -((b + ((b >= 0.0) ? s_1 : -(s_1))));
+    float s_2 = sqrt(disc);
+    float r0_1 = -((b + ((b >= 0.0) ? s_2 : -(s_2))));
     if ((r0_1 == 0.0)) {
         const Roots roots_1 = ConstructRoots(0.0, 0.0, true);
         return roots_1;
@@ -220,9 +290,9 @@ Roots solve_sphere(float b, float c)
 Roots ray_shell(float alt, float3 d, float radius_alt)
 {
     float rp = frame.atmosphere.x;
-    float b_2 = (d.y * (alt + rp));
-    float c_2 = ((alt - radius_alt) * ((alt + radius_alt) + (2.0 * rp)));
-    const Roots _e16 = solve_sphere(b_2, c_2);
+    float b_3 = (d.y * (alt + rp));
+    float c_3 = ((alt - radius_alt) * ((alt + radius_alt) + (2.0 * rp)));
+    const Roots _e16 = solve_sphere(b_3, c_3);
     const Roots roots_3 = _e16;
     return roots_3;
 }
@@ -231,23 +301,23 @@ float altitude_of(float3 p)
 {
     float rp_1 = frame.atmosphere.x;
     float n_2 = (((p.x * p.x) + (p.z * p.z)) + (p.y * (p.y + (2.0 * rp_1))));
-    float3 q_4 = float3(p.x, (p.y + rp_1), p.z);
-    return (n_2 / (length(q_4) + rp_1));
+    float3 q_5 = float3(p.x, (p.y + rp_1), p.z);
+    return (n_2 / (length(q_5) + rp_1));
 }
 
 bool hits_ground(float3 p_1, float alt_1, float3 d_1)
 {
-    bool local_9 = (bool)0;
+    bool local_12 = (bool)0;
 
     float rp_2 = frame.atmosphere.x;
-    float b_3 = dot(d_1, float3(p_1.x, (p_1.y + rp_2), p_1.z));
-    float c_3 = (alt_1 * (alt_1 + (2.0 * rp_2)));
-    if ((b_3 < 0.0)) {
-        local_9 = ((b_3 * b_3) >= c_3);
+    float b_4 = dot(d_1, float3(p_1.x, (p_1.y + rp_2), p_1.z));
+    float c_4 = (alt_1 * (alt_1 + (2.0 * rp_2)));
+    if ((b_4 < 0.0)) {
+        local_12 = ((b_4 * b_4) >= c_4);
     } else {
-        local_9 = false;
+        local_12 = false;
     }
-    bool _e24 = local_9;
+    bool _e24 = local_12;
     return _e24;
 }
 
@@ -263,9 +333,9 @@ Interval layer_interval(float alt_2, float3 d_2)
 {
     float start = 0.0;
     float end = 0.0;
-    bool local_10 = (bool)0;
-    bool local_11 = (bool)0;
-    bool local_12 = (bool)0;
+    bool local_13 = (bool)0;
+    bool local_14 = (bool)0;
+    bool local_15 = (bool)0;
 
     float bottom = frame.atmosphere.y;
     float top = frame.atmosphere.z;
@@ -284,22 +354,22 @@ Interval layer_interval(float alt_2, float3 d_2)
         if ((alt_2 <= top)) {
             end = _e15.t1_;
             if (_e14.hit) {
-                local_10 = (_e14.t0_ > 0.0);
+                local_13 = (_e14.t0_ > 0.0);
             } else {
-                local_10 = false;
+                local_13 = false;
             }
-            bool _e40 = local_10;
+            bool _e40 = local_13;
             if (_e40) {
                 float _e41 = end;
                 end = min(_e41, _e14.t0_);
             }
         } else {
             if (!(!(_e15.hit))) {
-                local_11 = (_e15.t1_ <= 0.0);
+                local_14 = (_e15.t1_ <= 0.0);
             } else {
-                local_11 = true;
+                local_14 = true;
             }
-            bool _e53 = local_11;
+            bool _e53 = local_14;
             if (_e53) {
                 const Interval interval_1 = ConstructInterval(0.0, 0.0, 1u);
                 return interval_1;
@@ -307,11 +377,11 @@ Interval layer_interval(float alt_2, float3 d_2)
             start = max(_e15.t0_, 0.0);
             end = _e15.t1_;
             if (_e14.hit) {
-                local_12 = (_e14.t0_ > 0.0);
+                local_15 = (_e14.t0_ > 0.0);
             } else {
-                local_12 = false;
+                local_15 = false;
             }
-            bool _e69 = local_12;
+            bool _e69 = local_15;
             if (_e69) {
                 float _e70 = end;
                 end = min(_e70, _e14.t0_);
@@ -342,8 +412,8 @@ Weather sample_weather(float3 p_2)
 {
     float4 _e4 = frame.wind_offsets0_;
     float _e10 = frame.periods.x;
-    float2 uv = ((p_2.xz - _e4.xy) / (_e10).xx);
-    float4 w = weather_tex.SampleLevel(noise_sampler, uv, 0.0);
+    float2 uv_3 = ((p_2.xz - _e4.xy) / (_e10).xx);
+    float4 w = weather_tex.SampleLevel(noise_sampler, uv_3, 0.0);
     float _e21 = frame.clouds.x;
     const float _e27 = saturate_((w.x + (2.0 * (_e21 - 0.5))));
     float _e31 = frame.clouds.z;
@@ -396,38 +466,38 @@ uint3 NagaDimensions3D(Texture3D<float4> tex)
     return ret.xyz;
 }
 
-float cloud_density(float3 p_3, float alt_3, inout Counters counters_1)
+float cloud_density(float3 p_3, float alt_3, inout Counters counters_2)
 {
-    bool local_13 = (bool)0;
-    bool local_14 = (bool)0;
+    bool local_16 = (bool)0;
+    bool local_17 = (bool)0;
     float base = (float)0;
     float density = (float)0;
-    bool local_15 = (bool)0;
-    bool local_16 = (bool)0;
+    bool local_18 = (bool)0;
+    bool local_19 = (bool)0;
     float3 detail_pos = (float3)0;
 
     float bottom_1 = frame.atmosphere.y;
     float top_1 = frame.atmosphere.z;
-    float h_5 = ((alt_3 - bottom_1) / (top_1 - bottom_1));
-    if (!((h_5 < 0.0))) {
-        local_13 = (h_5 > 1.0);
+    float h_6 = ((alt_3 - bottom_1) / (top_1 - bottom_1));
+    if (!((h_6 < 0.0))) {
+        local_16 = (h_6 > 1.0);
     } else {
-        local_13 = true;
+        local_16 = true;
     }
-    bool _e22 = local_13;
+    bool _e22 = local_16;
     if (_e22) {
         return 0.0;
     }
-    uint _e25 = counters_1.density;
-    counters_1.density = (_e25 + 1u);
+    uint _e25 = counters_2.density;
+    counters_2.density = (_e25 + 1u);
     const Weather _e28 = sample_weather(p_3);
-    const float _e30 = height_signal(h_5, _e28.cloud_type);
+    const float _e30 = height_signal(h_6, _e28.cloud_type);
     if (!((_e28.coverage <= 0.0))) {
-        local_14 = (_e30 <= 0.0);
+        local_17 = (_e30 <= 0.0);
     } else {
-        local_14 = true;
+        local_17 = true;
     }
-    bool _e40 = local_14;
+    bool _e40 = local_17;
     if (_e40) {
         return 0.0;
     }
@@ -437,9 +507,9 @@ float cloud_density(float3 p_3, float alt_3, inout Counters counters_1)
     float _e60 = frame.wind_offsets0_.z;
     float _e66 = frame.wind_offsets0_.w;
     float3 shape_pos = float3((p_3.x - _e60), alt_3, (p_3.z - _e66));
-    float4 s_2 = shape_tex.SampleLevel(noise_sampler, (shape_pos / period), 0.0);
-    float low_fbm = (((s_2.y * 0.625) + (s_2.z * 0.25)) + (s_2.w * 0.125));
-    const float _e91 = remap(s_2.x, (low_fbm - 1.0), 1.0, 0.0, 1.0);
+    float4 s_3 = shape_tex.SampleLevel(noise_sampler, (shape_pos / period), 0.0);
+    float low_fbm = (((s_3.y * 0.625) + (s_3.z * 0.25)) + (s_3.w * 0.125));
+    const float _e91 = remap(s_3.x, (low_fbm - 1.0), 1.0, 0.0, 1.0);
     const float _e92 = saturate_(_e91);
     base = (_e92 * _e30);
     float _e95 = base;
@@ -455,21 +525,21 @@ float cloud_density(float3 p_3, float alt_3, inout Counters counters_1)
     float strength = frame.erosion.x;
     float threshold = frame.erosion.y;
     if (DETAIL) {
-        local_15 = (strength > 0.0);
+        local_18 = (strength > 0.0);
     } else {
-        local_15 = false;
+        local_18 = false;
     }
-    bool _e126 = local_15;
+    bool _e126 = local_18;
     if (_e126) {
         float _e129 = base;
-        local_16 = (_e129 < threshold);
+        local_19 = (_e129 < threshold);
     } else {
-        local_16 = false;
+        local_19 = false;
     }
-    bool _e132 = local_16;
+    bool _e132 = local_19;
     if (_e132) {
-        uint _e134 = counters_1.detail;
-        counters_1.detail = (_e134 + 1u);
+        uint _e134 = counters_2.detail;
+        counters_2.detail = (_e134 + 1u);
         detail_pos = float3(p_3.x, alt_3, p_3.z);
         if (CURL) {
             float4 _e145 = frame.wind_offsets1_;
@@ -479,7 +549,7 @@ float cloud_density(float3 p_3, float alt_3, inout Counters counters_1)
             float2 curl = ((_e157.xy * 2.0) - (1.0).xx);
             float3 _e164 = detail_pos;
             float _e172 = frame.erosion.z;
-            detail_pos = (_e164 + (float3(curl.x, 0.0, curl.y) * (_e172 * (1.0 - h_5))));
+            detail_pos = (_e164 + (float3(curl.x, 0.0, curl.y) * (_e172 * (1.0 - h_6))));
         }
         float3 _e178 = detail_pos;
         float _e182 = frame.wind_offsets1_.x;
@@ -490,7 +560,7 @@ float cloud_density(float3 p_3, float alt_3, inout Counters counters_1)
         float4 dn = detail_tex.SampleLevel(noise_sampler, (_e192 / (_e196).xxx), 0.0);
         float high_fbm = (((dn.x * 0.625) + (dn.y * 0.25)) + (dn.z * 0.125));
         float _e215 = frame.extinction.w;
-        const float _e220 = saturate_((h_5 * 10.0));
+        const float _e220 = saturate_((h_6 * 10.0));
         const float _e222 = saturate_(((2.0 * _e215) * _e220));
         float shape = lerp((1.0 - high_fbm), high_fbm, _e222);
         float _e227 = base;
@@ -502,7 +572,7 @@ float cloud_density(float3 p_3, float alt_3, inout Counters counters_1)
     }
     float _e238 = density;
     float _e242 = frame.erosion.w;
-    density = (_e238 * lerp(1.0, h_5, _e242));
+    density = (_e238 * lerp(1.0, h_6, _e242));
     float _e246 = density;
     float _e250 = frame.clouds.y;
     density = ((_e246 * _e250) * (1.0 + _e28.precipitation));
@@ -549,13 +619,13 @@ float phase(float cos_theta_2, float scale)
     }
 }
 
-float sun_optical_depth(float3 rel, float3 p_4, inout Counters counters_2)
+float sun_optical_depth(float3 rel, float3 p_4, inout Counters counters_3)
 {
     float seg = (float)0;
     float dist = 0.0;
     float tau = 0.0;
-    uint i = 0u;
-    bool local_17 = (bool)0;
+    uint i_1 = 0u;
+    bool local_20 = (bool)0;
 
     float4 _e5 = frame.sun_direction;
     float3 sun = _e5.xyz;
@@ -572,11 +642,11 @@ float sun_optical_depth(float3 rel, float3 p_4, inout Counters counters_2)
         if (all(loop_bound == uint2(0u, 0u))) { break; }
         loop_bound -= uint2(loop_bound.y == 0u, 1u);
         if (!loop_init) {
-            uint _e78 = i;
-            i = (_e78 + 1u);
+            uint _e78 = i_1;
+            i_1 = (_e78 + 1u);
         }
         loop_init = false;
-        uint _e35 = i;
+        uint _e35 = i_1;
         if ((_e35 < steps_1)) {
         } else {
             break;
@@ -584,24 +654,24 @@ float sun_optical_depth(float3 rel, float3 p_4, inout Counters counters_2)
         {
             float _e37 = dist;
             float _e38 = seg;
-            float s_3 = (_e37 + (0.5 * _e38));
-            float3 q_5 = (rel + (sun * s_3));
-            const float _e44 = altitude_of(q_5);
+            float s_4 = (_e37 + (0.5 * _e38));
+            float3 q_6 = (rel + (sun * s_4));
+            const float _e44 = altitude_of(q_6);
             float _e48 = frame.atmosphere.z;
             if (!((_e44 > _e48))) {
                 float _e56 = frame.atmosphere.y;
-                local_17 = (_e44 < _e56);
+                local_20 = (_e44 < _e56);
             } else {
-                local_17 = true;
+                local_20 = true;
             }
-            bool _e59 = local_17;
+            bool _e59 = local_20;
             if (_e59) {
                 break;
             }
-            uint _e61 = counters_2.light;
-            counters_2.light = (_e61 + 1u);
+            uint _e61 = counters_3.light;
+            counters_3.light = (_e61 + 1u);
             float _e64 = tau;
-            const float _e67 = cloud_density((p_4 + (sun * s_3)), _e44, counters_2);
+            const float _e67 = cloud_density((p_4 + (sun * s_4)), _e44, counters_3);
             float _e69 = seg;
             tau = (_e64 + ((_e67 * sigma_t_1) * _e69));
             float _e72 = dist;
@@ -621,12 +691,12 @@ float sun_scattering(float cos_theta_3, float tau_1)
     float ka = 1.0;
     float kb = 1.0;
     float kc = 1.0;
-    uint i_1 = 0u;
+    uint i_2 = 0u;
     float total = (float)0;
 
-    float a_1 = frame.multiple_scattering.x;
-    float b_4 = frame.multiple_scattering.y;
-    float c_4 = frame.multiple_scattering.z;
+    float a_4 = frame.multiple_scattering.x;
+    float b_5 = frame.multiple_scattering.y;
+    float c_5 = frame.multiple_scattering.z;
     uint _e17 = frame.misc.x;
     uint octaves = min(_e17, MAX_OCTAVES);
     uint2 loop_bound_1 = uint2(4294967295u, 4294967295u);
@@ -635,22 +705,22 @@ float sun_scattering(float cos_theta_3, float tau_1)
         if (all(loop_bound_1 == uint2(0u, 0u))) { break; }
         loop_bound_1 -= uint2(loop_bound_1.y == 0u, 1u);
         if (!loop_init_1) {
-            uint _e50 = i_1;
-            i_1 = (_e50 + 1u);
+            uint _e50 = i_2;
+            i_2 = (_e50 + 1u);
         }
         loop_init_1 = false;
-        uint _e30 = i_1;
+        uint _e30 = i_2;
         if ((_e30 < octaves)) {
         } else {
             break;
         }
         {
             float _e32 = ka;
-            ka = (_e32 * a_1);
+            ka = (_e32 * a_4);
             float _e34 = kb;
-            kb = (_e34 * b_4);
+            kb = (_e34 * b_5);
             float _e36 = kc;
-            kc = (_e36 * c_4);
+            kc = (_e36 * c_5);
             float _e38 = octave_sum;
             float _e39 = ka;
             float _e40 = kc;
@@ -682,7 +752,7 @@ float3 ambient(float h_4)
     return (lerp(_e3.xyz, _e7.xyz, h_4) * _e13);
 }
 
-float3 scattered_light(float3 rel_1, float3 p_5, float alt_4, float density_1, float3 view, inout Counters counters_3)
+float3 scattered_light(float3 rel_1, float3 p_5, float alt_4, float density_1, float3 view, inout Counters counters_4)
 {
     float3 sun_light = (0.0).xxx;
     float tau_2 = 0.0;
@@ -696,7 +766,7 @@ float3 scattered_light(float3 rel_1, float3 p_5, float alt_4, float density_1, f
     const bool _e29 = hits_ground(rel_1, alt_4, sun_1);
     if (!(_e29)) {
         if (LIGHT_MARCH) {
-            const float _e34 = sun_optical_depth(rel_1, p_5, counters_3);
+            const float _e34 = sun_optical_depth(rel_1, p_5, counters_4);
             tau_2 = _e34;
         }
         float4 _e37 = frame.sun_illuminance;
@@ -723,9 +793,9 @@ float empty_cell_exit(float3 p_6, float3 d_3)
 
     float4 _e6 = frame.wind_offsets0_;
     float _e12 = frame.periods.x;
-    float2 uv_1 = (frac(((p_6.xz - _e6.xy) / (_e12).xx)) * 64.0);
-    uint2 cell = min(naga_f2u32(uv_1), (63u).xx);
-    float4 _e23 = occupancy_in.Load(int3(cell, int(0)));
+    float2 uv_4 = (frac(((p_6.xz - _e6.xy) / (_e12).xx)) * 64.0);
+    uint2 cell_1 = min(naga_f2u32(uv_4), (63u).xx);
+    float4 _e23 = occupancy_in.Load(int3(cell_1, int(0)));
     float m_1 = _e23.x;
     float _e28 = frame.clouds.x;
     if (((m_1 + (2.0 * (_e28 - 0.5))) > -0.003921569)) {
@@ -733,7 +803,7 @@ float empty_cell_exit(float3 p_6, float3 d_3)
     }
     float _e40 = frame.periods.x;
     float cell_m = (_e40 / 64.0);
-    float2 inside = ((uv_1 - float2(cell)) * cell_m);
+    float2 inside = ((uv_4 - float2(cell_1)) * cell_m);
     if ((d_3.x > 1e-6)) {
         float _e50 = exit;
         exit = min(_e50, ((cell_m - inside.x) / d_3.x));
@@ -756,18 +826,18 @@ float empty_cell_exit(float3 p_6, float3 d_3)
     return max(_e83, 0.0);
 }
 
-void count(uint index, uint value)
+void count(uint index_1, uint value)
 {
-    bool local_18 = (bool)0;
+    bool local_21 = (bool)0;
 
     if (STATS) {
-        local_18 = (value != 0u);
+        local_21 = (value != 0u);
     } else {
-        local_18 = false;
+        local_21 = false;
     }
-    bool _e8 = local_18;
+    bool _e8 = local_21;
     if (_e8) {
-        uint _e12; stats.InterlockedAdd(index*4+0, value, _e12);
+        uint _e12; stats.InterlockedAdd(index_1*4+0, value, _e12);
         return;
     } else {
         return;
@@ -793,8 +863,8 @@ float start_offset(uint2 pixel_2)
 {
     uint _e4 = frame.modes.w;
     bool jitter = ((_e4 & FLAG_JITTER) != 0u);
-    uint k_3 = frame.temporal.x;
-    if ((k_3 <= 1u)) {
+    uint k_5 = frame.temporal.x;
+    if ((k_5 <= 1u)) {
         uint _e18 = frame.misc.y;
         const float _e19 = hash_unit(pixel_2, _e18);
         return (jitter ? _e19 : 0.5);
@@ -802,7 +872,7 @@ float start_offset(uint2 pixel_2)
     const float _e23 = hash_unit(pixel_2, 0u);
     float base_2 = (jitter ? _e23 : 0.5);
     uint _e29 = frame.misc.y;
-    const float _e32 = van_der_corput(naga_div(_e29, (k_3 * k_3)));
+    const float _e32 = van_der_corput(naga_div(_e29, (k_5 * k_5)));
     return frac((base_2 + _e32));
 }
 
@@ -829,15 +899,15 @@ uint naga_f2u32(float value) {
 
 MarchResult march_pixel(uint2 pixel_3)
 {
-    Counters counters_4 = ConstructCounters(0u, 0u, 0u, 0u);
+    Counters counters_5 = ConstructCounters(0u, 0u, 0u, 0u);
     float3 radiance = (0.0).xxx;
     float transmittance = 1.0;
     float depth_sum = 0.0;
     uint steps = (uint)0;
-    uint i_2 = 0u;
+    uint i_3 = 0u;
     uint stride = 1u;
     uint empty = 0u;
-    bool local_19 = (bool)0;
+    bool local_22 = (bool)0;
     float depth_1 = 0.0;
 
     const float3 _e1 = view_ray(pixel_3);
@@ -874,59 +944,59 @@ MarchResult march_pixel(uint2 pixel_3)
             while(true) {
                 if (all(loop_bound_2 == uint2(0u, 0u))) { break; }
                 loop_bound_2 -= uint2(loop_bound_2.y == 0u, 1u);
-                uint _e96 = i_2;
+                uint _e96 = i_3;
                 uint _e97 = steps;
                 if ((_e96 >= _e97)) {
                     break;
                 }
-                uint _e100 = counters_4.view_steps;
-                counters_4.view_steps = (_e100 + 1u);
-                uint _e104 = i_2;
+                uint _e100 = counters_5.view_steps;
+                counters_5.view_steps = (_e100 + 1u);
+                uint _e104 = i_3;
                 float t_4 = (_e25.start + ((float(_e104) + _e64) * dt_1));
-                float3 rel_3 = ((_e1 * t_4) + float3(0.0, cam_alt, 0.0));
-                float3 p_9 = float3((rel_3.x + cam_xz.x), rel_3.y, (rel_3.z + cam_xz.y));
+                float3 rel_4 = ((_e1 * t_4) + float3(0.0, cam_alt, 0.0));
+                float3 p_11 = float3((rel_4.x + cam_xz.x), rel_4.y, (rel_4.z + cam_xz.y));
                 if (empty_skip) {
-                    const float _e122 = empty_cell_exit(p_9, _e1);
+                    const float _e122 = empty_cell_exit(p_11, _e1);
                     if ((_e122 > 0.0)) {
                         uint _e131 = steps;
                         uint next = naga_f2u32(clamp(ceil(((((t_4 + _e122) - _e25.start) / dt_1) - _e64)), 0.0, float(_e131)));
-                        uint _e136 = i_2;
-                        i_2 = max((_e136 + 1u), next);
+                        uint _e136 = i_3;
+                        i_3 = max((_e136 + 1u), next);
                         continue;
                     }
                 }
-                const float _e140 = altitude_of(rel_3);
-                const float _e141 = cloud_density(p_9, _e140, counters_4);
+                const float _e140 = altitude_of(rel_4);
+                const float _e141 = cloud_density(p_11, _e140, counters_5);
                 if ((_e141 <= 0.0)) {
                     uint _e144 = empty;
                     empty = (_e144 + 1u);
                     if (dynamic_step) {
                         uint _e149 = empty;
-                        local_19 = (_e149 >= 8u);
+                        local_22 = (_e149 >= 8u);
                     } else {
-                        local_19 = false;
+                        local_22 = false;
                     }
-                    bool _e153 = local_19;
+                    bool _e153 = local_22;
                     if (_e153) {
                         stride = 2u;
                     }
-                    uint _e155 = i_2;
+                    uint _e155 = i_3;
                     uint _e156 = stride;
-                    i_2 = (_e155 + _e156);
+                    i_3 = (_e155 + _e156);
                     continue;
                 }
                 uint _e158 = stride;
                 if ((_e158 > 1u)) {
-                    uint _e161 = i_2;
+                    uint _e161 = i_3;
                     uint _e162 = stride;
-                    i_2 = (_e161 - (_e162 - 1u));
+                    i_3 = (_e161 - (_e162 - 1u));
                     stride = 1u;
                     empty = 0u;
                     continue;
                 }
                 empty = 0u;
                 float sigma_t_2 = (sigma_e * _e141);
-                const float3 _e170 = scattered_light(rel_3, p_9, _e140, _e141, _e1, counters_4);
+                const float3 _e170 = scattered_light(rel_4, p_11, _e140, _e141, _e1, counters_5);
                 float3 _e171 = radiance;
                 float _e172 = transmittance;
                 const float3 _e173 = step_integral(_e170, sigma_t_2, dt_1);
@@ -943,18 +1013,18 @@ MarchResult march_pixel(uint2 pixel_3)
                     count(STAT_EXIT_TRANSMITTANCE, 1u);
                     break;
                 }
-                uint _e196 = i_2;
-                i_2 = (_e196 + 1u);
+                uint _e196 = i_3;
+                i_3 = (_e196 + 1u);
             }
         }
     }
-    uint _e201 = counters_4.view_steps;
+    uint _e201 = counters_5.view_steps;
     count(STAT_VIEW_STEPS, _e201);
-    uint _e204 = counters_4.density;
+    uint _e204 = counters_5.density;
     count(STAT_DENSITY, _e204);
-    uint _e207 = counters_4.detail;
+    uint _e207 = counters_5.detail;
     count(STAT_DETAIL, _e207);
-    uint _e210 = counters_4.light;
+    uint _e210 = counters_5.light;
     count(STAT_LIGHT, _e210);
     float _e213 = transmittance;
     if ((_e213 < 1.0)) {
@@ -985,9 +1055,9 @@ uint2 block_offset(uint f, uint k)
         return _e6;
     }
     if ((k == 4u)) {
-        uint b_5 = naga_mod(f, 16u);
-        const uint2 _e13 = bayer2_((b_5 >> 2u));
-        const uint2 _e17 = bayer2_((b_5 & 3u));
+        uint b_6 = naga_mod(f, 16u);
+        const uint2 _e13 = bayer2_((b_6 >> 2u));
+        const uint2 _e17 = bayer2_((b_6 & 3u));
         return (_e13 + (2u * _e17));
     }
     return (0u).xx;
@@ -995,9 +1065,9 @@ uint2 block_offset(uint f, uint k)
 
 float2 reproject(uint2 pixel_4, float depth_2)
 {
-    bool local_20 = (bool)0;
-    bool local_21 = (bool)0;
-    bool local_22 = (bool)0;
+    bool local_23 = (bool)0;
+    bool local_24 = (bool)0;
+    bool local_25 = (bool)0;
     float3 dir = (float3)0;
 
     float4 _e4 = frame.previous_position;
@@ -1005,27 +1075,27 @@ float2 reproject(uint2 pixel_4, float depth_2)
     if (all((_e4 == _e7))) {
         float4 _e14 = frame.previous_forward;
         float4 _e17 = frame.camera_forward;
-        local_20 = all((_e14 == _e17));
+        local_23 = all((_e14 == _e17));
     } else {
-        local_20 = false;
+        local_23 = false;
     }
-    bool _e21 = local_20;
+    bool _e21 = local_23;
     if (_e21) {
         float4 _e26 = frame.previous_right;
         float4 _e29 = frame.camera_right;
-        local_21 = all((_e26 == _e29));
+        local_24 = all((_e26 == _e29));
     } else {
-        local_21 = false;
+        local_24 = false;
     }
-    bool _e33 = local_21;
+    bool _e33 = local_24;
     if (_e33) {
         float4 _e38 = frame.previous_up;
         float4 _e41 = frame.camera_up;
-        local_22 = all((_e38 == _e41));
+        local_25 = all((_e38 == _e41));
     } else {
-        local_22 = false;
+        local_25 = false;
     }
-    bool same = local_22;
+    bool same = local_25;
     if (same) {
         return float2(pixel_4);
     }
@@ -1055,16 +1125,16 @@ float2 reproject(uint2 pixel_4, float depth_2)
 
 bool on_screen(float2 q)
 {
-    bool local_23 = (bool)0;
+    bool local_26 = (bool)0;
 
     uint4 _e3 = frame.counts;
     float2 size_1 = float2(_e3.xy);
     if (all((q >= (-0.5).xx))) {
-        local_23 = all((q <= (size_1 - (0.5).xx)));
+        local_26 = all((q <= (size_1 - (0.5).xx)));
     } else {
-        local_23 = false;
+        local_26 = false;
     }
-    bool _e18 = local_23;
+    bool _e18 = local_26;
     return _e18;
 }
 
@@ -1097,26 +1167,26 @@ float4 history_at(float2 q_1)
 {
     uint4 _e3 = frame.counts;
     int2 size_3 = int2(_e3.xy);
-    float2 c_5 = clamp(q_1, (0.0).xx, float2(asint(asuint(size_3) - asuint((int(1)).xx))));
-    int2 base_3 = naga_f2i32(floor(c_5));
-    float2 f_2 = (c_5 - float2(base_3));
+    float2 c_6 = clamp(q_1, (0.0).xx, float2(asint(asuint(size_3) - asuint((int(1)).xx))));
+    int2 base_3 = naga_f2i32(floor(c_6));
+    float2 f_2 = (c_6 - float2(base_3));
     const float4 _e18 = catmull_rom(f_2.x);
     const float4 _e20 = catmull_rom(f_2.y);
     const float4 _e22 = history_row(base_3, int(-1), _e18);
     const float4 _e26 = history_row(base_3, int(0), _e18);
     const float4 _e31 = history_row(base_3, int(1), _e18);
     const float4 _e36 = history_row(base_3, int(2), _e18);
-    float4 sum = ((((_e22 * _e20.x) + (_e26 * _e20.y)) + (_e31 * _e20.z)) + (_e36 * _e20.w));
-    const float _e45 = saturate_(sum.w);
-    return float4(max(sum.xyz, (0.0).xxx), _e45);
+    float4 sum_2 = ((((_e22 * _e20.x) + (_e26 * _e20.y)) + (_e31 * _e20.z)) + (_e36 * _e20.w));
+    const float _e45 = saturate_(sum_2.w);
+    return float4(max(sum_2.xyz, (0.0).xxx), _e45);
 }
 
 float4 history_nearest(float2 q_2)
 {
     uint4 _e3 = frame.counts;
     int2 size_4 = int2(_e3.xy);
-    int2 p_10 = clamp(naga_f2i32(round(q_2)), (int(0)).xx, asint(asuint(size_4) - asuint((int(1)).xx)));
-    float4 _e16 = history_in.Load(int3(p_10, int(0)));
+    int2 p_12 = clamp(naga_f2i32(round(q_2)), (int(0)).xx, asint(asuint(size_4) - asuint((int(1)).xx)));
+    float4 _e16 = history_in.Load(int3(p_12, int(0)));
     return _e16;
 }
 
@@ -1124,8 +1194,8 @@ float4 meta_at(float2 q_3)
 {
     uint4 _e3 = frame.counts;
     int2 size_5 = int2(_e3.xy);
-    int2 p_11 = clamp(naga_f2i32(round(q_3)), (int(0)).xx, asint(asuint(size_5) - asuint((int(1)).xx)));
-    float4 _e16 = meta_in.Load(int3(p_11, int(0)));
+    int2 p_13 = clamp(naga_f2i32(round(q_3)), (int(0)).xx, asint(asuint(size_5) - asuint((int(1)).xx)));
+    float4 _e16 = meta_in.Load(int3(p_13, int(0)));
     return _e16;
 }
 
@@ -1133,25 +1203,25 @@ uint2 naga_div(uint2 lhs, uint2 rhs) {
     return lhs / (rhs == 0u ? 1u : rhs);
 }
 
-bool in_blocks(uint2 id_7)
+bool in_blocks(uint2 id_12)
 {
-    uint k_4 = frame.temporal.x;
+    uint k_6 = frame.temporal.x;
     uint4 _e7 = frame.counts;
-    return all((id_7 < naga_div(((_e7.xy + (k_4).xx) - (1u).xx), (k_4).xx)));
+    return all((id_12 < naga_div(((_e7.xy + (k_6).xx) - (1u).xx), (k_6).xx)));
 }
 
-uint2 sparse_pixel(uint2 id_8)
+uint2 sparse_pixel(uint2 id_13)
 {
-    uint k_5 = frame.temporal.x;
+    uint k_7 = frame.temporal.x;
     uint _e9 = frame.misc.y;
-    const uint2 _e10 = block_offset(_e9, k_5);
-    return ((id_8 * k_5) + _e10);
+    const uint2 _e10 = block_offset(_e9, k_7);
+    return ((id_13 * k_7) + _e10);
 }
 
-void store_sparse(uint2 id_9, MarchResult r_2)
+void store_sparse(uint2 id_14, MarchResult r_2)
 {
-    cloud_out[id_9] = float4(r_2.radiance, r_2.transmittance);
-    depth_out[id_9] = float4(r_2.depth, 0.0, 0.0, 0.0);
+    cloud_out[id_14] = float4(r_2.radiance, r_2.transmittance);
+    depth_out[id_14] = float4(r_2.depth, 0.0, 0.0, 0.0);
     return;
 }
 
@@ -1167,8 +1237,8 @@ float rng_next(inout uint rng_1)
 {
     uint _e1 = rng_1;
     rng_1 = ((_e1 * 747796405u) + 2891336453u);
-    uint s_4 = rng_1;
-    uint word_1 = (((s_4 >> ((s_4 >> 28u) + 4u)) ^ s_4) * 277803737u);
+    uint s_5 = rng_1;
+    uint word_1 = (((s_5 >> ((s_5 >> 28u) + 4u)) ^ s_5) * 277803737u);
     return (float((((word_1 >> 22u) ^ word_1) >> 8u)) * 5.9604645e-8);
 }
 
@@ -1181,9 +1251,9 @@ float rng_exponential(inout uint rng_2, float sigma)
 Roots ray_shell_from(float3 p_7, float alt_5, float3 d_4, float radius_alt_1)
 {
     float rp_3 = frame.atmosphere.x;
-    float b_6 = dot(d_4, float3(p_7.x, (p_7.y + rp_3), p_7.z));
-    float c_6 = ((alt_5 - radius_alt_1) * ((alt_5 + radius_alt_1) + (2.0 * rp_3)));
-    const Roots _e20 = solve_sphere(b_6, c_6);
+    float b_7 = dot(d_4, float3(p_7.x, (p_7.y + rp_3), p_7.z));
+    float c_7 = ((alt_5 - radius_alt_1) * ((alt_5 + radius_alt_1) + (2.0 * rp_3)));
+    const Roots _e20 = solve_sphere(b_7, c_7);
     const Roots roots_4 = _e20;
     return roots_4;
 }
@@ -1199,14 +1269,14 @@ Segments ConstructSegments(float2 arg0, float2 arg1, uint arg2) {
 Segments layer_segments(float3 p_8, float alt_6, float3 d_5)
 {
     Segments s = ConstructSegments((0.0).xx, (0.0).xx, 0u);
-    bool local_24 = (bool)0;
-    float2 a = (0.0).xx;
+    bool local_27 = (bool)0;
+    float2 a_1 = (0.0).xx;
     float2 b_1 = (0.0).xx;
     uint n_1 = 0u;
-    bool local_25 = (bool)0;
-    bool local_26 = (bool)0;
-    bool local_27 = (bool)0;
     bool local_28 = (bool)0;
+    bool local_29 = (bool)0;
+    bool local_30 = (bool)0;
+    bool local_31 = (bool)0;
 
     float bottom_2 = frame.atmosphere.y;
     const Roots _e14 = ray_shell_from(p_8, alt_6, d_5, bottom_2);
@@ -1214,11 +1284,11 @@ Segments layer_segments(float3 p_8, float alt_6, float3 d_5)
     const Roots _e19 = ray_shell_from(p_8, alt_6, d_5, _e18);
     const bool _e20 = hits_ground(p_8, alt_6, d_5);
     if (!(!(_e19.hit))) {
-        local_24 = (_e19.t1_ <= 0.0);
+        local_27 = (_e19.t1_ <= 0.0);
     } else {
-        local_24 = true;
+        local_27 = true;
     }
-    bool _e30 = local_24;
+    bool _e30 = local_27;
     if (_e30) {
         Segments _e31 = s;
         const Segments segments = _e31;
@@ -1226,33 +1296,33 @@ Segments layer_segments(float3 p_8, float alt_6, float3 d_5)
     }
     float entry = max(_e19.t0_, 0.0);
     if (_e14.hit) {
-        local_25 = (_e14.t0_ > 0.0);
+        local_28 = (_e14.t0_ > 0.0);
     } else {
-        local_25 = false;
+        local_28 = false;
     }
-    bool _e50 = local_25;
+    bool _e50 = local_28;
     if (_e50) {
-        local_26 = (alt_6 >= bottom_2);
+        local_29 = (alt_6 >= bottom_2);
     } else {
-        local_26 = false;
+        local_29 = false;
     }
-    bool _e55 = local_26;
+    bool _e55 = local_29;
     if (_e55) {
         uint _e56 = n_1;
-        a[min(uint(_e56), 1u)] = entry;
+        a_1[min(uint(_e56), 1u)] = entry;
         uint _e58 = n_1;
         b_1[min(uint(_e58), 1u)] = _e14.t0_;
         uint _e61 = n_1;
         n_1 = (_e61 + uint((_e14.t0_ > entry)));
         if (!(_e20)) {
-            local_27 = (_e19.t1_ > _e14.t1_);
+            local_30 = (_e19.t1_ > _e14.t1_);
         } else {
-            local_27 = false;
+            local_30 = false;
         }
-        bool _e73 = local_27;
+        bool _e73 = local_30;
         if (_e73) {
             uint _e74 = n_1;
-            a[min(uint(_e74), 1u)] = max(_e14.t1_, entry);
+            a_1[min(uint(_e74), 1u)] = max(_e14.t1_, entry);
             uint _e78 = n_1;
             b_1[min(uint(_e78), 1u)] = _e19.t1_;
             uint _e81 = n_1;
@@ -1261,23 +1331,23 @@ Segments layer_segments(float3 p_8, float alt_6, float3 d_5)
     } else {
         if ((alt_6 < bottom_2)) {
             if (!(_e20)) {
-                local_28 = _e14.hit;
+                local_31 = _e14.hit;
             } else {
-                local_28 = false;
+                local_31 = false;
             }
-            bool _e90 = local_28;
+            bool _e90 = local_31;
             if (_e90) {
-                a.x = max(_e14.t1_, 0.0);
+                a_1.x = max(_e14.t1_, 0.0);
                 b_1.x = _e19.t1_;
                 n_1 = 1u;
             }
         } else {
-            a.x = entry;
+            a_1.x = entry;
             b_1.x = _e19.t1_;
             n_1 = 1u;
         }
     }
-    float2 _e103 = a;
+    float2 _e103 = a_1;
     s.a = _e103;
     float2 _e105 = b_1;
     s.b = _e105;
@@ -1288,23 +1358,23 @@ Segments layer_segments(float3 p_8, float alt_6, float3 d_5)
     return segments_1;
 }
 
-float density_at(float3 rel_2, inout Counters counters_5)
+float density_at(float3 rel_2, inout Counters counters_6)
 {
     float _e6 = frame.camera_position.x;
     float _e13 = frame.camera_position.z;
-    float3 p_12 = float3((rel_2.x + _e6), rel_2.y, (rel_2.z + _e13));
+    float3 p_14 = float3((rel_2.x + _e6), rel_2.y, (rel_2.z + _e13));
     const float _e16 = altitude_of(rel_2);
-    const float _e17 = cloud_density(p_12, _e16, counters_5);
+    const float _e17 = cloud_density(p_14, _e16, counters_6);
     return _e17;
 }
 
 float empty_cell_skip(float3 origin, float3 dir_1, float t_1)
 {
-    float3 rel_4 = (origin + (dir_1 * t_1));
+    float3 rel_5 = (origin + (dir_1 * t_1));
     float _e9 = frame.camera_position.x;
     float _e16 = frame.camera_position.z;
-    float3 p_13 = float3((rel_4.x + _e9), rel_4.y, (rel_4.z + _e16));
-    const float _e19 = empty_cell_exit(p_13, dir_1);
+    float3 p_15 = float3((rel_5.x + _e9), rel_5.y, (rel_5.z + _e16));
+    const float _e19 = empty_cell_exit(p_15, dir_1);
     if ((_e19 <= 0.0)) {
         return 0.0;
     }
@@ -1318,7 +1388,7 @@ float density_max()
     return clamp((_e3 * (1.0 + _e7)), 0.0, 1.0);
 }
 
-float free_flight(float3 origin_1, float3 dir_2, Segments segs, inout uint rng_3, inout Counters counters_6)
+float free_flight(float3 origin_1, float3 dir_2, Segments segs, inout uint rng_3, inout Counters counters_7)
 {
     uint k_1 = 0u;
     float t_2 = (float)0;
@@ -1372,10 +1442,10 @@ float free_flight(float3 origin_1, float3 dir_2, Segments segs, inout uint rng_3
                 if ((_e42 >= segs.b[min(uint(_e44), 1u)])) {
                     break;
                 }
-                uint _e48 = counters_6.view_steps;
-                counters_6.view_steps = (_e48 + 1u);
+                uint _e48 = counters_7.view_steps;
+                counters_7.view_steps = (_e48 + 1u);
                 float _e51 = t_2;
-                const float _e54 = density_at((origin_1 + (dir_2 * _e51)), counters_6);
+                const float _e54 = density_at((origin_1 + (dir_2 * _e51)), counters_7);
                 const float _e55 = rng_next(rng_3);
                 if (((_e55 * _e5) < _e54)) {
                     float _e58 = t_2;
@@ -1387,7 +1457,7 @@ float free_flight(float3 origin_1, float3 dir_2, Segments segs, inout uint rng_3
     return -1.0;
 }
 
-float transmittance_along(float3 origin_2, float3 dir_3, Segments segs_1, inout uint rng_4, inout Counters counters_7)
+float transmittance_along(float3 origin_2, float3 dir_3, Segments segs_1, inout uint rng_4, inout Counters counters_8)
 {
     float tr = 1.0;
     uint k_2 = 0u;
@@ -1443,10 +1513,10 @@ float transmittance_along(float3 origin_2, float3 dir_3, Segments segs_1, inout 
                 if ((_e44 >= segs_1.b[min(uint(_e46), 1u)])) {
                     break;
                 }
-                uint _e50 = counters_7.light;
-                counters_7.light = (_e50 + 1u);
+                uint _e50 = counters_8.light;
+                counters_8.light = (_e50 + 1u);
                 float _e53 = t_3;
-                const float _e56 = density_at((origin_2 + (dir_3 * _e53)), counters_7);
+                const float _e56 = density_at((origin_2 + (dir_3 * _e53)), counters_8);
                 float _e57 = tr;
                 tr = (_e57 * (1.0 - ((sigma_t_3 * _e56) / majorant_1)));
                 float _e63 = tr;
@@ -1474,8 +1544,8 @@ float sample_hg_cos(float g_2, float u)
     if ((abs(g_2) < 0.0001)) {
         return (1.0 - (2.0 * u));
     }
-    float s_5 = ((1.0 - (g_2 * g_2)) / ((1.0 - g_2) + ((2.0 * g_2) * u)));
-    return clamp((((1.0 + (g_2 * g_2)) - (s_5 * s_5)) / (2.0 * g_2)), -1.0, 1.0);
+    float s_6 = ((1.0 - (g_2 * g_2)) / ((1.0 - g_2) + ((2.0 * g_2) * u)));
+    return clamp((((1.0 + (g_2 * g_2)) - (s_6 * s_6)) / (2.0 * g_2)), -1.0, 1.0);
 }
 
 PhaseSample ConstructPhaseSample(float3 arg0, float arg1) {
@@ -1523,12 +1593,12 @@ PhaseSample sample_phase(float3 dir_4, inout uint rng_5)
     float _e61 = cos_theta_4;
     float sin_theta = sqrt(max((1.0 - (_e60 * _e61)), 0.0));
     float sign_ = ((dir_4.z >= 0.0) ? 1.0 : -1.0);
-    float a_2 = (-1.0 / (sign_ + dir_4.z));
-    float bb = ((dir_4.x * dir_4.y) * a_2);
-    float3 t_5 = float3((1.0 + (((sign_ * dir_4.x) * dir_4.x) * a_2)), (sign_ * bb), (-(sign_) * dir_4.x));
-    float3 b_7 = float3(bb, (sign_ + ((dir_4.y * dir_4.y) * a_2)), -(dir_4.y));
+    float a_5 = (-1.0 / (sign_ + dir_4.z));
+    float bb = ((dir_4.x * dir_4.y) * a_5);
+    float3 t_5 = float3((1.0 + (((sign_ * dir_4.x) * dir_4.x) * a_5)), (sign_ * bb), (-(sign_) * dir_4.x));
+    float3 b_8 = float3(bb, (sign_ + ((dir_4.y * dir_4.y) * a_5)), -(dir_4.y));
     float _e109 = cos_theta_4;
-    float3 w_1 = normalize((((t_5 * (sin_theta * cos(phi))) + (b_7 * (sin_theta * sin(phi)))) + (dir_4 * _e109)));
+    float3 w_1 = normalize((((t_5 * (sin_theta * cos(phi))) + (b_8 * (sin_theta * sin(phi)))) + (dir_4 * _e109)));
     float _e113 = cos_theta_4;
     const float _e115 = phase(_e113, 1.0);
     float _e116 = pdf;
@@ -1545,35 +1615,35 @@ PathResult ConstructPathResult(float3 arg0, float arg1, float arg2) {
     return ret;
 }
 
-PathResult trace_path(float3 view_1, Interval span, inout uint rng_6, inout Counters counters_8)
+PathResult trace_path(float3 view_1, Interval span, inout uint rng_6, inout Counters counters_9)
 {
-    PathResult out_ = ConstructPathResult((0.0).xxx, 1.0, -1.0);
-    bool local_29 = (bool)0;
-    bool local_30 = (bool)0;
+    PathResult out_2 = ConstructPathResult((0.0).xxx, 1.0, -1.0);
+    bool local_32 = (bool)0;
+    bool local_33 = (bool)0;
     uint max_orders = MAX_PATH_ORDERS;
     float3 pos = (float3)0;
     float3 dir_5 = (float3)0;
     float throughput = 1.0;
     uint order = 0u;
-    bool local_31 = (bool)0;
+    bool local_34 = (bool)0;
 
     if ((span.kind != RAY_MARCH)) {
-        PathResult _e13 = out_;
+        PathResult _e13 = out_2;
         const PathResult pathresult = _e13;
         return pathresult;
     }
     float _e17 = frame.camera_position.y;
     float3 cam = float3(0.0, _e17, 0.0);
     Segments primary = ConstructSegments(float2(span.start, 0.0), float2((span.start + span.length_), 0.0), 1u);
-    const float _e32 = transmittance_along(cam, view_1, primary, rng_6, counters_8);
-    out_.transmittance = _e32;
-    const float _e33 = free_flight(cam, view_1, primary, rng_6, counters_8);
+    const float _e32 = transmittance_along(cam, view_1, primary, rng_6, counters_9);
+    out_2.transmittance = _e32;
+    const float _e33 = free_flight(cam, view_1, primary, rng_6, counters_9);
     if ((_e33 < 0.0)) {
-        PathResult _e36 = out_;
+        PathResult _e36 = out_2;
         const PathResult pathresult_1 = _e36;
         return pathresult_1;
     }
-    out_.depth = _e33;
+    out_2.depth = _e33;
     float4 _e40 = frame.sun_direction;
     float3 sun_2 = _e40.xyz;
     float _e45 = frame.extinction.x;
@@ -1586,16 +1656,16 @@ PathResult trace_path(float3 view_1, Interval span, inout uint rng_6, inout Coun
         float4 _e70 = frame.ambient_bottom;
         if (!(any((_e70.xyz > (0.0).xxx)))) {
             float4 _e81 = frame.ambient_top;
-            local_30 = any((_e81.xyz > (0.0).xxx));
+            local_33 = any((_e81.xyz > (0.0).xxx));
         } else {
-            local_30 = true;
+            local_33 = true;
         }
-        bool _e88 = local_30;
-        local_29 = _e88;
+        bool _e88 = local_33;
+        local_32 = _e88;
     } else {
-        local_29 = false;
+        local_32 = false;
     }
-    bool ambient_on = local_29;
+    bool ambient_on = local_32;
     uint _e96 = frame.misc.z;
     if ((_e96 > 0u)) {
         uint _e102 = frame.misc.z;
@@ -1623,26 +1693,26 @@ PathResult trace_path(float3 view_1, Interval span, inout uint rng_6, inout Coun
             float3 _e139 = pos;
             float3 _e140 = pos;
             const Segments _e141 = layer_segments(_e140, _e119, sun_2);
-            const float _e142 = transmittance_along(_e139, sun_2, _e141, rng_6, counters_8);
-            float3 _e144 = out_.radiance;
+            const float _e142 = transmittance_along(_e139, sun_2, _e141, rng_6, counters_9);
+            float3 _e144 = out_2.radiance;
             float4 _e147 = frame.sun_illuminance;
             float _e149 = throughput;
             float3 _e150 = dir_5;
             const float _e153 = phase(dot(_e150, sun_2), 1.0);
-            out_.radiance = (_e144 + (_e147.xyz * ((_e149 * _e153) * _e142)));
+            out_2.radiance = (_e144 + (_e147.xyz * ((_e149 * _e153) * _e142)));
         }
         float3 _e158 = dir_5;
         const PhaseSample _e159 = sample_phase(_e158, rng_6);
         float3 _e160 = pos;
         float3 _e162 = pos;
         const Segments _e164 = layer_segments(_e162, _e119, _e159.dir);
-        const float _e165 = free_flight(_e160, _e159.dir, _e164, rng_6, counters_8);
+        const float _e165 = free_flight(_e160, _e159.dir, _e164, rng_6, counters_9);
         if ((_e165 < 0.0)) {
             if (ambient_on) {
-                float3 _e169 = out_.radiance;
+                float3 _e169 = out_2.radiance;
                 const float3 _e170 = ambient(_e135);
                 float _e171 = throughput;
-                out_.radiance = (_e169 + (_e170 * (_e171 * _e159.weight)));
+                out_2.radiance = (_e169 + (_e170 * (_e171 * _e159.weight)));
             }
             break;
         }
@@ -1657,11 +1727,11 @@ PathResult trace_path(float3 view_1, Interval span, inout uint rng_6, inout Coun
         uint _e183 = order;
         if ((_e183 >= 3u)) {
             float _e188 = throughput;
-            local_31 = (_e188 < 0.1);
+            local_34 = (_e188 < 0.1);
         } else {
-            local_31 = false;
+            local_34 = false;
         }
-        bool _e192 = local_31;
+        bool _e192 = local_34;
         if (_e192) {
             const float _e193 = rng_next(rng_6);
             float _e194 = throughput;
@@ -1678,43 +1748,43 @@ PathResult trace_path(float3 view_1, Interval span, inout uint rng_6, inout Coun
         float3 _e203 = dir_5;
         pos = (_e202 + (_e203 * _e165));
     }
-    PathResult _e206 = out_;
+    PathResult _e206 = out_2;
     const PathResult pathresult_2 = _e206;
     return pathresult_2;
 }
 
 bool camera_still()
 {
-    bool local_32 = (bool)0;
-    bool local_33 = (bool)0;
-    bool local_34 = (bool)0;
+    bool local_35 = (bool)0;
+    bool local_36 = (bool)0;
+    bool local_37 = (bool)0;
 
     float4 _e2 = frame.camera_position;
     float4 _e5 = frame.previous_position;
     if (all((_e2 == _e5))) {
         float4 _e12 = frame.camera_forward;
         float4 _e15 = frame.previous_forward;
-        local_32 = all((_e12 == _e15));
+        local_35 = all((_e12 == _e15));
     } else {
-        local_32 = false;
+        local_35 = false;
     }
-    bool _e19 = local_32;
+    bool _e19 = local_35;
     if (_e19) {
         float4 _e24 = frame.camera_right;
         float4 _e28 = frame.previous_right;
-        local_33 = all((_e24.xyz == _e28.xyz));
+        local_36 = all((_e24.xyz == _e28.xyz));
     } else {
-        local_33 = false;
+        local_36 = false;
     }
-    bool _e33 = local_33;
+    bool _e33 = local_36;
     if (_e33) {
         float4 _e38 = frame.camera_up;
         float4 _e42 = frame.previous_up;
-        local_34 = all((_e38.xyz == _e42.xyz));
+        local_37 = all((_e38.xyz == _e42.xyz));
     } else {
-        local_34 = false;
+        local_37 = false;
     }
-    bool _e47 = local_34;
+    bool _e47 = local_37;
     return _e47;
 }
 
@@ -1723,26 +1793,447 @@ float luminance(float3 c_1)
     return dot(c_1, float3(0.2126, 0.7152, 0.0722));
 }
 
-float3 sky_radiance(float3 d_6, float alt_7)
+float basic_sun_depth(float3 rel_3, float alt_7, inout Counters counters_10)
+{
+    float tau_3 = 0.0;
+    uint i_4 = 1u;
+
+    uint steps_2 = frame.counts.w;
+    if ((steps_2 == 0u)) {
+        return 0.0;
+    }
+    float4 _e12 = frame.sun_direction;
+    float3 sun_3 = _e12.xyz;
+    float rp_4 = frame.atmosphere.x;
+    float top_2 = frame.atmosphere.z;
+    float _e25 = frame.atmosphere.y;
+    float thickness = (top_2 - _e25);
+    const Roots _e39 = solve_sphere(dot(sun_3, float3(rel_3.x, (rel_3.y + rp_4), rel_3.z)), ((alt_7 - top_2) * ((alt_7 + top_2) + (2.0 * rp_4))));
+    float length_ = min(max(_e39.t1_, 0.0), (3.0 * thickness));
+    float dt_2 = (length_ / float(steps_2));
+    float _e51 = frame.extinction.x;
+    float _e55 = frame.extinction.y;
+    float sigma_t_5 = (_e51 + _e55);
+    float4 _e59 = frame.camera_position;
+    float2 cam_xz_1 = _e59.xz;
+    uint2 loop_bound_8 = uint2(4294967295u, 4294967295u);
+    bool loop_init_4 = true;
+    while(true) {
+        if (all(loop_bound_8 == uint2(0u, 0u))) { break; }
+        loop_bound_8 -= uint2(loop_bound_8.y == 0u, 1u);
+        if (!loop_init_4) {
+            uint _e90 = i_4;
+            i_4 = (_e90 + 1u);
+        }
+        loop_init_4 = false;
+        uint _e65 = i_4;
+        if ((_e65 <= steps_2)) {
+        } else {
+            break;
+        }
+        {
+            uint _e68 = counters_10.light;
+            counters_10.light = (_e68 + 1u);
+            uint _e71 = i_4;
+            float3 q_7 = (rel_3 + (sun_3 * (float(_e71) * dt_2)));
+            float3 p_16 = float3((q_7.x + cam_xz_1.x), q_7.y, (q_7.z + cam_xz_1.y));
+            float _e84 = tau_3;
+            const float _e85 = altitude_of(q_7);
+            const float _e86 = cloud_density(p_16, _e85, counters_10);
+            tau_3 = (_e84 + ((sigma_t_5 * _e86) * dt_2));
+        }
+    }
+    float _e93 = tau_3;
+    return _e93;
+}
+
+MarchResult basic_pixel(uint2 pixel_6)
+{
+    Counters counters_11 = ConstructCounters(0u, 0u, 0u, 0u);
+    float3 radiance_1 = (0.0).xxx;
+    float transmittance_1 = 1.0;
+    float depth_sum_1 = 0.0;
+    uint i_5 = 0u;
+    float depth_3 = 0.0;
+
+    const float3 _e1 = view_ray(pixel_6);
+    float cam_alt_1 = frame.camera_position.y;
+    float4 _e8 = frame.camera_position;
+    float2 cam_xz_2 = _e8.xz;
+    count(STAT_PIXELS, 1u);
+    const Interval _e25 = layer_interval(cam_alt_1, _e1);
+    if ((_e25.kind == RAY_MISSES_LAYER)) {
+        count(STAT_EXIT_MISSED, 1u);
+    } else {
+        if ((_e25.kind == RAY_HITS_GROUND)) {
+            count(STAT_EXIT_GROUND, 1u);
+        } else {
+            count(STAT_MARCHED, 1u);
+            uint steps_3 = frame.counts.z;
+            float dt_3 = (_e25.length_ / float(steps_3));
+            float sigma_s = frame.extinction.x;
+            float _e52 = frame.extinction.y;
+            float sigma_t_6 = (sigma_s + _e52);
+            float4 _e56 = frame.sun_illuminance;
+            float4 _e60 = frame.sun_direction;
+            float _e66 = frame.phase.x;
+            const float _e67 = phase_hg(dot(_e1, _e60.xyz), _e66);
+            float3 sun_phase = (_e56.xyz * _e67);
+            uint2 loop_bound_9 = uint2(4294967295u, 4294967295u);
+            bool loop_init_5 = true;
+            while(true) {
+                if (all(loop_bound_9 == uint2(0u, 0u))) { break; }
+                loop_bound_9 -= uint2(loop_bound_9.y == 0u, 1u);
+                if (!loop_init_5) {
+                    uint _e131 = i_5;
+                    i_5 = (_e131 + 1u);
+                }
+                loop_init_5 = false;
+                uint _e71 = i_5;
+                if ((_e71 < steps_3)) {
+                } else {
+                    break;
+                }
+                {
+                    uint _e74 = counters_11.view_steps;
+                    counters_11.view_steps = (_e74 + 1u);
+                    uint _e78 = i_5;
+                    float t_6 = (_e25.start + (float(_e78) * dt_3));
+                    float3 rel_6 = ((_e1 * t_6) + float3(0.0, cam_alt_1, 0.0));
+                    float3 p_17 = float3((rel_6.x + cam_xz_2.x), rel_6.y, (rel_6.z + cam_xz_2.y));
+                    const float _e95 = altitude_of(rel_6);
+                    const float _e96 = cloud_density(p_17, _e95, counters_11);
+                    if ((_e96 <= 0.0)) {
+                        continue;
+                    }
+                    const float _e99 = basic_sun_depth(rel_6, _e95, counters_11);
+                    float beer_powder = ((2.0 * exp(-(_e99))) * (1.0 - exp((-2.0 * _e99))));
+                    float3 _e110 = radiance_1;
+                    float _e111 = transmittance_1;
+                    radiance_1 = (_e110 + (sun_phase * ((((beer_powder * _e111) * sigma_s) * _e96) * dt_3)));
+                    float step_t_1 = exp(((-(sigma_t_6) * _e96) * dt_3));
+                    float _e122 = depth_sum_1;
+                    float _e123 = transmittance_1;
+                    depth_sum_1 = (_e122 + ((t_6 * _e123) * (1.0 - step_t_1)));
+                    float _e129 = transmittance_1;
+                    transmittance_1 = (_e129 * step_t_1);
+                }
+            }
+        }
+    }
+    uint _e136 = counters_11.view_steps;
+    count(STAT_VIEW_STEPS, _e136);
+    uint _e139 = counters_11.density;
+    count(STAT_DENSITY, _e139);
+    uint _e142 = counters_11.detail;
+    count(STAT_DETAIL, _e142);
+    uint _e145 = counters_11.light;
+    count(STAT_LIGHT, _e145);
+    float _e148 = transmittance_1;
+    if ((_e148 < 1.0)) {
+        float _e151 = depth_sum_1;
+        float _e152 = transmittance_1;
+        depth_3 = (_e151 / (1.0 - _e152));
+    }
+    float3 _e156 = radiance_1;
+    float _e157 = transmittance_1;
+    float _e158 = depth_3;
+    const MarchResult marchresult_1 = ConstructMarchResult(_e156, _e157, _e158);
+    return marchresult_1;
+}
+
+float atlas_hash(uint a_2, uint b_2)
+{
+    const uint _e2 = pcg(b_2);
+    const uint _e4 = pcg((a_2 ^ _e2));
+    return (float((_e4 >> 8u)) * 5.9604645e-8);
+}
+
+float value_noise(float2 p_9, uint seed)
+{
+    uint2 i_7 = naga_f2u32(floor(p_9));
+    float2 f_3 = frac(p_9);
+    float2 s_7 = ((f_3 * f_3) * ((3.0).xx - (2.0 * f_3)));
+    uint h_7 = (seed * 7919u);
+    const float _e17 = atlas_hash((i_7.x + h_7), i_7.y);
+    const float _e23 = atlas_hash(((i_7.x + 1u) + h_7), i_7.y);
+    const float _e29 = atlas_hash((i_7.x + h_7), (i_7.y + 1u));
+    const float _e37 = atlas_hash(((i_7.x + 1u) + h_7), (i_7.y + 1u));
+    return lerp(lerp(_e17, _e23, s_7.x), lerp(_e29, _e37, s_7.x), s_7.y);
+}
+
+float value_fbm(float2 p_10, uint seed_1)
+{
+    float sum_1 = 0.0;
+    float weight = 0.5;
+    float2 q_4 = (float2)0;
+    uint o = 0u;
+
+    q_4 = p_10;
+    uint2 loop_bound_10 = uint2(4294967295u, 4294967295u);
+    bool loop_init_6 = true;
+    while(true) {
+        if (all(loop_bound_10 == uint2(0u, 0u))) { break; }
+        loop_bound_10 -= uint2(loop_bound_10.y == 0u, 1u);
+        if (!loop_init_6) {
+            uint _e26 = o;
+            o = (_e26 + 1u);
+        }
+        loop_init_6 = false;
+        uint _e9 = o;
+        if ((_e9 < 4u)) {
+        } else {
+            break;
+        }
+        {
+            float _e12 = sum_1;
+            float _e13 = weight;
+            float2 _e14 = q_4;
+            uint _e15 = o;
+            const float _e17 = value_noise(_e14, (seed_1 + _e15));
+            sum_1 = (_e12 + (_e13 * _e17));
+            float2 _e20 = q_4;
+            q_4 = (_e20 * 2.0);
+            float _e23 = weight;
+            weight = (_e23 * 0.5);
+        }
+    }
+    float _e29 = sum_1;
+    return (_e29 / 0.9375);
+}
+
+float sprite_texture(uint tile_1, float2 uv)
+{
+    float billow = 0.0;
+    uint i_6 = 0u;
+    float2 at = (float2)0;
+    float a_3 = (float)0;
+
+    float2 c_8 = (uv - (0.5).xx);
+    float mask = smoothstep(0.48, 0.36, length(c_8));
+    const float _e16 = value_fbm(((uv * 6.0) + ((float(tile_1) * 13.0)).xx), tile_1);
+    if ((tile_1 < 4u)) {
+        float2 q_8 = (c_8 * float2(1.0, 3.2));
+        float streak = (1.0 - smoothstep(0.05, 0.45, length(q_8)));
+        const float _e40 = value_fbm(((uv * float2(3.0, 12.0)) + ((float(tile_1) * 5.0)).xx), (tile_1 + 16u));
+        const float _e46 = saturate_(((_e40 * 1.6) - 0.3));
+        return (((mask * streak) * _e46) * 0.8);
+    }
+    uint blobs = (5u + naga_mod(tile_1, 4u));
+    uint2 loop_bound_11 = uint2(4294967295u, 4294967295u);
+    bool loop_init_7 = true;
+    while(true) {
+        if (all(loop_bound_11 == uint2(0u, 0u))) { break; }
+        loop_bound_11 -= uint2(loop_bound_11.y == 0u, 1u);
+        if (!loop_init_7) {
+            uint _e108 = i_6;
+            i_6 = (_e108 + 1u);
+        }
+        loop_init_7 = false;
+        uint _e58 = i_6;
+        if ((_e58 < blobs)) {
+        } else {
+            break;
+        }
+        {
+            uint _e61 = i_6;
+            const float _e63 = atlas_hash(tile_1, (2u * _e61));
+            uint _e65 = i_6;
+            const float _e69 = atlas_hash(tile_1, ((2u * _e65) + 1u));
+            float2 centre_1 = (float2(_e63, _e69) - (0.5).xx);
+            at = ((0.5).xx + (centre_1 * 0.34));
+            if ((tile_1 == 4u)) {
+                at.y = (0.5 + ((centre_1.y - 0.5) * 0.24));
+            }
+            uint _e91 = i_6;
+            const float _e93 = atlas_hash(tile_1, (100u + _e91));
+            float r_3 = (0.14 + (0.1 * _e93));
+            float2 _e98 = at;
+            float d_9 = (length((uv - _e98)) / r_3);
+            float _e102 = billow;
+            const float _e106 = saturate_((1.0 - (d_9 * d_9)));
+            billow = max(_e102, _e106);
+        }
+    }
+    float _e111 = billow;
+    const float _e114 = saturate_((_e111 * 1.5));
+    a_3 = ((mask * _e114) * (0.55 + (0.45 * _e16)));
+    if ((tile_1 == 4u)) {
+        float _e124 = a_3;
+        a_3 = (_e124 * smoothstep(0.62, 0.54, uv.y));
+    }
+    float _e130 = a_3;
+    return _e130;
+}
+
+float3 sprite_rel(float2 xz, float alt_8)
+{
+    float rp_5 = frame.atmosphere.x;
+    float4 _e8 = frame.camera_position;
+    float2 d_10 = (xz - _e8.xz);
+    float k_8 = ((alt_8 * (alt_8 + (2.0 * rp_5))) - dot(d_10, d_10));
+    float y_2 = (k_8 / (rp_5 + sqrt(max(((rp_5 * rp_5) + k_8), 0.0))));
+    return float3(d_10.x, y_2, d_10.y);
+}
+
+SpriteCell ConstructSpriteCell(int2 arg0, float arg1, bool arg2) {
+    SpriteCell ret = (SpriteCell)0;
+    ret.index = arg0;
+    ret.size = arg1;
+    ret.covered = arg2;
+    return ret;
+}
+
+SpriteCell sprite_cell(uint cell)
+{
+    int2 start_1 = (int2)0;
+    uint k_3 = 3u;
+    bool local_38 = (bool)0;
+    bool local_39 = (bool)0;
+
+    uint level_1 = naga_div(cell, 64u);
+    int2 local_41 = int2(int(naga_mod(cell, 8u)), int(naga_mod(naga_div(cell, 8u), 8u)));
+    float4 _e15 = frame.camera_position;
+    start_1 = asint(asuint(naga_f2i32(floor((_e15.xz / (12000.0).xx)))) - asuint((int(4)).xx));
+    uint2 loop_bound_12 = uint2(4294967295u, 4294967295u);
+    bool loop_init_8 = true;
+    while(true) {
+        if (all(loop_bound_12 == uint2(0u, 0u))) { break; }
+        loop_bound_12 -= uint2(loop_bound_12.y == 0u, 1u);
+        if (!loop_init_8) {
+            uint _e35 = k_3;
+            k_3 = (_e35 - 1u);
+        }
+        loop_init_8 = false;
+        uint _e27 = k_3;
+        if ((_e27 > level_1)) {
+        } else {
+            break;
+        }
+        {
+            int2 _e29 = start_1;
+            start_1 = asint(asuint(int(2)) * asuint(asint(asuint(_e29) + asuint((int(2)).xx))));
+        }
+    }
+    if ((level_1 > 0u)) {
+        local_38 = all((local_41 >= (int(2)).xx));
+    } else {
+        local_38 = false;
+    }
+    bool _e47 = local_38;
+    if (_e47) {
+        local_39 = all((local_41 < (int(6)).xx));
+    } else {
+        local_39 = false;
+    }
+    bool covered = local_39;
+    int2 _e56 = start_1;
+    const SpriteCell spritecell = ConstructSpriteCell(asint(asuint(_e56) + asuint(local_41)), (SPRITE_CELL0_ * float((1u << level_1))), covered);
+    return spritecell;
+}
+
+SpriteCandidate ConstructSpriteCandidate(float2 arg0, float arg1, float arg2, float arg3, float arg4, float arg5, float arg6) {
+    SpriteCandidate ret = (SpriteCandidate)0;
+    ret.xz = arg0;
+    ret.alt = arg1;
+    ret.h = arg2;
+    ret.size_hash = arg3;
+    ret.texture_hash = arg4;
+    ret.rotation_hash = arg5;
+    ret.density = arg6;
+    return ret;
+}
+
+SpriteCandidate sprite_candidate(SpriteCell c_2, uint level, uint s_1, inout Counters counters_12)
+{
+    float density_2 = 0.0;
+
+    const uint _e10 = pcg(level);
+    const uint _e12 = pcg((asuint(c_2.index.y) ^ _e10));
+    const uint _e14 = pcg((asuint(c_2.index.x) ^ _e12));
+    const float _e17 = atlas_hash(_e14, (8u * s_1));
+    const float _e22 = atlas_hash(_e14, ((8u * s_1) + 1u));
+    const float _e27 = atlas_hash(_e14, ((8u * s_1) + 2u));
+    const float _e32 = atlas_hash(_e14, ((8u * s_1) + 3u));
+    float4 u_1 = float4(_e17, _e22, _e27, _e32);
+    const float _e38 = atlas_hash(_e14, ((8u * s_1) + 4u));
+    const float _e43 = atlas_hash(_e14, ((8u * s_1) + 5u));
+    float2 v_2 = float2(_e38, _e43);
+    float2 xz_1 = ((float2(c_2.index) + u_1.xy) * c_2.size);
+    const Weather _e55 = sample_weather(float3(xz_1.x, 0.0, xz_1.y));
+    float h_8 = (0.04 + (u_1.z * (lerp(0.3, 0.95, _e55.cloud_type) - 0.04)));
+    float _e69 = frame.atmosphere.y;
+    float _e73 = frame.atmosphere.z;
+    float _e77 = frame.atmosphere.y;
+    float alt_10 = (_e69 + (h_8 * (_e73 - _e77)));
+    if (!(c_2.covered)) {
+        const float3 _e85 = sprite_rel(xz_1, alt_10);
+        const float _e90 = cloud_density(float3(xz_1.x, _e85.y, xz_1.y), alt_10, counters_12);
+        density_2 = _e90;
+    }
+    float _e94 = density_2;
+    const SpriteCandidate spritecandidate = ConstructSpriteCandidate(xz_1, alt_10, h_8, u_1.w, v_2.x, v_2.y, _e94);
+    return spritecandidate;
+}
+
+float3 sprite_sky_level(float h_5)
+{
+    const float _e1 = saturate_(h_5);
+    float x_5 = (_e1 * 4.0);
+    if ((x_5 < 1.0)) {
+        return lerp(SKY_LEVEL0_, SKY_LEVEL1_, x_5);
+    }
+    if ((x_5 < 2.0)) {
+        return lerp(SKY_LEVEL1_, SKY_LEVEL2_, (x_5 - 1.0));
+    }
+    if ((x_5 < 3.0)) {
+        return lerp(SKY_LEVEL2_, SKY_LEVEL3_, (x_5 - 2.0));
+    }
+    return lerp(SKY_LEVEL3_, SKY_LEVEL4_, (x_5 - 3.0));
+}
+
+float sprite_sun_level(float cos_angle)
+{
+    if ((cos_angle < 0.0)) {
+        return lerp(SPRITE_C_MIN, SPRITE_C_MED, (cos_angle + 1.0));
+    }
+    return lerp(SPRITE_C_MED, SPRITE_C_MAX, cos_angle);
+}
+
+float2 sprite_corner(uint k_4)
+{
+    bool local_40 = (bool)0;
+
+    uint q_9 = ((k_4 >= 3u) ? ((k_4 == 3u) ? 0u : (k_4 - 2u)) : k_4);
+    if (!((q_9 == 1u))) {
+        local_40 = (q_9 == 2u);
+    } else {
+        local_40 = true;
+    }
+    bool _e18 = local_40;
+    return float2((_e18 ? 1.0 : -1.0), ((q_9 >= 2u) ? 1.0 : -1.0));
+}
+
+float3 sky_radiance(float3 d_6, float alt_9)
 {
     float4 _e4 = frame.sun_direction;
-    float3 sun_3 = _e4.xyz;
+    float3 sun_4 = _e4.xyz;
     float4 _e8 = frame.sun_illuminance;
     float3 e = _e8.xyz;
-    const float _e15 = saturate_(((sun_3.y * 4.0) + 0.3));
-    const bool _e19 = hits_ground(float3(0.0, alt_7, 0.0), alt_7, d_6);
+    const float _e15 = saturate_(((sun_4.y * 4.0) + 0.3));
+    const bool _e19 = hits_ground(float3(0.0, alt_9, 0.0), alt_9, d_6);
     if (_e19) {
         float3 ground_albedo = float3(0.035, 0.035, 0.03);
-        return (ground_albedo * (((e * max(sun_3.y, 0.0)) / (3.1415927).xxx) + ((0.05 * e) * _e15)));
+        return (ground_albedo * (((e * max(sun_4.y, 0.0)) / (3.1415927).xxx) + ((0.05 * e) * _e15)));
     }
     float3 zenith = float3(0.018, 0.04, 0.1);
     float3 horizon = float3(0.07, 0.085, 0.11);
     const float _e45 = saturate_(d_6.y);
     float3 gradient_1 = lerp(horizon, zenith, sqrt(_e45));
     float3 sunset = (((1.0 - (_e15 * 0.8)) * pow((1.0 - _e45), 6.0)) * float3(0.25, 0.1, 0.0));
-    const float _e64 = phase_hg(dot(d_6, sun_3), 0.76);
+    const float _e64 = phase_hg(dot(d_6, sun_4), 0.76);
     float glow = (_e64 * 0.02);
-    const float _e73 = saturate_(((sun_3.y * 10.0) + 1.0));
+    const float _e73 = saturate_(((sun_4.y * 10.0) + 1.0));
     return (e * (((gradient_1 * _e15) + (sunset * _e73)) + ((glow * _e15)).xxx));
 }
 
@@ -1792,16 +2283,16 @@ void occupancy(uint3 id : SV_DispatchThreadID)
     int2 lo_1 = asint(asuint(naga_div(asint(asuint(int2(id.xy)) * asuint(size_6)), (int(64)).xx)) - asuint((int(1)).xx));
     int2 hi = naga_div(asint(asuint(asint(asuint(int2(id.xy)) + asuint((int(1)).xx))) * asuint(size_6)), (int(64)).xx);
     y = lo_1.y;
-    uint2 loop_bound_8 = uint2(4294967295u, 4294967295u);
-    bool loop_init_4 = true;
+    uint2 loop_bound_13 = uint2(4294967295u, 4294967295u);
+    bool loop_init_9 = true;
     while(true) {
-        if (all(loop_bound_8 == uint2(0u, 0u))) { break; }
-        loop_bound_8 -= uint2(loop_bound_8.y == 0u, 1u);
-        if (!loop_init_4) {
+        if (all(loop_bound_13 == uint2(0u, 0u))) { break; }
+        loop_bound_13 -= uint2(loop_bound_13.y == 0u, 1u);
+        if (!loop_init_9) {
             int _e54 = y;
             y = asint(asuint(_e54) + asuint(int(1)));
         }
-        loop_init_4 = false;
+        loop_init_9 = false;
         int _e30 = y;
         if ((_e30 <= hi.y)) {
         } else {
@@ -1809,16 +2300,16 @@ void occupancy(uint3 id : SV_DispatchThreadID)
         }
         {
             x = lo_1.x;
-            uint2 loop_bound_9 = uint2(4294967295u, 4294967295u);
-            bool loop_init_5 = true;
+            uint2 loop_bound_14 = uint2(4294967295u, 4294967295u);
+            bool loop_init_10 = true;
             while(true) {
-                if (all(loop_bound_9 == uint2(0u, 0u))) { break; }
-                loop_bound_9 -= uint2(loop_bound_9.y == 0u, 1u);
-                if (!loop_init_5) {
+                if (all(loop_bound_14 == uint2(0u, 0u))) { break; }
+                loop_bound_14 -= uint2(loop_bound_14.y == 0u, 1u);
+                if (!loop_init_10) {
                     int _e51 = x;
                     x = asint(asuint(_e51) + asuint(int(1)));
                 }
-                loop_init_5 = false;
+                loop_init_10 = false;
                 int _e35 = x;
                 if ((_e35 <= hi.x)) {
                 } else {
@@ -1827,9 +2318,9 @@ void occupancy(uint3 id : SV_DispatchThreadID)
                 {
                     int _e38 = x;
                     int _e39 = y;
-                    int2 t_6 = naga_mod(asint(asuint(naga_mod(int2(_e38, _e39), size_6)) + asuint(size_6)), size_6);
+                    int2 t_7 = naga_mod(asint(asuint(naga_mod(int2(_e38, _e39), size_6)) + asuint(size_6)), size_6);
                     float _e44 = m;
-                    float4 _e47 = weather_tex.Load(int3(t_6, int(0)));
+                    float4 _e47 = weather_tex.Load(int3(t_7, int(0)));
                     m = max(_e44, _e47.x);
                 }
             }
@@ -1898,9 +2389,9 @@ void march_sparse_checkerboard(uint3 id_3 : SV_DispatchThreadID)
     }
     bool _e30 = local;
     if (_e30) {
-        uint k_6 = frame.temporal.x;
+        uint k_9 = frame.temporal.x;
         uint _e38 = frame.misc.y;
-        uint turn = naga_div(_e38, (k_6 * k_6));
+        uint turn = naga_div(_e38, (k_9 * k_9));
         const float2 _e42 = reproject(_e5, 0.0);
         if (((((id_3.x + id_3.y) + turn) & 1u) == 0u)) {
             const bool _e53 = on_screen(_e42);
@@ -1950,12 +2441,12 @@ void resolve(uint3 id_4 : SV_DispatchThreadID)
     if (any((id_4.xy >= _e4.xy))) {
         return;
     }
-    uint2 pixel_6 = id_4.xy;
-    uint k_7 = frame.temporal.x;
-    uint2 block = naga_div(pixel_6, (k_7).xx);
+    uint2 pixel_7 = id_4.xy;
+    uint k_10 = frame.temporal.x;
+    uint2 block = naga_div(pixel_7, (k_10).xx);
     uint _e19 = frame.misc.y;
-    const uint2 _e20 = block_offset(_e19, k_7);
-    bool marched = all((pixel_6 == ((block * k_7) + _e20)));
+    const uint2 _e20 = block_offset(_e19, k_10);
+    bool marched = all((pixel_7 == ((block * k_10) + _e20)));
     float4 current = sparse_in.Load(int3(block, int(0)));
     float4 _e29 = sparse_depth_in.Load(int3(block, int(0)));
     float current_depth = _e29.x;
@@ -1963,14 +2454,14 @@ void resolve(uint3 id_4 : SV_DispatchThreadID)
     float _e32 = depth;
     if ((_e32 <= 0.0)) {
         float _e38 = frame.camera_position.y;
-        const float3 _e39 = view_ray(pixel_6);
+        const float3 _e39 = view_ray(pixel_7);
         const Interval _e40 = layer_interval(_e38, _e39);
         if ((_e40.kind == RAY_MARCH)) {
             depth = (_e40.start + (0.5 * _e40.length_));
         }
     }
     float _e49 = depth;
-    const float2 _e50 = reproject(pixel_6, _e49);
+    const float2 _e50 = reproject(pixel_7, _e49);
     uint _e54 = frame.temporal.y;
     if ((_e54 != 0u)) {
         const bool _e59 = on_screen(_e50);
@@ -1980,7 +2471,7 @@ void resolve(uint3 id_4 : SV_DispatchThreadID)
     }
     bool _e61 = local_3;
     valid = _e61;
-    bool moving = any((_e50 != float2(pixel_6)));
+    bool moving = any((_e50 != float2(pixel_7)));
     bool _e75 = valid;
     if (_e75) {
         const float4 _e76 = history_at(_e50);
@@ -2002,7 +2493,7 @@ void resolve(uint3 id_4 : SV_DispatchThreadID)
         bool _e91 = local_5;
         if (_e91) {
             float4 _e94 = frame.camera_position;
-            const float3 _e96 = view_ray(pixel_6);
+            const float3 _e96 = view_ray(pixel_7);
             float4 _e101 = frame.previous_position;
             float expected = distance((_e94.xyz + (_e96 * current_depth)), _e101.xyz);
             float _e105 = past.x;
@@ -2018,20 +2509,20 @@ void resolve(uint3 id_4 : SV_DispatchThreadID)
     bool _e115 = local_6;
     if (_e115) {
         uint4 _e118 = frame.counts;
-        int2 blocks = int2(naga_div(((_e118.xy + (k_7).xx) - (1u).xx), (k_7).xx));
-        int2 b_8 = int2(block);
-        int x0_1 = max(asint(asuint(b_8.x) - asuint(int(1))), int(0));
-        int x2_1 = min(asint(asuint(b_8.x) + asuint(int(1))), asint(asuint(blocks.x) - asuint(int(1))));
-        int y0_ = max(asint(asuint(b_8.y) - asuint(int(1))), int(0));
-        int y2_ = min(asint(asuint(b_8.y) + asuint(int(1))), asint(asuint(blocks.y) - asuint(int(1))));
+        int2 blocks = int2(naga_div(((_e118.xy + (k_10).xx) - (1u).xx), (k_10).xx));
+        int2 b_9 = int2(block);
+        int x0_1 = max(asint(asuint(b_9.x) - asuint(int(1))), int(0));
+        int x2_1 = min(asint(asuint(b_9.x) + asuint(int(1))), asint(asuint(blocks.x) - asuint(int(1))));
+        int y0_ = max(asint(asuint(b_9.y) - asuint(int(1))), int(0));
+        int y2_ = min(asint(asuint(b_9.y) + asuint(int(1))), asint(asuint(blocks.y) - asuint(int(1))));
         float4 s00_ = sparse_in.Load(int3(int2(x0_1, y0_), int(0)));
-        float4 s10_ = sparse_in.Load(int3(int2(b_8.x, y0_), int(0)));
+        float4 s10_ = sparse_in.Load(int3(int2(b_9.x, y0_), int(0)));
         float4 s20_ = sparse_in.Load(int3(int2(x2_1, y0_), int(0)));
-        float4 s01_ = sparse_in.Load(int3(int2(x0_1, b_8.y), int(0)));
-        float4 s11_ = sparse_in.Load(int3(b_8, int(0)));
-        float4 s21_ = sparse_in.Load(int3(int2(x2_1, b_8.y), int(0)));
+        float4 s01_ = sparse_in.Load(int3(int2(x0_1, b_9.y), int(0)));
+        float4 s11_ = sparse_in.Load(int3(b_9, int(0)));
+        float4 s21_ = sparse_in.Load(int3(int2(x2_1, b_9.y), int(0)));
         float4 s02_ = sparse_in.Load(int3(int2(x0_1, y2_), int(0)));
-        float4 s12_ = sparse_in.Load(int3(int2(b_8.x, y2_), int(0)));
+        float4 s12_ = sparse_in.Load(int3(int2(b_9.x, y2_), int(0)));
         float4 s22_ = sparse_in.Load(int3(int2(x2_1, y2_), int(0)));
         float4 lo_2 = min(min(min(s00_, s10_), min(s20_, s01_)), min(min(s11_, s21_), min(min(s02_, s12_), s22_)));
         float4 hi_1 = max(max(max(s00_, s10_), max(s20_, s01_)), max(max(s11_, s21_), max(max(s02_, s12_), s22_)));
@@ -2069,21 +2560,21 @@ void resolve(uint3 id_4 : SV_DispatchThreadID)
             float _e247 = past.x;
             out_depth = _e247;
         } else {
-            const MarchResult _e248 = march_pixel(pixel_6);
+            const MarchResult _e248 = march_pixel(pixel_7);
             samples = 1.0;
             result = float4(_e248.radiance, _e248.transmittance);
             out_depth = _e248.depth;
         }
     }
     float4 _e255 = result;
-    history_out[pixel_6] = _e255;
+    history_out[pixel_7] = _e255;
     float _e257 = out_depth;
     float _e258 = samples;
-    meta_out[pixel_6] = float4(_e257, _e258, 0.0, 0.0);
+    meta_out[pixel_7] = float4(_e257, _e258, 0.0, 0.0);
     float4 _e263 = result;
-    cloud_out[pixel_6] = _e263;
+    cloud_out[pixel_7] = _e263;
     float _e265 = out_depth;
-    depth_out[pixel_6] = float4(_e265, 0.0, 0.0, 0.0);
+    depth_out[pixel_7] = float4(_e265, 0.0, 0.0, 0.0);
     return;
 }
 
@@ -2100,8 +2591,8 @@ void pathtrace(uint3 id_5 : SV_DispatchThreadID)
     if (any((id_5.xy >= _e4.xy))) {
         return;
     }
-    uint2 pixel_7 = id_5.xy;
-    const float3 _e9 = view_ray(pixel_7);
+    uint2 pixel_8 = id_5.xy;
+    const float3 _e9 = view_ray(pixel_8);
     float _e13 = frame.camera_position.y;
     const Interval _e14 = layer_interval(_e13, _e9);
     count(STAT_PIXELS, 1u);
@@ -2109,7 +2600,7 @@ void pathtrace(uint3 id_5 : SV_DispatchThreadID)
     count(STAT_EXIT_MISSED, uint((_e14.kind == RAY_MISSES_LAYER)));
     count(STAT_EXIT_GROUND, uint((_e14.kind == RAY_HITS_GROUND)));
     uint _e41 = frame.misc.y;
-    const uint _e42 = rng_seed(pixel_7, _e41);
+    const uint _e42 = rng_seed(pixel_8, _e41);
     rng = _e42;
     const PathResult _e44 = trace_path(_e9, _e14, rng, counters);
     const float _e46 = luminance(_e44.radiance);
@@ -2122,9 +2613,9 @@ void pathtrace(uint3 id_5 : SV_DispatchThreadID)
     }
     bool _e63 = local_8;
     if (_e63) {
-        float4 _e66 = history_in.Load(int3(pixel_7, int(0)));
+        float4 _e66 = history_in.Load(int3(pixel_8, int(0)));
         mean = _e66;
-        float4 _e69 = meta_in.Load(int3(pixel_7, int(0)));
+        float4 _e69 = meta_in.Load(int3(pixel_8, int(0)));
         moments = _e69;
     }
     float _e71 = moments.y;
@@ -2145,13 +2636,13 @@ void pathtrace(uint3 id_5 : SV_DispatchThreadID)
     }
     moments.y = n_3;
     float4 _e110 = mean;
-    history_out[pixel_7] = _e110;
+    history_out[pixel_8] = _e110;
     float4 _e112 = moments;
-    meta_out[pixel_7] = _e112;
+    meta_out[pixel_8] = _e112;
     float4 _e114 = mean;
-    cloud_out[pixel_7] = _e114;
+    cloud_out[pixel_8] = _e114;
     float _e117 = moments.x;
-    depth_out[pixel_7] = float4(_e117, 0.0, 0.0, 0.0);
+    depth_out[pixel_8] = float4(_e117, 0.0, 0.0, 0.0);
     uint _e124 = counters.view_steps;
     count(STAT_VIEW_STEPS, _e124);
     uint _e127 = counters.density;
@@ -2164,32 +2655,344 @@ void pathtrace(uint3 id_5 : SV_DispatchThreadID)
 }
 
 [numthreads(8, 8, 1)]
-void composite(uint3 id_6 : SV_DispatchThreadID)
+void march_basic(uint3 id_6 : SV_DispatchThreadID)
 {
-    float3 background = (float3)0;
-
     uint4 _e4 = frame.counts;
     if (any((id_6.xy >= _e4.xy))) {
         return;
     }
-    uint2 pixel_8 = id_6.xy;
-    const float3 _e9 = view_ray(pixel_8);
-    float alt_8 = frame.camera_position.y;
-    float4 cloud = cloud_in.Load(int3(pixel_8, int(0)));
-    const float3 _e17 = sky_radiance(_e9, alt_8);
+    const MarchResult _e9 = basic_pixel(id_6.xy);
+    cloud_out[id_6.xy] = float4(_e9.radiance, _e9.transmittance);
+    depth_out[id_6.xy] = float4(_e9.depth, 0.0, 0.0, 0.0);
+    return;
+}
+
+uint2 naga_mod(uint2 lhs, uint2 rhs) {
+    return lhs % (rhs == 0u ? 1u : rhs);
+}
+
+[numthreads(8, 8, 1)]
+void sprite_atlas(uint3 id_7 : SV_DispatchThreadID)
+{
+    uint tile_4 = ((naga_div(id_7.y, ATLAS_TILE) * 4u) + naga_div(id_7.x, ATLAS_TILE));
+    float2 uv_5 = ((float2(naga_mod(id_7.xy, (64u).xx)) + (0.5).xx) / (64.0).xx);
+    const float _e21 = sprite_texture(tile_4, uv_5);
+    sprite_atlas_out[id_7.xy] = float4(_e21, _e21, _e21, _e21);
+    return;
+}
+
+[numthreads(64, 1, 1)]
+void sprite_build(uint3 id_8 : SV_DispatchThreadID)
+{
+    Counters counters_1 = ConstructCounters(0u, 0u, 0u, 0u);
+    float4 sum = (0.0).xxxx;
+    SpriteCandidate me = (SpriteCandidate)0;
+    uint i = 0u;
+    float3 centre = (float3)0;
+    uint tile = (uint)0;
+    float rotation = (float)0;
+    bool local_9 = (bool)0;
+    float key = 0.0;
+
+    uint slot = id_8.x;
+    uint cell_index = naga_div(slot, SPRITES_PER_CELL);
+    uint level_2 = naga_div(cell_index, 64u);
+    const SpriteCell _e6 = sprite_cell(cell_index);
+    uint own = naga_mod(slot, SPRITES_PER_CELL);
+    const SpriteCandidate _e18 = sprite_candidate(_e6, level_2, own, counters_1);
+    me = _e18;
+    uint2 loop_bound_15 = uint2(4294967295u, 4294967295u);
+    bool loop_init_11 = true;
+    while(true) {
+        if (all(loop_bound_15 == uint2(0u, 0u))) { break; }
+        loop_bound_15 -= uint2(loop_bound_15.y == 0u, 1u);
+        if (!loop_init_11) {
+            uint _e38 = i;
+            i = (_e38 + 1u);
+        }
+        loop_init_11 = false;
+        uint _e22 = i;
+        if ((_e22 < SPRITES_PER_CELL)) {
+        } else {
+            break;
+        }
+        {
+            uint _e25 = i;
+            const SpriteCandidate _e26 = sprite_candidate(_e6, level_2, _e25, counters_1);
+            float4 _e27 = sum;
+            sum = (_e27 + (float4(_e26.xz.x, _e26.alt, _e26.xz.y, 1.0) * _e26.density));
+        }
+    }
+    uint _e43 = counters_1.density;
+    count(STAT_DENSITY, _e43);
+    uint _e46 = counters_1.detail;
+    count(STAT_DETAIL, _e46);
+    float bottom_3 = frame.atmosphere.y;
+    float _e54 = frame.atmosphere.z;
+    float thickness_1 = (_e54 - bottom_3);
+    float2 middle = ((float2(_e6.index) + (0.5).xx) * _e6.size);
+    centre = float3(middle.x, (bottom_3 + (0.4 * thickness_1)), middle.y);
+    float _e71 = sum.w;
+    if ((_e71 > 0.0)) {
+        float4 _e74 = sum;
+        float _e77 = sum.w;
+        centre = (_e74.xyz / (_e77).xxx);
+    }
+    float2 _e81 = me.xz;
+    float3 _e82 = centre;
+    bool inner = (length((_e81 - _e82.xz)) < (0.25 * _e6.size));
+    float _e91 = me.density;
+    float _e96 = me.density;
+    float morph = (inner ? smoothstep(0.0, 0.06, _e96) : smoothstep(0.03, 0.15, _e91));
+    float alpha = (SPRITE_ALPHA * morph);
+    float _e107 = me.size_hash;
+    float half_width = ((0.5 * _e6.size) * (0.7 + (0.6 * _e107)));
+    float half_height = min(half_width, (0.35 * thickness_1));
+    float _e118 = me.texture_hash;
+    tile = (5u + min(naga_f2u32((_e118 * 11.0)), 10u));
+    float _e127 = me.rotation_hash;
+    rotation = ((_e127 * 2.0) * PI);
+    float _e134 = me.h;
+    if ((_e134 < 0.12)) {
+        tile = 4u;
+        float _e139 = me.rotation_hash;
+        rotation = ((_e139 - 0.5) * 0.17453294);
+    } else {
+        if (!(inner)) {
+            float _e148 = me.density;
+            local_9 = (_e148 < 0.1);
+        } else {
+            local_9 = false;
+        }
+        bool _e152 = local_9;
+        if (_e152) {
+            float _e154 = me.texture_hash;
+            tile = min(naga_f2u32((_e154 * 4.0)), 3u);
+        }
+    }
+    if ((alpha > 0.0)) {
+        float2 _e165 = me.xz;
+        float _e167 = me.alt;
+        const float3 _e168 = sprite_rel(_e165, _e167);
+        float _e172 = frame.camera_position.y;
+        float3 rel_7 = (_e168 - float3(0.0, _e172, 0.0));
+        const float _e180 = saturate_((length(rel_7) / SPRITE_MAX_DISTANCE));
+        key = (1048576.0 - floor((_e180 * 1048575.0)));
+    }
+    float _e191 = me.xz.x;
+    float _e193 = me.alt;
+    float _e196 = me.xz.y;
+    sprites_out[uint2(slot, 0u)] = float4(_e191, _e193, _e196, half_width);
+    float3 _e201 = centre;
+    sprites_out[uint2(slot, 1u)] = float4(_e201, alpha);
+    uint _e206 = tile;
+    float _e208 = rotation;
+    float _e210 = me.h;
+    sprites_out[uint2(slot, 2u)] = float4(float(_e206), _e208, half_height, _e210);
+    float _e215 = key;
+    sprites_out[uint2(slot, 3u)] = float4(_e215, 0.0, 0.0, 0.0);
+    return;
+}
+
+[numthreads(64, 1, 1)]
+void sprite_sort(uint3 id_9 : SV_DispatchThreadID)
+{
+    uint rank = 0u;
+    uint j = 0u;
+    bool local_10 = (bool)0;
+    bool local_11 = (bool)0;
+
+    uint slot_1 = id_9.x;
+    float4 _e6 = sprites_in.Load(int3(uint2(slot_1, 3u), int(0)));
+    float key_1 = _e6.x;
+    uint2 loop_bound_16 = uint2(4294967295u, 4294967295u);
+    bool loop_init_12 = true;
+    while(true) {
+        if (all(loop_bound_16 == uint2(0u, 0u))) { break; }
+        loop_bound_16 -= uint2(loop_bound_16.y == 0u, 1u);
+        if (!loop_init_12) {
+            uint _e40 = j;
+            j = (_e40 + 1u);
+        }
+        loop_init_12 = false;
+        uint _e12 = j;
+        if ((_e12 < SPRITE_COUNT)) {
+        } else {
+            break;
+        }
+        {
+            uint _e16 = j;
+            float4 _e20 = sprites_in.Load(int3(uint2(_e16, 3u), int(0)));
+            float other = _e20.x;
+            uint _e22 = rank;
+            if (!((other < key_1))) {
+                if ((other == key_1)) {
+                    uint _e32 = j;
+                    local_11 = (_e32 < slot_1);
+                } else {
+                    local_11 = false;
+                }
+                bool _e35 = local_11;
+                local_10 = _e35;
+            } else {
+                local_10 = true;
+            }
+            bool _e37 = local_10;
+            rank = (_e22 + (_e37 ? 1u : 0u));
+        }
+    }
+    uint _e44 = rank;
+    sprite_order_out[uint2(_e44, 0u)] = float4(float(slot_1), 0.0, 0.0, 0.0);
+    return;
+}
+
+VertexOutput_sprite_vertex sprite_vertex(uint index : SV_VertexID)
+{
+    SpriteVertex out_ = (SpriteVertex)0;
+    float3 right = (float3)0;
+
+    float4 _e8 = sprite_order_in.Load(int3(uint2(naga_div(index, 6u), 0u), int(0)));
+    uint slot_2 = naga_f2u32(_e8.x);
+    float4 a_6 = sprites_in.Load(int3(uint2(slot_2, 0u), int(0)));
+    float4 b_10 = sprites_in.Load(int3(uint2(slot_2, 1u), int(0)));
+    float4 c_9 = sprites_in.Load(int3(uint2(slot_2, 2u), int(0)));
+    if ((b_10.w <= 0.0)) {
+        out_.position = float4(0.0, 0.0, -1.0, 1.0);
+        SpriteVertex _e35 = out_;
+        const SpriteVertex spritevertex = _e35;
+        const VertexOutput_sprite_vertex spritevertex_1 = { spritevertex.uv, spritevertex.tile, spritevertex.colour, spritevertex.distance_, spritevertex.position };
+        return spritevertex_1;
+    }
+    float _e39 = frame.camera_position.y;
+    float3 cam_1 = float3(0.0, _e39, 0.0);
+    const float3 _e45 = sprite_rel(a_6.xz, a_6.y);
+    float3 to_sprite = (_e45 - cam_1);
+    float distance_2 = length(to_sprite);
+    float half_width_1 = a_6.w;
+    float facing = smoothstep((0.5 * half_width_1), half_width_1, distance_2);
+    float3 to_camera = (-(to_sprite) / (max(distance_2, 0.001)).xxx);
+    float4 _e59 = frame.camera_forward;
+    float3 n_4 = normalize(lerp(-(_e59.xyz), to_camera, facing));
+    float _e67 = frame.atmosphere.x;
+    float3 radial = normalize((_e45 + float3(0.0, _e67, 0.0)));
+    right = cross(radial, n_4);
+    float3 _e75 = right;
+    if ((length(_e75) < 0.001)) {
+        float4 _e81 = frame.camera_right;
+        right = _e81.xyz;
+    }
+    float3 _e83 = right;
+    right = normalize(_e83);
+    float3 _e85 = right;
+    float3 up = cross(n_4, _e85);
+    const float2 _e89 = sprite_corner(naga_mod(index, 6u));
+    float3 _e90 = right;
+    float3 offset = ((_e90 * (_e89.x * half_width_1)) + (up * (_e89.y * c_9.z)));
+    float3 vertex = (to_sprite + offset);
+    float4 _e102 = frame.camera_right;
+    float x_6 = dot(vertex, _e102.xyz);
+    float4 _e107 = frame.camera_up;
+    float y_3 = dot(vertex, _e107.xyz);
+    float4 _e112 = frame.camera_forward;
+    float z_1 = dot(vertex, _e112.xyz);
+    float tan_half_2 = frame.camera_position.w;
+    float _e123 = frame.camera_forward.w;
+    out_.position = float4((x_6 / (tan_half_2 * _e123)), (y_3 / tan_half_2), (0.5 * z_1), z_1);
+    float2 cs = float2(cos(c_9.y), sin(c_9.y));
+    float2 t_8 = float2(_e89.x, -(_e89.y));
+    out_.uv = float2(((t_8.x * cs.x) - (t_8.y * cs.y)), ((t_8.x * cs.y) + (t_8.y * cs.x)));
+    out_.tile = naga_f2u32(c_9.x);
+    float4 _e160 = frame.sun_direction;
+    float3 sun_5 = _e160.xyz;
+    const float3 _e164 = sprite_rel(b_10.xz, b_10.y);
+    float3 centre_2 = (_e164 - cam_1);
+    float3 from_centre = (vertex - centre_2);
+    float cos_angle_1 = (dot(from_centre, sun_5) / max(length(from_centre), 0.001));
+    const float _e177 = saturate_(((sun_5.y * 4.0) + 0.3));
+    const float _e179 = altitude_of((vertex + cam_1));
+    float _e183 = frame.atmosphere.y;
+    float _e188 = frame.atmosphere.z;
+    float _e192 = frame.atmosphere.y;
+    const float _e195 = saturate_(((_e179 - _e183) / (_e188 - _e192)));
+    float4 _e198 = frame.sun_illuminance;
+    float3 e_1 = _e198.xyz;
+    const float3 _e200 = sprite_sky_level(_e195);
+    const float _e204 = sprite_sun_level(cos_angle_1);
+    float3 light = ((e_1 * ((_e200 * (SPRITE_SKY * _e177)) + (_e204).xxx)) / (3.1415927).xxx);
+    out_.colour = float4(light, b_10.w);
+    out_.distance_ = length(vertex);
+    SpriteVertex _e216 = out_;
+    const SpriteVertex spritevertex_2 = _e216;
+    const VertexOutput_sprite_vertex spritevertex_2_ = { spritevertex_2.uv, spritevertex_2.tile, spritevertex_2.colour, spritevertex_2.distance_, spritevertex_2.position };
+    return spritevertex_2_;
+}
+
+SpriteTargets sprite_fragment(FragmentInput_sprite_fragment fragmentinput_sprite_fragment)
+{
+    SpriteVertex in_ = { fragmentinput_sprite_fragment.position_1, fragmentinput_sprite_fragment.uv_2, fragmentinput_sprite_fragment.tile_3, fragmentinput_sprite_fragment.colour_1, fragmentinput_sprite_fragment.distance_1 };
+    SpriteTargets out_1 = (SpriteTargets)0;
+    float a = 0.0;
+
+    if (all((abs(in_.uv) <= (1.0).xx))) {
+        float2 tile_5 = float2(float(naga_mod(in_.tile, 4u)), float(naga_div(in_.tile, 4u)));
+        float2 uv_6 = (((tile_5 + (0.5).xx) + (0.5 * in_.uv)) * 0.25);
+        float4 _e31 = sprite_atlas_in.SampleLevel(noise_sampler, uv_6, 0.0);
+        a = (_e31.x * in_.colour.w);
+    }
+    float _e39 = a;
+    float _e41 = a;
+    out_1.radiance = float4((in_.colour.xyz * _e39), _e41);
+    float _e45 = a;
+    float _e47 = a;
+    out_1.depth = float4((in_.distance_ * _e45), 0.0, 0.0, _e47);
+    SpriteTargets _e51 = out_1;
+    const SpriteTargets spritetargets = _e51;
+    return spritetargets;
+}
+
+[numthreads(8, 8, 1)]
+void sprite_resolve(uint3 id_10 : SV_DispatchThreadID)
+{
+    uint4 _e4 = frame.counts;
+    if (any((id_10.xy >= _e4.xy))) {
+        return;
+    }
+    count(STAT_PIXELS, 1u);
+    float4 c_10 = sprite_radiance_in.Load(int3(id_10.xy, int(0)));
+    float4 d_11 = sprite_depth_in.Load(int3(id_10.xy, int(0)));
+    const float _e19 = saturate_(c_10.w);
+    cloud_out[id_10.xy] = float4(c_10.xyz, (1.0 - _e19));
+    depth_out[id_10.xy] = float4(((d_11.w > 0.0001) ? (d_11.x / d_11.w) : 0.0), 0.0, 0.0, 0.0);
+    return;
+}
+
+[numthreads(8, 8, 1)]
+void composite(uint3 id_11 : SV_DispatchThreadID)
+{
+    float3 background = (float3)0;
+
+    uint4 _e4 = frame.counts;
+    if (any((id_11.xy >= _e4.xy))) {
+        return;
+    }
+    uint2 pixel_9 = id_11.xy;
+    const float3 _e9 = view_ray(pixel_9);
+    float alt_11 = frame.camera_position.y;
+    float4 cloud = cloud_in.Load(int3(pixel_9, int(0)));
+    const float3 _e17 = sky_radiance(_e9, alt_11);
     background = _e17;
-    const bool _e22 = hits_ground(float3(0.0, alt_8, 0.0), alt_8, _e9);
+    const bool _e22 = hits_ground(float3(0.0, alt_11, 0.0), alt_11, _e9);
     if (!(_e22)) {
         float3 _e24 = background;
         const float3 _e25 = sun_disk(_e9);
         background = (_e24 + _e25);
     }
     float3 _e27 = background;
-    float3 radiance_1 = ((_e27 * cloud.w) + cloud.xyz);
+    float3 radiance_2 = ((_e27 * cloud.w) + cloud.xyz);
     float _e35 = frame.camera_right.w;
-    float3 exposed = (radiance_1 * _e35);
+    float3 exposed = (radiance_2 * _e35);
     const float3 _e37 = aces_fitted(exposed);
     float3 display = pow(_e37, (0.45454547).xxx);
-    image_out[pixel_8] = float4(display, 1.0);
+    image_out[pixel_9] = float4(display, 1.0);
     return;
 }

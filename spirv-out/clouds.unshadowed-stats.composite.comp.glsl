@@ -73,6 +73,31 @@ struct PathResult {
     float transmittance;
     float depth;
 };
+struct SpriteCell {
+    ivec2 index;
+    float size;
+    bool covered;
+};
+struct SpriteCandidate {
+    vec2 xz;
+    float alt;
+    float h;
+    float size_hash;
+    float texture_hash;
+    float rotation_hash;
+    float density;
+};
+struct SpriteVertex {
+    vec4 position;
+    vec2 uv;
+    uint tile;
+    vec4 colour;
+    float distance_;
+};
+struct SpriteTargets {
+    vec4 radiance;
+    vec4 depth;
+};
 const uint PHASE_HG = 0u;
 const uint PHASE_TWO_LOBE_HG = 1u;
 const uint PHASE_CORNETTE_SHANKS = 2u;
@@ -105,6 +130,23 @@ const float HISTORY_SAMPLES = 16.0;
 const float HISTORY_SAMPLES_MOVING = 2.0;
 const float DISOCCLUSION_DEPTH = 0.5;
 const uint MAX_PATH_ORDERS = 16384u;
+const uint SPRITE_LEVELS = 4u;
+const int SPRITE_CELLS_PER_SIDE = 8;
+const uint SPRITES_PER_CELL = 16u;
+const uint SPRITE_COUNT = 4096u;
+const float SPRITE_CELL0_ = 1500.0;
+const float SPRITE_ALPHA = 0.7;
+const float SPRITE_MAX_DISTANCE = 131072.0;
+const uint ATLAS_TILE = 64u;
+const float SPRITE_C_MIN = 0.22;
+const float SPRITE_C_MED = 0.55;
+const float SPRITE_C_MAX = 1.0;
+const float SPRITE_SKY = 0.35;
+const vec3 SKY_LEVEL0_ = vec3(0.42, 0.46, 0.55);
+const vec3 SKY_LEVEL1_ = vec3(0.55, 0.59, 0.67);
+const vec3 SKY_LEVEL2_ = vec3(0.7, 0.73, 0.8);
+const vec3 SKY_LEVEL3_ = vec3(0.84, 0.86, 0.9);
+const vec3 SKY_LEVEL4_ = vec3(0.95, 0.96, 0.98);
 const bool LIGHT_MARCH = false;
 const uint MAX_OCTAVES = 0u;
 const bool DETAIL = false;
@@ -161,8 +203,8 @@ Roots solve_sphere(float b, float c) {
     if ((disc < 0.0)) {
         return Roots(0.0, 0.0, false);
     }
-    float s_1 = sqrt(disc);
-    float r0_1 = -((b + ((b >= 0.0) ? s_1 : -(s_1))));
+    float s_2 = sqrt(disc);
+    float r0_1 = -((b + ((b >= 0.0) ? s_2 : -(s_2))));
     if ((r0_1 == 0.0)) {
         return Roots(0.0, 0.0, true);
     }
@@ -172,39 +214,39 @@ Roots solve_sphere(float b, float c) {
 
 Roots ray_shell(float alt, vec3 d, float radius_alt) {
     float rp = _group_0_binding_0_cs.atmosphere.x;
-    float b_2 = (d.y * (alt + rp));
-    float c_2 = ((alt - radius_alt) * ((alt + radius_alt) + (2.0 * rp)));
-    Roots _e16 = solve_sphere(b_2, c_2);
+    float b_3 = (d.y * (alt + rp));
+    float c_3 = ((alt - radius_alt) * ((alt + radius_alt) + (2.0 * rp)));
+    Roots _e16 = solve_sphere(b_3, c_3);
     return _e16;
 }
 
 float altitude_of(vec3 p) {
     float rp_1 = _group_0_binding_0_cs.atmosphere.x;
     float n_2 = (((p.x * p.x) + (p.z * p.z)) + (p.y * (p.y + (2.0 * rp_1))));
-    vec3 q_4 = vec3(p.x, (p.y + rp_1), p.z);
-    return (n_2 / (length(q_4) + rp_1));
+    vec3 q_5 = vec3(p.x, (p.y + rp_1), p.z);
+    return (n_2 / (length(q_5) + rp_1));
 }
 
 bool hits_ground(vec3 p_1, float alt_1, vec3 d_1) {
-    bool local_9 = false;
+    bool local_12 = false;
     float rp_2 = _group_0_binding_0_cs.atmosphere.x;
-    float b_3 = dot(d_1, vec3(p_1.x, (p_1.y + rp_2), p_1.z));
-    float c_3 = (alt_1 * (alt_1 + (2.0 * rp_2)));
-    if ((b_3 < 0.0)) {
-        local_9 = ((b_3 * b_3) >= c_3);
+    float b_4 = dot(d_1, vec3(p_1.x, (p_1.y + rp_2), p_1.z));
+    float c_4 = (alt_1 * (alt_1 + (2.0 * rp_2)));
+    if ((b_4 < 0.0)) {
+        local_12 = ((b_4 * b_4) >= c_4);
     } else {
-        local_9 = false;
+        local_12 = false;
     }
-    bool _e24 = local_9;
+    bool _e24 = local_12;
     return _e24;
 }
 
 Interval layer_interval(float alt_2, vec3 d_2) {
     float start = 0.0;
     float end = 0.0;
-    bool local_10 = false;
-    bool local_11 = false;
-    bool local_12 = false;
+    bool local_13 = false;
+    bool local_14 = false;
+    bool local_15 = false;
     float bottom = _group_0_binding_0_cs.atmosphere.y;
     float top = _group_0_binding_0_cs.atmosphere.z;
     float cutoff = _group_0_binding_0_cs.atmosphere.w;
@@ -221,33 +263,33 @@ Interval layer_interval(float alt_2, vec3 d_2) {
         if ((alt_2 <= top)) {
             end = _e15.t1_;
             if (_e14.hit) {
-                local_10 = (_e14.t0_ > 0.0);
+                local_13 = (_e14.t0_ > 0.0);
             } else {
-                local_10 = false;
+                local_13 = false;
             }
-            bool _e40 = local_10;
+            bool _e40 = local_13;
             if (_e40) {
                 float _e41 = end;
                 end = min(_e41, _e14.t0_);
             }
         } else {
             if (!(!(_e15.hit))) {
-                local_11 = (_e15.t1_ <= 0.0);
+                local_14 = (_e15.t1_ <= 0.0);
             } else {
-                local_11 = true;
+                local_14 = true;
             }
-            bool _e53 = local_11;
+            bool _e53 = local_14;
             if (_e53) {
                 return Interval(0.0, 0.0, 1u);
             }
             start = max(_e15.t0_, 0.0);
             end = _e15.t1_;
             if (_e14.hit) {
-                local_12 = (_e14.t0_ > 0.0);
+                local_15 = (_e14.t0_ > 0.0);
             } else {
-                local_12 = false;
+                local_15 = false;
             }
-            bool _e69 = local_12;
+            bool _e69 = local_15;
             if (_e69) {
                 float _e70 = end;
                 end = min(_e70, _e14.t0_);
@@ -335,32 +377,32 @@ float sun_scattering(float cos_theta_3, float tau_1) {
     float ka = 1.0;
     float kb = 1.0;
     float kc = 1.0;
-    uint i_1 = 0u;
+    uint i_2 = 0u;
     float total = 0.0;
-    float a_1 = _group_0_binding_0_cs.multiple_scattering.x;
-    float b_4 = _group_0_binding_0_cs.multiple_scattering.y;
-    float c_4 = _group_0_binding_0_cs.multiple_scattering.z;
+    float a_4 = _group_0_binding_0_cs.multiple_scattering.x;
+    float b_5 = _group_0_binding_0_cs.multiple_scattering.y;
+    float c_5 = _group_0_binding_0_cs.multiple_scattering.z;
     uint _e17 = _group_0_binding_0_cs.misc.x;
     uint octaves = min(_e17, MAX_OCTAVES);
     bool loop_init = true;
     while(true) {
         if (!loop_init) {
-            uint _e50 = i_1;
-            i_1 = (_e50 + 1u);
+            uint _e50 = i_2;
+            i_2 = (_e50 + 1u);
         }
         loop_init = false;
-        uint _e30 = i_1;
+        uint _e30 = i_2;
         if ((_e30 < octaves)) {
         } else {
             break;
         }
         {
             float _e32 = ka;
-            ka = (_e32 * a_1);
+            ka = (_e32 * a_4);
             float _e34 = kb;
-            kb = (_e34 * b_4);
+            kb = (_e34 * b_5);
             float _e36 = kc;
-            kc = (_e36 * c_4);
+            kc = (_e36 * c_5);
             float _e38 = octave_sum;
             float _e39 = ka;
             float _e40 = kc;
@@ -404,8 +446,8 @@ vec3 step_integral(vec3 source, float sigma_t, float dt) {
 float start_offset(uvec2 pixel_2) {
     uint _e4 = _group_0_binding_0_cs.modes.w;
     bool jitter = ((_e4 & FLAG_JITTER) != 0u);
-    uint k_3 = _group_0_binding_0_cs.temporal.x;
-    if ((k_3 <= 1u)) {
+    uint k_5 = _group_0_binding_0_cs.temporal.x;
+    if ((k_5 <= 1u)) {
         uint _e18 = _group_0_binding_0_cs.misc.y;
         float _e19 = hash_unit(pixel_2, _e18);
         return (jitter ? _e19 : 0.5);
@@ -413,7 +455,7 @@ float start_offset(uvec2 pixel_2) {
     float _e23 = hash_unit(pixel_2, 0u);
     float base_2 = (jitter ? _e23 : 0.5);
     uint _e29 = _group_0_binding_0_cs.misc.y;
-    float _e32 = van_der_corput((_e29 / (k_3 * k_3)));
+    float _e32 = van_der_corput((_e29 / (k_5 * k_5)));
     return fract((base_2 + _e32));
 }
 
@@ -427,45 +469,45 @@ uvec2 block_offset(uint f, uint k) {
         return _e6;
     }
     if ((k == 4u)) {
-        uint b_5 = (f % 16u);
-        uvec2 _e13 = bayer2_((b_5 >> 2u));
-        uvec2 _e17 = bayer2_((b_5 & 3u));
+        uint b_6 = (f % 16u);
+        uvec2 _e13 = bayer2_((b_6 >> 2u));
+        uvec2 _e17 = bayer2_((b_6 & 3u));
         return (_e13 + (2u * _e17));
     }
     return uvec2(0u);
 }
 
 vec2 reproject(uvec2 pixel_4, float depth_2) {
-    bool local_20 = false;
-    bool local_21 = false;
-    bool local_22 = false;
+    bool local_23 = false;
+    bool local_24 = false;
+    bool local_25 = false;
     vec3 dir = vec3(0.0);
     vec4 _e4 = _group_0_binding_0_cs.previous_position;
     vec4 _e7 = _group_0_binding_0_cs.camera_position;
     if (all(equal(_e4, _e7))) {
         vec4 _e14 = _group_0_binding_0_cs.previous_forward;
         vec4 _e17 = _group_0_binding_0_cs.camera_forward;
-        local_20 = all(equal(_e14, _e17));
+        local_23 = all(equal(_e14, _e17));
     } else {
-        local_20 = false;
+        local_23 = false;
     }
-    bool _e21 = local_20;
+    bool _e21 = local_23;
     if (_e21) {
         vec4 _e26 = _group_0_binding_0_cs.previous_right;
         vec4 _e29 = _group_0_binding_0_cs.camera_right;
-        local_21 = all(equal(_e26, _e29));
+        local_24 = all(equal(_e26, _e29));
     } else {
-        local_21 = false;
+        local_24 = false;
     }
-    bool _e33 = local_21;
+    bool _e33 = local_24;
     if (_e33) {
         vec4 _e38 = _group_0_binding_0_cs.previous_up;
         vec4 _e41 = _group_0_binding_0_cs.camera_up;
-        local_22 = all(equal(_e38, _e41));
+        local_25 = all(equal(_e38, _e41));
     } else {
-        local_22 = false;
+        local_25 = false;
     }
-    bool same = local_22;
+    bool same = local_25;
     if (same) {
         return vec2(pixel_4);
     }
@@ -494,15 +536,15 @@ vec2 reproject(uvec2 pixel_4, float depth_2) {
 }
 
 bool on_screen(vec2 q) {
-    bool local_23 = false;
+    bool local_26 = false;
     uvec4 _e3 = _group_0_binding_0_cs.counts;
     vec2 size_1 = vec2(_e3.xy);
     if (all(greaterThanEqual(q, vec2(-0.5)))) {
-        local_23 = all(lessThanEqual(q, (size_1 - vec2(0.5))));
+        local_26 = all(lessThanEqual(q, (size_1 - vec2(0.5))));
     } else {
-        local_23 = false;
+        local_26 = false;
     }
-    bool _e18 = local_23;
+    bool _e18 = local_26;
     return _e18;
 }
 
@@ -510,17 +552,17 @@ vec4 catmull_rom(float t) {
     return vec4((t * (-0.5 + (t * (1.0 - (0.5 * t))))), (1.0 + ((t * t) * (-2.5 + (1.5 * t)))), (t * (0.5 + (t * (2.0 - (1.5 * t))))), ((t * t) * (-0.5 + (0.5 * t))));
 }
 
-bool in_blocks(uvec2 id_7) {
-    uint k_4 = _group_0_binding_0_cs.temporal.x;
+bool in_blocks(uvec2 id_12) {
+    uint k_6 = _group_0_binding_0_cs.temporal.x;
     uvec4 _e7 = _group_0_binding_0_cs.counts;
-    return all(lessThan(id_7, (((_e7.xy + uvec2(k_4)) - uvec2(1u)) / uvec2(k_4))));
+    return all(lessThan(id_12, (((_e7.xy + uvec2(k_6)) - uvec2(1u)) / uvec2(k_6))));
 }
 
-uvec2 sparse_pixel(uvec2 id_8) {
-    uint k_5 = _group_0_binding_0_cs.temporal.x;
+uvec2 sparse_pixel(uvec2 id_13) {
+    uint k_7 = _group_0_binding_0_cs.temporal.x;
     uint _e9 = _group_0_binding_0_cs.misc.y;
-    uvec2 _e10 = block_offset(_e9, k_5);
-    return ((id_8 * k_5) + _e10);
+    uvec2 _e10 = block_offset(_e9, k_7);
+    return ((id_13 * k_7) + _e10);
 }
 
 uint rng_seed(uvec2 pixel_5, uint frame_index_1) {
@@ -533,8 +575,8 @@ uint rng_seed(uvec2 pixel_5, uint frame_index_1) {
 float rng_next(inout uint rng_1) {
     uint _e1 = rng_1;
     rng_1 = ((_e1 * 747796405u) + 2891336453u);
-    uint s_2 = rng_1;
-    uint word_1 = (((s_2 >> ((s_2 >> 28u) + 4u)) ^ s_2) * 277803737u);
+    uint s_3 = rng_1;
+    uint word_1 = (((s_3 >> ((s_3 >> 28u) + 4u)) ^ s_3) * 277803737u);
     return (float((((word_1 >> 22u) ^ word_1) >> 8u)) * 5.9604645e-8);
 }
 
@@ -545,66 +587,66 @@ float rng_exponential(inout uint rng_2, float sigma) {
 
 Roots ray_shell_from(vec3 p_7, float alt_5, vec3 d_4, float radius_alt_1) {
     float rp_3 = _group_0_binding_0_cs.atmosphere.x;
-    float b_6 = dot(d_4, vec3(p_7.x, (p_7.y + rp_3), p_7.z));
-    float c_5 = ((alt_5 - radius_alt_1) * ((alt_5 + radius_alt_1) + (2.0 * rp_3)));
-    Roots _e20 = solve_sphere(b_6, c_5);
+    float b_7 = dot(d_4, vec3(p_7.x, (p_7.y + rp_3), p_7.z));
+    float c_6 = ((alt_5 - radius_alt_1) * ((alt_5 + radius_alt_1) + (2.0 * rp_3)));
+    Roots _e20 = solve_sphere(b_7, c_6);
     return _e20;
 }
 
 Segments layer_segments(vec3 p_8, float alt_6, vec3 d_5) {
     Segments s = Segments(vec2(0.0), vec2(0.0), 0u);
-    bool local_24 = false;
-    vec2 a = vec2(0.0);
+    bool local_27 = false;
+    vec2 a_1 = vec2(0.0);
     vec2 b_1 = vec2(0.0);
     uint n_1 = 0u;
-    bool local_25 = false;
-    bool local_26 = false;
-    bool local_27 = false;
     bool local_28 = false;
+    bool local_29 = false;
+    bool local_30 = false;
+    bool local_31 = false;
     float bottom_1 = _group_0_binding_0_cs.atmosphere.y;
     Roots _e14 = ray_shell_from(p_8, alt_6, d_5, bottom_1);
     float _e18 = _group_0_binding_0_cs.atmosphere.z;
     Roots _e19 = ray_shell_from(p_8, alt_6, d_5, _e18);
     bool _e20 = hits_ground(p_8, alt_6, d_5);
     if (!(!(_e19.hit))) {
-        local_24 = (_e19.t1_ <= 0.0);
+        local_27 = (_e19.t1_ <= 0.0);
     } else {
-        local_24 = true;
+        local_27 = true;
     }
-    bool _e30 = local_24;
+    bool _e30 = local_27;
     if (_e30) {
         Segments _e31 = s;
         return _e31;
     }
     float entry = max(_e19.t0_, 0.0);
     if (_e14.hit) {
-        local_25 = (_e14.t0_ > 0.0);
+        local_28 = (_e14.t0_ > 0.0);
     } else {
-        local_25 = false;
+        local_28 = false;
     }
-    bool _e50 = local_25;
+    bool _e50 = local_28;
     if (_e50) {
-        local_26 = (alt_6 >= bottom_1);
+        local_29 = (alt_6 >= bottom_1);
     } else {
-        local_26 = false;
+        local_29 = false;
     }
-    bool _e55 = local_26;
+    bool _e55 = local_29;
     if (_e55) {
         uint _e56 = n_1;
-        a[_e56] = entry;
+        a_1[_e56] = entry;
         uint _e58 = n_1;
         b_1[_e58] = _e14.t0_;
         uint _e61 = n_1;
         n_1 = (_e61 + uint((_e14.t0_ > entry)));
         if (!(_e20)) {
-            local_27 = (_e19.t1_ > _e14.t1_);
+            local_30 = (_e19.t1_ > _e14.t1_);
         } else {
-            local_27 = false;
+            local_30 = false;
         }
-        bool _e73 = local_27;
+        bool _e73 = local_30;
         if (_e73) {
             uint _e74 = n_1;
-            a[_e74] = max(_e14.t1_, entry);
+            a_1[_e74] = max(_e14.t1_, entry);
             uint _e78 = n_1;
             b_1[_e78] = _e19.t1_;
             uint _e81 = n_1;
@@ -613,23 +655,23 @@ Segments layer_segments(vec3 p_8, float alt_6, vec3 d_5) {
     } else {
         if ((alt_6 < bottom_1)) {
             if (!(_e20)) {
-                local_28 = _e14.hit;
+                local_31 = _e14.hit;
             } else {
-                local_28 = false;
+                local_31 = false;
             }
-            bool _e90 = local_28;
+            bool _e90 = local_31;
             if (_e90) {
-                a.x = max(_e14.t1_, 0.0);
+                a_1.x = max(_e14.t1_, 0.0);
                 b_1.x = _e19.t1_;
                 n_1 = 1u;
             }
         } else {
-            a.x = entry;
+            a_1.x = entry;
             b_1.x = _e19.t1_;
             n_1 = 1u;
         }
     }
-    vec2 _e103 = a;
+    vec2 _e103 = a_1;
     s.a = _e103;
     vec2 _e105 = b_1;
     s.b = _e105;
@@ -649,8 +691,8 @@ float sample_hg_cos(float g_2, float u) {
     if ((abs(g_2) < 0.0001)) {
         return (1.0 - (2.0 * u));
     }
-    float s_3 = ((1.0 - (g_2 * g_2)) / ((1.0 - g_2) + ((2.0 * g_2) * u)));
-    return clamp((((1.0 + (g_2 * g_2)) - (s_3 * s_3)) / (2.0 * g_2)), -1.0, 1.0);
+    float s_4 = ((1.0 - (g_2 * g_2)) / ((1.0 - g_2) + ((2.0 * g_2) * u)));
+    return clamp((((1.0 + (g_2 * g_2)) - (s_4 * s_4)) / (2.0 * g_2)), -1.0, 1.0);
 }
 
 PhaseSample sample_phase(vec3 dir_4, inout uint rng_5) {
@@ -689,12 +731,12 @@ PhaseSample sample_phase(vec3 dir_4, inout uint rng_5) {
     float _e61 = cos_theta_4;
     float sin_theta = sqrt(max((1.0 - (_e60 * _e61)), 0.0));
     float sign_ = ((dir_4.z >= 0.0) ? 1.0 : -1.0);
-    float a_2 = (-1.0 / (sign_ + dir_4.z));
-    float bb = ((dir_4.x * dir_4.y) * a_2);
-    vec3 t_4 = vec3((1.0 + (((sign_ * dir_4.x) * dir_4.x) * a_2)), (sign_ * bb), (-(sign_) * dir_4.x));
-    vec3 b_7 = vec3(bb, (sign_ + ((dir_4.y * dir_4.y) * a_2)), -(dir_4.y));
+    float a_5 = (-1.0 / (sign_ + dir_4.z));
+    float bb = ((dir_4.x * dir_4.y) * a_5);
+    vec3 t_4 = vec3((1.0 + (((sign_ * dir_4.x) * dir_4.x) * a_5)), (sign_ * bb), (-(sign_) * dir_4.x));
+    vec3 b_8 = vec3(bb, (sign_ + ((dir_4.y * dir_4.y) * a_5)), -(dir_4.y));
     float _e109 = cos_theta_4;
-    vec3 w = normalize((((t_4 * (sin_theta * cos(phi))) + (b_7 * (sin_theta * sin(phi)))) + (dir_4 * _e109)));
+    vec3 w = normalize((((t_4 * (sin_theta * cos(phi))) + (b_8 * (sin_theta * sin(phi)))) + (dir_4 * _e109)));
     float _e113 = cos_theta_4;
     float _e115 = phase(_e113, 1.0);
     float _e116 = pdf;
@@ -703,35 +745,35 @@ PhaseSample sample_phase(vec3 dir_4, inout uint rng_5) {
 }
 
 bool camera_still() {
-    bool local_32 = false;
-    bool local_33 = false;
-    bool local_34 = false;
+    bool local_35 = false;
+    bool local_36 = false;
+    bool local_37 = false;
     vec4 _e2 = _group_0_binding_0_cs.camera_position;
     vec4 _e5 = _group_0_binding_0_cs.previous_position;
     if (all(equal(_e2, _e5))) {
         vec4 _e12 = _group_0_binding_0_cs.camera_forward;
         vec4 _e15 = _group_0_binding_0_cs.previous_forward;
-        local_32 = all(equal(_e12, _e15));
+        local_35 = all(equal(_e12, _e15));
     } else {
-        local_32 = false;
+        local_35 = false;
     }
-    bool _e19 = local_32;
+    bool _e19 = local_35;
     if (_e19) {
         vec4 _e24 = _group_0_binding_0_cs.camera_right;
         vec4 _e28 = _group_0_binding_0_cs.previous_right;
-        local_33 = all(equal(_e24.xyz, _e28.xyz));
+        local_36 = all(equal(_e24.xyz, _e28.xyz));
     } else {
-        local_33 = false;
+        local_36 = false;
     }
-    bool _e33 = local_33;
+    bool _e33 = local_36;
     if (_e33) {
         vec4 _e38 = _group_0_binding_0_cs.camera_up;
         vec4 _e42 = _group_0_binding_0_cs.previous_up;
-        local_34 = all(equal(_e38.xyz, _e42.xyz));
+        local_37 = all(equal(_e38.xyz, _e42.xyz));
     } else {
-        local_34 = false;
+        local_37 = false;
     }
-    bool _e47 = local_34;
+    bool _e47 = local_37;
     return _e47;
 }
 
@@ -739,13 +781,210 @@ float luminance(vec3 c_1) {
     return dot(c_1, vec3(0.2126, 0.7152, 0.0722));
 }
 
-vec3 sky_radiance(vec3 d_6, float alt_7) {
+float atlas_hash(uint a_2, uint b_2) {
+    uint _e2 = pcg(b_2);
+    uint _e4 = pcg((a_2 ^ _e2));
+    return (float((_e4 >> 8u)) * 5.9604645e-8);
+}
+
+float value_noise(vec2 p_9, uint seed) {
+    uvec2 i_7 = uvec2(floor(p_9));
+    vec2 f_2 = fract(p_9);
+    vec2 s_5 = ((f_2 * f_2) * (vec2(3.0) - (2.0 * f_2)));
+    uint h_6 = (seed * 7919u);
+    float _e17 = atlas_hash((i_7.x + h_6), i_7.y);
+    float _e23 = atlas_hash(((i_7.x + 1u) + h_6), i_7.y);
+    float _e29 = atlas_hash((i_7.x + h_6), (i_7.y + 1u));
+    float _e37 = atlas_hash(((i_7.x + 1u) + h_6), (i_7.y + 1u));
+    return mix(mix(_e17, _e23, s_5.x), mix(_e29, _e37, s_5.x), s_5.y);
+}
+
+float value_fbm(vec2 p_10, uint seed_1) {
+    float sum_1 = 0.0;
+    float weight = 0.5;
+    vec2 q_4 = vec2(0.0);
+    uint o = 0u;
+    q_4 = p_10;
+    bool loop_init_1 = true;
+    while(true) {
+        if (!loop_init_1) {
+            uint _e26 = o;
+            o = (_e26 + 1u);
+        }
+        loop_init_1 = false;
+        uint _e9 = o;
+        if ((_e9 < 4u)) {
+        } else {
+            break;
+        }
+        {
+            float _e12 = sum_1;
+            float _e13 = weight;
+            vec2 _e14 = q_4;
+            uint _e15 = o;
+            float _e17 = value_noise(_e14, (seed_1 + _e15));
+            sum_1 = (_e12 + (_e13 * _e17));
+            vec2 _e20 = q_4;
+            q_4 = (_e20 * 2.0);
+            float _e23 = weight;
+            weight = (_e23 * 0.5);
+        }
+    }
+    float _e29 = sum_1;
+    return (_e29 / 0.9375);
+}
+
+float sprite_texture(uint tile_1, vec2 uv) {
+    float billow = 0.0;
+    uint i_6 = 0u;
+    vec2 at = vec2(0.0);
+    float a_3 = 0.0;
+    vec2 c_7 = (uv - vec2(0.5));
+    float mask = smoothstep(0.48, 0.36, length(c_7));
+    float _e16 = value_fbm(((uv * 6.0) + vec2((float(tile_1) * 13.0))), tile_1);
+    if ((tile_1 < 4u)) {
+        vec2 q_6 = (c_7 * vec2(1.0, 3.2));
+        float streak = (1.0 - smoothstep(0.05, 0.45, length(q_6)));
+        float _e40 = value_fbm(((uv * vec2(3.0, 12.0)) + vec2((float(tile_1) * 5.0))), (tile_1 + 16u));
+        float _e46 = saturate(((_e40 * 1.6) - 0.3));
+        return (((mask * streak) * _e46) * 0.8);
+    }
+    uint blobs = (5u + (tile_1 % 4u));
+    bool loop_init_2 = true;
+    while(true) {
+        if (!loop_init_2) {
+            uint _e108 = i_6;
+            i_6 = (_e108 + 1u);
+        }
+        loop_init_2 = false;
+        uint _e58 = i_6;
+        if ((_e58 < blobs)) {
+        } else {
+            break;
+        }
+        {
+            uint _e61 = i_6;
+            float _e63 = atlas_hash(tile_1, (2u * _e61));
+            uint _e65 = i_6;
+            float _e69 = atlas_hash(tile_1, ((2u * _e65) + 1u));
+            vec2 centre_1 = (vec2(_e63, _e69) - vec2(0.5));
+            at = (vec2(0.5) + (centre_1 * 0.34));
+            if ((tile_1 == 4u)) {
+                at.y = (0.5 + ((centre_1.y - 0.5) * 0.24));
+            }
+            uint _e91 = i_6;
+            float _e93 = atlas_hash(tile_1, (100u + _e91));
+            float r_3 = (0.14 + (0.1 * _e93));
+            vec2 _e98 = at;
+            float d_9 = (length((uv - _e98)) / r_3);
+            float _e102 = billow;
+            float _e106 = saturate((1.0 - (d_9 * d_9)));
+            billow = max(_e102, _e106);
+        }
+    }
+    float _e111 = billow;
+    float _e114 = saturate((_e111 * 1.5));
+    a_3 = ((mask * _e114) * (0.55 + (0.45 * _e16)));
+    if ((tile_1 == 4u)) {
+        float _e124 = a_3;
+        a_3 = (_e124 * smoothstep(0.62, 0.54, uv.y));
+    }
+    float _e130 = a_3;
+    return _e130;
+}
+
+vec3 sprite_rel(vec2 xz, float alt_8) {
+    float rp_4 = _group_0_binding_0_cs.atmosphere.x;
+    vec4 _e8 = _group_0_binding_0_cs.camera_position;
+    vec2 d_10 = (xz - _e8.xz);
+    float k_8 = ((alt_8 * (alt_8 + (2.0 * rp_4))) - dot(d_10, d_10));
+    float y_1 = (k_8 / (rp_4 + sqrt(max(((rp_4 * rp_4) + k_8), 0.0))));
+    return vec3(d_10.x, y_1, d_10.y);
+}
+
+SpriteCell sprite_cell(uint cell) {
+    ivec2 start_1 = ivec2(0);
+    uint k_3 = 3u;
+    bool local_38 = false;
+    bool local_39 = false;
+    uint level_1 = (cell / 64u);
+    ivec2 local_41 = ivec2(int((cell % 8u)), int(((cell / 8u) % 8u)));
+    vec4 _e15 = _group_0_binding_0_cs.camera_position;
+    start_1 = (ivec2(floor((_e15.xz / vec2(12000.0)))) - ivec2(4));
+    bool loop_init_3 = true;
+    while(true) {
+        if (!loop_init_3) {
+            uint _e35 = k_3;
+            k_3 = (_e35 - 1u);
+        }
+        loop_init_3 = false;
+        uint _e27 = k_3;
+        if ((_e27 > level_1)) {
+        } else {
+            break;
+        }
+        {
+            ivec2 _e29 = start_1;
+            start_1 = (2 * (_e29 + ivec2(2)));
+        }
+    }
+    if ((level_1 > 0u)) {
+        local_38 = all(greaterThanEqual(local_41, ivec2(2)));
+    } else {
+        local_38 = false;
+    }
+    bool _e47 = local_38;
+    if (_e47) {
+        local_39 = all(lessThan(local_41, ivec2(6)));
+    } else {
+        local_39 = false;
+    }
+    bool covered = local_39;
+    ivec2 _e56 = start_1;
+    return SpriteCell((_e56 + local_41), (SPRITE_CELL0_ * float((1u << level_1))), covered);
+}
+
+vec3 sprite_sky_level(float h_5) {
+    float _e1 = saturate(h_5);
+    float x_5 = (_e1 * 4.0);
+    if ((x_5 < 1.0)) {
+        return mix(SKY_LEVEL0_, SKY_LEVEL1_, x_5);
+    }
+    if ((x_5 < 2.0)) {
+        return mix(SKY_LEVEL1_, SKY_LEVEL2_, (x_5 - 1.0));
+    }
+    if ((x_5 < 3.0)) {
+        return mix(SKY_LEVEL2_, SKY_LEVEL3_, (x_5 - 2.0));
+    }
+    return mix(SKY_LEVEL3_, SKY_LEVEL4_, (x_5 - 3.0));
+}
+
+float sprite_sun_level(float cos_angle) {
+    if ((cos_angle < 0.0)) {
+        return mix(SPRITE_C_MIN, SPRITE_C_MED, (cos_angle + 1.0));
+    }
+    return mix(SPRITE_C_MED, SPRITE_C_MAX, cos_angle);
+}
+
+vec2 sprite_corner(uint k_4) {
+    bool local_40 = false;
+    uint q_7 = ((k_4 >= 3u) ? ((k_4 == 3u) ? 0u : (k_4 - 2u)) : k_4);
+    if (!((q_7 == 1u))) {
+        local_40 = (q_7 == 2u);
+    } else {
+        local_40 = true;
+    }
+    bool _e18 = local_40;
+    return vec2((_e18 ? 1.0 : -1.0), ((q_7 >= 2u) ? 1.0 : -1.0));
+}
+
+vec3 sky_radiance(vec3 d_6, float alt_9) {
     vec4 _e4 = _group_0_binding_0_cs.sun_direction;
     vec3 sun = _e4.xyz;
     vec4 _e8 = _group_0_binding_0_cs.sun_illuminance;
     vec3 e = _e8.xyz;
     float _e15 = saturate(((sun.y * 4.0) + 0.3));
-    bool _e19 = hits_ground(vec3(0.0, alt_7, 0.0), alt_7, d_6);
+    bool _e19 = hits_ground(vec3(0.0, alt_9, 0.0), alt_9, d_6);
     if (_e19) {
         vec3 ground_albedo = vec3(0.035, 0.035, 0.03);
         return (ground_albedo * (((e * max(sun.y, 0.0)) / vec3(3.1415927)) + ((0.05 * e) * _e15)));
@@ -776,31 +1015,31 @@ vec3 aces_fitted(vec3 x_3) {
 }
 
 void main() {
-    uvec3 id_6 = gl_GlobalInvocationID;
+    uvec3 id_11 = gl_GlobalInvocationID;
     vec3 background = vec3(0.0);
     uvec4 _e4 = _group_0_binding_0_cs.counts;
-    if (any(greaterThanEqual(id_6.xy, _e4.xy))) {
+    if (any(greaterThanEqual(id_11.xy, _e4.xy))) {
         return;
     }
-    uvec2 pixel_6 = id_6.xy;
-    vec3 _e9 = view_ray(pixel_6);
-    float alt_8 = _group_0_binding_0_cs.camera_position.y;
-    vec4 cloud = texelFetch(_group_0_binding_9_cs, ivec2(pixel_6), 0);
-    vec3 _e17 = sky_radiance(_e9, alt_8);
+    uvec2 pixel_7 = id_11.xy;
+    vec3 _e9 = view_ray(pixel_7);
+    float alt_10 = _group_0_binding_0_cs.camera_position.y;
+    vec4 cloud = texelFetch(_group_0_binding_9_cs, ivec2(pixel_7), 0);
+    vec3 _e17 = sky_radiance(_e9, alt_10);
     background = _e17;
-    bool _e22 = hits_ground(vec3(0.0, alt_8, 0.0), alt_8, _e9);
+    bool _e22 = hits_ground(vec3(0.0, alt_10, 0.0), alt_10, _e9);
     if (!(_e22)) {
         vec3 _e24 = background;
         vec3 _e25 = sun_disk(_e9);
         background = (_e24 + _e25);
     }
     vec3 _e27 = background;
-    vec3 radiance_1 = ((_e27 * cloud.w) + cloud.xyz);
+    vec3 radiance_2 = ((_e27 * cloud.w) + cloud.xyz);
     float _e35 = _group_0_binding_0_cs.camera_right.w;
-    vec3 exposed = (radiance_1 * _e35);
+    vec3 exposed = (radiance_2 * _e35);
     vec3 _e37 = aces_fitted(exposed);
     vec3 display = pow(_e37, vec3(0.45454547));
-    imageStore(_group_0_binding_10_cs, ivec2(pixel_6), vec4(display, 1.0));
+    imageStore(_group_0_binding_10_cs, ivec2(pixel_7), vec4(display, 1.0));
     return;
 }
 

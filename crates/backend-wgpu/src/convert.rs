@@ -151,6 +151,7 @@ pub(crate) fn blend(b: Blend) -> Option<wgpu::BlendState> {
                 operation: O::Add,
             },
         }),
+        Blend::Over => Some(wgpu::BlendState::PREMULTIPLIED_ALPHA_BLENDING),
     }
 }
 

@@ -48,6 +48,28 @@ pub enum IntegratorArg {
     Pathtrace,
 }
 
+/// Which cloud renderer draws the frame (`--method`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum MethodArg {
+    /// The volumetric model: the march (or the path tracer with --integrator pathtrace).
+    Volumetric,
+    /// Baseline: the basic tutorial ray marcher (Riemann sum, Beer-Powder toward the sun, HG
+    /// phase, no ambient or multiple scattering) over the same density field.
+    Basic,
+    /// Baseline: Wang 2003's sprite clouds, placed from the same weather map and density.
+    Sprites,
+}
+
+impl MethodArg {
+    fn method(self) -> stratus_scene::Method {
+        match self {
+            Self::Volumetric => stratus_scene::Method::Volumetric,
+            Self::Basic => stratus_scene::Method::Basic,
+            Self::Sprites => stratus_scene::Method::Sprites,
+        }
+    }
+}
+
 /// Options of `stratus render`.
 #[derive(Args, Debug)]
 pub struct RenderArgs {
@@ -90,6 +112,10 @@ pub struct RenderArgs {
     /// `montecarlo` on the reference).
     #[arg(long, value_enum, default_value_t = IntegratorArg::Quadrature)]
     integrator: IntegratorArg,
+    /// The cloud renderer (overrides the scene's quality.method): the volumetric model, or a
+    /// baseline it is measured against (`basic`, `sprites`; GPU backends only).
+    #[arg(long, value_enum, value_name = "METHOD")]
+    method: Option<MethodArg>,
     /// `--integrator montecarlo|pathtrace`: samples (paths) per pixel.
     #[arg(long, default_value_t = 64, value_parser = clap::value_parser!(u32).range(1..))]
     spp: u32,
@@ -241,6 +267,31 @@ pub fn run(args: RenderArgs) -> Result<()> {
     let (mut scene, name) = load_scene(args.preset.as_deref(), args.scene.as_ref(), args.size)?;
     if let Some(t) = args.temporal {
         scene.quality.temporal = t;
+    }
+    if let Some(m) = args.method {
+        scene.quality.method = m.method();
+    }
+    let method = scene.quality.method;
+    if method != stratus_scene::Method::Volumetric {
+        if args.integrator != IntegratorArg::Quadrature {
+            anyhow::bail!(
+                "--method {}: a baseline has no path tracer (the path tracer renders the volumetric model); drop --integrator",
+                method.name()
+            );
+        }
+        if matches!(args.backend, Backend::Cpu | Backend::Reference) {
+            anyhow::bail!(
+                "--method {} runs on the GPU backends (wgpu, wgpu-gl, ash, auto); the CPU renders the volumetric model only",
+                method.name()
+            );
+        }
+        if scene.quality.temporal != Temporal::Off {
+            anyhow::bail!(
+                "--method {}: temporal upsampling ({}) reprojects the volumetric march; use --temporal off",
+                method.name(),
+                scene.quality.temporal.name()
+            );
+        }
     }
     let path_traced = args.integrator != IntegratorArg::Quadrature;
     if path_traced && scene.quality.temporal != Temporal::Off {
@@ -414,6 +465,7 @@ pub fn run(args: RenderArgs) -> Result<()> {
             "passes": frame.timings.iter().map(timing).collect::<Vec<_>>(),
             "frame_ms": wall_ms / f64::from(frame_count),
             "integrator": scene.quality.integrator.name(),
+            "method": scene.quality.method.name(),
             "temporal": scene.quality.temporal.name(),
             "median_ms": median_per_pass(&frames),
             "frames": frames.iter().enumerate().map(|(i, (cpu_ms, timings))| json!({

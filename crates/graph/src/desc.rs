@@ -265,6 +265,9 @@ pub enum Blend {
     Transmittance,
     /// Add.
     Additive,
+    /// Premultiplied "over" (Porter-Duff), drawn back to front: `dst = src + dst * (1 -
+    /// src.a)` in every channel, so alpha accumulates opacity.
+    Over,
 }
 
 /// What a raster target holds when the pass begins.
@@ -388,7 +391,14 @@ pub type ConstantLookup<'a> = dyn Fn(&str, &str) -> Option<f64> + 'a;
 pub const PREVIOUS: &str = ".previous";
 
 /// Plan options a pass's `plan` may name.
-pub const PLAN_OPTIONS: [&str; 4] = ["temporal", "empty_skip", "checkerboard", "pathtrace"];
+pub const PLAN_OPTIONS: [&str; 6] = [
+    "temporal",
+    "empty_skip",
+    "checkerboard",
+    "pathtrace",
+    "basic",
+    "sprites",
+];
 
 /// Whether a pass's `plan` condition (`option`, `!option`, several joined by `&`) holds when
 /// `set` says which options are on.

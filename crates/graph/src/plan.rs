@@ -379,6 +379,10 @@ pub struct PlanOptions {
     pub checkerboard: bool,
     /// The path tracer runs instead of the march (option `pathtrace`).
     pub pathtrace: bool,
+    /// The basic tutorial ray marcher runs instead of the march (option `basic`).
+    pub basic: bool,
+    /// Sprite clouds are drawn instead of the march (option `sprites`).
+    pub sprites: bool,
 }
 
 impl Default for PlanOptions {
@@ -388,6 +392,8 @@ impl Default for PlanOptions {
             empty_skip: false,
             checkerboard: false,
             pathtrace: false,
+            basic: false,
+            sprites: false,
         }
     }
 }
@@ -396,6 +402,22 @@ impl PlanOptions {
     /// The options `scene` asks for.
     pub fn of(scene: &Scene) -> Self {
         let q = &scene.quality;
+        // The baselines replace the march; none of its methods apply.
+        match q.method {
+            stratus_scene::Method::Volumetric => {}
+            stratus_scene::Method::Basic => {
+                return Self {
+                    basic: true,
+                    ..Self::default()
+                };
+            }
+            stratus_scene::Method::Sprites => {
+                return Self {
+                    sprites: true,
+                    ..Self::default()
+                };
+            }
+        }
         if q.integrator == stratus_scene::Integrator::Pathtrace {
             // The march's methods do not apply to the path tracer; it skips empty space always
             // (exactly: only cells without cloud), so it needs the occupancy grid.
@@ -409,7 +431,7 @@ impl PlanOptions {
             temporal: q.temporal.divisor(),
             empty_skip: q.empty_space_skip,
             checkerboard: q.checkerboard,
-            pathtrace: false,
+            ..Self::default()
         }
     }
 
@@ -420,6 +442,8 @@ impl PlanOptions {
             "empty_skip" => self.empty_skip,
             "checkerboard" => self.checkerboard,
             "pathtrace" => self.pathtrace,
+            "basic" => self.basic,
+            "sprites" => self.sprites,
             _ => false,
         }
     }

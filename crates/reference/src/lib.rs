@@ -592,6 +592,16 @@ impl stratus_graph::Backend for CpuBackend {
         frame: &stratus_graph::FrameInput<'_>,
     ) -> Result<FrameOutput, stratus_graph::BackendError> {
         let t = Instant::now();
+        let method = frame.scene.quality.method;
+        if method != stratus_scene::Method::Volumetric {
+            // The baselines are GPU methods measured against this renderer's truth; there is
+            // no CPU copy of them to say what they should draw.
+            return Err(format!(
+                "quality.method = \"{}\" runs on the GPU backends (wgpu, wgpu-gl, ash); the CPU renders the volumetric model only",
+                method.name()
+            )
+            .into());
+        }
         let temporal = frame.scene.quality.temporal != stratus_scene::Temporal::Off;
         let pathtrace = frame.scene.quality.integrator == stratus_scene::Integrator::Pathtrace;
         if !pathtrace {

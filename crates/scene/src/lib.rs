@@ -54,8 +54,8 @@ pub use error::{Location, Problem, ProblemKind, SceneError};
 pub use presets::{DEFAULT_PRESET, PresetInfo, presets};
 pub use scene::{
     Animation, Atmosphere, Camera, Clouds, HeightModel, Integration, Integrator, Keyframe,
-    Lighting, MultipleScattering, Noise, Phase, PhaseModel, Quality, Scene, ShapeTexture, Sun,
-    Temporal,
+    Lighting, Method, MultipleScattering, Noise, Phase, PhaseModel, Quality, Scene, ShapeTexture,
+    Sun, Temporal,
 };
 pub use uniforms::FrameUniforms;
 pub use validate::{MAX_LIGHT_STEPS, MAX_OCTAVES, MAX_RESOLUTION, MAX_VIEW_STEPS};

@@ -506,6 +506,39 @@ impl Integrator {
     }
 }
 
+/// Which cloud renderer draws the frame: the volumetric model, or one of the baselines it is
+/// measured against.
+#[derive(Serialize, Deserialize, Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
+#[serde(rename_all = "kebab-case")]
+pub enum Method {
+    /// The volumetric model (the march, or the path tracer with `integrator = "pathtrace"`).
+    /// TOML `"volumetric"`.
+    #[default]
+    Volumetric,
+    /// The basic ray marcher of the volumetric-cloud tutorials: a Riemann sum of sun light
+    /// through Beer-Powder toward the sun, Henyey-Greenstein phase and Beer along the view, no
+    /// ambient and no multiple scattering, over the same density field. TOML `"basic"`.
+    Basic,
+    /// Camera-facing textured sprites in boxes placed from the same weather map and density
+    /// field (Wang 2003), shaded by artist colour levels instead of light transport. TOML
+    /// `"sprites"`.
+    Sprites,
+}
+
+impl Method {
+    /// Every method.
+    pub const ALL: [Self; 3] = [Self::Volumetric, Self::Basic, Self::Sprites];
+
+    /// The TOML and command-line name.
+    pub const fn name(self) -> &'static str {
+        match self {
+            Self::Volumetric => "volumetric",
+            Self::Basic => "basic",
+            Self::Sprites => "sprites",
+        }
+    }
+}
+
 /// How the in-scattered light over one view step is integrated.
 #[derive(Serialize, Deserialize, Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
 #[serde(rename_all = "kebab-case")]
@@ -579,6 +612,10 @@ pub struct Quality {
     /// Path tracer: the most scattering orders a path contributes (0 = all). Each frame adds
     /// one path per pixel.
     pub path_orders: u32,
+    /// `"volumetric"` (the model), or a baseline it is measured against: `"basic"` (the
+    /// tutorial ray marcher) or `"sprites"` (Wang 2003). The baselines run on the GPU backends
+    /// only, with the march integrator and temporal upsampling off.
+    pub method: Method,
 }
 
 impl Default for Quality {
@@ -600,6 +637,7 @@ impl Default for Quality {
             empty_space_skip: false,
             integrator: Integrator::March,
             path_orders: 0,
+            method: Method::Volumetric,
         }
     }
 }

@@ -320,6 +320,29 @@ pub(crate) fn check(scene: &Scene) -> Vec<Issue> {
         );
     }
 
+    if q.method != crate::Method::Volumetric {
+        if q.integrator != crate::Integrator::March {
+            c.push(
+                "quality.integrator",
+                format!("\"{}\"", q.integrator.name()),
+                format!(
+                    "must be \"march\" with quality.method = \"{}\": the path tracer renders the volumetric model",
+                    q.method.name()
+                ),
+            );
+        }
+        if q.temporal != crate::Temporal::Off {
+            c.push(
+                "quality.temporal",
+                format!("\"{}\"", q.temporal.name()),
+                format!(
+                    "must be \"off\" with quality.method = \"{}\": temporal upsampling reprojects the volumetric march",
+                    q.method.name()
+                ),
+            );
+        }
+    }
+
     if let Some(a) = &scene.animation {
         c.positive("animation.duration_s", a.duration_s);
         if a.keyframes.is_empty() {

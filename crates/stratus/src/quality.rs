@@ -7,7 +7,8 @@ use std::{collections::BTreeMap, path::Path};
 
 use serde::{Deserialize, Serialize};
 use stratus_scene::{
-    Animation, Integration, Keyframe, MultipleScattering, PhaseModel, Scene, ShapeTexture, Temporal,
+    Animation, Integration, Keyframe, Method, MultipleScattering, PhaseModel, Scene, ShapeTexture,
+    Temporal,
 };
 
 /// One point of the sweep: the quality and method settings a configuration overrides.
@@ -45,6 +46,10 @@ pub struct Config {
     /// preset before and after `stratus fit-scattering`.
     #[serde(default)]
     pub prefit: bool,
+    /// The cloud renderer: the volumetric model, or a baseline (`basic`, `sprites`) measured
+    /// against the same truth.
+    #[serde(default)]
+    pub method: Method,
 }
 
 /// The multiple-scattering octaves before `stratus fit-scattering`: the thesis's 2 octaves of
@@ -73,6 +78,7 @@ impl Config {
             checkerboard: scene.quality.checkerboard,
             empty_space_skip: scene.quality.empty_space_skip,
             prefit: false,
+            method: scene.quality.method,
         }
     }
 
@@ -101,6 +107,7 @@ impl Config {
         s.quality.dynamic_step = self.dynamic_step;
         s.quality.checkerboard = self.checkerboard;
         s.quality.empty_space_skip = self.empty_space_skip;
+        s.quality.method = self.method;
         if self.prefit {
             s.lighting.multiple_scattering = MultipleScattering {
                 octaves: self.octaves,
@@ -111,8 +118,14 @@ impl Config {
     }
 
     /// A short name: every setting, e.g. `v64 l6 analytic hg o2 jitter 128x32x128`, then the
-    /// methods in use (`temporal 1/16`, `dynamic-step`, `checkerboard`, `skip`).
+    /// methods in use (`temporal 1/16`, `dynamic-step`, `checkerboard`, `skip`). A baseline is
+    /// named by its method and the settings it reads: `basic v64 l6`, `sprites`.
     pub fn name(&self) -> String {
+        match self.method {
+            Method::Volumetric => {}
+            Method::Basic => return format!("basic v{} l{}", self.view_steps, self.light_steps),
+            Method::Sprites => return "sprites".to_string(),
+        }
         let mut methods = String::new();
         if self.temporal != Temporal::Off {
             methods.push_str(&format!(" temporal {}", self.temporal.name()));
@@ -374,7 +387,11 @@ pub fn auto_quality(
     };
     // A single still frame gains nothing from temporal upsampling, and the methods' still error
     // is not their error in motion: auto quality picks among the per-frame settings.
-    for r in rows.iter().filter(|r| !r.config.is_method()) {
+    // The baselines (basic, sprites) are there to be compared with, not picked.
+    for r in rows
+        .iter()
+        .filter(|r| !r.config.is_method() && r.config.method == Method::Volumetric)
+    {
         let e = table
             .entry(r.name.clone())
             .or_insert((r.config.clone(), 0.0, 0.0, 0.0, 0));

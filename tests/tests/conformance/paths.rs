@@ -225,8 +225,16 @@ impl Renderers {
                     Lang::Hlsl
                 };
                 let r = self.ash.as_mut().map_err(|e| e.clone())?;
-                // A variant's shaders per pass list: temporal plans run other entry points.
-                let passes: Vec<&str> = plan.passes.iter().map(|p| p.name.as_str()).collect();
+                // A variant's shaders per list of entry points: temporal plans and the
+                // baselines run other entry points, some under the same pass names.
+                let passes: Vec<String> = plan
+                    .passes
+                    .iter()
+                    .map(|p| match &p.kind {
+                        PassKind::Compute { entry, .. } => format!("{}:{entry}", p.name),
+                        _ => p.name.clone(),
+                    })
+                    .collect();
                 let key = (plan.variant.clone(), passes.join(","), lang);
                 if !self.compiled.contains_key(&key) {
                     let prepared = spirv::compile(&plan, lang, &self.scratch)

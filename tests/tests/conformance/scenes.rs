@@ -1,7 +1,7 @@
 //! The scenes of the suite: every preset, and stress variants of `cumulus-noon` where
 //! methods fail, all at [`WIDTH`] x [`HEIGHT`].
 
-use stratus_scene::{Integration, Scene, ShapeTexture};
+use stratus_scene::{Integration, Method, Scene, ShapeTexture};
 
 /// Image width of every scene (16:9, a quarter of 256x144 in pixels: the suite's ~60 GPU
 /// frames and 12 CPU frames cost seconds, not minutes, on lavapipe in the dev profile).
@@ -68,6 +68,16 @@ pub fn all() -> Vec<Case> {
             "one-view-step",
             "a single view step through the layer",
             |s| s.quality.view_steps = 1,
+        ),
+        stress(
+            "method-basic",
+            "baseline: the basic tutorial ray marcher (GPU only)",
+            |s| s.quality.method = Method::Basic,
+        ),
+        stress(
+            "method-sprites",
+            "baseline: Wang 2003's sprite clouds, a raster pass (GPU only)",
+            |s| s.quality.method = Method::Sprites,
         ),
     ]);
     for c in &cases {

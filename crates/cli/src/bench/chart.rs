@@ -124,6 +124,7 @@ fn draw(canvas: &mut dyn Canvas, results: &Results) {
     let blue = (30, 80, 200);
     let green = (20, 140, 60);
     let orange = (225, 120, 0);
+    let purple = (130, 50, 170);
     for (k, scene) in scenes.iter().enumerate() {
         let ox = k as f64 * PANEL_W;
         let rows: Vec<&Row> = results.rows.iter().filter(|r| r.scene == *scene).collect();
@@ -245,6 +246,21 @@ fn draw(canvas: &mut dyn Canvas, results: &Results) {
             }
             canvas.text((still.0 + 6.0, still.1 + 3.0), &label, 9, green, "start");
         }
+        // The baselines (seed methods measured against the same truth), named.
+        for r in rows
+            .iter()
+            .filter(|r| r.config.method != stratus_scene::Method::Volumetric)
+        {
+            let at = (px(r.gpu_ms), py(r.flip));
+            canvas.circle(at, 4.0, purple, true);
+            canvas.text(
+                (at.0 + 6.0, at.1 + 3.0),
+                &format!("{}: FLIP {:.3}", r.config.method.name(), r.flip),
+                9,
+                purple,
+                "start",
+            );
+        }
         let mut front: Vec<&&Row> = rows.iter().filter(|r| r.pareto).collect();
         front.sort_by(|a, b| a.gpu_ms.total_cmp(&b.gpu_ms));
         for w in front.windows(2) {
@@ -300,7 +316,7 @@ pub(super) fn chart(out: &Path, results: &Results) -> Result<()> {
     let (w, h) = ((PANEL_W * n.len().max(1) as f64) as u32, PANEL_H as u32);
     let mut svg = Svg(format!(
         r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{h}" viewBox="0 0 {w} {h}">
-<title>Stratus: FLIP against GPU time ({} at {}x{}); red = Pareto front, blue ring = preset settings, orange ring = preset before the multiple-scattering fit, green = methods (dot: still camera; ring: in motion, against the full march of each frame)</title>
+<title>Stratus: FLIP against GPU time ({} at {}x{}); red = Pareto front, blue ring = preset settings, orange ring = preset before the multiple-scattering fit, green = methods (dot: still camera; ring: in motion, against the full march of each frame), purple = baselines (basic marcher, sprites)</title>
 <rect width="100%" height="100%" fill="white"/>
 "#,
         xml(&results.device),

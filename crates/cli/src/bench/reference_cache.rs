@@ -43,6 +43,8 @@ fn reference_for(scene: &Scene) -> (Integrator, Scene, bool) {
     s.quality.checkerboard = d.checkerboard;
     s.quality.empty_space_skip = d.empty_space_skip;
     s.quality.frame = d.frame;
+    // The baselines draw the same density: their truth is the volumetric model's.
+    s.quality.method = d.method;
     let mc = scene.lighting.multiple_scattering.octaves > 0;
     if mc {
         // Real-time-only terms the path tracer does not model, set to fixed values (not the

@@ -11,7 +11,7 @@ use stratus::quality::{Config, Row};
 use stratus_compare::{CompareOptions, Image, compare};
 use stratus_graph::{Backend, FrameInput, FrameOutput, FramePlan, output::median};
 use stratus_noise::NoiseSet;
-use stratus_scene::{Integration, PhaseModel, Scene, ShapeTexture, Temporal};
+use stratus_scene::{Integration, Method, PhaseModel, Scene, ShapeTexture, Temporal};
 
 use super::reference_cache::reference;
 use crate::scene_io::check_finite;
@@ -146,6 +146,14 @@ pub(super) fn sweep(base: &Config, quick: bool) -> Vec<Config> {
         checkerboard: true,
         ..base.clone()
     });
+    // The baselines against the same truth: the basic tutorial marcher at the scene's steps,
+    // and Wang 2003's sprites.
+    for method in [Method::Basic, Method::Sprites] {
+        push(Config {
+            method,
+            ..base.clone()
+        });
+    }
     out
 }
 

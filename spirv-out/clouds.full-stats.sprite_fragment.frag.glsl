@@ -1,0 +1,458 @@
+#version 450 core
+struct Frame {
+    vec4 camera_position;
+    vec4 camera_forward;
+    vec4 camera_right;
+    vec4 camera_up;
+    vec4 sun_direction;
+    vec4 sun_illuminance;
+    vec4 atmosphere;
+    vec4 clouds;
+    vec4 erosion;
+    vec4 periods;
+    vec4 wind_offsets0_;
+    vec4 wind_offsets1_;
+    vec4 extinction;
+    vec4 phase;
+    vec4 multiple_scattering;
+    vec4 ambient_bottom;
+    vec4 ambient_top;
+    vec4 march;
+    uvec4 counts;
+    uvec4 modes;
+    uvec4 misc;
+    vec4 previous_position;
+    vec4 previous_forward;
+    vec4 previous_right;
+    vec4 previous_up;
+    uvec4 temporal;
+};
+struct Roots {
+    float t0_;
+    float t1_;
+    bool hit;
+};
+struct Interval {
+    float start;
+    float length_;
+    uint kind;
+};
+struct Counters {
+    uint view_steps;
+    uint density;
+    uint detail;
+    uint light;
+};
+struct Weather {
+    float coverage;
+    float cloud_type;
+    float precipitation;
+};
+struct Stats {
+    uint counters[9];
+};
+struct MarchResult {
+    vec3 radiance;
+    float transmittance;
+    float depth;
+};
+struct Segments {
+    vec2 a;
+    vec2 b;
+    uint count;
+};
+struct PhaseSample {
+    vec3 dir;
+    float weight;
+};
+struct PathResult {
+    vec3 radiance;
+    float transmittance;
+    float depth;
+};
+struct SpriteCell {
+    ivec2 index;
+    float size;
+    bool covered;
+};
+struct SpriteCandidate {
+    vec2 xz;
+    float alt;
+    float h;
+    float size_hash;
+    float texture_hash;
+    float rotation_hash;
+    float density;
+};
+struct SpriteVertex {
+    vec4 position;
+    vec2 uv;
+    uint tile;
+    vec4 colour;
+    float distance_;
+};
+struct SpriteTargets {
+    vec4 radiance;
+    vec4 depth;
+};
+const uint PHASE_HG = 0u;
+const uint PHASE_TWO_LOBE_HG = 1u;
+const uint PHASE_CORNETTE_SHANKS = 2u;
+const uint INTEGRATION_ANALYTIC = 0u;
+const uint INTEGRATION_RIEMANN = 1u;
+const uint HEIGHT_PARABOLA = 0u;
+const uint HEIGHT_CLOUD_TYPES = 1u;
+const uint FLAG_BEER_POWDER = 1u;
+const uint FLAG_JITTER = 2u;
+const uint FLAG_DYNAMIC_STEP = 4u;
+const uint FLAG_CHECKERBOARD = 8u;
+const uint FLAG_EMPTY_SKIP = 16u;
+const float PI = 3.1415927;
+const uint MAX_VIEW_STEPS = 1024u;
+const uint RAY_MARCH = 0u;
+const uint RAY_MISSES_LAYER = 1u;
+const uint RAY_HITS_GROUND = 2u;
+const uint OCCUPANCY_CELLS = 64u;
+const uint STAT_PIXELS = 0u;
+const uint STAT_MARCHED = 1u;
+const uint STAT_VIEW_STEPS = 2u;
+const uint STAT_DENSITY = 3u;
+const uint STAT_DETAIL = 4u;
+const uint STAT_LIGHT = 5u;
+const uint STAT_EXIT_TRANSMITTANCE = 6u;
+const uint STAT_EXIT_MISSED = 7u;
+const uint STAT_EXIT_GROUND = 8u;
+const uint STAT_COUNT = 9u;
+const float HISTORY_SAMPLES = 16.0;
+const float HISTORY_SAMPLES_MOVING = 2.0;
+const float DISOCCLUSION_DEPTH = 0.5;
+const uint MAX_PATH_ORDERS = 16384u;
+const uint SPRITE_LEVELS = 4u;
+const int SPRITE_CELLS_PER_SIDE = 8;
+const uint SPRITES_PER_CELL = 16u;
+const uint SPRITE_COUNT = 4096u;
+const float SPRITE_CELL0_ = 1500.0;
+const float SPRITE_ALPHA = 0.7;
+const float SPRITE_MAX_DISTANCE = 131072.0;
+const uint ATLAS_TILE = 64u;
+const float SPRITE_C_MIN = 0.22;
+const float SPRITE_C_MED = 0.55;
+const float SPRITE_C_MAX = 1.0;
+const float SPRITE_SKY = 0.35;
+const vec3 SKY_LEVEL0_ = vec3(0.42, 0.46, 0.55);
+const vec3 SKY_LEVEL1_ = vec3(0.55, 0.59, 0.67);
+const vec3 SKY_LEVEL2_ = vec3(0.7, 0.73, 0.8);
+const vec3 SKY_LEVEL3_ = vec3(0.84, 0.86, 0.9);
+const vec3 SKY_LEVEL4_ = vec3(0.95, 0.96, 0.98);
+const bool LIGHT_MARCH = true;
+const uint MAX_OCTAVES = 8u;
+const bool DETAIL = true;
+const bool CURL = true;
+const bool STATS = true;
+
+layout(binding = 24) uniform sampler2D _group_0_binding_24_fs;
+
+layout(location = 0) smooth in vec2 _vs2fs_location0;
+layout(location = 1) flat in uint _vs2fs_location1;
+layout(location = 2) smooth in vec4 _vs2fs_location2;
+layout(location = 3) smooth in float _vs2fs_location3;
+layout(location = 0) out vec4 _fs2p_location0;
+layout(location = 1) out vec4 _fs2p_location1;
+
+float saturate(float x_1) {
+    return clamp(x_1, 0.0, 1.0);
+}
+
+float remap(float x_2, float lo0_, float hi0_, float lo1_, float hi1_) {
+    return (lo1_ + (((x_2 - lo0_) * (hi1_ - lo1_)) / (hi0_ - lo0_)));
+}
+
+uint pcg(uint v) {
+    uint state = ((v * 747796405u) + 2891336453u);
+    uint word = (((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u);
+    return ((word >> 22u) ^ word);
+}
+
+float van_der_corput(uint n) {
+    return (float((bitfieldReverse(n) >> 8u)) * 5.9604645e-8);
+}
+
+float hash_unit(uvec2 pixel, uint frame_index) {
+    uint _e4 = pcg(frame_index);
+    uint _e6 = pcg((pixel.y ^ _e4));
+    uint _e8 = pcg((pixel.x ^ _e6));
+    return (float((_e8 >> 8u)) * 5.9604645e-8);
+}
+
+Roots solve_sphere(float b, float c) {
+    float disc = ((b * b) - c);
+    if ((disc < 0.0)) {
+        return Roots(0.0, 0.0, false);
+    }
+    float s_2 = sqrt(disc);
+    float r0_1 = -((b + ((b >= 0.0) ? s_2 : -(s_2))));
+    if ((r0_1 == 0.0)) {
+        return Roots(0.0, 0.0, true);
+    }
+    float r1_1 = (c / r0_1);
+    return Roots(min(r0_1, r1_1), max(r0_1, r1_1), true);
+}
+
+float height_parabola(float h, float cloud_type) {
+    float height = mix(0.35, 1.0, cloud_type);
+    float _e11 = saturate(((h * (h - height)) * (-4.0 / (height * height))));
+    return _e11;
+}
+
+float gradient(float h_1, float r0_, float r1_, float f0_, float f1_) {
+    return (smoothstep(r0_, r1_, h_1) * (1.0 - smoothstep(f0_, f1_, h_1)));
+}
+
+float height_cloud_types(float h_2, float cloud_type_1) {
+    float _e6 = gradient(h_2, 0.0, 0.08, 0.15, 0.25);
+    float _e11 = gradient(h_2, 0.0, 0.2, 0.4, 0.65);
+    float _e16 = gradient(h_2, 0.0, 0.1, 0.6, 0.95);
+    float _e19 = saturate((cloud_type_1 * 2.0));
+    float lo = mix(_e6, _e11, _e19);
+    float _e25 = saturate(((cloud_type_1 * 2.0) - 1.0));
+    return mix(lo, _e16, _e25);
+}
+
+float phase_hg(float cos_theta, float g) {
+    float g2_ = (g * g);
+    float denom = max(((1.0 + g2_) - ((2.0 * g) * cos_theta)), 1e-6);
+    return ((1.0 - g2_) / ((12.566371 * denom) * sqrt(denom)));
+}
+
+float phase_cornette_shanks(float cos_theta_1, float g_1) {
+    float g2_1 = (g_1 * g_1);
+    float denom_1 = max(((1.0 + g2_1) - ((2.0 * g_1) * cos_theta_1)), 1e-6);
+    return (((3.0 * (1.0 - g2_1)) * (1.0 + (cos_theta_1 * cos_theta_1))) / (((25.132742 * (2.0 + g2_1)) * denom_1) * sqrt(denom_1)));
+}
+
+uvec2 bayer2_(uint v_1) {
+    return uvec2(((v_1 ^ (v_1 >> 1u)) & 1u), (v_1 & 1u));
+}
+
+uvec2 block_offset(uint f, uint k) {
+    if ((k == 2u)) {
+        uvec2 _e6 = bayer2_((f % 4u));
+        return _e6;
+    }
+    if ((k == 4u)) {
+        uint b_3 = (f % 16u);
+        uvec2 _e13 = bayer2_((b_3 >> 2u));
+        uvec2 _e17 = bayer2_((b_3 & 3u));
+        return (_e13 + (2u * _e17));
+    }
+    return uvec2(0u);
+}
+
+vec4 catmull_rom(float t) {
+    return vec4((t * (-0.5 + (t * (1.0 - (0.5 * t))))), (1.0 + ((t * t) * (-2.5 + (1.5 * t)))), (t * (0.5 + (t * (2.0 - (1.5 * t))))), ((t * t) * (-0.5 + (0.5 * t))));
+}
+
+uint rng_seed(uvec2 pixel_5, uint frame_index_1) {
+    uint _e4 = pcg(frame_index_1);
+    uint _e6 = pcg((pixel_5.y ^ _e4));
+    uint _e8 = pcg((pixel_5.x ^ _e6));
+    return _e8;
+}
+
+float rng_next(inout uint rng_1) {
+    uint _e1 = rng_1;
+    rng_1 = ((_e1 * 747796405u) + 2891336453u);
+    uint s_3 = rng_1;
+    uint word_1 = (((s_3 >> ((s_3 >> 28u) + 4u)) ^ s_3) * 277803737u);
+    return (float((((word_1 >> 22u) ^ word_1) >> 8u)) * 5.9604645e-8);
+}
+
+float rng_exponential(inout uint rng_2, float sigma) {
+    float _e2 = rng_next(rng_2);
+    return (-(log((1.0 - _e2))) / sigma);
+}
+
+float sample_hg_cos(float g_2, float u) {
+    if ((abs(g_2) < 0.0001)) {
+        return (1.0 - (2.0 * u));
+    }
+    float s_4 = ((1.0 - (g_2 * g_2)) / ((1.0 - g_2) + ((2.0 * g_2) * u)));
+    return clamp((((1.0 + (g_2 * g_2)) - (s_4 * s_4)) / (2.0 * g_2)), -1.0, 1.0);
+}
+
+float luminance(vec3 c_1) {
+    return dot(c_1, vec3(0.2126, 0.7152, 0.0722));
+}
+
+float atlas_hash(uint a_2, uint b_2) {
+    uint _e2 = pcg(b_2);
+    uint _e4 = pcg((a_2 ^ _e2));
+    return (float((_e4 >> 8u)) * 5.9604645e-8);
+}
+
+float value_noise(vec2 p_9, uint seed) {
+    uvec2 i_7 = uvec2(floor(p_9));
+    vec2 f_1 = fract(p_9);
+    vec2 s_5 = ((f_1 * f_1) * (vec2(3.0) - (2.0 * f_1)));
+    uint h_6 = (seed * 7919u);
+    float _e17 = atlas_hash((i_7.x + h_6), i_7.y);
+    float _e23 = atlas_hash(((i_7.x + 1u) + h_6), i_7.y);
+    float _e29 = atlas_hash((i_7.x + h_6), (i_7.y + 1u));
+    float _e37 = atlas_hash(((i_7.x + 1u) + h_6), (i_7.y + 1u));
+    return mix(mix(_e17, _e23, s_5.x), mix(_e29, _e37, s_5.x), s_5.y);
+}
+
+float value_fbm(vec2 p_10, uint seed_1) {
+    float sum_1 = 0.0;
+    float weight = 0.5;
+    vec2 q_4 = vec2(0.0);
+    uint o = 0u;
+    q_4 = p_10;
+    bool loop_init = true;
+    while(true) {
+        if (!loop_init) {
+            uint _e26 = o;
+            o = (_e26 + 1u);
+        }
+        loop_init = false;
+        uint _e9 = o;
+        if ((_e9 < 4u)) {
+        } else {
+            break;
+        }
+        {
+            float _e12 = sum_1;
+            float _e13 = weight;
+            vec2 _e14 = q_4;
+            uint _e15 = o;
+            float _e17 = value_noise(_e14, (seed_1 + _e15));
+            sum_1 = (_e12 + (_e13 * _e17));
+            vec2 _e20 = q_4;
+            q_4 = (_e20 * 2.0);
+            float _e23 = weight;
+            weight = (_e23 * 0.5);
+        }
+    }
+    float _e29 = sum_1;
+    return (_e29 / 0.9375);
+}
+
+float sprite_texture(uint tile_1, vec2 uv) {
+    float billow = 0.0;
+    uint i_6 = 0u;
+    vec2 at = vec2(0.0);
+    float a_3 = 0.0;
+    vec2 c_3 = (uv - vec2(0.5));
+    float mask = smoothstep(0.48, 0.36, length(c_3));
+    float _e16 = value_fbm(((uv * 6.0) + vec2((float(tile_1) * 13.0))), tile_1);
+    if ((tile_1 < 4u)) {
+        vec2 q_5 = (c_3 * vec2(1.0, 3.2));
+        float streak = (1.0 - smoothstep(0.05, 0.45, length(q_5)));
+        float _e40 = value_fbm(((uv * vec2(3.0, 12.0)) + vec2((float(tile_1) * 5.0))), (tile_1 + 16u));
+        float _e46 = saturate(((_e40 * 1.6) - 0.3));
+        return (((mask * streak) * _e46) * 0.8);
+    }
+    uint blobs = (5u + (tile_1 % 4u));
+    bool loop_init_1 = true;
+    while(true) {
+        if (!loop_init_1) {
+            uint _e108 = i_6;
+            i_6 = (_e108 + 1u);
+        }
+        loop_init_1 = false;
+        uint _e58 = i_6;
+        if ((_e58 < blobs)) {
+        } else {
+            break;
+        }
+        {
+            uint _e61 = i_6;
+            float _e63 = atlas_hash(tile_1, (2u * _e61));
+            uint _e65 = i_6;
+            float _e69 = atlas_hash(tile_1, ((2u * _e65) + 1u));
+            vec2 centre_1 = (vec2(_e63, _e69) - vec2(0.5));
+            at = (vec2(0.5) + (centre_1 * 0.34));
+            if ((tile_1 == 4u)) {
+                at.y = (0.5 + ((centre_1.y - 0.5) * 0.24));
+            }
+            uint _e91 = i_6;
+            float _e93 = atlas_hash(tile_1, (100u + _e91));
+            float r_3 = (0.14 + (0.1 * _e93));
+            vec2 _e98 = at;
+            float d_8 = (length((uv - _e98)) / r_3);
+            float _e102 = billow;
+            float _e106 = saturate((1.0 - (d_8 * d_8)));
+            billow = max(_e102, _e106);
+        }
+    }
+    float _e111 = billow;
+    float _e114 = saturate((_e111 * 1.5));
+    a_3 = ((mask * _e114) * (0.55 + (0.45 * _e16)));
+    if ((tile_1 == 4u)) {
+        float _e124 = a_3;
+        a_3 = (_e124 * smoothstep(0.62, 0.54, uv.y));
+    }
+    float _e130 = a_3;
+    return _e130;
+}
+
+vec3 sprite_sky_level(float h_5) {
+    float _e1 = saturate(h_5);
+    float x_4 = (_e1 * 4.0);
+    if ((x_4 < 1.0)) {
+        return mix(SKY_LEVEL0_, SKY_LEVEL1_, x_4);
+    }
+    if ((x_4 < 2.0)) {
+        return mix(SKY_LEVEL1_, SKY_LEVEL2_, (x_4 - 1.0));
+    }
+    if ((x_4 < 3.0)) {
+        return mix(SKY_LEVEL2_, SKY_LEVEL3_, (x_4 - 2.0));
+    }
+    return mix(SKY_LEVEL3_, SKY_LEVEL4_, (x_4 - 3.0));
+}
+
+float sprite_sun_level(float cos_angle) {
+    if ((cos_angle < 0.0)) {
+        return mix(SPRITE_C_MIN, SPRITE_C_MED, (cos_angle + 1.0));
+    }
+    return mix(SPRITE_C_MED, SPRITE_C_MAX, cos_angle);
+}
+
+vec2 sprite_corner(uint k_4) {
+    bool local_40 = false;
+    uint q_6 = ((k_4 >= 3u) ? ((k_4 == 3u) ? 0u : (k_4 - 2u)) : k_4);
+    if (!((q_6 == 1u))) {
+        local_40 = (q_6 == 2u);
+    } else {
+        local_40 = true;
+    }
+    bool _e18 = local_40;
+    return vec2((_e18 ? 1.0 : -1.0), ((q_6 >= 2u) ? 1.0 : -1.0));
+}
+
+vec3 aces_fitted(vec3 x_3) {
+    return clamp(((x_3 * ((2.51 * x_3) + vec3(0.03))) / ((x_3 * ((2.43 * x_3) + vec3(0.59))) + vec3(0.14))), vec3(0.0), vec3(1.0));
+}
+
+void main() {
+    SpriteVertex in_ = SpriteVertex(gl_FragCoord, _vs2fs_location0, _vs2fs_location1, _vs2fs_location2, _vs2fs_location3);
+    SpriteTargets out_1 = SpriteTargets(vec4(0.0), vec4(0.0));
+    float a = 0.0;
+    if (all(lessThanEqual(abs(in_.uv), vec2(1.0)))) {
+        vec2 tile_2 = vec2(float((in_.tile % 4u)), float((in_.tile / 4u)));
+        vec2 uv_1 = (((tile_2 + vec2(0.5)) + (0.5 * in_.uv)) * 0.25);
+        vec4 _e31 = textureLod(_group_0_binding_24_fs, vec2(uv_1), 0.0);
+        a = (_e31.x * in_.colour.w);
+    }
+    float _e39 = a;
+    float _e41 = a;
+    out_1.radiance = vec4((in_.colour.xyz * _e39), _e41);
+    float _e45 = a;
+    float _e47 = a;
+    out_1.depth = vec4((in_.distance_ * _e45), 0.0, 0.0, _e47);
+    SpriteTargets _e51 = out_1;
+    _fs2p_location0 = _e51.radiance;
+    _fs2p_location1 = _e51.depth;
+    return;
+}
+

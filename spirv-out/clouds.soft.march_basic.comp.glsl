@@ -1,0 +1,1454 @@
+#version 450 core
+#extension GL_ARB_compute_shader : require
+#extension GL_ARB_shader_storage_buffer_object : require
+layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
+
+struct Frame {
+    vec4 camera_position;
+    vec4 camera_forward;
+    vec4 camera_right;
+    vec4 camera_up;
+    vec4 sun_direction;
+    vec4 sun_illuminance;
+    vec4 atmosphere;
+    vec4 clouds;
+    vec4 erosion;
+    vec4 periods;
+    vec4 wind_offsets0_;
+    vec4 wind_offsets1_;
+    vec4 extinction;
+    vec4 phase;
+    vec4 multiple_scattering;
+    vec4 ambient_bottom;
+    vec4 ambient_top;
+    vec4 march;
+    uvec4 counts;
+    uvec4 modes;
+    uvec4 misc;
+    vec4 previous_position;
+    vec4 previous_forward;
+    vec4 previous_right;
+    vec4 previous_up;
+    uvec4 temporal;
+};
+struct Roots {
+    float t0_;
+    float t1_;
+    bool hit;
+};
+struct Interval {
+    float start;
+    float length_;
+    uint kind;
+};
+struct Counters {
+    uint view_steps;
+    uint density;
+    uint detail;
+    uint light;
+};
+struct Weather {
+    float coverage;
+    float cloud_type;
+    float precipitation;
+};
+struct Stats {
+    uint counters[9];
+};
+struct MarchResult {
+    vec3 radiance;
+    float transmittance;
+    float depth;
+};
+struct Segments {
+    vec2 a;
+    vec2 b;
+    uint count;
+};
+struct PhaseSample {
+    vec3 dir;
+    float weight;
+};
+struct PathResult {
+    vec3 radiance;
+    float transmittance;
+    float depth;
+};
+struct SpriteCell {
+    ivec2 index;
+    float size;
+    bool covered;
+};
+struct SpriteCandidate {
+    vec2 xz;
+    float alt;
+    float h;
+    float size_hash;
+    float texture_hash;
+    float rotation_hash;
+    float density;
+};
+struct SpriteVertex {
+    vec4 position;
+    vec2 uv;
+    uint tile;
+    vec4 colour;
+    float distance_;
+};
+struct SpriteTargets {
+    vec4 radiance;
+    vec4 depth;
+};
+const uint PHASE_HG = 0u;
+const uint PHASE_TWO_LOBE_HG = 1u;
+const uint PHASE_CORNETTE_SHANKS = 2u;
+const uint INTEGRATION_ANALYTIC = 0u;
+const uint INTEGRATION_RIEMANN = 1u;
+const uint HEIGHT_PARABOLA = 0u;
+const uint HEIGHT_CLOUD_TYPES = 1u;
+const uint FLAG_BEER_POWDER = 1u;
+const uint FLAG_JITTER = 2u;
+const uint FLAG_DYNAMIC_STEP = 4u;
+const uint FLAG_CHECKERBOARD = 8u;
+const uint FLAG_EMPTY_SKIP = 16u;
+const float PI = 3.1415927;
+const uint MAX_VIEW_STEPS = 1024u;
+const uint RAY_MARCH = 0u;
+const uint RAY_MISSES_LAYER = 1u;
+const uint RAY_HITS_GROUND = 2u;
+const uint OCCUPANCY_CELLS = 64u;
+const uint STAT_PIXELS = 0u;
+const uint STAT_MARCHED = 1u;
+const uint STAT_VIEW_STEPS = 2u;
+const uint STAT_DENSITY = 3u;
+const uint STAT_DETAIL = 4u;
+const uint STAT_LIGHT = 5u;
+const uint STAT_EXIT_TRANSMITTANCE = 6u;
+const uint STAT_EXIT_MISSED = 7u;
+const uint STAT_EXIT_GROUND = 8u;
+const uint STAT_COUNT = 9u;
+const float HISTORY_SAMPLES = 16.0;
+const float HISTORY_SAMPLES_MOVING = 2.0;
+const float DISOCCLUSION_DEPTH = 0.5;
+const uint MAX_PATH_ORDERS = 16384u;
+const uint SPRITE_LEVELS = 4u;
+const int SPRITE_CELLS_PER_SIDE = 8;
+const uint SPRITES_PER_CELL = 16u;
+const uint SPRITE_COUNT = 4096u;
+const float SPRITE_CELL0_ = 1500.0;
+const float SPRITE_ALPHA = 0.7;
+const float SPRITE_MAX_DISTANCE = 131072.0;
+const uint ATLAS_TILE = 64u;
+const float SPRITE_C_MIN = 0.22;
+const float SPRITE_C_MED = 0.55;
+const float SPRITE_C_MAX = 1.0;
+const float SPRITE_SKY = 0.35;
+const vec3 SKY_LEVEL0_ = vec3(0.42, 0.46, 0.55);
+const vec3 SKY_LEVEL1_ = vec3(0.55, 0.59, 0.67);
+const vec3 SKY_LEVEL2_ = vec3(0.7, 0.73, 0.8);
+const vec3 SKY_LEVEL3_ = vec3(0.84, 0.86, 0.9);
+const vec3 SKY_LEVEL4_ = vec3(0.95, 0.96, 0.98);
+const bool LIGHT_MARCH = true;
+const uint MAX_OCTAVES = 8u;
+const bool DETAIL = false;
+const bool CURL = false;
+const bool STATS = false;
+
+layout(std140, binding = 0) uniform Frame_block_0Compute { Frame _group_0_binding_0_cs; };
+
+layout(binding = 1) uniform sampler3D _group_0_binding_1_cs;
+
+layout(binding = 2) uniform sampler3D _group_0_binding_2_cs;
+
+layout(binding = 3) uniform sampler2D _group_0_binding_3_cs;
+
+layout(binding = 4) uniform sampler2D _group_0_binding_4_cs;
+
+layout(binding = 6,rgba32f) writeonly uniform image2D _group_0_binding_6_cs;
+
+layout(binding = 7,r32f) writeonly uniform image2D _group_0_binding_7_cs;
+
+layout(std430, binding = 8) buffer Stats_block_1Compute { Stats _group_0_binding_8_cs; };
+
+
+float saturate(float x_1) {
+    return clamp(x_1, 0.0, 1.0);
+}
+
+float remap(float x_2, float lo0_, float hi0_, float lo1_, float hi1_) {
+    return (lo1_ + (((x_2 - lo0_) * (hi1_ - lo1_)) / (hi0_ - lo0_)));
+}
+
+uint pcg(uint v) {
+    uint state = ((v * 747796405u) + 2891336453u);
+    uint word = (((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u);
+    return ((word >> 22u) ^ word);
+}
+
+float van_der_corput(uint n) {
+    return (float((bitfieldReverse(n) >> 8u)) * 5.9604645e-8);
+}
+
+float hash_unit(uvec2 pixel, uint frame_index) {
+    uint _e4 = pcg(frame_index);
+    uint _e6 = pcg((pixel.y ^ _e4));
+    uint _e8 = pcg((pixel.x ^ _e6));
+    return (float((_e8 >> 8u)) * 5.9604645e-8);
+}
+
+vec3 view_ray(uvec2 pixel_1) {
+    uvec4 _e3 = _group_0_binding_0_cs.counts;
+    vec2 size = vec2(_e3.xy);
+    vec2 ndc = ((((vec2(pixel_1) + vec2(0.5)) / size) * 2.0) - vec2(1.0));
+    float tan_half = _group_0_binding_0_cs.camera_position.w;
+    float aspect = _group_0_binding_0_cs.camera_forward.w;
+    vec4 _e26 = _group_0_binding_0_cs.camera_forward;
+    vec4 _e30 = _group_0_binding_0_cs.camera_right;
+    vec4 _e39 = _group_0_binding_0_cs.camera_up;
+    vec3 d_8 = ((_e26.xyz + (_e30.xyz * ((ndc.x * tan_half) * aspect))) - (_e39.xyz * (ndc.y * tan_half)));
+    return normalize(d_8);
+}
+
+Roots solve_sphere(float b, float c) {
+    float disc = ((b * b) - c);
+    if ((disc < 0.0)) {
+        return Roots(0.0, 0.0, false);
+    }
+    float s_2 = sqrt(disc);
+    float r0_1 = -((b + ((b >= 0.0) ? s_2 : -(s_2))));
+    if ((r0_1 == 0.0)) {
+        return Roots(0.0, 0.0, true);
+    }
+    float r1_1 = (c / r0_1);
+    return Roots(min(r0_1, r1_1), max(r0_1, r1_1), true);
+}
+
+Roots ray_shell(float alt, vec3 d, float radius_alt) {
+    float rp = _group_0_binding_0_cs.atmosphere.x;
+    float b_3 = (d.y * (alt + rp));
+    float c_3 = ((alt - radius_alt) * ((alt + radius_alt) + (2.0 * rp)));
+    Roots _e16 = solve_sphere(b_3, c_3);
+    return _e16;
+}
+
+float altitude_of(vec3 p) {
+    float rp_1 = _group_0_binding_0_cs.atmosphere.x;
+    float n_2 = (((p.x * p.x) + (p.z * p.z)) + (p.y * (p.y + (2.0 * rp_1))));
+    vec3 q_5 = vec3(p.x, (p.y + rp_1), p.z);
+    return (n_2 / (length(q_5) + rp_1));
+}
+
+bool hits_ground(vec3 p_1, float alt_1, vec3 d_1) {
+    bool local_12 = false;
+    float rp_2 = _group_0_binding_0_cs.atmosphere.x;
+    float b_4 = dot(d_1, vec3(p_1.x, (p_1.y + rp_2), p_1.z));
+    float c_4 = (alt_1 * (alt_1 + (2.0 * rp_2)));
+    if ((b_4 < 0.0)) {
+        local_12 = ((b_4 * b_4) >= c_4);
+    } else {
+        local_12 = false;
+    }
+    bool _e24 = local_12;
+    return _e24;
+}
+
+Interval layer_interval(float alt_2, vec3 d_2) {
+    float start = 0.0;
+    float end = 0.0;
+    bool local_13 = false;
+    bool local_14 = false;
+    bool local_15 = false;
+    float bottom = _group_0_binding_0_cs.atmosphere.y;
+    float top = _group_0_binding_0_cs.atmosphere.z;
+    float cutoff = _group_0_binding_0_cs.atmosphere.w;
+    Roots _e14 = ray_shell(alt_2, d_2, bottom);
+    Roots _e15 = ray_shell(alt_2, d_2, top);
+    if ((alt_2 < bottom)) {
+        bool _e24 = hits_ground(vec3(0.0, alt_2, 0.0), alt_2, d_2);
+        if (_e24) {
+            return Interval(0.0, 0.0, 2u);
+        }
+        start = _e14.t1_;
+        end = _e15.t1_;
+    } else {
+        if ((alt_2 <= top)) {
+            end = _e15.t1_;
+            if (_e14.hit) {
+                local_13 = (_e14.t0_ > 0.0);
+            } else {
+                local_13 = false;
+            }
+            bool _e40 = local_13;
+            if (_e40) {
+                float _e41 = end;
+                end = min(_e41, _e14.t0_);
+            }
+        } else {
+            if (!(!(_e15.hit))) {
+                local_14 = (_e15.t1_ <= 0.0);
+            } else {
+                local_14 = true;
+            }
+            bool _e53 = local_14;
+            if (_e53) {
+                return Interval(0.0, 0.0, 1u);
+            }
+            start = max(_e15.t0_, 0.0);
+            end = _e15.t1_;
+            if (_e14.hit) {
+                local_15 = (_e14.t0_ > 0.0);
+            } else {
+                local_15 = false;
+            }
+            bool _e69 = local_15;
+            if (_e69) {
+                float _e70 = end;
+                end = min(_e70, _e14.t0_);
+            }
+        }
+    }
+    float _e73 = end;
+    float _e74 = start;
+    float len = min((_e73 - _e74), cutoff);
+    if (!((len > 0.0))) {
+        return Interval(0.0, 0.0, 1u);
+    }
+    float _e84 = start;
+    return Interval(_e84, len, RAY_MARCH);
+}
+
+Weather sample_weather(vec3 p_2) {
+    vec4 _e4 = _group_0_binding_0_cs.wind_offsets0_;
+    float _e10 = _group_0_binding_0_cs.periods.x;
+    vec2 uv_1 = ((p_2.xz - _e4.xy) / vec2(_e10));
+    vec4 w = textureLod(_group_0_binding_3_cs, vec2(uv_1), 0.0);
+    float _e21 = _group_0_binding_0_cs.clouds.x;
+    float _e27 = saturate((w.x + (2.0 * (_e21 - 0.5))));
+    float _e31 = _group_0_binding_0_cs.clouds.z;
+    float _e38 = saturate((_e31 + ((w.z - 0.5) * 0.5)));
+    float _e42 = _group_0_binding_0_cs.clouds.w;
+    float _e46 = saturate((0.5 + w.y));
+    float precipitation = (_e42 * _e46);
+    return Weather(_e27, _e38, precipitation);
+}
+
+float height_parabola(float h, float cloud_type) {
+    float height = mix(0.35, 1.0, cloud_type);
+    float _e11 = saturate(((h * (h - height)) * (-4.0 / (height * height))));
+    return _e11;
+}
+
+float gradient(float h_1, float r0_, float r1_, float f0_, float f1_) {
+    return (smoothstep(r0_, r1_, h_1) * (1.0 - smoothstep(f0_, f1_, h_1)));
+}
+
+float height_cloud_types(float h_2, float cloud_type_1) {
+    float _e6 = gradient(h_2, 0.0, 0.08, 0.15, 0.25);
+    float _e11 = gradient(h_2, 0.0, 0.2, 0.4, 0.65);
+    float _e16 = gradient(h_2, 0.0, 0.1, 0.6, 0.95);
+    float _e19 = saturate((cloud_type_1 * 2.0));
+    float lo = mix(_e6, _e11, _e19);
+    float _e25 = saturate(((cloud_type_1 * 2.0) - 1.0));
+    return mix(lo, _e16, _e25);
+}
+
+float height_signal(float h_3, float cloud_type_2) {
+    uint _e5 = _group_0_binding_0_cs.modes.z;
+    if ((_e5 == HEIGHT_CLOUD_TYPES)) {
+        float _e8 = height_cloud_types(h_3, cloud_type_2);
+        return _e8;
+    }
+    float _e9 = height_parabola(h_3, cloud_type_2);
+    return _e9;
+}
+
+float cloud_density(vec3 p_3, float alt_3, inout Counters counters_2) {
+    bool local_16 = false;
+    bool local_17 = false;
+    float base = 0.0;
+    float density = 0.0;
+    bool local_18 = false;
+    bool local_19 = false;
+    vec3 detail_pos = vec3(0.0);
+    float bottom_1 = _group_0_binding_0_cs.atmosphere.y;
+    float top_1 = _group_0_binding_0_cs.atmosphere.z;
+    float h_6 = ((alt_3 - bottom_1) / (top_1 - bottom_1));
+    if (!((h_6 < 0.0))) {
+        local_16 = (h_6 > 1.0);
+    } else {
+        local_16 = true;
+    }
+    bool _e22 = local_16;
+    if (_e22) {
+        return 0.0;
+    }
+    uint _e25 = counters_2.density;
+    counters_2.density = (_e25 + 1u);
+    Weather _e28 = sample_weather(p_3);
+    float _e30 = height_signal(h_6, _e28.cloud_type);
+    if (!((_e28.coverage <= 0.0))) {
+        local_17 = (_e30 <= 0.0);
+    } else {
+        local_17 = true;
+    }
+    bool _e40 = local_17;
+    if (_e40) {
+        return 0.0;
+    }
+    vec3 dims = vec3(uvec3(textureSize(_group_0_binding_1_cs, 0).xyz));
+    float _e48 = _group_0_binding_0_cs.periods.y;
+    vec3 period = (_e48 * vec3(1.0, (dims.y / dims.x), 1.0));
+    float _e60 = _group_0_binding_0_cs.wind_offsets0_.z;
+    float _e66 = _group_0_binding_0_cs.wind_offsets0_.w;
+    vec3 shape_pos = vec3((p_3.x - _e60), alt_3, (p_3.z - _e66));
+    vec4 s_3 = textureLod(_group_0_binding_1_cs, vec3((shape_pos / period)), 0.0);
+    float low_fbm = (((s_3.y * 0.625) + (s_3.z * 0.25)) + (s_3.w * 0.125));
+    float _e91 = remap(s_3.x, (low_fbm - 1.0), 1.0, 0.0, 1.0);
+    float _e92 = saturate(_e91);
+    base = (_e92 * _e30);
+    float _e95 = base;
+    float _e102 = remap(_e95, (1.0 - _e28.coverage), 1.0, 0.0, 1.0);
+    float _e103 = saturate(_e102);
+    base = (_e103 * _e28.coverage);
+    float _e106 = base;
+    if ((_e106 <= 0.0)) {
+        return 0.0;
+    }
+    float _e110 = base;
+    density = _e110;
+    float strength = _group_0_binding_0_cs.erosion.x;
+    float threshold = _group_0_binding_0_cs.erosion.y;
+    if (DETAIL) {
+        local_18 = (strength > 0.0);
+    } else {
+        local_18 = false;
+    }
+    bool _e126 = local_18;
+    if (_e126) {
+        float _e129 = base;
+        local_19 = (_e129 < threshold);
+    } else {
+        local_19 = false;
+    }
+    bool _e132 = local_19;
+    if (_e132) {
+        uint _e134 = counters_2.detail;
+        counters_2.detail = (_e134 + 1u);
+        detail_pos = vec3(p_3.x, alt_3, p_3.z);
+        if (CURL) {
+            vec4 _e145 = _group_0_binding_0_cs.wind_offsets1_;
+            float _e151 = _group_0_binding_0_cs.periods.w;
+            vec2 cuv = ((p_3.xz - _e145.zw) / vec2(_e151));
+            vec4 _e157 = textureLod(_group_0_binding_4_cs, vec2(cuv), 0.0);
+            vec2 curl = ((_e157.xy * 2.0) - vec2(1.0));
+            vec3 _e164 = detail_pos;
+            float _e172 = _group_0_binding_0_cs.erosion.z;
+            detail_pos = (_e164 + (vec3(curl.x, 0.0, curl.y) * (_e172 * (1.0 - h_6))));
+        }
+        vec3 _e178 = detail_pos;
+        float _e182 = _group_0_binding_0_cs.wind_offsets1_.x;
+        float _e186 = _group_0_binding_0_cs.wind_offsets1_.y;
+        detail_pos = (_e178 - vec3(_e182, 0.0, _e186));
+        vec3 _e192 = detail_pos;
+        float _e196 = _group_0_binding_0_cs.periods.z;
+        vec4 dn = textureLod(_group_0_binding_2_cs, vec3((_e192 / vec3(_e196))), 0.0);
+        float high_fbm = (((dn.x * 0.625) + (dn.y * 0.25)) + (dn.z * 0.125));
+        float _e215 = _group_0_binding_0_cs.extinction.w;
+        float _e220 = saturate((h_6 * 10.0));
+        float _e222 = saturate(((2.0 * _e215) * _e220));
+        float shape = mix((1.0 - high_fbm), high_fbm, _e222);
+        float _e227 = base;
+        float erosion = ((strength * shape) * (1.0 - (_e227 / threshold)));
+        float _e232 = base;
+        float _e236 = remap(_e232, erosion, 1.0, 0.0, 1.0);
+        float _e237 = saturate(_e236);
+        density = _e237;
+    }
+    float _e238 = density;
+    float _e242 = _group_0_binding_0_cs.erosion.w;
+    density = (_e238 * mix(1.0, h_6, _e242));
+    float _e246 = density;
+    float _e250 = _group_0_binding_0_cs.clouds.y;
+    density = ((_e246 * _e250) * (1.0 + _e28.precipitation));
+    float _e256 = density;
+    return clamp(_e256, 0.0, 1.0);
+}
+
+float phase_hg(float cos_theta, float g) {
+    float g2_ = (g * g);
+    float denom = max(((1.0 + g2_) - ((2.0 * g) * cos_theta)), 1e-6);
+    return ((1.0 - g2_) / ((12.566371 * denom) * sqrt(denom)));
+}
+
+float phase_cornette_shanks(float cos_theta_1, float g_1) {
+    float g2_1 = (g_1 * g_1);
+    float denom_1 = max(((1.0 + g2_1) - ((2.0 * g_1) * cos_theta_1)), 1e-6);
+    return (((3.0 * (1.0 - g2_1)) * (1.0 + (cos_theta_1 * cos_theta_1))) / (((25.132742 * (2.0 + g2_1)) * denom_1) * sqrt(denom_1)));
+}
+
+float phase(float cos_theta_2, float scale) {
+    float _e5 = _group_0_binding_0_cs.phase.x;
+    float g_3 = (_e5 * scale);
+    uint _e10 = _group_0_binding_0_cs.modes.x;
+    switch(_e10) {
+        case 1u: {
+            float _e14 = _group_0_binding_0_cs.phase.y;
+            float g2_2 = (_e14 * scale);
+            float _e16 = phase_hg(cos_theta_2, g_3);
+            float _e17 = phase_hg(cos_theta_2, g2_2);
+            float _e21 = _group_0_binding_0_cs.phase.z;
+            return mix(_e16, _e17, _e21);
+        }
+        case 2u: {
+            float _e23 = phase_cornette_shanks(cos_theta_2, g_3);
+            return _e23;
+        }
+        default: {
+            float _e24 = phase_hg(cos_theta_2, g_3);
+            return _e24;
+        }
+    }
+}
+
+float sun_optical_depth(vec3 rel, vec3 p_4, inout Counters counters_3) {
+    float seg = 0.0;
+    float dist = 0.0;
+    float tau = 0.0;
+    uint i_1 = 0u;
+    bool local_20 = false;
+    vec4 _e5 = _group_0_binding_0_cs.sun_direction;
+    vec3 sun = _e5.xyz;
+    float _e10 = _group_0_binding_0_cs.extinction.x;
+    float _e14 = _group_0_binding_0_cs.extinction.y;
+    float sigma_t_1 = (_e10 + _e14);
+    uint steps_1 = _group_0_binding_0_cs.counts.w;
+    float growth = _group_0_binding_0_cs.march.y;
+    float _e27 = _group_0_binding_0_cs.march.z;
+    seg = _e27;
+    bool loop_init = true;
+    while(true) {
+        if (!loop_init) {
+            uint _e78 = i_1;
+            i_1 = (_e78 + 1u);
+        }
+        loop_init = false;
+        uint _e35 = i_1;
+        if ((_e35 < steps_1)) {
+        } else {
+            break;
+        }
+        {
+            float _e37 = dist;
+            float _e38 = seg;
+            float s_4 = (_e37 + (0.5 * _e38));
+            vec3 q_6 = (rel + (sun * s_4));
+            float _e44 = altitude_of(q_6);
+            float _e48 = _group_0_binding_0_cs.atmosphere.z;
+            if (!((_e44 > _e48))) {
+                float _e56 = _group_0_binding_0_cs.atmosphere.y;
+                local_20 = (_e44 < _e56);
+            } else {
+                local_20 = true;
+            }
+            bool _e59 = local_20;
+            if (_e59) {
+                break;
+            }
+            uint _e61 = counters_3.light;
+            counters_3.light = (_e61 + 1u);
+            float _e64 = tau;
+            float _e67 = cloud_density((p_4 + (sun * s_4)), _e44, counters_3);
+            float _e69 = seg;
+            tau = (_e64 + ((_e67 * sigma_t_1) * _e69));
+            float _e72 = dist;
+            float _e73 = seg;
+            dist = (_e72 + _e73);
+            float _e75 = seg;
+            seg = (_e75 * growth);
+        }
+    }
+    float _e80 = tau;
+    return _e80;
+}
+
+float sun_scattering(float cos_theta_3, float tau_1) {
+    float octave_sum = 0.0;
+    float ka = 1.0;
+    float kb = 1.0;
+    float kc = 1.0;
+    uint i_2 = 0u;
+    float total = 0.0;
+    float a_4 = _group_0_binding_0_cs.multiple_scattering.x;
+    float b_5 = _group_0_binding_0_cs.multiple_scattering.y;
+    float c_5 = _group_0_binding_0_cs.multiple_scattering.z;
+    uint _e17 = _group_0_binding_0_cs.misc.x;
+    uint octaves = min(_e17, MAX_OCTAVES);
+    bool loop_init_1 = true;
+    while(true) {
+        if (!loop_init_1) {
+            uint _e50 = i_2;
+            i_2 = (_e50 + 1u);
+        }
+        loop_init_1 = false;
+        uint _e30 = i_2;
+        if ((_e30 < octaves)) {
+        } else {
+            break;
+        }
+        {
+            float _e32 = ka;
+            ka = (_e32 * a_4);
+            float _e34 = kb;
+            kb = (_e34 * b_5);
+            float _e36 = kc;
+            kc = (_e36 * c_5);
+            float _e38 = octave_sum;
+            float _e39 = ka;
+            float _e40 = kc;
+            float _e41 = phase(cos_theta_3, _e40);
+            float _e43 = kb;
+            octave_sum = (_e38 + ((_e39 * _e41) * exp((-(_e43) * tau_1))));
+        }
+    }
+    float _e55 = _group_0_binding_0_cs.sun_direction.y;
+    float _e56 = saturate(_e55);
+    float _e58 = phase(cos_theta_3, 1.0);
+    float _e62 = octave_sum;
+    total = ((_e58 * exp(-(tau_1))) + (_e56 * _e62));
+    uint _e69 = _group_0_binding_0_cs.modes.w;
+    if (((_e69 & FLAG_BEER_POWDER) != 0u)) {
+        float _e74 = total;
+        float _e78 = _group_0_binding_0_cs.phase.w;
+        total = (_e74 * (1.0 - exp((-(_e78) * tau_1))));
+    }
+    float _e85 = total;
+    return _e85;
+}
+
+vec3 ambient(float h_4) {
+    vec4 _e3 = _group_0_binding_0_cs.ambient_bottom;
+    vec4 _e7 = _group_0_binding_0_cs.ambient_top;
+    float _e13 = _group_0_binding_0_cs.ambient_bottom.w;
+    return (mix(_e3.xyz, _e7.xyz, h_4) * _e13);
+}
+
+vec3 scattered_light(vec3 rel_1, vec3 p_5, float alt_4, float density_1, vec3 view, inout Counters counters_4) {
+    vec3 sun_light = vec3(0.0);
+    float tau_2 = 0.0;
+    vec4 _e8 = _group_0_binding_0_cs.sun_direction;
+    vec3 sun_1 = _e8.xyz;
+    float _e13 = _group_0_binding_0_cs.atmosphere.y;
+    float _e18 = _group_0_binding_0_cs.atmosphere.z;
+    float _e22 = _group_0_binding_0_cs.atmosphere.y;
+    float _e25 = saturate(((alt_4 - _e13) / (_e18 - _e22)));
+    bool _e29 = hits_ground(rel_1, alt_4, sun_1);
+    if (!(_e29)) {
+        if (LIGHT_MARCH) {
+            float _e34 = sun_optical_depth(rel_1, p_5, counters_4);
+            tau_2 = _e34;
+        }
+        vec4 _e37 = _group_0_binding_0_cs.sun_illuminance;
+        float _e40 = tau_2;
+        float _e41 = sun_scattering(dot(view, sun_1), _e40);
+        sun_light = (_e37.xyz * _e41);
+    }
+    Weather _e43 = sample_weather(p_5);
+    float _e47 = _group_0_binding_0_cs.extinction.z;
+    float _e55 = saturate((1.0 - ((_e47 * _e43.precipitation) * (1.0 - _e25))));
+    float _e59 = _group_0_binding_0_cs.extinction.x;
+    vec3 _e61 = sun_light;
+    vec3 _e62 = ambient(_e25);
+    return (((_e59 * density_1) * (_e61 + _e62)) * _e55);
+}
+
+void count(uint index_1, uint value) {
+    bool local_21 = false;
+    if (STATS) {
+        local_21 = (value != 0u);
+    } else {
+        local_21 = false;
+    }
+    bool _e8 = local_21;
+    if (_e8) {
+        uint _e12 = atomicAdd(_group_0_binding_8_cs.counters[index_1], value);
+        return;
+    } else {
+        return;
+    }
+}
+
+vec3 step_integral(vec3 source, float sigma_t, float dt) {
+    uint _e6 = _group_0_binding_0_cs.modes.y;
+    if ((_e6 == INTEGRATION_RIEMANN)) {
+        return (source * dt);
+    }
+    float x_4 = (sigma_t * dt);
+    float f_1 = ((x_4 < 0.001) ? (1.0 - (0.5 * x_4)) : ((1.0 - exp(-(x_4))) / x_4));
+    return (source * (dt * f_1));
+}
+
+float start_offset(uvec2 pixel_2) {
+    uint _e4 = _group_0_binding_0_cs.modes.w;
+    bool jitter = ((_e4 & FLAG_JITTER) != 0u);
+    uint k_5 = _group_0_binding_0_cs.temporal.x;
+    if ((k_5 <= 1u)) {
+        uint _e18 = _group_0_binding_0_cs.misc.y;
+        float _e19 = hash_unit(pixel_2, _e18);
+        return (jitter ? _e19 : 0.5);
+    }
+    float _e23 = hash_unit(pixel_2, 0u);
+    float base_2 = (jitter ? _e23 : 0.5);
+    uint _e29 = _group_0_binding_0_cs.misc.y;
+    float _e32 = van_der_corput((_e29 / (k_5 * k_5)));
+    return fract((base_2 + _e32));
+}
+
+uvec2 bayer2_(uint v_1) {
+    return uvec2(((v_1 ^ (v_1 >> 1u)) & 1u), (v_1 & 1u));
+}
+
+uvec2 block_offset(uint f, uint k) {
+    if ((k == 2u)) {
+        uvec2 _e6 = bayer2_((f % 4u));
+        return _e6;
+    }
+    if ((k == 4u)) {
+        uint b_6 = (f % 16u);
+        uvec2 _e13 = bayer2_((b_6 >> 2u));
+        uvec2 _e17 = bayer2_((b_6 & 3u));
+        return (_e13 + (2u * _e17));
+    }
+    return uvec2(0u);
+}
+
+vec2 reproject(uvec2 pixel_4, float depth_2) {
+    bool local_23 = false;
+    bool local_24 = false;
+    bool local_25 = false;
+    vec3 dir = vec3(0.0);
+    vec4 _e4 = _group_0_binding_0_cs.previous_position;
+    vec4 _e7 = _group_0_binding_0_cs.camera_position;
+    if (all(equal(_e4, _e7))) {
+        vec4 _e14 = _group_0_binding_0_cs.previous_forward;
+        vec4 _e17 = _group_0_binding_0_cs.camera_forward;
+        local_23 = all(equal(_e14, _e17));
+    } else {
+        local_23 = false;
+    }
+    bool _e21 = local_23;
+    if (_e21) {
+        vec4 _e26 = _group_0_binding_0_cs.previous_right;
+        vec4 _e29 = _group_0_binding_0_cs.camera_right;
+        local_24 = all(equal(_e26, _e29));
+    } else {
+        local_24 = false;
+    }
+    bool _e33 = local_24;
+    if (_e33) {
+        vec4 _e38 = _group_0_binding_0_cs.previous_up;
+        vec4 _e41 = _group_0_binding_0_cs.camera_up;
+        local_25 = all(equal(_e38, _e41));
+    } else {
+        local_25 = false;
+    }
+    bool same = local_25;
+    if (same) {
+        return vec2(pixel_4);
+    }
+    vec3 _e47 = view_ray(pixel_4);
+    dir = _e47;
+    if ((depth_2 > 0.0)) {
+        vec4 _e54 = _group_0_binding_0_cs.camera_position;
+        vec4 _e58 = _group_0_binding_0_cs.previous_position;
+        dir = ((_e47 * depth_2) + (_e54.xyz - _e58.xyz));
+    }
+    vec3 _e62 = dir;
+    vec4 _e65 = _group_0_binding_0_cs.previous_forward;
+    float z = dot(_e62, _e65.xyz);
+    if ((z <= 0.0)) {
+        return vec2(-1000000000.0);
+    }
+    float tan_half_1 = _group_0_binding_0_cs.previous_position.w;
+    float aspect_1 = _group_0_binding_0_cs.previous_forward.w;
+    vec3 _e80 = dir;
+    vec4 _e83 = _group_0_binding_0_cs.previous_right;
+    vec3 _e89 = dir;
+    vec4 _e92 = _group_0_binding_0_cs.previous_up;
+    vec2 ndc_1 = vec2((dot(_e80, _e83.xyz) / ((z * tan_half_1) * aspect_1)), (-(dot(_e89, _e92.xyz)) / (z * tan_half_1)));
+    uvec4 _e106 = _group_0_binding_0_cs.counts;
+    return ((((ndc_1 * 0.5) + vec2(0.5)) * vec2(_e106.xy)) - vec2(0.5));
+}
+
+bool on_screen(vec2 q) {
+    bool local_26 = false;
+    uvec4 _e3 = _group_0_binding_0_cs.counts;
+    vec2 size_1 = vec2(_e3.xy);
+    if (all(greaterThanEqual(q, vec2(-0.5)))) {
+        local_26 = all(lessThanEqual(q, (size_1 - vec2(0.5))));
+    } else {
+        local_26 = false;
+    }
+    bool _e18 = local_26;
+    return _e18;
+}
+
+vec4 catmull_rom(float t) {
+    return vec4((t * (-0.5 + (t * (1.0 - (0.5 * t))))), (1.0 + ((t * t) * (-2.5 + (1.5 * t)))), (t * (0.5 + (t * (2.0 - (1.5 * t))))), ((t * t) * (-0.5 + (0.5 * t))));
+}
+
+bool in_blocks(uvec2 id_12) {
+    uint k_6 = _group_0_binding_0_cs.temporal.x;
+    uvec4 _e7 = _group_0_binding_0_cs.counts;
+    return all(lessThan(id_12, (((_e7.xy + uvec2(k_6)) - uvec2(1u)) / uvec2(k_6))));
+}
+
+uvec2 sparse_pixel(uvec2 id_13) {
+    uint k_7 = _group_0_binding_0_cs.temporal.x;
+    uint _e9 = _group_0_binding_0_cs.misc.y;
+    uvec2 _e10 = block_offset(_e9, k_7);
+    return ((id_13 * k_7) + _e10);
+}
+
+void store_sparse(uvec2 id_14, MarchResult r_2) {
+    imageStore(_group_0_binding_6_cs, ivec2(id_14), vec4(r_2.radiance, r_2.transmittance));
+    imageStore(_group_0_binding_7_cs, ivec2(id_14), vec4(r_2.depth, 0.0, 0.0, 0.0));
+    return;
+}
+
+uint rng_seed(uvec2 pixel_5, uint frame_index_1) {
+    uint _e4 = pcg(frame_index_1);
+    uint _e6 = pcg((pixel_5.y ^ _e4));
+    uint _e8 = pcg((pixel_5.x ^ _e6));
+    return _e8;
+}
+
+float rng_next(inout uint rng_1) {
+    uint _e1 = rng_1;
+    rng_1 = ((_e1 * 747796405u) + 2891336453u);
+    uint s_5 = rng_1;
+    uint word_1 = (((s_5 >> ((s_5 >> 28u) + 4u)) ^ s_5) * 277803737u);
+    return (float((((word_1 >> 22u) ^ word_1) >> 8u)) * 5.9604645e-8);
+}
+
+float rng_exponential(inout uint rng_2, float sigma) {
+    float _e2 = rng_next(rng_2);
+    return (-(log((1.0 - _e2))) / sigma);
+}
+
+Roots ray_shell_from(vec3 p_7, float alt_5, vec3 d_4, float radius_alt_1) {
+    float rp_3 = _group_0_binding_0_cs.atmosphere.x;
+    float b_7 = dot(d_4, vec3(p_7.x, (p_7.y + rp_3), p_7.z));
+    float c_6 = ((alt_5 - radius_alt_1) * ((alt_5 + radius_alt_1) + (2.0 * rp_3)));
+    Roots _e20 = solve_sphere(b_7, c_6);
+    return _e20;
+}
+
+Segments layer_segments(vec3 p_8, float alt_6, vec3 d_5) {
+    Segments s = Segments(vec2(0.0), vec2(0.0), 0u);
+    bool local_27 = false;
+    vec2 a_1 = vec2(0.0);
+    vec2 b_1 = vec2(0.0);
+    uint n_1 = 0u;
+    bool local_28 = false;
+    bool local_29 = false;
+    bool local_30 = false;
+    bool local_31 = false;
+    float bottom_2 = _group_0_binding_0_cs.atmosphere.y;
+    Roots _e14 = ray_shell_from(p_8, alt_6, d_5, bottom_2);
+    float _e18 = _group_0_binding_0_cs.atmosphere.z;
+    Roots _e19 = ray_shell_from(p_8, alt_6, d_5, _e18);
+    bool _e20 = hits_ground(p_8, alt_6, d_5);
+    if (!(!(_e19.hit))) {
+        local_27 = (_e19.t1_ <= 0.0);
+    } else {
+        local_27 = true;
+    }
+    bool _e30 = local_27;
+    if (_e30) {
+        Segments _e31 = s;
+        return _e31;
+    }
+    float entry = max(_e19.t0_, 0.0);
+    if (_e14.hit) {
+        local_28 = (_e14.t0_ > 0.0);
+    } else {
+        local_28 = false;
+    }
+    bool _e50 = local_28;
+    if (_e50) {
+        local_29 = (alt_6 >= bottom_2);
+    } else {
+        local_29 = false;
+    }
+    bool _e55 = local_29;
+    if (_e55) {
+        uint _e56 = n_1;
+        a_1[_e56] = entry;
+        uint _e58 = n_1;
+        b_1[_e58] = _e14.t0_;
+        uint _e61 = n_1;
+        n_1 = (_e61 + uint((_e14.t0_ > entry)));
+        if (!(_e20)) {
+            local_30 = (_e19.t1_ > _e14.t1_);
+        } else {
+            local_30 = false;
+        }
+        bool _e73 = local_30;
+        if (_e73) {
+            uint _e74 = n_1;
+            a_1[_e74] = max(_e14.t1_, entry);
+            uint _e78 = n_1;
+            b_1[_e78] = _e19.t1_;
+            uint _e81 = n_1;
+            n_1 = (_e81 + 1u);
+        }
+    } else {
+        if ((alt_6 < bottom_2)) {
+            if (!(_e20)) {
+                local_31 = _e14.hit;
+            } else {
+                local_31 = false;
+            }
+            bool _e90 = local_31;
+            if (_e90) {
+                a_1.x = max(_e14.t1_, 0.0);
+                b_1.x = _e19.t1_;
+                n_1 = 1u;
+            }
+        } else {
+            a_1.x = entry;
+            b_1.x = _e19.t1_;
+            n_1 = 1u;
+        }
+    }
+    vec2 _e103 = a_1;
+    s.a = _e103;
+    vec2 _e105 = b_1;
+    s.b = _e105;
+    uint _e107 = n_1;
+    s.count = _e107;
+    Segments _e108 = s;
+    return _e108;
+}
+
+float density_at(vec3 rel_2, inout Counters counters_6) {
+    float _e6 = _group_0_binding_0_cs.camera_position.x;
+    float _e13 = _group_0_binding_0_cs.camera_position.z;
+    vec3 p_11 = vec3((rel_2.x + _e6), rel_2.y, (rel_2.z + _e13));
+    float _e16 = altitude_of(rel_2);
+    float _e17 = cloud_density(p_11, _e16, counters_6);
+    return _e17;
+}
+
+float density_max() {
+    float _e3 = _group_0_binding_0_cs.clouds.y;
+    float _e7 = _group_0_binding_0_cs.clouds.w;
+    return clamp((_e3 * (1.0 + _e7)), 0.0, 1.0);
+}
+
+float sample_hg_cos(float g_2, float u) {
+    if ((abs(g_2) < 0.0001)) {
+        return (1.0 - (2.0 * u));
+    }
+    float s_6 = ((1.0 - (g_2 * g_2)) / ((1.0 - g_2) + ((2.0 * g_2) * u)));
+    return clamp((((1.0 + (g_2 * g_2)) - (s_6 * s_6)) / (2.0 * g_2)), -1.0, 1.0);
+}
+
+PhaseSample sample_phase(vec3 dir_4, inout uint rng_5) {
+    float cos_theta_4 = 0.0;
+    float pdf = 0.0;
+    float _e2 = rng_next(rng_5);
+    float _e3 = rng_next(rng_5);
+    float _e5 = rng_next(rng_5);
+    float phi = (6.2831855 * _e5);
+    uint _e14 = _group_0_binding_0_cs.modes.x;
+    if ((_e14 == PHASE_TWO_LOBE_HG)) {
+        float _e20 = _group_0_binding_0_cs.phase.x;
+        float _e24 = _group_0_binding_0_cs.phase.y;
+        float _e28 = _group_0_binding_0_cs.phase.z;
+        float g_4 = ((_e2 < _e28) ? _e24 : _e20);
+        float _e31 = sample_hg_cos(g_4, _e3);
+        cos_theta_4 = _e31;
+        float _e32 = cos_theta_4;
+        float _e36 = _group_0_binding_0_cs.phase.x;
+        float _e37 = phase_hg(_e32, _e36);
+        float _e38 = cos_theta_4;
+        float _e42 = _group_0_binding_0_cs.phase.y;
+        float _e43 = phase_hg(_e38, _e42);
+        float _e47 = _group_0_binding_0_cs.phase.z;
+        pdf = mix(_e37, _e43, _e47);
+    } else {
+        float _e52 = _group_0_binding_0_cs.phase.x;
+        float _e53 = sample_hg_cos(_e52, _e3);
+        cos_theta_4 = _e53;
+        float _e54 = cos_theta_4;
+        float _e58 = _group_0_binding_0_cs.phase.x;
+        float _e59 = phase_hg(_e54, _e58);
+        pdf = _e59;
+    }
+    float _e60 = cos_theta_4;
+    float _e61 = cos_theta_4;
+    float sin_theta = sqrt(max((1.0 - (_e60 * _e61)), 0.0));
+    float sign_ = ((dir_4.z >= 0.0) ? 1.0 : -1.0);
+    float a_5 = (-1.0 / (sign_ + dir_4.z));
+    float bb = ((dir_4.x * dir_4.y) * a_5);
+    vec3 t_4 = vec3((1.0 + (((sign_ * dir_4.x) * dir_4.x) * a_5)), (sign_ * bb), (-(sign_) * dir_4.x));
+    vec3 b_8 = vec3(bb, (sign_ + ((dir_4.y * dir_4.y) * a_5)), -(dir_4.y));
+    float _e109 = cos_theta_4;
+    vec3 w_1 = normalize((((t_4 * (sin_theta * cos(phi))) + (b_8 * (sin_theta * sin(phi)))) + (dir_4 * _e109)));
+    float _e113 = cos_theta_4;
+    float _e115 = phase(_e113, 1.0);
+    float _e116 = pdf;
+    float _e118 = pdf;
+    return PhaseSample(w_1, ((_e118 > 0.0) ? (_e115 / _e116) : 0.0));
+}
+
+bool camera_still() {
+    bool local_35 = false;
+    bool local_36 = false;
+    bool local_37 = false;
+    vec4 _e2 = _group_0_binding_0_cs.camera_position;
+    vec4 _e5 = _group_0_binding_0_cs.previous_position;
+    if (all(equal(_e2, _e5))) {
+        vec4 _e12 = _group_0_binding_0_cs.camera_forward;
+        vec4 _e15 = _group_0_binding_0_cs.previous_forward;
+        local_35 = all(equal(_e12, _e15));
+    } else {
+        local_35 = false;
+    }
+    bool _e19 = local_35;
+    if (_e19) {
+        vec4 _e24 = _group_0_binding_0_cs.camera_right;
+        vec4 _e28 = _group_0_binding_0_cs.previous_right;
+        local_36 = all(equal(_e24.xyz, _e28.xyz));
+    } else {
+        local_36 = false;
+    }
+    bool _e33 = local_36;
+    if (_e33) {
+        vec4 _e38 = _group_0_binding_0_cs.camera_up;
+        vec4 _e42 = _group_0_binding_0_cs.previous_up;
+        local_37 = all(equal(_e38.xyz, _e42.xyz));
+    } else {
+        local_37 = false;
+    }
+    bool _e47 = local_37;
+    return _e47;
+}
+
+float luminance(vec3 c_1) {
+    return dot(c_1, vec3(0.2126, 0.7152, 0.0722));
+}
+
+float basic_sun_depth(vec3 rel_3, float alt_7, inout Counters counters_10) {
+    float tau_3 = 0.0;
+    uint i_4 = 1u;
+    uint steps_2 = _group_0_binding_0_cs.counts.w;
+    if ((steps_2 == 0u)) {
+        return 0.0;
+    }
+    vec4 _e12 = _group_0_binding_0_cs.sun_direction;
+    vec3 sun_2 = _e12.xyz;
+    float rp_4 = _group_0_binding_0_cs.atmosphere.x;
+    float top_2 = _group_0_binding_0_cs.atmosphere.z;
+    float _e25 = _group_0_binding_0_cs.atmosphere.y;
+    float thickness = (top_2 - _e25);
+    Roots _e39 = solve_sphere(dot(sun_2, vec3(rel_3.x, (rel_3.y + rp_4), rel_3.z)), ((alt_7 - top_2) * ((alt_7 + top_2) + (2.0 * rp_4))));
+    float length_ = min(max(_e39.t1_, 0.0), (3.0 * thickness));
+    float dt_1 = (length_ / float(steps_2));
+    float _e51 = _group_0_binding_0_cs.extinction.x;
+    float _e55 = _group_0_binding_0_cs.extinction.y;
+    float sigma_t_2 = (_e51 + _e55);
+    vec4 _e59 = _group_0_binding_0_cs.camera_position;
+    vec2 cam_xz = _e59.xz;
+    bool loop_init_2 = true;
+    while(true) {
+        if (!loop_init_2) {
+            uint _e90 = i_4;
+            i_4 = (_e90 + 1u);
+        }
+        loop_init_2 = false;
+        uint _e65 = i_4;
+        if ((_e65 <= steps_2)) {
+        } else {
+            break;
+        }
+        {
+            uint _e68 = counters_10.light;
+            counters_10.light = (_e68 + 1u);
+            uint _e71 = i_4;
+            vec3 q_7 = (rel_3 + (sun_2 * (float(_e71) * dt_1)));
+            vec3 p_12 = vec3((q_7.x + cam_xz.x), q_7.y, (q_7.z + cam_xz.y));
+            float _e84 = tau_3;
+            float _e85 = altitude_of(q_7);
+            float _e86 = cloud_density(p_12, _e85, counters_10);
+            tau_3 = (_e84 + ((sigma_t_2 * _e86) * dt_1));
+        }
+    }
+    float _e93 = tau_3;
+    return _e93;
+}
+
+MarchResult basic_pixel(uvec2 pixel_6) {
+    Counters counters_11 = Counters(0u, 0u, 0u, 0u);
+    vec3 radiance_1 = vec3(0.0);
+    float transmittance_1 = 1.0;
+    float depth_sum_1 = 0.0;
+    uint i_5 = 0u;
+    float depth_3 = 0.0;
+    vec3 _e1 = view_ray(pixel_6);
+    float cam_alt = _group_0_binding_0_cs.camera_position.y;
+    vec4 _e8 = _group_0_binding_0_cs.camera_position;
+    vec2 cam_xz_1 = _e8.xz;
+    count(STAT_PIXELS, 1u);
+    Interval _e25 = layer_interval(cam_alt, _e1);
+    if ((_e25.kind == RAY_MISSES_LAYER)) {
+        count(STAT_EXIT_MISSED, 1u);
+    } else {
+        if ((_e25.kind == RAY_HITS_GROUND)) {
+            count(STAT_EXIT_GROUND, 1u);
+        } else {
+            count(STAT_MARCHED, 1u);
+            uint steps_3 = _group_0_binding_0_cs.counts.z;
+            float dt_2 = (_e25.length_ / float(steps_3));
+            float sigma_s = _group_0_binding_0_cs.extinction.x;
+            float _e52 = _group_0_binding_0_cs.extinction.y;
+            float sigma_t_3 = (sigma_s + _e52);
+            vec4 _e56 = _group_0_binding_0_cs.sun_illuminance;
+            vec4 _e60 = _group_0_binding_0_cs.sun_direction;
+            float _e66 = _group_0_binding_0_cs.phase.x;
+            float _e67 = phase_hg(dot(_e1, _e60.xyz), _e66);
+            vec3 sun_phase = (_e56.xyz * _e67);
+            bool loop_init_3 = true;
+            while(true) {
+                if (!loop_init_3) {
+                    uint _e131 = i_5;
+                    i_5 = (_e131 + 1u);
+                }
+                loop_init_3 = false;
+                uint _e71 = i_5;
+                if ((_e71 < steps_3)) {
+                } else {
+                    break;
+                }
+                {
+                    uint _e74 = counters_11.view_steps;
+                    counters_11.view_steps = (_e74 + 1u);
+                    uint _e78 = i_5;
+                    float t_5 = (_e25.start + (float(_e78) * dt_2));
+                    vec3 rel_4 = ((_e1 * t_5) + vec3(0.0, cam_alt, 0.0));
+                    vec3 p_13 = vec3((rel_4.x + cam_xz_1.x), rel_4.y, (rel_4.z + cam_xz_1.y));
+                    float _e95 = altitude_of(rel_4);
+                    float _e96 = cloud_density(p_13, _e95, counters_11);
+                    if ((_e96 <= 0.0)) {
+                        continue;
+                    }
+                    float _e99 = basic_sun_depth(rel_4, _e95, counters_11);
+                    float beer_powder = ((2.0 * exp(-(_e99))) * (1.0 - exp((-2.0 * _e99))));
+                    vec3 _e110 = radiance_1;
+                    float _e111 = transmittance_1;
+                    radiance_1 = (_e110 + (sun_phase * ((((beer_powder * _e111) * sigma_s) * _e96) * dt_2)));
+                    float step_t = exp(((-(sigma_t_3) * _e96) * dt_2));
+                    float _e122 = depth_sum_1;
+                    float _e123 = transmittance_1;
+                    depth_sum_1 = (_e122 + ((t_5 * _e123) * (1.0 - step_t)));
+                    float _e129 = transmittance_1;
+                    transmittance_1 = (_e129 * step_t);
+                }
+            }
+        }
+    }
+    uint _e136 = counters_11.view_steps;
+    count(STAT_VIEW_STEPS, _e136);
+    uint _e139 = counters_11.density;
+    count(STAT_DENSITY, _e139);
+    uint _e142 = counters_11.detail;
+    count(STAT_DETAIL, _e142);
+    uint _e145 = counters_11.light;
+    count(STAT_LIGHT, _e145);
+    float _e148 = transmittance_1;
+    if ((_e148 < 1.0)) {
+        float _e151 = depth_sum_1;
+        float _e152 = transmittance_1;
+        depth_3 = (_e151 / (1.0 - _e152));
+    }
+    vec3 _e156 = radiance_1;
+    float _e157 = transmittance_1;
+    float _e158 = depth_3;
+    return MarchResult(_e156, _e157, _e158);
+}
+
+float atlas_hash(uint a_2, uint b_2) {
+    uint _e2 = pcg(b_2);
+    uint _e4 = pcg((a_2 ^ _e2));
+    return (float((_e4 >> 8u)) * 5.9604645e-8);
+}
+
+float value_noise(vec2 p_9, uint seed) {
+    uvec2 i_7 = uvec2(floor(p_9));
+    vec2 f_2 = fract(p_9);
+    vec2 s_7 = ((f_2 * f_2) * (vec2(3.0) - (2.0 * f_2)));
+    uint h_7 = (seed * 7919u);
+    float _e17 = atlas_hash((i_7.x + h_7), i_7.y);
+    float _e23 = atlas_hash(((i_7.x + 1u) + h_7), i_7.y);
+    float _e29 = atlas_hash((i_7.x + h_7), (i_7.y + 1u));
+    float _e37 = atlas_hash(((i_7.x + 1u) + h_7), (i_7.y + 1u));
+    return mix(mix(_e17, _e23, s_7.x), mix(_e29, _e37, s_7.x), s_7.y);
+}
+
+float value_fbm(vec2 p_10, uint seed_1) {
+    float sum_1 = 0.0;
+    float weight = 0.5;
+    vec2 q_4 = vec2(0.0);
+    uint o = 0u;
+    q_4 = p_10;
+    bool loop_init_4 = true;
+    while(true) {
+        if (!loop_init_4) {
+            uint _e26 = o;
+            o = (_e26 + 1u);
+        }
+        loop_init_4 = false;
+        uint _e9 = o;
+        if ((_e9 < 4u)) {
+        } else {
+            break;
+        }
+        {
+            float _e12 = sum_1;
+            float _e13 = weight;
+            vec2 _e14 = q_4;
+            uint _e15 = o;
+            float _e17 = value_noise(_e14, (seed_1 + _e15));
+            sum_1 = (_e12 + (_e13 * _e17));
+            vec2 _e20 = q_4;
+            q_4 = (_e20 * 2.0);
+            float _e23 = weight;
+            weight = (_e23 * 0.5);
+        }
+    }
+    float _e29 = sum_1;
+    return (_e29 / 0.9375);
+}
+
+float sprite_texture(uint tile_1, vec2 uv) {
+    float billow = 0.0;
+    uint i_6 = 0u;
+    vec2 at = vec2(0.0);
+    float a_3 = 0.0;
+    vec2 c_7 = (uv - vec2(0.5));
+    float mask = smoothstep(0.48, 0.36, length(c_7));
+    float _e16 = value_fbm(((uv * 6.0) + vec2((float(tile_1) * 13.0))), tile_1);
+    if ((tile_1 < 4u)) {
+        vec2 q_8 = (c_7 * vec2(1.0, 3.2));
+        float streak = (1.0 - smoothstep(0.05, 0.45, length(q_8)));
+        float _e40 = value_fbm(((uv * vec2(3.0, 12.0)) + vec2((float(tile_1) * 5.0))), (tile_1 + 16u));
+        float _e46 = saturate(((_e40 * 1.6) - 0.3));
+        return (((mask * streak) * _e46) * 0.8);
+    }
+    uint blobs = (5u + (tile_1 % 4u));
+    bool loop_init_5 = true;
+    while(true) {
+        if (!loop_init_5) {
+            uint _e108 = i_6;
+            i_6 = (_e108 + 1u);
+        }
+        loop_init_5 = false;
+        uint _e58 = i_6;
+        if ((_e58 < blobs)) {
+        } else {
+            break;
+        }
+        {
+            uint _e61 = i_6;
+            float _e63 = atlas_hash(tile_1, (2u * _e61));
+            uint _e65 = i_6;
+            float _e69 = atlas_hash(tile_1, ((2u * _e65) + 1u));
+            vec2 centre_1 = (vec2(_e63, _e69) - vec2(0.5));
+            at = (vec2(0.5) + (centre_1 * 0.34));
+            if ((tile_1 == 4u)) {
+                at.y = (0.5 + ((centre_1.y - 0.5) * 0.24));
+            }
+            uint _e91 = i_6;
+            float _e93 = atlas_hash(tile_1, (100u + _e91));
+            float r_3 = (0.14 + (0.1 * _e93));
+            vec2 _e98 = at;
+            float d_9 = (length((uv - _e98)) / r_3);
+            float _e102 = billow;
+            float _e106 = saturate((1.0 - (d_9 * d_9)));
+            billow = max(_e102, _e106);
+        }
+    }
+    float _e111 = billow;
+    float _e114 = saturate((_e111 * 1.5));
+    a_3 = ((mask * _e114) * (0.55 + (0.45 * _e16)));
+    if ((tile_1 == 4u)) {
+        float _e124 = a_3;
+        a_3 = (_e124 * smoothstep(0.62, 0.54, uv.y));
+    }
+    float _e130 = a_3;
+    return _e130;
+}
+
+vec3 sprite_rel(vec2 xz, float alt_8) {
+    float rp_5 = _group_0_binding_0_cs.atmosphere.x;
+    vec4 _e8 = _group_0_binding_0_cs.camera_position;
+    vec2 d_10 = (xz - _e8.xz);
+    float k_8 = ((alt_8 * (alt_8 + (2.0 * rp_5))) - dot(d_10, d_10));
+    float y_1 = (k_8 / (rp_5 + sqrt(max(((rp_5 * rp_5) + k_8), 0.0))));
+    return vec3(d_10.x, y_1, d_10.y);
+}
+
+SpriteCell sprite_cell(uint cell) {
+    ivec2 start_1 = ivec2(0);
+    uint k_3 = 3u;
+    bool local_38 = false;
+    bool local_39 = false;
+    uint level_1 = (cell / 64u);
+    ivec2 local_41 = ivec2(int((cell % 8u)), int(((cell / 8u) % 8u)));
+    vec4 _e15 = _group_0_binding_0_cs.camera_position;
+    start_1 = (ivec2(floor((_e15.xz / vec2(12000.0)))) - ivec2(4));
+    bool loop_init_6 = true;
+    while(true) {
+        if (!loop_init_6) {
+            uint _e35 = k_3;
+            k_3 = (_e35 - 1u);
+        }
+        loop_init_6 = false;
+        uint _e27 = k_3;
+        if ((_e27 > level_1)) {
+        } else {
+            break;
+        }
+        {
+            ivec2 _e29 = start_1;
+            start_1 = (2 * (_e29 + ivec2(2)));
+        }
+    }
+    if ((level_1 > 0u)) {
+        local_38 = all(greaterThanEqual(local_41, ivec2(2)));
+    } else {
+        local_38 = false;
+    }
+    bool _e47 = local_38;
+    if (_e47) {
+        local_39 = all(lessThan(local_41, ivec2(6)));
+    } else {
+        local_39 = false;
+    }
+    bool covered = local_39;
+    ivec2 _e56 = start_1;
+    return SpriteCell((_e56 + local_41), (SPRITE_CELL0_ * float((1u << level_1))), covered);
+}
+
+SpriteCandidate sprite_candidate(SpriteCell c_2, uint level, uint s_1, inout Counters counters_12) {
+    float density_2 = 0.0;
+    uint _e10 = pcg(level);
+    uint _e12 = pcg((uint(c_2.index.y) ^ _e10));
+    uint _e14 = pcg((uint(c_2.index.x) ^ _e12));
+    float _e17 = atlas_hash(_e14, (8u * s_1));
+    float _e22 = atlas_hash(_e14, ((8u * s_1) + 1u));
+    float _e27 = atlas_hash(_e14, ((8u * s_1) + 2u));
+    float _e32 = atlas_hash(_e14, ((8u * s_1) + 3u));
+    vec4 u_1 = vec4(_e17, _e22, _e27, _e32);
+    float _e38 = atlas_hash(_e14, ((8u * s_1) + 4u));
+    float _e43 = atlas_hash(_e14, ((8u * s_1) + 5u));
+    vec2 v_2 = vec2(_e38, _e43);
+    vec2 xz_1 = ((vec2(c_2.index) + u_1.xy) * c_2.size);
+    Weather _e55 = sample_weather(vec3(xz_1.x, 0.0, xz_1.y));
+    float h_8 = (0.04 + (u_1.z * (mix(0.3, 0.95, _e55.cloud_type) - 0.04)));
+    float _e69 = _group_0_binding_0_cs.atmosphere.y;
+    float _e73 = _group_0_binding_0_cs.atmosphere.z;
+    float _e77 = _group_0_binding_0_cs.atmosphere.y;
+    float alt_10 = (_e69 + (h_8 * (_e73 - _e77)));
+    if (!(c_2.covered)) {
+        vec3 _e85 = sprite_rel(xz_1, alt_10);
+        float _e90 = cloud_density(vec3(xz_1.x, _e85.y, xz_1.y), alt_10, counters_12);
+        density_2 = _e90;
+    }
+    float _e94 = density_2;
+    return SpriteCandidate(xz_1, alt_10, h_8, u_1.w, v_2.x, v_2.y, _e94);
+}
+
+vec3 sprite_sky_level(float h_5) {
+    float _e1 = saturate(h_5);
+    float x_5 = (_e1 * 4.0);
+    if ((x_5 < 1.0)) {
+        return mix(SKY_LEVEL0_, SKY_LEVEL1_, x_5);
+    }
+    if ((x_5 < 2.0)) {
+        return mix(SKY_LEVEL1_, SKY_LEVEL2_, (x_5 - 1.0));
+    }
+    if ((x_5 < 3.0)) {
+        return mix(SKY_LEVEL2_, SKY_LEVEL3_, (x_5 - 2.0));
+    }
+    return mix(SKY_LEVEL3_, SKY_LEVEL4_, (x_5 - 3.0));
+}
+
+float sprite_sun_level(float cos_angle) {
+    if ((cos_angle < 0.0)) {
+        return mix(SPRITE_C_MIN, SPRITE_C_MED, (cos_angle + 1.0));
+    }
+    return mix(SPRITE_C_MED, SPRITE_C_MAX, cos_angle);
+}
+
+vec2 sprite_corner(uint k_4) {
+    bool local_40 = false;
+    uint q_9 = ((k_4 >= 3u) ? ((k_4 == 3u) ? 0u : (k_4 - 2u)) : k_4);
+    if (!((q_9 == 1u))) {
+        local_40 = (q_9 == 2u);
+    } else {
+        local_40 = true;
+    }
+    bool _e18 = local_40;
+    return vec2((_e18 ? 1.0 : -1.0), ((q_9 >= 2u) ? 1.0 : -1.0));
+}
+
+vec3 sky_radiance(vec3 d_6, float alt_9) {
+    vec4 _e4 = _group_0_binding_0_cs.sun_direction;
+    vec3 sun_3 = _e4.xyz;
+    vec4 _e8 = _group_0_binding_0_cs.sun_illuminance;
+    vec3 e = _e8.xyz;
+    float _e15 = saturate(((sun_3.y * 4.0) + 0.3));
+    bool _e19 = hits_ground(vec3(0.0, alt_9, 0.0), alt_9, d_6);
+    if (_e19) {
+        vec3 ground_albedo = vec3(0.035, 0.035, 0.03);
+        return (ground_albedo * (((e * max(sun_3.y, 0.0)) / vec3(3.1415927)) + ((0.05 * e) * _e15)));
+    }
+    vec3 zenith = vec3(0.018, 0.04, 0.1);
+    vec3 horizon = vec3(0.07, 0.085, 0.11);
+    float _e45 = saturate(d_6.y);
+    vec3 gradient_1 = mix(horizon, zenith, sqrt(_e45));
+    vec3 sunset = (((1.0 - (_e15 * 0.8)) * pow((1.0 - _e45), 6.0)) * vec3(0.25, 0.1, 0.0));
+    float _e64 = phase_hg(dot(d_6, sun_3), 0.76);
+    float glow = (_e64 * 0.02);
+    float _e73 = saturate(((sun_3.y * 10.0) + 1.0));
+    return (e * (((gradient_1 * _e15) + (sunset * _e73)) + vec3((glow * _e15))));
+}
+
+vec3 sun_disk(vec3 d_7) {
+    float cos_r = _group_0_binding_0_cs.sun_direction.w;
+    vec4 _e7 = _group_0_binding_0_cs.sun_direction;
+    if ((dot(d_7, _e7.xyz) < cos_r)) {
+        return vec3(0.0);
+    }
+    vec4 _e15 = _group_0_binding_0_cs.sun_illuminance;
+    return (_e15.xyz / vec3((6.2831855 * max((1.0 - cos_r), 1e-6))));
+}
+
+vec3 aces_fitted(vec3 x_3) {
+    return clamp(((x_3 * ((2.51 * x_3) + vec3(0.03))) / ((x_3 * ((2.43 * x_3) + vec3(0.59))) + vec3(0.14))), vec3(0.0), vec3(1.0));
+}
+
+void main() {
+    uvec3 id_6 = gl_GlobalInvocationID;
+    uvec4 _e4 = _group_0_binding_0_cs.counts;
+    if (any(greaterThanEqual(id_6.xy, _e4.xy))) {
+        return;
+    }
+    MarchResult _e9 = basic_pixel(id_6.xy);
+    imageStore(_group_0_binding_6_cs, ivec2(id_6.xy), vec4(_e9.radiance, _e9.transmittance));
+    imageStore(_group_0_binding_7_cs, ivec2(id_6.xy), vec4(_e9.depth, 0.0, 0.0, 0.0));
+    return;
+}
+

@@ -1,0 +1,1103 @@
+#version 450 core
+struct Frame {
+    vec4 camera_position;
+    vec4 camera_forward;
+    vec4 camera_right;
+    vec4 camera_up;
+    vec4 sun_direction;
+    vec4 sun_illuminance;
+    vec4 atmosphere;
+    vec4 clouds;
+    vec4 erosion;
+    vec4 periods;
+    vec4 wind_offsets0_;
+    vec4 wind_offsets1_;
+    vec4 extinction;
+    vec4 phase;
+    vec4 multiple_scattering;
+    vec4 ambient_bottom;
+    vec4 ambient_top;
+    vec4 march;
+    uvec4 counts;
+    uvec4 modes;
+    uvec4 misc;
+    vec4 previous_position;
+    vec4 previous_forward;
+    vec4 previous_right;
+    vec4 previous_up;
+    uvec4 temporal;
+};
+struct Roots {
+    float t0_;
+    float t1_;
+    bool hit;
+};
+struct Interval {
+    float start;
+    float length_;
+    uint kind;
+};
+struct Counters {
+    uint view_steps;
+    uint density;
+    uint detail;
+    uint light;
+};
+struct Weather {
+    float coverage;
+    float cloud_type;
+    float precipitation;
+};
+struct Stats {
+    uint counters[9];
+};
+struct MarchResult {
+    vec3 radiance;
+    float transmittance;
+    float depth;
+};
+struct Segments {
+    vec2 a;
+    vec2 b;
+    uint count;
+};
+struct PhaseSample {
+    vec3 dir;
+    float weight;
+};
+struct PathResult {
+    vec3 radiance;
+    float transmittance;
+    float depth;
+};
+struct SpriteCell {
+    ivec2 index;
+    float size;
+    bool covered;
+};
+struct SpriteCandidate {
+    vec2 xz;
+    float alt;
+    float h;
+    float size_hash;
+    float texture_hash;
+    float rotation_hash;
+    float density;
+};
+struct SpriteVertex {
+    vec4 position;
+    vec2 uv;
+    uint tile;
+    vec4 colour;
+    float distance_;
+};
+struct SpriteTargets {
+    vec4 radiance;
+    vec4 depth;
+};
+const uint PHASE_HG = 0u;
+const uint PHASE_TWO_LOBE_HG = 1u;
+const uint PHASE_CORNETTE_SHANKS = 2u;
+const uint INTEGRATION_ANALYTIC = 0u;
+const uint INTEGRATION_RIEMANN = 1u;
+const uint HEIGHT_PARABOLA = 0u;
+const uint HEIGHT_CLOUD_TYPES = 1u;
+const uint FLAG_BEER_POWDER = 1u;
+const uint FLAG_JITTER = 2u;
+const uint FLAG_DYNAMIC_STEP = 4u;
+const uint FLAG_CHECKERBOARD = 8u;
+const uint FLAG_EMPTY_SKIP = 16u;
+const float PI = 3.1415927;
+const uint MAX_VIEW_STEPS = 1024u;
+const uint RAY_MARCH = 0u;
+const uint RAY_MISSES_LAYER = 1u;
+const uint RAY_HITS_GROUND = 2u;
+const uint OCCUPANCY_CELLS = 64u;
+const uint STAT_PIXELS = 0u;
+const uint STAT_MARCHED = 1u;
+const uint STAT_VIEW_STEPS = 2u;
+const uint STAT_DENSITY = 3u;
+const uint STAT_DETAIL = 4u;
+const uint STAT_LIGHT = 5u;
+const uint STAT_EXIT_TRANSMITTANCE = 6u;
+const uint STAT_EXIT_MISSED = 7u;
+const uint STAT_EXIT_GROUND = 8u;
+const uint STAT_COUNT = 9u;
+const float HISTORY_SAMPLES = 16.0;
+const float HISTORY_SAMPLES_MOVING = 2.0;
+const float DISOCCLUSION_DEPTH = 0.5;
+const uint MAX_PATH_ORDERS = 16384u;
+const uint SPRITE_LEVELS = 4u;
+const int SPRITE_CELLS_PER_SIDE = 8;
+const uint SPRITES_PER_CELL = 16u;
+const uint SPRITE_COUNT = 4096u;
+const float SPRITE_CELL0_ = 1500.0;
+const float SPRITE_ALPHA = 0.7;
+const float SPRITE_MAX_DISTANCE = 131072.0;
+const uint ATLAS_TILE = 64u;
+const float SPRITE_C_MIN = 0.22;
+const float SPRITE_C_MED = 0.55;
+const float SPRITE_C_MAX = 1.0;
+const float SPRITE_SKY = 0.35;
+const vec3 SKY_LEVEL0_ = vec3(0.42, 0.46, 0.55);
+const vec3 SKY_LEVEL1_ = vec3(0.55, 0.59, 0.67);
+const vec3 SKY_LEVEL2_ = vec3(0.7, 0.73, 0.8);
+const vec3 SKY_LEVEL3_ = vec3(0.84, 0.86, 0.9);
+const vec3 SKY_LEVEL4_ = vec3(0.95, 0.96, 0.98);
+const bool LIGHT_MARCH = true;
+const uint MAX_OCTAVES = 8u;
+const bool DETAIL = false;
+const bool CURL = false;
+const bool STATS = false;
+
+layout(std140, binding = 0) uniform Frame_block_0Vertex { Frame _group_0_binding_0_vs; };
+
+layout(binding = 20) uniform sampler2D _group_0_binding_20_vs;
+
+layout(binding = 22) uniform sampler2D _group_0_binding_22_vs;
+
+layout(location = 0) smooth out vec2 _vs2fs_location0;
+layout(location = 1) flat out uint _vs2fs_location1;
+layout(location = 2) smooth out vec4 _vs2fs_location2;
+layout(location = 3) smooth out float _vs2fs_location3;
+
+float saturate(float x_1) {
+    return clamp(x_1, 0.0, 1.0);
+}
+
+float remap(float x_2, float lo0_, float hi0_, float lo1_, float hi1_) {
+    return (lo1_ + (((x_2 - lo0_) * (hi1_ - lo1_)) / (hi0_ - lo0_)));
+}
+
+uint pcg(uint v) {
+    uint state = ((v * 747796405u) + 2891336453u);
+    uint word = (((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u);
+    return ((word >> 22u) ^ word);
+}
+
+float van_der_corput(uint n) {
+    return (float((bitfieldReverse(n) >> 8u)) * 5.9604645e-8);
+}
+
+float hash_unit(uvec2 pixel, uint frame_index) {
+    uint _e4 = pcg(frame_index);
+    uint _e6 = pcg((pixel.y ^ _e4));
+    uint _e8 = pcg((pixel.x ^ _e6));
+    return (float((_e8 >> 8u)) * 5.9604645e-8);
+}
+
+vec3 view_ray(uvec2 pixel_1) {
+    uvec4 _e3 = _group_0_binding_0_vs.counts;
+    vec2 size = vec2(_e3.xy);
+    vec2 ndc = ((((vec2(pixel_1) + vec2(0.5)) / size) * 2.0) - vec2(1.0));
+    float tan_half = _group_0_binding_0_vs.camera_position.w;
+    float aspect = _group_0_binding_0_vs.camera_forward.w;
+    vec4 _e26 = _group_0_binding_0_vs.camera_forward;
+    vec4 _e30 = _group_0_binding_0_vs.camera_right;
+    vec4 _e39 = _group_0_binding_0_vs.camera_up;
+    vec3 d_8 = ((_e26.xyz + (_e30.xyz * ((ndc.x * tan_half) * aspect))) - (_e39.xyz * (ndc.y * tan_half)));
+    return normalize(d_8);
+}
+
+Roots solve_sphere(float b, float c) {
+    float disc = ((b * b) - c);
+    if ((disc < 0.0)) {
+        return Roots(0.0, 0.0, false);
+    }
+    float s_2 = sqrt(disc);
+    float r0_1 = -((b + ((b >= 0.0) ? s_2 : -(s_2))));
+    if ((r0_1 == 0.0)) {
+        return Roots(0.0, 0.0, true);
+    }
+    float r1_1 = (c / r0_1);
+    return Roots(min(r0_1, r1_1), max(r0_1, r1_1), true);
+}
+
+Roots ray_shell(float alt, vec3 d, float radius_alt) {
+    float rp = _group_0_binding_0_vs.atmosphere.x;
+    float b_3 = (d.y * (alt + rp));
+    float c_3 = ((alt - radius_alt) * ((alt + radius_alt) + (2.0 * rp)));
+    Roots _e16 = solve_sphere(b_3, c_3);
+    return _e16;
+}
+
+float altitude_of(vec3 p) {
+    float rp_1 = _group_0_binding_0_vs.atmosphere.x;
+    float n_2 = (((p.x * p.x) + (p.z * p.z)) + (p.y * (p.y + (2.0 * rp_1))));
+    vec3 q_5 = vec3(p.x, (p.y + rp_1), p.z);
+    return (n_2 / (length(q_5) + rp_1));
+}
+
+bool hits_ground(vec3 p_1, float alt_1, vec3 d_1) {
+    bool local_12 = false;
+    float rp_2 = _group_0_binding_0_vs.atmosphere.x;
+    float b_4 = dot(d_1, vec3(p_1.x, (p_1.y + rp_2), p_1.z));
+    float c_4 = (alt_1 * (alt_1 + (2.0 * rp_2)));
+    if ((b_4 < 0.0)) {
+        local_12 = ((b_4 * b_4) >= c_4);
+    } else {
+        local_12 = false;
+    }
+    bool _e24 = local_12;
+    return _e24;
+}
+
+Interval layer_interval(float alt_2, vec3 d_2) {
+    float start = 0.0;
+    float end = 0.0;
+    bool local_13 = false;
+    bool local_14 = false;
+    bool local_15 = false;
+    float bottom = _group_0_binding_0_vs.atmosphere.y;
+    float top = _group_0_binding_0_vs.atmosphere.z;
+    float cutoff = _group_0_binding_0_vs.atmosphere.w;
+    Roots _e14 = ray_shell(alt_2, d_2, bottom);
+    Roots _e15 = ray_shell(alt_2, d_2, top);
+    if ((alt_2 < bottom)) {
+        bool _e24 = hits_ground(vec3(0.0, alt_2, 0.0), alt_2, d_2);
+        if (_e24) {
+            return Interval(0.0, 0.0, 2u);
+        }
+        start = _e14.t1_;
+        end = _e15.t1_;
+    } else {
+        if ((alt_2 <= top)) {
+            end = _e15.t1_;
+            if (_e14.hit) {
+                local_13 = (_e14.t0_ > 0.0);
+            } else {
+                local_13 = false;
+            }
+            bool _e40 = local_13;
+            if (_e40) {
+                float _e41 = end;
+                end = min(_e41, _e14.t0_);
+            }
+        } else {
+            if (!(!(_e15.hit))) {
+                local_14 = (_e15.t1_ <= 0.0);
+            } else {
+                local_14 = true;
+            }
+            bool _e53 = local_14;
+            if (_e53) {
+                return Interval(0.0, 0.0, 1u);
+            }
+            start = max(_e15.t0_, 0.0);
+            end = _e15.t1_;
+            if (_e14.hit) {
+                local_15 = (_e14.t0_ > 0.0);
+            } else {
+                local_15 = false;
+            }
+            bool _e69 = local_15;
+            if (_e69) {
+                float _e70 = end;
+                end = min(_e70, _e14.t0_);
+            }
+        }
+    }
+    float _e73 = end;
+    float _e74 = start;
+    float len = min((_e73 - _e74), cutoff);
+    if (!((len > 0.0))) {
+        return Interval(0.0, 0.0, 1u);
+    }
+    float _e84 = start;
+    return Interval(_e84, len, RAY_MARCH);
+}
+
+float height_parabola(float h, float cloud_type) {
+    float height = mix(0.35, 1.0, cloud_type);
+    float _e11 = saturate(((h * (h - height)) * (-4.0 / (height * height))));
+    return _e11;
+}
+
+float gradient(float h_1, float r0_, float r1_, float f0_, float f1_) {
+    return (smoothstep(r0_, r1_, h_1) * (1.0 - smoothstep(f0_, f1_, h_1)));
+}
+
+float height_cloud_types(float h_2, float cloud_type_1) {
+    float _e6 = gradient(h_2, 0.0, 0.08, 0.15, 0.25);
+    float _e11 = gradient(h_2, 0.0, 0.2, 0.4, 0.65);
+    float _e16 = gradient(h_2, 0.0, 0.1, 0.6, 0.95);
+    float _e19 = saturate((cloud_type_1 * 2.0));
+    float lo = mix(_e6, _e11, _e19);
+    float _e25 = saturate(((cloud_type_1 * 2.0) - 1.0));
+    return mix(lo, _e16, _e25);
+}
+
+float height_signal(float h_3, float cloud_type_2) {
+    uint _e5 = _group_0_binding_0_vs.modes.z;
+    if ((_e5 == HEIGHT_CLOUD_TYPES)) {
+        float _e8 = height_cloud_types(h_3, cloud_type_2);
+        return _e8;
+    }
+    float _e9 = height_parabola(h_3, cloud_type_2);
+    return _e9;
+}
+
+float phase_hg(float cos_theta, float g) {
+    float g2_ = (g * g);
+    float denom = max(((1.0 + g2_) - ((2.0 * g) * cos_theta)), 1e-6);
+    return ((1.0 - g2_) / ((12.566371 * denom) * sqrt(denom)));
+}
+
+float phase_cornette_shanks(float cos_theta_1, float g_1) {
+    float g2_1 = (g_1 * g_1);
+    float denom_1 = max(((1.0 + g2_1) - ((2.0 * g_1) * cos_theta_1)), 1e-6);
+    return (((3.0 * (1.0 - g2_1)) * (1.0 + (cos_theta_1 * cos_theta_1))) / (((25.132742 * (2.0 + g2_1)) * denom_1) * sqrt(denom_1)));
+}
+
+float phase(float cos_theta_2, float scale) {
+    float _e5 = _group_0_binding_0_vs.phase.x;
+    float g_3 = (_e5 * scale);
+    uint _e10 = _group_0_binding_0_vs.modes.x;
+    switch(_e10) {
+        case 1u: {
+            float _e14 = _group_0_binding_0_vs.phase.y;
+            float g2_2 = (_e14 * scale);
+            float _e16 = phase_hg(cos_theta_2, g_3);
+            float _e17 = phase_hg(cos_theta_2, g2_2);
+            float _e21 = _group_0_binding_0_vs.phase.z;
+            return mix(_e16, _e17, _e21);
+        }
+        case 2u: {
+            float _e23 = phase_cornette_shanks(cos_theta_2, g_3);
+            return _e23;
+        }
+        default: {
+            float _e24 = phase_hg(cos_theta_2, g_3);
+            return _e24;
+        }
+    }
+}
+
+float sun_scattering(float cos_theta_3, float tau_1) {
+    float octave_sum = 0.0;
+    float ka = 1.0;
+    float kb = 1.0;
+    float kc = 1.0;
+    uint i_2 = 0u;
+    float total = 0.0;
+    float a_4 = _group_0_binding_0_vs.multiple_scattering.x;
+    float b_5 = _group_0_binding_0_vs.multiple_scattering.y;
+    float c_5 = _group_0_binding_0_vs.multiple_scattering.z;
+    uint _e17 = _group_0_binding_0_vs.misc.x;
+    uint octaves = min(_e17, MAX_OCTAVES);
+    bool loop_init = true;
+    while(true) {
+        if (!loop_init) {
+            uint _e50 = i_2;
+            i_2 = (_e50 + 1u);
+        }
+        loop_init = false;
+        uint _e30 = i_2;
+        if ((_e30 < octaves)) {
+        } else {
+            break;
+        }
+        {
+            float _e32 = ka;
+            ka = (_e32 * a_4);
+            float _e34 = kb;
+            kb = (_e34 * b_5);
+            float _e36 = kc;
+            kc = (_e36 * c_5);
+            float _e38 = octave_sum;
+            float _e39 = ka;
+            float _e40 = kc;
+            float _e41 = phase(cos_theta_3, _e40);
+            float _e43 = kb;
+            octave_sum = (_e38 + ((_e39 * _e41) * exp((-(_e43) * tau_1))));
+        }
+    }
+    float _e55 = _group_0_binding_0_vs.sun_direction.y;
+    float _e56 = saturate(_e55);
+    float _e58 = phase(cos_theta_3, 1.0);
+    float _e62 = octave_sum;
+    total = ((_e58 * exp(-(tau_1))) + (_e56 * _e62));
+    uint _e69 = _group_0_binding_0_vs.modes.w;
+    if (((_e69 & FLAG_BEER_POWDER) != 0u)) {
+        float _e74 = total;
+        float _e78 = _group_0_binding_0_vs.phase.w;
+        total = (_e74 * (1.0 - exp((-(_e78) * tau_1))));
+    }
+    float _e85 = total;
+    return _e85;
+}
+
+vec3 ambient(float h_4) {
+    vec4 _e3 = _group_0_binding_0_vs.ambient_bottom;
+    vec4 _e7 = _group_0_binding_0_vs.ambient_top;
+    float _e13 = _group_0_binding_0_vs.ambient_bottom.w;
+    return (mix(_e3.xyz, _e7.xyz, h_4) * _e13);
+}
+
+vec3 step_integral(vec3 source, float sigma_t, float dt) {
+    uint _e6 = _group_0_binding_0_vs.modes.y;
+    if ((_e6 == INTEGRATION_RIEMANN)) {
+        return (source * dt);
+    }
+    float x_4 = (sigma_t * dt);
+    float f_1 = ((x_4 < 0.001) ? (1.0 - (0.5 * x_4)) : ((1.0 - exp(-(x_4))) / x_4));
+    return (source * (dt * f_1));
+}
+
+float start_offset(uvec2 pixel_2) {
+    uint _e4 = _group_0_binding_0_vs.modes.w;
+    bool jitter = ((_e4 & FLAG_JITTER) != 0u);
+    uint k_5 = _group_0_binding_0_vs.temporal.x;
+    if ((k_5 <= 1u)) {
+        uint _e18 = _group_0_binding_0_vs.misc.y;
+        float _e19 = hash_unit(pixel_2, _e18);
+        return (jitter ? _e19 : 0.5);
+    }
+    float _e23 = hash_unit(pixel_2, 0u);
+    float base_2 = (jitter ? _e23 : 0.5);
+    uint _e29 = _group_0_binding_0_vs.misc.y;
+    float _e32 = van_der_corput((_e29 / (k_5 * k_5)));
+    return fract((base_2 + _e32));
+}
+
+uvec2 bayer2_(uint v_1) {
+    return uvec2(((v_1 ^ (v_1 >> 1u)) & 1u), (v_1 & 1u));
+}
+
+uvec2 block_offset(uint f, uint k) {
+    if ((k == 2u)) {
+        uvec2 _e6 = bayer2_((f % 4u));
+        return _e6;
+    }
+    if ((k == 4u)) {
+        uint b_6 = (f % 16u);
+        uvec2 _e13 = bayer2_((b_6 >> 2u));
+        uvec2 _e17 = bayer2_((b_6 & 3u));
+        return (_e13 + (2u * _e17));
+    }
+    return uvec2(0u);
+}
+
+vec2 reproject(uvec2 pixel_4, float depth_2) {
+    bool local_23 = false;
+    bool local_24 = false;
+    bool local_25 = false;
+    vec3 dir = vec3(0.0);
+    vec4 _e4 = _group_0_binding_0_vs.previous_position;
+    vec4 _e7 = _group_0_binding_0_vs.camera_position;
+    if (all(equal(_e4, _e7))) {
+        vec4 _e14 = _group_0_binding_0_vs.previous_forward;
+        vec4 _e17 = _group_0_binding_0_vs.camera_forward;
+        local_23 = all(equal(_e14, _e17));
+    } else {
+        local_23 = false;
+    }
+    bool _e21 = local_23;
+    if (_e21) {
+        vec4 _e26 = _group_0_binding_0_vs.previous_right;
+        vec4 _e29 = _group_0_binding_0_vs.camera_right;
+        local_24 = all(equal(_e26, _e29));
+    } else {
+        local_24 = false;
+    }
+    bool _e33 = local_24;
+    if (_e33) {
+        vec4 _e38 = _group_0_binding_0_vs.previous_up;
+        vec4 _e41 = _group_0_binding_0_vs.camera_up;
+        local_25 = all(equal(_e38, _e41));
+    } else {
+        local_25 = false;
+    }
+    bool same = local_25;
+    if (same) {
+        return vec2(pixel_4);
+    }
+    vec3 _e47 = view_ray(pixel_4);
+    dir = _e47;
+    if ((depth_2 > 0.0)) {
+        vec4 _e54 = _group_0_binding_0_vs.camera_position;
+        vec4 _e58 = _group_0_binding_0_vs.previous_position;
+        dir = ((_e47 * depth_2) + (_e54.xyz - _e58.xyz));
+    }
+    vec3 _e62 = dir;
+    vec4 _e65 = _group_0_binding_0_vs.previous_forward;
+    float z = dot(_e62, _e65.xyz);
+    if ((z <= 0.0)) {
+        return vec2(-1000000000.0);
+    }
+    float tan_half_1 = _group_0_binding_0_vs.previous_position.w;
+    float aspect_1 = _group_0_binding_0_vs.previous_forward.w;
+    vec3 _e80 = dir;
+    vec4 _e83 = _group_0_binding_0_vs.previous_right;
+    vec3 _e89 = dir;
+    vec4 _e92 = _group_0_binding_0_vs.previous_up;
+    vec2 ndc_1 = vec2((dot(_e80, _e83.xyz) / ((z * tan_half_1) * aspect_1)), (-(dot(_e89, _e92.xyz)) / (z * tan_half_1)));
+    uvec4 _e106 = _group_0_binding_0_vs.counts;
+    return ((((ndc_1 * 0.5) + vec2(0.5)) * vec2(_e106.xy)) - vec2(0.5));
+}
+
+bool on_screen(vec2 q) {
+    bool local_26 = false;
+    uvec4 _e3 = _group_0_binding_0_vs.counts;
+    vec2 size_1 = vec2(_e3.xy);
+    if (all(greaterThanEqual(q, vec2(-0.5)))) {
+        local_26 = all(lessThanEqual(q, (size_1 - vec2(0.5))));
+    } else {
+        local_26 = false;
+    }
+    bool _e18 = local_26;
+    return _e18;
+}
+
+vec4 catmull_rom(float t) {
+    return vec4((t * (-0.5 + (t * (1.0 - (0.5 * t))))), (1.0 + ((t * t) * (-2.5 + (1.5 * t)))), (t * (0.5 + (t * (2.0 - (1.5 * t))))), ((t * t) * (-0.5 + (0.5 * t))));
+}
+
+bool in_blocks(uvec2 id_12) {
+    uint k_6 = _group_0_binding_0_vs.temporal.x;
+    uvec4 _e7 = _group_0_binding_0_vs.counts;
+    return all(lessThan(id_12, (((_e7.xy + uvec2(k_6)) - uvec2(1u)) / uvec2(k_6))));
+}
+
+uvec2 sparse_pixel(uvec2 id_13) {
+    uint k_7 = _group_0_binding_0_vs.temporal.x;
+    uint _e9 = _group_0_binding_0_vs.misc.y;
+    uvec2 _e10 = block_offset(_e9, k_7);
+    return ((id_13 * k_7) + _e10);
+}
+
+uint rng_seed(uvec2 pixel_5, uint frame_index_1) {
+    uint _e4 = pcg(frame_index_1);
+    uint _e6 = pcg((pixel_5.y ^ _e4));
+    uint _e8 = pcg((pixel_5.x ^ _e6));
+    return _e8;
+}
+
+float rng_next(inout uint rng_1) {
+    uint _e1 = rng_1;
+    rng_1 = ((_e1 * 747796405u) + 2891336453u);
+    uint s_3 = rng_1;
+    uint word_1 = (((s_3 >> ((s_3 >> 28u) + 4u)) ^ s_3) * 277803737u);
+    return (float((((word_1 >> 22u) ^ word_1) >> 8u)) * 5.9604645e-8);
+}
+
+float rng_exponential(inout uint rng_2, float sigma) {
+    float _e2 = rng_next(rng_2);
+    return (-(log((1.0 - _e2))) / sigma);
+}
+
+Roots ray_shell_from(vec3 p_7, float alt_5, vec3 d_4, float radius_alt_1) {
+    float rp_3 = _group_0_binding_0_vs.atmosphere.x;
+    float b_7 = dot(d_4, vec3(p_7.x, (p_7.y + rp_3), p_7.z));
+    float c_6 = ((alt_5 - radius_alt_1) * ((alt_5 + radius_alt_1) + (2.0 * rp_3)));
+    Roots _e20 = solve_sphere(b_7, c_6);
+    return _e20;
+}
+
+Segments layer_segments(vec3 p_8, float alt_6, vec3 d_5) {
+    Segments s = Segments(vec2(0.0), vec2(0.0), 0u);
+    bool local_27 = false;
+    vec2 a_1 = vec2(0.0);
+    vec2 b_1 = vec2(0.0);
+    uint n_1 = 0u;
+    bool local_28 = false;
+    bool local_29 = false;
+    bool local_30 = false;
+    bool local_31 = false;
+    float bottom_1 = _group_0_binding_0_vs.atmosphere.y;
+    Roots _e14 = ray_shell_from(p_8, alt_6, d_5, bottom_1);
+    float _e18 = _group_0_binding_0_vs.atmosphere.z;
+    Roots _e19 = ray_shell_from(p_8, alt_6, d_5, _e18);
+    bool _e20 = hits_ground(p_8, alt_6, d_5);
+    if (!(!(_e19.hit))) {
+        local_27 = (_e19.t1_ <= 0.0);
+    } else {
+        local_27 = true;
+    }
+    bool _e30 = local_27;
+    if (_e30) {
+        Segments _e31 = s;
+        return _e31;
+    }
+    float entry = max(_e19.t0_, 0.0);
+    if (_e14.hit) {
+        local_28 = (_e14.t0_ > 0.0);
+    } else {
+        local_28 = false;
+    }
+    bool _e50 = local_28;
+    if (_e50) {
+        local_29 = (alt_6 >= bottom_1);
+    } else {
+        local_29 = false;
+    }
+    bool _e55 = local_29;
+    if (_e55) {
+        uint _e56 = n_1;
+        a_1[_e56] = entry;
+        uint _e58 = n_1;
+        b_1[_e58] = _e14.t0_;
+        uint _e61 = n_1;
+        n_1 = (_e61 + uint((_e14.t0_ > entry)));
+        if (!(_e20)) {
+            local_30 = (_e19.t1_ > _e14.t1_);
+        } else {
+            local_30 = false;
+        }
+        bool _e73 = local_30;
+        if (_e73) {
+            uint _e74 = n_1;
+            a_1[_e74] = max(_e14.t1_, entry);
+            uint _e78 = n_1;
+            b_1[_e78] = _e19.t1_;
+            uint _e81 = n_1;
+            n_1 = (_e81 + 1u);
+        }
+    } else {
+        if ((alt_6 < bottom_1)) {
+            if (!(_e20)) {
+                local_31 = _e14.hit;
+            } else {
+                local_31 = false;
+            }
+            bool _e90 = local_31;
+            if (_e90) {
+                a_1.x = max(_e14.t1_, 0.0);
+                b_1.x = _e19.t1_;
+                n_1 = 1u;
+            }
+        } else {
+            a_1.x = entry;
+            b_1.x = _e19.t1_;
+            n_1 = 1u;
+        }
+    }
+    vec2 _e103 = a_1;
+    s.a = _e103;
+    vec2 _e105 = b_1;
+    s.b = _e105;
+    uint _e107 = n_1;
+    s.count = _e107;
+    Segments _e108 = s;
+    return _e108;
+}
+
+float density_max() {
+    float _e3 = _group_0_binding_0_vs.clouds.y;
+    float _e7 = _group_0_binding_0_vs.clouds.w;
+    return clamp((_e3 * (1.0 + _e7)), 0.0, 1.0);
+}
+
+float sample_hg_cos(float g_2, float u) {
+    if ((abs(g_2) < 0.0001)) {
+        return (1.0 - (2.0 * u));
+    }
+    float s_4 = ((1.0 - (g_2 * g_2)) / ((1.0 - g_2) + ((2.0 * g_2) * u)));
+    return clamp((((1.0 + (g_2 * g_2)) - (s_4 * s_4)) / (2.0 * g_2)), -1.0, 1.0);
+}
+
+PhaseSample sample_phase(vec3 dir_4, inout uint rng_5) {
+    float cos_theta_4 = 0.0;
+    float pdf = 0.0;
+    float _e2 = rng_next(rng_5);
+    float _e3 = rng_next(rng_5);
+    float _e5 = rng_next(rng_5);
+    float phi = (6.2831855 * _e5);
+    uint _e14 = _group_0_binding_0_vs.modes.x;
+    if ((_e14 == PHASE_TWO_LOBE_HG)) {
+        float _e20 = _group_0_binding_0_vs.phase.x;
+        float _e24 = _group_0_binding_0_vs.phase.y;
+        float _e28 = _group_0_binding_0_vs.phase.z;
+        float g_4 = ((_e2 < _e28) ? _e24 : _e20);
+        float _e31 = sample_hg_cos(g_4, _e3);
+        cos_theta_4 = _e31;
+        float _e32 = cos_theta_4;
+        float _e36 = _group_0_binding_0_vs.phase.x;
+        float _e37 = phase_hg(_e32, _e36);
+        float _e38 = cos_theta_4;
+        float _e42 = _group_0_binding_0_vs.phase.y;
+        float _e43 = phase_hg(_e38, _e42);
+        float _e47 = _group_0_binding_0_vs.phase.z;
+        pdf = mix(_e37, _e43, _e47);
+    } else {
+        float _e52 = _group_0_binding_0_vs.phase.x;
+        float _e53 = sample_hg_cos(_e52, _e3);
+        cos_theta_4 = _e53;
+        float _e54 = cos_theta_4;
+        float _e58 = _group_0_binding_0_vs.phase.x;
+        float _e59 = phase_hg(_e54, _e58);
+        pdf = _e59;
+    }
+    float _e60 = cos_theta_4;
+    float _e61 = cos_theta_4;
+    float sin_theta = sqrt(max((1.0 - (_e60 * _e61)), 0.0));
+    float sign_ = ((dir_4.z >= 0.0) ? 1.0 : -1.0);
+    float a_5 = (-1.0 / (sign_ + dir_4.z));
+    float bb = ((dir_4.x * dir_4.y) * a_5);
+    vec3 t_4 = vec3((1.0 + (((sign_ * dir_4.x) * dir_4.x) * a_5)), (sign_ * bb), (-(sign_) * dir_4.x));
+    vec3 b_8 = vec3(bb, (sign_ + ((dir_4.y * dir_4.y) * a_5)), -(dir_4.y));
+    float _e109 = cos_theta_4;
+    vec3 w = normalize((((t_4 * (sin_theta * cos(phi))) + (b_8 * (sin_theta * sin(phi)))) + (dir_4 * _e109)));
+    float _e113 = cos_theta_4;
+    float _e115 = phase(_e113, 1.0);
+    float _e116 = pdf;
+    float _e118 = pdf;
+    return PhaseSample(w, ((_e118 > 0.0) ? (_e115 / _e116) : 0.0));
+}
+
+bool camera_still() {
+    bool local_35 = false;
+    bool local_36 = false;
+    bool local_37 = false;
+    vec4 _e2 = _group_0_binding_0_vs.camera_position;
+    vec4 _e5 = _group_0_binding_0_vs.previous_position;
+    if (all(equal(_e2, _e5))) {
+        vec4 _e12 = _group_0_binding_0_vs.camera_forward;
+        vec4 _e15 = _group_0_binding_0_vs.previous_forward;
+        local_35 = all(equal(_e12, _e15));
+    } else {
+        local_35 = false;
+    }
+    bool _e19 = local_35;
+    if (_e19) {
+        vec4 _e24 = _group_0_binding_0_vs.camera_right;
+        vec4 _e28 = _group_0_binding_0_vs.previous_right;
+        local_36 = all(equal(_e24.xyz, _e28.xyz));
+    } else {
+        local_36 = false;
+    }
+    bool _e33 = local_36;
+    if (_e33) {
+        vec4 _e38 = _group_0_binding_0_vs.camera_up;
+        vec4 _e42 = _group_0_binding_0_vs.previous_up;
+        local_37 = all(equal(_e38.xyz, _e42.xyz));
+    } else {
+        local_37 = false;
+    }
+    bool _e47 = local_37;
+    return _e47;
+}
+
+float luminance(vec3 c_1) {
+    return dot(c_1, vec3(0.2126, 0.7152, 0.0722));
+}
+
+float atlas_hash(uint a_2, uint b_2) {
+    uint _e2 = pcg(b_2);
+    uint _e4 = pcg((a_2 ^ _e2));
+    return (float((_e4 >> 8u)) * 5.9604645e-8);
+}
+
+float value_noise(vec2 p_9, uint seed) {
+    uvec2 i_7 = uvec2(floor(p_9));
+    vec2 f_2 = fract(p_9);
+    vec2 s_5 = ((f_2 * f_2) * (vec2(3.0) - (2.0 * f_2)));
+    uint h_6 = (seed * 7919u);
+    float _e17 = atlas_hash((i_7.x + h_6), i_7.y);
+    float _e23 = atlas_hash(((i_7.x + 1u) + h_6), i_7.y);
+    float _e29 = atlas_hash((i_7.x + h_6), (i_7.y + 1u));
+    float _e37 = atlas_hash(((i_7.x + 1u) + h_6), (i_7.y + 1u));
+    return mix(mix(_e17, _e23, s_5.x), mix(_e29, _e37, s_5.x), s_5.y);
+}
+
+float value_fbm(vec2 p_10, uint seed_1) {
+    float sum_1 = 0.0;
+    float weight = 0.5;
+    vec2 q_4 = vec2(0.0);
+    uint o = 0u;
+    q_4 = p_10;
+    bool loop_init_1 = true;
+    while(true) {
+        if (!loop_init_1) {
+            uint _e26 = o;
+            o = (_e26 + 1u);
+        }
+        loop_init_1 = false;
+        uint _e9 = o;
+        if ((_e9 < 4u)) {
+        } else {
+            break;
+        }
+        {
+            float _e12 = sum_1;
+            float _e13 = weight;
+            vec2 _e14 = q_4;
+            uint _e15 = o;
+            float _e17 = value_noise(_e14, (seed_1 + _e15));
+            sum_1 = (_e12 + (_e13 * _e17));
+            vec2 _e20 = q_4;
+            q_4 = (_e20 * 2.0);
+            float _e23 = weight;
+            weight = (_e23 * 0.5);
+        }
+    }
+    float _e29 = sum_1;
+    return (_e29 / 0.9375);
+}
+
+float sprite_texture(uint tile_1, vec2 uv) {
+    float billow = 0.0;
+    uint i_6 = 0u;
+    vec2 at = vec2(0.0);
+    float a_3 = 0.0;
+    vec2 c_7 = (uv - vec2(0.5));
+    float mask = smoothstep(0.48, 0.36, length(c_7));
+    float _e16 = value_fbm(((uv * 6.0) + vec2((float(tile_1) * 13.0))), tile_1);
+    if ((tile_1 < 4u)) {
+        vec2 q_6 = (c_7 * vec2(1.0, 3.2));
+        float streak = (1.0 - smoothstep(0.05, 0.45, length(q_6)));
+        float _e40 = value_fbm(((uv * vec2(3.0, 12.0)) + vec2((float(tile_1) * 5.0))), (tile_1 + 16u));
+        float _e46 = saturate(((_e40 * 1.6) - 0.3));
+        return (((mask * streak) * _e46) * 0.8);
+    }
+    uint blobs = (5u + (tile_1 % 4u));
+    bool loop_init_2 = true;
+    while(true) {
+        if (!loop_init_2) {
+            uint _e108 = i_6;
+            i_6 = (_e108 + 1u);
+        }
+        loop_init_2 = false;
+        uint _e58 = i_6;
+        if ((_e58 < blobs)) {
+        } else {
+            break;
+        }
+        {
+            uint _e61 = i_6;
+            float _e63 = atlas_hash(tile_1, (2u * _e61));
+            uint _e65 = i_6;
+            float _e69 = atlas_hash(tile_1, ((2u * _e65) + 1u));
+            vec2 centre_1 = (vec2(_e63, _e69) - vec2(0.5));
+            at = (vec2(0.5) + (centre_1 * 0.34));
+            if ((tile_1 == 4u)) {
+                at.y = (0.5 + ((centre_1.y - 0.5) * 0.24));
+            }
+            uint _e91 = i_6;
+            float _e93 = atlas_hash(tile_1, (100u + _e91));
+            float r_3 = (0.14 + (0.1 * _e93));
+            vec2 _e98 = at;
+            float d_9 = (length((uv - _e98)) / r_3);
+            float _e102 = billow;
+            float _e106 = saturate((1.0 - (d_9 * d_9)));
+            billow = max(_e102, _e106);
+        }
+    }
+    float _e111 = billow;
+    float _e114 = saturate((_e111 * 1.5));
+    a_3 = ((mask * _e114) * (0.55 + (0.45 * _e16)));
+    if ((tile_1 == 4u)) {
+        float _e124 = a_3;
+        a_3 = (_e124 * smoothstep(0.62, 0.54, uv.y));
+    }
+    float _e130 = a_3;
+    return _e130;
+}
+
+vec3 sprite_rel(vec2 xz, float alt_8) {
+    float rp_4 = _group_0_binding_0_vs.atmosphere.x;
+    vec4 _e8 = _group_0_binding_0_vs.camera_position;
+    vec2 d_10 = (xz - _e8.xz);
+    float k_8 = ((alt_8 * (alt_8 + (2.0 * rp_4))) - dot(d_10, d_10));
+    float y_1 = (k_8 / (rp_4 + sqrt(max(((rp_4 * rp_4) + k_8), 0.0))));
+    return vec3(d_10.x, y_1, d_10.y);
+}
+
+SpriteCell sprite_cell(uint cell) {
+    ivec2 start_1 = ivec2(0);
+    uint k_3 = 3u;
+    bool local_38 = false;
+    bool local_39 = false;
+    uint level_1 = (cell / 64u);
+    ivec2 local_41 = ivec2(int((cell % 8u)), int(((cell / 8u) % 8u)));
+    vec4 _e15 = _group_0_binding_0_vs.camera_position;
+    start_1 = (ivec2(floor((_e15.xz / vec2(12000.0)))) - ivec2(4));
+    bool loop_init_3 = true;
+    while(true) {
+        if (!loop_init_3) {
+            uint _e35 = k_3;
+            k_3 = (_e35 - 1u);
+        }
+        loop_init_3 = false;
+        uint _e27 = k_3;
+        if ((_e27 > level_1)) {
+        } else {
+            break;
+        }
+        {
+            ivec2 _e29 = start_1;
+            start_1 = (2 * (_e29 + ivec2(2)));
+        }
+    }
+    if ((level_1 > 0u)) {
+        local_38 = all(greaterThanEqual(local_41, ivec2(2)));
+    } else {
+        local_38 = false;
+    }
+    bool _e47 = local_38;
+    if (_e47) {
+        local_39 = all(lessThan(local_41, ivec2(6)));
+    } else {
+        local_39 = false;
+    }
+    bool covered = local_39;
+    ivec2 _e56 = start_1;
+    return SpriteCell((_e56 + local_41), (SPRITE_CELL0_ * float((1u << level_1))), covered);
+}
+
+vec3 sprite_sky_level(float h_5) {
+    float _e1 = saturate(h_5);
+    float x_5 = (_e1 * 4.0);
+    if ((x_5 < 1.0)) {
+        return mix(SKY_LEVEL0_, SKY_LEVEL1_, x_5);
+    }
+    if ((x_5 < 2.0)) {
+        return mix(SKY_LEVEL1_, SKY_LEVEL2_, (x_5 - 1.0));
+    }
+    if ((x_5 < 3.0)) {
+        return mix(SKY_LEVEL2_, SKY_LEVEL3_, (x_5 - 2.0));
+    }
+    return mix(SKY_LEVEL3_, SKY_LEVEL4_, (x_5 - 3.0));
+}
+
+float sprite_sun_level(float cos_angle) {
+    if ((cos_angle < 0.0)) {
+        return mix(SPRITE_C_MIN, SPRITE_C_MED, (cos_angle + 1.0));
+    }
+    return mix(SPRITE_C_MED, SPRITE_C_MAX, cos_angle);
+}
+
+vec2 sprite_corner(uint k_4) {
+    bool local_40 = false;
+    uint q_7 = ((k_4 >= 3u) ? ((k_4 == 3u) ? 0u : (k_4 - 2u)) : k_4);
+    if (!((q_7 == 1u))) {
+        local_40 = (q_7 == 2u);
+    } else {
+        local_40 = true;
+    }
+    bool _e18 = local_40;
+    return vec2((_e18 ? 1.0 : -1.0), ((q_7 >= 2u) ? 1.0 : -1.0));
+}
+
+vec3 sky_radiance(vec3 d_6, float alt_9) {
+    vec4 _e4 = _group_0_binding_0_vs.sun_direction;
+    vec3 sun = _e4.xyz;
+    vec4 _e8 = _group_0_binding_0_vs.sun_illuminance;
+    vec3 e = _e8.xyz;
+    float _e15 = saturate(((sun.y * 4.0) + 0.3));
+    bool _e19 = hits_ground(vec3(0.0, alt_9, 0.0), alt_9, d_6);
+    if (_e19) {
+        vec3 ground_albedo = vec3(0.035, 0.035, 0.03);
+        return (ground_albedo * (((e * max(sun.y, 0.0)) / vec3(3.1415927)) + ((0.05 * e) * _e15)));
+    }
+    vec3 zenith = vec3(0.018, 0.04, 0.1);
+    vec3 horizon = vec3(0.07, 0.085, 0.11);
+    float _e45 = saturate(d_6.y);
+    vec3 gradient_1 = mix(horizon, zenith, sqrt(_e45));
+    vec3 sunset = (((1.0 - (_e15 * 0.8)) * pow((1.0 - _e45), 6.0)) * vec3(0.25, 0.1, 0.0));
+    float _e64 = phase_hg(dot(d_6, sun), 0.76);
+    float glow = (_e64 * 0.02);
+    float _e73 = saturate(((sun.y * 10.0) + 1.0));
+    return (e * (((gradient_1 * _e15) + (sunset * _e73)) + vec3((glow * _e15))));
+}
+
+vec3 sun_disk(vec3 d_7) {
+    float cos_r = _group_0_binding_0_vs.sun_direction.w;
+    vec4 _e7 = _group_0_binding_0_vs.sun_direction;
+    if ((dot(d_7, _e7.xyz) < cos_r)) {
+        return vec3(0.0);
+    }
+    vec4 _e15 = _group_0_binding_0_vs.sun_illuminance;
+    return (_e15.xyz / vec3((6.2831855 * max((1.0 - cos_r), 1e-6))));
+}
+
+vec3 aces_fitted(vec3 x_3) {
+    return clamp(((x_3 * ((2.51 * x_3) + vec3(0.03))) / ((x_3 * ((2.43 * x_3) + vec3(0.59))) + vec3(0.14))), vec3(0.0), vec3(1.0));
+}
+
+void main() {
+    uint index = uint(gl_VertexID);
+    SpriteVertex out_ = SpriteVertex(vec4(0.0), vec2(0.0), 0u, vec4(0.0), 0.0);
+    vec3 right = vec3(0.0);
+    vec4 _e8 = texelFetch(_group_0_binding_22_vs, ivec2(uvec2((index / 6u), 0u)), 0);
+    uint slot = uint(_e8.x);
+    vec4 a_6 = texelFetch(_group_0_binding_20_vs, ivec2(uvec2(slot, 0u)), 0);
+    vec4 b_9 = texelFetch(_group_0_binding_20_vs, ivec2(uvec2(slot, 1u)), 0);
+    vec4 c_8 = texelFetch(_group_0_binding_20_vs, ivec2(uvec2(slot, 2u)), 0);
+    if ((b_9.w <= 0.0)) {
+        out_.position = vec4(0.0, 0.0, -1.0, 1.0);
+        SpriteVertex _e35 = out_;
+        gl_Position = _e35.position;
+        _vs2fs_location0 = _e35.uv;
+        _vs2fs_location1 = _e35.tile;
+        _vs2fs_location2 = _e35.colour;
+        _vs2fs_location3 = _e35.distance_;
+        return;
+    }
+    float _e39 = _group_0_binding_0_vs.camera_position.y;
+    vec3 cam = vec3(0.0, _e39, 0.0);
+    vec3 _e45 = sprite_rel(a_6.xz, a_6.y);
+    vec3 to_sprite = (_e45 - cam);
+    float distance_ = length(to_sprite);
+    float half_width = a_6.w;
+    float facing = smoothstep((0.5 * half_width), half_width, distance_);
+    vec3 to_camera = (-(to_sprite) / vec3(max(distance_, 0.001)));
+    vec4 _e59 = _group_0_binding_0_vs.camera_forward;
+    vec3 n_3 = normalize(mix(-(_e59.xyz), to_camera, facing));
+    float _e67 = _group_0_binding_0_vs.atmosphere.x;
+    vec3 radial = normalize((_e45 + vec3(0.0, _e67, 0.0)));
+    right = cross(radial, n_3);
+    vec3 _e75 = right;
+    if ((length(_e75) < 0.001)) {
+        vec4 _e81 = _group_0_binding_0_vs.camera_right;
+        right = _e81.xyz;
+    }
+    vec3 _e83 = right;
+    right = normalize(_e83);
+    vec3 _e85 = right;
+    vec3 up = cross(n_3, _e85);
+    vec2 _e89 = sprite_corner((index % 6u));
+    vec3 _e90 = right;
+    vec3 offset = ((_e90 * (_e89.x * half_width)) + (up * (_e89.y * c_8.z)));
+    vec3 vertex = (to_sprite + offset);
+    vec4 _e102 = _group_0_binding_0_vs.camera_right;
+    float x_6 = dot(vertex, _e102.xyz);
+    vec4 _e107 = _group_0_binding_0_vs.camera_up;
+    float y_2 = dot(vertex, _e107.xyz);
+    vec4 _e112 = _group_0_binding_0_vs.camera_forward;
+    float z_1 = dot(vertex, _e112.xyz);
+    float tan_half_2 = _group_0_binding_0_vs.camera_position.w;
+    float _e123 = _group_0_binding_0_vs.camera_forward.w;
+    out_.position = vec4((x_6 / (tan_half_2 * _e123)), (y_2 / tan_half_2), (0.5 * z_1), z_1);
+    vec2 cs = vec2(cos(c_8.y), sin(c_8.y));
+    vec2 t_5 = vec2(_e89.x, -(_e89.y));
+    out_.uv = vec2(((t_5.x * cs.x) - (t_5.y * cs.y)), ((t_5.x * cs.y) + (t_5.y * cs.x)));
+    out_.tile = uint(c_8.x);
+    vec4 _e160 = _group_0_binding_0_vs.sun_direction;
+    vec3 sun_1 = _e160.xyz;
+    vec3 _e164 = sprite_rel(b_9.xz, b_9.y);
+    vec3 centre_2 = (_e164 - cam);
+    vec3 from_centre = (vertex - centre_2);
+    float cos_angle_1 = (dot(from_centre, sun_1) / max(length(from_centre), 0.001));
+    float _e177 = saturate(((sun_1.y * 4.0) + 0.3));
+    float _e179 = altitude_of((vertex + cam));
+    float _e183 = _group_0_binding_0_vs.atmosphere.y;
+    float _e188 = _group_0_binding_0_vs.atmosphere.z;
+    float _e192 = _group_0_binding_0_vs.atmosphere.y;
+    float _e195 = saturate(((_e179 - _e183) / (_e188 - _e192)));
+    vec4 _e198 = _group_0_binding_0_vs.sun_illuminance;
+    vec3 e_1 = _e198.xyz;
+    vec3 _e200 = sprite_sky_level(_e195);
+    float _e204 = sprite_sun_level(cos_angle_1);
+    vec3 light = ((e_1 * ((_e200 * (SPRITE_SKY * _e177)) + vec3(_e204))) / vec3(3.1415927));
+    out_.colour = vec4(light, b_9.w);
+    out_.distance_ = length(vertex);
+    SpriteVertex _e216 = out_;
+    gl_Position = _e216.position;
+    _vs2fs_location0 = _e216.uv;
+    _vs2fs_location1 = _e216.tile;
+    _vs2fs_location2 = _e216.colour;
+    _vs2fs_location3 = _e216.distance_;
+    return;
+}
+
