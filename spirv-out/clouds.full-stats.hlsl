@@ -100,6 +100,8 @@ struct SpriteCandidate {
     float texture_hash;
     float rotation_hash;
     float density;
+    float precipitation;
+    int _end_pad_0;
 };
 
 struct SpriteVertex {
@@ -2132,7 +2134,7 @@ SpriteCell sprite_cell(uint cell)
     return spritecell;
 }
 
-SpriteCandidate ConstructSpriteCandidate(float2 arg0, float arg1, float arg2, float arg3, float arg4, float arg5, float arg6) {
+SpriteCandidate ConstructSpriteCandidate(float2 arg0, float arg1, float arg2, float arg3, float arg4, float arg5, float arg6, float arg7) {
     SpriteCandidate ret = (SpriteCandidate)0;
     ret.xz = arg0;
     ret.alt = arg1;
@@ -2141,6 +2143,7 @@ SpriteCandidate ConstructSpriteCandidate(float2 arg0, float arg1, float arg2, fl
     ret.texture_hash = arg4;
     ret.rotation_hash = arg5;
     ret.density = arg6;
+    ret.precipitation = arg7;
     return ret;
 }
 
@@ -2172,7 +2175,7 @@ SpriteCandidate sprite_candidate(SpriteCell c_2, uint level, uint s_1, inout Cou
         density_2 = _e90;
     }
     float _e94 = density_2;
-    const SpriteCandidate spritecandidate = ConstructSpriteCandidate(xz_1, alt_10, h_8, u_1.w, v_2.x, v_2.y, _e94);
+    const SpriteCandidate spritecandidate = ConstructSpriteCandidate(xz_1, alt_10, h_8, u_1.w, v_2.x, v_2.y, _e94, _e55.precipitation);
     return spritecandidate;
 }
 
@@ -2785,12 +2788,13 @@ void sprite_build(uint3 id_8 : SV_DispatchThreadID)
     sprites_out[uint2(slot, 0u)] = float4(_e191, _e193, _e196, half_width);
     float3 _e201 = centre;
     sprites_out[uint2(slot, 1u)] = float4(_e201, alpha);
-    uint _e206 = tile;
-    float _e208 = rotation;
-    float _e210 = me.h;
-    sprites_out[uint2(slot, 2u)] = float4(float(_e206), _e208, half_height, _e210);
-    float _e215 = key;
-    sprites_out[uint2(slot, 3u)] = float4(_e215, 0.0, 0.0, 0.0);
+    float _e204 = me.precipitation;
+    float colour_level = (1.0 / (1.0 + (6.0 * max(_e204, 0.0))));
+    uint _e216 = tile;
+    float _e218 = rotation;
+    sprites_out[uint2(slot, 2u)] = float4(float(_e216), _e218, half_height, colour_level);
+    float _e223 = key;
+    sprites_out[uint2(slot, 3u)] = float4(_e223, 0.0, 0.0, 0.0);
     return;
 }
 
@@ -2918,11 +2922,11 @@ VertexOutput_sprite_vertex sprite_vertex(uint index : SV_VertexID)
     float3 e_1 = _e198.xyz;
     const float3 _e200 = sprite_sky_level(_e195);
     const float _e204 = sprite_sun_level(cos_angle_1);
-    float3 light = ((e_1 * ((_e200 * (SPRITE_SKY * _e177)) + (_e204).xxx)) / (3.1415927).xxx);
+    float3 light = ((e_1 * ((_e200 * (SPRITE_SKY * _e177)) + (_e204).xxx)) * (c_9.w / PI));
     out_.colour = float4(light, b_10.w);
     out_.distance_ = length(vertex);
-    SpriteVertex _e216 = out_;
-    const SpriteVertex spritevertex_2 = _e216;
+    SpriteVertex _e217 = out_;
+    const SpriteVertex spritevertex_2 = _e217;
     const VertexOutput_sprite_vertex spritevertex_2_ = { spritevertex_2.uv, spritevertex_2.tile, spritevertex_2.colour, spritevertex_2.distance_, spritevertex_2.position };
     return spritevertex_2_;
 }

@@ -86,6 +86,7 @@ struct SpriteCandidate {
     float texture_hash;
     float rotation_hash;
     float density;
+    float precipitation;
 };
 struct SpriteVertex {
     vec4 position;

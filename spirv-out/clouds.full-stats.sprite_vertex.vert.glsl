@@ -83,6 +83,7 @@ struct SpriteCandidate {
     float texture_hash;
     float rotation_hash;
     float density;
+    float precipitation;
 };
 struct SpriteVertex {
     vec4 position;
@@ -1089,15 +1090,15 @@ void main() {
     vec3 e_1 = _e198.xyz;
     vec3 _e200 = sprite_sky_level(_e195);
     float _e204 = sprite_sun_level(cos_angle_1);
-    vec3 light = ((e_1 * ((_e200 * (SPRITE_SKY * _e177)) + vec3(_e204))) / vec3(3.1415927));
+    vec3 light = ((e_1 * ((_e200 * (SPRITE_SKY * _e177)) + vec3(_e204))) * (c_8.w / PI));
     out_.colour = vec4(light, b_9.w);
     out_.distance_ = length(vertex);
-    SpriteVertex _e216 = out_;
-    gl_Position = _e216.position;
-    _vs2fs_location0 = _e216.uv;
-    _vs2fs_location1 = _e216.tile;
-    _vs2fs_location2 = _e216.colour;
-    _vs2fs_location3 = _e216.distance_;
+    SpriteVertex _e217 = out_;
+    gl_Position = _e217.position;
+    _vs2fs_location0 = _e217.uv;
+    _vs2fs_location1 = _e217.tile;
+    _vs2fs_location2 = _e217.colour;
+    _vs2fs_location3 = _e217.distance_;
     return;
 }
 

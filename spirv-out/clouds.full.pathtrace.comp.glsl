@@ -87,6 +87,7 @@ struct SpriteCandidate {
     float texture_hash;
     float rotation_hash;
     float density;
+    float precipitation;
 };
 struct SpriteVertex {
     vec4 position;
@@ -1875,7 +1876,7 @@ SpriteCandidate sprite_candidate(SpriteCell c_2, uint level, uint s_1, inout Cou
         density_2 = _e90;
     }
     float _e94 = density_2;
-    return SpriteCandidate(xz_1, alt_10, h_8, u_1.w, v_2.x, v_2.y, _e94);
+    return SpriteCandidate(xz_1, alt_10, h_8, u_1.w, v_2.x, v_2.y, _e94, _e55.precipitation);
 }
 
 vec3 sprite_sky_level(float h_5) {

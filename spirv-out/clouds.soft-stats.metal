@@ -96,6 +96,8 @@ struct SpriteCandidate {
     float texture_hash;
     float rotation_hash;
     float density;
+    float precipitation;
+    char _pad8[4];
 };
 struct SpriteVertex {
     metal::float4 position;
@@ -2235,7 +2237,7 @@ SpriteCandidate sprite_candidate(
         density_2 = _e90;
     }
     float _e94 = density_2;
-    return SpriteCandidate {xz_1, alt_10, h_8, u_1.w, v_2.x, v_2.y, _e94};
+    return SpriteCandidate {xz_1, alt_10, h_8, u_1.w, v_2.x, v_2.y, _e94, _e55.precipitation};
 }
 
 metal::float3 sprite_sky_level(
@@ -2949,12 +2951,13 @@ struct sprite_buildInput {
     sprites_out.write(metal::float4(_e191, _e193, _e196, half_width), metal::uint2(metal::uint2(slot, 0u)));
     metal::float3 _e201 = centre;
     sprites_out.write(metal::float4(_e201, alpha), metal::uint2(metal::uint2(slot, 1u)));
-    uint _e206 = tile;
-    float _e208 = rotation;
-    float _e210 = me.h;
-    sprites_out.write(metal::float4(static_cast<float>(_e206), _e208, half_height, _e210), metal::uint2(metal::uint2(slot, 2u)));
-    float _e215 = key;
-    sprites_out.write(metal::float4(_e215, 0.0, 0.0, 0.0), metal::uint2(metal::uint2(slot, 3u)));
+    float _e204 = me.precipitation;
+    float colour_level = 1.0 / (1.0 + (6.0 * metal::max(_e204, 0.0)));
+    uint _e216 = tile;
+    float _e218 = rotation;
+    sprites_out.write(metal::float4(static_cast<float>(_e216), _e218, half_height, colour_level), metal::uint2(metal::uint2(slot, 2u)));
+    float _e223 = key;
+    sprites_out.write(metal::float4(_e223, 0.0, 0.0, 0.0), metal::uint2(metal::uint2(slot, 3u)));
     return;
 }
 
@@ -3098,11 +3101,11 @@ vertex sprite_vertexOutput sprite_vertex(
     metal::float3 e_1 = _e198.xyz;
     metal::float3 _e200 = sprite_sky_level(_e195);
     float _e204 = sprite_sun_level(cos_angle_1);
-    metal::float3 light = (e_1 * ((_e200 * (SPRITE_SKY * _e177)) + metal::float3(_e204))) / metal::float3(3.1415927);
+    metal::float3 light = (e_1 * ((_e200 * (SPRITE_SKY * _e177)) + metal::float3(_e204))) * (c_9.w / PI);
     out.colour = metal::float4(light, b_10.w);
     out.distance = metal::length(vertex_);
-    SpriteVertex _e216 = out;
-    const auto _tmp_1 = _e216;
+    SpriteVertex _e217 = out;
+    const auto _tmp_1 = _e217;
     return sprite_vertexOutput { _tmp_1.position, _tmp_1.uv, _tmp_1.tile, _tmp_1.colour, _tmp_1.distance };
 }
 

@@ -87,6 +87,7 @@ struct SpriteCandidate {
     float texture_hash;
     float rotation_hash;
     float density;
+    float precipitation;
 };
 struct SpriteVertex {
     vec4 position;
@@ -1359,7 +1360,7 @@ SpriteCandidate sprite_candidate(SpriteCell c_2, uint level, uint s_1, inout Cou
         density_2 = _e90;
     }
     float _e94 = density_2;
-    return SpriteCandidate(xz_1, alt_10, h_8, u_1.w, v_2.x, v_2.y, _e94);
+    return SpriteCandidate(xz_1, alt_10, h_8, u_1.w, v_2.x, v_2.y, _e94, _e55.precipitation);
 }
 
 vec3 sprite_sky_level(float h_5) {
@@ -1436,7 +1437,7 @@ void main() {
     uvec3 id_8 = gl_GlobalInvocationID;
     Counters counters_1 = Counters(0u, 0u, 0u, 0u);
     vec4 sum = vec4(0.0);
-    SpriteCandidate me = SpriteCandidate(vec2(0.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
+    SpriteCandidate me = SpriteCandidate(vec2(0.0), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
     uint i = 0u;
     vec3 centre = vec3(0.0);
     uint tile = 0u;
@@ -1531,12 +1532,13 @@ void main() {
     imageStore(_group_0_binding_19_cs, ivec2(uvec2(slot, 0u)), vec4(_e191, _e193, _e196, half_width));
     vec3 _e201 = centre;
     imageStore(_group_0_binding_19_cs, ivec2(uvec2(slot, 1u)), vec4(_e201, alpha));
-    uint _e206 = tile;
-    float _e208 = rotation;
-    float _e210 = me.h;
-    imageStore(_group_0_binding_19_cs, ivec2(uvec2(slot, 2u)), vec4(float(_e206), _e208, half_height, _e210));
-    float _e215 = key;
-    imageStore(_group_0_binding_19_cs, ivec2(uvec2(slot, 3u)), vec4(_e215, 0.0, 0.0, 0.0));
+    float _e204 = me.precipitation;
+    float colour_level = (1.0 / (1.0 + (6.0 * max(_e204, 0.0))));
+    uint _e216 = tile;
+    float _e218 = rotation;
+    imageStore(_group_0_binding_19_cs, ivec2(uvec2(slot, 2u)), vec4(float(_e216), _e218, half_height, colour_level));
+    float _e223 = key;
+    imageStore(_group_0_binding_19_cs, ivec2(uvec2(slot, 3u)), vec4(_e223, 0.0, 0.0, 0.0));
     return;
 }
 

@@ -155,6 +155,7 @@ struct SpriteCandidate {
     texture_hash: f32,
     rotation_hash: f32,
     density: f32,
+    precipitation: f32,
 }
 
 // Sprite `s` of cell `c`: a fixed (hashed) place in the cell, the same every frame, at a
@@ -172,15 +173,15 @@ fn sprite_candidate(c: SpriteCell, level: u32, s: u32, counters: ptr<function, C
         let rel = sprite_rel(xz, alt);
         density = cloud_density(vec3<f32>(xz.x, rel.y, xz.y), alt, counters);
     }
-    return SpriteCandidate(xz, alt, h, u.w, v.x, v.y, density);
+    return SpriteCandidate(xz, alt, h, u.w, v.x, v.y, density, w.precipitation);
 }
 
 // One invocation per sprite; each evaluates its whole cell (16 density samples) for the
 // shading group's centre rather than share them through workgroup memory, whose WGSL zero
 // initialisation naga writes in HLSL as `(float4[16])0`, which glslang's HLSL front end
 // rejects. Writes four texels per sprite: row 0 (x, altitude, z, half width), row 1 (group
-// centre x, altitude, z; alpha, 0 = not drawn), row 2 (texture, rotation, half height, height
-// fraction), row 3 (sort key: 0 when not drawn, else 2^20 - quantised distance; far first).
+// centre x, altitude, z; alpha, 0 = not drawn), row 2 (texture, rotation, half height, colour
+// level), row 3 (sort key: 0 when not drawn, else 2^20 - quantised distance; far first).
 @compute @workgroup_size(64, 1, 1)
 fn sprite_build(@builtin(global_invocation_id) id: vec3<u32>) {
     let slot = id.x;
@@ -229,7 +230,10 @@ fn sprite_build(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     textureStore(sprites_out, vec2<u32>(slot, 0u), vec4<f32>(me.xz.x, me.alt, me.xz.y, half_width));
     textureStore(sprites_out, vec2<u32>(slot, 1u), vec4<f32>(centre, alpha));
-    textureStore(sprites_out, vec2<u32>(slot, 2u), vec4<f32>(f32(tile), rotation, half_height, me.h));
+    // Wang's artists pick darker colour levels for rain clouds; here the weather's
+    // precipitation picks them: a fifth of the brightness at precipitation 0.7 (storm).
+    let colour_level = 1.0 / (1.0 + 6.0 * max(me.precipitation, 0.0));
+    textureStore(sprites_out, vec2<u32>(slot, 2u), vec4<f32>(f32(tile), rotation, half_height, colour_level));
     textureStore(sprites_out, vec2<u32>(slot, 3u), vec4<f32>(key, 0.0, 0.0, 0.0));
 }
 
@@ -364,7 +368,7 @@ fn sprite_vertex(@builtin(vertex_index) index: u32) -> SpriteVertex {
     let day = saturate(sun.y * 4.0 + 0.3);
     let h = saturate((altitude_of(vertex + cam) - frame.atmosphere.y) / (frame.atmosphere.z - frame.atmosphere.y));
     let e = frame.sun_illuminance.rgb;
-    let light = e * (sprite_sky_level(h) * (SPRITE_SKY * day) + sprite_sun_level(cos_angle)) / PI;
+    let light = e * (sprite_sky_level(h) * (SPRITE_SKY * day) + sprite_sun_level(cos_angle)) * (c.w / PI);
     out.colour = vec4<f32>(light, b.w);
     out.distance = length(vertex);
     return out;

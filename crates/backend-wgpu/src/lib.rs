@@ -266,6 +266,17 @@ impl Renderer {
         self.timestamps
     }
 
+    /// Times every pass by submitting it alone and waiting for it on the CPU (`cpu-wall`),
+    /// as devices without timestamp queries do (as backend-ash's). On lavapipe a raster pass's
+    /// timestamps, and those of every pass after it on the device, are not exact.
+    pub fn set_cpu_wall_timing(&mut self, on: bool) {
+        self.timestamps = !on
+            && self
+                .device
+                .features()
+                .contains(wgpu::Features::TIMESTAMP_QUERY);
+    }
+
     /// GPU objects this renderer has created so far.
     pub fn objects_created(&self) -> u64 {
         self.created

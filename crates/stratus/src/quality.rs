@@ -184,6 +184,10 @@ pub struct Row {
     pub gpu_ms: f64,
     /// Median GPU time of each pass, ms.
     pub passes: BTreeMap<String, f64>,
+    /// How the times were taken: `gpu-timestamp`, or `cpu-wall` (each pass submitted alone
+    /// and waited for).
+    #[serde(default, skip_serializing_if = "String::is_empty")]
+    pub timing: String,
     /// `gpu_ms` over the preset configuration's.
     pub time_vs_preset: f64,
     /// View steps per pixel.
@@ -457,6 +461,7 @@ mod tests {
             config,
             gpu_ms,
             passes: BTreeMap::new(),
+            timing: String::new(),
             time_vs_preset: 1.0,
             view_steps_pp: 0.0,
             light_samples_pp: 0.0,

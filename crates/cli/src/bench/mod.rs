@@ -58,7 +58,7 @@ pub enum BenchBackend {
 /// Options of `stratus bench`.
 #[derive(Args, Debug)]
 pub struct BenchArgs {
-    /// The GPU backend to time.
+    /// The GPU backend to time (both draw the same bits).
     #[arg(long, value_enum, default_value_t = BenchBackend::Wgpu)]
     backend: BenchBackend,
     /// Comma-separated presets or `stress-thick` (default: cumulus-noon, sunset,
@@ -133,17 +133,28 @@ pub fn run(args: BenchArgs) -> Result<()> {
         .max(1);
     let mc_spp = args.mc_spp.unwrap_or(512).max(1);
     let validation = std::env::var_os("STRATUS_VALIDATION").is_some();
-    let mut renderer: Box<dyn Backend> = match args.backend {
-        BenchBackend::Wgpu => Box::new(stratus_backend_wgpu::Renderer::new(
-            stratus_backend_wgpu::Options {
-                api: stratus_backend_wgpu::Api::Vulkan,
-                validation,
-            },
-        )?),
-        BenchBackend::Ash => Box::new(stratus_backend_ash::Renderer::new(
-            stratus_backend_ash::Options { validation },
-        )?),
+    let backend = args.backend;
+    // `wall`: time every pass by submitting it alone and waiting (see `sweep::measure`).
+    let make = move |wall: bool| -> Result<Box<dyn Backend>> {
+        Ok(match backend {
+            BenchBackend::Wgpu => {
+                let mut r = stratus_backend_wgpu::Renderer::new(stratus_backend_wgpu::Options {
+                    api: stratus_backend_wgpu::Api::Vulkan,
+                    validation,
+                })?;
+                r.set_cpu_wall_timing(wall);
+                Box::new(r)
+            }
+            BenchBackend::Ash => {
+                let mut r = stratus_backend_ash::Renderer::new(stratus_backend_ash::Options {
+                    validation,
+                })?;
+                r.set_cpu_wall_timing(wall);
+                Box::new(r)
+            }
+        })
     };
+    let mut renderer = make(false)?;
     let device = renderer.describe();
     eprintln!(
         "bench on {device}: {w}x{h}, {repeats} repeats, references cached in {}",
@@ -177,6 +188,7 @@ pub fn run(args: BenchArgs) -> Result<()> {
 
     let mut rows = measure(
         renderer.as_mut(),
+        &make,
         &plan_scenes,
         MeasureSettings { repeats, mc_spp },
         &bar,
