@@ -6,6 +6,9 @@
 //!   `validate` and every test;
 //! - `conformance`: the cross-backend conformance suite alone (`tests/tests/conformance`),
 //!   which prints its results table and writes it as Markdown;
+//! - `export`: the engine kit (`stratus export-kit`) for other engines;
+//! - `web-test`: the kit's browser consumer (`web/`) in headless Chromium, against the goldens;
+//! - `web`: serve the interactive page with a fresh kit;
 //! - `mitsuba-check` (opt-in, not in CI): the CPU reference against Mitsuba 3 on a gridded
 //!   cloud (see [`mitsuba_check`]).
 
@@ -52,6 +55,22 @@ enum Task {
     /// Run only the conformance suite (scenes x execution paths); print its table and write
     /// it to <target>/conformance.md. `STRATUS_UPDATE_GOLDENS=1` rewrites tests/golden/.
     Conformance,
+    /// Write the engine kit (shaders, manifest and frame graph, uniform layout, noise textures,
+    /// golden images with their uniform bytes and frame plans, README) to a folder.
+    Export {
+        /// The kit's folder.
+        #[arg(long)]
+        out: PathBuf,
+    },
+    /// The browser path: export a kit, render its goldens in headless Chromium through
+    /// web/stratus-kit.js (Tint, SwiftShader), and compare each with its golden by FLIP.
+    WebTest,
+    /// Serve the interactive page (web/index.html) with a fresh kit on http://127.0.0.1:PORT.
+    Web {
+        /// The port.
+        #[arg(long, default_value_t = 8080)]
+        port: u16,
+    },
     /// Opt-in, not in CI (needs the network once): install Mitsuba 3 in a virtual environment
     /// under target/, export a gridded cloud with `stratus export-volume`, render it with
     /// Mitsuba and with the reference's path tracer, and compare block averages (single
@@ -88,6 +107,9 @@ fn main() -> ExitCode {
         Task::Validate { out } => validate(&out.unwrap_or_else(|| root.join("spirv-out"))),
         Task::Ci => ci(&root),
         Task::Conformance => conformance(&root),
+        Task::Export { out } => export(&root, &out),
+        Task::WebTest => web_test(&root).map(|_| ()),
+        Task::Web { port } => web(&root, port),
         Task::MitsubaCheck {
             reference_spp,
             mitsuba_spp,
@@ -369,11 +391,18 @@ const APT_PACKAGES: &[&str] = &[
     "libegl1",
     "libgl1-mesa-dri",
     "ffmpeg",
+    "chromium",
 ];
 
 fn missing_tools() -> Vec<String> {
     let mut missing = Vec::new();
-    for tool in ["spirv-val", "glslangValidator", "vulkaninfo", "ffmpeg"] {
+    for tool in [
+        "spirv-val",
+        "glslangValidator",
+        "vulkaninfo",
+        "ffmpeg",
+        "chromium",
+    ] {
         // ffmpeg takes -version, the others --version; both only need to start.
         if Command::new(tool).arg("--version").output().is_err() {
             missing.push(format!("`{tool}`"));
@@ -502,6 +531,11 @@ fn ci(root: &Path) -> Result<()> {
         build_shaders(root, &root.join("wgsl"), &root.join("spirv-out"), true)
     })?;
     step("validate", || validate(&root.join("spirv-out")))?;
+    // The browser path first: the conformance suite's `web-tint` column reads its results.
+    step("web-test", || web_test(root).map(|_| ()))?;
+    // ... and there a missing browser image fails the column instead of leaving it empty.
+    // SAFETY: xtask is single-threaded; the variable is set before any child is spawned.
+    unsafe { std::env::set_var("STRATUS_REQUIRE_WEB_TINT", "1") };
     step("cargo test", || cargo(root, &["test", "--workspace"]))?;
     println!("\nci: all steps passed in {:.0?}", t.elapsed());
     Ok(())
@@ -536,6 +570,155 @@ fn conformance(root: &Path) -> Result<()> {
         );
     }
     result
+}
+
+/// The target folder (`CARGO_TARGET_DIR` or `<root>/target`).
+fn target_dir(root: &Path) -> PathBuf {
+    std::env::var_os("CARGO_TARGET_DIR")
+        .map(PathBuf::from)
+        .map(|d| if d.is_absolute() { d } else { root.join(d) })
+        .unwrap_or_else(|| root.join("target"))
+}
+
+/// `cargo xtask export --out DIR`: `stratus export-kit` from this checkout.
+fn export(root: &Path, out: &Path) -> Result<()> {
+    let out = if out.is_absolute() {
+        out.to_path_buf()
+    } else {
+        std::env::current_dir()?.join(out)
+    };
+    let out = out.to_string_lossy().into_owned();
+    cargo(
+        root,
+        &[
+            "run",
+            "-q",
+            "-p",
+            "stratus-cli",
+            "--",
+            "export-kit",
+            "--out",
+            &out,
+        ],
+    )
+}
+
+/// Runs `node` with `args` in `web/`, failing with what to install when it cannot start.
+fn node(root: &Path, args: &[&str]) -> Result<()> {
+    let status = Command::new("node")
+        .args(args)
+        .current_dir(root.join("web"))
+        .status()
+        .context("running node (install Node.js 20 or later)")?;
+    if !status.success() {
+        bail!("`node {}` failed ({status})", args.join(" "));
+    }
+    Ok(())
+}
+
+/// The page's npm dependencies (playwright-core, pinned by web/package-lock.json).
+fn npm_ci(root: &Path) -> Result<()> {
+    if root.join("web/node_modules/playwright-core").exists() {
+        return Ok(());
+    }
+    let status = Command::new("npm")
+        .args(["ci", "--no-audit", "--no-fund"])
+        .current_dir(root.join("web"))
+        .status()
+        .context("running npm (install Node.js 20 or later, with npm)")?;
+    if !status.success() {
+        bail!("`npm ci` in web/ failed ({status})");
+    }
+    Ok(())
+}
+
+/// FLIP of the browser's image of each golden against the kit's golden image (Tint and
+/// SwiftShader against naga and lavapipe). Measured on the six presets: mean 2.10e-3 to
+/// 9.61e-3, p99 up to 5.70e-2 (inside-layer): the CPU reference's pattern and size (both
+/// filter textures at full precision where lavapipe quantises the weights). The same bounds as
+/// the conformance suite's for the CPU and for this path (`web-tint`).
+const WEB_TINT_FLIP_MEAN: f64 = 2e-2;
+/// See [`WEB_TINT_FLIP_MEAN`].
+const WEB_TINT_FLIP_P99: f64 = 8e-2;
+
+/// `cargo xtask web-test`: returns each golden's FLIP mean.
+fn web_test(root: &Path) -> Result<Vec<(String, f64)>> {
+    let t = Instant::now();
+    npm_ci(root)?;
+    let target = target_dir(root);
+    let kit = target.join("kit");
+    let out = target.join("web-test");
+    let _ = std::fs::remove_dir_all(&out);
+    export(root, &kit)?;
+    let (kit_s, out_s) = (
+        kit.to_string_lossy().into_owned(),
+        out.to_string_lossy().into_owned(),
+    );
+    node(root, &["test/run.mjs", "--kit", &kit_s, "--out", &out_s])?;
+    let index: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(kit.join("kit.json"))?)?;
+    let results: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("results.json"))?)?;
+    let goldens = index["goldens"]
+        .as_array()
+        .context("kit.json: no goldens")?;
+    let mut flips = Vec::new();
+    let mut problems = Vec::new();
+    println!("web-tint ({}):", results["adapter"]);
+    for g in goldens {
+        let name = g["name"].as_str().context("a golden without a name")?;
+        let golden = stratus_compare::Image::load(&kit.join(g["image"].as_str().unwrap_or("")))?;
+        let web = stratus_compare::Image::load(&out.join(format!("{name}.png")))?;
+        let r =
+            stratus_compare::compare(&golden, &web, &stratus_compare::CompareOptions::default())?;
+        println!(
+            "  {name:24} FLIP mean {:.2e}  p99 {:.2e}  max {:.3}",
+            r.flip.mean, r.flip.p99, r.flip.max
+        );
+        if !(r.flip.mean <= WEB_TINT_FLIP_MEAN && r.flip.p99 <= WEB_TINT_FLIP_P99) {
+            problems.push(format!(
+                "{name}: FLIP mean {:.2e} (bound {WEB_TINT_FLIP_MEAN:.0e}), p99 {:.2e} (bound {WEB_TINT_FLIP_P99:.0e})",
+                r.flip.mean, r.flip.p99
+            ));
+        }
+        flips.push((name.to_string(), r.flip.mean));
+    }
+    let summary = serde_json::json!({
+        "adapter": results["adapter"],
+        "bound_flip_mean": WEB_TINT_FLIP_MEAN,
+        "goldens": flips.iter().map(|(n, f)| serde_json::json!({"name": n, "flip_mean": f})).collect::<Vec<_>>(),
+        "problems": problems,
+    });
+    std::fs::write(
+        target.join("web-tint.json"),
+        serde_json::to_string_pretty(&summary)? + "\n",
+    )?;
+    println!(
+        "web-test: {} goldens in {:.0?}; results in {}",
+        flips.len(),
+        t.elapsed(),
+        target.join("web-tint.json").display()
+    );
+    if !problems.is_empty() {
+        bail!("web-tint: {}", problems.join("; "));
+    }
+    Ok(flips)
+}
+
+/// `cargo xtask web`: a fresh kit under target/kit, and the page served with it.
+fn web(root: &Path, port: u16) -> Result<()> {
+    let kit = target_dir(root).join("kit");
+    export(root, &kit)?;
+    node(
+        root,
+        &[
+            "test/server.mjs",
+            "--kit",
+            &kit.to_string_lossy(),
+            "--port",
+            &port.to_string(),
+        ],
+    )
 }
 
 /// The Mitsuba version `mitsuba-check` installs.

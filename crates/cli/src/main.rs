@@ -5,6 +5,7 @@ mod bench;
 mod compare;
 mod export;
 mod fit;
+mod kit;
 mod output;
 mod render;
 mod scene_io;
@@ -46,6 +47,10 @@ enum Command {
     /// Sample the scene's cloud density on a grid and write it as a Mitsuba 3 `.vol` file
     /// (with the flat, single-lobe setup `cargo xtask mitsuba-check` renders).
     ExportVolume(export::ExportArgs),
+    /// Write the engine kit: WGSL and its SPIR-V/GLSL/HLSL/MSL, the manifest and frame graph,
+    /// the uniform layout (C header, JSON), the noise textures (DDS, raw) and golden images with
+    /// their uniform bytes and resolved frame plans, with a README for integrators.
+    ExportKit(kit::KitArgs),
     /// Validate the embedded WGSL with naga and list its modules, variants and entry points.
     Shaders,
 }
@@ -72,6 +77,7 @@ fn main() -> ExitCode {
         Command::Scene(SceneCommand::Check { file }) => scene_check(&file),
         Command::Shaders => shaders(),
         Command::ExportVolume(args) => export::run(args),
+        Command::ExportKit(args) => kit::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -148,6 +148,65 @@ fn interleaved(
     out
 }
 
+/// Set (by `cargo xtask ci`, after `cargo xtask web-test`) to fail the web-tint cells of the
+/// presets when their browser images are missing instead of leaving them not executed.
+const REQUIRE_WEB_TINT: &str = "STRATUS_REQUIRE_WEB_TINT";
+
+/// The web-tint cell of scene `name`: `cargo xtask web-test`'s image of the kit's golden of
+/// that name (`<target>/web-test/<name>.png`) against wgpu-vulkan's display image. The kit
+/// holds the presets at the suite's size; other scenes, and runs without web-test's images
+/// (a plain `cargo test`), are not executed.
+fn web_tint(name: &str, reference: Option<&FrameOutput>) -> Cell {
+    let image = report::target_dir()
+        .join("web-test")
+        .join(format!("{name}.png"));
+    let Some(reference) = reference else {
+        return Cell::default();
+    };
+    if !image.exists() {
+        // `cargo xtask ci` runs web-test first and sets this: there a missing image fails.
+        if std::env::var_os(REQUIRE_WEB_TINT).is_some() && scenes::is_preset(name) {
+            return Cell {
+                problems: vec![format!("{} is missing", image.display())],
+                ..Default::default()
+            };
+        }
+        return Cell {
+            not_executed: Some(if scenes::is_preset(name) {
+                "no image: run `cargo xtask web-test` first"
+            } else {
+                "not in the kit (presets only)"
+            }),
+            ..Default::default()
+        };
+    }
+    let mut cell = Cell::default();
+    match stratus_compare::Image::load(&image) {
+        Ok(web) => match stratus_compare::compare(
+            &stratus_compare::Image::from_frame_display(reference),
+            &web,
+            &stratus_compare::CompareOptions::default(),
+        ) {
+            Ok(d) => {
+                let m = report::Metrics {
+                    flip_mean: d.flip.mean,
+                    flip_p99: d.flip.p99,
+                    max_abs: f64::NAN,
+                    rmse: f64::NAN,
+                    worst: "display image only".into(),
+                };
+                if let Some(t) = report::thresholds(Path::WebTint, name) {
+                    cell.problems.extend(t.check(&m));
+                }
+                cell.metrics = Some(m);
+            }
+            Err(e) => cell.problems.push(format!("{}: {e}", image.display())),
+        },
+        Err(e) => cell.problems.push(format!("{}: {e}", image.display())),
+    }
+    cell
+}
+
 /// Everything measured on one scene.
 pub struct SceneResult {
     pub name: String,
@@ -411,6 +470,7 @@ impl SceneResult {
             }
             cells.insert(path, cell);
         }
+        cells.insert(Path::WebTint, web_tint(name, reference.as_ref()));
         cells.insert(
             Path::Msl,
             Cell {
@@ -536,6 +596,11 @@ fn cpu_is_within_its_bounds_of_wgpu_vulkan() {
 }
 
 #[test]
+fn web_tint_is_within_its_bounds_of_wgpu_vulkan() {
+    assert_path(Path::WebTint);
+}
+
+#[test]
 fn a_moving_temporal_sequence_agrees_on_every_path() {
     let problems: Vec<String> = run()
         .sequence
@@ -619,8 +684,11 @@ fn summary(s: &SceneResult) -> serde_json::Value {
                 sig(cloud as f64 / f64::from(f.width * f.height)),
         })
     });
+    // web-tint is left out: whether it ran depends on `cargo xtask web-test` having run first,
+    // and it times nothing per pass.
     let timings: serde_json::Map<String, serde_json::Value> = Path::ALL
         .iter()
+        .filter(|p| **p != Path::WebTint)
         .filter_map(|p| {
             let cell = &s.cells[p];
             if cell.not_executed.is_some() {
@@ -642,6 +710,7 @@ fn summary(s: &SceneResult) -> serde_json::Value {
         "timings": timings,
         "not_executed": Path::ALL
             .iter()
+            .filter(|p| **p != Path::WebTint)
             .filter_map(|p| s.cells[p].not_executed.map(|why| format!("{}: {why}", p.label())))
             .collect::<Vec<_>>(),
     })
@@ -683,7 +752,7 @@ fn every_scene_matches_its_snapshot() {
         let always = always(stratus_graph::PlanOptions::of(&case.scene));
         // Every pass present, in plan order, with a positive time, on every executed path.
         for (p, cell) in &s.cells {
-            if cell.not_executed.is_some() {
+            if cell.not_executed.is_some() || *p == Path::WebTint {
                 continue;
             }
             let passes: Vec<&str> = cell

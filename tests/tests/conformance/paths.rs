@@ -25,19 +25,24 @@ pub enum Path {
     AshHlsl,
     /// 6. The CPU reference (quadrature at the scene's real-time settings).
     Cpu,
+    /// 7. The engine kit in headless Chromium (Tint compiling the WGSL, SwiftShader running
+    ///    it, web/stratus-kit.js running the plan): `cargo xtask web-test` renders, the suite
+    ///    reads its images.
+    WebTint,
     /// naga's MSL: pinned by a snapshot, not executed (no Metal runtime here).
     Msl,
 }
 
 impl Path {
     /// Every path, in table order.
-    pub const ALL: [Path; 7] = [
+    pub const ALL: [Path; 8] = [
         Path::WgpuVulkan,
         Path::AshSpv,
         Path::WgpuGl,
         Path::AshGlsl,
         Path::AshHlsl,
         Path::Cpu,
+        Path::WebTint,
         Path::Msl,
     ];
 
@@ -50,6 +55,7 @@ impl Path {
             Path::AshGlsl => "ash-glsl",
             Path::AshHlsl => "ash-hlsl",
             Path::Cpu => "cpu",
+            Path::WebTint => "web-tint",
             Path::Msl => "msl",
         }
     }
@@ -65,6 +71,9 @@ impl Path {
                 "ash, naga's HLSL from spirv-out/ compiled by glslangValidator -D -V -e <entry> (HLSL front end), legalized by spirv-opt --legalize-hlsl"
             }
             Path::Cpu => "the CPU reference, quadrature at the scene's real-time settings",
+            Path::WebTint => {
+                "the engine kit in headless Chromium: Tint compiles the WGSL, SwiftShader runs it, web/stratus-kit.js runs the plan (`cargo xtask web-test`, which `cargo xtask ci` runs before the suite; display image only, the kit's presets)"
+            }
             Path::Msl => "naga's MSL: pinned by a snapshot, not executed (no Metal runtime here)",
         }
     }
@@ -260,6 +269,7 @@ impl Renderers {
                     .map_err(|e| e.to_string())
             }
             Path::Msl => Err("MSL is not executed here (no Metal runtime)".into()),
+            Path::WebTint => Err("web-tint renders in the browser (`cargo xtask web-test`)".into()),
         }
     }
 

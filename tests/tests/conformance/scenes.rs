@@ -30,6 +30,11 @@ fn stress(name: &str, about: &'static str, edit: impl FnOnce(&mut Scene)) -> Cas
     }
 }
 
+/// Whether the suite's scene `name` is a preset (the engine kit's goldens are the presets).
+pub fn is_preset(name: &str) -> bool {
+    stratus_scene::presets().iter().any(|p| p.name == name)
+}
+
 /// Every preset, then the stress variants. Each scene is validated.
 pub fn all() -> Vec<Case> {
     let mut cases: Vec<Case> = stratus_scene::presets()

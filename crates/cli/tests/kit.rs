@@ -1,0 +1,95 @@
+//! `stratus export-kit` as an integrator meets it: every file the kit's README promises, with
+//! contents that could be wrong (sizes, magic numbers, the plan of the golden).
+
+use std::{path::Path, process::Command};
+
+#[test]
+fn the_kit_holds_what_its_readme_promises() {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("kit");
+    let _ = std::fs::remove_dir_all(&dir);
+    let out = Command::new(env!("CARGO_BIN_EXE_stratus"))
+        .args([
+            "export-kit",
+            "--scenes",
+            "cumulus-noon",
+            "--size",
+            "32x18",
+            "--out",
+        ])
+        .arg(&dir)
+        .env("XDG_RUNTIME_DIR", std::env::temp_dir())
+        .output()
+        .expect("running stratus");
+    assert!(
+        out.status.success(),
+        "{}{}",
+        String::from_utf8_lossy(&out.stdout),
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let read = |p: &str| std::fs::read(dir.join(p)).unwrap_or_else(|e| panic!("{p}: {e}"));
+    let json = |p: &str| -> serde_json::Value {
+        serde_json::from_slice(&read(p)).unwrap_or_else(|e| panic!("{p}: {e}"))
+    };
+
+    let kit = json("kit.json");
+    assert_eq!(kit["kit_version"], 1);
+    let golden = &kit["goldens"][0];
+    assert_eq!(golden["name"], "cumulus-noon");
+    assert_eq!(golden["size"], serde_json::json!([32, 18]));
+
+    // The uniform block: 26 vec4s, as the header and the JSON say.
+    assert_eq!(read(golden["uniforms"].as_str().unwrap()).len(), 416);
+    let header = String::from_utf8(read("uniforms.h")).unwrap();
+    assert!(header.contains("float camera_position[4];") && header.contains("== 416"));
+    assert_eq!(
+        json("uniforms.json")["members"].as_array().unwrap().len(),
+        26
+    );
+
+    // The plan: the march and the composite, dispatched over the golden's size, then the
+    // present pass that runs only into a host's target.
+    let plan = json(golden["plan"].as_str().unwrap());
+    let passes: Vec<&str> = plan["passes"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|p| p["name"].as_str().unwrap())
+        .collect();
+    assert_eq!(passes, ["march", "composite", "present"]);
+    assert_eq!(plan["passes"][2]["when"], "present");
+    assert!(plan["passes"][1]["when"].is_null());
+    assert_eq!(plan["passes"][0]["dispatch"], serde_json::json!([4, 3, 1]));
+    assert_eq!(plan["passes"][0]["overrides"]["DETAIL"], 1.0);
+
+    // The image, the WGSL, the translations and the manifest with the graph.
+    let png = image::open(dir.join(golden["image"].as_str().unwrap())).unwrap();
+    assert_eq!((png.width(), png.height()), (32, 18));
+    assert!(
+        String::from_utf8(read("wgsl/clouds.wgsl"))
+            .unwrap()
+            .contains("fn march(")
+    );
+    assert!(read("shaders/clouds.full.spv").starts_with(&[0x03, 0x02, 0x23, 0x07]));
+    assert!(json("manifest.json")["graph"]["pass"].is_array());
+    assert!(
+        String::from_utf8(read("README.md"))
+            .unwrap()
+            .contains("Running a frame")
+    );
+
+    // Noise: DDS (magic, and a volume's depth) and raw bytes of the same size.
+    let set = kit["noise"][0]["textures"]["noise.shape"].clone();
+    let dds = read(set["dds"].as_str().unwrap());
+    let raw = read(set["raw"].as_str().unwrap());
+    assert_eq!(&dds[..4], b"DDS ");
+    let size: Vec<u64> = set["size"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| v.as_u64().unwrap())
+        .collect();
+    assert_eq!(raw.len() as u64, size.iter().product::<u64>() * 4);
+    let depth = u32::from_le_bytes(dds[24..28].try_into().unwrap());
+    assert_eq!(u64::from(depth), size[2]);
+    assert!(dds.ends_with(&raw), "the DDS holds the raw texels");
+}
