@@ -9,6 +9,7 @@
 //! - `export`: the engine kit (`stratus export-kit`) for other engines;
 //! - `web-test`: the kit's browser consumer (`web/`) in headless Chromium, against the goldens;
 //! - `web`: serve the interactive page with a fresh kit;
+//! - `fuzz`: replay the fuzz regressions, then fuzz every cargo-fuzz target for N seconds;
 //! - `mitsuba-check` (opt-in, not in CI): the CPU reference against Mitsuba 3 on a gridded
 //!   cloud (see [`mitsuba_check`]).
 
@@ -71,6 +72,13 @@ enum Task {
         #[arg(long, default_value_t = 8080)]
         port: u16,
     },
+    /// Replay fuzz/regressions, then fuzz every target (scene TOML, WGSL, PNG, EXR) for N
+    /// seconds each with cargo-fuzz (installed on first use); prints the runs.
+    Fuzz {
+        /// Seconds per target.
+        #[arg(long, default_value_t = 60)]
+        seconds: u32,
+    },
     /// Opt-in, not in CI (needs the network once): install Mitsuba 3 in a virtual environment
     /// under target/, export a gridded cloud with `stratus export-volume`, render it with
     /// Mitsuba and with the reference's path tracer, and compare block averages (single
@@ -110,6 +118,7 @@ fn main() -> ExitCode {
         Task::Export { out } => export(&root, &out),
         Task::WebTest => web_test(&root).map(|_| ()),
         Task::Web { port } => web(&root, port),
+        Task::Fuzz { seconds } => fuzz(&root, seconds),
         Task::MitsubaCheck {
             reference_spp,
             mitsuba_spp,
@@ -533,6 +542,7 @@ fn ci(root: &Path) -> Result<()> {
     step("validate", || validate(&root.join("spirv-out")))?;
     // The browser path first: the conformance suite's `web-tint` column reads its results.
     step("web-test", || web_test(root).map(|_| ()))?;
+    step("fuzz (10 s a target)", || fuzz(root, 10))?;
     // ... and there a missing browser image fails the column instead of leaving it empty.
     // SAFETY: xtask is single-threaded; the variable is set before any child is spawned.
     unsafe { std::env::set_var("STRATUS_REQUIRE_WEB_TINT", "1") };
@@ -719,6 +729,92 @@ fn web(root: &Path, port: u16) -> Result<()> {
             &port.to_string(),
         ],
     )
+}
+
+/// The cargo-fuzz targets (fuzz/Cargo.toml).
+const FUZZ_TARGETS: [&str; 4] = ["scene_toml", "wgsl", "image_png", "image_exr"];
+
+/// `cargo xtask fuzz --seconds N`.
+fn fuzz(root: &Path, seconds: u32) -> Result<()> {
+    let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
+    let have = Command::new(&cargo)
+        .args(["fuzz", "--version"])
+        .output()
+        .is_ok_and(|o| o.status.success());
+    if !have {
+        println!("installing cargo-fuzz (once)");
+        let status = Command::new(&cargo)
+            .args(["install", "cargo-fuzz", "--locked"])
+            .status()
+            .context("running cargo install cargo-fuzz")?;
+        if !status.success() {
+            bail!("`cargo install cargo-fuzz --locked` failed ({status})");
+        }
+    }
+    let mut rows = Vec::new();
+    for target in FUZZ_TARGETS {
+        // Inputs that once crashed, each run once; then N seconds of fuzzing.
+        let regressions = root.join("fuzz/regressions").join(target);
+        let mut inputs: Vec<PathBuf> = std::fs::read_dir(&regressions)
+            .map(|d| d.flatten().map(|e| e.path()).collect())
+            .unwrap_or_default();
+        inputs.sort();
+        let mut runs = vec![Vec::new()];
+        if !inputs.is_empty() {
+            runs.insert(
+                0,
+                inputs
+                    .iter()
+                    .map(|p| p.to_string_lossy().into_owned())
+                    .collect(),
+            );
+        }
+        let mut done = String::new();
+        for extra in runs {
+            let fuzzing = extra.is_empty();
+            let mut cmd = Command::new(&cargo);
+            cmd.current_dir(root)
+                .args(["fuzz", "run", "--fuzz-dir", "fuzz", "-s", "none", target]);
+            cmd.args(&extra);
+            cmd.arg("--");
+            if fuzzing {
+                cmd.arg(format!("-max_total_time={seconds}"));
+            }
+            let out = cmd
+                .output()
+                .with_context(|| format!("running cargo fuzz run {target}"))?;
+            let text = format!(
+                "{}{}",
+                String::from_utf8_lossy(&out.stdout),
+                String::from_utf8_lossy(&out.stderr)
+            );
+            if !out.status.success() {
+                eprintln!("{text}");
+                bail!(
+                    "fuzz target {target} crashed ({}); its input is in fuzz/artifacts/{target}/",
+                    if fuzzing {
+                        "fuzzing"
+                    } else {
+                        "replaying fuzz/regressions"
+                    }
+                );
+            }
+            if fuzzing {
+                done = text
+                    .lines()
+                    .find(|l| l.starts_with("Done "))
+                    .unwrap_or("Done (no summary)")
+                    .to_string();
+            }
+        }
+        println!(
+            "fuzz {target:12} {} regression input(s) replayed; {done}; 0 crashes",
+            inputs.len()
+        );
+        rows.push(target);
+    }
+    println!("fuzz: {} targets, no crash", rows.len());
+    Ok(())
 }
 
 /// The Mitsuba version `mitsuba-check` installs.

@@ -9,6 +9,7 @@ mod kit;
 mod output;
 mod render;
 mod scene_io;
+mod soak;
 
 use std::{path::PathBuf, process::ExitCode};
 
@@ -51,6 +52,9 @@ enum Command {
     /// the uniform layout (C header, JSON), the noise textures (DDS, raw) and golden images with
     /// their uniform bytes and resolved frame plans, with a README for integrators.
     ExportKit(kit::KitArgs),
+    /// Many frames of one renderer on a looping camera path: counts non-finite values, and
+    /// reports memory, GPU objects created after the first frame and drift after a stop.
+    Soak(soak::SoakArgs),
     /// Validate the embedded WGSL with naga and list its modules, variants and entry points.
     Shaders,
 }
@@ -78,6 +82,7 @@ fn main() -> ExitCode {
         Command::Shaders => shaders(),
         Command::ExportVolume(args) => export::run(args),
         Command::ExportKit(args) => kit::run(args),
+        Command::Soak(args) => soak::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -37,6 +37,15 @@ pub enum Encoding {
     Display,
 }
 
+/// The file formats [`Image::decode`] reads.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FileKind {
+    /// PNG (8 or 16 bits): a display image.
+    Png,
+    /// OpenEXR (its RGBA layer): a linear image.
+    Exr,
+}
+
 /// An RGBA image of f32 values, row-major from the top left.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Image {
@@ -121,13 +130,29 @@ impl Image {
             .extension()
             .and_then(|e| e.to_str())
             .map(str::to_ascii_lowercase);
-        let err = |message: String| CompareError::Read {
+        let kind = match ext.as_deref() {
+            Some("png") => FileKind::Png,
+            Some("exr") => FileKind::Exr,
+            _ => return Err(CompareError::UnknownType(path.display().to_string())),
+        };
+        let bytes = std::fs::read(path).map_err(|e| CompareError::Read {
             path: path.display().to_string(),
+            message: e.to_string(),
+        })?;
+        Self::decode(&bytes, kind, &path.display().to_string())
+    }
+
+    /// Decodes a PNG (as a display image) or an OpenEXR file (its RGBA layer, as a linear
+    /// image) held in memory; `name` names it in errors.
+    pub fn decode(bytes: &[u8], kind: FileKind, name: &str) -> Result<Self, CompareError> {
+        let err = |message: String| CompareError::Read {
+            path: name.to_string(),
             message,
         };
-        match ext.as_deref() {
-            Some("png") => {
-                let img = image::open(path).map_err(|e| err(e.to_string()))?;
+        match kind {
+            FileKind::Png => {
+                let img = image::load_from_memory_with_format(bytes, image::ImageFormat::Png)
+                    .map_err(|e| err(e.to_string()))?;
                 let rgba = img.to_rgba32f();
                 Ok(Self {
                     width: rgba.width(),
@@ -136,22 +161,29 @@ impl Image {
                     encoding: Encoding::Display,
                 })
             }
-            Some("exr") => {
+            FileKind::Exr => {
                 use exr::prelude::*;
-                let image = read_first_rgba_layer_from_file(
-                    path,
-                    |resolution, _| {
-                        (
-                            resolution.width(),
-                            vec![0f32; 4 * resolution.width() * resolution.height()],
-                        )
-                    },
-                    |(w, data), pos, (r, g, b, a): (f32, f32, f32, f32)| {
-                        let i = 4 * (pos.y() * *w + pos.x());
-                        data[i..i + 4].copy_from_slice(&[r, g, b, a]);
-                    },
-                )
-                .map_err(|e| err(e.to_string()))?;
+                let image = read()
+                    .no_deep_data()
+                    .largest_resolution_level()
+                    .rgba_channels(
+                        |resolution, _| {
+                            (
+                                resolution.width(),
+                                vec![0f32; 4 * resolution.width() * resolution.height()],
+                            )
+                        },
+                        |(w, data): &mut (usize, Vec<f32>),
+                         pos: Vec2<usize>,
+                         (r, g, b, a): (f32, f32, f32, f32)| {
+                            let i = 4 * (pos.y() * *w + pos.x());
+                            data[i..i + 4].copy_from_slice(&[r, g, b, a]);
+                        },
+                    )
+                    .first_valid_layer()
+                    .all_attributes()
+                    .from_buffered(std::io::Cursor::new(bytes))
+                    .map_err(|e| err(e.to_string()))?;
                 let size = image.layer_data.size;
                 let (_, data) = image.layer_data.channel_data.pixels;
                 Ok(Self::from_linear_rgba(
@@ -160,7 +192,6 @@ impl Image {
                     data,
                 ))
             }
-            _ => Err(CompareError::UnknownType(path.display().to_string())),
         }
     }
 
