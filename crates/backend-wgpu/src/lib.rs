@@ -78,6 +78,9 @@ pub enum Error {
     /// The shaders, graph or plan are unusable, or a frame asks for what the plan lacks.
     #[error("{0}")]
     Shader(String),
+    /// The frame needs more than the device allows (found before allocating anything).
+    #[error("{0}")]
+    Limit(String),
 }
 
 /// A pipeline of one pass of one variant, with its bind group layout.
@@ -487,6 +490,9 @@ impl Renderer {
         target_format: Option<wgpu::TextureFormat>,
     ) -> Result<(), Error> {
         let plan = frame.plan;
+        if self.plan.as_ref() != Some(plan) {
+            self.check_limits(plan)?;
+        }
         let noise_changed = !self
             .noise
             .as_ref()
@@ -1093,6 +1099,41 @@ impl Renderer {
         Ok(out)
     }
 
+    /// Every texture of `plan` within the device's dimension limits, and every output's
+    /// read-back within its buffer size limit: a clear error before anything is allocated
+    /// (wgpu would otherwise hand back an invalid, empty buffer).
+    fn check_limits(&self, plan: &FramePlan) -> Result<(), Error> {
+        let limits = self.device.limits();
+        let gib = |b: u64| b as f64 / f64::from(1u32 << 30);
+        for r in &plan.resources {
+            let (Some([w, h, d]), Some(format)) = (r.extent, r.format) else {
+                continue;
+            };
+            let (max, what) = if r.dimension == stratus_graph::manifest::Dimension::D3 {
+                (limits.max_texture_dimension_3d, "max_texture_dimension_3d")
+            } else {
+                (limits.max_texture_dimension_2d, "max_texture_dimension_2d")
+            };
+            if w.max(h).max(d) > max {
+                return Err(Error::Limit(format!(
+                    "`{}` would be {w}x{h}x{d} texels; this device allows at most {max} a side ({what}): render a smaller image",
+                    r.name
+                )));
+            }
+            let bytes = u64::from(w) * u64::from(h) * u64::from(d) * u64::from(format.texel_size());
+            if r.output.is_some() && bytes > limits.max_buffer_size {
+                return Err(Error::Limit(format!(
+                    "reading back `{}` ({w}x{h} {}) needs a {:.1} GiB buffer; this device allows at most {:.1} GiB (max_buffer_size): render a smaller image",
+                    r.name,
+                    format.wgsl(),
+                    gib(bytes),
+                    gib(limits.max_buffer_size)
+                )));
+            }
+        }
+        Ok(())
+    }
+
     fn readback_buffer(&mut self, name: &str, size: u64) -> wgpu::Buffer {
         if let Some(b) = self.readbacks.get(name)
             && b.size() == size
@@ -1181,6 +1222,19 @@ fn read_buffer(
     let data = slice
         .get_mapped_range()
         .map_err(|e| Error::Wgpu(e.to_string()))?;
+    // An invalid buffer (one wgpu could not create) maps as empty: say so, never index it.
+    let needed = match rows {
+        Some((padded, row, h)) => {
+            u64::from(padded) * u64::from(h.saturating_sub(1)) + u64::from(row)
+        }
+        None => 0,
+    };
+    if (data.len() as u64) < needed {
+        return Err(Error::Wgpu(format!(
+            "a read-back buffer mapped {} bytes of the {needed} it should hold (the device could not create it)",
+            data.len()
+        )));
+    }
     let out = match rows {
         Some((padded, row, h)) => (0..h)
             .flat_map(|y| {

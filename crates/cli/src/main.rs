@@ -70,6 +70,7 @@ enum SceneCommand {
 
 fn main() -> ExitCode {
     quiet_headless_wsi();
+    exit_quietly_on_closed_pipe();
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Render(args) => render::run(args),
@@ -90,6 +91,16 @@ fn main() -> ExitCode {
             eprintln!("error: {e:#}");
             ExitCode::FAILURE
         }
+    }
+}
+
+/// `stratus compare a b | head -1` closes the pipe early: end quietly, as other command-line
+/// tools do, rather than panic in `println!` (Rust ignores SIGPIPE and makes the write fail).
+fn exit_quietly_on_closed_pipe() {
+    #[cfg(unix)]
+    // SAFETY: restores the default disposition of one signal, first thing in main.
+    unsafe {
+        libc::signal(libc::SIGPIPE, libc::SIG_DFL);
     }
 }
 
