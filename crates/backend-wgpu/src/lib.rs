@@ -190,6 +190,18 @@ impl Renderer {
                 },
             })?;
         let info = adapter.get_info();
+        // Every frame is compute passes: a device without them (NVIDIA's EGL gives wgpu a GL
+        // context without compute shaders) is refused here, by name, so that `auto` moves on.
+        if !adapter
+            .get_downlevel_capabilities()
+            .flags
+            .contains(wgpu::DownlevelFlags::COMPUTE_SHADERS)
+        {
+            return Err(Error::Device {
+                adapter: describe(&info),
+                message: "it has no compute shaders, which every Stratus frame needs (GL needs 4.3 or GLES 3.1; use the Vulkan backend)".into(),
+            });
+        }
         let mut required_features = wgpu::Features::empty();
         if adapter.features().contains(wgpu::Features::TIMESTAMP_QUERY) {
             required_features |= wgpu::Features::TIMESTAMP_QUERY;

@@ -203,16 +203,16 @@ pub fn open_realtime(backend: Backend, progress: bool) -> Result<Box<dyn stratus
         ),
         Backend::Auto => match wgpu(backend_wgpu::Api::Vulkan) {
             Ok(r) => Box::new(r),
-            Err(_) => match wgpu(backend_wgpu::Api::Gl) {
+            Err(vulkan) => match wgpu(backend_wgpu::Api::Gl) {
                 Ok(r) => {
                     eprintln!(
-                        "note: no Vulkan device; using wgpu's GL backend (install mesa-vulkan-drivers for a Vulkan device)"
+                        "note: no usable Vulkan device ({vulkan}); using wgpu's GL backend (install mesa-vulkan-drivers for a Vulkan device)"
                     );
                     Box::new(r)
                 }
-                Err(_) => {
+                Err(gl) => {
                     eprintln!(
-                        "note: no Vulkan or GL device; rendering on the CPU (install mesa-vulkan-drivers for a Vulkan device)"
+                        "note: no usable Vulkan device ({vulkan}) or GL device ({gl}); rendering on the CPU (install mesa-vulkan-drivers for a Vulkan device)"
                     );
                     Box::new(cpu_realtime(progress))
                 }
