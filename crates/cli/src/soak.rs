@@ -38,6 +38,52 @@ pub struct SoakArgs {
     /// the still it is compared with.
     #[arg(long, default_value_t = 32)]
     settle: u32,
+    /// Instead of the loop: create a renderer, render one 16x9 frame and drop it, N times, and
+    /// report the RSS growth (leaks of device, resources or pipelines show there).
+    #[arg(long, value_name = "N")]
+    cycles: Option<u32>,
+}
+
+/// `--cycles N`: renderers created and dropped, RSS after the first few and at the end.
+fn cycles(args: &SoakArgs, n: u32) -> Result<()> {
+    let (scene, name) = load_scene(Some(&args.preset), None, Some((16, 9)))?;
+    let noise = Arc::new(stratus::noise_for(&scene));
+    let plan = FramePlan::for_scene(&scene, false)?;
+    // The allocator and the driver settle over the first cycles; measure from the tenth.
+    let warm = n.min(10);
+    let mut rss_warm = None;
+    let mut nan = 0;
+    for i in 0..n {
+        let mut r = open_realtime(args.backend, false)?;
+        let f = r
+            .render(&FrameInput::new(&plan, &scene, &noise).with_readback(Readback::output()))
+            .map_err(|e| anyhow::anyhow!("cycle {i}: {e}"))?;
+        nan += non_finite(&f);
+        drop(r);
+        if i + 1 == warm {
+            rss_warm = rss();
+        }
+    }
+    let rss_end = rss();
+    let per = match (rss_warm, rss_end) {
+        (Some(a), Some(b)) if n > warm => format!(
+            " ({:+.1} KiB a cycle over the last {})",
+            (b as f64 - a as f64) / 1024.0 / f64::from(n - warm),
+            n - warm
+        ),
+        _ => String::new(),
+    };
+    println!("cycles: {n} renderers created, used for one frame of {name} and dropped");
+    println!("non-finite values: {nan}");
+    println!(
+        "RSS: {} after {warm} cycles, {} after {n}{per}",
+        mib(rss_warm),
+        mib(rss_end)
+    );
+    if nan > 0 {
+        bail!("{nan} non-finite values");
+    }
+    Ok(())
 }
 
 /// The loop's camera: a circle of 2 km radius around the preset's position, once around every
@@ -100,6 +146,9 @@ pub fn run(args: SoakArgs) -> Result<()> {
         bail!(
             "--backend reference renders stills only; soak a real-time renderer (cpu, wgpu, wgpu-gl, ash or auto)"
         );
+    }
+    if let Some(n) = args.cycles {
+        return cycles(&args, n);
     }
     let (mut base, name) = load_scene(Some(&args.preset), None, Some(args.size))?;
     base.quality.temporal = args.temporal;
