@@ -3,7 +3,7 @@
 //! - `build-shaders`: validate `wgsl/` with naga and write `spirv-out/` (or `--check` it);
 //! - `validate`: run the external validators over `spirv-out/`;
 //! - `ci`: install missing system tools, then fmt, clippy, `build-shaders --check`,
-//!   `validate` and every test;
+//!   `validate`, `web-test`, `fuzz` (10 s a target) and every test;
 //! - `conformance`: the cross-backend conformance suite alone (`tests/tests/conformance`),
 //!   which prints its results table and writes it as Markdown;
 //! - `export`: the engine kit (`stratus export-kit`) for other engines;
@@ -51,7 +51,8 @@ enum Task {
         #[arg(long)]
         out: Option<PathBuf>,
     },
-    /// Everything CI runs: tools, fmt, clippy, build-shaders --check, validate, tests.
+    /// Everything CI runs: tools, fmt, clippy, build-shaders --check, validate, web-test,
+    /// fuzz (10 s a target), tests.
     Ci,
     /// Run only the conformance suite (scenes x execution paths); print its table and write
     /// it to <target>/conformance.md. `STRATUS_UPDATE_GOLDENS=1` rewrites tests/golden/.
