@@ -8,12 +8,9 @@ import fs from 'node:fs';
 import path from 'node:path';
 import zlib from 'node:zlib';
 import { chromium } from 'playwright-core';
-import { serve } from './server.mjs';
+import { parseArgs, serve } from './server.mjs';
 
-const args = Object.fromEntries(process.argv.slice(2).reduce((acc, a, i, all) => {
-  if (a.startsWith('--')) acc.push([a.slice(2), all[i + 1]]);
-  return acc;
-}, []));
+const args = parseArgs(process.argv.slice(2));
 if (!args.kit || !args.out) {
   console.error('usage: node web/test/run.mjs --kit DIR --out DIR [--screenshot FILE.png]');
   process.exit(2);

@@ -12,6 +12,14 @@ const TYPES = {
   '.json': 'application/json', '.wgsl': 'text/plain', '.png': 'image/png',
 };
 
+/** `--name value` pairs of a command line as an object. */
+export function parseArgs(argv) {
+  return Object.fromEntries(argv.reduce((acc, a, i, all) => {
+    if (a.startsWith('--')) acc.push([a.slice(2), all[i + 1]]);
+    return acc;
+  }, []));
+}
+
 /** Serves web/ and `kit` on 127.0.0.1:`port` (0: any free port); resolves to the base URL. */
 export async function serve(kit, port = 0) {
   const web = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..');
@@ -31,10 +39,7 @@ export async function serve(kit, port = 0) {
 }
 
 if (process.argv[1] === fileURLToPath(import.meta.url)) {
-  const args = Object.fromEntries(process.argv.slice(2).reduce((acc, a, i, all) => {
-    if (a.startsWith('--')) acc.push([a.slice(2), all[i + 1]]);
-    return acc;
-  }, []));
+  const args = parseArgs(process.argv.slice(2));
   if (!args.kit) { console.error('usage: node web/test/server.mjs --kit DIR [--port 8080]'); process.exit(2); }
   const { base } = await serve(args.kit, Number(args.port || 8080));
   console.log(`serving the Stratus page at ${base}/ (kit: ${path.resolve(args.kit)}); Ctrl-C stops`);

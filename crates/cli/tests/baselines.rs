@@ -2,30 +2,15 @@
 //! wgpu and ash (the acceptance check, at its size), the basic marcher renders, and
 //! misuse is refused clearly. Validation is on (`STRATUS_VALIDATION=1`).
 
-use std::{path::Path, process::Command};
+mod common;
+
+use common::scratch;
 
 use stratus_compare::{CompareOptions, Image, compare};
 
+/// `stratus` with the backends' validation on.
 fn stratus(args: &[&str]) -> (bool, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_stratus"))
-        .args(args)
-        .env("XDG_RUNTIME_DIR", std::env::temp_dir())
-        .env("STRATUS_VALIDATION", "1")
-        .output()
-        .expect("running stratus");
-    let text = format!(
-        "{}{}",
-        String::from_utf8_lossy(&out.stdout),
-        String::from_utf8_lossy(&out.stderr)
-    );
-    (out.status.success(), text)
-}
-
-fn scratch(name: &str) -> std::path::PathBuf {
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(name);
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).expect("scratch dir");
-    dir
+    common::stratus_with(args, &[("STRATUS_VALIDATION", "1")])
 }
 
 /// 256x144 sprite clouds on wgpu and on ash: FLIP at most 0.01 apart (measured: identical).

@@ -1,20 +1,8 @@
 //! Device limits as a user meets them: a clear error naming the limit, never a panic.
 
-use std::process::Command;
+mod common;
 
-fn stratus(args: &[&str]) -> (bool, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_stratus"))
-        .args(args)
-        .env("XDG_RUNTIME_DIR", std::env::temp_dir())
-        .output()
-        .expect("running stratus");
-    let text = format!(
-        "{}{}",
-        String::from_utf8_lossy(&out.stdout),
-        String::from_utf8_lossy(&out.stderr)
-    );
-    (out.status.success(), text)
-}
+use common::stratus;
 
 /// The largest accepted size on wgpu: a clear error naming the device limit before anything
 /// is allocated where the read-back would not fit (lavapipe: 4 GiB against 2 GiB), never a

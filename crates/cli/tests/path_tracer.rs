@@ -2,30 +2,13 @@
 //! radiance agrees with the CPU reference's Monte Carlo path tracer (the acceptance check of
 //! the path tracer, at its size), and misuse is refused clearly.
 
-use std::{path::Path, process::Command};
+use std::path::Path;
+
+mod common;
+
+use common::{scratch, stratus};
 
 use stratus_compare::Image;
-
-fn stratus(args: &[&str]) -> (bool, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_stratus"))
-        .args(args)
-        .env("XDG_RUNTIME_DIR", std::env::temp_dir())
-        .output()
-        .expect("running stratus");
-    let text = format!(
-        "{}{}",
-        String::from_utf8_lossy(&out.stdout),
-        String::from_utf8_lossy(&out.stderr)
-    );
-    (out.status.success(), text)
-}
-
-fn scratch(name: &str) -> std::path::PathBuf {
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(name);
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).expect("scratch dir");
-    dir
-}
 
 /// Mean of each channel (rgb, transmittance) of a linear EXR.
 fn mean(path: &Path) -> [f64; 4] {

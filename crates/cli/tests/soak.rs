@@ -1,21 +1,9 @@
 //! `stratus soak` as a user runs it: a short loop reports no non-finite values, its memory and
 //! GPU object figures and the drift after a stop, and refuses the still-only reference.
 
-use std::process::Command;
+mod common;
 
-fn stratus(args: &[&str]) -> (bool, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_stratus"))
-        .args(args)
-        .env("XDG_RUNTIME_DIR", std::env::temp_dir())
-        .output()
-        .expect("running stratus");
-    let text = format!(
-        "{}{}",
-        String::from_utf8_lossy(&out.stdout),
-        String::from_utf8_lossy(&out.stderr)
-    );
-    (out.status.success(), text)
-}
+use common::stratus;
 
 #[test]
 fn a_short_soak_reports_its_figures() {

@@ -316,6 +316,17 @@ impl FramePlan {
             .iter()
             .any(|r| r.lifetime == Lifetime::History)
     }
+
+    /// Whether every frame draws a raster pass (one without a `when` condition; `present`
+    /// runs only into a host's target). On lavapipe such frames' pass timestamps are late:
+    /// llvmpipe bins a timestamp taken with a framebuffer bound into its tiles (backend-ash's
+    /// `TIMESTAMP_STAGE`), and keeps doing so for the device's later frames, so timings of
+    /// these plans are taken by the wall clock.
+    pub fn rasterizes_every_frame(&self) -> bool {
+        self.passes
+            .iter()
+            .any(|p| p.when.is_none() && matches!(p.kind, PassKind::Raster { .. }))
+    }
 }
 
 /// What a scene needs from the shader: each feature as the minimum value of its override.
@@ -921,6 +932,14 @@ mod tests {
         assert!(pt.has_history());
         assert_eq!(pt.passes[0].name, "occupancy");
         assert!(pt.resource("cloud-sparse").is_none());
+        // Only the sprites draw a raster pass every frame (present runs on request).
+        assert!(!pt.rasterizes_every_frame());
+        let (sprites, _) = names(PlanOptions {
+            sprites: true,
+            ..PlanOptions::default()
+        });
+        assert!(sprites.rasterizes_every_frame());
+        assert!(!names(PlanOptions::default()).0.rasterizes_every_frame());
     }
 
     /// A scene that asks for the path tracer plans it with empty-space skipping and none of

@@ -85,6 +85,20 @@ pub fn all() -> Vec<Case> {
             |s| s.quality.method = Method::Sprites,
         ),
     ]);
+    // A frame that rasterises leaves llvmpipe's timestamps late for the device's later frames
+    // (`FramePlan::rasterizes_every_frame`): such scenes come last, after every scene whose
+    // passes are timed by timestamps.
+    let rasterizes: Vec<bool> = cases
+        .iter()
+        .map(|c| {
+            stratus_graph::FramePlan::for_scene(&c.scene, false)
+                .is_ok_and(|p| p.rasterizes_every_frame())
+        })
+        .collect();
+    assert!(
+        rasterizes.windows(2).all(|w| w[0] <= w[1]),
+        "scenes that rasterise every frame must come last: {rasterizes:?}"
+    );
     for c in &cases {
         if let Err(e) = c.scene.validate() {
             panic!("scene {} is invalid: {e}", c.name);

@@ -213,13 +213,12 @@ pub(super) fn measure(
             let noise = noises
                 .entry((s.noise.seed, hzd))
                 .or_insert_with(|| Arc::new(stratus::noise_for(&s)));
-            // The sprite baseline on a renderer of its own that times each pass submitted
-            // alone, dropped after. With a raster pass in the frame llvmpipe (lavapipe) takes
-            // its timestamps late (see backend-ash's TIMESTAMP_STAGE), and it keeps doing so
-            // for every later pass on that device: measured, a 64x36 march read 0.012 ms after
-            // a sprite frame against 10 ms before, on wgpu and on ash, and the sprite sort read
-            // 0.013 ms in one run and 20.9 ms in the next.
-            let mut own = if config.method == Method::Sprites {
+            // A plan that rasterises every frame (the sprite baseline) on a renderer of its
+            // own that times each pass submitted alone, dropped after
+            // (`FramePlan::rasterizes_every_frame`): measured on lavapipe, a 64x36 march read
+            // 0.012 ms after a sprite frame against 10 ms before, on wgpu and on ash, and the
+            // sprite sort read 0.013 ms in one run and 20.9 ms in the next.
+            let mut own = if FramePlan::for_scene(&s, false)?.rasterizes_every_frame() {
                 Some(fresh(true)?)
             } else {
                 None
