@@ -29,6 +29,12 @@ struct Frame {
     vec4 previous_right;
     vec4 previous_up;
     uvec4 temporal;
+    vec4 layer1_;
+    vec4 layer1_weather;
+    vec4 layer2_;
+    vec4 layer2_weather;
+    vec4 layer3_;
+    vec4 layer3_weather;
 };
 struct Roots {
     float t0_;
@@ -39,6 +45,15 @@ struct Interval {
     float start;
     float length_;
     uint kind;
+};
+struct Layer {
+    float bottom;
+    float top;
+    float coverage;
+    float density;
+    float cloud_type;
+    float precipitation;
+    vec2 weather_offset;
 };
 struct Counters {
     uint view_steps;
@@ -58,6 +73,11 @@ struct MarchResult {
     vec3 radiance;
     float transmittance;
     float depth;
+};
+struct MarchState {
+    vec3 radiance;
+    float transmittance;
+    float depth_sum;
 };
 struct Segments {
     vec2 a;
@@ -116,6 +136,8 @@ const uint MAX_VIEW_STEPS = 1024u;
 const uint RAY_MARCH = 0u;
 const uint RAY_MISSES_LAYER = 1u;
 const uint RAY_HITS_GROUND = 2u;
+const uint MAX_LAYERS = 4u;
+const uint NO_LAYER = 4u;
 const uint OCCUPANCY_CELLS = 64u;
 const uint STAT_PIXELS = 0u;
 const uint STAT_MARCHED = 1u;
@@ -170,8 +192,8 @@ float remap(float x_2, float lo0_, float hi0_, float lo1_, float hi1_) {
 }
 
 uint pcg(uint v) {
-    uint state = ((v * 747796405u) + 2891336453u);
-    uint word = (((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u);
+    uint state_2 = ((v * 747796405u) + 2891336453u);
+    uint word = (((state_2 >> ((state_2 >> 28u) + 4u)) ^ state_2) * 277803737u);
     return ((word >> 22u) ^ word);
 }
 
@@ -195,8 +217,8 @@ vec3 view_ray(uvec2 pixel_1) {
     vec4 _e26 = _group_0_binding_0_cs.camera_forward;
     vec4 _e30 = _group_0_binding_0_cs.camera_right;
     vec4 _e39 = _group_0_binding_0_cs.camera_up;
-    vec3 d_8 = ((_e26.xyz + (_e30.xyz * ((ndc.x * tan_half) * aspect))) - (_e39.xyz * (ndc.y * tan_half)));
-    return normalize(d_8);
+    vec3 d_11 = ((_e26.xyz + (_e30.xyz * ((ndc.x * tan_half) * aspect))) - (_e39.xyz * (ndc.y * tan_half)));
+    return normalize(d_11);
 }
 
 Roots solve_sphere(float b, float c) {
@@ -242,69 +264,243 @@ bool hits_ground(vec3 p_1, float alt_1, vec3 d_1) {
     return _e24;
 }
 
-Interval layer_interval(float alt_2, vec3 d_2) {
+Interval shell_interval(float alt_2, vec3 d_2, float bottom, float top) {
     float start = 0.0;
     float end = 0.0;
     bool local_13 = false;
     bool local_14 = false;
     bool local_15 = false;
-    float bottom = _group_0_binding_0_cs.atmosphere.y;
-    float top = _group_0_binding_0_cs.atmosphere.z;
     float cutoff = _group_0_binding_0_cs.atmosphere.w;
-    Roots _e14 = ray_shell(alt_2, d_2, bottom);
-    Roots _e15 = ray_shell(alt_2, d_2, top);
+    Roots _e8 = ray_shell(alt_2, d_2, bottom);
+    Roots _e9 = ray_shell(alt_2, d_2, top);
     if ((alt_2 < bottom)) {
-        bool _e24 = hits_ground(vec3(0.0, alt_2, 0.0), alt_2, d_2);
-        if (_e24) {
+        bool _e18 = hits_ground(vec3(0.0, alt_2, 0.0), alt_2, d_2);
+        if (_e18) {
             return Interval(0.0, 0.0, 2u);
         }
-        start = _e14.t1_;
-        end = _e15.t1_;
+        start = _e8.t1_;
+        end = _e9.t1_;
     } else {
         if ((alt_2 <= top)) {
-            end = _e15.t1_;
-            if (_e14.hit) {
-                local_13 = (_e14.t0_ > 0.0);
+            end = _e9.t1_;
+            if (_e8.hit) {
+                local_13 = (_e8.t0_ > 0.0);
             } else {
                 local_13 = false;
             }
-            bool _e40 = local_13;
-            if (_e40) {
-                float _e41 = end;
-                end = min(_e41, _e14.t0_);
+            bool _e34 = local_13;
+            if (_e34) {
+                float _e35 = end;
+                end = min(_e35, _e8.t0_);
             }
         } else {
-            if (!(!(_e15.hit))) {
-                local_14 = (_e15.t1_ <= 0.0);
+            if (!(!(_e9.hit))) {
+                local_14 = (_e9.t1_ <= 0.0);
             } else {
                 local_14 = true;
             }
-            bool _e53 = local_14;
-            if (_e53) {
+            bool _e47 = local_14;
+            if (_e47) {
                 return Interval(0.0, 0.0, 1u);
             }
-            start = max(_e15.t0_, 0.0);
-            end = _e15.t1_;
-            if (_e14.hit) {
-                local_15 = (_e14.t0_ > 0.0);
+            start = max(_e9.t0_, 0.0);
+            end = _e9.t1_;
+            if (_e8.hit) {
+                local_15 = (_e8.t0_ > 0.0);
             } else {
                 local_15 = false;
             }
-            bool _e69 = local_15;
-            if (_e69) {
-                float _e70 = end;
-                end = min(_e70, _e14.t0_);
+            bool _e63 = local_15;
+            if (_e63) {
+                float _e64 = end;
+                end = min(_e64, _e8.t0_);
             }
         }
     }
-    float _e73 = end;
-    float _e74 = start;
-    float len = min((_e73 - _e74), cutoff);
+    float _e67 = end;
+    float _e68 = start;
+    float len = min((_e67 - _e68), cutoff);
     if (!((len > 0.0))) {
         return Interval(0.0, 0.0, 1u);
     }
-    float _e84 = start;
-    return Interval(_e84, len, RAY_MARCH);
+    float _e78 = start;
+    return Interval(_e78, len, RAY_MARCH);
+}
+
+Interval layer_interval(float alt_3, vec3 d_3, Layer l) {
+    Interval _e5 = shell_interval(alt_3, d_3, l.bottom, l.top);
+    return _e5;
+}
+
+uint layer_count() {
+    uint _e4 = _group_0_binding_0_cs.misc.w;
+    return (1u + min(_e4, 3u));
+}
+
+Layer layer_from(vec4 g, vec4 w) {
+    return Layer(g.x, g.y, g.z, g.w, w.x, w.y, w.zw);
+}
+
+Layer cloud_layer(uint i_1) {
+    if ((i_1 == 1u)) {
+        vec4 _e5 = _group_0_binding_0_cs.layer1_;
+        vec4 _e8 = _group_0_binding_0_cs.layer1_weather;
+        Layer _e9 = layer_from(_e5, _e8);
+        return _e9;
+    } else {
+        if ((i_1 == 2u)) {
+            vec4 _e14 = _group_0_binding_0_cs.layer2_;
+            vec4 _e17 = _group_0_binding_0_cs.layer2_weather;
+            Layer _e18 = layer_from(_e14, _e17);
+            return _e18;
+        } else {
+            if ((i_1 == 3u)) {
+                vec4 _e23 = _group_0_binding_0_cs.layer3_;
+                vec4 _e26 = _group_0_binding_0_cs.layer3_weather;
+                Layer _e27 = layer_from(_e23, _e26);
+                return _e27;
+            }
+        }
+    }
+    float _e31 = _group_0_binding_0_cs.atmosphere.y;
+    float _e35 = _group_0_binding_0_cs.atmosphere.z;
+    float _e39 = _group_0_binding_0_cs.clouds.x;
+    float _e43 = _group_0_binding_0_cs.clouds.y;
+    float _e47 = _group_0_binding_0_cs.clouds.z;
+    float _e51 = _group_0_binding_0_cs.clouds.w;
+    vec4 _e54 = _group_0_binding_0_cs.wind_offsets0_;
+    return Layer(_e31, _e35, _e39, _e43, _e47, _e51, _e54.xy);
+}
+
+vec2 layers_span() {
+    vec2 span = vec2(0.0);
+    uint i_2 = 1u;
+    vec4 _e2 = _group_0_binding_0_cs.atmosphere;
+    span = _e2.yz;
+    bool loop_init = true;
+    while(true) {
+        if (!loop_init) {
+            uint _e22 = i_2;
+            i_2 = (_e22 + 1u);
+        }
+        loop_init = false;
+        uint _e7 = i_2;
+        uint _e8 = layer_count();
+        if ((_e7 < _e8)) {
+        } else {
+            break;
+        }
+        {
+            uint _e10 = i_2;
+            Layer _e11 = cloud_layer(_e10);
+            float _e13 = span.x;
+            float _e17 = span.y;
+            span = vec2(min(_e13, _e11.bottom), max(_e17, _e11.top));
+        }
+    }
+    vec2 _e24 = span;
+    return _e24;
+}
+
+Interval cloud_interval(float alt_4, vec3 d_4) {
+    vec2 _e2 = layers_span();
+    Interval _e5 = shell_interval(alt_4, d_4, _e2.x, _e2.y);
+    return _e5;
+}
+
+Interval nearest_layer_interval(float alt_5, vec3 d_5) {
+    Interval best = Interval(0.0, 0.0, 0u);
+    uint i_3 = 1u;
+    bool local_16 = false;
+    bool local_17 = false;
+    Layer _e3 = cloud_layer(0u);
+    Interval _e4 = layer_interval(alt_5, d_5, _e3);
+    best = _e4;
+    bool loop_init_1 = true;
+    while(true) {
+        if (!loop_init_1) {
+            uint _e35 = i_3;
+            i_3 = (_e35 + 1u);
+        }
+        loop_init_1 = false;
+        uint _e8 = i_3;
+        uint _e9 = layer_count();
+        if ((_e8 < _e9)) {
+        } else {
+            break;
+        }
+        {
+            uint _e11 = i_3;
+            Layer _e12 = cloud_layer(_e11);
+            Interval _e13 = layer_interval(alt_5, d_5, _e12);
+            if ((_e13.kind == RAY_MARCH)) {
+                uint _e20 = best.kind;
+                if (!((_e20 != RAY_MARCH))) {
+                    float _e28 = best.start;
+                    local_17 = (_e13.start < _e28);
+                } else {
+                    local_17 = true;
+                }
+                bool _e31 = local_17;
+                local_16 = _e31;
+            } else {
+                local_16 = false;
+            }
+            bool _e33 = local_16;
+            if (_e33) {
+                best = _e13;
+            }
+        }
+    }
+    Interval _e37 = best;
+    return _e37;
+}
+
+Roots ray_shell_from(vec3 p_2, float alt_6, vec3 d_6, float radius_alt_1) {
+    float rp_3 = _group_0_binding_0_cs.atmosphere.x;
+    float b_5 = dot(d_6, vec3(p_2.x, (p_2.y + rp_3), p_2.z));
+    float c_5 = ((alt_6 - radius_alt_1) * ((alt_6 + radius_alt_1) + (2.0 * rp_3)));
+    Roots _e20 = solve_sphere(b_5, c_5);
+    return _e20;
+}
+
+float layer_height(Layer l_1, float alt_7) {
+    return ((alt_7 - l_1.bottom) / (l_1.top - l_1.bottom));
+}
+
+uint layer_at(float alt_8) {
+    uint i_4 = 0u;
+    bool local_18 = false;
+    bool loop_init_2 = true;
+    while(true) {
+        if (!loop_init_2) {
+            uint _e19 = i_4;
+            i_4 = (_e19 + 1u);
+        }
+        loop_init_2 = false;
+        uint _e3 = i_4;
+        uint _e4 = layer_count();
+        if ((_e3 < _e4)) {
+        } else {
+            break;
+        }
+        {
+            uint _e6 = i_4;
+            Layer _e7 = cloud_layer(_e6);
+            float _e8 = layer_height(_e7, alt_8);
+            if ((_e8 >= 0.0)) {
+                local_18 = (_e8 <= 1.0);
+            } else {
+                local_18 = false;
+            }
+            bool _e16 = local_18;
+            if (_e16) {
+                uint _e17 = i_4;
+                return _e17;
+            }
+        }
+    }
+    return NO_LAYER;
 }
 
 float height_parabola(float h, float cloud_type) {
@@ -337,37 +533,37 @@ float height_signal(float h_3, float cloud_type_2) {
     return _e9;
 }
 
-float phase_hg(float cos_theta, float g) {
-    float g2_ = (g * g);
-    float denom = max(((1.0 + g2_) - ((2.0 * g) * cos_theta)), 1e-6);
+float phase_hg(float cos_theta, float g_1) {
+    float g2_ = (g_1 * g_1);
+    float denom = max(((1.0 + g2_) - ((2.0 * g_1) * cos_theta)), 1e-6);
     return ((1.0 - g2_) / ((12.566371 * denom) * sqrt(denom)));
 }
 
-float phase_cornette_shanks(float cos_theta_1, float g_1) {
-    float g2_1 = (g_1 * g_1);
-    float denom_1 = max(((1.0 + g2_1) - ((2.0 * g_1) * cos_theta_1)), 1e-6);
+float phase_cornette_shanks(float cos_theta_1, float g_2) {
+    float g2_1 = (g_2 * g_2);
+    float denom_1 = max(((1.0 + g2_1) - ((2.0 * g_2) * cos_theta_1)), 1e-6);
     return (((3.0 * (1.0 - g2_1)) * (1.0 + (cos_theta_1 * cos_theta_1))) / (((25.132742 * (2.0 + g2_1)) * denom_1) * sqrt(denom_1)));
 }
 
 float phase(float cos_theta_2, float scale) {
     float _e5 = _group_0_binding_0_cs.phase.x;
-    float g_3 = (_e5 * scale);
+    float g_4 = (_e5 * scale);
     uint _e10 = _group_0_binding_0_cs.modes.x;
     switch(_e10) {
         case 1u: {
             float _e14 = _group_0_binding_0_cs.phase.y;
             float g2_2 = (_e14 * scale);
-            float _e16 = phase_hg(cos_theta_2, g_3);
+            float _e16 = phase_hg(cos_theta_2, g_4);
             float _e17 = phase_hg(cos_theta_2, g2_2);
             float _e21 = _group_0_binding_0_cs.phase.z;
             return mix(_e16, _e17, _e21);
         }
         case 2u: {
-            float _e23 = phase_cornette_shanks(cos_theta_2, g_3);
+            float _e23 = phase_cornette_shanks(cos_theta_2, g_4);
             return _e23;
         }
         default: {
-            float _e24 = phase_hg(cos_theta_2, g_3);
+            float _e24 = phase_hg(cos_theta_2, g_4);
             return _e24;
         }
     }
@@ -378,21 +574,21 @@ float sun_scattering(float cos_theta_3, float tau_1) {
     float ka = 1.0;
     float kb = 1.0;
     float kc = 1.0;
-    uint i_2 = 0u;
+    uint i_6 = 0u;
     float total = 0.0;
     float a_4 = _group_0_binding_0_cs.multiple_scattering.x;
-    float b_5 = _group_0_binding_0_cs.multiple_scattering.y;
-    float c_5 = _group_0_binding_0_cs.multiple_scattering.z;
+    float b_6 = _group_0_binding_0_cs.multiple_scattering.y;
+    float c_6 = _group_0_binding_0_cs.multiple_scattering.z;
     uint _e17 = _group_0_binding_0_cs.misc.x;
     uint octaves = min(_e17, MAX_OCTAVES);
-    bool loop_init = true;
+    bool loop_init_3 = true;
     while(true) {
-        if (!loop_init) {
-            uint _e50 = i_2;
-            i_2 = (_e50 + 1u);
+        if (!loop_init_3) {
+            uint _e50 = i_6;
+            i_6 = (_e50 + 1u);
         }
-        loop_init = false;
-        uint _e30 = i_2;
+        loop_init_3 = false;
+        uint _e30 = i_6;
         if ((_e30 < octaves)) {
         } else {
             break;
@@ -401,9 +597,9 @@ float sun_scattering(float cos_theta_3, float tau_1) {
             float _e32 = ka;
             ka = (_e32 * a_4);
             float _e34 = kb;
-            kb = (_e34 * b_5);
+            kb = (_e34 * b_6);
             float _e36 = kc;
-            kc = (_e36 * c_5);
+            kc = (_e36 * c_6);
             float _e38 = octave_sum;
             float _e39 = ka;
             float _e40 = kc;
@@ -434,6 +630,14 @@ vec3 ambient(float h_4) {
     return (mix(_e3.xyz, _e7.xyz, h_4) * _e13);
 }
 
+float height_fraction(float alt_11) {
+    uint _e1 = layer_at(alt_11);
+    Layer _e2 = cloud_layer(_e1);
+    float _e3 = layer_height(_e2, alt_11);
+    float _e4 = saturate(_e3);
+    return _e4;
+}
+
 vec3 step_integral(vec3 source, float sigma_t, float dt) {
     uint _e6 = _group_0_binding_0_cs.modes.y;
     if ((_e6 == INTEGRATION_RIEMANN)) {
@@ -446,17 +650,17 @@ vec3 step_integral(vec3 source, float sigma_t, float dt) {
 
 float start_offset(uvec2 pixel_2) {
     uint _e4 = _group_0_binding_0_cs.modes.w;
-    bool jitter = ((_e4 & FLAG_JITTER) != 0u);
-    uint k_5 = _group_0_binding_0_cs.temporal.x;
-    if ((k_5 <= 1u)) {
+    bool jitter_1 = ((_e4 & FLAG_JITTER) != 0u);
+    uint k_6 = _group_0_binding_0_cs.temporal.x;
+    if ((k_6 <= 1u)) {
         uint _e18 = _group_0_binding_0_cs.misc.y;
         float _e19 = hash_unit(pixel_2, _e18);
-        return (jitter ? _e19 : 0.5);
+        return (jitter_1 ? _e19 : 0.5);
     }
     float _e23 = hash_unit(pixel_2, 0u);
-    float base_2 = (jitter ? _e23 : 0.5);
+    float base_2 = (jitter_1 ? _e23 : 0.5);
     uint _e29 = _group_0_binding_0_cs.misc.y;
-    float _e32 = van_der_corput((_e29 / (k_5 * k_5)));
+    float _e32 = van_der_corput((_e29 / (k_6 * k_6)));
     return fract((base_2 + _e32));
 }
 
@@ -464,51 +668,51 @@ uvec2 bayer2_(uint v_1) {
     return uvec2(((v_1 ^ (v_1 >> 1u)) & 1u), (v_1 & 1u));
 }
 
-uvec2 block_offset(uint f, uint k) {
-    if ((k == 2u)) {
+uvec2 block_offset(uint f, uint k_1) {
+    if ((k_1 == 2u)) {
         uvec2 _e6 = bayer2_((f % 4u));
         return _e6;
     }
-    if ((k == 4u)) {
-        uint b_6 = (f % 16u);
-        uvec2 _e13 = bayer2_((b_6 >> 2u));
-        uvec2 _e17 = bayer2_((b_6 & 3u));
+    if ((k_1 == 4u)) {
+        uint b_7 = (f % 16u);
+        uvec2 _e13 = bayer2_((b_7 >> 2u));
+        uvec2 _e17 = bayer2_((b_7 & 3u));
         return (_e13 + (2u * _e17));
     }
     return uvec2(0u);
 }
 
 vec2 reproject(uvec2 pixel_4, float depth_2) {
-    bool local_23 = false;
-    bool local_24 = false;
-    bool local_25 = false;
+    bool local_35 = false;
+    bool local_36 = false;
+    bool local_37 = false;
     vec3 dir = vec3(0.0);
     vec4 _e4 = _group_0_binding_0_cs.previous_position;
     vec4 _e7 = _group_0_binding_0_cs.camera_position;
     if (all(equal(_e4, _e7))) {
         vec4 _e14 = _group_0_binding_0_cs.previous_forward;
         vec4 _e17 = _group_0_binding_0_cs.camera_forward;
-        local_23 = all(equal(_e14, _e17));
+        local_35 = all(equal(_e14, _e17));
     } else {
-        local_23 = false;
+        local_35 = false;
     }
-    bool _e21 = local_23;
+    bool _e21 = local_35;
     if (_e21) {
         vec4 _e26 = _group_0_binding_0_cs.previous_right;
         vec4 _e29 = _group_0_binding_0_cs.camera_right;
-        local_24 = all(equal(_e26, _e29));
+        local_36 = all(equal(_e26, _e29));
     } else {
-        local_24 = false;
+        local_36 = false;
     }
-    bool _e33 = local_24;
+    bool _e33 = local_36;
     if (_e33) {
         vec4 _e38 = _group_0_binding_0_cs.previous_up;
         vec4 _e41 = _group_0_binding_0_cs.camera_up;
-        local_25 = all(equal(_e38, _e41));
+        local_37 = all(equal(_e38, _e41));
     } else {
-        local_25 = false;
+        local_37 = false;
     }
-    bool same = local_25;
+    bool same = local_37;
     if (same) {
         return vec2(pixel_4);
     }
@@ -537,15 +741,15 @@ vec2 reproject(uvec2 pixel_4, float depth_2) {
 }
 
 bool on_screen(vec2 q) {
-    bool local_26 = false;
+    bool local_38 = false;
     uvec4 _e3 = _group_0_binding_0_cs.counts;
     vec2 size_1 = vec2(_e3.xy);
     if (all(greaterThanEqual(q, vec2(-0.5)))) {
-        local_26 = all(lessThanEqual(q, (size_1 - vec2(0.5))));
+        local_38 = all(lessThanEqual(q, (size_1 - vec2(0.5))));
     } else {
-        local_26 = false;
+        local_38 = false;
     }
-    bool _e18 = local_26;
+    bool _e18 = local_38;
     return _e18;
 }
 
@@ -554,16 +758,16 @@ vec4 catmull_rom(float t) {
 }
 
 bool in_blocks(uvec2 id_12) {
-    uint k_6 = _group_0_binding_0_cs.temporal.x;
+    uint k_7 = _group_0_binding_0_cs.temporal.x;
     uvec4 _e7 = _group_0_binding_0_cs.counts;
-    return all(lessThan(id_12, (((_e7.xy + uvec2(k_6)) - uvec2(1u)) / uvec2(k_6))));
+    return all(lessThan(id_12, (((_e7.xy + uvec2(k_7)) - uvec2(1u)) / uvec2(k_7))));
 }
 
 uvec2 sparse_pixel(uvec2 id_13) {
-    uint k_7 = _group_0_binding_0_cs.temporal.x;
+    uint k_8 = _group_0_binding_0_cs.temporal.x;
     uint _e9 = _group_0_binding_0_cs.misc.y;
-    uvec2 _e10 = block_offset(_e9, k_7);
-    return ((id_13 * k_7) + _e10);
+    uvec2 _e10 = block_offset(_e9, k_8);
+    return ((id_13 * k_8) + _e10);
 }
 
 uint rng_seed(uvec2 pixel_5, uint frame_index_1) {
@@ -586,114 +790,127 @@ float rng_exponential(inout uint rng_2, float sigma) {
     return (-(log((1.0 - _e2))) / sigma);
 }
 
-Roots ray_shell_from(vec3 p_7, float alt_5, vec3 d_4, float radius_alt_1) {
-    float rp_3 = _group_0_binding_0_cs.atmosphere.x;
-    float b_7 = dot(d_4, vec3(p_7.x, (p_7.y + rp_3), p_7.z));
-    float c_6 = ((alt_5 - radius_alt_1) * ((alt_5 + radius_alt_1) + (2.0 * rp_3)));
-    Roots _e20 = solve_sphere(b_7, c_6);
-    return _e20;
-}
-
-Segments layer_segments(vec3 p_8, float alt_6, vec3 d_5) {
+Segments layer_segments(vec3 p_9, float alt_13, vec3 d_8) {
     Segments s = Segments(vec2(0.0), vec2(0.0), 0u);
-    bool local_27 = false;
+    bool local_39 = false;
     vec2 a_1 = vec2(0.0);
     vec2 b_1 = vec2(0.0);
     uint n_1 = 0u;
-    bool local_28 = false;
-    bool local_29 = false;
-    bool local_30 = false;
-    bool local_31 = false;
-    float bottom_1 = _group_0_binding_0_cs.atmosphere.y;
-    Roots _e14 = ray_shell_from(p_8, alt_6, d_5, bottom_1);
-    float _e18 = _group_0_binding_0_cs.atmosphere.z;
-    Roots _e19 = ray_shell_from(p_8, alt_6, d_5, _e18);
-    bool _e20 = hits_ground(p_8, alt_6, d_5);
-    if (!(!(_e19.hit))) {
-        local_27 = (_e19.t1_ <= 0.0);
+    bool local_40 = false;
+    bool local_41 = false;
+    bool local_42 = false;
+    bool local_43 = false;
+    vec2 _e10 = layers_span();
+    float bottom_1 = _e10.x;
+    Roots _e12 = ray_shell_from(p_9, alt_13, d_8, bottom_1);
+    Roots _e14 = ray_shell_from(p_9, alt_13, d_8, _e10.y);
+    bool _e15 = hits_ground(p_9, alt_13, d_8);
+    if (!(!(_e14.hit))) {
+        local_39 = (_e14.t1_ <= 0.0);
     } else {
-        local_27 = true;
+        local_39 = true;
     }
-    bool _e30 = local_27;
-    if (_e30) {
-        Segments _e31 = s;
-        return _e31;
+    bool _e25 = local_39;
+    if (_e25) {
+        Segments _e26 = s;
+        return _e26;
     }
-    float entry = max(_e19.t0_, 0.0);
-    if (_e14.hit) {
-        local_28 = (_e14.t0_ > 0.0);
+    float entry = max(_e14.t0_, 0.0);
+    if (_e12.hit) {
+        local_40 = (_e12.t0_ > 0.0);
     } else {
-        local_28 = false;
+        local_40 = false;
     }
-    bool _e50 = local_28;
+    bool _e45 = local_40;
+    if (_e45) {
+        local_41 = (alt_13 >= bottom_1);
+    } else {
+        local_41 = false;
+    }
+    bool _e50 = local_41;
     if (_e50) {
-        local_29 = (alt_6 >= bottom_1);
-    } else {
-        local_29 = false;
-    }
-    bool _e55 = local_29;
-    if (_e55) {
+        uint _e51 = n_1;
+        a_1[_e51] = entry;
+        uint _e53 = n_1;
+        b_1[_e53] = _e12.t0_;
         uint _e56 = n_1;
-        a_1[_e56] = entry;
-        uint _e58 = n_1;
-        b_1[_e58] = _e14.t0_;
-        uint _e61 = n_1;
-        n_1 = (_e61 + uint((_e14.t0_ > entry)));
-        if (!(_e20)) {
-            local_30 = (_e19.t1_ > _e14.t1_);
+        n_1 = (_e56 + uint((_e12.t0_ > entry)));
+        if (!(_e15)) {
+            local_42 = (_e14.t1_ > _e12.t1_);
         } else {
-            local_30 = false;
+            local_42 = false;
         }
-        bool _e73 = local_30;
-        if (_e73) {
-            uint _e74 = n_1;
-            a_1[_e74] = max(_e14.t1_, entry);
-            uint _e78 = n_1;
-            b_1[_e78] = _e19.t1_;
-            uint _e81 = n_1;
-            n_1 = (_e81 + 1u);
+        bool _e68 = local_42;
+        if (_e68) {
+            uint _e69 = n_1;
+            a_1[_e69] = max(_e12.t1_, entry);
+            uint _e73 = n_1;
+            b_1[_e73] = _e14.t1_;
+            uint _e76 = n_1;
+            n_1 = (_e76 + 1u);
         }
     } else {
-        if ((alt_6 < bottom_1)) {
-            if (!(_e20)) {
-                local_31 = _e14.hit;
+        if ((alt_13 < bottom_1)) {
+            if (!(_e15)) {
+                local_43 = _e12.hit;
             } else {
-                local_31 = false;
+                local_43 = false;
             }
-            bool _e90 = local_31;
-            if (_e90) {
-                a_1.x = max(_e14.t1_, 0.0);
-                b_1.x = _e19.t1_;
+            bool _e85 = local_43;
+            if (_e85) {
+                a_1.x = max(_e12.t1_, 0.0);
+                b_1.x = _e14.t1_;
                 n_1 = 1u;
             }
         } else {
             a_1.x = entry;
-            b_1.x = _e19.t1_;
+            b_1.x = _e14.t1_;
             n_1 = 1u;
         }
     }
-    vec2 _e103 = a_1;
-    s.a = _e103;
-    vec2 _e105 = b_1;
-    s.b = _e105;
-    uint _e107 = n_1;
-    s.count = _e107;
-    Segments _e108 = s;
-    return _e108;
+    vec2 _e98 = a_1;
+    s.a = _e98;
+    vec2 _e100 = b_1;
+    s.b = _e100;
+    uint _e102 = n_1;
+    s.count = _e102;
+    Segments _e103 = s;
+    return _e103;
 }
 
 float density_max() {
-    float _e3 = _group_0_binding_0_cs.clouds.y;
-    float _e7 = _group_0_binding_0_cs.clouds.w;
-    return clamp((_e3 * (1.0 + _e7)), 0.0, 1.0);
+    float m_1 = 0.0;
+    uint i_9 = 0u;
+    bool loop_init_4 = true;
+    while(true) {
+        if (!loop_init_4) {
+            uint _e17 = i_9;
+            i_9 = (_e17 + 1u);
+        }
+        loop_init_4 = false;
+        uint _e4 = i_9;
+        uint _e5 = layer_count();
+        if ((_e4 < _e5)) {
+        } else {
+            break;
+        }
+        {
+            uint _e7 = i_9;
+            Layer _e8 = cloud_layer(_e7);
+            float _e9 = m_1;
+            m_1 = max(_e9, (_e8.density * (1.0 + _e8.precipitation)));
+        }
+    }
+    float _e19 = m_1;
+    return clamp(_e19, 0.0, 1.0);
 }
 
-float sample_hg_cos(float g_2, float u) {
-    if ((abs(g_2) < 0.0001)) {
+float sample_hg_cos(float g_3, float u) {
+    if ((abs(g_3) < 0.0001)) {
         return (1.0 - (2.0 * u));
     }
-    float s_4 = ((1.0 - (g_2 * g_2)) / ((1.0 - g_2) + ((2.0 * g_2) * u)));
-    return clamp((((1.0 + (g_2 * g_2)) - (s_4 * s_4)) / (2.0 * g_2)), -1.0, 1.0);
+    float s_4 = ((1.0 - (g_3 * g_3)) / ((1.0 - g_3) + ((2.0 * g_3) * u)));
+    return clamp((((1.0 + (g_3 * g_3)) - (s_4 * s_4)) / (2.0 * g_3)), -1.0, 1.0);
 }
 
 PhaseSample sample_phase(vec3 dir_4, inout uint rng_5) {
@@ -708,8 +925,8 @@ PhaseSample sample_phase(vec3 dir_4, inout uint rng_5) {
         float _e20 = _group_0_binding_0_cs.phase.x;
         float _e24 = _group_0_binding_0_cs.phase.y;
         float _e28 = _group_0_binding_0_cs.phase.z;
-        float g_4 = ((_e2 < _e28) ? _e24 : _e20);
-        float _e31 = sample_hg_cos(g_4, _e3);
+        float g_5 = ((_e2 < _e28) ? _e24 : _e20);
+        float _e31 = sample_hg_cos(g_5, _e3);
         cos_theta_4 = _e31;
         float _e32 = cos_theta_4;
         float _e36 = _group_0_binding_0_cs.phase.x;
@@ -737,44 +954,44 @@ PhaseSample sample_phase(vec3 dir_4, inout uint rng_5) {
     vec3 t_4 = vec3((1.0 + (((sign_ * dir_4.x) * dir_4.x) * a_5)), (sign_ * bb), (-(sign_) * dir_4.x));
     vec3 b_8 = vec3(bb, (sign_ + ((dir_4.y * dir_4.y) * a_5)), -(dir_4.y));
     float _e109 = cos_theta_4;
-    vec3 w = normalize((((t_4 * (sin_theta * cos(phi))) + (b_8 * (sin_theta * sin(phi)))) + (dir_4 * _e109)));
+    vec3 w_1 = normalize((((t_4 * (sin_theta * cos(phi))) + (b_8 * (sin_theta * sin(phi)))) + (dir_4 * _e109)));
     float _e113 = cos_theta_4;
     float _e115 = phase(_e113, 1.0);
     float _e116 = pdf;
     float _e118 = pdf;
-    return PhaseSample(w, ((_e118 > 0.0) ? (_e115 / _e116) : 0.0));
+    return PhaseSample(w_1, ((_e118 > 0.0) ? (_e115 / _e116) : 0.0));
 }
 
 bool camera_still() {
-    bool local_35 = false;
-    bool local_36 = false;
-    bool local_37 = false;
+    bool local_47 = false;
+    bool local_48 = false;
+    bool local_49 = false;
     vec4 _e2 = _group_0_binding_0_cs.camera_position;
     vec4 _e5 = _group_0_binding_0_cs.previous_position;
     if (all(equal(_e2, _e5))) {
         vec4 _e12 = _group_0_binding_0_cs.camera_forward;
         vec4 _e15 = _group_0_binding_0_cs.previous_forward;
-        local_35 = all(equal(_e12, _e15));
+        local_47 = all(equal(_e12, _e15));
     } else {
-        local_35 = false;
+        local_47 = false;
     }
-    bool _e19 = local_35;
+    bool _e19 = local_47;
     if (_e19) {
         vec4 _e24 = _group_0_binding_0_cs.camera_right;
         vec4 _e28 = _group_0_binding_0_cs.previous_right;
-        local_36 = all(equal(_e24.xyz, _e28.xyz));
+        local_48 = all(equal(_e24.xyz, _e28.xyz));
     } else {
-        local_36 = false;
+        local_48 = false;
     }
-    bool _e33 = local_36;
+    bool _e33 = local_48;
     if (_e33) {
         vec4 _e38 = _group_0_binding_0_cs.camera_up;
         vec4 _e42 = _group_0_binding_0_cs.previous_up;
-        local_37 = all(equal(_e38.xyz, _e42.xyz));
+        local_49 = all(equal(_e38.xyz, _e42.xyz));
     } else {
-        local_37 = false;
+        local_49 = false;
     }
-    bool _e47 = local_37;
+    bool _e47 = local_49;
     return _e47;
 }
 
@@ -788,31 +1005,31 @@ float atlas_hash(uint a_2, uint b_2) {
     return (float((_e4 >> 8u)) * 5.9604645e-8);
 }
 
-float value_noise(vec2 p_9, uint seed) {
-    uvec2 i_7 = uvec2(floor(p_9));
-    vec2 f_2 = fract(p_9);
+float value_noise(vec2 p_10, uint seed) {
+    uvec2 i_13 = uvec2(floor(p_10));
+    vec2 f_2 = fract(p_10);
     vec2 s_5 = ((f_2 * f_2) * (vec2(3.0) - (2.0 * f_2)));
     uint h_6 = (seed * 7919u);
-    float _e17 = atlas_hash((i_7.x + h_6), i_7.y);
-    float _e23 = atlas_hash(((i_7.x + 1u) + h_6), i_7.y);
-    float _e29 = atlas_hash((i_7.x + h_6), (i_7.y + 1u));
-    float _e37 = atlas_hash(((i_7.x + 1u) + h_6), (i_7.y + 1u));
+    float _e17 = atlas_hash((i_13.x + h_6), i_13.y);
+    float _e23 = atlas_hash(((i_13.x + 1u) + h_6), i_13.y);
+    float _e29 = atlas_hash((i_13.x + h_6), (i_13.y + 1u));
+    float _e37 = atlas_hash(((i_13.x + 1u) + h_6), (i_13.y + 1u));
     return mix(mix(_e17, _e23, s_5.x), mix(_e29, _e37, s_5.x), s_5.y);
 }
 
-float value_fbm(vec2 p_10, uint seed_1) {
+float value_fbm(vec2 p_11, uint seed_1) {
     float sum_1 = 0.0;
     float weight = 0.5;
     vec2 q_4 = vec2(0.0);
     uint o = 0u;
-    q_4 = p_10;
-    bool loop_init_1 = true;
+    q_4 = p_11;
+    bool loop_init_5 = true;
     while(true) {
-        if (!loop_init_1) {
+        if (!loop_init_5) {
             uint _e26 = o;
             o = (_e26 + 1u);
         }
-        loop_init_1 = false;
+        loop_init_5 = false;
         uint _e9 = o;
         if ((_e9 < 4u)) {
         } else {
@@ -837,7 +1054,7 @@ float value_fbm(vec2 p_10, uint seed_1) {
 
 float sprite_texture(uint tile_1, vec2 uv) {
     float billow = 0.0;
-    uint i_6 = 0u;
+    uint i_12 = 0u;
     vec2 at = vec2(0.0);
     float a_3 = 0.0;
     vec2 c_7 = (uv - vec2(0.5));
@@ -851,35 +1068,35 @@ float sprite_texture(uint tile_1, vec2 uv) {
         return (((mask * streak) * _e46) * 0.8);
     }
     uint blobs = (5u + (tile_1 % 4u));
-    bool loop_init_2 = true;
+    bool loop_init_6 = true;
     while(true) {
-        if (!loop_init_2) {
-            uint _e108 = i_6;
-            i_6 = (_e108 + 1u);
+        if (!loop_init_6) {
+            uint _e108 = i_12;
+            i_12 = (_e108 + 1u);
         }
-        loop_init_2 = false;
-        uint _e58 = i_6;
+        loop_init_6 = false;
+        uint _e58 = i_12;
         if ((_e58 < blobs)) {
         } else {
             break;
         }
         {
-            uint _e61 = i_6;
+            uint _e61 = i_12;
             float _e63 = atlas_hash(tile_1, (2u * _e61));
-            uint _e65 = i_6;
+            uint _e65 = i_12;
             float _e69 = atlas_hash(tile_1, ((2u * _e65) + 1u));
             vec2 centre_1 = (vec2(_e63, _e69) - vec2(0.5));
             at = (vec2(0.5) + (centre_1 * 0.34));
             if ((tile_1 == 4u)) {
                 at.y = (0.5 + ((centre_1.y - 0.5) * 0.24));
             }
-            uint _e91 = i_6;
+            uint _e91 = i_12;
             float _e93 = atlas_hash(tile_1, (100u + _e91));
             float r_3 = (0.14 + (0.1 * _e93));
             vec2 _e98 = at;
-            float d_9 = (length((uv - _e98)) / r_3);
+            float d_12 = (length((uv - _e98)) / r_3);
             float _e102 = billow;
-            float _e106 = saturate((1.0 - (d_9 * d_9)));
+            float _e106 = saturate((1.0 - (d_12 * d_12)));
             billow = max(_e102, _e106);
         }
     }
@@ -894,32 +1111,32 @@ float sprite_texture(uint tile_1, vec2 uv) {
     return _e130;
 }
 
-vec3 sprite_rel(vec2 xz, float alt_8) {
+vec3 sprite_rel(vec2 xz, float alt_15) {
     float rp_4 = _group_0_binding_0_cs.atmosphere.x;
     vec4 _e8 = _group_0_binding_0_cs.camera_position;
-    vec2 d_10 = (xz - _e8.xz);
-    float k_8 = ((alt_8 * (alt_8 + (2.0 * rp_4))) - dot(d_10, d_10));
-    float y_1 = (k_8 / (rp_4 + sqrt(max(((rp_4 * rp_4) + k_8), 0.0))));
-    return vec3(d_10.x, y_1, d_10.y);
+    vec2 d_13 = (xz - _e8.xz);
+    float k_9 = ((alt_15 * (alt_15 + (2.0 * rp_4))) - dot(d_13, d_13));
+    float y_1 = (k_9 / (rp_4 + sqrt(max(((rp_4 * rp_4) + k_9), 0.0))));
+    return vec3(d_13.x, y_1, d_13.y);
 }
 
 SpriteCell sprite_cell(uint cell) {
     ivec2 start_1 = ivec2(0);
-    uint k_3 = 3u;
-    bool local_38 = false;
-    bool local_39 = false;
+    uint k_4 = 3u;
+    bool local_50 = false;
+    bool local_51 = false;
     uint level_1 = (cell / 64u);
-    ivec2 local_41 = ivec2(int((cell % 8u)), int(((cell / 8u) % 8u)));
+    ivec2 local_53 = ivec2(int((cell % 8u)), int(((cell / 8u) % 8u)));
     vec4 _e15 = _group_0_binding_0_cs.camera_position;
     start_1 = (ivec2(floor((_e15.xz / vec2(12000.0)))) - ivec2(4));
-    bool loop_init_3 = true;
+    bool loop_init_7 = true;
     while(true) {
-        if (!loop_init_3) {
-            uint _e35 = k_3;
-            k_3 = (_e35 - 1u);
+        if (!loop_init_7) {
+            uint _e35 = k_4;
+            k_4 = (_e35 - 1u);
         }
-        loop_init_3 = false;
-        uint _e27 = k_3;
+        loop_init_7 = false;
+        uint _e27 = k_4;
         if ((_e27 > level_1)) {
         } else {
             break;
@@ -930,19 +1147,19 @@ SpriteCell sprite_cell(uint cell) {
         }
     }
     if ((level_1 > 0u)) {
-        local_38 = all(greaterThanEqual(local_41, ivec2(2)));
+        local_50 = all(greaterThanEqual(local_53, ivec2(2)));
     } else {
-        local_38 = false;
+        local_50 = false;
     }
-    bool _e47 = local_38;
+    bool _e47 = local_50;
     if (_e47) {
-        local_39 = all(lessThan(local_41, ivec2(6)));
+        local_51 = all(lessThan(local_53, ivec2(6)));
     } else {
-        local_39 = false;
+        local_51 = false;
     }
-    bool covered = local_39;
+    bool covered = local_51;
     ivec2 _e56 = start_1;
-    return SpriteCell((_e56 + local_41), (SPRITE_CELL0_ * float((1u << level_1))), covered);
+    return SpriteCell((_e56 + local_53), (SPRITE_CELL0_ * float((1u << level_1))), covered);
 }
 
 vec3 sprite_sky_level(float h_5) {
@@ -967,44 +1184,44 @@ float sprite_sun_level(float cos_angle) {
     return mix(SPRITE_C_MED, SPRITE_C_MAX, cos_angle);
 }
 
-vec2 sprite_corner(uint k_4) {
-    bool local_40 = false;
-    uint q_7 = ((k_4 >= 3u) ? ((k_4 == 3u) ? 0u : (k_4 - 2u)) : k_4);
+vec2 sprite_corner(uint k_5) {
+    bool local_52 = false;
+    uint q_7 = ((k_5 >= 3u) ? ((k_5 == 3u) ? 0u : (k_5 - 2u)) : k_5);
     if (!((q_7 == 1u))) {
-        local_40 = (q_7 == 2u);
+        local_52 = (q_7 == 2u);
     } else {
-        local_40 = true;
+        local_52 = true;
     }
-    bool _e18 = local_40;
+    bool _e18 = local_52;
     return vec2((_e18 ? 1.0 : -1.0), ((q_7 >= 2u) ? 1.0 : -1.0));
 }
 
-vec3 sky_radiance(vec3 d_6, float alt_9) {
+vec3 sky_radiance(vec3 d_9, float alt_16) {
     vec4 _e4 = _group_0_binding_0_cs.sun_direction;
     vec3 sun = _e4.xyz;
     vec4 _e8 = _group_0_binding_0_cs.sun_illuminance;
     vec3 e = _e8.xyz;
     float _e15 = saturate(((sun.y * 4.0) + 0.3));
-    bool _e19 = hits_ground(vec3(0.0, alt_9, 0.0), alt_9, d_6);
+    bool _e19 = hits_ground(vec3(0.0, alt_16, 0.0), alt_16, d_9);
     if (_e19) {
         vec3 ground_albedo = vec3(0.035, 0.035, 0.03);
         return (ground_albedo * (((e * max(sun.y, 0.0)) / vec3(3.1415927)) + ((0.05 * e) * _e15)));
     }
     vec3 zenith = vec3(0.018, 0.04, 0.1);
     vec3 horizon = vec3(0.07, 0.085, 0.11);
-    float _e45 = saturate(d_6.y);
+    float _e45 = saturate(d_9.y);
     vec3 gradient_1 = mix(horizon, zenith, sqrt(_e45));
     vec3 sunset = (((1.0 - (_e15 * 0.8)) * pow((1.0 - _e45), 6.0)) * vec3(0.25, 0.1, 0.0));
-    float _e64 = phase_hg(dot(d_6, sun), 0.76);
+    float _e64 = phase_hg(dot(d_9, sun), 0.76);
     float glow = (_e64 * 0.02);
     float _e73 = saturate(((sun.y * 10.0) + 1.0));
     return (e * (((gradient_1 * _e15) + (sunset * _e73)) + vec3((glow * _e15))));
 }
 
-vec3 sun_disk(vec3 d_7) {
+vec3 sun_disk(vec3 d_10) {
     float cos_r = _group_0_binding_0_cs.sun_direction.w;
     vec4 _e7 = _group_0_binding_0_cs.sun_direction;
-    if ((dot(d_7, _e7.xyz) < cos_r)) {
+    if ((dot(d_10, _e7.xyz) < cos_r)) {
         return vec3(0.0);
     }
     vec4 _e15 = _group_0_binding_0_cs.sun_illuminance;
@@ -1024,20 +1241,20 @@ void main() {
     }
     uvec2 pixel_7 = id_11.xy;
     vec3 _e9 = view_ray(pixel_7);
-    float alt_10 = _group_0_binding_0_cs.camera_position.y;
+    float alt_17 = _group_0_binding_0_cs.camera_position.y;
     vec4 cloud = texelFetch(_group_0_binding_9_cs, ivec2(pixel_7), 0);
-    vec3 _e17 = sky_radiance(_e9, alt_10);
+    vec3 _e17 = sky_radiance(_e9, alt_17);
     background = _e17;
-    bool _e22 = hits_ground(vec3(0.0, alt_10, 0.0), alt_10, _e9);
+    bool _e22 = hits_ground(vec3(0.0, alt_17, 0.0), alt_17, _e9);
     if (!(_e22)) {
         vec3 _e24 = background;
         vec3 _e25 = sun_disk(_e9);
         background = (_e24 + _e25);
     }
     vec3 _e27 = background;
-    vec3 radiance_2 = ((_e27 * cloud.w) + cloud.xyz);
+    vec3 radiance_1 = ((_e27 * cloud.w) + cloud.xyz);
     float _e35 = _group_0_binding_0_cs.camera_right.w;
-    vec3 exposed = (radiance_2 * _e35);
+    vec3 exposed = (radiance_1 * _e35);
     vec3 _e37 = aces_fitted(exposed);
     vec3 display = pow(_e37, vec3(0.45454547));
     imageStore(_group_0_binding_10_cs, ivec2(pixel_7), vec4(display, 1.0));

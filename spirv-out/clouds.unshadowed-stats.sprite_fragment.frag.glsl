@@ -26,6 +26,12 @@ struct Frame {
     vec4 previous_right;
     vec4 previous_up;
     uvec4 temporal;
+    vec4 layer1_;
+    vec4 layer1_weather;
+    vec4 layer2_;
+    vec4 layer2_weather;
+    vec4 layer3_;
+    vec4 layer3_weather;
 };
 struct Roots {
     float t0_;
@@ -36,6 +42,15 @@ struct Interval {
     float start;
     float length_;
     uint kind;
+};
+struct Layer {
+    float bottom;
+    float top;
+    float coverage;
+    float density;
+    float cloud_type;
+    float precipitation;
+    vec2 weather_offset;
 };
 struct Counters {
     uint view_steps;
@@ -55,6 +70,11 @@ struct MarchResult {
     vec3 radiance;
     float transmittance;
     float depth;
+};
+struct MarchState {
+    vec3 radiance;
+    float transmittance;
+    float depth_sum;
 };
 struct Segments {
     vec2 a;
@@ -113,6 +133,8 @@ const uint MAX_VIEW_STEPS = 1024u;
 const uint RAY_MARCH = 0u;
 const uint RAY_MISSES_LAYER = 1u;
 const uint RAY_HITS_GROUND = 2u;
+const uint MAX_LAYERS = 4u;
+const uint NO_LAYER = 4u;
 const uint OCCUPANCY_CELLS = 64u;
 const uint STAT_PIXELS = 0u;
 const uint STAT_MARCHED = 1u;
@@ -169,8 +191,8 @@ float remap(float x_2, float lo0_, float hi0_, float lo1_, float hi1_) {
 }
 
 uint pcg(uint v) {
-    uint state = ((v * 747796405u) + 2891336453u);
-    uint word = (((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u);
+    uint state_2 = ((v * 747796405u) + 2891336453u);
+    uint word = (((state_2 >> ((state_2 >> 28u) + 4u)) ^ state_2) * 277803737u);
     return ((word >> 22u) ^ word);
 }
 
@@ -199,6 +221,14 @@ Roots solve_sphere(float b, float c) {
     return Roots(min(r0_1, r1_1), max(r0_1, r1_1), true);
 }
 
+Layer layer_from(vec4 g, vec4 w) {
+    return Layer(g.x, g.y, g.z, g.w, w.x, w.y, w.zw);
+}
+
+float layer_height(Layer l_1, float alt_7) {
+    return ((alt_7 - l_1.bottom) / (l_1.top - l_1.bottom));
+}
+
 float height_parabola(float h, float cloud_type) {
     float height = mix(0.35, 1.0, cloud_type);
     float _e11 = saturate(((h * (h - height)) * (-4.0 / (height * height))));
@@ -219,15 +249,15 @@ float height_cloud_types(float h_2, float cloud_type_1) {
     return mix(lo, _e16, _e25);
 }
 
-float phase_hg(float cos_theta, float g) {
-    float g2_ = (g * g);
-    float denom = max(((1.0 + g2_) - ((2.0 * g) * cos_theta)), 1e-6);
+float phase_hg(float cos_theta, float g_1) {
+    float g2_ = (g_1 * g_1);
+    float denom = max(((1.0 + g2_) - ((2.0 * g_1) * cos_theta)), 1e-6);
     return ((1.0 - g2_) / ((12.566371 * denom) * sqrt(denom)));
 }
 
-float phase_cornette_shanks(float cos_theta_1, float g_1) {
-    float g2_1 = (g_1 * g_1);
-    float denom_1 = max(((1.0 + g2_1) - ((2.0 * g_1) * cos_theta_1)), 1e-6);
+float phase_cornette_shanks(float cos_theta_1, float g_2) {
+    float g2_1 = (g_2 * g_2);
+    float denom_1 = max(((1.0 + g2_1) - ((2.0 * g_2) * cos_theta_1)), 1e-6);
     return (((3.0 * (1.0 - g2_1)) * (1.0 + (cos_theta_1 * cos_theta_1))) / (((25.132742 * (2.0 + g2_1)) * denom_1) * sqrt(denom_1)));
 }
 
@@ -235,12 +265,12 @@ uvec2 bayer2_(uint v_1) {
     return uvec2(((v_1 ^ (v_1 >> 1u)) & 1u), (v_1 & 1u));
 }
 
-uvec2 block_offset(uint f, uint k) {
-    if ((k == 2u)) {
+uvec2 block_offset(uint f, uint k_1) {
+    if ((k_1 == 2u)) {
         uvec2 _e6 = bayer2_((f % 4u));
         return _e6;
     }
-    if ((k == 4u)) {
+    if ((k_1 == 4u)) {
         uint b_3 = (f % 16u);
         uvec2 _e13 = bayer2_((b_3 >> 2u));
         uvec2 _e17 = bayer2_((b_3 & 3u));
@@ -273,12 +303,12 @@ float rng_exponential(inout uint rng_2, float sigma) {
     return (-(log((1.0 - _e2))) / sigma);
 }
 
-float sample_hg_cos(float g_2, float u) {
-    if ((abs(g_2) < 0.0001)) {
+float sample_hg_cos(float g_3, float u) {
+    if ((abs(g_3) < 0.0001)) {
         return (1.0 - (2.0 * u));
     }
-    float s_4 = ((1.0 - (g_2 * g_2)) / ((1.0 - g_2) + ((2.0 * g_2) * u)));
-    return clamp((((1.0 + (g_2 * g_2)) - (s_4 * s_4)) / (2.0 * g_2)), -1.0, 1.0);
+    float s_4 = ((1.0 - (g_3 * g_3)) / ((1.0 - g_3) + ((2.0 * g_3) * u)));
+    return clamp((((1.0 + (g_3 * g_3)) - (s_4 * s_4)) / (2.0 * g_3)), -1.0, 1.0);
 }
 
 float luminance(vec3 c_1) {
@@ -291,24 +321,24 @@ float atlas_hash(uint a_2, uint b_2) {
     return (float((_e4 >> 8u)) * 5.9604645e-8);
 }
 
-float value_noise(vec2 p_9, uint seed) {
-    uvec2 i_7 = uvec2(floor(p_9));
-    vec2 f_1 = fract(p_9);
+float value_noise(vec2 p_10, uint seed) {
+    uvec2 i_13 = uvec2(floor(p_10));
+    vec2 f_1 = fract(p_10);
     vec2 s_5 = ((f_1 * f_1) * (vec2(3.0) - (2.0 * f_1)));
     uint h_6 = (seed * 7919u);
-    float _e17 = atlas_hash((i_7.x + h_6), i_7.y);
-    float _e23 = atlas_hash(((i_7.x + 1u) + h_6), i_7.y);
-    float _e29 = atlas_hash((i_7.x + h_6), (i_7.y + 1u));
-    float _e37 = atlas_hash(((i_7.x + 1u) + h_6), (i_7.y + 1u));
+    float _e17 = atlas_hash((i_13.x + h_6), i_13.y);
+    float _e23 = atlas_hash(((i_13.x + 1u) + h_6), i_13.y);
+    float _e29 = atlas_hash((i_13.x + h_6), (i_13.y + 1u));
+    float _e37 = atlas_hash(((i_13.x + 1u) + h_6), (i_13.y + 1u));
     return mix(mix(_e17, _e23, s_5.x), mix(_e29, _e37, s_5.x), s_5.y);
 }
 
-float value_fbm(vec2 p_10, uint seed_1) {
+float value_fbm(vec2 p_11, uint seed_1) {
     float sum_1 = 0.0;
     float weight = 0.5;
     vec2 q_4 = vec2(0.0);
     uint o = 0u;
-    q_4 = p_10;
+    q_4 = p_11;
     bool loop_init = true;
     while(true) {
         if (!loop_init) {
@@ -340,7 +370,7 @@ float value_fbm(vec2 p_10, uint seed_1) {
 
 float sprite_texture(uint tile_1, vec2 uv) {
     float billow = 0.0;
-    uint i_6 = 0u;
+    uint i_12 = 0u;
     vec2 at = vec2(0.0);
     float a_3 = 0.0;
     vec2 c_3 = (uv - vec2(0.5));
@@ -357,32 +387,32 @@ float sprite_texture(uint tile_1, vec2 uv) {
     bool loop_init_1 = true;
     while(true) {
         if (!loop_init_1) {
-            uint _e108 = i_6;
-            i_6 = (_e108 + 1u);
+            uint _e108 = i_12;
+            i_12 = (_e108 + 1u);
         }
         loop_init_1 = false;
-        uint _e58 = i_6;
+        uint _e58 = i_12;
         if ((_e58 < blobs)) {
         } else {
             break;
         }
         {
-            uint _e61 = i_6;
+            uint _e61 = i_12;
             float _e63 = atlas_hash(tile_1, (2u * _e61));
-            uint _e65 = i_6;
+            uint _e65 = i_12;
             float _e69 = atlas_hash(tile_1, ((2u * _e65) + 1u));
             vec2 centre_1 = (vec2(_e63, _e69) - vec2(0.5));
             at = (vec2(0.5) + (centre_1 * 0.34));
             if ((tile_1 == 4u)) {
                 at.y = (0.5 + ((centre_1.y - 0.5) * 0.24));
             }
-            uint _e91 = i_6;
+            uint _e91 = i_12;
             float _e93 = atlas_hash(tile_1, (100u + _e91));
             float r_3 = (0.14 + (0.1 * _e93));
             vec2 _e98 = at;
-            float d_8 = (length((uv - _e98)) / r_3);
+            float d_11 = (length((uv - _e98)) / r_3);
             float _e102 = billow;
-            float _e106 = saturate((1.0 - (d_8 * d_8)));
+            float _e106 = saturate((1.0 - (d_11 * d_11)));
             billow = max(_e102, _e106);
         }
     }
@@ -419,15 +449,15 @@ float sprite_sun_level(float cos_angle) {
     return mix(SPRITE_C_MED, SPRITE_C_MAX, cos_angle);
 }
 
-vec2 sprite_corner(uint k_4) {
-    bool local_40 = false;
-    uint q_6 = ((k_4 >= 3u) ? ((k_4 == 3u) ? 0u : (k_4 - 2u)) : k_4);
+vec2 sprite_corner(uint k_5) {
+    bool local_52 = false;
+    uint q_6 = ((k_5 >= 3u) ? ((k_5 == 3u) ? 0u : (k_5 - 2u)) : k_5);
     if (!((q_6 == 1u))) {
-        local_40 = (q_6 == 2u);
+        local_52 = (q_6 == 2u);
     } else {
-        local_40 = true;
+        local_52 = true;
     }
-    bool _e18 = local_40;
+    bool _e18 = local_52;
     return vec2((_e18 ? 1.0 : -1.0), ((q_6 >= 2u) ? 1.0 : -1.0));
 }
 

@@ -30,6 +30,12 @@ struct Frame {
     vec4 previous_right;
     vec4 previous_up;
     uvec4 temporal;
+    vec4 layer1_;
+    vec4 layer1_weather;
+    vec4 layer2_;
+    vec4 layer2_weather;
+    vec4 layer3_;
+    vec4 layer3_weather;
 };
 struct Roots {
     float t0_;
@@ -40,6 +46,15 @@ struct Interval {
     float start;
     float length_;
     uint kind;
+};
+struct Layer {
+    float bottom;
+    float top;
+    float coverage;
+    float density;
+    float cloud_type;
+    float precipitation;
+    vec2 weather_offset;
 };
 struct Counters {
     uint view_steps;
@@ -59,6 +74,11 @@ struct MarchResult {
     vec3 radiance;
     float transmittance;
     float depth;
+};
+struct MarchState {
+    vec3 radiance;
+    float transmittance;
+    float depth_sum;
 };
 struct Segments {
     vec2 a;
@@ -117,6 +137,8 @@ const uint MAX_VIEW_STEPS = 1024u;
 const uint RAY_MARCH = 0u;
 const uint RAY_MISSES_LAYER = 1u;
 const uint RAY_HITS_GROUND = 2u;
+const uint MAX_LAYERS = 4u;
+const uint NO_LAYER = 4u;
 const uint OCCUPANCY_CELLS = 64u;
 const uint STAT_PIXELS = 0u;
 const uint STAT_MARCHED = 1u;
@@ -185,8 +207,8 @@ float remap(float x_2, float lo0_, float hi0_, float lo1_, float hi1_) {
 }
 
 uint pcg(uint v) {
-    uint state = ((v * 747796405u) + 2891336453u);
-    uint word = (((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u);
+    uint state_2 = ((v * 747796405u) + 2891336453u);
+    uint word = (((state_2 >> ((state_2 >> 28u) + 4u)) ^ state_2) * 277803737u);
     return ((word >> 22u) ^ word);
 }
 
@@ -210,8 +232,8 @@ vec3 view_ray(uvec2 pixel_1) {
     vec4 _e26 = _group_0_binding_0_cs.camera_forward;
     vec4 _e30 = _group_0_binding_0_cs.camera_right;
     vec4 _e39 = _group_0_binding_0_cs.camera_up;
-    vec3 d_8 = ((_e26.xyz + (_e30.xyz * ((ndc.x * tan_half) * aspect))) - (_e39.xyz * (ndc.y * tan_half)));
-    return normalize(d_8);
+    vec3 d_11 = ((_e26.xyz + (_e30.xyz * ((ndc.x * tan_half) * aspect))) - (_e39.xyz * (ndc.y * tan_half)));
+    return normalize(d_11);
 }
 
 Roots solve_sphere(float b, float c) {
@@ -257,84 +279,254 @@ bool hits_ground(vec3 p_1, float alt_1, vec3 d_1) {
     return _e24;
 }
 
-Interval layer_interval(float alt_2, vec3 d_2) {
+Interval shell_interval(float alt_2, vec3 d_2, float bottom, float top) {
     float start = 0.0;
     float end = 0.0;
     bool local_13 = false;
     bool local_14 = false;
     bool local_15 = false;
-    float bottom = _group_0_binding_0_cs.atmosphere.y;
-    float top = _group_0_binding_0_cs.atmosphere.z;
     float cutoff = _group_0_binding_0_cs.atmosphere.w;
-    Roots _e14 = ray_shell(alt_2, d_2, bottom);
-    Roots _e15 = ray_shell(alt_2, d_2, top);
+    Roots _e8 = ray_shell(alt_2, d_2, bottom);
+    Roots _e9 = ray_shell(alt_2, d_2, top);
     if ((alt_2 < bottom)) {
-        bool _e24 = hits_ground(vec3(0.0, alt_2, 0.0), alt_2, d_2);
-        if (_e24) {
+        bool _e18 = hits_ground(vec3(0.0, alt_2, 0.0), alt_2, d_2);
+        if (_e18) {
             return Interval(0.0, 0.0, 2u);
         }
-        start = _e14.t1_;
-        end = _e15.t1_;
+        start = _e8.t1_;
+        end = _e9.t1_;
     } else {
         if ((alt_2 <= top)) {
-            end = _e15.t1_;
-            if (_e14.hit) {
-                local_13 = (_e14.t0_ > 0.0);
+            end = _e9.t1_;
+            if (_e8.hit) {
+                local_13 = (_e8.t0_ > 0.0);
             } else {
                 local_13 = false;
             }
-            bool _e40 = local_13;
-            if (_e40) {
-                float _e41 = end;
-                end = min(_e41, _e14.t0_);
+            bool _e34 = local_13;
+            if (_e34) {
+                float _e35 = end;
+                end = min(_e35, _e8.t0_);
             }
         } else {
-            if (!(!(_e15.hit))) {
-                local_14 = (_e15.t1_ <= 0.0);
+            if (!(!(_e9.hit))) {
+                local_14 = (_e9.t1_ <= 0.0);
             } else {
                 local_14 = true;
             }
-            bool _e53 = local_14;
-            if (_e53) {
+            bool _e47 = local_14;
+            if (_e47) {
                 return Interval(0.0, 0.0, 1u);
             }
-            start = max(_e15.t0_, 0.0);
-            end = _e15.t1_;
-            if (_e14.hit) {
-                local_15 = (_e14.t0_ > 0.0);
+            start = max(_e9.t0_, 0.0);
+            end = _e9.t1_;
+            if (_e8.hit) {
+                local_15 = (_e8.t0_ > 0.0);
             } else {
                 local_15 = false;
             }
-            bool _e69 = local_15;
-            if (_e69) {
-                float _e70 = end;
-                end = min(_e70, _e14.t0_);
+            bool _e63 = local_15;
+            if (_e63) {
+                float _e64 = end;
+                end = min(_e64, _e8.t0_);
             }
         }
     }
-    float _e73 = end;
-    float _e74 = start;
-    float len = min((_e73 - _e74), cutoff);
+    float _e67 = end;
+    float _e68 = start;
+    float len = min((_e67 - _e68), cutoff);
     if (!((len > 0.0))) {
         return Interval(0.0, 0.0, 1u);
     }
-    float _e84 = start;
-    return Interval(_e84, len, RAY_MARCH);
+    float _e78 = start;
+    return Interval(_e78, len, RAY_MARCH);
 }
 
-Weather sample_weather(vec3 p_2) {
-    vec4 _e4 = _group_0_binding_0_cs.wind_offsets0_;
-    float _e10 = _group_0_binding_0_cs.periods.x;
-    vec2 uv_1 = ((p_2.xz - _e4.xy) / vec2(_e10));
-    vec4 w = textureLod(_group_0_binding_3_cs, vec2(uv_1), 0.0);
-    float _e21 = _group_0_binding_0_cs.clouds.x;
-    float _e27 = saturate((w.x + (2.0 * (_e21 - 0.5))));
-    float _e31 = _group_0_binding_0_cs.clouds.z;
-    float _e38 = saturate((_e31 + ((w.z - 0.5) * 0.5)));
-    float _e42 = _group_0_binding_0_cs.clouds.w;
-    float _e46 = saturate((0.5 + w.y));
-    float precipitation = (_e42 * _e46);
-    return Weather(_e27, _e38, precipitation);
+Interval layer_interval(float alt_3, vec3 d_3, Layer l) {
+    Interval _e5 = shell_interval(alt_3, d_3, l.bottom, l.top);
+    return _e5;
+}
+
+uint layer_count() {
+    uint _e4 = _group_0_binding_0_cs.misc.w;
+    return (1u + min(_e4, 3u));
+}
+
+Layer layer_from(vec4 g, vec4 w) {
+    return Layer(g.x, g.y, g.z, g.w, w.x, w.y, w.zw);
+}
+
+Layer cloud_layer(uint i_1) {
+    if ((i_1 == 1u)) {
+        vec4 _e5 = _group_0_binding_0_cs.layer1_;
+        vec4 _e8 = _group_0_binding_0_cs.layer1_weather;
+        Layer _e9 = layer_from(_e5, _e8);
+        return _e9;
+    } else {
+        if ((i_1 == 2u)) {
+            vec4 _e14 = _group_0_binding_0_cs.layer2_;
+            vec4 _e17 = _group_0_binding_0_cs.layer2_weather;
+            Layer _e18 = layer_from(_e14, _e17);
+            return _e18;
+        } else {
+            if ((i_1 == 3u)) {
+                vec4 _e23 = _group_0_binding_0_cs.layer3_;
+                vec4 _e26 = _group_0_binding_0_cs.layer3_weather;
+                Layer _e27 = layer_from(_e23, _e26);
+                return _e27;
+            }
+        }
+    }
+    float _e31 = _group_0_binding_0_cs.atmosphere.y;
+    float _e35 = _group_0_binding_0_cs.atmosphere.z;
+    float _e39 = _group_0_binding_0_cs.clouds.x;
+    float _e43 = _group_0_binding_0_cs.clouds.y;
+    float _e47 = _group_0_binding_0_cs.clouds.z;
+    float _e51 = _group_0_binding_0_cs.clouds.w;
+    vec4 _e54 = _group_0_binding_0_cs.wind_offsets0_;
+    return Layer(_e31, _e35, _e39, _e43, _e47, _e51, _e54.xy);
+}
+
+vec2 layers_span() {
+    vec2 span = vec2(0.0);
+    uint i_2 = 1u;
+    vec4 _e2 = _group_0_binding_0_cs.atmosphere;
+    span = _e2.yz;
+    bool loop_init = true;
+    while(true) {
+        if (!loop_init) {
+            uint _e22 = i_2;
+            i_2 = (_e22 + 1u);
+        }
+        loop_init = false;
+        uint _e7 = i_2;
+        uint _e8 = layer_count();
+        if ((_e7 < _e8)) {
+        } else {
+            break;
+        }
+        {
+            uint _e10 = i_2;
+            Layer _e11 = cloud_layer(_e10);
+            float _e13 = span.x;
+            float _e17 = span.y;
+            span = vec2(min(_e13, _e11.bottom), max(_e17, _e11.top));
+        }
+    }
+    vec2 _e24 = span;
+    return _e24;
+}
+
+Interval cloud_interval(float alt_4, vec3 d_4) {
+    vec2 _e2 = layers_span();
+    Interval _e5 = shell_interval(alt_4, d_4, _e2.x, _e2.y);
+    return _e5;
+}
+
+Interval nearest_layer_interval(float alt_5, vec3 d_5) {
+    Interval best = Interval(0.0, 0.0, 0u);
+    uint i_3 = 1u;
+    bool local_16 = false;
+    bool local_17 = false;
+    Layer _e3 = cloud_layer(0u);
+    Interval _e4 = layer_interval(alt_5, d_5, _e3);
+    best = _e4;
+    bool loop_init_1 = true;
+    while(true) {
+        if (!loop_init_1) {
+            uint _e35 = i_3;
+            i_3 = (_e35 + 1u);
+        }
+        loop_init_1 = false;
+        uint _e8 = i_3;
+        uint _e9 = layer_count();
+        if ((_e8 < _e9)) {
+        } else {
+            break;
+        }
+        {
+            uint _e11 = i_3;
+            Layer _e12 = cloud_layer(_e11);
+            Interval _e13 = layer_interval(alt_5, d_5, _e12);
+            if ((_e13.kind == RAY_MARCH)) {
+                uint _e20 = best.kind;
+                if (!((_e20 != RAY_MARCH))) {
+                    float _e28 = best.start;
+                    local_17 = (_e13.start < _e28);
+                } else {
+                    local_17 = true;
+                }
+                bool _e31 = local_17;
+                local_16 = _e31;
+            } else {
+                local_16 = false;
+            }
+            bool _e33 = local_16;
+            if (_e33) {
+                best = _e13;
+            }
+        }
+    }
+    Interval _e37 = best;
+    return _e37;
+}
+
+Roots ray_shell_from(vec3 p_2, float alt_6, vec3 d_6, float radius_alt_1) {
+    float rp_3 = _group_0_binding_0_cs.atmosphere.x;
+    float b_5 = dot(d_6, vec3(p_2.x, (p_2.y + rp_3), p_2.z));
+    float c_5 = ((alt_6 - radius_alt_1) * ((alt_6 + radius_alt_1) + (2.0 * rp_3)));
+    Roots _e20 = solve_sphere(b_5, c_5);
+    return _e20;
+}
+
+float layer_height(Layer l_1, float alt_7) {
+    return ((alt_7 - l_1.bottom) / (l_1.top - l_1.bottom));
+}
+
+uint layer_at(float alt_8) {
+    uint i_4 = 0u;
+    bool local_18 = false;
+    bool loop_init_2 = true;
+    while(true) {
+        if (!loop_init_2) {
+            uint _e19 = i_4;
+            i_4 = (_e19 + 1u);
+        }
+        loop_init_2 = false;
+        uint _e3 = i_4;
+        uint _e4 = layer_count();
+        if ((_e3 < _e4)) {
+        } else {
+            break;
+        }
+        {
+            uint _e6 = i_4;
+            Layer _e7 = cloud_layer(_e6);
+            float _e8 = layer_height(_e7, alt_8);
+            if ((_e8 >= 0.0)) {
+                local_18 = (_e8 <= 1.0);
+            } else {
+                local_18 = false;
+            }
+            bool _e16 = local_18;
+            if (_e16) {
+                uint _e17 = i_4;
+                return _e17;
+            }
+        }
+    }
+    return NO_LAYER;
+}
+
+Weather sample_weather(vec3 p_3, Layer l_2) {
+    float _e8 = _group_0_binding_0_cs.periods.x;
+    vec2 uv_1 = ((p_3.xz - l_2.weather_offset) / vec2(_e8));
+    vec4 w_1 = textureLod(_group_0_binding_3_cs, vec2(uv_1), 0.0);
+    float _e22 = saturate((w_1.x + (2.0 * (l_2.coverage - 0.5))));
+    float _e30 = saturate((l_2.cloud_type + ((w_1.z - 0.5) * 0.5)));
+    float _e35 = saturate((0.5 + w_1.y));
+    float precipitation = (l_2.precipitation * _e35);
+    return Weather(_e22, _e30, precipitation);
 }
 
 float height_parabola(float h, float cloud_type) {
@@ -367,213 +559,274 @@ float height_signal(float h_3, float cloud_type_2) {
     return _e9;
 }
 
-float cloud_density(vec3 p_3, float alt_3, inout Counters counters_2) {
-    bool local_16 = false;
-    bool local_17 = false;
+float layer_density(vec3 p_4, float alt_9, Layer l_3, inout Counters counters_2) {
+    bool local_19 = false;
+    bool local_20 = false;
     float base = 0.0;
     float density = 0.0;
-    bool local_18 = false;
-    bool local_19 = false;
+    bool local_21 = false;
+    bool local_22 = false;
     vec3 detail_pos = vec3(0.0);
-    float bottom_1 = _group_0_binding_0_cs.atmosphere.y;
-    float top_1 = _group_0_binding_0_cs.atmosphere.z;
-    float h_6 = ((alt_3 - bottom_1) / (top_1 - bottom_1));
-    if (!((h_6 < 0.0))) {
-        local_16 = (h_6 > 1.0);
+    float _e4 = layer_height(l_3, alt_9);
+    if (!((_e4 < 0.0))) {
+        local_19 = (_e4 > 1.0);
     } else {
-        local_16 = true;
+        local_19 = true;
     }
-    bool _e22 = local_16;
-    if (_e22) {
+    bool _e13 = local_19;
+    if (_e13) {
         return 0.0;
     }
-    uint _e25 = counters_2.density;
-    counters_2.density = (_e25 + 1u);
-    Weather _e28 = sample_weather(p_3);
-    float _e30 = height_signal(h_6, _e28.cloud_type);
-    if (!((_e28.coverage <= 0.0))) {
-        local_17 = (_e30 <= 0.0);
+    uint _e16 = counters_2.density;
+    counters_2.density = (_e16 + 1u);
+    Weather _e19 = sample_weather(p_4, l_3);
+    float _e21 = height_signal(_e4, _e19.cloud_type);
+    if (!((_e19.coverage <= 0.0))) {
+        local_20 = (_e21 <= 0.0);
     } else {
-        local_17 = true;
+        local_20 = true;
     }
-    bool _e40 = local_17;
-    if (_e40) {
+    bool _e31 = local_20;
+    if (_e31) {
         return 0.0;
     }
     vec3 dims = vec3(uvec3(textureSize(_group_0_binding_1_cs, 0).xyz));
-    float _e48 = _group_0_binding_0_cs.periods.y;
-    vec3 period = (_e48 * vec3(1.0, (dims.y / dims.x), 1.0));
-    float _e60 = _group_0_binding_0_cs.wind_offsets0_.z;
-    float _e66 = _group_0_binding_0_cs.wind_offsets0_.w;
-    vec3 shape_pos = vec3((p_3.x - _e60), alt_3, (p_3.z - _e66));
+    float _e39 = _group_0_binding_0_cs.periods.y;
+    vec3 period = (_e39 * vec3(1.0, (dims.y / dims.x), 1.0));
+    float _e51 = _group_0_binding_0_cs.wind_offsets0_.z;
+    float _e57 = _group_0_binding_0_cs.wind_offsets0_.w;
+    vec3 shape_pos = vec3((p_4.x - _e51), alt_9, (p_4.z - _e57));
     vec4 s_3 = textureLod(_group_0_binding_1_cs, vec3((shape_pos / period)), 0.0);
     float low_fbm = (((s_3.y * 0.625) + (s_3.z * 0.25)) + (s_3.w * 0.125));
-    float _e91 = remap(s_3.x, (low_fbm - 1.0), 1.0, 0.0, 1.0);
-    float _e92 = saturate(_e91);
-    base = (_e92 * _e30);
-    float _e95 = base;
-    float _e102 = remap(_e95, (1.0 - _e28.coverage), 1.0, 0.0, 1.0);
-    float _e103 = saturate(_e102);
-    base = (_e103 * _e28.coverage);
-    float _e106 = base;
-    if ((_e106 <= 0.0)) {
+    float _e82 = remap(s_3.x, (low_fbm - 1.0), 1.0, 0.0, 1.0);
+    float _e83 = saturate(_e82);
+    base = (_e83 * _e21);
+    float _e86 = base;
+    float _e93 = remap(_e86, (1.0 - _e19.coverage), 1.0, 0.0, 1.0);
+    float _e94 = saturate(_e93);
+    base = (_e94 * _e19.coverage);
+    float _e97 = base;
+    if ((_e97 <= 0.0)) {
         return 0.0;
     }
-    float _e110 = base;
-    density = _e110;
+    float _e101 = base;
+    density = _e101;
     float strength = _group_0_binding_0_cs.erosion.x;
     float threshold = _group_0_binding_0_cs.erosion.y;
     if (DETAIL) {
-        local_18 = (strength > 0.0);
+        local_21 = (strength > 0.0);
     } else {
-        local_18 = false;
+        local_21 = false;
     }
-    bool _e126 = local_18;
-    if (_e126) {
-        float _e129 = base;
-        local_19 = (_e129 < threshold);
+    bool _e117 = local_21;
+    if (_e117) {
+        float _e120 = base;
+        local_22 = (_e120 < threshold);
     } else {
-        local_19 = false;
+        local_22 = false;
     }
-    bool _e132 = local_19;
-    if (_e132) {
-        uint _e134 = counters_2.detail;
-        counters_2.detail = (_e134 + 1u);
-        detail_pos = vec3(p_3.x, alt_3, p_3.z);
+    bool _e123 = local_22;
+    if (_e123) {
+        uint _e125 = counters_2.detail;
+        counters_2.detail = (_e125 + 1u);
+        detail_pos = vec3(p_4.x, alt_9, p_4.z);
         if (CURL) {
-            vec4 _e145 = _group_0_binding_0_cs.wind_offsets1_;
-            float _e151 = _group_0_binding_0_cs.periods.w;
-            vec2 cuv = ((p_3.xz - _e145.zw) / vec2(_e151));
-            vec4 _e157 = textureLod(_group_0_binding_4_cs, vec2(cuv), 0.0);
-            vec2 curl = ((_e157.xy * 2.0) - vec2(1.0));
-            vec3 _e164 = detail_pos;
-            float _e172 = _group_0_binding_0_cs.erosion.z;
-            detail_pos = (_e164 + (vec3(curl.x, 0.0, curl.y) * (_e172 * (1.0 - h_6))));
+            vec4 _e136 = _group_0_binding_0_cs.wind_offsets1_;
+            float _e142 = _group_0_binding_0_cs.periods.w;
+            vec2 cuv = ((p_4.xz - _e136.zw) / vec2(_e142));
+            vec4 _e148 = textureLod(_group_0_binding_4_cs, vec2(cuv), 0.0);
+            vec2 curl = ((_e148.xy * 2.0) - vec2(1.0));
+            vec3 _e155 = detail_pos;
+            float _e163 = _group_0_binding_0_cs.erosion.z;
+            detail_pos = (_e155 + (vec3(curl.x, 0.0, curl.y) * (_e163 * (1.0 - _e4))));
         }
-        vec3 _e178 = detail_pos;
-        float _e182 = _group_0_binding_0_cs.wind_offsets1_.x;
-        float _e186 = _group_0_binding_0_cs.wind_offsets1_.y;
-        detail_pos = (_e178 - vec3(_e182, 0.0, _e186));
-        vec3 _e192 = detail_pos;
-        float _e196 = _group_0_binding_0_cs.periods.z;
-        vec4 dn = textureLod(_group_0_binding_2_cs, vec3((_e192 / vec3(_e196))), 0.0);
+        vec3 _e169 = detail_pos;
+        float _e173 = _group_0_binding_0_cs.wind_offsets1_.x;
+        float _e177 = _group_0_binding_0_cs.wind_offsets1_.y;
+        detail_pos = (_e169 - vec3(_e173, 0.0, _e177));
+        vec3 _e183 = detail_pos;
+        float _e187 = _group_0_binding_0_cs.periods.z;
+        vec4 dn = textureLod(_group_0_binding_2_cs, vec3((_e183 / vec3(_e187))), 0.0);
         float high_fbm = (((dn.x * 0.625) + (dn.y * 0.25)) + (dn.z * 0.125));
-        float _e215 = _group_0_binding_0_cs.extinction.w;
-        float _e220 = saturate((h_6 * 10.0));
-        float _e222 = saturate(((2.0 * _e215) * _e220));
-        float shape = mix((1.0 - high_fbm), high_fbm, _e222);
-        float _e227 = base;
-        float erosion = ((strength * shape) * (1.0 - (_e227 / threshold)));
-        float _e232 = base;
-        float _e236 = remap(_e232, erosion, 1.0, 0.0, 1.0);
-        float _e237 = saturate(_e236);
-        density = _e237;
+        float _e206 = _group_0_binding_0_cs.extinction.w;
+        float _e211 = saturate((_e4 * 10.0));
+        float _e213 = saturate(((2.0 * _e206) * _e211));
+        float shape = mix((1.0 - high_fbm), high_fbm, _e213);
+        float _e218 = base;
+        float erosion = ((strength * shape) * (1.0 - (_e218 / threshold)));
+        float _e223 = base;
+        float _e227 = remap(_e223, erosion, 1.0, 0.0, 1.0);
+        float _e228 = saturate(_e227);
+        density = _e228;
     }
-    float _e238 = density;
-    float _e242 = _group_0_binding_0_cs.erosion.w;
-    density = (_e238 * mix(1.0, h_6, _e242));
-    float _e246 = density;
-    float _e250 = _group_0_binding_0_cs.clouds.y;
-    density = ((_e246 * _e250) * (1.0 + _e28.precipitation));
-    float _e256 = density;
-    return clamp(_e256, 0.0, 1.0);
+    float _e229 = density;
+    float _e233 = _group_0_binding_0_cs.erosion.w;
+    density = (_e229 * mix(1.0, _e4, _e233));
+    float _e237 = density;
+    density = ((_e237 * l_3.density) * (1.0 + _e19.precipitation));
+    float _e244 = density;
+    return clamp(_e244, 0.0, 1.0);
 }
 
-float phase_hg(float cos_theta, float g) {
-    float g2_ = (g * g);
-    float denom = max(((1.0 + g2_) - ((2.0 * g) * cos_theta)), 1e-6);
+float cloud_density(vec3 p_5, float alt_10, inout Counters counters_3) {
+    uint _e3 = layer_at(alt_10);
+    if ((_e3 == NO_LAYER)) {
+        return 0.0;
+    }
+    Layer _e7 = cloud_layer(_e3);
+    float _e8 = layer_density(p_5, alt_10, _e7, counters_3);
+    return _e8;
+}
+
+float phase_hg(float cos_theta, float g_1) {
+    float g2_ = (g_1 * g_1);
+    float denom = max(((1.0 + g2_) - ((2.0 * g_1) * cos_theta)), 1e-6);
     return ((1.0 - g2_) / ((12.566371 * denom) * sqrt(denom)));
 }
 
-float phase_cornette_shanks(float cos_theta_1, float g_1) {
-    float g2_1 = (g_1 * g_1);
-    float denom_1 = max(((1.0 + g2_1) - ((2.0 * g_1) * cos_theta_1)), 1e-6);
+float phase_cornette_shanks(float cos_theta_1, float g_2) {
+    float g2_1 = (g_2 * g_2);
+    float denom_1 = max(((1.0 + g2_1) - ((2.0 * g_2) * cos_theta_1)), 1e-6);
     return (((3.0 * (1.0 - g2_1)) * (1.0 + (cos_theta_1 * cos_theta_1))) / (((25.132742 * (2.0 + g2_1)) * denom_1) * sqrt(denom_1)));
 }
 
 float phase(float cos_theta_2, float scale) {
     float _e5 = _group_0_binding_0_cs.phase.x;
-    float g_3 = (_e5 * scale);
+    float g_4 = (_e5 * scale);
     uint _e10 = _group_0_binding_0_cs.modes.x;
     switch(_e10) {
         case 1u: {
             float _e14 = _group_0_binding_0_cs.phase.y;
             float g2_2 = (_e14 * scale);
-            float _e16 = phase_hg(cos_theta_2, g_3);
+            float _e16 = phase_hg(cos_theta_2, g_4);
             float _e17 = phase_hg(cos_theta_2, g2_2);
             float _e21 = _group_0_binding_0_cs.phase.z;
             return mix(_e16, _e17, _e21);
         }
         case 2u: {
-            float _e23 = phase_cornette_shanks(cos_theta_2, g_3);
+            float _e23 = phase_cornette_shanks(cos_theta_2, g_4);
             return _e23;
         }
         default: {
-            float _e24 = phase_hg(cos_theta_2, g_3);
+            float _e24 = phase_hg(cos_theta_2, g_4);
             return _e24;
         }
     }
 }
 
-float sun_optical_depth(vec3 rel, vec3 p_4, inout Counters counters_3) {
+float sun_optical_depth(vec3 rel, vec3 p_6, Layer l_4, inout Counters counters_4) {
     float seg = 0.0;
     float dist = 0.0;
     float tau = 0.0;
-    uint i_1 = 0u;
-    bool local_20 = false;
-    vec4 _e5 = _group_0_binding_0_cs.sun_direction;
-    vec3 sun = _e5.xyz;
-    float _e10 = _group_0_binding_0_cs.extinction.x;
-    float _e14 = _group_0_binding_0_cs.extinction.y;
-    float sigma_t_1 = (_e10 + _e14);
+    uint i_5 = 0u;
+    bool local_23 = false;
+    uint j_1 = 0u;
+    bool local_24 = false;
+    bool local_25 = false;
+    bool local_26 = false;
+    vec4 _e6 = _group_0_binding_0_cs.sun_direction;
+    vec3 sun = _e6.xyz;
+    float _e11 = _group_0_binding_0_cs.extinction.x;
+    float _e15 = _group_0_binding_0_cs.extinction.y;
+    float sigma_t_1 = (_e11 + _e15);
     uint steps_1 = _group_0_binding_0_cs.counts.w;
     float growth = _group_0_binding_0_cs.march.y;
-    float _e27 = _group_0_binding_0_cs.march.z;
-    seg = _e27;
-    bool loop_init = true;
+    float _e28 = _group_0_binding_0_cs.march.z;
+    seg = _e28;
+    bool loop_init_3 = true;
     while(true) {
-        if (!loop_init) {
-            uint _e78 = i_1;
-            i_1 = (_e78 + 1u);
+        if (!loop_init_3) {
+            uint _e73 = i_5;
+            i_5 = (_e73 + 1u);
         }
-        loop_init = false;
-        uint _e35 = i_1;
-        if ((_e35 < steps_1)) {
+        loop_init_3 = false;
+        uint _e36 = i_5;
+        if ((_e36 < steps_1)) {
         } else {
             break;
         }
         {
-            float _e37 = dist;
-            float _e38 = seg;
-            float s_4 = (_e37 + (0.5 * _e38));
+            float _e38 = dist;
+            float _e39 = seg;
+            float s_4 = (_e38 + (0.5 * _e39));
             vec3 q_6 = (rel + (sun * s_4));
-            float _e44 = altitude_of(q_6);
-            float _e48 = _group_0_binding_0_cs.atmosphere.z;
-            if (!((_e44 > _e48))) {
-                float _e56 = _group_0_binding_0_cs.atmosphere.y;
-                local_20 = (_e44 < _e56);
+            float _e45 = altitude_of(q_6);
+            if (!((_e45 > l_4.top))) {
+                local_23 = (_e45 < l_4.bottom);
             } else {
-                local_20 = true;
+                local_23 = true;
             }
-            bool _e59 = local_20;
-            if (_e59) {
+            bool _e54 = local_23;
+            if (_e54) {
                 break;
             }
-            uint _e61 = counters_3.light;
-            counters_3.light = (_e61 + 1u);
-            float _e64 = tau;
-            float _e67 = cloud_density((p_4 + (sun * s_4)), _e44, counters_3);
-            float _e69 = seg;
-            tau = (_e64 + ((_e67 * sigma_t_1) * _e69));
-            float _e72 = dist;
-            float _e73 = seg;
-            dist = (_e72 + _e73);
-            float _e75 = seg;
-            seg = (_e75 * growth);
+            uint _e56 = counters_4.light;
+            counters_4.light = (_e56 + 1u);
+            float _e59 = tau;
+            float _e62 = layer_density((p_6 + (sun * s_4)), _e45, l_4, counters_4);
+            float _e64 = seg;
+            tau = (_e59 + ((_e62 * sigma_t_1) * _e64));
+            float _e67 = dist;
+            float _e68 = seg;
+            dist = (_e67 + _e68);
+            float _e70 = seg;
+            seg = (_e70 * growth);
         }
     }
-    float _e80 = tau;
-    return _e80;
+    float _e75 = altitude_of(rel);
+    bool loop_init_4 = true;
+    while(true) {
+        if (!loop_init_4) {
+            uint _e139 = j_1;
+            j_1 = (_e139 + 1u);
+        }
+        loop_init_4 = false;
+        uint _e78 = j_1;
+        uint _e79 = layer_count();
+        if ((_e78 < _e79)) {
+        } else {
+            break;
+        }
+        {
+            uint _e81 = j_1;
+            Layer _e82 = cloud_layer(_e81);
+            if ((_e82.bottom <= l_4.top)) {
+                continue;
+            }
+            Roots _e87 = ray_shell_from(rel, _e75, sun, _e82.bottom);
+            Roots _e89 = ray_shell_from(rel, _e75, sun, _e82.top);
+            if (!(!(_e87.hit))) {
+                local_24 = !(_e89.hit);
+            } else {
+                local_24 = true;
+            }
+            bool _e98 = local_24;
+            if (!(_e98)) {
+                local_25 = !((_e89.t1_ > _e87.t1_));
+            } else {
+                local_25 = true;
+            }
+            bool _e107 = local_25;
+            if (!(_e107)) {
+                local_26 = (_e87.t1_ <= 0.0);
+            } else {
+                local_26 = true;
+            }
+            bool _e115 = local_26;
+            if (_e115) {
+                continue;
+            }
+            float s_5 = (0.5 * (_e87.t1_ + _e89.t1_));
+            uint _e122 = counters_4.light;
+            counters_4.light = (_e122 + 1u);
+            float _e125 = tau;
+            float _e130 = altitude_of((rel + (sun * s_5)));
+            float _e131 = layer_density((p_6 + (sun * s_5)), _e130, _e82, counters_4);
+            tau = (_e125 + ((_e131 * sigma_t_1) * (_e89.t1_ - _e87.t1_)));
+        }
+    }
+    float _e141 = tau;
+    return _e141;
 }
 
 float sun_scattering(float cos_theta_3, float tau_1) {
@@ -581,21 +834,21 @@ float sun_scattering(float cos_theta_3, float tau_1) {
     float ka = 1.0;
     float kb = 1.0;
     float kc = 1.0;
-    uint i_2 = 0u;
+    uint i_6 = 0u;
     float total = 0.0;
     float a_4 = _group_0_binding_0_cs.multiple_scattering.x;
-    float b_5 = _group_0_binding_0_cs.multiple_scattering.y;
-    float c_5 = _group_0_binding_0_cs.multiple_scattering.z;
+    float b_6 = _group_0_binding_0_cs.multiple_scattering.y;
+    float c_6 = _group_0_binding_0_cs.multiple_scattering.z;
     uint _e17 = _group_0_binding_0_cs.misc.x;
     uint octaves = min(_e17, MAX_OCTAVES);
-    bool loop_init_1 = true;
+    bool loop_init_5 = true;
     while(true) {
-        if (!loop_init_1) {
-            uint _e50 = i_2;
-            i_2 = (_e50 + 1u);
+        if (!loop_init_5) {
+            uint _e50 = i_6;
+            i_6 = (_e50 + 1u);
         }
-        loop_init_1 = false;
-        uint _e30 = i_2;
+        loop_init_5 = false;
+        uint _e30 = i_6;
         if ((_e30 < octaves)) {
         } else {
             break;
@@ -604,9 +857,9 @@ float sun_scattering(float cos_theta_3, float tau_1) {
             float _e32 = ka;
             ka = (_e32 * a_4);
             float _e34 = kb;
-            kb = (_e34 * b_5);
+            kb = (_e34 * b_6);
             float _e36 = kc;
-            kc = (_e36 * c_5);
+            kc = (_e36 * c_6);
             float _e38 = octave_sum;
             float _e39 = ka;
             float _e40 = kc;
@@ -637,66 +890,72 @@ vec3 ambient(float h_4) {
     return (mix(_e3.xyz, _e7.xyz, h_4) * _e13);
 }
 
-vec3 scattered_light(vec3 rel_1, vec3 p_5, float alt_4, float density_1, vec3 view, inout Counters counters_4) {
-    vec3 sun_light = vec3(0.0);
-    float tau_2 = 0.0;
-    vec4 _e8 = _group_0_binding_0_cs.sun_direction;
-    vec3 sun_1 = _e8.xyz;
-    float _e13 = _group_0_binding_0_cs.atmosphere.y;
-    float _e18 = _group_0_binding_0_cs.atmosphere.z;
-    float _e22 = _group_0_binding_0_cs.atmosphere.y;
-    float _e25 = saturate(((alt_4 - _e13) / (_e18 - _e22)));
-    bool _e29 = hits_ground(rel_1, alt_4, sun_1);
-    if (!(_e29)) {
-        if (LIGHT_MARCH) {
-            float _e34 = sun_optical_depth(rel_1, p_5, counters_4);
-            tau_2 = _e34;
-        }
-        vec4 _e37 = _group_0_binding_0_cs.sun_illuminance;
-        float _e40 = tau_2;
-        float _e41 = sun_scattering(dot(view, sun_1), _e40);
-        sun_light = (_e37.xyz * _e41);
-    }
-    Weather _e43 = sample_weather(p_5);
-    float _e47 = _group_0_binding_0_cs.extinction.z;
-    float _e55 = saturate((1.0 - ((_e47 * _e43.precipitation) * (1.0 - _e25))));
-    float _e59 = _group_0_binding_0_cs.extinction.x;
-    vec3 _e61 = sun_light;
-    vec3 _e62 = ambient(_e25);
-    return (((_e59 * density_1) * (_e61 + _e62)) * _e55);
+float height_fraction(float alt_11) {
+    uint _e1 = layer_at(alt_11);
+    Layer _e2 = cloud_layer(_e1);
+    float _e3 = layer_height(_e2, alt_11);
+    float _e4 = saturate(_e3);
+    return _e4;
 }
 
-float empty_cell_exit(vec3 p_6, vec3 d_3) {
+vec3 scattered_light(vec3 rel_1, vec3 p_7, float alt_12, float density_1, vec3 view, Layer l_5, inout Counters counters_5) {
+    vec3 sun_light = vec3(0.0);
+    float tau_2 = 0.0;
+    vec4 _e9 = _group_0_binding_0_cs.sun_direction;
+    vec3 sun_1 = _e9.xyz;
+    float _e11 = layer_height(l_5, alt_12);
+    float _e12 = saturate(_e11);
+    bool _e16 = hits_ground(rel_1, alt_12, sun_1);
+    if (!(_e16)) {
+        if (LIGHT_MARCH) {
+            float _e21 = sun_optical_depth(rel_1, p_7, l_5, counters_5);
+            tau_2 = _e21;
+        }
+        vec4 _e24 = _group_0_binding_0_cs.sun_illuminance;
+        float _e27 = tau_2;
+        float _e28 = sun_scattering(dot(view, sun_1), _e27);
+        sun_light = (_e24.xyz * _e28);
+    }
+    Weather _e30 = sample_weather(p_7, l_5);
+    float _e34 = _group_0_binding_0_cs.extinction.z;
+    float _e42 = saturate((1.0 - ((_e34 * _e30.precipitation) * (1.0 - _e12))));
+    float _e46 = _group_0_binding_0_cs.extinction.x;
+    vec3 _e48 = sun_light;
+    vec3 _e49 = ambient(_e12);
+    return (((_e46 * density_1) * (_e48 + _e49)) * _e42);
+}
+
+float empty_cell_exit(vec3 p_8, vec3 d_7) {
     float exit = 1e30;
     vec4 _e6 = _group_0_binding_0_cs.wind_offsets0_;
     float _e12 = _group_0_binding_0_cs.periods.x;
-    vec2 uv_2 = (fract(((p_6.xz - _e6.xy) / vec2(_e12))) * 64.0);
+    vec2 uv_2 = (fract(((p_8.xz - _e6.xy) / vec2(_e12))) * 64.0);
     uvec2 cell_1 = min(uvec2(uv_2), uvec2(63u));
     vec4 _e23 = texelFetch(_group_0_binding_11_cs, ivec2(cell_1), 0);
-    float m_1 = _e23.x;
+    float m_2 = _e23.x;
     float _e28 = _group_0_binding_0_cs.clouds.x;
-    if (((m_1 + (2.0 * (_e28 - 0.5))) > -0.003921569)) {
+    if (((m_2 + (2.0 * (_e28 - 0.5))) > -0.003921569)) {
         return 0.0;
     }
     float _e40 = _group_0_binding_0_cs.periods.x;
     float cell_m = (_e40 / 64.0);
     vec2 inside = ((uv_2 - vec2(cell_1)) * cell_m);
-    if ((d_3.x > 1e-6)) {
+    if ((d_7.x > 1e-6)) {
         float _e50 = exit;
-        exit = min(_e50, ((cell_m - inside.x) / d_3.x));
+        exit = min(_e50, ((cell_m - inside.x) / d_7.x));
     } else {
-        if ((d_3.x < -1e-6)) {
+        if ((d_7.x < -1e-6)) {
             float _e59 = exit;
-            exit = min(_e59, (inside.x / -(d_3.x)));
+            exit = min(_e59, (inside.x / -(d_7.x)));
         }
     }
-    if ((d_3.z > 1e-6)) {
+    if ((d_7.z > 1e-6)) {
         float _e68 = exit;
-        exit = min(_e68, ((cell_m - inside.y) / d_3.z));
+        exit = min(_e68, ((cell_m - inside.y) / d_7.z));
     } else {
-        if ((d_3.z < -1e-6)) {
+        if ((d_7.z < -1e-6)) {
             float _e77 = exit;
-            exit = min(_e77, (inside.y / -(d_3.z)));
+            exit = min(_e77, (inside.y / -(d_7.z)));
         }
     }
     float _e83 = exit;
@@ -704,13 +963,13 @@ float empty_cell_exit(vec3 p_6, vec3 d_3) {
 }
 
 void count(uint index_1, uint value) {
-    bool local_21 = false;
+    bool local_27 = false;
     if (STATS) {
-        local_21 = (value != 0u);
+        local_27 = (value != 0u);
     } else {
-        local_21 = false;
+        local_27 = false;
     }
-    bool _e8 = local_21;
+    bool _e8 = local_27;
     if (_e8) {
         uint _e12 = atomicAdd(_group_0_binding_8_cs.counters[index_1], value);
         return;
@@ -731,205 +990,323 @@ vec3 step_integral(vec3 source, float sigma_t, float dt) {
 
 float start_offset(uvec2 pixel_2) {
     uint _e4 = _group_0_binding_0_cs.modes.w;
-    bool jitter = ((_e4 & FLAG_JITTER) != 0u);
-    uint k_5 = _group_0_binding_0_cs.temporal.x;
-    if ((k_5 <= 1u)) {
+    bool jitter_1 = ((_e4 & FLAG_JITTER) != 0u);
+    uint k_6 = _group_0_binding_0_cs.temporal.x;
+    if ((k_6 <= 1u)) {
         uint _e18 = _group_0_binding_0_cs.misc.y;
         float _e19 = hash_unit(pixel_2, _e18);
-        return (jitter ? _e19 : 0.5);
+        return (jitter_1 ? _e19 : 0.5);
     }
     float _e23 = hash_unit(pixel_2, 0u);
-    float base_2 = (jitter ? _e23 : 0.5);
+    float base_2 = (jitter_1 ? _e23 : 0.5);
     uint _e29 = _group_0_binding_0_cs.misc.y;
-    float _e32 = van_der_corput((_e29 / (k_5 * k_5)));
+    float _e32 = van_der_corput((_e29 / (k_6 * k_6)));
     return fract((base_2 + _e32));
 }
 
-MarchResult march_pixel(uvec2 pixel_3) {
-    Counters counters_5 = Counters(0u, 0u, 0u, 0u);
-    vec3 radiance = vec3(0.0);
-    float transmittance = 1.0;
-    float depth_sum = 0.0;
+bool march_layer(vec3 view_1, Interval span_1, Layer l_6, float jitter, inout MarchState state, inout Counters counters_6) {
     uint steps = 0u;
-    uint i_3 = 0u;
+    uint i_7 = 0u;
     uint stride = 1u;
     uint empty = 0u;
-    bool local_22 = false;
+    bool local_28 = false;
+    float cam_alt = _group_0_binding_0_cs.camera_position.y;
+    vec4 _e12 = _group_0_binding_0_cs.camera_position;
+    vec2 cam_xz = _e12.xz;
+    uint _e17 = _group_0_binding_0_cs.counts.z;
+    steps = _e17;
+    float _e22 = _group_0_binding_0_cs.march.x;
+    if ((_e22 > 0.0)) {
+        float _e29 = _group_0_binding_0_cs.march.x;
+        steps = min(max(uint(ceil((span_1.length_ / _e29))), 1u), MAX_VIEW_STEPS);
+    }
+    uint _e37 = steps;
+    float dt_1 = (span_1.length_ / float(_e37));
+    float _e43 = _group_0_binding_0_cs.extinction.x;
+    float _e47 = _group_0_binding_0_cs.extinction.y;
+    float sigma_e = (_e43 + _e47);
+    uint _e52 = _group_0_binding_0_cs.modes.w;
+    bool dynamic_step = ((_e52 & FLAG_DYNAMIC_STEP) != 0u);
+    uint _e60 = _group_0_binding_0_cs.modes.w;
+    bool empty_skip = ((_e60 & FLAG_EMPTY_SKIP) != 0u);
+    while(true) {
+        uint _e71 = i_7;
+        uint _e72 = steps;
+        if ((_e71 >= _e72)) {
+            break;
+        }
+        uint _e75 = counters_6.view_steps;
+        counters_6.view_steps = (_e75 + 1u);
+        uint _e79 = i_7;
+        float t_4 = (span_1.start + ((float(_e79) + jitter) * dt_1));
+        vec3 rel_4 = ((view_1 * t_4) + vec3(0.0, cam_alt, 0.0));
+        vec3 p_12 = vec3((rel_4.x + cam_xz.x), rel_4.y, (rel_4.z + cam_xz.y));
+        if (empty_skip) {
+            float _e97 = empty_cell_exit(p_12, view_1);
+            if ((_e97 > 0.0)) {
+                uint _e106 = steps;
+                uint next_1 = uint(clamp(ceil(((((t_4 + _e97) - span_1.start) / dt_1) - jitter)), 0.0, float(_e106)));
+                uint _e111 = i_7;
+                i_7 = max((_e111 + 1u), next_1);
+                continue;
+            }
+        }
+        float _e115 = altitude_of(rel_4);
+        float _e116 = layer_density(p_12, _e115, l_6, counters_6);
+        if ((_e116 <= 0.0)) {
+            uint _e119 = empty;
+            empty = (_e119 + 1u);
+            if (dynamic_step) {
+                uint _e124 = empty;
+                local_28 = (_e124 >= 8u);
+            } else {
+                local_28 = false;
+            }
+            bool _e128 = local_28;
+            if (_e128) {
+                stride = 2u;
+            }
+            uint _e130 = i_7;
+            uint _e131 = stride;
+            i_7 = (_e130 + _e131);
+            continue;
+        }
+        uint _e133 = stride;
+        if ((_e133 > 1u)) {
+            uint _e136 = i_7;
+            uint _e137 = stride;
+            i_7 = (_e136 - (_e137 - 1u));
+            stride = 1u;
+            empty = 0u;
+            continue;
+        }
+        empty = 0u;
+        float sigma_t_2 = (sigma_e * _e116);
+        vec3 _e145 = scattered_light(rel_4, p_12, _e115, _e116, view_1, l_6, counters_6);
+        float transmittance_1 = state.transmittance;
+        vec3 _e149 = state.radiance;
+        vec3 _e150 = step_integral(_e145, sigma_t_2, dt_1);
+        state.radiance = (_e149 + (transmittance_1 * _e150));
+        float step_t = exp((-(sigma_t_2) * dt_1));
+        float _e157 = state.depth_sum;
+        state.depth_sum = (_e157 + ((t_4 * transmittance_1) * (1.0 - step_t)));
+        state.transmittance = (transmittance_1 * step_t);
+        float _e166 = state.transmittance;
+        float _e170 = _group_0_binding_0_cs.march.w;
+        if ((_e166 < _e170)) {
+            return true;
+        }
+        uint _e173 = i_7;
+        i_7 = (_e173 + 1u);
+    }
+    return false;
+}
+
+MarchResult march_pixel(uvec2 pixel_3) {
+    Counters counters_7 = Counters(0u, 0u, 0u, 0u);
+    MarchState state_1 = MarchState(vec3(0.0), 1.0, 0.0);
+    bool marched = false;
+    bool ground = false;
+    float last_start = -1.0;
+    uint last_index = NO_LAYER;
+    uint k = 0u;
+    uint next = 0u;
+    Interval span_2 = Interval(0.0, 0.0, 0u);
+    uint i_8 = 0u;
+    bool local_29 = false;
+    bool local_30 = false;
+    bool local_31 = false;
+    bool local_32 = false;
+    bool local_33 = false;
+    bool local_34 = false;
     float depth_1 = 0.0;
     vec3 _e1 = view_ray(pixel_3);
-    float cam_alt = _group_0_binding_0_cs.camera_position.y;
-    vec4 _e8 = _group_0_binding_0_cs.camera_position;
-    vec2 cam_xz = _e8.xz;
+    float cam_alt_1 = _group_0_binding_0_cs.camera_position.y;
     count(STAT_PIXELS, 1u);
-    Interval _e25 = layer_interval(cam_alt, _e1);
-    if ((_e25.kind == RAY_MISSES_LAYER)) {
-        count(STAT_EXIT_MISSED, 1u);
-    } else {
-        if ((_e25.kind == RAY_HITS_GROUND)) {
-            count(STAT_EXIT_GROUND, 1u);
+    float _e20 = start_offset(pixel_3);
+    uint _e21 = layer_count();
+    bool loop_init_6 = true;
+    while(true) {
+        if (!loop_init_6) {
+            uint _e116 = k;
+            k = (_e116 + 1u);
+        }
+        loop_init_6 = false;
+        uint _e32 = k;
+        if ((_e32 < _e21)) {
         } else {
-            count(STAT_MARCHED, 1u);
-            uint _e41 = _group_0_binding_0_cs.counts.z;
-            steps = _e41;
-            float _e46 = _group_0_binding_0_cs.march.x;
-            if ((_e46 > 0.0)) {
-                float _e53 = _group_0_binding_0_cs.march.x;
-                steps = min(max(uint(ceil((_e25.length_ / _e53))), 1u), MAX_VIEW_STEPS);
-            }
-            uint _e61 = steps;
-            float dt_1 = (_e25.length_ / float(_e61));
-            float _e64 = start_offset(pixel_3);
-            float _e68 = _group_0_binding_0_cs.extinction.x;
-            float _e72 = _group_0_binding_0_cs.extinction.y;
-            float sigma_e = (_e68 + _e72);
-            uint _e77 = _group_0_binding_0_cs.modes.w;
-            bool dynamic_step = ((_e77 & FLAG_DYNAMIC_STEP) != 0u);
-            uint _e85 = _group_0_binding_0_cs.modes.w;
-            bool empty_skip = ((_e85 & FLAG_EMPTY_SKIP) != 0u);
+            break;
+        }
+        {
+            next = NO_LAYER;
+            span_2 = Interval(0.0, 0.0, 1u);
+            i_8 = 0u;
+            bool loop_init_7 = true;
             while(true) {
-                uint _e96 = i_3;
-                uint _e97 = steps;
-                if ((_e96 >= _e97)) {
+                if (!loop_init_7) {
+                    uint _e100 = i_8;
+                    i_8 = (_e100 + 1u);
+                }
+                loop_init_7 = false;
+                uint _e43 = i_8;
+                if ((_e43 < _e21)) {
+                } else {
                     break;
                 }
-                uint _e100 = counters_5.view_steps;
-                counters_5.view_steps = (_e100 + 1u);
-                uint _e104 = i_3;
-                float t_4 = (_e25.start + ((float(_e104) + _e64) * dt_1));
-                vec3 rel_4 = ((_e1 * t_4) + vec3(0.0, cam_alt, 0.0));
-                vec3 p_11 = vec3((rel_4.x + cam_xz.x), rel_4.y, (rel_4.z + cam_xz.y));
-                if (empty_skip) {
-                    float _e122 = empty_cell_exit(p_11, _e1);
-                    if ((_e122 > 0.0)) {
-                        uint _e131 = steps;
-                        uint next = uint(clamp(ceil(((((t_4 + _e122) - _e25.start) / dt_1) - _e64)), 0.0, float(_e131)));
-                        uint _e136 = i_3;
-                        i_3 = max((_e136 + 1u), next);
-                        continue;
-                    }
-                }
-                float _e140 = altitude_of(rel_4);
-                float _e141 = cloud_density(p_11, _e140, counters_5);
-                if ((_e141 <= 0.0)) {
-                    uint _e144 = empty;
-                    empty = (_e144 + 1u);
-                    if (dynamic_step) {
-                        uint _e149 = empty;
-                        local_22 = (_e149 >= 8u);
+                {
+                    uint _e45 = i_8;
+                    Layer _e46 = cloud_layer(_e45);
+                    Interval _e47 = layer_interval(cam_alt_1, _e1, _e46);
+                    bool _e48 = ground;
+                    if (!(_e48)) {
+                        local_29 = (_e47.kind == RAY_HITS_GROUND);
                     } else {
-                        local_22 = false;
+                        local_29 = true;
                     }
-                    bool _e153 = local_22;
-                    if (_e153) {
-                        stride = 2u;
+                    bool _e56 = local_29;
+                    ground = _e56;
+                    float _e58 = last_start;
+                    if (!((_e47.start > _e58))) {
+                        float _e64 = last_start;
+                        if ((_e47.start == _e64)) {
+                            uint _e68 = i_8;
+                            uint _e69 = last_index;
+                            local_31 = (_e68 > _e69);
+                        } else {
+                            local_31 = false;
+                        }
+                        bool _e72 = local_31;
+                        local_30 = _e72;
+                    } else {
+                        local_30 = true;
                     }
-                    uint _e155 = i_3;
-                    uint _e156 = stride;
-                    i_3 = (_e155 + _e156);
-                    continue;
+                    bool after = local_30;
+                    if ((_e47.kind == RAY_MARCH)) {
+                        local_32 = after;
+                    } else {
+                        local_32 = false;
+                    }
+                    bool _e81 = local_32;
+                    if (_e81) {
+                        uint _e84 = next;
+                        if (!((_e84 == NO_LAYER))) {
+                            float _e92 = span_2.start;
+                            local_34 = (_e47.start < _e92);
+                        } else {
+                            local_34 = true;
+                        }
+                        bool _e95 = local_34;
+                        local_33 = _e95;
+                    } else {
+                        local_33 = false;
+                    }
+                    bool _e97 = local_33;
+                    if (_e97) {
+                        uint _e98 = i_8;
+                        next = _e98;
+                        span_2 = _e47;
+                    }
                 }
-                uint _e158 = stride;
-                if ((_e158 > 1u)) {
-                    uint _e161 = i_3;
-                    uint _e162 = stride;
-                    i_3 = (_e161 - (_e162 - 1u));
-                    stride = 1u;
-                    empty = 0u;
-                    continue;
-                }
-                empty = 0u;
-                float sigma_t_2 = (sigma_e * _e141);
-                vec3 _e170 = scattered_light(rel_4, p_11, _e140, _e141, _e1, counters_5);
-                vec3 _e171 = radiance;
-                float _e172 = transmittance;
-                vec3 _e173 = step_integral(_e170, sigma_t_2, dt_1);
-                radiance = (_e171 + (_e172 * _e173));
-                float step_t = exp((-(sigma_t_2) * dt_1));
-                float _e179 = depth_sum;
-                float _e180 = transmittance;
-                depth_sum = (_e179 + ((t_4 * _e180) * (1.0 - step_t)));
-                float _e186 = transmittance;
-                transmittance = (_e186 * step_t);
-                float _e188 = transmittance;
-                float _e192 = _group_0_binding_0_cs.march.w;
-                if ((_e188 < _e192)) {
-                    count(STAT_EXIT_TRANSMITTANCE, 1u);
-                    break;
-                }
-                uint _e196 = i_3;
-                i_3 = (_e196 + 1u);
+            }
+            uint _e102 = next;
+            if ((_e102 == NO_LAYER)) {
+                break;
+            }
+            marched = true;
+            float _e107 = span_2.start;
+            last_start = _e107;
+            uint _e108 = next;
+            last_index = _e108;
+            Interval _e109 = span_2;
+            uint _e110 = next;
+            Layer _e111 = cloud_layer(_e110);
+            bool _e112 = march_layer(_e1, _e109, _e111, _e20, state_1, counters_7);
+            if (_e112) {
+                count(STAT_EXIT_TRANSMITTANCE, 1u);
+                break;
             }
         }
     }
-    uint _e201 = counters_5.view_steps;
-    count(STAT_VIEW_STEPS, _e201);
-    uint _e204 = counters_5.density;
-    count(STAT_DENSITY, _e204);
-    uint _e207 = counters_5.detail;
-    count(STAT_DETAIL, _e207);
-    uint _e210 = counters_5.light;
-    count(STAT_LIGHT, _e210);
-    float _e213 = transmittance;
-    if ((_e213 < 1.0)) {
-        float _e216 = depth_sum;
-        float _e217 = transmittance;
-        depth_1 = (_e216 / (1.0 - _e217));
+    bool _e118 = marched;
+    if (_e118) {
+        count(STAT_MARCHED, 1u);
+    } else {
+        bool _e121 = ground;
+        if (_e121) {
+            count(STAT_EXIT_GROUND, 1u);
+        } else {
+            count(STAT_EXIT_MISSED, 1u);
+        }
     }
-    vec3 _e221 = radiance;
-    float _e222 = transmittance;
-    float _e223 = depth_1;
-    return MarchResult(_e221, _e222, _e223);
+    uint _e128 = counters_7.view_steps;
+    count(STAT_VIEW_STEPS, _e128);
+    uint _e131 = counters_7.density;
+    count(STAT_DENSITY, _e131);
+    uint _e134 = counters_7.detail;
+    count(STAT_DETAIL, _e134);
+    uint _e137 = counters_7.light;
+    count(STAT_LIGHT, _e137);
+    float _e141 = state_1.transmittance;
+    if ((_e141 < 1.0)) {
+        float _e145 = state_1.depth_sum;
+        float _e147 = state_1.transmittance;
+        depth_1 = (_e145 / (1.0 - _e147));
+    }
+    vec3 _e152 = state_1.radiance;
+    float _e154 = state_1.transmittance;
+    float _e155 = depth_1;
+    return MarchResult(_e152, _e154, _e155);
 }
 
 uvec2 bayer2_(uint v_1) {
     return uvec2(((v_1 ^ (v_1 >> 1u)) & 1u), (v_1 & 1u));
 }
 
-uvec2 block_offset(uint f, uint k) {
-    if ((k == 2u)) {
+uvec2 block_offset(uint f, uint k_1) {
+    if ((k_1 == 2u)) {
         uvec2 _e6 = bayer2_((f % 4u));
         return _e6;
     }
-    if ((k == 4u)) {
-        uint b_6 = (f % 16u);
-        uvec2 _e13 = bayer2_((b_6 >> 2u));
-        uvec2 _e17 = bayer2_((b_6 & 3u));
+    if ((k_1 == 4u)) {
+        uint b_7 = (f % 16u);
+        uvec2 _e13 = bayer2_((b_7 >> 2u));
+        uvec2 _e17 = bayer2_((b_7 & 3u));
         return (_e13 + (2u * _e17));
     }
     return uvec2(0u);
 }
 
 vec2 reproject(uvec2 pixel_4, float depth_2) {
-    bool local_23 = false;
-    bool local_24 = false;
-    bool local_25 = false;
+    bool local_35 = false;
+    bool local_36 = false;
+    bool local_37 = false;
     vec3 dir = vec3(0.0);
     vec4 _e4 = _group_0_binding_0_cs.previous_position;
     vec4 _e7 = _group_0_binding_0_cs.camera_position;
     if (all(equal(_e4, _e7))) {
         vec4 _e14 = _group_0_binding_0_cs.previous_forward;
         vec4 _e17 = _group_0_binding_0_cs.camera_forward;
-        local_23 = all(equal(_e14, _e17));
+        local_35 = all(equal(_e14, _e17));
     } else {
-        local_23 = false;
+        local_35 = false;
     }
-    bool _e21 = local_23;
+    bool _e21 = local_35;
     if (_e21) {
         vec4 _e26 = _group_0_binding_0_cs.previous_right;
         vec4 _e29 = _group_0_binding_0_cs.camera_right;
-        local_24 = all(equal(_e26, _e29));
+        local_36 = all(equal(_e26, _e29));
     } else {
-        local_24 = false;
+        local_36 = false;
     }
-    bool _e33 = local_24;
+    bool _e33 = local_36;
     if (_e33) {
         vec4 _e38 = _group_0_binding_0_cs.previous_up;
         vec4 _e41 = _group_0_binding_0_cs.camera_up;
-        local_25 = all(equal(_e38, _e41));
+        local_37 = all(equal(_e38, _e41));
     } else {
-        local_25 = false;
+        local_37 = false;
     }
-    bool same = local_25;
+    bool same = local_37;
     if (same) {
         return vec2(pixel_4);
     }
@@ -958,15 +1335,15 @@ vec2 reproject(uvec2 pixel_4, float depth_2) {
 }
 
 bool on_screen(vec2 q) {
-    bool local_26 = false;
+    bool local_38 = false;
     uvec4 _e3 = _group_0_binding_0_cs.counts;
     vec2 size_1 = vec2(_e3.xy);
     if (all(greaterThanEqual(q, vec2(-0.5)))) {
-        local_26 = all(lessThanEqual(q, (size_1 - vec2(0.5))));
+        local_38 = all(lessThanEqual(q, (size_1 - vec2(0.5))));
     } else {
-        local_26 = false;
+        local_38 = false;
     }
-    bool _e18 = local_26;
+    bool _e18 = local_38;
     return _e18;
 }
 
@@ -992,9 +1369,9 @@ vec4 history_row(ivec2 base_1, int dy, vec4 wx) {
 vec4 history_at(vec2 q_1) {
     uvec4 _e3 = _group_0_binding_0_cs.counts;
     ivec2 size_3 = ivec2(_e3.xy);
-    vec2 c_6 = clamp(q_1, vec2(0.0), vec2((size_3 - ivec2(1))));
-    ivec2 base_3 = ivec2(floor(c_6));
-    vec2 f_2 = (c_6 - vec2(base_3));
+    vec2 c_7 = clamp(q_1, vec2(0.0), vec2((size_3 - ivec2(1))));
+    ivec2 base_3 = ivec2(floor(c_7));
+    vec2 f_2 = (c_7 - vec2(base_3));
     vec4 _e18 = catmull_rom(f_2.x);
     vec4 _e20 = catmull_rom(f_2.y);
     vec4 _e22 = history_row(base_3, -1, _e18);
@@ -1009,22 +1386,22 @@ vec4 history_at(vec2 q_1) {
 vec4 history_nearest(vec2 q_2) {
     uvec4 _e3 = _group_0_binding_0_cs.counts;
     ivec2 size_4 = ivec2(_e3.xy);
-    ivec2 p_12 = min(max(ivec2(roundEven(q_2)), ivec2(0)), (size_4 - ivec2(1)));
-    vec4 _e16 = texelFetch(_group_0_binding_13_cs, p_12, 0);
+    ivec2 p_13 = min(max(ivec2(roundEven(q_2)), ivec2(0)), (size_4 - ivec2(1)));
+    vec4 _e16 = texelFetch(_group_0_binding_13_cs, p_13, 0);
     return _e16;
 }
 
 bool in_blocks(uvec2 id_12) {
-    uint k_6 = _group_0_binding_0_cs.temporal.x;
+    uint k_7 = _group_0_binding_0_cs.temporal.x;
     uvec4 _e7 = _group_0_binding_0_cs.counts;
-    return all(lessThan(id_12, (((_e7.xy + uvec2(k_6)) - uvec2(1u)) / uvec2(k_6))));
+    return all(lessThan(id_12, (((_e7.xy + uvec2(k_7)) - uvec2(1u)) / uvec2(k_7))));
 }
 
 uvec2 sparse_pixel(uvec2 id_13) {
-    uint k_7 = _group_0_binding_0_cs.temporal.x;
+    uint k_8 = _group_0_binding_0_cs.temporal.x;
     uint _e9 = _group_0_binding_0_cs.misc.y;
-    uvec2 _e10 = block_offset(_e9, k_7);
-    return ((id_13 * k_7) + _e10);
+    uvec2 _e10 = block_offset(_e9, k_8);
+    return ((id_13 * k_8) + _e10);
 }
 
 void store_sparse(uvec2 id_14, MarchResult r_2) {
@@ -1043,8 +1420,8 @@ uint rng_seed(uvec2 pixel_5, uint frame_index_1) {
 float rng_next(inout uint rng_1) {
     uint _e1 = rng_1;
     rng_1 = ((_e1 * 747796405u) + 2891336453u);
-    uint s_5 = rng_1;
-    uint word_1 = (((s_5 >> ((s_5 >> 28u) + 4u)) ^ s_5) * 277803737u);
+    uint s_6 = rng_1;
+    uint word_1 = (((s_6 >> ((s_6 >> 28u) + 4u)) ^ s_6) * 277803737u);
     return (float((((word_1 >> 22u) ^ word_1) >> 8u)) * 5.9604645e-8);
 }
 
@@ -1053,108 +1430,100 @@ float rng_exponential(inout uint rng_2, float sigma) {
     return (-(log((1.0 - _e2))) / sigma);
 }
 
-Roots ray_shell_from(vec3 p_7, float alt_5, vec3 d_4, float radius_alt_1) {
-    float rp_3 = _group_0_binding_0_cs.atmosphere.x;
-    float b_7 = dot(d_4, vec3(p_7.x, (p_7.y + rp_3), p_7.z));
-    float c_7 = ((alt_5 - radius_alt_1) * ((alt_5 + radius_alt_1) + (2.0 * rp_3)));
-    Roots _e20 = solve_sphere(b_7, c_7);
-    return _e20;
-}
-
-Segments layer_segments(vec3 p_8, float alt_6, vec3 d_5) {
+Segments layer_segments(vec3 p_9, float alt_13, vec3 d_8) {
     Segments s = Segments(vec2(0.0), vec2(0.0), 0u);
-    bool local_27 = false;
+    bool local_39 = false;
     vec2 a_1 = vec2(0.0);
     vec2 b_1 = vec2(0.0);
     uint n_1 = 0u;
-    bool local_28 = false;
-    bool local_29 = false;
-    bool local_30 = false;
-    bool local_31 = false;
-    float bottom_2 = _group_0_binding_0_cs.atmosphere.y;
-    Roots _e14 = ray_shell_from(p_8, alt_6, d_5, bottom_2);
-    float _e18 = _group_0_binding_0_cs.atmosphere.z;
-    Roots _e19 = ray_shell_from(p_8, alt_6, d_5, _e18);
-    bool _e20 = hits_ground(p_8, alt_6, d_5);
-    if (!(!(_e19.hit))) {
-        local_27 = (_e19.t1_ <= 0.0);
+    bool local_40 = false;
+    bool local_41 = false;
+    bool local_42 = false;
+    bool local_43 = false;
+    vec2 _e10 = layers_span();
+    float bottom_1 = _e10.x;
+    Roots _e12 = ray_shell_from(p_9, alt_13, d_8, bottom_1);
+    Roots _e14 = ray_shell_from(p_9, alt_13, d_8, _e10.y);
+    bool _e15 = hits_ground(p_9, alt_13, d_8);
+    if (!(!(_e14.hit))) {
+        local_39 = (_e14.t1_ <= 0.0);
     } else {
-        local_27 = true;
+        local_39 = true;
     }
-    bool _e30 = local_27;
-    if (_e30) {
-        Segments _e31 = s;
-        return _e31;
+    bool _e25 = local_39;
+    if (_e25) {
+        Segments _e26 = s;
+        return _e26;
     }
-    float entry = max(_e19.t0_, 0.0);
-    if (_e14.hit) {
-        local_28 = (_e14.t0_ > 0.0);
+    float entry = max(_e14.t0_, 0.0);
+    if (_e12.hit) {
+        local_40 = (_e12.t0_ > 0.0);
     } else {
-        local_28 = false;
+        local_40 = false;
     }
-    bool _e50 = local_28;
+    bool _e45 = local_40;
+    if (_e45) {
+        local_41 = (alt_13 >= bottom_1);
+    } else {
+        local_41 = false;
+    }
+    bool _e50 = local_41;
     if (_e50) {
-        local_29 = (alt_6 >= bottom_2);
-    } else {
-        local_29 = false;
-    }
-    bool _e55 = local_29;
-    if (_e55) {
+        uint _e51 = n_1;
+        a_1[_e51] = entry;
+        uint _e53 = n_1;
+        b_1[_e53] = _e12.t0_;
         uint _e56 = n_1;
-        a_1[_e56] = entry;
-        uint _e58 = n_1;
-        b_1[_e58] = _e14.t0_;
-        uint _e61 = n_1;
-        n_1 = (_e61 + uint((_e14.t0_ > entry)));
-        if (!(_e20)) {
-            local_30 = (_e19.t1_ > _e14.t1_);
+        n_1 = (_e56 + uint((_e12.t0_ > entry)));
+        if (!(_e15)) {
+            local_42 = (_e14.t1_ > _e12.t1_);
         } else {
-            local_30 = false;
+            local_42 = false;
         }
-        bool _e73 = local_30;
-        if (_e73) {
-            uint _e74 = n_1;
-            a_1[_e74] = max(_e14.t1_, entry);
-            uint _e78 = n_1;
-            b_1[_e78] = _e19.t1_;
-            uint _e81 = n_1;
-            n_1 = (_e81 + 1u);
+        bool _e68 = local_42;
+        if (_e68) {
+            uint _e69 = n_1;
+            a_1[_e69] = max(_e12.t1_, entry);
+            uint _e73 = n_1;
+            b_1[_e73] = _e14.t1_;
+            uint _e76 = n_1;
+            n_1 = (_e76 + 1u);
         }
     } else {
-        if ((alt_6 < bottom_2)) {
-            if (!(_e20)) {
-                local_31 = _e14.hit;
+        if ((alt_13 < bottom_1)) {
+            if (!(_e15)) {
+                local_43 = _e12.hit;
             } else {
-                local_31 = false;
+                local_43 = false;
             }
-            bool _e90 = local_31;
-            if (_e90) {
-                a_1.x = max(_e14.t1_, 0.0);
-                b_1.x = _e19.t1_;
+            bool _e85 = local_43;
+            if (_e85) {
+                a_1.x = max(_e12.t1_, 0.0);
+                b_1.x = _e14.t1_;
                 n_1 = 1u;
             }
         } else {
             a_1.x = entry;
-            b_1.x = _e19.t1_;
+            b_1.x = _e14.t1_;
             n_1 = 1u;
         }
     }
-    vec2 _e103 = a_1;
-    s.a = _e103;
-    vec2 _e105 = b_1;
-    s.b = _e105;
-    uint _e107 = n_1;
-    s.count = _e107;
-    Segments _e108 = s;
-    return _e108;
+    vec2 _e98 = a_1;
+    s.a = _e98;
+    vec2 _e100 = b_1;
+    s.b = _e100;
+    uint _e102 = n_1;
+    s.count = _e102;
+    Segments _e103 = s;
+    return _e103;
 }
 
-float density_at(vec3 rel_2, inout Counters counters_6) {
+float density_at(vec3 rel_2, inout Counters counters_8) {
     float _e6 = _group_0_binding_0_cs.camera_position.x;
     float _e13 = _group_0_binding_0_cs.camera_position.z;
-    vec3 p_13 = vec3((rel_2.x + _e6), rel_2.y, (rel_2.z + _e13));
+    vec3 p_14 = vec3((rel_2.x + _e6), rel_2.y, (rel_2.z + _e13));
     float _e16 = altitude_of(rel_2);
-    float _e17 = cloud_density(p_13, _e16, counters_6);
+    float _e17 = cloud_density(p_14, _e16, counters_8);
     return _e17;
 }
 
@@ -1162,8 +1531,8 @@ float empty_cell_skip(vec3 origin, vec3 dir_1, float t_1) {
     vec3 rel_5 = (origin + (dir_1 * t_1));
     float _e9 = _group_0_binding_0_cs.camera_position.x;
     float _e16 = _group_0_binding_0_cs.camera_position.z;
-    vec3 p_14 = vec3((rel_5.x + _e9), rel_5.y, (rel_5.z + _e16));
-    float _e19 = empty_cell_exit(p_14, dir_1);
+    vec3 p_15 = vec3((rel_5.x + _e9), rel_5.y, (rel_5.z + _e16));
+    float _e19 = empty_cell_exit(p_15, dir_1);
     if ((_e19 <= 0.0)) {
         return 0.0;
     }
@@ -1171,13 +1540,34 @@ float empty_cell_skip(vec3 origin, vec3 dir_1, float t_1) {
 }
 
 float density_max() {
-    float _e3 = _group_0_binding_0_cs.clouds.y;
-    float _e7 = _group_0_binding_0_cs.clouds.w;
-    return clamp((_e3 * (1.0 + _e7)), 0.0, 1.0);
+    float m_1 = 0.0;
+    uint i_9 = 0u;
+    bool loop_init_8 = true;
+    while(true) {
+        if (!loop_init_8) {
+            uint _e17 = i_9;
+            i_9 = (_e17 + 1u);
+        }
+        loop_init_8 = false;
+        uint _e4 = i_9;
+        uint _e5 = layer_count();
+        if ((_e4 < _e5)) {
+        } else {
+            break;
+        }
+        {
+            uint _e7 = i_9;
+            Layer _e8 = cloud_layer(_e7);
+            float _e9 = m_1;
+            m_1 = max(_e9, (_e8.density * (1.0 + _e8.precipitation)));
+        }
+    }
+    float _e19 = m_1;
+    return clamp(_e19, 0.0, 1.0);
 }
 
-float free_flight(vec3 origin_1, vec3 dir_2, Segments segs, inout uint rng_3, inout Counters counters_7) {
-    uint k_1 = 0u;
+float free_flight(vec3 origin_1, vec3 dir_2, Segments segs, inout uint rng_3, inout Counters counters_9) {
+    uint k_2 = 0u;
     float t_2 = 0.0;
     float _e5 = density_max();
     float _e9 = _group_0_binding_0_cs.extinction.x;
@@ -1186,20 +1576,20 @@ float free_flight(vec3 origin_1, vec3 dir_2, Segments segs, inout uint rng_3, in
     if ((majorant <= 0.0)) {
         return -1.0;
     }
-    bool loop_init_2 = true;
+    bool loop_init_9 = true;
     while(true) {
-        if (!loop_init_2) {
-            uint _e60 = k_1;
-            k_1 = (_e60 + 1u);
+        if (!loop_init_9) {
+            uint _e60 = k_2;
+            k_2 = (_e60 + 1u);
         }
-        loop_init_2 = false;
-        uint _e21 = k_1;
+        loop_init_9 = false;
+        uint _e21 = k_2;
         if ((_e21 < segs.count)) {
         } else {
             break;
         }
         {
-            uint _e25 = k_1;
+            uint _e25 = k_2;
             t_2 = segs.a[_e25];
             while(true) {
                 float _e28 = t_2;
@@ -1208,7 +1598,7 @@ float free_flight(vec3 origin_1, vec3 dir_2, Segments segs, inout uint rng_3, in
                     float _e32 = t_2;
                     t_2 = (_e32 + _e29);
                     float _e34 = t_2;
-                    uint _e36 = k_1;
+                    uint _e36 = k_2;
                     if ((_e34 >= segs.b[_e36])) {
                         break;
                     }
@@ -1218,14 +1608,14 @@ float free_flight(vec3 origin_1, vec3 dir_2, Segments segs, inout uint rng_3, in
                 float _e40 = rng_exponential(rng_3, majorant);
                 t_2 = (_e39 + _e40);
                 float _e42 = t_2;
-                uint _e44 = k_1;
+                uint _e44 = k_2;
                 if ((_e42 >= segs.b[_e44])) {
                     break;
                 }
-                uint _e48 = counters_7.view_steps;
-                counters_7.view_steps = (_e48 + 1u);
+                uint _e48 = counters_9.view_steps;
+                counters_9.view_steps = (_e48 + 1u);
                 float _e51 = t_2;
-                float _e54 = density_at((origin_1 + (dir_2 * _e51)), counters_7);
+                float _e54 = density_at((origin_1 + (dir_2 * _e51)), counters_9);
                 float _e55 = rng_next(rng_3);
                 if (((_e55 * _e5) < _e54)) {
                     float _e58 = t_2;
@@ -1237,9 +1627,9 @@ float free_flight(vec3 origin_1, vec3 dir_2, Segments segs, inout uint rng_3, in
     return -1.0;
 }
 
-float transmittance_along(vec3 origin_2, vec3 dir_3, Segments segs_1, inout uint rng_4, inout Counters counters_8) {
+float transmittance_along(vec3 origin_2, vec3 dir_3, Segments segs_1, inout uint rng_4, inout Counters counters_10) {
     float tr = 1.0;
-    uint k_2 = 0u;
+    uint k_3 = 0u;
     float t_3 = 0.0;
     float _e8 = _group_0_binding_0_cs.extinction.x;
     float _e12 = _group_0_binding_0_cs.extinction.y;
@@ -1249,20 +1639,20 @@ float transmittance_along(vec3 origin_2, vec3 dir_3, Segments segs_1, inout uint
     if ((majorant_1 <= 0.0)) {
         return 1.0;
     }
-    bool loop_init_3 = true;
+    bool loop_init_10 = true;
     while(true) {
-        if (!loop_init_3) {
-            uint _e78 = k_2;
-            k_2 = (_e78 + 1u);
+        if (!loop_init_10) {
+            uint _e78 = k_3;
+            k_3 = (_e78 + 1u);
         }
-        loop_init_3 = false;
-        uint _e23 = k_2;
+        loop_init_10 = false;
+        uint _e23 = k_3;
         if ((_e23 < segs_1.count)) {
         } else {
             break;
         }
         {
-            uint _e27 = k_2;
+            uint _e27 = k_3;
             t_3 = segs_1.a[_e27];
             while(true) {
                 float _e30 = t_3;
@@ -1271,7 +1661,7 @@ float transmittance_along(vec3 origin_2, vec3 dir_3, Segments segs_1, inout uint
                     float _e34 = t_3;
                     t_3 = (_e34 + _e31);
                     float _e36 = t_3;
-                    uint _e38 = k_2;
+                    uint _e38 = k_3;
                     if ((_e36 >= segs_1.b[_e38])) {
                         break;
                     }
@@ -1281,14 +1671,14 @@ float transmittance_along(vec3 origin_2, vec3 dir_3, Segments segs_1, inout uint
                 float _e42 = rng_exponential(rng_4, majorant_1);
                 t_3 = (_e41 + _e42);
                 float _e44 = t_3;
-                uint _e46 = k_2;
+                uint _e46 = k_3;
                 if ((_e44 >= segs_1.b[_e46])) {
                     break;
                 }
-                uint _e50 = counters_8.light;
-                counters_8.light = (_e50 + 1u);
+                uint _e50 = counters_10.light;
+                counters_10.light = (_e50 + 1u);
                 float _e53 = t_3;
-                float _e56 = density_at((origin_2 + (dir_3 * _e53)), counters_8);
+                float _e56 = density_at((origin_2 + (dir_3 * _e53)), counters_10);
                 float _e57 = tr;
                 tr = (_e57 * (1.0 - ((sigma_t_3 * _e56) / majorant_1)));
                 float _e63 = tr;
@@ -1311,12 +1701,12 @@ float transmittance_along(vec3 origin_2, vec3 dir_3, Segments segs_1, inout uint
     return _e80;
 }
 
-float sample_hg_cos(float g_2, float u) {
-    if ((abs(g_2) < 0.0001)) {
+float sample_hg_cos(float g_3, float u) {
+    if ((abs(g_3) < 0.0001)) {
         return (1.0 - (2.0 * u));
     }
-    float s_6 = ((1.0 - (g_2 * g_2)) / ((1.0 - g_2) + ((2.0 * g_2) * u)));
-    return clamp((((1.0 + (g_2 * g_2)) - (s_6 * s_6)) / (2.0 * g_2)), -1.0, 1.0);
+    float s_7 = ((1.0 - (g_3 * g_3)) / ((1.0 - g_3) + ((2.0 * g_3) * u)));
+    return clamp((((1.0 + (g_3 * g_3)) - (s_7 * s_7)) / (2.0 * g_3)), -1.0, 1.0);
 }
 
 PhaseSample sample_phase(vec3 dir_4, inout uint rng_5) {
@@ -1331,8 +1721,8 @@ PhaseSample sample_phase(vec3 dir_4, inout uint rng_5) {
         float _e20 = _group_0_binding_0_cs.phase.x;
         float _e24 = _group_0_binding_0_cs.phase.y;
         float _e28 = _group_0_binding_0_cs.phase.z;
-        float g_4 = ((_e2 < _e28) ? _e24 : _e20);
-        float _e31 = sample_hg_cos(g_4, _e3);
+        float g_5 = ((_e2 < _e28) ? _e24 : _e20);
+        float _e31 = sample_hg_cos(g_5, _e3);
         cos_theta_4 = _e31;
         float _e32 = cos_theta_4;
         float _e36 = _group_0_binding_0_cs.phase.x;
@@ -1360,34 +1750,34 @@ PhaseSample sample_phase(vec3 dir_4, inout uint rng_5) {
     vec3 t_5 = vec3((1.0 + (((sign_ * dir_4.x) * dir_4.x) * a_5)), (sign_ * bb), (-(sign_) * dir_4.x));
     vec3 b_8 = vec3(bb, (sign_ + ((dir_4.y * dir_4.y) * a_5)), -(dir_4.y));
     float _e109 = cos_theta_4;
-    vec3 w_1 = normalize((((t_5 * (sin_theta * cos(phi))) + (b_8 * (sin_theta * sin(phi)))) + (dir_4 * _e109)));
+    vec3 w_2 = normalize((((t_5 * (sin_theta * cos(phi))) + (b_8 * (sin_theta * sin(phi)))) + (dir_4 * _e109)));
     float _e113 = cos_theta_4;
     float _e115 = phase(_e113, 1.0);
     float _e116 = pdf;
     float _e118 = pdf;
-    return PhaseSample(w_1, ((_e118 > 0.0) ? (_e115 / _e116) : 0.0));
+    return PhaseSample(w_2, ((_e118 > 0.0) ? (_e115 / _e116) : 0.0));
 }
 
-PathResult trace_path(vec3 view_1, Interval span, inout uint rng_6, inout Counters counters_9) {
+PathResult trace_path(vec3 view_2, Interval span_3, inout uint rng_6, inout Counters counters_11) {
     PathResult out_2 = PathResult(vec3(0.0), 1.0, -1.0);
-    bool local_32 = false;
-    bool local_33 = false;
+    bool local_44 = false;
+    bool local_45 = false;
     uint max_orders = MAX_PATH_ORDERS;
     vec3 pos = vec3(0.0);
     vec3 dir_5 = vec3(0.0);
     float throughput = 1.0;
     uint order = 0u;
-    bool local_34 = false;
-    if ((span.kind != RAY_MARCH)) {
+    bool local_46 = false;
+    if ((span_3.kind != RAY_MARCH)) {
         PathResult _e13 = out_2;
         return _e13;
     }
     float _e17 = _group_0_binding_0_cs.camera_position.y;
     vec3 cam = vec3(0.0, _e17, 0.0);
-    Segments primary = Segments(vec2(span.start, 0.0), vec2((span.start + span.length_), 0.0), 1u);
-    float _e32 = transmittance_along(cam, view_1, primary, rng_6, counters_9);
+    Segments primary = Segments(vec2(span_3.start, 0.0), vec2((span_3.start + span_3.length_), 0.0), 1u);
+    float _e32 = transmittance_along(cam, view_2, primary, rng_6, counters_11);
     out_2.transmittance = _e32;
-    float _e33 = free_flight(cam, view_1, primary, rng_6, counters_9);
+    float _e33 = free_flight(cam, view_2, primary, rng_6, counters_11);
     if ((_e33 < 0.0)) {
         PathResult _e36 = out_2;
         return _e36;
@@ -1405,23 +1795,23 @@ PathResult trace_path(vec3 view_1, Interval span, inout uint rng_6, inout Counte
         vec4 _e70 = _group_0_binding_0_cs.ambient_bottom;
         if (!(any(greaterThan(_e70.xyz, vec3(0.0))))) {
             vec4 _e81 = _group_0_binding_0_cs.ambient_top;
-            local_33 = any(greaterThan(_e81.xyz, vec3(0.0)));
+            local_45 = any(greaterThan(_e81.xyz, vec3(0.0)));
         } else {
-            local_33 = true;
+            local_45 = true;
         }
-        bool _e88 = local_33;
-        local_32 = _e88;
+        bool _e88 = local_45;
+        local_44 = _e88;
     } else {
-        local_32 = false;
+        local_44 = false;
     }
-    bool ambient_on = local_32;
+    bool ambient_on = local_44;
     uint _e96 = _group_0_binding_0_cs.misc.z;
     if ((_e96 > 0u)) {
         uint _e102 = _group_0_binding_0_cs.misc.z;
         max_orders = min(_e102, MAX_PATH_ORDERS);
     }
-    pos = (cam + (view_1 * _e33));
-    dir_5 = view_1;
+    pos = (cam + (view_2 * _e33));
+    dir_5 = view_2;
     while(true) {
         float _e113 = throughput;
         throughput = (_e113 * albedo);
@@ -1429,105 +1819,102 @@ PathResult trace_path(vec3 view_1, Interval span, inout uint rng_6, inout Counte
         order = (_e115 + 1u);
         vec3 _e118 = pos;
         float _e119 = altitude_of(_e118);
-        float _e123 = _group_0_binding_0_cs.atmosphere.y;
-        float _e128 = _group_0_binding_0_cs.atmosphere.z;
-        float _e132 = _group_0_binding_0_cs.atmosphere.y;
-        float _e135 = saturate(((_e119 - _e123) / (_e128 - _e132)));
-        vec3 _e136 = pos;
-        bool _e137 = hits_ground(_e136, _e119, sun_2);
-        if (!(_e137)) {
-            vec3 _e139 = pos;
-            vec3 _e140 = pos;
-            Segments _e141 = layer_segments(_e140, _e119, sun_2);
-            float _e142 = transmittance_along(_e139, sun_2, _e141, rng_6, counters_9);
-            vec3 _e144 = out_2.radiance;
-            vec4 _e147 = _group_0_binding_0_cs.sun_illuminance;
-            float _e149 = throughput;
-            vec3 _e150 = dir_5;
-            float _e153 = phase(dot(_e150, sun_2), 1.0);
-            out_2.radiance = (_e144 + (_e147.xyz * ((_e149 * _e153) * _e142)));
+        float _e120 = height_fraction(_e119);
+        vec3 _e121 = pos;
+        bool _e122 = hits_ground(_e121, _e119, sun_2);
+        if (!(_e122)) {
+            vec3 _e124 = pos;
+            vec3 _e125 = pos;
+            Segments _e126 = layer_segments(_e125, _e119, sun_2);
+            float _e127 = transmittance_along(_e124, sun_2, _e126, rng_6, counters_11);
+            vec3 _e129 = out_2.radiance;
+            vec4 _e132 = _group_0_binding_0_cs.sun_illuminance;
+            float _e134 = throughput;
+            vec3 _e135 = dir_5;
+            float _e138 = phase(dot(_e135, sun_2), 1.0);
+            out_2.radiance = (_e129 + (_e132.xyz * ((_e134 * _e138) * _e127)));
         }
-        vec3 _e158 = dir_5;
-        PhaseSample _e159 = sample_phase(_e158, rng_6);
-        vec3 _e160 = pos;
-        vec3 _e162 = pos;
-        Segments _e164 = layer_segments(_e162, _e119, _e159.dir);
-        float _e165 = free_flight(_e160, _e159.dir, _e164, rng_6, counters_9);
-        if ((_e165 < 0.0)) {
+        vec3 _e143 = dir_5;
+        PhaseSample _e144 = sample_phase(_e143, rng_6);
+        vec3 _e145 = pos;
+        vec3 _e147 = pos;
+        Segments _e149 = layer_segments(_e147, _e119, _e144.dir);
+        float _e150 = free_flight(_e145, _e144.dir, _e149, rng_6, counters_11);
+        if ((_e150 < 0.0)) {
             if (ambient_on) {
-                vec3 _e169 = out_2.radiance;
-                vec3 _e170 = ambient(_e135);
-                float _e171 = throughput;
-                out_2.radiance = (_e169 + (_e170 * (_e171 * _e159.weight)));
+                vec3 _e154 = out_2.radiance;
+                vec3 _e155 = ambient(_e120);
+                float _e156 = throughput;
+                out_2.radiance = (_e154 + (_e155 * (_e156 * _e144.weight)));
             }
             break;
         }
-        uint _e176 = order;
-        uint _e177 = max_orders;
-        if ((_e176 >= _e177)) {
+        uint _e161 = order;
+        uint _e162 = max_orders;
+        if ((_e161 >= _e162)) {
             break;
         }
-        float _e179 = throughput;
-        throughput = (_e179 * _e159.weight);
-        dir_5 = _e159.dir;
-        uint _e183 = order;
-        if ((_e183 >= 3u)) {
-            float _e188 = throughput;
-            local_34 = (_e188 < 0.1);
+        float _e164 = throughput;
+        throughput = (_e164 * _e144.weight);
+        dir_5 = _e144.dir;
+        uint _e168 = order;
+        if ((_e168 >= 3u)) {
+            float _e173 = throughput;
+            local_46 = (_e173 < 0.1);
         } else {
-            local_34 = false;
+            local_46 = false;
         }
-        bool _e192 = local_34;
-        if (_e192) {
-            float _e193 = rng_next(rng_6);
-            float _e194 = throughput;
-            if ((_e193 >= (_e194 / 0.1))) {
+        bool _e177 = local_46;
+        if (_e177) {
+            float _e178 = rng_next(rng_6);
+            float _e179 = throughput;
+            if ((_e178 >= (_e179 / 0.1))) {
                 break;
             }
             throughput = 0.1;
         }
-        float _e199 = throughput;
-        if ((_e199 <= 0.0)) {
+        float _e184 = throughput;
+        if ((_e184 <= 0.0)) {
             break;
         }
-        vec3 _e202 = pos;
-        vec3 _e203 = dir_5;
-        pos = (_e202 + (_e203 * _e165));
+        vec3 _e187 = pos;
+        vec3 _e188 = dir_5;
+        pos = (_e187 + (_e188 * _e150));
     }
-    PathResult _e206 = out_2;
-    return _e206;
+    PathResult _e191 = out_2;
+    return _e191;
 }
 
 bool camera_still() {
-    bool local_35 = false;
-    bool local_36 = false;
-    bool local_37 = false;
+    bool local_47 = false;
+    bool local_48 = false;
+    bool local_49 = false;
     vec4 _e2 = _group_0_binding_0_cs.camera_position;
     vec4 _e5 = _group_0_binding_0_cs.previous_position;
     if (all(equal(_e2, _e5))) {
         vec4 _e12 = _group_0_binding_0_cs.camera_forward;
         vec4 _e15 = _group_0_binding_0_cs.previous_forward;
-        local_35 = all(equal(_e12, _e15));
+        local_47 = all(equal(_e12, _e15));
     } else {
-        local_35 = false;
+        local_47 = false;
     }
-    bool _e19 = local_35;
+    bool _e19 = local_47;
     if (_e19) {
         vec4 _e24 = _group_0_binding_0_cs.camera_right;
         vec4 _e28 = _group_0_binding_0_cs.previous_right;
-        local_36 = all(equal(_e24.xyz, _e28.xyz));
+        local_48 = all(equal(_e24.xyz, _e28.xyz));
     } else {
-        local_36 = false;
+        local_48 = false;
     }
-    bool _e33 = local_36;
+    bool _e33 = local_48;
     if (_e33) {
         vec4 _e38 = _group_0_binding_0_cs.camera_up;
         vec4 _e42 = _group_0_binding_0_cs.previous_up;
-        local_37 = all(equal(_e38.xyz, _e42.xyz));
+        local_49 = all(equal(_e38.xyz, _e42.xyz));
     } else {
-        local_37 = false;
+        local_49 = false;
     }
-    bool _e47 = local_37;
+    bool _e47 = local_49;
     return _e47;
 }
 
@@ -1535,9 +1922,9 @@ float luminance(vec3 c_1) {
     return dot(c_1, vec3(0.2126, 0.7152, 0.0722));
 }
 
-float basic_sun_depth(vec3 rel_3, float alt_7, inout Counters counters_10) {
+float basic_sun_depth(vec3 rel_3, float alt_14, inout Counters counters_12) {
     float tau_3 = 0.0;
-    uint i_4 = 1u;
+    uint i_10 = 1u;
     uint steps_2 = _group_0_binding_0_cs.counts.w;
     if ((steps_2 == 0u)) {
         return 0.0;
@@ -1545,10 +1932,10 @@ float basic_sun_depth(vec3 rel_3, float alt_7, inout Counters counters_10) {
     vec4 _e12 = _group_0_binding_0_cs.sun_direction;
     vec3 sun_3 = _e12.xyz;
     float rp_4 = _group_0_binding_0_cs.atmosphere.x;
-    float top_2 = _group_0_binding_0_cs.atmosphere.z;
+    float top_1 = _group_0_binding_0_cs.atmosphere.z;
     float _e25 = _group_0_binding_0_cs.atmosphere.y;
-    float thickness = (top_2 - _e25);
-    Roots _e39 = solve_sphere(dot(sun_3, vec3(rel_3.x, (rel_3.y + rp_4), rel_3.z)), ((alt_7 - top_2) * ((alt_7 + top_2) + (2.0 * rp_4))));
+    float thickness = (top_1 - _e25);
+    Roots _e39 = solve_sphere(dot(sun_3, vec3(rel_3.x, (rel_3.y + rp_4), rel_3.z)), ((alt_14 - top_1) * ((alt_14 + top_1) + (2.0 * rp_4))));
     float length_ = min(max(_e39.t1_, 0.0), (3.0 * thickness));
     float dt_2 = (length_ / float(steps_2));
     float _e51 = _group_0_binding_0_cs.extinction.x;
@@ -1556,27 +1943,27 @@ float basic_sun_depth(vec3 rel_3, float alt_7, inout Counters counters_10) {
     float sigma_t_5 = (_e51 + _e55);
     vec4 _e59 = _group_0_binding_0_cs.camera_position;
     vec2 cam_xz_1 = _e59.xz;
-    bool loop_init_4 = true;
+    bool loop_init_11 = true;
     while(true) {
-        if (!loop_init_4) {
-            uint _e90 = i_4;
-            i_4 = (_e90 + 1u);
+        if (!loop_init_11) {
+            uint _e90 = i_10;
+            i_10 = (_e90 + 1u);
         }
-        loop_init_4 = false;
-        uint _e65 = i_4;
+        loop_init_11 = false;
+        uint _e65 = i_10;
         if ((_e65 <= steps_2)) {
         } else {
             break;
         }
         {
-            uint _e68 = counters_10.light;
-            counters_10.light = (_e68 + 1u);
-            uint _e71 = i_4;
+            uint _e68 = counters_12.light;
+            counters_12.light = (_e68 + 1u);
+            uint _e71 = i_10;
             vec3 q_7 = (rel_3 + (sun_3 * (float(_e71) * dt_2)));
-            vec3 p_15 = vec3((q_7.x + cam_xz_1.x), q_7.y, (q_7.z + cam_xz_1.y));
+            vec3 p_16 = vec3((q_7.x + cam_xz_1.x), q_7.y, (q_7.z + cam_xz_1.y));
             float _e84 = tau_3;
             float _e85 = altitude_of(q_7);
-            float _e86 = cloud_density(p_15, _e85, counters_10);
+            float _e86 = cloud_density(p_16, _e85, counters_12);
             tau_3 = (_e84 + ((sigma_t_5 * _e86) * dt_2));
         }
     }
@@ -1585,18 +1972,18 @@ float basic_sun_depth(vec3 rel_3, float alt_7, inout Counters counters_10) {
 }
 
 MarchResult basic_pixel(uvec2 pixel_6) {
-    Counters counters_11 = Counters(0u, 0u, 0u, 0u);
-    vec3 radiance_1 = vec3(0.0);
-    float transmittance_1 = 1.0;
-    float depth_sum_1 = 0.0;
-    uint i_5 = 0u;
+    Counters counters_13 = Counters(0u, 0u, 0u, 0u);
+    vec3 radiance = vec3(0.0);
+    float transmittance = 1.0;
+    float depth_sum = 0.0;
+    uint i_11 = 0u;
     float depth_3 = 0.0;
     vec3 _e1 = view_ray(pixel_6);
-    float cam_alt_1 = _group_0_binding_0_cs.camera_position.y;
+    float cam_alt_2 = _group_0_binding_0_cs.camera_position.y;
     vec4 _e8 = _group_0_binding_0_cs.camera_position;
     vec2 cam_xz_2 = _e8.xz;
     count(STAT_PIXELS, 1u);
-    Interval _e25 = layer_interval(cam_alt_1, _e1);
+    Interval _e25 = cloud_interval(cam_alt_2, _e1);
     if ((_e25.kind == RAY_MISSES_LAYER)) {
         count(STAT_EXIT_MISSED, 1u);
     } else {
@@ -1614,61 +2001,61 @@ MarchResult basic_pixel(uvec2 pixel_6) {
             float _e66 = _group_0_binding_0_cs.phase.x;
             float _e67 = phase_hg(dot(_e1, _e60.xyz), _e66);
             vec3 sun_phase = (_e56.xyz * _e67);
-            bool loop_init_5 = true;
+            bool loop_init_12 = true;
             while(true) {
-                if (!loop_init_5) {
-                    uint _e131 = i_5;
-                    i_5 = (_e131 + 1u);
+                if (!loop_init_12) {
+                    uint _e131 = i_11;
+                    i_11 = (_e131 + 1u);
                 }
-                loop_init_5 = false;
-                uint _e71 = i_5;
+                loop_init_12 = false;
+                uint _e71 = i_11;
                 if ((_e71 < steps_3)) {
                 } else {
                     break;
                 }
                 {
-                    uint _e74 = counters_11.view_steps;
-                    counters_11.view_steps = (_e74 + 1u);
-                    uint _e78 = i_5;
+                    uint _e74 = counters_13.view_steps;
+                    counters_13.view_steps = (_e74 + 1u);
+                    uint _e78 = i_11;
                     float t_6 = (_e25.start + (float(_e78) * dt_3));
-                    vec3 rel_6 = ((_e1 * t_6) + vec3(0.0, cam_alt_1, 0.0));
-                    vec3 p_16 = vec3((rel_6.x + cam_xz_2.x), rel_6.y, (rel_6.z + cam_xz_2.y));
+                    vec3 rel_6 = ((_e1 * t_6) + vec3(0.0, cam_alt_2, 0.0));
+                    vec3 p_17 = vec3((rel_6.x + cam_xz_2.x), rel_6.y, (rel_6.z + cam_xz_2.y));
                     float _e95 = altitude_of(rel_6);
-                    float _e96 = cloud_density(p_16, _e95, counters_11);
+                    float _e96 = cloud_density(p_17, _e95, counters_13);
                     if ((_e96 <= 0.0)) {
                         continue;
                     }
-                    float _e99 = basic_sun_depth(rel_6, _e95, counters_11);
+                    float _e99 = basic_sun_depth(rel_6, _e95, counters_13);
                     float beer_powder = ((2.0 * exp(-(_e99))) * (1.0 - exp((-2.0 * _e99))));
-                    vec3 _e110 = radiance_1;
-                    float _e111 = transmittance_1;
-                    radiance_1 = (_e110 + (sun_phase * ((((beer_powder * _e111) * sigma_s) * _e96) * dt_3)));
+                    vec3 _e110 = radiance;
+                    float _e111 = transmittance;
+                    radiance = (_e110 + (sun_phase * ((((beer_powder * _e111) * sigma_s) * _e96) * dt_3)));
                     float step_t_1 = exp(((-(sigma_t_6) * _e96) * dt_3));
-                    float _e122 = depth_sum_1;
-                    float _e123 = transmittance_1;
-                    depth_sum_1 = (_e122 + ((t_6 * _e123) * (1.0 - step_t_1)));
-                    float _e129 = transmittance_1;
-                    transmittance_1 = (_e129 * step_t_1);
+                    float _e122 = depth_sum;
+                    float _e123 = transmittance;
+                    depth_sum = (_e122 + ((t_6 * _e123) * (1.0 - step_t_1)));
+                    float _e129 = transmittance;
+                    transmittance = (_e129 * step_t_1);
                 }
             }
         }
     }
-    uint _e136 = counters_11.view_steps;
+    uint _e136 = counters_13.view_steps;
     count(STAT_VIEW_STEPS, _e136);
-    uint _e139 = counters_11.density;
+    uint _e139 = counters_13.density;
     count(STAT_DENSITY, _e139);
-    uint _e142 = counters_11.detail;
+    uint _e142 = counters_13.detail;
     count(STAT_DETAIL, _e142);
-    uint _e145 = counters_11.light;
+    uint _e145 = counters_13.light;
     count(STAT_LIGHT, _e145);
-    float _e148 = transmittance_1;
+    float _e148 = transmittance;
     if ((_e148 < 1.0)) {
-        float _e151 = depth_sum_1;
-        float _e152 = transmittance_1;
+        float _e151 = depth_sum;
+        float _e152 = transmittance;
         depth_3 = (_e151 / (1.0 - _e152));
     }
-    vec3 _e156 = radiance_1;
-    float _e157 = transmittance_1;
+    vec3 _e156 = radiance;
+    float _e157 = transmittance;
     float _e158 = depth_3;
     return MarchResult(_e156, _e157, _e158);
 }
@@ -1679,31 +2066,31 @@ float atlas_hash(uint a_2, uint b_2) {
     return (float((_e4 >> 8u)) * 5.9604645e-8);
 }
 
-float value_noise(vec2 p_9, uint seed) {
-    uvec2 i_7 = uvec2(floor(p_9));
-    vec2 f_3 = fract(p_9);
-    vec2 s_7 = ((f_3 * f_3) * (vec2(3.0) - (2.0 * f_3)));
-    uint h_7 = (seed * 7919u);
-    float _e17 = atlas_hash((i_7.x + h_7), i_7.y);
-    float _e23 = atlas_hash(((i_7.x + 1u) + h_7), i_7.y);
-    float _e29 = atlas_hash((i_7.x + h_7), (i_7.y + 1u));
-    float _e37 = atlas_hash(((i_7.x + 1u) + h_7), (i_7.y + 1u));
-    return mix(mix(_e17, _e23, s_7.x), mix(_e29, _e37, s_7.x), s_7.y);
+float value_noise(vec2 p_10, uint seed) {
+    uvec2 i_13 = uvec2(floor(p_10));
+    vec2 f_3 = fract(p_10);
+    vec2 s_8 = ((f_3 * f_3) * (vec2(3.0) - (2.0 * f_3)));
+    uint h_6 = (seed * 7919u);
+    float _e17 = atlas_hash((i_13.x + h_6), i_13.y);
+    float _e23 = atlas_hash(((i_13.x + 1u) + h_6), i_13.y);
+    float _e29 = atlas_hash((i_13.x + h_6), (i_13.y + 1u));
+    float _e37 = atlas_hash(((i_13.x + 1u) + h_6), (i_13.y + 1u));
+    return mix(mix(_e17, _e23, s_8.x), mix(_e29, _e37, s_8.x), s_8.y);
 }
 
-float value_fbm(vec2 p_10, uint seed_1) {
+float value_fbm(vec2 p_11, uint seed_1) {
     float sum_1 = 0.0;
     float weight = 0.5;
     vec2 q_4 = vec2(0.0);
     uint o = 0u;
-    q_4 = p_10;
-    bool loop_init_6 = true;
+    q_4 = p_11;
+    bool loop_init_13 = true;
     while(true) {
-        if (!loop_init_6) {
+        if (!loop_init_13) {
             uint _e26 = o;
             o = (_e26 + 1u);
         }
-        loop_init_6 = false;
+        loop_init_13 = false;
         uint _e9 = o;
         if ((_e9 < 4u)) {
         } else {
@@ -1728,7 +2115,7 @@ float value_fbm(vec2 p_10, uint seed_1) {
 
 float sprite_texture(uint tile_1, vec2 uv) {
     float billow = 0.0;
-    uint i_6 = 0u;
+    uint i_12 = 0u;
     vec2 at = vec2(0.0);
     float a_3 = 0.0;
     vec2 c_8 = (uv - vec2(0.5));
@@ -1742,35 +2129,35 @@ float sprite_texture(uint tile_1, vec2 uv) {
         return (((mask * streak) * _e46) * 0.8);
     }
     uint blobs = (5u + (tile_1 % 4u));
-    bool loop_init_7 = true;
+    bool loop_init_14 = true;
     while(true) {
-        if (!loop_init_7) {
-            uint _e108 = i_6;
-            i_6 = (_e108 + 1u);
+        if (!loop_init_14) {
+            uint _e108 = i_12;
+            i_12 = (_e108 + 1u);
         }
-        loop_init_7 = false;
-        uint _e58 = i_6;
+        loop_init_14 = false;
+        uint _e58 = i_12;
         if ((_e58 < blobs)) {
         } else {
             break;
         }
         {
-            uint _e61 = i_6;
+            uint _e61 = i_12;
             float _e63 = atlas_hash(tile_1, (2u * _e61));
-            uint _e65 = i_6;
+            uint _e65 = i_12;
             float _e69 = atlas_hash(tile_1, ((2u * _e65) + 1u));
             vec2 centre_1 = (vec2(_e63, _e69) - vec2(0.5));
             at = (vec2(0.5) + (centre_1 * 0.34));
             if ((tile_1 == 4u)) {
                 at.y = (0.5 + ((centre_1.y - 0.5) * 0.24));
             }
-            uint _e91 = i_6;
+            uint _e91 = i_12;
             float _e93 = atlas_hash(tile_1, (100u + _e91));
             float r_3 = (0.14 + (0.1 * _e93));
             vec2 _e98 = at;
-            float d_9 = (length((uv - _e98)) / r_3);
+            float d_12 = (length((uv - _e98)) / r_3);
             float _e102 = billow;
-            float _e106 = saturate((1.0 - (d_9 * d_9)));
+            float _e106 = saturate((1.0 - (d_12 * d_12)));
             billow = max(_e102, _e106);
         }
     }
@@ -1785,32 +2172,32 @@ float sprite_texture(uint tile_1, vec2 uv) {
     return _e130;
 }
 
-vec3 sprite_rel(vec2 xz, float alt_8) {
+vec3 sprite_rel(vec2 xz, float alt_15) {
     float rp_5 = _group_0_binding_0_cs.atmosphere.x;
     vec4 _e8 = _group_0_binding_0_cs.camera_position;
-    vec2 d_10 = (xz - _e8.xz);
-    float k_8 = ((alt_8 * (alt_8 + (2.0 * rp_5))) - dot(d_10, d_10));
-    float y_2 = (k_8 / (rp_5 + sqrt(max(((rp_5 * rp_5) + k_8), 0.0))));
-    return vec3(d_10.x, y_2, d_10.y);
+    vec2 d_13 = (xz - _e8.xz);
+    float k_9 = ((alt_15 * (alt_15 + (2.0 * rp_5))) - dot(d_13, d_13));
+    float y_2 = (k_9 / (rp_5 + sqrt(max(((rp_5 * rp_5) + k_9), 0.0))));
+    return vec3(d_13.x, y_2, d_13.y);
 }
 
 SpriteCell sprite_cell(uint cell) {
     ivec2 start_1 = ivec2(0);
-    uint k_3 = 3u;
-    bool local_38 = false;
-    bool local_39 = false;
+    uint k_4 = 3u;
+    bool local_50 = false;
+    bool local_51 = false;
     uint level_1 = (cell / 64u);
-    ivec2 local_41 = ivec2(int((cell % 8u)), int(((cell / 8u) % 8u)));
+    ivec2 local_53 = ivec2(int((cell % 8u)), int(((cell / 8u) % 8u)));
     vec4 _e15 = _group_0_binding_0_cs.camera_position;
     start_1 = (ivec2(floor((_e15.xz / vec2(12000.0)))) - ivec2(4));
-    bool loop_init_8 = true;
+    bool loop_init_15 = true;
     while(true) {
-        if (!loop_init_8) {
-            uint _e35 = k_3;
-            k_3 = (_e35 - 1u);
+        if (!loop_init_15) {
+            uint _e35 = k_4;
+            k_4 = (_e35 - 1u);
         }
-        loop_init_8 = false;
-        uint _e27 = k_3;
+        loop_init_15 = false;
+        uint _e27 = k_4;
         if ((_e27 > level_1)) {
         } else {
             break;
@@ -1821,22 +2208,22 @@ SpriteCell sprite_cell(uint cell) {
         }
     }
     if ((level_1 > 0u)) {
-        local_38 = all(greaterThanEqual(local_41, ivec2(2)));
+        local_50 = all(greaterThanEqual(local_53, ivec2(2)));
     } else {
-        local_38 = false;
+        local_50 = false;
     }
-    bool _e47 = local_38;
+    bool _e47 = local_50;
     if (_e47) {
-        local_39 = all(lessThan(local_41, ivec2(6)));
+        local_51 = all(lessThan(local_53, ivec2(6)));
     } else {
-        local_39 = false;
+        local_51 = false;
     }
-    bool covered = local_39;
+    bool covered = local_51;
     ivec2 _e56 = start_1;
-    return SpriteCell((_e56 + local_41), (SPRITE_CELL0_ * float((1u << level_1))), covered);
+    return SpriteCell((_e56 + local_53), (SPRITE_CELL0_ * float((1u << level_1))), covered);
 }
 
-SpriteCandidate sprite_candidate(SpriteCell c_2, uint level, uint s_1, inout Counters counters_12) {
+SpriteCandidate sprite_candidate(SpriteCell c_2, uint level, uint s_1, inout Counters counters_14) {
     float density_2 = 0.0;
     uint _e10 = pcg(level);
     uint _e12 = pcg((uint(c_2.index.y) ^ _e10));
@@ -1850,19 +2237,20 @@ SpriteCandidate sprite_candidate(SpriteCell c_2, uint level, uint s_1, inout Cou
     float _e43 = atlas_hash(_e14, ((8u * s_1) + 5u));
     vec2 v_2 = vec2(_e38, _e43);
     vec2 xz_1 = ((vec2(c_2.index) + u_1.xy) * c_2.size);
-    Weather _e55 = sample_weather(vec3(xz_1.x, 0.0, xz_1.y));
-    float h_8 = (0.04 + (u_1.z * (mix(0.3, 0.95, _e55.cloud_type) - 0.04)));
-    float _e69 = _group_0_binding_0_cs.atmosphere.y;
-    float _e73 = _group_0_binding_0_cs.atmosphere.z;
-    float _e77 = _group_0_binding_0_cs.atmosphere.y;
-    float alt_10 = (_e69 + (h_8 * (_e73 - _e77)));
+    Layer _e56 = cloud_layer(0u);
+    Weather _e57 = sample_weather(vec3(xz_1.x, 0.0, xz_1.y), _e56);
+    float h_7 = (0.04 + (u_1.z * (mix(0.3, 0.95, _e57.cloud_type) - 0.04)));
+    float _e71 = _group_0_binding_0_cs.atmosphere.y;
+    float _e75 = _group_0_binding_0_cs.atmosphere.z;
+    float _e79 = _group_0_binding_0_cs.atmosphere.y;
+    float alt_17 = (_e71 + (h_7 * (_e75 - _e79)));
     if (!(c_2.covered)) {
-        vec3 _e85 = sprite_rel(xz_1, alt_10);
-        float _e90 = cloud_density(vec3(xz_1.x, _e85.y, xz_1.y), alt_10, counters_12);
-        density_2 = _e90;
+        vec3 _e87 = sprite_rel(xz_1, alt_17);
+        float _e92 = cloud_density(vec3(xz_1.x, _e87.y, xz_1.y), alt_17, counters_14);
+        density_2 = _e92;
     }
-    float _e94 = density_2;
-    return SpriteCandidate(xz_1, alt_10, h_8, u_1.w, v_2.x, v_2.y, _e94, _e55.precipitation);
+    float _e96 = density_2;
+    return SpriteCandidate(xz_1, alt_17, h_7, u_1.w, v_2.x, v_2.y, _e96, _e57.precipitation);
 }
 
 vec3 sprite_sky_level(float h_5) {
@@ -1887,44 +2275,44 @@ float sprite_sun_level(float cos_angle) {
     return mix(SPRITE_C_MED, SPRITE_C_MAX, cos_angle);
 }
 
-vec2 sprite_corner(uint k_4) {
-    bool local_40 = false;
-    uint q_9 = ((k_4 >= 3u) ? ((k_4 == 3u) ? 0u : (k_4 - 2u)) : k_4);
+vec2 sprite_corner(uint k_5) {
+    bool local_52 = false;
+    uint q_9 = ((k_5 >= 3u) ? ((k_5 == 3u) ? 0u : (k_5 - 2u)) : k_5);
     if (!((q_9 == 1u))) {
-        local_40 = (q_9 == 2u);
+        local_52 = (q_9 == 2u);
     } else {
-        local_40 = true;
+        local_52 = true;
     }
-    bool _e18 = local_40;
+    bool _e18 = local_52;
     return vec2((_e18 ? 1.0 : -1.0), ((q_9 >= 2u) ? 1.0 : -1.0));
 }
 
-vec3 sky_radiance(vec3 d_6, float alt_9) {
+vec3 sky_radiance(vec3 d_9, float alt_16) {
     vec4 _e4 = _group_0_binding_0_cs.sun_direction;
     vec3 sun_4 = _e4.xyz;
     vec4 _e8 = _group_0_binding_0_cs.sun_illuminance;
     vec3 e = _e8.xyz;
     float _e15 = saturate(((sun_4.y * 4.0) + 0.3));
-    bool _e19 = hits_ground(vec3(0.0, alt_9, 0.0), alt_9, d_6);
+    bool _e19 = hits_ground(vec3(0.0, alt_16, 0.0), alt_16, d_9);
     if (_e19) {
         vec3 ground_albedo = vec3(0.035, 0.035, 0.03);
         return (ground_albedo * (((e * max(sun_4.y, 0.0)) / vec3(3.1415927)) + ((0.05 * e) * _e15)));
     }
     vec3 zenith = vec3(0.018, 0.04, 0.1);
     vec3 horizon = vec3(0.07, 0.085, 0.11);
-    float _e45 = saturate(d_6.y);
+    float _e45 = saturate(d_9.y);
     vec3 gradient_1 = mix(horizon, zenith, sqrt(_e45));
     vec3 sunset = (((1.0 - (_e15 * 0.8)) * pow((1.0 - _e45), 6.0)) * vec3(0.25, 0.1, 0.0));
-    float _e64 = phase_hg(dot(d_6, sun_4), 0.76);
+    float _e64 = phase_hg(dot(d_9, sun_4), 0.76);
     float glow = (_e64 * 0.02);
     float _e73 = saturate(((sun_4.y * 10.0) + 1.0));
     return (e * (((gradient_1 * _e15) + (sunset * _e73)) + vec3((glow * _e15))));
 }
 
-vec3 sun_disk(vec3 d_7) {
+vec3 sun_disk(vec3 d_10) {
     float cos_r = _group_0_binding_0_cs.sun_direction.w;
     vec4 _e7 = _group_0_binding_0_cs.sun_direction;
-    if ((dot(d_7, _e7.xyz) < cos_r)) {
+    if ((dot(d_10, _e7.xyz) < cos_r)) {
         return vec3(0.0);
     }
     vec4 _e15 = _group_0_binding_0_cs.sun_illuminance;
@@ -1958,9 +2346,9 @@ void main() {
     }
     bool _e30 = local;
     if (_e30) {
-        uint k_9 = _group_0_binding_0_cs.temporal.x;
+        uint k_10 = _group_0_binding_0_cs.temporal.x;
         uint _e38 = _group_0_binding_0_cs.misc.y;
-        uint turn = (_e38 / (k_9 * k_9));
+        uint turn = (_e38 / (k_10 * k_10));
         vec2 _e42 = reproject(_e5, 0.0);
         if (((((id_3.x + id_3.y) + turn) & 1u) == 0u)) {
             bool _e53 = on_screen(_e42);

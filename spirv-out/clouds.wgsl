@@ -26,12 +26,18 @@ struct Frame {
     march: vec4<f32>,               // step length (m, 0 = from view steps), light step growth, first light step (m), early-exit transmittance
     counts: vec4<u32>,              // width, height, view steps, light steps
     modes: vec4<u32>,               // phase model, integration, height model, flags
-    misc: vec4<u32>,                // octaves beyond single scattering, frame (jitter seed)
+    misc: vec4<u32>,                // octaves beyond single scattering, frame (jitter seed), path orders, extra cloud layers (0-3)
     previous_position: vec4<f32>,   // last frame's camera (as camera_position): reprojection
     previous_forward: vec4<f32>,    // last frame's forward; w = aspect
     previous_right: vec4<f32>,      // last frame's right
     previous_up: vec4<f32>,         // last frame's up
     temporal: vec4<u32>,            // block side (1 off, 2 = 1/4, 4 = 1/16), history valid (0/1)
+    layer1: vec4<f32>,              // extra cloud layer 1: bottom, top (altitudes, m), coverage, density multiplier
+    layer1_weather: vec4<f32>,      // its cloud type, precipitation, weather-map offset xz (m, wrapped)
+    layer2: vec4<f32>,              // extra cloud layer 2 (as layer1)
+    layer2_weather: vec4<f32>,
+    layer3: vec4<f32>,              // extra cloud layer 3 (as layer1)
+    layer3_weather: vec4<f32>,
 }
 
 // Codes shared with the scene crate (`PhaseModel::code`, `Integration::code`, ...).
@@ -170,12 +176,11 @@ struct Interval {
     kind: u32,
 }
 
-// The part of the view ray inside the cloud layer, cut to the cut-off distance (thesis
-// alg. 5.1: march min(layer depth, cut-off)). Handles cameras below, inside and above the
-// layer (thesis 5.2).
-fn layer_interval(alt: f32, d: vec3<f32>) -> Interval {
-    let bottom = frame.atmosphere.y;
-    let top = frame.atmosphere.z;
+// The part of the view ray inside the shell between altitudes `bottom` and `top`, cut to the
+// cut-off distance (thesis alg. 5.1: march min(layer depth, cut-off)). Handles cameras below,
+// inside and above the layer (thesis 5.2). Of a ray that passes down through the shell and
+// back up, the first part.
+fn shell_interval(alt: f32, d: vec3<f32>, bottom: f32, top: f32) -> Interval {
     let cutoff = frame.atmosphere.w;
     let inner = ray_shell(alt, d, bottom);
     let outer = ray_shell(alt, d, top);
@@ -209,6 +214,38 @@ fn layer_interval(alt: f32, d: vec3<f32>) -> Interval {
     }
     return Interval(start, len, RAY_MARCH);
 }
+
+// The view ray's interval in cloud layer `l`.
+fn layer_interval(alt: f32, d: vec3<f32>, l: Layer) -> Interval {
+    return shell_interval(alt, d, l.bottom, l.top);
+}
+
+// The view ray's interval in the shell that holds every layer (the path tracer's medium,
+// and the baselines, which draw one layer).
+fn cloud_interval(alt: f32, d: vec3<f32>) -> Interval {
+    let span = layers_span();
+    return shell_interval(alt, d, span.x, span.y);
+}
+
+// The interval of the layer the view ray meets first (the lowest index of equal starts).
+fn nearest_layer_interval(alt: f32, d: vec3<f32>) -> Interval {
+    var best = layer_interval(alt, d, cloud_layer(0u));
+    for (var i = 1u; i < layer_count(); i++) {
+        let s = layer_interval(alt, d, cloud_layer(i));
+        if s.kind == RAY_MARCH && (best.kind != RAY_MARCH || s.start < best.start) {
+            best = s;
+        }
+    }
+    return best;
+}
+
+// `ray_shell` from any camera-relative point `p` of altitude `alt`.
+fn ray_shell_from(p: vec3<f32>, alt: f32, d: vec3<f32>, radius_alt: f32) -> Roots {
+    let rp = frame.atmosphere.x;
+    let b = dot(d, vec3<f32>(p.x, p.y + rp, p.z));
+    let c = (alt - radius_alt) * (alt + radius_alt + 2.0 * rp);
+    return solve_sphere(b, c);
+}
 // The cloud density field (thesis alg. 4.1 with HZD's noise, weather and cloud types).
 //
 // Positions are in metres: `p` is the world position (x, z horizontal) used for texture
@@ -229,21 +266,83 @@ struct Counters {
     light: u32,
 }
 
-// What the weather map says at a point, after the scene's global controls.
+// One cloud layer: its altitude range and its weather. Layer 0 is the scene's main layer
+// (`atmosphere`, `clouds`), layers 1-3 are the extra ones (`layer1`..`layer3`). Layers never
+// overlap in altitude (the scene is validated so), so a point lies in at most one.
+struct Layer {
+    bottom: f32,
+    top: f32,
+    coverage: f32,
+    density: f32,
+    cloud_type: f32,
+    precipitation: f32,
+    weather_offset: vec2<f32>, // where the layer reads the weather map (wind and its own shift)
+}
+
+const MAX_LAYERS: u32 = 4u;
+const NO_LAYER: u32 = 4u;
+
+fn layer_count() -> u32 {
+    return 1u + min(frame.misc.w, MAX_LAYERS - 1u);
+}
+
+fn layer_from(g: vec4<f32>, w: vec4<f32>) -> Layer {
+    return Layer(g.x, g.y, g.z, g.w, w.x, w.y, w.zw);
+}
+
+fn cloud_layer(i: u32) -> Layer {
+    if i == 1u {
+        return layer_from(frame.layer1, frame.layer1_weather);
+    } else if i == 2u {
+        return layer_from(frame.layer2, frame.layer2_weather);
+    } else if i == 3u {
+        return layer_from(frame.layer3, frame.layer3_weather);
+    }
+    return Layer(frame.atmosphere.y, frame.atmosphere.z, frame.clouds.x, frame.clouds.y,
+                 frame.clouds.z, frame.clouds.w, frame.wind_offsets0.xy);
+}
+
+// Height fraction of altitude `alt` in layer `l` (inside where it lies in [0, 1]).
+fn layer_height(l: Layer, alt: f32) -> f32 {
+    return (alt - l.bottom) / (l.top - l.bottom);
+}
+
+// The layer that holds altitude `alt`, or NO_LAYER.
+fn layer_at(alt: f32) -> u32 {
+    for (var i = 0u; i < layer_count(); i++) {
+        let h = layer_height(cloud_layer(i), alt);
+        if h >= 0.0 && h <= 1.0 {
+            return i;
+        }
+    }
+    return NO_LAYER;
+}
+
+// The altitudes that hold every layer: (lowest bottom, highest top).
+fn layers_span() -> vec2<f32> {
+    var span = frame.atmosphere.yz;
+    for (var i = 1u; i < layer_count(); i++) {
+        let l = cloud_layer(i);
+        span = vec2<f32>(min(span.x, l.bottom), max(span.y, l.top));
+    }
+    return span;
+}
+
+// What the weather map says at a point of layer `l`, after its controls.
 struct Weather {
     coverage: f32,
     cloud_type: f32,
     precipitation: f32,
 }
 
-fn sample_weather(p: vec3<f32>) -> Weather {
-    let uv = (p.xz - frame.wind_offsets0.xy) / frame.periods.x;
+fn sample_weather(p: vec3<f32>, l: Layer) -> Weather {
+    let uv = (p.xz - l.weather_offset) / frame.periods.x;
     let w = textureSampleLevel(weather_tex, noise_sampler, uv, 0.0);
-    // The scene's coverage shifts the map's local coverage: 0 clears the sky, 1 fills it.
-    let coverage = saturate(w.r + 2.0 * (frame.clouds.x - 0.5));
-    // The scene's cloud type is the mean; the map varies it locally (HZD: B = cloud type).
-    let cloud_type = saturate(frame.clouds.z + (w.b - 0.5) * 0.5);
-    let precipitation = frame.clouds.w * saturate(0.5 + w.g);
+    // The layer's coverage shifts the map's local coverage: 0 clears the sky, 1 fills it.
+    let coverage = saturate(w.r + 2.0 * (l.coverage - 0.5));
+    // The layer's cloud type is the mean; the map varies it locally (HZD: B = cloud type).
+    let cloud_type = saturate(l.cloud_type + (w.b - 0.5) * 0.5);
+    let precipitation = l.precipitation * saturate(0.5 + w.g);
     return Weather(coverage, cloud_type, precipitation);
 }
 
@@ -277,17 +376,24 @@ fn height_signal(h: f32, cloud_type: f32) -> f32 {
     return height_parabola(h, cloud_type);
 }
 
-// Density in [0, 1] at world position `p` with altitude `alt`. `counters` counts density and
-// detail evaluations.
+// Density in [0, 1] at world position `p` with altitude `alt`, in whichever layer holds it.
+// `counters` counts density and detail evaluations.
 fn cloud_density(p: vec3<f32>, alt: f32, counters: ptr<function, Counters>) -> f32 {
-    let bottom = frame.atmosphere.y;
-    let top = frame.atmosphere.z;
-    let h = (alt - bottom) / (top - bottom); // height fraction in the layer
+    let i = layer_at(alt);
+    if i == NO_LAYER {
+        return 0.0;
+    }
+    return layer_density(p, alt, cloud_layer(i), counters);
+}
+
+// Density in [0, 1] at world position `p` with altitude `alt` in layer `l` (0 outside it).
+fn layer_density(p: vec3<f32>, alt: f32, l: Layer, counters: ptr<function, Counters>) -> f32 {
+    let h = layer_height(l, alt); // height fraction in the layer
     if h < 0.0 || h > 1.0 {
         return 0.0;
     }
     (*counters).density += 1u;
-    let weather = sample_weather(p);
+    let weather = sample_weather(p, l);
     let signal = height_signal(h, weather.cloud_type);
     if weather.coverage <= 0.0 || signal <= 0.0 {
         return 0.0;
@@ -337,7 +443,7 @@ fn cloud_density(p: vec3<f32>, alt: f32, counters: ptr<function, Counters>) -> f
 
     // Denser toward the top (thesis 4.5.1), global density and precipitation, clamp.
     density = density * mix(1.0, h, frame.erosion.w);
-    density = density * frame.clouds.y * (1.0 + weather.precipitation);
+    density = density * l.density * (1.0 + weather.precipitation);
     return clamp(density, 0.0, 1.0);
 }
 // Light: phase functions, the light march toward the sun, multiple-scattering octaves,
@@ -376,10 +482,13 @@ fn phase(cos_theta: f32, scale: f32) -> f32 {
     }
 }
 
-// Optical depth toward the sun from `rel` (camera-relative position, world position `p`):
-// `light_steps` segments of exponentially growing length (thesis 5.5.2), density sampled at
-// each segment's midpoint. Samples that leave the layer contribute nothing.
-fn sun_optical_depth(rel: vec3<f32>, p: vec3<f32>, counters: ptr<function, Counters>) -> f32 {
+// Optical depth toward the sun from `rel` (camera-relative position, world position `p`) in
+// layer `l`: `light_steps` segments of exponentially growing length (thesis 5.5.2), density
+// sampled at each segment's midpoint; the march ends where it leaves the layer. Each other
+// layer above that the sun ray crosses adds one midpoint sample times the length of the
+// crossing: the Beer shadow of a high deck on the clouds below, which the few kilometres of
+// the light march would not reach.
+fn sun_optical_depth(rel: vec3<f32>, p: vec3<f32>, l: Layer, counters: ptr<function, Counters>) -> f32 {
     let sun = frame.sun_direction.xyz;
     let sigma_t = frame.extinction.x + frame.extinction.y;
     let steps = frame.counts.w;
@@ -391,13 +500,30 @@ fn sun_optical_depth(rel: vec3<f32>, p: vec3<f32>, counters: ptr<function, Count
         let s = dist + 0.5 * seg;
         let q = rel + sun * s;
         let alt = altitude_of(q);
-        if alt > frame.atmosphere.z || alt < frame.atmosphere.y {
+        if alt > l.top || alt < l.bottom {
             break;
         }
         (*counters).light += 1u;
-        tau += cloud_density(p + sun * s, alt, counters) * sigma_t * seg;
+        tau += layer_density(p + sun * s, alt, l, counters) * sigma_t * seg;
         dist += seg;
         seg *= growth;
+    }
+    let alt0 = altitude_of(rel);
+    for (var j = 0u; j < layer_count(); j++) {
+        let above = cloud_layer(j);
+        if above.bottom <= l.top {
+            continue;
+        }
+        // From below both spheres, the ray leaves each through its far root.
+        let enter = ray_shell_from(rel, alt0, sun, above.bottom);
+        let exit = ray_shell_from(rel, alt0, sun, above.top);
+        if !enter.hit || !exit.hit || !(exit.t1 > enter.t1) || enter.t1 <= 0.0 {
+            continue;
+        }
+        let s = 0.5 * (enter.t1 + exit.t1);
+        (*counters).light += 1u;
+        tau += layer_density(p + sun * s, altitude_of(rel + sun * s), above, counters) * sigma_t
+            * (exit.t1 - enter.t1);
     }
     return tau;
 }
@@ -440,21 +566,27 @@ fn ambient(h: f32) -> vec3<f32> {
     return mix(frame.ambient_bottom.rgb, frame.ambient_top.rgb, h) * frame.ambient_bottom.w;
 }
 
-// In-scattered radiance per unit length at a view sample: sigma_s * density * (sun + ambient),
-// darkened toward the base of raining clouds (thesis 4.4.1).
+// Height fraction of altitude `alt` in the layer that holds it (ambient and precipitation
+// darkening are per layer).
+fn height_fraction(alt: f32) -> f32 {
+    return saturate(layer_height(cloud_layer(layer_at(alt)), alt));
+}
+
+// In-scattered radiance per unit length at a view sample of layer `l`: sigma_s * density *
+// (sun + ambient), darkened toward the base of raining clouds (thesis 4.4.1).
 fn scattered_light(rel: vec3<f32>, p: vec3<f32>, alt: f32, density: f32, view: vec3<f32>,
-                   counters: ptr<function, Counters>) -> vec3<f32> {
+                   l: Layer, counters: ptr<function, Counters>) -> vec3<f32> {
     let sun = frame.sun_direction.xyz;
-    let h = saturate((alt - frame.atmosphere.y) / (frame.atmosphere.z - frame.atmosphere.y));
+    let h = saturate(layer_height(l, alt));
     var sun_light = vec3<f32>(0.0);
     if !hits_ground(rel, alt, sun) {
         var tau = 0.0;
         if LIGHT_MARCH {
-            tau = sun_optical_depth(rel, p, counters);
+            tau = sun_optical_depth(rel, p, l, counters);
         }
         sun_light = frame.sun_illuminance.rgb * sun_scattering(dot(view, sun), tau);
     }
-    let weather = sample_weather(p);
+    let weather = sample_weather(p, l);
     let darkening = saturate(1.0 - frame.extinction.z * weather.precipitation * (1.0 - h));
     return frame.extinction.x * density * (sun_light + ambient(h)) * darkening;
 }
@@ -584,87 +716,59 @@ fn start_offset(pixel: vec2<u32>) -> f32 {
     return fract(base + van_der_corput(frame.misc.y / (k * k)));
 }
 
-// The view march (thesis alg. 5.1) of the ray through `pixel`, counting its work.
+// What a view march has gathered so far (across layers).
+struct MarchState {
+    radiance: vec3<f32>,
+    transmittance: f32,
+    depth_sum: f32,  // sum of t * (fraction of the light removed at t)
+}
+
+// The view march (thesis alg. 5.1) of the ray through `pixel`, counting its work. Each cloud
+// layer is marched on its own interval with the full step count, nearest first: the ray's
+// intervals in different layers never overlap because the layers' altitude ranges do not.
 fn march_pixel(pixel: vec2<u32>) -> MarchResult {
     let view = view_ray(pixel);
     let cam_alt = frame.camera_position.y;
-    let cam_xz = frame.camera_position.xz;
     var counters = Counters(0u, 0u, 0u, 0u);
     count(STAT_PIXELS, 1u);
 
-    var radiance = vec3<f32>(0.0);
-    var transmittance = 1.0;
-    var depth_sum = 0.0;
-    let span = layer_interval(cam_alt, view);
-    if span.kind == RAY_MISSES_LAYER {
-        count(STAT_EXIT_MISSED, 1u);
-    } else if span.kind == RAY_HITS_GROUND {
+    var state = MarchState(vec3<f32>(0.0), 1.0, 0.0);
+    let jitter = start_offset(pixel);
+    let n = layer_count();
+    var marched = false;
+    var ground = false;
+    var last_start = -1.0;
+    var last_index = NO_LAYER;
+    for (var k = 0u; k < n; k++) {
+        // The nearest layer not marched yet: the smallest (start, index) after the last one.
+        var next = NO_LAYER;
+        var span = Interval(0.0, 0.0, RAY_MISSES_LAYER);
+        for (var i = 0u; i < n; i++) {
+            let s = layer_interval(cam_alt, view, cloud_layer(i));
+            ground = ground || s.kind == RAY_HITS_GROUND;
+            let after = s.start > last_start || (s.start == last_start && i > last_index);
+            if s.kind == RAY_MARCH && after && (next == NO_LAYER || s.start < span.start) {
+                next = i;
+                span = s;
+            }
+        }
+        if next == NO_LAYER {
+            break;
+        }
+        marched = true;
+        last_start = span.start;
+        last_index = next;
+        if march_layer(view, span, cloud_layer(next), jitter, &state, &counters) {
+            count(STAT_EXIT_TRANSMITTANCE, 1u);
+            break;
+        }
+    }
+    if marched {
+        count(STAT_MARCHED, 1u);
+    } else if ground {
         count(STAT_EXIT_GROUND, 1u);
     } else {
-        count(STAT_MARCHED, 1u);
-        var steps = frame.counts.z;
-        if frame.march.x > 0.0 {
-            steps = clamp(u32(ceil(span.length / frame.march.x)), 1u, MAX_VIEW_STEPS);
-        }
-        let dt = span.length / f32(steps);
-        let jitter = start_offset(pixel);
-        let sigma_e = frame.extinction.x + frame.extinction.y;
-        let dynamic_step = (frame.modes.w & FLAG_DYNAMIC_STEP) != 0u;
-        let empty_skip = (frame.modes.w & FLAG_EMPTY_SKIP) != 0u;
-        // Samples lie on one grid, t_i = start + (i + jitter) dt; the cheap-march techniques
-        // only choose which i to visit, so they never move a sample.
-        var i = 0u;
-        var stride = 1u;   // 2 after 8 empty samples with the dynamic step
-        var empty = 0u;    // empty samples in a row
-        loop {
-            if i >= steps {
-                break;
-            }
-            counters.view_steps += 1u;
-            let t = span.start + (f32(i) + jitter) * dt;
-            let rel = view * t + vec3<f32>(0.0, cam_alt, 0.0);
-            let p = vec3<f32>(rel.x + cam_xz.x, rel.y, rel.z + cam_xz.y);
-            if empty_skip {
-                // In a cell where the weather leaves no cloud: jump to the first sample past
-                // the cell's edge.
-                let exit = empty_cell_exit(p, view);
-                if exit > 0.0 {
-                    let next = u32(clamp(ceil((t + exit - span.start) / dt - jitter), 0.0, f32(steps)));
-                    i = max(i + 1u, next);
-                    continue;
-                }
-            }
-            let alt = altitude_of(rel);
-            let density = cloud_density(p, alt, &counters);
-            if density <= 0.0 {
-                empty += 1u;
-                if dynamic_step && empty >= 8u {
-                    stride = 2u;
-                }
-                i += stride;
-                continue;
-            }
-            if stride > 1u {
-                // Entered cloud on a long step: go back to the sample skipped over and
-                // continue at the fine step.
-                i -= stride - 1u;
-                stride = 1u;
-                empty = 0u;
-                continue;
-            }
-            empty = 0u;
-            let sigma_t = sigma_e * density;
-            let source = scattered_light(rel, p, alt, density, view, &counters);
-            radiance += transmittance * step_integral(source, sigma_t, dt);
-            let step_t = exp(-sigma_t * dt);
-            depth_sum += t * transmittance * (1.0 - step_t);
-            transmittance *= step_t;
-            if transmittance < frame.march.w {
-                count(STAT_EXIT_TRANSMITTANCE, 1u);
-                break;
-            }
-            i += 1u;
-        }
+        count(STAT_EXIT_MISSED, 1u);
     }
 
     count(STAT_VIEW_STEPS, counters.view_steps);
@@ -672,10 +776,81 @@ fn march_pixel(pixel: vec2<u32>) -> MarchResult {
     count(STAT_DETAIL, counters.detail);
     count(STAT_LIGHT, counters.light);
     var depth = 0.0;
-    if transmittance < 1.0 {
-        depth = depth_sum / (1.0 - transmittance);
+    if state.transmittance < 1.0 {
+        depth = state.depth_sum / (1.0 - state.transmittance);
     }
-    return MarchResult(radiance, transmittance, depth);
+    return MarchResult(state.radiance, state.transmittance, depth);
+}
+
+// The march of the view ray's interval `span` in layer `l`, added to `state`. True when the
+// transmittance fell below the early-exit threshold (the pixel is done).
+fn march_layer(view: vec3<f32>, span: Interval, l: Layer, jitter: f32,
+               state: ptr<function, MarchState>, counters: ptr<function, Counters>) -> bool {
+    let cam_alt = frame.camera_position.y;
+    let cam_xz = frame.camera_position.xz;
+    var steps = frame.counts.z;
+    if frame.march.x > 0.0 {
+        steps = clamp(u32(ceil(span.length / frame.march.x)), 1u, MAX_VIEW_STEPS);
+    }
+    let dt = span.length / f32(steps);
+    let sigma_e = frame.extinction.x + frame.extinction.y;
+    let dynamic_step = (frame.modes.w & FLAG_DYNAMIC_STEP) != 0u;
+    let empty_skip = (frame.modes.w & FLAG_EMPTY_SKIP) != 0u;
+    // Samples lie on one grid, t_i = start + (i + jitter) dt; the cheap-march techniques
+    // only choose which i to visit, so they never move a sample.
+    var i = 0u;
+    var stride = 1u;   // 2 after 8 empty samples with the dynamic step
+    var empty = 0u;    // empty samples in a row
+    loop {
+        if i >= steps {
+            break;
+        }
+        (*counters).view_steps += 1u;
+        let t = span.start + (f32(i) + jitter) * dt;
+        let rel = view * t + vec3<f32>(0.0, cam_alt, 0.0);
+        let p = vec3<f32>(rel.x + cam_xz.x, rel.y, rel.z + cam_xz.y);
+        if empty_skip {
+            // In a cell where the weather leaves no cloud: jump to the first sample past
+            // the cell's edge.
+            let exit = empty_cell_exit(p, view);
+            if exit > 0.0 {
+                let next = u32(clamp(ceil((t + exit - span.start) / dt - jitter), 0.0, f32(steps)));
+                i = max(i + 1u, next);
+                continue;
+            }
+        }
+        let alt = altitude_of(rel);
+        let density = layer_density(p, alt, l, counters);
+        if density <= 0.0 {
+            empty += 1u;
+            if dynamic_step && empty >= 8u {
+                stride = 2u;
+            }
+            i += stride;
+            continue;
+        }
+        if stride > 1u {
+            // Entered cloud on a long step: go back to the sample skipped over and
+            // continue at the fine step.
+            i -= stride - 1u;
+            stride = 1u;
+            empty = 0u;
+            continue;
+        }
+        empty = 0u;
+        let sigma_t = sigma_e * density;
+        let source = scattered_light(rel, p, alt, density, view, l, counters);
+        let transmittance = (*state).transmittance;
+        (*state).radiance += transmittance * step_integral(source, sigma_t, dt);
+        let step_t = exp(-sigma_t * dt);
+        (*state).depth_sum += t * transmittance * (1.0 - step_t);
+        (*state).transmittance = transmittance * step_t;
+        if (*state).transmittance < frame.march.w {
+            return true;
+        }
+        i += 1u;
+    }
+    return false;
 }
 
 // Every pixel, every frame.
@@ -905,7 +1080,7 @@ fn resolve(@builtin(global_invocation_id) id: vec3<u32>) {
     // sky, which moves with the direction.
     var depth = current_depth;
     if depth <= 0.0 {
-        let span = layer_interval(frame.camera_position.y, view_ray(pixel));
+        let span = nearest_layer_interval(frame.camera_position.y, view_ray(pixel));
         if span.kind == RAY_MARCH {
             depth = span.start + 0.5 * span.length;
         }
@@ -1036,21 +1211,14 @@ struct Segments {
     count: u32,
 }
 
-// `ray_shell` from any camera-relative point `p` of altitude `alt`.
-fn ray_shell_from(p: vec3<f32>, alt: f32, d: vec3<f32>, radius_alt: f32) -> Roots {
-    let rp = frame.atmosphere.x;
-    let b = dot(d, vec3<f32>(p.x, p.y + rp, p.z));
-    let c = (alt - radius_alt) * (alt + radius_alt + 2.0 * rp);
-    return solve_sphere(b, c);
-}
-
-// The parts of the ray from `p` along unit `d` inside the layer (no cut-off: scattered light
-// sees the whole layer).
+// The parts of the ray from `p` along unit `d` inside the shell that holds every layer (no
+// cut-off: scattered light sees the whole medium; between layers the density is 0).
 fn layer_segments(p: vec3<f32>, alt: f32, d: vec3<f32>) -> Segments {
     var s = Segments(vec2<f32>(0.0), vec2<f32>(0.0), 0u);
-    let bottom = frame.atmosphere.y;
+    let span = layers_span();
+    let bottom = span.x;
     let inner = ray_shell_from(p, alt, d, bottom);
-    let outer = ray_shell_from(p, alt, d, frame.atmosphere.z);
+    let outer = ray_shell_from(p, alt, d, span.y);
     let ground = hits_ground(p, alt, d);
     if !outer.hit || outer.t1 <= 0.0 {
         return s;
@@ -1109,7 +1277,12 @@ fn empty_cell_skip(origin: vec3<f32>, dir: vec3<f32>, t: f32) -> f32 {
 
 // The bound of the density delta and ratio tracking rely on.
 fn density_max() -> f32 {
-    return clamp(frame.clouds.y * (1.0 + frame.clouds.w), 0.0, 1.0);
+    var m = 0.0;
+    for (var i = 0u; i < layer_count(); i++) {
+        let l = cloud_layer(i);
+        m = max(m, l.density * (1.0 + l.precipitation));
+    }
+    return clamp(m, 0.0, 1.0);
 }
 
 // Delta tracking: the distance of the first real collision along the ray, or -1.
@@ -1269,7 +1442,7 @@ fn trace_path(view: vec3<f32>, span: Interval, rng: ptr<function, u32>,
         throughput *= albedo;
         order += 1u;
         let alt = altitude_of(pos);
-        let h = saturate((alt - frame.atmosphere.y) / (frame.atmosphere.z - frame.atmosphere.y));
+        let h = height_fraction(alt);
         // Next event toward the sun (a directional light).
         if !hits_ground(pos, alt, sun) {
             let tr = transmittance_along(pos, sun, layer_segments(pos, alt, sun), rng, counters);
@@ -1327,7 +1500,7 @@ fn pathtrace(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     let pixel = id.xy;
     let view = view_ray(pixel);
-    let span = layer_interval(frame.camera_position.y, view);
+    let span = cloud_interval(frame.camera_position.y, view);
     var counters = Counters(0u, 0u, 0u, 0u);
     count(STAT_PIXELS, 1u);
     count(STAT_MARCHED, u32(span.kind == RAY_MARCH));
@@ -1414,7 +1587,7 @@ fn basic_pixel(pixel: vec2<u32>) -> MarchResult {
     var radiance = vec3<f32>(0.0);
     var transmittance = 1.0;
     var depth_sum = 0.0;
-    let span = layer_interval(cam_alt, view);
+    let span = cloud_interval(cam_alt, view);
     if span.kind == RAY_MISSES_LAYER {
         count(STAT_EXIT_MISSED, 1u);
     } else if span.kind == RAY_HITS_GROUND {
@@ -1633,7 +1806,7 @@ fn sprite_candidate(c: SpriteCell, level: u32, s: u32, counters: ptr<function, C
     let u = vec4<f32>(atlas_hash(seed, 8u * s), atlas_hash(seed, 8u * s + 1u), atlas_hash(seed, 8u * s + 2u), atlas_hash(seed, 8u * s + 3u));
     let v = vec2<f32>(atlas_hash(seed, 8u * s + 4u), atlas_hash(seed, 8u * s + 5u));
     let xz = (vec2<f32>(c.index) + u.xy) * c.size;
-    let w = sample_weather(vec3<f32>(xz.x, 0.0, xz.y));
+    let w = sample_weather(vec3<f32>(xz.x, 0.0, xz.y), cloud_layer(0u));
     let h = 0.04 + u.z * (mix(0.3, 0.95, w.cloud_type) - 0.04);
     let alt = frame.atmosphere.y + h * (frame.atmosphere.z - frame.atmosphere.y);
     var density = 0.0;

@@ -47,7 +47,7 @@ fn basic_pixel(pixel: vec2<u32>) -> MarchResult {
     var radiance = vec3<f32>(0.0);
     var transmittance = 1.0;
     var depth_sum = 0.0;
-    let span = layer_interval(cam_alt, view);
+    let span = cloud_interval(cam_alt, view);
     if span.kind == RAY_MISSES_LAYER {
         count(STAT_EXIT_MISSED, 1u);
     } else if span.kind == RAY_HITS_GROUND {

@@ -26,12 +26,18 @@ struct Frame {
     march: vec4<f32>,               // step length (m, 0 = from view steps), light step growth, first light step (m), early-exit transmittance
     counts: vec4<u32>,              // width, height, view steps, light steps
     modes: vec4<u32>,               // phase model, integration, height model, flags
-    misc: vec4<u32>,                // octaves beyond single scattering, frame (jitter seed)
+    misc: vec4<u32>,                // octaves beyond single scattering, frame (jitter seed), path orders, extra cloud layers (0-3)
     previous_position: vec4<f32>,   // last frame's camera (as camera_position): reprojection
     previous_forward: vec4<f32>,    // last frame's forward; w = aspect
     previous_right: vec4<f32>,      // last frame's right
     previous_up: vec4<f32>,         // last frame's up
     temporal: vec4<u32>,            // block side (1 off, 2 = 1/4, 4 = 1/16), history valid (0/1)
+    layer1: vec4<f32>,              // extra cloud layer 1: bottom, top (altitudes, m), coverage, density multiplier
+    layer1_weather: vec4<f32>,      // its cloud type, precipitation, weather-map offset xz (m, wrapped)
+    layer2: vec4<f32>,              // extra cloud layer 2 (as layer1)
+    layer2_weather: vec4<f32>,
+    layer3: vec4<f32>,              // extra cloud layer 3 (as layer1)
+    layer3_weather: vec4<f32>,
 }
 
 // Codes shared with the scene crate (`PhaseModel::code`, `Integration::code`, ...).

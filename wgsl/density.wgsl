@@ -18,21 +18,83 @@ struct Counters {
     light: u32,
 }
 
-// What the weather map says at a point, after the scene's global controls.
+// One cloud layer: its altitude range and its weather. Layer 0 is the scene's main layer
+// (`atmosphere`, `clouds`), layers 1-3 are the extra ones (`layer1`..`layer3`). Layers never
+// overlap in altitude (the scene is validated so), so a point lies in at most one.
+struct Layer {
+    bottom: f32,
+    top: f32,
+    coverage: f32,
+    density: f32,
+    cloud_type: f32,
+    precipitation: f32,
+    weather_offset: vec2<f32>, // where the layer reads the weather map (wind and its own shift)
+}
+
+const MAX_LAYERS: u32 = 4u;
+const NO_LAYER: u32 = 4u;
+
+fn layer_count() -> u32 {
+    return 1u + min(frame.misc.w, MAX_LAYERS - 1u);
+}
+
+fn layer_from(g: vec4<f32>, w: vec4<f32>) -> Layer {
+    return Layer(g.x, g.y, g.z, g.w, w.x, w.y, w.zw);
+}
+
+fn cloud_layer(i: u32) -> Layer {
+    if i == 1u {
+        return layer_from(frame.layer1, frame.layer1_weather);
+    } else if i == 2u {
+        return layer_from(frame.layer2, frame.layer2_weather);
+    } else if i == 3u {
+        return layer_from(frame.layer3, frame.layer3_weather);
+    }
+    return Layer(frame.atmosphere.y, frame.atmosphere.z, frame.clouds.x, frame.clouds.y,
+                 frame.clouds.z, frame.clouds.w, frame.wind_offsets0.xy);
+}
+
+// Height fraction of altitude `alt` in layer `l` (inside where it lies in [0, 1]).
+fn layer_height(l: Layer, alt: f32) -> f32 {
+    return (alt - l.bottom) / (l.top - l.bottom);
+}
+
+// The layer that holds altitude `alt`, or NO_LAYER.
+fn layer_at(alt: f32) -> u32 {
+    for (var i = 0u; i < layer_count(); i++) {
+        let h = layer_height(cloud_layer(i), alt);
+        if h >= 0.0 && h <= 1.0 {
+            return i;
+        }
+    }
+    return NO_LAYER;
+}
+
+// The altitudes that hold every layer: (lowest bottom, highest top).
+fn layers_span() -> vec2<f32> {
+    var span = frame.atmosphere.yz;
+    for (var i = 1u; i < layer_count(); i++) {
+        let l = cloud_layer(i);
+        span = vec2<f32>(min(span.x, l.bottom), max(span.y, l.top));
+    }
+    return span;
+}
+
+// What the weather map says at a point of layer `l`, after its controls.
 struct Weather {
     coverage: f32,
     cloud_type: f32,
     precipitation: f32,
 }
 
-fn sample_weather(p: vec3<f32>) -> Weather {
-    let uv = (p.xz - frame.wind_offsets0.xy) / frame.periods.x;
+fn sample_weather(p: vec3<f32>, l: Layer) -> Weather {
+    let uv = (p.xz - l.weather_offset) / frame.periods.x;
     let w = textureSampleLevel(weather_tex, noise_sampler, uv, 0.0);
-    // The scene's coverage shifts the map's local coverage: 0 clears the sky, 1 fills it.
-    let coverage = saturate(w.r + 2.0 * (frame.clouds.x - 0.5));
-    // The scene's cloud type is the mean; the map varies it locally (HZD: B = cloud type).
-    let cloud_type = saturate(frame.clouds.z + (w.b - 0.5) * 0.5);
-    let precipitation = frame.clouds.w * saturate(0.5 + w.g);
+    // The layer's coverage shifts the map's local coverage: 0 clears the sky, 1 fills it.
+    let coverage = saturate(w.r + 2.0 * (l.coverage - 0.5));
+    // The layer's cloud type is the mean; the map varies it locally (HZD: B = cloud type).
+    let cloud_type = saturate(l.cloud_type + (w.b - 0.5) * 0.5);
+    let precipitation = l.precipitation * saturate(0.5 + w.g);
     return Weather(coverage, cloud_type, precipitation);
 }
 
@@ -66,17 +128,24 @@ fn height_signal(h: f32, cloud_type: f32) -> f32 {
     return height_parabola(h, cloud_type);
 }
 
-// Density in [0, 1] at world position `p` with altitude `alt`. `counters` counts density and
-// detail evaluations.
+// Density in [0, 1] at world position `p` with altitude `alt`, in whichever layer holds it.
+// `counters` counts density and detail evaluations.
 fn cloud_density(p: vec3<f32>, alt: f32, counters: ptr<function, Counters>) -> f32 {
-    let bottom = frame.atmosphere.y;
-    let top = frame.atmosphere.z;
-    let h = (alt - bottom) / (top - bottom); // height fraction in the layer
+    let i = layer_at(alt);
+    if i == NO_LAYER {
+        return 0.0;
+    }
+    return layer_density(p, alt, cloud_layer(i), counters);
+}
+
+// Density in [0, 1] at world position `p` with altitude `alt` in layer `l` (0 outside it).
+fn layer_density(p: vec3<f32>, alt: f32, l: Layer, counters: ptr<function, Counters>) -> f32 {
+    let h = layer_height(l, alt); // height fraction in the layer
     if h < 0.0 || h > 1.0 {
         return 0.0;
     }
     (*counters).density += 1u;
-    let weather = sample_weather(p);
+    let weather = sample_weather(p, l);
     let signal = height_signal(h, weather.cloud_type);
     if weather.coverage <= 0.0 || signal <= 0.0 {
         return 0.0;
@@ -126,6 +195,6 @@ fn cloud_density(p: vec3<f32>, alt: f32, counters: ptr<function, Counters>) -> f
 
     // Denser toward the top (thesis 4.5.1), global density and precipitation, clamp.
     density = density * mix(1.0, h, frame.erosion.w);
-    density = density * frame.clouds.y * (1.0 + weather.precipitation);
+    density = density * l.density * (1.0 + weather.precipitation);
     return clamp(density, 0.0, 1.0);
 }

@@ -80,12 +80,11 @@ struct Interval {
     kind: u32,
 }
 
-// The part of the view ray inside the cloud layer, cut to the cut-off distance (thesis
-// alg. 5.1: march min(layer depth, cut-off)). Handles cameras below, inside and above the
-// layer (thesis 5.2).
-fn layer_interval(alt: f32, d: vec3<f32>) -> Interval {
-    let bottom = frame.atmosphere.y;
-    let top = frame.atmosphere.z;
+// The part of the view ray inside the shell between altitudes `bottom` and `top`, cut to the
+// cut-off distance (thesis alg. 5.1: march min(layer depth, cut-off)). Handles cameras below,
+// inside and above the layer (thesis 5.2). Of a ray that passes down through the shell and
+// back up, the first part.
+fn shell_interval(alt: f32, d: vec3<f32>, bottom: f32, top: f32) -> Interval {
     let cutoff = frame.atmosphere.w;
     let inner = ray_shell(alt, d, bottom);
     let outer = ray_shell(alt, d, top);
@@ -118,4 +117,36 @@ fn layer_interval(alt: f32, d: vec3<f32>) -> Interval {
         return Interval(0.0, 0.0, RAY_MISSES_LAYER);
     }
     return Interval(start, len, RAY_MARCH);
+}
+
+// The view ray's interval in cloud layer `l`.
+fn layer_interval(alt: f32, d: vec3<f32>, l: Layer) -> Interval {
+    return shell_interval(alt, d, l.bottom, l.top);
+}
+
+// The view ray's interval in the shell that holds every layer (the path tracer's medium,
+// and the baselines, which draw one layer).
+fn cloud_interval(alt: f32, d: vec3<f32>) -> Interval {
+    let span = layers_span();
+    return shell_interval(alt, d, span.x, span.y);
+}
+
+// The interval of the layer the view ray meets first (the lowest index of equal starts).
+fn nearest_layer_interval(alt: f32, d: vec3<f32>) -> Interval {
+    var best = layer_interval(alt, d, cloud_layer(0u));
+    for (var i = 1u; i < layer_count(); i++) {
+        let s = layer_interval(alt, d, cloud_layer(i));
+        if s.kind == RAY_MARCH && (best.kind != RAY_MARCH || s.start < best.start) {
+            best = s;
+        }
+    }
+    return best;
+}
+
+// `ray_shell` from any camera-relative point `p` of altitude `alt`.
+fn ray_shell_from(p: vec3<f32>, alt: f32, d: vec3<f32>, radius_alt: f32) -> Roots {
+    let rp = frame.atmosphere.x;
+    let b = dot(d, vec3<f32>(p.x, p.y + rp, p.z));
+    let c = (alt - radius_alt) * (alt + radius_alt + 2.0 * rp);
+    return solve_sphere(b, c);
 }

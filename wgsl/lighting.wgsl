@@ -34,10 +34,13 @@ fn phase(cos_theta: f32, scale: f32) -> f32 {
     }
 }
 
-// Optical depth toward the sun from `rel` (camera-relative position, world position `p`):
-// `light_steps` segments of exponentially growing length (thesis 5.5.2), density sampled at
-// each segment's midpoint. Samples that leave the layer contribute nothing.
-fn sun_optical_depth(rel: vec3<f32>, p: vec3<f32>, counters: ptr<function, Counters>) -> f32 {
+// Optical depth toward the sun from `rel` (camera-relative position, world position `p`) in
+// layer `l`: `light_steps` segments of exponentially growing length (thesis 5.5.2), density
+// sampled at each segment's midpoint; the march ends where it leaves the layer. Each other
+// layer above that the sun ray crosses adds one midpoint sample times the length of the
+// crossing: the Beer shadow of a high deck on the clouds below, which the few kilometres of
+// the light march would not reach.
+fn sun_optical_depth(rel: vec3<f32>, p: vec3<f32>, l: Layer, counters: ptr<function, Counters>) -> f32 {
     let sun = frame.sun_direction.xyz;
     let sigma_t = frame.extinction.x + frame.extinction.y;
     let steps = frame.counts.w;
@@ -49,13 +52,30 @@ fn sun_optical_depth(rel: vec3<f32>, p: vec3<f32>, counters: ptr<function, Count
         let s = dist + 0.5 * seg;
         let q = rel + sun * s;
         let alt = altitude_of(q);
-        if alt > frame.atmosphere.z || alt < frame.atmosphere.y {
+        if alt > l.top || alt < l.bottom {
             break;
         }
         (*counters).light += 1u;
-        tau += cloud_density(p + sun * s, alt, counters) * sigma_t * seg;
+        tau += layer_density(p + sun * s, alt, l, counters) * sigma_t * seg;
         dist += seg;
         seg *= growth;
+    }
+    let alt0 = altitude_of(rel);
+    for (var j = 0u; j < layer_count(); j++) {
+        let above = cloud_layer(j);
+        if above.bottom <= l.top {
+            continue;
+        }
+        // From below both spheres, the ray leaves each through its far root.
+        let enter = ray_shell_from(rel, alt0, sun, above.bottom);
+        let exit = ray_shell_from(rel, alt0, sun, above.top);
+        if !enter.hit || !exit.hit || !(exit.t1 > enter.t1) || enter.t1 <= 0.0 {
+            continue;
+        }
+        let s = 0.5 * (enter.t1 + exit.t1);
+        (*counters).light += 1u;
+        tau += layer_density(p + sun * s, altitude_of(rel + sun * s), above, counters) * sigma_t
+            * (exit.t1 - enter.t1);
     }
     return tau;
 }
@@ -98,21 +118,27 @@ fn ambient(h: f32) -> vec3<f32> {
     return mix(frame.ambient_bottom.rgb, frame.ambient_top.rgb, h) * frame.ambient_bottom.w;
 }
 
-// In-scattered radiance per unit length at a view sample: sigma_s * density * (sun + ambient),
-// darkened toward the base of raining clouds (thesis 4.4.1).
+// Height fraction of altitude `alt` in the layer that holds it (ambient and precipitation
+// darkening are per layer).
+fn height_fraction(alt: f32) -> f32 {
+    return saturate(layer_height(cloud_layer(layer_at(alt)), alt));
+}
+
+// In-scattered radiance per unit length at a view sample of layer `l`: sigma_s * density *
+// (sun + ambient), darkened toward the base of raining clouds (thesis 4.4.1).
 fn scattered_light(rel: vec3<f32>, p: vec3<f32>, alt: f32, density: f32, view: vec3<f32>,
-                   counters: ptr<function, Counters>) -> vec3<f32> {
+                   l: Layer, counters: ptr<function, Counters>) -> vec3<f32> {
     let sun = frame.sun_direction.xyz;
-    let h = saturate((alt - frame.atmosphere.y) / (frame.atmosphere.z - frame.atmosphere.y));
+    let h = saturate(layer_height(l, alt));
     var sun_light = vec3<f32>(0.0);
     if !hits_ground(rel, alt, sun) {
         var tau = 0.0;
         if LIGHT_MARCH {
-            tau = sun_optical_depth(rel, p, counters);
+            tau = sun_optical_depth(rel, p, l, counters);
         }
         sun_light = frame.sun_illuminance.rgb * sun_scattering(dot(view, sun), tau);
     }
-    let weather = sample_weather(p);
+    let weather = sample_weather(p, l);
     let darkening = saturate(1.0 - frame.extinction.z * weather.precipitation * (1.0 - h));
     return frame.extinction.x * density * (sun_light + ambient(h)) * darkening;
 }

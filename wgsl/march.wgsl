@@ -64,87 +64,59 @@ fn start_offset(pixel: vec2<u32>) -> f32 {
     return fract(base + van_der_corput(frame.misc.y / (k * k)));
 }
 
-// The view march (thesis alg. 5.1) of the ray through `pixel`, counting its work.
+// What a view march has gathered so far (across layers).
+struct MarchState {
+    radiance: vec3<f32>,
+    transmittance: f32,
+    depth_sum: f32,  // sum of t * (fraction of the light removed at t)
+}
+
+// The view march (thesis alg. 5.1) of the ray through `pixel`, counting its work. Each cloud
+// layer is marched on its own interval with the full step count, nearest first: the ray's
+// intervals in different layers never overlap because the layers' altitude ranges do not.
 fn march_pixel(pixel: vec2<u32>) -> MarchResult {
     let view = view_ray(pixel);
     let cam_alt = frame.camera_position.y;
-    let cam_xz = frame.camera_position.xz;
     var counters = Counters(0u, 0u, 0u, 0u);
     count(STAT_PIXELS, 1u);
 
-    var radiance = vec3<f32>(0.0);
-    var transmittance = 1.0;
-    var depth_sum = 0.0;
-    let span = layer_interval(cam_alt, view);
-    if span.kind == RAY_MISSES_LAYER {
-        count(STAT_EXIT_MISSED, 1u);
-    } else if span.kind == RAY_HITS_GROUND {
+    var state = MarchState(vec3<f32>(0.0), 1.0, 0.0);
+    let jitter = start_offset(pixel);
+    let n = layer_count();
+    var marched = false;
+    var ground = false;
+    var last_start = -1.0;
+    var last_index = NO_LAYER;
+    for (var k = 0u; k < n; k++) {
+        // The nearest layer not marched yet: the smallest (start, index) after the last one.
+        var next = NO_LAYER;
+        var span = Interval(0.0, 0.0, RAY_MISSES_LAYER);
+        for (var i = 0u; i < n; i++) {
+            let s = layer_interval(cam_alt, view, cloud_layer(i));
+            ground = ground || s.kind == RAY_HITS_GROUND;
+            let after = s.start > last_start || (s.start == last_start && i > last_index);
+            if s.kind == RAY_MARCH && after && (next == NO_LAYER || s.start < span.start) {
+                next = i;
+                span = s;
+            }
+        }
+        if next == NO_LAYER {
+            break;
+        }
+        marched = true;
+        last_start = span.start;
+        last_index = next;
+        if march_layer(view, span, cloud_layer(next), jitter, &state, &counters) {
+            count(STAT_EXIT_TRANSMITTANCE, 1u);
+            break;
+        }
+    }
+    if marched {
+        count(STAT_MARCHED, 1u);
+    } else if ground {
         count(STAT_EXIT_GROUND, 1u);
     } else {
-        count(STAT_MARCHED, 1u);
-        var steps = frame.counts.z;
-        if frame.march.x > 0.0 {
-            steps = clamp(u32(ceil(span.length / frame.march.x)), 1u, MAX_VIEW_STEPS);
-        }
-        let dt = span.length / f32(steps);
-        let jitter = start_offset(pixel);
-        let sigma_e = frame.extinction.x + frame.extinction.y;
-        let dynamic_step = (frame.modes.w & FLAG_DYNAMIC_STEP) != 0u;
-        let empty_skip = (frame.modes.w & FLAG_EMPTY_SKIP) != 0u;
-        // Samples lie on one grid, t_i = start + (i + jitter) dt; the cheap-march techniques
-        // only choose which i to visit, so they never move a sample.
-        var i = 0u;
-        var stride = 1u;   // 2 after 8 empty samples with the dynamic step
-        var empty = 0u;    // empty samples in a row
-        loop {
-            if i >= steps {
-                break;
-            }
-            counters.view_steps += 1u;
-            let t = span.start + (f32(i) + jitter) * dt;
-            let rel = view * t + vec3<f32>(0.0, cam_alt, 0.0);
-            let p = vec3<f32>(rel.x + cam_xz.x, rel.y, rel.z + cam_xz.y);
-            if empty_skip {
-                // In a cell where the weather leaves no cloud: jump to the first sample past
-                // the cell's edge.
-                let exit = empty_cell_exit(p, view);
-                if exit > 0.0 {
-                    let next = u32(clamp(ceil((t + exit - span.start) / dt - jitter), 0.0, f32(steps)));
-                    i = max(i + 1u, next);
-                    continue;
-                }
-            }
-            let alt = altitude_of(rel);
-            let density = cloud_density(p, alt, &counters);
-            if density <= 0.0 {
-                empty += 1u;
-                if dynamic_step && empty >= 8u {
-                    stride = 2u;
-                }
-                i += stride;
-                continue;
-            }
-            if stride > 1u {
-                // Entered cloud on a long step: go back to the sample skipped over and
-                // continue at the fine step.
-                i -= stride - 1u;
-                stride = 1u;
-                empty = 0u;
-                continue;
-            }
-            empty = 0u;
-            let sigma_t = sigma_e * density;
-            let source = scattered_light(rel, p, alt, density, view, &counters);
-            radiance += transmittance * step_integral(source, sigma_t, dt);
-            let step_t = exp(-sigma_t * dt);
-            depth_sum += t * transmittance * (1.0 - step_t);
-            transmittance *= step_t;
-            if transmittance < frame.march.w {
-                count(STAT_EXIT_TRANSMITTANCE, 1u);
-                break;
-            }
-            i += 1u;
-        }
+        count(STAT_EXIT_MISSED, 1u);
     }
 
     count(STAT_VIEW_STEPS, counters.view_steps);
@@ -152,10 +124,81 @@ fn march_pixel(pixel: vec2<u32>) -> MarchResult {
     count(STAT_DETAIL, counters.detail);
     count(STAT_LIGHT, counters.light);
     var depth = 0.0;
-    if transmittance < 1.0 {
-        depth = depth_sum / (1.0 - transmittance);
+    if state.transmittance < 1.0 {
+        depth = state.depth_sum / (1.0 - state.transmittance);
     }
-    return MarchResult(radiance, transmittance, depth);
+    return MarchResult(state.radiance, state.transmittance, depth);
+}
+
+// The march of the view ray's interval `span` in layer `l`, added to `state`. True when the
+// transmittance fell below the early-exit threshold (the pixel is done).
+fn march_layer(view: vec3<f32>, span: Interval, l: Layer, jitter: f32,
+               state: ptr<function, MarchState>, counters: ptr<function, Counters>) -> bool {
+    let cam_alt = frame.camera_position.y;
+    let cam_xz = frame.camera_position.xz;
+    var steps = frame.counts.z;
+    if frame.march.x > 0.0 {
+        steps = clamp(u32(ceil(span.length / frame.march.x)), 1u, MAX_VIEW_STEPS);
+    }
+    let dt = span.length / f32(steps);
+    let sigma_e = frame.extinction.x + frame.extinction.y;
+    let dynamic_step = (frame.modes.w & FLAG_DYNAMIC_STEP) != 0u;
+    let empty_skip = (frame.modes.w & FLAG_EMPTY_SKIP) != 0u;
+    // Samples lie on one grid, t_i = start + (i + jitter) dt; the cheap-march techniques
+    // only choose which i to visit, so they never move a sample.
+    var i = 0u;
+    var stride = 1u;   // 2 after 8 empty samples with the dynamic step
+    var empty = 0u;    // empty samples in a row
+    loop {
+        if i >= steps {
+            break;
+        }
+        (*counters).view_steps += 1u;
+        let t = span.start + (f32(i) + jitter) * dt;
+        let rel = view * t + vec3<f32>(0.0, cam_alt, 0.0);
+        let p = vec3<f32>(rel.x + cam_xz.x, rel.y, rel.z + cam_xz.y);
+        if empty_skip {
+            // In a cell where the weather leaves no cloud: jump to the first sample past
+            // the cell's edge.
+            let exit = empty_cell_exit(p, view);
+            if exit > 0.0 {
+                let next = u32(clamp(ceil((t + exit - span.start) / dt - jitter), 0.0, f32(steps)));
+                i = max(i + 1u, next);
+                continue;
+            }
+        }
+        let alt = altitude_of(rel);
+        let density = layer_density(p, alt, l, counters);
+        if density <= 0.0 {
+            empty += 1u;
+            if dynamic_step && empty >= 8u {
+                stride = 2u;
+            }
+            i += stride;
+            continue;
+        }
+        if stride > 1u {
+            // Entered cloud on a long step: go back to the sample skipped over and
+            // continue at the fine step.
+            i -= stride - 1u;
+            stride = 1u;
+            empty = 0u;
+            continue;
+        }
+        empty = 0u;
+        let sigma_t = sigma_e * density;
+        let source = scattered_light(rel, p, alt, density, view, l, counters);
+        let transmittance = (*state).transmittance;
+        (*state).radiance += transmittance * step_integral(source, sigma_t, dt);
+        let step_t = exp(-sigma_t * dt);
+        (*state).depth_sum += t * transmittance * (1.0 - step_t);
+        (*state).transmittance = transmittance * step_t;
+        if (*state).transmittance < frame.march.w {
+            return true;
+        }
+        i += 1u;
+    }
+    return false;
 }
 
 // Every pixel, every frame.

@@ -53,21 +53,14 @@ struct Segments {
     count: u32,
 }
 
-// `ray_shell` from any camera-relative point `p` of altitude `alt`.
-fn ray_shell_from(p: vec3<f32>, alt: f32, d: vec3<f32>, radius_alt: f32) -> Roots {
-    let rp = frame.atmosphere.x;
-    let b = dot(d, vec3<f32>(p.x, p.y + rp, p.z));
-    let c = (alt - radius_alt) * (alt + radius_alt + 2.0 * rp);
-    return solve_sphere(b, c);
-}
-
-// The parts of the ray from `p` along unit `d` inside the layer (no cut-off: scattered light
-// sees the whole layer).
+// The parts of the ray from `p` along unit `d` inside the shell that holds every layer (no
+// cut-off: scattered light sees the whole medium; between layers the density is 0).
 fn layer_segments(p: vec3<f32>, alt: f32, d: vec3<f32>) -> Segments {
     var s = Segments(vec2<f32>(0.0), vec2<f32>(0.0), 0u);
-    let bottom = frame.atmosphere.y;
+    let span = layers_span();
+    let bottom = span.x;
     let inner = ray_shell_from(p, alt, d, bottom);
-    let outer = ray_shell_from(p, alt, d, frame.atmosphere.z);
+    let outer = ray_shell_from(p, alt, d, span.y);
     let ground = hits_ground(p, alt, d);
     if !outer.hit || outer.t1 <= 0.0 {
         return s;
@@ -126,7 +119,12 @@ fn empty_cell_skip(origin: vec3<f32>, dir: vec3<f32>, t: f32) -> f32 {
 
 // The bound of the density delta and ratio tracking rely on.
 fn density_max() -> f32 {
-    return clamp(frame.clouds.y * (1.0 + frame.clouds.w), 0.0, 1.0);
+    var m = 0.0;
+    for (var i = 0u; i < layer_count(); i++) {
+        let l = cloud_layer(i);
+        m = max(m, l.density * (1.0 + l.precipitation));
+    }
+    return clamp(m, 0.0, 1.0);
 }
 
 // Delta tracking: the distance of the first real collision along the ray, or -1.
@@ -286,7 +284,7 @@ fn trace_path(view: vec3<f32>, span: Interval, rng: ptr<function, u32>,
         throughput *= albedo;
         order += 1u;
         let alt = altitude_of(pos);
-        let h = saturate((alt - frame.atmosphere.y) / (frame.atmosphere.z - frame.atmosphere.y));
+        let h = height_fraction(alt);
         // Next event toward the sun (a directional light).
         if !hits_ground(pos, alt, sun) {
             let tr = transmittance_along(pos, sun, layer_segments(pos, alt, sun), rng, counters);
@@ -344,7 +342,7 @@ fn pathtrace(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     let pixel = id.xy;
     let view = view_ray(pixel);
-    let span = layer_interval(frame.camera_position.y, view);
+    let span = cloud_interval(frame.camera_position.y, view);
     var counters = Counters(0u, 0u, 0u, 0u);
     count(STAT_PIXELS, 1u);
     count(STAT_MARCHED, u32(span.kind == RAY_MARCH));

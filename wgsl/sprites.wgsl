@@ -165,7 +165,7 @@ fn sprite_candidate(c: SpriteCell, level: u32, s: u32, counters: ptr<function, C
     let u = vec4<f32>(atlas_hash(seed, 8u * s), atlas_hash(seed, 8u * s + 1u), atlas_hash(seed, 8u * s + 2u), atlas_hash(seed, 8u * s + 3u));
     let v = vec2<f32>(atlas_hash(seed, 8u * s + 4u), atlas_hash(seed, 8u * s + 5u));
     let xz = (vec2<f32>(c.index) + u.xy) * c.size;
-    let w = sample_weather(vec3<f32>(xz.x, 0.0, xz.y));
+    let w = sample_weather(vec3<f32>(xz.x, 0.0, xz.y), cloud_layer(0u));
     let h = 0.04 + u.z * (mix(0.3, 0.95, w.cloud_type) - 0.04);
     let alt = frame.atmosphere.y + h * (frame.atmosphere.z - frame.atmosphere.y);
     var density = 0.0;

@@ -215,7 +215,7 @@ fn resolve(@builtin(global_invocation_id) id: vec3<u32>) {
     // sky, which moves with the direction.
     var depth = current_depth;
     if depth <= 0.0 {
-        let span = layer_interval(frame.camera_position.y, view_ray(pixel));
+        let span = nearest_layer_interval(frame.camera_position.y, view_ray(pixel));
         if span.kind == RAY_MARCH {
             depth = span.start + 0.5 * span.length;
         }

@@ -12,7 +12,8 @@ use anyhow::{Context, Result, bail};
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
 use stratus_graph::{FrameInput, FramePlan, Readback};
-use stratus_scene::Temporal;
+use stratus_scene::{Scene, Temporal};
+use stratus_weather::states::{self, WeatherParams};
 
 use crate::{
     render::{Backend, frame_scene, open_realtime, parse_temporal},
@@ -46,6 +47,13 @@ pub struct AnimateArgs {
     /// Temporal upsampling (overrides the scene's quality.temporal).
     #[arg(long, value_name = "MODE", value_parser = parse_temporal)]
     temporal: Option<Temporal>,
+    /// A weather transition: from this weather state (`stratus weather --list`) ...
+    #[arg(long, value_name = "STATE", requires = "to")]
+    from: Option<String>,
+    /// ... to this one, smoothstep-eased over --seconds (seed 001's transitions). The wind
+    /// carries the clouds by the integral of its changing speed, so they never jump.
+    #[arg(long, value_name = "STATE", requires = "from")]
+    to: Option<String>,
 }
 
 /// Runs `stratus animate`.
@@ -92,6 +100,14 @@ pub fn run(args: AnimateArgs) -> Result<()> {
         bail!("--seconds {seconds}: must be a positive number");
     }
     let frames = ((seconds * f64::from(args.fps)).round() as u32).max(1);
+    let transition = match (&args.from, &args.to) {
+        (Some(a), Some(b)) => {
+            let from = states::find(a).map_err(|e| anyhow::anyhow!("--from: {e}"))?;
+            let to = states::find(b).map_err(|e| anyhow::anyhow!("--to: {e}"))?;
+            Some((from.params, to.params))
+        }
+        _ => None,
+    };
     let [w, h] = scene.camera.resolution;
 
     // ffmpeg first: a missing encoder fails before any rendering.
@@ -124,7 +140,17 @@ pub fn run(args: AnimateArgs) -> Result<()> {
     }
     bar.set_message("rendering");
     for i in 0..frames {
-        let s = frame_scene(&scene, i, f64::from(args.fps));
+        let mut s = frame_scene(&scene, i, f64::from(args.fps));
+        if let Some((from, to)) = &transition {
+            apply_transition(
+                &mut s,
+                &scene,
+                from,
+                to,
+                f64::from(i) / f64::from(args.fps),
+                seconds,
+            );
+        }
         let out = renderer
             .render(&FrameInput::new(&plan, &s, &noise).with_readback(Readback::output()))
             .map_err(|e| anyhow::anyhow!("frame {i}: {e}"))?;
@@ -148,4 +174,25 @@ pub fn run(args: AnimateArgs) -> Result<()> {
         scene.quality.temporal.name()
     );
     Ok(())
+}
+
+/// Writes the weather `t` seconds into a transition of `duration` seconds from `from` to `to`
+/// into the frame's scene `s` (the base scene `base` at that time). The wind's time is set so
+/// that speed * time is the distance the eased wind has carried the clouds.
+pub(crate) fn apply_transition(
+    s: &mut Scene,
+    base: &Scene,
+    from: &WeatherParams,
+    to: &WeatherParams,
+    t: f64,
+    duration: f64,
+) {
+    let params = WeatherParams::transition(from, to, t, duration);
+    params.apply(s);
+    let distance = WeatherParams::wind_distance(from, to, t, duration);
+    s.clouds.time_s = if params.wind_speed_m_s > 0.0 {
+        base.clouds.time_s + distance / params.wind_speed_m_s
+    } else {
+        base.clouds.time_s
+    };
 }

@@ -10,6 +10,7 @@ mod output;
 mod render;
 mod scene_io;
 mod soak;
+mod weather;
 
 use std::{path::PathBuf, process::ExitCode};
 
@@ -57,6 +58,9 @@ enum Command {
     Soak(soak::SoakArgs),
     /// Validate the embedded WGSL with naga and list its modules, variants and entry points.
     Shaders,
+    /// Turn weather into a scene: a METAR report (cloud groups become cloud layers), a
+    /// weather-service JSON file, or a named weather state; print or write the scene (TOML).
+    Weather(weather::WeatherArgs),
 }
 
 #[derive(Subcommand)]
@@ -84,6 +88,7 @@ fn main() -> ExitCode {
         Command::ExportVolume(args) => export::run(args),
         Command::ExportKit(args) => kit::run(args),
         Command::Soak(args) => soak::run(args),
+        Command::Weather(args) => weather::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -82,6 +82,10 @@ pub struct RenderArgs {
     /// The renderer.
     #[arg(long, value_enum, default_value_t = Backend::Auto)]
     backend: Backend,
+    /// A METAR report (quoted) applied to the scene: its cloud groups become cloud layers,
+    /// its weather picks the state (see `stratus weather`).
+    #[arg(long, value_name = "METAR")]
+    weather: Option<String>,
     /// Image size as WIDTHxHEIGHT (overrides the scene's camera.resolution).
     #[arg(long, value_parser = parse_size)]
     size: Option<(u32, u32)>,
@@ -264,7 +268,17 @@ fn progress(frames: u32) -> Option<ProgressBar> {
 /// Runs `stratus render`.
 pub fn run(args: RenderArgs) -> Result<()> {
     check_image_path(&args.out)?;
-    let (mut scene, name) = load_scene(args.preset.as_deref(), args.scene.as_ref(), args.size)?;
+    let (mut scene, mut name) = load_scene(args.preset.as_deref(), args.scene.as_ref(), args.size)?;
+    if let Some(report) = &args.weather {
+        let d = crate::weather::derive_metar(report, &scene)?;
+        eprintln!(
+            "weather: {} ({} cloud layers)",
+            d.state.name,
+            1 + d.scene.clouds.layers.len()
+        );
+        scene = d.scene;
+        name = format!("{name} with {report:?}");
+    }
     if let Some(t) = args.temporal {
         scene.quality.temporal = t;
     }

@@ -22,8 +22,88 @@ pub(crate) struct Counters {
     pub light: u64,
 }
 
+// WGSL: density.wgsl::Layer
+/// One cloud layer: its altitudes and weather. Layer 0 is the main layer (`atmosphere`,
+/// `clouds`), layers 1-3 the extra ones.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Layer {
+    pub bottom: f64,
+    pub top: f64,
+    pub coverage: f64,
+    pub density: f64,
+    pub cloud_type: f64,
+    pub precipitation: f64,
+    pub weather_offset: [f64; 2],
+}
+
+// WGSL: density.wgsl::MAX_LAYERS
+const MAX_LAYERS: u32 = 4;
+
+// WGSL: density.wgsl::layer_count
+pub(crate) fn layer_count(f: &Frame) -> u32 {
+    1 + f.misc[3].min(MAX_LAYERS - 1)
+}
+
+// WGSL: density.wgsl::cloud_layer
+pub(crate) fn cloud_layer(f: &Frame, i: u32) -> Layer {
+    let from = |g: [f64; 4], w: [f64; 4]| Layer {
+        bottom: g[0],
+        top: g[1],
+        coverage: g[2],
+        density: g[3],
+        cloud_type: w[0],
+        precipitation: w[1],
+        weather_offset: [w[2], w[3]],
+    };
+    match i {
+        1 => from(f.layer1, f.layer1_weather),
+        2 => from(f.layer2, f.layer2_weather),
+        3 => from(f.layer3, f.layer3_weather),
+        _ => Layer {
+            bottom: f.atmosphere[1],
+            top: f.atmosphere[2],
+            coverage: f.clouds[0],
+            density: f.clouds[1],
+            cloud_type: f.clouds[2],
+            precipitation: f.clouds[3],
+            weather_offset: [f.wind_offsets0[0], f.wind_offsets0[1]],
+        },
+    }
+}
+
+/// Every layer of the frame, main first.
+pub(crate) fn cloud_layers(f: &Frame) -> impl Iterator<Item = Layer> + '_ {
+    (0..layer_count(f)).map(move |i| cloud_layer(f, i))
+}
+
+// WGSL: density.wgsl::layer_height
+pub(crate) fn layer_height(l: &Layer, alt: f64) -> f64 {
+    (alt - l.bottom) / (l.top - l.bottom)
+}
+
+// WGSL: density.wgsl::layer_at
+/// The layer that holds altitude `alt`.
+pub(crate) fn layer_at(f: &Frame, alt: f64) -> Option<Layer> {
+    cloud_layers(f).find(|l| (0.0..=1.0).contains(&layer_height(l, alt)))
+}
+
+// WGSL: density.wgsl::layers_span
+/// `(lowest bottom, highest top)` of the layers.
+pub(crate) fn layers_span(f: &Frame) -> (f64, f64) {
+    cloud_layers(f).fold((f.atmosphere[1], f.atmosphere[2]), |(lo, hi), l| {
+        (lo.min(l.bottom), hi.max(l.top))
+    })
+}
+
+// WGSL: lighting.wgsl::height_fraction
+/// Height fraction of `alt` in the layer that holds it (the main layer's if none does).
+pub(crate) fn height_fraction(f: &Frame, alt: f64) -> f64 {
+    let l = layer_at(f, alt).unwrap_or_else(|| cloud_layer(f, 0));
+    saturate(layer_height(&l, alt))
+}
+
 // WGSL: density.wgsl::Weather
-/// What the weather map says at a point, after the scene's global controls.
+/// What the weather map says at a point, after its layer's controls.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Weather {
     pub coverage: f64,
@@ -32,15 +112,15 @@ pub(crate) struct Weather {
 }
 
 // WGSL: density.wgsl::sample_weather
-pub(crate) fn sample_weather(f: &Frame, noise: &NoiseSet, p: V3) -> Weather {
+pub(crate) fn sample_weather(f: &Frame, noise: &NoiseSet, p: V3, l: &Layer) -> Weather {
     let uv = [
-        (p.x - f.wind_offsets0[0]) / f.periods[0],
-        (p.z - f.wind_offsets0[1]) / f.periods[0],
+        (p.x - l.weather_offset[0]) / f.periods[0],
+        (p.z - l.weather_offset[1]) / f.periods[0],
     ];
     let w = sample2(&noise.weather, uv);
-    let coverage = saturate(w[0] + 2.0 * (f.clouds[0] - 0.5));
-    let cloud_type = saturate(f.clouds[2] + (w[2] - 0.5) * 0.5);
-    let precipitation = f.clouds[3] * saturate(0.5 + w[1]);
+    let coverage = saturate(w[0] + 2.0 * (l.coverage - 0.5));
+    let cloud_type = saturate(l.cloud_type + (w[2] - 0.5) * 0.5);
+    let precipitation = l.precipitation * saturate(0.5 + w[1]);
     Weather {
         coverage,
         cloud_type,
@@ -88,7 +168,7 @@ pub(crate) fn height_signal(f: &Frame, h: f64, cloud_type: f64) -> f64 {
 // WGSL: density.wgsl::cloud_density
 // Must agree with the WGSL step by step, including where `counters` are incremented (the
 // density counter after the layer test, the detail counter inside the erosion branch).
-/// Density in `[0, 1]` at world position `p` with altitude `alt`.
+/// Density in `[0, 1]` at world position `p` with altitude `alt`, in whichever layer holds it.
 pub(crate) fn cloud_density(
     f: &Frame,
     noise: &NoiseSet,
@@ -96,14 +176,28 @@ pub(crate) fn cloud_density(
     alt: f64,
     counters: &mut Counters,
 ) -> f64 {
-    let bottom = f.atmosphere[1];
-    let top = f.atmosphere[2];
-    let h = (alt - bottom) / (top - bottom);
+    match layer_at(f, alt) {
+        Some(l) => layer_density(f, noise, p, alt, &l, counters),
+        None => 0.0,
+    }
+}
+
+// WGSL: density.wgsl::layer_density
+/// Density in `[0, 1]` at world position `p` with altitude `alt` in layer `l` (0 outside it).
+pub(crate) fn layer_density(
+    f: &Frame,
+    noise: &NoiseSet,
+    p: V3,
+    alt: f64,
+    l: &Layer,
+    counters: &mut Counters,
+) -> f64 {
+    let h = layer_height(l, alt);
     if !(0.0..=1.0).contains(&h) {
         return 0.0;
     }
     counters.density += 1;
-    let weather = sample_weather(f, noise, p);
+    let weather = sample_weather(f, noise, p, l);
     let signal = height_signal(f, h, weather.cloud_type);
     if weather.coverage <= 0.0 || signal <= 0.0 {
         return 0.0;
@@ -167,7 +261,7 @@ pub(crate) fn cloud_density(
     }
 
     density *= mix(1.0, h, f.erosion[3]);
-    density = density * f.clouds[1] * (1.0 + weather.precipitation);
+    density = density * l.density * (1.0 + weather.precipitation);
     density.clamp(0.0, 1.0)
 }
 

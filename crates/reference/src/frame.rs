@@ -50,6 +50,12 @@ pub(crate) struct Frame {
     pub previous_right: [f64; 4],
     pub previous_up: [f64; 4],
     pub temporal: [u32; 4],
+    pub layer1: [f64; 4],
+    pub layer1_weather: [f64; 4],
+    pub layer2: [f64; 4],
+    pub layer2_weather: [f64; 4],
+    pub layer3: [f64; 4],
+    pub layer3_weather: [f64; 4],
 }
 
 fn w(v: [f32; 4]) -> [f64; 4] {
@@ -86,6 +92,12 @@ impl Frame {
             previous_right: w(u.previous_right),
             previous_up: w(u.previous_up),
             temporal: u.temporal,
+            layer1: w(u.layer1),
+            layer1_weather: w(u.layer1_weather),
+            layer2: w(u.layer2),
+            layer2_weather: w(u.layer2_weather),
+            layer3: w(u.layer3),
+            layer3_weather: w(u.layer3_weather),
         }
     }
 

@@ -6,6 +6,7 @@
 //! [`layer_segments`] (not in the WGSL) generalises the interval to any start point inside or
 //! outside the layer, for the Monte Carlo path tracer's scattered rays.
 
+use crate::density::{Layer, cloud_layer, cloud_layers, layers_span};
 use crate::frame::Frame;
 use crate::math::V3;
 
@@ -131,10 +132,35 @@ const MISSES: Interval = Interval {
 };
 
 // WGSL: geometry.wgsl::layer_interval
-/// The part of the view ray inside the cloud layer, cut to the cut-off distance.
-pub(crate) fn layer_interval(f: &Frame, alt: f64, d: V3) -> Interval {
-    let bottom = f.atmosphere[1];
-    let top = f.atmosphere[2];
+/// The view ray's interval in cloud layer `l`.
+pub(crate) fn layer_interval(f: &Frame, alt: f64, d: V3, l: &Layer) -> Interval {
+    shell_interval(f, alt, d, l.bottom, l.top)
+}
+
+// WGSL: geometry.wgsl::cloud_interval
+/// The view ray's interval in the shell that holds every layer.
+pub(crate) fn cloud_interval(f: &Frame, alt: f64, d: V3) -> Interval {
+    let (bottom, top) = layers_span(f);
+    shell_interval(f, alt, d, bottom, top)
+}
+
+// WGSL: geometry.wgsl::nearest_layer_interval
+/// The interval of the layer the view ray meets first (the lowest index of equal starts).
+pub(crate) fn nearest_layer_interval(f: &Frame, alt: f64, d: V3) -> Interval {
+    let mut best = layer_interval(f, alt, d, &cloud_layer(f, 0));
+    for l in cloud_layers(f).skip(1) {
+        let s = layer_interval(f, alt, d, &l);
+        if s.kind == RayKind::March && (best.kind != RayKind::March || s.start < best.start) {
+            best = s;
+        }
+    }
+    best
+}
+
+// WGSL: geometry.wgsl::shell_interval
+/// The part of the view ray inside the shell between altitudes `bottom` and `top`, cut to
+/// the cut-off distance.
+pub(crate) fn shell_interval(f: &Frame, alt: f64, d: V3, bottom: f64, top: f64) -> Interval {
     let cutoff = f.atmosphere[3];
     let inner = ray_shell(f, alt, d, bottom);
     let outer = ray_shell(f, alt, d, top);
@@ -182,8 +208,8 @@ pub(crate) fn layer_interval(f: &Frame, alt: f64, d: V3) -> Interval {
 /// bottom, pass below the layer and come back up), and whether the ray ends on the ground. No
 /// cut-off: this is the physical medium, for the path tracer's scattered and shadow rays.
 pub(crate) fn layer_segments(f: &Frame, p: V3, alt: f64, d: V3) -> (Vec<(f64, f64)>, bool) {
-    let bottom = f.atmosphere[1];
-    let top = f.atmosphere[2];
+    // The shell that holds every layer; between layers the density is 0.
+    let (bottom, top) = layers_span(f);
     let inner = ray_shell_from(f, p, alt, d, bottom);
     let outer = ray_shell_from(f, p, alt, d, top);
     let ground = hits_ground(f, p, alt, d);
@@ -239,11 +265,11 @@ mod tests {
     #[test]
     fn camera_below_looking_up_enters_at_the_bottom() {
         let f = frame();
-        let iv = layer_interval(&f, 200.0, V3::new(0.0, 1.0, 0.0));
+        let iv = cloud_interval(&f, 200.0, V3::new(0.0, 1.0, 0.0));
         assert_eq!(iv.kind, RayKind::March);
         assert!((iv.start - 1300.0).abs() < 1e-6);
         assert!((iv.length - 2500.0).abs() < 1e-6);
-        let iv = layer_interval(&f, 200.0, V3::new(0.0, -1.0, 0.0));
+        let iv = cloud_interval(&f, 200.0, V3::new(0.0, -1.0, 0.0));
         assert_eq!(iv.kind, RayKind::HitsGround);
     }
 

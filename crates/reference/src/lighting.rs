@@ -1,7 +1,7 @@
 //! The CPU twin of `lighting.wgsl`: phase functions, the light march toward the sun,
 //! multiple-scattering octaves, ambient and precipitation darkening.
 
-use crate::density::Counters;
+use crate::density::{Counters, Layer, cloud_layers, layer_height};
 use crate::frame::{FLAG_BEER_POWDER, Frame, PHASE_CORNETTE_SHANKS, PHASE_TWO_LOBE_HG, PI};
 use crate::geometry::{altitude_of, hits_ground, ray_shell_from};
 use crate::math::{V3, mix, mix_v, saturate};
@@ -53,25 +53,27 @@ pub(crate) struct LightMarch {
 }
 
 /// Distance from camera-relative `rel` (altitude `alt`) along unit `d` to where the ray leaves
-/// the cloud layer (through the top, or through the bottom if it goes down into it).
-pub(crate) fn distance_to_layer_exit(f: &Frame, rel: V3, alt: f64, d: V3) -> f64 {
-    let inner = ray_shell_from(f, rel, alt, d, f.atmosphere[1]);
+/// cloud layer `l` (through the top, or through the bottom if it goes down into it).
+pub(crate) fn distance_to_layer_exit(f: &Frame, rel: V3, alt: f64, d: V3, l: &Layer) -> f64 {
+    let inner = ray_shell_from(f, rel, alt, d, l.bottom);
     if inner.hit && inner.t0 > 0.0 {
         return inner.t0;
     }
-    let outer = ray_shell_from(f, rel, alt, d, f.atmosphere[2]);
+    let outer = ray_shell_from(f, rel, alt, d, l.top);
     outer.t1.max(0.0)
 }
 
 // WGSL: lighting.wgsl::sun_optical_depth
 // Must agree: midpoint samples of segments growing by `growth`, the loop ends at the first
-// sample outside the layer, each evaluated sample counts one light sample.
-/// Optical depth toward the sun from camera-relative `rel` (world position `p`).
+// sample outside the layer, each evaluated sample counts one light sample; then one midpoint
+// sample per layer above, times the length of the sun ray's crossing.
+/// Optical depth toward the sun from camera-relative `rel` (world position `p`) in layer `l`.
 pub(crate) fn sun_optical_depth(
     m: &Model,
     lm: &LightMarch,
     rel: V3,
     p: V3,
+    l: &Layer,
     counters: &mut Counters,
 ) -> f64 {
     let f = &m.f;
@@ -81,7 +83,7 @@ pub(crate) fn sun_optical_depth(
     let growth = lm.growth;
     let mut seg = lm.first;
     if lm.to_layer_exit {
-        let len = distance_to_layer_exit(f, rel, altitude_of(f, rel), sun);
+        let len = distance_to_layer_exit(f, rel, altitude_of(f, rel), sun, l);
         seg = if growth == 1.0 {
             len / f64::from(steps)
         } else {
@@ -94,13 +96,34 @@ pub(crate) fn sun_optical_depth(
         let s = dist + 0.5 * seg;
         let q = rel + sun * s;
         let alt = altitude_of(f, q);
-        if alt > f.atmosphere[2] || alt < f.atmosphere[1] {
+        if alt > l.top || alt < l.bottom {
             break;
         }
         counters.light += 1;
-        tau += m.density(p + sun * s, alt, counters) * sigma_t * seg;
+        tau += m.layer_density(p + sun * s, alt, l, counters) * sigma_t * seg;
         dist += seg;
         seg *= growth;
+    }
+    let alt0 = altitude_of(f, rel);
+    for above in cloud_layers(f) {
+        if above.bottom <= l.top {
+            continue;
+        }
+        let enter = ray_shell_from(f, rel, alt0, sun, above.bottom);
+        let exit = ray_shell_from(f, rel, alt0, sun, above.top);
+        // WGSL: `!(exit.t1 > enter.t1)` also catches NaN.
+        if !enter.hit
+            || !exit.hit
+            || exit.t1.partial_cmp(&enter.t1) != Some(std::cmp::Ordering::Greater)
+            || enter.t1 <= 0.0
+        {
+            continue;
+        }
+        let s = 0.5 * (enter.t1 + exit.t1);
+        counters.light += 1;
+        tau += m.layer_density(p + sun * s, altitude_of(f, rel + sun * s), &above, counters)
+            * sigma_t
+            * (exit.t1 - enter.t1);
     }
     tau
 }
@@ -145,8 +168,8 @@ pub(crate) fn ambient(f: &Frame, h: f64) -> V3 {
 }
 
 // WGSL: lighting.wgsl::scattered_light
-/// In-scattered radiance per unit length at a view sample: sigma_s * density * (sun + ambient),
-/// darkened toward the base of raining clouds.
+/// In-scattered radiance per unit length at a view sample of layer `l`: sigma_s * density *
+/// (sun + ambient), darkened toward the base of raining clouds.
 // The WGSL's parameters plus the model and the light-march settings (uniforms there).
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn scattered_light(
@@ -157,18 +180,19 @@ pub(crate) fn scattered_light(
     alt: f64,
     density: f64,
     view: V3,
+    l: &Layer,
     counters: &mut Counters,
 ) -> V3 {
     let f = &m.f;
     let sun = f.sun();
-    let h = saturate((alt - f.atmosphere[1]) / (f.atmosphere[2] - f.atmosphere[1]));
+    let h = saturate(layer_height(l, alt));
     let mut sun_light = V3::ZERO;
     if !hits_ground(f, rel, alt, sun) {
         // LIGHT_MARCH: with 0 light steps the march returns 0, as the switched-off WGSL does.
-        let tau = sun_optical_depth(m, lm, rel, p, counters);
+        let tau = sun_optical_depth(m, lm, rel, p, l, counters);
         sun_light = f.sun_illuminance() * sun_scattering(f, view.dot(sun), tau);
     }
-    let weather = m.weather(p);
+    let weather = m.weather(p, l);
     let darkening = saturate(1.0 - f.extinction[2] * weather.precipitation * (1.0 - h));
     (sun_light + ambient(f, h)) * (f.extinction[0] * density * darkening)
 }

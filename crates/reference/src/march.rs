@@ -1,9 +1,9 @@
 //! The CPU twin of `march.wgsl`: the view march (thesis alg. 5.1) of one pixel, with the
 //! analytic or Riemann step integral, jitter, early exit and the work counters.
 
-use crate::density::Counters;
+use crate::density::{Counters, Layer, cloud_layer, layer_count};
 use crate::frame::{Frame, INTEGRATION_RIEMANN, MAX_VIEW_STEPS, hash_unit, van_der_corput};
-use crate::geometry::{Interval, RayKind, altitude_of, layer_interval, view_ray};
+use crate::geometry::{Interval, RayKind, altitude_of, cloud_interval, layer_interval, view_ray};
 use crate::lighting::{LightMarch, scattered_light};
 use crate::math::V3;
 use crate::medium::Model;
@@ -58,9 +58,13 @@ pub(crate) fn step_integral(integration: u32, source: V3, sigma_t: f64, dt: f64)
     source * (dt * f)
 }
 
-/// The view ray's interval in the medium: `layer_interval`, clipped to the medium's support.
-pub(crate) fn medium_interval(m: &Model, cam_alt: f64, view: V3) -> Interval {
-    let span = layer_interval(&m.f, cam_alt, view);
+/// The view ray's interval in the medium: in layer `l` (`layer_interval`), or with `None` in
+/// the shell of every layer (`cloud_interval`), clipped to the medium's support.
+pub(crate) fn medium_interval(m: &Model, cam_alt: f64, view: V3, l: Option<&Layer>) -> Interval {
+    let span = match l {
+        Some(l) => layer_interval(&m.f, cam_alt, view, l),
+        None => cloud_interval(&m.f, cam_alt, view),
+    };
     if span.kind != RayKind::March {
         return span;
     }
@@ -109,94 +113,155 @@ pub(crate) fn march(m: &Model, s: &MarchSettings, pixel: [u32; 2]) -> PixelResul
     march_ray(m, s, view, start_offset(&m.f, pixel, s.jitter))
 }
 
+/// What a view march has gathered so far, across layers (the WGSL's `MarchState`).
+#[derive(Clone, Copy, Debug)]
+struct MarchState {
+    radiance: V3,
+    transmittance: f64,
+    depth_sum: f64,
+}
+
 /// The march of one view ray from the camera with start offset `jitter` (in steps).
+// Must agree: each layer on its own interval, nearest first by (start, index); the pixel's
+// kind is "marched" if any layer was, else "hits ground" if any layer's ray did.
 pub(crate) fn march_ray(m: &Model, s: &MarchSettings, view: V3, jitter: f64) -> PixelResult {
     let f = &m.f;
     let cam_alt = f.camera_position[1];
-    let cam_xz = [f.camera_position[0], f.camera_position[2]];
     let mut counters = Counters::default();
-
-    let mut radiance = V3::ZERO;
-    let mut transmittance = 1.0;
-    let mut depth_sum = 0.0;
+    let mut state = MarchState {
+        radiance: V3::ZERO,
+        transmittance: 1.0,
+        depth_sum: 0.0,
+    };
     let mut exited_early = false;
-    let span = medium_interval(m, cam_alt, view);
-    if span.kind == RayKind::March {
-        // Must agree: in step-length mode ceil(length / step), clamped to [1, MAX_VIEW_STEPS].
-        let steps = match s.view_steps {
-            Some(n) => n.max(1),
-            None if f.march[0] > 0.0 => {
-                ((span.length / f.march[0]).ceil() as u32).clamp(1, MAX_VIEW_STEPS)
-            }
-            None => f.counts[2],
-        };
-        let dt = span.length / f64::from(steps);
-        let sigma_e = f.extinction[0] + f.extinction[1];
-        // Must agree: samples on one grid t_i = start + (i + jitter) dt; the cheap-march
-        // techniques choose which i to visit (stride 2 after 8 empty samples, back one on
-        // entering cloud; jumps over empty occupancy cells).
-        let mut i = 0u32;
-        let mut stride = 1u32;
-        let mut empty = 0u32;
-        while i < steps {
-            // Must agree: one view step counted per loop iteration, also for empty samples.
-            counters.view_steps += 1;
-            let t = span.start + (f64::from(i) + jitter) * dt;
-            let rel = view * t + V3::new(0.0, cam_alt, 0.0);
-            let p = V3::new(rel.x + cam_xz[0], rel.y, rel.z + cam_xz[1]);
-            if s.empty_skip {
-                let exit = m.empty_cell_exit(p, view);
-                if exit > 0.0 {
-                    let next = ((t + exit - span.start) / dt - jitter)
-                        .ceil()
-                        .clamp(0.0, f64::from(steps)) as u32;
-                    i = (i + 1).max(next);
-                    continue;
-                }
-            }
-            let alt = altitude_of(f, rel);
-            let density = m.density(p, alt, &mut counters);
-            if density <= 0.0 {
-                empty += 1;
-                if s.dynamic_step && empty >= 8 {
-                    stride = 2;
-                }
-                i += stride;
-                continue;
-            }
-            if stride > 1 {
-                i -= stride - 1;
-                stride = 1;
-                empty = 0;
-                continue;
-            }
-            empty = 0;
-            let sigma_t = sigma_e * density;
-            let source = scattered_light(m, &s.light, rel, p, alt, density, view, &mut counters);
-            radiance += step_integral(s.integration, source, sigma_t, dt) * transmittance;
-            let step_t = (-sigma_t * dt).exp();
-            depth_sum += t * transmittance * (1.0 - step_t);
-            transmittance *= step_t;
-            // Must agree: the early exit is tested after the step that crossed the threshold
-            // (STAT_EXIT_TRANSMITTANCE).
-            if transmittance < s.early_exit {
-                exited_early = true;
-                break;
-            }
-            i += 1;
+    let spans: Vec<(u32, Interval)> = (0..layer_count(f))
+        .map(|i| {
+            let l = cloud_layer(f, i);
+            (i, medium_interval(m, cam_alt, view, Some(&l)))
+        })
+        .collect();
+    let ground = spans.iter().any(|(_, s)| s.kind == RayKind::HitsGround);
+    let mut order: Vec<&(u32, Interval)> = spans
+        .iter()
+        .filter(|(_, s)| s.kind == RayKind::March)
+        .collect();
+    order.sort_by(|a, b| a.1.start.total_cmp(&b.1.start).then(a.0.cmp(&b.0)));
+    let marched = !order.is_empty();
+    for &&(i, span) in &order {
+        if march_layer(
+            m,
+            s,
+            view,
+            span,
+            &cloud_layer(f, i),
+            jitter,
+            &mut state,
+            &mut counters,
+        ) {
+            exited_early = true;
+            break;
         }
     }
-    let depth = if transmittance < 1.0 {
-        depth_sum / (1.0 - transmittance)
+    let kind = if marched {
+        RayKind::March
+    } else if ground {
+        RayKind::HitsGround
+    } else {
+        RayKind::MissesLayer
+    };
+    let depth = if state.transmittance < 1.0 {
+        state.depth_sum / (1.0 - state.transmittance)
     } else {
         0.0
     };
     PixelResult {
-        radiance,
-        transmittance,
+        radiance: state.radiance,
+        transmittance: state.transmittance,
         depth,
         counters,
-        kind: Some(span.kind),
+        kind: Some(kind),
         exited_early,
     }
+}
+
+// WGSL: march.wgsl::march_layer
+/// The march of the view ray's interval `span` in layer `l`, added to `state`; true when the
+/// transmittance fell below the early-exit threshold.
+#[allow(clippy::too_many_arguments)]
+fn march_layer(
+    m: &Model,
+    s: &MarchSettings,
+    view: V3,
+    span: Interval,
+    l: &Layer,
+    jitter: f64,
+    state: &mut MarchState,
+    counters: &mut Counters,
+) -> bool {
+    let f = &m.f;
+    let cam_alt = f.camera_position[1];
+    let cam_xz = [f.camera_position[0], f.camera_position[2]];
+    // Must agree: in step-length mode ceil(length / step), clamped to [1, MAX_VIEW_STEPS].
+    let steps = match s.view_steps {
+        Some(n) => n.max(1),
+        None if f.march[0] > 0.0 => {
+            ((span.length / f.march[0]).ceil() as u32).clamp(1, MAX_VIEW_STEPS)
+        }
+        None => f.counts[2],
+    };
+    let dt = span.length / f64::from(steps);
+    let sigma_e = f.extinction[0] + f.extinction[1];
+    // Must agree: samples on one grid t_i = start + (i + jitter) dt; the cheap-march
+    // techniques choose which i to visit (stride 2 after 8 empty samples, back one on
+    // entering cloud; jumps over empty occupancy cells).
+    let mut i = 0u32;
+    let mut stride = 1u32;
+    let mut empty = 0u32;
+    while i < steps {
+        // Must agree: one view step counted per loop iteration, also for empty samples.
+        counters.view_steps += 1;
+        let t = span.start + (f64::from(i) + jitter) * dt;
+        let rel = view * t + V3::new(0.0, cam_alt, 0.0);
+        let p = V3::new(rel.x + cam_xz[0], rel.y, rel.z + cam_xz[1]);
+        if s.empty_skip {
+            let exit = m.empty_cell_exit(p, view);
+            if exit > 0.0 {
+                let next = ((t + exit - span.start) / dt - jitter)
+                    .ceil()
+                    .clamp(0.0, f64::from(steps)) as u32;
+                i = (i + 1).max(next);
+                continue;
+            }
+        }
+        let alt = altitude_of(f, rel);
+        let density = m.layer_density(p, alt, l, counters);
+        if density <= 0.0 {
+            empty += 1;
+            if s.dynamic_step && empty >= 8 {
+                stride = 2;
+            }
+            i += stride;
+            continue;
+        }
+        if stride > 1 {
+            i -= stride - 1;
+            stride = 1;
+            empty = 0;
+            continue;
+        }
+        empty = 0;
+        let sigma_t = sigma_e * density;
+        let source = scattered_light(m, &s.light, rel, p, alt, density, view, l, counters);
+        state.radiance += step_integral(s.integration, source, sigma_t, dt) * state.transmittance;
+        let step_t = (-sigma_t * dt).exp();
+        state.depth_sum += t * state.transmittance * (1.0 - step_t);
+        state.transmittance *= step_t;
+        // Must agree: the early exit is tested after the step that crossed the threshold
+        // (STAT_EXIT_TRANSMITTANCE).
+        if state.transmittance < s.early_exit {
+            return true;
+        }
+        i += 1;
+    }
+    false
 }

@@ -4,7 +4,10 @@
 use stratus_noise::NoiseSet;
 use stratus_scene::Scene;
 
-use crate::density::{Counters, Weather, cloud_density, sample_weather, uniform_weather};
+use crate::density::{
+    Counters, Layer, Weather, cloud_density, cloud_layers, layer_density, sample_weather,
+    uniform_weather,
+};
 use crate::frame::Frame;
 use crate::geometry::{altitude_of, solve_sphere};
 use crate::math::V3;
@@ -193,8 +196,12 @@ impl<'a> Model<'a> {
         let density_bounds = match medium {
             Medium::Clouds(_) => {
                 // density = eroded base (<= 1) * height gradient (<= 1) * multiplier *
-                // (1 + precipitation), precipitation <= clouds.w; then clamped to [0, 1].
-                (0.0, (f.clouds[1] * (1.0 + f.clouds[3])).clamp(0.0, 1.0))
+                // (1 + precipitation), precipitation <= the layer's; then clamped to [0, 1].
+                // WGSL: pathtrace.wgsl::density_max.
+                let max = cloud_layers(&f)
+                    .map(|l| l.density * (1.0 + l.precipitation))
+                    .fold(0.0, f64::max);
+                (0.0, max.clamp(0.0, 1.0))
             }
             Medium::Homogeneous {
                 sigma_s, sigma_a, ..
@@ -278,10 +285,20 @@ impl<'a> Model<'a> {
         }
     }
 
-    /// The weather at `p` (the weather map for clouds, the scene's values otherwise).
-    pub fn weather(&self, p: V3) -> Weather {
+    /// Density at world position `p` (altitude `alt`) in layer `l` (0 outside it); counts like
+    /// `layer_density`. The analytic media fill the main layer only, as [`Model::density`].
+    pub(crate) fn layer_density(&self, p: V3, alt: f64, l: &Layer, counters: &mut Counters) -> f64 {
         match self.medium {
-            Medium::Clouds(noise) => sample_weather(&self.f, noise, p),
+            Medium::Clouds(noise) => layer_density(&self.f, noise, p, alt, l, counters),
+            _ => self.density(p, alt, counters),
+        }
+    }
+
+    /// The weather at `p` in layer `l` (the weather map for clouds, the scene's values
+    /// otherwise).
+    pub(crate) fn weather(&self, p: V3, l: &Layer) -> Weather {
+        match self.medium {
+            Medium::Clouds(noise) => sample_weather(&self.f, noise, p, l),
             Medium::Homogeneous { .. } | Medium::Grid(_) => uniform_weather(&self.f),
         }
     }

@@ -63,12 +63,12 @@
 //! Every sample of every pixel has its own random stream seeded from `(pixel, sample, frame)`,
 //! so the image does not depend on the number of threads or their scheduling.
 
-use crate::density::Counters;
+use crate::density::{Counters, height_fraction};
 use crate::frame::PI;
 use crate::geometry::{Interval, RayKind, altitude_of, hits_ground, layer_segments};
 use crate::lighting::{ambient, phase, phase_hg};
 use crate::march::medium_interval;
-use crate::math::{V3, saturate};
+use crate::math::V3;
 use crate::medium::Model;
 
 /// Scattering orders beyond which a path is cut even if "all orders" are asked for (a path in a
@@ -347,7 +347,7 @@ pub(crate) fn trace(
         throughput *= albedo;
         order += 1;
         let alt = altitude_of(f, pos);
-        let h = saturate((alt - f.atmosphere[1]) / (f.atmosphere[2] - f.atmosphere[1]));
+        let h = height_fraction(f, alt);
 
         // Next event toward the sun (a directional light of illuminance E).
         if !hits_ground(f, pos, alt, sun) {
@@ -410,9 +410,10 @@ pub(crate) fn trace(
     out
 }
 
-/// The camera-ray interval of the path tracer: the same as the quadrature's.
+/// The camera-ray interval of the path tracer: the shell that holds every layer
+/// (`cloud_interval`), clipped to the medium's support.
 pub(crate) fn camera_interval(m: &Model, view: V3) -> Interval {
-    medium_interval(m, m.f.camera_position[1], view)
+    medium_interval(m, m.f.camera_position[1], view, None)
 }
 
 /// Running mean and variance (Welford) of the four outputs of a pixel.

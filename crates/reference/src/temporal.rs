@@ -12,7 +12,7 @@ use stratus_scene::{FrameUniforms, Scene};
 use crate::{
     COUNTER_NAMES, QuadratureSettings, composite,
     frame::{FLAG_CHECKERBOARD, Frame},
-    geometry::{RayKind, layer_interval, view_ray},
+    geometry::{RayKind, nearest_layer_interval, view_ray},
     march::{MarchSettings, PixelResult, march},
     math::V3,
     medium::{Medium, Model},
@@ -252,7 +252,7 @@ pub(crate) fn render(
 
                 let mut depth = current_depth;
                 if depth <= 0.0 {
-                    let span = layer_interval(f, f.camera_position[1], view_ray(f, pixel));
+                    let span = nearest_layer_interval(f, f.camera_position[1], view_ray(f, pixel));
                     if span.kind == RayKind::March {
                         depth = span.start + 0.5 * span.length;
                     }

@@ -288,6 +288,50 @@ pub struct Clouds {
     /// wispy bases to billowy (inverted Worley) tops over the lowest tenth of a cloud, 1
     /// billowy almost from the base.
     pub wispy_billowy: f64,
+    /// Extra cloud layers (`[[clouds.layers]]`, at most [`MAX_EXTRA_LAYERS`]) besides the main
+    /// one that `atmosphere.cloud_bottom_m`/`cloud_top_m` and the fields above describe. Each
+    /// has its own altitudes and weather over the same noise, wind and lighting; no two
+    /// layers may overlap in altitude. The march marches each layer on its own, nearest first.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub layers: Vec<CloudLayer>,
+}
+
+/// Most extra cloud layers a scene may have (four layers in all, as a METAR's four cloud
+/// groups).
+pub const MAX_EXTRA_LAYERS: usize = 3;
+
+/// An extra cloud layer (`[[clouds.layers]]`): altitudes and weather. Extra layer `k` (from 1)
+/// reads the weather map shifted by `k * (0.382, 0.618)` of its period, so that decks do not
+/// repeat each other's pattern.
+#[derive(Serialize, Deserialize, Clone, Debug, PartialEq)]
+#[serde(default, deny_unknown_fields)]
+pub struct CloudLayer {
+    /// Altitude of the layer's bottom above the ground, metres (>= 0).
+    pub bottom_m: f64,
+    /// Altitude of the layer's top, metres (> `bottom_m`).
+    pub top_m: f64,
+    /// Coverage within [0, 1] (as `clouds.coverage`).
+    pub coverage: f64,
+    /// Density multiplier (> 0; as `clouds.density`).
+    pub density: f64,
+    /// Cloud type within [0, 1]: 0 stratus, 0.5 stratocumulus, 1 cumulus.
+    pub cloud_type: f64,
+    /// Precipitation within [0, 1].
+    pub precipitation: f64,
+}
+
+impl Default for CloudLayer {
+    /// A thin, high, stratiform deck (altostratus height).
+    fn default() -> Self {
+        Self {
+            bottom_m: 6000.0,
+            top_m: 7000.0,
+            coverage: 0.5,
+            density: 0.3,
+            cloud_type: 0.0,
+            precipitation: 0.0,
+        }
+    }
 }
 
 impl Default for Clouds {
@@ -310,6 +354,7 @@ impl Default for Clouds {
             curl_strength_m: 150.0,
             height_gradient: 0.5,
             wispy_billowy: 0.5,
+            layers: Vec::new(),
         }
     }
 }
@@ -692,7 +737,17 @@ impl Scene {
         scene.sun.direction = Some([0.0, 1.0, 0.0]);
         scene.quality.step_length_m = Some(100.0);
         scene.animation = Some(Animation::default());
+        scene.clouds.layers = vec![CloudLayer::default()];
         scene
+    }
+
+    /// Every cloud layer as `(bottom, top)` altitudes in metres: the main one first, then the
+    /// extra ones in file order.
+    pub fn layer_altitudes(&self) -> Vec<(f64, f64)> {
+        let main = (self.atmosphere.cloud_bottom_m, self.atmosphere.cloud_top_m);
+        std::iter::once(main)
+            .chain(self.clouds.layers.iter().map(|l| (l.bottom_m, l.top_m)))
+            .collect()
     }
 }
 

@@ -1,7 +1,10 @@
 //! Geometry derived from a scene (sun direction, camera basis, wind offsets) and the per-frame
 //! GPU uniform block.
 
-use crate::scene::Scene;
+use crate::scene::{MAX_EXTRA_LAYERS, Scene};
+
+/// Weather-map shift per extra layer, in periods (the golden ratio's fractional parts).
+const LAYER_SHIFT: [f64; 2] = [0.381_966, 0.618_034];
 
 /// Per-frame uniforms, std140/WGSL-uniform compatible: only 16-byte vec4 members.
 ///
@@ -55,7 +58,7 @@ pub struct FrameUniforms {
     /// ([`FrameUniforms::FLAG_BEER_POWDER`], [`FrameUniforms::FLAG_JITTER`]).
     pub modes: [u32; 4],
     /// Octaves (beyond single scattering), frame (jitter seed, path tracer's random streams),
-    /// path tracer's scattering orders (0 = all), 0.
+    /// path tracer's scattering orders (0 = all), extra cloud layers (0-3).
     pub misc: [u32; 4],
     /// Last frame's camera position (as `camera_position`, w = its tan(fov_y / 2)): temporal
     /// upsampling reprojects through it. [`Scene::uniforms`] sets the current camera; a
@@ -69,10 +72,23 @@ pub struct FrameUniforms {
     pub previous_up: [f32; 4],
     /// Temporal upsampling: block side (1 = off, 2 = 1/4, 4 = 1/16), 0, 0, 0.
     pub temporal: [u32; 4],
+    /// Extra cloud layer 1 (`clouds.layers[0]`): bottom, top (altitudes, m), coverage,
+    /// density multiplier; zero when absent (`misc.w` counts the extra layers).
+    pub layer1: [f32; 4],
+    /// Its cloud type, precipitation, and weather-map offset xz (m, within [0, period)).
+    pub layer1_weather: [f32; 4],
+    /// Extra cloud layer 2, as `layer1`.
+    pub layer2: [f32; 4],
+    /// Its weather, as `layer1_weather`.
+    pub layer2_weather: [f32; 4],
+    /// Extra cloud layer 3, as `layer1`.
+    pub layer3: [f32; 4],
+    /// Its weather, as `layer1_weather`.
+    pub layer3_weather: [f32; 4],
 }
 
 impl FrameUniforms {
-    /// Size of the block in bytes (26 vec4 members).
+    /// Size of the block in bytes (32 vec4 members).
     pub const SIZE: usize = std::mem::size_of::<Self>();
 
     /// `modes.w` bit: apply the Beer-Powder term.
@@ -88,7 +104,7 @@ impl FrameUniforms {
 
     /// Every member in declaration order with its WGSL type; member `i` is at offset `16 * i`.
     /// The shader-reflection test compares the WGSL struct against this list.
-    pub const MEMBERS: [(&'static str, &'static str); 26] = [
+    pub const MEMBERS: [(&'static str, &'static str); 32] = [
         ("camera_position", "vec4<f32>"),
         ("camera_forward", "vec4<f32>"),
         ("camera_right", "vec4<f32>"),
@@ -115,6 +131,12 @@ impl FrameUniforms {
         ("previous_right", "vec4<f32>"),
         ("previous_up", "vec4<f32>"),
         ("temporal", "vec4<u32>"),
+        ("layer1", "vec4<f32>"),
+        ("layer1_weather", "vec4<f32>"),
+        ("layer2", "vec4<f32>"),
+        ("layer2_weather", "vec4<f32>"),
+        ("layer3", "vec4<f32>"),
+        ("layer3_weather", "vec4<f32>"),
     ];
 
     /// This block with `previous`'s camera as last frame's camera (what a renderer keeping
@@ -235,6 +257,33 @@ impl Scene {
         let distance = c.wind_speed_m_s * c.time_s;
         let offs = periods.map(|p| [wrap_f32(dx * distance, p), wrap_f32(dz * distance, p)]);
 
+        // Extra layer k (from 1) reads the weather map shifted by k (0.382, 0.618) periods
+        // (golden-ratio steps, so no two decks line up) on top of the wind.
+        let mut extra = [([0.0f32; 4], [0.0f32; 4]); MAX_EXTRA_LAYERS];
+        let layers = &c.layers[..c.layers.len().min(MAX_EXTRA_LAYERS)];
+        for (k, l) in layers.iter().enumerate() {
+            let shift = (k + 1) as f64 * c.weather_period_m;
+            let offset = [
+                wrap_f32(dx * distance + shift * LAYER_SHIFT[0], c.weather_period_m),
+                wrap_f32(dz * distance + shift * LAYER_SHIFT[1], c.weather_period_m),
+            ];
+            extra[k] = (
+                [
+                    l.bottom_m as f32,
+                    l.top_m as f32,
+                    l.coverage as f32,
+                    l.density as f32,
+                ],
+                [
+                    l.cloud_type as f32,
+                    l.precipitation as f32,
+                    offset[0],
+                    offset[1],
+                ],
+            );
+        }
+        let extra_count = layers.len();
+
         let atm = &self.atmosphere;
         let li = &self.lighting;
         let ms = &li.multiple_scattering;
@@ -315,12 +364,18 @@ impl Scene {
                 c.height_model.code(),
                 flags,
             ],
-            misc: [ms.octaves, q.frame, q.path_orders, 0],
+            misc: [ms.octaves, q.frame, q.path_orders, extra_count as u32],
             previous_position: [0.0; 4],
             previous_forward: [0.0; 4],
             previous_right: [0.0; 4],
             previous_up: [0.0; 4],
             temporal: [q.temporal.divisor(), 0, 0, 0],
+            layer1: extra[0].0,
+            layer1_weather: extra[0].1,
+            layer2: extra[1].0,
+            layer2_weather: extra[1].1,
+            layer3: extra[2].0,
+            layer3_weather: extra[2].1,
         };
         block.with_previous_camera(&block)
     }

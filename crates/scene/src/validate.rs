@@ -1,7 +1,7 @@
 //! Validation rules for every field of a [`Scene`].
 
 use crate::error::{Problem, ProblemKind};
-use crate::scene::Scene;
+use crate::scene::{MAX_EXTRA_LAYERS, Scene};
 use crate::text::{num, nums};
 
 /// One broken rule. `path` is the field the message names. A rule between two fields also has
@@ -229,6 +229,7 @@ pub(crate) fn check(scene: &Scene) -> Vec<Issue> {
     c.non_negative("clouds.curl_strength_m", cl.curl_strength_m);
     c.unit("clouds.height_gradient", cl.height_gradient);
     c.unit("clouds.wispy_billowy", cl.wispy_billowy);
+    check_layers(&mut c, scene);
 
     if scene.noise.seed > i64::MAX as u64 {
         c.push(
@@ -396,6 +397,114 @@ pub(crate) fn check(scene: &Scene) -> Vec<Issue> {
     }
 
     c.issues
+}
+
+/// The extra cloud layers: each in range, at most [`MAX_EXTRA_LAYERS`], no two layers
+/// overlapping, and only where the renderer marches them (the volumetric model without
+/// empty-space skipping, whose occupancy grid covers one layer).
+fn check_layers(c: &mut Checker, scene: &Scene) {
+    let layers = &scene.clouds.layers;
+    if layers.is_empty() {
+        return;
+    }
+    const PATH: &str = "clouds.layers";
+    if layers.len() > MAX_EXTRA_LAYERS {
+        c.push(
+            PATH,
+            format!("{} layers", layers.len()),
+            format!("at most {MAX_EXTRA_LAYERS} extra layers (four with the main one)"),
+        );
+    }
+    let mut ranges_ok = true;
+    for (i, l) in layers.iter().enumerate() {
+        let n = i + 1;
+        let fields = [
+            ("bottom_m", l.bottom_m, l.bottom_m >= 0.0, "must be >= 0"),
+            (
+                "top_m",
+                l.top_m,
+                l.top_m > l.bottom_m,
+                "must be above bottom_m",
+            ),
+            (
+                "coverage",
+                l.coverage,
+                (0.0..=1.0).contains(&l.coverage),
+                "must be within [0, 1]",
+            ),
+            ("density", l.density, l.density > 0.0, "must be > 0"),
+            (
+                "cloud_type",
+                l.cloud_type,
+                (0.0..=1.0).contains(&l.cloud_type),
+                "must be within [0, 1]",
+            ),
+            (
+                "precipitation",
+                l.precipitation,
+                (0.0..=1.0).contains(&l.precipitation),
+                "must be within [0, 1]",
+            ),
+        ];
+        for (field, v, ok, rule) in fields {
+            if !v.is_finite() || !ok {
+                ranges_ok &= !matches!(field, "bottom_m" | "top_m");
+                c.push(
+                    PATH,
+                    format!("layer {n}: {field} = {}", num(v)),
+                    if v.is_finite() {
+                        rule
+                    } else {
+                        "must be a finite number"
+                    },
+                );
+            }
+        }
+    }
+    if ranges_ok {
+        let all = scene.layer_altitudes();
+        let names: Vec<String> = std::iter::once("the main layer (atmosphere)".to_owned())
+            .chain((1..all.len()).map(|n| format!("layer {n}")))
+            .collect();
+        let mut order: Vec<usize> = (0..all.len()).collect();
+        order.sort_by(|&a, &b| all[a].0.total_cmp(&all[b].0));
+        for w in order.windows(2) {
+            let (lo, hi) = (w[0], w[1]);
+            if all[hi].0 < all[lo].1 {
+                c.push(
+                    PATH,
+                    format!(
+                        "{} ({}-{} m) and {} ({}-{} m)",
+                        names[lo],
+                        num(all[lo].0),
+                        num(all[lo].1),
+                        names[hi],
+                        num(all[hi].0),
+                        num(all[hi].1)
+                    ),
+                    "cloud layers must not overlap in altitude",
+                );
+            }
+        }
+    }
+    let q = &scene.quality;
+    if q.method != crate::Method::Volumetric {
+        c.push(
+            PATH,
+            format!("{} layers", layers.len()),
+            format!(
+                "quality.method = \"{}\" draws one layer: several layers need \"volumetric\"",
+                q.method.name()
+            ),
+        );
+    }
+    if q.empty_space_skip {
+        c.push(
+            PATH,
+            format!("{} layers", layers.len()),
+            "quality.empty_space_skip covers the main layer only: turn it off with several layers",
+        );
+    }
 }
 
 /// Largest accepted image width or height, pixels.

@@ -1,7 +1,7 @@
 //! The scenes of the suite: every preset, and stress variants of `cumulus-noon` where
 //! methods fail, all at [`WIDTH`] x [`HEIGHT`].
 
-use stratus_scene::{Integration, Method, Scene, ShapeTexture};
+use stratus_scene::{CloudLayer, Integration, Method, Scene, ShapeTexture};
 
 /// Image width of every scene (16:9, a quarter of 256x144 in pixels: the suite's ~60 GPU
 /// frames and 12 CPU frames cost seconds, not minutes, on lavapipe in the dev profile).
@@ -73,6 +73,32 @@ pub fn all() -> Vec<Case> {
             "one-view-step",
             "a single view step through the layer",
             |s| s.quality.view_steps = 1,
+        ),
+        stress(
+            "layers",
+            "three cloud layers, the camera between two: per-layer marches in order, decks shadowing the clouds below",
+            |s| {
+                s.camera.position[1] = 5000.0;
+                s.camera.pitch_deg = -4.0;
+                s.clouds.layers = vec![
+                    CloudLayer {
+                        bottom_m: 6000.0,
+                        top_m: 7000.0,
+                        coverage: 0.7,
+                        density: 0.4,
+                        cloud_type: 0.2,
+                        precipitation: 0.0,
+                    },
+                    CloudLayer {
+                        bottom_m: 600.0,
+                        top_m: 1200.0,
+                        coverage: 0.5,
+                        density: 1.0,
+                        cloud_type: 0.5,
+                        precipitation: 0.3,
+                    },
+                ];
+            },
         ),
         stress(
             "method-basic",

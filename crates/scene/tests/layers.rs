@@ -1,0 +1,68 @@
+//! Extra cloud layers: validation names the broken rule, and the uniform block carries them.
+
+use stratus_scene::{CloudLayer, Method, Scene};
+
+fn with_layers(layers: Vec<CloudLayer>) -> Scene {
+    let mut s = Scene::default();
+    s.clouds.layers = layers;
+    s
+}
+
+fn error(s: &Scene) -> String {
+    s.validate().expect_err("should be refused").to_string()
+}
+
+#[test]
+fn layers_may_not_overlap_or_be_too_many() {
+    let high = CloudLayer::default();
+    assert!(with_layers(vec![high.clone()]).validate().is_ok());
+    let overlapping = CloudLayer {
+        bottom_m: 3000.0,
+        top_m: 5000.0,
+        ..high.clone()
+    };
+    let e = error(&with_layers(vec![overlapping]));
+    assert!(
+        e.contains("must not overlap") && e.contains("the main layer"),
+        "{e}"
+    );
+    let e = error(&with_layers(vec![high.clone(); 4]));
+    assert!(e.contains("at most 3 extra layers"), "{e}");
+    let upside_down = CloudLayer {
+        bottom_m: 7000.0,
+        top_m: 6000.0,
+        ..high.clone()
+    };
+    let e = error(&with_layers(vec![upside_down]));
+    assert!(e.contains("layer 1: top_m = 6000"), "{e}");
+    let mut sprites = with_layers(vec![high.clone()]);
+    sprites.quality.method = Method::Sprites;
+    assert!(error(&sprites).contains("several layers need"));
+}
+
+#[test]
+fn the_uniforms_carry_each_layer_with_its_own_weather_offset() {
+    let s = with_layers(vec![
+        CloudLayer::default(),
+        CloudLayer {
+            bottom_m: 9000.0,
+            top_m: 9500.0,
+            coverage: 0.2,
+            ..CloudLayer::default()
+        },
+    ]);
+    let u = s.uniforms();
+    assert_eq!(u.misc[3], 2);
+    assert_eq!(u.layer1, [6000.0, 7000.0, 0.5, 0.3]);
+    assert_eq!(u.layer2[..3], [9000.0, 9500.0, 0.2]);
+    assert_eq!(u.layer3, [0.0; 4]);
+    // Offsets differ from the main layer's and from each other, within one period.
+    let period = s.clouds.weather_period_m as f32;
+    let main = [u.wind_offsets0[0], u.wind_offsets0[1]];
+    let o1 = [u.layer1_weather[2], u.layer1_weather[3]];
+    let o2 = [u.layer2_weather[2], u.layer2_weather[3]];
+    assert!(main != o1 && o1 != o2 && main != o2);
+    assert!(o1.iter().chain(&o2).all(|&v| (0.0..period).contains(&v)));
+    // Without extra layers the block is what it was.
+    assert_eq!(Scene::default().uniforms().misc[3], 0);
+}

@@ -1,0 +1,320 @@
+//! A METAR report turned into a scene: the weather state its present weather and cover
+//! suggest, its cloud groups as cloud layers, its wind and, for fog and mist, a ground fog
+//! layer from its visibility.
+
+use stratus_scene::{CloudLayer, MAX_EXTRA_LAYERS, Scene};
+
+use crate::metar::{CloudGroup, Convective, Cover, Intensity, Metar};
+use crate::states::{
+    self, WeatherState, coverage_for_fraction, fog_density_for_visibility, fog_layer,
+};
+
+/// A scene derived from weather observations, with what was derived from what.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Derived {
+    /// The scene (valid: [`Scene::validate`] accepts it).
+    pub scene: Scene,
+    /// The weather state the scene starts from.
+    pub state: &'static WeatherState,
+    /// One line per decision: the state and why, the wind, each layer and its source.
+    pub notes: Vec<String>,
+}
+
+impl Derived {
+    /// The scene as a TOML file headed by the notes as comments (every field written, so the
+    /// file does not depend on a preset).
+    pub fn to_toml(&self, source: &str) -> String {
+        let mut out = format!("# Derived by `stratus weather` from: {source}\n");
+        for n in &self.notes {
+            out.push_str("# ");
+            out.push_str(n);
+            out.push('\n');
+        }
+        out.push('\n');
+        out.push_str(&self.scene.to_toml());
+        out
+    }
+}
+
+/// Bases closer than this (metres) are one layer: two groups cannot both fit.
+const MERGE_M: f64 = 150.0;
+/// Gap left between a layer's top and the next layer's base, metres.
+const GAP_M: f64 = 50.0;
+
+/// What a cloud group becomes: thickness (m), cloud type, density and a name.
+fn cloud_kind(g: &CloudGroup, base: f64) -> (f64, f64, f64, &'static str) {
+    match (g.convective, base) {
+        // Cumulonimbus reach the tropopause; towering cumulus about half as far.
+        (Some(Convective::Cumulonimbus), _) => (8000.0, 1.0, 1.0, "cumulonimbus"),
+        (Some(Convective::ToweringCumulus), _) => (4000.0, 1.0, 1.0, "towering cumulus"),
+        (None, b) if b < 300.0 => (600.0, 0.0, 1.0, "stratus"),
+        (None, b) if b < 2000.0 => match g.cover {
+            Cover::Few | Cover::Scattered => (1500.0, 1.0, 1.0, "cumulus"),
+            Cover::Broken | Cover::Overcast => (1000.0, 0.5, 1.0, "stratocumulus"),
+        },
+        // Middle clouds: altocumulus and altostratus, thinner water clouds.
+        (None, b) if b < 6000.0 => (1000.0, 0.35, 0.6, "altocumulus/altostratus"),
+        // High clouds: ice, thin (cirrostratus-like within this model's shapes).
+        (None, _) => (600.0, 0.0, 0.25, "cirrostratus"),
+    }
+}
+
+fn cover_name(c: Cover) -> &'static str {
+    match c {
+        Cover::Few => "FEW",
+        Cover::Scattered => "SCT",
+        Cover::Broken => "BKN",
+        Cover::Overcast => "OVC",
+    }
+}
+
+/// The state a report's present weather and largest cover suggest.
+fn classify(m: &Metar) -> (&'static str, String) {
+    let present = |code: &str| {
+        m.weather
+            .iter()
+            .any(|w| w.intensity != Intensity::InVicinity && w.has(code))
+    };
+    let cb = m
+        .clouds
+        .iter()
+        .any(|g| g.convective == Some(Convective::Cumulonimbus));
+    if present("TS") || cb {
+        return (
+            "thunderstorm",
+            "thunderstorm (TS) or cumulonimbus (CB) reported".into(),
+        );
+    }
+    for (codes, state) in [
+        (&["SN", "SG", "PL", "GS"][..], "snow"),
+        (&["RA", "DZ", "GR"][..], "rain"),
+        (&["FG"][..], "fog"),
+        (&["BR", "HZ"][..], "mist"),
+    ] {
+        if let Some(c) = codes.iter().find(|c| present(c)) {
+            return (state, format!("present weather {c}"));
+        }
+    }
+    let cover = m.clouds.iter().map(|g| g.cover).max_by_key(|c| c.oktas().1);
+    match cover {
+        None => ("clear", "no cloud groups".into()),
+        Some(c) => {
+            let state = match c {
+                Cover::Few => "few",
+                Cover::Scattered => "scattered",
+                Cover::Broken => "broken",
+                Cover::Overcast => "overcast",
+            };
+            (state, format!("largest cover {}", cover_name(c)))
+        }
+    }
+}
+
+/// Precipitation from the intensity of the report's precipitation groups (0 when none).
+fn precipitation(m: &Metar) -> f64 {
+    m.weather
+        .iter()
+        .filter(|w| {
+            ["RA", "DZ", "SN", "SG", "PL", "GS", "GR"]
+                .iter()
+                .any(|c| w.has(c))
+        })
+        .map(|w| match w.intensity {
+            Intensity::Light => 0.4,
+            Intensity::Moderate => 0.7,
+            Intensity::Heavy => 1.0,
+            Intensity::InVicinity => 0.0,
+        })
+        .fold(0.0, f64::max)
+}
+
+/// The scene for report `m`, built on `base` (its camera, sun, noise, lighting model and
+/// quality are kept).
+pub fn scene_from_metar(m: &Metar, base: &Scene) -> Derived {
+    let mut notes = Vec::new();
+    let (name, why) = classify(m);
+    let state = states::find(name).expect("classify names a known state");
+    notes.push(format!("state: {name} ({why}): {}", state.about));
+    let mut scene = base.clone();
+    state.params.apply(&mut scene);
+    scene.clouds.layers.clear();
+
+    if let Some(w) = &m.wind {
+        scene.clouds.wind_speed_m_s = w.speed_m_s;
+        let gust = w
+            .gust_m_s
+            .map(|g| format!(", gusts {g:.1} m/s (not modelled)"))
+            .unwrap_or_default();
+        match w.direction_deg {
+            // METAR gives where the wind comes from; the scene where it blows to.
+            Some(from) => {
+                scene.clouds.wind_direction_deg = (from + 180.0).rem_euclid(360.0);
+                notes.push(format!(
+                    "wind: from {from:.0} deg at {:.1} m/s{gust} -> blowing toward {:.0} deg",
+                    w.speed_m_s, scene.clouds.wind_direction_deg
+                ));
+            }
+            None => notes.push(format!(
+                "wind: variable at {:.1} m/s{gust}; direction kept ({:.0} deg)",
+                w.speed_m_s, scene.clouds.wind_direction_deg
+            )),
+        }
+    }
+
+    // Cloud groups, lowest first; bases too close to separate merge (the larger cover wins).
+    let mut groups: Vec<(f64, CloudGroup)> = Vec::new();
+    for g in &m.clouds {
+        let Some(b) = g.base_m else {
+            notes.push(format!(
+                "{} group without a base (///): skipped",
+                cover_name(g.cover)
+            ));
+            continue;
+        };
+        groups.push((b, *g));
+    }
+    groups.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let mut merged: Vec<(f64, CloudGroup)> = Vec::new();
+    for (b, g) in groups {
+        match merged.last_mut() {
+            Some((lb, lg)) if b - *lb < MERGE_M => {
+                notes.push(format!(
+                    "{}{:03} merged into the layer at {:.0} m (bases closer than {MERGE_M} m)",
+                    cover_name(g.cover),
+                    (b / 30.48).round(),
+                    lb
+                ));
+                if g.cover.oktas().1 > lg.cover.oktas().1 {
+                    lg.cover = g.cover;
+                }
+                lg.convective = lg.convective.or(g.convective);
+            }
+            _ => merged.push((b, g)),
+        }
+    }
+    if merged.len() > MAX_EXTRA_LAYERS + 1 {
+        notes.push(format!(
+            "{} cloud groups: the lowest {} are drawn",
+            merged.len(),
+            MAX_EXTRA_LAYERS + 1
+        ));
+        merged.truncate(MAX_EXTRA_LAYERS + 1);
+    }
+
+    let rain = precipitation(m);
+    let mut layers: Vec<CloudLayer> = Vec::new();
+    for (i, (b, g)) in merged.iter().enumerate() {
+        let (thickness, cloud_type, density, kind) = cloud_kind(g, *b);
+        let mut top = b + thickness;
+        if let Some((next, _)) = merged.get(i + 1) {
+            top = top.min(next - GAP_M);
+        }
+        let (lo, hi) = g.cover.oktas();
+        let coverage = coverage_for_fraction((f64::from(lo) + f64::from(hi)) / 16.0);
+        // Precipitation falls from the lowest layer.
+        let precipitation = if i == 0 { rain } else { 0.0 };
+        notes.push(format!(
+            "layer {}: {}{:03}{} -> {kind} from {:.0} to {:.0} m, coverage {coverage:.2} ({lo}-{hi} oktas), type {cloud_type}, density {density}{}",
+            i + 1,
+            cover_name(g.cover),
+            (b / 30.48).round(),
+            match g.convective {
+                Some(Convective::Cumulonimbus) => "CB",
+                Some(Convective::ToweringCumulus) => "TCU",
+                None => "",
+            },
+            b,
+            top,
+            if precipitation > 0.0 {
+                format!(", precipitation {precipitation}")
+            } else {
+                String::new()
+            }
+        ));
+        layers.push(CloudLayer {
+            bottom_m: *b,
+            top_m: top,
+            coverage,
+            density,
+            cloud_type,
+            precipitation,
+        });
+    }
+    if layers.is_empty() && !matches!(name, "fog" | "mist" | "rain" | "snow" | "thunderstorm") {
+        // Clear: no groups (CAVOK, NSC, SKC, CLR or none reported).
+        scene.clouds.coverage = 0.0;
+        notes.push("no cloud layers: clear sky".into());
+    } else if layers.is_empty() {
+        notes.push(format!(
+            "no cloud groups: the {name} state's deck from {:.0} to {:.0} m",
+            scene.atmosphere.cloud_bottom_m, scene.atmosphere.cloud_top_m
+        ));
+    }
+
+    // Ground fog from the visibility (Koschmieder), below the lowest layer.
+    let fog = m
+        .weather
+        .iter()
+        .any(|w| w.intensity != Intensity::InVicinity && (w.has("FG") || w.has("BR")));
+    let mut fog_layer_opt = None;
+    if fog {
+        let visibility = m
+            .visibility_m
+            .unwrap_or(if name == "fog" { 300.0 } else { 3000.0 });
+        let visibility = visibility.clamp(50.0, 10_000.0);
+        // The stratus profile fills the lowest ~35% of its layer: a 1000 m layer holds
+        // fog about 350 m deep (a vertical visibility, VV, says the sky is hidden, not how
+        // deep the fog is).
+        let mut top: f64 = 1000.0;
+        let lowest = layers
+            .first()
+            .map(|l| l.bottom_m)
+            .unwrap_or(scene.atmosphere.cloud_bottom_m);
+        top = top.min(lowest - GAP_M);
+        if top >= 100.0 {
+            let density = fog_density_for_visibility(visibility);
+            notes.push(format!(
+                "fog: visibility {visibility:.0} m -> a ground stratus layer to {top:.0} m, density {density:.3} (Koschmieder: 3.912 / extinction)"
+            ));
+            fog_layer_opt = Some(fog_layer(top, density));
+        } else {
+            notes.push("fog: no room below the lowest layer; not drawn".into());
+        }
+    }
+
+    let mut all: Vec<CloudLayer> = layers;
+    if let Some(f) = fog_layer_opt {
+        if all.len() > MAX_EXTRA_LAYERS {
+            let dropped = all.pop().expect("non-empty");
+            notes.push(format!(
+                "four layers and fog: the highest layer ({:.0} m) is dropped",
+                dropped.bottom_m
+            ));
+        }
+        all.push(f);
+    }
+    // The lowest cloud layer is the main one (its geometry is `[atmosphere]`, its weather
+    // `[clouds]`); the others are extra layers. Fog alone keeps the state's main deck.
+    let main_from_groups = !all.is_empty() && all[0].bottom_m > 0.0;
+    if main_from_groups {
+        let main = all.remove(0);
+        scene.atmosphere.cloud_bottom_m = main.bottom_m;
+        scene.atmosphere.cloud_top_m = main.top_m;
+        scene.clouds.coverage = main.coverage;
+        scene.clouds.density = main.density;
+        scene.clouds.cloud_type = main.cloud_type;
+        scene.clouds.precipitation = main.precipitation;
+    } else if rain > 0.0 {
+        scene.clouds.precipitation = rain;
+    }
+    scene.clouds.layers = all;
+    notes.push(format!(
+        "{} cloud layer(s) in all",
+        1 + scene.clouds.layers.len()
+    ));
+    Derived {
+        scene,
+        state,
+        notes,
+    }
+}
