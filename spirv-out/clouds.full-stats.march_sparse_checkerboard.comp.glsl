@@ -1528,15 +1528,19 @@ float density_at(vec3 rel_2, inout Counters counters_8) {
 }
 
 float empty_cell_skip(vec3 origin, vec3 dir_1, float t_1) {
-    vec3 rel_5 = (origin + (dir_1 * t_1));
-    float _e9 = _group_0_binding_0_cs.camera_position.x;
-    float _e16 = _group_0_binding_0_cs.camera_position.z;
-    vec3 p_15 = vec3((rel_5.x + _e9), rel_5.y, (rel_5.z + _e16));
-    float _e19 = empty_cell_exit(p_15, dir_1);
-    if ((_e19 <= 0.0)) {
+    uint _e3 = layer_count();
+    if ((_e3 > 1u)) {
         return 0.0;
     }
-    return (_e19 + 0.05);
+    vec3 rel_5 = (origin + (dir_1 * t_1));
+    float _e13 = _group_0_binding_0_cs.camera_position.x;
+    float _e20 = _group_0_binding_0_cs.camera_position.z;
+    vec3 p_15 = vec3((rel_5.x + _e13), rel_5.y, (rel_5.z + _e20));
+    float _e23 = empty_cell_exit(p_15, dir_1);
+    if ((_e23 <= 0.0)) {
+        return 0.0;
+    }
+    return (_e23 + 0.05);
 }
 
 float density_max() {

@@ -1854,15 +1854,19 @@ float empty_cell_skip(
     constant Frame& frame,
     metal::texture2d<float, metal::access::sample> occupancy_in
 ) {
-    metal::float3 rel_5 = origin + (dir_1 * t_1);
-    float _e9 = frame.camera_position.x;
-    float _e16 = frame.camera_position.z;
-    metal::float3 p_16 = metal::float3(rel_5.x + _e9, rel_5.y, rel_5.z + _e16);
-    float _e19 = empty_cell_exit(p_16, dir_1, frame, occupancy_in);
-    if (_e19 <= 0.0) {
+    uint _e3 = layer_count(frame);
+    if (_e3 > 1u) {
         return 0.0;
     }
-    return _e19 + 0.05;
+    metal::float3 rel_5 = origin + (dir_1 * t_1);
+    float _e13 = frame.camera_position.x;
+    float _e20 = frame.camera_position.z;
+    metal::float3 p_16 = metal::float3(rel_5.x + _e13, rel_5.y, rel_5.z + _e20);
+    float _e23 = empty_cell_exit(p_16, dir_1, frame, occupancy_in);
+    if (_e23 <= 0.0) {
+        return 0.0;
+    }
+    return _e23 + 0.05;
 }
 
 float density_max(

@@ -106,8 +106,12 @@ fn density_at(rel: vec3<f32>, counters: ptr<function, Counters>) -> f32 {
 // the edge of an empty occupancy cell (no cloud at any altitude), else 0. Both trackers sample
 // distances afresh after a jump, which the exponential's lack of memory allows. The jump ends
 // 5 cm inside the next cell so that rounding cannot leave the ray on the wall (the density of
-// those 5 cm is not sampled: a bias below 0.2% of one mean free path per wall).
+// those 5 cm is not sampled: a bias below 0.2% of one mean free path per wall). The grid
+// covers the main layer's weather only, so with several layers nothing is skipped.
 fn empty_cell_skip(origin: vec3<f32>, dir: vec3<f32>, t: f32) -> f32 {
+    if layer_count() > 1u {
+        return 0.0;
+    }
     let rel = origin + dir * t;
     let p = vec3<f32>(rel.x + frame.camera_position.x, rel.y, rel.z + frame.camera_position.z);
     let exit = empty_cell_exit(p, dir);

@@ -104,9 +104,29 @@ fn gpu_blocks(out: &FrameOutput, meta: &[f32]) -> Vec<(f64, f64)> {
 
 #[test]
 fn gpu_path_tracer_agrees_with_the_cpu_path_tracer() {
+    agree(&scene());
+}
+
+/// The same with a high deck over the clouds: paths cross the gap between layers, and the
+/// deck shadows the clouds below.
+#[test]
+fn gpu_path_tracer_agrees_with_the_cpu_path_tracer_through_two_layers() {
+    let mut s = scene();
+    s.clouds.layers = vec![stratus_scene::CloudLayer {
+        bottom_m: 6000.0,
+        top_m: 7000.0,
+        coverage: 0.7,
+        density: 0.4,
+        cloud_type: 0.2,
+        precipitation: 0.0,
+    }];
+    agree(&s);
+}
+
+fn agree(scene: &Scene) {
     stratus_test_support::record_wgpu_log();
     let noise = noise();
-    let scene = scene();
+    let scene = scene.clone();
 
     let mut wgpu = stratus_backend_wgpu::Renderer::new(stratus_backend_wgpu::Options {
         api: stratus_backend_wgpu::Api::Vulkan,

@@ -54,6 +54,10 @@ pub struct AnimateArgs {
     /// carries the clouds by the integral of its changing speed, so they never jump.
     #[arg(long, value_name = "STATE", requires = "from")]
     to: Option<String>,
+    /// Measure temporal smoothness: the FLIP between each frame and the one before, and print
+    /// the largest and the mean (and the frame of the largest).
+    #[arg(long)]
+    flip: bool,
 }
 
 /// Runs `stratus animate`.
@@ -139,6 +143,8 @@ pub fn run(args: AnimateArgs) -> Result<()> {
         bar.set_style(style);
     }
     bar.set_message("rendering");
+    let mut previous: Option<stratus_compare::Image> = None;
+    let mut flips: Vec<(f64, u32)> = Vec::new();
     for i in 0..frames {
         let mut s = frame_scene(&scene, i, f64::from(args.fps));
         if let Some((from, to)) = &transition {
@@ -155,6 +161,19 @@ pub fn run(args: AnimateArgs) -> Result<()> {
             .render(&FrameInput::new(&plan, &s, &noise).with_readback(Readback::output()))
             .map_err(|e| anyhow::anyhow!("frame {i}: {e}"))?;
         check_finite(&out).with_context(|| format!("frame {i}"))?;
+        if args.flip {
+            let image = stratus_compare::Image::from_frame_display(&out);
+            if let Some(p) = &previous {
+                let c = stratus_compare::compare(
+                    &image,
+                    p,
+                    &stratus_compare::CompareOptions::default(),
+                )
+                .map_err(|e| anyhow::anyhow!("frame {i}: {e}"))?;
+                flips.push((c.flip.mean, i));
+            }
+            previous = Some(image);
+        }
         stdin
             .write_all(&out.image)
             .context("writing a frame to ffmpeg")?;
@@ -165,6 +184,14 @@ pub fn run(args: AnimateArgs) -> Result<()> {
     let status = ffmpeg.wait().context("waiting for ffmpeg")?;
     if !status.success() {
         bail!("ffmpeg failed ({status}) writing {}", args.out.display());
+    }
+    if let Some(&(worst, at)) = flips.iter().max_by(|a, b| a.0.total_cmp(&b.0)) {
+        let mean = flips.iter().map(|f| f.0).sum::<f64>() / flips.len() as f64;
+        println!(
+            "consecutive-frame FLIP (mean over each image): largest {worst:.5} (frames {} -> {at}), mean {mean:.5} over {} pairs",
+            at - 1,
+            flips.len()
+        );
     }
     println!(
         "wrote {} ({frames} frames, {w}x{h}, {} fps, {seconds} s of scene {name}; backend {}, temporal {})",
