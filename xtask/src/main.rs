@@ -733,7 +733,7 @@ fn web(root: &Path, port: u16) -> Result<()> {
 }
 
 /// The cargo-fuzz targets (fuzz/Cargo.toml).
-const FUZZ_TARGETS: [&str; 4] = ["scene_toml", "wgsl", "image_png", "image_exr"];
+const FUZZ_TARGETS: [&str; 5] = ["scene_toml", "wgsl", "image_png", "image_exr", "metar"];
 
 /// `cargo xtask fuzz --seconds N`.
 fn fuzz(root: &Path, seconds: u32) -> Result<()> {

@@ -41,9 +41,13 @@ const MERGE_M: f64 = 150.0;
 /// Gap left between a layer's top and the next layer's base, metres.
 const GAP_M: f64 = 50.0;
 
-/// What a cloud group becomes: thickness (m), cloud type, density and a name.
-fn cloud_kind(g: &CloudGroup, base: f64) -> (f64, f64, f64, &'static str) {
+/// What a cloud group becomes: thickness (m), cloud type, density and a name. `precipitating`:
+/// the lowest group of a report with rain or snow, whose closed deck is nimbostratus.
+fn cloud_kind(g: &CloudGroup, base: f64, precipitating: bool) -> (f64, f64, f64, &'static str) {
+    let closed = matches!(g.cover, Cover::Broken | Cover::Overcast);
     match (g.convective, base) {
+        // Nimbostratus: thick and stratiform, its base low.
+        (None, b) if precipitating && closed && b < 2000.0 => (3000.0, 0.25, 1.0, "nimbostratus"),
         // Cumulonimbus reach the tropopause; towering cumulus about half as far.
         (Some(Convective::Cumulonimbus), _) => (8000.0, 1.0, 1.0, "cumulonimbus"),
         (Some(Convective::ToweringCumulus), _) => (4000.0, 1.0, 1.0, "towering cumulus"),
@@ -204,7 +208,8 @@ pub fn scene_from_metar(m: &Metar, base: &Scene) -> Derived {
     let rain = precipitation(m);
     let mut layers: Vec<CloudLayer> = Vec::new();
     for (i, (b, g)) in merged.iter().enumerate() {
-        let (thickness, cloud_type, density, kind) = cloud_kind(g, *b);
+        let precipitating = i == 0 && matches!(name, "rain" | "snow");
+        let (thickness, cloud_type, density, kind) = cloud_kind(g, *b, precipitating);
         let mut top = b + thickness;
         if let Some((next, _)) = merged.get(i + 1) {
             top = top.min(next - GAP_M);

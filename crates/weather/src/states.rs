@@ -102,7 +102,7 @@ pub const STATES: [WeatherState; 10] = [
             wind_speed_m_s: 8.0,
             ambient_bottom: GREY_BOTTOM,
             ambient_top: [0.55, 0.65, 0.8],
-            exposure: 1.15,
+            exposure: 1.1,
             ..fair(0.6)
         },
     ),
@@ -116,7 +116,7 @@ pub const STATES: [WeatherState; 10] = [
             wind_speed_m_s: 8.0,
             ambient_bottom: GREY_BOTTOM,
             ambient_top: GREY_TOP,
-            exposure: 1.4,
+            exposure: 1.2,
             ..fair(0.85)
         },
     ),
@@ -132,7 +132,7 @@ pub const STATES: [WeatherState; 10] = [
             wind_speed_m_s: 10.0,
             ambient_bottom: DARK_BOTTOM,
             ambient_top: GREY_TOP,
-            exposure: 1.6,
+            exposure: 1.1,
             ..fair(0.9)
         },
     ),
@@ -148,7 +148,7 @@ pub const STATES: [WeatherState; 10] = [
             wind_speed_m_s: 14.0,
             ambient_bottom: DARK_BOTTOM,
             ambient_top: DARK_TOP,
-            exposure: 1.6,
+            exposure: 1.2,
             ..fair(0.6)
         },
     ),
@@ -164,7 +164,7 @@ pub const STATES: [WeatherState; 10] = [
             fog_density: fog_density_for_visibility(300.0),
             ambient_bottom: GREY_BOTTOM,
             ambient_top: GREY_TOP,
-            exposure: 1.3,
+            exposure: 1.2,
             ..fair(0.7)
         },
     ),
@@ -176,7 +176,7 @@ pub const STATES: [WeatherState; 10] = [
             fog_top_m: 1000.0,
             fog_density: fog_density_for_visibility(3000.0),
             ambient_bottom: GREY_BOTTOM,
-            exposure: 1.15,
+            exposure: 1.1,
             ..fair(0.42)
         },
     ),
@@ -191,7 +191,7 @@ pub const STATES: [WeatherState; 10] = [
             wind_speed_m_s: 6.0,
             ambient_bottom: [0.3, 0.32, 0.36],
             ambient_top: [0.6, 0.64, 0.7],
-            exposure: 1.4,
+            exposure: 1.2,
             ..fair(0.9)
         },
     ),
