@@ -10,6 +10,7 @@ mod output;
 mod render;
 mod scene_io;
 mod soak;
+mod view;
 mod weather;
 
 use std::{path::PathBuf, process::ExitCode};
@@ -61,6 +62,10 @@ enum Command {
     /// Turn weather into a scene: a METAR report (cloud groups become cloud layers), a
     /// weather-service JSON file, or a named weather state; print or write the scene (TOML).
     Weather(weather::WeatherArgs),
+    /// An interactive window: fly through the clouds (WASD, mouse), with an overlay of pass
+    /// times and controls, screenshots (PNG and EXR) and camera-path recording; `--script`
+    /// plays timed input events for headless tests.
+    View(view::ViewArgs),
 }
 
 #[derive(Subcommand)]
@@ -89,6 +94,7 @@ fn main() -> ExitCode {
         Command::ExportKit(args) => kit::run(args),
         Command::Soak(args) => soak::run(args),
         Command::Weather(args) => weather::run(args),
+        Command::View(args) => view::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -138,7 +138,7 @@ pub struct RenderArgs {
 }
 
 /// `STRATUS_VALIDATION=1` turns on the backends' validation (wgpu's and the Vulkan layer).
-fn validation() -> bool {
+pub(crate) fn validation() -> bool {
     std::env::var_os("STRATUS_VALIDATION").is_some()
 }
 
