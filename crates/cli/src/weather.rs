@@ -44,11 +44,17 @@ pub struct WeatherArgs {
 
 /// The scene for a METAR report on `base`, or an error naming the bad token.
 pub fn derive_metar(report: &str, base: &Scene) -> Result<Derived> {
-    let d =
-        stratus_weather::scene_from_metar_text(report, base).map_err(|e| anyhow::anyhow!("{e}"))?;
-    d.scene.validate().map_err(|e| {
-        anyhow::anyhow!("the scene derived from the report is invalid (a bug): {e}")
-    })?;
+    validated(
+        stratus_weather::scene_from_metar_text(report, base).map_err(|e| anyhow::anyhow!("{e}"))?,
+    )
+}
+
+/// `d` if its scene is valid: every derivation should give a valid scene, so an invalid one is
+/// a bug, said as such.
+fn validated(d: Derived) -> Result<Derived> {
+    d.scene
+        .validate()
+        .map_err(|e| anyhow::anyhow!("the derived scene is invalid (a bug): {e}"))?;
     Ok(d)
 }
 
@@ -68,18 +74,18 @@ pub fn run(args: WeatherArgs) -> Result<()> {
             std::fs::read_to_string(path).with_context(|| format!("reading {}", path.display()))?;
         let d = stratus_weather::scene_from_service_json(&text, &base)
             .map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
-        (d, path.display().to_string())
+        (validated(d)?, path.display().to_string())
     } else if let Some(name) = &args.state {
         let state = states::find(name).map_err(|e| anyhow::anyhow!("--state: {e}"))?;
         let mut scene = base.clone();
         state.params.apply(&mut scene);
         let notes = vec![format!("state: {}: {}", state.name, state.about)];
         (
-            Derived {
+            validated(Derived {
                 scene,
                 state,
                 notes,
-            },
+            })?,
             format!("--state {name}"),
         )
     } else {
@@ -87,10 +93,6 @@ pub fn run(args: WeatherArgs) -> Result<()> {
             "give a METAR report, --json FILE or --state NAME (see --help; --list names the states)"
         );
     };
-    derived
-        .scene
-        .validate()
-        .map_err(|e| anyhow::anyhow!("the derived scene is invalid (a bug): {e}"))?;
     let text = derived.to_toml(&source);
     match &args.out {
         Some(path) => {

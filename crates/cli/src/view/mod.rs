@@ -196,7 +196,7 @@ struct ViewState {
     shot_count: u32,
     weather: String,
     message: String,
-    fps: f64,
+    /// Running mean of the wall time between frames, seconds (0 before the second frame).
     dt_mean: f64,
     cpu_ms: f64,
     /// Wall time from the frame's start to the GPU being done with it.
@@ -233,7 +233,6 @@ impl ViewState {
             shot_count: 0,
             weather: "(scene)".into(),
             message: String::new(),
-            fps: 0.0,
             dt_mean: 0.0,
             cpu_ms: 0.0,
             frame_ms: 0.0,
@@ -499,7 +498,11 @@ impl ViewState {
                 ui.label(backend);
                 ui.label(format!(
                     "{:.1} fps, CPU {:.2} ms/frame, to GPU idle {:.1} ms, {}x{}",
-                    self.fps,
+                    if self.dt_mean > 0.0 {
+                        1.0 / self.dt_mean
+                    } else {
+                        0.0
+                    },
                     self.cpu_ms,
                     self.frame_ms,
                     self.scene.camera.resolution[0],
@@ -884,7 +887,6 @@ impl App {
             } else {
                 0.8 * state.dt_mean + 0.2 * wall_dt
             };
-            state.fps = 1.0 / state.dt_mean;
         }
         let dt = match &mut self.script {
             Some(script) => {
