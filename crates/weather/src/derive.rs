@@ -287,22 +287,11 @@ pub fn scene_from_metar(m: &Metar, base: &Scene) -> Derived {
         }
     }
 
-    let mut all: Vec<CloudLayer> = layers;
-    if let Some(f) = fog_layer_opt {
-        if all.len() > MAX_EXTRA_LAYERS {
-            let dropped = all.pop().expect("non-empty");
-            notes.push(format!(
-                "four layers and fog: the highest layer ({:.0} m) is dropped",
-                dropped.bottom_m
-            ));
-        }
-        all.push(f);
-    }
-    // The lowest cloud layer is the main one (its geometry is `[atmosphere]`, its weather
-    // `[clouds]`); the others are extra layers. Fog alone keeps the state's main deck.
-    let main_from_groups = !all.is_empty() && all[0].bottom_m > 0.0;
-    if main_from_groups {
-        let main = all.remove(0);
+    // The lowest cloud group is the main layer (its geometry is `[atmosphere]`, its weather
+    // `[clouds]`); the other groups and the fog are extra layers. Fog alone keeps the state's
+    // main deck.
+    let mut layers = layers.into_iter();
+    if let Some(main) = layers.next() {
         scene.atmosphere.cloud_bottom_m = main.bottom_m;
         scene.atmosphere.cloud_top_m = main.top_m;
         scene.clouds.coverage = main.coverage;
@@ -311,6 +300,17 @@ pub fn scene_from_metar(m: &Metar, base: &Scene) -> Derived {
         scene.clouds.precipitation = main.precipitation;
     } else if rain > 0.0 {
         scene.clouds.precipitation = rain;
+    }
+    let mut all: Vec<CloudLayer> = layers.collect();
+    if let Some(f) = fog_layer_opt {
+        if all.len() >= MAX_EXTRA_LAYERS {
+            let dropped = all.pop().expect("non-empty");
+            notes.push(format!(
+                "four layers and fog: the highest layer ({:.0} m) is dropped",
+                dropped.bottom_m
+            ));
+        }
+        all.push(f);
     }
     scene.clouds.layers = all;
     notes.push(format!(

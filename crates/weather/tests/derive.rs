@@ -92,3 +92,16 @@ fn derivation_is_deterministic() {
     let b = derive(r).scene.uniforms();
     assert_eq!(a.as_bytes(), b.as_bytes());
 }
+
+/// Found by the fuzzer: a cloud group based at the ground (SCT000) is still the main layer,
+/// so the state's deck does not stay behind to overlap the report's layers.
+#[test]
+fn a_group_at_the_ground_is_the_main_layer() {
+    let d = derive("AAAA\nSCT000\nSCT109\nSCT055\n");
+    assert_eq!(d.scene.atmosphere.cloud_bottom_m, 0.0);
+    assert_eq!(d.scene.clouds.layers.len(), 2);
+    // Fog with four groups: the highest group gives way.
+    let d = derive("EDDF 221650Z 05003KT 0200 FG FEW030 SCT050 BKN080 OVC100 02/02 Q1025");
+    assert_eq!(d.scene.clouds.layers.len(), 3);
+    assert_eq!(d.scene.clouds.layers[2].bottom_m, 0.0);
+}
