@@ -68,6 +68,15 @@ pub enum Error {
     /// The validation layer reported warnings or errors (leaked objects included).
     #[error("the Vulkan validation layer reported {} problem(s):\n{}", .0.len(), .0.join("\n"))]
     Validation(Vec<String>),
+    /// The device was lost (`VK_ERROR_DEVICE_LOST`): a GPU hang, a driver reset or a fault.
+    /// Nothing more runs on it; a new renderer (a new device) can.
+    #[error(
+        "the Vulkan device was lost ({call} returned VK_ERROR_DEVICE_LOST); nothing more can render on it: create a new renderer (a GPU hang, a driver reset or a GPU fault loses a device)"
+    )]
+    DeviceLost {
+        /// The Vulkan function that reported it.
+        call: &'static str,
+    },
     /// A Vulkan call failed.
     #[error("{call} failed: {result}")]
     Vulkan {
@@ -102,8 +111,15 @@ pub enum Error {
 }
 
 /// Maps a failed Vulkan call to [`Error::Vulkan`]: `vk(call)` is the `map_err` argument.
+/// `VK_ERROR_DEVICE_LOST` becomes [`Error::DeviceLost`], which says what to do about it.
 pub(crate) fn vk(call: &'static str) -> impl Fn(vk::Result) -> Error {
-    move |result| Error::Vulkan { call, result }
+    move |result| {
+        if result == vk::Result::ERROR_DEVICE_LOST {
+            Error::DeviceLost { call }
+        } else {
+            Error::Vulkan { call, result }
+        }
+    }
 }
 
 /// Maps a gpu-allocator failure to [`Error::Memory`].
@@ -111,5 +127,33 @@ pub(crate) fn memory(what: &str) -> impl Fn(gpu_allocator::AllocationError) -> E
     move |e| Error::Memory {
         what: what.to_string(),
         message: e.to_string(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// lavapipe cannot be made to lose its device, so the mapping every Vulkan call's result
+    /// goes through is what is tested: a lost device is named, anything else keeps its code.
+    #[test]
+    fn a_lost_device_is_named_by_every_call() {
+        let lost = vk("vkWaitForFences")(vk::Result::ERROR_DEVICE_LOST);
+        assert!(matches!(
+            lost,
+            Error::DeviceLost {
+                call: "vkWaitForFences"
+            }
+        ));
+        let text = lost.to_string();
+        assert!(
+            text.contains("device was lost") && text.contains("new renderer"),
+            "{text}"
+        );
+        let other = vk("vkQueueSubmit")(vk::Result::ERROR_OUT_OF_DEVICE_MEMORY);
+        assert_eq!(
+            other.to_string(),
+            "vkQueueSubmit failed: A device memory allocation has failed"
+        );
     }
 }

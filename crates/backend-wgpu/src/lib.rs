@@ -72,6 +72,14 @@ pub enum Error {
         /// wgpu's message.
         message: String,
     },
+    /// The adapter has no compute shaders (NVIDIA's EGL gives wgpu such a GL context).
+    #[error(
+        "could not create a wgpu device on {adapter}: it has no compute shaders, which every Stratus frame needs (GL needs 4.3 or GLES 3.1; use the Vulkan backend)"
+    )]
+    NoCompute {
+        /// The adapter.
+        adapter: String,
+    },
     /// wgpu reported a validation or out-of-memory error.
     #[error("wgpu reported an error: {0}")]
     Wgpu(String),
@@ -81,6 +89,23 @@ pub enum Error {
     /// The frame needs more than the device allows (found before allocating anything).
     #[error("{0}")]
     Limit(String),
+    /// The device was lost: a GPU hang or driver reset, or the device destroyed. Nothing more
+    /// can run on it; a new renderer (on a new device) can.
+    #[error(
+        "the wgpu device {adapter} was lost ({reason}); nothing more can render on it: create a new renderer (a GPU hang or a driver reset loses a device)"
+    )]
+    DeviceLost {
+        /// The adapter, in words.
+        adapter: String,
+        /// wgpu's reason and message.
+        reason: String,
+    },
+    /// Validation was asked for, but the Vulkan validation layer is not installed (wgpu would
+    /// go on without it, silently validating less).
+    #[error(
+        "Vulkan validation was requested but the layer VK_LAYER_KHRONOS_validation is not installed; install it with `apt-get install vulkan-validationlayers` or turn validation off"
+    )]
+    NoValidationLayer,
 }
 
 /// A pipeline of one pass of one variant, with its bind group layout.
@@ -146,6 +171,9 @@ pub struct Renderer {
     /// Uncaptured errors, where the renderer owns the device (an application keeps its own
     /// handler).
     errors: Option<Arc<Mutex<Vec<String>>>>,
+    /// Why the device was lost, once it is, where the renderer owns the device (an application
+    /// keeps its own callback; its errors then say "lost" instead).
+    lost: Arc<Mutex<Option<String>>>,
     created: u64,
 }
 
@@ -163,6 +191,11 @@ impl Renderer {
             Api::Vulkan => wgpu::Backends::VULKAN,
             Api::Gl => wgpu::Backends::GL,
         };
+        // wgpu goes on without the layer when it is missing; a caller who asked for
+        // validation is told instead, as backend-ash tells it.
+        if options.validation && options.api == Api::Vulkan && !validation_layer_installed() {
+            return Err(Error::NoValidationLayer);
+        }
         let mut desc = wgpu::InstanceDescriptor::new_without_display_handle();
         desc.backends = backends;
         desc.flags = if options.validation {
@@ -197,9 +230,8 @@ impl Renderer {
             .flags
             .contains(wgpu::DownlevelFlags::COMPUTE_SHADERS)
         {
-            return Err(Error::Device {
+            return Err(Error::NoCompute {
                 adapter: describe(&info),
-                message: "it has no compute shaders, which every Stratus frame needs (GL needs 4.3 or GLES 3.1; use the Vulkan backend)".into(),
             });
         }
         let mut required_features = wgpu::Features::empty();
@@ -221,14 +253,23 @@ impl Renderer {
         device.on_uncaptured_error(Arc::new(move |e: wgpu::Error| {
             sink.lock().unwrap().push(e.to_string());
         }));
+        let lost = Arc::new(Mutex::new(None));
+        let lost_sink = lost.clone();
+        device.set_device_lost_callback(move |reason, message| {
+            *lost_sink.lock().unwrap_or_else(|e| e.into_inner()) =
+                Some(format!("{reason:?}: {message}"));
+        });
         let mut renderer = Self::build(device, queue, describe(&info), program);
         renderer.errors = Some(errors);
+        renderer.lost = lost;
         renderer.check_errors()?;
         Ok(renderer)
     }
 
-    /// A renderer on an application's device and queue (the application keeps them, and its
-    /// own error handler). Passes are timed where the device has `TIMESTAMP_QUERY`.
+    /// A renderer on an application's device and queue (the application keeps them, its own
+    /// error handler and its device-lost callback: a lost device then shows as a failed
+    /// read-back that says the device may be lost). Passes are timed where the device has
+    /// `TIMESTAMP_QUERY`.
     pub fn from_device(
         device: wgpu::Device,
         queue: wgpu::Queue,
@@ -267,8 +308,14 @@ impl Renderer {
             queries: None,
             readbacks: HashMap::new(),
             errors: None,
+            lost: Arc::new(Mutex::new(None)),
             created: 0,
         }
+    }
+
+    /// The device the renderer runs on (its own, or the application's).
+    pub fn device(&self) -> &wgpu::Device {
+        &self.device
     }
 
     /// The adapter in words, e.g. `llvmpipe (LLVM 15.0.6, 256 bits) (Vulkan, Cpu)`.
@@ -303,29 +350,60 @@ impl Renderer {
     }
 
     fn check_errors(&self) -> Result<(), Error> {
+        self.check_lost()?;
         let Some(errors) = &self.errors else {
             return Ok(());
         };
-        let errors = std::mem::take(&mut *errors.lock().unwrap());
+        let errors = std::mem::take(&mut *errors.lock().unwrap_or_else(|e| e.into_inner()));
         if errors.is_empty() {
             Ok(())
         } else {
-            Err(Error::Wgpu(errors.join("\n")))
+            Err(self.classify(errors.join("\n")))
         }
+    }
+
+    /// [`Error::DeviceLost`] once the device is lost.
+    fn check_lost(&self) -> Result<(), Error> {
+        match &*self.lost.lock().unwrap_or_else(|e| e.into_inner()) {
+            Some(reason) => Err(Error::DeviceLost {
+                adapter: self.description.clone(),
+                reason: reason.clone(),
+            }),
+            None => Ok(()),
+        }
+    }
+
+    /// A wgpu error message as an [`Error`]: a lost device (on an application's device, where
+    /// no callback of ours is set, wgpu's errors are how it shows) or any other error.
+    fn classify(&self, message: String) -> Error {
+        if let Err(lost) = self.check_lost() {
+            return lost;
+        }
+        if message.contains("is lost") || message.contains("DeviceLost") {
+            return Error::DeviceLost {
+                adapter: self.description.clone(),
+                reason: message,
+            };
+        }
+        Error::Wgpu(message)
     }
 
     /// Renders one frame on the renderer's queue, waits for it, and reads back what
     /// `frame.readback` asks for. Without timestamp queries every pass is submitted alone and
     /// timed on the CPU.
     pub fn render(&mut self, frame: &FrameInput<'_>) -> Result<FrameOutput, Error> {
+        self.check_lost()?;
         let scope = self.device.push_error_scope(wgpu::ErrorFilter::Validation);
         let result = self.render_inner(frame);
         let scoped = pollster::block_on(scope.pop());
         self.check_errors()?;
         if let Some(e) = scoped {
-            return Err(Error::Wgpu(e.to_string()));
+            return Err(self.classify(e.to_string()));
         }
-        result
+        result.map_err(|e| match e {
+            Error::Wgpu(m) => self.classify(m),
+            other => other,
+        })
     }
 
     /// Records one frame into the application's `encoder`, drawing passes whose colour target
@@ -337,11 +415,12 @@ impl Renderer {
         frame: &FrameInput<'_>,
         target: Option<&wgpu::TextureView>,
     ) -> Result<Vec<String>, Error> {
+        self.check_lost()?;
         let scope = self.device.push_error_scope(wgpu::ErrorFilter::Validation);
         let result = self.record_frame(encoder, frame, target);
         let scoped = pollster::block_on(scope.pop());
         if let Some(e) = scoped {
-            return Err(Error::Wgpu(e.to_string()));
+            return Err(self.classify(e.to_string()));
         }
         result
     }
@@ -1206,6 +1285,23 @@ fn class_of(t: wgpu::DeviceType) -> DeviceClass {
     }
 }
 
+/// Whether the Vulkan loader lists the Khronos validation layer (the check backend-ash makes
+/// before asking for it). Without a loader this says yes, so that the missing loader is what
+/// the caller hears about (wgpu then finds no Vulkan adapter).
+fn validation_layer_installed() -> bool {
+    // SAFETY: loads the system's Vulkan loader as any Vulkan use does; the entry is dropped at
+    // the end of this function and nothing created from it outlives it.
+    let Ok(entry) = (unsafe { ash::Entry::load() }) else {
+        return true;
+    };
+    // SAFETY: a global command of a loaded entry, with no handles involved.
+    let layers = unsafe { entry.enumerate_instance_layer_properties() }.unwrap_or_default();
+    layers.iter().any(|l| {
+        l.layer_name_as_c_str()
+            .is_ok_and(|n| n == c"VK_LAYER_KHRONOS_validation")
+    })
+}
+
 fn describe(info: &wgpu::AdapterInfo) -> String {
     describe_device(
         &info.name,
@@ -1230,7 +1326,14 @@ fn read_buffer(
         .map_err(|e| Error::Wgpu(e.to_string()))?;
     rx.recv()
         .map_err(|e| Error::Wgpu(e.to_string()))?
-        .map_err(|e| Error::Wgpu(e.to_string()))?;
+        // wgpu drops "device lost" errors in favour of the device-lost callback, so on an
+        // application's device (whose callback is the application's) a failed map is all
+        // that shows of a loss.
+        .map_err(|e| {
+            Error::Wgpu(format!(
+                "mapping a read-back buffer failed ({e}): the device was lost, or could not create the buffer"
+            ))
+        })?;
     let data = slice
         .get_mapped_range()
         .map_err(|e| Error::Wgpu(e.to_string()))?;
