@@ -10,6 +10,7 @@ mod output;
 mod render;
 mod scene_io;
 mod soak;
+mod validation;
 mod view;
 mod weather;
 

@@ -142,11 +142,11 @@ pub(crate) fn validation() -> bool {
     std::env::var_os("STRATUS_VALIDATION").is_some()
 }
 
-fn wgpu(api: backend_wgpu::Api) -> Result<backend_wgpu::Renderer, backend_wgpu::Error> {
-    backend_wgpu::Renderer::new(backend_wgpu::Options {
-        api,
-        validation: validation(),
-    })
+fn wgpu(
+    api: backend_wgpu::Api,
+    validation: bool,
+) -> Result<backend_wgpu::Renderer, backend_wgpu::Error> {
+    backend_wgpu::Renderer::new(backend_wgpu::Options { api, validation })
 }
 
 /// The CPU renderer with the GPU's real-time settings; `progress`: a progress bar per frame.
@@ -193,21 +193,28 @@ fn open_backend(backend: Backend, args: &RenderArgs) -> Result<Box<dyn stratus_g
 /// A real-time renderer (not the reference): `auto` falls back from Vulkan to GL to the CPU,
 /// saying so. `progress`: the CPU renderer's per-frame progress bar.
 pub fn open_realtime(backend: Backend, progress: bool) -> Result<Box<dyn stratus_graph::Backend>> {
+    open_realtime_with(backend, progress, validation())
+}
+
+/// [`open_realtime`] with validation on or off whatever `STRATUS_VALIDATION` says.
+pub fn open_realtime_with(
+    backend: Backend,
+    progress: bool,
+    validation: bool,
+) -> Result<Box<dyn stratus_graph::Backend>> {
     Ok(match backend {
-        Backend::Wgpu => Box::new(wgpu(backend_wgpu::Api::Vulkan)?),
-        Backend::WgpuGl => Box::new(wgpu(backend_wgpu::Api::Gl)?),
+        Backend::Wgpu => Box::new(wgpu(backend_wgpu::Api::Vulkan, validation)?),
+        Backend::WgpuGl => Box::new(wgpu(backend_wgpu::Api::Gl, validation)?),
         Backend::Ash => Box::new(stratus_backend_ash::Renderer::new(
-            stratus_backend_ash::Options {
-                validation: validation(),
-            },
+            stratus_backend_ash::Options { validation },
         )?),
         Backend::Cpu => Box::new(cpu_realtime(progress)),
         Backend::Reference => anyhow::bail!(
             "--backend reference renders stills only; use cpu, wgpu, wgpu-gl, ash or auto"
         ),
-        Backend::Auto => match wgpu(backend_wgpu::Api::Vulkan) {
+        Backend::Auto => match wgpu(backend_wgpu::Api::Vulkan, validation) {
             Ok(r) => Box::new(r),
-            Err(vulkan) => match wgpu(backend_wgpu::Api::Gl) {
+            Err(vulkan) => match wgpu(backend_wgpu::Api::Gl, validation) {
                 Ok(r) => {
                     eprintln!(
                         "note: no usable Vulkan device ({vulkan}); using wgpu's GL backend (install mesa-vulkan-drivers for a Vulkan device)"

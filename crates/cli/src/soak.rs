@@ -12,7 +12,7 @@ use stratus_graph::{FrameInput, FrameOutput, FramePlan, Readback};
 use stratus_scene::{Scene, Temporal};
 
 use crate::{
-    render::{Backend, frame_scene, open_realtime, parse_temporal},
+    render::{Backend, frame_scene, open_realtime_with, parse_temporal},
     scene_io::{load_scene, parse_size},
 };
 
@@ -42,6 +42,52 @@ pub struct SoakArgs {
     /// report the RSS growth (leaks of device, resources or pipelines show there).
     #[arg(long, value_name = "N")]
     cycles: Option<u32>,
+    /// Validation on (wgpu's, and the Vulkan validation layer, whose object tracking reports
+    /// every object still alive when a device is destroyed): any message fails the soak.
+    /// `STRATUS_VALIDATION=1` does the same.
+    #[arg(long)]
+    validate: bool,
+}
+
+impl SoakArgs {
+    fn validation(&self) -> bool {
+        self.validate || crate::render::validation()
+    }
+}
+
+/// Fails with what wgpu logged since the last check (the ash backend returns its layer's
+/// messages as errors itself).
+fn check_validation(what: &str) -> Result<()> {
+    let messages = crate::validation::take();
+    if messages.is_empty() {
+        Ok(())
+    } else {
+        bail!("{what}: validation reported:\n{}", messages.join("\n"))
+    }
+}
+
+/// One cycle: a renderer created, used for one frame and destroyed; the frame's non-finite
+/// values. The ash renderer is torn down with `finish`, which returns what the layer reported
+/// while destroying the device: objects left alive among it.
+fn one_cycle(
+    args: &SoakArgs,
+    scene: &Scene,
+    plan: &FramePlan,
+    noise: &Arc<stratus_noise::NoiseSet>,
+) -> Result<usize> {
+    let input = FrameInput::new(plan, scene, noise).with_readback(Readback::output());
+    if args.backend == Backend::Ash {
+        let mut r = stratus_backend_ash::Renderer::new(stratus_backend_ash::Options {
+            validation: args.validation(),
+        })?;
+        let f = r.render(&input)?;
+        r.finish()?;
+        return Ok(non_finite(&f));
+    }
+    let mut r = open_realtime_with(args.backend, false, args.validation())?;
+    let f = r.render(&input).map_err(|e| anyhow::anyhow!("{e}"))?;
+    drop(r);
+    Ok(non_finite(&f))
 }
 
 /// `--cycles N`: renderers created and dropped, RSS after the first few and at the end.
@@ -53,13 +99,24 @@ fn cycles(args: &SoakArgs, n: u32) -> Result<()> {
     let warm = n.min(10);
     let mut rss_warm = None;
     let mut nan = 0;
+    let bar = (n > 1 && std::io::stderr().is_terminal()).then(|| {
+        let bar = ProgressBar::new(u64::from(n));
+        if let Ok(style) = ProgressStyle::with_template(
+            "cycles [{elapsed_precise}] {wide_bar} {pos}/{len} ({per_sec})",
+        ) {
+            bar.set_style(style);
+        }
+        bar
+    });
     for i in 0..n {
-        let mut r = open_realtime(args.backend, false)?;
-        let f = r
-            .render(&FrameInput::new(&plan, &scene, &noise).with_readback(Readback::output()))
+        nan += one_cycle(args, &scene, &plan, &noise)
             .map_err(|e| anyhow::anyhow!("cycle {i}: {e}"))?;
-        nan += non_finite(&f);
-        drop(r);
+        if args.validation() {
+            check_validation(&format!("cycle {i}"))?;
+        }
+        if let Some(bar) = &bar {
+            bar.inc(1);
+        }
         if i + 1 == warm {
             rss_warm = rss();
         }
@@ -73,8 +130,15 @@ fn cycles(args: &SoakArgs, n: u32) -> Result<()> {
         ),
         _ => String::new(),
     };
+    if let Some(bar) = bar {
+        bar.finish_and_clear();
+    }
     println!("cycles: {n} renderers created, used for one frame of {name} and dropped");
     println!("non-finite values: {nan}");
+    println!(
+        "{}",
+        validation_line(args, &format!("{n} device teardowns"))
+    );
     println!(
         "RSS: {} after {warm} cycles, {} after {n}{per}",
         mib(rss_warm),
@@ -140,8 +204,22 @@ fn settle(
     Ok(last.expect("at least one frame"))
 }
 
+/// What validation found, in a line: by here any message has failed the soak.
+fn validation_line(args: &SoakArgs, over: &str) -> String {
+    if args.validation() {
+        format!(
+            "validation: on, no messages over {over} (the layer's object tracking reports any object alive at device destruction)"
+        )
+    } else {
+        "validation: off (--validate turns on the Vulkan layer and its object tracking)".into()
+    }
+}
+
 /// Runs `stratus soak`.
 pub fn run(args: SoakArgs) -> Result<()> {
+    if args.validation() {
+        crate::validation::record();
+    }
     if args.backend == Backend::Reference {
         bail!(
             "--backend reference renders stills only; soak a real-time renderer (cpu, wgpu, wgpu-gl, ash or auto)"
@@ -155,7 +233,7 @@ pub fn run(args: SoakArgs) -> Result<()> {
     base.validate().map_err(|e| anyhow::anyhow!("{e}"))?;
     let noise = Arc::new(stratus::noise_for(&base));
     let plan = FramePlan::for_scene(&base, false)?;
-    let mut renderer = open_realtime(args.backend, false)?;
+    let mut renderer = open_realtime_with(args.backend, false, args.validation())?;
     println!(
         "soak: {} frames of {name} at {}x{} (temporal {}) on {}",
         args.frames,
@@ -214,7 +292,7 @@ pub fn run(args: SoakArgs) -> Result<()> {
         args.frames,
         args.settle,
     )?;
-    let mut fresh = open_realtime(args.backend, false)?;
+    let mut fresh = open_realtime_with(args.backend, false, args.validation())?;
     let still = settle(
         fresh.as_mut(),
         &plan,
@@ -256,6 +334,16 @@ pub fn run(args: SoakArgs) -> Result<()> {
     println!(
         "drift: {} frames after the stop against a fresh renderer's still: FLIP mean {:.2e}, max abs {:.2e}",
         args.settle, display.flip.mean, linear.max_abs
+    );
+    if args.validation() {
+        // Both devices destroyed first: what outlives a device is reported then.
+        drop(fresh);
+        drop(renderer);
+        check_validation("the loop")?;
+    }
+    println!(
+        "{}",
+        validation_line(&args, &format!("{} frames", args.frames))
     );
     if nan > 0 {
         bail!("{nan} non-finite values in {nan_frames} frames");

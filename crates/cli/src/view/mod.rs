@@ -107,30 +107,10 @@ pub(crate) fn key_from_name(name: &str) -> Option<KeyCode> {
     })
 }
 
-/// With `STRATUS_VALIDATION=1`: every warning or error wgpu logs (the Vulkan validation
-/// layer's messages arrive this way), so that a run with any fails.
-struct Messages(std::sync::Mutex<Vec<String>>);
-
-impl log::Log for Messages {
-    fn enabled(&self, m: &log::Metadata) -> bool {
-        m.level() <= log::Level::Warn && m.target().starts_with("wgpu")
-    }
-    fn log(&self, r: &log::Record) {
-        if self.enabled(r.metadata())
-            && let Ok(mut v) = self.0.lock()
-        {
-            v.push(format!("{} {}: {}", r.level(), r.target(), r.args()));
-        }
-    }
-    fn flush(&self) {}
-}
-
-static MESSAGES: Messages = Messages(std::sync::Mutex::new(Vec::new()));
-
 /// Runs `stratus view`.
 pub fn run(args: ViewArgs) -> Result<()> {
-    if crate::render::validation() && log::set_logger(&MESSAGES).is_ok() {
-        log::set_max_level(log::LevelFilter::Warn);
+    if crate::render::validation() {
+        crate::validation::record();
     }
     let (scene, name) = load_scene(args.preset.as_deref(), args.scene.as_ref(), Some(args.size))?;
     let script = args.script.as_deref().map(Script::load).transpose()?;
@@ -159,7 +139,7 @@ pub fn run(args: ViewArgs) -> Result<()> {
     if let Some(e) = app.error {
         return Err(e);
     }
-    let messages = std::mem::take(&mut *MESSAGES.0.lock().unwrap_or_else(|e| e.into_inner()));
+    let messages = crate::validation::take();
     if !messages.is_empty() {
         bail!("validation messages:\n{}", messages.join("\n"));
     }
