@@ -10,6 +10,8 @@
 //! - `web-test`: the kit's browser consumer (`web/`) in headless Chromium, against the goldens;
 //! - `web`: serve the interactive page with a fresh kit;
 //! - `fuzz`: replay the fuzz regressions, then fuzz every cargo-fuzz target for N seconds;
+//! - `device-bundle`: pack the conformance suite, the CLI, glslang and the validation layer
+//!   for a machine with a real GPU and no cargo (`tests/device/run.sh` runs it there);
 //! - `mitsuba-check` (opt-in, not in CI): the CPU reference against Mitsuba 3 on a gridded
 //!   cloud (see [`mitsuba_check`]).
 
@@ -19,6 +21,8 @@ use std::{
     process::{Command, ExitCode},
     time::Instant,
 };
+
+mod device;
 
 use anyhow::{Context, Result, bail};
 use clap::{Parser, Subcommand};
@@ -77,13 +81,24 @@ enum Task {
         #[arg(long, default_value_t = 8080)]
         port: u16,
     },
-    /// Replay fuzz/regressions, then fuzz every target (scene TOML, WGSL, PNG, EXR) for N
-    /// seconds each with cargo-fuzz (installed on first use); prints the runs.
+    /// Replay fuzz/regressions, then fuzz every target (scene TOML, WGSL, PNG, EXR, METAR)
+    /// for N seconds each with cargo-fuzz (installed on first use); prints the runs.
     Fuzz {
         /// Seconds per target.
         #[arg(long, default_value_t = 60)]
         seconds: u32,
+        /// Instead of a time: stop each target after exactly this many runs (libFuzzer's
+        /// `-runs`), however long it takes.
+        #[arg(long, value_name = "N")]
+        runs: Option<u64>,
+        /// Only this target (repeatable); every target by default.
+        #[arg(long, value_name = "NAME", value_parser = clap::builder::PossibleValuesParser::new(FUZZ_TARGETS))]
+        target: Vec<String>,
     },
+    /// Pack what the conformance suite needs on a machine with a GPU and no cargo (the test
+    /// binary, `stratus`, glslang, SPIRV-Tools, the validation layer) into
+    /// `.device/bundle.tar.gz`; `tests/device/run.sh` runs it there (see its comments).
+    DeviceBundle,
     /// Opt-in, not in CI (needs the network once): install Mitsuba 3 in a virtual environment
     /// under target/, export a gridded cloud with `stratus export-volume`, render it with
     /// Mitsuba and with the reference's path tracer, and compare block averages (single
@@ -124,7 +139,12 @@ fn main() -> ExitCode {
         Task::WebTest => web_test(&root).map(|_| ()),
         Task::ViewTest => view_test(&root),
         Task::Web { port } => web(&root, port),
-        Task::Fuzz { seconds } => fuzz(&root, seconds),
+        Task::Fuzz {
+            seconds,
+            runs,
+            target,
+        } => fuzz(&root, seconds, runs, &target),
+        Task::DeviceBundle => device::bundle(&root),
         Task::MitsubaCheck {
             reference_spp,
             mitsuba_spp,
@@ -556,7 +576,7 @@ fn ci(root: &Path) -> Result<()> {
     step("validate", || validate(&root.join("spirv-out")))?;
     // The browser path first: the conformance suite's `web-tint` column reads its results.
     step("web-test", || web_test(root).map(|_| ()))?;
-    step("fuzz (10 s a target)", || fuzz(root, 10))?;
+    step("fuzz (10 s a target)", || fuzz(root, 10, None, &[]))?;
     step("view-test", || view_test(root))?;
     // ... and there a missing browser image fails the column instead of leaving it empty.
     // SAFETY: xtask is single-threaded; the variable is set before any child is spawned.
@@ -749,8 +769,8 @@ fn web(root: &Path, port: u16) -> Result<()> {
 /// The cargo-fuzz targets (fuzz/Cargo.toml).
 const FUZZ_TARGETS: [&str; 5] = ["scene_toml", "wgsl", "image_png", "image_exr", "metar"];
 
-/// `cargo xtask fuzz --seconds N`.
-fn fuzz(root: &Path, seconds: u32) -> Result<()> {
+/// `cargo xtask fuzz --seconds N [--runs N] [--target NAME]...`.
+fn fuzz(root: &Path, seconds: u32, runs_limit: Option<u64>, only: &[String]) -> Result<()> {
     let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
     let have = Command::new(&cargo)
         .args(["fuzz", "--version"])
@@ -767,7 +787,10 @@ fn fuzz(root: &Path, seconds: u32) -> Result<()> {
         }
     }
     let mut rows = Vec::new();
-    for target in FUZZ_TARGETS {
+    for target in FUZZ_TARGETS
+        .into_iter()
+        .filter(|t| only.is_empty() || only.iter().any(|o| o == t))
+    {
         // Inputs that once crashed, each run once; then N seconds of fuzzing.
         let regressions = root.join("fuzz/regressions").join(target);
         let mut inputs: Vec<PathBuf> = std::fs::read_dir(&regressions)
@@ -793,7 +816,10 @@ fn fuzz(root: &Path, seconds: u32) -> Result<()> {
             cmd.args(&extra);
             cmd.arg("--");
             if fuzzing {
-                cmd.arg(format!("-max_total_time={seconds}"));
+                cmd.arg(match runs_limit {
+                    Some(n) => format!("-runs={n}"),
+                    None => format!("-max_total_time={seconds}"),
+                });
             }
             let out = cmd
                 .output()

@@ -100,13 +100,32 @@ fn check_log(what: &str) -> Result<(), String> {
     }
 }
 
-fn wgpu_renderer(api: wgpu_backend::Api) -> Result<wgpu_backend::Renderer, String> {
+/// Why a wgpu renderer could not be created.
+enum WgpuFailure {
+    /// The device has no compute shaders: on a device of another class the path is not
+    /// executed (see [`Renderers::unsupported`]).
+    NoCompute(String),
+    Other(String),
+}
+
+impl From<WgpuFailure> for String {
+    fn from(f: WgpuFailure) -> String {
+        match f {
+            WgpuFailure::NoCompute(e) | WgpuFailure::Other(e) => e,
+        }
+    }
+}
+
+fn wgpu_renderer(api: wgpu_backend::Api) -> Result<wgpu_backend::Renderer, WgpuFailure> {
     let r = wgpu_backend::Renderer::new(wgpu_backend::Options {
         api,
         validation: true,
     })
-    .map_err(|e| e.to_string())?;
-    check_log(&format!("creating the wgpu {api:?} renderer"))?;
+    .map_err(|e| match e {
+        wgpu_backend::Error::NoCompute { .. } => WgpuFailure::NoCompute(e.to_string()),
+        e => WgpuFailure::Other(e.to_string()),
+    })?;
+    check_log(&format!("creating the wgpu {api:?} renderer")).map_err(WgpuFailure::Other)?;
     Ok(r)
 }
 
@@ -129,6 +148,11 @@ struct Prepared {
 pub struct Renderers {
     wgpu_vulkan: Result<wgpu_backend::Renderer, String>,
     wgpu_gl: Result<wgpu_backend::Renderer, String>,
+    /// wgpu found a GL device without compute shaders (NVIDIA's EGL): a capability every
+    /// frame needs, which the golden device has.
+    gl_without_compute: bool,
+    /// The device class (set once wgpu-vulkan's device is known).
+    pub class: crate::report::DeviceClass,
     ash: Result<ash_backend::Renderer, String>,
     cpu: stratus_reference::CpuBackend,
     compiled: HashMap<(String, String, Lang), Result<Prepared, String>>,
@@ -139,15 +163,31 @@ impl Renderers {
     /// Creates every renderer, all with validation on. `scratch` receives glslang's output.
     pub fn new(scratch: PathBuf) -> Self {
         init_logging();
+        let (wgpu_gl, gl_without_compute) = match wgpu_renderer(wgpu_backend::Api::Gl) {
+            Err(WgpuFailure::NoCompute(e)) => (Err(e), true),
+            other => (other.map_err(String::from), false),
+        };
         Self {
-            wgpu_vulkan: wgpu_renderer(wgpu_backend::Api::Vulkan),
-            wgpu_gl: wgpu_renderer(wgpu_backend::Api::Gl),
+            wgpu_vulkan: wgpu_renderer(wgpu_backend::Api::Vulkan).map_err(String::from),
+            wgpu_gl,
+            gl_without_compute,
+            class: crate::report::DeviceClass::Golden,
             ash: ash_backend::Renderer::new(ash_backend::Options { validation: true })
                 .map_err(|e| e.to_string()),
             cpu: stratus_reference::CpuBackend::default(),
             compiled: HashMap::new(),
             scratch,
         }
+    }
+
+    /// Why `path` is not executed on this device, if it is not: on a device of another class,
+    /// wgpu-gl where the GL device has no compute shaders (NVIDIA's EGL). On the golden
+    /// device that is a failure like any other.
+    pub fn unsupported(&self, path: Path) -> Option<&'static str> {
+        (path == Path::WgpuGl
+            && self.gl_without_compute
+            && self.class == crate::report::DeviceClass::Other)
+            .then_some("the GL device has no compute shaders (wgpu refuses it by name)")
     }
 
     /// The device of each GPU path, in words.

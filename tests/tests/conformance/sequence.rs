@@ -165,6 +165,9 @@ pub fn execute(r: &mut Renderers, noise: &Arc<NoiseSet>) -> SequenceResult {
         Path::Cpu,
     ] {
         let mut own = Vec::new();
+        if r.unsupported(path).is_some() {
+            continue;
+        }
         let frames = render_path(r, path, &scene, noise);
         let metrics = match (&frames, &reference) {
             (Ok(frames), Ok(reference)) => {

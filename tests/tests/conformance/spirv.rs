@@ -115,7 +115,7 @@ pub fn reflect(words: &[u32]) -> Result<Reflection, String> {
 
 /// Where the committed shaders are.
 pub fn spirv_out() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../spirv-out")
+    crate::report::workspace_root().join("spirv-out")
 }
 
 /// Runs `tool args... -o out source`, failing with its output.

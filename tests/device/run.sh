@@ -1,0 +1,44 @@
+#!/usr/bin/env bash
+# Runs the conformance suite on a machine with a real GPU and no cargo (the `device` machine),
+# from the checkout's root there:
+#
+#   here:  cargo xtask device-bundle          # writes .device/bundle.tar.gz (ignored by git)
+#   there: bash tests/device/run.sh           # with `.device` (and `.gl`) carried along
+#
+# `.gl` holds the Vulkan and EGL loaders as .deb files where the machine has none (the device
+# tool's README says how to download them). The suite reads the goldens, snapshots and
+# spirv-out/ of this checkout (INSTA_WORKSPACE_ROOT) and judges them by the device's class
+# (tests/tests/conformance/report.rs, `DeviceClass`): on anything but lavapipe the goldens and
+# the snapshots' counters are held to the measured cross-device bounds. The results table,
+# the log and any failure images go to $OUT (the device tool brings that folder back), or to
+# target/device-out.
+set -uo pipefail
+root=$(pwd)
+if [ ! -f .device/bundle.tar.gz ]; then
+    echo "error: .device/bundle.tar.gz is missing: run \`cargo xtask device-bundle\` and carry .device" >&2
+    exit 2
+fi
+if [ -d .gl ] && ! ldconfig -p | grep -q libvulkan.so.1; then
+    for f in .gl/*.deb; do dpkg -x "$f" /; done
+    ldconfig
+fi
+bundle=$(mktemp -d)
+tar xzf .device/bundle.tar.gz -C "$bundle" || exit 2
+export PATH="$bundle/bin:$PATH"
+export VK_LAYER_PATH="$bundle/layers"
+export INSTA_WORKSPACE_ROOT="$root" INSTA_UPDATE=no
+export XDG_RUNTIME_DIR="${XDG_RUNTIME_DIR:-$(mktemp -d)}"
+icd=/usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json
+[ -f "$icd" ] && export VK_DRIVER_FILES="$icd"
+egl=/usr/local/nvidia/share/glvnd/egl_vendor.d/10_nvidia.json
+[ -f "$egl" ] && export __EGL_VENDOR_LIBRARY_FILENAMES="$egl"
+out="${OUT:-$root/target/device-out}"
+mkdir -p "$out" "$root/target"
+"$bundle/bin/conformance" 2>&1 | tee "$out/conformance.log"
+rc=${PIPESTATUS[0]}
+cp "$root/target/conformance.md" "$out/" 2>/dev/null
+if [ -d "$root/target/conformance-failures" ]; then
+    tar czf "$out/conformance-failures.tar.gz" -C "$root/target" conformance-failures
+fi
+echo "conformance exit status $rc; results in $out"
+exit "$rc"
