@@ -18,6 +18,9 @@ pub struct Scene {
     pub camera: Camera,
     /// The sun: direction, colour and size.
     pub sun: Sun,
+    /// Date, time and place: when given, the sun's direction comes from astronomy.
+    #[serde(skip_serializing_if = "Sky::is_unset")]
+    pub sky: Sky,
     /// Planet and the spherical shell that holds the clouds.
     pub atmosphere: Atmosphere,
     /// The cloud model: coverage, type, wind, noise scales and erosion.
@@ -192,6 +195,37 @@ impl Default for Sun {
             illuminance: [10.0, 9.6, 9.0],
             angular_radius_deg: 0.2665,
         }
+    }
+}
+
+/// When and where the sky is seen (section `[sky]`). With a date-time and a place, the sun's
+/// direction is the real sun's there and then (`stratus-astro`: Meeus's series, within 0.011
+/// degrees of astropy's), replacing `[sun] elevation_deg`, `azimuth_deg` and `direction`.
+/// An animation advances the date with its time.
+#[derive(Serialize, Deserialize, Clone, Debug, PartialEq, Default)]
+#[serde(default, deny_unknown_fields)]
+pub struct Sky {
+    /// The instant, ISO 8601 in UTC (`2026-06-21T18:30:00Z`); years 1800-2200.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub date_utc: Option<stratus_astro::UtcDateTime>,
+    /// Geodetic latitude in degrees, north positive, within [-90, 90].
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub latitude_deg: Option<f64>,
+    /// Longitude in degrees, east positive, within [-180, 360).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub longitude_deg: Option<f64>,
+}
+
+impl Sky {
+    /// No field given: the sun comes from `[sun]`.
+    pub fn is_unset(&self) -> bool {
+        *self == Self::default()
+    }
+
+    /// The date and place, when all three are given and valid.
+    pub fn when_and_where(&self) -> Option<(stratus_astro::UtcDateTime, stratus_astro::Place)> {
+        let place = stratus_astro::Place::new(self.latitude_deg?, self.longitude_deg?).ok()?;
+        Some((self.date_utc?, place))
     }
 }
 
@@ -699,6 +733,7 @@ impl Scene {
     pub fn at_time(&self, t: f64) -> Self {
         let mut s = self.clone();
         s.clouds.time_s += t;
+        s.sky.date_utc = s.sky.date_utc.map(|d| d.plus_seconds(t));
         let Some(a) = &self.animation else {
             return s;
         };
@@ -738,6 +773,11 @@ impl Scene {
         scene.quality.step_length_m = Some(100.0);
         scene.animation = Some(Animation::default());
         scene.clouds.layers = vec![CloudLayer::default()];
+        scene.sky = Sky {
+            date_utc: "2000-01-01T12:00:00Z".parse().ok(),
+            latitude_deg: Some(0.0),
+            longitude_deg: Some(0.0),
+        };
         scene
     }
 

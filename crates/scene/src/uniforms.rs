@@ -180,20 +180,31 @@ fn wrap_f32(x: f64, period: f64) -> f32 {
     if r >= period as f32 { 0.0 } else { r }
 }
 
+/// The unit vector of an elevation and an azimuth clockwise from north, in world axes.
+fn direction(elevation_deg: f64, azimuth_deg: f64) -> [f64; 3] {
+    let (el, az) = (elevation_deg.to_radians(), azimuth_deg.to_radians());
+    [az.sin() * el.cos(), el.sin(), az.cos() * el.cos()]
+}
+
 impl Scene {
     /// Unit vector from the scene toward the sun, in world axes (X east, Y up, Z north).
     ///
-    /// `sun.direction` if it is given (normalised), otherwise from elevation and azimuth:
-    /// `(sin az * cos el, sin el, cos az * cos el)`.
+    /// The real sun's if `[sky]` gives a date and place; else `sun.direction` if it is given
+    /// (normalised); else from elevation and azimuth: `(sin az * cos el, sin el, cos az * cos el)`.
     pub fn sun_direction(&self) -> [f64; 3] {
+        if let Some((date, place)) = self.sky.when_and_where() {
+            let sun = stratus_astro::sun(place, date);
+            return direction(sun.elevation_deg, sun.azimuth_deg);
+        }
         if let Some(d) = self.sun.direction.and_then(normalize) {
             return d;
         }
-        let (el, az) = (
-            self.sun.elevation_deg.to_radians(),
-            self.sun.azimuth_deg.to_radians(),
-        );
-        [az.sin() * el.cos(), el.sin(), az.cos() * el.cos()]
+        direction(self.sun.elevation_deg, self.sun.azimuth_deg)
+    }
+
+    /// The sun's elevation above the horizon in degrees, from [`Scene::sun_direction`].
+    pub fn sun_elevation_deg(&self) -> f64 {
+        self.sun_direction()[1].clamp(-1.0, 1.0).asin().to_degrees()
     }
 
     /// The camera's unit `(forward, right, up)` vectors in world axes.

@@ -185,6 +185,7 @@ pub(crate) fn check(scene: &Scene) -> Vec<Issue> {
         }
     }
     c.colour("sun.illuminance", &sun.illuminance);
+    check_sky(&mut c, scene);
     c.float(
         "sun.angular_radius_deg",
         sun.angular_radius_deg,
@@ -402,6 +403,50 @@ pub(crate) fn check(scene: &Scene) -> Vec<Issue> {
 /// The extra cloud layers: each in range, at most [`MAX_EXTRA_LAYERS`], no two layers
 /// overlapping, and only where the renderer marches them (the volumetric model without
 /// empty-space skipping, whose occupancy grid covers one layer).
+/// `[sky]`: a date and a place together, each in range, and not alongside `sun.direction`.
+fn check_sky(c: &mut Checker, scene: &Scene) {
+    let sky = &scene.sky;
+    if sky.is_unset() {
+        return;
+    }
+    let lat_ok = sky
+        .latitude_deg
+        .is_none_or(|v| c.float("sky.latitude_deg", v, Incl(-90.0), Incl(90.0)));
+    let lon_ok = sky
+        .longitude_deg
+        .is_none_or(|v| c.float("sky.longitude_deg", v, Incl(-180.0), Excl(360.0)));
+    match (sky.date_utc, sky.latitude_deg, sky.longitude_deg) {
+        (Some(_), Some(_), Some(_)) => {}
+        (date, lat, lon) => {
+            let missing: Vec<&str> = [
+                (date.is_none(), "sky.date_utc"),
+                (lat.is_none(), "sky.latitude_deg"),
+                (lon.is_none(), "sky.longitude_deg"),
+            ]
+            .iter()
+            .filter(|(m, _)| *m)
+            .map(|(_, n)| *n)
+            .collect();
+            c.push(
+                "sky",
+                "(incomplete)".into(),
+                format!(
+                    "a date and a place go together: give {} too (or remove [sky] to set the sun by [sun])",
+                    missing.join(" and ")
+                ),
+            );
+            return;
+        }
+    }
+    if lat_ok && lon_ok && scene.sun.direction.is_some() {
+        c.push(
+            "sun.direction",
+            "(given)".into(),
+            "[sky] gives a date and place, which set the sun's direction: remove one of them",
+        );
+    }
+}
+
 fn check_layers(c: &mut Checker, scene: &Scene) {
     let layers = &scene.clouds.layers;
     if layers.is_empty() {

@@ -332,10 +332,7 @@ impl Results {
 /// A coarse scene class: where the camera is against the layer, and whether the sun is low.
 fn scene_class(scene: &Scene) -> &'static str {
     let alt = scene.camera.position[1];
-    let low_sun = match scene.sun.direction {
-        Some(d) => d[1] / (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt() < 0.17,
-        None => scene.sun.elevation_deg < 10.0,
-    };
+    let low_sun = scene.sun_elevation_deg() < 10.0;
     if alt > scene.atmosphere.cloud_top_m {
         "camera above the layer"
     } else if alt >= scene.atmosphere.cloud_bottom_m {

@@ -1,0 +1,80 @@
+//! `[sky]`: a date and a place set the sun's direction, bad ones are named, and animation
+//! moves the sun with time.
+
+use stratus_scene::Scene;
+
+const STOCKHOLM_EVENING: &str = r#"
+[sky]
+date_utc = "2026-06-21T18:30:00Z"
+latitude_deg = 59.33
+longitude_deg = 18.07
+"#;
+
+fn load(src: &str) -> Result<Scene, String> {
+    Scene::from_toml_str(src, "test.toml").map_err(|e| e.to_string())
+}
+
+#[test]
+fn a_date_and_place_set_the_sun() {
+    let s = load(STOCKHOLM_EVENING).expect("loads");
+    // `stratus astro` for the same date and place: elevation 8.2539, azimuth 302.9046.
+    let d = s.sun_direction();
+    let elevation = d[1].asin().to_degrees();
+    let azimuth = d[0].atan2(d[2]).to_degrees().rem_euclid(360.0);
+    assert!((elevation - 8.2539).abs() < 1e-3, "{elevation}");
+    assert!((azimuth - 302.9046).abs() < 1e-3, "{azimuth}");
+    assert!((s.sun_elevation_deg() - elevation).abs() < 1e-9);
+    // It replaces [sun]'s angles: changing them changes nothing.
+    let mut other = s.clone();
+    other.sun.elevation_deg = 70.0;
+    assert_eq!(other.sun_direction(), d);
+    // And survives the TOML round trip.
+    let again = load(&s.to_toml()).expect("round trip");
+    assert_eq!(again, s);
+    assert!(s.to_toml().contains("date_utc = \"2026-06-21T18:30:00Z\""));
+    // A scene without [sky] writes none.
+    assert!(!Scene::default().to_toml().contains("[sky]"));
+}
+
+#[test]
+fn animation_moves_the_sun_with_time() {
+    let s = load(STOCKHOLM_EVENING).expect("loads");
+    let later = s.at_time(3600.0);
+    assert_eq!(
+        later.sky.date_utc.map(|d| d.to_string()).as_deref(),
+        Some("2026-06-21T19:30:00Z")
+    );
+    // An hour later the evening sun is lower.
+    assert!(later.sun_elevation_deg() < s.sun_elevation_deg() - 3.0);
+}
+
+#[test]
+fn bad_skies_are_named() {
+    let e =
+        load("[sky]\ndate_utc = \"2026-06-21 18:30\"\nlatitude_deg = 1.0\nlongitude_deg = 2.0\n")
+            .unwrap_err();
+    assert!(
+        e.contains("date_utc") && e.contains("does not end in `Z`"),
+        "{e}"
+    );
+    let e = load(
+        "[sky]\ndate_utc = \"2026-06-31T18:30:00Z\"\nlatitude_deg = 1.0\nlongitude_deg = 2.0\n",
+    )
+    .unwrap_err();
+    assert!(e.contains("day 31 of 2026-06"), "{e}");
+    let e = load("[sky]\ndate_utc = \"2026-06-21T18:30:00Z\"\n").unwrap_err();
+    assert!(
+        e.contains("give sky.latitude_deg and sky.longitude_deg too"),
+        "{e}"
+    );
+    let e = load(&format!("{STOCKHOLM_EVENING}\n").replace("59.33", "95.0")).unwrap_err();
+    assert!(e.contains("sky.latitude_deg = 95"), "{e}");
+    let e = load(&format!(
+        "{STOCKHOLM_EVENING}\n[sun]\ndirection = [0.0, 1.0, 0.0]\n"
+    ))
+    .unwrap_err();
+    assert!(
+        e.contains("sun.direction") && e.contains("remove one of them"),
+        "{e}"
+    );
+}
