@@ -12,6 +12,7 @@
 //! - `fuzz`: replay the fuzz regressions, then fuzz every cargo-fuzz target for N seconds;
 //! - `device-bundle`: pack the conformance suite, the CLI, glslang and the validation layer
 //!   for a machine with a real GPU and no cargo (`tests/device/run.sh` runs it there);
+//! - `ephemeris-check` (opt-in, not in CI): stratus-astro's expected values from astropy;
 //! - `mitsuba-check` (opt-in, not in CI): the CPU reference against Mitsuba 3 on a gridded
 //!   cloud (see [`mitsuba_check`]).
 
@@ -23,6 +24,7 @@ use std::{
 };
 
 mod device;
+mod ephemeris;
 
 use anyhow::{Context, Result, bail};
 use clap::{Parser, Subcommand};
@@ -99,6 +101,18 @@ enum Task {
     /// binary, `stratus`, glslang, SPIRV-Tools, the validation layer) into
     /// `.device/bundle.tar.gz`; `tests/device/run.sh` runs it there (see its comments).
     DeviceBundle,
+    /// Opt-in, not in CI (needs the network once): install astropy in a virtual environment
+    /// under target/, write the expected sun and moon positions, phases, sunrises and sunsets
+    /// of random dates and places to crates/astro/tests/data/ephemeris.json, and run
+    /// stratus-astro's test against them.
+    EphemerisCheck {
+        /// Random dates and places.
+        #[arg(long, default_value_t = 600)]
+        cases: u32,
+        /// How many of them also get sunrise and sunset.
+        #[arg(long, default_value_t = 150)]
+        events: u32,
+    },
     /// Opt-in, not in CI (needs the network once): install Mitsuba 3 in a virtual environment
     /// under target/, export a gridded cloud with `stratus export-volume`, render it with
     /// Mitsuba and with the reference's path tracer, and compare block averages (single
@@ -145,6 +159,7 @@ fn main() -> ExitCode {
             target,
         } => fuzz(&root, seconds, runs, &target),
         Task::DeviceBundle => device::bundle(&root),
+        Task::EphemerisCheck { cases, events } => ephemeris::check(&root, cases, events),
         Task::MitsubaCheck {
             reference_spp,
             mitsuba_spp,
@@ -901,26 +916,13 @@ fn mitsuba_check(root: &Path, s: &MitsubaSettings) -> Result<()> {
     std::fs::create_dir_all(&work).with_context(|| format!("creating {}", work.display()))?;
 
     step("mitsuba virtual environment", || {
-        if !python.exists() {
-            run(Command::new("python3").args(["-m", "venv"]).arg(&venv))?;
-        }
-        let have = Command::new(&python)
-            .args(["-c", "import mitsuba, numpy; print(mitsuba.__version__)"])
-            .output();
-        match have {
-            Ok(o) if o.status.success() && String::from_utf8_lossy(&o.stdout).trim() == "3.9.1" => {
-                Ok(())
-            }
-            _ => run(Command::new(&python).args([
-                "-m",
-                "pip",
-                "install",
-                "--disable-pip-version-check",
-                MITSUBA,
-                "numpy",
-            ]))
-            .context("pip could not install Mitsuba 3 (it needs the network once)"),
-        }
+        python_venv(
+            &venv,
+            "import mitsuba, numpy; print(mitsuba.__version__)",
+            "3.9.1",
+            &[MITSUBA, "numpy"],
+        )
+        .context("pip could not install Mitsuba 3 (it needs the network once)")
     })?;
     step("cargo build --release -p stratus-cli", || {
         cargo(root, &["build", "--release", "-p", "stratus-cli"])
@@ -960,6 +962,24 @@ fn mitsuba_check(root: &Path, s: &MitsubaSettings) -> Result<()> {
         work.display()
     );
     result
+}
+
+/// A Python virtual environment at `venv` where `check` (Python code) prints `version`,
+/// installing `packages` with pip if it does not (the network is needed once).
+fn python_venv(venv: &Path, check: &str, version: &str, packages: &[&str]) -> Result<()> {
+    let python = venv.join("bin").join("python");
+    if !python.exists() {
+        run(Command::new("python3").args(["-m", "venv"]).arg(venv))?;
+    }
+    let have = Command::new(&python).args(["-c", check]).output();
+    match have {
+        Ok(o) if o.status.success() && String::from_utf8_lossy(&o.stdout).trim() == version => {
+            Ok(())
+        }
+        _ => run(Command::new(&python)
+            .args(["-m", "pip", "install", "--disable-pip-version-check"])
+            .args(packages)),
+    }
 }
 
 /// Runs a command, failing if it does.

@@ -1,6 +1,7 @@
 //! `stratus`: render, inspect and compare volumetric clouds.
 
 mod animate;
+mod astro;
 mod bench;
 mod compare;
 mod export;
@@ -63,6 +64,9 @@ enum Command {
     /// Turn weather into a scene: a METAR report (cloud groups become cloud layers), a
     /// weather-service JSON file, or a named weather state; print or write the scene (TOML).
     Weather(weather::WeatherArgs),
+    /// Where the sun and moon stand from a place at a UTC date-time (elevation, azimuth
+    /// clockwise from north), the moon's phase, and that day's sunrise and sunset, as JSON.
+    Astro(astro::AstroArgs),
     /// An interactive window: fly through the clouds (WASD, mouse), with an overlay of pass
     /// times and controls, screenshots (PNG and EXR) and camera-path recording; `--script`
     /// plays timed input events for headless tests.
@@ -95,6 +99,7 @@ fn main() -> ExitCode {
         Command::ExportKit(args) => kit::run(args),
         Command::Soak(args) => soak::run(args),
         Command::Weather(args) => weather::run(args),
+        Command::Astro(args) => astro::run(args),
         Command::View(args) => view::run(args),
     };
     match result {

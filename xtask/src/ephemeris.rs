@@ -1,0 +1,57 @@
+//! `cargo xtask ephemeris-check` (opt-in, not in CI: it needs the network once): installs
+//! astropy in a virtual environment under target/, writes the expected sun and moon positions,
+//! moon phases, sunrises and sunsets of random dates and places to
+//! `crates/astro/tests/data/ephemeris.json` (committed), and runs stratus-astro's test against
+//! them, printing the errors.
+
+use std::{path::Path, process::Command};
+
+use anyhow::{Context, Result};
+
+/// The astropy the expected values were made with.
+const ASTROPY: &str = "8.0.2";
+/// The script (written to target/ephemeris-check/ and run there).
+const SCRIPT: &str = include_str!("ephemeris_check.py");
+
+/// `cargo xtask ephemeris-check --cases N --events M`.
+pub fn check(root: &Path, cases: u32, events: u32) -> Result<()> {
+    let target = crate::target_dir(root);
+    let venv = target.join("ephemeris-venv");
+    crate::step("astropy virtual environment", || {
+        crate::python_venv(
+            &venv,
+            "import astropy; print(astropy.__version__)",
+            ASTROPY,
+            &[&format!("astropy=={ASTROPY}")],
+        )
+        .context("pip could not install astropy (it needs the network once)")
+    })?;
+    let work = target.join("ephemeris-check");
+    std::fs::create_dir_all(&work)?;
+    let script = work.join("ephemeris_check.py");
+    std::fs::write(&script, SCRIPT)?;
+    let out = root.join("crates/astro/tests/data/ephemeris.json");
+    crate::step("expected values from astropy", || {
+        crate::run(
+            Command::new(venv.join("bin").join("python"))
+                .arg(&script)
+                .arg(&out)
+                .arg(cases.to_string())
+                .arg(events.to_string()),
+        )
+    })?;
+    crate::step("stratus-astro against them", || {
+        crate::cargo(
+            root,
+            &[
+                "test",
+                "-p",
+                "stratus-astro",
+                "--test",
+                "ephemeris",
+                "--",
+                "--nocapture",
+            ],
+        )
+    })
+}
