@@ -31,6 +31,7 @@
 
 #![warn(missing_docs)]
 
+pub mod atmosphere;
 mod composite;
 mod density;
 mod frame;
