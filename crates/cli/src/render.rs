@@ -86,6 +86,16 @@ pub struct RenderArgs {
     /// its weather picks the state (see `stratus weather`).
     #[arg(long, value_name = "METAR")]
     weather: Option<String>,
+    /// The sun of a date and place: a UTC date-time (ISO 8601, e.g. 2026-06-21T18:30:00Z),
+    /// with --lat and --lon; sets the scene's [sky] (see `stratus astro`).
+    #[arg(long, value_name = "UTC", requires_all = ["lat", "lon"])]
+    date: Option<String>,
+    /// With --date: latitude in degrees, north positive.
+    #[arg(long, allow_hyphen_values = true, requires = "date")]
+    lat: Option<f64>,
+    /// With --date: longitude in degrees, east positive.
+    #[arg(long, allow_hyphen_values = true, requires = "date")]
+    lon: Option<f64>,
     /// Image size as WIDTHxHEIGHT (overrides the scene's camera.resolution).
     #[arg(long, value_parser = parse_size)]
     size: Option<(u32, u32)>,
@@ -288,6 +298,22 @@ pub fn run(args: RenderArgs) -> Result<()> {
     }
     if let Some(t) = args.temporal {
         scene.quality.temporal = t;
+    }
+    if let Some(date) = &args.date {
+        scene.sky = stratus_scene::Sky {
+            date_utc: Some(date.parse().map_err(|e| anyhow::anyhow!("--date: {e}"))?),
+            latitude_deg: args.lat,
+            longitude_deg: args.lon,
+        };
+        // The date and place set the sun: a direction of the scene's own would contradict it.
+        scene.sun.direction = None;
+        scene.validate().map_err(|e| anyhow::anyhow!("{e}"))?;
+        let d = scene.sun_direction();
+        eprintln!(
+            "sun: elevation {:.2} deg, azimuth {:.2} deg (from the date and place)",
+            scene.sun_elevation_deg(),
+            d[0].atan2(d[2]).to_degrees().rem_euclid(360.0)
+        );
     }
     if let Some(m) = args.method {
         scene.quality.method = m.method();

@@ -87,3 +87,35 @@ fn astro_names_a_bad_date_or_place() {
     ]);
     assert!(!ok && text.contains("latitude 100"), "{text}");
 }
+
+#[test]
+fn render_takes_the_sun_from_a_date_and_place() {
+    let dir = std::env::temp_dir().join(format!("stratus-astro-render-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("scratch dir");
+    let out = dir.join("sun.png");
+    let out = out.to_str().expect("utf-8 path");
+    let (ok, text) = stratus(&[
+        "render",
+        "--date",
+        "2026-06-21T17:30:00Z",
+        "--lat",
+        "59.33",
+        "--lon",
+        "18.07",
+        "--size",
+        "16x9",
+        "--backend",
+        "cpu",
+        "--out",
+        out,
+    ]);
+    assert!(ok, "{text}");
+    // The sun `stratus astro` gives for that hour, low in the west-north-west.
+    assert!(
+        text.contains("sun: elevation 15.07 deg, azimuth 290.70 deg (from the date and place)"),
+        "{text}"
+    );
+    let (ok, text) = stratus(&["render", "--date", "2026-06-21T17:30:00Z", "--lat", "59.33"]);
+    assert!(!ok && text.contains("--lon"), "{text}");
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -55,7 +55,7 @@ pub use presets::{DEFAULT_PRESET, PresetInfo, presets};
 pub use scene::{
     Animation, Atmosphere, Camera, CloudLayer, Clouds, HeightModel, Integration, Integrator,
     Keyframe, Lighting, MAX_EXTRA_LAYERS, Method, MultipleScattering, Noise, Phase, PhaseModel,
-    Quality, Scene, ShapeTexture, Sun, Temporal,
+    Quality, Scene, ShapeTexture, Sky, Sun, Temporal,
 };
 pub use uniforms::FrameUniforms;
 pub use validate::{MAX_LIGHT_STEPS, MAX_OCTAVES, MAX_RESOLUTION, MAX_VIEW_STEPS};
