@@ -65,6 +65,22 @@ pub enum Error {
         /// The device, in words.
         device: String,
     },
+    /// The frame's images need more memory than the device has.
+    #[error(
+        "the frame at {width}x{height} needs {needed_gib:.1} GiB of images; the Vulkan device {device} has {heap_gib:.1} GiB of device memory: render a smaller image"
+    )]
+    TooLarge {
+        /// Plan width.
+        width: u32,
+        /// Plan height.
+        height: u32,
+        /// What the plan's resources take, GiB.
+        needed_gib: f64,
+        /// The largest device-local heap, GiB.
+        heap_gib: f64,
+        /// The device, in words.
+        device: String,
+    },
     /// The validation layer reported warnings or errors (leaked objects included).
     #[error("the Vulkan validation layer reported {} problem(s):\n{}", .0.len(), .0.join("\n"))]
     Validation(Vec<String>),

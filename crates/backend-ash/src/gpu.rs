@@ -91,6 +91,8 @@ pub(crate) struct DeviceInfo {
     /// Whether arrays of samplers may be indexed by dynamically uniform values
     /// (`shaderSampledImageArrayDynamicIndexing`; enabled when offered).
     pub sampler_array_indexing: bool,
+    /// Bytes of the largest device-local memory heap.
+    pub device_memory: u64,
 }
 
 /// Everything that lives as long as the renderer.
@@ -217,6 +219,14 @@ fn candidate(
     }
     // SAFETY: as above.
     let features = unsafe { instance.get_physical_device_features(physical) };
+    // SAFETY: as above.
+    let memory = unsafe { instance.get_physical_device_memory_properties(physical) };
+    let device_memory = memory.memory_heaps[..memory.memory_heap_count as usize]
+        .iter()
+        .filter(|h| h.flags.contains(vk::MemoryHeapFlags::DEVICE_LOCAL))
+        .map(|h| h.size)
+        .max()
+        .unwrap_or(0);
     Ok(Candidate {
         physical,
         family: family as u32,
@@ -228,6 +238,7 @@ fn candidate(
             max_stage_samplers: props.limits.max_per_stage_descriptor_samplers,
             sampler_array_indexing: features.shader_sampled_image_array_dynamic_indexing
                 == vk::TRUE,
+            device_memory,
         },
     })
 }

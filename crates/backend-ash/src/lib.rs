@@ -472,6 +472,19 @@ impl Renderer {
                 device: info.name.clone(),
             });
         }
+        // Before allocating: the plan's images against the device's memory (an allocation
+        // failing half-way would name one image, not what to do).
+        let needed: u64 = plan.resources.iter().map(|r| r.image_bytes()).sum();
+        if info.device_memory > 0 && needed > info.device_memory {
+            let gib = |b: u64| b as f64 / f64::from(1u32 << 30);
+            return Err(Error::TooLarge {
+                width: plan.width,
+                height: plan.height,
+                needed_gib: gib(needed),
+                heap_gib: gib(info.device_memory),
+                device: info.name.clone(),
+            });
+        }
         if plan_changed {
             self.drop_state();
         }

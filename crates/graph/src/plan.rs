@@ -84,6 +84,21 @@ impl PlanResource {
         (self.counters.len() * 4) as u64
     }
 
+    /// Bytes of device memory the resource's textures take (both halves of a history pair);
+    /// 0 for what has no extent. Read-back buffers, in host memory on a discrete GPU, are not
+    /// counted.
+    pub fn image_bytes(&self) -> u64 {
+        let (Some([w, h, d]), Some(format)) = (self.extent, self.format) else {
+            return 0;
+        };
+        let one = u64::from(w) * u64::from(h) * u64::from(d) * u64::from(format.texel_size());
+        if self.lifetime == Lifetime::History {
+            2 * one
+        } else {
+            one
+        }
+    }
+
     /// Whether a pass computes its contents, once and again only when they go stale: a
     /// persistent resource that is not uploaded (a LUT).
     pub fn is_computed_persistent(&self) -> bool {
