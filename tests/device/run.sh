@@ -18,7 +18,9 @@ if [ ! -f .device/bundle.tar.gz ]; then
     echo "error: .device/bundle.tar.gz is missing: run \`cargo xtask device-bundle\` and carry .device" >&2
     exit 2
 fi
-if [ -d .gl ] && ! ldconfig -p | grep -q libvulkan.so.1; then
+shopt -s nullglob
+# (grep without -q: with pipefail, -q's early exit would fail ldconfig with SIGPIPE.)
+if [ -d .gl ] && ! ldconfig -p | grep libvulkan.so.1 >/dev/null; then
     for f in .gl/*.deb; do dpkg -x "$f" /; done
     ldconfig
 fi
@@ -34,6 +36,8 @@ egl=/usr/local/nvidia/share/glvnd/egl_vendor.d/10_nvidia.json
 [ -f "$egl" ] && export __EGL_VENDOR_LIBRARY_FILENAMES="$egl"
 out="${OUT:-$root/target/device-out}"
 mkdir -p "$out" "$root/target"
+# A table or failure images left by an earlier run must not pass for this run's.
+rm -rf "$root/target/conformance.md" "$root/target/conformance-failures"
 "$bundle/bin/conformance" 2>&1 | tee "$out/conformance.log"
 rc=${PIPESTATUS[0]}
 cp "$root/target/conformance.md" "$out/" 2>/dev/null

@@ -195,6 +195,28 @@ mod tests {
     }
 
     #[test]
+    fn east_longitudes_past_180_are_the_west_ones() {
+        // [-180, 360) is accepted: 200 east is 160 west, for positions and for the local day.
+        let t = at("2031-02-03T04:05:06Z");
+        let (a, b) = (
+            Place::new(-33.9, 200.0).unwrap(),
+            Place::new(-33.9, -160.0).unwrap(),
+        );
+        let (sa, sb) = (sun(a, t), sun(b, t));
+        assert!(
+            (sa.elevation_deg - sb.elevation_deg).abs() < 1e-9,
+            "{sa:?} {sb:?}"
+        );
+        assert!(
+            (sa.azimuth_deg - sb.azimuth_deg).abs() < 1e-9,
+            "{sa:?} {sb:?}"
+        );
+        let (ma, mb) = (moon(a, t), moon(b, t));
+        assert!((ma.elevation_deg - mb.elevation_deg).abs() < 1e-9);
+        assert_eq!(sun_events(a, t), sun_events(b, t));
+    }
+
+    #[test]
     fn places_out_of_range_are_named() {
         assert!(
             Place::new(91.0, 0.0)

@@ -185,7 +185,9 @@ impl FromStr for UtcDateTime {
             Some(s) => {
                 let (whole, frac) = s.split_once('.').unwrap_or((s, ""));
                 let whole = number(Some(whole), 2)?;
-                if !frac.bytes().all(|b| b.is_ascii_digit()) {
+                // A dot needs digits after it.
+                if !frac.bytes().all(|b| b.is_ascii_digit()) || (frac.is_empty() && s.contains('.'))
+                {
                     return Err(expected());
                 }
                 let frac: f64 = if frac.is_empty() {
@@ -335,6 +337,7 @@ mod tests {
             ("1500-01-01T00:00:00Z", "year 1500"),
             ("21/06/2026 18:30Z", "expected ISO 8601"),
             ("2026-6-21T18:30:00Z", "expected ISO 8601"),
+            ("2026-06-21T18:30:00.Z", "expected ISO 8601"),
             ("", "does not end in `Z`"),
         ] {
             let e = text.parse::<UtcDateTime>().unwrap_err().to_string();

@@ -476,6 +476,11 @@ impl Gpu {
         Ok(gpu)
     }
 
+    /// Whether the validation layer and its messenger are on.
+    pub fn validation(&self) -> bool {
+        self.debug.is_some()
+    }
+
     /// Turns the validation messages gathered since the last check into an error.
     pub fn check_messages(&self) -> Result<(), Error> {
         let taken = match self.messages.lock() {

@@ -142,6 +142,8 @@ pub struct Renderer {
     created: u64,
     cpu_timing: bool,
     torn_down: bool,
+    /// The device was lost: every later frame says so at once.
+    lost: Option<&'static str>,
     gpu: Gpu,
 }
 
@@ -175,6 +177,7 @@ impl Renderer {
             created: 0,
             cpu_timing: false,
             torn_down: false,
+            lost: None,
             gpu,
         })
     }
@@ -238,8 +241,17 @@ impl Renderer {
                 list.len(),
             )));
         }
+        if let Some(call) = self.lost {
+            return Err(Error::DeviceLost { call });
+        }
         self.gpu.check_messages()?;
         let result = self.render_inner(frame, shaders);
+        if let Err(Error::DeviceLost { call }) = &result {
+            // Nothing more runs on a lost device: no rebuilding on it, and the loss is what
+            // the caller hears (before any message the layer adds about it).
+            self.lost = Some(call);
+            return result;
+        }
         if result.is_err() {
             // SAFETY: valid device. The frame may still be in flight after a failed step;
             // wait, and build everything anew next time (the tracker's states may be stale).
@@ -1502,6 +1514,12 @@ impl Backend for Renderer {
     }
     fn objects_created(&self) -> u64 {
         self.created
+    }
+    fn finish(self: Box<Self>) -> Result<(), BackendError> {
+        Ok(Renderer::finish(*self)?)
+    }
+    fn validated(&self) -> bool {
+        self.gpu.validation()
     }
 }
 

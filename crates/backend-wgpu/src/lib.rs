@@ -174,6 +174,8 @@ pub struct Renderer {
     /// Why the device was lost, once it is, where the renderer owns the device (an application
     /// keeps its own callback; its errors then say "lost" instead).
     lost: Arc<Mutex<Option<String>>>,
+    /// Whether the renderer's own instance has validation on.
+    validation: bool,
     created: u64,
 }
 
@@ -251,7 +253,9 @@ impl Renderer {
         let errors = Arc::new(Mutex::new(Vec::new()));
         let sink = errors.clone();
         device.on_uncaptured_error(Arc::new(move |e: wgpu::Error| {
-            sink.lock().unwrap().push(e.to_string());
+            sink.lock()
+                .unwrap_or_else(|e| e.into_inner())
+                .push(e.to_string());
         }));
         let lost = Arc::new(Mutex::new(None));
         let lost_sink = lost.clone();
@@ -262,6 +266,7 @@ impl Renderer {
         let mut renderer = Self::build(device, queue, describe(&info), program);
         renderer.errors = Some(errors);
         renderer.lost = lost;
+        renderer.validation = options.validation;
         renderer.check_errors()?;
         Ok(renderer)
     }
@@ -309,6 +314,7 @@ impl Renderer {
             readbacks: HashMap::new(),
             errors: None,
             lost: Arc::new(Mutex::new(None)),
+            validation: false,
             created: 0,
         }
     }
@@ -373,17 +379,12 @@ impl Renderer {
         }
     }
 
-    /// A wgpu error message as an [`Error`]: a lost device (on an application's device, where
-    /// no callback of ours is set, wgpu's errors are how it shows) or any other error.
+    /// A wgpu error message as an [`Error`]: the device's loss once our callback has seen it
+    /// (wgpu reports a loss through the callback alone, never through its errors), else the
+    /// message.
     fn classify(&self, message: String) -> Error {
         if let Err(lost) = self.check_lost() {
             return lost;
-        }
-        if message.contains("is lost") || message.contains("DeviceLost") {
-            return Error::DeviceLost {
-                adapter: self.description.clone(),
-                reason: message,
-            };
         }
         Error::Wgpu(message)
     }
@@ -548,10 +549,8 @@ impl Renderer {
     }
 
     fn wait(&self) -> Result<(), Error> {
-        self.device
-            .poll(wgpu::PollType::wait_indefinitely())
-            .map(|_| ())
-            .map_err(|e| Error::Wgpu(e.to_string()))
+        poll(&self.device)?;
+        self.check_lost()
     }
 
     /// Writes the uniforms and clears the counters of a counting frame; returns the uniforms.
@@ -1265,6 +1264,9 @@ impl Backend for Renderer {
     fn objects_created(&self) -> u64 {
         self.created
     }
+    fn validated(&self) -> bool {
+        self.validation
+    }
 }
 
 fn extent3d([width, height, depth_or_array_layers]: [u32; 3]) -> wgpu::Extent3d {
@@ -1282,6 +1284,29 @@ fn class_of(t: wgpu::DeviceType) -> DeviceClass {
         wgpu::DeviceType::VirtualGpu => DeviceClass::Virtual,
         wgpu::DeviceType::Other => DeviceClass::Other,
         wgpu::DeviceType::Cpu => DeviceClass::Cpu,
+    }
+}
+
+/// Waits for the device. wgpu 30's `Device::poll` panics on any error but a timeout (a real
+/// device loss among them, after the lost callback has run), so the panic is caught and
+/// turned into an error; the caller then finds the loss the callback recorded.
+fn poll(device: &wgpu::Device) -> Result<(), Error> {
+    let waited = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+        device.poll(wgpu::PollType::wait_indefinitely())
+    }));
+    match waited {
+        Ok(Ok(_)) => Ok(()),
+        Ok(Err(e)) => Err(Error::Wgpu(e.to_string())),
+        Err(panic) => {
+            let what = panic
+                .downcast_ref::<String>()
+                .map(String::as_str)
+                .or_else(|| panic.downcast_ref::<&str>().copied())
+                .unwrap_or("no message");
+            Err(Error::Wgpu(format!(
+                "waiting for the device failed ({what}): the device was lost"
+            )))
+        }
     }
 }
 
@@ -1321,9 +1346,7 @@ fn read_buffer(
     slice.map_async(wgpu::MapMode::Read, move |r| {
         let _ = tx.send(r);
     });
-    device
-        .poll(wgpu::PollType::wait_indefinitely())
-        .map_err(|e| Error::Wgpu(e.to_string()))?;
+    poll(device)?;
     rx.recv()
         .map_err(|e| Error::Wgpu(e.to_string()))?
         // wgpu drops "device lost" errors in favour of the device-lost callback, so on an

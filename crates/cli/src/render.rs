@@ -224,6 +224,9 @@ pub fn open_realtime_with(
         ),
         Backend::Auto => match wgpu(backend_wgpu::Api::Vulkan, validation) {
             Ok(r) => Box::new(r),
+            // Validation was asked for and cannot be had: say so, rather than render
+            // unvalidated on another backend.
+            Err(e @ backend_wgpu::Error::NoValidationLayer) => return Err(e.into()),
             Err(vulkan) => match wgpu(backend_wgpu::Api::Gl, validation) {
                 Ok(r) => {
                     eprintln!(

@@ -66,28 +66,22 @@ fn check_validation(what: &str) -> Result<()> {
     }
 }
 
-/// One cycle: a renderer created, used for one frame and destroyed; the frame's non-finite
-/// values. The ash renderer is torn down with `finish`, which returns what the layer reported
-/// while destroying the device: objects left alive among it.
+/// One cycle: a renderer created, used for one frame and torn down with `finish`, which
+/// returns what validation reported while destroying the device (objects left alive among
+/// it). The frame's non-finite values, and whether the renderer was validated.
 fn one_cycle(
     args: &SoakArgs,
     scene: &Scene,
     plan: &FramePlan,
     noise: &Arc<stratus_noise::NoiseSet>,
-) -> Result<usize> {
+) -> Result<(usize, bool)> {
     let input = FrameInput::new(plan, scene, noise).with_readback(Readback::output());
-    if args.backend == Backend::Ash {
-        let mut r = stratus_backend_ash::Renderer::new(stratus_backend_ash::Options {
-            validation: args.validation(),
-        })?;
-        let f = r.render(&input)?;
-        r.finish()?;
-        return Ok(non_finite(&f));
-    }
     let mut r = open_realtime_with(args.backend, false, args.validation())?;
     let f = r.render(&input).map_err(|e| anyhow::anyhow!("{e}"))?;
-    drop(r);
-    Ok(non_finite(&f))
+    let validated = r.validated();
+    r.finish()
+        .map_err(|e| anyhow::anyhow!("tearing down: {e}"))?;
+    Ok((non_finite(&f), validated))
 }
 
 /// `--cycles N`: renderers created and dropped, RSS after the first few and at the end.
@@ -108,9 +102,12 @@ fn cycles(args: &SoakArgs, n: u32) -> Result<()> {
         }
         bar
     });
+    let mut validated = true;
     for i in 0..n {
-        nan += one_cycle(args, &scene, &plan, &noise)
+        let (bad, checked) = one_cycle(args, &scene, &plan, &noise)
             .map_err(|e| anyhow::anyhow!("cycle {i}: {e}"))?;
+        nan += bad;
+        validated &= checked;
         if args.validation() {
             check_validation(&format!("cycle {i}"))?;
         }
@@ -137,7 +134,7 @@ fn cycles(args: &SoakArgs, n: u32) -> Result<()> {
     println!("non-finite values: {nan}");
     println!(
         "{}",
-        validation_line(args, &format!("{n} device teardowns"))
+        validation_line(args, validated, &format!("{n} device teardowns"))
     );
     println!(
         "RSS: {} after {warm} cycles, {} after {n}{per}",
@@ -204,9 +201,12 @@ fn settle(
     Ok(last.expect("at least one frame"))
 }
 
-/// What validation found, in a line: by here any message has failed the soak.
-fn validation_line(args: &SoakArgs, over: &str) -> String {
-    if args.validation() {
+/// What validation found, in a line: by here any message has failed the soak. `validated`:
+/// whether the renderers had validation on (the CPU renderer has none).
+fn validation_line(args: &SoakArgs, validated: bool, over: &str) -> String {
+    if args.validation() && !validated {
+        "validation: asked for, but the CPU renderer has no validation layer".into()
+    } else if args.validation() {
         format!(
             "validation: on, no messages over {over} (the layer's object tracking reports any object alive at device destruction)"
         )
@@ -335,15 +335,21 @@ pub fn run(args: SoakArgs) -> Result<()> {
         "drift: {} frames after the stop against a fresh renderer's still: FLIP mean {:.2e}, max abs {:.2e}",
         args.settle, display.flip.mean, linear.max_abs
     );
+    // Both renderers torn down before the verdict: what outlives a device is reported then
+    // (ash returns it from `finish`, wgpu logs it).
+    let validated = renderer.validated() && fresh.validated();
+    fresh
+        .finish()
+        .map_err(|e| anyhow::anyhow!("tearing down: {e}"))?;
+    renderer
+        .finish()
+        .map_err(|e| anyhow::anyhow!("tearing down: {e}"))?;
     if args.validation() {
-        // Both devices destroyed first: what outlives a device is reported then.
-        drop(fresh);
-        drop(renderer);
         check_validation("the loop")?;
     }
     println!(
         "{}",
-        validation_line(&args, &format!("{} frames", args.frames))
+        validation_line(&args, validated, &format!("{} frames", args.frames))
     );
     if nan > 0 {
         bail!("{nan} non-finite values in {nan_frames} frames");

@@ -55,6 +55,13 @@ fn create_destroy_cycles_leave_nothing_alive_under_validation() {
         );
         assert!(text.contains("a cycle over the last 2"), "{text}");
     }
+    // The CPU renderer has no layer to ask: said, not claimed.
+    let (ok, text) = stratus(&["soak", "--cycles", "2", "--validate", "--backend", "cpu"]);
+    assert!(ok, "{text}");
+    assert!(
+        text.contains("validation: asked for, but the CPU renderer has no validation layer"),
+        "{text}"
+    );
     let (ok, text) = stratus(&[
         "soak",
         "--frames",

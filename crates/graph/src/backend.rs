@@ -188,6 +188,15 @@ pub trait Backend {
     fn objects_created(&self) -> u64 {
         0
     }
+    /// Tears the renderer down and reports what its validation said while doing so (objects
+    /// left alive when the device is destroyed); dropping it instead can only print that.
+    fn finish(self: Box<Self>) -> Result<(), BackendError> {
+        Ok(())
+    }
+    /// Whether validation checks this renderer's work (a GPU backend created with it on).
+    fn validated(&self) -> bool {
+        false
+    }
 }
 
 /// What kind of device an adapter is.

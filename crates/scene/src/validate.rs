@@ -400,9 +400,6 @@ pub(crate) fn check(scene: &Scene) -> Vec<Issue> {
     c.issues
 }
 
-/// The extra cloud layers: each in range, at most [`MAX_EXTRA_LAYERS`], no two layers
-/// overlapping, and only where the renderer marches them (the volumetric model without
-/// empty-space skipping, whose occupancy grid covers one layer).
 /// `[sky]`: a date and a place together, each in range, and not alongside `sun.direction`.
 fn check_sky(c: &mut Checker, scene: &Scene) {
     let sky = &scene.sky;
@@ -447,6 +444,9 @@ fn check_sky(c: &mut Checker, scene: &Scene) {
     }
 }
 
+/// The extra cloud layers: each in range, at most [`MAX_EXTRA_LAYERS`], no two layers
+/// overlapping, and only where the renderer marches them (the volumetric model without
+/// empty-space skipping, whose occupancy grid covers one layer).
 fn check_layers(c: &mut Checker, scene: &Scene) {
     let layers = &scene.clouds.layers;
     if layers.is_empty() {

@@ -296,11 +296,14 @@ impl Run {
         let scratch = report::target_dir().join("tmp").join("conformance");
         let mut renderers = Renderers::new(scratch);
         let devices = renderers.devices();
-        let device = devices
+        // The device wgpu-vulkan runs on, or ash's where wgpu could not start (that failure is
+        // reported on its own); with neither, the strict class.
+        let device = [Path::WgpuVulkan, Path::AshSpv]
             .iter()
-            .find(|(p, _)| *p == Path::WgpuVulkan)
+            .filter_map(|p| devices.iter().find(|(q, _)| q == p))
             .map(|(_, d)| d.as_str())
-            .unwrap_or_default();
+            .find(|d| !d.starts_with("unavailable"))
+            .unwrap_or(report::GOLDEN_DEVICE);
         let class = report::DeviceClass::of(device).unwrap_or_else(|e| panic!("{e}"));
         renderers.class = class;
         let t_devices = t0.elapsed() - t_noise;
@@ -456,7 +459,7 @@ impl SceneResult {
                     let bound = if path == Path::Cpu {
                         report::CPU_COUNTERS
                     } else {
-                        report::gpu_counter_bound(path)
+                        report::gpu_counter_bound(path, name, class)
                     };
                     if !report::within(rel, bound) {
                         cell.problems.push(format!(

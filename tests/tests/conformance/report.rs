@@ -168,13 +168,15 @@ pub const CPU_COUNTERS: f64 = 5e-3;
 /// Exact (0) where the two share the compiler's output: ash-spv runs the SPIR-V naga writes
 /// for wgpu-vulkan too. Through a second compiler (Mesa's GLSL compiler on wgpu-gl, glslang on
 /// ash-glsl and ash-hlsl) rounding may move a sample across a cloud's edge or an early exit,
-/// so those are bounded as measured: on lavapipe the basic marcher on wgpu-gl, density
-/// evaluations 939131 against 939099 (0.0034%; it marches every ray to the end with no early
-/// exit); on an NVIDIA H100 (driver 580), ash-hlsl against wgpu-vulkan, 0.002%. Every other
-/// scene and path measured 0 on lavapipe.
-pub fn gpu_counter_bound(path: Path) -> f64 {
-    match path {
-        Path::WgpuGl | Path::AshGlsl | Path::AshHlsl => 1e-4,
+/// so those are bounded as measured. On the golden device (lavapipe) they count exactly alike
+/// on every scene but one: the basic marcher on wgpu-gl, density evaluations 939131 against
+/// 939099 (0.0034%; it marches every ray to the end with no early exit). On an NVIDIA H100
+/// (driver 580), ash-hlsl against wgpu-vulkan differed by 0.002%: on other devices the three
+/// are held to 0.01%.
+pub fn gpu_counter_bound(path: Path, scene: &str, class: DeviceClass) -> f64 {
+    match (path, class) {
+        (Path::WgpuGl | Path::AshGlsl | Path::AshHlsl, DeviceClass::Other) => 1e-4,
+        (Path::WgpuGl, DeviceClass::Golden) if scene == "stress-method-basic" => 1e-4,
         _ => 0.0,
     }
 }
@@ -265,12 +267,14 @@ pub const GOLDEN: Thresholds = Thresholds {
 
 /// The golden image comparison on a device of another class. Measured on an NVIDIA H100
 /// (driver 580): FLIP mean 0.003-0.016 over the scenes, the pattern and size of the CPU
-/// reference's and SwiftShader's differences (0.0021-0.0107), and for the same reason: those
-/// filter textures at full precision where lavapipe quantises the filter weights. So the
-/// bounds are the CPU path's (its p99 bound too: the H100's p99 was not recorded).
+/// reference's and SwiftShader's differences (mean up to 0.0107, p99 up to 0.057), and for the
+/// same reason: those filter textures at full precision where lavapipe quantises the filter
+/// weights. Bounds: 2.5x the H100's largest mean; the H100's p99 was not recorded, so the p99
+/// bound is 2.5x the largest p99 of the full-precision paths here (CPU and SwiftShader, 0.057).
+/// A device run that measures more replaces these numbers, not the other way round.
 pub const CROSS_DEVICE_GOLDEN: Thresholds = Thresholds {
-    flip_mean: CPU.flip_mean,
-    flip_p99: CPU.flip_p99,
+    flip_mean: 4e-2,
+    flip_p99: 1.5e-1,
     max_abs: f64::INFINITY,
     rmse: f64::INFINITY,
 };
@@ -577,7 +581,7 @@ pub fn maxima(run: &Run, markdown: bool) -> String {
             match bound {
                 Some(t) => {
                     let mut text = format!(
-                        "{:.0e}, {:.0e}, {:.0e}, {:.0e}",
+                        "{:.1e}, {:.1e}, {:.1e}, {:.1e}",
                         t.flip_mean, t.flip_p99, t.max_abs, t.rmse
                     );
                     if p == Path::Cpu {

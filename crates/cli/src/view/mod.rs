@@ -415,6 +415,8 @@ impl ViewState {
                 s.sun.elevation_deg = el;
                 s.sun.azimuth_deg = az;
                 s.sun.direction = None;
+                // The sun set by hand replaces one set by a date and place.
+                s.sky = Default::default();
             });
         }
         if let Some(t) = e.time_s {
@@ -590,6 +592,13 @@ impl ViewState {
                         });
                         if s != self.scene {
                             s.sun.direction = None;
+                            // Moving the sun's sliders takes the sun from them, not from a
+                            // [sky] date and place (which would ignore them).
+                            if (s.sun.elevation_deg, s.sun.azimuth_deg)
+                                != (self.scene.sun.elevation_deg, self.scene.sun.azimuth_deg)
+                            {
+                                s.sky = Default::default();
+                            }
                             self.try_scene(|x| *x = s);
                         }
                         ui.horizontal(|ui| {
