@@ -197,15 +197,22 @@ impl AtmosphereModel {
             }
         }
         if ground {
-            let x = add(p, scale(view, length));
-            let normal = scale(x, 1.0 / norm(x));
-            let lit = dot(normal, sun).max(0.0);
-            let t_sun = self.transmittance_to_top(add(x, scale(normal, 1.0)), sun);
+            let lit = self.ground_radiance(add(p, scale(view, length)), sun);
             for c in 0..3 {
-                radiance[c] += (-tau[c]).exp() * self.ground_albedo[c] / PI * lit * t_sun[c];
+                radiance[c] += (-tau[c]).exp() * lit[c];
             }
         }
         radiance
+    }
+
+    /// Radiance leaving the diffuse ground at `g` (on the sphere), per unit sun illuminance:
+    /// albedo / pi times the sun's cosine there and its light left after the atmosphere.
+    fn ground_radiance(&self, g: [f64; 3], sun: [f64; 3]) -> Rgb {
+        let normal = scale(g, 1.0 / norm(g));
+        let lit = dot(normal, sun).max(0.0);
+        // A metre up, so that the ray to the sun starts above the sphere it leaves.
+        let t_sun = self.transmittance_to_top(add(g, normal), sun);
+        std::array::from_fn(|c| self.ground_albedo[c] / PI * lit * t_sun[c])
     }
 
     /// Hillaire's multiple-scattering term Psi_ms at `x` (per unit sun illuminance, to be
@@ -243,12 +250,9 @@ impl AtmosphereModel {
                 }
             }
             if ground {
-                let g = add(x, scale(d, length));
-                let normal = scale(g, 1.0 / norm(g));
-                let lit = dot(normal, sun).max(0.0);
-                let t_sun = self.transmittance_to_top(add(g, scale(normal, 1.0)), sun);
+                let lit = self.ground_radiance(add(x, scale(d, length)), sun);
                 for c in 0..3 {
-                    l2[c] += (-tau[c]).exp() * self.ground_albedo[c] / PI * lit * t_sun[c];
+                    l2[c] += (-tau[c]).exp() * lit[c];
                 }
             }
         }
