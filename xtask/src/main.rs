@@ -782,7 +782,14 @@ fn web(root: &Path, port: u16) -> Result<()> {
 }
 
 /// The cargo-fuzz targets (fuzz/Cargo.toml).
-const FUZZ_TARGETS: [&str; 5] = ["scene_toml", "wgsl", "image_png", "image_exr", "metar"];
+const FUZZ_TARGETS: [&str; 6] = [
+    "scene_toml",
+    "wgsl",
+    "image_png",
+    "image_exr",
+    "metar",
+    "utc_date",
+];
 
 /// `cargo xtask fuzz --seconds N [--runs N] [--target NAME]...`.
 fn fuzz(root: &Path, seconds: u32, runs_limit: Option<u64>, only: &[String]) -> Result<()> {
