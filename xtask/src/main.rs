@@ -559,15 +559,35 @@ fn step(name: &str, f: impl FnOnce() -> Result<()>) -> Result<()> {
     let t = Instant::now();
     let r = f();
     println!(
-        "<== {name}: {} in {:.0?}",
+        "<== {name}: {} in {:.0?}{}",
         if r.is_ok() { "ok" } else { "FAILED" },
-        t.elapsed()
+        t.elapsed(),
+        disk_free(Path::new("."))
+            .map(|f| format!(" ({f} free on this disk)"))
+            .unwrap_or_default()
     );
     r
 }
 
+/// The space left on the disk that holds `path`, as `df` prints it (e.g. "41G"), when `df`
+/// can say. CI prints it after every step: one run ran out of disk in its fuzz build, and the
+/// log could not say which step had used the space.
+fn disk_free(path: &Path) -> Option<String> {
+    let out = Command::new("df")
+        .args(["-Ph", "--output=avail"])
+        .arg(path)
+        .output()
+        .ok()?;
+    let text = String::from_utf8(out.stdout).ok()?;
+    Some(text.lines().nth(1)?.trim().to_string())
+}
+
 fn ci(root: &Path) -> Result<()> {
     let t = Instant::now();
+    // A clean clone builds everything once: incremental caches would only double the disk
+    // the workspace's own crates take.
+    // SAFETY: xtask is single-threaded; the variable is set before any child is spawned.
+    unsafe { std::env::set_var("CARGO_INCREMENTAL", "0") };
     step("system tools", ensure_tools)?;
     step("cargo fmt --check", || {
         cargo(root, &["fmt", "--all", "--check"])
@@ -591,7 +611,12 @@ fn ci(root: &Path) -> Result<()> {
     step("validate", || validate(&root.join("spirv-out")))?;
     // The browser path first: the conformance suite's `web-tint` column reads its results.
     step("web-test", || web_test(root).map(|_| ()))?;
-    step("fuzz (10 s a target)", || fuzz(root, 10, None, &[]))?;
+    step("fuzz (10 s a target)", || {
+        let r = fuzz(root, 10, None, &[]);
+        // The sanitizer build is of no use to the steps after it; its disk is.
+        let _ = std::fs::remove_dir_all(root.join("fuzz/target"));
+        r
+    })?;
     step("view-test", || view_test(root))?;
     // ... and there a missing browser image fails the column instead of leaving it empty.
     // SAFETY: xtask is single-threaded; the variable is set before any child is spawned.
@@ -807,6 +832,19 @@ fn fuzz(root: &Path, seconds: u32, runs_limit: Option<u64>, only: &[String]) -> 
         if !status.success() {
             bail!("`cargo install cargo-fuzz --locked` failed ({status})");
         }
+    }
+    // Built once, apart from the runs, so that a build failure (a compile error, a full disk)
+    // is reported as one and not as a crash of the first target.
+    let mut build = Command::new(&cargo);
+    build
+        .current_dir(root)
+        .args(["fuzz", "build", "--fuzz-dir", "fuzz", "-s", "none"]);
+    if let [one] = only {
+        build.arg(one);
+    }
+    let status = build.status().context("running cargo fuzz build")?;
+    if !status.success() {
+        bail!("building the fuzz targets failed ({status}); the fuzzing did not start");
     }
     let mut rows = Vec::new();
     for target in FUZZ_TARGETS
