@@ -574,7 +574,7 @@ fn step(name: &str, f: impl FnOnce() -> Result<()>) -> Result<()> {
 /// log could not say which step had used the space.
 fn disk_free(path: &Path) -> Option<String> {
     let out = Command::new("df")
-        .args(["-Ph", "--output=avail"])
+        .args(["-h", "--output=avail"])
         .arg(path)
         .output()
         .ok()?;
