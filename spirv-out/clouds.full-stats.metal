@@ -37,6 +37,10 @@ struct Frame {
     metal::float4 layer2_weather;
     metal::float4 layer3_;
     metal::float4 layer3_weather;
+    metal::float4 air_rayleigh;
+    metal::float4 air_mie;
+    metal::float4 air_ozone;
+    metal::float4 air_misc;
 };
 struct Roots {
     float t0_;
@@ -57,6 +61,15 @@ struct Layer {
     float cloud_type;
     float precipitation;
     metal::float2 weather_offset;
+};
+struct AirSample {
+    metal::packed_float3 rayleigh;
+    float mie;
+    metal::float3 extinction;
+};
+struct Scattered {
+    metal::float3 radiance;
+    metal::float3 transmittance;
 };
 struct Counters {
     uint view_steps;
@@ -145,12 +158,25 @@ constant uint FLAG_JITTER = 2u;
 constant uint FLAG_DYNAMIC_STEP = 4u;
 constant uint FLAG_CHECKERBOARD = 8u;
 constant uint FLAG_EMPTY_SKIP = 16u;
+constant uint FLAG_PHYSICAL_SKY = 32u;
 constant float PI = 3.1415927;
 constant uint MAX_VIEW_STEPS = 1024u;
 constant uint RAY_MARCH = 0u;
 constant uint RAY_MISSES_LAYER = 1u;
 constant uint RAY_HITS_GROUND = 2u;
 constant uint MAX_LAYERS = 4u;
+constant metal::uint2 TRANSMITTANCE_SIZE = metal::uint2(256u, 64u);
+constant metal::uint2 MULTISCATTER_SIZE = metal::uint2(32u, 32u);
+constant metal::uint2 SKY_VIEW_SIZE = metal::uint2(192u, 108u);
+constant uint AERIAL_SLICES = 32u;
+constant uint AERIAL_SIDE = 32u;
+constant float AERIAL_SLICE_KM = 1.0;
+constant uint TRANSMITTANCE_STEPS = 128u;
+constant uint MULTISCATTER_DIRECTIONS = 64u;
+constant uint MULTISCATTER_STEPS = 32u;
+constant uint SKY_VIEW_STEPS = 48u;
+constant uint AMBIENT_DIRECTIONS = 64u;
+constant uint AMBIENT_STEPS = 24u;
 constant uint NO_LAYER = 4u;
 constant uint OCCUPANCY_CELLS = 64u;
 constant uint STAT_PIXELS = 0u;
@@ -235,15 +261,15 @@ metal::float3 view_ray(
     constant Frame& frame
 ) {
     metal::uint4 _e3 = frame.counts;
-    metal::float2 size = static_cast<metal::float2>(_e3.xy);
-    metal::float2 ndc = (((static_cast<metal::float2>(pixel_1) + metal::float2(0.5)) / size) * 2.0) - metal::float2(1.0);
+    metal::float2 size_1 = static_cast<metal::float2>(_e3.xy);
+    metal::float2 ndc = (((static_cast<metal::float2>(pixel_1) + metal::float2(0.5)) / size_1) * 2.0) - metal::float2(1.0);
     float tan_half = frame.camera_position.w;
     float aspect = frame.camera_forward.w;
     metal::float4 _e26 = frame.camera_forward;
     metal::float4 _e30 = frame.camera_right;
     metal::float4 _e39 = frame.camera_up;
-    metal::float3 d_11 = (_e26.xyz + (_e30.xyz * ((ndc.x * tan_half) * aspect))) - (_e39.xyz * (ndc.y * tan_half));
-    return metal::normalize(d_11);
+    metal::float3 d_14 = (_e26.xyz + (_e30.xyz * ((ndc.x * tan_half) * aspect))) - (_e39.xyz * (ndc.y * tan_half));
+    return metal::normalize(d_14);
 }
 
 Roots solve_sphere(
@@ -271,8 +297,8 @@ Roots ray_shell(
 ) {
     float rp = frame.atmosphere.x;
     float b_3 = d.y * (alt + rp);
-    float c_3 = (alt - radius_alt) * ((alt + radius_alt) + (2.0 * rp));
-    Roots _e16 = solve_sphere(b_3, c_3);
+    float c_4 = (alt - radius_alt) * ((alt + radius_alt) + (2.0 * rp));
+    Roots _e16 = solve_sphere(b_3, c_4);
     return _e16;
 }
 
@@ -281,9 +307,9 @@ float altitude_of(
     constant Frame& frame
 ) {
     float rp_1 = frame.atmosphere.x;
-    float n_2 = ((p.x * p.x) + (p.z * p.z)) + (p.y * (p.y + (2.0 * rp_1)));
+    float n_3 = ((p.x * p.x) + (p.z * p.z)) + (p.y * (p.y + (2.0 * rp_1)));
     metal::float3 q_5 = metal::float3(p.x, p.y + rp_1, p.z);
-    return n_2 / (metal::length(q_5) + rp_1);
+    return n_3 / (metal::length(q_5) + rp_1);
 }
 
 bool hits_ground(
@@ -292,16 +318,16 @@ bool hits_ground(
     metal::float3 d_1,
     constant Frame& frame
 ) {
-    bool local_12 = {};
+    bool local_14 = {};
     float rp_2 = frame.atmosphere.x;
     float b_4 = metal::dot(d_1, metal::float3(p_1.x, p_1.y + rp_2, p_1.z));
-    float c_4 = alt_1 * (alt_1 + (2.0 * rp_2));
+    float c_5 = alt_1 * (alt_1 + (2.0 * rp_2));
     if (b_4 < 0.0) {
-        local_12 = (b_4 * b_4) >= c_4;
+        local_14 = (b_4 * b_4) >= c_5;
     } else {
-        local_12 = false;
+        local_14 = false;
     }
-    bool _e24 = local_12;
+    bool _e24 = local_14;
     return _e24;
 }
 
@@ -314,9 +340,9 @@ Interval shell_interval(
 ) {
     float start = 0.0;
     float end = 0.0;
-    bool local_13 = {};
-    bool local_14 = {};
     bool local_15 = {};
+    bool local_16 = {};
+    bool local_17 = {};
     float cutoff = frame.atmosphere.w;
     Roots _e8 = ray_shell(alt_2, d_2, bottom, frame);
     Roots _e9 = ray_shell(alt_2, d_2, top, frame);
@@ -331,33 +357,33 @@ Interval shell_interval(
         if (alt_2 <= top) {
             end = _e9.t1_;
             if (_e8.hit) {
-                local_13 = _e8.t0_ > 0.0;
+                local_15 = _e8.t0_ > 0.0;
             } else {
-                local_13 = false;
+                local_15 = false;
             }
-            bool _e34 = local_13;
+            bool _e34 = local_15;
             if (_e34) {
                 float _e35 = end;
                 end = metal::min(_e35, _e8.t0_);
             }
         } else {
             if (!(!(_e9.hit))) {
-                local_14 = _e9.t1_ <= 0.0;
+                local_16 = _e9.t1_ <= 0.0;
             } else {
-                local_14 = true;
+                local_16 = true;
             }
-            bool _e47 = local_14;
+            bool _e47 = local_16;
             if (_e47) {
                 return Interval {0.0, 0.0, 1u};
             }
             start = metal::max(_e9.t0_, 0.0);
             end = _e9.t1_;
             if (_e8.hit) {
-                local_15 = _e8.t0_ > 0.0;
+                local_17 = _e8.t0_ > 0.0;
             } else {
-                local_15 = false;
+                local_17 = false;
             }
-            bool _e63 = local_15;
+            bool _e63 = local_17;
             if (_e63) {
                 float _e64 = end;
                 end = metal::min(_e64, _e8.t0_);
@@ -393,28 +419,28 @@ uint layer_count(
 
 Layer layer_from(
     metal::float4 g,
-    metal::float4 w
+    metal::float4 w_1
 ) {
-    return Layer {g.x, g.y, g.z, g.w, w.x, w.y, w.zw};
+    return Layer {g.x, g.y, g.z, g.w, w_1.x, w_1.y, w_1.zw};
 }
 
 Layer cloud_layer(
-    uint i_1,
+    uint i_3,
     constant Frame& frame
 ) {
-    if (i_1 == 1u) {
+    if (i_3 == 1u) {
         metal::float4 _e5 = frame.layer1_;
         metal::float4 _e8 = frame.layer1_weather;
         Layer _e9 = layer_from(_e5, _e8);
         return _e9;
     } else {
-        if (i_1 == 2u) {
+        if (i_3 == 2u) {
             metal::float4 _e14 = frame.layer2_;
             metal::float4 _e17 = frame.layer2_weather;
             Layer _e18 = layer_from(_e14, _e17);
             return _e18;
         } else {
-            if (i_1 == 3u) {
+            if (i_3 == 3u) {
                 metal::float4 _e23 = frame.layer3_;
                 metal::float4 _e26 = frame.layer3_weather;
                 Layer _e27 = layer_from(_e23, _e26);
@@ -436,7 +462,7 @@ metal::float2 layers_span(
     constant Frame& frame
 ) {
     metal::float2 span = {};
-    uint i_2 = 1u;
+    uint i_4 = 1u;
     metal::float4 _e2 = frame.atmosphere;
     span = _e2.yz;
     uint2 loop_bound = uint2(4294967295u);
@@ -445,18 +471,18 @@ metal::float2 layers_span(
         if (metal::all(loop_bound == uint2(0u))) { break; }
         loop_bound -= uint2(loop_bound.y == 0u, 1u);
         if (!loop_init) {
-            uint _e22 = i_2;
-            i_2 = _e22 + 1u;
+            uint _e22 = i_4;
+            i_4 = _e22 + 1u;
         }
         loop_init = false;
-        uint _e7 = i_2;
+        uint _e7 = i_4;
         uint _e8 = layer_count(frame);
         if (_e7 < _e8) {
         } else {
             break;
         }
         {
-            uint _e10 = i_2;
+            uint _e10 = i_4;
             Layer _e11 = cloud_layer(_e10, frame);
             float _e13 = span.x;
             float _e17 = span.y;
@@ -483,9 +509,9 @@ Interval nearest_layer_interval(
     constant Frame& frame
 ) {
     Interval best = {};
-    uint i_3 = 1u;
-    bool local_16 = {};
-    bool local_17 = {};
+    uint i_5 = 1u;
+    bool local_18 = {};
+    bool local_19 = {};
     Layer _e3 = cloud_layer(0u, frame);
     Interval _e4 = layer_interval(alt_5, d_5, _e3, frame);
     best = _e4;
@@ -495,34 +521,34 @@ Interval nearest_layer_interval(
         if (metal::all(loop_bound_1 == uint2(0u))) { break; }
         loop_bound_1 -= uint2(loop_bound_1.y == 0u, 1u);
         if (!loop_init_1) {
-            uint _e35 = i_3;
-            i_3 = _e35 + 1u;
+            uint _e35 = i_5;
+            i_5 = _e35 + 1u;
         }
         loop_init_1 = false;
-        uint _e8 = i_3;
+        uint _e8 = i_5;
         uint _e9 = layer_count(frame);
         if (_e8 < _e9) {
         } else {
             break;
         }
         {
-            uint _e11 = i_3;
+            uint _e11 = i_5;
             Layer _e12 = cloud_layer(_e11, frame);
             Interval _e13 = layer_interval(alt_5, d_5, _e12, frame);
             if (_e13.kind == RAY_MARCH) {
                 uint _e20 = best.kind;
                 if (!((_e20 != RAY_MARCH))) {
                     float _e28 = best.start;
-                    local_17 = _e13.start < _e28;
+                    local_19 = _e13.start < _e28;
                 } else {
-                    local_17 = true;
+                    local_19 = true;
                 }
-                bool _e31 = local_17;
-                local_16 = _e31;
+                bool _e31 = local_19;
+                local_18 = _e31;
             } else {
-                local_16 = false;
+                local_18 = false;
             }
-            bool _e33 = local_16;
+            bool _e33 = local_18;
             if (_e33) {
                 best = _e13;
             }
@@ -541,9 +567,496 @@ Roots ray_shell_from(
 ) {
     float rp_3 = frame.atmosphere.x;
     float b_5 = metal::dot(d_6, metal::float3(p_2.x, p_2.y + rp_3, p_2.z));
-    float c_5 = (alt_6 - radius_alt_1) * ((alt_6 + radius_alt_1) + (2.0 * rp_3));
-    Roots _e20 = solve_sphere(b_5, c_5);
+    float c_6 = (alt_6 - radius_alt_1) * ((alt_6 + radius_alt_1) + (2.0 * rp_3));
+    Roots _e20 = solve_sphere(b_5, c_6);
     return _e20;
+}
+
+bool physical_sky(
+    constant Frame& frame
+) {
+    uint _e3 = frame.modes.w;
+    return (_e3 & FLAG_PHYSICAL_SKY) != 0u;
+}
+
+float air_bottom(
+    constant Frame& frame
+) {
+    float _e3 = frame.atmosphere.x;
+    return _e3 * 0.001;
+}
+
+float air_top(
+    constant Frame& frame
+) {
+    float _e3 = frame.atmosphere.x;
+    float _e7 = frame.air_misc.x;
+    return (_e3 + _e7) * 0.001;
+}
+
+AirSample air_at(
+    float h_km,
+    constant Frame& frame
+) {
+    float h_7 = metal::max(h_km, 0.0) * 1000.0;
+    float _e9 = frame.air_rayleigh.w;
+    float rayleigh_density = metal::exp(-(h_7) / _e9);
+    float _e16 = frame.air_mie.z;
+    float mie_density = metal::exp(-(h_7) / _e16);
+    float _e22 = frame.air_ozone.w;
+    float _e28 = frame.air_misc.y;
+    float ozone_density = metal::max(1.0 - (metal::abs(h_7 - _e22) / (0.5 * _e28)), 0.0);
+    metal::float4 _e38 = frame.air_rayleigh;
+    metal::float3 rayleigh = _e38.xyz * (rayleigh_density * 1000.0);
+    float _e46 = frame.air_mie.x;
+    float mie = (_e46 * mie_density) * 1000.0;
+    float _e53 = frame.air_mie.x;
+    float _e57 = frame.air_mie.y;
+    float mie_extinction = ((_e53 + _e57) * mie_density) * 1000.0;
+    metal::float4 _e64 = frame.air_ozone;
+    metal::float3 ozone = _e64.xyz * (ozone_density * 1000.0);
+    return AirSample {rayleigh, mie, (rayleigh + metal::float3(mie_extinction)) + ozone};
+}
+
+float sphere_discriminant(
+    float r_2,
+    float mu,
+    float radius
+) {
+    return ((radius - r_2) * (radius + r_2)) + (((r_2 * r_2) * mu) * mu);
+}
+
+float distance_to_top(
+    float r_3,
+    float mu_1,
+    constant Frame& frame
+) {
+    float _e4 = air_top(frame);
+    float _e5 = sphere_discriminant(r_3, mu_1, _e4);
+    return metal::max((-(r_3) * mu_1) + metal::sqrt(metal::max(_e5, 0.0)), 0.0);
+}
+
+bool meets_ground(
+    float r_4,
+    float mu_2,
+    constant Frame& frame
+) {
+    bool local_20 = {};
+    if (mu_2 < 0.0) {
+        float _e6 = air_bottom(frame);
+        float _e7 = sphere_discriminant(r_4, mu_2, _e6);
+        local_20 = _e7 >= 0.0;
+    } else {
+        local_20 = false;
+    }
+    bool _e11 = local_20;
+    return _e11;
+}
+
+float distance_to_ground(
+    float r_5,
+    float mu_3,
+    constant Frame& frame
+) {
+    float _e4 = air_bottom(frame);
+    float _e5 = sphere_discriminant(r_5, mu_3, _e4);
+    return metal::max((-(r_5) * mu_3) - metal::sqrt(metal::max(_e5, 0.0)), 0.0);
+}
+
+float radius_after(
+    float r_6,
+    float mu_4,
+    float t
+) {
+    return metal::sqrt(metal::max(((r_6 * r_6) + (t * t)) + (((2.0 * r_6) * mu_4) * t), 0.0));
+}
+
+metal::uint2 naga_f2u32(metal::float2 value) {
+    return static_cast<metal::uint2>(metal::clamp(value, 0.0, 4294967000.0));
+}
+
+metal::float4 lut_bilinear(
+    metal::texture2d<float, metal::access::sample> lut,
+    metal::float2 x_3,
+    metal::uint2 size
+) {
+    metal::float2 last = static_cast<metal::float2>(size - metal::uint2(1u));
+    metal::float2 f_1 = metal::clamp(x_3, metal::float2(0.0), metal::float2(1.0)) * last;
+    metal::uint2 i0_ = metal::min(naga_f2u32(metal::floor(f_1)), size - metal::uint2(1u));
+    metal::uint2 i1_ = metal::min(i0_ + metal::uint2(1u), size - metal::uint2(1u));
+    metal::float2 w_3 = f_1 - static_cast<metal::float2>(i0_);
+    metal::float4 _e32 = lut.read(metal::uint2(metal::uint2(i0_.x, i0_.y)), 0);
+    metal::float4 _e37 = lut.read(metal::uint2(metal::uint2(i1_.x, i0_.y)), 0);
+    metal::float4 a_4 = metal::mix(_e32, _e37, w_3.x);
+    metal::float4 _e44 = lut.read(metal::uint2(metal::uint2(i0_.x, i1_.y)), 0);
+    metal::float4 _e49 = lut.read(metal::uint2(metal::uint2(i1_.x, i1_.y)), 0);
+    metal::float4 b_6 = metal::mix(_e44, _e49, w_3.x);
+    return metal::mix(a_4, b_6, w_3.y);
+}
+
+metal::float2 transmittance_coords(
+    float r_7,
+    float mu_5,
+    constant Frame& frame
+) {
+    float _e2 = air_bottom(frame);
+    float _e3 = air_top(frame);
+    float h_8 = metal::sqrt(metal::max((_e3 - _e2) * (_e3 + _e2), 0.0));
+    float rho = metal::sqrt(metal::max((r_7 - _e2) * (r_7 + _e2), 0.0));
+    float _e16 = distance_to_top(r_7, mu_5, frame);
+    float d_min = _e3 - r_7;
+    float d_max = rho + h_8;
+    return metal::float2((_e16 - d_min) / metal::max(d_max - d_min, 0.000001), rho / h_8);
+}
+
+metal::float2 transmittance_r_mu(
+    metal::float2 x_4,
+    constant Frame& frame
+) {
+    float mu_6 = 1.0;
+    float _e1 = air_bottom(frame);
+    float _e2 = air_top(frame);
+    float h_9 = metal::sqrt(metal::max((_e2 - _e1) * (_e2 + _e1), 0.0));
+    float rho_1 = h_9 * x_4.y;
+    float r_13 = metal::sqrt((rho_1 * rho_1) + (_e1 * _e1));
+    float d_min_1 = _e2 - r_13;
+    float d_max_1 = rho_1 + h_9;
+    float d_15 = d_min_1 + (x_4.x * (d_max_1 - d_min_1));
+    if (d_15 > 0.0) {
+        mu_6 = metal::clamp((((h_9 * h_9) - (rho_1 * rho_1)) - (d_15 * d_15)) / ((2.0 * r_13) * d_15), -1.0, 1.0);
+    }
+    float _e37 = mu_6;
+    return metal::float2(r_13, _e37);
+}
+
+metal::float3 transmittance_to_top(
+    float r_8,
+    float mu_7,
+    constant Frame& frame,
+    metal::texture2d<float, metal::access::sample> transmittance_lut_in
+) {
+    metal::float2 _e3 = transmittance_coords(r_8, mu_7, frame);
+    metal::float4 _e5 = lut_bilinear(transmittance_lut_in, _e3, TRANSMITTANCE_SIZE);
+    return _e5.xyz;
+}
+
+metal::float3 sun_transmittance(
+    float r_9,
+    float mu_s,
+    constant Frame& frame,
+    metal::texture2d<float, metal::access::sample> transmittance_lut_in
+) {
+    bool _e2 = meets_ground(r_9, mu_s, frame);
+    if (_e2) {
+        return metal::float3(0.0);
+    }
+    metal::float3 _e5 = transmittance_to_top(r_9, mu_s, frame, transmittance_lut_in);
+    return _e5;
+}
+
+metal::float3 multiscatter(
+    float r_10,
+    float mu_s_1,
+    constant Frame& frame,
+    metal::texture2d<float, metal::access::sample> multiscatter_lut_in
+) {
+    float _e6 = air_bottom(frame);
+    float _e8 = air_top(frame);
+    float _e9 = air_bottom(frame);
+    metal::float2 x_6 = metal::float2((mu_s_1 * 0.5) + 0.5, (r_10 - _e6) / (_e8 - _e9));
+    metal::float4 _e15 = lut_bilinear(multiscatter_lut_in, x_6, MULTISCATTER_SIZE);
+    return _e15.xyz;
+}
+
+float phase_rayleigh(
+    float cos_theta
+) {
+    return 0.059683103 * (1.0 + (cos_theta * cos_theta));
+}
+
+float phase_cornette_shanks_air(
+    float cos_theta_1,
+    float g_1
+) {
+    float g2_ = g_1 * g_1;
+    return ((0.119366206 * (1.0 - g2_)) * (1.0 + (cos_theta_1 * cos_theta_1))) / ((2.0 + g2_) * metal::pow(metal::max((1.0 + g2_) - ((2.0 * g_1) * cos_theta_1), 0.000001), 1.5));
+}
+
+metal::float3 fibonacci_direction(
+    uint k_3,
+    uint n_1
+) {
+    float z_2 = 1.0 - (((2.0 * static_cast<float>(k_3)) + 1.0) / static_cast<float>(n_1));
+    float s_3 = metal::sqrt(metal::max(1.0 - (z_2 * z_2), 0.0));
+    float phi = 2.3999634 * static_cast<float>(k_3);
+    return metal::float3(s_3 * metal::cos(phi), z_2, s_3 * metal::sin(phi));
+}
+
+metal::float3 ground_radiance(
+    float mu_s_2,
+    constant Frame& frame,
+    metal::texture2d<float, metal::access::sample> transmittance_lut_in
+) {
+    float _e4 = frame.air_misc.z;
+    float _e10 = air_bottom(frame);
+    metal::float3 _e13 = sun_transmittance(_e10 + 0.001, mu_s_2, frame, transmittance_lut_in);
+    return ((_e4 / PI) * metal::max(mu_s_2, 0.0)) * _e13;
+}
+
+Scattered integrate_air(
+    metal::float3 origin,
+    metal::float3 d_7,
+    float distance_km,
+    uint steps,
+    metal::float3 sun,
+    bool ground,
+    constant Frame& frame,
+    metal::texture2d<float, metal::access::sample> transmittance_lut_in,
+    metal::texture2d<float, metal::access::sample> multiscatter_lut_in
+) {
+    metal::float3 radiance_1 = metal::float3(0.0);
+    metal::float3 tau_2 = metal::float3(0.0);
+    float t0_ = 0.0;
+    uint i_6 = 0u;
+    float cos_theta_7 = metal::dot(d_7, sun);
+    float _e7 = phase_rayleigh(cos_theta_7);
+    float _e11 = frame.air_mie.w;
+    float _e12 = phase_cornette_shanks_air(cos_theta_7, _e11);
+    uint2 loop_bound_2 = uint2(4294967295u);
+    bool loop_init_2 = true;
+    while(true) {
+        if (metal::all(loop_bound_2 == uint2(0u))) { break; }
+        loop_bound_2 -= uint2(loop_bound_2.y == 0u, 1u);
+        if (!loop_init_2) {
+            uint _e80 = i_6;
+            i_6 = _e80 + 1u;
+        }
+        loop_init_2 = false;
+        uint _e23 = i_6;
+        if (_e23 < steps) {
+        } else {
+            break;
+        }
+        {
+            uint _e25 = i_6;
+            float s1_ = static_cast<float>(_e25 + 1u) / static_cast<float>(steps);
+            float t1_ = (distance_km * s1_) * s1_;
+            float _e33 = t0_;
+            float dt_1 = t1_ - _e33;
+            float _e35 = t0_;
+            metal::float3 p_12 = origin + (d_7 * (0.5 * (_e35 + t1_)));
+            float r_14 = metal::length(p_12);
+            metal::float3 up = p_12 / metal::float3(r_14);
+            float mu_s_3 = metal::dot(up, sun);
+            float _e45 = air_bottom(frame);
+            AirSample _e47 = air_at(r_14 - _e45, frame);
+            metal::float3 _e48 = tau_2;
+            metal::float3 t_view = metal::exp(-((_e48 + ((0.5 * _e47.extinction) * dt_1))));
+            metal::float3 _e56 = sun_transmittance(r_14, mu_s_3, frame, transmittance_lut_in);
+            metal::float3 _e57 = multiscatter(r_14, mu_s_3, frame, multiscatter_lut_in);
+            metal::float3 inscatter = (_e56 * ((_e47.rayleigh * _e7) + metal::float3(_e47.mie * _e12))) + (_e57 * (_e47.rayleigh + metal::float3(_e47.mie)));
+            metal::float3 _e71 = radiance_1;
+            radiance_1 = _e71 + ((t_view * inscatter) * dt_1);
+            metal::float3 _e75 = tau_2;
+            tau_2 = _e75 + (_e47.extinction * dt_1);
+            t0_ = t1_;
+        }
+    }
+    if (ground) {
+        metal::float3 end_1 = origin + (d_7 * distance_km);
+        metal::float3 _e84 = radiance_1;
+        metal::float3 _e85 = tau_2;
+        metal::float3 _e90 = ground_radiance(metal::dot(metal::normalize(end_1), sun), frame, transmittance_lut_in);
+        radiance_1 = _e84 + (metal::exp(-(_e85)) * _e90);
+    }
+    metal::float3 _e93 = radiance_1;
+    metal::float3 _e94 = tau_2;
+    return Scattered {_e93, metal::exp(-(_e94))};
+}
+
+metal::float2 air_ray_end(
+    metal::float3 origin_1,
+    metal::float3 d_8,
+    constant Frame& frame
+) {
+    float r_15 = metal::length(origin_1);
+    float mu_8 = metal::dot(origin_1, d_8) / r_15;
+    bool _e5 = meets_ground(r_15, mu_8, frame);
+    if (_e5) {
+        float _e6 = distance_to_ground(r_15, mu_8, frame);
+        return metal::float2(_e6, 1.0);
+    }
+    float _e9 = air_top(frame);
+    if (r_15 > _e9) {
+        return metal::float2(0.0, 0.0);
+    }
+    float _e14 = distance_to_top(r_15, mu_8, frame);
+    return metal::float2(_e14, 0.0);
+}
+
+metal::float3 camera_air_origin(
+    constant Frame& frame
+) {
+    float _e0 = air_bottom(frame);
+    float _e4 = frame.camera_position.y;
+    return metal::float3(0.0, _e0 + (metal::max(_e4, 0.0) * 0.001), 0.0);
+}
+
+float sky_view_elevation(
+    float v_1,
+    float horizon
+) {
+    if (v_1 >= 0.5) {
+        float a_5 = (2.0 * v_1) - 1.0;
+        return horizon + (((1.5707964 - horizon) * a_5) * a_5);
+    }
+    float a_6 = 1.0 - (2.0 * v_1);
+    return horizon - (((horizon + 1.5707964) * a_6) * a_6);
+}
+
+float sky_view_v(
+    float elevation,
+    float horizon_1
+) {
+    if (elevation >= horizon_1) {
+        float _e7 = saturate((elevation - horizon_1) / (1.5707964 - horizon_1));
+        return 0.5 + (0.5 * metal::sqrt(_e7));
+    }
+    float _e17 = saturate((horizon_1 - elevation) / (horizon_1 + 1.5707964));
+    return 0.5 - (0.5 * metal::sqrt(_e17));
+}
+
+float horizon_elevation(
+    float r_11,
+    constant Frame& frame
+) {
+    float _e1 = air_bottom(frame);
+    return -(metal::acos(metal::clamp(_e1 / r_11, -1.0, 1.0)));
+}
+
+float sun_azimuth(
+    constant Frame& frame
+) {
+    metal::float4 _e2 = frame.sun_direction;
+    metal::float3 s_4 = _e2.xyz;
+    return metal::atan2(s_4.z, s_4.x);
+}
+
+metal::float3 sky_view(
+    metal::float3 d_9,
+    constant Frame& frame,
+    metal::texture2d<float, metal::access::sample> sky_view_in
+) {
+    float delta = {};
+    metal::float3 _e1 = camera_air_origin(frame);
+    float elevation_1 = metal::asin(metal::clamp(d_9.y, -1.0, 1.0));
+    float _e10 = sun_azimuth(frame);
+    delta = metal::atan2(d_9.z, d_9.x) - _e10;
+    float _e13 = delta;
+    float _e15 = delta;
+    delta = metal::abs(_e13 - (6.2831855 * metal::rint(_e15 / 6.2831855)));
+    float _e22 = delta;
+    float _e26 = horizon_elevation(_e1.y, frame);
+    float _e27 = sky_view_v(elevation_1, _e26);
+    metal::float2 x_7 = metal::float2(_e22 / PI, _e27);
+    metal::float4 _e31 = lut_bilinear(sky_view_in, x_7, SKY_VIEW_SIZE);
+    return _e31.xyz;
+}
+
+metal::float3 aerial_ray(
+    metal::uint2 c_1,
+    constant Frame& frame
+) {
+    metal::float2 ndc_1 = (((static_cast<metal::float2>(c_1) + metal::float2(0.5)) / metal::float2(32.0)) * 2.0) - metal::float2(1.0);
+    float tan_half_1 = frame.camera_position.w;
+    float aspect_1 = frame.camera_forward.w;
+    metal::float4 _e23 = frame.camera_forward;
+    metal::float4 _e27 = frame.camera_right;
+    metal::float4 _e36 = frame.camera_up;
+    return metal::normalize((_e23.xyz + (_e27.xyz * ((ndc_1.x * tan_half_1) * aspect_1))) - (_e36.xyz * (ndc_1.y * tan_half_1)));
+}
+
+metal::float4 aerial_texel(
+    metal::uint2 c0_,
+    metal::uint2 c1_,
+    metal::float2 w_2,
+    uint z_1,
+    metal::texture2d<float, metal::access::sample> aerial_in
+) {
+    uint o_1 = z_1 * AERIAL_SIDE;
+    metal::float4 _e12 = aerial_in.read(metal::uint2(metal::uint2(o_1 + c0_.x, c0_.y)), 0);
+    metal::float4 _e19 = aerial_in.read(metal::uint2(metal::uint2(o_1 + c1_.x, c0_.y)), 0);
+    metal::float4 a_7 = metal::mix(_e12, _e19, w_2.x);
+    metal::float4 _e28 = aerial_in.read(metal::uint2(metal::uint2(o_1 + c0_.x, c1_.y)), 0);
+    metal::float4 _e35 = aerial_in.read(metal::uint2(metal::uint2(o_1 + c1_.x, c1_.y)), 0);
+    metal::float4 b_7 = metal::mix(_e28, _e35, w_2.x);
+    return metal::mix(a_7, b_7, w_2.y);
+}
+
+uint naga_f2u32(float value) {
+    return static_cast<uint>(metal::clamp(value, 0.0, 4294967000.0));
+}
+
+metal::float4 aerial(
+    metal::uint2 pixel_2,
+    float depth_m,
+    constant Frame& frame,
+    metal::texture2d<float, metal::access::sample> aerial_in
+) {
+    metal::float4 near = metal::float4(0.0, 0.0, 0.0, 1.0);
+    metal::float4 far = metal::float4(0.0, 0.0, 0.0, 1.0);
+    metal::uint4 _e8 = frame.counts;
+    metal::float2 uv_1 = (static_cast<metal::float2>(pixel_2) + metal::float2(0.5)) / static_cast<metal::float2>(_e8.xy);
+    metal::float2 f_2 = metal::clamp((uv_1 * 32.0) - metal::float2(0.5), metal::float2(0.0), metal::float2(31.0));
+    metal::uint2 c0_1 = metal::min(naga_f2u32(metal::floor(f_2)), metal::uint2(31u));
+    metal::uint2 c1_1 = metal::min(c0_1 + metal::uint2(1u), metal::uint2(31u));
+    metal::float2 w_4 = f_2 - static_cast<metal::float2>(c0_1);
+    float s_5 = metal::clamp((depth_m * 0.001) / AERIAL_SLICE_KM, 0.0, 32.0);
+    uint z1_ = metal::min(naga_f2u32(metal::ceil(s_5)), AERIAL_SLICES);
+    uint z0_ = (z1_ > 0u) ? (z1_ - 1u) : 0u;
+    float ws = s_5 - static_cast<float>(z0_);
+    if (z0_ > 0u) {
+        metal::float4 _e64 = aerial_texel(c0_1, c1_1, w_4, z0_ - 1u, aerial_in);
+        near = _e64;
+    }
+    if (z1_ > 0u) {
+        metal::float4 _e75 = aerial_texel(c0_1, c1_1, w_4, z1_ - 1u, aerial_in);
+        far = _e75;
+    }
+    metal::float4 _e76 = near;
+    metal::float4 _e77 = far;
+    return metal::mix(_e76, _e77, ws);
+}
+
+metal::float3 sun_through_air(
+    metal::float3 rel,
+    constant Frame& frame,
+    metal::texture2d<float, metal::access::sample> transmittance_lut_in
+) {
+    bool _e1 = physical_sky(frame);
+    if (!(_e1)) {
+        return metal::float3(1.0);
+    }
+    float _e10 = frame.atmosphere.x;
+    metal::float3 q_6 = metal::float3(rel.x, rel.y + _e10, rel.z) * 0.001;
+    float r_16 = metal::length(q_6);
+    metal::float4 _e21 = frame.sun_direction;
+    metal::float3 _e24 = sun_transmittance(r_16, metal::dot(q_6 / metal::float3(r_16), _e21.xyz), frame, transmittance_lut_in);
+    return _e24;
+}
+
+metal::float3 sky_ambient_light(
+    float h,
+    constant Frame& frame,
+    metal::texture2d<float, metal::access::sample> sky_ambient_in
+) {
+    metal::float4 _e6 = sky_ambient_in.read(metal::uint2(metal::uint2(0u, 0u)), 0);
+    metal::float3 bottom_1 = _e6.xyz;
+    metal::float4 _e13 = sky_ambient_in.read(metal::uint2(metal::uint2(1u, 0u)), 0);
+    metal::float3 top_1 = _e13.xyz;
+    metal::float4 _e18 = frame.sun_illuminance;
+    float _e24 = frame.ambient_bottom.w;
+    return (metal::mix(bottom_1, top_1, h) * _e18.xyz) * _e24;
 }
 
 float layer_height(
@@ -557,36 +1070,36 @@ uint layer_at(
     float alt_8,
     constant Frame& frame
 ) {
-    uint i_4 = 0u;
-    bool local_18 = {};
-    uint2 loop_bound_2 = uint2(4294967295u);
-    bool loop_init_2 = true;
+    uint i_7 = 0u;
+    bool local_21 = {};
+    uint2 loop_bound_3 = uint2(4294967295u);
+    bool loop_init_3 = true;
     while(true) {
-        if (metal::all(loop_bound_2 == uint2(0u))) { break; }
-        loop_bound_2 -= uint2(loop_bound_2.y == 0u, 1u);
-        if (!loop_init_2) {
-            uint _e19 = i_4;
-            i_4 = _e19 + 1u;
+        if (metal::all(loop_bound_3 == uint2(0u))) { break; }
+        loop_bound_3 -= uint2(loop_bound_3.y == 0u, 1u);
+        if (!loop_init_3) {
+            uint _e19 = i_7;
+            i_7 = _e19 + 1u;
         }
-        loop_init_2 = false;
-        uint _e3 = i_4;
+        loop_init_3 = false;
+        uint _e3 = i_7;
         uint _e4 = layer_count(frame);
         if (_e3 < _e4) {
         } else {
             break;
         }
         {
-            uint _e6 = i_4;
+            uint _e6 = i_7;
             Layer _e7 = cloud_layer(_e6, frame);
             float _e8 = layer_height(_e7, alt_8);
             if (_e8 >= 0.0) {
-                local_18 = _e8 <= 1.0;
+                local_21 = _e8 <= 1.0;
             } else {
-                local_18 = false;
+                local_21 = false;
             }
-            bool _e16 = local_18;
+            bool _e16 = local_21;
             if (_e16) {
-                uint _e17 = i_4;
+                uint _e17 = i_7;
                 return _e17;
             }
         }
@@ -602,41 +1115,41 @@ Weather sample_weather(
     metal::sampler noise_sampler
 ) {
     float _e8 = frame.periods.x;
-    metal::float2 uv_1 = (p_3.xz - l_2.weather_offset) / metal::float2(_e8);
-    metal::float4 w_1 = weather_tex.sample(noise_sampler, uv_1, metal::level(0.0));
-    float _e22 = saturate(w_1.x + (2.0 * (l_2.coverage - 0.5)));
-    float _e30 = saturate(l_2.cloud_type + ((w_1.z - 0.5) * 0.5));
-    float _e35 = saturate(0.5 + w_1.y);
+    metal::float2 uv_2 = (p_3.xz - l_2.weather_offset) / metal::float2(_e8);
+    metal::float4 w_5 = weather_tex.sample(noise_sampler, uv_2, metal::level(0.0));
+    float _e22 = saturate(w_5.x + (2.0 * (l_2.coverage - 0.5)));
+    float _e30 = saturate(l_2.cloud_type + ((w_5.z - 0.5) * 0.5));
+    float _e35 = saturate(0.5 + w_5.y);
     float precipitation = l_2.precipitation * _e35;
     return Weather {_e22, _e30, precipitation};
 }
 
 float height_parabola(
-    float h,
+    float h_1,
     float cloud_type
 ) {
     float height = metal::mix(0.35, 1.0, cloud_type);
-    float _e11 = saturate((h * (h - height)) * (-4.0 / (height * height)));
+    float _e11 = saturate((h_1 * (h_1 - height)) * (-4.0 / (height * height)));
     return _e11;
 }
 
 float gradient(
-    float h_1,
+    float h_2,
     float r0_,
     float r1_,
     float f0_,
     float f1_
 ) {
-    return metal::smoothstep(r0_, r1_, h_1) * (1.0 - metal::smoothstep(f0_, f1_, h_1));
+    return metal::smoothstep(r0_, r1_, h_2) * (1.0 - metal::smoothstep(f0_, f1_, h_2));
 }
 
 float height_cloud_types(
-    float h_2,
+    float h_3,
     float cloud_type_1
 ) {
-    float _e6 = gradient(h_2, 0.0, 0.08, 0.15, 0.25);
-    float _e11 = gradient(h_2, 0.0, 0.2, 0.4, 0.65);
-    float _e16 = gradient(h_2, 0.0, 0.1, 0.6, 0.95);
+    float _e6 = gradient(h_3, 0.0, 0.08, 0.15, 0.25);
+    float _e11 = gradient(h_3, 0.0, 0.2, 0.4, 0.65);
+    float _e16 = gradient(h_3, 0.0, 0.1, 0.6, 0.95);
     float _e19 = saturate(cloud_type_1 * 2.0);
     float lo = metal::mix(_e6, _e11, _e19);
     float _e25 = saturate((cloud_type_1 * 2.0) - 1.0);
@@ -644,16 +1157,16 @@ float height_cloud_types(
 }
 
 float height_signal(
-    float h_3,
+    float h_4,
     float cloud_type_2,
     constant Frame& frame
 ) {
     uint _e5 = frame.modes.z;
     if (_e5 == HEIGHT_CLOUD_TYPES) {
-        float _e8 = height_cloud_types(h_3, cloud_type_2);
+        float _e8 = height_cloud_types(h_4, cloud_type_2);
         return _e8;
     }
-    float _e9 = height_parabola(h_3, cloud_type_2);
+    float _e9 = height_parabola(h_4, cloud_type_2);
     return _e9;
 }
 
@@ -669,20 +1182,20 @@ float layer_density(
     metal::texture2d<float, metal::access::sample> curl_tex,
     metal::sampler noise_sampler
 ) {
-    bool local_19 = {};
-    bool local_20 = {};
+    bool local_22 = {};
+    bool local_23 = {};
     float base = {};
     float density = {};
-    bool local_21 = {};
-    bool local_22 = {};
+    bool local_24 = {};
+    bool local_25 = {};
     metal::float3 detail_pos = {};
     float _e4 = layer_height(l_3, alt_9);
     if (!((_e4 < 0.0))) {
-        local_19 = _e4 > 1.0;
+        local_22 = _e4 > 1.0;
     } else {
-        local_19 = true;
+        local_22 = true;
     }
-    bool _e13 = local_19;
+    bool _e13 = local_22;
     if (_e13) {
         return 0.0;
     }
@@ -691,11 +1204,11 @@ float layer_density(
     Weather _e19 = sample_weather(p_4, l_3, frame, weather_tex, noise_sampler);
     float _e21 = height_signal(_e4, _e19.cloud_type, frame);
     if (!((_e19.coverage <= 0.0))) {
-        local_20 = _e21 <= 0.0;
+        local_23 = _e21 <= 0.0;
     } else {
-        local_20 = true;
+        local_23 = true;
     }
-    bool _e31 = local_20;
+    bool _e31 = local_23;
     if (_e31) {
         return 0.0;
     }
@@ -705,9 +1218,9 @@ float layer_density(
     float _e51 = frame.wind_offsets0_.z;
     float _e57 = frame.wind_offsets0_.w;
     metal::float3 shape_pos = metal::float3(p_4.x - _e51, alt_9, p_4.z - _e57);
-    metal::float4 s_3 = shape_tex.sample(noise_sampler, shape_pos / period, metal::level(0.0));
-    float low_fbm = ((s_3.y * 0.625) + (s_3.z * 0.25)) + (s_3.w * 0.125);
-    float _e82 = remap(s_3.x, low_fbm - 1.0, 1.0, 0.0, 1.0);
+    metal::float4 s_6 = shape_tex.sample(noise_sampler, shape_pos / period, metal::level(0.0));
+    float low_fbm = ((s_6.y * 0.625) + (s_6.z * 0.25)) + (s_6.w * 0.125);
+    float _e82 = remap(s_6.x, low_fbm - 1.0, 1.0, 0.0, 1.0);
     float _e83 = saturate(_e82);
     base = _e83 * _e21;
     float _e86 = base;
@@ -723,18 +1236,18 @@ float layer_density(
     float strength = frame.erosion.x;
     float threshold = frame.erosion.y;
     if (DETAIL) {
-        local_21 = strength > 0.0;
+        local_24 = strength > 0.0;
     } else {
-        local_21 = false;
+        local_24 = false;
     }
-    bool _e117 = local_21;
+    bool _e117 = local_24;
     if (_e117) {
         float _e120 = base;
-        local_22 = _e120 < threshold;
+        local_25 = _e120 < threshold;
     } else {
-        local_22 = false;
+        local_25 = false;
     }
-    bool _e123 = local_22;
+    bool _e123 = local_25;
     if (_e123) {
         uint _e125 = counters_2.detail;
         counters_2.detail = _e125 + 1u;
@@ -798,53 +1311,53 @@ float cloud_density(
 }
 
 float phase_hg(
-    float cos_theta,
-    float g_1
-) {
-    float g2_ = g_1 * g_1;
-    float denom = metal::max((1.0 + g2_) - ((2.0 * g_1) * cos_theta), 0.000001);
-    return (1.0 - g2_) / ((12.566371 * denom) * metal::sqrt(denom));
-}
-
-float phase_cornette_shanks(
-    float cos_theta_1,
+    float cos_theta_2,
     float g_2
 ) {
     float g2_1 = g_2 * g_2;
-    float denom_1 = metal::max((1.0 + g2_1) - ((2.0 * g_2) * cos_theta_1), 0.000001);
-    return ((3.0 * (1.0 - g2_1)) * (1.0 + (cos_theta_1 * cos_theta_1))) / (((25.132742 * (2.0 + g2_1)) * denom_1) * metal::sqrt(denom_1));
+    float denom = metal::max((1.0 + g2_1) - ((2.0 * g_2) * cos_theta_2), 0.000001);
+    return (1.0 - g2_1) / ((12.566371 * denom) * metal::sqrt(denom));
+}
+
+float phase_cornette_shanks(
+    float cos_theta_3,
+    float g_3
+) {
+    float g2_2 = g_3 * g_3;
+    float denom_1 = metal::max((1.0 + g2_2) - ((2.0 * g_3) * cos_theta_3), 0.000001);
+    return ((3.0 * (1.0 - g2_2)) * (1.0 + (cos_theta_3 * cos_theta_3))) / (((25.132742 * (2.0 + g2_2)) * denom_1) * metal::sqrt(denom_1));
 }
 
 float phase(
-    float cos_theta_2,
+    float cos_theta_4,
     float scale,
     constant Frame& frame
 ) {
     float _e5 = frame.phase.x;
-    float g_4 = _e5 * scale;
+    float g_5 = _e5 * scale;
     uint _e10 = frame.modes.x;
     switch(_e10) {
         case 1u: {
             float _e14 = frame.phase.y;
-            float g2_2 = _e14 * scale;
-            float _e16 = phase_hg(cos_theta_2, g_4);
-            float _e17 = phase_hg(cos_theta_2, g2_2);
+            float g2_3 = _e14 * scale;
+            float _e16 = phase_hg(cos_theta_4, g_5);
+            float _e17 = phase_hg(cos_theta_4, g2_3);
             float _e21 = frame.phase.z;
             return metal::mix(_e16, _e17, _e21);
         }
         case 2u: {
-            float _e23 = phase_cornette_shanks(cos_theta_2, g_4);
+            float _e23 = phase_cornette_shanks(cos_theta_4, g_5);
             return _e23;
         }
         default: {
-            float _e24 = phase_hg(cos_theta_2, g_4);
+            float _e24 = phase_hg(cos_theta_4, g_5);
             return _e24;
         }
     }
 }
 
 float sun_optical_depth(
-    metal::float3 rel,
+    metal::float3 rel_1,
     metal::float3 p_6,
     Layer l_4,
     thread Counters& counters_4,
@@ -857,58 +1370,58 @@ float sun_optical_depth(
 ) {
     float seg = {};
     float dist = 0.0;
-    float tau = 0.0;
-    uint i_5 = 0u;
-    bool local_23 = {};
-    uint j_1 = 0u;
-    bool local_24 = {};
-    bool local_25 = {};
+    float tau_3 = 0.0;
+    uint i_8 = 0u;
     bool local_26 = {};
+    uint j_1 = 0u;
+    bool local_27 = {};
+    bool local_28 = {};
+    bool local_29 = {};
     metal::float4 _e6 = frame.sun_direction;
-    metal::float3 sun = _e6.xyz;
+    metal::float3 sun_1 = _e6.xyz;
     float _e11 = frame.extinction.x;
     float _e15 = frame.extinction.y;
     float sigma_t_1 = _e11 + _e15;
-    uint steps_1 = frame.counts.w;
+    uint steps_2 = frame.counts.w;
     float growth = frame.march.y;
     float _e28 = frame.march.z;
     seg = _e28;
-    uint2 loop_bound_3 = uint2(4294967295u);
-    bool loop_init_3 = true;
+    uint2 loop_bound_4 = uint2(4294967295u);
+    bool loop_init_4 = true;
     while(true) {
-        if (metal::all(loop_bound_3 == uint2(0u))) { break; }
-        loop_bound_3 -= uint2(loop_bound_3.y == 0u, 1u);
-        if (!loop_init_3) {
-            uint _e73 = i_5;
-            i_5 = _e73 + 1u;
+        if (metal::all(loop_bound_4 == uint2(0u))) { break; }
+        loop_bound_4 -= uint2(loop_bound_4.y == 0u, 1u);
+        if (!loop_init_4) {
+            uint _e73 = i_8;
+            i_8 = _e73 + 1u;
         }
-        loop_init_3 = false;
-        uint _e36 = i_5;
-        if (_e36 < steps_1) {
+        loop_init_4 = false;
+        uint _e36 = i_8;
+        if (_e36 < steps_2) {
         } else {
             break;
         }
         {
             float _e38 = dist;
             float _e39 = seg;
-            float s_4 = _e38 + (0.5 * _e39);
-            metal::float3 q_6 = rel + (sun * s_4);
-            float _e45 = altitude_of(q_6, frame);
+            float s_7 = _e38 + (0.5 * _e39);
+            metal::float3 q_7 = rel_1 + (sun_1 * s_7);
+            float _e45 = altitude_of(q_7, frame);
             if (!((_e45 > l_4.top))) {
-                local_23 = _e45 < l_4.bottom;
+                local_26 = _e45 < l_4.bottom;
             } else {
-                local_23 = true;
+                local_26 = true;
             }
-            bool _e54 = local_23;
+            bool _e54 = local_26;
             if (_e54) {
                 break;
             }
             uint _e56 = counters_4.light;
             counters_4.light = _e56 + 1u;
-            float _e59 = tau;
-            float _e62 = layer_density(p_6 + (sun * s_4), _e45, l_4, counters_4, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+            float _e59 = tau_3;
+            float _e62 = layer_density(p_6 + (sun_1 * s_7), _e45, l_4, counters_4, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
             float _e64 = seg;
-            tau = _e59 + ((_e62 * sigma_t_1) * _e64);
+            tau_3 = _e59 + ((_e62 * sigma_t_1) * _e64);
             float _e67 = dist;
             float _e68 = seg;
             dist = _e67 + _e68;
@@ -916,17 +1429,17 @@ float sun_optical_depth(
             seg = _e70 * growth;
         }
     }
-    float _e75 = altitude_of(rel, frame);
-    uint2 loop_bound_4 = uint2(4294967295u);
-    bool loop_init_4 = true;
+    float _e75 = altitude_of(rel_1, frame);
+    uint2 loop_bound_5 = uint2(4294967295u);
+    bool loop_init_5 = true;
     while(true) {
-        if (metal::all(loop_bound_4 == uint2(0u))) { break; }
-        loop_bound_4 -= uint2(loop_bound_4.y == 0u, 1u);
-        if (!loop_init_4) {
+        if (metal::all(loop_bound_5 == uint2(0u))) { break; }
+        loop_bound_5 -= uint2(loop_bound_5.y == 0u, 1u);
+        if (!loop_init_5) {
             uint _e139 = j_1;
             j_1 = _e139 + 1u;
         }
-        loop_init_4 = false;
+        loop_init_5 = false;
         uint _e78 = j_1;
         uint _e79 = layer_count(frame);
         if (_e78 < _e79) {
@@ -939,111 +1452,117 @@ float sun_optical_depth(
             if (_e82.bottom <= l_4.top) {
                 continue;
             }
-            Roots _e87 = ray_shell_from(rel, _e75, sun, _e82.bottom, frame);
-            Roots _e89 = ray_shell_from(rel, _e75, sun, _e82.top, frame);
+            Roots _e87 = ray_shell_from(rel_1, _e75, sun_1, _e82.bottom, frame);
+            Roots _e89 = ray_shell_from(rel_1, _e75, sun_1, _e82.top, frame);
             if (!(!(_e87.hit))) {
-                local_24 = !(_e89.hit);
+                local_27 = !(_e89.hit);
             } else {
-                local_24 = true;
+                local_27 = true;
             }
-            bool _e98 = local_24;
+            bool _e98 = local_27;
             if (!(_e98)) {
-                local_25 = !((_e89.t1_ > _e87.t1_));
+                local_28 = !((_e89.t1_ > _e87.t1_));
             } else {
-                local_25 = true;
+                local_28 = true;
             }
-            bool _e107 = local_25;
+            bool _e107 = local_28;
             if (!(_e107)) {
-                local_26 = _e87.t1_ <= 0.0;
+                local_29 = _e87.t1_ <= 0.0;
             } else {
-                local_26 = true;
+                local_29 = true;
             }
-            bool _e115 = local_26;
+            bool _e115 = local_29;
             if (_e115) {
                 continue;
             }
-            float s_5 = 0.5 * (_e87.t1_ + _e89.t1_);
+            float s_8 = 0.5 * (_e87.t1_ + _e89.t1_);
             uint _e122 = counters_4.light;
             counters_4.light = _e122 + 1u;
-            float _e125 = tau;
-            float _e130 = altitude_of(rel + (sun * s_5), frame);
-            float _e131 = layer_density(p_6 + (sun * s_5), _e130, _e82, counters_4, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
-            tau = _e125 + ((_e131 * sigma_t_1) * (_e89.t1_ - _e87.t1_));
+            float _e125 = tau_3;
+            float _e130 = altitude_of(rel_1 + (sun_1 * s_8), frame);
+            float _e131 = layer_density(p_6 + (sun_1 * s_8), _e130, _e82, counters_4, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+            tau_3 = _e125 + ((_e131 * sigma_t_1) * (_e89.t1_ - _e87.t1_));
         }
     }
-    float _e141 = tau;
+    float _e141 = tau_3;
     return _e141;
 }
 
 float sun_scattering(
-    float cos_theta_3,
-    float tau_1,
+    float cos_theta_5,
+    float tau_4,
     constant Frame& frame
 ) {
     float octave_sum = 0.0;
     float ka = 1.0;
     float kb = 1.0;
     float kc = 1.0;
-    uint i_6 = 0u;
+    uint i_9 = 0u;
     float total = {};
-    float a_4 = frame.multiple_scattering.x;
-    float b_6 = frame.multiple_scattering.y;
-    float c_6 = frame.multiple_scattering.z;
+    float a_8 = frame.multiple_scattering.x;
+    float b_8 = frame.multiple_scattering.y;
+    float c_7 = frame.multiple_scattering.z;
     uint _e17 = frame.misc.x;
     uint octaves = metal::min(_e17, MAX_OCTAVES);
-    uint2 loop_bound_5 = uint2(4294967295u);
-    bool loop_init_5 = true;
+    uint2 loop_bound_6 = uint2(4294967295u);
+    bool loop_init_6 = true;
     while(true) {
-        if (metal::all(loop_bound_5 == uint2(0u))) { break; }
-        loop_bound_5 -= uint2(loop_bound_5.y == 0u, 1u);
-        if (!loop_init_5) {
-            uint _e50 = i_6;
-            i_6 = _e50 + 1u;
+        if (metal::all(loop_bound_6 == uint2(0u))) { break; }
+        loop_bound_6 -= uint2(loop_bound_6.y == 0u, 1u);
+        if (!loop_init_6) {
+            uint _e50 = i_9;
+            i_9 = _e50 + 1u;
         }
-        loop_init_5 = false;
-        uint _e30 = i_6;
+        loop_init_6 = false;
+        uint _e30 = i_9;
         if (_e30 < octaves) {
         } else {
             break;
         }
         {
             float _e32 = ka;
-            ka = _e32 * a_4;
+            ka = _e32 * a_8;
             float _e34 = kb;
-            kb = _e34 * b_6;
+            kb = _e34 * b_8;
             float _e36 = kc;
-            kc = _e36 * c_6;
+            kc = _e36 * c_7;
             float _e38 = octave_sum;
             float _e39 = ka;
             float _e40 = kc;
-            float _e41 = phase(cos_theta_3, _e40, frame);
+            float _e41 = phase(cos_theta_5, _e40, frame);
             float _e43 = kb;
-            octave_sum = _e38 + ((_e39 * _e41) * metal::exp(-(_e43) * tau_1));
+            octave_sum = _e38 + ((_e39 * _e41) * metal::exp(-(_e43) * tau_4));
         }
     }
     float _e55 = frame.sun_direction.y;
     float _e56 = saturate(_e55);
-    float _e58 = phase(cos_theta_3, 1.0, frame);
+    float _e58 = phase(cos_theta_5, 1.0, frame);
     float _e62 = octave_sum;
-    total = (_e58 * metal::exp(-(tau_1))) + (_e56 * _e62);
+    total = (_e58 * metal::exp(-(tau_4))) + (_e56 * _e62);
     uint _e69 = frame.modes.w;
     if ((_e69 & FLAG_BEER_POWDER) != 0u) {
         float _e74 = total;
         float _e78 = frame.phase.w;
-        total = _e74 * (1.0 - metal::exp(-(_e78) * tau_1));
+        total = _e74 * (1.0 - metal::exp(-(_e78) * tau_4));
     }
     float _e85 = total;
     return _e85;
 }
 
 metal::float3 ambient(
-    float h_4,
-    constant Frame& frame
+    float h_5,
+    constant Frame& frame,
+    metal::texture2d<float, metal::access::sample> sky_ambient_in
 ) {
-    metal::float4 _e3 = frame.ambient_bottom;
-    metal::float4 _e7 = frame.ambient_top;
-    float _e13 = frame.ambient_bottom.w;
-    return metal::mix(_e3.xyz, _e7.xyz, h_4) * _e13;
+    bool _e1 = physical_sky(frame);
+    if (_e1) {
+        metal::float3 _e2 = sky_ambient_light(h_5, frame, sky_ambient_in);
+        return _e2;
+    }
+    metal::float4 _e5 = frame.ambient_bottom;
+    metal::float4 _e9 = frame.ambient_top;
+    float _e15 = frame.ambient_bottom.w;
+    return metal::mix(_e5.xyz, _e9.xyz, h_5) * _e15;
 }
 
 float height_fraction(
@@ -1058,7 +1577,7 @@ float height_fraction(
 }
 
 metal::float3 scattered_light(
-    metal::float3 rel_1,
+    metal::float3 rel_2,
     metal::float3 p_7,
     float alt_12,
     float density_1,
@@ -1066,6 +1585,8 @@ metal::float3 scattered_light(
     Layer l_5,
     thread Counters& counters_5,
     constant Frame& frame,
+    metal::texture2d<float, metal::access::sample> transmittance_lut_in,
+    metal::texture2d<float, metal::access::sample> sky_ambient_in,
     metal::texture3d<float, metal::access::sample> shape_tex,
     metal::texture3d<float, metal::access::sample> detail_tex,
     metal::texture2d<float, metal::access::sample> weather_tex,
@@ -1073,46 +1594,43 @@ metal::float3 scattered_light(
     metal::sampler noise_sampler
 ) {
     metal::float3 sun_light = metal::float3(0.0);
-    float tau_2 = 0.0;
+    float tau_5 = 0.0;
     metal::float4 _e9 = frame.sun_direction;
-    metal::float3 sun_1 = _e9.xyz;
+    metal::float3 sun_2 = _e9.xyz;
     float _e11 = layer_height(l_5, alt_12);
     float _e12 = saturate(_e11);
-    bool _e16 = hits_ground(rel_1, alt_12, sun_1, frame);
+    bool _e16 = hits_ground(rel_2, alt_12, sun_2, frame);
     if (!(_e16)) {
         if (LIGHT_MARCH) {
-            float _e21 = sun_optical_depth(rel_1, p_7, l_5, counters_5, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
-            tau_2 = _e21;
+            float _e21 = sun_optical_depth(rel_2, p_7, l_5, counters_5, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+            tau_5 = _e21;
         }
         metal::float4 _e24 = frame.sun_illuminance;
-        float _e27 = tau_2;
-        float _e28 = sun_scattering(metal::dot(view, sun_1), _e27, frame);
-        sun_light = _e24.xyz * _e28;
+        metal::float3 _e26 = sun_through_air(rel_2, frame, transmittance_lut_in);
+        float _e29 = tau_5;
+        float _e30 = sun_scattering(metal::dot(view, sun_2), _e29, frame);
+        sun_light = (_e24.xyz * _e26) * _e30;
     }
-    Weather _e30 = sample_weather(p_7, l_5, frame, weather_tex, noise_sampler);
-    float _e34 = frame.extinction.z;
-    float _e42 = saturate(1.0 - ((_e34 * _e30.precipitation) * (1.0 - _e12)));
-    float _e46 = frame.extinction.x;
-    metal::float3 _e48 = sun_light;
-    metal::float3 _e49 = ambient(_e12, frame);
-    return ((_e46 * density_1) * (_e48 + _e49)) * _e42;
-}
-
-metal::uint2 naga_f2u32(metal::float2 value) {
-    return static_cast<metal::uint2>(metal::clamp(value, 0.0, 4294967000.0));
+    Weather _e32 = sample_weather(p_7, l_5, frame, weather_tex, noise_sampler);
+    float _e36 = frame.extinction.z;
+    float _e44 = saturate(1.0 - ((_e36 * _e32.precipitation) * (1.0 - _e12)));
+    float _e48 = frame.extinction.x;
+    metal::float3 _e50 = sun_light;
+    metal::float3 _e51 = ambient(_e12, frame, sky_ambient_in);
+    return ((_e48 * density_1) * (_e50 + _e51)) * _e44;
 }
 
 float empty_cell_exit(
     metal::float3 p_8,
-    metal::float3 d_7,
+    metal::float3 d_10,
     constant Frame& frame,
     metal::texture2d<float, metal::access::sample> occupancy_in
 ) {
     float exit = 1000000000000000000000000000000.0;
     metal::float4 _e6 = frame.wind_offsets0_;
     float _e12 = frame.periods.x;
-    metal::float2 uv_2 = metal::fract((p_8.xz - _e6.xy) / metal::float2(_e12)) * 64.0;
-    metal::uint2 cell_1 = metal::min(naga_f2u32(uv_2), metal::uint2(63u));
+    metal::float2 uv_3 = metal::fract((p_8.xz - _e6.xy) / metal::float2(_e12)) * 64.0;
+    metal::uint2 cell_1 = metal::min(naga_f2u32(uv_3), metal::uint2(63u));
     metal::float4 _e23 = occupancy_in.read(metal::uint2(cell_1), 0);
     float m_2 = _e23.x;
     float _e28 = frame.clouds.x;
@@ -1121,23 +1639,23 @@ float empty_cell_exit(
     }
     float _e40 = frame.periods.x;
     float cell_m = _e40 / 64.0;
-    metal::float2 inside = (uv_2 - static_cast<metal::float2>(cell_1)) * cell_m;
-    if (d_7.x > 0.000001) {
+    metal::float2 inside = (uv_3 - static_cast<metal::float2>(cell_1)) * cell_m;
+    if (d_10.x > 0.000001) {
         float _e50 = exit;
-        exit = metal::min(_e50, (cell_m - inside.x) / d_7.x);
+        exit = metal::min(_e50, (cell_m - inside.x) / d_10.x);
     } else {
-        if (d_7.x < -0.000001) {
+        if (d_10.x < -0.000001) {
             float _e59 = exit;
-            exit = metal::min(_e59, inside.x / -(d_7.x));
+            exit = metal::min(_e59, inside.x / -(d_10.x));
         }
     }
-    if (d_7.z > 0.000001) {
+    if (d_10.z > 0.000001) {
         float _e68 = exit;
-        exit = metal::min(_e68, (cell_m - inside.y) / d_7.z);
+        exit = metal::min(_e68, (cell_m - inside.y) / d_10.z);
     } else {
-        if (d_7.z < -0.000001) {
+        if (d_10.z < -0.000001) {
             float _e77 = exit;
-            exit = metal::min(_e77, inside.y / -(d_7.z));
+            exit = metal::min(_e77, inside.y / -(d_10.z));
         }
     }
     float _e83 = exit;
@@ -1149,13 +1667,13 @@ void count(
     uint value,
     device Stats& stats
 ) {
-    bool local_27 = {};
+    bool local_30 = {};
     if (STATS) {
-        local_27 = value != 0u;
+        local_30 = value != 0u;
     } else {
-        local_27 = false;
+        local_30 = false;
     }
-    bool _e8 = local_27;
+    bool _e8 = local_30;
     if (_e8) {
         uint _e12 = metal::atomic_fetch_add_explicit(&stats.counters.inner[index_1], value, metal::memory_order_relaxed);
         return;
@@ -1174,9 +1692,9 @@ metal::float3 step_integral(
     if (_e6 == INTEGRATION_RIEMANN) {
         return source * dt;
     }
-    float x_4 = sigma_t * dt;
-    float f_1 = (x_4 < 0.001) ? (1.0 - (0.5 * x_4)) : ((1.0 - metal::exp(-(x_4))) / x_4);
-    return source * (dt * f_1);
+    float x_8 = sigma_t * dt;
+    float f_3 = (x_8 < 0.001) ? (1.0 - (0.5 * x_8)) : ((1.0 - metal::exp(-(x_8))) / x_8);
+    return source * (dt * f_3);
 }
 
 uint naga_div(uint lhs, uint rhs) {
@@ -1184,26 +1702,22 @@ uint naga_div(uint lhs, uint rhs) {
 }
 
 float start_offset(
-    metal::uint2 pixel_2,
+    metal::uint2 pixel_3,
     constant Frame& frame
 ) {
     uint _e4 = frame.modes.w;
     bool jitter_1 = (_e4 & FLAG_JITTER) != 0u;
-    uint k_6 = frame.temporal.x;
-    if (k_6 <= 1u) {
+    uint k_10 = frame.temporal.x;
+    if (k_10 <= 1u) {
         uint _e18 = frame.misc.y;
-        float _e19 = hash_unit(pixel_2, _e18);
+        float _e19 = hash_unit(pixel_3, _e18);
         return jitter_1 ? _e19 : 0.5;
     }
-    float _e23 = hash_unit(pixel_2, 0u);
+    float _e23 = hash_unit(pixel_3, 0u);
     float base_2 = jitter_1 ? _e23 : 0.5;
     uint _e29 = frame.misc.y;
-    float _e32 = van_der_corput(naga_div(_e29, k_6 * k_6));
+    float _e32 = van_der_corput(naga_div(_e29, k_10 * k_10));
     return metal::fract(base_2 + _e32);
-}
-
-uint naga_f2u32(float value) {
-    return static_cast<uint>(metal::clamp(value, 0.0, 4294967000.0));
 }
 
 bool march_layer(
@@ -1214,6 +1728,8 @@ bool march_layer(
     thread MarchState& state,
     thread Counters& counters_6,
     constant Frame& frame,
+    metal::texture2d<float, metal::access::sample> transmittance_lut_in,
+    metal::texture2d<float, metal::access::sample> sky_ambient_in,
     metal::texture3d<float, metal::access::sample> shape_tex,
     metal::texture3d<float, metal::access::sample> detail_tex,
     metal::texture2d<float, metal::access::sample> weather_tex,
@@ -1221,23 +1737,23 @@ bool march_layer(
     metal::sampler noise_sampler,
     metal::texture2d<float, metal::access::sample> occupancy_in
 ) {
-    uint steps = {};
-    uint i_7 = 0u;
+    uint steps_1 = {};
+    uint i_10 = 0u;
     uint stride = 1u;
     uint empty = 0u;
-    bool local_28 = {};
+    bool local_31 = {};
     float cam_alt = frame.camera_position.y;
     metal::float4 _e12 = frame.camera_position;
     metal::float2 cam_xz = _e12.xz;
     uint _e17 = frame.counts.z;
-    steps = _e17;
+    steps_1 = _e17;
     float _e22 = frame.march.x;
     if (_e22 > 0.0) {
         float _e29 = frame.march.x;
-        steps = metal::clamp(naga_f2u32(metal::ceil(span_1.length / _e29)), 1u, MAX_VIEW_STEPS);
+        steps_1 = metal::clamp(naga_f2u32(metal::ceil(span_1.length / _e29)), 1u, MAX_VIEW_STEPS);
     }
-    uint _e37 = steps;
-    float dt_1 = span_1.length / static_cast<float>(_e37);
+    uint _e37 = steps_1;
+    float dt_2 = span_1.length / static_cast<float>(_e37);
     float _e43 = frame.extinction.x;
     float _e47 = frame.extinction.y;
     float sigma_e = _e43 + _e47;
@@ -1245,85 +1761,87 @@ bool march_layer(
     bool dynamic_step = (_e52 & FLAG_DYNAMIC_STEP) != 0u;
     uint _e60 = frame.modes.w;
     bool empty_skip = (_e60 & FLAG_EMPTY_SKIP) != 0u;
-    uint2 loop_bound_6 = uint2(4294967295u);
+    uint2 loop_bound_7 = uint2(4294967295u);
     while(true) {
-        if (metal::all(loop_bound_6 == uint2(0u))) { break; }
-        loop_bound_6 -= uint2(loop_bound_6.y == 0u, 1u);
-        uint _e71 = i_7;
-        uint _e72 = steps;
+        if (metal::all(loop_bound_7 == uint2(0u))) { break; }
+        loop_bound_7 -= uint2(loop_bound_7.y == 0u, 1u);
+        uint _e71 = i_10;
+        uint _e72 = steps_1;
         if (_e71 >= _e72) {
             break;
         }
         uint _e75 = counters_6.view_steps;
         counters_6.view_steps = _e75 + 1u;
-        uint _e79 = i_7;
-        float t_4 = span_1.start + ((static_cast<float>(_e79) + jitter) * dt_1);
-        metal::float3 rel_4 = (view_1 * t_4) + metal::float3(0.0, cam_alt, 0.0);
-        metal::float3 p_12 = metal::float3(rel_4.x + cam_xz.x, rel_4.y, rel_4.z + cam_xz.y);
+        uint _e79 = i_10;
+        float t_5 = span_1.start + ((static_cast<float>(_e79) + jitter) * dt_2);
+        metal::float3 rel_5 = (view_1 * t_5) + metal::float3(0.0, cam_alt, 0.0);
+        metal::float3 p_13 = metal::float3(rel_5.x + cam_xz.x, rel_5.y, rel_5.z + cam_xz.y);
         if (empty_skip) {
-            float _e97 = empty_cell_exit(p_12, view_1, frame, occupancy_in);
+            float _e97 = empty_cell_exit(p_13, view_1, frame, occupancy_in);
             if (_e97 > 0.0) {
-                uint _e106 = steps;
-                uint next_1 = naga_f2u32(metal::clamp(metal::ceil((((t_4 + _e97) - span_1.start) / dt_1) - jitter), 0.0, static_cast<float>(_e106)));
-                uint _e111 = i_7;
-                i_7 = metal::max(_e111 + 1u, next_1);
+                uint _e106 = steps_1;
+                uint next_1 = naga_f2u32(metal::clamp(metal::ceil((((t_5 + _e97) - span_1.start) / dt_2) - jitter), 0.0, static_cast<float>(_e106)));
+                uint _e111 = i_10;
+                i_10 = metal::max(_e111 + 1u, next_1);
                 continue;
             }
         }
-        float _e115 = altitude_of(rel_4, frame);
-        float _e116 = layer_density(p_12, _e115, l_6, counters_6, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+        float _e115 = altitude_of(rel_5, frame);
+        float _e116 = layer_density(p_13, _e115, l_6, counters_6, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
         if (_e116 <= 0.0) {
             uint _e119 = empty;
             empty = _e119 + 1u;
             if (dynamic_step) {
                 uint _e124 = empty;
-                local_28 = _e124 >= 8u;
+                local_31 = _e124 >= 8u;
             } else {
-                local_28 = false;
+                local_31 = false;
             }
-            bool _e128 = local_28;
+            bool _e128 = local_31;
             if (_e128) {
                 stride = 2u;
             }
-            uint _e130 = i_7;
+            uint _e130 = i_10;
             uint _e131 = stride;
-            i_7 = _e130 + _e131;
+            i_10 = _e130 + _e131;
             continue;
         }
         uint _e133 = stride;
         if (_e133 > 1u) {
-            uint _e136 = i_7;
+            uint _e136 = i_10;
             uint _e137 = stride;
-            i_7 = _e136 - (_e137 - 1u);
+            i_10 = _e136 - (_e137 - 1u);
             stride = 1u;
             empty = 0u;
             continue;
         }
         empty = 0u;
         float sigma_t_2 = sigma_e * _e116;
-        metal::float3 _e145 = scattered_light(rel_4, p_12, _e115, _e116, view_1, l_6, counters_6, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+        metal::float3 _e145 = scattered_light(rel_5, p_13, _e115, _e116, view_1, l_6, counters_6, frame, transmittance_lut_in, sky_ambient_in, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
         float transmittance_1 = state.transmittance;
         metal::float3 _e149 = state.radiance;
-        metal::float3 _e150 = step_integral(_e145, sigma_t_2, dt_1, frame);
+        metal::float3 _e150 = step_integral(_e145, sigma_t_2, dt_2, frame);
         state.radiance = _e149 + (transmittance_1 * _e150);
-        float step_t = metal::exp(-(sigma_t_2) * dt_1);
+        float step_t = metal::exp(-(sigma_t_2) * dt_2);
         float _e157 = state.depth_sum;
-        state.depth_sum = _e157 + ((t_4 * transmittance_1) * (1.0 - step_t));
+        state.depth_sum = _e157 + ((t_5 * transmittance_1) * (1.0 - step_t));
         state.transmittance = transmittance_1 * step_t;
         float _e166 = state.transmittance;
         float _e170 = frame.march.w;
         if (_e166 < _e170) {
             return true;
         }
-        uint _e173 = i_7;
-        i_7 = _e173 + 1u;
+        uint _e173 = i_10;
+        i_10 = _e173 + 1u;
     }
     return false;
 }
 
 MarchResult march_pixel(
-    metal::uint2 pixel_3,
+    metal::uint2 pixel_4,
     constant Frame& frame,
+    metal::texture2d<float, metal::access::sample> transmittance_lut_in,
+    metal::texture2d<float, metal::access::sample> sky_ambient_in,
     metal::texture3d<float, metal::access::sample> shape_tex,
     metal::texture3d<float, metal::access::sample> detail_tex,
     metal::texture2d<float, metal::access::sample> weather_tex,
@@ -1335,36 +1853,36 @@ MarchResult march_pixel(
     Counters counters_7 = Counters {0u, 0u, 0u, 0u};
     MarchState state_1 = MarchState {metal::float3(0.0), 1.0, 0.0};
     bool marched = false;
-    bool ground = false;
+    bool ground_1 = false;
     float last_start = -1.0;
     uint last_index = NO_LAYER;
-    uint k = 0u;
+    uint k_4 = 0u;
     uint next = {};
     Interval span_2 = {};
-    uint i_8 = {};
-    bool local_29 = {};
-    bool local_30 = {};
-    bool local_31 = {};
+    uint i_11 = {};
     bool local_32 = {};
     bool local_33 = {};
     bool local_34 = {};
+    bool local_35 = {};
+    bool local_36 = {};
+    bool local_37 = {};
     float depth_1 = 0.0;
-    metal::float3 _e1 = view_ray(pixel_3, frame);
+    metal::float3 _e1 = view_ray(pixel_4, frame);
     float cam_alt_1 = frame.camera_position.y;
     count(STAT_PIXELS, 1u, stats);
-    float _e20 = start_offset(pixel_3, frame);
+    float _e20 = start_offset(pixel_4, frame);
     uint _e21 = layer_count(frame);
-    uint2 loop_bound_7 = uint2(4294967295u);
-    bool loop_init_6 = true;
+    uint2 loop_bound_8 = uint2(4294967295u);
+    bool loop_init_7 = true;
     while(true) {
-        if (metal::all(loop_bound_7 == uint2(0u))) { break; }
-        loop_bound_7 -= uint2(loop_bound_7.y == 0u, 1u);
-        if (!loop_init_6) {
-            uint _e116 = k;
-            k = _e116 + 1u;
+        if (metal::all(loop_bound_8 == uint2(0u))) { break; }
+        loop_bound_8 -= uint2(loop_bound_8.y == 0u, 1u);
+        if (!loop_init_7) {
+            uint _e116 = k_4;
+            k_4 = _e116 + 1u;
         }
-        loop_init_6 = false;
-        uint _e32 = k;
+        loop_init_7 = false;
+        uint _e32 = k_4;
         if (_e32 < _e21) {
         } else {
             break;
@@ -1372,72 +1890,72 @@ MarchResult march_pixel(
         {
             next = NO_LAYER;
             span_2 = Interval {0.0, 0.0, 1u};
-            i_8 = 0u;
-            uint2 loop_bound_8 = uint2(4294967295u);
-            bool loop_init_7 = true;
+            i_11 = 0u;
+            uint2 loop_bound_9 = uint2(4294967295u);
+            bool loop_init_8 = true;
             while(true) {
-                if (metal::all(loop_bound_8 == uint2(0u))) { break; }
-                loop_bound_8 -= uint2(loop_bound_8.y == 0u, 1u);
-                if (!loop_init_7) {
-                    uint _e100 = i_8;
-                    i_8 = _e100 + 1u;
+                if (metal::all(loop_bound_9 == uint2(0u))) { break; }
+                loop_bound_9 -= uint2(loop_bound_9.y == 0u, 1u);
+                if (!loop_init_8) {
+                    uint _e100 = i_11;
+                    i_11 = _e100 + 1u;
                 }
-                loop_init_7 = false;
-                uint _e43 = i_8;
+                loop_init_8 = false;
+                uint _e43 = i_11;
                 if (_e43 < _e21) {
                 } else {
                     break;
                 }
                 {
-                    uint _e45 = i_8;
+                    uint _e45 = i_11;
                     Layer _e46 = cloud_layer(_e45, frame);
                     Interval _e47 = layer_interval(cam_alt_1, _e1, _e46, frame);
-                    bool _e48 = ground;
+                    bool _e48 = ground_1;
                     if (!(_e48)) {
-                        local_29 = _e47.kind == RAY_HITS_GROUND;
+                        local_32 = _e47.kind == RAY_HITS_GROUND;
                     } else {
-                        local_29 = true;
+                        local_32 = true;
                     }
-                    bool _e56 = local_29;
-                    ground = _e56;
+                    bool _e56 = local_32;
+                    ground_1 = _e56;
                     float _e58 = last_start;
                     if (!((_e47.start > _e58))) {
                         float _e64 = last_start;
                         if (_e47.start == _e64) {
-                            uint _e68 = i_8;
+                            uint _e68 = i_11;
                             uint _e69 = last_index;
-                            local_31 = _e68 > _e69;
+                            local_34 = _e68 > _e69;
                         } else {
-                            local_31 = false;
+                            local_34 = false;
                         }
-                        bool _e72 = local_31;
-                        local_30 = _e72;
+                        bool _e72 = local_34;
+                        local_33 = _e72;
                     } else {
-                        local_30 = true;
+                        local_33 = true;
                     }
-                    bool after = local_30;
+                    bool after = local_33;
                     if (_e47.kind == RAY_MARCH) {
-                        local_32 = after;
+                        local_35 = after;
                     } else {
-                        local_32 = false;
+                        local_35 = false;
                     }
-                    bool _e81 = local_32;
+                    bool _e81 = local_35;
                     if (_e81) {
                         uint _e84 = next;
                         if (!((_e84 == NO_LAYER))) {
                             float _e92 = span_2.start;
-                            local_34 = _e47.start < _e92;
+                            local_37 = _e47.start < _e92;
                         } else {
-                            local_34 = true;
+                            local_37 = true;
                         }
-                        bool _e95 = local_34;
-                        local_33 = _e95;
+                        bool _e95 = local_37;
+                        local_36 = _e95;
                     } else {
-                        local_33 = false;
+                        local_36 = false;
                     }
-                    bool _e97 = local_33;
+                    bool _e97 = local_36;
                     if (_e97) {
-                        uint _e98 = i_8;
+                        uint _e98 = i_11;
                         next = _e98;
                         span_2 = _e47;
                     }
@@ -1455,7 +1973,7 @@ MarchResult march_pixel(
             Interval _e109 = span_2;
             uint _e110 = next;
             Layer _e111 = cloud_layer(_e110, frame);
-            bool _e112 = march_layer(_e1, _e109, _e111, _e20, state_1, counters_7, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler, occupancy_in);
+            bool _e112 = march_layer(_e1, _e109, _e111, _e20, state_1, counters_7, frame, transmittance_lut_in, sky_ambient_in, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler, occupancy_in);
             if (_e112) {
                 count(STAT_EXIT_TRANSMITTANCE, 1u, stats);
                 break;
@@ -1466,7 +1984,7 @@ MarchResult march_pixel(
     if (_e118) {
         count(STAT_MARCHED, 1u, stats);
     } else {
-        bool _e121 = ground;
+        bool _e121 = ground_1;
         if (_e121) {
             count(STAT_EXIT_GROUND, 1u, stats);
         } else {
@@ -1494,9 +2012,9 @@ MarchResult march_pixel(
 }
 
 metal::uint2 bayer2_(
-    uint v_1
+    uint v_2
 ) {
-    return metal::uint2((v_1 ^ (v_1 >> 1u)) & 1u, v_1 & 1u);
+    return metal::uint2((v_2 ^ (v_2 >> 1u)) & 1u, v_2 & 1u);
 }
 
 uint naga_mod(uint lhs, uint rhs) {
@@ -1505,60 +2023,60 @@ uint naga_mod(uint lhs, uint rhs) {
 
 metal::uint2 block_offset(
     uint f,
-    uint k_1
+    uint k_5
 ) {
-    if (k_1 == 2u) {
+    if (k_5 == 2u) {
         metal::uint2 _e6 = bayer2_(naga_mod(f, 4u));
         return _e6;
     }
-    if (k_1 == 4u) {
-        uint b_7 = naga_mod(f, 16u);
-        metal::uint2 _e13 = bayer2_(b_7 >> 2u);
-        metal::uint2 _e17 = bayer2_(b_7 & 3u);
+    if (k_5 == 4u) {
+        uint b_9 = naga_mod(f, 16u);
+        metal::uint2 _e13 = bayer2_(b_9 >> 2u);
+        metal::uint2 _e17 = bayer2_(b_9 & 3u);
         return _e13 + (2u * _e17);
     }
     return metal::uint2(0u);
 }
 
 metal::float2 reproject(
-    metal::uint2 pixel_4,
+    metal::uint2 pixel_5,
     float depth_2,
     constant Frame& frame
 ) {
-    bool local_35 = {};
-    bool local_36 = {};
-    bool local_37 = {};
+    bool local_38 = {};
+    bool local_39 = {};
+    bool local_40 = {};
     metal::float3 dir = {};
     metal::float4 _e4 = frame.previous_position;
     metal::float4 _e7 = frame.camera_position;
     if (metal::all(_e4 == _e7)) {
         metal::float4 _e14 = frame.previous_forward;
         metal::float4 _e17 = frame.camera_forward;
-        local_35 = metal::all(_e14 == _e17);
+        local_38 = metal::all(_e14 == _e17);
     } else {
-        local_35 = false;
+        local_38 = false;
     }
-    bool _e21 = local_35;
+    bool _e21 = local_38;
     if (_e21) {
         metal::float4 _e26 = frame.previous_right;
         metal::float4 _e29 = frame.camera_right;
-        local_36 = metal::all(_e26 == _e29);
+        local_39 = metal::all(_e26 == _e29);
     } else {
-        local_36 = false;
+        local_39 = false;
     }
-    bool _e33 = local_36;
+    bool _e33 = local_39;
     if (_e33) {
         metal::float4 _e38 = frame.previous_up;
         metal::float4 _e41 = frame.camera_up;
-        local_37 = metal::all(_e38 == _e41);
+        local_40 = metal::all(_e38 == _e41);
     } else {
-        local_37 = false;
+        local_40 = false;
     }
-    bool same = local_37;
+    bool same = local_40;
     if (same) {
-        return static_cast<metal::float2>(pixel_4);
+        return static_cast<metal::float2>(pixel_5);
     }
-    metal::float3 _e47 = view_ray(pixel_4, frame);
+    metal::float3 _e47 = view_ray(pixel_5, frame);
     dir = _e47;
     if (depth_2 > 0.0) {
         metal::float4 _e54 = frame.camera_position;
@@ -1567,41 +2085,41 @@ metal::float2 reproject(
     }
     metal::float3 _e62 = dir;
     metal::float4 _e65 = frame.previous_forward;
-    float z = metal::dot(_e62, _e65.xyz);
-    if (z <= 0.0) {
+    float z_3 = metal::dot(_e62, _e65.xyz);
+    if (z_3 <= 0.0) {
         return metal::float2(-1000000000.0);
     }
-    float tan_half_1 = frame.previous_position.w;
-    float aspect_1 = frame.previous_forward.w;
+    float tan_half_2 = frame.previous_position.w;
+    float aspect_2 = frame.previous_forward.w;
     metal::float3 _e80 = dir;
     metal::float4 _e83 = frame.previous_right;
     metal::float3 _e89 = dir;
     metal::float4 _e92 = frame.previous_up;
-    metal::float2 ndc_1 = metal::float2(metal::dot(_e80, _e83.xyz) / ((z * tan_half_1) * aspect_1), -(metal::dot(_e89, _e92.xyz)) / (z * tan_half_1));
+    metal::float2 ndc_2 = metal::float2(metal::dot(_e80, _e83.xyz) / ((z_3 * tan_half_2) * aspect_2), -(metal::dot(_e89, _e92.xyz)) / (z_3 * tan_half_2));
     metal::uint4 _e106 = frame.counts;
-    return (((ndc_1 * 0.5) + metal::float2(0.5)) * static_cast<metal::float2>(_e106.xy)) - metal::float2(0.5);
+    return (((ndc_2 * 0.5) + metal::float2(0.5)) * static_cast<metal::float2>(_e106.xy)) - metal::float2(0.5);
 }
 
 bool on_screen(
     metal::float2 q,
     constant Frame& frame
 ) {
-    bool local_38 = {};
+    bool local_41 = {};
     metal::uint4 _e3 = frame.counts;
-    metal::float2 size_1 = static_cast<metal::float2>(_e3.xy);
+    metal::float2 size_2 = static_cast<metal::float2>(_e3.xy);
     if (metal::all(q >= metal::float2(-0.5))) {
-        local_38 = metal::all(q <= (size_1 - metal::float2(0.5)));
+        local_41 = metal::all(q <= (size_2 - metal::float2(0.5)));
     } else {
-        local_38 = false;
+        local_41 = false;
     }
-    bool _e18 = local_38;
+    bool _e18 = local_41;
     return _e18;
 }
 
 metal::float4 catmull_rom(
-    float t
+    float t_1
 ) {
-    return metal::float4(t * (-0.5 + (t * (1.0 - (0.5 * t)))), 1.0 + ((t * t) * (-2.5 + (1.5 * t))), t * (0.5 + (t * (2.0 - (1.5 * t)))), (t * t) * (-0.5 + (0.5 * t)));
+    return metal::float4(t_1 * (-0.5 + (t_1 * (1.0 - (0.5 * t_1)))), 1.0 + ((t_1 * t_1) * (-2.5 + (1.5 * t_1))), t_1 * (0.5 + (t_1 * (2.0 - (1.5 * t_1)))), (t_1 * t_1) * (-0.5 + (0.5 * t_1)));
 }
 
 metal::float4 history_row(
@@ -1612,12 +2130,12 @@ metal::float4 history_row(
     metal::texture2d<float, metal::access::sample> history_in
 ) {
     metal::uint4 _e5 = frame.counts;
-    metal::int2 size_2 = static_cast<metal::int2>(_e5.xy);
-    int y_1 = metal::clamp(as_type<int>(as_type<uint>(base_1.y) + as_type<uint>(dy)), 0, as_type<int>(as_type<uint>(size_2.y) - as_type<uint>(1)));
-    int x0_ = metal::clamp(as_type<int>(as_type<uint>(base_1.x) - as_type<uint>(1)), 0, as_type<int>(as_type<uint>(size_2.x) - as_type<uint>(1)));
-    int x1_ = metal::clamp(base_1.x, 0, as_type<int>(as_type<uint>(size_2.x) - as_type<uint>(1)));
-    int x2_ = metal::clamp(as_type<int>(as_type<uint>(base_1.x) + as_type<uint>(1)), 0, as_type<int>(as_type<uint>(size_2.x) - as_type<uint>(1)));
-    int x3_ = metal::clamp(as_type<int>(as_type<uint>(base_1.x) + as_type<uint>(2)), 0, as_type<int>(as_type<uint>(size_2.x) - as_type<uint>(1)));
+    metal::int2 size_3 = static_cast<metal::int2>(_e5.xy);
+    int y_1 = metal::clamp(as_type<int>(as_type<uint>(base_1.y) + as_type<uint>(dy)), 0, as_type<int>(as_type<uint>(size_3.y) - as_type<uint>(1)));
+    int x0_ = metal::clamp(as_type<int>(as_type<uint>(base_1.x) - as_type<uint>(1)), 0, as_type<int>(as_type<uint>(size_3.x) - as_type<uint>(1)));
+    int x1_ = metal::clamp(base_1.x, 0, as_type<int>(as_type<uint>(size_3.x) - as_type<uint>(1)));
+    int x2_ = metal::clamp(as_type<int>(as_type<uint>(base_1.x) + as_type<uint>(1)), 0, as_type<int>(as_type<uint>(size_3.x) - as_type<uint>(1)));
+    int x3_ = metal::clamp(as_type<int>(as_type<uint>(base_1.x) + as_type<uint>(2)), 0, as_type<int>(as_type<uint>(size_3.x) - as_type<uint>(1)));
     metal::float4 _e48 = history_in.read(metal::uint2(metal::int2(x0_, y_1)), 0);
     metal::float4 _e54 = history_in.read(metal::uint2(metal::int2(x1_, y_1)), 0);
     metal::float4 _e61 = history_in.read(metal::uint2(metal::int2(x2_, y_1)), 0);
@@ -1635,19 +2153,19 @@ metal::float4 history_at(
     metal::texture2d<float, metal::access::sample> history_in
 ) {
     metal::uint4 _e3 = frame.counts;
-    metal::int2 size_3 = static_cast<metal::int2>(_e3.xy);
-    metal::float2 c_7 = metal::clamp(q_1, metal::float2(0.0), static_cast<metal::float2>(as_type<metal::int2>(as_type<metal::uint2>(size_3) - as_type<metal::uint2>(metal::int2(1)))));
-    metal::int2 base_3 = naga_f2i32(metal::floor(c_7));
-    metal::float2 f_2 = c_7 - static_cast<metal::float2>(base_3);
-    metal::float4 _e18 = catmull_rom(f_2.x);
-    metal::float4 _e20 = catmull_rom(f_2.y);
+    metal::int2 size_4 = static_cast<metal::int2>(_e3.xy);
+    metal::float2 c_8 = metal::clamp(q_1, metal::float2(0.0), static_cast<metal::float2>(as_type<metal::int2>(as_type<metal::uint2>(size_4) - as_type<metal::uint2>(metal::int2(1)))));
+    metal::int2 base_3 = naga_f2i32(metal::floor(c_8));
+    metal::float2 f_4 = c_8 - static_cast<metal::float2>(base_3);
+    metal::float4 _e18 = catmull_rom(f_4.x);
+    metal::float4 _e20 = catmull_rom(f_4.y);
     metal::float4 _e22 = history_row(base_3, -1, _e18, frame, history_in);
     metal::float4 _e26 = history_row(base_3, 0, _e18, frame, history_in);
     metal::float4 _e31 = history_row(base_3, 1, _e18, frame, history_in);
     metal::float4 _e36 = history_row(base_3, 2, _e18, frame, history_in);
-    metal::float4 sum_2 = (((_e22 * _e20.x) + (_e26 * _e20.y)) + (_e31 * _e20.z)) + (_e36 * _e20.w);
-    float _e45 = saturate(sum_2.w);
-    return metal::float4(metal::max(sum_2.xyz, metal::float3(0.0)), _e45);
+    metal::float4 sum_4 = (((_e22 * _e20.x) + (_e26 * _e20.y)) + (_e31 * _e20.z)) + (_e36 * _e20.w);
+    float _e45 = saturate(sum_4.w);
+    return metal::float4(metal::max(sum_4.xyz, metal::float3(0.0)), _e45);
 }
 
 metal::float4 history_nearest(
@@ -1656,9 +2174,9 @@ metal::float4 history_nearest(
     metal::texture2d<float, metal::access::sample> history_in
 ) {
     metal::uint4 _e3 = frame.counts;
-    metal::int2 size_4 = static_cast<metal::int2>(_e3.xy);
-    metal::int2 p_13 = metal::clamp(naga_f2i32(metal::rint(q_2)), metal::int2(0), as_type<metal::int2>(as_type<metal::uint2>(size_4) - as_type<metal::uint2>(metal::int2(1))));
-    metal::float4 _e16 = history_in.read(metal::uint2(p_13), 0);
+    metal::int2 size_5 = static_cast<metal::int2>(_e3.xy);
+    metal::int2 p_14 = metal::clamp(naga_f2i32(metal::rint(q_2)), metal::int2(0), as_type<metal::int2>(as_type<metal::uint2>(size_5) - as_type<metal::uint2>(metal::int2(1))));
+    metal::float4 _e16 = history_in.read(metal::uint2(p_14), 0);
     return _e16;
 }
 
@@ -1668,9 +2186,9 @@ metal::float4 meta_at(
     metal::texture2d<float, metal::access::sample> meta_in
 ) {
     metal::uint4 _e3 = frame.counts;
-    metal::int2 size_5 = static_cast<metal::int2>(_e3.xy);
-    metal::int2 p_14 = metal::clamp(naga_f2i32(metal::rint(q_3)), metal::int2(0), as_type<metal::int2>(as_type<metal::uint2>(size_5) - as_type<metal::uint2>(metal::int2(1))));
-    metal::float4 _e16 = meta_in.read(metal::uint2(p_14), 0);
+    metal::int2 size_6 = static_cast<metal::int2>(_e3.xy);
+    metal::int2 p_15 = metal::clamp(naga_f2i32(metal::rint(q_3)), metal::int2(0), as_type<metal::int2>(as_type<metal::uint2>(size_6) - as_type<metal::uint2>(metal::int2(1))));
+    metal::float4 _e16 = meta_in.read(metal::uint2(p_15), 0);
     return _e16;
 }
 
@@ -1679,42 +2197,42 @@ metal::uint2 naga_div(metal::uint2 lhs, metal::uint2 rhs) {
 }
 
 bool in_blocks(
-    metal::uint2 id_12,
+    metal::uint2 id_18,
     constant Frame& frame
 ) {
-    uint k_7 = frame.temporal.x;
+    uint k_11 = frame.temporal.x;
     metal::uint4 _e7 = frame.counts;
-    return metal::all(id_12 < naga_div((_e7.xy + metal::uint2(k_7)) - metal::uint2(1u), metal::uint2(k_7)));
+    return metal::all(id_18 < naga_div((_e7.xy + metal::uint2(k_11)) - metal::uint2(1u), metal::uint2(k_11)));
 }
 
 metal::uint2 sparse_pixel(
-    metal::uint2 id_13,
+    metal::uint2 id_19,
     constant Frame& frame
 ) {
-    uint k_8 = frame.temporal.x;
+    uint k_12 = frame.temporal.x;
     uint _e9 = frame.misc.y;
-    metal::uint2 _e10 = block_offset(_e9, k_8);
-    return (id_13 * k_8) + _e10;
+    metal::uint2 _e10 = block_offset(_e9, k_12);
+    return (id_19 * k_12) + _e10;
 }
 
 void store_sparse(
-    metal::uint2 id_14,
-    MarchResult r_2,
+    metal::uint2 id_20,
+    MarchResult r_12,
     metal::texture2d<float, metal::access::write> cloud_out,
     metal::texture2d<float, metal::access::write> depth_out
 ) {
-    cloud_out.write(metal::float4(r_2.radiance, r_2.transmittance), metal::uint2(id_14));
-    depth_out.write(metal::float4(r_2.depth, 0.0, 0.0, 0.0), metal::uint2(id_14));
+    cloud_out.write(metal::float4(r_12.radiance, r_12.transmittance), metal::uint2(id_20));
+    depth_out.write(metal::float4(r_12.depth, 0.0, 0.0, 0.0), metal::uint2(id_20));
     return;
 }
 
 uint rng_seed(
-    metal::uint2 pixel_5,
+    metal::uint2 pixel_6,
     uint frame_index_1
 ) {
     uint _e4 = pcg(frame_index_1);
-    uint _e6 = pcg(pixel_5.y ^ _e4);
-    uint _e8 = pcg(pixel_5.x ^ _e6);
+    uint _e6 = pcg(pixel_6.y ^ _e4);
+    uint _e8 = pcg(pixel_6.x ^ _e6);
     return _e8;
 }
 
@@ -1723,8 +2241,8 @@ float rng_next(
 ) {
     uint _e1 = rng_1;
     rng_1 = (_e1 * 747796405u) + 2891336453u;
-    uint s_6 = rng_1;
-    uint word_1 = ((s_6 >> ((s_6 >> 28u) + 4u)) ^ s_6) * 277803737u;
+    uint s_9 = rng_1;
+    uint word_1 = ((s_9 >> ((s_9 >> 28u) + 4u)) ^ s_9) * 277803737u;
     return static_cast<float>(((word_1 >> 22u) ^ word_1) >> 8u) * 0.000000059604645;
 }
 
@@ -1739,98 +2257,98 @@ float rng_exponential(
 Segments layer_segments(
     metal::float3 p_9,
     float alt_13,
-    metal::float3 d_8,
+    metal::float3 d_11,
     constant Frame& frame
 ) {
     Segments s = Segments {metal::float2(0.0), metal::float2(0.0), 0u};
-    bool local_39 = {};
+    bool local_42 = {};
     metal::float2 a_1 = metal::float2(0.0);
     metal::float2 b_1 = metal::float2(0.0);
-    uint n_1 = 0u;
-    bool local_40 = {};
-    bool local_41 = {};
-    bool local_42 = {};
+    uint n_2 = 0u;
     bool local_43 = {};
+    bool local_44 = {};
+    bool local_45 = {};
+    bool local_46 = {};
     metal::float2 _e10 = layers_span(frame);
-    float bottom_1 = _e10.x;
-    Roots _e12 = ray_shell_from(p_9, alt_13, d_8, bottom_1, frame);
-    Roots _e14 = ray_shell_from(p_9, alt_13, d_8, _e10.y, frame);
-    bool _e15 = hits_ground(p_9, alt_13, d_8, frame);
+    float bottom_2 = _e10.x;
+    Roots _e12 = ray_shell_from(p_9, alt_13, d_11, bottom_2, frame);
+    Roots _e14 = ray_shell_from(p_9, alt_13, d_11, _e10.y, frame);
+    bool _e15 = hits_ground(p_9, alt_13, d_11, frame);
     if (!(!(_e14.hit))) {
-        local_39 = _e14.t1_ <= 0.0;
+        local_42 = _e14.t1_ <= 0.0;
     } else {
-        local_39 = true;
+        local_42 = true;
     }
-    bool _e25 = local_39;
+    bool _e25 = local_42;
     if (_e25) {
         Segments _e26 = s;
         return _e26;
     }
     float entry = metal::max(_e14.t0_, 0.0);
     if (_e12.hit) {
-        local_40 = _e12.t0_ > 0.0;
+        local_43 = _e12.t0_ > 0.0;
     } else {
-        local_40 = false;
+        local_43 = false;
     }
-    bool _e45 = local_40;
+    bool _e45 = local_43;
     if (_e45) {
-        local_41 = alt_13 >= bottom_1;
+        local_44 = alt_13 >= bottom_2;
     } else {
-        local_41 = false;
+        local_44 = false;
     }
-    bool _e50 = local_41;
+    bool _e50 = local_44;
     if (_e50) {
-        uint _e51 = n_1;
+        uint _e51 = n_2;
         a_1[_e51] = entry;
-        uint _e53 = n_1;
+        uint _e53 = n_2;
         b_1[_e53] = _e12.t0_;
-        uint _e56 = n_1;
-        n_1 = _e56 + static_cast<uint>(_e12.t0_ > entry);
+        uint _e56 = n_2;
+        n_2 = _e56 + static_cast<uint>(_e12.t0_ > entry);
         if (!(_e15)) {
-            local_42 = _e14.t1_ > _e12.t1_;
+            local_45 = _e14.t1_ > _e12.t1_;
         } else {
-            local_42 = false;
+            local_45 = false;
         }
-        bool _e68 = local_42;
+        bool _e68 = local_45;
         if (_e68) {
-            uint _e69 = n_1;
+            uint _e69 = n_2;
             a_1[_e69] = metal::max(_e12.t1_, entry);
-            uint _e73 = n_1;
+            uint _e73 = n_2;
             b_1[_e73] = _e14.t1_;
-            uint _e76 = n_1;
-            n_1 = _e76 + 1u;
+            uint _e76 = n_2;
+            n_2 = _e76 + 1u;
         }
     } else {
-        if (alt_13 < bottom_1) {
+        if (alt_13 < bottom_2) {
             if (!(_e15)) {
-                local_43 = _e12.hit;
+                local_46 = _e12.hit;
             } else {
-                local_43 = false;
+                local_46 = false;
             }
-            bool _e85 = local_43;
+            bool _e85 = local_46;
             if (_e85) {
                 a_1.x = metal::max(_e12.t1_, 0.0);
                 b_1.x = _e14.t1_;
-                n_1 = 1u;
+                n_2 = 1u;
             }
         } else {
             a_1.x = entry;
             b_1.x = _e14.t1_;
-            n_1 = 1u;
+            n_2 = 1u;
         }
     }
     metal::float2 _e98 = a_1;
     s.a = _e98;
     metal::float2 _e100 = b_1;
     s.b = _e100;
-    uint _e102 = n_1;
+    uint _e102 = n_2;
     s.count = _e102;
     Segments _e103 = s;
     return _e103;
 }
 
 float density_at(
-    metal::float3 rel_2,
+    metal::float3 rel_3,
     thread Counters& counters_8,
     constant Frame& frame,
     metal::texture3d<float, metal::access::sample> shape_tex,
@@ -1841,16 +2359,16 @@ float density_at(
 ) {
     float _e6 = frame.camera_position.x;
     float _e13 = frame.camera_position.z;
-    metal::float3 p_15 = metal::float3(rel_2.x + _e6, rel_2.y, rel_2.z + _e13);
-    float _e16 = altitude_of(rel_2, frame);
-    float _e17 = cloud_density(p_15, _e16, counters_8, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+    metal::float3 p_16 = metal::float3(rel_3.x + _e6, rel_3.y, rel_3.z + _e13);
+    float _e16 = altitude_of(rel_3, frame);
+    float _e17 = cloud_density(p_16, _e16, counters_8, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
     return _e17;
 }
 
 float empty_cell_skip(
-    metal::float3 origin,
+    metal::float3 origin_2,
     metal::float3 dir_1,
-    float t_1,
+    float t_2,
     constant Frame& frame,
     metal::texture2d<float, metal::access::sample> occupancy_in
 ) {
@@ -1858,11 +2376,11 @@ float empty_cell_skip(
     if (_e3 > 1u) {
         return 0.0;
     }
-    metal::float3 rel_5 = origin + (dir_1 * t_1);
+    metal::float3 rel_6 = origin_2 + (dir_1 * t_2);
     float _e13 = frame.camera_position.x;
     float _e20 = frame.camera_position.z;
-    metal::float3 p_16 = metal::float3(rel_5.x + _e13, rel_5.y, rel_5.z + _e20);
-    float _e23 = empty_cell_exit(p_16, dir_1, frame, occupancy_in);
+    metal::float3 p_17 = metal::float3(rel_6.x + _e13, rel_6.y, rel_6.z + _e20);
+    float _e23 = empty_cell_exit(p_17, dir_1, frame, occupancy_in);
     if (_e23 <= 0.0) {
         return 0.0;
     }
@@ -1873,25 +2391,25 @@ float density_max(
     constant Frame& frame
 ) {
     float m_1 = 0.0;
-    uint i_9 = 0u;
-    uint2 loop_bound_9 = uint2(4294967295u);
-    bool loop_init_8 = true;
+    uint i_12 = 0u;
+    uint2 loop_bound_10 = uint2(4294967295u);
+    bool loop_init_9 = true;
     while(true) {
-        if (metal::all(loop_bound_9 == uint2(0u))) { break; }
-        loop_bound_9 -= uint2(loop_bound_9.y == 0u, 1u);
-        if (!loop_init_8) {
-            uint _e17 = i_9;
-            i_9 = _e17 + 1u;
+        if (metal::all(loop_bound_10 == uint2(0u))) { break; }
+        loop_bound_10 -= uint2(loop_bound_10.y == 0u, 1u);
+        if (!loop_init_9) {
+            uint _e17 = i_12;
+            i_12 = _e17 + 1u;
         }
-        loop_init_8 = false;
-        uint _e4 = i_9;
+        loop_init_9 = false;
+        uint _e4 = i_12;
         uint _e5 = layer_count(frame);
         if (_e4 < _e5) {
         } else {
             break;
         }
         {
-            uint _e7 = i_9;
+            uint _e7 = i_12;
             Layer _e8 = cloud_layer(_e7, frame);
             float _e9 = m_1;
             m_1 = metal::max(_e9, _e8.density * (1.0 + _e8.precipitation));
@@ -1902,7 +2420,7 @@ float density_max(
 }
 
 float free_flight(
-    metal::float3 origin_1,
+    metal::float3 origin_3,
     metal::float3 dir_2,
     Segments segs,
     thread uint& rng_3,
@@ -1915,8 +2433,8 @@ float free_flight(
     metal::sampler noise_sampler,
     metal::texture2d<float, metal::access::sample> occupancy_in
 ) {
-    uint k_2 = 0u;
-    float t_2 = {};
+    uint k_6 = 0u;
+    float t_3 = {};
     float _e5 = density_max(frame);
     float _e9 = frame.extinction.x;
     float _e13 = frame.extinction.y;
@@ -1924,55 +2442,55 @@ float free_flight(
     if (majorant <= 0.0) {
         return -1.0;
     }
-    uint2 loop_bound_10 = uint2(4294967295u);
-    bool loop_init_9 = true;
+    uint2 loop_bound_11 = uint2(4294967295u);
+    bool loop_init_10 = true;
     while(true) {
-        if (metal::all(loop_bound_10 == uint2(0u))) { break; }
-        loop_bound_10 -= uint2(loop_bound_10.y == 0u, 1u);
-        if (!loop_init_9) {
-            uint _e60 = k_2;
-            k_2 = _e60 + 1u;
+        if (metal::all(loop_bound_11 == uint2(0u))) { break; }
+        loop_bound_11 -= uint2(loop_bound_11.y == 0u, 1u);
+        if (!loop_init_10) {
+            uint _e60 = k_6;
+            k_6 = _e60 + 1u;
         }
-        loop_init_9 = false;
-        uint _e21 = k_2;
+        loop_init_10 = false;
+        uint _e21 = k_6;
         if (_e21 < segs.count) {
         } else {
             break;
         }
         {
-            uint _e25 = k_2;
-            t_2 = segs.a[_e25];
-            uint2 loop_bound_11 = uint2(4294967295u);
+            uint _e25 = k_6;
+            t_3 = segs.a[_e25];
+            uint2 loop_bound_12 = uint2(4294967295u);
             while(true) {
-                if (metal::all(loop_bound_11 == uint2(0u))) { break; }
-                loop_bound_11 -= uint2(loop_bound_11.y == 0u, 1u);
-                float _e28 = t_2;
-                float _e29 = empty_cell_skip(origin_1, dir_2, _e28, frame, occupancy_in);
+                if (metal::all(loop_bound_12 == uint2(0u))) { break; }
+                loop_bound_12 -= uint2(loop_bound_12.y == 0u, 1u);
+                float _e28 = t_3;
+                float _e29 = empty_cell_skip(origin_3, dir_2, _e28, frame, occupancy_in);
                 if (_e29 > 0.0) {
-                    float _e32 = t_2;
-                    t_2 = _e32 + _e29;
-                    float _e34 = t_2;
-                    uint _e36 = k_2;
+                    float _e32 = t_3;
+                    t_3 = _e32 + _e29;
+                    float _e34 = t_3;
+                    uint _e36 = k_6;
                     if (_e34 >= segs.b[_e36]) {
                         break;
                     }
                     continue;
                 }
-                float _e39 = t_2;
+                float _e39 = t_3;
                 float _e40 = rng_exponential(rng_3, majorant);
-                t_2 = _e39 + _e40;
-                float _e42 = t_2;
-                uint _e44 = k_2;
+                t_3 = _e39 + _e40;
+                float _e42 = t_3;
+                uint _e44 = k_6;
                 if (_e42 >= segs.b[_e44]) {
                     break;
                 }
                 uint _e48 = counters_9.view_steps;
                 counters_9.view_steps = _e48 + 1u;
-                float _e51 = t_2;
-                float _e54 = density_at(origin_1 + (dir_2 * _e51), counters_9, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+                float _e51 = t_3;
+                float _e54 = density_at(origin_3 + (dir_2 * _e51), counters_9, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
                 float _e55 = rng_next(rng_3);
                 if ((_e55 * _e5) < _e54) {
-                    float _e58 = t_2;
+                    float _e58 = t_3;
                     return _e58;
                 }
             }
@@ -1982,7 +2500,7 @@ float free_flight(
 }
 
 float transmittance_along(
-    metal::float3 origin_2,
+    metal::float3 origin_4,
     metal::float3 dir_3,
     Segments segs_1,
     thread uint& rng_4,
@@ -1996,8 +2514,8 @@ float transmittance_along(
     metal::texture2d<float, metal::access::sample> occupancy_in
 ) {
     float tr = 1.0;
-    uint k_3 = 0u;
-    float t_3 = {};
+    uint k_7 = 0u;
+    float t_4 = {};
     float _e8 = frame.extinction.x;
     float _e12 = frame.extinction.y;
     float sigma_t_3 = _e8 + _e12;
@@ -2006,52 +2524,52 @@ float transmittance_along(
     if (majorant_1 <= 0.0) {
         return 1.0;
     }
-    uint2 loop_bound_12 = uint2(4294967295u);
-    bool loop_init_10 = true;
+    uint2 loop_bound_13 = uint2(4294967295u);
+    bool loop_init_11 = true;
     while(true) {
-        if (metal::all(loop_bound_12 == uint2(0u))) { break; }
-        loop_bound_12 -= uint2(loop_bound_12.y == 0u, 1u);
-        if (!loop_init_10) {
-            uint _e78 = k_3;
-            k_3 = _e78 + 1u;
+        if (metal::all(loop_bound_13 == uint2(0u))) { break; }
+        loop_bound_13 -= uint2(loop_bound_13.y == 0u, 1u);
+        if (!loop_init_11) {
+            uint _e78 = k_7;
+            k_7 = _e78 + 1u;
         }
-        loop_init_10 = false;
-        uint _e23 = k_3;
+        loop_init_11 = false;
+        uint _e23 = k_7;
         if (_e23 < segs_1.count) {
         } else {
             break;
         }
         {
-            uint _e27 = k_3;
-            t_3 = segs_1.a[_e27];
-            uint2 loop_bound_13 = uint2(4294967295u);
+            uint _e27 = k_7;
+            t_4 = segs_1.a[_e27];
+            uint2 loop_bound_14 = uint2(4294967295u);
             while(true) {
-                if (metal::all(loop_bound_13 == uint2(0u))) { break; }
-                loop_bound_13 -= uint2(loop_bound_13.y == 0u, 1u);
-                float _e30 = t_3;
-                float _e31 = empty_cell_skip(origin_2, dir_3, _e30, frame, occupancy_in);
+                if (metal::all(loop_bound_14 == uint2(0u))) { break; }
+                loop_bound_14 -= uint2(loop_bound_14.y == 0u, 1u);
+                float _e30 = t_4;
+                float _e31 = empty_cell_skip(origin_4, dir_3, _e30, frame, occupancy_in);
                 if (_e31 > 0.0) {
-                    float _e34 = t_3;
-                    t_3 = _e34 + _e31;
-                    float _e36 = t_3;
-                    uint _e38 = k_3;
+                    float _e34 = t_4;
+                    t_4 = _e34 + _e31;
+                    float _e36 = t_4;
+                    uint _e38 = k_7;
                     if (_e36 >= segs_1.b[_e38]) {
                         break;
                     }
                     continue;
                 }
-                float _e41 = t_3;
+                float _e41 = t_4;
                 float _e42 = rng_exponential(rng_4, majorant_1);
-                t_3 = _e41 + _e42;
-                float _e44 = t_3;
-                uint _e46 = k_3;
+                t_4 = _e41 + _e42;
+                float _e44 = t_4;
+                uint _e46 = k_7;
                 if (_e44 >= segs_1.b[_e46]) {
                     break;
                 }
                 uint _e50 = counters_10.light;
                 counters_10.light = _e50 + 1u;
-                float _e53 = t_3;
-                float _e56 = density_at(origin_2 + (dir_3 * _e53), counters_10, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+                float _e53 = t_4;
+                float _e56 = density_at(origin_4 + (dir_3 * _e53), counters_10, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
                 float _e57 = tr;
                 tr = _e57 * (1.0 - ((sigma_t_3 * _e56) / majorant_1));
                 float _e63 = tr;
@@ -2075,14 +2593,14 @@ float transmittance_along(
 }
 
 float sample_hg_cos(
-    float g_3,
+    float g_4,
     float u
 ) {
-    if (metal::abs(g_3) < 0.0001) {
+    if (metal::abs(g_4) < 0.0001) {
         return 1.0 - (2.0 * u);
     }
-    float s_7 = (1.0 - (g_3 * g_3)) / ((1.0 - g_3) + ((2.0 * g_3) * u));
-    return metal::clamp(((1.0 + (g_3 * g_3)) - (s_7 * s_7)) / (2.0 * g_3), -1.0, 1.0);
+    float s_10 = (1.0 - (g_4 * g_4)) / ((1.0 - g_4) + ((2.0 * g_4) * u));
+    return metal::clamp(((1.0 + (g_4 * g_4)) - (s_10 * s_10)) / (2.0 * g_4), -1.0, 1.0);
 }
 
 PhaseSample sample_phase(
@@ -2090,24 +2608,24 @@ PhaseSample sample_phase(
     thread uint& rng_5,
     constant Frame& frame
 ) {
-    float cos_theta_4 = 0.0;
+    float cos_theta_6 = 0.0;
     float pdf = 0.0;
     float _e2 = rng_next(rng_5);
     float _e3 = rng_next(rng_5);
     float _e5 = rng_next(rng_5);
-    float phi = 6.2831855 * _e5;
+    float phi_1 = 6.2831855 * _e5;
     uint _e14 = frame.modes.x;
     if (_e14 == PHASE_TWO_LOBE_HG) {
         float _e20 = frame.phase.x;
         float _e24 = frame.phase.y;
         float _e28 = frame.phase.z;
-        float g_5 = (_e2 < _e28) ? _e24 : _e20;
-        float _e31 = sample_hg_cos(g_5, _e3);
-        cos_theta_4 = _e31;
-        float _e32 = cos_theta_4;
+        float g_6 = (_e2 < _e28) ? _e24 : _e20;
+        float _e31 = sample_hg_cos(g_6, _e3);
+        cos_theta_6 = _e31;
+        float _e32 = cos_theta_6;
         float _e36 = frame.phase.x;
         float _e37 = phase_hg(_e32, _e36);
-        float _e38 = cos_theta_4;
+        float _e38 = cos_theta_6;
         float _e42 = frame.phase.y;
         float _e43 = phase_hg(_e38, _e42);
         float _e47 = frame.phase.z;
@@ -2115,27 +2633,27 @@ PhaseSample sample_phase(
     } else {
         float _e52 = frame.phase.x;
         float _e53 = sample_hg_cos(_e52, _e3);
-        cos_theta_4 = _e53;
-        float _e54 = cos_theta_4;
+        cos_theta_6 = _e53;
+        float _e54 = cos_theta_6;
         float _e58 = frame.phase.x;
         float _e59 = phase_hg(_e54, _e58);
         pdf = _e59;
     }
-    float _e60 = cos_theta_4;
-    float _e61 = cos_theta_4;
+    float _e60 = cos_theta_6;
+    float _e61 = cos_theta_6;
     float sin_theta = metal::sqrt(metal::max(1.0 - (_e60 * _e61), 0.0));
     float sign = (dir_4.z >= 0.0) ? 1.0 : -1.0;
-    float a_5 = -1.0 / (sign + dir_4.z);
-    float bb = (dir_4.x * dir_4.y) * a_5;
-    metal::float3 t_5 = metal::float3(1.0 + (((sign * dir_4.x) * dir_4.x) * a_5), sign * bb, -(sign) * dir_4.x);
-    metal::float3 b_8 = metal::float3(bb, sign + ((dir_4.y * dir_4.y) * a_5), -(dir_4.y));
-    float _e109 = cos_theta_4;
-    metal::float3 w_2 = metal::normalize(((t_5 * (sin_theta * metal::cos(phi))) + (b_8 * (sin_theta * metal::sin(phi)))) + (dir_4 * _e109));
-    float _e113 = cos_theta_4;
+    float a_9 = -1.0 / (sign + dir_4.z);
+    float bb = (dir_4.x * dir_4.y) * a_9;
+    metal::float3 t_6 = metal::float3(1.0 + (((sign * dir_4.x) * dir_4.x) * a_9), sign * bb, -(sign) * dir_4.x);
+    metal::float3 b_10 = metal::float3(bb, sign + ((dir_4.y * dir_4.y) * a_9), -(dir_4.y));
+    float _e109 = cos_theta_6;
+    metal::float3 w_6 = metal::normalize(((t_6 * (sin_theta * metal::cos(phi_1))) + (b_10 * (sin_theta * metal::sin(phi_1)))) + (dir_4 * _e109));
+    float _e113 = cos_theta_6;
     float _e115 = phase(_e113, 1.0, frame);
     float _e116 = pdf;
     float _e118 = pdf;
-    return PhaseSample {w_2, (_e118 > 0.0) ? (_e115 / _e116) : 0.0};
+    return PhaseSample {w_6, (_e118 > 0.0) ? (_e115 / _e116) : 0.0};
 }
 
 PathResult trace_path(
@@ -2144,6 +2662,8 @@ PathResult trace_path(
     thread uint& rng_6,
     thread Counters& counters_11,
     constant Frame& frame,
+    metal::texture2d<float, metal::access::sample> transmittance_lut_in,
+    metal::texture2d<float, metal::access::sample> sky_ambient_in,
     metal::texture3d<float, metal::access::sample> shape_tex,
     metal::texture3d<float, metal::access::sample> detail_tex,
     metal::texture2d<float, metal::access::sample> weather_tex,
@@ -2152,14 +2672,15 @@ PathResult trace_path(
     metal::texture2d<float, metal::access::sample> occupancy_in
 ) {
     PathResult out_2 = PathResult {metal::float3(0.0), 1.0, -1.0};
-    bool local_44 = {};
-    bool local_45 = {};
+    bool local_47 = {};
+    bool local_48 = {};
+    bool local_49 = {};
     uint max_orders = MAX_PATH_ORDERS;
     metal::float3 pos = {};
     metal::float3 dir_5 = {};
     float throughput = 1.0;
     uint order = 0u;
-    bool local_46 = {};
+    bool local_50 = {};
     if (span_3.kind != RAY_MARCH) {
         PathResult _e13 = out_2;
         return _e13;
@@ -2176,7 +2697,7 @@ PathResult trace_path(
     }
     out_2.depth = _e33;
     metal::float4 _e40 = frame.sun_direction;
-    metal::float3 sun_2 = _e40.xyz;
+    metal::float3 sun_3 = _e40.xyz;
     float _e45 = frame.extinction.x;
     float _e49 = frame.extinction.y;
     float sigma_t_4 = _e45 + _e49;
@@ -2184,145 +2705,154 @@ PathResult trace_path(
     float albedo = (sigma_t_4 > 0.0) ? (_e54 / sigma_t_4) : 0.0;
     float _e63 = frame.ambient_bottom.w;
     if (_e63 > 0.0) {
-        metal::float4 _e70 = frame.ambient_bottom;
-        if (!(metal::any(_e70.xyz > metal::float3(0.0)))) {
-            metal::float4 _e81 = frame.ambient_top;
-            local_45 = metal::any(_e81.xyz > metal::float3(0.0));
+        bool _e68 = physical_sky(frame);
+        if (!(_e68)) {
+            metal::float4 _e74 = frame.ambient_bottom;
+            local_48 = metal::any(_e74.xyz > metal::float3(0.0));
         } else {
-            local_45 = true;
+            local_48 = true;
         }
-        bool _e88 = local_45;
-        local_44 = _e88;
+        bool _e81 = local_48;
+        if (!(_e81)) {
+            metal::float4 _e87 = frame.ambient_top;
+            local_49 = metal::any(_e87.xyz > metal::float3(0.0));
+        } else {
+            local_49 = true;
+        }
+        bool _e94 = local_49;
+        local_47 = _e94;
     } else {
-        local_44 = false;
+        local_47 = false;
     }
-    bool ambient_on = local_44;
-    uint _e96 = frame.misc.z;
-    if (_e96 > 0u) {
-        uint _e102 = frame.misc.z;
-        max_orders = metal::min(_e102, MAX_PATH_ORDERS);
+    bool ambient_on = local_47;
+    uint _e102 = frame.misc.z;
+    if (_e102 > 0u) {
+        uint _e108 = frame.misc.z;
+        max_orders = metal::min(_e108, MAX_PATH_ORDERS);
     }
     pos = cam + (view_2 * _e33);
     dir_5 = view_2;
-    uint2 loop_bound_14 = uint2(4294967295u);
+    uint2 loop_bound_15 = uint2(4294967295u);
     while(true) {
-        if (metal::all(loop_bound_14 == uint2(0u))) { break; }
-        loop_bound_14 -= uint2(loop_bound_14.y == 0u, 1u);
-        float _e113 = throughput;
-        throughput = _e113 * albedo;
-        uint _e115 = order;
-        order = _e115 + 1u;
-        metal::float3 _e118 = pos;
-        float _e119 = altitude_of(_e118, frame);
-        float _e120 = height_fraction(_e119, frame);
-        metal::float3 _e121 = pos;
-        bool _e122 = hits_ground(_e121, _e119, sun_2, frame);
-        if (!(_e122)) {
-            metal::float3 _e124 = pos;
-            metal::float3 _e125 = pos;
-            Segments _e126 = layer_segments(_e125, _e119, sun_2, frame);
-            float _e127 = transmittance_along(_e124, sun_2, _e126, rng_6, counters_11, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler, occupancy_in);
-            metal::float3 _e129 = out_2.radiance;
-            metal::float4 _e132 = frame.sun_illuminance;
-            float _e134 = throughput;
-            metal::float3 _e135 = dir_5;
-            float _e138 = phase(metal::dot(_e135, sun_2), 1.0, frame);
-            out_2.radiance = _e129 + (_e132.xyz * ((_e134 * _e138) * _e127));
+        if (metal::all(loop_bound_15 == uint2(0u))) { break; }
+        loop_bound_15 -= uint2(loop_bound_15.y == 0u, 1u);
+        float _e119 = throughput;
+        throughput = _e119 * albedo;
+        uint _e121 = order;
+        order = _e121 + 1u;
+        metal::float3 _e124 = pos;
+        float _e125 = altitude_of(_e124, frame);
+        float _e126 = height_fraction(_e125, frame);
+        metal::float3 _e127 = pos;
+        bool _e128 = hits_ground(_e127, _e125, sun_3, frame);
+        if (!(_e128)) {
+            metal::float3 _e130 = pos;
+            metal::float3 _e131 = pos;
+            Segments _e132 = layer_segments(_e131, _e125, sun_3, frame);
+            float _e133 = transmittance_along(_e130, sun_3, _e132, rng_6, counters_11, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler, occupancy_in);
+            metal::float3 _e135 = out_2.radiance;
+            metal::float4 _e138 = frame.sun_illuminance;
+            metal::float3 _e140 = pos;
+            metal::float3 _e141 = sun_through_air(_e140, frame, transmittance_lut_in);
+            float _e143 = throughput;
+            metal::float3 _e144 = dir_5;
+            float _e147 = phase(metal::dot(_e144, sun_3), 1.0, frame);
+            out_2.radiance = _e135 + ((_e138.xyz * _e141) * ((_e143 * _e147) * _e133));
         }
-        metal::float3 _e143 = dir_5;
-        PhaseSample _e144 = sample_phase(_e143, rng_6, frame);
-        metal::float3 _e145 = pos;
-        metal::float3 _e147 = pos;
-        Segments _e149 = layer_segments(_e147, _e119, _e144.dir, frame);
-        float _e150 = free_flight(_e145, _e144.dir, _e149, rng_6, counters_11, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler, occupancy_in);
-        if (_e150 < 0.0) {
+        metal::float3 _e152 = dir_5;
+        PhaseSample _e153 = sample_phase(_e152, rng_6, frame);
+        metal::float3 _e154 = pos;
+        metal::float3 _e156 = pos;
+        Segments _e158 = layer_segments(_e156, _e125, _e153.dir, frame);
+        float _e159 = free_flight(_e154, _e153.dir, _e158, rng_6, counters_11, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler, occupancy_in);
+        if (_e159 < 0.0) {
             if (ambient_on) {
-                metal::float3 _e154 = out_2.radiance;
-                metal::float3 _e155 = ambient(_e120, frame);
-                float _e156 = throughput;
-                out_2.radiance = _e154 + (_e155 * (_e156 * _e144.weight));
+                metal::float3 _e163 = out_2.radiance;
+                metal::float3 _e164 = ambient(_e126, frame, sky_ambient_in);
+                float _e165 = throughput;
+                out_2.radiance = _e163 + (_e164 * (_e165 * _e153.weight));
             }
             break;
         }
-        uint _e161 = order;
-        uint _e162 = max_orders;
-        if (_e161 >= _e162) {
+        uint _e170 = order;
+        uint _e171 = max_orders;
+        if (_e170 >= _e171) {
             break;
         }
-        float _e164 = throughput;
-        throughput = _e164 * _e144.weight;
-        dir_5 = _e144.dir;
-        uint _e168 = order;
-        if (_e168 >= 3u) {
-            float _e173 = throughput;
-            local_46 = _e173 < 0.1;
+        float _e173 = throughput;
+        throughput = _e173 * _e153.weight;
+        dir_5 = _e153.dir;
+        uint _e177 = order;
+        if (_e177 >= 3u) {
+            float _e182 = throughput;
+            local_50 = _e182 < 0.1;
         } else {
-            local_46 = false;
+            local_50 = false;
         }
-        bool _e177 = local_46;
-        if (_e177) {
-            float _e178 = rng_next(rng_6);
-            float _e179 = throughput;
-            if (_e178 >= (_e179 / 0.1)) {
+        bool _e186 = local_50;
+        if (_e186) {
+            float _e187 = rng_next(rng_6);
+            float _e188 = throughput;
+            if (_e187 >= (_e188 / 0.1)) {
                 break;
             }
             throughput = 0.1;
         }
-        float _e184 = throughput;
-        if (_e184 <= 0.0) {
+        float _e193 = throughput;
+        if (_e193 <= 0.0) {
             break;
         }
-        metal::float3 _e187 = pos;
-        metal::float3 _e188 = dir_5;
-        pos = _e187 + (_e188 * _e150);
+        metal::float3 _e196 = pos;
+        metal::float3 _e197 = dir_5;
+        pos = _e196 + (_e197 * _e159);
     }
-    PathResult _e191 = out_2;
-    return _e191;
+    PathResult _e200 = out_2;
+    return _e200;
 }
 
 bool camera_still(
     constant Frame& frame
 ) {
-    bool local_47 = {};
-    bool local_48 = {};
-    bool local_49 = {};
+    bool local_51 = {};
+    bool local_52 = {};
+    bool local_53 = {};
     metal::float4 _e2 = frame.camera_position;
     metal::float4 _e5 = frame.previous_position;
     if (metal::all(_e2 == _e5)) {
         metal::float4 _e12 = frame.camera_forward;
         metal::float4 _e15 = frame.previous_forward;
-        local_47 = metal::all(_e12 == _e15);
+        local_51 = metal::all(_e12 == _e15);
     } else {
-        local_47 = false;
+        local_51 = false;
     }
-    bool _e19 = local_47;
+    bool _e19 = local_51;
     if (_e19) {
         metal::float4 _e24 = frame.camera_right;
         metal::float4 _e28 = frame.previous_right;
-        local_48 = metal::all(_e24.xyz == _e28.xyz);
+        local_52 = metal::all(_e24.xyz == _e28.xyz);
     } else {
-        local_48 = false;
+        local_52 = false;
     }
-    bool _e33 = local_48;
+    bool _e33 = local_52;
     if (_e33) {
         metal::float4 _e38 = frame.camera_up;
         metal::float4 _e42 = frame.previous_up;
-        local_49 = metal::all(_e38.xyz == _e42.xyz);
+        local_53 = metal::all(_e38.xyz == _e42.xyz);
     } else {
-        local_49 = false;
+        local_53 = false;
     }
-    bool _e47 = local_49;
+    bool _e47 = local_53;
     return _e47;
 }
 
 float luminance(
-    metal::float3 c_1
+    metal::float3 c_2
 ) {
-    return metal::dot(c_1, metal::float3(0.2126, 0.7152, 0.0722));
+    return metal::dot(c_2, metal::float3(0.2126, 0.7152, 0.0722));
 }
 
 float basic_sun_depth(
-    metal::float3 rel_3,
+    metal::float3 rel_4,
     float alt_14,
     thread Counters& counters_12,
     constant Frame& frame,
@@ -2332,59 +2862,59 @@ float basic_sun_depth(
     metal::texture2d<float, metal::access::sample> curl_tex,
     metal::sampler noise_sampler
 ) {
-    float tau_3 = 0.0;
-    uint i_10 = 1u;
-    uint steps_2 = frame.counts.w;
-    if (steps_2 == 0u) {
+    float tau_6 = 0.0;
+    uint i_13 = 1u;
+    uint steps_3 = frame.counts.w;
+    if (steps_3 == 0u) {
         return 0.0;
     }
     metal::float4 _e12 = frame.sun_direction;
-    metal::float3 sun_3 = _e12.xyz;
+    metal::float3 sun_4 = _e12.xyz;
     float rp_4 = frame.atmosphere.x;
-    float top_1 = frame.atmosphere.z;
+    float top_2 = frame.atmosphere.z;
     float _e25 = frame.atmosphere.y;
-    float thickness = top_1 - _e25;
-    Roots _e39 = solve_sphere(metal::dot(sun_3, metal::float3(rel_3.x, rel_3.y + rp_4, rel_3.z)), (alt_14 - top_1) * ((alt_14 + top_1) + (2.0 * rp_4)));
+    float thickness = top_2 - _e25;
+    Roots _e39 = solve_sphere(metal::dot(sun_4, metal::float3(rel_4.x, rel_4.y + rp_4, rel_4.z)), (alt_14 - top_2) * ((alt_14 + top_2) + (2.0 * rp_4)));
     float length = metal::min(metal::max(_e39.t1_, 0.0), 3.0 * thickness);
-    float dt_2 = length / static_cast<float>(steps_2);
+    float dt_3 = length / static_cast<float>(steps_3);
     float _e51 = frame.extinction.x;
     float _e55 = frame.extinction.y;
     float sigma_t_5 = _e51 + _e55;
     metal::float4 _e59 = frame.camera_position;
     metal::float2 cam_xz_1 = _e59.xz;
-    uint2 loop_bound_15 = uint2(4294967295u);
-    bool loop_init_11 = true;
+    uint2 loop_bound_16 = uint2(4294967295u);
+    bool loop_init_12 = true;
     while(true) {
-        if (metal::all(loop_bound_15 == uint2(0u))) { break; }
-        loop_bound_15 -= uint2(loop_bound_15.y == 0u, 1u);
-        if (!loop_init_11) {
-            uint _e90 = i_10;
-            i_10 = _e90 + 1u;
+        if (metal::all(loop_bound_16 == uint2(0u))) { break; }
+        loop_bound_16 -= uint2(loop_bound_16.y == 0u, 1u);
+        if (!loop_init_12) {
+            uint _e90 = i_13;
+            i_13 = _e90 + 1u;
         }
-        loop_init_11 = false;
-        uint _e65 = i_10;
-        if (_e65 <= steps_2) {
+        loop_init_12 = false;
+        uint _e65 = i_13;
+        if (_e65 <= steps_3) {
         } else {
             break;
         }
         {
             uint _e68 = counters_12.light;
             counters_12.light = _e68 + 1u;
-            uint _e71 = i_10;
-            metal::float3 q_7 = rel_3 + (sun_3 * (static_cast<float>(_e71) * dt_2));
-            metal::float3 p_17 = metal::float3(q_7.x + cam_xz_1.x, q_7.y, q_7.z + cam_xz_1.y);
-            float _e84 = tau_3;
-            float _e85 = altitude_of(q_7, frame);
-            float _e86 = cloud_density(p_17, _e85, counters_12, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
-            tau_3 = _e84 + ((sigma_t_5 * _e86) * dt_2);
+            uint _e71 = i_13;
+            metal::float3 q_8 = rel_4 + (sun_4 * (static_cast<float>(_e71) * dt_3));
+            metal::float3 p_18 = metal::float3(q_8.x + cam_xz_1.x, q_8.y, q_8.z + cam_xz_1.y);
+            float _e84 = tau_6;
+            float _e85 = altitude_of(q_8, frame);
+            float _e86 = cloud_density(p_18, _e85, counters_12, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+            tau_6 = _e84 + ((sigma_t_5 * _e86) * dt_3);
         }
     }
-    float _e93 = tau_3;
+    float _e93 = tau_6;
     return _e93;
 }
 
 MarchResult basic_pixel(
-    metal::uint2 pixel_6,
+    metal::uint2 pixel_7,
     constant Frame& frame,
     metal::texture3d<float, metal::access::sample> shape_tex,
     metal::texture3d<float, metal::access::sample> detail_tex,
@@ -2394,12 +2924,12 @@ MarchResult basic_pixel(
     device Stats& stats
 ) {
     Counters counters_13 = Counters {0u, 0u, 0u, 0u};
-    metal::float3 radiance = metal::float3(0.0);
+    metal::float3 radiance_2 = metal::float3(0.0);
     float transmittance = 1.0;
     float depth_sum = 0.0;
-    uint i_11 = 0u;
+    uint i_14 = 0u;
     float depth_3 = 0.0;
-    metal::float3 _e1 = view_ray(pixel_6, frame);
+    metal::float3 _e1 = view_ray(pixel_7, frame);
     float cam_alt_2 = frame.camera_position.y;
     metal::float4 _e8 = frame.camera_position;
     metal::float2 cam_xz_2 = _e8.xz;
@@ -2412,8 +2942,8 @@ MarchResult basic_pixel(
             count(STAT_EXIT_GROUND, 1u, stats);
         } else {
             count(STAT_MARCHED, 1u, stats);
-            uint steps_3 = frame.counts.z;
-            float dt_3 = _e25.length / static_cast<float>(steps_3);
+            uint steps_4 = frame.counts.z;
+            float dt_4 = _e25.length / static_cast<float>(steps_4);
             float sigma_s = frame.extinction.x;
             float _e52 = frame.extinction.y;
             float sigma_t_6 = sigma_s + _e52;
@@ -2422,42 +2952,42 @@ MarchResult basic_pixel(
             float _e66 = frame.phase.x;
             float _e67 = phase_hg(metal::dot(_e1, _e60.xyz), _e66);
             metal::float3 sun_phase = _e56.xyz * _e67;
-            uint2 loop_bound_16 = uint2(4294967295u);
-            bool loop_init_12 = true;
+            uint2 loop_bound_17 = uint2(4294967295u);
+            bool loop_init_13 = true;
             while(true) {
-                if (metal::all(loop_bound_16 == uint2(0u))) { break; }
-                loop_bound_16 -= uint2(loop_bound_16.y == 0u, 1u);
-                if (!loop_init_12) {
-                    uint _e131 = i_11;
-                    i_11 = _e131 + 1u;
+                if (metal::all(loop_bound_17 == uint2(0u))) { break; }
+                loop_bound_17 -= uint2(loop_bound_17.y == 0u, 1u);
+                if (!loop_init_13) {
+                    uint _e131 = i_14;
+                    i_14 = _e131 + 1u;
                 }
-                loop_init_12 = false;
-                uint _e71 = i_11;
-                if (_e71 < steps_3) {
+                loop_init_13 = false;
+                uint _e71 = i_14;
+                if (_e71 < steps_4) {
                 } else {
                     break;
                 }
                 {
                     uint _e74 = counters_13.view_steps;
                     counters_13.view_steps = _e74 + 1u;
-                    uint _e78 = i_11;
-                    float t_6 = _e25.start + (static_cast<float>(_e78) * dt_3);
-                    metal::float3 rel_6 = (_e1 * t_6) + metal::float3(0.0, cam_alt_2, 0.0);
-                    metal::float3 p_18 = metal::float3(rel_6.x + cam_xz_2.x, rel_6.y, rel_6.z + cam_xz_2.y);
-                    float _e95 = altitude_of(rel_6, frame);
-                    float _e96 = cloud_density(p_18, _e95, counters_13, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+                    uint _e78 = i_14;
+                    float t_7 = _e25.start + (static_cast<float>(_e78) * dt_4);
+                    metal::float3 rel_7 = (_e1 * t_7) + metal::float3(0.0, cam_alt_2, 0.0);
+                    metal::float3 p_19 = metal::float3(rel_7.x + cam_xz_2.x, rel_7.y, rel_7.z + cam_xz_2.y);
+                    float _e95 = altitude_of(rel_7, frame);
+                    float _e96 = cloud_density(p_19, _e95, counters_13, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
                     if (_e96 <= 0.0) {
                         continue;
                     }
-                    float _e99 = basic_sun_depth(rel_6, _e95, counters_13, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+                    float _e99 = basic_sun_depth(rel_7, _e95, counters_13, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
                     float beer_powder = (2.0 * metal::exp(-(_e99))) * (1.0 - metal::exp(-2.0 * _e99));
-                    metal::float3 _e110 = radiance;
+                    metal::float3 _e110 = radiance_2;
                     float _e111 = transmittance;
-                    radiance = _e110 + (sun_phase * ((((beer_powder * _e111) * sigma_s) * _e96) * dt_3));
-                    float step_t_1 = metal::exp((-(sigma_t_6) * _e96) * dt_3);
+                    radiance_2 = _e110 + (sun_phase * ((((beer_powder * _e111) * sigma_s) * _e96) * dt_4));
+                    float step_t_1 = metal::exp((-(sigma_t_6) * _e96) * dt_4);
                     float _e122 = depth_sum;
                     float _e123 = transmittance;
-                    depth_sum = _e122 + ((t_6 * _e123) * (1.0 - step_t_1));
+                    depth_sum = _e122 + ((t_7 * _e123) * (1.0 - step_t_1));
                     float _e129 = transmittance;
                     transmittance = _e129 * step_t_1;
                 }
@@ -2478,7 +3008,7 @@ MarchResult basic_pixel(
         float _e152 = transmittance;
         depth_3 = _e151 / (1.0 - _e152);
     }
-    metal::float3 _e156 = radiance;
+    metal::float3 _e156 = radiance_2;
     float _e157 = transmittance;
     float _e158 = depth_3;
     return MarchResult {_e156, _e157, _e158};
@@ -2497,55 +3027,55 @@ float value_noise(
     metal::float2 p_10,
     uint seed
 ) {
-    metal::uint2 i_13 = naga_f2u32(metal::floor(p_10));
-    metal::float2 f_3 = metal::fract(p_10);
-    metal::float2 s_8 = (f_3 * f_3) * (metal::float2(3.0) - (2.0 * f_3));
-    uint h_6 = seed * 7919u;
-    float _e17 = atlas_hash(i_13.x + h_6, i_13.y);
-    float _e23 = atlas_hash((i_13.x + 1u) + h_6, i_13.y);
-    float _e29 = atlas_hash(i_13.x + h_6, i_13.y + 1u);
-    float _e37 = atlas_hash((i_13.x + 1u) + h_6, i_13.y + 1u);
-    return metal::mix(metal::mix(_e17, _e23, s_8.x), metal::mix(_e29, _e37, s_8.x), s_8.y);
+    metal::uint2 i_16 = naga_f2u32(metal::floor(p_10));
+    metal::float2 f_5 = metal::fract(p_10);
+    metal::float2 s_11 = (f_5 * f_5) * (metal::float2(3.0) - (2.0 * f_5));
+    uint h_10 = seed * 7919u;
+    float _e17 = atlas_hash(i_16.x + h_10, i_16.y);
+    float _e23 = atlas_hash((i_16.x + 1u) + h_10, i_16.y);
+    float _e29 = atlas_hash(i_16.x + h_10, i_16.y + 1u);
+    float _e37 = atlas_hash((i_16.x + 1u) + h_10, i_16.y + 1u);
+    return metal::mix(metal::mix(_e17, _e23, s_11.x), metal::mix(_e29, _e37, s_11.x), s_11.y);
 }
 
 float value_fbm(
     metal::float2 p_11,
     uint seed_1
 ) {
-    float sum_1 = 0.0;
+    float sum_3 = 0.0;
     float weight = 0.5;
     metal::float2 q_4 = {};
     uint o = 0u;
     q_4 = p_11;
-    uint2 loop_bound_17 = uint2(4294967295u);
-    bool loop_init_13 = true;
+    uint2 loop_bound_18 = uint2(4294967295u);
+    bool loop_init_14 = true;
     while(true) {
-        if (metal::all(loop_bound_17 == uint2(0u))) { break; }
-        loop_bound_17 -= uint2(loop_bound_17.y == 0u, 1u);
-        if (!loop_init_13) {
+        if (metal::all(loop_bound_18 == uint2(0u))) { break; }
+        loop_bound_18 -= uint2(loop_bound_18.y == 0u, 1u);
+        if (!loop_init_14) {
             uint _e26 = o;
             o = _e26 + 1u;
         }
-        loop_init_13 = false;
+        loop_init_14 = false;
         uint _e9 = o;
         if (_e9 < 4u) {
         } else {
             break;
         }
         {
-            float _e12 = sum_1;
+            float _e12 = sum_3;
             float _e13 = weight;
             metal::float2 _e14 = q_4;
             uint _e15 = o;
             float _e17 = value_noise(_e14, seed_1 + _e15);
-            sum_1 = _e12 + (_e13 * _e17);
+            sum_3 = _e12 + (_e13 * _e17);
             metal::float2 _e20 = q_4;
             q_4 = _e20 * 2.0;
             float _e23 = weight;
             weight = _e23 * 0.5;
         }
     }
-    float _e29 = sum_1;
+    float _e29 = sum_3;
     return _e29 / 0.9375;
 }
 
@@ -2554,52 +3084,52 @@ float sprite_texture(
     metal::float2 uv
 ) {
     float billow = 0.0;
-    uint i_12 = 0u;
+    uint i_15 = 0u;
     metal::float2 at = {};
     float a_3 = {};
-    metal::float2 c_8 = uv - metal::float2(0.5);
-    float mask = metal::smoothstep(0.48, 0.36, metal::length(c_8));
+    metal::float2 c_9 = uv - metal::float2(0.5);
+    float mask = metal::smoothstep(0.48, 0.36, metal::length(c_9));
     float _e16 = value_fbm((uv * 6.0) + metal::float2(static_cast<float>(tile_1) * 13.0), tile_1);
     if (tile_1 < 4u) {
-        metal::float2 q_8 = c_8 * metal::float2(1.0, 3.2);
-        float streak = 1.0 - metal::smoothstep(0.05, 0.45, metal::length(q_8));
+        metal::float2 q_9 = c_9 * metal::float2(1.0, 3.2);
+        float streak = 1.0 - metal::smoothstep(0.05, 0.45, metal::length(q_9));
         float _e40 = value_fbm((uv * metal::float2(3.0, 12.0)) + metal::float2(static_cast<float>(tile_1) * 5.0), tile_1 + 16u);
         float _e46 = saturate((_e40 * 1.6) - 0.3);
         return ((mask * streak) * _e46) * 0.8;
     }
     uint blobs = 5u + naga_mod(tile_1, 4u);
-    uint2 loop_bound_18 = uint2(4294967295u);
-    bool loop_init_14 = true;
+    uint2 loop_bound_19 = uint2(4294967295u);
+    bool loop_init_15 = true;
     while(true) {
-        if (metal::all(loop_bound_18 == uint2(0u))) { break; }
-        loop_bound_18 -= uint2(loop_bound_18.y == 0u, 1u);
-        if (!loop_init_14) {
-            uint _e108 = i_12;
-            i_12 = _e108 + 1u;
+        if (metal::all(loop_bound_19 == uint2(0u))) { break; }
+        loop_bound_19 -= uint2(loop_bound_19.y == 0u, 1u);
+        if (!loop_init_15) {
+            uint _e108 = i_15;
+            i_15 = _e108 + 1u;
         }
-        loop_init_14 = false;
-        uint _e58 = i_12;
+        loop_init_15 = false;
+        uint _e58 = i_15;
         if (_e58 < blobs) {
         } else {
             break;
         }
         {
-            uint _e61 = i_12;
+            uint _e61 = i_15;
             float _e63 = atlas_hash(tile_1, 2u * _e61);
-            uint _e65 = i_12;
+            uint _e65 = i_15;
             float _e69 = atlas_hash(tile_1, (2u * _e65) + 1u);
             metal::float2 centre_1 = metal::float2(_e63, _e69) - metal::float2(0.5);
             at = metal::float2(0.5) + (centre_1 * 0.34);
             if (tile_1 == 4u) {
                 at.y = 0.5 + ((centre_1.y - 0.5) * 0.24);
             }
-            uint _e91 = i_12;
+            uint _e91 = i_15;
             float _e93 = atlas_hash(tile_1, 100u + _e91);
-            float r_3 = 0.14 + (0.1 * _e93);
+            float r_17 = 0.14 + (0.1 * _e93);
             metal::float2 _e98 = at;
-            float d_12 = metal::length(uv - _e98) / r_3;
+            float d_16 = metal::length(uv - _e98) / r_17;
             float _e102 = billow;
-            float _e106 = saturate(1.0 - (d_12 * d_12));
+            float _e106 = saturate(1.0 - (d_16 * d_16));
             billow = metal::max(_e102, _e106);
         }
     }
@@ -2621,10 +3151,10 @@ metal::float3 sprite_rel(
 ) {
     float rp_5 = frame.atmosphere.x;
     metal::float4 _e8 = frame.camera_position;
-    metal::float2 d_13 = xz - _e8.xz;
-    float k_9 = (alt_15 * (alt_15 + (2.0 * rp_5))) - metal::dot(d_13, d_13);
-    float y_2 = k_9 / (rp_5 + metal::sqrt(metal::max((rp_5 * rp_5) + k_9, 0.0)));
-    return metal::float3(d_13.x, y_2, d_13.y);
+    metal::float2 d_17 = xz - _e8.xz;
+    float k_13 = (alt_15 * (alt_15 + (2.0 * rp_5))) - metal::dot(d_17, d_17);
+    float y_2 = k_13 / (rp_5 + metal::sqrt(metal::max((rp_5 * rp_5) + k_13, 0.0)));
+    return metal::float3(d_17.x, y_2, d_17.y);
 }
 
 SpriteCell sprite_cell(
@@ -2632,24 +3162,24 @@ SpriteCell sprite_cell(
     constant Frame& frame
 ) {
     metal::int2 start_1 = {};
-    uint k_4 = 3u;
-    bool local_50 = {};
-    bool local_51 = {};
+    uint k_8 = 3u;
+    bool local_54 = {};
+    bool local_55 = {};
     uint level_1 = naga_div(cell, 64u);
-    metal::int2 local_53 = metal::int2(static_cast<int>(naga_mod(cell, 8u)), static_cast<int>(naga_mod(naga_div(cell, 8u), 8u)));
+    metal::int2 local_57 = metal::int2(static_cast<int>(naga_mod(cell, 8u)), static_cast<int>(naga_mod(naga_div(cell, 8u), 8u)));
     metal::float4 _e15 = frame.camera_position;
     start_1 = as_type<metal::int2>(as_type<metal::uint2>(naga_f2i32(metal::floor(_e15.xz / metal::float2(12000.0)))) - as_type<metal::uint2>(metal::int2(4)));
-    uint2 loop_bound_19 = uint2(4294967295u);
-    bool loop_init_15 = true;
+    uint2 loop_bound_20 = uint2(4294967295u);
+    bool loop_init_16 = true;
     while(true) {
-        if (metal::all(loop_bound_19 == uint2(0u))) { break; }
-        loop_bound_19 -= uint2(loop_bound_19.y == 0u, 1u);
-        if (!loop_init_15) {
-            uint _e35 = k_4;
-            k_4 = _e35 - 1u;
+        if (metal::all(loop_bound_20 == uint2(0u))) { break; }
+        loop_bound_20 -= uint2(loop_bound_20.y == 0u, 1u);
+        if (!loop_init_16) {
+            uint _e35 = k_8;
+            k_8 = _e35 - 1u;
         }
-        loop_init_15 = false;
-        uint _e27 = k_4;
+        loop_init_16 = false;
+        uint _e27 = k_8;
         if (_e27 > level_1) {
         } else {
             break;
@@ -2660,23 +3190,23 @@ SpriteCell sprite_cell(
         }
     }
     if (level_1 > 0u) {
-        local_50 = metal::all(local_53 >= metal::int2(2));
+        local_54 = metal::all(local_57 >= metal::int2(2));
     } else {
-        local_50 = false;
+        local_54 = false;
     }
-    bool _e47 = local_50;
+    bool _e47 = local_54;
     if (_e47) {
-        local_51 = metal::all(local_53 < metal::int2(6));
+        local_55 = metal::all(local_57 < metal::int2(6));
     } else {
-        local_51 = false;
+        local_55 = false;
     }
-    bool covered = local_51;
+    bool covered = local_55;
     metal::int2 _e56 = start_1;
-    return SpriteCell {as_type<metal::int2>(as_type<metal::uint2>(_e56) + as_type<metal::uint2>(local_53)), SPRITE_CELL0_ * static_cast<float>(1u << level_1), covered};
+    return SpriteCell {as_type<metal::int2>(as_type<metal::uint2>(_e56) + as_type<metal::uint2>(local_57)), SPRITE_CELL0_ * static_cast<float>(1u << level_1), covered};
 }
 
 SpriteCandidate sprite_candidate(
-    SpriteCell c_2,
+    SpriteCell c_3,
     uint level,
     uint s_1,
     thread Counters& counters_14,
@@ -2689,8 +3219,8 @@ SpriteCandidate sprite_candidate(
 ) {
     float density_2 = 0.0;
     uint _e10 = pcg(level);
-    uint _e12 = pcg(as_type<uint>(c_2.index.y) ^ _e10);
-    uint _e14 = pcg(as_type<uint>(c_2.index.x) ^ _e12);
+    uint _e12 = pcg(as_type<uint>(c_3.index.y) ^ _e10);
+    uint _e14 = pcg(as_type<uint>(c_3.index.x) ^ _e12);
     float _e17 = atlas_hash(_e14, 8u * s_1);
     float _e22 = atlas_hash(_e14, (8u * s_1) + 1u);
     float _e27 = atlas_hash(_e14, (8u * s_1) + 2u);
@@ -2698,39 +3228,39 @@ SpriteCandidate sprite_candidate(
     metal::float4 u_1 = metal::float4(_e17, _e22, _e27, _e32);
     float _e38 = atlas_hash(_e14, (8u * s_1) + 4u);
     float _e43 = atlas_hash(_e14, (8u * s_1) + 5u);
-    metal::float2 v_2 = metal::float2(_e38, _e43);
-    metal::float2 xz_1 = (static_cast<metal::float2>(c_2.index) + u_1.xy) * c_2.size;
+    metal::float2 v_3 = metal::float2(_e38, _e43);
+    metal::float2 xz_1 = (static_cast<metal::float2>(c_3.index) + u_1.xy) * c_3.size;
     Layer _e56 = cloud_layer(0u, frame);
     Weather _e57 = sample_weather(metal::float3(xz_1.x, 0.0, xz_1.y), _e56, frame, weather_tex, noise_sampler);
-    float h_7 = 0.04 + (u_1.z * (metal::mix(0.3, 0.95, _e57.cloud_type) - 0.04));
+    float h_11 = 0.04 + (u_1.z * (metal::mix(0.3, 0.95, _e57.cloud_type) - 0.04));
     float _e71 = frame.atmosphere.y;
     float _e75 = frame.atmosphere.z;
     float _e79 = frame.atmosphere.y;
-    float alt_17 = _e71 + (h_7 * (_e75 - _e79));
-    if (!(c_2.covered)) {
+    float alt_17 = _e71 + (h_11 * (_e75 - _e79));
+    if (!(c_3.covered)) {
         metal::float3 _e87 = sprite_rel(xz_1, alt_17, frame);
         float _e92 = cloud_density(metal::float3(xz_1.x, _e87.y, xz_1.y), alt_17, counters_14, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
         density_2 = _e92;
     }
     float _e96 = density_2;
-    return SpriteCandidate {xz_1, alt_17, h_7, u_1.w, v_2.x, v_2.y, _e96, _e57.precipitation};
+    return SpriteCandidate {xz_1, alt_17, h_11, u_1.w, v_3.x, v_3.y, _e96, _e57.precipitation};
 }
 
 metal::float3 sprite_sky_level(
-    float h_5
+    float h_6
 ) {
-    float _e1 = saturate(h_5);
-    float x_5 = _e1 * 4.0;
-    if (x_5 < 1.0) {
-        return metal::mix(SKY_LEVEL0_, SKY_LEVEL1_, x_5);
+    float _e1 = saturate(h_6);
+    float x_9 = _e1 * 4.0;
+    if (x_9 < 1.0) {
+        return metal::mix(SKY_LEVEL0_, SKY_LEVEL1_, x_9);
     }
-    if (x_5 < 2.0) {
-        return metal::mix(SKY_LEVEL1_, SKY_LEVEL2_, x_5 - 1.0);
+    if (x_9 < 2.0) {
+        return metal::mix(SKY_LEVEL1_, SKY_LEVEL2_, x_9 - 1.0);
     }
-    if (x_5 < 3.0) {
-        return metal::mix(SKY_LEVEL2_, SKY_LEVEL3_, x_5 - 2.0);
+    if (x_9 < 3.0) {
+        return metal::mix(SKY_LEVEL2_, SKY_LEVEL3_, x_9 - 2.0);
     }
-    return metal::mix(SKY_LEVEL3_, SKY_LEVEL4_, x_5 - 3.0);
+    return metal::mix(SKY_LEVEL3_, SKY_LEVEL4_, x_9 - 3.0);
 }
 
 float sprite_sun_level(
@@ -2743,63 +3273,444 @@ float sprite_sun_level(
 }
 
 metal::float2 sprite_corner(
-    uint k_5
+    uint k_9
 ) {
-    bool local_52 = {};
-    uint q_9 = (k_5 >= 3u) ? ((k_5 == 3u) ? 0u : (k_5 - 2u)) : k_5;
-    if (!((q_9 == 1u))) {
-        local_52 = q_9 == 2u;
+    bool local_56 = {};
+    uint q_10 = (k_9 >= 3u) ? ((k_9 == 3u) ? 0u : (k_9 - 2u)) : k_9;
+    if (!((q_10 == 1u))) {
+        local_56 = q_10 == 2u;
     } else {
-        local_52 = true;
+        local_56 = true;
     }
-    bool _e18 = local_52;
-    return metal::float2(_e18 ? 1.0 : -1.0, (q_9 >= 2u) ? 1.0 : -1.0);
+    bool _e18 = local_56;
+    return metal::float2(_e18 ? 1.0 : -1.0, (q_10 >= 2u) ? 1.0 : -1.0);
 }
 
 metal::float3 sky_radiance(
-    metal::float3 d_9,
+    metal::float3 d_12,
     float alt_16,
     constant Frame& frame
 ) {
     metal::float4 _e4 = frame.sun_direction;
-    metal::float3 sun_4 = _e4.xyz;
+    metal::float3 sun_5 = _e4.xyz;
     metal::float4 _e8 = frame.sun_illuminance;
     metal::float3 e = _e8.xyz;
-    float _e15 = saturate((sun_4.y * 4.0) + 0.3);
-    bool _e19 = hits_ground(metal::float3(0.0, alt_16, 0.0), alt_16, d_9, frame);
+    float _e15 = saturate((sun_5.y * 4.0) + 0.3);
+    bool _e19 = hits_ground(metal::float3(0.0, alt_16, 0.0), alt_16, d_12, frame);
     if (_e19) {
         metal::float3 ground_albedo = metal::float3(0.035, 0.035, 0.03);
-        return ground_albedo * (((e * metal::max(sun_4.y, 0.0)) / metal::float3(3.1415927)) + ((0.05 * e) * _e15));
+        return ground_albedo * (((e * metal::max(sun_5.y, 0.0)) / metal::float3(3.1415927)) + ((0.05 * e) * _e15));
     }
     metal::float3 zenith = metal::float3(0.018, 0.04, 0.1);
-    metal::float3 horizon = metal::float3(0.07, 0.085, 0.11);
-    float _e45 = saturate(d_9.y);
-    metal::float3 gradient_1 = metal::mix(horizon, zenith, metal::sqrt(_e45));
+    metal::float3 horizon_2 = metal::float3(0.07, 0.085, 0.11);
+    float _e45 = saturate(d_12.y);
+    metal::float3 gradient_1 = metal::mix(horizon_2, zenith, metal::sqrt(_e45));
     metal::float3 sunset = ((1.0 - (_e15 * 0.8)) * metal::pow(1.0 - _e45, 6.0)) * metal::float3(0.25, 0.1, 0.0);
-    float _e64 = phase_hg(metal::dot(d_9, sun_4), 0.76);
+    float _e64 = phase_hg(metal::dot(d_12, sun_5), 0.76);
     float glow = _e64 * 0.02;
-    float _e73 = saturate((sun_4.y * 10.0) + 1.0);
+    float _e73 = saturate((sun_5.y * 10.0) + 1.0);
     return e * (((gradient_1 * _e15) + (sunset * _e73)) + metal::float3(glow * _e15));
 }
 
 metal::float3 sun_disk(
-    metal::float3 d_10,
+    metal::float3 d_13,
     constant Frame& frame
 ) {
     float cos_r = frame.sun_direction.w;
     metal::float4 _e7 = frame.sun_direction;
-    if (metal::dot(d_10, _e7.xyz) < cos_r) {
+    if (metal::dot(d_13, _e7.xyz) < cos_r) {
         return metal::float3(0.0);
     }
     metal::float4 _e15 = frame.sun_illuminance;
     return _e15.xyz / metal::float3(6.2831855 * metal::max(1.0 - cos_r, 0.000001));
 }
 
-metal::float3 aces_fitted(
-    metal::float3 x_3
+metal::float3 physical_composite(
+    metal::uint2 pixel_8,
+    metal::float3 view_3,
+    metal::float4 cloud,
+    constant Frame& frame,
+    metal::texture2d<float, metal::access::sample> transmittance_lut_in,
+    metal::texture2d<float, metal::access::sample> sky_view_in,
+    metal::texture2d<float, metal::access::sample> aerial_in,
+    metal::texture2d<float, metal::access::sample> depth_in
 ) {
-    return metal::clamp((x_3 * ((2.51 * x_3) + metal::float3(0.03))) / ((x_3 * ((2.43 * x_3) + metal::float3(0.59))) + metal::float3(0.14)), metal::float3(0.0), metal::float3(1.0));
+    metal::float3 sky = {};
+    metal::float3 radiance_3 = {};
+    metal::float4 _e5 = frame.sun_illuminance;
+    metal::float3 e_1 = _e5.xyz;
+    metal::float3 _e7 = camera_air_origin(frame);
+    float r_18 = _e7.y;
+    metal::float3 _e9 = sky_view(view_3, frame, sky_view_in);
+    sky = _e9 * e_1;
+    bool _e13 = meets_ground(r_18, view_3.y, frame);
+    if (!(_e13)) {
+        metal::float3 _e15 = sky;
+        metal::float3 _e16 = sun_disk(view_3, frame);
+        metal::float3 _e18 = transmittance_to_top(r_18, view_3.y, frame, transmittance_lut_in);
+        sky = _e15 + (_e16 * _e18);
+    }
+    metal::float3 _e21 = sky;
+    radiance_3 = _e21 * cloud.w;
+    if (cloud.w < 1.0) {
+        metal::float4 _e30 = depth_in.read(metal::uint2(pixel_8), 0);
+        metal::float4 _e32 = aerial(pixel_8, _e30.x, frame, aerial_in);
+        metal::float3 _e33 = radiance_3;
+        radiance_3 = _e33 + (((_e32.xyz * e_1) * (1.0 - cloud.w)) + (cloud.xyz * _e32.w));
+    }
+    metal::float3 _e45 = radiance_3;
+    return _e45;
 }
+
+metal::float3 aces_fitted(
+    metal::float3 x_5
+) {
+    return metal::clamp((x_5 * ((2.51 * x_5) + metal::float3(0.03))) / ((x_5 * ((2.43 * x_5) + metal::float3(0.59))) + metal::float3(0.14)), metal::float3(0.0), metal::float3(1.0));
+}
+
+void store_display(
+    metal::uint2 pixel_9,
+    metal::float3 radiance_4,
+    constant Frame& frame,
+    metal::texture2d<float, metal::access::write> image_out
+) {
+    float _e5 = frame.camera_right.w;
+    metal::float3 exposed = radiance_4 * _e5;
+    metal::float3 _e7 = aces_fitted(exposed);
+    metal::float3 display = metal::pow(_e7, metal::float3(0.45454547));
+    image_out.write(metal::float4(display, 1.0), metal::uint2(pixel_9));
+    return;
+}
+
+struct transmittance_lutInput {
+};
+[[max_total_threads_per_threadgroup(64)]] kernel void transmittance_lut(
+  metal::uint3 id [[thread_position_in_grid]]
+, constant Frame& frame [[user(fake0)]]
+, metal::texture2d<float, metal::access::write> transmittance_lut_out [[user(fake0)]]
+) {
+    metal::float3 sum = metal::float3(0.0);
+    uint i = 0u;
+    float w = {};
+    bool local = {};
+    if (metal::any(id.xy >= TRANSMITTANCE_SIZE)) {
+        return;
+    }
+    metal::float2 _e11 = transmittance_r_mu(static_cast<metal::float2>(id.xy) / metal::float2(255.0, 63.0), frame);
+    float _e14 = distance_to_top(_e11.x, _e11.y, frame);
+    float dt_5 = _e14 / 128.0;
+    uint2 loop_bound_21 = uint2(4294967295u);
+    bool loop_init_17 = true;
+    while(true) {
+        if (metal::all(loop_bound_21 == uint2(0u))) { break; }
+        loop_bound_21 -= uint2(loop_bound_21.y == 0u, 1u);
+        if (!loop_init_17) {
+            uint _e61 = i;
+            i = _e61 + 1u;
+        }
+        loop_init_17 = false;
+        uint _e22 = i;
+        if (_e22 <= TRANSMITTANCE_STEPS) {
+        } else {
+            break;
+        }
+        {
+            uint _e25 = i;
+            w = ((_e25 & 1u) == 1u) ? 4.0 : 2.0;
+            uint _e34 = i;
+            if (!((_e34 == 0u))) {
+                uint _e40 = i;
+                local = _e40 == TRANSMITTANCE_STEPS;
+            } else {
+                local = true;
+            }
+            bool _e44 = local;
+            if (_e44) {
+                w = 1.0;
+            }
+            uint _e48 = i;
+            float _e51 = radius_after(_e11.x, _e11.y, dt_5 * static_cast<float>(_e48));
+            metal::float3 _e52 = sum;
+            float _e53 = w;
+            float _e54 = air_bottom(frame);
+            AirSample _e56 = air_at(_e51 - _e54, frame);
+            sum = _e52 + (_e53 * _e56.extinction);
+        }
+    }
+    metal::float3 _e65 = sum;
+    transmittance_lut_out.write(metal::float4(metal::exp(-(_e65) * (dt_5 / 3.0)), 1.0), metal::uint2(id.xy));
+    return;
+}
+
+
+struct multiscatter_lutInput {
+};
+[[max_total_threads_per_threadgroup(64)]] kernel void multiscatter_lut(
+  metal::uint3 id_1 [[thread_position_in_grid]]
+, constant Frame& frame [[user(fake0)]]
+, metal::texture2d<float, metal::access::sample> transmittance_lut_in [[user(fake0)]]
+, metal::texture2d<float, metal::access::write> multiscatter_lut_out [[user(fake0)]]
+) {
+    metal::float3 l2_ = metal::float3(0.0);
+    metal::float3 f_ms = metal::float3(0.0);
+    uint k = 0u;
+    metal::float3 tau = {};
+    uint i_1 = {};
+    if (metal::any(id_1.xy >= MULTISCATTER_SIZE)) {
+        return;
+    }
+    metal::float2 x_10 = static_cast<metal::float2>(id_1.xy) / metal::float2(31.0, 31.0);
+    float mu_s_4 = (x_10.x * 2.0) - 1.0;
+    float _e16 = air_bottom(frame);
+    float _e18 = air_top(frame);
+    float _e19 = air_bottom(frame);
+    float r_19 = _e16 + (x_10.y * (_e18 - _e19));
+    metal::float3 origin_5 = metal::float3(0.0, r_19, 0.0);
+    metal::float3 sun_6 = metal::float3(metal::sqrt(metal::max(1.0 - (mu_s_4 * mu_s_4), 0.0)), mu_s_4, 0.0);
+    uint2 loop_bound_22 = uint2(4294967295u);
+    bool loop_init_18 = true;
+    while(true) {
+        if (metal::all(loop_bound_22 == uint2(0u))) { break; }
+        loop_bound_22 -= uint2(loop_bound_22.y == 0u, 1u);
+        if (!loop_init_18) {
+            uint _e121 = k;
+            k = _e121 + 1u;
+        }
+        loop_init_18 = false;
+        uint _e43 = k;
+        if (_e43 < MULTISCATTER_DIRECTIONS) {
+        } else {
+            break;
+        }
+        {
+            uint _e46 = k;
+            metal::float3 _e48 = fibonacci_direction(_e46, MULTISCATTER_DIRECTIONS);
+            metal::float2 _e49 = air_ray_end(origin_5, _e48, frame);
+            float dt_6 = _e49.x / 32.0;
+            tau = metal::float3(0.0);
+            i_1 = 0u;
+            uint2 loop_bound_23 = uint2(4294967295u);
+            bool loop_init_19 = true;
+            while(true) {
+                if (metal::all(loop_bound_23 == uint2(0u))) { break; }
+                loop_bound_23 -= uint2(loop_bound_23.y == 0u, 1u);
+                if (!loop_init_19) {
+                    uint _e103 = i_1;
+                    i_1 = _e103 + 1u;
+                }
+                loop_init_19 = false;
+                uint _e58 = i_1;
+                if (_e58 < MULTISCATTER_STEPS) {
+                } else {
+                    break;
+                }
+                {
+                    uint _e61 = i_1;
+                    metal::float3 p_20 = origin_5 + (_e48 * (dt_6 * (static_cast<float>(_e61) + 0.5)));
+                    float rp_6 = metal::length(p_20);
+                    float _e69 = air_bottom(frame);
+                    AirSample _e71 = air_at(rp_6 - _e69, frame);
+                    metal::float3 _e72 = tau;
+                    metal::float3 t_8 = metal::exp(-((_e72 + ((0.5 * _e71.extinction) * dt_6))));
+                    metal::float3 s_12 = _e71.rayleigh + metal::float3(_e71.mie);
+                    metal::float3 _e84 = l2_;
+                    metal::float3 _e90 = sun_transmittance(rp_6, metal::dot(p_20 / metal::float3(rp_6), sun_6), frame, transmittance_lut_in);
+                    l2_ = _e84 + ((((t_8 * s_12) * 0.07957747) * _e90) * dt_6);
+                    metal::float3 _e94 = f_ms;
+                    f_ms = _e94 + ((t_8 * s_12) * dt_6);
+                    metal::float3 _e98 = tau;
+                    tau = _e98 + (_e71.extinction * dt_6);
+                }
+            }
+            if (_e49.y > 0.5) {
+                metal::float3 g_7 = origin_5 + (_e48 * _e49.x);
+                metal::float3 _e111 = l2_;
+                metal::float3 _e112 = tau;
+                metal::float3 _e117 = ground_radiance(metal::dot(metal::normalize(g_7), sun_6), frame, transmittance_lut_in);
+                l2_ = _e111 + (metal::exp(-(_e112)) * _e117);
+            }
+        }
+    }
+    metal::float3 _e124 = l2_;
+    metal::float3 _e128 = f_ms;
+    metal::float3 psi = (_e124 * 0.015625) / metal::max(metal::float3(1.0) - (_e128 * 0.015625), metal::float3(0.000001));
+    multiscatter_lut_out.write(metal::float4(psi, 1.0), metal::uint2(id_1.xy));
+    return;
+}
+
+
+struct sky_view_lutInput {
+};
+[[max_total_threads_per_threadgroup(64)]] kernel void sky_view_lut(
+  metal::uint3 id_2 [[thread_position_in_grid]]
+, constant Frame& frame [[user(fake0)]]
+, metal::texture2d<float, metal::access::sample> transmittance_lut_in [[user(fake0)]]
+, metal::texture2d<float, metal::access::sample> multiscatter_lut_in [[user(fake0)]]
+, metal::texture2d<float, metal::access::write> sky_view_out [[user(fake0)]]
+) {
+    if (metal::any(id_2.xy >= SKY_VIEW_SIZE)) {
+        return;
+    }
+    metal::float2 x_11 = static_cast<metal::float2>(id_2.xy) / metal::float2(191.0, 107.0);
+    metal::float3 _e11 = camera_air_origin(frame);
+    float _e14 = horizon_elevation(_e11.y, frame);
+    float _e15 = sky_view_elevation(x_11.y, _e14);
+    float _e16 = sun_azimuth(frame);
+    float phi_2 = _e16 + (x_11.x * PI);
+    metal::float3 d_18 = metal::float3(metal::cos(_e15) * metal::cos(phi_2), metal::sin(_e15), metal::cos(_e15) * metal::sin(phi_2));
+    metal::float2 _e29 = air_ray_end(_e11, d_18, frame);
+    metal::float4 _e34 = frame.sun_direction;
+    Scattered _e39 = integrate_air(_e11, d_18, _e29.x, SKY_VIEW_STEPS, _e34.xyz, _e29.y > 0.5, frame, transmittance_lut_in, multiscatter_lut_in);
+    sky_view_out.write(metal::float4(_e39.radiance, 1.0), metal::uint2(id_2.xy));
+    return;
+}
+
+
+struct aerial_perspectiveInput {
+};
+[[max_total_threads_per_threadgroup(64)]] kernel void aerial_perspective(
+  metal::uint3 id_3 [[thread_position_in_grid]]
+, constant Frame& frame [[user(fake0)]]
+, metal::texture2d<float, metal::access::sample> transmittance_lut_in [[user(fake0)]]
+, metal::texture2d<float, metal::access::sample> multiscatter_lut_in [[user(fake0)]]
+, metal::texture2d<float, metal::access::write> aerial_out [[user(fake0)]]
+) {
+    metal::float3 radiance = metal::float3(0.0);
+    metal::float3 tau_1 = metal::float3(0.0);
+    uint z = 0u;
+    uint k_1 = {};
+    if (metal::any(id_3.xy >= metal::uint2(32u))) {
+        return;
+    }
+    metal::float3 _e7 = aerial_ray(id_3.xy, frame);
+    metal::float3 _e8 = camera_air_origin(frame);
+    metal::float2 _e9 = air_ray_end(_e8, _e7, frame);
+    metal::float4 _e12 = frame.sun_direction;
+    metal::float3 sun_7 = _e12.xyz;
+    float cos_theta_8 = metal::dot(_e7, sun_7);
+    float _e15 = phase_rayleigh(cos_theta_8);
+    float _e19 = frame.air_mie.w;
+    float _e20 = phase_cornette_shanks_air(cos_theta_8, _e19);
+    uint2 loop_bound_24 = uint2(4294967295u);
+    bool loop_init_20 = true;
+    while(true) {
+        if (metal::all(loop_bound_24 == uint2(0u))) { break; }
+        loop_bound_24 -= uint2(loop_bound_24.y == 0u, 1u);
+        if (!loop_init_20) {
+            uint _e122 = z;
+            z = _e122 + 1u;
+        }
+        loop_init_20 = false;
+        uint _e30 = z;
+        if (_e30 < AERIAL_SLICES) {
+        } else {
+            break;
+        }
+        {
+            k_1 = 0u;
+            uint2 loop_bound_25 = uint2(4294967295u);
+            bool loop_init_21 = true;
+            while(true) {
+                if (metal::all(loop_bound_25 == uint2(0u))) { break; }
+                loop_bound_25 -= uint2(loop_bound_25.y == 0u, 1u);
+                if (!loop_init_21) {
+                    uint _e99 = k_1;
+                    k_1 = _e99 + 1u;
+                }
+                loop_init_21 = false;
+                uint _e35 = k_1;
+                if (_e35 < 4u) {
+                } else {
+                    break;
+                }
+                {
+                    uint _e38 = z;
+                    uint _e40 = k_1;
+                    float t0_1 = AERIAL_SLICE_KM * (static_cast<float>(_e38) + (static_cast<float>(_e40) / 4.0));
+                    float dt_7 = metal::max(metal::min(0.25, _e9.x - t0_1), 0.0);
+                    metal::float3 p_21 = _e8 + (_e7 * (t0_1 + (0.5 * dt_7)));
+                    float r_20 = metal::length(p_21);
+                    float mu_s_5 = metal::dot(p_21 / metal::float3(r_20), sun_7);
+                    float _e64 = air_bottom(frame);
+                    AirSample _e66 = air_at(r_20 - _e64, frame);
+                    metal::float3 _e67 = tau_1;
+                    metal::float3 t_view_1 = metal::exp(-((_e67 + ((0.5 * _e66.extinction) * dt_7))));
+                    metal::float3 _e75 = sun_transmittance(r_20, mu_s_5, frame, transmittance_lut_in);
+                    metal::float3 _e83 = multiscatter(r_20, mu_s_5, frame, multiscatter_lut_in);
+                    metal::float3 inscatter_1 = (_e75 * ((_e66.rayleigh * _e15) + metal::float3(_e66.mie * _e20))) + (_e83 * (_e66.rayleigh + metal::float3(_e66.mie)));
+                    metal::float3 _e90 = radiance;
+                    radiance = _e90 + ((t_view_1 * inscatter_1) * dt_7);
+                    metal::float3 _e94 = tau_1;
+                    tau_1 = _e94 + (_e66.extinction * dt_7);
+                }
+            }
+            metal::float3 _e101 = tau_1;
+            metal::float3 t_9 = metal::exp(-(_e101));
+            uint _e105 = z;
+            metal::float3 _e112 = radiance;
+            aerial_out.write(metal::float4(_e112, ((t_9.x + t_9.y) + t_9.z) / 3.0), metal::uint2(metal::uint2((_e105 * AERIAL_SIDE) + id_3.x, id_3.y)));
+        }
+    }
+    return;
+}
+
+
+struct sky_ambientInput {
+};
+[[max_total_threads_per_threadgroup(64)]] kernel void sky_ambient(
+  metal::uint3 id_4 [[thread_position_in_grid]]
+, constant Frame& frame [[user(fake0)]]
+, metal::texture2d<float, metal::access::sample> transmittance_lut_in [[user(fake0)]]
+, metal::texture2d<float, metal::access::sample> multiscatter_lut_in [[user(fake0)]]
+, metal::texture2d<float, metal::access::write> sky_ambient_out [[user(fake0)]]
+) {
+    bool local_1 = {};
+    metal::float3 sum_1 = metal::float3(0.0);
+    uint k_2 = 0u;
+    if (!((id_4.x >= 2u))) {
+        local_1 = id_4.y >= 1u;
+    } else {
+        local_1 = true;
+    }
+    bool _e11 = local_1;
+    if (_e11) {
+        return;
+    }
+    float _e15 = frame.atmosphere.y;
+    float _e19 = frame.atmosphere.z;
+    float alt_m = (id_4.x == 1u) ? _e19 : _e15;
+    float _e24 = air_bottom(frame);
+    metal::float3 origin_6 = metal::float3(0.0, _e24 + (alt_m * 0.001), 0.0);
+    uint2 loop_bound_26 = uint2(4294967295u);
+    bool loop_init_22 = true;
+    while(true) {
+        if (metal::all(loop_bound_26 == uint2(0u))) { break; }
+        loop_bound_26 -= uint2(loop_bound_26.y == 0u, 1u);
+        if (!loop_init_22) {
+            uint _e57 = k_2;
+            k_2 = _e57 + 1u;
+        }
+        loop_init_22 = false;
+        uint _e36 = k_2;
+        if (_e36 < AMBIENT_DIRECTIONS) {
+        } else {
+            break;
+        }
+        {
+            uint _e39 = k_2;
+            metal::float3 _e41 = fibonacci_direction(_e39, AMBIENT_DIRECTIONS);
+            metal::float2 _e42 = air_ray_end(origin_6, _e41, frame);
+            metal::float3 _e43 = sum_1;
+            metal::float4 _e48 = frame.sun_direction;
+            Scattered _e53 = integrate_air(origin_6, _e41, _e42.x, AMBIENT_STEPS, _e48.xyz, _e42.y > 0.5, frame, transmittance_lut_in, multiscatter_lut_in);
+            sum_1 = _e43 + _e53.radiance;
+        }
+    }
+    metal::float3 _e61 = sum_1;
+    sky_ambient_out.write(metal::float4(_e61 / metal::float3(64.0), 1.0), metal::uint2(id_4.xy));
+    return;
+}
+
 metal::int2 naga_div(metal::int2 lhs, metal::int2 rhs) {
     return lhs / metal::select(rhs, 1, (lhs == (-2147483647 - 1) & rhs == -1) | (rhs == 0));
 }
@@ -2813,30 +3724,30 @@ metal::int2 naga_mod(metal::int2 lhs, metal::int2 rhs) {
 struct occupancyInput {
 };
 [[max_total_threads_per_threadgroup(64)]] kernel void occupancy(
-  metal::uint3 id [[thread_position_in_grid]]
+  metal::uint3 id_5 [[thread_position_in_grid]]
 , metal::texture2d<float, metal::access::sample> weather_tex [[user(fake0)]]
 , metal::texture2d<float, metal::access::write> occupancy_out [[user(fake0)]]
 ) {
     float m = 0.0;
     int y = {};
     int x = {};
-    if (metal::any(id.xy >= metal::uint2(64u))) {
+    if (metal::any(id_5.xy >= metal::uint2(64u))) {
         return;
     }
-    metal::int2 size_6 = static_cast<metal::int2>(metal::uint2(weather_tex.get_width(), weather_tex.get_height()));
-    metal::int2 lo_1 = as_type<metal::int2>(as_type<metal::uint2>(naga_div(as_type<metal::int2>(as_type<metal::uint2>(static_cast<metal::int2>(id.xy)) * as_type<metal::uint2>(size_6)), metal::int2(64))) - as_type<metal::uint2>(metal::int2(1)));
-    metal::int2 hi = naga_div(as_type<metal::int2>(as_type<metal::uint2>(as_type<metal::int2>(as_type<metal::uint2>(static_cast<metal::int2>(id.xy)) + as_type<metal::uint2>(metal::int2(1)))) * as_type<metal::uint2>(size_6)), metal::int2(64));
+    metal::int2 size_7 = static_cast<metal::int2>(metal::uint2(weather_tex.get_width(), weather_tex.get_height()));
+    metal::int2 lo_1 = as_type<metal::int2>(as_type<metal::uint2>(naga_div(as_type<metal::int2>(as_type<metal::uint2>(static_cast<metal::int2>(id_5.xy)) * as_type<metal::uint2>(size_7)), metal::int2(64))) - as_type<metal::uint2>(metal::int2(1)));
+    metal::int2 hi = naga_div(as_type<metal::int2>(as_type<metal::uint2>(as_type<metal::int2>(as_type<metal::uint2>(static_cast<metal::int2>(id_5.xy)) + as_type<metal::uint2>(metal::int2(1)))) * as_type<metal::uint2>(size_7)), metal::int2(64));
     y = lo_1.y;
-    uint2 loop_bound_20 = uint2(4294967295u);
-    bool loop_init_16 = true;
+    uint2 loop_bound_27 = uint2(4294967295u);
+    bool loop_init_23 = true;
     while(true) {
-        if (metal::all(loop_bound_20 == uint2(0u))) { break; }
-        loop_bound_20 -= uint2(loop_bound_20.y == 0u, 1u);
-        if (!loop_init_16) {
+        if (metal::all(loop_bound_27 == uint2(0u))) { break; }
+        loop_bound_27 -= uint2(loop_bound_27.y == 0u, 1u);
+        if (!loop_init_23) {
             int _e54 = y;
             y = as_type<int>(as_type<uint>(_e54) + as_type<uint>(1));
         }
-        loop_init_16 = false;
+        loop_init_23 = false;
         int _e30 = y;
         if (_e30 <= hi.y) {
         } else {
@@ -2844,16 +3755,16 @@ struct occupancyInput {
         }
         {
             x = lo_1.x;
-            uint2 loop_bound_21 = uint2(4294967295u);
-            bool loop_init_17 = true;
+            uint2 loop_bound_28 = uint2(4294967295u);
+            bool loop_init_24 = true;
             while(true) {
-                if (metal::all(loop_bound_21 == uint2(0u))) { break; }
-                loop_bound_21 -= uint2(loop_bound_21.y == 0u, 1u);
-                if (!loop_init_17) {
+                if (metal::all(loop_bound_28 == uint2(0u))) { break; }
+                loop_bound_28 -= uint2(loop_bound_28.y == 0u, 1u);
+                if (!loop_init_24) {
                     int _e51 = x;
                     x = as_type<int>(as_type<uint>(_e51) + as_type<uint>(1));
                 }
-                loop_init_17 = false;
+                loop_init_24 = false;
                 int _e35 = x;
                 if (_e35 <= hi.x) {
                 } else {
@@ -2862,16 +3773,16 @@ struct occupancyInput {
                 {
                     int _e38 = x;
                     int _e39 = y;
-                    metal::int2 t_7 = naga_mod(as_type<metal::int2>(as_type<metal::uint2>(naga_mod(metal::int2(_e38, _e39), size_6)) + as_type<metal::uint2>(size_6)), size_6);
+                    metal::int2 t_10 = naga_mod(as_type<metal::int2>(as_type<metal::uint2>(naga_mod(metal::int2(_e38, _e39), size_7)) + as_type<metal::uint2>(size_7)), size_7);
                     float _e44 = m;
-                    metal::float4 _e47 = weather_tex.read(metal::uint2(t_7), 0);
+                    metal::float4 _e47 = weather_tex.read(metal::uint2(t_10), 0);
                     m = metal::max(_e44, _e47.x);
                 }
             }
         }
     }
     float _e58 = m;
-    occupancy_out.write(metal::float4(_e58, 0.0, 0.0, 0.0), metal::uint2(id.xy));
+    occupancy_out.write(metal::float4(_e58, 0.0, 0.0, 0.0), metal::uint2(id_5.xy));
     return;
 }
 
@@ -2879,8 +3790,10 @@ struct occupancyInput {
 struct marchInput {
 };
 [[max_total_threads_per_threadgroup(64)]] kernel void march(
-  metal::uint3 id_1 [[thread_position_in_grid]]
+  metal::uint3 id_6 [[thread_position_in_grid]]
 , constant Frame& frame [[user(fake0)]]
+, metal::texture2d<float, metal::access::sample> transmittance_lut_in [[user(fake0)]]
+, metal::texture2d<float, metal::access::sample> sky_ambient_in [[user(fake0)]]
 , metal::texture3d<float, metal::access::sample> shape_tex [[user(fake0)]]
 , metal::texture3d<float, metal::access::sample> detail_tex [[user(fake0)]]
 , metal::texture2d<float, metal::access::sample> weather_tex [[user(fake0)]]
@@ -2892,12 +3805,12 @@ struct marchInput {
 , device Stats& stats [[user(fake0)]]
 ) {
     metal::uint4 _e4 = frame.counts;
-    if (metal::any(id_1.xy >= _e4.xy)) {
+    if (metal::any(id_6.xy >= _e4.xy)) {
         return;
     }
-    MarchResult _e9 = march_pixel(id_1.xy, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler, occupancy_in, stats);
-    cloud_out.write(metal::float4(_e9.radiance, _e9.transmittance), metal::uint2(id_1.xy));
-    depth_out.write(metal::float4(_e9.depth, 0.0, 0.0, 0.0), metal::uint2(id_1.xy));
+    MarchResult _e9 = march_pixel(id_6.xy, frame, transmittance_lut_in, sky_ambient_in, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler, occupancy_in, stats);
+    cloud_out.write(metal::float4(_e9.radiance, _e9.transmittance), metal::uint2(id_6.xy));
+    depth_out.write(metal::float4(_e9.depth, 0.0, 0.0, 0.0), metal::uint2(id_6.xy));
     return;
 }
 
@@ -2905,8 +3818,10 @@ struct marchInput {
 struct march_sparseInput {
 };
 [[max_total_threads_per_threadgroup(64)]] kernel void march_sparse(
-  metal::uint3 id_2 [[thread_position_in_grid]]
+  metal::uint3 id_7 [[thread_position_in_grid]]
 , constant Frame& frame [[user(fake0)]]
+, metal::texture2d<float, metal::access::sample> transmittance_lut_in [[user(fake0)]]
+, metal::texture2d<float, metal::access::sample> sky_ambient_in [[user(fake0)]]
 , metal::texture3d<float, metal::access::sample> shape_tex [[user(fake0)]]
 , metal::texture3d<float, metal::access::sample> detail_tex [[user(fake0)]]
 , metal::texture2d<float, metal::access::sample> weather_tex [[user(fake0)]]
@@ -2918,18 +3833,18 @@ struct march_sparseInput {
 , device Stats& stats [[user(fake0)]]
 ) {
     MarchResult r = MarchResult {metal::float3(0.0), 1.0, 0.0};
-    bool _e2 = in_blocks(id_2.xy, frame);
+    bool _e2 = in_blocks(id_7.xy, frame);
     if (!(_e2)) {
         return;
     }
-    metal::uint2 _e5 = sparse_pixel(id_2.xy, frame);
+    metal::uint2 _e5 = sparse_pixel(id_7.xy, frame);
     metal::uint4 _e14 = frame.counts;
     if (metal::all(_e5 < _e14.xy)) {
-        MarchResult _e18 = march_pixel(_e5, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler, occupancy_in, stats);
+        MarchResult _e18 = march_pixel(_e5, frame, transmittance_lut_in, sky_ambient_in, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler, occupancy_in, stats);
         r = _e18;
     }
     MarchResult _e20 = r;
-    store_sparse(id_2.xy, _e20, cloud_out, depth_out);
+    store_sparse(id_7.xy, _e20, cloud_out, depth_out);
     return;
 }
 
@@ -2937,8 +3852,10 @@ struct march_sparseInput {
 struct march_sparse_checkerboardInput {
 };
 [[max_total_threads_per_threadgroup(64)]] kernel void march_sparse_checkerboard(
-  metal::uint3 id_3 [[thread_position_in_grid]]
+  metal::uint3 id_8 [[thread_position_in_grid]]
 , constant Frame& frame [[user(fake0)]]
+, metal::texture2d<float, metal::access::sample> transmittance_lut_in [[user(fake0)]]
+, metal::texture2d<float, metal::access::sample> sky_ambient_in [[user(fake0)]]
 , metal::texture3d<float, metal::access::sample> shape_tex [[user(fake0)]]
 , metal::texture3d<float, metal::access::sample> detail_tex [[user(fake0)]]
 , metal::texture2d<float, metal::access::sample> weather_tex [[user(fake0)]]
@@ -2952,54 +3869,54 @@ struct march_sparse_checkerboardInput {
 ) {
     MarchResult r_1 = MarchResult {metal::float3(0.0), 1.0, 0.0};
     bool skip = {};
-    bool local = {};
-    bool local_1 = {};
     bool local_2 = {};
-    bool _e2 = in_blocks(id_3.xy, frame);
+    bool local_3 = {};
+    bool local_4 = {};
+    bool _e2 = in_blocks(id_8.xy, frame);
     if (!(_e2)) {
         return;
     }
-    metal::uint2 _e5 = sparse_pixel(id_3.xy, frame);
+    metal::uint2 _e5 = sparse_pixel(id_8.xy, frame);
     metal::uint4 _e14 = frame.counts;
     skip = metal::any(_e5 >= _e14.xy);
     bool _e19 = skip;
     if (!(_e19)) {
         uint _e26 = frame.temporal.y;
-        local = _e26 != 0u;
+        local_2 = _e26 != 0u;
     } else {
-        local = false;
+        local_2 = false;
     }
-    bool _e30 = local;
+    bool _e30 = local_2;
     if (_e30) {
-        uint k_10 = frame.temporal.x;
+        uint k_14 = frame.temporal.x;
         uint _e38 = frame.misc.y;
-        uint turn = naga_div(_e38, k_10 * k_10);
+        uint turn = naga_div(_e38, k_14 * k_14);
         metal::float2 _e42 = reproject(_e5, 0.0, frame);
-        if ((((id_3.x + id_3.y) + turn) & 1u) == 0u) {
+        if ((((id_8.x + id_8.y) + turn) & 1u) == 0u) {
             bool _e53 = on_screen(_e42, frame);
-            local_1 = _e53;
+            local_3 = _e53;
         } else {
-            local_1 = false;
+            local_3 = false;
         }
-        bool _e55 = local_1;
+        bool _e55 = local_3;
         if (_e55) {
             metal::float4 _e58 = history_nearest(_e42, frame, history_in);
-            local_2 = _e58.w >= 1.0;
+            local_4 = _e58.w >= 1.0;
         } else {
-            local_2 = false;
+            local_4 = false;
         }
-        bool _e63 = local_2;
+        bool _e63 = local_4;
         if (_e63) {
             skip = true;
         }
     }
     bool _e65 = skip;
     if (!(_e65)) {
-        MarchResult _e67 = march_pixel(_e5, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler, occupancy_in, stats);
+        MarchResult _e67 = march_pixel(_e5, frame, transmittance_lut_in, sky_ambient_in, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler, occupancy_in, stats);
         r_1 = _e67;
     }
     MarchResult _e69 = r_1;
-    store_sparse(id_3.xy, _e69, cloud_out, depth_out);
+    store_sparse(id_8.xy, _e69, cloud_out, depth_out);
     return;
 }
 
@@ -3007,8 +3924,10 @@ struct march_sparse_checkerboardInput {
 struct resolveInput {
 };
 [[max_total_threads_per_threadgroup(64)]] kernel void resolve(
-  metal::uint3 id_4 [[thread_position_in_grid]]
+  metal::uint3 id_9 [[thread_position_in_grid]]
 , constant Frame& frame [[user(fake0)]]
+, metal::texture2d<float, metal::access::sample> transmittance_lut_in [[user(fake0)]]
+, metal::texture2d<float, metal::access::sample> sky_ambient_in [[user(fake0)]]
 , metal::texture3d<float, metal::access::sample> shape_tex [[user(fake0)]]
 , metal::texture3d<float, metal::access::sample> detail_tex [[user(fake0)]]
 , metal::texture2d<float, metal::access::sample> weather_tex [[user(fake0)]]
@@ -3026,27 +3945,27 @@ struct resolveInput {
 , metal::texture2d<float, metal::access::write> meta_out [[user(fake0)]]
 ) {
     float depth = {};
-    bool local_3 = {};
+    bool local_5 = {};
     bool valid = {};
     metal::float4 history = metal::float4(0.0, 0.0, 0.0, 1.0);
     metal::float4 past = metal::float4(0.0);
-    bool local_4 = {};
-    bool local_5 = {};
     bool local_6 = {};
+    bool local_7 = {};
+    bool local_8 = {};
     metal::float4 result = {};
     float samples = {};
     float out_depth = {};
-    bool local_7 = {};
+    bool local_9 = {};
     metal::uint4 _e4 = frame.counts;
-    if (metal::any(id_4.xy >= _e4.xy)) {
+    if (metal::any(id_9.xy >= _e4.xy)) {
         return;
     }
-    metal::uint2 pixel_7 = id_4.xy;
-    uint k_11 = frame.temporal.x;
-    metal::uint2 block = naga_div(pixel_7, metal::uint2(k_11));
+    metal::uint2 pixel_10 = id_9.xy;
+    uint k_15 = frame.temporal.x;
+    metal::uint2 block = naga_div(pixel_10, metal::uint2(k_15));
     uint _e19 = frame.misc.y;
-    metal::uint2 _e20 = block_offset(_e19, k_11);
-    bool marched_1 = metal::all(pixel_7 == ((block * k_11) + _e20));
+    metal::uint2 _e20 = block_offset(_e19, k_15);
+    bool marched_1 = metal::all(pixel_10 == ((block * k_15) + _e20));
     metal::float4 current = sparse_in.read(metal::uint2(block), 0);
     metal::float4 _e29 = sparse_depth_in.read(metal::uint2(block), 0);
     float current_depth = _e29.x;
@@ -3054,24 +3973,24 @@ struct resolveInput {
     float _e32 = depth;
     if (_e32 <= 0.0) {
         float _e38 = frame.camera_position.y;
-        metal::float3 _e39 = view_ray(pixel_7, frame);
+        metal::float3 _e39 = view_ray(pixel_10, frame);
         Interval _e40 = nearest_layer_interval(_e38, _e39, frame);
         if (_e40.kind == RAY_MARCH) {
             depth = _e40.start + (0.5 * _e40.length);
         }
     }
     float _e49 = depth;
-    metal::float2 _e50 = reproject(pixel_7, _e49, frame);
+    metal::float2 _e50 = reproject(pixel_10, _e49, frame);
     uint _e54 = frame.temporal.y;
     if (_e54 != 0u) {
         bool _e59 = on_screen(_e50, frame);
-        local_3 = _e59;
+        local_5 = _e59;
     } else {
-        local_3 = false;
+        local_5 = false;
     }
-    bool _e61 = local_3;
+    bool _e61 = local_5;
     valid = _e61;
-    bool moving = metal::any(_e50 != static_cast<metal::float2>(pixel_7));
+    bool moving = metal::any(_e50 != static_cast<metal::float2>(pixel_10));
     bool _e75 = valid;
     if (_e75) {
         metal::float4 _e76 = history_at(_e50, frame, history_in);
@@ -3079,21 +3998,21 @@ struct resolveInput {
         metal::float4 _e77 = meta_at(_e50, frame, meta_in);
         past = _e77;
         if (moving) {
-            local_4 = current_depth > 0.0;
+            local_6 = current_depth > 0.0;
         } else {
-            local_4 = false;
+            local_6 = false;
         }
-        bool _e83 = local_4;
+        bool _e83 = local_6;
         if (_e83) {
             float _e87 = past.x;
-            local_5 = _e87 > 0.0;
+            local_7 = _e87 > 0.0;
         } else {
-            local_5 = false;
+            local_7 = false;
         }
-        bool _e91 = local_5;
+        bool _e91 = local_7;
         if (_e91) {
             metal::float4 _e94 = frame.camera_position;
-            metal::float3 _e96 = view_ray(pixel_7, frame);
+            metal::float3 _e96 = view_ray(pixel_10, frame);
             metal::float4 _e101 = frame.previous_position;
             float expected = metal::distance(_e94.xyz + (_e96 * current_depth), _e101.xyz);
             float _e105 = past.x;
@@ -3102,27 +4021,27 @@ struct resolveInput {
     }
     bool _e111 = valid;
     if (_e111) {
-        local_6 = moving;
+        local_8 = moving;
     } else {
-        local_6 = false;
+        local_8 = false;
     }
-    bool _e115 = local_6;
+    bool _e115 = local_8;
     if (_e115) {
         metal::uint4 _e118 = frame.counts;
-        metal::int2 blocks = static_cast<metal::int2>(naga_div((_e118.xy + metal::uint2(k_11)) - metal::uint2(1u), metal::uint2(k_11)));
-        metal::int2 b_9 = static_cast<metal::int2>(block);
-        int x0_1 = metal::max(as_type<int>(as_type<uint>(b_9.x) - as_type<uint>(1)), 0);
-        int x2_1 = metal::min(as_type<int>(as_type<uint>(b_9.x) + as_type<uint>(1)), as_type<int>(as_type<uint>(blocks.x) - as_type<uint>(1)));
-        int y0_ = metal::max(as_type<int>(as_type<uint>(b_9.y) - as_type<uint>(1)), 0);
-        int y2_ = metal::min(as_type<int>(as_type<uint>(b_9.y) + as_type<uint>(1)), as_type<int>(as_type<uint>(blocks.y) - as_type<uint>(1)));
+        metal::int2 blocks = static_cast<metal::int2>(naga_div((_e118.xy + metal::uint2(k_15)) - metal::uint2(1u), metal::uint2(k_15)));
+        metal::int2 b_11 = static_cast<metal::int2>(block);
+        int x0_1 = metal::max(as_type<int>(as_type<uint>(b_11.x) - as_type<uint>(1)), 0);
+        int x2_1 = metal::min(as_type<int>(as_type<uint>(b_11.x) + as_type<uint>(1)), as_type<int>(as_type<uint>(blocks.x) - as_type<uint>(1)));
+        int y0_ = metal::max(as_type<int>(as_type<uint>(b_11.y) - as_type<uint>(1)), 0);
+        int y2_ = metal::min(as_type<int>(as_type<uint>(b_11.y) + as_type<uint>(1)), as_type<int>(as_type<uint>(blocks.y) - as_type<uint>(1)));
         metal::float4 s00_ = sparse_in.read(metal::uint2(metal::int2(x0_1, y0_)), 0);
-        metal::float4 s10_ = sparse_in.read(metal::uint2(metal::int2(b_9.x, y0_)), 0);
+        metal::float4 s10_ = sparse_in.read(metal::uint2(metal::int2(b_11.x, y0_)), 0);
         metal::float4 s20_ = sparse_in.read(metal::uint2(metal::int2(x2_1, y0_)), 0);
-        metal::float4 s01_ = sparse_in.read(metal::uint2(metal::int2(x0_1, b_9.y)), 0);
-        metal::float4 s11_ = sparse_in.read(metal::uint2(b_9), 0);
-        metal::float4 s21_ = sparse_in.read(metal::uint2(metal::int2(x2_1, b_9.y)), 0);
+        metal::float4 s01_ = sparse_in.read(metal::uint2(metal::int2(x0_1, b_11.y)), 0);
+        metal::float4 s11_ = sparse_in.read(metal::uint2(b_11), 0);
+        metal::float4 s21_ = sparse_in.read(metal::uint2(metal::int2(x2_1, b_11.y)), 0);
         metal::float4 s02_ = sparse_in.read(metal::uint2(metal::int2(x0_1, y2_)), 0);
-        metal::float4 s12_ = sparse_in.read(metal::uint2(metal::int2(b_9.x, y2_)), 0);
+        metal::float4 s12_ = sparse_in.read(metal::uint2(metal::int2(b_11.x, y2_)), 0);
         metal::float4 s22_ = sparse_in.read(metal::uint2(metal::int2(x2_1, y2_)), 0);
         metal::float4 lo_2 = metal::min(metal::min(metal::min(s00_, s10_), metal::min(s20_, s01_)), metal::min(metal::min(s11_, s21_), metal::min(metal::min(s02_, s12_), s22_)));
         metal::float4 hi_1 = metal::max(metal::max(metal::max(s00_, s10_), metal::max(s20_, s01_)), metal::max(metal::max(s11_, s21_), metal::max(metal::max(s02_, s12_), s22_)));
@@ -3144,11 +4063,11 @@ struct resolveInput {
         float _e229 = past.x;
         if (!((current_depth > 0.0))) {
             bool _e235 = valid;
-            local_7 = !(_e235);
+            local_9 = !(_e235);
         } else {
-            local_7 = true;
+            local_9 = true;
         }
-        bool _e238 = local_7;
+        bool _e238 = local_9;
         out_depth = _e238 ? current_depth : _e229;
     } else {
         bool _e240 = valid;
@@ -3160,21 +4079,21 @@ struct resolveInput {
             float _e247 = past.x;
             out_depth = _e247;
         } else {
-            MarchResult _e248 = march_pixel(pixel_7, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler, occupancy_in, stats);
+            MarchResult _e248 = march_pixel(pixel_10, frame, transmittance_lut_in, sky_ambient_in, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler, occupancy_in, stats);
             samples = 1.0;
             result = metal::float4(_e248.radiance, _e248.transmittance);
             out_depth = _e248.depth;
         }
     }
     metal::float4 _e255 = result;
-    history_out.write(_e255, metal::uint2(pixel_7));
+    history_out.write(_e255, metal::uint2(pixel_10));
     float _e257 = out_depth;
     float _e258 = samples;
-    meta_out.write(metal::float4(_e257, _e258, 0.0, 0.0), metal::uint2(pixel_7));
+    meta_out.write(metal::float4(_e257, _e258, 0.0, 0.0), metal::uint2(pixel_10));
     metal::float4 _e263 = result;
-    cloud_out.write(_e263, metal::uint2(pixel_7));
+    cloud_out.write(_e263, metal::uint2(pixel_10));
     float _e265 = out_depth;
-    depth_out.write(metal::float4(_e265, 0.0, 0.0, 0.0), metal::uint2(pixel_7));
+    depth_out.write(metal::float4(_e265, 0.0, 0.0, 0.0), metal::uint2(pixel_10));
     return;
 }
 
@@ -3182,8 +4101,10 @@ struct resolveInput {
 struct pathtraceInput {
 };
 [[max_total_threads_per_threadgroup(64)]] kernel void pathtrace(
-  metal::uint3 id_5 [[thread_position_in_grid]]
+  metal::uint3 id_10 [[thread_position_in_grid]]
 , constant Frame& frame [[user(fake0)]]
+, metal::texture2d<float, metal::access::sample> transmittance_lut_in [[user(fake0)]]
+, metal::texture2d<float, metal::access::sample> sky_ambient_in [[user(fake0)]]
 , metal::texture3d<float, metal::access::sample> shape_tex [[user(fake0)]]
 , metal::texture3d<float, metal::access::sample> detail_tex [[user(fake0)]]
 , metal::texture2d<float, metal::access::sample> weather_tex [[user(fake0)]]
@@ -3202,13 +4123,13 @@ struct pathtraceInput {
     uint rng = {};
     metal::float4 mean = metal::float4(0.0);
     metal::float4 moments = metal::float4(0.0);
-    bool local_8 = {};
+    bool local_10 = {};
     metal::uint4 _e4 = frame.counts;
-    if (metal::any(id_5.xy >= _e4.xy)) {
+    if (metal::any(id_10.xy >= _e4.xy)) {
         return;
     }
-    metal::uint2 pixel_8 = id_5.xy;
-    metal::float3 _e9 = view_ray(pixel_8, frame);
+    metal::uint2 pixel_11 = id_10.xy;
+    metal::float3 _e9 = view_ray(pixel_11, frame);
     float _e13 = frame.camera_position.y;
     Interval _e14 = cloud_interval(_e13, _e9, frame);
     count(STAT_PIXELS, 1u, stats);
@@ -3216,32 +4137,32 @@ struct pathtraceInput {
     count(STAT_EXIT_MISSED, static_cast<uint>(_e14.kind == RAY_MISSES_LAYER), stats);
     count(STAT_EXIT_GROUND, static_cast<uint>(_e14.kind == RAY_HITS_GROUND), stats);
     uint _e41 = frame.misc.y;
-    uint _e42 = rng_seed(pixel_8, _e41);
+    uint _e42 = rng_seed(pixel_11, _e41);
     rng = _e42;
-    PathResult _e44 = trace_path(_e9, _e14, rng, counters, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler, occupancy_in);
+    PathResult _e44 = trace_path(_e9, _e14, rng, counters, frame, transmittance_lut_in, sky_ambient_in, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler, occupancy_in);
     float _e46 = luminance(_e44.radiance);
     uint _e56 = frame.temporal.y;
     if (_e56 == 1u) {
         bool _e61 = camera_still(frame);
-        local_8 = _e61;
+        local_10 = _e61;
     } else {
-        local_8 = false;
+        local_10 = false;
     }
-    bool _e63 = local_8;
+    bool _e63 = local_10;
     if (_e63) {
-        metal::float4 _e66 = history_in.read(metal::uint2(pixel_8), 0);
+        metal::float4 _e66 = history_in.read(metal::uint2(pixel_11), 0);
         mean = _e66;
-        metal::float4 _e69 = meta_in.read(metal::uint2(pixel_8), 0);
+        metal::float4 _e69 = meta_in.read(metal::uint2(pixel_11), 0);
         moments = _e69;
     }
     float _e71 = moments.y;
-    float n_3 = _e71 + 1.0;
+    float n_4 = _e71 + 1.0;
     metal::float4 _e74 = mean;
     metal::float4 _e78 = mean;
-    mean = _e74 + ((metal::float4(_e44.radiance, _e44.transmittance) - _e78) / metal::float4(n_3));
+    mean = _e74 + ((metal::float4(_e44.radiance, _e44.transmittance) - _e78) / metal::float4(n_4));
     float _e84 = moments.z;
     float _e87 = moments.z;
-    moments.z = _e84 + (((_e46 * _e46) - _e87) / n_3);
+    moments.z = _e84 + (((_e46 * _e46) - _e87) / n_4);
     if (_e44.depth >= 0.0) {
         float _e95 = moments.w;
         moments.w = _e95 + 1.0;
@@ -3250,15 +4171,15 @@ struct pathtraceInput {
         float _e105 = moments.w;
         moments.x = _e99 + ((_e44.depth - _e102) / _e105);
     }
-    moments.y = n_3;
+    moments.y = n_4;
     metal::float4 _e110 = mean;
-    history_out.write(_e110, metal::uint2(pixel_8));
+    history_out.write(_e110, metal::uint2(pixel_11));
     metal::float4 _e112 = moments;
-    meta_out.write(_e112, metal::uint2(pixel_8));
+    meta_out.write(_e112, metal::uint2(pixel_11));
     metal::float4 _e114 = mean;
-    cloud_out.write(_e114, metal::uint2(pixel_8));
+    cloud_out.write(_e114, metal::uint2(pixel_11));
     float _e117 = moments.x;
-    depth_out.write(metal::float4(_e117, 0.0, 0.0, 0.0), metal::uint2(pixel_8));
+    depth_out.write(metal::float4(_e117, 0.0, 0.0, 0.0), metal::uint2(pixel_11));
     uint _e124 = counters.view_steps;
     count(STAT_VIEW_STEPS, _e124, stats);
     uint _e127 = counters.density;
@@ -3274,7 +4195,7 @@ struct pathtraceInput {
 struct march_basicInput {
 };
 [[max_total_threads_per_threadgroup(64)]] kernel void march_basic(
-  metal::uint3 id_6 [[thread_position_in_grid]]
+  metal::uint3 id_11 [[thread_position_in_grid]]
 , constant Frame& frame [[user(fake0)]]
 , metal::texture3d<float, metal::access::sample> shape_tex [[user(fake0)]]
 , metal::texture3d<float, metal::access::sample> detail_tex [[user(fake0)]]
@@ -3286,12 +4207,12 @@ struct march_basicInput {
 , device Stats& stats [[user(fake0)]]
 ) {
     metal::uint4 _e4 = frame.counts;
-    if (metal::any(id_6.xy >= _e4.xy)) {
+    if (metal::any(id_11.xy >= _e4.xy)) {
         return;
     }
-    MarchResult _e9 = basic_pixel(id_6.xy, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler, stats);
-    cloud_out.write(metal::float4(_e9.radiance, _e9.transmittance), metal::uint2(id_6.xy));
-    depth_out.write(metal::float4(_e9.depth, 0.0, 0.0, 0.0), metal::uint2(id_6.xy));
+    MarchResult _e9 = basic_pixel(id_11.xy, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler, stats);
+    cloud_out.write(metal::float4(_e9.radiance, _e9.transmittance), metal::uint2(id_11.xy));
+    depth_out.write(metal::float4(_e9.depth, 0.0, 0.0, 0.0), metal::uint2(id_11.xy));
     return;
 }
 
@@ -3303,13 +4224,13 @@ metal::uint2 naga_mod(metal::uint2 lhs, metal::uint2 rhs) {
 struct sprite_atlasInput {
 };
 [[max_total_threads_per_threadgroup(64)]] kernel void sprite_atlas(
-  metal::uint3 id_7 [[thread_position_in_grid]]
+  metal::uint3 id_12 [[thread_position_in_grid]]
 , metal::texture2d<float, metal::access::write> sprite_atlas_out [[user(fake0)]]
 ) {
-    uint tile_2 = (naga_div(id_7.y, ATLAS_TILE) * 4u) + naga_div(id_7.x, ATLAS_TILE);
-    metal::float2 uv_3 = (static_cast<metal::float2>(naga_mod(id_7.xy, metal::uint2(64u))) + metal::float2(0.5)) / metal::float2(64.0);
-    float _e21 = sprite_texture(tile_2, uv_3);
-    sprite_atlas_out.write(metal::float4(_e21, _e21, _e21, _e21), metal::uint2(id_7.xy));
+    uint tile_2 = (naga_div(id_12.y, ATLAS_TILE) * 4u) + naga_div(id_12.x, ATLAS_TILE);
+    metal::float2 uv_4 = (static_cast<metal::float2>(naga_mod(id_12.xy, metal::uint2(64u))) + metal::float2(0.5)) / metal::float2(64.0);
+    float _e21 = sprite_texture(tile_2, uv_4);
+    sprite_atlas_out.write(metal::float4(_e21, _e21, _e21, _e21), metal::uint2(id_12.xy));
     return;
 }
 
@@ -3317,7 +4238,7 @@ struct sprite_atlasInput {
 struct sprite_buildInput {
 };
 [[max_total_threads_per_threadgroup(64)]] kernel void sprite_build(
-  metal::uint3 id_8 [[thread_position_in_grid]]
+  metal::uint3 id_13 [[thread_position_in_grid]]
 , constant Frame& frame [[user(fake0)]]
 , metal::texture3d<float, metal::access::sample> shape_tex [[user(fake0)]]
 , metal::texture3d<float, metal::access::sample> detail_tex [[user(fake0)]]
@@ -3328,56 +4249,56 @@ struct sprite_buildInput {
 , metal::texture2d<float, metal::access::write> sprites_out [[user(fake0)]]
 ) {
     Counters counters_1 = Counters {0u, 0u, 0u, 0u};
-    metal::float4 sum = metal::float4(0.0);
+    metal::float4 sum_2 = metal::float4(0.0);
     SpriteCandidate me = {};
-    uint i = 0u;
+    uint i_2 = 0u;
     metal::float3 centre = {};
     uint tile = {};
     float rotation = {};
-    bool local_9 = {};
+    bool local_11 = {};
     float key = 0.0;
-    uint slot = id_8.x;
+    uint slot = id_13.x;
     uint cell_index = naga_div(slot, SPRITES_PER_CELL);
     uint level_2 = naga_div(cell_index, 64u);
     SpriteCell _e6 = sprite_cell(cell_index, frame);
     uint own = naga_mod(slot, SPRITES_PER_CELL);
     SpriteCandidate _e18 = sprite_candidate(_e6, level_2, own, counters_1, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
     me = _e18;
-    uint2 loop_bound_22 = uint2(4294967295u);
-    bool loop_init_18 = true;
+    uint2 loop_bound_29 = uint2(4294967295u);
+    bool loop_init_25 = true;
     while(true) {
-        if (metal::all(loop_bound_22 == uint2(0u))) { break; }
-        loop_bound_22 -= uint2(loop_bound_22.y == 0u, 1u);
-        if (!loop_init_18) {
-            uint _e38 = i;
-            i = _e38 + 1u;
+        if (metal::all(loop_bound_29 == uint2(0u))) { break; }
+        loop_bound_29 -= uint2(loop_bound_29.y == 0u, 1u);
+        if (!loop_init_25) {
+            uint _e38 = i_2;
+            i_2 = _e38 + 1u;
         }
-        loop_init_18 = false;
-        uint _e22 = i;
+        loop_init_25 = false;
+        uint _e22 = i_2;
         if (_e22 < SPRITES_PER_CELL) {
         } else {
             break;
         }
         {
-            uint _e25 = i;
+            uint _e25 = i_2;
             SpriteCandidate _e26 = sprite_candidate(_e6, level_2, _e25, counters_1, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
-            metal::float4 _e27 = sum;
-            sum = _e27 + (metal::float4(_e26.xz.x, _e26.alt, _e26.xz.y, 1.0) * _e26.density);
+            metal::float4 _e27 = sum_2;
+            sum_2 = _e27 + (metal::float4(_e26.xz.x, _e26.alt, _e26.xz.y, 1.0) * _e26.density);
         }
     }
     uint _e43 = counters_1.density;
     count(STAT_DENSITY, _e43, stats);
     uint _e46 = counters_1.detail;
     count(STAT_DETAIL, _e46, stats);
-    float bottom_2 = frame.atmosphere.y;
+    float bottom_3 = frame.atmosphere.y;
     float _e54 = frame.atmosphere.z;
-    float thickness_1 = _e54 - bottom_2;
+    float thickness_1 = _e54 - bottom_3;
     metal::float2 middle = (static_cast<metal::float2>(_e6.index) + metal::float2(0.5)) * _e6.size;
-    centre = metal::float3(middle.x, bottom_2 + (0.4 * thickness_1), middle.y);
-    float _e71 = sum.w;
+    centre = metal::float3(middle.x, bottom_3 + (0.4 * thickness_1), middle.y);
+    float _e71 = sum_2.w;
     if (_e71 > 0.0) {
-        metal::float4 _e74 = sum;
-        float _e77 = sum.w;
+        metal::float4 _e74 = sum_2;
+        float _e77 = sum_2.w;
         centre = _e74.xyz / metal::float3(_e77);
     }
     metal::float2 _e81 = me.xz;
@@ -3402,11 +4323,11 @@ struct sprite_buildInput {
     } else {
         if (!(inner)) {
             float _e148 = me.density;
-            local_9 = _e148 < 0.1;
+            local_11 = _e148 < 0.1;
         } else {
-            local_9 = false;
+            local_11 = false;
         }
-        bool _e152 = local_9;
+        bool _e152 = local_11;
         if (_e152) {
             float _e154 = me.texture_hash;
             tile = metal::min(naga_f2u32(_e154 * 4.0), 3u);
@@ -3417,8 +4338,8 @@ struct sprite_buildInput {
         float _e167 = me.alt;
         metal::float3 _e168 = sprite_rel(_e165, _e167, frame);
         float _e172 = frame.camera_position.y;
-        metal::float3 rel_7 = _e168 - metal::float3(0.0, _e172, 0.0);
-        float _e180 = saturate(metal::length(rel_7) / SPRITE_MAX_DISTANCE);
+        metal::float3 rel_8 = _e168 - metal::float3(0.0, _e172, 0.0);
+        float _e180 = saturate(metal::length(rel_8) / SPRITE_MAX_DISTANCE);
         key = 1048576.0 - metal::floor(_e180 * 1048575.0);
     }
     float _e191 = me.xz.x;
@@ -3441,27 +4362,27 @@ struct sprite_buildInput {
 struct sprite_sortInput {
 };
 [[max_total_threads_per_threadgroup(64)]] kernel void sprite_sort(
-  metal::uint3 id_9 [[thread_position_in_grid]]
+  metal::uint3 id_14 [[thread_position_in_grid]]
 , metal::texture2d<float, metal::access::sample> sprites_in [[user(fake0)]]
 , metal::texture2d<float, metal::access::write> sprite_order_out [[user(fake0)]]
 ) {
     uint rank = 0u;
     uint j = 0u;
-    bool local_10 = {};
-    bool local_11 = {};
-    uint slot_1 = id_9.x;
+    bool local_12 = {};
+    bool local_13 = {};
+    uint slot_1 = id_14.x;
     metal::float4 _e6 = sprites_in.read(metal::uint2(metal::uint2(slot_1, 3u)), 0);
     float key_1 = _e6.x;
-    uint2 loop_bound_23 = uint2(4294967295u);
-    bool loop_init_19 = true;
+    uint2 loop_bound_30 = uint2(4294967295u);
+    bool loop_init_26 = true;
     while(true) {
-        if (metal::all(loop_bound_23 == uint2(0u))) { break; }
-        loop_bound_23 -= uint2(loop_bound_23.y == 0u, 1u);
-        if (!loop_init_19) {
+        if (metal::all(loop_bound_30 == uint2(0u))) { break; }
+        loop_bound_30 -= uint2(loop_bound_30.y == 0u, 1u);
+        if (!loop_init_26) {
             uint _e40 = j;
             j = _e40 + 1u;
         }
-        loop_init_19 = false;
+        loop_init_26 = false;
         uint _e12 = j;
         if (_e12 < SPRITE_COUNT) {
         } else {
@@ -3475,16 +4396,16 @@ struct sprite_sortInput {
             if (!((other < key_1))) {
                 if (other == key_1) {
                     uint _e32 = j;
-                    local_11 = _e32 < slot_1;
+                    local_13 = _e32 < slot_1;
                 } else {
-                    local_11 = false;
+                    local_13 = false;
                 }
-                bool _e35 = local_11;
-                local_10 = _e35;
+                bool _e35 = local_13;
+                local_12 = _e35;
             } else {
-                local_10 = true;
+                local_12 = true;
             }
-            bool _e37 = local_10;
+            bool _e37 = local_12;
             rank = _e22 + (_e37 ? 1u : 0u);
         }
     }
@@ -3513,10 +4434,10 @@ vertex sprite_vertexOutput sprite_vertex(
     metal::float3 right = {};
     metal::float4 _e8 = sprite_order_in.read(metal::uint2(metal::uint2(naga_div(index, 6u), 0u)), 0);
     uint slot_2 = naga_f2u32(_e8.x);
-    metal::float4 a_6 = sprites_in.read(metal::uint2(metal::uint2(slot_2, 0u)), 0);
-    metal::float4 b_10 = sprites_in.read(metal::uint2(metal::uint2(slot_2, 1u)), 0);
-    metal::float4 c_9 = sprites_in.read(metal::uint2(metal::uint2(slot_2, 2u)), 0);
-    if (b_10.w <= 0.0) {
+    metal::float4 a_10 = sprites_in.read(metal::uint2(metal::uint2(slot_2, 0u)), 0);
+    metal::float4 b_12 = sprites_in.read(metal::uint2(metal::uint2(slot_2, 1u)), 0);
+    metal::float4 c_10 = sprites_in.read(metal::uint2(metal::uint2(slot_2, 2u)), 0);
+    if (b_12.w <= 0.0) {
         out.position = metal::float4(0.0, 0.0, -1.0, 1.0);
         SpriteVertex _e35 = out;
         const auto _tmp = _e35;
@@ -3524,17 +4445,17 @@ vertex sprite_vertexOutput sprite_vertex(
     }
     float _e39 = frame.camera_position.y;
     metal::float3 cam_1 = metal::float3(0.0, _e39, 0.0);
-    metal::float3 _e45 = sprite_rel(a_6.xz, a_6.y, frame);
+    metal::float3 _e45 = sprite_rel(a_10.xz, a_10.y, frame);
     metal::float3 to_sprite = _e45 - cam_1;
     float distance = metal::length(to_sprite);
-    float half_width_1 = a_6.w;
+    float half_width_1 = a_10.w;
     float facing = metal::smoothstep(0.5 * half_width_1, half_width_1, distance);
     metal::float3 to_camera = -(to_sprite) / metal::float3(metal::max(distance, 0.001));
     metal::float4 _e59 = frame.camera_forward;
-    metal::float3 n_4 = metal::normalize(metal::mix(-(_e59.xyz), to_camera, facing));
+    metal::float3 n_5 = metal::normalize(metal::mix(-(_e59.xyz), to_camera, facing));
     float _e67 = frame.atmosphere.x;
     metal::float3 radial = metal::normalize(_e45 + metal::float3(0.0, _e67, 0.0));
-    right = metal::cross(radial, n_4);
+    right = metal::cross(radial, n_5);
     metal::float3 _e75 = right;
     if (metal::length(_e75) < 0.001) {
         metal::float4 _e81 = frame.camera_right;
@@ -3543,42 +4464,42 @@ vertex sprite_vertexOutput sprite_vertex(
     metal::float3 _e83 = right;
     right = metal::normalize(_e83);
     metal::float3 _e85 = right;
-    metal::float3 up = metal::cross(n_4, _e85);
+    metal::float3 up_1 = metal::cross(n_5, _e85);
     metal::float2 _e89 = sprite_corner(naga_mod(index, 6u));
     metal::float3 _e90 = right;
-    metal::float3 offset = (_e90 * (_e89.x * half_width_1)) + (up * (_e89.y * c_9.z));
+    metal::float3 offset = (_e90 * (_e89.x * half_width_1)) + (up_1 * (_e89.y * c_10.z));
     metal::float3 vertex_ = to_sprite + offset;
     metal::float4 _e102 = frame.camera_right;
-    float x_6 = metal::dot(vertex_, _e102.xyz);
+    float x_12 = metal::dot(vertex_, _e102.xyz);
     metal::float4 _e107 = frame.camera_up;
     float y_3 = metal::dot(vertex_, _e107.xyz);
     metal::float4 _e112 = frame.camera_forward;
-    float z_1 = metal::dot(vertex_, _e112.xyz);
-    float tan_half_2 = frame.camera_position.w;
+    float z_4 = metal::dot(vertex_, _e112.xyz);
+    float tan_half_3 = frame.camera_position.w;
     float _e123 = frame.camera_forward.w;
-    out.position = metal::float4(x_6 / (tan_half_2 * _e123), y_3 / tan_half_2, 0.5 * z_1, z_1);
-    metal::float2 cs = metal::float2(metal::cos(c_9.y), metal::sin(c_9.y));
-    metal::float2 t_8 = metal::float2(_e89.x, -(_e89.y));
-    out.uv = metal::float2((t_8.x * cs.x) - (t_8.y * cs.y), (t_8.x * cs.y) + (t_8.y * cs.x));
-    out.tile = naga_f2u32(c_9.x);
+    out.position = metal::float4(x_12 / (tan_half_3 * _e123), y_3 / tan_half_3, 0.5 * z_4, z_4);
+    metal::float2 cs = metal::float2(metal::cos(c_10.y), metal::sin(c_10.y));
+    metal::float2 t_11 = metal::float2(_e89.x, -(_e89.y));
+    out.uv = metal::float2((t_11.x * cs.x) - (t_11.y * cs.y), (t_11.x * cs.y) + (t_11.y * cs.x));
+    out.tile = naga_f2u32(c_10.x);
     metal::float4 _e160 = frame.sun_direction;
-    metal::float3 sun_5 = _e160.xyz;
-    metal::float3 _e164 = sprite_rel(b_10.xz, b_10.y, frame);
+    metal::float3 sun_8 = _e160.xyz;
+    metal::float3 _e164 = sprite_rel(b_12.xz, b_12.y, frame);
     metal::float3 centre_2 = _e164 - cam_1;
     metal::float3 from_centre = vertex_ - centre_2;
-    float cos_angle_1 = metal::dot(from_centre, sun_5) / metal::max(metal::length(from_centre), 0.001);
-    float _e177 = saturate((sun_5.y * 4.0) + 0.3);
+    float cos_angle_1 = metal::dot(from_centre, sun_8) / metal::max(metal::length(from_centre), 0.001);
+    float _e177 = saturate((sun_8.y * 4.0) + 0.3);
     float _e179 = altitude_of(vertex_ + cam_1, frame);
     float _e183 = frame.atmosphere.y;
     float _e188 = frame.atmosphere.z;
     float _e192 = frame.atmosphere.y;
     float _e195 = saturate((_e179 - _e183) / (_e188 - _e192));
     metal::float4 _e198 = frame.sun_illuminance;
-    metal::float3 e_1 = _e198.xyz;
+    metal::float3 e_2 = _e198.xyz;
     metal::float3 _e200 = sprite_sky_level(_e195);
     float _e204 = sprite_sun_level(cos_angle_1);
-    metal::float3 light = (e_1 * ((_e200 * (SPRITE_SKY * _e177)) + metal::float3(_e204))) * (c_9.w / PI);
-    out.colour = metal::float4(light, b_10.w);
+    metal::float3 light = (e_2 * ((_e200 * (SPRITE_SKY * _e177)) + metal::float3(_e204))) * (c_10.w / PI);
+    out.colour = metal::float4(light, b_12.w);
     out.distance = metal::length(vertex_);
     SpriteVertex _e217 = out;
     const auto _tmp_1 = _e217;
@@ -3597,18 +4518,18 @@ struct sprite_fragmentOutput {
     metal::float4 depth [[color(1)]];
 };
 fragment sprite_fragmentOutput sprite_fragment(
-  sprite_fragmentInput varyings_11 [[stage_in]]
+  sprite_fragmentInput varyings_16 [[stage_in]]
 , metal::float4 position [[position]]
 , metal::sampler noise_sampler [[user(fake0)]]
 , metal::texture2d<float, metal::access::sample> sprite_atlas_in [[user(fake0)]]
 ) {
-    const SpriteVertex in = { position, varyings_11.uv_1, varyings_11.tile_2, {}, varyings_11.colour, varyings_11.distance };
+    const SpriteVertex in = { position, varyings_16.uv_1, varyings_16.tile_2, {}, varyings_16.colour, varyings_16.distance };
     SpriteTargets out_1 = {};
     float a = 0.0;
     if (metal::all(metal::abs(in.uv) <= metal::float2(1.0))) {
         metal::float2 tile_3 = metal::float2(static_cast<float>(naga_mod(in.tile, 4u)), static_cast<float>(naga_div(in.tile, 4u)));
-        metal::float2 uv_4 = ((tile_3 + metal::float2(0.5)) + (0.5 * in.uv)) * 0.25;
-        metal::float4 _e31 = sprite_atlas_in.sample(noise_sampler, uv_4, metal::level(0.0));
+        metal::float2 uv_5 = ((tile_3 + metal::float2(0.5)) + (0.5 * in.uv)) * 0.25;
+        metal::float4 _e31 = sprite_atlas_in.sample(noise_sampler, uv_5, metal::level(0.0));
         a = _e31.x * in.colour.w;
     }
     float _e39 = a;
@@ -3626,7 +4547,7 @@ fragment sprite_fragmentOutput sprite_fragment(
 struct sprite_resolveInput {
 };
 [[max_total_threads_per_threadgroup(64)]] kernel void sprite_resolve(
-  metal::uint3 id_10 [[thread_position_in_grid]]
+  metal::uint3 id_15 [[thread_position_in_grid]]
 , constant Frame& frame [[user(fake0)]]
 , metal::texture2d<float, metal::access::write> cloud_out [[user(fake0)]]
 , metal::texture2d<float, metal::access::write> depth_out [[user(fake0)]]
@@ -3635,15 +4556,15 @@ struct sprite_resolveInput {
 , metal::texture2d<float, metal::access::sample> sprite_depth_in [[user(fake0)]]
 ) {
     metal::uint4 _e4 = frame.counts;
-    if (metal::any(id_10.xy >= _e4.xy)) {
+    if (metal::any(id_15.xy >= _e4.xy)) {
         return;
     }
     count(STAT_PIXELS, 1u, stats);
-    metal::float4 c_10 = sprite_radiance_in.read(metal::uint2(id_10.xy), 0);
-    metal::float4 d_14 = sprite_depth_in.read(metal::uint2(id_10.xy), 0);
-    float _e19 = saturate(c_10.w);
-    cloud_out.write(metal::float4(c_10.xyz, 1.0 - _e19), metal::uint2(id_10.xy));
-    depth_out.write(metal::float4((d_14.w > 0.0001) ? (d_14.x / d_14.w) : 0.0, 0.0, 0.0, 0.0), metal::uint2(id_10.xy));
+    metal::float4 c_11 = sprite_radiance_in.read(metal::uint2(id_15.xy), 0);
+    metal::float4 d_19 = sprite_depth_in.read(metal::uint2(id_15.xy), 0);
+    float _e19 = saturate(c_11.w);
+    cloud_out.write(metal::float4(c_11.xyz, 1.0 - _e19), metal::uint2(id_15.xy));
+    depth_out.write(metal::float4((d_19.w > 0.0001) ? (d_19.x / d_19.w) : 0.0, 0.0, 0.0, 0.0), metal::uint2(id_15.xy));
     return;
 }
 
@@ -3651,20 +4572,20 @@ struct sprite_resolveInput {
 struct compositeInput {
 };
 [[max_total_threads_per_threadgroup(64)]] kernel void composite(
-  metal::uint3 id_11 [[thread_position_in_grid]]
+  metal::uint3 id_16 [[thread_position_in_grid]]
 , constant Frame& frame [[user(fake0)]]
 , metal::texture2d<float, metal::access::sample> cloud_in [[user(fake0)]]
 , metal::texture2d<float, metal::access::write> image_out [[user(fake0)]]
 ) {
     metal::float3 background = {};
     metal::uint4 _e4 = frame.counts;
-    if (metal::any(id_11.xy >= _e4.xy)) {
+    if (metal::any(id_16.xy >= _e4.xy)) {
         return;
     }
-    metal::uint2 pixel_9 = id_11.xy;
-    metal::float3 _e9 = view_ray(pixel_9, frame);
+    metal::uint2 pixel_12 = id_16.xy;
+    metal::float3 _e9 = view_ray(pixel_12, frame);
     float alt_18 = frame.camera_position.y;
-    metal::float4 cloud = cloud_in.read(metal::uint2(pixel_9), 0);
+    metal::float4 cloud_1 = cloud_in.read(metal::uint2(pixel_12), 0);
     metal::float3 _e17 = sky_radiance(_e9, alt_18, frame);
     background = _e17;
     bool _e22 = hits_ground(metal::float3(0.0, alt_18, 0.0), alt_18, _e9, frame);
@@ -3674,11 +4595,31 @@ struct compositeInput {
         background = _e24 + _e25;
     }
     metal::float3 _e27 = background;
-    metal::float3 radiance_1 = (_e27 * cloud.w) + cloud.xyz;
-    float _e35 = frame.camera_right.w;
-    metal::float3 exposed = radiance_1 * _e35;
-    metal::float3 _e37 = aces_fitted(exposed);
-    metal::float3 display = metal::pow(_e37, metal::float3(0.45454547));
-    image_out.write(metal::float4(display, 1.0), metal::uint2(pixel_9));
+    store_display(pixel_12, (_e27 * cloud_1.w) + cloud_1.xyz, frame, image_out);
+    return;
+}
+
+
+struct composite_physicalInput {
+};
+[[max_total_threads_per_threadgroup(64)]] kernel void composite_physical(
+  metal::uint3 id_17 [[thread_position_in_grid]]
+, constant Frame& frame [[user(fake0)]]
+, metal::texture2d<float, metal::access::sample> transmittance_lut_in [[user(fake0)]]
+, metal::texture2d<float, metal::access::sample> sky_view_in [[user(fake0)]]
+, metal::texture2d<float, metal::access::sample> aerial_in [[user(fake0)]]
+, metal::texture2d<float, metal::access::sample> cloud_in [[user(fake0)]]
+, metal::texture2d<float, metal::access::write> image_out [[user(fake0)]]
+, metal::texture2d<float, metal::access::sample> depth_in [[user(fake0)]]
+) {
+    metal::uint4 _e4 = frame.counts;
+    if (metal::any(id_17.xy >= _e4.xy)) {
+        return;
+    }
+    metal::uint2 pixel_13 = id_17.xy;
+    metal::float4 cloud_2 = cloud_in.read(metal::uint2(pixel_13), 0);
+    metal::float3 _e12 = view_ray(pixel_13, frame);
+    metal::float3 _e13 = physical_composite(pixel_13, _e12, cloud_2, frame, transmittance_lut_in, sky_view_in, aerial_in, depth_in);
+    store_display(pixel_13, _e13, frame, image_out);
     return;
 }

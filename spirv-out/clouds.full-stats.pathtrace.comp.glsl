@@ -36,6 +36,10 @@ struct Frame {
     vec4 layer2_weather;
     vec4 layer3_;
     vec4 layer3_weather;
+    vec4 air_rayleigh;
+    vec4 air_mie;
+    vec4 air_ozone;
+    vec4 air_misc;
 };
 struct Roots {
     float t0_;
@@ -55,6 +59,15 @@ struct Layer {
     float cloud_type;
     float precipitation;
     vec2 weather_offset;
+};
+struct AirSample {
+    vec3 rayleigh;
+    float mie;
+    vec3 extinction;
+};
+struct Scattered {
+    vec3 radiance;
+    vec3 transmittance;
 };
 struct Counters {
     uint view_steps;
@@ -132,12 +145,25 @@ const uint FLAG_JITTER = 2u;
 const uint FLAG_DYNAMIC_STEP = 4u;
 const uint FLAG_CHECKERBOARD = 8u;
 const uint FLAG_EMPTY_SKIP = 16u;
+const uint FLAG_PHYSICAL_SKY = 32u;
 const float PI = 3.1415927;
 const uint MAX_VIEW_STEPS = 1024u;
 const uint RAY_MARCH = 0u;
 const uint RAY_MISSES_LAYER = 1u;
 const uint RAY_HITS_GROUND = 2u;
 const uint MAX_LAYERS = 4u;
+const uvec2 TRANSMITTANCE_SIZE = uvec2(256u, 64u);
+const uvec2 MULTISCATTER_SIZE = uvec2(32u, 32u);
+const uvec2 SKY_VIEW_SIZE = uvec2(192u, 108u);
+const uint AERIAL_SLICES = 32u;
+const uint AERIAL_SIDE = 32u;
+const float AERIAL_SLICE_KM = 1.0;
+const uint TRANSMITTANCE_STEPS = 128u;
+const uint MULTISCATTER_DIRECTIONS = 64u;
+const uint MULTISCATTER_STEPS = 32u;
+const uint SKY_VIEW_STEPS = 48u;
+const uint AMBIENT_DIRECTIONS = 64u;
+const uint AMBIENT_STEPS = 24u;
 const uint NO_LAYER = 4u;
 const uint OCCUPANCY_CELLS = 64u;
 const uint STAT_PIXELS = 0u;
@@ -178,6 +204,10 @@ const bool CURL = true;
 const bool STATS = true;
 
 layout(std140, binding = 0) uniform Frame_block_0Compute { Frame _group_0_binding_0_cs; };
+
+layout(binding = 27) uniform sampler2D _group_0_binding_27_cs;
+
+layout(binding = 31) uniform sampler2D _group_0_binding_31_cs;
 
 layout(binding = 1) uniform sampler3D _group_0_binding_1_cs;
 
@@ -231,15 +261,15 @@ float hash_unit(uvec2 pixel, uint frame_index) {
 
 vec3 view_ray(uvec2 pixel_1) {
     uvec4 _e3 = _group_0_binding_0_cs.counts;
-    vec2 size = vec2(_e3.xy);
-    vec2 ndc = ((((vec2(pixel_1) + vec2(0.5)) / size) * 2.0) - vec2(1.0));
+    vec2 size_1 = vec2(_e3.xy);
+    vec2 ndc = ((((vec2(pixel_1) + vec2(0.5)) / size_1) * 2.0) - vec2(1.0));
     float tan_half = _group_0_binding_0_cs.camera_position.w;
     float aspect = _group_0_binding_0_cs.camera_forward.w;
     vec4 _e26 = _group_0_binding_0_cs.camera_forward;
     vec4 _e30 = _group_0_binding_0_cs.camera_right;
     vec4 _e39 = _group_0_binding_0_cs.camera_up;
-    vec3 d_11 = ((_e26.xyz + (_e30.xyz * ((ndc.x * tan_half) * aspect))) - (_e39.xyz * (ndc.y * tan_half)));
-    return normalize(d_11);
+    vec3 d_14 = ((_e26.xyz + (_e30.xyz * ((ndc.x * tan_half) * aspect))) - (_e39.xyz * (ndc.y * tan_half)));
+    return normalize(d_14);
 }
 
 Roots solve_sphere(float b, float c) {
@@ -259,38 +289,38 @@ Roots solve_sphere(float b, float c) {
 Roots ray_shell(float alt, vec3 d, float radius_alt) {
     float rp = _group_0_binding_0_cs.atmosphere.x;
     float b_3 = (d.y * (alt + rp));
-    float c_3 = ((alt - radius_alt) * ((alt + radius_alt) + (2.0 * rp)));
-    Roots _e16 = solve_sphere(b_3, c_3);
+    float c_4 = ((alt - radius_alt) * ((alt + radius_alt) + (2.0 * rp)));
+    Roots _e16 = solve_sphere(b_3, c_4);
     return _e16;
 }
 
 float altitude_of(vec3 p) {
     float rp_1 = _group_0_binding_0_cs.atmosphere.x;
-    float n_2 = (((p.x * p.x) + (p.z * p.z)) + (p.y * (p.y + (2.0 * rp_1))));
+    float n_3 = (((p.x * p.x) + (p.z * p.z)) + (p.y * (p.y + (2.0 * rp_1))));
     vec3 q_5 = vec3(p.x, (p.y + rp_1), p.z);
-    return (n_2 / (length(q_5) + rp_1));
+    return (n_3 / (length(q_5) + rp_1));
 }
 
 bool hits_ground(vec3 p_1, float alt_1, vec3 d_1) {
-    bool local_12 = false;
+    bool local_14 = false;
     float rp_2 = _group_0_binding_0_cs.atmosphere.x;
     float b_4 = dot(d_1, vec3(p_1.x, (p_1.y + rp_2), p_1.z));
-    float c_4 = (alt_1 * (alt_1 + (2.0 * rp_2)));
+    float c_5 = (alt_1 * (alt_1 + (2.0 * rp_2)));
     if ((b_4 < 0.0)) {
-        local_12 = ((b_4 * b_4) >= c_4);
+        local_14 = ((b_4 * b_4) >= c_5);
     } else {
-        local_12 = false;
+        local_14 = false;
     }
-    bool _e24 = local_12;
+    bool _e24 = local_14;
     return _e24;
 }
 
 Interval shell_interval(float alt_2, vec3 d_2, float bottom, float top) {
     float start = 0.0;
     float end = 0.0;
-    bool local_13 = false;
-    bool local_14 = false;
     bool local_15 = false;
+    bool local_16 = false;
+    bool local_17 = false;
     float cutoff = _group_0_binding_0_cs.atmosphere.w;
     Roots _e8 = ray_shell(alt_2, d_2, bottom);
     Roots _e9 = ray_shell(alt_2, d_2, top);
@@ -305,33 +335,33 @@ Interval shell_interval(float alt_2, vec3 d_2, float bottom, float top) {
         if ((alt_2 <= top)) {
             end = _e9.t1_;
             if (_e8.hit) {
-                local_13 = (_e8.t0_ > 0.0);
+                local_15 = (_e8.t0_ > 0.0);
             } else {
-                local_13 = false;
+                local_15 = false;
             }
-            bool _e34 = local_13;
+            bool _e34 = local_15;
             if (_e34) {
                 float _e35 = end;
                 end = min(_e35, _e8.t0_);
             }
         } else {
             if (!(!(_e9.hit))) {
-                local_14 = (_e9.t1_ <= 0.0);
+                local_16 = (_e9.t1_ <= 0.0);
             } else {
-                local_14 = true;
+                local_16 = true;
             }
-            bool _e47 = local_14;
+            bool _e47 = local_16;
             if (_e47) {
                 return Interval(0.0, 0.0, 1u);
             }
             start = max(_e9.t0_, 0.0);
             end = _e9.t1_;
             if (_e8.hit) {
-                local_15 = (_e8.t0_ > 0.0);
+                local_17 = (_e8.t0_ > 0.0);
             } else {
-                local_15 = false;
+                local_17 = false;
             }
-            bool _e63 = local_15;
+            bool _e63 = local_17;
             if (_e63) {
                 float _e64 = end;
                 end = min(_e64, _e8.t0_);
@@ -358,24 +388,24 @@ uint layer_count() {
     return (1u + min(_e4, 3u));
 }
 
-Layer layer_from(vec4 g, vec4 w) {
-    return Layer(g.x, g.y, g.z, g.w, w.x, w.y, w.zw);
+Layer layer_from(vec4 g, vec4 w_1) {
+    return Layer(g.x, g.y, g.z, g.w, w_1.x, w_1.y, w_1.zw);
 }
 
-Layer cloud_layer(uint i_1) {
-    if ((i_1 == 1u)) {
+Layer cloud_layer(uint i_3) {
+    if ((i_3 == 1u)) {
         vec4 _e5 = _group_0_binding_0_cs.layer1_;
         vec4 _e8 = _group_0_binding_0_cs.layer1_weather;
         Layer _e9 = layer_from(_e5, _e8);
         return _e9;
     } else {
-        if ((i_1 == 2u)) {
+        if ((i_3 == 2u)) {
             vec4 _e14 = _group_0_binding_0_cs.layer2_;
             vec4 _e17 = _group_0_binding_0_cs.layer2_weather;
             Layer _e18 = layer_from(_e14, _e17);
             return _e18;
         } else {
-            if ((i_1 == 3u)) {
+            if ((i_3 == 3u)) {
                 vec4 _e23 = _group_0_binding_0_cs.layer3_;
                 vec4 _e26 = _group_0_binding_0_cs.layer3_weather;
                 Layer _e27 = layer_from(_e23, _e26);
@@ -395,24 +425,24 @@ Layer cloud_layer(uint i_1) {
 
 vec2 layers_span() {
     vec2 span = vec2(0.0);
-    uint i_2 = 1u;
+    uint i_4 = 1u;
     vec4 _e2 = _group_0_binding_0_cs.atmosphere;
     span = _e2.yz;
     bool loop_init = true;
     while(true) {
         if (!loop_init) {
-            uint _e22 = i_2;
-            i_2 = (_e22 + 1u);
+            uint _e22 = i_4;
+            i_4 = (_e22 + 1u);
         }
         loop_init = false;
-        uint _e7 = i_2;
+        uint _e7 = i_4;
         uint _e8 = layer_count();
         if ((_e7 < _e8)) {
         } else {
             break;
         }
         {
-            uint _e10 = i_2;
+            uint _e10 = i_4;
             Layer _e11 = cloud_layer(_e10);
             float _e13 = span.x;
             float _e17 = span.y;
@@ -431,43 +461,43 @@ Interval cloud_interval(float alt_4, vec3 d_4) {
 
 Interval nearest_layer_interval(float alt_5, vec3 d_5) {
     Interval best = Interval(0.0, 0.0, 0u);
-    uint i_3 = 1u;
-    bool local_16 = false;
-    bool local_17 = false;
+    uint i_5 = 1u;
+    bool local_18 = false;
+    bool local_19 = false;
     Layer _e3 = cloud_layer(0u);
     Interval _e4 = layer_interval(alt_5, d_5, _e3);
     best = _e4;
     bool loop_init_1 = true;
     while(true) {
         if (!loop_init_1) {
-            uint _e35 = i_3;
-            i_3 = (_e35 + 1u);
+            uint _e35 = i_5;
+            i_5 = (_e35 + 1u);
         }
         loop_init_1 = false;
-        uint _e8 = i_3;
+        uint _e8 = i_5;
         uint _e9 = layer_count();
         if ((_e8 < _e9)) {
         } else {
             break;
         }
         {
-            uint _e11 = i_3;
+            uint _e11 = i_5;
             Layer _e12 = cloud_layer(_e11);
             Interval _e13 = layer_interval(alt_5, d_5, _e12);
             if ((_e13.kind == RAY_MARCH)) {
                 uint _e20 = best.kind;
                 if (!((_e20 != RAY_MARCH))) {
                     float _e28 = best.start;
-                    local_17 = (_e13.start < _e28);
+                    local_19 = (_e13.start < _e28);
                 } else {
-                    local_17 = true;
+                    local_19 = true;
                 }
-                bool _e31 = local_17;
-                local_16 = _e31;
+                bool _e31 = local_19;
+                local_18 = _e31;
             } else {
-                local_16 = false;
+                local_18 = false;
             }
-            bool _e33 = local_16;
+            bool _e33 = local_18;
             if (_e33) {
                 best = _e13;
             }
@@ -480,9 +510,244 @@ Interval nearest_layer_interval(float alt_5, vec3 d_5) {
 Roots ray_shell_from(vec3 p_2, float alt_6, vec3 d_6, float radius_alt_1) {
     float rp_3 = _group_0_binding_0_cs.atmosphere.x;
     float b_5 = dot(d_6, vec3(p_2.x, (p_2.y + rp_3), p_2.z));
-    float c_5 = ((alt_6 - radius_alt_1) * ((alt_6 + radius_alt_1) + (2.0 * rp_3)));
-    Roots _e20 = solve_sphere(b_5, c_5);
+    float c_6 = ((alt_6 - radius_alt_1) * ((alt_6 + radius_alt_1) + (2.0 * rp_3)));
+    Roots _e20 = solve_sphere(b_5, c_6);
     return _e20;
+}
+
+bool physical_sky() {
+    uint _e3 = _group_0_binding_0_cs.modes.w;
+    return ((_e3 & FLAG_PHYSICAL_SKY) != 0u);
+}
+
+float air_bottom() {
+    float _e3 = _group_0_binding_0_cs.atmosphere.x;
+    return (_e3 * 0.001);
+}
+
+float air_top() {
+    float _e3 = _group_0_binding_0_cs.atmosphere.x;
+    float _e7 = _group_0_binding_0_cs.air_misc.x;
+    return ((_e3 + _e7) * 0.001);
+}
+
+AirSample air_at(float h_km) {
+    float h_7 = (max(h_km, 0.0) * 1000.0);
+    float _e9 = _group_0_binding_0_cs.air_rayleigh.w;
+    float rayleigh_density = exp((-(h_7) / _e9));
+    float _e16 = _group_0_binding_0_cs.air_mie.z;
+    float mie_density = exp((-(h_7) / _e16));
+    float _e22 = _group_0_binding_0_cs.air_ozone.w;
+    float _e28 = _group_0_binding_0_cs.air_misc.y;
+    float ozone_density = max((1.0 - (abs((h_7 - _e22)) / (0.5 * _e28))), 0.0);
+    vec4 _e38 = _group_0_binding_0_cs.air_rayleigh;
+    vec3 rayleigh = (_e38.xyz * (rayleigh_density * 1000.0));
+    float _e46 = _group_0_binding_0_cs.air_mie.x;
+    float mie = ((_e46 * mie_density) * 1000.0);
+    float _e53 = _group_0_binding_0_cs.air_mie.x;
+    float _e57 = _group_0_binding_0_cs.air_mie.y;
+    float mie_extinction = (((_e53 + _e57) * mie_density) * 1000.0);
+    vec4 _e64 = _group_0_binding_0_cs.air_ozone;
+    vec3 ozone = (_e64.xyz * (ozone_density * 1000.0));
+    return AirSample(rayleigh, mie, ((rayleigh + vec3(mie_extinction)) + ozone));
+}
+
+float sphere_discriminant(float r_2, float mu, float radius) {
+    return (((radius - r_2) * (radius + r_2)) + (((r_2 * r_2) * mu) * mu));
+}
+
+float distance_to_top(float r_3, float mu_1) {
+    float _e4 = air_top();
+    float _e5 = sphere_discriminant(r_3, mu_1, _e4);
+    return max(((-(r_3) * mu_1) + sqrt(max(_e5, 0.0))), 0.0);
+}
+
+bool meets_ground(float r_4, float mu_2) {
+    bool local_20 = false;
+    if ((mu_2 < 0.0)) {
+        float _e6 = air_bottom();
+        float _e7 = sphere_discriminant(r_4, mu_2, _e6);
+        local_20 = (_e7 >= 0.0);
+    } else {
+        local_20 = false;
+    }
+    bool _e11 = local_20;
+    return _e11;
+}
+
+float distance_to_ground(float r_5, float mu_3) {
+    float _e4 = air_bottom();
+    float _e5 = sphere_discriminant(r_5, mu_3, _e4);
+    return max(((-(r_5) * mu_3) - sqrt(max(_e5, 0.0))), 0.0);
+}
+
+float radius_after(float r_6, float mu_4, float t) {
+    return sqrt(max((((r_6 * r_6) + (t * t)) + (((2.0 * r_6) * mu_4) * t)), 0.0));
+}
+
+vec4 lut_bilinear(sampler2D lut, vec2 x_3, uvec2 size) {
+    vec2 last = vec2((size - uvec2(1u)));
+    vec2 f_1 = (clamp(x_3, vec2(0.0), vec2(1.0)) * last);
+    uvec2 i0_ = min(uvec2(floor(f_1)), (size - uvec2(1u)));
+    uvec2 i1_ = min((i0_ + uvec2(1u)), (size - uvec2(1u)));
+    vec2 w_3 = (f_1 - vec2(i0_));
+    vec4 _e32 = texelFetch(lut, ivec2(uvec2(i0_.x, i0_.y)), 0);
+    vec4 _e37 = texelFetch(lut, ivec2(uvec2(i1_.x, i0_.y)), 0);
+    vec4 a_4 = mix(_e32, _e37, w_3.x);
+    vec4 _e44 = texelFetch(lut, ivec2(uvec2(i0_.x, i1_.y)), 0);
+    vec4 _e49 = texelFetch(lut, ivec2(uvec2(i1_.x, i1_.y)), 0);
+    vec4 b_6 = mix(_e44, _e49, w_3.x);
+    return mix(a_4, b_6, w_3.y);
+}
+
+vec2 transmittance_coords(float r_7, float mu_5) {
+    float _e2 = air_bottom();
+    float _e3 = air_top();
+    float h_8 = sqrt(max(((_e3 - _e2) * (_e3 + _e2)), 0.0));
+    float rho = sqrt(max(((r_7 - _e2) * (r_7 + _e2)), 0.0));
+    float _e16 = distance_to_top(r_7, mu_5);
+    float d_min = (_e3 - r_7);
+    float d_max = (rho + h_8);
+    return vec2(((_e16 - d_min) / max((d_max - d_min), 1e-6)), (rho / h_8));
+}
+
+vec2 transmittance_r_mu(vec2 x_4) {
+    float mu_6 = 1.0;
+    float _e1 = air_bottom();
+    float _e2 = air_top();
+    float h_9 = sqrt(max(((_e2 - _e1) * (_e2 + _e1)), 0.0));
+    float rho_1 = (h_9 * x_4.y);
+    float r_13 = sqrt(((rho_1 * rho_1) + (_e1 * _e1)));
+    float d_min_1 = (_e2 - r_13);
+    float d_max_1 = (rho_1 + h_9);
+    float d_15 = (d_min_1 + (x_4.x * (d_max_1 - d_min_1)));
+    if ((d_15 > 0.0)) {
+        mu_6 = clamp(((((h_9 * h_9) - (rho_1 * rho_1)) - (d_15 * d_15)) / ((2.0 * r_13) * d_15)), -1.0, 1.0);
+    }
+    float _e37 = mu_6;
+    return vec2(r_13, _e37);
+}
+
+vec3 transmittance_to_top(float r_8, float mu_7) {
+    vec2 _e3 = transmittance_coords(r_8, mu_7);
+    vec4 _e5 = lut_bilinear(_group_0_binding_27_cs, _e3, TRANSMITTANCE_SIZE);
+    return _e5.xyz;
+}
+
+vec3 sun_transmittance(float r_9, float mu_s) {
+    bool _e2 = meets_ground(r_9, mu_s);
+    if (_e2) {
+        return vec3(0.0);
+    }
+    vec3 _e5 = transmittance_to_top(r_9, mu_s);
+    return _e5;
+}
+
+float phase_rayleigh(float cos_theta) {
+    return (0.059683103 * (1.0 + (cos_theta * cos_theta)));
+}
+
+float phase_cornette_shanks_air(float cos_theta_1, float g_1) {
+    float g2_ = (g_1 * g_1);
+    return (((0.119366206 * (1.0 - g2_)) * (1.0 + (cos_theta_1 * cos_theta_1))) / ((2.0 + g2_) * pow(max(((1.0 + g2_) - ((2.0 * g_1) * cos_theta_1)), 1e-6), 1.5)));
+}
+
+vec3 fibonacci_direction(uint k_3, uint n_1) {
+    float z_2 = (1.0 - (((2.0 * float(k_3)) + 1.0) / float(n_1)));
+    float s_3 = sqrt(max((1.0 - (z_2 * z_2)), 0.0));
+    float phi = (2.3999634 * float(k_3));
+    return vec3((s_3 * cos(phi)), z_2, (s_3 * sin(phi)));
+}
+
+vec3 ground_radiance(float mu_s_2) {
+    float _e4 = _group_0_binding_0_cs.air_misc.z;
+    float _e10 = air_bottom();
+    vec3 _e13 = sun_transmittance((_e10 + 0.001), mu_s_2);
+    return (((_e4 / PI) * max(mu_s_2, 0.0)) * _e13);
+}
+
+vec2 air_ray_end(vec3 origin_1, vec3 d_8) {
+    float r_14 = length(origin_1);
+    float mu_8 = (dot(origin_1, d_8) / r_14);
+    bool _e5 = meets_ground(r_14, mu_8);
+    if (_e5) {
+        float _e6 = distance_to_ground(r_14, mu_8);
+        return vec2(_e6, 1.0);
+    }
+    float _e9 = air_top();
+    if ((r_14 > _e9)) {
+        return vec2(0.0, 0.0);
+    }
+    float _e14 = distance_to_top(r_14, mu_8);
+    return vec2(_e14, 0.0);
+}
+
+vec3 camera_air_origin() {
+    float _e0 = air_bottom();
+    float _e4 = _group_0_binding_0_cs.camera_position.y;
+    return vec3(0.0, (_e0 + (max(_e4, 0.0) * 0.001)), 0.0);
+}
+
+float sky_view_elevation(float v_1, float horizon) {
+    if ((v_1 >= 0.5)) {
+        float a_5 = ((2.0 * v_1) - 1.0);
+        return (horizon + (((1.5707964 - horizon) * a_5) * a_5));
+    }
+    float a_6 = (1.0 - (2.0 * v_1));
+    return (horizon - (((horizon + 1.5707964) * a_6) * a_6));
+}
+
+float sky_view_v(float elevation, float horizon_1) {
+    if ((elevation >= horizon_1)) {
+        float _e7 = saturate(((elevation - horizon_1) / (1.5707964 - horizon_1)));
+        return (0.5 + (0.5 * sqrt(_e7)));
+    }
+    float _e17 = saturate(((horizon_1 - elevation) / (horizon_1 + 1.5707964)));
+    return (0.5 - (0.5 * sqrt(_e17)));
+}
+
+float horizon_elevation(float r_11) {
+    float _e1 = air_bottom();
+    return -(acos(clamp((_e1 / r_11), -1.0, 1.0)));
+}
+
+float sun_azimuth() {
+    vec4 _e2 = _group_0_binding_0_cs.sun_direction;
+    vec3 s_4 = _e2.xyz;
+    return atan(s_4.z, s_4.x);
+}
+
+vec3 aerial_ray(uvec2 c_1) {
+    vec2 ndc_1 = ((((vec2(c_1) + vec2(0.5)) / vec2(32.0)) * 2.0) - vec2(1.0));
+    float tan_half_1 = _group_0_binding_0_cs.camera_position.w;
+    float aspect_1 = _group_0_binding_0_cs.camera_forward.w;
+    vec4 _e23 = _group_0_binding_0_cs.camera_forward;
+    vec4 _e27 = _group_0_binding_0_cs.camera_right;
+    vec4 _e36 = _group_0_binding_0_cs.camera_up;
+    return normalize(((_e23.xyz + (_e27.xyz * ((ndc_1.x * tan_half_1) * aspect_1))) - (_e36.xyz * (ndc_1.y * tan_half_1))));
+}
+
+vec3 sun_through_air(vec3 rel) {
+    bool _e1 = physical_sky();
+    if (!(_e1)) {
+        return vec3(1.0);
+    }
+    float _e10 = _group_0_binding_0_cs.atmosphere.x;
+    vec3 q_6 = (vec3(rel.x, (rel.y + _e10), rel.z) * 0.001);
+    float r_15 = length(q_6);
+    vec4 _e21 = _group_0_binding_0_cs.sun_direction;
+    vec3 _e24 = sun_transmittance(r_15, dot((q_6 / vec3(r_15)), _e21.xyz));
+    return _e24;
+}
+
+vec3 sky_ambient_light(float h) {
+    vec4 _e6 = texelFetch(_group_0_binding_31_cs, ivec2(uvec2(0u, 0u)), 0);
+    vec3 bottom_1 = _e6.xyz;
+    vec4 _e13 = texelFetch(_group_0_binding_31_cs, ivec2(uvec2(1u, 0u)), 0);
+    vec3 top_1 = _e13.xyz;
+    vec4 _e18 = _group_0_binding_0_cs.sun_illuminance;
+    float _e24 = _group_0_binding_0_cs.ambient_bottom.w;
+    return ((mix(bottom_1, top_1, h) * _e18.xyz) * _e24);
 }
 
 float layer_height(Layer l_1, float alt_7) {
@@ -490,33 +755,33 @@ float layer_height(Layer l_1, float alt_7) {
 }
 
 uint layer_at(float alt_8) {
-    uint i_4 = 0u;
-    bool local_18 = false;
+    uint i_7 = 0u;
+    bool local_21 = false;
     bool loop_init_2 = true;
     while(true) {
         if (!loop_init_2) {
-            uint _e19 = i_4;
-            i_4 = (_e19 + 1u);
+            uint _e19 = i_7;
+            i_7 = (_e19 + 1u);
         }
         loop_init_2 = false;
-        uint _e3 = i_4;
+        uint _e3 = i_7;
         uint _e4 = layer_count();
         if ((_e3 < _e4)) {
         } else {
             break;
         }
         {
-            uint _e6 = i_4;
+            uint _e6 = i_7;
             Layer _e7 = cloud_layer(_e6);
             float _e8 = layer_height(_e7, alt_8);
             if ((_e8 >= 0.0)) {
-                local_18 = (_e8 <= 1.0);
+                local_21 = (_e8 <= 1.0);
             } else {
-                local_18 = false;
+                local_21 = false;
             }
-            bool _e16 = local_18;
+            bool _e16 = local_21;
             if (_e16) {
-                uint _e17 = i_4;
+                uint _e17 = i_7;
                 return _e17;
             }
         }
@@ -527,59 +792,59 @@ uint layer_at(float alt_8) {
 Weather sample_weather(vec3 p_3, Layer l_2) {
     float _e8 = _group_0_binding_0_cs.periods.x;
     vec2 uv_1 = ((p_3.xz - l_2.weather_offset) / vec2(_e8));
-    vec4 w_1 = textureLod(_group_0_binding_3_cs, vec2(uv_1), 0.0);
-    float _e22 = saturate((w_1.x + (2.0 * (l_2.coverage - 0.5))));
-    float _e30 = saturate((l_2.cloud_type + ((w_1.z - 0.5) * 0.5)));
-    float _e35 = saturate((0.5 + w_1.y));
+    vec4 w_4 = textureLod(_group_0_binding_3_cs, vec2(uv_1), 0.0);
+    float _e22 = saturate((w_4.x + (2.0 * (l_2.coverage - 0.5))));
+    float _e30 = saturate((l_2.cloud_type + ((w_4.z - 0.5) * 0.5)));
+    float _e35 = saturate((0.5 + w_4.y));
     float precipitation = (l_2.precipitation * _e35);
     return Weather(_e22, _e30, precipitation);
 }
 
-float height_parabola(float h, float cloud_type) {
+float height_parabola(float h_1, float cloud_type) {
     float height = mix(0.35, 1.0, cloud_type);
-    float _e11 = saturate(((h * (h - height)) * (-4.0 / (height * height))));
+    float _e11 = saturate(((h_1 * (h_1 - height)) * (-4.0 / (height * height))));
     return _e11;
 }
 
-float gradient(float h_1, float r0_, float r1_, float f0_, float f1_) {
-    return (smoothstep(r0_, r1_, h_1) * (1.0 - smoothstep(f0_, f1_, h_1)));
+float gradient(float h_2, float r0_, float r1_, float f0_, float f1_) {
+    return (smoothstep(r0_, r1_, h_2) * (1.0 - smoothstep(f0_, f1_, h_2)));
 }
 
-float height_cloud_types(float h_2, float cloud_type_1) {
-    float _e6 = gradient(h_2, 0.0, 0.08, 0.15, 0.25);
-    float _e11 = gradient(h_2, 0.0, 0.2, 0.4, 0.65);
-    float _e16 = gradient(h_2, 0.0, 0.1, 0.6, 0.95);
+float height_cloud_types(float h_3, float cloud_type_1) {
+    float _e6 = gradient(h_3, 0.0, 0.08, 0.15, 0.25);
+    float _e11 = gradient(h_3, 0.0, 0.2, 0.4, 0.65);
+    float _e16 = gradient(h_3, 0.0, 0.1, 0.6, 0.95);
     float _e19 = saturate((cloud_type_1 * 2.0));
     float lo = mix(_e6, _e11, _e19);
     float _e25 = saturate(((cloud_type_1 * 2.0) - 1.0));
     return mix(lo, _e16, _e25);
 }
 
-float height_signal(float h_3, float cloud_type_2) {
+float height_signal(float h_4, float cloud_type_2) {
     uint _e5 = _group_0_binding_0_cs.modes.z;
     if ((_e5 == HEIGHT_CLOUD_TYPES)) {
-        float _e8 = height_cloud_types(h_3, cloud_type_2);
+        float _e8 = height_cloud_types(h_4, cloud_type_2);
         return _e8;
     }
-    float _e9 = height_parabola(h_3, cloud_type_2);
+    float _e9 = height_parabola(h_4, cloud_type_2);
     return _e9;
 }
 
 float layer_density(vec3 p_4, float alt_9, Layer l_3, inout Counters counters_2) {
-    bool local_19 = false;
-    bool local_20 = false;
+    bool local_22 = false;
+    bool local_23 = false;
     float base = 0.0;
     float density = 0.0;
-    bool local_21 = false;
-    bool local_22 = false;
+    bool local_24 = false;
+    bool local_25 = false;
     vec3 detail_pos = vec3(0.0);
     float _e4 = layer_height(l_3, alt_9);
     if (!((_e4 < 0.0))) {
-        local_19 = (_e4 > 1.0);
+        local_22 = (_e4 > 1.0);
     } else {
-        local_19 = true;
+        local_22 = true;
     }
-    bool _e13 = local_19;
+    bool _e13 = local_22;
     if (_e13) {
         return 0.0;
     }
@@ -588,11 +853,11 @@ float layer_density(vec3 p_4, float alt_9, Layer l_3, inout Counters counters_2)
     Weather _e19 = sample_weather(p_4, l_3);
     float _e21 = height_signal(_e4, _e19.cloud_type);
     if (!((_e19.coverage <= 0.0))) {
-        local_20 = (_e21 <= 0.0);
+        local_23 = (_e21 <= 0.0);
     } else {
-        local_20 = true;
+        local_23 = true;
     }
-    bool _e31 = local_20;
+    bool _e31 = local_23;
     if (_e31) {
         return 0.0;
     }
@@ -602,9 +867,9 @@ float layer_density(vec3 p_4, float alt_9, Layer l_3, inout Counters counters_2)
     float _e51 = _group_0_binding_0_cs.wind_offsets0_.z;
     float _e57 = _group_0_binding_0_cs.wind_offsets0_.w;
     vec3 shape_pos = vec3((p_4.x - _e51), alt_9, (p_4.z - _e57));
-    vec4 s_3 = textureLod(_group_0_binding_1_cs, vec3((shape_pos / period)), 0.0);
-    float low_fbm = (((s_3.y * 0.625) + (s_3.z * 0.25)) + (s_3.w * 0.125));
-    float _e82 = remap(s_3.x, (low_fbm - 1.0), 1.0, 0.0, 1.0);
+    vec4 s_5 = textureLod(_group_0_binding_1_cs, vec3((shape_pos / period)), 0.0);
+    float low_fbm = (((s_5.y * 0.625) + (s_5.z * 0.25)) + (s_5.w * 0.125));
+    float _e82 = remap(s_5.x, (low_fbm - 1.0), 1.0, 0.0, 1.0);
     float _e83 = saturate(_e82);
     base = (_e83 * _e21);
     float _e86 = base;
@@ -620,18 +885,18 @@ float layer_density(vec3 p_4, float alt_9, Layer l_3, inout Counters counters_2)
     float strength = _group_0_binding_0_cs.erosion.x;
     float threshold = _group_0_binding_0_cs.erosion.y;
     if (DETAIL) {
-        local_21 = (strength > 0.0);
+        local_24 = (strength > 0.0);
     } else {
-        local_21 = false;
+        local_24 = false;
     }
-    bool _e117 = local_21;
+    bool _e117 = local_24;
     if (_e117) {
         float _e120 = base;
-        local_22 = (_e120 < threshold);
+        local_25 = (_e120 < threshold);
     } else {
-        local_22 = false;
+        local_25 = false;
     }
-    bool _e123 = local_22;
+    bool _e123 = local_25;
     if (_e123) {
         uint _e125 = counters_2.detail;
         counters_2.detail = (_e125 + 1u);
@@ -684,94 +949,94 @@ float cloud_density(vec3 p_5, float alt_10, inout Counters counters_3) {
     return _e8;
 }
 
-float phase_hg(float cos_theta, float g_1) {
-    float g2_ = (g_1 * g_1);
-    float denom = max(((1.0 + g2_) - ((2.0 * g_1) * cos_theta)), 1e-6);
-    return ((1.0 - g2_) / ((12.566371 * denom) * sqrt(denom)));
-}
-
-float phase_cornette_shanks(float cos_theta_1, float g_2) {
+float phase_hg(float cos_theta_2, float g_2) {
     float g2_1 = (g_2 * g_2);
-    float denom_1 = max(((1.0 + g2_1) - ((2.0 * g_2) * cos_theta_1)), 1e-6);
-    return (((3.0 * (1.0 - g2_1)) * (1.0 + (cos_theta_1 * cos_theta_1))) / (((25.132742 * (2.0 + g2_1)) * denom_1) * sqrt(denom_1)));
+    float denom = max(((1.0 + g2_1) - ((2.0 * g_2) * cos_theta_2)), 1e-6);
+    return ((1.0 - g2_1) / ((12.566371 * denom) * sqrt(denom)));
 }
 
-float phase(float cos_theta_2, float scale) {
+float phase_cornette_shanks(float cos_theta_3, float g_3) {
+    float g2_2 = (g_3 * g_3);
+    float denom_1 = max(((1.0 + g2_2) - ((2.0 * g_3) * cos_theta_3)), 1e-6);
+    return (((3.0 * (1.0 - g2_2)) * (1.0 + (cos_theta_3 * cos_theta_3))) / (((25.132742 * (2.0 + g2_2)) * denom_1) * sqrt(denom_1)));
+}
+
+float phase(float cos_theta_4, float scale) {
     float _e5 = _group_0_binding_0_cs.phase.x;
-    float g_4 = (_e5 * scale);
+    float g_5 = (_e5 * scale);
     uint _e10 = _group_0_binding_0_cs.modes.x;
     switch(_e10) {
         case 1u: {
             float _e14 = _group_0_binding_0_cs.phase.y;
-            float g2_2 = (_e14 * scale);
-            float _e16 = phase_hg(cos_theta_2, g_4);
-            float _e17 = phase_hg(cos_theta_2, g2_2);
+            float g2_3 = (_e14 * scale);
+            float _e16 = phase_hg(cos_theta_4, g_5);
+            float _e17 = phase_hg(cos_theta_4, g2_3);
             float _e21 = _group_0_binding_0_cs.phase.z;
             return mix(_e16, _e17, _e21);
         }
         case 2u: {
-            float _e23 = phase_cornette_shanks(cos_theta_2, g_4);
+            float _e23 = phase_cornette_shanks(cos_theta_4, g_5);
             return _e23;
         }
         default: {
-            float _e24 = phase_hg(cos_theta_2, g_4);
+            float _e24 = phase_hg(cos_theta_4, g_5);
             return _e24;
         }
     }
 }
 
-float sun_optical_depth(vec3 rel, vec3 p_6, Layer l_4, inout Counters counters_4) {
+float sun_optical_depth(vec3 rel_1, vec3 p_6, Layer l_4, inout Counters counters_4) {
     float seg = 0.0;
     float dist = 0.0;
-    float tau = 0.0;
-    uint i_5 = 0u;
-    bool local_23 = false;
-    uint j_1 = 0u;
-    bool local_24 = false;
-    bool local_25 = false;
+    float tau_3 = 0.0;
+    uint i_8 = 0u;
     bool local_26 = false;
+    uint j_1 = 0u;
+    bool local_27 = false;
+    bool local_28 = false;
+    bool local_29 = false;
     vec4 _e6 = _group_0_binding_0_cs.sun_direction;
-    vec3 sun = _e6.xyz;
+    vec3 sun_1 = _e6.xyz;
     float _e11 = _group_0_binding_0_cs.extinction.x;
     float _e15 = _group_0_binding_0_cs.extinction.y;
     float sigma_t_1 = (_e11 + _e15);
-    uint steps_1 = _group_0_binding_0_cs.counts.w;
+    uint steps_2 = _group_0_binding_0_cs.counts.w;
     float growth = _group_0_binding_0_cs.march.y;
     float _e28 = _group_0_binding_0_cs.march.z;
     seg = _e28;
     bool loop_init_3 = true;
     while(true) {
         if (!loop_init_3) {
-            uint _e73 = i_5;
-            i_5 = (_e73 + 1u);
+            uint _e73 = i_8;
+            i_8 = (_e73 + 1u);
         }
         loop_init_3 = false;
-        uint _e36 = i_5;
-        if ((_e36 < steps_1)) {
+        uint _e36 = i_8;
+        if ((_e36 < steps_2)) {
         } else {
             break;
         }
         {
             float _e38 = dist;
             float _e39 = seg;
-            float s_4 = (_e38 + (0.5 * _e39));
-            vec3 q_6 = (rel + (sun * s_4));
-            float _e45 = altitude_of(q_6);
+            float s_6 = (_e38 + (0.5 * _e39));
+            vec3 q_7 = (rel_1 + (sun_1 * s_6));
+            float _e45 = altitude_of(q_7);
             if (!((_e45 > l_4.top))) {
-                local_23 = (_e45 < l_4.bottom);
+                local_26 = (_e45 < l_4.bottom);
             } else {
-                local_23 = true;
+                local_26 = true;
             }
-            bool _e54 = local_23;
+            bool _e54 = local_26;
             if (_e54) {
                 break;
             }
             uint _e56 = counters_4.light;
             counters_4.light = (_e56 + 1u);
-            float _e59 = tau;
-            float _e62 = layer_density((p_6 + (sun * s_4)), _e45, l_4, counters_4);
+            float _e59 = tau_3;
+            float _e62 = layer_density((p_6 + (sun_1 * s_6)), _e45, l_4, counters_4);
             float _e64 = seg;
-            tau = (_e59 + ((_e62 * sigma_t_1) * _e64));
+            tau_3 = (_e59 + ((_e62 * sigma_t_1) * _e64));
             float _e67 = dist;
             float _e68 = seg;
             dist = (_e67 + _e68);
@@ -779,7 +1044,7 @@ float sun_optical_depth(vec3 rel, vec3 p_6, Layer l_4, inout Counters counters_4
             seg = (_e70 * growth);
         }
     }
-    float _e75 = altitude_of(rel);
+    float _e75 = altitude_of(rel_1);
     bool loop_init_4 = true;
     while(true) {
         if (!loop_init_4) {
@@ -799,101 +1064,106 @@ float sun_optical_depth(vec3 rel, vec3 p_6, Layer l_4, inout Counters counters_4
             if ((_e82.bottom <= l_4.top)) {
                 continue;
             }
-            Roots _e87 = ray_shell_from(rel, _e75, sun, _e82.bottom);
-            Roots _e89 = ray_shell_from(rel, _e75, sun, _e82.top);
+            Roots _e87 = ray_shell_from(rel_1, _e75, sun_1, _e82.bottom);
+            Roots _e89 = ray_shell_from(rel_1, _e75, sun_1, _e82.top);
             if (!(!(_e87.hit))) {
-                local_24 = !(_e89.hit);
+                local_27 = !(_e89.hit);
             } else {
-                local_24 = true;
+                local_27 = true;
             }
-            bool _e98 = local_24;
+            bool _e98 = local_27;
             if (!(_e98)) {
-                local_25 = !((_e89.t1_ > _e87.t1_));
+                local_28 = !((_e89.t1_ > _e87.t1_));
             } else {
-                local_25 = true;
+                local_28 = true;
             }
-            bool _e107 = local_25;
+            bool _e107 = local_28;
             if (!(_e107)) {
-                local_26 = (_e87.t1_ <= 0.0);
+                local_29 = (_e87.t1_ <= 0.0);
             } else {
-                local_26 = true;
+                local_29 = true;
             }
-            bool _e115 = local_26;
+            bool _e115 = local_29;
             if (_e115) {
                 continue;
             }
-            float s_5 = (0.5 * (_e87.t1_ + _e89.t1_));
+            float s_7 = (0.5 * (_e87.t1_ + _e89.t1_));
             uint _e122 = counters_4.light;
             counters_4.light = (_e122 + 1u);
-            float _e125 = tau;
-            float _e130 = altitude_of((rel + (sun * s_5)));
-            float _e131 = layer_density((p_6 + (sun * s_5)), _e130, _e82, counters_4);
-            tau = (_e125 + ((_e131 * sigma_t_1) * (_e89.t1_ - _e87.t1_)));
+            float _e125 = tau_3;
+            float _e130 = altitude_of((rel_1 + (sun_1 * s_7)));
+            float _e131 = layer_density((p_6 + (sun_1 * s_7)), _e130, _e82, counters_4);
+            tau_3 = (_e125 + ((_e131 * sigma_t_1) * (_e89.t1_ - _e87.t1_)));
         }
     }
-    float _e141 = tau;
+    float _e141 = tau_3;
     return _e141;
 }
 
-float sun_scattering(float cos_theta_3, float tau_1) {
+float sun_scattering(float cos_theta_5, float tau_4) {
     float octave_sum = 0.0;
     float ka = 1.0;
     float kb = 1.0;
     float kc = 1.0;
-    uint i_6 = 0u;
+    uint i_9 = 0u;
     float total = 0.0;
-    float a_4 = _group_0_binding_0_cs.multiple_scattering.x;
-    float b_6 = _group_0_binding_0_cs.multiple_scattering.y;
-    float c_6 = _group_0_binding_0_cs.multiple_scattering.z;
+    float a_7 = _group_0_binding_0_cs.multiple_scattering.x;
+    float b_7 = _group_0_binding_0_cs.multiple_scattering.y;
+    float c_7 = _group_0_binding_0_cs.multiple_scattering.z;
     uint _e17 = _group_0_binding_0_cs.misc.x;
     uint octaves = min(_e17, MAX_OCTAVES);
     bool loop_init_5 = true;
     while(true) {
         if (!loop_init_5) {
-            uint _e50 = i_6;
-            i_6 = (_e50 + 1u);
+            uint _e50 = i_9;
+            i_9 = (_e50 + 1u);
         }
         loop_init_5 = false;
-        uint _e30 = i_6;
+        uint _e30 = i_9;
         if ((_e30 < octaves)) {
         } else {
             break;
         }
         {
             float _e32 = ka;
-            ka = (_e32 * a_4);
+            ka = (_e32 * a_7);
             float _e34 = kb;
-            kb = (_e34 * b_6);
+            kb = (_e34 * b_7);
             float _e36 = kc;
-            kc = (_e36 * c_6);
+            kc = (_e36 * c_7);
             float _e38 = octave_sum;
             float _e39 = ka;
             float _e40 = kc;
-            float _e41 = phase(cos_theta_3, _e40);
+            float _e41 = phase(cos_theta_5, _e40);
             float _e43 = kb;
-            octave_sum = (_e38 + ((_e39 * _e41) * exp((-(_e43) * tau_1))));
+            octave_sum = (_e38 + ((_e39 * _e41) * exp((-(_e43) * tau_4))));
         }
     }
     float _e55 = _group_0_binding_0_cs.sun_direction.y;
     float _e56 = saturate(_e55);
-    float _e58 = phase(cos_theta_3, 1.0);
+    float _e58 = phase(cos_theta_5, 1.0);
     float _e62 = octave_sum;
-    total = ((_e58 * exp(-(tau_1))) + (_e56 * _e62));
+    total = ((_e58 * exp(-(tau_4))) + (_e56 * _e62));
     uint _e69 = _group_0_binding_0_cs.modes.w;
     if (((_e69 & FLAG_BEER_POWDER) != 0u)) {
         float _e74 = total;
         float _e78 = _group_0_binding_0_cs.phase.w;
-        total = (_e74 * (1.0 - exp((-(_e78) * tau_1))));
+        total = (_e74 * (1.0 - exp((-(_e78) * tau_4))));
     }
     float _e85 = total;
     return _e85;
 }
 
-vec3 ambient(float h_4) {
-    vec4 _e3 = _group_0_binding_0_cs.ambient_bottom;
-    vec4 _e7 = _group_0_binding_0_cs.ambient_top;
-    float _e13 = _group_0_binding_0_cs.ambient_bottom.w;
-    return (mix(_e3.xyz, _e7.xyz, h_4) * _e13);
+vec3 ambient(float h_5) {
+    bool _e1 = physical_sky();
+    if (_e1) {
+        vec3 _e2 = sky_ambient_light(h_5);
+        return _e2;
+    }
+    vec4 _e5 = _group_0_binding_0_cs.ambient_bottom;
+    vec4 _e9 = _group_0_binding_0_cs.ambient_top;
+    float _e15 = _group_0_binding_0_cs.ambient_bottom.w;
+    return (mix(_e5.xyz, _e9.xyz, h_5) * _e15);
 }
 
 float height_fraction(float alt_11) {
@@ -904,34 +1174,35 @@ float height_fraction(float alt_11) {
     return _e4;
 }
 
-vec3 scattered_light(vec3 rel_1, vec3 p_7, float alt_12, float density_1, vec3 view, Layer l_5, inout Counters counters_5) {
+vec3 scattered_light(vec3 rel_2, vec3 p_7, float alt_12, float density_1, vec3 view, Layer l_5, inout Counters counters_5) {
     vec3 sun_light = vec3(0.0);
-    float tau_2 = 0.0;
+    float tau_5 = 0.0;
     vec4 _e9 = _group_0_binding_0_cs.sun_direction;
-    vec3 sun_1 = _e9.xyz;
+    vec3 sun_2 = _e9.xyz;
     float _e11 = layer_height(l_5, alt_12);
     float _e12 = saturate(_e11);
-    bool _e16 = hits_ground(rel_1, alt_12, sun_1);
+    bool _e16 = hits_ground(rel_2, alt_12, sun_2);
     if (!(_e16)) {
         if (LIGHT_MARCH) {
-            float _e21 = sun_optical_depth(rel_1, p_7, l_5, counters_5);
-            tau_2 = _e21;
+            float _e21 = sun_optical_depth(rel_2, p_7, l_5, counters_5);
+            tau_5 = _e21;
         }
         vec4 _e24 = _group_0_binding_0_cs.sun_illuminance;
-        float _e27 = tau_2;
-        float _e28 = sun_scattering(dot(view, sun_1), _e27);
-        sun_light = (_e24.xyz * _e28);
+        vec3 _e26 = sun_through_air(rel_2);
+        float _e29 = tau_5;
+        float _e30 = sun_scattering(dot(view, sun_2), _e29);
+        sun_light = ((_e24.xyz * _e26) * _e30);
     }
-    Weather _e30 = sample_weather(p_7, l_5);
-    float _e34 = _group_0_binding_0_cs.extinction.z;
-    float _e42 = saturate((1.0 - ((_e34 * _e30.precipitation) * (1.0 - _e12))));
-    float _e46 = _group_0_binding_0_cs.extinction.x;
-    vec3 _e48 = sun_light;
-    vec3 _e49 = ambient(_e12);
-    return (((_e46 * density_1) * (_e48 + _e49)) * _e42);
+    Weather _e32 = sample_weather(p_7, l_5);
+    float _e36 = _group_0_binding_0_cs.extinction.z;
+    float _e44 = saturate((1.0 - ((_e36 * _e32.precipitation) * (1.0 - _e12))));
+    float _e48 = _group_0_binding_0_cs.extinction.x;
+    vec3 _e50 = sun_light;
+    vec3 _e51 = ambient(_e12);
+    return (((_e48 * density_1) * (_e50 + _e51)) * _e44);
 }
 
-float empty_cell_exit(vec3 p_8, vec3 d_7) {
+float empty_cell_exit(vec3 p_8, vec3 d_10) {
     float exit = 1e30;
     vec4 _e6 = _group_0_binding_0_cs.wind_offsets0_;
     float _e12 = _group_0_binding_0_cs.periods.x;
@@ -946,22 +1217,22 @@ float empty_cell_exit(vec3 p_8, vec3 d_7) {
     float _e40 = _group_0_binding_0_cs.periods.x;
     float cell_m = (_e40 / 64.0);
     vec2 inside = ((uv_2 - vec2(cell_1)) * cell_m);
-    if ((d_7.x > 1e-6)) {
+    if ((d_10.x > 1e-6)) {
         float _e50 = exit;
-        exit = min(_e50, ((cell_m - inside.x) / d_7.x));
+        exit = min(_e50, ((cell_m - inside.x) / d_10.x));
     } else {
-        if ((d_7.x < -1e-6)) {
+        if ((d_10.x < -1e-6)) {
             float _e59 = exit;
-            exit = min(_e59, (inside.x / -(d_7.x)));
+            exit = min(_e59, (inside.x / -(d_10.x)));
         }
     }
-    if ((d_7.z > 1e-6)) {
+    if ((d_10.z > 1e-6)) {
         float _e68 = exit;
-        exit = min(_e68, ((cell_m - inside.y) / d_7.z));
+        exit = min(_e68, ((cell_m - inside.y) / d_10.z));
     } else {
-        if ((d_7.z < -1e-6)) {
+        if ((d_10.z < -1e-6)) {
             float _e77 = exit;
-            exit = min(_e77, (inside.y / -(d_7.z)));
+            exit = min(_e77, (inside.y / -(d_10.z)));
         }
     }
     float _e83 = exit;
@@ -969,13 +1240,13 @@ float empty_cell_exit(vec3 p_8, vec3 d_7) {
 }
 
 void count(uint index_1, uint value) {
-    bool local_27 = false;
+    bool local_30 = false;
     if (STATS) {
-        local_27 = (value != 0u);
+        local_30 = (value != 0u);
     } else {
-        local_27 = false;
+        local_30 = false;
     }
-    bool _e8 = local_27;
+    bool _e8 = local_30;
     if (_e8) {
         uint _e12 = atomicAdd(_group_0_binding_8_cs.counters[index_1], value);
         return;
@@ -989,44 +1260,44 @@ vec3 step_integral(vec3 source, float sigma_t, float dt) {
     if ((_e6 == INTEGRATION_RIEMANN)) {
         return (source * dt);
     }
-    float x_4 = (sigma_t * dt);
-    float f_1 = ((x_4 < 0.001) ? (1.0 - (0.5 * x_4)) : ((1.0 - exp(-(x_4))) / x_4));
-    return (source * (dt * f_1));
+    float x_6 = (sigma_t * dt);
+    float f_2 = ((x_6 < 0.001) ? (1.0 - (0.5 * x_6)) : ((1.0 - exp(-(x_6))) / x_6));
+    return (source * (dt * f_2));
 }
 
-float start_offset(uvec2 pixel_2) {
+float start_offset(uvec2 pixel_3) {
     uint _e4 = _group_0_binding_0_cs.modes.w;
     bool jitter_1 = ((_e4 & FLAG_JITTER) != 0u);
-    uint k_6 = _group_0_binding_0_cs.temporal.x;
-    if ((k_6 <= 1u)) {
+    uint k_10 = _group_0_binding_0_cs.temporal.x;
+    if ((k_10 <= 1u)) {
         uint _e18 = _group_0_binding_0_cs.misc.y;
-        float _e19 = hash_unit(pixel_2, _e18);
+        float _e19 = hash_unit(pixel_3, _e18);
         return (jitter_1 ? _e19 : 0.5);
     }
-    float _e23 = hash_unit(pixel_2, 0u);
+    float _e23 = hash_unit(pixel_3, 0u);
     float base_2 = (jitter_1 ? _e23 : 0.5);
     uint _e29 = _group_0_binding_0_cs.misc.y;
-    float _e32 = van_der_corput((_e29 / (k_6 * k_6)));
+    float _e32 = van_der_corput((_e29 / (k_10 * k_10)));
     return fract((base_2 + _e32));
 }
 
 bool march_layer(vec3 view_1, Interval span_1, Layer l_6, float jitter, inout MarchState state, inout Counters counters_6) {
-    uint steps = 0u;
-    uint i_7 = 0u;
+    uint steps_1 = 0u;
+    uint i_10 = 0u;
     uint stride = 1u;
     uint empty = 0u;
-    bool local_28 = false;
+    bool local_31 = false;
     float cam_alt = _group_0_binding_0_cs.camera_position.y;
     vec4 _e12 = _group_0_binding_0_cs.camera_position;
     vec2 cam_xz = _e12.xz;
     uint _e17 = _group_0_binding_0_cs.counts.z;
-    steps = _e17;
+    steps_1 = _e17;
     float _e22 = _group_0_binding_0_cs.march.x;
     if ((_e22 > 0.0)) {
         float _e29 = _group_0_binding_0_cs.march.x;
-        steps = min(max(uint(ceil((span_1.length_ / _e29))), 1u), MAX_VIEW_STEPS);
+        steps_1 = min(max(uint(ceil((span_1.length_ / _e29))), 1u), MAX_VIEW_STEPS);
     }
-    uint _e37 = steps;
+    uint _e37 = steps_1;
     float dt_1 = (span_1.length_ / float(_e37));
     float _e43 = _group_0_binding_0_cs.extinction.x;
     float _e47 = _group_0_binding_0_cs.extinction.y;
@@ -1036,109 +1307,109 @@ bool march_layer(vec3 view_1, Interval span_1, Layer l_6, float jitter, inout Ma
     uint _e60 = _group_0_binding_0_cs.modes.w;
     bool empty_skip = ((_e60 & FLAG_EMPTY_SKIP) != 0u);
     while(true) {
-        uint _e71 = i_7;
-        uint _e72 = steps;
+        uint _e71 = i_10;
+        uint _e72 = steps_1;
         if ((_e71 >= _e72)) {
             break;
         }
         uint _e75 = counters_6.view_steps;
         counters_6.view_steps = (_e75 + 1u);
-        uint _e79 = i_7;
-        float t_4 = (span_1.start + ((float(_e79) + jitter) * dt_1));
-        vec3 rel_4 = ((view_1 * t_4) + vec3(0.0, cam_alt, 0.0));
-        vec3 p_12 = vec3((rel_4.x + cam_xz.x), rel_4.y, (rel_4.z + cam_xz.y));
+        uint _e79 = i_10;
+        float t_5 = (span_1.start + ((float(_e79) + jitter) * dt_1));
+        vec3 rel_5 = ((view_1 * t_5) + vec3(0.0, cam_alt, 0.0));
+        vec3 p_12 = vec3((rel_5.x + cam_xz.x), rel_5.y, (rel_5.z + cam_xz.y));
         if (empty_skip) {
             float _e97 = empty_cell_exit(p_12, view_1);
             if ((_e97 > 0.0)) {
-                uint _e106 = steps;
-                uint next_1 = uint(clamp(ceil(((((t_4 + _e97) - span_1.start) / dt_1) - jitter)), 0.0, float(_e106)));
-                uint _e111 = i_7;
-                i_7 = max((_e111 + 1u), next_1);
+                uint _e106 = steps_1;
+                uint next_1 = uint(clamp(ceil(((((t_5 + _e97) - span_1.start) / dt_1) - jitter)), 0.0, float(_e106)));
+                uint _e111 = i_10;
+                i_10 = max((_e111 + 1u), next_1);
                 continue;
             }
         }
-        float _e115 = altitude_of(rel_4);
+        float _e115 = altitude_of(rel_5);
         float _e116 = layer_density(p_12, _e115, l_6, counters_6);
         if ((_e116 <= 0.0)) {
             uint _e119 = empty;
             empty = (_e119 + 1u);
             if (dynamic_step) {
                 uint _e124 = empty;
-                local_28 = (_e124 >= 8u);
+                local_31 = (_e124 >= 8u);
             } else {
-                local_28 = false;
+                local_31 = false;
             }
-            bool _e128 = local_28;
+            bool _e128 = local_31;
             if (_e128) {
                 stride = 2u;
             }
-            uint _e130 = i_7;
+            uint _e130 = i_10;
             uint _e131 = stride;
-            i_7 = (_e130 + _e131);
+            i_10 = (_e130 + _e131);
             continue;
         }
         uint _e133 = stride;
         if ((_e133 > 1u)) {
-            uint _e136 = i_7;
+            uint _e136 = i_10;
             uint _e137 = stride;
-            i_7 = (_e136 - (_e137 - 1u));
+            i_10 = (_e136 - (_e137 - 1u));
             stride = 1u;
             empty = 0u;
             continue;
         }
         empty = 0u;
         float sigma_t_2 = (sigma_e * _e116);
-        vec3 _e145 = scattered_light(rel_4, p_12, _e115, _e116, view_1, l_6, counters_6);
+        vec3 _e145 = scattered_light(rel_5, p_12, _e115, _e116, view_1, l_6, counters_6);
         float transmittance_1 = state.transmittance;
         vec3 _e149 = state.radiance;
         vec3 _e150 = step_integral(_e145, sigma_t_2, dt_1);
         state.radiance = (_e149 + (transmittance_1 * _e150));
         float step_t = exp((-(sigma_t_2) * dt_1));
         float _e157 = state.depth_sum;
-        state.depth_sum = (_e157 + ((t_4 * transmittance_1) * (1.0 - step_t)));
+        state.depth_sum = (_e157 + ((t_5 * transmittance_1) * (1.0 - step_t)));
         state.transmittance = (transmittance_1 * step_t);
         float _e166 = state.transmittance;
         float _e170 = _group_0_binding_0_cs.march.w;
         if ((_e166 < _e170)) {
             return true;
         }
-        uint _e173 = i_7;
-        i_7 = (_e173 + 1u);
+        uint _e173 = i_10;
+        i_10 = (_e173 + 1u);
     }
     return false;
 }
 
-MarchResult march_pixel(uvec2 pixel_3) {
+MarchResult march_pixel(uvec2 pixel_4) {
     Counters counters_7 = Counters(0u, 0u, 0u, 0u);
     MarchState state_1 = MarchState(vec3(0.0), 1.0, 0.0);
     bool marched = false;
-    bool ground = false;
+    bool ground_1 = false;
     float last_start = -1.0;
     uint last_index = NO_LAYER;
-    uint k = 0u;
+    uint k_4 = 0u;
     uint next = 0u;
     Interval span_2 = Interval(0.0, 0.0, 0u);
-    uint i_8 = 0u;
-    bool local_29 = false;
-    bool local_30 = false;
-    bool local_31 = false;
+    uint i_11 = 0u;
     bool local_32 = false;
     bool local_33 = false;
     bool local_34 = false;
+    bool local_35 = false;
+    bool local_36 = false;
+    bool local_37 = false;
     float depth_1 = 0.0;
-    vec3 _e1 = view_ray(pixel_3);
+    vec3 _e1 = view_ray(pixel_4);
     float cam_alt_1 = _group_0_binding_0_cs.camera_position.y;
     count(STAT_PIXELS, 1u);
-    float _e20 = start_offset(pixel_3);
+    float _e20 = start_offset(pixel_4);
     uint _e21 = layer_count();
     bool loop_init_6 = true;
     while(true) {
         if (!loop_init_6) {
-            uint _e116 = k;
-            k = (_e116 + 1u);
+            uint _e116 = k_4;
+            k_4 = (_e116 + 1u);
         }
         loop_init_6 = false;
-        uint _e32 = k;
+        uint _e32 = k_4;
         if ((_e32 < _e21)) {
         } else {
             break;
@@ -1146,69 +1417,69 @@ MarchResult march_pixel(uvec2 pixel_3) {
         {
             next = NO_LAYER;
             span_2 = Interval(0.0, 0.0, 1u);
-            i_8 = 0u;
+            i_11 = 0u;
             bool loop_init_7 = true;
             while(true) {
                 if (!loop_init_7) {
-                    uint _e100 = i_8;
-                    i_8 = (_e100 + 1u);
+                    uint _e100 = i_11;
+                    i_11 = (_e100 + 1u);
                 }
                 loop_init_7 = false;
-                uint _e43 = i_8;
+                uint _e43 = i_11;
                 if ((_e43 < _e21)) {
                 } else {
                     break;
                 }
                 {
-                    uint _e45 = i_8;
+                    uint _e45 = i_11;
                     Layer _e46 = cloud_layer(_e45);
                     Interval _e47 = layer_interval(cam_alt_1, _e1, _e46);
-                    bool _e48 = ground;
+                    bool _e48 = ground_1;
                     if (!(_e48)) {
-                        local_29 = (_e47.kind == RAY_HITS_GROUND);
+                        local_32 = (_e47.kind == RAY_HITS_GROUND);
                     } else {
-                        local_29 = true;
+                        local_32 = true;
                     }
-                    bool _e56 = local_29;
-                    ground = _e56;
+                    bool _e56 = local_32;
+                    ground_1 = _e56;
                     float _e58 = last_start;
                     if (!((_e47.start > _e58))) {
                         float _e64 = last_start;
                         if ((_e47.start == _e64)) {
-                            uint _e68 = i_8;
+                            uint _e68 = i_11;
                             uint _e69 = last_index;
-                            local_31 = (_e68 > _e69);
+                            local_34 = (_e68 > _e69);
                         } else {
-                            local_31 = false;
+                            local_34 = false;
                         }
-                        bool _e72 = local_31;
-                        local_30 = _e72;
+                        bool _e72 = local_34;
+                        local_33 = _e72;
                     } else {
-                        local_30 = true;
+                        local_33 = true;
                     }
-                    bool after = local_30;
+                    bool after = local_33;
                     if ((_e47.kind == RAY_MARCH)) {
-                        local_32 = after;
+                        local_35 = after;
                     } else {
-                        local_32 = false;
+                        local_35 = false;
                     }
-                    bool _e81 = local_32;
+                    bool _e81 = local_35;
                     if (_e81) {
                         uint _e84 = next;
                         if (!((_e84 == NO_LAYER))) {
                             float _e92 = span_2.start;
-                            local_34 = (_e47.start < _e92);
+                            local_37 = (_e47.start < _e92);
                         } else {
-                            local_34 = true;
+                            local_37 = true;
                         }
-                        bool _e95 = local_34;
-                        local_33 = _e95;
+                        bool _e95 = local_37;
+                        local_36 = _e95;
                     } else {
-                        local_33 = false;
+                        local_36 = false;
                     }
-                    bool _e97 = local_33;
+                    bool _e97 = local_36;
                     if (_e97) {
-                        uint _e98 = i_8;
+                        uint _e98 = i_11;
                         next = _e98;
                         span_2 = _e47;
                     }
@@ -1237,7 +1508,7 @@ MarchResult march_pixel(uvec2 pixel_3) {
     if (_e118) {
         count(STAT_MARCHED, 1u);
     } else {
-        bool _e121 = ground;
+        bool _e121 = ground_1;
         if (_e121) {
             count(STAT_EXIT_GROUND, 1u);
         } else {
@@ -1264,59 +1535,59 @@ MarchResult march_pixel(uvec2 pixel_3) {
     return MarchResult(_e152, _e154, _e155);
 }
 
-uvec2 bayer2_(uint v_1) {
-    return uvec2(((v_1 ^ (v_1 >> 1u)) & 1u), (v_1 & 1u));
+uvec2 bayer2_(uint v_2) {
+    return uvec2(((v_2 ^ (v_2 >> 1u)) & 1u), (v_2 & 1u));
 }
 
-uvec2 block_offset(uint f, uint k_1) {
-    if ((k_1 == 2u)) {
+uvec2 block_offset(uint f, uint k_5) {
+    if ((k_5 == 2u)) {
         uvec2 _e6 = bayer2_((f % 4u));
         return _e6;
     }
-    if ((k_1 == 4u)) {
-        uint b_7 = (f % 16u);
-        uvec2 _e13 = bayer2_((b_7 >> 2u));
-        uvec2 _e17 = bayer2_((b_7 & 3u));
+    if ((k_5 == 4u)) {
+        uint b_8 = (f % 16u);
+        uvec2 _e13 = bayer2_((b_8 >> 2u));
+        uvec2 _e17 = bayer2_((b_8 & 3u));
         return (_e13 + (2u * _e17));
     }
     return uvec2(0u);
 }
 
-vec2 reproject(uvec2 pixel_4, float depth_2) {
-    bool local_35 = false;
-    bool local_36 = false;
-    bool local_37 = false;
+vec2 reproject(uvec2 pixel_5, float depth_2) {
+    bool local_38 = false;
+    bool local_39 = false;
+    bool local_40 = false;
     vec3 dir = vec3(0.0);
     vec4 _e4 = _group_0_binding_0_cs.previous_position;
     vec4 _e7 = _group_0_binding_0_cs.camera_position;
     if (all(equal(_e4, _e7))) {
         vec4 _e14 = _group_0_binding_0_cs.previous_forward;
         vec4 _e17 = _group_0_binding_0_cs.camera_forward;
-        local_35 = all(equal(_e14, _e17));
+        local_38 = all(equal(_e14, _e17));
     } else {
-        local_35 = false;
+        local_38 = false;
     }
-    bool _e21 = local_35;
+    bool _e21 = local_38;
     if (_e21) {
         vec4 _e26 = _group_0_binding_0_cs.previous_right;
         vec4 _e29 = _group_0_binding_0_cs.camera_right;
-        local_36 = all(equal(_e26, _e29));
+        local_39 = all(equal(_e26, _e29));
     } else {
-        local_36 = false;
+        local_39 = false;
     }
-    bool _e33 = local_36;
+    bool _e33 = local_39;
     if (_e33) {
         vec4 _e38 = _group_0_binding_0_cs.previous_up;
         vec4 _e41 = _group_0_binding_0_cs.camera_up;
-        local_37 = all(equal(_e38, _e41));
+        local_40 = all(equal(_e38, _e41));
     } else {
-        local_37 = false;
+        local_40 = false;
     }
-    bool same = local_37;
+    bool same = local_40;
     if (same) {
-        return vec2(pixel_4);
+        return vec2(pixel_5);
     }
-    vec3 _e47 = view_ray(pixel_4);
+    vec3 _e47 = view_ray(pixel_5);
     dir = _e47;
     if ((depth_2 > 0.0)) {
         vec4 _e54 = _group_0_binding_0_cs.camera_position;
@@ -1325,46 +1596,46 @@ vec2 reproject(uvec2 pixel_4, float depth_2) {
     }
     vec3 _e62 = dir;
     vec4 _e65 = _group_0_binding_0_cs.previous_forward;
-    float z = dot(_e62, _e65.xyz);
-    if ((z <= 0.0)) {
+    float z_3 = dot(_e62, _e65.xyz);
+    if ((z_3 <= 0.0)) {
         return vec2(-1000000000.0);
     }
-    float tan_half_1 = _group_0_binding_0_cs.previous_position.w;
-    float aspect_1 = _group_0_binding_0_cs.previous_forward.w;
+    float tan_half_2 = _group_0_binding_0_cs.previous_position.w;
+    float aspect_2 = _group_0_binding_0_cs.previous_forward.w;
     vec3 _e80 = dir;
     vec4 _e83 = _group_0_binding_0_cs.previous_right;
     vec3 _e89 = dir;
     vec4 _e92 = _group_0_binding_0_cs.previous_up;
-    vec2 ndc_1 = vec2((dot(_e80, _e83.xyz) / ((z * tan_half_1) * aspect_1)), (-(dot(_e89, _e92.xyz)) / (z * tan_half_1)));
+    vec2 ndc_2 = vec2((dot(_e80, _e83.xyz) / ((z_3 * tan_half_2) * aspect_2)), (-(dot(_e89, _e92.xyz)) / (z_3 * tan_half_2)));
     uvec4 _e106 = _group_0_binding_0_cs.counts;
-    return ((((ndc_1 * 0.5) + vec2(0.5)) * vec2(_e106.xy)) - vec2(0.5));
+    return ((((ndc_2 * 0.5) + vec2(0.5)) * vec2(_e106.xy)) - vec2(0.5));
 }
 
 bool on_screen(vec2 q) {
-    bool local_38 = false;
+    bool local_41 = false;
     uvec4 _e3 = _group_0_binding_0_cs.counts;
-    vec2 size_1 = vec2(_e3.xy);
+    vec2 size_2 = vec2(_e3.xy);
     if (all(greaterThanEqual(q, vec2(-0.5)))) {
-        local_38 = all(lessThanEqual(q, (size_1 - vec2(0.5))));
+        local_41 = all(lessThanEqual(q, (size_2 - vec2(0.5))));
     } else {
-        local_38 = false;
+        local_41 = false;
     }
-    bool _e18 = local_38;
+    bool _e18 = local_41;
     return _e18;
 }
 
-vec4 catmull_rom(float t) {
-    return vec4((t * (-0.5 + (t * (1.0 - (0.5 * t))))), (1.0 + ((t * t) * (-2.5 + (1.5 * t)))), (t * (0.5 + (t * (2.0 - (1.5 * t))))), ((t * t) * (-0.5 + (0.5 * t))));
+vec4 catmull_rom(float t_1) {
+    return vec4((t_1 * (-0.5 + (t_1 * (1.0 - (0.5 * t_1))))), (1.0 + ((t_1 * t_1) * (-2.5 + (1.5 * t_1)))), (t_1 * (0.5 + (t_1 * (2.0 - (1.5 * t_1))))), ((t_1 * t_1) * (-0.5 + (0.5 * t_1))));
 }
 
 vec4 history_row(ivec2 base_1, int dy, vec4 wx) {
     uvec4 _e5 = _group_0_binding_0_cs.counts;
-    ivec2 size_2 = ivec2(_e5.xy);
-    int y_1 = min(max((base_1.y + dy), 0), (size_2.y - 1));
-    int x0_ = min(max((base_1.x - 1), 0), (size_2.x - 1));
-    int x1_ = min(max(base_1.x, 0), (size_2.x - 1));
-    int x2_ = min(max((base_1.x + 1), 0), (size_2.x - 1));
-    int x3_ = min(max((base_1.x + 2), 0), (size_2.x - 1));
+    ivec2 size_3 = ivec2(_e5.xy);
+    int y_1 = min(max((base_1.y + dy), 0), (size_3.y - 1));
+    int x0_ = min(max((base_1.x - 1), 0), (size_3.x - 1));
+    int x1_ = min(max(base_1.x, 0), (size_3.x - 1));
+    int x2_ = min(max((base_1.x + 1), 0), (size_3.x - 1));
+    int x3_ = min(max((base_1.x + 2), 0), (size_3.x - 1));
     vec4 _e48 = texelFetch(_group_0_binding_13_cs, ivec2(x0_, y_1), 0);
     vec4 _e54 = texelFetch(_group_0_binding_13_cs, ivec2(x1_, y_1), 0);
     vec4 _e61 = texelFetch(_group_0_binding_13_cs, ivec2(x2_, y_1), 0);
@@ -1374,68 +1645,68 @@ vec4 history_row(ivec2 base_1, int dy, vec4 wx) {
 
 vec4 history_at(vec2 q_1) {
     uvec4 _e3 = _group_0_binding_0_cs.counts;
-    ivec2 size_3 = ivec2(_e3.xy);
-    vec2 c_7 = clamp(q_1, vec2(0.0), vec2((size_3 - ivec2(1))));
-    ivec2 base_3 = ivec2(floor(c_7));
-    vec2 f_2 = (c_7 - vec2(base_3));
-    vec4 _e18 = catmull_rom(f_2.x);
-    vec4 _e20 = catmull_rom(f_2.y);
+    ivec2 size_4 = ivec2(_e3.xy);
+    vec2 c_8 = clamp(q_1, vec2(0.0), vec2((size_4 - ivec2(1))));
+    ivec2 base_3 = ivec2(floor(c_8));
+    vec2 f_3 = (c_8 - vec2(base_3));
+    vec4 _e18 = catmull_rom(f_3.x);
+    vec4 _e20 = catmull_rom(f_3.y);
     vec4 _e22 = history_row(base_3, -1, _e18);
     vec4 _e26 = history_row(base_3, 0, _e18);
     vec4 _e31 = history_row(base_3, 1, _e18);
     vec4 _e36 = history_row(base_3, 2, _e18);
-    vec4 sum_2 = ((((_e22 * _e20.x) + (_e26 * _e20.y)) + (_e31 * _e20.z)) + (_e36 * _e20.w));
-    float _e45 = saturate(sum_2.w);
-    return vec4(max(sum_2.xyz, vec3(0.0)), _e45);
+    vec4 sum_4 = ((((_e22 * _e20.x) + (_e26 * _e20.y)) + (_e31 * _e20.z)) + (_e36 * _e20.w));
+    float _e45 = saturate(sum_4.w);
+    return vec4(max(sum_4.xyz, vec3(0.0)), _e45);
 }
 
 vec4 history_nearest(vec2 q_2) {
     uvec4 _e3 = _group_0_binding_0_cs.counts;
-    ivec2 size_4 = ivec2(_e3.xy);
-    ivec2 p_13 = min(max(ivec2(roundEven(q_2)), ivec2(0)), (size_4 - ivec2(1)));
+    ivec2 size_5 = ivec2(_e3.xy);
+    ivec2 p_13 = min(max(ivec2(roundEven(q_2)), ivec2(0)), (size_5 - ivec2(1)));
     vec4 _e16 = texelFetch(_group_0_binding_13_cs, p_13, 0);
     return _e16;
 }
 
 vec4 meta_at(vec2 q_3) {
     uvec4 _e3 = _group_0_binding_0_cs.counts;
-    ivec2 size_5 = ivec2(_e3.xy);
-    ivec2 p_14 = min(max(ivec2(roundEven(q_3)), ivec2(0)), (size_5 - ivec2(1)));
+    ivec2 size_6 = ivec2(_e3.xy);
+    ivec2 p_14 = min(max(ivec2(roundEven(q_3)), ivec2(0)), (size_6 - ivec2(1)));
     vec4 _e16 = texelFetch(_group_0_binding_14_cs, p_14, 0);
     return _e16;
 }
 
-bool in_blocks(uvec2 id_12) {
-    uint k_7 = _group_0_binding_0_cs.temporal.x;
+bool in_blocks(uvec2 id_18) {
+    uint k_11 = _group_0_binding_0_cs.temporal.x;
     uvec4 _e7 = _group_0_binding_0_cs.counts;
-    return all(lessThan(id_12, (((_e7.xy + uvec2(k_7)) - uvec2(1u)) / uvec2(k_7))));
+    return all(lessThan(id_18, (((_e7.xy + uvec2(k_11)) - uvec2(1u)) / uvec2(k_11))));
 }
 
-uvec2 sparse_pixel(uvec2 id_13) {
-    uint k_8 = _group_0_binding_0_cs.temporal.x;
+uvec2 sparse_pixel(uvec2 id_19) {
+    uint k_12 = _group_0_binding_0_cs.temporal.x;
     uint _e9 = _group_0_binding_0_cs.misc.y;
-    uvec2 _e10 = block_offset(_e9, k_8);
-    return ((id_13 * k_8) + _e10);
+    uvec2 _e10 = block_offset(_e9, k_12);
+    return ((id_19 * k_12) + _e10);
 }
 
-void store_sparse(uvec2 id_14, MarchResult r_2) {
-    imageStore(_group_0_binding_6_cs, ivec2(id_14), vec4(r_2.radiance, r_2.transmittance));
-    imageStore(_group_0_binding_7_cs, ivec2(id_14), vec4(r_2.depth, 0.0, 0.0, 0.0));
+void store_sparse(uvec2 id_20, MarchResult r_12) {
+    imageStore(_group_0_binding_6_cs, ivec2(id_20), vec4(r_12.radiance, r_12.transmittance));
+    imageStore(_group_0_binding_7_cs, ivec2(id_20), vec4(r_12.depth, 0.0, 0.0, 0.0));
     return;
 }
 
-uint rng_seed(uvec2 pixel_5, uint frame_index_1) {
+uint rng_seed(uvec2 pixel_6, uint frame_index_1) {
     uint _e4 = pcg(frame_index_1);
-    uint _e6 = pcg((pixel_5.y ^ _e4));
-    uint _e8 = pcg((pixel_5.x ^ _e6));
+    uint _e6 = pcg((pixel_6.y ^ _e4));
+    uint _e8 = pcg((pixel_6.x ^ _e6));
     return _e8;
 }
 
 float rng_next(inout uint rng_1) {
     uint _e1 = rng_1;
     rng_1 = ((_e1 * 747796405u) + 2891336453u);
-    uint s_6 = rng_1;
-    uint word_1 = (((s_6 >> ((s_6 >> 28u) + 4u)) ^ s_6) * 277803737u);
+    uint s_8 = rng_1;
+    uint word_1 = (((s_8 >> ((s_8 >> 28u) + 4u)) ^ s_8) * 277803737u);
     return (float((((word_1 >> 22u) ^ word_1) >> 8u)) * 5.9604645e-8);
 }
 
@@ -1444,112 +1715,112 @@ float rng_exponential(inout uint rng_2, float sigma) {
     return (-(log((1.0 - _e2))) / sigma);
 }
 
-Segments layer_segments(vec3 p_9, float alt_13, vec3 d_8) {
+Segments layer_segments(vec3 p_9, float alt_13, vec3 d_11) {
     Segments s = Segments(vec2(0.0), vec2(0.0), 0u);
-    bool local_39 = false;
+    bool local_42 = false;
     vec2 a_1 = vec2(0.0);
     vec2 b_1 = vec2(0.0);
-    uint n_1 = 0u;
-    bool local_40 = false;
-    bool local_41 = false;
-    bool local_42 = false;
+    uint n_2 = 0u;
     bool local_43 = false;
+    bool local_44 = false;
+    bool local_45 = false;
+    bool local_46 = false;
     vec2 _e10 = layers_span();
-    float bottom_1 = _e10.x;
-    Roots _e12 = ray_shell_from(p_9, alt_13, d_8, bottom_1);
-    Roots _e14 = ray_shell_from(p_9, alt_13, d_8, _e10.y);
-    bool _e15 = hits_ground(p_9, alt_13, d_8);
+    float bottom_2 = _e10.x;
+    Roots _e12 = ray_shell_from(p_9, alt_13, d_11, bottom_2);
+    Roots _e14 = ray_shell_from(p_9, alt_13, d_11, _e10.y);
+    bool _e15 = hits_ground(p_9, alt_13, d_11);
     if (!(!(_e14.hit))) {
-        local_39 = (_e14.t1_ <= 0.0);
+        local_42 = (_e14.t1_ <= 0.0);
     } else {
-        local_39 = true;
+        local_42 = true;
     }
-    bool _e25 = local_39;
+    bool _e25 = local_42;
     if (_e25) {
         Segments _e26 = s;
         return _e26;
     }
     float entry = max(_e14.t0_, 0.0);
     if (_e12.hit) {
-        local_40 = (_e12.t0_ > 0.0);
+        local_43 = (_e12.t0_ > 0.0);
     } else {
-        local_40 = false;
+        local_43 = false;
     }
-    bool _e45 = local_40;
+    bool _e45 = local_43;
     if (_e45) {
-        local_41 = (alt_13 >= bottom_1);
+        local_44 = (alt_13 >= bottom_2);
     } else {
-        local_41 = false;
+        local_44 = false;
     }
-    bool _e50 = local_41;
+    bool _e50 = local_44;
     if (_e50) {
-        uint _e51 = n_1;
+        uint _e51 = n_2;
         a_1[_e51] = entry;
-        uint _e53 = n_1;
+        uint _e53 = n_2;
         b_1[_e53] = _e12.t0_;
-        uint _e56 = n_1;
-        n_1 = (_e56 + uint((_e12.t0_ > entry)));
+        uint _e56 = n_2;
+        n_2 = (_e56 + uint((_e12.t0_ > entry)));
         if (!(_e15)) {
-            local_42 = (_e14.t1_ > _e12.t1_);
+            local_45 = (_e14.t1_ > _e12.t1_);
         } else {
-            local_42 = false;
+            local_45 = false;
         }
-        bool _e68 = local_42;
+        bool _e68 = local_45;
         if (_e68) {
-            uint _e69 = n_1;
+            uint _e69 = n_2;
             a_1[_e69] = max(_e12.t1_, entry);
-            uint _e73 = n_1;
+            uint _e73 = n_2;
             b_1[_e73] = _e14.t1_;
-            uint _e76 = n_1;
-            n_1 = (_e76 + 1u);
+            uint _e76 = n_2;
+            n_2 = (_e76 + 1u);
         }
     } else {
-        if ((alt_13 < bottom_1)) {
+        if ((alt_13 < bottom_2)) {
             if (!(_e15)) {
-                local_43 = _e12.hit;
+                local_46 = _e12.hit;
             } else {
-                local_43 = false;
+                local_46 = false;
             }
-            bool _e85 = local_43;
+            bool _e85 = local_46;
             if (_e85) {
                 a_1.x = max(_e12.t1_, 0.0);
                 b_1.x = _e14.t1_;
-                n_1 = 1u;
+                n_2 = 1u;
             }
         } else {
             a_1.x = entry;
             b_1.x = _e14.t1_;
-            n_1 = 1u;
+            n_2 = 1u;
         }
     }
     vec2 _e98 = a_1;
     s.a = _e98;
     vec2 _e100 = b_1;
     s.b = _e100;
-    uint _e102 = n_1;
+    uint _e102 = n_2;
     s.count = _e102;
     Segments _e103 = s;
     return _e103;
 }
 
-float density_at(vec3 rel_2, inout Counters counters_8) {
+float density_at(vec3 rel_3, inout Counters counters_8) {
     float _e6 = _group_0_binding_0_cs.camera_position.x;
     float _e13 = _group_0_binding_0_cs.camera_position.z;
-    vec3 p_15 = vec3((rel_2.x + _e6), rel_2.y, (rel_2.z + _e13));
-    float _e16 = altitude_of(rel_2);
+    vec3 p_15 = vec3((rel_3.x + _e6), rel_3.y, (rel_3.z + _e13));
+    float _e16 = altitude_of(rel_3);
     float _e17 = cloud_density(p_15, _e16, counters_8);
     return _e17;
 }
 
-float empty_cell_skip(vec3 origin, vec3 dir_1, float t_1) {
+float empty_cell_skip(vec3 origin_2, vec3 dir_1, float t_2) {
     uint _e3 = layer_count();
     if ((_e3 > 1u)) {
         return 0.0;
     }
-    vec3 rel_5 = (origin + (dir_1 * t_1));
+    vec3 rel_6 = (origin_2 + (dir_1 * t_2));
     float _e13 = _group_0_binding_0_cs.camera_position.x;
     float _e20 = _group_0_binding_0_cs.camera_position.z;
-    vec3 p_16 = vec3((rel_5.x + _e13), rel_5.y, (rel_5.z + _e20));
+    vec3 p_16 = vec3((rel_6.x + _e13), rel_6.y, (rel_6.z + _e20));
     float _e23 = empty_cell_exit(p_16, dir_1);
     if ((_e23 <= 0.0)) {
         return 0.0;
@@ -1559,22 +1830,22 @@ float empty_cell_skip(vec3 origin, vec3 dir_1, float t_1) {
 
 float density_max() {
     float m_1 = 0.0;
-    uint i_9 = 0u;
+    uint i_12 = 0u;
     bool loop_init_8 = true;
     while(true) {
         if (!loop_init_8) {
-            uint _e17 = i_9;
-            i_9 = (_e17 + 1u);
+            uint _e17 = i_12;
+            i_12 = (_e17 + 1u);
         }
         loop_init_8 = false;
-        uint _e4 = i_9;
+        uint _e4 = i_12;
         uint _e5 = layer_count();
         if ((_e4 < _e5)) {
         } else {
             break;
         }
         {
-            uint _e7 = i_9;
+            uint _e7 = i_12;
             Layer _e8 = cloud_layer(_e7);
             float _e9 = m_1;
             m_1 = max(_e9, (_e8.density * (1.0 + _e8.precipitation)));
@@ -1584,9 +1855,9 @@ float density_max() {
     return clamp(_e19, 0.0, 1.0);
 }
 
-float free_flight(vec3 origin_1, vec3 dir_2, Segments segs, inout uint rng_3, inout Counters counters_9) {
-    uint k_2 = 0u;
-    float t_2 = 0.0;
+float free_flight(vec3 origin_3, vec3 dir_2, Segments segs, inout uint rng_3, inout Counters counters_9) {
+    uint k_6 = 0u;
+    float t_3 = 0.0;
     float _e5 = density_max();
     float _e9 = _group_0_binding_0_cs.extinction.x;
     float _e13 = _group_0_binding_0_cs.extinction.y;
@@ -1597,46 +1868,46 @@ float free_flight(vec3 origin_1, vec3 dir_2, Segments segs, inout uint rng_3, in
     bool loop_init_9 = true;
     while(true) {
         if (!loop_init_9) {
-            uint _e60 = k_2;
-            k_2 = (_e60 + 1u);
+            uint _e60 = k_6;
+            k_6 = (_e60 + 1u);
         }
         loop_init_9 = false;
-        uint _e21 = k_2;
+        uint _e21 = k_6;
         if ((_e21 < segs.count)) {
         } else {
             break;
         }
         {
-            uint _e25 = k_2;
-            t_2 = segs.a[_e25];
+            uint _e25 = k_6;
+            t_3 = segs.a[_e25];
             while(true) {
-                float _e28 = t_2;
-                float _e29 = empty_cell_skip(origin_1, dir_2, _e28);
+                float _e28 = t_3;
+                float _e29 = empty_cell_skip(origin_3, dir_2, _e28);
                 if ((_e29 > 0.0)) {
-                    float _e32 = t_2;
-                    t_2 = (_e32 + _e29);
-                    float _e34 = t_2;
-                    uint _e36 = k_2;
+                    float _e32 = t_3;
+                    t_3 = (_e32 + _e29);
+                    float _e34 = t_3;
+                    uint _e36 = k_6;
                     if ((_e34 >= segs.b[_e36])) {
                         break;
                     }
                     continue;
                 }
-                float _e39 = t_2;
+                float _e39 = t_3;
                 float _e40 = rng_exponential(rng_3, majorant);
-                t_2 = (_e39 + _e40);
-                float _e42 = t_2;
-                uint _e44 = k_2;
+                t_3 = (_e39 + _e40);
+                float _e42 = t_3;
+                uint _e44 = k_6;
                 if ((_e42 >= segs.b[_e44])) {
                     break;
                 }
                 uint _e48 = counters_9.view_steps;
                 counters_9.view_steps = (_e48 + 1u);
-                float _e51 = t_2;
-                float _e54 = density_at((origin_1 + (dir_2 * _e51)), counters_9);
+                float _e51 = t_3;
+                float _e54 = density_at((origin_3 + (dir_2 * _e51)), counters_9);
                 float _e55 = rng_next(rng_3);
                 if (((_e55 * _e5) < _e54)) {
-                    float _e58 = t_2;
+                    float _e58 = t_3;
                     return _e58;
                 }
             }
@@ -1645,10 +1916,10 @@ float free_flight(vec3 origin_1, vec3 dir_2, Segments segs, inout uint rng_3, in
     return -1.0;
 }
 
-float transmittance_along(vec3 origin_2, vec3 dir_3, Segments segs_1, inout uint rng_4, inout Counters counters_10) {
+float transmittance_along(vec3 origin_4, vec3 dir_3, Segments segs_1, inout uint rng_4, inout Counters counters_10) {
     float tr = 1.0;
-    uint k_3 = 0u;
-    float t_3 = 0.0;
+    uint k_7 = 0u;
+    float t_4 = 0.0;
     float _e8 = _group_0_binding_0_cs.extinction.x;
     float _e12 = _group_0_binding_0_cs.extinction.y;
     float sigma_t_3 = (_e8 + _e12);
@@ -1660,43 +1931,43 @@ float transmittance_along(vec3 origin_2, vec3 dir_3, Segments segs_1, inout uint
     bool loop_init_10 = true;
     while(true) {
         if (!loop_init_10) {
-            uint _e78 = k_3;
-            k_3 = (_e78 + 1u);
+            uint _e78 = k_7;
+            k_7 = (_e78 + 1u);
         }
         loop_init_10 = false;
-        uint _e23 = k_3;
+        uint _e23 = k_7;
         if ((_e23 < segs_1.count)) {
         } else {
             break;
         }
         {
-            uint _e27 = k_3;
-            t_3 = segs_1.a[_e27];
+            uint _e27 = k_7;
+            t_4 = segs_1.a[_e27];
             while(true) {
-                float _e30 = t_3;
-                float _e31 = empty_cell_skip(origin_2, dir_3, _e30);
+                float _e30 = t_4;
+                float _e31 = empty_cell_skip(origin_4, dir_3, _e30);
                 if ((_e31 > 0.0)) {
-                    float _e34 = t_3;
-                    t_3 = (_e34 + _e31);
-                    float _e36 = t_3;
-                    uint _e38 = k_3;
+                    float _e34 = t_4;
+                    t_4 = (_e34 + _e31);
+                    float _e36 = t_4;
+                    uint _e38 = k_7;
                     if ((_e36 >= segs_1.b[_e38])) {
                         break;
                     }
                     continue;
                 }
-                float _e41 = t_3;
+                float _e41 = t_4;
                 float _e42 = rng_exponential(rng_4, majorant_1);
-                t_3 = (_e41 + _e42);
-                float _e44 = t_3;
-                uint _e46 = k_3;
+                t_4 = (_e41 + _e42);
+                float _e44 = t_4;
+                uint _e46 = k_7;
                 if ((_e44 >= segs_1.b[_e46])) {
                     break;
                 }
                 uint _e50 = counters_10.light;
                 counters_10.light = (_e50 + 1u);
-                float _e53 = t_3;
-                float _e56 = density_at((origin_2 + (dir_3 * _e53)), counters_10);
+                float _e53 = t_4;
+                float _e56 = density_at((origin_4 + (dir_3 * _e53)), counters_10);
                 float _e57 = tr;
                 tr = (_e57 * (1.0 - ((sigma_t_3 * _e56) / majorant_1)));
                 float _e63 = tr;
@@ -1719,33 +1990,33 @@ float transmittance_along(vec3 origin_2, vec3 dir_3, Segments segs_1, inout uint
     return _e80;
 }
 
-float sample_hg_cos(float g_3, float u) {
-    if ((abs(g_3) < 0.0001)) {
+float sample_hg_cos(float g_4, float u) {
+    if ((abs(g_4) < 0.0001)) {
         return (1.0 - (2.0 * u));
     }
-    float s_7 = ((1.0 - (g_3 * g_3)) / ((1.0 - g_3) + ((2.0 * g_3) * u)));
-    return clamp((((1.0 + (g_3 * g_3)) - (s_7 * s_7)) / (2.0 * g_3)), -1.0, 1.0);
+    float s_9 = ((1.0 - (g_4 * g_4)) / ((1.0 - g_4) + ((2.0 * g_4) * u)));
+    return clamp((((1.0 + (g_4 * g_4)) - (s_9 * s_9)) / (2.0 * g_4)), -1.0, 1.0);
 }
 
 PhaseSample sample_phase(vec3 dir_4, inout uint rng_5) {
-    float cos_theta_4 = 0.0;
+    float cos_theta_6 = 0.0;
     float pdf = 0.0;
     float _e2 = rng_next(rng_5);
     float _e3 = rng_next(rng_5);
     float _e5 = rng_next(rng_5);
-    float phi = (6.2831855 * _e5);
+    float phi_1 = (6.2831855 * _e5);
     uint _e14 = _group_0_binding_0_cs.modes.x;
     if ((_e14 == PHASE_TWO_LOBE_HG)) {
         float _e20 = _group_0_binding_0_cs.phase.x;
         float _e24 = _group_0_binding_0_cs.phase.y;
         float _e28 = _group_0_binding_0_cs.phase.z;
-        float g_5 = ((_e2 < _e28) ? _e24 : _e20);
-        float _e31 = sample_hg_cos(g_5, _e3);
-        cos_theta_4 = _e31;
-        float _e32 = cos_theta_4;
+        float g_6 = ((_e2 < _e28) ? _e24 : _e20);
+        float _e31 = sample_hg_cos(g_6, _e3);
+        cos_theta_6 = _e31;
+        float _e32 = cos_theta_6;
         float _e36 = _group_0_binding_0_cs.phase.x;
         float _e37 = phase_hg(_e32, _e36);
-        float _e38 = cos_theta_4;
+        float _e38 = cos_theta_6;
         float _e42 = _group_0_binding_0_cs.phase.y;
         float _e43 = phase_hg(_e38, _e42);
         float _e47 = _group_0_binding_0_cs.phase.z;
@@ -1753,39 +2024,40 @@ PhaseSample sample_phase(vec3 dir_4, inout uint rng_5) {
     } else {
         float _e52 = _group_0_binding_0_cs.phase.x;
         float _e53 = sample_hg_cos(_e52, _e3);
-        cos_theta_4 = _e53;
-        float _e54 = cos_theta_4;
+        cos_theta_6 = _e53;
+        float _e54 = cos_theta_6;
         float _e58 = _group_0_binding_0_cs.phase.x;
         float _e59 = phase_hg(_e54, _e58);
         pdf = _e59;
     }
-    float _e60 = cos_theta_4;
-    float _e61 = cos_theta_4;
+    float _e60 = cos_theta_6;
+    float _e61 = cos_theta_6;
     float sin_theta = sqrt(max((1.0 - (_e60 * _e61)), 0.0));
     float sign_ = ((dir_4.z >= 0.0) ? 1.0 : -1.0);
-    float a_5 = (-1.0 / (sign_ + dir_4.z));
-    float bb = ((dir_4.x * dir_4.y) * a_5);
-    vec3 t_5 = vec3((1.0 + (((sign_ * dir_4.x) * dir_4.x) * a_5)), (sign_ * bb), (-(sign_) * dir_4.x));
-    vec3 b_8 = vec3(bb, (sign_ + ((dir_4.y * dir_4.y) * a_5)), -(dir_4.y));
-    float _e109 = cos_theta_4;
-    vec3 w_2 = normalize((((t_5 * (sin_theta * cos(phi))) + (b_8 * (sin_theta * sin(phi)))) + (dir_4 * _e109)));
-    float _e113 = cos_theta_4;
+    float a_8 = (-1.0 / (sign_ + dir_4.z));
+    float bb = ((dir_4.x * dir_4.y) * a_8);
+    vec3 t_6 = vec3((1.0 + (((sign_ * dir_4.x) * dir_4.x) * a_8)), (sign_ * bb), (-(sign_) * dir_4.x));
+    vec3 b_9 = vec3(bb, (sign_ + ((dir_4.y * dir_4.y) * a_8)), -(dir_4.y));
+    float _e109 = cos_theta_6;
+    vec3 w_5 = normalize((((t_6 * (sin_theta * cos(phi_1))) + (b_9 * (sin_theta * sin(phi_1)))) + (dir_4 * _e109)));
+    float _e113 = cos_theta_6;
     float _e115 = phase(_e113, 1.0);
     float _e116 = pdf;
     float _e118 = pdf;
-    return PhaseSample(w_2, ((_e118 > 0.0) ? (_e115 / _e116) : 0.0));
+    return PhaseSample(w_5, ((_e118 > 0.0) ? (_e115 / _e116) : 0.0));
 }
 
 PathResult trace_path(vec3 view_2, Interval span_3, inout uint rng_6, inout Counters counters_11) {
     PathResult out_2 = PathResult(vec3(0.0), 1.0, -1.0);
-    bool local_44 = false;
-    bool local_45 = false;
+    bool local_47 = false;
+    bool local_48 = false;
+    bool local_49 = false;
     uint max_orders = MAX_PATH_ORDERS;
     vec3 pos = vec3(0.0);
     vec3 dir_5 = vec3(0.0);
     float throughput = 1.0;
     uint order = 0u;
-    bool local_46 = false;
+    bool local_50 = false;
     if ((span_3.kind != RAY_MARCH)) {
         PathResult _e13 = out_2;
         return _e13;
@@ -1802,7 +2074,7 @@ PathResult trace_path(vec3 view_2, Interval span_3, inout uint rng_6, inout Coun
     }
     out_2.depth = _e33;
     vec4 _e40 = _group_0_binding_0_cs.sun_direction;
-    vec3 sun_2 = _e40.xyz;
+    vec3 sun_3 = _e40.xyz;
     float _e45 = _group_0_binding_0_cs.extinction.x;
     float _e49 = _group_0_binding_0_cs.extinction.y;
     float sigma_t_4 = (_e45 + _e49);
@@ -1810,152 +2082,161 @@ PathResult trace_path(vec3 view_2, Interval span_3, inout uint rng_6, inout Coun
     float albedo = ((sigma_t_4 > 0.0) ? (_e54 / sigma_t_4) : 0.0);
     float _e63 = _group_0_binding_0_cs.ambient_bottom.w;
     if ((_e63 > 0.0)) {
-        vec4 _e70 = _group_0_binding_0_cs.ambient_bottom;
-        if (!(any(greaterThan(_e70.xyz, vec3(0.0))))) {
-            vec4 _e81 = _group_0_binding_0_cs.ambient_top;
-            local_45 = any(greaterThan(_e81.xyz, vec3(0.0)));
+        bool _e68 = physical_sky();
+        if (!(_e68)) {
+            vec4 _e74 = _group_0_binding_0_cs.ambient_bottom;
+            local_48 = any(greaterThan(_e74.xyz, vec3(0.0)));
         } else {
-            local_45 = true;
+            local_48 = true;
         }
-        bool _e88 = local_45;
-        local_44 = _e88;
+        bool _e81 = local_48;
+        if (!(_e81)) {
+            vec4 _e87 = _group_0_binding_0_cs.ambient_top;
+            local_49 = any(greaterThan(_e87.xyz, vec3(0.0)));
+        } else {
+            local_49 = true;
+        }
+        bool _e94 = local_49;
+        local_47 = _e94;
     } else {
-        local_44 = false;
+        local_47 = false;
     }
-    bool ambient_on = local_44;
-    uint _e96 = _group_0_binding_0_cs.misc.z;
-    if ((_e96 > 0u)) {
-        uint _e102 = _group_0_binding_0_cs.misc.z;
-        max_orders = min(_e102, MAX_PATH_ORDERS);
+    bool ambient_on = local_47;
+    uint _e102 = _group_0_binding_0_cs.misc.z;
+    if ((_e102 > 0u)) {
+        uint _e108 = _group_0_binding_0_cs.misc.z;
+        max_orders = min(_e108, MAX_PATH_ORDERS);
     }
     pos = (cam + (view_2 * _e33));
     dir_5 = view_2;
     while(true) {
-        float _e113 = throughput;
-        throughput = (_e113 * albedo);
-        uint _e115 = order;
-        order = (_e115 + 1u);
-        vec3 _e118 = pos;
-        float _e119 = altitude_of(_e118);
-        float _e120 = height_fraction(_e119);
-        vec3 _e121 = pos;
-        bool _e122 = hits_ground(_e121, _e119, sun_2);
-        if (!(_e122)) {
-            vec3 _e124 = pos;
-            vec3 _e125 = pos;
-            Segments _e126 = layer_segments(_e125, _e119, sun_2);
-            float _e127 = transmittance_along(_e124, sun_2, _e126, rng_6, counters_11);
-            vec3 _e129 = out_2.radiance;
-            vec4 _e132 = _group_0_binding_0_cs.sun_illuminance;
-            float _e134 = throughput;
-            vec3 _e135 = dir_5;
-            float _e138 = phase(dot(_e135, sun_2), 1.0);
-            out_2.radiance = (_e129 + (_e132.xyz * ((_e134 * _e138) * _e127)));
+        float _e119 = throughput;
+        throughput = (_e119 * albedo);
+        uint _e121 = order;
+        order = (_e121 + 1u);
+        vec3 _e124 = pos;
+        float _e125 = altitude_of(_e124);
+        float _e126 = height_fraction(_e125);
+        vec3 _e127 = pos;
+        bool _e128 = hits_ground(_e127, _e125, sun_3);
+        if (!(_e128)) {
+            vec3 _e130 = pos;
+            vec3 _e131 = pos;
+            Segments _e132 = layer_segments(_e131, _e125, sun_3);
+            float _e133 = transmittance_along(_e130, sun_3, _e132, rng_6, counters_11);
+            vec3 _e135 = out_2.radiance;
+            vec4 _e138 = _group_0_binding_0_cs.sun_illuminance;
+            vec3 _e140 = pos;
+            vec3 _e141 = sun_through_air(_e140);
+            float _e143 = throughput;
+            vec3 _e144 = dir_5;
+            float _e147 = phase(dot(_e144, sun_3), 1.0);
+            out_2.radiance = (_e135 + ((_e138.xyz * _e141) * ((_e143 * _e147) * _e133)));
         }
-        vec3 _e143 = dir_5;
-        PhaseSample _e144 = sample_phase(_e143, rng_6);
-        vec3 _e145 = pos;
-        vec3 _e147 = pos;
-        Segments _e149 = layer_segments(_e147, _e119, _e144.dir);
-        float _e150 = free_flight(_e145, _e144.dir, _e149, rng_6, counters_11);
-        if ((_e150 < 0.0)) {
+        vec3 _e152 = dir_5;
+        PhaseSample _e153 = sample_phase(_e152, rng_6);
+        vec3 _e154 = pos;
+        vec3 _e156 = pos;
+        Segments _e158 = layer_segments(_e156, _e125, _e153.dir);
+        float _e159 = free_flight(_e154, _e153.dir, _e158, rng_6, counters_11);
+        if ((_e159 < 0.0)) {
             if (ambient_on) {
-                vec3 _e154 = out_2.radiance;
-                vec3 _e155 = ambient(_e120);
-                float _e156 = throughput;
-                out_2.radiance = (_e154 + (_e155 * (_e156 * _e144.weight)));
+                vec3 _e163 = out_2.radiance;
+                vec3 _e164 = ambient(_e126);
+                float _e165 = throughput;
+                out_2.radiance = (_e163 + (_e164 * (_e165 * _e153.weight)));
             }
             break;
         }
-        uint _e161 = order;
-        uint _e162 = max_orders;
-        if ((_e161 >= _e162)) {
+        uint _e170 = order;
+        uint _e171 = max_orders;
+        if ((_e170 >= _e171)) {
             break;
         }
-        float _e164 = throughput;
-        throughput = (_e164 * _e144.weight);
-        dir_5 = _e144.dir;
-        uint _e168 = order;
-        if ((_e168 >= 3u)) {
-            float _e173 = throughput;
-            local_46 = (_e173 < 0.1);
+        float _e173 = throughput;
+        throughput = (_e173 * _e153.weight);
+        dir_5 = _e153.dir;
+        uint _e177 = order;
+        if ((_e177 >= 3u)) {
+            float _e182 = throughput;
+            local_50 = (_e182 < 0.1);
         } else {
-            local_46 = false;
+            local_50 = false;
         }
-        bool _e177 = local_46;
-        if (_e177) {
-            float _e178 = rng_next(rng_6);
-            float _e179 = throughput;
-            if ((_e178 >= (_e179 / 0.1))) {
+        bool _e186 = local_50;
+        if (_e186) {
+            float _e187 = rng_next(rng_6);
+            float _e188 = throughput;
+            if ((_e187 >= (_e188 / 0.1))) {
                 break;
             }
             throughput = 0.1;
         }
-        float _e184 = throughput;
-        if ((_e184 <= 0.0)) {
+        float _e193 = throughput;
+        if ((_e193 <= 0.0)) {
             break;
         }
-        vec3 _e187 = pos;
-        vec3 _e188 = dir_5;
-        pos = (_e187 + (_e188 * _e150));
+        vec3 _e196 = pos;
+        vec3 _e197 = dir_5;
+        pos = (_e196 + (_e197 * _e159));
     }
-    PathResult _e191 = out_2;
-    return _e191;
+    PathResult _e200 = out_2;
+    return _e200;
 }
 
 bool camera_still() {
-    bool local_47 = false;
-    bool local_48 = false;
-    bool local_49 = false;
+    bool local_51 = false;
+    bool local_52 = false;
+    bool local_53 = false;
     vec4 _e2 = _group_0_binding_0_cs.camera_position;
     vec4 _e5 = _group_0_binding_0_cs.previous_position;
     if (all(equal(_e2, _e5))) {
         vec4 _e12 = _group_0_binding_0_cs.camera_forward;
         vec4 _e15 = _group_0_binding_0_cs.previous_forward;
-        local_47 = all(equal(_e12, _e15));
+        local_51 = all(equal(_e12, _e15));
     } else {
-        local_47 = false;
+        local_51 = false;
     }
-    bool _e19 = local_47;
+    bool _e19 = local_51;
     if (_e19) {
         vec4 _e24 = _group_0_binding_0_cs.camera_right;
         vec4 _e28 = _group_0_binding_0_cs.previous_right;
-        local_48 = all(equal(_e24.xyz, _e28.xyz));
+        local_52 = all(equal(_e24.xyz, _e28.xyz));
     } else {
-        local_48 = false;
+        local_52 = false;
     }
-    bool _e33 = local_48;
+    bool _e33 = local_52;
     if (_e33) {
         vec4 _e38 = _group_0_binding_0_cs.camera_up;
         vec4 _e42 = _group_0_binding_0_cs.previous_up;
-        local_49 = all(equal(_e38.xyz, _e42.xyz));
+        local_53 = all(equal(_e38.xyz, _e42.xyz));
     } else {
-        local_49 = false;
+        local_53 = false;
     }
-    bool _e47 = local_49;
+    bool _e47 = local_53;
     return _e47;
 }
 
-float luminance(vec3 c_1) {
-    return dot(c_1, vec3(0.2126, 0.7152, 0.0722));
+float luminance(vec3 c_2) {
+    return dot(c_2, vec3(0.2126, 0.7152, 0.0722));
 }
 
-float basic_sun_depth(vec3 rel_3, float alt_14, inout Counters counters_12) {
-    float tau_3 = 0.0;
-    uint i_10 = 1u;
-    uint steps_2 = _group_0_binding_0_cs.counts.w;
-    if ((steps_2 == 0u)) {
+float basic_sun_depth(vec3 rel_4, float alt_14, inout Counters counters_12) {
+    float tau_6 = 0.0;
+    uint i_13 = 1u;
+    uint steps_3 = _group_0_binding_0_cs.counts.w;
+    if ((steps_3 == 0u)) {
         return 0.0;
     }
     vec4 _e12 = _group_0_binding_0_cs.sun_direction;
-    vec3 sun_3 = _e12.xyz;
+    vec3 sun_4 = _e12.xyz;
     float rp_4 = _group_0_binding_0_cs.atmosphere.x;
-    float top_1 = _group_0_binding_0_cs.atmosphere.z;
+    float top_2 = _group_0_binding_0_cs.atmosphere.z;
     float _e25 = _group_0_binding_0_cs.atmosphere.y;
-    float thickness = (top_1 - _e25);
-    Roots _e39 = solve_sphere(dot(sun_3, vec3(rel_3.x, (rel_3.y + rp_4), rel_3.z)), ((alt_14 - top_1) * ((alt_14 + top_1) + (2.0 * rp_4))));
+    float thickness = (top_2 - _e25);
+    Roots _e39 = solve_sphere(dot(sun_4, vec3(rel_4.x, (rel_4.y + rp_4), rel_4.z)), ((alt_14 - top_2) * ((alt_14 + top_2) + (2.0 * rp_4))));
     float length_ = min(max(_e39.t1_, 0.0), (3.0 * thickness));
-    float dt_2 = (length_ / float(steps_2));
+    float dt_2 = (length_ / float(steps_3));
     float _e51 = _group_0_binding_0_cs.extinction.x;
     float _e55 = _group_0_binding_0_cs.extinction.y;
     float sigma_t_5 = (_e51 + _e55);
@@ -1964,39 +2245,39 @@ float basic_sun_depth(vec3 rel_3, float alt_14, inout Counters counters_12) {
     bool loop_init_11 = true;
     while(true) {
         if (!loop_init_11) {
-            uint _e90 = i_10;
-            i_10 = (_e90 + 1u);
+            uint _e90 = i_13;
+            i_13 = (_e90 + 1u);
         }
         loop_init_11 = false;
-        uint _e65 = i_10;
-        if ((_e65 <= steps_2)) {
+        uint _e65 = i_13;
+        if ((_e65 <= steps_3)) {
         } else {
             break;
         }
         {
             uint _e68 = counters_12.light;
             counters_12.light = (_e68 + 1u);
-            uint _e71 = i_10;
-            vec3 q_7 = (rel_3 + (sun_3 * (float(_e71) * dt_2)));
-            vec3 p_17 = vec3((q_7.x + cam_xz_1.x), q_7.y, (q_7.z + cam_xz_1.y));
-            float _e84 = tau_3;
-            float _e85 = altitude_of(q_7);
+            uint _e71 = i_13;
+            vec3 q_8 = (rel_4 + (sun_4 * (float(_e71) * dt_2)));
+            vec3 p_17 = vec3((q_8.x + cam_xz_1.x), q_8.y, (q_8.z + cam_xz_1.y));
+            float _e84 = tau_6;
+            float _e85 = altitude_of(q_8);
             float _e86 = cloud_density(p_17, _e85, counters_12);
-            tau_3 = (_e84 + ((sigma_t_5 * _e86) * dt_2));
+            tau_6 = (_e84 + ((sigma_t_5 * _e86) * dt_2));
         }
     }
-    float _e93 = tau_3;
+    float _e93 = tau_6;
     return _e93;
 }
 
-MarchResult basic_pixel(uvec2 pixel_6) {
+MarchResult basic_pixel(uvec2 pixel_7) {
     Counters counters_13 = Counters(0u, 0u, 0u, 0u);
-    vec3 radiance = vec3(0.0);
+    vec3 radiance_2 = vec3(0.0);
     float transmittance = 1.0;
     float depth_sum = 0.0;
-    uint i_11 = 0u;
+    uint i_14 = 0u;
     float depth_3 = 0.0;
-    vec3 _e1 = view_ray(pixel_6);
+    vec3 _e1 = view_ray(pixel_7);
     float cam_alt_2 = _group_0_binding_0_cs.camera_position.y;
     vec4 _e8 = _group_0_binding_0_cs.camera_position;
     vec2 cam_xz_2 = _e8.xz;
@@ -2009,8 +2290,8 @@ MarchResult basic_pixel(uvec2 pixel_6) {
             count(STAT_EXIT_GROUND, 1u);
         } else {
             count(STAT_MARCHED, 1u);
-            uint steps_3 = _group_0_binding_0_cs.counts.z;
-            float dt_3 = (_e25.length_ / float(steps_3));
+            uint steps_4 = _group_0_binding_0_cs.counts.z;
+            float dt_3 = (_e25.length_ / float(steps_4));
             float sigma_s = _group_0_binding_0_cs.extinction.x;
             float _e52 = _group_0_binding_0_cs.extinction.y;
             float sigma_t_6 = (sigma_s + _e52);
@@ -2022,36 +2303,36 @@ MarchResult basic_pixel(uvec2 pixel_6) {
             bool loop_init_12 = true;
             while(true) {
                 if (!loop_init_12) {
-                    uint _e131 = i_11;
-                    i_11 = (_e131 + 1u);
+                    uint _e131 = i_14;
+                    i_14 = (_e131 + 1u);
                 }
                 loop_init_12 = false;
-                uint _e71 = i_11;
-                if ((_e71 < steps_3)) {
+                uint _e71 = i_14;
+                if ((_e71 < steps_4)) {
                 } else {
                     break;
                 }
                 {
                     uint _e74 = counters_13.view_steps;
                     counters_13.view_steps = (_e74 + 1u);
-                    uint _e78 = i_11;
-                    float t_6 = (_e25.start + (float(_e78) * dt_3));
-                    vec3 rel_6 = ((_e1 * t_6) + vec3(0.0, cam_alt_2, 0.0));
-                    vec3 p_18 = vec3((rel_6.x + cam_xz_2.x), rel_6.y, (rel_6.z + cam_xz_2.y));
-                    float _e95 = altitude_of(rel_6);
+                    uint _e78 = i_14;
+                    float t_7 = (_e25.start + (float(_e78) * dt_3));
+                    vec3 rel_7 = ((_e1 * t_7) + vec3(0.0, cam_alt_2, 0.0));
+                    vec3 p_18 = vec3((rel_7.x + cam_xz_2.x), rel_7.y, (rel_7.z + cam_xz_2.y));
+                    float _e95 = altitude_of(rel_7);
                     float _e96 = cloud_density(p_18, _e95, counters_13);
                     if ((_e96 <= 0.0)) {
                         continue;
                     }
-                    float _e99 = basic_sun_depth(rel_6, _e95, counters_13);
+                    float _e99 = basic_sun_depth(rel_7, _e95, counters_13);
                     float beer_powder = ((2.0 * exp(-(_e99))) * (1.0 - exp((-2.0 * _e99))));
-                    vec3 _e110 = radiance;
+                    vec3 _e110 = radiance_2;
                     float _e111 = transmittance;
-                    radiance = (_e110 + (sun_phase * ((((beer_powder * _e111) * sigma_s) * _e96) * dt_3)));
+                    radiance_2 = (_e110 + (sun_phase * ((((beer_powder * _e111) * sigma_s) * _e96) * dt_3)));
                     float step_t_1 = exp(((-(sigma_t_6) * _e96) * dt_3));
                     float _e122 = depth_sum;
                     float _e123 = transmittance;
-                    depth_sum = (_e122 + ((t_6 * _e123) * (1.0 - step_t_1)));
+                    depth_sum = (_e122 + ((t_7 * _e123) * (1.0 - step_t_1)));
                     float _e129 = transmittance;
                     transmittance = (_e129 * step_t_1);
                 }
@@ -2072,7 +2353,7 @@ MarchResult basic_pixel(uvec2 pixel_6) {
         float _e152 = transmittance;
         depth_3 = (_e151 / (1.0 - _e152));
     }
-    vec3 _e156 = radiance;
+    vec3 _e156 = radiance_2;
     float _e157 = transmittance;
     float _e158 = depth_3;
     return MarchResult(_e156, _e157, _e158);
@@ -2085,19 +2366,19 @@ float atlas_hash(uint a_2, uint b_2) {
 }
 
 float value_noise(vec2 p_10, uint seed) {
-    uvec2 i_13 = uvec2(floor(p_10));
-    vec2 f_3 = fract(p_10);
-    vec2 s_8 = ((f_3 * f_3) * (vec2(3.0) - (2.0 * f_3)));
-    uint h_6 = (seed * 7919u);
-    float _e17 = atlas_hash((i_13.x + h_6), i_13.y);
-    float _e23 = atlas_hash(((i_13.x + 1u) + h_6), i_13.y);
-    float _e29 = atlas_hash((i_13.x + h_6), (i_13.y + 1u));
-    float _e37 = atlas_hash(((i_13.x + 1u) + h_6), (i_13.y + 1u));
-    return mix(mix(_e17, _e23, s_8.x), mix(_e29, _e37, s_8.x), s_8.y);
+    uvec2 i_16 = uvec2(floor(p_10));
+    vec2 f_4 = fract(p_10);
+    vec2 s_10 = ((f_4 * f_4) * (vec2(3.0) - (2.0 * f_4)));
+    uint h_10 = (seed * 7919u);
+    float _e17 = atlas_hash((i_16.x + h_10), i_16.y);
+    float _e23 = atlas_hash(((i_16.x + 1u) + h_10), i_16.y);
+    float _e29 = atlas_hash((i_16.x + h_10), (i_16.y + 1u));
+    float _e37 = atlas_hash(((i_16.x + 1u) + h_10), (i_16.y + 1u));
+    return mix(mix(_e17, _e23, s_10.x), mix(_e29, _e37, s_10.x), s_10.y);
 }
 
 float value_fbm(vec2 p_11, uint seed_1) {
-    float sum_1 = 0.0;
+    float sum_3 = 0.0;
     float weight = 0.5;
     vec2 q_4 = vec2(0.0);
     uint o = 0u;
@@ -2115,33 +2396,33 @@ float value_fbm(vec2 p_11, uint seed_1) {
             break;
         }
         {
-            float _e12 = sum_1;
+            float _e12 = sum_3;
             float _e13 = weight;
             vec2 _e14 = q_4;
             uint _e15 = o;
             float _e17 = value_noise(_e14, (seed_1 + _e15));
-            sum_1 = (_e12 + (_e13 * _e17));
+            sum_3 = (_e12 + (_e13 * _e17));
             vec2 _e20 = q_4;
             q_4 = (_e20 * 2.0);
             float _e23 = weight;
             weight = (_e23 * 0.5);
         }
     }
-    float _e29 = sum_1;
+    float _e29 = sum_3;
     return (_e29 / 0.9375);
 }
 
 float sprite_texture(uint tile_1, vec2 uv) {
     float billow = 0.0;
-    uint i_12 = 0u;
+    uint i_15 = 0u;
     vec2 at = vec2(0.0);
     float a_3 = 0.0;
-    vec2 c_8 = (uv - vec2(0.5));
-    float mask = smoothstep(0.48, 0.36, length(c_8));
+    vec2 c_9 = (uv - vec2(0.5));
+    float mask = smoothstep(0.48, 0.36, length(c_9));
     float _e16 = value_fbm(((uv * 6.0) + vec2((float(tile_1) * 13.0))), tile_1);
     if ((tile_1 < 4u)) {
-        vec2 q_8 = (c_8 * vec2(1.0, 3.2));
-        float streak = (1.0 - smoothstep(0.05, 0.45, length(q_8)));
+        vec2 q_9 = (c_9 * vec2(1.0, 3.2));
+        float streak = (1.0 - smoothstep(0.05, 0.45, length(q_9)));
         float _e40 = value_fbm(((uv * vec2(3.0, 12.0)) + vec2((float(tile_1) * 5.0))), (tile_1 + 16u));
         float _e46 = saturate(((_e40 * 1.6) - 0.3));
         return (((mask * streak) * _e46) * 0.8);
@@ -2150,32 +2431,32 @@ float sprite_texture(uint tile_1, vec2 uv) {
     bool loop_init_14 = true;
     while(true) {
         if (!loop_init_14) {
-            uint _e108 = i_12;
-            i_12 = (_e108 + 1u);
+            uint _e108 = i_15;
+            i_15 = (_e108 + 1u);
         }
         loop_init_14 = false;
-        uint _e58 = i_12;
+        uint _e58 = i_15;
         if ((_e58 < blobs)) {
         } else {
             break;
         }
         {
-            uint _e61 = i_12;
+            uint _e61 = i_15;
             float _e63 = atlas_hash(tile_1, (2u * _e61));
-            uint _e65 = i_12;
+            uint _e65 = i_15;
             float _e69 = atlas_hash(tile_1, ((2u * _e65) + 1u));
             vec2 centre_1 = (vec2(_e63, _e69) - vec2(0.5));
             at = (vec2(0.5) + (centre_1 * 0.34));
             if ((tile_1 == 4u)) {
                 at.y = (0.5 + ((centre_1.y - 0.5) * 0.24));
             }
-            uint _e91 = i_12;
+            uint _e91 = i_15;
             float _e93 = atlas_hash(tile_1, (100u + _e91));
-            float r_3 = (0.14 + (0.1 * _e93));
+            float r_16 = (0.14 + (0.1 * _e93));
             vec2 _e98 = at;
-            float d_12 = (length((uv - _e98)) / r_3);
+            float d_16 = (length((uv - _e98)) / r_16);
             float _e102 = billow;
-            float _e106 = saturate((1.0 - (d_12 * d_12)));
+            float _e106 = saturate((1.0 - (d_16 * d_16)));
             billow = max(_e102, _e106);
         }
     }
@@ -2193,29 +2474,29 @@ float sprite_texture(uint tile_1, vec2 uv) {
 vec3 sprite_rel(vec2 xz, float alt_15) {
     float rp_5 = _group_0_binding_0_cs.atmosphere.x;
     vec4 _e8 = _group_0_binding_0_cs.camera_position;
-    vec2 d_13 = (xz - _e8.xz);
-    float k_9 = ((alt_15 * (alt_15 + (2.0 * rp_5))) - dot(d_13, d_13));
-    float y_2 = (k_9 / (rp_5 + sqrt(max(((rp_5 * rp_5) + k_9), 0.0))));
-    return vec3(d_13.x, y_2, d_13.y);
+    vec2 d_17 = (xz - _e8.xz);
+    float k_13 = ((alt_15 * (alt_15 + (2.0 * rp_5))) - dot(d_17, d_17));
+    float y_2 = (k_13 / (rp_5 + sqrt(max(((rp_5 * rp_5) + k_13), 0.0))));
+    return vec3(d_17.x, y_2, d_17.y);
 }
 
 SpriteCell sprite_cell(uint cell) {
     ivec2 start_1 = ivec2(0);
-    uint k_4 = 3u;
-    bool local_50 = false;
-    bool local_51 = false;
+    uint k_8 = 3u;
+    bool local_54 = false;
+    bool local_55 = false;
     uint level_1 = (cell / 64u);
-    ivec2 local_53 = ivec2(int((cell % 8u)), int(((cell / 8u) % 8u)));
+    ivec2 local_57 = ivec2(int((cell % 8u)), int(((cell / 8u) % 8u)));
     vec4 _e15 = _group_0_binding_0_cs.camera_position;
     start_1 = (ivec2(floor((_e15.xz / vec2(12000.0)))) - ivec2(4));
     bool loop_init_15 = true;
     while(true) {
         if (!loop_init_15) {
-            uint _e35 = k_4;
-            k_4 = (_e35 - 1u);
+            uint _e35 = k_8;
+            k_8 = (_e35 - 1u);
         }
         loop_init_15 = false;
-        uint _e27 = k_4;
+        uint _e27 = k_8;
         if ((_e27 > level_1)) {
         } else {
             break;
@@ -2226,26 +2507,26 @@ SpriteCell sprite_cell(uint cell) {
         }
     }
     if ((level_1 > 0u)) {
-        local_50 = all(greaterThanEqual(local_53, ivec2(2)));
+        local_54 = all(greaterThanEqual(local_57, ivec2(2)));
     } else {
-        local_50 = false;
+        local_54 = false;
     }
-    bool _e47 = local_50;
+    bool _e47 = local_54;
     if (_e47) {
-        local_51 = all(lessThan(local_53, ivec2(6)));
+        local_55 = all(lessThan(local_57, ivec2(6)));
     } else {
-        local_51 = false;
+        local_55 = false;
     }
-    bool covered = local_51;
+    bool covered = local_55;
     ivec2 _e56 = start_1;
-    return SpriteCell((_e56 + local_53), (SPRITE_CELL0_ * float((1u << level_1))), covered);
+    return SpriteCell((_e56 + local_57), (SPRITE_CELL0_ * float((1u << level_1))), covered);
 }
 
-SpriteCandidate sprite_candidate(SpriteCell c_2, uint level, uint s_1, inout Counters counters_14) {
+SpriteCandidate sprite_candidate(SpriteCell c_3, uint level, uint s_1, inout Counters counters_14) {
     float density_2 = 0.0;
     uint _e10 = pcg(level);
-    uint _e12 = pcg((uint(c_2.index.y) ^ _e10));
-    uint _e14 = pcg((uint(c_2.index.x) ^ _e12));
+    uint _e12 = pcg((uint(c_3.index.y) ^ _e10));
+    uint _e14 = pcg((uint(c_3.index.x) ^ _e12));
     float _e17 = atlas_hash(_e14, (8u * s_1));
     float _e22 = atlas_hash(_e14, ((8u * s_1) + 1u));
     float _e27 = atlas_hash(_e14, ((8u * s_1) + 2u));
@@ -2253,37 +2534,37 @@ SpriteCandidate sprite_candidate(SpriteCell c_2, uint level, uint s_1, inout Cou
     vec4 u_1 = vec4(_e17, _e22, _e27, _e32);
     float _e38 = atlas_hash(_e14, ((8u * s_1) + 4u));
     float _e43 = atlas_hash(_e14, ((8u * s_1) + 5u));
-    vec2 v_2 = vec2(_e38, _e43);
-    vec2 xz_1 = ((vec2(c_2.index) + u_1.xy) * c_2.size);
+    vec2 v_3 = vec2(_e38, _e43);
+    vec2 xz_1 = ((vec2(c_3.index) + u_1.xy) * c_3.size);
     Layer _e56 = cloud_layer(0u);
     Weather _e57 = sample_weather(vec3(xz_1.x, 0.0, xz_1.y), _e56);
-    float h_7 = (0.04 + (u_1.z * (mix(0.3, 0.95, _e57.cloud_type) - 0.04)));
+    float h_11 = (0.04 + (u_1.z * (mix(0.3, 0.95, _e57.cloud_type) - 0.04)));
     float _e71 = _group_0_binding_0_cs.atmosphere.y;
     float _e75 = _group_0_binding_0_cs.atmosphere.z;
     float _e79 = _group_0_binding_0_cs.atmosphere.y;
-    float alt_17 = (_e71 + (h_7 * (_e75 - _e79)));
-    if (!(c_2.covered)) {
+    float alt_17 = (_e71 + (h_11 * (_e75 - _e79)));
+    if (!(c_3.covered)) {
         vec3 _e87 = sprite_rel(xz_1, alt_17);
         float _e92 = cloud_density(vec3(xz_1.x, _e87.y, xz_1.y), alt_17, counters_14);
         density_2 = _e92;
     }
     float _e96 = density_2;
-    return SpriteCandidate(xz_1, alt_17, h_7, u_1.w, v_2.x, v_2.y, _e96, _e57.precipitation);
+    return SpriteCandidate(xz_1, alt_17, h_11, u_1.w, v_3.x, v_3.y, _e96, _e57.precipitation);
 }
 
-vec3 sprite_sky_level(float h_5) {
-    float _e1 = saturate(h_5);
-    float x_5 = (_e1 * 4.0);
-    if ((x_5 < 1.0)) {
-        return mix(SKY_LEVEL0_, SKY_LEVEL1_, x_5);
+vec3 sprite_sky_level(float h_6) {
+    float _e1 = saturate(h_6);
+    float x_7 = (_e1 * 4.0);
+    if ((x_7 < 1.0)) {
+        return mix(SKY_LEVEL0_, SKY_LEVEL1_, x_7);
     }
-    if ((x_5 < 2.0)) {
-        return mix(SKY_LEVEL1_, SKY_LEVEL2_, (x_5 - 1.0));
+    if ((x_7 < 2.0)) {
+        return mix(SKY_LEVEL1_, SKY_LEVEL2_, (x_7 - 1.0));
     }
-    if ((x_5 < 3.0)) {
-        return mix(SKY_LEVEL2_, SKY_LEVEL3_, (x_5 - 2.0));
+    if ((x_7 < 3.0)) {
+        return mix(SKY_LEVEL2_, SKY_LEVEL3_, (x_7 - 2.0));
     }
-    return mix(SKY_LEVEL3_, SKY_LEVEL4_, (x_5 - 3.0));
+    return mix(SKY_LEVEL3_, SKY_LEVEL4_, (x_7 - 3.0));
 }
 
 float sprite_sun_level(float cos_angle) {
@@ -2293,67 +2574,67 @@ float sprite_sun_level(float cos_angle) {
     return mix(SPRITE_C_MED, SPRITE_C_MAX, cos_angle);
 }
 
-vec2 sprite_corner(uint k_5) {
-    bool local_52 = false;
-    uint q_9 = ((k_5 >= 3u) ? ((k_5 == 3u) ? 0u : (k_5 - 2u)) : k_5);
-    if (!((q_9 == 1u))) {
-        local_52 = (q_9 == 2u);
+vec2 sprite_corner(uint k_9) {
+    bool local_56 = false;
+    uint q_10 = ((k_9 >= 3u) ? ((k_9 == 3u) ? 0u : (k_9 - 2u)) : k_9);
+    if (!((q_10 == 1u))) {
+        local_56 = (q_10 == 2u);
     } else {
-        local_52 = true;
+        local_56 = true;
     }
-    bool _e18 = local_52;
-    return vec2((_e18 ? 1.0 : -1.0), ((q_9 >= 2u) ? 1.0 : -1.0));
+    bool _e18 = local_56;
+    return vec2((_e18 ? 1.0 : -1.0), ((q_10 >= 2u) ? 1.0 : -1.0));
 }
 
-vec3 sky_radiance(vec3 d_9, float alt_16) {
+vec3 sky_radiance(vec3 d_12, float alt_16) {
     vec4 _e4 = _group_0_binding_0_cs.sun_direction;
-    vec3 sun_4 = _e4.xyz;
+    vec3 sun_5 = _e4.xyz;
     vec4 _e8 = _group_0_binding_0_cs.sun_illuminance;
     vec3 e = _e8.xyz;
-    float _e15 = saturate(((sun_4.y * 4.0) + 0.3));
-    bool _e19 = hits_ground(vec3(0.0, alt_16, 0.0), alt_16, d_9);
+    float _e15 = saturate(((sun_5.y * 4.0) + 0.3));
+    bool _e19 = hits_ground(vec3(0.0, alt_16, 0.0), alt_16, d_12);
     if (_e19) {
         vec3 ground_albedo = vec3(0.035, 0.035, 0.03);
-        return (ground_albedo * (((e * max(sun_4.y, 0.0)) / vec3(3.1415927)) + ((0.05 * e) * _e15)));
+        return (ground_albedo * (((e * max(sun_5.y, 0.0)) / vec3(3.1415927)) + ((0.05 * e) * _e15)));
     }
     vec3 zenith = vec3(0.018, 0.04, 0.1);
-    vec3 horizon = vec3(0.07, 0.085, 0.11);
-    float _e45 = saturate(d_9.y);
-    vec3 gradient_1 = mix(horizon, zenith, sqrt(_e45));
+    vec3 horizon_2 = vec3(0.07, 0.085, 0.11);
+    float _e45 = saturate(d_12.y);
+    vec3 gradient_1 = mix(horizon_2, zenith, sqrt(_e45));
     vec3 sunset = (((1.0 - (_e15 * 0.8)) * pow((1.0 - _e45), 6.0)) * vec3(0.25, 0.1, 0.0));
-    float _e64 = phase_hg(dot(d_9, sun_4), 0.76);
+    float _e64 = phase_hg(dot(d_12, sun_5), 0.76);
     float glow = (_e64 * 0.02);
-    float _e73 = saturate(((sun_4.y * 10.0) + 1.0));
+    float _e73 = saturate(((sun_5.y * 10.0) + 1.0));
     return (e * (((gradient_1 * _e15) + (sunset * _e73)) + vec3((glow * _e15))));
 }
 
-vec3 sun_disk(vec3 d_10) {
+vec3 sun_disk(vec3 d_13) {
     float cos_r = _group_0_binding_0_cs.sun_direction.w;
     vec4 _e7 = _group_0_binding_0_cs.sun_direction;
-    if ((dot(d_10, _e7.xyz) < cos_r)) {
+    if ((dot(d_13, _e7.xyz) < cos_r)) {
         return vec3(0.0);
     }
     vec4 _e15 = _group_0_binding_0_cs.sun_illuminance;
     return (_e15.xyz / vec3((6.2831855 * max((1.0 - cos_r), 1e-6))));
 }
 
-vec3 aces_fitted(vec3 x_3) {
-    return clamp(((x_3 * ((2.51 * x_3) + vec3(0.03))) / ((x_3 * ((2.43 * x_3) + vec3(0.59))) + vec3(0.14))), vec3(0.0), vec3(1.0));
+vec3 aces_fitted(vec3 x_5) {
+    return clamp(((x_5 * ((2.51 * x_5) + vec3(0.03))) / ((x_5 * ((2.43 * x_5) + vec3(0.59))) + vec3(0.14))), vec3(0.0), vec3(1.0));
 }
 
 void main() {
-    uvec3 id_5 = gl_GlobalInvocationID;
+    uvec3 id_10 = gl_GlobalInvocationID;
     Counters counters = Counters(0u, 0u, 0u, 0u);
     uint rng = 0u;
     vec4 mean = vec4(0.0);
     vec4 moments = vec4(0.0);
-    bool local_8 = false;
+    bool local_10 = false;
     uvec4 _e4 = _group_0_binding_0_cs.counts;
-    if (any(greaterThanEqual(id_5.xy, _e4.xy))) {
+    if (any(greaterThanEqual(id_10.xy, _e4.xy))) {
         return;
     }
-    uvec2 pixel_7 = id_5.xy;
-    vec3 _e9 = view_ray(pixel_7);
+    uvec2 pixel_10 = id_10.xy;
+    vec3 _e9 = view_ray(pixel_10);
     float _e13 = _group_0_binding_0_cs.camera_position.y;
     Interval _e14 = cloud_interval(_e13, _e9);
     count(STAT_PIXELS, 1u);
@@ -2361,32 +2642,32 @@ void main() {
     count(STAT_EXIT_MISSED, uint((_e14.kind == RAY_MISSES_LAYER)));
     count(STAT_EXIT_GROUND, uint((_e14.kind == RAY_HITS_GROUND)));
     uint _e41 = _group_0_binding_0_cs.misc.y;
-    uint _e42 = rng_seed(pixel_7, _e41);
+    uint _e42 = rng_seed(pixel_10, _e41);
     rng = _e42;
     PathResult _e44 = trace_path(_e9, _e14, rng, counters);
     float _e46 = luminance(_e44.radiance);
     uint _e56 = _group_0_binding_0_cs.temporal.y;
     if ((_e56 == 1u)) {
         bool _e61 = camera_still();
-        local_8 = _e61;
+        local_10 = _e61;
     } else {
-        local_8 = false;
+        local_10 = false;
     }
-    bool _e63 = local_8;
+    bool _e63 = local_10;
     if (_e63) {
-        vec4 _e66 = texelFetch(_group_0_binding_13_cs, ivec2(pixel_7), 0);
+        vec4 _e66 = texelFetch(_group_0_binding_13_cs, ivec2(pixel_10), 0);
         mean = _e66;
-        vec4 _e69 = texelFetch(_group_0_binding_14_cs, ivec2(pixel_7), 0);
+        vec4 _e69 = texelFetch(_group_0_binding_14_cs, ivec2(pixel_10), 0);
         moments = _e69;
     }
     float _e71 = moments.y;
-    float n_3 = (_e71 + 1.0);
+    float n_4 = (_e71 + 1.0);
     vec4 _e74 = mean;
     vec4 _e78 = mean;
-    mean = (_e74 + ((vec4(_e44.radiance, _e44.transmittance) - _e78) / vec4(n_3)));
+    mean = (_e74 + ((vec4(_e44.radiance, _e44.transmittance) - _e78) / vec4(n_4)));
     float _e84 = moments.z;
     float _e87 = moments.z;
-    moments.z = (_e84 + (((_e46 * _e46) - _e87) / n_3));
+    moments.z = (_e84 + (((_e46 * _e46) - _e87) / n_4));
     if ((_e44.depth >= 0.0)) {
         float _e95 = moments.w;
         moments.w = (_e95 + 1.0);
@@ -2395,15 +2676,15 @@ void main() {
         float _e105 = moments.w;
         moments.x = (_e99 + ((_e44.depth - _e102) / _e105));
     }
-    moments.y = n_3;
+    moments.y = n_4;
     vec4 _e110 = mean;
-    imageStore(_group_0_binding_17_cs, ivec2(pixel_7), _e110);
+    imageStore(_group_0_binding_17_cs, ivec2(pixel_10), _e110);
     vec4 _e112 = moments;
-    imageStore(_group_0_binding_18_cs, ivec2(pixel_7), _e112);
+    imageStore(_group_0_binding_18_cs, ivec2(pixel_10), _e112);
     vec4 _e114 = mean;
-    imageStore(_group_0_binding_6_cs, ivec2(pixel_7), _e114);
+    imageStore(_group_0_binding_6_cs, ivec2(pixel_10), _e114);
     float _e117 = moments.x;
-    imageStore(_group_0_binding_7_cs, ivec2(pixel_7), vec4(_e117, 0.0, 0.0, 0.0));
+    imageStore(_group_0_binding_7_cs, ivec2(pixel_10), vec4(_e117, 0.0, 0.0, 0.0));
     uint _e124 = counters.view_steps;
     count(STAT_VIEW_STEPS, _e124);
     uint _e127 = counters.density;

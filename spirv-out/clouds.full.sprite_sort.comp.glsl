@@ -35,6 +35,10 @@ struct Frame {
     vec4 layer2_weather;
     vec4 layer3_;
     vec4 layer3_weather;
+    vec4 air_rayleigh;
+    vec4 air_mie;
+    vec4 air_ozone;
+    vec4 air_misc;
 };
 struct Roots {
     float t0_;
@@ -54,6 +58,15 @@ struct Layer {
     float cloud_type;
     float precipitation;
     vec2 weather_offset;
+};
+struct AirSample {
+    vec3 rayleigh;
+    float mie;
+    vec3 extinction;
+};
+struct Scattered {
+    vec3 radiance;
+    vec3 transmittance;
 };
 struct Counters {
     uint view_steps;
@@ -131,12 +144,25 @@ const uint FLAG_JITTER = 2u;
 const uint FLAG_DYNAMIC_STEP = 4u;
 const uint FLAG_CHECKERBOARD = 8u;
 const uint FLAG_EMPTY_SKIP = 16u;
+const uint FLAG_PHYSICAL_SKY = 32u;
 const float PI = 3.1415927;
 const uint MAX_VIEW_STEPS = 1024u;
 const uint RAY_MARCH = 0u;
 const uint RAY_MISSES_LAYER = 1u;
 const uint RAY_HITS_GROUND = 2u;
 const uint MAX_LAYERS = 4u;
+const uvec2 TRANSMITTANCE_SIZE = uvec2(256u, 64u);
+const uvec2 MULTISCATTER_SIZE = uvec2(32u, 32u);
+const uvec2 SKY_VIEW_SIZE = uvec2(192u, 108u);
+const uint AERIAL_SLICES = 32u;
+const uint AERIAL_SIDE = 32u;
+const float AERIAL_SLICE_KM = 1.0;
+const uint TRANSMITTANCE_STEPS = 128u;
+const uint MULTISCATTER_DIRECTIONS = 64u;
+const uint MULTISCATTER_STEPS = 32u;
+const uint SKY_VIEW_STEPS = 48u;
+const uint AMBIENT_DIRECTIONS = 64u;
+const uint AMBIENT_STEPS = 24u;
 const uint NO_LAYER = 4u;
 const uint OCCUPANCY_CELLS = 64u;
 const uint STAT_PIXELS = 0u;
@@ -220,80 +246,137 @@ Roots solve_sphere(float b, float c) {
     return Roots(min(r0_1, r1_1), max(r0_1, r1_1), true);
 }
 
-Layer layer_from(vec4 g, vec4 w) {
-    return Layer(g.x, g.y, g.z, g.w, w.x, w.y, w.zw);
+Layer layer_from(vec4 g, vec4 w_1) {
+    return Layer(g.x, g.y, g.z, g.w, w_1.x, w_1.y, w_1.zw);
+}
+
+float sphere_discriminant(float r_2, float mu, float radius) {
+    return (((radius - r_2) * (radius + r_2)) + (((r_2 * r_2) * mu) * mu));
+}
+
+float radius_after(float r_6, float mu_4, float t) {
+    return sqrt(max((((r_6 * r_6) + (t * t)) + (((2.0 * r_6) * mu_4) * t)), 0.0));
+}
+
+vec4 lut_bilinear(sampler2D lut, vec2 x_3, uvec2 size) {
+    vec2 last = vec2((size - uvec2(1u)));
+    vec2 f_1 = (clamp(x_3, vec2(0.0), vec2(1.0)) * last);
+    uvec2 i0_ = min(uvec2(floor(f_1)), (size - uvec2(1u)));
+    uvec2 i1_ = min((i0_ + uvec2(1u)), (size - uvec2(1u)));
+    vec2 w_3 = (f_1 - vec2(i0_));
+    vec4 _e32 = texelFetch(lut, ivec2(uvec2(i0_.x, i0_.y)), 0);
+    vec4 _e37 = texelFetch(lut, ivec2(uvec2(i1_.x, i0_.y)), 0);
+    vec4 a_4 = mix(_e32, _e37, w_3.x);
+    vec4 _e44 = texelFetch(lut, ivec2(uvec2(i0_.x, i1_.y)), 0);
+    vec4 _e49 = texelFetch(lut, ivec2(uvec2(i1_.x, i1_.y)), 0);
+    vec4 b_3 = mix(_e44, _e49, w_3.x);
+    return mix(a_4, b_3, w_3.y);
+}
+
+float phase_rayleigh(float cos_theta) {
+    return (0.059683103 * (1.0 + (cos_theta * cos_theta)));
+}
+
+float phase_cornette_shanks_air(float cos_theta_1, float g_1) {
+    float g2_ = (g_1 * g_1);
+    return (((0.119366206 * (1.0 - g2_)) * (1.0 + (cos_theta_1 * cos_theta_1))) / ((2.0 + g2_) * pow(max(((1.0 + g2_) - ((2.0 * g_1) * cos_theta_1)), 1e-6), 1.5)));
+}
+
+vec3 fibonacci_direction(uint k_3, uint n_1) {
+    float z_2 = (1.0 - (((2.0 * float(k_3)) + 1.0) / float(n_1)));
+    float s_3 = sqrt(max((1.0 - (z_2 * z_2)), 0.0));
+    float phi = (2.3999634 * float(k_3));
+    return vec3((s_3 * cos(phi)), z_2, (s_3 * sin(phi)));
+}
+
+float sky_view_elevation(float v_1, float horizon) {
+    if ((v_1 >= 0.5)) {
+        float a_5 = ((2.0 * v_1) - 1.0);
+        return (horizon + (((1.5707964 - horizon) * a_5) * a_5));
+    }
+    float a_6 = (1.0 - (2.0 * v_1));
+    return (horizon - (((horizon + 1.5707964) * a_6) * a_6));
+}
+
+float sky_view_v(float elevation, float horizon_1) {
+    if ((elevation >= horizon_1)) {
+        float _e7 = saturate(((elevation - horizon_1) / (1.5707964 - horizon_1)));
+        return (0.5 + (0.5 * sqrt(_e7)));
+    }
+    float _e17 = saturate(((horizon_1 - elevation) / (horizon_1 + 1.5707964)));
+    return (0.5 - (0.5 * sqrt(_e17)));
 }
 
 float layer_height(Layer l_1, float alt_7) {
     return ((alt_7 - l_1.bottom) / (l_1.top - l_1.bottom));
 }
 
-float height_parabola(float h, float cloud_type) {
+float height_parabola(float h_1, float cloud_type) {
     float height = mix(0.35, 1.0, cloud_type);
-    float _e11 = saturate(((h * (h - height)) * (-4.0 / (height * height))));
+    float _e11 = saturate(((h_1 * (h_1 - height)) * (-4.0 / (height * height))));
     return _e11;
 }
 
-float gradient(float h_1, float r0_, float r1_, float f0_, float f1_) {
-    return (smoothstep(r0_, r1_, h_1) * (1.0 - smoothstep(f0_, f1_, h_1)));
+float gradient(float h_2, float r0_, float r1_, float f0_, float f1_) {
+    return (smoothstep(r0_, r1_, h_2) * (1.0 - smoothstep(f0_, f1_, h_2)));
 }
 
-float height_cloud_types(float h_2, float cloud_type_1) {
-    float _e6 = gradient(h_2, 0.0, 0.08, 0.15, 0.25);
-    float _e11 = gradient(h_2, 0.0, 0.2, 0.4, 0.65);
-    float _e16 = gradient(h_2, 0.0, 0.1, 0.6, 0.95);
+float height_cloud_types(float h_3, float cloud_type_1) {
+    float _e6 = gradient(h_3, 0.0, 0.08, 0.15, 0.25);
+    float _e11 = gradient(h_3, 0.0, 0.2, 0.4, 0.65);
+    float _e16 = gradient(h_3, 0.0, 0.1, 0.6, 0.95);
     float _e19 = saturate((cloud_type_1 * 2.0));
     float lo = mix(_e6, _e11, _e19);
     float _e25 = saturate(((cloud_type_1 * 2.0) - 1.0));
     return mix(lo, _e16, _e25);
 }
 
-float phase_hg(float cos_theta, float g_1) {
-    float g2_ = (g_1 * g_1);
-    float denom = max(((1.0 + g2_) - ((2.0 * g_1) * cos_theta)), 1e-6);
-    return ((1.0 - g2_) / ((12.566371 * denom) * sqrt(denom)));
-}
-
-float phase_cornette_shanks(float cos_theta_1, float g_2) {
+float phase_hg(float cos_theta_2, float g_2) {
     float g2_1 = (g_2 * g_2);
-    float denom_1 = max(((1.0 + g2_1) - ((2.0 * g_2) * cos_theta_1)), 1e-6);
-    return (((3.0 * (1.0 - g2_1)) * (1.0 + (cos_theta_1 * cos_theta_1))) / (((25.132742 * (2.0 + g2_1)) * denom_1) * sqrt(denom_1)));
+    float denom = max(((1.0 + g2_1) - ((2.0 * g_2) * cos_theta_2)), 1e-6);
+    return ((1.0 - g2_1) / ((12.566371 * denom) * sqrt(denom)));
 }
 
-uvec2 bayer2_(uint v_1) {
-    return uvec2(((v_1 ^ (v_1 >> 1u)) & 1u), (v_1 & 1u));
+float phase_cornette_shanks(float cos_theta_3, float g_3) {
+    float g2_2 = (g_3 * g_3);
+    float denom_1 = max(((1.0 + g2_2) - ((2.0 * g_3) * cos_theta_3)), 1e-6);
+    return (((3.0 * (1.0 - g2_2)) * (1.0 + (cos_theta_3 * cos_theta_3))) / (((25.132742 * (2.0 + g2_2)) * denom_1) * sqrt(denom_1)));
 }
 
-uvec2 block_offset(uint f, uint k_1) {
-    if ((k_1 == 2u)) {
+uvec2 bayer2_(uint v_2) {
+    return uvec2(((v_2 ^ (v_2 >> 1u)) & 1u), (v_2 & 1u));
+}
+
+uvec2 block_offset(uint f, uint k_5) {
+    if ((k_5 == 2u)) {
         uvec2 _e6 = bayer2_((f % 4u));
         return _e6;
     }
-    if ((k_1 == 4u)) {
-        uint b_3 = (f % 16u);
-        uvec2 _e13 = bayer2_((b_3 >> 2u));
-        uvec2 _e17 = bayer2_((b_3 & 3u));
+    if ((k_5 == 4u)) {
+        uint b_4 = (f % 16u);
+        uvec2 _e13 = bayer2_((b_4 >> 2u));
+        uvec2 _e17 = bayer2_((b_4 & 3u));
         return (_e13 + (2u * _e17));
     }
     return uvec2(0u);
 }
 
-vec4 catmull_rom(float t) {
-    return vec4((t * (-0.5 + (t * (1.0 - (0.5 * t))))), (1.0 + ((t * t) * (-2.5 + (1.5 * t)))), (t * (0.5 + (t * (2.0 - (1.5 * t))))), ((t * t) * (-0.5 + (0.5 * t))));
+vec4 catmull_rom(float t_1) {
+    return vec4((t_1 * (-0.5 + (t_1 * (1.0 - (0.5 * t_1))))), (1.0 + ((t_1 * t_1) * (-2.5 + (1.5 * t_1)))), (t_1 * (0.5 + (t_1 * (2.0 - (1.5 * t_1))))), ((t_1 * t_1) * (-0.5 + (0.5 * t_1))));
 }
 
-uint rng_seed(uvec2 pixel_5, uint frame_index_1) {
+uint rng_seed(uvec2 pixel_6, uint frame_index_1) {
     uint _e4 = pcg(frame_index_1);
-    uint _e6 = pcg((pixel_5.y ^ _e4));
-    uint _e8 = pcg((pixel_5.x ^ _e6));
+    uint _e6 = pcg((pixel_6.y ^ _e4));
+    uint _e8 = pcg((pixel_6.x ^ _e6));
     return _e8;
 }
 
 float rng_next(inout uint rng_1) {
     uint _e1 = rng_1;
     rng_1 = ((_e1 * 747796405u) + 2891336453u);
-    uint s_3 = rng_1;
-    uint word_1 = (((s_3 >> ((s_3 >> 28u) + 4u)) ^ s_3) * 277803737u);
+    uint s_4 = rng_1;
+    uint word_1 = (((s_4 >> ((s_4 >> 28u) + 4u)) ^ s_4) * 277803737u);
     return (float((((word_1 >> 22u) ^ word_1) >> 8u)) * 5.9604645e-8);
 }
 
@@ -302,16 +385,16 @@ float rng_exponential(inout uint rng_2, float sigma) {
     return (-(log((1.0 - _e2))) / sigma);
 }
 
-float sample_hg_cos(float g_3, float u) {
-    if ((abs(g_3) < 0.0001)) {
+float sample_hg_cos(float g_4, float u) {
+    if ((abs(g_4) < 0.0001)) {
         return (1.0 - (2.0 * u));
     }
-    float s_4 = ((1.0 - (g_3 * g_3)) / ((1.0 - g_3) + ((2.0 * g_3) * u)));
-    return clamp((((1.0 + (g_3 * g_3)) - (s_4 * s_4)) / (2.0 * g_3)), -1.0, 1.0);
+    float s_5 = ((1.0 - (g_4 * g_4)) / ((1.0 - g_4) + ((2.0 * g_4) * u)));
+    return clamp((((1.0 + (g_4 * g_4)) - (s_5 * s_5)) / (2.0 * g_4)), -1.0, 1.0);
 }
 
-float luminance(vec3 c_1) {
-    return dot(c_1, vec3(0.2126, 0.7152, 0.0722));
+float luminance(vec3 c_2) {
+    return dot(c_2, vec3(0.2126, 0.7152, 0.0722));
 }
 
 float atlas_hash(uint a_2, uint b_2) {
@@ -321,19 +404,19 @@ float atlas_hash(uint a_2, uint b_2) {
 }
 
 float value_noise(vec2 p_10, uint seed) {
-    uvec2 i_13 = uvec2(floor(p_10));
-    vec2 f_1 = fract(p_10);
-    vec2 s_5 = ((f_1 * f_1) * (vec2(3.0) - (2.0 * f_1)));
-    uint h_6 = (seed * 7919u);
-    float _e17 = atlas_hash((i_13.x + h_6), i_13.y);
-    float _e23 = atlas_hash(((i_13.x + 1u) + h_6), i_13.y);
-    float _e29 = atlas_hash((i_13.x + h_6), (i_13.y + 1u));
-    float _e37 = atlas_hash(((i_13.x + 1u) + h_6), (i_13.y + 1u));
-    return mix(mix(_e17, _e23, s_5.x), mix(_e29, _e37, s_5.x), s_5.y);
+    uvec2 i_16 = uvec2(floor(p_10));
+    vec2 f_2 = fract(p_10);
+    vec2 s_6 = ((f_2 * f_2) * (vec2(3.0) - (2.0 * f_2)));
+    uint h_7 = (seed * 7919u);
+    float _e17 = atlas_hash((i_16.x + h_7), i_16.y);
+    float _e23 = atlas_hash(((i_16.x + 1u) + h_7), i_16.y);
+    float _e29 = atlas_hash((i_16.x + h_7), (i_16.y + 1u));
+    float _e37 = atlas_hash(((i_16.x + 1u) + h_7), (i_16.y + 1u));
+    return mix(mix(_e17, _e23, s_6.x), mix(_e29, _e37, s_6.x), s_6.y);
 }
 
 float value_fbm(vec2 p_11, uint seed_1) {
-    float sum_1 = 0.0;
+    float sum_3 = 0.0;
     float weight = 0.5;
     vec2 q_4 = vec2(0.0);
     uint o = 0u;
@@ -351,32 +434,32 @@ float value_fbm(vec2 p_11, uint seed_1) {
             break;
         }
         {
-            float _e12 = sum_1;
+            float _e12 = sum_3;
             float _e13 = weight;
             vec2 _e14 = q_4;
             uint _e15 = o;
             float _e17 = value_noise(_e14, (seed_1 + _e15));
-            sum_1 = (_e12 + (_e13 * _e17));
+            sum_3 = (_e12 + (_e13 * _e17));
             vec2 _e20 = q_4;
             q_4 = (_e20 * 2.0);
             float _e23 = weight;
             weight = (_e23 * 0.5);
         }
     }
-    float _e29 = sum_1;
+    float _e29 = sum_3;
     return (_e29 / 0.9375);
 }
 
 float sprite_texture(uint tile_1, vec2 uv) {
     float billow = 0.0;
-    uint i_12 = 0u;
+    uint i_15 = 0u;
     vec2 at = vec2(0.0);
     float a_3 = 0.0;
-    vec2 c_3 = (uv - vec2(0.5));
-    float mask = smoothstep(0.48, 0.36, length(c_3));
+    vec2 c_4 = (uv - vec2(0.5));
+    float mask = smoothstep(0.48, 0.36, length(c_4));
     float _e16 = value_fbm(((uv * 6.0) + vec2((float(tile_1) * 13.0))), tile_1);
     if ((tile_1 < 4u)) {
-        vec2 q_5 = (c_3 * vec2(1.0, 3.2));
+        vec2 q_5 = (c_4 * vec2(1.0, 3.2));
         float streak = (1.0 - smoothstep(0.05, 0.45, length(q_5)));
         float _e40 = value_fbm(((uv * vec2(3.0, 12.0)) + vec2((float(tile_1) * 5.0))), (tile_1 + 16u));
         float _e46 = saturate(((_e40 * 1.6) - 0.3));
@@ -386,32 +469,32 @@ float sprite_texture(uint tile_1, vec2 uv) {
     bool loop_init_1 = true;
     while(true) {
         if (!loop_init_1) {
-            uint _e108 = i_12;
-            i_12 = (_e108 + 1u);
+            uint _e108 = i_15;
+            i_15 = (_e108 + 1u);
         }
         loop_init_1 = false;
-        uint _e58 = i_12;
+        uint _e58 = i_15;
         if ((_e58 < blobs)) {
         } else {
             break;
         }
         {
-            uint _e61 = i_12;
+            uint _e61 = i_15;
             float _e63 = atlas_hash(tile_1, (2u * _e61));
-            uint _e65 = i_12;
+            uint _e65 = i_15;
             float _e69 = atlas_hash(tile_1, ((2u * _e65) + 1u));
             vec2 centre_1 = (vec2(_e63, _e69) - vec2(0.5));
             at = (vec2(0.5) + (centre_1 * 0.34));
             if ((tile_1 == 4u)) {
                 at.y = (0.5 + ((centre_1.y - 0.5) * 0.24));
             }
-            uint _e91 = i_12;
+            uint _e91 = i_15;
             float _e93 = atlas_hash(tile_1, (100u + _e91));
-            float r_3 = (0.14 + (0.1 * _e93));
+            float r_13 = (0.14 + (0.1 * _e93));
             vec2 _e98 = at;
-            float d_11 = (length((uv - _e98)) / r_3);
+            float d_14 = (length((uv - _e98)) / r_13);
             float _e102 = billow;
-            float _e106 = saturate((1.0 - (d_11 * d_11)));
+            float _e106 = saturate((1.0 - (d_14 * d_14)));
             billow = max(_e102, _e106);
         }
     }
@@ -426,19 +509,19 @@ float sprite_texture(uint tile_1, vec2 uv) {
     return _e130;
 }
 
-vec3 sprite_sky_level(float h_5) {
-    float _e1 = saturate(h_5);
-    float x_4 = (_e1 * 4.0);
-    if ((x_4 < 1.0)) {
-        return mix(SKY_LEVEL0_, SKY_LEVEL1_, x_4);
+vec3 sprite_sky_level(float h_6) {
+    float _e1 = saturate(h_6);
+    float x_6 = (_e1 * 4.0);
+    if ((x_6 < 1.0)) {
+        return mix(SKY_LEVEL0_, SKY_LEVEL1_, x_6);
     }
-    if ((x_4 < 2.0)) {
-        return mix(SKY_LEVEL1_, SKY_LEVEL2_, (x_4 - 1.0));
+    if ((x_6 < 2.0)) {
+        return mix(SKY_LEVEL1_, SKY_LEVEL2_, (x_6 - 1.0));
     }
-    if ((x_4 < 3.0)) {
-        return mix(SKY_LEVEL2_, SKY_LEVEL3_, (x_4 - 2.0));
+    if ((x_6 < 3.0)) {
+        return mix(SKY_LEVEL2_, SKY_LEVEL3_, (x_6 - 2.0));
     }
-    return mix(SKY_LEVEL3_, SKY_LEVEL4_, (x_4 - 3.0));
+    return mix(SKY_LEVEL3_, SKY_LEVEL4_, (x_6 - 3.0));
 }
 
 float sprite_sun_level(float cos_angle) {
@@ -448,29 +531,29 @@ float sprite_sun_level(float cos_angle) {
     return mix(SPRITE_C_MED, SPRITE_C_MAX, cos_angle);
 }
 
-vec2 sprite_corner(uint k_5) {
-    bool local_52 = false;
-    uint q_6 = ((k_5 >= 3u) ? ((k_5 == 3u) ? 0u : (k_5 - 2u)) : k_5);
+vec2 sprite_corner(uint k_9) {
+    bool local_56 = false;
+    uint q_6 = ((k_9 >= 3u) ? ((k_9 == 3u) ? 0u : (k_9 - 2u)) : k_9);
     if (!((q_6 == 1u))) {
-        local_52 = (q_6 == 2u);
+        local_56 = (q_6 == 2u);
     } else {
-        local_52 = true;
+        local_56 = true;
     }
-    bool _e18 = local_52;
+    bool _e18 = local_56;
     return vec2((_e18 ? 1.0 : -1.0), ((q_6 >= 2u) ? 1.0 : -1.0));
 }
 
-vec3 aces_fitted(vec3 x_3) {
-    return clamp(((x_3 * ((2.51 * x_3) + vec3(0.03))) / ((x_3 * ((2.43 * x_3) + vec3(0.59))) + vec3(0.14))), vec3(0.0), vec3(1.0));
+vec3 aces_fitted(vec3 x_5) {
+    return clamp(((x_5 * ((2.51 * x_5) + vec3(0.03))) / ((x_5 * ((2.43 * x_5) + vec3(0.59))) + vec3(0.14))), vec3(0.0), vec3(1.0));
 }
 
 void main() {
-    uvec3 id_9 = gl_GlobalInvocationID;
+    uvec3 id_14 = gl_GlobalInvocationID;
     uint rank = 0u;
     uint j = 0u;
-    bool local_10 = false;
-    bool local_11 = false;
-    uint slot = id_9.x;
+    bool local_12 = false;
+    bool local_13 = false;
+    uint slot = id_14.x;
     vec4 _e6 = texelFetch(_group_0_binding_20_cs, ivec2(uvec2(slot, 3u)), 0);
     float key_1 = _e6.x;
     bool loop_init_2 = true;
@@ -493,16 +576,16 @@ void main() {
             if (!((other < key_1))) {
                 if ((other == key_1)) {
                     uint _e32 = j;
-                    local_11 = (_e32 < slot);
+                    local_13 = (_e32 < slot);
                 } else {
-                    local_11 = false;
+                    local_13 = false;
                 }
-                bool _e35 = local_11;
-                local_10 = _e35;
+                bool _e35 = local_13;
+                local_12 = _e35;
             } else {
-                local_10 = true;
+                local_12 = true;
             }
-            bool _e37 = local_10;
+            bool _e37 = local_12;
             rank = (_e22 + (_e37 ? 1u : 0u));
         }
     }

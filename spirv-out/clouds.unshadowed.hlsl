@@ -31,6 +31,10 @@ struct Frame {
     float4 layer2_weather;
     float4 layer3_;
     float4 layer3_weather;
+    float4 air_rayleigh;
+    float4 air_mie;
+    float4 air_ozone;
+    float4 air_misc;
 };
 
 struct Roots {
@@ -53,6 +57,20 @@ struct Layer {
     float cloud_type;
     float precipitation;
     float2 weather_offset;
+};
+
+struct AirSample {
+    float3 rayleigh;
+    float mie;
+    float3 extinction;
+    int _end_pad_0;
+};
+
+struct Scattered {
+    float3 radiance;
+    int _pad1_0;
+    float3 transmittance;
+    int _end_pad_0;
 };
 
 struct Counters {
@@ -154,12 +172,25 @@ static const uint FLAG_JITTER = 2u;
 static const uint FLAG_DYNAMIC_STEP = 4u;
 static const uint FLAG_CHECKERBOARD = 8u;
 static const uint FLAG_EMPTY_SKIP = 16u;
+static const uint FLAG_PHYSICAL_SKY = 32u;
 static const float PI = 3.1415927;
 static const uint MAX_VIEW_STEPS = 1024u;
 static const uint RAY_MARCH = 0u;
 static const uint RAY_MISSES_LAYER = 1u;
 static const uint RAY_HITS_GROUND = 2u;
 static const uint MAX_LAYERS = 4u;
+static const uint2 TRANSMITTANCE_SIZE = uint2(256u, 64u);
+static const uint2 MULTISCATTER_SIZE = uint2(32u, 32u);
+static const uint2 SKY_VIEW_SIZE = uint2(192u, 108u);
+static const uint AERIAL_SLICES = 32u;
+static const uint AERIAL_SIDE = 32u;
+static const float AERIAL_SLICE_KM = 1.0;
+static const uint TRANSMITTANCE_STEPS = 128u;
+static const uint MULTISCATTER_DIRECTIONS = 64u;
+static const uint MULTISCATTER_STEPS = 32u;
+static const uint SKY_VIEW_STEPS = 48u;
+static const uint AMBIENT_DIRECTIONS = 64u;
+static const uint AMBIENT_STEPS = 24u;
 static const uint NO_LAYER = 4u;
 static const uint OCCUPANCY_CELLS = 64u;
 static const uint STAT_PIXELS = 0u;
@@ -200,6 +231,16 @@ static const bool CURL = false;
 static const bool STATS = false;
 
 cbuffer frame : register(b0) { Frame frame; }
+Texture2D<float4> transmittance_lut_in : register(t27);
+Texture2D<float4> multiscatter_lut_in : register(t28);
+Texture2D<float4> sky_view_in : register(t29);
+Texture2D<float4> aerial_in : register(t30);
+Texture2D<float4> sky_ambient_in : register(t31);
+RWTexture2D<float4> transmittance_lut_out : register(u32);
+RWTexture2D<float4> multiscatter_lut_out : register(u33);
+RWTexture2D<float4> sky_view_out : register(u34);
+RWTexture2D<float4> aerial_out : register(u35);
+RWTexture2D<float4> sky_ambient_out : register(u36);
 Texture3D<float4> shape_tex : register(t1);
 Texture3D<float4> detail_tex : register(t2);
 Texture2D<float4> weather_tex : register(t3);
@@ -229,6 +270,7 @@ Texture2D<float4> sprite_radiance_in : register(t25);
 Texture2D<float4> sprite_depth_in : register(t26);
 Texture2D<float4> cloud_in : register(t9);
 RWTexture2D<unorm float4> image_out : register(u10);
+Texture2D<float4> depth_in : register(t37);
 
 struct VertexOutput_sprite_vertex {
     float2 uv_1 : LOC0;
@@ -279,15 +321,15 @@ float hash_unit(uint2 pixel, uint frame_index)
 float3 view_ray(uint2 pixel_1)
 {
     uint4 _e3 = frame.counts;
-    float2 size = float2(_e3.xy);
-    float2 ndc = ((((float2(pixel_1) + (0.5).xx) / size) * 2.0) - (1.0).xx);
+    float2 size_1 = float2(_e3.xy);
+    float2 ndc = ((((float2(pixel_1) + (0.5).xx) / size_1) * 2.0) - (1.0).xx);
     float tan_half = frame.camera_position.w;
     float aspect = frame.camera_forward.w;
     float4 _e26 = frame.camera_forward;
     float4 _e30 = frame.camera_right;
     float4 _e39 = frame.camera_up;
-    float3 d_11 = ((_e26.xyz + (_e30.xyz * ((ndc.x * tan_half) * aspect))) - (_e39.xyz * (ndc.y * tan_half)));
-    return normalize(d_11);
+    float3 d_14 = ((_e26.xyz + (_e30.xyz * ((ndc.x * tan_half) * aspect))) - (_e39.xyz * (ndc.y * tan_half)));
+    return normalize(d_14);
 }
 
 Roots ConstructRoots(float arg0, float arg1, bool arg2) {
@@ -320,8 +362,8 @@ Roots ray_shell(float alt, float3 d, float radius_alt)
 {
     float rp = frame.atmosphere.x;
     float b_3 = (d.y * (alt + rp));
-    float c_3 = ((alt - radius_alt) * ((alt + radius_alt) + (2.0 * rp)));
-    const Roots _e16 = solve_sphere(b_3, c_3);
+    float c_4 = ((alt - radius_alt) * ((alt + radius_alt) + (2.0 * rp)));
+    const Roots _e16 = solve_sphere(b_3, c_4);
     const Roots roots_3 = _e16;
     return roots_3;
 }
@@ -329,24 +371,24 @@ Roots ray_shell(float alt, float3 d, float radius_alt)
 float altitude_of(float3 p)
 {
     float rp_1 = frame.atmosphere.x;
-    float n_2 = (((p.x * p.x) + (p.z * p.z)) + (p.y * (p.y + (2.0 * rp_1))));
+    float n_3 = (((p.x * p.x) + (p.z * p.z)) + (p.y * (p.y + (2.0 * rp_1))));
     float3 q_5 = float3(p.x, (p.y + rp_1), p.z);
-    return (n_2 / (length(q_5) + rp_1));
+    return (n_3 / (length(q_5) + rp_1));
 }
 
 bool hits_ground(float3 p_1, float alt_1, float3 d_1)
 {
-    bool local_12 = (bool)0;
+    bool local_14 = (bool)0;
 
     float rp_2 = frame.atmosphere.x;
     float b_4 = dot(d_1, float3(p_1.x, (p_1.y + rp_2), p_1.z));
-    float c_4 = (alt_1 * (alt_1 + (2.0 * rp_2)));
+    float c_5 = (alt_1 * (alt_1 + (2.0 * rp_2)));
     if ((b_4 < 0.0)) {
-        local_12 = ((b_4 * b_4) >= c_4);
+        local_14 = ((b_4 * b_4) >= c_5);
     } else {
-        local_12 = false;
+        local_14 = false;
     }
-    bool _e24 = local_12;
+    bool _e24 = local_14;
     return _e24;
 }
 
@@ -362,9 +404,9 @@ Interval shell_interval(float alt_2, float3 d_2, float bottom, float top)
 {
     float start = 0.0;
     float end = 0.0;
-    bool local_13 = (bool)0;
-    bool local_14 = (bool)0;
     bool local_15 = (bool)0;
+    bool local_16 = (bool)0;
+    bool local_17 = (bool)0;
 
     float cutoff = frame.atmosphere.w;
     const Roots _e8 = ray_shell(alt_2, d_2, bottom);
@@ -381,22 +423,22 @@ Interval shell_interval(float alt_2, float3 d_2, float bottom, float top)
         if ((alt_2 <= top)) {
             end = _e9.t1_;
             if (_e8.hit) {
-                local_13 = (_e8.t0_ > 0.0);
+                local_15 = (_e8.t0_ > 0.0);
             } else {
-                local_13 = false;
+                local_15 = false;
             }
-            bool _e34 = local_13;
+            bool _e34 = local_15;
             if (_e34) {
                 float _e35 = end;
                 end = min(_e35, _e8.t0_);
             }
         } else {
             if (!(!(_e9.hit))) {
-                local_14 = (_e9.t1_ <= 0.0);
+                local_16 = (_e9.t1_ <= 0.0);
             } else {
-                local_14 = true;
+                local_16 = true;
             }
-            bool _e47 = local_14;
+            bool _e47 = local_16;
             if (_e47) {
                 const Interval interval_1 = ConstructInterval(0.0, 0.0, 1u);
                 return interval_1;
@@ -404,11 +446,11 @@ Interval shell_interval(float alt_2, float3 d_2, float bottom, float top)
             start = max(_e9.t0_, 0.0);
             end = _e9.t1_;
             if (_e8.hit) {
-                local_15 = (_e8.t0_ > 0.0);
+                local_17 = (_e8.t0_ > 0.0);
             } else {
-                local_15 = false;
+                local_17 = false;
             }
-            bool _e63 = local_15;
+            bool _e63 = local_17;
             if (_e63) {
                 float _e64 = end;
                 end = min(_e64, _e8.t0_);
@@ -452,29 +494,29 @@ Layer ConstructLayer(float arg0, float arg1, float arg2, float arg3, float arg4,
     return ret;
 }
 
-Layer layer_from(float4 g, float4 w)
+Layer layer_from(float4 g, float4 w_1)
 {
-    const Layer layer = ConstructLayer(g.x, g.y, g.z, g.w, w.x, w.y, w.zw);
+    const Layer layer = ConstructLayer(g.x, g.y, g.z, g.w, w_1.x, w_1.y, w_1.zw);
     return layer;
 }
 
-Layer cloud_layer(uint i_1)
+Layer cloud_layer(uint i_3)
 {
-    if ((i_1 == 1u)) {
+    if ((i_3 == 1u)) {
         float4 _e5 = frame.layer1_;
         float4 _e8 = frame.layer1_weather;
         const Layer _e9 = layer_from(_e5, _e8);
         const Layer layer_1 = _e9;
         return layer_1;
     } else {
-        if ((i_1 == 2u)) {
+        if ((i_3 == 2u)) {
             float4 _e14 = frame.layer2_;
             float4 _e17 = frame.layer2_weather;
             const Layer _e18 = layer_from(_e14, _e17);
             const Layer layer_2 = _e18;
             return layer_2;
         } else {
-            if ((i_1 == 3u)) {
+            if ((i_3 == 3u)) {
                 float4 _e23 = frame.layer3_;
                 float4 _e26 = frame.layer3_weather;
                 const Layer _e27 = layer_from(_e23, _e26);
@@ -497,7 +539,7 @@ Layer cloud_layer(uint i_1)
 float2 layers_span()
 {
     float2 span = (float2)0;
-    uint i_2 = 1u;
+    uint i_4 = 1u;
 
     float4 _e2 = frame.atmosphere;
     span = _e2.yz;
@@ -507,18 +549,18 @@ float2 layers_span()
         if (all(loop_bound == uint2(0u, 0u))) { break; }
         loop_bound -= uint2(loop_bound.y == 0u, 1u);
         if (!loop_init) {
-            uint _e22 = i_2;
-            i_2 = (_e22 + 1u);
+            uint _e22 = i_4;
+            i_4 = (_e22 + 1u);
         }
         loop_init = false;
-        uint _e7 = i_2;
+        uint _e7 = i_4;
         const uint _e8 = layer_count();
         if ((_e7 < _e8)) {
         } else {
             break;
         }
         {
-            uint _e10 = i_2;
+            uint _e10 = i_4;
             const Layer _e11 = cloud_layer(_e10);
             float _e13 = span.x;
             float _e17 = span.y;
@@ -540,9 +582,9 @@ Interval cloud_interval(float alt_4, float3 d_4)
 Interval nearest_layer_interval(float alt_5, float3 d_5)
 {
     Interval best = (Interval)0;
-    uint i_3 = 1u;
-    bool local_16 = (bool)0;
-    bool local_17 = (bool)0;
+    uint i_5 = 1u;
+    bool local_18 = (bool)0;
+    bool local_19 = (bool)0;
 
     const Layer _e3 = cloud_layer(0u);
     const Interval _e4 = layer_interval(alt_5, d_5, _e3);
@@ -553,34 +595,34 @@ Interval nearest_layer_interval(float alt_5, float3 d_5)
         if (all(loop_bound_1 == uint2(0u, 0u))) { break; }
         loop_bound_1 -= uint2(loop_bound_1.y == 0u, 1u);
         if (!loop_init_1) {
-            uint _e35 = i_3;
-            i_3 = (_e35 + 1u);
+            uint _e35 = i_5;
+            i_5 = (_e35 + 1u);
         }
         loop_init_1 = false;
-        uint _e8 = i_3;
+        uint _e8 = i_5;
         const uint _e9 = layer_count();
         if ((_e8 < _e9)) {
         } else {
             break;
         }
         {
-            uint _e11 = i_3;
+            uint _e11 = i_5;
             const Layer _e12 = cloud_layer(_e11);
             const Interval _e13 = layer_interval(alt_5, d_5, _e12);
             if ((_e13.kind == RAY_MARCH)) {
                 uint _e20 = best.kind;
                 if (!((_e20 != RAY_MARCH))) {
                     float _e28 = best.start;
-                    local_17 = (_e13.start < _e28);
+                    local_19 = (_e13.start < _e28);
                 } else {
-                    local_17 = true;
+                    local_19 = true;
                 }
-                bool _e31 = local_17;
-                local_16 = _e31;
+                bool _e31 = local_19;
+                local_18 = _e31;
             } else {
-                local_16 = false;
+                local_18 = false;
             }
-            bool _e33 = local_16;
+            bool _e33 = local_18;
             if (_e33) {
                 best = _e13;
             }
@@ -595,10 +637,431 @@ Roots ray_shell_from(float3 p_2, float alt_6, float3 d_6, float radius_alt_1)
 {
     float rp_3 = frame.atmosphere.x;
     float b_5 = dot(d_6, float3(p_2.x, (p_2.y + rp_3), p_2.z));
-    float c_5 = ((alt_6 - radius_alt_1) * ((alt_6 + radius_alt_1) + (2.0 * rp_3)));
-    const Roots _e20 = solve_sphere(b_5, c_5);
+    float c_6 = ((alt_6 - radius_alt_1) * ((alt_6 + radius_alt_1) + (2.0 * rp_3)));
+    const Roots _e20 = solve_sphere(b_5, c_6);
     const Roots roots_4 = _e20;
     return roots_4;
+}
+
+bool physical_sky()
+{
+    uint _e3 = frame.modes.w;
+    return ((_e3 & FLAG_PHYSICAL_SKY) != 0u);
+}
+
+float air_bottom()
+{
+    float _e3 = frame.atmosphere.x;
+    return (_e3 * 0.001);
+}
+
+float air_top()
+{
+    float _e3 = frame.atmosphere.x;
+    float _e7 = frame.air_misc.x;
+    return ((_e3 + _e7) * 0.001);
+}
+
+AirSample ConstructAirSample(float3 arg0, float arg1, float3 arg2) {
+    AirSample ret = (AirSample)0;
+    ret.rayleigh = arg0;
+    ret.mie = arg1;
+    ret.extinction = arg2;
+    return ret;
+}
+
+AirSample air_at(float h_km)
+{
+    float h_7 = (max(h_km, 0.0) * 1000.0);
+    float _e9 = frame.air_rayleigh.w;
+    float rayleigh_density = exp((-(h_7) / _e9));
+    float _e16 = frame.air_mie.z;
+    float mie_density = exp((-(h_7) / _e16));
+    float _e22 = frame.air_ozone.w;
+    float _e28 = frame.air_misc.y;
+    float ozone_density = max((1.0 - (abs((h_7 - _e22)) / (0.5 * _e28))), 0.0);
+    float4 _e38 = frame.air_rayleigh;
+    float3 rayleigh = (_e38.xyz * (rayleigh_density * 1000.0));
+    float _e46 = frame.air_mie.x;
+    float mie = ((_e46 * mie_density) * 1000.0);
+    float _e53 = frame.air_mie.x;
+    float _e57 = frame.air_mie.y;
+    float mie_extinction = (((_e53 + _e57) * mie_density) * 1000.0);
+    float4 _e64 = frame.air_ozone;
+    float3 ozone = (_e64.xyz * (ozone_density * 1000.0));
+    const AirSample airsample = ConstructAirSample(rayleigh, mie, ((rayleigh + (mie_extinction).xxx) + ozone));
+    return airsample;
+}
+
+float sphere_discriminant(float r_2, float mu, float radius)
+{
+    return (((radius - r_2) * (radius + r_2)) + (((r_2 * r_2) * mu) * mu));
+}
+
+float distance_to_top(float r_3, float mu_1)
+{
+    const float _e4 = air_top();
+    const float _e5 = sphere_discriminant(r_3, mu_1, _e4);
+    return max(((-(r_3) * mu_1) + sqrt(max(_e5, 0.0))), 0.0);
+}
+
+bool meets_ground(float r_4, float mu_2)
+{
+    bool local_20 = (bool)0;
+
+    if ((mu_2 < 0.0)) {
+        const float _e6 = air_bottom();
+        const float _e7 = sphere_discriminant(r_4, mu_2, _e6);
+        local_20 = (_e7 >= 0.0);
+    } else {
+        local_20 = false;
+    }
+    bool _e11 = local_20;
+    return _e11;
+}
+
+float distance_to_ground(float r_5, float mu_3)
+{
+    const float _e4 = air_bottom();
+    const float _e5 = sphere_discriminant(r_5, mu_3, _e4);
+    return max(((-(r_5) * mu_3) - sqrt(max(_e5, 0.0))), 0.0);
+}
+
+float radius_after(float r_6, float mu_4, float t)
+{
+    return sqrt(max((((r_6 * r_6) + (t * t)) + (((2.0 * r_6) * mu_4) * t)), 0.0));
+}
+
+uint2 naga_f2u32(float2 value) {
+    return uint2(clamp(value, 0.0, 4294967000.0));
+}
+
+float4 lut_bilinear(Texture2D<float4> lut, float2 x_3, uint2 size)
+{
+    float2 last = float2((size - (1u).xx));
+    float2 f_1 = (clamp(x_3, (0.0).xx, (1.0).xx) * last);
+    uint2 i0_ = min(naga_f2u32(floor(f_1)), (size - (1u).xx));
+    uint2 i1_ = min((i0_ + (1u).xx), (size - (1u).xx));
+    float2 w_3 = (f_1 - float2(i0_));
+    float4 _e32 = lut.Load(int3(uint2(i0_.x, i0_.y), int(0)));
+    float4 _e37 = lut.Load(int3(uint2(i1_.x, i0_.y), int(0)));
+    float4 a_4 = lerp(_e32, _e37, w_3.x);
+    float4 _e44 = lut.Load(int3(uint2(i0_.x, i1_.y), int(0)));
+    float4 _e49 = lut.Load(int3(uint2(i1_.x, i1_.y), int(0)));
+    float4 b_6 = lerp(_e44, _e49, w_3.x);
+    return lerp(a_4, b_6, w_3.y);
+}
+
+float2 transmittance_coords(float r_7, float mu_5)
+{
+    const float _e2 = air_bottom();
+    const float _e3 = air_top();
+    float h_8 = sqrt(max(((_e3 - _e2) * (_e3 + _e2)), 0.0));
+    float rho = sqrt(max(((r_7 - _e2) * (r_7 + _e2)), 0.0));
+    const float _e16 = distance_to_top(r_7, mu_5);
+    float d_min = (_e3 - r_7);
+    float d_max = (rho + h_8);
+    return float2(((_e16 - d_min) / max((d_max - d_min), 1e-6)), (rho / h_8));
+}
+
+float2 transmittance_r_mu(float2 x_4)
+{
+    float mu_6 = 1.0;
+
+    const float _e1 = air_bottom();
+    const float _e2 = air_top();
+    float h_9 = sqrt(max(((_e2 - _e1) * (_e2 + _e1)), 0.0));
+    float rho_1 = (h_9 * x_4.y);
+    float r_13 = sqrt(((rho_1 * rho_1) + (_e1 * _e1)));
+    float d_min_1 = (_e2 - r_13);
+    float d_max_1 = (rho_1 + h_9);
+    float d_15 = (d_min_1 + (x_4.x * (d_max_1 - d_min_1)));
+    if ((d_15 > 0.0)) {
+        mu_6 = clamp(((((h_9 * h_9) - (rho_1 * rho_1)) - (d_15 * d_15)) / ((2.0 * r_13) * d_15)), -1.0, 1.0);
+    }
+    float _e37 = mu_6;
+    return float2(r_13, _e37);
+}
+
+float3 transmittance_to_top(float r_8, float mu_7)
+{
+    const float2 _e3 = transmittance_coords(r_8, mu_7);
+    const float4 _e5 = lut_bilinear(transmittance_lut_in, _e3, TRANSMITTANCE_SIZE);
+    return _e5.xyz;
+}
+
+float3 sun_transmittance(float r_9, float mu_s)
+{
+    const bool _e2 = meets_ground(r_9, mu_s);
+    if (_e2) {
+        return (0.0).xxx;
+    }
+    const float3 _e5 = transmittance_to_top(r_9, mu_s);
+    return _e5;
+}
+
+float3 multiscatter(float r_10, float mu_s_1)
+{
+    const float _e6 = air_bottom();
+    const float _e8 = air_top();
+    const float _e9 = air_bottom();
+    float2 x_6 = float2(((mu_s_1 * 0.5) + 0.5), ((r_10 - _e6) / (_e8 - _e9)));
+    const float4 _e15 = lut_bilinear(multiscatter_lut_in, x_6, MULTISCATTER_SIZE);
+    return _e15.xyz;
+}
+
+float phase_rayleigh(float cos_theta)
+{
+    return (0.059683103 * (1.0 + (cos_theta * cos_theta)));
+}
+
+float phase_cornette_shanks_air(float cos_theta_1, float g_1)
+{
+    float g2_ = (g_1 * g_1);
+    return (((0.119366206 * (1.0 - g2_)) * (1.0 + (cos_theta_1 * cos_theta_1))) / ((2.0 + g2_) * pow(max(((1.0 + g2_) - ((2.0 * g_1) * cos_theta_1)), 1e-6), 1.5)));
+}
+
+float3 fibonacci_direction(uint k_3, uint n_1)
+{
+    float z_2 = (1.0 - (((2.0 * float(k_3)) + 1.0) / float(n_1)));
+    float s_3 = sqrt(max((1.0 - (z_2 * z_2)), 0.0));
+    float phi = (2.3999634 * float(k_3));
+    return float3((s_3 * cos(phi)), z_2, (s_3 * sin(phi)));
+}
+
+float3 ground_radiance(float mu_s_2)
+{
+    float _e4 = frame.air_misc.z;
+    const float _e10 = air_bottom();
+    const float3 _e13 = sun_transmittance((_e10 + 0.001), mu_s_2);
+    return (((_e4 / PI) * max(mu_s_2, 0.0)) * _e13);
+}
+
+Scattered ConstructScattered(float3 arg0, float3 arg1) {
+    Scattered ret = (Scattered)0;
+    ret.radiance = arg0;
+    ret.transmittance = arg1;
+    return ret;
+}
+
+Scattered integrate_air(float3 origin, float3 d_7, float distance_km, uint steps, float3 sun, bool ground)
+{
+    float3 radiance_1 = (0.0).xxx;
+    float3 tau_2 = (0.0).xxx;
+    float t0_ = 0.0;
+    uint i_6 = 0u;
+
+    float cos_theta_7 = dot(d_7, sun);
+    const float _e7 = phase_rayleigh(cos_theta_7);
+    float _e11 = frame.air_mie.w;
+    const float _e12 = phase_cornette_shanks_air(cos_theta_7, _e11);
+    uint2 loop_bound_2 = uint2(4294967295u, 4294967295u);
+    bool loop_init_2 = true;
+    while(true) {
+        if (all(loop_bound_2 == uint2(0u, 0u))) { break; }
+        loop_bound_2 -= uint2(loop_bound_2.y == 0u, 1u);
+        if (!loop_init_2) {
+            uint _e80 = i_6;
+            i_6 = (_e80 + 1u);
+        }
+        loop_init_2 = false;
+        uint _e23 = i_6;
+        if ((_e23 < steps)) {
+        } else {
+            break;
+        }
+        {
+            uint _e25 = i_6;
+            float s1_ = (float((_e25 + 1u)) / float(steps));
+            float t1_ = ((distance_km * s1_) * s1_);
+            float _e33 = t0_;
+            float dt_1 = (t1_ - _e33);
+            float _e35 = t0_;
+            float3 p_12 = (origin + (d_7 * (0.5 * (_e35 + t1_))));
+            float r_14 = length(p_12);
+            float3 up = (p_12 / (r_14).xxx);
+            float mu_s_3 = dot(up, sun);
+            const float _e45 = air_bottom();
+            const AirSample _e47 = air_at((r_14 - _e45));
+            float3 _e48 = tau_2;
+            float3 t_view = exp(-((_e48 + ((0.5 * _e47.extinction) * dt_1))));
+            const float3 _e56 = sun_transmittance(r_14, mu_s_3);
+            const float3 _e57 = multiscatter(r_14, mu_s_3);
+            float3 inscatter = ((_e56 * ((_e47.rayleigh * _e7) + ((_e47.mie * _e12)).xxx)) + (_e57 * (_e47.rayleigh + (_e47.mie).xxx)));
+            float3 _e71 = radiance_1;
+            radiance_1 = (_e71 + ((t_view * inscatter) * dt_1));
+            float3 _e75 = tau_2;
+            tau_2 = (_e75 + (_e47.extinction * dt_1));
+            t0_ = t1_;
+        }
+    }
+    if (ground) {
+        float3 end_1 = (origin + (d_7 * distance_km));
+        float3 _e84 = radiance_1;
+        float3 _e85 = tau_2;
+        const float3 _e90 = ground_radiance(dot(normalize(end_1), sun));
+        radiance_1 = (_e84 + (exp(-(_e85)) * _e90));
+    }
+    float3 _e93 = radiance_1;
+    float3 _e94 = tau_2;
+    const Scattered scattered = ConstructScattered(_e93, exp(-(_e94)));
+    return scattered;
+}
+
+float2 air_ray_end(float3 origin_1, float3 d_8)
+{
+    float r_15 = length(origin_1);
+    float mu_8 = (dot(origin_1, d_8) / r_15);
+    const bool _e5 = meets_ground(r_15, mu_8);
+    if (_e5) {
+        const float _e6 = distance_to_ground(r_15, mu_8);
+        return float2(_e6, 1.0);
+    }
+    const float _e9 = air_top();
+    if ((r_15 > _e9)) {
+        return float2(0.0, 0.0);
+    }
+    const float _e14 = distance_to_top(r_15, mu_8);
+    return float2(_e14, 0.0);
+}
+
+float3 camera_air_origin()
+{
+    const float _e0 = air_bottom();
+    float _e4 = frame.camera_position.y;
+    return float3(0.0, (_e0 + (max(_e4, 0.0) * 0.001)), 0.0);
+}
+
+float sky_view_elevation(float v_1, float horizon)
+{
+    if ((v_1 >= 0.5)) {
+        float a_5 = ((2.0 * v_1) - 1.0);
+        return (horizon + (((1.5707964 - horizon) * a_5) * a_5));
+    }
+    float a_6 = (1.0 - (2.0 * v_1));
+    return (horizon - (((horizon + 1.5707964) * a_6) * a_6));
+}
+
+float sky_view_v(float elevation, float horizon_1)
+{
+    if ((elevation >= horizon_1)) {
+        const float _e7 = saturate_(((elevation - horizon_1) / (1.5707964 - horizon_1)));
+        return (0.5 + (0.5 * sqrt(_e7)));
+    }
+    const float _e17 = saturate_(((horizon_1 - elevation) / (horizon_1 + 1.5707964)));
+    return (0.5 - (0.5 * sqrt(_e17)));
+}
+
+float horizon_elevation(float r_11)
+{
+    const float _e1 = air_bottom();
+    return -(acos(clamp((_e1 / r_11), -1.0, 1.0)));
+}
+
+float sun_azimuth()
+{
+    float4 _e2 = frame.sun_direction;
+    float3 s_4 = _e2.xyz;
+    return atan2(s_4.z, s_4.x);
+}
+
+float3 sky_view(float3 d_9)
+{
+    float delta = (float)0;
+
+    const float3 _e1 = camera_air_origin();
+    float elevation_1 = asin(clamp(d_9.y, -1.0, 1.0));
+    const float _e10 = sun_azimuth();
+    delta = (atan2(d_9.z, d_9.x) - _e10);
+    float _e13 = delta;
+    float _e15 = delta;
+    delta = abs((_e13 - (6.2831855 * round((_e15 / 6.2831855)))));
+    float _e22 = delta;
+    const float _e26 = horizon_elevation(_e1.y);
+    const float _e27 = sky_view_v(elevation_1, _e26);
+    float2 x_7 = float2((_e22 / PI), _e27);
+    const float4 _e31 = lut_bilinear(sky_view_in, x_7, SKY_VIEW_SIZE);
+    return _e31.xyz;
+}
+
+float3 aerial_ray(uint2 c_1)
+{
+    float2 ndc_1 = ((((float2(c_1) + (0.5).xx) / (32.0).xx) * 2.0) - (1.0).xx);
+    float tan_half_1 = frame.camera_position.w;
+    float aspect_1 = frame.camera_forward.w;
+    float4 _e23 = frame.camera_forward;
+    float4 _e27 = frame.camera_right;
+    float4 _e36 = frame.camera_up;
+    return normalize(((_e23.xyz + (_e27.xyz * ((ndc_1.x * tan_half_1) * aspect_1))) - (_e36.xyz * (ndc_1.y * tan_half_1))));
+}
+
+float4 aerial_texel(uint2 c0_, uint2 c1_, float2 w_2, uint z_1)
+{
+    uint o_1 = (z_1 * AERIAL_SIDE);
+    float4 _e12 = aerial_in.Load(int3(uint2((o_1 + c0_.x), c0_.y), int(0)));
+    float4 _e19 = aerial_in.Load(int3(uint2((o_1 + c1_.x), c0_.y), int(0)));
+    float4 a_7 = lerp(_e12, _e19, w_2.x);
+    float4 _e28 = aerial_in.Load(int3(uint2((o_1 + c0_.x), c1_.y), int(0)));
+    float4 _e35 = aerial_in.Load(int3(uint2((o_1 + c1_.x), c1_.y), int(0)));
+    float4 b_7 = lerp(_e28, _e35, w_2.x);
+    return lerp(a_7, b_7, w_2.y);
+}
+
+uint naga_f2u32(float value) {
+    return uint(clamp(value, 0.0, 4294967000.0));
+}
+
+float4 aerial(uint2 pixel_2, float depth_m)
+{
+    float4 near = float4(0.0, 0.0, 0.0, 1.0);
+    float4 far = float4(0.0, 0.0, 0.0, 1.0);
+
+    uint4 _e8 = frame.counts;
+    float2 uv_3 = ((float2(pixel_2) + (0.5).xx) / float2(_e8.xy));
+    float2 f_2 = clamp(((uv_3 * 32.0) - (0.5).xx), (0.0).xx, (31.0).xx);
+    uint2 c0_1 = min(naga_f2u32(floor(f_2)), (31u).xx);
+    uint2 c1_1 = min((c0_1 + (1u).xx), (31u).xx);
+    float2 w_4 = (f_2 - float2(c0_1));
+    float s_5 = clamp(((depth_m * 0.001) / AERIAL_SLICE_KM), 0.0, 32.0);
+    uint z1_ = min(naga_f2u32(ceil(s_5)), AERIAL_SLICES);
+    uint z0_ = ((z1_ > 0u) ? (z1_ - 1u) : 0u);
+    float ws = (s_5 - float(z0_));
+    if ((z0_ > 0u)) {
+        const float4 _e64 = aerial_texel(c0_1, c1_1, w_4, (z0_ - 1u));
+        near = _e64;
+    }
+    if ((z1_ > 0u)) {
+        const float4 _e75 = aerial_texel(c0_1, c1_1, w_4, (z1_ - 1u));
+        far = _e75;
+    }
+    float4 _e76 = near;
+    float4 _e77 = far;
+    return lerp(_e76, _e77, ws);
+}
+
+float3 sun_through_air(float3 rel)
+{
+    const bool _e1 = physical_sky();
+    if (!(_e1)) {
+        return (1.0).xxx;
+    }
+    float _e10 = frame.atmosphere.x;
+    float3 q_6 = (float3(rel.x, (rel.y + _e10), rel.z) * 0.001);
+    float r_16 = length(q_6);
+    float4 _e21 = frame.sun_direction;
+    const float3 _e24 = sun_transmittance(r_16, dot((q_6 / (r_16).xxx), _e21.xyz));
+    return _e24;
+}
+
+float3 sky_ambient_light(float h)
+{
+    float4 _e6 = sky_ambient_in.Load(int3(uint2(0u, 0u), int(0)));
+    float3 bottom_1 = _e6.xyz;
+    float4 _e13 = sky_ambient_in.Load(int3(uint2(1u, 0u), int(0)));
+    float3 top_1 = _e13.xyz;
+    float4 _e18 = frame.sun_illuminance;
+    float _e24 = frame.ambient_bottom.w;
+    return ((lerp(bottom_1, top_1, h) * _e18.xyz) * _e24);
 }
 
 float layer_height(Layer l_1, float alt_7)
@@ -608,37 +1071,37 @@ float layer_height(Layer l_1, float alt_7)
 
 uint layer_at(float alt_8)
 {
-    uint i_4 = 0u;
-    bool local_18 = (bool)0;
+    uint i_7 = 0u;
+    bool local_21 = (bool)0;
 
-    uint2 loop_bound_2 = uint2(4294967295u, 4294967295u);
-    bool loop_init_2 = true;
+    uint2 loop_bound_3 = uint2(4294967295u, 4294967295u);
+    bool loop_init_3 = true;
     while(true) {
-        if (all(loop_bound_2 == uint2(0u, 0u))) { break; }
-        loop_bound_2 -= uint2(loop_bound_2.y == 0u, 1u);
-        if (!loop_init_2) {
-            uint _e19 = i_4;
-            i_4 = (_e19 + 1u);
+        if (all(loop_bound_3 == uint2(0u, 0u))) { break; }
+        loop_bound_3 -= uint2(loop_bound_3.y == 0u, 1u);
+        if (!loop_init_3) {
+            uint _e19 = i_7;
+            i_7 = (_e19 + 1u);
         }
-        loop_init_2 = false;
-        uint _e3 = i_4;
+        loop_init_3 = false;
+        uint _e3 = i_7;
         const uint _e4 = layer_count();
         if ((_e3 < _e4)) {
         } else {
             break;
         }
         {
-            uint _e6 = i_4;
+            uint _e6 = i_7;
             const Layer _e7 = cloud_layer(_e6);
             const float _e8 = layer_height(_e7, alt_8);
             if ((_e8 >= 0.0)) {
-                local_18 = (_e8 <= 1.0);
+                local_21 = (_e8 <= 1.0);
             } else {
-                local_18 = false;
+                local_21 = false;
             }
-            bool _e16 = local_18;
+            bool _e16 = local_21;
             if (_e16) {
-                uint _e17 = i_4;
+                uint _e17 = i_7;
                 return _e17;
             }
         }
@@ -657,47 +1120,47 @@ Weather ConstructWeather(float arg0, float arg1, float arg2) {
 Weather sample_weather(float3 p_3, Layer l_2)
 {
     float _e8 = frame.periods.x;
-    float2 uv_3 = ((p_3.xz - l_2.weather_offset) / (_e8).xx);
-    float4 w_1 = weather_tex.SampleLevel(noise_sampler, uv_3, 0.0);
-    const float _e22 = saturate_((w_1.x + (2.0 * (l_2.coverage - 0.5))));
-    const float _e30 = saturate_((l_2.cloud_type + ((w_1.z - 0.5) * 0.5)));
-    const float _e35 = saturate_((0.5 + w_1.y));
+    float2 uv_4 = ((p_3.xz - l_2.weather_offset) / (_e8).xx);
+    float4 w_5 = weather_tex.SampleLevel(noise_sampler, uv_4, 0.0);
+    const float _e22 = saturate_((w_5.x + (2.0 * (l_2.coverage - 0.5))));
+    const float _e30 = saturate_((l_2.cloud_type + ((w_5.z - 0.5) * 0.5)));
+    const float _e35 = saturate_((0.5 + w_5.y));
     float precipitation = (l_2.precipitation * _e35);
     const Weather weather = ConstructWeather(_e22, _e30, precipitation);
     return weather;
 }
 
-float height_parabola(float h, float cloud_type)
+float height_parabola(float h_1, float cloud_type)
 {
     float height = lerp(0.35, 1.0, cloud_type);
-    const float _e11 = saturate_(((h * (h - height)) * (-4.0 / (height * height))));
+    const float _e11 = saturate_(((h_1 * (h_1 - height)) * (-4.0 / (height * height))));
     return _e11;
 }
 
-float gradient(float h_1, float r0_, float r1_, float f0_, float f1_)
+float gradient(float h_2, float r0_, float r1_, float f0_, float f1_)
 {
-    return (smoothstep(r0_, r1_, h_1) * (1.0 - smoothstep(f0_, f1_, h_1)));
+    return (smoothstep(r0_, r1_, h_2) * (1.0 - smoothstep(f0_, f1_, h_2)));
 }
 
-float height_cloud_types(float h_2, float cloud_type_1)
+float height_cloud_types(float h_3, float cloud_type_1)
 {
-    const float _e6 = gradient(h_2, 0.0, 0.08, 0.15, 0.25);
-    const float _e11 = gradient(h_2, 0.0, 0.2, 0.4, 0.65);
-    const float _e16 = gradient(h_2, 0.0, 0.1, 0.6, 0.95);
+    const float _e6 = gradient(h_3, 0.0, 0.08, 0.15, 0.25);
+    const float _e11 = gradient(h_3, 0.0, 0.2, 0.4, 0.65);
+    const float _e16 = gradient(h_3, 0.0, 0.1, 0.6, 0.95);
     const float _e19 = saturate_((cloud_type_1 * 2.0));
     float lo = lerp(_e6, _e11, _e19);
     const float _e25 = saturate_(((cloud_type_1 * 2.0) - 1.0));
     return lerp(lo, _e16, _e25);
 }
 
-float height_signal(float h_3, float cloud_type_2)
+float height_signal(float h_4, float cloud_type_2)
 {
     uint _e5 = frame.modes.z;
     if ((_e5 == HEIGHT_CLOUD_TYPES)) {
-        const float _e8 = height_cloud_types(h_3, cloud_type_2);
+        const float _e8 = height_cloud_types(h_4, cloud_type_2);
         return _e8;
     }
-    const float _e9 = height_parabola(h_3, cloud_type_2);
+    const float _e9 = height_parabola(h_4, cloud_type_2);
     return _e9;
 }
 
@@ -710,21 +1173,21 @@ uint3 NagaDimensions3D(Texture3D<float4> tex)
 
 float layer_density(float3 p_4, float alt_9, Layer l_3, inout Counters counters_2)
 {
-    bool local_19 = (bool)0;
-    bool local_20 = (bool)0;
+    bool local_22 = (bool)0;
+    bool local_23 = (bool)0;
     float base = (float)0;
     float density = (float)0;
-    bool local_21 = (bool)0;
-    bool local_22 = (bool)0;
+    bool local_24 = (bool)0;
+    bool local_25 = (bool)0;
     float3 detail_pos = (float3)0;
 
     const float _e4 = layer_height(l_3, alt_9);
     if (!((_e4 < 0.0))) {
-        local_19 = (_e4 > 1.0);
+        local_22 = (_e4 > 1.0);
     } else {
-        local_19 = true;
+        local_22 = true;
     }
-    bool _e13 = local_19;
+    bool _e13 = local_22;
     if (_e13) {
         return 0.0;
     }
@@ -733,11 +1196,11 @@ float layer_density(float3 p_4, float alt_9, Layer l_3, inout Counters counters_
     const Weather _e19 = sample_weather(p_4, l_3);
     const float _e21 = height_signal(_e4, _e19.cloud_type);
     if (!((_e19.coverage <= 0.0))) {
-        local_20 = (_e21 <= 0.0);
+        local_23 = (_e21 <= 0.0);
     } else {
-        local_20 = true;
+        local_23 = true;
     }
-    bool _e31 = local_20;
+    bool _e31 = local_23;
     if (_e31) {
         return 0.0;
     }
@@ -747,9 +1210,9 @@ float layer_density(float3 p_4, float alt_9, Layer l_3, inout Counters counters_
     float _e51 = frame.wind_offsets0_.z;
     float _e57 = frame.wind_offsets0_.w;
     float3 shape_pos = float3((p_4.x - _e51), alt_9, (p_4.z - _e57));
-    float4 s_3 = shape_tex.SampleLevel(noise_sampler, (shape_pos / period), 0.0);
-    float low_fbm = (((s_3.y * 0.625) + (s_3.z * 0.25)) + (s_3.w * 0.125));
-    const float _e82 = remap(s_3.x, (low_fbm - 1.0), 1.0, 0.0, 1.0);
+    float4 s_6 = shape_tex.SampleLevel(noise_sampler, (shape_pos / period), 0.0);
+    float low_fbm = (((s_6.y * 0.625) + (s_6.z * 0.25)) + (s_6.w * 0.125));
+    const float _e82 = remap(s_6.x, (low_fbm - 1.0), 1.0, 0.0, 1.0);
     const float _e83 = saturate_(_e82);
     base = (_e83 * _e21);
     float _e86 = base;
@@ -765,18 +1228,18 @@ float layer_density(float3 p_4, float alt_9, Layer l_3, inout Counters counters_
     float strength = frame.erosion.x;
     float threshold = frame.erosion.y;
     if (DETAIL) {
-        local_21 = (strength > 0.0);
+        local_24 = (strength > 0.0);
     } else {
-        local_21 = false;
+        local_24 = false;
     }
-    bool _e117 = local_21;
+    bool _e117 = local_24;
     if (_e117) {
         float _e120 = base;
-        local_22 = (_e120 < threshold);
+        local_25 = (_e120 < threshold);
     } else {
-        local_22 = false;
+        local_25 = false;
     }
-    bool _e123 = local_22;
+    bool _e123 = local_25;
     if (_e123) {
         uint _e125 = counters_2.detail;
         counters_2.detail = (_e125 + 1u);
@@ -830,102 +1293,102 @@ float cloud_density(float3 p_5, float alt_10, inout Counters counters_3)
     return _e8;
 }
 
-float phase_hg(float cos_theta, float g_1)
-{
-    float g2_ = (g_1 * g_1);
-    float denom = max(((1.0 + g2_) - ((2.0 * g_1) * cos_theta)), 1e-6);
-    return ((1.0 - g2_) / ((12.566371 * denom) * sqrt(denom)));
-}
-
-float phase_cornette_shanks(float cos_theta_1, float g_2)
+float phase_hg(float cos_theta_2, float g_2)
 {
     float g2_1 = (g_2 * g_2);
-    float denom_1 = max(((1.0 + g2_1) - ((2.0 * g_2) * cos_theta_1)), 1e-6);
-    return (((3.0 * (1.0 - g2_1)) * (1.0 + (cos_theta_1 * cos_theta_1))) / (((25.132742 * (2.0 + g2_1)) * denom_1) * sqrt(denom_1)));
+    float denom = max(((1.0 + g2_1) - ((2.0 * g_2) * cos_theta_2)), 1e-6);
+    return ((1.0 - g2_1) / ((12.566371 * denom) * sqrt(denom)));
 }
 
-float phase(float cos_theta_2, float scale)
+float phase_cornette_shanks(float cos_theta_3, float g_3)
+{
+    float g2_2 = (g_3 * g_3);
+    float denom_1 = max(((1.0 + g2_2) - ((2.0 * g_3) * cos_theta_3)), 1e-6);
+    return (((3.0 * (1.0 - g2_2)) * (1.0 + (cos_theta_3 * cos_theta_3))) / (((25.132742 * (2.0 + g2_2)) * denom_1) * sqrt(denom_1)));
+}
+
+float phase(float cos_theta_4, float scale)
 {
     float _e5 = frame.phase.x;
-    float g_4 = (_e5 * scale);
+    float g_5 = (_e5 * scale);
     uint _e10 = frame.modes.x;
     switch(_e10) {
         case 1u: {
             float _e14 = frame.phase.y;
-            float g2_2 = (_e14 * scale);
-            const float _e16 = phase_hg(cos_theta_2, g_4);
-            const float _e17 = phase_hg(cos_theta_2, g2_2);
+            float g2_3 = (_e14 * scale);
+            const float _e16 = phase_hg(cos_theta_4, g_5);
+            const float _e17 = phase_hg(cos_theta_4, g2_3);
             float _e21 = frame.phase.z;
             return lerp(_e16, _e17, _e21);
         }
         case 2u: {
-            const float _e23 = phase_cornette_shanks(cos_theta_2, g_4);
+            const float _e23 = phase_cornette_shanks(cos_theta_4, g_5);
             return _e23;
         }
         default: {
-            const float _e24 = phase_hg(cos_theta_2, g_4);
+            const float _e24 = phase_hg(cos_theta_4, g_5);
             return _e24;
         }
     }
 }
 
-float sun_optical_depth(float3 rel, float3 p_6, Layer l_4, inout Counters counters_4)
+float sun_optical_depth(float3 rel_1, float3 p_6, Layer l_4, inout Counters counters_4)
 {
     float seg = (float)0;
     float dist = 0.0;
-    float tau = 0.0;
-    uint i_5 = 0u;
-    bool local_23 = (bool)0;
-    uint j_1 = 0u;
-    bool local_24 = (bool)0;
-    bool local_25 = (bool)0;
+    float tau_3 = 0.0;
+    uint i_8 = 0u;
     bool local_26 = (bool)0;
+    uint j_1 = 0u;
+    bool local_27 = (bool)0;
+    bool local_28 = (bool)0;
+    bool local_29 = (bool)0;
 
     float4 _e6 = frame.sun_direction;
-    float3 sun = _e6.xyz;
+    float3 sun_1 = _e6.xyz;
     float _e11 = frame.extinction.x;
     float _e15 = frame.extinction.y;
     float sigma_t_1 = (_e11 + _e15);
-    uint steps_1 = frame.counts.w;
+    uint steps_2 = frame.counts.w;
     float growth = frame.march.y;
     float _e28 = frame.march.z;
     seg = _e28;
-    uint2 loop_bound_3 = uint2(4294967295u, 4294967295u);
-    bool loop_init_3 = true;
+    uint2 loop_bound_4 = uint2(4294967295u, 4294967295u);
+    bool loop_init_4 = true;
     while(true) {
-        if (all(loop_bound_3 == uint2(0u, 0u))) { break; }
-        loop_bound_3 -= uint2(loop_bound_3.y == 0u, 1u);
-        if (!loop_init_3) {
-            uint _e73 = i_5;
-            i_5 = (_e73 + 1u);
+        if (all(loop_bound_4 == uint2(0u, 0u))) { break; }
+        loop_bound_4 -= uint2(loop_bound_4.y == 0u, 1u);
+        if (!loop_init_4) {
+            uint _e73 = i_8;
+            i_8 = (_e73 + 1u);
         }
-        loop_init_3 = false;
-        uint _e36 = i_5;
-        if ((_e36 < steps_1)) {
+        loop_init_4 = false;
+        uint _e36 = i_8;
+        if ((_e36 < steps_2)) {
         } else {
             break;
         }
         {
             float _e38 = dist;
             float _e39 = seg;
-            float s_4 = (_e38 + (0.5 * _e39));
-            float3 q_6 = (rel + (sun * s_4));
-            const float _e45 = altitude_of(q_6);
+            float s_7 = (_e38 + (0.5 * _e39));
+            float3 q_7 = (rel_1 + (sun_1 * s_7));
+            const float _e45 = altitude_of(q_7);
             if (!((_e45 > l_4.top))) {
-                local_23 = (_e45 < l_4.bottom);
+                local_26 = (_e45 < l_4.bottom);
             } else {
-                local_23 = true;
+                local_26 = true;
             }
-            bool _e54 = local_23;
+            bool _e54 = local_26;
             if (_e54) {
                 break;
             }
             uint _e56 = counters_4.light;
             counters_4.light = (_e56 + 1u);
-            float _e59 = tau;
-            const float _e62 = layer_density((p_6 + (sun * s_4)), _e45, l_4, counters_4);
+            float _e59 = tau_3;
+            const float _e62 = layer_density((p_6 + (sun_1 * s_7)), _e45, l_4, counters_4);
             float _e64 = seg;
-            tau = (_e59 + ((_e62 * sigma_t_1) * _e64));
+            tau_3 = (_e59 + ((_e62 * sigma_t_1) * _e64));
             float _e67 = dist;
             float _e68 = seg;
             dist = (_e67 + _e68);
@@ -933,17 +1396,17 @@ float sun_optical_depth(float3 rel, float3 p_6, Layer l_4, inout Counters counte
             seg = (_e70 * growth);
         }
     }
-    const float _e75 = altitude_of(rel);
-    uint2 loop_bound_4 = uint2(4294967295u, 4294967295u);
-    bool loop_init_4 = true;
+    const float _e75 = altitude_of(rel_1);
+    uint2 loop_bound_5 = uint2(4294967295u, 4294967295u);
+    bool loop_init_5 = true;
     while(true) {
-        if (all(loop_bound_4 == uint2(0u, 0u))) { break; }
-        loop_bound_4 -= uint2(loop_bound_4.y == 0u, 1u);
-        if (!loop_init_4) {
+        if (all(loop_bound_5 == uint2(0u, 0u))) { break; }
+        loop_bound_5 -= uint2(loop_bound_5.y == 0u, 1u);
+        if (!loop_init_5) {
             uint _e139 = j_1;
             j_1 = (_e139 + 1u);
         }
-        loop_init_4 = false;
+        loop_init_5 = false;
         uint _e78 = j_1;
         const uint _e79 = layer_count();
         if ((_e78 < _e79)) {
@@ -956,107 +1419,112 @@ float sun_optical_depth(float3 rel, float3 p_6, Layer l_4, inout Counters counte
             if ((_e82.bottom <= l_4.top)) {
                 continue;
             }
-            const Roots _e87 = ray_shell_from(rel, _e75, sun, _e82.bottom);
-            const Roots _e89 = ray_shell_from(rel, _e75, sun, _e82.top);
+            const Roots _e87 = ray_shell_from(rel_1, _e75, sun_1, _e82.bottom);
+            const Roots _e89 = ray_shell_from(rel_1, _e75, sun_1, _e82.top);
             if (!(!(_e87.hit))) {
-                local_24 = !(_e89.hit);
+                local_27 = !(_e89.hit);
             } else {
-                local_24 = true;
+                local_27 = true;
             }
-            bool _e98 = local_24;
+            bool _e98 = local_27;
             if (!(_e98)) {
-                local_25 = !((_e89.t1_ > _e87.t1_));
+                local_28 = !((_e89.t1_ > _e87.t1_));
             } else {
-                local_25 = true;
+                local_28 = true;
             }
-            bool _e107 = local_25;
+            bool _e107 = local_28;
             if (!(_e107)) {
-                local_26 = (_e87.t1_ <= 0.0);
+                local_29 = (_e87.t1_ <= 0.0);
             } else {
-                local_26 = true;
+                local_29 = true;
             }
-            bool _e115 = local_26;
+            bool _e115 = local_29;
             if (_e115) {
                 continue;
             }
-            float s_5 = (0.5 * (_e87.t1_ + _e89.t1_));
+            float s_8 = (0.5 * (_e87.t1_ + _e89.t1_));
             uint _e122 = counters_4.light;
             counters_4.light = (_e122 + 1u);
-            float _e125 = tau;
-            const float _e130 = altitude_of((rel + (sun * s_5)));
-            const float _e131 = layer_density((p_6 + (sun * s_5)), _e130, _e82, counters_4);
-            tau = (_e125 + ((_e131 * sigma_t_1) * (_e89.t1_ - _e87.t1_)));
+            float _e125 = tau_3;
+            const float _e130 = altitude_of((rel_1 + (sun_1 * s_8)));
+            const float _e131 = layer_density((p_6 + (sun_1 * s_8)), _e130, _e82, counters_4);
+            tau_3 = (_e125 + ((_e131 * sigma_t_1) * (_e89.t1_ - _e87.t1_)));
         }
     }
-    float _e141 = tau;
+    float _e141 = tau_3;
     return _e141;
 }
 
-float sun_scattering(float cos_theta_3, float tau_1)
+float sun_scattering(float cos_theta_5, float tau_4)
 {
     float octave_sum = 0.0;
     float ka = 1.0;
     float kb = 1.0;
     float kc = 1.0;
-    uint i_6 = 0u;
+    uint i_9 = 0u;
     float total = (float)0;
 
-    float a_4 = frame.multiple_scattering.x;
-    float b_6 = frame.multiple_scattering.y;
-    float c_6 = frame.multiple_scattering.z;
+    float a_8 = frame.multiple_scattering.x;
+    float b_8 = frame.multiple_scattering.y;
+    float c_7 = frame.multiple_scattering.z;
     uint _e17 = frame.misc.x;
     uint octaves = min(_e17, MAX_OCTAVES);
-    uint2 loop_bound_5 = uint2(4294967295u, 4294967295u);
-    bool loop_init_5 = true;
+    uint2 loop_bound_6 = uint2(4294967295u, 4294967295u);
+    bool loop_init_6 = true;
     while(true) {
-        if (all(loop_bound_5 == uint2(0u, 0u))) { break; }
-        loop_bound_5 -= uint2(loop_bound_5.y == 0u, 1u);
-        if (!loop_init_5) {
-            uint _e50 = i_6;
-            i_6 = (_e50 + 1u);
+        if (all(loop_bound_6 == uint2(0u, 0u))) { break; }
+        loop_bound_6 -= uint2(loop_bound_6.y == 0u, 1u);
+        if (!loop_init_6) {
+            uint _e50 = i_9;
+            i_9 = (_e50 + 1u);
         }
-        loop_init_5 = false;
-        uint _e30 = i_6;
+        loop_init_6 = false;
+        uint _e30 = i_9;
         if ((_e30 < octaves)) {
         } else {
             break;
         }
         {
             float _e32 = ka;
-            ka = (_e32 * a_4);
+            ka = (_e32 * a_8);
             float _e34 = kb;
-            kb = (_e34 * b_6);
+            kb = (_e34 * b_8);
             float _e36 = kc;
-            kc = (_e36 * c_6);
+            kc = (_e36 * c_7);
             float _e38 = octave_sum;
             float _e39 = ka;
             float _e40 = kc;
-            const float _e41 = phase(cos_theta_3, _e40);
+            const float _e41 = phase(cos_theta_5, _e40);
             float _e43 = kb;
-            octave_sum = (_e38 + ((_e39 * _e41) * exp((-(_e43) * tau_1))));
+            octave_sum = (_e38 + ((_e39 * _e41) * exp((-(_e43) * tau_4))));
         }
     }
     float _e55 = frame.sun_direction.y;
     const float _e56 = saturate_(_e55);
-    const float _e58 = phase(cos_theta_3, 1.0);
+    const float _e58 = phase(cos_theta_5, 1.0);
     float _e62 = octave_sum;
-    total = ((_e58 * exp(-(tau_1))) + (_e56 * _e62));
+    total = ((_e58 * exp(-(tau_4))) + (_e56 * _e62));
     uint _e69 = frame.modes.w;
     if (((_e69 & FLAG_BEER_POWDER) != 0u)) {
         float _e74 = total;
         float _e78 = frame.phase.w;
-        total = (_e74 * (1.0 - exp((-(_e78) * tau_1))));
+        total = (_e74 * (1.0 - exp((-(_e78) * tau_4))));
     }
     float _e85 = total;
     return _e85;
 }
 
-float3 ambient(float h_4)
+float3 ambient(float h_5)
 {
-    float4 _e3 = frame.ambient_bottom;
-    float4 _e7 = frame.ambient_top;
-    float _e13 = frame.ambient_bottom.w;
-    return (lerp(_e3.xyz, _e7.xyz, h_4) * _e13);
+    const bool _e1 = physical_sky();
+    if (_e1) {
+        const float3 _e2 = sky_ambient_light(h_5);
+        return _e2;
+    }
+    float4 _e5 = frame.ambient_bottom;
+    float4 _e9 = frame.ambient_top;
+    float _e15 = frame.ambient_bottom.w;
+    return (lerp(_e5.xyz, _e9.xyz, h_5) * _e15);
 }
 
 float height_fraction(float alt_11)
@@ -1068,47 +1536,44 @@ float height_fraction(float alt_11)
     return _e4;
 }
 
-float3 scattered_light(float3 rel_1, float3 p_7, float alt_12, float density_1, float3 view, Layer l_5, inout Counters counters_5)
+float3 scattered_light(float3 rel_2, float3 p_7, float alt_12, float density_1, float3 view, Layer l_5, inout Counters counters_5)
 {
     float3 sun_light = (0.0).xxx;
-    float tau_2 = 0.0;
+    float tau_5 = 0.0;
 
     float4 _e9 = frame.sun_direction;
-    float3 sun_1 = _e9.xyz;
+    float3 sun_2 = _e9.xyz;
     const float _e11 = layer_height(l_5, alt_12);
     const float _e12 = saturate_(_e11);
-    const bool _e16 = hits_ground(rel_1, alt_12, sun_1);
+    const bool _e16 = hits_ground(rel_2, alt_12, sun_2);
     if (!(_e16)) {
         if (LIGHT_MARCH) {
-            const float _e21 = sun_optical_depth(rel_1, p_7, l_5, counters_5);
-            tau_2 = _e21;
+            const float _e21 = sun_optical_depth(rel_2, p_7, l_5, counters_5);
+            tau_5 = _e21;
         }
         float4 _e24 = frame.sun_illuminance;
-        float _e27 = tau_2;
-        const float _e28 = sun_scattering(dot(view, sun_1), _e27);
-        sun_light = (_e24.xyz * _e28);
+        const float3 _e26 = sun_through_air(rel_2);
+        float _e29 = tau_5;
+        const float _e30 = sun_scattering(dot(view, sun_2), _e29);
+        sun_light = ((_e24.xyz * _e26) * _e30);
     }
-    const Weather _e30 = sample_weather(p_7, l_5);
-    float _e34 = frame.extinction.z;
-    const float _e42 = saturate_((1.0 - ((_e34 * _e30.precipitation) * (1.0 - _e12))));
-    float _e46 = frame.extinction.x;
-    float3 _e48 = sun_light;
-    const float3 _e49 = ambient(_e12);
-    return (((_e46 * density_1) * (_e48 + _e49)) * _e42);
+    const Weather _e32 = sample_weather(p_7, l_5);
+    float _e36 = frame.extinction.z;
+    const float _e44 = saturate_((1.0 - ((_e36 * _e32.precipitation) * (1.0 - _e12))));
+    float _e48 = frame.extinction.x;
+    float3 _e50 = sun_light;
+    const float3 _e51 = ambient(_e12);
+    return (((_e48 * density_1) * (_e50 + _e51)) * _e44);
 }
 
-uint2 naga_f2u32(float2 value) {
-    return uint2(clamp(value, 0.0, 4294967000.0));
-}
-
-float empty_cell_exit(float3 p_8, float3 d_7)
+float empty_cell_exit(float3 p_8, float3 d_10)
 {
     float exit = 1e30;
 
     float4 _e6 = frame.wind_offsets0_;
     float _e12 = frame.periods.x;
-    float2 uv_4 = (frac(((p_8.xz - _e6.xy) / (_e12).xx)) * 64.0);
-    uint2 cell_1 = min(naga_f2u32(uv_4), (63u).xx);
+    float2 uv_5 = (frac(((p_8.xz - _e6.xy) / (_e12).xx)) * 64.0);
+    uint2 cell_1 = min(naga_f2u32(uv_5), (63u).xx);
     float4 _e23 = occupancy_in.Load(int3(cell_1, int(0)));
     float m_2 = _e23.x;
     float _e28 = frame.clouds.x;
@@ -1117,23 +1582,23 @@ float empty_cell_exit(float3 p_8, float3 d_7)
     }
     float _e40 = frame.periods.x;
     float cell_m = (_e40 / 64.0);
-    float2 inside = ((uv_4 - float2(cell_1)) * cell_m);
-    if ((d_7.x > 1e-6)) {
+    float2 inside = ((uv_5 - float2(cell_1)) * cell_m);
+    if ((d_10.x > 1e-6)) {
         float _e50 = exit;
-        exit = min(_e50, ((cell_m - inside.x) / d_7.x));
+        exit = min(_e50, ((cell_m - inside.x) / d_10.x));
     } else {
-        if ((d_7.x < -1e-6)) {
+        if ((d_10.x < -1e-6)) {
             float _e59 = exit;
-            exit = min(_e59, (inside.x / -(d_7.x)));
+            exit = min(_e59, (inside.x / -(d_10.x)));
         }
     }
-    if ((d_7.z > 1e-6)) {
+    if ((d_10.z > 1e-6)) {
         float _e68 = exit;
-        exit = min(_e68, ((cell_m - inside.y) / d_7.z));
+        exit = min(_e68, ((cell_m - inside.y) / d_10.z));
     } else {
-        if ((d_7.z < -1e-6)) {
+        if ((d_10.z < -1e-6)) {
             float _e77 = exit;
-            exit = min(_e77, (inside.y / -(d_7.z)));
+            exit = min(_e77, (inside.y / -(d_10.z)));
         }
     }
     float _e83 = exit;
@@ -1142,14 +1607,14 @@ float empty_cell_exit(float3 p_8, float3 d_7)
 
 void count(uint index_1, uint value)
 {
-    bool local_27 = (bool)0;
+    bool local_30 = (bool)0;
 
     if (STATS) {
-        local_27 = (value != 0u);
+        local_30 = (value != 0u);
     } else {
-        local_27 = false;
+        local_30 = false;
     }
-    bool _e8 = local_27;
+    bool _e8 = local_30;
     if (_e8) {
         uint _e12; stats.InterlockedAdd(index_1*4+0, value, _e12);
         return;
@@ -1164,56 +1629,52 @@ float3 step_integral(float3 source, float sigma_t, float dt)
     if ((_e6 == INTEGRATION_RIEMANN)) {
         return (source * dt);
     }
-    float x_4 = (sigma_t * dt);
-    float f_1 = ((x_4 < 0.001) ? (1.0 - (0.5 * x_4)) : ((1.0 - exp(-(x_4))) / x_4));
-    return (source * (dt * f_1));
+    float x_8 = (sigma_t * dt);
+    float f_3 = ((x_8 < 0.001) ? (1.0 - (0.5 * x_8)) : ((1.0 - exp(-(x_8))) / x_8));
+    return (source * (dt * f_3));
 }
 
 uint naga_div(uint lhs, uint rhs) {
     return lhs / (rhs == 0u ? 1u : rhs);
 }
 
-float start_offset(uint2 pixel_2)
+float start_offset(uint2 pixel_3)
 {
     uint _e4 = frame.modes.w;
     bool jitter_1 = ((_e4 & FLAG_JITTER) != 0u);
-    uint k_6 = frame.temporal.x;
-    if ((k_6 <= 1u)) {
+    uint k_10 = frame.temporal.x;
+    if ((k_10 <= 1u)) {
         uint _e18 = frame.misc.y;
-        const float _e19 = hash_unit(pixel_2, _e18);
+        const float _e19 = hash_unit(pixel_3, _e18);
         return (jitter_1 ? _e19 : 0.5);
     }
-    const float _e23 = hash_unit(pixel_2, 0u);
+    const float _e23 = hash_unit(pixel_3, 0u);
     float base_2 = (jitter_1 ? _e23 : 0.5);
     uint _e29 = frame.misc.y;
-    const float _e32 = van_der_corput(naga_div(_e29, (k_6 * k_6)));
+    const float _e32 = van_der_corput(naga_div(_e29, (k_10 * k_10)));
     return frac((base_2 + _e32));
-}
-
-uint naga_f2u32(float value) {
-    return uint(clamp(value, 0.0, 4294967000.0));
 }
 
 bool march_layer(float3 view_1, Interval span_1, Layer l_6, float jitter, inout MarchState state, inout Counters counters_6)
 {
-    uint steps = (uint)0;
-    uint i_7 = 0u;
+    uint steps_1 = (uint)0;
+    uint i_10 = 0u;
     uint stride = 1u;
     uint empty = 0u;
-    bool local_28 = (bool)0;
+    bool local_31 = (bool)0;
 
     float cam_alt = frame.camera_position.y;
     float4 _e12 = frame.camera_position;
     float2 cam_xz = _e12.xz;
     uint _e17 = frame.counts.z;
-    steps = _e17;
+    steps_1 = _e17;
     float _e22 = frame.march.x;
     if ((_e22 > 0.0)) {
         float _e29 = frame.march.x;
-        steps = clamp(naga_f2u32(ceil((span_1.length_ / _e29))), 1u, MAX_VIEW_STEPS);
+        steps_1 = clamp(naga_f2u32(ceil((span_1.length_ / _e29))), 1u, MAX_VIEW_STEPS);
     }
-    uint _e37 = steps;
-    float dt_1 = (span_1.length_ / float(_e37));
+    uint _e37 = steps_1;
+    float dt_2 = (span_1.length_ / float(_e37));
     float _e43 = frame.extinction.x;
     float _e47 = frame.extinction.y;
     float sigma_e = (_e43 + _e47);
@@ -1221,78 +1682,78 @@ bool march_layer(float3 view_1, Interval span_1, Layer l_6, float jitter, inout 
     bool dynamic_step = ((_e52 & FLAG_DYNAMIC_STEP) != 0u);
     uint _e60 = frame.modes.w;
     bool empty_skip = ((_e60 & FLAG_EMPTY_SKIP) != 0u);
-    uint2 loop_bound_6 = uint2(4294967295u, 4294967295u);
+    uint2 loop_bound_7 = uint2(4294967295u, 4294967295u);
     while(true) {
-        if (all(loop_bound_6 == uint2(0u, 0u))) { break; }
-        loop_bound_6 -= uint2(loop_bound_6.y == 0u, 1u);
-        uint _e71 = i_7;
-        uint _e72 = steps;
+        if (all(loop_bound_7 == uint2(0u, 0u))) { break; }
+        loop_bound_7 -= uint2(loop_bound_7.y == 0u, 1u);
+        uint _e71 = i_10;
+        uint _e72 = steps_1;
         if ((_e71 >= _e72)) {
             break;
         }
         uint _e75 = counters_6.view_steps;
         counters_6.view_steps = (_e75 + 1u);
-        uint _e79 = i_7;
-        float t_4 = (span_1.start + ((float(_e79) + jitter) * dt_1));
-        float3 rel_4 = ((view_1 * t_4) + float3(0.0, cam_alt, 0.0));
-        float3 p_12 = float3((rel_4.x + cam_xz.x), rel_4.y, (rel_4.z + cam_xz.y));
+        uint _e79 = i_10;
+        float t_5 = (span_1.start + ((float(_e79) + jitter) * dt_2));
+        float3 rel_5 = ((view_1 * t_5) + float3(0.0, cam_alt, 0.0));
+        float3 p_13 = float3((rel_5.x + cam_xz.x), rel_5.y, (rel_5.z + cam_xz.y));
         if (empty_skip) {
-            const float _e97 = empty_cell_exit(p_12, view_1);
+            const float _e97 = empty_cell_exit(p_13, view_1);
             if ((_e97 > 0.0)) {
-                uint _e106 = steps;
-                uint next_1 = naga_f2u32(clamp(ceil(((((t_4 + _e97) - span_1.start) / dt_1) - jitter)), 0.0, float(_e106)));
-                uint _e111 = i_7;
-                i_7 = max((_e111 + 1u), next_1);
+                uint _e106 = steps_1;
+                uint next_1 = naga_f2u32(clamp(ceil(((((t_5 + _e97) - span_1.start) / dt_2) - jitter)), 0.0, float(_e106)));
+                uint _e111 = i_10;
+                i_10 = max((_e111 + 1u), next_1);
                 continue;
             }
         }
-        const float _e115 = altitude_of(rel_4);
-        const float _e116 = layer_density(p_12, _e115, l_6, counters_6);
+        const float _e115 = altitude_of(rel_5);
+        const float _e116 = layer_density(p_13, _e115, l_6, counters_6);
         if ((_e116 <= 0.0)) {
             uint _e119 = empty;
             empty = (_e119 + 1u);
             if (dynamic_step) {
                 uint _e124 = empty;
-                local_28 = (_e124 >= 8u);
+                local_31 = (_e124 >= 8u);
             } else {
-                local_28 = false;
+                local_31 = false;
             }
-            bool _e128 = local_28;
+            bool _e128 = local_31;
             if (_e128) {
                 stride = 2u;
             }
-            uint _e130 = i_7;
+            uint _e130 = i_10;
             uint _e131 = stride;
-            i_7 = (_e130 + _e131);
+            i_10 = (_e130 + _e131);
             continue;
         }
         uint _e133 = stride;
         if ((_e133 > 1u)) {
-            uint _e136 = i_7;
+            uint _e136 = i_10;
             uint _e137 = stride;
-            i_7 = (_e136 - (_e137 - 1u));
+            i_10 = (_e136 - (_e137 - 1u));
             stride = 1u;
             empty = 0u;
             continue;
         }
         empty = 0u;
         float sigma_t_2 = (sigma_e * _e116);
-        const float3 _e145 = scattered_light(rel_4, p_12, _e115, _e116, view_1, l_6, counters_6);
+        const float3 _e145 = scattered_light(rel_5, p_13, _e115, _e116, view_1, l_6, counters_6);
         float transmittance_1 = state.transmittance;
         float3 _e149 = state.radiance;
-        const float3 _e150 = step_integral(_e145, sigma_t_2, dt_1);
+        const float3 _e150 = step_integral(_e145, sigma_t_2, dt_2);
         state.radiance = (_e149 + (transmittance_1 * _e150));
-        float step_t = exp((-(sigma_t_2) * dt_1));
+        float step_t = exp((-(sigma_t_2) * dt_2));
         float _e157 = state.depth_sum;
-        state.depth_sum = (_e157 + ((t_4 * transmittance_1) * (1.0 - step_t)));
+        state.depth_sum = (_e157 + ((t_5 * transmittance_1) * (1.0 - step_t)));
         state.transmittance = (transmittance_1 * step_t);
         float _e166 = state.transmittance;
         float _e170 = frame.march.w;
         if ((_e166 < _e170)) {
             return true;
         }
-        uint _e173 = i_7;
-        i_7 = (_e173 + 1u);
+        uint _e173 = i_10;
+        i_10 = (_e173 + 1u);
     }
     return false;
 }
@@ -1322,42 +1783,42 @@ MarchResult ConstructMarchResult(float3 arg0, float arg1, float arg2) {
     return ret;
 }
 
-MarchResult march_pixel(uint2 pixel_3)
+MarchResult march_pixel(uint2 pixel_4)
 {
     Counters counters_7 = ConstructCounters(0u, 0u, 0u, 0u);
     MarchState state_1 = ConstructMarchState((0.0).xxx, 1.0, 0.0);
     bool marched = false;
-    bool ground = false;
+    bool ground_1 = false;
     float last_start = -1.0;
     uint last_index = NO_LAYER;
-    uint k = 0u;
+    uint k_4 = 0u;
     uint next = (uint)0;
     Interval span_2 = (Interval)0;
-    uint i_8 = (uint)0;
-    bool local_29 = (bool)0;
-    bool local_30 = (bool)0;
-    bool local_31 = (bool)0;
+    uint i_11 = (uint)0;
     bool local_32 = (bool)0;
     bool local_33 = (bool)0;
     bool local_34 = (bool)0;
+    bool local_35 = (bool)0;
+    bool local_36 = (bool)0;
+    bool local_37 = (bool)0;
     float depth_1 = 0.0;
 
-    const float3 _e1 = view_ray(pixel_3);
+    const float3 _e1 = view_ray(pixel_4);
     float cam_alt_1 = frame.camera_position.y;
     count(STAT_PIXELS, 1u);
-    const float _e20 = start_offset(pixel_3);
+    const float _e20 = start_offset(pixel_4);
     const uint _e21 = layer_count();
-    uint2 loop_bound_7 = uint2(4294967295u, 4294967295u);
-    bool loop_init_6 = true;
+    uint2 loop_bound_8 = uint2(4294967295u, 4294967295u);
+    bool loop_init_7 = true;
     while(true) {
-        if (all(loop_bound_7 == uint2(0u, 0u))) { break; }
-        loop_bound_7 -= uint2(loop_bound_7.y == 0u, 1u);
-        if (!loop_init_6) {
-            uint _e116 = k;
-            k = (_e116 + 1u);
+        if (all(loop_bound_8 == uint2(0u, 0u))) { break; }
+        loop_bound_8 -= uint2(loop_bound_8.y == 0u, 1u);
+        if (!loop_init_7) {
+            uint _e116 = k_4;
+            k_4 = (_e116 + 1u);
         }
-        loop_init_6 = false;
-        uint _e32 = k;
+        loop_init_7 = false;
+        uint _e32 = k_4;
         if ((_e32 < _e21)) {
         } else {
             break;
@@ -1365,72 +1826,72 @@ MarchResult march_pixel(uint2 pixel_3)
         {
             next = NO_LAYER;
             span_2 = ConstructInterval(0.0, 0.0, 1u);
-            i_8 = 0u;
-            uint2 loop_bound_8 = uint2(4294967295u, 4294967295u);
-            bool loop_init_7 = true;
+            i_11 = 0u;
+            uint2 loop_bound_9 = uint2(4294967295u, 4294967295u);
+            bool loop_init_8 = true;
             while(true) {
-                if (all(loop_bound_8 == uint2(0u, 0u))) { break; }
-                loop_bound_8 -= uint2(loop_bound_8.y == 0u, 1u);
-                if (!loop_init_7) {
-                    uint _e100 = i_8;
-                    i_8 = (_e100 + 1u);
+                if (all(loop_bound_9 == uint2(0u, 0u))) { break; }
+                loop_bound_9 -= uint2(loop_bound_9.y == 0u, 1u);
+                if (!loop_init_8) {
+                    uint _e100 = i_11;
+                    i_11 = (_e100 + 1u);
                 }
-                loop_init_7 = false;
-                uint _e43 = i_8;
+                loop_init_8 = false;
+                uint _e43 = i_11;
                 if ((_e43 < _e21)) {
                 } else {
                     break;
                 }
                 {
-                    uint _e45 = i_8;
+                    uint _e45 = i_11;
                     const Layer _e46 = cloud_layer(_e45);
                     const Interval _e47 = layer_interval(cam_alt_1, _e1, _e46);
-                    bool _e48 = ground;
+                    bool _e48 = ground_1;
                     if (!(_e48)) {
-                        local_29 = (_e47.kind == RAY_HITS_GROUND);
+                        local_32 = (_e47.kind == RAY_HITS_GROUND);
                     } else {
-                        local_29 = true;
+                        local_32 = true;
                     }
-                    bool _e56 = local_29;
-                    ground = _e56;
+                    bool _e56 = local_32;
+                    ground_1 = _e56;
                     float _e58 = last_start;
                     if (!((_e47.start > _e58))) {
                         float _e64 = last_start;
                         if ((_e47.start == _e64)) {
-                            uint _e68 = i_8;
+                            uint _e68 = i_11;
                             uint _e69 = last_index;
-                            local_31 = (_e68 > _e69);
+                            local_34 = (_e68 > _e69);
                         } else {
-                            local_31 = false;
+                            local_34 = false;
                         }
-                        bool _e72 = local_31;
-                        local_30 = _e72;
+                        bool _e72 = local_34;
+                        local_33 = _e72;
                     } else {
-                        local_30 = true;
+                        local_33 = true;
                     }
-                    bool after = local_30;
+                    bool after = local_33;
                     if ((_e47.kind == RAY_MARCH)) {
-                        local_32 = after;
+                        local_35 = after;
                     } else {
-                        local_32 = false;
+                        local_35 = false;
                     }
-                    bool _e81 = local_32;
+                    bool _e81 = local_35;
                     if (_e81) {
                         uint _e84 = next;
                         if (!((_e84 == NO_LAYER))) {
                             float _e92 = span_2.start;
-                            local_34 = (_e47.start < _e92);
+                            local_37 = (_e47.start < _e92);
                         } else {
-                            local_34 = true;
+                            local_37 = true;
                         }
-                        bool _e95 = local_34;
-                        local_33 = _e95;
+                        bool _e95 = local_37;
+                        local_36 = _e95;
                     } else {
-                        local_33 = false;
+                        local_36 = false;
                     }
-                    bool _e97 = local_33;
+                    bool _e97 = local_36;
                     if (_e97) {
-                        uint _e98 = i_8;
+                        uint _e98 = i_11;
                         next = _e98;
                         span_2 = _e47;
                     }
@@ -1459,7 +1920,7 @@ MarchResult march_pixel(uint2 pixel_3)
     if (_e118) {
         count(STAT_MARCHED, 1u);
     } else {
-        bool _e121 = ground;
+        bool _e121 = ground_1;
         if (_e121) {
             count(STAT_EXIT_GROUND, 1u);
         } else {
@@ -1487,35 +1948,35 @@ MarchResult march_pixel(uint2 pixel_3)
     return marchresult;
 }
 
-uint2 bayer2_(uint v_1)
+uint2 bayer2_(uint v_2)
 {
-    return uint2(((v_1 ^ (v_1 >> 1u)) & 1u), (v_1 & 1u));
+    return uint2(((v_2 ^ (v_2 >> 1u)) & 1u), (v_2 & 1u));
 }
 
 uint naga_mod(uint lhs, uint rhs) {
     return lhs % (rhs == 0u ? 1u : rhs);
 }
 
-uint2 block_offset(uint f, uint k_1)
+uint2 block_offset(uint f, uint k_5)
 {
-    if ((k_1 == 2u)) {
+    if ((k_5 == 2u)) {
         const uint2 _e6 = bayer2_(naga_mod(f, 4u));
         return _e6;
     }
-    if ((k_1 == 4u)) {
-        uint b_7 = naga_mod(f, 16u);
-        const uint2 _e13 = bayer2_((b_7 >> 2u));
-        const uint2 _e17 = bayer2_((b_7 & 3u));
+    if ((k_5 == 4u)) {
+        uint b_9 = naga_mod(f, 16u);
+        const uint2 _e13 = bayer2_((b_9 >> 2u));
+        const uint2 _e17 = bayer2_((b_9 & 3u));
         return (_e13 + (2u * _e17));
     }
     return (0u).xx;
 }
 
-float2 reproject(uint2 pixel_4, float depth_2)
+float2 reproject(uint2 pixel_5, float depth_2)
 {
-    bool local_35 = (bool)0;
-    bool local_36 = (bool)0;
-    bool local_37 = (bool)0;
+    bool local_38 = (bool)0;
+    bool local_39 = (bool)0;
+    bool local_40 = (bool)0;
     float3 dir = (float3)0;
 
     float4 _e4 = frame.previous_position;
@@ -1523,31 +1984,31 @@ float2 reproject(uint2 pixel_4, float depth_2)
     if (all((_e4 == _e7))) {
         float4 _e14 = frame.previous_forward;
         float4 _e17 = frame.camera_forward;
-        local_35 = all((_e14 == _e17));
+        local_38 = all((_e14 == _e17));
     } else {
-        local_35 = false;
+        local_38 = false;
     }
-    bool _e21 = local_35;
+    bool _e21 = local_38;
     if (_e21) {
         float4 _e26 = frame.previous_right;
         float4 _e29 = frame.camera_right;
-        local_36 = all((_e26 == _e29));
+        local_39 = all((_e26 == _e29));
     } else {
-        local_36 = false;
+        local_39 = false;
     }
-    bool _e33 = local_36;
+    bool _e33 = local_39;
     if (_e33) {
         float4 _e38 = frame.previous_up;
         float4 _e41 = frame.camera_up;
-        local_37 = all((_e38 == _e41));
+        local_40 = all((_e38 == _e41));
     } else {
-        local_37 = false;
+        local_40 = false;
     }
-    bool same = local_37;
+    bool same = local_40;
     if (same) {
-        return float2(pixel_4);
+        return float2(pixel_5);
     }
-    const float3 _e47 = view_ray(pixel_4);
+    const float3 _e47 = view_ray(pixel_5);
     dir = _e47;
     if ((depth_2 > 0.0)) {
         float4 _e54 = frame.camera_position;
@@ -1556,50 +2017,50 @@ float2 reproject(uint2 pixel_4, float depth_2)
     }
     float3 _e62 = dir;
     float4 _e65 = frame.previous_forward;
-    float z = dot(_e62, _e65.xyz);
-    if ((z <= 0.0)) {
+    float z_3 = dot(_e62, _e65.xyz);
+    if ((z_3 <= 0.0)) {
         return (-1000000000.0).xx;
     }
-    float tan_half_1 = frame.previous_position.w;
-    float aspect_1 = frame.previous_forward.w;
+    float tan_half_2 = frame.previous_position.w;
+    float aspect_2 = frame.previous_forward.w;
     float3 _e80 = dir;
     float4 _e83 = frame.previous_right;
     float3 _e89 = dir;
     float4 _e92 = frame.previous_up;
-    float2 ndc_1 = float2((dot(_e80, _e83.xyz) / ((z * tan_half_1) * aspect_1)), (-(dot(_e89, _e92.xyz)) / (z * tan_half_1)));
+    float2 ndc_2 = float2((dot(_e80, _e83.xyz) / ((z_3 * tan_half_2) * aspect_2)), (-(dot(_e89, _e92.xyz)) / (z_3 * tan_half_2)));
     uint4 _e106 = frame.counts;
-    return ((((ndc_1 * 0.5) + (0.5).xx) * float2(_e106.xy)) - (0.5).xx);
+    return ((((ndc_2 * 0.5) + (0.5).xx) * float2(_e106.xy)) - (0.5).xx);
 }
 
 bool on_screen(float2 q)
 {
-    bool local_38 = (bool)0;
+    bool local_41 = (bool)0;
 
     uint4 _e3 = frame.counts;
-    float2 size_1 = float2(_e3.xy);
+    float2 size_2 = float2(_e3.xy);
     if (all((q >= (-0.5).xx))) {
-        local_38 = all((q <= (size_1 - (0.5).xx)));
+        local_41 = all((q <= (size_2 - (0.5).xx)));
     } else {
-        local_38 = false;
+        local_41 = false;
     }
-    bool _e18 = local_38;
+    bool _e18 = local_41;
     return _e18;
 }
 
-float4 catmull_rom(float t)
+float4 catmull_rom(float t_1)
 {
-    return float4((t * (-0.5 + (t * (1.0 - (0.5 * t))))), (1.0 + ((t * t) * (-2.5 + (1.5 * t)))), (t * (0.5 + (t * (2.0 - (1.5 * t))))), ((t * t) * (-0.5 + (0.5 * t))));
+    return float4((t_1 * (-0.5 + (t_1 * (1.0 - (0.5 * t_1))))), (1.0 + ((t_1 * t_1) * (-2.5 + (1.5 * t_1)))), (t_1 * (0.5 + (t_1 * (2.0 - (1.5 * t_1))))), ((t_1 * t_1) * (-0.5 + (0.5 * t_1))));
 }
 
 float4 history_row(int2 base_1, int dy, float4 wx)
 {
     uint4 _e5 = frame.counts;
-    int2 size_2 = int2(_e5.xy);
-    int y_1 = clamp(asint(asuint(base_1.y) + asuint(dy)), int(0), asint(asuint(size_2.y) - asuint(int(1))));
-    int x0_ = clamp(asint(asuint(base_1.x) - asuint(int(1))), int(0), asint(asuint(size_2.x) - asuint(int(1))));
-    int x1_ = clamp(base_1.x, int(0), asint(asuint(size_2.x) - asuint(int(1))));
-    int x2_ = clamp(asint(asuint(base_1.x) + asuint(int(1))), int(0), asint(asuint(size_2.x) - asuint(int(1))));
-    int x3_ = clamp(asint(asuint(base_1.x) + asuint(int(2))), int(0), asint(asuint(size_2.x) - asuint(int(1))));
+    int2 size_3 = int2(_e5.xy);
+    int y_1 = clamp(asint(asuint(base_1.y) + asuint(dy)), int(0), asint(asuint(size_3.y) - asuint(int(1))));
+    int x0_ = clamp(asint(asuint(base_1.x) - asuint(int(1))), int(0), asint(asuint(size_3.x) - asuint(int(1))));
+    int x1_ = clamp(base_1.x, int(0), asint(asuint(size_3.x) - asuint(int(1))));
+    int x2_ = clamp(asint(asuint(base_1.x) + asuint(int(1))), int(0), asint(asuint(size_3.x) - asuint(int(1))));
+    int x3_ = clamp(asint(asuint(base_1.x) + asuint(int(2))), int(0), asint(asuint(size_3.x) - asuint(int(1))));
     float4 _e48 = history_in.Load(int3(int2(x0_, y_1), int(0)));
     float4 _e54 = history_in.Load(int3(int2(x1_, y_1), int(0)));
     float4 _e61 = history_in.Load(int3(int2(x2_, y_1), int(0)));
@@ -1614,36 +2075,36 @@ int2 naga_f2i32(float2 value) {
 float4 history_at(float2 q_1)
 {
     uint4 _e3 = frame.counts;
-    int2 size_3 = int2(_e3.xy);
-    float2 c_7 = clamp(q_1, (0.0).xx, float2(asint(asuint(size_3) - asuint((int(1)).xx))));
-    int2 base_3 = naga_f2i32(floor(c_7));
-    float2 f_2 = (c_7 - float2(base_3));
-    const float4 _e18 = catmull_rom(f_2.x);
-    const float4 _e20 = catmull_rom(f_2.y);
+    int2 size_4 = int2(_e3.xy);
+    float2 c_8 = clamp(q_1, (0.0).xx, float2(asint(asuint(size_4) - asuint((int(1)).xx))));
+    int2 base_3 = naga_f2i32(floor(c_8));
+    float2 f_4 = (c_8 - float2(base_3));
+    const float4 _e18 = catmull_rom(f_4.x);
+    const float4 _e20 = catmull_rom(f_4.y);
     const float4 _e22 = history_row(base_3, int(-1), _e18);
     const float4 _e26 = history_row(base_3, int(0), _e18);
     const float4 _e31 = history_row(base_3, int(1), _e18);
     const float4 _e36 = history_row(base_3, int(2), _e18);
-    float4 sum_2 = ((((_e22 * _e20.x) + (_e26 * _e20.y)) + (_e31 * _e20.z)) + (_e36 * _e20.w));
-    const float _e45 = saturate_(sum_2.w);
-    return float4(max(sum_2.xyz, (0.0).xxx), _e45);
+    float4 sum_4 = ((((_e22 * _e20.x) + (_e26 * _e20.y)) + (_e31 * _e20.z)) + (_e36 * _e20.w));
+    const float _e45 = saturate_(sum_4.w);
+    return float4(max(sum_4.xyz, (0.0).xxx), _e45);
 }
 
 float4 history_nearest(float2 q_2)
 {
     uint4 _e3 = frame.counts;
-    int2 size_4 = int2(_e3.xy);
-    int2 p_13 = clamp(naga_f2i32(round(q_2)), (int(0)).xx, asint(asuint(size_4) - asuint((int(1)).xx)));
-    float4 _e16 = history_in.Load(int3(p_13, int(0)));
+    int2 size_5 = int2(_e3.xy);
+    int2 p_14 = clamp(naga_f2i32(round(q_2)), (int(0)).xx, asint(asuint(size_5) - asuint((int(1)).xx)));
+    float4 _e16 = history_in.Load(int3(p_14, int(0)));
     return _e16;
 }
 
 float4 meta_at(float2 q_3)
 {
     uint4 _e3 = frame.counts;
-    int2 size_5 = int2(_e3.xy);
-    int2 p_14 = clamp(naga_f2i32(round(q_3)), (int(0)).xx, asint(asuint(size_5) - asuint((int(1)).xx)));
-    float4 _e16 = meta_in.Load(int3(p_14, int(0)));
+    int2 size_6 = int2(_e3.xy);
+    int2 p_15 = clamp(naga_f2i32(round(q_3)), (int(0)).xx, asint(asuint(size_6) - asuint((int(1)).xx)));
+    float4 _e16 = meta_in.Load(int3(p_15, int(0)));
     return _e16;
 }
 
@@ -1651,33 +2112,33 @@ uint2 naga_div(uint2 lhs, uint2 rhs) {
     return lhs / (rhs == 0u ? 1u : rhs);
 }
 
-bool in_blocks(uint2 id_12)
+bool in_blocks(uint2 id_18)
 {
-    uint k_7 = frame.temporal.x;
+    uint k_11 = frame.temporal.x;
     uint4 _e7 = frame.counts;
-    return all((id_12 < naga_div(((_e7.xy + (k_7).xx) - (1u).xx), (k_7).xx)));
+    return all((id_18 < naga_div(((_e7.xy + (k_11).xx) - (1u).xx), (k_11).xx)));
 }
 
-uint2 sparse_pixel(uint2 id_13)
+uint2 sparse_pixel(uint2 id_19)
 {
-    uint k_8 = frame.temporal.x;
+    uint k_12 = frame.temporal.x;
     uint _e9 = frame.misc.y;
-    const uint2 _e10 = block_offset(_e9, k_8);
-    return ((id_13 * k_8) + _e10);
+    const uint2 _e10 = block_offset(_e9, k_12);
+    return ((id_19 * k_12) + _e10);
 }
 
-void store_sparse(uint2 id_14, MarchResult r_2)
+void store_sparse(uint2 id_20, MarchResult r_12)
 {
-    cloud_out[id_14] = float4(r_2.radiance, r_2.transmittance);
-    depth_out[id_14] = float4(r_2.depth, 0.0, 0.0, 0.0);
+    cloud_out[id_20] = float4(r_12.radiance, r_12.transmittance);
+    depth_out[id_20] = float4(r_12.depth, 0.0, 0.0, 0.0);
     return;
 }
 
-uint rng_seed(uint2 pixel_5, uint frame_index_1)
+uint rng_seed(uint2 pixel_6, uint frame_index_1)
 {
     const uint _e4 = pcg(frame_index_1);
-    const uint _e6 = pcg((pixel_5.y ^ _e4));
-    const uint _e8 = pcg((pixel_5.x ^ _e6));
+    const uint _e6 = pcg((pixel_6.y ^ _e4));
+    const uint _e8 = pcg((pixel_6.x ^ _e6));
     return _e8;
 }
 
@@ -1685,8 +2146,8 @@ float rng_next(inout uint rng_1)
 {
     uint _e1 = rng_1;
     rng_1 = ((_e1 * 747796405u) + 2891336453u);
-    uint s_6 = rng_1;
-    uint word_1 = (((s_6 >> ((s_6 >> 28u) + 4u)) ^ s_6) * 277803737u);
+    uint s_9 = rng_1;
+    uint word_1 = (((s_9 >> ((s_9 >> 28u) + 4u)) ^ s_9) * 277803737u);
     return (float((((word_1 >> 22u) ^ word_1) >> 8u)) * 5.9604645e-8);
 }
 
@@ -1704,29 +2165,29 @@ Segments ConstructSegments(float2 arg0, float2 arg1, uint arg2) {
     return ret;
 }
 
-Segments layer_segments(float3 p_9, float alt_13, float3 d_8)
+Segments layer_segments(float3 p_9, float alt_13, float3 d_11)
 {
     Segments s = ConstructSegments((0.0).xx, (0.0).xx, 0u);
-    bool local_39 = (bool)0;
+    bool local_42 = (bool)0;
     float2 a_1 = (0.0).xx;
     float2 b_1 = (0.0).xx;
-    uint n_1 = 0u;
-    bool local_40 = (bool)0;
-    bool local_41 = (bool)0;
-    bool local_42 = (bool)0;
+    uint n_2 = 0u;
     bool local_43 = (bool)0;
+    bool local_44 = (bool)0;
+    bool local_45 = (bool)0;
+    bool local_46 = (bool)0;
 
     const float2 _e10 = layers_span();
-    float bottom_1 = _e10.x;
-    const Roots _e12 = ray_shell_from(p_9, alt_13, d_8, bottom_1);
-    const Roots _e14 = ray_shell_from(p_9, alt_13, d_8, _e10.y);
-    const bool _e15 = hits_ground(p_9, alt_13, d_8);
+    float bottom_2 = _e10.x;
+    const Roots _e12 = ray_shell_from(p_9, alt_13, d_11, bottom_2);
+    const Roots _e14 = ray_shell_from(p_9, alt_13, d_11, _e10.y);
+    const bool _e15 = hits_ground(p_9, alt_13, d_11);
     if (!(!(_e14.hit))) {
-        local_39 = (_e14.t1_ <= 0.0);
+        local_42 = (_e14.t1_ <= 0.0);
     } else {
-        local_39 = true;
+        local_42 = true;
     }
-    bool _e25 = local_39;
+    bool _e25 = local_42;
     if (_e25) {
         Segments _e26 = s;
         const Segments segments = _e26;
@@ -1734,89 +2195,89 @@ Segments layer_segments(float3 p_9, float alt_13, float3 d_8)
     }
     float entry = max(_e14.t0_, 0.0);
     if (_e12.hit) {
-        local_40 = (_e12.t0_ > 0.0);
+        local_43 = (_e12.t0_ > 0.0);
     } else {
-        local_40 = false;
+        local_43 = false;
     }
-    bool _e45 = local_40;
+    bool _e45 = local_43;
     if (_e45) {
-        local_41 = (alt_13 >= bottom_1);
+        local_44 = (alt_13 >= bottom_2);
     } else {
-        local_41 = false;
+        local_44 = false;
     }
-    bool _e50 = local_41;
+    bool _e50 = local_44;
     if (_e50) {
-        uint _e51 = n_1;
+        uint _e51 = n_2;
         a_1[min(uint(_e51), 1u)] = entry;
-        uint _e53 = n_1;
+        uint _e53 = n_2;
         b_1[min(uint(_e53), 1u)] = _e12.t0_;
-        uint _e56 = n_1;
-        n_1 = (_e56 + uint((_e12.t0_ > entry)));
+        uint _e56 = n_2;
+        n_2 = (_e56 + uint((_e12.t0_ > entry)));
         if (!(_e15)) {
-            local_42 = (_e14.t1_ > _e12.t1_);
+            local_45 = (_e14.t1_ > _e12.t1_);
         } else {
-            local_42 = false;
+            local_45 = false;
         }
-        bool _e68 = local_42;
+        bool _e68 = local_45;
         if (_e68) {
-            uint _e69 = n_1;
+            uint _e69 = n_2;
             a_1[min(uint(_e69), 1u)] = max(_e12.t1_, entry);
-            uint _e73 = n_1;
+            uint _e73 = n_2;
             b_1[min(uint(_e73), 1u)] = _e14.t1_;
-            uint _e76 = n_1;
-            n_1 = (_e76 + 1u);
+            uint _e76 = n_2;
+            n_2 = (_e76 + 1u);
         }
     } else {
-        if ((alt_13 < bottom_1)) {
+        if ((alt_13 < bottom_2)) {
             if (!(_e15)) {
-                local_43 = _e12.hit;
+                local_46 = _e12.hit;
             } else {
-                local_43 = false;
+                local_46 = false;
             }
-            bool _e85 = local_43;
+            bool _e85 = local_46;
             if (_e85) {
                 a_1.x = max(_e12.t1_, 0.0);
                 b_1.x = _e14.t1_;
-                n_1 = 1u;
+                n_2 = 1u;
             }
         } else {
             a_1.x = entry;
             b_1.x = _e14.t1_;
-            n_1 = 1u;
+            n_2 = 1u;
         }
     }
     float2 _e98 = a_1;
     s.a = _e98;
     float2 _e100 = b_1;
     s.b = _e100;
-    uint _e102 = n_1;
+    uint _e102 = n_2;
     s.count = _e102;
     Segments _e103 = s;
     const Segments segments_1 = _e103;
     return segments_1;
 }
 
-float density_at(float3 rel_2, inout Counters counters_8)
+float density_at(float3 rel_3, inout Counters counters_8)
 {
     float _e6 = frame.camera_position.x;
     float _e13 = frame.camera_position.z;
-    float3 p_15 = float3((rel_2.x + _e6), rel_2.y, (rel_2.z + _e13));
-    const float _e16 = altitude_of(rel_2);
-    const float _e17 = cloud_density(p_15, _e16, counters_8);
+    float3 p_16 = float3((rel_3.x + _e6), rel_3.y, (rel_3.z + _e13));
+    const float _e16 = altitude_of(rel_3);
+    const float _e17 = cloud_density(p_16, _e16, counters_8);
     return _e17;
 }
 
-float empty_cell_skip(float3 origin, float3 dir_1, float t_1)
+float empty_cell_skip(float3 origin_2, float3 dir_1, float t_2)
 {
     const uint _e3 = layer_count();
     if ((_e3 > 1u)) {
         return 0.0;
     }
-    float3 rel_5 = (origin + (dir_1 * t_1));
+    float3 rel_6 = (origin_2 + (dir_1 * t_2));
     float _e13 = frame.camera_position.x;
     float _e20 = frame.camera_position.z;
-    float3 p_16 = float3((rel_5.x + _e13), rel_5.y, (rel_5.z + _e20));
-    const float _e23 = empty_cell_exit(p_16, dir_1);
+    float3 p_17 = float3((rel_6.x + _e13), rel_6.y, (rel_6.z + _e20));
+    const float _e23 = empty_cell_exit(p_17, dir_1);
     if ((_e23 <= 0.0)) {
         return 0.0;
     }
@@ -1826,26 +2287,26 @@ float empty_cell_skip(float3 origin, float3 dir_1, float t_1)
 float density_max()
 {
     float m_1 = 0.0;
-    uint i_9 = 0u;
+    uint i_12 = 0u;
 
-    uint2 loop_bound_9 = uint2(4294967295u, 4294967295u);
-    bool loop_init_8 = true;
+    uint2 loop_bound_10 = uint2(4294967295u, 4294967295u);
+    bool loop_init_9 = true;
     while(true) {
-        if (all(loop_bound_9 == uint2(0u, 0u))) { break; }
-        loop_bound_9 -= uint2(loop_bound_9.y == 0u, 1u);
-        if (!loop_init_8) {
-            uint _e17 = i_9;
-            i_9 = (_e17 + 1u);
+        if (all(loop_bound_10 == uint2(0u, 0u))) { break; }
+        loop_bound_10 -= uint2(loop_bound_10.y == 0u, 1u);
+        if (!loop_init_9) {
+            uint _e17 = i_12;
+            i_12 = (_e17 + 1u);
         }
-        loop_init_8 = false;
-        uint _e4 = i_9;
+        loop_init_9 = false;
+        uint _e4 = i_12;
         const uint _e5 = layer_count();
         if ((_e4 < _e5)) {
         } else {
             break;
         }
         {
-            uint _e7 = i_9;
+            uint _e7 = i_12;
             const Layer _e8 = cloud_layer(_e7);
             float _e9 = m_1;
             m_1 = max(_e9, (_e8.density * (1.0 + _e8.precipitation)));
@@ -1855,10 +2316,10 @@ float density_max()
     return clamp(_e19, 0.0, 1.0);
 }
 
-float free_flight(float3 origin_1, float3 dir_2, Segments segs, inout uint rng_3, inout Counters counters_9)
+float free_flight(float3 origin_3, float3 dir_2, Segments segs, inout uint rng_3, inout Counters counters_9)
 {
-    uint k_2 = 0u;
-    float t_2 = (float)0;
+    uint k_6 = 0u;
+    float t_3 = (float)0;
 
     const float _e5 = density_max();
     float _e9 = frame.extinction.x;
@@ -1867,55 +2328,55 @@ float free_flight(float3 origin_1, float3 dir_2, Segments segs, inout uint rng_3
     if ((majorant <= 0.0)) {
         return -1.0;
     }
-    uint2 loop_bound_10 = uint2(4294967295u, 4294967295u);
-    bool loop_init_9 = true;
+    uint2 loop_bound_11 = uint2(4294967295u, 4294967295u);
+    bool loop_init_10 = true;
     while(true) {
-        if (all(loop_bound_10 == uint2(0u, 0u))) { break; }
-        loop_bound_10 -= uint2(loop_bound_10.y == 0u, 1u);
-        if (!loop_init_9) {
-            uint _e60 = k_2;
-            k_2 = (_e60 + 1u);
+        if (all(loop_bound_11 == uint2(0u, 0u))) { break; }
+        loop_bound_11 -= uint2(loop_bound_11.y == 0u, 1u);
+        if (!loop_init_10) {
+            uint _e60 = k_6;
+            k_6 = (_e60 + 1u);
         }
-        loop_init_9 = false;
-        uint _e21 = k_2;
+        loop_init_10 = false;
+        uint _e21 = k_6;
         if ((_e21 < segs.count)) {
         } else {
             break;
         }
         {
-            uint _e25 = k_2;
-            t_2 = segs.a[min(uint(_e25), 1u)];
-            uint2 loop_bound_11 = uint2(4294967295u, 4294967295u);
+            uint _e25 = k_6;
+            t_3 = segs.a[min(uint(_e25), 1u)];
+            uint2 loop_bound_12 = uint2(4294967295u, 4294967295u);
             while(true) {
-                if (all(loop_bound_11 == uint2(0u, 0u))) { break; }
-                loop_bound_11 -= uint2(loop_bound_11.y == 0u, 1u);
-                float _e28 = t_2;
-                const float _e29 = empty_cell_skip(origin_1, dir_2, _e28);
+                if (all(loop_bound_12 == uint2(0u, 0u))) { break; }
+                loop_bound_12 -= uint2(loop_bound_12.y == 0u, 1u);
+                float _e28 = t_3;
+                const float _e29 = empty_cell_skip(origin_3, dir_2, _e28);
                 if ((_e29 > 0.0)) {
-                    float _e32 = t_2;
-                    t_2 = (_e32 + _e29);
-                    float _e34 = t_2;
-                    uint _e36 = k_2;
+                    float _e32 = t_3;
+                    t_3 = (_e32 + _e29);
+                    float _e34 = t_3;
+                    uint _e36 = k_6;
                     if ((_e34 >= segs.b[min(uint(_e36), 1u)])) {
                         break;
                     }
                     continue;
                 }
-                float _e39 = t_2;
+                float _e39 = t_3;
                 const float _e40 = rng_exponential(rng_3, majorant);
-                t_2 = (_e39 + _e40);
-                float _e42 = t_2;
-                uint _e44 = k_2;
+                t_3 = (_e39 + _e40);
+                float _e42 = t_3;
+                uint _e44 = k_6;
                 if ((_e42 >= segs.b[min(uint(_e44), 1u)])) {
                     break;
                 }
                 uint _e48 = counters_9.view_steps;
                 counters_9.view_steps = (_e48 + 1u);
-                float _e51 = t_2;
-                const float _e54 = density_at((origin_1 + (dir_2 * _e51)), counters_9);
+                float _e51 = t_3;
+                const float _e54 = density_at((origin_3 + (dir_2 * _e51)), counters_9);
                 const float _e55 = rng_next(rng_3);
                 if (((_e55 * _e5) < _e54)) {
-                    float _e58 = t_2;
+                    float _e58 = t_3;
                     return _e58;
                 }
             }
@@ -1924,11 +2385,11 @@ float free_flight(float3 origin_1, float3 dir_2, Segments segs, inout uint rng_3
     return -1.0;
 }
 
-float transmittance_along(float3 origin_2, float3 dir_3, Segments segs_1, inout uint rng_4, inout Counters counters_10)
+float transmittance_along(float3 origin_4, float3 dir_3, Segments segs_1, inout uint rng_4, inout Counters counters_10)
 {
     float tr = 1.0;
-    uint k_3 = 0u;
-    float t_3 = (float)0;
+    uint k_7 = 0u;
+    float t_4 = (float)0;
 
     float _e8 = frame.extinction.x;
     float _e12 = frame.extinction.y;
@@ -1938,52 +2399,52 @@ float transmittance_along(float3 origin_2, float3 dir_3, Segments segs_1, inout 
     if ((majorant_1 <= 0.0)) {
         return 1.0;
     }
-    uint2 loop_bound_12 = uint2(4294967295u, 4294967295u);
-    bool loop_init_10 = true;
+    uint2 loop_bound_13 = uint2(4294967295u, 4294967295u);
+    bool loop_init_11 = true;
     while(true) {
-        if (all(loop_bound_12 == uint2(0u, 0u))) { break; }
-        loop_bound_12 -= uint2(loop_bound_12.y == 0u, 1u);
-        if (!loop_init_10) {
-            uint _e78 = k_3;
-            k_3 = (_e78 + 1u);
+        if (all(loop_bound_13 == uint2(0u, 0u))) { break; }
+        loop_bound_13 -= uint2(loop_bound_13.y == 0u, 1u);
+        if (!loop_init_11) {
+            uint _e78 = k_7;
+            k_7 = (_e78 + 1u);
         }
-        loop_init_10 = false;
-        uint _e23 = k_3;
+        loop_init_11 = false;
+        uint _e23 = k_7;
         if ((_e23 < segs_1.count)) {
         } else {
             break;
         }
         {
-            uint _e27 = k_3;
-            t_3 = segs_1.a[min(uint(_e27), 1u)];
-            uint2 loop_bound_13 = uint2(4294967295u, 4294967295u);
+            uint _e27 = k_7;
+            t_4 = segs_1.a[min(uint(_e27), 1u)];
+            uint2 loop_bound_14 = uint2(4294967295u, 4294967295u);
             while(true) {
-                if (all(loop_bound_13 == uint2(0u, 0u))) { break; }
-                loop_bound_13 -= uint2(loop_bound_13.y == 0u, 1u);
-                float _e30 = t_3;
-                const float _e31 = empty_cell_skip(origin_2, dir_3, _e30);
+                if (all(loop_bound_14 == uint2(0u, 0u))) { break; }
+                loop_bound_14 -= uint2(loop_bound_14.y == 0u, 1u);
+                float _e30 = t_4;
+                const float _e31 = empty_cell_skip(origin_4, dir_3, _e30);
                 if ((_e31 > 0.0)) {
-                    float _e34 = t_3;
-                    t_3 = (_e34 + _e31);
-                    float _e36 = t_3;
-                    uint _e38 = k_3;
+                    float _e34 = t_4;
+                    t_4 = (_e34 + _e31);
+                    float _e36 = t_4;
+                    uint _e38 = k_7;
                     if ((_e36 >= segs_1.b[min(uint(_e38), 1u)])) {
                         break;
                     }
                     continue;
                 }
-                float _e41 = t_3;
+                float _e41 = t_4;
                 const float _e42 = rng_exponential(rng_4, majorant_1);
-                t_3 = (_e41 + _e42);
-                float _e44 = t_3;
-                uint _e46 = k_3;
+                t_4 = (_e41 + _e42);
+                float _e44 = t_4;
+                uint _e46 = k_7;
                 if ((_e44 >= segs_1.b[min(uint(_e46), 1u)])) {
                     break;
                 }
                 uint _e50 = counters_10.light;
                 counters_10.light = (_e50 + 1u);
-                float _e53 = t_3;
-                const float _e56 = density_at((origin_2 + (dir_3 * _e53)), counters_10);
+                float _e53 = t_4;
+                const float _e56 = density_at((origin_4 + (dir_3 * _e53)), counters_10);
                 float _e57 = tr;
                 tr = (_e57 * (1.0 - ((sigma_t_3 * _e56) / majorant_1)));
                 float _e63 = tr;
@@ -2006,13 +2467,13 @@ float transmittance_along(float3 origin_2, float3 dir_3, Segments segs_1, inout 
     return _e80;
 }
 
-float sample_hg_cos(float g_3, float u)
+float sample_hg_cos(float g_4, float u)
 {
-    if ((abs(g_3) < 0.0001)) {
+    if ((abs(g_4) < 0.0001)) {
         return (1.0 - (2.0 * u));
     }
-    float s_7 = ((1.0 - (g_3 * g_3)) / ((1.0 - g_3) + ((2.0 * g_3) * u)));
-    return clamp((((1.0 + (g_3 * g_3)) - (s_7 * s_7)) / (2.0 * g_3)), -1.0, 1.0);
+    float s_10 = ((1.0 - (g_4 * g_4)) / ((1.0 - g_4) + ((2.0 * g_4) * u)));
+    return clamp((((1.0 + (g_4 * g_4)) - (s_10 * s_10)) / (2.0 * g_4)), -1.0, 1.0);
 }
 
 PhaseSample ConstructPhaseSample(float3 arg0, float arg1) {
@@ -2024,25 +2485,25 @@ PhaseSample ConstructPhaseSample(float3 arg0, float arg1) {
 
 PhaseSample sample_phase(float3 dir_4, inout uint rng_5)
 {
-    float cos_theta_4 = 0.0;
+    float cos_theta_6 = 0.0;
     float pdf = 0.0;
 
     const float _e2 = rng_next(rng_5);
     const float _e3 = rng_next(rng_5);
     const float _e5 = rng_next(rng_5);
-    float phi = (6.2831855 * _e5);
+    float phi_1 = (6.2831855 * _e5);
     uint _e14 = frame.modes.x;
     if ((_e14 == PHASE_TWO_LOBE_HG)) {
         float _e20 = frame.phase.x;
         float _e24 = frame.phase.y;
         float _e28 = frame.phase.z;
-        float g_5 = ((_e2 < _e28) ? _e24 : _e20);
-        const float _e31 = sample_hg_cos(g_5, _e3);
-        cos_theta_4 = _e31;
-        float _e32 = cos_theta_4;
+        float g_6 = ((_e2 < _e28) ? _e24 : _e20);
+        const float _e31 = sample_hg_cos(g_6, _e3);
+        cos_theta_6 = _e31;
+        float _e32 = cos_theta_6;
         float _e36 = frame.phase.x;
         const float _e37 = phase_hg(_e32, _e36);
-        float _e38 = cos_theta_4;
+        float _e38 = cos_theta_6;
         float _e42 = frame.phase.y;
         const float _e43 = phase_hg(_e38, _e42);
         float _e47 = frame.phase.z;
@@ -2050,27 +2511,27 @@ PhaseSample sample_phase(float3 dir_4, inout uint rng_5)
     } else {
         float _e52 = frame.phase.x;
         const float _e53 = sample_hg_cos(_e52, _e3);
-        cos_theta_4 = _e53;
-        float _e54 = cos_theta_4;
+        cos_theta_6 = _e53;
+        float _e54 = cos_theta_6;
         float _e58 = frame.phase.x;
         const float _e59 = phase_hg(_e54, _e58);
         pdf = _e59;
     }
-    float _e60 = cos_theta_4;
-    float _e61 = cos_theta_4;
+    float _e60 = cos_theta_6;
+    float _e61 = cos_theta_6;
     float sin_theta = sqrt(max((1.0 - (_e60 * _e61)), 0.0));
     float sign_ = ((dir_4.z >= 0.0) ? 1.0 : -1.0);
-    float a_5 = (-1.0 / (sign_ + dir_4.z));
-    float bb = ((dir_4.x * dir_4.y) * a_5);
-    float3 t_5 = float3((1.0 + (((sign_ * dir_4.x) * dir_4.x) * a_5)), (sign_ * bb), (-(sign_) * dir_4.x));
-    float3 b_8 = float3(bb, (sign_ + ((dir_4.y * dir_4.y) * a_5)), -(dir_4.y));
-    float _e109 = cos_theta_4;
-    float3 w_2 = normalize((((t_5 * (sin_theta * cos(phi))) + (b_8 * (sin_theta * sin(phi)))) + (dir_4 * _e109)));
-    float _e113 = cos_theta_4;
+    float a_9 = (-1.0 / (sign_ + dir_4.z));
+    float bb = ((dir_4.x * dir_4.y) * a_9);
+    float3 t_6 = float3((1.0 + (((sign_ * dir_4.x) * dir_4.x) * a_9)), (sign_ * bb), (-(sign_) * dir_4.x));
+    float3 b_10 = float3(bb, (sign_ + ((dir_4.y * dir_4.y) * a_9)), -(dir_4.y));
+    float _e109 = cos_theta_6;
+    float3 w_6 = normalize((((t_6 * (sin_theta * cos(phi_1))) + (b_10 * (sin_theta * sin(phi_1)))) + (dir_4 * _e109)));
+    float _e113 = cos_theta_6;
     const float _e115 = phase(_e113, 1.0);
     float _e116 = pdf;
     float _e118 = pdf;
-    const PhaseSample phasesample = ConstructPhaseSample(w_2, ((_e118 > 0.0) ? (_e115 / _e116) : 0.0));
+    const PhaseSample phasesample = ConstructPhaseSample(w_6, ((_e118 > 0.0) ? (_e115 / _e116) : 0.0));
     return phasesample;
 }
 
@@ -2085,14 +2546,15 @@ PathResult ConstructPathResult(float3 arg0, float arg1, float arg2) {
 PathResult trace_path(float3 view_2, Interval span_3, inout uint rng_6, inout Counters counters_11)
 {
     PathResult out_2 = ConstructPathResult((0.0).xxx, 1.0, -1.0);
-    bool local_44 = (bool)0;
-    bool local_45 = (bool)0;
+    bool local_47 = (bool)0;
+    bool local_48 = (bool)0;
+    bool local_49 = (bool)0;
     uint max_orders = MAX_PATH_ORDERS;
     float3 pos = (float3)0;
     float3 dir_5 = (float3)0;
     float throughput = 1.0;
     uint order = 0u;
-    bool local_46 = (bool)0;
+    bool local_50 = (bool)0;
 
     if ((span_3.kind != RAY_MARCH)) {
         PathResult _e13 = out_2;
@@ -2112,7 +2574,7 @@ PathResult trace_path(float3 view_2, Interval span_3, inout uint rng_6, inout Co
     }
     out_2.depth = _e33;
     float4 _e40 = frame.sun_direction;
-    float3 sun_2 = _e40.xyz;
+    float3 sun_3 = _e40.xyz;
     float _e45 = frame.extinction.x;
     float _e49 = frame.extinction.y;
     float sigma_t_4 = (_e45 + _e49);
@@ -2120,207 +2582,216 @@ PathResult trace_path(float3 view_2, Interval span_3, inout uint rng_6, inout Co
     float albedo = ((sigma_t_4 > 0.0) ? (_e54 / sigma_t_4) : 0.0);
     float _e63 = frame.ambient_bottom.w;
     if ((_e63 > 0.0)) {
-        float4 _e70 = frame.ambient_bottom;
-        if (!(any((_e70.xyz > (0.0).xxx)))) {
-            float4 _e81 = frame.ambient_top;
-            local_45 = any((_e81.xyz > (0.0).xxx));
+        const bool _e68 = physical_sky();
+        if (!(_e68)) {
+            float4 _e74 = frame.ambient_bottom;
+            local_48 = any((_e74.xyz > (0.0).xxx));
         } else {
-            local_45 = true;
+            local_48 = true;
         }
-        bool _e88 = local_45;
-        local_44 = _e88;
+        bool _e81 = local_48;
+        if (!(_e81)) {
+            float4 _e87 = frame.ambient_top;
+            local_49 = any((_e87.xyz > (0.0).xxx));
+        } else {
+            local_49 = true;
+        }
+        bool _e94 = local_49;
+        local_47 = _e94;
     } else {
-        local_44 = false;
+        local_47 = false;
     }
-    bool ambient_on = local_44;
-    uint _e96 = frame.misc.z;
-    if ((_e96 > 0u)) {
-        uint _e102 = frame.misc.z;
-        max_orders = min(_e102, MAX_PATH_ORDERS);
+    bool ambient_on = local_47;
+    uint _e102 = frame.misc.z;
+    if ((_e102 > 0u)) {
+        uint _e108 = frame.misc.z;
+        max_orders = min(_e108, MAX_PATH_ORDERS);
     }
     pos = (cam + (view_2 * _e33));
     dir_5 = view_2;
-    uint2 loop_bound_14 = uint2(4294967295u, 4294967295u);
+    uint2 loop_bound_15 = uint2(4294967295u, 4294967295u);
     while(true) {
-        if (all(loop_bound_14 == uint2(0u, 0u))) { break; }
-        loop_bound_14 -= uint2(loop_bound_14.y == 0u, 1u);
-        float _e113 = throughput;
-        throughput = (_e113 * albedo);
-        uint _e115 = order;
-        order = (_e115 + 1u);
-        float3 _e118 = pos;
-        const float _e119 = altitude_of(_e118);
-        const float _e120 = height_fraction(_e119);
-        float3 _e121 = pos;
-        const bool _e122 = hits_ground(_e121, _e119, sun_2);
-        if (!(_e122)) {
-            float3 _e124 = pos;
-            float3 _e125 = pos;
-            const Segments _e126 = layer_segments(_e125, _e119, sun_2);
-            const float _e127 = transmittance_along(_e124, sun_2, _e126, rng_6, counters_11);
-            float3 _e129 = out_2.radiance;
-            float4 _e132 = frame.sun_illuminance;
-            float _e134 = throughput;
-            float3 _e135 = dir_5;
-            const float _e138 = phase(dot(_e135, sun_2), 1.0);
-            out_2.radiance = (_e129 + (_e132.xyz * ((_e134 * _e138) * _e127)));
+        if (all(loop_bound_15 == uint2(0u, 0u))) { break; }
+        loop_bound_15 -= uint2(loop_bound_15.y == 0u, 1u);
+        float _e119 = throughput;
+        throughput = (_e119 * albedo);
+        uint _e121 = order;
+        order = (_e121 + 1u);
+        float3 _e124 = pos;
+        const float _e125 = altitude_of(_e124);
+        const float _e126 = height_fraction(_e125);
+        float3 _e127 = pos;
+        const bool _e128 = hits_ground(_e127, _e125, sun_3);
+        if (!(_e128)) {
+            float3 _e130 = pos;
+            float3 _e131 = pos;
+            const Segments _e132 = layer_segments(_e131, _e125, sun_3);
+            const float _e133 = transmittance_along(_e130, sun_3, _e132, rng_6, counters_11);
+            float3 _e135 = out_2.radiance;
+            float4 _e138 = frame.sun_illuminance;
+            float3 _e140 = pos;
+            const float3 _e141 = sun_through_air(_e140);
+            float _e143 = throughput;
+            float3 _e144 = dir_5;
+            const float _e147 = phase(dot(_e144, sun_3), 1.0);
+            out_2.radiance = (_e135 + ((_e138.xyz * _e141) * ((_e143 * _e147) * _e133)));
         }
-        float3 _e143 = dir_5;
-        const PhaseSample _e144 = sample_phase(_e143, rng_6);
-        float3 _e145 = pos;
-        float3 _e147 = pos;
-        const Segments _e149 = layer_segments(_e147, _e119, _e144.dir);
-        const float _e150 = free_flight(_e145, _e144.dir, _e149, rng_6, counters_11);
-        if ((_e150 < 0.0)) {
+        float3 _e152 = dir_5;
+        const PhaseSample _e153 = sample_phase(_e152, rng_6);
+        float3 _e154 = pos;
+        float3 _e156 = pos;
+        const Segments _e158 = layer_segments(_e156, _e125, _e153.dir);
+        const float _e159 = free_flight(_e154, _e153.dir, _e158, rng_6, counters_11);
+        if ((_e159 < 0.0)) {
             if (ambient_on) {
-                float3 _e154 = out_2.radiance;
-                const float3 _e155 = ambient(_e120);
-                float _e156 = throughput;
-                out_2.radiance = (_e154 + (_e155 * (_e156 * _e144.weight)));
+                float3 _e163 = out_2.radiance;
+                const float3 _e164 = ambient(_e126);
+                float _e165 = throughput;
+                out_2.radiance = (_e163 + (_e164 * (_e165 * _e153.weight)));
             }
             break;
         }
-        uint _e161 = order;
-        uint _e162 = max_orders;
-        if ((_e161 >= _e162)) {
+        uint _e170 = order;
+        uint _e171 = max_orders;
+        if ((_e170 >= _e171)) {
             break;
         }
-        float _e164 = throughput;
-        throughput = (_e164 * _e144.weight);
-        dir_5 = _e144.dir;
-        uint _e168 = order;
-        if ((_e168 >= 3u)) {
-            float _e173 = throughput;
-            local_46 = (_e173 < 0.1);
+        float _e173 = throughput;
+        throughput = (_e173 * _e153.weight);
+        dir_5 = _e153.dir;
+        uint _e177 = order;
+        if ((_e177 >= 3u)) {
+            float _e182 = throughput;
+            local_50 = (_e182 < 0.1);
         } else {
-            local_46 = false;
+            local_50 = false;
         }
-        bool _e177 = local_46;
-        if (_e177) {
-            const float _e178 = rng_next(rng_6);
-            float _e179 = throughput;
-            if ((_e178 >= (_e179 / 0.1))) {
+        bool _e186 = local_50;
+        if (_e186) {
+            const float _e187 = rng_next(rng_6);
+            float _e188 = throughput;
+            if ((_e187 >= (_e188 / 0.1))) {
                 break;
             }
             throughput = 0.1;
         }
-        float _e184 = throughput;
-        if ((_e184 <= 0.0)) {
+        float _e193 = throughput;
+        if ((_e193 <= 0.0)) {
             break;
         }
-        float3 _e187 = pos;
-        float3 _e188 = dir_5;
-        pos = (_e187 + (_e188 * _e150));
+        float3 _e196 = pos;
+        float3 _e197 = dir_5;
+        pos = (_e196 + (_e197 * _e159));
     }
-    PathResult _e191 = out_2;
-    const PathResult pathresult_2 = _e191;
+    PathResult _e200 = out_2;
+    const PathResult pathresult_2 = _e200;
     return pathresult_2;
 }
 
 bool camera_still()
 {
-    bool local_47 = (bool)0;
-    bool local_48 = (bool)0;
-    bool local_49 = (bool)0;
+    bool local_51 = (bool)0;
+    bool local_52 = (bool)0;
+    bool local_53 = (bool)0;
 
     float4 _e2 = frame.camera_position;
     float4 _e5 = frame.previous_position;
     if (all((_e2 == _e5))) {
         float4 _e12 = frame.camera_forward;
         float4 _e15 = frame.previous_forward;
-        local_47 = all((_e12 == _e15));
+        local_51 = all((_e12 == _e15));
     } else {
-        local_47 = false;
+        local_51 = false;
     }
-    bool _e19 = local_47;
+    bool _e19 = local_51;
     if (_e19) {
         float4 _e24 = frame.camera_right;
         float4 _e28 = frame.previous_right;
-        local_48 = all((_e24.xyz == _e28.xyz));
+        local_52 = all((_e24.xyz == _e28.xyz));
     } else {
-        local_48 = false;
+        local_52 = false;
     }
-    bool _e33 = local_48;
+    bool _e33 = local_52;
     if (_e33) {
         float4 _e38 = frame.camera_up;
         float4 _e42 = frame.previous_up;
-        local_49 = all((_e38.xyz == _e42.xyz));
+        local_53 = all((_e38.xyz == _e42.xyz));
     } else {
-        local_49 = false;
+        local_53 = false;
     }
-    bool _e47 = local_49;
+    bool _e47 = local_53;
     return _e47;
 }
 
-float luminance(float3 c_1)
+float luminance(float3 c_2)
 {
-    return dot(c_1, float3(0.2126, 0.7152, 0.0722));
+    return dot(c_2, float3(0.2126, 0.7152, 0.0722));
 }
 
-float basic_sun_depth(float3 rel_3, float alt_14, inout Counters counters_12)
+float basic_sun_depth(float3 rel_4, float alt_14, inout Counters counters_12)
 {
-    float tau_3 = 0.0;
-    uint i_10 = 1u;
+    float tau_6 = 0.0;
+    uint i_13 = 1u;
 
-    uint steps_2 = frame.counts.w;
-    if ((steps_2 == 0u)) {
+    uint steps_3 = frame.counts.w;
+    if ((steps_3 == 0u)) {
         return 0.0;
     }
     float4 _e12 = frame.sun_direction;
-    float3 sun_3 = _e12.xyz;
+    float3 sun_4 = _e12.xyz;
     float rp_4 = frame.atmosphere.x;
-    float top_1 = frame.atmosphere.z;
+    float top_2 = frame.atmosphere.z;
     float _e25 = frame.atmosphere.y;
-    float thickness = (top_1 - _e25);
-    const Roots _e39 = solve_sphere(dot(sun_3, float3(rel_3.x, (rel_3.y + rp_4), rel_3.z)), ((alt_14 - top_1) * ((alt_14 + top_1) + (2.0 * rp_4))));
+    float thickness = (top_2 - _e25);
+    const Roots _e39 = solve_sphere(dot(sun_4, float3(rel_4.x, (rel_4.y + rp_4), rel_4.z)), ((alt_14 - top_2) * ((alt_14 + top_2) + (2.0 * rp_4))));
     float length_ = min(max(_e39.t1_, 0.0), (3.0 * thickness));
-    float dt_2 = (length_ / float(steps_2));
+    float dt_3 = (length_ / float(steps_3));
     float _e51 = frame.extinction.x;
     float _e55 = frame.extinction.y;
     float sigma_t_5 = (_e51 + _e55);
     float4 _e59 = frame.camera_position;
     float2 cam_xz_1 = _e59.xz;
-    uint2 loop_bound_15 = uint2(4294967295u, 4294967295u);
-    bool loop_init_11 = true;
+    uint2 loop_bound_16 = uint2(4294967295u, 4294967295u);
+    bool loop_init_12 = true;
     while(true) {
-        if (all(loop_bound_15 == uint2(0u, 0u))) { break; }
-        loop_bound_15 -= uint2(loop_bound_15.y == 0u, 1u);
-        if (!loop_init_11) {
-            uint _e90 = i_10;
-            i_10 = (_e90 + 1u);
+        if (all(loop_bound_16 == uint2(0u, 0u))) { break; }
+        loop_bound_16 -= uint2(loop_bound_16.y == 0u, 1u);
+        if (!loop_init_12) {
+            uint _e90 = i_13;
+            i_13 = (_e90 + 1u);
         }
-        loop_init_11 = false;
-        uint _e65 = i_10;
-        if ((_e65 <= steps_2)) {
+        loop_init_12 = false;
+        uint _e65 = i_13;
+        if ((_e65 <= steps_3)) {
         } else {
             break;
         }
         {
             uint _e68 = counters_12.light;
             counters_12.light = (_e68 + 1u);
-            uint _e71 = i_10;
-            float3 q_7 = (rel_3 + (sun_3 * (float(_e71) * dt_2)));
-            float3 p_17 = float3((q_7.x + cam_xz_1.x), q_7.y, (q_7.z + cam_xz_1.y));
-            float _e84 = tau_3;
-            const float _e85 = altitude_of(q_7);
-            const float _e86 = cloud_density(p_17, _e85, counters_12);
-            tau_3 = (_e84 + ((sigma_t_5 * _e86) * dt_2));
+            uint _e71 = i_13;
+            float3 q_8 = (rel_4 + (sun_4 * (float(_e71) * dt_3)));
+            float3 p_18 = float3((q_8.x + cam_xz_1.x), q_8.y, (q_8.z + cam_xz_1.y));
+            float _e84 = tau_6;
+            const float _e85 = altitude_of(q_8);
+            const float _e86 = cloud_density(p_18, _e85, counters_12);
+            tau_6 = (_e84 + ((sigma_t_5 * _e86) * dt_3));
         }
     }
-    float _e93 = tau_3;
+    float _e93 = tau_6;
     return _e93;
 }
 
-MarchResult basic_pixel(uint2 pixel_6)
+MarchResult basic_pixel(uint2 pixel_7)
 {
     Counters counters_13 = ConstructCounters(0u, 0u, 0u, 0u);
-    float3 radiance = (0.0).xxx;
+    float3 radiance_2 = (0.0).xxx;
     float transmittance = 1.0;
     float depth_sum = 0.0;
-    uint i_11 = 0u;
+    uint i_14 = 0u;
     float depth_3 = 0.0;
 
-    const float3 _e1 = view_ray(pixel_6);
+    const float3 _e1 = view_ray(pixel_7);
     float cam_alt_2 = frame.camera_position.y;
     float4 _e8 = frame.camera_position;
     float2 cam_xz_2 = _e8.xz;
@@ -2333,8 +2804,8 @@ MarchResult basic_pixel(uint2 pixel_6)
             count(STAT_EXIT_GROUND, 1u);
         } else {
             count(STAT_MARCHED, 1u);
-            uint steps_3 = frame.counts.z;
-            float dt_3 = (_e25.length_ / float(steps_3));
+            uint steps_4 = frame.counts.z;
+            float dt_4 = (_e25.length_ / float(steps_4));
             float sigma_s = frame.extinction.x;
             float _e52 = frame.extinction.y;
             float sigma_t_6 = (sigma_s + _e52);
@@ -2343,42 +2814,42 @@ MarchResult basic_pixel(uint2 pixel_6)
             float _e66 = frame.phase.x;
             const float _e67 = phase_hg(dot(_e1, _e60.xyz), _e66);
             float3 sun_phase = (_e56.xyz * _e67);
-            uint2 loop_bound_16 = uint2(4294967295u, 4294967295u);
-            bool loop_init_12 = true;
+            uint2 loop_bound_17 = uint2(4294967295u, 4294967295u);
+            bool loop_init_13 = true;
             while(true) {
-                if (all(loop_bound_16 == uint2(0u, 0u))) { break; }
-                loop_bound_16 -= uint2(loop_bound_16.y == 0u, 1u);
-                if (!loop_init_12) {
-                    uint _e131 = i_11;
-                    i_11 = (_e131 + 1u);
+                if (all(loop_bound_17 == uint2(0u, 0u))) { break; }
+                loop_bound_17 -= uint2(loop_bound_17.y == 0u, 1u);
+                if (!loop_init_13) {
+                    uint _e131 = i_14;
+                    i_14 = (_e131 + 1u);
                 }
-                loop_init_12 = false;
-                uint _e71 = i_11;
-                if ((_e71 < steps_3)) {
+                loop_init_13 = false;
+                uint _e71 = i_14;
+                if ((_e71 < steps_4)) {
                 } else {
                     break;
                 }
                 {
                     uint _e74 = counters_13.view_steps;
                     counters_13.view_steps = (_e74 + 1u);
-                    uint _e78 = i_11;
-                    float t_6 = (_e25.start + (float(_e78) * dt_3));
-                    float3 rel_6 = ((_e1 * t_6) + float3(0.0, cam_alt_2, 0.0));
-                    float3 p_18 = float3((rel_6.x + cam_xz_2.x), rel_6.y, (rel_6.z + cam_xz_2.y));
-                    const float _e95 = altitude_of(rel_6);
-                    const float _e96 = cloud_density(p_18, _e95, counters_13);
+                    uint _e78 = i_14;
+                    float t_7 = (_e25.start + (float(_e78) * dt_4));
+                    float3 rel_7 = ((_e1 * t_7) + float3(0.0, cam_alt_2, 0.0));
+                    float3 p_19 = float3((rel_7.x + cam_xz_2.x), rel_7.y, (rel_7.z + cam_xz_2.y));
+                    const float _e95 = altitude_of(rel_7);
+                    const float _e96 = cloud_density(p_19, _e95, counters_13);
                     if ((_e96 <= 0.0)) {
                         continue;
                     }
-                    const float _e99 = basic_sun_depth(rel_6, _e95, counters_13);
+                    const float _e99 = basic_sun_depth(rel_7, _e95, counters_13);
                     float beer_powder = ((2.0 * exp(-(_e99))) * (1.0 - exp((-2.0 * _e99))));
-                    float3 _e110 = radiance;
+                    float3 _e110 = radiance_2;
                     float _e111 = transmittance;
-                    radiance = (_e110 + (sun_phase * ((((beer_powder * _e111) * sigma_s) * _e96) * dt_3)));
-                    float step_t_1 = exp(((-(sigma_t_6) * _e96) * dt_3));
+                    radiance_2 = (_e110 + (sun_phase * ((((beer_powder * _e111) * sigma_s) * _e96) * dt_4)));
+                    float step_t_1 = exp(((-(sigma_t_6) * _e96) * dt_4));
                     float _e122 = depth_sum;
                     float _e123 = transmittance;
-                    depth_sum = (_e122 + ((t_6 * _e123) * (1.0 - step_t_1)));
+                    depth_sum = (_e122 + ((t_7 * _e123) * (1.0 - step_t_1)));
                     float _e129 = transmittance;
                     transmittance = (_e129 * step_t_1);
                 }
@@ -2399,7 +2870,7 @@ MarchResult basic_pixel(uint2 pixel_6)
         float _e152 = transmittance;
         depth_3 = (_e151 / (1.0 - _e152));
     }
-    float3 _e156 = radiance;
+    float3 _e156 = radiance_2;
     float _e157 = transmittance;
     float _e158 = depth_3;
     const MarchResult marchresult_1 = ConstructMarchResult(_e156, _e157, _e158);
@@ -2415,107 +2886,107 @@ float atlas_hash(uint a_2, uint b_2)
 
 float value_noise(float2 p_10, uint seed)
 {
-    uint2 i_13 = naga_f2u32(floor(p_10));
-    float2 f_3 = frac(p_10);
-    float2 s_8 = ((f_3 * f_3) * ((3.0).xx - (2.0 * f_3)));
-    uint h_6 = (seed * 7919u);
-    const float _e17 = atlas_hash((i_13.x + h_6), i_13.y);
-    const float _e23 = atlas_hash(((i_13.x + 1u) + h_6), i_13.y);
-    const float _e29 = atlas_hash((i_13.x + h_6), (i_13.y + 1u));
-    const float _e37 = atlas_hash(((i_13.x + 1u) + h_6), (i_13.y + 1u));
-    return lerp(lerp(_e17, _e23, s_8.x), lerp(_e29, _e37, s_8.x), s_8.y);
+    uint2 i_16 = naga_f2u32(floor(p_10));
+    float2 f_5 = frac(p_10);
+    float2 s_11 = ((f_5 * f_5) * ((3.0).xx - (2.0 * f_5)));
+    uint h_10 = (seed * 7919u);
+    const float _e17 = atlas_hash((i_16.x + h_10), i_16.y);
+    const float _e23 = atlas_hash(((i_16.x + 1u) + h_10), i_16.y);
+    const float _e29 = atlas_hash((i_16.x + h_10), (i_16.y + 1u));
+    const float _e37 = atlas_hash(((i_16.x + 1u) + h_10), (i_16.y + 1u));
+    return lerp(lerp(_e17, _e23, s_11.x), lerp(_e29, _e37, s_11.x), s_11.y);
 }
 
 float value_fbm(float2 p_11, uint seed_1)
 {
-    float sum_1 = 0.0;
+    float sum_3 = 0.0;
     float weight = 0.5;
     float2 q_4 = (float2)0;
     uint o = 0u;
 
     q_4 = p_11;
-    uint2 loop_bound_17 = uint2(4294967295u, 4294967295u);
-    bool loop_init_13 = true;
-    while(true) {
-        if (all(loop_bound_17 == uint2(0u, 0u))) { break; }
-        loop_bound_17 -= uint2(loop_bound_17.y == 0u, 1u);
-        if (!loop_init_13) {
-            uint _e26 = o;
-            o = (_e26 + 1u);
-        }
-        loop_init_13 = false;
-        uint _e9 = o;
-        if ((_e9 < 4u)) {
-        } else {
-            break;
-        }
-        {
-            float _e12 = sum_1;
-            float _e13 = weight;
-            float2 _e14 = q_4;
-            uint _e15 = o;
-            const float _e17 = value_noise(_e14, (seed_1 + _e15));
-            sum_1 = (_e12 + (_e13 * _e17));
-            float2 _e20 = q_4;
-            q_4 = (_e20 * 2.0);
-            float _e23 = weight;
-            weight = (_e23 * 0.5);
-        }
-    }
-    float _e29 = sum_1;
-    return (_e29 / 0.9375);
-}
-
-float sprite_texture(uint tile_1, float2 uv)
-{
-    float billow = 0.0;
-    uint i_12 = 0u;
-    float2 at = (float2)0;
-    float a_3 = (float)0;
-
-    float2 c_8 = (uv - (0.5).xx);
-    float mask = smoothstep(0.48, 0.36, length(c_8));
-    const float _e16 = value_fbm(((uv * 6.0) + ((float(tile_1) * 13.0)).xx), tile_1);
-    if ((tile_1 < 4u)) {
-        float2 q_8 = (c_8 * float2(1.0, 3.2));
-        float streak = (1.0 - smoothstep(0.05, 0.45, length(q_8)));
-        const float _e40 = value_fbm(((uv * float2(3.0, 12.0)) + ((float(tile_1) * 5.0)).xx), (tile_1 + 16u));
-        const float _e46 = saturate_(((_e40 * 1.6) - 0.3));
-        return (((mask * streak) * _e46) * 0.8);
-    }
-    uint blobs = (5u + naga_mod(tile_1, 4u));
     uint2 loop_bound_18 = uint2(4294967295u, 4294967295u);
     bool loop_init_14 = true;
     while(true) {
         if (all(loop_bound_18 == uint2(0u, 0u))) { break; }
         loop_bound_18 -= uint2(loop_bound_18.y == 0u, 1u);
         if (!loop_init_14) {
-            uint _e108 = i_12;
-            i_12 = (_e108 + 1u);
+            uint _e26 = o;
+            o = (_e26 + 1u);
         }
         loop_init_14 = false;
-        uint _e58 = i_12;
+        uint _e9 = o;
+        if ((_e9 < 4u)) {
+        } else {
+            break;
+        }
+        {
+            float _e12 = sum_3;
+            float _e13 = weight;
+            float2 _e14 = q_4;
+            uint _e15 = o;
+            const float _e17 = value_noise(_e14, (seed_1 + _e15));
+            sum_3 = (_e12 + (_e13 * _e17));
+            float2 _e20 = q_4;
+            q_4 = (_e20 * 2.0);
+            float _e23 = weight;
+            weight = (_e23 * 0.5);
+        }
+    }
+    float _e29 = sum_3;
+    return (_e29 / 0.9375);
+}
+
+float sprite_texture(uint tile_1, float2 uv)
+{
+    float billow = 0.0;
+    uint i_15 = 0u;
+    float2 at = (float2)0;
+    float a_3 = (float)0;
+
+    float2 c_9 = (uv - (0.5).xx);
+    float mask = smoothstep(0.48, 0.36, length(c_9));
+    const float _e16 = value_fbm(((uv * 6.0) + ((float(tile_1) * 13.0)).xx), tile_1);
+    if ((tile_1 < 4u)) {
+        float2 q_9 = (c_9 * float2(1.0, 3.2));
+        float streak = (1.0 - smoothstep(0.05, 0.45, length(q_9)));
+        const float _e40 = value_fbm(((uv * float2(3.0, 12.0)) + ((float(tile_1) * 5.0)).xx), (tile_1 + 16u));
+        const float _e46 = saturate_(((_e40 * 1.6) - 0.3));
+        return (((mask * streak) * _e46) * 0.8);
+    }
+    uint blobs = (5u + naga_mod(tile_1, 4u));
+    uint2 loop_bound_19 = uint2(4294967295u, 4294967295u);
+    bool loop_init_15 = true;
+    while(true) {
+        if (all(loop_bound_19 == uint2(0u, 0u))) { break; }
+        loop_bound_19 -= uint2(loop_bound_19.y == 0u, 1u);
+        if (!loop_init_15) {
+            uint _e108 = i_15;
+            i_15 = (_e108 + 1u);
+        }
+        loop_init_15 = false;
+        uint _e58 = i_15;
         if ((_e58 < blobs)) {
         } else {
             break;
         }
         {
-            uint _e61 = i_12;
+            uint _e61 = i_15;
             const float _e63 = atlas_hash(tile_1, (2u * _e61));
-            uint _e65 = i_12;
+            uint _e65 = i_15;
             const float _e69 = atlas_hash(tile_1, ((2u * _e65) + 1u));
             float2 centre_1 = (float2(_e63, _e69) - (0.5).xx);
             at = ((0.5).xx + (centre_1 * 0.34));
             if ((tile_1 == 4u)) {
                 at.y = (0.5 + ((centre_1.y - 0.5) * 0.24));
             }
-            uint _e91 = i_12;
+            uint _e91 = i_15;
             const float _e93 = atlas_hash(tile_1, (100u + _e91));
-            float r_3 = (0.14 + (0.1 * _e93));
+            float r_17 = (0.14 + (0.1 * _e93));
             float2 _e98 = at;
-            float d_12 = (length((uv - _e98)) / r_3);
+            float d_16 = (length((uv - _e98)) / r_17);
             float _e102 = billow;
-            const float _e106 = saturate_((1.0 - (d_12 * d_12)));
+            const float _e106 = saturate_((1.0 - (d_16 * d_16)));
             billow = max(_e102, _e106);
         }
     }
@@ -2534,10 +3005,10 @@ float3 sprite_rel(float2 xz, float alt_15)
 {
     float rp_5 = frame.atmosphere.x;
     float4 _e8 = frame.camera_position;
-    float2 d_13 = (xz - _e8.xz);
-    float k_9 = ((alt_15 * (alt_15 + (2.0 * rp_5))) - dot(d_13, d_13));
-    float y_2 = (k_9 / (rp_5 + sqrt(max(((rp_5 * rp_5) + k_9), 0.0))));
-    return float3(d_13.x, y_2, d_13.y);
+    float2 d_17 = (xz - _e8.xz);
+    float k_13 = ((alt_15 * (alt_15 + (2.0 * rp_5))) - dot(d_17, d_17));
+    float y_2 = (k_13 / (rp_5 + sqrt(max(((rp_5 * rp_5) + k_13), 0.0))));
+    return float3(d_17.x, y_2, d_17.y);
 }
 
 SpriteCell ConstructSpriteCell(int2 arg0, float arg1, bool arg2) {
@@ -2551,25 +3022,25 @@ SpriteCell ConstructSpriteCell(int2 arg0, float arg1, bool arg2) {
 SpriteCell sprite_cell(uint cell)
 {
     int2 start_1 = (int2)0;
-    uint k_4 = 3u;
-    bool local_50 = (bool)0;
-    bool local_51 = (bool)0;
+    uint k_8 = 3u;
+    bool local_54 = (bool)0;
+    bool local_55 = (bool)0;
 
     uint level_1 = naga_div(cell, 64u);
-    int2 local_53 = int2(int(naga_mod(cell, 8u)), int(naga_mod(naga_div(cell, 8u), 8u)));
+    int2 local_57 = int2(int(naga_mod(cell, 8u)), int(naga_mod(naga_div(cell, 8u), 8u)));
     float4 _e15 = frame.camera_position;
     start_1 = asint(asuint(naga_f2i32(floor((_e15.xz / (12000.0).xx)))) - asuint((int(4)).xx));
-    uint2 loop_bound_19 = uint2(4294967295u, 4294967295u);
-    bool loop_init_15 = true;
+    uint2 loop_bound_20 = uint2(4294967295u, 4294967295u);
+    bool loop_init_16 = true;
     while(true) {
-        if (all(loop_bound_19 == uint2(0u, 0u))) { break; }
-        loop_bound_19 -= uint2(loop_bound_19.y == 0u, 1u);
-        if (!loop_init_15) {
-            uint _e35 = k_4;
-            k_4 = (_e35 - 1u);
+        if (all(loop_bound_20 == uint2(0u, 0u))) { break; }
+        loop_bound_20 -= uint2(loop_bound_20.y == 0u, 1u);
+        if (!loop_init_16) {
+            uint _e35 = k_8;
+            k_8 = (_e35 - 1u);
         }
-        loop_init_15 = false;
-        uint _e27 = k_4;
+        loop_init_16 = false;
+        uint _e27 = k_8;
         if ((_e27 > level_1)) {
         } else {
             break;
@@ -2580,19 +3051,19 @@ SpriteCell sprite_cell(uint cell)
         }
     }
     if ((level_1 > 0u)) {
-        local_50 = all((local_53 >= (int(2)).xx));
+        local_54 = all((local_57 >= (int(2)).xx));
     } else {
-        local_50 = false;
+        local_54 = false;
     }
-    bool _e47 = local_50;
+    bool _e47 = local_54;
     if (_e47) {
-        local_51 = all((local_53 < (int(6)).xx));
+        local_55 = all((local_57 < (int(6)).xx));
     } else {
-        local_51 = false;
+        local_55 = false;
     }
-    bool covered = local_51;
+    bool covered = local_55;
     int2 _e56 = start_1;
-    const SpriteCell spritecell = ConstructSpriteCell(asint(asuint(_e56) + asuint(local_53)), (SPRITE_CELL0_ * float((1u << level_1))), covered);
+    const SpriteCell spritecell = ConstructSpriteCell(asint(asuint(_e56) + asuint(local_57)), (SPRITE_CELL0_ * float((1u << level_1))), covered);
     return spritecell;
 }
 
@@ -2609,13 +3080,13 @@ SpriteCandidate ConstructSpriteCandidate(float2 arg0, float arg1, float arg2, fl
     return ret;
 }
 
-SpriteCandidate sprite_candidate(SpriteCell c_2, uint level, uint s_1, inout Counters counters_14)
+SpriteCandidate sprite_candidate(SpriteCell c_3, uint level, uint s_1, inout Counters counters_14)
 {
     float density_2 = 0.0;
 
     const uint _e10 = pcg(level);
-    const uint _e12 = pcg((asuint(c_2.index.y) ^ _e10));
-    const uint _e14 = pcg((asuint(c_2.index.x) ^ _e12));
+    const uint _e12 = pcg((asuint(c_3.index.y) ^ _e10));
+    const uint _e14 = pcg((asuint(c_3.index.x) ^ _e12));
     const float _e17 = atlas_hash(_e14, (8u * s_1));
     const float _e22 = atlas_hash(_e14, ((8u * s_1) + 1u));
     const float _e27 = atlas_hash(_e14, ((8u * s_1) + 2u));
@@ -2623,39 +3094,39 @@ SpriteCandidate sprite_candidate(SpriteCell c_2, uint level, uint s_1, inout Cou
     float4 u_1 = float4(_e17, _e22, _e27, _e32);
     const float _e38 = atlas_hash(_e14, ((8u * s_1) + 4u));
     const float _e43 = atlas_hash(_e14, ((8u * s_1) + 5u));
-    float2 v_2 = float2(_e38, _e43);
-    float2 xz_1 = ((float2(c_2.index) + u_1.xy) * c_2.size);
+    float2 v_3 = float2(_e38, _e43);
+    float2 xz_1 = ((float2(c_3.index) + u_1.xy) * c_3.size);
     const Layer _e56 = cloud_layer(0u);
     const Weather _e57 = sample_weather(float3(xz_1.x, 0.0, xz_1.y), _e56);
-    float h_7 = (0.04 + (u_1.z * (lerp(0.3, 0.95, _e57.cloud_type) - 0.04)));
+    float h_11 = (0.04 + (u_1.z * (lerp(0.3, 0.95, _e57.cloud_type) - 0.04)));
     float _e71 = frame.atmosphere.y;
     float _e75 = frame.atmosphere.z;
     float _e79 = frame.atmosphere.y;
-    float alt_17 = (_e71 + (h_7 * (_e75 - _e79)));
-    if (!(c_2.covered)) {
+    float alt_17 = (_e71 + (h_11 * (_e75 - _e79)));
+    if (!(c_3.covered)) {
         const float3 _e87 = sprite_rel(xz_1, alt_17);
         const float _e92 = cloud_density(float3(xz_1.x, _e87.y, xz_1.y), alt_17, counters_14);
         density_2 = _e92;
     }
     float _e96 = density_2;
-    const SpriteCandidate spritecandidate = ConstructSpriteCandidate(xz_1, alt_17, h_7, u_1.w, v_2.x, v_2.y, _e96, _e57.precipitation);
+    const SpriteCandidate spritecandidate = ConstructSpriteCandidate(xz_1, alt_17, h_11, u_1.w, v_3.x, v_3.y, _e96, _e57.precipitation);
     return spritecandidate;
 }
 
-float3 sprite_sky_level(float h_5)
+float3 sprite_sky_level(float h_6)
 {
-    const float _e1 = saturate_(h_5);
-    float x_5 = (_e1 * 4.0);
-    if ((x_5 < 1.0)) {
-        return lerp(SKY_LEVEL0_, SKY_LEVEL1_, x_5);
+    const float _e1 = saturate_(h_6);
+    float x_9 = (_e1 * 4.0);
+    if ((x_9 < 1.0)) {
+        return lerp(SKY_LEVEL0_, SKY_LEVEL1_, x_9);
     }
-    if ((x_5 < 2.0)) {
-        return lerp(SKY_LEVEL1_, SKY_LEVEL2_, (x_5 - 1.0));
+    if ((x_9 < 2.0)) {
+        return lerp(SKY_LEVEL1_, SKY_LEVEL2_, (x_9 - 1.0));
     }
-    if ((x_5 < 3.0)) {
-        return lerp(SKY_LEVEL2_, SKY_LEVEL3_, (x_5 - 2.0));
+    if ((x_9 < 3.0)) {
+        return lerp(SKY_LEVEL2_, SKY_LEVEL3_, (x_9 - 2.0));
     }
-    return lerp(SKY_LEVEL3_, SKY_LEVEL4_, (x_5 - 3.0));
+    return lerp(SKY_LEVEL3_, SKY_LEVEL4_, (x_9 - 3.0));
 }
 
 float sprite_sun_level(float cos_angle)
@@ -2666,57 +3137,399 @@ float sprite_sun_level(float cos_angle)
     return lerp(SPRITE_C_MED, SPRITE_C_MAX, cos_angle);
 }
 
-float2 sprite_corner(uint k_5)
+float2 sprite_corner(uint k_9)
 {
-    bool local_52 = (bool)0;
+    bool local_56 = (bool)0;
 
-    uint q_9 = ((k_5 >= 3u) ? ((k_5 == 3u) ? 0u : (k_5 - 2u)) : k_5);
-    if (!((q_9 == 1u))) {
-        local_52 = (q_9 == 2u);
+    uint q_10 = ((k_9 >= 3u) ? ((k_9 == 3u) ? 0u : (k_9 - 2u)) : k_9);
+    if (!((q_10 == 1u))) {
+        local_56 = (q_10 == 2u);
     } else {
-        local_52 = true;
+        local_56 = true;
     }
-    bool _e18 = local_52;
-    return float2((_e18 ? 1.0 : -1.0), ((q_9 >= 2u) ? 1.0 : -1.0));
+    bool _e18 = local_56;
+    return float2((_e18 ? 1.0 : -1.0), ((q_10 >= 2u) ? 1.0 : -1.0));
 }
 
-float3 sky_radiance(float3 d_9, float alt_16)
+float3 sky_radiance(float3 d_12, float alt_16)
 {
     float4 _e4 = frame.sun_direction;
-    float3 sun_4 = _e4.xyz;
+    float3 sun_5 = _e4.xyz;
     float4 _e8 = frame.sun_illuminance;
     float3 e = _e8.xyz;
-    const float _e15 = saturate_(((sun_4.y * 4.0) + 0.3));
-    const bool _e19 = hits_ground(float3(0.0, alt_16, 0.0), alt_16, d_9);
+    const float _e15 = saturate_(((sun_5.y * 4.0) + 0.3));
+    const bool _e19 = hits_ground(float3(0.0, alt_16, 0.0), alt_16, d_12);
     if (_e19) {
         float3 ground_albedo = float3(0.035, 0.035, 0.03);
-        return (ground_albedo * (((e * max(sun_4.y, 0.0)) / (3.1415927).xxx) + ((0.05 * e) * _e15)));
+        return (ground_albedo * (((e * max(sun_5.y, 0.0)) / (3.1415927).xxx) + ((0.05 * e) * _e15)));
     }
     float3 zenith = float3(0.018, 0.04, 0.1);
-    float3 horizon = float3(0.07, 0.085, 0.11);
-    const float _e45 = saturate_(d_9.y);
-    float3 gradient_1 = lerp(horizon, zenith, sqrt(_e45));
+    float3 horizon_2 = float3(0.07, 0.085, 0.11);
+    const float _e45 = saturate_(d_12.y);
+    float3 gradient_1 = lerp(horizon_2, zenith, sqrt(_e45));
     float3 sunset = (((1.0 - (_e15 * 0.8)) * pow((1.0 - _e45), 6.0)) * float3(0.25, 0.1, 0.0));
-    const float _e64 = phase_hg(dot(d_9, sun_4), 0.76);
+    const float _e64 = phase_hg(dot(d_12, sun_5), 0.76);
     float glow = (_e64 * 0.02);
-    const float _e73 = saturate_(((sun_4.y * 10.0) + 1.0));
+    const float _e73 = saturate_(((sun_5.y * 10.0) + 1.0));
     return (e * (((gradient_1 * _e15) + (sunset * _e73)) + ((glow * _e15)).xxx));
 }
 
-float3 sun_disk(float3 d_10)
+float3 sun_disk(float3 d_13)
 {
     float cos_r = frame.sun_direction.w;
     float4 _e7 = frame.sun_direction;
-    if ((dot(d_10, _e7.xyz) < cos_r)) {
+    if ((dot(d_13, _e7.xyz) < cos_r)) {
         return (0.0).xxx;
     }
     float4 _e15 = frame.sun_illuminance;
     return (_e15.xyz / ((6.2831855 * max((1.0 - cos_r), 1e-6))).xxx);
 }
 
-float3 aces_fitted(float3 x_3)
+float3 physical_composite(uint2 pixel_8, float3 view_3, float4 cloud)
 {
-    return clamp(((x_3 * ((2.51 * x_3) + (0.03).xxx)) / ((x_3 * ((2.43 * x_3) + (0.59).xxx)) + (0.14).xxx)), (0.0).xxx, (1.0).xxx);
+    float3 sky = (float3)0;
+    float3 radiance_3 = (float3)0;
+
+    float4 _e5 = frame.sun_illuminance;
+    float3 e_1 = _e5.xyz;
+    const float3 _e7 = camera_air_origin();
+    float r_18 = _e7.y;
+    const float3 _e9 = sky_view(view_3);
+    sky = (_e9 * e_1);
+    const bool _e13 = meets_ground(r_18, view_3.y);
+    if (!(_e13)) {
+        float3 _e15 = sky;
+        const float3 _e16 = sun_disk(view_3);
+        const float3 _e18 = transmittance_to_top(r_18, view_3.y);
+        sky = (_e15 + (_e16 * _e18));
+    }
+    float3 _e21 = sky;
+    radiance_3 = (_e21 * cloud.w);
+    if ((cloud.w < 1.0)) {
+        float4 _e30 = depth_in.Load(int3(pixel_8, int(0)));
+        const float4 _e32 = aerial(pixel_8, _e30.x);
+        float3 _e33 = radiance_3;
+        radiance_3 = (_e33 + (((_e32.xyz * e_1) * (1.0 - cloud.w)) + (cloud.xyz * _e32.w)));
+    }
+    float3 _e45 = radiance_3;
+    return _e45;
+}
+
+float3 aces_fitted(float3 x_5)
+{
+    return clamp(((x_5 * ((2.51 * x_5) + (0.03).xxx)) / ((x_5 * ((2.43 * x_5) + (0.59).xxx)) + (0.14).xxx)), (0.0).xxx, (1.0).xxx);
+}
+
+void store_display(uint2 pixel_9, float3 radiance_4)
+{
+    float _e5 = frame.camera_right.w;
+    float3 exposed = (radiance_4 * _e5);
+    const float3 _e7 = aces_fitted(exposed);
+    float3 display = pow(_e7, (0.45454547).xxx);
+    image_out[pixel_9] = float4(display, 1.0);
+    return;
+}
+
+[numthreads(8, 8, 1)]
+void transmittance_lut(uint3 id : SV_DispatchThreadID)
+{
+    float3 sum = (0.0).xxx;
+    uint i = 0u;
+    float w = (float)0;
+    bool local = (bool)0;
+
+    if (any((id.xy >= TRANSMITTANCE_SIZE))) {
+        return;
+    }
+    const float2 _e11 = transmittance_r_mu((float2(id.xy) / float2(255.0, 63.0)));
+    const float _e14 = distance_to_top(_e11.x, _e11.y);
+    float dt_5 = (_e14 / 128.0);
+    uint2 loop_bound_21 = uint2(4294967295u, 4294967295u);
+    bool loop_init_17 = true;
+    while(true) {
+        if (all(loop_bound_21 == uint2(0u, 0u))) { break; }
+        loop_bound_21 -= uint2(loop_bound_21.y == 0u, 1u);
+        if (!loop_init_17) {
+            uint _e61 = i;
+            i = (_e61 + 1u);
+        }
+        loop_init_17 = false;
+        uint _e22 = i;
+        if ((_e22 <= TRANSMITTANCE_STEPS)) {
+        } else {
+            break;
+        }
+        {
+            uint _e25 = i;
+            w = (((_e25 & 1u) == 1u) ? 4.0 : 2.0);
+            uint _e34 = i;
+            if (!((_e34 == 0u))) {
+                uint _e40 = i;
+                local = (_e40 == TRANSMITTANCE_STEPS);
+            } else {
+                local = true;
+            }
+            bool _e44 = local;
+            if (_e44) {
+                w = 1.0;
+            }
+            uint _e48 = i;
+            const float _e51 = radius_after(_e11.x, _e11.y, (dt_5 * float(_e48)));
+            float3 _e52 = sum;
+            float _e53 = w;
+            const float _e54 = air_bottom();
+            const AirSample _e56 = air_at((_e51 - _e54));
+            sum = (_e52 + (_e53 * _e56.extinction));
+        }
+    }
+    float3 _e65 = sum;
+    transmittance_lut_out[id.xy] = float4(exp((-(_e65) * (dt_5 / 3.0))), 1.0);
+    return;
+}
+
+[numthreads(8, 8, 1)]
+void multiscatter_lut(uint3 id_1 : SV_DispatchThreadID)
+{
+    float3 l2_ = (0.0).xxx;
+    float3 f_ms = (0.0).xxx;
+    uint k = 0u;
+    float3 tau = (float3)0;
+    uint i_1 = (uint)0;
+
+    if (any((id_1.xy >= MULTISCATTER_SIZE))) {
+        return;
+    }
+    float2 x_10 = (float2(id_1.xy) / float2(31.0, 31.0));
+    float mu_s_4 = ((x_10.x * 2.0) - 1.0);
+    const float _e16 = air_bottom();
+    const float _e18 = air_top();
+    const float _e19 = air_bottom();
+    float r_19 = (_e16 + (x_10.y * (_e18 - _e19)));
+    float3 origin_5 = float3(0.0, r_19, 0.0);
+    float3 sun_6 = float3(sqrt(max((1.0 - (mu_s_4 * mu_s_4)), 0.0)), mu_s_4, 0.0);
+    uint2 loop_bound_22 = uint2(4294967295u, 4294967295u);
+    bool loop_init_18 = true;
+    while(true) {
+        if (all(loop_bound_22 == uint2(0u, 0u))) { break; }
+        loop_bound_22 -= uint2(loop_bound_22.y == 0u, 1u);
+        if (!loop_init_18) {
+            uint _e121 = k;
+            k = (_e121 + 1u);
+        }
+        loop_init_18 = false;
+        uint _e43 = k;
+        if ((_e43 < MULTISCATTER_DIRECTIONS)) {
+        } else {
+            break;
+        }
+        {
+            uint _e46 = k;
+            const float3 _e48 = fibonacci_direction(_e46, MULTISCATTER_DIRECTIONS);
+            const float2 _e49 = air_ray_end(origin_5, _e48);
+            float dt_6 = (_e49.x / 32.0);
+            tau = (0.0).xxx;
+            i_1 = 0u;
+            uint2 loop_bound_23 = uint2(4294967295u, 4294967295u);
+            bool loop_init_19 = true;
+            while(true) {
+                if (all(loop_bound_23 == uint2(0u, 0u))) { break; }
+                loop_bound_23 -= uint2(loop_bound_23.y == 0u, 1u);
+                if (!loop_init_19) {
+                    uint _e103 = i_1;
+                    i_1 = (_e103 + 1u);
+                }
+                loop_init_19 = false;
+                uint _e58 = i_1;
+                if ((_e58 < MULTISCATTER_STEPS)) {
+                } else {
+                    break;
+                }
+                {
+                    uint _e61 = i_1;
+                    float3 p_20 = (origin_5 + (_e48 * (dt_6 * (float(_e61) + 0.5))));
+                    float rp_6 = length(p_20);
+                    const float _e69 = air_bottom();
+                    const AirSample _e71 = air_at((rp_6 - _e69));
+                    float3 _e72 = tau;
+                    float3 t_8 = exp(-((_e72 + ((0.5 * _e71.extinction) * dt_6))));
+                    float3 s_12 = (_e71.rayleigh + (_e71.mie).xxx);
+                    float3 _e84 = l2_;
+                    const float3 _e90 = sun_transmittance(rp_6, dot((p_20 / (rp_6).xxx), sun_6));
+                    l2_ = (_e84 + ((((t_8 * s_12) * 0.07957747) * _e90) * dt_6));
+                    float3 _e94 = f_ms;
+                    f_ms = (_e94 + ((t_8 * s_12) * dt_6));
+                    float3 _e98 = tau;
+                    tau = (_e98 + (_e71.extinction * dt_6));
+                }
+            }
+            if ((_e49.y > 0.5)) {
+                float3 g_7 = (origin_5 + (_e48 * _e49.x));
+                float3 _e111 = l2_;
+                float3 _e112 = tau;
+                const float3 _e117 = ground_radiance(dot(normalize(g_7), sun_6));
+                l2_ = (_e111 + (exp(-(_e112)) * _e117));
+            }
+        }
+    }
+    float3 _e124 = l2_;
+    float3 _e128 = f_ms;
+    float3 psi = ((_e124 * 0.015625) / max(((1.0).xxx - (_e128 * 0.015625)), (1e-6).xxx));
+    multiscatter_lut_out[id_1.xy] = float4(psi, 1.0);
+    return;
+}
+
+[numthreads(8, 8, 1)]
+void sky_view_lut(uint3 id_2 : SV_DispatchThreadID)
+{
+    if (any((id_2.xy >= SKY_VIEW_SIZE))) {
+        return;
+    }
+    float2 x_11 = (float2(id_2.xy) / float2(191.0, 107.0));
+    const float3 _e11 = camera_air_origin();
+    const float _e14 = horizon_elevation(_e11.y);
+    const float _e15 = sky_view_elevation(x_11.y, _e14);
+    const float _e16 = sun_azimuth();
+    float phi_2 = (_e16 + (x_11.x * PI));
+    float3 d_18 = float3((cos(_e15) * cos(phi_2)), sin(_e15), (cos(_e15) * sin(phi_2)));
+    const float2 _e29 = air_ray_end(_e11, d_18);
+    float4 _e34 = frame.sun_direction;
+    const Scattered _e39 = integrate_air(_e11, d_18, _e29.x, SKY_VIEW_STEPS, _e34.xyz, (_e29.y > 0.5));
+    sky_view_out[id_2.xy] = float4(_e39.radiance, 1.0);
+    return;
+}
+
+[numthreads(8, 8, 1)]
+void aerial_perspective(uint3 id_3 : SV_DispatchThreadID)
+{
+    float3 radiance = (0.0).xxx;
+    float3 tau_1 = (0.0).xxx;
+    uint z = 0u;
+    uint k_1 = (uint)0;
+
+    if (any((id_3.xy >= (32u).xx))) {
+        return;
+    }
+    const float3 _e7 = aerial_ray(id_3.xy);
+    const float3 _e8 = camera_air_origin();
+    const float2 _e9 = air_ray_end(_e8, _e7);
+    float4 _e12 = frame.sun_direction;
+    float3 sun_7 = _e12.xyz;
+    float cos_theta_8 = dot(_e7, sun_7);
+    const float _e15 = phase_rayleigh(cos_theta_8);
+    float _e19 = frame.air_mie.w;
+    const float _e20 = phase_cornette_shanks_air(cos_theta_8, _e19);
+    uint2 loop_bound_24 = uint2(4294967295u, 4294967295u);
+    bool loop_init_20 = true;
+    while(true) {
+        if (all(loop_bound_24 == uint2(0u, 0u))) { break; }
+        loop_bound_24 -= uint2(loop_bound_24.y == 0u, 1u);
+        if (!loop_init_20) {
+            uint _e122 = z;
+            z = (_e122 + 1u);
+        }
+        loop_init_20 = false;
+        uint _e30 = z;
+        if ((_e30 < AERIAL_SLICES)) {
+        } else {
+            break;
+        }
+        {
+            k_1 = 0u;
+            uint2 loop_bound_25 = uint2(4294967295u, 4294967295u);
+            bool loop_init_21 = true;
+            while(true) {
+                if (all(loop_bound_25 == uint2(0u, 0u))) { break; }
+                loop_bound_25 -= uint2(loop_bound_25.y == 0u, 1u);
+                if (!loop_init_21) {
+                    uint _e99 = k_1;
+                    k_1 = (_e99 + 1u);
+                }
+                loop_init_21 = false;
+                uint _e35 = k_1;
+                if ((_e35 < 4u)) {
+                } else {
+                    break;
+                }
+                {
+                    uint _e38 = z;
+                    uint _e40 = k_1;
+                    float t0_1 = (AERIAL_SLICE_KM * (float(_e38) + (float(_e40) / 4.0)));
+                    float dt_7 = max(min(0.25, (_e9.x - t0_1)), 0.0);
+                    float3 p_21 = (_e8 + (_e7 * (t0_1 + (0.5 * dt_7))));
+                    float r_20 = length(p_21);
+                    float mu_s_5 = dot((p_21 / (r_20).xxx), sun_7);
+                    const float _e64 = air_bottom();
+                    const AirSample _e66 = air_at((r_20 - _e64));
+                    float3 _e67 = tau_1;
+                    float3 t_view_1 = exp(-((_e67 + ((0.5 * _e66.extinction) * dt_7))));
+                    const float3 _e75 = sun_transmittance(r_20, mu_s_5);
+                    const float3 _e83 = multiscatter(r_20, mu_s_5);
+                    float3 inscatter_1 = ((_e75 * ((_e66.rayleigh * _e15) + ((_e66.mie * _e20)).xxx)) + (_e83 * (_e66.rayleigh + (_e66.mie).xxx)));
+                    float3 _e90 = radiance;
+                    radiance = (_e90 + ((t_view_1 * inscatter_1) * dt_7));
+                    float3 _e94 = tau_1;
+                    tau_1 = (_e94 + (_e66.extinction * dt_7));
+                }
+            }
+            float3 _e101 = tau_1;
+            float3 t_9 = exp(-(_e101));
+            uint _e105 = z;
+            float3 _e112 = radiance;
+            aerial_out[uint2(((_e105 * AERIAL_SIDE) + id_3.x), id_3.y)] = float4(_e112, (((t_9.x + t_9.y) + t_9.z) / 3.0));
+        }
+    }
+    return;
+}
+
+[numthreads(8, 8, 1)]
+void sky_ambient(uint3 id_4 : SV_DispatchThreadID)
+{
+    bool local_1 = (bool)0;
+    float3 sum_1 = (0.0).xxx;
+    uint k_2 = 0u;
+
+    if (!((id_4.x >= 2u))) {
+        local_1 = (id_4.y >= 1u);
+    } else {
+        local_1 = true;
+    }
+    bool _e11 = local_1;
+    if (_e11) {
+        return;
+    }
+    float _e15 = frame.atmosphere.y;
+    float _e19 = frame.atmosphere.z;
+    float alt_m = ((id_4.x == 1u) ? _e19 : _e15);
+    const float _e24 = air_bottom();
+    float3 origin_6 = float3(0.0, (_e24 + (alt_m * 0.001)), 0.0);
+    uint2 loop_bound_26 = uint2(4294967295u, 4294967295u);
+    bool loop_init_22 = true;
+    while(true) {
+        if (all(loop_bound_26 == uint2(0u, 0u))) { break; }
+        loop_bound_26 -= uint2(loop_bound_26.y == 0u, 1u);
+        if (!loop_init_22) {
+            uint _e57 = k_2;
+            k_2 = (_e57 + 1u);
+        }
+        loop_init_22 = false;
+        uint _e36 = k_2;
+        if ((_e36 < AMBIENT_DIRECTIONS)) {
+        } else {
+            break;
+        }
+        {
+            uint _e39 = k_2;
+            const float3 _e41 = fibonacci_direction(_e39, AMBIENT_DIRECTIONS);
+            const float2 _e42 = air_ray_end(origin_6, _e41);
+            float3 _e43 = sum_1;
+            float4 _e48 = frame.sun_direction;
+            const Scattered _e53 = integrate_air(origin_6, _e41, _e42.x, AMBIENT_STEPS, _e48.xyz, (_e42.y > 0.5));
+            sum_1 = (_e43 + _e53.radiance);
+        }
+    }
+    float3 _e61 = sum_1;
+    sky_ambient_out[id_4.xy] = float4((_e61 / (64.0).xxx), 1.0);
+    return;
 }
 
 int2 naga_div(int2 lhs, int2 rhs) {
@@ -2736,29 +3549,29 @@ uint2 NagaDimensions2D(Texture2D<float4> tex)
 }
 
 [numthreads(8, 8, 1)]
-void occupancy(uint3 id : SV_DispatchThreadID)
+void occupancy(uint3 id_5 : SV_DispatchThreadID)
 {
     float m = 0.0;
     int y = (int)0;
     int x = (int)0;
 
-    if (any((id.xy >= (64u).xx))) {
+    if (any((id_5.xy >= (64u).xx))) {
         return;
     }
-    int2 size_6 = int2(NagaDimensions2D(weather_tex));
-    int2 lo_1 = asint(asuint(naga_div(asint(asuint(int2(id.xy)) * asuint(size_6)), (int(64)).xx)) - asuint((int(1)).xx));
-    int2 hi = naga_div(asint(asuint(asint(asuint(int2(id.xy)) + asuint((int(1)).xx))) * asuint(size_6)), (int(64)).xx);
+    int2 size_7 = int2(NagaDimensions2D(weather_tex));
+    int2 lo_1 = asint(asuint(naga_div(asint(asuint(int2(id_5.xy)) * asuint(size_7)), (int(64)).xx)) - asuint((int(1)).xx));
+    int2 hi = naga_div(asint(asuint(asint(asuint(int2(id_5.xy)) + asuint((int(1)).xx))) * asuint(size_7)), (int(64)).xx);
     y = lo_1.y;
-    uint2 loop_bound_20 = uint2(4294967295u, 4294967295u);
-    bool loop_init_16 = true;
+    uint2 loop_bound_27 = uint2(4294967295u, 4294967295u);
+    bool loop_init_23 = true;
     while(true) {
-        if (all(loop_bound_20 == uint2(0u, 0u))) { break; }
-        loop_bound_20 -= uint2(loop_bound_20.y == 0u, 1u);
-        if (!loop_init_16) {
+        if (all(loop_bound_27 == uint2(0u, 0u))) { break; }
+        loop_bound_27 -= uint2(loop_bound_27.y == 0u, 1u);
+        if (!loop_init_23) {
             int _e54 = y;
             y = asint(asuint(_e54) + asuint(int(1)));
         }
-        loop_init_16 = false;
+        loop_init_23 = false;
         int _e30 = y;
         if ((_e30 <= hi.y)) {
         } else {
@@ -2766,16 +3579,16 @@ void occupancy(uint3 id : SV_DispatchThreadID)
         }
         {
             x = lo_1.x;
-            uint2 loop_bound_21 = uint2(4294967295u, 4294967295u);
-            bool loop_init_17 = true;
+            uint2 loop_bound_28 = uint2(4294967295u, 4294967295u);
+            bool loop_init_24 = true;
             while(true) {
-                if (all(loop_bound_21 == uint2(0u, 0u))) { break; }
-                loop_bound_21 -= uint2(loop_bound_21.y == 0u, 1u);
-                if (!loop_init_17) {
+                if (all(loop_bound_28 == uint2(0u, 0u))) { break; }
+                loop_bound_28 -= uint2(loop_bound_28.y == 0u, 1u);
+                if (!loop_init_24) {
                     int _e51 = x;
                     x = asint(asuint(_e51) + asuint(int(1)));
                 }
-                loop_init_17 = false;
+                loop_init_24 = false;
                 int _e35 = x;
                 if ((_e35 <= hi.x)) {
                 } else {
@@ -2784,95 +3597,95 @@ void occupancy(uint3 id : SV_DispatchThreadID)
                 {
                     int _e38 = x;
                     int _e39 = y;
-                    int2 t_7 = naga_mod(asint(asuint(naga_mod(int2(_e38, _e39), size_6)) + asuint(size_6)), size_6);
+                    int2 t_10 = naga_mod(asint(asuint(naga_mod(int2(_e38, _e39), size_7)) + asuint(size_7)), size_7);
                     float _e44 = m;
-                    float4 _e47 = weather_tex.Load(int3(t_7, int(0)));
+                    float4 _e47 = weather_tex.Load(int3(t_10, int(0)));
                     m = max(_e44, _e47.x);
                 }
             }
         }
     }
     float _e58 = m;
-    occupancy_out[id.xy] = float4(_e58, 0.0, 0.0, 0.0);
+    occupancy_out[id_5.xy] = float4(_e58, 0.0, 0.0, 0.0);
     return;
 }
 
 [numthreads(8, 8, 1)]
-void march(uint3 id_1 : SV_DispatchThreadID)
+void march(uint3 id_6 : SV_DispatchThreadID)
 {
     uint4 _e4 = frame.counts;
-    if (any((id_1.xy >= _e4.xy))) {
+    if (any((id_6.xy >= _e4.xy))) {
         return;
     }
-    const MarchResult _e9 = march_pixel(id_1.xy);
-    cloud_out[id_1.xy] = float4(_e9.radiance, _e9.transmittance);
-    depth_out[id_1.xy] = float4(_e9.depth, 0.0, 0.0, 0.0);
+    const MarchResult _e9 = march_pixel(id_6.xy);
+    cloud_out[id_6.xy] = float4(_e9.radiance, _e9.transmittance);
+    depth_out[id_6.xy] = float4(_e9.depth, 0.0, 0.0, 0.0);
     return;
 }
 
 [numthreads(8, 8, 1)]
-void march_sparse(uint3 id_2 : SV_DispatchThreadID)
+void march_sparse(uint3 id_7 : SV_DispatchThreadID)
 {
     MarchResult r = ConstructMarchResult((0.0).xxx, 1.0, 0.0);
 
-    const bool _e2 = in_blocks(id_2.xy);
+    const bool _e2 = in_blocks(id_7.xy);
     if (!(_e2)) {
         return;
     }
-    const uint2 _e5 = sparse_pixel(id_2.xy);
+    const uint2 _e5 = sparse_pixel(id_7.xy);
     uint4 _e14 = frame.counts;
     if (all((_e5 < _e14.xy))) {
         const MarchResult _e18 = march_pixel(_e5);
         r = _e18;
     }
     MarchResult _e20 = r;
-    store_sparse(id_2.xy, _e20);
+    store_sparse(id_7.xy, _e20);
     return;
 }
 
 [numthreads(8, 8, 1)]
-void march_sparse_checkerboard(uint3 id_3 : SV_DispatchThreadID)
+void march_sparse_checkerboard(uint3 id_8 : SV_DispatchThreadID)
 {
     MarchResult r_1 = ConstructMarchResult((0.0).xxx, 1.0, 0.0);
     bool skip = (bool)0;
-    bool local = (bool)0;
-    bool local_1 = (bool)0;
     bool local_2 = (bool)0;
+    bool local_3 = (bool)0;
+    bool local_4 = (bool)0;
 
-    const bool _e2 = in_blocks(id_3.xy);
+    const bool _e2 = in_blocks(id_8.xy);
     if (!(_e2)) {
         return;
     }
-    const uint2 _e5 = sparse_pixel(id_3.xy);
+    const uint2 _e5 = sparse_pixel(id_8.xy);
     uint4 _e14 = frame.counts;
     skip = any((_e5 >= _e14.xy));
     bool _e19 = skip;
     if (!(_e19)) {
         uint _e26 = frame.temporal.y;
-        local = (_e26 != 0u);
+        local_2 = (_e26 != 0u);
     } else {
-        local = false;
+        local_2 = false;
     }
-    bool _e30 = local;
+    bool _e30 = local_2;
     if (_e30) {
-        uint k_10 = frame.temporal.x;
+        uint k_14 = frame.temporal.x;
         uint _e38 = frame.misc.y;
-        uint turn = naga_div(_e38, (k_10 * k_10));
+        uint turn = naga_div(_e38, (k_14 * k_14));
         const float2 _e42 = reproject(_e5, 0.0);
-        if (((((id_3.x + id_3.y) + turn) & 1u) == 0u)) {
+        if (((((id_8.x + id_8.y) + turn) & 1u) == 0u)) {
             const bool _e53 = on_screen(_e42);
-            local_1 = _e53;
+            local_3 = _e53;
         } else {
-            local_1 = false;
+            local_3 = false;
         }
-        bool _e55 = local_1;
+        bool _e55 = local_3;
         if (_e55) {
             const float4 _e58 = history_nearest(_e42);
-            local_2 = (_e58.w >= 1.0);
+            local_4 = (_e58.w >= 1.0);
         } else {
-            local_2 = false;
+            local_4 = false;
         }
-        bool _e63 = local_2;
+        bool _e63 = local_4;
         if (_e63) {
             skip = true;
         }
@@ -2883,36 +3696,36 @@ void march_sparse_checkerboard(uint3 id_3 : SV_DispatchThreadID)
         r_1 = _e67;
     }
     MarchResult _e69 = r_1;
-    store_sparse(id_3.xy, _e69);
+    store_sparse(id_8.xy, _e69);
     return;
 }
 
 [numthreads(8, 8, 1)]
-void resolve(uint3 id_4 : SV_DispatchThreadID)
+void resolve(uint3 id_9 : SV_DispatchThreadID)
 {
     float depth = (float)0;
-    bool local_3 = (bool)0;
+    bool local_5 = (bool)0;
     bool valid = (bool)0;
     float4 history = float4(0.0, 0.0, 0.0, 1.0);
     float4 past = (0.0).xxxx;
-    bool local_4 = (bool)0;
-    bool local_5 = (bool)0;
     bool local_6 = (bool)0;
+    bool local_7 = (bool)0;
+    bool local_8 = (bool)0;
     float4 result = (float4)0;
     float samples = (float)0;
     float out_depth = (float)0;
-    bool local_7 = (bool)0;
+    bool local_9 = (bool)0;
 
     uint4 _e4 = frame.counts;
-    if (any((id_4.xy >= _e4.xy))) {
+    if (any((id_9.xy >= _e4.xy))) {
         return;
     }
-    uint2 pixel_7 = id_4.xy;
-    uint k_11 = frame.temporal.x;
-    uint2 block = naga_div(pixel_7, (k_11).xx);
+    uint2 pixel_10 = id_9.xy;
+    uint k_15 = frame.temporal.x;
+    uint2 block = naga_div(pixel_10, (k_15).xx);
     uint _e19 = frame.misc.y;
-    const uint2 _e20 = block_offset(_e19, k_11);
-    bool marched_1 = all((pixel_7 == ((block * k_11) + _e20)));
+    const uint2 _e20 = block_offset(_e19, k_15);
+    bool marched_1 = all((pixel_10 == ((block * k_15) + _e20)));
     float4 current = sparse_in.Load(int3(block, int(0)));
     float4 _e29 = sparse_depth_in.Load(int3(block, int(0)));
     float current_depth = _e29.x;
@@ -2920,24 +3733,24 @@ void resolve(uint3 id_4 : SV_DispatchThreadID)
     float _e32 = depth;
     if ((_e32 <= 0.0)) {
         float _e38 = frame.camera_position.y;
-        const float3 _e39 = view_ray(pixel_7);
+        const float3 _e39 = view_ray(pixel_10);
         const Interval _e40 = nearest_layer_interval(_e38, _e39);
         if ((_e40.kind == RAY_MARCH)) {
             depth = (_e40.start + (0.5 * _e40.length_));
         }
     }
     float _e49 = depth;
-    const float2 _e50 = reproject(pixel_7, _e49);
+    const float2 _e50 = reproject(pixel_10, _e49);
     uint _e54 = frame.temporal.y;
     if ((_e54 != 0u)) {
         const bool _e59 = on_screen(_e50);
-        local_3 = _e59;
+        local_5 = _e59;
     } else {
-        local_3 = false;
+        local_5 = false;
     }
-    bool _e61 = local_3;
+    bool _e61 = local_5;
     valid = _e61;
-    bool moving = any((_e50 != float2(pixel_7)));
+    bool moving = any((_e50 != float2(pixel_10)));
     bool _e75 = valid;
     if (_e75) {
         const float4 _e76 = history_at(_e50);
@@ -2945,21 +3758,21 @@ void resolve(uint3 id_4 : SV_DispatchThreadID)
         const float4 _e77 = meta_at(_e50);
         past = _e77;
         if (moving) {
-            local_4 = (current_depth > 0.0);
+            local_6 = (current_depth > 0.0);
         } else {
-            local_4 = false;
+            local_6 = false;
         }
-        bool _e83 = local_4;
+        bool _e83 = local_6;
         if (_e83) {
             float _e87 = past.x;
-            local_5 = (_e87 > 0.0);
+            local_7 = (_e87 > 0.0);
         } else {
-            local_5 = false;
+            local_7 = false;
         }
-        bool _e91 = local_5;
+        bool _e91 = local_7;
         if (_e91) {
             float4 _e94 = frame.camera_position;
-            const float3 _e96 = view_ray(pixel_7);
+            const float3 _e96 = view_ray(pixel_10);
             float4 _e101 = frame.previous_position;
             float expected = distance((_e94.xyz + (_e96 * current_depth)), _e101.xyz);
             float _e105 = past.x;
@@ -2968,27 +3781,27 @@ void resolve(uint3 id_4 : SV_DispatchThreadID)
     }
     bool _e111 = valid;
     if (_e111) {
-        local_6 = moving;
+        local_8 = moving;
     } else {
-        local_6 = false;
+        local_8 = false;
     }
-    bool _e115 = local_6;
+    bool _e115 = local_8;
     if (_e115) {
         uint4 _e118 = frame.counts;
-        int2 blocks = int2(naga_div(((_e118.xy + (k_11).xx) - (1u).xx), (k_11).xx));
-        int2 b_9 = int2(block);
-        int x0_1 = max(asint(asuint(b_9.x) - asuint(int(1))), int(0));
-        int x2_1 = min(asint(asuint(b_9.x) + asuint(int(1))), asint(asuint(blocks.x) - asuint(int(1))));
-        int y0_ = max(asint(asuint(b_9.y) - asuint(int(1))), int(0));
-        int y2_ = min(asint(asuint(b_9.y) + asuint(int(1))), asint(asuint(blocks.y) - asuint(int(1))));
+        int2 blocks = int2(naga_div(((_e118.xy + (k_15).xx) - (1u).xx), (k_15).xx));
+        int2 b_11 = int2(block);
+        int x0_1 = max(asint(asuint(b_11.x) - asuint(int(1))), int(0));
+        int x2_1 = min(asint(asuint(b_11.x) + asuint(int(1))), asint(asuint(blocks.x) - asuint(int(1))));
+        int y0_ = max(asint(asuint(b_11.y) - asuint(int(1))), int(0));
+        int y2_ = min(asint(asuint(b_11.y) + asuint(int(1))), asint(asuint(blocks.y) - asuint(int(1))));
         float4 s00_ = sparse_in.Load(int3(int2(x0_1, y0_), int(0)));
-        float4 s10_ = sparse_in.Load(int3(int2(b_9.x, y0_), int(0)));
+        float4 s10_ = sparse_in.Load(int3(int2(b_11.x, y0_), int(0)));
         float4 s20_ = sparse_in.Load(int3(int2(x2_1, y0_), int(0)));
-        float4 s01_ = sparse_in.Load(int3(int2(x0_1, b_9.y), int(0)));
-        float4 s11_ = sparse_in.Load(int3(b_9, int(0)));
-        float4 s21_ = sparse_in.Load(int3(int2(x2_1, b_9.y), int(0)));
+        float4 s01_ = sparse_in.Load(int3(int2(x0_1, b_11.y), int(0)));
+        float4 s11_ = sparse_in.Load(int3(b_11, int(0)));
+        float4 s21_ = sparse_in.Load(int3(int2(x2_1, b_11.y), int(0)));
         float4 s02_ = sparse_in.Load(int3(int2(x0_1, y2_), int(0)));
-        float4 s12_ = sparse_in.Load(int3(int2(b_9.x, y2_), int(0)));
+        float4 s12_ = sparse_in.Load(int3(int2(b_11.x, y2_), int(0)));
         float4 s22_ = sparse_in.Load(int3(int2(x2_1, y2_), int(0)));
         float4 lo_2 = min(min(min(s00_, s10_), min(s20_, s01_)), min(min(s11_, s21_), min(min(s02_, s12_), s22_)));
         float4 hi_1 = max(max(max(s00_, s10_), max(s20_, s01_)), max(max(s11_, s21_), max(max(s02_, s12_), s22_)));
@@ -3010,11 +3823,11 @@ void resolve(uint3 id_4 : SV_DispatchThreadID)
         float _e229 = past.x;
         if (!((current_depth > 0.0))) {
             bool _e235 = valid;
-            local_7 = !(_e235);
+            local_9 = !(_e235);
         } else {
-            local_7 = true;
+            local_9 = true;
         }
-        bool _e238 = local_7;
+        bool _e238 = local_9;
         out_depth = (_e238 ? current_depth : _e229);
     } else {
         bool _e240 = valid;
@@ -3026,39 +3839,39 @@ void resolve(uint3 id_4 : SV_DispatchThreadID)
             float _e247 = past.x;
             out_depth = _e247;
         } else {
-            const MarchResult _e248 = march_pixel(pixel_7);
+            const MarchResult _e248 = march_pixel(pixel_10);
             samples = 1.0;
             result = float4(_e248.radiance, _e248.transmittance);
             out_depth = _e248.depth;
         }
     }
     float4 _e255 = result;
-    history_out[pixel_7] = _e255;
+    history_out[pixel_10] = _e255;
     float _e257 = out_depth;
     float _e258 = samples;
-    meta_out[pixel_7] = float4(_e257, _e258, 0.0, 0.0);
+    meta_out[pixel_10] = float4(_e257, _e258, 0.0, 0.0);
     float4 _e263 = result;
-    cloud_out[pixel_7] = _e263;
+    cloud_out[pixel_10] = _e263;
     float _e265 = out_depth;
-    depth_out[pixel_7] = float4(_e265, 0.0, 0.0, 0.0);
+    depth_out[pixel_10] = float4(_e265, 0.0, 0.0, 0.0);
     return;
 }
 
 [numthreads(8, 8, 1)]
-void pathtrace(uint3 id_5 : SV_DispatchThreadID)
+void pathtrace(uint3 id_10 : SV_DispatchThreadID)
 {
     Counters counters = ConstructCounters(0u, 0u, 0u, 0u);
     uint rng = (uint)0;
     float4 mean = (0.0).xxxx;
     float4 moments = (0.0).xxxx;
-    bool local_8 = (bool)0;
+    bool local_10 = (bool)0;
 
     uint4 _e4 = frame.counts;
-    if (any((id_5.xy >= _e4.xy))) {
+    if (any((id_10.xy >= _e4.xy))) {
         return;
     }
-    uint2 pixel_8 = id_5.xy;
-    const float3 _e9 = view_ray(pixel_8);
+    uint2 pixel_11 = id_10.xy;
+    const float3 _e9 = view_ray(pixel_11);
     float _e13 = frame.camera_position.y;
     const Interval _e14 = cloud_interval(_e13, _e9);
     count(STAT_PIXELS, 1u);
@@ -3066,32 +3879,32 @@ void pathtrace(uint3 id_5 : SV_DispatchThreadID)
     count(STAT_EXIT_MISSED, uint((_e14.kind == RAY_MISSES_LAYER)));
     count(STAT_EXIT_GROUND, uint((_e14.kind == RAY_HITS_GROUND)));
     uint _e41 = frame.misc.y;
-    const uint _e42 = rng_seed(pixel_8, _e41);
+    const uint _e42 = rng_seed(pixel_11, _e41);
     rng = _e42;
     const PathResult _e44 = trace_path(_e9, _e14, rng, counters);
     const float _e46 = luminance(_e44.radiance);
     uint _e56 = frame.temporal.y;
     if ((_e56 == 1u)) {
         const bool _e61 = camera_still();
-        local_8 = _e61;
+        local_10 = _e61;
     } else {
-        local_8 = false;
+        local_10 = false;
     }
-    bool _e63 = local_8;
+    bool _e63 = local_10;
     if (_e63) {
-        float4 _e66 = history_in.Load(int3(pixel_8, int(0)));
+        float4 _e66 = history_in.Load(int3(pixel_11, int(0)));
         mean = _e66;
-        float4 _e69 = meta_in.Load(int3(pixel_8, int(0)));
+        float4 _e69 = meta_in.Load(int3(pixel_11, int(0)));
         moments = _e69;
     }
     float _e71 = moments.y;
-    float n_3 = (_e71 + 1.0);
+    float n_4 = (_e71 + 1.0);
     float4 _e74 = mean;
     float4 _e78 = mean;
-    mean = (_e74 + ((float4(_e44.radiance, _e44.transmittance) - _e78) / (n_3).xxxx));
+    mean = (_e74 + ((float4(_e44.radiance, _e44.transmittance) - _e78) / (n_4).xxxx));
     float _e84 = moments.z;
     float _e87 = moments.z;
-    moments.z = (_e84 + (((_e46 * _e46) - _e87) / n_3));
+    moments.z = (_e84 + (((_e46 * _e46) - _e87) / n_4));
     if ((_e44.depth >= 0.0)) {
         float _e95 = moments.w;
         moments.w = (_e95 + 1.0);
@@ -3100,15 +3913,15 @@ void pathtrace(uint3 id_5 : SV_DispatchThreadID)
         float _e105 = moments.w;
         moments.x = (_e99 + ((_e44.depth - _e102) / _e105));
     }
-    moments.y = n_3;
+    moments.y = n_4;
     float4 _e110 = mean;
-    history_out[pixel_8] = _e110;
+    history_out[pixel_11] = _e110;
     float4 _e112 = moments;
-    meta_out[pixel_8] = _e112;
+    meta_out[pixel_11] = _e112;
     float4 _e114 = mean;
-    cloud_out[pixel_8] = _e114;
+    cloud_out[pixel_11] = _e114;
     float _e117 = moments.x;
-    depth_out[pixel_8] = float4(_e117, 0.0, 0.0, 0.0);
+    depth_out[pixel_11] = float4(_e117, 0.0, 0.0, 0.0);
     uint _e124 = counters.view_steps;
     count(STAT_VIEW_STEPS, _e124);
     uint _e127 = counters.density;
@@ -3121,15 +3934,15 @@ void pathtrace(uint3 id_5 : SV_DispatchThreadID)
 }
 
 [numthreads(8, 8, 1)]
-void march_basic(uint3 id_6 : SV_DispatchThreadID)
+void march_basic(uint3 id_11 : SV_DispatchThreadID)
 {
     uint4 _e4 = frame.counts;
-    if (any((id_6.xy >= _e4.xy))) {
+    if (any((id_11.xy >= _e4.xy))) {
         return;
     }
-    const MarchResult _e9 = basic_pixel(id_6.xy);
-    cloud_out[id_6.xy] = float4(_e9.radiance, _e9.transmittance);
-    depth_out[id_6.xy] = float4(_e9.depth, 0.0, 0.0, 0.0);
+    const MarchResult _e9 = basic_pixel(id_11.xy);
+    cloud_out[id_11.xy] = float4(_e9.radiance, _e9.transmittance);
+    depth_out[id_11.xy] = float4(_e9.depth, 0.0, 0.0, 0.0);
     return;
 }
 
@@ -3138,70 +3951,70 @@ uint2 naga_mod(uint2 lhs, uint2 rhs) {
 }
 
 [numthreads(8, 8, 1)]
-void sprite_atlas(uint3 id_7 : SV_DispatchThreadID)
+void sprite_atlas(uint3 id_12 : SV_DispatchThreadID)
 {
-    uint tile_4 = ((naga_div(id_7.y, ATLAS_TILE) * 4u) + naga_div(id_7.x, ATLAS_TILE));
-    float2 uv_5 = ((float2(naga_mod(id_7.xy, (64u).xx)) + (0.5).xx) / (64.0).xx);
-    const float _e21 = sprite_texture(tile_4, uv_5);
-    sprite_atlas_out[id_7.xy] = float4(_e21, _e21, _e21, _e21);
+    uint tile_4 = ((naga_div(id_12.y, ATLAS_TILE) * 4u) + naga_div(id_12.x, ATLAS_TILE));
+    float2 uv_6 = ((float2(naga_mod(id_12.xy, (64u).xx)) + (0.5).xx) / (64.0).xx);
+    const float _e21 = sprite_texture(tile_4, uv_6);
+    sprite_atlas_out[id_12.xy] = float4(_e21, _e21, _e21, _e21);
     return;
 }
 
 [numthreads(64, 1, 1)]
-void sprite_build(uint3 id_8 : SV_DispatchThreadID)
+void sprite_build(uint3 id_13 : SV_DispatchThreadID)
 {
     Counters counters_1 = ConstructCounters(0u, 0u, 0u, 0u);
-    float4 sum = (0.0).xxxx;
+    float4 sum_2 = (0.0).xxxx;
     SpriteCandidate me = (SpriteCandidate)0;
-    uint i = 0u;
+    uint i_2 = 0u;
     float3 centre = (float3)0;
     uint tile = (uint)0;
     float rotation = (float)0;
-    bool local_9 = (bool)0;
+    bool local_11 = (bool)0;
     float key = 0.0;
 
-    uint slot = id_8.x;
+    uint slot = id_13.x;
     uint cell_index = naga_div(slot, SPRITES_PER_CELL);
     uint level_2 = naga_div(cell_index, 64u);
     const SpriteCell _e6 = sprite_cell(cell_index);
     uint own = naga_mod(slot, SPRITES_PER_CELL);
     const SpriteCandidate _e18 = sprite_candidate(_e6, level_2, own, counters_1);
     me = _e18;
-    uint2 loop_bound_22 = uint2(4294967295u, 4294967295u);
-    bool loop_init_18 = true;
+    uint2 loop_bound_29 = uint2(4294967295u, 4294967295u);
+    bool loop_init_25 = true;
     while(true) {
-        if (all(loop_bound_22 == uint2(0u, 0u))) { break; }
-        loop_bound_22 -= uint2(loop_bound_22.y == 0u, 1u);
-        if (!loop_init_18) {
-            uint _e38 = i;
-            i = (_e38 + 1u);
+        if (all(loop_bound_29 == uint2(0u, 0u))) { break; }
+        loop_bound_29 -= uint2(loop_bound_29.y == 0u, 1u);
+        if (!loop_init_25) {
+            uint _e38 = i_2;
+            i_2 = (_e38 + 1u);
         }
-        loop_init_18 = false;
-        uint _e22 = i;
+        loop_init_25 = false;
+        uint _e22 = i_2;
         if ((_e22 < SPRITES_PER_CELL)) {
         } else {
             break;
         }
         {
-            uint _e25 = i;
+            uint _e25 = i_2;
             const SpriteCandidate _e26 = sprite_candidate(_e6, level_2, _e25, counters_1);
-            float4 _e27 = sum;
-            sum = (_e27 + (float4(_e26.xz.x, _e26.alt, _e26.xz.y, 1.0) * _e26.density));
+            float4 _e27 = sum_2;
+            sum_2 = (_e27 + (float4(_e26.xz.x, _e26.alt, _e26.xz.y, 1.0) * _e26.density));
         }
     }
     uint _e43 = counters_1.density;
     count(STAT_DENSITY, _e43);
     uint _e46 = counters_1.detail;
     count(STAT_DETAIL, _e46);
-    float bottom_2 = frame.atmosphere.y;
+    float bottom_3 = frame.atmosphere.y;
     float _e54 = frame.atmosphere.z;
-    float thickness_1 = (_e54 - bottom_2);
+    float thickness_1 = (_e54 - bottom_3);
     float2 middle = ((float2(_e6.index) + (0.5).xx) * _e6.size);
-    centre = float3(middle.x, (bottom_2 + (0.4 * thickness_1)), middle.y);
-    float _e71 = sum.w;
+    centre = float3(middle.x, (bottom_3 + (0.4 * thickness_1)), middle.y);
+    float _e71 = sum_2.w;
     if ((_e71 > 0.0)) {
-        float4 _e74 = sum;
-        float _e77 = sum.w;
+        float4 _e74 = sum_2;
+        float _e77 = sum_2.w;
         centre = (_e74.xyz / (_e77).xxx);
     }
     float2 _e81 = me.xz;
@@ -3226,11 +4039,11 @@ void sprite_build(uint3 id_8 : SV_DispatchThreadID)
     } else {
         if (!(inner)) {
             float _e148 = me.density;
-            local_9 = (_e148 < 0.1);
+            local_11 = (_e148 < 0.1);
         } else {
-            local_9 = false;
+            local_11 = false;
         }
-        bool _e152 = local_9;
+        bool _e152 = local_11;
         if (_e152) {
             float _e154 = me.texture_hash;
             tile = min(naga_f2u32((_e154 * 4.0)), 3u);
@@ -3241,8 +4054,8 @@ void sprite_build(uint3 id_8 : SV_DispatchThreadID)
         float _e167 = me.alt;
         const float3 _e168 = sprite_rel(_e165, _e167);
         float _e172 = frame.camera_position.y;
-        float3 rel_7 = (_e168 - float3(0.0, _e172, 0.0));
-        const float _e180 = saturate_((length(rel_7) / SPRITE_MAX_DISTANCE));
+        float3 rel_8 = (_e168 - float3(0.0, _e172, 0.0));
+        const float _e180 = saturate_((length(rel_8) / SPRITE_MAX_DISTANCE));
         key = (1048576.0 - floor((_e180 * 1048575.0)));
     }
     float _e191 = me.xz.x;
@@ -3262,26 +4075,26 @@ void sprite_build(uint3 id_8 : SV_DispatchThreadID)
 }
 
 [numthreads(64, 1, 1)]
-void sprite_sort(uint3 id_9 : SV_DispatchThreadID)
+void sprite_sort(uint3 id_14 : SV_DispatchThreadID)
 {
     uint rank = 0u;
     uint j = 0u;
-    bool local_10 = (bool)0;
-    bool local_11 = (bool)0;
+    bool local_12 = (bool)0;
+    bool local_13 = (bool)0;
 
-    uint slot_1 = id_9.x;
+    uint slot_1 = id_14.x;
     float4 _e6 = sprites_in.Load(int3(uint2(slot_1, 3u), int(0)));
     float key_1 = _e6.x;
-    uint2 loop_bound_23 = uint2(4294967295u, 4294967295u);
-    bool loop_init_19 = true;
+    uint2 loop_bound_30 = uint2(4294967295u, 4294967295u);
+    bool loop_init_26 = true;
     while(true) {
-        if (all(loop_bound_23 == uint2(0u, 0u))) { break; }
-        loop_bound_23 -= uint2(loop_bound_23.y == 0u, 1u);
-        if (!loop_init_19) {
+        if (all(loop_bound_30 == uint2(0u, 0u))) { break; }
+        loop_bound_30 -= uint2(loop_bound_30.y == 0u, 1u);
+        if (!loop_init_26) {
             uint _e40 = j;
             j = (_e40 + 1u);
         }
-        loop_init_19 = false;
+        loop_init_26 = false;
         uint _e12 = j;
         if ((_e12 < SPRITE_COUNT)) {
         } else {
@@ -3295,16 +4108,16 @@ void sprite_sort(uint3 id_9 : SV_DispatchThreadID)
             if (!((other < key_1))) {
                 if ((other == key_1)) {
                     uint _e32 = j;
-                    local_11 = (_e32 < slot_1);
+                    local_13 = (_e32 < slot_1);
                 } else {
-                    local_11 = false;
+                    local_13 = false;
                 }
-                bool _e35 = local_11;
-                local_10 = _e35;
+                bool _e35 = local_13;
+                local_12 = _e35;
             } else {
-                local_10 = true;
+                local_12 = true;
             }
-            bool _e37 = local_10;
+            bool _e37 = local_12;
             rank = (_e22 + (_e37 ? 1u : 0u));
         }
     }
@@ -3320,10 +4133,10 @@ VertexOutput_sprite_vertex sprite_vertex(uint index : SV_VertexID)
 
     float4 _e8 = sprite_order_in.Load(int3(uint2(naga_div(index, 6u), 0u), int(0)));
     uint slot_2 = naga_f2u32(_e8.x);
-    float4 a_6 = sprites_in.Load(int3(uint2(slot_2, 0u), int(0)));
-    float4 b_10 = sprites_in.Load(int3(uint2(slot_2, 1u), int(0)));
-    float4 c_9 = sprites_in.Load(int3(uint2(slot_2, 2u), int(0)));
-    if ((b_10.w <= 0.0)) {
+    float4 a_10 = sprites_in.Load(int3(uint2(slot_2, 0u), int(0)));
+    float4 b_12 = sprites_in.Load(int3(uint2(slot_2, 1u), int(0)));
+    float4 c_10 = sprites_in.Load(int3(uint2(slot_2, 2u), int(0)));
+    if ((b_12.w <= 0.0)) {
         out_.position = float4(0.0, 0.0, -1.0, 1.0);
         SpriteVertex _e35 = out_;
         const SpriteVertex spritevertex = _e35;
@@ -3332,17 +4145,17 @@ VertexOutput_sprite_vertex sprite_vertex(uint index : SV_VertexID)
     }
     float _e39 = frame.camera_position.y;
     float3 cam_1 = float3(0.0, _e39, 0.0);
-    const float3 _e45 = sprite_rel(a_6.xz, a_6.y);
+    const float3 _e45 = sprite_rel(a_10.xz, a_10.y);
     float3 to_sprite = (_e45 - cam_1);
     float distance_2 = length(to_sprite);
-    float half_width_1 = a_6.w;
+    float half_width_1 = a_10.w;
     float facing = smoothstep((0.5 * half_width_1), half_width_1, distance_2);
     float3 to_camera = (-(to_sprite) / (max(distance_2, 0.001)).xxx);
     float4 _e59 = frame.camera_forward;
-    float3 n_4 = normalize(lerp(-(_e59.xyz), to_camera, facing));
+    float3 n_5 = normalize(lerp(-(_e59.xyz), to_camera, facing));
     float _e67 = frame.atmosphere.x;
     float3 radial = normalize((_e45 + float3(0.0, _e67, 0.0)));
-    right = cross(radial, n_4);
+    right = cross(radial, n_5);
     float3 _e75 = right;
     if ((length(_e75) < 0.001)) {
         float4 _e81 = frame.camera_right;
@@ -3351,42 +4164,42 @@ VertexOutput_sprite_vertex sprite_vertex(uint index : SV_VertexID)
     float3 _e83 = right;
     right = normalize(_e83);
     float3 _e85 = right;
-    float3 up = cross(n_4, _e85);
+    float3 up_1 = cross(n_5, _e85);
     const float2 _e89 = sprite_corner(naga_mod(index, 6u));
     float3 _e90 = right;
-    float3 offset = ((_e90 * (_e89.x * half_width_1)) + (up * (_e89.y * c_9.z)));
+    float3 offset = ((_e90 * (_e89.x * half_width_1)) + (up_1 * (_e89.y * c_10.z)));
     float3 vertex = (to_sprite + offset);
     float4 _e102 = frame.camera_right;
-    float x_6 = dot(vertex, _e102.xyz);
+    float x_12 = dot(vertex, _e102.xyz);
     float4 _e107 = frame.camera_up;
     float y_3 = dot(vertex, _e107.xyz);
     float4 _e112 = frame.camera_forward;
-    float z_1 = dot(vertex, _e112.xyz);
-    float tan_half_2 = frame.camera_position.w;
+    float z_4 = dot(vertex, _e112.xyz);
+    float tan_half_3 = frame.camera_position.w;
     float _e123 = frame.camera_forward.w;
-    out_.position = float4((x_6 / (tan_half_2 * _e123)), (y_3 / tan_half_2), (0.5 * z_1), z_1);
-    float2 cs = float2(cos(c_9.y), sin(c_9.y));
-    float2 t_8 = float2(_e89.x, -(_e89.y));
-    out_.uv = float2(((t_8.x * cs.x) - (t_8.y * cs.y)), ((t_8.x * cs.y) + (t_8.y * cs.x)));
-    out_.tile = naga_f2u32(c_9.x);
+    out_.position = float4((x_12 / (tan_half_3 * _e123)), (y_3 / tan_half_3), (0.5 * z_4), z_4);
+    float2 cs = float2(cos(c_10.y), sin(c_10.y));
+    float2 t_11 = float2(_e89.x, -(_e89.y));
+    out_.uv = float2(((t_11.x * cs.x) - (t_11.y * cs.y)), ((t_11.x * cs.y) + (t_11.y * cs.x)));
+    out_.tile = naga_f2u32(c_10.x);
     float4 _e160 = frame.sun_direction;
-    float3 sun_5 = _e160.xyz;
-    const float3 _e164 = sprite_rel(b_10.xz, b_10.y);
+    float3 sun_8 = _e160.xyz;
+    const float3 _e164 = sprite_rel(b_12.xz, b_12.y);
     float3 centre_2 = (_e164 - cam_1);
     float3 from_centre = (vertex - centre_2);
-    float cos_angle_1 = (dot(from_centre, sun_5) / max(length(from_centre), 0.001));
-    const float _e177 = saturate_(((sun_5.y * 4.0) + 0.3));
+    float cos_angle_1 = (dot(from_centre, sun_8) / max(length(from_centre), 0.001));
+    const float _e177 = saturate_(((sun_8.y * 4.0) + 0.3));
     const float _e179 = altitude_of((vertex + cam_1));
     float _e183 = frame.atmosphere.y;
     float _e188 = frame.atmosphere.z;
     float _e192 = frame.atmosphere.y;
     const float _e195 = saturate_(((_e179 - _e183) / (_e188 - _e192)));
     float4 _e198 = frame.sun_illuminance;
-    float3 e_1 = _e198.xyz;
+    float3 e_2 = _e198.xyz;
     const float3 _e200 = sprite_sky_level(_e195);
     const float _e204 = sprite_sun_level(cos_angle_1);
-    float3 light = ((e_1 * ((_e200 * (SPRITE_SKY * _e177)) + (_e204).xxx)) * (c_9.w / PI));
-    out_.colour = float4(light, b_10.w);
+    float3 light = ((e_2 * ((_e200 * (SPRITE_SKY * _e177)) + (_e204).xxx)) * (c_10.w / PI));
+    out_.colour = float4(light, b_12.w);
     out_.distance_ = length(vertex);
     SpriteVertex _e217 = out_;
     const SpriteVertex spritevertex_2 = _e217;
@@ -3402,8 +4215,8 @@ SpriteTargets sprite_fragment(FragmentInput_sprite_fragment fragmentinput_sprite
 
     if (all((abs(in_.uv) <= (1.0).xx))) {
         float2 tile_5 = float2(float(naga_mod(in_.tile, 4u)), float(naga_div(in_.tile, 4u)));
-        float2 uv_6 = (((tile_5 + (0.5).xx) + (0.5 * in_.uv)) * 0.25);
-        float4 _e31 = sprite_atlas_in.SampleLevel(noise_sampler, uv_6, 0.0);
+        float2 uv_7 = (((tile_5 + (0.5).xx) + (0.5 * in_.uv)) * 0.25);
+        float4 _e31 = sprite_atlas_in.SampleLevel(noise_sampler, uv_7, 0.0);
         a = (_e31.x * in_.colour.w);
     }
     float _e39 = a;
@@ -3418,34 +4231,34 @@ SpriteTargets sprite_fragment(FragmentInput_sprite_fragment fragmentinput_sprite
 }
 
 [numthreads(8, 8, 1)]
-void sprite_resolve(uint3 id_10 : SV_DispatchThreadID)
+void sprite_resolve(uint3 id_15 : SV_DispatchThreadID)
 {
     uint4 _e4 = frame.counts;
-    if (any((id_10.xy >= _e4.xy))) {
+    if (any((id_15.xy >= _e4.xy))) {
         return;
     }
     count(STAT_PIXELS, 1u);
-    float4 c_10 = sprite_radiance_in.Load(int3(id_10.xy, int(0)));
-    float4 d_14 = sprite_depth_in.Load(int3(id_10.xy, int(0)));
-    const float _e19 = saturate_(c_10.w);
-    cloud_out[id_10.xy] = float4(c_10.xyz, (1.0 - _e19));
-    depth_out[id_10.xy] = float4(((d_14.w > 0.0001) ? (d_14.x / d_14.w) : 0.0), 0.0, 0.0, 0.0);
+    float4 c_11 = sprite_radiance_in.Load(int3(id_15.xy, int(0)));
+    float4 d_19 = sprite_depth_in.Load(int3(id_15.xy, int(0)));
+    const float _e19 = saturate_(c_11.w);
+    cloud_out[id_15.xy] = float4(c_11.xyz, (1.0 - _e19));
+    depth_out[id_15.xy] = float4(((d_19.w > 0.0001) ? (d_19.x / d_19.w) : 0.0), 0.0, 0.0, 0.0);
     return;
 }
 
 [numthreads(8, 8, 1)]
-void composite(uint3 id_11 : SV_DispatchThreadID)
+void composite(uint3 id_16 : SV_DispatchThreadID)
 {
     float3 background = (float3)0;
 
     uint4 _e4 = frame.counts;
-    if (any((id_11.xy >= _e4.xy))) {
+    if (any((id_16.xy >= _e4.xy))) {
         return;
     }
-    uint2 pixel_9 = id_11.xy;
-    const float3 _e9 = view_ray(pixel_9);
+    uint2 pixel_12 = id_16.xy;
+    const float3 _e9 = view_ray(pixel_12);
     float alt_18 = frame.camera_position.y;
-    float4 cloud = cloud_in.Load(int3(pixel_9, int(0)));
+    float4 cloud_1 = cloud_in.Load(int3(pixel_12, int(0)));
     const float3 _e17 = sky_radiance(_e9, alt_18);
     background = _e17;
     const bool _e22 = hits_ground(float3(0.0, alt_18, 0.0), alt_18, _e9);
@@ -3455,11 +4268,21 @@ void composite(uint3 id_11 : SV_DispatchThreadID)
         background = (_e24 + _e25);
     }
     float3 _e27 = background;
-    float3 radiance_1 = ((_e27 * cloud.w) + cloud.xyz);
-    float _e35 = frame.camera_right.w;
-    float3 exposed = (radiance_1 * _e35);
-    const float3 _e37 = aces_fitted(exposed);
-    float3 display = pow(_e37, (0.45454547).xxx);
-    image_out[pixel_9] = float4(display, 1.0);
+    store_display(pixel_12, ((_e27 * cloud_1.w) + cloud_1.xyz));
+    return;
+}
+
+[numthreads(8, 8, 1)]
+void composite_physical(uint3 id_17 : SV_DispatchThreadID)
+{
+    uint4 _e4 = frame.counts;
+    if (any((id_17.xy >= _e4.xy))) {
+        return;
+    }
+    uint2 pixel_13 = id_17.xy;
+    float4 cloud_2 = cloud_in.Load(int3(pixel_13, int(0)));
+    const float3 _e12 = view_ray(pixel_13);
+    const float3 _e13 = physical_composite(pixel_13, _e12, cloud_2);
+    store_display(pixel_13, _e13);
     return;
 }

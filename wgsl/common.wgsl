@@ -38,6 +38,10 @@ struct Frame {
     layer2_weather: vec4<f32>,
     layer3: vec4<f32>,              // extra cloud layer 3 (as layer1)
     layer3_weather: vec4<f32>,
+    air_rayleigh: vec4<f32>,        // physical sky: Rayleigh scattering rgb (1/m at the ground); w = scale height (m)
+    air_mie: vec4<f32>,             // Mie scattering, absorption (1/m at the ground), scale height (m), g
+    air_ozone: vec4<f32>,           // ozone absorption rgb at its peak (1/m); w = peak altitude (m)
+    air_misc: vec4<f32>,            // atmosphere thickness (m), ozone tent width (m), ground albedo, 0
 }
 
 // Codes shared with the scene crate (`PhaseModel::code`, `Integration::code`, ...).
@@ -53,6 +57,7 @@ const FLAG_JITTER: u32 = 2u;
 const FLAG_DYNAMIC_STEP: u32 = 4u;  // double the view step after 8 empty samples (seed 001)
 const FLAG_CHECKERBOARD: u32 = 8u;  // skip clear-history pixels every other turn (thesis 6.2.2)
 const FLAG_EMPTY_SKIP: u32 = 16u;   // jump over empty cells of the weather occupancy grid
+const FLAG_PHYSICAL_SKY: u32 = 32u; // Hillaire 2020's atmosphere behind the clouds
 
 // Feature switches. A variant in modules.toml sets these; code behind a `false` switch is
 // removed by naga before translation, so a scene that does not use a feature pays nothing.

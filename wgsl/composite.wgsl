@@ -3,6 +3,7 @@
 
 @group(0) @binding(9) var cloud_in: texture_2d<f32>;                          // march output
 @group(0) @binding(10) var image_out: texture_storage_2d<rgba8unorm, write>; // display image
+@group(0) @binding(37) var depth_in: texture_2d<f32>;                         // clouds' depth (m), 0 where none
 
 // Sky radiance along unit `d` for a camera at altitude `alt`: a zenith-to-horizon gradient
 // scaled by the sun's illuminance and elevation, a forward glow around the sun, and a dark
@@ -34,6 +35,27 @@ fn sun_disk(d: vec3<f32>) -> vec3<f32> {
     return frame.sun_illuminance.rgb / (2.0 * PI * max(1.0 - cos_r, 1e-6));
 }
 
+// The clouds in the physical sky: the sky-view table (ground included) and the sun's disc
+// through the air behind them; in front of them the air between the camera and their depth
+// (aerial perspective), which dims their light and adds its own. Where a cloud leaves
+// transmittance a, the sky behind it shows through as a, and the air in front of the cloud
+// stands for the rest: L = a S + (1 - a) S_ap + T_ap C (Hillaire 2020, section 5.4's use of
+// the aerial-perspective volume on opaque surfaces, with partly transparent clouds).
+fn physical_composite(pixel: vec2<u32>, view: vec3<f32>, cloud: vec4<f32>) -> vec3<f32> {
+    let e = frame.sun_illuminance.rgb;
+    let r = camera_air_origin().y;
+    var sky = sky_view(view) * e;
+    if !meets_ground(r, view.y) {
+        sky += sun_disk(view) * transmittance_to_top(r, view.y);
+    }
+    var radiance = sky * cloud.a;
+    if cloud.a < 1.0 {
+        let ap = aerial(pixel, textureLoad(depth_in, pixel, 0).r);
+        radiance += ap.rgb * e * (1.0 - cloud.a) + cloud.rgb * ap.a;
+    }
+    return radiance;
+}
+
 // ACES filmic curve fitted by Narkowicz (seed 001), input pre-exposed so 1 maps to ~0.8.
 fn aces_fitted(x: vec3<f32>) -> vec3<f32> {
     let a = 2.51;
@@ -42,6 +64,13 @@ fn aces_fitted(x: vec3<f32>) -> vec3<f32> {
     let d = 0.59;
     let e = 0.14;
     return clamp((x * (a * x + b)) / (x * (c * x + d) + e), vec3<f32>(0.0), vec3<f32>(1.0));
+}
+
+// Exposure, tone curve and gamma of a pixel's radiance, to the display image.
+fn store_display(pixel: vec2<u32>, radiance: vec3<f32>) {
+    let exposed = radiance * frame.camera_right.w;
+    let display = pow(aces_fitted(exposed), vec3<f32>(1.0 / 2.2));
+    textureStore(image_out, pixel, vec4<f32>(display, 1.0));
 }
 
 @compute @workgroup_size(8, 8, 1)
@@ -57,8 +86,16 @@ fn composite(@builtin(global_invocation_id) id: vec3<u32>) {
     if !hits_ground(vec3<f32>(0.0, alt, 0.0), alt, view) {
         background += sun_disk(view);
     }
-    let radiance = background * cloud.a + cloud.rgb;
-    let exposed = radiance * frame.camera_right.w;
-    let display = pow(aces_fitted(exposed), vec3<f32>(1.0 / 2.2));
-    textureStore(image_out, pixel, vec4<f32>(display, 1.0));
+    store_display(pixel, background * cloud.a + cloud.rgb);
+}
+
+// The same in the physical sky (plan option `physical_sky`).
+@compute @workgroup_size(8, 8, 1)
+fn composite_physical(@builtin(global_invocation_id) id: vec3<u32>) {
+    if any(id.xy >= frame.counts.xy) {
+        return;
+    }
+    let pixel = id.xy;
+    let cloud = textureLoad(cloud_in, pixel, 0);
+    store_display(pixel, physical_composite(pixel, view_ray(pixel), cloud));
 }

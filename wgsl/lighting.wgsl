@@ -113,8 +113,12 @@ fn sun_scattering(cos_theta: f32, tau: f32) -> f32 {
     return total;
 }
 
-// Ambient light at height fraction `h` (thesis 5.5.3): a gradient from bottom to top colour.
+// Ambient light at height fraction `h` (thesis 5.5.3): a gradient from bottom to top colour,
+// or under the physical sky the sky's own mean radiance at the layer's bottom and top.
 fn ambient(h: f32) -> vec3<f32> {
+    if physical_sky() {
+        return sky_ambient_light(h);
+    }
     return mix(frame.ambient_bottom.rgb, frame.ambient_top.rgb, h) * frame.ambient_bottom.w;
 }
 
@@ -136,7 +140,7 @@ fn scattered_light(rel: vec3<f32>, p: vec3<f32>, alt: f32, density: f32, view: v
         if LIGHT_MARCH {
             tau = sun_optical_depth(rel, p, l, counters);
         }
-        sun_light = frame.sun_illuminance.rgb * sun_scattering(dot(view, sun), tau);
+        sun_light = frame.sun_illuminance.rgb * sun_through_air(rel) * sun_scattering(dot(view, sun), tau);
     }
     let weather = sample_weather(p, l);
     let darkening = saturate(1.0 - frame.extinction.z * weather.precipitation * (1.0 - h));

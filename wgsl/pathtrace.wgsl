@@ -274,7 +274,8 @@ fn trace_path(view: vec3<f32>, span: Interval, rng: ptr<function, u32>,
     let sigma_t = frame.extinction.x + frame.extinction.y;
     let albedo = select(0.0, frame.extinction.x / sigma_t, sigma_t > 0.0);
     let ambient_on = frame.ambient_bottom.w > 0.0
-        && (any(frame.ambient_bottom.rgb > vec3<f32>(0.0)) || any(frame.ambient_top.rgb > vec3<f32>(0.0)));
+        && (physical_sky() || any(frame.ambient_bottom.rgb > vec3<f32>(0.0))
+            || any(frame.ambient_top.rgb > vec3<f32>(0.0)));
     var max_orders = MAX_PATH_ORDERS;
     if frame.misc.z > 0u {
         max_orders = min(frame.misc.z, MAX_PATH_ORDERS);
@@ -292,7 +293,8 @@ fn trace_path(view: vec3<f32>, span: Interval, rng: ptr<function, u32>,
         // Next event toward the sun (a directional light).
         if !hits_ground(pos, alt, sun) {
             let tr = transmittance_along(pos, sun, layer_segments(pos, alt, sun), rng, counters);
-            out.radiance += frame.sun_illuminance.rgb * (throughput * phase(dot(dir, sun), 1.0) * tr);
+            out.radiance += frame.sun_illuminance.rgb * sun_through_air(pos)
+                * (throughput * phase(dot(dir, sun), 1.0) * tr);
         }
         // The next direction, from the phase function. Its free flight also estimates the
         // ambient (a uniform environment seen through the medium): a path that leaves the

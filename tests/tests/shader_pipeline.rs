@@ -145,6 +145,7 @@ fn mode_codes_and_flags_match_the_wgsl_constants() {
         ("FLAG_DYNAMIC_STEP", FrameUniforms::FLAG_DYNAMIC_STEP),
         ("FLAG_CHECKERBOARD", FrameUniforms::FLAG_CHECKERBOARD),
         ("FLAG_EMPTY_SKIP", FrameUniforms::FLAG_EMPTY_SKIP),
+        ("FLAG_PHYSICAL_SKY", FrameUniforms::FLAG_PHYSICAL_SKY),
     ];
     for (name, rust) in pairs {
         assert_eq!(constant(name), rust, "{name}");
@@ -193,6 +194,19 @@ fn a_graph_that_disagrees_with_the_wgsl_is_refused() {
         (
             graph.replace("plan = \"empty_skip\"", "plan = \"emptyskip\""),
             "names `emptyskip`, which is no plan option",
+        ),
+        (
+            graph.replace("inputs = [\"atmosphere\", \"air_rayleigh\"", "inputs = [\"air\", \"air_rayleigh\""),
+            "input `air` is no member of the uniform block `Frame`",
+        ),
+        (
+            // The sky-view table's resource (declared before its pass): made every frame.
+            graph.replacen(
+                "extent = [192, 108]\n",
+                "extent = [192, 108]\ninputs = [\"sun_direction\"]\n",
+                1,
+            ),
+            "only a computed persistent resource has `inputs`",
         ),
     ];
     for (text, expected) in cases {

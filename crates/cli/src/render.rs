@@ -70,6 +70,16 @@ impl MethodArg {
     }
 }
 
+/// Which sky is drawn behind the clouds (`--sky`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum SkyArg {
+    /// The simple analytic gradient.
+    Analytic,
+    /// Hillaire 2020's atmosphere: Rayleigh, Mie and ozone, the clouds lit by the sun through
+    /// the air and by the sky, aerial perspective (GPU backends).
+    Physical,
+}
+
 /// Options of `stratus render`.
 #[derive(Args, Debug)]
 pub struct RenderArgs {
@@ -130,6 +140,9 @@ pub struct RenderArgs {
     /// baseline it is measured against (`basic`, `sprites`; GPU backends only).
     #[arg(long, value_enum, value_name = "METHOD")]
     method: Option<MethodArg>,
+    /// The sky (overrides the scene's atmosphere.sky): `analytic` or `physical`.
+    #[arg(long, value_enum, value_name = "SKY")]
+    sky: Option<SkyArg>,
     /// `--integrator montecarlo|pathtrace`: samples (paths) per pixel.
     #[arg(long, default_value_t = 64, value_parser = clap::value_parser!(u32).range(1..))]
     spp: u32,
@@ -320,6 +333,19 @@ pub fn run(args: RenderArgs) -> Result<()> {
     }
     if let Some(m) = args.method {
         scene.quality.method = m.method();
+    }
+    if let Some(sky) = args.sky {
+        scene.atmosphere.sky = match sky {
+            SkyArg::Analytic => stratus_scene::SkyModel::Analytic,
+            SkyArg::Physical => stratus_scene::SkyModel::Physical,
+        };
+    }
+    if scene.atmosphere.sky.is_physical()
+        && matches!(args.backend, Backend::Cpu | Backend::Reference)
+    {
+        anyhow::bail!(
+            "atmosphere.sky = \"physical\" renders on the GPU backends (wgpu, wgpu-gl, ash, auto); the CPU draws the analytic sky only (--sky analytic)"
+        );
     }
     let method = scene.quality.method;
     if method != stratus_scene::Method::Volumetric {

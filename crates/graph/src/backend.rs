@@ -326,11 +326,34 @@ impl FrameState {
             if !self.computed.contains(&r.name)
                 || new_noise
                 || frame.invalidate.contains(&r.name.as_str())
+                || self.inputs_changed(r, frame)
             {
                 flags.push(format!("stale:{}", r.name));
             }
         }
         flags
+    }
+
+    /// Whether a uniform member that computed resource `r` is computed from (`inputs`)
+    /// differs from last frame's.
+    fn inputs_changed(&self, r: &PlanResource, frame: &FrameInput<'_>) -> bool {
+        let Some(last) = &self.last else {
+            return false;
+        };
+        if r.inputs.is_empty() {
+            return false;
+        }
+        let now = frame.scene.uniforms();
+        let members = &stratus_scene::FrameUniforms::MEMBERS;
+        r.inputs.iter().any(|input| {
+            members
+                .iter()
+                .position(|(m, _)| m == input)
+                .is_some_and(|i| {
+                    let bytes = 16 * i..16 * i + 16;
+                    now.as_bytes()[bytes.clone()] != last.as_bytes()[bytes]
+                })
+        })
     }
 
     /// The uniform block of `frame`: the scene's, with last frame's camera and

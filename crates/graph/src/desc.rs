@@ -251,6 +251,11 @@ pub struct ResourceDesc {
     /// The host may render into its own texture here (the library's target).
     #[serde(default, skip_serializing_if = "std::ops::Not::not")]
     pub external: bool,
+    /// Members of the uniform block a computed persistent resource is computed from: it goes
+    /// stale when one of them changes (a lookup table of the air, not of the sun, is computed
+    /// again only when the air changes).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub inputs: Vec<String>,
 }
 
 /// How a raster pass blends into a colour target.
@@ -391,13 +396,14 @@ pub type ConstantLookup<'a> = dyn Fn(&str, &str) -> Option<f64> + 'a;
 pub const PREVIOUS: &str = ".previous";
 
 /// Plan options a pass's `plan` may name.
-pub const PLAN_OPTIONS: [&str; 6] = [
+pub const PLAN_OPTIONS: [&str; 7] = [
     "temporal",
     "empty_skip",
     "checkerboard",
     "pathtrace",
     "basic",
     "sprites",
+    "physical_sky",
 ];
 
 /// Whether a pass's `plan` condition (`option`, `!option`, several joined by `&`) holds when
@@ -805,5 +811,21 @@ fn check_resource(r: &ResourceDesc, at: &str, p: &mut Vec<String>) {
     }
     if r.lifetime == Lifetime::History && r.kind != ResourceKind::Texture {
         p.push(format!("{at}: only textures can be history"));
+    }
+    let computed_persistent = r.lifetime == Lifetime::Persistent && r.upload.is_none();
+    if !r.inputs.is_empty() && !computed_persistent {
+        p.push(format!(
+            "{at}: only a computed persistent resource has `inputs` (the others are made every frame or uploaded)"
+        ));
+    }
+    for input in &r.inputs {
+        if !stratus_scene::FrameUniforms::MEMBERS
+            .iter()
+            .any(|(m, _)| m == input)
+        {
+            p.push(format!(
+                "{at}: input `{input}` is no member of the uniform block `Frame`"
+            ));
+        }
     }
 }

@@ -76,6 +76,8 @@ pub struct PlanResource {
     pub sampler: Option<SamplerDesc>,
     /// The host may supply its own texture.
     pub external: bool,
+    /// Uniform members a computed persistent resource depends on (`inputs`).
+    pub inputs: Vec<String>,
 }
 
 impl PlanResource {
@@ -409,6 +411,8 @@ pub struct PlanOptions {
     pub basic: bool,
     /// Sprite clouds are drawn instead of the march (option `sprites`).
     pub sprites: bool,
+    /// The physical sky's tables are computed and composited (option `physical_sky`).
+    pub physical_sky: bool,
 }
 
 impl Default for PlanOptions {
@@ -420,6 +424,7 @@ impl Default for PlanOptions {
             pathtrace: false,
             basic: false,
             sprites: false,
+            physical_sky: false,
         }
     }
 }
@@ -427,6 +432,14 @@ impl Default for PlanOptions {
 impl PlanOptions {
     /// The options `scene` asks for.
     pub fn of(scene: &Scene) -> Self {
+        Self {
+            physical_sky: scene.atmosphere.sky.is_physical(),
+            ..Self::of_clouds(scene)
+        }
+    }
+
+    /// The options of the clouds' method.
+    fn of_clouds(scene: &Scene) -> Self {
         let q = &scene.quality;
         // The baselines replace the march; none of its methods apply.
         match q.method {
@@ -470,6 +483,7 @@ impl PlanOptions {
             "pathtrace" => self.pathtrace,
             "basic" => self.basic,
             "sprites" => self.sprites,
+            "physical_sky" => self.physical_sky,
             _ => false,
         }
     }
@@ -586,6 +600,7 @@ impl FramePlan {
                         address: r.address.unwrap_or_default(),
                     }),
                     external: r.external,
+                    inputs: r.inputs.clone(),
                 })
             })
             .collect::<Result<_, PlanError>>()?;

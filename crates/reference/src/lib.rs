@@ -603,6 +603,14 @@ impl stratus_graph::Backend for CpuBackend {
             )
             .into());
         }
+        if frame.scene.atmosphere.sky.is_physical() {
+            // The physical sky's tables are GPU passes; this renderer's f64 atmosphere
+            // (`atmosphere.rs`) is the truth they are measured against, not yet an image path.
+            return Err(
+                "atmosphere.sky = \"physical\" renders on the GPU backends (wgpu, wgpu-gl, ash); the CPU renders the analytic sky only"
+                    .into(),
+            );
+        }
         let temporal = frame.scene.quality.temporal != stratus_scene::Temporal::Off;
         let pathtrace = frame.scene.quality.integrator == stratus_scene::Integrator::Pathtrace;
         if !pathtrace {

@@ -53,9 +53,9 @@ mod validate;
 pub use error::{Location, Problem, ProblemKind, SceneError};
 pub use presets::{DEFAULT_PRESET, PresetInfo, presets};
 pub use scene::{
-    Animation, Atmosphere, Camera, CloudLayer, Clouds, HeightModel, Integration, Integrator,
+    Air, Animation, Atmosphere, Camera, CloudLayer, Clouds, HeightModel, Integration, Integrator,
     Keyframe, Lighting, MAX_EXTRA_LAYERS, Method, MultipleScattering, Noise, Phase, PhaseModel,
-    Quality, Scene, ShapeTexture, Sky, Sun, Temporal,
+    Quality, Scene, ShapeTexture, Sky, SkyModel, Sun, Temporal,
 };
 pub use uniforms::FrameUniforms;
 pub use validate::{MAX_LIGHT_STEPS, MAX_OCTAVES, MAX_RESOLUTION, MAX_VIEW_STEPS};

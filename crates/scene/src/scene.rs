@@ -239,6 +239,14 @@ pub struct Atmosphere {
     pub cloud_bottom_m: f64,
     /// Altitude of the top of the cloud layer above the ground, metres (> `cloud_bottom_m`).
     pub cloud_top_m: f64,
+    /// The sky behind the clouds: the simple analytic gradient (default) or the physical
+    /// atmosphere of `air` (Hillaire 2020's lookup tables).
+    #[serde(skip_serializing_if = "SkyModel::is_analytic")]
+    pub sky: SkyModel,
+    /// The air's scattering and absorption (section `[atmosphere.air]`): the Earth's unless
+    /// given. Used by the physical sky.
+    #[serde(skip_serializing_if = "Air::is_earth")]
+    pub air: Air,
 }
 
 impl Default for Atmosphere {
@@ -247,7 +255,92 @@ impl Default for Atmosphere {
             planet_radius_m: 6_360_000.0,
             cloud_bottom_m: 1500.0,
             cloud_top_m: 4000.0,
+            sky: SkyModel::Analytic,
+            air: Air::default(),
         }
+    }
+}
+
+/// Which sky is drawn behind the clouds (`atmosphere.sky`).
+#[derive(Serialize, Deserialize, Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
+#[serde(rename_all = "kebab-case")]
+pub enum SkyModel {
+    /// A zenith-to-horizon gradient scaled by the sun, a glow around it and a dark ground.
+    /// TOML `"analytic"`.
+    #[default]
+    Analytic,
+    /// Rayleigh, Mie and ozone over a spherical planet (Hillaire, "A Scalable and Production
+    /// Ready Sky and Atmosphere Rendering Technique", EGSR 2020): transmittance and
+    /// multiple-scattering tables computed when the sun or the air changes, a sky-view table
+    /// every frame, the sun's disc seen through the air and the lit ground. TOML `"physical"`.
+    Physical,
+}
+
+impl SkyModel {
+    /// The default, analytic sky.
+    pub fn is_analytic(&self) -> bool {
+        *self == Self::Analytic
+    }
+
+    /// The physical sky (`FrameUniforms::FLAG_PHYSICAL_SKY` set).
+    pub fn is_physical(&self) -> bool {
+        *self == Self::Physical
+    }
+}
+
+/// The air of the physical sky (section `[atmosphere.air]`). Defaults are the Earth's as
+/// Hillaire 2020 takes them from Bruneton ("A Qualitative and Quantitative Evaluation of 8
+/// Clear Sky Models", IEEE TVCG 2017); channels are the linear RGB primaries' wavelengths
+/// (680, 550, 440 nm).
+#[derive(Serialize, Deserialize, Clone, Debug, PartialEq)]
+#[serde(default, deny_unknown_fields)]
+pub struct Air {
+    /// Thickness of the atmosphere above the ground, metres (> 0).
+    pub thickness_m: f64,
+    /// Rayleigh scattering at the ground, per metre (RGB, >= 0).
+    pub rayleigh_scattering: [f64; 3],
+    /// Rayleigh density scale height, metres (> 0).
+    pub rayleigh_scale_height_m: f64,
+    /// Mie scattering at the ground, per metre (>= 0).
+    pub mie_scattering: f64,
+    /// Mie absorption at the ground, per metre (>= 0).
+    pub mie_absorption: f64,
+    /// Mie density scale height, metres (> 0).
+    pub mie_scale_height_m: f64,
+    /// Mie phase asymmetry (Cornette-Shanks), in (-1, 1).
+    pub mie_g: f64,
+    /// Ozone absorption at its peak, per metre (RGB, >= 0).
+    pub ozone_absorption: [f64; 3],
+    /// Altitude of the ozone peak, metres (>= 0).
+    pub ozone_center_m: f64,
+    /// Full width of the ozone's tent profile, metres (> 0).
+    pub ozone_width_m: f64,
+    /// The ground's diffuse albedo (grey, [0, 1]).
+    pub ground_albedo: f64,
+}
+
+impl Default for Air {
+    fn default() -> Self {
+        Self {
+            thickness_m: 100_000.0,
+            rayleigh_scattering: [5.802e-6, 13.558e-6, 33.1e-6],
+            rayleigh_scale_height_m: 8000.0,
+            mie_scattering: 3.996e-6,
+            mie_absorption: 4.40e-6,
+            mie_scale_height_m: 1200.0,
+            mie_g: 0.8,
+            ozone_absorption: [0.650e-6, 1.881e-6, 0.085e-6],
+            ozone_center_m: 25_000.0,
+            ozone_width_m: 30_000.0,
+            ground_albedo: 0.3,
+        }
+    }
+}
+
+impl Air {
+    /// The Earth's defaults, unchanged.
+    pub fn is_earth(&self) -> bool {
+        *self == Self::default()
     }
 }
 
@@ -778,6 +871,9 @@ impl Scene {
             latitude_deg: Some(0.0),
             longitude_deg: Some(0.0),
         };
+        // Fields left out when they hold their defaults must still be in the schema.
+        scene.atmosphere.sky = SkyModel::Physical;
+        scene.atmosphere.air.ground_albedo = 0.5;
         scene
     }
 

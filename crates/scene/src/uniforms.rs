@@ -85,10 +85,20 @@ pub struct FrameUniforms {
     pub layer3: [f32; 4],
     /// Its weather, as `layer1_weather`.
     pub layer3_weather: [f32; 4],
+    /// The physical sky's air: Rayleigh scattering at the ground (rgb, 1/m); w = its scale
+    /// height (m).
+    pub air_rayleigh: [f32; 4],
+    /// Mie scattering, Mie absorption (1/m at the ground), Mie scale height (m), Mie g.
+    pub air_mie: [f32; 4],
+    /// Ozone absorption at its peak (rgb, 1/m); w = the peak's altitude (m).
+    pub air_ozone: [f32; 4],
+    /// Thickness of the atmosphere (m), the ozone tent's full width (m), the ground's albedo,
+    /// 0.
+    pub air_misc: [f32; 4],
 }
 
 impl FrameUniforms {
-    /// Size of the block in bytes (32 vec4 members).
+    /// Size of the block in bytes (36 vec4 members).
     pub const SIZE: usize = std::mem::size_of::<Self>();
 
     /// `modes.w` bit: apply the Beer-Powder term.
@@ -101,10 +111,12 @@ impl FrameUniforms {
     pub const FLAG_CHECKERBOARD: u32 = 1 << 3;
     /// `modes.w` bit: empty-space skipping over the weather map's occupancy grid.
     pub const FLAG_EMPTY_SKIP: u32 = 1 << 4;
+    /// `modes.w` bit: the physical sky (`atmosphere.sky = "physical"`).
+    pub const FLAG_PHYSICAL_SKY: u32 = 1 << 5;
 
     /// Every member in declaration order with its WGSL type; member `i` is at offset `16 * i`.
     /// The shader-reflection test compares the WGSL struct against this list.
-    pub const MEMBERS: [(&'static str, &'static str); 32] = [
+    pub const MEMBERS: [(&'static str, &'static str); 36] = [
         ("camera_position", "vec4<f32>"),
         ("camera_forward", "vec4<f32>"),
         ("camera_right", "vec4<f32>"),
@@ -137,6 +149,10 @@ impl FrameUniforms {
         ("layer2_weather", "vec4<f32>"),
         ("layer3", "vec4<f32>"),
         ("layer3_weather", "vec4<f32>"),
+        ("air_rayleigh", "vec4<f32>"),
+        ("air_mie", "vec4<f32>"),
+        ("air_ozone", "vec4<f32>"),
+        ("air_misc", "vec4<f32>"),
     ];
 
     /// This block with `previous`'s camera as last frame's camera (what a renderer keeping
@@ -315,6 +331,10 @@ impl Scene {
         if q.empty_space_skip {
             flags |= FrameUniforms::FLAG_EMPTY_SKIP;
         }
+        if atm.sky.is_physical() {
+            flags |= FrameUniforms::FLAG_PHYSICAL_SKY;
+        }
+        let air = &atm.air;
 
         let block = FrameUniforms {
             camera_position: v4(cam.position, tan_half_fov),
@@ -387,6 +407,20 @@ impl Scene {
             layer2_weather: extra[1].1,
             layer3: extra[2].0,
             layer3_weather: extra[2].1,
+            air_rayleigh: v4(air.rayleigh_scattering, air.rayleigh_scale_height_m),
+            air_mie: [
+                air.mie_scattering as f32,
+                air.mie_absorption as f32,
+                air.mie_scale_height_m as f32,
+                air.mie_g as f32,
+            ],
+            air_ozone: v4(air.ozone_absorption, air.ozone_center_m),
+            air_misc: [
+                air.thickness_m as f32,
+                air.ozone_width_m as f32,
+                air.ground_albedo as f32,
+                0.0,
+            ],
         };
         block.with_previous_camera(&block)
     }

@@ -213,6 +213,8 @@ pub(crate) fn check(scene: &Scene) -> Vec<Issue> {
         );
     }
 
+    check_air(&mut c, &atm.air);
+
     let cl = &scene.clouds;
     c.unit("clouds.coverage", cl.coverage);
     c.positive("clouds.density", cl.density);
@@ -398,6 +400,27 @@ pub(crate) fn check(scene: &Scene) -> Vec<Issue> {
     }
 
     c.issues
+}
+
+/// `[atmosphere.air]`: coefficients that make a finite, non-negative medium.
+fn check_air(c: &mut Checker, air: &crate::Air) {
+    c.positive("atmosphere.air.thickness_m", air.thickness_m);
+    c.colour(
+        "atmosphere.air.rayleigh_scattering",
+        &air.rayleigh_scattering,
+    );
+    c.positive(
+        "atmosphere.air.rayleigh_scale_height_m",
+        air.rayleigh_scale_height_m,
+    );
+    c.non_negative("atmosphere.air.mie_scattering", air.mie_scattering);
+    c.non_negative("atmosphere.air.mie_absorption", air.mie_absorption);
+    c.positive("atmosphere.air.mie_scale_height_m", air.mie_scale_height_m);
+    c.float("atmosphere.air.mie_g", air.mie_g, Excl(-1.0), Excl(1.0));
+    c.colour("atmosphere.air.ozone_absorption", &air.ozone_absorption);
+    c.non_negative("atmosphere.air.ozone_center_m", air.ozone_center_m);
+    c.positive("atmosphere.air.ozone_width_m", air.ozone_width_m);
+    c.unit("atmosphere.air.ground_albedo", air.ground_albedo);
 }
 
 /// `[sky]`: a date and a place together, each in range, and not alongside `sun.direction`.

@@ -78,3 +78,36 @@ fn bad_skies_are_named() {
         "{e}"
     );
 }
+
+/// `[atmosphere] sky` picks the physical sky; `[atmosphere.air]` overrides the Earth's air,
+/// and bad air is named. Neither is written out while it holds its default, so scenes that do
+/// not use them print as before.
+#[test]
+fn the_physical_sky_and_its_air_load_and_bad_air_is_named() {
+    let s =
+        load("[atmosphere]\nsky = \"physical\"\n[atmosphere.air]\nmie_g = 0.7\n").expect("loads");
+    assert!(s.atmosphere.sky.is_physical());
+    assert_eq!(s.atmosphere.air.mie_g, 0.7);
+    let u = s.uniforms();
+    assert_ne!(
+        u.modes[3] & stratus_scene::FrameUniforms::FLAG_PHYSICAL_SKY,
+        0
+    );
+    assert_eq!(u.air_mie[3], 0.7);
+    assert_eq!(u.air_misc[0], 100_000.0);
+    let text = toml::to_string(&Scene::default()).expect("serializes");
+    assert!(
+        !text.contains("air") && !text.contains("physical"),
+        "{text}"
+    );
+
+    let e = load("[atmosphere]\nsky = \"physicl\"\n").unwrap_err();
+    assert!(e.contains("\"physical\""), "{e}");
+    let e = load("[atmosphere.air]\nmie_g = 1.0\n").unwrap_err();
+    assert!(e.contains("atmosphere.air.mie_g = 1"), "{e}");
+    let e = load("[atmosphere.air]\nrayleigh_scattering = [1e-6, -1e-6, 0.0]\n").unwrap_err();
+    assert!(
+        e.contains("atmosphere.air.rayleigh_scattering") && e.contains(">= 0"),
+        "{e}"
+    );
+}
