@@ -39,6 +39,8 @@ struct Frame {
     vec4 air_mie;
     vec4 air_ozone;
     vec4 air_misc;
+    vec4 moon;
+    vec4 night;
 };
 struct Roots {
     float t0_;
@@ -145,6 +147,7 @@ const uint FLAG_DYNAMIC_STEP = 4u;
 const uint FLAG_CHECKERBOARD = 8u;
 const uint FLAG_EMPTY_SKIP = 16u;
 const uint FLAG_PHYSICAL_SKY = 32u;
+const uint FLAG_MOONLIT = 64u;
 const float PI = 3.1415927;
 const uint MAX_VIEW_STEPS = 1024u;
 const uint RAY_MARCH = 0u;
@@ -196,6 +199,9 @@ const vec3 SKY_LEVEL1_ = vec3(0.55, 0.59, 0.67);
 const vec3 SKY_LEVEL2_ = vec3(0.7, 0.73, 0.8);
 const vec3 SKY_LEVEL3_ = vec3(0.84, 0.86, 0.9);
 const vec3 SKY_LEVEL4_ = vec3(0.95, 0.96, 0.98);
+const float MOON_COS_RADIUS = 0.9999898;
+const uint STAR_CELLS = 96u;
+const float STAR_FAINTEST = 6.5;
 const bool LIGHT_MARCH = true;
 const uint MAX_OCTAVES = 8u;
 const bool DETAIL = true;
@@ -245,8 +251,8 @@ vec3 view_ray(uvec2 pixel_1) {
     vec4 _e26 = _group_0_binding_0_cs.camera_forward;
     vec4 _e30 = _group_0_binding_0_cs.camera_right;
     vec4 _e39 = _group_0_binding_0_cs.camera_up;
-    vec3 d_14 = ((_e26.xyz + (_e30.xyz * ((ndc.x * tan_half) * aspect))) - (_e39.xyz * (ndc.y * tan_half)));
-    return normalize(d_14);
+    vec3 d_16 = ((_e26.xyz + (_e30.xyz * ((ndc.x * tan_half) * aspect))) - (_e39.xyz * (ndc.y * tan_half)));
+    return normalize(d_16);
 }
 
 Roots solve_sphere(float b, float c) {
@@ -597,9 +603,9 @@ vec2 transmittance_r_mu(vec2 x_4) {
     float r_13 = sqrt(((rho_1 * rho_1) + (_e1 * _e1)));
     float d_min_1 = (_e2 - r_13);
     float d_max_1 = (rho_1 + h_9);
-    float d_15 = (d_min_1 + (x_4.x * (d_max_1 - d_min_1)));
-    if ((d_15 > 0.0)) {
-        mu_6 = clamp(((((h_9 * h_9) - (rho_1 * rho_1)) - (d_15 * d_15)) / ((2.0 * r_13) * d_15)), -1.0, 1.0);
+    float d_17 = (d_min_1 + (x_4.x * (d_max_1 - d_min_1)));
+    if ((d_17 > 0.0)) {
+        mu_6 = clamp(((((h_9 * h_9) - (rho_1 * rho_1)) - (d_17 * d_17)) / ((2.0 * r_13) * d_17)), -1.0, 1.0);
     }
     float _e37 = mu_6;
     return vec2(r_13, _e37);
@@ -1407,9 +1413,9 @@ float sprite_texture(uint tile_1, vec2 uv) {
             float _e93 = atlas_hash(tile_1, (100u + _e91));
             float r_17 = (0.14 + (0.1 * _e93));
             vec2 _e98 = at;
-            float d_16 = (length((uv - _e98)) / r_17);
+            float d_18 = (length((uv - _e98)) / r_17);
             float _e102 = billow;
-            float _e106 = saturate((1.0 - (d_16 * d_16)));
+            float _e106 = saturate((1.0 - (d_18 * d_18)));
             billow = max(_e102, _e106);
         }
     }
@@ -1427,10 +1433,10 @@ float sprite_texture(uint tile_1, vec2 uv) {
 vec3 sprite_rel(vec2 xz, float alt_15) {
     float rp_4 = _group_0_binding_0_cs.atmosphere.x;
     vec4 _e8 = _group_0_binding_0_cs.camera_position;
-    vec2 d_17 = (xz - _e8.xz);
-    float k_13 = ((alt_15 * (alt_15 + (2.0 * rp_4))) - dot(d_17, d_17));
+    vec2 d_19 = (xz - _e8.xz);
+    float k_13 = ((alt_15 * (alt_15 + (2.0 * rp_4))) - dot(d_19, d_19));
     float y_1 = (k_13 / (rp_4 + sqrt(max(((rp_4 * rp_4) + k_13), 0.0))));
-    return vec3(d_17.x, y_1, d_17.y);
+    return vec3(d_19.x, y_1, d_19.y);
 }
 
 SpriteCell sprite_cell(uint cell) {
@@ -1439,7 +1445,7 @@ SpriteCell sprite_cell(uint cell) {
     bool local_54 = false;
     bool local_55 = false;
     uint level_1 = (cell / 64u);
-    ivec2 local_57 = ivec2(int((cell % 8u)), int(((cell / 8u) % 8u)));
+    ivec2 local_59 = ivec2(int((cell % 8u)), int(((cell / 8u) % 8u)));
     vec4 _e15 = _group_0_binding_0_cs.camera_position;
     start_1 = (ivec2(floor((_e15.xz / vec2(12000.0)))) - ivec2(4));
     bool loop_init_8 = true;
@@ -1460,19 +1466,19 @@ SpriteCell sprite_cell(uint cell) {
         }
     }
     if ((level_1 > 0u)) {
-        local_54 = all(greaterThanEqual(local_57, ivec2(2)));
+        local_54 = all(greaterThanEqual(local_59, ivec2(2)));
     } else {
         local_54 = false;
     }
     bool _e47 = local_54;
     if (_e47) {
-        local_55 = all(lessThan(local_57, ivec2(6)));
+        local_55 = all(lessThan(local_59, ivec2(6)));
     } else {
         local_55 = false;
     }
     bool covered = local_55;
     ivec2 _e56 = start_1;
-    return SpriteCell((_e56 + local_57), (SPRITE_CELL0_ * float((1u << level_1))), covered);
+    return SpriteCell((_e56 + local_59), (SPRITE_CELL0_ * float((1u << level_1))), covered);
 }
 
 vec3 sprite_sky_level(float h_6) {
@@ -1539,6 +1545,118 @@ vec3 sun_disk(vec3 d_13) {
     }
     vec4 _e15 = _group_0_binding_0_cs.sun_illuminance;
     return (_e15.xyz / vec3((6.2831855 * max((1.0 - cos_r), 1e-6))));
+}
+
+vec3 moon_disk(vec3 d_14) {
+    bool local_57 = false;
+    vec4 _e3 = _group_0_binding_0_cs.moon;
+    vec3 m_2 = _e3.xyz;
+    float c_9 = dot(d_14, m_2);
+    float _e9 = _group_0_binding_0_cs.moon.w;
+    if (!((_e9 <= 0.0))) {
+        local_57 = (c_9 < MOON_COS_RADIUS);
+    } else {
+        local_57 = true;
+    }
+    bool _e18 = local_57;
+    if (_e18) {
+        return vec3(0.0);
+    }
+    vec3 offset = ((d_14 - (m_2 * c_9)) / vec3(0.0045149517));
+    float x2_ = min(dot(offset, offset), 1.0);
+    vec3 normal = (offset - (m_2 * sqrt((1.0 - x2_))));
+    vec4 _e36 = _group_0_binding_0_cs.night;
+    float lit = smoothstep(-0.02, 0.02, dot(normal, _e36.xyz));
+    float _e46 = _group_0_binding_0_cs.moon.w;
+    return vec3(((_e46 / 6.40407e-5) * lit));
+}
+
+vec3 stars(vec3 d_15) {
+    uint face = 0u;
+    vec2 uv_1 = vec2(0.0);
+    float major = 0.0;
+    bool local_58 = false;
+    vec3 star = vec3(0.0);
+    float e0_ = _group_0_binding_0_cs.night.w;
+    if ((e0_ <= 0.0)) {
+        return vec3(0.0);
+    }
+    vec3 a_9 = abs(d_15);
+    if ((a_9.x >= a_9.y)) {
+        local_58 = (a_9.x >= a_9.z);
+    } else {
+        local_58 = false;
+    }
+    bool _e26 = local_58;
+    if (_e26) {
+        face = ((d_15.x > 0.0) ? 0u : 1u);
+        uv_1 = d_15.zy;
+        major = a_9.x;
+    } else {
+        if ((a_9.y >= a_9.z)) {
+            face = ((d_15.y > 0.0) ? 2u : 3u);
+            uv_1 = d_15.xz;
+            major = a_9.y;
+        } else {
+            face = ((d_15.z > 0.0) ? 4u : 5u);
+            uv_1 = d_15.xy;
+            major = a_9.z;
+        }
+    }
+    vec2 _e54 = uv_1;
+    float _e55 = major;
+    vec2 st = clamp((((_e54 / vec2(_e55)) * 0.5) + vec2(0.5)), vec2(0.0), vec2(0.999999));
+    uvec2 cell_1 = uvec2((st * 96.0));
+    uint _e71 = face;
+    uint id_21 = ((((_e71 * STAR_CELLS) + cell_1.y) * STAR_CELLS) + cell_1.x);
+    uint _e85 = pcg((id_21 ^ 2654435769u));
+    float h0_ = (float((_e85 >> 8u)) * 5.9604645e-8);
+    if ((h0_ >= 0.15085077)) {
+        return vec3(0.0);
+    }
+    uint _e96 = pcg((id_21 ^ 2246822507u));
+    float h1_ = (float((_e96 >> 8u)) * 5.9604645e-8);
+    uint _e104 = pcg((id_21 ^ 3266489909u));
+    float h2_ = (float((_e104 >> 8u)) * 5.9604645e-8);
+    uint _e112 = pcg((id_21 ^ 668265263u));
+    float h3_ = (float((_e112 >> 8u)) * 5.9604645e-8);
+    uint _e120 = pcg((id_21 ^ 374761393u));
+    float h4_ = (float((_e120 >> 8u)) * 5.9604645e-8);
+    vec2 star_st = (((vec2(cell_1) + vec2(0.15)) + (0.7 * vec2(h1_, h2_))) / vec2(96.0));
+    float _e142 = major;
+    vec2 q_9 = (((star_st * 2.0) - vec2(1.0)) * _e142);
+    uint _e147 = face;
+    if ((_e147 < 2u)) {
+        float _e150 = major;
+        float _e152 = major;
+        uint _e153 = face;
+        star = vec3(((_e153 == 0u) ? _e152 : -(_e150)), q_9.y, q_9.x);
+    } else {
+        uint _e160 = face;
+        if ((_e160 < 4u)) {
+            float _e164 = major;
+            float _e166 = major;
+            uint _e167 = face;
+            star = vec3(q_9.x, ((_e167 == 2u) ? _e166 : -(_e164)), q_9.y);
+        } else {
+            float _e175 = major;
+            float _e177 = major;
+            uint _e178 = face;
+            star = vec3(q_9.x, q_9.y, ((_e178 == 4u) ? _e177 : -(_e175)));
+        }
+    }
+    vec3 _e183 = star;
+    star = normalize(_e183);
+    float magnitude = max((STAR_FAINTEST + (log(max((h0_ / 0.15085077), 1e-6)) / 1.1052408)), -1.5);
+    float illuminance = (e0_ * pow(10.0, (-0.4 * magnitude)));
+    float _e203 = _group_0_binding_0_cs.camera_position.w;
+    uint _e209 = _group_0_binding_0_cs.counts.y;
+    float pixel_angle = ((2.0 * _e203) / float(_e209));
+    vec3 _e212 = star;
+    float dist_1 = (acos(clamp(dot(d_15, _e212), -1.0, 1.0)) / pixel_angle);
+    float weight_1 = (exp(((-(dist_1) * dist_1) / 0.5)) / 1.5707964);
+    vec3 tint = mix(vec3(0.8, 0.9, 1.1), vec3(1.15, 0.95, 0.75), (h3_ * h4_));
+    return (tint * ((illuminance * weight_1) / (pixel_angle * pixel_angle)));
 }
 
 vec3 aces_fitted(vec3 x_5) {

@@ -39,6 +39,8 @@ struct Frame {
     vec4 air_mie;
     vec4 air_ozone;
     vec4 air_misc;
+    vec4 moon;
+    vec4 night;
 };
 struct Roots {
     float t0_;
@@ -145,6 +147,7 @@ const uint FLAG_DYNAMIC_STEP = 4u;
 const uint FLAG_CHECKERBOARD = 8u;
 const uint FLAG_EMPTY_SKIP = 16u;
 const uint FLAG_PHYSICAL_SKY = 32u;
+const uint FLAG_MOONLIT = 64u;
 const float PI = 3.1415927;
 const uint MAX_VIEW_STEPS = 1024u;
 const uint RAY_MARCH = 0u;
@@ -196,6 +199,9 @@ const vec3 SKY_LEVEL1_ = vec3(0.55, 0.59, 0.67);
 const vec3 SKY_LEVEL2_ = vec3(0.7, 0.73, 0.8);
 const vec3 SKY_LEVEL3_ = vec3(0.84, 0.86, 0.9);
 const vec3 SKY_LEVEL4_ = vec3(0.95, 0.96, 0.98);
+const float MOON_COS_RADIUS = 0.9999898;
+const uint STAR_CELLS = 96u;
+const float STAR_FAINTEST = 6.5;
 const bool LIGHT_MARCH = true;
 const uint MAX_OCTAVES = 8u;
 const bool DETAIL = true;
@@ -490,9 +496,9 @@ float sprite_texture(uint tile_1, vec2 uv) {
             float _e93 = atlas_hash(tile_1, (100u + _e91));
             float r_13 = (0.14 + (0.1 * _e93));
             vec2 _e98 = at;
-            float d_14 = (length((uv - _e98)) / r_13);
+            float d_16 = (length((uv - _e98)) / r_13);
             float _e102 = billow;
-            float _e106 = saturate((1.0 - (d_14 * d_14)));
+            float _e106 = saturate((1.0 - (d_16 * d_16)));
             billow = max(_e102, _e106);
         }
     }
@@ -548,8 +554,8 @@ vec3 aces_fitted(vec3 x_5) {
 void main() {
     uvec3 id_12 = gl_GlobalInvocationID;
     uint tile_2 = (((id_12.y / ATLAS_TILE) * 4u) + (id_12.x / ATLAS_TILE));
-    vec2 uv_1 = ((vec2((id_12.xy % uvec2(64u))) + vec2(0.5)) / vec2(64.0));
-    float _e21 = sprite_texture(tile_2, uv_1);
+    vec2 uv_2 = ((vec2((id_12.xy % uvec2(64u))) + vec2(0.5)) / vec2(64.0));
+    float _e21 = sprite_texture(tile_2, uv_2);
     imageStore(_group_0_binding_23_cs, ivec2(id_12.xy), vec4(_e21, _e21, _e21, _e21));
     return;
 }

@@ -35,6 +35,8 @@ struct Frame {
     float4 air_mie;
     float4 air_ozone;
     float4 air_misc;
+    float4 moon;
+    float4 night;
 };
 
 struct Roots {
@@ -173,6 +175,7 @@ static const uint FLAG_DYNAMIC_STEP = 4u;
 static const uint FLAG_CHECKERBOARD = 8u;
 static const uint FLAG_EMPTY_SKIP = 16u;
 static const uint FLAG_PHYSICAL_SKY = 32u;
+static const uint FLAG_MOONLIT = 64u;
 static const float PI = 3.1415927;
 static const uint MAX_VIEW_STEPS = 1024u;
 static const uint RAY_MARCH = 0u;
@@ -224,6 +227,9 @@ static const float3 SKY_LEVEL1_ = float3(0.55, 0.59, 0.67);
 static const float3 SKY_LEVEL2_ = float3(0.7, 0.73, 0.8);
 static const float3 SKY_LEVEL3_ = float3(0.84, 0.86, 0.9);
 static const float3 SKY_LEVEL4_ = float3(0.95, 0.96, 0.98);
+static const float MOON_COS_RADIUS = 0.9999898;
+static const uint STAR_CELLS = 96u;
+static const float STAR_FAINTEST = 6.5;
 static const bool LIGHT_MARCH = true;
 static const uint MAX_OCTAVES = 8u;
 static const bool DETAIL = false;
@@ -273,7 +279,7 @@ RWTexture2D<unorm float4> image_out : register(u10);
 Texture2D<float4> depth_in : register(t37);
 
 struct VertexOutput_sprite_vertex {
-    float2 uv_1 : LOC0;
+    float2 uv_2 : LOC0;
     nointerpolation uint tile_2 : LOC1;
     float4 colour : LOC2;
     float distance_ : LOC3;
@@ -281,7 +287,7 @@ struct VertexOutput_sprite_vertex {
 };
 
 struct FragmentInput_sprite_fragment {
-    float2 uv_2 : LOC0;
+    float2 uv_3 : LOC0;
     nointerpolation uint tile_3 : LOC1;
     float4 colour_1 : LOC2;
     float distance_1 : LOC3;
@@ -328,8 +334,8 @@ float3 view_ray(uint2 pixel_1)
     float4 _e26 = frame.camera_forward;
     float4 _e30 = frame.camera_right;
     float4 _e39 = frame.camera_up;
-    float3 d_14 = ((_e26.xyz + (_e30.xyz * ((ndc.x * tan_half) * aspect))) - (_e39.xyz * (ndc.y * tan_half)));
-    return normalize(d_14);
+    float3 d_16 = ((_e26.xyz + (_e30.xyz * ((ndc.x * tan_half) * aspect))) - (_e39.xyz * (ndc.y * tan_half)));
+    return normalize(d_16);
 }
 
 Roots ConstructRoots(float arg0, float arg1, bool arg2) {
@@ -775,9 +781,9 @@ float2 transmittance_r_mu(float2 x_4)
     float r_13 = sqrt(((rho_1 * rho_1) + (_e1 * _e1)));
     float d_min_1 = (_e2 - r_13);
     float d_max_1 = (rho_1 + h_9);
-    float d_15 = (d_min_1 + (x_4.x * (d_max_1 - d_min_1)));
-    if ((d_15 > 0.0)) {
-        mu_6 = clamp(((((h_9 * h_9) - (rho_1 * rho_1)) - (d_15 * d_15)) / ((2.0 * r_13) * d_15)), -1.0, 1.0);
+    float d_17 = (d_min_1 + (x_4.x * (d_max_1 - d_min_1)));
+    if ((d_17 > 0.0)) {
+        mu_6 = clamp(((((h_9 * h_9) - (rho_1 * rho_1)) - (d_17 * d_17)) / ((2.0 * r_13) * d_17)), -1.0, 1.0);
     }
     float _e37 = mu_6;
     return float2(r_13, _e37);
@@ -1017,8 +1023,8 @@ float4 aerial(uint2 pixel_2, float depth_m)
     float4 far = float4(0.0, 0.0, 0.0, 1.0);
 
     uint4 _e8 = frame.counts;
-    float2 uv_3 = ((float2(pixel_2) + (0.5).xx) / float2(_e8.xy));
-    float2 f_2 = clamp(((uv_3 * 32.0) - (0.5).xx), (0.0).xx, (31.0).xx);
+    float2 uv_4 = ((float2(pixel_2) + (0.5).xx) / float2(_e8.xy));
+    float2 f_2 = clamp(((uv_4 * 32.0) - (0.5).xx), (0.0).xx, (31.0).xx);
     uint2 c0_1 = min(naga_f2u32(floor(f_2)), (31u).xx);
     uint2 c1_1 = min((c0_1 + (1u).xx), (31u).xx);
     float2 w_4 = (f_2 - float2(c0_1));
@@ -1120,8 +1126,8 @@ Weather ConstructWeather(float arg0, float arg1, float arg2) {
 Weather sample_weather(float3 p_3, Layer l_2)
 {
     float _e8 = frame.periods.x;
-    float2 uv_4 = ((p_3.xz - l_2.weather_offset) / (_e8).xx);
-    float4 w_5 = weather_tex.SampleLevel(noise_sampler, uv_4, 0.0);
+    float2 uv_5 = ((p_3.xz - l_2.weather_offset) / (_e8).xx);
+    float4 w_5 = weather_tex.SampleLevel(noise_sampler, uv_5, 0.0);
     const float _e22 = saturate_((w_5.x + (2.0 * (l_2.coverage - 0.5))));
     const float _e30 = saturate_((l_2.cloud_type + ((w_5.z - 0.5) * 0.5)));
     const float _e35 = saturate_((0.5 + w_5.y));
@@ -1572,8 +1578,8 @@ float empty_cell_exit(float3 p_8, float3 d_10)
 
     float4 _e6 = frame.wind_offsets0_;
     float _e12 = frame.periods.x;
-    float2 uv_5 = (frac(((p_8.xz - _e6.xy) / (_e12).xx)) * 64.0);
-    uint2 cell_1 = min(naga_f2u32(uv_5), (63u).xx);
+    float2 uv_6 = (frac(((p_8.xz - _e6.xy) / (_e12).xx)) * 64.0);
+    uint2 cell_1 = min(naga_f2u32(uv_6), (63u).xx);
     float4 _e23 = occupancy_in.Load(int3(cell_1, int(0)));
     float m_2 = _e23.x;
     float _e28 = frame.clouds.x;
@@ -1582,7 +1588,7 @@ float empty_cell_exit(float3 p_8, float3 d_10)
     }
     float _e40 = frame.periods.x;
     float cell_m = (_e40 / 64.0);
-    float2 inside = ((uv_5 - float2(cell_1)) * cell_m);
+    float2 inside = ((uv_6 - float2(cell_1)) * cell_m);
     if ((d_10.x > 1e-6)) {
         float _e50 = exit;
         exit = min(_e50, ((cell_m - inside.x) / d_10.x));
@@ -2984,9 +2990,9 @@ float sprite_texture(uint tile_1, float2 uv)
             const float _e93 = atlas_hash(tile_1, (100u + _e91));
             float r_17 = (0.14 + (0.1 * _e93));
             float2 _e98 = at;
-            float d_16 = (length((uv - _e98)) / r_17);
+            float d_18 = (length((uv - _e98)) / r_17);
             float _e102 = billow;
-            const float _e106 = saturate_((1.0 - (d_16 * d_16)));
+            const float _e106 = saturate_((1.0 - (d_18 * d_18)));
             billow = max(_e102, _e106);
         }
     }
@@ -3005,10 +3011,10 @@ float3 sprite_rel(float2 xz, float alt_15)
 {
     float rp_5 = frame.atmosphere.x;
     float4 _e8 = frame.camera_position;
-    float2 d_17 = (xz - _e8.xz);
-    float k_13 = ((alt_15 * (alt_15 + (2.0 * rp_5))) - dot(d_17, d_17));
+    float2 d_19 = (xz - _e8.xz);
+    float k_13 = ((alt_15 * (alt_15 + (2.0 * rp_5))) - dot(d_19, d_19));
     float y_2 = (k_13 / (rp_5 + sqrt(max(((rp_5 * rp_5) + k_13), 0.0))));
-    return float3(d_17.x, y_2, d_17.y);
+    return float3(d_19.x, y_2, d_19.y);
 }
 
 SpriteCell ConstructSpriteCell(int2 arg0, float arg1, bool arg2) {
@@ -3027,7 +3033,7 @@ SpriteCell sprite_cell(uint cell)
     bool local_55 = (bool)0;
 
     uint level_1 = naga_div(cell, 64u);
-    int2 local_57 = int2(int(naga_mod(cell, 8u)), int(naga_mod(naga_div(cell, 8u), 8u)));
+    int2 local_59 = int2(int(naga_mod(cell, 8u)), int(naga_mod(naga_div(cell, 8u), 8u)));
     float4 _e15 = frame.camera_position;
     start_1 = asint(asuint(naga_f2i32(floor((_e15.xz / (12000.0).xx)))) - asuint((int(4)).xx));
     uint2 loop_bound_20 = uint2(4294967295u, 4294967295u);
@@ -3051,19 +3057,19 @@ SpriteCell sprite_cell(uint cell)
         }
     }
     if ((level_1 > 0u)) {
-        local_54 = all((local_57 >= (int(2)).xx));
+        local_54 = all((local_59 >= (int(2)).xx));
     } else {
         local_54 = false;
     }
     bool _e47 = local_54;
     if (_e47) {
-        local_55 = all((local_57 < (int(6)).xx));
+        local_55 = all((local_59 < (int(6)).xx));
     } else {
         local_55 = false;
     }
     bool covered = local_55;
     int2 _e56 = start_1;
-    const SpriteCell spritecell = ConstructSpriteCell(asint(asuint(_e56) + asuint(local_57)), (SPRITE_CELL0_ * float((1u << level_1))), covered);
+    const SpriteCell spritecell = ConstructSpriteCell(asint(asuint(_e56) + asuint(local_59)), (SPRITE_CELL0_ * float((1u << level_1))), covered);
     return spritecell;
 }
 
@@ -3185,9 +3191,126 @@ float3 sun_disk(float3 d_13)
     return (_e15.xyz / ((6.2831855 * max((1.0 - cos_r), 1e-6))).xxx);
 }
 
+float3 moon_disk(float3 d_14)
+{
+    bool local_57 = (bool)0;
+
+    float4 _e3 = frame.moon;
+    float3 m_3 = _e3.xyz;
+    float c_10 = dot(d_14, m_3);
+    float _e9 = frame.moon.w;
+    if (!((_e9 <= 0.0))) {
+        local_57 = (c_10 < MOON_COS_RADIUS);
+    } else {
+        local_57 = true;
+    }
+    bool _e18 = local_57;
+    if (_e18) {
+        return (0.0).xxx;
+    }
+    float3 offset = ((d_14 - (m_3 * c_10)) / (0.0045149517).xxx);
+    float x2_1 = min(dot(offset, offset), 1.0);
+    float3 normal = (offset - (m_3 * sqrt((1.0 - x2_1))));
+    float4 _e36 = frame.night;
+    float lit_ = smoothstep(-0.02, 0.02, dot(normal, _e36.xyz));
+    float _e46 = frame.moon.w;
+    return (((_e46 / 6.40407e-5) * lit_)).xxx;
+}
+
+float3 stars(float3 d_15)
+{
+    uint face = 0u;
+    float2 uv_1 = (0.0).xx;
+    float major = 0.0;
+    bool local_58 = (bool)0;
+    float3 star = (0.0).xxx;
+
+    float e0_ = frame.night.w;
+    if ((e0_ <= 0.0)) {
+        return (0.0).xxx;
+    }
+    float3 a_10 = abs(d_15);
+    if ((a_10.x >= a_10.y)) {
+        local_58 = (a_10.x >= a_10.z);
+    } else {
+        local_58 = false;
+    }
+    bool _e26 = local_58;
+    if (_e26) {
+        face = ((d_15.x > 0.0) ? 0u : 1u);
+        uv_1 = d_15.zy;
+        major = a_10.x;
+    } else {
+        if ((a_10.y >= a_10.z)) {
+            face = ((d_15.y > 0.0) ? 2u : 3u);
+            uv_1 = d_15.xz;
+            major = a_10.y;
+        } else {
+            face = ((d_15.z > 0.0) ? 4u : 5u);
+            uv_1 = d_15.xy;
+            major = a_10.z;
+        }
+    }
+    float2 _e54 = uv_1;
+    float _e55 = major;
+    float2 st = clamp((((_e54 / (_e55).xx) * 0.5) + (0.5).xx), (0.0).xx, (0.999999).xx);
+    uint2 cell_2 = naga_f2u32((st * 96.0));
+    uint _e71 = face;
+    uint id_21 = ((((_e71 * STAR_CELLS) + cell_2.y) * STAR_CELLS) + cell_2.x);
+    const uint _e85 = pcg((id_21 ^ 2654435769u));
+    float h0_ = (float((_e85 >> 8u)) * 5.9604645e-8);
+    if ((h0_ >= 0.15085077)) {
+        return (0.0).xxx;
+    }
+    const uint _e96 = pcg((id_21 ^ 2246822507u));
+    float h1_ = (float((_e96 >> 8u)) * 5.9604645e-8);
+    const uint _e104 = pcg((id_21 ^ 3266489909u));
+    float h2_ = (float((_e104 >> 8u)) * 5.9604645e-8);
+    const uint _e112 = pcg((id_21 ^ 668265263u));
+    float h3_ = (float((_e112 >> 8u)) * 5.9604645e-8);
+    const uint _e120 = pcg((id_21 ^ 374761393u));
+    float h4_ = (float((_e120 >> 8u)) * 5.9604645e-8);
+    float2 star_st = (((float2(cell_2) + (0.15).xx) + (0.7 * float2(h1_, h2_))) / (96.0).xx);
+    float _e142 = major;
+    float2 q_11 = (((star_st * 2.0) - (1.0).xx) * _e142);
+    uint _e147 = face;
+    if ((_e147 < 2u)) {
+        float _e150 = major;
+        float _e152 = major;
+        uint _e153 = face;
+        star = float3(((_e153 == 0u) ? _e152 : -(_e150)), q_11.y, q_11.x);
+    } else {
+        uint _e160 = face;
+        if ((_e160 < 4u)) {
+            float _e164 = major;
+            float _e166 = major;
+            uint _e167 = face;
+            star = float3(q_11.x, ((_e167 == 2u) ? _e166 : -(_e164)), q_11.y);
+        } else {
+            float _e175 = major;
+            float _e177 = major;
+            uint _e178 = face;
+            star = float3(q_11.x, q_11.y, ((_e178 == 4u) ? _e177 : -(_e175)));
+        }
+    }
+    float3 _e183 = star;
+    star = normalize(_e183);
+    float magnitude = max((STAR_FAINTEST + (log(max((h0_ / 0.15085077), 1e-6)) / 1.1052408)), -1.5);
+    float illuminance = (e0_ * pow(10.0, (-0.4 * magnitude)));
+    float _e203 = frame.camera_position.w;
+    uint _e209 = frame.counts.y;
+    float pixel_angle = ((2.0 * _e203) / float(_e209));
+    float3 _e212 = star;
+    float dist_1 = (acos(clamp(dot(d_15, _e212), -1.0, 1.0)) / pixel_angle);
+    float weight_1 = (exp(((-(dist_1) * dist_1) / 0.5)) / 1.5707964);
+    float3 tint = lerp(float3(0.8, 0.9, 1.1), float3(1.15, 0.95, 0.75), (h3_ * h4_));
+    return (tint * ((illuminance * weight_1) / (pixel_angle * pixel_angle)));
+}
+
 float3 physical_composite(uint2 pixel_8, float3 view_3, float4 cloud)
 {
     float3 sky = (float3)0;
+    float3 space = (float3)0;
     float3 radiance_3 = (float3)0;
 
     float4 _e5 = frame.sun_illuminance;
@@ -3198,21 +3321,30 @@ float3 physical_composite(uint2 pixel_8, float3 view_3, float4 cloud)
     sky = (_e9 * e_1);
     const bool _e13 = meets_ground(r_18, view_3.y);
     if (!(_e13)) {
-        float3 _e15 = sky;
-        const float3 _e16 = sun_disk(view_3);
-        const float3 _e18 = transmittance_to_top(r_18, view_3.y);
-        sky = (_e15 + (_e16 * _e18));
+        const float3 _e15 = moon_disk(view_3);
+        const float3 _e16 = stars(view_3);
+        space = (_e15 + _e16);
+        uint _e22 = frame.modes.w;
+        if (((_e22 & FLAG_MOONLIT) == 0u)) {
+            float3 _e27 = space;
+            const float3 _e28 = sun_disk(view_3);
+            space = (_e27 + _e28);
+        }
+        float3 _e30 = sky;
+        float3 _e31 = space;
+        const float3 _e33 = transmittance_to_top(r_18, view_3.y);
+        sky = (_e30 + (_e31 * _e33));
     }
-    float3 _e21 = sky;
-    radiance_3 = (_e21 * cloud.w);
+    float3 _e36 = sky;
+    radiance_3 = (_e36 * cloud.w);
     if ((cloud.w < 1.0)) {
-        float4 _e30 = depth_in.Load(int3(pixel_8, int(0)));
-        const float4 _e32 = aerial(pixel_8, _e30.x);
-        float3 _e33 = radiance_3;
-        radiance_3 = (_e33 + (((_e32.xyz * e_1) * (1.0 - cloud.w)) + (cloud.xyz * _e32.w)));
+        float4 _e45 = depth_in.Load(int3(pixel_8, int(0)));
+        const float4 _e47 = aerial(pixel_8, _e45.x);
+        float3 _e48 = radiance_3;
+        radiance_3 = (_e48 + (((_e47.xyz * e_1) * (1.0 - cloud.w)) + (cloud.xyz * _e47.w)));
     }
-    float3 _e45 = radiance_3;
-    return _e45;
+    float3 _e60 = radiance_3;
+    return _e60;
 }
 
 float3 aces_fitted(float3 x_5)
@@ -3390,10 +3522,10 @@ void sky_view_lut(uint3 id_2 : SV_DispatchThreadID)
     const float _e15 = sky_view_elevation(x_11.y, _e14);
     const float _e16 = sun_azimuth();
     float phi_2 = (_e16 + (x_11.x * PI));
-    float3 d_18 = float3((cos(_e15) * cos(phi_2)), sin(_e15), (cos(_e15) * sin(phi_2)));
-    const float2 _e29 = air_ray_end(_e11, d_18);
+    float3 d_20 = float3((cos(_e15) * cos(phi_2)), sin(_e15), (cos(_e15) * sin(phi_2)));
+    const float2 _e29 = air_ray_end(_e11, d_20);
     float4 _e34 = frame.sun_direction;
-    const Scattered _e39 = integrate_air(_e11, d_18, _e29.x, SKY_VIEW_STEPS, _e34.xyz, (_e29.y > 0.5));
+    const Scattered _e39 = integrate_air(_e11, d_20, _e29.x, SKY_VIEW_STEPS, _e34.xyz, (_e29.y > 0.5));
     sky_view_out[id_2.xy] = float4(_e39.radiance, 1.0);
     return;
 }
@@ -3791,18 +3923,18 @@ void resolve(uint3 id_9 : SV_DispatchThreadID)
         int2 blocks = int2(naga_div(((_e118.xy + (k_15).xx) - (1u).xx), (k_15).xx));
         int2 b_11 = int2(block);
         int x0_1 = max(asint(asuint(b_11.x) - asuint(int(1))), int(0));
-        int x2_1 = min(asint(asuint(b_11.x) + asuint(int(1))), asint(asuint(blocks.x) - asuint(int(1))));
+        int x2_2 = min(asint(asuint(b_11.x) + asuint(int(1))), asint(asuint(blocks.x) - asuint(int(1))));
         int y0_ = max(asint(asuint(b_11.y) - asuint(int(1))), int(0));
         int y2_ = min(asint(asuint(b_11.y) + asuint(int(1))), asint(asuint(blocks.y) - asuint(int(1))));
         float4 s00_ = sparse_in.Load(int3(int2(x0_1, y0_), int(0)));
         float4 s10_ = sparse_in.Load(int3(int2(b_11.x, y0_), int(0)));
-        float4 s20_ = sparse_in.Load(int3(int2(x2_1, y0_), int(0)));
+        float4 s20_ = sparse_in.Load(int3(int2(x2_2, y0_), int(0)));
         float4 s01_ = sparse_in.Load(int3(int2(x0_1, b_11.y), int(0)));
         float4 s11_ = sparse_in.Load(int3(b_11, int(0)));
-        float4 s21_ = sparse_in.Load(int3(int2(x2_1, b_11.y), int(0)));
+        float4 s21_ = sparse_in.Load(int3(int2(x2_2, b_11.y), int(0)));
         float4 s02_ = sparse_in.Load(int3(int2(x0_1, y2_), int(0)));
         float4 s12_ = sparse_in.Load(int3(int2(b_11.x, y2_), int(0)));
-        float4 s22_ = sparse_in.Load(int3(int2(x2_1, y2_), int(0)));
+        float4 s22_ = sparse_in.Load(int3(int2(x2_2, y2_), int(0)));
         float4 lo_2 = min(min(min(s00_, s10_), min(s20_, s01_)), min(min(s11_, s21_), min(min(s02_, s12_), s22_)));
         float4 hi_1 = max(max(max(s00_, s10_), max(s20_, s01_)), max(max(s11_, s21_), max(max(s02_, s12_), s22_)));
         float4 _e208 = history;
@@ -3954,8 +4086,8 @@ uint2 naga_mod(uint2 lhs, uint2 rhs) {
 void sprite_atlas(uint3 id_12 : SV_DispatchThreadID)
 {
     uint tile_4 = ((naga_div(id_12.y, ATLAS_TILE) * 4u) + naga_div(id_12.x, ATLAS_TILE));
-    float2 uv_6 = ((float2(naga_mod(id_12.xy, (64u).xx)) + (0.5).xx) / (64.0).xx);
-    const float _e21 = sprite_texture(tile_4, uv_6);
+    float2 uv_7 = ((float2(naga_mod(id_12.xy, (64u).xx)) + (0.5).xx) / (64.0).xx);
+    const float _e21 = sprite_texture(tile_4, uv_7);
     sprite_atlas_out[id_12.xy] = float4(_e21, _e21, _e21, _e21);
     return;
 }
@@ -4133,9 +4265,9 @@ VertexOutput_sprite_vertex sprite_vertex(uint index : SV_VertexID)
 
     float4 _e8 = sprite_order_in.Load(int3(uint2(naga_div(index, 6u), 0u), int(0)));
     uint slot_2 = naga_f2u32(_e8.x);
-    float4 a_10 = sprites_in.Load(int3(uint2(slot_2, 0u), int(0)));
+    float4 a_11 = sprites_in.Load(int3(uint2(slot_2, 0u), int(0)));
     float4 b_12 = sprites_in.Load(int3(uint2(slot_2, 1u), int(0)));
-    float4 c_10 = sprites_in.Load(int3(uint2(slot_2, 2u), int(0)));
+    float4 c_11 = sprites_in.Load(int3(uint2(slot_2, 2u), int(0)));
     if ((b_12.w <= 0.0)) {
         out_.position = float4(0.0, 0.0, -1.0, 1.0);
         SpriteVertex _e35 = out_;
@@ -4145,10 +4277,10 @@ VertexOutput_sprite_vertex sprite_vertex(uint index : SV_VertexID)
     }
     float _e39 = frame.camera_position.y;
     float3 cam_1 = float3(0.0, _e39, 0.0);
-    const float3 _e45 = sprite_rel(a_10.xz, a_10.y);
+    const float3 _e45 = sprite_rel(a_11.xz, a_11.y);
     float3 to_sprite = (_e45 - cam_1);
     float distance_2 = length(to_sprite);
-    float half_width_1 = a_10.w;
+    float half_width_1 = a_11.w;
     float facing = smoothstep((0.5 * half_width_1), half_width_1, distance_2);
     float3 to_camera = (-(to_sprite) / (max(distance_2, 0.001)).xxx);
     float4 _e59 = frame.camera_forward;
@@ -4167,8 +4299,8 @@ VertexOutput_sprite_vertex sprite_vertex(uint index : SV_VertexID)
     float3 up_1 = cross(n_5, _e85);
     const float2 _e89 = sprite_corner(naga_mod(index, 6u));
     float3 _e90 = right;
-    float3 offset = ((_e90 * (_e89.x * half_width_1)) + (up_1 * (_e89.y * c_10.z)));
-    float3 vertex = (to_sprite + offset);
+    float3 offset_1 = ((_e90 * (_e89.x * half_width_1)) + (up_1 * (_e89.y * c_11.z)));
+    float3 vertex = (to_sprite + offset_1);
     float4 _e102 = frame.camera_right;
     float x_12 = dot(vertex, _e102.xyz);
     float4 _e107 = frame.camera_up;
@@ -4178,10 +4310,10 @@ VertexOutput_sprite_vertex sprite_vertex(uint index : SV_VertexID)
     float tan_half_3 = frame.camera_position.w;
     float _e123 = frame.camera_forward.w;
     out_.position = float4((x_12 / (tan_half_3 * _e123)), (y_3 / tan_half_3), (0.5 * z_4), z_4);
-    float2 cs = float2(cos(c_10.y), sin(c_10.y));
+    float2 cs = float2(cos(c_11.y), sin(c_11.y));
     float2 t_11 = float2(_e89.x, -(_e89.y));
     out_.uv = float2(((t_11.x * cs.x) - (t_11.y * cs.y)), ((t_11.x * cs.y) + (t_11.y * cs.x)));
-    out_.tile = naga_f2u32(c_10.x);
+    out_.tile = naga_f2u32(c_11.x);
     float4 _e160 = frame.sun_direction;
     float3 sun_8 = _e160.xyz;
     const float3 _e164 = sprite_rel(b_12.xz, b_12.y);
@@ -4198,7 +4330,7 @@ VertexOutput_sprite_vertex sprite_vertex(uint index : SV_VertexID)
     float3 e_2 = _e198.xyz;
     const float3 _e200 = sprite_sky_level(_e195);
     const float _e204 = sprite_sun_level(cos_angle_1);
-    float3 light = ((e_2 * ((_e200 * (SPRITE_SKY * _e177)) + (_e204).xxx)) * (c_10.w / PI));
+    float3 light = ((e_2 * ((_e200 * (SPRITE_SKY * _e177)) + (_e204).xxx)) * (c_11.w / PI));
     out_.colour = float4(light, b_12.w);
     out_.distance_ = length(vertex);
     SpriteVertex _e217 = out_;
@@ -4209,14 +4341,14 @@ VertexOutput_sprite_vertex sprite_vertex(uint index : SV_VertexID)
 
 SpriteTargets sprite_fragment(FragmentInput_sprite_fragment fragmentinput_sprite_fragment)
 {
-    SpriteVertex in_ = { fragmentinput_sprite_fragment.position_1, fragmentinput_sprite_fragment.uv_2, fragmentinput_sprite_fragment.tile_3, fragmentinput_sprite_fragment.colour_1, fragmentinput_sprite_fragment.distance_1 };
+    SpriteVertex in_ = { fragmentinput_sprite_fragment.position_1, fragmentinput_sprite_fragment.uv_3, fragmentinput_sprite_fragment.tile_3, fragmentinput_sprite_fragment.colour_1, fragmentinput_sprite_fragment.distance_1 };
     SpriteTargets out_1 = (SpriteTargets)0;
     float a = 0.0;
 
     if (all((abs(in_.uv) <= (1.0).xx))) {
         float2 tile_5 = float2(float(naga_mod(in_.tile, 4u)), float(naga_div(in_.tile, 4u)));
-        float2 uv_7 = (((tile_5 + (0.5).xx) + (0.5 * in_.uv)) * 0.25);
-        float4 _e31 = sprite_atlas_in.SampleLevel(noise_sampler, uv_7, 0.0);
+        float2 uv_8 = (((tile_5 + (0.5).xx) + (0.5 * in_.uv)) * 0.25);
+        float4 _e31 = sprite_atlas_in.SampleLevel(noise_sampler, uv_8, 0.0);
         a = (_e31.x * in_.colour.w);
     }
     float _e39 = a;
@@ -4238,11 +4370,11 @@ void sprite_resolve(uint3 id_15 : SV_DispatchThreadID)
         return;
     }
     count(STAT_PIXELS, 1u);
-    float4 c_11 = sprite_radiance_in.Load(int3(id_15.xy, int(0)));
-    float4 d_19 = sprite_depth_in.Load(int3(id_15.xy, int(0)));
-    const float _e19 = saturate_(c_11.w);
-    cloud_out[id_15.xy] = float4(c_11.xyz, (1.0 - _e19));
-    depth_out[id_15.xy] = float4(((d_19.w > 0.0001) ? (d_19.x / d_19.w) : 0.0), 0.0, 0.0, 0.0);
+    float4 c_12 = sprite_radiance_in.Load(int3(id_15.xy, int(0)));
+    float4 d_21 = sprite_depth_in.Load(int3(id_15.xy, int(0)));
+    const float _e19 = saturate_(c_12.w);
+    cloud_out[id_15.xy] = float4(c_12.xyz, (1.0 - _e19));
+    depth_out[id_15.xy] = float4(((d_21.w > 0.0001) ? (d_21.x / d_21.w) : 0.0), 0.0, 0.0, 0.0);
     return;
 }
 

@@ -41,6 +41,8 @@ struct Frame {
     metal::float4 air_mie;
     metal::float4 air_ozone;
     metal::float4 air_misc;
+    metal::float4 moon;
+    metal::float4 night;
 };
 struct Roots {
     float t0_;
@@ -159,6 +161,7 @@ constant uint FLAG_DYNAMIC_STEP = 4u;
 constant uint FLAG_CHECKERBOARD = 8u;
 constant uint FLAG_EMPTY_SKIP = 16u;
 constant uint FLAG_PHYSICAL_SKY = 32u;
+constant uint FLAG_MOONLIT = 64u;
 constant float PI = 3.1415927;
 constant uint MAX_VIEW_STEPS = 1024u;
 constant uint RAY_MARCH = 0u;
@@ -210,6 +213,9 @@ constant metal::float3 SKY_LEVEL1_ = metal::float3(0.55, 0.59, 0.67);
 constant metal::float3 SKY_LEVEL2_ = metal::float3(0.7, 0.73, 0.8);
 constant metal::float3 SKY_LEVEL3_ = metal::float3(0.84, 0.86, 0.9);
 constant metal::float3 SKY_LEVEL4_ = metal::float3(0.95, 0.96, 0.98);
+constant float MOON_COS_RADIUS = 0.9999898;
+constant uint STAR_CELLS = 96u;
+constant float STAR_FAINTEST = 6.5;
 constant bool LIGHT_MARCH = true;
 constant uint MAX_OCTAVES = 8u;
 constant bool DETAIL = false;
@@ -268,8 +274,8 @@ metal::float3 view_ray(
     metal::float4 _e26 = frame.camera_forward;
     metal::float4 _e30 = frame.camera_right;
     metal::float4 _e39 = frame.camera_up;
-    metal::float3 d_14 = (_e26.xyz + (_e30.xyz * ((ndc.x * tan_half) * aspect))) - (_e39.xyz * (ndc.y * tan_half));
-    return metal::normalize(d_14);
+    metal::float3 d_16 = (_e26.xyz + (_e30.xyz * ((ndc.x * tan_half) * aspect))) - (_e39.xyz * (ndc.y * tan_half));
+    return metal::normalize(d_16);
 }
 
 Roots solve_sphere(
@@ -721,9 +727,9 @@ metal::float2 transmittance_r_mu(
     float r_13 = metal::sqrt((rho_1 * rho_1) + (_e1 * _e1));
     float d_min_1 = _e2 - r_13;
     float d_max_1 = rho_1 + h_9;
-    float d_15 = d_min_1 + (x_4.x * (d_max_1 - d_min_1));
-    if (d_15 > 0.0) {
-        mu_6 = metal::clamp((((h_9 * h_9) - (rho_1 * rho_1)) - (d_15 * d_15)) / ((2.0 * r_13) * d_15), -1.0, 1.0);
+    float d_17 = d_min_1 + (x_4.x * (d_max_1 - d_min_1));
+    if (d_17 > 0.0) {
+        mu_6 = metal::clamp((((h_9 * h_9) - (rho_1 * rho_1)) - (d_17 * d_17)) / ((2.0 * r_13) * d_17), -1.0, 1.0);
     }
     float _e37 = mu_6;
     return metal::float2(r_13, _e37);
@@ -1006,8 +1012,8 @@ metal::float4 aerial(
     metal::float4 near = metal::float4(0.0, 0.0, 0.0, 1.0);
     metal::float4 far = metal::float4(0.0, 0.0, 0.0, 1.0);
     metal::uint4 _e8 = frame.counts;
-    metal::float2 uv_1 = (static_cast<metal::float2>(pixel_2) + metal::float2(0.5)) / static_cast<metal::float2>(_e8.xy);
-    metal::float2 f_2 = metal::clamp((uv_1 * 32.0) - metal::float2(0.5), metal::float2(0.0), metal::float2(31.0));
+    metal::float2 uv_2 = (static_cast<metal::float2>(pixel_2) + metal::float2(0.5)) / static_cast<metal::float2>(_e8.xy);
+    metal::float2 f_2 = metal::clamp((uv_2 * 32.0) - metal::float2(0.5), metal::float2(0.0), metal::float2(31.0));
     metal::uint2 c0_1 = metal::min(naga_f2u32(metal::floor(f_2)), metal::uint2(31u));
     metal::uint2 c1_1 = metal::min(c0_1 + metal::uint2(1u), metal::uint2(31u));
     metal::float2 w_4 = f_2 - static_cast<metal::float2>(c0_1);
@@ -1115,8 +1121,8 @@ Weather sample_weather(
     metal::sampler noise_sampler
 ) {
     float _e8 = frame.periods.x;
-    metal::float2 uv_2 = (p_3.xz - l_2.weather_offset) / metal::float2(_e8);
-    metal::float4 w_5 = weather_tex.sample(noise_sampler, uv_2, metal::level(0.0));
+    metal::float2 uv_3 = (p_3.xz - l_2.weather_offset) / metal::float2(_e8);
+    metal::float4 w_5 = weather_tex.sample(noise_sampler, uv_3, metal::level(0.0));
     float _e22 = saturate(w_5.x + (2.0 * (l_2.coverage - 0.5)));
     float _e30 = saturate(l_2.cloud_type + ((w_5.z - 0.5) * 0.5));
     float _e35 = saturate(0.5 + w_5.y);
@@ -1629,8 +1635,8 @@ float empty_cell_exit(
     float exit = 1000000000000000000000000000000.0;
     metal::float4 _e6 = frame.wind_offsets0_;
     float _e12 = frame.periods.x;
-    metal::float2 uv_3 = metal::fract((p_8.xz - _e6.xy) / metal::float2(_e12)) * 64.0;
-    metal::uint2 cell_1 = metal::min(naga_f2u32(uv_3), metal::uint2(63u));
+    metal::float2 uv_4 = metal::fract((p_8.xz - _e6.xy) / metal::float2(_e12)) * 64.0;
+    metal::uint2 cell_1 = metal::min(naga_f2u32(uv_4), metal::uint2(63u));
     metal::float4 _e23 = occupancy_in.read(metal::uint2(cell_1), 0);
     float m_2 = _e23.x;
     float _e28 = frame.clouds.x;
@@ -1639,7 +1645,7 @@ float empty_cell_exit(
     }
     float _e40 = frame.periods.x;
     float cell_m = _e40 / 64.0;
-    metal::float2 inside = (uv_3 - static_cast<metal::float2>(cell_1)) * cell_m;
+    metal::float2 inside = (uv_4 - static_cast<metal::float2>(cell_1)) * cell_m;
     if (d_10.x > 0.000001) {
         float _e50 = exit;
         exit = metal::min(_e50, (cell_m - inside.x) / d_10.x);
@@ -3127,9 +3133,9 @@ float sprite_texture(
             float _e93 = atlas_hash(tile_1, 100u + _e91);
             float r_17 = 0.14 + (0.1 * _e93);
             metal::float2 _e98 = at;
-            float d_16 = metal::length(uv - _e98) / r_17;
+            float d_18 = metal::length(uv - _e98) / r_17;
             float _e102 = billow;
-            float _e106 = saturate(1.0 - (d_16 * d_16));
+            float _e106 = saturate(1.0 - (d_18 * d_18));
             billow = metal::max(_e102, _e106);
         }
     }
@@ -3151,10 +3157,10 @@ metal::float3 sprite_rel(
 ) {
     float rp_5 = frame.atmosphere.x;
     metal::float4 _e8 = frame.camera_position;
-    metal::float2 d_17 = xz - _e8.xz;
-    float k_13 = (alt_15 * (alt_15 + (2.0 * rp_5))) - metal::dot(d_17, d_17);
+    metal::float2 d_19 = xz - _e8.xz;
+    float k_13 = (alt_15 * (alt_15 + (2.0 * rp_5))) - metal::dot(d_19, d_19);
     float y_2 = k_13 / (rp_5 + metal::sqrt(metal::max((rp_5 * rp_5) + k_13, 0.0)));
-    return metal::float3(d_17.x, y_2, d_17.y);
+    return metal::float3(d_19.x, y_2, d_19.y);
 }
 
 SpriteCell sprite_cell(
@@ -3166,7 +3172,7 @@ SpriteCell sprite_cell(
     bool local_54 = {};
     bool local_55 = {};
     uint level_1 = naga_div(cell, 64u);
-    metal::int2 local_57 = metal::int2(static_cast<int>(naga_mod(cell, 8u)), static_cast<int>(naga_mod(naga_div(cell, 8u), 8u)));
+    metal::int2 local_59 = metal::int2(static_cast<int>(naga_mod(cell, 8u)), static_cast<int>(naga_mod(naga_div(cell, 8u), 8u)));
     metal::float4 _e15 = frame.camera_position;
     start_1 = as_type<metal::int2>(as_type<metal::uint2>(naga_f2i32(metal::floor(_e15.xz / metal::float2(12000.0)))) - as_type<metal::uint2>(metal::int2(4)));
     uint2 loop_bound_20 = uint2(4294967295u);
@@ -3190,19 +3196,19 @@ SpriteCell sprite_cell(
         }
     }
     if (level_1 > 0u) {
-        local_54 = metal::all(local_57 >= metal::int2(2));
+        local_54 = metal::all(local_59 >= metal::int2(2));
     } else {
         local_54 = false;
     }
     bool _e47 = local_54;
     if (_e47) {
-        local_55 = metal::all(local_57 < metal::int2(6));
+        local_55 = metal::all(local_59 < metal::int2(6));
     } else {
         local_55 = false;
     }
     bool covered = local_55;
     metal::int2 _e56 = start_1;
-    return SpriteCell {as_type<metal::int2>(as_type<metal::uint2>(_e56) + as_type<metal::uint2>(local_57)), SPRITE_CELL0_ * static_cast<float>(1u << level_1), covered};
+    return SpriteCell {as_type<metal::int2>(as_type<metal::uint2>(_e56) + as_type<metal::uint2>(local_59)), SPRITE_CELL0_ * static_cast<float>(1u << level_1), covered};
 }
 
 SpriteCandidate sprite_candidate(
@@ -3325,6 +3331,124 @@ metal::float3 sun_disk(
     return _e15.xyz / metal::float3(6.2831855 * metal::max(1.0 - cos_r, 0.000001));
 }
 
+metal::float3 moon_disk(
+    metal::float3 d_14,
+    constant Frame& frame
+) {
+    bool local_57 = {};
+    metal::float4 _e3 = frame.moon;
+    metal::float3 m_3 = _e3.xyz;
+    float c_10 = metal::dot(d_14, m_3);
+    float _e9 = frame.moon.w;
+    if (!((_e9 <= 0.0))) {
+        local_57 = c_10 < MOON_COS_RADIUS;
+    } else {
+        local_57 = true;
+    }
+    bool _e18 = local_57;
+    if (_e18) {
+        return metal::float3(0.0);
+    }
+    metal::float3 offset = (d_14 - (m_3 * c_10)) / metal::float3(0.0045149517);
+    float x2_1 = metal::min(metal::dot(offset, offset), 1.0);
+    metal::float3 normal = offset - (m_3 * metal::sqrt(1.0 - x2_1));
+    metal::float4 _e36 = frame.night;
+    float lit = metal::smoothstep(-0.02, 0.02, metal::dot(normal, _e36.xyz));
+    float _e46 = frame.moon.w;
+    return metal::float3((_e46 / 0.0000640407) * lit);
+}
+
+metal::float3 stars(
+    metal::float3 d_15,
+    constant Frame& frame
+) {
+    uint face = 0u;
+    metal::float2 uv_1 = metal::float2(0.0);
+    float major = 0.0;
+    bool local_58 = {};
+    metal::float3 star = metal::float3(0.0);
+    float e0_ = frame.night.w;
+    if (e0_ <= 0.0) {
+        return metal::float3(0.0);
+    }
+    metal::float3 a_10 = metal::abs(d_15);
+    if (a_10.x >= a_10.y) {
+        local_58 = a_10.x >= a_10.z;
+    } else {
+        local_58 = false;
+    }
+    bool _e26 = local_58;
+    if (_e26) {
+        face = (d_15.x > 0.0) ? 0u : 1u;
+        uv_1 = d_15.zy;
+        major = a_10.x;
+    } else {
+        if (a_10.y >= a_10.z) {
+            face = (d_15.y > 0.0) ? 2u : 3u;
+            uv_1 = d_15.xz;
+            major = a_10.y;
+        } else {
+            face = (d_15.z > 0.0) ? 4u : 5u;
+            uv_1 = d_15.xy;
+            major = a_10.z;
+        }
+    }
+    metal::float2 _e54 = uv_1;
+    float _e55 = major;
+    metal::float2 st = metal::clamp(((_e54 / metal::float2(_e55)) * 0.5) + metal::float2(0.5), metal::float2(0.0), metal::float2(0.999999));
+    metal::uint2 cell_2 = naga_f2u32(st * 96.0);
+    uint _e71 = face;
+    uint id_21 = (((_e71 * STAR_CELLS) + cell_2.y) * STAR_CELLS) + cell_2.x;
+    uint _e85 = pcg(id_21 ^ 2654435769u);
+    float h0_ = static_cast<float>(_e85 >> 8u) * 0.000000059604645;
+    if (h0_ >= 0.15085077) {
+        return metal::float3(0.0);
+    }
+    uint _e96 = pcg(id_21 ^ 2246822507u);
+    float h1_ = static_cast<float>(_e96 >> 8u) * 0.000000059604645;
+    uint _e104 = pcg(id_21 ^ 3266489909u);
+    float h2_ = static_cast<float>(_e104 >> 8u) * 0.000000059604645;
+    uint _e112 = pcg(id_21 ^ 668265263u);
+    float h3_ = static_cast<float>(_e112 >> 8u) * 0.000000059604645;
+    uint _e120 = pcg(id_21 ^ 374761393u);
+    float h4_ = static_cast<float>(_e120 >> 8u) * 0.000000059604645;
+    metal::float2 star_st = ((static_cast<metal::float2>(cell_2) + metal::float2(0.15)) + (0.7 * metal::float2(h1_, h2_))) / metal::float2(96.0);
+    float _e142 = major;
+    metal::float2 q_11 = ((star_st * 2.0) - metal::float2(1.0)) * _e142;
+    uint _e147 = face;
+    if (_e147 < 2u) {
+        float _e150 = major;
+        float _e152 = major;
+        uint _e153 = face;
+        star = metal::float3((_e153 == 0u) ? _e152 : -(_e150), q_11.y, q_11.x);
+    } else {
+        uint _e160 = face;
+        if (_e160 < 4u) {
+            float _e164 = major;
+            float _e166 = major;
+            uint _e167 = face;
+            star = metal::float3(q_11.x, (_e167 == 2u) ? _e166 : -(_e164), q_11.y);
+        } else {
+            float _e175 = major;
+            float _e177 = major;
+            uint _e178 = face;
+            star = metal::float3(q_11.x, q_11.y, (_e178 == 4u) ? _e177 : -(_e175));
+        }
+    }
+    metal::float3 _e183 = star;
+    star = metal::normalize(_e183);
+    float magnitude = metal::max(STAR_FAINTEST + (metal::log(metal::max(h0_ / 0.15085077, 0.000001)) / 1.1052408), -1.5);
+    float illuminance = e0_ * metal::pow(10.0, -0.4 * magnitude);
+    float _e203 = frame.camera_position.w;
+    uint _e209 = frame.counts.y;
+    float pixel_angle = (2.0 * _e203) / static_cast<float>(_e209);
+    metal::float3 _e212 = star;
+    float dist_1 = metal::acos(metal::clamp(metal::dot(d_15, _e212), -1.0, 1.0)) / pixel_angle;
+    float weight_1 = metal::exp((-(dist_1) * dist_1) / 0.5) / 1.5707964;
+    metal::float3 tint = metal::mix(metal::float3(0.8, 0.9, 1.1), metal::float3(1.15, 0.95, 0.75), h3_ * h4_);
+    return tint * ((illuminance * weight_1) / (pixel_angle * pixel_angle));
+}
+
 metal::float3 physical_composite(
     metal::uint2 pixel_8,
     metal::float3 view_3,
@@ -3336,6 +3460,7 @@ metal::float3 physical_composite(
     metal::texture2d<float, metal::access::sample> depth_in
 ) {
     metal::float3 sky = {};
+    metal::float3 space = {};
     metal::float3 radiance_3 = {};
     metal::float4 _e5 = frame.sun_illuminance;
     metal::float3 e_1 = _e5.xyz;
@@ -3345,21 +3470,30 @@ metal::float3 physical_composite(
     sky = _e9 * e_1;
     bool _e13 = meets_ground(r_18, view_3.y, frame);
     if (!(_e13)) {
-        metal::float3 _e15 = sky;
-        metal::float3 _e16 = sun_disk(view_3, frame);
-        metal::float3 _e18 = transmittance_to_top(r_18, view_3.y, frame, transmittance_lut_in);
-        sky = _e15 + (_e16 * _e18);
+        metal::float3 _e15 = moon_disk(view_3, frame);
+        metal::float3 _e16 = stars(view_3, frame);
+        space = _e15 + _e16;
+        uint _e22 = frame.modes.w;
+        if ((_e22 & FLAG_MOONLIT) == 0u) {
+            metal::float3 _e27 = space;
+            metal::float3 _e28 = sun_disk(view_3, frame);
+            space = _e27 + _e28;
+        }
+        metal::float3 _e30 = sky;
+        metal::float3 _e31 = space;
+        metal::float3 _e33 = transmittance_to_top(r_18, view_3.y, frame, transmittance_lut_in);
+        sky = _e30 + (_e31 * _e33);
     }
-    metal::float3 _e21 = sky;
-    radiance_3 = _e21 * cloud.w;
+    metal::float3 _e36 = sky;
+    radiance_3 = _e36 * cloud.w;
     if (cloud.w < 1.0) {
-        metal::float4 _e30 = depth_in.read(metal::uint2(pixel_8), 0);
-        metal::float4 _e32 = aerial(pixel_8, _e30.x, frame, aerial_in);
-        metal::float3 _e33 = radiance_3;
-        radiance_3 = _e33 + (((_e32.xyz * e_1) * (1.0 - cloud.w)) + (cloud.xyz * _e32.w));
+        metal::float4 _e45 = depth_in.read(metal::uint2(pixel_8), 0);
+        metal::float4 _e47 = aerial(pixel_8, _e45.x, frame, aerial_in);
+        metal::float3 _e48 = radiance_3;
+        radiance_3 = _e48 + (((_e47.xyz * e_1) * (1.0 - cloud.w)) + (cloud.xyz * _e47.w));
     }
-    metal::float3 _e45 = radiance_3;
-    return _e45;
+    metal::float3 _e60 = radiance_3;
+    return _e60;
 }
 
 metal::float3 aces_fitted(
@@ -3557,10 +3691,10 @@ struct sky_view_lutInput {
     float _e15 = sky_view_elevation(x_11.y, _e14);
     float _e16 = sun_azimuth(frame);
     float phi_2 = _e16 + (x_11.x * PI);
-    metal::float3 d_18 = metal::float3(metal::cos(_e15) * metal::cos(phi_2), metal::sin(_e15), metal::cos(_e15) * metal::sin(phi_2));
-    metal::float2 _e29 = air_ray_end(_e11, d_18, frame);
+    metal::float3 d_20 = metal::float3(metal::cos(_e15) * metal::cos(phi_2), metal::sin(_e15), metal::cos(_e15) * metal::sin(phi_2));
+    metal::float2 _e29 = air_ray_end(_e11, d_20, frame);
     metal::float4 _e34 = frame.sun_direction;
-    Scattered _e39 = integrate_air(_e11, d_18, _e29.x, SKY_VIEW_STEPS, _e34.xyz, _e29.y > 0.5, frame, transmittance_lut_in, multiscatter_lut_in);
+    Scattered _e39 = integrate_air(_e11, d_20, _e29.x, SKY_VIEW_STEPS, _e34.xyz, _e29.y > 0.5, frame, transmittance_lut_in, multiscatter_lut_in);
     sky_view_out.write(metal::float4(_e39.radiance, 1.0), metal::uint2(id_2.xy));
     return;
 }
@@ -4031,18 +4165,18 @@ struct resolveInput {
         metal::int2 blocks = static_cast<metal::int2>(naga_div((_e118.xy + metal::uint2(k_15)) - metal::uint2(1u), metal::uint2(k_15)));
         metal::int2 b_11 = static_cast<metal::int2>(block);
         int x0_1 = metal::max(as_type<int>(as_type<uint>(b_11.x) - as_type<uint>(1)), 0);
-        int x2_1 = metal::min(as_type<int>(as_type<uint>(b_11.x) + as_type<uint>(1)), as_type<int>(as_type<uint>(blocks.x) - as_type<uint>(1)));
+        int x2_2 = metal::min(as_type<int>(as_type<uint>(b_11.x) + as_type<uint>(1)), as_type<int>(as_type<uint>(blocks.x) - as_type<uint>(1)));
         int y0_ = metal::max(as_type<int>(as_type<uint>(b_11.y) - as_type<uint>(1)), 0);
         int y2_ = metal::min(as_type<int>(as_type<uint>(b_11.y) + as_type<uint>(1)), as_type<int>(as_type<uint>(blocks.y) - as_type<uint>(1)));
         metal::float4 s00_ = sparse_in.read(metal::uint2(metal::int2(x0_1, y0_)), 0);
         metal::float4 s10_ = sparse_in.read(metal::uint2(metal::int2(b_11.x, y0_)), 0);
-        metal::float4 s20_ = sparse_in.read(metal::uint2(metal::int2(x2_1, y0_)), 0);
+        metal::float4 s20_ = sparse_in.read(metal::uint2(metal::int2(x2_2, y0_)), 0);
         metal::float4 s01_ = sparse_in.read(metal::uint2(metal::int2(x0_1, b_11.y)), 0);
         metal::float4 s11_ = sparse_in.read(metal::uint2(b_11), 0);
-        metal::float4 s21_ = sparse_in.read(metal::uint2(metal::int2(x2_1, b_11.y)), 0);
+        metal::float4 s21_ = sparse_in.read(metal::uint2(metal::int2(x2_2, b_11.y)), 0);
         metal::float4 s02_ = sparse_in.read(metal::uint2(metal::int2(x0_1, y2_)), 0);
         metal::float4 s12_ = sparse_in.read(metal::uint2(metal::int2(b_11.x, y2_)), 0);
-        metal::float4 s22_ = sparse_in.read(metal::uint2(metal::int2(x2_1, y2_)), 0);
+        metal::float4 s22_ = sparse_in.read(metal::uint2(metal::int2(x2_2, y2_)), 0);
         metal::float4 lo_2 = metal::min(metal::min(metal::min(s00_, s10_), metal::min(s20_, s01_)), metal::min(metal::min(s11_, s21_), metal::min(metal::min(s02_, s12_), s22_)));
         metal::float4 hi_1 = metal::max(metal::max(metal::max(s00_, s10_), metal::max(s20_, s01_)), metal::max(metal::max(s11_, s21_), metal::max(metal::max(s02_, s12_), s22_)));
         metal::float4 _e208 = history;
@@ -4228,8 +4362,8 @@ struct sprite_atlasInput {
 , metal::texture2d<float, metal::access::write> sprite_atlas_out [[user(fake0)]]
 ) {
     uint tile_2 = (naga_div(id_12.y, ATLAS_TILE) * 4u) + naga_div(id_12.x, ATLAS_TILE);
-    metal::float2 uv_4 = (static_cast<metal::float2>(naga_mod(id_12.xy, metal::uint2(64u))) + metal::float2(0.5)) / metal::float2(64.0);
-    float _e21 = sprite_texture(tile_2, uv_4);
+    metal::float2 uv_5 = (static_cast<metal::float2>(naga_mod(id_12.xy, metal::uint2(64u))) + metal::float2(0.5)) / metal::float2(64.0);
+    float _e21 = sprite_texture(tile_2, uv_5);
     sprite_atlas_out.write(metal::float4(_e21, _e21, _e21, _e21), metal::uint2(id_12.xy));
     return;
 }
@@ -4434,9 +4568,9 @@ vertex sprite_vertexOutput sprite_vertex(
     metal::float3 right = {};
     metal::float4 _e8 = sprite_order_in.read(metal::uint2(metal::uint2(naga_div(index, 6u), 0u)), 0);
     uint slot_2 = naga_f2u32(_e8.x);
-    metal::float4 a_10 = sprites_in.read(metal::uint2(metal::uint2(slot_2, 0u)), 0);
+    metal::float4 a_11 = sprites_in.read(metal::uint2(metal::uint2(slot_2, 0u)), 0);
     metal::float4 b_12 = sprites_in.read(metal::uint2(metal::uint2(slot_2, 1u)), 0);
-    metal::float4 c_10 = sprites_in.read(metal::uint2(metal::uint2(slot_2, 2u)), 0);
+    metal::float4 c_11 = sprites_in.read(metal::uint2(metal::uint2(slot_2, 2u)), 0);
     if (b_12.w <= 0.0) {
         out.position = metal::float4(0.0, 0.0, -1.0, 1.0);
         SpriteVertex _e35 = out;
@@ -4445,10 +4579,10 @@ vertex sprite_vertexOutput sprite_vertex(
     }
     float _e39 = frame.camera_position.y;
     metal::float3 cam_1 = metal::float3(0.0, _e39, 0.0);
-    metal::float3 _e45 = sprite_rel(a_10.xz, a_10.y, frame);
+    metal::float3 _e45 = sprite_rel(a_11.xz, a_11.y, frame);
     metal::float3 to_sprite = _e45 - cam_1;
     float distance = metal::length(to_sprite);
-    float half_width_1 = a_10.w;
+    float half_width_1 = a_11.w;
     float facing = metal::smoothstep(0.5 * half_width_1, half_width_1, distance);
     metal::float3 to_camera = -(to_sprite) / metal::float3(metal::max(distance, 0.001));
     metal::float4 _e59 = frame.camera_forward;
@@ -4467,8 +4601,8 @@ vertex sprite_vertexOutput sprite_vertex(
     metal::float3 up_1 = metal::cross(n_5, _e85);
     metal::float2 _e89 = sprite_corner(naga_mod(index, 6u));
     metal::float3 _e90 = right;
-    metal::float3 offset = (_e90 * (_e89.x * half_width_1)) + (up_1 * (_e89.y * c_10.z));
-    metal::float3 vertex_ = to_sprite + offset;
+    metal::float3 offset_1 = (_e90 * (_e89.x * half_width_1)) + (up_1 * (_e89.y * c_11.z));
+    metal::float3 vertex_ = to_sprite + offset_1;
     metal::float4 _e102 = frame.camera_right;
     float x_12 = metal::dot(vertex_, _e102.xyz);
     metal::float4 _e107 = frame.camera_up;
@@ -4478,10 +4612,10 @@ vertex sprite_vertexOutput sprite_vertex(
     float tan_half_3 = frame.camera_position.w;
     float _e123 = frame.camera_forward.w;
     out.position = metal::float4(x_12 / (tan_half_3 * _e123), y_3 / tan_half_3, 0.5 * z_4, z_4);
-    metal::float2 cs = metal::float2(metal::cos(c_10.y), metal::sin(c_10.y));
+    metal::float2 cs = metal::float2(metal::cos(c_11.y), metal::sin(c_11.y));
     metal::float2 t_11 = metal::float2(_e89.x, -(_e89.y));
     out.uv = metal::float2((t_11.x * cs.x) - (t_11.y * cs.y), (t_11.x * cs.y) + (t_11.y * cs.x));
-    out.tile = naga_f2u32(c_10.x);
+    out.tile = naga_f2u32(c_11.x);
     metal::float4 _e160 = frame.sun_direction;
     metal::float3 sun_8 = _e160.xyz;
     metal::float3 _e164 = sprite_rel(b_12.xz, b_12.y, frame);
@@ -4498,7 +4632,7 @@ vertex sprite_vertexOutput sprite_vertex(
     metal::float3 e_2 = _e198.xyz;
     metal::float3 _e200 = sprite_sky_level(_e195);
     float _e204 = sprite_sun_level(cos_angle_1);
-    metal::float3 light = (e_2 * ((_e200 * (SPRITE_SKY * _e177)) + metal::float3(_e204))) * (c_10.w / PI);
+    metal::float3 light = (e_2 * ((_e200 * (SPRITE_SKY * _e177)) + metal::float3(_e204))) * (c_11.w / PI);
     out.colour = metal::float4(light, b_12.w);
     out.distance = metal::length(vertex_);
     SpriteVertex _e217 = out;
@@ -4508,7 +4642,7 @@ vertex sprite_vertexOutput sprite_vertex(
 
 
 struct sprite_fragmentInput {
-    metal::float2 uv_1 [[user(loc0), center_perspective]];
+    metal::float2 uv_2 [[user(loc0), center_perspective]];
     uint tile_2 [[user(loc1), flat]];
     metal::float4 colour [[user(loc2), center_perspective]];
     float distance [[user(loc3), center_perspective]];
@@ -4523,13 +4657,13 @@ fragment sprite_fragmentOutput sprite_fragment(
 , metal::sampler noise_sampler [[user(fake0)]]
 , metal::texture2d<float, metal::access::sample> sprite_atlas_in [[user(fake0)]]
 ) {
-    const SpriteVertex in = { position, varyings_16.uv_1, varyings_16.tile_2, {}, varyings_16.colour, varyings_16.distance };
+    const SpriteVertex in = { position, varyings_16.uv_2, varyings_16.tile_2, {}, varyings_16.colour, varyings_16.distance };
     SpriteTargets out_1 = {};
     float a = 0.0;
     if (metal::all(metal::abs(in.uv) <= metal::float2(1.0))) {
         metal::float2 tile_3 = metal::float2(static_cast<float>(naga_mod(in.tile, 4u)), static_cast<float>(naga_div(in.tile, 4u)));
-        metal::float2 uv_5 = ((tile_3 + metal::float2(0.5)) + (0.5 * in.uv)) * 0.25;
-        metal::float4 _e31 = sprite_atlas_in.sample(noise_sampler, uv_5, metal::level(0.0));
+        metal::float2 uv_6 = ((tile_3 + metal::float2(0.5)) + (0.5 * in.uv)) * 0.25;
+        metal::float4 _e31 = sprite_atlas_in.sample(noise_sampler, uv_6, metal::level(0.0));
         a = _e31.x * in.colour.w;
     }
     float _e39 = a;
@@ -4560,11 +4694,11 @@ struct sprite_resolveInput {
         return;
     }
     count(STAT_PIXELS, 1u, stats);
-    metal::float4 c_11 = sprite_radiance_in.read(metal::uint2(id_15.xy), 0);
-    metal::float4 d_19 = sprite_depth_in.read(metal::uint2(id_15.xy), 0);
-    float _e19 = saturate(c_11.w);
-    cloud_out.write(metal::float4(c_11.xyz, 1.0 - _e19), metal::uint2(id_15.xy));
-    depth_out.write(metal::float4((d_19.w > 0.0001) ? (d_19.x / d_19.w) : 0.0, 0.0, 0.0, 0.0), metal::uint2(id_15.xy));
+    metal::float4 c_12 = sprite_radiance_in.read(metal::uint2(id_15.xy), 0);
+    metal::float4 d_21 = sprite_depth_in.read(metal::uint2(id_15.xy), 0);
+    float _e19 = saturate(c_12.w);
+    cloud_out.write(metal::float4(c_12.xyz, 1.0 - _e19), metal::uint2(id_15.xy));
+    depth_out.write(metal::float4((d_21.w > 0.0001) ? (d_21.x / d_21.w) : 0.0, 0.0, 0.0, 0.0), metal::uint2(id_15.xy));
     return;
 }
 

@@ -42,6 +42,8 @@ struct Frame {
     air_mie: vec4<f32>,             // Mie scattering, absorption (1/m at the ground), scale height (m), g
     air_ozone: vec4<f32>,           // ozone absorption rgb at its peak (1/m); w = peak altitude (m)
     air_misc: vec4<f32>,            // atmosphere thickness (m), ozone tent width (m), ground albedo, 0
+    moon: vec4<f32>,                // unit direction to the moon; w = full-moon illuminance (0: no moon)
+    night: vec4<f32>,               // the real sun's unit direction; w = a magnitude-0 star's illuminance (0: no stars)
 }
 
 // Codes shared with the scene crate (`PhaseModel::code`, `Integration::code`, ...).
@@ -58,6 +60,7 @@ const FLAG_DYNAMIC_STEP: u32 = 4u;  // double the view step after 8 empty sample
 const FLAG_CHECKERBOARD: u32 = 8u;  // skip clear-history pixels every other turn (thesis 6.2.2)
 const FLAG_EMPTY_SKIP: u32 = 16u;   // jump over empty cells of the weather occupancy grid
 const FLAG_PHYSICAL_SKY: u32 = 32u; // Hillaire 2020's atmosphere behind the clouds
+const FLAG_MOONLIT: u32 = 64u;      // the key light (sun_direction, sun_illuminance) is the moon
 
 // Feature switches. A variant in modules.toml sets these; code behind a `false` switch is
 // removed by naga before translation, so a scene that does not use a feature pays nothing.

@@ -1,6 +1,7 @@
 //! The physical sky's GPU tables (wgsl/atmosphere.wgsl) against the CPU reference's f64
 //! atmosphere integrated directly along each ray (crates/reference/src/atmosphere.rs), and
-//! the same bits on ash and wgpu with validation on. Each table texel is mapped back to its
+//! the same bits on ash and wgpu with validation on (cumulus-noon under the physical sky and
+//! the presets dawn, noon, dusk and night, two frames each). Each table texel is mapped back to its
 //! ray here in f64 by the same parametrisation the WGSL documents; the measured errors are
 //! printed (`--nocapture`) and bounded.
 //!
@@ -126,6 +127,30 @@ fn physical_sky_tables_match_the_direct_integration_and_both_backends() {
         w.radiance.iter().all(|v| v.is_finite()),
         "a pixel is not finite"
     );
+
+    for preset in ["dawn", "noon", "dusk", "night"] {
+        let s = Scene::preset(preset).expect("preset").with_size(128, 72);
+        let w = render(&mut wgpu, &s, &noise);
+        let a = render(&mut ash, &s, &noise);
+        // A second frame (the air's tables kept from the first) holds the same bits.
+        let w2 = render(&mut wgpu, &s, &noise);
+        let a2 = render(&mut ash, &s, &noise);
+        for (f, again) in [(&w, &w2), (&a, &a2)] {
+            let d = stratus_test_support::frame_differences(preset, f, again);
+            assert!(d.is_empty(), "{preset}: a second frame differs: {d:?}");
+        }
+        for name in TABLES {
+            assert!(
+                w.resources[name] == a.resources[name],
+                "{preset}: {name}: ash and wgpu differ"
+            );
+        }
+        let differences = stratus_test_support::frame_differences(preset, &w, &a);
+        assert!(
+            differences.is_empty(),
+            "{preset}: ash against wgpu: {differences:?}"
+        );
+    }
 
     let model = AtmosphereModel::earth(scene.atmosphere.planet_radius_m);
 

@@ -146,6 +146,7 @@ fn mode_codes_and_flags_match_the_wgsl_constants() {
         ("FLAG_CHECKERBOARD", FrameUniforms::FLAG_CHECKERBOARD),
         ("FLAG_EMPTY_SKIP", FrameUniforms::FLAG_EMPTY_SKIP),
         ("FLAG_PHYSICAL_SKY", FrameUniforms::FLAG_PHYSICAL_SKY),
+        ("FLAG_MOONLIT", FrameUniforms::FLAG_MOONLIT),
     ];
     for (name, rust) in pairs {
         assert_eq!(constant(name), rust, "{name}");

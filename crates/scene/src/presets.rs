@@ -13,6 +13,10 @@ const SOURCES: &[(&str, &str)] = &[
     ("above-clouds", include_str!("../presets/above-clouds.toml")),
     ("inside-layer", include_str!("../presets/inside-layer.toml")),
     ("storm", include_str!("../presets/storm.toml")),
+    ("dawn", include_str!("../presets/dawn.toml")),
+    ("noon", include_str!("../presets/noon.toml")),
+    ("dusk", include_str!("../presets/dusk.toml")),
+    ("night", include_str!("../presets/night.toml")),
 ];
 
 /// The name of the preset that [`Scene::default`](crate::Scene::default) equals and that files

@@ -151,6 +151,11 @@ pub struct Camera {
     pub resolution: [u32; 2],
     /// Linear exposure multiplier applied to radiance before tone mapping (> 0).
     pub exposure: f64,
+    /// Adapt the exposure to the light of the hour (seed 001's auto exposure): `exposure`
+    /// times the ratio of the daylight of a sun 60 degrees high to the light of this scene's
+    /// sun (or moon, at night), to the power 0.75 (see [`Scene::auto_exposure`]).
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub auto_exposure: bool,
 }
 
 impl Default for Camera {
@@ -162,6 +167,7 @@ impl Default for Camera {
             fov_y_deg: 60.0,
             resolution: [800, 450],
             exposure: 1.0,
+            auto_exposure: false,
         }
     }
 }
@@ -873,6 +879,7 @@ impl Scene {
         };
         // Fields left out when they hold their defaults must still be in the schema.
         scene.atmosphere.sky = SkyModel::Physical;
+        scene.camera.auto_exposure = true;
         scene.atmosphere.air.ground_albedo = 0.5;
         scene
     }

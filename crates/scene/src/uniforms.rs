@@ -95,10 +95,18 @@ pub struct FrameUniforms {
     /// Thickness of the atmosphere (m), the ozone tent's full width (m), the ground's albedo,
     /// 0.
     pub air_misc: [f32; 4],
+    /// The moon (physical sky with a date and place): unit direction toward it; w = the full
+    /// moon's illuminance (luminance, in the units of `sun_illuminance`; 0 without a moon).
+    /// Its phase follows from its direction and the real sun's (`night`).
+    pub moon: [f32; 4],
+    /// The real sun's unit direction (the moon's lit side faces it; `sun_direction` is the
+    /// moon's when it is the key light); w = the illuminance of a magnitude-0 star, in the
+    /// units of `sun_illuminance` (0: no stars).
+    pub night: [f32; 4],
 }
 
 impl FrameUniforms {
-    /// Size of the block in bytes (36 vec4 members).
+    /// Size of the block in bytes (38 vec4 members).
     pub const SIZE: usize = std::mem::size_of::<Self>();
 
     /// `modes.w` bit: apply the Beer-Powder term.
@@ -113,10 +121,12 @@ impl FrameUniforms {
     pub const FLAG_EMPTY_SKIP: u32 = 1 << 4;
     /// `modes.w` bit: the physical sky (`atmosphere.sky = "physical"`).
     pub const FLAG_PHYSICAL_SKY: u32 = 1 << 5;
+    /// `modes.w` bit: the moon is the key light (`sun_direction`, `sun_illuminance`).
+    pub const FLAG_MOONLIT: u32 = 1 << 6;
 
     /// Every member in declaration order with its WGSL type; member `i` is at offset `16 * i`.
     /// The shader-reflection test compares the WGSL struct against this list.
-    pub const MEMBERS: [(&'static str, &'static str); 36] = [
+    pub const MEMBERS: [(&'static str, &'static str); 38] = [
         ("camera_position", "vec4<f32>"),
         ("camera_forward", "vec4<f32>"),
         ("camera_right", "vec4<f32>"),
@@ -153,6 +163,8 @@ impl FrameUniforms {
         ("air_mie", "vec4<f32>"),
         ("air_ozone", "vec4<f32>"),
         ("air_misc", "vec4<f32>"),
+        ("moon", "vec4<f32>"),
+        ("night", "vec4<f32>"),
     ];
 
     /// This block with `previous`'s camera as last frame's camera (what a renderer keeping
@@ -196,6 +208,17 @@ fn wrap_f32(x: f64, period: f64) -> f32 {
     if r >= period as f32 { 0.0 } else { r }
 }
 
+/// The full moon's illuminance over the sun's: 0.27 lux against 127,000 lux at the top of the
+/// atmosphere (Allen's Astrophysical Quantities).
+const FULL_MOON_OVER_SUN: f64 = 2.1e-6;
+
+/// A magnitude-0 star's illuminance over the sun's: 2.54e-6 lux (Vega) against 127,000 lux.
+const STAR_MAG0_OVER_SUN: f64 = 2.0e-11;
+
+/// How far auto exposure makes up for less light: the exposure grows as (day / now) to this
+/// power (1 would make every hour as bright as noon).
+const AUTO_EXPOSURE_ADAPTATION: f64 = 0.75;
+
 /// The unit vector of an elevation and an azimuth clockwise from north, in world axes.
 fn direction(elevation_deg: f64, azimuth_deg: f64) -> [f64; 3] {
     let (el, az) = (elevation_deg.to_radians(), azimuth_deg.to_radians());
@@ -216,6 +239,86 @@ impl Scene {
             return d;
         }
         direction(self.sun.elevation_deg, self.sun.azimuth_deg)
+    }
+
+    /// The moon when the physical sky has a date and place: its unit direction in world axes
+    /// and its illuminated fraction.
+    pub fn moon(&self) -> Option<([f64; 3], f64)> {
+        if !self.atmosphere.sky.is_physical() {
+            return None;
+        }
+        let (date, place) = self.sky.when_and_where()?;
+        let m = stratus_astro::moon(place, date);
+        Some((
+            direction(m.elevation_deg, m.azimuth_deg),
+            stratus_astro::moon_phase(date),
+        ))
+    }
+
+    /// The light that lights the scene: `(direction, illuminance, is the moon)`. The sun's,
+    /// but under the physical sky with a moon, the moon's once the sun is more than 12
+    /// degrees below the horizon (nautical twilight's end, when the sky the sun still lights
+    /// has faded to about the moonlit sky's brightness). The moon's illuminance is the full
+    /// moon's, 2.1e-6 of the sun's (0.27 lux against 127,000 lux), times the phase law of a
+    /// Lambertian sphere, (sin a + (pi - a) cos a) / pi at phase angle a.
+    pub fn key_light(&self) -> ([f64; 3], [f64; 3], bool) {
+        let sun = self.sun_direction();
+        if let Some((moon, fraction)) = self.moon()
+            && sun[1] < (-12f64).to_radians().sin()
+        {
+            let a = (2.0 * fraction - 1.0).clamp(-1.0, 1.0).acos();
+            let law = (a.sin() + (std::f64::consts::PI - a) * a.cos()) / std::f64::consts::PI;
+            let scale = FULL_MOON_OVER_SUN * law.max(0.0);
+            return (moon, self.sun.illuminance.map(|e| e * scale), true);
+        }
+        (sun, self.sun.illuminance, false)
+    }
+
+    /// The exposure the uniform block carries: `camera.exposure`, times with
+    /// `camera.auto_exposure` the ratio of the light on the ground under a sun 60 degrees
+    /// high to this scene's, to the power 0.75 (partial adaptation; at most 10^7). The light on the ground of a key light of zenith
+    /// cosine mu is mu T(mu) for the direct beam, T from the air's zenith optical depth and
+    /// Kasten and Young's air mass ("Revised optical air mass tables and approximation
+    /// formula", Applied Optics 1989), plus a diffuse 0.1 above the horizon falling a decade
+    /// every 2.9 degrees below it (twilight: about 400 lux at sunset, 3 lux when the sun is 6
+    /// degrees down).
+    pub fn auto_exposure(&self) -> f64 {
+        let e = self.camera.exposure;
+        if !self.camera.auto_exposure {
+            return e;
+        }
+        let (dir, illuminance, _) = self.key_light();
+        let luminance = |c: [f64; 3]| 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2];
+        let day = self.ground_light(60f64.to_radians().sin()) * luminance(self.sun.illuminance);
+        let now = self.ground_light(dir[1]) * luminance(illuminance);
+        // Starlight (about 1e-3 lux, 8e-9 of the sun's) is the floor.
+        let floor = 8e-9 * luminance(self.sun.illuminance);
+        // Partial adaptation: the eye (and a film) makes up for a dimmer scene only in part,
+        // so night stays darker than day (at full adaptation a moonlit scene looks like noon).
+        e * (day / now.max(floor))
+            .powf(AUTO_EXPOSURE_ADAPTATION)
+            .clamp(1e-3, 1e7)
+    }
+
+    /// Light on the ground per unit key-light illuminance for a key light of zenith cosine
+    /// `mu` (see [`Scene::auto_exposure`]).
+    fn ground_light(&self, mu: f64) -> f64 {
+        let air = &self.atmosphere.air;
+        let tau = [0usize, 1, 2].map(|c| {
+            air.rayleigh_scattering[c] * air.rayleigh_scale_height_m
+                + (air.mie_scattering + air.mie_absorption) * air.mie_scale_height_m
+                + air.ozone_absorption[c] * 0.5 * air.ozone_width_m
+        });
+        let tau = 0.2126 * tau[0] + 0.7152 * tau[1] + 0.0722 * tau[2];
+        let elevation_deg = mu.clamp(-1.0, 1.0).asin().to_degrees();
+        let direct = if mu > 0.0 {
+            let air_mass = 1.0 / (mu + 0.50572 * (elevation_deg + 6.07995).powf(-1.6364));
+            mu * (-tau * air_mass).exp()
+        } else {
+            0.0
+        };
+        let diffuse = 0.1 * 10f64.powf(0.35 * elevation_deg.min(0.0));
+        direct + diffuse
     }
 
     /// The sun's elevation above the horizon in degrees, from [`Scene::sun_direction`].
@@ -334,18 +437,33 @@ impl Scene {
         if atm.sky.is_physical() {
             flags |= FrameUniforms::FLAG_PHYSICAL_SKY;
         }
+        let (key_direction, key_illuminance, moonlit) = self.key_light();
+        if moonlit {
+            flags |= FrameUniforms::FLAG_MOONLIT;
+        }
+        let sun_luminance = {
+            let e = self.sun.illuminance;
+            0.2126 * e[0] + 0.7152 * e[1] + 0.0722 * e[2]
+        };
+        let (moon, star_mag0) = match self.moon() {
+            Some((dir, _)) => (
+                v4(dir, FULL_MOON_OVER_SUN * sun_luminance),
+                STAR_MAG0_OVER_SUN * sun_luminance,
+            ),
+            None => ([0.0; 4], 0.0),
+        };
         let air = &atm.air;
 
         let block = FrameUniforms {
             camera_position: v4(cam.position, tan_half_fov),
             camera_forward: v4(forward, aspect),
-            camera_right: v4(right, cam.exposure),
+            camera_right: v4(right, self.auto_exposure()),
             camera_up: v4(up, 0.0),
             sun_direction: v4(
-                self.sun_direction(),
+                key_direction,
                 self.sun.angular_radius_deg.to_radians().cos(),
             ),
-            sun_illuminance: v4(self.sun.illuminance, 0.0),
+            sun_illuminance: v4(key_illuminance, 0.0),
             atmosphere: [
                 atm.planet_radius_m as f32,
                 atm.cloud_bottom_m as f32,
@@ -421,6 +539,8 @@ impl Scene {
                 air.ground_albedo as f32,
                 0.0,
             ],
+            moon,
+            night: v4(self.sun_direction(), star_mag0),
         };
         block.with_previous_camera(&block)
     }

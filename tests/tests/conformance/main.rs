@@ -430,6 +430,13 @@ impl SceneResult {
                 cells.insert(path, cell);
                 continue;
             }
+            if path == Path::Cpu && scene.atmosphere.sky.is_physical() {
+                // The physical sky's tables are GPU passes; the CPU's f64 atmosphere measures
+                // them (tests/tests/atmosphere.rs) but draws no image yet (and says so).
+                cell.not_executed = Some("physical sky: GPU only");
+                cells.insert(path, cell);
+                continue;
+            }
             let frame = match timed(r, path, false) {
                 Ok(done) => {
                     cell.substituted = done.substituted;
