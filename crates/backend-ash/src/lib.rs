@@ -497,6 +497,9 @@ impl Renderer {
                 device: info.name.clone(),
             });
         }
+        if self.state.as_ref().is_some_and(|s| &s.shaders != shaders) {
+            self.frames.forget_computed();
+        }
         if plan_changed {
             self.drop_state();
         }

@@ -302,6 +302,14 @@ impl FrameState {
         self.computed.remove(&r.name);
     }
 
+    /// Other shader modules will run the same plan (the conformance suite's ash renderer
+    /// runs the committed SPIR-V, then glslang's builds of the GLSL and the HLSL): computed
+    /// persistent resources hold what the old modules computed, so they are computed again.
+    /// Otherwise a path would be measured on tables another path made.
+    pub fn forget_computed(&mut self) {
+        self.computed.clear();
+    }
+
     /// The flags of this frame: the host's; `stats` when the plan counts; `history` once last
     /// frame's history is valid; `stale:NAME` for every computed persistent resource that has
     /// no result yet or that the host invalidated.
