@@ -166,7 +166,13 @@ const uint MULTISCATTER_STEPS = 32u;
 const uint SKY_VIEW_STEPS = 48u;
 const uint AMBIENT_DIRECTIONS = 64u;
 const uint AMBIENT_STEPS = 24u;
+const uint GROUND_IRRADIANCE_SIZE = 64u;
 const uint NO_LAYER = 4u;
+const uint GROUND_IRRADIANCE_DIRECTIONS = 128u;
+const uint SHADOW_SIZE = 128u;
+const float SHADOW_HALF_EXTENT = 20000.0;
+const float SHADOW_FADE_START = 0.75;
+const uint SHADOW_STEPS = 16u;
 const uint OCCUPANCY_CELLS = 64u;
 const uint STAT_PIXELS = 0u;
 const uint STAT_MARCHED = 1u;
@@ -251,8 +257,8 @@ vec3 view_ray(uvec2 pixel_1) {
     vec4 _e26 = _group_0_binding_0_cs.camera_forward;
     vec4 _e30 = _group_0_binding_0_cs.camera_right;
     vec4 _e39 = _group_0_binding_0_cs.camera_up;
-    vec3 d_16 = ((_e26.xyz + (_e30.xyz * ((ndc.x * tan_half) * aspect))) - (_e39.xyz * (ndc.y * tan_half)));
-    return normalize(d_16);
+    vec3 d_18 = ((_e26.xyz + (_e30.xyz * ((ndc.x * tan_half) * aspect))) - (_e39.xyz * (ndc.y * tan_half)));
+    return normalize(d_18);
 }
 
 Roots solve_sphere(float b, float c) {
@@ -260,8 +266,8 @@ Roots solve_sphere(float b, float c) {
     if ((disc < 0.0)) {
         return Roots(0.0, 0.0, false);
     }
-    float s_2 = sqrt(disc);
-    float r0_1 = -((b + ((b >= 0.0) ? s_2 : -(s_2))));
+    float s_3 = sqrt(disc);
+    float r0_1 = -((b + ((b >= 0.0) ? s_3 : -(s_3))));
     if ((r0_1 == 0.0)) {
         return Roots(0.0, 0.0, true);
     }
@@ -272,8 +278,8 @@ Roots solve_sphere(float b, float c) {
 Roots ray_shell(float alt, vec3 d, float radius_alt) {
     float rp = _group_0_binding_0_cs.atmosphere.x;
     float b_3 = (d.y * (alt + rp));
-    float c_4 = ((alt - radius_alt) * ((alt + radius_alt) + (2.0 * rp)));
-    Roots _e16 = solve_sphere(b_3, c_4);
+    float c_5 = ((alt - radius_alt) * ((alt + radius_alt) + (2.0 * rp)));
+    Roots _e16 = solve_sphere(b_3, c_5);
     return _e16;
 }
 
@@ -285,25 +291,25 @@ float altitude_of(vec3 p) {
 }
 
 bool hits_ground(vec3 p_1, float alt_1, vec3 d_1) {
-    bool local_14 = false;
+    bool local_15 = false;
     float rp_2 = _group_0_binding_0_cs.atmosphere.x;
     float b_4 = dot(d_1, vec3(p_1.x, (p_1.y + rp_2), p_1.z));
-    float c_5 = (alt_1 * (alt_1 + (2.0 * rp_2)));
+    float c_6 = (alt_1 * (alt_1 + (2.0 * rp_2)));
     if ((b_4 < 0.0)) {
-        local_14 = ((b_4 * b_4) >= c_5);
+        local_15 = ((b_4 * b_4) >= c_6);
     } else {
-        local_14 = false;
+        local_15 = false;
     }
-    bool _e24 = local_14;
+    bool _e24 = local_15;
     return _e24;
 }
 
 Interval shell_interval(float alt_2, vec3 d_2, float bottom, float top) {
     float start = 0.0;
     float end = 0.0;
-    bool local_15 = false;
     bool local_16 = false;
     bool local_17 = false;
+    bool local_18 = false;
     float cutoff = _group_0_binding_0_cs.atmosphere.w;
     Roots _e8 = ray_shell(alt_2, d_2, bottom);
     Roots _e9 = ray_shell(alt_2, d_2, top);
@@ -318,33 +324,33 @@ Interval shell_interval(float alt_2, vec3 d_2, float bottom, float top) {
         if ((alt_2 <= top)) {
             end = _e9.t1_;
             if (_e8.hit) {
-                local_15 = (_e8.t0_ > 0.0);
+                local_16 = (_e8.t0_ > 0.0);
             } else {
-                local_15 = false;
+                local_16 = false;
             }
-            bool _e34 = local_15;
+            bool _e34 = local_16;
             if (_e34) {
                 float _e35 = end;
                 end = min(_e35, _e8.t0_);
             }
         } else {
             if (!(!(_e9.hit))) {
-                local_16 = (_e9.t1_ <= 0.0);
+                local_17 = (_e9.t1_ <= 0.0);
             } else {
-                local_16 = true;
+                local_17 = true;
             }
-            bool _e47 = local_16;
+            bool _e47 = local_17;
             if (_e47) {
                 return Interval(0.0, 0.0, 1u);
             }
             start = max(_e9.t0_, 0.0);
             end = _e9.t1_;
             if (_e8.hit) {
-                local_17 = (_e8.t0_ > 0.0);
+                local_18 = (_e8.t0_ > 0.0);
             } else {
-                local_17 = false;
+                local_18 = false;
             }
-            bool _e63 = local_17;
+            bool _e63 = local_18;
             if (_e63) {
                 float _e64 = end;
                 end = min(_e64, _e8.t0_);
@@ -375,20 +381,20 @@ Layer layer_from(vec4 g, vec4 w_1) {
     return Layer(g.x, g.y, g.z, g.w, w_1.x, w_1.y, w_1.zw);
 }
 
-Layer cloud_layer(uint i_3) {
-    if ((i_3 == 1u)) {
+Layer cloud_layer(uint i_4) {
+    if ((i_4 == 1u)) {
         vec4 _e5 = _group_0_binding_0_cs.layer1_;
         vec4 _e8 = _group_0_binding_0_cs.layer1_weather;
         Layer _e9 = layer_from(_e5, _e8);
         return _e9;
     } else {
-        if ((i_3 == 2u)) {
+        if ((i_4 == 2u)) {
             vec4 _e14 = _group_0_binding_0_cs.layer2_;
             vec4 _e17 = _group_0_binding_0_cs.layer2_weather;
             Layer _e18 = layer_from(_e14, _e17);
             return _e18;
         } else {
-            if ((i_3 == 3u)) {
+            if ((i_4 == 3u)) {
                 vec4 _e23 = _group_0_binding_0_cs.layer3_;
                 vec4 _e26 = _group_0_binding_0_cs.layer3_weather;
                 Layer _e27 = layer_from(_e23, _e26);
@@ -408,24 +414,24 @@ Layer cloud_layer(uint i_3) {
 
 vec2 layers_span() {
     vec2 span = vec2(0.0);
-    uint i_4 = 1u;
+    uint i_5 = 1u;
     vec4 _e2 = _group_0_binding_0_cs.atmosphere;
     span = _e2.yz;
     bool loop_init = true;
     while(true) {
         if (!loop_init) {
-            uint _e22 = i_4;
-            i_4 = (_e22 + 1u);
+            uint _e22 = i_5;
+            i_5 = (_e22 + 1u);
         }
         loop_init = false;
-        uint _e7 = i_4;
+        uint _e7 = i_5;
         uint _e8 = layer_count();
         if ((_e7 < _e8)) {
         } else {
             break;
         }
         {
-            uint _e10 = i_4;
+            uint _e10 = i_5;
             Layer _e11 = cloud_layer(_e10);
             float _e13 = span.x;
             float _e17 = span.y;
@@ -444,43 +450,43 @@ Interval cloud_interval(float alt_4, vec3 d_4) {
 
 Interval nearest_layer_interval(float alt_5, vec3 d_5) {
     Interval best = Interval(0.0, 0.0, 0u);
-    uint i_5 = 1u;
-    bool local_18 = false;
+    uint i_6 = 1u;
     bool local_19 = false;
+    bool local_20 = false;
     Layer _e3 = cloud_layer(0u);
     Interval _e4 = layer_interval(alt_5, d_5, _e3);
     best = _e4;
     bool loop_init_1 = true;
     while(true) {
         if (!loop_init_1) {
-            uint _e35 = i_5;
-            i_5 = (_e35 + 1u);
+            uint _e35 = i_6;
+            i_6 = (_e35 + 1u);
         }
         loop_init_1 = false;
-        uint _e8 = i_5;
+        uint _e8 = i_6;
         uint _e9 = layer_count();
         if ((_e8 < _e9)) {
         } else {
             break;
         }
         {
-            uint _e11 = i_5;
+            uint _e11 = i_6;
             Layer _e12 = cloud_layer(_e11);
             Interval _e13 = layer_interval(alt_5, d_5, _e12);
             if ((_e13.kind == RAY_MARCH)) {
                 uint _e20 = best.kind;
                 if (!((_e20 != RAY_MARCH))) {
                     float _e28 = best.start;
-                    local_19 = (_e13.start < _e28);
+                    local_20 = (_e13.start < _e28);
                 } else {
-                    local_19 = true;
+                    local_20 = true;
                 }
-                bool _e31 = local_19;
-                local_18 = _e31;
+                bool _e31 = local_20;
+                local_19 = _e31;
             } else {
-                local_18 = false;
+                local_19 = false;
             }
-            bool _e33 = local_18;
+            bool _e33 = local_19;
             if (_e33) {
                 best = _e13;
             }
@@ -493,8 +499,8 @@ Interval nearest_layer_interval(float alt_5, vec3 d_5) {
 Roots ray_shell_from(vec3 p_2, float alt_6, vec3 d_6, float radius_alt_1) {
     float rp_3 = _group_0_binding_0_cs.atmosphere.x;
     float b_5 = dot(d_6, vec3(p_2.x, (p_2.y + rp_3), p_2.z));
-    float c_6 = ((alt_6 - radius_alt_1) * ((alt_6 + radius_alt_1) + (2.0 * rp_3)));
-    Roots _e20 = solve_sphere(b_5, c_6);
+    float c_7 = ((alt_6 - radius_alt_1) * ((alt_6 + radius_alt_1) + (2.0 * rp_3)));
+    Roots _e20 = solve_sphere(b_5, c_7);
     return _e20;
 }
 
@@ -515,14 +521,14 @@ float air_top() {
 }
 
 AirSample air_at(float h_km) {
-    float h_7 = (max(h_km, 0.0) * 1000.0);
+    float h_8 = (max(h_km, 0.0) * 1000.0);
     float _e9 = _group_0_binding_0_cs.air_rayleigh.w;
-    float rayleigh_density = exp((-(h_7) / _e9));
+    float rayleigh_density = exp((-(h_8) / _e9));
     float _e16 = _group_0_binding_0_cs.air_mie.z;
-    float mie_density = exp((-(h_7) / _e16));
+    float mie_density = exp((-(h_8) / _e16));
     float _e22 = _group_0_binding_0_cs.air_ozone.w;
     float _e28 = _group_0_binding_0_cs.air_misc.y;
-    float ozone_density = max((1.0 - (abs((h_7 - _e22)) / (0.5 * _e28))), 0.0);
+    float ozone_density = max((1.0 - (abs((h_8 - _e22)) / (0.5 * _e28))), 0.0);
     vec4 _e38 = _group_0_binding_0_cs.air_rayleigh;
     vec3 rayleigh = (_e38.xyz * (rayleigh_density * 1000.0));
     float _e46 = _group_0_binding_0_cs.air_mie.x;
@@ -546,15 +552,15 @@ float distance_to_top(float r_3, float mu_1) {
 }
 
 bool meets_ground(float r_4, float mu_2) {
-    bool local_20 = false;
+    bool local_21 = false;
     if ((mu_2 < 0.0)) {
         float _e6 = air_bottom();
         float _e7 = sphere_discriminant(r_4, mu_2, _e6);
-        local_20 = (_e7 >= 0.0);
+        local_21 = (_e7 >= 0.0);
     } else {
-        local_20 = false;
+        local_21 = false;
     }
-    bool _e11 = local_20;
+    bool _e11 = local_21;
     return _e11;
 }
 
@@ -586,29 +592,29 @@ vec4 lut_bilinear(sampler2D lut, vec2 x_3, uvec2 size) {
 vec2 transmittance_coords(float r_7, float mu_5) {
     float _e2 = air_bottom();
     float _e3 = air_top();
-    float h_8 = sqrt(max(((_e3 - _e2) * (_e3 + _e2)), 0.0));
+    float h_9 = sqrt(max(((_e3 - _e2) * (_e3 + _e2)), 0.0));
     float rho = sqrt(max(((r_7 - _e2) * (r_7 + _e2)), 0.0));
     float _e16 = distance_to_top(r_7, mu_5);
     float d_min = (_e3 - r_7);
-    float d_max = (rho + h_8);
-    return vec2(((_e16 - d_min) / max((d_max - d_min), 1e-6)), (rho / h_8));
+    float d_max = (rho + h_9);
+    return vec2(((_e16 - d_min) / max((d_max - d_min), 1e-6)), (rho / h_9));
 }
 
 vec2 transmittance_r_mu(vec2 x_4) {
     float mu_6 = 1.0;
     float _e1 = air_bottom();
     float _e2 = air_top();
-    float h_9 = sqrt(max(((_e2 - _e1) * (_e2 + _e1)), 0.0));
-    float rho_1 = (h_9 * x_4.y);
-    float r_13 = sqrt(((rho_1 * rho_1) + (_e1 * _e1)));
-    float d_min_1 = (_e2 - r_13);
-    float d_max_1 = (rho_1 + h_9);
-    float d_17 = (d_min_1 + (x_4.x * (d_max_1 - d_min_1)));
-    if ((d_17 > 0.0)) {
-        mu_6 = clamp(((((h_9 * h_9) - (rho_1 * rho_1)) - (d_17 * d_17)) / ((2.0 * r_13) * d_17)), -1.0, 1.0);
+    float h_10 = sqrt(max(((_e2 - _e1) * (_e2 + _e1)), 0.0));
+    float rho_1 = (h_10 * x_4.y);
+    float r_14 = sqrt(((rho_1 * rho_1) + (_e1 * _e1)));
+    float d_min_1 = (_e2 - r_14);
+    float d_max_1 = (rho_1 + h_10);
+    float d_19 = (d_min_1 + (x_4.x * (d_max_1 - d_min_1)));
+    if ((d_19 > 0.0)) {
+        mu_6 = clamp(((((h_10 * h_10) - (rho_1 * rho_1)) - (d_19 * d_19)) / ((2.0 * r_14) * d_19)), -1.0, 1.0);
     }
     float _e37 = mu_6;
-    return vec2(r_13, _e37);
+    return vec2(r_14, _e37);
 }
 
 vec3 transmittance_to_top(float r_8, float mu_7) {
@@ -644,91 +650,84 @@ float phase_cornette_shanks_air(float cos_theta_1, float g_1) {
     return (((0.119366206 * (1.0 - g2_)) * (1.0 + (cos_theta_1 * cos_theta_1))) / ((2.0 + g2_) * pow(max(((1.0 + g2_) - ((2.0 * g_1) * cos_theta_1)), 1e-6), 1.5)));
 }
 
-vec3 fibonacci_direction(uint k_3, uint n_1) {
-    float z_2 = (1.0 - (((2.0 * float(k_3)) + 1.0) / float(n_1)));
-    float s_3 = sqrt(max((1.0 - (z_2 * z_2)), 0.0));
-    float phi = (2.3999634 * float(k_3));
-    return vec3((s_3 * cos(phi)), z_2, (s_3 * sin(phi)));
+vec3 fibonacci_direction(uint k_5, uint n_1) {
+    float z_2 = (1.0 - (((2.0 * float(k_5)) + 1.0) / float(n_1)));
+    float s_4 = sqrt(max((1.0 - (z_2 * z_2)), 0.0));
+    float phi = (2.3999634 * float(k_5));
+    return vec3((s_4 * cos(phi)), z_2, (s_4 * sin(phi)));
 }
 
-vec3 ground_radiance(float mu_s_2) {
+vec3 ground_radiance_sun(float mu_s_2) {
     float _e4 = _group_0_binding_0_cs.air_misc.z;
     float _e10 = air_bottom();
     vec3 _e13 = sun_transmittance((_e10 + 0.001), mu_s_2);
     return (((_e4 / PI) * max(mu_s_2, 0.0)) * _e13);
 }
 
-Scattered integrate_air(vec3 origin, vec3 d_7, float distance_km, uint steps, vec3 sun, bool ground) {
+Scattered integrate_air(vec3 origin, vec3 d_7, float distance_km, uint steps, vec3 sun) {
     vec3 radiance_1 = vec3(0.0);
-    vec3 tau_2 = vec3(0.0);
+    vec3 tau_3 = vec3(0.0);
     float t0_ = 0.0;
-    uint i_6 = 0u;
+    uint i_7 = 0u;
     float cos_theta_7 = dot(d_7, sun);
-    float _e7 = phase_rayleigh(cos_theta_7);
-    float _e11 = _group_0_binding_0_cs.air_mie.w;
-    float _e12 = phase_cornette_shanks_air(cos_theta_7, _e11);
+    float _e6 = phase_rayleigh(cos_theta_7);
+    float _e10 = _group_0_binding_0_cs.air_mie.w;
+    float _e11 = phase_cornette_shanks_air(cos_theta_7, _e10);
     bool loop_init_2 = true;
     while(true) {
         if (!loop_init_2) {
-            uint _e80 = i_6;
-            i_6 = (_e80 + 1u);
+            uint _e79 = i_7;
+            i_7 = (_e79 + 1u);
         }
         loop_init_2 = false;
-        uint _e23 = i_6;
-        if ((_e23 < steps)) {
+        uint _e22 = i_7;
+        if ((_e22 < steps)) {
         } else {
             break;
         }
         {
-            uint _e25 = i_6;
-            float s1_ = (float((_e25 + 1u)) / float(steps));
+            uint _e24 = i_7;
+            float s1_ = (float((_e24 + 1u)) / float(steps));
             float t1_ = ((distance_km * s1_) * s1_);
-            float _e33 = t0_;
-            float dt_1 = (t1_ - _e33);
-            float _e35 = t0_;
-            vec3 p_12 = (origin + (d_7 * (0.5 * (_e35 + t1_))));
-            float r_14 = length(p_12);
-            vec3 up = (p_12 / vec3(r_14));
-            float mu_s_3 = dot(up, sun);
-            float _e45 = air_bottom();
-            AirSample _e47 = air_at((r_14 - _e45));
-            vec3 _e48 = tau_2;
-            vec3 t_view = exp(-((_e48 + ((0.5 * _e47.extinction) * dt_1))));
-            vec3 _e56 = sun_transmittance(r_14, mu_s_3);
-            vec3 _e57 = multiscatter(r_14, mu_s_3);
-            vec3 inscatter = ((_e56 * ((_e47.rayleigh * _e7) + vec3((_e47.mie * _e12)))) + (_e57 * (_e47.rayleigh + vec3(_e47.mie))));
-            vec3 _e71 = radiance_1;
-            radiance_1 = (_e71 + ((t_view * inscatter) * dt_1));
-            vec3 _e75 = tau_2;
-            tau_2 = (_e75 + (_e47.extinction * dt_1));
+            float _e32 = t0_;
+            float dt_1 = (t1_ - _e32);
+            float _e34 = t0_;
+            vec3 p_12 = (origin + (d_7 * (0.5 * (_e34 + t1_))));
+            float r_15 = length(p_12);
+            vec3 up = (p_12 / vec3(r_15));
+            float mu_s_5 = dot(up, sun);
+            float _e44 = air_bottom();
+            AirSample _e46 = air_at((r_15 - _e44));
+            vec3 _e47 = tau_3;
+            vec3 t_view = exp(-((_e47 + ((0.5 * _e46.extinction) * dt_1))));
+            vec3 _e55 = sun_transmittance(r_15, mu_s_5);
+            vec3 _e56 = multiscatter(r_15, mu_s_5);
+            vec3 inscatter = ((_e55 * ((_e46.rayleigh * _e6) + vec3((_e46.mie * _e11)))) + (_e56 * (_e46.rayleigh + vec3(_e46.mie))));
+            vec3 _e70 = radiance_1;
+            radiance_1 = (_e70 + ((t_view * inscatter) * dt_1));
+            vec3 _e74 = tau_3;
+            tau_3 = (_e74 + (_e46.extinction * dt_1));
             t0_ = t1_;
         }
     }
-    if (ground) {
-        vec3 end_1 = (origin + (d_7 * distance_km));
-        vec3 _e84 = radiance_1;
-        vec3 _e85 = tau_2;
-        vec3 _e90 = ground_radiance(dot(normalize(end_1), sun));
-        radiance_1 = (_e84 + (exp(-(_e85)) * _e90));
-    }
-    vec3 _e93 = radiance_1;
-    vec3 _e94 = tau_2;
-    return Scattered(_e93, exp(-(_e94)));
+    vec3 _e81 = radiance_1;
+    vec3 _e82 = tau_3;
+    return Scattered(_e81, exp(-(_e82)));
 }
 
-vec2 air_ray_end(vec3 origin_1, vec3 d_8) {
-    float r_15 = length(origin_1);
-    float mu_8 = (dot(origin_1, d_8) / r_15);
-    bool _e5 = meets_ground(r_15, mu_8);
+vec2 air_ray_end(vec3 origin_2, vec3 d_9) {
+    float r_16 = length(origin_2);
+    float mu_8 = (dot(origin_2, d_9) / r_16);
+    bool _e5 = meets_ground(r_16, mu_8);
     if (_e5) {
-        float _e6 = distance_to_ground(r_15, mu_8);
+        float _e6 = distance_to_ground(r_16, mu_8);
         return vec2(_e6, 1.0);
     }
     float _e9 = air_top();
-    if ((r_15 > _e9)) {
+    if ((r_16 > _e9)) {
         return vec2(0.0, 0.0);
     }
-    float _e14 = distance_to_top(r_15, mu_8);
+    float _e14 = distance_to_top(r_16, mu_8);
     return vec2(_e14, 0.0);
 }
 
@@ -763,8 +762,8 @@ float horizon_elevation(float r_11) {
 
 float sun_azimuth() {
     vec4 _e2 = _group_0_binding_0_cs.sun_direction;
-    vec3 s_4 = _e2.xyz;
-    return atan(s_4.z, s_4.x);
+    vec3 s_5 = _e2.xyz;
+    return atan(s_5.z, s_5.x);
 }
 
 vec3 aerial_ray(uvec2 c_1) {
@@ -784,9 +783,9 @@ vec3 sun_through_air(vec3 rel) {
     }
     float _e10 = _group_0_binding_0_cs.atmosphere.x;
     vec3 q_6 = (vec3(rel.x, (rel.y + _e10), rel.z) * 0.001);
-    float r_16 = length(q_6);
+    float r_17 = length(q_6);
     vec4 _e21 = _group_0_binding_0_cs.sun_direction;
-    vec3 _e24 = sun_transmittance(r_16, dot((q_6 / vec3(r_16)), _e21.xyz));
+    vec3 _e24 = sun_transmittance(r_17, dot((q_6 / vec3(r_17)), _e21.xyz));
     return _e24;
 }
 
@@ -795,33 +794,33 @@ float layer_height(Layer l_1, float alt_7) {
 }
 
 uint layer_at(float alt_8) {
-    uint i_7 = 0u;
-    bool local_21 = false;
+    uint i_8 = 0u;
+    bool local_22 = false;
     bool loop_init_3 = true;
     while(true) {
         if (!loop_init_3) {
-            uint _e19 = i_7;
-            i_7 = (_e19 + 1u);
+            uint _e19 = i_8;
+            i_8 = (_e19 + 1u);
         }
         loop_init_3 = false;
-        uint _e3 = i_7;
+        uint _e3 = i_8;
         uint _e4 = layer_count();
         if ((_e3 < _e4)) {
         } else {
             break;
         }
         {
-            uint _e6 = i_7;
+            uint _e6 = i_8;
             Layer _e7 = cloud_layer(_e6);
             float _e8 = layer_height(_e7, alt_8);
             if ((_e8 >= 0.0)) {
-                local_21 = (_e8 <= 1.0);
+                local_22 = (_e8 <= 1.0);
             } else {
-                local_21 = false;
+                local_22 = false;
             }
-            bool _e16 = local_21;
+            bool _e16 = local_22;
             if (_e16) {
-                uint _e17 = i_7;
+                uint _e17 = i_8;
                 return _e17;
             }
         }
@@ -895,26 +894,26 @@ float phase(float cos_theta_4, float scale) {
     }
 }
 
-float sun_scattering(float cos_theta_5, float tau_4) {
+float sun_scattering(float cos_theta_5, float tau_5) {
     float octave_sum = 0.0;
     float ka = 1.0;
     float kb = 1.0;
     float kc = 1.0;
-    uint i_9 = 0u;
+    uint i_10 = 0u;
     float total = 0.0;
     float a_7 = _group_0_binding_0_cs.multiple_scattering.x;
     float b_7 = _group_0_binding_0_cs.multiple_scattering.y;
-    float c_7 = _group_0_binding_0_cs.multiple_scattering.z;
+    float c_8 = _group_0_binding_0_cs.multiple_scattering.z;
     uint _e17 = _group_0_binding_0_cs.misc.x;
     uint octaves = min(_e17, MAX_OCTAVES);
     bool loop_init_4 = true;
     while(true) {
         if (!loop_init_4) {
-            uint _e50 = i_9;
-            i_9 = (_e50 + 1u);
+            uint _e50 = i_10;
+            i_10 = (_e50 + 1u);
         }
         loop_init_4 = false;
-        uint _e30 = i_9;
+        uint _e30 = i_10;
         if ((_e30 < octaves)) {
         } else {
             break;
@@ -925,25 +924,25 @@ float sun_scattering(float cos_theta_5, float tau_4) {
             float _e34 = kb;
             kb = (_e34 * b_7);
             float _e36 = kc;
-            kc = (_e36 * c_7);
+            kc = (_e36 * c_8);
             float _e38 = octave_sum;
             float _e39 = ka;
             float _e40 = kc;
             float _e41 = phase(cos_theta_5, _e40);
             float _e43 = kb;
-            octave_sum = (_e38 + ((_e39 * _e41) * exp((-(_e43) * tau_4))));
+            octave_sum = (_e38 + ((_e39 * _e41) * exp((-(_e43) * tau_5))));
         }
     }
     float _e55 = _group_0_binding_0_cs.sun_direction.y;
     float _e56 = saturate(_e55);
     float _e58 = phase(cos_theta_5, 1.0);
     float _e62 = octave_sum;
-    total = ((_e58 * exp(-(tau_4))) + (_e56 * _e62));
+    total = ((_e58 * exp(-(tau_5))) + (_e56 * _e62));
     uint _e69 = _group_0_binding_0_cs.modes.w;
     if (((_e69 & FLAG_BEER_POWDER) != 0u)) {
         float _e74 = total;
         float _e78 = _group_0_binding_0_cs.phase.w;
-        total = (_e74 * (1.0 - exp((-(_e78) * tau_4))));
+        total = (_e74 * (1.0 - exp((-(_e78) * tau_5))));
     }
     float _e85 = total;
     return _e85;
@@ -955,6 +954,14 @@ float height_fraction(float alt_11) {
     float _e3 = layer_height(_e2, alt_11);
     float _e4 = saturate(_e3);
     return _e4;
+}
+
+vec3 shadow_ground_point(uvec2 c_2) {
+    vec2 xz_1 = ((((vec2(c_2) / vec2(127.0)) * 2.0) - vec2(1.0)) * SHADOW_HALF_EXTENT);
+    float rp_4 = _group_0_binding_0_cs.atmosphere.x;
+    float s2_ = dot(xz_1, xz_1);
+    float y_1 = (-(s2_) / (sqrt(max(((rp_4 * rp_4) - s2_), 0.0)) + rp_4));
+    return vec3(xz_1.x, y_1, xz_1.y);
 }
 
 vec3 step_integral(vec3 source, float sigma_t, float dt) {
@@ -970,8 +977,8 @@ vec3 step_integral(vec3 source, float sigma_t, float dt) {
 float start_offset(uvec2 pixel_3) {
     uint _e4 = _group_0_binding_0_cs.modes.w;
     bool jitter_1 = ((_e4 & FLAG_JITTER) != 0u);
-    uint k_10 = _group_0_binding_0_cs.temporal.x;
-    if ((k_10 <= 1u)) {
+    uint k_12 = _group_0_binding_0_cs.temporal.x;
+    if ((k_12 <= 1u)) {
         uint _e18 = _group_0_binding_0_cs.misc.y;
         float _e19 = hash_unit(pixel_3, _e18);
         return (jitter_1 ? _e19 : 0.5);
@@ -979,7 +986,7 @@ float start_offset(uvec2 pixel_3) {
     float _e23 = hash_unit(pixel_3, 0u);
     float base_2 = (jitter_1 ? _e23 : 0.5);
     uint _e29 = _group_0_binding_0_cs.misc.y;
-    float _e32 = van_der_corput((_e29 / (k_10 * k_10)));
+    float _e32 = van_der_corput((_e29 / (k_12 * k_12)));
     return fract((base_2 + _e32));
 }
 
@@ -987,12 +994,12 @@ uvec2 bayer2_(uint v_2) {
     return uvec2(((v_2 ^ (v_2 >> 1u)) & 1u), (v_2 & 1u));
 }
 
-uvec2 block_offset(uint f, uint k_5) {
-    if ((k_5 == 2u)) {
+uvec2 block_offset(uint f, uint k_7) {
+    if ((k_7 == 2u)) {
         uvec2 _e6 = bayer2_((f % 4u));
         return _e6;
     }
-    if ((k_5 == 4u)) {
+    if ((k_7 == 4u)) {
         uint b_8 = (f % 16u);
         uvec2 _e13 = bayer2_((b_8 >> 2u));
         uvec2 _e17 = bayer2_((b_8 & 3u));
@@ -1002,36 +1009,36 @@ uvec2 block_offset(uint f, uint k_5) {
 }
 
 vec2 reproject(uvec2 pixel_5, float depth_2) {
-    bool local_38 = false;
     bool local_39 = false;
     bool local_40 = false;
+    bool local_41 = false;
     vec3 dir = vec3(0.0);
     vec4 _e4 = _group_0_binding_0_cs.previous_position;
     vec4 _e7 = _group_0_binding_0_cs.camera_position;
     if (all(equal(_e4, _e7))) {
         vec4 _e14 = _group_0_binding_0_cs.previous_forward;
         vec4 _e17 = _group_0_binding_0_cs.camera_forward;
-        local_38 = all(equal(_e14, _e17));
-    } else {
-        local_38 = false;
-    }
-    bool _e21 = local_38;
-    if (_e21) {
-        vec4 _e26 = _group_0_binding_0_cs.previous_right;
-        vec4 _e29 = _group_0_binding_0_cs.camera_right;
-        local_39 = all(equal(_e26, _e29));
+        local_39 = all(equal(_e14, _e17));
     } else {
         local_39 = false;
     }
-    bool _e33 = local_39;
-    if (_e33) {
-        vec4 _e38 = _group_0_binding_0_cs.previous_up;
-        vec4 _e41 = _group_0_binding_0_cs.camera_up;
-        local_40 = all(equal(_e38, _e41));
+    bool _e21 = local_39;
+    if (_e21) {
+        vec4 _e26 = _group_0_binding_0_cs.previous_right;
+        vec4 _e29 = _group_0_binding_0_cs.camera_right;
+        local_40 = all(equal(_e26, _e29));
     } else {
         local_40 = false;
     }
-    bool same = local_40;
+    bool _e33 = local_40;
+    if (_e33) {
+        vec4 _e38 = _group_0_binding_0_cs.previous_up;
+        vec4 _e41 = _group_0_binding_0_cs.camera_up;
+        local_41 = all(equal(_e38, _e41));
+    } else {
+        local_41 = false;
+    }
+    bool same = local_41;
     if (same) {
         return vec2(pixel_5);
     }
@@ -1060,15 +1067,15 @@ vec2 reproject(uvec2 pixel_5, float depth_2) {
 }
 
 bool on_screen(vec2 q) {
-    bool local_41 = false;
+    bool local_42 = false;
     uvec4 _e3 = _group_0_binding_0_cs.counts;
     vec2 size_2 = vec2(_e3.xy);
     if (all(greaterThanEqual(q, vec2(-0.5)))) {
-        local_41 = all(lessThanEqual(q, (size_2 - vec2(0.5))));
+        local_42 = all(lessThanEqual(q, (size_2 - vec2(0.5))));
     } else {
-        local_41 = false;
+        local_42 = false;
     }
-    bool _e18 = local_41;
+    bool _e18 = local_42;
     return _e18;
 }
 
@@ -1076,17 +1083,17 @@ vec4 catmull_rom(float t_1) {
     return vec4((t_1 * (-0.5 + (t_1 * (1.0 - (0.5 * t_1))))), (1.0 + ((t_1 * t_1) * (-2.5 + (1.5 * t_1)))), (t_1 * (0.5 + (t_1 * (2.0 - (1.5 * t_1))))), ((t_1 * t_1) * (-0.5 + (0.5 * t_1))));
 }
 
-bool in_blocks(uvec2 id_18) {
-    uint k_11 = _group_0_binding_0_cs.temporal.x;
+bool in_blocks(uvec2 id_20) {
+    uint k_13 = _group_0_binding_0_cs.temporal.x;
     uvec4 _e7 = _group_0_binding_0_cs.counts;
-    return all(lessThan(id_18, (((_e7.xy + uvec2(k_11)) - uvec2(1u)) / uvec2(k_11))));
+    return all(lessThan(id_20, (((_e7.xy + uvec2(k_13)) - uvec2(1u)) / uvec2(k_13))));
 }
 
-uvec2 sparse_pixel(uvec2 id_19) {
-    uint k_12 = _group_0_binding_0_cs.temporal.x;
+uvec2 sparse_pixel(uvec2 id_21) {
+    uint k_14 = _group_0_binding_0_cs.temporal.x;
     uint _e9 = _group_0_binding_0_cs.misc.y;
-    uvec2 _e10 = block_offset(_e9, k_12);
-    return ((id_19 * k_12) + _e10);
+    uvec2 _e10 = block_offset(_e9, k_14);
+    return ((id_21 * k_14) + _e10);
 }
 
 uint rng_seed(uvec2 pixel_6, uint frame_index_1) {
@@ -1099,8 +1106,8 @@ uint rng_seed(uvec2 pixel_6, uint frame_index_1) {
 float rng_next(inout uint rng_1) {
     uint _e1 = rng_1;
     rng_1 = ((_e1 * 747796405u) + 2891336453u);
-    uint s_5 = rng_1;
-    uint word_1 = (((s_5 >> ((s_5 >> 28u) + 4u)) ^ s_5) * 277803737u);
+    uint s_6 = rng_1;
+    uint word_1 = (((s_6 >> ((s_6 >> 28u) + 4u)) ^ s_6) * 277803737u);
     return (float((((word_1 >> 22u) ^ word_1) >> 8u)) * 5.9604645e-8);
 }
 
@@ -1109,44 +1116,44 @@ float rng_exponential(inout uint rng_2, float sigma) {
     return (-(log((1.0 - _e2))) / sigma);
 }
 
-Segments layer_segments(vec3 p_9, float alt_13, vec3 d_11) {
-    Segments s = Segments(vec2(0.0), vec2(0.0), 0u);
-    bool local_42 = false;
+Segments layer_segments(vec3 p_9, float alt_13, vec3 d_12) {
+    Segments s_1 = Segments(vec2(0.0), vec2(0.0), 0u);
+    bool local_43 = false;
     vec2 a_1 = vec2(0.0);
     vec2 b_1 = vec2(0.0);
     uint n_2 = 0u;
-    bool local_43 = false;
     bool local_44 = false;
     bool local_45 = false;
     bool local_46 = false;
+    bool local_47 = false;
     vec2 _e10 = layers_span();
     float bottom_1 = _e10.x;
-    Roots _e12 = ray_shell_from(p_9, alt_13, d_11, bottom_1);
-    Roots _e14 = ray_shell_from(p_9, alt_13, d_11, _e10.y);
-    bool _e15 = hits_ground(p_9, alt_13, d_11);
+    Roots _e12 = ray_shell_from(p_9, alt_13, d_12, bottom_1);
+    Roots _e14 = ray_shell_from(p_9, alt_13, d_12, _e10.y);
+    bool _e15 = hits_ground(p_9, alt_13, d_12);
     if (!(!(_e14.hit))) {
-        local_42 = (_e14.t1_ <= 0.0);
+        local_43 = (_e14.t1_ <= 0.0);
     } else {
-        local_42 = true;
+        local_43 = true;
     }
-    bool _e25 = local_42;
+    bool _e25 = local_43;
     if (_e25) {
-        Segments _e26 = s;
+        Segments _e26 = s_1;
         return _e26;
     }
     float entry = max(_e14.t0_, 0.0);
     if (_e12.hit) {
-        local_43 = (_e12.t0_ > 0.0);
-    } else {
-        local_43 = false;
-    }
-    bool _e45 = local_43;
-    if (_e45) {
-        local_44 = (alt_13 >= bottom_1);
+        local_44 = (_e12.t0_ > 0.0);
     } else {
         local_44 = false;
     }
-    bool _e50 = local_44;
+    bool _e45 = local_44;
+    if (_e45) {
+        local_45 = (alt_13 >= bottom_1);
+    } else {
+        local_45 = false;
+    }
+    bool _e50 = local_45;
     if (_e50) {
         uint _e51 = n_2;
         a_1[_e51] = entry;
@@ -1155,11 +1162,11 @@ Segments layer_segments(vec3 p_9, float alt_13, vec3 d_11) {
         uint _e56 = n_2;
         n_2 = (_e56 + uint((_e12.t0_ > entry)));
         if (!(_e15)) {
-            local_45 = (_e14.t1_ > _e12.t1_);
+            local_46 = (_e14.t1_ > _e12.t1_);
         } else {
-            local_45 = false;
+            local_46 = false;
         }
-        bool _e68 = local_45;
+        bool _e68 = local_46;
         if (_e68) {
             uint _e69 = n_2;
             a_1[_e69] = max(_e12.t1_, entry);
@@ -1171,11 +1178,11 @@ Segments layer_segments(vec3 p_9, float alt_13, vec3 d_11) {
     } else {
         if ((alt_13 < bottom_1)) {
             if (!(_e15)) {
-                local_46 = _e12.hit;
+                local_47 = _e12.hit;
             } else {
-                local_46 = false;
+                local_47 = false;
             }
-            bool _e85 = local_46;
+            bool _e85 = local_47;
             if (_e85) {
                 a_1.x = max(_e12.t1_, 0.0);
                 b_1.x = _e14.t1_;
@@ -1188,33 +1195,33 @@ Segments layer_segments(vec3 p_9, float alt_13, vec3 d_11) {
         }
     }
     vec2 _e98 = a_1;
-    s.a = _e98;
+    s_1.a = _e98;
     vec2 _e100 = b_1;
-    s.b = _e100;
+    s_1.b = _e100;
     uint _e102 = n_2;
-    s.count = _e102;
-    Segments _e103 = s;
+    s_1.count = _e102;
+    Segments _e103 = s_1;
     return _e103;
 }
 
 float density_max() {
     float m_1 = 0.0;
-    uint i_12 = 0u;
+    uint i_13 = 0u;
     bool loop_init_5 = true;
     while(true) {
         if (!loop_init_5) {
-            uint _e17 = i_12;
-            i_12 = (_e17 + 1u);
+            uint _e17 = i_13;
+            i_13 = (_e17 + 1u);
         }
         loop_init_5 = false;
-        uint _e4 = i_12;
+        uint _e4 = i_13;
         uint _e5 = layer_count();
         if ((_e4 < _e5)) {
         } else {
             break;
         }
         {
-            uint _e7 = i_12;
+            uint _e7 = i_13;
             Layer _e8 = cloud_layer(_e7);
             float _e9 = m_1;
             m_1 = max(_e9, (_e8.density * (1.0 + _e8.precipitation)));
@@ -1228,8 +1235,8 @@ float sample_hg_cos(float g_4, float u) {
     if ((abs(g_4) < 0.0001)) {
         return (1.0 - (2.0 * u));
     }
-    float s_6 = ((1.0 - (g_4 * g_4)) / ((1.0 - g_4) + ((2.0 * g_4) * u)));
-    return clamp((((1.0 + (g_4 * g_4)) - (s_6 * s_6)) / (2.0 * g_4)), -1.0, 1.0);
+    float s_7 = ((1.0 - (g_4 * g_4)) / ((1.0 - g_4) + ((2.0 * g_4) * u)));
+    return clamp((((1.0 + (g_4 * g_4)) - (s_7 * s_7)) / (2.0 * g_4)), -1.0, 1.0);
 }
 
 PhaseSample sample_phase(vec3 dir_4, inout uint rng_5) {
@@ -1282,40 +1289,40 @@ PhaseSample sample_phase(vec3 dir_4, inout uint rng_5) {
 }
 
 bool camera_still() {
-    bool local_51 = false;
     bool local_52 = false;
     bool local_53 = false;
+    bool local_54 = false;
     vec4 _e2 = _group_0_binding_0_cs.camera_position;
     vec4 _e5 = _group_0_binding_0_cs.previous_position;
     if (all(equal(_e2, _e5))) {
         vec4 _e12 = _group_0_binding_0_cs.camera_forward;
         vec4 _e15 = _group_0_binding_0_cs.previous_forward;
-        local_51 = all(equal(_e12, _e15));
-    } else {
-        local_51 = false;
-    }
-    bool _e19 = local_51;
-    if (_e19) {
-        vec4 _e24 = _group_0_binding_0_cs.camera_right;
-        vec4 _e28 = _group_0_binding_0_cs.previous_right;
-        local_52 = all(equal(_e24.xyz, _e28.xyz));
+        local_52 = all(equal(_e12, _e15));
     } else {
         local_52 = false;
     }
-    bool _e33 = local_52;
-    if (_e33) {
-        vec4 _e38 = _group_0_binding_0_cs.camera_up;
-        vec4 _e42 = _group_0_binding_0_cs.previous_up;
-        local_53 = all(equal(_e38.xyz, _e42.xyz));
+    bool _e19 = local_52;
+    if (_e19) {
+        vec4 _e24 = _group_0_binding_0_cs.camera_right;
+        vec4 _e28 = _group_0_binding_0_cs.previous_right;
+        local_53 = all(equal(_e24.xyz, _e28.xyz));
     } else {
         local_53 = false;
     }
-    bool _e47 = local_53;
+    bool _e33 = local_53;
+    if (_e33) {
+        vec4 _e38 = _group_0_binding_0_cs.camera_up;
+        vec4 _e42 = _group_0_binding_0_cs.previous_up;
+        local_54 = all(equal(_e38.xyz, _e42.xyz));
+    } else {
+        local_54 = false;
+    }
+    bool _e47 = local_54;
     return _e47;
 }
 
-float luminance(vec3 c_2) {
-    return dot(c_2, vec3(0.2126, 0.7152, 0.0722));
+float luminance(vec3 c_3) {
+    return dot(c_3, vec3(0.2126, 0.7152, 0.0722));
 }
 
 float atlas_hash(uint a_2, uint b_2) {
@@ -1325,19 +1332,19 @@ float atlas_hash(uint a_2, uint b_2) {
 }
 
 float value_noise(vec2 p_10, uint seed) {
-    uvec2 i_16 = uvec2(floor(p_10));
+    uvec2 i_17 = uvec2(floor(p_10));
     vec2 f_3 = fract(p_10);
-    vec2 s_7 = ((f_3 * f_3) * (vec2(3.0) - (2.0 * f_3)));
-    uint h_10 = (seed * 7919u);
-    float _e17 = atlas_hash((i_16.x + h_10), i_16.y);
-    float _e23 = atlas_hash(((i_16.x + 1u) + h_10), i_16.y);
-    float _e29 = atlas_hash((i_16.x + h_10), (i_16.y + 1u));
-    float _e37 = atlas_hash(((i_16.x + 1u) + h_10), (i_16.y + 1u));
-    return mix(mix(_e17, _e23, s_7.x), mix(_e29, _e37, s_7.x), s_7.y);
+    vec2 s_8 = ((f_3 * f_3) * (vec2(3.0) - (2.0 * f_3)));
+    uint h_11 = (seed * 7919u);
+    float _e17 = atlas_hash((i_17.x + h_11), i_17.y);
+    float _e23 = atlas_hash(((i_17.x + 1u) + h_11), i_17.y);
+    float _e29 = atlas_hash((i_17.x + h_11), (i_17.y + 1u));
+    float _e37 = atlas_hash(((i_17.x + 1u) + h_11), (i_17.y + 1u));
+    return mix(mix(_e17, _e23, s_8.x), mix(_e29, _e37, s_8.x), s_8.y);
 }
 
 float value_fbm(vec2 p_11, uint seed_1) {
-    float sum_3 = 0.0;
+    float sum_4 = 0.0;
     float weight = 0.5;
     vec2 q_4 = vec2(0.0);
     uint o = 0u;
@@ -1355,32 +1362,32 @@ float value_fbm(vec2 p_11, uint seed_1) {
             break;
         }
         {
-            float _e12 = sum_3;
+            float _e12 = sum_4;
             float _e13 = weight;
             vec2 _e14 = q_4;
             uint _e15 = o;
             float _e17 = value_noise(_e14, (seed_1 + _e15));
-            sum_3 = (_e12 + (_e13 * _e17));
+            sum_4 = (_e12 + (_e13 * _e17));
             vec2 _e20 = q_4;
             q_4 = (_e20 * 2.0);
             float _e23 = weight;
             weight = (_e23 * 0.5);
         }
     }
-    float _e29 = sum_3;
+    float _e29 = sum_4;
     return (_e29 / 0.9375);
 }
 
 float sprite_texture(uint tile_1, vec2 uv) {
     float billow = 0.0;
-    uint i_15 = 0u;
+    uint i_16 = 0u;
     vec2 at = vec2(0.0);
     float a_3 = 0.0;
-    vec2 c_8 = (uv - vec2(0.5));
-    float mask = smoothstep(0.48, 0.36, length(c_8));
+    vec2 c_9 = (uv - vec2(0.5));
+    float mask = smoothstep(0.48, 0.36, length(c_9));
     float _e16 = value_fbm(((uv * 6.0) + vec2((float(tile_1) * 13.0))), tile_1);
     if ((tile_1 < 4u)) {
-        vec2 q_7 = (c_8 * vec2(1.0, 3.2));
+        vec2 q_7 = (c_9 * vec2(1.0, 3.2));
         float streak = (1.0 - smoothstep(0.05, 0.45, length(q_7)));
         float _e40 = value_fbm(((uv * vec2(3.0, 12.0)) + vec2((float(tile_1) * 5.0))), (tile_1 + 16u));
         float _e46 = saturate(((_e40 * 1.6) - 0.3));
@@ -1390,32 +1397,32 @@ float sprite_texture(uint tile_1, vec2 uv) {
     bool loop_init_7 = true;
     while(true) {
         if (!loop_init_7) {
-            uint _e108 = i_15;
-            i_15 = (_e108 + 1u);
+            uint _e108 = i_16;
+            i_16 = (_e108 + 1u);
         }
         loop_init_7 = false;
-        uint _e58 = i_15;
+        uint _e58 = i_16;
         if ((_e58 < blobs)) {
         } else {
             break;
         }
         {
-            uint _e61 = i_15;
+            uint _e61 = i_16;
             float _e63 = atlas_hash(tile_1, (2u * _e61));
-            uint _e65 = i_15;
+            uint _e65 = i_16;
             float _e69 = atlas_hash(tile_1, ((2u * _e65) + 1u));
             vec2 centre_1 = (vec2(_e63, _e69) - vec2(0.5));
             at = (vec2(0.5) + (centre_1 * 0.34));
             if ((tile_1 == 4u)) {
                 at.y = (0.5 + ((centre_1.y - 0.5) * 0.24));
             }
-            uint _e91 = i_15;
+            uint _e91 = i_16;
             float _e93 = atlas_hash(tile_1, (100u + _e91));
-            float r_17 = (0.14 + (0.1 * _e93));
+            float r_18 = (0.14 + (0.1 * _e93));
             vec2 _e98 = at;
-            float d_18 = (length((uv - _e98)) / r_17);
+            float d_20 = (length((uv - _e98)) / r_18);
             float _e102 = billow;
-            float _e106 = saturate((1.0 - (d_18 * d_18)));
+            float _e106 = saturate((1.0 - (d_20 * d_20)));
             billow = max(_e102, _e106);
         }
     }
@@ -1431,31 +1438,31 @@ float sprite_texture(uint tile_1, vec2 uv) {
 }
 
 vec3 sprite_rel(vec2 xz, float alt_15) {
-    float rp_4 = _group_0_binding_0_cs.atmosphere.x;
+    float rp_5 = _group_0_binding_0_cs.atmosphere.x;
     vec4 _e8 = _group_0_binding_0_cs.camera_position;
-    vec2 d_19 = (xz - _e8.xz);
-    float k_13 = ((alt_15 * (alt_15 + (2.0 * rp_4))) - dot(d_19, d_19));
-    float y_1 = (k_13 / (rp_4 + sqrt(max(((rp_4 * rp_4) + k_13), 0.0))));
-    return vec3(d_19.x, y_1, d_19.y);
+    vec2 d_21 = (xz - _e8.xz);
+    float k_15 = ((alt_15 * (alt_15 + (2.0 * rp_5))) - dot(d_21, d_21));
+    float y_2 = (k_15 / (rp_5 + sqrt(max(((rp_5 * rp_5) + k_15), 0.0))));
+    return vec3(d_21.x, y_2, d_21.y);
 }
 
 SpriteCell sprite_cell(uint cell) {
     ivec2 start_1 = ivec2(0);
-    uint k_8 = 3u;
-    bool local_54 = false;
+    uint k_10 = 3u;
     bool local_55 = false;
+    bool local_56 = false;
     uint level_1 = (cell / 64u);
-    ivec2 local_59 = ivec2(int((cell % 8u)), int(((cell / 8u) % 8u)));
+    ivec2 local_60 = ivec2(int((cell % 8u)), int(((cell / 8u) % 8u)));
     vec4 _e15 = _group_0_binding_0_cs.camera_position;
     start_1 = (ivec2(floor((_e15.xz / vec2(12000.0)))) - ivec2(4));
     bool loop_init_8 = true;
     while(true) {
         if (!loop_init_8) {
-            uint _e35 = k_8;
-            k_8 = (_e35 - 1u);
+            uint _e35 = k_10;
+            k_10 = (_e35 - 1u);
         }
         loop_init_8 = false;
-        uint _e27 = k_8;
+        uint _e27 = k_10;
         if ((_e27 > level_1)) {
         } else {
             break;
@@ -1466,23 +1473,23 @@ SpriteCell sprite_cell(uint cell) {
         }
     }
     if ((level_1 > 0u)) {
-        local_54 = all(greaterThanEqual(local_59, ivec2(2)));
-    } else {
-        local_54 = false;
-    }
-    bool _e47 = local_54;
-    if (_e47) {
-        local_55 = all(lessThan(local_59, ivec2(6)));
+        local_55 = all(greaterThanEqual(local_60, ivec2(2)));
     } else {
         local_55 = false;
     }
-    bool covered = local_55;
+    bool _e47 = local_55;
+    if (_e47) {
+        local_56 = all(lessThan(local_60, ivec2(6)));
+    } else {
+        local_56 = false;
+    }
+    bool covered = local_56;
     ivec2 _e56 = start_1;
-    return SpriteCell((_e56 + local_59), (SPRITE_CELL0_ * float((1u << level_1))), covered);
+    return SpriteCell((_e56 + local_60), (SPRITE_CELL0_ * float((1u << level_1))), covered);
 }
 
-vec3 sprite_sky_level(float h_6) {
-    float _e1 = saturate(h_6);
+vec3 sprite_sky_level(float h_7) {
+    float _e1 = saturate(h_7);
     float x_8 = (_e1 * 4.0);
     if ((x_8 < 1.0)) {
         return mix(SKY_LEVEL0_, SKY_LEVEL1_, x_8);
@@ -1503,66 +1510,66 @@ float sprite_sun_level(float cos_angle) {
     return mix(SPRITE_C_MED, SPRITE_C_MAX, cos_angle);
 }
 
-vec2 sprite_corner(uint k_9) {
-    bool local_56 = false;
-    uint q_8 = ((k_9 >= 3u) ? ((k_9 == 3u) ? 0u : (k_9 - 2u)) : k_9);
+vec2 sprite_corner(uint k_11) {
+    bool local_57 = false;
+    uint q_8 = ((k_11 >= 3u) ? ((k_11 == 3u) ? 0u : (k_11 - 2u)) : k_11);
     if (!((q_8 == 1u))) {
-        local_56 = (q_8 == 2u);
+        local_57 = (q_8 == 2u);
     } else {
-        local_56 = true;
+        local_57 = true;
     }
-    bool _e18 = local_56;
+    bool _e18 = local_57;
     return vec2((_e18 ? 1.0 : -1.0), ((q_8 >= 2u) ? 1.0 : -1.0));
 }
 
-vec3 sky_radiance(vec3 d_12, float alt_16) {
+vec3 sky_radiance(vec3 d_14, float alt_16) {
     vec4 _e4 = _group_0_binding_0_cs.sun_direction;
-    vec3 sun_1 = _e4.xyz;
+    vec3 sun_2 = _e4.xyz;
     vec4 _e8 = _group_0_binding_0_cs.sun_illuminance;
     vec3 e = _e8.xyz;
-    float _e15 = saturate(((sun_1.y * 4.0) + 0.3));
-    bool _e19 = hits_ground(vec3(0.0, alt_16, 0.0), alt_16, d_12);
+    float _e15 = saturate(((sun_2.y * 4.0) + 0.3));
+    bool _e19 = hits_ground(vec3(0.0, alt_16, 0.0), alt_16, d_14);
     if (_e19) {
         vec3 ground_albedo = vec3(0.035, 0.035, 0.03);
-        return (ground_albedo * (((e * max(sun_1.y, 0.0)) / vec3(3.1415927)) + ((0.05 * e) * _e15)));
+        return (ground_albedo * (((e * max(sun_2.y, 0.0)) / vec3(3.1415927)) + ((0.05 * e) * _e15)));
     }
     vec3 zenith = vec3(0.018, 0.04, 0.1);
     vec3 horizon_2 = vec3(0.07, 0.085, 0.11);
-    float _e45 = saturate(d_12.y);
+    float _e45 = saturate(d_14.y);
     vec3 gradient_1 = mix(horizon_2, zenith, sqrt(_e45));
     vec3 sunset = (((1.0 - (_e15 * 0.8)) * pow((1.0 - _e45), 6.0)) * vec3(0.25, 0.1, 0.0));
-    float _e64 = phase_hg(dot(d_12, sun_1), 0.76);
+    float _e64 = phase_hg(dot(d_14, sun_2), 0.76);
     float glow = (_e64 * 0.02);
-    float _e73 = saturate(((sun_1.y * 10.0) + 1.0));
+    float _e73 = saturate(((sun_2.y * 10.0) + 1.0));
     return (e * (((gradient_1 * _e15) + (sunset * _e73)) + vec3((glow * _e15))));
 }
 
-vec3 sun_disk(vec3 d_13) {
+vec3 sun_disk(vec3 d_15) {
     float cos_r = _group_0_binding_0_cs.sun_direction.w;
     vec4 _e7 = _group_0_binding_0_cs.sun_direction;
-    if ((dot(d_13, _e7.xyz) < cos_r)) {
+    if ((dot(d_15, _e7.xyz) < cos_r)) {
         return vec3(0.0);
     }
     vec4 _e15 = _group_0_binding_0_cs.sun_illuminance;
     return (_e15.xyz / vec3((6.2831855 * max((1.0 - cos_r), 1e-6))));
 }
 
-vec3 moon_disk(vec3 d_14) {
-    bool local_57 = false;
+vec3 moon_disk(vec3 d_16) {
+    bool local_58 = false;
     vec4 _e3 = _group_0_binding_0_cs.moon;
     vec3 m_2 = _e3.xyz;
-    float c_9 = dot(d_14, m_2);
+    float c_10 = dot(d_16, m_2);
     float _e9 = _group_0_binding_0_cs.moon.w;
     if (!((_e9 <= 0.0))) {
-        local_57 = (c_9 < MOON_COS_RADIUS);
+        local_58 = (c_10 < MOON_COS_RADIUS);
     } else {
-        local_57 = true;
+        local_58 = true;
     }
-    bool _e18 = local_57;
+    bool _e18 = local_58;
     if (_e18) {
         return vec3(0.0);
     }
-    vec3 offset = ((d_14 - (m_2 * c_9)) / vec3(0.0045149517));
+    vec3 offset = ((d_16 - (m_2 * c_10)) / vec3(0.0045149517));
     float x2_ = min(dot(offset, offset), 1.0);
     vec3 normal = (offset - (m_2 * sqrt((1.0 - x2_))));
     vec4 _e36 = _group_0_binding_0_cs.night;
@@ -1571,35 +1578,35 @@ vec3 moon_disk(vec3 d_14) {
     return vec3(((_e46 / 6.40407e-5) * lit));
 }
 
-vec3 stars(vec3 d_15) {
+vec3 stars(vec3 d_17) {
     uint face = 0u;
     vec2 uv_1 = vec2(0.0);
     float major = 0.0;
-    bool local_58 = false;
+    bool local_59 = false;
     vec3 star = vec3(0.0);
     float e0_ = _group_0_binding_0_cs.night.w;
     if ((e0_ <= 0.0)) {
         return vec3(0.0);
     }
-    vec3 a_9 = abs(d_15);
+    vec3 a_9 = abs(d_17);
     if ((a_9.x >= a_9.y)) {
-        local_58 = (a_9.x >= a_9.z);
+        local_59 = (a_9.x >= a_9.z);
     } else {
-        local_58 = false;
+        local_59 = false;
     }
-    bool _e26 = local_58;
+    bool _e26 = local_59;
     if (_e26) {
-        face = ((d_15.x > 0.0) ? 0u : 1u);
-        uv_1 = d_15.zy;
+        face = ((d_17.x > 0.0) ? 0u : 1u);
+        uv_1 = d_17.zy;
         major = a_9.x;
     } else {
         if ((a_9.y >= a_9.z)) {
-            face = ((d_15.y > 0.0) ? 2u : 3u);
-            uv_1 = d_15.xz;
+            face = ((d_17.y > 0.0) ? 2u : 3u);
+            uv_1 = d_17.xz;
             major = a_9.y;
         } else {
-            face = ((d_15.z > 0.0) ? 4u : 5u);
-            uv_1 = d_15.xy;
+            face = ((d_17.z > 0.0) ? 4u : 5u);
+            uv_1 = d_17.xy;
             major = a_9.z;
         }
     }
@@ -1608,19 +1615,19 @@ vec3 stars(vec3 d_15) {
     vec2 st = clamp((((_e54 / vec2(_e55)) * 0.5) + vec2(0.5)), vec2(0.0), vec2(0.999999));
     uvec2 cell_1 = uvec2((st * 96.0));
     uint _e71 = face;
-    uint id_21 = ((((_e71 * STAR_CELLS) + cell_1.y) * STAR_CELLS) + cell_1.x);
-    uint _e85 = pcg((id_21 ^ 2654435769u));
+    uint id_23 = ((((_e71 * STAR_CELLS) + cell_1.y) * STAR_CELLS) + cell_1.x);
+    uint _e85 = pcg((id_23 ^ 2654435769u));
     float h0_ = (float((_e85 >> 8u)) * 5.9604645e-8);
     if ((h0_ >= 0.15085077)) {
         return vec3(0.0);
     }
-    uint _e96 = pcg((id_21 ^ 2246822507u));
+    uint _e96 = pcg((id_23 ^ 2246822507u));
     float h1_ = (float((_e96 >> 8u)) * 5.9604645e-8);
-    uint _e104 = pcg((id_21 ^ 3266489909u));
+    uint _e104 = pcg((id_23 ^ 3266489909u));
     float h2_ = (float((_e104 >> 8u)) * 5.9604645e-8);
-    uint _e112 = pcg((id_21 ^ 668265263u));
+    uint _e112 = pcg((id_23 ^ 668265263u));
     float h3_ = (float((_e112 >> 8u)) * 5.9604645e-8);
-    uint _e120 = pcg((id_21 ^ 374761393u));
+    uint _e120 = pcg((id_23 ^ 374761393u));
     float h4_ = (float((_e120 >> 8u)) * 5.9604645e-8);
     vec2 star_st = (((vec2(cell_1) + vec2(0.15)) + (0.7 * vec2(h1_, h2_))) / vec2(96.0));
     float _e142 = major;
@@ -1653,7 +1660,7 @@ vec3 stars(vec3 d_15) {
     uint _e209 = _group_0_binding_0_cs.counts.y;
     float pixel_angle = ((2.0 * _e203) / float(_e209));
     vec3 _e212 = star;
-    float dist_1 = (acos(clamp(dot(d_15, _e212), -1.0, 1.0)) / pixel_angle);
+    float dist_1 = (acos(clamp(dot(d_17, _e212), -1.0, 1.0)) / pixel_angle);
     float weight_1 = (exp(((-(dist_1) * dist_1) / 0.5)) / 1.5707964);
     vec3 tint = mix(vec3(0.8, 0.9, 1.1), vec3(1.15, 0.95, 0.75), (h3_ * h4_));
     return (tint * ((illuminance * weight_1) / (pixel_angle * pixel_angle)));
@@ -1676,8 +1683,8 @@ void main() {
     vec3 _e8 = camera_air_origin();
     vec2 _e9 = air_ray_end(_e8, _e7);
     vec4 _e12 = _group_0_binding_0_cs.sun_direction;
-    vec3 sun_2 = _e12.xyz;
-    float cos_theta_8 = dot(_e7, sun_2);
+    vec3 sun_3 = _e12.xyz;
+    float cos_theta_8 = dot(_e7, sun_3);
     float _e15 = phase_rayleigh(cos_theta_8);
     float _e19 = _group_0_binding_0_cs.air_mie.w;
     float _e20 = phase_cornette_shanks_air(cos_theta_8, _e19);
@@ -1713,14 +1720,14 @@ void main() {
                     float t0_1 = (AERIAL_SLICE_KM * (float(_e38) + (float(_e40) / 4.0)));
                     float dt_2 = max(min(0.25, (_e9.x - t0_1)), 0.0);
                     vec3 p_13 = (_e8 + (_e7 * (t0_1 + (0.5 * dt_2))));
-                    float r_18 = length(p_13);
-                    float mu_s_4 = dot((p_13 / vec3(r_18)), sun_2);
+                    float r_19 = length(p_13);
+                    float mu_s_6 = dot((p_13 / vec3(r_19)), sun_3);
                     float _e64 = air_bottom();
-                    AirSample _e66 = air_at((r_18 - _e64));
+                    AirSample _e66 = air_at((r_19 - _e64));
                     vec3 _e67 = tau_1;
                     vec3 t_view_1 = exp(-((_e67 + ((0.5 * _e66.extinction) * dt_2))));
-                    vec3 _e75 = sun_transmittance(r_18, mu_s_4);
-                    vec3 _e83 = multiscatter(r_18, mu_s_4);
+                    vec3 _e75 = sun_transmittance(r_19, mu_s_6);
+                    vec3 _e83 = multiscatter(r_19, mu_s_6);
                     vec3 inscatter_1 = ((_e75 * ((_e66.rayleigh * _e15) + vec3((_e66.mie * _e20)))) + (_e83 * (_e66.rayleigh + vec3(_e66.mie))));
                     vec3 _e90 = radiance;
                     radiance = (_e90 + ((t_view_1 * inscatter_1) * dt_2));

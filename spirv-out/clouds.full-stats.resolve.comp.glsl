@@ -167,7 +167,13 @@ const uint MULTISCATTER_STEPS = 32u;
 const uint SKY_VIEW_STEPS = 48u;
 const uint AMBIENT_DIRECTIONS = 64u;
 const uint AMBIENT_STEPS = 24u;
+const uint GROUND_IRRADIANCE_SIZE = 64u;
 const uint NO_LAYER = 4u;
+const uint GROUND_IRRADIANCE_DIRECTIONS = 128u;
+const uint SHADOW_SIZE = 128u;
+const float SHADOW_HALF_EXTENT = 20000.0;
+const float SHADOW_FADE_START = 0.75;
+const uint SHADOW_STEPS = 16u;
 const uint OCCUPANCY_CELLS = 64u;
 const uint STAT_PIXELS = 0u;
 const uint STAT_MARCHED = 1u;
@@ -278,8 +284,8 @@ vec3 view_ray(uvec2 pixel_1) {
     vec4 _e26 = _group_0_binding_0_cs.camera_forward;
     vec4 _e30 = _group_0_binding_0_cs.camera_right;
     vec4 _e39 = _group_0_binding_0_cs.camera_up;
-    vec3 d_16 = ((_e26.xyz + (_e30.xyz * ((ndc.x * tan_half) * aspect))) - (_e39.xyz * (ndc.y * tan_half)));
-    return normalize(d_16);
+    vec3 d_18 = ((_e26.xyz + (_e30.xyz * ((ndc.x * tan_half) * aspect))) - (_e39.xyz * (ndc.y * tan_half)));
+    return normalize(d_18);
 }
 
 Roots solve_sphere(float b, float c) {
@@ -287,8 +293,8 @@ Roots solve_sphere(float b, float c) {
     if ((disc < 0.0)) {
         return Roots(0.0, 0.0, false);
     }
-    float s_2 = sqrt(disc);
-    float r0_1 = -((b + ((b >= 0.0) ? s_2 : -(s_2))));
+    float s_3 = sqrt(disc);
+    float r0_1 = -((b + ((b >= 0.0) ? s_3 : -(s_3))));
     if ((r0_1 == 0.0)) {
         return Roots(0.0, 0.0, true);
     }
@@ -299,8 +305,8 @@ Roots solve_sphere(float b, float c) {
 Roots ray_shell(float alt, vec3 d, float radius_alt) {
     float rp = _group_0_binding_0_cs.atmosphere.x;
     float b_3 = (d.y * (alt + rp));
-    float c_4 = ((alt - radius_alt) * ((alt + radius_alt) + (2.0 * rp)));
-    Roots _e16 = solve_sphere(b_3, c_4);
+    float c_5 = ((alt - radius_alt) * ((alt + radius_alt) + (2.0 * rp)));
+    Roots _e16 = solve_sphere(b_3, c_5);
     return _e16;
 }
 
@@ -312,25 +318,25 @@ float altitude_of(vec3 p) {
 }
 
 bool hits_ground(vec3 p_1, float alt_1, vec3 d_1) {
-    bool local_14 = false;
+    bool local_15 = false;
     float rp_2 = _group_0_binding_0_cs.atmosphere.x;
     float b_4 = dot(d_1, vec3(p_1.x, (p_1.y + rp_2), p_1.z));
-    float c_5 = (alt_1 * (alt_1 + (2.0 * rp_2)));
+    float c_6 = (alt_1 * (alt_1 + (2.0 * rp_2)));
     if ((b_4 < 0.0)) {
-        local_14 = ((b_4 * b_4) >= c_5);
+        local_15 = ((b_4 * b_4) >= c_6);
     } else {
-        local_14 = false;
+        local_15 = false;
     }
-    bool _e24 = local_14;
+    bool _e24 = local_15;
     return _e24;
 }
 
 Interval shell_interval(float alt_2, vec3 d_2, float bottom, float top) {
     float start = 0.0;
     float end = 0.0;
-    bool local_15 = false;
     bool local_16 = false;
     bool local_17 = false;
+    bool local_18 = false;
     float cutoff = _group_0_binding_0_cs.atmosphere.w;
     Roots _e8 = ray_shell(alt_2, d_2, bottom);
     Roots _e9 = ray_shell(alt_2, d_2, top);
@@ -345,33 +351,33 @@ Interval shell_interval(float alt_2, vec3 d_2, float bottom, float top) {
         if ((alt_2 <= top)) {
             end = _e9.t1_;
             if (_e8.hit) {
-                local_15 = (_e8.t0_ > 0.0);
+                local_16 = (_e8.t0_ > 0.0);
             } else {
-                local_15 = false;
+                local_16 = false;
             }
-            bool _e34 = local_15;
+            bool _e34 = local_16;
             if (_e34) {
                 float _e35 = end;
                 end = min(_e35, _e8.t0_);
             }
         } else {
             if (!(!(_e9.hit))) {
-                local_16 = (_e9.t1_ <= 0.0);
+                local_17 = (_e9.t1_ <= 0.0);
             } else {
-                local_16 = true;
+                local_17 = true;
             }
-            bool _e47 = local_16;
+            bool _e47 = local_17;
             if (_e47) {
                 return Interval(0.0, 0.0, 1u);
             }
             start = max(_e9.t0_, 0.0);
             end = _e9.t1_;
             if (_e8.hit) {
-                local_17 = (_e8.t0_ > 0.0);
+                local_18 = (_e8.t0_ > 0.0);
             } else {
-                local_17 = false;
+                local_18 = false;
             }
-            bool _e63 = local_17;
+            bool _e63 = local_18;
             if (_e63) {
                 float _e64 = end;
                 end = min(_e64, _e8.t0_);
@@ -402,20 +408,20 @@ Layer layer_from(vec4 g, vec4 w_1) {
     return Layer(g.x, g.y, g.z, g.w, w_1.x, w_1.y, w_1.zw);
 }
 
-Layer cloud_layer(uint i_3) {
-    if ((i_3 == 1u)) {
+Layer cloud_layer(uint i_4) {
+    if ((i_4 == 1u)) {
         vec4 _e5 = _group_0_binding_0_cs.layer1_;
         vec4 _e8 = _group_0_binding_0_cs.layer1_weather;
         Layer _e9 = layer_from(_e5, _e8);
         return _e9;
     } else {
-        if ((i_3 == 2u)) {
+        if ((i_4 == 2u)) {
             vec4 _e14 = _group_0_binding_0_cs.layer2_;
             vec4 _e17 = _group_0_binding_0_cs.layer2_weather;
             Layer _e18 = layer_from(_e14, _e17);
             return _e18;
         } else {
-            if ((i_3 == 3u)) {
+            if ((i_4 == 3u)) {
                 vec4 _e23 = _group_0_binding_0_cs.layer3_;
                 vec4 _e26 = _group_0_binding_0_cs.layer3_weather;
                 Layer _e27 = layer_from(_e23, _e26);
@@ -435,24 +441,24 @@ Layer cloud_layer(uint i_3) {
 
 vec2 layers_span() {
     vec2 span = vec2(0.0);
-    uint i_4 = 1u;
+    uint i_5 = 1u;
     vec4 _e2 = _group_0_binding_0_cs.atmosphere;
     span = _e2.yz;
     bool loop_init = true;
     while(true) {
         if (!loop_init) {
-            uint _e22 = i_4;
-            i_4 = (_e22 + 1u);
+            uint _e22 = i_5;
+            i_5 = (_e22 + 1u);
         }
         loop_init = false;
-        uint _e7 = i_4;
+        uint _e7 = i_5;
         uint _e8 = layer_count();
         if ((_e7 < _e8)) {
         } else {
             break;
         }
         {
-            uint _e10 = i_4;
+            uint _e10 = i_5;
             Layer _e11 = cloud_layer(_e10);
             float _e13 = span.x;
             float _e17 = span.y;
@@ -471,43 +477,43 @@ Interval cloud_interval(float alt_4, vec3 d_4) {
 
 Interval nearest_layer_interval(float alt_5, vec3 d_5) {
     Interval best = Interval(0.0, 0.0, 0u);
-    uint i_5 = 1u;
-    bool local_18 = false;
+    uint i_6 = 1u;
     bool local_19 = false;
+    bool local_20 = false;
     Layer _e3 = cloud_layer(0u);
     Interval _e4 = layer_interval(alt_5, d_5, _e3);
     best = _e4;
     bool loop_init_1 = true;
     while(true) {
         if (!loop_init_1) {
-            uint _e35 = i_5;
-            i_5 = (_e35 + 1u);
+            uint _e35 = i_6;
+            i_6 = (_e35 + 1u);
         }
         loop_init_1 = false;
-        uint _e8 = i_5;
+        uint _e8 = i_6;
         uint _e9 = layer_count();
         if ((_e8 < _e9)) {
         } else {
             break;
         }
         {
-            uint _e11 = i_5;
+            uint _e11 = i_6;
             Layer _e12 = cloud_layer(_e11);
             Interval _e13 = layer_interval(alt_5, d_5, _e12);
             if ((_e13.kind == RAY_MARCH)) {
                 uint _e20 = best.kind;
                 if (!((_e20 != RAY_MARCH))) {
                     float _e28 = best.start;
-                    local_19 = (_e13.start < _e28);
+                    local_20 = (_e13.start < _e28);
                 } else {
-                    local_19 = true;
+                    local_20 = true;
                 }
-                bool _e31 = local_19;
-                local_18 = _e31;
+                bool _e31 = local_20;
+                local_19 = _e31;
             } else {
-                local_18 = false;
+                local_19 = false;
             }
-            bool _e33 = local_18;
+            bool _e33 = local_19;
             if (_e33) {
                 best = _e13;
             }
@@ -520,8 +526,8 @@ Interval nearest_layer_interval(float alt_5, vec3 d_5) {
 Roots ray_shell_from(vec3 p_2, float alt_6, vec3 d_6, float radius_alt_1) {
     float rp_3 = _group_0_binding_0_cs.atmosphere.x;
     float b_5 = dot(d_6, vec3(p_2.x, (p_2.y + rp_3), p_2.z));
-    float c_6 = ((alt_6 - radius_alt_1) * ((alt_6 + radius_alt_1) + (2.0 * rp_3)));
-    Roots _e20 = solve_sphere(b_5, c_6);
+    float c_7 = ((alt_6 - radius_alt_1) * ((alt_6 + radius_alt_1) + (2.0 * rp_3)));
+    Roots _e20 = solve_sphere(b_5, c_7);
     return _e20;
 }
 
@@ -542,14 +548,14 @@ float air_top() {
 }
 
 AirSample air_at(float h_km) {
-    float h_7 = (max(h_km, 0.0) * 1000.0);
+    float h_8 = (max(h_km, 0.0) * 1000.0);
     float _e9 = _group_0_binding_0_cs.air_rayleigh.w;
-    float rayleigh_density = exp((-(h_7) / _e9));
+    float rayleigh_density = exp((-(h_8) / _e9));
     float _e16 = _group_0_binding_0_cs.air_mie.z;
-    float mie_density = exp((-(h_7) / _e16));
+    float mie_density = exp((-(h_8) / _e16));
     float _e22 = _group_0_binding_0_cs.air_ozone.w;
     float _e28 = _group_0_binding_0_cs.air_misc.y;
-    float ozone_density = max((1.0 - (abs((h_7 - _e22)) / (0.5 * _e28))), 0.0);
+    float ozone_density = max((1.0 - (abs((h_8 - _e22)) / (0.5 * _e28))), 0.0);
     vec4 _e38 = _group_0_binding_0_cs.air_rayleigh;
     vec3 rayleigh = (_e38.xyz * (rayleigh_density * 1000.0));
     float _e46 = _group_0_binding_0_cs.air_mie.x;
@@ -573,15 +579,15 @@ float distance_to_top(float r_3, float mu_1) {
 }
 
 bool meets_ground(float r_4, float mu_2) {
-    bool local_20 = false;
+    bool local_21 = false;
     if ((mu_2 < 0.0)) {
         float _e6 = air_bottom();
         float _e7 = sphere_discriminant(r_4, mu_2, _e6);
-        local_20 = (_e7 >= 0.0);
+        local_21 = (_e7 >= 0.0);
     } else {
-        local_20 = false;
+        local_21 = false;
     }
-    bool _e11 = local_20;
+    bool _e11 = local_21;
     return _e11;
 }
 
@@ -613,29 +619,29 @@ vec4 lut_bilinear(sampler2D lut, vec2 x_3, uvec2 size) {
 vec2 transmittance_coords(float r_7, float mu_5) {
     float _e2 = air_bottom();
     float _e3 = air_top();
-    float h_8 = sqrt(max(((_e3 - _e2) * (_e3 + _e2)), 0.0));
+    float h_9 = sqrt(max(((_e3 - _e2) * (_e3 + _e2)), 0.0));
     float rho = sqrt(max(((r_7 - _e2) * (r_7 + _e2)), 0.0));
     float _e16 = distance_to_top(r_7, mu_5);
     float d_min = (_e3 - r_7);
-    float d_max = (rho + h_8);
-    return vec2(((_e16 - d_min) / max((d_max - d_min), 1e-6)), (rho / h_8));
+    float d_max = (rho + h_9);
+    return vec2(((_e16 - d_min) / max((d_max - d_min), 1e-6)), (rho / h_9));
 }
 
 vec2 transmittance_r_mu(vec2 x_4) {
     float mu_6 = 1.0;
     float _e1 = air_bottom();
     float _e2 = air_top();
-    float h_9 = sqrt(max(((_e2 - _e1) * (_e2 + _e1)), 0.0));
-    float rho_1 = (h_9 * x_4.y);
-    float r_13 = sqrt(((rho_1 * rho_1) + (_e1 * _e1)));
-    float d_min_1 = (_e2 - r_13);
-    float d_max_1 = (rho_1 + h_9);
-    float d_17 = (d_min_1 + (x_4.x * (d_max_1 - d_min_1)));
-    if ((d_17 > 0.0)) {
-        mu_6 = clamp(((((h_9 * h_9) - (rho_1 * rho_1)) - (d_17 * d_17)) / ((2.0 * r_13) * d_17)), -1.0, 1.0);
+    float h_10 = sqrt(max(((_e2 - _e1) * (_e2 + _e1)), 0.0));
+    float rho_1 = (h_10 * x_4.y);
+    float r_14 = sqrt(((rho_1 * rho_1) + (_e1 * _e1)));
+    float d_min_1 = (_e2 - r_14);
+    float d_max_1 = (rho_1 + h_10);
+    float d_19 = (d_min_1 + (x_4.x * (d_max_1 - d_min_1)));
+    if ((d_19 > 0.0)) {
+        mu_6 = clamp(((((h_10 * h_10) - (rho_1 * rho_1)) - (d_19 * d_19)) / ((2.0 * r_14) * d_19)), -1.0, 1.0);
     }
     float _e37 = mu_6;
-    return vec2(r_13, _e37);
+    return vec2(r_14, _e37);
 }
 
 vec3 transmittance_to_top(float r_8, float mu_7) {
@@ -662,33 +668,33 @@ float phase_cornette_shanks_air(float cos_theta_1, float g_1) {
     return (((0.119366206 * (1.0 - g2_)) * (1.0 + (cos_theta_1 * cos_theta_1))) / ((2.0 + g2_) * pow(max(((1.0 + g2_) - ((2.0 * g_1) * cos_theta_1)), 1e-6), 1.5)));
 }
 
-vec3 fibonacci_direction(uint k_3, uint n_1) {
-    float z_2 = (1.0 - (((2.0 * float(k_3)) + 1.0) / float(n_1)));
-    float s_3 = sqrt(max((1.0 - (z_2 * z_2)), 0.0));
-    float phi = (2.3999634 * float(k_3));
-    return vec3((s_3 * cos(phi)), z_2, (s_3 * sin(phi)));
+vec3 fibonacci_direction(uint k_5, uint n_1) {
+    float z_2 = (1.0 - (((2.0 * float(k_5)) + 1.0) / float(n_1)));
+    float s_4 = sqrt(max((1.0 - (z_2 * z_2)), 0.0));
+    float phi = (2.3999634 * float(k_5));
+    return vec3((s_4 * cos(phi)), z_2, (s_4 * sin(phi)));
 }
 
-vec3 ground_radiance(float mu_s_2) {
+vec3 ground_radiance_sun(float mu_s_2) {
     float _e4 = _group_0_binding_0_cs.air_misc.z;
     float _e10 = air_bottom();
     vec3 _e13 = sun_transmittance((_e10 + 0.001), mu_s_2);
     return (((_e4 / PI) * max(mu_s_2, 0.0)) * _e13);
 }
 
-vec2 air_ray_end(vec3 origin_1, vec3 d_8) {
-    float r_14 = length(origin_1);
-    float mu_8 = (dot(origin_1, d_8) / r_14);
-    bool _e5 = meets_ground(r_14, mu_8);
+vec2 air_ray_end(vec3 origin_2, vec3 d_9) {
+    float r_15 = length(origin_2);
+    float mu_8 = (dot(origin_2, d_9) / r_15);
+    bool _e5 = meets_ground(r_15, mu_8);
     if (_e5) {
-        float _e6 = distance_to_ground(r_14, mu_8);
+        float _e6 = distance_to_ground(r_15, mu_8);
         return vec2(_e6, 1.0);
     }
     float _e9 = air_top();
-    if ((r_14 > _e9)) {
+    if ((r_15 > _e9)) {
         return vec2(0.0, 0.0);
     }
-    float _e14 = distance_to_top(r_14, mu_8);
+    float _e14 = distance_to_top(r_15, mu_8);
     return vec2(_e14, 0.0);
 }
 
@@ -723,8 +729,8 @@ float horizon_elevation(float r_11) {
 
 float sun_azimuth() {
     vec4 _e2 = _group_0_binding_0_cs.sun_direction;
-    vec3 s_4 = _e2.xyz;
-    return atan(s_4.z, s_4.x);
+    vec3 s_5 = _e2.xyz;
+    return atan(s_5.z, s_5.x);
 }
 
 vec3 aerial_ray(uvec2 c_1) {
@@ -744,9 +750,9 @@ vec3 sun_through_air(vec3 rel) {
     }
     float _e10 = _group_0_binding_0_cs.atmosphere.x;
     vec3 q_6 = (vec3(rel.x, (rel.y + _e10), rel.z) * 0.001);
-    float r_15 = length(q_6);
+    float r_16 = length(q_6);
     vec4 _e21 = _group_0_binding_0_cs.sun_direction;
-    vec3 _e24 = sun_transmittance(r_15, dot((q_6 / vec3(r_15)), _e21.xyz));
+    vec3 _e24 = sun_transmittance(r_16, dot((q_6 / vec3(r_16)), _e21.xyz));
     return _e24;
 }
 
@@ -765,33 +771,33 @@ float layer_height(Layer l_1, float alt_7) {
 }
 
 uint layer_at(float alt_8) {
-    uint i_7 = 0u;
-    bool local_21 = false;
+    uint i_8 = 0u;
+    bool local_22 = false;
     bool loop_init_2 = true;
     while(true) {
         if (!loop_init_2) {
-            uint _e19 = i_7;
-            i_7 = (_e19 + 1u);
+            uint _e19 = i_8;
+            i_8 = (_e19 + 1u);
         }
         loop_init_2 = false;
-        uint _e3 = i_7;
+        uint _e3 = i_8;
         uint _e4 = layer_count();
         if ((_e3 < _e4)) {
         } else {
             break;
         }
         {
-            uint _e6 = i_7;
+            uint _e6 = i_8;
             Layer _e7 = cloud_layer(_e6);
             float _e8 = layer_height(_e7, alt_8);
             if ((_e8 >= 0.0)) {
-                local_21 = (_e8 <= 1.0);
+                local_22 = (_e8 <= 1.0);
             } else {
-                local_21 = false;
+                local_22 = false;
             }
-            bool _e16 = local_21;
+            bool _e16 = local_22;
             if (_e16) {
-                uint _e17 = i_7;
+                uint _e17 = i_8;
                 return _e17;
             }
         }
@@ -840,34 +846,34 @@ float height_signal(float h_4, float cloud_type_2) {
     return _e9;
 }
 
-float layer_density(vec3 p_4, float alt_9, Layer l_3, inout Counters counters_2) {
-    bool local_22 = false;
+float layer_density(vec3 p_4, float alt_9, Layer l_3, inout Counters counters_3) {
     bool local_23 = false;
+    bool local_24 = false;
     float base = 0.0;
     float density = 0.0;
-    bool local_24 = false;
     bool local_25 = false;
+    bool local_26 = false;
     vec3 detail_pos = vec3(0.0);
     float _e4 = layer_height(l_3, alt_9);
     if (!((_e4 < 0.0))) {
-        local_22 = (_e4 > 1.0);
-    } else {
-        local_22 = true;
-    }
-    bool _e13 = local_22;
-    if (_e13) {
-        return 0.0;
-    }
-    uint _e16 = counters_2.density;
-    counters_2.density = (_e16 + 1u);
-    Weather _e19 = sample_weather(p_4, l_3);
-    float _e21 = height_signal(_e4, _e19.cloud_type);
-    if (!((_e19.coverage <= 0.0))) {
-        local_23 = (_e21 <= 0.0);
+        local_23 = (_e4 > 1.0);
     } else {
         local_23 = true;
     }
-    bool _e31 = local_23;
+    bool _e13 = local_23;
+    if (_e13) {
+        return 0.0;
+    }
+    uint _e16 = counters_3.density;
+    counters_3.density = (_e16 + 1u);
+    Weather _e19 = sample_weather(p_4, l_3);
+    float _e21 = height_signal(_e4, _e19.cloud_type);
+    if (!((_e19.coverage <= 0.0))) {
+        local_24 = (_e21 <= 0.0);
+    } else {
+        local_24 = true;
+    }
+    bool _e31 = local_24;
     if (_e31) {
         return 0.0;
     }
@@ -877,9 +883,9 @@ float layer_density(vec3 p_4, float alt_9, Layer l_3, inout Counters counters_2)
     float _e51 = _group_0_binding_0_cs.wind_offsets0_.z;
     float _e57 = _group_0_binding_0_cs.wind_offsets0_.w;
     vec3 shape_pos = vec3((p_4.x - _e51), alt_9, (p_4.z - _e57));
-    vec4 s_5 = textureLod(_group_0_binding_1_cs, vec3((shape_pos / period)), 0.0);
-    float low_fbm = (((s_5.y * 0.625) + (s_5.z * 0.25)) + (s_5.w * 0.125));
-    float _e82 = remap(s_5.x, (low_fbm - 1.0), 1.0, 0.0, 1.0);
+    vec4 s_6 = textureLod(_group_0_binding_1_cs, vec3((shape_pos / period)), 0.0);
+    float low_fbm = (((s_6.y * 0.625) + (s_6.z * 0.25)) + (s_6.w * 0.125));
+    float _e82 = remap(s_6.x, (low_fbm - 1.0), 1.0, 0.0, 1.0);
     float _e83 = saturate(_e82);
     base = (_e83 * _e21);
     float _e86 = base;
@@ -895,21 +901,21 @@ float layer_density(vec3 p_4, float alt_9, Layer l_3, inout Counters counters_2)
     float strength = _group_0_binding_0_cs.erosion.x;
     float threshold = _group_0_binding_0_cs.erosion.y;
     if (DETAIL) {
-        local_24 = (strength > 0.0);
-    } else {
-        local_24 = false;
-    }
-    bool _e117 = local_24;
-    if (_e117) {
-        float _e120 = base;
-        local_25 = (_e120 < threshold);
+        local_25 = (strength > 0.0);
     } else {
         local_25 = false;
     }
-    bool _e123 = local_25;
+    bool _e117 = local_25;
+    if (_e117) {
+        float _e120 = base;
+        local_26 = (_e120 < threshold);
+    } else {
+        local_26 = false;
+    }
+    bool _e123 = local_26;
     if (_e123) {
-        uint _e125 = counters_2.detail;
-        counters_2.detail = (_e125 + 1u);
+        uint _e125 = counters_3.detail;
+        counters_3.detail = (_e125 + 1u);
         detail_pos = vec3(p_4.x, alt_9, p_4.z);
         if (CURL) {
             vec4 _e136 = _group_0_binding_0_cs.wind_offsets1_;
@@ -949,13 +955,13 @@ float layer_density(vec3 p_4, float alt_9, Layer l_3, inout Counters counters_2)
     return clamp(_e244, 0.0, 1.0);
 }
 
-float cloud_density(vec3 p_5, float alt_10, inout Counters counters_3) {
+float cloud_density(vec3 p_5, float alt_10, inout Counters counters_4) {
     uint _e3 = layer_at(alt_10);
     if ((_e3 == NO_LAYER)) {
         return 0.0;
     }
     Layer _e7 = cloud_layer(_e3);
-    float _e8 = layer_density(p_5, alt_10, _e7, counters_3);
+    float _e8 = layer_density(p_5, alt_10, _e7, counters_4);
     return _e8;
 }
 
@@ -995,18 +1001,18 @@ float phase(float cos_theta_4, float scale) {
     }
 }
 
-float sun_optical_depth(vec3 rel_1, vec3 p_6, Layer l_4, inout Counters counters_4) {
+float sun_optical_depth(vec3 rel_1, vec3 p_6, Layer l_4, inout Counters counters_5) {
     float seg = 0.0;
     float dist = 0.0;
-    float tau_3 = 0.0;
-    uint i_8 = 0u;
-    bool local_26 = false;
-    uint j_1 = 0u;
+    float tau_4 = 0.0;
+    uint i_9 = 0u;
     bool local_27 = false;
+    uint j_1 = 0u;
     bool local_28 = false;
     bool local_29 = false;
+    bool local_30 = false;
     vec4 _e6 = _group_0_binding_0_cs.sun_direction;
-    vec3 sun_1 = _e6.xyz;
+    vec3 sun_2 = _e6.xyz;
     float _e11 = _group_0_binding_0_cs.extinction.x;
     float _e15 = _group_0_binding_0_cs.extinction.y;
     float sigma_t_1 = (_e11 + _e15);
@@ -1017,11 +1023,11 @@ float sun_optical_depth(vec3 rel_1, vec3 p_6, Layer l_4, inout Counters counters
     bool loop_init_3 = true;
     while(true) {
         if (!loop_init_3) {
-            uint _e73 = i_8;
-            i_8 = (_e73 + 1u);
+            uint _e73 = i_9;
+            i_9 = (_e73 + 1u);
         }
         loop_init_3 = false;
-        uint _e36 = i_8;
+        uint _e36 = i_9;
         if ((_e36 < steps_2)) {
         } else {
             break;
@@ -1029,24 +1035,24 @@ float sun_optical_depth(vec3 rel_1, vec3 p_6, Layer l_4, inout Counters counters
         {
             float _e38 = dist;
             float _e39 = seg;
-            float s_6 = (_e38 + (0.5 * _e39));
-            vec3 q_7 = (rel_1 + (sun_1 * s_6));
+            float s_7 = (_e38 + (0.5 * _e39));
+            vec3 q_7 = (rel_1 + (sun_2 * s_7));
             float _e45 = altitude_of(q_7);
             if (!((_e45 > l_4.top))) {
-                local_26 = (_e45 < l_4.bottom);
+                local_27 = (_e45 < l_4.bottom);
             } else {
-                local_26 = true;
+                local_27 = true;
             }
-            bool _e54 = local_26;
+            bool _e54 = local_27;
             if (_e54) {
                 break;
             }
-            uint _e56 = counters_4.light;
-            counters_4.light = (_e56 + 1u);
-            float _e59 = tau_3;
-            float _e62 = layer_density((p_6 + (sun_1 * s_6)), _e45, l_4, counters_4);
+            uint _e56 = counters_5.light;
+            counters_5.light = (_e56 + 1u);
+            float _e59 = tau_4;
+            float _e62 = layer_density((p_6 + (sun_2 * s_7)), _e45, l_4, counters_5);
             float _e64 = seg;
-            tau_3 = (_e59 + ((_e62 * sigma_t_1) * _e64));
+            tau_4 = (_e59 + ((_e62 * sigma_t_1) * _e64));
             float _e67 = dist;
             float _e68 = seg;
             dist = (_e67 + _e68);
@@ -1074,62 +1080,62 @@ float sun_optical_depth(vec3 rel_1, vec3 p_6, Layer l_4, inout Counters counters
             if ((_e82.bottom <= l_4.top)) {
                 continue;
             }
-            Roots _e87 = ray_shell_from(rel_1, _e75, sun_1, _e82.bottom);
-            Roots _e89 = ray_shell_from(rel_1, _e75, sun_1, _e82.top);
+            Roots _e87 = ray_shell_from(rel_1, _e75, sun_2, _e82.bottom);
+            Roots _e89 = ray_shell_from(rel_1, _e75, sun_2, _e82.top);
             if (!(!(_e87.hit))) {
-                local_27 = !(_e89.hit);
-            } else {
-                local_27 = true;
-            }
-            bool _e98 = local_27;
-            if (!(_e98)) {
-                local_28 = !((_e89.t1_ > _e87.t1_));
+                local_28 = !(_e89.hit);
             } else {
                 local_28 = true;
             }
-            bool _e107 = local_28;
-            if (!(_e107)) {
-                local_29 = (_e87.t1_ <= 0.0);
+            bool _e98 = local_28;
+            if (!(_e98)) {
+                local_29 = !((_e89.t1_ > _e87.t1_));
             } else {
                 local_29 = true;
             }
-            bool _e115 = local_29;
+            bool _e107 = local_29;
+            if (!(_e107)) {
+                local_30 = (_e87.t1_ <= 0.0);
+            } else {
+                local_30 = true;
+            }
+            bool _e115 = local_30;
             if (_e115) {
                 continue;
             }
-            float s_7 = (0.5 * (_e87.t1_ + _e89.t1_));
-            uint _e122 = counters_4.light;
-            counters_4.light = (_e122 + 1u);
-            float _e125 = tau_3;
-            float _e130 = altitude_of((rel_1 + (sun_1 * s_7)));
-            float _e131 = layer_density((p_6 + (sun_1 * s_7)), _e130, _e82, counters_4);
-            tau_3 = (_e125 + ((_e131 * sigma_t_1) * (_e89.t1_ - _e87.t1_)));
+            float s_8 = (0.5 * (_e87.t1_ + _e89.t1_));
+            uint _e122 = counters_5.light;
+            counters_5.light = (_e122 + 1u);
+            float _e125 = tau_4;
+            float _e130 = altitude_of((rel_1 + (sun_2 * s_8)));
+            float _e131 = layer_density((p_6 + (sun_2 * s_8)), _e130, _e82, counters_5);
+            tau_4 = (_e125 + ((_e131 * sigma_t_1) * (_e89.t1_ - _e87.t1_)));
         }
     }
-    float _e141 = tau_3;
+    float _e141 = tau_4;
     return _e141;
 }
 
-float sun_scattering(float cos_theta_5, float tau_4) {
+float sun_scattering(float cos_theta_5, float tau_5) {
     float octave_sum = 0.0;
     float ka = 1.0;
     float kb = 1.0;
     float kc = 1.0;
-    uint i_9 = 0u;
+    uint i_10 = 0u;
     float total = 0.0;
     float a_7 = _group_0_binding_0_cs.multiple_scattering.x;
     float b_7 = _group_0_binding_0_cs.multiple_scattering.y;
-    float c_7 = _group_0_binding_0_cs.multiple_scattering.z;
+    float c_8 = _group_0_binding_0_cs.multiple_scattering.z;
     uint _e17 = _group_0_binding_0_cs.misc.x;
     uint octaves = min(_e17, MAX_OCTAVES);
     bool loop_init_5 = true;
     while(true) {
         if (!loop_init_5) {
-            uint _e50 = i_9;
-            i_9 = (_e50 + 1u);
+            uint _e50 = i_10;
+            i_10 = (_e50 + 1u);
         }
         loop_init_5 = false;
-        uint _e30 = i_9;
+        uint _e30 = i_10;
         if ((_e30 < octaves)) {
         } else {
             break;
@@ -1140,25 +1146,25 @@ float sun_scattering(float cos_theta_5, float tau_4) {
             float _e34 = kb;
             kb = (_e34 * b_7);
             float _e36 = kc;
-            kc = (_e36 * c_7);
+            kc = (_e36 * c_8);
             float _e38 = octave_sum;
             float _e39 = ka;
             float _e40 = kc;
             float _e41 = phase(cos_theta_5, _e40);
             float _e43 = kb;
-            octave_sum = (_e38 + ((_e39 * _e41) * exp((-(_e43) * tau_4))));
+            octave_sum = (_e38 + ((_e39 * _e41) * exp((-(_e43) * tau_5))));
         }
     }
     float _e55 = _group_0_binding_0_cs.sun_direction.y;
     float _e56 = saturate(_e55);
     float _e58 = phase(cos_theta_5, 1.0);
     float _e62 = octave_sum;
-    total = ((_e58 * exp(-(tau_4))) + (_e56 * _e62));
+    total = ((_e58 * exp(-(tau_5))) + (_e56 * _e62));
     uint _e69 = _group_0_binding_0_cs.modes.w;
     if (((_e69 & FLAG_BEER_POWDER) != 0u)) {
         float _e74 = total;
         float _e78 = _group_0_binding_0_cs.phase.w;
-        total = (_e74 * (1.0 - exp((-(_e78) * tau_4))));
+        total = (_e74 * (1.0 - exp((-(_e78) * tau_5))));
     }
     float _e85 = total;
     return _e85;
@@ -1184,23 +1190,23 @@ float height_fraction(float alt_11) {
     return _e4;
 }
 
-vec3 scattered_light(vec3 rel_2, vec3 p_7, float alt_12, float density_1, vec3 view, Layer l_5, inout Counters counters_5) {
+vec3 scattered_light(vec3 rel_2, vec3 p_7, float alt_12, float density_1, vec3 view, Layer l_5, inout Counters counters_6) {
     vec3 sun_light = vec3(0.0);
-    float tau_5 = 0.0;
+    float tau_6 = 0.0;
     vec4 _e9 = _group_0_binding_0_cs.sun_direction;
-    vec3 sun_2 = _e9.xyz;
+    vec3 sun_3 = _e9.xyz;
     float _e11 = layer_height(l_5, alt_12);
     float _e12 = saturate(_e11);
-    bool _e16 = hits_ground(rel_2, alt_12, sun_2);
+    bool _e16 = hits_ground(rel_2, alt_12, sun_3);
     if (!(_e16)) {
         if (LIGHT_MARCH) {
-            float _e21 = sun_optical_depth(rel_2, p_7, l_5, counters_5);
-            tau_5 = _e21;
+            float _e21 = sun_optical_depth(rel_2, p_7, l_5, counters_6);
+            tau_6 = _e21;
         }
         vec4 _e24 = _group_0_binding_0_cs.sun_illuminance;
         vec3 _e26 = sun_through_air(rel_2);
-        float _e29 = tau_5;
-        float _e30 = sun_scattering(dot(view, sun_2), _e29);
+        float _e29 = tau_6;
+        float _e30 = sun_scattering(dot(view, sun_3), _e29);
         sun_light = ((_e24.xyz * _e26) * _e30);
     }
     Weather _e32 = sample_weather(p_7, l_5);
@@ -1212,7 +1218,15 @@ vec3 scattered_light(vec3 rel_2, vec3 p_7, float alt_12, float density_1, vec3 v
     return (((_e48 * density_1) * (_e50 + _e51)) * _e44);
 }
 
-float empty_cell_exit(vec3 p_8, vec3 d_10) {
+vec3 shadow_ground_point(uvec2 c_2) {
+    vec2 xz_1 = ((((vec2(c_2) / vec2(127.0)) * 2.0) - vec2(1.0)) * SHADOW_HALF_EXTENT);
+    float rp_4 = _group_0_binding_0_cs.atmosphere.x;
+    float s2_ = dot(xz_1, xz_1);
+    float y_1 = (-(s2_) / (sqrt(max(((rp_4 * rp_4) - s2_), 0.0)) + rp_4));
+    return vec3(xz_1.x, y_1, xz_1.y);
+}
+
+float empty_cell_exit(vec3 p_8, vec3 d_11) {
     float exit = 1e30;
     vec4 _e6 = _group_0_binding_0_cs.wind_offsets0_;
     float _e12 = _group_0_binding_0_cs.periods.x;
@@ -1227,22 +1241,22 @@ float empty_cell_exit(vec3 p_8, vec3 d_10) {
     float _e40 = _group_0_binding_0_cs.periods.x;
     float cell_m = (_e40 / 64.0);
     vec2 inside = ((uv_3 - vec2(cell_1)) * cell_m);
-    if ((d_10.x > 1e-6)) {
+    if ((d_11.x > 1e-6)) {
         float _e50 = exit;
-        exit = min(_e50, ((cell_m - inside.x) / d_10.x));
+        exit = min(_e50, ((cell_m - inside.x) / d_11.x));
     } else {
-        if ((d_10.x < -1e-6)) {
+        if ((d_11.x < -1e-6)) {
             float _e59 = exit;
-            exit = min(_e59, (inside.x / -(d_10.x)));
+            exit = min(_e59, (inside.x / -(d_11.x)));
         }
     }
-    if ((d_10.z > 1e-6)) {
+    if ((d_11.z > 1e-6)) {
         float _e68 = exit;
-        exit = min(_e68, ((cell_m - inside.y) / d_10.z));
+        exit = min(_e68, ((cell_m - inside.y) / d_11.z));
     } else {
-        if ((d_10.z < -1e-6)) {
+        if ((d_11.z < -1e-6)) {
             float _e77 = exit;
-            exit = min(_e77, (inside.y / -(d_10.z)));
+            exit = min(_e77, (inside.y / -(d_11.z)));
         }
     }
     float _e83 = exit;
@@ -1250,13 +1264,13 @@ float empty_cell_exit(vec3 p_8, vec3 d_10) {
 }
 
 void count(uint index_1, uint value) {
-    bool local_30 = false;
+    bool local_31 = false;
     if (STATS) {
-        local_30 = (value != 0u);
+        local_31 = (value != 0u);
     } else {
-        local_30 = false;
+        local_31 = false;
     }
-    bool _e8 = local_30;
+    bool _e8 = local_31;
     if (_e8) {
         uint _e12 = atomicAdd(_group_0_binding_8_cs.counters[index_1], value);
         return;
@@ -1278,8 +1292,8 @@ vec3 step_integral(vec3 source, float sigma_t, float dt) {
 float start_offset(uvec2 pixel_3) {
     uint _e4 = _group_0_binding_0_cs.modes.w;
     bool jitter_1 = ((_e4 & FLAG_JITTER) != 0u);
-    uint k_10 = _group_0_binding_0_cs.temporal.x;
-    if ((k_10 <= 1u)) {
+    uint k_12 = _group_0_binding_0_cs.temporal.x;
+    if ((k_12 <= 1u)) {
         uint _e18 = _group_0_binding_0_cs.misc.y;
         float _e19 = hash_unit(pixel_3, _e18);
         return (jitter_1 ? _e19 : 0.5);
@@ -1287,16 +1301,16 @@ float start_offset(uvec2 pixel_3) {
     float _e23 = hash_unit(pixel_3, 0u);
     float base_2 = (jitter_1 ? _e23 : 0.5);
     uint _e29 = _group_0_binding_0_cs.misc.y;
-    float _e32 = van_der_corput((_e29 / (k_10 * k_10)));
+    float _e32 = van_der_corput((_e29 / (k_12 * k_12)));
     return fract((base_2 + _e32));
 }
 
-bool march_layer(vec3 view_1, Interval span_1, Layer l_6, float jitter, inout MarchState state, inout Counters counters_6) {
+bool march_layer(vec3 view_2, Interval span_1, Layer l_6, float jitter, inout MarchState state, inout Counters counters_7) {
     uint steps_1 = 0u;
-    uint i_10 = 0u;
+    uint i_11 = 0u;
     uint stride = 1u;
     uint empty = 0u;
-    bool local_31 = false;
+    bool local_32 = false;
     float cam_alt = _group_0_binding_0_cs.camera_position.y;
     vec4 _e12 = _group_0_binding_0_cs.camera_position;
     vec2 cam_xz = _e12.xz;
@@ -1317,59 +1331,59 @@ bool march_layer(vec3 view_1, Interval span_1, Layer l_6, float jitter, inout Ma
     uint _e60 = _group_0_binding_0_cs.modes.w;
     bool empty_skip = ((_e60 & FLAG_EMPTY_SKIP) != 0u);
     while(true) {
-        uint _e71 = i_10;
+        uint _e71 = i_11;
         uint _e72 = steps_1;
         if ((_e71 >= _e72)) {
             break;
         }
-        uint _e75 = counters_6.view_steps;
-        counters_6.view_steps = (_e75 + 1u);
-        uint _e79 = i_10;
+        uint _e75 = counters_7.view_steps;
+        counters_7.view_steps = (_e75 + 1u);
+        uint _e79 = i_11;
         float t_5 = (span_1.start + ((float(_e79) + jitter) * dt_1));
-        vec3 rel_5 = ((view_1 * t_5) + vec3(0.0, cam_alt, 0.0));
-        vec3 p_12 = vec3((rel_5.x + cam_xz.x), rel_5.y, (rel_5.z + cam_xz.y));
+        vec3 rel_6 = ((view_2 * t_5) + vec3(0.0, cam_alt, 0.0));
+        vec3 p_12 = vec3((rel_6.x + cam_xz.x), rel_6.y, (rel_6.z + cam_xz.y));
         if (empty_skip) {
-            float _e97 = empty_cell_exit(p_12, view_1);
+            float _e97 = empty_cell_exit(p_12, view_2);
             if ((_e97 > 0.0)) {
                 uint _e106 = steps_1;
                 uint next_1 = uint(clamp(ceil(((((t_5 + _e97) - span_1.start) / dt_1) - jitter)), 0.0, float(_e106)));
-                uint _e111 = i_10;
-                i_10 = max((_e111 + 1u), next_1);
+                uint _e111 = i_11;
+                i_11 = max((_e111 + 1u), next_1);
                 continue;
             }
         }
-        float _e115 = altitude_of(rel_5);
-        float _e116 = layer_density(p_12, _e115, l_6, counters_6);
+        float _e115 = altitude_of(rel_6);
+        float _e116 = layer_density(p_12, _e115, l_6, counters_7);
         if ((_e116 <= 0.0)) {
             uint _e119 = empty;
             empty = (_e119 + 1u);
             if (dynamic_step) {
                 uint _e124 = empty;
-                local_31 = (_e124 >= 8u);
+                local_32 = (_e124 >= 8u);
             } else {
-                local_31 = false;
+                local_32 = false;
             }
-            bool _e128 = local_31;
+            bool _e128 = local_32;
             if (_e128) {
                 stride = 2u;
             }
-            uint _e130 = i_10;
+            uint _e130 = i_11;
             uint _e131 = stride;
-            i_10 = (_e130 + _e131);
+            i_11 = (_e130 + _e131);
             continue;
         }
         uint _e133 = stride;
         if ((_e133 > 1u)) {
-            uint _e136 = i_10;
+            uint _e136 = i_11;
             uint _e137 = stride;
-            i_10 = (_e136 - (_e137 - 1u));
+            i_11 = (_e136 - (_e137 - 1u));
             stride = 1u;
             empty = 0u;
             continue;
         }
         empty = 0u;
         float sigma_t_2 = (sigma_e * _e116);
-        vec3 _e145 = scattered_light(rel_5, p_12, _e115, _e116, view_1, l_6, counters_6);
+        vec3 _e145 = scattered_light(rel_6, p_12, _e115, _e116, view_2, l_6, counters_7);
         float transmittance_1 = state.transmittance;
         vec3 _e149 = state.radiance;
         vec3 _e150 = step_integral(_e145, sigma_t_2, dt_1);
@@ -1383,29 +1397,30 @@ bool march_layer(vec3 view_1, Interval span_1, Layer l_6, float jitter, inout Ma
         if ((_e166 < _e170)) {
             return true;
         }
-        uint _e173 = i_10;
-        i_10 = (_e173 + 1u);
+        uint _e173 = i_11;
+        i_11 = (_e173 + 1u);
     }
     return false;
 }
 
 MarchResult march_pixel(uvec2 pixel_4) {
-    Counters counters_7 = Counters(0u, 0u, 0u, 0u);
+    Counters counters_8 = Counters(0u, 0u, 0u, 0u);
     MarchState state_1 = MarchState(vec3(0.0), 1.0, 0.0);
     bool marched = false;
     bool ground_1 = false;
     float last_start = -1.0;
     uint last_index = NO_LAYER;
-    uint k_4 = 0u;
+    bool exited = false;
+    uint k_6 = 0u;
     uint next = 0u;
     Interval span_2 = Interval(0.0, 0.0, 0u);
-    uint i_11 = 0u;
-    bool local_32 = false;
+    uint i_12 = 0u;
     bool local_33 = false;
     bool local_34 = false;
     bool local_35 = false;
     bool local_36 = false;
     bool local_37 = false;
+    bool local_38 = false;
     float depth_1 = 0.0;
     vec3 _e1 = view_ray(pixel_4);
     float cam_alt_1 = _group_0_binding_0_cs.camera_position.y;
@@ -1415,146 +1430,149 @@ MarchResult march_pixel(uvec2 pixel_4) {
     bool loop_init_6 = true;
     while(true) {
         if (!loop_init_6) {
-            uint _e116 = k_4;
-            k_4 = (_e116 + 1u);
+            uint _e119 = k_6;
+            k_6 = (_e119 + 1u);
         }
         loop_init_6 = false;
-        uint _e32 = k_4;
-        if ((_e32 < _e21)) {
+        uint _e34 = k_6;
+        if ((_e34 < _e21)) {
         } else {
             break;
         }
         {
             next = NO_LAYER;
             span_2 = Interval(0.0, 0.0, 1u);
-            i_11 = 0u;
+            i_12 = 0u;
             bool loop_init_7 = true;
             while(true) {
                 if (!loop_init_7) {
-                    uint _e100 = i_11;
-                    i_11 = (_e100 + 1u);
+                    uint _e102 = i_12;
+                    i_12 = (_e102 + 1u);
                 }
                 loop_init_7 = false;
-                uint _e43 = i_11;
-                if ((_e43 < _e21)) {
+                uint _e45 = i_12;
+                if ((_e45 < _e21)) {
                 } else {
                     break;
                 }
                 {
-                    uint _e45 = i_11;
-                    Layer _e46 = cloud_layer(_e45);
-                    Interval _e47 = layer_interval(cam_alt_1, _e1, _e46);
-                    bool _e48 = ground_1;
-                    if (!(_e48)) {
-                        local_32 = (_e47.kind == RAY_HITS_GROUND);
-                    } else {
-                        local_32 = true;
-                    }
-                    bool _e56 = local_32;
-                    ground_1 = _e56;
-                    float _e58 = last_start;
-                    if (!((_e47.start > _e58))) {
-                        float _e64 = last_start;
-                        if ((_e47.start == _e64)) {
-                            uint _e68 = i_11;
-                            uint _e69 = last_index;
-                            local_34 = (_e68 > _e69);
-                        } else {
-                            local_34 = false;
-                        }
-                        bool _e72 = local_34;
-                        local_33 = _e72;
+                    uint _e47 = i_12;
+                    Layer _e48 = cloud_layer(_e47);
+                    Interval _e49 = layer_interval(cam_alt_1, _e1, _e48);
+                    bool _e50 = ground_1;
+                    if (!(_e50)) {
+                        local_33 = (_e49.kind == RAY_HITS_GROUND);
                     } else {
                         local_33 = true;
                     }
-                    bool after = local_33;
-                    if ((_e47.kind == RAY_MARCH)) {
-                        local_35 = after;
-                    } else {
-                        local_35 = false;
-                    }
-                    bool _e81 = local_35;
-                    if (_e81) {
-                        uint _e84 = next;
-                        if (!((_e84 == NO_LAYER))) {
-                            float _e92 = span_2.start;
-                            local_37 = (_e47.start < _e92);
+                    bool _e58 = local_33;
+                    ground_1 = _e58;
+                    float _e60 = last_start;
+                    if (!((_e49.start > _e60))) {
+                        float _e66 = last_start;
+                        if ((_e49.start == _e66)) {
+                            uint _e70 = i_12;
+                            uint _e71 = last_index;
+                            local_35 = (_e70 > _e71);
                         } else {
-                            local_37 = true;
+                            local_35 = false;
                         }
-                        bool _e95 = local_37;
-                        local_36 = _e95;
+                        bool _e74 = local_35;
+                        local_34 = _e74;
+                    } else {
+                        local_34 = true;
+                    }
+                    bool after = local_34;
+                    if ((_e49.kind == RAY_MARCH)) {
+                        local_36 = after;
                     } else {
                         local_36 = false;
                     }
-                    bool _e97 = local_36;
-                    if (_e97) {
-                        uint _e98 = i_11;
-                        next = _e98;
-                        span_2 = _e47;
+                    bool _e83 = local_36;
+                    if (_e83) {
+                        uint _e86 = next;
+                        if (!((_e86 == NO_LAYER))) {
+                            float _e94 = span_2.start;
+                            local_38 = (_e49.start < _e94);
+                        } else {
+                            local_38 = true;
+                        }
+                        bool _e97 = local_38;
+                        local_37 = _e97;
+                    } else {
+                        local_37 = false;
+                    }
+                    bool _e99 = local_37;
+                    if (_e99) {
+                        uint _e100 = i_12;
+                        next = _e100;
+                        span_2 = _e49;
                     }
                 }
             }
-            uint _e102 = next;
-            if ((_e102 == NO_LAYER)) {
+            uint _e104 = next;
+            if ((_e104 == NO_LAYER)) {
                 break;
             }
             marched = true;
-            float _e107 = span_2.start;
-            last_start = _e107;
-            uint _e108 = next;
-            last_index = _e108;
-            Interval _e109 = span_2;
+            float _e109 = span_2.start;
+            last_start = _e109;
             uint _e110 = next;
-            Layer _e111 = cloud_layer(_e110);
-            bool _e112 = march_layer(_e1, _e109, _e111, _e20, state_1, counters_7);
-            if (_e112) {
+            last_index = _e110;
+            Interval _e111 = span_2;
+            uint _e112 = next;
+            Layer _e113 = cloud_layer(_e112);
+            bool _e114 = march_layer(_e1, _e111, _e113, _e20, state_1, counters_8);
+            if (_e114) {
                 count(STAT_EXIT_TRANSMITTANCE, 1u);
+                exited = true;
                 break;
             }
         }
     }
-    bool _e118 = marched;
-    if (_e118) {
+    bool _e121 = marched;
+    if (_e121) {
         count(STAT_MARCHED, 1u);
     } else {
-        bool _e121 = ground_1;
-        if (_e121) {
+        bool _e124 = ground_1;
+        if (_e124) {
             count(STAT_EXIT_GROUND, 1u);
         } else {
             count(STAT_EXIT_MISSED, 1u);
         }
     }
-    uint _e128 = counters_7.view_steps;
-    count(STAT_VIEW_STEPS, _e128);
-    uint _e131 = counters_7.density;
-    count(STAT_DENSITY, _e131);
-    uint _e134 = counters_7.detail;
-    count(STAT_DETAIL, _e134);
-    uint _e137 = counters_7.light;
-    count(STAT_LIGHT, _e137);
-    float _e141 = state_1.transmittance;
-    if ((_e141 < 1.0)) {
-        float _e145 = state_1.depth_sum;
-        float _e147 = state_1.transmittance;
-        depth_1 = (_e145 / (1.0 - _e147));
+    uint _e131 = counters_8.view_steps;
+    count(STAT_VIEW_STEPS, _e131);
+    uint _e134 = counters_8.density;
+    count(STAT_DENSITY, _e134);
+    uint _e137 = counters_8.detail;
+    count(STAT_DETAIL, _e137);
+    uint _e140 = counters_8.light;
+    count(STAT_LIGHT, _e140);
+    float _e144 = state_1.transmittance;
+    if ((_e144 < 1.0)) {
+        float _e148 = state_1.depth_sum;
+        float _e150 = state_1.transmittance;
+        depth_1 = (_e148 / (1.0 - _e150));
     }
-    vec3 _e152 = state_1.radiance;
-    float _e154 = state_1.transmittance;
-    float _e155 = depth_1;
-    return MarchResult(_e152, _e154, _e155);
+    float _e155 = state_1.transmittance;
+    bool _e156 = exited;
+    float transmittance_2 = (_e156 ? 0.0 : _e155);
+    vec3 _e160 = state_1.radiance;
+    float _e161 = depth_1;
+    return MarchResult(_e160, transmittance_2, _e161);
 }
 
 uvec2 bayer2_(uint v_2) {
     return uvec2(((v_2 ^ (v_2 >> 1u)) & 1u), (v_2 & 1u));
 }
 
-uvec2 block_offset(uint f, uint k_5) {
-    if ((k_5 == 2u)) {
+uvec2 block_offset(uint f, uint k_7) {
+    if ((k_7 == 2u)) {
         uvec2 _e6 = bayer2_((f % 4u));
         return _e6;
     }
-    if ((k_5 == 4u)) {
+    if ((k_7 == 4u)) {
         uint b_8 = (f % 16u);
         uvec2 _e13 = bayer2_((b_8 >> 2u));
         uvec2 _e17 = bayer2_((b_8 & 3u));
@@ -1564,36 +1582,36 @@ uvec2 block_offset(uint f, uint k_5) {
 }
 
 vec2 reproject(uvec2 pixel_5, float depth_2) {
-    bool local_38 = false;
     bool local_39 = false;
     bool local_40 = false;
+    bool local_41 = false;
     vec3 dir = vec3(0.0);
     vec4 _e4 = _group_0_binding_0_cs.previous_position;
     vec4 _e7 = _group_0_binding_0_cs.camera_position;
     if (all(equal(_e4, _e7))) {
         vec4 _e14 = _group_0_binding_0_cs.previous_forward;
         vec4 _e17 = _group_0_binding_0_cs.camera_forward;
-        local_38 = all(equal(_e14, _e17));
-    } else {
-        local_38 = false;
-    }
-    bool _e21 = local_38;
-    if (_e21) {
-        vec4 _e26 = _group_0_binding_0_cs.previous_right;
-        vec4 _e29 = _group_0_binding_0_cs.camera_right;
-        local_39 = all(equal(_e26, _e29));
+        local_39 = all(equal(_e14, _e17));
     } else {
         local_39 = false;
     }
-    bool _e33 = local_39;
-    if (_e33) {
-        vec4 _e38 = _group_0_binding_0_cs.previous_up;
-        vec4 _e41 = _group_0_binding_0_cs.camera_up;
-        local_40 = all(equal(_e38, _e41));
+    bool _e21 = local_39;
+    if (_e21) {
+        vec4 _e26 = _group_0_binding_0_cs.previous_right;
+        vec4 _e29 = _group_0_binding_0_cs.camera_right;
+        local_40 = all(equal(_e26, _e29));
     } else {
         local_40 = false;
     }
-    bool same = local_40;
+    bool _e33 = local_40;
+    if (_e33) {
+        vec4 _e38 = _group_0_binding_0_cs.previous_up;
+        vec4 _e41 = _group_0_binding_0_cs.camera_up;
+        local_41 = all(equal(_e38, _e41));
+    } else {
+        local_41 = false;
+    }
+    bool same = local_41;
     if (same) {
         return vec2(pixel_5);
     }
@@ -1622,15 +1640,15 @@ vec2 reproject(uvec2 pixel_5, float depth_2) {
 }
 
 bool on_screen(vec2 q) {
-    bool local_41 = false;
+    bool local_42 = false;
     uvec4 _e3 = _group_0_binding_0_cs.counts;
     vec2 size_2 = vec2(_e3.xy);
     if (all(greaterThanEqual(q, vec2(-0.5)))) {
-        local_41 = all(lessThanEqual(q, (size_2 - vec2(0.5))));
+        local_42 = all(lessThanEqual(q, (size_2 - vec2(0.5))));
     } else {
-        local_41 = false;
+        local_42 = false;
     }
-    bool _e18 = local_41;
+    bool _e18 = local_42;
     return _e18;
 }
 
@@ -1641,33 +1659,33 @@ vec4 catmull_rom(float t_1) {
 vec4 history_row(ivec2 base_1, int dy, vec4 wx) {
     uvec4 _e5 = _group_0_binding_0_cs.counts;
     ivec2 size_3 = ivec2(_e5.xy);
-    int y_1 = min(max((base_1.y + dy), 0), (size_3.y - 1));
+    int y_2 = min(max((base_1.y + dy), 0), (size_3.y - 1));
     int x0_ = min(max((base_1.x - 1), 0), (size_3.x - 1));
     int x1_ = min(max(base_1.x, 0), (size_3.x - 1));
     int x2_ = min(max((base_1.x + 1), 0), (size_3.x - 1));
     int x3_ = min(max((base_1.x + 2), 0), (size_3.x - 1));
-    vec4 _e48 = texelFetch(_group_0_binding_13_cs, ivec2(x0_, y_1), 0);
-    vec4 _e54 = texelFetch(_group_0_binding_13_cs, ivec2(x1_, y_1), 0);
-    vec4 _e61 = texelFetch(_group_0_binding_13_cs, ivec2(x2_, y_1), 0);
-    vec4 _e68 = texelFetch(_group_0_binding_13_cs, ivec2(x3_, y_1), 0);
+    vec4 _e48 = texelFetch(_group_0_binding_13_cs, ivec2(x0_, y_2), 0);
+    vec4 _e54 = texelFetch(_group_0_binding_13_cs, ivec2(x1_, y_2), 0);
+    vec4 _e61 = texelFetch(_group_0_binding_13_cs, ivec2(x2_, y_2), 0);
+    vec4 _e68 = texelFetch(_group_0_binding_13_cs, ivec2(x3_, y_2), 0);
     return ((((_e48 * wx.x) + (_e54 * wx.y)) + (_e61 * wx.z)) + (_e68 * wx.w));
 }
 
 vec4 history_at(vec2 q_1) {
     uvec4 _e3 = _group_0_binding_0_cs.counts;
     ivec2 size_4 = ivec2(_e3.xy);
-    vec2 c_8 = clamp(q_1, vec2(0.0), vec2((size_4 - ivec2(1))));
-    ivec2 base_3 = ivec2(floor(c_8));
-    vec2 f_3 = (c_8 - vec2(base_3));
+    vec2 c_9 = clamp(q_1, vec2(0.0), vec2((size_4 - ivec2(1))));
+    ivec2 base_3 = ivec2(floor(c_9));
+    vec2 f_3 = (c_9 - vec2(base_3));
     vec4 _e18 = catmull_rom(f_3.x);
     vec4 _e20 = catmull_rom(f_3.y);
     vec4 _e22 = history_row(base_3, -1, _e18);
     vec4 _e26 = history_row(base_3, 0, _e18);
     vec4 _e31 = history_row(base_3, 1, _e18);
     vec4 _e36 = history_row(base_3, 2, _e18);
-    vec4 sum_4 = ((((_e22 * _e20.x) + (_e26 * _e20.y)) + (_e31 * _e20.z)) + (_e36 * _e20.w));
-    float _e45 = saturate(sum_4.w);
-    return vec4(max(sum_4.xyz, vec3(0.0)), _e45);
+    vec4 sum_5 = ((((_e22 * _e20.x) + (_e26 * _e20.y)) + (_e31 * _e20.z)) + (_e36 * _e20.w));
+    float _e45 = saturate(sum_5.w);
+    return vec4(max(sum_5.xyz, vec3(0.0)), _e45);
 }
 
 vec4 history_nearest(vec2 q_2) {
@@ -1686,22 +1704,22 @@ vec4 meta_at(vec2 q_3) {
     return _e16;
 }
 
-bool in_blocks(uvec2 id_18) {
-    uint k_11 = _group_0_binding_0_cs.temporal.x;
+bool in_blocks(uvec2 id_20) {
+    uint k_13 = _group_0_binding_0_cs.temporal.x;
     uvec4 _e7 = _group_0_binding_0_cs.counts;
-    return all(lessThan(id_18, (((_e7.xy + uvec2(k_11)) - uvec2(1u)) / uvec2(k_11))));
+    return all(lessThan(id_20, (((_e7.xy + uvec2(k_13)) - uvec2(1u)) / uvec2(k_13))));
 }
 
-uvec2 sparse_pixel(uvec2 id_19) {
-    uint k_12 = _group_0_binding_0_cs.temporal.x;
+uvec2 sparse_pixel(uvec2 id_21) {
+    uint k_14 = _group_0_binding_0_cs.temporal.x;
     uint _e9 = _group_0_binding_0_cs.misc.y;
-    uvec2 _e10 = block_offset(_e9, k_12);
-    return ((id_19 * k_12) + _e10);
+    uvec2 _e10 = block_offset(_e9, k_14);
+    return ((id_21 * k_14) + _e10);
 }
 
-void store_sparse(uvec2 id_20, MarchResult r_12) {
-    imageStore(_group_0_binding_6_cs, ivec2(id_20), vec4(r_12.radiance, r_12.transmittance));
-    imageStore(_group_0_binding_7_cs, ivec2(id_20), vec4(r_12.depth, 0.0, 0.0, 0.0));
+void store_sparse(uvec2 id_22, MarchResult r_13) {
+    imageStore(_group_0_binding_6_cs, ivec2(id_22), vec4(r_13.radiance, r_13.transmittance));
+    imageStore(_group_0_binding_7_cs, ivec2(id_22), vec4(r_13.depth, 0.0, 0.0, 0.0));
     return;
 }
 
@@ -1715,8 +1733,8 @@ uint rng_seed(uvec2 pixel_6, uint frame_index_1) {
 float rng_next(inout uint rng_1) {
     uint _e1 = rng_1;
     rng_1 = ((_e1 * 747796405u) + 2891336453u);
-    uint s_8 = rng_1;
-    uint word_1 = (((s_8 >> ((s_8 >> 28u) + 4u)) ^ s_8) * 277803737u);
+    uint s_9 = rng_1;
+    uint word_1 = (((s_9 >> ((s_9 >> 28u) + 4u)) ^ s_9) * 277803737u);
     return (float((((word_1 >> 22u) ^ word_1) >> 8u)) * 5.9604645e-8);
 }
 
@@ -1725,44 +1743,44 @@ float rng_exponential(inout uint rng_2, float sigma) {
     return (-(log((1.0 - _e2))) / sigma);
 }
 
-Segments layer_segments(vec3 p_9, float alt_13, vec3 d_11) {
-    Segments s = Segments(vec2(0.0), vec2(0.0), 0u);
-    bool local_42 = false;
+Segments layer_segments(vec3 p_9, float alt_13, vec3 d_12) {
+    Segments s_1 = Segments(vec2(0.0), vec2(0.0), 0u);
+    bool local_43 = false;
     vec2 a_1 = vec2(0.0);
     vec2 b_1 = vec2(0.0);
     uint n_2 = 0u;
-    bool local_43 = false;
     bool local_44 = false;
     bool local_45 = false;
     bool local_46 = false;
+    bool local_47 = false;
     vec2 _e10 = layers_span();
     float bottom_2 = _e10.x;
-    Roots _e12 = ray_shell_from(p_9, alt_13, d_11, bottom_2);
-    Roots _e14 = ray_shell_from(p_9, alt_13, d_11, _e10.y);
-    bool _e15 = hits_ground(p_9, alt_13, d_11);
+    Roots _e12 = ray_shell_from(p_9, alt_13, d_12, bottom_2);
+    Roots _e14 = ray_shell_from(p_9, alt_13, d_12, _e10.y);
+    bool _e15 = hits_ground(p_9, alt_13, d_12);
     if (!(!(_e14.hit))) {
-        local_42 = (_e14.t1_ <= 0.0);
+        local_43 = (_e14.t1_ <= 0.0);
     } else {
-        local_42 = true;
+        local_43 = true;
     }
-    bool _e25 = local_42;
+    bool _e25 = local_43;
     if (_e25) {
-        Segments _e26 = s;
+        Segments _e26 = s_1;
         return _e26;
     }
     float entry = max(_e14.t0_, 0.0);
     if (_e12.hit) {
-        local_43 = (_e12.t0_ > 0.0);
-    } else {
-        local_43 = false;
-    }
-    bool _e45 = local_43;
-    if (_e45) {
-        local_44 = (alt_13 >= bottom_2);
+        local_44 = (_e12.t0_ > 0.0);
     } else {
         local_44 = false;
     }
-    bool _e50 = local_44;
+    bool _e45 = local_44;
+    if (_e45) {
+        local_45 = (alt_13 >= bottom_2);
+    } else {
+        local_45 = false;
+    }
+    bool _e50 = local_45;
     if (_e50) {
         uint _e51 = n_2;
         a_1[_e51] = entry;
@@ -1771,11 +1789,11 @@ Segments layer_segments(vec3 p_9, float alt_13, vec3 d_11) {
         uint _e56 = n_2;
         n_2 = (_e56 + uint((_e12.t0_ > entry)));
         if (!(_e15)) {
-            local_45 = (_e14.t1_ > _e12.t1_);
+            local_46 = (_e14.t1_ > _e12.t1_);
         } else {
-            local_45 = false;
+            local_46 = false;
         }
-        bool _e68 = local_45;
+        bool _e68 = local_46;
         if (_e68) {
             uint _e69 = n_2;
             a_1[_e69] = max(_e12.t1_, entry);
@@ -1787,11 +1805,11 @@ Segments layer_segments(vec3 p_9, float alt_13, vec3 d_11) {
     } else {
         if ((alt_13 < bottom_2)) {
             if (!(_e15)) {
-                local_46 = _e12.hit;
+                local_47 = _e12.hit;
             } else {
-                local_46 = false;
+                local_47 = false;
             }
-            bool _e85 = local_46;
+            bool _e85 = local_47;
             if (_e85) {
                 a_1.x = max(_e12.t1_, 0.0);
                 b_1.x = _e14.t1_;
@@ -1804,33 +1822,33 @@ Segments layer_segments(vec3 p_9, float alt_13, vec3 d_11) {
         }
     }
     vec2 _e98 = a_1;
-    s.a = _e98;
+    s_1.a = _e98;
     vec2 _e100 = b_1;
-    s.b = _e100;
+    s_1.b = _e100;
     uint _e102 = n_2;
-    s.count = _e102;
-    Segments _e103 = s;
+    s_1.count = _e102;
+    Segments _e103 = s_1;
     return _e103;
 }
 
-float density_at(vec3 rel_3, inout Counters counters_8) {
+float density_at(vec3 rel_4, inout Counters counters_9) {
     float _e6 = _group_0_binding_0_cs.camera_position.x;
     float _e13 = _group_0_binding_0_cs.camera_position.z;
-    vec3 p_15 = vec3((rel_3.x + _e6), rel_3.y, (rel_3.z + _e13));
-    float _e16 = altitude_of(rel_3);
-    float _e17 = cloud_density(p_15, _e16, counters_8);
+    vec3 p_15 = vec3((rel_4.x + _e6), rel_4.y, (rel_4.z + _e13));
+    float _e16 = altitude_of(rel_4);
+    float _e17 = cloud_density(p_15, _e16, counters_9);
     return _e17;
 }
 
-float empty_cell_skip(vec3 origin_2, vec3 dir_1, float t_2) {
+float empty_cell_skip(vec3 origin_3, vec3 dir_1, float t_2) {
     uint _e3 = layer_count();
     if ((_e3 > 1u)) {
         return 0.0;
     }
-    vec3 rel_6 = (origin_2 + (dir_1 * t_2));
+    vec3 rel_7 = (origin_3 + (dir_1 * t_2));
     float _e13 = _group_0_binding_0_cs.camera_position.x;
     float _e20 = _group_0_binding_0_cs.camera_position.z;
-    vec3 p_16 = vec3((rel_6.x + _e13), rel_6.y, (rel_6.z + _e20));
+    vec3 p_16 = vec3((rel_7.x + _e13), rel_7.y, (rel_7.z + _e20));
     float _e23 = empty_cell_exit(p_16, dir_1);
     if ((_e23 <= 0.0)) {
         return 0.0;
@@ -1840,22 +1858,22 @@ float empty_cell_skip(vec3 origin_2, vec3 dir_1, float t_2) {
 
 float density_max() {
     float m_1 = 0.0;
-    uint i_12 = 0u;
+    uint i_13 = 0u;
     bool loop_init_8 = true;
     while(true) {
         if (!loop_init_8) {
-            uint _e17 = i_12;
-            i_12 = (_e17 + 1u);
+            uint _e17 = i_13;
+            i_13 = (_e17 + 1u);
         }
         loop_init_8 = false;
-        uint _e4 = i_12;
+        uint _e4 = i_13;
         uint _e5 = layer_count();
         if ((_e4 < _e5)) {
         } else {
             break;
         }
         {
-            uint _e7 = i_12;
+            uint _e7 = i_13;
             Layer _e8 = cloud_layer(_e7);
             float _e9 = m_1;
             m_1 = max(_e9, (_e8.density * (1.0 + _e8.precipitation)));
@@ -1865,8 +1883,8 @@ float density_max() {
     return clamp(_e19, 0.0, 1.0);
 }
 
-float free_flight(vec3 origin_3, vec3 dir_2, Segments segs, inout uint rng_3, inout Counters counters_9) {
-    uint k_6 = 0u;
+float free_flight(vec3 origin_4, vec3 dir_2, Segments segs, inout uint rng_3, inout Counters counters_10) {
+    uint k_8 = 0u;
     float t_3 = 0.0;
     float _e5 = density_max();
     float _e9 = _group_0_binding_0_cs.extinction.x;
@@ -1878,26 +1896,26 @@ float free_flight(vec3 origin_3, vec3 dir_2, Segments segs, inout uint rng_3, in
     bool loop_init_9 = true;
     while(true) {
         if (!loop_init_9) {
-            uint _e60 = k_6;
-            k_6 = (_e60 + 1u);
+            uint _e60 = k_8;
+            k_8 = (_e60 + 1u);
         }
         loop_init_9 = false;
-        uint _e21 = k_6;
+        uint _e21 = k_8;
         if ((_e21 < segs.count)) {
         } else {
             break;
         }
         {
-            uint _e25 = k_6;
+            uint _e25 = k_8;
             t_3 = segs.a[_e25];
             while(true) {
                 float _e28 = t_3;
-                float _e29 = empty_cell_skip(origin_3, dir_2, _e28);
+                float _e29 = empty_cell_skip(origin_4, dir_2, _e28);
                 if ((_e29 > 0.0)) {
                     float _e32 = t_3;
                     t_3 = (_e32 + _e29);
                     float _e34 = t_3;
-                    uint _e36 = k_6;
+                    uint _e36 = k_8;
                     if ((_e34 >= segs.b[_e36])) {
                         break;
                     }
@@ -1907,14 +1925,14 @@ float free_flight(vec3 origin_3, vec3 dir_2, Segments segs, inout uint rng_3, in
                 float _e40 = rng_exponential(rng_3, majorant);
                 t_3 = (_e39 + _e40);
                 float _e42 = t_3;
-                uint _e44 = k_6;
+                uint _e44 = k_8;
                 if ((_e42 >= segs.b[_e44])) {
                     break;
                 }
-                uint _e48 = counters_9.view_steps;
-                counters_9.view_steps = (_e48 + 1u);
+                uint _e48 = counters_10.view_steps;
+                counters_10.view_steps = (_e48 + 1u);
                 float _e51 = t_3;
-                float _e54 = density_at((origin_3 + (dir_2 * _e51)), counters_9);
+                float _e54 = density_at((origin_4 + (dir_2 * _e51)), counters_10);
                 float _e55 = rng_next(rng_3);
                 if (((_e55 * _e5) < _e54)) {
                     float _e58 = t_3;
@@ -1926,9 +1944,9 @@ float free_flight(vec3 origin_3, vec3 dir_2, Segments segs, inout uint rng_3, in
     return -1.0;
 }
 
-float transmittance_along(vec3 origin_4, vec3 dir_3, Segments segs_1, inout uint rng_4, inout Counters counters_10) {
+float transmittance_along(vec3 origin_5, vec3 dir_3, Segments segs_1, inout uint rng_4, inout Counters counters_11) {
     float tr = 1.0;
-    uint k_7 = 0u;
+    uint k_9 = 0u;
     float t_4 = 0.0;
     float _e8 = _group_0_binding_0_cs.extinction.x;
     float _e12 = _group_0_binding_0_cs.extinction.y;
@@ -1941,26 +1959,26 @@ float transmittance_along(vec3 origin_4, vec3 dir_3, Segments segs_1, inout uint
     bool loop_init_10 = true;
     while(true) {
         if (!loop_init_10) {
-            uint _e78 = k_7;
-            k_7 = (_e78 + 1u);
+            uint _e78 = k_9;
+            k_9 = (_e78 + 1u);
         }
         loop_init_10 = false;
-        uint _e23 = k_7;
+        uint _e23 = k_9;
         if ((_e23 < segs_1.count)) {
         } else {
             break;
         }
         {
-            uint _e27 = k_7;
+            uint _e27 = k_9;
             t_4 = segs_1.a[_e27];
             while(true) {
                 float _e30 = t_4;
-                float _e31 = empty_cell_skip(origin_4, dir_3, _e30);
+                float _e31 = empty_cell_skip(origin_5, dir_3, _e30);
                 if ((_e31 > 0.0)) {
                     float _e34 = t_4;
                     t_4 = (_e34 + _e31);
                     float _e36 = t_4;
-                    uint _e38 = k_7;
+                    uint _e38 = k_9;
                     if ((_e36 >= segs_1.b[_e38])) {
                         break;
                     }
@@ -1970,14 +1988,14 @@ float transmittance_along(vec3 origin_4, vec3 dir_3, Segments segs_1, inout uint
                 float _e42 = rng_exponential(rng_4, majorant_1);
                 t_4 = (_e41 + _e42);
                 float _e44 = t_4;
-                uint _e46 = k_7;
+                uint _e46 = k_9;
                 if ((_e44 >= segs_1.b[_e46])) {
                     break;
                 }
-                uint _e50 = counters_10.light;
-                counters_10.light = (_e50 + 1u);
+                uint _e50 = counters_11.light;
+                counters_11.light = (_e50 + 1u);
                 float _e53 = t_4;
-                float _e56 = density_at((origin_4 + (dir_3 * _e53)), counters_10);
+                float _e56 = density_at((origin_5 + (dir_3 * _e53)), counters_11);
                 float _e57 = tr;
                 tr = (_e57 * (1.0 - ((sigma_t_3 * _e56) / majorant_1)));
                 float _e63 = tr;
@@ -2004,8 +2022,8 @@ float sample_hg_cos(float g_4, float u) {
     if ((abs(g_4) < 0.0001)) {
         return (1.0 - (2.0 * u));
     }
-    float s_9 = ((1.0 - (g_4 * g_4)) / ((1.0 - g_4) + ((2.0 * g_4) * u)));
-    return clamp((((1.0 + (g_4 * g_4)) - (s_9 * s_9)) / (2.0 * g_4)), -1.0, 1.0);
+    float s_10 = ((1.0 - (g_4 * g_4)) / ((1.0 - g_4) + ((2.0 * g_4) * u)));
+    return clamp((((1.0 + (g_4 * g_4)) - (s_10 * s_10)) / (2.0 * g_4)), -1.0, 1.0);
 }
 
 PhaseSample sample_phase(vec3 dir_4, inout uint rng_5) {
@@ -2057,235 +2075,98 @@ PhaseSample sample_phase(vec3 dir_4, inout uint rng_5) {
     return PhaseSample(w_5, ((_e118 > 0.0) ? (_e115 / _e116) : 0.0));
 }
 
-PathResult trace_path(vec3 view_2, Interval span_3, inout uint rng_6, inout Counters counters_11) {
-    PathResult out_2 = PathResult(vec3(0.0), 1.0, -1.0);
-    bool local_47 = false;
-    bool local_48 = false;
-    bool local_49 = false;
-    uint max_orders = MAX_PATH_ORDERS;
-    vec3 pos = vec3(0.0);
-    vec3 dir_5 = vec3(0.0);
-    float throughput = 1.0;
-    uint order = 0u;
-    bool local_50 = false;
-    if ((span_3.kind != RAY_MARCH)) {
-        PathResult _e13 = out_2;
-        return _e13;
-    }
-    float _e17 = _group_0_binding_0_cs.camera_position.y;
-    vec3 cam = vec3(0.0, _e17, 0.0);
-    Segments primary = Segments(vec2(span_3.start, 0.0), vec2((span_3.start + span_3.length_), 0.0), 1u);
-    float _e32 = transmittance_along(cam, view_2, primary, rng_6, counters_11);
-    out_2.transmittance = _e32;
-    float _e33 = free_flight(cam, view_2, primary, rng_6, counters_11);
-    if ((_e33 < 0.0)) {
-        PathResult _e36 = out_2;
-        return _e36;
-    }
-    out_2.depth = _e33;
-    vec4 _e40 = _group_0_binding_0_cs.sun_direction;
-    vec3 sun_3 = _e40.xyz;
-    float _e45 = _group_0_binding_0_cs.extinction.x;
-    float _e49 = _group_0_binding_0_cs.extinction.y;
-    float sigma_t_4 = (_e45 + _e49);
-    float _e54 = _group_0_binding_0_cs.extinction.x;
-    float albedo = ((sigma_t_4 > 0.0) ? (_e54 / sigma_t_4) : 0.0);
-    float _e63 = _group_0_binding_0_cs.ambient_bottom.w;
-    if ((_e63 > 0.0)) {
-        bool _e68 = physical_sky();
-        if (!(_e68)) {
-            vec4 _e74 = _group_0_binding_0_cs.ambient_bottom;
-            local_48 = any(greaterThan(_e74.xyz, vec3(0.0)));
-        } else {
-            local_48 = true;
-        }
-        bool _e81 = local_48;
-        if (!(_e81)) {
-            vec4 _e87 = _group_0_binding_0_cs.ambient_top;
-            local_49 = any(greaterThan(_e87.xyz, vec3(0.0)));
-        } else {
-            local_49 = true;
-        }
-        bool _e94 = local_49;
-        local_47 = _e94;
-    } else {
-        local_47 = false;
-    }
-    bool ambient_on = local_47;
-    uint _e102 = _group_0_binding_0_cs.misc.z;
-    if ((_e102 > 0u)) {
-        uint _e108 = _group_0_binding_0_cs.misc.z;
-        max_orders = min(_e108, MAX_PATH_ORDERS);
-    }
-    pos = (cam + (view_2 * _e33));
-    dir_5 = view_2;
-    while(true) {
-        float _e119 = throughput;
-        throughput = (_e119 * albedo);
-        uint _e121 = order;
-        order = (_e121 + 1u);
-        vec3 _e124 = pos;
-        float _e125 = altitude_of(_e124);
-        float _e126 = height_fraction(_e125);
-        vec3 _e127 = pos;
-        bool _e128 = hits_ground(_e127, _e125, sun_3);
-        if (!(_e128)) {
-            vec3 _e130 = pos;
-            vec3 _e131 = pos;
-            Segments _e132 = layer_segments(_e131, _e125, sun_3);
-            float _e133 = transmittance_along(_e130, sun_3, _e132, rng_6, counters_11);
-            vec3 _e135 = out_2.radiance;
-            vec4 _e138 = _group_0_binding_0_cs.sun_illuminance;
-            vec3 _e140 = pos;
-            vec3 _e141 = sun_through_air(_e140);
-            float _e143 = throughput;
-            vec3 _e144 = dir_5;
-            float _e147 = phase(dot(_e144, sun_3), 1.0);
-            out_2.radiance = (_e135 + ((_e138.xyz * _e141) * ((_e143 * _e147) * _e133)));
-        }
-        vec3 _e152 = dir_5;
-        PhaseSample _e153 = sample_phase(_e152, rng_6);
-        vec3 _e154 = pos;
-        vec3 _e156 = pos;
-        Segments _e158 = layer_segments(_e156, _e125, _e153.dir);
-        float _e159 = free_flight(_e154, _e153.dir, _e158, rng_6, counters_11);
-        if ((_e159 < 0.0)) {
-            if (ambient_on) {
-                vec3 _e163 = out_2.radiance;
-                vec3 _e164 = ambient(_e126);
-                float _e165 = throughput;
-                out_2.radiance = (_e163 + (_e164 * (_e165 * _e153.weight)));
-            }
-            break;
-        }
-        uint _e170 = order;
-        uint _e171 = max_orders;
-        if ((_e170 >= _e171)) {
-            break;
-        }
-        float _e173 = throughput;
-        throughput = (_e173 * _e153.weight);
-        dir_5 = _e153.dir;
-        uint _e177 = order;
-        if ((_e177 >= 3u)) {
-            float _e182 = throughput;
-            local_50 = (_e182 < 0.1);
-        } else {
-            local_50 = false;
-        }
-        bool _e186 = local_50;
-        if (_e186) {
-            float _e187 = rng_next(rng_6);
-            float _e188 = throughput;
-            if ((_e187 >= (_e188 / 0.1))) {
-                break;
-            }
-            throughput = 0.1;
-        }
-        float _e193 = throughput;
-        if ((_e193 <= 0.0)) {
-            break;
-        }
-        vec3 _e196 = pos;
-        vec3 _e197 = dir_5;
-        pos = (_e196 + (_e197 * _e159));
-    }
-    PathResult _e200 = out_2;
-    return _e200;
-}
-
 bool camera_still() {
-    bool local_51 = false;
     bool local_52 = false;
     bool local_53 = false;
+    bool local_54 = false;
     vec4 _e2 = _group_0_binding_0_cs.camera_position;
     vec4 _e5 = _group_0_binding_0_cs.previous_position;
     if (all(equal(_e2, _e5))) {
         vec4 _e12 = _group_0_binding_0_cs.camera_forward;
         vec4 _e15 = _group_0_binding_0_cs.previous_forward;
-        local_51 = all(equal(_e12, _e15));
-    } else {
-        local_51 = false;
-    }
-    bool _e19 = local_51;
-    if (_e19) {
-        vec4 _e24 = _group_0_binding_0_cs.camera_right;
-        vec4 _e28 = _group_0_binding_0_cs.previous_right;
-        local_52 = all(equal(_e24.xyz, _e28.xyz));
+        local_52 = all(equal(_e12, _e15));
     } else {
         local_52 = false;
     }
-    bool _e33 = local_52;
-    if (_e33) {
-        vec4 _e38 = _group_0_binding_0_cs.camera_up;
-        vec4 _e42 = _group_0_binding_0_cs.previous_up;
-        local_53 = all(equal(_e38.xyz, _e42.xyz));
+    bool _e19 = local_52;
+    if (_e19) {
+        vec4 _e24 = _group_0_binding_0_cs.camera_right;
+        vec4 _e28 = _group_0_binding_0_cs.previous_right;
+        local_53 = all(equal(_e24.xyz, _e28.xyz));
     } else {
         local_53 = false;
     }
-    bool _e47 = local_53;
+    bool _e33 = local_53;
+    if (_e33) {
+        vec4 _e38 = _group_0_binding_0_cs.camera_up;
+        vec4 _e42 = _group_0_binding_0_cs.previous_up;
+        local_54 = all(equal(_e38.xyz, _e42.xyz));
+    } else {
+        local_54 = false;
+    }
+    bool _e47 = local_54;
     return _e47;
 }
 
-float luminance(vec3 c_2) {
-    return dot(c_2, vec3(0.2126, 0.7152, 0.0722));
+float luminance(vec3 c_3) {
+    return dot(c_3, vec3(0.2126, 0.7152, 0.0722));
 }
 
-float basic_sun_depth(vec3 rel_4, float alt_14, inout Counters counters_12) {
-    float tau_6 = 0.0;
-    uint i_13 = 1u;
+float basic_sun_depth(vec3 rel_5, float alt_14, inout Counters counters_13) {
+    float tau_7 = 0.0;
+    uint i_14 = 1u;
     uint steps_3 = _group_0_binding_0_cs.counts.w;
     if ((steps_3 == 0u)) {
         return 0.0;
     }
     vec4 _e12 = _group_0_binding_0_cs.sun_direction;
     vec3 sun_4 = _e12.xyz;
-    float rp_4 = _group_0_binding_0_cs.atmosphere.x;
+    float rp_5 = _group_0_binding_0_cs.atmosphere.x;
     float top_2 = _group_0_binding_0_cs.atmosphere.z;
     float _e25 = _group_0_binding_0_cs.atmosphere.y;
     float thickness = (top_2 - _e25);
-    Roots _e39 = solve_sphere(dot(sun_4, vec3(rel_4.x, (rel_4.y + rp_4), rel_4.z)), ((alt_14 - top_2) * ((alt_14 + top_2) + (2.0 * rp_4))));
+    Roots _e39 = solve_sphere(dot(sun_4, vec3(rel_5.x, (rel_5.y + rp_5), rel_5.z)), ((alt_14 - top_2) * ((alt_14 + top_2) + (2.0 * rp_5))));
     float length_ = min(max(_e39.t1_, 0.0), (3.0 * thickness));
     float dt_2 = (length_ / float(steps_3));
     float _e51 = _group_0_binding_0_cs.extinction.x;
     float _e55 = _group_0_binding_0_cs.extinction.y;
-    float sigma_t_5 = (_e51 + _e55);
+    float sigma_t_4 = (_e51 + _e55);
     vec4 _e59 = _group_0_binding_0_cs.camera_position;
     vec2 cam_xz_1 = _e59.xz;
     bool loop_init_11 = true;
     while(true) {
         if (!loop_init_11) {
-            uint _e90 = i_13;
-            i_13 = (_e90 + 1u);
+            uint _e90 = i_14;
+            i_14 = (_e90 + 1u);
         }
         loop_init_11 = false;
-        uint _e65 = i_13;
+        uint _e65 = i_14;
         if ((_e65 <= steps_3)) {
         } else {
             break;
         }
         {
-            uint _e68 = counters_12.light;
-            counters_12.light = (_e68 + 1u);
-            uint _e71 = i_13;
-            vec3 q_8 = (rel_4 + (sun_4 * (float(_e71) * dt_2)));
+            uint _e68 = counters_13.light;
+            counters_13.light = (_e68 + 1u);
+            uint _e71 = i_14;
+            vec3 q_8 = (rel_5 + (sun_4 * (float(_e71) * dt_2)));
             vec3 p_17 = vec3((q_8.x + cam_xz_1.x), q_8.y, (q_8.z + cam_xz_1.y));
-            float _e84 = tau_6;
+            float _e84 = tau_7;
             float _e85 = altitude_of(q_8);
-            float _e86 = cloud_density(p_17, _e85, counters_12);
-            tau_6 = (_e84 + ((sigma_t_5 * _e86) * dt_2));
+            float _e86 = cloud_density(p_17, _e85, counters_13);
+            tau_7 = (_e84 + ((sigma_t_4 * _e86) * dt_2));
         }
     }
-    float _e93 = tau_6;
+    float _e93 = tau_7;
     return _e93;
 }
 
 MarchResult basic_pixel(uvec2 pixel_7) {
-    Counters counters_13 = Counters(0u, 0u, 0u, 0u);
+    Counters counters_14 = Counters(0u, 0u, 0u, 0u);
     vec3 radiance_2 = vec3(0.0);
     float transmittance = 1.0;
     float depth_sum = 0.0;
-    uint i_14 = 0u;
+    uint i_15 = 0u;
     float depth_3 = 0.0;
     vec3 _e1 = view_ray(pixel_7);
     float cam_alt_2 = _group_0_binding_0_cs.camera_position.y;
@@ -2304,7 +2185,7 @@ MarchResult basic_pixel(uvec2 pixel_7) {
             float dt_3 = (_e25.length_ / float(steps_4));
             float sigma_s = _group_0_binding_0_cs.extinction.x;
             float _e52 = _group_0_binding_0_cs.extinction.y;
-            float sigma_t_6 = (sigma_s + _e52);
+            float sigma_t_5 = (sigma_s + _e52);
             vec4 _e56 = _group_0_binding_0_cs.sun_illuminance;
             vec4 _e60 = _group_0_binding_0_cs.sun_direction;
             float _e66 = _group_0_binding_0_cs.phase.x;
@@ -2313,33 +2194,33 @@ MarchResult basic_pixel(uvec2 pixel_7) {
             bool loop_init_12 = true;
             while(true) {
                 if (!loop_init_12) {
-                    uint _e131 = i_14;
-                    i_14 = (_e131 + 1u);
+                    uint _e131 = i_15;
+                    i_15 = (_e131 + 1u);
                 }
                 loop_init_12 = false;
-                uint _e71 = i_14;
+                uint _e71 = i_15;
                 if ((_e71 < steps_4)) {
                 } else {
                     break;
                 }
                 {
-                    uint _e74 = counters_13.view_steps;
-                    counters_13.view_steps = (_e74 + 1u);
-                    uint _e78 = i_14;
+                    uint _e74 = counters_14.view_steps;
+                    counters_14.view_steps = (_e74 + 1u);
+                    uint _e78 = i_15;
                     float t_7 = (_e25.start + (float(_e78) * dt_3));
-                    vec3 rel_7 = ((_e1 * t_7) + vec3(0.0, cam_alt_2, 0.0));
-                    vec3 p_18 = vec3((rel_7.x + cam_xz_2.x), rel_7.y, (rel_7.z + cam_xz_2.y));
-                    float _e95 = altitude_of(rel_7);
-                    float _e96 = cloud_density(p_18, _e95, counters_13);
+                    vec3 rel_8 = ((_e1 * t_7) + vec3(0.0, cam_alt_2, 0.0));
+                    vec3 p_18 = vec3((rel_8.x + cam_xz_2.x), rel_8.y, (rel_8.z + cam_xz_2.y));
+                    float _e95 = altitude_of(rel_8);
+                    float _e96 = cloud_density(p_18, _e95, counters_14);
                     if ((_e96 <= 0.0)) {
                         continue;
                     }
-                    float _e99 = basic_sun_depth(rel_7, _e95, counters_13);
+                    float _e99 = basic_sun_depth(rel_8, _e95, counters_14);
                     float beer_powder = ((2.0 * exp(-(_e99))) * (1.0 - exp((-2.0 * _e99))));
                     vec3 _e110 = radiance_2;
                     float _e111 = transmittance;
                     radiance_2 = (_e110 + (sun_phase * ((((beer_powder * _e111) * sigma_s) * _e96) * dt_3)));
-                    float step_t_1 = exp(((-(sigma_t_6) * _e96) * dt_3));
+                    float step_t_1 = exp(((-(sigma_t_5) * _e96) * dt_3));
                     float _e122 = depth_sum;
                     float _e123 = transmittance;
                     depth_sum = (_e122 + ((t_7 * _e123) * (1.0 - step_t_1)));
@@ -2349,13 +2230,13 @@ MarchResult basic_pixel(uvec2 pixel_7) {
             }
         }
     }
-    uint _e136 = counters_13.view_steps;
+    uint _e136 = counters_14.view_steps;
     count(STAT_VIEW_STEPS, _e136);
-    uint _e139 = counters_13.density;
+    uint _e139 = counters_14.density;
     count(STAT_DENSITY, _e139);
-    uint _e142 = counters_13.detail;
+    uint _e142 = counters_14.detail;
     count(STAT_DETAIL, _e142);
-    uint _e145 = counters_13.light;
+    uint _e145 = counters_14.light;
     count(STAT_LIGHT, _e145);
     float _e148 = transmittance;
     if ((_e148 < 1.0)) {
@@ -2376,19 +2257,19 @@ float atlas_hash(uint a_2, uint b_2) {
 }
 
 float value_noise(vec2 p_10, uint seed) {
-    uvec2 i_16 = uvec2(floor(p_10));
+    uvec2 i_17 = uvec2(floor(p_10));
     vec2 f_4 = fract(p_10);
-    vec2 s_10 = ((f_4 * f_4) * (vec2(3.0) - (2.0 * f_4)));
-    uint h_10 = (seed * 7919u);
-    float _e17 = atlas_hash((i_16.x + h_10), i_16.y);
-    float _e23 = atlas_hash(((i_16.x + 1u) + h_10), i_16.y);
-    float _e29 = atlas_hash((i_16.x + h_10), (i_16.y + 1u));
-    float _e37 = atlas_hash(((i_16.x + 1u) + h_10), (i_16.y + 1u));
-    return mix(mix(_e17, _e23, s_10.x), mix(_e29, _e37, s_10.x), s_10.y);
+    vec2 s_11 = ((f_4 * f_4) * (vec2(3.0) - (2.0 * f_4)));
+    uint h_11 = (seed * 7919u);
+    float _e17 = atlas_hash((i_17.x + h_11), i_17.y);
+    float _e23 = atlas_hash(((i_17.x + 1u) + h_11), i_17.y);
+    float _e29 = atlas_hash((i_17.x + h_11), (i_17.y + 1u));
+    float _e37 = atlas_hash(((i_17.x + 1u) + h_11), (i_17.y + 1u));
+    return mix(mix(_e17, _e23, s_11.x), mix(_e29, _e37, s_11.x), s_11.y);
 }
 
 float value_fbm(vec2 p_11, uint seed_1) {
-    float sum_3 = 0.0;
+    float sum_4 = 0.0;
     float weight = 0.5;
     vec2 q_4 = vec2(0.0);
     uint o = 0u;
@@ -2406,32 +2287,32 @@ float value_fbm(vec2 p_11, uint seed_1) {
             break;
         }
         {
-            float _e12 = sum_3;
+            float _e12 = sum_4;
             float _e13 = weight;
             vec2 _e14 = q_4;
             uint _e15 = o;
             float _e17 = value_noise(_e14, (seed_1 + _e15));
-            sum_3 = (_e12 + (_e13 * _e17));
+            sum_4 = (_e12 + (_e13 * _e17));
             vec2 _e20 = q_4;
             q_4 = (_e20 * 2.0);
             float _e23 = weight;
             weight = (_e23 * 0.5);
         }
     }
-    float _e29 = sum_3;
+    float _e29 = sum_4;
     return (_e29 / 0.9375);
 }
 
 float sprite_texture(uint tile_1, vec2 uv) {
     float billow = 0.0;
-    uint i_15 = 0u;
+    uint i_16 = 0u;
     vec2 at = vec2(0.0);
     float a_3 = 0.0;
-    vec2 c_9 = (uv - vec2(0.5));
-    float mask = smoothstep(0.48, 0.36, length(c_9));
+    vec2 c_10 = (uv - vec2(0.5));
+    float mask = smoothstep(0.48, 0.36, length(c_10));
     float _e16 = value_fbm(((uv * 6.0) + vec2((float(tile_1) * 13.0))), tile_1);
     if ((tile_1 < 4u)) {
-        vec2 q_9 = (c_9 * vec2(1.0, 3.2));
+        vec2 q_9 = (c_10 * vec2(1.0, 3.2));
         float streak = (1.0 - smoothstep(0.05, 0.45, length(q_9)));
         float _e40 = value_fbm(((uv * vec2(3.0, 12.0)) + vec2((float(tile_1) * 5.0))), (tile_1 + 16u));
         float _e46 = saturate(((_e40 * 1.6) - 0.3));
@@ -2441,32 +2322,32 @@ float sprite_texture(uint tile_1, vec2 uv) {
     bool loop_init_14 = true;
     while(true) {
         if (!loop_init_14) {
-            uint _e108 = i_15;
-            i_15 = (_e108 + 1u);
+            uint _e108 = i_16;
+            i_16 = (_e108 + 1u);
         }
         loop_init_14 = false;
-        uint _e58 = i_15;
+        uint _e58 = i_16;
         if ((_e58 < blobs)) {
         } else {
             break;
         }
         {
-            uint _e61 = i_15;
+            uint _e61 = i_16;
             float _e63 = atlas_hash(tile_1, (2u * _e61));
-            uint _e65 = i_15;
+            uint _e65 = i_16;
             float _e69 = atlas_hash(tile_1, ((2u * _e65) + 1u));
             vec2 centre_1 = (vec2(_e63, _e69) - vec2(0.5));
             at = (vec2(0.5) + (centre_1 * 0.34));
             if ((tile_1 == 4u)) {
                 at.y = (0.5 + ((centre_1.y - 0.5) * 0.24));
             }
-            uint _e91 = i_15;
+            uint _e91 = i_16;
             float _e93 = atlas_hash(tile_1, (100u + _e91));
-            float r_16 = (0.14 + (0.1 * _e93));
+            float r_17 = (0.14 + (0.1 * _e93));
             vec2 _e98 = at;
-            float d_18 = (length((uv - _e98)) / r_16);
+            float d_20 = (length((uv - _e98)) / r_17);
             float _e102 = billow;
-            float _e106 = saturate((1.0 - (d_18 * d_18)));
+            float _e106 = saturate((1.0 - (d_20 * d_20)));
             billow = max(_e102, _e106);
         }
     }
@@ -2482,31 +2363,31 @@ float sprite_texture(uint tile_1, vec2 uv) {
 }
 
 vec3 sprite_rel(vec2 xz, float alt_15) {
-    float rp_5 = _group_0_binding_0_cs.atmosphere.x;
+    float rp_6 = _group_0_binding_0_cs.atmosphere.x;
     vec4 _e8 = _group_0_binding_0_cs.camera_position;
-    vec2 d_19 = (xz - _e8.xz);
-    float k_13 = ((alt_15 * (alt_15 + (2.0 * rp_5))) - dot(d_19, d_19));
-    float y_2 = (k_13 / (rp_5 + sqrt(max(((rp_5 * rp_5) + k_13), 0.0))));
-    return vec3(d_19.x, y_2, d_19.y);
+    vec2 d_21 = (xz - _e8.xz);
+    float k_15 = ((alt_15 * (alt_15 + (2.0 * rp_6))) - dot(d_21, d_21));
+    float y_3 = (k_15 / (rp_6 + sqrt(max(((rp_6 * rp_6) + k_15), 0.0))));
+    return vec3(d_21.x, y_3, d_21.y);
 }
 
 SpriteCell sprite_cell(uint cell) {
     ivec2 start_1 = ivec2(0);
-    uint k_8 = 3u;
-    bool local_54 = false;
+    uint k_10 = 3u;
     bool local_55 = false;
+    bool local_56 = false;
     uint level_1 = (cell / 64u);
-    ivec2 local_59 = ivec2(int((cell % 8u)), int(((cell / 8u) % 8u)));
+    ivec2 local_60 = ivec2(int((cell % 8u)), int(((cell / 8u) % 8u)));
     vec4 _e15 = _group_0_binding_0_cs.camera_position;
     start_1 = (ivec2(floor((_e15.xz / vec2(12000.0)))) - ivec2(4));
     bool loop_init_15 = true;
     while(true) {
         if (!loop_init_15) {
-            uint _e35 = k_8;
-            k_8 = (_e35 - 1u);
+            uint _e35 = k_10;
+            k_10 = (_e35 - 1u);
         }
         loop_init_15 = false;
-        uint _e27 = k_8;
+        uint _e27 = k_10;
         if ((_e27 > level_1)) {
         } else {
             break;
@@ -2517,53 +2398,53 @@ SpriteCell sprite_cell(uint cell) {
         }
     }
     if ((level_1 > 0u)) {
-        local_54 = all(greaterThanEqual(local_59, ivec2(2)));
-    } else {
-        local_54 = false;
-    }
-    bool _e47 = local_54;
-    if (_e47) {
-        local_55 = all(lessThan(local_59, ivec2(6)));
+        local_55 = all(greaterThanEqual(local_60, ivec2(2)));
     } else {
         local_55 = false;
     }
-    bool covered = local_55;
+    bool _e47 = local_55;
+    if (_e47) {
+        local_56 = all(lessThan(local_60, ivec2(6)));
+    } else {
+        local_56 = false;
+    }
+    bool covered = local_56;
     ivec2 _e56 = start_1;
-    return SpriteCell((_e56 + local_59), (SPRITE_CELL0_ * float((1u << level_1))), covered);
+    return SpriteCell((_e56 + local_60), (SPRITE_CELL0_ * float((1u << level_1))), covered);
 }
 
-SpriteCandidate sprite_candidate(SpriteCell c_3, uint level, uint s_1, inout Counters counters_14) {
+SpriteCandidate sprite_candidate(SpriteCell c_4, uint level, uint s_2, inout Counters counters_15) {
     float density_2 = 0.0;
     uint _e10 = pcg(level);
-    uint _e12 = pcg((uint(c_3.index.y) ^ _e10));
-    uint _e14 = pcg((uint(c_3.index.x) ^ _e12));
-    float _e17 = atlas_hash(_e14, (8u * s_1));
-    float _e22 = atlas_hash(_e14, ((8u * s_1) + 1u));
-    float _e27 = atlas_hash(_e14, ((8u * s_1) + 2u));
-    float _e32 = atlas_hash(_e14, ((8u * s_1) + 3u));
+    uint _e12 = pcg((uint(c_4.index.y) ^ _e10));
+    uint _e14 = pcg((uint(c_4.index.x) ^ _e12));
+    float _e17 = atlas_hash(_e14, (8u * s_2));
+    float _e22 = atlas_hash(_e14, ((8u * s_2) + 1u));
+    float _e27 = atlas_hash(_e14, ((8u * s_2) + 2u));
+    float _e32 = atlas_hash(_e14, ((8u * s_2) + 3u));
     vec4 u_1 = vec4(_e17, _e22, _e27, _e32);
-    float _e38 = atlas_hash(_e14, ((8u * s_1) + 4u));
-    float _e43 = atlas_hash(_e14, ((8u * s_1) + 5u));
+    float _e38 = atlas_hash(_e14, ((8u * s_2) + 4u));
+    float _e43 = atlas_hash(_e14, ((8u * s_2) + 5u));
     vec2 v_3 = vec2(_e38, _e43);
-    vec2 xz_1 = ((vec2(c_3.index) + u_1.xy) * c_3.size);
+    vec2 xz_2 = ((vec2(c_4.index) + u_1.xy) * c_4.size);
     Layer _e56 = cloud_layer(0u);
-    Weather _e57 = sample_weather(vec3(xz_1.x, 0.0, xz_1.y), _e56);
-    float h_11 = (0.04 + (u_1.z * (mix(0.3, 0.95, _e57.cloud_type) - 0.04)));
+    Weather _e57 = sample_weather(vec3(xz_2.x, 0.0, xz_2.y), _e56);
+    float h_12 = (0.04 + (u_1.z * (mix(0.3, 0.95, _e57.cloud_type) - 0.04)));
     float _e71 = _group_0_binding_0_cs.atmosphere.y;
     float _e75 = _group_0_binding_0_cs.atmosphere.z;
     float _e79 = _group_0_binding_0_cs.atmosphere.y;
-    float alt_17 = (_e71 + (h_11 * (_e75 - _e79)));
-    if (!(c_3.covered)) {
-        vec3 _e87 = sprite_rel(xz_1, alt_17);
-        float _e92 = cloud_density(vec3(xz_1.x, _e87.y, xz_1.y), alt_17, counters_14);
+    float alt_17 = (_e71 + (h_12 * (_e75 - _e79)));
+    if (!(c_4.covered)) {
+        vec3 _e87 = sprite_rel(xz_2, alt_17);
+        float _e92 = cloud_density(vec3(xz_2.x, _e87.y, xz_2.y), alt_17, counters_15);
         density_2 = _e92;
     }
     float _e96 = density_2;
-    return SpriteCandidate(xz_1, alt_17, h_11, u_1.w, v_3.x, v_3.y, _e96, _e57.precipitation);
+    return SpriteCandidate(xz_2, alt_17, h_12, u_1.w, v_3.x, v_3.y, _e96, _e57.precipitation);
 }
 
-vec3 sprite_sky_level(float h_6) {
-    float _e1 = saturate(h_6);
+vec3 sprite_sky_level(float h_7) {
+    float _e1 = saturate(h_7);
     float x_7 = (_e1 * 4.0);
     if ((x_7 < 1.0)) {
         return mix(SKY_LEVEL0_, SKY_LEVEL1_, x_7);
@@ -2584,66 +2465,66 @@ float sprite_sun_level(float cos_angle) {
     return mix(SPRITE_C_MED, SPRITE_C_MAX, cos_angle);
 }
 
-vec2 sprite_corner(uint k_9) {
-    bool local_56 = false;
-    uint q_10 = ((k_9 >= 3u) ? ((k_9 == 3u) ? 0u : (k_9 - 2u)) : k_9);
+vec2 sprite_corner(uint k_11) {
+    bool local_57 = false;
+    uint q_10 = ((k_11 >= 3u) ? ((k_11 == 3u) ? 0u : (k_11 - 2u)) : k_11);
     if (!((q_10 == 1u))) {
-        local_56 = (q_10 == 2u);
+        local_57 = (q_10 == 2u);
     } else {
-        local_56 = true;
+        local_57 = true;
     }
-    bool _e18 = local_56;
+    bool _e18 = local_57;
     return vec2((_e18 ? 1.0 : -1.0), ((q_10 >= 2u) ? 1.0 : -1.0));
 }
 
-vec3 sky_radiance(vec3 d_12, float alt_16) {
+vec3 sky_radiance(vec3 d_14, float alt_16) {
     vec4 _e4 = _group_0_binding_0_cs.sun_direction;
     vec3 sun_5 = _e4.xyz;
     vec4 _e8 = _group_0_binding_0_cs.sun_illuminance;
     vec3 e = _e8.xyz;
     float _e15 = saturate(((sun_5.y * 4.0) + 0.3));
-    bool _e19 = hits_ground(vec3(0.0, alt_16, 0.0), alt_16, d_12);
+    bool _e19 = hits_ground(vec3(0.0, alt_16, 0.0), alt_16, d_14);
     if (_e19) {
         vec3 ground_albedo = vec3(0.035, 0.035, 0.03);
         return (ground_albedo * (((e * max(sun_5.y, 0.0)) / vec3(3.1415927)) + ((0.05 * e) * _e15)));
     }
     vec3 zenith = vec3(0.018, 0.04, 0.1);
     vec3 horizon_2 = vec3(0.07, 0.085, 0.11);
-    float _e45 = saturate(d_12.y);
+    float _e45 = saturate(d_14.y);
     vec3 gradient_1 = mix(horizon_2, zenith, sqrt(_e45));
     vec3 sunset = (((1.0 - (_e15 * 0.8)) * pow((1.0 - _e45), 6.0)) * vec3(0.25, 0.1, 0.0));
-    float _e64 = phase_hg(dot(d_12, sun_5), 0.76);
+    float _e64 = phase_hg(dot(d_14, sun_5), 0.76);
     float glow = (_e64 * 0.02);
     float _e73 = saturate(((sun_5.y * 10.0) + 1.0));
     return (e * (((gradient_1 * _e15) + (sunset * _e73)) + vec3((glow * _e15))));
 }
 
-vec3 sun_disk(vec3 d_13) {
+vec3 sun_disk(vec3 d_15) {
     float cos_r = _group_0_binding_0_cs.sun_direction.w;
     vec4 _e7 = _group_0_binding_0_cs.sun_direction;
-    if ((dot(d_13, _e7.xyz) < cos_r)) {
+    if ((dot(d_15, _e7.xyz) < cos_r)) {
         return vec3(0.0);
     }
     vec4 _e15 = _group_0_binding_0_cs.sun_illuminance;
     return (_e15.xyz / vec3((6.2831855 * max((1.0 - cos_r), 1e-6))));
 }
 
-vec3 moon_disk(vec3 d_14) {
-    bool local_57 = false;
+vec3 moon_disk(vec3 d_16) {
+    bool local_58 = false;
     vec4 _e3 = _group_0_binding_0_cs.moon;
     vec3 m_3 = _e3.xyz;
-    float c_10 = dot(d_14, m_3);
+    float c_11 = dot(d_16, m_3);
     float _e9 = _group_0_binding_0_cs.moon.w;
     if (!((_e9 <= 0.0))) {
-        local_57 = (c_10 < MOON_COS_RADIUS);
+        local_58 = (c_11 < MOON_COS_RADIUS);
     } else {
-        local_57 = true;
+        local_58 = true;
     }
-    bool _e18 = local_57;
+    bool _e18 = local_58;
     if (_e18) {
         return vec3(0.0);
     }
-    vec3 offset = ((d_14 - (m_3 * c_10)) / vec3(0.0045149517));
+    vec3 offset = ((d_16 - (m_3 * c_11)) / vec3(0.0045149517));
     float x2_1 = min(dot(offset, offset), 1.0);
     vec3 normal = (offset - (m_3 * sqrt((1.0 - x2_1))));
     vec4 _e36 = _group_0_binding_0_cs.night;
@@ -2652,35 +2533,35 @@ vec3 moon_disk(vec3 d_14) {
     return vec3(((_e46 / 6.40407e-5) * lit));
 }
 
-vec3 stars(vec3 d_15) {
+vec3 stars(vec3 d_17) {
     uint face = 0u;
     vec2 uv_1 = vec2(0.0);
     float major = 0.0;
-    bool local_58 = false;
+    bool local_59 = false;
     vec3 star = vec3(0.0);
     float e0_ = _group_0_binding_0_cs.night.w;
     if ((e0_ <= 0.0)) {
         return vec3(0.0);
     }
-    vec3 a_9 = abs(d_15);
+    vec3 a_9 = abs(d_17);
     if ((a_9.x >= a_9.y)) {
-        local_58 = (a_9.x >= a_9.z);
+        local_59 = (a_9.x >= a_9.z);
     } else {
-        local_58 = false;
+        local_59 = false;
     }
-    bool _e26 = local_58;
+    bool _e26 = local_59;
     if (_e26) {
-        face = ((d_15.x > 0.0) ? 0u : 1u);
-        uv_1 = d_15.zy;
+        face = ((d_17.x > 0.0) ? 0u : 1u);
+        uv_1 = d_17.zy;
         major = a_9.x;
     } else {
         if ((a_9.y >= a_9.z)) {
-            face = ((d_15.y > 0.0) ? 2u : 3u);
-            uv_1 = d_15.xz;
+            face = ((d_17.y > 0.0) ? 2u : 3u);
+            uv_1 = d_17.xz;
             major = a_9.y;
         } else {
-            face = ((d_15.z > 0.0) ? 4u : 5u);
-            uv_1 = d_15.xy;
+            face = ((d_17.z > 0.0) ? 4u : 5u);
+            uv_1 = d_17.xy;
             major = a_9.z;
         }
     }
@@ -2689,19 +2570,19 @@ vec3 stars(vec3 d_15) {
     vec2 st = clamp((((_e54 / vec2(_e55)) * 0.5) + vec2(0.5)), vec2(0.0), vec2(0.999999));
     uvec2 cell_2 = uvec2((st * 96.0));
     uint _e71 = face;
-    uint id_21 = ((((_e71 * STAR_CELLS) + cell_2.y) * STAR_CELLS) + cell_2.x);
-    uint _e85 = pcg((id_21 ^ 2654435769u));
+    uint id_23 = ((((_e71 * STAR_CELLS) + cell_2.y) * STAR_CELLS) + cell_2.x);
+    uint _e85 = pcg((id_23 ^ 2654435769u));
     float h0_ = (float((_e85 >> 8u)) * 5.9604645e-8);
     if ((h0_ >= 0.15085077)) {
         return vec3(0.0);
     }
-    uint _e96 = pcg((id_21 ^ 2246822507u));
+    uint _e96 = pcg((id_23 ^ 2246822507u));
     float h1_ = (float((_e96 >> 8u)) * 5.9604645e-8);
-    uint _e104 = pcg((id_21 ^ 3266489909u));
+    uint _e104 = pcg((id_23 ^ 3266489909u));
     float h2_ = (float((_e104 >> 8u)) * 5.9604645e-8);
-    uint _e112 = pcg((id_21 ^ 668265263u));
+    uint _e112 = pcg((id_23 ^ 668265263u));
     float h3_ = (float((_e112 >> 8u)) * 5.9604645e-8);
-    uint _e120 = pcg((id_21 ^ 374761393u));
+    uint _e120 = pcg((id_23 ^ 374761393u));
     float h4_ = (float((_e120 >> 8u)) * 5.9604645e-8);
     vec2 star_st = (((vec2(cell_2) + vec2(0.15)) + (0.7 * vec2(h1_, h2_))) / vec2(96.0));
     float _e142 = major;
@@ -2734,7 +2615,7 @@ vec3 stars(vec3 d_15) {
     uint _e209 = _group_0_binding_0_cs.counts.y;
     float pixel_angle = ((2.0 * _e203) / float(_e209));
     vec3 _e212 = star;
-    float dist_1 = (acos(clamp(dot(d_15, _e212), -1.0, 1.0)) / pixel_angle);
+    float dist_1 = (acos(clamp(dot(d_17, _e212), -1.0, 1.0)) / pixel_angle);
     float weight_1 = (exp(((-(dist_1) * dist_1) / 0.5)) / 1.5707964);
     vec3 tint = mix(vec3(0.8, 0.9, 1.1), vec3(1.15, 0.95, 0.75), (h3_ * h4_));
     return (tint * ((illuminance * weight_1) / (pixel_angle * pixel_angle)));
@@ -2745,29 +2626,29 @@ vec3 aces_fitted(vec3 x_5) {
 }
 
 void main() {
-    uvec3 id_9 = gl_GlobalInvocationID;
+    uvec3 id_11 = gl_GlobalInvocationID;
     float depth = 0.0;
-    bool local_5 = false;
+    bool local_6 = false;
     bool valid = false;
     vec4 history = vec4(0.0, 0.0, 0.0, 1.0);
     vec4 past = vec4(0.0);
-    bool local_6 = false;
     bool local_7 = false;
     bool local_8 = false;
+    bool local_9 = false;
     vec4 result = vec4(0.0);
     float samples = 0.0;
     float out_depth = 0.0;
-    bool local_9 = false;
+    bool local_10 = false;
     uvec4 _e4 = _group_0_binding_0_cs.counts;
-    if (any(greaterThanEqual(id_9.xy, _e4.xy))) {
+    if (any(greaterThanEqual(id_11.xy, _e4.xy))) {
         return;
     }
-    uvec2 pixel_10 = id_9.xy;
-    uint k_14 = _group_0_binding_0_cs.temporal.x;
-    uvec2 block = (pixel_10 / uvec2(k_14));
+    uvec2 pixel_10 = id_11.xy;
+    uint k_16 = _group_0_binding_0_cs.temporal.x;
+    uvec2 block = (pixel_10 / uvec2(k_16));
     uint _e19 = _group_0_binding_0_cs.misc.y;
-    uvec2 _e20 = block_offset(_e19, k_14);
-    bool marched_1 = all(equal(pixel_10, ((block * k_14) + _e20)));
+    uvec2 _e20 = block_offset(_e19, k_16);
+    bool marched_1 = all(equal(pixel_10, ((block * k_16) + _e20)));
     vec4 current = texelFetch(_group_0_binding_15_cs, ivec2(block), 0);
     vec4 _e29 = texelFetch(_group_0_binding_16_cs, ivec2(block), 0);
     float current_depth = _e29.x;
@@ -2786,11 +2667,11 @@ void main() {
     uint _e54 = _group_0_binding_0_cs.temporal.y;
     if ((_e54 != 0u)) {
         bool _e59 = on_screen(_e50);
-        local_5 = _e59;
+        local_6 = _e59;
     } else {
-        local_5 = false;
+        local_6 = false;
     }
-    bool _e61 = local_5;
+    bool _e61 = local_6;
     valid = _e61;
     bool moving = any(notEqual(_e50, vec2(pixel_10)));
     bool _e75 = valid;
@@ -2800,18 +2681,18 @@ void main() {
         vec4 _e77 = meta_at(_e50);
         past = _e77;
         if (moving) {
-            local_6 = (current_depth > 0.0);
-        } else {
-            local_6 = false;
-        }
-        bool _e83 = local_6;
-        if (_e83) {
-            float _e87 = past.x;
-            local_7 = (_e87 > 0.0);
+            local_7 = (current_depth > 0.0);
         } else {
             local_7 = false;
         }
-        bool _e91 = local_7;
+        bool _e83 = local_7;
+        if (_e83) {
+            float _e87 = past.x;
+            local_8 = (_e87 > 0.0);
+        } else {
+            local_8 = false;
+        }
+        bool _e91 = local_8;
         if (_e91) {
             vec4 _e94 = _group_0_binding_0_cs.camera_position;
             vec3 _e96 = view_ray(pixel_10);
@@ -2823,14 +2704,14 @@ void main() {
     }
     bool _e111 = valid;
     if (_e111) {
-        local_8 = moving;
+        local_9 = moving;
     } else {
-        local_8 = false;
+        local_9 = false;
     }
-    bool _e115 = local_8;
+    bool _e115 = local_9;
     if (_e115) {
         uvec4 _e118 = _group_0_binding_0_cs.counts;
-        ivec2 blocks = ivec2((((_e118.xy + uvec2(k_14)) - uvec2(1u)) / uvec2(k_14)));
+        ivec2 blocks = ivec2((((_e118.xy + uvec2(k_16)) - uvec2(1u)) / uvec2(k_16)));
         ivec2 b_10 = ivec2(block);
         int x0_1 = max((b_10.x - 1), 0);
         int x2_2 = min((b_10.x + 1), (blocks.x - 1));
@@ -2865,11 +2746,11 @@ void main() {
         float _e229 = past.x;
         if (!((current_depth > 0.0))) {
             bool _e235 = valid;
-            local_9 = !(_e235);
+            local_10 = !(_e235);
         } else {
-            local_9 = true;
+            local_10 = true;
         }
-        bool _e238 = local_9;
+        bool _e238 = local_10;
         out_depth = (_e238 ? current_depth : _e229);
     } else {
         bool _e240 = valid;

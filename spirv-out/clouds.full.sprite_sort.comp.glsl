@@ -166,7 +166,13 @@ const uint MULTISCATTER_STEPS = 32u;
 const uint SKY_VIEW_STEPS = 48u;
 const uint AMBIENT_DIRECTIONS = 64u;
 const uint AMBIENT_STEPS = 24u;
+const uint GROUND_IRRADIANCE_SIZE = 64u;
 const uint NO_LAYER = 4u;
+const uint GROUND_IRRADIANCE_DIRECTIONS = 128u;
+const uint SHADOW_SIZE = 128u;
+const float SHADOW_HALF_EXTENT = 20000.0;
+const float SHADOW_FADE_START = 0.75;
+const uint SHADOW_STEPS = 16u;
 const uint OCCUPANCY_CELLS = 64u;
 const uint STAT_PIXELS = 0u;
 const uint STAT_MARCHED = 1u;
@@ -243,8 +249,8 @@ Roots solve_sphere(float b, float c) {
     if ((disc < 0.0)) {
         return Roots(0.0, 0.0, false);
     }
-    float s_2 = sqrt(disc);
-    float r0_1 = -((b + ((b >= 0.0) ? s_2 : -(s_2))));
+    float s_3 = sqrt(disc);
+    float r0_1 = -((b + ((b >= 0.0) ? s_3 : -(s_3))));
     if ((r0_1 == 0.0)) {
         return Roots(0.0, 0.0, true);
     }
@@ -288,11 +294,11 @@ float phase_cornette_shanks_air(float cos_theta_1, float g_1) {
     return (((0.119366206 * (1.0 - g2_)) * (1.0 + (cos_theta_1 * cos_theta_1))) / ((2.0 + g2_) * pow(max(((1.0 + g2_) - ((2.0 * g_1) * cos_theta_1)), 1e-6), 1.5)));
 }
 
-vec3 fibonacci_direction(uint k_3, uint n_1) {
-    float z_2 = (1.0 - (((2.0 * float(k_3)) + 1.0) / float(n_1)));
-    float s_3 = sqrt(max((1.0 - (z_2 * z_2)), 0.0));
-    float phi = (2.3999634 * float(k_3));
-    return vec3((s_3 * cos(phi)), z_2, (s_3 * sin(phi)));
+vec3 fibonacci_direction(uint k_5, uint n_1) {
+    float z_2 = (1.0 - (((2.0 * float(k_5)) + 1.0) / float(n_1)));
+    float s_4 = sqrt(max((1.0 - (z_2 * z_2)), 0.0));
+    float phi = (2.3999634 * float(k_5));
+    return vec3((s_4 * cos(phi)), z_2, (s_4 * sin(phi)));
 }
 
 float sky_view_elevation(float v_1, float horizon) {
@@ -353,12 +359,12 @@ uvec2 bayer2_(uint v_2) {
     return uvec2(((v_2 ^ (v_2 >> 1u)) & 1u), (v_2 & 1u));
 }
 
-uvec2 block_offset(uint f, uint k_5) {
-    if ((k_5 == 2u)) {
+uvec2 block_offset(uint f, uint k_7) {
+    if ((k_7 == 2u)) {
         uvec2 _e6 = bayer2_((f % 4u));
         return _e6;
     }
-    if ((k_5 == 4u)) {
+    if ((k_7 == 4u)) {
         uint b_4 = (f % 16u);
         uvec2 _e13 = bayer2_((b_4 >> 2u));
         uvec2 _e17 = bayer2_((b_4 & 3u));
@@ -381,8 +387,8 @@ uint rng_seed(uvec2 pixel_6, uint frame_index_1) {
 float rng_next(inout uint rng_1) {
     uint _e1 = rng_1;
     rng_1 = ((_e1 * 747796405u) + 2891336453u);
-    uint s_4 = rng_1;
-    uint word_1 = (((s_4 >> ((s_4 >> 28u) + 4u)) ^ s_4) * 277803737u);
+    uint s_5 = rng_1;
+    uint word_1 = (((s_5 >> ((s_5 >> 28u) + 4u)) ^ s_5) * 277803737u);
     return (float((((word_1 >> 22u) ^ word_1) >> 8u)) * 5.9604645e-8);
 }
 
@@ -395,12 +401,12 @@ float sample_hg_cos(float g_4, float u) {
     if ((abs(g_4) < 0.0001)) {
         return (1.0 - (2.0 * u));
     }
-    float s_5 = ((1.0 - (g_4 * g_4)) / ((1.0 - g_4) + ((2.0 * g_4) * u)));
-    return clamp((((1.0 + (g_4 * g_4)) - (s_5 * s_5)) / (2.0 * g_4)), -1.0, 1.0);
+    float s_6 = ((1.0 - (g_4 * g_4)) / ((1.0 - g_4) + ((2.0 * g_4) * u)));
+    return clamp((((1.0 + (g_4 * g_4)) - (s_6 * s_6)) / (2.0 * g_4)), -1.0, 1.0);
 }
 
-float luminance(vec3 c_2) {
-    return dot(c_2, vec3(0.2126, 0.7152, 0.0722));
+float luminance(vec3 c_3) {
+    return dot(c_3, vec3(0.2126, 0.7152, 0.0722));
 }
 
 float atlas_hash(uint a_2, uint b_2) {
@@ -410,19 +416,19 @@ float atlas_hash(uint a_2, uint b_2) {
 }
 
 float value_noise(vec2 p_10, uint seed) {
-    uvec2 i_16 = uvec2(floor(p_10));
+    uvec2 i_17 = uvec2(floor(p_10));
     vec2 f_2 = fract(p_10);
-    vec2 s_6 = ((f_2 * f_2) * (vec2(3.0) - (2.0 * f_2)));
-    uint h_7 = (seed * 7919u);
-    float _e17 = atlas_hash((i_16.x + h_7), i_16.y);
-    float _e23 = atlas_hash(((i_16.x + 1u) + h_7), i_16.y);
-    float _e29 = atlas_hash((i_16.x + h_7), (i_16.y + 1u));
-    float _e37 = atlas_hash(((i_16.x + 1u) + h_7), (i_16.y + 1u));
-    return mix(mix(_e17, _e23, s_6.x), mix(_e29, _e37, s_6.x), s_6.y);
+    vec2 s_7 = ((f_2 * f_2) * (vec2(3.0) - (2.0 * f_2)));
+    uint h_8 = (seed * 7919u);
+    float _e17 = atlas_hash((i_17.x + h_8), i_17.y);
+    float _e23 = atlas_hash(((i_17.x + 1u) + h_8), i_17.y);
+    float _e29 = atlas_hash((i_17.x + h_8), (i_17.y + 1u));
+    float _e37 = atlas_hash(((i_17.x + 1u) + h_8), (i_17.y + 1u));
+    return mix(mix(_e17, _e23, s_7.x), mix(_e29, _e37, s_7.x), s_7.y);
 }
 
 float value_fbm(vec2 p_11, uint seed_1) {
-    float sum_3 = 0.0;
+    float sum_4 = 0.0;
     float weight = 0.5;
     vec2 q_4 = vec2(0.0);
     uint o = 0u;
@@ -440,32 +446,32 @@ float value_fbm(vec2 p_11, uint seed_1) {
             break;
         }
         {
-            float _e12 = sum_3;
+            float _e12 = sum_4;
             float _e13 = weight;
             vec2 _e14 = q_4;
             uint _e15 = o;
             float _e17 = value_noise(_e14, (seed_1 + _e15));
-            sum_3 = (_e12 + (_e13 * _e17));
+            sum_4 = (_e12 + (_e13 * _e17));
             vec2 _e20 = q_4;
             q_4 = (_e20 * 2.0);
             float _e23 = weight;
             weight = (_e23 * 0.5);
         }
     }
-    float _e29 = sum_3;
+    float _e29 = sum_4;
     return (_e29 / 0.9375);
 }
 
 float sprite_texture(uint tile_1, vec2 uv) {
     float billow = 0.0;
-    uint i_15 = 0u;
+    uint i_16 = 0u;
     vec2 at = vec2(0.0);
     float a_3 = 0.0;
-    vec2 c_4 = (uv - vec2(0.5));
-    float mask = smoothstep(0.48, 0.36, length(c_4));
+    vec2 c_5 = (uv - vec2(0.5));
+    float mask = smoothstep(0.48, 0.36, length(c_5));
     float _e16 = value_fbm(((uv * 6.0) + vec2((float(tile_1) * 13.0))), tile_1);
     if ((tile_1 < 4u)) {
-        vec2 q_5 = (c_4 * vec2(1.0, 3.2));
+        vec2 q_5 = (c_5 * vec2(1.0, 3.2));
         float streak = (1.0 - smoothstep(0.05, 0.45, length(q_5)));
         float _e40 = value_fbm(((uv * vec2(3.0, 12.0)) + vec2((float(tile_1) * 5.0))), (tile_1 + 16u));
         float _e46 = saturate(((_e40 * 1.6) - 0.3));
@@ -475,32 +481,32 @@ float sprite_texture(uint tile_1, vec2 uv) {
     bool loop_init_1 = true;
     while(true) {
         if (!loop_init_1) {
-            uint _e108 = i_15;
-            i_15 = (_e108 + 1u);
+            uint _e108 = i_16;
+            i_16 = (_e108 + 1u);
         }
         loop_init_1 = false;
-        uint _e58 = i_15;
+        uint _e58 = i_16;
         if ((_e58 < blobs)) {
         } else {
             break;
         }
         {
-            uint _e61 = i_15;
+            uint _e61 = i_16;
             float _e63 = atlas_hash(tile_1, (2u * _e61));
-            uint _e65 = i_15;
+            uint _e65 = i_16;
             float _e69 = atlas_hash(tile_1, ((2u * _e65) + 1u));
             vec2 centre_1 = (vec2(_e63, _e69) - vec2(0.5));
             at = (vec2(0.5) + (centre_1 * 0.34));
             if ((tile_1 == 4u)) {
                 at.y = (0.5 + ((centre_1.y - 0.5) * 0.24));
             }
-            uint _e91 = i_15;
+            uint _e91 = i_16;
             float _e93 = atlas_hash(tile_1, (100u + _e91));
-            float r_13 = (0.14 + (0.1 * _e93));
+            float r_14 = (0.14 + (0.1 * _e93));
             vec2 _e98 = at;
-            float d_16 = (length((uv - _e98)) / r_13);
+            float d_18 = (length((uv - _e98)) / r_14);
             float _e102 = billow;
-            float _e106 = saturate((1.0 - (d_16 * d_16)));
+            float _e106 = saturate((1.0 - (d_18 * d_18)));
             billow = max(_e102, _e106);
         }
     }
@@ -515,8 +521,8 @@ float sprite_texture(uint tile_1, vec2 uv) {
     return _e130;
 }
 
-vec3 sprite_sky_level(float h_6) {
-    float _e1 = saturate(h_6);
+vec3 sprite_sky_level(float h_7) {
+    float _e1 = saturate(h_7);
     float x_6 = (_e1 * 4.0);
     if ((x_6 < 1.0)) {
         return mix(SKY_LEVEL0_, SKY_LEVEL1_, x_6);
@@ -537,15 +543,15 @@ float sprite_sun_level(float cos_angle) {
     return mix(SPRITE_C_MED, SPRITE_C_MAX, cos_angle);
 }
 
-vec2 sprite_corner(uint k_9) {
-    bool local_56 = false;
-    uint q_6 = ((k_9 >= 3u) ? ((k_9 == 3u) ? 0u : (k_9 - 2u)) : k_9);
+vec2 sprite_corner(uint k_11) {
+    bool local_57 = false;
+    uint q_6 = ((k_11 >= 3u) ? ((k_11 == 3u) ? 0u : (k_11 - 2u)) : k_11);
     if (!((q_6 == 1u))) {
-        local_56 = (q_6 == 2u);
+        local_57 = (q_6 == 2u);
     } else {
-        local_56 = true;
+        local_57 = true;
     }
-    bool _e18 = local_56;
+    bool _e18 = local_57;
     return vec2((_e18 ? 1.0 : -1.0), ((q_6 >= 2u) ? 1.0 : -1.0));
 }
 
@@ -554,12 +560,12 @@ vec3 aces_fitted(vec3 x_5) {
 }
 
 void main() {
-    uvec3 id_14 = gl_GlobalInvocationID;
+    uvec3 id_16 = gl_GlobalInvocationID;
     uint rank = 0u;
     uint j = 0u;
-    bool local_12 = false;
     bool local_13 = false;
-    uint slot = id_14.x;
+    bool local_14 = false;
+    uint slot = id_16.x;
     vec4 _e6 = texelFetch(_group_0_binding_20_cs, ivec2(uvec2(slot, 3u)), 0);
     float key_1 = _e6.x;
     bool loop_init_2 = true;
@@ -582,16 +588,16 @@ void main() {
             if (!((other < key_1))) {
                 if ((other == key_1)) {
                     uint _e32 = j;
-                    local_13 = (_e32 < slot);
+                    local_14 = (_e32 < slot);
                 } else {
-                    local_13 = false;
+                    local_14 = false;
                 }
-                bool _e35 = local_13;
-                local_12 = _e35;
+                bool _e35 = local_14;
+                local_13 = _e35;
             } else {
-                local_12 = true;
+                local_13 = true;
             }
-            bool _e37 = local_12;
+            bool _e37 = local_13;
             rank = (_e22 + (_e37 ? 1u : 0u));
         }
     }

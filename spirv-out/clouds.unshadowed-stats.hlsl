@@ -194,7 +194,13 @@ static const uint MULTISCATTER_STEPS = 32u;
 static const uint SKY_VIEW_STEPS = 48u;
 static const uint AMBIENT_DIRECTIONS = 64u;
 static const uint AMBIENT_STEPS = 24u;
+static const uint GROUND_IRRADIANCE_SIZE = 64u;
 static const uint NO_LAYER = 4u;
+static const uint GROUND_IRRADIANCE_DIRECTIONS = 128u;
+static const uint SHADOW_SIZE = 128u;
+static const float SHADOW_HALF_EXTENT = 20000.0;
+static const float SHADOW_FADE_START = 0.75;
+static const uint SHADOW_STEPS = 16u;
 static const uint OCCUPANCY_CELLS = 64u;
 static const uint STAT_PIXELS = 0u;
 static const uint STAT_MARCHED = 1u;
@@ -247,6 +253,7 @@ RWTexture2D<float4> multiscatter_lut_out : register(u33);
 RWTexture2D<float4> sky_view_out : register(u34);
 RWTexture2D<float4> aerial_out : register(u35);
 RWTexture2D<float4> sky_ambient_out : register(u36);
+Texture2D<float4> ground_irradiance_in : register(t38);
 Texture3D<float4> shape_tex : register(t1);
 Texture3D<float4> detail_tex : register(t2);
 Texture2D<float4> weather_tex : register(t3);
@@ -255,6 +262,9 @@ SamplerState nagaSamplerHeap[2048]: register(s32, space0);
 SamplerComparisonState nagaComparisonSamplerHeap[2048]: register(s33, space0);
 StructuredBuffer<uint> nagaGroup0SamplerIndexArray : register(t34, space0);
 static const SamplerState noise_sampler = nagaSamplerHeap[nagaGroup0SamplerIndexArray[5]];
+RWTexture2D<float4> ground_irradiance_out : register(u39);
+Texture2D<float4> cloud_shadow_in : register(t40);
+RWTexture2D<float> cloud_shadow_out : register(u41);
 Texture2D<float4> occupancy_in : register(t11);
 RWTexture2D<float> occupancy_out : register(u12);
 RWTexture2D<float4> cloud_out : register(u6);
@@ -334,8 +344,8 @@ float3 view_ray(uint2 pixel_1)
     float4 _e26 = frame.camera_forward;
     float4 _e30 = frame.camera_right;
     float4 _e39 = frame.camera_up;
-    float3 d_16 = ((_e26.xyz + (_e30.xyz * ((ndc.x * tan_half) * aspect))) - (_e39.xyz * (ndc.y * tan_half)));
-    return normalize(d_16);
+    float3 d_18 = ((_e26.xyz + (_e30.xyz * ((ndc.x * tan_half) * aspect))) - (_e39.xyz * (ndc.y * tan_half)));
+    return normalize(d_18);
 }
 
 Roots ConstructRoots(float arg0, float arg1, bool arg2) {
@@ -353,8 +363,8 @@ Roots solve_sphere(float b, float c)
         const Roots roots = ConstructRoots(0.0, 0.0, false);
         return roots;
     }
-    float s_2 = sqrt(disc);
-    float r0_1 = -((b + ((b >= 0.0) ? s_2 : -(s_2))));
+    float s_3 = sqrt(disc);
+    float r0_1 = -((b + ((b >= 0.0) ? s_3 : -(s_3))));
     if ((r0_1 == 0.0)) {
         const Roots roots_1 = ConstructRoots(0.0, 0.0, true);
         return roots_1;
@@ -368,8 +378,8 @@ Roots ray_shell(float alt, float3 d, float radius_alt)
 {
     float rp = frame.atmosphere.x;
     float b_3 = (d.y * (alt + rp));
-    float c_4 = ((alt - radius_alt) * ((alt + radius_alt) + (2.0 * rp)));
-    const Roots _e16 = solve_sphere(b_3, c_4);
+    float c_5 = ((alt - radius_alt) * ((alt + radius_alt) + (2.0 * rp)));
+    const Roots _e16 = solve_sphere(b_3, c_5);
     const Roots roots_3 = _e16;
     return roots_3;
 }
@@ -384,17 +394,17 @@ float altitude_of(float3 p)
 
 bool hits_ground(float3 p_1, float alt_1, float3 d_1)
 {
-    bool local_14 = (bool)0;
+    bool local_15 = (bool)0;
 
     float rp_2 = frame.atmosphere.x;
     float b_4 = dot(d_1, float3(p_1.x, (p_1.y + rp_2), p_1.z));
-    float c_5 = (alt_1 * (alt_1 + (2.0 * rp_2)));
+    float c_6 = (alt_1 * (alt_1 + (2.0 * rp_2)));
     if ((b_4 < 0.0)) {
-        local_14 = ((b_4 * b_4) >= c_5);
+        local_15 = ((b_4 * b_4) >= c_6);
     } else {
-        local_14 = false;
+        local_15 = false;
     }
-    bool _e24 = local_14;
+    bool _e24 = local_15;
     return _e24;
 }
 
@@ -410,9 +420,9 @@ Interval shell_interval(float alt_2, float3 d_2, float bottom, float top)
 {
     float start = 0.0;
     float end = 0.0;
-    bool local_15 = (bool)0;
     bool local_16 = (bool)0;
     bool local_17 = (bool)0;
+    bool local_18 = (bool)0;
 
     float cutoff = frame.atmosphere.w;
     const Roots _e8 = ray_shell(alt_2, d_2, bottom);
@@ -429,22 +439,22 @@ Interval shell_interval(float alt_2, float3 d_2, float bottom, float top)
         if ((alt_2 <= top)) {
             end = _e9.t1_;
             if (_e8.hit) {
-                local_15 = (_e8.t0_ > 0.0);
+                local_16 = (_e8.t0_ > 0.0);
             } else {
-                local_15 = false;
+                local_16 = false;
             }
-            bool _e34 = local_15;
+            bool _e34 = local_16;
             if (_e34) {
                 float _e35 = end;
                 end = min(_e35, _e8.t0_);
             }
         } else {
             if (!(!(_e9.hit))) {
-                local_16 = (_e9.t1_ <= 0.0);
+                local_17 = (_e9.t1_ <= 0.0);
             } else {
-                local_16 = true;
+                local_17 = true;
             }
-            bool _e47 = local_16;
+            bool _e47 = local_17;
             if (_e47) {
                 const Interval interval_1 = ConstructInterval(0.0, 0.0, 1u);
                 return interval_1;
@@ -452,11 +462,11 @@ Interval shell_interval(float alt_2, float3 d_2, float bottom, float top)
             start = max(_e9.t0_, 0.0);
             end = _e9.t1_;
             if (_e8.hit) {
-                local_17 = (_e8.t0_ > 0.0);
+                local_18 = (_e8.t0_ > 0.0);
             } else {
-                local_17 = false;
+                local_18 = false;
             }
-            bool _e63 = local_17;
+            bool _e63 = local_18;
             if (_e63) {
                 float _e64 = end;
                 end = min(_e64, _e8.t0_);
@@ -506,23 +516,23 @@ Layer layer_from(float4 g, float4 w_1)
     return layer;
 }
 
-Layer cloud_layer(uint i_3)
+Layer cloud_layer(uint i_4)
 {
-    if ((i_3 == 1u)) {
+    if ((i_4 == 1u)) {
         float4 _e5 = frame.layer1_;
         float4 _e8 = frame.layer1_weather;
         const Layer _e9 = layer_from(_e5, _e8);
         const Layer layer_1 = _e9;
         return layer_1;
     } else {
-        if ((i_3 == 2u)) {
+        if ((i_4 == 2u)) {
             float4 _e14 = frame.layer2_;
             float4 _e17 = frame.layer2_weather;
             const Layer _e18 = layer_from(_e14, _e17);
             const Layer layer_2 = _e18;
             return layer_2;
         } else {
-            if ((i_3 == 3u)) {
+            if ((i_4 == 3u)) {
                 float4 _e23 = frame.layer3_;
                 float4 _e26 = frame.layer3_weather;
                 const Layer _e27 = layer_from(_e23, _e26);
@@ -545,7 +555,7 @@ Layer cloud_layer(uint i_3)
 float2 layers_span()
 {
     float2 span = (float2)0;
-    uint i_4 = 1u;
+    uint i_5 = 1u;
 
     float4 _e2 = frame.atmosphere;
     span = _e2.yz;
@@ -555,18 +565,18 @@ float2 layers_span()
         if (all(loop_bound == uint2(0u, 0u))) { break; }
         loop_bound -= uint2(loop_bound.y == 0u, 1u);
         if (!loop_init) {
-            uint _e22 = i_4;
-            i_4 = (_e22 + 1u);
+            uint _e22 = i_5;
+            i_5 = (_e22 + 1u);
         }
         loop_init = false;
-        uint _e7 = i_4;
+        uint _e7 = i_5;
         const uint _e8 = layer_count();
         if ((_e7 < _e8)) {
         } else {
             break;
         }
         {
-            uint _e10 = i_4;
+            uint _e10 = i_5;
             const Layer _e11 = cloud_layer(_e10);
             float _e13 = span.x;
             float _e17 = span.y;
@@ -588,9 +598,9 @@ Interval cloud_interval(float alt_4, float3 d_4)
 Interval nearest_layer_interval(float alt_5, float3 d_5)
 {
     Interval best = (Interval)0;
-    uint i_5 = 1u;
-    bool local_18 = (bool)0;
+    uint i_6 = 1u;
     bool local_19 = (bool)0;
+    bool local_20 = (bool)0;
 
     const Layer _e3 = cloud_layer(0u);
     const Interval _e4 = layer_interval(alt_5, d_5, _e3);
@@ -601,34 +611,34 @@ Interval nearest_layer_interval(float alt_5, float3 d_5)
         if (all(loop_bound_1 == uint2(0u, 0u))) { break; }
         loop_bound_1 -= uint2(loop_bound_1.y == 0u, 1u);
         if (!loop_init_1) {
-            uint _e35 = i_5;
-            i_5 = (_e35 + 1u);
+            uint _e35 = i_6;
+            i_6 = (_e35 + 1u);
         }
         loop_init_1 = false;
-        uint _e8 = i_5;
+        uint _e8 = i_6;
         const uint _e9 = layer_count();
         if ((_e8 < _e9)) {
         } else {
             break;
         }
         {
-            uint _e11 = i_5;
+            uint _e11 = i_6;
             const Layer _e12 = cloud_layer(_e11);
             const Interval _e13 = layer_interval(alt_5, d_5, _e12);
             if ((_e13.kind == RAY_MARCH)) {
                 uint _e20 = best.kind;
                 if (!((_e20 != RAY_MARCH))) {
                     float _e28 = best.start;
-                    local_19 = (_e13.start < _e28);
+                    local_20 = (_e13.start < _e28);
                 } else {
-                    local_19 = true;
+                    local_20 = true;
                 }
-                bool _e31 = local_19;
-                local_18 = _e31;
+                bool _e31 = local_20;
+                local_19 = _e31;
             } else {
-                local_18 = false;
+                local_19 = false;
             }
-            bool _e33 = local_18;
+            bool _e33 = local_19;
             if (_e33) {
                 best = _e13;
             }
@@ -643,8 +653,8 @@ Roots ray_shell_from(float3 p_2, float alt_6, float3 d_6, float radius_alt_1)
 {
     float rp_3 = frame.atmosphere.x;
     float b_5 = dot(d_6, float3(p_2.x, (p_2.y + rp_3), p_2.z));
-    float c_6 = ((alt_6 - radius_alt_1) * ((alt_6 + radius_alt_1) + (2.0 * rp_3)));
-    const Roots _e20 = solve_sphere(b_5, c_6);
+    float c_7 = ((alt_6 - radius_alt_1) * ((alt_6 + radius_alt_1) + (2.0 * rp_3)));
+    const Roots _e20 = solve_sphere(b_5, c_7);
     const Roots roots_4 = _e20;
     return roots_4;
 }
@@ -678,14 +688,14 @@ AirSample ConstructAirSample(float3 arg0, float arg1, float3 arg2) {
 
 AirSample air_at(float h_km)
 {
-    float h_7 = (max(h_km, 0.0) * 1000.0);
+    float h_8 = (max(h_km, 0.0) * 1000.0);
     float _e9 = frame.air_rayleigh.w;
-    float rayleigh_density = exp((-(h_7) / _e9));
+    float rayleigh_density = exp((-(h_8) / _e9));
     float _e16 = frame.air_mie.z;
-    float mie_density = exp((-(h_7) / _e16));
+    float mie_density = exp((-(h_8) / _e16));
     float _e22 = frame.air_ozone.w;
     float _e28 = frame.air_misc.y;
-    float ozone_density = max((1.0 - (abs((h_7 - _e22)) / (0.5 * _e28))), 0.0);
+    float ozone_density = max((1.0 - (abs((h_8 - _e22)) / (0.5 * _e28))), 0.0);
     float4 _e38 = frame.air_rayleigh;
     float3 rayleigh = (_e38.xyz * (rayleigh_density * 1000.0));
     float _e46 = frame.air_mie.x;
@@ -713,16 +723,16 @@ float distance_to_top(float r_3, float mu_1)
 
 bool meets_ground(float r_4, float mu_2)
 {
-    bool local_20 = (bool)0;
+    bool local_21 = (bool)0;
 
     if ((mu_2 < 0.0)) {
         const float _e6 = air_bottom();
         const float _e7 = sphere_discriminant(r_4, mu_2, _e6);
-        local_20 = (_e7 >= 0.0);
+        local_21 = (_e7 >= 0.0);
     } else {
-        local_20 = false;
+        local_21 = false;
     }
-    bool _e11 = local_20;
+    bool _e11 = local_21;
     return _e11;
 }
 
@@ -762,12 +772,12 @@ float2 transmittance_coords(float r_7, float mu_5)
 {
     const float _e2 = air_bottom();
     const float _e3 = air_top();
-    float h_8 = sqrt(max(((_e3 - _e2) * (_e3 + _e2)), 0.0));
+    float h_9 = sqrt(max(((_e3 - _e2) * (_e3 + _e2)), 0.0));
     float rho = sqrt(max(((r_7 - _e2) * (r_7 + _e2)), 0.0));
     const float _e16 = distance_to_top(r_7, mu_5);
     float d_min = (_e3 - r_7);
-    float d_max = (rho + h_8);
-    return float2(((_e16 - d_min) / max((d_max - d_min), 1e-6)), (rho / h_8));
+    float d_max = (rho + h_9);
+    return float2(((_e16 - d_min) / max((d_max - d_min), 1e-6)), (rho / h_9));
 }
 
 float2 transmittance_r_mu(float2 x_4)
@@ -776,17 +786,17 @@ float2 transmittance_r_mu(float2 x_4)
 
     const float _e1 = air_bottom();
     const float _e2 = air_top();
-    float h_9 = sqrt(max(((_e2 - _e1) * (_e2 + _e1)), 0.0));
-    float rho_1 = (h_9 * x_4.y);
-    float r_13 = sqrt(((rho_1 * rho_1) + (_e1 * _e1)));
-    float d_min_1 = (_e2 - r_13);
-    float d_max_1 = (rho_1 + h_9);
-    float d_17 = (d_min_1 + (x_4.x * (d_max_1 - d_min_1)));
-    if ((d_17 > 0.0)) {
-        mu_6 = clamp(((((h_9 * h_9) - (rho_1 * rho_1)) - (d_17 * d_17)) / ((2.0 * r_13) * d_17)), -1.0, 1.0);
+    float h_10 = sqrt(max(((_e2 - _e1) * (_e2 + _e1)), 0.0));
+    float rho_1 = (h_10 * x_4.y);
+    float r_14 = sqrt(((rho_1 * rho_1) + (_e1 * _e1)));
+    float d_min_1 = (_e2 - r_14);
+    float d_max_1 = (rho_1 + h_10);
+    float d_19 = (d_min_1 + (x_4.x * (d_max_1 - d_min_1)));
+    if ((d_19 > 0.0)) {
+        mu_6 = clamp(((((h_10 * h_10) - (rho_1 * rho_1)) - (d_19 * d_19)) / ((2.0 * r_14) * d_19)), -1.0, 1.0);
     }
     float _e37 = mu_6;
-    return float2(r_13, _e37);
+    return float2(r_14, _e37);
 }
 
 float3 transmittance_to_top(float r_8, float mu_7)
@@ -827,15 +837,15 @@ float phase_cornette_shanks_air(float cos_theta_1, float g_1)
     return (((0.119366206 * (1.0 - g2_)) * (1.0 + (cos_theta_1 * cos_theta_1))) / ((2.0 + g2_) * pow(max(((1.0 + g2_) - ((2.0 * g_1) * cos_theta_1)), 1e-6), 1.5)));
 }
 
-float3 fibonacci_direction(uint k_3, uint n_1)
+float3 fibonacci_direction(uint k_5, uint n_1)
 {
-    float z_2 = (1.0 - (((2.0 * float(k_3)) + 1.0) / float(n_1)));
-    float s_3 = sqrt(max((1.0 - (z_2 * z_2)), 0.0));
-    float phi = (2.3999634 * float(k_3));
-    return float3((s_3 * cos(phi)), z_2, (s_3 * sin(phi)));
+    float z_2 = (1.0 - (((2.0 * float(k_5)) + 1.0) / float(n_1)));
+    float s_4 = sqrt(max((1.0 - (z_2 * z_2)), 0.0));
+    float phi = (2.3999634 * float(k_5));
+    return float3((s_4 * cos(phi)), z_2, (s_4 * sin(phi)));
 }
 
-float3 ground_radiance(float mu_s_2)
+float3 ground_radiance_sun(float mu_s_2)
 {
     float _e4 = frame.air_misc.z;
     const float _e10 = air_bottom();
@@ -850,84 +860,102 @@ Scattered ConstructScattered(float3 arg0, float3 arg1) {
     return ret;
 }
 
-Scattered integrate_air(float3 origin, float3 d_7, float distance_km, uint steps, float3 sun, bool ground)
+Scattered integrate_air(float3 origin, float3 d_7, float distance_km, uint steps, float3 sun)
 {
     float3 radiance_1 = (0.0).xxx;
-    float3 tau_2 = (0.0).xxx;
+    float3 tau_3 = (0.0).xxx;
     float t0_ = 0.0;
-    uint i_6 = 0u;
+    uint i_7 = 0u;
 
     float cos_theta_7 = dot(d_7, sun);
-    const float _e7 = phase_rayleigh(cos_theta_7);
-    float _e11 = frame.air_mie.w;
-    const float _e12 = phase_cornette_shanks_air(cos_theta_7, _e11);
+    const float _e6 = phase_rayleigh(cos_theta_7);
+    float _e10 = frame.air_mie.w;
+    const float _e11 = phase_cornette_shanks_air(cos_theta_7, _e10);
     uint2 loop_bound_2 = uint2(4294967295u, 4294967295u);
     bool loop_init_2 = true;
     while(true) {
         if (all(loop_bound_2 == uint2(0u, 0u))) { break; }
         loop_bound_2 -= uint2(loop_bound_2.y == 0u, 1u);
         if (!loop_init_2) {
-            uint _e80 = i_6;
-            i_6 = (_e80 + 1u);
+            uint _e79 = i_7;
+            i_7 = (_e79 + 1u);
         }
         loop_init_2 = false;
-        uint _e23 = i_6;
-        if ((_e23 < steps)) {
+        uint _e22 = i_7;
+        if ((_e22 < steps)) {
         } else {
             break;
         }
         {
-            uint _e25 = i_6;
-            float s1_ = (float((_e25 + 1u)) / float(steps));
+            uint _e24 = i_7;
+            float s1_ = (float((_e24 + 1u)) / float(steps));
             float t1_ = ((distance_km * s1_) * s1_);
-            float _e33 = t0_;
-            float dt_1 = (t1_ - _e33);
-            float _e35 = t0_;
-            float3 p_12 = (origin + (d_7 * (0.5 * (_e35 + t1_))));
-            float r_14 = length(p_12);
-            float3 up = (p_12 / (r_14).xxx);
-            float mu_s_3 = dot(up, sun);
-            const float _e45 = air_bottom();
-            const AirSample _e47 = air_at((r_14 - _e45));
-            float3 _e48 = tau_2;
-            float3 t_view = exp(-((_e48 + ((0.5 * _e47.extinction) * dt_1))));
-            const float3 _e56 = sun_transmittance(r_14, mu_s_3);
-            const float3 _e57 = multiscatter(r_14, mu_s_3);
-            float3 inscatter = ((_e56 * ((_e47.rayleigh * _e7) + ((_e47.mie * _e12)).xxx)) + (_e57 * (_e47.rayleigh + (_e47.mie).xxx)));
-            float3 _e71 = radiance_1;
-            radiance_1 = (_e71 + ((t_view * inscatter) * dt_1));
-            float3 _e75 = tau_2;
-            tau_2 = (_e75 + (_e47.extinction * dt_1));
+            float _e32 = t0_;
+            float dt_1 = (t1_ - _e32);
+            float _e34 = t0_;
+            float3 p_12 = (origin + (d_7 * (0.5 * (_e34 + t1_))));
+            float r_15 = length(p_12);
+            float3 up = (p_12 / (r_15).xxx);
+            float mu_s_5 = dot(up, sun);
+            const float _e44 = air_bottom();
+            const AirSample _e46 = air_at((r_15 - _e44));
+            float3 _e47 = tau_3;
+            float3 t_view = exp(-((_e47 + ((0.5 * _e46.extinction) * dt_1))));
+            const float3 _e55 = sun_transmittance(r_15, mu_s_5);
+            const float3 _e56 = multiscatter(r_15, mu_s_5);
+            float3 inscatter = ((_e55 * ((_e46.rayleigh * _e6) + ((_e46.mie * _e11)).xxx)) + (_e56 * (_e46.rayleigh + (_e46.mie).xxx)));
+            float3 _e70 = radiance_1;
+            radiance_1 = (_e70 + ((t_view * inscatter) * dt_1));
+            float3 _e74 = tau_3;
+            tau_3 = (_e74 + (_e46.extinction * dt_1));
             t0_ = t1_;
         }
     }
-    if (ground) {
-        float3 end_1 = (origin + (d_7 * distance_km));
-        float3 _e84 = radiance_1;
-        float3 _e85 = tau_2;
-        const float3 _e90 = ground_radiance(dot(normalize(end_1), sun));
-        radiance_1 = (_e84 + (exp(-(_e85)) * _e90));
-    }
-    float3 _e93 = radiance_1;
-    float3 _e94 = tau_2;
-    const Scattered scattered = ConstructScattered(_e93, exp(-(_e94)));
+    float3 _e81 = radiance_1;
+    float3 _e82 = tau_3;
+    const Scattered scattered = ConstructScattered(_e81, exp(-(_e82)));
     return scattered;
 }
 
-float2 air_ray_end(float3 origin_1, float3 d_8)
+float3 sky_irradiance(float mu_s_3)
 {
-    float r_15 = length(origin_1);
-    float mu_8 = (dot(origin_1, d_8) / r_15);
-    const bool _e5 = meets_ground(r_15, mu_8);
+    float2 x_7 = float2(((mu_s_3 * 0.5) + 0.5), 0.0);
+    const float4 _e11 = lut_bilinear(ground_irradiance_in, x_7, uint2(64u, 1u));
+    return _e11.xyz;
+}
+
+float3 ground_radiance(float mu_s_4)
+{
+    const float3 _e1 = ground_radiance_sun(mu_s_4);
+    float _e5 = frame.air_misc.z;
+    const float3 _e8 = sky_irradiance(mu_s_4);
+    return (_e1 + ((_e5 / PI) * _e8));
+}
+
+float3 with_ground(Scattered s, float3 origin_1, float3 d_8, float distance_km_1, float3 sun_1, bool ground)
+{
+    if (!(ground)) {
+        return s.radiance;
+    }
+    float3 end_1 = (origin_1 + (d_8 * distance_km_1));
+    const float3 _e14 = ground_radiance(dot(normalize(end_1), sun_1));
+    return (s.radiance + (s.transmittance * _e14));
+}
+
+float2 air_ray_end(float3 origin_2, float3 d_9)
+{
+    float r_16 = length(origin_2);
+    float mu_8 = (dot(origin_2, d_9) / r_16);
+    const bool _e5 = meets_ground(r_16, mu_8);
     if (_e5) {
-        const float _e6 = distance_to_ground(r_15, mu_8);
+        const float _e6 = distance_to_ground(r_16, mu_8);
         return float2(_e6, 1.0);
     }
     const float _e9 = air_top();
-    if ((r_15 > _e9)) {
+    if ((r_16 > _e9)) {
         return float2(0.0, 0.0);
     }
-    const float _e14 = distance_to_top(r_15, mu_8);
+    const float _e14 = distance_to_top(r_16, mu_8);
     return float2(_e14, 0.0);
 }
 
@@ -967,26 +995,26 @@ float horizon_elevation(float r_11)
 float sun_azimuth()
 {
     float4 _e2 = frame.sun_direction;
-    float3 s_4 = _e2.xyz;
-    return atan2(s_4.z, s_4.x);
+    float3 s_5 = _e2.xyz;
+    return atan2(s_5.z, s_5.x);
 }
 
-float3 sky_view(float3 d_9)
+float3 sky_view(float3 d_10)
 {
     float delta = (float)0;
 
     const float3 _e1 = camera_air_origin();
-    float elevation_1 = asin(clamp(d_9.y, -1.0, 1.0));
+    float elevation_1 = asin(clamp(d_10.y, -1.0, 1.0));
     const float _e10 = sun_azimuth();
-    delta = (atan2(d_9.z, d_9.x) - _e10);
+    delta = (atan2(d_10.z, d_10.x) - _e10);
     float _e13 = delta;
     float _e15 = delta;
     delta = abs((_e13 - (6.2831855 * round((_e15 / 6.2831855)))));
     float _e22 = delta;
     const float _e26 = horizon_elevation(_e1.y);
     const float _e27 = sky_view_v(elevation_1, _e26);
-    float2 x_7 = float2((_e22 / PI), _e27);
-    const float4 _e31 = lut_bilinear(sky_view_in, x_7, SKY_VIEW_SIZE);
+    float2 x_8 = float2((_e22 / PI), _e27);
+    const float4 _e31 = lut_bilinear(sky_view_in, x_8, SKY_VIEW_SIZE);
     return _e31.xyz;
 }
 
@@ -1028,10 +1056,10 @@ float4 aerial(uint2 pixel_2, float depth_m)
     uint2 c0_1 = min(naga_f2u32(floor(f_2)), (31u).xx);
     uint2 c1_1 = min((c0_1 + (1u).xx), (31u).xx);
     float2 w_4 = (f_2 - float2(c0_1));
-    float s_5 = clamp(((depth_m * 0.001) / AERIAL_SLICE_KM), 0.0, 32.0);
-    uint z1_ = min(naga_f2u32(ceil(s_5)), AERIAL_SLICES);
+    float s_6 = clamp(((depth_m * 0.001) / AERIAL_SLICE_KM), 0.0, 32.0);
+    uint z1_ = min(naga_f2u32(ceil(s_6)), AERIAL_SLICES);
     uint z0_ = ((z1_ > 0u) ? (z1_ - 1u) : 0u);
-    float ws = (s_5 - float(z0_));
+    float ws = (s_6 - float(z0_));
     if ((z0_ > 0u)) {
         const float4 _e64 = aerial_texel(c0_1, c1_1, w_4, (z0_ - 1u));
         near = _e64;
@@ -1053,9 +1081,9 @@ float3 sun_through_air(float3 rel)
     }
     float _e10 = frame.atmosphere.x;
     float3 q_6 = (float3(rel.x, (rel.y + _e10), rel.z) * 0.001);
-    float r_16 = length(q_6);
+    float r_17 = length(q_6);
     float4 _e21 = frame.sun_direction;
-    const float3 _e24 = sun_transmittance(r_16, dot((q_6 / (r_16).xxx), _e21.xyz));
+    const float3 _e24 = sun_transmittance(r_17, dot((q_6 / (r_17).xxx), _e21.xyz));
     return _e24;
 }
 
@@ -1077,8 +1105,8 @@ float layer_height(Layer l_1, float alt_7)
 
 uint layer_at(float alt_8)
 {
-    uint i_7 = 0u;
-    bool local_21 = (bool)0;
+    uint i_8 = 0u;
+    bool local_22 = (bool)0;
 
     uint2 loop_bound_3 = uint2(4294967295u, 4294967295u);
     bool loop_init_3 = true;
@@ -1086,28 +1114,28 @@ uint layer_at(float alt_8)
         if (all(loop_bound_3 == uint2(0u, 0u))) { break; }
         loop_bound_3 -= uint2(loop_bound_3.y == 0u, 1u);
         if (!loop_init_3) {
-            uint _e19 = i_7;
-            i_7 = (_e19 + 1u);
+            uint _e19 = i_8;
+            i_8 = (_e19 + 1u);
         }
         loop_init_3 = false;
-        uint _e3 = i_7;
+        uint _e3 = i_8;
         const uint _e4 = layer_count();
         if ((_e3 < _e4)) {
         } else {
             break;
         }
         {
-            uint _e6 = i_7;
+            uint _e6 = i_8;
             const Layer _e7 = cloud_layer(_e6);
             const float _e8 = layer_height(_e7, alt_8);
             if ((_e8 >= 0.0)) {
-                local_21 = (_e8 <= 1.0);
+                local_22 = (_e8 <= 1.0);
             } else {
-                local_21 = false;
+                local_22 = false;
             }
-            bool _e16 = local_21;
+            bool _e16 = local_22;
             if (_e16) {
-                uint _e17 = i_7;
+                uint _e17 = i_8;
                 return _e17;
             }
         }
@@ -1177,36 +1205,36 @@ uint3 NagaDimensions3D(Texture3D<float4> tex)
     return ret.xyz;
 }
 
-float layer_density(float3 p_4, float alt_9, Layer l_3, inout Counters counters_2)
+float layer_density(float3 p_4, float alt_9, Layer l_3, inout Counters counters_3)
 {
-    bool local_22 = (bool)0;
     bool local_23 = (bool)0;
+    bool local_24 = (bool)0;
     float base = (float)0;
     float density = (float)0;
-    bool local_24 = (bool)0;
     bool local_25 = (bool)0;
+    bool local_26 = (bool)0;
     float3 detail_pos = (float3)0;
 
     const float _e4 = layer_height(l_3, alt_9);
     if (!((_e4 < 0.0))) {
-        local_22 = (_e4 > 1.0);
-    } else {
-        local_22 = true;
-    }
-    bool _e13 = local_22;
-    if (_e13) {
-        return 0.0;
-    }
-    uint _e16 = counters_2.density;
-    counters_2.density = (_e16 + 1u);
-    const Weather _e19 = sample_weather(p_4, l_3);
-    const float _e21 = height_signal(_e4, _e19.cloud_type);
-    if (!((_e19.coverage <= 0.0))) {
-        local_23 = (_e21 <= 0.0);
+        local_23 = (_e4 > 1.0);
     } else {
         local_23 = true;
     }
-    bool _e31 = local_23;
+    bool _e13 = local_23;
+    if (_e13) {
+        return 0.0;
+    }
+    uint _e16 = counters_3.density;
+    counters_3.density = (_e16 + 1u);
+    const Weather _e19 = sample_weather(p_4, l_3);
+    const float _e21 = height_signal(_e4, _e19.cloud_type);
+    if (!((_e19.coverage <= 0.0))) {
+        local_24 = (_e21 <= 0.0);
+    } else {
+        local_24 = true;
+    }
+    bool _e31 = local_24;
     if (_e31) {
         return 0.0;
     }
@@ -1216,9 +1244,9 @@ float layer_density(float3 p_4, float alt_9, Layer l_3, inout Counters counters_
     float _e51 = frame.wind_offsets0_.z;
     float _e57 = frame.wind_offsets0_.w;
     float3 shape_pos = float3((p_4.x - _e51), alt_9, (p_4.z - _e57));
-    float4 s_6 = shape_tex.SampleLevel(noise_sampler, (shape_pos / period), 0.0);
-    float low_fbm = (((s_6.y * 0.625) + (s_6.z * 0.25)) + (s_6.w * 0.125));
-    const float _e82 = remap(s_6.x, (low_fbm - 1.0), 1.0, 0.0, 1.0);
+    float4 s_7 = shape_tex.SampleLevel(noise_sampler, (shape_pos / period), 0.0);
+    float low_fbm = (((s_7.y * 0.625) + (s_7.z * 0.25)) + (s_7.w * 0.125));
+    const float _e82 = remap(s_7.x, (low_fbm - 1.0), 1.0, 0.0, 1.0);
     const float _e83 = saturate_(_e82);
     base = (_e83 * _e21);
     float _e86 = base;
@@ -1234,21 +1262,21 @@ float layer_density(float3 p_4, float alt_9, Layer l_3, inout Counters counters_
     float strength = frame.erosion.x;
     float threshold = frame.erosion.y;
     if (DETAIL) {
-        local_24 = (strength > 0.0);
-    } else {
-        local_24 = false;
-    }
-    bool _e117 = local_24;
-    if (_e117) {
-        float _e120 = base;
-        local_25 = (_e120 < threshold);
+        local_25 = (strength > 0.0);
     } else {
         local_25 = false;
     }
-    bool _e123 = local_25;
+    bool _e117 = local_25;
+    if (_e117) {
+        float _e120 = base;
+        local_26 = (_e120 < threshold);
+    } else {
+        local_26 = false;
+    }
+    bool _e123 = local_26;
     if (_e123) {
-        uint _e125 = counters_2.detail;
-        counters_2.detail = (_e125 + 1u);
+        uint _e125 = counters_3.detail;
+        counters_3.detail = (_e125 + 1u);
         detail_pos = float3(p_4.x, alt_9, p_4.z);
         if (CURL) {
             float4 _e136 = frame.wind_offsets1_;
@@ -1288,14 +1316,14 @@ float layer_density(float3 p_4, float alt_9, Layer l_3, inout Counters counters_
     return clamp(_e244, 0.0, 1.0);
 }
 
-float cloud_density(float3 p_5, float alt_10, inout Counters counters_3)
+float cloud_density(float3 p_5, float alt_10, inout Counters counters_4)
 {
     const uint _e3 = layer_at(alt_10);
     if ((_e3 == NO_LAYER)) {
         return 0.0;
     }
     const Layer _e7 = cloud_layer(_e3);
-    const float _e8 = layer_density(p_5, alt_10, _e7, counters_3);
+    const float _e8 = layer_density(p_5, alt_10, _e7, counters_4);
     return _e8;
 }
 
@@ -1338,20 +1366,20 @@ float phase(float cos_theta_4, float scale)
     }
 }
 
-float sun_optical_depth(float3 rel_1, float3 p_6, Layer l_4, inout Counters counters_4)
+float sun_optical_depth(float3 rel_1, float3 p_6, Layer l_4, inout Counters counters_5)
 {
     float seg = (float)0;
     float dist = 0.0;
-    float tau_3 = 0.0;
-    uint i_8 = 0u;
-    bool local_26 = (bool)0;
-    uint j_1 = 0u;
+    float tau_4 = 0.0;
+    uint i_9 = 0u;
     bool local_27 = (bool)0;
+    uint j_1 = 0u;
     bool local_28 = (bool)0;
     bool local_29 = (bool)0;
+    bool local_30 = (bool)0;
 
     float4 _e6 = frame.sun_direction;
-    float3 sun_1 = _e6.xyz;
+    float3 sun_2 = _e6.xyz;
     float _e11 = frame.extinction.x;
     float _e15 = frame.extinction.y;
     float sigma_t_1 = (_e11 + _e15);
@@ -1365,11 +1393,11 @@ float sun_optical_depth(float3 rel_1, float3 p_6, Layer l_4, inout Counters coun
         if (all(loop_bound_4 == uint2(0u, 0u))) { break; }
         loop_bound_4 -= uint2(loop_bound_4.y == 0u, 1u);
         if (!loop_init_4) {
-            uint _e73 = i_8;
-            i_8 = (_e73 + 1u);
+            uint _e73 = i_9;
+            i_9 = (_e73 + 1u);
         }
         loop_init_4 = false;
-        uint _e36 = i_8;
+        uint _e36 = i_9;
         if ((_e36 < steps_2)) {
         } else {
             break;
@@ -1377,24 +1405,24 @@ float sun_optical_depth(float3 rel_1, float3 p_6, Layer l_4, inout Counters coun
         {
             float _e38 = dist;
             float _e39 = seg;
-            float s_7 = (_e38 + (0.5 * _e39));
-            float3 q_7 = (rel_1 + (sun_1 * s_7));
+            float s_8 = (_e38 + (0.5 * _e39));
+            float3 q_7 = (rel_1 + (sun_2 * s_8));
             const float _e45 = altitude_of(q_7);
             if (!((_e45 > l_4.top))) {
-                local_26 = (_e45 < l_4.bottom);
+                local_27 = (_e45 < l_4.bottom);
             } else {
-                local_26 = true;
+                local_27 = true;
             }
-            bool _e54 = local_26;
+            bool _e54 = local_27;
             if (_e54) {
                 break;
             }
-            uint _e56 = counters_4.light;
-            counters_4.light = (_e56 + 1u);
-            float _e59 = tau_3;
-            const float _e62 = layer_density((p_6 + (sun_1 * s_7)), _e45, l_4, counters_4);
+            uint _e56 = counters_5.light;
+            counters_5.light = (_e56 + 1u);
+            float _e59 = tau_4;
+            const float _e62 = layer_density((p_6 + (sun_2 * s_8)), _e45, l_4, counters_5);
             float _e64 = seg;
-            tau_3 = (_e59 + ((_e62 * sigma_t_1) * _e64));
+            tau_4 = (_e59 + ((_e62 * sigma_t_1) * _e64));
             float _e67 = dist;
             float _e68 = seg;
             dist = (_e67 + _e68);
@@ -1425,54 +1453,54 @@ float sun_optical_depth(float3 rel_1, float3 p_6, Layer l_4, inout Counters coun
             if ((_e82.bottom <= l_4.top)) {
                 continue;
             }
-            const Roots _e87 = ray_shell_from(rel_1, _e75, sun_1, _e82.bottom);
-            const Roots _e89 = ray_shell_from(rel_1, _e75, sun_1, _e82.top);
+            const Roots _e87 = ray_shell_from(rel_1, _e75, sun_2, _e82.bottom);
+            const Roots _e89 = ray_shell_from(rel_1, _e75, sun_2, _e82.top);
             if (!(!(_e87.hit))) {
-                local_27 = !(_e89.hit);
-            } else {
-                local_27 = true;
-            }
-            bool _e98 = local_27;
-            if (!(_e98)) {
-                local_28 = !((_e89.t1_ > _e87.t1_));
+                local_28 = !(_e89.hit);
             } else {
                 local_28 = true;
             }
-            bool _e107 = local_28;
-            if (!(_e107)) {
-                local_29 = (_e87.t1_ <= 0.0);
+            bool _e98 = local_28;
+            if (!(_e98)) {
+                local_29 = !((_e89.t1_ > _e87.t1_));
             } else {
                 local_29 = true;
             }
-            bool _e115 = local_29;
+            bool _e107 = local_29;
+            if (!(_e107)) {
+                local_30 = (_e87.t1_ <= 0.0);
+            } else {
+                local_30 = true;
+            }
+            bool _e115 = local_30;
             if (_e115) {
                 continue;
             }
-            float s_8 = (0.5 * (_e87.t1_ + _e89.t1_));
-            uint _e122 = counters_4.light;
-            counters_4.light = (_e122 + 1u);
-            float _e125 = tau_3;
-            const float _e130 = altitude_of((rel_1 + (sun_1 * s_8)));
-            const float _e131 = layer_density((p_6 + (sun_1 * s_8)), _e130, _e82, counters_4);
-            tau_3 = (_e125 + ((_e131 * sigma_t_1) * (_e89.t1_ - _e87.t1_)));
+            float s_9 = (0.5 * (_e87.t1_ + _e89.t1_));
+            uint _e122 = counters_5.light;
+            counters_5.light = (_e122 + 1u);
+            float _e125 = tau_4;
+            const float _e130 = altitude_of((rel_1 + (sun_2 * s_9)));
+            const float _e131 = layer_density((p_6 + (sun_2 * s_9)), _e130, _e82, counters_5);
+            tau_4 = (_e125 + ((_e131 * sigma_t_1) * (_e89.t1_ - _e87.t1_)));
         }
     }
-    float _e141 = tau_3;
+    float _e141 = tau_4;
     return _e141;
 }
 
-float sun_scattering(float cos_theta_5, float tau_4)
+float sun_scattering(float cos_theta_5, float tau_5)
 {
     float octave_sum = 0.0;
     float ka = 1.0;
     float kb = 1.0;
     float kc = 1.0;
-    uint i_9 = 0u;
+    uint i_10 = 0u;
     float total = (float)0;
 
     float a_8 = frame.multiple_scattering.x;
     float b_8 = frame.multiple_scattering.y;
-    float c_7 = frame.multiple_scattering.z;
+    float c_8 = frame.multiple_scattering.z;
     uint _e17 = frame.misc.x;
     uint octaves = min(_e17, MAX_OCTAVES);
     uint2 loop_bound_6 = uint2(4294967295u, 4294967295u);
@@ -1481,11 +1509,11 @@ float sun_scattering(float cos_theta_5, float tau_4)
         if (all(loop_bound_6 == uint2(0u, 0u))) { break; }
         loop_bound_6 -= uint2(loop_bound_6.y == 0u, 1u);
         if (!loop_init_6) {
-            uint _e50 = i_9;
-            i_9 = (_e50 + 1u);
+            uint _e50 = i_10;
+            i_10 = (_e50 + 1u);
         }
         loop_init_6 = false;
-        uint _e30 = i_9;
+        uint _e30 = i_10;
         if ((_e30 < octaves)) {
         } else {
             break;
@@ -1496,25 +1524,25 @@ float sun_scattering(float cos_theta_5, float tau_4)
             float _e34 = kb;
             kb = (_e34 * b_8);
             float _e36 = kc;
-            kc = (_e36 * c_7);
+            kc = (_e36 * c_8);
             float _e38 = octave_sum;
             float _e39 = ka;
             float _e40 = kc;
             const float _e41 = phase(cos_theta_5, _e40);
             float _e43 = kb;
-            octave_sum = (_e38 + ((_e39 * _e41) * exp((-(_e43) * tau_4))));
+            octave_sum = (_e38 + ((_e39 * _e41) * exp((-(_e43) * tau_5))));
         }
     }
     float _e55 = frame.sun_direction.y;
     const float _e56 = saturate_(_e55);
     const float _e58 = phase(cos_theta_5, 1.0);
     float _e62 = octave_sum;
-    total = ((_e58 * exp(-(tau_4))) + (_e56 * _e62));
+    total = ((_e58 * exp(-(tau_5))) + (_e56 * _e62));
     uint _e69 = frame.modes.w;
     if (((_e69 & FLAG_BEER_POWDER) != 0u)) {
         float _e74 = total;
         float _e78 = frame.phase.w;
-        total = (_e74 * (1.0 - exp((-(_e78) * tau_4))));
+        total = (_e74 * (1.0 - exp((-(_e78) * tau_5))));
     }
     float _e85 = total;
     return _e85;
@@ -1542,25 +1570,25 @@ float height_fraction(float alt_11)
     return _e4;
 }
 
-float3 scattered_light(float3 rel_2, float3 p_7, float alt_12, float density_1, float3 view, Layer l_5, inout Counters counters_5)
+float3 scattered_light(float3 rel_2, float3 p_7, float alt_12, float density_1, float3 view, Layer l_5, inout Counters counters_6)
 {
     float3 sun_light = (0.0).xxx;
-    float tau_5 = 0.0;
+    float tau_6 = 0.0;
 
     float4 _e9 = frame.sun_direction;
-    float3 sun_2 = _e9.xyz;
+    float3 sun_3 = _e9.xyz;
     const float _e11 = layer_height(l_5, alt_12);
     const float _e12 = saturate_(_e11);
-    const bool _e16 = hits_ground(rel_2, alt_12, sun_2);
+    const bool _e16 = hits_ground(rel_2, alt_12, sun_3);
     if (!(_e16)) {
         if (LIGHT_MARCH) {
-            const float _e21 = sun_optical_depth(rel_2, p_7, l_5, counters_5);
-            tau_5 = _e21;
+            const float _e21 = sun_optical_depth(rel_2, p_7, l_5, counters_6);
+            tau_6 = _e21;
         }
         float4 _e24 = frame.sun_illuminance;
         const float3 _e26 = sun_through_air(rel_2);
-        float _e29 = tau_5;
-        const float _e30 = sun_scattering(dot(view, sun_2), _e29);
+        float _e29 = tau_6;
+        const float _e30 = sun_scattering(dot(view, sun_3), _e29);
         sun_light = ((_e24.xyz * _e26) * _e30);
     }
     const Weather _e32 = sample_weather(p_7, l_5);
@@ -1572,7 +1600,49 @@ float3 scattered_light(float3 rel_2, float3 p_7, float alt_12, float density_1, 
     return (((_e48 * density_1) * (_e50 + _e51)) * _e44);
 }
 
-float empty_cell_exit(float3 p_8, float3 d_10)
+float3 shadow_ground_point(uint2 c_2)
+{
+    float2 xz_1 = ((((float2(c_2) / (127.0).xx) * 2.0) - (1.0).xx) * SHADOW_HALF_EXTENT);
+    float rp_4 = frame.atmosphere.x;
+    float s2_ = dot(xz_1, xz_1);
+    float y_1 = (-(s2_) / (sqrt(max(((rp_4 * rp_4) - s2_), 0.0)) + rp_4));
+    return float3(xz_1.x, y_1, xz_1.y);
+}
+
+float ground_shadow(float3 rel_3)
+{
+    float edge = (max(abs(rel_3.x), abs(rel_3.z)) / SHADOW_HALF_EXTENT);
+    if ((edge >= 1.0)) {
+        return 1.0;
+    }
+    float2 x_9 = ((rel_3.xz / (40000.0).xx) + (0.5).xx);
+    const float4 _e21 = lut_bilinear(cloud_shadow_in, x_9, (128u).xx);
+    float t_5 = _e21.x;
+    return lerp(t_5, 1.0, smoothstep(SHADOW_FADE_START, 1.0, edge));
+}
+
+float3 ground_shadow_loss(float3 view_1, float r_12)
+{
+    const float _e3 = distance_to_ground(r_12, view_1.y);
+    float _e7 = frame.camera_position.y;
+    float cam_alt = max(_e7, 0.0);
+    const float _e17 = ground_shadow(((view_1 * (_e3 * 1000.0)) + float3(0.0, cam_alt, 0.0)));
+    if ((_e17 >= 1.0)) {
+        return (0.0).xxx;
+    }
+    const float _e22 = air_bottom();
+    float mu_g = clamp((((r_12 * view_1.y) + _e3) / _e22), -1.0, 1.0);
+    float _e33 = frame.sun_direction.y;
+    float4 _e37 = frame.sun_direction;
+    float mu_s_6 = clamp((((r_12 * _e33) + (_e3 * dot(view_1, _e37.xyz))) / _e22), -1.0, 1.0);
+    const float3 _e47 = transmittance_to_top(_e22, -(mu_g));
+    const float3 _e50 = transmittance_to_top(r_12, -(view_1.y));
+    float3 t_view_1 = min((_e47 / max(_e50, (1e-20).xxx)), (1.0).xxx);
+    const float3 _e61 = ground_radiance_sun(mu_s_6);
+    return (((1.0 - _e17) * t_view_1) * _e61);
+}
+
+float empty_cell_exit(float3 p_8, float3 d_11)
 {
     float exit = 1e30;
 
@@ -1589,22 +1659,22 @@ float empty_cell_exit(float3 p_8, float3 d_10)
     float _e40 = frame.periods.x;
     float cell_m = (_e40 / 64.0);
     float2 inside = ((uv_6 - float2(cell_1)) * cell_m);
-    if ((d_10.x > 1e-6)) {
+    if ((d_11.x > 1e-6)) {
         float _e50 = exit;
-        exit = min(_e50, ((cell_m - inside.x) / d_10.x));
+        exit = min(_e50, ((cell_m - inside.x) / d_11.x));
     } else {
-        if ((d_10.x < -1e-6)) {
+        if ((d_11.x < -1e-6)) {
             float _e59 = exit;
-            exit = min(_e59, (inside.x / -(d_10.x)));
+            exit = min(_e59, (inside.x / -(d_11.x)));
         }
     }
-    if ((d_10.z > 1e-6)) {
+    if ((d_11.z > 1e-6)) {
         float _e68 = exit;
-        exit = min(_e68, ((cell_m - inside.y) / d_10.z));
+        exit = min(_e68, ((cell_m - inside.y) / d_11.z));
     } else {
-        if ((d_10.z < -1e-6)) {
+        if ((d_11.z < -1e-6)) {
             float _e77 = exit;
-            exit = min(_e77, (inside.y / -(d_10.z)));
+            exit = min(_e77, (inside.y / -(d_11.z)));
         }
     }
     float _e83 = exit;
@@ -1613,14 +1683,14 @@ float empty_cell_exit(float3 p_8, float3 d_10)
 
 void count(uint index_1, uint value)
 {
-    bool local_30 = (bool)0;
+    bool local_31 = (bool)0;
 
     if (STATS) {
-        local_30 = (value != 0u);
+        local_31 = (value != 0u);
     } else {
-        local_30 = false;
+        local_31 = false;
     }
-    bool _e8 = local_30;
+    bool _e8 = local_31;
     if (_e8) {
         uint _e12; stats.InterlockedAdd(index_1*4+0, value, _e12);
         return;
@@ -1635,8 +1705,8 @@ float3 step_integral(float3 source, float sigma_t, float dt)
     if ((_e6 == INTEGRATION_RIEMANN)) {
         return (source * dt);
     }
-    float x_8 = (sigma_t * dt);
-    float f_3 = ((x_8 < 0.001) ? (1.0 - (0.5 * x_8)) : ((1.0 - exp(-(x_8))) / x_8));
+    float x_10 = (sigma_t * dt);
+    float f_3 = ((x_10 < 0.001) ? (1.0 - (0.5 * x_10)) : ((1.0 - exp(-(x_10))) / x_10));
     return (source * (dt * f_3));
 }
 
@@ -1648,8 +1718,8 @@ float start_offset(uint2 pixel_3)
 {
     uint _e4 = frame.modes.w;
     bool jitter_1 = ((_e4 & FLAG_JITTER) != 0u);
-    uint k_10 = frame.temporal.x;
-    if ((k_10 <= 1u)) {
+    uint k_12 = frame.temporal.x;
+    if ((k_12 <= 1u)) {
         uint _e18 = frame.misc.y;
         const float _e19 = hash_unit(pixel_3, _e18);
         return (jitter_1 ? _e19 : 0.5);
@@ -1657,19 +1727,19 @@ float start_offset(uint2 pixel_3)
     const float _e23 = hash_unit(pixel_3, 0u);
     float base_2 = (jitter_1 ? _e23 : 0.5);
     uint _e29 = frame.misc.y;
-    const float _e32 = van_der_corput(naga_div(_e29, (k_10 * k_10)));
+    const float _e32 = van_der_corput(naga_div(_e29, (k_12 * k_12)));
     return frac((base_2 + _e32));
 }
 
-bool march_layer(float3 view_1, Interval span_1, Layer l_6, float jitter, inout MarchState state, inout Counters counters_6)
+bool march_layer(float3 view_2, Interval span_1, Layer l_6, float jitter, inout MarchState state, inout Counters counters_7)
 {
     uint steps_1 = (uint)0;
-    uint i_10 = 0u;
+    uint i_11 = 0u;
     uint stride = 1u;
     uint empty = 0u;
-    bool local_31 = (bool)0;
+    bool local_32 = (bool)0;
 
-    float cam_alt = frame.camera_position.y;
+    float cam_alt_1 = frame.camera_position.y;
     float4 _e12 = frame.camera_position;
     float2 cam_xz = _e12.xz;
     uint _e17 = frame.counts.z;
@@ -1692,74 +1762,74 @@ bool march_layer(float3 view_1, Interval span_1, Layer l_6, float jitter, inout 
     while(true) {
         if (all(loop_bound_7 == uint2(0u, 0u))) { break; }
         loop_bound_7 -= uint2(loop_bound_7.y == 0u, 1u);
-        uint _e71 = i_10;
+        uint _e71 = i_11;
         uint _e72 = steps_1;
         if ((_e71 >= _e72)) {
             break;
         }
-        uint _e75 = counters_6.view_steps;
-        counters_6.view_steps = (_e75 + 1u);
-        uint _e79 = i_10;
-        float t_5 = (span_1.start + ((float(_e79) + jitter) * dt_2));
-        float3 rel_5 = ((view_1 * t_5) + float3(0.0, cam_alt, 0.0));
-        float3 p_13 = float3((rel_5.x + cam_xz.x), rel_5.y, (rel_5.z + cam_xz.y));
+        uint _e75 = counters_7.view_steps;
+        counters_7.view_steps = (_e75 + 1u);
+        uint _e79 = i_11;
+        float t_6 = (span_1.start + ((float(_e79) + jitter) * dt_2));
+        float3 rel_6 = ((view_2 * t_6) + float3(0.0, cam_alt_1, 0.0));
+        float3 p_13 = float3((rel_6.x + cam_xz.x), rel_6.y, (rel_6.z + cam_xz.y));
         if (empty_skip) {
-            const float _e97 = empty_cell_exit(p_13, view_1);
+            const float _e97 = empty_cell_exit(p_13, view_2);
             if ((_e97 > 0.0)) {
                 uint _e106 = steps_1;
-                uint next_1 = naga_f2u32(clamp(ceil(((((t_5 + _e97) - span_1.start) / dt_2) - jitter)), 0.0, float(_e106)));
-                uint _e111 = i_10;
-                i_10 = max((_e111 + 1u), next_1);
+                uint next_1 = naga_f2u32(clamp(ceil(((((t_6 + _e97) - span_1.start) / dt_2) - jitter)), 0.0, float(_e106)));
+                uint _e111 = i_11;
+                i_11 = max((_e111 + 1u), next_1);
                 continue;
             }
         }
-        const float _e115 = altitude_of(rel_5);
-        const float _e116 = layer_density(p_13, _e115, l_6, counters_6);
+        const float _e115 = altitude_of(rel_6);
+        const float _e116 = layer_density(p_13, _e115, l_6, counters_7);
         if ((_e116 <= 0.0)) {
             uint _e119 = empty;
             empty = (_e119 + 1u);
             if (dynamic_step) {
                 uint _e124 = empty;
-                local_31 = (_e124 >= 8u);
+                local_32 = (_e124 >= 8u);
             } else {
-                local_31 = false;
+                local_32 = false;
             }
-            bool _e128 = local_31;
+            bool _e128 = local_32;
             if (_e128) {
                 stride = 2u;
             }
-            uint _e130 = i_10;
+            uint _e130 = i_11;
             uint _e131 = stride;
-            i_10 = (_e130 + _e131);
+            i_11 = (_e130 + _e131);
             continue;
         }
         uint _e133 = stride;
         if ((_e133 > 1u)) {
-            uint _e136 = i_10;
+            uint _e136 = i_11;
             uint _e137 = stride;
-            i_10 = (_e136 - (_e137 - 1u));
+            i_11 = (_e136 - (_e137 - 1u));
             stride = 1u;
             empty = 0u;
             continue;
         }
         empty = 0u;
         float sigma_t_2 = (sigma_e * _e116);
-        const float3 _e145 = scattered_light(rel_5, p_13, _e115, _e116, view_1, l_6, counters_6);
+        const float3 _e145 = scattered_light(rel_6, p_13, _e115, _e116, view_2, l_6, counters_7);
         float transmittance_1 = state.transmittance;
         float3 _e149 = state.radiance;
         const float3 _e150 = step_integral(_e145, sigma_t_2, dt_2);
         state.radiance = (_e149 + (transmittance_1 * _e150));
         float step_t = exp((-(sigma_t_2) * dt_2));
         float _e157 = state.depth_sum;
-        state.depth_sum = (_e157 + ((t_5 * transmittance_1) * (1.0 - step_t)));
+        state.depth_sum = (_e157 + ((t_6 * transmittance_1) * (1.0 - step_t)));
         state.transmittance = (transmittance_1 * step_t);
         float _e166 = state.transmittance;
         float _e170 = frame.march.w;
         if ((_e166 < _e170)) {
             return true;
         }
-        uint _e173 = i_10;
-        i_10 = (_e173 + 1u);
+        uint _e173 = i_11;
+        i_11 = (_e173 + 1u);
     }
     return false;
 }
@@ -1791,26 +1861,27 @@ MarchResult ConstructMarchResult(float3 arg0, float arg1, float arg2) {
 
 MarchResult march_pixel(uint2 pixel_4)
 {
-    Counters counters_7 = ConstructCounters(0u, 0u, 0u, 0u);
+    Counters counters_8 = ConstructCounters(0u, 0u, 0u, 0u);
     MarchState state_1 = ConstructMarchState((0.0).xxx, 1.0, 0.0);
     bool marched = false;
     bool ground_1 = false;
     float last_start = -1.0;
     uint last_index = NO_LAYER;
-    uint k_4 = 0u;
+    bool exited = false;
+    uint k_6 = 0u;
     uint next = (uint)0;
     Interval span_2 = (Interval)0;
-    uint i_11 = (uint)0;
-    bool local_32 = (bool)0;
+    uint i_12 = (uint)0;
     bool local_33 = (bool)0;
     bool local_34 = (bool)0;
     bool local_35 = (bool)0;
     bool local_36 = (bool)0;
     bool local_37 = (bool)0;
+    bool local_38 = (bool)0;
     float depth_1 = 0.0;
 
     const float3 _e1 = view_ray(pixel_4);
-    float cam_alt_1 = frame.camera_position.y;
+    float cam_alt_2 = frame.camera_position.y;
     count(STAT_PIXELS, 1u);
     const float _e20 = start_offset(pixel_4);
     const uint _e21 = layer_count();
@@ -1820,137 +1891,140 @@ MarchResult march_pixel(uint2 pixel_4)
         if (all(loop_bound_8 == uint2(0u, 0u))) { break; }
         loop_bound_8 -= uint2(loop_bound_8.y == 0u, 1u);
         if (!loop_init_7) {
-            uint _e116 = k_4;
-            k_4 = (_e116 + 1u);
+            uint _e119 = k_6;
+            k_6 = (_e119 + 1u);
         }
         loop_init_7 = false;
-        uint _e32 = k_4;
-        if ((_e32 < _e21)) {
+        uint _e34 = k_6;
+        if ((_e34 < _e21)) {
         } else {
             break;
         }
         {
             next = NO_LAYER;
             span_2 = ConstructInterval(0.0, 0.0, 1u);
-            i_11 = 0u;
+            i_12 = 0u;
             uint2 loop_bound_9 = uint2(4294967295u, 4294967295u);
             bool loop_init_8 = true;
             while(true) {
                 if (all(loop_bound_9 == uint2(0u, 0u))) { break; }
                 loop_bound_9 -= uint2(loop_bound_9.y == 0u, 1u);
                 if (!loop_init_8) {
-                    uint _e100 = i_11;
-                    i_11 = (_e100 + 1u);
+                    uint _e102 = i_12;
+                    i_12 = (_e102 + 1u);
                 }
                 loop_init_8 = false;
-                uint _e43 = i_11;
-                if ((_e43 < _e21)) {
+                uint _e45 = i_12;
+                if ((_e45 < _e21)) {
                 } else {
                     break;
                 }
                 {
-                    uint _e45 = i_11;
-                    const Layer _e46 = cloud_layer(_e45);
-                    const Interval _e47 = layer_interval(cam_alt_1, _e1, _e46);
-                    bool _e48 = ground_1;
-                    if (!(_e48)) {
-                        local_32 = (_e47.kind == RAY_HITS_GROUND);
-                    } else {
-                        local_32 = true;
-                    }
-                    bool _e56 = local_32;
-                    ground_1 = _e56;
-                    float _e58 = last_start;
-                    if (!((_e47.start > _e58))) {
-                        float _e64 = last_start;
-                        if ((_e47.start == _e64)) {
-                            uint _e68 = i_11;
-                            uint _e69 = last_index;
-                            local_34 = (_e68 > _e69);
-                        } else {
-                            local_34 = false;
-                        }
-                        bool _e72 = local_34;
-                        local_33 = _e72;
+                    uint _e47 = i_12;
+                    const Layer _e48 = cloud_layer(_e47);
+                    const Interval _e49 = layer_interval(cam_alt_2, _e1, _e48);
+                    bool _e50 = ground_1;
+                    if (!(_e50)) {
+                        local_33 = (_e49.kind == RAY_HITS_GROUND);
                     } else {
                         local_33 = true;
                     }
-                    bool after = local_33;
-                    if ((_e47.kind == RAY_MARCH)) {
-                        local_35 = after;
-                    } else {
-                        local_35 = false;
-                    }
-                    bool _e81 = local_35;
-                    if (_e81) {
-                        uint _e84 = next;
-                        if (!((_e84 == NO_LAYER))) {
-                            float _e92 = span_2.start;
-                            local_37 = (_e47.start < _e92);
+                    bool _e58 = local_33;
+                    ground_1 = _e58;
+                    float _e60 = last_start;
+                    if (!((_e49.start > _e60))) {
+                        float _e66 = last_start;
+                        if ((_e49.start == _e66)) {
+                            uint _e70 = i_12;
+                            uint _e71 = last_index;
+                            local_35 = (_e70 > _e71);
                         } else {
-                            local_37 = true;
+                            local_35 = false;
                         }
-                        bool _e95 = local_37;
-                        local_36 = _e95;
+                        bool _e74 = local_35;
+                        local_34 = _e74;
+                    } else {
+                        local_34 = true;
+                    }
+                    bool after = local_34;
+                    if ((_e49.kind == RAY_MARCH)) {
+                        local_36 = after;
                     } else {
                         local_36 = false;
                     }
-                    bool _e97 = local_36;
-                    if (_e97) {
-                        uint _e98 = i_11;
-                        next = _e98;
-                        span_2 = _e47;
+                    bool _e83 = local_36;
+                    if (_e83) {
+                        uint _e86 = next;
+                        if (!((_e86 == NO_LAYER))) {
+                            float _e94 = span_2.start;
+                            local_38 = (_e49.start < _e94);
+                        } else {
+                            local_38 = true;
+                        }
+                        bool _e97 = local_38;
+                        local_37 = _e97;
+                    } else {
+                        local_37 = false;
+                    }
+                    bool _e99 = local_37;
+                    if (_e99) {
+                        uint _e100 = i_12;
+                        next = _e100;
+                        span_2 = _e49;
                     }
                 }
             }
-            uint _e102 = next;
-            if ((_e102 == NO_LAYER)) {
+            uint _e104 = next;
+            if ((_e104 == NO_LAYER)) {
                 break;
             }
             marched = true;
-            float _e107 = span_2.start;
-            last_start = _e107;
-            uint _e108 = next;
-            last_index = _e108;
-            Interval _e109 = span_2;
+            float _e109 = span_2.start;
+            last_start = _e109;
             uint _e110 = next;
-            const Layer _e111 = cloud_layer(_e110);
-            const bool _e112 = march_layer(_e1, _e109, _e111, _e20, state_1, counters_7);
-            if (_e112) {
+            last_index = _e110;
+            Interval _e111 = span_2;
+            uint _e112 = next;
+            const Layer _e113 = cloud_layer(_e112);
+            const bool _e114 = march_layer(_e1, _e111, _e113, _e20, state_1, counters_8);
+            if (_e114) {
                 count(STAT_EXIT_TRANSMITTANCE, 1u);
+                exited = true;
                 break;
             }
         }
     }
-    bool _e118 = marched;
-    if (_e118) {
+    bool _e121 = marched;
+    if (_e121) {
         count(STAT_MARCHED, 1u);
     } else {
-        bool _e121 = ground_1;
-        if (_e121) {
+        bool _e124 = ground_1;
+        if (_e124) {
             count(STAT_EXIT_GROUND, 1u);
         } else {
             count(STAT_EXIT_MISSED, 1u);
         }
     }
-    uint _e128 = counters_7.view_steps;
-    count(STAT_VIEW_STEPS, _e128);
-    uint _e131 = counters_7.density;
-    count(STAT_DENSITY, _e131);
-    uint _e134 = counters_7.detail;
-    count(STAT_DETAIL, _e134);
-    uint _e137 = counters_7.light;
-    count(STAT_LIGHT, _e137);
-    float _e141 = state_1.transmittance;
-    if ((_e141 < 1.0)) {
-        float _e145 = state_1.depth_sum;
-        float _e147 = state_1.transmittance;
-        depth_1 = (_e145 / (1.0 - _e147));
+    uint _e131 = counters_8.view_steps;
+    count(STAT_VIEW_STEPS, _e131);
+    uint _e134 = counters_8.density;
+    count(STAT_DENSITY, _e134);
+    uint _e137 = counters_8.detail;
+    count(STAT_DETAIL, _e137);
+    uint _e140 = counters_8.light;
+    count(STAT_LIGHT, _e140);
+    float _e144 = state_1.transmittance;
+    if ((_e144 < 1.0)) {
+        float _e148 = state_1.depth_sum;
+        float _e150 = state_1.transmittance;
+        depth_1 = (_e148 / (1.0 - _e150));
     }
-    float3 _e152 = state_1.radiance;
-    float _e154 = state_1.transmittance;
-    float _e155 = depth_1;
-    const MarchResult marchresult = ConstructMarchResult(_e152, _e154, _e155);
+    float _e155 = state_1.transmittance;
+    bool _e156 = exited;
+    float transmittance_2 = (_e156 ? 0.0 : _e155);
+    float3 _e160 = state_1.radiance;
+    float _e161 = depth_1;
+    const MarchResult marchresult = ConstructMarchResult(_e160, transmittance_2, _e161);
     return marchresult;
 }
 
@@ -1963,13 +2037,13 @@ uint naga_mod(uint lhs, uint rhs) {
     return lhs % (rhs == 0u ? 1u : rhs);
 }
 
-uint2 block_offset(uint f, uint k_5)
+uint2 block_offset(uint f, uint k_7)
 {
-    if ((k_5 == 2u)) {
+    if ((k_7 == 2u)) {
         const uint2 _e6 = bayer2_(naga_mod(f, 4u));
         return _e6;
     }
-    if ((k_5 == 4u)) {
+    if ((k_7 == 4u)) {
         uint b_9 = naga_mod(f, 16u);
         const uint2 _e13 = bayer2_((b_9 >> 2u));
         const uint2 _e17 = bayer2_((b_9 & 3u));
@@ -1980,9 +2054,9 @@ uint2 block_offset(uint f, uint k_5)
 
 float2 reproject(uint2 pixel_5, float depth_2)
 {
-    bool local_38 = (bool)0;
     bool local_39 = (bool)0;
     bool local_40 = (bool)0;
+    bool local_41 = (bool)0;
     float3 dir = (float3)0;
 
     float4 _e4 = frame.previous_position;
@@ -1990,27 +2064,27 @@ float2 reproject(uint2 pixel_5, float depth_2)
     if (all((_e4 == _e7))) {
         float4 _e14 = frame.previous_forward;
         float4 _e17 = frame.camera_forward;
-        local_38 = all((_e14 == _e17));
-    } else {
-        local_38 = false;
-    }
-    bool _e21 = local_38;
-    if (_e21) {
-        float4 _e26 = frame.previous_right;
-        float4 _e29 = frame.camera_right;
-        local_39 = all((_e26 == _e29));
+        local_39 = all((_e14 == _e17));
     } else {
         local_39 = false;
     }
-    bool _e33 = local_39;
-    if (_e33) {
-        float4 _e38 = frame.previous_up;
-        float4 _e41 = frame.camera_up;
-        local_40 = all((_e38 == _e41));
+    bool _e21 = local_39;
+    if (_e21) {
+        float4 _e26 = frame.previous_right;
+        float4 _e29 = frame.camera_right;
+        local_40 = all((_e26 == _e29));
     } else {
         local_40 = false;
     }
-    bool same = local_40;
+    bool _e33 = local_40;
+    if (_e33) {
+        float4 _e38 = frame.previous_up;
+        float4 _e41 = frame.camera_up;
+        local_41 = all((_e38 == _e41));
+    } else {
+        local_41 = false;
+    }
+    bool same = local_41;
     if (same) {
         return float2(pixel_5);
     }
@@ -2040,16 +2114,16 @@ float2 reproject(uint2 pixel_5, float depth_2)
 
 bool on_screen(float2 q)
 {
-    bool local_41 = (bool)0;
+    bool local_42 = (bool)0;
 
     uint4 _e3 = frame.counts;
     float2 size_2 = float2(_e3.xy);
     if (all((q >= (-0.5).xx))) {
-        local_41 = all((q <= (size_2 - (0.5).xx)));
+        local_42 = all((q <= (size_2 - (0.5).xx)));
     } else {
-        local_41 = false;
+        local_42 = false;
     }
-    bool _e18 = local_41;
+    bool _e18 = local_42;
     return _e18;
 }
 
@@ -2062,15 +2136,15 @@ float4 history_row(int2 base_1, int dy, float4 wx)
 {
     uint4 _e5 = frame.counts;
     int2 size_3 = int2(_e5.xy);
-    int y_1 = clamp(asint(asuint(base_1.y) + asuint(dy)), int(0), asint(asuint(size_3.y) - asuint(int(1))));
+    int y_2 = clamp(asint(asuint(base_1.y) + asuint(dy)), int(0), asint(asuint(size_3.y) - asuint(int(1))));
     int x0_ = clamp(asint(asuint(base_1.x) - asuint(int(1))), int(0), asint(asuint(size_3.x) - asuint(int(1))));
     int x1_ = clamp(base_1.x, int(0), asint(asuint(size_3.x) - asuint(int(1))));
     int x2_ = clamp(asint(asuint(base_1.x) + asuint(int(1))), int(0), asint(asuint(size_3.x) - asuint(int(1))));
     int x3_ = clamp(asint(asuint(base_1.x) + asuint(int(2))), int(0), asint(asuint(size_3.x) - asuint(int(1))));
-    float4 _e48 = history_in.Load(int3(int2(x0_, y_1), int(0)));
-    float4 _e54 = history_in.Load(int3(int2(x1_, y_1), int(0)));
-    float4 _e61 = history_in.Load(int3(int2(x2_, y_1), int(0)));
-    float4 _e68 = history_in.Load(int3(int2(x3_, y_1), int(0)));
+    float4 _e48 = history_in.Load(int3(int2(x0_, y_2), int(0)));
+    float4 _e54 = history_in.Load(int3(int2(x1_, y_2), int(0)));
+    float4 _e61 = history_in.Load(int3(int2(x2_, y_2), int(0)));
+    float4 _e68 = history_in.Load(int3(int2(x3_, y_2), int(0)));
     return ((((_e48 * wx.x) + (_e54 * wx.y)) + (_e61 * wx.z)) + (_e68 * wx.w));
 }
 
@@ -2082,18 +2156,18 @@ float4 history_at(float2 q_1)
 {
     uint4 _e3 = frame.counts;
     int2 size_4 = int2(_e3.xy);
-    float2 c_8 = clamp(q_1, (0.0).xx, float2(asint(asuint(size_4) - asuint((int(1)).xx))));
-    int2 base_3 = naga_f2i32(floor(c_8));
-    float2 f_4 = (c_8 - float2(base_3));
+    float2 c_9 = clamp(q_1, (0.0).xx, float2(asint(asuint(size_4) - asuint((int(1)).xx))));
+    int2 base_3 = naga_f2i32(floor(c_9));
+    float2 f_4 = (c_9 - float2(base_3));
     const float4 _e18 = catmull_rom(f_4.x);
     const float4 _e20 = catmull_rom(f_4.y);
     const float4 _e22 = history_row(base_3, int(-1), _e18);
     const float4 _e26 = history_row(base_3, int(0), _e18);
     const float4 _e31 = history_row(base_3, int(1), _e18);
     const float4 _e36 = history_row(base_3, int(2), _e18);
-    float4 sum_4 = ((((_e22 * _e20.x) + (_e26 * _e20.y)) + (_e31 * _e20.z)) + (_e36 * _e20.w));
-    const float _e45 = saturate_(sum_4.w);
-    return float4(max(sum_4.xyz, (0.0).xxx), _e45);
+    float4 sum_5 = ((((_e22 * _e20.x) + (_e26 * _e20.y)) + (_e31 * _e20.z)) + (_e36 * _e20.w));
+    const float _e45 = saturate_(sum_5.w);
+    return float4(max(sum_5.xyz, (0.0).xxx), _e45);
 }
 
 float4 history_nearest(float2 q_2)
@@ -2118,25 +2192,25 @@ uint2 naga_div(uint2 lhs, uint2 rhs) {
     return lhs / (rhs == 0u ? 1u : rhs);
 }
 
-bool in_blocks(uint2 id_18)
+bool in_blocks(uint2 id_20)
 {
-    uint k_11 = frame.temporal.x;
+    uint k_13 = frame.temporal.x;
     uint4 _e7 = frame.counts;
-    return all((id_18 < naga_div(((_e7.xy + (k_11).xx) - (1u).xx), (k_11).xx)));
+    return all((id_20 < naga_div(((_e7.xy + (k_13).xx) - (1u).xx), (k_13).xx)));
 }
 
-uint2 sparse_pixel(uint2 id_19)
+uint2 sparse_pixel(uint2 id_21)
 {
-    uint k_12 = frame.temporal.x;
+    uint k_14 = frame.temporal.x;
     uint _e9 = frame.misc.y;
-    const uint2 _e10 = block_offset(_e9, k_12);
-    return ((id_19 * k_12) + _e10);
+    const uint2 _e10 = block_offset(_e9, k_14);
+    return ((id_21 * k_14) + _e10);
 }
 
-void store_sparse(uint2 id_20, MarchResult r_12)
+void store_sparse(uint2 id_22, MarchResult r_13)
 {
-    cloud_out[id_20] = float4(r_12.radiance, r_12.transmittance);
-    depth_out[id_20] = float4(r_12.depth, 0.0, 0.0, 0.0);
+    cloud_out[id_22] = float4(r_13.radiance, r_13.transmittance);
+    depth_out[id_22] = float4(r_13.depth, 0.0, 0.0, 0.0);
     return;
 }
 
@@ -2152,8 +2226,8 @@ float rng_next(inout uint rng_1)
 {
     uint _e1 = rng_1;
     rng_1 = ((_e1 * 747796405u) + 2891336453u);
-    uint s_9 = rng_1;
-    uint word_1 = (((s_9 >> ((s_9 >> 28u) + 4u)) ^ s_9) * 277803737u);
+    uint s_10 = rng_1;
+    uint word_1 = (((s_10 >> ((s_10 >> 28u) + 4u)) ^ s_10) * 277803737u);
     return (float((((word_1 >> 22u) ^ word_1) >> 8u)) * 5.9604645e-8);
 }
 
@@ -2171,47 +2245,47 @@ Segments ConstructSegments(float2 arg0, float2 arg1, uint arg2) {
     return ret;
 }
 
-Segments layer_segments(float3 p_9, float alt_13, float3 d_11)
+Segments layer_segments(float3 p_9, float alt_13, float3 d_12)
 {
-    Segments s = ConstructSegments((0.0).xx, (0.0).xx, 0u);
-    bool local_42 = (bool)0;
+    Segments s_1 = ConstructSegments((0.0).xx, (0.0).xx, 0u);
+    bool local_43 = (bool)0;
     float2 a_1 = (0.0).xx;
     float2 b_1 = (0.0).xx;
     uint n_2 = 0u;
-    bool local_43 = (bool)0;
     bool local_44 = (bool)0;
     bool local_45 = (bool)0;
     bool local_46 = (bool)0;
+    bool local_47 = (bool)0;
 
     const float2 _e10 = layers_span();
     float bottom_2 = _e10.x;
-    const Roots _e12 = ray_shell_from(p_9, alt_13, d_11, bottom_2);
-    const Roots _e14 = ray_shell_from(p_9, alt_13, d_11, _e10.y);
-    const bool _e15 = hits_ground(p_9, alt_13, d_11);
+    const Roots _e12 = ray_shell_from(p_9, alt_13, d_12, bottom_2);
+    const Roots _e14 = ray_shell_from(p_9, alt_13, d_12, _e10.y);
+    const bool _e15 = hits_ground(p_9, alt_13, d_12);
     if (!(!(_e14.hit))) {
-        local_42 = (_e14.t1_ <= 0.0);
+        local_43 = (_e14.t1_ <= 0.0);
     } else {
-        local_42 = true;
+        local_43 = true;
     }
-    bool _e25 = local_42;
+    bool _e25 = local_43;
     if (_e25) {
-        Segments _e26 = s;
+        Segments _e26 = s_1;
         const Segments segments = _e26;
         return segments;
     }
     float entry = max(_e14.t0_, 0.0);
     if (_e12.hit) {
-        local_43 = (_e12.t0_ > 0.0);
-    } else {
-        local_43 = false;
-    }
-    bool _e45 = local_43;
-    if (_e45) {
-        local_44 = (alt_13 >= bottom_2);
+        local_44 = (_e12.t0_ > 0.0);
     } else {
         local_44 = false;
     }
-    bool _e50 = local_44;
+    bool _e45 = local_44;
+    if (_e45) {
+        local_45 = (alt_13 >= bottom_2);
+    } else {
+        local_45 = false;
+    }
+    bool _e50 = local_45;
     if (_e50) {
         uint _e51 = n_2;
         a_1[min(uint(_e51), 1u)] = entry;
@@ -2220,11 +2294,11 @@ Segments layer_segments(float3 p_9, float alt_13, float3 d_11)
         uint _e56 = n_2;
         n_2 = (_e56 + uint((_e12.t0_ > entry)));
         if (!(_e15)) {
-            local_45 = (_e14.t1_ > _e12.t1_);
+            local_46 = (_e14.t1_ > _e12.t1_);
         } else {
-            local_45 = false;
+            local_46 = false;
         }
-        bool _e68 = local_45;
+        bool _e68 = local_46;
         if (_e68) {
             uint _e69 = n_2;
             a_1[min(uint(_e69), 1u)] = max(_e12.t1_, entry);
@@ -2236,11 +2310,11 @@ Segments layer_segments(float3 p_9, float alt_13, float3 d_11)
     } else {
         if ((alt_13 < bottom_2)) {
             if (!(_e15)) {
-                local_46 = _e12.hit;
+                local_47 = _e12.hit;
             } else {
-                local_46 = false;
+                local_47 = false;
             }
-            bool _e85 = local_46;
+            bool _e85 = local_47;
             if (_e85) {
                 a_1.x = max(_e12.t1_, 0.0);
                 b_1.x = _e14.t1_;
@@ -2253,36 +2327,36 @@ Segments layer_segments(float3 p_9, float alt_13, float3 d_11)
         }
     }
     float2 _e98 = a_1;
-    s.a = _e98;
+    s_1.a = _e98;
     float2 _e100 = b_1;
-    s.b = _e100;
+    s_1.b = _e100;
     uint _e102 = n_2;
-    s.count = _e102;
-    Segments _e103 = s;
+    s_1.count = _e102;
+    Segments _e103 = s_1;
     const Segments segments_1 = _e103;
     return segments_1;
 }
 
-float density_at(float3 rel_3, inout Counters counters_8)
+float density_at(float3 rel_4, inout Counters counters_9)
 {
     float _e6 = frame.camera_position.x;
     float _e13 = frame.camera_position.z;
-    float3 p_16 = float3((rel_3.x + _e6), rel_3.y, (rel_3.z + _e13));
-    const float _e16 = altitude_of(rel_3);
-    const float _e17 = cloud_density(p_16, _e16, counters_8);
+    float3 p_16 = float3((rel_4.x + _e6), rel_4.y, (rel_4.z + _e13));
+    const float _e16 = altitude_of(rel_4);
+    const float _e17 = cloud_density(p_16, _e16, counters_9);
     return _e17;
 }
 
-float empty_cell_skip(float3 origin_2, float3 dir_1, float t_2)
+float empty_cell_skip(float3 origin_3, float3 dir_1, float t_2)
 {
     const uint _e3 = layer_count();
     if ((_e3 > 1u)) {
         return 0.0;
     }
-    float3 rel_6 = (origin_2 + (dir_1 * t_2));
+    float3 rel_7 = (origin_3 + (dir_1 * t_2));
     float _e13 = frame.camera_position.x;
     float _e20 = frame.camera_position.z;
-    float3 p_17 = float3((rel_6.x + _e13), rel_6.y, (rel_6.z + _e20));
+    float3 p_17 = float3((rel_7.x + _e13), rel_7.y, (rel_7.z + _e20));
     const float _e23 = empty_cell_exit(p_17, dir_1);
     if ((_e23 <= 0.0)) {
         return 0.0;
@@ -2293,7 +2367,7 @@ float empty_cell_skip(float3 origin_2, float3 dir_1, float t_2)
 float density_max()
 {
     float m_1 = 0.0;
-    uint i_12 = 0u;
+    uint i_13 = 0u;
 
     uint2 loop_bound_10 = uint2(4294967295u, 4294967295u);
     bool loop_init_9 = true;
@@ -2301,18 +2375,18 @@ float density_max()
         if (all(loop_bound_10 == uint2(0u, 0u))) { break; }
         loop_bound_10 -= uint2(loop_bound_10.y == 0u, 1u);
         if (!loop_init_9) {
-            uint _e17 = i_12;
-            i_12 = (_e17 + 1u);
+            uint _e17 = i_13;
+            i_13 = (_e17 + 1u);
         }
         loop_init_9 = false;
-        uint _e4 = i_12;
+        uint _e4 = i_13;
         const uint _e5 = layer_count();
         if ((_e4 < _e5)) {
         } else {
             break;
         }
         {
-            uint _e7 = i_12;
+            uint _e7 = i_13;
             const Layer _e8 = cloud_layer(_e7);
             float _e9 = m_1;
             m_1 = max(_e9, (_e8.density * (1.0 + _e8.precipitation)));
@@ -2322,9 +2396,9 @@ float density_max()
     return clamp(_e19, 0.0, 1.0);
 }
 
-float free_flight(float3 origin_3, float3 dir_2, Segments segs, inout uint rng_3, inout Counters counters_9)
+float free_flight(float3 origin_4, float3 dir_2, Segments segs, inout uint rng_3, inout Counters counters_10)
 {
-    uint k_6 = 0u;
+    uint k_8 = 0u;
     float t_3 = (float)0;
 
     const float _e5 = density_max();
@@ -2340,29 +2414,29 @@ float free_flight(float3 origin_3, float3 dir_2, Segments segs, inout uint rng_3
         if (all(loop_bound_11 == uint2(0u, 0u))) { break; }
         loop_bound_11 -= uint2(loop_bound_11.y == 0u, 1u);
         if (!loop_init_10) {
-            uint _e60 = k_6;
-            k_6 = (_e60 + 1u);
+            uint _e60 = k_8;
+            k_8 = (_e60 + 1u);
         }
         loop_init_10 = false;
-        uint _e21 = k_6;
+        uint _e21 = k_8;
         if ((_e21 < segs.count)) {
         } else {
             break;
         }
         {
-            uint _e25 = k_6;
+            uint _e25 = k_8;
             t_3 = segs.a[min(uint(_e25), 1u)];
             uint2 loop_bound_12 = uint2(4294967295u, 4294967295u);
             while(true) {
                 if (all(loop_bound_12 == uint2(0u, 0u))) { break; }
                 loop_bound_12 -= uint2(loop_bound_12.y == 0u, 1u);
                 float _e28 = t_3;
-                const float _e29 = empty_cell_skip(origin_3, dir_2, _e28);
+                const float _e29 = empty_cell_skip(origin_4, dir_2, _e28);
                 if ((_e29 > 0.0)) {
                     float _e32 = t_3;
                     t_3 = (_e32 + _e29);
                     float _e34 = t_3;
-                    uint _e36 = k_6;
+                    uint _e36 = k_8;
                     if ((_e34 >= segs.b[min(uint(_e36), 1u)])) {
                         break;
                     }
@@ -2372,14 +2446,14 @@ float free_flight(float3 origin_3, float3 dir_2, Segments segs, inout uint rng_3
                 const float _e40 = rng_exponential(rng_3, majorant);
                 t_3 = (_e39 + _e40);
                 float _e42 = t_3;
-                uint _e44 = k_6;
+                uint _e44 = k_8;
                 if ((_e42 >= segs.b[min(uint(_e44), 1u)])) {
                     break;
                 }
-                uint _e48 = counters_9.view_steps;
-                counters_9.view_steps = (_e48 + 1u);
+                uint _e48 = counters_10.view_steps;
+                counters_10.view_steps = (_e48 + 1u);
                 float _e51 = t_3;
-                const float _e54 = density_at((origin_3 + (dir_2 * _e51)), counters_9);
+                const float _e54 = density_at((origin_4 + (dir_2 * _e51)), counters_10);
                 const float _e55 = rng_next(rng_3);
                 if (((_e55 * _e5) < _e54)) {
                     float _e58 = t_3;
@@ -2391,10 +2465,10 @@ float free_flight(float3 origin_3, float3 dir_2, Segments segs, inout uint rng_3
     return -1.0;
 }
 
-float transmittance_along(float3 origin_4, float3 dir_3, Segments segs_1, inout uint rng_4, inout Counters counters_10)
+float transmittance_along(float3 origin_5, float3 dir_3, Segments segs_1, inout uint rng_4, inout Counters counters_11)
 {
     float tr = 1.0;
-    uint k_7 = 0u;
+    uint k_9 = 0u;
     float t_4 = (float)0;
 
     float _e8 = frame.extinction.x;
@@ -2411,29 +2485,29 @@ float transmittance_along(float3 origin_4, float3 dir_3, Segments segs_1, inout 
         if (all(loop_bound_13 == uint2(0u, 0u))) { break; }
         loop_bound_13 -= uint2(loop_bound_13.y == 0u, 1u);
         if (!loop_init_11) {
-            uint _e78 = k_7;
-            k_7 = (_e78 + 1u);
+            uint _e78 = k_9;
+            k_9 = (_e78 + 1u);
         }
         loop_init_11 = false;
-        uint _e23 = k_7;
+        uint _e23 = k_9;
         if ((_e23 < segs_1.count)) {
         } else {
             break;
         }
         {
-            uint _e27 = k_7;
+            uint _e27 = k_9;
             t_4 = segs_1.a[min(uint(_e27), 1u)];
             uint2 loop_bound_14 = uint2(4294967295u, 4294967295u);
             while(true) {
                 if (all(loop_bound_14 == uint2(0u, 0u))) { break; }
                 loop_bound_14 -= uint2(loop_bound_14.y == 0u, 1u);
                 float _e30 = t_4;
-                const float _e31 = empty_cell_skip(origin_4, dir_3, _e30);
+                const float _e31 = empty_cell_skip(origin_5, dir_3, _e30);
                 if ((_e31 > 0.0)) {
                     float _e34 = t_4;
                     t_4 = (_e34 + _e31);
                     float _e36 = t_4;
-                    uint _e38 = k_7;
+                    uint _e38 = k_9;
                     if ((_e36 >= segs_1.b[min(uint(_e38), 1u)])) {
                         break;
                     }
@@ -2443,14 +2517,14 @@ float transmittance_along(float3 origin_4, float3 dir_3, Segments segs_1, inout 
                 const float _e42 = rng_exponential(rng_4, majorant_1);
                 t_4 = (_e41 + _e42);
                 float _e44 = t_4;
-                uint _e46 = k_7;
+                uint _e46 = k_9;
                 if ((_e44 >= segs_1.b[min(uint(_e46), 1u)])) {
                     break;
                 }
-                uint _e50 = counters_10.light;
-                counters_10.light = (_e50 + 1u);
+                uint _e50 = counters_11.light;
+                counters_11.light = (_e50 + 1u);
                 float _e53 = t_4;
-                const float _e56 = density_at((origin_4 + (dir_3 * _e53)), counters_10);
+                const float _e56 = density_at((origin_5 + (dir_3 * _e53)), counters_11);
                 float _e57 = tr;
                 tr = (_e57 * (1.0 - ((sigma_t_3 * _e56) / majorant_1)));
                 float _e63 = tr;
@@ -2478,8 +2552,8 @@ float sample_hg_cos(float g_4, float u)
     if ((abs(g_4) < 0.0001)) {
         return (1.0 - (2.0 * u));
     }
-    float s_10 = ((1.0 - (g_4 * g_4)) / ((1.0 - g_4) + ((2.0 * g_4) * u)));
-    return clamp((((1.0 + (g_4 * g_4)) - (s_10 * s_10)) / (2.0 * g_4)), -1.0, 1.0);
+    float s_11 = ((1.0 - (g_4 * g_4)) / ((1.0 - g_4) + ((2.0 * g_4) * u)));
+    return clamp((((1.0 + (g_4 * g_4)) - (s_11 * s_11)) / (2.0 * g_4)), -1.0, 1.0);
 }
 
 PhaseSample ConstructPhaseSample(float3 arg0, float arg1) {
@@ -2529,16 +2603,29 @@ PhaseSample sample_phase(float3 dir_4, inout uint rng_5)
     float sign_ = ((dir_4.z >= 0.0) ? 1.0 : -1.0);
     float a_9 = (-1.0 / (sign_ + dir_4.z));
     float bb = ((dir_4.x * dir_4.y) * a_9);
-    float3 t_6 = float3((1.0 + (((sign_ * dir_4.x) * dir_4.x) * a_9)), (sign_ * bb), (-(sign_) * dir_4.x));
+    float3 t_7 = float3((1.0 + (((sign_ * dir_4.x) * dir_4.x) * a_9)), (sign_ * bb), (-(sign_) * dir_4.x));
     float3 b_10 = float3(bb, (sign_ + ((dir_4.y * dir_4.y) * a_9)), -(dir_4.y));
     float _e109 = cos_theta_6;
-    float3 w_6 = normalize((((t_6 * (sin_theta * cos(phi_1))) + (b_10 * (sin_theta * sin(phi_1)))) + (dir_4 * _e109)));
+    float3 w_6 = normalize((((t_7 * (sin_theta * cos(phi_1))) + (b_10 * (sin_theta * sin(phi_1)))) + (dir_4 * _e109)));
     float _e113 = cos_theta_6;
     const float _e115 = phase(_e113, 1.0);
     float _e116 = pdf;
     float _e118 = pdf;
     const PhaseSample phasesample = ConstructPhaseSample(w_6, ((_e118 > 0.0) ? (_e115 / _e116) : 0.0));
     return phasesample;
+}
+
+float3 environment(float3 d_13, float h_6)
+{
+    const bool _e2 = physical_sky();
+    if (_e2) {
+        const float3 _e3 = sky_view(d_13);
+        float4 _e6 = frame.sun_illuminance;
+        float _e12 = frame.ambient_bottom.w;
+        return ((_e3 * _e6.xyz) * _e12);
+    }
+    const float3 _e14 = ambient(h_6);
+    return _e14;
 }
 
 PathResult ConstructPathResult(float3 arg0, float arg1, float arg2) {
@@ -2549,18 +2636,18 @@ PathResult ConstructPathResult(float3 arg0, float arg1, float arg2) {
     return ret;
 }
 
-PathResult trace_path(float3 view_2, Interval span_3, inout uint rng_6, inout Counters counters_11)
+PathResult trace_path(float3 view_3, Interval span_3, inout uint rng_6, inout Counters counters_12)
 {
     PathResult out_2 = ConstructPathResult((0.0).xxx, 1.0, -1.0);
-    bool local_47 = (bool)0;
     bool local_48 = (bool)0;
     bool local_49 = (bool)0;
+    bool local_50 = (bool)0;
     uint max_orders = MAX_PATH_ORDERS;
     float3 pos = (float3)0;
     float3 dir_5 = (float3)0;
     float throughput = 1.0;
     uint order = 0u;
-    bool local_50 = (bool)0;
+    bool local_51 = (bool)0;
 
     if ((span_3.kind != RAY_MARCH)) {
         PathResult _e13 = out_2;
@@ -2570,9 +2657,9 @@ PathResult trace_path(float3 view_2, Interval span_3, inout uint rng_6, inout Co
     float _e17 = frame.camera_position.y;
     float3 cam = float3(0.0, _e17, 0.0);
     Segments primary = ConstructSegments(float2(span_3.start, 0.0), float2((span_3.start + span_3.length_), 0.0), 1u);
-    const float _e32 = transmittance_along(cam, view_2, primary, rng_6, counters_11);
+    const float _e32 = transmittance_along(cam, view_3, primary, rng_6, counters_12);
     out_2.transmittance = _e32;
-    const float _e33 = free_flight(cam, view_2, primary, rng_6, counters_11);
+    const float _e33 = free_flight(cam, view_3, primary, rng_6, counters_12);
     if ((_e33 < 0.0)) {
         PathResult _e36 = out_2;
         const PathResult pathresult_1 = _e36;
@@ -2580,7 +2667,7 @@ PathResult trace_path(float3 view_2, Interval span_3, inout uint rng_6, inout Co
     }
     out_2.depth = _e33;
     float4 _e40 = frame.sun_direction;
-    float3 sun_3 = _e40.xyz;
+    float3 sun_4 = _e40.xyz;
     float _e45 = frame.extinction.x;
     float _e49 = frame.extinction.y;
     float sigma_t_4 = (_e45 + _e49);
@@ -2591,30 +2678,30 @@ PathResult trace_path(float3 view_2, Interval span_3, inout uint rng_6, inout Co
         const bool _e68 = physical_sky();
         if (!(_e68)) {
             float4 _e74 = frame.ambient_bottom;
-            local_48 = any((_e74.xyz > (0.0).xxx));
-        } else {
-            local_48 = true;
-        }
-        bool _e81 = local_48;
-        if (!(_e81)) {
-            float4 _e87 = frame.ambient_top;
-            local_49 = any((_e87.xyz > (0.0).xxx));
+            local_49 = any((_e74.xyz > (0.0).xxx));
         } else {
             local_49 = true;
         }
-        bool _e94 = local_49;
-        local_47 = _e94;
+        bool _e81 = local_49;
+        if (!(_e81)) {
+            float4 _e87 = frame.ambient_top;
+            local_50 = any((_e87.xyz > (0.0).xxx));
+        } else {
+            local_50 = true;
+        }
+        bool _e94 = local_50;
+        local_48 = _e94;
     } else {
-        local_47 = false;
+        local_48 = false;
     }
-    bool ambient_on = local_47;
+    bool ambient_on = local_48;
     uint _e102 = frame.misc.z;
     if ((_e102 > 0u)) {
         uint _e108 = frame.misc.z;
         max_orders = min(_e108, MAX_PATH_ORDERS);
     }
-    pos = (cam + (view_2 * _e33));
-    dir_5 = view_2;
+    pos = (cam + (view_3 * _e33));
+    dir_5 = view_3;
     uint2 loop_bound_15 = uint2(4294967295u, 4294967295u);
     while(true) {
         if (all(loop_bound_15 == uint2(0u, 0u))) { break; }
@@ -2627,19 +2714,19 @@ PathResult trace_path(float3 view_2, Interval span_3, inout uint rng_6, inout Co
         const float _e125 = altitude_of(_e124);
         const float _e126 = height_fraction(_e125);
         float3 _e127 = pos;
-        const bool _e128 = hits_ground(_e127, _e125, sun_3);
+        const bool _e128 = hits_ground(_e127, _e125, sun_4);
         if (!(_e128)) {
             float3 _e130 = pos;
             float3 _e131 = pos;
-            const Segments _e132 = layer_segments(_e131, _e125, sun_3);
-            const float _e133 = transmittance_along(_e130, sun_3, _e132, rng_6, counters_11);
+            const Segments _e132 = layer_segments(_e131, _e125, sun_4);
+            const float _e133 = transmittance_along(_e130, sun_4, _e132, rng_6, counters_12);
             float3 _e135 = out_2.radiance;
             float4 _e138 = frame.sun_illuminance;
             float3 _e140 = pos;
             const float3 _e141 = sun_through_air(_e140);
             float _e143 = throughput;
             float3 _e144 = dir_5;
-            const float _e147 = phase(dot(_e144, sun_3), 1.0);
+            const float _e147 = phase(dot(_e144, sun_4), 1.0);
             out_2.radiance = (_e135 + ((_e138.xyz * _e141) * ((_e143 * _e147) * _e133)));
         }
         float3 _e152 = dir_5;
@@ -2647,109 +2734,109 @@ PathResult trace_path(float3 view_2, Interval span_3, inout uint rng_6, inout Co
         float3 _e154 = pos;
         float3 _e156 = pos;
         const Segments _e158 = layer_segments(_e156, _e125, _e153.dir);
-        const float _e159 = free_flight(_e154, _e153.dir, _e158, rng_6, counters_11);
+        const float _e159 = free_flight(_e154, _e153.dir, _e158, rng_6, counters_12);
         if ((_e159 < 0.0)) {
             if (ambient_on) {
                 float3 _e163 = out_2.radiance;
-                const float3 _e164 = ambient(_e126);
-                float _e165 = throughput;
-                out_2.radiance = (_e163 + (_e164 * (_e165 * _e153.weight)));
+                const float3 _e165 = environment(_e153.dir, _e126);
+                float _e166 = throughput;
+                out_2.radiance = (_e163 + (_e165 * (_e166 * _e153.weight)));
             }
             break;
         }
-        uint _e170 = order;
-        uint _e171 = max_orders;
-        if ((_e170 >= _e171)) {
+        uint _e171 = order;
+        uint _e172 = max_orders;
+        if ((_e171 >= _e172)) {
             break;
         }
-        float _e173 = throughput;
-        throughput = (_e173 * _e153.weight);
+        float _e174 = throughput;
+        throughput = (_e174 * _e153.weight);
         dir_5 = _e153.dir;
-        uint _e177 = order;
-        if ((_e177 >= 3u)) {
-            float _e182 = throughput;
-            local_50 = (_e182 < 0.1);
+        uint _e178 = order;
+        if ((_e178 >= 3u)) {
+            float _e183 = throughput;
+            local_51 = (_e183 < 0.1);
         } else {
-            local_50 = false;
+            local_51 = false;
         }
-        bool _e186 = local_50;
-        if (_e186) {
-            const float _e187 = rng_next(rng_6);
-            float _e188 = throughput;
-            if ((_e187 >= (_e188 / 0.1))) {
+        bool _e187 = local_51;
+        if (_e187) {
+            const float _e188 = rng_next(rng_6);
+            float _e189 = throughput;
+            if ((_e188 >= (_e189 / 0.1))) {
                 break;
             }
             throughput = 0.1;
         }
-        float _e193 = throughput;
-        if ((_e193 <= 0.0)) {
+        float _e194 = throughput;
+        if ((_e194 <= 0.0)) {
             break;
         }
-        float3 _e196 = pos;
-        float3 _e197 = dir_5;
-        pos = (_e196 + (_e197 * _e159));
+        float3 _e197 = pos;
+        float3 _e198 = dir_5;
+        pos = (_e197 + (_e198 * _e159));
     }
-    PathResult _e200 = out_2;
-    const PathResult pathresult_2 = _e200;
+    PathResult _e201 = out_2;
+    const PathResult pathresult_2 = _e201;
     return pathresult_2;
 }
 
 bool camera_still()
 {
-    bool local_51 = (bool)0;
     bool local_52 = (bool)0;
     bool local_53 = (bool)0;
+    bool local_54 = (bool)0;
 
     float4 _e2 = frame.camera_position;
     float4 _e5 = frame.previous_position;
     if (all((_e2 == _e5))) {
         float4 _e12 = frame.camera_forward;
         float4 _e15 = frame.previous_forward;
-        local_51 = all((_e12 == _e15));
-    } else {
-        local_51 = false;
-    }
-    bool _e19 = local_51;
-    if (_e19) {
-        float4 _e24 = frame.camera_right;
-        float4 _e28 = frame.previous_right;
-        local_52 = all((_e24.xyz == _e28.xyz));
+        local_52 = all((_e12 == _e15));
     } else {
         local_52 = false;
     }
-    bool _e33 = local_52;
-    if (_e33) {
-        float4 _e38 = frame.camera_up;
-        float4 _e42 = frame.previous_up;
-        local_53 = all((_e38.xyz == _e42.xyz));
+    bool _e19 = local_52;
+    if (_e19) {
+        float4 _e24 = frame.camera_right;
+        float4 _e28 = frame.previous_right;
+        local_53 = all((_e24.xyz == _e28.xyz));
     } else {
         local_53 = false;
     }
-    bool _e47 = local_53;
+    bool _e33 = local_53;
+    if (_e33) {
+        float4 _e38 = frame.camera_up;
+        float4 _e42 = frame.previous_up;
+        local_54 = all((_e38.xyz == _e42.xyz));
+    } else {
+        local_54 = false;
+    }
+    bool _e47 = local_54;
     return _e47;
 }
 
-float luminance(float3 c_2)
+float luminance(float3 c_3)
 {
-    return dot(c_2, float3(0.2126, 0.7152, 0.0722));
+    return dot(c_3, float3(0.2126, 0.7152, 0.0722));
 }
 
-float basic_sun_depth(float3 rel_4, float alt_14, inout Counters counters_12)
+float basic_sun_depth(float3 rel_5, float alt_14, inout Counters counters_13)
 {
-    float tau_6 = 0.0;
-    uint i_13 = 1u;
+    float tau_7 = 0.0;
+    uint i_14 = 1u;
 
     uint steps_3 = frame.counts.w;
     if ((steps_3 == 0u)) {
         return 0.0;
     }
     float4 _e12 = frame.sun_direction;
-    float3 sun_4 = _e12.xyz;
-    float rp_4 = frame.atmosphere.x;
+    float3 sun_5 = _e12.xyz;
+    float rp_5 = frame.atmosphere.x;
     float top_2 = frame.atmosphere.z;
     float _e25 = frame.atmosphere.y;
     float thickness = (top_2 - _e25);
-    const Roots _e39 = solve_sphere(dot(sun_4, float3(rel_4.x, (rel_4.y + rp_4), rel_4.z)), ((alt_14 - top_2) * ((alt_14 + top_2) + (2.0 * rp_4))));
+    const Roots _e39 = solve_sphere(dot(sun_5, float3(rel_5.x, (rel_5.y + rp_5), rel_5.z)), ((alt_14 - top_2) * ((alt_14 + top_2) + (2.0 * rp_5))));
     float length_ = min(max(_e39.t1_, 0.0), (3.0 * thickness));
     float dt_3 = (length_ / float(steps_3));
     float _e51 = frame.extinction.x;
@@ -2763,46 +2850,46 @@ float basic_sun_depth(float3 rel_4, float alt_14, inout Counters counters_12)
         if (all(loop_bound_16 == uint2(0u, 0u))) { break; }
         loop_bound_16 -= uint2(loop_bound_16.y == 0u, 1u);
         if (!loop_init_12) {
-            uint _e90 = i_13;
-            i_13 = (_e90 + 1u);
+            uint _e90 = i_14;
+            i_14 = (_e90 + 1u);
         }
         loop_init_12 = false;
-        uint _e65 = i_13;
+        uint _e65 = i_14;
         if ((_e65 <= steps_3)) {
         } else {
             break;
         }
         {
-            uint _e68 = counters_12.light;
-            counters_12.light = (_e68 + 1u);
-            uint _e71 = i_13;
-            float3 q_8 = (rel_4 + (sun_4 * (float(_e71) * dt_3)));
+            uint _e68 = counters_13.light;
+            counters_13.light = (_e68 + 1u);
+            uint _e71 = i_14;
+            float3 q_8 = (rel_5 + (sun_5 * (float(_e71) * dt_3)));
             float3 p_18 = float3((q_8.x + cam_xz_1.x), q_8.y, (q_8.z + cam_xz_1.y));
-            float _e84 = tau_6;
+            float _e84 = tau_7;
             const float _e85 = altitude_of(q_8);
-            const float _e86 = cloud_density(p_18, _e85, counters_12);
-            tau_6 = (_e84 + ((sigma_t_5 * _e86) * dt_3));
+            const float _e86 = cloud_density(p_18, _e85, counters_13);
+            tau_7 = (_e84 + ((sigma_t_5 * _e86) * dt_3));
         }
     }
-    float _e93 = tau_6;
+    float _e93 = tau_7;
     return _e93;
 }
 
 MarchResult basic_pixel(uint2 pixel_7)
 {
-    Counters counters_13 = ConstructCounters(0u, 0u, 0u, 0u);
+    Counters counters_14 = ConstructCounters(0u, 0u, 0u, 0u);
     float3 radiance_2 = (0.0).xxx;
     float transmittance = 1.0;
     float depth_sum = 0.0;
-    uint i_14 = 0u;
+    uint i_15 = 0u;
     float depth_3 = 0.0;
 
     const float3 _e1 = view_ray(pixel_7);
-    float cam_alt_2 = frame.camera_position.y;
+    float cam_alt_3 = frame.camera_position.y;
     float4 _e8 = frame.camera_position;
     float2 cam_xz_2 = _e8.xz;
     count(STAT_PIXELS, 1u);
-    const Interval _e25 = cloud_interval(cam_alt_2, _e1);
+    const Interval _e25 = cloud_interval(cam_alt_3, _e1);
     if ((_e25.kind == RAY_MISSES_LAYER)) {
         count(STAT_EXIT_MISSED, 1u);
     } else {
@@ -2826,28 +2913,28 @@ MarchResult basic_pixel(uint2 pixel_7)
                 if (all(loop_bound_17 == uint2(0u, 0u))) { break; }
                 loop_bound_17 -= uint2(loop_bound_17.y == 0u, 1u);
                 if (!loop_init_13) {
-                    uint _e131 = i_14;
-                    i_14 = (_e131 + 1u);
+                    uint _e131 = i_15;
+                    i_15 = (_e131 + 1u);
                 }
                 loop_init_13 = false;
-                uint _e71 = i_14;
+                uint _e71 = i_15;
                 if ((_e71 < steps_4)) {
                 } else {
                     break;
                 }
                 {
-                    uint _e74 = counters_13.view_steps;
-                    counters_13.view_steps = (_e74 + 1u);
-                    uint _e78 = i_14;
-                    float t_7 = (_e25.start + (float(_e78) * dt_4));
-                    float3 rel_7 = ((_e1 * t_7) + float3(0.0, cam_alt_2, 0.0));
-                    float3 p_19 = float3((rel_7.x + cam_xz_2.x), rel_7.y, (rel_7.z + cam_xz_2.y));
-                    const float _e95 = altitude_of(rel_7);
-                    const float _e96 = cloud_density(p_19, _e95, counters_13);
+                    uint _e74 = counters_14.view_steps;
+                    counters_14.view_steps = (_e74 + 1u);
+                    uint _e78 = i_15;
+                    float t_8 = (_e25.start + (float(_e78) * dt_4));
+                    float3 rel_8 = ((_e1 * t_8) + float3(0.0, cam_alt_3, 0.0));
+                    float3 p_19 = float3((rel_8.x + cam_xz_2.x), rel_8.y, (rel_8.z + cam_xz_2.y));
+                    const float _e95 = altitude_of(rel_8);
+                    const float _e96 = cloud_density(p_19, _e95, counters_14);
                     if ((_e96 <= 0.0)) {
                         continue;
                     }
-                    const float _e99 = basic_sun_depth(rel_7, _e95, counters_13);
+                    const float _e99 = basic_sun_depth(rel_8, _e95, counters_14);
                     float beer_powder = ((2.0 * exp(-(_e99))) * (1.0 - exp((-2.0 * _e99))));
                     float3 _e110 = radiance_2;
                     float _e111 = transmittance;
@@ -2855,20 +2942,20 @@ MarchResult basic_pixel(uint2 pixel_7)
                     float step_t_1 = exp(((-(sigma_t_6) * _e96) * dt_4));
                     float _e122 = depth_sum;
                     float _e123 = transmittance;
-                    depth_sum = (_e122 + ((t_7 * _e123) * (1.0 - step_t_1)));
+                    depth_sum = (_e122 + ((t_8 * _e123) * (1.0 - step_t_1)));
                     float _e129 = transmittance;
                     transmittance = (_e129 * step_t_1);
                 }
             }
         }
     }
-    uint _e136 = counters_13.view_steps;
+    uint _e136 = counters_14.view_steps;
     count(STAT_VIEW_STEPS, _e136);
-    uint _e139 = counters_13.density;
+    uint _e139 = counters_14.density;
     count(STAT_DENSITY, _e139);
-    uint _e142 = counters_13.detail;
+    uint _e142 = counters_14.detail;
     count(STAT_DETAIL, _e142);
-    uint _e145 = counters_13.light;
+    uint _e145 = counters_14.light;
     count(STAT_LIGHT, _e145);
     float _e148 = transmittance;
     if ((_e148 < 1.0)) {
@@ -2892,20 +2979,20 @@ float atlas_hash(uint a_2, uint b_2)
 
 float value_noise(float2 p_10, uint seed)
 {
-    uint2 i_16 = naga_f2u32(floor(p_10));
+    uint2 i_17 = naga_f2u32(floor(p_10));
     float2 f_5 = frac(p_10);
-    float2 s_11 = ((f_5 * f_5) * ((3.0).xx - (2.0 * f_5)));
-    uint h_10 = (seed * 7919u);
-    const float _e17 = atlas_hash((i_16.x + h_10), i_16.y);
-    const float _e23 = atlas_hash(((i_16.x + 1u) + h_10), i_16.y);
-    const float _e29 = atlas_hash((i_16.x + h_10), (i_16.y + 1u));
-    const float _e37 = atlas_hash(((i_16.x + 1u) + h_10), (i_16.y + 1u));
-    return lerp(lerp(_e17, _e23, s_11.x), lerp(_e29, _e37, s_11.x), s_11.y);
+    float2 s_12 = ((f_5 * f_5) * ((3.0).xx - (2.0 * f_5)));
+    uint h_11 = (seed * 7919u);
+    const float _e17 = atlas_hash((i_17.x + h_11), i_17.y);
+    const float _e23 = atlas_hash(((i_17.x + 1u) + h_11), i_17.y);
+    const float _e29 = atlas_hash((i_17.x + h_11), (i_17.y + 1u));
+    const float _e37 = atlas_hash(((i_17.x + 1u) + h_11), (i_17.y + 1u));
+    return lerp(lerp(_e17, _e23, s_12.x), lerp(_e29, _e37, s_12.x), s_12.y);
 }
 
 float value_fbm(float2 p_11, uint seed_1)
 {
-    float sum_3 = 0.0;
+    float sum_4 = 0.0;
     float weight = 0.5;
     float2 q_4 = (float2)0;
     uint o = 0u;
@@ -2927,34 +3014,34 @@ float value_fbm(float2 p_11, uint seed_1)
             break;
         }
         {
-            float _e12 = sum_3;
+            float _e12 = sum_4;
             float _e13 = weight;
             float2 _e14 = q_4;
             uint _e15 = o;
             const float _e17 = value_noise(_e14, (seed_1 + _e15));
-            sum_3 = (_e12 + (_e13 * _e17));
+            sum_4 = (_e12 + (_e13 * _e17));
             float2 _e20 = q_4;
             q_4 = (_e20 * 2.0);
             float _e23 = weight;
             weight = (_e23 * 0.5);
         }
     }
-    float _e29 = sum_3;
+    float _e29 = sum_4;
     return (_e29 / 0.9375);
 }
 
 float sprite_texture(uint tile_1, float2 uv)
 {
     float billow = 0.0;
-    uint i_15 = 0u;
+    uint i_16 = 0u;
     float2 at = (float2)0;
     float a_3 = (float)0;
 
-    float2 c_9 = (uv - (0.5).xx);
-    float mask = smoothstep(0.48, 0.36, length(c_9));
+    float2 c_10 = (uv - (0.5).xx);
+    float mask = smoothstep(0.48, 0.36, length(c_10));
     const float _e16 = value_fbm(((uv * 6.0) + ((float(tile_1) * 13.0)).xx), tile_1);
     if ((tile_1 < 4u)) {
-        float2 q_9 = (c_9 * float2(1.0, 3.2));
+        float2 q_9 = (c_10 * float2(1.0, 3.2));
         float streak = (1.0 - smoothstep(0.05, 0.45, length(q_9)));
         const float _e40 = value_fbm(((uv * float2(3.0, 12.0)) + ((float(tile_1) * 5.0)).xx), (tile_1 + 16u));
         const float _e46 = saturate_(((_e40 * 1.6) - 0.3));
@@ -2967,32 +3054,32 @@ float sprite_texture(uint tile_1, float2 uv)
         if (all(loop_bound_19 == uint2(0u, 0u))) { break; }
         loop_bound_19 -= uint2(loop_bound_19.y == 0u, 1u);
         if (!loop_init_15) {
-            uint _e108 = i_15;
-            i_15 = (_e108 + 1u);
+            uint _e108 = i_16;
+            i_16 = (_e108 + 1u);
         }
         loop_init_15 = false;
-        uint _e58 = i_15;
+        uint _e58 = i_16;
         if ((_e58 < blobs)) {
         } else {
             break;
         }
         {
-            uint _e61 = i_15;
+            uint _e61 = i_16;
             const float _e63 = atlas_hash(tile_1, (2u * _e61));
-            uint _e65 = i_15;
+            uint _e65 = i_16;
             const float _e69 = atlas_hash(tile_1, ((2u * _e65) + 1u));
             float2 centre_1 = (float2(_e63, _e69) - (0.5).xx);
             at = ((0.5).xx + (centre_1 * 0.34));
             if ((tile_1 == 4u)) {
                 at.y = (0.5 + ((centre_1.y - 0.5) * 0.24));
             }
-            uint _e91 = i_15;
+            uint _e91 = i_16;
             const float _e93 = atlas_hash(tile_1, (100u + _e91));
-            float r_17 = (0.14 + (0.1 * _e93));
+            float r_18 = (0.14 + (0.1 * _e93));
             float2 _e98 = at;
-            float d_18 = (length((uv - _e98)) / r_17);
+            float d_20 = (length((uv - _e98)) / r_18);
             float _e102 = billow;
-            const float _e106 = saturate_((1.0 - (d_18 * d_18)));
+            const float _e106 = saturate_((1.0 - (d_20 * d_20)));
             billow = max(_e102, _e106);
         }
     }
@@ -3009,12 +3096,12 @@ float sprite_texture(uint tile_1, float2 uv)
 
 float3 sprite_rel(float2 xz, float alt_15)
 {
-    float rp_5 = frame.atmosphere.x;
+    float rp_6 = frame.atmosphere.x;
     float4 _e8 = frame.camera_position;
-    float2 d_19 = (xz - _e8.xz);
-    float k_13 = ((alt_15 * (alt_15 + (2.0 * rp_5))) - dot(d_19, d_19));
-    float y_2 = (k_13 / (rp_5 + sqrt(max(((rp_5 * rp_5) + k_13), 0.0))));
-    return float3(d_19.x, y_2, d_19.y);
+    float2 d_21 = (xz - _e8.xz);
+    float k_15 = ((alt_15 * (alt_15 + (2.0 * rp_6))) - dot(d_21, d_21));
+    float y_3 = (k_15 / (rp_6 + sqrt(max(((rp_6 * rp_6) + k_15), 0.0))));
+    return float3(d_21.x, y_3, d_21.y);
 }
 
 SpriteCell ConstructSpriteCell(int2 arg0, float arg1, bool arg2) {
@@ -3028,12 +3115,12 @@ SpriteCell ConstructSpriteCell(int2 arg0, float arg1, bool arg2) {
 SpriteCell sprite_cell(uint cell)
 {
     int2 start_1 = (int2)0;
-    uint k_8 = 3u;
-    bool local_54 = (bool)0;
+    uint k_10 = 3u;
     bool local_55 = (bool)0;
+    bool local_56 = (bool)0;
 
     uint level_1 = naga_div(cell, 64u);
-    int2 local_59 = int2(int(naga_mod(cell, 8u)), int(naga_mod(naga_div(cell, 8u), 8u)));
+    int2 local_60 = int2(int(naga_mod(cell, 8u)), int(naga_mod(naga_div(cell, 8u), 8u)));
     float4 _e15 = frame.camera_position;
     start_1 = asint(asuint(naga_f2i32(floor((_e15.xz / (12000.0).xx)))) - asuint((int(4)).xx));
     uint2 loop_bound_20 = uint2(4294967295u, 4294967295u);
@@ -3042,11 +3129,11 @@ SpriteCell sprite_cell(uint cell)
         if (all(loop_bound_20 == uint2(0u, 0u))) { break; }
         loop_bound_20 -= uint2(loop_bound_20.y == 0u, 1u);
         if (!loop_init_16) {
-            uint _e35 = k_8;
-            k_8 = (_e35 - 1u);
+            uint _e35 = k_10;
+            k_10 = (_e35 - 1u);
         }
         loop_init_16 = false;
-        uint _e27 = k_8;
+        uint _e27 = k_10;
         if ((_e27 > level_1)) {
         } else {
             break;
@@ -3057,19 +3144,19 @@ SpriteCell sprite_cell(uint cell)
         }
     }
     if ((level_1 > 0u)) {
-        local_54 = all((local_59 >= (int(2)).xx));
-    } else {
-        local_54 = false;
-    }
-    bool _e47 = local_54;
-    if (_e47) {
-        local_55 = all((local_59 < (int(6)).xx));
+        local_55 = all((local_60 >= (int(2)).xx));
     } else {
         local_55 = false;
     }
-    bool covered = local_55;
+    bool _e47 = local_55;
+    if (_e47) {
+        local_56 = all((local_60 < (int(6)).xx));
+    } else {
+        local_56 = false;
+    }
+    bool covered = local_56;
     int2 _e56 = start_1;
-    const SpriteCell spritecell = ConstructSpriteCell(asint(asuint(_e56) + asuint(local_59)), (SPRITE_CELL0_ * float((1u << level_1))), covered);
+    const SpriteCell spritecell = ConstructSpriteCell(asint(asuint(_e56) + asuint(local_60)), (SPRITE_CELL0_ * float((1u << level_1))), covered);
     return spritecell;
 }
 
@@ -3086,53 +3173,53 @@ SpriteCandidate ConstructSpriteCandidate(float2 arg0, float arg1, float arg2, fl
     return ret;
 }
 
-SpriteCandidate sprite_candidate(SpriteCell c_3, uint level, uint s_1, inout Counters counters_14)
+SpriteCandidate sprite_candidate(SpriteCell c_4, uint level, uint s_2, inout Counters counters_15)
 {
     float density_2 = 0.0;
 
     const uint _e10 = pcg(level);
-    const uint _e12 = pcg((asuint(c_3.index.y) ^ _e10));
-    const uint _e14 = pcg((asuint(c_3.index.x) ^ _e12));
-    const float _e17 = atlas_hash(_e14, (8u * s_1));
-    const float _e22 = atlas_hash(_e14, ((8u * s_1) + 1u));
-    const float _e27 = atlas_hash(_e14, ((8u * s_1) + 2u));
-    const float _e32 = atlas_hash(_e14, ((8u * s_1) + 3u));
+    const uint _e12 = pcg((asuint(c_4.index.y) ^ _e10));
+    const uint _e14 = pcg((asuint(c_4.index.x) ^ _e12));
+    const float _e17 = atlas_hash(_e14, (8u * s_2));
+    const float _e22 = atlas_hash(_e14, ((8u * s_2) + 1u));
+    const float _e27 = atlas_hash(_e14, ((8u * s_2) + 2u));
+    const float _e32 = atlas_hash(_e14, ((8u * s_2) + 3u));
     float4 u_1 = float4(_e17, _e22, _e27, _e32);
-    const float _e38 = atlas_hash(_e14, ((8u * s_1) + 4u));
-    const float _e43 = atlas_hash(_e14, ((8u * s_1) + 5u));
+    const float _e38 = atlas_hash(_e14, ((8u * s_2) + 4u));
+    const float _e43 = atlas_hash(_e14, ((8u * s_2) + 5u));
     float2 v_3 = float2(_e38, _e43);
-    float2 xz_1 = ((float2(c_3.index) + u_1.xy) * c_3.size);
+    float2 xz_2 = ((float2(c_4.index) + u_1.xy) * c_4.size);
     const Layer _e56 = cloud_layer(0u);
-    const Weather _e57 = sample_weather(float3(xz_1.x, 0.0, xz_1.y), _e56);
-    float h_11 = (0.04 + (u_1.z * (lerp(0.3, 0.95, _e57.cloud_type) - 0.04)));
+    const Weather _e57 = sample_weather(float3(xz_2.x, 0.0, xz_2.y), _e56);
+    float h_12 = (0.04 + (u_1.z * (lerp(0.3, 0.95, _e57.cloud_type) - 0.04)));
     float _e71 = frame.atmosphere.y;
     float _e75 = frame.atmosphere.z;
     float _e79 = frame.atmosphere.y;
-    float alt_17 = (_e71 + (h_11 * (_e75 - _e79)));
-    if (!(c_3.covered)) {
-        const float3 _e87 = sprite_rel(xz_1, alt_17);
-        const float _e92 = cloud_density(float3(xz_1.x, _e87.y, xz_1.y), alt_17, counters_14);
+    float alt_17 = (_e71 + (h_12 * (_e75 - _e79)));
+    if (!(c_4.covered)) {
+        const float3 _e87 = sprite_rel(xz_2, alt_17);
+        const float _e92 = cloud_density(float3(xz_2.x, _e87.y, xz_2.y), alt_17, counters_15);
         density_2 = _e92;
     }
     float _e96 = density_2;
-    const SpriteCandidate spritecandidate = ConstructSpriteCandidate(xz_1, alt_17, h_11, u_1.w, v_3.x, v_3.y, _e96, _e57.precipitation);
+    const SpriteCandidate spritecandidate = ConstructSpriteCandidate(xz_2, alt_17, h_12, u_1.w, v_3.x, v_3.y, _e96, _e57.precipitation);
     return spritecandidate;
 }
 
-float3 sprite_sky_level(float h_6)
+float3 sprite_sky_level(float h_7)
 {
-    const float _e1 = saturate_(h_6);
-    float x_9 = (_e1 * 4.0);
-    if ((x_9 < 1.0)) {
-        return lerp(SKY_LEVEL0_, SKY_LEVEL1_, x_9);
+    const float _e1 = saturate_(h_7);
+    float x_11 = (_e1 * 4.0);
+    if ((x_11 < 1.0)) {
+        return lerp(SKY_LEVEL0_, SKY_LEVEL1_, x_11);
     }
-    if ((x_9 < 2.0)) {
-        return lerp(SKY_LEVEL1_, SKY_LEVEL2_, (x_9 - 1.0));
+    if ((x_11 < 2.0)) {
+        return lerp(SKY_LEVEL1_, SKY_LEVEL2_, (x_11 - 1.0));
     }
-    if ((x_9 < 3.0)) {
-        return lerp(SKY_LEVEL2_, SKY_LEVEL3_, (x_9 - 2.0));
+    if ((x_11 < 3.0)) {
+        return lerp(SKY_LEVEL2_, SKY_LEVEL3_, (x_11 - 2.0));
     }
-    return lerp(SKY_LEVEL3_, SKY_LEVEL4_, (x_9 - 3.0));
+    return lerp(SKY_LEVEL3_, SKY_LEVEL4_, (x_11 - 3.0));
 }
 
 float sprite_sun_level(float cos_angle)
@@ -3143,72 +3230,72 @@ float sprite_sun_level(float cos_angle)
     return lerp(SPRITE_C_MED, SPRITE_C_MAX, cos_angle);
 }
 
-float2 sprite_corner(uint k_9)
+float2 sprite_corner(uint k_11)
 {
-    bool local_56 = (bool)0;
+    bool local_57 = (bool)0;
 
-    uint q_10 = ((k_9 >= 3u) ? ((k_9 == 3u) ? 0u : (k_9 - 2u)) : k_9);
+    uint q_10 = ((k_11 >= 3u) ? ((k_11 == 3u) ? 0u : (k_11 - 2u)) : k_11);
     if (!((q_10 == 1u))) {
-        local_56 = (q_10 == 2u);
+        local_57 = (q_10 == 2u);
     } else {
-        local_56 = true;
+        local_57 = true;
     }
-    bool _e18 = local_56;
+    bool _e18 = local_57;
     return float2((_e18 ? 1.0 : -1.0), ((q_10 >= 2u) ? 1.0 : -1.0));
 }
 
-float3 sky_radiance(float3 d_12, float alt_16)
+float3 sky_radiance(float3 d_14, float alt_16)
 {
     float4 _e4 = frame.sun_direction;
-    float3 sun_5 = _e4.xyz;
+    float3 sun_6 = _e4.xyz;
     float4 _e8 = frame.sun_illuminance;
     float3 e = _e8.xyz;
-    const float _e15 = saturate_(((sun_5.y * 4.0) + 0.3));
-    const bool _e19 = hits_ground(float3(0.0, alt_16, 0.0), alt_16, d_12);
+    const float _e15 = saturate_(((sun_6.y * 4.0) + 0.3));
+    const bool _e19 = hits_ground(float3(0.0, alt_16, 0.0), alt_16, d_14);
     if (_e19) {
         float3 ground_albedo = float3(0.035, 0.035, 0.03);
-        return (ground_albedo * (((e * max(sun_5.y, 0.0)) / (3.1415927).xxx) + ((0.05 * e) * _e15)));
+        return (ground_albedo * (((e * max(sun_6.y, 0.0)) / (3.1415927).xxx) + ((0.05 * e) * _e15)));
     }
     float3 zenith = float3(0.018, 0.04, 0.1);
     float3 horizon_2 = float3(0.07, 0.085, 0.11);
-    const float _e45 = saturate_(d_12.y);
+    const float _e45 = saturate_(d_14.y);
     float3 gradient_1 = lerp(horizon_2, zenith, sqrt(_e45));
     float3 sunset = (((1.0 - (_e15 * 0.8)) * pow((1.0 - _e45), 6.0)) * float3(0.25, 0.1, 0.0));
-    const float _e64 = phase_hg(dot(d_12, sun_5), 0.76);
+    const float _e64 = phase_hg(dot(d_14, sun_6), 0.76);
     float glow = (_e64 * 0.02);
-    const float _e73 = saturate_(((sun_5.y * 10.0) + 1.0));
+    const float _e73 = saturate_(((sun_6.y * 10.0) + 1.0));
     return (e * (((gradient_1 * _e15) + (sunset * _e73)) + ((glow * _e15)).xxx));
 }
 
-float3 sun_disk(float3 d_13)
+float3 sun_disk(float3 d_15)
 {
     float cos_r = frame.sun_direction.w;
     float4 _e7 = frame.sun_direction;
-    if ((dot(d_13, _e7.xyz) < cos_r)) {
+    if ((dot(d_15, _e7.xyz) < cos_r)) {
         return (0.0).xxx;
     }
     float4 _e15 = frame.sun_illuminance;
     return (_e15.xyz / ((6.2831855 * max((1.0 - cos_r), 1e-6))).xxx);
 }
 
-float3 moon_disk(float3 d_14)
+float3 moon_disk(float3 d_16)
 {
-    bool local_57 = (bool)0;
+    bool local_58 = (bool)0;
 
     float4 _e3 = frame.moon;
     float3 m_3 = _e3.xyz;
-    float c_10 = dot(d_14, m_3);
+    float c_11 = dot(d_16, m_3);
     float _e9 = frame.moon.w;
     if (!((_e9 <= 0.0))) {
-        local_57 = (c_10 < MOON_COS_RADIUS);
+        local_58 = (c_11 < MOON_COS_RADIUS);
     } else {
-        local_57 = true;
+        local_58 = true;
     }
-    bool _e18 = local_57;
+    bool _e18 = local_58;
     if (_e18) {
         return (0.0).xxx;
     }
-    float3 offset = ((d_14 - (m_3 * c_10)) / (0.0045149517).xxx);
+    float3 offset = ((d_16 - (m_3 * c_11)) / (0.0045149517).xxx);
     float x2_1 = min(dot(offset, offset), 1.0);
     float3 normal = (offset - (m_3 * sqrt((1.0 - x2_1))));
     float4 _e36 = frame.night;
@@ -3217,37 +3304,37 @@ float3 moon_disk(float3 d_14)
     return (((_e46 / 6.40407e-5) * lit_)).xxx;
 }
 
-float3 stars(float3 d_15)
+float3 stars(float3 d_17)
 {
     uint face = 0u;
     float2 uv_1 = (0.0).xx;
     float major = 0.0;
-    bool local_58 = (bool)0;
+    bool local_59 = (bool)0;
     float3 star = (0.0).xxx;
 
     float e0_ = frame.night.w;
     if ((e0_ <= 0.0)) {
         return (0.0).xxx;
     }
-    float3 a_10 = abs(d_15);
+    float3 a_10 = abs(d_17);
     if ((a_10.x >= a_10.y)) {
-        local_58 = (a_10.x >= a_10.z);
+        local_59 = (a_10.x >= a_10.z);
     } else {
-        local_58 = false;
+        local_59 = false;
     }
-    bool _e26 = local_58;
+    bool _e26 = local_59;
     if (_e26) {
-        face = ((d_15.x > 0.0) ? 0u : 1u);
-        uv_1 = d_15.zy;
+        face = ((d_17.x > 0.0) ? 0u : 1u);
+        uv_1 = d_17.zy;
         major = a_10.x;
     } else {
         if ((a_10.y >= a_10.z)) {
-            face = ((d_15.y > 0.0) ? 2u : 3u);
-            uv_1 = d_15.xz;
+            face = ((d_17.y > 0.0) ? 2u : 3u);
+            uv_1 = d_17.xz;
             major = a_10.y;
         } else {
-            face = ((d_15.z > 0.0) ? 4u : 5u);
-            uv_1 = d_15.xy;
+            face = ((d_17.z > 0.0) ? 4u : 5u);
+            uv_1 = d_17.xy;
             major = a_10.z;
         }
     }
@@ -3256,19 +3343,19 @@ float3 stars(float3 d_15)
     float2 st = clamp((((_e54 / (_e55).xx) * 0.5) + (0.5).xx), (0.0).xx, (0.999999).xx);
     uint2 cell_2 = naga_f2u32((st * 96.0));
     uint _e71 = face;
-    uint id_21 = ((((_e71 * STAR_CELLS) + cell_2.y) * STAR_CELLS) + cell_2.x);
-    const uint _e85 = pcg((id_21 ^ 2654435769u));
+    uint id_23 = ((((_e71 * STAR_CELLS) + cell_2.y) * STAR_CELLS) + cell_2.x);
+    const uint _e85 = pcg((id_23 ^ 2654435769u));
     float h0_ = (float((_e85 >> 8u)) * 5.9604645e-8);
     if ((h0_ >= 0.15085077)) {
         return (0.0).xxx;
     }
-    const uint _e96 = pcg((id_21 ^ 2246822507u));
+    const uint _e96 = pcg((id_23 ^ 2246822507u));
     float h1_ = (float((_e96 >> 8u)) * 5.9604645e-8);
-    const uint _e104 = pcg((id_21 ^ 3266489909u));
+    const uint _e104 = pcg((id_23 ^ 3266489909u));
     float h2_ = (float((_e104 >> 8u)) * 5.9604645e-8);
-    const uint _e112 = pcg((id_21 ^ 668265263u));
+    const uint _e112 = pcg((id_23 ^ 668265263u));
     float h3_ = (float((_e112 >> 8u)) * 5.9604645e-8);
-    const uint _e120 = pcg((id_21 ^ 374761393u));
+    const uint _e120 = pcg((id_23 ^ 374761393u));
     float h4_ = (float((_e120 >> 8u)) * 5.9604645e-8);
     float2 star_st = (((float2(cell_2) + (0.15).xx) + (0.7 * float2(h1_, h2_))) / (96.0).xx);
     float _e142 = major;
@@ -3301,13 +3388,13 @@ float3 stars(float3 d_15)
     uint _e209 = frame.counts.y;
     float pixel_angle = ((2.0 * _e203) / float(_e209));
     float3 _e212 = star;
-    float dist_1 = (acos(clamp(dot(d_15, _e212), -1.0, 1.0)) / pixel_angle);
+    float dist_1 = (acos(clamp(dot(d_17, _e212), -1.0, 1.0)) / pixel_angle);
     float weight_1 = (exp(((-(dist_1) * dist_1) / 0.5)) / 1.5707964);
     float3 tint = lerp(float3(0.8, 0.9, 1.1), float3(1.15, 0.95, 0.75), (h3_ * h4_));
     return (tint * ((illuminance * weight_1) / (pixel_angle * pixel_angle)));
 }
 
-float3 physical_composite(uint2 pixel_8, float3 view_3, float4 cloud)
+float3 physical_composite(uint2 pixel_8, float3 view_4, float4 cloud)
 {
     float3 sky = (float3)0;
     float3 space = (float3)0;
@@ -3316,35 +3403,39 @@ float3 physical_composite(uint2 pixel_8, float3 view_3, float4 cloud)
     float4 _e5 = frame.sun_illuminance;
     float3 e_1 = _e5.xyz;
     const float3 _e7 = camera_air_origin();
-    float r_18 = _e7.y;
-    const float3 _e9 = sky_view(view_3);
+    float r_19 = _e7.y;
+    const float3 _e9 = sky_view(view_4);
     sky = (_e9 * e_1);
-    const bool _e13 = meets_ground(r_18, view_3.y);
-    if (!(_e13)) {
-        const float3 _e15 = moon_disk(view_3);
-        const float3 _e16 = stars(view_3);
-        space = (_e15 + _e16);
-        uint _e22 = frame.modes.w;
-        if (((_e22 & FLAG_MOONLIT) == 0u)) {
-            float3 _e27 = space;
-            const float3 _e28 = sun_disk(view_3);
-            space = (_e27 + _e28);
+    const bool _e13 = meets_ground(r_19, view_4.y);
+    if (_e13) {
+        float3 _e14 = sky;
+        const float3 _e15 = ground_shadow_loss(view_4, r_19);
+        sky = max((_e14 - (_e15 * e_1)), (0.0).xxx);
+    } else {
+        const float3 _e21 = moon_disk(view_4);
+        const float3 _e22 = stars(view_4);
+        space = (_e21 + _e22);
+        uint _e28 = frame.modes.w;
+        if (((_e28 & FLAG_MOONLIT) == 0u)) {
+            float3 _e33 = space;
+            const float3 _e34 = sun_disk(view_4);
+            space = (_e33 + _e34);
         }
-        float3 _e30 = sky;
-        float3 _e31 = space;
-        const float3 _e33 = transmittance_to_top(r_18, view_3.y);
-        sky = (_e30 + (_e31 * _e33));
+        float3 _e36 = sky;
+        float3 _e37 = space;
+        const float3 _e39 = transmittance_to_top(r_19, view_4.y);
+        sky = (_e36 + (_e37 * _e39));
     }
-    float3 _e36 = sky;
-    radiance_3 = (_e36 * cloud.w);
+    float3 _e42 = sky;
+    radiance_3 = (_e42 * cloud.w);
     if ((cloud.w < 1.0)) {
-        float4 _e45 = depth_in.Load(int3(pixel_8, int(0)));
-        const float4 _e47 = aerial(pixel_8, _e45.x);
-        float3 _e48 = radiance_3;
-        radiance_3 = (_e48 + (((_e47.xyz * e_1) * (1.0 - cloud.w)) + (cloud.xyz * _e47.w)));
+        float4 _e51 = depth_in.Load(int3(pixel_8, int(0)));
+        const float4 _e53 = aerial(pixel_8, _e51.x);
+        float3 _e54 = radiance_3;
+        radiance_3 = (_e54 + (((_e53.xyz * e_1) * (1.0 - cloud.w)) + (cloud.xyz * _e53.w)));
     }
-    float3 _e60 = radiance_3;
-    return _e60;
+    float3 _e66 = radiance_3;
+    return _e66;
 }
 
 float3 aces_fitted(float3 x_5)
@@ -3431,14 +3522,14 @@ void multiscatter_lut(uint3 id_1 : SV_DispatchThreadID)
     if (any((id_1.xy >= MULTISCATTER_SIZE))) {
         return;
     }
-    float2 x_10 = (float2(id_1.xy) / float2(31.0, 31.0));
-    float mu_s_4 = ((x_10.x * 2.0) - 1.0);
+    float2 x_12 = (float2(id_1.xy) / float2(31.0, 31.0));
+    float mu_s_7 = ((x_12.x * 2.0) - 1.0);
     const float _e16 = air_bottom();
     const float _e18 = air_top();
     const float _e19 = air_bottom();
-    float r_19 = (_e16 + (x_10.y * (_e18 - _e19)));
-    float3 origin_5 = float3(0.0, r_19, 0.0);
-    float3 sun_6 = float3(sqrt(max((1.0 - (mu_s_4 * mu_s_4)), 0.0)), mu_s_4, 0.0);
+    float r_20 = (_e16 + (x_12.y * (_e18 - _e19)));
+    float3 origin_6 = float3(0.0, r_20, 0.0);
+    float3 sun_7 = float3(sqrt(max((1.0 - (mu_s_7 * mu_s_7)), 0.0)), mu_s_7, 0.0);
     uint2 loop_bound_22 = uint2(4294967295u, 4294967295u);
     bool loop_init_18 = true;
     while(true) {
@@ -3457,7 +3548,7 @@ void multiscatter_lut(uint3 id_1 : SV_DispatchThreadID)
         {
             uint _e46 = k;
             const float3 _e48 = fibonacci_direction(_e46, MULTISCATTER_DIRECTIONS);
-            const float2 _e49 = air_ray_end(origin_5, _e48);
+            const float2 _e49 = air_ray_end(origin_6, _e48);
             float dt_6 = (_e49.x / 32.0);
             tau = (0.0).xxx;
             i_1 = 0u;
@@ -3478,27 +3569,27 @@ void multiscatter_lut(uint3 id_1 : SV_DispatchThreadID)
                 }
                 {
                     uint _e61 = i_1;
-                    float3 p_20 = (origin_5 + (_e48 * (dt_6 * (float(_e61) + 0.5))));
-                    float rp_6 = length(p_20);
+                    float3 p_20 = (origin_6 + (_e48 * (dt_6 * (float(_e61) + 0.5))));
+                    float rp_7 = length(p_20);
                     const float _e69 = air_bottom();
-                    const AirSample _e71 = air_at((rp_6 - _e69));
+                    const AirSample _e71 = air_at((rp_7 - _e69));
                     float3 _e72 = tau;
-                    float3 t_8 = exp(-((_e72 + ((0.5 * _e71.extinction) * dt_6))));
-                    float3 s_12 = (_e71.rayleigh + (_e71.mie).xxx);
+                    float3 t_9 = exp(-((_e72 + ((0.5 * _e71.extinction) * dt_6))));
+                    float3 s_13 = (_e71.rayleigh + (_e71.mie).xxx);
                     float3 _e84 = l2_;
-                    const float3 _e90 = sun_transmittance(rp_6, dot((p_20 / (rp_6).xxx), sun_6));
-                    l2_ = (_e84 + ((((t_8 * s_12) * 0.07957747) * _e90) * dt_6));
+                    const float3 _e90 = sun_transmittance(rp_7, dot((p_20 / (rp_7).xxx), sun_7));
+                    l2_ = (_e84 + ((((t_9 * s_13) * 0.07957747) * _e90) * dt_6));
                     float3 _e94 = f_ms;
-                    f_ms = (_e94 + ((t_8 * s_12) * dt_6));
+                    f_ms = (_e94 + ((t_9 * s_13) * dt_6));
                     float3 _e98 = tau;
                     tau = (_e98 + (_e71.extinction * dt_6));
                 }
             }
             if ((_e49.y > 0.5)) {
-                float3 g_7 = (origin_5 + (_e48 * _e49.x));
+                float3 g_7 = (origin_6 + (_e48 * _e49.x));
                 float3 _e111 = l2_;
                 float3 _e112 = tau;
-                const float3 _e117 = ground_radiance(dot(normalize(g_7), sun_6));
+                const float3 _e117 = ground_radiance_sun(dot(normalize(g_7), sun_7));
                 l2_ = (_e111 + (exp(-(_e112)) * _e117));
             }
         }
@@ -3516,17 +3607,19 @@ void sky_view_lut(uint3 id_2 : SV_DispatchThreadID)
     if (any((id_2.xy >= SKY_VIEW_SIZE))) {
         return;
     }
-    float2 x_11 = (float2(id_2.xy) / float2(191.0, 107.0));
+    float2 x_13 = (float2(id_2.xy) / float2(191.0, 107.0));
     const float3 _e11 = camera_air_origin();
     const float _e14 = horizon_elevation(_e11.y);
-    const float _e15 = sky_view_elevation(x_11.y, _e14);
+    const float _e15 = sky_view_elevation(x_13.y, _e14);
     const float _e16 = sun_azimuth();
-    float phi_2 = (_e16 + (x_11.x * PI));
-    float3 d_20 = float3((cos(_e15) * cos(phi_2)), sin(_e15), (cos(_e15) * sin(phi_2)));
-    const float2 _e29 = air_ray_end(_e11, d_20);
-    float4 _e34 = frame.sun_direction;
-    const Scattered _e39 = integrate_air(_e11, d_20, _e29.x, SKY_VIEW_STEPS, _e34.xyz, (_e29.y > 0.5));
-    sky_view_out[id_2.xy] = float4(_e39.radiance, 1.0);
+    float phi_2 = (_e16 + (x_13.x * PI));
+    float3 d_22 = float3((cos(_e15) * cos(phi_2)), sin(_e15), (cos(_e15) * sin(phi_2)));
+    const float2 _e29 = air_ray_end(_e11, d_22);
+    float4 _e32 = frame.sun_direction;
+    float3 sun_8 = _e32.xyz;
+    const Scattered _e36 = integrate_air(_e11, d_22, _e29.x, SKY_VIEW_STEPS, sun_8);
+    const float3 _e43 = with_ground(_e36, _e11, d_22, _e29.x, sun_8, (_e29.y > 0.5));
+    sky_view_out[id_2.xy] = float4(_e43, 1.0);
     return;
 }
 
@@ -3545,8 +3638,8 @@ void aerial_perspective(uint3 id_3 : SV_DispatchThreadID)
     const float3 _e8 = camera_air_origin();
     const float2 _e9 = air_ray_end(_e8, _e7);
     float4 _e12 = frame.sun_direction;
-    float3 sun_7 = _e12.xyz;
-    float cos_theta_8 = dot(_e7, sun_7);
+    float3 sun_9 = _e12.xyz;
+    float cos_theta_8 = dot(_e7, sun_9);
     const float _e15 = phase_rayleigh(cos_theta_8);
     float _e19 = frame.air_mie.w;
     const float _e20 = phase_cornette_shanks_air(cos_theta_8, _e19);
@@ -3588,26 +3681,26 @@ void aerial_perspective(uint3 id_3 : SV_DispatchThreadID)
                     float t0_1 = (AERIAL_SLICE_KM * (float(_e38) + (float(_e40) / 4.0)));
                     float dt_7 = max(min(0.25, (_e9.x - t0_1)), 0.0);
                     float3 p_21 = (_e8 + (_e7 * (t0_1 + (0.5 * dt_7))));
-                    float r_20 = length(p_21);
-                    float mu_s_5 = dot((p_21 / (r_20).xxx), sun_7);
+                    float r_21 = length(p_21);
+                    float mu_s_8 = dot((p_21 / (r_21).xxx), sun_9);
                     const float _e64 = air_bottom();
-                    const AirSample _e66 = air_at((r_20 - _e64));
+                    const AirSample _e66 = air_at((r_21 - _e64));
                     float3 _e67 = tau_1;
-                    float3 t_view_1 = exp(-((_e67 + ((0.5 * _e66.extinction) * dt_7))));
-                    const float3 _e75 = sun_transmittance(r_20, mu_s_5);
-                    const float3 _e83 = multiscatter(r_20, mu_s_5);
+                    float3 t_view_2 = exp(-((_e67 + ((0.5 * _e66.extinction) * dt_7))));
+                    const float3 _e75 = sun_transmittance(r_21, mu_s_8);
+                    const float3 _e83 = multiscatter(r_21, mu_s_8);
                     float3 inscatter_1 = ((_e75 * ((_e66.rayleigh * _e15) + ((_e66.mie * _e20)).xxx)) + (_e83 * (_e66.rayleigh + (_e66.mie).xxx)));
                     float3 _e90 = radiance;
-                    radiance = (_e90 + ((t_view_1 * inscatter_1) * dt_7));
+                    radiance = (_e90 + ((t_view_2 * inscatter_1) * dt_7));
                     float3 _e94 = tau_1;
                     tau_1 = (_e94 + (_e66.extinction * dt_7));
                 }
             }
             float3 _e101 = tau_1;
-            float3 t_9 = exp(-(_e101));
+            float3 t_10 = exp(-(_e101));
             uint _e105 = z;
             float3 _e112 = radiance;
-            aerial_out[uint2(((_e105 * AERIAL_SIDE) + id_3.x), id_3.y)] = float4(_e112, (((t_9.x + t_9.y) + t_9.z) / 3.0));
+            aerial_out[uint2(((_e105 * AERIAL_SIDE) + id_3.x), id_3.y)] = float4(_e112, (((t_10.x + t_10.y) + t_10.z) / 3.0));
         }
     }
     return;
@@ -3633,15 +3726,15 @@ void sky_ambient(uint3 id_4 : SV_DispatchThreadID)
     float _e19 = frame.atmosphere.z;
     float alt_m = ((id_4.x == 1u) ? _e19 : _e15);
     const float _e24 = air_bottom();
-    float3 origin_6 = float3(0.0, (_e24 + (alt_m * 0.001)), 0.0);
+    float3 origin_7 = float3(0.0, (_e24 + (alt_m * 0.001)), 0.0);
     uint2 loop_bound_26 = uint2(4294967295u, 4294967295u);
     bool loop_init_22 = true;
     while(true) {
         if (all(loop_bound_26 == uint2(0u, 0u))) { break; }
         loop_bound_26 -= uint2(loop_bound_26.y == 0u, 1u);
         if (!loop_init_22) {
-            uint _e57 = k_2;
-            k_2 = (_e57 + 1u);
+            uint _e58 = k_2;
+            k_2 = (_e58 + 1u);
         }
         loop_init_22 = false;
         uint _e36 = k_2;
@@ -3652,15 +3745,153 @@ void sky_ambient(uint3 id_4 : SV_DispatchThreadID)
         {
             uint _e39 = k_2;
             const float3 _e41 = fibonacci_direction(_e39, AMBIENT_DIRECTIONS);
-            const float2 _e42 = air_ray_end(origin_6, _e41);
-            float3 _e43 = sum_1;
-            float4 _e48 = frame.sun_direction;
-            const Scattered _e53 = integrate_air(origin_6, _e41, _e42.x, AMBIENT_STEPS, _e48.xyz, (_e42.y > 0.5));
-            sum_1 = (_e43 + _e53.radiance);
+            const float2 _e42 = air_ray_end(origin_7, _e41);
+            float4 _e45 = frame.sun_direction;
+            float3 sun_10 = _e45.xyz;
+            const Scattered _e49 = integrate_air(origin_7, _e41, _e42.x, AMBIENT_STEPS, sun_10);
+            float3 _e50 = sum_1;
+            const float3 _e55 = with_ground(_e49, origin_7, _e41, _e42.x, sun_10, (_e42.y > 0.5));
+            sum_1 = (_e50 + _e55);
         }
     }
-    float3 _e61 = sum_1;
-    sky_ambient_out[id_4.xy] = float4((_e61 / (64.0).xxx), 1.0);
+    float3 _e62 = sum_1;
+    sky_ambient_out[id_4.xy] = float4((_e62 / (64.0).xxx), 1.0);
+    return;
+}
+
+[numthreads(8, 8, 1)]
+void ground_irradiance(uint3 id_5 : SV_DispatchThreadID)
+{
+    bool local_2 = (bool)0;
+    float3 sum_2 = (0.0).xxx;
+    uint k_3 = 0u;
+
+    if (!((id_5.x >= GROUND_IRRADIANCE_SIZE))) {
+        local_2 = (id_5.y >= 1u);
+    } else {
+        local_2 = true;
+    }
+    bool _e11 = local_2;
+    if (_e11) {
+        return;
+    }
+    float mu_s_9 = (((float(id_5.x) / 63.0) * 2.0) - 1.0);
+    float3 sun_11 = float3(sqrt(max((1.0 - (mu_s_9 * mu_s_9)), 0.0)), mu_s_9, 0.0);
+    const float _e28 = air_bottom();
+    float3 origin_8 = float3(0.0, (_e28 + 0.001), 0.0);
+    uint2 loop_bound_27 = uint2(4294967295u, 4294967295u);
+    bool loop_init_23 = true;
+    while(true) {
+        if (all(loop_bound_27 == uint2(0u, 0u))) { break; }
+        loop_bound_27 -= uint2(loop_bound_27.y == 0u, 1u);
+        if (!loop_init_23) {
+            uint _e58 = k_3;
+            k_3 = (_e58 + 1u);
+        }
+        loop_init_23 = false;
+        uint _e39 = k_3;
+        if ((_e39 < GROUND_IRRADIANCE_DIRECTIONS)) {
+        } else {
+            break;
+        }
+        {
+            uint _e42 = k_3;
+            const float3 _e44 = fibonacci_direction(_e42, GROUND_IRRADIANCE_DIRECTIONS);
+            if ((_e44.y <= 0.0)) {
+                continue;
+            }
+            const float2 _e48 = air_ray_end(origin_8, _e44);
+            float3 _e49 = sum_2;
+            const Scattered _e52 = integrate_air(origin_8, _e44, _e48.x, AMBIENT_STEPS, sun_11);
+            sum_2 = (_e49 + (_e52.radiance * _e44.y));
+        }
+    }
+    float3 _e60 = sum_2;
+    float3 e_2 = (_e60 * 0.09817477);
+    ground_irradiance_out[id_5.xy] = float4(e_2, 1.0);
+    return;
+}
+
+[numthreads(8, 8, 1)]
+void cloud_shadow(uint3 id_6 : SV_DispatchThreadID)
+{
+    float tau_2 = 0.0;
+    Counters counters = ConstructCounters(0u, 0u, 0u, 0u);
+    uint i_2 = 0u;
+    uint k_4 = (uint)0;
+
+    if (any((id_6.xy >= (128u).xx))) {
+        return;
+    }
+    const float3 _e7 = shadow_ground_point(id_6.xy);
+    float4 _e10 = frame.sun_direction;
+    float3 sun_12 = _e10.xyz;
+    float rp_8 = frame.atmosphere.x;
+    float3 up_1 = normalize(float3(_e7.x, (_e7.y + rp_8), _e7.z));
+    if ((dot(up_1, sun_12) > 0.0)) {
+        float4 _e29 = frame.camera_position;
+        float2 cam_xz_3 = _e29.xz;
+        uint2 loop_bound_28 = uint2(4294967295u, 4294967295u);
+        bool loop_init_24 = true;
+        while(true) {
+            if (all(loop_bound_28 == uint2(0u, 0u))) { break; }
+            loop_bound_28 -= uint2(loop_bound_28.y == 0u, 1u);
+            if (!loop_init_24) {
+                uint _e90 = i_2;
+                i_2 = (_e90 + 1u);
+            }
+            loop_init_24 = false;
+            uint _e39 = i_2;
+            const uint _e40 = layer_count();
+            if ((_e39 < _e40)) {
+            } else {
+                break;
+            }
+            {
+                uint _e42 = i_2;
+                const Layer _e43 = cloud_layer(_e42);
+                const Roots _e46 = ray_shell_from(_e7, 0.0, sun_12, _e43.bottom);
+                float start_2 = max(_e46.t1_, 0.0);
+                const Roots _e52 = ray_shell_from(_e7, 0.0, sun_12, _e43.top);
+                float end_2 = _e52.t1_;
+                float dt_8 = ((end_2 - start_2) / 16.0);
+                if (!((dt_8 > 0.0))) {
+                    continue;
+                }
+                k_4 = 0u;
+                uint2 loop_bound_29 = uint2(4294967295u, 4294967295u);
+                bool loop_init_25 = true;
+                while(true) {
+                    if (all(loop_bound_29 == uint2(0u, 0u))) { break; }
+                    loop_bound_29 -= uint2(loop_bound_29.y == 0u, 1u);
+                    if (!loop_init_25) {
+                        uint _e87 = k_4;
+                        k_4 = (_e87 + 1u);
+                    }
+                    loop_init_25 = false;
+                    uint _e62 = k_4;
+                    if ((_e62 < SHADOW_STEPS)) {
+                    } else {
+                        break;
+                    }
+                    {
+                        uint _e65 = k_4;
+                        float3 q_12 = (_e7 + (sun_12 * (start_2 + ((float(_e65) + 0.5) * dt_8))));
+                        float3 p_22 = float3((q_12.x + cam_xz_3.x), q_12.y, (q_12.z + cam_xz_3.y));
+                        float _e81 = tau_2;
+                        const float _e82 = altitude_of(q_12);
+                        const float _e83 = layer_density(p_22, _e82, _e43, counters);
+                        tau_2 = (_e81 + (_e83 * dt_8));
+                    }
+                }
+            }
+        }
+    }
+    float _e95 = frame.extinction.x;
+    float _e99 = frame.extinction.y;
+    float sigma_t_7 = (_e95 + _e99);
+    float _e104 = tau_2;
+    cloud_shadow_out[id_6.xy] = float4(exp((-(sigma_t_7) * _e104)), 0.0, 0.0, 1.0);
     return;
 }
 
@@ -3681,29 +3912,29 @@ uint2 NagaDimensions2D(Texture2D<float4> tex)
 }
 
 [numthreads(8, 8, 1)]
-void occupancy(uint3 id_5 : SV_DispatchThreadID)
+void occupancy(uint3 id_7 : SV_DispatchThreadID)
 {
     float m = 0.0;
     int y = (int)0;
     int x = (int)0;
 
-    if (any((id_5.xy >= (64u).xx))) {
+    if (any((id_7.xy >= (64u).xx))) {
         return;
     }
     int2 size_7 = int2(NagaDimensions2D(weather_tex));
-    int2 lo_1 = asint(asuint(naga_div(asint(asuint(int2(id_5.xy)) * asuint(size_7)), (int(64)).xx)) - asuint((int(1)).xx));
-    int2 hi = naga_div(asint(asuint(asint(asuint(int2(id_5.xy)) + asuint((int(1)).xx))) * asuint(size_7)), (int(64)).xx);
+    int2 lo_1 = asint(asuint(naga_div(asint(asuint(int2(id_7.xy)) * asuint(size_7)), (int(64)).xx)) - asuint((int(1)).xx));
+    int2 hi = naga_div(asint(asuint(asint(asuint(int2(id_7.xy)) + asuint((int(1)).xx))) * asuint(size_7)), (int(64)).xx);
     y = lo_1.y;
-    uint2 loop_bound_27 = uint2(4294967295u, 4294967295u);
-    bool loop_init_23 = true;
+    uint2 loop_bound_30 = uint2(4294967295u, 4294967295u);
+    bool loop_init_26 = true;
     while(true) {
-        if (all(loop_bound_27 == uint2(0u, 0u))) { break; }
-        loop_bound_27 -= uint2(loop_bound_27.y == 0u, 1u);
-        if (!loop_init_23) {
+        if (all(loop_bound_30 == uint2(0u, 0u))) { break; }
+        loop_bound_30 -= uint2(loop_bound_30.y == 0u, 1u);
+        if (!loop_init_26) {
             int _e54 = y;
             y = asint(asuint(_e54) + asuint(int(1)));
         }
-        loop_init_23 = false;
+        loop_init_26 = false;
         int _e30 = y;
         if ((_e30 <= hi.y)) {
         } else {
@@ -3711,16 +3942,16 @@ void occupancy(uint3 id_5 : SV_DispatchThreadID)
         }
         {
             x = lo_1.x;
-            uint2 loop_bound_28 = uint2(4294967295u, 4294967295u);
-            bool loop_init_24 = true;
+            uint2 loop_bound_31 = uint2(4294967295u, 4294967295u);
+            bool loop_init_27 = true;
             while(true) {
-                if (all(loop_bound_28 == uint2(0u, 0u))) { break; }
-                loop_bound_28 -= uint2(loop_bound_28.y == 0u, 1u);
-                if (!loop_init_24) {
+                if (all(loop_bound_31 == uint2(0u, 0u))) { break; }
+                loop_bound_31 -= uint2(loop_bound_31.y == 0u, 1u);
+                if (!loop_init_27) {
                     int _e51 = x;
                     x = asint(asuint(_e51) + asuint(int(1)));
                 }
-                loop_init_24 = false;
+                loop_init_27 = false;
                 int _e35 = x;
                 if ((_e35 <= hi.x)) {
                 } else {
@@ -3729,95 +3960,95 @@ void occupancy(uint3 id_5 : SV_DispatchThreadID)
                 {
                     int _e38 = x;
                     int _e39 = y;
-                    int2 t_10 = naga_mod(asint(asuint(naga_mod(int2(_e38, _e39), size_7)) + asuint(size_7)), size_7);
+                    int2 t_11 = naga_mod(asint(asuint(naga_mod(int2(_e38, _e39), size_7)) + asuint(size_7)), size_7);
                     float _e44 = m;
-                    float4 _e47 = weather_tex.Load(int3(t_10, int(0)));
+                    float4 _e47 = weather_tex.Load(int3(t_11, int(0)));
                     m = max(_e44, _e47.x);
                 }
             }
         }
     }
     float _e58 = m;
-    occupancy_out[id_5.xy] = float4(_e58, 0.0, 0.0, 0.0);
+    occupancy_out[id_7.xy] = float4(_e58, 0.0, 0.0, 0.0);
     return;
 }
 
 [numthreads(8, 8, 1)]
-void march(uint3 id_6 : SV_DispatchThreadID)
+void march(uint3 id_8 : SV_DispatchThreadID)
 {
     uint4 _e4 = frame.counts;
-    if (any((id_6.xy >= _e4.xy))) {
+    if (any((id_8.xy >= _e4.xy))) {
         return;
     }
-    const MarchResult _e9 = march_pixel(id_6.xy);
-    cloud_out[id_6.xy] = float4(_e9.radiance, _e9.transmittance);
-    depth_out[id_6.xy] = float4(_e9.depth, 0.0, 0.0, 0.0);
+    const MarchResult _e9 = march_pixel(id_8.xy);
+    cloud_out[id_8.xy] = float4(_e9.radiance, _e9.transmittance);
+    depth_out[id_8.xy] = float4(_e9.depth, 0.0, 0.0, 0.0);
     return;
 }
 
 [numthreads(8, 8, 1)]
-void march_sparse(uint3 id_7 : SV_DispatchThreadID)
+void march_sparse(uint3 id_9 : SV_DispatchThreadID)
 {
     MarchResult r = ConstructMarchResult((0.0).xxx, 1.0, 0.0);
 
-    const bool _e2 = in_blocks(id_7.xy);
+    const bool _e2 = in_blocks(id_9.xy);
     if (!(_e2)) {
         return;
     }
-    const uint2 _e5 = sparse_pixel(id_7.xy);
+    const uint2 _e5 = sparse_pixel(id_9.xy);
     uint4 _e14 = frame.counts;
     if (all((_e5 < _e14.xy))) {
         const MarchResult _e18 = march_pixel(_e5);
         r = _e18;
     }
     MarchResult _e20 = r;
-    store_sparse(id_7.xy, _e20);
+    store_sparse(id_9.xy, _e20);
     return;
 }
 
 [numthreads(8, 8, 1)]
-void march_sparse_checkerboard(uint3 id_8 : SV_DispatchThreadID)
+void march_sparse_checkerboard(uint3 id_10 : SV_DispatchThreadID)
 {
     MarchResult r_1 = ConstructMarchResult((0.0).xxx, 1.0, 0.0);
     bool skip = (bool)0;
-    bool local_2 = (bool)0;
     bool local_3 = (bool)0;
     bool local_4 = (bool)0;
+    bool local_5 = (bool)0;
 
-    const bool _e2 = in_blocks(id_8.xy);
+    const bool _e2 = in_blocks(id_10.xy);
     if (!(_e2)) {
         return;
     }
-    const uint2 _e5 = sparse_pixel(id_8.xy);
+    const uint2 _e5 = sparse_pixel(id_10.xy);
     uint4 _e14 = frame.counts;
     skip = any((_e5 >= _e14.xy));
     bool _e19 = skip;
     if (!(_e19)) {
         uint _e26 = frame.temporal.y;
-        local_2 = (_e26 != 0u);
+        local_3 = (_e26 != 0u);
     } else {
-        local_2 = false;
+        local_3 = false;
     }
-    bool _e30 = local_2;
+    bool _e30 = local_3;
     if (_e30) {
-        uint k_14 = frame.temporal.x;
+        uint k_16 = frame.temporal.x;
         uint _e38 = frame.misc.y;
-        uint turn = naga_div(_e38, (k_14 * k_14));
+        uint turn = naga_div(_e38, (k_16 * k_16));
         const float2 _e42 = reproject(_e5, 0.0);
-        if (((((id_8.x + id_8.y) + turn) & 1u) == 0u)) {
+        if (((((id_10.x + id_10.y) + turn) & 1u) == 0u)) {
             const bool _e53 = on_screen(_e42);
-            local_3 = _e53;
-        } else {
-            local_3 = false;
-        }
-        bool _e55 = local_3;
-        if (_e55) {
-            const float4 _e58 = history_nearest(_e42);
-            local_4 = (_e58.w >= 1.0);
+            local_4 = _e53;
         } else {
             local_4 = false;
         }
-        bool _e63 = local_4;
+        bool _e55 = local_4;
+        if (_e55) {
+            const float4 _e58 = history_nearest(_e42);
+            local_5 = (_e58.w >= 1.0);
+        } else {
+            local_5 = false;
+        }
+        bool _e63 = local_5;
         if (_e63) {
             skip = true;
         }
@@ -3828,36 +4059,36 @@ void march_sparse_checkerboard(uint3 id_8 : SV_DispatchThreadID)
         r_1 = _e67;
     }
     MarchResult _e69 = r_1;
-    store_sparse(id_8.xy, _e69);
+    store_sparse(id_10.xy, _e69);
     return;
 }
 
 [numthreads(8, 8, 1)]
-void resolve(uint3 id_9 : SV_DispatchThreadID)
+void resolve(uint3 id_11 : SV_DispatchThreadID)
 {
     float depth = (float)0;
-    bool local_5 = (bool)0;
+    bool local_6 = (bool)0;
     bool valid = (bool)0;
     float4 history = float4(0.0, 0.0, 0.0, 1.0);
     float4 past = (0.0).xxxx;
-    bool local_6 = (bool)0;
     bool local_7 = (bool)0;
     bool local_8 = (bool)0;
+    bool local_9 = (bool)0;
     float4 result = (float4)0;
     float samples = (float)0;
     float out_depth = (float)0;
-    bool local_9 = (bool)0;
+    bool local_10 = (bool)0;
 
     uint4 _e4 = frame.counts;
-    if (any((id_9.xy >= _e4.xy))) {
+    if (any((id_11.xy >= _e4.xy))) {
         return;
     }
-    uint2 pixel_10 = id_9.xy;
-    uint k_15 = frame.temporal.x;
-    uint2 block = naga_div(pixel_10, (k_15).xx);
+    uint2 pixel_10 = id_11.xy;
+    uint k_17 = frame.temporal.x;
+    uint2 block = naga_div(pixel_10, (k_17).xx);
     uint _e19 = frame.misc.y;
-    const uint2 _e20 = block_offset(_e19, k_15);
-    bool marched_1 = all((pixel_10 == ((block * k_15) + _e20)));
+    const uint2 _e20 = block_offset(_e19, k_17);
+    bool marched_1 = all((pixel_10 == ((block * k_17) + _e20)));
     float4 current = sparse_in.Load(int3(block, int(0)));
     float4 _e29 = sparse_depth_in.Load(int3(block, int(0)));
     float current_depth = _e29.x;
@@ -3876,11 +4107,11 @@ void resolve(uint3 id_9 : SV_DispatchThreadID)
     uint _e54 = frame.temporal.y;
     if ((_e54 != 0u)) {
         const bool _e59 = on_screen(_e50);
-        local_5 = _e59;
+        local_6 = _e59;
     } else {
-        local_5 = false;
+        local_6 = false;
     }
-    bool _e61 = local_5;
+    bool _e61 = local_6;
     valid = _e61;
     bool moving = any((_e50 != float2(pixel_10)));
     bool _e75 = valid;
@@ -3890,18 +4121,18 @@ void resolve(uint3 id_9 : SV_DispatchThreadID)
         const float4 _e77 = meta_at(_e50);
         past = _e77;
         if (moving) {
-            local_6 = (current_depth > 0.0);
-        } else {
-            local_6 = false;
-        }
-        bool _e83 = local_6;
-        if (_e83) {
-            float _e87 = past.x;
-            local_7 = (_e87 > 0.0);
+            local_7 = (current_depth > 0.0);
         } else {
             local_7 = false;
         }
-        bool _e91 = local_7;
+        bool _e83 = local_7;
+        if (_e83) {
+            float _e87 = past.x;
+            local_8 = (_e87 > 0.0);
+        } else {
+            local_8 = false;
+        }
+        bool _e91 = local_8;
         if (_e91) {
             float4 _e94 = frame.camera_position;
             const float3 _e96 = view_ray(pixel_10);
@@ -3913,14 +4144,14 @@ void resolve(uint3 id_9 : SV_DispatchThreadID)
     }
     bool _e111 = valid;
     if (_e111) {
-        local_8 = moving;
+        local_9 = moving;
     } else {
-        local_8 = false;
+        local_9 = false;
     }
-    bool _e115 = local_8;
+    bool _e115 = local_9;
     if (_e115) {
         uint4 _e118 = frame.counts;
-        int2 blocks = int2(naga_div(((_e118.xy + (k_15).xx) - (1u).xx), (k_15).xx));
+        int2 blocks = int2(naga_div(((_e118.xy + (k_17).xx) - (1u).xx), (k_17).xx));
         int2 b_11 = int2(block);
         int x0_1 = max(asint(asuint(b_11.x) - asuint(int(1))), int(0));
         int x2_2 = min(asint(asuint(b_11.x) + asuint(int(1))), asint(asuint(blocks.x) - asuint(int(1))));
@@ -3955,11 +4186,11 @@ void resolve(uint3 id_9 : SV_DispatchThreadID)
         float _e229 = past.x;
         if (!((current_depth > 0.0))) {
             bool _e235 = valid;
-            local_9 = !(_e235);
+            local_10 = !(_e235);
         } else {
-            local_9 = true;
+            local_10 = true;
         }
-        bool _e238 = local_9;
+        bool _e238 = local_10;
         out_depth = (_e238 ? current_depth : _e229);
     } else {
         bool _e240 = valid;
@@ -3990,19 +4221,19 @@ void resolve(uint3 id_9 : SV_DispatchThreadID)
 }
 
 [numthreads(8, 8, 1)]
-void pathtrace(uint3 id_10 : SV_DispatchThreadID)
+void pathtrace(uint3 id_12 : SV_DispatchThreadID)
 {
-    Counters counters = ConstructCounters(0u, 0u, 0u, 0u);
+    Counters counters_1 = ConstructCounters(0u, 0u, 0u, 0u);
     uint rng = (uint)0;
     float4 mean = (0.0).xxxx;
     float4 moments = (0.0).xxxx;
-    bool local_10 = (bool)0;
+    bool local_11 = (bool)0;
 
     uint4 _e4 = frame.counts;
-    if (any((id_10.xy >= _e4.xy))) {
+    if (any((id_12.xy >= _e4.xy))) {
         return;
     }
-    uint2 pixel_11 = id_10.xy;
+    uint2 pixel_11 = id_12.xy;
     const float3 _e9 = view_ray(pixel_11);
     float _e13 = frame.camera_position.y;
     const Interval _e14 = cloud_interval(_e13, _e9);
@@ -4013,16 +4244,16 @@ void pathtrace(uint3 id_10 : SV_DispatchThreadID)
     uint _e41 = frame.misc.y;
     const uint _e42 = rng_seed(pixel_11, _e41);
     rng = _e42;
-    const PathResult _e44 = trace_path(_e9, _e14, rng, counters);
+    const PathResult _e44 = trace_path(_e9, _e14, rng, counters_1);
     const float _e46 = luminance(_e44.radiance);
     uint _e56 = frame.temporal.y;
     if ((_e56 == 1u)) {
         const bool _e61 = camera_still();
-        local_10 = _e61;
+        local_11 = _e61;
     } else {
-        local_10 = false;
+        local_11 = false;
     }
-    bool _e63 = local_10;
+    bool _e63 = local_11;
     if (_e63) {
         float4 _e66 = history_in.Load(int3(pixel_11, int(0)));
         mean = _e66;
@@ -4054,27 +4285,27 @@ void pathtrace(uint3 id_10 : SV_DispatchThreadID)
     cloud_out[pixel_11] = _e114;
     float _e117 = moments.x;
     depth_out[pixel_11] = float4(_e117, 0.0, 0.0, 0.0);
-    uint _e124 = counters.view_steps;
+    uint _e124 = counters_1.view_steps;
     count(STAT_VIEW_STEPS, _e124);
-    uint _e127 = counters.density;
+    uint _e127 = counters_1.density;
     count(STAT_DENSITY, _e127);
-    uint _e130 = counters.detail;
+    uint _e130 = counters_1.detail;
     count(STAT_DETAIL, _e130);
-    uint _e133 = counters.light;
+    uint _e133 = counters_1.light;
     count(STAT_LIGHT, _e133);
     return;
 }
 
 [numthreads(8, 8, 1)]
-void march_basic(uint3 id_11 : SV_DispatchThreadID)
+void march_basic(uint3 id_13 : SV_DispatchThreadID)
 {
     uint4 _e4 = frame.counts;
-    if (any((id_11.xy >= _e4.xy))) {
+    if (any((id_13.xy >= _e4.xy))) {
         return;
     }
-    const MarchResult _e9 = basic_pixel(id_11.xy);
-    cloud_out[id_11.xy] = float4(_e9.radiance, _e9.transmittance);
-    depth_out[id_11.xy] = float4(_e9.depth, 0.0, 0.0, 0.0);
+    const MarchResult _e9 = basic_pixel(id_13.xy);
+    cloud_out[id_13.xy] = float4(_e9.radiance, _e9.transmittance);
+    depth_out[id_13.xy] = float4(_e9.depth, 0.0, 0.0, 0.0);
     return;
 }
 
@@ -4083,70 +4314,70 @@ uint2 naga_mod(uint2 lhs, uint2 rhs) {
 }
 
 [numthreads(8, 8, 1)]
-void sprite_atlas(uint3 id_12 : SV_DispatchThreadID)
+void sprite_atlas(uint3 id_14 : SV_DispatchThreadID)
 {
-    uint tile_4 = ((naga_div(id_12.y, ATLAS_TILE) * 4u) + naga_div(id_12.x, ATLAS_TILE));
-    float2 uv_7 = ((float2(naga_mod(id_12.xy, (64u).xx)) + (0.5).xx) / (64.0).xx);
+    uint tile_4 = ((naga_div(id_14.y, ATLAS_TILE) * 4u) + naga_div(id_14.x, ATLAS_TILE));
+    float2 uv_7 = ((float2(naga_mod(id_14.xy, (64u).xx)) + (0.5).xx) / (64.0).xx);
     const float _e21 = sprite_texture(tile_4, uv_7);
-    sprite_atlas_out[id_12.xy] = float4(_e21, _e21, _e21, _e21);
+    sprite_atlas_out[id_14.xy] = float4(_e21, _e21, _e21, _e21);
     return;
 }
 
 [numthreads(64, 1, 1)]
-void sprite_build(uint3 id_13 : SV_DispatchThreadID)
+void sprite_build(uint3 id_15 : SV_DispatchThreadID)
 {
-    Counters counters_1 = ConstructCounters(0u, 0u, 0u, 0u);
-    float4 sum_2 = (0.0).xxxx;
+    Counters counters_2 = ConstructCounters(0u, 0u, 0u, 0u);
+    float4 sum_3 = (0.0).xxxx;
     SpriteCandidate me = (SpriteCandidate)0;
-    uint i_2 = 0u;
+    uint i_3 = 0u;
     float3 centre = (float3)0;
     uint tile = (uint)0;
     float rotation = (float)0;
-    bool local_11 = (bool)0;
+    bool local_12 = (bool)0;
     float key = 0.0;
 
-    uint slot = id_13.x;
+    uint slot = id_15.x;
     uint cell_index = naga_div(slot, SPRITES_PER_CELL);
     uint level_2 = naga_div(cell_index, 64u);
     const SpriteCell _e6 = sprite_cell(cell_index);
     uint own = naga_mod(slot, SPRITES_PER_CELL);
-    const SpriteCandidate _e18 = sprite_candidate(_e6, level_2, own, counters_1);
+    const SpriteCandidate _e18 = sprite_candidate(_e6, level_2, own, counters_2);
     me = _e18;
-    uint2 loop_bound_29 = uint2(4294967295u, 4294967295u);
-    bool loop_init_25 = true;
+    uint2 loop_bound_32 = uint2(4294967295u, 4294967295u);
+    bool loop_init_28 = true;
     while(true) {
-        if (all(loop_bound_29 == uint2(0u, 0u))) { break; }
-        loop_bound_29 -= uint2(loop_bound_29.y == 0u, 1u);
-        if (!loop_init_25) {
-            uint _e38 = i_2;
-            i_2 = (_e38 + 1u);
+        if (all(loop_bound_32 == uint2(0u, 0u))) { break; }
+        loop_bound_32 -= uint2(loop_bound_32.y == 0u, 1u);
+        if (!loop_init_28) {
+            uint _e38 = i_3;
+            i_3 = (_e38 + 1u);
         }
-        loop_init_25 = false;
-        uint _e22 = i_2;
+        loop_init_28 = false;
+        uint _e22 = i_3;
         if ((_e22 < SPRITES_PER_CELL)) {
         } else {
             break;
         }
         {
-            uint _e25 = i_2;
-            const SpriteCandidate _e26 = sprite_candidate(_e6, level_2, _e25, counters_1);
-            float4 _e27 = sum_2;
-            sum_2 = (_e27 + (float4(_e26.xz.x, _e26.alt, _e26.xz.y, 1.0) * _e26.density));
+            uint _e25 = i_3;
+            const SpriteCandidate _e26 = sprite_candidate(_e6, level_2, _e25, counters_2);
+            float4 _e27 = sum_3;
+            sum_3 = (_e27 + (float4(_e26.xz.x, _e26.alt, _e26.xz.y, 1.0) * _e26.density));
         }
     }
-    uint _e43 = counters_1.density;
+    uint _e43 = counters_2.density;
     count(STAT_DENSITY, _e43);
-    uint _e46 = counters_1.detail;
+    uint _e46 = counters_2.detail;
     count(STAT_DETAIL, _e46);
     float bottom_3 = frame.atmosphere.y;
     float _e54 = frame.atmosphere.z;
     float thickness_1 = (_e54 - bottom_3);
     float2 middle = ((float2(_e6.index) + (0.5).xx) * _e6.size);
     centre = float3(middle.x, (bottom_3 + (0.4 * thickness_1)), middle.y);
-    float _e71 = sum_2.w;
+    float _e71 = sum_3.w;
     if ((_e71 > 0.0)) {
-        float4 _e74 = sum_2;
-        float _e77 = sum_2.w;
+        float4 _e74 = sum_3;
+        float _e77 = sum_3.w;
         centre = (_e74.xyz / (_e77).xxx);
     }
     float2 _e81 = me.xz;
@@ -4171,11 +4402,11 @@ void sprite_build(uint3 id_13 : SV_DispatchThreadID)
     } else {
         if (!(inner)) {
             float _e148 = me.density;
-            local_11 = (_e148 < 0.1);
+            local_12 = (_e148 < 0.1);
         } else {
-            local_11 = false;
+            local_12 = false;
         }
-        bool _e152 = local_11;
+        bool _e152 = local_12;
         if (_e152) {
             float _e154 = me.texture_hash;
             tile = min(naga_f2u32((_e154 * 4.0)), 3u);
@@ -4186,8 +4417,8 @@ void sprite_build(uint3 id_13 : SV_DispatchThreadID)
         float _e167 = me.alt;
         const float3 _e168 = sprite_rel(_e165, _e167);
         float _e172 = frame.camera_position.y;
-        float3 rel_8 = (_e168 - float3(0.0, _e172, 0.0));
-        const float _e180 = saturate_((length(rel_8) / SPRITE_MAX_DISTANCE));
+        float3 rel_9 = (_e168 - float3(0.0, _e172, 0.0));
+        const float _e180 = saturate_((length(rel_9) / SPRITE_MAX_DISTANCE));
         key = (1048576.0 - floor((_e180 * 1048575.0)));
     }
     float _e191 = me.xz.x;
@@ -4207,26 +4438,26 @@ void sprite_build(uint3 id_13 : SV_DispatchThreadID)
 }
 
 [numthreads(64, 1, 1)]
-void sprite_sort(uint3 id_14 : SV_DispatchThreadID)
+void sprite_sort(uint3 id_16 : SV_DispatchThreadID)
 {
     uint rank = 0u;
     uint j = 0u;
-    bool local_12 = (bool)0;
     bool local_13 = (bool)0;
+    bool local_14 = (bool)0;
 
-    uint slot_1 = id_14.x;
+    uint slot_1 = id_16.x;
     float4 _e6 = sprites_in.Load(int3(uint2(slot_1, 3u), int(0)));
     float key_1 = _e6.x;
-    uint2 loop_bound_30 = uint2(4294967295u, 4294967295u);
-    bool loop_init_26 = true;
+    uint2 loop_bound_33 = uint2(4294967295u, 4294967295u);
+    bool loop_init_29 = true;
     while(true) {
-        if (all(loop_bound_30 == uint2(0u, 0u))) { break; }
-        loop_bound_30 -= uint2(loop_bound_30.y == 0u, 1u);
-        if (!loop_init_26) {
+        if (all(loop_bound_33 == uint2(0u, 0u))) { break; }
+        loop_bound_33 -= uint2(loop_bound_33.y == 0u, 1u);
+        if (!loop_init_29) {
             uint _e40 = j;
             j = (_e40 + 1u);
         }
-        loop_init_26 = false;
+        loop_init_29 = false;
         uint _e12 = j;
         if ((_e12 < SPRITE_COUNT)) {
         } else {
@@ -4240,16 +4471,16 @@ void sprite_sort(uint3 id_14 : SV_DispatchThreadID)
             if (!((other < key_1))) {
                 if ((other == key_1)) {
                     uint _e32 = j;
-                    local_13 = (_e32 < slot_1);
+                    local_14 = (_e32 < slot_1);
                 } else {
-                    local_13 = false;
+                    local_14 = false;
                 }
-                bool _e35 = local_13;
-                local_12 = _e35;
+                bool _e35 = local_14;
+                local_13 = _e35;
             } else {
-                local_12 = true;
+                local_13 = true;
             }
-            bool _e37 = local_12;
+            bool _e37 = local_13;
             rank = (_e22 + (_e37 ? 1u : 0u));
         }
     }
@@ -4267,7 +4498,7 @@ VertexOutput_sprite_vertex sprite_vertex(uint index : SV_VertexID)
     uint slot_2 = naga_f2u32(_e8.x);
     float4 a_11 = sprites_in.Load(int3(uint2(slot_2, 0u), int(0)));
     float4 b_12 = sprites_in.Load(int3(uint2(slot_2, 1u), int(0)));
-    float4 c_11 = sprites_in.Load(int3(uint2(slot_2, 2u), int(0)));
+    float4 c_12 = sprites_in.Load(int3(uint2(slot_2, 2u), int(0)));
     if ((b_12.w <= 0.0)) {
         out_.position = float4(0.0, 0.0, -1.0, 1.0);
         SpriteVertex _e35 = out_;
@@ -4296,41 +4527,41 @@ VertexOutput_sprite_vertex sprite_vertex(uint index : SV_VertexID)
     float3 _e83 = right;
     right = normalize(_e83);
     float3 _e85 = right;
-    float3 up_1 = cross(n_5, _e85);
+    float3 up_2 = cross(n_5, _e85);
     const float2 _e89 = sprite_corner(naga_mod(index, 6u));
     float3 _e90 = right;
-    float3 offset_1 = ((_e90 * (_e89.x * half_width_1)) + (up_1 * (_e89.y * c_11.z)));
+    float3 offset_1 = ((_e90 * (_e89.x * half_width_1)) + (up_2 * (_e89.y * c_12.z)));
     float3 vertex = (to_sprite + offset_1);
     float4 _e102 = frame.camera_right;
-    float x_12 = dot(vertex, _e102.xyz);
+    float x_14 = dot(vertex, _e102.xyz);
     float4 _e107 = frame.camera_up;
-    float y_3 = dot(vertex, _e107.xyz);
+    float y_4 = dot(vertex, _e107.xyz);
     float4 _e112 = frame.camera_forward;
     float z_4 = dot(vertex, _e112.xyz);
     float tan_half_3 = frame.camera_position.w;
     float _e123 = frame.camera_forward.w;
-    out_.position = float4((x_12 / (tan_half_3 * _e123)), (y_3 / tan_half_3), (0.5 * z_4), z_4);
-    float2 cs = float2(cos(c_11.y), sin(c_11.y));
-    float2 t_11 = float2(_e89.x, -(_e89.y));
-    out_.uv = float2(((t_11.x * cs.x) - (t_11.y * cs.y)), ((t_11.x * cs.y) + (t_11.y * cs.x)));
-    out_.tile = naga_f2u32(c_11.x);
+    out_.position = float4((x_14 / (tan_half_3 * _e123)), (y_4 / tan_half_3), (0.5 * z_4), z_4);
+    float2 cs = float2(cos(c_12.y), sin(c_12.y));
+    float2 t_12 = float2(_e89.x, -(_e89.y));
+    out_.uv = float2(((t_12.x * cs.x) - (t_12.y * cs.y)), ((t_12.x * cs.y) + (t_12.y * cs.x)));
+    out_.tile = naga_f2u32(c_12.x);
     float4 _e160 = frame.sun_direction;
-    float3 sun_8 = _e160.xyz;
+    float3 sun_13 = _e160.xyz;
     const float3 _e164 = sprite_rel(b_12.xz, b_12.y);
     float3 centre_2 = (_e164 - cam_1);
     float3 from_centre = (vertex - centre_2);
-    float cos_angle_1 = (dot(from_centre, sun_8) / max(length(from_centre), 0.001));
-    const float _e177 = saturate_(((sun_8.y * 4.0) + 0.3));
+    float cos_angle_1 = (dot(from_centre, sun_13) / max(length(from_centre), 0.001));
+    const float _e177 = saturate_(((sun_13.y * 4.0) + 0.3));
     const float _e179 = altitude_of((vertex + cam_1));
     float _e183 = frame.atmosphere.y;
     float _e188 = frame.atmosphere.z;
     float _e192 = frame.atmosphere.y;
     const float _e195 = saturate_(((_e179 - _e183) / (_e188 - _e192)));
     float4 _e198 = frame.sun_illuminance;
-    float3 e_2 = _e198.xyz;
+    float3 e_3 = _e198.xyz;
     const float3 _e200 = sprite_sky_level(_e195);
     const float _e204 = sprite_sun_level(cos_angle_1);
-    float3 light = ((e_2 * ((_e200 * (SPRITE_SKY * _e177)) + (_e204).xxx)) * (c_11.w / PI));
+    float3 light = ((e_3 * ((_e200 * (SPRITE_SKY * _e177)) + (_e204).xxx)) * (c_12.w / PI));
     out_.colour = float4(light, b_12.w);
     out_.distance_ = length(vertex);
     SpriteVertex _e217 = out_;
@@ -4363,31 +4594,31 @@ SpriteTargets sprite_fragment(FragmentInput_sprite_fragment fragmentinput_sprite
 }
 
 [numthreads(8, 8, 1)]
-void sprite_resolve(uint3 id_15 : SV_DispatchThreadID)
+void sprite_resolve(uint3 id_17 : SV_DispatchThreadID)
 {
     uint4 _e4 = frame.counts;
-    if (any((id_15.xy >= _e4.xy))) {
+    if (any((id_17.xy >= _e4.xy))) {
         return;
     }
     count(STAT_PIXELS, 1u);
-    float4 c_12 = sprite_radiance_in.Load(int3(id_15.xy, int(0)));
-    float4 d_21 = sprite_depth_in.Load(int3(id_15.xy, int(0)));
-    const float _e19 = saturate_(c_12.w);
-    cloud_out[id_15.xy] = float4(c_12.xyz, (1.0 - _e19));
-    depth_out[id_15.xy] = float4(((d_21.w > 0.0001) ? (d_21.x / d_21.w) : 0.0), 0.0, 0.0, 0.0);
+    float4 c_13 = sprite_radiance_in.Load(int3(id_17.xy, int(0)));
+    float4 d_23 = sprite_depth_in.Load(int3(id_17.xy, int(0)));
+    const float _e19 = saturate_(c_13.w);
+    cloud_out[id_17.xy] = float4(c_13.xyz, (1.0 - _e19));
+    depth_out[id_17.xy] = float4(((d_23.w > 0.0001) ? (d_23.x / d_23.w) : 0.0), 0.0, 0.0, 0.0);
     return;
 }
 
 [numthreads(8, 8, 1)]
-void composite(uint3 id_16 : SV_DispatchThreadID)
+void composite(uint3 id_18 : SV_DispatchThreadID)
 {
     float3 background = (float3)0;
 
     uint4 _e4 = frame.counts;
-    if (any((id_16.xy >= _e4.xy))) {
+    if (any((id_18.xy >= _e4.xy))) {
         return;
     }
-    uint2 pixel_12 = id_16.xy;
+    uint2 pixel_12 = id_18.xy;
     const float3 _e9 = view_ray(pixel_12);
     float alt_18 = frame.camera_position.y;
     float4 cloud_1 = cloud_in.Load(int3(pixel_12, int(0)));
@@ -4405,13 +4636,13 @@ void composite(uint3 id_16 : SV_DispatchThreadID)
 }
 
 [numthreads(8, 8, 1)]
-void composite_physical(uint3 id_17 : SV_DispatchThreadID)
+void composite_physical(uint3 id_19 : SV_DispatchThreadID)
 {
     uint4 _e4 = frame.counts;
-    if (any((id_17.xy >= _e4.xy))) {
+    if (any((id_19.xy >= _e4.xy))) {
         return;
     }
-    uint2 pixel_13 = id_17.xy;
+    uint2 pixel_13 = id_19.xy;
     float4 cloud_2 = cloud_in.Load(int3(pixel_13, int(0)));
     const float3 _e12 = view_ray(pixel_13);
     const float3 _e13 = physical_composite(pixel_13, _e12, cloud_2);

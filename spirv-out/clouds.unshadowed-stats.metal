@@ -180,7 +180,13 @@ constant uint MULTISCATTER_STEPS = 32u;
 constant uint SKY_VIEW_STEPS = 48u;
 constant uint AMBIENT_DIRECTIONS = 64u;
 constant uint AMBIENT_STEPS = 24u;
+constant uint GROUND_IRRADIANCE_SIZE = 64u;
 constant uint NO_LAYER = 4u;
+constant uint GROUND_IRRADIANCE_DIRECTIONS = 128u;
+constant uint SHADOW_SIZE = 128u;
+constant float SHADOW_HALF_EXTENT = 20000.0;
+constant float SHADOW_FADE_START = 0.75;
+constant uint SHADOW_STEPS = 16u;
 constant uint OCCUPANCY_CELLS = 64u;
 constant uint STAT_PIXELS = 0u;
 constant uint STAT_MARCHED = 1u;
@@ -274,8 +280,8 @@ metal::float3 view_ray(
     metal::float4 _e26 = frame.camera_forward;
     metal::float4 _e30 = frame.camera_right;
     metal::float4 _e39 = frame.camera_up;
-    metal::float3 d_16 = (_e26.xyz + (_e30.xyz * ((ndc.x * tan_half) * aspect))) - (_e39.xyz * (ndc.y * tan_half));
-    return metal::normalize(d_16);
+    metal::float3 d_18 = (_e26.xyz + (_e30.xyz * ((ndc.x * tan_half) * aspect))) - (_e39.xyz * (ndc.y * tan_half));
+    return metal::normalize(d_18);
 }
 
 Roots solve_sphere(
@@ -286,8 +292,8 @@ Roots solve_sphere(
     if (disc < 0.0) {
         return Roots {0.0, 0.0, false};
     }
-    float s_2 = metal::sqrt(disc);
-    float r0_1 = -((b + ((b >= 0.0) ? s_2 : -(s_2))));
+    float s_3 = metal::sqrt(disc);
+    float r0_1 = -((b + ((b >= 0.0) ? s_3 : -(s_3))));
     if (r0_1 == 0.0) {
         return Roots {0.0, 0.0, true};
     }
@@ -303,8 +309,8 @@ Roots ray_shell(
 ) {
     float rp = frame.atmosphere.x;
     float b_3 = d.y * (alt + rp);
-    float c_4 = (alt - radius_alt) * ((alt + radius_alt) + (2.0 * rp));
-    Roots _e16 = solve_sphere(b_3, c_4);
+    float c_5 = (alt - radius_alt) * ((alt + radius_alt) + (2.0 * rp));
+    Roots _e16 = solve_sphere(b_3, c_5);
     return _e16;
 }
 
@@ -324,16 +330,16 @@ bool hits_ground(
     metal::float3 d_1,
     constant Frame& frame
 ) {
-    bool local_14 = {};
+    bool local_15 = {};
     float rp_2 = frame.atmosphere.x;
     float b_4 = metal::dot(d_1, metal::float3(p_1.x, p_1.y + rp_2, p_1.z));
-    float c_5 = alt_1 * (alt_1 + (2.0 * rp_2));
+    float c_6 = alt_1 * (alt_1 + (2.0 * rp_2));
     if (b_4 < 0.0) {
-        local_14 = (b_4 * b_4) >= c_5;
+        local_15 = (b_4 * b_4) >= c_6;
     } else {
-        local_14 = false;
+        local_15 = false;
     }
-    bool _e24 = local_14;
+    bool _e24 = local_15;
     return _e24;
 }
 
@@ -346,9 +352,9 @@ Interval shell_interval(
 ) {
     float start = 0.0;
     float end = 0.0;
-    bool local_15 = {};
     bool local_16 = {};
     bool local_17 = {};
+    bool local_18 = {};
     float cutoff = frame.atmosphere.w;
     Roots _e8 = ray_shell(alt_2, d_2, bottom, frame);
     Roots _e9 = ray_shell(alt_2, d_2, top, frame);
@@ -363,33 +369,33 @@ Interval shell_interval(
         if (alt_2 <= top) {
             end = _e9.t1_;
             if (_e8.hit) {
-                local_15 = _e8.t0_ > 0.0;
+                local_16 = _e8.t0_ > 0.0;
             } else {
-                local_15 = false;
+                local_16 = false;
             }
-            bool _e34 = local_15;
+            bool _e34 = local_16;
             if (_e34) {
                 float _e35 = end;
                 end = metal::min(_e35, _e8.t0_);
             }
         } else {
             if (!(!(_e9.hit))) {
-                local_16 = _e9.t1_ <= 0.0;
+                local_17 = _e9.t1_ <= 0.0;
             } else {
-                local_16 = true;
+                local_17 = true;
             }
-            bool _e47 = local_16;
+            bool _e47 = local_17;
             if (_e47) {
                 return Interval {0.0, 0.0, 1u};
             }
             start = metal::max(_e9.t0_, 0.0);
             end = _e9.t1_;
             if (_e8.hit) {
-                local_17 = _e8.t0_ > 0.0;
+                local_18 = _e8.t0_ > 0.0;
             } else {
-                local_17 = false;
+                local_18 = false;
             }
-            bool _e63 = local_17;
+            bool _e63 = local_18;
             if (_e63) {
                 float _e64 = end;
                 end = metal::min(_e64, _e8.t0_);
@@ -431,22 +437,22 @@ Layer layer_from(
 }
 
 Layer cloud_layer(
-    uint i_3,
+    uint i_4,
     constant Frame& frame
 ) {
-    if (i_3 == 1u) {
+    if (i_4 == 1u) {
         metal::float4 _e5 = frame.layer1_;
         metal::float4 _e8 = frame.layer1_weather;
         Layer _e9 = layer_from(_e5, _e8);
         return _e9;
     } else {
-        if (i_3 == 2u) {
+        if (i_4 == 2u) {
             metal::float4 _e14 = frame.layer2_;
             metal::float4 _e17 = frame.layer2_weather;
             Layer _e18 = layer_from(_e14, _e17);
             return _e18;
         } else {
-            if (i_3 == 3u) {
+            if (i_4 == 3u) {
                 metal::float4 _e23 = frame.layer3_;
                 metal::float4 _e26 = frame.layer3_weather;
                 Layer _e27 = layer_from(_e23, _e26);
@@ -468,7 +474,7 @@ metal::float2 layers_span(
     constant Frame& frame
 ) {
     metal::float2 span = {};
-    uint i_4 = 1u;
+    uint i_5 = 1u;
     metal::float4 _e2 = frame.atmosphere;
     span = _e2.yz;
     uint2 loop_bound = uint2(4294967295u);
@@ -477,18 +483,18 @@ metal::float2 layers_span(
         if (metal::all(loop_bound == uint2(0u))) { break; }
         loop_bound -= uint2(loop_bound.y == 0u, 1u);
         if (!loop_init) {
-            uint _e22 = i_4;
-            i_4 = _e22 + 1u;
+            uint _e22 = i_5;
+            i_5 = _e22 + 1u;
         }
         loop_init = false;
-        uint _e7 = i_4;
+        uint _e7 = i_5;
         uint _e8 = layer_count(frame);
         if (_e7 < _e8) {
         } else {
             break;
         }
         {
-            uint _e10 = i_4;
+            uint _e10 = i_5;
             Layer _e11 = cloud_layer(_e10, frame);
             float _e13 = span.x;
             float _e17 = span.y;
@@ -515,9 +521,9 @@ Interval nearest_layer_interval(
     constant Frame& frame
 ) {
     Interval best = {};
-    uint i_5 = 1u;
-    bool local_18 = {};
+    uint i_6 = 1u;
     bool local_19 = {};
+    bool local_20 = {};
     Layer _e3 = cloud_layer(0u, frame);
     Interval _e4 = layer_interval(alt_5, d_5, _e3, frame);
     best = _e4;
@@ -527,34 +533,34 @@ Interval nearest_layer_interval(
         if (metal::all(loop_bound_1 == uint2(0u))) { break; }
         loop_bound_1 -= uint2(loop_bound_1.y == 0u, 1u);
         if (!loop_init_1) {
-            uint _e35 = i_5;
-            i_5 = _e35 + 1u;
+            uint _e35 = i_6;
+            i_6 = _e35 + 1u;
         }
         loop_init_1 = false;
-        uint _e8 = i_5;
+        uint _e8 = i_6;
         uint _e9 = layer_count(frame);
         if (_e8 < _e9) {
         } else {
             break;
         }
         {
-            uint _e11 = i_5;
+            uint _e11 = i_6;
             Layer _e12 = cloud_layer(_e11, frame);
             Interval _e13 = layer_interval(alt_5, d_5, _e12, frame);
             if (_e13.kind == RAY_MARCH) {
                 uint _e20 = best.kind;
                 if (!((_e20 != RAY_MARCH))) {
                     float _e28 = best.start;
-                    local_19 = _e13.start < _e28;
+                    local_20 = _e13.start < _e28;
                 } else {
-                    local_19 = true;
+                    local_20 = true;
                 }
-                bool _e31 = local_19;
-                local_18 = _e31;
+                bool _e31 = local_20;
+                local_19 = _e31;
             } else {
-                local_18 = false;
+                local_19 = false;
             }
-            bool _e33 = local_18;
+            bool _e33 = local_19;
             if (_e33) {
                 best = _e13;
             }
@@ -573,8 +579,8 @@ Roots ray_shell_from(
 ) {
     float rp_3 = frame.atmosphere.x;
     float b_5 = metal::dot(d_6, metal::float3(p_2.x, p_2.y + rp_3, p_2.z));
-    float c_6 = (alt_6 - radius_alt_1) * ((alt_6 + radius_alt_1) + (2.0 * rp_3));
-    Roots _e20 = solve_sphere(b_5, c_6);
+    float c_7 = (alt_6 - radius_alt_1) * ((alt_6 + radius_alt_1) + (2.0 * rp_3));
+    Roots _e20 = solve_sphere(b_5, c_7);
     return _e20;
 }
 
@@ -604,14 +610,14 @@ AirSample air_at(
     float h_km,
     constant Frame& frame
 ) {
-    float h_7 = metal::max(h_km, 0.0) * 1000.0;
+    float h_8 = metal::max(h_km, 0.0) * 1000.0;
     float _e9 = frame.air_rayleigh.w;
-    float rayleigh_density = metal::exp(-(h_7) / _e9);
+    float rayleigh_density = metal::exp(-(h_8) / _e9);
     float _e16 = frame.air_mie.z;
-    float mie_density = metal::exp(-(h_7) / _e16);
+    float mie_density = metal::exp(-(h_8) / _e16);
     float _e22 = frame.air_ozone.w;
     float _e28 = frame.air_misc.y;
-    float ozone_density = metal::max(1.0 - (metal::abs(h_7 - _e22) / (0.5 * _e28)), 0.0);
+    float ozone_density = metal::max(1.0 - (metal::abs(h_8 - _e22) / (0.5 * _e28)), 0.0);
     metal::float4 _e38 = frame.air_rayleigh;
     metal::float3 rayleigh = _e38.xyz * (rayleigh_density * 1000.0);
     float _e46 = frame.air_mie.x;
@@ -647,15 +653,15 @@ bool meets_ground(
     float mu_2,
     constant Frame& frame
 ) {
-    bool local_20 = {};
+    bool local_21 = {};
     if (mu_2 < 0.0) {
         float _e6 = air_bottom(frame);
         float _e7 = sphere_discriminant(r_4, mu_2, _e6);
-        local_20 = _e7 >= 0.0;
+        local_21 = _e7 >= 0.0;
     } else {
-        local_20 = false;
+        local_21 = false;
     }
-    bool _e11 = local_20;
+    bool _e11 = local_21;
     return _e11;
 }
 
@@ -707,12 +713,12 @@ metal::float2 transmittance_coords(
 ) {
     float _e2 = air_bottom(frame);
     float _e3 = air_top(frame);
-    float h_8 = metal::sqrt(metal::max((_e3 - _e2) * (_e3 + _e2), 0.0));
+    float h_9 = metal::sqrt(metal::max((_e3 - _e2) * (_e3 + _e2), 0.0));
     float rho = metal::sqrt(metal::max((r_7 - _e2) * (r_7 + _e2), 0.0));
     float _e16 = distance_to_top(r_7, mu_5, frame);
     float d_min = _e3 - r_7;
-    float d_max = rho + h_8;
-    return metal::float2((_e16 - d_min) / metal::max(d_max - d_min, 0.000001), rho / h_8);
+    float d_max = rho + h_9;
+    return metal::float2((_e16 - d_min) / metal::max(d_max - d_min, 0.000001), rho / h_9);
 }
 
 metal::float2 transmittance_r_mu(
@@ -722,17 +728,17 @@ metal::float2 transmittance_r_mu(
     float mu_6 = 1.0;
     float _e1 = air_bottom(frame);
     float _e2 = air_top(frame);
-    float h_9 = metal::sqrt(metal::max((_e2 - _e1) * (_e2 + _e1), 0.0));
-    float rho_1 = h_9 * x_4.y;
-    float r_13 = metal::sqrt((rho_1 * rho_1) + (_e1 * _e1));
-    float d_min_1 = _e2 - r_13;
-    float d_max_1 = rho_1 + h_9;
-    float d_17 = d_min_1 + (x_4.x * (d_max_1 - d_min_1));
-    if (d_17 > 0.0) {
-        mu_6 = metal::clamp((((h_9 * h_9) - (rho_1 * rho_1)) - (d_17 * d_17)) / ((2.0 * r_13) * d_17), -1.0, 1.0);
+    float h_10 = metal::sqrt(metal::max((_e2 - _e1) * (_e2 + _e1), 0.0));
+    float rho_1 = h_10 * x_4.y;
+    float r_14 = metal::sqrt((rho_1 * rho_1) + (_e1 * _e1));
+    float d_min_1 = _e2 - r_14;
+    float d_max_1 = rho_1 + h_10;
+    float d_19 = d_min_1 + (x_4.x * (d_max_1 - d_min_1));
+    if (d_19 > 0.0) {
+        mu_6 = metal::clamp((((h_10 * h_10) - (rho_1 * rho_1)) - (d_19 * d_19)) / ((2.0 * r_14) * d_19), -1.0, 1.0);
     }
     float _e37 = mu_6;
-    return metal::float2(r_13, _e37);
+    return metal::float2(r_14, _e37);
 }
 
 metal::float3 transmittance_to_top(
@@ -789,16 +795,16 @@ float phase_cornette_shanks_air(
 }
 
 metal::float3 fibonacci_direction(
-    uint k_3,
+    uint k_5,
     uint n_1
 ) {
-    float z_2 = 1.0 - (((2.0 * static_cast<float>(k_3)) + 1.0) / static_cast<float>(n_1));
-    float s_3 = metal::sqrt(metal::max(1.0 - (z_2 * z_2), 0.0));
-    float phi = 2.3999634 * static_cast<float>(k_3);
-    return metal::float3(s_3 * metal::cos(phi), z_2, s_3 * metal::sin(phi));
+    float z_2 = 1.0 - (((2.0 * static_cast<float>(k_5)) + 1.0) / static_cast<float>(n_1));
+    float s_4 = metal::sqrt(metal::max(1.0 - (z_2 * z_2), 0.0));
+    float phi = 2.3999634 * static_cast<float>(k_5);
+    return metal::float3(s_4 * metal::cos(phi), z_2, s_4 * metal::sin(phi));
 }
 
-metal::float3 ground_radiance(
+metal::float3 ground_radiance_sun(
     float mu_s_2,
     constant Frame& frame,
     metal::texture2d<float, metal::access::sample> transmittance_lut_in
@@ -815,88 +821,120 @@ Scattered integrate_air(
     float distance_km,
     uint steps,
     metal::float3 sun,
-    bool ground,
     constant Frame& frame,
     metal::texture2d<float, metal::access::sample> transmittance_lut_in,
     metal::texture2d<float, metal::access::sample> multiscatter_lut_in
 ) {
     metal::float3 radiance_1 = metal::float3(0.0);
-    metal::float3 tau_2 = metal::float3(0.0);
+    metal::float3 tau_3 = metal::float3(0.0);
     float t0_ = 0.0;
-    uint i_6 = 0u;
+    uint i_7 = 0u;
     float cos_theta_7 = metal::dot(d_7, sun);
-    float _e7 = phase_rayleigh(cos_theta_7);
-    float _e11 = frame.air_mie.w;
-    float _e12 = phase_cornette_shanks_air(cos_theta_7, _e11);
+    float _e6 = phase_rayleigh(cos_theta_7);
+    float _e10 = frame.air_mie.w;
+    float _e11 = phase_cornette_shanks_air(cos_theta_7, _e10);
     uint2 loop_bound_2 = uint2(4294967295u);
     bool loop_init_2 = true;
     while(true) {
         if (metal::all(loop_bound_2 == uint2(0u))) { break; }
         loop_bound_2 -= uint2(loop_bound_2.y == 0u, 1u);
         if (!loop_init_2) {
-            uint _e80 = i_6;
-            i_6 = _e80 + 1u;
+            uint _e79 = i_7;
+            i_7 = _e79 + 1u;
         }
         loop_init_2 = false;
-        uint _e23 = i_6;
-        if (_e23 < steps) {
+        uint _e22 = i_7;
+        if (_e22 < steps) {
         } else {
             break;
         }
         {
-            uint _e25 = i_6;
-            float s1_ = static_cast<float>(_e25 + 1u) / static_cast<float>(steps);
+            uint _e24 = i_7;
+            float s1_ = static_cast<float>(_e24 + 1u) / static_cast<float>(steps);
             float t1_ = (distance_km * s1_) * s1_;
-            float _e33 = t0_;
-            float dt_1 = t1_ - _e33;
-            float _e35 = t0_;
-            metal::float3 p_12 = origin + (d_7 * (0.5 * (_e35 + t1_)));
-            float r_14 = metal::length(p_12);
-            metal::float3 up = p_12 / metal::float3(r_14);
-            float mu_s_3 = metal::dot(up, sun);
-            float _e45 = air_bottom(frame);
-            AirSample _e47 = air_at(r_14 - _e45, frame);
-            metal::float3 _e48 = tau_2;
-            metal::float3 t_view = metal::exp(-((_e48 + ((0.5 * _e47.extinction) * dt_1))));
-            metal::float3 _e56 = sun_transmittance(r_14, mu_s_3, frame, transmittance_lut_in);
-            metal::float3 _e57 = multiscatter(r_14, mu_s_3, frame, multiscatter_lut_in);
-            metal::float3 inscatter = (_e56 * ((_e47.rayleigh * _e7) + metal::float3(_e47.mie * _e12))) + (_e57 * (_e47.rayleigh + metal::float3(_e47.mie)));
-            metal::float3 _e71 = radiance_1;
-            radiance_1 = _e71 + ((t_view * inscatter) * dt_1);
-            metal::float3 _e75 = tau_2;
-            tau_2 = _e75 + (_e47.extinction * dt_1);
+            float _e32 = t0_;
+            float dt_1 = t1_ - _e32;
+            float _e34 = t0_;
+            metal::float3 p_12 = origin + (d_7 * (0.5 * (_e34 + t1_)));
+            float r_15 = metal::length(p_12);
+            metal::float3 up = p_12 / metal::float3(r_15);
+            float mu_s_5 = metal::dot(up, sun);
+            float _e44 = air_bottom(frame);
+            AirSample _e46 = air_at(r_15 - _e44, frame);
+            metal::float3 _e47 = tau_3;
+            metal::float3 t_view = metal::exp(-((_e47 + ((0.5 * _e46.extinction) * dt_1))));
+            metal::float3 _e55 = sun_transmittance(r_15, mu_s_5, frame, transmittance_lut_in);
+            metal::float3 _e56 = multiscatter(r_15, mu_s_5, frame, multiscatter_lut_in);
+            metal::float3 inscatter = (_e55 * ((_e46.rayleigh * _e6) + metal::float3(_e46.mie * _e11))) + (_e56 * (_e46.rayleigh + metal::float3(_e46.mie)));
+            metal::float3 _e70 = radiance_1;
+            radiance_1 = _e70 + ((t_view * inscatter) * dt_1);
+            metal::float3 _e74 = tau_3;
+            tau_3 = _e74 + (_e46.extinction * dt_1);
             t0_ = t1_;
         }
     }
-    if (ground) {
-        metal::float3 end_1 = origin + (d_7 * distance_km);
-        metal::float3 _e84 = radiance_1;
-        metal::float3 _e85 = tau_2;
-        metal::float3 _e90 = ground_radiance(metal::dot(metal::normalize(end_1), sun), frame, transmittance_lut_in);
-        radiance_1 = _e84 + (metal::exp(-(_e85)) * _e90);
+    metal::float3 _e81 = radiance_1;
+    metal::float3 _e82 = tau_3;
+    return Scattered {_e81, metal::exp(-(_e82))};
+}
+
+metal::float3 sky_irradiance(
+    float mu_s_3,
+    metal::texture2d<float, metal::access::sample> ground_irradiance_in
+) {
+    metal::float2 x_7 = metal::float2((mu_s_3 * 0.5) + 0.5, 0.0);
+    metal::float4 _e11 = lut_bilinear(ground_irradiance_in, x_7, metal::uint2(64u, 1u));
+    return _e11.xyz;
+}
+
+metal::float3 ground_radiance(
+    float mu_s_4,
+    constant Frame& frame,
+    metal::texture2d<float, metal::access::sample> transmittance_lut_in,
+    metal::texture2d<float, metal::access::sample> ground_irradiance_in
+) {
+    metal::float3 _e1 = ground_radiance_sun(mu_s_4, frame, transmittance_lut_in);
+    float _e5 = frame.air_misc.z;
+    metal::float3 _e8 = sky_irradiance(mu_s_4, ground_irradiance_in);
+    return _e1 + ((_e5 / PI) * _e8);
+}
+
+metal::float3 with_ground(
+    Scattered s,
+    metal::float3 origin_1,
+    metal::float3 d_8,
+    float distance_km_1,
+    metal::float3 sun_1,
+    bool ground,
+    constant Frame& frame,
+    metal::texture2d<float, metal::access::sample> transmittance_lut_in,
+    metal::texture2d<float, metal::access::sample> ground_irradiance_in
+) {
+    if (!(ground)) {
+        return s.radiance;
     }
-    metal::float3 _e93 = radiance_1;
-    metal::float3 _e94 = tau_2;
-    return Scattered {_e93, metal::exp(-(_e94))};
+    metal::float3 end_1 = origin_1 + (d_8 * distance_km_1);
+    metal::float3 _e14 = ground_radiance(metal::dot(metal::normalize(end_1), sun_1), frame, transmittance_lut_in, ground_irradiance_in);
+    return s.radiance + (s.transmittance * _e14);
 }
 
 metal::float2 air_ray_end(
-    metal::float3 origin_1,
-    metal::float3 d_8,
+    metal::float3 origin_2,
+    metal::float3 d_9,
     constant Frame& frame
 ) {
-    float r_15 = metal::length(origin_1);
-    float mu_8 = metal::dot(origin_1, d_8) / r_15;
-    bool _e5 = meets_ground(r_15, mu_8, frame);
+    float r_16 = metal::length(origin_2);
+    float mu_8 = metal::dot(origin_2, d_9) / r_16;
+    bool _e5 = meets_ground(r_16, mu_8, frame);
     if (_e5) {
-        float _e6 = distance_to_ground(r_15, mu_8, frame);
+        float _e6 = distance_to_ground(r_16, mu_8, frame);
         return metal::float2(_e6, 1.0);
     }
     float _e9 = air_top(frame);
-    if (r_15 > _e9) {
+    if (r_16 > _e9) {
         return metal::float2(0.0, 0.0);
     }
-    float _e14 = distance_to_top(r_15, mu_8, frame);
+    float _e14 = distance_to_top(r_16, mu_8, frame);
     return metal::float2(_e14, 0.0);
 }
 
@@ -944,28 +982,28 @@ float sun_azimuth(
     constant Frame& frame
 ) {
     metal::float4 _e2 = frame.sun_direction;
-    metal::float3 s_4 = _e2.xyz;
-    return metal::atan2(s_4.z, s_4.x);
+    metal::float3 s_5 = _e2.xyz;
+    return metal::atan2(s_5.z, s_5.x);
 }
 
 metal::float3 sky_view(
-    metal::float3 d_9,
+    metal::float3 d_10,
     constant Frame& frame,
     metal::texture2d<float, metal::access::sample> sky_view_in
 ) {
     float delta = {};
     metal::float3 _e1 = camera_air_origin(frame);
-    float elevation_1 = metal::asin(metal::clamp(d_9.y, -1.0, 1.0));
+    float elevation_1 = metal::asin(metal::clamp(d_10.y, -1.0, 1.0));
     float _e10 = sun_azimuth(frame);
-    delta = metal::atan2(d_9.z, d_9.x) - _e10;
+    delta = metal::atan2(d_10.z, d_10.x) - _e10;
     float _e13 = delta;
     float _e15 = delta;
     delta = metal::abs(_e13 - (6.2831855 * metal::rint(_e15 / 6.2831855)));
     float _e22 = delta;
     float _e26 = horizon_elevation(_e1.y, frame);
     float _e27 = sky_view_v(elevation_1, _e26);
-    metal::float2 x_7 = metal::float2(_e22 / PI, _e27);
-    metal::float4 _e31 = lut_bilinear(sky_view_in, x_7, SKY_VIEW_SIZE);
+    metal::float2 x_8 = metal::float2(_e22 / PI, _e27);
+    metal::float4 _e31 = lut_bilinear(sky_view_in, x_8, SKY_VIEW_SIZE);
     return _e31.xyz;
 }
 
@@ -1017,10 +1055,10 @@ metal::float4 aerial(
     metal::uint2 c0_1 = metal::min(naga_f2u32(metal::floor(f_2)), metal::uint2(31u));
     metal::uint2 c1_1 = metal::min(c0_1 + metal::uint2(1u), metal::uint2(31u));
     metal::float2 w_4 = f_2 - static_cast<metal::float2>(c0_1);
-    float s_5 = metal::clamp((depth_m * 0.001) / AERIAL_SLICE_KM, 0.0, 32.0);
-    uint z1_ = metal::min(naga_f2u32(metal::ceil(s_5)), AERIAL_SLICES);
+    float s_6 = metal::clamp((depth_m * 0.001) / AERIAL_SLICE_KM, 0.0, 32.0);
+    uint z1_ = metal::min(naga_f2u32(metal::ceil(s_6)), AERIAL_SLICES);
     uint z0_ = (z1_ > 0u) ? (z1_ - 1u) : 0u;
-    float ws = s_5 - static_cast<float>(z0_);
+    float ws = s_6 - static_cast<float>(z0_);
     if (z0_ > 0u) {
         metal::float4 _e64 = aerial_texel(c0_1, c1_1, w_4, z0_ - 1u, aerial_in);
         near = _e64;
@@ -1045,9 +1083,9 @@ metal::float3 sun_through_air(
     }
     float _e10 = frame.atmosphere.x;
     metal::float3 q_6 = metal::float3(rel.x, rel.y + _e10, rel.z) * 0.001;
-    float r_16 = metal::length(q_6);
+    float r_17 = metal::length(q_6);
     metal::float4 _e21 = frame.sun_direction;
-    metal::float3 _e24 = sun_transmittance(r_16, metal::dot(q_6 / metal::float3(r_16), _e21.xyz), frame, transmittance_lut_in);
+    metal::float3 _e24 = sun_transmittance(r_17, metal::dot(q_6 / metal::float3(r_17), _e21.xyz), frame, transmittance_lut_in);
     return _e24;
 }
 
@@ -1076,36 +1114,36 @@ uint layer_at(
     float alt_8,
     constant Frame& frame
 ) {
-    uint i_7 = 0u;
-    bool local_21 = {};
+    uint i_8 = 0u;
+    bool local_22 = {};
     uint2 loop_bound_3 = uint2(4294967295u);
     bool loop_init_3 = true;
     while(true) {
         if (metal::all(loop_bound_3 == uint2(0u))) { break; }
         loop_bound_3 -= uint2(loop_bound_3.y == 0u, 1u);
         if (!loop_init_3) {
-            uint _e19 = i_7;
-            i_7 = _e19 + 1u;
+            uint _e19 = i_8;
+            i_8 = _e19 + 1u;
         }
         loop_init_3 = false;
-        uint _e3 = i_7;
+        uint _e3 = i_8;
         uint _e4 = layer_count(frame);
         if (_e3 < _e4) {
         } else {
             break;
         }
         {
-            uint _e6 = i_7;
+            uint _e6 = i_8;
             Layer _e7 = cloud_layer(_e6, frame);
             float _e8 = layer_height(_e7, alt_8);
             if (_e8 >= 0.0) {
-                local_21 = _e8 <= 1.0;
+                local_22 = _e8 <= 1.0;
             } else {
-                local_21 = false;
+                local_22 = false;
             }
-            bool _e16 = local_21;
+            bool _e16 = local_22;
             if (_e16) {
-                uint _e17 = i_7;
+                uint _e17 = i_8;
                 return _e17;
             }
         }
@@ -1180,7 +1218,7 @@ float layer_density(
     metal::float3 p_4,
     float alt_9,
     Layer l_3,
-    thread Counters& counters_2,
+    thread Counters& counters_3,
     constant Frame& frame,
     metal::texture3d<float, metal::access::sample> shape_tex,
     metal::texture3d<float, metal::access::sample> detail_tex,
@@ -1188,33 +1226,33 @@ float layer_density(
     metal::texture2d<float, metal::access::sample> curl_tex,
     metal::sampler noise_sampler
 ) {
-    bool local_22 = {};
     bool local_23 = {};
+    bool local_24 = {};
     float base = {};
     float density = {};
-    bool local_24 = {};
     bool local_25 = {};
+    bool local_26 = {};
     metal::float3 detail_pos = {};
     float _e4 = layer_height(l_3, alt_9);
     if (!((_e4 < 0.0))) {
-        local_22 = _e4 > 1.0;
-    } else {
-        local_22 = true;
-    }
-    bool _e13 = local_22;
-    if (_e13) {
-        return 0.0;
-    }
-    uint _e16 = counters_2.density;
-    counters_2.density = _e16 + 1u;
-    Weather _e19 = sample_weather(p_4, l_3, frame, weather_tex, noise_sampler);
-    float _e21 = height_signal(_e4, _e19.cloud_type, frame);
-    if (!((_e19.coverage <= 0.0))) {
-        local_23 = _e21 <= 0.0;
+        local_23 = _e4 > 1.0;
     } else {
         local_23 = true;
     }
-    bool _e31 = local_23;
+    bool _e13 = local_23;
+    if (_e13) {
+        return 0.0;
+    }
+    uint _e16 = counters_3.density;
+    counters_3.density = _e16 + 1u;
+    Weather _e19 = sample_weather(p_4, l_3, frame, weather_tex, noise_sampler);
+    float _e21 = height_signal(_e4, _e19.cloud_type, frame);
+    if (!((_e19.coverage <= 0.0))) {
+        local_24 = _e21 <= 0.0;
+    } else {
+        local_24 = true;
+    }
+    bool _e31 = local_24;
     if (_e31) {
         return 0.0;
     }
@@ -1224,9 +1262,9 @@ float layer_density(
     float _e51 = frame.wind_offsets0_.z;
     float _e57 = frame.wind_offsets0_.w;
     metal::float3 shape_pos = metal::float3(p_4.x - _e51, alt_9, p_4.z - _e57);
-    metal::float4 s_6 = shape_tex.sample(noise_sampler, shape_pos / period, metal::level(0.0));
-    float low_fbm = ((s_6.y * 0.625) + (s_6.z * 0.25)) + (s_6.w * 0.125);
-    float _e82 = remap(s_6.x, low_fbm - 1.0, 1.0, 0.0, 1.0);
+    metal::float4 s_7 = shape_tex.sample(noise_sampler, shape_pos / period, metal::level(0.0));
+    float low_fbm = ((s_7.y * 0.625) + (s_7.z * 0.25)) + (s_7.w * 0.125);
+    float _e82 = remap(s_7.x, low_fbm - 1.0, 1.0, 0.0, 1.0);
     float _e83 = saturate(_e82);
     base = _e83 * _e21;
     float _e86 = base;
@@ -1242,21 +1280,21 @@ float layer_density(
     float strength = frame.erosion.x;
     float threshold = frame.erosion.y;
     if (DETAIL) {
-        local_24 = strength > 0.0;
-    } else {
-        local_24 = false;
-    }
-    bool _e117 = local_24;
-    if (_e117) {
-        float _e120 = base;
-        local_25 = _e120 < threshold;
+        local_25 = strength > 0.0;
     } else {
         local_25 = false;
     }
-    bool _e123 = local_25;
+    bool _e117 = local_25;
+    if (_e117) {
+        float _e120 = base;
+        local_26 = _e120 < threshold;
+    } else {
+        local_26 = false;
+    }
+    bool _e123 = local_26;
     if (_e123) {
-        uint _e125 = counters_2.detail;
-        counters_2.detail = _e125 + 1u;
+        uint _e125 = counters_3.detail;
+        counters_3.detail = _e125 + 1u;
         detail_pos = metal::float3(p_4.x, alt_9, p_4.z);
         if (CURL) {
             metal::float4 _e136 = frame.wind_offsets1_;
@@ -1299,7 +1337,7 @@ float layer_density(
 float cloud_density(
     metal::float3 p_5,
     float alt_10,
-    thread Counters& counters_3,
+    thread Counters& counters_4,
     constant Frame& frame,
     metal::texture3d<float, metal::access::sample> shape_tex,
     metal::texture3d<float, metal::access::sample> detail_tex,
@@ -1312,7 +1350,7 @@ float cloud_density(
         return 0.0;
     }
     Layer _e7 = cloud_layer(_e3, frame);
-    float _e8 = layer_density(p_5, alt_10, _e7, counters_3, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+    float _e8 = layer_density(p_5, alt_10, _e7, counters_4, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
     return _e8;
 }
 
@@ -1366,7 +1404,7 @@ float sun_optical_depth(
     metal::float3 rel_1,
     metal::float3 p_6,
     Layer l_4,
-    thread Counters& counters_4,
+    thread Counters& counters_5,
     constant Frame& frame,
     metal::texture3d<float, metal::access::sample> shape_tex,
     metal::texture3d<float, metal::access::sample> detail_tex,
@@ -1376,15 +1414,15 @@ float sun_optical_depth(
 ) {
     float seg = {};
     float dist = 0.0;
-    float tau_3 = 0.0;
-    uint i_8 = 0u;
-    bool local_26 = {};
-    uint j_1 = 0u;
+    float tau_4 = 0.0;
+    uint i_9 = 0u;
     bool local_27 = {};
+    uint j_1 = 0u;
     bool local_28 = {};
     bool local_29 = {};
+    bool local_30 = {};
     metal::float4 _e6 = frame.sun_direction;
-    metal::float3 sun_1 = _e6.xyz;
+    metal::float3 sun_2 = _e6.xyz;
     float _e11 = frame.extinction.x;
     float _e15 = frame.extinction.y;
     float sigma_t_1 = _e11 + _e15;
@@ -1398,11 +1436,11 @@ float sun_optical_depth(
         if (metal::all(loop_bound_4 == uint2(0u))) { break; }
         loop_bound_4 -= uint2(loop_bound_4.y == 0u, 1u);
         if (!loop_init_4) {
-            uint _e73 = i_8;
-            i_8 = _e73 + 1u;
+            uint _e73 = i_9;
+            i_9 = _e73 + 1u;
         }
         loop_init_4 = false;
-        uint _e36 = i_8;
+        uint _e36 = i_9;
         if (_e36 < steps_2) {
         } else {
             break;
@@ -1410,24 +1448,24 @@ float sun_optical_depth(
         {
             float _e38 = dist;
             float _e39 = seg;
-            float s_7 = _e38 + (0.5 * _e39);
-            metal::float3 q_7 = rel_1 + (sun_1 * s_7);
+            float s_8 = _e38 + (0.5 * _e39);
+            metal::float3 q_7 = rel_1 + (sun_2 * s_8);
             float _e45 = altitude_of(q_7, frame);
             if (!((_e45 > l_4.top))) {
-                local_26 = _e45 < l_4.bottom;
+                local_27 = _e45 < l_4.bottom;
             } else {
-                local_26 = true;
+                local_27 = true;
             }
-            bool _e54 = local_26;
+            bool _e54 = local_27;
             if (_e54) {
                 break;
             }
-            uint _e56 = counters_4.light;
-            counters_4.light = _e56 + 1u;
-            float _e59 = tau_3;
-            float _e62 = layer_density(p_6 + (sun_1 * s_7), _e45, l_4, counters_4, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+            uint _e56 = counters_5.light;
+            counters_5.light = _e56 + 1u;
+            float _e59 = tau_4;
+            float _e62 = layer_density(p_6 + (sun_2 * s_8), _e45, l_4, counters_5, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
             float _e64 = seg;
-            tau_3 = _e59 + ((_e62 * sigma_t_1) * _e64);
+            tau_4 = _e59 + ((_e62 * sigma_t_1) * _e64);
             float _e67 = dist;
             float _e68 = seg;
             dist = _e67 + _e68;
@@ -1458,56 +1496,56 @@ float sun_optical_depth(
             if (_e82.bottom <= l_4.top) {
                 continue;
             }
-            Roots _e87 = ray_shell_from(rel_1, _e75, sun_1, _e82.bottom, frame);
-            Roots _e89 = ray_shell_from(rel_1, _e75, sun_1, _e82.top, frame);
+            Roots _e87 = ray_shell_from(rel_1, _e75, sun_2, _e82.bottom, frame);
+            Roots _e89 = ray_shell_from(rel_1, _e75, sun_2, _e82.top, frame);
             if (!(!(_e87.hit))) {
-                local_27 = !(_e89.hit);
-            } else {
-                local_27 = true;
-            }
-            bool _e98 = local_27;
-            if (!(_e98)) {
-                local_28 = !((_e89.t1_ > _e87.t1_));
+                local_28 = !(_e89.hit);
             } else {
                 local_28 = true;
             }
-            bool _e107 = local_28;
-            if (!(_e107)) {
-                local_29 = _e87.t1_ <= 0.0;
+            bool _e98 = local_28;
+            if (!(_e98)) {
+                local_29 = !((_e89.t1_ > _e87.t1_));
             } else {
                 local_29 = true;
             }
-            bool _e115 = local_29;
+            bool _e107 = local_29;
+            if (!(_e107)) {
+                local_30 = _e87.t1_ <= 0.0;
+            } else {
+                local_30 = true;
+            }
+            bool _e115 = local_30;
             if (_e115) {
                 continue;
             }
-            float s_8 = 0.5 * (_e87.t1_ + _e89.t1_);
-            uint _e122 = counters_4.light;
-            counters_4.light = _e122 + 1u;
-            float _e125 = tau_3;
-            float _e130 = altitude_of(rel_1 + (sun_1 * s_8), frame);
-            float _e131 = layer_density(p_6 + (sun_1 * s_8), _e130, _e82, counters_4, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
-            tau_3 = _e125 + ((_e131 * sigma_t_1) * (_e89.t1_ - _e87.t1_));
+            float s_9 = 0.5 * (_e87.t1_ + _e89.t1_);
+            uint _e122 = counters_5.light;
+            counters_5.light = _e122 + 1u;
+            float _e125 = tau_4;
+            float _e130 = altitude_of(rel_1 + (sun_2 * s_9), frame);
+            float _e131 = layer_density(p_6 + (sun_2 * s_9), _e130, _e82, counters_5, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+            tau_4 = _e125 + ((_e131 * sigma_t_1) * (_e89.t1_ - _e87.t1_));
         }
     }
-    float _e141 = tau_3;
+    float _e141 = tau_4;
     return _e141;
 }
 
 float sun_scattering(
     float cos_theta_5,
-    float tau_4,
+    float tau_5,
     constant Frame& frame
 ) {
     float octave_sum = 0.0;
     float ka = 1.0;
     float kb = 1.0;
     float kc = 1.0;
-    uint i_9 = 0u;
+    uint i_10 = 0u;
     float total = {};
     float a_8 = frame.multiple_scattering.x;
     float b_8 = frame.multiple_scattering.y;
-    float c_7 = frame.multiple_scattering.z;
+    float c_8 = frame.multiple_scattering.z;
     uint _e17 = frame.misc.x;
     uint octaves = metal::min(_e17, MAX_OCTAVES);
     uint2 loop_bound_6 = uint2(4294967295u);
@@ -1516,11 +1554,11 @@ float sun_scattering(
         if (metal::all(loop_bound_6 == uint2(0u))) { break; }
         loop_bound_6 -= uint2(loop_bound_6.y == 0u, 1u);
         if (!loop_init_6) {
-            uint _e50 = i_9;
-            i_9 = _e50 + 1u;
+            uint _e50 = i_10;
+            i_10 = _e50 + 1u;
         }
         loop_init_6 = false;
-        uint _e30 = i_9;
+        uint _e30 = i_10;
         if (_e30 < octaves) {
         } else {
             break;
@@ -1531,25 +1569,25 @@ float sun_scattering(
             float _e34 = kb;
             kb = _e34 * b_8;
             float _e36 = kc;
-            kc = _e36 * c_7;
+            kc = _e36 * c_8;
             float _e38 = octave_sum;
             float _e39 = ka;
             float _e40 = kc;
             float _e41 = phase(cos_theta_5, _e40, frame);
             float _e43 = kb;
-            octave_sum = _e38 + ((_e39 * _e41) * metal::exp(-(_e43) * tau_4));
+            octave_sum = _e38 + ((_e39 * _e41) * metal::exp(-(_e43) * tau_5));
         }
     }
     float _e55 = frame.sun_direction.y;
     float _e56 = saturate(_e55);
     float _e58 = phase(cos_theta_5, 1.0, frame);
     float _e62 = octave_sum;
-    total = (_e58 * metal::exp(-(tau_4))) + (_e56 * _e62);
+    total = (_e58 * metal::exp(-(tau_5))) + (_e56 * _e62);
     uint _e69 = frame.modes.w;
     if ((_e69 & FLAG_BEER_POWDER) != 0u) {
         float _e74 = total;
         float _e78 = frame.phase.w;
-        total = _e74 * (1.0 - metal::exp(-(_e78) * tau_4));
+        total = _e74 * (1.0 - metal::exp(-(_e78) * tau_5));
     }
     float _e85 = total;
     return _e85;
@@ -1589,7 +1627,7 @@ metal::float3 scattered_light(
     float density_1,
     metal::float3 view,
     Layer l_5,
-    thread Counters& counters_5,
+    thread Counters& counters_6,
     constant Frame& frame,
     metal::texture2d<float, metal::access::sample> transmittance_lut_in,
     metal::texture2d<float, metal::access::sample> sky_ambient_in,
@@ -1600,21 +1638,21 @@ metal::float3 scattered_light(
     metal::sampler noise_sampler
 ) {
     metal::float3 sun_light = metal::float3(0.0);
-    float tau_5 = 0.0;
+    float tau_6 = 0.0;
     metal::float4 _e9 = frame.sun_direction;
-    metal::float3 sun_2 = _e9.xyz;
+    metal::float3 sun_3 = _e9.xyz;
     float _e11 = layer_height(l_5, alt_12);
     float _e12 = saturate(_e11);
-    bool _e16 = hits_ground(rel_2, alt_12, sun_2, frame);
+    bool _e16 = hits_ground(rel_2, alt_12, sun_3, frame);
     if (!(_e16)) {
         if (LIGHT_MARCH) {
-            float _e21 = sun_optical_depth(rel_2, p_7, l_5, counters_5, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
-            tau_5 = _e21;
+            float _e21 = sun_optical_depth(rel_2, p_7, l_5, counters_6, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+            tau_6 = _e21;
         }
         metal::float4 _e24 = frame.sun_illuminance;
         metal::float3 _e26 = sun_through_air(rel_2, frame, transmittance_lut_in);
-        float _e29 = tau_5;
-        float _e30 = sun_scattering(metal::dot(view, sun_2), _e29, frame);
+        float _e29 = tau_6;
+        float _e30 = sun_scattering(metal::dot(view, sun_3), _e29, frame);
         sun_light = (_e24.xyz * _e26) * _e30;
     }
     Weather _e32 = sample_weather(p_7, l_5, frame, weather_tex, noise_sampler);
@@ -1626,9 +1664,60 @@ metal::float3 scattered_light(
     return ((_e48 * density_1) * (_e50 + _e51)) * _e44;
 }
 
+metal::float3 shadow_ground_point(
+    metal::uint2 c_2,
+    constant Frame& frame
+) {
+    metal::float2 xz_1 = (((static_cast<metal::float2>(c_2) / metal::float2(127.0)) * 2.0) - metal::float2(1.0)) * SHADOW_HALF_EXTENT;
+    float rp_4 = frame.atmosphere.x;
+    float s2_ = metal::dot(xz_1, xz_1);
+    float y_1 = -(s2_) / (metal::sqrt(metal::max((rp_4 * rp_4) - s2_, 0.0)) + rp_4);
+    return metal::float3(xz_1.x, y_1, xz_1.y);
+}
+
+float ground_shadow(
+    metal::float3 rel_3,
+    metal::texture2d<float, metal::access::sample> cloud_shadow_in
+) {
+    float edge = metal::max(metal::abs(rel_3.x), metal::abs(rel_3.z)) / SHADOW_HALF_EXTENT;
+    if (edge >= 1.0) {
+        return 1.0;
+    }
+    metal::float2 x_9 = (rel_3.xz / metal::float2(40000.0)) + metal::float2(0.5);
+    metal::float4 _e21 = lut_bilinear(cloud_shadow_in, x_9, metal::uint2(128u));
+    float t_5 = _e21.x;
+    return metal::mix(t_5, 1.0, metal::smoothstep(SHADOW_FADE_START, 1.0, edge));
+}
+
+metal::float3 ground_shadow_loss(
+    metal::float3 view_1,
+    float r_12,
+    constant Frame& frame,
+    metal::texture2d<float, metal::access::sample> transmittance_lut_in,
+    metal::texture2d<float, metal::access::sample> cloud_shadow_in
+) {
+    float _e3 = distance_to_ground(r_12, view_1.y, frame);
+    float _e7 = frame.camera_position.y;
+    float cam_alt = metal::max(_e7, 0.0);
+    float _e17 = ground_shadow((view_1 * (_e3 * 1000.0)) + metal::float3(0.0, cam_alt, 0.0), cloud_shadow_in);
+    if (_e17 >= 1.0) {
+        return metal::float3(0.0);
+    }
+    float _e22 = air_bottom(frame);
+    float mu_g = metal::clamp(((r_12 * view_1.y) + _e3) / _e22, -1.0, 1.0);
+    float _e33 = frame.sun_direction.y;
+    metal::float4 _e37 = frame.sun_direction;
+    float mu_s_6 = metal::clamp(((r_12 * _e33) + (_e3 * metal::dot(view_1, _e37.xyz))) / _e22, -1.0, 1.0);
+    metal::float3 _e47 = transmittance_to_top(_e22, -(mu_g), frame, transmittance_lut_in);
+    metal::float3 _e50 = transmittance_to_top(r_12, -(view_1.y), frame, transmittance_lut_in);
+    metal::float3 t_view_1 = metal::min(_e47 / metal::max(_e50, metal::float3(0.00000000000000000001)), metal::float3(1.0));
+    metal::float3 _e61 = ground_radiance_sun(mu_s_6, frame, transmittance_lut_in);
+    return ((1.0 - _e17) * t_view_1) * _e61;
+}
+
 float empty_cell_exit(
     metal::float3 p_8,
-    metal::float3 d_10,
+    metal::float3 d_11,
     constant Frame& frame,
     metal::texture2d<float, metal::access::sample> occupancy_in
 ) {
@@ -1646,22 +1735,22 @@ float empty_cell_exit(
     float _e40 = frame.periods.x;
     float cell_m = _e40 / 64.0;
     metal::float2 inside = (uv_4 - static_cast<metal::float2>(cell_1)) * cell_m;
-    if (d_10.x > 0.000001) {
+    if (d_11.x > 0.000001) {
         float _e50 = exit;
-        exit = metal::min(_e50, (cell_m - inside.x) / d_10.x);
+        exit = metal::min(_e50, (cell_m - inside.x) / d_11.x);
     } else {
-        if (d_10.x < -0.000001) {
+        if (d_11.x < -0.000001) {
             float _e59 = exit;
-            exit = metal::min(_e59, inside.x / -(d_10.x));
+            exit = metal::min(_e59, inside.x / -(d_11.x));
         }
     }
-    if (d_10.z > 0.000001) {
+    if (d_11.z > 0.000001) {
         float _e68 = exit;
-        exit = metal::min(_e68, (cell_m - inside.y) / d_10.z);
+        exit = metal::min(_e68, (cell_m - inside.y) / d_11.z);
     } else {
-        if (d_10.z < -0.000001) {
+        if (d_11.z < -0.000001) {
             float _e77 = exit;
-            exit = metal::min(_e77, inside.y / -(d_10.z));
+            exit = metal::min(_e77, inside.y / -(d_11.z));
         }
     }
     float _e83 = exit;
@@ -1673,13 +1762,13 @@ void count(
     uint value,
     device Stats& stats
 ) {
-    bool local_30 = {};
+    bool local_31 = {};
     if (STATS) {
-        local_30 = value != 0u;
+        local_31 = value != 0u;
     } else {
-        local_30 = false;
+        local_31 = false;
     }
-    bool _e8 = local_30;
+    bool _e8 = local_31;
     if (_e8) {
         uint _e12 = metal::atomic_fetch_add_explicit(&stats.counters.inner[index_1], value, metal::memory_order_relaxed);
         return;
@@ -1698,8 +1787,8 @@ metal::float3 step_integral(
     if (_e6 == INTEGRATION_RIEMANN) {
         return source * dt;
     }
-    float x_8 = sigma_t * dt;
-    float f_3 = (x_8 < 0.001) ? (1.0 - (0.5 * x_8)) : ((1.0 - metal::exp(-(x_8))) / x_8);
+    float x_10 = sigma_t * dt;
+    float f_3 = (x_10 < 0.001) ? (1.0 - (0.5 * x_10)) : ((1.0 - metal::exp(-(x_10))) / x_10);
     return source * (dt * f_3);
 }
 
@@ -1713,8 +1802,8 @@ float start_offset(
 ) {
     uint _e4 = frame.modes.w;
     bool jitter_1 = (_e4 & FLAG_JITTER) != 0u;
-    uint k_10 = frame.temporal.x;
-    if (k_10 <= 1u) {
+    uint k_12 = frame.temporal.x;
+    if (k_12 <= 1u) {
         uint _e18 = frame.misc.y;
         float _e19 = hash_unit(pixel_3, _e18);
         return jitter_1 ? _e19 : 0.5;
@@ -1722,17 +1811,17 @@ float start_offset(
     float _e23 = hash_unit(pixel_3, 0u);
     float base_2 = jitter_1 ? _e23 : 0.5;
     uint _e29 = frame.misc.y;
-    float _e32 = van_der_corput(naga_div(_e29, k_10 * k_10));
+    float _e32 = van_der_corput(naga_div(_e29, k_12 * k_12));
     return metal::fract(base_2 + _e32);
 }
 
 bool march_layer(
-    metal::float3 view_1,
+    metal::float3 view_2,
     Interval span_1,
     Layer l_6,
     float jitter,
     thread MarchState& state,
-    thread Counters& counters_6,
+    thread Counters& counters_7,
     constant Frame& frame,
     metal::texture2d<float, metal::access::sample> transmittance_lut_in,
     metal::texture2d<float, metal::access::sample> sky_ambient_in,
@@ -1744,11 +1833,11 @@ bool march_layer(
     metal::texture2d<float, metal::access::sample> occupancy_in
 ) {
     uint steps_1 = {};
-    uint i_10 = 0u;
+    uint i_11 = 0u;
     uint stride = 1u;
     uint empty = 0u;
-    bool local_31 = {};
-    float cam_alt = frame.camera_position.y;
+    bool local_32 = {};
+    float cam_alt_1 = frame.camera_position.y;
     metal::float4 _e12 = frame.camera_position;
     metal::float2 cam_xz = _e12.xz;
     uint _e17 = frame.counts.z;
@@ -1771,74 +1860,74 @@ bool march_layer(
     while(true) {
         if (metal::all(loop_bound_7 == uint2(0u))) { break; }
         loop_bound_7 -= uint2(loop_bound_7.y == 0u, 1u);
-        uint _e71 = i_10;
+        uint _e71 = i_11;
         uint _e72 = steps_1;
         if (_e71 >= _e72) {
             break;
         }
-        uint _e75 = counters_6.view_steps;
-        counters_6.view_steps = _e75 + 1u;
-        uint _e79 = i_10;
-        float t_5 = span_1.start + ((static_cast<float>(_e79) + jitter) * dt_2);
-        metal::float3 rel_5 = (view_1 * t_5) + metal::float3(0.0, cam_alt, 0.0);
-        metal::float3 p_13 = metal::float3(rel_5.x + cam_xz.x, rel_5.y, rel_5.z + cam_xz.y);
+        uint _e75 = counters_7.view_steps;
+        counters_7.view_steps = _e75 + 1u;
+        uint _e79 = i_11;
+        float t_6 = span_1.start + ((static_cast<float>(_e79) + jitter) * dt_2);
+        metal::float3 rel_6 = (view_2 * t_6) + metal::float3(0.0, cam_alt_1, 0.0);
+        metal::float3 p_13 = metal::float3(rel_6.x + cam_xz.x, rel_6.y, rel_6.z + cam_xz.y);
         if (empty_skip) {
-            float _e97 = empty_cell_exit(p_13, view_1, frame, occupancy_in);
+            float _e97 = empty_cell_exit(p_13, view_2, frame, occupancy_in);
             if (_e97 > 0.0) {
                 uint _e106 = steps_1;
-                uint next_1 = naga_f2u32(metal::clamp(metal::ceil((((t_5 + _e97) - span_1.start) / dt_2) - jitter), 0.0, static_cast<float>(_e106)));
-                uint _e111 = i_10;
-                i_10 = metal::max(_e111 + 1u, next_1);
+                uint next_1 = naga_f2u32(metal::clamp(metal::ceil((((t_6 + _e97) - span_1.start) / dt_2) - jitter), 0.0, static_cast<float>(_e106)));
+                uint _e111 = i_11;
+                i_11 = metal::max(_e111 + 1u, next_1);
                 continue;
             }
         }
-        float _e115 = altitude_of(rel_5, frame);
-        float _e116 = layer_density(p_13, _e115, l_6, counters_6, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+        float _e115 = altitude_of(rel_6, frame);
+        float _e116 = layer_density(p_13, _e115, l_6, counters_7, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
         if (_e116 <= 0.0) {
             uint _e119 = empty;
             empty = _e119 + 1u;
             if (dynamic_step) {
                 uint _e124 = empty;
-                local_31 = _e124 >= 8u;
+                local_32 = _e124 >= 8u;
             } else {
-                local_31 = false;
+                local_32 = false;
             }
-            bool _e128 = local_31;
+            bool _e128 = local_32;
             if (_e128) {
                 stride = 2u;
             }
-            uint _e130 = i_10;
+            uint _e130 = i_11;
             uint _e131 = stride;
-            i_10 = _e130 + _e131;
+            i_11 = _e130 + _e131;
             continue;
         }
         uint _e133 = stride;
         if (_e133 > 1u) {
-            uint _e136 = i_10;
+            uint _e136 = i_11;
             uint _e137 = stride;
-            i_10 = _e136 - (_e137 - 1u);
+            i_11 = _e136 - (_e137 - 1u);
             stride = 1u;
             empty = 0u;
             continue;
         }
         empty = 0u;
         float sigma_t_2 = sigma_e * _e116;
-        metal::float3 _e145 = scattered_light(rel_5, p_13, _e115, _e116, view_1, l_6, counters_6, frame, transmittance_lut_in, sky_ambient_in, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+        metal::float3 _e145 = scattered_light(rel_6, p_13, _e115, _e116, view_2, l_6, counters_7, frame, transmittance_lut_in, sky_ambient_in, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
         float transmittance_1 = state.transmittance;
         metal::float3 _e149 = state.radiance;
         metal::float3 _e150 = step_integral(_e145, sigma_t_2, dt_2, frame);
         state.radiance = _e149 + (transmittance_1 * _e150);
         float step_t = metal::exp(-(sigma_t_2) * dt_2);
         float _e157 = state.depth_sum;
-        state.depth_sum = _e157 + ((t_5 * transmittance_1) * (1.0 - step_t));
+        state.depth_sum = _e157 + ((t_6 * transmittance_1) * (1.0 - step_t));
         state.transmittance = transmittance_1 * step_t;
         float _e166 = state.transmittance;
         float _e170 = frame.march.w;
         if (_e166 < _e170) {
             return true;
         }
-        uint _e173 = i_10;
-        i_10 = _e173 + 1u;
+        uint _e173 = i_11;
+        i_11 = _e173 + 1u;
     }
     return false;
 }
@@ -1856,25 +1945,26 @@ MarchResult march_pixel(
     metal::texture2d<float, metal::access::sample> occupancy_in,
     device Stats& stats
 ) {
-    Counters counters_7 = Counters {0u, 0u, 0u, 0u};
+    Counters counters_8 = Counters {0u, 0u, 0u, 0u};
     MarchState state_1 = MarchState {metal::float3(0.0), 1.0, 0.0};
     bool marched = false;
     bool ground_1 = false;
     float last_start = -1.0;
     uint last_index = NO_LAYER;
-    uint k_4 = 0u;
+    bool exited = false;
+    uint k_6 = 0u;
     uint next = {};
     Interval span_2 = {};
-    uint i_11 = {};
-    bool local_32 = {};
+    uint i_12 = {};
     bool local_33 = {};
     bool local_34 = {};
     bool local_35 = {};
     bool local_36 = {};
     bool local_37 = {};
+    bool local_38 = {};
     float depth_1 = 0.0;
     metal::float3 _e1 = view_ray(pixel_4, frame);
-    float cam_alt_1 = frame.camera_position.y;
+    float cam_alt_2 = frame.camera_position.y;
     count(STAT_PIXELS, 1u, stats);
     float _e20 = start_offset(pixel_4, frame);
     uint _e21 = layer_count(frame);
@@ -1884,137 +1974,140 @@ MarchResult march_pixel(
         if (metal::all(loop_bound_8 == uint2(0u))) { break; }
         loop_bound_8 -= uint2(loop_bound_8.y == 0u, 1u);
         if (!loop_init_7) {
-            uint _e116 = k_4;
-            k_4 = _e116 + 1u;
+            uint _e119 = k_6;
+            k_6 = _e119 + 1u;
         }
         loop_init_7 = false;
-        uint _e32 = k_4;
-        if (_e32 < _e21) {
+        uint _e34 = k_6;
+        if (_e34 < _e21) {
         } else {
             break;
         }
         {
             next = NO_LAYER;
             span_2 = Interval {0.0, 0.0, 1u};
-            i_11 = 0u;
+            i_12 = 0u;
             uint2 loop_bound_9 = uint2(4294967295u);
             bool loop_init_8 = true;
             while(true) {
                 if (metal::all(loop_bound_9 == uint2(0u))) { break; }
                 loop_bound_9 -= uint2(loop_bound_9.y == 0u, 1u);
                 if (!loop_init_8) {
-                    uint _e100 = i_11;
-                    i_11 = _e100 + 1u;
+                    uint _e102 = i_12;
+                    i_12 = _e102 + 1u;
                 }
                 loop_init_8 = false;
-                uint _e43 = i_11;
-                if (_e43 < _e21) {
+                uint _e45 = i_12;
+                if (_e45 < _e21) {
                 } else {
                     break;
                 }
                 {
-                    uint _e45 = i_11;
-                    Layer _e46 = cloud_layer(_e45, frame);
-                    Interval _e47 = layer_interval(cam_alt_1, _e1, _e46, frame);
-                    bool _e48 = ground_1;
-                    if (!(_e48)) {
-                        local_32 = _e47.kind == RAY_HITS_GROUND;
-                    } else {
-                        local_32 = true;
-                    }
-                    bool _e56 = local_32;
-                    ground_1 = _e56;
-                    float _e58 = last_start;
-                    if (!((_e47.start > _e58))) {
-                        float _e64 = last_start;
-                        if (_e47.start == _e64) {
-                            uint _e68 = i_11;
-                            uint _e69 = last_index;
-                            local_34 = _e68 > _e69;
-                        } else {
-                            local_34 = false;
-                        }
-                        bool _e72 = local_34;
-                        local_33 = _e72;
+                    uint _e47 = i_12;
+                    Layer _e48 = cloud_layer(_e47, frame);
+                    Interval _e49 = layer_interval(cam_alt_2, _e1, _e48, frame);
+                    bool _e50 = ground_1;
+                    if (!(_e50)) {
+                        local_33 = _e49.kind == RAY_HITS_GROUND;
                     } else {
                         local_33 = true;
                     }
-                    bool after = local_33;
-                    if (_e47.kind == RAY_MARCH) {
-                        local_35 = after;
-                    } else {
-                        local_35 = false;
-                    }
-                    bool _e81 = local_35;
-                    if (_e81) {
-                        uint _e84 = next;
-                        if (!((_e84 == NO_LAYER))) {
-                            float _e92 = span_2.start;
-                            local_37 = _e47.start < _e92;
+                    bool _e58 = local_33;
+                    ground_1 = _e58;
+                    float _e60 = last_start;
+                    if (!((_e49.start > _e60))) {
+                        float _e66 = last_start;
+                        if (_e49.start == _e66) {
+                            uint _e70 = i_12;
+                            uint _e71 = last_index;
+                            local_35 = _e70 > _e71;
                         } else {
-                            local_37 = true;
+                            local_35 = false;
                         }
-                        bool _e95 = local_37;
-                        local_36 = _e95;
+                        bool _e74 = local_35;
+                        local_34 = _e74;
+                    } else {
+                        local_34 = true;
+                    }
+                    bool after = local_34;
+                    if (_e49.kind == RAY_MARCH) {
+                        local_36 = after;
                     } else {
                         local_36 = false;
                     }
-                    bool _e97 = local_36;
-                    if (_e97) {
-                        uint _e98 = i_11;
-                        next = _e98;
-                        span_2 = _e47;
+                    bool _e83 = local_36;
+                    if (_e83) {
+                        uint _e86 = next;
+                        if (!((_e86 == NO_LAYER))) {
+                            float _e94 = span_2.start;
+                            local_38 = _e49.start < _e94;
+                        } else {
+                            local_38 = true;
+                        }
+                        bool _e97 = local_38;
+                        local_37 = _e97;
+                    } else {
+                        local_37 = false;
+                    }
+                    bool _e99 = local_37;
+                    if (_e99) {
+                        uint _e100 = i_12;
+                        next = _e100;
+                        span_2 = _e49;
                     }
                 }
             }
-            uint _e102 = next;
-            if (_e102 == NO_LAYER) {
+            uint _e104 = next;
+            if (_e104 == NO_LAYER) {
                 break;
             }
             marched = true;
-            float _e107 = span_2.start;
-            last_start = _e107;
-            uint _e108 = next;
-            last_index = _e108;
-            Interval _e109 = span_2;
+            float _e109 = span_2.start;
+            last_start = _e109;
             uint _e110 = next;
-            Layer _e111 = cloud_layer(_e110, frame);
-            bool _e112 = march_layer(_e1, _e109, _e111, _e20, state_1, counters_7, frame, transmittance_lut_in, sky_ambient_in, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler, occupancy_in);
-            if (_e112) {
+            last_index = _e110;
+            Interval _e111 = span_2;
+            uint _e112 = next;
+            Layer _e113 = cloud_layer(_e112, frame);
+            bool _e114 = march_layer(_e1, _e111, _e113, _e20, state_1, counters_8, frame, transmittance_lut_in, sky_ambient_in, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler, occupancy_in);
+            if (_e114) {
                 count(STAT_EXIT_TRANSMITTANCE, 1u, stats);
+                exited = true;
                 break;
             }
         }
     }
-    bool _e118 = marched;
-    if (_e118) {
+    bool _e121 = marched;
+    if (_e121) {
         count(STAT_MARCHED, 1u, stats);
     } else {
-        bool _e121 = ground_1;
-        if (_e121) {
+        bool _e124 = ground_1;
+        if (_e124) {
             count(STAT_EXIT_GROUND, 1u, stats);
         } else {
             count(STAT_EXIT_MISSED, 1u, stats);
         }
     }
-    uint _e128 = counters_7.view_steps;
-    count(STAT_VIEW_STEPS, _e128, stats);
-    uint _e131 = counters_7.density;
-    count(STAT_DENSITY, _e131, stats);
-    uint _e134 = counters_7.detail;
-    count(STAT_DETAIL, _e134, stats);
-    uint _e137 = counters_7.light;
-    count(STAT_LIGHT, _e137, stats);
-    float _e141 = state_1.transmittance;
-    if (_e141 < 1.0) {
-        float _e145 = state_1.depth_sum;
-        float _e147 = state_1.transmittance;
-        depth_1 = _e145 / (1.0 - _e147);
+    uint _e131 = counters_8.view_steps;
+    count(STAT_VIEW_STEPS, _e131, stats);
+    uint _e134 = counters_8.density;
+    count(STAT_DENSITY, _e134, stats);
+    uint _e137 = counters_8.detail;
+    count(STAT_DETAIL, _e137, stats);
+    uint _e140 = counters_8.light;
+    count(STAT_LIGHT, _e140, stats);
+    float _e144 = state_1.transmittance;
+    if (_e144 < 1.0) {
+        float _e148 = state_1.depth_sum;
+        float _e150 = state_1.transmittance;
+        depth_1 = _e148 / (1.0 - _e150);
     }
-    metal::float3 _e152 = state_1.radiance;
-    float _e154 = state_1.transmittance;
-    float _e155 = depth_1;
-    return MarchResult {_e152, _e154, _e155};
+    float _e155 = state_1.transmittance;
+    bool _e156 = exited;
+    float transmittance_2 = _e156 ? 0.0 : _e155;
+    metal::float3 _e160 = state_1.radiance;
+    float _e161 = depth_1;
+    return MarchResult {_e160, transmittance_2, _e161};
 }
 
 metal::uint2 bayer2_(
@@ -2029,13 +2122,13 @@ uint naga_mod(uint lhs, uint rhs) {
 
 metal::uint2 block_offset(
     uint f,
-    uint k_5
+    uint k_7
 ) {
-    if (k_5 == 2u) {
+    if (k_7 == 2u) {
         metal::uint2 _e6 = bayer2_(naga_mod(f, 4u));
         return _e6;
     }
-    if (k_5 == 4u) {
+    if (k_7 == 4u) {
         uint b_9 = naga_mod(f, 16u);
         metal::uint2 _e13 = bayer2_(b_9 >> 2u);
         metal::uint2 _e17 = bayer2_(b_9 & 3u);
@@ -2049,36 +2142,36 @@ metal::float2 reproject(
     float depth_2,
     constant Frame& frame
 ) {
-    bool local_38 = {};
     bool local_39 = {};
     bool local_40 = {};
+    bool local_41 = {};
     metal::float3 dir = {};
     metal::float4 _e4 = frame.previous_position;
     metal::float4 _e7 = frame.camera_position;
     if (metal::all(_e4 == _e7)) {
         metal::float4 _e14 = frame.previous_forward;
         metal::float4 _e17 = frame.camera_forward;
-        local_38 = metal::all(_e14 == _e17);
-    } else {
-        local_38 = false;
-    }
-    bool _e21 = local_38;
-    if (_e21) {
-        metal::float4 _e26 = frame.previous_right;
-        metal::float4 _e29 = frame.camera_right;
-        local_39 = metal::all(_e26 == _e29);
+        local_39 = metal::all(_e14 == _e17);
     } else {
         local_39 = false;
     }
-    bool _e33 = local_39;
-    if (_e33) {
-        metal::float4 _e38 = frame.previous_up;
-        metal::float4 _e41 = frame.camera_up;
-        local_40 = metal::all(_e38 == _e41);
+    bool _e21 = local_39;
+    if (_e21) {
+        metal::float4 _e26 = frame.previous_right;
+        metal::float4 _e29 = frame.camera_right;
+        local_40 = metal::all(_e26 == _e29);
     } else {
         local_40 = false;
     }
-    bool same = local_40;
+    bool _e33 = local_40;
+    if (_e33) {
+        metal::float4 _e38 = frame.previous_up;
+        metal::float4 _e41 = frame.camera_up;
+        local_41 = metal::all(_e38 == _e41);
+    } else {
+        local_41 = false;
+    }
+    bool same = local_41;
     if (same) {
         return static_cast<metal::float2>(pixel_5);
     }
@@ -2110,15 +2203,15 @@ bool on_screen(
     metal::float2 q,
     constant Frame& frame
 ) {
-    bool local_41 = {};
+    bool local_42 = {};
     metal::uint4 _e3 = frame.counts;
     metal::float2 size_2 = static_cast<metal::float2>(_e3.xy);
     if (metal::all(q >= metal::float2(-0.5))) {
-        local_41 = metal::all(q <= (size_2 - metal::float2(0.5)));
+        local_42 = metal::all(q <= (size_2 - metal::float2(0.5)));
     } else {
-        local_41 = false;
+        local_42 = false;
     }
-    bool _e18 = local_41;
+    bool _e18 = local_42;
     return _e18;
 }
 
@@ -2137,15 +2230,15 @@ metal::float4 history_row(
 ) {
     metal::uint4 _e5 = frame.counts;
     metal::int2 size_3 = static_cast<metal::int2>(_e5.xy);
-    int y_1 = metal::clamp(as_type<int>(as_type<uint>(base_1.y) + as_type<uint>(dy)), 0, as_type<int>(as_type<uint>(size_3.y) - as_type<uint>(1)));
+    int y_2 = metal::clamp(as_type<int>(as_type<uint>(base_1.y) + as_type<uint>(dy)), 0, as_type<int>(as_type<uint>(size_3.y) - as_type<uint>(1)));
     int x0_ = metal::clamp(as_type<int>(as_type<uint>(base_1.x) - as_type<uint>(1)), 0, as_type<int>(as_type<uint>(size_3.x) - as_type<uint>(1)));
     int x1_ = metal::clamp(base_1.x, 0, as_type<int>(as_type<uint>(size_3.x) - as_type<uint>(1)));
     int x2_ = metal::clamp(as_type<int>(as_type<uint>(base_1.x) + as_type<uint>(1)), 0, as_type<int>(as_type<uint>(size_3.x) - as_type<uint>(1)));
     int x3_ = metal::clamp(as_type<int>(as_type<uint>(base_1.x) + as_type<uint>(2)), 0, as_type<int>(as_type<uint>(size_3.x) - as_type<uint>(1)));
-    metal::float4 _e48 = history_in.read(metal::uint2(metal::int2(x0_, y_1)), 0);
-    metal::float4 _e54 = history_in.read(metal::uint2(metal::int2(x1_, y_1)), 0);
-    metal::float4 _e61 = history_in.read(metal::uint2(metal::int2(x2_, y_1)), 0);
-    metal::float4 _e68 = history_in.read(metal::uint2(metal::int2(x3_, y_1)), 0);
+    metal::float4 _e48 = history_in.read(metal::uint2(metal::int2(x0_, y_2)), 0);
+    metal::float4 _e54 = history_in.read(metal::uint2(metal::int2(x1_, y_2)), 0);
+    metal::float4 _e61 = history_in.read(metal::uint2(metal::int2(x2_, y_2)), 0);
+    metal::float4 _e68 = history_in.read(metal::uint2(metal::int2(x3_, y_2)), 0);
     return (((_e48 * wx.x) + (_e54 * wx.y)) + (_e61 * wx.z)) + (_e68 * wx.w);
 }
 
@@ -2160,18 +2253,18 @@ metal::float4 history_at(
 ) {
     metal::uint4 _e3 = frame.counts;
     metal::int2 size_4 = static_cast<metal::int2>(_e3.xy);
-    metal::float2 c_8 = metal::clamp(q_1, metal::float2(0.0), static_cast<metal::float2>(as_type<metal::int2>(as_type<metal::uint2>(size_4) - as_type<metal::uint2>(metal::int2(1)))));
-    metal::int2 base_3 = naga_f2i32(metal::floor(c_8));
-    metal::float2 f_4 = c_8 - static_cast<metal::float2>(base_3);
+    metal::float2 c_9 = metal::clamp(q_1, metal::float2(0.0), static_cast<metal::float2>(as_type<metal::int2>(as_type<metal::uint2>(size_4) - as_type<metal::uint2>(metal::int2(1)))));
+    metal::int2 base_3 = naga_f2i32(metal::floor(c_9));
+    metal::float2 f_4 = c_9 - static_cast<metal::float2>(base_3);
     metal::float4 _e18 = catmull_rom(f_4.x);
     metal::float4 _e20 = catmull_rom(f_4.y);
     metal::float4 _e22 = history_row(base_3, -1, _e18, frame, history_in);
     metal::float4 _e26 = history_row(base_3, 0, _e18, frame, history_in);
     metal::float4 _e31 = history_row(base_3, 1, _e18, frame, history_in);
     metal::float4 _e36 = history_row(base_3, 2, _e18, frame, history_in);
-    metal::float4 sum_4 = (((_e22 * _e20.x) + (_e26 * _e20.y)) + (_e31 * _e20.z)) + (_e36 * _e20.w);
-    float _e45 = saturate(sum_4.w);
-    return metal::float4(metal::max(sum_4.xyz, metal::float3(0.0)), _e45);
+    metal::float4 sum_5 = (((_e22 * _e20.x) + (_e26 * _e20.y)) + (_e31 * _e20.z)) + (_e36 * _e20.w);
+    float _e45 = saturate(sum_5.w);
+    return metal::float4(metal::max(sum_5.xyz, metal::float3(0.0)), _e45);
 }
 
 metal::float4 history_nearest(
@@ -2203,32 +2296,32 @@ metal::uint2 naga_div(metal::uint2 lhs, metal::uint2 rhs) {
 }
 
 bool in_blocks(
-    metal::uint2 id_18,
+    metal::uint2 id_20,
     constant Frame& frame
 ) {
-    uint k_11 = frame.temporal.x;
+    uint k_13 = frame.temporal.x;
     metal::uint4 _e7 = frame.counts;
-    return metal::all(id_18 < naga_div((_e7.xy + metal::uint2(k_11)) - metal::uint2(1u), metal::uint2(k_11)));
+    return metal::all(id_20 < naga_div((_e7.xy + metal::uint2(k_13)) - metal::uint2(1u), metal::uint2(k_13)));
 }
 
 metal::uint2 sparse_pixel(
-    metal::uint2 id_19,
+    metal::uint2 id_21,
     constant Frame& frame
 ) {
-    uint k_12 = frame.temporal.x;
+    uint k_14 = frame.temporal.x;
     uint _e9 = frame.misc.y;
-    metal::uint2 _e10 = block_offset(_e9, k_12);
-    return (id_19 * k_12) + _e10;
+    metal::uint2 _e10 = block_offset(_e9, k_14);
+    return (id_21 * k_14) + _e10;
 }
 
 void store_sparse(
-    metal::uint2 id_20,
-    MarchResult r_12,
+    metal::uint2 id_22,
+    MarchResult r_13,
     metal::texture2d<float, metal::access::write> cloud_out,
     metal::texture2d<float, metal::access::write> depth_out
 ) {
-    cloud_out.write(metal::float4(r_12.radiance, r_12.transmittance), metal::uint2(id_20));
-    depth_out.write(metal::float4(r_12.depth, 0.0, 0.0, 0.0), metal::uint2(id_20));
+    cloud_out.write(metal::float4(r_13.radiance, r_13.transmittance), metal::uint2(id_22));
+    depth_out.write(metal::float4(r_13.depth, 0.0, 0.0, 0.0), metal::uint2(id_22));
     return;
 }
 
@@ -2247,8 +2340,8 @@ float rng_next(
 ) {
     uint _e1 = rng_1;
     rng_1 = (_e1 * 747796405u) + 2891336453u;
-    uint s_9 = rng_1;
-    uint word_1 = ((s_9 >> ((s_9 >> 28u) + 4u)) ^ s_9) * 277803737u;
+    uint s_10 = rng_1;
+    uint word_1 = ((s_10 >> ((s_10 >> 28u) + 4u)) ^ s_10) * 277803737u;
     return static_cast<float>(((word_1 >> 22u) ^ word_1) >> 8u) * 0.000000059604645;
 }
 
@@ -2263,46 +2356,46 @@ float rng_exponential(
 Segments layer_segments(
     metal::float3 p_9,
     float alt_13,
-    metal::float3 d_11,
+    metal::float3 d_12,
     constant Frame& frame
 ) {
-    Segments s = Segments {metal::float2(0.0), metal::float2(0.0), 0u};
-    bool local_42 = {};
+    Segments s_1 = Segments {metal::float2(0.0), metal::float2(0.0), 0u};
+    bool local_43 = {};
     metal::float2 a_1 = metal::float2(0.0);
     metal::float2 b_1 = metal::float2(0.0);
     uint n_2 = 0u;
-    bool local_43 = {};
     bool local_44 = {};
     bool local_45 = {};
     bool local_46 = {};
+    bool local_47 = {};
     metal::float2 _e10 = layers_span(frame);
     float bottom_2 = _e10.x;
-    Roots _e12 = ray_shell_from(p_9, alt_13, d_11, bottom_2, frame);
-    Roots _e14 = ray_shell_from(p_9, alt_13, d_11, _e10.y, frame);
-    bool _e15 = hits_ground(p_9, alt_13, d_11, frame);
+    Roots _e12 = ray_shell_from(p_9, alt_13, d_12, bottom_2, frame);
+    Roots _e14 = ray_shell_from(p_9, alt_13, d_12, _e10.y, frame);
+    bool _e15 = hits_ground(p_9, alt_13, d_12, frame);
     if (!(!(_e14.hit))) {
-        local_42 = _e14.t1_ <= 0.0;
+        local_43 = _e14.t1_ <= 0.0;
     } else {
-        local_42 = true;
+        local_43 = true;
     }
-    bool _e25 = local_42;
+    bool _e25 = local_43;
     if (_e25) {
-        Segments _e26 = s;
+        Segments _e26 = s_1;
         return _e26;
     }
     float entry = metal::max(_e14.t0_, 0.0);
     if (_e12.hit) {
-        local_43 = _e12.t0_ > 0.0;
-    } else {
-        local_43 = false;
-    }
-    bool _e45 = local_43;
-    if (_e45) {
-        local_44 = alt_13 >= bottom_2;
+        local_44 = _e12.t0_ > 0.0;
     } else {
         local_44 = false;
     }
-    bool _e50 = local_44;
+    bool _e45 = local_44;
+    if (_e45) {
+        local_45 = alt_13 >= bottom_2;
+    } else {
+        local_45 = false;
+    }
+    bool _e50 = local_45;
     if (_e50) {
         uint _e51 = n_2;
         a_1[_e51] = entry;
@@ -2311,11 +2404,11 @@ Segments layer_segments(
         uint _e56 = n_2;
         n_2 = _e56 + static_cast<uint>(_e12.t0_ > entry);
         if (!(_e15)) {
-            local_45 = _e14.t1_ > _e12.t1_;
+            local_46 = _e14.t1_ > _e12.t1_;
         } else {
-            local_45 = false;
+            local_46 = false;
         }
-        bool _e68 = local_45;
+        bool _e68 = local_46;
         if (_e68) {
             uint _e69 = n_2;
             a_1[_e69] = metal::max(_e12.t1_, entry);
@@ -2327,11 +2420,11 @@ Segments layer_segments(
     } else {
         if (alt_13 < bottom_2) {
             if (!(_e15)) {
-                local_46 = _e12.hit;
+                local_47 = _e12.hit;
             } else {
-                local_46 = false;
+                local_47 = false;
             }
-            bool _e85 = local_46;
+            bool _e85 = local_47;
             if (_e85) {
                 a_1.x = metal::max(_e12.t1_, 0.0);
                 b_1.x = _e14.t1_;
@@ -2344,18 +2437,18 @@ Segments layer_segments(
         }
     }
     metal::float2 _e98 = a_1;
-    s.a = _e98;
+    s_1.a = _e98;
     metal::float2 _e100 = b_1;
-    s.b = _e100;
+    s_1.b = _e100;
     uint _e102 = n_2;
-    s.count = _e102;
-    Segments _e103 = s;
+    s_1.count = _e102;
+    Segments _e103 = s_1;
     return _e103;
 }
 
 float density_at(
-    metal::float3 rel_3,
-    thread Counters& counters_8,
+    metal::float3 rel_4,
+    thread Counters& counters_9,
     constant Frame& frame,
     metal::texture3d<float, metal::access::sample> shape_tex,
     metal::texture3d<float, metal::access::sample> detail_tex,
@@ -2365,14 +2458,14 @@ float density_at(
 ) {
     float _e6 = frame.camera_position.x;
     float _e13 = frame.camera_position.z;
-    metal::float3 p_16 = metal::float3(rel_3.x + _e6, rel_3.y, rel_3.z + _e13);
-    float _e16 = altitude_of(rel_3, frame);
-    float _e17 = cloud_density(p_16, _e16, counters_8, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+    metal::float3 p_16 = metal::float3(rel_4.x + _e6, rel_4.y, rel_4.z + _e13);
+    float _e16 = altitude_of(rel_4, frame);
+    float _e17 = cloud_density(p_16, _e16, counters_9, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
     return _e17;
 }
 
 float empty_cell_skip(
-    metal::float3 origin_2,
+    metal::float3 origin_3,
     metal::float3 dir_1,
     float t_2,
     constant Frame& frame,
@@ -2382,10 +2475,10 @@ float empty_cell_skip(
     if (_e3 > 1u) {
         return 0.0;
     }
-    metal::float3 rel_6 = origin_2 + (dir_1 * t_2);
+    metal::float3 rel_7 = origin_3 + (dir_1 * t_2);
     float _e13 = frame.camera_position.x;
     float _e20 = frame.camera_position.z;
-    metal::float3 p_17 = metal::float3(rel_6.x + _e13, rel_6.y, rel_6.z + _e20);
+    metal::float3 p_17 = metal::float3(rel_7.x + _e13, rel_7.y, rel_7.z + _e20);
     float _e23 = empty_cell_exit(p_17, dir_1, frame, occupancy_in);
     if (_e23 <= 0.0) {
         return 0.0;
@@ -2397,25 +2490,25 @@ float density_max(
     constant Frame& frame
 ) {
     float m_1 = 0.0;
-    uint i_12 = 0u;
+    uint i_13 = 0u;
     uint2 loop_bound_10 = uint2(4294967295u);
     bool loop_init_9 = true;
     while(true) {
         if (metal::all(loop_bound_10 == uint2(0u))) { break; }
         loop_bound_10 -= uint2(loop_bound_10.y == 0u, 1u);
         if (!loop_init_9) {
-            uint _e17 = i_12;
-            i_12 = _e17 + 1u;
+            uint _e17 = i_13;
+            i_13 = _e17 + 1u;
         }
         loop_init_9 = false;
-        uint _e4 = i_12;
+        uint _e4 = i_13;
         uint _e5 = layer_count(frame);
         if (_e4 < _e5) {
         } else {
             break;
         }
         {
-            uint _e7 = i_12;
+            uint _e7 = i_13;
             Layer _e8 = cloud_layer(_e7, frame);
             float _e9 = m_1;
             m_1 = metal::max(_e9, _e8.density * (1.0 + _e8.precipitation));
@@ -2426,11 +2519,11 @@ float density_max(
 }
 
 float free_flight(
-    metal::float3 origin_3,
+    metal::float3 origin_4,
     metal::float3 dir_2,
     Segments segs,
     thread uint& rng_3,
-    thread Counters& counters_9,
+    thread Counters& counters_10,
     constant Frame& frame,
     metal::texture3d<float, metal::access::sample> shape_tex,
     metal::texture3d<float, metal::access::sample> detail_tex,
@@ -2439,7 +2532,7 @@ float free_flight(
     metal::sampler noise_sampler,
     metal::texture2d<float, metal::access::sample> occupancy_in
 ) {
-    uint k_6 = 0u;
+    uint k_8 = 0u;
     float t_3 = {};
     float _e5 = density_max(frame);
     float _e9 = frame.extinction.x;
@@ -2454,29 +2547,29 @@ float free_flight(
         if (metal::all(loop_bound_11 == uint2(0u))) { break; }
         loop_bound_11 -= uint2(loop_bound_11.y == 0u, 1u);
         if (!loop_init_10) {
-            uint _e60 = k_6;
-            k_6 = _e60 + 1u;
+            uint _e60 = k_8;
+            k_8 = _e60 + 1u;
         }
         loop_init_10 = false;
-        uint _e21 = k_6;
+        uint _e21 = k_8;
         if (_e21 < segs.count) {
         } else {
             break;
         }
         {
-            uint _e25 = k_6;
+            uint _e25 = k_8;
             t_3 = segs.a[_e25];
             uint2 loop_bound_12 = uint2(4294967295u);
             while(true) {
                 if (metal::all(loop_bound_12 == uint2(0u))) { break; }
                 loop_bound_12 -= uint2(loop_bound_12.y == 0u, 1u);
                 float _e28 = t_3;
-                float _e29 = empty_cell_skip(origin_3, dir_2, _e28, frame, occupancy_in);
+                float _e29 = empty_cell_skip(origin_4, dir_2, _e28, frame, occupancy_in);
                 if (_e29 > 0.0) {
                     float _e32 = t_3;
                     t_3 = _e32 + _e29;
                     float _e34 = t_3;
-                    uint _e36 = k_6;
+                    uint _e36 = k_8;
                     if (_e34 >= segs.b[_e36]) {
                         break;
                     }
@@ -2486,14 +2579,14 @@ float free_flight(
                 float _e40 = rng_exponential(rng_3, majorant);
                 t_3 = _e39 + _e40;
                 float _e42 = t_3;
-                uint _e44 = k_6;
+                uint _e44 = k_8;
                 if (_e42 >= segs.b[_e44]) {
                     break;
                 }
-                uint _e48 = counters_9.view_steps;
-                counters_9.view_steps = _e48 + 1u;
+                uint _e48 = counters_10.view_steps;
+                counters_10.view_steps = _e48 + 1u;
                 float _e51 = t_3;
-                float _e54 = density_at(origin_3 + (dir_2 * _e51), counters_9, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+                float _e54 = density_at(origin_4 + (dir_2 * _e51), counters_10, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
                 float _e55 = rng_next(rng_3);
                 if ((_e55 * _e5) < _e54) {
                     float _e58 = t_3;
@@ -2506,11 +2599,11 @@ float free_flight(
 }
 
 float transmittance_along(
-    metal::float3 origin_4,
+    metal::float3 origin_5,
     metal::float3 dir_3,
     Segments segs_1,
     thread uint& rng_4,
-    thread Counters& counters_10,
+    thread Counters& counters_11,
     constant Frame& frame,
     metal::texture3d<float, metal::access::sample> shape_tex,
     metal::texture3d<float, metal::access::sample> detail_tex,
@@ -2520,7 +2613,7 @@ float transmittance_along(
     metal::texture2d<float, metal::access::sample> occupancy_in
 ) {
     float tr = 1.0;
-    uint k_7 = 0u;
+    uint k_9 = 0u;
     float t_4 = {};
     float _e8 = frame.extinction.x;
     float _e12 = frame.extinction.y;
@@ -2536,29 +2629,29 @@ float transmittance_along(
         if (metal::all(loop_bound_13 == uint2(0u))) { break; }
         loop_bound_13 -= uint2(loop_bound_13.y == 0u, 1u);
         if (!loop_init_11) {
-            uint _e78 = k_7;
-            k_7 = _e78 + 1u;
+            uint _e78 = k_9;
+            k_9 = _e78 + 1u;
         }
         loop_init_11 = false;
-        uint _e23 = k_7;
+        uint _e23 = k_9;
         if (_e23 < segs_1.count) {
         } else {
             break;
         }
         {
-            uint _e27 = k_7;
+            uint _e27 = k_9;
             t_4 = segs_1.a[_e27];
             uint2 loop_bound_14 = uint2(4294967295u);
             while(true) {
                 if (metal::all(loop_bound_14 == uint2(0u))) { break; }
                 loop_bound_14 -= uint2(loop_bound_14.y == 0u, 1u);
                 float _e30 = t_4;
-                float _e31 = empty_cell_skip(origin_4, dir_3, _e30, frame, occupancy_in);
+                float _e31 = empty_cell_skip(origin_5, dir_3, _e30, frame, occupancy_in);
                 if (_e31 > 0.0) {
                     float _e34 = t_4;
                     t_4 = _e34 + _e31;
                     float _e36 = t_4;
-                    uint _e38 = k_7;
+                    uint _e38 = k_9;
                     if (_e36 >= segs_1.b[_e38]) {
                         break;
                     }
@@ -2568,14 +2661,14 @@ float transmittance_along(
                 float _e42 = rng_exponential(rng_4, majorant_1);
                 t_4 = _e41 + _e42;
                 float _e44 = t_4;
-                uint _e46 = k_7;
+                uint _e46 = k_9;
                 if (_e44 >= segs_1.b[_e46]) {
                     break;
                 }
-                uint _e50 = counters_10.light;
-                counters_10.light = _e50 + 1u;
+                uint _e50 = counters_11.light;
+                counters_11.light = _e50 + 1u;
                 float _e53 = t_4;
-                float _e56 = density_at(origin_4 + (dir_3 * _e53), counters_10, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+                float _e56 = density_at(origin_5 + (dir_3 * _e53), counters_11, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
                 float _e57 = tr;
                 tr = _e57 * (1.0 - ((sigma_t_3 * _e56) / majorant_1));
                 float _e63 = tr;
@@ -2605,8 +2698,8 @@ float sample_hg_cos(
     if (metal::abs(g_4) < 0.0001) {
         return 1.0 - (2.0 * u);
     }
-    float s_10 = (1.0 - (g_4 * g_4)) / ((1.0 - g_4) + ((2.0 * g_4) * u));
-    return metal::clamp(((1.0 + (g_4 * g_4)) - (s_10 * s_10)) / (2.0 * g_4), -1.0, 1.0);
+    float s_11 = (1.0 - (g_4 * g_4)) / ((1.0 - g_4) + ((2.0 * g_4) * u));
+    return metal::clamp(((1.0 + (g_4 * g_4)) - (s_11 * s_11)) / (2.0 * g_4), -1.0, 1.0);
 }
 
 PhaseSample sample_phase(
@@ -2651,10 +2744,10 @@ PhaseSample sample_phase(
     float sign = (dir_4.z >= 0.0) ? 1.0 : -1.0;
     float a_9 = -1.0 / (sign + dir_4.z);
     float bb = (dir_4.x * dir_4.y) * a_9;
-    metal::float3 t_6 = metal::float3(1.0 + (((sign * dir_4.x) * dir_4.x) * a_9), sign * bb, -(sign) * dir_4.x);
+    metal::float3 t_7 = metal::float3(1.0 + (((sign * dir_4.x) * dir_4.x) * a_9), sign * bb, -(sign) * dir_4.x);
     metal::float3 b_10 = metal::float3(bb, sign + ((dir_4.y * dir_4.y) * a_9), -(dir_4.y));
     float _e109 = cos_theta_6;
-    metal::float3 w_6 = metal::normalize(((t_6 * (sin_theta * metal::cos(phi_1))) + (b_10 * (sin_theta * metal::sin(phi_1)))) + (dir_4 * _e109));
+    metal::float3 w_6 = metal::normalize(((t_7 * (sin_theta * metal::cos(phi_1))) + (b_10 * (sin_theta * metal::sin(phi_1)))) + (dir_4 * _e109));
     float _e113 = cos_theta_6;
     float _e115 = phase(_e113, 1.0, frame);
     float _e116 = pdf;
@@ -2662,13 +2755,32 @@ PhaseSample sample_phase(
     return PhaseSample {w_6, (_e118 > 0.0) ? (_e115 / _e116) : 0.0};
 }
 
+metal::float3 environment(
+    metal::float3 d_13,
+    float h_6,
+    constant Frame& frame,
+    metal::texture2d<float, metal::access::sample> sky_view_in,
+    metal::texture2d<float, metal::access::sample> sky_ambient_in
+) {
+    bool _e2 = physical_sky(frame);
+    if (_e2) {
+        metal::float3 _e3 = sky_view(d_13, frame, sky_view_in);
+        metal::float4 _e6 = frame.sun_illuminance;
+        float _e12 = frame.ambient_bottom.w;
+        return (_e3 * _e6.xyz) * _e12;
+    }
+    metal::float3 _e14 = ambient(h_6, frame, sky_ambient_in);
+    return _e14;
+}
+
 PathResult trace_path(
-    metal::float3 view_2,
+    metal::float3 view_3,
     Interval span_3,
     thread uint& rng_6,
-    thread Counters& counters_11,
+    thread Counters& counters_12,
     constant Frame& frame,
     metal::texture2d<float, metal::access::sample> transmittance_lut_in,
+    metal::texture2d<float, metal::access::sample> sky_view_in,
     metal::texture2d<float, metal::access::sample> sky_ambient_in,
     metal::texture3d<float, metal::access::sample> shape_tex,
     metal::texture3d<float, metal::access::sample> detail_tex,
@@ -2678,15 +2790,15 @@ PathResult trace_path(
     metal::texture2d<float, metal::access::sample> occupancy_in
 ) {
     PathResult out_2 = PathResult {metal::float3(0.0), 1.0, -1.0};
-    bool local_47 = {};
     bool local_48 = {};
     bool local_49 = {};
+    bool local_50 = {};
     uint max_orders = MAX_PATH_ORDERS;
     metal::float3 pos = {};
     metal::float3 dir_5 = {};
     float throughput = 1.0;
     uint order = 0u;
-    bool local_50 = {};
+    bool local_51 = {};
     if (span_3.kind != RAY_MARCH) {
         PathResult _e13 = out_2;
         return _e13;
@@ -2694,16 +2806,16 @@ PathResult trace_path(
     float _e17 = frame.camera_position.y;
     metal::float3 cam = metal::float3(0.0, _e17, 0.0);
     Segments primary = Segments {metal::float2(span_3.start, 0.0), metal::float2(span_3.start + span_3.length, 0.0), 1u};
-    float _e32 = transmittance_along(cam, view_2, primary, rng_6, counters_11, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler, occupancy_in);
+    float _e32 = transmittance_along(cam, view_3, primary, rng_6, counters_12, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler, occupancy_in);
     out_2.transmittance = _e32;
-    float _e33 = free_flight(cam, view_2, primary, rng_6, counters_11, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler, occupancy_in);
+    float _e33 = free_flight(cam, view_3, primary, rng_6, counters_12, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler, occupancy_in);
     if (_e33 < 0.0) {
         PathResult _e36 = out_2;
         return _e36;
     }
     out_2.depth = _e33;
     metal::float4 _e40 = frame.sun_direction;
-    metal::float3 sun_3 = _e40.xyz;
+    metal::float3 sun_4 = _e40.xyz;
     float _e45 = frame.extinction.x;
     float _e49 = frame.extinction.y;
     float sigma_t_4 = _e45 + _e49;
@@ -2714,30 +2826,30 @@ PathResult trace_path(
         bool _e68 = physical_sky(frame);
         if (!(_e68)) {
             metal::float4 _e74 = frame.ambient_bottom;
-            local_48 = metal::any(_e74.xyz > metal::float3(0.0));
-        } else {
-            local_48 = true;
-        }
-        bool _e81 = local_48;
-        if (!(_e81)) {
-            metal::float4 _e87 = frame.ambient_top;
-            local_49 = metal::any(_e87.xyz > metal::float3(0.0));
+            local_49 = metal::any(_e74.xyz > metal::float3(0.0));
         } else {
             local_49 = true;
         }
-        bool _e94 = local_49;
-        local_47 = _e94;
+        bool _e81 = local_49;
+        if (!(_e81)) {
+            metal::float4 _e87 = frame.ambient_top;
+            local_50 = metal::any(_e87.xyz > metal::float3(0.0));
+        } else {
+            local_50 = true;
+        }
+        bool _e94 = local_50;
+        local_48 = _e94;
     } else {
-        local_47 = false;
+        local_48 = false;
     }
-    bool ambient_on = local_47;
+    bool ambient_on = local_48;
     uint _e102 = frame.misc.z;
     if (_e102 > 0u) {
         uint _e108 = frame.misc.z;
         max_orders = metal::min(_e108, MAX_PATH_ORDERS);
     }
-    pos = cam + (view_2 * _e33);
-    dir_5 = view_2;
+    pos = cam + (view_3 * _e33);
+    dir_5 = view_3;
     uint2 loop_bound_15 = uint2(4294967295u);
     while(true) {
         if (metal::all(loop_bound_15 == uint2(0u))) { break; }
@@ -2750,19 +2862,19 @@ PathResult trace_path(
         float _e125 = altitude_of(_e124, frame);
         float _e126 = height_fraction(_e125, frame);
         metal::float3 _e127 = pos;
-        bool _e128 = hits_ground(_e127, _e125, sun_3, frame);
+        bool _e128 = hits_ground(_e127, _e125, sun_4, frame);
         if (!(_e128)) {
             metal::float3 _e130 = pos;
             metal::float3 _e131 = pos;
-            Segments _e132 = layer_segments(_e131, _e125, sun_3, frame);
-            float _e133 = transmittance_along(_e130, sun_3, _e132, rng_6, counters_11, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler, occupancy_in);
+            Segments _e132 = layer_segments(_e131, _e125, sun_4, frame);
+            float _e133 = transmittance_along(_e130, sun_4, _e132, rng_6, counters_12, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler, occupancy_in);
             metal::float3 _e135 = out_2.radiance;
             metal::float4 _e138 = frame.sun_illuminance;
             metal::float3 _e140 = pos;
             metal::float3 _e141 = sun_through_air(_e140, frame, transmittance_lut_in);
             float _e143 = throughput;
             metal::float3 _e144 = dir_5;
-            float _e147 = phase(metal::dot(_e144, sun_3), 1.0, frame);
+            float _e147 = phase(metal::dot(_e144, sun_4), 1.0, frame);
             out_2.radiance = _e135 + ((_e138.xyz * _e141) * ((_e143 * _e147) * _e133));
         }
         metal::float3 _e152 = dir_5;
@@ -2770,97 +2882,97 @@ PathResult trace_path(
         metal::float3 _e154 = pos;
         metal::float3 _e156 = pos;
         Segments _e158 = layer_segments(_e156, _e125, _e153.dir, frame);
-        float _e159 = free_flight(_e154, _e153.dir, _e158, rng_6, counters_11, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler, occupancy_in);
+        float _e159 = free_flight(_e154, _e153.dir, _e158, rng_6, counters_12, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler, occupancy_in);
         if (_e159 < 0.0) {
             if (ambient_on) {
                 metal::float3 _e163 = out_2.radiance;
-                metal::float3 _e164 = ambient(_e126, frame, sky_ambient_in);
-                float _e165 = throughput;
-                out_2.radiance = _e163 + (_e164 * (_e165 * _e153.weight));
+                metal::float3 _e165 = environment(_e153.dir, _e126, frame, sky_view_in, sky_ambient_in);
+                float _e166 = throughput;
+                out_2.radiance = _e163 + (_e165 * (_e166 * _e153.weight));
             }
             break;
         }
-        uint _e170 = order;
-        uint _e171 = max_orders;
-        if (_e170 >= _e171) {
+        uint _e171 = order;
+        uint _e172 = max_orders;
+        if (_e171 >= _e172) {
             break;
         }
-        float _e173 = throughput;
-        throughput = _e173 * _e153.weight;
+        float _e174 = throughput;
+        throughput = _e174 * _e153.weight;
         dir_5 = _e153.dir;
-        uint _e177 = order;
-        if (_e177 >= 3u) {
-            float _e182 = throughput;
-            local_50 = _e182 < 0.1;
+        uint _e178 = order;
+        if (_e178 >= 3u) {
+            float _e183 = throughput;
+            local_51 = _e183 < 0.1;
         } else {
-            local_50 = false;
+            local_51 = false;
         }
-        bool _e186 = local_50;
-        if (_e186) {
-            float _e187 = rng_next(rng_6);
-            float _e188 = throughput;
-            if (_e187 >= (_e188 / 0.1)) {
+        bool _e187 = local_51;
+        if (_e187) {
+            float _e188 = rng_next(rng_6);
+            float _e189 = throughput;
+            if (_e188 >= (_e189 / 0.1)) {
                 break;
             }
             throughput = 0.1;
         }
-        float _e193 = throughput;
-        if (_e193 <= 0.0) {
+        float _e194 = throughput;
+        if (_e194 <= 0.0) {
             break;
         }
-        metal::float3 _e196 = pos;
-        metal::float3 _e197 = dir_5;
-        pos = _e196 + (_e197 * _e159);
+        metal::float3 _e197 = pos;
+        metal::float3 _e198 = dir_5;
+        pos = _e197 + (_e198 * _e159);
     }
-    PathResult _e200 = out_2;
-    return _e200;
+    PathResult _e201 = out_2;
+    return _e201;
 }
 
 bool camera_still(
     constant Frame& frame
 ) {
-    bool local_51 = {};
     bool local_52 = {};
     bool local_53 = {};
+    bool local_54 = {};
     metal::float4 _e2 = frame.camera_position;
     metal::float4 _e5 = frame.previous_position;
     if (metal::all(_e2 == _e5)) {
         metal::float4 _e12 = frame.camera_forward;
         metal::float4 _e15 = frame.previous_forward;
-        local_51 = metal::all(_e12 == _e15);
-    } else {
-        local_51 = false;
-    }
-    bool _e19 = local_51;
-    if (_e19) {
-        metal::float4 _e24 = frame.camera_right;
-        metal::float4 _e28 = frame.previous_right;
-        local_52 = metal::all(_e24.xyz == _e28.xyz);
+        local_52 = metal::all(_e12 == _e15);
     } else {
         local_52 = false;
     }
-    bool _e33 = local_52;
-    if (_e33) {
-        metal::float4 _e38 = frame.camera_up;
-        metal::float4 _e42 = frame.previous_up;
-        local_53 = metal::all(_e38.xyz == _e42.xyz);
+    bool _e19 = local_52;
+    if (_e19) {
+        metal::float4 _e24 = frame.camera_right;
+        metal::float4 _e28 = frame.previous_right;
+        local_53 = metal::all(_e24.xyz == _e28.xyz);
     } else {
         local_53 = false;
     }
-    bool _e47 = local_53;
+    bool _e33 = local_53;
+    if (_e33) {
+        metal::float4 _e38 = frame.camera_up;
+        metal::float4 _e42 = frame.previous_up;
+        local_54 = metal::all(_e38.xyz == _e42.xyz);
+    } else {
+        local_54 = false;
+    }
+    bool _e47 = local_54;
     return _e47;
 }
 
 float luminance(
-    metal::float3 c_2
+    metal::float3 c_3
 ) {
-    return metal::dot(c_2, metal::float3(0.2126, 0.7152, 0.0722));
+    return metal::dot(c_3, metal::float3(0.2126, 0.7152, 0.0722));
 }
 
 float basic_sun_depth(
-    metal::float3 rel_4,
+    metal::float3 rel_5,
     float alt_14,
-    thread Counters& counters_12,
+    thread Counters& counters_13,
     constant Frame& frame,
     metal::texture3d<float, metal::access::sample> shape_tex,
     metal::texture3d<float, metal::access::sample> detail_tex,
@@ -2868,19 +2980,19 @@ float basic_sun_depth(
     metal::texture2d<float, metal::access::sample> curl_tex,
     metal::sampler noise_sampler
 ) {
-    float tau_6 = 0.0;
-    uint i_13 = 1u;
+    float tau_7 = 0.0;
+    uint i_14 = 1u;
     uint steps_3 = frame.counts.w;
     if (steps_3 == 0u) {
         return 0.0;
     }
     metal::float4 _e12 = frame.sun_direction;
-    metal::float3 sun_4 = _e12.xyz;
-    float rp_4 = frame.atmosphere.x;
+    metal::float3 sun_5 = _e12.xyz;
+    float rp_5 = frame.atmosphere.x;
     float top_2 = frame.atmosphere.z;
     float _e25 = frame.atmosphere.y;
     float thickness = top_2 - _e25;
-    Roots _e39 = solve_sphere(metal::dot(sun_4, metal::float3(rel_4.x, rel_4.y + rp_4, rel_4.z)), (alt_14 - top_2) * ((alt_14 + top_2) + (2.0 * rp_4)));
+    Roots _e39 = solve_sphere(metal::dot(sun_5, metal::float3(rel_5.x, rel_5.y + rp_5, rel_5.z)), (alt_14 - top_2) * ((alt_14 + top_2) + (2.0 * rp_5)));
     float length = metal::min(metal::max(_e39.t1_, 0.0), 3.0 * thickness);
     float dt_3 = length / static_cast<float>(steps_3);
     float _e51 = frame.extinction.x;
@@ -2894,28 +3006,28 @@ float basic_sun_depth(
         if (metal::all(loop_bound_16 == uint2(0u))) { break; }
         loop_bound_16 -= uint2(loop_bound_16.y == 0u, 1u);
         if (!loop_init_12) {
-            uint _e90 = i_13;
-            i_13 = _e90 + 1u;
+            uint _e90 = i_14;
+            i_14 = _e90 + 1u;
         }
         loop_init_12 = false;
-        uint _e65 = i_13;
+        uint _e65 = i_14;
         if (_e65 <= steps_3) {
         } else {
             break;
         }
         {
-            uint _e68 = counters_12.light;
-            counters_12.light = _e68 + 1u;
-            uint _e71 = i_13;
-            metal::float3 q_8 = rel_4 + (sun_4 * (static_cast<float>(_e71) * dt_3));
+            uint _e68 = counters_13.light;
+            counters_13.light = _e68 + 1u;
+            uint _e71 = i_14;
+            metal::float3 q_8 = rel_5 + (sun_5 * (static_cast<float>(_e71) * dt_3));
             metal::float3 p_18 = metal::float3(q_8.x + cam_xz_1.x, q_8.y, q_8.z + cam_xz_1.y);
-            float _e84 = tau_6;
+            float _e84 = tau_7;
             float _e85 = altitude_of(q_8, frame);
-            float _e86 = cloud_density(p_18, _e85, counters_12, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
-            tau_6 = _e84 + ((sigma_t_5 * _e86) * dt_3);
+            float _e86 = cloud_density(p_18, _e85, counters_13, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+            tau_7 = _e84 + ((sigma_t_5 * _e86) * dt_3);
         }
     }
-    float _e93 = tau_6;
+    float _e93 = tau_7;
     return _e93;
 }
 
@@ -2929,18 +3041,18 @@ MarchResult basic_pixel(
     metal::sampler noise_sampler,
     device Stats& stats
 ) {
-    Counters counters_13 = Counters {0u, 0u, 0u, 0u};
+    Counters counters_14 = Counters {0u, 0u, 0u, 0u};
     metal::float3 radiance_2 = metal::float3(0.0);
     float transmittance = 1.0;
     float depth_sum = 0.0;
-    uint i_14 = 0u;
+    uint i_15 = 0u;
     float depth_3 = 0.0;
     metal::float3 _e1 = view_ray(pixel_7, frame);
-    float cam_alt_2 = frame.camera_position.y;
+    float cam_alt_3 = frame.camera_position.y;
     metal::float4 _e8 = frame.camera_position;
     metal::float2 cam_xz_2 = _e8.xz;
     count(STAT_PIXELS, 1u, stats);
-    Interval _e25 = cloud_interval(cam_alt_2, _e1, frame);
+    Interval _e25 = cloud_interval(cam_alt_3, _e1, frame);
     if (_e25.kind == RAY_MISSES_LAYER) {
         count(STAT_EXIT_MISSED, 1u, stats);
     } else {
@@ -2964,28 +3076,28 @@ MarchResult basic_pixel(
                 if (metal::all(loop_bound_17 == uint2(0u))) { break; }
                 loop_bound_17 -= uint2(loop_bound_17.y == 0u, 1u);
                 if (!loop_init_13) {
-                    uint _e131 = i_14;
-                    i_14 = _e131 + 1u;
+                    uint _e131 = i_15;
+                    i_15 = _e131 + 1u;
                 }
                 loop_init_13 = false;
-                uint _e71 = i_14;
+                uint _e71 = i_15;
                 if (_e71 < steps_4) {
                 } else {
                     break;
                 }
                 {
-                    uint _e74 = counters_13.view_steps;
-                    counters_13.view_steps = _e74 + 1u;
-                    uint _e78 = i_14;
-                    float t_7 = _e25.start + (static_cast<float>(_e78) * dt_4);
-                    metal::float3 rel_7 = (_e1 * t_7) + metal::float3(0.0, cam_alt_2, 0.0);
-                    metal::float3 p_19 = metal::float3(rel_7.x + cam_xz_2.x, rel_7.y, rel_7.z + cam_xz_2.y);
-                    float _e95 = altitude_of(rel_7, frame);
-                    float _e96 = cloud_density(p_19, _e95, counters_13, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+                    uint _e74 = counters_14.view_steps;
+                    counters_14.view_steps = _e74 + 1u;
+                    uint _e78 = i_15;
+                    float t_8 = _e25.start + (static_cast<float>(_e78) * dt_4);
+                    metal::float3 rel_8 = (_e1 * t_8) + metal::float3(0.0, cam_alt_3, 0.0);
+                    metal::float3 p_19 = metal::float3(rel_8.x + cam_xz_2.x, rel_8.y, rel_8.z + cam_xz_2.y);
+                    float _e95 = altitude_of(rel_8, frame);
+                    float _e96 = cloud_density(p_19, _e95, counters_14, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
                     if (_e96 <= 0.0) {
                         continue;
                     }
-                    float _e99 = basic_sun_depth(rel_7, _e95, counters_13, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+                    float _e99 = basic_sun_depth(rel_8, _e95, counters_14, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
                     float beer_powder = (2.0 * metal::exp(-(_e99))) * (1.0 - metal::exp(-2.0 * _e99));
                     metal::float3 _e110 = radiance_2;
                     float _e111 = transmittance;
@@ -2993,20 +3105,20 @@ MarchResult basic_pixel(
                     float step_t_1 = metal::exp((-(sigma_t_6) * _e96) * dt_4);
                     float _e122 = depth_sum;
                     float _e123 = transmittance;
-                    depth_sum = _e122 + ((t_7 * _e123) * (1.0 - step_t_1));
+                    depth_sum = _e122 + ((t_8 * _e123) * (1.0 - step_t_1));
                     float _e129 = transmittance;
                     transmittance = _e129 * step_t_1;
                 }
             }
         }
     }
-    uint _e136 = counters_13.view_steps;
+    uint _e136 = counters_14.view_steps;
     count(STAT_VIEW_STEPS, _e136, stats);
-    uint _e139 = counters_13.density;
+    uint _e139 = counters_14.density;
     count(STAT_DENSITY, _e139, stats);
-    uint _e142 = counters_13.detail;
+    uint _e142 = counters_14.detail;
     count(STAT_DETAIL, _e142, stats);
-    uint _e145 = counters_13.light;
+    uint _e145 = counters_14.light;
     count(STAT_LIGHT, _e145, stats);
     float _e148 = transmittance;
     if (_e148 < 1.0) {
@@ -3033,22 +3145,22 @@ float value_noise(
     metal::float2 p_10,
     uint seed
 ) {
-    metal::uint2 i_16 = naga_f2u32(metal::floor(p_10));
+    metal::uint2 i_17 = naga_f2u32(metal::floor(p_10));
     metal::float2 f_5 = metal::fract(p_10);
-    metal::float2 s_11 = (f_5 * f_5) * (metal::float2(3.0) - (2.0 * f_5));
-    uint h_10 = seed * 7919u;
-    float _e17 = atlas_hash(i_16.x + h_10, i_16.y);
-    float _e23 = atlas_hash((i_16.x + 1u) + h_10, i_16.y);
-    float _e29 = atlas_hash(i_16.x + h_10, i_16.y + 1u);
-    float _e37 = atlas_hash((i_16.x + 1u) + h_10, i_16.y + 1u);
-    return metal::mix(metal::mix(_e17, _e23, s_11.x), metal::mix(_e29, _e37, s_11.x), s_11.y);
+    metal::float2 s_12 = (f_5 * f_5) * (metal::float2(3.0) - (2.0 * f_5));
+    uint h_11 = seed * 7919u;
+    float _e17 = atlas_hash(i_17.x + h_11, i_17.y);
+    float _e23 = atlas_hash((i_17.x + 1u) + h_11, i_17.y);
+    float _e29 = atlas_hash(i_17.x + h_11, i_17.y + 1u);
+    float _e37 = atlas_hash((i_17.x + 1u) + h_11, i_17.y + 1u);
+    return metal::mix(metal::mix(_e17, _e23, s_12.x), metal::mix(_e29, _e37, s_12.x), s_12.y);
 }
 
 float value_fbm(
     metal::float2 p_11,
     uint seed_1
 ) {
-    float sum_3 = 0.0;
+    float sum_4 = 0.0;
     float weight = 0.5;
     metal::float2 q_4 = {};
     uint o = 0u;
@@ -3069,19 +3181,19 @@ float value_fbm(
             break;
         }
         {
-            float _e12 = sum_3;
+            float _e12 = sum_4;
             float _e13 = weight;
             metal::float2 _e14 = q_4;
             uint _e15 = o;
             float _e17 = value_noise(_e14, seed_1 + _e15);
-            sum_3 = _e12 + (_e13 * _e17);
+            sum_4 = _e12 + (_e13 * _e17);
             metal::float2 _e20 = q_4;
             q_4 = _e20 * 2.0;
             float _e23 = weight;
             weight = _e23 * 0.5;
         }
     }
-    float _e29 = sum_3;
+    float _e29 = sum_4;
     return _e29 / 0.9375;
 }
 
@@ -3090,14 +3202,14 @@ float sprite_texture(
     metal::float2 uv
 ) {
     float billow = 0.0;
-    uint i_15 = 0u;
+    uint i_16 = 0u;
     metal::float2 at = {};
     float a_3 = {};
-    metal::float2 c_9 = uv - metal::float2(0.5);
-    float mask = metal::smoothstep(0.48, 0.36, metal::length(c_9));
+    metal::float2 c_10 = uv - metal::float2(0.5);
+    float mask = metal::smoothstep(0.48, 0.36, metal::length(c_10));
     float _e16 = value_fbm((uv * 6.0) + metal::float2(static_cast<float>(tile_1) * 13.0), tile_1);
     if (tile_1 < 4u) {
-        metal::float2 q_9 = c_9 * metal::float2(1.0, 3.2);
+        metal::float2 q_9 = c_10 * metal::float2(1.0, 3.2);
         float streak = 1.0 - metal::smoothstep(0.05, 0.45, metal::length(q_9));
         float _e40 = value_fbm((uv * metal::float2(3.0, 12.0)) + metal::float2(static_cast<float>(tile_1) * 5.0), tile_1 + 16u);
         float _e46 = saturate((_e40 * 1.6) - 0.3);
@@ -3110,32 +3222,32 @@ float sprite_texture(
         if (metal::all(loop_bound_19 == uint2(0u))) { break; }
         loop_bound_19 -= uint2(loop_bound_19.y == 0u, 1u);
         if (!loop_init_15) {
-            uint _e108 = i_15;
-            i_15 = _e108 + 1u;
+            uint _e108 = i_16;
+            i_16 = _e108 + 1u;
         }
         loop_init_15 = false;
-        uint _e58 = i_15;
+        uint _e58 = i_16;
         if (_e58 < blobs) {
         } else {
             break;
         }
         {
-            uint _e61 = i_15;
+            uint _e61 = i_16;
             float _e63 = atlas_hash(tile_1, 2u * _e61);
-            uint _e65 = i_15;
+            uint _e65 = i_16;
             float _e69 = atlas_hash(tile_1, (2u * _e65) + 1u);
             metal::float2 centre_1 = metal::float2(_e63, _e69) - metal::float2(0.5);
             at = metal::float2(0.5) + (centre_1 * 0.34);
             if (tile_1 == 4u) {
                 at.y = 0.5 + ((centre_1.y - 0.5) * 0.24);
             }
-            uint _e91 = i_15;
+            uint _e91 = i_16;
             float _e93 = atlas_hash(tile_1, 100u + _e91);
-            float r_17 = 0.14 + (0.1 * _e93);
+            float r_18 = 0.14 + (0.1 * _e93);
             metal::float2 _e98 = at;
-            float d_18 = metal::length(uv - _e98) / r_17;
+            float d_20 = metal::length(uv - _e98) / r_18;
             float _e102 = billow;
-            float _e106 = saturate(1.0 - (d_18 * d_18));
+            float _e106 = saturate(1.0 - (d_20 * d_20));
             billow = metal::max(_e102, _e106);
         }
     }
@@ -3155,12 +3267,12 @@ metal::float3 sprite_rel(
     float alt_15,
     constant Frame& frame
 ) {
-    float rp_5 = frame.atmosphere.x;
+    float rp_6 = frame.atmosphere.x;
     metal::float4 _e8 = frame.camera_position;
-    metal::float2 d_19 = xz - _e8.xz;
-    float k_13 = (alt_15 * (alt_15 + (2.0 * rp_5))) - metal::dot(d_19, d_19);
-    float y_2 = k_13 / (rp_5 + metal::sqrt(metal::max((rp_5 * rp_5) + k_13, 0.0)));
-    return metal::float3(d_19.x, y_2, d_19.y);
+    metal::float2 d_21 = xz - _e8.xz;
+    float k_15 = (alt_15 * (alt_15 + (2.0 * rp_6))) - metal::dot(d_21, d_21);
+    float y_3 = k_15 / (rp_6 + metal::sqrt(metal::max((rp_6 * rp_6) + k_15, 0.0)));
+    return metal::float3(d_21.x, y_3, d_21.y);
 }
 
 SpriteCell sprite_cell(
@@ -3168,11 +3280,11 @@ SpriteCell sprite_cell(
     constant Frame& frame
 ) {
     metal::int2 start_1 = {};
-    uint k_8 = 3u;
-    bool local_54 = {};
+    uint k_10 = 3u;
     bool local_55 = {};
+    bool local_56 = {};
     uint level_1 = naga_div(cell, 64u);
-    metal::int2 local_59 = metal::int2(static_cast<int>(naga_mod(cell, 8u)), static_cast<int>(naga_mod(naga_div(cell, 8u), 8u)));
+    metal::int2 local_60 = metal::int2(static_cast<int>(naga_mod(cell, 8u)), static_cast<int>(naga_mod(naga_div(cell, 8u), 8u)));
     metal::float4 _e15 = frame.camera_position;
     start_1 = as_type<metal::int2>(as_type<metal::uint2>(naga_f2i32(metal::floor(_e15.xz / metal::float2(12000.0)))) - as_type<metal::uint2>(metal::int2(4)));
     uint2 loop_bound_20 = uint2(4294967295u);
@@ -3181,11 +3293,11 @@ SpriteCell sprite_cell(
         if (metal::all(loop_bound_20 == uint2(0u))) { break; }
         loop_bound_20 -= uint2(loop_bound_20.y == 0u, 1u);
         if (!loop_init_16) {
-            uint _e35 = k_8;
-            k_8 = _e35 - 1u;
+            uint _e35 = k_10;
+            k_10 = _e35 - 1u;
         }
         loop_init_16 = false;
-        uint _e27 = k_8;
+        uint _e27 = k_10;
         if (_e27 > level_1) {
         } else {
             break;
@@ -3196,26 +3308,26 @@ SpriteCell sprite_cell(
         }
     }
     if (level_1 > 0u) {
-        local_54 = metal::all(local_59 >= metal::int2(2));
-    } else {
-        local_54 = false;
-    }
-    bool _e47 = local_54;
-    if (_e47) {
-        local_55 = metal::all(local_59 < metal::int2(6));
+        local_55 = metal::all(local_60 >= metal::int2(2));
     } else {
         local_55 = false;
     }
-    bool covered = local_55;
+    bool _e47 = local_55;
+    if (_e47) {
+        local_56 = metal::all(local_60 < metal::int2(6));
+    } else {
+        local_56 = false;
+    }
+    bool covered = local_56;
     metal::int2 _e56 = start_1;
-    return SpriteCell {as_type<metal::int2>(as_type<metal::uint2>(_e56) + as_type<metal::uint2>(local_59)), SPRITE_CELL0_ * static_cast<float>(1u << level_1), covered};
+    return SpriteCell {as_type<metal::int2>(as_type<metal::uint2>(_e56) + as_type<metal::uint2>(local_60)), SPRITE_CELL0_ * static_cast<float>(1u << level_1), covered};
 }
 
 SpriteCandidate sprite_candidate(
-    SpriteCell c_3,
+    SpriteCell c_4,
     uint level,
-    uint s_1,
-    thread Counters& counters_14,
+    uint s_2,
+    thread Counters& counters_15,
     constant Frame& frame,
     metal::texture3d<float, metal::access::sample> shape_tex,
     metal::texture3d<float, metal::access::sample> detail_tex,
@@ -3225,48 +3337,48 @@ SpriteCandidate sprite_candidate(
 ) {
     float density_2 = 0.0;
     uint _e10 = pcg(level);
-    uint _e12 = pcg(as_type<uint>(c_3.index.y) ^ _e10);
-    uint _e14 = pcg(as_type<uint>(c_3.index.x) ^ _e12);
-    float _e17 = atlas_hash(_e14, 8u * s_1);
-    float _e22 = atlas_hash(_e14, (8u * s_1) + 1u);
-    float _e27 = atlas_hash(_e14, (8u * s_1) + 2u);
-    float _e32 = atlas_hash(_e14, (8u * s_1) + 3u);
+    uint _e12 = pcg(as_type<uint>(c_4.index.y) ^ _e10);
+    uint _e14 = pcg(as_type<uint>(c_4.index.x) ^ _e12);
+    float _e17 = atlas_hash(_e14, 8u * s_2);
+    float _e22 = atlas_hash(_e14, (8u * s_2) + 1u);
+    float _e27 = atlas_hash(_e14, (8u * s_2) + 2u);
+    float _e32 = atlas_hash(_e14, (8u * s_2) + 3u);
     metal::float4 u_1 = metal::float4(_e17, _e22, _e27, _e32);
-    float _e38 = atlas_hash(_e14, (8u * s_1) + 4u);
-    float _e43 = atlas_hash(_e14, (8u * s_1) + 5u);
+    float _e38 = atlas_hash(_e14, (8u * s_2) + 4u);
+    float _e43 = atlas_hash(_e14, (8u * s_2) + 5u);
     metal::float2 v_3 = metal::float2(_e38, _e43);
-    metal::float2 xz_1 = (static_cast<metal::float2>(c_3.index) + u_1.xy) * c_3.size;
+    metal::float2 xz_2 = (static_cast<metal::float2>(c_4.index) + u_1.xy) * c_4.size;
     Layer _e56 = cloud_layer(0u, frame);
-    Weather _e57 = sample_weather(metal::float3(xz_1.x, 0.0, xz_1.y), _e56, frame, weather_tex, noise_sampler);
-    float h_11 = 0.04 + (u_1.z * (metal::mix(0.3, 0.95, _e57.cloud_type) - 0.04));
+    Weather _e57 = sample_weather(metal::float3(xz_2.x, 0.0, xz_2.y), _e56, frame, weather_tex, noise_sampler);
+    float h_12 = 0.04 + (u_1.z * (metal::mix(0.3, 0.95, _e57.cloud_type) - 0.04));
     float _e71 = frame.atmosphere.y;
     float _e75 = frame.atmosphere.z;
     float _e79 = frame.atmosphere.y;
-    float alt_17 = _e71 + (h_11 * (_e75 - _e79));
-    if (!(c_3.covered)) {
-        metal::float3 _e87 = sprite_rel(xz_1, alt_17, frame);
-        float _e92 = cloud_density(metal::float3(xz_1.x, _e87.y, xz_1.y), alt_17, counters_14, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+    float alt_17 = _e71 + (h_12 * (_e75 - _e79));
+    if (!(c_4.covered)) {
+        metal::float3 _e87 = sprite_rel(xz_2, alt_17, frame);
+        float _e92 = cloud_density(metal::float3(xz_2.x, _e87.y, xz_2.y), alt_17, counters_15, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
         density_2 = _e92;
     }
     float _e96 = density_2;
-    return SpriteCandidate {xz_1, alt_17, h_11, u_1.w, v_3.x, v_3.y, _e96, _e57.precipitation};
+    return SpriteCandidate {xz_2, alt_17, h_12, u_1.w, v_3.x, v_3.y, _e96, _e57.precipitation};
 }
 
 metal::float3 sprite_sky_level(
-    float h_6
+    float h_7
 ) {
-    float _e1 = saturate(h_6);
-    float x_9 = _e1 * 4.0;
-    if (x_9 < 1.0) {
-        return metal::mix(SKY_LEVEL0_, SKY_LEVEL1_, x_9);
+    float _e1 = saturate(h_7);
+    float x_11 = _e1 * 4.0;
+    if (x_11 < 1.0) {
+        return metal::mix(SKY_LEVEL0_, SKY_LEVEL1_, x_11);
     }
-    if (x_9 < 2.0) {
-        return metal::mix(SKY_LEVEL1_, SKY_LEVEL2_, x_9 - 1.0);
+    if (x_11 < 2.0) {
+        return metal::mix(SKY_LEVEL1_, SKY_LEVEL2_, x_11 - 1.0);
     }
-    if (x_9 < 3.0) {
-        return metal::mix(SKY_LEVEL2_, SKY_LEVEL3_, x_9 - 2.0);
+    if (x_11 < 3.0) {
+        return metal::mix(SKY_LEVEL2_, SKY_LEVEL3_, x_11 - 2.0);
     }
-    return metal::mix(SKY_LEVEL3_, SKY_LEVEL4_, x_9 - 3.0);
+    return metal::mix(SKY_LEVEL3_, SKY_LEVEL4_, x_11 - 3.0);
 }
 
 float sprite_sun_level(
@@ -3279,52 +3391,52 @@ float sprite_sun_level(
 }
 
 metal::float2 sprite_corner(
-    uint k_9
+    uint k_11
 ) {
-    bool local_56 = {};
-    uint q_10 = (k_9 >= 3u) ? ((k_9 == 3u) ? 0u : (k_9 - 2u)) : k_9;
+    bool local_57 = {};
+    uint q_10 = (k_11 >= 3u) ? ((k_11 == 3u) ? 0u : (k_11 - 2u)) : k_11;
     if (!((q_10 == 1u))) {
-        local_56 = q_10 == 2u;
+        local_57 = q_10 == 2u;
     } else {
-        local_56 = true;
+        local_57 = true;
     }
-    bool _e18 = local_56;
+    bool _e18 = local_57;
     return metal::float2(_e18 ? 1.0 : -1.0, (q_10 >= 2u) ? 1.0 : -1.0);
 }
 
 metal::float3 sky_radiance(
-    metal::float3 d_12,
+    metal::float3 d_14,
     float alt_16,
     constant Frame& frame
 ) {
     metal::float4 _e4 = frame.sun_direction;
-    metal::float3 sun_5 = _e4.xyz;
+    metal::float3 sun_6 = _e4.xyz;
     metal::float4 _e8 = frame.sun_illuminance;
     metal::float3 e = _e8.xyz;
-    float _e15 = saturate((sun_5.y * 4.0) + 0.3);
-    bool _e19 = hits_ground(metal::float3(0.0, alt_16, 0.0), alt_16, d_12, frame);
+    float _e15 = saturate((sun_6.y * 4.0) + 0.3);
+    bool _e19 = hits_ground(metal::float3(0.0, alt_16, 0.0), alt_16, d_14, frame);
     if (_e19) {
         metal::float3 ground_albedo = metal::float3(0.035, 0.035, 0.03);
-        return ground_albedo * (((e * metal::max(sun_5.y, 0.0)) / metal::float3(3.1415927)) + ((0.05 * e) * _e15));
+        return ground_albedo * (((e * metal::max(sun_6.y, 0.0)) / metal::float3(3.1415927)) + ((0.05 * e) * _e15));
     }
     metal::float3 zenith = metal::float3(0.018, 0.04, 0.1);
     metal::float3 horizon_2 = metal::float3(0.07, 0.085, 0.11);
-    float _e45 = saturate(d_12.y);
+    float _e45 = saturate(d_14.y);
     metal::float3 gradient_1 = metal::mix(horizon_2, zenith, metal::sqrt(_e45));
     metal::float3 sunset = ((1.0 - (_e15 * 0.8)) * metal::pow(1.0 - _e45, 6.0)) * metal::float3(0.25, 0.1, 0.0);
-    float _e64 = phase_hg(metal::dot(d_12, sun_5), 0.76);
+    float _e64 = phase_hg(metal::dot(d_14, sun_6), 0.76);
     float glow = _e64 * 0.02;
-    float _e73 = saturate((sun_5.y * 10.0) + 1.0);
+    float _e73 = saturate((sun_6.y * 10.0) + 1.0);
     return e * (((gradient_1 * _e15) + (sunset * _e73)) + metal::float3(glow * _e15));
 }
 
 metal::float3 sun_disk(
-    metal::float3 d_13,
+    metal::float3 d_15,
     constant Frame& frame
 ) {
     float cos_r = frame.sun_direction.w;
     metal::float4 _e7 = frame.sun_direction;
-    if (metal::dot(d_13, _e7.xyz) < cos_r) {
+    if (metal::dot(d_15, _e7.xyz) < cos_r) {
         return metal::float3(0.0);
     }
     metal::float4 _e15 = frame.sun_illuminance;
@@ -3332,24 +3444,24 @@ metal::float3 sun_disk(
 }
 
 metal::float3 moon_disk(
-    metal::float3 d_14,
+    metal::float3 d_16,
     constant Frame& frame
 ) {
-    bool local_57 = {};
+    bool local_58 = {};
     metal::float4 _e3 = frame.moon;
     metal::float3 m_3 = _e3.xyz;
-    float c_10 = metal::dot(d_14, m_3);
+    float c_11 = metal::dot(d_16, m_3);
     float _e9 = frame.moon.w;
     if (!((_e9 <= 0.0))) {
-        local_57 = c_10 < MOON_COS_RADIUS;
+        local_58 = c_11 < MOON_COS_RADIUS;
     } else {
-        local_57 = true;
+        local_58 = true;
     }
-    bool _e18 = local_57;
+    bool _e18 = local_58;
     if (_e18) {
         return metal::float3(0.0);
     }
-    metal::float3 offset = (d_14 - (m_3 * c_10)) / metal::float3(0.0045149517);
+    metal::float3 offset = (d_16 - (m_3 * c_11)) / metal::float3(0.0045149517);
     float x2_1 = metal::min(metal::dot(offset, offset), 1.0);
     metal::float3 normal = offset - (m_3 * metal::sqrt(1.0 - x2_1));
     metal::float4 _e36 = frame.night;
@@ -3359,37 +3471,37 @@ metal::float3 moon_disk(
 }
 
 metal::float3 stars(
-    metal::float3 d_15,
+    metal::float3 d_17,
     constant Frame& frame
 ) {
     uint face = 0u;
     metal::float2 uv_1 = metal::float2(0.0);
     float major = 0.0;
-    bool local_58 = {};
+    bool local_59 = {};
     metal::float3 star = metal::float3(0.0);
     float e0_ = frame.night.w;
     if (e0_ <= 0.0) {
         return metal::float3(0.0);
     }
-    metal::float3 a_10 = metal::abs(d_15);
+    metal::float3 a_10 = metal::abs(d_17);
     if (a_10.x >= a_10.y) {
-        local_58 = a_10.x >= a_10.z;
+        local_59 = a_10.x >= a_10.z;
     } else {
-        local_58 = false;
+        local_59 = false;
     }
-    bool _e26 = local_58;
+    bool _e26 = local_59;
     if (_e26) {
-        face = (d_15.x > 0.0) ? 0u : 1u;
-        uv_1 = d_15.zy;
+        face = (d_17.x > 0.0) ? 0u : 1u;
+        uv_1 = d_17.zy;
         major = a_10.x;
     } else {
         if (a_10.y >= a_10.z) {
-            face = (d_15.y > 0.0) ? 2u : 3u;
-            uv_1 = d_15.xz;
+            face = (d_17.y > 0.0) ? 2u : 3u;
+            uv_1 = d_17.xz;
             major = a_10.y;
         } else {
-            face = (d_15.z > 0.0) ? 4u : 5u;
-            uv_1 = d_15.xy;
+            face = (d_17.z > 0.0) ? 4u : 5u;
+            uv_1 = d_17.xy;
             major = a_10.z;
         }
     }
@@ -3398,19 +3510,19 @@ metal::float3 stars(
     metal::float2 st = metal::clamp(((_e54 / metal::float2(_e55)) * 0.5) + metal::float2(0.5), metal::float2(0.0), metal::float2(0.999999));
     metal::uint2 cell_2 = naga_f2u32(st * 96.0);
     uint _e71 = face;
-    uint id_21 = (((_e71 * STAR_CELLS) + cell_2.y) * STAR_CELLS) + cell_2.x;
-    uint _e85 = pcg(id_21 ^ 2654435769u);
+    uint id_23 = (((_e71 * STAR_CELLS) + cell_2.y) * STAR_CELLS) + cell_2.x;
+    uint _e85 = pcg(id_23 ^ 2654435769u);
     float h0_ = static_cast<float>(_e85 >> 8u) * 0.000000059604645;
     if (h0_ >= 0.15085077) {
         return metal::float3(0.0);
     }
-    uint _e96 = pcg(id_21 ^ 2246822507u);
+    uint _e96 = pcg(id_23 ^ 2246822507u);
     float h1_ = static_cast<float>(_e96 >> 8u) * 0.000000059604645;
-    uint _e104 = pcg(id_21 ^ 3266489909u);
+    uint _e104 = pcg(id_23 ^ 3266489909u);
     float h2_ = static_cast<float>(_e104 >> 8u) * 0.000000059604645;
-    uint _e112 = pcg(id_21 ^ 668265263u);
+    uint _e112 = pcg(id_23 ^ 668265263u);
     float h3_ = static_cast<float>(_e112 >> 8u) * 0.000000059604645;
-    uint _e120 = pcg(id_21 ^ 374761393u);
+    uint _e120 = pcg(id_23 ^ 374761393u);
     float h4_ = static_cast<float>(_e120 >> 8u) * 0.000000059604645;
     metal::float2 star_st = ((static_cast<metal::float2>(cell_2) + metal::float2(0.15)) + (0.7 * metal::float2(h1_, h2_))) / metal::float2(96.0);
     float _e142 = major;
@@ -3443,7 +3555,7 @@ metal::float3 stars(
     uint _e209 = frame.counts.y;
     float pixel_angle = (2.0 * _e203) / static_cast<float>(_e209);
     metal::float3 _e212 = star;
-    float dist_1 = metal::acos(metal::clamp(metal::dot(d_15, _e212), -1.0, 1.0)) / pixel_angle;
+    float dist_1 = metal::acos(metal::clamp(metal::dot(d_17, _e212), -1.0, 1.0)) / pixel_angle;
     float weight_1 = metal::exp((-(dist_1) * dist_1) / 0.5) / 1.5707964;
     metal::float3 tint = metal::mix(metal::float3(0.8, 0.9, 1.1), metal::float3(1.15, 0.95, 0.75), h3_ * h4_);
     return tint * ((illuminance * weight_1) / (pixel_angle * pixel_angle));
@@ -3451,12 +3563,13 @@ metal::float3 stars(
 
 metal::float3 physical_composite(
     metal::uint2 pixel_8,
-    metal::float3 view_3,
+    metal::float3 view_4,
     metal::float4 cloud,
     constant Frame& frame,
     metal::texture2d<float, metal::access::sample> transmittance_lut_in,
     metal::texture2d<float, metal::access::sample> sky_view_in,
     metal::texture2d<float, metal::access::sample> aerial_in,
+    metal::texture2d<float, metal::access::sample> cloud_shadow_in,
     metal::texture2d<float, metal::access::sample> depth_in
 ) {
     metal::float3 sky = {};
@@ -3465,35 +3578,39 @@ metal::float3 physical_composite(
     metal::float4 _e5 = frame.sun_illuminance;
     metal::float3 e_1 = _e5.xyz;
     metal::float3 _e7 = camera_air_origin(frame);
-    float r_18 = _e7.y;
-    metal::float3 _e9 = sky_view(view_3, frame, sky_view_in);
+    float r_19 = _e7.y;
+    metal::float3 _e9 = sky_view(view_4, frame, sky_view_in);
     sky = _e9 * e_1;
-    bool _e13 = meets_ground(r_18, view_3.y, frame);
-    if (!(_e13)) {
-        metal::float3 _e15 = moon_disk(view_3, frame);
-        metal::float3 _e16 = stars(view_3, frame);
-        space = _e15 + _e16;
-        uint _e22 = frame.modes.w;
-        if ((_e22 & FLAG_MOONLIT) == 0u) {
-            metal::float3 _e27 = space;
-            metal::float3 _e28 = sun_disk(view_3, frame);
-            space = _e27 + _e28;
+    bool _e13 = meets_ground(r_19, view_4.y, frame);
+    if (_e13) {
+        metal::float3 _e14 = sky;
+        metal::float3 _e15 = ground_shadow_loss(view_4, r_19, frame, transmittance_lut_in, cloud_shadow_in);
+        sky = metal::max(_e14 - (_e15 * e_1), metal::float3(0.0));
+    } else {
+        metal::float3 _e21 = moon_disk(view_4, frame);
+        metal::float3 _e22 = stars(view_4, frame);
+        space = _e21 + _e22;
+        uint _e28 = frame.modes.w;
+        if ((_e28 & FLAG_MOONLIT) == 0u) {
+            metal::float3 _e33 = space;
+            metal::float3 _e34 = sun_disk(view_4, frame);
+            space = _e33 + _e34;
         }
-        metal::float3 _e30 = sky;
-        metal::float3 _e31 = space;
-        metal::float3 _e33 = transmittance_to_top(r_18, view_3.y, frame, transmittance_lut_in);
-        sky = _e30 + (_e31 * _e33);
+        metal::float3 _e36 = sky;
+        metal::float3 _e37 = space;
+        metal::float3 _e39 = transmittance_to_top(r_19, view_4.y, frame, transmittance_lut_in);
+        sky = _e36 + (_e37 * _e39);
     }
-    metal::float3 _e36 = sky;
-    radiance_3 = _e36 * cloud.w;
+    metal::float3 _e42 = sky;
+    radiance_3 = _e42 * cloud.w;
     if (cloud.w < 1.0) {
-        metal::float4 _e45 = depth_in.read(metal::uint2(pixel_8), 0);
-        metal::float4 _e47 = aerial(pixel_8, _e45.x, frame, aerial_in);
-        metal::float3 _e48 = radiance_3;
-        radiance_3 = _e48 + (((_e47.xyz * e_1) * (1.0 - cloud.w)) + (cloud.xyz * _e47.w));
+        metal::float4 _e51 = depth_in.read(metal::uint2(pixel_8), 0);
+        metal::float4 _e53 = aerial(pixel_8, _e51.x, frame, aerial_in);
+        metal::float3 _e54 = radiance_3;
+        radiance_3 = _e54 + (((_e53.xyz * e_1) * (1.0 - cloud.w)) + (cloud.xyz * _e53.w));
     }
-    metal::float3 _e60 = radiance_3;
-    return _e60;
+    metal::float3 _e66 = radiance_3;
+    return _e66;
 }
 
 metal::float3 aces_fitted(
@@ -3593,14 +3710,14 @@ struct multiscatter_lutInput {
     if (metal::any(id_1.xy >= MULTISCATTER_SIZE)) {
         return;
     }
-    metal::float2 x_10 = static_cast<metal::float2>(id_1.xy) / metal::float2(31.0, 31.0);
-    float mu_s_4 = (x_10.x * 2.0) - 1.0;
+    metal::float2 x_12 = static_cast<metal::float2>(id_1.xy) / metal::float2(31.0, 31.0);
+    float mu_s_7 = (x_12.x * 2.0) - 1.0;
     float _e16 = air_bottom(frame);
     float _e18 = air_top(frame);
     float _e19 = air_bottom(frame);
-    float r_19 = _e16 + (x_10.y * (_e18 - _e19));
-    metal::float3 origin_5 = metal::float3(0.0, r_19, 0.0);
-    metal::float3 sun_6 = metal::float3(metal::sqrt(metal::max(1.0 - (mu_s_4 * mu_s_4), 0.0)), mu_s_4, 0.0);
+    float r_20 = _e16 + (x_12.y * (_e18 - _e19));
+    metal::float3 origin_6 = metal::float3(0.0, r_20, 0.0);
+    metal::float3 sun_7 = metal::float3(metal::sqrt(metal::max(1.0 - (mu_s_7 * mu_s_7), 0.0)), mu_s_7, 0.0);
     uint2 loop_bound_22 = uint2(4294967295u);
     bool loop_init_18 = true;
     while(true) {
@@ -3619,7 +3736,7 @@ struct multiscatter_lutInput {
         {
             uint _e46 = k;
             metal::float3 _e48 = fibonacci_direction(_e46, MULTISCATTER_DIRECTIONS);
-            metal::float2 _e49 = air_ray_end(origin_5, _e48, frame);
+            metal::float2 _e49 = air_ray_end(origin_6, _e48, frame);
             float dt_6 = _e49.x / 32.0;
             tau = metal::float3(0.0);
             i_1 = 0u;
@@ -3640,27 +3757,27 @@ struct multiscatter_lutInput {
                 }
                 {
                     uint _e61 = i_1;
-                    metal::float3 p_20 = origin_5 + (_e48 * (dt_6 * (static_cast<float>(_e61) + 0.5)));
-                    float rp_6 = metal::length(p_20);
+                    metal::float3 p_20 = origin_6 + (_e48 * (dt_6 * (static_cast<float>(_e61) + 0.5)));
+                    float rp_7 = metal::length(p_20);
                     float _e69 = air_bottom(frame);
-                    AirSample _e71 = air_at(rp_6 - _e69, frame);
+                    AirSample _e71 = air_at(rp_7 - _e69, frame);
                     metal::float3 _e72 = tau;
-                    metal::float3 t_8 = metal::exp(-((_e72 + ((0.5 * _e71.extinction) * dt_6))));
-                    metal::float3 s_12 = _e71.rayleigh + metal::float3(_e71.mie);
+                    metal::float3 t_9 = metal::exp(-((_e72 + ((0.5 * _e71.extinction) * dt_6))));
+                    metal::float3 s_13 = _e71.rayleigh + metal::float3(_e71.mie);
                     metal::float3 _e84 = l2_;
-                    metal::float3 _e90 = sun_transmittance(rp_6, metal::dot(p_20 / metal::float3(rp_6), sun_6), frame, transmittance_lut_in);
-                    l2_ = _e84 + ((((t_8 * s_12) * 0.07957747) * _e90) * dt_6);
+                    metal::float3 _e90 = sun_transmittance(rp_7, metal::dot(p_20 / metal::float3(rp_7), sun_7), frame, transmittance_lut_in);
+                    l2_ = _e84 + ((((t_9 * s_13) * 0.07957747) * _e90) * dt_6);
                     metal::float3 _e94 = f_ms;
-                    f_ms = _e94 + ((t_8 * s_12) * dt_6);
+                    f_ms = _e94 + ((t_9 * s_13) * dt_6);
                     metal::float3 _e98 = tau;
                     tau = _e98 + (_e71.extinction * dt_6);
                 }
             }
             if (_e49.y > 0.5) {
-                metal::float3 g_7 = origin_5 + (_e48 * _e49.x);
+                metal::float3 g_7 = origin_6 + (_e48 * _e49.x);
                 metal::float3 _e111 = l2_;
                 metal::float3 _e112 = tau;
-                metal::float3 _e117 = ground_radiance(metal::dot(metal::normalize(g_7), sun_6), frame, transmittance_lut_in);
+                metal::float3 _e117 = ground_radiance_sun(metal::dot(metal::normalize(g_7), sun_7), frame, transmittance_lut_in);
                 l2_ = _e111 + (metal::exp(-(_e112)) * _e117);
             }
         }
@@ -3681,21 +3798,24 @@ struct sky_view_lutInput {
 , metal::texture2d<float, metal::access::sample> transmittance_lut_in [[user(fake0)]]
 , metal::texture2d<float, metal::access::sample> multiscatter_lut_in [[user(fake0)]]
 , metal::texture2d<float, metal::access::write> sky_view_out [[user(fake0)]]
+, metal::texture2d<float, metal::access::sample> ground_irradiance_in [[user(fake0)]]
 ) {
     if (metal::any(id_2.xy >= SKY_VIEW_SIZE)) {
         return;
     }
-    metal::float2 x_11 = static_cast<metal::float2>(id_2.xy) / metal::float2(191.0, 107.0);
+    metal::float2 x_13 = static_cast<metal::float2>(id_2.xy) / metal::float2(191.0, 107.0);
     metal::float3 _e11 = camera_air_origin(frame);
     float _e14 = horizon_elevation(_e11.y, frame);
-    float _e15 = sky_view_elevation(x_11.y, _e14);
+    float _e15 = sky_view_elevation(x_13.y, _e14);
     float _e16 = sun_azimuth(frame);
-    float phi_2 = _e16 + (x_11.x * PI);
-    metal::float3 d_20 = metal::float3(metal::cos(_e15) * metal::cos(phi_2), metal::sin(_e15), metal::cos(_e15) * metal::sin(phi_2));
-    metal::float2 _e29 = air_ray_end(_e11, d_20, frame);
-    metal::float4 _e34 = frame.sun_direction;
-    Scattered _e39 = integrate_air(_e11, d_20, _e29.x, SKY_VIEW_STEPS, _e34.xyz, _e29.y > 0.5, frame, transmittance_lut_in, multiscatter_lut_in);
-    sky_view_out.write(metal::float4(_e39.radiance, 1.0), metal::uint2(id_2.xy));
+    float phi_2 = _e16 + (x_13.x * PI);
+    metal::float3 d_22 = metal::float3(metal::cos(_e15) * metal::cos(phi_2), metal::sin(_e15), metal::cos(_e15) * metal::sin(phi_2));
+    metal::float2 _e29 = air_ray_end(_e11, d_22, frame);
+    metal::float4 _e32 = frame.sun_direction;
+    metal::float3 sun_8 = _e32.xyz;
+    Scattered _e36 = integrate_air(_e11, d_22, _e29.x, SKY_VIEW_STEPS, sun_8, frame, transmittance_lut_in, multiscatter_lut_in);
+    metal::float3 _e43 = with_ground(_e36, _e11, d_22, _e29.x, sun_8, _e29.y > 0.5, frame, transmittance_lut_in, ground_irradiance_in);
+    sky_view_out.write(metal::float4(_e43, 1.0), metal::uint2(id_2.xy));
     return;
 }
 
@@ -3720,8 +3840,8 @@ struct aerial_perspectiveInput {
     metal::float3 _e8 = camera_air_origin(frame);
     metal::float2 _e9 = air_ray_end(_e8, _e7, frame);
     metal::float4 _e12 = frame.sun_direction;
-    metal::float3 sun_7 = _e12.xyz;
-    float cos_theta_8 = metal::dot(_e7, sun_7);
+    metal::float3 sun_9 = _e12.xyz;
+    float cos_theta_8 = metal::dot(_e7, sun_9);
     float _e15 = phase_rayleigh(cos_theta_8);
     float _e19 = frame.air_mie.w;
     float _e20 = phase_cornette_shanks_air(cos_theta_8, _e19);
@@ -3763,26 +3883,26 @@ struct aerial_perspectiveInput {
                     float t0_1 = AERIAL_SLICE_KM * (static_cast<float>(_e38) + (static_cast<float>(_e40) / 4.0));
                     float dt_7 = metal::max(metal::min(0.25, _e9.x - t0_1), 0.0);
                     metal::float3 p_21 = _e8 + (_e7 * (t0_1 + (0.5 * dt_7)));
-                    float r_20 = metal::length(p_21);
-                    float mu_s_5 = metal::dot(p_21 / metal::float3(r_20), sun_7);
+                    float r_21 = metal::length(p_21);
+                    float mu_s_8 = metal::dot(p_21 / metal::float3(r_21), sun_9);
                     float _e64 = air_bottom(frame);
-                    AirSample _e66 = air_at(r_20 - _e64, frame);
+                    AirSample _e66 = air_at(r_21 - _e64, frame);
                     metal::float3 _e67 = tau_1;
-                    metal::float3 t_view_1 = metal::exp(-((_e67 + ((0.5 * _e66.extinction) * dt_7))));
-                    metal::float3 _e75 = sun_transmittance(r_20, mu_s_5, frame, transmittance_lut_in);
-                    metal::float3 _e83 = multiscatter(r_20, mu_s_5, frame, multiscatter_lut_in);
+                    metal::float3 t_view_2 = metal::exp(-((_e67 + ((0.5 * _e66.extinction) * dt_7))));
+                    metal::float3 _e75 = sun_transmittance(r_21, mu_s_8, frame, transmittance_lut_in);
+                    metal::float3 _e83 = multiscatter(r_21, mu_s_8, frame, multiscatter_lut_in);
                     metal::float3 inscatter_1 = (_e75 * ((_e66.rayleigh * _e15) + metal::float3(_e66.mie * _e20))) + (_e83 * (_e66.rayleigh + metal::float3(_e66.mie)));
                     metal::float3 _e90 = radiance;
-                    radiance = _e90 + ((t_view_1 * inscatter_1) * dt_7);
+                    radiance = _e90 + ((t_view_2 * inscatter_1) * dt_7);
                     metal::float3 _e94 = tau_1;
                     tau_1 = _e94 + (_e66.extinction * dt_7);
                 }
             }
             metal::float3 _e101 = tau_1;
-            metal::float3 t_9 = metal::exp(-(_e101));
+            metal::float3 t_10 = metal::exp(-(_e101));
             uint _e105 = z;
             metal::float3 _e112 = radiance;
-            aerial_out.write(metal::float4(_e112, ((t_9.x + t_9.y) + t_9.z) / 3.0), metal::uint2(metal::uint2((_e105 * AERIAL_SIDE) + id_3.x, id_3.y)));
+            aerial_out.write(metal::float4(_e112, ((t_10.x + t_10.y) + t_10.z) / 3.0), metal::uint2(metal::uint2((_e105 * AERIAL_SIDE) + id_3.x, id_3.y)));
         }
     }
     return;
@@ -3797,6 +3917,7 @@ struct sky_ambientInput {
 , metal::texture2d<float, metal::access::sample> transmittance_lut_in [[user(fake0)]]
 , metal::texture2d<float, metal::access::sample> multiscatter_lut_in [[user(fake0)]]
 , metal::texture2d<float, metal::access::write> sky_ambient_out [[user(fake0)]]
+, metal::texture2d<float, metal::access::sample> ground_irradiance_in [[user(fake0)]]
 ) {
     bool local_1 = {};
     metal::float3 sum_1 = metal::float3(0.0);
@@ -3814,15 +3935,15 @@ struct sky_ambientInput {
     float _e19 = frame.atmosphere.z;
     float alt_m = (id_4.x == 1u) ? _e19 : _e15;
     float _e24 = air_bottom(frame);
-    metal::float3 origin_6 = metal::float3(0.0, _e24 + (alt_m * 0.001), 0.0);
+    metal::float3 origin_7 = metal::float3(0.0, _e24 + (alt_m * 0.001), 0.0);
     uint2 loop_bound_26 = uint2(4294967295u);
     bool loop_init_22 = true;
     while(true) {
         if (metal::all(loop_bound_26 == uint2(0u))) { break; }
         loop_bound_26 -= uint2(loop_bound_26.y == 0u, 1u);
         if (!loop_init_22) {
-            uint _e57 = k_2;
-            k_2 = _e57 + 1u;
+            uint _e58 = k_2;
+            k_2 = _e58 + 1u;
         }
         loop_init_22 = false;
         uint _e36 = k_2;
@@ -3833,15 +3954,168 @@ struct sky_ambientInput {
         {
             uint _e39 = k_2;
             metal::float3 _e41 = fibonacci_direction(_e39, AMBIENT_DIRECTIONS);
-            metal::float2 _e42 = air_ray_end(origin_6, _e41, frame);
-            metal::float3 _e43 = sum_1;
-            metal::float4 _e48 = frame.sun_direction;
-            Scattered _e53 = integrate_air(origin_6, _e41, _e42.x, AMBIENT_STEPS, _e48.xyz, _e42.y > 0.5, frame, transmittance_lut_in, multiscatter_lut_in);
-            sum_1 = _e43 + _e53.radiance;
+            metal::float2 _e42 = air_ray_end(origin_7, _e41, frame);
+            metal::float4 _e45 = frame.sun_direction;
+            metal::float3 sun_10 = _e45.xyz;
+            Scattered _e49 = integrate_air(origin_7, _e41, _e42.x, AMBIENT_STEPS, sun_10, frame, transmittance_lut_in, multiscatter_lut_in);
+            metal::float3 _e50 = sum_1;
+            metal::float3 _e55 = with_ground(_e49, origin_7, _e41, _e42.x, sun_10, _e42.y > 0.5, frame, transmittance_lut_in, ground_irradiance_in);
+            sum_1 = _e50 + _e55;
         }
     }
-    metal::float3 _e61 = sum_1;
-    sky_ambient_out.write(metal::float4(_e61 / metal::float3(64.0), 1.0), metal::uint2(id_4.xy));
+    metal::float3 _e62 = sum_1;
+    sky_ambient_out.write(metal::float4(_e62 / metal::float3(64.0), 1.0), metal::uint2(id_4.xy));
+    return;
+}
+
+
+struct ground_irradianceInput {
+};
+[[max_total_threads_per_threadgroup(64)]] kernel void ground_irradiance(
+  metal::uint3 id_5 [[thread_position_in_grid]]
+, constant Frame& frame [[user(fake0)]]
+, metal::texture2d<float, metal::access::sample> transmittance_lut_in [[user(fake0)]]
+, metal::texture2d<float, metal::access::sample> multiscatter_lut_in [[user(fake0)]]
+, metal::texture2d<float, metal::access::write> ground_irradiance_out [[user(fake0)]]
+) {
+    bool local_2 = {};
+    metal::float3 sum_2 = metal::float3(0.0);
+    uint k_3 = 0u;
+    if (!((id_5.x >= GROUND_IRRADIANCE_SIZE))) {
+        local_2 = id_5.y >= 1u;
+    } else {
+        local_2 = true;
+    }
+    bool _e11 = local_2;
+    if (_e11) {
+        return;
+    }
+    float mu_s_9 = ((static_cast<float>(id_5.x) / 63.0) * 2.0) - 1.0;
+    metal::float3 sun_11 = metal::float3(metal::sqrt(metal::max(1.0 - (mu_s_9 * mu_s_9), 0.0)), mu_s_9, 0.0);
+    float _e28 = air_bottom(frame);
+    metal::float3 origin_8 = metal::float3(0.0, _e28 + 0.001, 0.0);
+    uint2 loop_bound_27 = uint2(4294967295u);
+    bool loop_init_23 = true;
+    while(true) {
+        if (metal::all(loop_bound_27 == uint2(0u))) { break; }
+        loop_bound_27 -= uint2(loop_bound_27.y == 0u, 1u);
+        if (!loop_init_23) {
+            uint _e58 = k_3;
+            k_3 = _e58 + 1u;
+        }
+        loop_init_23 = false;
+        uint _e39 = k_3;
+        if (_e39 < GROUND_IRRADIANCE_DIRECTIONS) {
+        } else {
+            break;
+        }
+        {
+            uint _e42 = k_3;
+            metal::float3 _e44 = fibonacci_direction(_e42, GROUND_IRRADIANCE_DIRECTIONS);
+            if (_e44.y <= 0.0) {
+                continue;
+            }
+            metal::float2 _e48 = air_ray_end(origin_8, _e44, frame);
+            metal::float3 _e49 = sum_2;
+            Scattered _e52 = integrate_air(origin_8, _e44, _e48.x, AMBIENT_STEPS, sun_11, frame, transmittance_lut_in, multiscatter_lut_in);
+            sum_2 = _e49 + (_e52.radiance * _e44.y);
+        }
+    }
+    metal::float3 _e60 = sum_2;
+    metal::float3 e_2 = _e60 * 0.09817477;
+    ground_irradiance_out.write(metal::float4(e_2, 1.0), metal::uint2(id_5.xy));
+    return;
+}
+
+
+struct cloud_shadowInput {
+};
+[[max_total_threads_per_threadgroup(64)]] kernel void cloud_shadow(
+  metal::uint3 id_6 [[thread_position_in_grid]]
+, constant Frame& frame [[user(fake0)]]
+, metal::texture3d<float, metal::access::sample> shape_tex [[user(fake0)]]
+, metal::texture3d<float, metal::access::sample> detail_tex [[user(fake0)]]
+, metal::texture2d<float, metal::access::sample> weather_tex [[user(fake0)]]
+, metal::texture2d<float, metal::access::sample> curl_tex [[user(fake0)]]
+, metal::sampler noise_sampler [[user(fake0)]]
+, metal::texture2d<float, metal::access::write> cloud_shadow_out [[user(fake0)]]
+) {
+    float tau_2 = 0.0;
+    Counters counters = Counters {0u, 0u, 0u, 0u};
+    uint i_2 = 0u;
+    uint k_4 = {};
+    if (metal::any(id_6.xy >= metal::uint2(128u))) {
+        return;
+    }
+    metal::float3 _e7 = shadow_ground_point(id_6.xy, frame);
+    metal::float4 _e10 = frame.sun_direction;
+    metal::float3 sun_12 = _e10.xyz;
+    float rp_8 = frame.atmosphere.x;
+    metal::float3 up_1 = metal::normalize(metal::float3(_e7.x, _e7.y + rp_8, _e7.z));
+    if (metal::dot(up_1, sun_12) > 0.0) {
+        metal::float4 _e29 = frame.camera_position;
+        metal::float2 cam_xz_3 = _e29.xz;
+        uint2 loop_bound_28 = uint2(4294967295u);
+        bool loop_init_24 = true;
+        while(true) {
+            if (metal::all(loop_bound_28 == uint2(0u))) { break; }
+            loop_bound_28 -= uint2(loop_bound_28.y == 0u, 1u);
+            if (!loop_init_24) {
+                uint _e90 = i_2;
+                i_2 = _e90 + 1u;
+            }
+            loop_init_24 = false;
+            uint _e39 = i_2;
+            uint _e40 = layer_count(frame);
+            if (_e39 < _e40) {
+            } else {
+                break;
+            }
+            {
+                uint _e42 = i_2;
+                Layer _e43 = cloud_layer(_e42, frame);
+                Roots _e46 = ray_shell_from(_e7, 0.0, sun_12, _e43.bottom, frame);
+                float start_2 = metal::max(_e46.t1_, 0.0);
+                Roots _e52 = ray_shell_from(_e7, 0.0, sun_12, _e43.top, frame);
+                float end_2 = _e52.t1_;
+                float dt_8 = (end_2 - start_2) / 16.0;
+                if (!((dt_8 > 0.0))) {
+                    continue;
+                }
+                k_4 = 0u;
+                uint2 loop_bound_29 = uint2(4294967295u);
+                bool loop_init_25 = true;
+                while(true) {
+                    if (metal::all(loop_bound_29 == uint2(0u))) { break; }
+                    loop_bound_29 -= uint2(loop_bound_29.y == 0u, 1u);
+                    if (!loop_init_25) {
+                        uint _e87 = k_4;
+                        k_4 = _e87 + 1u;
+                    }
+                    loop_init_25 = false;
+                    uint _e62 = k_4;
+                    if (_e62 < SHADOW_STEPS) {
+                    } else {
+                        break;
+                    }
+                    {
+                        uint _e65 = k_4;
+                        metal::float3 q_12 = _e7 + (sun_12 * (start_2 + ((static_cast<float>(_e65) + 0.5) * dt_8)));
+                        metal::float3 p_22 = metal::float3(q_12.x + cam_xz_3.x, q_12.y, q_12.z + cam_xz_3.y);
+                        float _e81 = tau_2;
+                        float _e82 = altitude_of(q_12, frame);
+                        float _e83 = layer_density(p_22, _e82, _e43, counters, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+                        tau_2 = _e81 + (_e83 * dt_8);
+                    }
+                }
+            }
+        }
+    }
+    float _e95 = frame.extinction.x;
+    float _e99 = frame.extinction.y;
+    float sigma_t_7 = _e95 + _e99;
+    float _e104 = tau_2;
+    cloud_shadow_out.write(metal::float4(metal::exp(-(sigma_t_7) * _e104), 0.0, 0.0, 1.0), metal::uint2(id_6.xy));
     return;
 }
 
@@ -3858,30 +4132,30 @@ metal::int2 naga_mod(metal::int2 lhs, metal::int2 rhs) {
 struct occupancyInput {
 };
 [[max_total_threads_per_threadgroup(64)]] kernel void occupancy(
-  metal::uint3 id_5 [[thread_position_in_grid]]
+  metal::uint3 id_7 [[thread_position_in_grid]]
 , metal::texture2d<float, metal::access::sample> weather_tex [[user(fake0)]]
 , metal::texture2d<float, metal::access::write> occupancy_out [[user(fake0)]]
 ) {
     float m = 0.0;
     int y = {};
     int x = {};
-    if (metal::any(id_5.xy >= metal::uint2(64u))) {
+    if (metal::any(id_7.xy >= metal::uint2(64u))) {
         return;
     }
     metal::int2 size_7 = static_cast<metal::int2>(metal::uint2(weather_tex.get_width(), weather_tex.get_height()));
-    metal::int2 lo_1 = as_type<metal::int2>(as_type<metal::uint2>(naga_div(as_type<metal::int2>(as_type<metal::uint2>(static_cast<metal::int2>(id_5.xy)) * as_type<metal::uint2>(size_7)), metal::int2(64))) - as_type<metal::uint2>(metal::int2(1)));
-    metal::int2 hi = naga_div(as_type<metal::int2>(as_type<metal::uint2>(as_type<metal::int2>(as_type<metal::uint2>(static_cast<metal::int2>(id_5.xy)) + as_type<metal::uint2>(metal::int2(1)))) * as_type<metal::uint2>(size_7)), metal::int2(64));
+    metal::int2 lo_1 = as_type<metal::int2>(as_type<metal::uint2>(naga_div(as_type<metal::int2>(as_type<metal::uint2>(static_cast<metal::int2>(id_7.xy)) * as_type<metal::uint2>(size_7)), metal::int2(64))) - as_type<metal::uint2>(metal::int2(1)));
+    metal::int2 hi = naga_div(as_type<metal::int2>(as_type<metal::uint2>(as_type<metal::int2>(as_type<metal::uint2>(static_cast<metal::int2>(id_7.xy)) + as_type<metal::uint2>(metal::int2(1)))) * as_type<metal::uint2>(size_7)), metal::int2(64));
     y = lo_1.y;
-    uint2 loop_bound_27 = uint2(4294967295u);
-    bool loop_init_23 = true;
+    uint2 loop_bound_30 = uint2(4294967295u);
+    bool loop_init_26 = true;
     while(true) {
-        if (metal::all(loop_bound_27 == uint2(0u))) { break; }
-        loop_bound_27 -= uint2(loop_bound_27.y == 0u, 1u);
-        if (!loop_init_23) {
+        if (metal::all(loop_bound_30 == uint2(0u))) { break; }
+        loop_bound_30 -= uint2(loop_bound_30.y == 0u, 1u);
+        if (!loop_init_26) {
             int _e54 = y;
             y = as_type<int>(as_type<uint>(_e54) + as_type<uint>(1));
         }
-        loop_init_23 = false;
+        loop_init_26 = false;
         int _e30 = y;
         if (_e30 <= hi.y) {
         } else {
@@ -3889,16 +4163,16 @@ struct occupancyInput {
         }
         {
             x = lo_1.x;
-            uint2 loop_bound_28 = uint2(4294967295u);
-            bool loop_init_24 = true;
+            uint2 loop_bound_31 = uint2(4294967295u);
+            bool loop_init_27 = true;
             while(true) {
-                if (metal::all(loop_bound_28 == uint2(0u))) { break; }
-                loop_bound_28 -= uint2(loop_bound_28.y == 0u, 1u);
-                if (!loop_init_24) {
+                if (metal::all(loop_bound_31 == uint2(0u))) { break; }
+                loop_bound_31 -= uint2(loop_bound_31.y == 0u, 1u);
+                if (!loop_init_27) {
                     int _e51 = x;
                     x = as_type<int>(as_type<uint>(_e51) + as_type<uint>(1));
                 }
-                loop_init_24 = false;
+                loop_init_27 = false;
                 int _e35 = x;
                 if (_e35 <= hi.x) {
                 } else {
@@ -3907,16 +4181,16 @@ struct occupancyInput {
                 {
                     int _e38 = x;
                     int _e39 = y;
-                    metal::int2 t_10 = naga_mod(as_type<metal::int2>(as_type<metal::uint2>(naga_mod(metal::int2(_e38, _e39), size_7)) + as_type<metal::uint2>(size_7)), size_7);
+                    metal::int2 t_11 = naga_mod(as_type<metal::int2>(as_type<metal::uint2>(naga_mod(metal::int2(_e38, _e39), size_7)) + as_type<metal::uint2>(size_7)), size_7);
                     float _e44 = m;
-                    metal::float4 _e47 = weather_tex.read(metal::uint2(t_10), 0);
+                    metal::float4 _e47 = weather_tex.read(metal::uint2(t_11), 0);
                     m = metal::max(_e44, _e47.x);
                 }
             }
         }
     }
     float _e58 = m;
-    occupancy_out.write(metal::float4(_e58, 0.0, 0.0, 0.0), metal::uint2(id_5.xy));
+    occupancy_out.write(metal::float4(_e58, 0.0, 0.0, 0.0), metal::uint2(id_7.xy));
     return;
 }
 
@@ -3924,7 +4198,7 @@ struct occupancyInput {
 struct marchInput {
 };
 [[max_total_threads_per_threadgroup(64)]] kernel void march(
-  metal::uint3 id_6 [[thread_position_in_grid]]
+  metal::uint3 id_8 [[thread_position_in_grid]]
 , constant Frame& frame [[user(fake0)]]
 , metal::texture2d<float, metal::access::sample> transmittance_lut_in [[user(fake0)]]
 , metal::texture2d<float, metal::access::sample> sky_ambient_in [[user(fake0)]]
@@ -3939,12 +4213,12 @@ struct marchInput {
 , device Stats& stats [[user(fake0)]]
 ) {
     metal::uint4 _e4 = frame.counts;
-    if (metal::any(id_6.xy >= _e4.xy)) {
+    if (metal::any(id_8.xy >= _e4.xy)) {
         return;
     }
-    MarchResult _e9 = march_pixel(id_6.xy, frame, transmittance_lut_in, sky_ambient_in, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler, occupancy_in, stats);
-    cloud_out.write(metal::float4(_e9.radiance, _e9.transmittance), metal::uint2(id_6.xy));
-    depth_out.write(metal::float4(_e9.depth, 0.0, 0.0, 0.0), metal::uint2(id_6.xy));
+    MarchResult _e9 = march_pixel(id_8.xy, frame, transmittance_lut_in, sky_ambient_in, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler, occupancy_in, stats);
+    cloud_out.write(metal::float4(_e9.radiance, _e9.transmittance), metal::uint2(id_8.xy));
+    depth_out.write(metal::float4(_e9.depth, 0.0, 0.0, 0.0), metal::uint2(id_8.xy));
     return;
 }
 
@@ -3952,7 +4226,7 @@ struct marchInput {
 struct march_sparseInput {
 };
 [[max_total_threads_per_threadgroup(64)]] kernel void march_sparse(
-  metal::uint3 id_7 [[thread_position_in_grid]]
+  metal::uint3 id_9 [[thread_position_in_grid]]
 , constant Frame& frame [[user(fake0)]]
 , metal::texture2d<float, metal::access::sample> transmittance_lut_in [[user(fake0)]]
 , metal::texture2d<float, metal::access::sample> sky_ambient_in [[user(fake0)]]
@@ -3967,18 +4241,18 @@ struct march_sparseInput {
 , device Stats& stats [[user(fake0)]]
 ) {
     MarchResult r = MarchResult {metal::float3(0.0), 1.0, 0.0};
-    bool _e2 = in_blocks(id_7.xy, frame);
+    bool _e2 = in_blocks(id_9.xy, frame);
     if (!(_e2)) {
         return;
     }
-    metal::uint2 _e5 = sparse_pixel(id_7.xy, frame);
+    metal::uint2 _e5 = sparse_pixel(id_9.xy, frame);
     metal::uint4 _e14 = frame.counts;
     if (metal::all(_e5 < _e14.xy)) {
         MarchResult _e18 = march_pixel(_e5, frame, transmittance_lut_in, sky_ambient_in, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler, occupancy_in, stats);
         r = _e18;
     }
     MarchResult _e20 = r;
-    store_sparse(id_7.xy, _e20, cloud_out, depth_out);
+    store_sparse(id_9.xy, _e20, cloud_out, depth_out);
     return;
 }
 
@@ -3986,7 +4260,7 @@ struct march_sparseInput {
 struct march_sparse_checkerboardInput {
 };
 [[max_total_threads_per_threadgroup(64)]] kernel void march_sparse_checkerboard(
-  metal::uint3 id_8 [[thread_position_in_grid]]
+  metal::uint3 id_10 [[thread_position_in_grid]]
 , constant Frame& frame [[user(fake0)]]
 , metal::texture2d<float, metal::access::sample> transmittance_lut_in [[user(fake0)]]
 , metal::texture2d<float, metal::access::sample> sky_ambient_in [[user(fake0)]]
@@ -4003,43 +4277,43 @@ struct march_sparse_checkerboardInput {
 ) {
     MarchResult r_1 = MarchResult {metal::float3(0.0), 1.0, 0.0};
     bool skip = {};
-    bool local_2 = {};
     bool local_3 = {};
     bool local_4 = {};
-    bool _e2 = in_blocks(id_8.xy, frame);
+    bool local_5 = {};
+    bool _e2 = in_blocks(id_10.xy, frame);
     if (!(_e2)) {
         return;
     }
-    metal::uint2 _e5 = sparse_pixel(id_8.xy, frame);
+    metal::uint2 _e5 = sparse_pixel(id_10.xy, frame);
     metal::uint4 _e14 = frame.counts;
     skip = metal::any(_e5 >= _e14.xy);
     bool _e19 = skip;
     if (!(_e19)) {
         uint _e26 = frame.temporal.y;
-        local_2 = _e26 != 0u;
+        local_3 = _e26 != 0u;
     } else {
-        local_2 = false;
+        local_3 = false;
     }
-    bool _e30 = local_2;
+    bool _e30 = local_3;
     if (_e30) {
-        uint k_14 = frame.temporal.x;
+        uint k_16 = frame.temporal.x;
         uint _e38 = frame.misc.y;
-        uint turn = naga_div(_e38, k_14 * k_14);
+        uint turn = naga_div(_e38, k_16 * k_16);
         metal::float2 _e42 = reproject(_e5, 0.0, frame);
-        if ((((id_8.x + id_8.y) + turn) & 1u) == 0u) {
+        if ((((id_10.x + id_10.y) + turn) & 1u) == 0u) {
             bool _e53 = on_screen(_e42, frame);
-            local_3 = _e53;
-        } else {
-            local_3 = false;
-        }
-        bool _e55 = local_3;
-        if (_e55) {
-            metal::float4 _e58 = history_nearest(_e42, frame, history_in);
-            local_4 = _e58.w >= 1.0;
+            local_4 = _e53;
         } else {
             local_4 = false;
         }
-        bool _e63 = local_4;
+        bool _e55 = local_4;
+        if (_e55) {
+            metal::float4 _e58 = history_nearest(_e42, frame, history_in);
+            local_5 = _e58.w >= 1.0;
+        } else {
+            local_5 = false;
+        }
+        bool _e63 = local_5;
         if (_e63) {
             skip = true;
         }
@@ -4050,7 +4324,7 @@ struct march_sparse_checkerboardInput {
         r_1 = _e67;
     }
     MarchResult _e69 = r_1;
-    store_sparse(id_8.xy, _e69, cloud_out, depth_out);
+    store_sparse(id_10.xy, _e69, cloud_out, depth_out);
     return;
 }
 
@@ -4058,7 +4332,7 @@ struct march_sparse_checkerboardInput {
 struct resolveInput {
 };
 [[max_total_threads_per_threadgroup(64)]] kernel void resolve(
-  metal::uint3 id_9 [[thread_position_in_grid]]
+  metal::uint3 id_11 [[thread_position_in_grid]]
 , constant Frame& frame [[user(fake0)]]
 , metal::texture2d<float, metal::access::sample> transmittance_lut_in [[user(fake0)]]
 , metal::texture2d<float, metal::access::sample> sky_ambient_in [[user(fake0)]]
@@ -4079,27 +4353,27 @@ struct resolveInput {
 , metal::texture2d<float, metal::access::write> meta_out [[user(fake0)]]
 ) {
     float depth = {};
-    bool local_5 = {};
+    bool local_6 = {};
     bool valid = {};
     metal::float4 history = metal::float4(0.0, 0.0, 0.0, 1.0);
     metal::float4 past = metal::float4(0.0);
-    bool local_6 = {};
     bool local_7 = {};
     bool local_8 = {};
+    bool local_9 = {};
     metal::float4 result = {};
     float samples = {};
     float out_depth = {};
-    bool local_9 = {};
+    bool local_10 = {};
     metal::uint4 _e4 = frame.counts;
-    if (metal::any(id_9.xy >= _e4.xy)) {
+    if (metal::any(id_11.xy >= _e4.xy)) {
         return;
     }
-    metal::uint2 pixel_10 = id_9.xy;
-    uint k_15 = frame.temporal.x;
-    metal::uint2 block = naga_div(pixel_10, metal::uint2(k_15));
+    metal::uint2 pixel_10 = id_11.xy;
+    uint k_17 = frame.temporal.x;
+    metal::uint2 block = naga_div(pixel_10, metal::uint2(k_17));
     uint _e19 = frame.misc.y;
-    metal::uint2 _e20 = block_offset(_e19, k_15);
-    bool marched_1 = metal::all(pixel_10 == ((block * k_15) + _e20));
+    metal::uint2 _e20 = block_offset(_e19, k_17);
+    bool marched_1 = metal::all(pixel_10 == ((block * k_17) + _e20));
     metal::float4 current = sparse_in.read(metal::uint2(block), 0);
     metal::float4 _e29 = sparse_depth_in.read(metal::uint2(block), 0);
     float current_depth = _e29.x;
@@ -4118,11 +4392,11 @@ struct resolveInput {
     uint _e54 = frame.temporal.y;
     if (_e54 != 0u) {
         bool _e59 = on_screen(_e50, frame);
-        local_5 = _e59;
+        local_6 = _e59;
     } else {
-        local_5 = false;
+        local_6 = false;
     }
-    bool _e61 = local_5;
+    bool _e61 = local_6;
     valid = _e61;
     bool moving = metal::any(_e50 != static_cast<metal::float2>(pixel_10));
     bool _e75 = valid;
@@ -4132,18 +4406,18 @@ struct resolveInput {
         metal::float4 _e77 = meta_at(_e50, frame, meta_in);
         past = _e77;
         if (moving) {
-            local_6 = current_depth > 0.0;
-        } else {
-            local_6 = false;
-        }
-        bool _e83 = local_6;
-        if (_e83) {
-            float _e87 = past.x;
-            local_7 = _e87 > 0.0;
+            local_7 = current_depth > 0.0;
         } else {
             local_7 = false;
         }
-        bool _e91 = local_7;
+        bool _e83 = local_7;
+        if (_e83) {
+            float _e87 = past.x;
+            local_8 = _e87 > 0.0;
+        } else {
+            local_8 = false;
+        }
+        bool _e91 = local_8;
         if (_e91) {
             metal::float4 _e94 = frame.camera_position;
             metal::float3 _e96 = view_ray(pixel_10, frame);
@@ -4155,14 +4429,14 @@ struct resolveInput {
     }
     bool _e111 = valid;
     if (_e111) {
-        local_8 = moving;
+        local_9 = moving;
     } else {
-        local_8 = false;
+        local_9 = false;
     }
-    bool _e115 = local_8;
+    bool _e115 = local_9;
     if (_e115) {
         metal::uint4 _e118 = frame.counts;
-        metal::int2 blocks = static_cast<metal::int2>(naga_div((_e118.xy + metal::uint2(k_15)) - metal::uint2(1u), metal::uint2(k_15)));
+        metal::int2 blocks = static_cast<metal::int2>(naga_div((_e118.xy + metal::uint2(k_17)) - metal::uint2(1u), metal::uint2(k_17)));
         metal::int2 b_11 = static_cast<metal::int2>(block);
         int x0_1 = metal::max(as_type<int>(as_type<uint>(b_11.x) - as_type<uint>(1)), 0);
         int x2_2 = metal::min(as_type<int>(as_type<uint>(b_11.x) + as_type<uint>(1)), as_type<int>(as_type<uint>(blocks.x) - as_type<uint>(1)));
@@ -4197,11 +4471,11 @@ struct resolveInput {
         float _e229 = past.x;
         if (!((current_depth > 0.0))) {
             bool _e235 = valid;
-            local_9 = !(_e235);
+            local_10 = !(_e235);
         } else {
-            local_9 = true;
+            local_10 = true;
         }
-        bool _e238 = local_9;
+        bool _e238 = local_10;
         out_depth = _e238 ? current_depth : _e229;
     } else {
         bool _e240 = valid;
@@ -4235,9 +4509,10 @@ struct resolveInput {
 struct pathtraceInput {
 };
 [[max_total_threads_per_threadgroup(64)]] kernel void pathtrace(
-  metal::uint3 id_10 [[thread_position_in_grid]]
+  metal::uint3 id_12 [[thread_position_in_grid]]
 , constant Frame& frame [[user(fake0)]]
 , metal::texture2d<float, metal::access::sample> transmittance_lut_in [[user(fake0)]]
+, metal::texture2d<float, metal::access::sample> sky_view_in [[user(fake0)]]
 , metal::texture2d<float, metal::access::sample> sky_ambient_in [[user(fake0)]]
 , metal::texture3d<float, metal::access::sample> shape_tex [[user(fake0)]]
 , metal::texture3d<float, metal::access::sample> detail_tex [[user(fake0)]]
@@ -4253,16 +4528,16 @@ struct pathtraceInput {
 , metal::texture2d<float, metal::access::write> history_out [[user(fake0)]]
 , metal::texture2d<float, metal::access::write> meta_out [[user(fake0)]]
 ) {
-    Counters counters = Counters {0u, 0u, 0u, 0u};
+    Counters counters_1 = Counters {0u, 0u, 0u, 0u};
     uint rng = {};
     metal::float4 mean = metal::float4(0.0);
     metal::float4 moments = metal::float4(0.0);
-    bool local_10 = {};
+    bool local_11 = {};
     metal::uint4 _e4 = frame.counts;
-    if (metal::any(id_10.xy >= _e4.xy)) {
+    if (metal::any(id_12.xy >= _e4.xy)) {
         return;
     }
-    metal::uint2 pixel_11 = id_10.xy;
+    metal::uint2 pixel_11 = id_12.xy;
     metal::float3 _e9 = view_ray(pixel_11, frame);
     float _e13 = frame.camera_position.y;
     Interval _e14 = cloud_interval(_e13, _e9, frame);
@@ -4273,16 +4548,16 @@ struct pathtraceInput {
     uint _e41 = frame.misc.y;
     uint _e42 = rng_seed(pixel_11, _e41);
     rng = _e42;
-    PathResult _e44 = trace_path(_e9, _e14, rng, counters, frame, transmittance_lut_in, sky_ambient_in, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler, occupancy_in);
+    PathResult _e44 = trace_path(_e9, _e14, rng, counters_1, frame, transmittance_lut_in, sky_view_in, sky_ambient_in, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler, occupancy_in);
     float _e46 = luminance(_e44.radiance);
     uint _e56 = frame.temporal.y;
     if (_e56 == 1u) {
         bool _e61 = camera_still(frame);
-        local_10 = _e61;
+        local_11 = _e61;
     } else {
-        local_10 = false;
+        local_11 = false;
     }
-    bool _e63 = local_10;
+    bool _e63 = local_11;
     if (_e63) {
         metal::float4 _e66 = history_in.read(metal::uint2(pixel_11), 0);
         mean = _e66;
@@ -4314,13 +4589,13 @@ struct pathtraceInput {
     cloud_out.write(_e114, metal::uint2(pixel_11));
     float _e117 = moments.x;
     depth_out.write(metal::float4(_e117, 0.0, 0.0, 0.0), metal::uint2(pixel_11));
-    uint _e124 = counters.view_steps;
+    uint _e124 = counters_1.view_steps;
     count(STAT_VIEW_STEPS, _e124, stats);
-    uint _e127 = counters.density;
+    uint _e127 = counters_1.density;
     count(STAT_DENSITY, _e127, stats);
-    uint _e130 = counters.detail;
+    uint _e130 = counters_1.detail;
     count(STAT_DETAIL, _e130, stats);
-    uint _e133 = counters.light;
+    uint _e133 = counters_1.light;
     count(STAT_LIGHT, _e133, stats);
     return;
 }
@@ -4329,7 +4604,7 @@ struct pathtraceInput {
 struct march_basicInput {
 };
 [[max_total_threads_per_threadgroup(64)]] kernel void march_basic(
-  metal::uint3 id_11 [[thread_position_in_grid]]
+  metal::uint3 id_13 [[thread_position_in_grid]]
 , constant Frame& frame [[user(fake0)]]
 , metal::texture3d<float, metal::access::sample> shape_tex [[user(fake0)]]
 , metal::texture3d<float, metal::access::sample> detail_tex [[user(fake0)]]
@@ -4341,12 +4616,12 @@ struct march_basicInput {
 , device Stats& stats [[user(fake0)]]
 ) {
     metal::uint4 _e4 = frame.counts;
-    if (metal::any(id_11.xy >= _e4.xy)) {
+    if (metal::any(id_13.xy >= _e4.xy)) {
         return;
     }
-    MarchResult _e9 = basic_pixel(id_11.xy, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler, stats);
-    cloud_out.write(metal::float4(_e9.radiance, _e9.transmittance), metal::uint2(id_11.xy));
-    depth_out.write(metal::float4(_e9.depth, 0.0, 0.0, 0.0), metal::uint2(id_11.xy));
+    MarchResult _e9 = basic_pixel(id_13.xy, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler, stats);
+    cloud_out.write(metal::float4(_e9.radiance, _e9.transmittance), metal::uint2(id_13.xy));
+    depth_out.write(metal::float4(_e9.depth, 0.0, 0.0, 0.0), metal::uint2(id_13.xy));
     return;
 }
 
@@ -4358,13 +4633,13 @@ metal::uint2 naga_mod(metal::uint2 lhs, metal::uint2 rhs) {
 struct sprite_atlasInput {
 };
 [[max_total_threads_per_threadgroup(64)]] kernel void sprite_atlas(
-  metal::uint3 id_12 [[thread_position_in_grid]]
+  metal::uint3 id_14 [[thread_position_in_grid]]
 , metal::texture2d<float, metal::access::write> sprite_atlas_out [[user(fake0)]]
 ) {
-    uint tile_2 = (naga_div(id_12.y, ATLAS_TILE) * 4u) + naga_div(id_12.x, ATLAS_TILE);
-    metal::float2 uv_5 = (static_cast<metal::float2>(naga_mod(id_12.xy, metal::uint2(64u))) + metal::float2(0.5)) / metal::float2(64.0);
+    uint tile_2 = (naga_div(id_14.y, ATLAS_TILE) * 4u) + naga_div(id_14.x, ATLAS_TILE);
+    metal::float2 uv_5 = (static_cast<metal::float2>(naga_mod(id_14.xy, metal::uint2(64u))) + metal::float2(0.5)) / metal::float2(64.0);
     float _e21 = sprite_texture(tile_2, uv_5);
-    sprite_atlas_out.write(metal::float4(_e21, _e21, _e21, _e21), metal::uint2(id_12.xy));
+    sprite_atlas_out.write(metal::float4(_e21, _e21, _e21, _e21), metal::uint2(id_14.xy));
     return;
 }
 
@@ -4372,7 +4647,7 @@ struct sprite_atlasInput {
 struct sprite_buildInput {
 };
 [[max_total_threads_per_threadgroup(64)]] kernel void sprite_build(
-  metal::uint3 id_13 [[thread_position_in_grid]]
+  metal::uint3 id_15 [[thread_position_in_grid]]
 , constant Frame& frame [[user(fake0)]]
 , metal::texture3d<float, metal::access::sample> shape_tex [[user(fake0)]]
 , metal::texture3d<float, metal::access::sample> detail_tex [[user(fake0)]]
@@ -4382,57 +4657,57 @@ struct sprite_buildInput {
 , device Stats& stats [[user(fake0)]]
 , metal::texture2d<float, metal::access::write> sprites_out [[user(fake0)]]
 ) {
-    Counters counters_1 = Counters {0u, 0u, 0u, 0u};
-    metal::float4 sum_2 = metal::float4(0.0);
+    Counters counters_2 = Counters {0u, 0u, 0u, 0u};
+    metal::float4 sum_3 = metal::float4(0.0);
     SpriteCandidate me = {};
-    uint i_2 = 0u;
+    uint i_3 = 0u;
     metal::float3 centre = {};
     uint tile = {};
     float rotation = {};
-    bool local_11 = {};
+    bool local_12 = {};
     float key = 0.0;
-    uint slot = id_13.x;
+    uint slot = id_15.x;
     uint cell_index = naga_div(slot, SPRITES_PER_CELL);
     uint level_2 = naga_div(cell_index, 64u);
     SpriteCell _e6 = sprite_cell(cell_index, frame);
     uint own = naga_mod(slot, SPRITES_PER_CELL);
-    SpriteCandidate _e18 = sprite_candidate(_e6, level_2, own, counters_1, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+    SpriteCandidate _e18 = sprite_candidate(_e6, level_2, own, counters_2, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
     me = _e18;
-    uint2 loop_bound_29 = uint2(4294967295u);
-    bool loop_init_25 = true;
+    uint2 loop_bound_32 = uint2(4294967295u);
+    bool loop_init_28 = true;
     while(true) {
-        if (metal::all(loop_bound_29 == uint2(0u))) { break; }
-        loop_bound_29 -= uint2(loop_bound_29.y == 0u, 1u);
-        if (!loop_init_25) {
-            uint _e38 = i_2;
-            i_2 = _e38 + 1u;
+        if (metal::all(loop_bound_32 == uint2(0u))) { break; }
+        loop_bound_32 -= uint2(loop_bound_32.y == 0u, 1u);
+        if (!loop_init_28) {
+            uint _e38 = i_3;
+            i_3 = _e38 + 1u;
         }
-        loop_init_25 = false;
-        uint _e22 = i_2;
+        loop_init_28 = false;
+        uint _e22 = i_3;
         if (_e22 < SPRITES_PER_CELL) {
         } else {
             break;
         }
         {
-            uint _e25 = i_2;
-            SpriteCandidate _e26 = sprite_candidate(_e6, level_2, _e25, counters_1, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
-            metal::float4 _e27 = sum_2;
-            sum_2 = _e27 + (metal::float4(_e26.xz.x, _e26.alt, _e26.xz.y, 1.0) * _e26.density);
+            uint _e25 = i_3;
+            SpriteCandidate _e26 = sprite_candidate(_e6, level_2, _e25, counters_2, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+            metal::float4 _e27 = sum_3;
+            sum_3 = _e27 + (metal::float4(_e26.xz.x, _e26.alt, _e26.xz.y, 1.0) * _e26.density);
         }
     }
-    uint _e43 = counters_1.density;
+    uint _e43 = counters_2.density;
     count(STAT_DENSITY, _e43, stats);
-    uint _e46 = counters_1.detail;
+    uint _e46 = counters_2.detail;
     count(STAT_DETAIL, _e46, stats);
     float bottom_3 = frame.atmosphere.y;
     float _e54 = frame.atmosphere.z;
     float thickness_1 = _e54 - bottom_3;
     metal::float2 middle = (static_cast<metal::float2>(_e6.index) + metal::float2(0.5)) * _e6.size;
     centre = metal::float3(middle.x, bottom_3 + (0.4 * thickness_1), middle.y);
-    float _e71 = sum_2.w;
+    float _e71 = sum_3.w;
     if (_e71 > 0.0) {
-        metal::float4 _e74 = sum_2;
-        float _e77 = sum_2.w;
+        metal::float4 _e74 = sum_3;
+        float _e77 = sum_3.w;
         centre = _e74.xyz / metal::float3(_e77);
     }
     metal::float2 _e81 = me.xz;
@@ -4457,11 +4732,11 @@ struct sprite_buildInput {
     } else {
         if (!(inner)) {
             float _e148 = me.density;
-            local_11 = _e148 < 0.1;
+            local_12 = _e148 < 0.1;
         } else {
-            local_11 = false;
+            local_12 = false;
         }
-        bool _e152 = local_11;
+        bool _e152 = local_12;
         if (_e152) {
             float _e154 = me.texture_hash;
             tile = metal::min(naga_f2u32(_e154 * 4.0), 3u);
@@ -4472,8 +4747,8 @@ struct sprite_buildInput {
         float _e167 = me.alt;
         metal::float3 _e168 = sprite_rel(_e165, _e167, frame);
         float _e172 = frame.camera_position.y;
-        metal::float3 rel_8 = _e168 - metal::float3(0.0, _e172, 0.0);
-        float _e180 = saturate(metal::length(rel_8) / SPRITE_MAX_DISTANCE);
+        metal::float3 rel_9 = _e168 - metal::float3(0.0, _e172, 0.0);
+        float _e180 = saturate(metal::length(rel_9) / SPRITE_MAX_DISTANCE);
         key = 1048576.0 - metal::floor(_e180 * 1048575.0);
     }
     float _e191 = me.xz.x;
@@ -4496,27 +4771,27 @@ struct sprite_buildInput {
 struct sprite_sortInput {
 };
 [[max_total_threads_per_threadgroup(64)]] kernel void sprite_sort(
-  metal::uint3 id_14 [[thread_position_in_grid]]
+  metal::uint3 id_16 [[thread_position_in_grid]]
 , metal::texture2d<float, metal::access::sample> sprites_in [[user(fake0)]]
 , metal::texture2d<float, metal::access::write> sprite_order_out [[user(fake0)]]
 ) {
     uint rank = 0u;
     uint j = 0u;
-    bool local_12 = {};
     bool local_13 = {};
-    uint slot_1 = id_14.x;
+    bool local_14 = {};
+    uint slot_1 = id_16.x;
     metal::float4 _e6 = sprites_in.read(metal::uint2(metal::uint2(slot_1, 3u)), 0);
     float key_1 = _e6.x;
-    uint2 loop_bound_30 = uint2(4294967295u);
-    bool loop_init_26 = true;
+    uint2 loop_bound_33 = uint2(4294967295u);
+    bool loop_init_29 = true;
     while(true) {
-        if (metal::all(loop_bound_30 == uint2(0u))) { break; }
-        loop_bound_30 -= uint2(loop_bound_30.y == 0u, 1u);
-        if (!loop_init_26) {
+        if (metal::all(loop_bound_33 == uint2(0u))) { break; }
+        loop_bound_33 -= uint2(loop_bound_33.y == 0u, 1u);
+        if (!loop_init_29) {
             uint _e40 = j;
             j = _e40 + 1u;
         }
-        loop_init_26 = false;
+        loop_init_29 = false;
         uint _e12 = j;
         if (_e12 < SPRITE_COUNT) {
         } else {
@@ -4530,16 +4805,16 @@ struct sprite_sortInput {
             if (!((other < key_1))) {
                 if (other == key_1) {
                     uint _e32 = j;
-                    local_13 = _e32 < slot_1;
+                    local_14 = _e32 < slot_1;
                 } else {
-                    local_13 = false;
+                    local_14 = false;
                 }
-                bool _e35 = local_13;
-                local_12 = _e35;
+                bool _e35 = local_14;
+                local_13 = _e35;
             } else {
-                local_12 = true;
+                local_13 = true;
             }
-            bool _e37 = local_12;
+            bool _e37 = local_13;
             rank = _e22 + (_e37 ? 1u : 0u);
         }
     }
@@ -4570,7 +4845,7 @@ vertex sprite_vertexOutput sprite_vertex(
     uint slot_2 = naga_f2u32(_e8.x);
     metal::float4 a_11 = sprites_in.read(metal::uint2(metal::uint2(slot_2, 0u)), 0);
     metal::float4 b_12 = sprites_in.read(metal::uint2(metal::uint2(slot_2, 1u)), 0);
-    metal::float4 c_11 = sprites_in.read(metal::uint2(metal::uint2(slot_2, 2u)), 0);
+    metal::float4 c_12 = sprites_in.read(metal::uint2(metal::uint2(slot_2, 2u)), 0);
     if (b_12.w <= 0.0) {
         out.position = metal::float4(0.0, 0.0, -1.0, 1.0);
         SpriteVertex _e35 = out;
@@ -4598,41 +4873,41 @@ vertex sprite_vertexOutput sprite_vertex(
     metal::float3 _e83 = right;
     right = metal::normalize(_e83);
     metal::float3 _e85 = right;
-    metal::float3 up_1 = metal::cross(n_5, _e85);
+    metal::float3 up_2 = metal::cross(n_5, _e85);
     metal::float2 _e89 = sprite_corner(naga_mod(index, 6u));
     metal::float3 _e90 = right;
-    metal::float3 offset_1 = (_e90 * (_e89.x * half_width_1)) + (up_1 * (_e89.y * c_11.z));
+    metal::float3 offset_1 = (_e90 * (_e89.x * half_width_1)) + (up_2 * (_e89.y * c_12.z));
     metal::float3 vertex_ = to_sprite + offset_1;
     metal::float4 _e102 = frame.camera_right;
-    float x_12 = metal::dot(vertex_, _e102.xyz);
+    float x_14 = metal::dot(vertex_, _e102.xyz);
     metal::float4 _e107 = frame.camera_up;
-    float y_3 = metal::dot(vertex_, _e107.xyz);
+    float y_4 = metal::dot(vertex_, _e107.xyz);
     metal::float4 _e112 = frame.camera_forward;
     float z_4 = metal::dot(vertex_, _e112.xyz);
     float tan_half_3 = frame.camera_position.w;
     float _e123 = frame.camera_forward.w;
-    out.position = metal::float4(x_12 / (tan_half_3 * _e123), y_3 / tan_half_3, 0.5 * z_4, z_4);
-    metal::float2 cs = metal::float2(metal::cos(c_11.y), metal::sin(c_11.y));
-    metal::float2 t_11 = metal::float2(_e89.x, -(_e89.y));
-    out.uv = metal::float2((t_11.x * cs.x) - (t_11.y * cs.y), (t_11.x * cs.y) + (t_11.y * cs.x));
-    out.tile = naga_f2u32(c_11.x);
+    out.position = metal::float4(x_14 / (tan_half_3 * _e123), y_4 / tan_half_3, 0.5 * z_4, z_4);
+    metal::float2 cs = metal::float2(metal::cos(c_12.y), metal::sin(c_12.y));
+    metal::float2 t_12 = metal::float2(_e89.x, -(_e89.y));
+    out.uv = metal::float2((t_12.x * cs.x) - (t_12.y * cs.y), (t_12.x * cs.y) + (t_12.y * cs.x));
+    out.tile = naga_f2u32(c_12.x);
     metal::float4 _e160 = frame.sun_direction;
-    metal::float3 sun_8 = _e160.xyz;
+    metal::float3 sun_13 = _e160.xyz;
     metal::float3 _e164 = sprite_rel(b_12.xz, b_12.y, frame);
     metal::float3 centre_2 = _e164 - cam_1;
     metal::float3 from_centre = vertex_ - centre_2;
-    float cos_angle_1 = metal::dot(from_centre, sun_8) / metal::max(metal::length(from_centre), 0.001);
-    float _e177 = saturate((sun_8.y * 4.0) + 0.3);
+    float cos_angle_1 = metal::dot(from_centre, sun_13) / metal::max(metal::length(from_centre), 0.001);
+    float _e177 = saturate((sun_13.y * 4.0) + 0.3);
     float _e179 = altitude_of(vertex_ + cam_1, frame);
     float _e183 = frame.atmosphere.y;
     float _e188 = frame.atmosphere.z;
     float _e192 = frame.atmosphere.y;
     float _e195 = saturate((_e179 - _e183) / (_e188 - _e192));
     metal::float4 _e198 = frame.sun_illuminance;
-    metal::float3 e_2 = _e198.xyz;
+    metal::float3 e_3 = _e198.xyz;
     metal::float3 _e200 = sprite_sky_level(_e195);
     float _e204 = sprite_sun_level(cos_angle_1);
-    metal::float3 light = (e_2 * ((_e200 * (SPRITE_SKY * _e177)) + metal::float3(_e204))) * (c_11.w / PI);
+    metal::float3 light = (e_3 * ((_e200 * (SPRITE_SKY * _e177)) + metal::float3(_e204))) * (c_12.w / PI);
     out.colour = metal::float4(light, b_12.w);
     out.distance = metal::length(vertex_);
     SpriteVertex _e217 = out;
@@ -4652,12 +4927,12 @@ struct sprite_fragmentOutput {
     metal::float4 depth [[color(1)]];
 };
 fragment sprite_fragmentOutput sprite_fragment(
-  sprite_fragmentInput varyings_16 [[stage_in]]
+  sprite_fragmentInput varyings_18 [[stage_in]]
 , metal::float4 position [[position]]
 , metal::sampler noise_sampler [[user(fake0)]]
 , metal::texture2d<float, metal::access::sample> sprite_atlas_in [[user(fake0)]]
 ) {
-    const SpriteVertex in = { position, varyings_16.uv_2, varyings_16.tile_2, {}, varyings_16.colour, varyings_16.distance };
+    const SpriteVertex in = { position, varyings_18.uv_2, varyings_18.tile_2, {}, varyings_18.colour, varyings_18.distance };
     SpriteTargets out_1 = {};
     float a = 0.0;
     if (metal::all(metal::abs(in.uv) <= metal::float2(1.0))) {
@@ -4681,7 +4956,7 @@ fragment sprite_fragmentOutput sprite_fragment(
 struct sprite_resolveInput {
 };
 [[max_total_threads_per_threadgroup(64)]] kernel void sprite_resolve(
-  metal::uint3 id_15 [[thread_position_in_grid]]
+  metal::uint3 id_17 [[thread_position_in_grid]]
 , constant Frame& frame [[user(fake0)]]
 , metal::texture2d<float, metal::access::write> cloud_out [[user(fake0)]]
 , metal::texture2d<float, metal::access::write> depth_out [[user(fake0)]]
@@ -4690,15 +4965,15 @@ struct sprite_resolveInput {
 , metal::texture2d<float, metal::access::sample> sprite_depth_in [[user(fake0)]]
 ) {
     metal::uint4 _e4 = frame.counts;
-    if (metal::any(id_15.xy >= _e4.xy)) {
+    if (metal::any(id_17.xy >= _e4.xy)) {
         return;
     }
     count(STAT_PIXELS, 1u, stats);
-    metal::float4 c_12 = sprite_radiance_in.read(metal::uint2(id_15.xy), 0);
-    metal::float4 d_21 = sprite_depth_in.read(metal::uint2(id_15.xy), 0);
-    float _e19 = saturate(c_12.w);
-    cloud_out.write(metal::float4(c_12.xyz, 1.0 - _e19), metal::uint2(id_15.xy));
-    depth_out.write(metal::float4((d_21.w > 0.0001) ? (d_21.x / d_21.w) : 0.0, 0.0, 0.0, 0.0), metal::uint2(id_15.xy));
+    metal::float4 c_13 = sprite_radiance_in.read(metal::uint2(id_17.xy), 0);
+    metal::float4 d_23 = sprite_depth_in.read(metal::uint2(id_17.xy), 0);
+    float _e19 = saturate(c_13.w);
+    cloud_out.write(metal::float4(c_13.xyz, 1.0 - _e19), metal::uint2(id_17.xy));
+    depth_out.write(metal::float4((d_23.w > 0.0001) ? (d_23.x / d_23.w) : 0.0, 0.0, 0.0, 0.0), metal::uint2(id_17.xy));
     return;
 }
 
@@ -4706,17 +4981,17 @@ struct sprite_resolveInput {
 struct compositeInput {
 };
 [[max_total_threads_per_threadgroup(64)]] kernel void composite(
-  metal::uint3 id_16 [[thread_position_in_grid]]
+  metal::uint3 id_18 [[thread_position_in_grid]]
 , constant Frame& frame [[user(fake0)]]
 , metal::texture2d<float, metal::access::sample> cloud_in [[user(fake0)]]
 , metal::texture2d<float, metal::access::write> image_out [[user(fake0)]]
 ) {
     metal::float3 background = {};
     metal::uint4 _e4 = frame.counts;
-    if (metal::any(id_16.xy >= _e4.xy)) {
+    if (metal::any(id_18.xy >= _e4.xy)) {
         return;
     }
-    metal::uint2 pixel_12 = id_16.xy;
+    metal::uint2 pixel_12 = id_18.xy;
     metal::float3 _e9 = view_ray(pixel_12, frame);
     float alt_18 = frame.camera_position.y;
     metal::float4 cloud_1 = cloud_in.read(metal::uint2(pixel_12), 0);
@@ -4737,23 +5012,24 @@ struct compositeInput {
 struct composite_physicalInput {
 };
 [[max_total_threads_per_threadgroup(64)]] kernel void composite_physical(
-  metal::uint3 id_17 [[thread_position_in_grid]]
+  metal::uint3 id_19 [[thread_position_in_grid]]
 , constant Frame& frame [[user(fake0)]]
 , metal::texture2d<float, metal::access::sample> transmittance_lut_in [[user(fake0)]]
 , metal::texture2d<float, metal::access::sample> sky_view_in [[user(fake0)]]
 , metal::texture2d<float, metal::access::sample> aerial_in [[user(fake0)]]
+, metal::texture2d<float, metal::access::sample> cloud_shadow_in [[user(fake0)]]
 , metal::texture2d<float, metal::access::sample> cloud_in [[user(fake0)]]
 , metal::texture2d<float, metal::access::write> image_out [[user(fake0)]]
 , metal::texture2d<float, metal::access::sample> depth_in [[user(fake0)]]
 ) {
     metal::uint4 _e4 = frame.counts;
-    if (metal::any(id_17.xy >= _e4.xy)) {
+    if (metal::any(id_19.xy >= _e4.xy)) {
         return;
     }
-    metal::uint2 pixel_13 = id_17.xy;
+    metal::uint2 pixel_13 = id_19.xy;
     metal::float4 cloud_2 = cloud_in.read(metal::uint2(pixel_13), 0);
     metal::float3 _e12 = view_ray(pixel_13, frame);
-    metal::float3 _e13 = physical_composite(pixel_13, _e12, cloud_2, frame, transmittance_lut_in, sky_view_in, aerial_in, depth_in);
+    metal::float3 _e13 = physical_composite(pixel_13, _e12, cloud_2, frame, transmittance_lut_in, sky_view_in, aerial_in, cloud_shadow_in, depth_in);
     store_display(pixel_13, _e13, frame, image_out);
     return;
 }

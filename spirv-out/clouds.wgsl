@@ -443,23 +443,25 @@ fn fibonacci_direction(k: u32, n: u32) -> vec3<f32> {
     return vec3<f32>(s * cos(phi), z, s * sin(phi));
 }
 
-// Light leaving the lit, diffuse ground at radius `bottom` where the direction to the sun has
-// zenith cosine mu_s: albedo / pi times the sun's cosine and its light left there.
-fn ground_radiance(mu_s: f32) -> vec3<f32> {
+// The sun's part of the light leaving the lit, diffuse ground where the direction to the sun
+// has zenith cosine mu_s: albedo / pi times the sun's cosine and its light left there. The
+// multi-scattering table takes the ground as lit by the sun alone (Hillaire 2020, 5.5.2);
+// the sky's part is `ground_radiance`'s (wgsl/ground.wgsl).
+fn ground_radiance_sun(mu_s: f32) -> vec3<f32> {
     return frame.air_misc.z / PI * max(mu_s, 0.0) * sun_transmittance(air_bottom() + 0.001, mu_s);
 }
 
 // In-scattered light and transmittance along a ray from `origin` (km, planet centre at the
 // origin) along unit `d` for `distance_km` km in `steps` segments whose ends go as the square of
-// their index (short near the camera, where the air is dense), the sun along unit `sun`.
-// With `ground`, the lit ground at the end is added through the air.
+// their index (short near the camera, where the air is dense), the sun along unit `sun`. A
+// caller whose ray ends on the ground adds the ground's light times the transmittance
+// (`with_ground`).
 struct Scattered {
     radiance: vec3<f32>,
     transmittance: vec3<f32>,
 }
 
-fn integrate_air(origin: vec3<f32>, d: vec3<f32>, distance_km: f32, steps: u32, sun: vec3<f32>,
-                 ground: bool) -> Scattered {
+fn integrate_air(origin: vec3<f32>, d: vec3<f32>, distance_km: f32, steps: u32, sun: vec3<f32>) -> Scattered {
     let cos_theta = dot(d, sun);
     let phase_r = phase_rayleigh(cos_theta);
     let phase_m = phase_cornette_shanks_air(cos_theta, frame.air_mie.w);
@@ -485,11 +487,18 @@ fn integrate_air(origin: vec3<f32>, d: vec3<f32>, distance_km: f32, steps: u32, 
         tau += air.extinction * dt;
         t0 = t1;
     }
-    if ground {
-        let end = origin + d * distance_km;
-        radiance += exp(-tau) * ground_radiance(dot(normalize(end), sun));
-    }
     return Scattered(radiance, exp(-tau));
+}
+
+// The light of `integrate_air`'s ray with the lit ground (sun and sky) at its end through the
+// air when `ground` (the ray ends there).
+fn with_ground(s: Scattered, origin: vec3<f32>, d: vec3<f32>, distance_km: f32, sun: vec3<f32>,
+               ground: bool) -> vec3<f32> {
+    if !ground {
+        return s.radiance;
+    }
+    let end = origin + d * distance_km;
+    return s.radiance + s.transmittance * ground_radiance(dot(normalize(end), sun));
 }
 
 // The ray from `origin` along `d`: how far it goes in the air and whether it ends on the
@@ -563,7 +572,7 @@ fn multiscatter_lut(@builtin(global_invocation_id) id: vec3<u32>) {
         }
         if end.y > 0.5 {
             let g = origin + d * end.x;
-            l2 += exp(-tau) * ground_radiance(dot(normalize(g), sun));
+            l2 += exp(-tau) * ground_radiance_sun(dot(normalize(g), sun));
         }
     }
     let w = 1.0 / f32(MULTISCATTER_DIRECTIONS);
@@ -613,8 +622,9 @@ fn sky_view_lut(@builtin(global_invocation_id) id: vec3<u32>) {
     let phi = sun_azimuth() + x.x * PI;
     let d = vec3<f32>(cos(elevation) * cos(phi), sin(elevation), cos(elevation) * sin(phi));
     let end = air_ray_end(origin, d);
-    let s = integrate_air(origin, d, end.x, SKY_VIEW_STEPS, frame.sun_direction.xyz, end.y > 0.5);
-    textureStore(sky_view_out, id.xy, vec4<f32>(s.radiance, 1.0));
+    let sun = frame.sun_direction.xyz;
+    let s = integrate_air(origin, d, end.x, SKY_VIEW_STEPS, sun);
+    textureStore(sky_view_out, id.xy, vec4<f32>(with_ground(s, origin, d, end.x, sun, end.y > 0.5), 1.0));
 }
 
 // The sky's radiance (per unit sun illuminance) seen from the camera along unit `d`: the
@@ -723,7 +733,9 @@ fn sky_ambient(@builtin(global_invocation_id) id: vec3<u32>) {
     for (var k = 0u; k < AMBIENT_DIRECTIONS; k++) {
         let d = fibonacci_direction(k, AMBIENT_DIRECTIONS);
         let end = air_ray_end(origin, d);
-        sum += integrate_air(origin, d, end.x, AMBIENT_STEPS, frame.sun_direction.xyz, end.y > 0.5).radiance;
+        let sun = frame.sun_direction.xyz;
+        let s = integrate_air(origin, d, end.x, AMBIENT_STEPS, sun);
+        sum += with_ground(s, origin, d, end.x, sun, end.y > 0.5);
     }
     textureStore(sky_ambient_out, id.xy, vec4<f32>(sum / f32(AMBIENT_DIRECTIONS), 1.0));
 }
@@ -1094,6 +1106,146 @@ fn scattered_light(rel: vec3<f32>, p: vec3<f32>, alt: f32, density: f32, view: v
     let darkening = saturate(1.0 - frame.extinction.z * weather.precipitation * (1.0 - h));
     return frame.extinction.x * density * (sun_light + ambient(h)) * darkening;
 }
+// The lit ground under the physical sky: the sky's irradiance on it and the clouds' shadows
+// on it.
+//
+// - ground irradiance (64x1): the irradiance the sky (not the sun's disc) gives a horizontal
+//   ground per unit sun illuminance, by the sun's zenith cosine: the cosine-weighted integral
+//   of the sky's radiance over the upper hemisphere (Bruneton and Neyret 2008's irradiance
+//   table, for one altitude). The ground's light is albedo / pi times sun plus sky. It depends
+//   on the air only, so it is computed when the air changes.
+// - cloud shadow (128x128): the transmittance of the key light's way through every cloud layer
+//   from the ground, on a square 40 km wide centred below the camera, every frame (it follows
+//   the wind, the sun and the camera). A transmittance map and not a Beer shadow map
+//   (Hillaire 2016: front depth, mean extinction and maximum optical depth, to be evaluated
+//   at any depth): the only receiver is the ground, at one height, so the transmittance there
+//   is the whole answer, with no reconstruction error. Its texels are 313 m, finer than a
+//   cumulus; the shadow fades out over the outer quarter of the square, where the map ends.
+
+@group(0) @binding(38) var ground_irradiance_in: texture_2d<f32>;
+@group(0) @binding(39) var ground_irradiance_out: texture_storage_2d<rgba32float, write>;
+@group(0) @binding(40) var cloud_shadow_in: texture_2d<f32>;
+@group(0) @binding(41) var cloud_shadow_out: texture_storage_2d<r32float, write>;
+
+const GROUND_IRRADIANCE_SIZE: u32 = 64u;
+const GROUND_IRRADIANCE_DIRECTIONS: u32 = 128u; // over the sphere; the upper half counts
+const SHADOW_SIZE: u32 = 128u;
+const SHADOW_HALF_EXTENT: f32 = 20000.0;        // m
+const SHADOW_FADE_START: f32 = 0.75;            // of the half extent
+const SHADOW_STEPS: u32 = 16u;                  // per layer crossed
+
+// Texel i of the irradiance table holds the sun's zenith cosine 2 i / (size - 1) - 1.
+@compute @workgroup_size(8, 8, 1)
+fn ground_irradiance(@builtin(global_invocation_id) id: vec3<u32>) {
+    if id.x >= GROUND_IRRADIANCE_SIZE || id.y >= 1u {
+        return;
+    }
+    let mu_s = f32(id.x) / f32(GROUND_IRRADIANCE_SIZE - 1u) * 2.0 - 1.0;
+    let sun = vec3<f32>(sqrt(max(1.0 - mu_s * mu_s, 0.0)), mu_s, 0.0);
+    // A metre above the ground, so that no upward ray starts below it.
+    let origin = vec3<f32>(0.0, air_bottom() + 0.001, 0.0);
+    var sum = vec3<f32>(0.0);
+    for (var k = 0u; k < GROUND_IRRADIANCE_DIRECTIONS; k++) {
+        let d = fibonacci_direction(k, GROUND_IRRADIANCE_DIRECTIONS);
+        if d.y <= 0.0 {
+            continue;
+        }
+        let end = air_ray_end(origin, d);
+        sum += integrate_air(origin, d, end.x, AMBIENT_STEPS, sun).radiance * d.y;
+    }
+    let e = sum * (4.0 * PI / f32(GROUND_IRRADIANCE_DIRECTIONS));
+    textureStore(ground_irradiance_out, id.xy, vec4<f32>(e, 1.0));
+}
+
+// The sky's irradiance on the ground for a sun of zenith cosine mu_s.
+fn sky_irradiance(mu_s: f32) -> vec3<f32> {
+    let x = vec2<f32>(mu_s * 0.5 + 0.5, 0.0);
+    return lut_bilinear(ground_irradiance_in, x, vec2<u32>(GROUND_IRRADIANCE_SIZE, 1u)).rgb;
+}
+
+// Light leaving the lit, diffuse ground where the sun's zenith cosine is mu_s, sun and sky.
+fn ground_radiance(mu_s: f32) -> vec3<f32> {
+    return ground_radiance_sun(mu_s) + frame.air_misc.z / PI * sky_irradiance(mu_s);
+}
+
+// The ground point of shadow-map texel `c`, relative to the ground below the camera (m): on
+// the planet's surface, texel i at (2 i / (size - 1) - 1) times the half extent.
+fn shadow_ground_point(c: vec2<u32>) -> vec3<f32> {
+    let xz = (vec2<f32>(c) / f32(SHADOW_SIZE - 1u) * 2.0 - 1.0) * SHADOW_HALF_EXTENT;
+    let rp = frame.atmosphere.x;
+    let s2 = dot(xz, xz);
+    // sqrt(Rp^2 - s^2) - Rp without cancellation.
+    let y = -s2 / (sqrt(max(rp * rp - s2, 0.0)) + rp);
+    return vec3<f32>(xz.x, y, xz.y);
+}
+
+@compute @workgroup_size(8, 8, 1)
+fn cloud_shadow(@builtin(global_invocation_id) id: vec3<u32>) {
+    if any(id.xy >= vec2<u32>(SHADOW_SIZE)) {
+        return;
+    }
+    let rel = shadow_ground_point(id.xy);
+    let sun = frame.sun_direction.xyz;
+    let rp = frame.atmosphere.x;
+    let up = normalize(vec3<f32>(rel.x, rel.y + rp, rel.z));
+    var tau = 0.0;
+    // Where the key light is below the ground's horizon the ground is unlit anyway.
+    if dot(up, sun) > 0.0 {
+        let cam_xz = frame.camera_position.xz;
+        // Not counted: the counters measure the march's work, the same with and without the
+        // physical sky.
+        var counters = Counters(0u, 0u, 0u, 0u);
+        for (var i = 0u; i < layer_count(); i++) {
+            let l = cloud_layer(i);
+            // From below a shell, the far root is where the ray leaves it upward.
+            let start = max(ray_shell_from(rel, 0.0, sun, l.bottom).t1, 0.0);
+            let end = ray_shell_from(rel, 0.0, sun, l.top).t1;
+            let dt = (end - start) / f32(SHADOW_STEPS);
+            if !(dt > 0.0) {
+                continue;
+            }
+            for (var k = 0u; k < SHADOW_STEPS; k++) {
+                let q = rel + sun * (start + (f32(k) + 0.5) * dt);
+                let p = vec3<f32>(q.x + cam_xz.x, q.y, q.z + cam_xz.y);
+                tau += layer_density(p, altitude_of(q), l, &counters) * dt;
+            }
+        }
+    }
+    let sigma_t = frame.extinction.x + frame.extinction.y;
+    textureStore(cloud_shadow_out, id.xy, vec4<f32>(exp(-sigma_t * tau), 0.0, 0.0, 1.0));
+}
+
+// The clouds' transmittance of the key light at ground point `rel` (m, relative to the ground
+// below the camera): the map, fading to 1 toward its edge and 1 beyond it.
+fn ground_shadow(rel: vec3<f32>) -> f32 {
+    let edge = max(abs(rel.x), abs(rel.z)) / SHADOW_HALF_EXTENT;
+    if edge >= 1.0 {
+        return 1.0;
+    }
+    let x = rel.xz / (2.0 * SHADOW_HALF_EXTENT) + 0.5;
+    let t = lut_bilinear(cloud_shadow_in, x, vec2<u32>(SHADOW_SIZE)).r;
+    return mix(t, 1.0, smoothstep(SHADOW_FADE_START, 1.0, edge));
+}
+
+// The part of the sky-view table's ground light (per unit key-light illuminance) along `view`
+// from the camera at radius `r` (km) that the clouds' shadow takes away: the ground's sun
+// term at the point the ray meets, times the air's transmittance back to the camera
+// (Bruneton 2017: the ratio of two transmittances to the top), times the shadow's share.
+fn ground_shadow_loss(view: vec3<f32>, r: f32) -> vec3<f32> {
+    let t = distance_to_ground(r, view.y);
+    let cam_alt = max(frame.camera_position.y, 0.0);
+    let shadow = ground_shadow(view * (t * 1000.0) + vec3<f32>(0.0, cam_alt, 0.0));
+    if shadow >= 1.0 {
+        return vec3<f32>(0.0);
+    }
+    let r_g = air_bottom();
+    // Zenith cosines at the ground point of the view ray and of the sun (Bruneton 2008).
+    let mu_g = clamp((r * view.y + t) / r_g, -1.0, 1.0);
+    let mu_s = clamp((r * frame.sun_direction.y + t * dot(view, frame.sun_direction.xyz)) / r_g, -1.0, 1.0);
+    let t_view = min(transmittance_to_top(r_g, -mu_g) / max(transmittance_to_top(r, -view.y), vec3<f32>(1e-20)),
+                     vec3<f32>(1.0));
+    return (1.0 - shadow) * t_view * ground_radiance_sun(mu_s);
+}
 // Empty-space skipping: a coarse occupancy grid over one tile of the weather map. Each cell
 // holds the largest coverage value (the map's R) that a bilinear lookup inside the cell can
 // return; where even that leaves no cloud under the scene's coverage, the density is 0 in the
@@ -1243,6 +1395,7 @@ fn march_pixel(pixel: vec2<u32>) -> MarchResult {
     var ground = false;
     var last_start = -1.0;
     var last_index = NO_LAYER;
+    var exited = false;
     for (var k = 0u; k < n; k++) {
         // The nearest layer not marched yet: the smallest (start, index) after the last one.
         var next = NO_LAYER;
@@ -1264,6 +1417,7 @@ fn march_pixel(pixel: vec2<u32>) -> MarchResult {
         last_index = next;
         if march_layer(view, span, cloud_layer(next), jitter, &state, &counters) {
             count(STAT_EXIT_TRANSMITTANCE, 1u);
+            exited = true;
             break;
         }
     }
@@ -1283,7 +1437,11 @@ fn march_pixel(pixel: vec2<u32>) -> MarchResult {
     if state.transmittance < 1.0 {
         depth = state.depth_sum / (1.0 - state.transmittance);
     }
-    return MarchResult(state.radiance, state.transmittance, depth);
+    // A march that ends early ends the pixel: nothing behind the cloud may show through the
+    // transmittance left (up to the threshold, 1%), least of all the sun's or the moon's disc,
+    // whose radiance is 10^5 times the sky's.
+    let transmittance = select(state.transmittance, 0.0, exited);
+    return MarchResult(state.radiance, transmittance, depth);
 }
 
 // The march of the view ray's interval `span` in layer `l`, added to `state`. True when the
@@ -1672,8 +1830,9 @@ fn resolve(@builtin(global_invocation_id) id: vec3<u32>) {
 //   tracking (Novák et al. 2014), with Russian roulette once below 0.01;
 // * at a collision the throughput takes the single-scattering albedo; next-event estimation
 //   to the sun; the path goes on along a phase-sampled direction, and where it leaves the
-//   layer it sees the ambient, a uniform environment of radiance ambient(h) (h: the height of
-//   the collision it left); Russian roulette on the throughput after the third order;
+//   layer it sees the environment (`environment`: the sky and lit ground in its direction
+//   under the physical sky, else a uniform ambient(h), h the height of the collision it
+//   left); Russian roulette on the throughput after the third order;
 // * directions from Henyey-Greenstein (the two-lobe model samples its mixture; Cornette-Shanks
 //   samples HG(g) weighted by CS/HG).
 // The octaves, Beer-Powder and precipitation darkening are the march's approximations and are
@@ -1910,6 +2069,17 @@ fn sample_phase(dir: vec3<f32>, rng: ptr<function, u32>) -> PhaseSample {
     return PhaseSample(w, select(0.0, phase(cos_theta, 1.0) / pdf, pdf > 0.0));
 }
 
+// The light a path that leaves the clouds along unit `d` sees: under the physical sky the sky
+// and the lit ground in that direction (the sky-view table, seen from the camera's altitude:
+// the air around a layer a few kilometres up differs little), else the ambient's uniform
+// environment ambient(h). The march takes the sky's mean instead (the sky-ambient table).
+fn environment(d: vec3<f32>, h: f32) -> vec3<f32> {
+    if physical_sky() {
+        return sky_view(d) * frame.sun_illuminance.rgb * frame.ambient_bottom.w;
+    }
+    return ambient(h);
+}
+
 // One path through `pixel`'s ray over the march's interval.
 struct PathResult {
     radiance: vec3<f32>,
@@ -1967,7 +2137,7 @@ fn trace_path(view: vec3<f32>, span: Interval, rng: ptr<function, u32>,
         let t = free_flight(pos, next.dir, layer_segments(pos, alt, next.dir), rng, counters);
         if t < 0.0 {
             if ambient_on {
-                out.radiance += ambient(h) * (throughput * next.weight);
+                out.radiance += environment(next.dir, h) * (throughput * next.weight);
             }
             break;
         }
@@ -2590,7 +2760,8 @@ fn sun_disk(d: vec3<f32>) -> vec3<f32> {
     return frame.sun_illuminance.rgb / (2.0 * PI * max(1.0 - cos_r, 1e-6));
 }
 
-// The clouds in the physical sky: the sky-view table (ground included) and the sun's disc
+// The clouds in the physical sky: the sky-view table (the lit ground included, with the
+// clouds' shadows on it) and the sun's disc
 // through the air behind them; in front of them the air between the camera and their depth
 // (aerial perspective), which dims their light and adds its own. Where a cloud leaves
 // transmittance a, the sky behind it shows through as a, and the air in front of the cloud
@@ -2600,7 +2771,10 @@ fn physical_composite(pixel: vec2<u32>, view: vec3<f32>, cloud: vec4<f32>) -> ve
     let e = frame.sun_illuminance.rgb;
     let r = camera_air_origin().y;
     var sky = sky_view(view) * e;
-    if !meets_ground(r, view.y) {
+    if meets_ground(r, view.y) {
+        // The table's ground is lit everywhere; where the clouds shade it, less.
+        sky = max(sky - ground_shadow_loss(view, r) * e, vec3<f32>(0.0));
+    } else {
         var space = moon_disk(view) + stars(view);
         if (frame.modes.w & FLAG_MOONLIT) == 0u {
             space += sun_disk(view);

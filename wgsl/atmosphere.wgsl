@@ -187,23 +187,25 @@ fn fibonacci_direction(k: u32, n: u32) -> vec3<f32> {
     return vec3<f32>(s * cos(phi), z, s * sin(phi));
 }
 
-// Light leaving the lit, diffuse ground at radius `bottom` where the direction to the sun has
-// zenith cosine mu_s: albedo / pi times the sun's cosine and its light left there.
-fn ground_radiance(mu_s: f32) -> vec3<f32> {
+// The sun's part of the light leaving the lit, diffuse ground where the direction to the sun
+// has zenith cosine mu_s: albedo / pi times the sun's cosine and its light left there. The
+// multi-scattering table takes the ground as lit by the sun alone (Hillaire 2020, 5.5.2);
+// the sky's part is `ground_radiance`'s (wgsl/ground.wgsl).
+fn ground_radiance_sun(mu_s: f32) -> vec3<f32> {
     return frame.air_misc.z / PI * max(mu_s, 0.0) * sun_transmittance(air_bottom() + 0.001, mu_s);
 }
 
 // In-scattered light and transmittance along a ray from `origin` (km, planet centre at the
 // origin) along unit `d` for `distance_km` km in `steps` segments whose ends go as the square of
-// their index (short near the camera, where the air is dense), the sun along unit `sun`.
-// With `ground`, the lit ground at the end is added through the air.
+// their index (short near the camera, where the air is dense), the sun along unit `sun`. A
+// caller whose ray ends on the ground adds the ground's light times the transmittance
+// (`with_ground`).
 struct Scattered {
     radiance: vec3<f32>,
     transmittance: vec3<f32>,
 }
 
-fn integrate_air(origin: vec3<f32>, d: vec3<f32>, distance_km: f32, steps: u32, sun: vec3<f32>,
-                 ground: bool) -> Scattered {
+fn integrate_air(origin: vec3<f32>, d: vec3<f32>, distance_km: f32, steps: u32, sun: vec3<f32>) -> Scattered {
     let cos_theta = dot(d, sun);
     let phase_r = phase_rayleigh(cos_theta);
     let phase_m = phase_cornette_shanks_air(cos_theta, frame.air_mie.w);
@@ -229,11 +231,18 @@ fn integrate_air(origin: vec3<f32>, d: vec3<f32>, distance_km: f32, steps: u32, 
         tau += air.extinction * dt;
         t0 = t1;
     }
-    if ground {
-        let end = origin + d * distance_km;
-        radiance += exp(-tau) * ground_radiance(dot(normalize(end), sun));
-    }
     return Scattered(radiance, exp(-tau));
+}
+
+// The light of `integrate_air`'s ray with the lit ground (sun and sky) at its end through the
+// air when `ground` (the ray ends there).
+fn with_ground(s: Scattered, origin: vec3<f32>, d: vec3<f32>, distance_km: f32, sun: vec3<f32>,
+               ground: bool) -> vec3<f32> {
+    if !ground {
+        return s.radiance;
+    }
+    let end = origin + d * distance_km;
+    return s.radiance + s.transmittance * ground_radiance(dot(normalize(end), sun));
 }
 
 // The ray from `origin` along `d`: how far it goes in the air and whether it ends on the
@@ -307,7 +316,7 @@ fn multiscatter_lut(@builtin(global_invocation_id) id: vec3<u32>) {
         }
         if end.y > 0.5 {
             let g = origin + d * end.x;
-            l2 += exp(-tau) * ground_radiance(dot(normalize(g), sun));
+            l2 += exp(-tau) * ground_radiance_sun(dot(normalize(g), sun));
         }
     }
     let w = 1.0 / f32(MULTISCATTER_DIRECTIONS);
@@ -357,8 +366,9 @@ fn sky_view_lut(@builtin(global_invocation_id) id: vec3<u32>) {
     let phi = sun_azimuth() + x.x * PI;
     let d = vec3<f32>(cos(elevation) * cos(phi), sin(elevation), cos(elevation) * sin(phi));
     let end = air_ray_end(origin, d);
-    let s = integrate_air(origin, d, end.x, SKY_VIEW_STEPS, frame.sun_direction.xyz, end.y > 0.5);
-    textureStore(sky_view_out, id.xy, vec4<f32>(s.radiance, 1.0));
+    let sun = frame.sun_direction.xyz;
+    let s = integrate_air(origin, d, end.x, SKY_VIEW_STEPS, sun);
+    textureStore(sky_view_out, id.xy, vec4<f32>(with_ground(s, origin, d, end.x, sun, end.y > 0.5), 1.0));
 }
 
 // The sky's radiance (per unit sun illuminance) seen from the camera along unit `d`: the
@@ -467,7 +477,9 @@ fn sky_ambient(@builtin(global_invocation_id) id: vec3<u32>) {
     for (var k = 0u; k < AMBIENT_DIRECTIONS; k++) {
         let d = fibonacci_direction(k, AMBIENT_DIRECTIONS);
         let end = air_ray_end(origin, d);
-        sum += integrate_air(origin, d, end.x, AMBIENT_STEPS, frame.sun_direction.xyz, end.y > 0.5).radiance;
+        let sun = frame.sun_direction.xyz;
+        let s = integrate_air(origin, d, end.x, AMBIENT_STEPS, sun);
+        sum += with_ground(s, origin, d, end.x, sun, end.y > 0.5);
     }
     textureStore(sky_ambient_out, id.xy, vec4<f32>(sum / f32(AMBIENT_DIRECTIONS), 1.0));
 }

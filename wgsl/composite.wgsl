@@ -35,7 +35,8 @@ fn sun_disk(d: vec3<f32>) -> vec3<f32> {
     return frame.sun_illuminance.rgb / (2.0 * PI * max(1.0 - cos_r, 1e-6));
 }
 
-// The clouds in the physical sky: the sky-view table (ground included) and the sun's disc
+// The clouds in the physical sky: the sky-view table (the lit ground included, with the
+// clouds' shadows on it) and the sun's disc
 // through the air behind them; in front of them the air between the camera and their depth
 // (aerial perspective), which dims their light and adds its own. Where a cloud leaves
 // transmittance a, the sky behind it shows through as a, and the air in front of the cloud
@@ -45,7 +46,10 @@ fn physical_composite(pixel: vec2<u32>, view: vec3<f32>, cloud: vec4<f32>) -> ve
     let e = frame.sun_illuminance.rgb;
     let r = camera_air_origin().y;
     var sky = sky_view(view) * e;
-    if !meets_ground(r, view.y) {
+    if meets_ground(r, view.y) {
+        // The table's ground is lit everywhere; where the clouds shade it, less.
+        sky = max(sky - ground_shadow_loss(view, r) * e, vec3<f32>(0.0));
+    } else {
         var space = moon_disk(view) + stars(view);
         if (frame.modes.w & FLAG_MOONLIT) == 0u {
             space += sun_disk(view);

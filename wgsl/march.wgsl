@@ -87,6 +87,7 @@ fn march_pixel(pixel: vec2<u32>) -> MarchResult {
     var ground = false;
     var last_start = -1.0;
     var last_index = NO_LAYER;
+    var exited = false;
     for (var k = 0u; k < n; k++) {
         // The nearest layer not marched yet: the smallest (start, index) after the last one.
         var next = NO_LAYER;
@@ -108,6 +109,7 @@ fn march_pixel(pixel: vec2<u32>) -> MarchResult {
         last_index = next;
         if march_layer(view, span, cloud_layer(next), jitter, &state, &counters) {
             count(STAT_EXIT_TRANSMITTANCE, 1u);
+            exited = true;
             break;
         }
     }
@@ -127,7 +129,11 @@ fn march_pixel(pixel: vec2<u32>) -> MarchResult {
     if state.transmittance < 1.0 {
         depth = state.depth_sum / (1.0 - state.transmittance);
     }
-    return MarchResult(state.radiance, state.transmittance, depth);
+    // A march that ends early ends the pixel: nothing behind the cloud may show through the
+    // transmittance left (up to the threshold, 1%), least of all the sun's or the moon's disc,
+    // whose radiance is 10^5 times the sky's.
+    let transmittance = select(state.transmittance, 0.0, exited);
+    return MarchResult(state.radiance, transmittance, depth);
 }
 
 // The march of the view ray's interval `span` in layer `l`, added to `state`. True when the

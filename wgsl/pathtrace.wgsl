@@ -10,8 +10,9 @@
 //   tracking (Novák et al. 2014), with Russian roulette once below 0.01;
 // * at a collision the throughput takes the single-scattering albedo; next-event estimation
 //   to the sun; the path goes on along a phase-sampled direction, and where it leaves the
-//   layer it sees the ambient, a uniform environment of radiance ambient(h) (h: the height of
-//   the collision it left); Russian roulette on the throughput after the third order;
+//   layer it sees the environment (`environment`: the sky and lit ground in its direction
+//   under the physical sky, else a uniform ambient(h), h the height of the collision it
+//   left); Russian roulette on the throughput after the third order;
 // * directions from Henyey-Greenstein (the two-lobe model samples its mixture; Cornette-Shanks
 //   samples HG(g) weighted by CS/HG).
 // The octaves, Beer-Powder and precipitation darkening are the march's approximations and are
@@ -248,6 +249,17 @@ fn sample_phase(dir: vec3<f32>, rng: ptr<function, u32>) -> PhaseSample {
     return PhaseSample(w, select(0.0, phase(cos_theta, 1.0) / pdf, pdf > 0.0));
 }
 
+// The light a path that leaves the clouds along unit `d` sees: under the physical sky the sky
+// and the lit ground in that direction (the sky-view table, seen from the camera's altitude:
+// the air around a layer a few kilometres up differs little), else the ambient's uniform
+// environment ambient(h). The march takes the sky's mean instead (the sky-ambient table).
+fn environment(d: vec3<f32>, h: f32) -> vec3<f32> {
+    if physical_sky() {
+        return sky_view(d) * frame.sun_illuminance.rgb * frame.ambient_bottom.w;
+    }
+    return ambient(h);
+}
+
 // One path through `pixel`'s ray over the march's interval.
 struct PathResult {
     radiance: vec3<f32>,
@@ -305,7 +317,7 @@ fn trace_path(view: vec3<f32>, span: Interval, rng: ptr<function, u32>,
         let t = free_flight(pos, next.dir, layer_segments(pos, alt, next.dir), rng, counters);
         if t < 0.0 {
             if ambient_on {
-                out.radiance += ambient(h) * (throughput * next.weight);
+                out.radiance += environment(next.dir, h) * (throughput * next.weight);
             }
             break;
         }

@@ -20,9 +20,10 @@ use stratus_noise::NoiseConfig;
 use stratus_reference::atmosphere::AtmosphereModel;
 use stratus_scene::{Scene, SkyModel};
 
-const TABLES: [&str; 5] = [
+const TABLES: [&str; 6] = [
     "transmittance-lut",
     "multiscatter-lut",
+    "ground-irradiance",
     "sky-view-lut",
     "sky-ambient",
     "aerial-perspective",
@@ -41,7 +42,11 @@ fn render(r: &mut dyn Backend, scene: &Scene, noise: &Arc<stratus_noise::NoiseSe
     let plan = FramePlan::for_scene(scene, false).expect("plan");
     let readback = Readback {
         output: true,
-        resources: TABLES.iter().map(|s| s.to_string()).collect(),
+        resources: TABLES
+            .iter()
+            .chain(&["cloud-shadow"])
+            .map(|s| s.to_string())
+            .collect(),
     };
     r.render(&FrameInput::new(&plan, scene, noise).with_readback(readback))
         .expect("render")
@@ -110,11 +115,14 @@ fn physical_sky_tables_match_the_direct_integration_and_both_backends() {
     let a = render(&mut ash, &scene, &noise);
     let differences = stratus_test_support::frame_differences("physical sky", &w, &a);
     assert!(differences.is_empty(), "ash against wgpu: {differences:?}");
-    for name in TABLES {
+    for name in TABLES.iter().chain(&["cloud-shadow"]) {
         assert!(
-            w.resources[name] == a.resources[name],
+            w.resources[*name] == a.resources[*name],
             "{name}: ash and wgpu differ"
         );
+        if *name == "cloud-shadow" {
+            continue; // r32float, checked below
+        }
         assert!(
             table(&w, name)
                 .iter()
@@ -139,9 +147,9 @@ fn physical_sky_tables_match_the_direct_integration_and_both_backends() {
             let d = stratus_test_support::frame_differences(preset, f, again);
             assert!(d.is_empty(), "{preset}: a second frame differs: {d:?}");
         }
-        for name in TABLES {
+        for name in TABLES.iter().chain(&["cloud-shadow"]) {
             assert!(
-                w.resources[name] == a.resources[name],
+                w.resources[*name] == a.resources[*name],
                 "{preset}: {name}: ash and wgpu differ"
             );
         }
@@ -208,6 +216,7 @@ fn physical_sky_tables_match_the_direct_integration_and_both_backends() {
     // Sky view: 16 directions spread over the table (above and below the horizon), against
     // the reference's sky radiance with multiple scattering on 64 steps.
     let sky = table(&w, "sky-view-lut");
+    let irradiance = table(&w, "ground-irradiance");
     let (sw, sh) = (192usize, 108usize);
     let r = model.bottom_radius_m + scene.camera.position[1].max(0.0);
     let horizon = -(model.bottom_radius_m / r).clamp(-1.0, 1.0).acos();
@@ -231,7 +240,16 @@ fn physical_sky_tables_match_the_direct_integration_and_both_backends() {
                 elevation.sin(),
                 elevation.cos() * phi.sin(),
             ];
-            let truth = model.sky_radiance([0.0, r, 0.0], d, sun, true, 64);
+            // The ground lit by the sky too, through the GPU's irradiance table (held to the
+            // CPU twin's below, and that to the direct integral in crates/reference).
+            let e = |mu_s: f64| {
+                let x = (mu_s * 0.5 + 0.5).clamp(0.0, 1.0) * (irradiance.len() - 1) as f64;
+                let i0 = (x.floor() as usize).min(irradiance.len() - 1);
+                let i1 = (i0 + 1).min(irradiance.len() - 1);
+                let w = x - i0 as f64;
+                std::array::from_fn(|c| irradiance[i0][c] * (1.0 - w) + irradiance[i1][c] * w)
+            };
+            let truth = model.sky_radiance_over_ground([0.0, r, 0.0], d, sun, true, 64, e);
             let floor = 1e-3 * truth.iter().cloned().fold(0.0, f64::max).max(1e-9);
             errors.push(relative(sky[j * sw + i], truth, floor));
         }
@@ -245,6 +263,50 @@ fn physical_sky_tables_match_the_direct_integration_and_both_backends() {
     assert!(
         rms < 0.02 && worst < 0.045,
         "sky view: RMSE {rms:.3}, worst {worst:.3}"
+    );
+
+    // Ground irradiance: the GPU's table against the CPU twin's (f64, the same quadrature),
+    // which crates/reference/tests/sky.rs holds to the direct hemisphere integral.
+    let cpu = stratus_reference::sky::SkyTables::new(&scene.uniforms());
+    let errors: Vec<f64> = irradiance
+        .iter()
+        .zip(&cpu.ground_irradiance.texels)
+        .map(|(g, c)| relative(*g, [c[0], c[1], c[2]], 1e-6))
+        .collect();
+    let (rms, worst) = stats(&errors);
+    eprintln!(
+        "ground irradiance against the CPU twin: RMSE {:.3}%, worst {:.3}%",
+        rms * 100.0,
+        worst * 100.0
+    );
+    // Measured: worst 0.002% (f32 against f64).
+    assert!(
+        worst < 1e-4,
+        "ground irradiance: RMSE {rms:.2e}, worst {worst:.2e}"
+    );
+
+    // Cloud shadow: a transmittance in (0, 1] everywhere, and the scene's clouds shade part of
+    // the ground (cumulus at coverage 0.5 over 40 km) while leaving part in the sun.
+    let shadow: Vec<f32> = w.resources["cloud-shadow"]
+        .chunks_exact(4)
+        .map(|b| f32::from_le_bytes([b[0], b[1], b[2], b[3]]))
+        .collect();
+    assert_eq!(shadow.len(), 128 * 128);
+    assert!(
+        shadow
+            .iter()
+            .all(|t| t.is_finite() && *t > 0.0 && *t <= 1.0)
+    );
+    let shaded = shadow.iter().filter(|t| **t < 0.5).count() as f64 / shadow.len() as f64;
+    let lit = shadow.iter().filter(|t| **t > 0.99).count() as f64 / shadow.len() as f64;
+    eprintln!(
+        "cloud shadow: {:.1}% shaded (T < 0.5), {:.1}% lit (T > 0.99)",
+        shaded * 100.0,
+        lit * 100.0
+    );
+    assert!(
+        shaded > 0.05 && lit > 0.05,
+        "shaded {shaded:.3}, lit {lit:.3}"
     );
 
     let log = stratus_test_support::take_wgpu_log();

@@ -340,13 +340,6 @@ pub fn run(args: RenderArgs) -> Result<()> {
             SkyArg::Physical => stratus_scene::SkyModel::Physical,
         };
     }
-    if scene.atmosphere.sky.is_physical()
-        && matches!(args.backend, Backend::Cpu | Backend::Reference)
-    {
-        anyhow::bail!(
-            "atmosphere.sky = \"physical\" renders on the GPU backends (wgpu, wgpu-gl, ash, auto); the CPU draws the analytic sky only (--sky analytic)"
-        );
-    }
     let method = scene.quality.method;
     if method != stratus_scene::Method::Volumetric {
         if args.integrator != IntegratorArg::Quadrature {

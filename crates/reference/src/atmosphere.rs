@@ -169,6 +169,22 @@ impl AtmosphereModel {
         multiple: bool,
         steps: usize,
     ) -> Rgb {
+        self.sky_radiance_over_ground(p, view, sun, multiple, steps, |_| [0.0; 3])
+    }
+
+    /// [`AtmosphereModel::sky_radiance`] with the ground lit by the sky too: `sky_irradiance`
+    /// gives the sky's irradiance on the ground (per unit sun illuminance) for a sun of zenith
+    /// cosine mu_s there. ([`AtmosphereModel::ground_irradiance`] integrates it directly; a
+    /// test of a table of it passes the table, tested on its own, to keep this affordable.)
+    pub fn sky_radiance_over_ground(
+        &self,
+        p: [f64; 3],
+        view: [f64; 3],
+        sun: [f64; 3],
+        multiple: bool,
+        steps: usize,
+        sky_irradiance: impl Fn(f64) -> Rgb,
+    ) -> Rgb {
         let (length, ground) = self.ray_end(p, view);
         let n = steps.max(1);
         let dt = length / n as f64;
@@ -197,12 +213,41 @@ impl AtmosphereModel {
             }
         }
         if ground {
-            let lit = self.ground_radiance(add(p, scale(view, length)), sun);
+            let g = add(p, scale(view, length));
+            let lit = self.ground_radiance(g, sun);
+            let e = sky_irradiance(dot(scale(g, 1.0 / norm(g)), sun));
             for c in 0..3 {
-                radiance[c] += (-tau[c]).exp() * lit[c];
+                radiance[c] += (-tau[c]).exp() * (lit[c] + self.ground_albedo[c] / PI * e[c]);
             }
         }
         radiance
+    }
+
+    /// The sky's irradiance on a horizontal ground (per unit sun illuminance) for a sun of
+    /// zenith cosine `mu_s`: E = integral over the upper hemisphere of L cos(theta), in
+    /// `rings` rings of equal width in cos(theta) by `azimuths` azimuths over [0, pi] (the sky
+    /// is symmetric about the sun's vertical), midpoint rule in both, each direction's
+    /// radiance by [`AtmosphereModel::sky_radiance`] with multiple scattering in `steps`
+    /// steps, from a metre above the ground.
+    pub fn ground_irradiance(&self, mu_s: f64, rings: usize, azimuths: usize, steps: usize) -> Rgb {
+        let sun = [(1.0 - mu_s * mu_s).max(0.0).sqrt(), mu_s, 0.0];
+        let p = [0.0, self.bottom_radius_m + 1.0, 0.0];
+        let mut e = [0.0; 3];
+        for i in 0..rings {
+            let mu = (i as f64 + 0.5) / rings as f64;
+            let s = (1.0 - mu * mu).sqrt();
+            for j in 0..azimuths {
+                let phi = (j as f64 + 0.5) / azimuths as f64 * PI;
+                let d = [s * phi.cos(), mu, s * phi.sin()];
+                let l = self.sky_radiance(p, d, sun, true, steps);
+                for c in 0..3 {
+                    e[c] += l[c] * mu;
+                }
+            }
+        }
+        // d(omega) = d(mu) d(phi); the azimuths cover half the circle, counted twice.
+        let w = (1.0 / rings as f64) * (PI / azimuths as f64) * 2.0;
+        e.map(|x| x * w)
     }
 
     /// Radiance leaving the diffuse ground at `g` (on the sphere), per unit sun illuminance:
@@ -271,7 +316,7 @@ pub fn cornette_shanks(cos_theta: f64, g: f64) -> f64 {
 }
 
 /// Direction `k` of `n` spread evenly over the sphere (spherical Fibonacci).
-fn fibonacci_direction(k: usize, n: usize) -> [f64; 3] {
+pub(crate) fn fibonacci_direction(k: usize, n: usize) -> [f64; 3] {
     let golden = PI * (3.0 - 5f64.sqrt());
     let z = 1.0 - (2.0 * k as f64 + 1.0) / n as f64;
     let r = (1.0 - z * z).max(0.0).sqrt();

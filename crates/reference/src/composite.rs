@@ -1,12 +1,14 @@
-//! The CPU twin of `composite.wgsl`: the analytic sky and sun disk behind the clouds, exposure,
-//! the ACES fitted curve and gamma 2.2, to 8 bits.
+//! The CPU twin of `composite.wgsl`: the analytic sky and sun disk behind the clouds, or the
+//! physical sky (its tables, the sun's and the moon's discs and the stars through the air, and
+//! aerial perspective on the clouds), exposure, the ACES fitted curve and gamma 2.2, to 8 bits.
 
 use rayon::prelude::*;
 
-use crate::frame::{Frame, PI};
+use crate::frame::{FLAG_MOONLIT, Frame, PI, pcg, xyz};
 use crate::geometry::{hits_ground, view_ray};
 use crate::lighting::phase_hg;
-use crate::math::{V3, mix_v, saturate};
+use crate::math::{V3, mix_v, saturate, smoothstep};
+use crate::sky::{SkyTables, physical};
 
 // WGSL: composite.wgsl::sky_radiance
 /// Sky radiance along unit `d` for a camera at altitude `alt`.
@@ -52,16 +54,178 @@ fn unorm8(x: f64) -> u8 {
     (saturate(x) * 255.0).round() as u8
 }
 
-// WGSL: composite.wgsl::composite
-/// The display pixel for march output `cloud` (radiance rgb, transmittance).
-pub(crate) fn composite(f: &Frame, pixel: [u32; 2], cloud: [f64; 4]) -> [u8; 4] {
-    let view = view_ray(f, pixel);
-    let alt = f.camera_position[1];
-    let mut background = sky_radiance(f, view, alt);
-    if !hits_ground(f, V3::new(0.0, alt, 0.0), alt, view) {
-        background += sun_disk(f, view);
+// WGSL: composite.wgsl::physical_composite
+/// The clouds in the physical sky: the sky-view table (ground included) and, above the
+/// horizon, the moon's disc, the stars and (unless the moon is the key light) the sun's disc
+/// through the air behind them; in front of them the air between the camera and their depth
+/// (aerial perspective), which dims their light and adds its own. Where a cloud leaves
+/// transmittance a, the sky behind shows through as a and the air in front of the cloud
+/// stands for the rest: `L = a S + (1 - a) S_ap + T_ap C` (Hillaire 2020, section 5.4's
+/// aerial-perspective volume on opaque surfaces, with partly transparent clouds). `depth` is
+/// the clouds' depth (m) at `pixel`.
+pub(crate) fn physical_composite(
+    f: &Frame,
+    sky: &SkyTables,
+    pixel: [u32; 2],
+    view: V3,
+    cloud: [f64; 4],
+    depth: f64,
+) -> V3 {
+    let e = f.sun_illuminance();
+    let r = sky.camera_air_origin(f).y;
+    // The ground below the horizon is in the table; only the sky above it shows space.
+    let mut background = sky.sky_view(f, view).mul_v(e);
+    if sky.meets_ground(r, view.y) {
+        // The table's ground is lit everywhere; where the clouds shade it, less.
+        let lost = sky.ground_shadow_loss(f, view, r).mul_v(e);
+        let b = background - lost;
+        background = V3::new(b.x.max(0.0), b.y.max(0.0), b.z.max(0.0));
+    } else {
+        let mut space = moon_disk(f, view) + stars(f, view);
+        if f.modes[3] & FLAG_MOONLIT == 0 {
+            space += sun_disk(f, view);
+        }
+        background += space.mul_v(sky.transmittance_to_top(r, view.y));
     }
-    let radiance = background * cloud[3] + V3::new(cloud[0], cloud[1], cloud[2]);
+    let alpha = cloud[3];
+    let mut radiance = background * alpha;
+    if alpha < 1.0 {
+        let ap = sky.aerial(f, pixel, depth);
+        radiance += V3::new(ap[0], ap[1], ap[2]).mul_v(e) * (1.0 - alpha)
+            + V3::new(cloud[0], cloud[1], cloud[2]) * ap[3];
+    }
+    radiance
+}
+
+// WGSL: composite.wgsl::MOON_COS_RADIUS
+/// Cosine of the moon's mean angular radius, 0.259 degrees.
+const MOON_COS_RADIUS: f64 = 0.999_989_78;
+
+// WGSL: composite.wgsl::moon_disk
+/// Radiance of the moon's disc along unit `d`: the full moon's illuminance over the disc's
+/// solid angle where the sun lights the moon's sphere, 0 on its night side and off the disc.
+/// The full moon shows almost no limb darkening, so the lit part is evenly bright; the
+/// terminator is softened over 2% of the radius against aliasing.
+pub(crate) fn moon_disk(f: &Frame, d: V3) -> V3 {
+    let m = xyz(f.moon);
+    let c = d.dot(m);
+    if f.moon[3] <= 0.0 || c < MOON_COS_RADIUS {
+        return V3::ZERO;
+    }
+    let sin_r = (1.0 - MOON_COS_RADIUS * MOON_COS_RADIUS).sqrt();
+    // In units of the disc's radius; the visible hemisphere faces the camera.
+    let offset = (d - m * c) / sin_r;
+    let x2 = offset.dot(offset).min(1.0);
+    let normal = offset - m * (1.0 - x2).sqrt();
+    let lit = smoothstep(-0.02, 0.02, normal.dot(xyz(f.night)));
+    let solid_angle = 2.0 * PI * (1.0 - MOON_COS_RADIUS);
+    V3::splat(f.moon[3] / solid_angle * lit)
+}
+
+// WGSL: composite.wgsl::STAR_CELLS, STAR_FAINTEST
+/// Cells along each side of a face of the stars' cube map.
+pub(crate) const STAR_CELLS: u32 = 96;
+/// The faintest star drawn (visual magnitude).
+const STAR_FAINTEST: f64 = 6.5;
+
+/// One procedural star: its unit direction, visual magnitude and colour.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Star {
+    pub direction: V3,
+    pub magnitude: f64,
+    pub tint: V3,
+}
+
+/// A 24-bit hash of `id` in `[0, 1)` (exact in f32, so the GPU draws the same numbers).
+fn star_hash(id: u32, salt: u32) -> f64 {
+    f64::from(pcg(id ^ salt) >> 8) * (1.0 / 16_777_216.0)
+}
+
+/// The probability that a cell holds a star: the cumulative count to magnitude 6.5,
+/// 4800 x 10^(0.48 (6.5 - 6)), over the 6 x 96^2 cells.
+fn star_probability() -> f64 {
+    let count = 4800.0 * 10f64.powf(0.48 * (STAR_FAINTEST - 6.0));
+    count / f64::from(6 * STAR_CELLS * STAR_CELLS)
+}
+
+// The cell part of composite.wgsl::stars (the WGSL computes it inline per pixel).
+/// The star of cell `cell` of cube face `face` (0/1: +x/-x, 2/3: +y/-y, 4/5: +z/-z), if the
+/// cell holds one: at a hashed place of the cell away from its edges, its magnitude from the
+/// inverse of the cumulative count (N(< m) / N(< 6.5) = h), its colour from bluish-white to
+/// orange as stellar temperatures run.
+pub(crate) fn star_in_cell(face: u32, cell: [u32; 2]) -> Option<Star> {
+    let id = (face * STAR_CELLS + cell[1]) * STAR_CELLS + cell[0];
+    let p = star_probability();
+    let h0 = star_hash(id, 0x9e37_79b9);
+    if h0 >= p {
+        return None;
+    }
+    let h1 = star_hash(id, 0x85eb_ca6b);
+    let h2 = star_hash(id, 0xc2b2_ae35);
+    let h3 = star_hash(id, 0x27d4_eb2f);
+    let h4 = star_hash(id, 0x1656_67b1);
+    let cells = f64::from(STAR_CELLS);
+    let st = [
+        (f64::from(cell[0]) + 0.15 + 0.7 * h1) / cells,
+        (f64::from(cell[1]) + 0.15 + 0.7 * h2) / cells,
+    ];
+    // The face's point at unit distance (the WGSL scales it by the major axis, which the
+    // normalisation removes).
+    let q = st.map(|s| s * 2.0 - 1.0);
+    let sign = if face.is_multiple_of(2) { 1.0 } else { -1.0 };
+    let direction = match face / 2 {
+        0 => V3::new(sign, q[1], q[0]),
+        1 => V3::new(q[0], sign, q[1]),
+        _ => V3::new(q[0], q[1], sign),
+    }
+    .normalize();
+    let magnitude = (STAR_FAINTEST + (h0 / p).max(1e-6).ln() / (0.48 * 10f64.ln())).max(-1.5);
+    let tint = mix_v(V3::new(0.8, 0.9, 1.1), V3::new(1.15, 0.95, 0.75), h3 * h4);
+    Some(Star {
+        direction,
+        magnitude,
+        tint,
+    })
+}
+
+// WGSL: composite.wgsl::stars
+/// Stars: procedural, with the real sky's count per magnitude (about 4800 x 10^(0.48 (m - 6))
+/// brighter than m over the whole sky: the Yale Bright Star Catalogue's counts as Allen's
+/// Astrophysical Quantities gives them), down to magnitude 6.5. The sky is cut into the cells
+/// of a cube map, 96x96 a face; a cell holds at most one star ([`star_in_cell`]). Each star is
+/// a point of illuminance E0 10^(-0.4 m), splatted as a Gaussian of half a pixel over the
+/// pixels around it, so its light does not depend on the resolution.
+pub(crate) fn stars(f: &Frame, d: V3) -> V3 {
+    let e0 = f.night[3];
+    if e0 <= 0.0 {
+        return V3::ZERO;
+    }
+    // Which cube face and cell the direction falls in.
+    let a = V3::new(d.x.abs(), d.y.abs(), d.z.abs());
+    let (face, uv, major) = if a.x >= a.y && a.x >= a.z {
+        (if d.x > 0.0 { 0 } else { 1 }, [d.z, d.y], a.x)
+    } else if a.y >= a.z {
+        (if d.y > 0.0 { 2 } else { 3 }, [d.x, d.z], a.y)
+    } else {
+        (if d.z > 0.0 { 4 } else { 5 }, [d.x, d.y], a.z)
+    };
+    let st = uv.map(|u| ((u / major) * 0.5 + 0.5).clamp(0.0, 0.999_999));
+    let cell = st.map(|s| (s * f64::from(STAR_CELLS)) as u32);
+    let Some(star) = star_in_cell(face, cell) else {
+        return V3::ZERO;
+    };
+    let illuminance = e0 * 10f64.powf(-0.4 * star.magnitude);
+    // Angular size of a pixel at the image centre.
+    let pixel_angle = 2.0 * f.camera_position[3] / f64::from(f.counts[1]);
+    let dist = d.dot(star.direction).clamp(-1.0, 1.0).acos() / pixel_angle;
+    let sigma: f64 = 0.5;
+    let weight = (-dist * dist / (2.0 * sigma * sigma)).exp() / (2.0 * PI * sigma * sigma);
+    star.tint * (illuminance * weight / (pixel_angle * pixel_angle))
+}
+
+// WGSL: composite.wgsl::store_display
+/// Exposure, tone curve and gamma of a pixel's radiance, to the display's 8 bits.
+fn store_display(f: &Frame, radiance: V3) -> [u8; 4] {
     let exposed = radiance * f.camera_right[3];
     let display = aces_fitted(exposed);
     let g = 1.0 / 2.2;
@@ -73,16 +237,59 @@ pub(crate) fn composite(f: &Frame, pixel: [u32; 2], cloud: [f64; 4]) -> [u8; 4] 
     ]
 }
 
+// WGSL: composite.wgsl::composite
+/// The display pixel for march output `cloud` (radiance rgb, transmittance).
+pub(crate) fn composite(f: &Frame, pixel: [u32; 2], cloud: [f64; 4]) -> [u8; 4] {
+    let view = view_ray(f, pixel);
+    let alt = f.camera_position[1];
+    let mut background = sky_radiance(f, view, alt);
+    if !hits_ground(f, V3::new(0.0, alt, 0.0), alt, view) {
+        background += sun_disk(f, view);
+    }
+    store_display(
+        f,
+        background * cloud[3] + V3::new(cloud[0], cloud[1], cloud[2]),
+    )
+}
+
+// WGSL: composite.wgsl::composite_physical
+/// The display pixel in the physical sky, for march output `cloud` at depth `depth` (m).
+pub(crate) fn composite_physical(
+    f: &Frame,
+    sky: &SkyTables,
+    pixel: [u32; 2],
+    cloud: [f64; 4],
+    depth: f64,
+) -> [u8; 4] {
+    store_display(
+        f,
+        physical_composite(f, sky, pixel, view_ray(f, pixel), cloud, depth),
+    )
+}
+
 /// The display image of a `width` x `height` frame from its stored (f32) radiance and
-/// transmittance, 4 floats a pixel, as the GPU's composite pass reads the march output.
-pub(crate) fn composite_image(f: &Frame, width: u32, height: u32, radiance: &[f32]) -> Vec<u8> {
+/// transmittance, 4 floats a pixel, and depth (m), one float a pixel, as the GPU's composite
+/// pass reads the march output: in the physical sky when the frame is under it (`sky`, the
+/// frame's tables, then given), else the analytic one.
+pub(crate) fn composite_image(
+    f: &Frame,
+    sky: Option<&SkyTables>,
+    width: u32,
+    height: u32,
+    radiance: &[f32],
+    depth: &[f32],
+) -> Vec<u8> {
+    let sky = physical(f, sky);
     (0..height)
         .into_par_iter()
         .flat_map_iter(|y| {
             (0..width).flat_map(move |x| {
-                let i = 4 * (y * width + x) as usize;
-                let cloud = [0, 1, 2, 3].map(|c| f64::from(radiance[i + c]));
-                composite(f, [x, y], cloud)
+                let i = (y * width + x) as usize;
+                let cloud = [0, 1, 2, 3].map(|c| f64::from(radiance[4 * i + c]));
+                match sky {
+                    Some(sky) => composite_physical(f, sky, [x, y], cloud, f64::from(depth[i])),
+                    None => composite(f, [x, y], cloud),
+                }
             })
         })
         .collect()

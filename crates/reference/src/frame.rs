@@ -16,6 +16,8 @@ pub(crate) const FLAG_JITTER: u32 = 2;
 pub(crate) const FLAG_DYNAMIC_STEP: u32 = 4;
 pub(crate) const FLAG_CHECKERBOARD: u32 = 8;
 pub(crate) const FLAG_EMPTY_SKIP: u32 = 16;
+pub(crate) const FLAG_PHYSICAL_SKY: u32 = 32;
+pub(crate) const FLAG_MOONLIT: u32 = 64;
 pub(crate) const PI: f64 = std::f64::consts::PI;
 // WGSL: common.wgsl::MAX_VIEW_STEPS (the bound in step-length mode).
 pub(crate) const MAX_VIEW_STEPS: u32 = 1024;
@@ -56,6 +58,12 @@ pub(crate) struct Frame {
     pub layer2_weather: [f64; 4],
     pub layer3: [f64; 4],
     pub layer3_weather: [f64; 4],
+    pub air_rayleigh: [f64; 4],
+    pub air_mie: [f64; 4],
+    pub air_ozone: [f64; 4],
+    pub air_misc: [f64; 4],
+    pub moon: [f64; 4],
+    pub night: [f64; 4],
 }
 
 fn w(v: [f32; 4]) -> [f64; 4] {
@@ -98,6 +106,12 @@ impl Frame {
             layer2_weather: w(u.layer2_weather),
             layer3: w(u.layer3),
             layer3_weather: w(u.layer3_weather),
+            air_rayleigh: w(u.air_rayleigh),
+            air_mie: w(u.air_mie),
+            air_ozone: w(u.air_ozone),
+            air_misc: w(u.air_misc),
+            moon: w(u.moon),
+            night: w(u.night),
         }
     }
 
@@ -109,6 +123,12 @@ impl Frame {
     /// `frame.sun_illuminance.rgb`.
     pub fn sun_illuminance(&self) -> V3 {
         xyz(self.sun_illuminance)
+    }
+
+    // WGSL: atmosphere.wgsl::physical_sky
+    /// Whether the scene is under the physical sky (`FLAG_PHYSICAL_SKY`).
+    pub fn physical_sky(&self) -> bool {
+        self.modes[3] & FLAG_PHYSICAL_SKY != 0
     }
 }
 
@@ -161,6 +181,9 @@ mod tests {
             assert_eq!(u64::from(pcg(v)), pcg64(u64::from(v)), "pcg({v})");
         }
         let u = hash_unit([3, 5], 0);
+        // The mode flags the sky reads are the scene crate's bits.
+        assert_eq!(FLAG_PHYSICAL_SKY, FrameUniforms::FLAG_PHYSICAL_SKY);
+        assert_eq!(FLAG_MOONLIT, FrameUniforms::FLAG_MOONLIT);
         assert!((0.0..1.0).contains(&u));
         assert_eq!(u * 16_777_216.0, (u * 16_777_216.0).floor());
     }

@@ -5,7 +5,8 @@
 //!
 //! * [`Integrator::Quadrature`]: the WGSL's view march line by line (`march.wgsl`,
 //!   `lighting.wgsl`, `density.wgsl`, `geometry.wgsl`, `composite.wgsl`, each mirrored by the
-//!   module of the same name; every function carries a `// WGSL: <file>::<fn>` comment). With
+//!   module of the same name; every function carries a `// WGSL: <file>::<fn>` comment), and
+//!   under the physical sky `atmosphere.wgsl`'s tables and lookups ([`sky`]). With
 //!   [`QuadratureSettings::realtime`] it takes the scene's view steps, light steps and jitter, so
 //!   a GPU frame and its CPU twin can be compared pixel for pixel, work counters included. With
 //!   [`QuadratureSettings::converged`] it is the model's converged answer (see there for the
@@ -42,6 +43,7 @@ mod math;
 mod medium;
 pub mod montecarlo;
 mod progressive;
+pub mod sky;
 mod temporal;
 mod texture;
 
@@ -409,7 +411,12 @@ fn render_in_pool(
     integrator: &Integrator,
     progress: bool,
 ) -> Rendering {
-    let model = Model::new(scene, medium);
+    render_model(&Model::new(scene, medium), integrator, progress)
+}
+
+/// Renders the frame and medium of `model` (its physical sky's tables, if any, computed with
+/// it) with `integrator`, on the current pool.
+fn render_model(model: &Model, integrator: &Integrator, progress: bool) -> Rendering {
     let f = &model.f;
     let (w, h) = (f.counts[0], f.counts[1]);
     let bar = if progress {
@@ -435,7 +442,7 @@ fn render_in_pool(
         match integrator {
             Integrator::Quadrature(settings) => {
                 let s = settings.resolve(f);
-                let r = march(&model, &s, [x, y]);
+                let r = march(model, &s, [x, y]);
                 PixelOut {
                     value: [r.radiance.x, r.radiance.y, r.radiance.z, r.transmittance],
                     std_error: [0.0; 4],
@@ -447,21 +454,14 @@ fn render_in_pool(
             }
             Integrator::MonteCarlo { spp, orders } => {
                 let view = view_ray(f, [x, y]);
-                let span = camera_interval(&model, view);
+                let span = camera_interval(model, view);
                 let mut acc = Accumulator::default();
                 let mut counters = Counters::default();
                 let key = u64::from(y) * u64::from(w) + u64::from(x);
                 for s in 0..(*spp).max(1) {
                     // Must be independent of scheduling: one stream per (pixel, sample, frame).
                     let mut rng = Rng::new(key, u64::from(s), u64::from(f.misc[1]));
-                    acc.add(&trace(
-                        &model,
-                        view,
-                        &span,
-                        *orders,
-                        &mut rng,
-                        &mut counters,
-                    ));
+                    acc.add(&trace(model, view, &span, *orders, &mut rng, &mut counters));
                 }
                 PixelOut {
                     value: acc.mean(),
@@ -516,8 +516,21 @@ fn render_in_pool(
         .collect();
 
     let t1 = Instant::now();
-    let image = composite::composite_image(f, w, h, &radiance);
+    let image = composite::composite_image(f, model.sky(), w, h, &radiance, &depth);
     let composite_ms = t1.elapsed().as_secs_f64() * 1e3;
+    let timings = sky::in_graph_order(
+        model.sky(),
+        [PassTiming {
+            pass: "march".to_string(),
+            ms: march_ms,
+            source: "cpu-wall",
+        }],
+        PassTiming {
+            pass: "composite".to_string(),
+            ms: composite_ms,
+            source: "cpu-wall",
+        },
+    );
 
     let is_mc = matches!(integrator, Integrator::MonteCarlo { .. });
     Rendering {
@@ -528,18 +541,7 @@ fn render_in_pool(
             depth,
             image,
             stats: Some(stats),
-            timings: vec![
-                PassTiming {
-                    pass: "march".to_string(),
-                    ms: march_ms,
-                    source: "cpu-wall",
-                },
-                PassTiming {
-                    pass: "composite".to_string(),
-                    ms: composite_ms,
-                    source: "cpu-wall",
-                },
-            ],
+            timings,
             device: format!("cpu ({} threads)", rayon::current_num_threads()),
             ..Default::default()
         },
@@ -602,14 +604,6 @@ impl stratus_graph::Backend for CpuBackend {
                 method.name()
             )
             .into());
-        }
-        if frame.scene.atmosphere.sky.is_physical() {
-            // The physical sky's tables are GPU passes; this renderer's f64 atmosphere
-            // (`atmosphere.rs`) is the truth they are measured against, not yet an image path.
-            return Err(
-                "atmosphere.sky = \"physical\" renders on the GPU backends (wgpu, wgpu-gl, ash); the CPU renders the analytic sky only"
-                    .into(),
-            );
         }
         let temporal = frame.scene.quality.temporal != stratus_scene::Temporal::Off;
         let pathtrace = frame.scene.quality.integrator == stratus_scene::Integrator::Pathtrace;

@@ -6,6 +6,7 @@ use crate::frame::{FLAG_BEER_POWDER, Frame, PHASE_CORNETTE_SHANKS, PHASE_TWO_LOB
 use crate::geometry::{altitude_of, hits_ground, ray_shell_from};
 use crate::math::{V3, mix, mix_v, saturate};
 use crate::medium::Model;
+use crate::sky::{SkyTables, physical, sun_through_air};
 
 // WGSL: lighting.wgsl::phase_hg
 /// Henyey-Greenstein, normalised over the sphere (thesis eq. 5.4).
@@ -156,8 +157,12 @@ pub(crate) fn sun_scattering(f: &Frame, cos_theta: f64, tau: f64) -> f64 {
 }
 
 // WGSL: lighting.wgsl::ambient
-/// Ambient light at height fraction `h`: a gradient from the bottom to the top colour.
-pub(crate) fn ambient(f: &Frame, h: f64) -> V3 {
+/// Ambient light at height fraction `h`: a gradient from the bottom to the top colour, or under
+/// the physical sky the sky's own mean radiance at the layer's bottom and top.
+pub(crate) fn ambient(f: &Frame, sky: Option<&SkyTables>, h: f64) -> V3 {
+    if let Some(sky) = physical(f, sky) {
+        return sky.ambient_light(f, h);
+    }
     let bottom = V3::new(
         f.ambient_bottom[0],
         f.ambient_bottom[1],
@@ -190,11 +195,12 @@ pub(crate) fn scattered_light(
     if !hits_ground(f, rel, alt, sun) {
         // LIGHT_MARCH: with 0 light steps the march returns 0, as the switched-off WGSL does.
         let tau = sun_optical_depth(m, lm, rel, p, l, counters);
-        sun_light = f.sun_illuminance() * sun_scattering(f, view.dot(sun), tau);
+        sun_light = f.sun_illuminance().mul_v(sun_through_air(f, m.sky(), rel))
+            * sun_scattering(f, view.dot(sun), tau);
     }
     let weather = m.weather(p, l);
     let darkening = saturate(1.0 - f.extinction[2] * weather.precipitation * (1.0 - h));
-    (sun_light + ambient(f, h)) * (f.extinction[0] * density * darkening)
+    (sun_light + ambient(f, m.sky(), h)) * (f.extinction[0] * density * darkening)
 }
 
 #[cfg(test)]

@@ -176,7 +176,12 @@ pub(crate) fn march_ray(m: &Model, s: &MarchSettings, view: V3, jitter: f64) -> 
     };
     PixelResult {
         radiance: state.radiance,
-        transmittance: state.transmittance,
+        // An early exit ends the pixel: nothing behind it shows through (as the WGSL).
+        transmittance: if exited_early {
+            0.0
+        } else {
+            state.transmittance
+        },
         depth,
         counters,
         kind: Some(kind),

@@ -9,8 +9,9 @@ use crate::density::{
     uniform_weather,
 };
 use crate::frame::Frame;
-use crate::geometry::{altitude_of, solve_sphere};
+use crate::geometry::{altitude_of, ray_shell_from, solve_sphere};
 use crate::math::V3;
+use crate::sky::SkyTables;
 
 /// The participating medium a render integrates.
 #[derive(Clone, Copy, Debug)]
@@ -181,6 +182,9 @@ pub(crate) struct Model<'a> {
     occupancy: Option<Vec<f64>>,
     /// Lower and upper bound of the density anywhere inside the medium's support.
     pub density_bounds: (f64, f64),
+    /// The physical sky's tables for this frame (the GPU's `*-lut`, `sky-ambient` and
+    /// `aerial-perspective` resources), under the physical sky only.
+    sky: Option<SkyTables>,
 }
 
 impl<'a> Model<'a> {
@@ -216,12 +220,53 @@ impl<'a> Model<'a> {
             Medium::Clouds(noise) => Some(occupancy_grid(&noise.weather)),
             _ => None,
         };
-        Self {
+        // Once per frame, as the GPU's passes before the march.
+        let sky = f.physical_sky().then(|| SkyTables::for_frame(&f));
+        let mut model = Self {
             f,
             medium,
             occupancy,
             density_bounds,
+            sky,
+        };
+        // The shadow map reads the medium, so it is made once the model stands.
+        if let Some(mut sky) = model.sky.take() {
+            sky.shade(&model.f, |rel| model.shadow_optical_depth(rel));
+            model.sky = Some(sky);
         }
+        model
+    }
+
+    // WGSL: ground.wgsl::cloud_shadow (its march)
+    /// The clouds' density integrated along the key light's way up from camera-relative ground
+    /// point `rel` through every layer, 16 midpoint steps a layer (not counted: the counters
+    /// measure the march).
+    fn shadow_optical_depth(&self, rel: V3) -> f64 {
+        let f = &self.f;
+        let sun = f.sun();
+        let cam = V3::new(f.camera_position[0], 0.0, f.camera_position[2]);
+        let mut counters = Counters::default();
+        let mut tau = 0.0;
+        for l in cloud_layers(f) {
+            // From below a shell, the far root is where the ray leaves it upward.
+            let start = ray_shell_from(f, rel, 0.0, sun, l.bottom).t1.max(0.0);
+            let end = ray_shell_from(f, rel, 0.0, sun, l.top).t1;
+            let dt = (end - start) / f64::from(crate::sky::SHADOW_STEPS);
+            // Also skips a NaN (a shell the ray does not meet).
+            if dt.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
+                continue;
+            }
+            for k in 0..crate::sky::SHADOW_STEPS {
+                let q = rel + sun * (start + (f64::from(k) + 0.5) * dt);
+                tau += self.layer_density(q + cam, altitude_of(f, q), &l, &mut counters) * dt;
+            }
+        }
+        tau
+    }
+
+    /// The physical sky's tables (`None` under the analytic sky).
+    pub fn sky(&self) -> Option<&SkyTables> {
+        self.sky.as_ref()
     }
 
     // WGSL: skip.wgsl::empty_cell_exit

@@ -48,6 +48,12 @@
 //!   ambient, whose bottom colour stands for light from below), while the ground itself is black
 //!   and ends scattered paths.
 //!
+//! Under the physical sky the sun's light at a vertex is what the air leaves of it (the
+//! transmittance table there), and the environment is the sky itself, direction by direction:
+//! the sky-view table (the sky and the lit ground as seen from the camera) in the sampled
+//! direction, times the ambient strength. The real-time model takes the sky's mean instead
+//! (the sky-ambient table), unoccluded: the truth here says what that costs.
+//!
 //! # Real-time-only terms the path tracer ignores
 //!
 //! The multiple-scattering octaves (`a`, `b`, `c`; the path tracer simulates higher orders
@@ -64,12 +70,13 @@
 //! so the image does not depend on the number of threads or their scheduling.
 
 use crate::density::{Counters, height_fraction};
-use crate::frame::PI;
+use crate::frame::{Frame, PI};
 use crate::geometry::{Interval, RayKind, altitude_of, hits_ground, layer_segments};
 use crate::lighting::{ambient, phase, phase_hg};
 use crate::march::medium_interval;
 use crate::math::V3;
 use crate::medium::Model;
+use crate::sky::{SkyTables, sun_through_air};
 
 /// Scattering orders beyond which a path is cut even if "all orders" are asked for (a path in a
 /// conservative thick cloud needs thousands; this only bounds pathological cases).
@@ -328,8 +335,10 @@ pub(crate) fn trace(
     } else {
         0.0
     };
+    // Under the physical sky the ambient is the sky's own light (the sky-ambient table).
     let ambient_on = f.ambient_bottom[3] > 0.0
-        && (f.ambient_bottom[..3].iter().any(|&v| v > 0.0)
+        && (f.physical_sky()
+            || f.ambient_bottom[..3].iter().any(|&v| v > 0.0)
             || f.ambient_top[..3].iter().any(|&v| v > 0.0));
     let max_orders = if orders == 0 {
         MAX_ORDERS
@@ -358,7 +367,9 @@ pub(crate) fn trace(
                 segments: &segs,
             };
             let tr = ratio_track(m, &shadow, rng, c, &mut light_tentative);
-            radiance += sun_e * (throughput * phase(f, dir.dot(sun), 1.0) * tr);
+            // Under the physical sky, the sun's light left after the air (as the WGSL's).
+            radiance += sun_e.mul_v(sun_through_air(f, m.sky(), pos))
+                * (throughput * phase(f, dir.dot(sun), 1.0) * tr);
         }
         // The ambient: a uniform environment of radiance ambient(h), seen through the medium.
         if ambient_on {
@@ -370,7 +381,7 @@ pub(crate) fn trace(
                 segments: &segs,
             };
             let tr = ratio_track(m, &env, rng, c, &mut light_tentative);
-            radiance += ambient(f, h) * (throughput * weight * tr);
+            radiance += environment(f, m.sky(), w, h) * (throughput * weight * tr);
         }
         if order >= max_orders {
             break;
@@ -464,6 +475,16 @@ impl Accumulator {
             self.depth_sum / self.depth_n as f64
         }
     }
+}
+
+// WGSL: pathtrace.wgsl::environment
+/// The light a path leaving the clouds along unit `d` sees: the sky and lit ground in that
+/// direction under the physical sky, else the uniform ambient(h).
+fn environment(f: &Frame, sky: Option<&SkyTables>, d: V3, h: f64) -> V3 {
+    if let Some(sky) = crate::sky::physical(f, sky) {
+        return sky.sky_view(f, d).mul_v(f.sun_illuminance()) * f.ambient_bottom[3];
+    }
+    ambient(f, sky, h)
 }
 
 #[cfg(test)]

@@ -9,7 +9,8 @@ use stratus_graph::{FrameOutput, PassTiming};
 use stratus_noise::NoiseSet;
 use stratus_scene::{FrameUniforms, Scene};
 
-use crate::{Integrator, Medium, RenderOptions, composite, frame::Frame, render_medium};
+use crate::medium::Model;
+use crate::{Integrator, Medium, composite, render_model};
 
 /// What the CPU renderer keeps between path-traced frames.
 #[derive(Clone, Debug, Default)]
@@ -37,18 +38,16 @@ pub(crate) fn render(
 ) -> FrameOutput {
     let q = &scene.quality;
     let u = scene.uniforms();
+    // The frame and its physical sky's tables, once for the paths and the composite.
+    let model = Model::new(scene, Medium::Clouds(noise));
     let t = Instant::now();
-    let mut out = render_medium(
-        scene,
-        Medium::Clouds(noise),
+    let mut out = render_model(
+        &model,
         &Integrator::MonteCarlo {
             spp: 1,
             orders: q.path_orders,
         },
-        &RenderOptions {
-            progress: false,
-            threads: None,
-        },
+        false,
     )
     .output;
     // One more path per pixel joins the running mean.
@@ -67,26 +66,34 @@ pub(crate) fn render(
     let march_ms = t.elapsed().as_secs_f64() * 1e3;
 
     let t1 = Instant::now();
-    let f = Frame::from_uniforms(&u);
-    out.image = composite::composite_image(&f, out.width, out.height, &out.radiance);
-    out.timings = vec![
-        PassTiming {
+    out.image = composite::composite_image(
+        &model.f,
+        model.sky(),
+        out.width,
+        out.height,
+        &out.radiance,
+        &out.depth,
+    );
+    out.timings = crate::sky::in_graph_order(
+        model.sky(),
+        [PassTiming {
             pass: "pathtrace".into(),
             ms: march_ms,
             source: "cpu-wall",
-        },
+        }],
         PassTiming {
             pass: "composite".into(),
             ms: t1.elapsed().as_secs_f64() * 1e3,
             source: "cpu-wall",
         },
-    ];
+    );
     out
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::{RenderOptions, render_medium};
     use stratus_graph::{Backend, FrameInput, FramePlan};
 
     fn single(scene: &Scene, noise: &NoiseSet) -> Vec<f32> {

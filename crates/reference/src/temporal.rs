@@ -358,7 +358,7 @@ pub(crate) fn render(
     let depth: Vec<f32> = meta.iter().map(|m| m[0]).collect();
 
     let t2 = Instant::now();
-    let image = composite::composite_image(&model.f, w, h, &radiance);
+    let image = composite::composite_image(&model.f, model.sky(), w, h, &radiance, &depth);
     let composite_ms = t2.elapsed().as_secs_f64() * 1e3;
 
     state.history = Some(History {
@@ -380,11 +380,12 @@ pub(crate) fn render(
         depth,
         image,
         stats: Some(stats),
-        timings: vec![
-            timing("march", march_ms),
-            timing("resolve", resolve_ms),
+        // The sky's tables (under the physical sky) come first, as in the frame graph.
+        timings: crate::sky::in_graph_order(
+            model.sky(),
+            [timing("march", march_ms), timing("resolve", resolve_ms)],
             timing("composite", composite_ms),
-        ],
+        ),
         device: format!("cpu ({} threads)", rayon::current_num_threads()),
         ..Default::default()
     }

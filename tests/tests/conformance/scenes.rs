@@ -39,13 +39,6 @@ pub fn is_preset(name: &str) -> bool {
 pub fn all() -> Vec<Case> {
     let mut cases: Vec<Case> = stratus_scene::presets()
         .iter()
-        // Not yet the physical-sky presets (dawn, noon, dusk, night): run here, ash-spv
-        // differed from wgpu-vulkan by up to 2.4e-7 in 13 to 6516 radiance floats of 36864
-        // (one rounding, in the march under the physical sky), though the two render them
-        // bit for bit in tests/tests/atmosphere.rs, and wgpu-gl's FLIP mean reached 1.1e-3
-        // (dusk, its exposure 53x noon's) against a bound of 1e-4. Until that is understood
-        // they are held by that test, not by this suite's bounds.
-        .filter(|p| !Scene::preset(p.name).is_ok_and(|s| s.atmosphere.sky.is_physical()))
         .map(|p| Case {
             name: p.name.to_string(),
             about: "preset",
