@@ -49,9 +49,13 @@ fn presets_show_what_their_names_promise() {
     let alt = inside.camera.position[1];
     assert!(inside.atmosphere.cloud_bottom_m < alt && alt < inside.atmosphere.cloud_top_m);
 
+    // The sun of sunset's date and place (the physical sky's astronomy), low in the west.
     let sunset = p("sunset");
-    assert!(sunset.sun.elevation_deg < 10.0);
-    let facing = (sunset.camera.yaw_deg - sunset.sun.azimuth_deg).rem_euclid(360.0);
+    let elevation = sunset.sun_elevation_deg();
+    assert!((0.0..10.0).contains(&elevation), "sunset's sun at {elevation} degrees");
+    let d = sunset.sun_direction();
+    let azimuth = d[0].atan2(d[2]).to_degrees();
+    let facing = (sunset.camera.yaw_deg - azimuth).rem_euclid(360.0);
     assert!(
         facing.min(360.0 - facing) < 30.0,
         "camera must face the sun"

@@ -167,7 +167,10 @@ fn uniforms_carry_the_scene() {
             PhaseModel::TWO_LOBE_HG,
             Integration::RIEMANN,
             HeightModel::CLOUD_TYPES,
-            FrameUniforms::FLAG_BEER_POWDER | FrameUniforms::FLAG_JITTER,
+            // sunset is in the physical sky.
+            FrameUniforms::FLAG_BEER_POWDER
+                | FrameUniforms::FLAG_JITTER
+                | FrameUniforms::FLAG_PHYSICAL_SKY,
         ]
     );
     assert_eq!(u.camera_forward[3], 2.0);
