@@ -891,7 +891,11 @@ mod tests {
             assert_eq!(*dispatch, [w.div_ceil(8), h.div_ceil(8), 1]);
             // The march output is the composite input: one resource.
             let (cloud, _) = plan.resource("cloud").unwrap();
-            let composite = plan.passes.iter().position(|p| p.name == "composite").unwrap();
+            let composite = plan
+                .passes
+                .iter()
+                .position(|p| p.name == "composite")
+                .unwrap();
             for pass in [&plan.passes[march], &plan.passes[composite]] {
                 assert!(pass.bindings.iter().any(|b| b.resource == cloud));
             }

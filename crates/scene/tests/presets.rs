@@ -52,7 +52,10 @@ fn presets_show_what_their_names_promise() {
     // The sun of sunset's date and place (the physical sky's astronomy), low in the west.
     let sunset = p("sunset");
     let elevation = sunset.sun_elevation_deg();
-    assert!((0.0..10.0).contains(&elevation), "sunset's sun at {elevation} degrees");
+    assert!(
+        (0.0..10.0).contains(&elevation),
+        "sunset's sun at {elevation} degrees"
+    );
     let d = sunset.sun_direction();
     let azimuth = d[0].atan2(d[2]).to_degrees();
     let facing = (sunset.camera.yaw_deg - azimuth).rem_euclid(360.0);
