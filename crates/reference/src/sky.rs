@@ -565,18 +565,10 @@ impl SkyTables {
             let s1 = f64::from(i + 1) / f64::from(steps);
             let t1 = distance * s1 * s1;
             let dt = t1 - t0;
-            let p = origin + d * (0.5 * (t0 + t1));
-            let r = p.length();
-            let mu_s = (p / r).dot(sun);
-            let air = self.air_at(r - self.bottom());
+            let (air, inscatter) =
+                self.inscatter(origin + d * (0.5 * (t0 + t1)), sun, phase_r, phase_m);
             // Transmittance to the segment's middle: the depth so far plus half the segment.
             let t_view = exp_neg(tau + air.extinction * (0.5 * dt));
-            let inscatter = self
-                .sun_transmittance(r, mu_s)
-                .mul_v(air.rayleigh * phase_r + V3::splat(air.mie * phase_m))
-                + self
-                    .multiscatter(r, mu_s)
-                    .mul_v(air.rayleigh + V3::splat(air.mie));
             radiance += t_view.mul_v(inscatter) * dt;
             tau += air.extinction * dt;
             t0 = t1;
@@ -589,6 +581,23 @@ impl SkyTables {
             radiance,
             transmittance: exp_neg(tau),
         }
+    }
+
+    // WGSL: atmosphere.wgsl::integrate_air and ::aerial_perspective (the loop's body)
+    /// The air at point `p` (planet centre at the origin) and the light it scatters toward the
+    /// viewer per unit length: single scattering of the sun through the transmittance table
+    /// and the higher orders by Psi_ms (Hillaire 2020, eq. 11).
+    fn inscatter(&self, p: V3, sun: V3, phase_r: f64, phase_m: f64) -> (AirSample, V3) {
+        let r = p.length();
+        let mu_s = (p / r).dot(sun);
+        let air = self.air_at(r - self.bottom());
+        let light = self
+            .sun_transmittance(r, mu_s)
+            .mul_v(air.rayleigh * phase_r + V3::splat(air.mie * phase_m))
+            + self
+                .multiscatter(r, mu_s)
+                .mul_v(air.rayleigh + V3::splat(air.mie));
+        (air, light)
     }
 
     // WGSL: atmosphere.wgsl::air_ray_end
@@ -734,17 +743,9 @@ impl SkyTables {
             for k in 0..AERIAL_SUBSTEPS {
                 let t0 = AERIAL_SLICE_M * (z as f64 + f64::from(k) / sub);
                 let dt = (AERIAL_SLICE_M / sub).min(end - t0).max(0.0);
-                let p = origin + d * (t0 + 0.5 * dt);
-                let r = p.length();
-                let mu_s = (p / r).dot(sun);
-                let air = self.air_at(r - self.bottom());
+                let (air, inscatter) =
+                    self.inscatter(origin + d * (t0 + 0.5 * dt), sun, phase_r, phase_m);
                 let t_view = exp_neg(tau + air.extinction * (0.5 * dt));
-                let inscatter = self
-                    .sun_transmittance(r, mu_s)
-                    .mul_v(air.rayleigh * phase_r + V3::splat(air.mie * phase_m))
-                    + self
-                        .multiscatter(r, mu_s)
-                        .mul_v(air.rayleigh + V3::splat(air.mie));
                 radiance += t_view.mul_v(inscatter) * dt;
                 tau += air.extinction * dt;
             }
