@@ -76,7 +76,8 @@ pub enum SkyArg {
     /// The simple analytic gradient.
     Analytic,
     /// Hillaire 2020's atmosphere: Rayleigh, Mie and ozone, the clouds lit by the sun through
-    /// the air and by the sky, aerial perspective (GPU backends).
+    /// the air and by the sky, aerial perspective, the ground lit by sun and sky under the
+    /// clouds' shadows (every backend, the CPU included).
     Physical,
 }
 

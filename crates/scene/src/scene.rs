@@ -277,8 +277,10 @@ pub enum SkyModel {
     Analytic,
     /// Rayleigh, Mie and ozone over a spherical planet (Hillaire, "A Scalable and Production
     /// Ready Sky and Atmosphere Rendering Technique", EGSR 2020): transmittance and
-    /// multiple-scattering tables computed when the sun or the air changes, a sky-view table
-    /// every frame, the sun's disc seen through the air and the lit ground. TOML `"physical"`.
+    /// multiple-scattering tables and the ground's irradiance computed when the air changes,
+    /// the sky-view, sky-ambient, aerial-perspective tables and the clouds' shadow map every
+    /// frame, the sun's disc seen through the air and the ground lit by sun and sky. TOML
+    /// `"physical"`.
     Physical,
 }
 
