@@ -315,7 +315,8 @@ fn physical_sky_tables_match_the_direct_integration_and_both_backends() {
 }
 
 /// The transmittance and multi-scattering tables depend on the air, not the sun: a frame with
-/// another sun does not compute them again, a frame with other air does.
+/// another sun does not compute them again, a frame with other air does. The sky view, sky
+/// ambient and aerial perspective follow the sun and the camera, not the clouds' wind.
 #[test]
 fn air_tables_are_computed_again_only_when_the_air_changes() {
     stratus_test_support::record_wgpu_log();
@@ -349,9 +350,21 @@ fn air_tables_are_computed_again_only_when_the_air_changes() {
         !moved_sun.contains(&"multiscatter-lut".to_string()),
         "{moved_sun:?}"
     );
-    assert!(
-        moved_sun.contains(&"sky-view-lut".to_string()),
-        "{moved_sun:?}"
+    for table in ["sky-view-lut", "sky-ambient", "aerial-perspective"] {
+        assert!(moved_sun.contains(&table.to_string()), "{moved_sun:?}");
+    }
+    // Only the clouds move (ten seconds of wind): no table is computed again, the shadow map
+    // is.
+    s.clouds.time_s += 10.0;
+    let wind = ran(&mut wgpu, &s);
+    assert_eq!(wind, ["march", "cloud-shadow", "composite"], "{wind:?}");
+    // The camera turns: the aerial perspective's froxels follow it, the sky view does not.
+    s.camera.yaw_deg += 30.0;
+    let turned = ran(&mut wgpu, &s);
+    assert_eq!(
+        turned,
+        ["aerial-perspective", "march", "cloud-shadow", "composite"],
+        "{turned:?}"
     );
     s.atmosphere.air.mie_scattering *= 4.0;
     let hazier = ran(&mut wgpu, &s);

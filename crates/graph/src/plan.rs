@@ -868,18 +868,13 @@ mod tests {
                 .filter(|p| p.when.is_none())
                 .map(|p| p.name.as_str())
                 .collect();
-            // Under the physical sky, its per-frame tables first (the air's tables run only
-            // when stale) and the cloud-shadow map after the march.
+            // Under the physical sky the cloud-shadow map after the march (its tables run
+            // only when stale: when the air, the sun or the camera changed).
             let physical = scene.atmosphere.sky.is_physical();
-            let sky: &[&str] = if physical {
-                &["sky-view-lut", "sky-ambient", "aerial-perspective"]
-            } else {
-                &[]
-            };
             let shadow: &[&str] = if physical { &["cloud-shadow"] } else { &[] };
             assert_eq!(
                 always,
-                [sky, &["march"], shadow, &["composite"]].concat(),
+                [&["march"], shadow, &["composite"]].concat(),
                 "{}",
                 p.name
             );

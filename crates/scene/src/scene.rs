@@ -278,9 +278,9 @@ pub enum SkyModel {
     /// Rayleigh, Mie and ozone over a spherical planet (Hillaire, "A Scalable and Production
     /// Ready Sky and Atmosphere Rendering Technique", EGSR 2020): transmittance and
     /// multiple-scattering tables and the ground's irradiance computed when the air changes,
-    /// the sky-view, sky-ambient, aerial-perspective tables and the clouds' shadow map every
-    /// frame, the sun's disc seen through the air and the ground lit by sun and sky. TOML
-    /// `"physical"`.
+    /// the sky-view, sky-ambient and aerial-perspective tables when the sun or the camera does
+    /// too, the clouds' shadow map every frame, the sun's disc seen through the air and the
+    /// ground lit by sun and sky. TOML `"physical"`.
     Physical,
 }
 
