@@ -201,10 +201,10 @@ fn a_graph_that_disagrees_with_the_wgsl_is_refused() {
             "input `air` is no member of the uniform block `Frame`",
         ),
         (
-            // The sky-view table's resource (declared before its pass): made every frame.
+            // The cloud-shadow map's resource (declared before its pass): made every frame.
             graph.replacen(
-                "extent = [192, 108]\n",
-                "extent = [192, 108]\ninputs = [\"sun_direction\"]\n",
+                "format = \"r32float\"\nextent = [128, 128]\n",
+                "format = \"r32float\"\nextent = [128, 128]\ninputs = [\"sun_direction\"]\n",
                 1,
             ),
             "only a computed persistent resource has `inputs`",
