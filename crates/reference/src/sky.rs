@@ -508,7 +508,7 @@ impl SkyTables {
             rel.z / (2.0 * SHADOW_HALF_EXTENT_M) + 0.5,
         ];
         let t = self.cloud_shadow.bilinear(x)[0];
-        let w = smoothstep(SHADOW_FADE_START, 1.0, edge);
+        let w = crate::math::smoothstep(SHADOW_FADE_START, 1.0, edge);
         t + (1.0 - t) * w
     }
 
@@ -865,12 +865,6 @@ pub(crate) fn shadow_ground_point(f: &Frame, c: [usize; 2]) -> V3 {
     let rp = f.atmosphere[0];
     let s2 = x * x + z * z;
     V3::new(x, -s2 / ((rp * rp - s2).max(0.0).sqrt() + rp), z)
-}
-
-/// WGSL's smoothstep.
-fn smoothstep(e0: f64, e1: f64, x: f64) -> f64 {
-    let t = ((x - e0) / (e1 - e0)).clamp(0.0, 1.0);
-    t * t * (3.0 - 2.0 * t)
 }
 
 /// A CPU frame's pass times in the frame graph's order: the sky's tables (under the physical
