@@ -189,6 +189,7 @@ const float HISTORY_SAMPLES = 16.0;
 const float HISTORY_SAMPLES_MOVING = 2.0;
 const float DISOCCLUSION_DEPTH = 0.5;
 const uint MAX_PATH_ORDERS = 16384u;
+const uint PATHS_PER_FRAME = 32u;
 const uint SPRITE_LEVELS = 4u;
 const int SPRITE_CELLS_PER_SIDE = 8;
 const uint SPRITES_PER_CELL = 16u;
@@ -398,20 +399,20 @@ Layer layer_from(vec4 g, vec4 w_1) {
     return Layer(g.x, g.y, g.z, g.w, w_1.x, w_1.y, w_1.zw);
 }
 
-Layer cloud_layer(uint i_4) {
-    if ((i_4 == 1u)) {
+Layer cloud_layer(uint i_5) {
+    if ((i_5 == 1u)) {
         vec4 _e5 = _group_0_binding_0_cs.layer1_;
         vec4 _e8 = _group_0_binding_0_cs.layer1_weather;
         Layer _e9 = layer_from(_e5, _e8);
         return _e9;
     } else {
-        if ((i_4 == 2u)) {
+        if ((i_5 == 2u)) {
             vec4 _e14 = _group_0_binding_0_cs.layer2_;
             vec4 _e17 = _group_0_binding_0_cs.layer2_weather;
             Layer _e18 = layer_from(_e14, _e17);
             return _e18;
         } else {
-            if ((i_4 == 3u)) {
+            if ((i_5 == 3u)) {
                 vec4 _e23 = _group_0_binding_0_cs.layer3_;
                 vec4 _e26 = _group_0_binding_0_cs.layer3_weather;
                 Layer _e27 = layer_from(_e23, _e26);
@@ -431,24 +432,24 @@ Layer cloud_layer(uint i_4) {
 
 vec2 layers_span() {
     vec2 span = vec2(0.0);
-    uint i_5 = 1u;
+    uint i_6 = 1u;
     vec4 _e2 = _group_0_binding_0_cs.atmosphere;
     span = _e2.yz;
     bool loop_init = true;
     while(true) {
         if (!loop_init) {
-            uint _e22 = i_5;
-            i_5 = (_e22 + 1u);
+            uint _e22 = i_6;
+            i_6 = (_e22 + 1u);
         }
         loop_init = false;
-        uint _e7 = i_5;
+        uint _e7 = i_6;
         uint _e8 = layer_count();
         if ((_e7 < _e8)) {
         } else {
             break;
         }
         {
-            uint _e10 = i_5;
+            uint _e10 = i_6;
             Layer _e11 = cloud_layer(_e10);
             float _e13 = span.x;
             float _e17 = span.y;
@@ -467,7 +468,7 @@ Interval cloud_interval(float alt_4, vec3 d_4) {
 
 Interval nearest_layer_interval(float alt_5, vec3 d_5) {
     Interval best = Interval(0.0, 0.0, 0u);
-    uint i_6 = 1u;
+    uint i_7 = 1u;
     bool local_19 = false;
     bool local_20 = false;
     Layer _e3 = cloud_layer(0u);
@@ -476,18 +477,18 @@ Interval nearest_layer_interval(float alt_5, vec3 d_5) {
     bool loop_init_1 = true;
     while(true) {
         if (!loop_init_1) {
-            uint _e35 = i_6;
-            i_6 = (_e35 + 1u);
+            uint _e35 = i_7;
+            i_7 = (_e35 + 1u);
         }
         loop_init_1 = false;
-        uint _e8 = i_6;
+        uint _e8 = i_7;
         uint _e9 = layer_count();
         if ((_e8 < _e9)) {
         } else {
             break;
         }
         {
-            uint _e11 = i_6;
+            uint _e11 = i_7;
             Layer _e12 = cloud_layer(_e11);
             Interval _e13 = layer_interval(alt_5, d_5, _e12);
             if ((_e13.kind == RAY_MARCH)) {
@@ -761,23 +762,23 @@ float layer_height(Layer l_1, float alt_7) {
 }
 
 uint layer_at(float alt_8) {
-    uint i_8 = 0u;
+    uint i_9 = 0u;
     bool local_22 = false;
     bool loop_init_2 = true;
     while(true) {
         if (!loop_init_2) {
-            uint _e19 = i_8;
-            i_8 = (_e19 + 1u);
+            uint _e19 = i_9;
+            i_9 = (_e19 + 1u);
         }
         loop_init_2 = false;
-        uint _e3 = i_8;
+        uint _e3 = i_9;
         uint _e4 = layer_count();
         if ((_e3 < _e4)) {
         } else {
             break;
         }
         {
-            uint _e6 = i_8;
+            uint _e6 = i_9;
             Layer _e7 = cloud_layer(_e6);
             float _e8 = layer_height(_e7, alt_8);
             if ((_e8 >= 0.0)) {
@@ -787,7 +788,7 @@ uint layer_at(float alt_8) {
             }
             bool _e16 = local_22;
             if (_e16) {
-                uint _e17 = i_8;
+                uint _e17 = i_9;
                 return _e17;
             }
         }
@@ -995,7 +996,7 @@ float sun_optical_depth(vec3 rel_1, vec3 p_6, Layer l_4, inout Counters counters
     float seg = 0.0;
     float dist = 0.0;
     float tau_4 = 0.0;
-    uint i_9 = 0u;
+    uint i_10 = 0u;
     bool local_27 = false;
     uint j_1 = 0u;
     bool local_28 = false;
@@ -1013,11 +1014,11 @@ float sun_optical_depth(vec3 rel_1, vec3 p_6, Layer l_4, inout Counters counters
     bool loop_init_3 = true;
     while(true) {
         if (!loop_init_3) {
-            uint _e73 = i_9;
-            i_9 = (_e73 + 1u);
+            uint _e73 = i_10;
+            i_10 = (_e73 + 1u);
         }
         loop_init_3 = false;
-        uint _e36 = i_9;
+        uint _e36 = i_10;
         if ((_e36 < steps_2)) {
         } else {
             break;
@@ -1111,7 +1112,7 @@ float sun_scattering(float cos_theta_5, float tau_5) {
     float ka = 1.0;
     float kb = 1.0;
     float kc = 1.0;
-    uint i_10 = 0u;
+    uint i_11 = 0u;
     float total = 0.0;
     float a_7 = _group_0_binding_0_cs.multiple_scattering.x;
     float b_7 = _group_0_binding_0_cs.multiple_scattering.y;
@@ -1121,11 +1122,11 @@ float sun_scattering(float cos_theta_5, float tau_5) {
     bool loop_init_5 = true;
     while(true) {
         if (!loop_init_5) {
-            uint _e50 = i_10;
-            i_10 = (_e50 + 1u);
+            uint _e50 = i_11;
+            i_11 = (_e50 + 1u);
         }
         loop_init_5 = false;
-        uint _e30 = i_10;
+        uint _e30 = i_11;
         if ((_e30 < octaves)) {
         } else {
             break;
@@ -1297,7 +1298,7 @@ float start_offset(uvec2 pixel_3) {
 
 bool march_layer(vec3 view_2, Interval span_1, Layer l_6, float jitter, inout MarchState state, inout Counters counters_7) {
     uint steps_1 = 0u;
-    uint i_11 = 0u;
+    uint i_12 = 0u;
     uint stride = 1u;
     uint empty = 0u;
     bool local_32 = false;
@@ -1321,14 +1322,14 @@ bool march_layer(vec3 view_2, Interval span_1, Layer l_6, float jitter, inout Ma
     uint _e60 = _group_0_binding_0_cs.modes.w;
     bool empty_skip = ((_e60 & FLAG_EMPTY_SKIP) != 0u);
     while(true) {
-        uint _e71 = i_11;
+        uint _e71 = i_12;
         uint _e72 = steps_1;
         if ((_e71 >= _e72)) {
             break;
         }
         uint _e75 = counters_7.view_steps;
         counters_7.view_steps = (_e75 + 1u);
-        uint _e79 = i_11;
+        uint _e79 = i_12;
         float t_5 = (span_1.start + ((float(_e79) + jitter) * dt_1));
         vec3 rel_6 = ((view_2 * t_5) + vec3(0.0, cam_alt, 0.0));
         vec3 p_12 = vec3((rel_6.x + cam_xz.x), rel_6.y, (rel_6.z + cam_xz.y));
@@ -1337,8 +1338,8 @@ bool march_layer(vec3 view_2, Interval span_1, Layer l_6, float jitter, inout Ma
             if ((_e97 > 0.0)) {
                 uint _e106 = steps_1;
                 uint next_1 = uint(clamp(ceil(((((t_5 + _e97) - span_1.start) / dt_1) - jitter)), 0.0, float(_e106)));
-                uint _e111 = i_11;
-                i_11 = max((_e111 + 1u), next_1);
+                uint _e111 = i_12;
+                i_12 = max((_e111 + 1u), next_1);
                 continue;
             }
         }
@@ -1357,16 +1358,16 @@ bool march_layer(vec3 view_2, Interval span_1, Layer l_6, float jitter, inout Ma
             if (_e128) {
                 stride = 2u;
             }
-            uint _e130 = i_11;
+            uint _e130 = i_12;
             uint _e131 = stride;
-            i_11 = (_e130 + _e131);
+            i_12 = (_e130 + _e131);
             continue;
         }
         uint _e133 = stride;
         if ((_e133 > 1u)) {
-            uint _e136 = i_11;
+            uint _e136 = i_12;
             uint _e137 = stride;
-            i_11 = (_e136 - (_e137 - 1u));
+            i_12 = (_e136 - (_e137 - 1u));
             stride = 1u;
             empty = 0u;
             continue;
@@ -1387,8 +1388,8 @@ bool march_layer(vec3 view_2, Interval span_1, Layer l_6, float jitter, inout Ma
         if ((_e166 < _e170)) {
             return true;
         }
-        uint _e173 = i_11;
-        i_11 = (_e173 + 1u);
+        uint _e173 = i_12;
+        i_12 = (_e173 + 1u);
     }
     return false;
 }
@@ -1404,7 +1405,7 @@ MarchResult march_pixel(uvec2 pixel_4) {
     uint k_6 = 0u;
     uint next = 0u;
     Interval span_2 = Interval(0.0, 0.0, 0u);
-    uint i_12 = 0u;
+    uint i_13 = 0u;
     bool local_33 = false;
     bool local_34 = false;
     bool local_35 = false;
@@ -1432,21 +1433,21 @@ MarchResult march_pixel(uvec2 pixel_4) {
         {
             next = NO_LAYER;
             span_2 = Interval(0.0, 0.0, 1u);
-            i_12 = 0u;
+            i_13 = 0u;
             bool loop_init_7 = true;
             while(true) {
                 if (!loop_init_7) {
-                    uint _e102 = i_12;
-                    i_12 = (_e102 + 1u);
+                    uint _e102 = i_13;
+                    i_13 = (_e102 + 1u);
                 }
                 loop_init_7 = false;
-                uint _e45 = i_12;
+                uint _e45 = i_13;
                 if ((_e45 < _e21)) {
                 } else {
                     break;
                 }
                 {
-                    uint _e47 = i_12;
+                    uint _e47 = i_13;
                     Layer _e48 = cloud_layer(_e47);
                     Interval _e49 = layer_interval(cam_alt_1, _e1, _e48);
                     bool _e50 = ground_1;
@@ -1461,7 +1462,7 @@ MarchResult march_pixel(uvec2 pixel_4) {
                     if (!((_e49.start > _e60))) {
                         float _e66 = last_start;
                         if ((_e49.start == _e66)) {
-                            uint _e70 = i_12;
+                            uint _e70 = i_13;
                             uint _e71 = last_index;
                             local_35 = (_e70 > _e71);
                         } else {
@@ -1494,7 +1495,7 @@ MarchResult march_pixel(uvec2 pixel_4) {
                     }
                     bool _e99 = local_37;
                     if (_e99) {
-                        uint _e100 = i_12;
+                        uint _e100 = i_13;
                         next = _e100;
                         span_2 = _e49;
                     }
@@ -1673,9 +1674,9 @@ vec4 history_at(vec2 q_1) {
     vec4 _e26 = history_row(base_3, 0, _e18);
     vec4 _e31 = history_row(base_3, 1, _e18);
     vec4 _e36 = history_row(base_3, 2, _e18);
-    vec4 sum_5 = ((((_e22 * _e20.x) + (_e26 * _e20.y)) + (_e31 * _e20.z)) + (_e36 * _e20.w));
-    float _e45 = saturate(sum_5.w);
-    return vec4(max(sum_5.xyz, vec3(0.0)), _e45);
+    vec4 sum_6 = ((((_e22 * _e20.x) + (_e26 * _e20.y)) + (_e31 * _e20.z)) + (_e36 * _e20.w));
+    float _e45 = saturate(sum_6.w);
+    return vec4(max(sum_6.xyz, vec3(0.0)), _e45);
 }
 
 vec4 history_nearest(vec2 q_2) {
@@ -1686,27 +1687,27 @@ vec4 history_nearest(vec2 q_2) {
     return _e16;
 }
 
-bool in_blocks(uvec2 id_20) {
+bool in_blocks(uvec2 id_19) {
     uint k_13 = _group_0_binding_0_cs.temporal.x;
     uvec4 _e7 = _group_0_binding_0_cs.counts;
-    return all(lessThan(id_20, (((_e7.xy + uvec2(k_13)) - uvec2(1u)) / uvec2(k_13))));
+    return all(lessThan(id_19, (((_e7.xy + uvec2(k_13)) - uvec2(1u)) / uvec2(k_13))));
 }
 
-uvec2 sparse_pixel(uvec2 id_21) {
+uvec2 sparse_pixel(uvec2 id_20) {
     uint k_14 = _group_0_binding_0_cs.temporal.x;
     uint _e9 = _group_0_binding_0_cs.misc.y;
     uvec2 _e10 = block_offset(_e9, k_14);
-    return ((id_21 * k_14) + _e10);
+    return ((id_20 * k_14) + _e10);
 }
 
-void store_sparse(uvec2 id_22, MarchResult r_13) {
-    imageStore(_group_0_binding_6_cs, ivec2(id_22), vec4(r_13.radiance, r_13.transmittance));
-    imageStore(_group_0_binding_7_cs, ivec2(id_22), vec4(r_13.depth, 0.0, 0.0, 0.0));
+void store_sparse(uvec2 id_21, MarchResult r_13) {
+    imageStore(_group_0_binding_6_cs, ivec2(id_21), vec4(r_13.radiance, r_13.transmittance));
+    imageStore(_group_0_binding_7_cs, ivec2(id_21), vec4(r_13.depth, 0.0, 0.0, 0.0));
     return;
 }
 
-uint rng_seed(uvec2 pixel_6, uint frame_index_1) {
-    uint _e4 = pcg(frame_index_1);
+uint rng_seed(uvec2 pixel_6, uint path_index) {
+    uint _e4 = pcg(path_index);
     uint _e6 = pcg((pixel_6.y ^ _e4));
     uint _e8 = pcg((pixel_6.x ^ _e6));
     return _e8;
@@ -1840,22 +1841,22 @@ float empty_cell_skip(vec3 origin_3, vec3 dir_1, float t_2) {
 
 float density_max() {
     float m_1 = 0.0;
-    uint i_13 = 0u;
+    uint i_14 = 0u;
     bool loop_init_8 = true;
     while(true) {
         if (!loop_init_8) {
-            uint _e17 = i_13;
-            i_13 = (_e17 + 1u);
+            uint _e17 = i_14;
+            i_14 = (_e17 + 1u);
         }
         loop_init_8 = false;
-        uint _e4 = i_13;
+        uint _e4 = i_14;
         uint _e5 = layer_count();
         if ((_e4 < _e5)) {
         } else {
             break;
         }
         {
-            uint _e7 = i_13;
+            uint _e7 = i_14;
             Layer _e8 = cloud_layer(_e7);
             float _e9 = m_1;
             m_1 = max(_e9, (_e8.density * (1.0 + _e8.precipitation)));
@@ -2096,7 +2097,7 @@ float luminance(vec3 c_3) {
 
 float basic_sun_depth(vec3 rel_5, float alt_14, inout Counters counters_13) {
     float tau_7 = 0.0;
-    uint i_14 = 1u;
+    uint i_15 = 1u;
     uint steps_3 = _group_0_binding_0_cs.counts.w;
     if ((steps_3 == 0u)) {
         return 0.0;
@@ -2118,11 +2119,11 @@ float basic_sun_depth(vec3 rel_5, float alt_14, inout Counters counters_13) {
     bool loop_init_11 = true;
     while(true) {
         if (!loop_init_11) {
-            uint _e90 = i_14;
-            i_14 = (_e90 + 1u);
+            uint _e90 = i_15;
+            i_15 = (_e90 + 1u);
         }
         loop_init_11 = false;
-        uint _e65 = i_14;
+        uint _e65 = i_15;
         if ((_e65 <= steps_3)) {
         } else {
             break;
@@ -2130,7 +2131,7 @@ float basic_sun_depth(vec3 rel_5, float alt_14, inout Counters counters_13) {
         {
             uint _e68 = counters_13.light;
             counters_13.light = (_e68 + 1u);
-            uint _e71 = i_14;
+            uint _e71 = i_15;
             vec3 q_8 = (rel_5 + (sun_4 * (float(_e71) * dt_2)));
             vec3 p_16 = vec3((q_8.x + cam_xz_1.x), q_8.y, (q_8.z + cam_xz_1.y));
             float _e84 = tau_7;
@@ -2148,7 +2149,7 @@ MarchResult basic_pixel(uvec2 pixel_7) {
     vec3 radiance_2 = vec3(0.0);
     float transmittance = 1.0;
     float depth_sum = 0.0;
-    uint i_15 = 0u;
+    uint i_16 = 0u;
     float depth_3 = 0.0;
     vec3 _e1 = view_ray(pixel_7);
     float cam_alt_2 = _group_0_binding_0_cs.camera_position.y;
@@ -2176,11 +2177,11 @@ MarchResult basic_pixel(uvec2 pixel_7) {
             bool loop_init_12 = true;
             while(true) {
                 if (!loop_init_12) {
-                    uint _e131 = i_15;
-                    i_15 = (_e131 + 1u);
+                    uint _e131 = i_16;
+                    i_16 = (_e131 + 1u);
                 }
                 loop_init_12 = false;
-                uint _e71 = i_15;
+                uint _e71 = i_16;
                 if ((_e71 < steps_4)) {
                 } else {
                     break;
@@ -2188,7 +2189,7 @@ MarchResult basic_pixel(uvec2 pixel_7) {
                 {
                     uint _e74 = counters_14.view_steps;
                     counters_14.view_steps = (_e74 + 1u);
-                    uint _e78 = i_15;
+                    uint _e78 = i_16;
                     float t_7 = (_e25.start + (float(_e78) * dt_3));
                     vec3 rel_8 = ((_e1 * t_7) + vec3(0.0, cam_alt_2, 0.0));
                     vec3 p_17 = vec3((rel_8.x + cam_xz_2.x), rel_8.y, (rel_8.z + cam_xz_2.y));
@@ -2239,19 +2240,19 @@ float atlas_hash(uint a_2, uint b_2) {
 }
 
 float value_noise(vec2 p_10, uint seed) {
-    uvec2 i_17 = uvec2(floor(p_10));
+    uvec2 i_18 = uvec2(floor(p_10));
     vec2 f_4 = fract(p_10);
     vec2 s_11 = ((f_4 * f_4) * (vec2(3.0) - (2.0 * f_4)));
     uint h_11 = (seed * 7919u);
-    float _e17 = atlas_hash((i_17.x + h_11), i_17.y);
-    float _e23 = atlas_hash(((i_17.x + 1u) + h_11), i_17.y);
-    float _e29 = atlas_hash((i_17.x + h_11), (i_17.y + 1u));
-    float _e37 = atlas_hash(((i_17.x + 1u) + h_11), (i_17.y + 1u));
+    float _e17 = atlas_hash((i_18.x + h_11), i_18.y);
+    float _e23 = atlas_hash(((i_18.x + 1u) + h_11), i_18.y);
+    float _e29 = atlas_hash((i_18.x + h_11), (i_18.y + 1u));
+    float _e37 = atlas_hash(((i_18.x + 1u) + h_11), (i_18.y + 1u));
     return mix(mix(_e17, _e23, s_11.x), mix(_e29, _e37, s_11.x), s_11.y);
 }
 
 float value_fbm(vec2 p_11, uint seed_1) {
-    float sum_4 = 0.0;
+    float sum_5 = 0.0;
     float weight = 0.5;
     vec2 q_4 = vec2(0.0);
     uint o = 0u;
@@ -2269,25 +2270,25 @@ float value_fbm(vec2 p_11, uint seed_1) {
             break;
         }
         {
-            float _e12 = sum_4;
+            float _e12 = sum_5;
             float _e13 = weight;
             vec2 _e14 = q_4;
             uint _e15 = o;
             float _e17 = value_noise(_e14, (seed_1 + _e15));
-            sum_4 = (_e12 + (_e13 * _e17));
+            sum_5 = (_e12 + (_e13 * _e17));
             vec2 _e20 = q_4;
             q_4 = (_e20 * 2.0);
             float _e23 = weight;
             weight = (_e23 * 0.5);
         }
     }
-    float _e29 = sum_4;
+    float _e29 = sum_5;
     return (_e29 / 0.9375);
 }
 
 float sprite_texture(uint tile_1, vec2 uv) {
     float billow = 0.0;
-    uint i_16 = 0u;
+    uint i_17 = 0u;
     vec2 at = vec2(0.0);
     float a_3 = 0.0;
     vec2 c_10 = (uv - vec2(0.5));
@@ -2304,26 +2305,26 @@ float sprite_texture(uint tile_1, vec2 uv) {
     bool loop_init_14 = true;
     while(true) {
         if (!loop_init_14) {
-            uint _e108 = i_16;
-            i_16 = (_e108 + 1u);
+            uint _e108 = i_17;
+            i_17 = (_e108 + 1u);
         }
         loop_init_14 = false;
-        uint _e58 = i_16;
+        uint _e58 = i_17;
         if ((_e58 < blobs)) {
         } else {
             break;
         }
         {
-            uint _e61 = i_16;
+            uint _e61 = i_17;
             float _e63 = atlas_hash(tile_1, (2u * _e61));
-            uint _e65 = i_16;
+            uint _e65 = i_17;
             float _e69 = atlas_hash(tile_1, ((2u * _e65) + 1u));
             vec2 centre_1 = (vec2(_e63, _e69) - vec2(0.5));
             at = (vec2(0.5) + (centre_1 * 0.34));
             if ((tile_1 == 4u)) {
                 at.y = (0.5 + ((centre_1.y - 0.5) * 0.24));
             }
-            uint _e91 = i_16;
+            uint _e91 = i_17;
             float _e93 = atlas_hash(tile_1, (100u + _e91));
             float r_17 = (0.14 + (0.1 * _e93));
             vec2 _e98 = at;
@@ -2552,19 +2553,19 @@ vec3 stars(vec3 d_17) {
     vec2 st = clamp((((_e54 / vec2(_e55)) * 0.5) + vec2(0.5)), vec2(0.0), vec2(0.999999));
     uvec2 cell_2 = uvec2((st * 96.0));
     uint _e71 = face;
-    uint id_23 = ((((_e71 * STAR_CELLS) + cell_2.y) * STAR_CELLS) + cell_2.x);
-    uint _e85 = pcg((id_23 ^ 2654435769u));
+    uint id_22 = ((((_e71 * STAR_CELLS) + cell_2.y) * STAR_CELLS) + cell_2.x);
+    uint _e85 = pcg((id_22 ^ 2654435769u));
     float h0_ = (float((_e85 >> 8u)) * 5.9604645e-8);
     if ((h0_ >= 0.15085077)) {
         return vec3(0.0);
     }
-    uint _e96 = pcg((id_23 ^ 2246822507u));
+    uint _e96 = pcg((id_22 ^ 2246822507u));
     float h1_ = (float((_e96 >> 8u)) * 5.9604645e-8);
-    uint _e104 = pcg((id_23 ^ 3266489909u));
+    uint _e104 = pcg((id_22 ^ 3266489909u));
     float h2_ = (float((_e104 >> 8u)) * 5.9604645e-8);
-    uint _e112 = pcg((id_23 ^ 668265263u));
+    uint _e112 = pcg((id_22 ^ 668265263u));
     float h3_ = (float((_e112 >> 8u)) * 5.9604645e-8);
-    uint _e120 = pcg((id_23 ^ 374761393u));
+    uint _e120 = pcg((id_22 ^ 374761393u));
     float h4_ = (float((_e120 >> 8u)) * 5.9604645e-8);
     vec2 star_st = (((vec2(cell_2) + vec2(0.15)) + (0.7 * vec2(h1_, h2_))) / vec2(96.0));
     float _e142 = major;

@@ -188,6 +188,7 @@ const float HISTORY_SAMPLES = 16.0;
 const float HISTORY_SAMPLES_MOVING = 2.0;
 const float DISOCCLUSION_DEPTH = 0.5;
 const uint MAX_PATH_ORDERS = 16384u;
+const uint PATHS_PER_FRAME = 32u;
 const uint SPRITE_LEVELS = 4u;
 const int SPRITE_CELLS_PER_SIDE = 8;
 const uint SPRITES_PER_CELL = 16u;
@@ -377,8 +378,8 @@ vec4 catmull_rom(float t_1) {
     return vec4((t_1 * (-0.5 + (t_1 * (1.0 - (0.5 * t_1))))), (1.0 + ((t_1 * t_1) * (-2.5 + (1.5 * t_1)))), (t_1 * (0.5 + (t_1 * (2.0 - (1.5 * t_1))))), ((t_1 * t_1) * (-0.5 + (0.5 * t_1))));
 }
 
-uint rng_seed(uvec2 pixel_6, uint frame_index_1) {
-    uint _e4 = pcg(frame_index_1);
+uint rng_seed(uvec2 pixel_6, uint path_index) {
+    uint _e4 = pcg(path_index);
     uint _e6 = pcg((pixel_6.y ^ _e4));
     uint _e8 = pcg((pixel_6.x ^ _e6));
     return _e8;
@@ -416,19 +417,19 @@ float atlas_hash(uint a_2, uint b_2) {
 }
 
 float value_noise(vec2 p_10, uint seed) {
-    uvec2 i_17 = uvec2(floor(p_10));
+    uvec2 i_18 = uvec2(floor(p_10));
     vec2 f_2 = fract(p_10);
     vec2 s_7 = ((f_2 * f_2) * (vec2(3.0) - (2.0 * f_2)));
     uint h_8 = (seed * 7919u);
-    float _e17 = atlas_hash((i_17.x + h_8), i_17.y);
-    float _e23 = atlas_hash(((i_17.x + 1u) + h_8), i_17.y);
-    float _e29 = atlas_hash((i_17.x + h_8), (i_17.y + 1u));
-    float _e37 = atlas_hash(((i_17.x + 1u) + h_8), (i_17.y + 1u));
+    float _e17 = atlas_hash((i_18.x + h_8), i_18.y);
+    float _e23 = atlas_hash(((i_18.x + 1u) + h_8), i_18.y);
+    float _e29 = atlas_hash((i_18.x + h_8), (i_18.y + 1u));
+    float _e37 = atlas_hash(((i_18.x + 1u) + h_8), (i_18.y + 1u));
     return mix(mix(_e17, _e23, s_7.x), mix(_e29, _e37, s_7.x), s_7.y);
 }
 
 float value_fbm(vec2 p_11, uint seed_1) {
-    float sum_4 = 0.0;
+    float sum_5 = 0.0;
     float weight = 0.5;
     vec2 q_4 = vec2(0.0);
     uint o = 0u;
@@ -446,25 +447,25 @@ float value_fbm(vec2 p_11, uint seed_1) {
             break;
         }
         {
-            float _e12 = sum_4;
+            float _e12 = sum_5;
             float _e13 = weight;
             vec2 _e14 = q_4;
             uint _e15 = o;
             float _e17 = value_noise(_e14, (seed_1 + _e15));
-            sum_4 = (_e12 + (_e13 * _e17));
+            sum_5 = (_e12 + (_e13 * _e17));
             vec2 _e20 = q_4;
             q_4 = (_e20 * 2.0);
             float _e23 = weight;
             weight = (_e23 * 0.5);
         }
     }
-    float _e29 = sum_4;
+    float _e29 = sum_5;
     return (_e29 / 0.9375);
 }
 
 float sprite_texture(uint tile_1, vec2 uv) {
     float billow = 0.0;
-    uint i_16 = 0u;
+    uint i_17 = 0u;
     vec2 at = vec2(0.0);
     float a_3 = 0.0;
     vec2 c_5 = (uv - vec2(0.5));
@@ -481,26 +482,26 @@ float sprite_texture(uint tile_1, vec2 uv) {
     bool loop_init_1 = true;
     while(true) {
         if (!loop_init_1) {
-            uint _e108 = i_16;
-            i_16 = (_e108 + 1u);
+            uint _e108 = i_17;
+            i_17 = (_e108 + 1u);
         }
         loop_init_1 = false;
-        uint _e58 = i_16;
+        uint _e58 = i_17;
         if ((_e58 < blobs)) {
         } else {
             break;
         }
         {
-            uint _e61 = i_16;
+            uint _e61 = i_17;
             float _e63 = atlas_hash(tile_1, (2u * _e61));
-            uint _e65 = i_16;
+            uint _e65 = i_17;
             float _e69 = atlas_hash(tile_1, ((2u * _e65) + 1u));
             vec2 centre_1 = (vec2(_e63, _e69) - vec2(0.5));
             at = (vec2(0.5) + (centre_1 * 0.34));
             if ((tile_1 == 4u)) {
                 at.y = (0.5 + ((centre_1.y - 0.5) * 0.24));
             }
-            uint _e91 = i_16;
+            uint _e91 = i_17;
             float _e93 = atlas_hash(tile_1, (100u + _e91));
             float r_14 = (0.14 + (0.1 * _e93));
             vec2 _e98 = at;
@@ -560,12 +561,12 @@ vec3 aces_fitted(vec3 x_5) {
 }
 
 void main() {
-    uvec3 id_16 = gl_GlobalInvocationID;
+    uvec3 id_15 = gl_GlobalInvocationID;
     uint rank = 0u;
     uint j = 0u;
     bool local_13 = false;
     bool local_14 = false;
-    uint slot = id_16.x;
+    uint slot = id_15.x;
     vec4 _e6 = texelFetch(_group_0_binding_20_cs, ivec2(uvec2(slot, 3u)), 0);
     float key_1 = _e6.x;
     bool loop_init_2 = true;

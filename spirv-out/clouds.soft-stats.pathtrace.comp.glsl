@@ -1,7 +1,7 @@
 #version 450 core
 #extension GL_ARB_compute_shader : require
 #extension GL_ARB_shader_storage_buffer_object : require
-layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
+layout(local_size_x = 32, local_size_y = 1, local_size_z = 1) in;
 
 struct Frame {
     vec4 camera_position;
@@ -189,6 +189,7 @@ const float HISTORY_SAMPLES = 16.0;
 const float HISTORY_SAMPLES_MOVING = 2.0;
 const float DISOCCLUSION_DEPTH = 0.5;
 const uint MAX_PATH_ORDERS = 16384u;
+const uint PATHS_PER_FRAME = 32u;
 const uint SPRITE_LEVELS = 4u;
 const int SPRITE_CELLS_PER_SIDE = 8;
 const uint SPRITES_PER_CELL = 16u;
@@ -246,6 +247,10 @@ layout(binding = 14) uniform sampler2D _group_0_binding_14_cs;
 layout(binding = 17,rgba32f) writeonly uniform image2D _group_0_binding_17_cs;
 
 layout(binding = 18,rgba32f) writeonly uniform image2D _group_0_binding_18_cs;
+
+shared vec4 lane_sums[32];
+
+shared vec4 lane_moments[32];
 
 
 float saturate(float x_1) {
@@ -406,20 +411,20 @@ Layer layer_from(vec4 g, vec4 w_1) {
     return Layer(g.x, g.y, g.z, g.w, w_1.x, w_1.y, w_1.zw);
 }
 
-Layer cloud_layer(uint i_4) {
-    if ((i_4 == 1u)) {
+Layer cloud_layer(uint i_5) {
+    if ((i_5 == 1u)) {
         vec4 _e5 = _group_0_binding_0_cs.layer1_;
         vec4 _e8 = _group_0_binding_0_cs.layer1_weather;
         Layer _e9 = layer_from(_e5, _e8);
         return _e9;
     } else {
-        if ((i_4 == 2u)) {
+        if ((i_5 == 2u)) {
             vec4 _e14 = _group_0_binding_0_cs.layer2_;
             vec4 _e17 = _group_0_binding_0_cs.layer2_weather;
             Layer _e18 = layer_from(_e14, _e17);
             return _e18;
         } else {
-            if ((i_4 == 3u)) {
+            if ((i_5 == 3u)) {
                 vec4 _e23 = _group_0_binding_0_cs.layer3_;
                 vec4 _e26 = _group_0_binding_0_cs.layer3_weather;
                 Layer _e27 = layer_from(_e23, _e26);
@@ -439,24 +444,24 @@ Layer cloud_layer(uint i_4) {
 
 vec2 layers_span() {
     vec2 span = vec2(0.0);
-    uint i_5 = 1u;
+    uint i_6 = 1u;
     vec4 _e2 = _group_0_binding_0_cs.atmosphere;
     span = _e2.yz;
     bool loop_init = true;
     while(true) {
         if (!loop_init) {
-            uint _e22 = i_5;
-            i_5 = (_e22 + 1u);
+            uint _e22 = i_6;
+            i_6 = (_e22 + 1u);
         }
         loop_init = false;
-        uint _e7 = i_5;
+        uint _e7 = i_6;
         uint _e8 = layer_count();
         if ((_e7 < _e8)) {
         } else {
             break;
         }
         {
-            uint _e10 = i_5;
+            uint _e10 = i_6;
             Layer _e11 = cloud_layer(_e10);
             float _e13 = span.x;
             float _e17 = span.y;
@@ -475,7 +480,7 @@ Interval cloud_interval(float alt_4, vec3 d_4) {
 
 Interval nearest_layer_interval(float alt_5, vec3 d_5) {
     Interval best = Interval(0.0, 0.0, 0u);
-    uint i_6 = 1u;
+    uint i_7 = 1u;
     bool local_19 = false;
     bool local_20 = false;
     Layer _e3 = cloud_layer(0u);
@@ -484,18 +489,18 @@ Interval nearest_layer_interval(float alt_5, vec3 d_5) {
     bool loop_init_1 = true;
     while(true) {
         if (!loop_init_1) {
-            uint _e35 = i_6;
-            i_6 = (_e35 + 1u);
+            uint _e35 = i_7;
+            i_7 = (_e35 + 1u);
         }
         loop_init_1 = false;
-        uint _e8 = i_6;
+        uint _e8 = i_7;
         uint _e9 = layer_count();
         if ((_e8 < _e9)) {
         } else {
             break;
         }
         {
-            uint _e11 = i_6;
+            uint _e11 = i_7;
             Layer _e12 = cloud_layer(_e11);
             Interval _e13 = layer_interval(alt_5, d_5, _e12);
             if ((_e13.kind == RAY_MARCH)) {
@@ -786,23 +791,23 @@ float layer_height(Layer l_1, float alt_7) {
 }
 
 uint layer_at(float alt_8) {
-    uint i_8 = 0u;
+    uint i_9 = 0u;
     bool local_22 = false;
     bool loop_init_2 = true;
     while(true) {
         if (!loop_init_2) {
-            uint _e19 = i_8;
-            i_8 = (_e19 + 1u);
+            uint _e19 = i_9;
+            i_9 = (_e19 + 1u);
         }
         loop_init_2 = false;
-        uint _e3 = i_8;
+        uint _e3 = i_9;
         uint _e4 = layer_count();
         if ((_e3 < _e4)) {
         } else {
             break;
         }
         {
-            uint _e6 = i_8;
+            uint _e6 = i_9;
             Layer _e7 = cloud_layer(_e6);
             float _e8 = layer_height(_e7, alt_8);
             if ((_e8 >= 0.0)) {
@@ -812,7 +817,7 @@ uint layer_at(float alt_8) {
             }
             bool _e16 = local_22;
             if (_e16) {
-                uint _e17 = i_8;
+                uint _e17 = i_9;
                 return _e17;
             }
         }
@@ -1020,7 +1025,7 @@ float sun_optical_depth(vec3 rel_1, vec3 p_6, Layer l_4, inout Counters counters
     float seg = 0.0;
     float dist = 0.0;
     float tau_4 = 0.0;
-    uint i_9 = 0u;
+    uint i_10 = 0u;
     bool local_27 = false;
     uint j_1 = 0u;
     bool local_28 = false;
@@ -1038,11 +1043,11 @@ float sun_optical_depth(vec3 rel_1, vec3 p_6, Layer l_4, inout Counters counters
     bool loop_init_3 = true;
     while(true) {
         if (!loop_init_3) {
-            uint _e73 = i_9;
-            i_9 = (_e73 + 1u);
+            uint _e73 = i_10;
+            i_10 = (_e73 + 1u);
         }
         loop_init_3 = false;
-        uint _e36 = i_9;
+        uint _e36 = i_10;
         if ((_e36 < steps_2)) {
         } else {
             break;
@@ -1136,7 +1141,7 @@ float sun_scattering(float cos_theta_5, float tau_5) {
     float ka = 1.0;
     float kb = 1.0;
     float kc = 1.0;
-    uint i_10 = 0u;
+    uint i_11 = 0u;
     float total = 0.0;
     float a_7 = _group_0_binding_0_cs.multiple_scattering.x;
     float b_7 = _group_0_binding_0_cs.multiple_scattering.y;
@@ -1146,11 +1151,11 @@ float sun_scattering(float cos_theta_5, float tau_5) {
     bool loop_init_5 = true;
     while(true) {
         if (!loop_init_5) {
-            uint _e50 = i_10;
-            i_10 = (_e50 + 1u);
+            uint _e50 = i_11;
+            i_11 = (_e50 + 1u);
         }
         loop_init_5 = false;
-        uint _e30 = i_10;
+        uint _e30 = i_11;
         if ((_e30 < octaves)) {
         } else {
             break;
@@ -1322,7 +1327,7 @@ float start_offset(uvec2 pixel_3) {
 
 bool march_layer(vec3 view_2, Interval span_1, Layer l_6, float jitter, inout MarchState state, inout Counters counters_7) {
     uint steps_1 = 0u;
-    uint i_11 = 0u;
+    uint i_12 = 0u;
     uint stride = 1u;
     uint empty = 0u;
     bool local_32 = false;
@@ -1346,14 +1351,14 @@ bool march_layer(vec3 view_2, Interval span_1, Layer l_6, float jitter, inout Ma
     uint _e60 = _group_0_binding_0_cs.modes.w;
     bool empty_skip = ((_e60 & FLAG_EMPTY_SKIP) != 0u);
     while(true) {
-        uint _e71 = i_11;
+        uint _e71 = i_12;
         uint _e72 = steps_1;
         if ((_e71 >= _e72)) {
             break;
         }
         uint _e75 = counters_7.view_steps;
         counters_7.view_steps = (_e75 + 1u);
-        uint _e79 = i_11;
+        uint _e79 = i_12;
         float t_5 = (span_1.start + ((float(_e79) + jitter) * dt_1));
         vec3 rel_6 = ((view_2 * t_5) + vec3(0.0, cam_alt, 0.0));
         vec3 p_12 = vec3((rel_6.x + cam_xz.x), rel_6.y, (rel_6.z + cam_xz.y));
@@ -1362,8 +1367,8 @@ bool march_layer(vec3 view_2, Interval span_1, Layer l_6, float jitter, inout Ma
             if ((_e97 > 0.0)) {
                 uint _e106 = steps_1;
                 uint next_1 = uint(clamp(ceil(((((t_5 + _e97) - span_1.start) / dt_1) - jitter)), 0.0, float(_e106)));
-                uint _e111 = i_11;
-                i_11 = max((_e111 + 1u), next_1);
+                uint _e111 = i_12;
+                i_12 = max((_e111 + 1u), next_1);
                 continue;
             }
         }
@@ -1382,16 +1387,16 @@ bool march_layer(vec3 view_2, Interval span_1, Layer l_6, float jitter, inout Ma
             if (_e128) {
                 stride = 2u;
             }
-            uint _e130 = i_11;
+            uint _e130 = i_12;
             uint _e131 = stride;
-            i_11 = (_e130 + _e131);
+            i_12 = (_e130 + _e131);
             continue;
         }
         uint _e133 = stride;
         if ((_e133 > 1u)) {
-            uint _e136 = i_11;
+            uint _e136 = i_12;
             uint _e137 = stride;
-            i_11 = (_e136 - (_e137 - 1u));
+            i_12 = (_e136 - (_e137 - 1u));
             stride = 1u;
             empty = 0u;
             continue;
@@ -1412,8 +1417,8 @@ bool march_layer(vec3 view_2, Interval span_1, Layer l_6, float jitter, inout Ma
         if ((_e166 < _e170)) {
             return true;
         }
-        uint _e173 = i_11;
-        i_11 = (_e173 + 1u);
+        uint _e173 = i_12;
+        i_12 = (_e173 + 1u);
     }
     return false;
 }
@@ -1429,7 +1434,7 @@ MarchResult march_pixel(uvec2 pixel_4) {
     uint k_6 = 0u;
     uint next = 0u;
     Interval span_2 = Interval(0.0, 0.0, 0u);
-    uint i_12 = 0u;
+    uint i_13 = 0u;
     bool local_33 = false;
     bool local_34 = false;
     bool local_35 = false;
@@ -1457,21 +1462,21 @@ MarchResult march_pixel(uvec2 pixel_4) {
         {
             next = NO_LAYER;
             span_2 = Interval(0.0, 0.0, 1u);
-            i_12 = 0u;
+            i_13 = 0u;
             bool loop_init_7 = true;
             while(true) {
                 if (!loop_init_7) {
-                    uint _e102 = i_12;
-                    i_12 = (_e102 + 1u);
+                    uint _e102 = i_13;
+                    i_13 = (_e102 + 1u);
                 }
                 loop_init_7 = false;
-                uint _e45 = i_12;
+                uint _e45 = i_13;
                 if ((_e45 < _e21)) {
                 } else {
                     break;
                 }
                 {
-                    uint _e47 = i_12;
+                    uint _e47 = i_13;
                     Layer _e48 = cloud_layer(_e47);
                     Interval _e49 = layer_interval(cam_alt_1, _e1, _e48);
                     bool _e50 = ground_1;
@@ -1486,7 +1491,7 @@ MarchResult march_pixel(uvec2 pixel_4) {
                     if (!((_e49.start > _e60))) {
                         float _e66 = last_start;
                         if ((_e49.start == _e66)) {
-                            uint _e70 = i_12;
+                            uint _e70 = i_13;
                             uint _e71 = last_index;
                             local_35 = (_e70 > _e71);
                         } else {
@@ -1519,7 +1524,7 @@ MarchResult march_pixel(uvec2 pixel_4) {
                     }
                     bool _e99 = local_37;
                     if (_e99) {
-                        uint _e100 = i_12;
+                        uint _e100 = i_13;
                         next = _e100;
                         span_2 = _e49;
                     }
@@ -1698,9 +1703,9 @@ vec4 history_at(vec2 q_1) {
     vec4 _e26 = history_row(base_3, 0, _e18);
     vec4 _e31 = history_row(base_3, 1, _e18);
     vec4 _e36 = history_row(base_3, 2, _e18);
-    vec4 sum_5 = ((((_e22 * _e20.x) + (_e26 * _e20.y)) + (_e31 * _e20.z)) + (_e36 * _e20.w));
-    float _e45 = saturate(sum_5.w);
-    return vec4(max(sum_5.xyz, vec3(0.0)), _e45);
+    vec4 sum_6 = ((((_e22 * _e20.x) + (_e26 * _e20.y)) + (_e31 * _e20.z)) + (_e36 * _e20.w));
+    float _e45 = saturate(sum_6.w);
+    return vec4(max(sum_6.xyz, vec3(0.0)), _e45);
 }
 
 vec4 history_nearest(vec2 q_2) {
@@ -1719,27 +1724,27 @@ vec4 meta_at(vec2 q_3) {
     return _e16;
 }
 
-bool in_blocks(uvec2 id_20) {
+bool in_blocks(uvec2 id_19) {
     uint k_13 = _group_0_binding_0_cs.temporal.x;
     uvec4 _e7 = _group_0_binding_0_cs.counts;
-    return all(lessThan(id_20, (((_e7.xy + uvec2(k_13)) - uvec2(1u)) / uvec2(k_13))));
+    return all(lessThan(id_19, (((_e7.xy + uvec2(k_13)) - uvec2(1u)) / uvec2(k_13))));
 }
 
-uvec2 sparse_pixel(uvec2 id_21) {
+uvec2 sparse_pixel(uvec2 id_20) {
     uint k_14 = _group_0_binding_0_cs.temporal.x;
     uint _e9 = _group_0_binding_0_cs.misc.y;
     uvec2 _e10 = block_offset(_e9, k_14);
-    return ((id_21 * k_14) + _e10);
+    return ((id_20 * k_14) + _e10);
 }
 
-void store_sparse(uvec2 id_22, MarchResult r_13) {
-    imageStore(_group_0_binding_6_cs, ivec2(id_22), vec4(r_13.radiance, r_13.transmittance));
-    imageStore(_group_0_binding_7_cs, ivec2(id_22), vec4(r_13.depth, 0.0, 0.0, 0.0));
+void store_sparse(uvec2 id_21, MarchResult r_13) {
+    imageStore(_group_0_binding_6_cs, ivec2(id_21), vec4(r_13.radiance, r_13.transmittance));
+    imageStore(_group_0_binding_7_cs, ivec2(id_21), vec4(r_13.depth, 0.0, 0.0, 0.0));
     return;
 }
 
-uint rng_seed(uvec2 pixel_6, uint frame_index_1) {
-    uint _e4 = pcg(frame_index_1);
+uint rng_seed(uvec2 pixel_6, uint path_index) {
+    uint _e4 = pcg(path_index);
     uint _e6 = pcg((pixel_6.y ^ _e4));
     uint _e8 = pcg((pixel_6.x ^ _e6));
     return _e8;
@@ -1873,22 +1878,22 @@ float empty_cell_skip(vec3 origin_3, vec3 dir_1, float t_2) {
 
 float density_max() {
     float m_1 = 0.0;
-    uint i_13 = 0u;
+    uint i_14 = 0u;
     bool loop_init_8 = true;
     while(true) {
         if (!loop_init_8) {
-            uint _e17 = i_13;
-            i_13 = (_e17 + 1u);
+            uint _e17 = i_14;
+            i_14 = (_e17 + 1u);
         }
         loop_init_8 = false;
-        uint _e4 = i_13;
+        uint _e4 = i_14;
         uint _e5 = layer_count();
         if ((_e4 < _e5)) {
         } else {
             break;
         }
         {
-            uint _e7 = i_13;
+            uint _e7 = i_14;
             Layer _e8 = cloud_layer(_e7);
             float _e9 = m_1;
             m_1 = max(_e9, (_e8.density * (1.0 + _e8.precipitation)));
@@ -2278,7 +2283,7 @@ float luminance(vec3 c_3) {
 
 float basic_sun_depth(vec3 rel_5, float alt_14, inout Counters counters_13) {
     float tau_7 = 0.0;
-    uint i_14 = 1u;
+    uint i_15 = 1u;
     uint steps_3 = _group_0_binding_0_cs.counts.w;
     if ((steps_3 == 0u)) {
         return 0.0;
@@ -2300,11 +2305,11 @@ float basic_sun_depth(vec3 rel_5, float alt_14, inout Counters counters_13) {
     bool loop_init_11 = true;
     while(true) {
         if (!loop_init_11) {
-            uint _e90 = i_14;
-            i_14 = (_e90 + 1u);
+            uint _e90 = i_15;
+            i_15 = (_e90 + 1u);
         }
         loop_init_11 = false;
-        uint _e65 = i_14;
+        uint _e65 = i_15;
         if ((_e65 <= steps_3)) {
         } else {
             break;
@@ -2312,7 +2317,7 @@ float basic_sun_depth(vec3 rel_5, float alt_14, inout Counters counters_13) {
         {
             uint _e68 = counters_13.light;
             counters_13.light = (_e68 + 1u);
-            uint _e71 = i_14;
+            uint _e71 = i_15;
             vec3 q_8 = (rel_5 + (sun_5 * (float(_e71) * dt_2)));
             vec3 p_17 = vec3((q_8.x + cam_xz_1.x), q_8.y, (q_8.z + cam_xz_1.y));
             float _e84 = tau_7;
@@ -2330,7 +2335,7 @@ MarchResult basic_pixel(uvec2 pixel_7) {
     vec3 radiance_2 = vec3(0.0);
     float transmittance = 1.0;
     float depth_sum = 0.0;
-    uint i_15 = 0u;
+    uint i_16 = 0u;
     float depth_3 = 0.0;
     vec3 _e1 = view_ray(pixel_7);
     float cam_alt_2 = _group_0_binding_0_cs.camera_position.y;
@@ -2358,11 +2363,11 @@ MarchResult basic_pixel(uvec2 pixel_7) {
             bool loop_init_12 = true;
             while(true) {
                 if (!loop_init_12) {
-                    uint _e131 = i_15;
-                    i_15 = (_e131 + 1u);
+                    uint _e131 = i_16;
+                    i_16 = (_e131 + 1u);
                 }
                 loop_init_12 = false;
-                uint _e71 = i_15;
+                uint _e71 = i_16;
                 if ((_e71 < steps_4)) {
                 } else {
                     break;
@@ -2370,7 +2375,7 @@ MarchResult basic_pixel(uvec2 pixel_7) {
                 {
                     uint _e74 = counters_14.view_steps;
                     counters_14.view_steps = (_e74 + 1u);
-                    uint _e78 = i_15;
+                    uint _e78 = i_16;
                     float t_7 = (_e25.start + (float(_e78) * dt_3));
                     vec3 rel_8 = ((_e1 * t_7) + vec3(0.0, cam_alt_2, 0.0));
                     vec3 p_18 = vec3((rel_8.x + cam_xz_2.x), rel_8.y, (rel_8.z + cam_xz_2.y));
@@ -2421,19 +2426,19 @@ float atlas_hash(uint a_2, uint b_2) {
 }
 
 float value_noise(vec2 p_10, uint seed) {
-    uvec2 i_17 = uvec2(floor(p_10));
+    uvec2 i_18 = uvec2(floor(p_10));
     vec2 f_4 = fract(p_10);
     vec2 s_11 = ((f_4 * f_4) * (vec2(3.0) - (2.0 * f_4)));
     uint h_11 = (seed * 7919u);
-    float _e17 = atlas_hash((i_17.x + h_11), i_17.y);
-    float _e23 = atlas_hash(((i_17.x + 1u) + h_11), i_17.y);
-    float _e29 = atlas_hash((i_17.x + h_11), (i_17.y + 1u));
-    float _e37 = atlas_hash(((i_17.x + 1u) + h_11), (i_17.y + 1u));
+    float _e17 = atlas_hash((i_18.x + h_11), i_18.y);
+    float _e23 = atlas_hash(((i_18.x + 1u) + h_11), i_18.y);
+    float _e29 = atlas_hash((i_18.x + h_11), (i_18.y + 1u));
+    float _e37 = atlas_hash(((i_18.x + 1u) + h_11), (i_18.y + 1u));
     return mix(mix(_e17, _e23, s_11.x), mix(_e29, _e37, s_11.x), s_11.y);
 }
 
 float value_fbm(vec2 p_11, uint seed_1) {
-    float sum_4 = 0.0;
+    float sum_5 = 0.0;
     float weight = 0.5;
     vec2 q_4 = vec2(0.0);
     uint o = 0u;
@@ -2451,25 +2456,25 @@ float value_fbm(vec2 p_11, uint seed_1) {
             break;
         }
         {
-            float _e12 = sum_4;
+            float _e12 = sum_5;
             float _e13 = weight;
             vec2 _e14 = q_4;
             uint _e15 = o;
             float _e17 = value_noise(_e14, (seed_1 + _e15));
-            sum_4 = (_e12 + (_e13 * _e17));
+            sum_5 = (_e12 + (_e13 * _e17));
             vec2 _e20 = q_4;
             q_4 = (_e20 * 2.0);
             float _e23 = weight;
             weight = (_e23 * 0.5);
         }
     }
-    float _e29 = sum_4;
+    float _e29 = sum_5;
     return (_e29 / 0.9375);
 }
 
 float sprite_texture(uint tile_1, vec2 uv) {
     float billow = 0.0;
-    uint i_16 = 0u;
+    uint i_17 = 0u;
     vec2 at = vec2(0.0);
     float a_3 = 0.0;
     vec2 c_10 = (uv - vec2(0.5));
@@ -2486,26 +2491,26 @@ float sprite_texture(uint tile_1, vec2 uv) {
     bool loop_init_14 = true;
     while(true) {
         if (!loop_init_14) {
-            uint _e108 = i_16;
-            i_16 = (_e108 + 1u);
+            uint _e108 = i_17;
+            i_17 = (_e108 + 1u);
         }
         loop_init_14 = false;
-        uint _e58 = i_16;
+        uint _e58 = i_17;
         if ((_e58 < blobs)) {
         } else {
             break;
         }
         {
-            uint _e61 = i_16;
+            uint _e61 = i_17;
             float _e63 = atlas_hash(tile_1, (2u * _e61));
-            uint _e65 = i_16;
+            uint _e65 = i_17;
             float _e69 = atlas_hash(tile_1, ((2u * _e65) + 1u));
             vec2 centre_1 = (vec2(_e63, _e69) - vec2(0.5));
             at = (vec2(0.5) + (centre_1 * 0.34));
             if ((tile_1 == 4u)) {
                 at.y = (0.5 + ((centre_1.y - 0.5) * 0.24));
             }
-            uint _e91 = i_16;
+            uint _e91 = i_17;
             float _e93 = atlas_hash(tile_1, (100u + _e91));
             float r_17 = (0.14 + (0.1 * _e93));
             vec2 _e98 = at;
@@ -2734,19 +2739,19 @@ vec3 stars(vec3 d_17) {
     vec2 st = clamp((((_e54 / vec2(_e55)) * 0.5) + vec2(0.5)), vec2(0.0), vec2(0.999999));
     uvec2 cell_2 = uvec2((st * 96.0));
     uint _e71 = face;
-    uint id_23 = ((((_e71 * STAR_CELLS) + cell_2.y) * STAR_CELLS) + cell_2.x);
-    uint _e85 = pcg((id_23 ^ 2654435769u));
+    uint id_22 = ((((_e71 * STAR_CELLS) + cell_2.y) * STAR_CELLS) + cell_2.x);
+    uint _e85 = pcg((id_22 ^ 2654435769u));
     float h0_ = (float((_e85 >> 8u)) * 5.9604645e-8);
     if ((h0_ >= 0.15085077)) {
         return vec3(0.0);
     }
-    uint _e96 = pcg((id_23 ^ 2246822507u));
+    uint _e96 = pcg((id_22 ^ 2246822507u));
     float h1_ = (float((_e96 >> 8u)) * 5.9604645e-8);
-    uint _e104 = pcg((id_23 ^ 3266489909u));
+    uint _e104 = pcg((id_22 ^ 3266489909u));
     float h2_ = (float((_e104 >> 8u)) * 5.9604645e-8);
-    uint _e112 = pcg((id_23 ^ 668265263u));
+    uint _e112 = pcg((id_22 ^ 668265263u));
     float h3_ = (float((_e112 >> 8u)) * 5.9604645e-8);
-    uint _e120 = pcg((id_23 ^ 374761393u));
+    uint _e120 = pcg((id_22 ^ 374761393u));
     float h4_ = (float((_e120 >> 8u)) * 5.9604645e-8);
     vec2 star_st = (((vec2(cell_2) + vec2(0.15)) + (0.7 * vec2(h1_, h2_))) / vec2(96.0));
     float _e142 = major;
@@ -2790,76 +2795,122 @@ vec3 aces_fitted(vec3 x_5) {
 }
 
 void main() {
-    uvec3 id_12 = gl_GlobalInvocationID;
+    if (gl_LocalInvocationID == uvec3(0u)) {
+        lane_sums = vec4[32](vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0));
+        lane_moments = vec4[32](vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0));
+    }
+    memoryBarrierShared();
+    barrier();
+    uvec3 group = gl_WorkGroupID;
+    uint lane = gl_LocalInvocationIndex;
     Counters counters_1 = Counters(0u, 0u, 0u, 0u);
     uint rng = 0u;
+    vec4 sum_3 = vec4(0.0);
+    vec4 sum_moments = vec4(0.0);
+    uint i_3 = 0u;
     vec4 mean = vec4(0.0);
     vec4 moments = vec4(0.0);
     bool local_11 = false;
-    uvec4 _e4 = _group_0_binding_0_cs.counts;
-    if (any(greaterThanEqual(id_12.xy, _e4.xy))) {
+    uvec4 _e5 = _group_0_binding_0_cs.counts;
+    if (any(greaterThanEqual(group.xy, _e5.xy))) {
         return;
     }
-    uvec2 pixel_10 = id_12.xy;
-    vec3 _e9 = view_ray(pixel_10);
-    float _e13 = _group_0_binding_0_cs.camera_position.y;
-    Interval _e14 = cloud_interval(_e13, _e9);
-    count(STAT_PIXELS, 1u);
-    count(STAT_MARCHED, uint((_e14.kind == RAY_MARCH)));
-    count(STAT_EXIT_MISSED, uint((_e14.kind == RAY_MISSES_LAYER)));
-    count(STAT_EXIT_GROUND, uint((_e14.kind == RAY_HITS_GROUND)));
-    uint _e41 = _group_0_binding_0_cs.misc.y;
-    uint _e42 = rng_seed(pixel_10, _e41);
-    rng = _e42;
-    PathResult _e44 = trace_path(_e9, _e14, rng, counters_1);
-    float _e46 = luminance(_e44.radiance);
-    uint _e56 = _group_0_binding_0_cs.temporal.y;
-    if ((_e56 == 1u)) {
-        bool _e61 = camera_still();
-        local_11 = _e61;
-    } else {
-        local_11 = false;
+    uvec2 pixel_10 = group.xy;
+    vec3 _e10 = view_ray(pixel_10);
+    float _e14 = _group_0_binding_0_cs.camera_position.y;
+    Interval _e15 = cloud_interval(_e14, _e10);
+    if ((lane == 0u)) {
+        count(STAT_PIXELS, 1u);
+        count(STAT_MARCHED, uint((_e15.kind == RAY_MARCH)));
+        count(STAT_EXIT_MISSED, uint((_e15.kind == RAY_MISSES_LAYER)));
+        count(STAT_EXIT_GROUND, uint((_e15.kind == RAY_HITS_GROUND)));
     }
-    bool _e63 = local_11;
-    if (_e63) {
-        vec4 _e66 = texelFetch(_group_0_binding_13_cs, ivec2(pixel_10), 0);
-        mean = _e66;
-        vec4 _e69 = texelFetch(_group_0_binding_14_cs, ivec2(pixel_10), 0);
-        moments = _e69;
+    uint _e44 = _group_0_binding_0_cs.misc.y;
+    uint _e48 = rng_seed(pixel_10, ((_e44 * PATHS_PER_FRAME) + lane));
+    rng = _e48;
+    PathResult _e50 = trace_path(_e10, _e15, rng, counters_1);
+    float _e52 = luminance(_e50.radiance);
+    bool hit = (_e50.depth >= 0.0);
+    lane_sums[lane] = vec4(_e50.radiance, _e50.transmittance);
+    lane_moments[lane] = vec4((_e52 * _e52), (hit ? _e50.depth : 0.0), (hit ? 1.0 : 0.0), 0.0);
+    memoryBarrierShared();
+    barrier();
+    if ((lane == 0u)) {
+        bool loop_init_16 = true;
+        while(true) {
+            if (!loop_init_16) {
+                uint _e98 = i_3;
+                i_3 = (_e98 + 1u);
+            }
+            loop_init_16 = false;
+            uint _e82 = i_3;
+            if ((_e82 < PATHS_PER_FRAME)) {
+            } else {
+                break;
+            }
+            {
+                vec4 _e85 = sum_3;
+                uint _e87 = i_3;
+                vec4 _e89 = lane_sums[_e87];
+                sum_3 = (_e85 + _e89);
+                vec4 _e91 = sum_moments;
+                uint _e93 = i_3;
+                vec4 _e95 = lane_moments[_e93];
+                sum_moments = (_e91 + _e95);
+            }
+        }
+        uint _e109 = _group_0_binding_0_cs.temporal.y;
+        if ((_e109 == 1u)) {
+            bool _e114 = camera_still();
+            local_11 = _e114;
+        } else {
+            local_11 = false;
+        }
+        bool _e116 = local_11;
+        if (_e116) {
+            vec4 _e119 = texelFetch(_group_0_binding_13_cs, ivec2(pixel_10), 0);
+            mean = _e119;
+            vec4 _e122 = texelFetch(_group_0_binding_14_cs, ivec2(pixel_10), 0);
+            moments = _e122;
+        }
+        float _e125 = moments.y;
+        float n_4 = (_e125 + 32.0);
+        vec4 _e127 = mean;
+        vec4 _e128 = sum_3;
+        vec4 _e129 = mean;
+        mean = (_e127 + ((_e128 - (32.0 * _e129)) / vec4(n_4)));
+        float _e136 = moments.z;
+        float _e138 = sum_moments.x;
+        float _e140 = moments.z;
+        moments.z = (_e136 + ((_e138 - (32.0 * _e140)) / n_4));
+        float hits = sum_moments.z;
+        if ((hits > 0.0)) {
+            float _e150 = moments.w;
+            moments.w = (_e150 + hits);
+            float _e153 = moments.x;
+            float _e155 = sum_moments.y;
+            float _e157 = moments.x;
+            float _e161 = moments.w;
+            moments.x = (_e153 + ((_e155 - (hits * _e157)) / _e161));
+        }
+        moments.y = n_4;
+        vec4 _e166 = mean;
+        imageStore(_group_0_binding_17_cs, ivec2(pixel_10), _e166);
+        vec4 _e168 = moments;
+        imageStore(_group_0_binding_18_cs, ivec2(pixel_10), _e168);
+        vec4 _e170 = mean;
+        imageStore(_group_0_binding_6_cs, ivec2(pixel_10), _e170);
+        float _e173 = moments.x;
+        imageStore(_group_0_binding_7_cs, ivec2(pixel_10), vec4(_e173, 0.0, 0.0, 0.0));
     }
-    float _e71 = moments.y;
-    float n_4 = (_e71 + 1.0);
-    vec4 _e74 = mean;
-    vec4 _e78 = mean;
-    mean = (_e74 + ((vec4(_e44.radiance, _e44.transmittance) - _e78) / vec4(n_4)));
-    float _e84 = moments.z;
-    float _e87 = moments.z;
-    moments.z = (_e84 + (((_e46 * _e46) - _e87) / n_4));
-    if ((_e44.depth >= 0.0)) {
-        float _e95 = moments.w;
-        moments.w = (_e95 + 1.0);
-        float _e99 = moments.x;
-        float _e102 = moments.x;
-        float _e105 = moments.w;
-        moments.x = (_e99 + ((_e44.depth - _e102) / _e105));
-    }
-    moments.y = n_4;
-    vec4 _e110 = mean;
-    imageStore(_group_0_binding_17_cs, ivec2(pixel_10), _e110);
-    vec4 _e112 = moments;
-    imageStore(_group_0_binding_18_cs, ivec2(pixel_10), _e112);
-    vec4 _e114 = mean;
-    imageStore(_group_0_binding_6_cs, ivec2(pixel_10), _e114);
-    float _e117 = moments.x;
-    imageStore(_group_0_binding_7_cs, ivec2(pixel_10), vec4(_e117, 0.0, 0.0, 0.0));
-    uint _e124 = counters_1.view_steps;
-    count(STAT_VIEW_STEPS, _e124);
-    uint _e127 = counters_1.density;
-    count(STAT_DENSITY, _e127);
-    uint _e130 = counters_1.detail;
-    count(STAT_DETAIL, _e130);
-    uint _e133 = counters_1.light;
-    count(STAT_LIGHT, _e133);
+    uint _e180 = counters_1.view_steps;
+    count(STAT_VIEW_STEPS, _e180);
+    uint _e183 = counters_1.density;
+    count(STAT_DENSITY, _e183);
+    uint _e186 = counters_1.detail;
+    count(STAT_DETAIL, _e186);
+    uint _e189 = counters_1.light;
+    count(STAT_LIGHT, _e189);
     return;
 }
 

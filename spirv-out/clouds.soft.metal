@@ -118,6 +118,9 @@ struct PathResult {
     float depth;
     char _pad3[12];
 };
+struct type_21 {
+    metal::float4 inner[32];
+};
 struct SpriteCell {
     metal::int2 index;
     float size;
@@ -202,6 +205,7 @@ constant float HISTORY_SAMPLES = 16.0;
 constant float HISTORY_SAMPLES_MOVING = 2.0;
 constant float DISOCCLUSION_DEPTH = 0.5;
 constant uint MAX_PATH_ORDERS = 16384u;
+constant uint PATHS_PER_FRAME = 32u;
 constant uint SPRITE_LEVELS = 4u;
 constant int SPRITE_CELLS_PER_SIDE = 8;
 constant uint SPRITES_PER_CELL = 16u;
@@ -437,22 +441,22 @@ Layer layer_from(
 }
 
 Layer cloud_layer(
-    uint i_4,
+    uint i_5,
     constant Frame& frame
 ) {
-    if (i_4 == 1u) {
+    if (i_5 == 1u) {
         metal::float4 _e5 = frame.layer1_;
         metal::float4 _e8 = frame.layer1_weather;
         Layer _e9 = layer_from(_e5, _e8);
         return _e9;
     } else {
-        if (i_4 == 2u) {
+        if (i_5 == 2u) {
             metal::float4 _e14 = frame.layer2_;
             metal::float4 _e17 = frame.layer2_weather;
             Layer _e18 = layer_from(_e14, _e17);
             return _e18;
         } else {
-            if (i_4 == 3u) {
+            if (i_5 == 3u) {
                 metal::float4 _e23 = frame.layer3_;
                 metal::float4 _e26 = frame.layer3_weather;
                 Layer _e27 = layer_from(_e23, _e26);
@@ -474,7 +478,7 @@ metal::float2 layers_span(
     constant Frame& frame
 ) {
     metal::float2 span = {};
-    uint i_5 = 1u;
+    uint i_6 = 1u;
     metal::float4 _e2 = frame.atmosphere;
     span = _e2.yz;
     uint2 loop_bound = uint2(4294967295u);
@@ -483,18 +487,18 @@ metal::float2 layers_span(
         if (metal::all(loop_bound == uint2(0u))) { break; }
         loop_bound -= uint2(loop_bound.y == 0u, 1u);
         if (!loop_init) {
-            uint _e22 = i_5;
-            i_5 = _e22 + 1u;
+            uint _e22 = i_6;
+            i_6 = _e22 + 1u;
         }
         loop_init = false;
-        uint _e7 = i_5;
+        uint _e7 = i_6;
         uint _e8 = layer_count(frame);
         if (_e7 < _e8) {
         } else {
             break;
         }
         {
-            uint _e10 = i_5;
+            uint _e10 = i_6;
             Layer _e11 = cloud_layer(_e10, frame);
             float _e13 = span.x;
             float _e17 = span.y;
@@ -521,7 +525,7 @@ Interval nearest_layer_interval(
     constant Frame& frame
 ) {
     Interval best = {};
-    uint i_6 = 1u;
+    uint i_7 = 1u;
     bool local_19 = {};
     bool local_20 = {};
     Layer _e3 = cloud_layer(0u, frame);
@@ -533,18 +537,18 @@ Interval nearest_layer_interval(
         if (metal::all(loop_bound_1 == uint2(0u))) { break; }
         loop_bound_1 -= uint2(loop_bound_1.y == 0u, 1u);
         if (!loop_init_1) {
-            uint _e35 = i_6;
-            i_6 = _e35 + 1u;
+            uint _e35 = i_7;
+            i_7 = _e35 + 1u;
         }
         loop_init_1 = false;
-        uint _e8 = i_6;
+        uint _e8 = i_7;
         uint _e9 = layer_count(frame);
         if (_e8 < _e9) {
         } else {
             break;
         }
         {
-            uint _e11 = i_6;
+            uint _e11 = i_7;
             Layer _e12 = cloud_layer(_e11, frame);
             Interval _e13 = layer_interval(alt_5, d_5, _e12, frame);
             if (_e13.kind == RAY_MARCH) {
@@ -828,7 +832,7 @@ Scattered integrate_air(
     metal::float3 radiance_1 = metal::float3(0.0);
     metal::float3 tau_3 = metal::float3(0.0);
     float t0_ = 0.0;
-    uint i_7 = 0u;
+    uint i_8 = 0u;
     float cos_theta_7 = metal::dot(d_7, sun);
     float _e6 = phase_rayleigh(cos_theta_7);
     float _e10 = frame.air_mie.w;
@@ -839,17 +843,17 @@ Scattered integrate_air(
         if (metal::all(loop_bound_2 == uint2(0u))) { break; }
         loop_bound_2 -= uint2(loop_bound_2.y == 0u, 1u);
         if (!loop_init_2) {
-            uint _e79 = i_7;
-            i_7 = _e79 + 1u;
+            uint _e79 = i_8;
+            i_8 = _e79 + 1u;
         }
         loop_init_2 = false;
-        uint _e22 = i_7;
+        uint _e22 = i_8;
         if (_e22 < steps) {
         } else {
             break;
         }
         {
-            uint _e24 = i_7;
+            uint _e24 = i_8;
             float s1_ = static_cast<float>(_e24 + 1u) / static_cast<float>(steps);
             float t1_ = (distance_km * s1_) * s1_;
             float _e32 = t0_;
@@ -1114,7 +1118,7 @@ uint layer_at(
     float alt_8,
     constant Frame& frame
 ) {
-    uint i_8 = 0u;
+    uint i_9 = 0u;
     bool local_22 = {};
     uint2 loop_bound_3 = uint2(4294967295u);
     bool loop_init_3 = true;
@@ -1122,18 +1126,18 @@ uint layer_at(
         if (metal::all(loop_bound_3 == uint2(0u))) { break; }
         loop_bound_3 -= uint2(loop_bound_3.y == 0u, 1u);
         if (!loop_init_3) {
-            uint _e19 = i_8;
-            i_8 = _e19 + 1u;
+            uint _e19 = i_9;
+            i_9 = _e19 + 1u;
         }
         loop_init_3 = false;
-        uint _e3 = i_8;
+        uint _e3 = i_9;
         uint _e4 = layer_count(frame);
         if (_e3 < _e4) {
         } else {
             break;
         }
         {
-            uint _e6 = i_8;
+            uint _e6 = i_9;
             Layer _e7 = cloud_layer(_e6, frame);
             float _e8 = layer_height(_e7, alt_8);
             if (_e8 >= 0.0) {
@@ -1143,7 +1147,7 @@ uint layer_at(
             }
             bool _e16 = local_22;
             if (_e16) {
-                uint _e17 = i_8;
+                uint _e17 = i_9;
                 return _e17;
             }
         }
@@ -1415,7 +1419,7 @@ float sun_optical_depth(
     float seg = {};
     float dist = 0.0;
     float tau_4 = 0.0;
-    uint i_9 = 0u;
+    uint i_10 = 0u;
     bool local_27 = {};
     uint j_1 = 0u;
     bool local_28 = {};
@@ -1436,11 +1440,11 @@ float sun_optical_depth(
         if (metal::all(loop_bound_4 == uint2(0u))) { break; }
         loop_bound_4 -= uint2(loop_bound_4.y == 0u, 1u);
         if (!loop_init_4) {
-            uint _e73 = i_9;
-            i_9 = _e73 + 1u;
+            uint _e73 = i_10;
+            i_10 = _e73 + 1u;
         }
         loop_init_4 = false;
-        uint _e36 = i_9;
+        uint _e36 = i_10;
         if (_e36 < steps_2) {
         } else {
             break;
@@ -1541,7 +1545,7 @@ float sun_scattering(
     float ka = 1.0;
     float kb = 1.0;
     float kc = 1.0;
-    uint i_10 = 0u;
+    uint i_11 = 0u;
     float total = {};
     float a_8 = frame.multiple_scattering.x;
     float b_8 = frame.multiple_scattering.y;
@@ -1554,11 +1558,11 @@ float sun_scattering(
         if (metal::all(loop_bound_6 == uint2(0u))) { break; }
         loop_bound_6 -= uint2(loop_bound_6.y == 0u, 1u);
         if (!loop_init_6) {
-            uint _e50 = i_10;
-            i_10 = _e50 + 1u;
+            uint _e50 = i_11;
+            i_11 = _e50 + 1u;
         }
         loop_init_6 = false;
-        uint _e30 = i_10;
+        uint _e30 = i_11;
         if (_e30 < octaves) {
         } else {
             break;
@@ -1833,7 +1837,7 @@ bool march_layer(
     metal::texture2d<float, metal::access::sample> occupancy_in
 ) {
     uint steps_1 = {};
-    uint i_11 = 0u;
+    uint i_12 = 0u;
     uint stride = 1u;
     uint empty = 0u;
     bool local_32 = {};
@@ -1860,14 +1864,14 @@ bool march_layer(
     while(true) {
         if (metal::all(loop_bound_7 == uint2(0u))) { break; }
         loop_bound_7 -= uint2(loop_bound_7.y == 0u, 1u);
-        uint _e71 = i_11;
+        uint _e71 = i_12;
         uint _e72 = steps_1;
         if (_e71 >= _e72) {
             break;
         }
         uint _e75 = counters_7.view_steps;
         counters_7.view_steps = _e75 + 1u;
-        uint _e79 = i_11;
+        uint _e79 = i_12;
         float t_6 = span_1.start + ((static_cast<float>(_e79) + jitter) * dt_2);
         metal::float3 rel_6 = (view_2 * t_6) + metal::float3(0.0, cam_alt_1, 0.0);
         metal::float3 p_13 = metal::float3(rel_6.x + cam_xz.x, rel_6.y, rel_6.z + cam_xz.y);
@@ -1876,8 +1880,8 @@ bool march_layer(
             if (_e97 > 0.0) {
                 uint _e106 = steps_1;
                 uint next_1 = naga_f2u32(metal::clamp(metal::ceil((((t_6 + _e97) - span_1.start) / dt_2) - jitter), 0.0, static_cast<float>(_e106)));
-                uint _e111 = i_11;
-                i_11 = metal::max(_e111 + 1u, next_1);
+                uint _e111 = i_12;
+                i_12 = metal::max(_e111 + 1u, next_1);
                 continue;
             }
         }
@@ -1896,16 +1900,16 @@ bool march_layer(
             if (_e128) {
                 stride = 2u;
             }
-            uint _e130 = i_11;
+            uint _e130 = i_12;
             uint _e131 = stride;
-            i_11 = _e130 + _e131;
+            i_12 = _e130 + _e131;
             continue;
         }
         uint _e133 = stride;
         if (_e133 > 1u) {
-            uint _e136 = i_11;
+            uint _e136 = i_12;
             uint _e137 = stride;
-            i_11 = _e136 - (_e137 - 1u);
+            i_12 = _e136 - (_e137 - 1u);
             stride = 1u;
             empty = 0u;
             continue;
@@ -1926,8 +1930,8 @@ bool march_layer(
         if (_e166 < _e170) {
             return true;
         }
-        uint _e173 = i_11;
-        i_11 = _e173 + 1u;
+        uint _e173 = i_12;
+        i_12 = _e173 + 1u;
     }
     return false;
 }
@@ -1955,7 +1959,7 @@ MarchResult march_pixel(
     uint k_6 = 0u;
     uint next = {};
     Interval span_2 = {};
-    uint i_12 = {};
+    uint i_13 = {};
     bool local_33 = {};
     bool local_34 = {};
     bool local_35 = {};
@@ -1986,24 +1990,24 @@ MarchResult march_pixel(
         {
             next = NO_LAYER;
             span_2 = Interval {0.0, 0.0, 1u};
-            i_12 = 0u;
+            i_13 = 0u;
             uint2 loop_bound_9 = uint2(4294967295u);
             bool loop_init_8 = true;
             while(true) {
                 if (metal::all(loop_bound_9 == uint2(0u))) { break; }
                 loop_bound_9 -= uint2(loop_bound_9.y == 0u, 1u);
                 if (!loop_init_8) {
-                    uint _e102 = i_12;
-                    i_12 = _e102 + 1u;
+                    uint _e102 = i_13;
+                    i_13 = _e102 + 1u;
                 }
                 loop_init_8 = false;
-                uint _e45 = i_12;
+                uint _e45 = i_13;
                 if (_e45 < _e21) {
                 } else {
                     break;
                 }
                 {
-                    uint _e47 = i_12;
+                    uint _e47 = i_13;
                     Layer _e48 = cloud_layer(_e47, frame);
                     Interval _e49 = layer_interval(cam_alt_2, _e1, _e48, frame);
                     bool _e50 = ground_1;
@@ -2018,7 +2022,7 @@ MarchResult march_pixel(
                     if (!((_e49.start > _e60))) {
                         float _e66 = last_start;
                         if (_e49.start == _e66) {
-                            uint _e70 = i_12;
+                            uint _e70 = i_13;
                             uint _e71 = last_index;
                             local_35 = _e70 > _e71;
                         } else {
@@ -2051,7 +2055,7 @@ MarchResult march_pixel(
                     }
                     bool _e99 = local_37;
                     if (_e99) {
-                        uint _e100 = i_12;
+                        uint _e100 = i_13;
                         next = _e100;
                         span_2 = _e49;
                     }
@@ -2262,9 +2266,9 @@ metal::float4 history_at(
     metal::float4 _e26 = history_row(base_3, 0, _e18, frame, history_in);
     metal::float4 _e31 = history_row(base_3, 1, _e18, frame, history_in);
     metal::float4 _e36 = history_row(base_3, 2, _e18, frame, history_in);
-    metal::float4 sum_5 = (((_e22 * _e20.x) + (_e26 * _e20.y)) + (_e31 * _e20.z)) + (_e36 * _e20.w);
-    float _e45 = saturate(sum_5.w);
-    return metal::float4(metal::max(sum_5.xyz, metal::float3(0.0)), _e45);
+    metal::float4 sum_6 = (((_e22 * _e20.x) + (_e26 * _e20.y)) + (_e31 * _e20.z)) + (_e36 * _e20.w);
+    float _e45 = saturate(sum_6.w);
+    return metal::float4(metal::max(sum_6.xyz, metal::float3(0.0)), _e45);
 }
 
 metal::float4 history_nearest(
@@ -2296,40 +2300,40 @@ metal::uint2 naga_div(metal::uint2 lhs, metal::uint2 rhs) {
 }
 
 bool in_blocks(
-    metal::uint2 id_20,
+    metal::uint2 id_19,
     constant Frame& frame
 ) {
     uint k_13 = frame.temporal.x;
     metal::uint4 _e7 = frame.counts;
-    return metal::all(id_20 < naga_div((_e7.xy + metal::uint2(k_13)) - metal::uint2(1u), metal::uint2(k_13)));
+    return metal::all(id_19 < naga_div((_e7.xy + metal::uint2(k_13)) - metal::uint2(1u), metal::uint2(k_13)));
 }
 
 metal::uint2 sparse_pixel(
-    metal::uint2 id_21,
+    metal::uint2 id_20,
     constant Frame& frame
 ) {
     uint k_14 = frame.temporal.x;
     uint _e9 = frame.misc.y;
     metal::uint2 _e10 = block_offset(_e9, k_14);
-    return (id_21 * k_14) + _e10;
+    return (id_20 * k_14) + _e10;
 }
 
 void store_sparse(
-    metal::uint2 id_22,
+    metal::uint2 id_21,
     MarchResult r_13,
     metal::texture2d<float, metal::access::write> cloud_out,
     metal::texture2d<float, metal::access::write> depth_out
 ) {
-    cloud_out.write(metal::float4(r_13.radiance, r_13.transmittance), metal::uint2(id_22));
-    depth_out.write(metal::float4(r_13.depth, 0.0, 0.0, 0.0), metal::uint2(id_22));
+    cloud_out.write(metal::float4(r_13.radiance, r_13.transmittance), metal::uint2(id_21));
+    depth_out.write(metal::float4(r_13.depth, 0.0, 0.0, 0.0), metal::uint2(id_21));
     return;
 }
 
 uint rng_seed(
     metal::uint2 pixel_6,
-    uint frame_index_1
+    uint path_index
 ) {
-    uint _e4 = pcg(frame_index_1);
+    uint _e4 = pcg(path_index);
     uint _e6 = pcg(pixel_6.y ^ _e4);
     uint _e8 = pcg(pixel_6.x ^ _e6);
     return _e8;
@@ -2490,25 +2494,25 @@ float density_max(
     constant Frame& frame
 ) {
     float m_1 = 0.0;
-    uint i_13 = 0u;
+    uint i_14 = 0u;
     uint2 loop_bound_10 = uint2(4294967295u);
     bool loop_init_9 = true;
     while(true) {
         if (metal::all(loop_bound_10 == uint2(0u))) { break; }
         loop_bound_10 -= uint2(loop_bound_10.y == 0u, 1u);
         if (!loop_init_9) {
-            uint _e17 = i_13;
-            i_13 = _e17 + 1u;
+            uint _e17 = i_14;
+            i_14 = _e17 + 1u;
         }
         loop_init_9 = false;
-        uint _e4 = i_13;
+        uint _e4 = i_14;
         uint _e5 = layer_count(frame);
         if (_e4 < _e5) {
         } else {
             break;
         }
         {
-            uint _e7 = i_13;
+            uint _e7 = i_14;
             Layer _e8 = cloud_layer(_e7, frame);
             float _e9 = m_1;
             m_1 = metal::max(_e9, _e8.density * (1.0 + _e8.precipitation));
@@ -2981,7 +2985,7 @@ float basic_sun_depth(
     metal::sampler noise_sampler
 ) {
     float tau_7 = 0.0;
-    uint i_14 = 1u;
+    uint i_15 = 1u;
     uint steps_3 = frame.counts.w;
     if (steps_3 == 0u) {
         return 0.0;
@@ -3006,11 +3010,11 @@ float basic_sun_depth(
         if (metal::all(loop_bound_16 == uint2(0u))) { break; }
         loop_bound_16 -= uint2(loop_bound_16.y == 0u, 1u);
         if (!loop_init_12) {
-            uint _e90 = i_14;
-            i_14 = _e90 + 1u;
+            uint _e90 = i_15;
+            i_15 = _e90 + 1u;
         }
         loop_init_12 = false;
-        uint _e65 = i_14;
+        uint _e65 = i_15;
         if (_e65 <= steps_3) {
         } else {
             break;
@@ -3018,7 +3022,7 @@ float basic_sun_depth(
         {
             uint _e68 = counters_13.light;
             counters_13.light = _e68 + 1u;
-            uint _e71 = i_14;
+            uint _e71 = i_15;
             metal::float3 q_8 = rel_5 + (sun_5 * (static_cast<float>(_e71) * dt_3));
             metal::float3 p_18 = metal::float3(q_8.x + cam_xz_1.x, q_8.y, q_8.z + cam_xz_1.y);
             float _e84 = tau_7;
@@ -3045,7 +3049,7 @@ MarchResult basic_pixel(
     metal::float3 radiance_2 = metal::float3(0.0);
     float transmittance = 1.0;
     float depth_sum = 0.0;
-    uint i_15 = 0u;
+    uint i_16 = 0u;
     float depth_3 = 0.0;
     metal::float3 _e1 = view_ray(pixel_7, frame);
     float cam_alt_3 = frame.camera_position.y;
@@ -3076,11 +3080,11 @@ MarchResult basic_pixel(
                 if (metal::all(loop_bound_17 == uint2(0u))) { break; }
                 loop_bound_17 -= uint2(loop_bound_17.y == 0u, 1u);
                 if (!loop_init_13) {
-                    uint _e131 = i_15;
-                    i_15 = _e131 + 1u;
+                    uint _e131 = i_16;
+                    i_16 = _e131 + 1u;
                 }
                 loop_init_13 = false;
-                uint _e71 = i_15;
+                uint _e71 = i_16;
                 if (_e71 < steps_4) {
                 } else {
                     break;
@@ -3088,7 +3092,7 @@ MarchResult basic_pixel(
                 {
                     uint _e74 = counters_14.view_steps;
                     counters_14.view_steps = _e74 + 1u;
-                    uint _e78 = i_15;
+                    uint _e78 = i_16;
                     float t_8 = _e25.start + (static_cast<float>(_e78) * dt_4);
                     metal::float3 rel_8 = (_e1 * t_8) + metal::float3(0.0, cam_alt_3, 0.0);
                     metal::float3 p_19 = metal::float3(rel_8.x + cam_xz_2.x, rel_8.y, rel_8.z + cam_xz_2.y);
@@ -3145,14 +3149,14 @@ float value_noise(
     metal::float2 p_10,
     uint seed
 ) {
-    metal::uint2 i_17 = naga_f2u32(metal::floor(p_10));
+    metal::uint2 i_18 = naga_f2u32(metal::floor(p_10));
     metal::float2 f_5 = metal::fract(p_10);
     metal::float2 s_12 = (f_5 * f_5) * (metal::float2(3.0) - (2.0 * f_5));
     uint h_11 = seed * 7919u;
-    float _e17 = atlas_hash(i_17.x + h_11, i_17.y);
-    float _e23 = atlas_hash((i_17.x + 1u) + h_11, i_17.y);
-    float _e29 = atlas_hash(i_17.x + h_11, i_17.y + 1u);
-    float _e37 = atlas_hash((i_17.x + 1u) + h_11, i_17.y + 1u);
+    float _e17 = atlas_hash(i_18.x + h_11, i_18.y);
+    float _e23 = atlas_hash((i_18.x + 1u) + h_11, i_18.y);
+    float _e29 = atlas_hash(i_18.x + h_11, i_18.y + 1u);
+    float _e37 = atlas_hash((i_18.x + 1u) + h_11, i_18.y + 1u);
     return metal::mix(metal::mix(_e17, _e23, s_12.x), metal::mix(_e29, _e37, s_12.x), s_12.y);
 }
 
@@ -3160,7 +3164,7 @@ float value_fbm(
     metal::float2 p_11,
     uint seed_1
 ) {
-    float sum_4 = 0.0;
+    float sum_5 = 0.0;
     float weight = 0.5;
     metal::float2 q_4 = {};
     uint o = 0u;
@@ -3181,19 +3185,19 @@ float value_fbm(
             break;
         }
         {
-            float _e12 = sum_4;
+            float _e12 = sum_5;
             float _e13 = weight;
             metal::float2 _e14 = q_4;
             uint _e15 = o;
             float _e17 = value_noise(_e14, seed_1 + _e15);
-            sum_4 = _e12 + (_e13 * _e17);
+            sum_5 = _e12 + (_e13 * _e17);
             metal::float2 _e20 = q_4;
             q_4 = _e20 * 2.0;
             float _e23 = weight;
             weight = _e23 * 0.5;
         }
     }
-    float _e29 = sum_4;
+    float _e29 = sum_5;
     return _e29 / 0.9375;
 }
 
@@ -3202,7 +3206,7 @@ float sprite_texture(
     metal::float2 uv
 ) {
     float billow = 0.0;
-    uint i_16 = 0u;
+    uint i_17 = 0u;
     metal::float2 at = {};
     float a_3 = {};
     metal::float2 c_10 = uv - metal::float2(0.5);
@@ -3222,26 +3226,26 @@ float sprite_texture(
         if (metal::all(loop_bound_19 == uint2(0u))) { break; }
         loop_bound_19 -= uint2(loop_bound_19.y == 0u, 1u);
         if (!loop_init_15) {
-            uint _e108 = i_16;
-            i_16 = _e108 + 1u;
+            uint _e108 = i_17;
+            i_17 = _e108 + 1u;
         }
         loop_init_15 = false;
-        uint _e58 = i_16;
+        uint _e58 = i_17;
         if (_e58 < blobs) {
         } else {
             break;
         }
         {
-            uint _e61 = i_16;
+            uint _e61 = i_17;
             float _e63 = atlas_hash(tile_1, 2u * _e61);
-            uint _e65 = i_16;
+            uint _e65 = i_17;
             float _e69 = atlas_hash(tile_1, (2u * _e65) + 1u);
             metal::float2 centre_1 = metal::float2(_e63, _e69) - metal::float2(0.5);
             at = metal::float2(0.5) + (centre_1 * 0.34);
             if (tile_1 == 4u) {
                 at.y = 0.5 + ((centre_1.y - 0.5) * 0.24);
             }
-            uint _e91 = i_16;
+            uint _e91 = i_17;
             float _e93 = atlas_hash(tile_1, 100u + _e91);
             float r_18 = 0.14 + (0.1 * _e93);
             metal::float2 _e98 = at;
@@ -3510,19 +3514,19 @@ metal::float3 stars(
     metal::float2 st = metal::clamp(((_e54 / metal::float2(_e55)) * 0.5) + metal::float2(0.5), metal::float2(0.0), metal::float2(0.999999));
     metal::uint2 cell_2 = naga_f2u32(st * 96.0);
     uint _e71 = face;
-    uint id_23 = (((_e71 * STAR_CELLS) + cell_2.y) * STAR_CELLS) + cell_2.x;
-    uint _e85 = pcg(id_23 ^ 2654435769u);
+    uint id_22 = (((_e71 * STAR_CELLS) + cell_2.y) * STAR_CELLS) + cell_2.x;
+    uint _e85 = pcg(id_22 ^ 2654435769u);
     float h0_ = static_cast<float>(_e85 >> 8u) * 0.000000059604645;
     if (h0_ >= 0.15085077) {
         return metal::float3(0.0);
     }
-    uint _e96 = pcg(id_23 ^ 2246822507u);
+    uint _e96 = pcg(id_22 ^ 2246822507u);
     float h1_ = static_cast<float>(_e96 >> 8u) * 0.000000059604645;
-    uint _e104 = pcg(id_23 ^ 3266489909u);
+    uint _e104 = pcg(id_22 ^ 3266489909u);
     float h2_ = static_cast<float>(_e104 >> 8u) * 0.000000059604645;
-    uint _e112 = pcg(id_23 ^ 668265263u);
+    uint _e112 = pcg(id_22 ^ 668265263u);
     float h3_ = static_cast<float>(_e112 >> 8u) * 0.000000059604645;
-    uint _e120 = pcg(id_23 ^ 374761393u);
+    uint _e120 = pcg(id_22 ^ 374761393u);
     float h4_ = static_cast<float>(_e120 >> 8u) * 0.000000059604645;
     metal::float2 star_st = ((static_cast<metal::float2>(cell_2) + metal::float2(0.15)) + (0.7 * metal::float2(h1_, h2_))) / metal::float2(96.0);
     float _e142 = major;
@@ -4508,8 +4512,9 @@ struct resolveInput {
 
 struct pathtraceInput {
 };
-[[max_total_threads_per_threadgroup(64)]] kernel void pathtrace(
-  metal::uint3 id_12 [[thread_position_in_grid]]
+[[max_total_threads_per_threadgroup(32)]] kernel void pathtrace(
+  metal::uint3 group [[threadgroup_position_in_grid]]
+, uint lane [[thread_index_in_threadgroup]]
 , constant Frame& frame [[user(fake0)]]
 , metal::texture2d<float, metal::access::sample> transmittance_lut_in [[user(fake0)]]
 , metal::texture2d<float, metal::access::sample> sky_view_in [[user(fake0)]]
@@ -4527,76 +4532,124 @@ struct pathtraceInput {
 , metal::texture2d<float, metal::access::sample> meta_in [[user(fake0)]]
 , metal::texture2d<float, metal::access::write> history_out [[user(fake0)]]
 , metal::texture2d<float, metal::access::write> meta_out [[user(fake0)]]
+, threadgroup type_21& lane_sums
+, threadgroup type_21& lane_moments
 ) {
+    if (lane == 0u) {
+        lane_sums = {};
+        lane_moments = {};
+    }
+    metal::threadgroup_barrier(metal::mem_flags::mem_threadgroup);
     Counters counters_1 = Counters {0u, 0u, 0u, 0u};
     uint rng = {};
+    metal::float4 sum_3 = metal::float4(0.0);
+    metal::float4 sum_moments = metal::float4(0.0);
+    uint i_3 = 0u;
     metal::float4 mean = metal::float4(0.0);
     metal::float4 moments = metal::float4(0.0);
     bool local_11 = {};
-    metal::uint4 _e4 = frame.counts;
-    if (metal::any(id_12.xy >= _e4.xy)) {
+    metal::uint4 _e5 = frame.counts;
+    if (metal::any(group.xy >= _e5.xy)) {
         return;
     }
-    metal::uint2 pixel_11 = id_12.xy;
-    metal::float3 _e9 = view_ray(pixel_11, frame);
-    float _e13 = frame.camera_position.y;
-    Interval _e14 = cloud_interval(_e13, _e9, frame);
-    count(STAT_PIXELS, 1u, stats);
-    count(STAT_MARCHED, static_cast<uint>(_e14.kind == RAY_MARCH), stats);
-    count(STAT_EXIT_MISSED, static_cast<uint>(_e14.kind == RAY_MISSES_LAYER), stats);
-    count(STAT_EXIT_GROUND, static_cast<uint>(_e14.kind == RAY_HITS_GROUND), stats);
-    uint _e41 = frame.misc.y;
-    uint _e42 = rng_seed(pixel_11, _e41);
-    rng = _e42;
-    PathResult _e44 = trace_path(_e9, _e14, rng, counters_1, frame, transmittance_lut_in, sky_view_in, sky_ambient_in, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler, occupancy_in);
-    float _e46 = luminance(_e44.radiance);
-    uint _e56 = frame.temporal.y;
-    if (_e56 == 1u) {
-        bool _e61 = camera_still(frame);
-        local_11 = _e61;
-    } else {
-        local_11 = false;
+    metal::uint2 pixel_11 = group.xy;
+    metal::float3 _e10 = view_ray(pixel_11, frame);
+    float _e14 = frame.camera_position.y;
+    Interval _e15 = cloud_interval(_e14, _e10, frame);
+    if (lane == 0u) {
+        count(STAT_PIXELS, 1u, stats);
+        count(STAT_MARCHED, static_cast<uint>(_e15.kind == RAY_MARCH), stats);
+        count(STAT_EXIT_MISSED, static_cast<uint>(_e15.kind == RAY_MISSES_LAYER), stats);
+        count(STAT_EXIT_GROUND, static_cast<uint>(_e15.kind == RAY_HITS_GROUND), stats);
     }
-    bool _e63 = local_11;
-    if (_e63) {
-        metal::float4 _e66 = history_in.read(metal::uint2(pixel_11), 0);
-        mean = _e66;
-        metal::float4 _e69 = meta_in.read(metal::uint2(pixel_11), 0);
-        moments = _e69;
+    uint _e44 = frame.misc.y;
+    uint _e48 = rng_seed(pixel_11, (_e44 * PATHS_PER_FRAME) + lane);
+    rng = _e48;
+    PathResult _e50 = trace_path(_e10, _e15, rng, counters_1, frame, transmittance_lut_in, sky_view_in, sky_ambient_in, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler, occupancy_in);
+    float _e52 = luminance(_e50.radiance);
+    bool hit = _e50.depth >= 0.0;
+    lane_sums.inner[lane] = metal::float4(_e50.radiance, _e50.transmittance);
+    lane_moments.inner[lane] = metal::float4(_e52 * _e52, hit ? _e50.depth : 0.0, hit ? 1.0 : 0.0, 0.0);
+    metal::threadgroup_barrier(metal::mem_flags::mem_threadgroup);
+    if (lane == 0u) {
+        uint2 loop_bound_32 = uint2(4294967295u);
+        bool loop_init_28 = true;
+        while(true) {
+            if (metal::all(loop_bound_32 == uint2(0u))) { break; }
+            loop_bound_32 -= uint2(loop_bound_32.y == 0u, 1u);
+            if (!loop_init_28) {
+                uint _e98 = i_3;
+                i_3 = _e98 + 1u;
+            }
+            loop_init_28 = false;
+            uint _e82 = i_3;
+            if (_e82 < PATHS_PER_FRAME) {
+            } else {
+                break;
+            }
+            {
+                metal::float4 _e85 = sum_3;
+                uint _e87 = i_3;
+                metal::float4 _e89 = lane_sums.inner[_e87];
+                sum_3 = _e85 + _e89;
+                metal::float4 _e91 = sum_moments;
+                uint _e93 = i_3;
+                metal::float4 _e95 = lane_moments.inner[_e93];
+                sum_moments = _e91 + _e95;
+            }
+        }
+        uint _e109 = frame.temporal.y;
+        if (_e109 == 1u) {
+            bool _e114 = camera_still(frame);
+            local_11 = _e114;
+        } else {
+            local_11 = false;
+        }
+        bool _e116 = local_11;
+        if (_e116) {
+            metal::float4 _e119 = history_in.read(metal::uint2(pixel_11), 0);
+            mean = _e119;
+            metal::float4 _e122 = meta_in.read(metal::uint2(pixel_11), 0);
+            moments = _e122;
+        }
+        float _e125 = moments.y;
+        float n_4 = _e125 + 32.0;
+        metal::float4 _e127 = mean;
+        metal::float4 _e128 = sum_3;
+        metal::float4 _e129 = mean;
+        mean = _e127 + ((_e128 - (32.0 * _e129)) / metal::float4(n_4));
+        float _e136 = moments.z;
+        float _e138 = sum_moments.x;
+        float _e140 = moments.z;
+        moments.z = _e136 + ((_e138 - (32.0 * _e140)) / n_4);
+        float hits = sum_moments.z;
+        if (hits > 0.0) {
+            float _e150 = moments.w;
+            moments.w = _e150 + hits;
+            float _e153 = moments.x;
+            float _e155 = sum_moments.y;
+            float _e157 = moments.x;
+            float _e161 = moments.w;
+            moments.x = _e153 + ((_e155 - (hits * _e157)) / _e161);
+        }
+        moments.y = n_4;
+        metal::float4 _e166 = mean;
+        history_out.write(_e166, metal::uint2(pixel_11));
+        metal::float4 _e168 = moments;
+        meta_out.write(_e168, metal::uint2(pixel_11));
+        metal::float4 _e170 = mean;
+        cloud_out.write(_e170, metal::uint2(pixel_11));
+        float _e173 = moments.x;
+        depth_out.write(metal::float4(_e173, 0.0, 0.0, 0.0), metal::uint2(pixel_11));
     }
-    float _e71 = moments.y;
-    float n_4 = _e71 + 1.0;
-    metal::float4 _e74 = mean;
-    metal::float4 _e78 = mean;
-    mean = _e74 + ((metal::float4(_e44.radiance, _e44.transmittance) - _e78) / metal::float4(n_4));
-    float _e84 = moments.z;
-    float _e87 = moments.z;
-    moments.z = _e84 + (((_e46 * _e46) - _e87) / n_4);
-    if (_e44.depth >= 0.0) {
-        float _e95 = moments.w;
-        moments.w = _e95 + 1.0;
-        float _e99 = moments.x;
-        float _e102 = moments.x;
-        float _e105 = moments.w;
-        moments.x = _e99 + ((_e44.depth - _e102) / _e105);
-    }
-    moments.y = n_4;
-    metal::float4 _e110 = mean;
-    history_out.write(_e110, metal::uint2(pixel_11));
-    metal::float4 _e112 = moments;
-    meta_out.write(_e112, metal::uint2(pixel_11));
-    metal::float4 _e114 = mean;
-    cloud_out.write(_e114, metal::uint2(pixel_11));
-    float _e117 = moments.x;
-    depth_out.write(metal::float4(_e117, 0.0, 0.0, 0.0), metal::uint2(pixel_11));
-    uint _e124 = counters_1.view_steps;
-    count(STAT_VIEW_STEPS, _e124, stats);
-    uint _e127 = counters_1.density;
-    count(STAT_DENSITY, _e127, stats);
-    uint _e130 = counters_1.detail;
-    count(STAT_DETAIL, _e130, stats);
-    uint _e133 = counters_1.light;
-    count(STAT_LIGHT, _e133, stats);
+    uint _e180 = counters_1.view_steps;
+    count(STAT_VIEW_STEPS, _e180, stats);
+    uint _e183 = counters_1.density;
+    count(STAT_DENSITY, _e183, stats);
+    uint _e186 = counters_1.detail;
+    count(STAT_DETAIL, _e186, stats);
+    uint _e189 = counters_1.light;
+    count(STAT_LIGHT, _e189, stats);
     return;
 }
 
@@ -4604,7 +4657,7 @@ struct pathtraceInput {
 struct march_basicInput {
 };
 [[max_total_threads_per_threadgroup(64)]] kernel void march_basic(
-  metal::uint3 id_13 [[thread_position_in_grid]]
+  metal::uint3 id_12 [[thread_position_in_grid]]
 , constant Frame& frame [[user(fake0)]]
 , metal::texture3d<float, metal::access::sample> shape_tex [[user(fake0)]]
 , metal::texture3d<float, metal::access::sample> detail_tex [[user(fake0)]]
@@ -4616,12 +4669,12 @@ struct march_basicInput {
 , device Stats& stats [[user(fake0)]]
 ) {
     metal::uint4 _e4 = frame.counts;
-    if (metal::any(id_13.xy >= _e4.xy)) {
+    if (metal::any(id_12.xy >= _e4.xy)) {
         return;
     }
-    MarchResult _e9 = basic_pixel(id_13.xy, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler, stats);
-    cloud_out.write(metal::float4(_e9.radiance, _e9.transmittance), metal::uint2(id_13.xy));
-    depth_out.write(metal::float4(_e9.depth, 0.0, 0.0, 0.0), metal::uint2(id_13.xy));
+    MarchResult _e9 = basic_pixel(id_12.xy, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler, stats);
+    cloud_out.write(metal::float4(_e9.radiance, _e9.transmittance), metal::uint2(id_12.xy));
+    depth_out.write(metal::float4(_e9.depth, 0.0, 0.0, 0.0), metal::uint2(id_12.xy));
     return;
 }
 
@@ -4633,13 +4686,13 @@ metal::uint2 naga_mod(metal::uint2 lhs, metal::uint2 rhs) {
 struct sprite_atlasInput {
 };
 [[max_total_threads_per_threadgroup(64)]] kernel void sprite_atlas(
-  metal::uint3 id_14 [[thread_position_in_grid]]
+  metal::uint3 id_13 [[thread_position_in_grid]]
 , metal::texture2d<float, metal::access::write> sprite_atlas_out [[user(fake0)]]
 ) {
-    uint tile_2 = (naga_div(id_14.y, ATLAS_TILE) * 4u) + naga_div(id_14.x, ATLAS_TILE);
-    metal::float2 uv_5 = (static_cast<metal::float2>(naga_mod(id_14.xy, metal::uint2(64u))) + metal::float2(0.5)) / metal::float2(64.0);
+    uint tile_2 = (naga_div(id_13.y, ATLAS_TILE) * 4u) + naga_div(id_13.x, ATLAS_TILE);
+    metal::float2 uv_5 = (static_cast<metal::float2>(naga_mod(id_13.xy, metal::uint2(64u))) + metal::float2(0.5)) / metal::float2(64.0);
     float _e21 = sprite_texture(tile_2, uv_5);
-    sprite_atlas_out.write(metal::float4(_e21, _e21, _e21, _e21), metal::uint2(id_14.xy));
+    sprite_atlas_out.write(metal::float4(_e21, _e21, _e21, _e21), metal::uint2(id_13.xy));
     return;
 }
 
@@ -4647,7 +4700,7 @@ struct sprite_atlasInput {
 struct sprite_buildInput {
 };
 [[max_total_threads_per_threadgroup(64)]] kernel void sprite_build(
-  metal::uint3 id_15 [[thread_position_in_grid]]
+  metal::uint3 id_14 [[thread_position_in_grid]]
 , constant Frame& frame [[user(fake0)]]
 , metal::texture3d<float, metal::access::sample> shape_tex [[user(fake0)]]
 , metal::texture3d<float, metal::access::sample> detail_tex [[user(fake0)]]
@@ -4658,41 +4711,41 @@ struct sprite_buildInput {
 , metal::texture2d<float, metal::access::write> sprites_out [[user(fake0)]]
 ) {
     Counters counters_2 = Counters {0u, 0u, 0u, 0u};
-    metal::float4 sum_3 = metal::float4(0.0);
+    metal::float4 sum_4 = metal::float4(0.0);
     SpriteCandidate me = {};
-    uint i_3 = 0u;
+    uint i_4 = 0u;
     metal::float3 centre = {};
     uint tile = {};
     float rotation = {};
     bool local_12 = {};
     float key = 0.0;
-    uint slot = id_15.x;
+    uint slot = id_14.x;
     uint cell_index = naga_div(slot, SPRITES_PER_CELL);
     uint level_2 = naga_div(cell_index, 64u);
     SpriteCell _e6 = sprite_cell(cell_index, frame);
     uint own = naga_mod(slot, SPRITES_PER_CELL);
     SpriteCandidate _e18 = sprite_candidate(_e6, level_2, own, counters_2, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
     me = _e18;
-    uint2 loop_bound_32 = uint2(4294967295u);
-    bool loop_init_28 = true;
+    uint2 loop_bound_33 = uint2(4294967295u);
+    bool loop_init_29 = true;
     while(true) {
-        if (metal::all(loop_bound_32 == uint2(0u))) { break; }
-        loop_bound_32 -= uint2(loop_bound_32.y == 0u, 1u);
-        if (!loop_init_28) {
-            uint _e38 = i_3;
-            i_3 = _e38 + 1u;
+        if (metal::all(loop_bound_33 == uint2(0u))) { break; }
+        loop_bound_33 -= uint2(loop_bound_33.y == 0u, 1u);
+        if (!loop_init_29) {
+            uint _e38 = i_4;
+            i_4 = _e38 + 1u;
         }
-        loop_init_28 = false;
-        uint _e22 = i_3;
+        loop_init_29 = false;
+        uint _e22 = i_4;
         if (_e22 < SPRITES_PER_CELL) {
         } else {
             break;
         }
         {
-            uint _e25 = i_3;
+            uint _e25 = i_4;
             SpriteCandidate _e26 = sprite_candidate(_e6, level_2, _e25, counters_2, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
-            metal::float4 _e27 = sum_3;
-            sum_3 = _e27 + (metal::float4(_e26.xz.x, _e26.alt, _e26.xz.y, 1.0) * _e26.density);
+            metal::float4 _e27 = sum_4;
+            sum_4 = _e27 + (metal::float4(_e26.xz.x, _e26.alt, _e26.xz.y, 1.0) * _e26.density);
         }
     }
     uint _e43 = counters_2.density;
@@ -4704,10 +4757,10 @@ struct sprite_buildInput {
     float thickness_1 = _e54 - bottom_3;
     metal::float2 middle = (static_cast<metal::float2>(_e6.index) + metal::float2(0.5)) * _e6.size;
     centre = metal::float3(middle.x, bottom_3 + (0.4 * thickness_1), middle.y);
-    float _e71 = sum_3.w;
+    float _e71 = sum_4.w;
     if (_e71 > 0.0) {
-        metal::float4 _e74 = sum_3;
-        float _e77 = sum_3.w;
+        metal::float4 _e74 = sum_4;
+        float _e77 = sum_4.w;
         centre = _e74.xyz / metal::float3(_e77);
     }
     metal::float2 _e81 = me.xz;
@@ -4771,7 +4824,7 @@ struct sprite_buildInput {
 struct sprite_sortInput {
 };
 [[max_total_threads_per_threadgroup(64)]] kernel void sprite_sort(
-  metal::uint3 id_16 [[thread_position_in_grid]]
+  metal::uint3 id_15 [[thread_position_in_grid]]
 , metal::texture2d<float, metal::access::sample> sprites_in [[user(fake0)]]
 , metal::texture2d<float, metal::access::write> sprite_order_out [[user(fake0)]]
 ) {
@@ -4779,19 +4832,19 @@ struct sprite_sortInput {
     uint j = 0u;
     bool local_13 = {};
     bool local_14 = {};
-    uint slot_1 = id_16.x;
+    uint slot_1 = id_15.x;
     metal::float4 _e6 = sprites_in.read(metal::uint2(metal::uint2(slot_1, 3u)), 0);
     float key_1 = _e6.x;
-    uint2 loop_bound_33 = uint2(4294967295u);
-    bool loop_init_29 = true;
+    uint2 loop_bound_34 = uint2(4294967295u);
+    bool loop_init_30 = true;
     while(true) {
-        if (metal::all(loop_bound_33 == uint2(0u))) { break; }
-        loop_bound_33 -= uint2(loop_bound_33.y == 0u, 1u);
-        if (!loop_init_29) {
+        if (metal::all(loop_bound_34 == uint2(0u))) { break; }
+        loop_bound_34 -= uint2(loop_bound_34.y == 0u, 1u);
+        if (!loop_init_30) {
             uint _e40 = j;
             j = _e40 + 1u;
         }
-        loop_init_29 = false;
+        loop_init_30 = false;
         uint _e12 = j;
         if (_e12 < SPRITE_COUNT) {
         } else {
@@ -4956,7 +5009,7 @@ fragment sprite_fragmentOutput sprite_fragment(
 struct sprite_resolveInput {
 };
 [[max_total_threads_per_threadgroup(64)]] kernel void sprite_resolve(
-  metal::uint3 id_17 [[thread_position_in_grid]]
+  metal::uint3 id_16 [[thread_position_in_grid]]
 , constant Frame& frame [[user(fake0)]]
 , metal::texture2d<float, metal::access::write> cloud_out [[user(fake0)]]
 , metal::texture2d<float, metal::access::write> depth_out [[user(fake0)]]
@@ -4965,15 +5018,15 @@ struct sprite_resolveInput {
 , metal::texture2d<float, metal::access::sample> sprite_depth_in [[user(fake0)]]
 ) {
     metal::uint4 _e4 = frame.counts;
-    if (metal::any(id_17.xy >= _e4.xy)) {
+    if (metal::any(id_16.xy >= _e4.xy)) {
         return;
     }
     count(STAT_PIXELS, 1u, stats);
-    metal::float4 c_13 = sprite_radiance_in.read(metal::uint2(id_17.xy), 0);
-    metal::float4 d_23 = sprite_depth_in.read(metal::uint2(id_17.xy), 0);
+    metal::float4 c_13 = sprite_radiance_in.read(metal::uint2(id_16.xy), 0);
+    metal::float4 d_23 = sprite_depth_in.read(metal::uint2(id_16.xy), 0);
     float _e19 = saturate(c_13.w);
-    cloud_out.write(metal::float4(c_13.xyz, 1.0 - _e19), metal::uint2(id_17.xy));
-    depth_out.write(metal::float4((d_23.w > 0.0001) ? (d_23.x / d_23.w) : 0.0, 0.0, 0.0, 0.0), metal::uint2(id_17.xy));
+    cloud_out.write(metal::float4(c_13.xyz, 1.0 - _e19), metal::uint2(id_16.xy));
+    depth_out.write(metal::float4((d_23.w > 0.0001) ? (d_23.x / d_23.w) : 0.0, 0.0, 0.0, 0.0), metal::uint2(id_16.xy));
     return;
 }
 
@@ -4981,17 +5034,17 @@ struct sprite_resolveInput {
 struct compositeInput {
 };
 [[max_total_threads_per_threadgroup(64)]] kernel void composite(
-  metal::uint3 id_18 [[thread_position_in_grid]]
+  metal::uint3 id_17 [[thread_position_in_grid]]
 , constant Frame& frame [[user(fake0)]]
 , metal::texture2d<float, metal::access::sample> cloud_in [[user(fake0)]]
 , metal::texture2d<float, metal::access::write> image_out [[user(fake0)]]
 ) {
     metal::float3 background = {};
     metal::uint4 _e4 = frame.counts;
-    if (metal::any(id_18.xy >= _e4.xy)) {
+    if (metal::any(id_17.xy >= _e4.xy)) {
         return;
     }
-    metal::uint2 pixel_12 = id_18.xy;
+    metal::uint2 pixel_12 = id_17.xy;
     metal::float3 _e9 = view_ray(pixel_12, frame);
     float alt_18 = frame.camera_position.y;
     metal::float4 cloud_1 = cloud_in.read(metal::uint2(pixel_12), 0);
@@ -5012,7 +5065,7 @@ struct compositeInput {
 struct composite_physicalInput {
 };
 [[max_total_threads_per_threadgroup(64)]] kernel void composite_physical(
-  metal::uint3 id_19 [[thread_position_in_grid]]
+  metal::uint3 id_18 [[thread_position_in_grid]]
 , constant Frame& frame [[user(fake0)]]
 , metal::texture2d<float, metal::access::sample> transmittance_lut_in [[user(fake0)]]
 , metal::texture2d<float, metal::access::sample> sky_view_in [[user(fake0)]]
@@ -5023,10 +5076,10 @@ struct composite_physicalInput {
 , metal::texture2d<float, metal::access::sample> depth_in [[user(fake0)]]
 ) {
     metal::uint4 _e4 = frame.counts;
-    if (metal::any(id_19.xy >= _e4.xy)) {
+    if (metal::any(id_18.xy >= _e4.xy)) {
         return;
     }
-    metal::uint2 pixel_13 = id_19.xy;
+    metal::uint2 pixel_13 = id_18.xy;
     metal::float4 cloud_2 = cloud_in.read(metal::uint2(pixel_13), 0);
     metal::float3 _e12 = view_ray(pixel_13, frame);
     metal::float3 _e13 = physical_composite(pixel_13, _e12, cloud_2, frame, transmittance_lut_in, sky_view_in, aerial_in, cloud_shadow_in, depth_in);

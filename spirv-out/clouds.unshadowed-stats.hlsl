@@ -216,6 +216,7 @@ static const float HISTORY_SAMPLES = 16.0;
 static const float HISTORY_SAMPLES_MOVING = 2.0;
 static const float DISOCCLUSION_DEPTH = 0.5;
 static const uint MAX_PATH_ORDERS = 16384u;
+static const uint PATHS_PER_FRAME = 32u;
 static const uint SPRITE_LEVELS = 4u;
 static const int SPRITE_CELLS_PER_SIDE = int(8);
 static const uint SPRITES_PER_CELL = 16u;
@@ -276,6 +277,8 @@ Texture2D<float4> sparse_in : register(t15);
 Texture2D<float4> sparse_depth_in : register(t16);
 RWTexture2D<float4> history_out : register(u17);
 RWTexture2D<float4> meta_out : register(u18);
+groupshared float4 lane_sums[32];
+groupshared float4 lane_moments[32];
 RWTexture2D<float4> sprites_out : register(u19);
 Texture2D<float4> sprites_in : register(t20);
 RWTexture2D<float> sprite_order_out : register(u21);
@@ -516,23 +519,23 @@ Layer layer_from(float4 g, float4 w_1)
     return layer;
 }
 
-Layer cloud_layer(uint i_4)
+Layer cloud_layer(uint i_5)
 {
-    if ((i_4 == 1u)) {
+    if ((i_5 == 1u)) {
         float4 _e5 = frame.layer1_;
         float4 _e8 = frame.layer1_weather;
         const Layer _e9 = layer_from(_e5, _e8);
         const Layer layer_1 = _e9;
         return layer_1;
     } else {
-        if ((i_4 == 2u)) {
+        if ((i_5 == 2u)) {
             float4 _e14 = frame.layer2_;
             float4 _e17 = frame.layer2_weather;
             const Layer _e18 = layer_from(_e14, _e17);
             const Layer layer_2 = _e18;
             return layer_2;
         } else {
-            if ((i_4 == 3u)) {
+            if ((i_5 == 3u)) {
                 float4 _e23 = frame.layer3_;
                 float4 _e26 = frame.layer3_weather;
                 const Layer _e27 = layer_from(_e23, _e26);
@@ -555,7 +558,7 @@ Layer cloud_layer(uint i_4)
 float2 layers_span()
 {
     float2 span = (float2)0;
-    uint i_5 = 1u;
+    uint i_6 = 1u;
 
     float4 _e2 = frame.atmosphere;
     span = _e2.yz;
@@ -565,18 +568,18 @@ float2 layers_span()
         if (all(loop_bound == uint2(0u, 0u))) { break; }
         loop_bound -= uint2(loop_bound.y == 0u, 1u);
         if (!loop_init) {
-            uint _e22 = i_5;
-            i_5 = (_e22 + 1u);
+            uint _e22 = i_6;
+            i_6 = (_e22 + 1u);
         }
         loop_init = false;
-        uint _e7 = i_5;
+        uint _e7 = i_6;
         const uint _e8 = layer_count();
         if ((_e7 < _e8)) {
         } else {
             break;
         }
         {
-            uint _e10 = i_5;
+            uint _e10 = i_6;
             const Layer _e11 = cloud_layer(_e10);
             float _e13 = span.x;
             float _e17 = span.y;
@@ -598,7 +601,7 @@ Interval cloud_interval(float alt_4, float3 d_4)
 Interval nearest_layer_interval(float alt_5, float3 d_5)
 {
     Interval best = (Interval)0;
-    uint i_6 = 1u;
+    uint i_7 = 1u;
     bool local_19 = (bool)0;
     bool local_20 = (bool)0;
 
@@ -611,18 +614,18 @@ Interval nearest_layer_interval(float alt_5, float3 d_5)
         if (all(loop_bound_1 == uint2(0u, 0u))) { break; }
         loop_bound_1 -= uint2(loop_bound_1.y == 0u, 1u);
         if (!loop_init_1) {
-            uint _e35 = i_6;
-            i_6 = (_e35 + 1u);
+            uint _e35 = i_7;
+            i_7 = (_e35 + 1u);
         }
         loop_init_1 = false;
-        uint _e8 = i_6;
+        uint _e8 = i_7;
         const uint _e9 = layer_count();
         if ((_e8 < _e9)) {
         } else {
             break;
         }
         {
-            uint _e11 = i_6;
+            uint _e11 = i_7;
             const Layer _e12 = cloud_layer(_e11);
             const Interval _e13 = layer_interval(alt_5, d_5, _e12);
             if ((_e13.kind == RAY_MARCH)) {
@@ -865,7 +868,7 @@ Scattered integrate_air(float3 origin, float3 d_7, float distance_km, uint steps
     float3 radiance_1 = (0.0).xxx;
     float3 tau_3 = (0.0).xxx;
     float t0_ = 0.0;
-    uint i_7 = 0u;
+    uint i_8 = 0u;
 
     float cos_theta_7 = dot(d_7, sun);
     const float _e6 = phase_rayleigh(cos_theta_7);
@@ -877,17 +880,17 @@ Scattered integrate_air(float3 origin, float3 d_7, float distance_km, uint steps
         if (all(loop_bound_2 == uint2(0u, 0u))) { break; }
         loop_bound_2 -= uint2(loop_bound_2.y == 0u, 1u);
         if (!loop_init_2) {
-            uint _e79 = i_7;
-            i_7 = (_e79 + 1u);
+            uint _e79 = i_8;
+            i_8 = (_e79 + 1u);
         }
         loop_init_2 = false;
-        uint _e22 = i_7;
+        uint _e22 = i_8;
         if ((_e22 < steps)) {
         } else {
             break;
         }
         {
-            uint _e24 = i_7;
+            uint _e24 = i_8;
             float s1_ = (float((_e24 + 1u)) / float(steps));
             float t1_ = ((distance_km * s1_) * s1_);
             float _e32 = t0_;
@@ -1105,7 +1108,7 @@ float layer_height(Layer l_1, float alt_7)
 
 uint layer_at(float alt_8)
 {
-    uint i_8 = 0u;
+    uint i_9 = 0u;
     bool local_22 = (bool)0;
 
     uint2 loop_bound_3 = uint2(4294967295u, 4294967295u);
@@ -1114,18 +1117,18 @@ uint layer_at(float alt_8)
         if (all(loop_bound_3 == uint2(0u, 0u))) { break; }
         loop_bound_3 -= uint2(loop_bound_3.y == 0u, 1u);
         if (!loop_init_3) {
-            uint _e19 = i_8;
-            i_8 = (_e19 + 1u);
+            uint _e19 = i_9;
+            i_9 = (_e19 + 1u);
         }
         loop_init_3 = false;
-        uint _e3 = i_8;
+        uint _e3 = i_9;
         const uint _e4 = layer_count();
         if ((_e3 < _e4)) {
         } else {
             break;
         }
         {
-            uint _e6 = i_8;
+            uint _e6 = i_9;
             const Layer _e7 = cloud_layer(_e6);
             const float _e8 = layer_height(_e7, alt_8);
             if ((_e8 >= 0.0)) {
@@ -1135,7 +1138,7 @@ uint layer_at(float alt_8)
             }
             bool _e16 = local_22;
             if (_e16) {
-                uint _e17 = i_8;
+                uint _e17 = i_9;
                 return _e17;
             }
         }
@@ -1371,7 +1374,7 @@ float sun_optical_depth(float3 rel_1, float3 p_6, Layer l_4, inout Counters coun
     float seg = (float)0;
     float dist = 0.0;
     float tau_4 = 0.0;
-    uint i_9 = 0u;
+    uint i_10 = 0u;
     bool local_27 = (bool)0;
     uint j_1 = 0u;
     bool local_28 = (bool)0;
@@ -1393,11 +1396,11 @@ float sun_optical_depth(float3 rel_1, float3 p_6, Layer l_4, inout Counters coun
         if (all(loop_bound_4 == uint2(0u, 0u))) { break; }
         loop_bound_4 -= uint2(loop_bound_4.y == 0u, 1u);
         if (!loop_init_4) {
-            uint _e73 = i_9;
-            i_9 = (_e73 + 1u);
+            uint _e73 = i_10;
+            i_10 = (_e73 + 1u);
         }
         loop_init_4 = false;
-        uint _e36 = i_9;
+        uint _e36 = i_10;
         if ((_e36 < steps_2)) {
         } else {
             break;
@@ -1495,7 +1498,7 @@ float sun_scattering(float cos_theta_5, float tau_5)
     float ka = 1.0;
     float kb = 1.0;
     float kc = 1.0;
-    uint i_10 = 0u;
+    uint i_11 = 0u;
     float total = (float)0;
 
     float a_8 = frame.multiple_scattering.x;
@@ -1509,11 +1512,11 @@ float sun_scattering(float cos_theta_5, float tau_5)
         if (all(loop_bound_6 == uint2(0u, 0u))) { break; }
         loop_bound_6 -= uint2(loop_bound_6.y == 0u, 1u);
         if (!loop_init_6) {
-            uint _e50 = i_10;
-            i_10 = (_e50 + 1u);
+            uint _e50 = i_11;
+            i_11 = (_e50 + 1u);
         }
         loop_init_6 = false;
-        uint _e30 = i_10;
+        uint _e30 = i_11;
         if ((_e30 < octaves)) {
         } else {
             break;
@@ -1734,7 +1737,7 @@ float start_offset(uint2 pixel_3)
 bool march_layer(float3 view_2, Interval span_1, Layer l_6, float jitter, inout MarchState state, inout Counters counters_7)
 {
     uint steps_1 = (uint)0;
-    uint i_11 = 0u;
+    uint i_12 = 0u;
     uint stride = 1u;
     uint empty = 0u;
     bool local_32 = (bool)0;
@@ -1762,14 +1765,14 @@ bool march_layer(float3 view_2, Interval span_1, Layer l_6, float jitter, inout 
     while(true) {
         if (all(loop_bound_7 == uint2(0u, 0u))) { break; }
         loop_bound_7 -= uint2(loop_bound_7.y == 0u, 1u);
-        uint _e71 = i_11;
+        uint _e71 = i_12;
         uint _e72 = steps_1;
         if ((_e71 >= _e72)) {
             break;
         }
         uint _e75 = counters_7.view_steps;
         counters_7.view_steps = (_e75 + 1u);
-        uint _e79 = i_11;
+        uint _e79 = i_12;
         float t_6 = (span_1.start + ((float(_e79) + jitter) * dt_2));
         float3 rel_6 = ((view_2 * t_6) + float3(0.0, cam_alt_1, 0.0));
         float3 p_13 = float3((rel_6.x + cam_xz.x), rel_6.y, (rel_6.z + cam_xz.y));
@@ -1778,8 +1781,8 @@ bool march_layer(float3 view_2, Interval span_1, Layer l_6, float jitter, inout 
             if ((_e97 > 0.0)) {
                 uint _e106 = steps_1;
                 uint next_1 = naga_f2u32(clamp(ceil(((((t_6 + _e97) - span_1.start) / dt_2) - jitter)), 0.0, float(_e106)));
-                uint _e111 = i_11;
-                i_11 = max((_e111 + 1u), next_1);
+                uint _e111 = i_12;
+                i_12 = max((_e111 + 1u), next_1);
                 continue;
             }
         }
@@ -1798,16 +1801,16 @@ bool march_layer(float3 view_2, Interval span_1, Layer l_6, float jitter, inout 
             if (_e128) {
                 stride = 2u;
             }
-            uint _e130 = i_11;
+            uint _e130 = i_12;
             uint _e131 = stride;
-            i_11 = (_e130 + _e131);
+            i_12 = (_e130 + _e131);
             continue;
         }
         uint _e133 = stride;
         if ((_e133 > 1u)) {
-            uint _e136 = i_11;
+            uint _e136 = i_12;
             uint _e137 = stride;
-            i_11 = (_e136 - (_e137 - 1u));
+            i_12 = (_e136 - (_e137 - 1u));
             stride = 1u;
             empty = 0u;
             continue;
@@ -1828,8 +1831,8 @@ bool march_layer(float3 view_2, Interval span_1, Layer l_6, float jitter, inout 
         if ((_e166 < _e170)) {
             return true;
         }
-        uint _e173 = i_11;
-        i_11 = (_e173 + 1u);
+        uint _e173 = i_12;
+        i_12 = (_e173 + 1u);
     }
     return false;
 }
@@ -1871,7 +1874,7 @@ MarchResult march_pixel(uint2 pixel_4)
     uint k_6 = 0u;
     uint next = (uint)0;
     Interval span_2 = (Interval)0;
-    uint i_12 = (uint)0;
+    uint i_13 = (uint)0;
     bool local_33 = (bool)0;
     bool local_34 = (bool)0;
     bool local_35 = (bool)0;
@@ -1903,24 +1906,24 @@ MarchResult march_pixel(uint2 pixel_4)
         {
             next = NO_LAYER;
             span_2 = ConstructInterval(0.0, 0.0, 1u);
-            i_12 = 0u;
+            i_13 = 0u;
             uint2 loop_bound_9 = uint2(4294967295u, 4294967295u);
             bool loop_init_8 = true;
             while(true) {
                 if (all(loop_bound_9 == uint2(0u, 0u))) { break; }
                 loop_bound_9 -= uint2(loop_bound_9.y == 0u, 1u);
                 if (!loop_init_8) {
-                    uint _e102 = i_12;
-                    i_12 = (_e102 + 1u);
+                    uint _e102 = i_13;
+                    i_13 = (_e102 + 1u);
                 }
                 loop_init_8 = false;
-                uint _e45 = i_12;
+                uint _e45 = i_13;
                 if ((_e45 < _e21)) {
                 } else {
                     break;
                 }
                 {
-                    uint _e47 = i_12;
+                    uint _e47 = i_13;
                     const Layer _e48 = cloud_layer(_e47);
                     const Interval _e49 = layer_interval(cam_alt_2, _e1, _e48);
                     bool _e50 = ground_1;
@@ -1935,7 +1938,7 @@ MarchResult march_pixel(uint2 pixel_4)
                     if (!((_e49.start > _e60))) {
                         float _e66 = last_start;
                         if ((_e49.start == _e66)) {
-                            uint _e70 = i_12;
+                            uint _e70 = i_13;
                             uint _e71 = last_index;
                             local_35 = (_e70 > _e71);
                         } else {
@@ -1968,7 +1971,7 @@ MarchResult march_pixel(uint2 pixel_4)
                     }
                     bool _e99 = local_37;
                     if (_e99) {
-                        uint _e100 = i_12;
+                        uint _e100 = i_13;
                         next = _e100;
                         span_2 = _e49;
                     }
@@ -2165,9 +2168,9 @@ float4 history_at(float2 q_1)
     const float4 _e26 = history_row(base_3, int(0), _e18);
     const float4 _e31 = history_row(base_3, int(1), _e18);
     const float4 _e36 = history_row(base_3, int(2), _e18);
-    float4 sum_5 = ((((_e22 * _e20.x) + (_e26 * _e20.y)) + (_e31 * _e20.z)) + (_e36 * _e20.w));
-    const float _e45 = saturate_(sum_5.w);
-    return float4(max(sum_5.xyz, (0.0).xxx), _e45);
+    float4 sum_6 = ((((_e22 * _e20.x) + (_e26 * _e20.y)) + (_e31 * _e20.z)) + (_e36 * _e20.w));
+    const float _e45 = saturate_(sum_6.w);
+    return float4(max(sum_6.xyz, (0.0).xxx), _e45);
 }
 
 float4 history_nearest(float2 q_2)
@@ -2192,31 +2195,31 @@ uint2 naga_div(uint2 lhs, uint2 rhs) {
     return lhs / (rhs == 0u ? 1u : rhs);
 }
 
-bool in_blocks(uint2 id_20)
+bool in_blocks(uint2 id_19)
 {
     uint k_13 = frame.temporal.x;
     uint4 _e7 = frame.counts;
-    return all((id_20 < naga_div(((_e7.xy + (k_13).xx) - (1u).xx), (k_13).xx)));
+    return all((id_19 < naga_div(((_e7.xy + (k_13).xx) - (1u).xx), (k_13).xx)));
 }
 
-uint2 sparse_pixel(uint2 id_21)
+uint2 sparse_pixel(uint2 id_20)
 {
     uint k_14 = frame.temporal.x;
     uint _e9 = frame.misc.y;
     const uint2 _e10 = block_offset(_e9, k_14);
-    return ((id_21 * k_14) + _e10);
+    return ((id_20 * k_14) + _e10);
 }
 
-void store_sparse(uint2 id_22, MarchResult r_13)
+void store_sparse(uint2 id_21, MarchResult r_13)
 {
-    cloud_out[id_22] = float4(r_13.radiance, r_13.transmittance);
-    depth_out[id_22] = float4(r_13.depth, 0.0, 0.0, 0.0);
+    cloud_out[id_21] = float4(r_13.radiance, r_13.transmittance);
+    depth_out[id_21] = float4(r_13.depth, 0.0, 0.0, 0.0);
     return;
 }
 
-uint rng_seed(uint2 pixel_6, uint frame_index_1)
+uint rng_seed(uint2 pixel_6, uint path_index)
 {
-    const uint _e4 = pcg(frame_index_1);
+    const uint _e4 = pcg(path_index);
     const uint _e6 = pcg((pixel_6.y ^ _e4));
     const uint _e8 = pcg((pixel_6.x ^ _e6));
     return _e8;
@@ -2367,7 +2370,7 @@ float empty_cell_skip(float3 origin_3, float3 dir_1, float t_2)
 float density_max()
 {
     float m_1 = 0.0;
-    uint i_13 = 0u;
+    uint i_14 = 0u;
 
     uint2 loop_bound_10 = uint2(4294967295u, 4294967295u);
     bool loop_init_9 = true;
@@ -2375,18 +2378,18 @@ float density_max()
         if (all(loop_bound_10 == uint2(0u, 0u))) { break; }
         loop_bound_10 -= uint2(loop_bound_10.y == 0u, 1u);
         if (!loop_init_9) {
-            uint _e17 = i_13;
-            i_13 = (_e17 + 1u);
+            uint _e17 = i_14;
+            i_14 = (_e17 + 1u);
         }
         loop_init_9 = false;
-        uint _e4 = i_13;
+        uint _e4 = i_14;
         const uint _e5 = layer_count();
         if ((_e4 < _e5)) {
         } else {
             break;
         }
         {
-            uint _e7 = i_13;
+            uint _e7 = i_14;
             const Layer _e8 = cloud_layer(_e7);
             float _e9 = m_1;
             m_1 = max(_e9, (_e8.density * (1.0 + _e8.precipitation)));
@@ -2824,7 +2827,7 @@ float luminance(float3 c_3)
 float basic_sun_depth(float3 rel_5, float alt_14, inout Counters counters_13)
 {
     float tau_7 = 0.0;
-    uint i_14 = 1u;
+    uint i_15 = 1u;
 
     uint steps_3 = frame.counts.w;
     if ((steps_3 == 0u)) {
@@ -2850,11 +2853,11 @@ float basic_sun_depth(float3 rel_5, float alt_14, inout Counters counters_13)
         if (all(loop_bound_16 == uint2(0u, 0u))) { break; }
         loop_bound_16 -= uint2(loop_bound_16.y == 0u, 1u);
         if (!loop_init_12) {
-            uint _e90 = i_14;
-            i_14 = (_e90 + 1u);
+            uint _e90 = i_15;
+            i_15 = (_e90 + 1u);
         }
         loop_init_12 = false;
-        uint _e65 = i_14;
+        uint _e65 = i_15;
         if ((_e65 <= steps_3)) {
         } else {
             break;
@@ -2862,7 +2865,7 @@ float basic_sun_depth(float3 rel_5, float alt_14, inout Counters counters_13)
         {
             uint _e68 = counters_13.light;
             counters_13.light = (_e68 + 1u);
-            uint _e71 = i_14;
+            uint _e71 = i_15;
             float3 q_8 = (rel_5 + (sun_5 * (float(_e71) * dt_3)));
             float3 p_18 = float3((q_8.x + cam_xz_1.x), q_8.y, (q_8.z + cam_xz_1.y));
             float _e84 = tau_7;
@@ -2881,7 +2884,7 @@ MarchResult basic_pixel(uint2 pixel_7)
     float3 radiance_2 = (0.0).xxx;
     float transmittance = 1.0;
     float depth_sum = 0.0;
-    uint i_15 = 0u;
+    uint i_16 = 0u;
     float depth_3 = 0.0;
 
     const float3 _e1 = view_ray(pixel_7);
@@ -2913,11 +2916,11 @@ MarchResult basic_pixel(uint2 pixel_7)
                 if (all(loop_bound_17 == uint2(0u, 0u))) { break; }
                 loop_bound_17 -= uint2(loop_bound_17.y == 0u, 1u);
                 if (!loop_init_13) {
-                    uint _e131 = i_15;
-                    i_15 = (_e131 + 1u);
+                    uint _e131 = i_16;
+                    i_16 = (_e131 + 1u);
                 }
                 loop_init_13 = false;
-                uint _e71 = i_15;
+                uint _e71 = i_16;
                 if ((_e71 < steps_4)) {
                 } else {
                     break;
@@ -2925,7 +2928,7 @@ MarchResult basic_pixel(uint2 pixel_7)
                 {
                     uint _e74 = counters_14.view_steps;
                     counters_14.view_steps = (_e74 + 1u);
-                    uint _e78 = i_15;
+                    uint _e78 = i_16;
                     float t_8 = (_e25.start + (float(_e78) * dt_4));
                     float3 rel_8 = ((_e1 * t_8) + float3(0.0, cam_alt_3, 0.0));
                     float3 p_19 = float3((rel_8.x + cam_xz_2.x), rel_8.y, (rel_8.z + cam_xz_2.y));
@@ -2979,20 +2982,20 @@ float atlas_hash(uint a_2, uint b_2)
 
 float value_noise(float2 p_10, uint seed)
 {
-    uint2 i_17 = naga_f2u32(floor(p_10));
+    uint2 i_18 = naga_f2u32(floor(p_10));
     float2 f_5 = frac(p_10);
     float2 s_12 = ((f_5 * f_5) * ((3.0).xx - (2.0 * f_5)));
     uint h_11 = (seed * 7919u);
-    const float _e17 = atlas_hash((i_17.x + h_11), i_17.y);
-    const float _e23 = atlas_hash(((i_17.x + 1u) + h_11), i_17.y);
-    const float _e29 = atlas_hash((i_17.x + h_11), (i_17.y + 1u));
-    const float _e37 = atlas_hash(((i_17.x + 1u) + h_11), (i_17.y + 1u));
+    const float _e17 = atlas_hash((i_18.x + h_11), i_18.y);
+    const float _e23 = atlas_hash(((i_18.x + 1u) + h_11), i_18.y);
+    const float _e29 = atlas_hash((i_18.x + h_11), (i_18.y + 1u));
+    const float _e37 = atlas_hash(((i_18.x + 1u) + h_11), (i_18.y + 1u));
     return lerp(lerp(_e17, _e23, s_12.x), lerp(_e29, _e37, s_12.x), s_12.y);
 }
 
 float value_fbm(float2 p_11, uint seed_1)
 {
-    float sum_4 = 0.0;
+    float sum_5 = 0.0;
     float weight = 0.5;
     float2 q_4 = (float2)0;
     uint o = 0u;
@@ -3014,26 +3017,26 @@ float value_fbm(float2 p_11, uint seed_1)
             break;
         }
         {
-            float _e12 = sum_4;
+            float _e12 = sum_5;
             float _e13 = weight;
             float2 _e14 = q_4;
             uint _e15 = o;
             const float _e17 = value_noise(_e14, (seed_1 + _e15));
-            sum_4 = (_e12 + (_e13 * _e17));
+            sum_5 = (_e12 + (_e13 * _e17));
             float2 _e20 = q_4;
             q_4 = (_e20 * 2.0);
             float _e23 = weight;
             weight = (_e23 * 0.5);
         }
     }
-    float _e29 = sum_4;
+    float _e29 = sum_5;
     return (_e29 / 0.9375);
 }
 
 float sprite_texture(uint tile_1, float2 uv)
 {
     float billow = 0.0;
-    uint i_16 = 0u;
+    uint i_17 = 0u;
     float2 at = (float2)0;
     float a_3 = (float)0;
 
@@ -3054,26 +3057,26 @@ float sprite_texture(uint tile_1, float2 uv)
         if (all(loop_bound_19 == uint2(0u, 0u))) { break; }
         loop_bound_19 -= uint2(loop_bound_19.y == 0u, 1u);
         if (!loop_init_15) {
-            uint _e108 = i_16;
-            i_16 = (_e108 + 1u);
+            uint _e108 = i_17;
+            i_17 = (_e108 + 1u);
         }
         loop_init_15 = false;
-        uint _e58 = i_16;
+        uint _e58 = i_17;
         if ((_e58 < blobs)) {
         } else {
             break;
         }
         {
-            uint _e61 = i_16;
+            uint _e61 = i_17;
             const float _e63 = atlas_hash(tile_1, (2u * _e61));
-            uint _e65 = i_16;
+            uint _e65 = i_17;
             const float _e69 = atlas_hash(tile_1, ((2u * _e65) + 1u));
             float2 centre_1 = (float2(_e63, _e69) - (0.5).xx);
             at = ((0.5).xx + (centre_1 * 0.34));
             if ((tile_1 == 4u)) {
                 at.y = (0.5 + ((centre_1.y - 0.5) * 0.24));
             }
-            uint _e91 = i_16;
+            uint _e91 = i_17;
             const float _e93 = atlas_hash(tile_1, (100u + _e91));
             float r_18 = (0.14 + (0.1 * _e93));
             float2 _e98 = at;
@@ -3343,19 +3346,19 @@ float3 stars(float3 d_17)
     float2 st = clamp((((_e54 / (_e55).xx) * 0.5) + (0.5).xx), (0.0).xx, (0.999999).xx);
     uint2 cell_2 = naga_f2u32((st * 96.0));
     uint _e71 = face;
-    uint id_23 = ((((_e71 * STAR_CELLS) + cell_2.y) * STAR_CELLS) + cell_2.x);
-    const uint _e85 = pcg((id_23 ^ 2654435769u));
+    uint id_22 = ((((_e71 * STAR_CELLS) + cell_2.y) * STAR_CELLS) + cell_2.x);
+    const uint _e85 = pcg((id_22 ^ 2654435769u));
     float h0_ = (float((_e85 >> 8u)) * 5.9604645e-8);
     if ((h0_ >= 0.15085077)) {
         return (0.0).xxx;
     }
-    const uint _e96 = pcg((id_23 ^ 2246822507u));
+    const uint _e96 = pcg((id_22 ^ 2246822507u));
     float h1_ = (float((_e96 >> 8u)) * 5.9604645e-8);
-    const uint _e104 = pcg((id_23 ^ 3266489909u));
+    const uint _e104 = pcg((id_22 ^ 3266489909u));
     float h2_ = (float((_e104 >> 8u)) * 5.9604645e-8);
-    const uint _e112 = pcg((id_23 ^ 668265263u));
+    const uint _e112 = pcg((id_22 ^ 668265263u));
     float h3_ = (float((_e112 >> 8u)) * 5.9604645e-8);
-    const uint _e120 = pcg((id_23 ^ 374761393u));
+    const uint _e120 = pcg((id_22 ^ 374761393u));
     float h4_ = (float((_e120 >> 8u)) * 5.9604645e-8);
     float2 star_st = (((float2(cell_2) + (0.15).xx) + (0.7 * float2(h1_, h2_))) / (96.0).xx);
     float _e142 = major;
@@ -4220,92 +4223,133 @@ void resolve(uint3 id_11 : SV_DispatchThreadID)
     return;
 }
 
-[numthreads(8, 8, 1)]
-void pathtrace(uint3 id_12 : SV_DispatchThreadID)
+[numthreads(32, 1, 1)]
+void pathtrace(uint3 group : SV_GroupID, uint lane : SV_GroupIndex)
 {
     Counters counters_1 = ConstructCounters(0u, 0u, 0u, 0u);
     uint rng = (uint)0;
+    float4 sum_3 = (0.0).xxxx;
+    float4 sum_moments = (0.0).xxxx;
+    uint i_3 = 0u;
     float4 mean = (0.0).xxxx;
     float4 moments = (0.0).xxxx;
     bool local_11 = (bool)0;
 
-    uint4 _e4 = frame.counts;
-    if (any((id_12.xy >= _e4.xy))) {
+    uint4 _e5 = frame.counts;
+    if (any((group.xy >= _e5.xy))) {
         return;
     }
-    uint2 pixel_11 = id_12.xy;
-    const float3 _e9 = view_ray(pixel_11);
-    float _e13 = frame.camera_position.y;
-    const Interval _e14 = cloud_interval(_e13, _e9);
-    count(STAT_PIXELS, 1u);
-    count(STAT_MARCHED, uint((_e14.kind == RAY_MARCH)));
-    count(STAT_EXIT_MISSED, uint((_e14.kind == RAY_MISSES_LAYER)));
-    count(STAT_EXIT_GROUND, uint((_e14.kind == RAY_HITS_GROUND)));
-    uint _e41 = frame.misc.y;
-    const uint _e42 = rng_seed(pixel_11, _e41);
-    rng = _e42;
-    const PathResult _e44 = trace_path(_e9, _e14, rng, counters_1);
-    const float _e46 = luminance(_e44.radiance);
-    uint _e56 = frame.temporal.y;
-    if ((_e56 == 1u)) {
-        const bool _e61 = camera_still();
-        local_11 = _e61;
-    } else {
-        local_11 = false;
+    uint2 pixel_11 = group.xy;
+    const float3 _e10 = view_ray(pixel_11);
+    float _e14 = frame.camera_position.y;
+    const Interval _e15 = cloud_interval(_e14, _e10);
+    if ((lane == 0u)) {
+        count(STAT_PIXELS, 1u);
+        count(STAT_MARCHED, uint((_e15.kind == RAY_MARCH)));
+        count(STAT_EXIT_MISSED, uint((_e15.kind == RAY_MISSES_LAYER)));
+        count(STAT_EXIT_GROUND, uint((_e15.kind == RAY_HITS_GROUND)));
     }
-    bool _e63 = local_11;
-    if (_e63) {
-        float4 _e66 = history_in.Load(int3(pixel_11, int(0)));
-        mean = _e66;
-        float4 _e69 = meta_in.Load(int3(pixel_11, int(0)));
-        moments = _e69;
+    uint _e44 = frame.misc.y;
+    const uint _e48 = rng_seed(pixel_11, ((_e44 * PATHS_PER_FRAME) + lane));
+    rng = _e48;
+    const PathResult _e50 = trace_path(_e10, _e15, rng, counters_1);
+    const float _e52 = luminance(_e50.radiance);
+    bool hit = (_e50.depth >= 0.0);
+    lane_sums[min(uint(lane), 31u)] = float4(_e50.radiance, _e50.transmittance);
+    lane_moments[min(uint(lane), 31u)] = float4((_e52 * _e52), (hit ? _e50.depth : 0.0), (hit ? 1.0 : 0.0), 0.0);
+    GroupMemoryBarrierWithGroupSync();
+    if ((lane == 0u)) {
+        uint2 loop_bound_32 = uint2(4294967295u, 4294967295u);
+        bool loop_init_28 = true;
+        while(true) {
+            if (all(loop_bound_32 == uint2(0u, 0u))) { break; }
+            loop_bound_32 -= uint2(loop_bound_32.y == 0u, 1u);
+            if (!loop_init_28) {
+                uint _e98 = i_3;
+                i_3 = (_e98 + 1u);
+            }
+            loop_init_28 = false;
+            uint _e82 = i_3;
+            if ((_e82 < PATHS_PER_FRAME)) {
+            } else {
+                break;
+            }
+            {
+                float4 _e85 = sum_3;
+                uint _e87 = i_3;
+                float4 _e89 = lane_sums[min(uint(_e87), 31u)];
+                sum_3 = (_e85 + _e89);
+                float4 _e91 = sum_moments;
+                uint _e93 = i_3;
+                float4 _e95 = lane_moments[min(uint(_e93), 31u)];
+                sum_moments = (_e91 + _e95);
+            }
+        }
+        uint _e109 = frame.temporal.y;
+        if ((_e109 == 1u)) {
+            const bool _e114 = camera_still();
+            local_11 = _e114;
+        } else {
+            local_11 = false;
+        }
+        bool _e116 = local_11;
+        if (_e116) {
+            float4 _e119 = history_in.Load(int3(pixel_11, int(0)));
+            mean = _e119;
+            float4 _e122 = meta_in.Load(int3(pixel_11, int(0)));
+            moments = _e122;
+        }
+        float _e125 = moments.y;
+        float n_4 = (_e125 + 32.0);
+        float4 _e127 = mean;
+        float4 _e128 = sum_3;
+        float4 _e129 = mean;
+        mean = (_e127 + ((_e128 - (32.0 * _e129)) / (n_4).xxxx));
+        float _e136 = moments.z;
+        float _e138 = sum_moments.x;
+        float _e140 = moments.z;
+        moments.z = (_e136 + ((_e138 - (32.0 * _e140)) / n_4));
+        float hits = sum_moments.z;
+        if ((hits > 0.0)) {
+            float _e150 = moments.w;
+            moments.w = (_e150 + hits);
+            float _e153 = moments.x;
+            float _e155 = sum_moments.y;
+            float _e157 = moments.x;
+            float _e161 = moments.w;
+            moments.x = (_e153 + ((_e155 - (hits * _e157)) / _e161));
+        }
+        moments.y = n_4;
+        float4 _e166 = mean;
+        history_out[pixel_11] = _e166;
+        float4 _e168 = moments;
+        meta_out[pixel_11] = _e168;
+        float4 _e170 = mean;
+        cloud_out[pixel_11] = _e170;
+        float _e173 = moments.x;
+        depth_out[pixel_11] = float4(_e173, 0.0, 0.0, 0.0);
     }
-    float _e71 = moments.y;
-    float n_4 = (_e71 + 1.0);
-    float4 _e74 = mean;
-    float4 _e78 = mean;
-    mean = (_e74 + ((float4(_e44.radiance, _e44.transmittance) - _e78) / (n_4).xxxx));
-    float _e84 = moments.z;
-    float _e87 = moments.z;
-    moments.z = (_e84 + (((_e46 * _e46) - _e87) / n_4));
-    if ((_e44.depth >= 0.0)) {
-        float _e95 = moments.w;
-        moments.w = (_e95 + 1.0);
-        float _e99 = moments.x;
-        float _e102 = moments.x;
-        float _e105 = moments.w;
-        moments.x = (_e99 + ((_e44.depth - _e102) / _e105));
-    }
-    moments.y = n_4;
-    float4 _e110 = mean;
-    history_out[pixel_11] = _e110;
-    float4 _e112 = moments;
-    meta_out[pixel_11] = _e112;
-    float4 _e114 = mean;
-    cloud_out[pixel_11] = _e114;
-    float _e117 = moments.x;
-    depth_out[pixel_11] = float4(_e117, 0.0, 0.0, 0.0);
-    uint _e124 = counters_1.view_steps;
-    count(STAT_VIEW_STEPS, _e124);
-    uint _e127 = counters_1.density;
-    count(STAT_DENSITY, _e127);
-    uint _e130 = counters_1.detail;
-    count(STAT_DETAIL, _e130);
-    uint _e133 = counters_1.light;
-    count(STAT_LIGHT, _e133);
+    uint _e180 = counters_1.view_steps;
+    count(STAT_VIEW_STEPS, _e180);
+    uint _e183 = counters_1.density;
+    count(STAT_DENSITY, _e183);
+    uint _e186 = counters_1.detail;
+    count(STAT_DETAIL, _e186);
+    uint _e189 = counters_1.light;
+    count(STAT_LIGHT, _e189);
     return;
 }
 
 [numthreads(8, 8, 1)]
-void march_basic(uint3 id_13 : SV_DispatchThreadID)
+void march_basic(uint3 id_12 : SV_DispatchThreadID)
 {
     uint4 _e4 = frame.counts;
-    if (any((id_13.xy >= _e4.xy))) {
+    if (any((id_12.xy >= _e4.xy))) {
         return;
     }
-    const MarchResult _e9 = basic_pixel(id_13.xy);
-    cloud_out[id_13.xy] = float4(_e9.radiance, _e9.transmittance);
-    depth_out[id_13.xy] = float4(_e9.depth, 0.0, 0.0, 0.0);
+    const MarchResult _e9 = basic_pixel(id_12.xy);
+    cloud_out[id_12.xy] = float4(_e9.radiance, _e9.transmittance);
+    depth_out[id_12.xy] = float4(_e9.depth, 0.0, 0.0, 0.0);
     return;
 }
 
@@ -4314,55 +4358,55 @@ uint2 naga_mod(uint2 lhs, uint2 rhs) {
 }
 
 [numthreads(8, 8, 1)]
-void sprite_atlas(uint3 id_14 : SV_DispatchThreadID)
+void sprite_atlas(uint3 id_13 : SV_DispatchThreadID)
 {
-    uint tile_4 = ((naga_div(id_14.y, ATLAS_TILE) * 4u) + naga_div(id_14.x, ATLAS_TILE));
-    float2 uv_7 = ((float2(naga_mod(id_14.xy, (64u).xx)) + (0.5).xx) / (64.0).xx);
+    uint tile_4 = ((naga_div(id_13.y, ATLAS_TILE) * 4u) + naga_div(id_13.x, ATLAS_TILE));
+    float2 uv_7 = ((float2(naga_mod(id_13.xy, (64u).xx)) + (0.5).xx) / (64.0).xx);
     const float _e21 = sprite_texture(tile_4, uv_7);
-    sprite_atlas_out[id_14.xy] = float4(_e21, _e21, _e21, _e21);
+    sprite_atlas_out[id_13.xy] = float4(_e21, _e21, _e21, _e21);
     return;
 }
 
 [numthreads(64, 1, 1)]
-void sprite_build(uint3 id_15 : SV_DispatchThreadID)
+void sprite_build(uint3 id_14 : SV_DispatchThreadID)
 {
     Counters counters_2 = ConstructCounters(0u, 0u, 0u, 0u);
-    float4 sum_3 = (0.0).xxxx;
+    float4 sum_4 = (0.0).xxxx;
     SpriteCandidate me = (SpriteCandidate)0;
-    uint i_3 = 0u;
+    uint i_4 = 0u;
     float3 centre = (float3)0;
     uint tile = (uint)0;
     float rotation = (float)0;
     bool local_12 = (bool)0;
     float key = 0.0;
 
-    uint slot = id_15.x;
+    uint slot = id_14.x;
     uint cell_index = naga_div(slot, SPRITES_PER_CELL);
     uint level_2 = naga_div(cell_index, 64u);
     const SpriteCell _e6 = sprite_cell(cell_index);
     uint own = naga_mod(slot, SPRITES_PER_CELL);
     const SpriteCandidate _e18 = sprite_candidate(_e6, level_2, own, counters_2);
     me = _e18;
-    uint2 loop_bound_32 = uint2(4294967295u, 4294967295u);
-    bool loop_init_28 = true;
+    uint2 loop_bound_33 = uint2(4294967295u, 4294967295u);
+    bool loop_init_29 = true;
     while(true) {
-        if (all(loop_bound_32 == uint2(0u, 0u))) { break; }
-        loop_bound_32 -= uint2(loop_bound_32.y == 0u, 1u);
-        if (!loop_init_28) {
-            uint _e38 = i_3;
-            i_3 = (_e38 + 1u);
+        if (all(loop_bound_33 == uint2(0u, 0u))) { break; }
+        loop_bound_33 -= uint2(loop_bound_33.y == 0u, 1u);
+        if (!loop_init_29) {
+            uint _e38 = i_4;
+            i_4 = (_e38 + 1u);
         }
-        loop_init_28 = false;
-        uint _e22 = i_3;
+        loop_init_29 = false;
+        uint _e22 = i_4;
         if ((_e22 < SPRITES_PER_CELL)) {
         } else {
             break;
         }
         {
-            uint _e25 = i_3;
+            uint _e25 = i_4;
             const SpriteCandidate _e26 = sprite_candidate(_e6, level_2, _e25, counters_2);
-            float4 _e27 = sum_3;
-            sum_3 = (_e27 + (float4(_e26.xz.x, _e26.alt, _e26.xz.y, 1.0) * _e26.density));
+            float4 _e27 = sum_4;
+            sum_4 = (_e27 + (float4(_e26.xz.x, _e26.alt, _e26.xz.y, 1.0) * _e26.density));
         }
     }
     uint _e43 = counters_2.density;
@@ -4374,10 +4418,10 @@ void sprite_build(uint3 id_15 : SV_DispatchThreadID)
     float thickness_1 = (_e54 - bottom_3);
     float2 middle = ((float2(_e6.index) + (0.5).xx) * _e6.size);
     centre = float3(middle.x, (bottom_3 + (0.4 * thickness_1)), middle.y);
-    float _e71 = sum_3.w;
+    float _e71 = sum_4.w;
     if ((_e71 > 0.0)) {
-        float4 _e74 = sum_3;
-        float _e77 = sum_3.w;
+        float4 _e74 = sum_4;
+        float _e77 = sum_4.w;
         centre = (_e74.xyz / (_e77).xxx);
     }
     float2 _e81 = me.xz;
@@ -4438,26 +4482,26 @@ void sprite_build(uint3 id_15 : SV_DispatchThreadID)
 }
 
 [numthreads(64, 1, 1)]
-void sprite_sort(uint3 id_16 : SV_DispatchThreadID)
+void sprite_sort(uint3 id_15 : SV_DispatchThreadID)
 {
     uint rank = 0u;
     uint j = 0u;
     bool local_13 = (bool)0;
     bool local_14 = (bool)0;
 
-    uint slot_1 = id_16.x;
+    uint slot_1 = id_15.x;
     float4 _e6 = sprites_in.Load(int3(uint2(slot_1, 3u), int(0)));
     float key_1 = _e6.x;
-    uint2 loop_bound_33 = uint2(4294967295u, 4294967295u);
-    bool loop_init_29 = true;
+    uint2 loop_bound_34 = uint2(4294967295u, 4294967295u);
+    bool loop_init_30 = true;
     while(true) {
-        if (all(loop_bound_33 == uint2(0u, 0u))) { break; }
-        loop_bound_33 -= uint2(loop_bound_33.y == 0u, 1u);
-        if (!loop_init_29) {
+        if (all(loop_bound_34 == uint2(0u, 0u))) { break; }
+        loop_bound_34 -= uint2(loop_bound_34.y == 0u, 1u);
+        if (!loop_init_30) {
             uint _e40 = j;
             j = (_e40 + 1u);
         }
-        loop_init_29 = false;
+        loop_init_30 = false;
         uint _e12 = j;
         if ((_e12 < SPRITE_COUNT)) {
         } else {
@@ -4594,31 +4638,31 @@ SpriteTargets sprite_fragment(FragmentInput_sprite_fragment fragmentinput_sprite
 }
 
 [numthreads(8, 8, 1)]
-void sprite_resolve(uint3 id_17 : SV_DispatchThreadID)
+void sprite_resolve(uint3 id_16 : SV_DispatchThreadID)
 {
     uint4 _e4 = frame.counts;
-    if (any((id_17.xy >= _e4.xy))) {
+    if (any((id_16.xy >= _e4.xy))) {
         return;
     }
     count(STAT_PIXELS, 1u);
-    float4 c_13 = sprite_radiance_in.Load(int3(id_17.xy, int(0)));
-    float4 d_23 = sprite_depth_in.Load(int3(id_17.xy, int(0)));
+    float4 c_13 = sprite_radiance_in.Load(int3(id_16.xy, int(0)));
+    float4 d_23 = sprite_depth_in.Load(int3(id_16.xy, int(0)));
     const float _e19 = saturate_(c_13.w);
-    cloud_out[id_17.xy] = float4(c_13.xyz, (1.0 - _e19));
-    depth_out[id_17.xy] = float4(((d_23.w > 0.0001) ? (d_23.x / d_23.w) : 0.0), 0.0, 0.0, 0.0);
+    cloud_out[id_16.xy] = float4(c_13.xyz, (1.0 - _e19));
+    depth_out[id_16.xy] = float4(((d_23.w > 0.0001) ? (d_23.x / d_23.w) : 0.0), 0.0, 0.0, 0.0);
     return;
 }
 
 [numthreads(8, 8, 1)]
-void composite(uint3 id_18 : SV_DispatchThreadID)
+void composite(uint3 id_17 : SV_DispatchThreadID)
 {
     float3 background = (float3)0;
 
     uint4 _e4 = frame.counts;
-    if (any((id_18.xy >= _e4.xy))) {
+    if (any((id_17.xy >= _e4.xy))) {
         return;
     }
-    uint2 pixel_12 = id_18.xy;
+    uint2 pixel_12 = id_17.xy;
     const float3 _e9 = view_ray(pixel_12);
     float alt_18 = frame.camera_position.y;
     float4 cloud_1 = cloud_in.Load(int3(pixel_12, int(0)));
@@ -4636,13 +4680,13 @@ void composite(uint3 id_18 : SV_DispatchThreadID)
 }
 
 [numthreads(8, 8, 1)]
-void composite_physical(uint3 id_19 : SV_DispatchThreadID)
+void composite_physical(uint3 id_18 : SV_DispatchThreadID)
 {
     uint4 _e4 = frame.counts;
-    if (any((id_19.xy >= _e4.xy))) {
+    if (any((id_18.xy >= _e4.xy))) {
         return;
     }
-    uint2 pixel_13 = id_19.xy;
+    uint2 pixel_13 = id_18.xy;
     float4 cloud_2 = cloud_in.Load(int3(pixel_13, int(0)));
     const float3 _e12 = view_ray(pixel_13);
     const float3 _e13 = physical_composite(pixel_13, _e12, cloud_2);

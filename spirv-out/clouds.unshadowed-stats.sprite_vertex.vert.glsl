@@ -185,6 +185,7 @@ const float HISTORY_SAMPLES = 16.0;
 const float HISTORY_SAMPLES_MOVING = 2.0;
 const float DISOCCLUSION_DEPTH = 0.5;
 const uint MAX_PATH_ORDERS = 16384u;
+const uint PATHS_PER_FRAME = 32u;
 const uint SPRITE_LEVELS = 4u;
 const int SPRITE_CELLS_PER_SIDE = 8;
 const uint SPRITES_PER_CELL = 16u;
@@ -380,20 +381,20 @@ Layer layer_from(vec4 g, vec4 w_1) {
     return Layer(g.x, g.y, g.z, g.w, w_1.x, w_1.y, w_1.zw);
 }
 
-Layer cloud_layer(uint i_4) {
-    if ((i_4 == 1u)) {
+Layer cloud_layer(uint i_5) {
+    if ((i_5 == 1u)) {
         vec4 _e5 = _group_0_binding_0_vs.layer1_;
         vec4 _e8 = _group_0_binding_0_vs.layer1_weather;
         Layer _e9 = layer_from(_e5, _e8);
         return _e9;
     } else {
-        if ((i_4 == 2u)) {
+        if ((i_5 == 2u)) {
             vec4 _e14 = _group_0_binding_0_vs.layer2_;
             vec4 _e17 = _group_0_binding_0_vs.layer2_weather;
             Layer _e18 = layer_from(_e14, _e17);
             return _e18;
         } else {
-            if ((i_4 == 3u)) {
+            if ((i_5 == 3u)) {
                 vec4 _e23 = _group_0_binding_0_vs.layer3_;
                 vec4 _e26 = _group_0_binding_0_vs.layer3_weather;
                 Layer _e27 = layer_from(_e23, _e26);
@@ -413,24 +414,24 @@ Layer cloud_layer(uint i_4) {
 
 vec2 layers_span() {
     vec2 span = vec2(0.0);
-    uint i_5 = 1u;
+    uint i_6 = 1u;
     vec4 _e2 = _group_0_binding_0_vs.atmosphere;
     span = _e2.yz;
     bool loop_init = true;
     while(true) {
         if (!loop_init) {
-            uint _e22 = i_5;
-            i_5 = (_e22 + 1u);
+            uint _e22 = i_6;
+            i_6 = (_e22 + 1u);
         }
         loop_init = false;
-        uint _e7 = i_5;
+        uint _e7 = i_6;
         uint _e8 = layer_count();
         if ((_e7 < _e8)) {
         } else {
             break;
         }
         {
-            uint _e10 = i_5;
+            uint _e10 = i_6;
             Layer _e11 = cloud_layer(_e10);
             float _e13 = span.x;
             float _e17 = span.y;
@@ -449,7 +450,7 @@ Interval cloud_interval(float alt_4, vec3 d_4) {
 
 Interval nearest_layer_interval(float alt_5, vec3 d_5) {
     Interval best = Interval(0.0, 0.0, 0u);
-    uint i_6 = 1u;
+    uint i_7 = 1u;
     bool local_19 = false;
     bool local_20 = false;
     Layer _e3 = cloud_layer(0u);
@@ -458,18 +459,18 @@ Interval nearest_layer_interval(float alt_5, vec3 d_5) {
     bool loop_init_1 = true;
     while(true) {
         if (!loop_init_1) {
-            uint _e35 = i_6;
-            i_6 = (_e35 + 1u);
+            uint _e35 = i_7;
+            i_7 = (_e35 + 1u);
         }
         loop_init_1 = false;
-        uint _e8 = i_6;
+        uint _e8 = i_7;
         uint _e9 = layer_count();
         if ((_e8 < _e9)) {
         } else {
             break;
         }
         {
-            uint _e11 = i_6;
+            uint _e11 = i_7;
             Layer _e12 = cloud_layer(_e11);
             Interval _e13 = layer_interval(alt_5, d_5, _e12);
             if ((_e13.kind == RAY_MARCH)) {
@@ -698,23 +699,23 @@ float layer_height(Layer l_1, float alt_7) {
 }
 
 uint layer_at(float alt_8) {
-    uint i_8 = 0u;
+    uint i_9 = 0u;
     bool local_22 = false;
     bool loop_init_2 = true;
     while(true) {
         if (!loop_init_2) {
-            uint _e19 = i_8;
-            i_8 = (_e19 + 1u);
+            uint _e19 = i_9;
+            i_9 = (_e19 + 1u);
         }
         loop_init_2 = false;
-        uint _e3 = i_8;
+        uint _e3 = i_9;
         uint _e4 = layer_count();
         if ((_e3 < _e4)) {
         } else {
             break;
         }
         {
-            uint _e6 = i_8;
+            uint _e6 = i_9;
             Layer _e7 = cloud_layer(_e6);
             float _e8 = layer_height(_e7, alt_8);
             if ((_e8 >= 0.0)) {
@@ -724,7 +725,7 @@ uint layer_at(float alt_8) {
             }
             bool _e16 = local_22;
             if (_e16) {
-                uint _e17 = i_8;
+                uint _e17 = i_9;
                 return _e17;
             }
         }
@@ -803,7 +804,7 @@ float sun_scattering(float cos_theta_5, float tau_5) {
     float ka = 1.0;
     float kb = 1.0;
     float kc = 1.0;
-    uint i_10 = 0u;
+    uint i_11 = 0u;
     float total = 0.0;
     float a_7 = _group_0_binding_0_vs.multiple_scattering.x;
     float b_7 = _group_0_binding_0_vs.multiple_scattering.y;
@@ -813,11 +814,11 @@ float sun_scattering(float cos_theta_5, float tau_5) {
     bool loop_init_3 = true;
     while(true) {
         if (!loop_init_3) {
-            uint _e50 = i_10;
-            i_10 = (_e50 + 1u);
+            uint _e50 = i_11;
+            i_11 = (_e50 + 1u);
         }
         loop_init_3 = false;
-        uint _e30 = i_10;
+        uint _e30 = i_11;
         if ((_e30 < octaves)) {
         } else {
             break;
@@ -987,21 +988,21 @@ vec4 catmull_rom(float t_1) {
     return vec4((t_1 * (-0.5 + (t_1 * (1.0 - (0.5 * t_1))))), (1.0 + ((t_1 * t_1) * (-2.5 + (1.5 * t_1)))), (t_1 * (0.5 + (t_1 * (2.0 - (1.5 * t_1))))), ((t_1 * t_1) * (-0.5 + (0.5 * t_1))));
 }
 
-bool in_blocks(uvec2 id_20) {
+bool in_blocks(uvec2 id_19) {
     uint k_13 = _group_0_binding_0_vs.temporal.x;
     uvec4 _e7 = _group_0_binding_0_vs.counts;
-    return all(lessThan(id_20, (((_e7.xy + uvec2(k_13)) - uvec2(1u)) / uvec2(k_13))));
+    return all(lessThan(id_19, (((_e7.xy + uvec2(k_13)) - uvec2(1u)) / uvec2(k_13))));
 }
 
-uvec2 sparse_pixel(uvec2 id_21) {
+uvec2 sparse_pixel(uvec2 id_20) {
     uint k_14 = _group_0_binding_0_vs.temporal.x;
     uint _e9 = _group_0_binding_0_vs.misc.y;
     uvec2 _e10 = block_offset(_e9, k_14);
-    return ((id_21 * k_14) + _e10);
+    return ((id_20 * k_14) + _e10);
 }
 
-uint rng_seed(uvec2 pixel_6, uint frame_index_1) {
-    uint _e4 = pcg(frame_index_1);
+uint rng_seed(uvec2 pixel_6, uint path_index) {
+    uint _e4 = pcg(path_index);
     uint _e6 = pcg((pixel_6.y ^ _e4));
     uint _e8 = pcg((pixel_6.x ^ _e6));
     return _e8;
@@ -1110,22 +1111,22 @@ Segments layer_segments(vec3 p_9, float alt_13, vec3 d_12) {
 
 float density_max() {
     float m_1 = 0.0;
-    uint i_13 = 0u;
+    uint i_14 = 0u;
     bool loop_init_4 = true;
     while(true) {
         if (!loop_init_4) {
-            uint _e17 = i_13;
-            i_13 = (_e17 + 1u);
+            uint _e17 = i_14;
+            i_14 = (_e17 + 1u);
         }
         loop_init_4 = false;
-        uint _e4 = i_13;
+        uint _e4 = i_14;
         uint _e5 = layer_count();
         if ((_e4 < _e5)) {
         } else {
             break;
         }
         {
-            uint _e7 = i_13;
+            uint _e7 = i_14;
             Layer _e8 = cloud_layer(_e7);
             float _e9 = m_1;
             m_1 = max(_e9, (_e8.density * (1.0 + _e8.precipitation)));
@@ -1236,19 +1237,19 @@ float atlas_hash(uint a_2, uint b_2) {
 }
 
 float value_noise(vec2 p_10, uint seed) {
-    uvec2 i_17 = uvec2(floor(p_10));
+    uvec2 i_18 = uvec2(floor(p_10));
     vec2 f_3 = fract(p_10);
     vec2 s_8 = ((f_3 * f_3) * (vec2(3.0) - (2.0 * f_3)));
     uint h_11 = (seed * 7919u);
-    float _e17 = atlas_hash((i_17.x + h_11), i_17.y);
-    float _e23 = atlas_hash(((i_17.x + 1u) + h_11), i_17.y);
-    float _e29 = atlas_hash((i_17.x + h_11), (i_17.y + 1u));
-    float _e37 = atlas_hash(((i_17.x + 1u) + h_11), (i_17.y + 1u));
+    float _e17 = atlas_hash((i_18.x + h_11), i_18.y);
+    float _e23 = atlas_hash(((i_18.x + 1u) + h_11), i_18.y);
+    float _e29 = atlas_hash((i_18.x + h_11), (i_18.y + 1u));
+    float _e37 = atlas_hash(((i_18.x + 1u) + h_11), (i_18.y + 1u));
     return mix(mix(_e17, _e23, s_8.x), mix(_e29, _e37, s_8.x), s_8.y);
 }
 
 float value_fbm(vec2 p_11, uint seed_1) {
-    float sum_4 = 0.0;
+    float sum_5 = 0.0;
     float weight = 0.5;
     vec2 q_4 = vec2(0.0);
     uint o = 0u;
@@ -1266,25 +1267,25 @@ float value_fbm(vec2 p_11, uint seed_1) {
             break;
         }
         {
-            float _e12 = sum_4;
+            float _e12 = sum_5;
             float _e13 = weight;
             vec2 _e14 = q_4;
             uint _e15 = o;
             float _e17 = value_noise(_e14, (seed_1 + _e15));
-            sum_4 = (_e12 + (_e13 * _e17));
+            sum_5 = (_e12 + (_e13 * _e17));
             vec2 _e20 = q_4;
             q_4 = (_e20 * 2.0);
             float _e23 = weight;
             weight = (_e23 * 0.5);
         }
     }
-    float _e29 = sum_4;
+    float _e29 = sum_5;
     return (_e29 / 0.9375);
 }
 
 float sprite_texture(uint tile_1, vec2 uv) {
     float billow = 0.0;
-    uint i_16 = 0u;
+    uint i_17 = 0u;
     vec2 at = vec2(0.0);
     float a_3 = 0.0;
     vec2 c_9 = (uv - vec2(0.5));
@@ -1301,26 +1302,26 @@ float sprite_texture(uint tile_1, vec2 uv) {
     bool loop_init_6 = true;
     while(true) {
         if (!loop_init_6) {
-            uint _e108 = i_16;
-            i_16 = (_e108 + 1u);
+            uint _e108 = i_17;
+            i_17 = (_e108 + 1u);
         }
         loop_init_6 = false;
-        uint _e58 = i_16;
+        uint _e58 = i_17;
         if ((_e58 < blobs)) {
         } else {
             break;
         }
         {
-            uint _e61 = i_16;
+            uint _e61 = i_17;
             float _e63 = atlas_hash(tile_1, (2u * _e61));
-            uint _e65 = i_16;
+            uint _e65 = i_17;
             float _e69 = atlas_hash(tile_1, ((2u * _e65) + 1u));
             vec2 centre_1 = (vec2(_e63, _e69) - vec2(0.5));
             at = (vec2(0.5) + (centre_1 * 0.34));
             if ((tile_1 == 4u)) {
                 at.y = (0.5 + ((centre_1.y - 0.5) * 0.24));
             }
-            uint _e91 = i_16;
+            uint _e91 = i_17;
             float _e93 = atlas_hash(tile_1, (100u + _e91));
             float r_16 = (0.14 + (0.1 * _e93));
             vec2 _e98 = at;
@@ -1519,19 +1520,19 @@ vec3 stars(vec3 d_17) {
     vec2 st = clamp((((_e54 / vec2(_e55)) * 0.5) + vec2(0.5)), vec2(0.0), vec2(0.999999));
     uvec2 cell_1 = uvec2((st * 96.0));
     uint _e71 = face;
-    uint id_23 = ((((_e71 * STAR_CELLS) + cell_1.y) * STAR_CELLS) + cell_1.x);
-    uint _e85 = pcg((id_23 ^ 2654435769u));
+    uint id_22 = ((((_e71 * STAR_CELLS) + cell_1.y) * STAR_CELLS) + cell_1.x);
+    uint _e85 = pcg((id_22 ^ 2654435769u));
     float h0_ = (float((_e85 >> 8u)) * 5.9604645e-8);
     if ((h0_ >= 0.15085077)) {
         return vec3(0.0);
     }
-    uint _e96 = pcg((id_23 ^ 2246822507u));
+    uint _e96 = pcg((id_22 ^ 2246822507u));
     float h1_ = (float((_e96 >> 8u)) * 5.9604645e-8);
-    uint _e104 = pcg((id_23 ^ 3266489909u));
+    uint _e104 = pcg((id_22 ^ 3266489909u));
     float h2_ = (float((_e104 >> 8u)) * 5.9604645e-8);
-    uint _e112 = pcg((id_23 ^ 668265263u));
+    uint _e112 = pcg((id_22 ^ 668265263u));
     float h3_ = (float((_e112 >> 8u)) * 5.9604645e-8);
-    uint _e120 = pcg((id_23 ^ 374761393u));
+    uint _e120 = pcg((id_22 ^ 374761393u));
     float h4_ = (float((_e120 >> 8u)) * 5.9604645e-8);
     vec2 star_st = (((vec2(cell_1) + vec2(0.15)) + (0.7 * vec2(h1_, h2_))) / vec2(96.0));
     float _e142 = major;

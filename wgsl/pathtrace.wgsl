@@ -18,19 +18,20 @@
 // The octaves, Beer-Powder and precipitation darkening are the march's approximations and are
 // not used here; `orders` (misc.z) caps the scattering orders (0 = all, up to MAX_PATH_ORDERS).
 //
-// Progressive: each frame adds one path per pixel (its random stream seeded by the frame,
-// misc.y) to the running means in `history` (radiance, transmittance) and `history-meta`
-// (depth, paths, mean squared luminance, paths that hit cloud). A cut, a new plan or a moved
-// camera starts over; a host that changes anything else (sun, wind) cuts the history itself.
+// Progressive: each frame adds PATHS_PER_FRAME paths per pixel (their random streams seeded by
+// the frame, misc.y, and the lane) to the running means in `history` (radiance,
+// transmittance) and `history-meta` (depth, paths, mean squared luminance, paths that hit
+// cloud). A cut, a new plan or a moved camera starts over; a host that changes anything else
+// (sun, wind) cuts the history itself.
 
 // A path of more orders than this ends (a conservative thick cloud needs hundreds; this only
 // bounds pathological cases so that an invocation's work is finite).
 const MAX_PATH_ORDERS: u32 = 16384u;
 
 // One random stream per path: a 32-bit LCG with PCG's RXS-M-XS output (O'Neill 2014), seeded
-// by the pixel and the frame.
-fn rng_seed(pixel: vec2<u32>, frame_index: u32) -> u32 {
-    return pcg(pixel.x ^ pcg(pixel.y ^ pcg(frame_index)));
+// by the pixel and the path's index (frame and lane).
+fn rng_seed(pixel: vec2<u32>, path_index: u32) -> u32 {
+    return pcg(pixel.x ^ pcg(pixel.y ^ pcg(path_index)));
 }
 
 // Uniform in [0, 1), 24 bits.
@@ -352,46 +353,80 @@ fn luminance(c: vec3<f32>) -> f32 {
     return dot(c, vec3<f32>(0.2126, 0.7152, 0.0722));
 }
 
-// One more path for every pixel, joined to the running means.
-@compute @workgroup_size(8, 8, 1)
-fn pathtrace(@builtin(global_invocation_id) id: vec3<u32>) {
-    if any(id.xy >= frame.counts.xy) {
+// Paths per pixel per frame: a pixel is one workgroup of this many invocations, one path each,
+// summed in workgroup memory. One path per pixel a frame left a GPU nearly idle at the small
+// sizes the fit and the bench use (64x36 on an H100: 20 ms a frame for 2304 paths, each frame
+// as long as its longest path); the host reads this from the entry point's workgroup size. The
+// lanes run along x: llvmpipe vectorises a workgroup along x only (along z this ran 6x slower).
+const PATHS_PER_FRAME: u32 = 32u;
+
+// Each lane's path: radiance and transmittance, and (luminance squared, depth, hit, 0). Every
+// lane writes its element before the barrier and lane 0 reads them after: nothing reads the
+// initial value (the HLSL leaves workgroup memory uninitialised, crates/shaders).
+var<workgroup> lane_sums: array<vec4<f32>, PATHS_PER_FRAME>;
+var<workgroup> lane_moments: array<vec4<f32>, PATHS_PER_FRAME>;
+
+// PATHS_PER_FRAME more paths for every pixel, joined to the running means.
+@compute @workgroup_size(PATHS_PER_FRAME, 1, 1)
+fn pathtrace(@builtin(workgroup_id) group: vec3<u32>,
+             @builtin(local_invocation_index) lane: u32) {
+    // The workgroup is the pixel, so this test is uniform across it (the barriers below).
+    if any(group.xy >= frame.counts.xy) {
         return;
     }
-    let pixel = id.xy;
+    let pixel = group.xy;
     let view = view_ray(pixel);
     let span = cloud_interval(frame.camera_position.y, view);
     var counters = Counters(0u, 0u, 0u, 0u);
-    count(STAT_PIXELS, 1u);
-    count(STAT_MARCHED, u32(span.kind == RAY_MARCH));
-    count(STAT_EXIT_MISSED, u32(span.kind == RAY_MISSES_LAYER));
-    count(STAT_EXIT_GROUND, u32(span.kind == RAY_HITS_GROUND));
+    if lane == 0u {
+        count(STAT_PIXELS, 1u);
+        count(STAT_MARCHED, u32(span.kind == RAY_MARCH));
+        count(STAT_EXIT_MISSED, u32(span.kind == RAY_MISSES_LAYER));
+        count(STAT_EXIT_GROUND, u32(span.kind == RAY_HITS_GROUND));
+    }
 
-    // One path per pixel per frame. Tracing several in a loop here gave wrong images on
-    // lavapipe from about 10 paths an invocation on (8x8 blocks too dark, the same bits
-    // whichever single path was kept), so paths accumulate across frames only.
-    var rng = rng_seed(pixel, frame.misc.y);
+    // One path per invocation. Tracing several in a loop of one invocation gave wrong images
+    // on lavapipe from about 10 paths an invocation on (8x8 blocks too dark, the same bits
+    // whichever single path was kept), so a frame's paths are the workgroup's lanes.
+    var rng = rng_seed(pixel, frame.misc.y * PATHS_PER_FRAME + lane);
     let r = trace_path(view, span, &rng, &counters);
     let l = luminance(r.radiance);
+    let hit = r.depth >= 0.0;
+    lane_sums[lane] = vec4<f32>(r.radiance, r.transmittance);
+    lane_moments[lane] = vec4<f32>(l * l, select(0.0, r.depth, hit), select(0.0, 1.0, hit), 0.0);
+    workgroupBarrier();
 
-    var mean = vec4<f32>(0.0);
-    var moments = vec4<f32>(0.0);
-    if frame.temporal.y == 1u && camera_still() {
-        mean = textureLoad(history_in, pixel, 0);
-        moments = textureLoad(meta_in, pixel, 0);
+    if lane == 0u {
+        // Lane 0 sums the lanes' paths. (A tree sum, a barrier in each round of a loop, lost
+        // whole frames of some pixels on lavapipe: their history was not written.)
+        var sum = vec4<f32>(0.0);
+        var sum_moments = vec4<f32>(0.0);
+        for (var i = 0u; i < PATHS_PER_FRAME; i++) {
+            sum += lane_sums[i];
+            sum_moments += lane_moments[i];
+        }
+        var mean = vec4<f32>(0.0);
+        var moments = vec4<f32>(0.0);
+        if frame.temporal.y == 1u && camera_still() {
+            mean = textureLoad(history_in, pixel, 0);
+            moments = textureLoad(meta_in, pixel, 0);
+        }
+        let k = f32(PATHS_PER_FRAME);
+        let n = moments.y + k;
+        // Running means over every path so far: this frame's k paths weigh k / n.
+        mean += (sum - k * mean) / n;
+        moments.z += (sum_moments.x - k * moments.z) / n;
+        let hits = sum_moments.z;
+        if hits > 0.0 {
+            moments.w += hits;
+            moments.x += (sum_moments.y - hits * moments.x) / moments.w;
+        }
+        moments.y = n;
+        textureStore(history_out, pixel, mean);
+        textureStore(meta_out, pixel, moments);
+        textureStore(cloud_out, pixel, mean);
+        textureStore(depth_out, pixel, vec4<f32>(moments.x, 0.0, 0.0, 0.0));
     }
-    let n = moments.y + 1.0;
-    mean += (vec4<f32>(r.radiance, r.transmittance) - mean) / n;
-    moments.z += (l * l - moments.z) / n;
-    if r.depth >= 0.0 {
-        moments.w += 1.0;
-        moments.x += (r.depth - moments.x) / moments.w;
-    }
-    moments.y = n;
-    textureStore(history_out, pixel, mean);
-    textureStore(meta_out, pixel, moments);
-    textureStore(cloud_out, pixel, mean);
-    textureStore(depth_out, pixel, vec4<f32>(moments.x, 0.0, 0.0, 0.0));
 
     count(STAT_VIEW_STEPS, counters.view_steps);
     count(STAT_DENSITY, counters.density);

@@ -42,7 +42,13 @@ fn gpu(r: &mut dyn Backend, scene: &Scene, noise: &Arc<NoiseSet>) -> (FrameOutpu
     let mut s = scene.clone();
     s.quality.integrator = Integrator::Pathtrace;
     let plan = FramePlan::for_scene(&s, false).expect("plan");
-    let frames = SPP;
+    let per_frame = plan.paths_per_frame().expect("a path-traced plan");
+    assert_eq!(
+        SPP % per_frame,
+        0,
+        "SPP is whole frames of {per_frame} paths"
+    );
+    let frames = SPP / per_frame;
     let mut last = None;
     for i in 0..frames {
         let mut f = s.clone();

@@ -34,7 +34,7 @@ pub struct FitArgs {
     /// Image size of the truths and the renders.
     #[arg(long, value_parser = parse_size, default_value = "64x36")]
     size: (u32, u32),
-    /// Paths per pixel of each truth (GPU path tracer, one path a frame).
+    /// Paths per pixel of each truth (GPU path tracer; whole frames of its paths per frame).
     #[arg(long, default_value_t = 512)]
     spp: u32,
     /// Octave counts to try (comma-separated).

@@ -44,7 +44,7 @@ pub enum IntegratorArg {
     /// Volumetric path tracing (delta/ratio tracking, next-event estimation to the sun).
     Montecarlo,
     /// The path tracer on the chosen backend (GPU or cpu), accumulating --spp paths per pixel,
-    /// one a frame; with `--backend reference`, the same as `montecarlo`.
+    /// a workgroup of paths a frame; with `--backend reference`, the same as `montecarlo`.
     Pathtrace,
 }
 
@@ -375,13 +375,14 @@ pub fn run(args: RenderArgs) -> Result<()> {
             "--integrator montecarlo is the CPU reference's path tracer: add --backend reference, or use --integrator pathtrace to path trace on this backend"
         );
     }
-    // The path tracer on a real-time backend: one path per pixel a frame, --spp frames.
+    // The path tracer on a real-time backend: a few paths per pixel a frame, frames enough for
+    // --spp.
     let progressive =
         args.integrator == IntegratorArg::Pathtrace && args.backend != Backend::Reference;
     if progressive {
         if args.frames != 1 {
             anyhow::bail!(
-                "--frames {}: the path tracer renders one frame per path, --spp {} frames",
+                "--frames {}: the path tracer renders as many frames as --spp {} needs",
                 args.frames,
                 args.spp,
             );
@@ -389,7 +390,6 @@ pub fn run(args: RenderArgs) -> Result<()> {
         scene.quality.integrator = stratus_scene::Integrator::Pathtrace;
         scene.quality.path_orders = args.orders;
     }
-    let frame_count = if progressive { args.spp } else { args.frames };
     if let Some(dir) = &args.sequence {
         std::fs::create_dir_all(dir)
             .with_context(|| format!("--sequence {}: creating the folder", dir.display()))?;
@@ -408,6 +408,20 @@ pub fn run(args: RenderArgs) -> Result<()> {
     let noise_ms = t0.elapsed().as_secs_f64() * 1e3;
     let mut renderer = open_backend(args.backend, &args)?;
     let plan = FramePlan::for_scene(&scene, false)?;
+    // The path tracer adds a fixed number of paths per pixel a frame (the WGSL's): --spp
+    // rounds up to whole frames, and the report says how many paths were traced.
+    let per_frame = if progressive {
+        plan.paths_per_frame()
+            .context("the path-traced plan has no pathtrace pass")?
+    } else {
+        1
+    };
+    let frame_count = if progressive {
+        args.spp.max(1).div_ceil(per_frame)
+    } else {
+        args.frames
+    };
+    let spp = frame_count * per_frame;
     let render = |r: &mut Box<dyn stratus_graph::Backend>, input: &FrameInput<'_>| {
         r.render(input).map_err(|e| anyhow::anyhow!("{e}"))
     };
@@ -461,7 +475,14 @@ pub fn run(args: RenderArgs) -> Result<()> {
         frame.width,
         frame.height,
         if progressive {
-            format!(", {} paths per pixel in {frame_count} frames", args.spp)
+            format!(
+                ", {spp} paths per pixel in {frame_count} frames of {per_frame}{}",
+                if spp == args.spp {
+                    String::new()
+                } else {
+                    format!(" (--spp {} rounded up to whole frames)", args.spp)
+                }
+            )
         } else if args.frames > 1 {
             format!(", the last of {} frames", args.frames)
         } else {
@@ -481,7 +502,7 @@ pub fn run(args: RenderArgs) -> Result<()> {
             .filter(|t| t.pass == "pathtrace")
             .map(|t| t.ms)
             .sum();
-        let paths = f64::from(frame.width) * f64::from(frame.height) * f64::from(args.spp);
+        let paths = f64::from(frame.width) * f64::from(frame.height) * f64::from(spp);
         println!(
             "path tracer: {:.3} Mpaths/s ({paths:.0} paths in {pass_ms:.0} ms of pathtrace passes, {source}); {wall_ms:.0} ms wall",
             paths / pass_ms.max(1e-9) / 1e3,

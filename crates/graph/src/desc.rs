@@ -363,6 +363,10 @@ pub struct PassDesc {
     /// What the pass covers: a compute pass dispatches over it, a raster pass's viewport.
     #[serde(default)]
     pub extent: ExtentDesc,
+    /// A compute pass that dispatches one workgroup per texel of its extent (its invocations
+    /// share the texel: the path tracer's paths of one pixel) rather than one invocation.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub workgroup_per_texel: bool,
     /// Runs only when this frame flag is set (`!flag`: only when it is not). Frames set
     /// `stats` when counting, `history` once last frame's history is valid, `stale:NAME` while
     /// the computed persistent resource NAME has no result (new, or invalidated by the host),

@@ -327,6 +327,22 @@ impl FramePlan {
             .map_or(&[], |r| &r.counters[..])
     }
 
+    /// The workgroup size of the compute pass called `name`, where the plan holds one.
+    pub fn workgroup_size(&self, name: &str) -> Option<[u32; 3]> {
+        self.passes.iter().find_map(|p| match &p.kind {
+            PassKind::Compute { workgroup_size, .. } if p.name == name => Some(*workgroup_size),
+            _ => None,
+        })
+    }
+
+    /// The paths per pixel one frame of the path tracer adds, where the plan path traces:
+    /// the invocations of the `pathtrace` pass's workgroup (in `wgsl/pathtrace.wgsl` a pixel
+    /// is a workgroup, `workgroup_per_texel` in the graph, one path an invocation), so the
+    /// WGSL is the one place that says it.
+    pub fn paths_per_frame(&self) -> Option<u32> {
+        self.workgroup_size("pathtrace").map(|w| w.iter().product())
+    }
+
     /// Whether any resource is a history pair.
     pub fn has_history(&self) -> bool {
         self.resources
@@ -670,10 +686,15 @@ impl FramePlan {
                         .map(|e| e.workgroup_size)
                         .unwrap_or([1, 1, 1])
                         .map(|n| n.max(1));
+                    let dispatch = if pd.workgroup_per_texel {
+                        [ew, eh, 1]
+                    } else {
+                        [ew.div_ceil(wg[0]), eh.div_ceil(wg[1]), 1]
+                    };
                     PassKind::Compute {
                         entry: entry.clone(),
                         workgroup_size: wg,
-                        dispatch: [ew.div_ceil(wg[0]), eh.div_ceil(wg[1]), 1],
+                        dispatch,
                     }
                 }
                 None => {

@@ -615,7 +615,14 @@ impl stratus_graph::Backend for CpuBackend {
             // (the reference's own Monte Carlo integrator renders a still in one go).
             Integrator::Quadrature(_) if pathtrace => {
                 self.temporal = temporal::TemporalState::default();
-                progressive::render(frame.scene, frame.noise, frame.cut, &mut self.pathtrace)
+                let paths = frame.plan.paths_per_frame().unwrap_or(1);
+                progressive::render(
+                    frame.scene,
+                    frame.noise,
+                    frame.cut,
+                    paths,
+                    &mut self.pathtrace,
+                )
             }
             Integrator::Quadrature(settings) if temporal => {
                 if frame.cut {

@@ -1,7 +1,7 @@
 //! The path tracer as a real-time renderer runs it (`quality.integrator = "pathtrace"`): every
-//! frame adds one path per pixel (streams seeded by `quality.frame`) to running means kept
-//! between frames, as `wgsl/pathtrace.wgsl` does in its history. A cut, a
-//! new size or a moved camera starts over.
+//! frame adds the plan's paths per frame to each pixel (streams seeded by the pixel, the sample
+//! and `quality.frame`) to running means kept between frames, as `wgsl/pathtrace.wgsl` does
+//! in its history. A cut, a new size or a moved camera starts over.
 
 use std::time::Instant;
 
@@ -29,13 +29,15 @@ fn same_view(a: &FrameUniforms, b: &FrameUniforms) -> bool {
         && a.counts[..2] == b.counts[..2]
 }
 
-/// One frame of the progressive path tracer: one more path per pixel.
+/// One frame of the progressive path tracer: `paths` more paths per pixel.
 pub(crate) fn render(
     scene: &Scene,
     noise: &NoiseSet,
     cut: bool,
+    paths: u32,
     state: &mut PathState,
 ) -> FrameOutput {
+    let paths = paths.max(1);
     let q = &scene.quality;
     let u = scene.uniforms();
     // The frame and its physical sky's tables, once for the paths and the composite.
@@ -44,22 +46,22 @@ pub(crate) fn render(
     let mut out = render_model(
         &model,
         &Integrator::MonteCarlo {
-            spp: 1,
+            spp: paths,
             orders: q.path_orders,
         },
         false,
     )
     .output;
-    // One more path per pixel joins the running mean.
+    // This frame's paths (their mean) join the running mean with their count's weight.
     let (n, mean) = match state.history.take() {
         Some((n, last, mut mean)) if !cut && same_view(&last, &u) => {
-            let w = 1.0 / (n + 1) as f32;
+            let w = paths as f32 / (n + paths) as f32;
             for (m, x) in mean.iter_mut().zip(&out.radiance) {
                 *m += (x - *m) * w;
             }
-            (n + 1, mean)
+            (n + paths, mean)
         }
-        _ => (1, out.radiance.clone()),
+        _ => (paths, out.radiance.clone()),
     };
     out.radiance.clone_from(&mean);
     state.history = Some((n, u, mean));
@@ -96,11 +98,15 @@ mod tests {
     use crate::{RenderOptions, render_medium};
     use stratus_graph::{Backend, FrameInput, FramePlan};
 
-    fn single(scene: &Scene, noise: &NoiseSet) -> Vec<f32> {
+    /// One frame's paths, as the reference's Monte Carlo integrator renders them in one go.
+    fn single(scene: &Scene, noise: &NoiseSet, paths: u32) -> Vec<f32> {
         render_medium(
             scene,
             Medium::Clouds(noise),
-            &Integrator::MonteCarlo { spp: 1, orders: 0 },
+            &Integrator::MonteCarlo {
+                spp: paths,
+                orders: 0,
+            },
             &RenderOptions {
                 progress: false,
                 threads: None,
@@ -110,7 +116,8 @@ mod tests {
         .radiance
     }
 
-    /// Frames join the running mean of one-path frames; a moved camera or a cut starts over.
+    /// Frames join the running mean of their frames' paths; a moved camera or a cut starts
+    /// over.
     #[test]
     fn frames_accumulate_until_the_camera_moves() {
         let noise = std::sync::Arc::new(NoiseSet::generate(&stratus_noise::NoiseConfig {
@@ -123,6 +130,7 @@ mod tests {
         scene.camera.pitch_deg = 20.0;
         scene.quality.integrator = stratus_scene::Integrator::Pathtrace;
         let plan = FramePlan::for_scene(&scene, false).unwrap();
+        let paths = plan.paths_per_frame().expect("a path-traced plan");
         let mut cpu = crate::CpuBackend::default();
         let frame = |i: u32, s: &Scene| {
             let mut s = s.clone();
@@ -137,7 +145,9 @@ mod tests {
                 .unwrap()
                 .radiance;
         }
-        let singles: Vec<Vec<f32>> = (0..3).map(|i| single(&frame(i, &scene), &noise)).collect();
+        let singles: Vec<Vec<f32>> = (0..3)
+            .map(|i| single(&frame(i, &scene), &noise, paths))
+            .collect();
         assert!(singles[0] != singles[1], "frames draw different paths");
         for (k, v) in last.iter().enumerate() {
             let mean = (singles[0][k] + singles[1][k] + singles[2][k]) / 3.0;
@@ -150,11 +160,11 @@ mod tests {
         let mut moved = frame(3, &scene);
         moved.camera.yaw_deg += 1.0;
         let out = cpu.render(&FrameInput::new(&plan, &moved, &noise)).unwrap();
-        assert_eq!(out.radiance, single(&moved, &noise));
+        assert_eq!(out.radiance, single(&moved, &noise, paths));
         let cut = frame(4, &moved);
         let out = cpu
             .render(&FrameInput::new(&plan, &cut, &noise).with_cut())
             .unwrap();
-        assert_eq!(out.radiance, single(&cut, &noise));
+        assert_eq!(out.radiance, single(&cut, &noise, paths));
     }
 }

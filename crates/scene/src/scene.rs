@@ -790,7 +790,7 @@ pub struct Quality {
     /// over frames; the march's step settings and methods do not apply).
     pub integrator: Integrator,
     /// Path tracer: the most scattering orders a path contributes (0 = all). Each frame adds
-    /// one path per pixel.
+    /// a workgroup of paths per pixel (`wgsl/pathtrace.wgsl`'s `PATHS_PER_FRAME`).
     pub path_orders: u32,
     /// `"volumetric"` (the model), or a baseline it is measured against: `"basic"` (the
     /// tutorial ray marcher) or `"sprites"` (Wang 2003). The baselines run on the GPU backends

@@ -60,6 +60,11 @@ const HLSL_SAMPLER_REGISTER: u32 = BINDINGS_PER_GROUP;
 /// and space 255 is out of its range (it keeps 7 bits of the set, and any re-mapping option
 /// fails with "mapped set out of range"). So they move to space 0 above the groups' bindings:
 /// the heap at `s32`, the comparison heap at `s33`, group `g`'s index buffer at `t(34 + g)`.
+///
+/// Workgroup memory is not zero-initialised: naga writes that as a cast of 0 to the array type
+/// (`lane_sums = (float4[32])0;`), which glslang's HLSL front end cannot parse. The WGSL
+/// writes every workgroup element before a barrier and reads it after (the path tracer's
+/// lanes), so it never reads the initial value.
 fn hlsl_options(module: &naga::Module) -> back::hlsl::Options {
     let at = |register: u32| back::hlsl::BindTarget {
         space: 0,
@@ -83,6 +88,7 @@ fn hlsl_options(module: &naga::Module) -> back::hlsl::Options {
             comparison_samplers: at(HLSL_SAMPLER_REGISTER + 1),
         },
         sampler_buffer_binding_map,
+        zero_initialize_workgroup_memory: false,
         ..Default::default()
     }
 }

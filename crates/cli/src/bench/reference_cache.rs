@@ -66,9 +66,10 @@ fn reference_for(scene: &Scene) -> (Integrator, Scene, bool) {
     }
 }
 
-/// `spp` paths per pixel of the GPU path tracer (`wgsl/pathtrace.wgsl`) on `renderer`, one
-/// frame each, accumulated in its history: the all-orders truth of `scene` (whose octaves and
-/// Beer-Powder the path tracer ignores). `progress` is told each frame.
+/// `spp` paths per pixel (rounded up to whole frames) of the GPU path tracer
+/// (`wgsl/pathtrace.wgsl`) on `renderer`, accumulated in its history over frames: the
+/// all-orders truth of `scene` (whose octaves and Beer-Powder the path tracer ignores).
+/// `progress` is told the paths per pixel so far after each frame.
 pub(crate) fn pathtrace_gpu(
     renderer: &mut dyn Backend,
     scene: &Scene,
@@ -81,12 +82,16 @@ pub(crate) fn pathtrace_gpu(
     s.quality.integrator = stratus_scene::Integrator::Pathtrace;
     s.quality.path_orders = 0;
     let plan = FramePlan::for_scene(&s, false)?;
+    let per_frame = plan
+        .paths_per_frame()
+        .context("the path-traced plan has no pathtrace pass")?;
+    let frames = spp.max(1).div_ceil(per_frame);
     let mut last = None;
-    for i in 0..spp.max(1) {
+    for i in 0..frames {
         let mut f = s.clone();
         f.quality.frame = i;
         // The first frame starts over: the renderer may hold another scene's paths.
-        let mut input = FrameInput::new(&plan, &f, noise).with_readback(if i + 1 == spp.max(1) {
+        let mut input = FrameInput::new(&plan, &f, noise).with_readback(if i + 1 == frames {
             Readback::output()
         } else {
             Readback::none()
@@ -99,7 +104,7 @@ pub(crate) fn pathtrace_gpu(
                 .render(&input)
                 .map_err(|e| anyhow::anyhow!("{e}"))?,
         );
-        progress(i + 1);
+        progress((i + 1) * per_frame);
     }
     let out = last.expect("at least one path");
     check_finite(&out)?;
@@ -126,7 +131,9 @@ pub(crate) fn reference(
         if on_gpu {
             h.update(b"gpu-pathtrace");
         }
-        h.update(b"stratus-reference-cache-v1");
+        // v2: the GPU path tracer traces a workgroup of paths per pixel a frame (other
+        // random streams than v1's one path a frame).
+        h.update(b"stratus-reference-cache-v2");
         h.finalize()
             .iter()
             .take(12)
