@@ -4,6 +4,7 @@ mod animate;
 mod astro;
 mod bench;
 mod compare;
+mod convergence;
 mod export;
 mod fit;
 mod kit;

@@ -440,7 +440,13 @@ pub fn run(args: RenderArgs) -> Result<()> {
             frame_scene(&scene, i, 60.0)
         };
         let is_last = i + 1 == frame_count;
-        let readback = if is_last || args.sequence.is_some() {
+        let readback = if is_last && progressive {
+            // The path tracer's per-pixel moments, for the noise estimate.
+            Readback {
+                output: true,
+                resources: vec!["history-meta".into()],
+            }
+        } else if is_last || args.sequence.is_some() {
             Readback::output()
         } else {
             Readback::none()
@@ -507,6 +513,7 @@ pub fn run(args: RenderArgs) -> Result<()> {
             "path tracer: {:.3} Mpaths/s ({paths:.0} paths in {pass_ms:.0} ms of pathtrace passes, {source}); {wall_ms:.0} ms wall",
             paths / pass_ms.max(1e-9) / 1e3,
         );
+        print_convergence(&frame);
     } else if args.frames == 1 {
         let gpu_ms: f64 = frame.timings.iter().map(|t| t.ms).sum();
         let passes: Vec<String> = frame
@@ -570,4 +577,31 @@ pub fn run(args: RenderArgs) -> Result<()> {
         println!("wrote {}", path.display());
     }
     Ok(())
+}
+
+/// The path tracer's noise per 8x8 block (where the backend keeps its per-pixel moments: the
+/// GPU backends; the CPU's progressive renderer keeps means only).
+fn print_convergence(frame: &FrameOutput) {
+    let Some(meta) = frame.resources.get("history-meta") else {
+        return;
+    };
+    match crate::convergence::block_noise(frame, meta) {
+        Some(c) => println!(
+            "noise: relative standard error of the {b}x{b} blocks' mean luminance: worst {:.2}%, median {:.2}% ({} blocks; {} without cloud not judged): {}",
+            c.worst * 100.0,
+            c.median * 100.0,
+            c.blocks,
+            c.empty,
+            if c.converged() {
+                "converged (every block below 1%)".to_string()
+            } else {
+                format!(
+                    "not converged (below 1% in every block needs about {:.0} paths a pixel)",
+                    c.paths_for_converged().ceil()
+                )
+            },
+            b = crate::convergence::BLOCK,
+        ),
+        None => println!("noise: no block holds cloud radiance"),
+    }
 }

@@ -53,6 +53,7 @@ fn gpu_path_tracer_mean_matches_the_reference() {
         "{text}"
     );
     assert!(text.contains("Mpaths/s"), "{text}");
+    let median_256 = median_noise(&text);
     let (ok, text) = stratus(&[
         "render",
         "--preset",
@@ -83,6 +84,48 @@ fn gpu_path_tracer_mean_matches_the_reference() {
         g[3],
         c[3]
     );
+
+    // The noise report follows the paths: an eighth of them, sqrt(8) = 2.8 times the
+    // relative standard error (the median block's; heavy-tailed paths make a 32-path
+    // estimate of the variance low, hence the loose lower bound).
+    let (ok, text) = stratus(&[
+        "render",
+        "--preset",
+        "cumulus-noon",
+        "--size",
+        "64x36",
+        "--integrator",
+        "pathtrace",
+        "--spp",
+        "32",
+        "--backend",
+        "wgpu",
+        "--out",
+        dir.join("pt32.exr").to_str().unwrap(),
+    ]);
+    assert!(ok, "{text}");
+    assert!(text.contains("not converged"), "{text}");
+    let ratio = median_noise(&text) / median_256;
+    assert!(
+        (1.8..4.0).contains(&ratio),
+        "32 paths' noise is {ratio:.2} times 256 paths' (expected about 2.8)"
+    );
+}
+
+/// The median block's relative standard error from `stratus render`'s noise line.
+fn median_noise(text: &str) -> f64 {
+    let line = text
+        .lines()
+        .find(|l| l.starts_with("noise: relative standard error"))
+        .unwrap_or_else(|| panic!("no noise line in: {text}"));
+    let value = line
+        .split("median ")
+        .nth(1)
+        .and_then(|r| r.split('%').next())
+        .and_then(|v| v.parse::<f64>().ok())
+        .unwrap_or_else(|| panic!("no median in: {line}"));
+    assert!(value > 0.0 && value.is_finite(), "{line}");
+    value
 }
 
 /// The CPU reference's integrator on a GPU backend, temporal upsampling and --frames with the

@@ -92,7 +92,11 @@ pub(crate) fn pathtrace_gpu(
         f.quality.frame = i;
         // The first frame starts over: the renderer may hold another scene's paths.
         let mut input = FrameInput::new(&plan, &f, noise).with_readback(if i + 1 == frames {
-            Readback::output()
+            // With the per-pixel moments, for the noise estimate.
+            Readback {
+                output: true,
+                resources: vec!["history-meta".into()],
+            }
         } else {
             Readback::none()
         });
@@ -168,6 +172,7 @@ pub(crate) fn reference(
             }
             let f = pathtrace_gpu(r, &s, noise, mc_spp, &|i| bar.set_position(u64::from(i)))?;
             bar.finish_and_clear();
+            report_noise(&f);
             f
         }
         _ => stratus_reference::render(&s, noise, &integrator, false),
@@ -206,6 +211,27 @@ fn decode(b: &[u8], w: u32, h: u32) -> Option<FrameOutput> {
         device: "cache".into(),
         ..Default::default()
     })
+}
+
+/// Prints how converged a freshly rendered truth is (its 8x8 blocks' noise).
+fn report_noise(out: &FrameOutput) {
+    if let Some(c) = out
+        .resources
+        .get("history-meta")
+        .and_then(|meta| crate::convergence::block_noise(out, meta))
+    {
+        eprintln!(
+            "  truth: {} paths a pixel, 8x8 blocks' relative standard error worst {:.2}%, median {:.2}%{}",
+            c.paths,
+            c.worst * 100.0,
+            c.median * 100.0,
+            if c.converged() {
+                " (converged)"
+            } else {
+                " (not converged: above 1%)"
+            }
+        );
+    }
 }
 
 #[cfg(test)]
