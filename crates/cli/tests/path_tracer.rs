@@ -31,22 +31,7 @@ fn gpu_path_tracer_mean_matches_the_reference() {
     let dir = scratch("pathtrace");
     let gpu = dir.join("pt.exr");
     let cpu = dir.join("mc.exr");
-    let (ok, text) = stratus(&[
-        "render",
-        "--preset",
-        "cumulus-noon",
-        "--size",
-        "64x36",
-        "--integrator",
-        "pathtrace",
-        "--spp",
-        "256",
-        "--backend",
-        "wgpu",
-        "--out",
-        gpu.to_str().unwrap(),
-    ]);
-    assert!(ok, "{text}");
+    let text = gpu_render(256, &gpu);
     // 256 paths: whole frames of the WGSL's paths per frame (32 today).
     assert!(
         text.contains("256 paths per pixel in ") && text.contains(" frames of "),
@@ -88,6 +73,18 @@ fn gpu_path_tracer_mean_matches_the_reference() {
     // The noise report follows the paths: an eighth of them, sqrt(8) = 2.8 times the
     // relative standard error (the median block's; heavy-tailed paths make a 32-path
     // estimate of the variance low, hence the loose lower bound).
+    let text = gpu_render(32, &dir.join("pt32.exr"));
+    assert!(text.contains("not converged"), "{text}");
+    let ratio = median_noise(&text) / median_256;
+    assert!(
+        (1.8..4.0).contains(&ratio),
+        "32 paths' noise is {ratio:.2} times 256 paths' (expected about 2.8)"
+    );
+}
+
+/// `spp` paths per pixel of `cumulus-noon` at 64x36 on wgpu into `out`: what it printed.
+fn gpu_render(spp: u32, out: &Path) -> String {
+    let spp = spp.to_string();
     let (ok, text) = stratus(&[
         "render",
         "--preset",
@@ -97,19 +94,14 @@ fn gpu_path_tracer_mean_matches_the_reference() {
         "--integrator",
         "pathtrace",
         "--spp",
-        "32",
+        &spp,
         "--backend",
         "wgpu",
         "--out",
-        dir.join("pt32.exr").to_str().unwrap(),
+        out.to_str().unwrap(),
     ]);
     assert!(ok, "{text}");
-    assert!(text.contains("not converged"), "{text}");
-    let ratio = median_noise(&text) / median_256;
-    assert!(
-        (1.8..4.0).contains(&ratio),
-        "32 paths' noise is {ratio:.2} times 256 paths' (expected about 2.8)"
-    );
+    text
 }
 
 /// The median block's relative standard error from `stratus render`'s noise line.
