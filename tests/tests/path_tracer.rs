@@ -21,8 +21,6 @@ const SPP: u32 = 192;
 /// 4.0) over 12 blocks is below 0.1%.
 const MAX_Z: f64 = 4.0;
 
-const LUMA: [f64; 3] = [0.2126, 0.7152, 0.0722];
-
 fn noise() -> Arc<NoiseSet> {
     Arc::new(NoiseSet::generate(&NoiseConfig::default()))
 }
@@ -74,38 +72,24 @@ fn gpu(r: &mut dyn Backend, scene: &Scene, noise: &Arc<NoiseSet>) -> (FrameOutpu
     (out, meta)
 }
 
-fn luma(v: &[f32]) -> f64 {
-    (0..3).map(|c| LUMA[c] * f64::from(v[c])).sum()
-}
-
-/// Per block: GPU mean luminance and its standard error.
+/// Per block: GPU mean luminance and its standard error (`block_means`, the noise report's),
+/// after checking that every pixel accumulated SPP paths.
 fn gpu_blocks(out: &FrameOutput, meta: &[f32]) -> Vec<(f64, f64)> {
-    let mut blocks = Vec::new();
-    for by in (0..HEIGHT).step_by(BLOCK as usize) {
-        for bx in (0..WIDTH).step_by(BLOCK as usize) {
-            let (mut mean, mut var) = (0.0, 0.0);
-            let n = f64::from(BLOCK * BLOCK);
-            for y in by..by + BLOCK {
-                for x in bx..bx + BLOCK {
-                    let i = (y * WIDTH + x) as usize;
-                    let l = luma(&out.radiance[4 * i..4 * i + 3]);
-                    let paths = f64::from(meta[4 * i + 1]);
-                    assert_eq!(
-                        paths,
-                        f64::from(SPP),
-                        "pixel ({x}, {y}) accumulated {paths} paths"
-                    );
-                    let second = f64::from(meta[4 * i + 2]);
-                    mean += l / n;
-                    // The per-path variance of the luminance over the pixel's paths.
-                    let v = (second - l * l).max(0.0) * paths / (paths - 1.0);
-                    var += v / paths;
-                }
-            }
-            blocks.push((mean, var.sqrt() / n));
-        }
+    for (i, m) in meta.chunks(4).enumerate() {
+        let (x, y) = (i as u32 % WIDTH, i as u32 / WIDTH);
+        assert_eq!(
+            f64::from(m[1]),
+            f64::from(SPP),
+            "pixel ({x}, {y}) accumulated {} paths",
+            m[1]
+        );
     }
-    blocks
+    let bytes = &out.resources["history-meta"];
+    stratus_graph::block_means(out, bytes, BLOCK)
+        .expect("history-meta of the frame's size")
+        .iter()
+        .map(|b| (b.mean, b.variance.sqrt()))
+        .collect()
 }
 
 #[test]
@@ -192,10 +176,14 @@ fn agree(scene: &Scene) {
     let mut cloudy = 0;
     let mut report = Vec::new();
     for (c, &(g, g_se)) in cpu_blocks.iter().zip(&gpu_blocks) {
-        let c_mean: f64 = (0..3).map(|k| LUMA[k] * c.mean[k]).sum();
+        let c_mean: f64 = (0..3)
+            .map(|k| stratus_graph::output::LUMA[k] * c.mean[k])
+            .sum();
         // Channels of one path are strongly correlated: the luminance's standard error is at
         // most the weighted sum of the channels'.
-        let c_se: f64 = (0..3).map(|k| LUMA[k] * c.std_error[k]).sum();
+        let c_se: f64 = (0..3)
+            .map(|k| stratus_graph::output::LUMA[k] * c.std_error[k])
+            .sum();
         if c_mean < 0.02 {
             // Clear sky on the CPU: the GPU must see none either.
             assert!(g < 0.02, "block ({}, {}): gpu {g}, cpu {c_mean}", c.x, c.y);

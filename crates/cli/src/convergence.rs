@@ -41,61 +41,31 @@ impl Convergence {
     }
 }
 
-const LUMA: [f64; 3] = [0.2126, 0.7152, 0.0722];
-
 /// The noise of `out`'s radiance given its `history-meta` texels (rgba32float, tightly
 /// packed); `None` where the sizes disagree or no block holds cloud.
 pub(crate) fn block_noise(out: &FrameOutput, meta: &[u8]) -> Option<Convergence> {
-    let (w, h) = (out.width as usize, out.height as usize);
-    let floats: Vec<f64> = meta
-        .chunks_exact(4)
-        .map(|c| f64::from(f32::from_le_bytes([c[0], c[1], c[2], c[3]])))
-        .collect();
-    if floats.len() != 4 * w * h || out.radiance.len() != 4 * w * h {
-        return None;
-    }
-    let b = BLOCK as usize;
-    // (mean luminance, variance of that mean) per block.
-    let mut blocks = Vec::new();
-    for by in (0..h).step_by(b) {
-        for bx in (0..w).step_by(b) {
-            let (mut sum, mut var, mut n) = (0.0, 0.0, 0.0);
-            for y in by..(by + b).min(h) {
-                for x in bx..(bx + b).min(w) {
-                    let i = y * w + x;
-                    let l: f64 = (0..3)
-                        .map(|c| LUMA[c] * f64::from(out.radiance[4 * i + c]))
-                        .sum();
-                    let paths = floats[4 * i + 1];
-                    let second = floats[4 * i + 2];
-                    sum += l;
-                    n += 1.0;
-                    if paths > 1.0 {
-                        // The per-path variance over the pixel's paths, then its mean's.
-                        var += (second - l * l).max(0.0) / (paths - 1.0);
-                    }
-                }
-            }
-            blocks.push((sum / n, var / (n * n)));
-        }
-    }
-    let brightest = blocks.iter().map(|b| b.0).fold(0.0, f64::max);
+    let blocks = stratus_graph::block_means(out, meta, BLOCK)?;
+    let brightest = blocks.iter().map(|b| b.mean).fold(0.0, f64::max);
     if brightest <= 0.0 {
         return None;
     }
     let mut rel: Vec<f64> = blocks
         .iter()
-        .filter(|b| b.0 > EMPTY * brightest)
-        .map(|b| b.1.sqrt() / b.0)
+        .filter(|b| b.mean > EMPTY * brightest)
+        .map(|b| b.variance.sqrt() / b.mean)
         .collect();
     rel.sort_by(f64::total_cmp);
     let judged = rel.len();
+    // Every pixel has the same path count: the first's (history-meta's second float).
+    let paths = meta
+        .get(4..8)
+        .map(|c| f64::from(f32::from_le_bytes([c[0], c[1], c[2], c[3]])))?;
     Some(Convergence {
         worst: *rel.last()?,
         median: rel[judged / 2],
         blocks: judged,
         empty: blocks.len() - judged,
-        paths: floats[1],
+        paths,
     })
 }
 

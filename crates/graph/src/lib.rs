@@ -21,6 +21,6 @@ pub mod program;
 pub use backend::{Backend, BackendError, FrameInput, Readback};
 pub use desc::{GraphDesc, GraphError};
 pub use manifest::Manifest;
-pub use output::{FrameOutput, PassTiming, named_counters};
+pub use output::{BlockMean, FrameOutput, PassTiming, block_means, named_counters};
 pub use plan::{FramePlan, MAX_RESOLUTION, PlanError, PlanOptions, Requirements};
 pub use program::Program;

@@ -40,6 +40,68 @@ pub struct PassTiming {
     pub source: &'static str,
 }
 
+/// Rec. 709 luminance weights, the path tracer's (`wgsl/pathtrace.wgsl`'s `luminance`).
+pub const LUMA: [f64; 3] = [0.2126, 0.7152, 0.0722];
+
+/// One block of a path-traced frame: the mean luminance of its pixels and the variance of that
+/// mean.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BlockMean {
+    /// Left column of the block.
+    pub x: u32,
+    /// Top row of the block.
+    pub y: u32,
+    /// Mean luminance over the block's pixels.
+    pub mean: f64,
+    /// Variance of `mean`: each pixel's per-path variance over its paths (unbiased), over its
+    /// path count, summed and divided by the square of the pixel count.
+    pub variance: f64,
+}
+
+/// The `block` x `block` blocks (partial at the right and bottom edges) of a path-traced
+/// frame's radiance, with the noise of each block's mean from the path tracer's `meta` texels
+/// (`history-meta`, rgba32float tightly packed: depth, paths, mean squared luminance, hits).
+/// `None` where the sizes disagree.
+pub fn block_means(out: &FrameOutput, meta: &[u8], block: u32) -> Option<Vec<BlockMean>> {
+    let (w, h) = (out.width as usize, out.height as usize);
+    let meta: Vec<f64> = meta
+        .chunks_exact(4)
+        .map(|c| f64::from(f32::from_le_bytes([c[0], c[1], c[2], c[3]])))
+        .collect();
+    if meta.len() != 4 * w * h || out.radiance.len() != 4 * w * h || block == 0 {
+        return None;
+    }
+    let b = block as usize;
+    let mut blocks = Vec::new();
+    for by in (0..h).step_by(b) {
+        for bx in (0..w).step_by(b) {
+            let (mut sum, mut var, mut n) = (0.0, 0.0, 0.0);
+            for y in by..(by + b).min(h) {
+                for x in bx..(bx + b).min(w) {
+                    let i = y * w + x;
+                    let l: f64 = (0..3)
+                        .map(|c| LUMA[c] * f64::from(out.radiance[4 * i + c]))
+                        .sum();
+                    let (paths, second) = (meta[4 * i + 1], meta[4 * i + 2]);
+                    sum += l;
+                    n += 1.0;
+                    if paths > 1.0 {
+                        // The per-path variance (second - l^2) paths / (paths - 1), over paths.
+                        var += (second - l * l).max(0.0) / (paths - 1.0);
+                    }
+                }
+            }
+            blocks.push(BlockMean {
+                x: bx as u32,
+                y: by as u32,
+                mean: sum / n,
+                variance: var / (n * n),
+            });
+        }
+    }
+    Some(blocks)
+}
+
 /// Names the counters read back from a statistics buffer.
 pub fn named_counters(names: &[String], raw: &[u32]) -> BTreeMap<String, u64> {
     names
