@@ -1539,6 +1539,7 @@ float sun_optical_depth(
 float sun_scattering(
     float cos_theta_5,
     float tau_5,
+    float build,
     constant Frame& frame
 ) {
     float octave_sum = 0.0;
@@ -1550,51 +1551,64 @@ float sun_scattering(
     float a_8 = frame.multiple_scattering.x;
     float b_8 = frame.multiple_scattering.y;
     float c_8 = frame.multiple_scattering.z;
-    uint _e17 = frame.misc.x;
-    uint octaves = metal::min(_e17, MAX_OCTAVES);
+    uint _e18 = frame.misc.x;
+    uint octaves = metal::min(_e18, MAX_OCTAVES);
     uint2 loop_bound_6 = uint2(4294967295u);
     bool loop_init_6 = true;
     while(true) {
         if (metal::all(loop_bound_6 == uint2(0u))) { break; }
         loop_bound_6 -= uint2(loop_bound_6.y == 0u, 1u);
         if (!loop_init_6) {
-            uint _e50 = i_11;
-            i_11 = _e50 + 1u;
+            uint _e51 = i_11;
+            i_11 = _e51 + 1u;
         }
         loop_init_6 = false;
-        uint _e30 = i_11;
-        if (_e30 < octaves) {
+        uint _e31 = i_11;
+        if (_e31 < octaves) {
         } else {
             break;
         }
         {
-            float _e32 = ka;
-            ka = _e32 * a_8;
-            float _e34 = kb;
-            kb = _e34 * b_8;
-            float _e36 = kc;
-            kc = _e36 * c_8;
-            float _e38 = octave_sum;
-            float _e39 = ka;
-            float _e40 = kc;
-            float _e41 = phase(cos_theta_5, _e40, frame);
-            float _e43 = kb;
-            octave_sum = _e38 + ((_e39 * _e41) * metal::exp(-(_e43) * tau_5));
+            float _e33 = ka;
+            ka = _e33 * a_8;
+            float _e35 = kb;
+            kb = _e35 * b_8;
+            float _e37 = kc;
+            kc = _e37 * c_8;
+            float _e39 = octave_sum;
+            float _e40 = ka;
+            float _e41 = kc;
+            float _e42 = phase(cos_theta_5, _e41, frame);
+            float _e44 = kb;
+            octave_sum = _e39 + ((_e40 * _e42) / (1.0 + (_e44 * tau_5)));
         }
     }
-    float _e55 = frame.sun_direction.y;
-    float _e56 = saturate(_e55);
-    float _e58 = phase(cos_theta_5, 1.0, frame);
-    float _e62 = octave_sum;
-    total = (_e58 * metal::exp(-(tau_5))) + (_e56 * _e62);
-    uint _e69 = frame.modes.w;
-    if ((_e69 & FLAG_BEER_POWDER) != 0u) {
-        float _e74 = total;
-        float _e78 = frame.phase.w;
-        total = _e74 * (1.0 - metal::exp(-(_e78) * tau_5));
+    float _e56 = frame.sun_direction.y;
+    float _e57 = saturate(_e56);
+    float _e59 = phase(cos_theta_5, 1.0, frame);
+    float _e64 = octave_sum;
+    total = (_e59 * metal::exp(-(tau_5))) + ((_e57 * build) * _e64);
+    uint _e71 = frame.modes.w;
+    if ((_e71 & FLAG_BEER_POWDER) != 0u) {
+        float _e76 = total;
+        float _e80 = frame.phase.w;
+        total = _e76 * (1.0 - metal::exp(-(_e80) * tau_5));
     }
-    float _e85 = total;
-    return _e85;
+    float _e87 = total;
+    return _e87;
+}
+
+float octave_buildup(
+    float density_1,
+    constant Frame& frame
+) {
+    float l_7 = frame.multiple_scattering.w;
+    if (l_7 <= 0.0) {
+        return 1.0;
+    }
+    float _e11 = frame.extinction.x;
+    float _e15 = frame.extinction.y;
+    return 1.0 - metal::exp((-((_e11 + _e15)) * density_1) * l_7);
 }
 
 metal::float3 ambient(
@@ -1628,7 +1642,7 @@ metal::float3 scattered_light(
     metal::float3 rel_2,
     metal::float3 p_7,
     float alt_12,
-    float density_1,
+    float density_2,
     metal::float3 view,
     Layer l_5,
     thread Counters& counters_6,
@@ -1656,16 +1670,17 @@ metal::float3 scattered_light(
         metal::float4 _e24 = frame.sun_illuminance;
         metal::float3 _e26 = sun_through_air(rel_2, frame, transmittance_lut_in);
         float _e29 = tau_6;
-        float _e30 = sun_scattering(metal::dot(view, sun_3), _e29, frame);
-        sun_light = (_e24.xyz * _e26) * _e30;
+        float _e30 = octave_buildup(density_2, frame);
+        float _e31 = sun_scattering(metal::dot(view, sun_3), _e29, _e30, frame);
+        sun_light = (_e24.xyz * _e26) * _e31;
     }
-    Weather _e32 = sample_weather(p_7, l_5, frame, weather_tex, noise_sampler);
-    float _e36 = frame.extinction.z;
-    float _e44 = saturate(1.0 - ((_e36 * _e32.precipitation) * (1.0 - _e12)));
-    float _e48 = frame.extinction.x;
-    metal::float3 _e50 = sun_light;
-    metal::float3 _e51 = ambient(_e12, frame, sky_ambient_in);
-    return ((_e48 * density_1) * (_e50 + _e51)) * _e44;
+    Weather _e33 = sample_weather(p_7, l_5, frame, weather_tex, noise_sampler);
+    float _e37 = frame.extinction.z;
+    float _e45 = saturate(1.0 - ((_e37 * _e33.precipitation) * (1.0 - _e12)));
+    float _e49 = frame.extinction.x;
+    metal::float3 _e51 = sun_light;
+    metal::float3 _e52 = ambient(_e12, frame, sky_ambient_in);
+    return ((_e49 * density_2) * (_e51 + _e52)) * _e45;
 }
 
 metal::float3 shadow_ground_point(
@@ -3339,7 +3354,7 @@ SpriteCandidate sprite_candidate(
     metal::texture2d<float, metal::access::sample> curl_tex,
     metal::sampler noise_sampler
 ) {
-    float density_2 = 0.0;
+    float density_3 = 0.0;
     uint _e10 = pcg(level);
     uint _e12 = pcg(as_type<uint>(c_4.index.y) ^ _e10);
     uint _e14 = pcg(as_type<uint>(c_4.index.x) ^ _e12);
@@ -3362,9 +3377,9 @@ SpriteCandidate sprite_candidate(
     if (!(c_4.covered)) {
         metal::float3 _e87 = sprite_rel(xz_2, alt_17, frame);
         float _e92 = cloud_density(metal::float3(xz_2.x, _e87.y, xz_2.y), alt_17, counters_15, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
-        density_2 = _e92;
+        density_3 = _e92;
     }
-    float _e96 = density_2;
+    float _e96 = density_3;
     return SpriteCandidate {xz_2, alt_17, h_12, u_1.w, v_3.x, v_3.y, _e96, _e57.precipitation};
 }
 
@@ -3925,7 +3940,8 @@ struct sky_ambientInput {
 ) {
     bool local_1 = {};
     metal::float3 sum_1 = metal::float3(0.0);
-    uint k_2 = 0u;
+    float weights = 0.0;
+    uint k_2 = {};
     if (!((id_4.x >= 2u))) {
         local_1 = id_4.y >= 1u;
     } else {
@@ -3935,40 +3951,47 @@ struct sky_ambientInput {
     if (_e11) {
         return;
     }
-    float _e15 = frame.atmosphere.y;
-    float _e19 = frame.atmosphere.z;
-    float alt_m = (id_4.x == 1u) ? _e19 : _e15;
+    bool top_3 = id_4.x == 1u;
+    float _e18 = frame.atmosphere.y;
+    float _e22 = frame.atmosphere.z;
+    float alt_m = top_3 ? _e22 : _e18;
     float _e24 = air_bottom(frame);
     metal::float3 origin_7 = metal::float3(0.0, _e24 + (alt_m * 0.001), 0.0);
+    uint first = top_3 ? 0u : 32u;
+    k_2 = first;
     uint2 loop_bound_26 = uint2(4294967295u);
     bool loop_init_22 = true;
     while(true) {
         if (metal::all(loop_bound_26 == uint2(0u))) { break; }
         loop_bound_26 -= uint2(loop_bound_26.y == 0u, 1u);
         if (!loop_init_22) {
-            uint _e58 = k_2;
-            k_2 = _e58 + 1u;
+            uint _e67 = k_2;
+            k_2 = _e67 + 1u;
         }
         loop_init_22 = false;
-        uint _e36 = k_2;
-        if (_e36 < AMBIENT_DIRECTIONS) {
+        uint _e40 = k_2;
+        if (_e40 < (first + 32u)) {
         } else {
             break;
         }
         {
-            uint _e39 = k_2;
-            metal::float3 _e41 = fibonacci_direction(_e39, AMBIENT_DIRECTIONS);
-            metal::float2 _e42 = air_ray_end(origin_7, _e41, frame);
-            metal::float4 _e45 = frame.sun_direction;
-            metal::float3 sun_10 = _e45.xyz;
-            Scattered _e49 = integrate_air(origin_7, _e41, _e42.x, AMBIENT_STEPS, sun_10, frame, transmittance_lut_in, multiscatter_lut_in);
-            metal::float3 _e50 = sum_1;
-            metal::float3 _e55 = with_ground(_e49, origin_7, _e41, _e42.x, sun_10, _e42.y > 0.5, frame, transmittance_lut_in, ground_irradiance_in);
-            sum_1 = _e50 + _e55;
+            uint _e43 = k_2;
+            metal::float3 _e45 = fibonacci_direction(_e43, AMBIENT_DIRECTIONS);
+            metal::float2 _e46 = air_ray_end(origin_7, _e45, frame);
+            metal::float4 _e49 = frame.sun_direction;
+            metal::float3 sun_10 = _e49.xyz;
+            Scattered _e53 = integrate_air(origin_7, _e45, _e46.x, AMBIENT_STEPS, sun_10, frame, transmittance_lut_in, multiscatter_lut_in);
+            float w_7 = metal::abs(_e45.y);
+            metal::float3 _e56 = sum_1;
+            metal::float3 _e61 = with_ground(_e53, origin_7, _e45, _e46.x, sun_10, _e46.y > 0.5, frame, transmittance_lut_in, ground_irradiance_in);
+            sum_1 = _e56 + (w_7 * _e61);
+            float _e64 = weights;
+            weights = _e64 + w_7;
         }
     }
-    metal::float3 _e62 = sum_1;
-    sky_ambient_out.write(metal::float4(_e62 / metal::float3(64.0), 1.0), metal::uint2(id_4.xy));
+    metal::float3 _e71 = sum_1;
+    float _e72 = weights;
+    sky_ambient_out.write(metal::float4(_e71 / metal::float3(_e72), 1.0), metal::uint2(id_4.xy));
     return;
 }
 

@@ -919,7 +919,7 @@ float phase(float cos_theta_4, float scale) {
     }
 }
 
-float sun_scattering(float cos_theta_5, float tau_5) {
+float sun_scattering(float cos_theta_5, float tau_5, float build) {
     float octave_sum = 0.0;
     float ka = 1.0;
     float kb = 1.0;
@@ -929,48 +929,58 @@ float sun_scattering(float cos_theta_5, float tau_5) {
     float a_7 = _group_0_binding_0_cs.multiple_scattering.x;
     float b_7 = _group_0_binding_0_cs.multiple_scattering.y;
     float c_8 = _group_0_binding_0_cs.multiple_scattering.z;
-    uint _e17 = _group_0_binding_0_cs.misc.x;
-    uint octaves = min(_e17, MAX_OCTAVES);
+    uint _e18 = _group_0_binding_0_cs.misc.x;
+    uint octaves = min(_e18, MAX_OCTAVES);
     bool loop_init_4 = true;
     while(true) {
         if (!loop_init_4) {
-            uint _e50 = i_11;
-            i_11 = (_e50 + 1u);
+            uint _e51 = i_11;
+            i_11 = (_e51 + 1u);
         }
         loop_init_4 = false;
-        uint _e30 = i_11;
-        if ((_e30 < octaves)) {
+        uint _e31 = i_11;
+        if ((_e31 < octaves)) {
         } else {
             break;
         }
         {
-            float _e32 = ka;
-            ka = (_e32 * a_7);
-            float _e34 = kb;
-            kb = (_e34 * b_7);
-            float _e36 = kc;
-            kc = (_e36 * c_8);
-            float _e38 = octave_sum;
-            float _e39 = ka;
-            float _e40 = kc;
-            float _e41 = phase(cos_theta_5, _e40);
-            float _e43 = kb;
-            octave_sum = (_e38 + ((_e39 * _e41) * exp((-(_e43) * tau_5))));
+            float _e33 = ka;
+            ka = (_e33 * a_7);
+            float _e35 = kb;
+            kb = (_e35 * b_7);
+            float _e37 = kc;
+            kc = (_e37 * c_8);
+            float _e39 = octave_sum;
+            float _e40 = ka;
+            float _e41 = kc;
+            float _e42 = phase(cos_theta_5, _e41);
+            float _e44 = kb;
+            octave_sum = (_e39 + ((_e40 * _e42) / (1.0 + (_e44 * tau_5))));
         }
     }
-    float _e55 = _group_0_binding_0_cs.sun_direction.y;
-    float _e56 = saturate(_e55);
-    float _e58 = phase(cos_theta_5, 1.0);
-    float _e62 = octave_sum;
-    total = ((_e58 * exp(-(tau_5))) + (_e56 * _e62));
-    uint _e69 = _group_0_binding_0_cs.modes.w;
-    if (((_e69 & FLAG_BEER_POWDER) != 0u)) {
-        float _e74 = total;
-        float _e78 = _group_0_binding_0_cs.phase.w;
-        total = (_e74 * (1.0 - exp((-(_e78) * tau_5))));
+    float _e56 = _group_0_binding_0_cs.sun_direction.y;
+    float _e57 = saturate(_e56);
+    float _e59 = phase(cos_theta_5, 1.0);
+    float _e64 = octave_sum;
+    total = ((_e59 * exp(-(tau_5))) + ((_e57 * build) * _e64));
+    uint _e71 = _group_0_binding_0_cs.modes.w;
+    if (((_e71 & FLAG_BEER_POWDER) != 0u)) {
+        float _e76 = total;
+        float _e80 = _group_0_binding_0_cs.phase.w;
+        total = (_e76 * (1.0 - exp((-(_e80) * tau_5))));
     }
-    float _e85 = total;
-    return _e85;
+    float _e87 = total;
+    return _e87;
+}
+
+float octave_buildup(float density_1) {
+    float l_7 = _group_0_binding_0_cs.multiple_scattering.w;
+    if ((l_7 <= 0.0)) {
+        return 1.0;
+    }
+    float _e11 = _group_0_binding_0_cs.extinction.x;
+    float _e15 = _group_0_binding_0_cs.extinction.y;
+    return (1.0 - exp(((-((_e11 + _e15)) * density_1) * l_7)));
 }
 
 float height_fraction(float alt_11) {
@@ -1699,6 +1709,7 @@ void main() {
     uvec3 id_4 = gl_GlobalInvocationID;
     bool local_1 = false;
     vec3 sum_1 = vec3(0.0);
+    float weights = 0.0;
     uint k_2 = 0u;
     if (!((id_4.x >= 2u))) {
         local_1 = (id_4.y >= 1u);
@@ -1709,37 +1720,44 @@ void main() {
     if (_e11) {
         return;
     }
-    float _e15 = _group_0_binding_0_cs.atmosphere.y;
-    float _e19 = _group_0_binding_0_cs.atmosphere.z;
-    float alt_m = ((id_4.x == 1u) ? _e19 : _e15);
+    bool top_1 = (id_4.x == 1u);
+    float _e18 = _group_0_binding_0_cs.atmosphere.y;
+    float _e22 = _group_0_binding_0_cs.atmosphere.z;
+    float alt_m = (top_1 ? _e22 : _e18);
     float _e24 = air_bottom();
     vec3 origin_6 = vec3(0.0, (_e24 + (alt_m * 0.001)), 0.0);
+    uint first = (top_1 ? 0u : 32u);
+    k_2 = first;
     bool loop_init_9 = true;
     while(true) {
         if (!loop_init_9) {
-            uint _e58 = k_2;
-            k_2 = (_e58 + 1u);
+            uint _e67 = k_2;
+            k_2 = (_e67 + 1u);
         }
         loop_init_9 = false;
-        uint _e36 = k_2;
-        if ((_e36 < AMBIENT_DIRECTIONS)) {
+        uint _e40 = k_2;
+        if ((_e40 < (first + 32u))) {
         } else {
             break;
         }
         {
-            uint _e39 = k_2;
-            vec3 _e41 = fibonacci_direction(_e39, AMBIENT_DIRECTIONS);
-            vec2 _e42 = air_ray_end(origin_6, _e41);
-            vec4 _e45 = _group_0_binding_0_cs.sun_direction;
-            vec3 sun_3 = _e45.xyz;
-            Scattered _e49 = integrate_air(origin_6, _e41, _e42.x, AMBIENT_STEPS, sun_3);
-            vec3 _e50 = sum_1;
-            vec3 _e55 = with_ground(_e49, origin_6, _e41, _e42.x, sun_3, (_e42.y > 0.5));
-            sum_1 = (_e50 + _e55);
+            uint _e43 = k_2;
+            vec3 _e45 = fibonacci_direction(_e43, AMBIENT_DIRECTIONS);
+            vec2 _e46 = air_ray_end(origin_6, _e45);
+            vec4 _e49 = _group_0_binding_0_cs.sun_direction;
+            vec3 sun_3 = _e49.xyz;
+            Scattered _e53 = integrate_air(origin_6, _e45, _e46.x, AMBIENT_STEPS, sun_3);
+            float w_5 = abs(_e45.y);
+            vec3 _e56 = sum_1;
+            vec3 _e61 = with_ground(_e53, origin_6, _e45, _e46.x, sun_3, (_e46.y > 0.5));
+            sum_1 = (_e56 + (w_5 * _e61));
+            float _e64 = weights;
+            weights = (_e64 + w_5);
         }
     }
-    vec3 _e62 = sum_1;
-    imageStore(_group_0_binding_36_cs, ivec2(id_4.xy), vec4((_e62 / vec3(64.0)), 1.0));
+    vec3 _e71 = sum_1;
+    float _e72 = weights;
+    imageStore(_group_0_binding_36_cs, ivec2(id_4.xy), vec4((_e71 / vec3(_e72)), 1.0));
     return;
 }
 

@@ -897,7 +897,7 @@ float phase(float cos_theta_4, float scale) {
     }
 }
 
-float sun_scattering(float cos_theta_5, float tau_5) {
+float sun_scattering(float cos_theta_5, float tau_5, float build) {
     float octave_sum = 0.0;
     float ka = 1.0;
     float kb = 1.0;
@@ -907,48 +907,58 @@ float sun_scattering(float cos_theta_5, float tau_5) {
     float a_8 = _group_0_binding_0_cs.multiple_scattering.x;
     float b_8 = _group_0_binding_0_cs.multiple_scattering.y;
     float c_8 = _group_0_binding_0_cs.multiple_scattering.z;
-    uint _e17 = _group_0_binding_0_cs.misc.x;
-    uint octaves = min(_e17, MAX_OCTAVES);
+    uint _e18 = _group_0_binding_0_cs.misc.x;
+    uint octaves = min(_e18, MAX_OCTAVES);
     bool loop_init_3 = true;
     while(true) {
         if (!loop_init_3) {
-            uint _e50 = i_11;
-            i_11 = (_e50 + 1u);
+            uint _e51 = i_11;
+            i_11 = (_e51 + 1u);
         }
         loop_init_3 = false;
-        uint _e30 = i_11;
-        if ((_e30 < octaves)) {
+        uint _e31 = i_11;
+        if ((_e31 < octaves)) {
         } else {
             break;
         }
         {
-            float _e32 = ka;
-            ka = (_e32 * a_8);
-            float _e34 = kb;
-            kb = (_e34 * b_8);
-            float _e36 = kc;
-            kc = (_e36 * c_8);
-            float _e38 = octave_sum;
-            float _e39 = ka;
-            float _e40 = kc;
-            float _e41 = phase(cos_theta_5, _e40);
-            float _e43 = kb;
-            octave_sum = (_e38 + ((_e39 * _e41) * exp((-(_e43) * tau_5))));
+            float _e33 = ka;
+            ka = (_e33 * a_8);
+            float _e35 = kb;
+            kb = (_e35 * b_8);
+            float _e37 = kc;
+            kc = (_e37 * c_8);
+            float _e39 = octave_sum;
+            float _e40 = ka;
+            float _e41 = kc;
+            float _e42 = phase(cos_theta_5, _e41);
+            float _e44 = kb;
+            octave_sum = (_e39 + ((_e40 * _e42) / (1.0 + (_e44 * tau_5))));
         }
     }
-    float _e55 = _group_0_binding_0_cs.sun_direction.y;
-    float _e56 = saturate(_e55);
-    float _e58 = phase(cos_theta_5, 1.0);
-    float _e62 = octave_sum;
-    total = ((_e58 * exp(-(tau_5))) + (_e56 * _e62));
-    uint _e69 = _group_0_binding_0_cs.modes.w;
-    if (((_e69 & FLAG_BEER_POWDER) != 0u)) {
-        float _e74 = total;
-        float _e78 = _group_0_binding_0_cs.phase.w;
-        total = (_e74 * (1.0 - exp((-(_e78) * tau_5))));
+    float _e56 = _group_0_binding_0_cs.sun_direction.y;
+    float _e57 = saturate(_e56);
+    float _e59 = phase(cos_theta_5, 1.0);
+    float _e64 = octave_sum;
+    total = ((_e59 * exp(-(tau_5))) + ((_e57 * build) * _e64));
+    uint _e71 = _group_0_binding_0_cs.modes.w;
+    if (((_e71 & FLAG_BEER_POWDER) != 0u)) {
+        float _e76 = total;
+        float _e80 = _group_0_binding_0_cs.phase.w;
+        total = (_e76 * (1.0 - exp((-(_e80) * tau_5))));
     }
-    float _e85 = total;
-    return _e85;
+    float _e87 = total;
+    return _e87;
+}
+
+float octave_buildup(float density_1) {
+    float l_7 = _group_0_binding_0_cs.multiple_scattering.w;
+    if ((l_7 <= 0.0)) {
+        return 1.0;
+    }
+    float _e11 = _group_0_binding_0_cs.extinction.x;
+    float _e15 = _group_0_binding_0_cs.extinction.y;
+    return (1.0 - exp(((-((_e11 + _e15)) * density_1) * l_7)));
 }
 
 float height_fraction(float alt_11) {

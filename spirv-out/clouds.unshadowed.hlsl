@@ -1492,7 +1492,7 @@ float sun_optical_depth(float3 rel_1, float3 p_6, Layer l_4, inout Counters coun
     return _e141;
 }
 
-float sun_scattering(float cos_theta_5, float tau_5)
+float sun_scattering(float cos_theta_5, float tau_5, float build)
 {
     float octave_sum = 0.0;
     float ka = 1.0;
@@ -1504,51 +1504,62 @@ float sun_scattering(float cos_theta_5, float tau_5)
     float a_8 = frame.multiple_scattering.x;
     float b_8 = frame.multiple_scattering.y;
     float c_8 = frame.multiple_scattering.z;
-    uint _e17 = frame.misc.x;
-    uint octaves = min(_e17, MAX_OCTAVES);
+    uint _e18 = frame.misc.x;
+    uint octaves = min(_e18, MAX_OCTAVES);
     uint2 loop_bound_6 = uint2(4294967295u, 4294967295u);
     bool loop_init_6 = true;
     while(true) {
         if (all(loop_bound_6 == uint2(0u, 0u))) { break; }
         loop_bound_6 -= uint2(loop_bound_6.y == 0u, 1u);
         if (!loop_init_6) {
-            uint _e50 = i_11;
-            i_11 = (_e50 + 1u);
+            uint _e51 = i_11;
+            i_11 = (_e51 + 1u);
         }
         loop_init_6 = false;
-        uint _e30 = i_11;
-        if ((_e30 < octaves)) {
+        uint _e31 = i_11;
+        if ((_e31 < octaves)) {
         } else {
             break;
         }
         {
-            float _e32 = ka;
-            ka = (_e32 * a_8);
-            float _e34 = kb;
-            kb = (_e34 * b_8);
-            float _e36 = kc;
-            kc = (_e36 * c_8);
-            float _e38 = octave_sum;
-            float _e39 = ka;
-            float _e40 = kc;
-            const float _e41 = phase(cos_theta_5, _e40);
-            float _e43 = kb;
-            octave_sum = (_e38 + ((_e39 * _e41) * exp((-(_e43) * tau_5))));
+            float _e33 = ka;
+            ka = (_e33 * a_8);
+            float _e35 = kb;
+            kb = (_e35 * b_8);
+            float _e37 = kc;
+            kc = (_e37 * c_8);
+            float _e39 = octave_sum;
+            float _e40 = ka;
+            float _e41 = kc;
+            const float _e42 = phase(cos_theta_5, _e41);
+            float _e44 = kb;
+            octave_sum = (_e39 + ((_e40 * _e42) / (1.0 + (_e44 * tau_5))));
         }
     }
-    float _e55 = frame.sun_direction.y;
-    const float _e56 = saturate_(_e55);
-    const float _e58 = phase(cos_theta_5, 1.0);
-    float _e62 = octave_sum;
-    total = ((_e58 * exp(-(tau_5))) + (_e56 * _e62));
-    uint _e69 = frame.modes.w;
-    if (((_e69 & FLAG_BEER_POWDER) != 0u)) {
-        float _e74 = total;
-        float _e78 = frame.phase.w;
-        total = (_e74 * (1.0 - exp((-(_e78) * tau_5))));
+    float _e56 = frame.sun_direction.y;
+    const float _e57 = saturate_(_e56);
+    const float _e59 = phase(cos_theta_5, 1.0);
+    float _e64 = octave_sum;
+    total = ((_e59 * exp(-(tau_5))) + ((_e57 * build) * _e64));
+    uint _e71 = frame.modes.w;
+    if (((_e71 & FLAG_BEER_POWDER) != 0u)) {
+        float _e76 = total;
+        float _e80 = frame.phase.w;
+        total = (_e76 * (1.0 - exp((-(_e80) * tau_5))));
     }
-    float _e85 = total;
-    return _e85;
+    float _e87 = total;
+    return _e87;
+}
+
+float octave_buildup(float density_1)
+{
+    float l_7 = frame.multiple_scattering.w;
+    if ((l_7 <= 0.0)) {
+        return 1.0;
+    }
+    float _e11 = frame.extinction.x;
+    float _e15 = frame.extinction.y;
+    return (1.0 - exp(((-((_e11 + _e15)) * density_1) * l_7)));
 }
 
 float3 ambient(float h_5)
@@ -1573,7 +1584,7 @@ float height_fraction(float alt_11)
     return _e4;
 }
 
-float3 scattered_light(float3 rel_2, float3 p_7, float alt_12, float density_1, float3 view, Layer l_5, inout Counters counters_6)
+float3 scattered_light(float3 rel_2, float3 p_7, float alt_12, float density_2, float3 view, Layer l_5, inout Counters counters_6)
 {
     float3 sun_light = (0.0).xxx;
     float tau_6 = 0.0;
@@ -1591,16 +1602,17 @@ float3 scattered_light(float3 rel_2, float3 p_7, float alt_12, float density_1, 
         float4 _e24 = frame.sun_illuminance;
         const float3 _e26 = sun_through_air(rel_2);
         float _e29 = tau_6;
-        const float _e30 = sun_scattering(dot(view, sun_3), _e29);
-        sun_light = ((_e24.xyz * _e26) * _e30);
+        const float _e30 = octave_buildup(density_2);
+        const float _e31 = sun_scattering(dot(view, sun_3), _e29, _e30);
+        sun_light = ((_e24.xyz * _e26) * _e31);
     }
-    const Weather _e32 = sample_weather(p_7, l_5);
-    float _e36 = frame.extinction.z;
-    const float _e44 = saturate_((1.0 - ((_e36 * _e32.precipitation) * (1.0 - _e12))));
-    float _e48 = frame.extinction.x;
-    float3 _e50 = sun_light;
-    const float3 _e51 = ambient(_e12);
-    return (((_e48 * density_1) * (_e50 + _e51)) * _e44);
+    const Weather _e33 = sample_weather(p_7, l_5);
+    float _e37 = frame.extinction.z;
+    const float _e45 = saturate_((1.0 - ((_e37 * _e33.precipitation) * (1.0 - _e12))));
+    float _e49 = frame.extinction.x;
+    float3 _e51 = sun_light;
+    const float3 _e52 = ambient(_e12);
+    return (((_e49 * density_2) * (_e51 + _e52)) * _e45);
 }
 
 float3 shadow_ground_point(uint2 c_2)
@@ -3178,7 +3190,7 @@ SpriteCandidate ConstructSpriteCandidate(float2 arg0, float arg1, float arg2, fl
 
 SpriteCandidate sprite_candidate(SpriteCell c_4, uint level, uint s_2, inout Counters counters_15)
 {
-    float density_2 = 0.0;
+    float density_3 = 0.0;
 
     const uint _e10 = pcg(level);
     const uint _e12 = pcg((asuint(c_4.index.y) ^ _e10));
@@ -3202,9 +3214,9 @@ SpriteCandidate sprite_candidate(SpriteCell c_4, uint level, uint s_2, inout Cou
     if (!(c_4.covered)) {
         const float3 _e87 = sprite_rel(xz_2, alt_17);
         const float _e92 = cloud_density(float3(xz_2.x, _e87.y, xz_2.y), alt_17, counters_15);
-        density_2 = _e92;
+        density_3 = _e92;
     }
-    float _e96 = density_2;
+    float _e96 = density_3;
     const SpriteCandidate spritecandidate = ConstructSpriteCandidate(xz_2, alt_17, h_12, u_1.w, v_3.x, v_3.y, _e96, _e57.precipitation);
     return spritecandidate;
 }
@@ -3714,7 +3726,8 @@ void sky_ambient(uint3 id_4 : SV_DispatchThreadID)
 {
     bool local_1 = (bool)0;
     float3 sum_1 = (0.0).xxx;
-    uint k_2 = 0u;
+    float weights = 0.0;
+    uint k_2 = (uint)0;
 
     if (!((id_4.x >= 2u))) {
         local_1 = (id_4.y >= 1u);
@@ -3725,40 +3738,47 @@ void sky_ambient(uint3 id_4 : SV_DispatchThreadID)
     if (_e11) {
         return;
     }
-    float _e15 = frame.atmosphere.y;
-    float _e19 = frame.atmosphere.z;
-    float alt_m = ((id_4.x == 1u) ? _e19 : _e15);
+    bool top_3 = (id_4.x == 1u);
+    float _e18 = frame.atmosphere.y;
+    float _e22 = frame.atmosphere.z;
+    float alt_m = (top_3 ? _e22 : _e18);
     const float _e24 = air_bottom();
     float3 origin_7 = float3(0.0, (_e24 + (alt_m * 0.001)), 0.0);
+    uint first = (top_3 ? 0u : 32u);
+    k_2 = first;
     uint2 loop_bound_26 = uint2(4294967295u, 4294967295u);
     bool loop_init_22 = true;
     while(true) {
         if (all(loop_bound_26 == uint2(0u, 0u))) { break; }
         loop_bound_26 -= uint2(loop_bound_26.y == 0u, 1u);
         if (!loop_init_22) {
-            uint _e58 = k_2;
-            k_2 = (_e58 + 1u);
+            uint _e67 = k_2;
+            k_2 = (_e67 + 1u);
         }
         loop_init_22 = false;
-        uint _e36 = k_2;
-        if ((_e36 < AMBIENT_DIRECTIONS)) {
+        uint _e40 = k_2;
+        if ((_e40 < (first + 32u))) {
         } else {
             break;
         }
         {
-            uint _e39 = k_2;
-            const float3 _e41 = fibonacci_direction(_e39, AMBIENT_DIRECTIONS);
-            const float2 _e42 = air_ray_end(origin_7, _e41);
-            float4 _e45 = frame.sun_direction;
-            float3 sun_10 = _e45.xyz;
-            const Scattered _e49 = integrate_air(origin_7, _e41, _e42.x, AMBIENT_STEPS, sun_10);
-            float3 _e50 = sum_1;
-            const float3 _e55 = with_ground(_e49, origin_7, _e41, _e42.x, sun_10, (_e42.y > 0.5));
-            sum_1 = (_e50 + _e55);
+            uint _e43 = k_2;
+            const float3 _e45 = fibonacci_direction(_e43, AMBIENT_DIRECTIONS);
+            const float2 _e46 = air_ray_end(origin_7, _e45);
+            float4 _e49 = frame.sun_direction;
+            float3 sun_10 = _e49.xyz;
+            const Scattered _e53 = integrate_air(origin_7, _e45, _e46.x, AMBIENT_STEPS, sun_10);
+            float w_7 = abs(_e45.y);
+            float3 _e56 = sum_1;
+            const float3 _e61 = with_ground(_e53, origin_7, _e45, _e46.x, sun_10, (_e46.y > 0.5));
+            sum_1 = (_e56 + (w_7 * _e61));
+            float _e64 = weights;
+            weights = (_e64 + w_7);
         }
     }
-    float3 _e62 = sum_1;
-    sky_ambient_out[id_4.xy] = float4((_e62 / (64.0).xxx), 1.0);
+    float3 _e71 = sum_1;
+    float _e72 = weights;
+    sky_ambient_out[id_4.xy] = float4((_e71 / (_e72).xxx), 1.0);
     return;
 }
 

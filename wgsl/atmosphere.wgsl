@@ -12,8 +12,8 @@
 //   elevation (denser toward the horizon). Every frame: it follows the sun and the camera.
 // - aerial perspective (32x32 froxels x 32 slices of 1 km, as a 1024x32 atlas): light
 //   scattered and transmitted between the camera and each depth. Every frame.
-// - sky ambient (2x1): the mean radiance over the sphere at the cloud layer's bottom and top,
-//   the clouds' ambient light under this sky. Every frame.
+// - sky ambient (2x1): the cosine-weighted mean radiance of the hemisphere below the cloud
+//   layer's bottom and above its top, the clouds' ambient light under this sky. Every frame.
 //
 // Every table holds light per unit sun illuminance at the top of the atmosphere; the user of
 // a value multiplies by `frame.sun_illuminance`. Lengths here are kilometres (the planet's
@@ -464,24 +464,37 @@ fn aerial_texel(c0: vec2<u32>, c1: vec2<u32>, w: vec2<f32>, z: u32) -> vec4<f32>
     return mix(a, b, w.y);
 }
 
-// Texel i (0: the cloud layer's bottom, 1: its top) holds the mean radiance over the sphere
-// there, sky and lit ground, per unit sun illuminance: the clouds' ambient light.
+// Texel i (0: the cloud layer's bottom, 1: its top) holds the cosine-weighted mean radiance
+// of the hemisphere facing the layer there (from below at its bottom, from above at its top),
+// sky and lit ground, per unit sun illuminance: the irradiance through the layer's boundary
+// over pi, the clouds' ambient light. The diffuse light inside a layer is fed by the fluxes
+// through its boundaries (as the octaves' mu0 says for the sun), so the light near the horizon,
+// which crosses the layer lengthwise, counts for little. With the mean over the whole sphere a
+// dawn's deck was lit by the glow along the horizon: 2.3 times brighter than the path tracer
+// (docs/fit). A uniform environment gives the same ambient either way.
 @compute @workgroup_size(8, 8, 1)
 fn sky_ambient(@builtin(global_invocation_id) id: vec3<u32>) {
     if id.x >= 2u || id.y >= 1u {
         return;
     }
-    let alt_m = select(frame.atmosphere.y, frame.atmosphere.z, id.x == 1u);
+    let top = id.x == 1u;
+    let alt_m = select(frame.atmosphere.y, frame.atmosphere.z, top);
     let origin = vec3<f32>(0.0, air_bottom() + alt_m * 1e-3, 0.0);
     var sum = vec3<f32>(0.0);
-    for (var k = 0u; k < AMBIENT_DIRECTIONS; k++) {
+    var weights = 0.0;
+    // Fibonacci directions run from the zenith down: the first half is the upper hemisphere.
+    let half = AMBIENT_DIRECTIONS / 2u;
+    let first = select(half, 0u, top);
+    for (var k = first; k < first + half; k++) {
         let d = fibonacci_direction(k, AMBIENT_DIRECTIONS);
         let end = air_ray_end(origin, d);
         let sun = frame.sun_direction.xyz;
         let s = integrate_air(origin, d, end.x, AMBIENT_STEPS, sun);
-        sum += with_ground(s, origin, d, end.x, sun, end.y > 0.5);
+        let w = abs(d.y);
+        sum += w * with_ground(s, origin, d, end.x, sun, end.y > 0.5);
+        weights += w;
     }
-    textureStore(sky_ambient_out, id.xy, vec4<f32>(sum / f32(AMBIENT_DIRECTIONS), 1.0));
+    textureStore(sky_ambient_out, id.xy, vec4<f32>(sum / weights, 1.0));
 }
 
 // The sun's light (per unit illuminance at the top of the air) reaching a cloud sample at

@@ -20,7 +20,7 @@ struct Frame {
     wind_offsets1: vec4<f32>,       // detail offset xz, curl offset xz (m, wrapped by the period)
     extinction: vec4<f32>,          // sigma_s, sigma_a (1/m at density 1), precipitation darkening, wispy/billowy
     phase: vec4<f32>,               // g, g2, blend (weight of the g2 lobe), powder strength
-    multiple_scattering: vec4<f32>, // a (contribution), b (extinction), c (eccentricity) per octave
+    multiple_scattering: vec4<f32>, // a (contribution), b (extinction), c (eccentricity) per octave, w = octave build-up length (m)
     ambient_bottom: vec4<f32>,      // linear rgb; w = ambient strength
     ambient_top: vec4<f32>,         // linear rgb
     march: vec4<f32>,               // step length (m, 0 = from view steps), light step growth, first light step (m), early-exit transmittance

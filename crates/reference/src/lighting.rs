@@ -132,7 +132,7 @@ pub(crate) fn sun_optical_depth(
 // WGSL: lighting.wgsl::sun_scattering
 /// Sun light scattered toward the viewer per unit illuminance and unit sigma_s, summed over
 /// octaves, with the optional Beer-Powder factor.
-pub(crate) fn sun_scattering(f: &Frame, cos_theta: f64, tau: f64) -> f64 {
+pub(crate) fn sun_scattering(f: &Frame, cos_theta: f64, tau: f64, build: f64) -> f64 {
     let a = f.multiple_scattering[0];
     let b = f.multiple_scattering[1];
     let c = f.multiple_scattering[2];
@@ -145,15 +145,27 @@ pub(crate) fn sun_scattering(f: &Frame, cos_theta: f64, tau: f64) -> f64 {
         ka *= a;
         kb *= b;
         kc *= c;
-        octave_sum += ka * phase(f, cos_theta, kc) * (-kb * tau).exp();
+        // Two-stream-like fall-off of the diffuse light with depth (lighting.wgsl says why).
+        octave_sum += ka * phase(f, cos_theta, kc) / (1.0 + kb * tau);
     }
     // The octaves stand for the diffuse field, fed by the flux through the layer's top.
     let mu0 = saturate(f.sun().y);
-    let mut total = phase(f, cos_theta, 1.0) * (-tau).exp() + mu0 * octave_sum;
+    let mut total = phase(f, cos_theta, 1.0) * (-tau).exp() + mu0 * build * octave_sum;
     if f.modes[3] & FLAG_BEER_POWDER != 0 {
         total *= 1.0 - (-f.phase[3] * tau).exp();
     }
     total
+}
+
+// WGSL: lighting.wgsl::octave_buildup
+/// The octaves' share at a sample of `density`: `1 - exp(-sigma_t density l)`, `l` the build-up
+/// length, 1 where `l` is 0 (lighting.wgsl says why).
+pub(crate) fn octave_buildup(f: &Frame, density: f64) -> f64 {
+    let l = f.multiple_scattering[3];
+    if l <= 0.0 {
+        return 1.0;
+    }
+    1.0 - (-(f.extinction[0] + f.extinction[1]) * density * l).exp()
 }
 
 // WGSL: lighting.wgsl::ambient
@@ -196,7 +208,7 @@ pub(crate) fn scattered_light(
         // LIGHT_MARCH: with 0 light steps the march returns 0, as the switched-off WGSL does.
         let tau = sun_optical_depth(m, lm, rel, p, l, counters);
         sun_light = f.sun_illuminance().mul_v(sun_through_air(f, m.sky(), rel))
-            * sun_scattering(f, view.dot(sun), tau);
+            * sun_scattering(f, view.dot(sun), tau, octave_buildup(f, density));
     }
     let weather = m.weather(p, l);
     let darkening = saturate(1.0 - f.extinction[2] * weather.precipitation * (1.0 - h));

@@ -817,8 +817,9 @@ impl SkyTables {
     }
 
     // WGSL: atmosphere.wgsl::sky_ambient
-    /// Sky-ambient texel `i` (0: the cloud layer's bottom, 1: its top): the mean radiance over
-    /// the sphere there, sky and lit ground, over 64 Fibonacci directions of 24 steps.
+    /// Sky-ambient texel `i` (0: the cloud layer's bottom, 1: its top): the cosine-weighted
+    /// mean radiance of the hemisphere facing the layer there (below its bottom, above its top),
+    /// sky and lit ground, over 32 of 64 Fibonacci directions of 24 steps.
     fn sky_ambient_texel(&self, f: &Frame, i: usize) -> Texel {
         let alt = if i == 1 {
             f.atmosphere[2]
@@ -827,14 +828,22 @@ impl SkyTables {
         };
         let origin = V3::new(0.0, self.bottom() + alt, 0.0);
         let mut sum = V3::ZERO;
-        for k in 0..AMBIENT_DIRECTIONS {
+        let mut weights = 0.0;
+        // The hemisphere facing the layer, cosine-weighted: the upper half of the Fibonacci
+        // directions (they run from the zenith down) at the top, the lower at the bottom.
+        let half = AMBIENT_DIRECTIONS / 2;
+        let first = if i == 1 { 0 } else { half };
+        for k in first..first + half {
             let d = V3::from_array(fibonacci_direction(k, AMBIENT_DIRECTIONS));
             let (length, ground) = self.air_ray_end(origin, d);
+            let w = d.y.abs();
             sum += self
                 .integrate_air(origin, d, length, AMBIENT_STEPS, f.sun(), ground)
-                .radiance;
+                .radiance
+                * w;
+            weights += w;
         }
-        texel(sum / AMBIENT_DIRECTIONS as f64, 1.0)
+        texel(sum / weights, 1.0)
     }
 
     // WGSL: atmosphere.wgsl::sun_through_air

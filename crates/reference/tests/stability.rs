@@ -11,8 +11,9 @@
 //! # The energy bound
 //!
 //! At a sample of density `d` the in-scattered radiance per unit length is
-//! `S = sigma_s d (E_sun sum_i a^i p(cos, c^i g) e^(-b^i tau) [powder] + ambient(h)) darkening`
-//! (`lighting.wgsl::scattered_light`). With `e^(-b^i tau) <= 1`, Beer-Powder `<= 1`,
+//! `S = sigma_s d (E_sun sum_i a^i p(cos, c^i g) f_i [powder] + ambient(h)) darkening`
+//! (`lighting.wgsl::scattered_light`), `f_0 = e^(-tau)` and for the octaves `f_i = mu0 B / (1
+//! + b^i tau)` with mu0 and the build-up B in [0, 1]. With `f_i <= 1`, Beer-Powder `<= 1`,
 //! darkening `<= 1` and `p <= p_max` (the phase function's peak over all angles, at
 //! `cos = +-1`), `S <= sigma_s d L_max` with
 //! `L_max = E_sun sum_{i=0..octaves} a^i p_max(c^i g) + max(ambient_bottom, ambient_top) k`.
@@ -357,12 +358,13 @@ fn extreme_valid_parameters() {
             s.lighting.phase.model = PhaseModel::CornetteShanks;
             s.lighting.phase.g = 0.99;
         }),
-        ("8 octaves, a = b = c = 1", |s| {
+        ("8 octaves, a = 2, b = c = 1, build-up 10 km", |s| {
             let ms = &mut s.lighting.multiple_scattering;
             ms.octaves = 8;
-            ms.a = 1.0;
+            ms.a = stratus_scene::MAX_OCTAVE_A;
             ms.b = 1.0;
             ms.c = 1.0;
+            ms.buildup_m = 10_000.0;
         }),
         ("density 1000", |s| s.clouds.density = 1000.0),
         ("absorption only", |s| {

@@ -58,4 +58,4 @@ pub use scene::{
     Quality, Scene, ShapeTexture, Sky, SkyModel, Sun, Temporal,
 };
 pub use uniforms::FrameUniforms;
-pub use validate::{MAX_LIGHT_STEPS, MAX_OCTAVES, MAX_RESOLUTION, MAX_VIEW_STEPS};
+pub use validate::{MAX_LIGHT_STEPS, MAX_OCTAVE_A, MAX_OCTAVES, MAX_RESOLUTION, MAX_VIEW_STEPS};

@@ -41,7 +41,8 @@ pub struct FrameUniforms {
     pub extinction: [f32; 4],
     /// g, g2, blend, powder strength.
     pub phase: [f32; 4],
-    /// a (contribution), b (extinction), c (eccentricity) attenuation per octave, 0.
+    /// a (contribution), b (extinction), c (eccentricity) attenuation per octave, octave
+    /// build-up length (m).
     pub multiple_scattering: [f32; 4],
     /// Linear rgb; w = ambient strength.
     pub ambient_bottom: [f32; 4],
@@ -497,7 +498,7 @@ impl Scene {
                 li.phase.blend as f32,
                 li.powder_strength as f32,
             ],
-            multiple_scattering: [ms.a as f32, ms.b as f32, ms.c as f32, 0.0],
+            multiple_scattering: [ms.a as f32, ms.b as f32, ms.c as f32, ms.buildup_m as f32],
             ambient_bottom: v4(li.ambient_bottom, li.ambient_strength),
             ambient_top: v4(li.ambient_top, 0.0),
             march: [

@@ -273,10 +273,23 @@ pub(crate) fn check(scene: &Scene) -> Vec<Issue> {
     );
     // Wrenninge's a <= b (each octave dimmer than the one before in energy) is not required:
     // against the path tracer's all-orders truth it keeps thick clouds far too dark, and the
-    // fitted octaves have a > b (docs/fit).
-    c.float("lighting.multiple_scattering.a", ms.a, Excl(0.0), Incl(1.0));
+    // fitted octaves have a > b (docs/fit). a > 1 (each octave brighter than single
+    // scattering's phase lobe) is allowed too: the fitted octaves stand for all the orders
+    // beyond the first, which in thick cloud carry most of the light.
+    c.float(
+        "lighting.multiple_scattering.a",
+        ms.a,
+        Excl(0.0),
+        Incl(MAX_OCTAVE_A),
+    );
     c.float("lighting.multiple_scattering.b", ms.b, Excl(0.0), Incl(1.0));
     c.float("lighting.multiple_scattering.c", ms.c, Excl(0.0), Incl(1.0));
+    c.float(
+        "lighting.multiple_scattering.buildup_m",
+        ms.buildup_m,
+        Incl(0.0),
+        Incl(10_000.0),
+    );
 
     let q = &scene.quality;
     c.uint(
@@ -581,5 +594,8 @@ pub const MAX_RESOLUTION: u32 = 16384;
 pub const MAX_VIEW_STEPS: u32 = 65536;
 /// Largest accepted `quality.light_steps`.
 pub const MAX_LIGHT_STEPS: u32 = 16;
+/// Largest accepted `lighting.multiple_scattering.a` (the fit's grid ends there).
+pub const MAX_OCTAVE_A: f64 = 2.0;
+
 /// Largest accepted `lighting.multiple_scattering.octaves`.
 pub const MAX_OCTAVES: u32 = 8;

@@ -138,12 +138,12 @@ fn fields_in_the_wrong_place() {
     );
 }
 
-/// a > b is allowed (the fitted octaves have it); out-of-range constants are not.
+/// a > b and a > 1 are allowed (the fitted octaves have them); out-of-range constants are not.
 #[test]
 fn multiple_scattering_constants_are_bounded() {
     snapshot(
         "multiple_scattering_out_of_range",
-        "[lighting.multiple_scattering]\na = 1.2\nb = 0.4\noctaves = 9\n",
+        "[lighting.multiple_scattering]\na = 2.5\nb = 0.4\noctaves = 9\nbuildup_m = -1.0\n",
     );
 }
 

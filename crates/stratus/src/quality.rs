@@ -59,6 +59,7 @@ pub const PREFIT_OCTAVES: MultipleScattering = MultipleScattering {
     a: 0.5,
     b: 0.5,
     c: 0.5,
+    buildup_m: 0.0,
 };
 
 impl Config {
