@@ -1111,7 +1111,8 @@ fn octave_buildup(density: f32) -> f32 {
 }
 
 // Ambient light at height fraction `h` (thesis 5.5.3): a gradient from bottom to top colour,
-// or under the physical sky the sky's own mean radiance at the layer's bottom and top.
+// or under the physical sky the sky's cosine-weighted radiance from below the layer's bottom
+// and from above its top (the sky-ambient table).
 fn ambient(h: f32) -> vec3<f32> {
     if physical_sky() {
         return sky_ambient_light(h);
@@ -2110,7 +2111,8 @@ fn sample_phase(dir: vec3<f32>, rng: ptr<function, u32>) -> PhaseSample {
 // The light a path that leaves the clouds along unit `d` sees: under the physical sky the sky
 // and the lit ground in that direction (the sky-view table, seen from the camera's altitude:
 // the air around a layer a few kilometres up differs little), else the ambient's uniform
-// environment ambient(h). The march takes the sky's mean instead (the sky-ambient table).
+// environment ambient(h). The march takes the cosine-weighted hemispheres facing the layer
+// instead (the sky-ambient table).
 fn environment(d: vec3<f32>, h: f32) -> vec3<f32> {
     if physical_sky() {
         return sky_view(d) * frame.sun_illuminance.rgb * frame.ambient_bottom.w;

@@ -138,7 +138,8 @@ fn octave_buildup(density: f32) -> f32 {
 }
 
 // Ambient light at height fraction `h` (thesis 5.5.3): a gradient from bottom to top colour,
-// or under the physical sky the sky's own mean radiance at the layer's bottom and top.
+// or under the physical sky the sky's cosine-weighted radiance from below the layer's bottom
+// and from above its top (the sky-ambient table).
 fn ambient(h: f32) -> vec3<f32> {
     if physical_sky() {
         return sky_ambient_light(h);

@@ -51,8 +51,9 @@
 //! Under the physical sky the sun's light at a vertex is what the air leaves of it (the
 //! transmittance table there), and the environment is the sky itself, direction by direction:
 //! the sky-view table (the sky and the lit ground as seen from the camera) in the sampled
-//! direction, times the ambient strength. The real-time model takes the sky's mean instead
-//! (the sky-ambient table), unoccluded: the truth here says what that costs.
+//! direction, times the ambient strength. The real-time model takes the cosine-weighted
+//! hemispheres facing the layer instead (the sky-ambient table), unoccluded: the truth here
+//! says what that costs.
 //!
 //! # Real-time-only terms the path tracer ignores
 //!
