@@ -126,11 +126,6 @@ fn errors(truth: &FrameOutput, frame: &FrameOutput) -> Result<(f64, f64)> {
 /// The render's mean in-scattered luminance over the truth's, in bins of the truth's
 /// transmittance (dense: below 0.05, middle, thin: 0.5 to 0.99); NaN where a bin is empty.
 fn brightness(truth: &FrameOutput, frame: &FrameOutput) -> [f64; 3] {
-    let luma = |f: &FrameOutput, i: usize| -> f64 {
-        (0..3)
-            .map(|c| stratus_graph::output::LUMA[c] * f64::from(f.radiance[4 * i + c]))
-            .sum()
-    };
     let mut sums = [[0.0f64; 2]; 3];
     for i in 0..(truth.width * truth.height) as usize {
         let t = truth.radiance[4 * i + 3];
@@ -140,8 +135,8 @@ fn brightness(truth: &FrameOutput, frame: &FrameOutput) -> [f64; 3] {
             t if t < 0.99 => 2,
             _ => continue,
         };
-        sums[bin][0] += luma(frame, i);
-        sums[bin][1] += luma(truth, i);
+        sums[bin][0] += frame.luminance(i);
+        sums[bin][1] += truth.luminance(i);
     }
     sums.map(|[r, t]| if t > 0.0 { r / t } else { f64::NAN })
 }
@@ -191,10 +186,10 @@ const BUILDUP_GRID_M: [f64; 12] = [
 const DESCENT_STARTS_M: [f64; 3] = [0.0, 100.0, 400.0];
 
 /// Coordinate descent over a, b, c and the build-up for `octaves`, from a = b = c = 0.5 and
-/// each of a few build-ups (the descent alone stalled at a
-/// build-up of 600 m, 2% worse than the 300 m it missed), or with `quick` from the defaults
-/// alone: each pass tries every grid value of one constant with the others
-/// held, until a pass changes nothing; the best start wins.
+/// each of a few build-ups (the descent alone stalled at a build-up of 600 m, 2% worse than
+/// the 300 m it missed), or with `quick` from the defaults alone: each pass tries every grid
+/// value of one constant with the others held, until a pass changes nothing; the best start
+/// wins.
 fn descend(
     r: &mut dyn Backend,
     cases: &[Case],
@@ -404,6 +399,14 @@ pub fn run(args: FitArgs) -> Result<()> {
     let mut table = String::new();
     let images = args.out.join("images");
     std::fs::create_dir_all(&images).with_context(|| format!("creating {}", images.display()))?;
+    // A brightness ratio for the table; "-" where the truth has no pixel in its bin.
+    let ratio = |v: f64| {
+        if v.is_finite() {
+            format!("{v:.2}")
+        } else {
+            "-".to_string()
+        }
+    };
     for (set, list) in [("train", &train), ("held-out", &test)] {
         for c in list.iter() {
             let frames = [
@@ -423,13 +426,6 @@ pub fn run(args: FitArgs) -> Result<()> {
                 "\"{}\",{set},{:.4},{:.4},{:.4},{:.4},{:.3},{:.3},{:.3}",
                 c.name, eb.0, eb.1, ea.0, ea.1, br[0], br[1], br[2]
             );
-            let ratio = |v: f64| {
-                if v.is_finite() {
-                    format!("{v:.2}")
-                } else {
-                    "-".to_string()
-                }
-            };
             let _ = writeln!(
                 table,
                 "| {} | {set} | {:.3} | {:.3} | {:.3} | {:.3} | {} / {} / {} |",

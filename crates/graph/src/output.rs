@@ -28,6 +28,15 @@ pub struct FrameOutput {
     pub device: String,
 }
 
+impl FrameOutput {
+    /// The luminance ([`LUMA`]) of pixel `i`'s in-scattered radiance.
+    pub fn luminance(&self, i: usize) -> f64 {
+        (0..3)
+            .map(|c| LUMA[c] * f64::from(self.radiance[4 * i + c]))
+            .sum()
+    }
+}
+
 /// The measured time of one pass.
 #[derive(Clone, Debug, PartialEq)]
 pub struct PassTiming {
@@ -79,9 +88,7 @@ pub fn block_means(out: &FrameOutput, meta: &[u8], block: u32) -> Option<Vec<Blo
             for y in by..(by + b).min(h) {
                 for x in bx..(bx + b).min(w) {
                     let i = y * w + x;
-                    let l: f64 = (0..3)
-                        .map(|c| LUMA[c] * f64::from(out.radiance[4 * i + c]))
-                        .sum();
+                    let l = out.luminance(i);
                     let (paths, second) = (meta[4 * i + 1], meta[4 * i + 2]);
                     sum += l;
                     n += 1.0;

@@ -596,6 +596,5 @@ pub const MAX_VIEW_STEPS: u32 = 65536;
 pub const MAX_LIGHT_STEPS: u32 = 16;
 /// Largest accepted `lighting.multiple_scattering.a` (the fit's grid ends there).
 pub const MAX_OCTAVE_A: f64 = 2.0;
-
 /// Largest accepted `lighting.multiple_scattering.octaves`.
 pub const MAX_OCTAVES: u32 = 8;
