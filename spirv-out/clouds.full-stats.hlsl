@@ -37,6 +37,7 @@ struct Frame {
     float4 air_misc;
     float4 moon;
     float4 night;
+    float4 light_model;
 };
 
 struct Roots {
@@ -1492,74 +1493,161 @@ float sun_optical_depth(float3 rel_1, float3 p_6, Layer l_4, inout Counters coun
     return _e141;
 }
 
-float sun_scattering(float cos_theta_5, float tau_5, float build)
+float far_optical_depth(float3 rel_2, Layer l_5)
 {
-    float octave_sum = 0.0;
-    float ka = 1.0;
-    float kb = 1.0;
-    float kc = 1.0;
+    bool local_31 = (bool)0;
+    float reach = (float)0;
+    bool local_32 = (bool)0;
+    float profile = 0.0;
     uint i_11 = 0u;
-    float total = (float)0;
 
-    float a_8 = frame.multiple_scattering.x;
-    float b_8 = frame.multiple_scattering.y;
-    float c_8 = frame.multiple_scattering.z;
-    uint _e18 = frame.misc.x;
-    uint octaves = min(_e18, MAX_OCTAVES);
+    float chord = frame.light_model.z;
+    if (!((chord <= 0.0))) {
+        uint _e14 = frame.counts.w;
+        local_31 = (_e14 == 0u);
+    } else {
+        local_31 = true;
+    }
+    bool _e18 = local_31;
+    if (_e18) {
+        return 0.0;
+    }
+    float growth_1 = frame.march.y;
+    uint _e27 = frame.counts.w;
+    float steps_3 = float(_e27);
+    float _e32 = frame.march.z;
+    reach = (_e32 * steps_3);
+    if ((growth_1 != 1.0)) {
+        float _e40 = frame.march.z;
+        reach = ((_e40 * (pow(growth_1, steps_3) - 1.0)) / (growth_1 - 1.0));
+    }
+    float4 _e50 = frame.sun_direction;
+    float3 sun_3 = _e50.xyz;
+    const float _e52 = altitude_of(rel_2);
+    const Roots _e54 = ray_shell_from(rel_2, _e52, sun_3, l_5.top);
+    float _e56 = reach;
+    float len_1 = (_e54.t1_ - _e56);
+    if (!(!(_e54.hit))) {
+        local_32 = !((len_1 > 0.0));
+    } else {
+        local_32 = true;
+    }
+    bool _e67 = local_32;
+    if (_e67) {
+        return 0.0;
+    }
     uint2 loop_bound_6 = uint2(4294967295u, 4294967295u);
     bool loop_init_6 = true;
     while(true) {
         if (all(loop_bound_6 == uint2(0u, 0u))) { break; }
         loop_bound_6 -= uint2(loop_bound_6.y == 0u, 1u);
         if (!loop_init_6) {
-            uint _e51 = i_11;
-            i_11 = (_e51 + 1u);
+            uint _e97 = i_11;
+            i_11 = (_e97 + 1u);
         }
         loop_init_6 = false;
-        uint _e31 = i_11;
-        if ((_e31 < octaves)) {
+        uint _e73 = i_11;
+        if ((_e73 < 4u)) {
         } else {
             break;
         }
         {
-            float _e33 = ka;
-            ka = (_e33 * a_8);
-            float _e35 = kb;
-            kb = (_e35 * b_8);
-            float _e37 = kc;
-            kc = (_e37 * c_8);
-            float _e39 = octave_sum;
-            float _e40 = ka;
-            float _e41 = kc;
-            const float _e42 = phase(cos_theta_5, _e41);
-            float _e44 = kb;
-            octave_sum = (_e39 + ((_e40 * _e42) / (1.0 + (_e44 * tau_5))));
+            float _e76 = reach;
+            uint _e77 = i_11;
+            float t_5 = (_e76 + (((float(_e77) + 0.5) * 0.25) * len_1));
+            const float _e87 = altitude_of((rel_2 + (sun_3 * t_5)));
+            const float _e88 = layer_height(l_5, _e87);
+            const float _e89 = saturate_(_e88);
+            float _e90 = profile;
+            const float _e92 = height_signal(_e89, l_5.cloud_type);
+            profile = (_e90 + (0.25 * _e92));
         }
     }
-    float _e56 = frame.sun_direction.y;
-    const float _e57 = saturate_(_e56);
-    const float _e59 = phase(cos_theta_5, 1.0);
-    float _e64 = octave_sum;
-    total = ((_e59 * exp(-(tau_5))) + ((_e57 * build) * _e64));
-    uint _e71 = frame.modes.w;
-    if (((_e71 & FLAG_BEER_POWDER) != 0u)) {
-        float _e76 = total;
-        float _e80 = frame.phase.w;
-        total = (_e76 * (1.0 - exp((-(_e80) * tau_5))));
+    float _e100 = profile;
+    float f_3 = min((l_5.coverage * _e100), 0.95);
+    return ((len_1 * f_3) / ((1.0 - f_3) * chord));
+}
+
+float sun_scattering(float cos_theta_5, float tau_5, float far_1, float build, float coverage)
+{
+    float octave_sum = 0.0;
+    float ka = 1.0;
+    float kb = 1.0;
+    float kc = 1.0;
+    uint i_12 = 0u;
+    float feed = (float)0;
+    float total = (float)0;
+
+    float a_8 = frame.multiple_scattering.x;
+    float b_8 = frame.multiple_scattering.y;
+    float c_8 = frame.multiple_scattering.z;
+    uint _e20 = frame.misc.x;
+    uint octaves = min(_e20, MAX_OCTAVES);
+    uint2 loop_bound_7 = uint2(4294967295u, 4294967295u);
+    bool loop_init_7 = true;
+    while(true) {
+        if (all(loop_bound_7 == uint2(0u, 0u))) { break; }
+        loop_bound_7 -= uint2(loop_bound_7.y == 0u, 1u);
+        if (!loop_init_7) {
+            uint _e53 = i_12;
+            i_12 = (_e53 + 1u);
+        }
+        loop_init_7 = false;
+        uint _e33 = i_12;
+        if ((_e33 < octaves)) {
+        } else {
+            break;
+        }
+        {
+            float _e35 = ka;
+            ka = (_e35 * a_8);
+            float _e37 = kb;
+            kb = (_e37 * b_8);
+            float _e39 = kc;
+            kc = (_e39 * c_8);
+            float _e41 = octave_sum;
+            float _e42 = ka;
+            float _e43 = kc;
+            const float _e44 = phase(cos_theta_5, _e43);
+            float _e46 = kb;
+            octave_sum = (_e41 + ((_e42 * _e44) / (1.0 + (_e46 * tau_5))));
+        }
     }
-    float _e87 = total;
-    return _e87;
+    float _e58 = frame.sun_direction.y;
+    const float _e59 = saturate_(_e58);
+    const float _e66 = saturate_(coverage);
+    float side = ((sqrt(max((1.0 - (_e59 * _e59)), 0.0)) * (1.0 - _e66)) * exp(-(far_1)));
+    float _e76 = frame.light_model.x;
+    feed = (_e59 + (_e76 * side));
+    float _e83 = frame.light_model.y;
+    if ((_e83 > 0.0)) {
+        float _e86 = feed;
+        float _e92 = frame.light_model.y;
+        feed = (_e86 * pow(max(coverage, 1e-6), _e92));
+    }
+    const float _e96 = phase(cos_theta_5, 1.0);
+    float _e101 = feed;
+    float _e103 = octave_sum;
+    total = ((_e96 * exp((-(tau_5) - far_1))) + ((_e101 * build) * _e103));
+    uint _e110 = frame.modes.w;
+    if (((_e110 & FLAG_BEER_POWDER) != 0u)) {
+        float _e115 = total;
+        float _e119 = frame.phase.w;
+        total = (_e115 * (1.0 - exp((-(_e119) * tau_5))));
+    }
+    float _e126 = total;
+    return _e126;
 }
 
 float octave_buildup(float density_1)
 {
-    float l_7 = frame.multiple_scattering.w;
-    if ((l_7 <= 0.0)) {
+    float l_8 = frame.multiple_scattering.w;
+    if ((l_8 <= 0.0)) {
         return 1.0;
     }
     float _e11 = frame.extinction.x;
     float _e15 = frame.extinction.y;
-    return (1.0 - exp(((-((_e11 + _e15)) * density_1) * l_7)));
+    return (1.0 - exp(((-((_e11 + _e15)) * density_1) * l_8)));
 }
 
 float3 ambient(float h_5)
@@ -1584,35 +1672,39 @@ float height_fraction(float alt_11)
     return _e4;
 }
 
-float3 scattered_light(float3 rel_2, float3 p_7, float alt_12, float density_2, float3 view, Layer l_5, inout Counters counters_6)
+float3 scattered_light(float3 rel_3, float3 p_7, float alt_12, float density_2, float3 view, Layer l_6, inout Counters counters_6)
 {
     float3 sun_light = (0.0).xxx;
     float tau_6 = 0.0;
+    float far_2 = 0.0;
 
     float4 _e9 = frame.sun_direction;
-    float3 sun_3 = _e9.xyz;
-    const float _e11 = layer_height(l_5, alt_12);
+    float3 sun_4 = _e9.xyz;
+    const float _e11 = layer_height(l_6, alt_12);
     const float _e12 = saturate_(_e11);
-    const bool _e16 = hits_ground(rel_2, alt_12, sun_3);
-    if (!(_e16)) {
+    const Weather _e16 = sample_weather(p_7, l_6);
+    const bool _e17 = hits_ground(rel_3, alt_12, sun_4);
+    if (!(_e17)) {
         if (LIGHT_MARCH) {
-            const float _e21 = sun_optical_depth(rel_2, p_7, l_5, counters_6);
-            tau_6 = _e21;
+            const float _e24 = sun_optical_depth(rel_3, p_7, l_6, counters_6);
+            tau_6 = _e24;
+            const float _e25 = far_optical_depth(rel_3, l_6);
+            far_2 = _e25;
         }
-        float4 _e24 = frame.sun_illuminance;
-        const float3 _e26 = sun_through_air(rel_2);
-        float _e29 = tau_6;
-        const float _e30 = octave_buildup(density_2);
-        const float _e31 = sun_scattering(dot(view, sun_3), _e29, _e30);
-        sun_light = ((_e24.xyz * _e26) * _e31);
+        float _e27 = tau_6;
+        float _e28 = far_2;
+        const float _e29 = octave_buildup(density_2);
+        const float _e31 = sun_scattering(dot(view, sun_4), _e27, _e28, _e29, _e16.coverage);
+        float4 _e34 = frame.sun_illuminance;
+        const float3 _e36 = sun_through_air(rel_3);
+        sun_light = ((_e34.xyz * _e36) * _e31);
     }
-    const Weather _e33 = sample_weather(p_7, l_5);
-    float _e37 = frame.extinction.z;
-    const float _e45 = saturate_((1.0 - ((_e37 * _e33.precipitation) * (1.0 - _e12))));
-    float _e49 = frame.extinction.x;
-    float3 _e51 = sun_light;
-    const float3 _e52 = ambient(_e12);
-    return (((_e49 * density_2) * (_e51 + _e52)) * _e45);
+    float _e42 = frame.extinction.z;
+    const float _e50 = saturate_((1.0 - ((_e42 * _e16.precipitation) * (1.0 - _e12))));
+    float _e54 = frame.extinction.x;
+    float3 _e56 = sun_light;
+    const float3 _e57 = ambient(_e12);
+    return (((_e54 * density_2) * (_e56 + _e57)) * _e50);
 }
 
 float3 shadow_ground_point(uint2 c_2)
@@ -1624,16 +1716,16 @@ float3 shadow_ground_point(uint2 c_2)
     return float3(xz_1.x, y_1, xz_1.y);
 }
 
-float ground_shadow(float3 rel_3)
+float ground_shadow(float3 rel_4)
 {
-    float edge = (max(abs(rel_3.x), abs(rel_3.z)) / SHADOW_HALF_EXTENT);
+    float edge = (max(abs(rel_4.x), abs(rel_4.z)) / SHADOW_HALF_EXTENT);
     if ((edge >= 1.0)) {
         return 1.0;
     }
-    float2 x_9 = ((rel_3.xz / (40000.0).xx) + (0.5).xx);
+    float2 x_9 = ((rel_4.xz / (40000.0).xx) + (0.5).xx);
     const float4 _e21 = lut_bilinear(cloud_shadow_in, x_9, (128u).xx);
-    float t_5 = _e21.x;
-    return lerp(t_5, 1.0, smoothstep(SHADOW_FADE_START, 1.0, edge));
+    float t_6 = _e21.x;
+    return lerp(t_6, 1.0, smoothstep(SHADOW_FADE_START, 1.0, edge));
 }
 
 float3 ground_shadow_loss(float3 view_1, float r_12)
@@ -1698,14 +1790,14 @@ float empty_cell_exit(float3 p_8, float3 d_11)
 
 void count(uint index_1, uint value)
 {
-    bool local_31 = (bool)0;
+    bool local_33 = (bool)0;
 
     if (STATS) {
-        local_31 = (value != 0u);
+        local_33 = (value != 0u);
     } else {
-        local_31 = false;
+        local_33 = false;
     }
-    bool _e8 = local_31;
+    bool _e8 = local_33;
     if (_e8) {
         uint _e12; stats.InterlockedAdd(index_1*4+0, value, _e12);
         return;
@@ -1721,8 +1813,8 @@ float3 step_integral(float3 source, float sigma_t, float dt)
         return (source * dt);
     }
     float x_10 = (sigma_t * dt);
-    float f_3 = ((x_10 < 0.001) ? (1.0 - (0.5 * x_10)) : ((1.0 - exp(-(x_10))) / x_10));
-    return (source * (dt * f_3));
+    float f_4 = ((x_10 < 0.001) ? (1.0 - (0.5 * x_10)) : ((1.0 - exp(-(x_10))) / x_10));
+    return (source * (dt * f_4));
 }
 
 uint naga_div(uint lhs, uint rhs) {
@@ -1746,13 +1838,13 @@ float start_offset(uint2 pixel_3)
     return frac((base_2 + _e32));
 }
 
-bool march_layer(float3 view_2, Interval span_1, Layer l_6, float jitter, inout MarchState state, inout Counters counters_7)
+bool march_layer(float3 view_2, Interval span_1, Layer l_7, float jitter, inout MarchState state, inout Counters counters_7)
 {
     uint steps_1 = (uint)0;
-    uint i_12 = 0u;
+    uint i_13 = 0u;
     uint stride = 1u;
     uint empty = 0u;
-    bool local_32 = (bool)0;
+    bool local_34 = (bool)0;
 
     float cam_alt_1 = frame.camera_position.y;
     float4 _e12 = frame.camera_position;
@@ -1773,78 +1865,78 @@ bool march_layer(float3 view_2, Interval span_1, Layer l_6, float jitter, inout 
     bool dynamic_step = ((_e52 & FLAG_DYNAMIC_STEP) != 0u);
     uint _e60 = frame.modes.w;
     bool empty_skip = ((_e60 & FLAG_EMPTY_SKIP) != 0u);
-    uint2 loop_bound_7 = uint2(4294967295u, 4294967295u);
+    uint2 loop_bound_8 = uint2(4294967295u, 4294967295u);
     while(true) {
-        if (all(loop_bound_7 == uint2(0u, 0u))) { break; }
-        loop_bound_7 -= uint2(loop_bound_7.y == 0u, 1u);
-        uint _e71 = i_12;
+        if (all(loop_bound_8 == uint2(0u, 0u))) { break; }
+        loop_bound_8 -= uint2(loop_bound_8.y == 0u, 1u);
+        uint _e71 = i_13;
         uint _e72 = steps_1;
         if ((_e71 >= _e72)) {
             break;
         }
         uint _e75 = counters_7.view_steps;
         counters_7.view_steps = (_e75 + 1u);
-        uint _e79 = i_12;
-        float t_6 = (span_1.start + ((float(_e79) + jitter) * dt_2));
-        float3 rel_6 = ((view_2 * t_6) + float3(0.0, cam_alt_1, 0.0));
-        float3 p_13 = float3((rel_6.x + cam_xz.x), rel_6.y, (rel_6.z + cam_xz.y));
+        uint _e79 = i_13;
+        float t_7 = (span_1.start + ((float(_e79) + jitter) * dt_2));
+        float3 rel_7 = ((view_2 * t_7) + float3(0.0, cam_alt_1, 0.0));
+        float3 p_13 = float3((rel_7.x + cam_xz.x), rel_7.y, (rel_7.z + cam_xz.y));
         if (empty_skip) {
             const float _e97 = empty_cell_exit(p_13, view_2);
             if ((_e97 > 0.0)) {
                 uint _e106 = steps_1;
-                uint next_1 = naga_f2u32(clamp(ceil(((((t_6 + _e97) - span_1.start) / dt_2) - jitter)), 0.0, float(_e106)));
-                uint _e111 = i_12;
-                i_12 = max((_e111 + 1u), next_1);
+                uint next_1 = naga_f2u32(clamp(ceil(((((t_7 + _e97) - span_1.start) / dt_2) - jitter)), 0.0, float(_e106)));
+                uint _e111 = i_13;
+                i_13 = max((_e111 + 1u), next_1);
                 continue;
             }
         }
-        const float _e115 = altitude_of(rel_6);
-        const float _e116 = layer_density(p_13, _e115, l_6, counters_7);
+        const float _e115 = altitude_of(rel_7);
+        const float _e116 = layer_density(p_13, _e115, l_7, counters_7);
         if ((_e116 <= 0.0)) {
             uint _e119 = empty;
             empty = (_e119 + 1u);
             if (dynamic_step) {
                 uint _e124 = empty;
-                local_32 = (_e124 >= 8u);
+                local_34 = (_e124 >= 8u);
             } else {
-                local_32 = false;
+                local_34 = false;
             }
-            bool _e128 = local_32;
+            bool _e128 = local_34;
             if (_e128) {
                 stride = 2u;
             }
-            uint _e130 = i_12;
+            uint _e130 = i_13;
             uint _e131 = stride;
-            i_12 = (_e130 + _e131);
+            i_13 = (_e130 + _e131);
             continue;
         }
         uint _e133 = stride;
         if ((_e133 > 1u)) {
-            uint _e136 = i_12;
+            uint _e136 = i_13;
             uint _e137 = stride;
-            i_12 = (_e136 - (_e137 - 1u));
+            i_13 = (_e136 - (_e137 - 1u));
             stride = 1u;
             empty = 0u;
             continue;
         }
         empty = 0u;
         float sigma_t_2 = (sigma_e * _e116);
-        const float3 _e145 = scattered_light(rel_6, p_13, _e115, _e116, view_2, l_6, counters_7);
+        const float3 _e145 = scattered_light(rel_7, p_13, _e115, _e116, view_2, l_7, counters_7);
         float transmittance_1 = state.transmittance;
         float3 _e149 = state.radiance;
         const float3 _e150 = step_integral(_e145, sigma_t_2, dt_2);
         state.radiance = (_e149 + (transmittance_1 * _e150));
         float step_t = exp((-(sigma_t_2) * dt_2));
         float _e157 = state.depth_sum;
-        state.depth_sum = (_e157 + ((t_6 * transmittance_1) * (1.0 - step_t)));
+        state.depth_sum = (_e157 + ((t_7 * transmittance_1) * (1.0 - step_t)));
         state.transmittance = (transmittance_1 * step_t);
         float _e166 = state.transmittance;
         float _e170 = frame.march.w;
         if ((_e166 < _e170)) {
             return true;
         }
-        uint _e173 = i_12;
-        i_12 = (_e173 + 1u);
+        uint _e173 = i_13;
+        i_13 = (_e173 + 1u);
     }
     return false;
 }
@@ -1886,13 +1978,13 @@ MarchResult march_pixel(uint2 pixel_4)
     uint k_6 = 0u;
     uint next = (uint)0;
     Interval span_2 = (Interval)0;
-    uint i_13 = (uint)0;
-    bool local_33 = (bool)0;
-    bool local_34 = (bool)0;
+    uint i_14 = (uint)0;
     bool local_35 = (bool)0;
     bool local_36 = (bool)0;
     bool local_37 = (bool)0;
     bool local_38 = (bool)0;
+    bool local_39 = (bool)0;
+    bool local_40 = (bool)0;
     float depth_1 = 0.0;
 
     const float3 _e1 = view_ray(pixel_4);
@@ -1900,16 +1992,16 @@ MarchResult march_pixel(uint2 pixel_4)
     count(STAT_PIXELS, 1u);
     const float _e20 = start_offset(pixel_4);
     const uint _e21 = layer_count();
-    uint2 loop_bound_8 = uint2(4294967295u, 4294967295u);
-    bool loop_init_7 = true;
+    uint2 loop_bound_9 = uint2(4294967295u, 4294967295u);
+    bool loop_init_8 = true;
     while(true) {
-        if (all(loop_bound_8 == uint2(0u, 0u))) { break; }
-        loop_bound_8 -= uint2(loop_bound_8.y == 0u, 1u);
-        if (!loop_init_7) {
+        if (all(loop_bound_9 == uint2(0u, 0u))) { break; }
+        loop_bound_9 -= uint2(loop_bound_9.y == 0u, 1u);
+        if (!loop_init_8) {
             uint _e119 = k_6;
             k_6 = (_e119 + 1u);
         }
-        loop_init_7 = false;
+        loop_init_8 = false;
         uint _e34 = k_6;
         if ((_e34 < _e21)) {
         } else {
@@ -1918,72 +2010,72 @@ MarchResult march_pixel(uint2 pixel_4)
         {
             next = NO_LAYER;
             span_2 = ConstructInterval(0.0, 0.0, 1u);
-            i_13 = 0u;
-            uint2 loop_bound_9 = uint2(4294967295u, 4294967295u);
-            bool loop_init_8 = true;
+            i_14 = 0u;
+            uint2 loop_bound_10 = uint2(4294967295u, 4294967295u);
+            bool loop_init_9 = true;
             while(true) {
-                if (all(loop_bound_9 == uint2(0u, 0u))) { break; }
-                loop_bound_9 -= uint2(loop_bound_9.y == 0u, 1u);
-                if (!loop_init_8) {
-                    uint _e102 = i_13;
-                    i_13 = (_e102 + 1u);
+                if (all(loop_bound_10 == uint2(0u, 0u))) { break; }
+                loop_bound_10 -= uint2(loop_bound_10.y == 0u, 1u);
+                if (!loop_init_9) {
+                    uint _e102 = i_14;
+                    i_14 = (_e102 + 1u);
                 }
-                loop_init_8 = false;
-                uint _e45 = i_13;
+                loop_init_9 = false;
+                uint _e45 = i_14;
                 if ((_e45 < _e21)) {
                 } else {
                     break;
                 }
                 {
-                    uint _e47 = i_13;
+                    uint _e47 = i_14;
                     const Layer _e48 = cloud_layer(_e47);
                     const Interval _e49 = layer_interval(cam_alt_2, _e1, _e48);
                     bool _e50 = ground_1;
                     if (!(_e50)) {
-                        local_33 = (_e49.kind == RAY_HITS_GROUND);
+                        local_35 = (_e49.kind == RAY_HITS_GROUND);
                     } else {
-                        local_33 = true;
+                        local_35 = true;
                     }
-                    bool _e58 = local_33;
+                    bool _e58 = local_35;
                     ground_1 = _e58;
                     float _e60 = last_start;
                     if (!((_e49.start > _e60))) {
                         float _e66 = last_start;
                         if ((_e49.start == _e66)) {
-                            uint _e70 = i_13;
+                            uint _e70 = i_14;
                             uint _e71 = last_index;
-                            local_35 = (_e70 > _e71);
+                            local_37 = (_e70 > _e71);
                         } else {
-                            local_35 = false;
+                            local_37 = false;
                         }
-                        bool _e74 = local_35;
-                        local_34 = _e74;
+                        bool _e74 = local_37;
+                        local_36 = _e74;
                     } else {
-                        local_34 = true;
+                        local_36 = true;
                     }
-                    bool after = local_34;
+                    bool after = local_36;
                     if ((_e49.kind == RAY_MARCH)) {
-                        local_36 = after;
+                        local_38 = after;
                     } else {
-                        local_36 = false;
+                        local_38 = false;
                     }
-                    bool _e83 = local_36;
+                    bool _e83 = local_38;
                     if (_e83) {
                         uint _e86 = next;
                         if (!((_e86 == NO_LAYER))) {
                             float _e94 = span_2.start;
-                            local_38 = (_e49.start < _e94);
+                            local_40 = (_e49.start < _e94);
                         } else {
-                            local_38 = true;
+                            local_40 = true;
                         }
-                        bool _e97 = local_38;
-                        local_37 = _e97;
+                        bool _e97 = local_40;
+                        local_39 = _e97;
                     } else {
-                        local_37 = false;
+                        local_39 = false;
                     }
-                    bool _e99 = local_37;
+                    bool _e99 = local_39;
                     if (_e99) {
-                        uint _e100 = i_13;
+                        uint _e100 = i_14;
                         next = _e100;
                         span_2 = _e49;
                     }
@@ -2069,9 +2161,9 @@ uint2 block_offset(uint f, uint k_7)
 
 float2 reproject(uint2 pixel_5, float depth_2)
 {
-    bool local_39 = (bool)0;
-    bool local_40 = (bool)0;
     bool local_41 = (bool)0;
+    bool local_42 = (bool)0;
+    bool local_43 = (bool)0;
     float3 dir = (float3)0;
 
     float4 _e4 = frame.previous_position;
@@ -2079,27 +2171,27 @@ float2 reproject(uint2 pixel_5, float depth_2)
     if (all((_e4 == _e7))) {
         float4 _e14 = frame.previous_forward;
         float4 _e17 = frame.camera_forward;
-        local_39 = all((_e14 == _e17));
-    } else {
-        local_39 = false;
-    }
-    bool _e21 = local_39;
-    if (_e21) {
-        float4 _e26 = frame.previous_right;
-        float4 _e29 = frame.camera_right;
-        local_40 = all((_e26 == _e29));
-    } else {
-        local_40 = false;
-    }
-    bool _e33 = local_40;
-    if (_e33) {
-        float4 _e38 = frame.previous_up;
-        float4 _e41 = frame.camera_up;
-        local_41 = all((_e38 == _e41));
+        local_41 = all((_e14 == _e17));
     } else {
         local_41 = false;
     }
-    bool same = local_41;
+    bool _e21 = local_41;
+    if (_e21) {
+        float4 _e26 = frame.previous_right;
+        float4 _e29 = frame.camera_right;
+        local_42 = all((_e26 == _e29));
+    } else {
+        local_42 = false;
+    }
+    bool _e33 = local_42;
+    if (_e33) {
+        float4 _e38 = frame.previous_up;
+        float4 _e41 = frame.camera_up;
+        local_43 = all((_e38 == _e41));
+    } else {
+        local_43 = false;
+    }
+    bool same = local_43;
     if (same) {
         return float2(pixel_5);
     }
@@ -2129,16 +2221,16 @@ float2 reproject(uint2 pixel_5, float depth_2)
 
 bool on_screen(float2 q)
 {
-    bool local_42 = (bool)0;
+    bool local_44 = (bool)0;
 
     uint4 _e3 = frame.counts;
     float2 size_2 = float2(_e3.xy);
     if (all((q >= (-0.5).xx))) {
-        local_42 = all((q <= (size_2 - (0.5).xx)));
+        local_44 = all((q <= (size_2 - (0.5).xx)));
     } else {
-        local_42 = false;
+        local_44 = false;
     }
-    bool _e18 = local_42;
+    bool _e18 = local_44;
     return _e18;
 }
 
@@ -2173,9 +2265,9 @@ float4 history_at(float2 q_1)
     int2 size_4 = int2(_e3.xy);
     float2 c_9 = clamp(q_1, (0.0).xx, float2(asint(asuint(size_4) - asuint((int(1)).xx))));
     int2 base_3 = naga_f2i32(floor(c_9));
-    float2 f_4 = (c_9 - float2(base_3));
-    const float4 _e18 = catmull_rom(f_4.x);
-    const float4 _e20 = catmull_rom(f_4.y);
+    float2 f_5 = (c_9 - float2(base_3));
+    const float4 _e18 = catmull_rom(f_5.x);
+    const float4 _e20 = catmull_rom(f_5.y);
     const float4 _e22 = history_row(base_3, int(-1), _e18);
     const float4 _e26 = history_row(base_3, int(0), _e18);
     const float4 _e31 = history_row(base_3, int(1), _e18);
@@ -2263,14 +2355,14 @@ Segments ConstructSegments(float2 arg0, float2 arg1, uint arg2) {
 Segments layer_segments(float3 p_9, float alt_13, float3 d_12)
 {
     Segments s_1 = ConstructSegments((0.0).xx, (0.0).xx, 0u);
-    bool local_43 = (bool)0;
+    bool local_45 = (bool)0;
     float2 a_1 = (0.0).xx;
     float2 b_1 = (0.0).xx;
     uint n_2 = 0u;
-    bool local_44 = (bool)0;
-    bool local_45 = (bool)0;
     bool local_46 = (bool)0;
     bool local_47 = (bool)0;
+    bool local_48 = (bool)0;
+    bool local_49 = (bool)0;
 
     const float2 _e10 = layers_span();
     float bottom_2 = _e10.x;
@@ -2278,11 +2370,11 @@ Segments layer_segments(float3 p_9, float alt_13, float3 d_12)
     const Roots _e14 = ray_shell_from(p_9, alt_13, d_12, _e10.y);
     const bool _e15 = hits_ground(p_9, alt_13, d_12);
     if (!(!(_e14.hit))) {
-        local_43 = (_e14.t1_ <= 0.0);
+        local_45 = (_e14.t1_ <= 0.0);
     } else {
-        local_43 = true;
+        local_45 = true;
     }
-    bool _e25 = local_43;
+    bool _e25 = local_45;
     if (_e25) {
         Segments _e26 = s_1;
         const Segments segments = _e26;
@@ -2290,17 +2382,17 @@ Segments layer_segments(float3 p_9, float alt_13, float3 d_12)
     }
     float entry = max(_e14.t0_, 0.0);
     if (_e12.hit) {
-        local_44 = (_e12.t0_ > 0.0);
+        local_46 = (_e12.t0_ > 0.0);
     } else {
-        local_44 = false;
+        local_46 = false;
     }
-    bool _e45 = local_44;
+    bool _e45 = local_46;
     if (_e45) {
-        local_45 = (alt_13 >= bottom_2);
+        local_47 = (alt_13 >= bottom_2);
     } else {
-        local_45 = false;
+        local_47 = false;
     }
-    bool _e50 = local_45;
+    bool _e50 = local_47;
     if (_e50) {
         uint _e51 = n_2;
         a_1[min(uint(_e51), 1u)] = entry;
@@ -2309,11 +2401,11 @@ Segments layer_segments(float3 p_9, float alt_13, float3 d_12)
         uint _e56 = n_2;
         n_2 = (_e56 + uint((_e12.t0_ > entry)));
         if (!(_e15)) {
-            local_46 = (_e14.t1_ > _e12.t1_);
+            local_48 = (_e14.t1_ > _e12.t1_);
         } else {
-            local_46 = false;
+            local_48 = false;
         }
-        bool _e68 = local_46;
+        bool _e68 = local_48;
         if (_e68) {
             uint _e69 = n_2;
             a_1[min(uint(_e69), 1u)] = max(_e12.t1_, entry);
@@ -2325,11 +2417,11 @@ Segments layer_segments(float3 p_9, float alt_13, float3 d_12)
     } else {
         if ((alt_13 < bottom_2)) {
             if (!(_e15)) {
-                local_47 = _e12.hit;
+                local_49 = _e12.hit;
             } else {
-                local_47 = false;
+                local_49 = false;
             }
-            bool _e85 = local_47;
+            bool _e85 = local_49;
             if (_e85) {
                 a_1.x = max(_e12.t1_, 0.0);
                 b_1.x = _e14.t1_;
@@ -2352,12 +2444,12 @@ Segments layer_segments(float3 p_9, float alt_13, float3 d_12)
     return segments_1;
 }
 
-float density_at(float3 rel_4, inout Counters counters_9)
+float density_at(float3 rel_5, inout Counters counters_9)
 {
     float _e6 = frame.camera_position.x;
     float _e13 = frame.camera_position.z;
-    float3 p_16 = float3((rel_4.x + _e6), rel_4.y, (rel_4.z + _e13));
-    const float _e16 = altitude_of(rel_4);
+    float3 p_16 = float3((rel_5.x + _e6), rel_5.y, (rel_5.z + _e13));
+    const float _e16 = altitude_of(rel_5);
     const float _e17 = cloud_density(p_16, _e16, counters_9);
     return _e17;
 }
@@ -2368,10 +2460,10 @@ float empty_cell_skip(float3 origin_3, float3 dir_1, float t_2)
     if ((_e3 > 1u)) {
         return 0.0;
     }
-    float3 rel_7 = (origin_3 + (dir_1 * t_2));
+    float3 rel_8 = (origin_3 + (dir_1 * t_2));
     float _e13 = frame.camera_position.x;
     float _e20 = frame.camera_position.z;
-    float3 p_17 = float3((rel_7.x + _e13), rel_7.y, (rel_7.z + _e20));
+    float3 p_17 = float3((rel_8.x + _e13), rel_8.y, (rel_8.z + _e20));
     const float _e23 = empty_cell_exit(p_17, dir_1);
     if ((_e23 <= 0.0)) {
         return 0.0;
@@ -2382,26 +2474,26 @@ float empty_cell_skip(float3 origin_3, float3 dir_1, float t_2)
 float density_max()
 {
     float m_1 = 0.0;
-    uint i_14 = 0u;
+    uint i_15 = 0u;
 
-    uint2 loop_bound_10 = uint2(4294967295u, 4294967295u);
-    bool loop_init_9 = true;
+    uint2 loop_bound_11 = uint2(4294967295u, 4294967295u);
+    bool loop_init_10 = true;
     while(true) {
-        if (all(loop_bound_10 == uint2(0u, 0u))) { break; }
-        loop_bound_10 -= uint2(loop_bound_10.y == 0u, 1u);
-        if (!loop_init_9) {
-            uint _e17 = i_14;
-            i_14 = (_e17 + 1u);
+        if (all(loop_bound_11 == uint2(0u, 0u))) { break; }
+        loop_bound_11 -= uint2(loop_bound_11.y == 0u, 1u);
+        if (!loop_init_10) {
+            uint _e17 = i_15;
+            i_15 = (_e17 + 1u);
         }
-        loop_init_9 = false;
-        uint _e4 = i_14;
+        loop_init_10 = false;
+        uint _e4 = i_15;
         const uint _e5 = layer_count();
         if ((_e4 < _e5)) {
         } else {
             break;
         }
         {
-            uint _e7 = i_14;
+            uint _e7 = i_15;
             const Layer _e8 = cloud_layer(_e7);
             float _e9 = m_1;
             m_1 = max(_e9, (_e8.density * (1.0 + _e8.precipitation)));
@@ -2423,16 +2515,16 @@ float free_flight(float3 origin_4, float3 dir_2, Segments segs, inout uint rng_3
     if ((majorant <= 0.0)) {
         return -1.0;
     }
-    uint2 loop_bound_11 = uint2(4294967295u, 4294967295u);
-    bool loop_init_10 = true;
+    uint2 loop_bound_12 = uint2(4294967295u, 4294967295u);
+    bool loop_init_11 = true;
     while(true) {
-        if (all(loop_bound_11 == uint2(0u, 0u))) { break; }
-        loop_bound_11 -= uint2(loop_bound_11.y == 0u, 1u);
-        if (!loop_init_10) {
+        if (all(loop_bound_12 == uint2(0u, 0u))) { break; }
+        loop_bound_12 -= uint2(loop_bound_12.y == 0u, 1u);
+        if (!loop_init_11) {
             uint _e60 = k_8;
             k_8 = (_e60 + 1u);
         }
-        loop_init_10 = false;
+        loop_init_11 = false;
         uint _e21 = k_8;
         if ((_e21 < segs.count)) {
         } else {
@@ -2441,10 +2533,10 @@ float free_flight(float3 origin_4, float3 dir_2, Segments segs, inout uint rng_3
         {
             uint _e25 = k_8;
             t_3 = segs.a[min(uint(_e25), 1u)];
-            uint2 loop_bound_12 = uint2(4294967295u, 4294967295u);
+            uint2 loop_bound_13 = uint2(4294967295u, 4294967295u);
             while(true) {
-                if (all(loop_bound_12 == uint2(0u, 0u))) { break; }
-                loop_bound_12 -= uint2(loop_bound_12.y == 0u, 1u);
+                if (all(loop_bound_13 == uint2(0u, 0u))) { break; }
+                loop_bound_13 -= uint2(loop_bound_13.y == 0u, 1u);
                 float _e28 = t_3;
                 const float _e29 = empty_cell_skip(origin_4, dir_2, _e28);
                 if ((_e29 > 0.0)) {
@@ -2494,16 +2586,16 @@ float transmittance_along(float3 origin_5, float3 dir_3, Segments segs_1, inout 
     if ((majorant_1 <= 0.0)) {
         return 1.0;
     }
-    uint2 loop_bound_13 = uint2(4294967295u, 4294967295u);
-    bool loop_init_11 = true;
+    uint2 loop_bound_14 = uint2(4294967295u, 4294967295u);
+    bool loop_init_12 = true;
     while(true) {
-        if (all(loop_bound_13 == uint2(0u, 0u))) { break; }
-        loop_bound_13 -= uint2(loop_bound_13.y == 0u, 1u);
-        if (!loop_init_11) {
+        if (all(loop_bound_14 == uint2(0u, 0u))) { break; }
+        loop_bound_14 -= uint2(loop_bound_14.y == 0u, 1u);
+        if (!loop_init_12) {
             uint _e78 = k_9;
             k_9 = (_e78 + 1u);
         }
-        loop_init_11 = false;
+        loop_init_12 = false;
         uint _e23 = k_9;
         if ((_e23 < segs_1.count)) {
         } else {
@@ -2512,10 +2604,10 @@ float transmittance_along(float3 origin_5, float3 dir_3, Segments segs_1, inout 
         {
             uint _e27 = k_9;
             t_4 = segs_1.a[min(uint(_e27), 1u)];
-            uint2 loop_bound_14 = uint2(4294967295u, 4294967295u);
+            uint2 loop_bound_15 = uint2(4294967295u, 4294967295u);
             while(true) {
-                if (all(loop_bound_14 == uint2(0u, 0u))) { break; }
-                loop_bound_14 -= uint2(loop_bound_14.y == 0u, 1u);
+                if (all(loop_bound_15 == uint2(0u, 0u))) { break; }
+                loop_bound_15 -= uint2(loop_bound_15.y == 0u, 1u);
                 float _e30 = t_4;
                 const float _e31 = empty_cell_skip(origin_5, dir_3, _e30);
                 if ((_e31 > 0.0)) {
@@ -2618,10 +2710,10 @@ PhaseSample sample_phase(float3 dir_4, inout uint rng_5)
     float sign_ = ((dir_4.z >= 0.0) ? 1.0 : -1.0);
     float a_9 = (-1.0 / (sign_ + dir_4.z));
     float bb = ((dir_4.x * dir_4.y) * a_9);
-    float3 t_7 = float3((1.0 + (((sign_ * dir_4.x) * dir_4.x) * a_9)), (sign_ * bb), (-(sign_) * dir_4.x));
+    float3 t_8 = float3((1.0 + (((sign_ * dir_4.x) * dir_4.x) * a_9)), (sign_ * bb), (-(sign_) * dir_4.x));
     float3 b_10 = float3(bb, (sign_ + ((dir_4.y * dir_4.y) * a_9)), -(dir_4.y));
     float _e109 = cos_theta_6;
-    float3 w_6 = normalize((((t_7 * (sin_theta * cos(phi_1))) + (b_10 * (sin_theta * sin(phi_1)))) + (dir_4 * _e109)));
+    float3 w_6 = normalize((((t_8 * (sin_theta * cos(phi_1))) + (b_10 * (sin_theta * sin(phi_1)))) + (dir_4 * _e109)));
     float _e113 = cos_theta_6;
     const float _e115 = phase(_e113, 1.0);
     float _e116 = pdf;
@@ -2654,15 +2746,15 @@ PathResult ConstructPathResult(float3 arg0, float arg1, float arg2) {
 PathResult trace_path(float3 view_3, Interval span_3, inout uint rng_6, inout Counters counters_12)
 {
     PathResult out_2 = ConstructPathResult((0.0).xxx, 1.0, -1.0);
-    bool local_48 = (bool)0;
-    bool local_49 = (bool)0;
     bool local_50 = (bool)0;
+    bool local_51 = (bool)0;
+    bool local_52 = (bool)0;
     uint max_orders = MAX_PATH_ORDERS;
     float3 pos = (float3)0;
     float3 dir_5 = (float3)0;
     float throughput = 1.0;
     uint order = 0u;
-    bool local_51 = (bool)0;
+    bool local_53 = (bool)0;
 
     if ((span_3.kind != RAY_MARCH)) {
         PathResult _e13 = out_2;
@@ -2682,7 +2774,7 @@ PathResult trace_path(float3 view_3, Interval span_3, inout uint rng_6, inout Co
     }
     out_2.depth = _e33;
     float4 _e40 = frame.sun_direction;
-    float3 sun_4 = _e40.xyz;
+    float3 sun_5 = _e40.xyz;
     float _e45 = frame.extinction.x;
     float _e49 = frame.extinction.y;
     float sigma_t_4 = (_e45 + _e49);
@@ -2693,23 +2785,23 @@ PathResult trace_path(float3 view_3, Interval span_3, inout uint rng_6, inout Co
         const bool _e68 = physical_sky();
         if (!(_e68)) {
             float4 _e74 = frame.ambient_bottom;
-            local_49 = any((_e74.xyz > (0.0).xxx));
+            local_51 = any((_e74.xyz > (0.0).xxx));
         } else {
-            local_49 = true;
+            local_51 = true;
         }
-        bool _e81 = local_49;
+        bool _e81 = local_51;
         if (!(_e81)) {
             float4 _e87 = frame.ambient_top;
-            local_50 = any((_e87.xyz > (0.0).xxx));
+            local_52 = any((_e87.xyz > (0.0).xxx));
         } else {
-            local_50 = true;
+            local_52 = true;
         }
-        bool _e94 = local_50;
-        local_48 = _e94;
+        bool _e94 = local_52;
+        local_50 = _e94;
     } else {
-        local_48 = false;
+        local_50 = false;
     }
-    bool ambient_on = local_48;
+    bool ambient_on = local_50;
     uint _e102 = frame.misc.z;
     if ((_e102 > 0u)) {
         uint _e108 = frame.misc.z;
@@ -2717,10 +2809,10 @@ PathResult trace_path(float3 view_3, Interval span_3, inout uint rng_6, inout Co
     }
     pos = (cam + (view_3 * _e33));
     dir_5 = view_3;
-    uint2 loop_bound_15 = uint2(4294967295u, 4294967295u);
+    uint2 loop_bound_16 = uint2(4294967295u, 4294967295u);
     while(true) {
-        if (all(loop_bound_15 == uint2(0u, 0u))) { break; }
-        loop_bound_15 -= uint2(loop_bound_15.y == 0u, 1u);
+        if (all(loop_bound_16 == uint2(0u, 0u))) { break; }
+        loop_bound_16 -= uint2(loop_bound_16.y == 0u, 1u);
         float _e119 = throughput;
         throughput = (_e119 * albedo);
         uint _e121 = order;
@@ -2729,19 +2821,19 @@ PathResult trace_path(float3 view_3, Interval span_3, inout uint rng_6, inout Co
         const float _e125 = altitude_of(_e124);
         const float _e126 = height_fraction(_e125);
         float3 _e127 = pos;
-        const bool _e128 = hits_ground(_e127, _e125, sun_4);
+        const bool _e128 = hits_ground(_e127, _e125, sun_5);
         if (!(_e128)) {
             float3 _e130 = pos;
             float3 _e131 = pos;
-            const Segments _e132 = layer_segments(_e131, _e125, sun_4);
-            const float _e133 = transmittance_along(_e130, sun_4, _e132, rng_6, counters_12);
+            const Segments _e132 = layer_segments(_e131, _e125, sun_5);
+            const float _e133 = transmittance_along(_e130, sun_5, _e132, rng_6, counters_12);
             float3 _e135 = out_2.radiance;
             float4 _e138 = frame.sun_illuminance;
             float3 _e140 = pos;
             const float3 _e141 = sun_through_air(_e140);
             float _e143 = throughput;
             float3 _e144 = dir_5;
-            const float _e147 = phase(dot(_e144, sun_4), 1.0);
+            const float _e147 = phase(dot(_e144, sun_5), 1.0);
             out_2.radiance = (_e135 + ((_e138.xyz * _e141) * ((_e143 * _e147) * _e133)));
         }
         float3 _e152 = dir_5;
@@ -2770,11 +2862,11 @@ PathResult trace_path(float3 view_3, Interval span_3, inout uint rng_6, inout Co
         uint _e178 = order;
         if ((_e178 >= 3u)) {
             float _e183 = throughput;
-            local_51 = (_e183 < 0.1);
+            local_53 = (_e183 < 0.1);
         } else {
-            local_51 = false;
+            local_53 = false;
         }
-        bool _e187 = local_51;
+        bool _e187 = local_53;
         if (_e187) {
             const float _e188 = rng_next(rng_6);
             float _e189 = throughput;
@@ -2798,36 +2890,36 @@ PathResult trace_path(float3 view_3, Interval span_3, inout uint rng_6, inout Co
 
 bool camera_still()
 {
-    bool local_52 = (bool)0;
-    bool local_53 = (bool)0;
     bool local_54 = (bool)0;
+    bool local_55 = (bool)0;
+    bool local_56 = (bool)0;
 
     float4 _e2 = frame.camera_position;
     float4 _e5 = frame.previous_position;
     if (all((_e2 == _e5))) {
         float4 _e12 = frame.camera_forward;
         float4 _e15 = frame.previous_forward;
-        local_52 = all((_e12 == _e15));
-    } else {
-        local_52 = false;
-    }
-    bool _e19 = local_52;
-    if (_e19) {
-        float4 _e24 = frame.camera_right;
-        float4 _e28 = frame.previous_right;
-        local_53 = all((_e24.xyz == _e28.xyz));
-    } else {
-        local_53 = false;
-    }
-    bool _e33 = local_53;
-    if (_e33) {
-        float4 _e38 = frame.camera_up;
-        float4 _e42 = frame.previous_up;
-        local_54 = all((_e38.xyz == _e42.xyz));
+        local_54 = all((_e12 == _e15));
     } else {
         local_54 = false;
     }
-    bool _e47 = local_54;
+    bool _e19 = local_54;
+    if (_e19) {
+        float4 _e24 = frame.camera_right;
+        float4 _e28 = frame.previous_right;
+        local_55 = all((_e24.xyz == _e28.xyz));
+    } else {
+        local_55 = false;
+    }
+    bool _e33 = local_55;
+    if (_e33) {
+        float4 _e38 = frame.camera_up;
+        float4 _e42 = frame.previous_up;
+        local_56 = all((_e38.xyz == _e42.xyz));
+    } else {
+        local_56 = false;
+    }
+    bool _e47 = local_56;
     return _e47;
 }
 
@@ -2836,49 +2928,49 @@ float luminance(float3 c_3)
     return dot(c_3, float3(0.2126, 0.7152, 0.0722));
 }
 
-float basic_sun_depth(float3 rel_5, float alt_14, inout Counters counters_13)
+float basic_sun_depth(float3 rel_6, float alt_14, inout Counters counters_13)
 {
     float tau_7 = 0.0;
-    uint i_15 = 1u;
+    uint i_16 = 1u;
 
-    uint steps_3 = frame.counts.w;
-    if ((steps_3 == 0u)) {
+    uint steps_4 = frame.counts.w;
+    if ((steps_4 == 0u)) {
         return 0.0;
     }
     float4 _e12 = frame.sun_direction;
-    float3 sun_5 = _e12.xyz;
+    float3 sun_6 = _e12.xyz;
     float rp_5 = frame.atmosphere.x;
     float top_2 = frame.atmosphere.z;
     float _e25 = frame.atmosphere.y;
     float thickness = (top_2 - _e25);
-    const Roots _e39 = solve_sphere(dot(sun_5, float3(rel_5.x, (rel_5.y + rp_5), rel_5.z)), ((alt_14 - top_2) * ((alt_14 + top_2) + (2.0 * rp_5))));
+    const Roots _e39 = solve_sphere(dot(sun_6, float3(rel_6.x, (rel_6.y + rp_5), rel_6.z)), ((alt_14 - top_2) * ((alt_14 + top_2) + (2.0 * rp_5))));
     float length_ = min(max(_e39.t1_, 0.0), (3.0 * thickness));
-    float dt_3 = (length_ / float(steps_3));
+    float dt_3 = (length_ / float(steps_4));
     float _e51 = frame.extinction.x;
     float _e55 = frame.extinction.y;
     float sigma_t_5 = (_e51 + _e55);
     float4 _e59 = frame.camera_position;
     float2 cam_xz_1 = _e59.xz;
-    uint2 loop_bound_16 = uint2(4294967295u, 4294967295u);
-    bool loop_init_12 = true;
+    uint2 loop_bound_17 = uint2(4294967295u, 4294967295u);
+    bool loop_init_13 = true;
     while(true) {
-        if (all(loop_bound_16 == uint2(0u, 0u))) { break; }
-        loop_bound_16 -= uint2(loop_bound_16.y == 0u, 1u);
-        if (!loop_init_12) {
-            uint _e90 = i_15;
-            i_15 = (_e90 + 1u);
+        if (all(loop_bound_17 == uint2(0u, 0u))) { break; }
+        loop_bound_17 -= uint2(loop_bound_17.y == 0u, 1u);
+        if (!loop_init_13) {
+            uint _e90 = i_16;
+            i_16 = (_e90 + 1u);
         }
-        loop_init_12 = false;
-        uint _e65 = i_15;
-        if ((_e65 <= steps_3)) {
+        loop_init_13 = false;
+        uint _e65 = i_16;
+        if ((_e65 <= steps_4)) {
         } else {
             break;
         }
         {
             uint _e68 = counters_13.light;
             counters_13.light = (_e68 + 1u);
-            uint _e71 = i_15;
-            float3 q_8 = (rel_5 + (sun_5 * (float(_e71) * dt_3)));
+            uint _e71 = i_16;
+            float3 q_8 = (rel_6 + (sun_6 * (float(_e71) * dt_3)));
             float3 p_18 = float3((q_8.x + cam_xz_1.x), q_8.y, (q_8.z + cam_xz_1.y));
             float _e84 = tau_7;
             const float _e85 = altitude_of(q_8);
@@ -2896,7 +2988,7 @@ MarchResult basic_pixel(uint2 pixel_7)
     float3 radiance_2 = (0.0).xxx;
     float transmittance = 1.0;
     float depth_sum = 0.0;
-    uint i_16 = 0u;
+    uint i_17 = 0u;
     float depth_3 = 0.0;
 
     const float3 _e1 = view_ray(pixel_7);
@@ -2912,8 +3004,8 @@ MarchResult basic_pixel(uint2 pixel_7)
             count(STAT_EXIT_GROUND, 1u);
         } else {
             count(STAT_MARCHED, 1u);
-            uint steps_4 = frame.counts.z;
-            float dt_4 = (_e25.length_ / float(steps_4));
+            uint steps_5 = frame.counts.z;
+            float dt_4 = (_e25.length_ / float(steps_5));
             float sigma_s = frame.extinction.x;
             float _e52 = frame.extinction.y;
             float sigma_t_6 = (sigma_s + _e52);
@@ -2922,34 +3014,34 @@ MarchResult basic_pixel(uint2 pixel_7)
             float _e66 = frame.phase.x;
             const float _e67 = phase_hg(dot(_e1, _e60.xyz), _e66);
             float3 sun_phase = (_e56.xyz * _e67);
-            uint2 loop_bound_17 = uint2(4294967295u, 4294967295u);
-            bool loop_init_13 = true;
+            uint2 loop_bound_18 = uint2(4294967295u, 4294967295u);
+            bool loop_init_14 = true;
             while(true) {
-                if (all(loop_bound_17 == uint2(0u, 0u))) { break; }
-                loop_bound_17 -= uint2(loop_bound_17.y == 0u, 1u);
-                if (!loop_init_13) {
-                    uint _e131 = i_16;
-                    i_16 = (_e131 + 1u);
+                if (all(loop_bound_18 == uint2(0u, 0u))) { break; }
+                loop_bound_18 -= uint2(loop_bound_18.y == 0u, 1u);
+                if (!loop_init_14) {
+                    uint _e131 = i_17;
+                    i_17 = (_e131 + 1u);
                 }
-                loop_init_13 = false;
-                uint _e71 = i_16;
-                if ((_e71 < steps_4)) {
+                loop_init_14 = false;
+                uint _e71 = i_17;
+                if ((_e71 < steps_5)) {
                 } else {
                     break;
                 }
                 {
                     uint _e74 = counters_14.view_steps;
                     counters_14.view_steps = (_e74 + 1u);
-                    uint _e78 = i_16;
-                    float t_8 = (_e25.start + (float(_e78) * dt_4));
-                    float3 rel_8 = ((_e1 * t_8) + float3(0.0, cam_alt_3, 0.0));
-                    float3 p_19 = float3((rel_8.x + cam_xz_2.x), rel_8.y, (rel_8.z + cam_xz_2.y));
-                    const float _e95 = altitude_of(rel_8);
+                    uint _e78 = i_17;
+                    float t_9 = (_e25.start + (float(_e78) * dt_4));
+                    float3 rel_9 = ((_e1 * t_9) + float3(0.0, cam_alt_3, 0.0));
+                    float3 p_19 = float3((rel_9.x + cam_xz_2.x), rel_9.y, (rel_9.z + cam_xz_2.y));
+                    const float _e95 = altitude_of(rel_9);
                     const float _e96 = cloud_density(p_19, _e95, counters_14);
                     if ((_e96 <= 0.0)) {
                         continue;
                     }
-                    const float _e99 = basic_sun_depth(rel_8, _e95, counters_14);
+                    const float _e99 = basic_sun_depth(rel_9, _e95, counters_14);
                     float beer_powder = ((2.0 * exp(-(_e99))) * (1.0 - exp((-2.0 * _e99))));
                     float3 _e110 = radiance_2;
                     float _e111 = transmittance;
@@ -2957,7 +3049,7 @@ MarchResult basic_pixel(uint2 pixel_7)
                     float step_t_1 = exp(((-(sigma_t_6) * _e96) * dt_4));
                     float _e122 = depth_sum;
                     float _e123 = transmittance;
-                    depth_sum = (_e122 + ((t_8 * _e123) * (1.0 - step_t_1)));
+                    depth_sum = (_e122 + ((t_9 * _e123) * (1.0 - step_t_1)));
                     float _e129 = transmittance;
                     transmittance = (_e129 * step_t_1);
                 }
@@ -2994,14 +3086,14 @@ float atlas_hash(uint a_2, uint b_2)
 
 float value_noise(float2 p_10, uint seed)
 {
-    uint2 i_18 = naga_f2u32(floor(p_10));
-    float2 f_5 = frac(p_10);
-    float2 s_12 = ((f_5 * f_5) * ((3.0).xx - (2.0 * f_5)));
+    uint2 i_19 = naga_f2u32(floor(p_10));
+    float2 f_6 = frac(p_10);
+    float2 s_12 = ((f_6 * f_6) * ((3.0).xx - (2.0 * f_6)));
     uint h_11 = (seed * 7919u);
-    const float _e17 = atlas_hash((i_18.x + h_11), i_18.y);
-    const float _e23 = atlas_hash(((i_18.x + 1u) + h_11), i_18.y);
-    const float _e29 = atlas_hash((i_18.x + h_11), (i_18.y + 1u));
-    const float _e37 = atlas_hash(((i_18.x + 1u) + h_11), (i_18.y + 1u));
+    const float _e17 = atlas_hash((i_19.x + h_11), i_19.y);
+    const float _e23 = atlas_hash(((i_19.x + 1u) + h_11), i_19.y);
+    const float _e29 = atlas_hash((i_19.x + h_11), (i_19.y + 1u));
+    const float _e37 = atlas_hash(((i_19.x + 1u) + h_11), (i_19.y + 1u));
     return lerp(lerp(_e17, _e23, s_12.x), lerp(_e29, _e37, s_12.x), s_12.y);
 }
 
@@ -3013,16 +3105,16 @@ float value_fbm(float2 p_11, uint seed_1)
     uint o = 0u;
 
     q_4 = p_11;
-    uint2 loop_bound_18 = uint2(4294967295u, 4294967295u);
-    bool loop_init_14 = true;
+    uint2 loop_bound_19 = uint2(4294967295u, 4294967295u);
+    bool loop_init_15 = true;
     while(true) {
-        if (all(loop_bound_18 == uint2(0u, 0u))) { break; }
-        loop_bound_18 -= uint2(loop_bound_18.y == 0u, 1u);
-        if (!loop_init_14) {
+        if (all(loop_bound_19 == uint2(0u, 0u))) { break; }
+        loop_bound_19 -= uint2(loop_bound_19.y == 0u, 1u);
+        if (!loop_init_15) {
             uint _e26 = o;
             o = (_e26 + 1u);
         }
-        loop_init_14 = false;
+        loop_init_15 = false;
         uint _e9 = o;
         if ((_e9 < 4u)) {
         } else {
@@ -3048,7 +3140,7 @@ float value_fbm(float2 p_11, uint seed_1)
 float sprite_texture(uint tile_1, float2 uv)
 {
     float billow = 0.0;
-    uint i_17 = 0u;
+    uint i_18 = 0u;
     float2 at = (float2)0;
     float a_3 = (float)0;
 
@@ -3063,32 +3155,32 @@ float sprite_texture(uint tile_1, float2 uv)
         return (((mask * streak) * _e46) * 0.8);
     }
     uint blobs = (5u + naga_mod(tile_1, 4u));
-    uint2 loop_bound_19 = uint2(4294967295u, 4294967295u);
-    bool loop_init_15 = true;
+    uint2 loop_bound_20 = uint2(4294967295u, 4294967295u);
+    bool loop_init_16 = true;
     while(true) {
-        if (all(loop_bound_19 == uint2(0u, 0u))) { break; }
-        loop_bound_19 -= uint2(loop_bound_19.y == 0u, 1u);
-        if (!loop_init_15) {
-            uint _e108 = i_17;
-            i_17 = (_e108 + 1u);
+        if (all(loop_bound_20 == uint2(0u, 0u))) { break; }
+        loop_bound_20 -= uint2(loop_bound_20.y == 0u, 1u);
+        if (!loop_init_16) {
+            uint _e108 = i_18;
+            i_18 = (_e108 + 1u);
         }
-        loop_init_15 = false;
-        uint _e58 = i_17;
+        loop_init_16 = false;
+        uint _e58 = i_18;
         if ((_e58 < blobs)) {
         } else {
             break;
         }
         {
-            uint _e61 = i_17;
+            uint _e61 = i_18;
             const float _e63 = atlas_hash(tile_1, (2u * _e61));
-            uint _e65 = i_17;
+            uint _e65 = i_18;
             const float _e69 = atlas_hash(tile_1, ((2u * _e65) + 1u));
             float2 centre_1 = (float2(_e63, _e69) - (0.5).xx);
             at = ((0.5).xx + (centre_1 * 0.34));
             if ((tile_1 == 4u)) {
                 at.y = (0.5 + ((centre_1.y - 0.5) * 0.24));
             }
-            uint _e91 = i_17;
+            uint _e91 = i_18;
             const float _e93 = atlas_hash(tile_1, (100u + _e91));
             float r_18 = (0.14 + (0.1 * _e93));
             float2 _e98 = at;
@@ -3131,23 +3223,23 @@ SpriteCell sprite_cell(uint cell)
 {
     int2 start_1 = (int2)0;
     uint k_10 = 3u;
-    bool local_55 = (bool)0;
-    bool local_56 = (bool)0;
+    bool local_57 = (bool)0;
+    bool local_58 = (bool)0;
 
     uint level_1 = naga_div(cell, 64u);
-    int2 local_60 = int2(int(naga_mod(cell, 8u)), int(naga_mod(naga_div(cell, 8u), 8u)));
+    int2 local_62 = int2(int(naga_mod(cell, 8u)), int(naga_mod(naga_div(cell, 8u), 8u)));
     float4 _e15 = frame.camera_position;
     start_1 = asint(asuint(naga_f2i32(floor((_e15.xz / (12000.0).xx)))) - asuint((int(4)).xx));
-    uint2 loop_bound_20 = uint2(4294967295u, 4294967295u);
-    bool loop_init_16 = true;
+    uint2 loop_bound_21 = uint2(4294967295u, 4294967295u);
+    bool loop_init_17 = true;
     while(true) {
-        if (all(loop_bound_20 == uint2(0u, 0u))) { break; }
-        loop_bound_20 -= uint2(loop_bound_20.y == 0u, 1u);
-        if (!loop_init_16) {
+        if (all(loop_bound_21 == uint2(0u, 0u))) { break; }
+        loop_bound_21 -= uint2(loop_bound_21.y == 0u, 1u);
+        if (!loop_init_17) {
             uint _e35 = k_10;
             k_10 = (_e35 - 1u);
         }
-        loop_init_16 = false;
+        loop_init_17 = false;
         uint _e27 = k_10;
         if ((_e27 > level_1)) {
         } else {
@@ -3159,19 +3251,19 @@ SpriteCell sprite_cell(uint cell)
         }
     }
     if ((level_1 > 0u)) {
-        local_55 = all((local_60 >= (int(2)).xx));
+        local_57 = all((local_62 >= (int(2)).xx));
     } else {
-        local_55 = false;
+        local_57 = false;
     }
-    bool _e47 = local_55;
+    bool _e47 = local_57;
     if (_e47) {
-        local_56 = all((local_60 < (int(6)).xx));
+        local_58 = all((local_62 < (int(6)).xx));
     } else {
-        local_56 = false;
+        local_58 = false;
     }
-    bool covered = local_56;
+    bool covered = local_58;
     int2 _e56 = start_1;
-    const SpriteCell spritecell = ConstructSpriteCell(asint(asuint(_e56) + asuint(local_60)), (SPRITE_CELL0_ * float((1u << level_1))), covered);
+    const SpriteCell spritecell = ConstructSpriteCell(asint(asuint(_e56) + asuint(local_62)), (SPRITE_CELL0_ * float((1u << level_1))), covered);
     return spritecell;
 }
 
@@ -3247,38 +3339,38 @@ float sprite_sun_level(float cos_angle)
 
 float2 sprite_corner(uint k_11)
 {
-    bool local_57 = (bool)0;
+    bool local_59 = (bool)0;
 
     uint q_10 = ((k_11 >= 3u) ? ((k_11 == 3u) ? 0u : (k_11 - 2u)) : k_11);
     if (!((q_10 == 1u))) {
-        local_57 = (q_10 == 2u);
+        local_59 = (q_10 == 2u);
     } else {
-        local_57 = true;
+        local_59 = true;
     }
-    bool _e18 = local_57;
+    bool _e18 = local_59;
     return float2((_e18 ? 1.0 : -1.0), ((q_10 >= 2u) ? 1.0 : -1.0));
 }
 
 float3 sky_radiance(float3 d_14, float alt_16)
 {
     float4 _e4 = frame.sun_direction;
-    float3 sun_6 = _e4.xyz;
+    float3 sun_7 = _e4.xyz;
     float4 _e8 = frame.sun_illuminance;
     float3 e = _e8.xyz;
-    const float _e15 = saturate_(((sun_6.y * 4.0) + 0.3));
+    const float _e15 = saturate_(((sun_7.y * 4.0) + 0.3));
     const bool _e19 = hits_ground(float3(0.0, alt_16, 0.0), alt_16, d_14);
     if (_e19) {
         float3 ground_albedo = float3(0.035, 0.035, 0.03);
-        return (ground_albedo * (((e * max(sun_6.y, 0.0)) / (3.1415927).xxx) + ((0.05 * e) * _e15)));
+        return (ground_albedo * (((e * max(sun_7.y, 0.0)) / (3.1415927).xxx) + ((0.05 * e) * _e15)));
     }
     float3 zenith = float3(0.018, 0.04, 0.1);
     float3 horizon_2 = float3(0.07, 0.085, 0.11);
     const float _e45 = saturate_(d_14.y);
     float3 gradient_1 = lerp(horizon_2, zenith, sqrt(_e45));
     float3 sunset = (((1.0 - (_e15 * 0.8)) * pow((1.0 - _e45), 6.0)) * float3(0.25, 0.1, 0.0));
-    const float _e64 = phase_hg(dot(d_14, sun_6), 0.76);
+    const float _e64 = phase_hg(dot(d_14, sun_7), 0.76);
     float glow = (_e64 * 0.02);
-    const float _e73 = saturate_(((sun_6.y * 10.0) + 1.0));
+    const float _e73 = saturate_(((sun_7.y * 10.0) + 1.0));
     return (e * (((gradient_1 * _e15) + (sunset * _e73)) + ((glow * _e15)).xxx));
 }
 
@@ -3295,18 +3387,18 @@ float3 sun_disk(float3 d_15)
 
 float3 moon_disk(float3 d_16)
 {
-    bool local_58 = (bool)0;
+    bool local_60 = (bool)0;
 
     float4 _e3 = frame.moon;
     float3 m_3 = _e3.xyz;
     float c_11 = dot(d_16, m_3);
     float _e9 = frame.moon.w;
     if (!((_e9 <= 0.0))) {
-        local_58 = (c_11 < MOON_COS_RADIUS);
+        local_60 = (c_11 < MOON_COS_RADIUS);
     } else {
-        local_58 = true;
+        local_60 = true;
     }
-    bool _e18 = local_58;
+    bool _e18 = local_60;
     if (_e18) {
         return (0.0).xxx;
     }
@@ -3324,7 +3416,7 @@ float3 stars(float3 d_17)
     uint face = 0u;
     float2 uv_1 = (0.0).xx;
     float major = 0.0;
-    bool local_59 = (bool)0;
+    bool local_61 = (bool)0;
     float3 star = (0.0).xxx;
 
     float e0_ = frame.night.w;
@@ -3333,11 +3425,11 @@ float3 stars(float3 d_17)
     }
     float3 a_10 = abs(d_17);
     if ((a_10.x >= a_10.y)) {
-        local_59 = (a_10.x >= a_10.z);
+        local_61 = (a_10.x >= a_10.z);
     } else {
-        local_59 = false;
+        local_61 = false;
     }
-    bool _e26 = local_59;
+    bool _e26 = local_61;
     if (_e26) {
         face = ((d_17.x > 0.0) ? 0u : 1u);
         uv_1 = d_17.zy;
@@ -3482,16 +3574,16 @@ void transmittance_lut(uint3 id : SV_DispatchThreadID)
     const float2 _e11 = transmittance_r_mu((float2(id.xy) / float2(255.0, 63.0)));
     const float _e14 = distance_to_top(_e11.x, _e11.y);
     float dt_5 = (_e14 / 128.0);
-    uint2 loop_bound_21 = uint2(4294967295u, 4294967295u);
-    bool loop_init_17 = true;
+    uint2 loop_bound_22 = uint2(4294967295u, 4294967295u);
+    bool loop_init_18 = true;
     while(true) {
-        if (all(loop_bound_21 == uint2(0u, 0u))) { break; }
-        loop_bound_21 -= uint2(loop_bound_21.y == 0u, 1u);
-        if (!loop_init_17) {
+        if (all(loop_bound_22 == uint2(0u, 0u))) { break; }
+        loop_bound_22 -= uint2(loop_bound_22.y == 0u, 1u);
+        if (!loop_init_18) {
             uint _e61 = i;
             i = (_e61 + 1u);
         }
-        loop_init_17 = false;
+        loop_init_18 = false;
         uint _e22 = i;
         if ((_e22 <= TRANSMITTANCE_STEPS)) {
         } else {
@@ -3544,17 +3636,17 @@ void multiscatter_lut(uint3 id_1 : SV_DispatchThreadID)
     const float _e19 = air_bottom();
     float r_20 = (_e16 + (x_12.y * (_e18 - _e19)));
     float3 origin_6 = float3(0.0, r_20, 0.0);
-    float3 sun_7 = float3(sqrt(max((1.0 - (mu_s_7 * mu_s_7)), 0.0)), mu_s_7, 0.0);
-    uint2 loop_bound_22 = uint2(4294967295u, 4294967295u);
-    bool loop_init_18 = true;
+    float3 sun_8 = float3(sqrt(max((1.0 - (mu_s_7 * mu_s_7)), 0.0)), mu_s_7, 0.0);
+    uint2 loop_bound_23 = uint2(4294967295u, 4294967295u);
+    bool loop_init_19 = true;
     while(true) {
-        if (all(loop_bound_22 == uint2(0u, 0u))) { break; }
-        loop_bound_22 -= uint2(loop_bound_22.y == 0u, 1u);
-        if (!loop_init_18) {
+        if (all(loop_bound_23 == uint2(0u, 0u))) { break; }
+        loop_bound_23 -= uint2(loop_bound_23.y == 0u, 1u);
+        if (!loop_init_19) {
             uint _e121 = k;
             k = (_e121 + 1u);
         }
-        loop_init_18 = false;
+        loop_init_19 = false;
         uint _e43 = k;
         if ((_e43 < MULTISCATTER_DIRECTIONS)) {
         } else {
@@ -3567,16 +3659,16 @@ void multiscatter_lut(uint3 id_1 : SV_DispatchThreadID)
             float dt_6 = (_e49.x / 32.0);
             tau = (0.0).xxx;
             i_1 = 0u;
-            uint2 loop_bound_23 = uint2(4294967295u, 4294967295u);
-            bool loop_init_19 = true;
+            uint2 loop_bound_24 = uint2(4294967295u, 4294967295u);
+            bool loop_init_20 = true;
             while(true) {
-                if (all(loop_bound_23 == uint2(0u, 0u))) { break; }
-                loop_bound_23 -= uint2(loop_bound_23.y == 0u, 1u);
-                if (!loop_init_19) {
+                if (all(loop_bound_24 == uint2(0u, 0u))) { break; }
+                loop_bound_24 -= uint2(loop_bound_24.y == 0u, 1u);
+                if (!loop_init_20) {
                     uint _e103 = i_1;
                     i_1 = (_e103 + 1u);
                 }
-                loop_init_19 = false;
+                loop_init_20 = false;
                 uint _e58 = i_1;
                 if ((_e58 < MULTISCATTER_STEPS)) {
                 } else {
@@ -3589,13 +3681,13 @@ void multiscatter_lut(uint3 id_1 : SV_DispatchThreadID)
                     const float _e69 = air_bottom();
                     const AirSample _e71 = air_at((rp_7 - _e69));
                     float3 _e72 = tau;
-                    float3 t_9 = exp(-((_e72 + ((0.5 * _e71.extinction) * dt_6))));
+                    float3 t_10 = exp(-((_e72 + ((0.5 * _e71.extinction) * dt_6))));
                     float3 s_13 = (_e71.rayleigh + (_e71.mie).xxx);
                     float3 _e84 = l2_;
-                    const float3 _e90 = sun_transmittance(rp_7, dot((p_20 / (rp_7).xxx), sun_7));
-                    l2_ = (_e84 + ((((t_9 * s_13) * 0.07957747) * _e90) * dt_6));
+                    const float3 _e90 = sun_transmittance(rp_7, dot((p_20 / (rp_7).xxx), sun_8));
+                    l2_ = (_e84 + ((((t_10 * s_13) * 0.07957747) * _e90) * dt_6));
                     float3 _e94 = f_ms;
-                    f_ms = (_e94 + ((t_9 * s_13) * dt_6));
+                    f_ms = (_e94 + ((t_10 * s_13) * dt_6));
                     float3 _e98 = tau;
                     tau = (_e98 + (_e71.extinction * dt_6));
                 }
@@ -3604,7 +3696,7 @@ void multiscatter_lut(uint3 id_1 : SV_DispatchThreadID)
                 float3 g_7 = (origin_6 + (_e48 * _e49.x));
                 float3 _e111 = l2_;
                 float3 _e112 = tau;
-                const float3 _e117 = ground_radiance_sun(dot(normalize(g_7), sun_7));
+                const float3 _e117 = ground_radiance_sun(dot(normalize(g_7), sun_8));
                 l2_ = (_e111 + (exp(-(_e112)) * _e117));
             }
         }
@@ -3631,9 +3723,9 @@ void sky_view_lut(uint3 id_2 : SV_DispatchThreadID)
     float3 d_22 = float3((cos(_e15) * cos(phi_2)), sin(_e15), (cos(_e15) * sin(phi_2)));
     const float2 _e29 = air_ray_end(_e11, d_22);
     float4 _e32 = frame.sun_direction;
-    float3 sun_8 = _e32.xyz;
-    const Scattered _e36 = integrate_air(_e11, d_22, _e29.x, SKY_VIEW_STEPS, sun_8);
-    const float3 _e43 = with_ground(_e36, _e11, d_22, _e29.x, sun_8, (_e29.y > 0.5));
+    float3 sun_9 = _e32.xyz;
+    const Scattered _e36 = integrate_air(_e11, d_22, _e29.x, SKY_VIEW_STEPS, sun_9);
+    const float3 _e43 = with_ground(_e36, _e11, d_22, _e29.x, sun_9, (_e29.y > 0.5));
     sky_view_out[id_2.xy] = float4(_e43, 1.0);
     return;
 }
@@ -3653,21 +3745,21 @@ void aerial_perspective(uint3 id_3 : SV_DispatchThreadID)
     const float3 _e8 = camera_air_origin();
     const float2 _e9 = air_ray_end(_e8, _e7);
     float4 _e12 = frame.sun_direction;
-    float3 sun_9 = _e12.xyz;
-    float cos_theta_8 = dot(_e7, sun_9);
+    float3 sun_10 = _e12.xyz;
+    float cos_theta_8 = dot(_e7, sun_10);
     const float _e15 = phase_rayleigh(cos_theta_8);
     float _e19 = frame.air_mie.w;
     const float _e20 = phase_cornette_shanks_air(cos_theta_8, _e19);
-    uint2 loop_bound_24 = uint2(4294967295u, 4294967295u);
-    bool loop_init_20 = true;
+    uint2 loop_bound_25 = uint2(4294967295u, 4294967295u);
+    bool loop_init_21 = true;
     while(true) {
-        if (all(loop_bound_24 == uint2(0u, 0u))) { break; }
-        loop_bound_24 -= uint2(loop_bound_24.y == 0u, 1u);
-        if (!loop_init_20) {
+        if (all(loop_bound_25 == uint2(0u, 0u))) { break; }
+        loop_bound_25 -= uint2(loop_bound_25.y == 0u, 1u);
+        if (!loop_init_21) {
             uint _e122 = z;
             z = (_e122 + 1u);
         }
-        loop_init_20 = false;
+        loop_init_21 = false;
         uint _e30 = z;
         if ((_e30 < AERIAL_SLICES)) {
         } else {
@@ -3675,16 +3767,16 @@ void aerial_perspective(uint3 id_3 : SV_DispatchThreadID)
         }
         {
             k_1 = 0u;
-            uint2 loop_bound_25 = uint2(4294967295u, 4294967295u);
-            bool loop_init_21 = true;
+            uint2 loop_bound_26 = uint2(4294967295u, 4294967295u);
+            bool loop_init_22 = true;
             while(true) {
-                if (all(loop_bound_25 == uint2(0u, 0u))) { break; }
-                loop_bound_25 -= uint2(loop_bound_25.y == 0u, 1u);
-                if (!loop_init_21) {
+                if (all(loop_bound_26 == uint2(0u, 0u))) { break; }
+                loop_bound_26 -= uint2(loop_bound_26.y == 0u, 1u);
+                if (!loop_init_22) {
                     uint _e99 = k_1;
                     k_1 = (_e99 + 1u);
                 }
-                loop_init_21 = false;
+                loop_init_22 = false;
                 uint _e35 = k_1;
                 if ((_e35 < 4u)) {
                 } else {
@@ -3697,7 +3789,7 @@ void aerial_perspective(uint3 id_3 : SV_DispatchThreadID)
                     float dt_7 = max(min(0.25, (_e9.x - t0_1)), 0.0);
                     float3 p_21 = (_e8 + (_e7 * (t0_1 + (0.5 * dt_7))));
                     float r_21 = length(p_21);
-                    float mu_s_8 = dot((p_21 / (r_21).xxx), sun_9);
+                    float mu_s_8 = dot((p_21 / (r_21).xxx), sun_10);
                     const float _e64 = air_bottom();
                     const AirSample _e66 = air_at((r_21 - _e64));
                     float3 _e67 = tau_1;
@@ -3712,10 +3804,10 @@ void aerial_perspective(uint3 id_3 : SV_DispatchThreadID)
                 }
             }
             float3 _e101 = tau_1;
-            float3 t_10 = exp(-(_e101));
+            float3 t_11 = exp(-(_e101));
             uint _e105 = z;
             float3 _e112 = radiance;
-            aerial_out[uint2(((_e105 * AERIAL_SIDE) + id_3.x), id_3.y)] = float4(_e112, (((t_10.x + t_10.y) + t_10.z) / 3.0));
+            aerial_out[uint2(((_e105 * AERIAL_SIDE) + id_3.x), id_3.y)] = float4(_e112, (((t_11.x + t_11.y) + t_11.z) / 3.0));
         }
     }
     return;
@@ -3746,16 +3838,16 @@ void sky_ambient(uint3 id_4 : SV_DispatchThreadID)
     float3 origin_7 = float3(0.0, (_e24 + (alt_m * 0.001)), 0.0);
     uint first = (top_3 ? 0u : 32u);
     k_2 = first;
-    uint2 loop_bound_26 = uint2(4294967295u, 4294967295u);
-    bool loop_init_22 = true;
+    uint2 loop_bound_27 = uint2(4294967295u, 4294967295u);
+    bool loop_init_23 = true;
     while(true) {
-        if (all(loop_bound_26 == uint2(0u, 0u))) { break; }
-        loop_bound_26 -= uint2(loop_bound_26.y == 0u, 1u);
-        if (!loop_init_22) {
+        if (all(loop_bound_27 == uint2(0u, 0u))) { break; }
+        loop_bound_27 -= uint2(loop_bound_27.y == 0u, 1u);
+        if (!loop_init_23) {
             uint _e67 = k_2;
             k_2 = (_e67 + 1u);
         }
-        loop_init_22 = false;
+        loop_init_23 = false;
         uint _e40 = k_2;
         if ((_e40 < (first + 32u))) {
         } else {
@@ -3766,11 +3858,11 @@ void sky_ambient(uint3 id_4 : SV_DispatchThreadID)
             const float3 _e45 = fibonacci_direction(_e43, AMBIENT_DIRECTIONS);
             const float2 _e46 = air_ray_end(origin_7, _e45);
             float4 _e49 = frame.sun_direction;
-            float3 sun_10 = _e49.xyz;
-            const Scattered _e53 = integrate_air(origin_7, _e45, _e46.x, AMBIENT_STEPS, sun_10);
+            float3 sun_11 = _e49.xyz;
+            const Scattered _e53 = integrate_air(origin_7, _e45, _e46.x, AMBIENT_STEPS, sun_11);
             float w_7 = abs(_e45.y);
             float3 _e56 = sum_1;
-            const float3 _e61 = with_ground(_e53, origin_7, _e45, _e46.x, sun_10, (_e46.y > 0.5));
+            const float3 _e61 = with_ground(_e53, origin_7, _e45, _e46.x, sun_11, (_e46.y > 0.5));
             sum_1 = (_e56 + (w_7 * _e61));
             float _e64 = weights;
             weights = (_e64 + w_7);
@@ -3799,19 +3891,19 @@ void ground_irradiance(uint3 id_5 : SV_DispatchThreadID)
         return;
     }
     float mu_s_9 = (((float(id_5.x) / 63.0) * 2.0) - 1.0);
-    float3 sun_11 = float3(sqrt(max((1.0 - (mu_s_9 * mu_s_9)), 0.0)), mu_s_9, 0.0);
+    float3 sun_12 = float3(sqrt(max((1.0 - (mu_s_9 * mu_s_9)), 0.0)), mu_s_9, 0.0);
     const float _e28 = air_bottom();
     float3 origin_8 = float3(0.0, (_e28 + 0.001), 0.0);
-    uint2 loop_bound_27 = uint2(4294967295u, 4294967295u);
-    bool loop_init_23 = true;
+    uint2 loop_bound_28 = uint2(4294967295u, 4294967295u);
+    bool loop_init_24 = true;
     while(true) {
-        if (all(loop_bound_27 == uint2(0u, 0u))) { break; }
-        loop_bound_27 -= uint2(loop_bound_27.y == 0u, 1u);
-        if (!loop_init_23) {
+        if (all(loop_bound_28 == uint2(0u, 0u))) { break; }
+        loop_bound_28 -= uint2(loop_bound_28.y == 0u, 1u);
+        if (!loop_init_24) {
             uint _e58 = k_3;
             k_3 = (_e58 + 1u);
         }
-        loop_init_23 = false;
+        loop_init_24 = false;
         uint _e39 = k_3;
         if ((_e39 < GROUND_IRRADIANCE_DIRECTIONS)) {
         } else {
@@ -3825,7 +3917,7 @@ void ground_irradiance(uint3 id_5 : SV_DispatchThreadID)
             }
             const float2 _e48 = air_ray_end(origin_8, _e44);
             float3 _e49 = sum_2;
-            const Scattered _e52 = integrate_air(origin_8, _e44, _e48.x, AMBIENT_STEPS, sun_11);
+            const Scattered _e52 = integrate_air(origin_8, _e44, _e48.x, AMBIENT_STEPS, sun_12);
             sum_2 = (_e49 + (_e52.radiance * _e44.y));
         }
     }
@@ -3848,22 +3940,22 @@ void cloud_shadow(uint3 id_6 : SV_DispatchThreadID)
     }
     const float3 _e7 = shadow_ground_point(id_6.xy);
     float4 _e10 = frame.sun_direction;
-    float3 sun_12 = _e10.xyz;
+    float3 sun_13 = _e10.xyz;
     float rp_8 = frame.atmosphere.x;
     float3 up_1 = normalize(float3(_e7.x, (_e7.y + rp_8), _e7.z));
-    if ((dot(up_1, sun_12) > 0.0)) {
+    if ((dot(up_1, sun_13) > 0.0)) {
         float4 _e29 = frame.camera_position;
         float2 cam_xz_3 = _e29.xz;
-        uint2 loop_bound_28 = uint2(4294967295u, 4294967295u);
-        bool loop_init_24 = true;
+        uint2 loop_bound_29 = uint2(4294967295u, 4294967295u);
+        bool loop_init_25 = true;
         while(true) {
-            if (all(loop_bound_28 == uint2(0u, 0u))) { break; }
-            loop_bound_28 -= uint2(loop_bound_28.y == 0u, 1u);
-            if (!loop_init_24) {
+            if (all(loop_bound_29 == uint2(0u, 0u))) { break; }
+            loop_bound_29 -= uint2(loop_bound_29.y == 0u, 1u);
+            if (!loop_init_25) {
                 uint _e90 = i_2;
                 i_2 = (_e90 + 1u);
             }
-            loop_init_24 = false;
+            loop_init_25 = false;
             uint _e39 = i_2;
             const uint _e40 = layer_count();
             if ((_e39 < _e40)) {
@@ -3873,25 +3965,25 @@ void cloud_shadow(uint3 id_6 : SV_DispatchThreadID)
             {
                 uint _e42 = i_2;
                 const Layer _e43 = cloud_layer(_e42);
-                const Roots _e46 = ray_shell_from(_e7, 0.0, sun_12, _e43.bottom);
+                const Roots _e46 = ray_shell_from(_e7, 0.0, sun_13, _e43.bottom);
                 float start_2 = max(_e46.t1_, 0.0);
-                const Roots _e52 = ray_shell_from(_e7, 0.0, sun_12, _e43.top);
+                const Roots _e52 = ray_shell_from(_e7, 0.0, sun_13, _e43.top);
                 float end_2 = _e52.t1_;
                 float dt_8 = ((end_2 - start_2) / 16.0);
                 if (!((dt_8 > 0.0))) {
                     continue;
                 }
                 k_4 = 0u;
-                uint2 loop_bound_29 = uint2(4294967295u, 4294967295u);
-                bool loop_init_25 = true;
+                uint2 loop_bound_30 = uint2(4294967295u, 4294967295u);
+                bool loop_init_26 = true;
                 while(true) {
-                    if (all(loop_bound_29 == uint2(0u, 0u))) { break; }
-                    loop_bound_29 -= uint2(loop_bound_29.y == 0u, 1u);
-                    if (!loop_init_25) {
+                    if (all(loop_bound_30 == uint2(0u, 0u))) { break; }
+                    loop_bound_30 -= uint2(loop_bound_30.y == 0u, 1u);
+                    if (!loop_init_26) {
                         uint _e87 = k_4;
                         k_4 = (_e87 + 1u);
                     }
-                    loop_init_25 = false;
+                    loop_init_26 = false;
                     uint _e62 = k_4;
                     if ((_e62 < SHADOW_STEPS)) {
                     } else {
@@ -3899,7 +3991,7 @@ void cloud_shadow(uint3 id_6 : SV_DispatchThreadID)
                     }
                     {
                         uint _e65 = k_4;
-                        float3 q_12 = (_e7 + (sun_12 * (start_2 + ((float(_e65) + 0.5) * dt_8))));
+                        float3 q_12 = (_e7 + (sun_13 * (start_2 + ((float(_e65) + 0.5) * dt_8))));
                         float3 p_22 = float3((q_12.x + cam_xz_3.x), q_12.y, (q_12.z + cam_xz_3.y));
                         float _e81 = tau_2;
                         const float _e82 = altitude_of(q_12);
@@ -3948,16 +4040,16 @@ void occupancy(uint3 id_7 : SV_DispatchThreadID)
     int2 lo_1 = asint(asuint(naga_div(asint(asuint(int2(id_7.xy)) * asuint(size_7)), (int(64)).xx)) - asuint((int(1)).xx));
     int2 hi = naga_div(asint(asuint(asint(asuint(int2(id_7.xy)) + asuint((int(1)).xx))) * asuint(size_7)), (int(64)).xx);
     y = lo_1.y;
-    uint2 loop_bound_30 = uint2(4294967295u, 4294967295u);
-    bool loop_init_26 = true;
+    uint2 loop_bound_31 = uint2(4294967295u, 4294967295u);
+    bool loop_init_27 = true;
     while(true) {
-        if (all(loop_bound_30 == uint2(0u, 0u))) { break; }
-        loop_bound_30 -= uint2(loop_bound_30.y == 0u, 1u);
-        if (!loop_init_26) {
+        if (all(loop_bound_31 == uint2(0u, 0u))) { break; }
+        loop_bound_31 -= uint2(loop_bound_31.y == 0u, 1u);
+        if (!loop_init_27) {
             int _e54 = y;
             y = asint(asuint(_e54) + asuint(int(1)));
         }
-        loop_init_26 = false;
+        loop_init_27 = false;
         int _e30 = y;
         if ((_e30 <= hi.y)) {
         } else {
@@ -3965,16 +4057,16 @@ void occupancy(uint3 id_7 : SV_DispatchThreadID)
         }
         {
             x = lo_1.x;
-            uint2 loop_bound_31 = uint2(4294967295u, 4294967295u);
-            bool loop_init_27 = true;
+            uint2 loop_bound_32 = uint2(4294967295u, 4294967295u);
+            bool loop_init_28 = true;
             while(true) {
-                if (all(loop_bound_31 == uint2(0u, 0u))) { break; }
-                loop_bound_31 -= uint2(loop_bound_31.y == 0u, 1u);
-                if (!loop_init_27) {
+                if (all(loop_bound_32 == uint2(0u, 0u))) { break; }
+                loop_bound_32 -= uint2(loop_bound_32.y == 0u, 1u);
+                if (!loop_init_28) {
                     int _e51 = x;
                     x = asint(asuint(_e51) + asuint(int(1)));
                 }
-                loop_init_27 = false;
+                loop_init_28 = false;
                 int _e35 = x;
                 if ((_e35 <= hi.x)) {
                 } else {
@@ -3983,9 +4075,9 @@ void occupancy(uint3 id_7 : SV_DispatchThreadID)
                 {
                     int _e38 = x;
                     int _e39 = y;
-                    int2 t_11 = naga_mod(asint(asuint(naga_mod(int2(_e38, _e39), size_7)) + asuint(size_7)), size_7);
+                    int2 t_12 = naga_mod(asint(asuint(naga_mod(int2(_e38, _e39), size_7)) + asuint(size_7)), size_7);
                     float _e44 = m;
-                    float4 _e47 = weather_tex.Load(int3(t_11, int(0)));
+                    float4 _e47 = weather_tex.Load(int3(t_12, int(0)));
                     m = max(_e44, _e47.x);
                 }
             }
@@ -4279,16 +4371,16 @@ void pathtrace(uint3 group : SV_GroupID, uint lane : SV_GroupIndex)
     lane_moments[min(uint(lane), 31u)] = float4((_e52 * _e52), (hit ? _e50.depth : 0.0), (hit ? 1.0 : 0.0), 0.0);
     GroupMemoryBarrierWithGroupSync();
     if ((lane == 0u)) {
-        uint2 loop_bound_32 = uint2(4294967295u, 4294967295u);
-        bool loop_init_28 = true;
+        uint2 loop_bound_33 = uint2(4294967295u, 4294967295u);
+        bool loop_init_29 = true;
         while(true) {
-            if (all(loop_bound_32 == uint2(0u, 0u))) { break; }
-            loop_bound_32 -= uint2(loop_bound_32.y == 0u, 1u);
-            if (!loop_init_28) {
+            if (all(loop_bound_33 == uint2(0u, 0u))) { break; }
+            loop_bound_33 -= uint2(loop_bound_33.y == 0u, 1u);
+            if (!loop_init_29) {
                 uint _e98 = i_3;
                 i_3 = (_e98 + 1u);
             }
-            loop_init_28 = false;
+            loop_init_29 = false;
             uint _e82 = i_3;
             if ((_e82 < PATHS_PER_FRAME)) {
             } else {
@@ -4407,16 +4499,16 @@ void sprite_build(uint3 id_14 : SV_DispatchThreadID)
     uint own = naga_mod(slot, SPRITES_PER_CELL);
     const SpriteCandidate _e18 = sprite_candidate(_e6, level_2, own, counters_2);
     me = _e18;
-    uint2 loop_bound_33 = uint2(4294967295u, 4294967295u);
-    bool loop_init_29 = true;
+    uint2 loop_bound_34 = uint2(4294967295u, 4294967295u);
+    bool loop_init_30 = true;
     while(true) {
-        if (all(loop_bound_33 == uint2(0u, 0u))) { break; }
-        loop_bound_33 -= uint2(loop_bound_33.y == 0u, 1u);
-        if (!loop_init_29) {
+        if (all(loop_bound_34 == uint2(0u, 0u))) { break; }
+        loop_bound_34 -= uint2(loop_bound_34.y == 0u, 1u);
+        if (!loop_init_30) {
             uint _e38 = i_4;
             i_4 = (_e38 + 1u);
         }
-        loop_init_29 = false;
+        loop_init_30 = false;
         uint _e22 = i_4;
         if ((_e22 < SPRITES_PER_CELL)) {
         } else {
@@ -4481,8 +4573,8 @@ void sprite_build(uint3 id_14 : SV_DispatchThreadID)
         float _e167 = me.alt;
         const float3 _e168 = sprite_rel(_e165, _e167);
         float _e172 = frame.camera_position.y;
-        float3 rel_9 = (_e168 - float3(0.0, _e172, 0.0));
-        const float _e180 = saturate_((length(rel_9) / SPRITE_MAX_DISTANCE));
+        float3 rel_10 = (_e168 - float3(0.0, _e172, 0.0));
+        const float _e180 = saturate_((length(rel_10) / SPRITE_MAX_DISTANCE));
         key = (1048576.0 - floor((_e180 * 1048575.0)));
     }
     float _e191 = me.xz.x;
@@ -4512,16 +4604,16 @@ void sprite_sort(uint3 id_15 : SV_DispatchThreadID)
     uint slot_1 = id_15.x;
     float4 _e6 = sprites_in.Load(int3(uint2(slot_1, 3u), int(0)));
     float key_1 = _e6.x;
-    uint2 loop_bound_34 = uint2(4294967295u, 4294967295u);
-    bool loop_init_30 = true;
+    uint2 loop_bound_35 = uint2(4294967295u, 4294967295u);
+    bool loop_init_31 = true;
     while(true) {
-        if (all(loop_bound_34 == uint2(0u, 0u))) { break; }
-        loop_bound_34 -= uint2(loop_bound_34.y == 0u, 1u);
-        if (!loop_init_30) {
+        if (all(loop_bound_35 == uint2(0u, 0u))) { break; }
+        loop_bound_35 -= uint2(loop_bound_35.y == 0u, 1u);
+        if (!loop_init_31) {
             uint _e40 = j;
             j = (_e40 + 1u);
         }
-        loop_init_30 = false;
+        loop_init_31 = false;
         uint _e12 = j;
         if ((_e12 < SPRITE_COUNT)) {
         } else {
@@ -4606,16 +4698,16 @@ VertexOutput_sprite_vertex sprite_vertex(uint index : SV_VertexID)
     float _e123 = frame.camera_forward.w;
     out_.position = float4((x_14 / (tan_half_3 * _e123)), (y_4 / tan_half_3), (0.5 * z_4), z_4);
     float2 cs = float2(cos(c_12.y), sin(c_12.y));
-    float2 t_12 = float2(_e89.x, -(_e89.y));
-    out_.uv = float2(((t_12.x * cs.x) - (t_12.y * cs.y)), ((t_12.x * cs.y) + (t_12.y * cs.x)));
+    float2 t_13 = float2(_e89.x, -(_e89.y));
+    out_.uv = float2(((t_13.x * cs.x) - (t_13.y * cs.y)), ((t_13.x * cs.y) + (t_13.y * cs.x)));
     out_.tile = naga_f2u32(c_12.x);
     float4 _e160 = frame.sun_direction;
-    float3 sun_13 = _e160.xyz;
+    float3 sun_14 = _e160.xyz;
     const float3 _e164 = sprite_rel(b_12.xz, b_12.y);
     float3 centre_2 = (_e164 - cam_1);
     float3 from_centre = (vertex - centre_2);
-    float cos_angle_1 = (dot(from_centre, sun_13) / max(length(from_centre), 0.001));
-    const float _e177 = saturate_(((sun_13.y * 4.0) + 0.3));
+    float cos_angle_1 = (dot(from_centre, sun_14) / max(length(from_centre), 0.001));
+    const float _e177 = saturate_(((sun_14.y * 4.0) + 0.3));
     const float _e179 = altitude_of((vertex + cam_1));
     float _e183 = frame.atmosphere.y;
     float _e188 = frame.atmosphere.z;

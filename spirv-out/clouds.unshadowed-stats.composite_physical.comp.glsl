@@ -41,6 +41,7 @@ struct Frame {
     vec4 air_misc;
     vec4 moon;
     vec4 night;
+    vec4 light_model;
 };
 struct Roots {
     float t0_;
@@ -897,68 +898,150 @@ float phase(float cos_theta_4, float scale) {
     }
 }
 
-float sun_scattering(float cos_theta_5, float tau_5, float build) {
-    float octave_sum = 0.0;
-    float ka = 1.0;
-    float kb = 1.0;
-    float kc = 1.0;
+float far_optical_depth(vec3 rel_2, Layer l_5) {
+    bool local_31 = false;
+    float reach = 0.0;
+    bool local_32 = false;
+    float profile = 0.0;
     uint i_11 = 0u;
-    float total = 0.0;
-    float a_8 = _group_0_binding_0_cs.multiple_scattering.x;
-    float b_8 = _group_0_binding_0_cs.multiple_scattering.y;
-    float c_8 = _group_0_binding_0_cs.multiple_scattering.z;
-    uint _e18 = _group_0_binding_0_cs.misc.x;
-    uint octaves = min(_e18, MAX_OCTAVES);
+    float chord = _group_0_binding_0_cs.light_model.z;
+    if (!((chord <= 0.0))) {
+        uint _e14 = _group_0_binding_0_cs.counts.w;
+        local_31 = (_e14 == 0u);
+    } else {
+        local_31 = true;
+    }
+    bool _e18 = local_31;
+    if (_e18) {
+        return 0.0;
+    }
+    float growth = _group_0_binding_0_cs.march.y;
+    uint _e27 = _group_0_binding_0_cs.counts.w;
+    float steps_2 = float(_e27);
+    float _e32 = _group_0_binding_0_cs.march.z;
+    reach = (_e32 * steps_2);
+    if ((growth != 1.0)) {
+        float _e40 = _group_0_binding_0_cs.march.z;
+        reach = ((_e40 * (pow(growth, steps_2) - 1.0)) / (growth - 1.0));
+    }
+    vec4 _e50 = _group_0_binding_0_cs.sun_direction;
+    vec3 sun_2 = _e50.xyz;
+    float _e52 = altitude_of(rel_2);
+    Roots _e54 = ray_shell_from(rel_2, _e52, sun_2, l_5.top);
+    float _e56 = reach;
+    float len_1 = (_e54.t1_ - _e56);
+    if (!(!(_e54.hit))) {
+        local_32 = !((len_1 > 0.0));
+    } else {
+        local_32 = true;
+    }
+    bool _e67 = local_32;
+    if (_e67) {
+        return 0.0;
+    }
     bool loop_init_3 = true;
     while(true) {
         if (!loop_init_3) {
-            uint _e51 = i_11;
-            i_11 = (_e51 + 1u);
+            uint _e97 = i_11;
+            i_11 = (_e97 + 1u);
         }
         loop_init_3 = false;
-        uint _e31 = i_11;
-        if ((_e31 < octaves)) {
+        uint _e73 = i_11;
+        if ((_e73 < 4u)) {
         } else {
             break;
         }
         {
-            float _e33 = ka;
-            ka = (_e33 * a_8);
-            float _e35 = kb;
-            kb = (_e35 * b_8);
-            float _e37 = kc;
-            kc = (_e37 * c_8);
-            float _e39 = octave_sum;
-            float _e40 = ka;
-            float _e41 = kc;
-            float _e42 = phase(cos_theta_5, _e41);
-            float _e44 = kb;
-            octave_sum = (_e39 + ((_e40 * _e42) / (1.0 + (_e44 * tau_5))));
+            float _e76 = reach;
+            uint _e77 = i_11;
+            float t_5 = (_e76 + (((float(_e77) + 0.5) * 0.25) * len_1));
+            float _e87 = altitude_of((rel_2 + (sun_2 * t_5)));
+            float _e88 = layer_height(l_5, _e87);
+            float _e89 = saturate(_e88);
+            float _e90 = profile;
+            float _e92 = height_signal(_e89, l_5.cloud_type);
+            profile = (_e90 + (0.25 * _e92));
         }
     }
-    float _e56 = _group_0_binding_0_cs.sun_direction.y;
-    float _e57 = saturate(_e56);
-    float _e59 = phase(cos_theta_5, 1.0);
-    float _e64 = octave_sum;
-    total = ((_e59 * exp(-(tau_5))) + ((_e57 * build) * _e64));
-    uint _e71 = _group_0_binding_0_cs.modes.w;
-    if (((_e71 & FLAG_BEER_POWDER) != 0u)) {
-        float _e76 = total;
-        float _e80 = _group_0_binding_0_cs.phase.w;
-        total = (_e76 * (1.0 - exp((-(_e80) * tau_5))));
+    float _e100 = profile;
+    float f_3 = min((l_5.coverage * _e100), 0.95);
+    return ((len_1 * f_3) / ((1.0 - f_3) * chord));
+}
+
+float sun_scattering(float cos_theta_5, float tau_5, float far_1, float build, float coverage) {
+    float octave_sum = 0.0;
+    float ka = 1.0;
+    float kb = 1.0;
+    float kc = 1.0;
+    uint i_12 = 0u;
+    float feed = 0.0;
+    float total = 0.0;
+    float a_8 = _group_0_binding_0_cs.multiple_scattering.x;
+    float b_8 = _group_0_binding_0_cs.multiple_scattering.y;
+    float c_8 = _group_0_binding_0_cs.multiple_scattering.z;
+    uint _e20 = _group_0_binding_0_cs.misc.x;
+    uint octaves = min(_e20, MAX_OCTAVES);
+    bool loop_init_4 = true;
+    while(true) {
+        if (!loop_init_4) {
+            uint _e53 = i_12;
+            i_12 = (_e53 + 1u);
+        }
+        loop_init_4 = false;
+        uint _e33 = i_12;
+        if ((_e33 < octaves)) {
+        } else {
+            break;
+        }
+        {
+            float _e35 = ka;
+            ka = (_e35 * a_8);
+            float _e37 = kb;
+            kb = (_e37 * b_8);
+            float _e39 = kc;
+            kc = (_e39 * c_8);
+            float _e41 = octave_sum;
+            float _e42 = ka;
+            float _e43 = kc;
+            float _e44 = phase(cos_theta_5, _e43);
+            float _e46 = kb;
+            octave_sum = (_e41 + ((_e42 * _e44) / (1.0 + (_e46 * tau_5))));
+        }
     }
-    float _e87 = total;
-    return _e87;
+    float _e58 = _group_0_binding_0_cs.sun_direction.y;
+    float _e59 = saturate(_e58);
+    float _e66 = saturate(coverage);
+    float side = ((sqrt(max((1.0 - (_e59 * _e59)), 0.0)) * (1.0 - _e66)) * exp(-(far_1)));
+    float _e76 = _group_0_binding_0_cs.light_model.x;
+    feed = (_e59 + (_e76 * side));
+    float _e83 = _group_0_binding_0_cs.light_model.y;
+    if ((_e83 > 0.0)) {
+        float _e86 = feed;
+        float _e92 = _group_0_binding_0_cs.light_model.y;
+        feed = (_e86 * pow(max(coverage, 1e-6), _e92));
+    }
+    float _e96 = phase(cos_theta_5, 1.0);
+    float _e101 = feed;
+    float _e103 = octave_sum;
+    total = ((_e96 * exp((-(tau_5) - far_1))) + ((_e101 * build) * _e103));
+    uint _e110 = _group_0_binding_0_cs.modes.w;
+    if (((_e110 & FLAG_BEER_POWDER) != 0u)) {
+        float _e115 = total;
+        float _e119 = _group_0_binding_0_cs.phase.w;
+        total = (_e115 * (1.0 - exp((-(_e119) * tau_5))));
+    }
+    float _e126 = total;
+    return _e126;
 }
 
 float octave_buildup(float density_1) {
-    float l_7 = _group_0_binding_0_cs.multiple_scattering.w;
-    if ((l_7 <= 0.0)) {
+    float l_8 = _group_0_binding_0_cs.multiple_scattering.w;
+    if ((l_8 <= 0.0)) {
         return 1.0;
     }
     float _e11 = _group_0_binding_0_cs.extinction.x;
     float _e15 = _group_0_binding_0_cs.extinction.y;
-    return (1.0 - exp(((-((_e11 + _e15)) * density_1) * l_7)));
+    return (1.0 - exp(((-((_e11 + _e15)) * density_1) * l_8)));
 }
 
 float height_fraction(float alt_11) {
@@ -977,15 +1060,15 @@ vec3 shadow_ground_point(uvec2 c_2) {
     return vec3(xz_1.x, y_1, xz_1.y);
 }
 
-float ground_shadow(vec3 rel_3) {
-    float edge = (max(abs(rel_3.x), abs(rel_3.z)) / SHADOW_HALF_EXTENT);
+float ground_shadow(vec3 rel_4) {
+    float edge = (max(abs(rel_4.x), abs(rel_4.z)) / SHADOW_HALF_EXTENT);
     if ((edge >= 1.0)) {
         return 1.0;
     }
-    vec2 x_7 = ((rel_3.xz / vec2(40000.0)) + vec2(0.5));
+    vec2 x_7 = ((rel_4.xz / vec2(40000.0)) + vec2(0.5));
     vec4 _e21 = lut_bilinear(_group_0_binding_40_cs, x_7, uvec2(128u));
-    float t_5 = _e21.x;
-    return mix(t_5, 1.0, smoothstep(SHADOW_FADE_START, 1.0, edge));
+    float t_6 = _e21.x;
+    return mix(t_6, 1.0, smoothstep(SHADOW_FADE_START, 1.0, edge));
 }
 
 vec3 ground_shadow_loss(vec3 view_1, float r_12) {
@@ -1014,8 +1097,8 @@ vec3 step_integral(vec3 source, float sigma_t, float dt) {
         return (source * dt);
     }
     float x_8 = (sigma_t * dt);
-    float f_3 = ((x_8 < 0.001) ? (1.0 - (0.5 * x_8)) : ((1.0 - exp(-(x_8))) / x_8));
-    return (source * (dt * f_3));
+    float f_4 = ((x_8 < 0.001) ? (1.0 - (0.5 * x_8)) : ((1.0 - exp(-(x_8))) / x_8));
+    return (source * (dt * f_4));
 }
 
 float start_offset(uvec2 pixel_3) {
@@ -1053,36 +1136,36 @@ uvec2 block_offset(uint f, uint k_7) {
 }
 
 vec2 reproject(uvec2 pixel_5, float depth_2) {
-    bool local_39 = false;
-    bool local_40 = false;
     bool local_41 = false;
+    bool local_42 = false;
+    bool local_43 = false;
     vec3 dir = vec3(0.0);
     vec4 _e4 = _group_0_binding_0_cs.previous_position;
     vec4 _e7 = _group_0_binding_0_cs.camera_position;
     if (all(equal(_e4, _e7))) {
         vec4 _e14 = _group_0_binding_0_cs.previous_forward;
         vec4 _e17 = _group_0_binding_0_cs.camera_forward;
-        local_39 = all(equal(_e14, _e17));
-    } else {
-        local_39 = false;
-    }
-    bool _e21 = local_39;
-    if (_e21) {
-        vec4 _e26 = _group_0_binding_0_cs.previous_right;
-        vec4 _e29 = _group_0_binding_0_cs.camera_right;
-        local_40 = all(equal(_e26, _e29));
-    } else {
-        local_40 = false;
-    }
-    bool _e33 = local_40;
-    if (_e33) {
-        vec4 _e38 = _group_0_binding_0_cs.previous_up;
-        vec4 _e41 = _group_0_binding_0_cs.camera_up;
-        local_41 = all(equal(_e38, _e41));
+        local_41 = all(equal(_e14, _e17));
     } else {
         local_41 = false;
     }
-    bool same = local_41;
+    bool _e21 = local_41;
+    if (_e21) {
+        vec4 _e26 = _group_0_binding_0_cs.previous_right;
+        vec4 _e29 = _group_0_binding_0_cs.camera_right;
+        local_42 = all(equal(_e26, _e29));
+    } else {
+        local_42 = false;
+    }
+    bool _e33 = local_42;
+    if (_e33) {
+        vec4 _e38 = _group_0_binding_0_cs.previous_up;
+        vec4 _e41 = _group_0_binding_0_cs.camera_up;
+        local_43 = all(equal(_e38, _e41));
+    } else {
+        local_43 = false;
+    }
+    bool same = local_43;
     if (same) {
         return vec2(pixel_5);
     }
@@ -1111,15 +1194,15 @@ vec2 reproject(uvec2 pixel_5, float depth_2) {
 }
 
 bool on_screen(vec2 q) {
-    bool local_42 = false;
+    bool local_44 = false;
     uvec4 _e3 = _group_0_binding_0_cs.counts;
     vec2 size_2 = vec2(_e3.xy);
     if (all(greaterThanEqual(q, vec2(-0.5)))) {
-        local_42 = all(lessThanEqual(q, (size_2 - vec2(0.5))));
+        local_44 = all(lessThanEqual(q, (size_2 - vec2(0.5))));
     } else {
-        local_42 = false;
+        local_44 = false;
     }
-    bool _e18 = local_42;
+    bool _e18 = local_44;
     return _e18;
 }
 
@@ -1162,42 +1245,42 @@ float rng_exponential(inout uint rng_2, float sigma) {
 
 Segments layer_segments(vec3 p_9, float alt_13, vec3 d_12) {
     Segments s_1 = Segments(vec2(0.0), vec2(0.0), 0u);
-    bool local_43 = false;
+    bool local_45 = false;
     vec2 a_1 = vec2(0.0);
     vec2 b_1 = vec2(0.0);
     uint n_2 = 0u;
-    bool local_44 = false;
-    bool local_45 = false;
     bool local_46 = false;
     bool local_47 = false;
+    bool local_48 = false;
+    bool local_49 = false;
     vec2 _e10 = layers_span();
     float bottom_1 = _e10.x;
     Roots _e12 = ray_shell_from(p_9, alt_13, d_12, bottom_1);
     Roots _e14 = ray_shell_from(p_9, alt_13, d_12, _e10.y);
     bool _e15 = hits_ground(p_9, alt_13, d_12);
     if (!(!(_e14.hit))) {
-        local_43 = (_e14.t1_ <= 0.0);
+        local_45 = (_e14.t1_ <= 0.0);
     } else {
-        local_43 = true;
+        local_45 = true;
     }
-    bool _e25 = local_43;
+    bool _e25 = local_45;
     if (_e25) {
         Segments _e26 = s_1;
         return _e26;
     }
     float entry = max(_e14.t0_, 0.0);
     if (_e12.hit) {
-        local_44 = (_e12.t0_ > 0.0);
+        local_46 = (_e12.t0_ > 0.0);
     } else {
-        local_44 = false;
+        local_46 = false;
     }
-    bool _e45 = local_44;
+    bool _e45 = local_46;
     if (_e45) {
-        local_45 = (alt_13 >= bottom_1);
+        local_47 = (alt_13 >= bottom_1);
     } else {
-        local_45 = false;
+        local_47 = false;
     }
-    bool _e50 = local_45;
+    bool _e50 = local_47;
     if (_e50) {
         uint _e51 = n_2;
         a_1[_e51] = entry;
@@ -1206,11 +1289,11 @@ Segments layer_segments(vec3 p_9, float alt_13, vec3 d_12) {
         uint _e56 = n_2;
         n_2 = (_e56 + uint((_e12.t0_ > entry)));
         if (!(_e15)) {
-            local_46 = (_e14.t1_ > _e12.t1_);
+            local_48 = (_e14.t1_ > _e12.t1_);
         } else {
-            local_46 = false;
+            local_48 = false;
         }
-        bool _e68 = local_46;
+        bool _e68 = local_48;
         if (_e68) {
             uint _e69 = n_2;
             a_1[_e69] = max(_e12.t1_, entry);
@@ -1222,11 +1305,11 @@ Segments layer_segments(vec3 p_9, float alt_13, vec3 d_12) {
     } else {
         if ((alt_13 < bottom_1)) {
             if (!(_e15)) {
-                local_47 = _e12.hit;
+                local_49 = _e12.hit;
             } else {
-                local_47 = false;
+                local_49 = false;
             }
-            bool _e85 = local_47;
+            bool _e85 = local_49;
             if (_e85) {
                 a_1.x = max(_e12.t1_, 0.0);
                 b_1.x = _e14.t1_;
@@ -1250,22 +1333,22 @@ Segments layer_segments(vec3 p_9, float alt_13, vec3 d_12) {
 
 float density_max() {
     float m_1 = 0.0;
-    uint i_14 = 0u;
-    bool loop_init_4 = true;
+    uint i_15 = 0u;
+    bool loop_init_5 = true;
     while(true) {
-        if (!loop_init_4) {
-            uint _e17 = i_14;
-            i_14 = (_e17 + 1u);
+        if (!loop_init_5) {
+            uint _e17 = i_15;
+            i_15 = (_e17 + 1u);
         }
-        loop_init_4 = false;
-        uint _e4 = i_14;
+        loop_init_5 = false;
+        uint _e4 = i_15;
         uint _e5 = layer_count();
         if ((_e4 < _e5)) {
         } else {
             break;
         }
         {
-            uint _e7 = i_14;
+            uint _e7 = i_15;
             Layer _e8 = cloud_layer(_e7);
             float _e9 = m_1;
             m_1 = max(_e9, (_e8.density * (1.0 + _e8.precipitation)));
@@ -1321,10 +1404,10 @@ PhaseSample sample_phase(vec3 dir_4, inout uint rng_5) {
     float sign_ = ((dir_4.z >= 0.0) ? 1.0 : -1.0);
     float a_9 = (-1.0 / (sign_ + dir_4.z));
     float bb = ((dir_4.x * dir_4.y) * a_9);
-    vec3 t_6 = vec3((1.0 + (((sign_ * dir_4.x) * dir_4.x) * a_9)), (sign_ * bb), (-(sign_) * dir_4.x));
+    vec3 t_7 = vec3((1.0 + (((sign_ * dir_4.x) * dir_4.x) * a_9)), (sign_ * bb), (-(sign_) * dir_4.x));
     vec3 b_10 = vec3(bb, (sign_ + ((dir_4.y * dir_4.y) * a_9)), -(dir_4.y));
     float _e109 = cos_theta_6;
-    vec3 w_5 = normalize((((t_6 * (sin_theta * cos(phi_1))) + (b_10 * (sin_theta * sin(phi_1)))) + (dir_4 * _e109)));
+    vec3 w_5 = normalize((((t_7 * (sin_theta * cos(phi_1))) + (b_10 * (sin_theta * sin(phi_1)))) + (dir_4 * _e109)));
     float _e113 = cos_theta_6;
     float _e115 = phase(_e113, 1.0);
     float _e116 = pdf;
@@ -1333,35 +1416,35 @@ PhaseSample sample_phase(vec3 dir_4, inout uint rng_5) {
 }
 
 bool camera_still() {
-    bool local_52 = false;
-    bool local_53 = false;
     bool local_54 = false;
+    bool local_55 = false;
+    bool local_56 = false;
     vec4 _e2 = _group_0_binding_0_cs.camera_position;
     vec4 _e5 = _group_0_binding_0_cs.previous_position;
     if (all(equal(_e2, _e5))) {
         vec4 _e12 = _group_0_binding_0_cs.camera_forward;
         vec4 _e15 = _group_0_binding_0_cs.previous_forward;
-        local_52 = all(equal(_e12, _e15));
-    } else {
-        local_52 = false;
-    }
-    bool _e19 = local_52;
-    if (_e19) {
-        vec4 _e24 = _group_0_binding_0_cs.camera_right;
-        vec4 _e28 = _group_0_binding_0_cs.previous_right;
-        local_53 = all(equal(_e24.xyz, _e28.xyz));
-    } else {
-        local_53 = false;
-    }
-    bool _e33 = local_53;
-    if (_e33) {
-        vec4 _e38 = _group_0_binding_0_cs.camera_up;
-        vec4 _e42 = _group_0_binding_0_cs.previous_up;
-        local_54 = all(equal(_e38.xyz, _e42.xyz));
+        local_54 = all(equal(_e12, _e15));
     } else {
         local_54 = false;
     }
-    bool _e47 = local_54;
+    bool _e19 = local_54;
+    if (_e19) {
+        vec4 _e24 = _group_0_binding_0_cs.camera_right;
+        vec4 _e28 = _group_0_binding_0_cs.previous_right;
+        local_55 = all(equal(_e24.xyz, _e28.xyz));
+    } else {
+        local_55 = false;
+    }
+    bool _e33 = local_55;
+    if (_e33) {
+        vec4 _e38 = _group_0_binding_0_cs.camera_up;
+        vec4 _e42 = _group_0_binding_0_cs.previous_up;
+        local_56 = all(equal(_e38.xyz, _e42.xyz));
+    } else {
+        local_56 = false;
+    }
+    bool _e47 = local_56;
     return _e47;
 }
 
@@ -1376,14 +1459,14 @@ float atlas_hash(uint a_2, uint b_2) {
 }
 
 float value_noise(vec2 p_10, uint seed) {
-    uvec2 i_18 = uvec2(floor(p_10));
-    vec2 f_4 = fract(p_10);
-    vec2 s_9 = ((f_4 * f_4) * (vec2(3.0) - (2.0 * f_4)));
+    uvec2 i_19 = uvec2(floor(p_10));
+    vec2 f_5 = fract(p_10);
+    vec2 s_9 = ((f_5 * f_5) * (vec2(3.0) - (2.0 * f_5)));
     uint h_11 = (seed * 7919u);
-    float _e17 = atlas_hash((i_18.x + h_11), i_18.y);
-    float _e23 = atlas_hash(((i_18.x + 1u) + h_11), i_18.y);
-    float _e29 = atlas_hash((i_18.x + h_11), (i_18.y + 1u));
-    float _e37 = atlas_hash(((i_18.x + 1u) + h_11), (i_18.y + 1u));
+    float _e17 = atlas_hash((i_19.x + h_11), i_19.y);
+    float _e23 = atlas_hash(((i_19.x + 1u) + h_11), i_19.y);
+    float _e29 = atlas_hash((i_19.x + h_11), (i_19.y + 1u));
+    float _e37 = atlas_hash(((i_19.x + 1u) + h_11), (i_19.y + 1u));
     return mix(mix(_e17, _e23, s_9.x), mix(_e29, _e37, s_9.x), s_9.y);
 }
 
@@ -1393,13 +1476,13 @@ float value_fbm(vec2 p_11, uint seed_1) {
     vec2 q_4 = vec2(0.0);
     uint o = 0u;
     q_4 = p_11;
-    bool loop_init_5 = true;
+    bool loop_init_6 = true;
     while(true) {
-        if (!loop_init_5) {
+        if (!loop_init_6) {
             uint _e26 = o;
             o = (_e26 + 1u);
         }
-        loop_init_5 = false;
+        loop_init_6 = false;
         uint _e9 = o;
         if ((_e9 < 4u)) {
         } else {
@@ -1424,7 +1507,7 @@ float value_fbm(vec2 p_11, uint seed_1) {
 
 float sprite_texture(uint tile_1, vec2 uv) {
     float billow = 0.0;
-    uint i_17 = 0u;
+    uint i_18 = 0u;
     vec2 at = vec2(0.0);
     float a_3 = 0.0;
     vec2 c_9 = (uv - vec2(0.5));
@@ -1438,29 +1521,29 @@ float sprite_texture(uint tile_1, vec2 uv) {
         return (((mask * streak) * _e46) * 0.8);
     }
     uint blobs = (5u + (tile_1 % 4u));
-    bool loop_init_6 = true;
+    bool loop_init_7 = true;
     while(true) {
-        if (!loop_init_6) {
-            uint _e108 = i_17;
-            i_17 = (_e108 + 1u);
+        if (!loop_init_7) {
+            uint _e108 = i_18;
+            i_18 = (_e108 + 1u);
         }
-        loop_init_6 = false;
-        uint _e58 = i_17;
+        loop_init_7 = false;
+        uint _e58 = i_18;
         if ((_e58 < blobs)) {
         } else {
             break;
         }
         {
-            uint _e61 = i_17;
+            uint _e61 = i_18;
             float _e63 = atlas_hash(tile_1, (2u * _e61));
-            uint _e65 = i_17;
+            uint _e65 = i_18;
             float _e69 = atlas_hash(tile_1, ((2u * _e65) + 1u));
             vec2 centre_1 = (vec2(_e63, _e69) - vec2(0.5));
             at = (vec2(0.5) + (centre_1 * 0.34));
             if ((tile_1 == 4u)) {
                 at.y = (0.5 + ((centre_1.y - 0.5) * 0.24));
             }
-            uint _e91 = i_17;
+            uint _e91 = i_18;
             float _e93 = atlas_hash(tile_1, (100u + _e91));
             float r_17 = (0.14 + (0.1 * _e93));
             vec2 _e98 = at;
@@ -1493,19 +1576,19 @@ vec3 sprite_rel(vec2 xz, float alt_15) {
 SpriteCell sprite_cell(uint cell) {
     ivec2 start_1 = ivec2(0);
     uint k_10 = 3u;
-    bool local_55 = false;
-    bool local_56 = false;
+    bool local_57 = false;
+    bool local_58 = false;
     uint level_1 = (cell / 64u);
-    ivec2 local_60 = ivec2(int((cell % 8u)), int(((cell / 8u) % 8u)));
+    ivec2 local_62 = ivec2(int((cell % 8u)), int(((cell / 8u) % 8u)));
     vec4 _e15 = _group_0_binding_0_cs.camera_position;
     start_1 = (ivec2(floor((_e15.xz / vec2(12000.0)))) - ivec2(4));
-    bool loop_init_7 = true;
+    bool loop_init_8 = true;
     while(true) {
-        if (!loop_init_7) {
+        if (!loop_init_8) {
             uint _e35 = k_10;
             k_10 = (_e35 - 1u);
         }
-        loop_init_7 = false;
+        loop_init_8 = false;
         uint _e27 = k_10;
         if ((_e27 > level_1)) {
         } else {
@@ -1517,19 +1600,19 @@ SpriteCell sprite_cell(uint cell) {
         }
     }
     if ((level_1 > 0u)) {
-        local_55 = all(greaterThanEqual(local_60, ivec2(2)));
+        local_57 = all(greaterThanEqual(local_62, ivec2(2)));
     } else {
-        local_55 = false;
+        local_57 = false;
     }
-    bool _e47 = local_55;
+    bool _e47 = local_57;
     if (_e47) {
-        local_56 = all(lessThan(local_60, ivec2(6)));
+        local_58 = all(lessThan(local_62, ivec2(6)));
     } else {
-        local_56 = false;
+        local_58 = false;
     }
-    bool covered = local_56;
+    bool covered = local_58;
     ivec2 _e56 = start_1;
-    return SpriteCell((_e56 + local_60), (SPRITE_CELL0_ * float((1u << level_1))), covered);
+    return SpriteCell((_e56 + local_62), (SPRITE_CELL0_ * float((1u << level_1))), covered);
 }
 
 vec3 sprite_sky_level(float h_7) {
@@ -1555,36 +1638,36 @@ float sprite_sun_level(float cos_angle) {
 }
 
 vec2 sprite_corner(uint k_11) {
-    bool local_57 = false;
+    bool local_59 = false;
     uint q_8 = ((k_11 >= 3u) ? ((k_11 == 3u) ? 0u : (k_11 - 2u)) : k_11);
     if (!((q_8 == 1u))) {
-        local_57 = (q_8 == 2u);
+        local_59 = (q_8 == 2u);
     } else {
-        local_57 = true;
+        local_59 = true;
     }
-    bool _e18 = local_57;
+    bool _e18 = local_59;
     return vec2((_e18 ? 1.0 : -1.0), ((q_8 >= 2u) ? 1.0 : -1.0));
 }
 
 vec3 sky_radiance(vec3 d_14, float alt_16) {
     vec4 _e4 = _group_0_binding_0_cs.sun_direction;
-    vec3 sun_2 = _e4.xyz;
+    vec3 sun_3 = _e4.xyz;
     vec4 _e8 = _group_0_binding_0_cs.sun_illuminance;
     vec3 e = _e8.xyz;
-    float _e15 = saturate(((sun_2.y * 4.0) + 0.3));
+    float _e15 = saturate(((sun_3.y * 4.0) + 0.3));
     bool _e19 = hits_ground(vec3(0.0, alt_16, 0.0), alt_16, d_14);
     if (_e19) {
         vec3 ground_albedo = vec3(0.035, 0.035, 0.03);
-        return (ground_albedo * (((e * max(sun_2.y, 0.0)) / vec3(3.1415927)) + ((0.05 * e) * _e15)));
+        return (ground_albedo * (((e * max(sun_3.y, 0.0)) / vec3(3.1415927)) + ((0.05 * e) * _e15)));
     }
     vec3 zenith = vec3(0.018, 0.04, 0.1);
     vec3 horizon_2 = vec3(0.07, 0.085, 0.11);
     float _e45 = saturate(d_14.y);
     vec3 gradient_1 = mix(horizon_2, zenith, sqrt(_e45));
     vec3 sunset = (((1.0 - (_e15 * 0.8)) * pow((1.0 - _e45), 6.0)) * vec3(0.25, 0.1, 0.0));
-    float _e64 = phase_hg(dot(d_14, sun_2), 0.76);
+    float _e64 = phase_hg(dot(d_14, sun_3), 0.76);
     float glow = (_e64 * 0.02);
-    float _e73 = saturate(((sun_2.y * 10.0) + 1.0));
+    float _e73 = saturate(((sun_3.y * 10.0) + 1.0));
     return (e * (((gradient_1 * _e15) + (sunset * _e73)) + vec3((glow * _e15))));
 }
 
@@ -1599,17 +1682,17 @@ vec3 sun_disk(vec3 d_15) {
 }
 
 vec3 moon_disk(vec3 d_16) {
-    bool local_58 = false;
+    bool local_60 = false;
     vec4 _e3 = _group_0_binding_0_cs.moon;
     vec3 m_2 = _e3.xyz;
     float c_10 = dot(d_16, m_2);
     float _e9 = _group_0_binding_0_cs.moon.w;
     if (!((_e9 <= 0.0))) {
-        local_58 = (c_10 < MOON_COS_RADIUS);
+        local_60 = (c_10 < MOON_COS_RADIUS);
     } else {
-        local_58 = true;
+        local_60 = true;
     }
-    bool _e18 = local_58;
+    bool _e18 = local_60;
     if (_e18) {
         return vec3(0.0);
     }
@@ -1626,7 +1709,7 @@ vec3 stars(vec3 d_17) {
     uint face = 0u;
     vec2 uv_1 = vec2(0.0);
     float major = 0.0;
-    bool local_59 = false;
+    bool local_61 = false;
     vec3 star = vec3(0.0);
     float e0_ = _group_0_binding_0_cs.night.w;
     if ((e0_ <= 0.0)) {
@@ -1634,11 +1717,11 @@ vec3 stars(vec3 d_17) {
     }
     vec3 a_10 = abs(d_17);
     if ((a_10.x >= a_10.y)) {
-        local_59 = (a_10.x >= a_10.z);
+        local_61 = (a_10.x >= a_10.z);
     } else {
-        local_59 = false;
+        local_61 = false;
     }
-    bool _e26 = local_59;
+    bool _e26 = local_61;
     if (_e26) {
         face = ((d_17.x > 0.0) ? 0u : 1u);
         uv_1 = d_17.zy;

@@ -42,6 +42,7 @@ struct Frame {
     vec4 air_misc;
     vec4 moon;
     vec4 night;
+    vec4 light_model;
 };
 struct Roots {
     float t0_;
@@ -1105,68 +1106,150 @@ float sun_optical_depth(vec3 rel_1, vec3 p_6, Layer l_4, inout Counters counters
     return _e141;
 }
 
-float sun_scattering(float cos_theta_5, float tau_5, float build) {
-    float octave_sum = 0.0;
-    float ka = 1.0;
-    float kb = 1.0;
-    float kc = 1.0;
+float far_optical_depth(vec3 rel_2, Layer l_5) {
+    bool local_31 = false;
+    float reach = 0.0;
+    bool local_32 = false;
+    float profile = 0.0;
     uint i_11 = 0u;
-    float total = 0.0;
-    float a_7 = _group_0_binding_0_cs.multiple_scattering.x;
-    float b_7 = _group_0_binding_0_cs.multiple_scattering.y;
-    float c_8 = _group_0_binding_0_cs.multiple_scattering.z;
-    uint _e18 = _group_0_binding_0_cs.misc.x;
-    uint octaves = min(_e18, MAX_OCTAVES);
+    float chord = _group_0_binding_0_cs.light_model.z;
+    if (!((chord <= 0.0))) {
+        uint _e14 = _group_0_binding_0_cs.counts.w;
+        local_31 = (_e14 == 0u);
+    } else {
+        local_31 = true;
+    }
+    bool _e18 = local_31;
+    if (_e18) {
+        return 0.0;
+    }
+    float growth_1 = _group_0_binding_0_cs.march.y;
+    uint _e27 = _group_0_binding_0_cs.counts.w;
+    float steps_3 = float(_e27);
+    float _e32 = _group_0_binding_0_cs.march.z;
+    reach = (_e32 * steps_3);
+    if ((growth_1 != 1.0)) {
+        float _e40 = _group_0_binding_0_cs.march.z;
+        reach = ((_e40 * (pow(growth_1, steps_3) - 1.0)) / (growth_1 - 1.0));
+    }
+    vec4 _e50 = _group_0_binding_0_cs.sun_direction;
+    vec3 sun_3 = _e50.xyz;
+    float _e52 = altitude_of(rel_2);
+    Roots _e54 = ray_shell_from(rel_2, _e52, sun_3, l_5.top);
+    float _e56 = reach;
+    float len_1 = (_e54.t1_ - _e56);
+    if (!(!(_e54.hit))) {
+        local_32 = !((len_1 > 0.0));
+    } else {
+        local_32 = true;
+    }
+    bool _e67 = local_32;
+    if (_e67) {
+        return 0.0;
+    }
     bool loop_init_5 = true;
     while(true) {
         if (!loop_init_5) {
-            uint _e51 = i_11;
-            i_11 = (_e51 + 1u);
+            uint _e97 = i_11;
+            i_11 = (_e97 + 1u);
         }
         loop_init_5 = false;
-        uint _e31 = i_11;
-        if ((_e31 < octaves)) {
+        uint _e73 = i_11;
+        if ((_e73 < 4u)) {
         } else {
             break;
         }
         {
-            float _e33 = ka;
-            ka = (_e33 * a_7);
-            float _e35 = kb;
-            kb = (_e35 * b_7);
-            float _e37 = kc;
-            kc = (_e37 * c_8);
-            float _e39 = octave_sum;
-            float _e40 = ka;
-            float _e41 = kc;
-            float _e42 = phase(cos_theta_5, _e41);
-            float _e44 = kb;
-            octave_sum = (_e39 + ((_e40 * _e42) / (1.0 + (_e44 * tau_5))));
+            float _e76 = reach;
+            uint _e77 = i_11;
+            float t_5 = (_e76 + (((float(_e77) + 0.5) * 0.25) * len_1));
+            float _e87 = altitude_of((rel_2 + (sun_3 * t_5)));
+            float _e88 = layer_height(l_5, _e87);
+            float _e89 = saturate(_e88);
+            float _e90 = profile;
+            float _e92 = height_signal(_e89, l_5.cloud_type);
+            profile = (_e90 + (0.25 * _e92));
         }
     }
-    float _e56 = _group_0_binding_0_cs.sun_direction.y;
-    float _e57 = saturate(_e56);
-    float _e59 = phase(cos_theta_5, 1.0);
-    float _e64 = octave_sum;
-    total = ((_e59 * exp(-(tau_5))) + ((_e57 * build) * _e64));
-    uint _e71 = _group_0_binding_0_cs.modes.w;
-    if (((_e71 & FLAG_BEER_POWDER) != 0u)) {
-        float _e76 = total;
-        float _e80 = _group_0_binding_0_cs.phase.w;
-        total = (_e76 * (1.0 - exp((-(_e80) * tau_5))));
+    float _e100 = profile;
+    float f_2 = min((l_5.coverage * _e100), 0.95);
+    return ((len_1 * f_2) / ((1.0 - f_2) * chord));
+}
+
+float sun_scattering(float cos_theta_5, float tau_5, float far_1, float build, float coverage) {
+    float octave_sum = 0.0;
+    float ka = 1.0;
+    float kb = 1.0;
+    float kc = 1.0;
+    uint i_12 = 0u;
+    float feed = 0.0;
+    float total = 0.0;
+    float a_7 = _group_0_binding_0_cs.multiple_scattering.x;
+    float b_7 = _group_0_binding_0_cs.multiple_scattering.y;
+    float c_8 = _group_0_binding_0_cs.multiple_scattering.z;
+    uint _e20 = _group_0_binding_0_cs.misc.x;
+    uint octaves = min(_e20, MAX_OCTAVES);
+    bool loop_init_6 = true;
+    while(true) {
+        if (!loop_init_6) {
+            uint _e53 = i_12;
+            i_12 = (_e53 + 1u);
+        }
+        loop_init_6 = false;
+        uint _e33 = i_12;
+        if ((_e33 < octaves)) {
+        } else {
+            break;
+        }
+        {
+            float _e35 = ka;
+            ka = (_e35 * a_7);
+            float _e37 = kb;
+            kb = (_e37 * b_7);
+            float _e39 = kc;
+            kc = (_e39 * c_8);
+            float _e41 = octave_sum;
+            float _e42 = ka;
+            float _e43 = kc;
+            float _e44 = phase(cos_theta_5, _e43);
+            float _e46 = kb;
+            octave_sum = (_e41 + ((_e42 * _e44) / (1.0 + (_e46 * tau_5))));
+        }
     }
-    float _e87 = total;
-    return _e87;
+    float _e58 = _group_0_binding_0_cs.sun_direction.y;
+    float _e59 = saturate(_e58);
+    float _e66 = saturate(coverage);
+    float side = ((sqrt(max((1.0 - (_e59 * _e59)), 0.0)) * (1.0 - _e66)) * exp(-(far_1)));
+    float _e76 = _group_0_binding_0_cs.light_model.x;
+    feed = (_e59 + (_e76 * side));
+    float _e83 = _group_0_binding_0_cs.light_model.y;
+    if ((_e83 > 0.0)) {
+        float _e86 = feed;
+        float _e92 = _group_0_binding_0_cs.light_model.y;
+        feed = (_e86 * pow(max(coverage, 1e-6), _e92));
+    }
+    float _e96 = phase(cos_theta_5, 1.0);
+    float _e101 = feed;
+    float _e103 = octave_sum;
+    total = ((_e96 * exp((-(tau_5) - far_1))) + ((_e101 * build) * _e103));
+    uint _e110 = _group_0_binding_0_cs.modes.w;
+    if (((_e110 & FLAG_BEER_POWDER) != 0u)) {
+        float _e115 = total;
+        float _e119 = _group_0_binding_0_cs.phase.w;
+        total = (_e115 * (1.0 - exp((-(_e119) * tau_5))));
+    }
+    float _e126 = total;
+    return _e126;
 }
 
 float octave_buildup(float density_1) {
-    float l_7 = _group_0_binding_0_cs.multiple_scattering.w;
-    if ((l_7 <= 0.0)) {
+    float l_8 = _group_0_binding_0_cs.multiple_scattering.w;
+    if ((l_8 <= 0.0)) {
         return 1.0;
     }
     float _e11 = _group_0_binding_0_cs.extinction.x;
     float _e15 = _group_0_binding_0_cs.extinction.y;
-    return (1.0 - exp(((-((_e11 + _e15)) * density_1) * l_7)));
+    return (1.0 - exp(((-((_e11 + _e15)) * density_1) * l_8)));
 }
 
 vec3 ambient(float h_5) {
@@ -1189,33 +1272,37 @@ float height_fraction(float alt_11) {
     return _e4;
 }
 
-vec3 scattered_light(vec3 rel_2, vec3 p_7, float alt_12, float density_2, vec3 view, Layer l_5, inout Counters counters_6) {
+vec3 scattered_light(vec3 rel_3, vec3 p_7, float alt_12, float density_2, vec3 view, Layer l_6, inout Counters counters_6) {
     vec3 sun_light = vec3(0.0);
     float tau_6 = 0.0;
+    float far_2 = 0.0;
     vec4 _e9 = _group_0_binding_0_cs.sun_direction;
-    vec3 sun_3 = _e9.xyz;
-    float _e11 = layer_height(l_5, alt_12);
+    vec3 sun_4 = _e9.xyz;
+    float _e11 = layer_height(l_6, alt_12);
     float _e12 = saturate(_e11);
-    bool _e16 = hits_ground(rel_2, alt_12, sun_3);
-    if (!(_e16)) {
+    Weather _e16 = sample_weather(p_7, l_6);
+    bool _e17 = hits_ground(rel_3, alt_12, sun_4);
+    if (!(_e17)) {
         if (LIGHT_MARCH) {
-            float _e21 = sun_optical_depth(rel_2, p_7, l_5, counters_6);
-            tau_6 = _e21;
+            float _e24 = sun_optical_depth(rel_3, p_7, l_6, counters_6);
+            tau_6 = _e24;
+            float _e25 = far_optical_depth(rel_3, l_6);
+            far_2 = _e25;
         }
-        vec4 _e24 = _group_0_binding_0_cs.sun_illuminance;
-        vec3 _e26 = sun_through_air(rel_2);
-        float _e29 = tau_6;
-        float _e30 = octave_buildup(density_2);
-        float _e31 = sun_scattering(dot(view, sun_3), _e29, _e30);
-        sun_light = ((_e24.xyz * _e26) * _e31);
+        float _e27 = tau_6;
+        float _e28 = far_2;
+        float _e29 = octave_buildup(density_2);
+        float _e31 = sun_scattering(dot(view, sun_4), _e27, _e28, _e29, _e16.coverage);
+        vec4 _e34 = _group_0_binding_0_cs.sun_illuminance;
+        vec3 _e36 = sun_through_air(rel_3);
+        sun_light = ((_e34.xyz * _e36) * _e31);
     }
-    Weather _e33 = sample_weather(p_7, l_5);
-    float _e37 = _group_0_binding_0_cs.extinction.z;
-    float _e45 = saturate((1.0 - ((_e37 * _e33.precipitation) * (1.0 - _e12))));
-    float _e49 = _group_0_binding_0_cs.extinction.x;
-    vec3 _e51 = sun_light;
-    vec3 _e52 = ambient(_e12);
-    return (((_e49 * density_2) * (_e51 + _e52)) * _e45);
+    float _e42 = _group_0_binding_0_cs.extinction.z;
+    float _e50 = saturate((1.0 - ((_e42 * _e16.precipitation) * (1.0 - _e12))));
+    float _e54 = _group_0_binding_0_cs.extinction.x;
+    vec3 _e56 = sun_light;
+    vec3 _e57 = ambient(_e12);
+    return (((_e54 * density_2) * (_e56 + _e57)) * _e50);
 }
 
 vec3 shadow_ground_point(uvec2 c_2) {
@@ -1264,13 +1351,13 @@ float empty_cell_exit(vec3 p_8, vec3 d_11) {
 }
 
 void count(uint index_1, uint value) {
-    bool local_31 = false;
+    bool local_33 = false;
     if (STATS) {
-        local_31 = (value != 0u);
+        local_33 = (value != 0u);
     } else {
-        local_31 = false;
+        local_33 = false;
     }
-    bool _e8 = local_31;
+    bool _e8 = local_33;
     if (_e8) {
         uint _e12 = atomicAdd(_group_0_binding_8_cs.counters[index_1], value);
         return;
@@ -1285,8 +1372,8 @@ vec3 step_integral(vec3 source, float sigma_t, float dt) {
         return (source * dt);
     }
     float x_6 = (sigma_t * dt);
-    float f_2 = ((x_6 < 0.001) ? (1.0 - (0.5 * x_6)) : ((1.0 - exp(-(x_6))) / x_6));
-    return (source * (dt * f_2));
+    float f_3 = ((x_6 < 0.001) ? (1.0 - (0.5 * x_6)) : ((1.0 - exp(-(x_6))) / x_6));
+    return (source * (dt * f_3));
 }
 
 float start_offset(uvec2 pixel_3) {
@@ -1305,12 +1392,12 @@ float start_offset(uvec2 pixel_3) {
     return fract((base_2 + _e32));
 }
 
-bool march_layer(vec3 view_2, Interval span_1, Layer l_6, float jitter, inout MarchState state, inout Counters counters_7) {
+bool march_layer(vec3 view_2, Interval span_1, Layer l_7, float jitter, inout MarchState state, inout Counters counters_7) {
     uint steps_1 = 0u;
-    uint i_12 = 0u;
+    uint i_13 = 0u;
     uint stride = 1u;
     uint empty = 0u;
-    bool local_32 = false;
+    bool local_34 = false;
     float cam_alt = _group_0_binding_0_cs.camera_position.y;
     vec4 _e12 = _group_0_binding_0_cs.camera_position;
     vec2 cam_xz = _e12.xz;
@@ -1331,74 +1418,74 @@ bool march_layer(vec3 view_2, Interval span_1, Layer l_6, float jitter, inout Ma
     uint _e60 = _group_0_binding_0_cs.modes.w;
     bool empty_skip = ((_e60 & FLAG_EMPTY_SKIP) != 0u);
     while(true) {
-        uint _e71 = i_12;
+        uint _e71 = i_13;
         uint _e72 = steps_1;
         if ((_e71 >= _e72)) {
             break;
         }
         uint _e75 = counters_7.view_steps;
         counters_7.view_steps = (_e75 + 1u);
-        uint _e79 = i_12;
-        float t_5 = (span_1.start + ((float(_e79) + jitter) * dt_1));
-        vec3 rel_6 = ((view_2 * t_5) + vec3(0.0, cam_alt, 0.0));
-        vec3 p_12 = vec3((rel_6.x + cam_xz.x), rel_6.y, (rel_6.z + cam_xz.y));
+        uint _e79 = i_13;
+        float t_6 = (span_1.start + ((float(_e79) + jitter) * dt_1));
+        vec3 rel_7 = ((view_2 * t_6) + vec3(0.0, cam_alt, 0.0));
+        vec3 p_12 = vec3((rel_7.x + cam_xz.x), rel_7.y, (rel_7.z + cam_xz.y));
         if (empty_skip) {
             float _e97 = empty_cell_exit(p_12, view_2);
             if ((_e97 > 0.0)) {
                 uint _e106 = steps_1;
-                uint next_1 = uint(clamp(ceil(((((t_5 + _e97) - span_1.start) / dt_1) - jitter)), 0.0, float(_e106)));
-                uint _e111 = i_12;
-                i_12 = max((_e111 + 1u), next_1);
+                uint next_1 = uint(clamp(ceil(((((t_6 + _e97) - span_1.start) / dt_1) - jitter)), 0.0, float(_e106)));
+                uint _e111 = i_13;
+                i_13 = max((_e111 + 1u), next_1);
                 continue;
             }
         }
-        float _e115 = altitude_of(rel_6);
-        float _e116 = layer_density(p_12, _e115, l_6, counters_7);
+        float _e115 = altitude_of(rel_7);
+        float _e116 = layer_density(p_12, _e115, l_7, counters_7);
         if ((_e116 <= 0.0)) {
             uint _e119 = empty;
             empty = (_e119 + 1u);
             if (dynamic_step) {
                 uint _e124 = empty;
-                local_32 = (_e124 >= 8u);
+                local_34 = (_e124 >= 8u);
             } else {
-                local_32 = false;
+                local_34 = false;
             }
-            bool _e128 = local_32;
+            bool _e128 = local_34;
             if (_e128) {
                 stride = 2u;
             }
-            uint _e130 = i_12;
+            uint _e130 = i_13;
             uint _e131 = stride;
-            i_12 = (_e130 + _e131);
+            i_13 = (_e130 + _e131);
             continue;
         }
         uint _e133 = stride;
         if ((_e133 > 1u)) {
-            uint _e136 = i_12;
+            uint _e136 = i_13;
             uint _e137 = stride;
-            i_12 = (_e136 - (_e137 - 1u));
+            i_13 = (_e136 - (_e137 - 1u));
             stride = 1u;
             empty = 0u;
             continue;
         }
         empty = 0u;
         float sigma_t_2 = (sigma_e * _e116);
-        vec3 _e145 = scattered_light(rel_6, p_12, _e115, _e116, view_2, l_6, counters_7);
+        vec3 _e145 = scattered_light(rel_7, p_12, _e115, _e116, view_2, l_7, counters_7);
         float transmittance_1 = state.transmittance;
         vec3 _e149 = state.radiance;
         vec3 _e150 = step_integral(_e145, sigma_t_2, dt_1);
         state.radiance = (_e149 + (transmittance_1 * _e150));
         float step_t = exp((-(sigma_t_2) * dt_1));
         float _e157 = state.depth_sum;
-        state.depth_sum = (_e157 + ((t_5 * transmittance_1) * (1.0 - step_t)));
+        state.depth_sum = (_e157 + ((t_6 * transmittance_1) * (1.0 - step_t)));
         state.transmittance = (transmittance_1 * step_t);
         float _e166 = state.transmittance;
         float _e170 = _group_0_binding_0_cs.march.w;
         if ((_e166 < _e170)) {
             return true;
         }
-        uint _e173 = i_12;
-        i_12 = (_e173 + 1u);
+        uint _e173 = i_13;
+        i_13 = (_e173 + 1u);
     }
     return false;
 }
@@ -1414,26 +1501,26 @@ MarchResult march_pixel(uvec2 pixel_4) {
     uint k_6 = 0u;
     uint next = 0u;
     Interval span_2 = Interval(0.0, 0.0, 0u);
-    uint i_13 = 0u;
-    bool local_33 = false;
-    bool local_34 = false;
+    uint i_14 = 0u;
     bool local_35 = false;
     bool local_36 = false;
     bool local_37 = false;
     bool local_38 = false;
+    bool local_39 = false;
+    bool local_40 = false;
     float depth_1 = 0.0;
     vec3 _e1 = view_ray(pixel_4);
     float cam_alt_1 = _group_0_binding_0_cs.camera_position.y;
     count(STAT_PIXELS, 1u);
     float _e20 = start_offset(pixel_4);
     uint _e21 = layer_count();
-    bool loop_init_6 = true;
+    bool loop_init_7 = true;
     while(true) {
-        if (!loop_init_6) {
+        if (!loop_init_7) {
             uint _e119 = k_6;
             k_6 = (_e119 + 1u);
         }
-        loop_init_6 = false;
+        loop_init_7 = false;
         uint _e34 = k_6;
         if ((_e34 < _e21)) {
         } else {
@@ -1442,69 +1529,69 @@ MarchResult march_pixel(uvec2 pixel_4) {
         {
             next = NO_LAYER;
             span_2 = Interval(0.0, 0.0, 1u);
-            i_13 = 0u;
-            bool loop_init_7 = true;
+            i_14 = 0u;
+            bool loop_init_8 = true;
             while(true) {
-                if (!loop_init_7) {
-                    uint _e102 = i_13;
-                    i_13 = (_e102 + 1u);
+                if (!loop_init_8) {
+                    uint _e102 = i_14;
+                    i_14 = (_e102 + 1u);
                 }
-                loop_init_7 = false;
-                uint _e45 = i_13;
+                loop_init_8 = false;
+                uint _e45 = i_14;
                 if ((_e45 < _e21)) {
                 } else {
                     break;
                 }
                 {
-                    uint _e47 = i_13;
+                    uint _e47 = i_14;
                     Layer _e48 = cloud_layer(_e47);
                     Interval _e49 = layer_interval(cam_alt_1, _e1, _e48);
                     bool _e50 = ground_1;
                     if (!(_e50)) {
-                        local_33 = (_e49.kind == RAY_HITS_GROUND);
+                        local_35 = (_e49.kind == RAY_HITS_GROUND);
                     } else {
-                        local_33 = true;
+                        local_35 = true;
                     }
-                    bool _e58 = local_33;
+                    bool _e58 = local_35;
                     ground_1 = _e58;
                     float _e60 = last_start;
                     if (!((_e49.start > _e60))) {
                         float _e66 = last_start;
                         if ((_e49.start == _e66)) {
-                            uint _e70 = i_13;
+                            uint _e70 = i_14;
                             uint _e71 = last_index;
-                            local_35 = (_e70 > _e71);
+                            local_37 = (_e70 > _e71);
                         } else {
-                            local_35 = false;
+                            local_37 = false;
                         }
-                        bool _e74 = local_35;
-                        local_34 = _e74;
+                        bool _e74 = local_37;
+                        local_36 = _e74;
                     } else {
-                        local_34 = true;
+                        local_36 = true;
                     }
-                    bool after = local_34;
+                    bool after = local_36;
                     if ((_e49.kind == RAY_MARCH)) {
-                        local_36 = after;
+                        local_38 = after;
                     } else {
-                        local_36 = false;
+                        local_38 = false;
                     }
-                    bool _e83 = local_36;
+                    bool _e83 = local_38;
                     if (_e83) {
                         uint _e86 = next;
                         if (!((_e86 == NO_LAYER))) {
                             float _e94 = span_2.start;
-                            local_38 = (_e49.start < _e94);
+                            local_40 = (_e49.start < _e94);
                         } else {
-                            local_38 = true;
+                            local_40 = true;
                         }
-                        bool _e97 = local_38;
-                        local_37 = _e97;
+                        bool _e97 = local_40;
+                        local_39 = _e97;
                     } else {
-                        local_37 = false;
+                        local_39 = false;
                     }
-                    bool _e99 = local_37;
+                    bool _e99 = local_39;
                     if (_e99) {
-                        uint _e100 = i_13;
+                        uint _e100 = i_14;
                         next = _e100;
                         span_2 = _e49;
                     }
@@ -1582,36 +1669,36 @@ uvec2 block_offset(uint f, uint k_7) {
 }
 
 vec2 reproject(uvec2 pixel_5, float depth_2) {
-    bool local_39 = false;
-    bool local_40 = false;
     bool local_41 = false;
+    bool local_42 = false;
+    bool local_43 = false;
     vec3 dir = vec3(0.0);
     vec4 _e4 = _group_0_binding_0_cs.previous_position;
     vec4 _e7 = _group_0_binding_0_cs.camera_position;
     if (all(equal(_e4, _e7))) {
         vec4 _e14 = _group_0_binding_0_cs.previous_forward;
         vec4 _e17 = _group_0_binding_0_cs.camera_forward;
-        local_39 = all(equal(_e14, _e17));
-    } else {
-        local_39 = false;
-    }
-    bool _e21 = local_39;
-    if (_e21) {
-        vec4 _e26 = _group_0_binding_0_cs.previous_right;
-        vec4 _e29 = _group_0_binding_0_cs.camera_right;
-        local_40 = all(equal(_e26, _e29));
-    } else {
-        local_40 = false;
-    }
-    bool _e33 = local_40;
-    if (_e33) {
-        vec4 _e38 = _group_0_binding_0_cs.previous_up;
-        vec4 _e41 = _group_0_binding_0_cs.camera_up;
-        local_41 = all(equal(_e38, _e41));
+        local_41 = all(equal(_e14, _e17));
     } else {
         local_41 = false;
     }
-    bool same = local_41;
+    bool _e21 = local_41;
+    if (_e21) {
+        vec4 _e26 = _group_0_binding_0_cs.previous_right;
+        vec4 _e29 = _group_0_binding_0_cs.camera_right;
+        local_42 = all(equal(_e26, _e29));
+    } else {
+        local_42 = false;
+    }
+    bool _e33 = local_42;
+    if (_e33) {
+        vec4 _e38 = _group_0_binding_0_cs.previous_up;
+        vec4 _e41 = _group_0_binding_0_cs.camera_up;
+        local_43 = all(equal(_e38, _e41));
+    } else {
+        local_43 = false;
+    }
+    bool same = local_43;
     if (same) {
         return vec2(pixel_5);
     }
@@ -1640,15 +1727,15 @@ vec2 reproject(uvec2 pixel_5, float depth_2) {
 }
 
 bool on_screen(vec2 q) {
-    bool local_42 = false;
+    bool local_44 = false;
     uvec4 _e3 = _group_0_binding_0_cs.counts;
     vec2 size_2 = vec2(_e3.xy);
     if (all(greaterThanEqual(q, vec2(-0.5)))) {
-        local_42 = all(lessThanEqual(q, (size_2 - vec2(0.5))));
+        local_44 = all(lessThanEqual(q, (size_2 - vec2(0.5))));
     } else {
-        local_42 = false;
+        local_44 = false;
     }
-    bool _e18 = local_42;
+    bool _e18 = local_44;
     return _e18;
 }
 
@@ -1697,42 +1784,42 @@ float rng_exponential(inout uint rng_2, float sigma) {
 
 Segments layer_segments(vec3 p_9, float alt_13, vec3 d_12) {
     Segments s_1 = Segments(vec2(0.0), vec2(0.0), 0u);
-    bool local_43 = false;
+    bool local_45 = false;
     vec2 a_1 = vec2(0.0);
     vec2 b_1 = vec2(0.0);
     uint n_2 = 0u;
-    bool local_44 = false;
-    bool local_45 = false;
     bool local_46 = false;
     bool local_47 = false;
+    bool local_48 = false;
+    bool local_49 = false;
     vec2 _e10 = layers_span();
     float bottom_2 = _e10.x;
     Roots _e12 = ray_shell_from(p_9, alt_13, d_12, bottom_2);
     Roots _e14 = ray_shell_from(p_9, alt_13, d_12, _e10.y);
     bool _e15 = hits_ground(p_9, alt_13, d_12);
     if (!(!(_e14.hit))) {
-        local_43 = (_e14.t1_ <= 0.0);
+        local_45 = (_e14.t1_ <= 0.0);
     } else {
-        local_43 = true;
+        local_45 = true;
     }
-    bool _e25 = local_43;
+    bool _e25 = local_45;
     if (_e25) {
         Segments _e26 = s_1;
         return _e26;
     }
     float entry = max(_e14.t0_, 0.0);
     if (_e12.hit) {
-        local_44 = (_e12.t0_ > 0.0);
+        local_46 = (_e12.t0_ > 0.0);
     } else {
-        local_44 = false;
+        local_46 = false;
     }
-    bool _e45 = local_44;
+    bool _e45 = local_46;
     if (_e45) {
-        local_45 = (alt_13 >= bottom_2);
+        local_47 = (alt_13 >= bottom_2);
     } else {
-        local_45 = false;
+        local_47 = false;
     }
-    bool _e50 = local_45;
+    bool _e50 = local_47;
     if (_e50) {
         uint _e51 = n_2;
         a_1[_e51] = entry;
@@ -1741,11 +1828,11 @@ Segments layer_segments(vec3 p_9, float alt_13, vec3 d_12) {
         uint _e56 = n_2;
         n_2 = (_e56 + uint((_e12.t0_ > entry)));
         if (!(_e15)) {
-            local_46 = (_e14.t1_ > _e12.t1_);
+            local_48 = (_e14.t1_ > _e12.t1_);
         } else {
-            local_46 = false;
+            local_48 = false;
         }
-        bool _e68 = local_46;
+        bool _e68 = local_48;
         if (_e68) {
             uint _e69 = n_2;
             a_1[_e69] = max(_e12.t1_, entry);
@@ -1757,11 +1844,11 @@ Segments layer_segments(vec3 p_9, float alt_13, vec3 d_12) {
     } else {
         if ((alt_13 < bottom_2)) {
             if (!(_e15)) {
-                local_47 = _e12.hit;
+                local_49 = _e12.hit;
             } else {
-                local_47 = false;
+                local_49 = false;
             }
-            bool _e85 = local_47;
+            bool _e85 = local_49;
             if (_e85) {
                 a_1.x = max(_e12.t1_, 0.0);
                 b_1.x = _e14.t1_;
@@ -1783,11 +1870,11 @@ Segments layer_segments(vec3 p_9, float alt_13, vec3 d_12) {
     return _e103;
 }
 
-float density_at(vec3 rel_4, inout Counters counters_9) {
+float density_at(vec3 rel_5, inout Counters counters_9) {
     float _e6 = _group_0_binding_0_cs.camera_position.x;
     float _e13 = _group_0_binding_0_cs.camera_position.z;
-    vec3 p_13 = vec3((rel_4.x + _e6), rel_4.y, (rel_4.z + _e13));
-    float _e16 = altitude_of(rel_4);
+    vec3 p_13 = vec3((rel_5.x + _e6), rel_5.y, (rel_5.z + _e13));
+    float _e16 = altitude_of(rel_5);
     float _e17 = cloud_density(p_13, _e16, counters_9);
     return _e17;
 }
@@ -1797,10 +1884,10 @@ float empty_cell_skip(vec3 origin_3, vec3 dir_1, float t_2) {
     if ((_e3 > 1u)) {
         return 0.0;
     }
-    vec3 rel_7 = (origin_3 + (dir_1 * t_2));
+    vec3 rel_8 = (origin_3 + (dir_1 * t_2));
     float _e13 = _group_0_binding_0_cs.camera_position.x;
     float _e20 = _group_0_binding_0_cs.camera_position.z;
-    vec3 p_14 = vec3((rel_7.x + _e13), rel_7.y, (rel_7.z + _e20));
+    vec3 p_14 = vec3((rel_8.x + _e13), rel_8.y, (rel_8.z + _e20));
     float _e23 = empty_cell_exit(p_14, dir_1);
     if ((_e23 <= 0.0)) {
         return 0.0;
@@ -1810,22 +1897,22 @@ float empty_cell_skip(vec3 origin_3, vec3 dir_1, float t_2) {
 
 float density_max() {
     float m_1 = 0.0;
-    uint i_14 = 0u;
-    bool loop_init_8 = true;
+    uint i_15 = 0u;
+    bool loop_init_9 = true;
     while(true) {
-        if (!loop_init_8) {
-            uint _e17 = i_14;
-            i_14 = (_e17 + 1u);
+        if (!loop_init_9) {
+            uint _e17 = i_15;
+            i_15 = (_e17 + 1u);
         }
-        loop_init_8 = false;
-        uint _e4 = i_14;
+        loop_init_9 = false;
+        uint _e4 = i_15;
         uint _e5 = layer_count();
         if ((_e4 < _e5)) {
         } else {
             break;
         }
         {
-            uint _e7 = i_14;
+            uint _e7 = i_15;
             Layer _e8 = cloud_layer(_e7);
             float _e9 = m_1;
             m_1 = max(_e9, (_e8.density * (1.0 + _e8.precipitation)));
@@ -1845,13 +1932,13 @@ float free_flight(vec3 origin_4, vec3 dir_2, Segments segs, inout uint rng_3, in
     if ((majorant <= 0.0)) {
         return -1.0;
     }
-    bool loop_init_9 = true;
+    bool loop_init_10 = true;
     while(true) {
-        if (!loop_init_9) {
+        if (!loop_init_10) {
             uint _e60 = k_8;
             k_8 = (_e60 + 1u);
         }
-        loop_init_9 = false;
+        loop_init_10 = false;
         uint _e21 = k_8;
         if ((_e21 < segs.count)) {
         } else {
@@ -1908,13 +1995,13 @@ float transmittance_along(vec3 origin_5, vec3 dir_3, Segments segs_1, inout uint
     if ((majorant_1 <= 0.0)) {
         return 1.0;
     }
-    bool loop_init_10 = true;
+    bool loop_init_11 = true;
     while(true) {
-        if (!loop_init_10) {
+        if (!loop_init_11) {
             uint _e78 = k_9;
             k_9 = (_e78 + 1u);
         }
-        loop_init_10 = false;
+        loop_init_11 = false;
         uint _e23 = k_9;
         if ((_e23 < segs_1.count)) {
         } else {
@@ -2016,10 +2103,10 @@ PhaseSample sample_phase(vec3 dir_4, inout uint rng_5) {
     float sign_ = ((dir_4.z >= 0.0) ? 1.0 : -1.0);
     float a_8 = (-1.0 / (sign_ + dir_4.z));
     float bb = ((dir_4.x * dir_4.y) * a_8);
-    vec3 t_6 = vec3((1.0 + (((sign_ * dir_4.x) * dir_4.x) * a_8)), (sign_ * bb), (-(sign_) * dir_4.x));
+    vec3 t_7 = vec3((1.0 + (((sign_ * dir_4.x) * dir_4.x) * a_8)), (sign_ * bb), (-(sign_) * dir_4.x));
     vec3 b_9 = vec3(bb, (sign_ + ((dir_4.y * dir_4.y) * a_8)), -(dir_4.y));
     float _e109 = cos_theta_6;
-    vec3 w_5 = normalize((((t_6 * (sin_theta * cos(phi_1))) + (b_9 * (sin_theta * sin(phi_1)))) + (dir_4 * _e109)));
+    vec3 w_5 = normalize((((t_7 * (sin_theta * cos(phi_1))) + (b_9 * (sin_theta * sin(phi_1)))) + (dir_4 * _e109)));
     float _e113 = cos_theta_6;
     float _e115 = phase(_e113, 1.0);
     float _e116 = pdf;
@@ -2028,35 +2115,35 @@ PhaseSample sample_phase(vec3 dir_4, inout uint rng_5) {
 }
 
 bool camera_still() {
-    bool local_52 = false;
-    bool local_53 = false;
     bool local_54 = false;
+    bool local_55 = false;
+    bool local_56 = false;
     vec4 _e2 = _group_0_binding_0_cs.camera_position;
     vec4 _e5 = _group_0_binding_0_cs.previous_position;
     if (all(equal(_e2, _e5))) {
         vec4 _e12 = _group_0_binding_0_cs.camera_forward;
         vec4 _e15 = _group_0_binding_0_cs.previous_forward;
-        local_52 = all(equal(_e12, _e15));
-    } else {
-        local_52 = false;
-    }
-    bool _e19 = local_52;
-    if (_e19) {
-        vec4 _e24 = _group_0_binding_0_cs.camera_right;
-        vec4 _e28 = _group_0_binding_0_cs.previous_right;
-        local_53 = all(equal(_e24.xyz, _e28.xyz));
-    } else {
-        local_53 = false;
-    }
-    bool _e33 = local_53;
-    if (_e33) {
-        vec4 _e38 = _group_0_binding_0_cs.camera_up;
-        vec4 _e42 = _group_0_binding_0_cs.previous_up;
-        local_54 = all(equal(_e38.xyz, _e42.xyz));
+        local_54 = all(equal(_e12, _e15));
     } else {
         local_54 = false;
     }
-    bool _e47 = local_54;
+    bool _e19 = local_54;
+    if (_e19) {
+        vec4 _e24 = _group_0_binding_0_cs.camera_right;
+        vec4 _e28 = _group_0_binding_0_cs.previous_right;
+        local_55 = all(equal(_e24.xyz, _e28.xyz));
+    } else {
+        local_55 = false;
+    }
+    bool _e33 = local_55;
+    if (_e33) {
+        vec4 _e38 = _group_0_binding_0_cs.camera_up;
+        vec4 _e42 = _group_0_binding_0_cs.previous_up;
+        local_56 = all(equal(_e38.xyz, _e42.xyz));
+    } else {
+        local_56 = false;
+    }
+    bool _e47 = local_56;
     return _e47;
 }
 
@@ -2064,44 +2151,44 @@ float luminance(vec3 c_3) {
     return dot(c_3, vec3(0.2126, 0.7152, 0.0722));
 }
 
-float basic_sun_depth(vec3 rel_5, float alt_14, inout Counters counters_13) {
+float basic_sun_depth(vec3 rel_6, float alt_14, inout Counters counters_13) {
     float tau_7 = 0.0;
-    uint i_15 = 1u;
-    uint steps_3 = _group_0_binding_0_cs.counts.w;
-    if ((steps_3 == 0u)) {
+    uint i_16 = 1u;
+    uint steps_4 = _group_0_binding_0_cs.counts.w;
+    if ((steps_4 == 0u)) {
         return 0.0;
     }
     vec4 _e12 = _group_0_binding_0_cs.sun_direction;
-    vec3 sun_4 = _e12.xyz;
+    vec3 sun_5 = _e12.xyz;
     float rp_5 = _group_0_binding_0_cs.atmosphere.x;
     float top_2 = _group_0_binding_0_cs.atmosphere.z;
     float _e25 = _group_0_binding_0_cs.atmosphere.y;
     float thickness = (top_2 - _e25);
-    Roots _e39 = solve_sphere(dot(sun_4, vec3(rel_5.x, (rel_5.y + rp_5), rel_5.z)), ((alt_14 - top_2) * ((alt_14 + top_2) + (2.0 * rp_5))));
+    Roots _e39 = solve_sphere(dot(sun_5, vec3(rel_6.x, (rel_6.y + rp_5), rel_6.z)), ((alt_14 - top_2) * ((alt_14 + top_2) + (2.0 * rp_5))));
     float length_ = min(max(_e39.t1_, 0.0), (3.0 * thickness));
-    float dt_2 = (length_ / float(steps_3));
+    float dt_2 = (length_ / float(steps_4));
     float _e51 = _group_0_binding_0_cs.extinction.x;
     float _e55 = _group_0_binding_0_cs.extinction.y;
     float sigma_t_4 = (_e51 + _e55);
     vec4 _e59 = _group_0_binding_0_cs.camera_position;
     vec2 cam_xz_1 = _e59.xz;
-    bool loop_init_11 = true;
+    bool loop_init_12 = true;
     while(true) {
-        if (!loop_init_11) {
-            uint _e90 = i_15;
-            i_15 = (_e90 + 1u);
+        if (!loop_init_12) {
+            uint _e90 = i_16;
+            i_16 = (_e90 + 1u);
         }
-        loop_init_11 = false;
-        uint _e65 = i_15;
-        if ((_e65 <= steps_3)) {
+        loop_init_12 = false;
+        uint _e65 = i_16;
+        if ((_e65 <= steps_4)) {
         } else {
             break;
         }
         {
             uint _e68 = counters_13.light;
             counters_13.light = (_e68 + 1u);
-            uint _e71 = i_15;
-            vec3 q_8 = (rel_5 + (sun_4 * (float(_e71) * dt_2)));
+            uint _e71 = i_16;
+            vec3 q_8 = (rel_6 + (sun_5 * (float(_e71) * dt_2)));
             vec3 p_15 = vec3((q_8.x + cam_xz_1.x), q_8.y, (q_8.z + cam_xz_1.y));
             float _e84 = tau_7;
             float _e85 = altitude_of(q_8);
@@ -2118,7 +2205,7 @@ MarchResult basic_pixel(uvec2 pixel_7) {
     vec3 radiance_2 = vec3(0.0);
     float transmittance = 1.0;
     float depth_sum = 0.0;
-    uint i_16 = 0u;
+    uint i_17 = 0u;
     float depth_3 = 0.0;
     vec3 _e1 = view_ray(pixel_7);
     float cam_alt_2 = _group_0_binding_0_cs.camera_position.y;
@@ -2133,8 +2220,8 @@ MarchResult basic_pixel(uvec2 pixel_7) {
             count(STAT_EXIT_GROUND, 1u);
         } else {
             count(STAT_MARCHED, 1u);
-            uint steps_4 = _group_0_binding_0_cs.counts.z;
-            float dt_3 = (_e25.length_ / float(steps_4));
+            uint steps_5 = _group_0_binding_0_cs.counts.z;
+            float dt_3 = (_e25.length_ / float(steps_5));
             float sigma_s = _group_0_binding_0_cs.extinction.x;
             float _e52 = _group_0_binding_0_cs.extinction.y;
             float sigma_t_5 = (sigma_s + _e52);
@@ -2143,31 +2230,31 @@ MarchResult basic_pixel(uvec2 pixel_7) {
             float _e66 = _group_0_binding_0_cs.phase.x;
             float _e67 = phase_hg(dot(_e1, _e60.xyz), _e66);
             vec3 sun_phase = (_e56.xyz * _e67);
-            bool loop_init_12 = true;
+            bool loop_init_13 = true;
             while(true) {
-                if (!loop_init_12) {
-                    uint _e131 = i_16;
-                    i_16 = (_e131 + 1u);
+                if (!loop_init_13) {
+                    uint _e131 = i_17;
+                    i_17 = (_e131 + 1u);
                 }
-                loop_init_12 = false;
-                uint _e71 = i_16;
-                if ((_e71 < steps_4)) {
+                loop_init_13 = false;
+                uint _e71 = i_17;
+                if ((_e71 < steps_5)) {
                 } else {
                     break;
                 }
                 {
                     uint _e74 = counters_14.view_steps;
                     counters_14.view_steps = (_e74 + 1u);
-                    uint _e78 = i_16;
-                    float t_7 = (_e25.start + (float(_e78) * dt_3));
-                    vec3 rel_8 = ((_e1 * t_7) + vec3(0.0, cam_alt_2, 0.0));
-                    vec3 p_16 = vec3((rel_8.x + cam_xz_2.x), rel_8.y, (rel_8.z + cam_xz_2.y));
-                    float _e95 = altitude_of(rel_8);
+                    uint _e78 = i_17;
+                    float t_8 = (_e25.start + (float(_e78) * dt_3));
+                    vec3 rel_9 = ((_e1 * t_8) + vec3(0.0, cam_alt_2, 0.0));
+                    vec3 p_16 = vec3((rel_9.x + cam_xz_2.x), rel_9.y, (rel_9.z + cam_xz_2.y));
+                    float _e95 = altitude_of(rel_9);
                     float _e96 = cloud_density(p_16, _e95, counters_14);
                     if ((_e96 <= 0.0)) {
                         continue;
                     }
-                    float _e99 = basic_sun_depth(rel_8, _e95, counters_14);
+                    float _e99 = basic_sun_depth(rel_9, _e95, counters_14);
                     float beer_powder = ((2.0 * exp(-(_e99))) * (1.0 - exp((-2.0 * _e99))));
                     vec3 _e110 = radiance_2;
                     float _e111 = transmittance;
@@ -2175,7 +2262,7 @@ MarchResult basic_pixel(uvec2 pixel_7) {
                     float step_t_1 = exp(((-(sigma_t_5) * _e96) * dt_3));
                     float _e122 = depth_sum;
                     float _e123 = transmittance;
-                    depth_sum = (_e122 + ((t_7 * _e123) * (1.0 - step_t_1)));
+                    depth_sum = (_e122 + ((t_8 * _e123) * (1.0 - step_t_1)));
                     float _e129 = transmittance;
                     transmittance = (_e129 * step_t_1);
                 }
@@ -2209,14 +2296,14 @@ float atlas_hash(uint a_2, uint b_2) {
 }
 
 float value_noise(vec2 p_10, uint seed) {
-    uvec2 i_18 = uvec2(floor(p_10));
-    vec2 f_3 = fract(p_10);
-    vec2 s_11 = ((f_3 * f_3) * (vec2(3.0) - (2.0 * f_3)));
+    uvec2 i_19 = uvec2(floor(p_10));
+    vec2 f_4 = fract(p_10);
+    vec2 s_11 = ((f_4 * f_4) * (vec2(3.0) - (2.0 * f_4)));
     uint h_11 = (seed * 7919u);
-    float _e17 = atlas_hash((i_18.x + h_11), i_18.y);
-    float _e23 = atlas_hash(((i_18.x + 1u) + h_11), i_18.y);
-    float _e29 = atlas_hash((i_18.x + h_11), (i_18.y + 1u));
-    float _e37 = atlas_hash(((i_18.x + 1u) + h_11), (i_18.y + 1u));
+    float _e17 = atlas_hash((i_19.x + h_11), i_19.y);
+    float _e23 = atlas_hash(((i_19.x + 1u) + h_11), i_19.y);
+    float _e29 = atlas_hash((i_19.x + h_11), (i_19.y + 1u));
+    float _e37 = atlas_hash(((i_19.x + 1u) + h_11), (i_19.y + 1u));
     return mix(mix(_e17, _e23, s_11.x), mix(_e29, _e37, s_11.x), s_11.y);
 }
 
@@ -2226,13 +2313,13 @@ float value_fbm(vec2 p_11, uint seed_1) {
     vec2 q_4 = vec2(0.0);
     uint o = 0u;
     q_4 = p_11;
-    bool loop_init_13 = true;
+    bool loop_init_14 = true;
     while(true) {
-        if (!loop_init_13) {
+        if (!loop_init_14) {
             uint _e26 = o;
             o = (_e26 + 1u);
         }
-        loop_init_13 = false;
+        loop_init_14 = false;
         uint _e9 = o;
         if ((_e9 < 4u)) {
         } else {
@@ -2257,7 +2344,7 @@ float value_fbm(vec2 p_11, uint seed_1) {
 
 float sprite_texture(uint tile_1, vec2 uv) {
     float billow = 0.0;
-    uint i_17 = 0u;
+    uint i_18 = 0u;
     vec2 at = vec2(0.0);
     float a_3 = 0.0;
     vec2 c_9 = (uv - vec2(0.5));
@@ -2271,29 +2358,29 @@ float sprite_texture(uint tile_1, vec2 uv) {
         return (((mask * streak) * _e46) * 0.8);
     }
     uint blobs = (5u + (tile_1 % 4u));
-    bool loop_init_14 = true;
+    bool loop_init_15 = true;
     while(true) {
-        if (!loop_init_14) {
-            uint _e108 = i_17;
-            i_17 = (_e108 + 1u);
+        if (!loop_init_15) {
+            uint _e108 = i_18;
+            i_18 = (_e108 + 1u);
         }
-        loop_init_14 = false;
-        uint _e58 = i_17;
+        loop_init_15 = false;
+        uint _e58 = i_18;
         if ((_e58 < blobs)) {
         } else {
             break;
         }
         {
-            uint _e61 = i_17;
+            uint _e61 = i_18;
             float _e63 = atlas_hash(tile_1, (2u * _e61));
-            uint _e65 = i_17;
+            uint _e65 = i_18;
             float _e69 = atlas_hash(tile_1, ((2u * _e65) + 1u));
             vec2 centre_1 = (vec2(_e63, _e69) - vec2(0.5));
             at = (vec2(0.5) + (centre_1 * 0.34));
             if ((tile_1 == 4u)) {
                 at.y = (0.5 + ((centre_1.y - 0.5) * 0.24));
             }
-            uint _e91 = i_17;
+            uint _e91 = i_18;
             float _e93 = atlas_hash(tile_1, (100u + _e91));
             float r_17 = (0.14 + (0.1 * _e93));
             vec2 _e98 = at;
@@ -2326,19 +2413,19 @@ vec3 sprite_rel(vec2 xz, float alt_15) {
 SpriteCell sprite_cell(uint cell) {
     ivec2 start_1 = ivec2(0);
     uint k_10 = 3u;
-    bool local_55 = false;
-    bool local_56 = false;
+    bool local_57 = false;
+    bool local_58 = false;
     uint level_1 = (cell / 64u);
-    ivec2 local_60 = ivec2(int((cell % 8u)), int(((cell / 8u) % 8u)));
+    ivec2 local_62 = ivec2(int((cell % 8u)), int(((cell / 8u) % 8u)));
     vec4 _e15 = _group_0_binding_0_cs.camera_position;
     start_1 = (ivec2(floor((_e15.xz / vec2(12000.0)))) - ivec2(4));
-    bool loop_init_15 = true;
+    bool loop_init_16 = true;
     while(true) {
-        if (!loop_init_15) {
+        if (!loop_init_16) {
             uint _e35 = k_10;
             k_10 = (_e35 - 1u);
         }
-        loop_init_15 = false;
+        loop_init_16 = false;
         uint _e27 = k_10;
         if ((_e27 > level_1)) {
         } else {
@@ -2350,19 +2437,19 @@ SpriteCell sprite_cell(uint cell) {
         }
     }
     if ((level_1 > 0u)) {
-        local_55 = all(greaterThanEqual(local_60, ivec2(2)));
+        local_57 = all(greaterThanEqual(local_62, ivec2(2)));
     } else {
-        local_55 = false;
+        local_57 = false;
     }
-    bool _e47 = local_55;
+    bool _e47 = local_57;
     if (_e47) {
-        local_56 = all(lessThan(local_60, ivec2(6)));
+        local_58 = all(lessThan(local_62, ivec2(6)));
     } else {
-        local_56 = false;
+        local_58 = false;
     }
-    bool covered = local_56;
+    bool covered = local_58;
     ivec2 _e56 = start_1;
-    return SpriteCell((_e56 + local_60), (SPRITE_CELL0_ * float((1u << level_1))), covered);
+    return SpriteCell((_e56 + local_62), (SPRITE_CELL0_ * float((1u << level_1))), covered);
 }
 
 SpriteCandidate sprite_candidate(SpriteCell c_4, uint level, uint s_2, inout Counters counters_15) {
@@ -2418,36 +2505,36 @@ float sprite_sun_level(float cos_angle) {
 }
 
 vec2 sprite_corner(uint k_11) {
-    bool local_57 = false;
+    bool local_59 = false;
     uint q_10 = ((k_11 >= 3u) ? ((k_11 == 3u) ? 0u : (k_11 - 2u)) : k_11);
     if (!((q_10 == 1u))) {
-        local_57 = (q_10 == 2u);
+        local_59 = (q_10 == 2u);
     } else {
-        local_57 = true;
+        local_59 = true;
     }
-    bool _e18 = local_57;
+    bool _e18 = local_59;
     return vec2((_e18 ? 1.0 : -1.0), ((q_10 >= 2u) ? 1.0 : -1.0));
 }
 
 vec3 sky_radiance(vec3 d_14, float alt_16) {
     vec4 _e4 = _group_0_binding_0_cs.sun_direction;
-    vec3 sun_5 = _e4.xyz;
+    vec3 sun_6 = _e4.xyz;
     vec4 _e8 = _group_0_binding_0_cs.sun_illuminance;
     vec3 e = _e8.xyz;
-    float _e15 = saturate(((sun_5.y * 4.0) + 0.3));
+    float _e15 = saturate(((sun_6.y * 4.0) + 0.3));
     bool _e19 = hits_ground(vec3(0.0, alt_16, 0.0), alt_16, d_14);
     if (_e19) {
         vec3 ground_albedo = vec3(0.035, 0.035, 0.03);
-        return (ground_albedo * (((e * max(sun_5.y, 0.0)) / vec3(3.1415927)) + ((0.05 * e) * _e15)));
+        return (ground_albedo * (((e * max(sun_6.y, 0.0)) / vec3(3.1415927)) + ((0.05 * e) * _e15)));
     }
     vec3 zenith = vec3(0.018, 0.04, 0.1);
     vec3 horizon_2 = vec3(0.07, 0.085, 0.11);
     float _e45 = saturate(d_14.y);
     vec3 gradient_1 = mix(horizon_2, zenith, sqrt(_e45));
     vec3 sunset = (((1.0 - (_e15 * 0.8)) * pow((1.0 - _e45), 6.0)) * vec3(0.25, 0.1, 0.0));
-    float _e64 = phase_hg(dot(d_14, sun_5), 0.76);
+    float _e64 = phase_hg(dot(d_14, sun_6), 0.76);
     float glow = (_e64 * 0.02);
-    float _e73 = saturate(((sun_5.y * 10.0) + 1.0));
+    float _e73 = saturate(((sun_6.y * 10.0) + 1.0));
     return (e * (((gradient_1 * _e15) + (sunset * _e73)) + vec3((glow * _e15))));
 }
 
@@ -2462,17 +2549,17 @@ vec3 sun_disk(vec3 d_15) {
 }
 
 vec3 moon_disk(vec3 d_16) {
-    bool local_58 = false;
+    bool local_60 = false;
     vec4 _e3 = _group_0_binding_0_cs.moon;
     vec3 m_3 = _e3.xyz;
     float c_10 = dot(d_16, m_3);
     float _e9 = _group_0_binding_0_cs.moon.w;
     if (!((_e9 <= 0.0))) {
-        local_58 = (c_10 < MOON_COS_RADIUS);
+        local_60 = (c_10 < MOON_COS_RADIUS);
     } else {
-        local_58 = true;
+        local_60 = true;
     }
-    bool _e18 = local_58;
+    bool _e18 = local_60;
     if (_e18) {
         return vec3(0.0);
     }
@@ -2489,7 +2576,7 @@ vec3 stars(vec3 d_17) {
     uint face = 0u;
     vec2 uv_1 = vec2(0.0);
     float major = 0.0;
-    bool local_59 = false;
+    bool local_61 = false;
     vec3 star = vec3(0.0);
     float e0_ = _group_0_binding_0_cs.night.w;
     if ((e0_ <= 0.0)) {
@@ -2497,11 +2584,11 @@ vec3 stars(vec3 d_17) {
     }
     vec3 a_9 = abs(d_17);
     if ((a_9.x >= a_9.y)) {
-        local_59 = (a_9.x >= a_9.z);
+        local_61 = (a_9.x >= a_9.z);
     } else {
-        local_59 = false;
+        local_61 = false;
     }
-    bool _e26 = local_59;
+    bool _e26 = local_61;
     if (_e26) {
         face = ((d_17.x > 0.0) ? 0u : 1u);
         uv_1 = d_17.zy;

@@ -43,6 +43,7 @@ struct Frame {
     metal::float4 air_misc;
     metal::float4 moon;
     metal::float4 night;
+    metal::float4 light_model;
 };
 struct Roots {
     float t0_;
@@ -1536,79 +1537,170 @@ float sun_optical_depth(
     return _e141;
 }
 
-float sun_scattering(
-    float cos_theta_5,
-    float tau_5,
-    float build,
+float far_optical_depth(
+    metal::float3 rel_2,
+    Layer l_5,
     constant Frame& frame
 ) {
-    float octave_sum = 0.0;
-    float ka = 1.0;
-    float kb = 1.0;
-    float kc = 1.0;
+    bool local_31 = {};
+    float reach = {};
+    bool local_32 = {};
+    float profile = 0.0;
     uint i_11 = 0u;
-    float total = {};
-    float a_8 = frame.multiple_scattering.x;
-    float b_8 = frame.multiple_scattering.y;
-    float c_8 = frame.multiple_scattering.z;
-    uint _e18 = frame.misc.x;
-    uint octaves = metal::min(_e18, MAX_OCTAVES);
+    float chord = frame.light_model.z;
+    if (!((chord <= 0.0))) {
+        uint _e14 = frame.counts.w;
+        local_31 = _e14 == 0u;
+    } else {
+        local_31 = true;
+    }
+    bool _e18 = local_31;
+    if (_e18) {
+        return 0.0;
+    }
+    float growth_1 = frame.march.y;
+    uint _e27 = frame.counts.w;
+    float steps_3 = static_cast<float>(_e27);
+    float _e32 = frame.march.z;
+    reach = _e32 * steps_3;
+    if (growth_1 != 1.0) {
+        float _e40 = frame.march.z;
+        reach = (_e40 * (metal::pow(growth_1, steps_3) - 1.0)) / (growth_1 - 1.0);
+    }
+    metal::float4 _e50 = frame.sun_direction;
+    metal::float3 sun_3 = _e50.xyz;
+    float _e52 = altitude_of(rel_2, frame);
+    Roots _e54 = ray_shell_from(rel_2, _e52, sun_3, l_5.top, frame);
+    float _e56 = reach;
+    float len_1 = _e54.t1_ - _e56;
+    if (!(!(_e54.hit))) {
+        local_32 = !((len_1 > 0.0));
+    } else {
+        local_32 = true;
+    }
+    bool _e67 = local_32;
+    if (_e67) {
+        return 0.0;
+    }
     uint2 loop_bound_6 = uint2(4294967295u);
     bool loop_init_6 = true;
     while(true) {
         if (metal::all(loop_bound_6 == uint2(0u))) { break; }
         loop_bound_6 -= uint2(loop_bound_6.y == 0u, 1u);
         if (!loop_init_6) {
-            uint _e51 = i_11;
-            i_11 = _e51 + 1u;
+            uint _e97 = i_11;
+            i_11 = _e97 + 1u;
         }
         loop_init_6 = false;
-        uint _e31 = i_11;
-        if (_e31 < octaves) {
+        uint _e73 = i_11;
+        if (_e73 < 4u) {
         } else {
             break;
         }
         {
-            float _e33 = ka;
-            ka = _e33 * a_8;
-            float _e35 = kb;
-            kb = _e35 * b_8;
-            float _e37 = kc;
-            kc = _e37 * c_8;
-            float _e39 = octave_sum;
-            float _e40 = ka;
-            float _e41 = kc;
-            float _e42 = phase(cos_theta_5, _e41, frame);
-            float _e44 = kb;
-            octave_sum = _e39 + ((_e40 * _e42) / (1.0 + (_e44 * tau_5)));
+            float _e76 = reach;
+            uint _e77 = i_11;
+            float t_5 = _e76 + (((static_cast<float>(_e77) + 0.5) * 0.25) * len_1);
+            float _e87 = altitude_of(rel_2 + (sun_3 * t_5), frame);
+            float _e88 = layer_height(l_5, _e87);
+            float _e89 = saturate(_e88);
+            float _e90 = profile;
+            float _e92 = height_signal(_e89, l_5.cloud_type, frame);
+            profile = _e90 + (0.25 * _e92);
         }
     }
-    float _e56 = frame.sun_direction.y;
-    float _e57 = saturate(_e56);
-    float _e59 = phase(cos_theta_5, 1.0, frame);
-    float _e64 = octave_sum;
-    total = (_e59 * metal::exp(-(tau_5))) + ((_e57 * build) * _e64);
-    uint _e71 = frame.modes.w;
-    if ((_e71 & FLAG_BEER_POWDER) != 0u) {
-        float _e76 = total;
-        float _e80 = frame.phase.w;
-        total = _e76 * (1.0 - metal::exp(-(_e80) * tau_5));
+    float _e100 = profile;
+    float f_3 = metal::min(l_5.coverage * _e100, 0.95);
+    return (len_1 * f_3) / ((1.0 - f_3) * chord);
+}
+
+float sun_scattering(
+    float cos_theta_5,
+    float tau_5,
+    float far_1,
+    float build,
+    float coverage,
+    constant Frame& frame
+) {
+    float octave_sum = 0.0;
+    float ka = 1.0;
+    float kb = 1.0;
+    float kc = 1.0;
+    uint i_12 = 0u;
+    float feed = {};
+    float total = {};
+    float a_8 = frame.multiple_scattering.x;
+    float b_8 = frame.multiple_scattering.y;
+    float c_8 = frame.multiple_scattering.z;
+    uint _e20 = frame.misc.x;
+    uint octaves = metal::min(_e20, MAX_OCTAVES);
+    uint2 loop_bound_7 = uint2(4294967295u);
+    bool loop_init_7 = true;
+    while(true) {
+        if (metal::all(loop_bound_7 == uint2(0u))) { break; }
+        loop_bound_7 -= uint2(loop_bound_7.y == 0u, 1u);
+        if (!loop_init_7) {
+            uint _e53 = i_12;
+            i_12 = _e53 + 1u;
+        }
+        loop_init_7 = false;
+        uint _e33 = i_12;
+        if (_e33 < octaves) {
+        } else {
+            break;
+        }
+        {
+            float _e35 = ka;
+            ka = _e35 * a_8;
+            float _e37 = kb;
+            kb = _e37 * b_8;
+            float _e39 = kc;
+            kc = _e39 * c_8;
+            float _e41 = octave_sum;
+            float _e42 = ka;
+            float _e43 = kc;
+            float _e44 = phase(cos_theta_5, _e43, frame);
+            float _e46 = kb;
+            octave_sum = _e41 + ((_e42 * _e44) / (1.0 + (_e46 * tau_5)));
+        }
     }
-    float _e87 = total;
-    return _e87;
+    float _e58 = frame.sun_direction.y;
+    float _e59 = saturate(_e58);
+    float _e66 = saturate(coverage);
+    float side = (metal::sqrt(metal::max(1.0 - (_e59 * _e59), 0.0)) * (1.0 - _e66)) * metal::exp(-(far_1));
+    float _e76 = frame.light_model.x;
+    feed = _e59 + (_e76 * side);
+    float _e83 = frame.light_model.y;
+    if (_e83 > 0.0) {
+        float _e86 = feed;
+        float _e92 = frame.light_model.y;
+        feed = _e86 * metal::pow(metal::max(coverage, 0.000001), _e92);
+    }
+    float _e96 = phase(cos_theta_5, 1.0, frame);
+    float _e101 = feed;
+    float _e103 = octave_sum;
+    total = (_e96 * metal::exp(-(tau_5) - far_1)) + ((_e101 * build) * _e103);
+    uint _e110 = frame.modes.w;
+    if ((_e110 & FLAG_BEER_POWDER) != 0u) {
+        float _e115 = total;
+        float _e119 = frame.phase.w;
+        total = _e115 * (1.0 - metal::exp(-(_e119) * tau_5));
+    }
+    float _e126 = total;
+    return _e126;
 }
 
 float octave_buildup(
     float density_1,
     constant Frame& frame
 ) {
-    float l_7 = frame.multiple_scattering.w;
-    if (l_7 <= 0.0) {
+    float l_8 = frame.multiple_scattering.w;
+    if (l_8 <= 0.0) {
         return 1.0;
     }
     float _e11 = frame.extinction.x;
     float _e15 = frame.extinction.y;
-    return 1.0 - metal::exp((-((_e11 + _e15)) * density_1) * l_7);
+    return 1.0 - metal::exp((-((_e11 + _e15)) * density_1) * l_8);
 }
 
 metal::float3 ambient(
@@ -1639,12 +1731,12 @@ float height_fraction(
 }
 
 metal::float3 scattered_light(
-    metal::float3 rel_2,
+    metal::float3 rel_3,
     metal::float3 p_7,
     float alt_12,
     float density_2,
     metal::float3 view,
-    Layer l_5,
+    Layer l_6,
     thread Counters& counters_6,
     constant Frame& frame,
     metal::texture2d<float, metal::access::sample> transmittance_lut_in,
@@ -1657,30 +1749,34 @@ metal::float3 scattered_light(
 ) {
     metal::float3 sun_light = metal::float3(0.0);
     float tau_6 = 0.0;
+    float far_2 = 0.0;
     metal::float4 _e9 = frame.sun_direction;
-    metal::float3 sun_3 = _e9.xyz;
-    float _e11 = layer_height(l_5, alt_12);
+    metal::float3 sun_4 = _e9.xyz;
+    float _e11 = layer_height(l_6, alt_12);
     float _e12 = saturate(_e11);
-    bool _e16 = hits_ground(rel_2, alt_12, sun_3, frame);
-    if (!(_e16)) {
+    Weather _e16 = sample_weather(p_7, l_6, frame, weather_tex, noise_sampler);
+    bool _e17 = hits_ground(rel_3, alt_12, sun_4, frame);
+    if (!(_e17)) {
         if (LIGHT_MARCH) {
-            float _e21 = sun_optical_depth(rel_2, p_7, l_5, counters_6, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
-            tau_6 = _e21;
+            float _e24 = sun_optical_depth(rel_3, p_7, l_6, counters_6, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+            tau_6 = _e24;
+            float _e25 = far_optical_depth(rel_3, l_6, frame);
+            far_2 = _e25;
         }
-        metal::float4 _e24 = frame.sun_illuminance;
-        metal::float3 _e26 = sun_through_air(rel_2, frame, transmittance_lut_in);
-        float _e29 = tau_6;
-        float _e30 = octave_buildup(density_2, frame);
-        float _e31 = sun_scattering(metal::dot(view, sun_3), _e29, _e30, frame);
-        sun_light = (_e24.xyz * _e26) * _e31;
+        float _e27 = tau_6;
+        float _e28 = far_2;
+        float _e29 = octave_buildup(density_2, frame);
+        float _e31 = sun_scattering(metal::dot(view, sun_4), _e27, _e28, _e29, _e16.coverage, frame);
+        metal::float4 _e34 = frame.sun_illuminance;
+        metal::float3 _e36 = sun_through_air(rel_3, frame, transmittance_lut_in);
+        sun_light = (_e34.xyz * _e36) * _e31;
     }
-    Weather _e33 = sample_weather(p_7, l_5, frame, weather_tex, noise_sampler);
-    float _e37 = frame.extinction.z;
-    float _e45 = saturate(1.0 - ((_e37 * _e33.precipitation) * (1.0 - _e12)));
-    float _e49 = frame.extinction.x;
-    metal::float3 _e51 = sun_light;
-    metal::float3 _e52 = ambient(_e12, frame, sky_ambient_in);
-    return ((_e49 * density_2) * (_e51 + _e52)) * _e45;
+    float _e42 = frame.extinction.z;
+    float _e50 = saturate(1.0 - ((_e42 * _e16.precipitation) * (1.0 - _e12)));
+    float _e54 = frame.extinction.x;
+    metal::float3 _e56 = sun_light;
+    metal::float3 _e57 = ambient(_e12, frame, sky_ambient_in);
+    return ((_e54 * density_2) * (_e56 + _e57)) * _e50;
 }
 
 metal::float3 shadow_ground_point(
@@ -1695,17 +1791,17 @@ metal::float3 shadow_ground_point(
 }
 
 float ground_shadow(
-    metal::float3 rel_3,
+    metal::float3 rel_4,
     metal::texture2d<float, metal::access::sample> cloud_shadow_in
 ) {
-    float edge = metal::max(metal::abs(rel_3.x), metal::abs(rel_3.z)) / SHADOW_HALF_EXTENT;
+    float edge = metal::max(metal::abs(rel_4.x), metal::abs(rel_4.z)) / SHADOW_HALF_EXTENT;
     if (edge >= 1.0) {
         return 1.0;
     }
-    metal::float2 x_9 = (rel_3.xz / metal::float2(40000.0)) + metal::float2(0.5);
+    metal::float2 x_9 = (rel_4.xz / metal::float2(40000.0)) + metal::float2(0.5);
     metal::float4 _e21 = lut_bilinear(cloud_shadow_in, x_9, metal::uint2(128u));
-    float t_5 = _e21.x;
-    return metal::mix(t_5, 1.0, metal::smoothstep(SHADOW_FADE_START, 1.0, edge));
+    float t_6 = _e21.x;
+    return metal::mix(t_6, 1.0, metal::smoothstep(SHADOW_FADE_START, 1.0, edge));
 }
 
 metal::float3 ground_shadow_loss(
@@ -1781,13 +1877,13 @@ void count(
     uint value,
     device Stats& stats
 ) {
-    bool local_31 = {};
+    bool local_33 = {};
     if (STATS) {
-        local_31 = value != 0u;
+        local_33 = value != 0u;
     } else {
-        local_31 = false;
+        local_33 = false;
     }
-    bool _e8 = local_31;
+    bool _e8 = local_33;
     if (_e8) {
         uint _e12 = metal::atomic_fetch_add_explicit(&stats.counters.inner[index_1], value, metal::memory_order_relaxed);
         return;
@@ -1807,8 +1903,8 @@ metal::float3 step_integral(
         return source * dt;
     }
     float x_10 = sigma_t * dt;
-    float f_3 = (x_10 < 0.001) ? (1.0 - (0.5 * x_10)) : ((1.0 - metal::exp(-(x_10))) / x_10);
-    return source * (dt * f_3);
+    float f_4 = (x_10 < 0.001) ? (1.0 - (0.5 * x_10)) : ((1.0 - metal::exp(-(x_10))) / x_10);
+    return source * (dt * f_4);
 }
 
 uint naga_div(uint lhs, uint rhs) {
@@ -1837,7 +1933,7 @@ float start_offset(
 bool march_layer(
     metal::float3 view_2,
     Interval span_1,
-    Layer l_6,
+    Layer l_7,
     float jitter,
     thread MarchState& state,
     thread Counters& counters_7,
@@ -1852,10 +1948,10 @@ bool march_layer(
     metal::texture2d<float, metal::access::sample> occupancy_in
 ) {
     uint steps_1 = {};
-    uint i_12 = 0u;
+    uint i_13 = 0u;
     uint stride = 1u;
     uint empty = 0u;
-    bool local_32 = {};
+    bool local_34 = {};
     float cam_alt_1 = frame.camera_position.y;
     metal::float4 _e12 = frame.camera_position;
     metal::float2 cam_xz = _e12.xz;
@@ -1875,78 +1971,78 @@ bool march_layer(
     bool dynamic_step = (_e52 & FLAG_DYNAMIC_STEP) != 0u;
     uint _e60 = frame.modes.w;
     bool empty_skip = (_e60 & FLAG_EMPTY_SKIP) != 0u;
-    uint2 loop_bound_7 = uint2(4294967295u);
+    uint2 loop_bound_8 = uint2(4294967295u);
     while(true) {
-        if (metal::all(loop_bound_7 == uint2(0u))) { break; }
-        loop_bound_7 -= uint2(loop_bound_7.y == 0u, 1u);
-        uint _e71 = i_12;
+        if (metal::all(loop_bound_8 == uint2(0u))) { break; }
+        loop_bound_8 -= uint2(loop_bound_8.y == 0u, 1u);
+        uint _e71 = i_13;
         uint _e72 = steps_1;
         if (_e71 >= _e72) {
             break;
         }
         uint _e75 = counters_7.view_steps;
         counters_7.view_steps = _e75 + 1u;
-        uint _e79 = i_12;
-        float t_6 = span_1.start + ((static_cast<float>(_e79) + jitter) * dt_2);
-        metal::float3 rel_6 = (view_2 * t_6) + metal::float3(0.0, cam_alt_1, 0.0);
-        metal::float3 p_13 = metal::float3(rel_6.x + cam_xz.x, rel_6.y, rel_6.z + cam_xz.y);
+        uint _e79 = i_13;
+        float t_7 = span_1.start + ((static_cast<float>(_e79) + jitter) * dt_2);
+        metal::float3 rel_7 = (view_2 * t_7) + metal::float3(0.0, cam_alt_1, 0.0);
+        metal::float3 p_13 = metal::float3(rel_7.x + cam_xz.x, rel_7.y, rel_7.z + cam_xz.y);
         if (empty_skip) {
             float _e97 = empty_cell_exit(p_13, view_2, frame, occupancy_in);
             if (_e97 > 0.0) {
                 uint _e106 = steps_1;
-                uint next_1 = naga_f2u32(metal::clamp(metal::ceil((((t_6 + _e97) - span_1.start) / dt_2) - jitter), 0.0, static_cast<float>(_e106)));
-                uint _e111 = i_12;
-                i_12 = metal::max(_e111 + 1u, next_1);
+                uint next_1 = naga_f2u32(metal::clamp(metal::ceil((((t_7 + _e97) - span_1.start) / dt_2) - jitter), 0.0, static_cast<float>(_e106)));
+                uint _e111 = i_13;
+                i_13 = metal::max(_e111 + 1u, next_1);
                 continue;
             }
         }
-        float _e115 = altitude_of(rel_6, frame);
-        float _e116 = layer_density(p_13, _e115, l_6, counters_7, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+        float _e115 = altitude_of(rel_7, frame);
+        float _e116 = layer_density(p_13, _e115, l_7, counters_7, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
         if (_e116 <= 0.0) {
             uint _e119 = empty;
             empty = _e119 + 1u;
             if (dynamic_step) {
                 uint _e124 = empty;
-                local_32 = _e124 >= 8u;
+                local_34 = _e124 >= 8u;
             } else {
-                local_32 = false;
+                local_34 = false;
             }
-            bool _e128 = local_32;
+            bool _e128 = local_34;
             if (_e128) {
                 stride = 2u;
             }
-            uint _e130 = i_12;
+            uint _e130 = i_13;
             uint _e131 = stride;
-            i_12 = _e130 + _e131;
+            i_13 = _e130 + _e131;
             continue;
         }
         uint _e133 = stride;
         if (_e133 > 1u) {
-            uint _e136 = i_12;
+            uint _e136 = i_13;
             uint _e137 = stride;
-            i_12 = _e136 - (_e137 - 1u);
+            i_13 = _e136 - (_e137 - 1u);
             stride = 1u;
             empty = 0u;
             continue;
         }
         empty = 0u;
         float sigma_t_2 = sigma_e * _e116;
-        metal::float3 _e145 = scattered_light(rel_6, p_13, _e115, _e116, view_2, l_6, counters_7, frame, transmittance_lut_in, sky_ambient_in, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+        metal::float3 _e145 = scattered_light(rel_7, p_13, _e115, _e116, view_2, l_7, counters_7, frame, transmittance_lut_in, sky_ambient_in, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
         float transmittance_1 = state.transmittance;
         metal::float3 _e149 = state.radiance;
         metal::float3 _e150 = step_integral(_e145, sigma_t_2, dt_2, frame);
         state.radiance = _e149 + (transmittance_1 * _e150);
         float step_t = metal::exp(-(sigma_t_2) * dt_2);
         float _e157 = state.depth_sum;
-        state.depth_sum = _e157 + ((t_6 * transmittance_1) * (1.0 - step_t));
+        state.depth_sum = _e157 + ((t_7 * transmittance_1) * (1.0 - step_t));
         state.transmittance = transmittance_1 * step_t;
         float _e166 = state.transmittance;
         float _e170 = frame.march.w;
         if (_e166 < _e170) {
             return true;
         }
-        uint _e173 = i_12;
-        i_12 = _e173 + 1u;
+        uint _e173 = i_13;
+        i_13 = _e173 + 1u;
     }
     return false;
 }
@@ -1974,29 +2070,29 @@ MarchResult march_pixel(
     uint k_6 = 0u;
     uint next = {};
     Interval span_2 = {};
-    uint i_13 = {};
-    bool local_33 = {};
-    bool local_34 = {};
+    uint i_14 = {};
     bool local_35 = {};
     bool local_36 = {};
     bool local_37 = {};
     bool local_38 = {};
+    bool local_39 = {};
+    bool local_40 = {};
     float depth_1 = 0.0;
     metal::float3 _e1 = view_ray(pixel_4, frame);
     float cam_alt_2 = frame.camera_position.y;
     count(STAT_PIXELS, 1u, stats);
     float _e20 = start_offset(pixel_4, frame);
     uint _e21 = layer_count(frame);
-    uint2 loop_bound_8 = uint2(4294967295u);
-    bool loop_init_7 = true;
+    uint2 loop_bound_9 = uint2(4294967295u);
+    bool loop_init_8 = true;
     while(true) {
-        if (metal::all(loop_bound_8 == uint2(0u))) { break; }
-        loop_bound_8 -= uint2(loop_bound_8.y == 0u, 1u);
-        if (!loop_init_7) {
+        if (metal::all(loop_bound_9 == uint2(0u))) { break; }
+        loop_bound_9 -= uint2(loop_bound_9.y == 0u, 1u);
+        if (!loop_init_8) {
             uint _e119 = k_6;
             k_6 = _e119 + 1u;
         }
-        loop_init_7 = false;
+        loop_init_8 = false;
         uint _e34 = k_6;
         if (_e34 < _e21) {
         } else {
@@ -2005,72 +2101,72 @@ MarchResult march_pixel(
         {
             next = NO_LAYER;
             span_2 = Interval {0.0, 0.0, 1u};
-            i_13 = 0u;
-            uint2 loop_bound_9 = uint2(4294967295u);
-            bool loop_init_8 = true;
+            i_14 = 0u;
+            uint2 loop_bound_10 = uint2(4294967295u);
+            bool loop_init_9 = true;
             while(true) {
-                if (metal::all(loop_bound_9 == uint2(0u))) { break; }
-                loop_bound_9 -= uint2(loop_bound_9.y == 0u, 1u);
-                if (!loop_init_8) {
-                    uint _e102 = i_13;
-                    i_13 = _e102 + 1u;
+                if (metal::all(loop_bound_10 == uint2(0u))) { break; }
+                loop_bound_10 -= uint2(loop_bound_10.y == 0u, 1u);
+                if (!loop_init_9) {
+                    uint _e102 = i_14;
+                    i_14 = _e102 + 1u;
                 }
-                loop_init_8 = false;
-                uint _e45 = i_13;
+                loop_init_9 = false;
+                uint _e45 = i_14;
                 if (_e45 < _e21) {
                 } else {
                     break;
                 }
                 {
-                    uint _e47 = i_13;
+                    uint _e47 = i_14;
                     Layer _e48 = cloud_layer(_e47, frame);
                     Interval _e49 = layer_interval(cam_alt_2, _e1, _e48, frame);
                     bool _e50 = ground_1;
                     if (!(_e50)) {
-                        local_33 = _e49.kind == RAY_HITS_GROUND;
+                        local_35 = _e49.kind == RAY_HITS_GROUND;
                     } else {
-                        local_33 = true;
+                        local_35 = true;
                     }
-                    bool _e58 = local_33;
+                    bool _e58 = local_35;
                     ground_1 = _e58;
                     float _e60 = last_start;
                     if (!((_e49.start > _e60))) {
                         float _e66 = last_start;
                         if (_e49.start == _e66) {
-                            uint _e70 = i_13;
+                            uint _e70 = i_14;
                             uint _e71 = last_index;
-                            local_35 = _e70 > _e71;
+                            local_37 = _e70 > _e71;
                         } else {
-                            local_35 = false;
+                            local_37 = false;
                         }
-                        bool _e74 = local_35;
-                        local_34 = _e74;
+                        bool _e74 = local_37;
+                        local_36 = _e74;
                     } else {
-                        local_34 = true;
+                        local_36 = true;
                     }
-                    bool after = local_34;
+                    bool after = local_36;
                     if (_e49.kind == RAY_MARCH) {
-                        local_36 = after;
+                        local_38 = after;
                     } else {
-                        local_36 = false;
+                        local_38 = false;
                     }
-                    bool _e83 = local_36;
+                    bool _e83 = local_38;
                     if (_e83) {
                         uint _e86 = next;
                         if (!((_e86 == NO_LAYER))) {
                             float _e94 = span_2.start;
-                            local_38 = _e49.start < _e94;
+                            local_40 = _e49.start < _e94;
                         } else {
-                            local_38 = true;
+                            local_40 = true;
                         }
-                        bool _e97 = local_38;
-                        local_37 = _e97;
+                        bool _e97 = local_40;
+                        local_39 = _e97;
                     } else {
-                        local_37 = false;
+                        local_39 = false;
                     }
-                    bool _e99 = local_37;
+                    bool _e99 = local_39;
                     if (_e99) {
-                        uint _e100 = i_13;
+                        uint _e100 = i_14;
                         next = _e100;
                         span_2 = _e49;
                     }
@@ -2161,36 +2257,36 @@ metal::float2 reproject(
     float depth_2,
     constant Frame& frame
 ) {
-    bool local_39 = {};
-    bool local_40 = {};
     bool local_41 = {};
+    bool local_42 = {};
+    bool local_43 = {};
     metal::float3 dir = {};
     metal::float4 _e4 = frame.previous_position;
     metal::float4 _e7 = frame.camera_position;
     if (metal::all(_e4 == _e7)) {
         metal::float4 _e14 = frame.previous_forward;
         metal::float4 _e17 = frame.camera_forward;
-        local_39 = metal::all(_e14 == _e17);
-    } else {
-        local_39 = false;
-    }
-    bool _e21 = local_39;
-    if (_e21) {
-        metal::float4 _e26 = frame.previous_right;
-        metal::float4 _e29 = frame.camera_right;
-        local_40 = metal::all(_e26 == _e29);
-    } else {
-        local_40 = false;
-    }
-    bool _e33 = local_40;
-    if (_e33) {
-        metal::float4 _e38 = frame.previous_up;
-        metal::float4 _e41 = frame.camera_up;
-        local_41 = metal::all(_e38 == _e41);
+        local_41 = metal::all(_e14 == _e17);
     } else {
         local_41 = false;
     }
-    bool same = local_41;
+    bool _e21 = local_41;
+    if (_e21) {
+        metal::float4 _e26 = frame.previous_right;
+        metal::float4 _e29 = frame.camera_right;
+        local_42 = metal::all(_e26 == _e29);
+    } else {
+        local_42 = false;
+    }
+    bool _e33 = local_42;
+    if (_e33) {
+        metal::float4 _e38 = frame.previous_up;
+        metal::float4 _e41 = frame.camera_up;
+        local_43 = metal::all(_e38 == _e41);
+    } else {
+        local_43 = false;
+    }
+    bool same = local_43;
     if (same) {
         return static_cast<metal::float2>(pixel_5);
     }
@@ -2222,15 +2318,15 @@ bool on_screen(
     metal::float2 q,
     constant Frame& frame
 ) {
-    bool local_42 = {};
+    bool local_44 = {};
     metal::uint4 _e3 = frame.counts;
     metal::float2 size_2 = static_cast<metal::float2>(_e3.xy);
     if (metal::all(q >= metal::float2(-0.5))) {
-        local_42 = metal::all(q <= (size_2 - metal::float2(0.5)));
+        local_44 = metal::all(q <= (size_2 - metal::float2(0.5)));
     } else {
-        local_42 = false;
+        local_44 = false;
     }
-    bool _e18 = local_42;
+    bool _e18 = local_44;
     return _e18;
 }
 
@@ -2274,9 +2370,9 @@ metal::float4 history_at(
     metal::int2 size_4 = static_cast<metal::int2>(_e3.xy);
     metal::float2 c_9 = metal::clamp(q_1, metal::float2(0.0), static_cast<metal::float2>(as_type<metal::int2>(as_type<metal::uint2>(size_4) - as_type<metal::uint2>(metal::int2(1)))));
     metal::int2 base_3 = naga_f2i32(metal::floor(c_9));
-    metal::float2 f_4 = c_9 - static_cast<metal::float2>(base_3);
-    metal::float4 _e18 = catmull_rom(f_4.x);
-    metal::float4 _e20 = catmull_rom(f_4.y);
+    metal::float2 f_5 = c_9 - static_cast<metal::float2>(base_3);
+    metal::float4 _e18 = catmull_rom(f_5.x);
+    metal::float4 _e20 = catmull_rom(f_5.y);
     metal::float4 _e22 = history_row(base_3, -1, _e18, frame, history_in);
     metal::float4 _e26 = history_row(base_3, 0, _e18, frame, history_in);
     metal::float4 _e31 = history_row(base_3, 1, _e18, frame, history_in);
@@ -2379,42 +2475,42 @@ Segments layer_segments(
     constant Frame& frame
 ) {
     Segments s_1 = Segments {metal::float2(0.0), metal::float2(0.0), 0u};
-    bool local_43 = {};
+    bool local_45 = {};
     metal::float2 a_1 = metal::float2(0.0);
     metal::float2 b_1 = metal::float2(0.0);
     uint n_2 = 0u;
-    bool local_44 = {};
-    bool local_45 = {};
     bool local_46 = {};
     bool local_47 = {};
+    bool local_48 = {};
+    bool local_49 = {};
     metal::float2 _e10 = layers_span(frame);
     float bottom_2 = _e10.x;
     Roots _e12 = ray_shell_from(p_9, alt_13, d_12, bottom_2, frame);
     Roots _e14 = ray_shell_from(p_9, alt_13, d_12, _e10.y, frame);
     bool _e15 = hits_ground(p_9, alt_13, d_12, frame);
     if (!(!(_e14.hit))) {
-        local_43 = _e14.t1_ <= 0.0;
+        local_45 = _e14.t1_ <= 0.0;
     } else {
-        local_43 = true;
+        local_45 = true;
     }
-    bool _e25 = local_43;
+    bool _e25 = local_45;
     if (_e25) {
         Segments _e26 = s_1;
         return _e26;
     }
     float entry = metal::max(_e14.t0_, 0.0);
     if (_e12.hit) {
-        local_44 = _e12.t0_ > 0.0;
+        local_46 = _e12.t0_ > 0.0;
     } else {
-        local_44 = false;
+        local_46 = false;
     }
-    bool _e45 = local_44;
+    bool _e45 = local_46;
     if (_e45) {
-        local_45 = alt_13 >= bottom_2;
+        local_47 = alt_13 >= bottom_2;
     } else {
-        local_45 = false;
+        local_47 = false;
     }
-    bool _e50 = local_45;
+    bool _e50 = local_47;
     if (_e50) {
         uint _e51 = n_2;
         a_1[_e51] = entry;
@@ -2423,11 +2519,11 @@ Segments layer_segments(
         uint _e56 = n_2;
         n_2 = _e56 + static_cast<uint>(_e12.t0_ > entry);
         if (!(_e15)) {
-            local_46 = _e14.t1_ > _e12.t1_;
+            local_48 = _e14.t1_ > _e12.t1_;
         } else {
-            local_46 = false;
+            local_48 = false;
         }
-        bool _e68 = local_46;
+        bool _e68 = local_48;
         if (_e68) {
             uint _e69 = n_2;
             a_1[_e69] = metal::max(_e12.t1_, entry);
@@ -2439,11 +2535,11 @@ Segments layer_segments(
     } else {
         if (alt_13 < bottom_2) {
             if (!(_e15)) {
-                local_47 = _e12.hit;
+                local_49 = _e12.hit;
             } else {
-                local_47 = false;
+                local_49 = false;
             }
-            bool _e85 = local_47;
+            bool _e85 = local_49;
             if (_e85) {
                 a_1.x = metal::max(_e12.t1_, 0.0);
                 b_1.x = _e14.t1_;
@@ -2466,7 +2562,7 @@ Segments layer_segments(
 }
 
 float density_at(
-    metal::float3 rel_4,
+    metal::float3 rel_5,
     thread Counters& counters_9,
     constant Frame& frame,
     metal::texture3d<float, metal::access::sample> shape_tex,
@@ -2477,8 +2573,8 @@ float density_at(
 ) {
     float _e6 = frame.camera_position.x;
     float _e13 = frame.camera_position.z;
-    metal::float3 p_16 = metal::float3(rel_4.x + _e6, rel_4.y, rel_4.z + _e13);
-    float _e16 = altitude_of(rel_4, frame);
+    metal::float3 p_16 = metal::float3(rel_5.x + _e6, rel_5.y, rel_5.z + _e13);
+    float _e16 = altitude_of(rel_5, frame);
     float _e17 = cloud_density(p_16, _e16, counters_9, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
     return _e17;
 }
@@ -2494,10 +2590,10 @@ float empty_cell_skip(
     if (_e3 > 1u) {
         return 0.0;
     }
-    metal::float3 rel_7 = origin_3 + (dir_1 * t_2);
+    metal::float3 rel_8 = origin_3 + (dir_1 * t_2);
     float _e13 = frame.camera_position.x;
     float _e20 = frame.camera_position.z;
-    metal::float3 p_17 = metal::float3(rel_7.x + _e13, rel_7.y, rel_7.z + _e20);
+    metal::float3 p_17 = metal::float3(rel_8.x + _e13, rel_8.y, rel_8.z + _e20);
     float _e23 = empty_cell_exit(p_17, dir_1, frame, occupancy_in);
     if (_e23 <= 0.0) {
         return 0.0;
@@ -2509,25 +2605,25 @@ float density_max(
     constant Frame& frame
 ) {
     float m_1 = 0.0;
-    uint i_14 = 0u;
-    uint2 loop_bound_10 = uint2(4294967295u);
-    bool loop_init_9 = true;
+    uint i_15 = 0u;
+    uint2 loop_bound_11 = uint2(4294967295u);
+    bool loop_init_10 = true;
     while(true) {
-        if (metal::all(loop_bound_10 == uint2(0u))) { break; }
-        loop_bound_10 -= uint2(loop_bound_10.y == 0u, 1u);
-        if (!loop_init_9) {
-            uint _e17 = i_14;
-            i_14 = _e17 + 1u;
+        if (metal::all(loop_bound_11 == uint2(0u))) { break; }
+        loop_bound_11 -= uint2(loop_bound_11.y == 0u, 1u);
+        if (!loop_init_10) {
+            uint _e17 = i_15;
+            i_15 = _e17 + 1u;
         }
-        loop_init_9 = false;
-        uint _e4 = i_14;
+        loop_init_10 = false;
+        uint _e4 = i_15;
         uint _e5 = layer_count(frame);
         if (_e4 < _e5) {
         } else {
             break;
         }
         {
-            uint _e7 = i_14;
+            uint _e7 = i_15;
             Layer _e8 = cloud_layer(_e7, frame);
             float _e9 = m_1;
             m_1 = metal::max(_e9, _e8.density * (1.0 + _e8.precipitation));
@@ -2560,16 +2656,16 @@ float free_flight(
     if (majorant <= 0.0) {
         return -1.0;
     }
-    uint2 loop_bound_11 = uint2(4294967295u);
-    bool loop_init_10 = true;
+    uint2 loop_bound_12 = uint2(4294967295u);
+    bool loop_init_11 = true;
     while(true) {
-        if (metal::all(loop_bound_11 == uint2(0u))) { break; }
-        loop_bound_11 -= uint2(loop_bound_11.y == 0u, 1u);
-        if (!loop_init_10) {
+        if (metal::all(loop_bound_12 == uint2(0u))) { break; }
+        loop_bound_12 -= uint2(loop_bound_12.y == 0u, 1u);
+        if (!loop_init_11) {
             uint _e60 = k_8;
             k_8 = _e60 + 1u;
         }
-        loop_init_10 = false;
+        loop_init_11 = false;
         uint _e21 = k_8;
         if (_e21 < segs.count) {
         } else {
@@ -2578,10 +2674,10 @@ float free_flight(
         {
             uint _e25 = k_8;
             t_3 = segs.a[_e25];
-            uint2 loop_bound_12 = uint2(4294967295u);
+            uint2 loop_bound_13 = uint2(4294967295u);
             while(true) {
-                if (metal::all(loop_bound_12 == uint2(0u))) { break; }
-                loop_bound_12 -= uint2(loop_bound_12.y == 0u, 1u);
+                if (metal::all(loop_bound_13 == uint2(0u))) { break; }
+                loop_bound_13 -= uint2(loop_bound_13.y == 0u, 1u);
                 float _e28 = t_3;
                 float _e29 = empty_cell_skip(origin_4, dir_2, _e28, frame, occupancy_in);
                 if (_e29 > 0.0) {
@@ -2642,16 +2738,16 @@ float transmittance_along(
     if (majorant_1 <= 0.0) {
         return 1.0;
     }
-    uint2 loop_bound_13 = uint2(4294967295u);
-    bool loop_init_11 = true;
+    uint2 loop_bound_14 = uint2(4294967295u);
+    bool loop_init_12 = true;
     while(true) {
-        if (metal::all(loop_bound_13 == uint2(0u))) { break; }
-        loop_bound_13 -= uint2(loop_bound_13.y == 0u, 1u);
-        if (!loop_init_11) {
+        if (metal::all(loop_bound_14 == uint2(0u))) { break; }
+        loop_bound_14 -= uint2(loop_bound_14.y == 0u, 1u);
+        if (!loop_init_12) {
             uint _e78 = k_9;
             k_9 = _e78 + 1u;
         }
-        loop_init_11 = false;
+        loop_init_12 = false;
         uint _e23 = k_9;
         if (_e23 < segs_1.count) {
         } else {
@@ -2660,10 +2756,10 @@ float transmittance_along(
         {
             uint _e27 = k_9;
             t_4 = segs_1.a[_e27];
-            uint2 loop_bound_14 = uint2(4294967295u);
+            uint2 loop_bound_15 = uint2(4294967295u);
             while(true) {
-                if (metal::all(loop_bound_14 == uint2(0u))) { break; }
-                loop_bound_14 -= uint2(loop_bound_14.y == 0u, 1u);
+                if (metal::all(loop_bound_15 == uint2(0u))) { break; }
+                loop_bound_15 -= uint2(loop_bound_15.y == 0u, 1u);
                 float _e30 = t_4;
                 float _e31 = empty_cell_skip(origin_5, dir_3, _e30, frame, occupancy_in);
                 if (_e31 > 0.0) {
@@ -2763,10 +2859,10 @@ PhaseSample sample_phase(
     float sign = (dir_4.z >= 0.0) ? 1.0 : -1.0;
     float a_9 = -1.0 / (sign + dir_4.z);
     float bb = (dir_4.x * dir_4.y) * a_9;
-    metal::float3 t_7 = metal::float3(1.0 + (((sign * dir_4.x) * dir_4.x) * a_9), sign * bb, -(sign) * dir_4.x);
+    metal::float3 t_8 = metal::float3(1.0 + (((sign * dir_4.x) * dir_4.x) * a_9), sign * bb, -(sign) * dir_4.x);
     metal::float3 b_10 = metal::float3(bb, sign + ((dir_4.y * dir_4.y) * a_9), -(dir_4.y));
     float _e109 = cos_theta_6;
-    metal::float3 w_6 = metal::normalize(((t_7 * (sin_theta * metal::cos(phi_1))) + (b_10 * (sin_theta * metal::sin(phi_1)))) + (dir_4 * _e109));
+    metal::float3 w_6 = metal::normalize(((t_8 * (sin_theta * metal::cos(phi_1))) + (b_10 * (sin_theta * metal::sin(phi_1)))) + (dir_4 * _e109));
     float _e113 = cos_theta_6;
     float _e115 = phase(_e113, 1.0, frame);
     float _e116 = pdf;
@@ -2809,15 +2905,15 @@ PathResult trace_path(
     metal::texture2d<float, metal::access::sample> occupancy_in
 ) {
     PathResult out_2 = PathResult {metal::float3(0.0), 1.0, -1.0};
-    bool local_48 = {};
-    bool local_49 = {};
     bool local_50 = {};
+    bool local_51 = {};
+    bool local_52 = {};
     uint max_orders = MAX_PATH_ORDERS;
     metal::float3 pos = {};
     metal::float3 dir_5 = {};
     float throughput = 1.0;
     uint order = 0u;
-    bool local_51 = {};
+    bool local_53 = {};
     if (span_3.kind != RAY_MARCH) {
         PathResult _e13 = out_2;
         return _e13;
@@ -2834,7 +2930,7 @@ PathResult trace_path(
     }
     out_2.depth = _e33;
     metal::float4 _e40 = frame.sun_direction;
-    metal::float3 sun_4 = _e40.xyz;
+    metal::float3 sun_5 = _e40.xyz;
     float _e45 = frame.extinction.x;
     float _e49 = frame.extinction.y;
     float sigma_t_4 = _e45 + _e49;
@@ -2845,23 +2941,23 @@ PathResult trace_path(
         bool _e68 = physical_sky(frame);
         if (!(_e68)) {
             metal::float4 _e74 = frame.ambient_bottom;
-            local_49 = metal::any(_e74.xyz > metal::float3(0.0));
+            local_51 = metal::any(_e74.xyz > metal::float3(0.0));
         } else {
-            local_49 = true;
+            local_51 = true;
         }
-        bool _e81 = local_49;
+        bool _e81 = local_51;
         if (!(_e81)) {
             metal::float4 _e87 = frame.ambient_top;
-            local_50 = metal::any(_e87.xyz > metal::float3(0.0));
+            local_52 = metal::any(_e87.xyz > metal::float3(0.0));
         } else {
-            local_50 = true;
+            local_52 = true;
         }
-        bool _e94 = local_50;
-        local_48 = _e94;
+        bool _e94 = local_52;
+        local_50 = _e94;
     } else {
-        local_48 = false;
+        local_50 = false;
     }
-    bool ambient_on = local_48;
+    bool ambient_on = local_50;
     uint _e102 = frame.misc.z;
     if (_e102 > 0u) {
         uint _e108 = frame.misc.z;
@@ -2869,10 +2965,10 @@ PathResult trace_path(
     }
     pos = cam + (view_3 * _e33);
     dir_5 = view_3;
-    uint2 loop_bound_15 = uint2(4294967295u);
+    uint2 loop_bound_16 = uint2(4294967295u);
     while(true) {
-        if (metal::all(loop_bound_15 == uint2(0u))) { break; }
-        loop_bound_15 -= uint2(loop_bound_15.y == 0u, 1u);
+        if (metal::all(loop_bound_16 == uint2(0u))) { break; }
+        loop_bound_16 -= uint2(loop_bound_16.y == 0u, 1u);
         float _e119 = throughput;
         throughput = _e119 * albedo;
         uint _e121 = order;
@@ -2881,19 +2977,19 @@ PathResult trace_path(
         float _e125 = altitude_of(_e124, frame);
         float _e126 = height_fraction(_e125, frame);
         metal::float3 _e127 = pos;
-        bool _e128 = hits_ground(_e127, _e125, sun_4, frame);
+        bool _e128 = hits_ground(_e127, _e125, sun_5, frame);
         if (!(_e128)) {
             metal::float3 _e130 = pos;
             metal::float3 _e131 = pos;
-            Segments _e132 = layer_segments(_e131, _e125, sun_4, frame);
-            float _e133 = transmittance_along(_e130, sun_4, _e132, rng_6, counters_12, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler, occupancy_in);
+            Segments _e132 = layer_segments(_e131, _e125, sun_5, frame);
+            float _e133 = transmittance_along(_e130, sun_5, _e132, rng_6, counters_12, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler, occupancy_in);
             metal::float3 _e135 = out_2.radiance;
             metal::float4 _e138 = frame.sun_illuminance;
             metal::float3 _e140 = pos;
             metal::float3 _e141 = sun_through_air(_e140, frame, transmittance_lut_in);
             float _e143 = throughput;
             metal::float3 _e144 = dir_5;
-            float _e147 = phase(metal::dot(_e144, sun_4), 1.0, frame);
+            float _e147 = phase(metal::dot(_e144, sun_5), 1.0, frame);
             out_2.radiance = _e135 + ((_e138.xyz * _e141) * ((_e143 * _e147) * _e133));
         }
         metal::float3 _e152 = dir_5;
@@ -2922,11 +3018,11 @@ PathResult trace_path(
         uint _e178 = order;
         if (_e178 >= 3u) {
             float _e183 = throughput;
-            local_51 = _e183 < 0.1;
+            local_53 = _e183 < 0.1;
         } else {
-            local_51 = false;
+            local_53 = false;
         }
-        bool _e187 = local_51;
+        bool _e187 = local_53;
         if (_e187) {
             float _e188 = rng_next(rng_6);
             float _e189 = throughput;
@@ -2950,35 +3046,35 @@ PathResult trace_path(
 bool camera_still(
     constant Frame& frame
 ) {
-    bool local_52 = {};
-    bool local_53 = {};
     bool local_54 = {};
+    bool local_55 = {};
+    bool local_56 = {};
     metal::float4 _e2 = frame.camera_position;
     metal::float4 _e5 = frame.previous_position;
     if (metal::all(_e2 == _e5)) {
         metal::float4 _e12 = frame.camera_forward;
         metal::float4 _e15 = frame.previous_forward;
-        local_52 = metal::all(_e12 == _e15);
-    } else {
-        local_52 = false;
-    }
-    bool _e19 = local_52;
-    if (_e19) {
-        metal::float4 _e24 = frame.camera_right;
-        metal::float4 _e28 = frame.previous_right;
-        local_53 = metal::all(_e24.xyz == _e28.xyz);
-    } else {
-        local_53 = false;
-    }
-    bool _e33 = local_53;
-    if (_e33) {
-        metal::float4 _e38 = frame.camera_up;
-        metal::float4 _e42 = frame.previous_up;
-        local_54 = metal::all(_e38.xyz == _e42.xyz);
+        local_54 = metal::all(_e12 == _e15);
     } else {
         local_54 = false;
     }
-    bool _e47 = local_54;
+    bool _e19 = local_54;
+    if (_e19) {
+        metal::float4 _e24 = frame.camera_right;
+        metal::float4 _e28 = frame.previous_right;
+        local_55 = metal::all(_e24.xyz == _e28.xyz);
+    } else {
+        local_55 = false;
+    }
+    bool _e33 = local_55;
+    if (_e33) {
+        metal::float4 _e38 = frame.camera_up;
+        metal::float4 _e42 = frame.previous_up;
+        local_56 = metal::all(_e38.xyz == _e42.xyz);
+    } else {
+        local_56 = false;
+    }
+    bool _e47 = local_56;
     return _e47;
 }
 
@@ -2989,7 +3085,7 @@ float luminance(
 }
 
 float basic_sun_depth(
-    metal::float3 rel_5,
+    metal::float3 rel_6,
     float alt_14,
     thread Counters& counters_13,
     constant Frame& frame,
@@ -3000,45 +3096,45 @@ float basic_sun_depth(
     metal::sampler noise_sampler
 ) {
     float tau_7 = 0.0;
-    uint i_15 = 1u;
-    uint steps_3 = frame.counts.w;
-    if (steps_3 == 0u) {
+    uint i_16 = 1u;
+    uint steps_4 = frame.counts.w;
+    if (steps_4 == 0u) {
         return 0.0;
     }
     metal::float4 _e12 = frame.sun_direction;
-    metal::float3 sun_5 = _e12.xyz;
+    metal::float3 sun_6 = _e12.xyz;
     float rp_5 = frame.atmosphere.x;
     float top_2 = frame.atmosphere.z;
     float _e25 = frame.atmosphere.y;
     float thickness = top_2 - _e25;
-    Roots _e39 = solve_sphere(metal::dot(sun_5, metal::float3(rel_5.x, rel_5.y + rp_5, rel_5.z)), (alt_14 - top_2) * ((alt_14 + top_2) + (2.0 * rp_5)));
+    Roots _e39 = solve_sphere(metal::dot(sun_6, metal::float3(rel_6.x, rel_6.y + rp_5, rel_6.z)), (alt_14 - top_2) * ((alt_14 + top_2) + (2.0 * rp_5)));
     float length = metal::min(metal::max(_e39.t1_, 0.0), 3.0 * thickness);
-    float dt_3 = length / static_cast<float>(steps_3);
+    float dt_3 = length / static_cast<float>(steps_4);
     float _e51 = frame.extinction.x;
     float _e55 = frame.extinction.y;
     float sigma_t_5 = _e51 + _e55;
     metal::float4 _e59 = frame.camera_position;
     metal::float2 cam_xz_1 = _e59.xz;
-    uint2 loop_bound_16 = uint2(4294967295u);
-    bool loop_init_12 = true;
+    uint2 loop_bound_17 = uint2(4294967295u);
+    bool loop_init_13 = true;
     while(true) {
-        if (metal::all(loop_bound_16 == uint2(0u))) { break; }
-        loop_bound_16 -= uint2(loop_bound_16.y == 0u, 1u);
-        if (!loop_init_12) {
-            uint _e90 = i_15;
-            i_15 = _e90 + 1u;
+        if (metal::all(loop_bound_17 == uint2(0u))) { break; }
+        loop_bound_17 -= uint2(loop_bound_17.y == 0u, 1u);
+        if (!loop_init_13) {
+            uint _e90 = i_16;
+            i_16 = _e90 + 1u;
         }
-        loop_init_12 = false;
-        uint _e65 = i_15;
-        if (_e65 <= steps_3) {
+        loop_init_13 = false;
+        uint _e65 = i_16;
+        if (_e65 <= steps_4) {
         } else {
             break;
         }
         {
             uint _e68 = counters_13.light;
             counters_13.light = _e68 + 1u;
-            uint _e71 = i_15;
-            metal::float3 q_8 = rel_5 + (sun_5 * (static_cast<float>(_e71) * dt_3));
+            uint _e71 = i_16;
+            metal::float3 q_8 = rel_6 + (sun_6 * (static_cast<float>(_e71) * dt_3));
             metal::float3 p_18 = metal::float3(q_8.x + cam_xz_1.x, q_8.y, q_8.z + cam_xz_1.y);
             float _e84 = tau_7;
             float _e85 = altitude_of(q_8, frame);
@@ -3064,7 +3160,7 @@ MarchResult basic_pixel(
     metal::float3 radiance_2 = metal::float3(0.0);
     float transmittance = 1.0;
     float depth_sum = 0.0;
-    uint i_16 = 0u;
+    uint i_17 = 0u;
     float depth_3 = 0.0;
     metal::float3 _e1 = view_ray(pixel_7, frame);
     float cam_alt_3 = frame.camera_position.y;
@@ -3079,8 +3175,8 @@ MarchResult basic_pixel(
             count(STAT_EXIT_GROUND, 1u, stats);
         } else {
             count(STAT_MARCHED, 1u, stats);
-            uint steps_4 = frame.counts.z;
-            float dt_4 = _e25.length / static_cast<float>(steps_4);
+            uint steps_5 = frame.counts.z;
+            float dt_4 = _e25.length / static_cast<float>(steps_5);
             float sigma_s = frame.extinction.x;
             float _e52 = frame.extinction.y;
             float sigma_t_6 = sigma_s + _e52;
@@ -3089,34 +3185,34 @@ MarchResult basic_pixel(
             float _e66 = frame.phase.x;
             float _e67 = phase_hg(metal::dot(_e1, _e60.xyz), _e66);
             metal::float3 sun_phase = _e56.xyz * _e67;
-            uint2 loop_bound_17 = uint2(4294967295u);
-            bool loop_init_13 = true;
+            uint2 loop_bound_18 = uint2(4294967295u);
+            bool loop_init_14 = true;
             while(true) {
-                if (metal::all(loop_bound_17 == uint2(0u))) { break; }
-                loop_bound_17 -= uint2(loop_bound_17.y == 0u, 1u);
-                if (!loop_init_13) {
-                    uint _e131 = i_16;
-                    i_16 = _e131 + 1u;
+                if (metal::all(loop_bound_18 == uint2(0u))) { break; }
+                loop_bound_18 -= uint2(loop_bound_18.y == 0u, 1u);
+                if (!loop_init_14) {
+                    uint _e131 = i_17;
+                    i_17 = _e131 + 1u;
                 }
-                loop_init_13 = false;
-                uint _e71 = i_16;
-                if (_e71 < steps_4) {
+                loop_init_14 = false;
+                uint _e71 = i_17;
+                if (_e71 < steps_5) {
                 } else {
                     break;
                 }
                 {
                     uint _e74 = counters_14.view_steps;
                     counters_14.view_steps = _e74 + 1u;
-                    uint _e78 = i_16;
-                    float t_8 = _e25.start + (static_cast<float>(_e78) * dt_4);
-                    metal::float3 rel_8 = (_e1 * t_8) + metal::float3(0.0, cam_alt_3, 0.0);
-                    metal::float3 p_19 = metal::float3(rel_8.x + cam_xz_2.x, rel_8.y, rel_8.z + cam_xz_2.y);
-                    float _e95 = altitude_of(rel_8, frame);
+                    uint _e78 = i_17;
+                    float t_9 = _e25.start + (static_cast<float>(_e78) * dt_4);
+                    metal::float3 rel_9 = (_e1 * t_9) + metal::float3(0.0, cam_alt_3, 0.0);
+                    metal::float3 p_19 = metal::float3(rel_9.x + cam_xz_2.x, rel_9.y, rel_9.z + cam_xz_2.y);
+                    float _e95 = altitude_of(rel_9, frame);
                     float _e96 = cloud_density(p_19, _e95, counters_14, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
                     if (_e96 <= 0.0) {
                         continue;
                     }
-                    float _e99 = basic_sun_depth(rel_8, _e95, counters_14, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+                    float _e99 = basic_sun_depth(rel_9, _e95, counters_14, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
                     float beer_powder = (2.0 * metal::exp(-(_e99))) * (1.0 - metal::exp(-2.0 * _e99));
                     metal::float3 _e110 = radiance_2;
                     float _e111 = transmittance;
@@ -3124,7 +3220,7 @@ MarchResult basic_pixel(
                     float step_t_1 = metal::exp((-(sigma_t_6) * _e96) * dt_4);
                     float _e122 = depth_sum;
                     float _e123 = transmittance;
-                    depth_sum = _e122 + ((t_8 * _e123) * (1.0 - step_t_1));
+                    depth_sum = _e122 + ((t_9 * _e123) * (1.0 - step_t_1));
                     float _e129 = transmittance;
                     transmittance = _e129 * step_t_1;
                 }
@@ -3164,14 +3260,14 @@ float value_noise(
     metal::float2 p_10,
     uint seed
 ) {
-    metal::uint2 i_18 = naga_f2u32(metal::floor(p_10));
-    metal::float2 f_5 = metal::fract(p_10);
-    metal::float2 s_12 = (f_5 * f_5) * (metal::float2(3.0) - (2.0 * f_5));
+    metal::uint2 i_19 = naga_f2u32(metal::floor(p_10));
+    metal::float2 f_6 = metal::fract(p_10);
+    metal::float2 s_12 = (f_6 * f_6) * (metal::float2(3.0) - (2.0 * f_6));
     uint h_11 = seed * 7919u;
-    float _e17 = atlas_hash(i_18.x + h_11, i_18.y);
-    float _e23 = atlas_hash((i_18.x + 1u) + h_11, i_18.y);
-    float _e29 = atlas_hash(i_18.x + h_11, i_18.y + 1u);
-    float _e37 = atlas_hash((i_18.x + 1u) + h_11, i_18.y + 1u);
+    float _e17 = atlas_hash(i_19.x + h_11, i_19.y);
+    float _e23 = atlas_hash((i_19.x + 1u) + h_11, i_19.y);
+    float _e29 = atlas_hash(i_19.x + h_11, i_19.y + 1u);
+    float _e37 = atlas_hash((i_19.x + 1u) + h_11, i_19.y + 1u);
     return metal::mix(metal::mix(_e17, _e23, s_12.x), metal::mix(_e29, _e37, s_12.x), s_12.y);
 }
 
@@ -3184,16 +3280,16 @@ float value_fbm(
     metal::float2 q_4 = {};
     uint o = 0u;
     q_4 = p_11;
-    uint2 loop_bound_18 = uint2(4294967295u);
-    bool loop_init_14 = true;
+    uint2 loop_bound_19 = uint2(4294967295u);
+    bool loop_init_15 = true;
     while(true) {
-        if (metal::all(loop_bound_18 == uint2(0u))) { break; }
-        loop_bound_18 -= uint2(loop_bound_18.y == 0u, 1u);
-        if (!loop_init_14) {
+        if (metal::all(loop_bound_19 == uint2(0u))) { break; }
+        loop_bound_19 -= uint2(loop_bound_19.y == 0u, 1u);
+        if (!loop_init_15) {
             uint _e26 = o;
             o = _e26 + 1u;
         }
-        loop_init_14 = false;
+        loop_init_15 = false;
         uint _e9 = o;
         if (_e9 < 4u) {
         } else {
@@ -3221,7 +3317,7 @@ float sprite_texture(
     metal::float2 uv
 ) {
     float billow = 0.0;
-    uint i_17 = 0u;
+    uint i_18 = 0u;
     metal::float2 at = {};
     float a_3 = {};
     metal::float2 c_10 = uv - metal::float2(0.5);
@@ -3235,32 +3331,32 @@ float sprite_texture(
         return ((mask * streak) * _e46) * 0.8;
     }
     uint blobs = 5u + naga_mod(tile_1, 4u);
-    uint2 loop_bound_19 = uint2(4294967295u);
-    bool loop_init_15 = true;
+    uint2 loop_bound_20 = uint2(4294967295u);
+    bool loop_init_16 = true;
     while(true) {
-        if (metal::all(loop_bound_19 == uint2(0u))) { break; }
-        loop_bound_19 -= uint2(loop_bound_19.y == 0u, 1u);
-        if (!loop_init_15) {
-            uint _e108 = i_17;
-            i_17 = _e108 + 1u;
+        if (metal::all(loop_bound_20 == uint2(0u))) { break; }
+        loop_bound_20 -= uint2(loop_bound_20.y == 0u, 1u);
+        if (!loop_init_16) {
+            uint _e108 = i_18;
+            i_18 = _e108 + 1u;
         }
-        loop_init_15 = false;
-        uint _e58 = i_17;
+        loop_init_16 = false;
+        uint _e58 = i_18;
         if (_e58 < blobs) {
         } else {
             break;
         }
         {
-            uint _e61 = i_17;
+            uint _e61 = i_18;
             float _e63 = atlas_hash(tile_1, 2u * _e61);
-            uint _e65 = i_17;
+            uint _e65 = i_18;
             float _e69 = atlas_hash(tile_1, (2u * _e65) + 1u);
             metal::float2 centre_1 = metal::float2(_e63, _e69) - metal::float2(0.5);
             at = metal::float2(0.5) + (centre_1 * 0.34);
             if (tile_1 == 4u) {
                 at.y = 0.5 + ((centre_1.y - 0.5) * 0.24);
             }
-            uint _e91 = i_17;
+            uint _e91 = i_18;
             float _e93 = atlas_hash(tile_1, 100u + _e91);
             float r_18 = 0.14 + (0.1 * _e93);
             metal::float2 _e98 = at;
@@ -3300,22 +3396,22 @@ SpriteCell sprite_cell(
 ) {
     metal::int2 start_1 = {};
     uint k_10 = 3u;
-    bool local_55 = {};
-    bool local_56 = {};
+    bool local_57 = {};
+    bool local_58 = {};
     uint level_1 = naga_div(cell, 64u);
-    metal::int2 local_60 = metal::int2(static_cast<int>(naga_mod(cell, 8u)), static_cast<int>(naga_mod(naga_div(cell, 8u), 8u)));
+    metal::int2 local_62 = metal::int2(static_cast<int>(naga_mod(cell, 8u)), static_cast<int>(naga_mod(naga_div(cell, 8u), 8u)));
     metal::float4 _e15 = frame.camera_position;
     start_1 = as_type<metal::int2>(as_type<metal::uint2>(naga_f2i32(metal::floor(_e15.xz / metal::float2(12000.0)))) - as_type<metal::uint2>(metal::int2(4)));
-    uint2 loop_bound_20 = uint2(4294967295u);
-    bool loop_init_16 = true;
+    uint2 loop_bound_21 = uint2(4294967295u);
+    bool loop_init_17 = true;
     while(true) {
-        if (metal::all(loop_bound_20 == uint2(0u))) { break; }
-        loop_bound_20 -= uint2(loop_bound_20.y == 0u, 1u);
-        if (!loop_init_16) {
+        if (metal::all(loop_bound_21 == uint2(0u))) { break; }
+        loop_bound_21 -= uint2(loop_bound_21.y == 0u, 1u);
+        if (!loop_init_17) {
             uint _e35 = k_10;
             k_10 = _e35 - 1u;
         }
-        loop_init_16 = false;
+        loop_init_17 = false;
         uint _e27 = k_10;
         if (_e27 > level_1) {
         } else {
@@ -3327,19 +3423,19 @@ SpriteCell sprite_cell(
         }
     }
     if (level_1 > 0u) {
-        local_55 = metal::all(local_60 >= metal::int2(2));
+        local_57 = metal::all(local_62 >= metal::int2(2));
     } else {
-        local_55 = false;
+        local_57 = false;
     }
-    bool _e47 = local_55;
+    bool _e47 = local_57;
     if (_e47) {
-        local_56 = metal::all(local_60 < metal::int2(6));
+        local_58 = metal::all(local_62 < metal::int2(6));
     } else {
-        local_56 = false;
+        local_58 = false;
     }
-    bool covered = local_56;
+    bool covered = local_58;
     metal::int2 _e56 = start_1;
-    return SpriteCell {as_type<metal::int2>(as_type<metal::uint2>(_e56) + as_type<metal::uint2>(local_60)), SPRITE_CELL0_ * static_cast<float>(1u << level_1), covered};
+    return SpriteCell {as_type<metal::int2>(as_type<metal::uint2>(_e56) + as_type<metal::uint2>(local_62)), SPRITE_CELL0_ * static_cast<float>(1u << level_1), covered};
 }
 
 SpriteCandidate sprite_candidate(
@@ -3412,14 +3508,14 @@ float sprite_sun_level(
 metal::float2 sprite_corner(
     uint k_11
 ) {
-    bool local_57 = {};
+    bool local_59 = {};
     uint q_10 = (k_11 >= 3u) ? ((k_11 == 3u) ? 0u : (k_11 - 2u)) : k_11;
     if (!((q_10 == 1u))) {
-        local_57 = q_10 == 2u;
+        local_59 = q_10 == 2u;
     } else {
-        local_57 = true;
+        local_59 = true;
     }
-    bool _e18 = local_57;
+    bool _e18 = local_59;
     return metal::float2(_e18 ? 1.0 : -1.0, (q_10 >= 2u) ? 1.0 : -1.0);
 }
 
@@ -3429,23 +3525,23 @@ metal::float3 sky_radiance(
     constant Frame& frame
 ) {
     metal::float4 _e4 = frame.sun_direction;
-    metal::float3 sun_6 = _e4.xyz;
+    metal::float3 sun_7 = _e4.xyz;
     metal::float4 _e8 = frame.sun_illuminance;
     metal::float3 e = _e8.xyz;
-    float _e15 = saturate((sun_6.y * 4.0) + 0.3);
+    float _e15 = saturate((sun_7.y * 4.0) + 0.3);
     bool _e19 = hits_ground(metal::float3(0.0, alt_16, 0.0), alt_16, d_14, frame);
     if (_e19) {
         metal::float3 ground_albedo = metal::float3(0.035, 0.035, 0.03);
-        return ground_albedo * (((e * metal::max(sun_6.y, 0.0)) / metal::float3(3.1415927)) + ((0.05 * e) * _e15));
+        return ground_albedo * (((e * metal::max(sun_7.y, 0.0)) / metal::float3(3.1415927)) + ((0.05 * e) * _e15));
     }
     metal::float3 zenith = metal::float3(0.018, 0.04, 0.1);
     metal::float3 horizon_2 = metal::float3(0.07, 0.085, 0.11);
     float _e45 = saturate(d_14.y);
     metal::float3 gradient_1 = metal::mix(horizon_2, zenith, metal::sqrt(_e45));
     metal::float3 sunset = ((1.0 - (_e15 * 0.8)) * metal::pow(1.0 - _e45, 6.0)) * metal::float3(0.25, 0.1, 0.0);
-    float _e64 = phase_hg(metal::dot(d_14, sun_6), 0.76);
+    float _e64 = phase_hg(metal::dot(d_14, sun_7), 0.76);
     float glow = _e64 * 0.02;
-    float _e73 = saturate((sun_6.y * 10.0) + 1.0);
+    float _e73 = saturate((sun_7.y * 10.0) + 1.0);
     return e * (((gradient_1 * _e15) + (sunset * _e73)) + metal::float3(glow * _e15));
 }
 
@@ -3466,17 +3562,17 @@ metal::float3 moon_disk(
     metal::float3 d_16,
     constant Frame& frame
 ) {
-    bool local_58 = {};
+    bool local_60 = {};
     metal::float4 _e3 = frame.moon;
     metal::float3 m_3 = _e3.xyz;
     float c_11 = metal::dot(d_16, m_3);
     float _e9 = frame.moon.w;
     if (!((_e9 <= 0.0))) {
-        local_58 = c_11 < MOON_COS_RADIUS;
+        local_60 = c_11 < MOON_COS_RADIUS;
     } else {
-        local_58 = true;
+        local_60 = true;
     }
-    bool _e18 = local_58;
+    bool _e18 = local_60;
     if (_e18) {
         return metal::float3(0.0);
     }
@@ -3496,7 +3592,7 @@ metal::float3 stars(
     uint face = 0u;
     metal::float2 uv_1 = metal::float2(0.0);
     float major = 0.0;
-    bool local_59 = {};
+    bool local_61 = {};
     metal::float3 star = metal::float3(0.0);
     float e0_ = frame.night.w;
     if (e0_ <= 0.0) {
@@ -3504,11 +3600,11 @@ metal::float3 stars(
     }
     metal::float3 a_10 = metal::abs(d_17);
     if (a_10.x >= a_10.y) {
-        local_59 = a_10.x >= a_10.z;
+        local_61 = a_10.x >= a_10.z;
     } else {
-        local_59 = false;
+        local_61 = false;
     }
-    bool _e26 = local_59;
+    bool _e26 = local_61;
     if (_e26) {
         face = (d_17.x > 0.0) ? 0u : 1u;
         uv_1 = d_17.zy;
@@ -3669,16 +3765,16 @@ struct transmittance_lutInput {
     metal::float2 _e11 = transmittance_r_mu(static_cast<metal::float2>(id.xy) / metal::float2(255.0, 63.0), frame);
     float _e14 = distance_to_top(_e11.x, _e11.y, frame);
     float dt_5 = _e14 / 128.0;
-    uint2 loop_bound_21 = uint2(4294967295u);
-    bool loop_init_17 = true;
+    uint2 loop_bound_22 = uint2(4294967295u);
+    bool loop_init_18 = true;
     while(true) {
-        if (metal::all(loop_bound_21 == uint2(0u))) { break; }
-        loop_bound_21 -= uint2(loop_bound_21.y == 0u, 1u);
-        if (!loop_init_17) {
+        if (metal::all(loop_bound_22 == uint2(0u))) { break; }
+        loop_bound_22 -= uint2(loop_bound_22.y == 0u, 1u);
+        if (!loop_init_18) {
             uint _e61 = i;
             i = _e61 + 1u;
         }
-        loop_init_17 = false;
+        loop_init_18 = false;
         uint _e22 = i;
         if (_e22 <= TRANSMITTANCE_STEPS) {
         } else {
@@ -3736,17 +3832,17 @@ struct multiscatter_lutInput {
     float _e19 = air_bottom(frame);
     float r_20 = _e16 + (x_12.y * (_e18 - _e19));
     metal::float3 origin_6 = metal::float3(0.0, r_20, 0.0);
-    metal::float3 sun_7 = metal::float3(metal::sqrt(metal::max(1.0 - (mu_s_7 * mu_s_7), 0.0)), mu_s_7, 0.0);
-    uint2 loop_bound_22 = uint2(4294967295u);
-    bool loop_init_18 = true;
+    metal::float3 sun_8 = metal::float3(metal::sqrt(metal::max(1.0 - (mu_s_7 * mu_s_7), 0.0)), mu_s_7, 0.0);
+    uint2 loop_bound_23 = uint2(4294967295u);
+    bool loop_init_19 = true;
     while(true) {
-        if (metal::all(loop_bound_22 == uint2(0u))) { break; }
-        loop_bound_22 -= uint2(loop_bound_22.y == 0u, 1u);
-        if (!loop_init_18) {
+        if (metal::all(loop_bound_23 == uint2(0u))) { break; }
+        loop_bound_23 -= uint2(loop_bound_23.y == 0u, 1u);
+        if (!loop_init_19) {
             uint _e121 = k;
             k = _e121 + 1u;
         }
-        loop_init_18 = false;
+        loop_init_19 = false;
         uint _e43 = k;
         if (_e43 < MULTISCATTER_DIRECTIONS) {
         } else {
@@ -3759,16 +3855,16 @@ struct multiscatter_lutInput {
             float dt_6 = _e49.x / 32.0;
             tau = metal::float3(0.0);
             i_1 = 0u;
-            uint2 loop_bound_23 = uint2(4294967295u);
-            bool loop_init_19 = true;
+            uint2 loop_bound_24 = uint2(4294967295u);
+            bool loop_init_20 = true;
             while(true) {
-                if (metal::all(loop_bound_23 == uint2(0u))) { break; }
-                loop_bound_23 -= uint2(loop_bound_23.y == 0u, 1u);
-                if (!loop_init_19) {
+                if (metal::all(loop_bound_24 == uint2(0u))) { break; }
+                loop_bound_24 -= uint2(loop_bound_24.y == 0u, 1u);
+                if (!loop_init_20) {
                     uint _e103 = i_1;
                     i_1 = _e103 + 1u;
                 }
-                loop_init_19 = false;
+                loop_init_20 = false;
                 uint _e58 = i_1;
                 if (_e58 < MULTISCATTER_STEPS) {
                 } else {
@@ -3781,13 +3877,13 @@ struct multiscatter_lutInput {
                     float _e69 = air_bottom(frame);
                     AirSample _e71 = air_at(rp_7 - _e69, frame);
                     metal::float3 _e72 = tau;
-                    metal::float3 t_9 = metal::exp(-((_e72 + ((0.5 * _e71.extinction) * dt_6))));
+                    metal::float3 t_10 = metal::exp(-((_e72 + ((0.5 * _e71.extinction) * dt_6))));
                     metal::float3 s_13 = _e71.rayleigh + metal::float3(_e71.mie);
                     metal::float3 _e84 = l2_;
-                    metal::float3 _e90 = sun_transmittance(rp_7, metal::dot(p_20 / metal::float3(rp_7), sun_7), frame, transmittance_lut_in);
-                    l2_ = _e84 + ((((t_9 * s_13) * 0.07957747) * _e90) * dt_6);
+                    metal::float3 _e90 = sun_transmittance(rp_7, metal::dot(p_20 / metal::float3(rp_7), sun_8), frame, transmittance_lut_in);
+                    l2_ = _e84 + ((((t_10 * s_13) * 0.07957747) * _e90) * dt_6);
                     metal::float3 _e94 = f_ms;
-                    f_ms = _e94 + ((t_9 * s_13) * dt_6);
+                    f_ms = _e94 + ((t_10 * s_13) * dt_6);
                     metal::float3 _e98 = tau;
                     tau = _e98 + (_e71.extinction * dt_6);
                 }
@@ -3796,7 +3892,7 @@ struct multiscatter_lutInput {
                 metal::float3 g_7 = origin_6 + (_e48 * _e49.x);
                 metal::float3 _e111 = l2_;
                 metal::float3 _e112 = tau;
-                metal::float3 _e117 = ground_radiance_sun(metal::dot(metal::normalize(g_7), sun_7), frame, transmittance_lut_in);
+                metal::float3 _e117 = ground_radiance_sun(metal::dot(metal::normalize(g_7), sun_8), frame, transmittance_lut_in);
                 l2_ = _e111 + (metal::exp(-(_e112)) * _e117);
             }
         }
@@ -3831,9 +3927,9 @@ struct sky_view_lutInput {
     metal::float3 d_22 = metal::float3(metal::cos(_e15) * metal::cos(phi_2), metal::sin(_e15), metal::cos(_e15) * metal::sin(phi_2));
     metal::float2 _e29 = air_ray_end(_e11, d_22, frame);
     metal::float4 _e32 = frame.sun_direction;
-    metal::float3 sun_8 = _e32.xyz;
-    Scattered _e36 = integrate_air(_e11, d_22, _e29.x, SKY_VIEW_STEPS, sun_8, frame, transmittance_lut_in, multiscatter_lut_in);
-    metal::float3 _e43 = with_ground(_e36, _e11, d_22, _e29.x, sun_8, _e29.y > 0.5, frame, transmittance_lut_in, ground_irradiance_in);
+    metal::float3 sun_9 = _e32.xyz;
+    Scattered _e36 = integrate_air(_e11, d_22, _e29.x, SKY_VIEW_STEPS, sun_9, frame, transmittance_lut_in, multiscatter_lut_in);
+    metal::float3 _e43 = with_ground(_e36, _e11, d_22, _e29.x, sun_9, _e29.y > 0.5, frame, transmittance_lut_in, ground_irradiance_in);
     sky_view_out.write(metal::float4(_e43, 1.0), metal::uint2(id_2.xy));
     return;
 }
@@ -3859,21 +3955,21 @@ struct aerial_perspectiveInput {
     metal::float3 _e8 = camera_air_origin(frame);
     metal::float2 _e9 = air_ray_end(_e8, _e7, frame);
     metal::float4 _e12 = frame.sun_direction;
-    metal::float3 sun_9 = _e12.xyz;
-    float cos_theta_8 = metal::dot(_e7, sun_9);
+    metal::float3 sun_10 = _e12.xyz;
+    float cos_theta_8 = metal::dot(_e7, sun_10);
     float _e15 = phase_rayleigh(cos_theta_8);
     float _e19 = frame.air_mie.w;
     float _e20 = phase_cornette_shanks_air(cos_theta_8, _e19);
-    uint2 loop_bound_24 = uint2(4294967295u);
-    bool loop_init_20 = true;
+    uint2 loop_bound_25 = uint2(4294967295u);
+    bool loop_init_21 = true;
     while(true) {
-        if (metal::all(loop_bound_24 == uint2(0u))) { break; }
-        loop_bound_24 -= uint2(loop_bound_24.y == 0u, 1u);
-        if (!loop_init_20) {
+        if (metal::all(loop_bound_25 == uint2(0u))) { break; }
+        loop_bound_25 -= uint2(loop_bound_25.y == 0u, 1u);
+        if (!loop_init_21) {
             uint _e122 = z;
             z = _e122 + 1u;
         }
-        loop_init_20 = false;
+        loop_init_21 = false;
         uint _e30 = z;
         if (_e30 < AERIAL_SLICES) {
         } else {
@@ -3881,16 +3977,16 @@ struct aerial_perspectiveInput {
         }
         {
             k_1 = 0u;
-            uint2 loop_bound_25 = uint2(4294967295u);
-            bool loop_init_21 = true;
+            uint2 loop_bound_26 = uint2(4294967295u);
+            bool loop_init_22 = true;
             while(true) {
-                if (metal::all(loop_bound_25 == uint2(0u))) { break; }
-                loop_bound_25 -= uint2(loop_bound_25.y == 0u, 1u);
-                if (!loop_init_21) {
+                if (metal::all(loop_bound_26 == uint2(0u))) { break; }
+                loop_bound_26 -= uint2(loop_bound_26.y == 0u, 1u);
+                if (!loop_init_22) {
                     uint _e99 = k_1;
                     k_1 = _e99 + 1u;
                 }
-                loop_init_21 = false;
+                loop_init_22 = false;
                 uint _e35 = k_1;
                 if (_e35 < 4u) {
                 } else {
@@ -3903,7 +3999,7 @@ struct aerial_perspectiveInput {
                     float dt_7 = metal::max(metal::min(0.25, _e9.x - t0_1), 0.0);
                     metal::float3 p_21 = _e8 + (_e7 * (t0_1 + (0.5 * dt_7)));
                     float r_21 = metal::length(p_21);
-                    float mu_s_8 = metal::dot(p_21 / metal::float3(r_21), sun_9);
+                    float mu_s_8 = metal::dot(p_21 / metal::float3(r_21), sun_10);
                     float _e64 = air_bottom(frame);
                     AirSample _e66 = air_at(r_21 - _e64, frame);
                     metal::float3 _e67 = tau_1;
@@ -3918,10 +4014,10 @@ struct aerial_perspectiveInput {
                 }
             }
             metal::float3 _e101 = tau_1;
-            metal::float3 t_10 = metal::exp(-(_e101));
+            metal::float3 t_11 = metal::exp(-(_e101));
             uint _e105 = z;
             metal::float3 _e112 = radiance;
-            aerial_out.write(metal::float4(_e112, ((t_10.x + t_10.y) + t_10.z) / 3.0), metal::uint2(metal::uint2((_e105 * AERIAL_SIDE) + id_3.x, id_3.y)));
+            aerial_out.write(metal::float4(_e112, ((t_11.x + t_11.y) + t_11.z) / 3.0), metal::uint2(metal::uint2((_e105 * AERIAL_SIDE) + id_3.x, id_3.y)));
         }
     }
     return;
@@ -3959,16 +4055,16 @@ struct sky_ambientInput {
     metal::float3 origin_7 = metal::float3(0.0, _e24 + (alt_m * 0.001), 0.0);
     uint first = top_3 ? 0u : 32u;
     k_2 = first;
-    uint2 loop_bound_26 = uint2(4294967295u);
-    bool loop_init_22 = true;
+    uint2 loop_bound_27 = uint2(4294967295u);
+    bool loop_init_23 = true;
     while(true) {
-        if (metal::all(loop_bound_26 == uint2(0u))) { break; }
-        loop_bound_26 -= uint2(loop_bound_26.y == 0u, 1u);
-        if (!loop_init_22) {
+        if (metal::all(loop_bound_27 == uint2(0u))) { break; }
+        loop_bound_27 -= uint2(loop_bound_27.y == 0u, 1u);
+        if (!loop_init_23) {
             uint _e67 = k_2;
             k_2 = _e67 + 1u;
         }
-        loop_init_22 = false;
+        loop_init_23 = false;
         uint _e40 = k_2;
         if (_e40 < (first + 32u)) {
         } else {
@@ -3979,11 +4075,11 @@ struct sky_ambientInput {
             metal::float3 _e45 = fibonacci_direction(_e43, AMBIENT_DIRECTIONS);
             metal::float2 _e46 = air_ray_end(origin_7, _e45, frame);
             metal::float4 _e49 = frame.sun_direction;
-            metal::float3 sun_10 = _e49.xyz;
-            Scattered _e53 = integrate_air(origin_7, _e45, _e46.x, AMBIENT_STEPS, sun_10, frame, transmittance_lut_in, multiscatter_lut_in);
+            metal::float3 sun_11 = _e49.xyz;
+            Scattered _e53 = integrate_air(origin_7, _e45, _e46.x, AMBIENT_STEPS, sun_11, frame, transmittance_lut_in, multiscatter_lut_in);
             float w_7 = metal::abs(_e45.y);
             metal::float3 _e56 = sum_1;
-            metal::float3 _e61 = with_ground(_e53, origin_7, _e45, _e46.x, sun_10, _e46.y > 0.5, frame, transmittance_lut_in, ground_irradiance_in);
+            metal::float3 _e61 = with_ground(_e53, origin_7, _e45, _e46.x, sun_11, _e46.y > 0.5, frame, transmittance_lut_in, ground_irradiance_in);
             sum_1 = _e56 + (w_7 * _e61);
             float _e64 = weights;
             weights = _e64 + w_7;
@@ -4018,19 +4114,19 @@ struct ground_irradianceInput {
         return;
     }
     float mu_s_9 = ((static_cast<float>(id_5.x) / 63.0) * 2.0) - 1.0;
-    metal::float3 sun_11 = metal::float3(metal::sqrt(metal::max(1.0 - (mu_s_9 * mu_s_9), 0.0)), mu_s_9, 0.0);
+    metal::float3 sun_12 = metal::float3(metal::sqrt(metal::max(1.0 - (mu_s_9 * mu_s_9), 0.0)), mu_s_9, 0.0);
     float _e28 = air_bottom(frame);
     metal::float3 origin_8 = metal::float3(0.0, _e28 + 0.001, 0.0);
-    uint2 loop_bound_27 = uint2(4294967295u);
-    bool loop_init_23 = true;
+    uint2 loop_bound_28 = uint2(4294967295u);
+    bool loop_init_24 = true;
     while(true) {
-        if (metal::all(loop_bound_27 == uint2(0u))) { break; }
-        loop_bound_27 -= uint2(loop_bound_27.y == 0u, 1u);
-        if (!loop_init_23) {
+        if (metal::all(loop_bound_28 == uint2(0u))) { break; }
+        loop_bound_28 -= uint2(loop_bound_28.y == 0u, 1u);
+        if (!loop_init_24) {
             uint _e58 = k_3;
             k_3 = _e58 + 1u;
         }
-        loop_init_23 = false;
+        loop_init_24 = false;
         uint _e39 = k_3;
         if (_e39 < GROUND_IRRADIANCE_DIRECTIONS) {
         } else {
@@ -4044,7 +4140,7 @@ struct ground_irradianceInput {
             }
             metal::float2 _e48 = air_ray_end(origin_8, _e44, frame);
             metal::float3 _e49 = sum_2;
-            Scattered _e52 = integrate_air(origin_8, _e44, _e48.x, AMBIENT_STEPS, sun_11, frame, transmittance_lut_in, multiscatter_lut_in);
+            Scattered _e52 = integrate_air(origin_8, _e44, _e48.x, AMBIENT_STEPS, sun_12, frame, transmittance_lut_in, multiscatter_lut_in);
             sum_2 = _e49 + (_e52.radiance * _e44.y);
         }
     }
@@ -4076,22 +4172,22 @@ struct cloud_shadowInput {
     }
     metal::float3 _e7 = shadow_ground_point(id_6.xy, frame);
     metal::float4 _e10 = frame.sun_direction;
-    metal::float3 sun_12 = _e10.xyz;
+    metal::float3 sun_13 = _e10.xyz;
     float rp_8 = frame.atmosphere.x;
     metal::float3 up_1 = metal::normalize(metal::float3(_e7.x, _e7.y + rp_8, _e7.z));
-    if (metal::dot(up_1, sun_12) > 0.0) {
+    if (metal::dot(up_1, sun_13) > 0.0) {
         metal::float4 _e29 = frame.camera_position;
         metal::float2 cam_xz_3 = _e29.xz;
-        uint2 loop_bound_28 = uint2(4294967295u);
-        bool loop_init_24 = true;
+        uint2 loop_bound_29 = uint2(4294967295u);
+        bool loop_init_25 = true;
         while(true) {
-            if (metal::all(loop_bound_28 == uint2(0u))) { break; }
-            loop_bound_28 -= uint2(loop_bound_28.y == 0u, 1u);
-            if (!loop_init_24) {
+            if (metal::all(loop_bound_29 == uint2(0u))) { break; }
+            loop_bound_29 -= uint2(loop_bound_29.y == 0u, 1u);
+            if (!loop_init_25) {
                 uint _e90 = i_2;
                 i_2 = _e90 + 1u;
             }
-            loop_init_24 = false;
+            loop_init_25 = false;
             uint _e39 = i_2;
             uint _e40 = layer_count(frame);
             if (_e39 < _e40) {
@@ -4101,25 +4197,25 @@ struct cloud_shadowInput {
             {
                 uint _e42 = i_2;
                 Layer _e43 = cloud_layer(_e42, frame);
-                Roots _e46 = ray_shell_from(_e7, 0.0, sun_12, _e43.bottom, frame);
+                Roots _e46 = ray_shell_from(_e7, 0.0, sun_13, _e43.bottom, frame);
                 float start_2 = metal::max(_e46.t1_, 0.0);
-                Roots _e52 = ray_shell_from(_e7, 0.0, sun_12, _e43.top, frame);
+                Roots _e52 = ray_shell_from(_e7, 0.0, sun_13, _e43.top, frame);
                 float end_2 = _e52.t1_;
                 float dt_8 = (end_2 - start_2) / 16.0;
                 if (!((dt_8 > 0.0))) {
                     continue;
                 }
                 k_4 = 0u;
-                uint2 loop_bound_29 = uint2(4294967295u);
-                bool loop_init_25 = true;
+                uint2 loop_bound_30 = uint2(4294967295u);
+                bool loop_init_26 = true;
                 while(true) {
-                    if (metal::all(loop_bound_29 == uint2(0u))) { break; }
-                    loop_bound_29 -= uint2(loop_bound_29.y == 0u, 1u);
-                    if (!loop_init_25) {
+                    if (metal::all(loop_bound_30 == uint2(0u))) { break; }
+                    loop_bound_30 -= uint2(loop_bound_30.y == 0u, 1u);
+                    if (!loop_init_26) {
                         uint _e87 = k_4;
                         k_4 = _e87 + 1u;
                     }
-                    loop_init_25 = false;
+                    loop_init_26 = false;
                     uint _e62 = k_4;
                     if (_e62 < SHADOW_STEPS) {
                     } else {
@@ -4127,7 +4223,7 @@ struct cloud_shadowInput {
                     }
                     {
                         uint _e65 = k_4;
-                        metal::float3 q_12 = _e7 + (sun_12 * (start_2 + ((static_cast<float>(_e65) + 0.5) * dt_8)));
+                        metal::float3 q_12 = _e7 + (sun_13 * (start_2 + ((static_cast<float>(_e65) + 0.5) * dt_8)));
                         metal::float3 p_22 = metal::float3(q_12.x + cam_xz_3.x, q_12.y, q_12.z + cam_xz_3.y);
                         float _e81 = tau_2;
                         float _e82 = altitude_of(q_12, frame);
@@ -4173,16 +4269,16 @@ struct occupancyInput {
     metal::int2 lo_1 = as_type<metal::int2>(as_type<metal::uint2>(naga_div(as_type<metal::int2>(as_type<metal::uint2>(static_cast<metal::int2>(id_7.xy)) * as_type<metal::uint2>(size_7)), metal::int2(64))) - as_type<metal::uint2>(metal::int2(1)));
     metal::int2 hi = naga_div(as_type<metal::int2>(as_type<metal::uint2>(as_type<metal::int2>(as_type<metal::uint2>(static_cast<metal::int2>(id_7.xy)) + as_type<metal::uint2>(metal::int2(1)))) * as_type<metal::uint2>(size_7)), metal::int2(64));
     y = lo_1.y;
-    uint2 loop_bound_30 = uint2(4294967295u);
-    bool loop_init_26 = true;
+    uint2 loop_bound_31 = uint2(4294967295u);
+    bool loop_init_27 = true;
     while(true) {
-        if (metal::all(loop_bound_30 == uint2(0u))) { break; }
-        loop_bound_30 -= uint2(loop_bound_30.y == 0u, 1u);
-        if (!loop_init_26) {
+        if (metal::all(loop_bound_31 == uint2(0u))) { break; }
+        loop_bound_31 -= uint2(loop_bound_31.y == 0u, 1u);
+        if (!loop_init_27) {
             int _e54 = y;
             y = as_type<int>(as_type<uint>(_e54) + as_type<uint>(1));
         }
-        loop_init_26 = false;
+        loop_init_27 = false;
         int _e30 = y;
         if (_e30 <= hi.y) {
         } else {
@@ -4190,16 +4286,16 @@ struct occupancyInput {
         }
         {
             x = lo_1.x;
-            uint2 loop_bound_31 = uint2(4294967295u);
-            bool loop_init_27 = true;
+            uint2 loop_bound_32 = uint2(4294967295u);
+            bool loop_init_28 = true;
             while(true) {
-                if (metal::all(loop_bound_31 == uint2(0u))) { break; }
-                loop_bound_31 -= uint2(loop_bound_31.y == 0u, 1u);
-                if (!loop_init_27) {
+                if (metal::all(loop_bound_32 == uint2(0u))) { break; }
+                loop_bound_32 -= uint2(loop_bound_32.y == 0u, 1u);
+                if (!loop_init_28) {
                     int _e51 = x;
                     x = as_type<int>(as_type<uint>(_e51) + as_type<uint>(1));
                 }
-                loop_init_27 = false;
+                loop_init_28 = false;
                 int _e35 = x;
                 if (_e35 <= hi.x) {
                 } else {
@@ -4208,9 +4304,9 @@ struct occupancyInput {
                 {
                     int _e38 = x;
                     int _e39 = y;
-                    metal::int2 t_11 = naga_mod(as_type<metal::int2>(as_type<metal::uint2>(naga_mod(metal::int2(_e38, _e39), size_7)) + as_type<metal::uint2>(size_7)), size_7);
+                    metal::int2 t_12 = naga_mod(as_type<metal::int2>(as_type<metal::uint2>(naga_mod(metal::int2(_e38, _e39), size_7)) + as_type<metal::uint2>(size_7)), size_7);
                     float _e44 = m;
-                    metal::float4 _e47 = weather_tex.read(metal::uint2(t_11), 0);
+                    metal::float4 _e47 = weather_tex.read(metal::uint2(t_12), 0);
                     m = metal::max(_e44, _e47.x);
                 }
             }
@@ -4595,16 +4691,16 @@ struct pathtraceInput {
     lane_moments.inner[lane] = metal::float4(_e52 * _e52, hit ? _e50.depth : 0.0, hit ? 1.0 : 0.0, 0.0);
     metal::threadgroup_barrier(metal::mem_flags::mem_threadgroup);
     if (lane == 0u) {
-        uint2 loop_bound_32 = uint2(4294967295u);
-        bool loop_init_28 = true;
+        uint2 loop_bound_33 = uint2(4294967295u);
+        bool loop_init_29 = true;
         while(true) {
-            if (metal::all(loop_bound_32 == uint2(0u))) { break; }
-            loop_bound_32 -= uint2(loop_bound_32.y == 0u, 1u);
-            if (!loop_init_28) {
+            if (metal::all(loop_bound_33 == uint2(0u))) { break; }
+            loop_bound_33 -= uint2(loop_bound_33.y == 0u, 1u);
+            if (!loop_init_29) {
                 uint _e98 = i_3;
                 i_3 = _e98 + 1u;
             }
-            loop_init_28 = false;
+            loop_init_29 = false;
             uint _e82 = i_3;
             if (_e82 < PATHS_PER_FRAME) {
             } else {
@@ -4749,16 +4845,16 @@ struct sprite_buildInput {
     uint own = naga_mod(slot, SPRITES_PER_CELL);
     SpriteCandidate _e18 = sprite_candidate(_e6, level_2, own, counters_2, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
     me = _e18;
-    uint2 loop_bound_33 = uint2(4294967295u);
-    bool loop_init_29 = true;
+    uint2 loop_bound_34 = uint2(4294967295u);
+    bool loop_init_30 = true;
     while(true) {
-        if (metal::all(loop_bound_33 == uint2(0u))) { break; }
-        loop_bound_33 -= uint2(loop_bound_33.y == 0u, 1u);
-        if (!loop_init_29) {
+        if (metal::all(loop_bound_34 == uint2(0u))) { break; }
+        loop_bound_34 -= uint2(loop_bound_34.y == 0u, 1u);
+        if (!loop_init_30) {
             uint _e38 = i_4;
             i_4 = _e38 + 1u;
         }
-        loop_init_29 = false;
+        loop_init_30 = false;
         uint _e22 = i_4;
         if (_e22 < SPRITES_PER_CELL) {
         } else {
@@ -4823,8 +4919,8 @@ struct sprite_buildInput {
         float _e167 = me.alt;
         metal::float3 _e168 = sprite_rel(_e165, _e167, frame);
         float _e172 = frame.camera_position.y;
-        metal::float3 rel_9 = _e168 - metal::float3(0.0, _e172, 0.0);
-        float _e180 = saturate(metal::length(rel_9) / SPRITE_MAX_DISTANCE);
+        metal::float3 rel_10 = _e168 - metal::float3(0.0, _e172, 0.0);
+        float _e180 = saturate(metal::length(rel_10) / SPRITE_MAX_DISTANCE);
         key = 1048576.0 - metal::floor(_e180 * 1048575.0);
     }
     float _e191 = me.xz.x;
@@ -4858,16 +4954,16 @@ struct sprite_sortInput {
     uint slot_1 = id_15.x;
     metal::float4 _e6 = sprites_in.read(metal::uint2(metal::uint2(slot_1, 3u)), 0);
     float key_1 = _e6.x;
-    uint2 loop_bound_34 = uint2(4294967295u);
-    bool loop_init_30 = true;
+    uint2 loop_bound_35 = uint2(4294967295u);
+    bool loop_init_31 = true;
     while(true) {
-        if (metal::all(loop_bound_34 == uint2(0u))) { break; }
-        loop_bound_34 -= uint2(loop_bound_34.y == 0u, 1u);
-        if (!loop_init_30) {
+        if (metal::all(loop_bound_35 == uint2(0u))) { break; }
+        loop_bound_35 -= uint2(loop_bound_35.y == 0u, 1u);
+        if (!loop_init_31) {
             uint _e40 = j;
             j = _e40 + 1u;
         }
-        loop_init_30 = false;
+        loop_init_31 = false;
         uint _e12 = j;
         if (_e12 < SPRITE_COUNT) {
         } else {
@@ -4964,16 +5060,16 @@ vertex sprite_vertexOutput sprite_vertex(
     float _e123 = frame.camera_forward.w;
     out.position = metal::float4(x_14 / (tan_half_3 * _e123), y_4 / tan_half_3, 0.5 * z_4, z_4);
     metal::float2 cs = metal::float2(metal::cos(c_12.y), metal::sin(c_12.y));
-    metal::float2 t_12 = metal::float2(_e89.x, -(_e89.y));
-    out.uv = metal::float2((t_12.x * cs.x) - (t_12.y * cs.y), (t_12.x * cs.y) + (t_12.y * cs.x));
+    metal::float2 t_13 = metal::float2(_e89.x, -(_e89.y));
+    out.uv = metal::float2((t_13.x * cs.x) - (t_13.y * cs.y), (t_13.x * cs.y) + (t_13.y * cs.x));
     out.tile = naga_f2u32(c_12.x);
     metal::float4 _e160 = frame.sun_direction;
-    metal::float3 sun_13 = _e160.xyz;
+    metal::float3 sun_14 = _e160.xyz;
     metal::float3 _e164 = sprite_rel(b_12.xz, b_12.y, frame);
     metal::float3 centre_2 = _e164 - cam_1;
     metal::float3 from_centre = vertex_ - centre_2;
-    float cos_angle_1 = metal::dot(from_centre, sun_13) / metal::max(metal::length(from_centre), 0.001);
-    float _e177 = saturate((sun_13.y * 4.0) + 0.3);
+    float cos_angle_1 = metal::dot(from_centre, sun_14) / metal::max(metal::length(from_centre), 0.001);
+    float _e177 = saturate((sun_14.y * 4.0) + 0.3);
     float _e179 = altitude_of(vertex_ + cam_1, frame);
     float _e183 = frame.atmosphere.y;
     float _e188 = frame.atmosphere.z;

@@ -44,6 +44,7 @@ struct Frame {
     air_misc: vec4<f32>,            // atmosphere thickness (m), ozone tent width (m), ground albedo, 0
     moon: vec4<f32>,                // unit direction to the moon; w = full-moon illuminance (0: no moon)
     night: vec4<f32>,               // the real sun's unit direction; w = a magnitude-0 star's illuminance (0: no stars)
+    light_model: vec4<f32>,         // side light, coverage exponent, far-shadow chord (m, 0 = off), 0
 }
 
 // Codes shared with the scene crate (`PhaseModel::code`, `Integration::code`, ...).
@@ -1014,10 +1015,7 @@ fn phase(cos_theta: f32, scale: f32) -> f32 {
 // crossing: the Beer shadow of a high deck on the clouds below, which the few kilometres of
 // the light march would not reach.
 // Toward a sun a few degrees up the light crosses tens of kilometres of layer, which the
-// march does not see. Five more growing segments while the ray is still in the layer (to
-// about 100 km) brought `dawn` from FLIP 0.133 to 0.103 against the path tracer, but cost 45%
-// more density evaluations there and made the fit's training error worse (0.0570 to 0.0608):
-// left out (docs/fit, README).
+// march does not see: far_optical_depth stands in for that stretch.
 fn sun_optical_depth(rel: vec3<f32>, p: vec3<f32>, l: Layer, counters: ptr<function, Counters>) -> f32 {
     let sun = frame.sun_direction.xyz;
     let sigma_t = frame.extinction.x + frame.extinction.y;
@@ -1058,15 +1056,56 @@ fn sun_optical_depth(rel: vec3<f32>, p: vec3<f32>, l: Layer, counters: ptr<funct
     return tau;
 }
 
+// The far shadow: optical depth of the sun ray's stretch inside layer `l` beyond the light
+// march's reach (its segments' total length), taken statistically instead of sampled. Broken
+// cloud along a line is a binary Markov mixture (Levermore and Pomraning 1986): with cloud
+// fraction f and opaque clouds of mean chord lambda, the clear gaps have mean length
+// lambda (1 - f) / f and a ray of length L gets through with probability exp(-L f / ((1 - f)
+// lambda)). f is the layer's coverage times its mean height profile at four points of the
+// stretch (a cumulus layer's thin top lets a low sun's light through), lambda the fitted
+// chord (light_model.z; 0 = off). Toward a sun a few degrees up, the light crosses tens of
+// kilometres of layer; sampling them with five more growing light steps (to about 100 km)
+// cost 45% more density evaluations on `dawn` and made the fit's training error worse
+// (0.0570 to 0.0608, README).
+fn far_optical_depth(rel: vec3<f32>, l: Layer) -> f32 {
+    let chord = frame.light_model.z;
+    if chord <= 0.0 || frame.counts.w == 0u {
+        // Off, or no light march: 0 light steps leave the clouds unshadowed.
+        return 0.0;
+    }
+    let growth = frame.march.y;
+    let steps = f32(frame.counts.w);
+    var reach = frame.march.z * steps;
+    if growth != 1.0 {
+        reach = frame.march.z * (pow(growth, steps) - 1.0) / (growth - 1.0);
+    }
+    let sun = frame.sun_direction.xyz;
+    let exit = ray_shell_from(rel, altitude_of(rel), sun, l.top);
+    let len = exit.t1 - reach;
+    if !exit.hit || !(len > 0.0) {
+        return 0.0;
+    }
+    var profile = 0.0;
+    for (var i = 0u; i < 4u; i++) {
+        let t = reach + (f32(i) + 0.5) * 0.25 * len;
+        let h = saturate(layer_height(l, altitude_of(rel + sun * t)));
+        profile += 0.25 * height_signal(h, l.cloud_type);
+    }
+    let f = min(l.coverage * profile, 0.95);
+    return len * f / ((1.0 - f) * chord);
+}
+
 // Sun light scattered toward the viewer per unit illuminance and unit sigma_s: single
-// scattering plus the octaves mu0 build sum_{i>=1} a^i phase(cos, c^i) / (1 + b^i tau) (a:
-// contribution, b: extinction, c: eccentricity; `build` from octave_buildup; fitted to the
-// path tracer, docs/fit).
+// scattering plus the octaves F build sum_{i>=1} a^i phase(cos, c^i) / (1 + b^i tau) (a:
+// contribution, b: extinction, c: eccentricity; F their feeding, below; `build` from
+// octave_buildup; fitted to the path tracer, docs/fit). `far` (far_optical_depth) shadows
+// single scattering beyond the light march and the side light; `coverage` is the weather
+// map's at the sample.
 // Wrenninge's octaves attenuate by exp(-b^i tau). The diffuse light deep in a thick layer falls
 // off far more slowly: as 1 / (1 + (3/4)(1 - g) tau) in two-stream theory for conservative
 // scattering (Meador and Weaver 1980), and the path tracer agrees (storm's bases were 2.3 times
 // too dark). The two forms agree to first order in tau, where clouds are thin.
-fn sun_scattering(cos_theta: f32, tau: f32, build: f32) -> f32 {
+fn sun_scattering(cos_theta: f32, tau: f32, far: f32, build: f32, coverage: f32) -> f32 {
     let a = frame.multiple_scattering.x;
     let b = frame.multiple_scattering.y;
     let c = frame.multiple_scattering.z;
@@ -1081,13 +1120,22 @@ fn sun_scattering(cos_theta: f32, tau: f32, build: f32) -> f32 {
         kc *= c;
         octave_sum += ka * phase(cos_theta, kc) / (1.0 + kb * tau);
     }
-    // The octaves stand for the multiply scattered, diffuse light of the layer, which the flux
-    // through the layer's top feeds: E mu0 for a plane-parallel layer, mu0 the cosine of the
-    // sun's zenith angle. The light march sees a few kilometres toward a low sun, not the tens
-    // of kilometres of cloud layer its light crosses, so without mu0 the octaves lit a sunset
-    // as brightly as noon (measured against the path tracer, docs/fit).
+    // The octaves stand for the multiply scattered, diffuse light of the cloud, which the sun's
+    // flux into it feeds: through a deck's top, E mu0 per unit area (mu0 the cosine of the
+    // sun's zenith angle; without it the octaves lit a sunset as brightly as noon). A broken
+    // layer's clouds also take light through their sides, in proportion to sin(zenith) and to
+    // the clear share (1 - coverage) around them, unless far cloud shadows them (`far`).
     let mu0 = saturate(frame.sun_direction.y);
-    var total = phase(cos_theta, 1.0) * exp(-tau) + mu0 * build * octave_sum;
+    let side = sqrt(max(1.0 - mu0 * mu0, 0.0)) * (1.0 - saturate(coverage)) * exp(-far);
+    var feed = mu0 + frame.light_model.x * side;
+    // Multiply scattered light leaks out of a small cloud through its sides but stays in a
+    // deck: the octaves scale with the weather map's coverage (to a fitted power) as well as
+    // with the local density (`build`). Against the path tracer the octaves alone lit high-sun
+    // cumulus up to 1.4 times too brightly while decks stayed 7% too dark (docs/fit).
+    if frame.light_model.y > 0.0 {
+        feed *= pow(max(coverage, 1e-6), frame.light_model.y);
+    }
+    var total = phase(cos_theta, 1.0) * exp(-tau - far) + feed * build * octave_sum;
     if (frame.modes.w & FLAG_BEER_POWDER) != 0u {
         // Beer-Powder (HZD): in-scattering builds up with depth into the cloud, darkening
         // the thin edges. Kept <= 1 so it only removes energy.
@@ -1133,14 +1181,17 @@ fn scattered_light(rel: vec3<f32>, p: vec3<f32>, alt: f32, density: f32, view: v
     let sun = frame.sun_direction.xyz;
     let h = saturate(layer_height(l, alt));
     var sun_light = vec3<f32>(0.0);
+    let weather = sample_weather(p, l);
     if !hits_ground(rel, alt, sun) {
         var tau = 0.0;
+        var far = 0.0;
         if LIGHT_MARCH {
             tau = sun_optical_depth(rel, p, l, counters);
+            far = far_optical_depth(rel, l);
         }
-        sun_light = frame.sun_illuminance.rgb * sun_through_air(rel) * sun_scattering(dot(view, sun), tau, octave_buildup(density));
+        let s = sun_scattering(dot(view, sun), tau, far, octave_buildup(density), weather.coverage);
+        sun_light = frame.sun_illuminance.rgb * sun_through_air(rel) * s;
     }
-    let weather = sample_weather(p, l);
     let darkening = saturate(1.0 - frame.extinction.z * weather.precipitation * (1.0 - h));
     return frame.extinction.x * density * (sun_light + ambient(h)) * darkening;
 }

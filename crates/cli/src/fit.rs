@@ -5,8 +5,9 @@
 //!
 //! Procedure: for every octave count, coordinate descent over a, b and c on a 0.05 grid (0.01
 //! below 0.05) and the octaves' build-up with the sample's density
-//! (`lighting.wgsl::octave_buildup`) on a grid of lengths, minimising the mean FLIP of the
-//! training scenes against their truths; the
+//! (`lighting.wgsl::octave_buildup`), the side light, the coverage exponent and the far
+//! shadow's chord (`lighting.wgsl::sun_scattering`, `far_optical_depth`) on grids of their own,
+//! minimising the mean FLIP of the training scenes against their truths; the
 //! fewest octaves whose mean is within 1% of the lowest win (each octave costs time in every
 //! light sample). Wrenninge's a <= b is not imposed: it keeps thick clouds far too dark. Every
 //! evaluated point is written to `evaluations.csv`, the per-scene errors before (the thesis's
@@ -102,6 +103,14 @@ fn training_scenes() -> Result<Vec<(String, Scene)>> {
     s.sky.latitude_deg = Some(30.0);
     s.camera.yaw_deg = 200.0;
     out.push(("physical sky, 30 N, looking south".to_string(), s));
+    // A sun a few degrees up, whose light crosses tens of kilometres of layer beyond the light
+    // march (the far shadow's regime, which none of the scenes above reaches), added with the
+    // far shadow: without it the training error did not depend on the far shadow's chord.
+    let mut s = preset("cumulus-noon")?;
+    s.sun.elevation_deg = 3.0;
+    s.sun.azimuth_deg = 60.0;
+    s.camera.pitch_deg = 6.0;
+    out.push(("cumulus, sun 3 deg ahead-right".to_string(), s));
     for (name, s) in &out {
         s.validate()
             .map_err(|e| anyhow::anyhow!("training scene {name}: {e}"))?;
@@ -182,11 +191,22 @@ const BUILDUP_GRID_M: [f64; 12] = [
     0.0, 25.0, 50.0, 75.0, 100.0, 150.0, 200.0, 300.0, 400.0, 600.0, 800.0, 1000.0,
 ];
 
+/// The side lights tried (`MultipleScattering::side_light`; 0: the octaves fed through the
+/// layer's top alone).
+const SIDE_LIGHT_GRID: [f64; 9] = [0.0, 0.25, 0.5, 0.75, 1.0, 1.25, 1.5, 2.0, 3.0];
+
+/// The coverage exponents tried (0: the octaves not scaled by the weather map's coverage).
+const COVERAGE_EXPONENT_GRID: [f64; 9] = [0.0, 0.25, 0.5, 0.75, 1.0, 1.25, 1.5, 2.0, 3.0];
+
+/// The far shadow's chords tried (metres; 0: off).
+const FAR_CHORD_GRID_M: [f64; 7] = [0.0, 2000.0, 4000.0, 8000.0, 16000.0, 32000.0, 64000.0];
+
 /// Build-ups (metres) the descent starts from.
 const DESCENT_STARTS_M: [f64; 3] = [0.0, 100.0, 400.0];
 
-/// Coordinate descent over a, b, c and the build-up for `octaves`, from a = b = c = 0.5 and
-/// each of a few build-ups (the descent alone stalled at a build-up of 600 m, 2% worse than
+/// Coordinate descent over a, b, c, the build-up, the side light, the coverage exponent and
+/// the far shadow's chord for `octaves`, from a = b = c = 0.5, the last three off and each of
+/// a few build-ups (the descent alone stalled at a build-up of 600 m, 2% worse than
 /// the 300 m it missed), or with `quick` from the defaults alone: each pass tries every grid
 /// value of one constant with the others held, until a pass changes nothing; the best start
 /// wins.
@@ -198,10 +218,19 @@ fn descend(
     log: &mut Vec<(MultipleScattering, f64)>,
     bar: &ProgressBar,
 ) -> Result<(MultipleScattering, f64)> {
-    let mut cache: BTreeMap<(u32, u32, u32, u32), f64> = BTreeMap::new();
-    let key = |m: &MultipleScattering| {
+    type Key = (u32, u32, u32, u32, u32, u32, u32);
+    let mut cache: BTreeMap<Key, f64> = BTreeMap::new();
+    let key = |m: &MultipleScattering| -> Key {
         let q = |v: f64| (v * 100.0).round() as u32;
-        (q(m.a), q(m.b), q(m.c), m.buildup_m.round() as u32)
+        (
+            q(m.a),
+            q(m.b),
+            q(m.c),
+            m.buildup_m.round() as u32,
+            q(m.side_light),
+            q(m.coverage_exponent),
+            m.far_chord_m.round() as u32,
+        )
     };
     let mut score =
         |m: MultipleScattering, log: &mut Vec<(MultipleScattering, f64)>| -> Result<f64> {
@@ -228,6 +257,9 @@ fn descend(
                 b: 0.5,
                 c: 0.5,
                 buildup_m: start,
+                side_light: 0.0,
+                coverage_exponent: 0.0,
+                far_chord_m: 0.0,
             })
             .collect()
     };
@@ -237,11 +269,14 @@ fn descend(
         let mut best_score = score(best, log)?;
         for _round in 0..6 {
             let mut changed = false;
-            for which in 0..4 {
+            for which in 0..7 {
                 // a may exceed 1 (validate.rs says why); b and c are factors of at most 1.
                 let values = match which {
                     0 => grid(stratus_scene::MAX_OCTAVE_A),
                     3 => BUILDUP_GRID_M.to_vec(),
+                    4 => SIDE_LIGHT_GRID.to_vec(),
+                    5 => COVERAGE_EXPONENT_GRID.to_vec(),
+                    6 => FAR_CHORD_GRID_M.to_vec(),
                     _ => grid(1.0),
                 };
                 for v in values {
@@ -250,7 +285,10 @@ fn descend(
                         0 => m.a = v,
                         1 => m.b = v,
                         2 => m.c = v,
-                        _ => m.buildup_m = v,
+                        3 => m.buildup_m = v,
+                        4 => m.side_light = v,
+                        5 => m.coverage_exponent = v,
+                        _ => m.far_chord_m = v,
                     }
                     let s = score(m, log)?;
                     if s < best_score - 1e-9 {
@@ -270,10 +308,18 @@ fn descend(
     }
     let (best, best_score) = overall.context("no descent start")?;
     bar.set_message(format!(
-        "{octaves} octaves: a {:.2} b {:.2} c {:.2} build-up {} m, mean FLIP {best_score:.4}",
-        best.a, best.b, best.c, best.buildup_m
+        "{octaves} octaves: {}, mean FLIP {best_score:.4}",
+        describe(&best)
     ));
     Ok((best, best_score))
+}
+
+/// The constants of `m` in a line.
+fn describe(m: &MultipleScattering) -> String {
+    format!(
+        "a {:.2} b {:.2} c {:.2} build-up {} m side light {:.2} coverage exponent {:.2} far chord {} m",
+        m.a, m.b, m.c, m.buildup_m, m.side_light, m.coverage_exponent, m.far_chord_m
+    )
 }
 
 /// A file name for a scene's name: lower-case letters and digits, runs of anything else one `-`.
@@ -382,12 +428,14 @@ pub fn run(args: FitArgs) -> Result<()> {
 
     std::fs::create_dir_all(&args.out)
         .with_context(|| format!("creating {}", args.out.display()))?;
-    let mut csv = String::from("octaves,a,b,c,buildup_m,train_mean_flip\n");
+    let mut csv = String::from(
+        "octaves,a,b,c,buildup_m,side_light,coverage_exponent,far_chord_m,train_mean_flip\n",
+    );
     for (m, s) in &log {
         let _ = writeln!(
             csv,
-            "{},{:.2},{:.2},{:.2},{},{s:.5}",
-            m.octaves, m.a, m.b, m.c, m.buildup_m
+            "{},{:.2},{:.2},{:.2},{},{:.2},{:.2},{},{s:.5}",
+            m.octaves, m.a, m.b, m.c, m.buildup_m, m.side_light, m.coverage_exponent, m.far_chord_m
         );
     }
     std::fs::write(args.out.join("evaluations.csv"), csv)?;
@@ -444,8 +492,8 @@ pub fn run(args: FitArgs) -> Result<()> {
     let readme = format!(
         "# Multiple-scattering fit\n\n\
          Written by `stratus fit-scattering --out {out} --size {w}x{h} --spp {spp} --octaves {counts}{quick}` on {device}.\n\n\
-         The octaves (count N, a, b, c; Wrenninge 2013) and their build-up of the march \
-         fitted to the all-orders \
+         The octaves (count N, a, b, c; Wrenninge 2013), their build-up, side light and \
+         coverage exponent, and the far shadow's chord of the march fitted to the all-orders \
          truth of the GPU path tracer ({spp} paths per pixel) over {nt} training scenes by \
          coordinate descent on a 0.05 grid (0.01 below 0.05), minimising the mean FLIP, \
          taking the fewest octaves within 1% of the lowest mean; checked on the \
@@ -453,12 +501,13 @@ pub fn run(args: FitArgs) -> Result<()> {
          `scenes.csv` the table below, `images/` each scene's truth, before and after (left to \
          right). \"Before\" is the thesis's two octaves of 0.5 in this \
          model (the octaves attenuated by 1 / (1 + b^i tau) and scaled by mu0, the cosine of \
-         the sun's zenith angle, no build-up). \"Brightness\" is the fitted render's mean in-scattered \
+         the sun's zenith angle, no build-up, side light, coverage exponent or far shadow). \"Brightness\" is the fitted render's mean in-scattered \
          luminance over the truth's where the truth's transmittance is below 0.05 (dense), \
          0.05 to 0.5 and 0.5 to 0.99 (thin).\n\n\
-         | | N | a | b | c | build-up (m) |\n|---|---|---|---|---|---|\n\
-         | before | {} | {:.2} | {:.2} | {:.2} | {} |\n\
-         | after | {} | {:.2} | {:.2} | {:.2} | {} |\n\n\
+         | | N | a | b | c | build-up (m) | side light | coverage exponent | far chord (m) |\n\
+         |---|---|---|---|---|---|---|---|---|\n\
+         | before | {} | {:.2} | {:.2} | {:.2} | {} | {:.2} | {:.2} | {} |\n\
+         | after | {} | {:.2} | {:.2} | {:.2} | {} | {:.2} | {:.2} | {} |\n\n\
          | scene | set | FLIP before | RMSE before | FLIP after | RMSE after | brightness after (dense / mid / thin) |\n\
          |---|---|---|---|---|---|---|\n{table}",
         before.octaves,
@@ -466,11 +515,17 @@ pub fn run(args: FitArgs) -> Result<()> {
         before.b,
         before.c,
         before.buildup_m,
+        before.side_light,
+        before.coverage_exponent,
+        before.far_chord_m,
         fit.octaves,
         fit.a,
         fit.b,
         fit.c,
         fit.buildup_m,
+        fit.side_light,
+        fit.coverage_exponent,
+        fit.far_chord_m,
         out = args.out.display(),
         spp = args.spp,
         counts = args

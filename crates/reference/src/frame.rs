@@ -64,6 +64,7 @@ pub(crate) struct Frame {
     pub air_misc: [f64; 4],
     pub moon: [f64; 4],
     pub night: [f64; 4],
+    pub light_model: [f64; 4],
 }
 
 fn w(v: [f32; 4]) -> [f64; 4] {
@@ -112,6 +113,7 @@ impl Frame {
             air_misc: w(u.air_misc),
             moon: w(u.moon),
             night: w(u.night),
+            light_model: w(u.light_model),
         }
     }
 

@@ -1,7 +1,7 @@
 //! The CPU twin of `lighting.wgsl`: phase functions, the light march toward the sun,
 //! multiple-scattering octaves, ambient and precipitation darkening.
 
-use crate::density::{Counters, Layer, cloud_layers, layer_height};
+use crate::density::{Counters, Layer, cloud_layers, height_signal, layer_height};
 use crate::frame::{FLAG_BEER_POWDER, Frame, PHASE_CORNETTE_SHANKS, PHASE_TWO_LOBE_HG, PI};
 use crate::geometry::{altitude_of, hits_ground, ray_shell_from};
 use crate::math::{V3, mix, mix_v, saturate};
@@ -129,10 +129,55 @@ pub(crate) fn sun_optical_depth(
     tau
 }
 
+// WGSL: lighting.wgsl::far_optical_depth
+// Must agree: the reach is the real-time light march's (its segments' total length, from the
+// uniforms), the profile the mean of four height signals along the stretch beyond it.
+/// The far shadow: the statistical optical depth (a binary Markov mixture's) of the sun ray's
+/// stretch inside layer `l` beyond the light march's reach, 0 with the far shadow off.
+pub(crate) fn far_optical_depth(f: &Frame, rel: V3, l: &Layer) -> f64 {
+    let chord = f.light_model[2];
+    if chord <= 0.0 || f.counts[3] == 0 {
+        return 0.0;
+    }
+    let growth = f.march[1];
+    let steps = f64::from(f.counts[3]);
+    let reach = if growth == 1.0 {
+        f.march[2] * steps
+    } else {
+        f.march[2] * (growth.powf(steps) - 1.0) / (growth - 1.0)
+    };
+    let sun = f.sun();
+    let exit = ray_shell_from(f, rel, altitude_of(f, rel), sun, l.top);
+    let len = exit.t1 - reach;
+    // WGSL: `!(len > 0.0)` also catches NaN.
+    if !exit.hit || len.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
+        return 0.0;
+    }
+    let profile: f64 = (0..4)
+        .map(|i| {
+            let t = reach + (f64::from(i) + 0.5) * 0.25 * len;
+            let h = saturate(layer_height(l, altitude_of(f, rel + sun * t)));
+            0.25 * height_signal(f, h, l.cloud_type)
+        })
+        .sum();
+    let cover = (l.coverage * profile).min(0.95);
+    len * cover / ((1.0 - cover) * chord)
+}
+
 // WGSL: lighting.wgsl::sun_scattering
+// The WGSL passes one `far` for both: the converged march (`LightMarch::to_layer_exit`)
+// samples the whole sun ray in the layer, so its single scattering takes no far shadow
+// (`far_direct` 0) while the side light keeps the model's (`far_side`).
 /// Sun light scattered toward the viewer per unit illuminance and unit sigma_s, summed over
-/// octaves, with the optional Beer-Powder factor.
-pub(crate) fn sun_scattering(f: &Frame, cos_theta: f64, tau: f64, build: f64) -> f64 {
+/// octaves fed through the cloud's top and sides, with the optional Beer-Powder factor.
+pub(crate) fn sun_scattering(
+    f: &Frame,
+    cos_theta: f64,
+    tau: f64,
+    (far_direct, far_side): (f64, f64),
+    build: f64,
+    coverage: f64,
+) -> f64 {
     let a = f.multiple_scattering[0];
     let b = f.multiple_scattering[1];
     let c = f.multiple_scattering[2];
@@ -148,9 +193,16 @@ pub(crate) fn sun_scattering(f: &Frame, cos_theta: f64, tau: f64, build: f64) ->
         // Two-stream-like fall-off of the diffuse light with depth (lighting.wgsl says why).
         octave_sum += ka * phase(f, cos_theta, kc) / (1.0 + kb * tau);
     }
-    // The octaves stand for the diffuse field, fed by the flux through the layer's top.
+    // The octaves stand for the diffuse field, fed by the flux through a deck's top and a
+    // broken layer's sides, and leaking out of small clouds (lighting.wgsl says why).
     let mu0 = saturate(f.sun().y);
-    let mut total = phase(f, cos_theta, 1.0) * (-tau).exp() + mu0 * build * octave_sum;
+    let side = (1.0 - mu0 * mu0).max(0.0).sqrt() * (1.0 - saturate(coverage)) * (-far_side).exp();
+    let mut feed = mu0 + f.light_model[0] * side;
+    if f.light_model[1] > 0.0 {
+        feed *= coverage.max(1e-6).powf(f.light_model[1]);
+    }
+    let mut total =
+        phase(f, cos_theta, 1.0) * (-tau - far_direct).exp() + feed * build * octave_sum;
     if f.modes[3] & FLAG_BEER_POWDER != 0 {
         total *= 1.0 - (-f.phase[3] * tau).exp();
     }
@@ -205,13 +257,23 @@ pub(crate) fn scattered_light(
     let sun = f.sun();
     let h = saturate(layer_height(l, alt));
     let mut sun_light = V3::ZERO;
-    if !hits_ground(f, rel, alt, sun) {
-        // LIGHT_MARCH: with 0 light steps the march returns 0, as the switched-off WGSL does.
-        let tau = sun_optical_depth(m, lm, rel, p, l, counters);
-        sun_light = f.sun_illuminance().mul_v(sun_through_air(f, m.sky(), rel))
-            * sun_scattering(f, view.dot(sun), tau, octave_buildup(f, density));
-    }
     let weather = m.weather(p, l);
+    if !hits_ground(f, rel, alt, sun) {
+        // LIGHT_MARCH: with 0 light steps the march returns 0, as the switched-off WGSL does
+        // (and so does its far shadow).
+        let tau = sun_optical_depth(m, lm, rel, p, l, counters);
+        let far = far_optical_depth(f, rel, l);
+        let far_direct = if lm.to_layer_exit { 0.0 } else { far };
+        let s = sun_scattering(
+            f,
+            view.dot(sun),
+            tau,
+            (far_direct, far),
+            octave_buildup(f, density),
+            weather.coverage,
+        );
+        sun_light = f.sun_illuminance().mul_v(sun_through_air(f, m.sky(), rel)) * s;
+    }
     let darkening = saturate(1.0 - f.extinction[2] * weather.precipitation * (1.0 - h));
     (sun_light + ambient(f, m.sky(), h)) * (f.extinction[0] * density * darkening)
 }
@@ -219,6 +281,49 @@ pub(crate) fn scattered_light(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::medium::{Medium, Shape};
+    use stratus_scene::Scene;
+
+    /// The far shadow's optical depth 100 m above the main layer's bottom under a sun
+    /// `elevation_deg` up, in the default scene changed by `edit`.
+    fn far_at(elevation_deg: f64, edit: impl Fn(&mut Scene)) -> f64 {
+        let mut scene = Scene::default();
+        scene.sun.elevation_deg = elevation_deg;
+        edit(&mut scene);
+        let medium = Medium::Homogeneous {
+            sigma_s: 0.04,
+            sigma_a: 0.0,
+            shape: Shape::Slab,
+        };
+        let m = Model::new(&scene, medium);
+        let l = cloud_layers(&m.f).next().expect("the main layer");
+        far_optical_depth(&m.f, V3::new(0.0, l.bottom + 100.0, 0.0), &l)
+    }
+
+    /// Nothing where the light march reaches the layer's top (a high sun), more the lower the
+    /// sun (a longer stretch beyond the march), in inverse proportion to the chord; none when
+    /// off or without a light march.
+    #[test]
+    fn far_shadow_covers_what_the_light_march_does_not_reach() {
+        assert_eq!(far_at(60.0, |_| {}), 0.0);
+        let (ten, three) = (far_at(10.0, |_| {}), far_at(3.0, |_| {}));
+        assert!(
+            ten > 0.0 && three > 2.0 * ten,
+            "10 deg: {ten}, 3 deg: {three}"
+        );
+        let half_chord = far_at(3.0, |s| {
+            s.lighting.multiple_scattering.far_chord_m /= 2.0;
+        });
+        assert!(
+            (half_chord / three - 2.0).abs() < 1e-9,
+            "{half_chord} {three}"
+        );
+        let off = far_at(3.0, |s| s.lighting.multiple_scattering.far_chord_m = 0.0);
+        assert_eq!(off, 0.0);
+        assert_eq!(far_at(3.0, |s| s.quality.light_steps = 0), 0.0);
+        // A clear layer casts none.
+        assert_eq!(far_at(3.0, |s| s.clouds.coverage = 0.0), 0.0);
+    }
 
     /// Integral over the sphere of a phase function of cos(theta), by the midpoint rule in cos.
     fn integral(p: impl Fn(f64) -> f64) -> f64 {

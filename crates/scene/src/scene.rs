@@ -592,7 +592,12 @@ impl Default for Phase {
 /// `1 / (1 + b^i tau)` of the optical depth `tau` toward the sun (the diffuse light's slow
 /// fall-off in thick cloud, as two-stream theory gives it, where Wrenninge has
 /// `exp(-b^i tau)`), and scaled by the cosine of the sun's zenith angle and by the build-up
-/// `1 - exp(-sigma_t density buildup_m)` of the sample's density. The defaults are
+/// `1 - exp(-sigma_t density buildup_m)` of the sample's density. Three terms beyond
+/// Wrenninge's carry what the octaves' optical depth toward the sun does not know about the
+/// cloud around the sample: the octaves are scaled by the weather map's local coverage to the
+/// power `coverage_exponent` (light leaks out of a small cloud, not out of a deck), fed
+/// through a broken layer's sides as well as its top (`side_light`), and the sun ray beyond
+/// the light march's reach is shadowed statistically (`far_chord_m`). The defaults are
 /// fitted to the path tracer's all-orders truth by `stratus fit-scattering` (docs/fit);
 /// `a > b` is allowed.
 #[derive(Serialize, Deserialize, Clone, Copy, Debug, PartialEq)]
@@ -612,19 +617,39 @@ pub struct MultipleScattering {
     /// where there is cloud around to scatter it (thin wisps and edges get little). 0 leaves
     /// them unscaled (Wrenninge's octaves).
     pub buildup_m: f64,
+    /// Light fed into the octaves through the sides of broken cloud, within [0, 4]: the
+    /// octaves' cosine of the sun's zenith angle mu0 (the flux through a deck's top) becomes
+    /// `mu0 + side_light (1 - coverage) sin(zenith) exp(-far)`, `coverage` the weather map's
+    /// at the sample and `far` the far shadow's optical depth. 0: mu0 alone.
+    pub side_light: f64,
+    /// The octaves are scaled by the weather map's coverage at the sample to this power,
+    /// within [0, 4]: multiply scattered light leaks out of a small cloud through its sides
+    /// but stays in a deck. 0: unscaled.
+    pub coverage_exponent: f64,
+    /// Far shadow, metres: 0 (off) or within [100, 1000000]. Beyond the light march's reach
+    /// the sun ray's optical depth inside the layer is taken as `length f / ((1 - f)
+    /// far_chord_m)`, a binary Markov mixture's (clear gaps of mean length `far_chord_m (1 -
+    /// f) / f`), `f` the layer's coverage times its mean height profile along that stretch.
+    /// It shadows single scattering and the side light: toward a sun a few degrees up the
+    /// light crosses tens of kilometres of layer that the light march does not sample.
+    pub far_chord_m: f64,
 }
 
 impl Default for MultipleScattering {
-    /// Fitted to the GPU path tracer's all-orders truth (512 paths a pixel, lavapipe) over nine
+    /// Fitted to the GPU path tracer's all-orders truth (512 paths a pixel, lavapipe) over ten
     /// training scenes by `stratus fit-scattering`: its choice, 3 octaves with a build-up of
-    /// 400 m (docs/fit; the thesis's 2 octaves of a = b = c = 0.5 and no build-up before).
+    /// 400 m, side light 1, coverage exponent 1 and a far-shadow chord of 8 km (docs/fit; the
+    /// thesis's 2 octaves of a = b = c = 0.5 and none of the other terms before).
     fn default() -> Self {
         Self {
             octaves: 3,
-            a: 1.1,
+            a: 1.15,
             b: 0.5,
-            c: 0.05,
+            c: 0.1,
             buildup_m: 400.0,
+            side_light: 1.0,
+            coverage_exponent: 1.0,
+            far_chord_m: 8000.0,
         }
     }
 }

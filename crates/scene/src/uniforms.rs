@@ -104,10 +104,13 @@ pub struct FrameUniforms {
     /// moon's when it is the key light); w = the illuminance of a magnitude-0 star, in the
     /// units of `sun_illuminance` (0: no stars).
     pub night: [f32; 4],
+    /// The fitted light model's terms beyond the octaves: side light, coverage exponent,
+    /// far-shadow chord (m, 0 = off), 0 (`MultipleScattering`).
+    pub light_model: [f32; 4],
 }
 
 impl FrameUniforms {
-    /// Size of the block in bytes (38 vec4 members).
+    /// Size of the block in bytes (39 vec4 members).
     pub const SIZE: usize = std::mem::size_of::<Self>();
 
     /// `modes.w` bit: apply the Beer-Powder term.
@@ -127,7 +130,7 @@ impl FrameUniforms {
 
     /// Every member in declaration order with its WGSL type; member `i` is at offset `16 * i`.
     /// The shader-reflection test compares the WGSL struct against this list.
-    pub const MEMBERS: [(&'static str, &'static str); 38] = [
+    pub const MEMBERS: [(&'static str, &'static str); 39] = [
         ("camera_position", "vec4<f32>"),
         ("camera_forward", "vec4<f32>"),
         ("camera_right", "vec4<f32>"),
@@ -166,6 +169,7 @@ impl FrameUniforms {
         ("air_misc", "vec4<f32>"),
         ("moon", "vec4<f32>"),
         ("night", "vec4<f32>"),
+        ("light_model", "vec4<f32>"),
     ];
 
     /// This block with `previous`'s camera as last frame's camera (what a renderer keeping
@@ -542,6 +546,12 @@ impl Scene {
             ],
             moon,
             night: v4(self.sun_direction(), star_mag0),
+            light_model: [
+                ms.side_light as f32,
+                ms.coverage_exponent as f32,
+                ms.far_chord_m as f32,
+                0.0,
+            ],
         };
         block.with_previous_camera(&block)
     }

@@ -290,6 +290,29 @@ pub(crate) fn check(scene: &Scene) -> Vec<Issue> {
         Incl(0.0),
         Incl(10_000.0),
     );
+    c.float(
+        "lighting.multiple_scattering.side_light",
+        ms.side_light,
+        Incl(0.0),
+        Incl(4.0),
+    );
+    c.float(
+        "lighting.multiple_scattering.coverage_exponent",
+        ms.coverage_exponent,
+        Incl(0.0),
+        Incl(4.0),
+    );
+    // 0 turns the far shadow off; a chord below 100 m would shadow like a solid deck.
+    let chord = ms.far_chord_m;
+    if !chord.is_finite() {
+        c.finite("lighting.multiple_scattering.far_chord_m", chord);
+    } else if chord != 0.0 && !(100.0..=1_000_000.0).contains(&chord) {
+        c.push(
+            "lighting.multiple_scattering.far_chord_m",
+            num(chord),
+            "must be 0 (off) or within [100, 1000000]",
+        );
+    }
 
     let q = &scene.quality;
     c.uint(

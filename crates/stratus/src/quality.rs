@@ -60,6 +60,9 @@ pub const PREFIT_OCTAVES: MultipleScattering = MultipleScattering {
     b: 0.5,
     c: 0.5,
     buildup_m: 0.0,
+    side_light: 0.0,
+    coverage_exponent: 0.0,
+    far_chord_m: 0.0,
 };
 
 impl Config {
