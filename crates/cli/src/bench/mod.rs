@@ -65,8 +65,8 @@ pub struct BenchArgs {
     /// above-clouds, storm without --quick, and the stability case stress-thick).
     #[arg(long, value_delimiter = ',')]
     scenes: Option<Vec<String>>,
-    /// A few minutes on lavapipe: 64x36 images, 9 repeats, ~28 configurations a scene,
-    /// 24-spp Monte Carlo references.
+    /// Smaller and shorter: 64x36 images, 9 repeats, ~31 configurations a scene, no `storm`
+    /// (about 20 minutes on lavapipe once the references are cached).
     #[arg(long)]
     quick: bool,
     /// Output directory.
