@@ -316,7 +316,8 @@ fn physical_sky_tables_match_the_direct_integration_and_both_backends() {
 
 /// The transmittance and multi-scattering tables depend on the air, not the sun: a frame with
 /// another sun does not compute them again, a frame with other air does. The sky view, sky
-/// ambient and aerial perspective follow the sun and the camera, not the clouds' wind.
+/// ambient and aerial perspective follow the sun, and the first and last the camera's altitude
+/// (the froxels its orientation too), not the clouds' wind or where over the ground it is.
 #[test]
 fn air_tables_are_computed_again_only_when_the_air_changes() {
     stratus_test_support::record_wgpu_log();
@@ -365,6 +366,25 @@ fn air_tables_are_computed_again_only_when_the_air_changes() {
         turned,
         ["aerial-perspective", "march", "cloud-shadow", "composite"],
         "{turned:?}"
+    );
+    // The camera flies level and straight: the air over every point of the ground is the
+    // same, so no table is computed again; climbing, the sky view and the froxels are.
+    s.camera.position[0] += 500.0;
+    s.camera.position[2] -= 300.0;
+    let flown = ran(&mut wgpu, &s);
+    assert_eq!(flown, ["march", "cloud-shadow", "composite"], "{flown:?}");
+    s.camera.position[1] += 200.0;
+    let climbed = ran(&mut wgpu, &s);
+    assert_eq!(
+        climbed,
+        [
+            "sky-view-lut",
+            "aerial-perspective",
+            "march",
+            "cloud-shadow",
+            "composite"
+        ],
+        "{climbed:?}"
     );
     s.atmosphere.air.mie_scattering *= 4.0;
     let hazier = ran(&mut wgpu, &s);

@@ -201,6 +201,10 @@ fn a_graph_that_disagrees_with_the_wgsl_is_refused() {
             "input `air` is no member of the uniform block `Frame`",
         ),
         (
+            graph.replace("\"camera_position.y\", \"camera_position.w\"", "\"camera_position.y\", \"camera_position.fov\""),
+            "input `camera_position.fov` is no member of the uniform block `Frame`, nor a component",
+        ),
+        (
             // The cloud-shadow map's resource (declared before its pass): made every frame.
             graph.replacen(
                 "format = \"r32float\"\nextent = [128, 128]\n",

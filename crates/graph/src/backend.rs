@@ -352,15 +352,9 @@ impl FrameState {
             return false;
         }
         let now = frame.scene.uniforms();
-        let members = &stratus_scene::FrameUniforms::MEMBERS;
         r.inputs.iter().any(|input| {
-            members
-                .iter()
-                .position(|(m, _)| m == input)
-                .is_some_and(|i| {
-                    let bytes = 16 * i..16 * i + 16;
-                    now.as_bytes()[bytes.clone()] != last.as_bytes()[bytes]
-                })
+            crate::desc::input_bytes(input)
+                .is_some_and(|bytes| now.as_bytes()[bytes.clone()] != last.as_bytes()[bytes])
         })
     }
 

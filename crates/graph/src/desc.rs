@@ -823,13 +823,48 @@ fn check_resource(r: &ResourceDesc, at: &str, p: &mut Vec<String>) {
         ));
     }
     for input in &r.inputs {
-        if !stratus_scene::FrameUniforms::MEMBERS
-            .iter()
-            .any(|(m, _)| m == input)
-        {
+        if input_bytes(input).is_none() {
             p.push(format!(
-                "{at}: input `{input}` is no member of the uniform block `Frame`"
+                "{at}: input `{input}` is no member of the uniform block `Frame`, nor a \
+                 component of one (`member.x` to `member.w`)"
             ));
         }
+    }
+}
+
+/// The bytes of the uniform block that input `input` of a computed resource names: a whole
+/// member (`sun_direction`) or one of its components (`camera_position.y`: a sky table needs
+/// the camera's altitude, not where it stands over the ground). `None` if it names neither.
+pub fn input_bytes(input: &str) -> Option<std::ops::Range<usize>> {
+    let (member, component) = match input.split_once('.') {
+        Some((m, c)) => (m, Some(c)),
+        None => (input, None),
+    };
+    let i = stratus_scene::FrameUniforms::MEMBERS
+        .iter()
+        .position(|(m, _)| *m == member)?;
+    let start = 16 * i;
+    match component {
+        None => Some(start..start + 16),
+        Some(c) => {
+            let k = ["x", "y", "z", "w"].iter().position(|n| *n == c)?;
+            Some(start + 4 * k..start + 4 * k + 4)
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A member names its 16 bytes, a component its 4; anything else nothing.
+    #[test]
+    fn inputs_name_members_or_their_components() {
+        assert_eq!(input_bytes("camera_position"), Some(0..16));
+        assert_eq!(input_bytes("camera_position.y"), Some(4..8));
+        assert_eq!(input_bytes("sun_direction.w"), Some(76..80));
+        assert_eq!(input_bytes("camera_position.fov"), None);
+        assert_eq!(input_bytes("air"), None);
+        assert_eq!(input_bytes("sun_direction."), None);
     }
 }
