@@ -1050,77 +1050,79 @@ float sun_optical_depth(vec3 rel_1, vec3 p_6, Layer l_4, inout Counters counters
     return _e141;
 }
 
-float far_optical_depth(vec3 rel_2, Layer l_5) {
+float far_optical_depth(vec3 rel_2, vec3 p_7, Layer l_5) {
     bool local_31 = false;
     float reach = 0.0;
     bool local_32 = false;
-    float profile = 0.0;
+    float tau_5 = 0.0;
     uint i_11 = 0u;
     float chord = _group_0_binding_0_cs.light_model.z;
     if (!((chord <= 0.0))) {
-        uint _e14 = _group_0_binding_0_cs.counts.w;
-        local_31 = (_e14 == 0u);
+        uint _e15 = _group_0_binding_0_cs.counts.w;
+        local_31 = (_e15 == 0u);
     } else {
         local_31 = true;
     }
-    bool _e18 = local_31;
-    if (_e18) {
+    bool _e19 = local_31;
+    if (_e19) {
         return 0.0;
     }
     float growth_1 = _group_0_binding_0_cs.march.y;
-    uint _e27 = _group_0_binding_0_cs.counts.w;
-    float steps_3 = float(_e27);
-    float _e32 = _group_0_binding_0_cs.march.z;
-    reach = (_e32 * steps_3);
+    uint _e28 = _group_0_binding_0_cs.counts.w;
+    float steps_3 = float(_e28);
+    float _e33 = _group_0_binding_0_cs.march.z;
+    reach = (_e33 * steps_3);
     if ((growth_1 != 1.0)) {
-        float _e40 = _group_0_binding_0_cs.march.z;
-        reach = ((_e40 * (pow(growth_1, steps_3) - 1.0)) / (growth_1 - 1.0));
+        float _e41 = _group_0_binding_0_cs.march.z;
+        reach = ((_e41 * (pow(growth_1, steps_3) - 1.0)) / (growth_1 - 1.0));
     }
-    vec4 _e50 = _group_0_binding_0_cs.sun_direction;
-    vec3 sun_3 = _e50.xyz;
-    float _e52 = altitude_of(rel_2);
-    Roots _e54 = ray_shell_from(rel_2, _e52, sun_3, l_5.top);
-    float _e56 = reach;
-    float len_1 = (_e54.t1_ - _e56);
-    if (!(!(_e54.hit))) {
+    vec4 _e51 = _group_0_binding_0_cs.sun_direction;
+    vec3 sun_3 = _e51.xyz;
+    float _e53 = altitude_of(rel_2);
+    Roots _e55 = ray_shell_from(rel_2, _e53, sun_3, l_5.top);
+    float _e57 = reach;
+    float len_1 = (_e55.t1_ - _e57);
+    if (!(!(_e55.hit))) {
         local_32 = !((len_1 > 0.0));
     } else {
         local_32 = true;
     }
-    bool _e67 = local_32;
-    if (_e67) {
+    bool _e68 = local_32;
+    if (_e68) {
         return 0.0;
     }
     bool loop_init_5 = true;
     while(true) {
         if (!loop_init_5) {
-            uint _e97 = i_11;
-            i_11 = (_e97 + 1u);
+            uint _e110 = i_11;
+            i_11 = (_e110 + 1u);
         }
         loop_init_5 = false;
-        uint _e73 = i_11;
-        if ((_e73 < 4u)) {
+        uint _e74 = i_11;
+        if ((_e74 < 4u)) {
         } else {
             break;
         }
         {
-            float _e76 = reach;
-            uint _e77 = i_11;
-            float t_5 = (_e76 + (((float(_e77) + 0.5) * 0.25) * len_1));
-            float _e87 = altitude_of((rel_2 + (sun_3 * t_5)));
-            float _e88 = layer_height(l_5, _e87);
-            float _e89 = saturate(_e88);
-            float _e90 = profile;
-            float _e92 = height_signal(_e89, l_5.cloud_type);
-            profile = (_e90 + (0.25 * _e92));
+            float _e77 = reach;
+            uint _e78 = i_11;
+            float t_5 = (_e77 + (((float(_e78) + 0.5) * 0.25) * len_1));
+            float _e88 = altitude_of((rel_2 + (sun_3 * t_5)));
+            float _e89 = layer_height(l_5, _e88);
+            float _e90 = saturate(_e89);
+            Weather _e93 = sample_weather((p_7 + (sun_3 * t_5)), l_5);
+            float cov = _e93.coverage;
+            float _e96 = height_signal(_e90, l_5.cloud_type);
+            float f_2 = min((cov * _e96), 0.95);
+            float _e100 = tau_5;
+            tau_5 = (_e100 + (((0.25 * len_1) * f_2) / ((1.0 - f_2) * chord)));
         }
     }
-    float _e100 = profile;
-    float f_2 = min((l_5.coverage * _e100), 0.95);
-    return ((len_1 * f_2) / ((1.0 - f_2) * chord));
+    float _e112 = tau_5;
+    return _e112;
 }
 
-float sun_scattering(float cos_theta_5, float tau_5, float far_1, float build, float coverage) {
+float sun_scattering(float cos_theta_5, float tau_6, float far_1, float build, float coverage) {
     float octave_sum = 0.0;
     float ka = 1.0;
     float kb = 1.0;
@@ -1157,7 +1159,7 @@ float sun_scattering(float cos_theta_5, float tau_5, float far_1, float build, f
             float _e43 = kc;
             float _e44 = phase(cos_theta_5, _e43);
             float _e46 = kb;
-            octave_sum = (_e41 + ((_e42 * _e44) / (1.0 + (_e46 * tau_5))));
+            octave_sum = (_e41 + ((_e42 * _e44) / (1.0 + (_e46 * tau_6))));
         }
     }
     float _e58 = _group_0_binding_0_cs.sun_direction.y;
@@ -1175,12 +1177,12 @@ float sun_scattering(float cos_theta_5, float tau_5, float far_1, float build, f
     float _e96 = phase(cos_theta_5, 1.0);
     float _e101 = feed;
     float _e103 = octave_sum;
-    total = ((_e96 * exp((-(tau_5) - far_1))) + ((_e101 * build) * _e103));
+    total = ((_e96 * exp((-(tau_6) - far_1))) + ((_e101 * build) * _e103));
     uint _e110 = _group_0_binding_0_cs.modes.w;
     if (((_e110 & FLAG_BEER_POWDER) != 0u)) {
         float _e115 = total;
         float _e119 = _group_0_binding_0_cs.phase.w;
-        total = (_e115 * (1.0 - exp((-(_e119) * tau_5))));
+        total = (_e115 * (1.0 - exp((-(_e119) * tau_6))));
     }
     float _e126 = total;
     return _e126;
@@ -1364,7 +1366,7 @@ float rng_exponential(inout uint rng_2, float sigma) {
     return (-(log((1.0 - _e2))) / sigma);
 }
 
-Segments layer_segments(vec3 p_9, float alt_13, vec3 d_12) {
+Segments layer_segments(vec3 p_10, float alt_13, vec3 d_12) {
     Segments s_1 = Segments(vec2(0.0), vec2(0.0), 0u);
     bool local_45 = false;
     vec2 a_1 = vec2(0.0);
@@ -1376,9 +1378,9 @@ Segments layer_segments(vec3 p_9, float alt_13, vec3 d_12) {
     bool local_49 = false;
     vec2 _e10 = layers_span();
     float bottom_1 = _e10.x;
-    Roots _e12 = ray_shell_from(p_9, alt_13, d_12, bottom_1);
-    Roots _e14 = ray_shell_from(p_9, alt_13, d_12, _e10.y);
-    bool _e15 = hits_ground(p_9, alt_13, d_12);
+    Roots _e12 = ray_shell_from(p_10, alt_13, d_12, bottom_1);
+    Roots _e14 = ray_shell_from(p_10, alt_13, d_12, _e10.y);
+    bool _e15 = hits_ground(p_10, alt_13, d_12);
     if (!(!(_e14.hit))) {
         local_45 = (_e14.t1_ <= 0.0);
     } else {
@@ -1455,9 +1457,9 @@ Segments layer_segments(vec3 p_9, float alt_13, vec3 d_12) {
 float density_at(vec3 rel_5, inout Counters counters_9) {
     float _e6 = _group_0_binding_0_cs.camera_position.x;
     float _e13 = _group_0_binding_0_cs.camera_position.z;
-    vec3 p_12 = vec3((rel_5.x + _e6), rel_5.y, (rel_5.z + _e13));
+    vec3 p_13 = vec3((rel_5.x + _e6), rel_5.y, (rel_5.z + _e13));
     float _e16 = altitude_of(rel_5);
-    float _e17 = cloud_density(p_12, _e16, counters_9);
+    float _e17 = cloud_density(p_13, _e16, counters_9);
     return _e17;
 }
 
@@ -1583,7 +1585,7 @@ float luminance(vec3 c_3) {
 }
 
 float basic_sun_depth(vec3 rel_6, float alt_14, inout Counters counters_13) {
-    float tau_7 = 0.0;
+    float tau_8 = 0.0;
     uint i_16 = 1u;
     uint steps_4 = _group_0_binding_0_cs.counts.w;
     if ((steps_4 == 0u)) {
@@ -1620,14 +1622,14 @@ float basic_sun_depth(vec3 rel_6, float alt_14, inout Counters counters_13) {
             counters_13.light = (_e68 + 1u);
             uint _e71 = i_16;
             vec3 q_7 = (rel_6 + (sun_4 * (float(_e71) * dt_1)));
-            vec3 p_13 = vec3((q_7.x + cam_xz.x), q_7.y, (q_7.z + cam_xz.y));
-            float _e84 = tau_7;
+            vec3 p_14 = vec3((q_7.x + cam_xz.x), q_7.y, (q_7.z + cam_xz.y));
+            float _e84 = tau_8;
             float _e85 = altitude_of(q_7);
-            float _e86 = cloud_density(p_13, _e85, counters_13);
-            tau_7 = (_e84 + ((sigma_t_2 * _e86) * dt_1));
+            float _e86 = cloud_density(p_14, _e85, counters_13);
+            tau_8 = (_e84 + ((sigma_t_2 * _e86) * dt_1));
         }
     }
-    float _e93 = tau_7;
+    float _e93 = tau_8;
     return _e93;
 }
 
@@ -1637,9 +1639,9 @@ float atlas_hash(uint a_2, uint b_2) {
     return (float((_e4 >> 8u)) * 5.9604645e-8);
 }
 
-float value_noise(vec2 p_10, uint seed) {
-    uvec2 i_19 = uvec2(floor(p_10));
-    vec2 f_4 = fract(p_10);
+float value_noise(vec2 p_11, uint seed) {
+    uvec2 i_19 = uvec2(floor(p_11));
+    vec2 f_4 = fract(p_11);
     vec2 s_11 = ((f_4 * f_4) * (vec2(3.0) - (2.0 * f_4)));
     uint h_11 = (seed * 7919u);
     float _e17 = atlas_hash((i_19.x + h_11), i_19.y);
@@ -1649,12 +1651,12 @@ float value_noise(vec2 p_10, uint seed) {
     return mix(mix(_e17, _e23, s_11.x), mix(_e29, _e37, s_11.x), s_11.y);
 }
 
-float value_fbm(vec2 p_11, uint seed_1) {
+float value_fbm(vec2 p_12, uint seed_1) {
     float sum_5 = 0.0;
     float weight = 0.5;
     vec2 q_4 = vec2(0.0);
     uint o = 0u;
-    q_4 = p_11;
+    q_4 = p_12;
     bool loop_init_9 = true;
     while(true) {
         if (!loop_init_9) {
@@ -2063,10 +2065,10 @@ void main() {
                     {
                         uint _e65 = k_4;
                         vec3 q_11 = (_e7 + (sun_6 * (start_2 + ((float(_e65) + 0.5) * dt_2))));
-                        vec3 p_14 = vec3((q_11.x + cam_xz_1.x), q_11.y, (q_11.z + cam_xz_1.y));
+                        vec3 p_15 = vec3((q_11.x + cam_xz_1.x), q_11.y, (q_11.z + cam_xz_1.y));
                         float _e81 = tau_2;
                         float _e82 = altitude_of(q_11);
-                        float _e83 = layer_density(p_14, _e82, _e43, counters);
+                        float _e83 = layer_density(p_15, _e82, _e43, counters);
                         tau_2 = (_e81 + (_e83 * dt_2));
                     }
                 }

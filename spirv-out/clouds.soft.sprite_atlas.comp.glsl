@@ -415,9 +415,9 @@ float atlas_hash(uint a_2, uint b_2) {
     return (float((_e4 >> 8u)) * 5.9604645e-8);
 }
 
-float value_noise(vec2 p_10, uint seed) {
-    uvec2 i_19 = uvec2(floor(p_10));
-    vec2 f_2 = fract(p_10);
+float value_noise(vec2 p_11, uint seed) {
+    uvec2 i_19 = uvec2(floor(p_11));
+    vec2 f_2 = fract(p_11);
     vec2 s_7 = ((f_2 * f_2) * (vec2(3.0) - (2.0 * f_2)));
     uint h_8 = (seed * 7919u);
     float _e17 = atlas_hash((i_19.x + h_8), i_19.y);
@@ -427,12 +427,12 @@ float value_noise(vec2 p_10, uint seed) {
     return mix(mix(_e17, _e23, s_7.x), mix(_e29, _e37, s_7.x), s_7.y);
 }
 
-float value_fbm(vec2 p_11, uint seed_1) {
+float value_fbm(vec2 p_12, uint seed_1) {
     float sum_5 = 0.0;
     float weight = 0.5;
     vec2 q_4 = vec2(0.0);
     uint o = 0u;
-    q_4 = p_11;
+    q_4 = p_12;
     bool loop_init = true;
     while(true) {
         if (!loop_init) {

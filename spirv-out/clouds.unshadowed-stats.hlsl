@@ -897,9 +897,9 @@ Scattered integrate_air(float3 origin, float3 d_7, float distance_km, uint steps
             float _e32 = t0_;
             float dt_1 = (t1_ - _e32);
             float _e34 = t0_;
-            float3 p_12 = (origin + (d_7 * (0.5 * (_e34 + t1_))));
-            float r_15 = length(p_12);
-            float3 up = (p_12 / (r_15).xxx);
+            float3 p_13 = (origin + (d_7 * (0.5 * (_e34 + t1_))));
+            float r_15 = length(p_13);
+            float3 up = (p_13 / (r_15).xxx);
             float mu_s_5 = dot(up, sun);
             const float _e44 = air_bottom();
             const AirSample _e46 = air_at((r_15 - _e44));
@@ -1493,47 +1493,47 @@ float sun_optical_depth(float3 rel_1, float3 p_6, Layer l_4, inout Counters coun
     return _e141;
 }
 
-float far_optical_depth(float3 rel_2, Layer l_5)
+float far_optical_depth(float3 rel_2, float3 p_7, Layer l_5)
 {
     bool local_31 = (bool)0;
     float reach = (float)0;
     bool local_32 = (bool)0;
-    float profile = 0.0;
+    float tau_5 = 0.0;
     uint i_11 = 0u;
 
     float chord = frame.light_model.z;
     if (!((chord <= 0.0))) {
-        uint _e14 = frame.counts.w;
-        local_31 = (_e14 == 0u);
+        uint _e15 = frame.counts.w;
+        local_31 = (_e15 == 0u);
     } else {
         local_31 = true;
     }
-    bool _e18 = local_31;
-    if (_e18) {
+    bool _e19 = local_31;
+    if (_e19) {
         return 0.0;
     }
     float growth_1 = frame.march.y;
-    uint _e27 = frame.counts.w;
-    float steps_3 = float(_e27);
-    float _e32 = frame.march.z;
-    reach = (_e32 * steps_3);
+    uint _e28 = frame.counts.w;
+    float steps_3 = float(_e28);
+    float _e33 = frame.march.z;
+    reach = (_e33 * steps_3);
     if ((growth_1 != 1.0)) {
-        float _e40 = frame.march.z;
-        reach = ((_e40 * (pow(growth_1, steps_3) - 1.0)) / (growth_1 - 1.0));
+        float _e41 = frame.march.z;
+        reach = ((_e41 * (pow(growth_1, steps_3) - 1.0)) / (growth_1 - 1.0));
     }
-    float4 _e50 = frame.sun_direction;
-    float3 sun_3 = _e50.xyz;
-    const float _e52 = altitude_of(rel_2);
-    const Roots _e54 = ray_shell_from(rel_2, _e52, sun_3, l_5.top);
-    float _e56 = reach;
-    float len_1 = (_e54.t1_ - _e56);
-    if (!(!(_e54.hit))) {
+    float4 _e51 = frame.sun_direction;
+    float3 sun_3 = _e51.xyz;
+    const float _e53 = altitude_of(rel_2);
+    const Roots _e55 = ray_shell_from(rel_2, _e53, sun_3, l_5.top);
+    float _e57 = reach;
+    float len_1 = (_e55.t1_ - _e57);
+    if (!(!(_e55.hit))) {
         local_32 = !((len_1 > 0.0));
     } else {
         local_32 = true;
     }
-    bool _e67 = local_32;
-    if (_e67) {
+    bool _e68 = local_32;
+    if (_e68) {
         return 0.0;
     }
     uint2 loop_bound_6 = uint2(4294967295u, 4294967295u);
@@ -1542,33 +1542,35 @@ float far_optical_depth(float3 rel_2, Layer l_5)
         if (all(loop_bound_6 == uint2(0u, 0u))) { break; }
         loop_bound_6 -= uint2(loop_bound_6.y == 0u, 1u);
         if (!loop_init_6) {
-            uint _e97 = i_11;
-            i_11 = (_e97 + 1u);
+            uint _e110 = i_11;
+            i_11 = (_e110 + 1u);
         }
         loop_init_6 = false;
-        uint _e73 = i_11;
-        if ((_e73 < 4u)) {
+        uint _e74 = i_11;
+        if ((_e74 < 4u)) {
         } else {
             break;
         }
         {
-            float _e76 = reach;
-            uint _e77 = i_11;
-            float t_5 = (_e76 + (((float(_e77) + 0.5) * 0.25) * len_1));
-            const float _e87 = altitude_of((rel_2 + (sun_3 * t_5)));
-            const float _e88 = layer_height(l_5, _e87);
-            const float _e89 = saturate_(_e88);
-            float _e90 = profile;
-            const float _e92 = height_signal(_e89, l_5.cloud_type);
-            profile = (_e90 + (0.25 * _e92));
+            float _e77 = reach;
+            uint _e78 = i_11;
+            float t_5 = (_e77 + (((float(_e78) + 0.5) * 0.25) * len_1));
+            const float _e88 = altitude_of((rel_2 + (sun_3 * t_5)));
+            const float _e89 = layer_height(l_5, _e88);
+            const float _e90 = saturate_(_e89);
+            const Weather _e93 = sample_weather((p_7 + (sun_3 * t_5)), l_5);
+            float cov = _e93.coverage;
+            const float _e96 = height_signal(_e90, l_5.cloud_type);
+            float f_3 = min((cov * _e96), 0.95);
+            float _e100 = tau_5;
+            tau_5 = (_e100 + (((0.25 * len_1) * f_3) / ((1.0 - f_3) * chord)));
         }
     }
-    float _e100 = profile;
-    float f_3 = min((l_5.coverage * _e100), 0.95);
-    return ((len_1 * f_3) / ((1.0 - f_3) * chord));
+    float _e112 = tau_5;
+    return _e112;
 }
 
-float sun_scattering(float cos_theta_5, float tau_5, float far_1, float build, float coverage)
+float sun_scattering(float cos_theta_5, float tau_6, float far_1, float build, float coverage)
 {
     float octave_sum = 0.0;
     float ka = 1.0;
@@ -1610,7 +1612,7 @@ float sun_scattering(float cos_theta_5, float tau_5, float far_1, float build, f
             float _e43 = kc;
             const float _e44 = phase(cos_theta_5, _e43);
             float _e46 = kb;
-            octave_sum = (_e41 + ((_e42 * _e44) / (1.0 + (_e46 * tau_5))));
+            octave_sum = (_e41 + ((_e42 * _e44) / (1.0 + (_e46 * tau_6))));
         }
     }
     float _e58 = frame.sun_direction.y;
@@ -1628,12 +1630,12 @@ float sun_scattering(float cos_theta_5, float tau_5, float far_1, float build, f
     const float _e96 = phase(cos_theta_5, 1.0);
     float _e101 = feed;
     float _e103 = octave_sum;
-    total = ((_e96 * exp((-(tau_5) - far_1))) + ((_e101 * build) * _e103));
+    total = ((_e96 * exp((-(tau_6) - far_1))) + ((_e101 * build) * _e103));
     uint _e110 = frame.modes.w;
     if (((_e110 & FLAG_BEER_POWDER) != 0u)) {
         float _e115 = total;
         float _e119 = frame.phase.w;
-        total = (_e115 * (1.0 - exp((-(_e119) * tau_5))));
+        total = (_e115 * (1.0 - exp((-(_e119) * tau_6))));
     }
     float _e126 = total;
     return _e126;
@@ -1672,26 +1674,26 @@ float height_fraction(float alt_11)
     return _e4;
 }
 
-float3 scattered_light(float3 rel_3, float3 p_7, float alt_12, float density_2, float3 view, Layer l_6, inout Counters counters_6)
+float3 scattered_light(float3 rel_3, float3 p_8, float alt_12, float density_2, float3 view, Layer l_6, inout Counters counters_6)
 {
     float3 sun_light = (0.0).xxx;
-    float tau_6 = 0.0;
+    float tau_7 = 0.0;
     float far_2 = 0.0;
 
     float4 _e9 = frame.sun_direction;
     float3 sun_4 = _e9.xyz;
     const float _e11 = layer_height(l_6, alt_12);
     const float _e12 = saturate_(_e11);
-    const Weather _e16 = sample_weather(p_7, l_6);
+    const Weather _e16 = sample_weather(p_8, l_6);
     const bool _e17 = hits_ground(rel_3, alt_12, sun_4);
     if (!(_e17)) {
         if (LIGHT_MARCH) {
-            const float _e24 = sun_optical_depth(rel_3, p_7, l_6, counters_6);
-            tau_6 = _e24;
-            const float _e25 = far_optical_depth(rel_3, l_6);
+            const float _e24 = sun_optical_depth(rel_3, p_8, l_6, counters_6);
+            tau_7 = _e24;
+            const float _e25 = far_optical_depth(rel_3, p_8, l_6);
             far_2 = _e25;
         }
-        float _e27 = tau_6;
+        float _e27 = tau_7;
         float _e28 = far_2;
         const float _e29 = octave_buildup(density_2);
         const float _e31 = sun_scattering(dot(view, sun_4), _e27, _e28, _e29, _e16.coverage);
@@ -1749,13 +1751,13 @@ float3 ground_shadow_loss(float3 view_1, float r_12)
     return (((1.0 - _e17) * t_view_1) * _e61);
 }
 
-float empty_cell_exit(float3 p_8, float3 d_11)
+float empty_cell_exit(float3 p_9, float3 d_11)
 {
     float exit = 1e30;
 
     float4 _e6 = frame.wind_offsets0_;
     float _e12 = frame.periods.x;
-    float2 uv_6 = (frac(((p_8.xz - _e6.xy) / (_e12).xx)) * 64.0);
+    float2 uv_6 = (frac(((p_9.xz - _e6.xy) / (_e12).xx)) * 64.0);
     uint2 cell_1 = min(naga_f2u32(uv_6), (63u).xx);
     float4 _e23 = occupancy_in.Load(int3(cell_1, int(0)));
     float m_2 = _e23.x;
@@ -1879,9 +1881,9 @@ bool march_layer(float3 view_2, Interval span_1, Layer l_7, float jitter, inout 
         uint _e79 = i_13;
         float t_7 = (span_1.start + ((float(_e79) + jitter) * dt_2));
         float3 rel_7 = ((view_2 * t_7) + float3(0.0, cam_alt_1, 0.0));
-        float3 p_13 = float3((rel_7.x + cam_xz.x), rel_7.y, (rel_7.z + cam_xz.y));
+        float3 p_14 = float3((rel_7.x + cam_xz.x), rel_7.y, (rel_7.z + cam_xz.y));
         if (empty_skip) {
-            const float _e97 = empty_cell_exit(p_13, view_2);
+            const float _e97 = empty_cell_exit(p_14, view_2);
             if ((_e97 > 0.0)) {
                 uint _e106 = steps_1;
                 uint next_1 = naga_f2u32(clamp(ceil(((((t_7 + _e97) - span_1.start) / dt_2) - jitter)), 0.0, float(_e106)));
@@ -1891,7 +1893,7 @@ bool march_layer(float3 view_2, Interval span_1, Layer l_7, float jitter, inout 
             }
         }
         const float _e115 = altitude_of(rel_7);
-        const float _e116 = layer_density(p_13, _e115, l_7, counters_7);
+        const float _e116 = layer_density(p_14, _e115, l_7, counters_7);
         if ((_e116 <= 0.0)) {
             uint _e119 = empty;
             empty = (_e119 + 1u);
@@ -1921,7 +1923,7 @@ bool march_layer(float3 view_2, Interval span_1, Layer l_7, float jitter, inout 
         }
         empty = 0u;
         float sigma_t_2 = (sigma_e * _e116);
-        const float3 _e145 = scattered_light(rel_7, p_13, _e115, _e116, view_2, l_7, counters_7);
+        const float3 _e145 = scattered_light(rel_7, p_14, _e115, _e116, view_2, l_7, counters_7);
         float transmittance_1 = state.transmittance;
         float3 _e149 = state.radiance;
         const float3 _e150 = step_integral(_e145, sigma_t_2, dt_2);
@@ -2281,8 +2283,8 @@ float4 history_nearest(float2 q_2)
 {
     uint4 _e3 = frame.counts;
     int2 size_5 = int2(_e3.xy);
-    int2 p_14 = clamp(naga_f2i32(round(q_2)), (int(0)).xx, asint(asuint(size_5) - asuint((int(1)).xx)));
-    float4 _e16 = history_in.Load(int3(p_14, int(0)));
+    int2 p_15 = clamp(naga_f2i32(round(q_2)), (int(0)).xx, asint(asuint(size_5) - asuint((int(1)).xx)));
+    float4 _e16 = history_in.Load(int3(p_15, int(0)));
     return _e16;
 }
 
@@ -2290,8 +2292,8 @@ float4 meta_at(float2 q_3)
 {
     uint4 _e3 = frame.counts;
     int2 size_6 = int2(_e3.xy);
-    int2 p_15 = clamp(naga_f2i32(round(q_3)), (int(0)).xx, asint(asuint(size_6) - asuint((int(1)).xx)));
-    float4 _e16 = meta_in.Load(int3(p_15, int(0)));
+    int2 p_16 = clamp(naga_f2i32(round(q_3)), (int(0)).xx, asint(asuint(size_6) - asuint((int(1)).xx)));
+    float4 _e16 = meta_in.Load(int3(p_16, int(0)));
     return _e16;
 }
 
@@ -2352,7 +2354,7 @@ Segments ConstructSegments(float2 arg0, float2 arg1, uint arg2) {
     return ret;
 }
 
-Segments layer_segments(float3 p_9, float alt_13, float3 d_12)
+Segments layer_segments(float3 p_10, float alt_13, float3 d_12)
 {
     Segments s_1 = ConstructSegments((0.0).xx, (0.0).xx, 0u);
     bool local_45 = (bool)0;
@@ -2366,9 +2368,9 @@ Segments layer_segments(float3 p_9, float alt_13, float3 d_12)
 
     const float2 _e10 = layers_span();
     float bottom_2 = _e10.x;
-    const Roots _e12 = ray_shell_from(p_9, alt_13, d_12, bottom_2);
-    const Roots _e14 = ray_shell_from(p_9, alt_13, d_12, _e10.y);
-    const bool _e15 = hits_ground(p_9, alt_13, d_12);
+    const Roots _e12 = ray_shell_from(p_10, alt_13, d_12, bottom_2);
+    const Roots _e14 = ray_shell_from(p_10, alt_13, d_12, _e10.y);
+    const bool _e15 = hits_ground(p_10, alt_13, d_12);
     if (!(!(_e14.hit))) {
         local_45 = (_e14.t1_ <= 0.0);
     } else {
@@ -2448,9 +2450,9 @@ float density_at(float3 rel_5, inout Counters counters_9)
 {
     float _e6 = frame.camera_position.x;
     float _e13 = frame.camera_position.z;
-    float3 p_16 = float3((rel_5.x + _e6), rel_5.y, (rel_5.z + _e13));
+    float3 p_17 = float3((rel_5.x + _e6), rel_5.y, (rel_5.z + _e13));
     const float _e16 = altitude_of(rel_5);
-    const float _e17 = cloud_density(p_16, _e16, counters_9);
+    const float _e17 = cloud_density(p_17, _e16, counters_9);
     return _e17;
 }
 
@@ -2463,8 +2465,8 @@ float empty_cell_skip(float3 origin_3, float3 dir_1, float t_2)
     float3 rel_8 = (origin_3 + (dir_1 * t_2));
     float _e13 = frame.camera_position.x;
     float _e20 = frame.camera_position.z;
-    float3 p_17 = float3((rel_8.x + _e13), rel_8.y, (rel_8.z + _e20));
-    const float _e23 = empty_cell_exit(p_17, dir_1);
+    float3 p_18 = float3((rel_8.x + _e13), rel_8.y, (rel_8.z + _e20));
+    const float _e23 = empty_cell_exit(p_18, dir_1);
     if ((_e23 <= 0.0)) {
         return 0.0;
     }
@@ -2930,7 +2932,7 @@ float luminance(float3 c_3)
 
 float basic_sun_depth(float3 rel_6, float alt_14, inout Counters counters_13)
 {
-    float tau_7 = 0.0;
+    float tau_8 = 0.0;
     uint i_16 = 1u;
 
     uint steps_4 = frame.counts.w;
@@ -2971,14 +2973,14 @@ float basic_sun_depth(float3 rel_6, float alt_14, inout Counters counters_13)
             counters_13.light = (_e68 + 1u);
             uint _e71 = i_16;
             float3 q_8 = (rel_6 + (sun_6 * (float(_e71) * dt_3)));
-            float3 p_18 = float3((q_8.x + cam_xz_1.x), q_8.y, (q_8.z + cam_xz_1.y));
-            float _e84 = tau_7;
+            float3 p_19 = float3((q_8.x + cam_xz_1.x), q_8.y, (q_8.z + cam_xz_1.y));
+            float _e84 = tau_8;
             const float _e85 = altitude_of(q_8);
-            const float _e86 = cloud_density(p_18, _e85, counters_13);
-            tau_7 = (_e84 + ((sigma_t_5 * _e86) * dt_3));
+            const float _e86 = cloud_density(p_19, _e85, counters_13);
+            tau_8 = (_e84 + ((sigma_t_5 * _e86) * dt_3));
         }
     }
-    float _e93 = tau_7;
+    float _e93 = tau_8;
     return _e93;
 }
 
@@ -3035,9 +3037,9 @@ MarchResult basic_pixel(uint2 pixel_7)
                     uint _e78 = i_17;
                     float t_9 = (_e25.start + (float(_e78) * dt_4));
                     float3 rel_9 = ((_e1 * t_9) + float3(0.0, cam_alt_3, 0.0));
-                    float3 p_19 = float3((rel_9.x + cam_xz_2.x), rel_9.y, (rel_9.z + cam_xz_2.y));
+                    float3 p_20 = float3((rel_9.x + cam_xz_2.x), rel_9.y, (rel_9.z + cam_xz_2.y));
                     const float _e95 = altitude_of(rel_9);
-                    const float _e96 = cloud_density(p_19, _e95, counters_14);
+                    const float _e96 = cloud_density(p_20, _e95, counters_14);
                     if ((_e96 <= 0.0)) {
                         continue;
                     }
@@ -3084,10 +3086,10 @@ float atlas_hash(uint a_2, uint b_2)
     return (float((_e4 >> 8u)) * 5.9604645e-8);
 }
 
-float value_noise(float2 p_10, uint seed)
+float value_noise(float2 p_11, uint seed)
 {
-    uint2 i_19 = naga_f2u32(floor(p_10));
-    float2 f_6 = frac(p_10);
+    uint2 i_19 = naga_f2u32(floor(p_11));
+    float2 f_6 = frac(p_11);
     float2 s_12 = ((f_6 * f_6) * ((3.0).xx - (2.0 * f_6)));
     uint h_11 = (seed * 7919u);
     const float _e17 = atlas_hash((i_19.x + h_11), i_19.y);
@@ -3097,14 +3099,14 @@ float value_noise(float2 p_10, uint seed)
     return lerp(lerp(_e17, _e23, s_12.x), lerp(_e29, _e37, s_12.x), s_12.y);
 }
 
-float value_fbm(float2 p_11, uint seed_1)
+float value_fbm(float2 p_12, uint seed_1)
 {
     float sum_5 = 0.0;
     float weight = 0.5;
     float2 q_4 = (float2)0;
     uint o = 0u;
 
-    q_4 = p_11;
+    q_4 = p_12;
     uint2 loop_bound_19 = uint2(4294967295u, 4294967295u);
     bool loop_init_15 = true;
     while(true) {
@@ -3676,15 +3678,15 @@ void multiscatter_lut(uint3 id_1 : SV_DispatchThreadID)
                 }
                 {
                     uint _e61 = i_1;
-                    float3 p_20 = (origin_6 + (_e48 * (dt_6 * (float(_e61) + 0.5))));
-                    float rp_7 = length(p_20);
+                    float3 p_21 = (origin_6 + (_e48 * (dt_6 * (float(_e61) + 0.5))));
+                    float rp_7 = length(p_21);
                     const float _e69 = air_bottom();
                     const AirSample _e71 = air_at((rp_7 - _e69));
                     float3 _e72 = tau;
                     float3 t_10 = exp(-((_e72 + ((0.5 * _e71.extinction) * dt_6))));
                     float3 s_13 = (_e71.rayleigh + (_e71.mie).xxx);
                     float3 _e84 = l2_;
-                    const float3 _e90 = sun_transmittance(rp_7, dot((p_20 / (rp_7).xxx), sun_8));
+                    const float3 _e90 = sun_transmittance(rp_7, dot((p_21 / (rp_7).xxx), sun_8));
                     l2_ = (_e84 + ((((t_10 * s_13) * 0.07957747) * _e90) * dt_6));
                     float3 _e94 = f_ms;
                     f_ms = (_e94 + ((t_10 * s_13) * dt_6));
@@ -3787,9 +3789,9 @@ void aerial_perspective(uint3 id_3 : SV_DispatchThreadID)
                     uint _e40 = k_1;
                     float t0_1 = (AERIAL_SLICE_KM * (float(_e38) + (float(_e40) / 4.0)));
                     float dt_7 = max(min(0.25, (_e9.x - t0_1)), 0.0);
-                    float3 p_21 = (_e8 + (_e7 * (t0_1 + (0.5 * dt_7))));
-                    float r_21 = length(p_21);
-                    float mu_s_8 = dot((p_21 / (r_21).xxx), sun_10);
+                    float3 p_22 = (_e8 + (_e7 * (t0_1 + (0.5 * dt_7))));
+                    float r_21 = length(p_22);
+                    float mu_s_8 = dot((p_22 / (r_21).xxx), sun_10);
                     const float _e64 = air_bottom();
                     const AirSample _e66 = air_at((r_21 - _e64));
                     float3 _e67 = tau_1;
@@ -3992,10 +3994,10 @@ void cloud_shadow(uint3 id_6 : SV_DispatchThreadID)
                     {
                         uint _e65 = k_4;
                         float3 q_12 = (_e7 + (sun_13 * (start_2 + ((float(_e65) + 0.5) * dt_8))));
-                        float3 p_22 = float3((q_12.x + cam_xz_3.x), q_12.y, (q_12.z + cam_xz_3.y));
+                        float3 p_23 = float3((q_12.x + cam_xz_3.x), q_12.y, (q_12.z + cam_xz_3.y));
                         float _e81 = tau_2;
                         const float _e82 = altitude_of(q_12);
-                        const float _e83 = layer_density(p_22, _e82, _e43, counters);
+                        const float _e83 = layer_density(p_23, _e82, _e43, counters);
                         tau_2 = (_e81 + (_e83 * dt_8));
                     }
                 }

@@ -1108,77 +1108,79 @@ float sun_optical_depth(vec3 rel_1, vec3 p_6, Layer l_4, inout Counters counters
     return _e141;
 }
 
-float far_optical_depth(vec3 rel_2, Layer l_5) {
+float far_optical_depth(vec3 rel_2, vec3 p_7, Layer l_5) {
     bool local_31 = false;
     float reach = 0.0;
     bool local_32 = false;
-    float profile = 0.0;
+    float tau_5 = 0.0;
     uint i_11 = 0u;
     float chord = _group_0_binding_0_cs.light_model.z;
     if (!((chord <= 0.0))) {
-        uint _e14 = _group_0_binding_0_cs.counts.w;
-        local_31 = (_e14 == 0u);
+        uint _e15 = _group_0_binding_0_cs.counts.w;
+        local_31 = (_e15 == 0u);
     } else {
         local_31 = true;
     }
-    bool _e18 = local_31;
-    if (_e18) {
+    bool _e19 = local_31;
+    if (_e19) {
         return 0.0;
     }
     float growth_1 = _group_0_binding_0_cs.march.y;
-    uint _e27 = _group_0_binding_0_cs.counts.w;
-    float steps_3 = float(_e27);
-    float _e32 = _group_0_binding_0_cs.march.z;
-    reach = (_e32 * steps_3);
+    uint _e28 = _group_0_binding_0_cs.counts.w;
+    float steps_3 = float(_e28);
+    float _e33 = _group_0_binding_0_cs.march.z;
+    reach = (_e33 * steps_3);
     if ((growth_1 != 1.0)) {
-        float _e40 = _group_0_binding_0_cs.march.z;
-        reach = ((_e40 * (pow(growth_1, steps_3) - 1.0)) / (growth_1 - 1.0));
+        float _e41 = _group_0_binding_0_cs.march.z;
+        reach = ((_e41 * (pow(growth_1, steps_3) - 1.0)) / (growth_1 - 1.0));
     }
-    vec4 _e50 = _group_0_binding_0_cs.sun_direction;
-    vec3 sun_3 = _e50.xyz;
-    float _e52 = altitude_of(rel_2);
-    Roots _e54 = ray_shell_from(rel_2, _e52, sun_3, l_5.top);
-    float _e56 = reach;
-    float len_1 = (_e54.t1_ - _e56);
-    if (!(!(_e54.hit))) {
+    vec4 _e51 = _group_0_binding_0_cs.sun_direction;
+    vec3 sun_3 = _e51.xyz;
+    float _e53 = altitude_of(rel_2);
+    Roots _e55 = ray_shell_from(rel_2, _e53, sun_3, l_5.top);
+    float _e57 = reach;
+    float len_1 = (_e55.t1_ - _e57);
+    if (!(!(_e55.hit))) {
         local_32 = !((len_1 > 0.0));
     } else {
         local_32 = true;
     }
-    bool _e67 = local_32;
-    if (_e67) {
+    bool _e68 = local_32;
+    if (_e68) {
         return 0.0;
     }
     bool loop_init_5 = true;
     while(true) {
         if (!loop_init_5) {
-            uint _e97 = i_11;
-            i_11 = (_e97 + 1u);
+            uint _e110 = i_11;
+            i_11 = (_e110 + 1u);
         }
         loop_init_5 = false;
-        uint _e73 = i_11;
-        if ((_e73 < 4u)) {
+        uint _e74 = i_11;
+        if ((_e74 < 4u)) {
         } else {
             break;
         }
         {
-            float _e76 = reach;
-            uint _e77 = i_11;
-            float t_5 = (_e76 + (((float(_e77) + 0.5) * 0.25) * len_1));
-            float _e87 = altitude_of((rel_2 + (sun_3 * t_5)));
-            float _e88 = layer_height(l_5, _e87);
-            float _e89 = saturate(_e88);
-            float _e90 = profile;
-            float _e92 = height_signal(_e89, l_5.cloud_type);
-            profile = (_e90 + (0.25 * _e92));
+            float _e77 = reach;
+            uint _e78 = i_11;
+            float t_5 = (_e77 + (((float(_e78) + 0.5) * 0.25) * len_1));
+            float _e88 = altitude_of((rel_2 + (sun_3 * t_5)));
+            float _e89 = layer_height(l_5, _e88);
+            float _e90 = saturate(_e89);
+            Weather _e93 = sample_weather((p_7 + (sun_3 * t_5)), l_5);
+            float cov = _e93.coverage;
+            float _e96 = height_signal(_e90, l_5.cloud_type);
+            float f_2 = min((cov * _e96), 0.95);
+            float _e100 = tau_5;
+            tau_5 = (_e100 + (((0.25 * len_1) * f_2) / ((1.0 - f_2) * chord)));
         }
     }
-    float _e100 = profile;
-    float f_2 = min((l_5.coverage * _e100), 0.95);
-    return ((len_1 * f_2) / ((1.0 - f_2) * chord));
+    float _e112 = tau_5;
+    return _e112;
 }
 
-float sun_scattering(float cos_theta_5, float tau_5, float far_1, float build, float coverage) {
+float sun_scattering(float cos_theta_5, float tau_6, float far_1, float build, float coverage) {
     float octave_sum = 0.0;
     float ka = 1.0;
     float kb = 1.0;
@@ -1215,7 +1217,7 @@ float sun_scattering(float cos_theta_5, float tau_5, float far_1, float build, f
             float _e43 = kc;
             float _e44 = phase(cos_theta_5, _e43);
             float _e46 = kb;
-            octave_sum = (_e41 + ((_e42 * _e44) / (1.0 + (_e46 * tau_5))));
+            octave_sum = (_e41 + ((_e42 * _e44) / (1.0 + (_e46 * tau_6))));
         }
     }
     float _e58 = _group_0_binding_0_cs.sun_direction.y;
@@ -1233,12 +1235,12 @@ float sun_scattering(float cos_theta_5, float tau_5, float far_1, float build, f
     float _e96 = phase(cos_theta_5, 1.0);
     float _e101 = feed;
     float _e103 = octave_sum;
-    total = ((_e96 * exp((-(tau_5) - far_1))) + ((_e101 * build) * _e103));
+    total = ((_e96 * exp((-(tau_6) - far_1))) + ((_e101 * build) * _e103));
     uint _e110 = _group_0_binding_0_cs.modes.w;
     if (((_e110 & FLAG_BEER_POWDER) != 0u)) {
         float _e115 = total;
         float _e119 = _group_0_binding_0_cs.phase.w;
-        total = (_e115 * (1.0 - exp((-(_e119) * tau_5))));
+        total = (_e115 * (1.0 - exp((-(_e119) * tau_6))));
     }
     float _e126 = total;
     return _e126;
@@ -1274,24 +1276,24 @@ float height_fraction(float alt_11) {
     return _e4;
 }
 
-vec3 scattered_light(vec3 rel_3, vec3 p_7, float alt_12, float density_2, vec3 view, Layer l_6, inout Counters counters_6) {
+vec3 scattered_light(vec3 rel_3, vec3 p_8, float alt_12, float density_2, vec3 view, Layer l_6, inout Counters counters_6) {
     vec3 sun_light = vec3(0.0);
-    float tau_6 = 0.0;
+    float tau_7 = 0.0;
     float far_2 = 0.0;
     vec4 _e9 = _group_0_binding_0_cs.sun_direction;
     vec3 sun_4 = _e9.xyz;
     float _e11 = layer_height(l_6, alt_12);
     float _e12 = saturate(_e11);
-    Weather _e16 = sample_weather(p_7, l_6);
+    Weather _e16 = sample_weather(p_8, l_6);
     bool _e17 = hits_ground(rel_3, alt_12, sun_4);
     if (!(_e17)) {
         if (LIGHT_MARCH) {
-            float _e24 = sun_optical_depth(rel_3, p_7, l_6, counters_6);
-            tau_6 = _e24;
-            float _e25 = far_optical_depth(rel_3, l_6);
+            float _e24 = sun_optical_depth(rel_3, p_8, l_6, counters_6);
+            tau_7 = _e24;
+            float _e25 = far_optical_depth(rel_3, p_8, l_6);
             far_2 = _e25;
         }
-        float _e27 = tau_6;
+        float _e27 = tau_7;
         float _e28 = far_2;
         float _e29 = octave_buildup(density_2);
         float _e31 = sun_scattering(dot(view, sun_4), _e27, _e28, _e29, _e16.coverage);
@@ -1315,11 +1317,11 @@ vec3 shadow_ground_point(uvec2 c_2) {
     return vec3(xz_1.x, y_1, xz_1.y);
 }
 
-float empty_cell_exit(vec3 p_8, vec3 d_11) {
+float empty_cell_exit(vec3 p_9, vec3 d_11) {
     float exit = 1e30;
     vec4 _e6 = _group_0_binding_0_cs.wind_offsets0_;
     float _e12 = _group_0_binding_0_cs.periods.x;
-    vec2 uv_3 = (fract(((p_8.xz - _e6.xy) / vec2(_e12))) * 64.0);
+    vec2 uv_3 = (fract(((p_9.xz - _e6.xy) / vec2(_e12))) * 64.0);
     uvec2 cell_1 = min(uvec2(uv_3), uvec2(63u));
     vec4 _e23 = texelFetch(_group_0_binding_11_cs, ivec2(cell_1), 0);
     float m_2 = _e23.x;
@@ -1430,9 +1432,9 @@ bool march_layer(vec3 view_2, Interval span_1, Layer l_7, float jitter, inout Ma
         uint _e79 = i_13;
         float t_6 = (span_1.start + ((float(_e79) + jitter) * dt_1));
         vec3 rel_7 = ((view_2 * t_6) + vec3(0.0, cam_alt, 0.0));
-        vec3 p_12 = vec3((rel_7.x + cam_xz.x), rel_7.y, (rel_7.z + cam_xz.y));
+        vec3 p_13 = vec3((rel_7.x + cam_xz.x), rel_7.y, (rel_7.z + cam_xz.y));
         if (empty_skip) {
-            float _e97 = empty_cell_exit(p_12, view_2);
+            float _e97 = empty_cell_exit(p_13, view_2);
             if ((_e97 > 0.0)) {
                 uint _e106 = steps_1;
                 uint next_1 = uint(clamp(ceil(((((t_6 + _e97) - span_1.start) / dt_1) - jitter)), 0.0, float(_e106)));
@@ -1442,7 +1444,7 @@ bool march_layer(vec3 view_2, Interval span_1, Layer l_7, float jitter, inout Ma
             }
         }
         float _e115 = altitude_of(rel_7);
-        float _e116 = layer_density(p_12, _e115, l_7, counters_7);
+        float _e116 = layer_density(p_13, _e115, l_7, counters_7);
         if ((_e116 <= 0.0)) {
             uint _e119 = empty;
             empty = (_e119 + 1u);
@@ -1472,7 +1474,7 @@ bool march_layer(vec3 view_2, Interval span_1, Layer l_7, float jitter, inout Ma
         }
         empty = 0u;
         float sigma_t_2 = (sigma_e * _e116);
-        vec3 _e145 = scattered_light(rel_7, p_12, _e115, _e116, view_2, l_7, counters_7);
+        vec3 _e145 = scattered_light(rel_7, p_13, _e115, _e116, view_2, l_7, counters_7);
         float transmittance_1 = state.transmittance;
         vec3 _e149 = state.radiance;
         vec3 _e150 = step_integral(_e145, sigma_t_2, dt_1);
@@ -1780,8 +1782,8 @@ vec4 history_at(vec2 q_1) {
 vec4 history_nearest(vec2 q_2) {
     uvec4 _e3 = _group_0_binding_0_cs.counts;
     ivec2 size_5 = ivec2(_e3.xy);
-    ivec2 p_13 = min(max(ivec2(roundEven(q_2)), ivec2(0)), (size_5 - ivec2(1)));
-    vec4 _e16 = texelFetch(_group_0_binding_13_cs, p_13, 0);
+    ivec2 p_14 = min(max(ivec2(roundEven(q_2)), ivec2(0)), (size_5 - ivec2(1)));
+    vec4 _e16 = texelFetch(_group_0_binding_13_cs, p_14, 0);
     return _e16;
 }
 
@@ -1824,7 +1826,7 @@ float rng_exponential(inout uint rng_2, float sigma) {
     return (-(log((1.0 - _e2))) / sigma);
 }
 
-Segments layer_segments(vec3 p_9, float alt_13, vec3 d_12) {
+Segments layer_segments(vec3 p_10, float alt_13, vec3 d_12) {
     Segments s_1 = Segments(vec2(0.0), vec2(0.0), 0u);
     bool local_45 = false;
     vec2 a_1 = vec2(0.0);
@@ -1836,9 +1838,9 @@ Segments layer_segments(vec3 p_9, float alt_13, vec3 d_12) {
     bool local_49 = false;
     vec2 _e10 = layers_span();
     float bottom_2 = _e10.x;
-    Roots _e12 = ray_shell_from(p_9, alt_13, d_12, bottom_2);
-    Roots _e14 = ray_shell_from(p_9, alt_13, d_12, _e10.y);
-    bool _e15 = hits_ground(p_9, alt_13, d_12);
+    Roots _e12 = ray_shell_from(p_10, alt_13, d_12, bottom_2);
+    Roots _e14 = ray_shell_from(p_10, alt_13, d_12, _e10.y);
+    bool _e15 = hits_ground(p_10, alt_13, d_12);
     if (!(!(_e14.hit))) {
         local_45 = (_e14.t1_ <= 0.0);
     } else {
@@ -1915,9 +1917,9 @@ Segments layer_segments(vec3 p_9, float alt_13, vec3 d_12) {
 float density_at(vec3 rel_5, inout Counters counters_9) {
     float _e6 = _group_0_binding_0_cs.camera_position.x;
     float _e13 = _group_0_binding_0_cs.camera_position.z;
-    vec3 p_14 = vec3((rel_5.x + _e6), rel_5.y, (rel_5.z + _e13));
+    vec3 p_15 = vec3((rel_5.x + _e6), rel_5.y, (rel_5.z + _e13));
     float _e16 = altitude_of(rel_5);
-    float _e17 = cloud_density(p_14, _e16, counters_9);
+    float _e17 = cloud_density(p_15, _e16, counters_9);
     return _e17;
 }
 
@@ -1929,8 +1931,8 @@ float empty_cell_skip(vec3 origin_3, vec3 dir_1, float t_2) {
     vec3 rel_8 = (origin_3 + (dir_1 * t_2));
     float _e13 = _group_0_binding_0_cs.camera_position.x;
     float _e20 = _group_0_binding_0_cs.camera_position.z;
-    vec3 p_15 = vec3((rel_8.x + _e13), rel_8.y, (rel_8.z + _e20));
-    float _e23 = empty_cell_exit(p_15, dir_1);
+    vec3 p_16 = vec3((rel_8.x + _e13), rel_8.y, (rel_8.z + _e20));
+    float _e23 = empty_cell_exit(p_16, dir_1);
     if ((_e23 <= 0.0)) {
         return 0.0;
     }
@@ -2194,7 +2196,7 @@ float luminance(vec3 c_3) {
 }
 
 float basic_sun_depth(vec3 rel_6, float alt_14, inout Counters counters_13) {
-    float tau_7 = 0.0;
+    float tau_8 = 0.0;
     uint i_16 = 1u;
     uint steps_4 = _group_0_binding_0_cs.counts.w;
     if ((steps_4 == 0u)) {
@@ -2231,14 +2233,14 @@ float basic_sun_depth(vec3 rel_6, float alt_14, inout Counters counters_13) {
             counters_13.light = (_e68 + 1u);
             uint _e71 = i_16;
             vec3 q_8 = (rel_6 + (sun_5 * (float(_e71) * dt_2)));
-            vec3 p_16 = vec3((q_8.x + cam_xz_1.x), q_8.y, (q_8.z + cam_xz_1.y));
-            float _e84 = tau_7;
+            vec3 p_17 = vec3((q_8.x + cam_xz_1.x), q_8.y, (q_8.z + cam_xz_1.y));
+            float _e84 = tau_8;
             float _e85 = altitude_of(q_8);
-            float _e86 = cloud_density(p_16, _e85, counters_13);
-            tau_7 = (_e84 + ((sigma_t_4 * _e86) * dt_2));
+            float _e86 = cloud_density(p_17, _e85, counters_13);
+            tau_8 = (_e84 + ((sigma_t_4 * _e86) * dt_2));
         }
     }
-    float _e93 = tau_7;
+    float _e93 = tau_8;
     return _e93;
 }
 
@@ -2290,9 +2292,9 @@ MarchResult basic_pixel(uvec2 pixel_7) {
                     uint _e78 = i_17;
                     float t_8 = (_e25.start + (float(_e78) * dt_3));
                     vec3 rel_9 = ((_e1 * t_8) + vec3(0.0, cam_alt_2, 0.0));
-                    vec3 p_17 = vec3((rel_9.x + cam_xz_2.x), rel_9.y, (rel_9.z + cam_xz_2.y));
+                    vec3 p_18 = vec3((rel_9.x + cam_xz_2.x), rel_9.y, (rel_9.z + cam_xz_2.y));
                     float _e95 = altitude_of(rel_9);
-                    float _e96 = cloud_density(p_17, _e95, counters_14);
+                    float _e96 = cloud_density(p_18, _e95, counters_14);
                     if ((_e96 <= 0.0)) {
                         continue;
                     }
@@ -2337,9 +2339,9 @@ float atlas_hash(uint a_2, uint b_2) {
     return (float((_e4 >> 8u)) * 5.9604645e-8);
 }
 
-float value_noise(vec2 p_10, uint seed) {
-    uvec2 i_19 = uvec2(floor(p_10));
-    vec2 f_5 = fract(p_10);
+float value_noise(vec2 p_11, uint seed) {
+    uvec2 i_19 = uvec2(floor(p_11));
+    vec2 f_5 = fract(p_11);
     vec2 s_11 = ((f_5 * f_5) * (vec2(3.0) - (2.0 * f_5)));
     uint h_11 = (seed * 7919u);
     float _e17 = atlas_hash((i_19.x + h_11), i_19.y);
@@ -2349,12 +2351,12 @@ float value_noise(vec2 p_10, uint seed) {
     return mix(mix(_e17, _e23, s_11.x), mix(_e29, _e37, s_11.x), s_11.y);
 }
 
-float value_fbm(vec2 p_11, uint seed_1) {
+float value_fbm(vec2 p_12, uint seed_1) {
     float sum_5 = 0.0;
     float weight = 0.5;
     vec2 q_4 = vec2(0.0);
     uint o = 0u;
-    q_4 = p_11;
+    q_4 = p_12;
     bool loop_init_14 = true;
     while(true) {
         if (!loop_init_14) {

@@ -860,9 +860,9 @@ Scattered integrate_air(
             float _e32 = t0_;
             float dt_1 = t1_ - _e32;
             float _e34 = t0_;
-            metal::float3 p_12 = origin + (d_7 * (0.5 * (_e34 + t1_)));
-            float r_15 = metal::length(p_12);
-            metal::float3 up = p_12 / metal::float3(r_15);
+            metal::float3 p_13 = origin + (d_7 * (0.5 * (_e34 + t1_)));
+            float r_15 = metal::length(p_13);
+            metal::float3 up = p_13 / metal::float3(r_15);
             float mu_s_5 = metal::dot(up, sun);
             float _e44 = air_bottom(frame);
             AirSample _e46 = air_at(r_15 - _e44, frame);
@@ -1539,47 +1539,50 @@ float sun_optical_depth(
 
 float far_optical_depth(
     metal::float3 rel_2,
+    metal::float3 p_7,
     Layer l_5,
-    constant Frame& frame
+    constant Frame& frame,
+    metal::texture2d<float, metal::access::sample> weather_tex,
+    metal::sampler noise_sampler
 ) {
     bool local_31 = {};
     float reach = {};
     bool local_32 = {};
-    float profile = 0.0;
+    float tau_5 = 0.0;
     uint i_11 = 0u;
     float chord = frame.light_model.z;
     if (!((chord <= 0.0))) {
-        uint _e14 = frame.counts.w;
-        local_31 = _e14 == 0u;
+        uint _e15 = frame.counts.w;
+        local_31 = _e15 == 0u;
     } else {
         local_31 = true;
     }
-    bool _e18 = local_31;
-    if (_e18) {
+    bool _e19 = local_31;
+    if (_e19) {
         return 0.0;
     }
     float growth_1 = frame.march.y;
-    uint _e27 = frame.counts.w;
-    float steps_3 = static_cast<float>(_e27);
-    float _e32 = frame.march.z;
-    reach = _e32 * steps_3;
+    uint _e28 = frame.counts.w;
+    float steps_3 = static_cast<float>(_e28);
+    float _e33 = frame.march.z;
+    reach = _e33 * steps_3;
     if (growth_1 != 1.0) {
-        float _e40 = frame.march.z;
-        reach = (_e40 * (metal::pow(growth_1, steps_3) - 1.0)) / (growth_1 - 1.0);
+        float _e41 = frame.march.z;
+        reach = (_e41 * (metal::pow(growth_1, steps_3) - 1.0)) / (growth_1 - 1.0);
     }
-    metal::float4 _e50 = frame.sun_direction;
-    metal::float3 sun_3 = _e50.xyz;
-    float _e52 = altitude_of(rel_2, frame);
-    Roots _e54 = ray_shell_from(rel_2, _e52, sun_3, l_5.top, frame);
-    float _e56 = reach;
-    float len_1 = _e54.t1_ - _e56;
-    if (!(!(_e54.hit))) {
+    metal::float4 _e51 = frame.sun_direction;
+    metal::float3 sun_3 = _e51.xyz;
+    float _e53 = altitude_of(rel_2, frame);
+    Roots _e55 = ray_shell_from(rel_2, _e53, sun_3, l_5.top, frame);
+    float _e57 = reach;
+    float len_1 = _e55.t1_ - _e57;
+    if (!(!(_e55.hit))) {
         local_32 = !((len_1 > 0.0));
     } else {
         local_32 = true;
     }
-    bool _e67 = local_32;
-    if (_e67) {
+    bool _e68 = local_32;
+    if (_e68) {
         return 0.0;
     }
     uint2 loop_bound_6 = uint2(4294967295u);
@@ -1588,35 +1591,37 @@ float far_optical_depth(
         if (metal::all(loop_bound_6 == uint2(0u))) { break; }
         loop_bound_6 -= uint2(loop_bound_6.y == 0u, 1u);
         if (!loop_init_6) {
-            uint _e97 = i_11;
-            i_11 = _e97 + 1u;
+            uint _e110 = i_11;
+            i_11 = _e110 + 1u;
         }
         loop_init_6 = false;
-        uint _e73 = i_11;
-        if (_e73 < 4u) {
+        uint _e74 = i_11;
+        if (_e74 < 4u) {
         } else {
             break;
         }
         {
-            float _e76 = reach;
-            uint _e77 = i_11;
-            float t_5 = _e76 + (((static_cast<float>(_e77) + 0.5) * 0.25) * len_1);
-            float _e87 = altitude_of(rel_2 + (sun_3 * t_5), frame);
-            float _e88 = layer_height(l_5, _e87);
-            float _e89 = saturate(_e88);
-            float _e90 = profile;
-            float _e92 = height_signal(_e89, l_5.cloud_type, frame);
-            profile = _e90 + (0.25 * _e92);
+            float _e77 = reach;
+            uint _e78 = i_11;
+            float t_5 = _e77 + (((static_cast<float>(_e78) + 0.5) * 0.25) * len_1);
+            float _e88 = altitude_of(rel_2 + (sun_3 * t_5), frame);
+            float _e89 = layer_height(l_5, _e88);
+            float _e90 = saturate(_e89);
+            Weather _e93 = sample_weather(p_7 + (sun_3 * t_5), l_5, frame, weather_tex, noise_sampler);
+            float cov = _e93.coverage;
+            float _e96 = height_signal(_e90, l_5.cloud_type, frame);
+            float f_3 = metal::min(cov * _e96, 0.95);
+            float _e100 = tau_5;
+            tau_5 = _e100 + (((0.25 * len_1) * f_3) / ((1.0 - f_3) * chord));
         }
     }
-    float _e100 = profile;
-    float f_3 = metal::min(l_5.coverage * _e100, 0.95);
-    return (len_1 * f_3) / ((1.0 - f_3) * chord);
+    float _e112 = tau_5;
+    return _e112;
 }
 
 float sun_scattering(
     float cos_theta_5,
-    float tau_5,
+    float tau_6,
     float far_1,
     float build,
     float coverage,
@@ -1661,7 +1666,7 @@ float sun_scattering(
             float _e43 = kc;
             float _e44 = phase(cos_theta_5, _e43, frame);
             float _e46 = kb;
-            octave_sum = _e41 + ((_e42 * _e44) / (1.0 + (_e46 * tau_5)));
+            octave_sum = _e41 + ((_e42 * _e44) / (1.0 + (_e46 * tau_6)));
         }
     }
     float _e58 = frame.sun_direction.y;
@@ -1679,12 +1684,12 @@ float sun_scattering(
     float _e96 = phase(cos_theta_5, 1.0, frame);
     float _e101 = feed;
     float _e103 = octave_sum;
-    total = (_e96 * metal::exp(-(tau_5) - far_1)) + ((_e101 * build) * _e103);
+    total = (_e96 * metal::exp(-(tau_6) - far_1)) + ((_e101 * build) * _e103);
     uint _e110 = frame.modes.w;
     if ((_e110 & FLAG_BEER_POWDER) != 0u) {
         float _e115 = total;
         float _e119 = frame.phase.w;
-        total = _e115 * (1.0 - metal::exp(-(_e119) * tau_5));
+        total = _e115 * (1.0 - metal::exp(-(_e119) * tau_6));
     }
     float _e126 = total;
     return _e126;
@@ -1732,7 +1737,7 @@ float height_fraction(
 
 metal::float3 scattered_light(
     metal::float3 rel_3,
-    metal::float3 p_7,
+    metal::float3 p_8,
     float alt_12,
     float density_2,
     metal::float3 view,
@@ -1748,22 +1753,22 @@ metal::float3 scattered_light(
     metal::sampler noise_sampler
 ) {
     metal::float3 sun_light = metal::float3(0.0);
-    float tau_6 = 0.0;
+    float tau_7 = 0.0;
     float far_2 = 0.0;
     metal::float4 _e9 = frame.sun_direction;
     metal::float3 sun_4 = _e9.xyz;
     float _e11 = layer_height(l_6, alt_12);
     float _e12 = saturate(_e11);
-    Weather _e16 = sample_weather(p_7, l_6, frame, weather_tex, noise_sampler);
+    Weather _e16 = sample_weather(p_8, l_6, frame, weather_tex, noise_sampler);
     bool _e17 = hits_ground(rel_3, alt_12, sun_4, frame);
     if (!(_e17)) {
         if (LIGHT_MARCH) {
-            float _e24 = sun_optical_depth(rel_3, p_7, l_6, counters_6, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
-            tau_6 = _e24;
-            float _e25 = far_optical_depth(rel_3, l_6, frame);
+            float _e24 = sun_optical_depth(rel_3, p_8, l_6, counters_6, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+            tau_7 = _e24;
+            float _e25 = far_optical_depth(rel_3, p_8, l_6, frame, weather_tex, noise_sampler);
             far_2 = _e25;
         }
-        float _e27 = tau_6;
+        float _e27 = tau_7;
         float _e28 = far_2;
         float _e29 = octave_buildup(density_2, frame);
         float _e31 = sun_scattering(metal::dot(view, sun_4), _e27, _e28, _e29, _e16.coverage, frame);
@@ -1831,7 +1836,7 @@ metal::float3 ground_shadow_loss(
 }
 
 float empty_cell_exit(
-    metal::float3 p_8,
+    metal::float3 p_9,
     metal::float3 d_11,
     constant Frame& frame,
     metal::texture2d<float, metal::access::sample> occupancy_in
@@ -1839,7 +1844,7 @@ float empty_cell_exit(
     float exit = 1000000000000000000000000000000.0;
     metal::float4 _e6 = frame.wind_offsets0_;
     float _e12 = frame.periods.x;
-    metal::float2 uv_4 = metal::fract((p_8.xz - _e6.xy) / metal::float2(_e12)) * 64.0;
+    metal::float2 uv_4 = metal::fract((p_9.xz - _e6.xy) / metal::float2(_e12)) * 64.0;
     metal::uint2 cell_1 = metal::min(naga_f2u32(uv_4), metal::uint2(63u));
     metal::float4 _e23 = occupancy_in.read(metal::uint2(cell_1), 0);
     float m_2 = _e23.x;
@@ -1985,9 +1990,9 @@ bool march_layer(
         uint _e79 = i_13;
         float t_7 = span_1.start + ((static_cast<float>(_e79) + jitter) * dt_2);
         metal::float3 rel_7 = (view_2 * t_7) + metal::float3(0.0, cam_alt_1, 0.0);
-        metal::float3 p_13 = metal::float3(rel_7.x + cam_xz.x, rel_7.y, rel_7.z + cam_xz.y);
+        metal::float3 p_14 = metal::float3(rel_7.x + cam_xz.x, rel_7.y, rel_7.z + cam_xz.y);
         if (empty_skip) {
-            float _e97 = empty_cell_exit(p_13, view_2, frame, occupancy_in);
+            float _e97 = empty_cell_exit(p_14, view_2, frame, occupancy_in);
             if (_e97 > 0.0) {
                 uint _e106 = steps_1;
                 uint next_1 = naga_f2u32(metal::clamp(metal::ceil((((t_7 + _e97) - span_1.start) / dt_2) - jitter), 0.0, static_cast<float>(_e106)));
@@ -1997,7 +2002,7 @@ bool march_layer(
             }
         }
         float _e115 = altitude_of(rel_7, frame);
-        float _e116 = layer_density(p_13, _e115, l_7, counters_7, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+        float _e116 = layer_density(p_14, _e115, l_7, counters_7, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
         if (_e116 <= 0.0) {
             uint _e119 = empty;
             empty = _e119 + 1u;
@@ -2027,7 +2032,7 @@ bool march_layer(
         }
         empty = 0u;
         float sigma_t_2 = sigma_e * _e116;
-        metal::float3 _e145 = scattered_light(rel_7, p_13, _e115, _e116, view_2, l_7, counters_7, frame, transmittance_lut_in, sky_ambient_in, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+        metal::float3 _e145 = scattered_light(rel_7, p_14, _e115, _e116, view_2, l_7, counters_7, frame, transmittance_lut_in, sky_ambient_in, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
         float transmittance_1 = state.transmittance;
         metal::float3 _e149 = state.radiance;
         metal::float3 _e150 = step_integral(_e145, sigma_t_2, dt_2, frame);
@@ -2389,8 +2394,8 @@ metal::float4 history_nearest(
 ) {
     metal::uint4 _e3 = frame.counts;
     metal::int2 size_5 = static_cast<metal::int2>(_e3.xy);
-    metal::int2 p_14 = metal::clamp(naga_f2i32(metal::rint(q_2)), metal::int2(0), as_type<metal::int2>(as_type<metal::uint2>(size_5) - as_type<metal::uint2>(metal::int2(1))));
-    metal::float4 _e16 = history_in.read(metal::uint2(p_14), 0);
+    metal::int2 p_15 = metal::clamp(naga_f2i32(metal::rint(q_2)), metal::int2(0), as_type<metal::int2>(as_type<metal::uint2>(size_5) - as_type<metal::uint2>(metal::int2(1))));
+    metal::float4 _e16 = history_in.read(metal::uint2(p_15), 0);
     return _e16;
 }
 
@@ -2401,8 +2406,8 @@ metal::float4 meta_at(
 ) {
     metal::uint4 _e3 = frame.counts;
     metal::int2 size_6 = static_cast<metal::int2>(_e3.xy);
-    metal::int2 p_15 = metal::clamp(naga_f2i32(metal::rint(q_3)), metal::int2(0), as_type<metal::int2>(as_type<metal::uint2>(size_6) - as_type<metal::uint2>(metal::int2(1))));
-    metal::float4 _e16 = meta_in.read(metal::uint2(p_15), 0);
+    metal::int2 p_16 = metal::clamp(naga_f2i32(metal::rint(q_3)), metal::int2(0), as_type<metal::int2>(as_type<metal::uint2>(size_6) - as_type<metal::uint2>(metal::int2(1))));
+    metal::float4 _e16 = meta_in.read(metal::uint2(p_16), 0);
     return _e16;
 }
 
@@ -2469,7 +2474,7 @@ float rng_exponential(
 }
 
 Segments layer_segments(
-    metal::float3 p_9,
+    metal::float3 p_10,
     float alt_13,
     metal::float3 d_12,
     constant Frame& frame
@@ -2485,9 +2490,9 @@ Segments layer_segments(
     bool local_49 = {};
     metal::float2 _e10 = layers_span(frame);
     float bottom_2 = _e10.x;
-    Roots _e12 = ray_shell_from(p_9, alt_13, d_12, bottom_2, frame);
-    Roots _e14 = ray_shell_from(p_9, alt_13, d_12, _e10.y, frame);
-    bool _e15 = hits_ground(p_9, alt_13, d_12, frame);
+    Roots _e12 = ray_shell_from(p_10, alt_13, d_12, bottom_2, frame);
+    Roots _e14 = ray_shell_from(p_10, alt_13, d_12, _e10.y, frame);
+    bool _e15 = hits_ground(p_10, alt_13, d_12, frame);
     if (!(!(_e14.hit))) {
         local_45 = _e14.t1_ <= 0.0;
     } else {
@@ -2573,9 +2578,9 @@ float density_at(
 ) {
     float _e6 = frame.camera_position.x;
     float _e13 = frame.camera_position.z;
-    metal::float3 p_16 = metal::float3(rel_5.x + _e6, rel_5.y, rel_5.z + _e13);
+    metal::float3 p_17 = metal::float3(rel_5.x + _e6, rel_5.y, rel_5.z + _e13);
     float _e16 = altitude_of(rel_5, frame);
-    float _e17 = cloud_density(p_16, _e16, counters_9, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+    float _e17 = cloud_density(p_17, _e16, counters_9, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
     return _e17;
 }
 
@@ -2593,8 +2598,8 @@ float empty_cell_skip(
     metal::float3 rel_8 = origin_3 + (dir_1 * t_2);
     float _e13 = frame.camera_position.x;
     float _e20 = frame.camera_position.z;
-    metal::float3 p_17 = metal::float3(rel_8.x + _e13, rel_8.y, rel_8.z + _e20);
-    float _e23 = empty_cell_exit(p_17, dir_1, frame, occupancy_in);
+    metal::float3 p_18 = metal::float3(rel_8.x + _e13, rel_8.y, rel_8.z + _e20);
+    float _e23 = empty_cell_exit(p_18, dir_1, frame, occupancy_in);
     if (_e23 <= 0.0) {
         return 0.0;
     }
@@ -3095,7 +3100,7 @@ float basic_sun_depth(
     metal::texture2d<float, metal::access::sample> curl_tex,
     metal::sampler noise_sampler
 ) {
-    float tau_7 = 0.0;
+    float tau_8 = 0.0;
     uint i_16 = 1u;
     uint steps_4 = frame.counts.w;
     if (steps_4 == 0u) {
@@ -3135,14 +3140,14 @@ float basic_sun_depth(
             counters_13.light = _e68 + 1u;
             uint _e71 = i_16;
             metal::float3 q_8 = rel_6 + (sun_6 * (static_cast<float>(_e71) * dt_3));
-            metal::float3 p_18 = metal::float3(q_8.x + cam_xz_1.x, q_8.y, q_8.z + cam_xz_1.y);
-            float _e84 = tau_7;
+            metal::float3 p_19 = metal::float3(q_8.x + cam_xz_1.x, q_8.y, q_8.z + cam_xz_1.y);
+            float _e84 = tau_8;
             float _e85 = altitude_of(q_8, frame);
-            float _e86 = cloud_density(p_18, _e85, counters_13, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
-            tau_7 = _e84 + ((sigma_t_5 * _e86) * dt_3);
+            float _e86 = cloud_density(p_19, _e85, counters_13, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+            tau_8 = _e84 + ((sigma_t_5 * _e86) * dt_3);
         }
     }
-    float _e93 = tau_7;
+    float _e93 = tau_8;
     return _e93;
 }
 
@@ -3206,9 +3211,9 @@ MarchResult basic_pixel(
                     uint _e78 = i_17;
                     float t_9 = _e25.start + (static_cast<float>(_e78) * dt_4);
                     metal::float3 rel_9 = (_e1 * t_9) + metal::float3(0.0, cam_alt_3, 0.0);
-                    metal::float3 p_19 = metal::float3(rel_9.x + cam_xz_2.x, rel_9.y, rel_9.z + cam_xz_2.y);
+                    metal::float3 p_20 = metal::float3(rel_9.x + cam_xz_2.x, rel_9.y, rel_9.z + cam_xz_2.y);
                     float _e95 = altitude_of(rel_9, frame);
-                    float _e96 = cloud_density(p_19, _e95, counters_14, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+                    float _e96 = cloud_density(p_20, _e95, counters_14, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
                     if (_e96 <= 0.0) {
                         continue;
                     }
@@ -3257,11 +3262,11 @@ float atlas_hash(
 }
 
 float value_noise(
-    metal::float2 p_10,
+    metal::float2 p_11,
     uint seed
 ) {
-    metal::uint2 i_19 = naga_f2u32(metal::floor(p_10));
-    metal::float2 f_6 = metal::fract(p_10);
+    metal::uint2 i_19 = naga_f2u32(metal::floor(p_11));
+    metal::float2 f_6 = metal::fract(p_11);
     metal::float2 s_12 = (f_6 * f_6) * (metal::float2(3.0) - (2.0 * f_6));
     uint h_11 = seed * 7919u;
     float _e17 = atlas_hash(i_19.x + h_11, i_19.y);
@@ -3272,14 +3277,14 @@ float value_noise(
 }
 
 float value_fbm(
-    metal::float2 p_11,
+    metal::float2 p_12,
     uint seed_1
 ) {
     float sum_5 = 0.0;
     float weight = 0.5;
     metal::float2 q_4 = {};
     uint o = 0u;
-    q_4 = p_11;
+    q_4 = p_12;
     uint2 loop_bound_19 = uint2(4294967295u);
     bool loop_init_15 = true;
     while(true) {
@@ -3872,15 +3877,15 @@ struct multiscatter_lutInput {
                 }
                 {
                     uint _e61 = i_1;
-                    metal::float3 p_20 = origin_6 + (_e48 * (dt_6 * (static_cast<float>(_e61) + 0.5)));
-                    float rp_7 = metal::length(p_20);
+                    metal::float3 p_21 = origin_6 + (_e48 * (dt_6 * (static_cast<float>(_e61) + 0.5)));
+                    float rp_7 = metal::length(p_21);
                     float _e69 = air_bottom(frame);
                     AirSample _e71 = air_at(rp_7 - _e69, frame);
                     metal::float3 _e72 = tau;
                     metal::float3 t_10 = metal::exp(-((_e72 + ((0.5 * _e71.extinction) * dt_6))));
                     metal::float3 s_13 = _e71.rayleigh + metal::float3(_e71.mie);
                     metal::float3 _e84 = l2_;
-                    metal::float3 _e90 = sun_transmittance(rp_7, metal::dot(p_20 / metal::float3(rp_7), sun_8), frame, transmittance_lut_in);
+                    metal::float3 _e90 = sun_transmittance(rp_7, metal::dot(p_21 / metal::float3(rp_7), sun_8), frame, transmittance_lut_in);
                     l2_ = _e84 + ((((t_10 * s_13) * 0.07957747) * _e90) * dt_6);
                     metal::float3 _e94 = f_ms;
                     f_ms = _e94 + ((t_10 * s_13) * dt_6);
@@ -3997,9 +4002,9 @@ struct aerial_perspectiveInput {
                     uint _e40 = k_1;
                     float t0_1 = AERIAL_SLICE_KM * (static_cast<float>(_e38) + (static_cast<float>(_e40) / 4.0));
                     float dt_7 = metal::max(metal::min(0.25, _e9.x - t0_1), 0.0);
-                    metal::float3 p_21 = _e8 + (_e7 * (t0_1 + (0.5 * dt_7)));
-                    float r_21 = metal::length(p_21);
-                    float mu_s_8 = metal::dot(p_21 / metal::float3(r_21), sun_10);
+                    metal::float3 p_22 = _e8 + (_e7 * (t0_1 + (0.5 * dt_7)));
+                    float r_21 = metal::length(p_22);
+                    float mu_s_8 = metal::dot(p_22 / metal::float3(r_21), sun_10);
                     float _e64 = air_bottom(frame);
                     AirSample _e66 = air_at(r_21 - _e64, frame);
                     metal::float3 _e67 = tau_1;
@@ -4224,10 +4229,10 @@ struct cloud_shadowInput {
                     {
                         uint _e65 = k_4;
                         metal::float3 q_12 = _e7 + (sun_13 * (start_2 + ((static_cast<float>(_e65) + 0.5) * dt_8)));
-                        metal::float3 p_22 = metal::float3(q_12.x + cam_xz_3.x, q_12.y, q_12.z + cam_xz_3.y);
+                        metal::float3 p_23 = metal::float3(q_12.x + cam_xz_3.x, q_12.y, q_12.z + cam_xz_3.y);
                         float _e81 = tau_2;
                         float _e82 = altitude_of(q_12, frame);
-                        float _e83 = layer_density(p_22, _e82, _e43, counters, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+                        float _e83 = layer_density(p_23, _e82, _e43, counters, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
                         tau_2 = _e81 + (_e83 * dt_8);
                     }
                 }

@@ -696,9 +696,9 @@ Scattered integrate_air(vec3 origin, vec3 d_7, float distance_km, uint steps, ve
             float _e32 = t0_;
             float dt_1 = (t1_ - _e32);
             float _e34 = t0_;
-            vec3 p_12 = (origin + (d_7 * (0.5 * (_e34 + t1_))));
-            float r_15 = length(p_12);
-            vec3 up = (p_12 / vec3(r_15));
+            vec3 p_13 = (origin + (d_7 * (0.5 * (_e34 + t1_))));
+            float r_15 = length(p_13);
+            vec3 up = (p_13 / vec3(r_15));
             float mu_s_5 = dot(up, sun);
             float _e44 = air_bottom();
             AirSample _e46 = air_at((r_15 - _e44));
@@ -920,77 +920,7 @@ float phase(float cos_theta_4, float scale) {
     }
 }
 
-float far_optical_depth(vec3 rel_2, Layer l_5) {
-    bool local_31 = false;
-    float reach = 0.0;
-    bool local_32 = false;
-    float profile = 0.0;
-    uint i_11 = 0u;
-    float chord = _group_0_binding_0_cs.light_model.z;
-    if (!((chord <= 0.0))) {
-        uint _e14 = _group_0_binding_0_cs.counts.w;
-        local_31 = (_e14 == 0u);
-    } else {
-        local_31 = true;
-    }
-    bool _e18 = local_31;
-    if (_e18) {
-        return 0.0;
-    }
-    float growth = _group_0_binding_0_cs.march.y;
-    uint _e27 = _group_0_binding_0_cs.counts.w;
-    float steps_2 = float(_e27);
-    float _e32 = _group_0_binding_0_cs.march.z;
-    reach = (_e32 * steps_2);
-    if ((growth != 1.0)) {
-        float _e40 = _group_0_binding_0_cs.march.z;
-        reach = ((_e40 * (pow(growth, steps_2) - 1.0)) / (growth - 1.0));
-    }
-    vec4 _e50 = _group_0_binding_0_cs.sun_direction;
-    vec3 sun_2 = _e50.xyz;
-    float _e52 = altitude_of(rel_2);
-    Roots _e54 = ray_shell_from(rel_2, _e52, sun_2, l_5.top);
-    float _e56 = reach;
-    float len_1 = (_e54.t1_ - _e56);
-    if (!(!(_e54.hit))) {
-        local_32 = !((len_1 > 0.0));
-    } else {
-        local_32 = true;
-    }
-    bool _e67 = local_32;
-    if (_e67) {
-        return 0.0;
-    }
-    bool loop_init_4 = true;
-    while(true) {
-        if (!loop_init_4) {
-            uint _e97 = i_11;
-            i_11 = (_e97 + 1u);
-        }
-        loop_init_4 = false;
-        uint _e73 = i_11;
-        if ((_e73 < 4u)) {
-        } else {
-            break;
-        }
-        {
-            float _e76 = reach;
-            uint _e77 = i_11;
-            float t_5 = (_e76 + (((float(_e77) + 0.5) * 0.25) * len_1));
-            float _e87 = altitude_of((rel_2 + (sun_2 * t_5)));
-            float _e88 = layer_height(l_5, _e87);
-            float _e89 = saturate(_e88);
-            float _e90 = profile;
-            float _e92 = height_signal(_e89, l_5.cloud_type);
-            profile = (_e90 + (0.25 * _e92));
-        }
-    }
-    float _e100 = profile;
-    float f_2 = min((l_5.coverage * _e100), 0.95);
-    return ((len_1 * f_2) / ((1.0 - f_2) * chord));
-}
-
-float sun_scattering(float cos_theta_5, float tau_5, float far_1, float build, float coverage) {
+float sun_scattering(float cos_theta_5, float tau_6, float far_1, float build, float coverage) {
     float octave_sum = 0.0;
     float ka = 1.0;
     float kb = 1.0;
@@ -1003,13 +933,13 @@ float sun_scattering(float cos_theta_5, float tau_5, float far_1, float build, f
     float c_8 = _group_0_binding_0_cs.multiple_scattering.z;
     uint _e20 = _group_0_binding_0_cs.misc.x;
     uint octaves = min(_e20, MAX_OCTAVES);
-    bool loop_init_5 = true;
+    bool loop_init_4 = true;
     while(true) {
-        if (!loop_init_5) {
+        if (!loop_init_4) {
             uint _e53 = i_12;
             i_12 = (_e53 + 1u);
         }
-        loop_init_5 = false;
+        loop_init_4 = false;
         uint _e33 = i_12;
         if ((_e33 < octaves)) {
         } else {
@@ -1027,7 +957,7 @@ float sun_scattering(float cos_theta_5, float tau_5, float far_1, float build, f
             float _e43 = kc;
             float _e44 = phase(cos_theta_5, _e43);
             float _e46 = kb;
-            octave_sum = (_e41 + ((_e42 * _e44) / (1.0 + (_e46 * tau_5))));
+            octave_sum = (_e41 + ((_e42 * _e44) / (1.0 + (_e46 * tau_6))));
         }
     }
     float _e58 = _group_0_binding_0_cs.sun_direction.y;
@@ -1045,12 +975,12 @@ float sun_scattering(float cos_theta_5, float tau_5, float far_1, float build, f
     float _e96 = phase(cos_theta_5, 1.0);
     float _e101 = feed;
     float _e103 = octave_sum;
-    total = ((_e96 * exp((-(tau_5) - far_1))) + ((_e101 * build) * _e103));
+    total = ((_e96 * exp((-(tau_6) - far_1))) + ((_e101 * build) * _e103));
     uint _e110 = _group_0_binding_0_cs.modes.w;
     if (((_e110 & FLAG_BEER_POWDER) != 0u)) {
         float _e115 = total;
         float _e119 = _group_0_binding_0_cs.phase.w;
-        total = (_e115 * (1.0 - exp((-(_e119) * tau_5))));
+        total = (_e115 * (1.0 - exp((-(_e119) * tau_6))));
     }
     float _e126 = total;
     return _e126;
@@ -1088,8 +1018,8 @@ vec3 step_integral(vec3 source, float sigma_t, float dt) {
         return (source * dt);
     }
     float x_8 = (sigma_t * dt);
-    float f_3 = ((x_8 < 0.001) ? (1.0 - (0.5 * x_8)) : ((1.0 - exp(-(x_8))) / x_8));
-    return (source * (dt * f_3));
+    float f_2 = ((x_8 < 0.001) ? (1.0 - (0.5 * x_8)) : ((1.0 - exp(-(x_8))) / x_8));
+    return (source * (dt * f_2));
 }
 
 float start_offset(uvec2 pixel_3) {
@@ -1234,7 +1164,7 @@ float rng_exponential(inout uint rng_2, float sigma) {
     return (-(log((1.0 - _e2))) / sigma);
 }
 
-Segments layer_segments(vec3 p_9, float alt_13, vec3 d_12) {
+Segments layer_segments(vec3 p_10, float alt_13, vec3 d_12) {
     Segments s_1 = Segments(vec2(0.0), vec2(0.0), 0u);
     bool local_45 = false;
     vec2 a_1 = vec2(0.0);
@@ -1246,9 +1176,9 @@ Segments layer_segments(vec3 p_9, float alt_13, vec3 d_12) {
     bool local_49 = false;
     vec2 _e10 = layers_span();
     float bottom_1 = _e10.x;
-    Roots _e12 = ray_shell_from(p_9, alt_13, d_12, bottom_1);
-    Roots _e14 = ray_shell_from(p_9, alt_13, d_12, _e10.y);
-    bool _e15 = hits_ground(p_9, alt_13, d_12);
+    Roots _e12 = ray_shell_from(p_10, alt_13, d_12, bottom_1);
+    Roots _e14 = ray_shell_from(p_10, alt_13, d_12, _e10.y);
+    bool _e15 = hits_ground(p_10, alt_13, d_12);
     if (!(!(_e14.hit))) {
         local_45 = (_e14.t1_ <= 0.0);
     } else {
@@ -1325,13 +1255,13 @@ Segments layer_segments(vec3 p_9, float alt_13, vec3 d_12) {
 float density_max() {
     float m_1 = 0.0;
     uint i_15 = 0u;
-    bool loop_init_6 = true;
+    bool loop_init_5 = true;
     while(true) {
-        if (!loop_init_6) {
+        if (!loop_init_5) {
             uint _e17 = i_15;
             i_15 = (_e17 + 1u);
         }
-        loop_init_6 = false;
+        loop_init_5 = false;
         uint _e4 = i_15;
         uint _e5 = layer_count();
         if ((_e4 < _e5)) {
@@ -1395,10 +1325,10 @@ PhaseSample sample_phase(vec3 dir_4, inout uint rng_5) {
     float sign_ = ((dir_4.z >= 0.0) ? 1.0 : -1.0);
     float a_8 = (-1.0 / (sign_ + dir_4.z));
     float bb = ((dir_4.x * dir_4.y) * a_8);
-    vec3 t_6 = vec3((1.0 + (((sign_ * dir_4.x) * dir_4.x) * a_8)), (sign_ * bb), (-(sign_) * dir_4.x));
+    vec3 t_5 = vec3((1.0 + (((sign_ * dir_4.x) * dir_4.x) * a_8)), (sign_ * bb), (-(sign_) * dir_4.x));
     vec3 b_9 = vec3(bb, (sign_ + ((dir_4.y * dir_4.y) * a_8)), -(dir_4.y));
     float _e109 = cos_theta_6;
-    vec3 w_4 = normalize((((t_6 * (sin_theta * cos(phi_1))) + (b_9 * (sin_theta * sin(phi_1)))) + (dir_4 * _e109)));
+    vec3 w_4 = normalize((((t_5 * (sin_theta * cos(phi_1))) + (b_9 * (sin_theta * sin(phi_1)))) + (dir_4 * _e109)));
     float _e113 = cos_theta_6;
     float _e115 = phase(_e113, 1.0);
     float _e116 = pdf;
@@ -1449,10 +1379,10 @@ float atlas_hash(uint a_2, uint b_2) {
     return (float((_e4 >> 8u)) * 5.9604645e-8);
 }
 
-float value_noise(vec2 p_10, uint seed) {
-    uvec2 i_19 = uvec2(floor(p_10));
-    vec2 f_4 = fract(p_10);
-    vec2 s_8 = ((f_4 * f_4) * (vec2(3.0) - (2.0 * f_4)));
+float value_noise(vec2 p_11, uint seed) {
+    uvec2 i_19 = uvec2(floor(p_11));
+    vec2 f_3 = fract(p_11);
+    vec2 s_8 = ((f_3 * f_3) * (vec2(3.0) - (2.0 * f_3)));
     uint h_11 = (seed * 7919u);
     float _e17 = atlas_hash((i_19.x + h_11), i_19.y);
     float _e23 = atlas_hash(((i_19.x + 1u) + h_11), i_19.y);
@@ -1461,19 +1391,19 @@ float value_noise(vec2 p_10, uint seed) {
     return mix(mix(_e17, _e23, s_8.x), mix(_e29, _e37, s_8.x), s_8.y);
 }
 
-float value_fbm(vec2 p_11, uint seed_1) {
+float value_fbm(vec2 p_12, uint seed_1) {
     float sum_5 = 0.0;
     float weight = 0.5;
     vec2 q_4 = vec2(0.0);
     uint o = 0u;
-    q_4 = p_11;
-    bool loop_init_7 = true;
+    q_4 = p_12;
+    bool loop_init_6 = true;
     while(true) {
-        if (!loop_init_7) {
+        if (!loop_init_6) {
             uint _e26 = o;
             o = (_e26 + 1u);
         }
-        loop_init_7 = false;
+        loop_init_6 = false;
         uint _e9 = o;
         if ((_e9 < 4u)) {
         } else {
@@ -1512,13 +1442,13 @@ float sprite_texture(uint tile_1, vec2 uv) {
         return (((mask * streak) * _e46) * 0.8);
     }
     uint blobs = (5u + (tile_1 % 4u));
-    bool loop_init_8 = true;
+    bool loop_init_7 = true;
     while(true) {
-        if (!loop_init_8) {
+        if (!loop_init_7) {
             uint _e108 = i_18;
             i_18 = (_e108 + 1u);
         }
-        loop_init_8 = false;
+        loop_init_7 = false;
         uint _e58 = i_18;
         if ((_e58 < blobs)) {
         } else {
@@ -1573,13 +1503,13 @@ SpriteCell sprite_cell(uint cell) {
     ivec2 local_62 = ivec2(int((cell % 8u)), int(((cell / 8u) % 8u)));
     vec4 _e15 = _group_0_binding_0_cs.camera_position;
     start_1 = (ivec2(floor((_e15.xz / vec2(12000.0)))) - ivec2(4));
-    bool loop_init_9 = true;
+    bool loop_init_8 = true;
     while(true) {
-        if (!loop_init_9) {
+        if (!loop_init_8) {
             uint _e35 = k_10;
             k_10 = (_e35 - 1u);
         }
-        loop_init_9 = false;
+        loop_init_8 = false;
         uint _e27 = k_10;
         if ((_e27 > level_1)) {
         } else {
@@ -1642,23 +1572,23 @@ vec2 sprite_corner(uint k_11) {
 
 vec3 sky_radiance(vec3 d_14, float alt_16) {
     vec4 _e4 = _group_0_binding_0_cs.sun_direction;
-    vec3 sun_3 = _e4.xyz;
+    vec3 sun_2 = _e4.xyz;
     vec4 _e8 = _group_0_binding_0_cs.sun_illuminance;
     vec3 e = _e8.xyz;
-    float _e15 = saturate(((sun_3.y * 4.0) + 0.3));
+    float _e15 = saturate(((sun_2.y * 4.0) + 0.3));
     bool _e19 = hits_ground(vec3(0.0, alt_16, 0.0), alt_16, d_14);
     if (_e19) {
         vec3 ground_albedo = vec3(0.035, 0.035, 0.03);
-        return (ground_albedo * (((e * max(sun_3.y, 0.0)) / vec3(3.1415927)) + ((0.05 * e) * _e15)));
+        return (ground_albedo * (((e * max(sun_2.y, 0.0)) / vec3(3.1415927)) + ((0.05 * e) * _e15)));
     }
     vec3 zenith = vec3(0.018, 0.04, 0.1);
     vec3 horizon_2 = vec3(0.07, 0.085, 0.11);
     float _e45 = saturate(d_14.y);
     vec3 gradient_1 = mix(horizon_2, zenith, sqrt(_e45));
     vec3 sunset = (((1.0 - (_e15 * 0.8)) * pow((1.0 - _e45), 6.0)) * vec3(0.25, 0.1, 0.0));
-    float _e64 = phase_hg(dot(d_14, sun_3), 0.76);
+    float _e64 = phase_hg(dot(d_14, sun_2), 0.76);
     float glow = (_e64 * 0.02);
-    float _e73 = saturate(((sun_3.y * 10.0) + 1.0));
+    float _e73 = saturate(((sun_2.y * 10.0) + 1.0));
     return (e * (((gradient_1 * _e15) + (sunset * _e73)) + vec3((glow * _e15))));
 }
 
@@ -1802,9 +1732,9 @@ void main() {
     vec3 d_22 = vec3((cos(_e15) * cos(phi_2)), sin(_e15), (cos(_e15) * sin(phi_2)));
     vec2 _e29 = air_ray_end(_e11, d_22);
     vec4 _e32 = _group_0_binding_0_cs.sun_direction;
-    vec3 sun_4 = _e32.xyz;
-    Scattered _e36 = integrate_air(_e11, d_22, _e29.x, SKY_VIEW_STEPS, sun_4);
-    vec3 _e43 = with_ground(_e36, _e11, d_22, _e29.x, sun_4, (_e29.y > 0.5));
+    vec3 sun_3 = _e32.xyz;
+    Scattered _e36 = integrate_air(_e11, d_22, _e29.x, SKY_VIEW_STEPS, sun_3);
+    vec3 _e43 = with_ground(_e36, _e11, d_22, _e29.x, sun_3, (_e29.y > 0.5));
     imageStore(_group_0_binding_34_cs, ivec2(id_2.xy), vec4(_e43, 1.0));
     return;
 }

@@ -131,10 +131,12 @@ pub(crate) fn sun_optical_depth(
 
 // WGSL: lighting.wgsl::far_optical_depth
 // Must agree: the reach is the real-time light march's (its segments' total length, from the
-// uniforms), the profile the mean of four height signals along the stretch beyond it.
+// uniforms), each quarter of the stretch beyond it a mixture of the weather map's coverage
+// times the height signal at its middle.
 /// The far shadow: the statistical optical depth (a binary Markov mixture's) of the sun ray's
 /// stretch inside layer `l` beyond the light march's reach, 0 with the far shadow off.
-pub(crate) fn far_optical_depth(f: &Frame, rel: V3, l: &Layer) -> f64 {
+pub(crate) fn far_optical_depth(m: &Model, rel: V3, p: V3, l: &Layer) -> f64 {
+    let f = &m.f;
     let chord = f.light_model[2];
     if chord <= 0.0 || f.counts[3] == 0 {
         return 0.0;
@@ -153,15 +155,15 @@ pub(crate) fn far_optical_depth(f: &Frame, rel: V3, l: &Layer) -> f64 {
     if !exit.hit || len.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
         return 0.0;
     }
-    let profile: f64 = (0..4)
+    (0..4)
         .map(|i| {
             let t = reach + (f64::from(i) + 0.5) * 0.25 * len;
             let h = saturate(layer_height(l, altitude_of(f, rel + sun * t)));
-            0.25 * height_signal(f, h, l.cloud_type)
+            let cover =
+                (m.weather(p + sun * t, l).coverage * height_signal(f, h, l.cloud_type)).min(0.95);
+            0.25 * len * cover / ((1.0 - cover) * chord)
         })
-        .sum();
-    let cover = (l.coverage * profile).min(0.95);
-    len * cover / ((1.0 - cover) * chord)
+        .sum()
 }
 
 // WGSL: lighting.wgsl::sun_scattering
@@ -262,7 +264,7 @@ pub(crate) fn scattered_light(
         // LIGHT_MARCH: with 0 light steps the march returns 0, as the switched-off WGSL does
         // (and so does its far shadow).
         let tau = sun_optical_depth(m, lm, rel, p, l, counters);
-        let far = far_optical_depth(f, rel, l);
+        let far = far_optical_depth(m, rel, p, l);
         let far_direct = if lm.to_layer_exit { 0.0 } else { far };
         let s = sun_scattering(
             f,
@@ -281,23 +283,29 @@ pub(crate) fn scattered_light(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::medium::{Medium, Shape};
+    use crate::medium::Medium;
     use stratus_scene::Scene;
 
     /// The far shadow's optical depth 100 m above the main layer's bottom under a sun
     /// `elevation_deg` up, in the default scene changed by `edit`.
     fn far_at(elevation_deg: f64, edit: impl Fn(&mut Scene)) -> f64 {
+        // Small noise textures: only the weather map's coverage matters here.
+        static NOISE: std::sync::OnceLock<stratus_noise::NoiseSet> = std::sync::OnceLock::new();
+        let noise = NOISE.get_or_init(|| {
+            stratus_noise::NoiseSet::generate(&stratus_noise::NoiseConfig {
+                weather_size: 32,
+                curl_size: 8,
+                detail_size: 8,
+                ..Default::default()
+            })
+        });
         let mut scene = Scene::default();
         scene.sun.elevation_deg = elevation_deg;
         edit(&mut scene);
-        let medium = Medium::Homogeneous {
-            sigma_s: 0.04,
-            sigma_a: 0.0,
-            shape: Shape::Slab,
-        };
-        let m = Model::new(&scene, medium);
+        let m = Model::new(&scene, Medium::Clouds(noise));
         let l = cloud_layers(&m.f).next().expect("the main layer");
-        far_optical_depth(&m.f, V3::new(0.0, l.bottom + 100.0, 0.0), &l)
+        let rel = V3::new(0.0, l.bottom + 100.0, 0.0);
+        far_optical_depth(&m, rel, rel, &l)
     }
 
     /// Nothing where the light march reaches the layer's top (a high sun), more the lower the

@@ -629,7 +629,8 @@ pub struct MultipleScattering {
     /// Far shadow, metres: 0 (off) or within [100, 1000000]. Beyond the light march's reach
     /// the sun ray's optical depth inside the layer is taken as `length f / ((1 - f)
     /// far_chord_m)`, a binary Markov mixture's (clear gaps of mean length `far_chord_m (1 -
-    /// f) / f`), `f` the layer's coverage times its mean height profile along that stretch.
+    /// f) / f`), over each quarter of that stretch, `f` the weather map's coverage times the
+    /// height profile at the quarter's middle.
     /// It shadows single scattering and the side light: toward a sun a few degrees up the
     /// light crosses tens of kilometres of layer that the light march does not sample.
     pub far_chord_m: f64,
