@@ -47,6 +47,27 @@ pub mod sky;
 mod temporal;
 mod texture;
 
+/// Small noise textures (a 32-texel weather map, 8-texel curl and detail), made once, for the
+/// unit tests that look at the sky, the far shadow or a few paths rather than the clouds'
+/// detail.
+#[cfg(test)]
+pub(crate) fn small_noise() -> std::sync::Arc<stratus_noise::NoiseSet> {
+    static NOISE: std::sync::OnceLock<std::sync::Arc<stratus_noise::NoiseSet>> =
+        std::sync::OnceLock::new();
+    NOISE
+        .get_or_init(|| {
+            std::sync::Arc::new(stratus_noise::NoiseSet::generate(
+                &stratus_noise::NoiseConfig {
+                    weather_size: 32,
+                    curl_size: 8,
+                    detail_size: 8,
+                    ..Default::default()
+                },
+            ))
+        })
+        .clone()
+}
+
 use std::collections::BTreeMap;
 use std::time::Instant;
 

@@ -289,20 +289,12 @@ mod tests {
     /// The far shadow's optical depth 100 m above the main layer's bottom under a sun
     /// `elevation_deg` up, in the default scene changed by `edit`.
     fn far_at(elevation_deg: f64, edit: impl Fn(&mut Scene)) -> f64 {
-        // Small noise textures: only the weather map's coverage matters here.
-        static NOISE: std::sync::OnceLock<stratus_noise::NoiseSet> = std::sync::OnceLock::new();
-        let noise = NOISE.get_or_init(|| {
-            stratus_noise::NoiseSet::generate(&stratus_noise::NoiseConfig {
-                weather_size: 32,
-                curl_size: 8,
-                detail_size: 8,
-                ..Default::default()
-            })
-        });
+        // Only the weather map's coverage matters here.
+        let noise = crate::small_noise();
         let mut scene = Scene::default();
         scene.sun.elevation_deg = elevation_deg;
         edit(&mut scene);
-        let m = Model::new(&scene, Medium::Clouds(noise));
+        let m = Model::new(&scene, Medium::Clouds(&noise));
         let l = cloud_layers(&m.f).next().expect("the main layer");
         let rel = V3::new(0.0, l.bottom + 100.0, 0.0);
         far_optical_depth(&m, rel, rel, &l)

@@ -120,12 +120,7 @@ mod tests {
     /// over.
     #[test]
     fn frames_accumulate_until_the_camera_moves() {
-        let noise = std::sync::Arc::new(NoiseSet::generate(&stratus_noise::NoiseConfig {
-            weather_size: 32,
-            curl_size: 8,
-            detail_size: 8,
-            ..Default::default()
-        }));
+        let noise = crate::small_noise();
         let mut scene = Scene::default().with_size(8, 4);
         scene.camera.pitch_deg = 20.0;
         scene.quality.integrator = stratus_scene::Integrator::Pathtrace;

@@ -930,10 +930,7 @@ pub(crate) fn sun_through_air(f: &Frame, sky: Option<&SkyTables>, rel: V3) -> V3
 
 #[cfg(test)]
 mod tests {
-    use std::sync::{Arc, OnceLock};
-
     use stratus_graph::{Backend, FrameInput, FramePlan};
-    use stratus_noise::{NoiseConfig, NoiseSet};
     use stratus_scene::{Scene, SkyModel};
 
     use super::*;
@@ -941,20 +938,8 @@ mod tests {
     use crate::geometry::view_ray;
     use crate::medium::{Medium, Model};
 
-    /// Small noise textures: the tests look at the sky, not at the clouds' detail.
-    fn noise() -> Arc<NoiseSet> {
-        static NOISE: OnceLock<Arc<NoiseSet>> = OnceLock::new();
-        NOISE
-            .get_or_init(|| {
-                Arc::new(NoiseSet::generate(&NoiseConfig {
-                    weather_size: 32,
-                    curl_size: 8,
-                    detail_size: 8,
-                    ..Default::default()
-                }))
-            })
-            .clone()
-    }
+    // Small noise textures: the tests look at the sky, not at the clouds' detail.
+    use crate::small_noise as noise;
 
     fn luminance(c: V3) -> f64 {
         0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z
