@@ -1570,7 +1570,15 @@ float far_optical_depth(float3 rel_2, float3 p_7, Layer l_5)
     return _e112;
 }
 
-float sun_scattering(float cos_theta_5, float tau_6, float far_1, float build, float coverage)
+float diffuse_limb(float view_y, float coverage)
+{
+    float k_12 = frame.light_model.w;
+    float layer_5 = ((1.0 + (k_12 * abs(view_y))) / (1.0 + ((2.0 * k_12) / 3.0)));
+    const float _e17 = saturate_(coverage);
+    return lerp(1.0, layer_5, _e17);
+}
+
+float sun_scattering(float cos_theta_5, float view_y_1, float tau_6, float far_1, float build, float coverage_1)
 {
     float octave_sum = 0.0;
     float ka = 1.0;
@@ -1583,62 +1591,65 @@ float sun_scattering(float cos_theta_5, float tau_6, float far_1, float build, f
     float a_8 = frame.multiple_scattering.x;
     float b_8 = frame.multiple_scattering.y;
     float c_8 = frame.multiple_scattering.z;
-    uint _e20 = frame.misc.x;
-    uint octaves = min(_e20, MAX_OCTAVES);
+    uint _e21 = frame.misc.x;
+    uint octaves = min(_e21, MAX_OCTAVES);
     uint2 loop_bound_7 = uint2(4294967295u, 4294967295u);
     bool loop_init_7 = true;
     while(true) {
         if (all(loop_bound_7 == uint2(0u, 0u))) { break; }
         loop_bound_7 -= uint2(loop_bound_7.y == 0u, 1u);
         if (!loop_init_7) {
-            uint _e53 = i_12;
-            i_12 = (_e53 + 1u);
+            uint _e54 = i_12;
+            i_12 = (_e54 + 1u);
         }
         loop_init_7 = false;
-        uint _e33 = i_12;
-        if ((_e33 < octaves)) {
+        uint _e34 = i_12;
+        if ((_e34 < octaves)) {
         } else {
             break;
         }
         {
-            float _e35 = ka;
-            ka = (_e35 * a_8);
-            float _e37 = kb;
-            kb = (_e37 * b_8);
-            float _e39 = kc;
-            kc = (_e39 * c_8);
-            float _e41 = octave_sum;
-            float _e42 = ka;
-            float _e43 = kc;
-            const float _e44 = phase(cos_theta_5, _e43);
-            float _e46 = kb;
-            octave_sum = (_e41 + ((_e42 * _e44) / (1.0 + (_e46 * tau_6))));
+            float _e36 = ka;
+            ka = (_e36 * a_8);
+            float _e38 = kb;
+            kb = (_e38 * b_8);
+            float _e40 = kc;
+            kc = (_e40 * c_8);
+            float _e42 = octave_sum;
+            float _e43 = ka;
+            float _e44 = kc;
+            const float _e45 = phase(cos_theta_5, _e44);
+            float _e47 = kb;
+            octave_sum = (_e42 + ((_e43 * _e45) / (1.0 + (_e47 * tau_6))));
         }
     }
-    float _e58 = frame.sun_direction.y;
-    const float _e59 = saturate_(_e58);
-    const float _e66 = saturate_(coverage);
-    float side = ((sqrt(max((1.0 - (_e59 * _e59)), 0.0)) * (1.0 - _e66)) * exp(-(far_1)));
-    float _e76 = frame.light_model.x;
-    feed = (_e59 + (_e76 * side));
-    float _e83 = frame.light_model.y;
-    if ((_e83 > 0.0)) {
-        float _e86 = feed;
-        float _e92 = frame.light_model.y;
-        feed = (_e86 * pow(max(coverage, 1e-6), _e92));
+    float _e59 = frame.sun_direction.y;
+    const float _e60 = saturate_(_e59);
+    const float _e67 = saturate_(coverage_1);
+    float side = ((sqrt(max((1.0 - (_e60 * _e60)), 0.0)) * (1.0 - _e67)) * exp(-(far_1)));
+    float _e77 = frame.light_model.x;
+    feed = (_e60 + (_e77 * side));
+    float _e84 = frame.light_model.y;
+    if ((_e84 > 0.0)) {
+        float _e87 = feed;
+        float _e93 = frame.light_model.y;
+        feed = (_e87 * pow(max(coverage_1, 1e-6), _e93));
     }
-    const float _e96 = phase(cos_theta_5, 1.0);
-    float _e101 = feed;
-    float _e103 = octave_sum;
-    total = ((_e96 * exp((-(tau_6) - far_1))) + ((_e101 * build) * _e103));
-    uint _e110 = frame.modes.w;
-    if (((_e110 & FLAG_BEER_POWDER) != 0u)) {
-        float _e115 = total;
-        float _e119 = frame.phase.w;
-        total = (_e115 * (1.0 - exp((-(_e119) * tau_6))));
+    float _e96 = feed;
+    const float _e97 = diffuse_limb(view_y_1, coverage_1);
+    feed = (_e96 * _e97);
+    const float _e100 = phase(cos_theta_5, 1.0);
+    float _e105 = feed;
+    float _e107 = octave_sum;
+    total = ((_e100 * exp((-(tau_6) - far_1))) + ((_e105 * build) * _e107));
+    uint _e114 = frame.modes.w;
+    if (((_e114 & FLAG_BEER_POWDER) != 0u)) {
+        float _e119 = total;
+        float _e123 = frame.phase.w;
+        total = (_e119 * (1.0 - exp((-(_e123) * tau_6))));
     }
-    float _e126 = total;
-    return _e126;
+    float _e130 = total;
+    return _e130;
 }
 
 float octave_buildup(float density_1)
@@ -1693,20 +1704,20 @@ float3 scattered_light(float3 rel_3, float3 p_8, float alt_12, float density_2, 
             const float _e25 = far_optical_depth(rel_3, p_8, l_6);
             far_2 = _e25;
         }
-        float _e27 = tau_7;
-        float _e28 = far_2;
-        const float _e29 = octave_buildup(density_2);
-        const float _e31 = sun_scattering(dot(view, sun_4), _e27, _e28, _e29, _e16.coverage);
-        float4 _e34 = frame.sun_illuminance;
-        const float3 _e36 = sun_through_air(rel_3);
-        sun_light = ((_e34.xyz * _e36) * _e31);
+        float _e28 = tau_7;
+        float _e29 = far_2;
+        const float _e30 = octave_buildup(density_2);
+        const float _e32 = sun_scattering(dot(view, sun_4), view.y, _e28, _e29, _e30, _e16.coverage);
+        float4 _e35 = frame.sun_illuminance;
+        const float3 _e37 = sun_through_air(rel_3);
+        sun_light = ((_e35.xyz * _e37) * _e32);
     }
-    float _e42 = frame.extinction.z;
-    const float _e50 = saturate_((1.0 - ((_e42 * _e16.precipitation) * (1.0 - _e12))));
-    float _e54 = frame.extinction.x;
-    float3 _e56 = sun_light;
-    const float3 _e57 = ambient(_e12);
-    return (((_e54 * density_2) * (_e56 + _e57)) * _e50);
+    float _e43 = frame.extinction.z;
+    const float _e51 = saturate_((1.0 - ((_e43 * _e16.precipitation) * (1.0 - _e12))));
+    float _e55 = frame.extinction.x;
+    float3 _e57 = sun_light;
+    const float3 _e58 = ambient(_e12);
+    return (((_e55 * density_2) * (_e57 + _e58)) * _e51);
 }
 
 float3 shadow_ground_point(uint2 c_2)
@@ -1827,8 +1838,8 @@ float start_offset(uint2 pixel_3)
 {
     uint _e4 = frame.modes.w;
     bool jitter_1 = ((_e4 & FLAG_JITTER) != 0u);
-    uint k_12 = frame.temporal.x;
-    if ((k_12 <= 1u)) {
+    uint k_13 = frame.temporal.x;
+    if ((k_13 <= 1u)) {
         uint _e18 = frame.misc.y;
         const float _e19 = hash_unit(pixel_3, _e18);
         return (jitter_1 ? _e19 : 0.5);
@@ -1836,7 +1847,7 @@ float start_offset(uint2 pixel_3)
     const float _e23 = hash_unit(pixel_3, 0u);
     float base_2 = (jitter_1 ? _e23 : 0.5);
     uint _e29 = frame.misc.y;
-    const float _e32 = van_der_corput(naga_div(_e29, (k_12 * k_12)));
+    const float _e32 = van_der_corput(naga_div(_e29, (k_13 * k_13)));
     return frac((base_2 + _e32));
 }
 
@@ -2303,17 +2314,17 @@ uint2 naga_div(uint2 lhs, uint2 rhs) {
 
 bool in_blocks(uint2 id_19)
 {
-    uint k_13 = frame.temporal.x;
+    uint k_14 = frame.temporal.x;
     uint4 _e7 = frame.counts;
-    return all((id_19 < naga_div(((_e7.xy + (k_13).xx) - (1u).xx), (k_13).xx)));
+    return all((id_19 < naga_div(((_e7.xy + (k_14).xx) - (1u).xx), (k_14).xx)));
 }
 
 uint2 sparse_pixel(uint2 id_20)
 {
-    uint k_14 = frame.temporal.x;
+    uint k_15 = frame.temporal.x;
     uint _e9 = frame.misc.y;
-    const uint2 _e10 = block_offset(_e9, k_14);
-    return ((id_20 * k_14) + _e10);
+    const uint2 _e10 = block_offset(_e9, k_15);
+    return ((id_20 * k_15) + _e10);
 }
 
 void store_sparse(uint2 id_21, MarchResult r_13)
@@ -3208,8 +3219,8 @@ float3 sprite_rel(float2 xz, float alt_15)
     float rp_6 = frame.atmosphere.x;
     float4 _e8 = frame.camera_position;
     float2 d_21 = (xz - _e8.xz);
-    float k_15 = ((alt_15 * (alt_15 + (2.0 * rp_6))) - dot(d_21, d_21));
-    float y_3 = (k_15 / (rp_6 + sqrt(max(((rp_6 * rp_6) + k_15), 0.0))));
+    float k_16 = ((alt_15 * (alt_15 + (2.0 * rp_6))) - dot(d_21, d_21));
+    float y_3 = (k_16 / (rp_6 + sqrt(max(((rp_6 * rp_6) + k_16), 0.0))));
     return float3(d_21.x, y_3, d_21.y);
 }
 
@@ -4148,9 +4159,9 @@ void march_sparse_checkerboard(uint3 id_10 : SV_DispatchThreadID)
     }
     bool _e30 = local_3;
     if (_e30) {
-        uint k_16 = frame.temporal.x;
+        uint k_17 = frame.temporal.x;
         uint _e38 = frame.misc.y;
-        uint turn = naga_div(_e38, (k_16 * k_16));
+        uint turn = naga_div(_e38, (k_17 * k_17));
         const float2 _e42 = reproject(_e5, 0.0);
         if (((((id_10.x + id_10.y) + turn) & 1u) == 0u)) {
             const bool _e53 = on_screen(_e42);
@@ -4201,11 +4212,11 @@ void resolve(uint3 id_11 : SV_DispatchThreadID)
         return;
     }
     uint2 pixel_10 = id_11.xy;
-    uint k_17 = frame.temporal.x;
-    uint2 block = naga_div(pixel_10, (k_17).xx);
+    uint k_18 = frame.temporal.x;
+    uint2 block = naga_div(pixel_10, (k_18).xx);
     uint _e19 = frame.misc.y;
-    const uint2 _e20 = block_offset(_e19, k_17);
-    bool marched_1 = all((pixel_10 == ((block * k_17) + _e20)));
+    const uint2 _e20 = block_offset(_e19, k_18);
+    bool marched_1 = all((pixel_10 == ((block * k_18) + _e20)));
     float4 current = sparse_in.Load(int3(block, int(0)));
     float4 _e29 = sparse_depth_in.Load(int3(block, int(0)));
     float current_depth = _e29.x;
@@ -4268,7 +4279,7 @@ void resolve(uint3 id_11 : SV_DispatchThreadID)
     bool _e115 = local_9;
     if (_e115) {
         uint4 _e118 = frame.counts;
-        int2 blocks = int2(naga_div(((_e118.xy + (k_17).xx) - (1u).xx), (k_17).xx));
+        int2 blocks = int2(naga_div(((_e118.xy + (k_18).xx) - (1u).xx), (k_18).xx));
         int2 b_11 = int2(block);
         int x0_1 = max(asint(asuint(b_11.x) - asuint(int(1))), int(0));
         int x2_2 = min(asint(asuint(b_11.x) + asuint(int(1))), asint(asuint(blocks.x) - asuint(int(1))));

@@ -1180,7 +1180,14 @@ float far_optical_depth(vec3 rel_2, vec3 p_7, Layer l_5) {
     return _e112;
 }
 
-float sun_scattering(float cos_theta_5, float tau_6, float far_1, float build, float coverage) {
+float diffuse_limb(float view_y, float coverage) {
+    float k_12 = _group_0_binding_0_cs.light_model.w;
+    float layer = ((1.0 + (k_12 * abs(view_y))) / (1.0 + ((2.0 * k_12) / 3.0)));
+    float _e17 = saturate(coverage);
+    return mix(1.0, layer, _e17);
+}
+
+float sun_scattering(float cos_theta_5, float view_y_1, float tau_6, float far_1, float build, float coverage_1) {
     float octave_sum = 0.0;
     float ka = 1.0;
     float kb = 1.0;
@@ -1191,59 +1198,62 @@ float sun_scattering(float cos_theta_5, float tau_6, float far_1, float build, f
     float a_7 = _group_0_binding_0_cs.multiple_scattering.x;
     float b_7 = _group_0_binding_0_cs.multiple_scattering.y;
     float c_8 = _group_0_binding_0_cs.multiple_scattering.z;
-    uint _e20 = _group_0_binding_0_cs.misc.x;
-    uint octaves = min(_e20, MAX_OCTAVES);
+    uint _e21 = _group_0_binding_0_cs.misc.x;
+    uint octaves = min(_e21, MAX_OCTAVES);
     bool loop_init_6 = true;
     while(true) {
         if (!loop_init_6) {
-            uint _e53 = i_12;
-            i_12 = (_e53 + 1u);
+            uint _e54 = i_12;
+            i_12 = (_e54 + 1u);
         }
         loop_init_6 = false;
-        uint _e33 = i_12;
-        if ((_e33 < octaves)) {
+        uint _e34 = i_12;
+        if ((_e34 < octaves)) {
         } else {
             break;
         }
         {
-            float _e35 = ka;
-            ka = (_e35 * a_7);
-            float _e37 = kb;
-            kb = (_e37 * b_7);
-            float _e39 = kc;
-            kc = (_e39 * c_8);
-            float _e41 = octave_sum;
-            float _e42 = ka;
-            float _e43 = kc;
-            float _e44 = phase(cos_theta_5, _e43);
-            float _e46 = kb;
-            octave_sum = (_e41 + ((_e42 * _e44) / (1.0 + (_e46 * tau_6))));
+            float _e36 = ka;
+            ka = (_e36 * a_7);
+            float _e38 = kb;
+            kb = (_e38 * b_7);
+            float _e40 = kc;
+            kc = (_e40 * c_8);
+            float _e42 = octave_sum;
+            float _e43 = ka;
+            float _e44 = kc;
+            float _e45 = phase(cos_theta_5, _e44);
+            float _e47 = kb;
+            octave_sum = (_e42 + ((_e43 * _e45) / (1.0 + (_e47 * tau_6))));
         }
     }
-    float _e58 = _group_0_binding_0_cs.sun_direction.y;
-    float _e59 = saturate(_e58);
-    float _e66 = saturate(coverage);
-    float side = ((sqrt(max((1.0 - (_e59 * _e59)), 0.0)) * (1.0 - _e66)) * exp(-(far_1)));
-    float _e76 = _group_0_binding_0_cs.light_model.x;
-    feed = (_e59 + (_e76 * side));
-    float _e83 = _group_0_binding_0_cs.light_model.y;
-    if ((_e83 > 0.0)) {
-        float _e86 = feed;
-        float _e92 = _group_0_binding_0_cs.light_model.y;
-        feed = (_e86 * pow(max(coverage, 1e-6), _e92));
+    float _e59 = _group_0_binding_0_cs.sun_direction.y;
+    float _e60 = saturate(_e59);
+    float _e67 = saturate(coverage_1);
+    float side = ((sqrt(max((1.0 - (_e60 * _e60)), 0.0)) * (1.0 - _e67)) * exp(-(far_1)));
+    float _e77 = _group_0_binding_0_cs.light_model.x;
+    feed = (_e60 + (_e77 * side));
+    float _e84 = _group_0_binding_0_cs.light_model.y;
+    if ((_e84 > 0.0)) {
+        float _e87 = feed;
+        float _e93 = _group_0_binding_0_cs.light_model.y;
+        feed = (_e87 * pow(max(coverage_1, 1e-6), _e93));
     }
-    float _e96 = phase(cos_theta_5, 1.0);
-    float _e101 = feed;
-    float _e103 = octave_sum;
-    total = ((_e96 * exp((-(tau_6) - far_1))) + ((_e101 * build) * _e103));
-    uint _e110 = _group_0_binding_0_cs.modes.w;
-    if (((_e110 & FLAG_BEER_POWDER) != 0u)) {
-        float _e115 = total;
-        float _e119 = _group_0_binding_0_cs.phase.w;
-        total = (_e115 * (1.0 - exp((-(_e119) * tau_6))));
+    float _e96 = feed;
+    float _e97 = diffuse_limb(view_y_1, coverage_1);
+    feed = (_e96 * _e97);
+    float _e100 = phase(cos_theta_5, 1.0);
+    float _e105 = feed;
+    float _e107 = octave_sum;
+    total = ((_e100 * exp((-(tau_6) - far_1))) + ((_e105 * build) * _e107));
+    uint _e114 = _group_0_binding_0_cs.modes.w;
+    if (((_e114 & FLAG_BEER_POWDER) != 0u)) {
+        float _e119 = total;
+        float _e123 = _group_0_binding_0_cs.phase.w;
+        total = (_e119 * (1.0 - exp((-(_e123) * tau_6))));
     }
-    float _e126 = total;
-    return _e126;
+    float _e130 = total;
+    return _e130;
 }
 
 float octave_buildup(float density_1) {
@@ -1293,20 +1303,20 @@ vec3 scattered_light(vec3 rel_3, vec3 p_8, float alt_12, float density_2, vec3 v
             float _e25 = far_optical_depth(rel_3, p_8, l_6);
             far_2 = _e25;
         }
-        float _e27 = tau_7;
-        float _e28 = far_2;
-        float _e29 = octave_buildup(density_2);
-        float _e31 = sun_scattering(dot(view, sun_4), _e27, _e28, _e29, _e16.coverage);
-        vec4 _e34 = _group_0_binding_0_cs.sun_illuminance;
-        vec3 _e36 = sun_through_air(rel_3);
-        sun_light = ((_e34.xyz * _e36) * _e31);
+        float _e28 = tau_7;
+        float _e29 = far_2;
+        float _e30 = octave_buildup(density_2);
+        float _e32 = sun_scattering(dot(view, sun_4), view.y, _e28, _e29, _e30, _e16.coverage);
+        vec4 _e35 = _group_0_binding_0_cs.sun_illuminance;
+        vec3 _e37 = sun_through_air(rel_3);
+        sun_light = ((_e35.xyz * _e37) * _e32);
     }
-    float _e42 = _group_0_binding_0_cs.extinction.z;
-    float _e50 = saturate((1.0 - ((_e42 * _e16.precipitation) * (1.0 - _e12))));
-    float _e54 = _group_0_binding_0_cs.extinction.x;
-    vec3 _e56 = sun_light;
-    vec3 _e57 = ambient(_e12);
-    return (((_e54 * density_2) * (_e56 + _e57)) * _e50);
+    float _e43 = _group_0_binding_0_cs.extinction.z;
+    float _e51 = saturate((1.0 - ((_e43 * _e16.precipitation) * (1.0 - _e12))));
+    float _e55 = _group_0_binding_0_cs.extinction.x;
+    vec3 _e57 = sun_light;
+    vec3 _e58 = ambient(_e12);
+    return (((_e55 * density_2) * (_e57 + _e58)) * _e51);
 }
 
 vec3 shadow_ground_point(uvec2 c_2) {
@@ -1383,8 +1393,8 @@ vec3 step_integral(vec3 source, float sigma_t, float dt) {
 float start_offset(uvec2 pixel_3) {
     uint _e4 = _group_0_binding_0_cs.modes.w;
     bool jitter_1 = ((_e4 & FLAG_JITTER) != 0u);
-    uint k_12 = _group_0_binding_0_cs.temporal.x;
-    if ((k_12 <= 1u)) {
+    uint k_13 = _group_0_binding_0_cs.temporal.x;
+    if ((k_13 <= 1u)) {
         uint _e18 = _group_0_binding_0_cs.misc.y;
         float _e19 = hash_unit(pixel_3, _e18);
         return (jitter_1 ? _e19 : 0.5);
@@ -1392,7 +1402,7 @@ float start_offset(uvec2 pixel_3) {
     float _e23 = hash_unit(pixel_3, 0u);
     float base_2 = (jitter_1 ? _e23 : 0.5);
     uint _e29 = _group_0_binding_0_cs.misc.y;
-    float _e32 = van_der_corput((_e29 / (k_12 * k_12)));
+    float _e32 = van_der_corput((_e29 / (k_13 * k_13)));
     return fract((base_2 + _e32));
 }
 
@@ -1788,16 +1798,16 @@ vec4 history_nearest(vec2 q_2) {
 }
 
 bool in_blocks(uvec2 id_19) {
-    uint k_13 = _group_0_binding_0_cs.temporal.x;
+    uint k_14 = _group_0_binding_0_cs.temporal.x;
     uvec4 _e7 = _group_0_binding_0_cs.counts;
-    return all(lessThan(id_19, (((_e7.xy + uvec2(k_13)) - uvec2(1u)) / uvec2(k_13))));
+    return all(lessThan(id_19, (((_e7.xy + uvec2(k_14)) - uvec2(1u)) / uvec2(k_14))));
 }
 
 uvec2 sparse_pixel(uvec2 id_20) {
-    uint k_14 = _group_0_binding_0_cs.temporal.x;
+    uint k_15 = _group_0_binding_0_cs.temporal.x;
     uint _e9 = _group_0_binding_0_cs.misc.y;
-    uvec2 _e10 = block_offset(_e9, k_14);
-    return ((id_20 * k_14) + _e10);
+    uvec2 _e10 = block_offset(_e9, k_15);
+    return ((id_20 * k_15) + _e10);
 }
 
 void store_sparse(uvec2 id_21, MarchResult r_13) {
@@ -2449,8 +2459,8 @@ vec3 sprite_rel(vec2 xz, float alt_15) {
     float rp_6 = _group_0_binding_0_cs.atmosphere.x;
     vec4 _e8 = _group_0_binding_0_cs.camera_position;
     vec2 d_21 = (xz - _e8.xz);
-    float k_15 = ((alt_15 * (alt_15 + (2.0 * rp_6))) - dot(d_21, d_21));
-    float y_3 = (k_15 / (rp_6 + sqrt(max(((rp_6 * rp_6) + k_15), 0.0))));
+    float k_16 = ((alt_15 * (alt_15 + (2.0 * rp_6))) - dot(d_21, d_21));
+    float y_3 = (k_16 / (rp_6 + sqrt(max(((rp_6 * rp_6) + k_16), 0.0))));
     return vec3(d_21.x, y_3, d_21.y);
 }
 
@@ -2731,9 +2741,9 @@ void main() {
     }
     bool _e30 = local_3;
     if (_e30) {
-        uint k_16 = _group_0_binding_0_cs.temporal.x;
+        uint k_17 = _group_0_binding_0_cs.temporal.x;
         uint _e38 = _group_0_binding_0_cs.misc.y;
-        uint turn = (_e38 / (k_16 * k_16));
+        uint turn = (_e38 / (k_17 * k_17));
         vec2 _e42 = reproject(_e5, 0.0);
         if (((((id_10.x + id_10.y) + turn) & 1u) == 0u)) {
             bool _e53 = on_screen(_e42);

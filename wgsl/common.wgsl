@@ -44,7 +44,7 @@ struct Frame {
     air_misc: vec4<f32>,            // atmosphere thickness (m), ozone tent width (m), ground albedo, 0
     moon: vec4<f32>,                // unit direction to the moon; w = full-moon illuminance (0: no moon)
     night: vec4<f32>,               // the real sun's unit direction; w = a magnitude-0 star's illuminance (0: no stars)
-    light_model: vec4<f32>,         // side light, coverage exponent, far-shadow chord (m, 0 = off), 0
+    light_model: vec4<f32>,         // side light, coverage exponent, far-shadow chord (m, 0 = off), limb darkening
 }
 
 // Codes shared with the scene crate (`PhaseModel::code`, `Integration::code`, ...).

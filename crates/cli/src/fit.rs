@@ -201,6 +201,10 @@ const COVERAGE_EXPONENT_GRID: [f64; 9] = [0.0, 0.25, 0.5, 0.75, 1.0, 1.25, 1.5, 
 /// The far shadow's chords tried (metres; 0: off).
 const FAR_CHORD_GRID_M: [f64; 7] = [0.0, 2000.0, 4000.0, 8000.0, 16000.0, 32000.0, 64000.0];
 
+/// The limb darkenings tried (`MultipleScattering::limb_darkening`; 0: isotropic octaves,
+/// 1.5: the Eddington approximation's).
+const LIMB_GRID: [f64; 8] = [0.0, 0.25, 0.5, 0.75, 1.0, 1.5, 2.0, 3.0];
+
 /// Build-ups (metres) the descent starts from.
 const DESCENT_STARTS_M: [f64; 3] = [0.0, 100.0, 400.0];
 
@@ -218,7 +222,7 @@ fn descend(
     log: &mut Vec<(MultipleScattering, f64)>,
     bar: &ProgressBar,
 ) -> Result<(MultipleScattering, f64)> {
-    type Key = (u32, u32, u32, u32, u32, u32, u32);
+    type Key = (u32, u32, u32, u32, u32, u32, u32, u32);
     let mut cache: BTreeMap<Key, f64> = BTreeMap::new();
     let key = |m: &MultipleScattering| -> Key {
         let q = |v: f64| (v * 100.0).round() as u32;
@@ -230,6 +234,7 @@ fn descend(
             q(m.side_light),
             q(m.coverage_exponent),
             m.far_chord_m.round() as u32,
+            q(m.limb_darkening),
         )
     };
     let mut score =
@@ -260,6 +265,7 @@ fn descend(
                 side_light: 0.0,
                 coverage_exponent: 0.0,
                 far_chord_m: 0.0,
+                limb_darkening: 0.0,
             })
             .collect()
     };
@@ -269,7 +275,7 @@ fn descend(
         let mut best_score = score(best, log)?;
         for _round in 0..6 {
             let mut changed = false;
-            for which in 0..7 {
+            for which in 0..8 {
                 // a may exceed 1 (validate.rs says why); b and c are factors of at most 1.
                 let values = match which {
                     0 => grid(stratus_scene::MAX_OCTAVE_A),
@@ -277,6 +283,7 @@ fn descend(
                     4 => SIDE_LIGHT_GRID.to_vec(),
                     5 => COVERAGE_EXPONENT_GRID.to_vec(),
                     6 => FAR_CHORD_GRID_M.to_vec(),
+                    7 => LIMB_GRID.to_vec(),
                     _ => grid(1.0),
                 };
                 for v in values {
@@ -288,7 +295,8 @@ fn descend(
                         3 => m.buildup_m = v,
                         4 => m.side_light = v,
                         5 => m.coverage_exponent = v,
-                        _ => m.far_chord_m = v,
+                        6 => m.far_chord_m = v,
+                        _ => m.limb_darkening = v,
                     }
                     let s = score(m, log)?;
                     if s < best_score - 1e-9 {
@@ -317,8 +325,15 @@ fn descend(
 /// The constants of `m` in a line.
 fn describe(m: &MultipleScattering) -> String {
     format!(
-        "a {:.2} b {:.2} c {:.2} build-up {} m side light {:.2} coverage exponent {:.2} far chord {} m",
-        m.a, m.b, m.c, m.buildup_m, m.side_light, m.coverage_exponent, m.far_chord_m
+        "a {:.2} b {:.2} c {:.2} build-up {} m side light {:.2} coverage exponent {:.2} far chord {} m limb darkening {:.2}",
+        m.a,
+        m.b,
+        m.c,
+        m.buildup_m,
+        m.side_light,
+        m.coverage_exponent,
+        m.far_chord_m,
+        m.limb_darkening
     )
 }
 
@@ -429,13 +444,22 @@ pub fn run(args: FitArgs) -> Result<()> {
     std::fs::create_dir_all(&args.out)
         .with_context(|| format!("creating {}", args.out.display()))?;
     let mut csv = String::from(
-        "octaves,a,b,c,buildup_m,side_light,coverage_exponent,far_chord_m,train_mean_flip\n",
+        "octaves,a,b,c,buildup_m,side_light,coverage_exponent,far_chord_m,limb_darkening,\
+         train_mean_flip\n",
     );
     for (m, s) in &log {
         let _ = writeln!(
             csv,
-            "{},{:.2},{:.2},{:.2},{},{:.2},{:.2},{},{s:.5}",
-            m.octaves, m.a, m.b, m.c, m.buildup_m, m.side_light, m.coverage_exponent, m.far_chord_m
+            "{},{:.2},{:.2},{:.2},{},{:.2},{:.2},{},{:.2},{s:.5}",
+            m.octaves,
+            m.a,
+            m.b,
+            m.c,
+            m.buildup_m,
+            m.side_light,
+            m.coverage_exponent,
+            m.far_chord_m,
+            m.limb_darkening
         );
     }
     std::fs::write(args.out.join("evaluations.csv"), csv)?;
@@ -493,7 +517,7 @@ pub fn run(args: FitArgs) -> Result<()> {
         "# Multiple-scattering fit\n\n\
          Written by `stratus fit-scattering --out {out} --size {w}x{h} --spp {spp} --octaves {counts}{quick}` on {device}.\n\n\
          The octaves (count N, a, b, c; Wrenninge 2013), their build-up, side light and \
-         coverage exponent, and the far shadow's chord of the march fitted to the all-orders \
+         coverage exponent, the far shadow's chord and the octaves' limb darkening of the march fitted to the all-orders \
          truth of the GPU path tracer ({spp} paths per pixel) over {nt} training scenes by \
          coordinate descent on a 0.05 grid (0.01 below 0.05), minimising the mean FLIP, \
          taking the fewest octaves within 1% of the lowest mean; checked on the \
@@ -501,13 +525,13 @@ pub fn run(args: FitArgs) -> Result<()> {
          `scenes.csv` the table below, `images/` each scene's truth, before and after (left to \
          right). \"Before\" is the thesis's two octaves of 0.5 in this \
          model (the octaves attenuated by 1 / (1 + b^i tau) and scaled by mu0, the cosine of \
-         the sun's zenith angle, no build-up, side light, coverage exponent or far shadow). \"Brightness\" is the fitted render's mean in-scattered \
+         the sun's zenith angle, no build-up, side light, coverage exponent, far shadow or limb darkening). \"Brightness\" is the fitted render's mean in-scattered \
          luminance over the truth's where the truth's transmittance is below 0.05 (dense), \
          0.05 to 0.5 and 0.5 to 0.99 (thin).\n\n\
-         | | N | a | b | c | build-up (m) | side light | coverage exponent | far chord (m) |\n\
-         |---|---|---|---|---|---|---|---|---|\n\
-         | before | {} | {:.2} | {:.2} | {:.2} | {} | {:.2} | {:.2} | {} |\n\
-         | after | {} | {:.2} | {:.2} | {:.2} | {} | {:.2} | {:.2} | {} |\n\n\
+         | | N | a | b | c | build-up (m) | side light | coverage exponent | far chord (m) | limb darkening |\n\
+         |---|---|---|---|---|---|---|---|---|---|\n\
+         | before | {} | {:.2} | {:.2} | {:.2} | {} | {:.2} | {:.2} | {} | {:.2} |\n\
+         | after | {} | {:.2} | {:.2} | {:.2} | {} | {:.2} | {:.2} | {} | {:.2} |\n\n\
          | scene | set | FLIP before | RMSE before | FLIP after | RMSE after | brightness after (dense / mid / thin) |\n\
          |---|---|---|---|---|---|---|\n{table}",
         before.octaves,
@@ -518,6 +542,7 @@ pub fn run(args: FitArgs) -> Result<()> {
         before.side_light,
         before.coverage_exponent,
         before.far_chord_m,
+        before.limb_darkening,
         fit.octaves,
         fit.a,
         fit.b,
@@ -526,6 +551,7 @@ pub fn run(args: FitArgs) -> Result<()> {
         fit.side_light,
         fit.coverage_exponent,
         fit.far_chord_m,
+        fit.limb_darkening,
         out = args.out.display(),
         spp = args.spp,
         counts = args

@@ -175,6 +175,7 @@ pub(crate) fn far_optical_depth(m: &Model, rel: V3, p: V3, l: &Layer) -> f64 {
 pub(crate) fn sun_scattering(
     f: &Frame,
     cos_theta: f64,
+    view_y: f64,
     tau: f64,
     (far_direct, far_side): (f64, f64),
     build: f64,
@@ -203,12 +204,22 @@ pub(crate) fn sun_scattering(
     if f.light_model[1] > 0.0 {
         feed *= coverage.max(1e-6).powf(f.light_model[1]);
     }
+    feed *= diffuse_limb(f, view_y, coverage);
     let mut total =
         phase(f, cos_theta, 1.0) * (-tau - far_direct).exp() + feed * build * octave_sum;
     if f.modes[3] & FLAG_BEER_POWDER != 0 {
         total *= 1.0 - (-f.phase[3] * tau).exp();
     }
     total
+}
+
+// WGSL: lighting.wgsl::diffuse_limb
+/// The octaves' limb darkening toward grazing views of a deck: `(1 + k mu) / (1 + 2k/3)`, mu =
+/// `|view_y|`, k the fitted strength, weighted by the coverage (lighting.wgsl says why).
+pub(crate) fn diffuse_limb(f: &Frame, view_y: f64, coverage: f64) -> f64 {
+    let k = f.light_model[3];
+    let layer = (1.0 + k * view_y.abs()) / (1.0 + 2.0 * k / 3.0);
+    mix(1.0, layer, saturate(coverage))
 }
 
 // WGSL: lighting.wgsl::octave_buildup
@@ -269,6 +280,7 @@ pub(crate) fn scattered_light(
         let s = sun_scattering(
             f,
             view.dot(sun),
+            view.y,
             tau,
             (far_direct, far),
             octave_buildup(f, density),
@@ -323,6 +335,32 @@ mod tests {
         assert_eq!(far_at(3.0, |s| s.quality.light_steps = 0), 0.0);
         // A clear layer casts none.
         assert_eq!(far_at(3.0, |s| s.clouds.coverage = 0.0), 0.0);
+    }
+
+    /// The limb darkening keeps the diffuse flux through a deck (its cosine-weighted mean over
+    /// the hemisphere is 1), favours views along the normal, up or down, over grazing ones, and
+    /// leaves a clear sample's octaves, or all of them when switched off, as they were.
+    #[test]
+    fn limb_darkening_keeps_the_flux_and_favours_the_normal() {
+        let noise = crate::small_noise();
+        let mut scene = Scene::default();
+        scene.lighting.multiple_scattering.limb_darkening = 1.5;
+        let m = Model::new(&scene, Medium::Clouds(&noise));
+        let n = 100_000;
+        let flux: f64 = (0..n)
+            .map(|i| {
+                let mu = (f64::from(i) + 0.5) / f64::from(n);
+                2.0 * mu * diffuse_limb(&m.f, mu, 1.0) / f64::from(n)
+            })
+            .sum();
+        assert!((flux - 1.0).abs() < 1e-6, "{flux}");
+        let (normal, grazing) = (diffuse_limb(&m.f, 1.0, 1.0), diffuse_limb(&m.f, 0.0, 1.0));
+        assert!(normal > 1.0 && grazing < 1.0, "{normal} {grazing}");
+        assert_eq!(diffuse_limb(&m.f, -1.0, 1.0), normal);
+        assert_eq!(diffuse_limb(&m.f, 0.3, 0.0), 1.0);
+        scene.lighting.multiple_scattering.limb_darkening = 0.0;
+        let off = Model::new(&scene, Medium::Clouds(&noise));
+        assert_eq!(diffuse_limb(&off.f, 0.3, 1.0), 1.0);
     }
 
     /// Integral over the sphere of a phase function of cos(theta), by the midpoint rule in cos.

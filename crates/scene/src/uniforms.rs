@@ -550,7 +550,7 @@ impl Scene {
                 ms.side_light as f32,
                 ms.coverage_exponent as f32,
                 ms.far_chord_m as f32,
-                0.0,
+                ms.limb_darkening as f32,
             ],
         };
         block.with_previous_camera(&block)

@@ -302,6 +302,12 @@ pub(crate) fn check(scene: &Scene) -> Vec<Issue> {
         Incl(0.0),
         Incl(4.0),
     );
+    c.float(
+        "lighting.multiple_scattering.limb_darkening",
+        ms.limb_darkening,
+        Incl(0.0),
+        Incl(4.0),
+    );
     // 0 turns the far shadow off; a chord below 100 m would shadow like a solid deck.
     let chord = ms.far_chord_m;
     if !chord.is_finite() {

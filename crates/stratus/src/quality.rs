@@ -63,6 +63,7 @@ pub const PREFIT_OCTAVES: MultipleScattering = MultipleScattering {
     side_light: 0.0,
     coverage_exponent: 0.0,
     far_chord_m: 0.0,
+    limb_darkening: 0.0,
 };
 
 impl Config {
