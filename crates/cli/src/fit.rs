@@ -5,8 +5,9 @@
 //!
 //! Procedure: for every octave count, coordinate descent over a, b and c on a 0.05 grid (0.01
 //! below 0.05) and the octaves' build-up with the sample's density
-//! (`lighting.wgsl::octave_buildup`), the side light, the coverage exponent and the far
-//! shadow's chord (`lighting.wgsl::sun_scattering`, `far_optical_depth`) on grids of their own,
+//! (`lighting.wgsl::octave_buildup`), the side light, the coverage exponent, the far
+//! shadow's chord and the limb darkening (`lighting.wgsl::sun_scattering`,
+//! `far_optical_depth`, `diffuse_limb`) on grids of their own,
 //! minimising the mean FLIP of the training scenes against their truths; the
 //! fewest octaves whose mean is within 1% of the lowest win (each octave costs time in every
 //! light sample). Wrenninge's a <= b is not imposed: it keeps thick clouds far too dark. Every
@@ -208,8 +209,9 @@ const LIMB_GRID: [f64; 8] = [0.0, 0.25, 0.5, 0.75, 1.0, 1.5, 2.0, 3.0];
 /// Build-ups (metres) the descent starts from.
 const DESCENT_STARTS_M: [f64; 3] = [0.0, 100.0, 400.0];
 
-/// Coordinate descent over a, b, c, the build-up, the side light, the coverage exponent and
-/// the far shadow's chord for `octaves`, from a = b = c = 0.5, the last three off and each of
+/// Coordinate descent over a, b, c, the build-up, the side light, the coverage exponent, the
+/// far shadow's chord and the limb darkening for `octaves`, from a = b = c = 0.5, the last
+/// four off and each of
 /// a few build-ups (the descent alone stalled at a build-up of 600 m, 2% worse than
 /// the 300 m it missed), or with `quick` from the defaults alone: each pass tries every grid
 /// value of one constant with the others held, until a pass changes nothing; the best start

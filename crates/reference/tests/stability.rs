@@ -14,11 +14,13 @@
 //! `S = sigma_s d (E_sun sum_i a^i p(cos, c^i g) f_i [powder] + ambient(h)) darkening`
 //! (`lighting.wgsl::scattered_light`), `f_0 = e^(-tau - far)` and for the octaves `f_i = F B /
 //! (1 + b^i tau)` with the build-up B in [0, 1] and the feed `F = (mu0 + s (1 - cov) sin(zenith)
-//! e^(-far)) cov^e` (`sun_scattering`; s the side light, cov the coverage in [0, 1]), which is at
-//! most `max(mu0 + s sin(zenith)) = sqrt(1 + s^2)`. With `f_0 <= 1`, `f_i <= sqrt(1 + s^2)`,
+//! e^(-far)) cov^e D` (`sun_scattering`; s the side light, cov the coverage in [0, 1], D the
+//! limb darkening `mix(1, (1 + k_l |v_y|) / (1 + 2 k_l / 3), cov)`, at most `(1 + k_l) / (1 +
+//! 2 k_l / 3)` for k_l >= 0), which is at most `F_max = sqrt(1 + s^2) (1 + k_l) / (1 + 2 k_l /
+//! 3)` (`max(mu0 + s sin(zenith)) = sqrt(1 + s^2)`). With `f_0 <= 1`, `f_i <= F_max`,
 //! Beer-Powder `<= 1`, darkening `<= 1` and `p <= p_max` (the phase function's peak over all
-//! angles, at `cos = +-1`), `S <= sigma_s d L_max` with `L_max = E_sun (p_max(g) + sqrt(1 +
-//! s^2) sum_{i=1..octaves} a^i p_max(c^i g)) + max(ambient_bottom, ambient_top) k`.
+//! angles, at `cos = +-1`), `S <= sigma_s d L_max` with `L_max = E_sun (p_max(g) + F_max
+//! sum_{i=1..octaves} a^i p_max(c^i g)) + max(ambient_bottom, ambient_top) k`.
 //! The analytic step integral gives `T_i (S_i / (sigma_t d_i)) (1 - e^(-sigma_t d_i dt))`, and
 //! the `T_i (1 - Tr_i)` telescope to `1 - T`, so the pixel radiance is at most
 //! `L_max sigma_s / sigma_t (1 - T)` per channel (T: the pixel's transmittance). We allow
@@ -97,8 +99,10 @@ fn cs_max(g: f64) -> f64 {
 fn source_max(s: &Scene) -> [f64; 3] {
     let li = &s.lighting;
     let ms = &li.multiple_scattering;
-    // The octaves' feed peaks at sqrt(1 + s^2) (mu0 + s sin(zenith) at its best sun).
-    let feed_max = (1.0 + ms.side_light * ms.side_light).sqrt();
+    // The octaves' feed peaks at sqrt(1 + s^2) (mu0 + s sin(zenith) at its best sun), times
+    // the limb darkening's peak (a view along the vertical through full coverage).
+    let k = ms.limb_darkening;
+    let feed_max = (1.0 + ms.side_light * ms.side_light).sqrt() * (1.0 + k) / (1.0 + 2.0 * k / 3.0);
     let mut phase_sum = 0.0;
     for i in 0..=ms.octaves.min(8) {
         let (ka, kc) = (ms.a.powi(i as i32), ms.c.powi(i as i32));
@@ -365,7 +369,7 @@ fn extreme_valid_parameters() {
             s.lighting.phase.g = 0.99;
         }),
         (
-            "8 octaves, a = 2, b = c = 1, build-up 10 km, side light 4",
+            "8 octaves, a = 2, b = c = 1, build-up 10 km, side light 4, limb darkening 4",
             |s| {
                 let ms = &mut s.lighting.multiple_scattering;
                 ms.octaves = 8;
@@ -375,6 +379,7 @@ fn extreme_valid_parameters() {
                 ms.buildup_m = 10_000.0;
                 ms.side_light = 4.0;
                 ms.coverage_exponent = 0.0;
+                ms.limb_darkening = 4.0;
             },
         ),
         ("density 1000", |s| s.clouds.density = 1000.0),

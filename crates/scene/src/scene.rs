@@ -592,7 +592,7 @@ impl Default for Phase {
 /// `1 / (1 + b^i tau)` of the optical depth `tau` toward the sun (the diffuse light's slow
 /// fall-off in thick cloud, as two-stream theory gives it, where Wrenninge has
 /// `exp(-b^i tau)`), and scaled by the cosine of the sun's zenith angle and by the build-up
-/// `1 - exp(-sigma_t density buildup_m)` of the sample's density. Three terms beyond
+/// `1 - exp(-sigma_t density buildup_m)` of the sample's density. Four terms beyond
 /// Wrenninge's carry what the octaves' optical depth toward the sun does not know about the
 /// cloud around the sample: the octaves are scaled by the weather map's local coverage to the
 /// power `coverage_exponent` (light leaks out of a small cloud, not out of a deck), fed

@@ -105,7 +105,7 @@ pub struct FrameUniforms {
     /// units of `sun_illuminance` (0: no stars).
     pub night: [f32; 4],
     /// The fitted light model's terms beyond the octaves: side light, coverage exponent,
-    /// far-shadow chord (m, 0 = off), 0 (`MultipleScattering`).
+    /// far-shadow chord (m, 0 = off), limb darkening (`MultipleScattering`).
     pub light_model: [f32; 4],
 }
 
