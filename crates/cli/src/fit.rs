@@ -25,6 +25,7 @@ use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
 use stratus_graph::{Backend, FrameInput, FrameOutput, FramePlan};
 use stratus_noise::NoiseSet;
+use stratus_reference::Compositor;
 use stratus_scene::{MultipleScattering, Scene};
 
 use crate::{bench, scene_io::parse_size};
@@ -125,11 +126,14 @@ struct Case {
     scene: Scene,
     noise: Arc<NoiseSet>,
     truth: FrameOutput,
+    /// The scene's composite on the CPU, which makes the display images the fit compares.
+    display: Compositor,
 }
 
-/// FLIP (mean, display images) and RMSE (linear radiance) of `frame` against `truth`.
-fn errors(truth: &FrameOutput, frame: &FrameOutput) -> Result<(f64, f64)> {
-    let e = bench::errors(truth, frame)?;
+/// FLIP (mean, display images) and RMSE (linear radiance) of `frame` against the truth of
+/// `case` (both display images composited on the CPU: [`bench::errors`]).
+fn errors(case: &Case, frame: &FrameOutput) -> Result<(f64, f64)> {
+    let e = bench::errors(&case.truth, frame, &case.display)?;
     Ok((e.flip, e.rmse))
 }
 
@@ -170,7 +174,7 @@ fn evaluate(
 ) -> Result<(f64, Vec<(f64, f64)>)> {
     let mut per = Vec::new();
     for c in cases {
-        per.push(errors(&c.truth, &render(r, c, ms)?)?);
+        per.push(errors(c, &render(r, c, ms)?)?);
     }
     let mean = per.iter().map(|e| e.0).sum::<f64>() / per.len().max(1) as f64;
     Ok((mean, per))
@@ -400,11 +404,13 @@ pub fn run(args: FitArgs) -> Result<()> {
             let noise = Arc::new(stratus::noise_for(&scene));
             eprintln!("truth: {name}");
             let (truth, _) = bench::reference(&scene, &noise, args.spp, Some(&mut renderer))?;
+            let display = Compositor::new(&scene, &noise);
             out.push(Case {
                 name,
                 scene,
                 noise,
                 truth,
+                display,
             });
         }
         Ok(out)
@@ -488,8 +494,18 @@ pub fn run(args: FitArgs) -> Result<()> {
                 render(&mut renderer, c, before)?,
                 render(&mut renderer, c, fit)?,
             ];
-            let (eb, ea) = (errors(&c.truth, &frames[1])?, errors(&c.truth, &frames[2])?);
+            let (eb, ea) = (errors(c, &frames[1])?, errors(c, &frames[2])?);
             let br = brightness(&c.truth, &frames[2]);
+            // The images as compared: composited on the CPU, the truth through the air in
+            // front of the fitted frame's depth.
+            let mut frames = frames;
+            for i in 0..frames.len() {
+                let depth = if i == 0 { 2 } else { i };
+                frames[i].image = c
+                    .display
+                    .display(&frames[i].radiance, &frames[depth].depth)
+                    .context("composite of the fit's images")?;
+            }
             let path = images.join(format!("{}.png", slug(&c.name)));
             side_by_side(&frames, 4)
                 .save(&path)
@@ -529,7 +545,11 @@ pub fn run(args: FitArgs) -> Result<()> {
          model (the octaves attenuated by 1 / (1 + b^i tau) and scaled by mu0, the cosine of \
          the sun's zenith angle, no build-up, side light, coverage exponent, far shadow or limb darkening). \"Brightness\" is the fitted render's mean in-scattered \
          luminance over the truth's where the truth's transmittance is below 0.05 (dense), \
-         0.05 to 0.5 and 0.5 to 0.99 (thin).\n\n\
+         0.05 to 0.5 and 0.5 to 0.99 (thin). FLIP is measured on display images composited \
+         on the CPU from each image's linear radiance (`stratus_reference::Compositor`), the \
+         truth's through the air in front of the march's depth, so that the device that \
+         rendered the truth and the one that marches do not round the same light to \
+         different 8-bit levels; the images show what is compared.\n\n\
          | | N | a | b | c | build-up (m) | side light | coverage exponent | far chord (m) | limb darkening |\n\
          |---|---|---|---|---|---|---|---|---|---|\n\
          | before | {} | {:.2} | {:.2} | {:.2} | {} | {:.2} | {:.2} | {} | {:.2} |\n\

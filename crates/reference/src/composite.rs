@@ -294,3 +294,39 @@ pub(crate) fn composite_image(
         })
         .collect()
 }
+
+/// The composite pass of one scene on the CPU, for any renderer's linear output: display
+/// images made from radiance alone, by one code path in f64, whichever device rendered it.
+///
+/// Measurements of error need this. Two devices' composite passes round the same radiance to
+/// the display's 8 bits differently: an H200's all-orders truth and lavapipe's march of the
+/// same empty, uniformly lit ground differ by one level everywhere, which FLIP scores about
+/// 0.025 (its small differences are magnified) over a third of the image. Compositing both
+/// images here leaves the difference of their clouds.
+pub struct Compositor {
+    f: Frame,
+    sky: Option<SkyTables>,
+}
+
+impl Compositor {
+    /// The composite of `scene` (its sky's tables computed, and under the physical sky the
+    /// clouds' shadow on the ground from `noise`, as the frame's passes do).
+    pub fn new(scene: &stratus_scene::Scene, noise: &stratus_noise::NoiseSet) -> Self {
+        let model = crate::medium::Model::new(scene, crate::medium::Medium::Clouds(noise));
+        Self {
+            sky: model.sky().cloned(),
+            f: model.f,
+        }
+    }
+
+    /// The display image (RGBA8, row-major) of a frame of this scene's size from its linear
+    /// radiance and transmittance (4 floats a pixel) and the clouds' depth (m, one float a
+    /// pixel: where the aerial perspective in front of them ends). `None` if the slices do not
+    /// hold the frame's pixels.
+    pub fn display(&self, radiance: &[f32], depth: &[f32]) -> Option<Vec<u8>> {
+        let (w, h) = (self.f.counts[0], self.f.counts[1]);
+        let n = (w * h) as usize;
+        (radiance.len() == 4 * n && depth.len() == n)
+            .then(|| composite_image(&self.f, self.sky.as_ref(), w, h, radiance, depth))
+    }
+}

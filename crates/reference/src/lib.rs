@@ -89,6 +89,7 @@ use crate::math::V3;
 use crate::medium::Model;
 use crate::montecarlo::{Accumulator, Rng, camera_interval, trace};
 
+pub use crate::composite::Compositor;
 pub use crate::medium::{DensityGrid, Medium, Shape, sample_density_grid};
 pub use crate::{progressive::PathState, temporal::TemporalState};
 

@@ -4,7 +4,8 @@ use std::sync::OnceLock;
 
 use stratus_noise::{NoiseConfig, NoiseSet};
 use stratus_reference::{
-    Integrator, Medium, QuadratureSettings, RenderOptions, Rendering, render, render_medium,
+    Compositor, Integrator, Medium, QuadratureSettings, RenderOptions, Rendering, render,
+    render_medium,
 };
 use stratus_scene::Scene;
 
@@ -219,4 +220,44 @@ fn monte_carlo_single_scattering_agrees_with_converged_quadrature_at_high_precis
         }
     }
     eprintln!("worst block difference: {worst:.2} standard errors");
+}
+
+/// The compositor (the one display path of the bench's and the fit's errors) remakes a
+/// render's own display image from its radiance and depth, under the analytic sky and under
+/// the physical sky (`noon`: sky tables, the clouds' shadow on the ground, aerial perspective),
+/// follows the radiance it is given, and refuses a frame of another size.
+#[test]
+fn the_compositor_remakes_a_renders_display_image() {
+    for name in ["cumulus-noon", "noon"] {
+        let s = Scene::preset(name).expect("preset").with_size(16, 9);
+        let out = render(
+            &s,
+            noise(),
+            &Integrator::Quadrature(QuadratureSettings::realtime()),
+            false,
+        );
+        let c = Compositor::new(&s, noise());
+        let image = c
+            .display(&out.radiance, &out.depth)
+            .expect("the frame's size");
+        assert_eq!(image, out.image, "{name}");
+        let brighter: Vec<f32> = out
+            .radiance
+            .chunks(4)
+            .flat_map(|p| [p[0] * 2.0, p[1] * 2.0, p[2] * 2.0, p[3]])
+            .collect();
+        let lit = c.display(&brighter, &out.depth).expect("the frame's size");
+        assert_ne!(
+            lit, image,
+            "{name}: twice the clouds' light changed nothing"
+        );
+        assert!(
+            c.display(&out.radiance[4..], &out.depth).is_none(),
+            "{name}"
+        );
+        assert!(
+            c.display(&out.radiance, &out.depth[1..]).is_none(),
+            "{name}"
+        );
+    }
 }

@@ -5,12 +5,13 @@
 
 use std::{collections::BTreeMap, sync::Arc};
 
-use anyhow::Result;
+use anyhow::{Context, Result};
 use indicatif::ProgressBar;
 use stratus::quality::{Config, Row};
 use stratus_compare::{CompareOptions, Image, compare};
 use stratus_graph::{Backend, FrameInput, FrameOutput, FramePlan, output::median};
 use stratus_noise::NoiseSet;
+use stratus_reference::Compositor;
 use stratus_scene::{Integration, Method, PhaseModel, Scene, ShapeTexture, Temporal};
 
 use super::reference_cache::reference;
@@ -296,6 +297,7 @@ fn measure_config(
         preset,
         &reference,
         &frame,
+        &Compositor::new(s, noise),
         counted.stats,
         label,
     )?;
@@ -315,8 +317,17 @@ pub(crate) struct Errors {
     pub rmse: f64,
 }
 
-/// `frame` against `reference`: FLIP on the display images, RMSE on the linear radiance.
-pub(crate) fn errors(reference: &FrameOutput, frame: &FrameOutput) -> Result<Errors> {
+/// `frame` against `reference`: FLIP on display images, RMSE on the linear radiance. Both
+/// display images are composited by `display` (the CPU's composite of the scene) from their
+/// radiance, through the air in front of `frame`'s depth: the reference may come from another
+/// device (a GPU's truth from the cache, the CPU reference), whose own composite rounds to 8
+/// bits differently, and its depth (the path tracer's first collision, not cached) is not the
+/// march's (transmittance-weighted); what is measured is the clouds' light and transmittance.
+pub(crate) fn errors(
+    reference: &FrameOutput,
+    frame: &FrameOutput,
+    display: &Compositor,
+) -> Result<Errors> {
     let options = CompareOptions {
         exposure: 1.0,
         ..CompareOptions::default()
@@ -326,9 +337,25 @@ pub(crate) fn errors(reference: &FrameOutput, frame: &FrameOutput) -> Result<Err
         &Image::from_frame_radiance(frame),
         &options,
     )?;
+    let composite = |f: &FrameOutput| -> Result<FrameOutput> {
+        let image = display
+            .display(&f.radiance, &frame.depth)
+            .with_context(|| {
+                format!(
+                    "a {}x{} frame does not match the composite's size",
+                    f.width, f.height
+                )
+            })?;
+        Ok(FrameOutput {
+            width: f.width,
+            height: f.height,
+            image,
+            ..FrameOutput::default()
+        })
+    };
     let display = compare(
-        &Image::from_frame_display(reference),
-        &Image::from_frame_display(frame),
+        &Image::from_frame_display(&composite(reference)?),
+        &Image::from_frame_display(&composite(frame)?),
         &options,
     )?;
     Ok(Errors {
@@ -346,6 +373,7 @@ fn row(
     preset: bool,
     reference: &FrameOutput,
     frame: &FrameOutput,
+    display: &Compositor,
     stats: Option<BTreeMap<String, u64>>,
     label: String,
 ) -> Result<Row> {
@@ -355,7 +383,7 @@ fn row(
     let pixels = f64::from(frame.width * frame.height).max(1.0);
     let per = |k: &str| c.get(k).copied().unwrap_or(0) as f64 / pixels;
 
-    let e = errors(reference, frame)?;
+    let e = errors(reference, frame, display)?;
     Ok(Row {
         scene: name.to_string(),
         name: config.name(),
@@ -464,6 +492,7 @@ fn measure_method(
         preset,
         &reference,
         &frame,
+        &Compositor::new(s, noise),
         counted.stats,
         label,
     )?;
