@@ -38,6 +38,7 @@ struct Frame {
     float4 moon;
     float4 night;
     float4 light_model;
+    float4 forward_lobe;
 };
 
 struct Roots {
@@ -89,6 +90,18 @@ struct Weather {
     float precipitation;
 };
 
+struct SunScattering {
+    float total;
+    float octaves;
+};
+
+struct ScatteredLight {
+    float3 total;
+    int _pad1_0;
+    float3 octaves;
+    int _end_pad_0;
+};
+
 struct Stats {
     uint counters[9];
 };
@@ -106,9 +119,11 @@ struct MarchState {
     float3 radiance;
     float transmittance;
     float depth_sum;
+    int _pad3_0;
+    int _pad3_1;
+    int _pad3_2;
+    float3 octaves;
     int _end_pad_0;
-    int _end_pad_1;
-    int _end_pad_2;
 };
 
 struct Segments {
@@ -197,6 +212,7 @@ static const uint AMBIENT_DIRECTIONS = 64u;
 static const uint AMBIENT_STEPS = 24u;
 static const uint GROUND_IRRADIANCE_SIZE = 64u;
 static const uint NO_LAYER = 4u;
+static const float FORWARD_LOBE_THIN = 0.1;
 static const uint GROUND_IRRADIANCE_DIRECTIONS = 128u;
 static const uint SHADOW_SIZE = 128u;
 static const float SHADOW_HALF_EXTENT = 20000.0;
@@ -871,10 +887,10 @@ Scattered integrate_air(float3 origin, float3 d_7, float distance_km, uint steps
     float t0_ = 0.0;
     uint i_8 = 0u;
 
-    float cos_theta_7 = dot(d_7, sun);
-    const float _e6 = phase_rayleigh(cos_theta_7);
+    float cos_theta_8 = dot(d_7, sun);
+    const float _e6 = phase_rayleigh(cos_theta_8);
     float _e10 = frame.air_mie.w;
-    const float _e11 = phase_cornette_shanks_air(cos_theta_7, _e10);
+    const float _e11 = phase_cornette_shanks_air(cos_theta_8, _e10);
     uint2 loop_bound_2 = uint2(4294967295u, 4294967295u);
     bool loop_init_2 = true;
     while(true) {
@@ -1578,7 +1594,14 @@ float diffuse_limb(float view_y, float coverage)
     return lerp(1.0, layer_5, _e17);
 }
 
-float sun_scattering(float cos_theta_5, float view_y_1, float tau_6, float far_1, float build, float coverage_1)
+SunScattering ConstructSunScattering(float arg0, float arg1) {
+    SunScattering ret = (SunScattering)0;
+    ret.total = arg0;
+    ret.octaves = arg1;
+    return ret;
+}
+
+SunScattering sun_scattering(float cos_theta_5, float view_y_1, float tau_6, float far_1, float build, float coverage_1)
 {
     float octave_sum = 0.0;
     float ka = 1.0;
@@ -1586,6 +1609,7 @@ float sun_scattering(float cos_theta_5, float view_y_1, float tau_6, float far_1
     float kc = 1.0;
     uint i_12 = 0u;
     float feed = (float)0;
+    float octaves_part = (float)0;
     float total = (float)0;
 
     float a_8 = frame.multiple_scattering.x;
@@ -1638,18 +1662,38 @@ float sun_scattering(float cos_theta_5, float view_y_1, float tau_6, float far_1
     float _e96 = feed;
     const float _e97 = diffuse_limb(view_y_1, coverage_1);
     feed = (_e96 * _e97);
-    const float _e100 = phase(cos_theta_5, 1.0);
-    float _e105 = feed;
-    float _e107 = octave_sum;
-    total = ((_e100 * exp((-(tau_6) - far_1))) + ((_e105 * build) * _e107));
-    uint _e114 = frame.modes.w;
-    if (((_e114 & FLAG_BEER_POWDER) != 0u)) {
-        float _e119 = total;
-        float _e123 = frame.phase.w;
-        total = (_e119 * (1.0 - exp((-(_e123) * tau_6))));
+    float _e99 = feed;
+    float _e101 = octave_sum;
+    octaves_part = ((_e99 * build) * _e101);
+    const float _e105 = phase(cos_theta_5, 1.0);
+    float _e110 = octaves_part;
+    total = ((_e105 * exp((-(tau_6) - far_1))) + _e110);
+    uint _e116 = frame.modes.w;
+    if (((_e116 & FLAG_BEER_POWDER) != 0u)) {
+        float _e124 = frame.phase.w;
+        float powder = (1.0 - exp((-(_e124) * tau_6)));
+        float _e130 = total;
+        total = (_e130 * powder);
+        float _e132 = octaves_part;
+        octaves_part = (_e132 * powder);
     }
-    float _e130 = total;
-    return _e130;
+    float _e134 = total;
+    float _e135 = octaves_part;
+    const SunScattering sunscattering = ConstructSunScattering(_e134, _e135);
+    return sunscattering;
+}
+
+float forward_lobe(float cos_theta_6, float transmittance)
+{
+    float k_13 = frame.forward_lobe.x;
+    if ((k_13 <= 0.0)) {
+        return 1.0;
+    }
+    const float _e11 = saturate_((transmittance / FORWARD_LOBE_THIN));
+    float w_6 = (k_13 * _e11);
+    float _e17 = frame.forward_lobe.y;
+    const float _e18 = phase_hg(cos_theta_6, _e17);
+    return (1.0 + (w_6 * ((12.566371 * _e18) - 1.0)));
 }
 
 float octave_buildup(float density_1)
@@ -1685,9 +1729,17 @@ float height_fraction(float alt_11)
     return _e4;
 }
 
-float3 scattered_light(float3 rel_3, float3 p_8, float alt_12, float density_2, float3 view, Layer l_6, inout Counters counters_6)
+ScatteredLight ConstructScatteredLight(float3 arg0, float3 arg1) {
+    ScatteredLight ret = (ScatteredLight)0;
+    ret.total = arg0;
+    ret.octaves = arg1;
+    return ret;
+}
+
+ScatteredLight scattered_light(float3 rel_3, float3 p_8, float alt_12, float density_2, float3 view, Layer l_6, inout Counters counters_6)
 {
     float3 sun_light = (0.0).xxx;
+    float3 octave_light = (0.0).xxx;
     float tau_7 = 0.0;
     float far_2 = 0.0;
 
@@ -1695,29 +1747,34 @@ float3 scattered_light(float3 rel_3, float3 p_8, float alt_12, float density_2, 
     float3 sun_4 = _e9.xyz;
     const float _e11 = layer_height(l_6, alt_12);
     const float _e12 = saturate_(_e11);
-    const Weather _e16 = sample_weather(p_8, l_6);
-    const bool _e17 = hits_ground(rel_3, alt_12, sun_4);
-    if (!(_e17)) {
+    const Weather _e19 = sample_weather(p_8, l_6);
+    const bool _e20 = hits_ground(rel_3, alt_12, sun_4);
+    if (!(_e20)) {
         if (LIGHT_MARCH) {
-            const float _e24 = sun_optical_depth(rel_3, p_8, l_6, counters_6);
-            tau_7 = _e24;
-            const float _e25 = far_optical_depth(rel_3, p_8, l_6);
-            far_2 = _e25;
+            const float _e27 = sun_optical_depth(rel_3, p_8, l_6, counters_6);
+            tau_7 = _e27;
+            const float _e28 = far_optical_depth(rel_3, p_8, l_6);
+            far_2 = _e28;
         }
-        float _e28 = tau_7;
-        float _e29 = far_2;
-        const float _e30 = octave_buildup(density_2);
-        const float _e32 = sun_scattering(dot(view, sun_4), view.y, _e28, _e29, _e30, _e16.coverage);
-        float4 _e35 = frame.sun_illuminance;
-        const float3 _e37 = sun_through_air(rel_3);
-        sun_light = ((_e35.xyz * _e37) * _e32);
+        float _e31 = tau_7;
+        float _e32 = far_2;
+        const float _e33 = octave_buildup(density_2);
+        const SunScattering _e35 = sun_scattering(dot(view, sun_4), view.y, _e31, _e32, _e33, _e19.coverage);
+        float4 _e38 = frame.sun_illuminance;
+        const float3 _e40 = sun_through_air(rel_3);
+        float3 lit_ = (_e38.xyz * _e40);
+        sun_light = (lit_ * _e35.total);
+        octave_light = (lit_ * _e35.octaves);
     }
-    float _e43 = frame.extinction.z;
-    const float _e51 = saturate_((1.0 - ((_e43 * _e16.precipitation) * (1.0 - _e12))));
-    float _e55 = frame.extinction.x;
-    float3 _e57 = sun_light;
-    const float3 _e58 = ambient(_e12);
-    return (((_e55 * density_2) * (_e57 + _e58)) * _e51);
+    float _e49 = frame.extinction.z;
+    const float _e57 = saturate_((1.0 - ((_e49 * _e19.precipitation) * (1.0 - _e12))));
+    float _e61 = frame.extinction.x;
+    float k_14 = ((_e61 * density_2) * _e57);
+    float3 _e64 = sun_light;
+    const float3 _e65 = ambient(_e12);
+    float3 _e68 = octave_light;
+    const ScatteredLight scatteredlight = ConstructScatteredLight(((_e64 + _e65) * k_14), (_e68 * k_14));
+    return scatteredlight;
 }
 
 float3 shadow_ground_point(uint2 c_2)
@@ -1838,8 +1895,8 @@ float start_offset(uint2 pixel_3)
 {
     uint _e4 = frame.modes.w;
     bool jitter_1 = ((_e4 & FLAG_JITTER) != 0u);
-    uint k_13 = frame.temporal.x;
-    if ((k_13 <= 1u)) {
+    uint k_15 = frame.temporal.x;
+    if ((k_15 <= 1u)) {
         uint _e18 = frame.misc.y;
         const float _e19 = hash_unit(pixel_3, _e18);
         return (jitter_1 ? _e19 : 0.5);
@@ -1847,7 +1904,7 @@ float start_offset(uint2 pixel_3)
     const float _e23 = hash_unit(pixel_3, 0u);
     float base_2 = (jitter_1 ? _e23 : 0.5);
     uint _e29 = frame.misc.y;
-    const float _e32 = van_der_corput(naga_div(_e29, (k_13 * k_13)));
+    const float _e32 = van_der_corput(naga_div(_e29, (k_15 * k_15)));
     return frac((base_2 + _e32));
 }
 
@@ -1934,22 +1991,25 @@ bool march_layer(float3 view_2, Interval span_1, Layer l_7, float jitter, inout 
         }
         empty = 0u;
         float sigma_t_2 = (sigma_e * _e116);
-        const float3 _e145 = scattered_light(rel_7, p_14, _e115, _e116, view_2, l_7, counters_7);
-        float transmittance_1 = state.transmittance;
+        const ScatteredLight _e145 = scattered_light(rel_7, p_14, _e115, _e116, view_2, l_7, counters_7);
+        float transmittance_2 = state.transmittance;
         float3 _e149 = state.radiance;
-        const float3 _e150 = step_integral(_e145, sigma_t_2, dt_2);
-        state.radiance = (_e149 + (transmittance_1 * _e150));
+        const float3 _e151 = step_integral(_e145.total, sigma_t_2, dt_2);
+        state.radiance = (_e149 + (transmittance_2 * _e151));
+        float3 _e155 = state.octaves;
+        const float3 _e157 = step_integral(_e145.octaves, sigma_t_2, dt_2);
+        state.octaves = (_e155 + (transmittance_2 * _e157));
         float step_t = exp((-(sigma_t_2) * dt_2));
-        float _e157 = state.depth_sum;
-        state.depth_sum = (_e157 + ((t_7 * transmittance_1) * (1.0 - step_t)));
-        state.transmittance = (transmittance_1 * step_t);
-        float _e166 = state.transmittance;
-        float _e170 = frame.march.w;
-        if ((_e166 < _e170)) {
+        float _e164 = state.depth_sum;
+        state.depth_sum = (_e164 + ((t_7 * transmittance_2) * (1.0 - step_t)));
+        state.transmittance = (transmittance_2 * step_t);
+        float _e173 = state.transmittance;
+        float _e177 = frame.march.w;
+        if ((_e173 < _e177)) {
             return true;
         }
-        uint _e173 = i_13;
-        i_13 = (_e173 + 1u);
+        uint _e180 = i_13;
+        i_13 = (_e180 + 1u);
     }
     return false;
 }
@@ -1963,11 +2023,12 @@ Counters ConstructCounters(uint arg0, uint arg1, uint arg2, uint arg3) {
     return ret;
 }
 
-MarchState ConstructMarchState(float3 arg0, float arg1, float arg2) {
+MarchState ConstructMarchState(float3 arg0, float arg1, float arg2, float3 arg3) {
     MarchState ret = (MarchState)0;
     ret.radiance = arg0;
     ret.transmittance = arg1;
     ret.depth_sum = arg2;
+    ret.octaves = arg3;
     return ret;
 }
 
@@ -1982,7 +2043,7 @@ MarchResult ConstructMarchResult(float3 arg0, float arg1, float arg2) {
 MarchResult march_pixel(uint2 pixel_4)
 {
     Counters counters_8 = ConstructCounters(0u, 0u, 0u, 0u);
-    MarchState state_1 = ConstructMarchState((0.0).xxx, 1.0, 0.0);
+    MarchState state_1 = ConstructMarchState((0.0).xxx, 1.0, 0.0, (0.0).xxx);
     bool marched = false;
     bool ground_1 = false;
     float last_start = -1.0;
@@ -2003,20 +2064,20 @@ MarchResult march_pixel(uint2 pixel_4)
     const float3 _e1 = view_ray(pixel_4);
     float cam_alt_2 = frame.camera_position.y;
     count(STAT_PIXELS, 1u);
-    const float _e20 = start_offset(pixel_4);
-    const uint _e21 = layer_count();
+    const float _e22 = start_offset(pixel_4);
+    const uint _e23 = layer_count();
     uint2 loop_bound_9 = uint2(4294967295u, 4294967295u);
     bool loop_init_8 = true;
     while(true) {
         if (all(loop_bound_9 == uint2(0u, 0u))) { break; }
         loop_bound_9 -= uint2(loop_bound_9.y == 0u, 1u);
         if (!loop_init_8) {
-            uint _e119 = k_6;
-            k_6 = (_e119 + 1u);
+            uint _e121 = k_6;
+            k_6 = (_e121 + 1u);
         }
         loop_init_8 = false;
-        uint _e34 = k_6;
-        if ((_e34 < _e21)) {
+        uint _e36 = k_6;
+        if ((_e36 < _e23)) {
         } else {
             break;
         }
@@ -2030,121 +2091,126 @@ MarchResult march_pixel(uint2 pixel_4)
                 if (all(loop_bound_10 == uint2(0u, 0u))) { break; }
                 loop_bound_10 -= uint2(loop_bound_10.y == 0u, 1u);
                 if (!loop_init_9) {
-                    uint _e102 = i_14;
-                    i_14 = (_e102 + 1u);
+                    uint _e104 = i_14;
+                    i_14 = (_e104 + 1u);
                 }
                 loop_init_9 = false;
-                uint _e45 = i_14;
-                if ((_e45 < _e21)) {
+                uint _e47 = i_14;
+                if ((_e47 < _e23)) {
                 } else {
                     break;
                 }
                 {
-                    uint _e47 = i_14;
-                    const Layer _e48 = cloud_layer(_e47);
-                    const Interval _e49 = layer_interval(cam_alt_2, _e1, _e48);
-                    bool _e50 = ground_1;
-                    if (!(_e50)) {
-                        local_35 = (_e49.kind == RAY_HITS_GROUND);
+                    uint _e49 = i_14;
+                    const Layer _e50 = cloud_layer(_e49);
+                    const Interval _e51 = layer_interval(cam_alt_2, _e1, _e50);
+                    bool _e52 = ground_1;
+                    if (!(_e52)) {
+                        local_35 = (_e51.kind == RAY_HITS_GROUND);
                     } else {
                         local_35 = true;
                     }
-                    bool _e58 = local_35;
-                    ground_1 = _e58;
-                    float _e60 = last_start;
-                    if (!((_e49.start > _e60))) {
-                        float _e66 = last_start;
-                        if ((_e49.start == _e66)) {
-                            uint _e70 = i_14;
-                            uint _e71 = last_index;
-                            local_37 = (_e70 > _e71);
+                    bool _e60 = local_35;
+                    ground_1 = _e60;
+                    float _e62 = last_start;
+                    if (!((_e51.start > _e62))) {
+                        float _e68 = last_start;
+                        if ((_e51.start == _e68)) {
+                            uint _e72 = i_14;
+                            uint _e73 = last_index;
+                            local_37 = (_e72 > _e73);
                         } else {
                             local_37 = false;
                         }
-                        bool _e74 = local_37;
-                        local_36 = _e74;
+                        bool _e76 = local_37;
+                        local_36 = _e76;
                     } else {
                         local_36 = true;
                     }
                     bool after = local_36;
-                    if ((_e49.kind == RAY_MARCH)) {
+                    if ((_e51.kind == RAY_MARCH)) {
                         local_38 = after;
                     } else {
                         local_38 = false;
                     }
-                    bool _e83 = local_38;
-                    if (_e83) {
-                        uint _e86 = next;
-                        if (!((_e86 == NO_LAYER))) {
-                            float _e94 = span_2.start;
-                            local_40 = (_e49.start < _e94);
+                    bool _e85 = local_38;
+                    if (_e85) {
+                        uint _e88 = next;
+                        if (!((_e88 == NO_LAYER))) {
+                            float _e96 = span_2.start;
+                            local_40 = (_e51.start < _e96);
                         } else {
                             local_40 = true;
                         }
-                        bool _e97 = local_40;
-                        local_39 = _e97;
+                        bool _e99 = local_40;
+                        local_39 = _e99;
                     } else {
                         local_39 = false;
                     }
-                    bool _e99 = local_39;
-                    if (_e99) {
-                        uint _e100 = i_14;
-                        next = _e100;
-                        span_2 = _e49;
+                    bool _e101 = local_39;
+                    if (_e101) {
+                        uint _e102 = i_14;
+                        next = _e102;
+                        span_2 = _e51;
                     }
                 }
             }
-            uint _e104 = next;
-            if ((_e104 == NO_LAYER)) {
+            uint _e106 = next;
+            if ((_e106 == NO_LAYER)) {
                 break;
             }
             marched = true;
-            float _e109 = span_2.start;
-            last_start = _e109;
-            uint _e110 = next;
-            last_index = _e110;
-            Interval _e111 = span_2;
+            float _e111 = span_2.start;
+            last_start = _e111;
             uint _e112 = next;
-            const Layer _e113 = cloud_layer(_e112);
-            const bool _e114 = march_layer(_e1, _e111, _e113, _e20, state_1, counters_8);
-            if (_e114) {
+            last_index = _e112;
+            Interval _e113 = span_2;
+            uint _e114 = next;
+            const Layer _e115 = cloud_layer(_e114);
+            const bool _e116 = march_layer(_e1, _e113, _e115, _e22, state_1, counters_8);
+            if (_e116) {
                 count(STAT_EXIT_TRANSMITTANCE, 1u);
                 exited = true;
                 break;
             }
         }
     }
-    bool _e121 = marched;
-    if (_e121) {
+    bool _e123 = marched;
+    if (_e123) {
         count(STAT_MARCHED, 1u);
     } else {
-        bool _e124 = ground_1;
-        if (_e124) {
+        bool _e126 = ground_1;
+        if (_e126) {
             count(STAT_EXIT_GROUND, 1u);
         } else {
             count(STAT_EXIT_MISSED, 1u);
         }
     }
-    uint _e131 = counters_8.view_steps;
-    count(STAT_VIEW_STEPS, _e131);
-    uint _e134 = counters_8.density;
-    count(STAT_DENSITY, _e134);
-    uint _e137 = counters_8.detail;
-    count(STAT_DETAIL, _e137);
-    uint _e140 = counters_8.light;
-    count(STAT_LIGHT, _e140);
-    float _e144 = state_1.transmittance;
-    if ((_e144 < 1.0)) {
-        float _e148 = state_1.depth_sum;
-        float _e150 = state_1.transmittance;
-        depth_1 = (_e148 / (1.0 - _e150));
+    uint _e133 = counters_8.view_steps;
+    count(STAT_VIEW_STEPS, _e133);
+    uint _e136 = counters_8.density;
+    count(STAT_DENSITY, _e136);
+    uint _e139 = counters_8.detail;
+    count(STAT_DETAIL, _e139);
+    uint _e142 = counters_8.light;
+    count(STAT_LIGHT, _e142);
+    float _e146 = state_1.transmittance;
+    if ((_e146 < 1.0)) {
+        float _e150 = state_1.depth_sum;
+        float _e152 = state_1.transmittance;
+        depth_1 = (_e150 / (1.0 - _e152));
     }
-    float _e155 = state_1.transmittance;
-    bool _e156 = exited;
-    float transmittance_2 = (_e156 ? 0.0 : _e155);
-    float3 _e160 = state_1.radiance;
-    float _e161 = depth_1;
-    const MarchResult marchresult = ConstructMarchResult(_e160, transmittance_2, _e161);
+    float _e157 = state_1.transmittance;
+    bool _e158 = exited;
+    float transmittance_3 = (_e158 ? 0.0 : _e157);
+    float4 _e163 = frame.sun_direction;
+    float _e167 = state_1.transmittance;
+    const float _e168 = forward_lobe(dot(_e1, _e163.xyz), _e167);
+    float3 _e170 = state_1.radiance;
+    float3 _e172 = state_1.octaves;
+    float3 radiance_5 = (_e170 + (_e172 * (_e168 - 1.0)));
+    float _e177 = depth_1;
+    const MarchResult marchresult = ConstructMarchResult(radiance_5, transmittance_3, _e177);
     return marchresult;
 }
 
@@ -2314,17 +2380,17 @@ uint2 naga_div(uint2 lhs, uint2 rhs) {
 
 bool in_blocks(uint2 id_19)
 {
-    uint k_14 = frame.temporal.x;
+    uint k_16 = frame.temporal.x;
     uint4 _e7 = frame.counts;
-    return all((id_19 < naga_div(((_e7.xy + (k_14).xx) - (1u).xx), (k_14).xx)));
+    return all((id_19 < naga_div(((_e7.xy + (k_16).xx) - (1u).xx), (k_16).xx)));
 }
 
 uint2 sparse_pixel(uint2 id_20)
 {
-    uint k_15 = frame.temporal.x;
+    uint k_17 = frame.temporal.x;
     uint _e9 = frame.misc.y;
-    const uint2 _e10 = block_offset(_e9, k_15);
-    return ((id_20 * k_15) + _e10);
+    const uint2 _e10 = block_offset(_e9, k_17);
+    return ((id_20 * k_17) + _e10);
 }
 
 void store_sparse(uint2 id_21, MarchResult r_13)
@@ -2685,7 +2751,7 @@ PhaseSample ConstructPhaseSample(float3 arg0, float arg1) {
 
 PhaseSample sample_phase(float3 dir_4, inout uint rng_5)
 {
-    float cos_theta_6 = 0.0;
+    float cos_theta_7 = 0.0;
     float pdf = 0.0;
 
     const float _e2 = rng_next(rng_5);
@@ -2699,11 +2765,11 @@ PhaseSample sample_phase(float3 dir_4, inout uint rng_5)
         float _e28 = frame.phase.z;
         float g_6 = ((_e2 < _e28) ? _e24 : _e20);
         const float _e31 = sample_hg_cos(g_6, _e3);
-        cos_theta_6 = _e31;
-        float _e32 = cos_theta_6;
+        cos_theta_7 = _e31;
+        float _e32 = cos_theta_7;
         float _e36 = frame.phase.x;
         const float _e37 = phase_hg(_e32, _e36);
-        float _e38 = cos_theta_6;
+        float _e38 = cos_theta_7;
         float _e42 = frame.phase.y;
         const float _e43 = phase_hg(_e38, _e42);
         float _e47 = frame.phase.z;
@@ -2711,27 +2777,27 @@ PhaseSample sample_phase(float3 dir_4, inout uint rng_5)
     } else {
         float _e52 = frame.phase.x;
         const float _e53 = sample_hg_cos(_e52, _e3);
-        cos_theta_6 = _e53;
-        float _e54 = cos_theta_6;
+        cos_theta_7 = _e53;
+        float _e54 = cos_theta_7;
         float _e58 = frame.phase.x;
         const float _e59 = phase_hg(_e54, _e58);
         pdf = _e59;
     }
-    float _e60 = cos_theta_6;
-    float _e61 = cos_theta_6;
+    float _e60 = cos_theta_7;
+    float _e61 = cos_theta_7;
     float sin_theta = sqrt(max((1.0 - (_e60 * _e61)), 0.0));
     float sign_ = ((dir_4.z >= 0.0) ? 1.0 : -1.0);
     float a_9 = (-1.0 / (sign_ + dir_4.z));
     float bb = ((dir_4.x * dir_4.y) * a_9);
     float3 t_8 = float3((1.0 + (((sign_ * dir_4.x) * dir_4.x) * a_9)), (sign_ * bb), (-(sign_) * dir_4.x));
     float3 b_10 = float3(bb, (sign_ + ((dir_4.y * dir_4.y) * a_9)), -(dir_4.y));
-    float _e109 = cos_theta_6;
-    float3 w_6 = normalize((((t_8 * (sin_theta * cos(phi_1))) + (b_10 * (sin_theta * sin(phi_1)))) + (dir_4 * _e109)));
-    float _e113 = cos_theta_6;
+    float _e109 = cos_theta_7;
+    float3 w_7 = normalize((((t_8 * (sin_theta * cos(phi_1))) + (b_10 * (sin_theta * sin(phi_1)))) + (dir_4 * _e109)));
+    float _e113 = cos_theta_7;
     const float _e115 = phase(_e113, 1.0);
     float _e116 = pdf;
     float _e118 = pdf;
-    const PhaseSample phasesample = ConstructPhaseSample(w_6, ((_e118 > 0.0) ? (_e115 / _e116) : 0.0));
+    const PhaseSample phasesample = ConstructPhaseSample(w_7, ((_e118 > 0.0) ? (_e115 / _e116) : 0.0));
     return phasesample;
 }
 
@@ -2999,7 +3065,7 @@ MarchResult basic_pixel(uint2 pixel_7)
 {
     Counters counters_14 = ConstructCounters(0u, 0u, 0u, 0u);
     float3 radiance_2 = (0.0).xxx;
-    float transmittance = 1.0;
+    float transmittance_1 = 1.0;
     float depth_sum = 0.0;
     uint i_17 = 0u;
     float depth_3 = 0.0;
@@ -3057,14 +3123,14 @@ MarchResult basic_pixel(uint2 pixel_7)
                     const float _e99 = basic_sun_depth(rel_9, _e95, counters_14);
                     float beer_powder = ((2.0 * exp(-(_e99))) * (1.0 - exp((-2.0 * _e99))));
                     float3 _e110 = radiance_2;
-                    float _e111 = transmittance;
+                    float _e111 = transmittance_1;
                     radiance_2 = (_e110 + (sun_phase * ((((beer_powder * _e111) * sigma_s) * _e96) * dt_4)));
                     float step_t_1 = exp(((-(sigma_t_6) * _e96) * dt_4));
                     float _e122 = depth_sum;
-                    float _e123 = transmittance;
+                    float _e123 = transmittance_1;
                     depth_sum = (_e122 + ((t_9 * _e123) * (1.0 - step_t_1)));
-                    float _e129 = transmittance;
-                    transmittance = (_e129 * step_t_1);
+                    float _e129 = transmittance_1;
+                    transmittance_1 = (_e129 * step_t_1);
                 }
             }
         }
@@ -3077,14 +3143,14 @@ MarchResult basic_pixel(uint2 pixel_7)
     count(STAT_DETAIL, _e142);
     uint _e145 = counters_14.light;
     count(STAT_LIGHT, _e145);
-    float _e148 = transmittance;
+    float _e148 = transmittance_1;
     if ((_e148 < 1.0)) {
         float _e151 = depth_sum;
-        float _e152 = transmittance;
+        float _e152 = transmittance_1;
         depth_3 = (_e151 / (1.0 - _e152));
     }
     float3 _e156 = radiance_2;
-    float _e157 = transmittance;
+    float _e157 = transmittance_1;
     float _e158 = depth_3;
     const MarchResult marchresult_1 = ConstructMarchResult(_e156, _e157, _e158);
     return marchresult_1;
@@ -3219,8 +3285,8 @@ float3 sprite_rel(float2 xz, float alt_15)
     float rp_6 = frame.atmosphere.x;
     float4 _e8 = frame.camera_position;
     float2 d_21 = (xz - _e8.xz);
-    float k_16 = ((alt_15 * (alt_15 + (2.0 * rp_6))) - dot(d_21, d_21));
-    float y_3 = (k_16 / (rp_6 + sqrt(max(((rp_6 * rp_6) + k_16), 0.0))));
+    float k_18 = ((alt_15 * (alt_15 + (2.0 * rp_6))) - dot(d_21, d_21));
+    float y_3 = (k_18 / (rp_6 + sqrt(max(((rp_6 * rp_6) + k_18), 0.0))));
     return float3(d_21.x, y_3, d_21.y);
 }
 
@@ -3419,9 +3485,9 @@ float3 moon_disk(float3 d_16)
     float x2_1 = min(dot(offset, offset), 1.0);
     float3 normal = (offset - (m_3 * sqrt((1.0 - x2_1))));
     float4 _e36 = frame.night;
-    float lit_ = smoothstep(-0.02, 0.02, dot(normal, _e36.xyz));
+    float lit_1 = smoothstep(-0.02, 0.02, dot(normal, _e36.xyz));
     float _e46 = frame.moon.w;
-    return (((_e46 / 6.40407e-5) * lit_)).xxx;
+    return (((_e46 / 6.40407e-5) * lit_1)).xxx;
 }
 
 float3 stars(float3 d_17)
@@ -3759,10 +3825,10 @@ void aerial_perspective(uint3 id_3 : SV_DispatchThreadID)
     const float2 _e9 = air_ray_end(_e8, _e7);
     float4 _e12 = frame.sun_direction;
     float3 sun_10 = _e12.xyz;
-    float cos_theta_8 = dot(_e7, sun_10);
-    const float _e15 = phase_rayleigh(cos_theta_8);
+    float cos_theta_9 = dot(_e7, sun_10);
+    const float _e15 = phase_rayleigh(cos_theta_9);
     float _e19 = frame.air_mie.w;
-    const float _e20 = phase_cornette_shanks_air(cos_theta_8, _e19);
+    const float _e20 = phase_cornette_shanks_air(cos_theta_9, _e19);
     uint2 loop_bound_25 = uint2(4294967295u, 4294967295u);
     bool loop_init_21 = true;
     while(true) {
@@ -3873,12 +3939,12 @@ void sky_ambient(uint3 id_4 : SV_DispatchThreadID)
             float4 _e49 = frame.sun_direction;
             float3 sun_11 = _e49.xyz;
             const Scattered _e53 = integrate_air(origin_7, _e45, _e46.x, AMBIENT_STEPS, sun_11);
-            float w_7 = abs(_e45.y);
+            float w_8 = abs(_e45.y);
             float3 _e56 = sum_1;
             const float3 _e61 = with_ground(_e53, origin_7, _e45, _e46.x, sun_11, (_e46.y > 0.5));
-            sum_1 = (_e56 + (w_7 * _e61));
+            sum_1 = (_e56 + (w_8 * _e61));
             float _e64 = weights;
-            weights = (_e64 + w_7);
+            weights = (_e64 + w_8);
         }
     }
     float3 _e71 = sum_1;
@@ -4159,9 +4225,9 @@ void march_sparse_checkerboard(uint3 id_10 : SV_DispatchThreadID)
     }
     bool _e30 = local_3;
     if (_e30) {
-        uint k_17 = frame.temporal.x;
+        uint k_19 = frame.temporal.x;
         uint _e38 = frame.misc.y;
-        uint turn = naga_div(_e38, (k_17 * k_17));
+        uint turn = naga_div(_e38, (k_19 * k_19));
         const float2 _e42 = reproject(_e5, 0.0);
         if (((((id_10.x + id_10.y) + turn) & 1u) == 0u)) {
             const bool _e53 = on_screen(_e42);
@@ -4212,11 +4278,11 @@ void resolve(uint3 id_11 : SV_DispatchThreadID)
         return;
     }
     uint2 pixel_10 = id_11.xy;
-    uint k_18 = frame.temporal.x;
-    uint2 block = naga_div(pixel_10, (k_18).xx);
+    uint k_20 = frame.temporal.x;
+    uint2 block = naga_div(pixel_10, (k_20).xx);
     uint _e19 = frame.misc.y;
-    const uint2 _e20 = block_offset(_e19, k_18);
-    bool marched_1 = all((pixel_10 == ((block * k_18) + _e20)));
+    const uint2 _e20 = block_offset(_e19, k_20);
+    bool marched_1 = all((pixel_10 == ((block * k_20) + _e20)));
     float4 current = sparse_in.Load(int3(block, int(0)));
     float4 _e29 = sparse_depth_in.Load(int3(block, int(0)));
     float current_depth = _e29.x;
@@ -4279,7 +4345,7 @@ void resolve(uint3 id_11 : SV_DispatchThreadID)
     bool _e115 = local_9;
     if (_e115) {
         uint4 _e118 = frame.counts;
-        int2 blocks = int2(naga_div(((_e118.xy + (k_18).xx) - (1u).xx), (k_18).xx));
+        int2 blocks = int2(naga_div(((_e118.xy + (k_20).xx) - (1u).xx), (k_20).xx));
         int2 b_11 = int2(block);
         int x0_1 = max(asint(asuint(b_11.x) - asuint(int(1))), int(0));
         int x2_2 = min(asint(asuint(b_11.x) + asuint(int(1))), asint(asuint(blocks.x) - asuint(int(1))));

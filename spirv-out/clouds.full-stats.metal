@@ -44,6 +44,7 @@ struct Frame {
     metal::float4 moon;
     metal::float4 night;
     metal::float4 light_model;
+    metal::float4 forward_lobe;
 };
 struct Roots {
     float t0_;
@@ -85,6 +86,14 @@ struct Weather {
     float cloud_type;
     float precipitation;
 };
+struct SunScattering {
+    float total;
+    float octaves;
+};
+struct ScatteredLight {
+    metal::float3 total;
+    metal::float3 octaves;
+};
 struct type_18 {
     metal::atomic_uint inner[9];
 };
@@ -102,6 +111,7 @@ struct MarchState {
     float transmittance;
     float depth_sum;
     char _pad3[12];
+    metal::float3 octaves;
 };
 struct Segments {
     metal::float2 a;
@@ -186,6 +196,7 @@ constant uint AMBIENT_DIRECTIONS = 64u;
 constant uint AMBIENT_STEPS = 24u;
 constant uint GROUND_IRRADIANCE_SIZE = 64u;
 constant uint NO_LAYER = 4u;
+constant float FORWARD_LOBE_THIN = 0.1;
 constant uint GROUND_IRRADIANCE_DIRECTIONS = 128u;
 constant uint SHADOW_SIZE = 128u;
 constant float SHADOW_HALF_EXTENT = 20000.0;
@@ -834,10 +845,10 @@ Scattered integrate_air(
     metal::float3 tau_3 = metal::float3(0.0);
     float t0_ = 0.0;
     uint i_8 = 0u;
-    float cos_theta_7 = metal::dot(d_7, sun);
-    float _e6 = phase_rayleigh(cos_theta_7);
+    float cos_theta_8 = metal::dot(d_7, sun);
+    float _e6 = phase_rayleigh(cos_theta_8);
     float _e10 = frame.air_mie.w;
-    float _e11 = phase_cornette_shanks_air(cos_theta_7, _e10);
+    float _e11 = phase_cornette_shanks_air(cos_theta_8, _e10);
     uint2 loop_bound_2 = uint2(4294967295u);
     bool loop_init_2 = true;
     while(true) {
@@ -1630,7 +1641,7 @@ float diffuse_limb(
     return metal::mix(1.0, layer, _e17);
 }
 
-float sun_scattering(
+SunScattering sun_scattering(
     float cos_theta_5,
     float view_y_1,
     float tau_6,
@@ -1645,6 +1656,7 @@ float sun_scattering(
     float kc = 1.0;
     uint i_12 = 0u;
     float feed = {};
+    float octaves_part = {};
     float total = {};
     float a_8 = frame.multiple_scattering.x;
     float b_8 = frame.multiple_scattering.y;
@@ -1696,18 +1708,40 @@ float sun_scattering(
     float _e96 = feed;
     float _e97 = diffuse_limb(view_y_1, coverage_1, frame);
     feed = _e96 * _e97;
-    float _e100 = phase(cos_theta_5, 1.0, frame);
-    float _e105 = feed;
-    float _e107 = octave_sum;
-    total = (_e100 * metal::exp(-(tau_6) - far_1)) + ((_e105 * build) * _e107);
-    uint _e114 = frame.modes.w;
-    if ((_e114 & FLAG_BEER_POWDER) != 0u) {
-        float _e119 = total;
-        float _e123 = frame.phase.w;
-        total = _e119 * (1.0 - metal::exp(-(_e123) * tau_6));
+    float _e99 = feed;
+    float _e101 = octave_sum;
+    octaves_part = (_e99 * build) * _e101;
+    float _e105 = phase(cos_theta_5, 1.0, frame);
+    float _e110 = octaves_part;
+    total = (_e105 * metal::exp(-(tau_6) - far_1)) + _e110;
+    uint _e116 = frame.modes.w;
+    if ((_e116 & FLAG_BEER_POWDER) != 0u) {
+        float _e124 = frame.phase.w;
+        float powder = 1.0 - metal::exp(-(_e124) * tau_6);
+        float _e130 = total;
+        total = _e130 * powder;
+        float _e132 = octaves_part;
+        octaves_part = _e132 * powder;
     }
-    float _e130 = total;
-    return _e130;
+    float _e134 = total;
+    float _e135 = octaves_part;
+    return SunScattering {_e134, _e135};
+}
+
+float forward_lobe(
+    float cos_theta_6,
+    float transmittance,
+    constant Frame& frame
+) {
+    float k_13 = frame.forward_lobe.x;
+    if (k_13 <= 0.0) {
+        return 1.0;
+    }
+    float _e11 = saturate(transmittance / FORWARD_LOBE_THIN);
+    float w_6 = k_13 * _e11;
+    float _e17 = frame.forward_lobe.y;
+    float _e18 = phase_hg(cos_theta_6, _e17);
+    return 1.0 + (w_6 * ((12.566371 * _e18) - 1.0));
 }
 
 float octave_buildup(
@@ -1750,7 +1784,7 @@ float height_fraction(
     return _e4;
 }
 
-metal::float3 scattered_light(
+ScatteredLight scattered_light(
     metal::float3 rel_3,
     metal::float3 p_8,
     float alt_12,
@@ -1768,35 +1802,40 @@ metal::float3 scattered_light(
     metal::sampler noise_sampler
 ) {
     metal::float3 sun_light = metal::float3(0.0);
+    metal::float3 octave_light = metal::float3(0.0);
     float tau_7 = 0.0;
     float far_2 = 0.0;
     metal::float4 _e9 = frame.sun_direction;
     metal::float3 sun_4 = _e9.xyz;
     float _e11 = layer_height(l_6, alt_12);
     float _e12 = saturate(_e11);
-    Weather _e16 = sample_weather(p_8, l_6, frame, weather_tex, noise_sampler);
-    bool _e17 = hits_ground(rel_3, alt_12, sun_4, frame);
-    if (!(_e17)) {
+    Weather _e19 = sample_weather(p_8, l_6, frame, weather_tex, noise_sampler);
+    bool _e20 = hits_ground(rel_3, alt_12, sun_4, frame);
+    if (!(_e20)) {
         if (LIGHT_MARCH) {
-            float _e24 = sun_optical_depth(rel_3, p_8, l_6, counters_6, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
-            tau_7 = _e24;
-            float _e25 = far_optical_depth(rel_3, p_8, l_6, frame, weather_tex, noise_sampler);
-            far_2 = _e25;
+            float _e27 = sun_optical_depth(rel_3, p_8, l_6, counters_6, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+            tau_7 = _e27;
+            float _e28 = far_optical_depth(rel_3, p_8, l_6, frame, weather_tex, noise_sampler);
+            far_2 = _e28;
         }
-        float _e28 = tau_7;
-        float _e29 = far_2;
-        float _e30 = octave_buildup(density_2, frame);
-        float _e32 = sun_scattering(metal::dot(view, sun_4), view.y, _e28, _e29, _e30, _e16.coverage, frame);
-        metal::float4 _e35 = frame.sun_illuminance;
-        metal::float3 _e37 = sun_through_air(rel_3, frame, transmittance_lut_in);
-        sun_light = (_e35.xyz * _e37) * _e32;
+        float _e31 = tau_7;
+        float _e32 = far_2;
+        float _e33 = octave_buildup(density_2, frame);
+        SunScattering _e35 = sun_scattering(metal::dot(view, sun_4), view.y, _e31, _e32, _e33, _e19.coverage, frame);
+        metal::float4 _e38 = frame.sun_illuminance;
+        metal::float3 _e40 = sun_through_air(rel_3, frame, transmittance_lut_in);
+        metal::float3 lit = _e38.xyz * _e40;
+        sun_light = lit * _e35.total;
+        octave_light = lit * _e35.octaves;
     }
-    float _e43 = frame.extinction.z;
-    float _e51 = saturate(1.0 - ((_e43 * _e16.precipitation) * (1.0 - _e12)));
-    float _e55 = frame.extinction.x;
-    metal::float3 _e57 = sun_light;
-    metal::float3 _e58 = ambient(_e12, frame, sky_ambient_in);
-    return ((_e55 * density_2) * (_e57 + _e58)) * _e51;
+    float _e49 = frame.extinction.z;
+    float _e57 = saturate(1.0 - ((_e49 * _e19.precipitation) * (1.0 - _e12)));
+    float _e61 = frame.extinction.x;
+    float k_14 = (_e61 * density_2) * _e57;
+    metal::float3 _e64 = sun_light;
+    metal::float3 _e65 = ambient(_e12, frame, sky_ambient_in);
+    metal::float3 _e68 = octave_light;
+    return ScatteredLight {(_e64 + _e65) * k_14, _e68 * k_14};
 }
 
 metal::float3 shadow_ground_point(
@@ -1937,8 +1976,8 @@ float start_offset(
 ) {
     uint _e4 = frame.modes.w;
     bool jitter_1 = (_e4 & FLAG_JITTER) != 0u;
-    uint k_13 = frame.temporal.x;
-    if (k_13 <= 1u) {
+    uint k_15 = frame.temporal.x;
+    if (k_15 <= 1u) {
         uint _e18 = frame.misc.y;
         float _e19 = hash_unit(pixel_3, _e18);
         return jitter_1 ? _e19 : 0.5;
@@ -1946,7 +1985,7 @@ float start_offset(
     float _e23 = hash_unit(pixel_3, 0u);
     float base_2 = jitter_1 ? _e23 : 0.5;
     uint _e29 = frame.misc.y;
-    float _e32 = van_der_corput(naga_div(_e29, k_13 * k_13));
+    float _e32 = van_der_corput(naga_div(_e29, k_15 * k_15));
     return metal::fract(base_2 + _e32);
 }
 
@@ -2047,22 +2086,25 @@ bool march_layer(
         }
         empty = 0u;
         float sigma_t_2 = sigma_e * _e116;
-        metal::float3 _e145 = scattered_light(rel_7, p_14, _e115, _e116, view_2, l_7, counters_7, frame, transmittance_lut_in, sky_ambient_in, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
-        float transmittance_1 = state.transmittance;
+        ScatteredLight _e145 = scattered_light(rel_7, p_14, _e115, _e116, view_2, l_7, counters_7, frame, transmittance_lut_in, sky_ambient_in, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+        float transmittance_2 = state.transmittance;
         metal::float3 _e149 = state.radiance;
-        metal::float3 _e150 = step_integral(_e145, sigma_t_2, dt_2, frame);
-        state.radiance = _e149 + (transmittance_1 * _e150);
+        metal::float3 _e151 = step_integral(_e145.total, sigma_t_2, dt_2, frame);
+        state.radiance = _e149 + (transmittance_2 * _e151);
+        metal::float3 _e155 = state.octaves;
+        metal::float3 _e157 = step_integral(_e145.octaves, sigma_t_2, dt_2, frame);
+        state.octaves = _e155 + (transmittance_2 * _e157);
         float step_t = metal::exp(-(sigma_t_2) * dt_2);
-        float _e157 = state.depth_sum;
-        state.depth_sum = _e157 + ((t_7 * transmittance_1) * (1.0 - step_t));
-        state.transmittance = transmittance_1 * step_t;
-        float _e166 = state.transmittance;
-        float _e170 = frame.march.w;
-        if (_e166 < _e170) {
+        float _e164 = state.depth_sum;
+        state.depth_sum = _e164 + ((t_7 * transmittance_2) * (1.0 - step_t));
+        state.transmittance = transmittance_2 * step_t;
+        float _e173 = state.transmittance;
+        float _e177 = frame.march.w;
+        if (_e173 < _e177) {
             return true;
         }
-        uint _e173 = i_13;
-        i_13 = _e173 + 1u;
+        uint _e180 = i_13;
+        i_13 = _e180 + 1u;
     }
     return false;
 }
@@ -2081,7 +2123,7 @@ MarchResult march_pixel(
     device Stats& stats
 ) {
     Counters counters_8 = Counters {0u, 0u, 0u, 0u};
-    MarchState state_1 = MarchState {metal::float3(0.0), 1.0, 0.0};
+    MarchState state_1 = MarchState {metal::float3(0.0), 1.0, 0.0, {}, metal::float3(0.0)};
     bool marched = false;
     bool ground_1 = false;
     float last_start = -1.0;
@@ -2101,20 +2143,20 @@ MarchResult march_pixel(
     metal::float3 _e1 = view_ray(pixel_4, frame);
     float cam_alt_2 = frame.camera_position.y;
     count(STAT_PIXELS, 1u, stats);
-    float _e20 = start_offset(pixel_4, frame);
-    uint _e21 = layer_count(frame);
+    float _e22 = start_offset(pixel_4, frame);
+    uint _e23 = layer_count(frame);
     uint2 loop_bound_9 = uint2(4294967295u);
     bool loop_init_8 = true;
     while(true) {
         if (metal::all(loop_bound_9 == uint2(0u))) { break; }
         loop_bound_9 -= uint2(loop_bound_9.y == 0u, 1u);
         if (!loop_init_8) {
-            uint _e119 = k_6;
-            k_6 = _e119 + 1u;
+            uint _e121 = k_6;
+            k_6 = _e121 + 1u;
         }
         loop_init_8 = false;
-        uint _e34 = k_6;
-        if (_e34 < _e21) {
+        uint _e36 = k_6;
+        if (_e36 < _e23) {
         } else {
             break;
         }
@@ -2128,121 +2170,126 @@ MarchResult march_pixel(
                 if (metal::all(loop_bound_10 == uint2(0u))) { break; }
                 loop_bound_10 -= uint2(loop_bound_10.y == 0u, 1u);
                 if (!loop_init_9) {
-                    uint _e102 = i_14;
-                    i_14 = _e102 + 1u;
+                    uint _e104 = i_14;
+                    i_14 = _e104 + 1u;
                 }
                 loop_init_9 = false;
-                uint _e45 = i_14;
-                if (_e45 < _e21) {
+                uint _e47 = i_14;
+                if (_e47 < _e23) {
                 } else {
                     break;
                 }
                 {
-                    uint _e47 = i_14;
-                    Layer _e48 = cloud_layer(_e47, frame);
-                    Interval _e49 = layer_interval(cam_alt_2, _e1, _e48, frame);
-                    bool _e50 = ground_1;
-                    if (!(_e50)) {
-                        local_35 = _e49.kind == RAY_HITS_GROUND;
+                    uint _e49 = i_14;
+                    Layer _e50 = cloud_layer(_e49, frame);
+                    Interval _e51 = layer_interval(cam_alt_2, _e1, _e50, frame);
+                    bool _e52 = ground_1;
+                    if (!(_e52)) {
+                        local_35 = _e51.kind == RAY_HITS_GROUND;
                     } else {
                         local_35 = true;
                     }
-                    bool _e58 = local_35;
-                    ground_1 = _e58;
-                    float _e60 = last_start;
-                    if (!((_e49.start > _e60))) {
-                        float _e66 = last_start;
-                        if (_e49.start == _e66) {
-                            uint _e70 = i_14;
-                            uint _e71 = last_index;
-                            local_37 = _e70 > _e71;
+                    bool _e60 = local_35;
+                    ground_1 = _e60;
+                    float _e62 = last_start;
+                    if (!((_e51.start > _e62))) {
+                        float _e68 = last_start;
+                        if (_e51.start == _e68) {
+                            uint _e72 = i_14;
+                            uint _e73 = last_index;
+                            local_37 = _e72 > _e73;
                         } else {
                             local_37 = false;
                         }
-                        bool _e74 = local_37;
-                        local_36 = _e74;
+                        bool _e76 = local_37;
+                        local_36 = _e76;
                     } else {
                         local_36 = true;
                     }
                     bool after = local_36;
-                    if (_e49.kind == RAY_MARCH) {
+                    if (_e51.kind == RAY_MARCH) {
                         local_38 = after;
                     } else {
                         local_38 = false;
                     }
-                    bool _e83 = local_38;
-                    if (_e83) {
-                        uint _e86 = next;
-                        if (!((_e86 == NO_LAYER))) {
-                            float _e94 = span_2.start;
-                            local_40 = _e49.start < _e94;
+                    bool _e85 = local_38;
+                    if (_e85) {
+                        uint _e88 = next;
+                        if (!((_e88 == NO_LAYER))) {
+                            float _e96 = span_2.start;
+                            local_40 = _e51.start < _e96;
                         } else {
                             local_40 = true;
                         }
-                        bool _e97 = local_40;
-                        local_39 = _e97;
+                        bool _e99 = local_40;
+                        local_39 = _e99;
                     } else {
                         local_39 = false;
                     }
-                    bool _e99 = local_39;
-                    if (_e99) {
-                        uint _e100 = i_14;
-                        next = _e100;
-                        span_2 = _e49;
+                    bool _e101 = local_39;
+                    if (_e101) {
+                        uint _e102 = i_14;
+                        next = _e102;
+                        span_2 = _e51;
                     }
                 }
             }
-            uint _e104 = next;
-            if (_e104 == NO_LAYER) {
+            uint _e106 = next;
+            if (_e106 == NO_LAYER) {
                 break;
             }
             marched = true;
-            float _e109 = span_2.start;
-            last_start = _e109;
-            uint _e110 = next;
-            last_index = _e110;
-            Interval _e111 = span_2;
+            float _e111 = span_2.start;
+            last_start = _e111;
             uint _e112 = next;
-            Layer _e113 = cloud_layer(_e112, frame);
-            bool _e114 = march_layer(_e1, _e111, _e113, _e20, state_1, counters_8, frame, transmittance_lut_in, sky_ambient_in, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler, occupancy_in);
-            if (_e114) {
+            last_index = _e112;
+            Interval _e113 = span_2;
+            uint _e114 = next;
+            Layer _e115 = cloud_layer(_e114, frame);
+            bool _e116 = march_layer(_e1, _e113, _e115, _e22, state_1, counters_8, frame, transmittance_lut_in, sky_ambient_in, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler, occupancy_in);
+            if (_e116) {
                 count(STAT_EXIT_TRANSMITTANCE, 1u, stats);
                 exited = true;
                 break;
             }
         }
     }
-    bool _e121 = marched;
-    if (_e121) {
+    bool _e123 = marched;
+    if (_e123) {
         count(STAT_MARCHED, 1u, stats);
     } else {
-        bool _e124 = ground_1;
-        if (_e124) {
+        bool _e126 = ground_1;
+        if (_e126) {
             count(STAT_EXIT_GROUND, 1u, stats);
         } else {
             count(STAT_EXIT_MISSED, 1u, stats);
         }
     }
-    uint _e131 = counters_8.view_steps;
-    count(STAT_VIEW_STEPS, _e131, stats);
-    uint _e134 = counters_8.density;
-    count(STAT_DENSITY, _e134, stats);
-    uint _e137 = counters_8.detail;
-    count(STAT_DETAIL, _e137, stats);
-    uint _e140 = counters_8.light;
-    count(STAT_LIGHT, _e140, stats);
-    float _e144 = state_1.transmittance;
-    if (_e144 < 1.0) {
-        float _e148 = state_1.depth_sum;
-        float _e150 = state_1.transmittance;
-        depth_1 = _e148 / (1.0 - _e150);
+    uint _e133 = counters_8.view_steps;
+    count(STAT_VIEW_STEPS, _e133, stats);
+    uint _e136 = counters_8.density;
+    count(STAT_DENSITY, _e136, stats);
+    uint _e139 = counters_8.detail;
+    count(STAT_DETAIL, _e139, stats);
+    uint _e142 = counters_8.light;
+    count(STAT_LIGHT, _e142, stats);
+    float _e146 = state_1.transmittance;
+    if (_e146 < 1.0) {
+        float _e150 = state_1.depth_sum;
+        float _e152 = state_1.transmittance;
+        depth_1 = _e150 / (1.0 - _e152);
     }
-    float _e155 = state_1.transmittance;
-    bool _e156 = exited;
-    float transmittance_2 = _e156 ? 0.0 : _e155;
-    metal::float3 _e160 = state_1.radiance;
-    float _e161 = depth_1;
-    return MarchResult {_e160, transmittance_2, _e161};
+    float _e157 = state_1.transmittance;
+    bool _e158 = exited;
+    float transmittance_3 = _e158 ? 0.0 : _e157;
+    metal::float4 _e163 = frame.sun_direction;
+    float _e167 = state_1.transmittance;
+    float _e168 = forward_lobe(metal::dot(_e1, _e163.xyz), _e167, frame);
+    metal::float3 _e170 = state_1.radiance;
+    metal::float3 _e172 = state_1.octaves;
+    metal::float3 radiance_5 = _e170 + (_e172 * (_e168 - 1.0));
+    float _e177 = depth_1;
+    return MarchResult {radiance_5, transmittance_3, _e177};
 }
 
 metal::uint2 bayer2_(
@@ -2434,19 +2481,19 @@ bool in_blocks(
     metal::uint2 id_19,
     constant Frame& frame
 ) {
-    uint k_14 = frame.temporal.x;
+    uint k_16 = frame.temporal.x;
     metal::uint4 _e7 = frame.counts;
-    return metal::all(id_19 < naga_div((_e7.xy + metal::uint2(k_14)) - metal::uint2(1u), metal::uint2(k_14)));
+    return metal::all(id_19 < naga_div((_e7.xy + metal::uint2(k_16)) - metal::uint2(1u), metal::uint2(k_16)));
 }
 
 metal::uint2 sparse_pixel(
     metal::uint2 id_20,
     constant Frame& frame
 ) {
-    uint k_15 = frame.temporal.x;
+    uint k_17 = frame.temporal.x;
     uint _e9 = frame.misc.y;
-    metal::uint2 _e10 = block_offset(_e9, k_15);
-    return (id_20 * k_15) + _e10;
+    metal::uint2 _e10 = block_offset(_e9, k_17);
+    return (id_20 * k_17) + _e10;
 }
 
 void store_sparse(
@@ -2842,7 +2889,7 @@ PhaseSample sample_phase(
     thread uint& rng_5,
     constant Frame& frame
 ) {
-    float cos_theta_6 = 0.0;
+    float cos_theta_7 = 0.0;
     float pdf = 0.0;
     float _e2 = rng_next(rng_5);
     float _e3 = rng_next(rng_5);
@@ -2855,11 +2902,11 @@ PhaseSample sample_phase(
         float _e28 = frame.phase.z;
         float g_6 = (_e2 < _e28) ? _e24 : _e20;
         float _e31 = sample_hg_cos(g_6, _e3);
-        cos_theta_6 = _e31;
-        float _e32 = cos_theta_6;
+        cos_theta_7 = _e31;
+        float _e32 = cos_theta_7;
         float _e36 = frame.phase.x;
         float _e37 = phase_hg(_e32, _e36);
-        float _e38 = cos_theta_6;
+        float _e38 = cos_theta_7;
         float _e42 = frame.phase.y;
         float _e43 = phase_hg(_e38, _e42);
         float _e47 = frame.phase.z;
@@ -2867,27 +2914,27 @@ PhaseSample sample_phase(
     } else {
         float _e52 = frame.phase.x;
         float _e53 = sample_hg_cos(_e52, _e3);
-        cos_theta_6 = _e53;
-        float _e54 = cos_theta_6;
+        cos_theta_7 = _e53;
+        float _e54 = cos_theta_7;
         float _e58 = frame.phase.x;
         float _e59 = phase_hg(_e54, _e58);
         pdf = _e59;
     }
-    float _e60 = cos_theta_6;
-    float _e61 = cos_theta_6;
+    float _e60 = cos_theta_7;
+    float _e61 = cos_theta_7;
     float sin_theta = metal::sqrt(metal::max(1.0 - (_e60 * _e61), 0.0));
     float sign = (dir_4.z >= 0.0) ? 1.0 : -1.0;
     float a_9 = -1.0 / (sign + dir_4.z);
     float bb = (dir_4.x * dir_4.y) * a_9;
     metal::float3 t_8 = metal::float3(1.0 + (((sign * dir_4.x) * dir_4.x) * a_9), sign * bb, -(sign) * dir_4.x);
     metal::float3 b_10 = metal::float3(bb, sign + ((dir_4.y * dir_4.y) * a_9), -(dir_4.y));
-    float _e109 = cos_theta_6;
-    metal::float3 w_6 = metal::normalize(((t_8 * (sin_theta * metal::cos(phi_1))) + (b_10 * (sin_theta * metal::sin(phi_1)))) + (dir_4 * _e109));
-    float _e113 = cos_theta_6;
+    float _e109 = cos_theta_7;
+    metal::float3 w_7 = metal::normalize(((t_8 * (sin_theta * metal::cos(phi_1))) + (b_10 * (sin_theta * metal::sin(phi_1)))) + (dir_4 * _e109));
+    float _e113 = cos_theta_7;
     float _e115 = phase(_e113, 1.0, frame);
     float _e116 = pdf;
     float _e118 = pdf;
-    return PhaseSample {w_6, (_e118 > 0.0) ? (_e115 / _e116) : 0.0};
+    return PhaseSample {w_7, (_e118 > 0.0) ? (_e115 / _e116) : 0.0};
 }
 
 metal::float3 environment(
@@ -3178,7 +3225,7 @@ MarchResult basic_pixel(
 ) {
     Counters counters_14 = Counters {0u, 0u, 0u, 0u};
     metal::float3 radiance_2 = metal::float3(0.0);
-    float transmittance = 1.0;
+    float transmittance_1 = 1.0;
     float depth_sum = 0.0;
     uint i_17 = 0u;
     float depth_3 = 0.0;
@@ -3235,14 +3282,14 @@ MarchResult basic_pixel(
                     float _e99 = basic_sun_depth(rel_9, _e95, counters_14, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
                     float beer_powder = (2.0 * metal::exp(-(_e99))) * (1.0 - metal::exp(-2.0 * _e99));
                     metal::float3 _e110 = radiance_2;
-                    float _e111 = transmittance;
+                    float _e111 = transmittance_1;
                     radiance_2 = _e110 + (sun_phase * ((((beer_powder * _e111) * sigma_s) * _e96) * dt_4));
                     float step_t_1 = metal::exp((-(sigma_t_6) * _e96) * dt_4);
                     float _e122 = depth_sum;
-                    float _e123 = transmittance;
+                    float _e123 = transmittance_1;
                     depth_sum = _e122 + ((t_9 * _e123) * (1.0 - step_t_1));
-                    float _e129 = transmittance;
-                    transmittance = _e129 * step_t_1;
+                    float _e129 = transmittance_1;
+                    transmittance_1 = _e129 * step_t_1;
                 }
             }
         }
@@ -3255,14 +3302,14 @@ MarchResult basic_pixel(
     count(STAT_DETAIL, _e142, stats);
     uint _e145 = counters_14.light;
     count(STAT_LIGHT, _e145, stats);
-    float _e148 = transmittance;
+    float _e148 = transmittance_1;
     if (_e148 < 1.0) {
         float _e151 = depth_sum;
-        float _e152 = transmittance;
+        float _e152 = transmittance_1;
         depth_3 = _e151 / (1.0 - _e152);
     }
     metal::float3 _e156 = radiance_2;
-    float _e157 = transmittance;
+    float _e157 = transmittance_1;
     float _e158 = depth_3;
     return MarchResult {_e156, _e157, _e158};
 }
@@ -3405,8 +3452,8 @@ metal::float3 sprite_rel(
     float rp_6 = frame.atmosphere.x;
     metal::float4 _e8 = frame.camera_position;
     metal::float2 d_21 = xz - _e8.xz;
-    float k_16 = (alt_15 * (alt_15 + (2.0 * rp_6))) - metal::dot(d_21, d_21);
-    float y_3 = k_16 / (rp_6 + metal::sqrt(metal::max((rp_6 * rp_6) + k_16, 0.0)));
+    float k_18 = (alt_15 * (alt_15 + (2.0 * rp_6))) - metal::dot(d_21, d_21);
+    float y_3 = k_18 / (rp_6 + metal::sqrt(metal::max((rp_6 * rp_6) + k_18, 0.0)));
     return metal::float3(d_21.x, y_3, d_21.y);
 }
 
@@ -3600,9 +3647,9 @@ metal::float3 moon_disk(
     float x2_1 = metal::min(metal::dot(offset, offset), 1.0);
     metal::float3 normal = offset - (m_3 * metal::sqrt(1.0 - x2_1));
     metal::float4 _e36 = frame.night;
-    float lit = metal::smoothstep(-0.02, 0.02, metal::dot(normal, _e36.xyz));
+    float lit_1 = metal::smoothstep(-0.02, 0.02, metal::dot(normal, _e36.xyz));
     float _e46 = frame.moon.w;
-    return metal::float3((_e46 / 0.0000640407) * lit);
+    return metal::float3((_e46 / 0.0000640407) * lit_1);
 }
 
 metal::float3 stars(
@@ -3976,10 +4023,10 @@ struct aerial_perspectiveInput {
     metal::float2 _e9 = air_ray_end(_e8, _e7, frame);
     metal::float4 _e12 = frame.sun_direction;
     metal::float3 sun_10 = _e12.xyz;
-    float cos_theta_8 = metal::dot(_e7, sun_10);
-    float _e15 = phase_rayleigh(cos_theta_8);
+    float cos_theta_9 = metal::dot(_e7, sun_10);
+    float _e15 = phase_rayleigh(cos_theta_9);
     float _e19 = frame.air_mie.w;
-    float _e20 = phase_cornette_shanks_air(cos_theta_8, _e19);
+    float _e20 = phase_cornette_shanks_air(cos_theta_9, _e19);
     uint2 loop_bound_25 = uint2(4294967295u);
     bool loop_init_21 = true;
     while(true) {
@@ -4097,12 +4144,12 @@ struct sky_ambientInput {
             metal::float4 _e49 = frame.sun_direction;
             metal::float3 sun_11 = _e49.xyz;
             Scattered _e53 = integrate_air(origin_7, _e45, _e46.x, AMBIENT_STEPS, sun_11, frame, transmittance_lut_in, multiscatter_lut_in);
-            float w_7 = metal::abs(_e45.y);
+            float w_8 = metal::abs(_e45.y);
             metal::float3 _e56 = sum_1;
             metal::float3 _e61 = with_ground(_e53, origin_7, _e45, _e46.x, sun_11, _e46.y > 0.5, frame, transmittance_lut_in, ground_irradiance_in);
-            sum_1 = _e56 + (w_7 * _e61);
+            sum_1 = _e56 + (w_8 * _e61);
             float _e64 = weights;
-            weights = _e64 + w_7;
+            weights = _e64 + w_8;
         }
     }
     metal::float3 _e71 = sum_1;
@@ -4439,9 +4486,9 @@ struct march_sparse_checkerboardInput {
     }
     bool _e30 = local_3;
     if (_e30) {
-        uint k_17 = frame.temporal.x;
+        uint k_19 = frame.temporal.x;
         uint _e38 = frame.misc.y;
-        uint turn = naga_div(_e38, k_17 * k_17);
+        uint turn = naga_div(_e38, k_19 * k_19);
         metal::float2 _e42 = reproject(_e5, 0.0, frame);
         if ((((id_10.x + id_10.y) + turn) & 1u) == 0u) {
             bool _e53 = on_screen(_e42, frame);
@@ -4512,11 +4559,11 @@ struct resolveInput {
         return;
     }
     metal::uint2 pixel_10 = id_11.xy;
-    uint k_18 = frame.temporal.x;
-    metal::uint2 block = naga_div(pixel_10, metal::uint2(k_18));
+    uint k_20 = frame.temporal.x;
+    metal::uint2 block = naga_div(pixel_10, metal::uint2(k_20));
     uint _e19 = frame.misc.y;
-    metal::uint2 _e20 = block_offset(_e19, k_18);
-    bool marched_1 = metal::all(pixel_10 == ((block * k_18) + _e20));
+    metal::uint2 _e20 = block_offset(_e19, k_20);
+    bool marched_1 = metal::all(pixel_10 == ((block * k_20) + _e20));
     metal::float4 current = sparse_in.read(metal::uint2(block), 0);
     metal::float4 _e29 = sparse_depth_in.read(metal::uint2(block), 0);
     float current_depth = _e29.x;
@@ -4579,7 +4626,7 @@ struct resolveInput {
     bool _e115 = local_9;
     if (_e115) {
         metal::uint4 _e118 = frame.counts;
-        metal::int2 blocks = static_cast<metal::int2>(naga_div((_e118.xy + metal::uint2(k_18)) - metal::uint2(1u), metal::uint2(k_18)));
+        metal::int2 blocks = static_cast<metal::int2>(naga_div((_e118.xy + metal::uint2(k_20)) - metal::uint2(1u), metal::uint2(k_20)));
         metal::int2 b_11 = static_cast<metal::int2>(block);
         int x0_1 = metal::max(as_type<int>(as_type<uint>(b_11.x) - as_type<uint>(1)), 0);
         int x2_2 = metal::min(as_type<int>(as_type<uint>(b_11.x) + as_type<uint>(1)), as_type<int>(as_type<uint>(blocks.x) - as_type<uint>(1)));

@@ -43,6 +43,7 @@ struct Frame {
     vec4 moon;
     vec4 night;
     vec4 light_model;
+    vec4 forward_lobe;
 };
 struct Roots {
     float t0_;
@@ -83,6 +84,14 @@ struct Weather {
     float cloud_type;
     float precipitation;
 };
+struct SunScattering {
+    float total;
+    float octaves;
+};
+struct ScatteredLight {
+    vec3 total;
+    vec3 octaves;
+};
 struct Stats {
     uint counters[9];
 };
@@ -95,6 +104,7 @@ struct MarchState {
     vec3 radiance;
     float transmittance;
     float depth_sum;
+    vec3 octaves;
 };
 struct Segments {
     vec2 a;
@@ -170,6 +180,7 @@ const uint AMBIENT_DIRECTIONS = 64u;
 const uint AMBIENT_STEPS = 24u;
 const uint GROUND_IRRADIANCE_SIZE = 64u;
 const uint NO_LAYER = 4u;
+const float FORWARD_LOBE_THIN = 0.1;
 const uint GROUND_IRRADIANCE_DIRECTIONS = 128u;
 const uint SHADOW_SIZE = 128u;
 const float SHADOW_HALF_EXTENT = 20000.0;
@@ -1185,13 +1196,14 @@ float diffuse_limb(float view_y, float coverage) {
     return mix(1.0, layer, _e17);
 }
 
-float sun_scattering(float cos_theta_5, float view_y_1, float tau_6, float far_1, float build, float coverage_1) {
+SunScattering sun_scattering(float cos_theta_5, float view_y_1, float tau_6, float far_1, float build, float coverage_1) {
     float octave_sum = 0.0;
     float ka = 1.0;
     float kb = 1.0;
     float kc = 1.0;
     uint i_12 = 0u;
     float feed = 0.0;
+    float octaves_part = 0.0;
     float total = 0.0;
     float a_7 = _group_0_binding_0_cs.multiple_scattering.x;
     float b_7 = _group_0_binding_0_cs.multiple_scattering.y;
@@ -1240,18 +1252,36 @@ float sun_scattering(float cos_theta_5, float view_y_1, float tau_6, float far_1
     float _e96 = feed;
     float _e97 = diffuse_limb(view_y_1, coverage_1);
     feed = (_e96 * _e97);
-    float _e100 = phase(cos_theta_5, 1.0);
-    float _e105 = feed;
-    float _e107 = octave_sum;
-    total = ((_e100 * exp((-(tau_6) - far_1))) + ((_e105 * build) * _e107));
-    uint _e114 = _group_0_binding_0_cs.modes.w;
-    if (((_e114 & FLAG_BEER_POWDER) != 0u)) {
-        float _e119 = total;
-        float _e123 = _group_0_binding_0_cs.phase.w;
-        total = (_e119 * (1.0 - exp((-(_e123) * tau_6))));
+    float _e99 = feed;
+    float _e101 = octave_sum;
+    octaves_part = ((_e99 * build) * _e101);
+    float _e105 = phase(cos_theta_5, 1.0);
+    float _e110 = octaves_part;
+    total = ((_e105 * exp((-(tau_6) - far_1))) + _e110);
+    uint _e116 = _group_0_binding_0_cs.modes.w;
+    if (((_e116 & FLAG_BEER_POWDER) != 0u)) {
+        float _e124 = _group_0_binding_0_cs.phase.w;
+        float powder = (1.0 - exp((-(_e124) * tau_6)));
+        float _e130 = total;
+        total = (_e130 * powder);
+        float _e132 = octaves_part;
+        octaves_part = (_e132 * powder);
     }
-    float _e130 = total;
-    return _e130;
+    float _e134 = total;
+    float _e135 = octaves_part;
+    return SunScattering(_e134, _e135);
+}
+
+float forward_lobe(float cos_theta_6, float transmittance) {
+    float k_13 = _group_0_binding_0_cs.forward_lobe.x;
+    if ((k_13 <= 0.0)) {
+        return 1.0;
+    }
+    float _e11 = saturate((transmittance / FORWARD_LOBE_THIN));
+    float w_5 = (k_13 * _e11);
+    float _e17 = _group_0_binding_0_cs.forward_lobe.y;
+    float _e18 = phase_hg(cos_theta_6, _e17);
+    return (1.0 + (w_5 * ((12.566371 * _e18) - 1.0)));
 }
 
 float octave_buildup(float density_1) {
@@ -1284,37 +1314,42 @@ float height_fraction(float alt_11) {
     return _e4;
 }
 
-vec3 scattered_light(vec3 rel_3, vec3 p_8, float alt_12, float density_2, vec3 view, Layer l_6, inout Counters counters_6) {
+ScatteredLight scattered_light(vec3 rel_3, vec3 p_8, float alt_12, float density_2, vec3 view, Layer l_6, inout Counters counters_6) {
     vec3 sun_light = vec3(0.0);
+    vec3 octave_light = vec3(0.0);
     float tau_7 = 0.0;
     float far_2 = 0.0;
     vec4 _e9 = _group_0_binding_0_cs.sun_direction;
     vec3 sun_4 = _e9.xyz;
     float _e11 = layer_height(l_6, alt_12);
     float _e12 = saturate(_e11);
-    Weather _e16 = sample_weather(p_8, l_6);
-    bool _e17 = hits_ground(rel_3, alt_12, sun_4);
-    if (!(_e17)) {
+    Weather _e19 = sample_weather(p_8, l_6);
+    bool _e20 = hits_ground(rel_3, alt_12, sun_4);
+    if (!(_e20)) {
         if (LIGHT_MARCH) {
-            float _e24 = sun_optical_depth(rel_3, p_8, l_6, counters_6);
-            tau_7 = _e24;
-            float _e25 = far_optical_depth(rel_3, p_8, l_6);
-            far_2 = _e25;
+            float _e27 = sun_optical_depth(rel_3, p_8, l_6, counters_6);
+            tau_7 = _e27;
+            float _e28 = far_optical_depth(rel_3, p_8, l_6);
+            far_2 = _e28;
         }
-        float _e28 = tau_7;
-        float _e29 = far_2;
-        float _e30 = octave_buildup(density_2);
-        float _e32 = sun_scattering(dot(view, sun_4), view.y, _e28, _e29, _e30, _e16.coverage);
-        vec4 _e35 = _group_0_binding_0_cs.sun_illuminance;
-        vec3 _e37 = sun_through_air(rel_3);
-        sun_light = ((_e35.xyz * _e37) * _e32);
+        float _e31 = tau_7;
+        float _e32 = far_2;
+        float _e33 = octave_buildup(density_2);
+        SunScattering _e35 = sun_scattering(dot(view, sun_4), view.y, _e31, _e32, _e33, _e19.coverage);
+        vec4 _e38 = _group_0_binding_0_cs.sun_illuminance;
+        vec3 _e40 = sun_through_air(rel_3);
+        vec3 lit = (_e38.xyz * _e40);
+        sun_light = (lit * _e35.total);
+        octave_light = (lit * _e35.octaves);
     }
-    float _e43 = _group_0_binding_0_cs.extinction.z;
-    float _e51 = saturate((1.0 - ((_e43 * _e16.precipitation) * (1.0 - _e12))));
-    float _e55 = _group_0_binding_0_cs.extinction.x;
-    vec3 _e57 = sun_light;
-    vec3 _e58 = ambient(_e12);
-    return (((_e55 * density_2) * (_e57 + _e58)) * _e51);
+    float _e49 = _group_0_binding_0_cs.extinction.z;
+    float _e57 = saturate((1.0 - ((_e49 * _e19.precipitation) * (1.0 - _e12))));
+    float _e61 = _group_0_binding_0_cs.extinction.x;
+    float k_14 = ((_e61 * density_2) * _e57);
+    vec3 _e64 = sun_light;
+    vec3 _e65 = ambient(_e12);
+    vec3 _e68 = octave_light;
+    return ScatteredLight(((_e64 + _e65) * k_14), (_e68 * k_14));
 }
 
 vec3 shadow_ground_point(uvec2 c_2) {
@@ -1391,8 +1426,8 @@ vec3 step_integral(vec3 source, float sigma_t, float dt) {
 float start_offset(uvec2 pixel_3) {
     uint _e4 = _group_0_binding_0_cs.modes.w;
     bool jitter_1 = ((_e4 & FLAG_JITTER) != 0u);
-    uint k_13 = _group_0_binding_0_cs.temporal.x;
-    if ((k_13 <= 1u)) {
+    uint k_15 = _group_0_binding_0_cs.temporal.x;
+    if ((k_15 <= 1u)) {
         uint _e18 = _group_0_binding_0_cs.misc.y;
         float _e19 = hash_unit(pixel_3, _e18);
         return (jitter_1 ? _e19 : 0.5);
@@ -1400,7 +1435,7 @@ float start_offset(uvec2 pixel_3) {
     float _e23 = hash_unit(pixel_3, 0u);
     float base_2 = (jitter_1 ? _e23 : 0.5);
     uint _e29 = _group_0_binding_0_cs.misc.y;
-    float _e32 = van_der_corput((_e29 / (k_13 * k_13)));
+    float _e32 = van_der_corput((_e29 / (k_15 * k_15)));
     return fract((base_2 + _e32));
 }
 
@@ -1482,29 +1517,32 @@ bool march_layer(vec3 view_2, Interval span_1, Layer l_7, float jitter, inout Ma
         }
         empty = 0u;
         float sigma_t_2 = (sigma_e * _e116);
-        vec3 _e145 = scattered_light(rel_7, p_13, _e115, _e116, view_2, l_7, counters_7);
-        float transmittance_1 = state.transmittance;
+        ScatteredLight _e145 = scattered_light(rel_7, p_13, _e115, _e116, view_2, l_7, counters_7);
+        float transmittance_2 = state.transmittance;
         vec3 _e149 = state.radiance;
-        vec3 _e150 = step_integral(_e145, sigma_t_2, dt_1);
-        state.radiance = (_e149 + (transmittance_1 * _e150));
+        vec3 _e151 = step_integral(_e145.total, sigma_t_2, dt_1);
+        state.radiance = (_e149 + (transmittance_2 * _e151));
+        vec3 _e155 = state.octaves;
+        vec3 _e157 = step_integral(_e145.octaves, sigma_t_2, dt_1);
+        state.octaves = (_e155 + (transmittance_2 * _e157));
         float step_t = exp((-(sigma_t_2) * dt_1));
-        float _e157 = state.depth_sum;
-        state.depth_sum = (_e157 + ((t_6 * transmittance_1) * (1.0 - step_t)));
-        state.transmittance = (transmittance_1 * step_t);
-        float _e166 = state.transmittance;
-        float _e170 = _group_0_binding_0_cs.march.w;
-        if ((_e166 < _e170)) {
+        float _e164 = state.depth_sum;
+        state.depth_sum = (_e164 + ((t_6 * transmittance_2) * (1.0 - step_t)));
+        state.transmittance = (transmittance_2 * step_t);
+        float _e173 = state.transmittance;
+        float _e177 = _group_0_binding_0_cs.march.w;
+        if ((_e173 < _e177)) {
             return true;
         }
-        uint _e173 = i_13;
-        i_13 = (_e173 + 1u);
+        uint _e180 = i_13;
+        i_13 = (_e180 + 1u);
     }
     return false;
 }
 
 MarchResult march_pixel(uvec2 pixel_4) {
     Counters counters_8 = Counters(0u, 0u, 0u, 0u);
-    MarchState state_1 = MarchState(vec3(0.0), 1.0, 0.0);
+    MarchState state_1 = MarchState(vec3(0.0), 1.0, 0.0, vec3(0.0));
     bool marched = false;
     bool ground_1 = false;
     float last_start = -1.0;
@@ -1524,17 +1562,17 @@ MarchResult march_pixel(uvec2 pixel_4) {
     vec3 _e1 = view_ray(pixel_4);
     float cam_alt_1 = _group_0_binding_0_cs.camera_position.y;
     count(STAT_PIXELS, 1u);
-    float _e20 = start_offset(pixel_4);
-    uint _e21 = layer_count();
+    float _e22 = start_offset(pixel_4);
+    uint _e23 = layer_count();
     bool loop_init_7 = true;
     while(true) {
         if (!loop_init_7) {
-            uint _e119 = k_6;
-            k_6 = (_e119 + 1u);
+            uint _e121 = k_6;
+            k_6 = (_e121 + 1u);
         }
         loop_init_7 = false;
-        uint _e34 = k_6;
-        if ((_e34 < _e21)) {
+        uint _e36 = k_6;
+        if ((_e36 < _e23)) {
         } else {
             break;
         }
@@ -1545,121 +1583,126 @@ MarchResult march_pixel(uvec2 pixel_4) {
             bool loop_init_8 = true;
             while(true) {
                 if (!loop_init_8) {
-                    uint _e102 = i_14;
-                    i_14 = (_e102 + 1u);
+                    uint _e104 = i_14;
+                    i_14 = (_e104 + 1u);
                 }
                 loop_init_8 = false;
-                uint _e45 = i_14;
-                if ((_e45 < _e21)) {
+                uint _e47 = i_14;
+                if ((_e47 < _e23)) {
                 } else {
                     break;
                 }
                 {
-                    uint _e47 = i_14;
-                    Layer _e48 = cloud_layer(_e47);
-                    Interval _e49 = layer_interval(cam_alt_1, _e1, _e48);
-                    bool _e50 = ground_1;
-                    if (!(_e50)) {
-                        local_35 = (_e49.kind == RAY_HITS_GROUND);
+                    uint _e49 = i_14;
+                    Layer _e50 = cloud_layer(_e49);
+                    Interval _e51 = layer_interval(cam_alt_1, _e1, _e50);
+                    bool _e52 = ground_1;
+                    if (!(_e52)) {
+                        local_35 = (_e51.kind == RAY_HITS_GROUND);
                     } else {
                         local_35 = true;
                     }
-                    bool _e58 = local_35;
-                    ground_1 = _e58;
-                    float _e60 = last_start;
-                    if (!((_e49.start > _e60))) {
-                        float _e66 = last_start;
-                        if ((_e49.start == _e66)) {
-                            uint _e70 = i_14;
-                            uint _e71 = last_index;
-                            local_37 = (_e70 > _e71);
+                    bool _e60 = local_35;
+                    ground_1 = _e60;
+                    float _e62 = last_start;
+                    if (!((_e51.start > _e62))) {
+                        float _e68 = last_start;
+                        if ((_e51.start == _e68)) {
+                            uint _e72 = i_14;
+                            uint _e73 = last_index;
+                            local_37 = (_e72 > _e73);
                         } else {
                             local_37 = false;
                         }
-                        bool _e74 = local_37;
-                        local_36 = _e74;
+                        bool _e76 = local_37;
+                        local_36 = _e76;
                     } else {
                         local_36 = true;
                     }
                     bool after = local_36;
-                    if ((_e49.kind == RAY_MARCH)) {
+                    if ((_e51.kind == RAY_MARCH)) {
                         local_38 = after;
                     } else {
                         local_38 = false;
                     }
-                    bool _e83 = local_38;
-                    if (_e83) {
-                        uint _e86 = next;
-                        if (!((_e86 == NO_LAYER))) {
-                            float _e94 = span_2.start;
-                            local_40 = (_e49.start < _e94);
+                    bool _e85 = local_38;
+                    if (_e85) {
+                        uint _e88 = next;
+                        if (!((_e88 == NO_LAYER))) {
+                            float _e96 = span_2.start;
+                            local_40 = (_e51.start < _e96);
                         } else {
                             local_40 = true;
                         }
-                        bool _e97 = local_40;
-                        local_39 = _e97;
+                        bool _e99 = local_40;
+                        local_39 = _e99;
                     } else {
                         local_39 = false;
                     }
-                    bool _e99 = local_39;
-                    if (_e99) {
-                        uint _e100 = i_14;
-                        next = _e100;
-                        span_2 = _e49;
+                    bool _e101 = local_39;
+                    if (_e101) {
+                        uint _e102 = i_14;
+                        next = _e102;
+                        span_2 = _e51;
                     }
                 }
             }
-            uint _e104 = next;
-            if ((_e104 == NO_LAYER)) {
+            uint _e106 = next;
+            if ((_e106 == NO_LAYER)) {
                 break;
             }
             marched = true;
-            float _e109 = span_2.start;
-            last_start = _e109;
-            uint _e110 = next;
-            last_index = _e110;
-            Interval _e111 = span_2;
+            float _e111 = span_2.start;
+            last_start = _e111;
             uint _e112 = next;
-            Layer _e113 = cloud_layer(_e112);
-            bool _e114 = march_layer(_e1, _e111, _e113, _e20, state_1, counters_8);
-            if (_e114) {
+            last_index = _e112;
+            Interval _e113 = span_2;
+            uint _e114 = next;
+            Layer _e115 = cloud_layer(_e114);
+            bool _e116 = march_layer(_e1, _e113, _e115, _e22, state_1, counters_8);
+            if (_e116) {
                 count(STAT_EXIT_TRANSMITTANCE, 1u);
                 exited = true;
                 break;
             }
         }
     }
-    bool _e121 = marched;
-    if (_e121) {
+    bool _e123 = marched;
+    if (_e123) {
         count(STAT_MARCHED, 1u);
     } else {
-        bool _e124 = ground_1;
-        if (_e124) {
+        bool _e126 = ground_1;
+        if (_e126) {
             count(STAT_EXIT_GROUND, 1u);
         } else {
             count(STAT_EXIT_MISSED, 1u);
         }
     }
-    uint _e131 = counters_8.view_steps;
-    count(STAT_VIEW_STEPS, _e131);
-    uint _e134 = counters_8.density;
-    count(STAT_DENSITY, _e134);
-    uint _e137 = counters_8.detail;
-    count(STAT_DETAIL, _e137);
-    uint _e140 = counters_8.light;
-    count(STAT_LIGHT, _e140);
-    float _e144 = state_1.transmittance;
-    if ((_e144 < 1.0)) {
-        float _e148 = state_1.depth_sum;
-        float _e150 = state_1.transmittance;
-        depth_1 = (_e148 / (1.0 - _e150));
+    uint _e133 = counters_8.view_steps;
+    count(STAT_VIEW_STEPS, _e133);
+    uint _e136 = counters_8.density;
+    count(STAT_DENSITY, _e136);
+    uint _e139 = counters_8.detail;
+    count(STAT_DETAIL, _e139);
+    uint _e142 = counters_8.light;
+    count(STAT_LIGHT, _e142);
+    float _e146 = state_1.transmittance;
+    if ((_e146 < 1.0)) {
+        float _e150 = state_1.depth_sum;
+        float _e152 = state_1.transmittance;
+        depth_1 = (_e150 / (1.0 - _e152));
     }
-    float _e155 = state_1.transmittance;
-    bool _e156 = exited;
-    float transmittance_2 = (_e156 ? 0.0 : _e155);
-    vec3 _e160 = state_1.radiance;
-    float _e161 = depth_1;
-    return MarchResult(_e160, transmittance_2, _e161);
+    float _e157 = state_1.transmittance;
+    bool _e158 = exited;
+    float transmittance_3 = (_e158 ? 0.0 : _e157);
+    vec4 _e163 = _group_0_binding_0_cs.sun_direction;
+    float _e167 = state_1.transmittance;
+    float _e168 = forward_lobe(dot(_e1, _e163.xyz), _e167);
+    vec3 _e170 = state_1.radiance;
+    vec3 _e172 = state_1.octaves;
+    vec3 radiance_5 = (_e170 + (_e172 * (_e168 - 1.0)));
+    float _e177 = depth_1;
+    return MarchResult(radiance_5, transmittance_3, _e177);
 }
 
 uvec2 bayer2_(uint v_2) {
@@ -1756,16 +1799,16 @@ vec4 catmull_rom(float t_1) {
 }
 
 bool in_blocks(uvec2 id_19) {
-    uint k_14 = _group_0_binding_0_cs.temporal.x;
+    uint k_16 = _group_0_binding_0_cs.temporal.x;
     uvec4 _e7 = _group_0_binding_0_cs.counts;
-    return all(lessThan(id_19, (((_e7.xy + uvec2(k_14)) - uvec2(1u)) / uvec2(k_14))));
+    return all(lessThan(id_19, (((_e7.xy + uvec2(k_16)) - uvec2(1u)) / uvec2(k_16))));
 }
 
 uvec2 sparse_pixel(uvec2 id_20) {
-    uint k_15 = _group_0_binding_0_cs.temporal.x;
+    uint k_17 = _group_0_binding_0_cs.temporal.x;
     uint _e9 = _group_0_binding_0_cs.misc.y;
-    uvec2 _e10 = block_offset(_e9, k_15);
-    return ((id_20 * k_15) + _e10);
+    uvec2 _e10 = block_offset(_e9, k_17);
+    return ((id_20 * k_17) + _e10);
 }
 
 void store_sparse(uvec2 id_21, MarchResult r_13) {
@@ -2078,7 +2121,7 @@ float sample_hg_cos(float g_4, float u) {
 }
 
 PhaseSample sample_phase(vec3 dir_4, inout uint rng_5) {
-    float cos_theta_6 = 0.0;
+    float cos_theta_7 = 0.0;
     float pdf = 0.0;
     float _e2 = rng_next(rng_5);
     float _e3 = rng_next(rng_5);
@@ -2091,11 +2134,11 @@ PhaseSample sample_phase(vec3 dir_4, inout uint rng_5) {
         float _e28 = _group_0_binding_0_cs.phase.z;
         float g_6 = ((_e2 < _e28) ? _e24 : _e20);
         float _e31 = sample_hg_cos(g_6, _e3);
-        cos_theta_6 = _e31;
-        float _e32 = cos_theta_6;
+        cos_theta_7 = _e31;
+        float _e32 = cos_theta_7;
         float _e36 = _group_0_binding_0_cs.phase.x;
         float _e37 = phase_hg(_e32, _e36);
-        float _e38 = cos_theta_6;
+        float _e38 = cos_theta_7;
         float _e42 = _group_0_binding_0_cs.phase.y;
         float _e43 = phase_hg(_e38, _e42);
         float _e47 = _group_0_binding_0_cs.phase.z;
@@ -2103,27 +2146,27 @@ PhaseSample sample_phase(vec3 dir_4, inout uint rng_5) {
     } else {
         float _e52 = _group_0_binding_0_cs.phase.x;
         float _e53 = sample_hg_cos(_e52, _e3);
-        cos_theta_6 = _e53;
-        float _e54 = cos_theta_6;
+        cos_theta_7 = _e53;
+        float _e54 = cos_theta_7;
         float _e58 = _group_0_binding_0_cs.phase.x;
         float _e59 = phase_hg(_e54, _e58);
         pdf = _e59;
     }
-    float _e60 = cos_theta_6;
-    float _e61 = cos_theta_6;
+    float _e60 = cos_theta_7;
+    float _e61 = cos_theta_7;
     float sin_theta = sqrt(max((1.0 - (_e60 * _e61)), 0.0));
     float sign_ = ((dir_4.z >= 0.0) ? 1.0 : -1.0);
     float a_8 = (-1.0 / (sign_ + dir_4.z));
     float bb = ((dir_4.x * dir_4.y) * a_8);
     vec3 t_7 = vec3((1.0 + (((sign_ * dir_4.x) * dir_4.x) * a_8)), (sign_ * bb), (-(sign_) * dir_4.x));
     vec3 b_9 = vec3(bb, (sign_ + ((dir_4.y * dir_4.y) * a_8)), -(dir_4.y));
-    float _e109 = cos_theta_6;
-    vec3 w_5 = normalize((((t_7 * (sin_theta * cos(phi_1))) + (b_9 * (sin_theta * sin(phi_1)))) + (dir_4 * _e109)));
-    float _e113 = cos_theta_6;
+    float _e109 = cos_theta_7;
+    vec3 w_6 = normalize((((t_7 * (sin_theta * cos(phi_1))) + (b_9 * (sin_theta * sin(phi_1)))) + (dir_4 * _e109)));
+    float _e113 = cos_theta_7;
     float _e115 = phase(_e113, 1.0);
     float _e116 = pdf;
     float _e118 = pdf;
-    return PhaseSample(w_5, ((_e118 > 0.0) ? (_e115 / _e116) : 0.0));
+    return PhaseSample(w_6, ((_e118 > 0.0) ? (_e115 / _e116) : 0.0));
 }
 
 bool camera_still() {
@@ -2215,7 +2258,7 @@ float basic_sun_depth(vec3 rel_6, float alt_14, inout Counters counters_13) {
 MarchResult basic_pixel(uvec2 pixel_7) {
     Counters counters_14 = Counters(0u, 0u, 0u, 0u);
     vec3 radiance_2 = vec3(0.0);
-    float transmittance = 1.0;
+    float transmittance_1 = 1.0;
     float depth_sum = 0.0;
     uint i_17 = 0u;
     float depth_3 = 0.0;
@@ -2269,14 +2312,14 @@ MarchResult basic_pixel(uvec2 pixel_7) {
                     float _e99 = basic_sun_depth(rel_9, _e95, counters_14);
                     float beer_powder = ((2.0 * exp(-(_e99))) * (1.0 - exp((-2.0 * _e99))));
                     vec3 _e110 = radiance_2;
-                    float _e111 = transmittance;
+                    float _e111 = transmittance_1;
                     radiance_2 = (_e110 + (sun_phase * ((((beer_powder * _e111) * sigma_s) * _e96) * dt_3)));
                     float step_t_1 = exp(((-(sigma_t_5) * _e96) * dt_3));
                     float _e122 = depth_sum;
-                    float _e123 = transmittance;
+                    float _e123 = transmittance_1;
                     depth_sum = (_e122 + ((t_8 * _e123) * (1.0 - step_t_1)));
-                    float _e129 = transmittance;
-                    transmittance = (_e129 * step_t_1);
+                    float _e129 = transmittance_1;
+                    transmittance_1 = (_e129 * step_t_1);
                 }
             }
         }
@@ -2289,14 +2332,14 @@ MarchResult basic_pixel(uvec2 pixel_7) {
     count(STAT_DETAIL, _e142);
     uint _e145 = counters_14.light;
     count(STAT_LIGHT, _e145);
-    float _e148 = transmittance;
+    float _e148 = transmittance_1;
     if ((_e148 < 1.0)) {
         float _e151 = depth_sum;
-        float _e152 = transmittance;
+        float _e152 = transmittance_1;
         depth_3 = (_e151 / (1.0 - _e152));
     }
     vec3 _e156 = radiance_2;
-    float _e157 = transmittance;
+    float _e157 = transmittance_1;
     float _e158 = depth_3;
     return MarchResult(_e156, _e157, _e158);
 }
@@ -2417,8 +2460,8 @@ vec3 sprite_rel(vec2 xz, float alt_15) {
     float rp_6 = _group_0_binding_0_cs.atmosphere.x;
     vec4 _e8 = _group_0_binding_0_cs.camera_position;
     vec2 d_21 = (xz - _e8.xz);
-    float k_16 = ((alt_15 * (alt_15 + (2.0 * rp_6))) - dot(d_21, d_21));
-    float y_2 = (k_16 / (rp_6 + sqrt(max(((rp_6 * rp_6) + k_16), 0.0))));
+    float k_18 = ((alt_15 * (alt_15 + (2.0 * rp_6))) - dot(d_21, d_21));
+    float y_2 = (k_18 / (rp_6 + sqrt(max(((rp_6 * rp_6) + k_18), 0.0))));
     return vec3(d_21.x, y_2, d_21.y);
 }
 
@@ -2579,9 +2622,9 @@ vec3 moon_disk(vec3 d_16) {
     float x2_ = min(dot(offset, offset), 1.0);
     vec3 normal = (offset - (m_3 * sqrt((1.0 - x2_))));
     vec4 _e36 = _group_0_binding_0_cs.night;
-    float lit = smoothstep(-0.02, 0.02, dot(normal, _e36.xyz));
+    float lit_1 = smoothstep(-0.02, 0.02, dot(normal, _e36.xyz));
     float _e46 = _group_0_binding_0_cs.moon.w;
-    return vec3(((_e46 / 6.40407e-5) * lit));
+    return vec3(((_e46 / 6.40407e-5) * lit_1));
 }
 
 vec3 stars(vec3 d_17) {

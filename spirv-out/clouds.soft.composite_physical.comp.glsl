@@ -42,6 +42,7 @@ struct Frame {
     vec4 moon;
     vec4 night;
     vec4 light_model;
+    vec4 forward_lobe;
 };
 struct Roots {
     float t0_;
@@ -82,6 +83,14 @@ struct Weather {
     float cloud_type;
     float precipitation;
 };
+struct SunScattering {
+    float total;
+    float octaves;
+};
+struct ScatteredLight {
+    vec3 total;
+    vec3 octaves;
+};
 struct Stats {
     uint counters[9];
 };
@@ -94,6 +103,7 @@ struct MarchState {
     vec3 radiance;
     float transmittance;
     float depth_sum;
+    vec3 octaves;
 };
 struct Segments {
     vec2 a;
@@ -169,6 +179,7 @@ const uint AMBIENT_DIRECTIONS = 64u;
 const uint AMBIENT_STEPS = 24u;
 const uint GROUND_IRRADIANCE_SIZE = 64u;
 const uint NO_LAYER = 4u;
+const float FORWARD_LOBE_THIN = 0.1;
 const uint GROUND_IRRADIANCE_DIRECTIONS = 128u;
 const uint SHADOW_SIZE = 128u;
 const float SHADOW_HALF_EXTENT = 20000.0;
@@ -905,13 +916,14 @@ float diffuse_limb(float view_y, float coverage) {
     return mix(1.0, layer, _e17);
 }
 
-float sun_scattering(float cos_theta_5, float view_y_1, float tau_6, float far_1, float build, float coverage_1) {
+SunScattering sun_scattering(float cos_theta_5, float view_y_1, float tau_6, float far_1, float build, float coverage_1) {
     float octave_sum = 0.0;
     float ka = 1.0;
     float kb = 1.0;
     float kc = 1.0;
     uint i_12 = 0u;
     float feed = 0.0;
+    float octaves_part = 0.0;
     float total = 0.0;
     float a_8 = _group_0_binding_0_cs.multiple_scattering.x;
     float b_8 = _group_0_binding_0_cs.multiple_scattering.y;
@@ -960,18 +972,36 @@ float sun_scattering(float cos_theta_5, float view_y_1, float tau_6, float far_1
     float _e96 = feed;
     float _e97 = diffuse_limb(view_y_1, coverage_1);
     feed = (_e96 * _e97);
-    float _e100 = phase(cos_theta_5, 1.0);
-    float _e105 = feed;
-    float _e107 = octave_sum;
-    total = ((_e100 * exp((-(tau_6) - far_1))) + ((_e105 * build) * _e107));
-    uint _e114 = _group_0_binding_0_cs.modes.w;
-    if (((_e114 & FLAG_BEER_POWDER) != 0u)) {
-        float _e119 = total;
-        float _e123 = _group_0_binding_0_cs.phase.w;
-        total = (_e119 * (1.0 - exp((-(_e123) * tau_6))));
+    float _e99 = feed;
+    float _e101 = octave_sum;
+    octaves_part = ((_e99 * build) * _e101);
+    float _e105 = phase(cos_theta_5, 1.0);
+    float _e110 = octaves_part;
+    total = ((_e105 * exp((-(tau_6) - far_1))) + _e110);
+    uint _e116 = _group_0_binding_0_cs.modes.w;
+    if (((_e116 & FLAG_BEER_POWDER) != 0u)) {
+        float _e124 = _group_0_binding_0_cs.phase.w;
+        float powder = (1.0 - exp((-(_e124) * tau_6)));
+        float _e130 = total;
+        total = (_e130 * powder);
+        float _e132 = octaves_part;
+        octaves_part = (_e132 * powder);
     }
-    float _e130 = total;
-    return _e130;
+    float _e134 = total;
+    float _e135 = octaves_part;
+    return SunScattering(_e134, _e135);
+}
+
+float forward_lobe(float cos_theta_6, float transmittance) {
+    float k_13 = _group_0_binding_0_cs.forward_lobe.x;
+    if ((k_13 <= 0.0)) {
+        return 1.0;
+    }
+    float _e11 = saturate((transmittance / FORWARD_LOBE_THIN));
+    float w_5 = (k_13 * _e11);
+    float _e17 = _group_0_binding_0_cs.forward_lobe.y;
+    float _e18 = phase_hg(cos_theta_6, _e17);
+    return (1.0 + (w_5 * ((12.566371 * _e18) - 1.0)));
 }
 
 float octave_buildup(float density_1) {
@@ -1044,8 +1074,8 @@ vec3 step_integral(vec3 source, float sigma_t, float dt) {
 float start_offset(uvec2 pixel_3) {
     uint _e4 = _group_0_binding_0_cs.modes.w;
     bool jitter_1 = ((_e4 & FLAG_JITTER) != 0u);
-    uint k_13 = _group_0_binding_0_cs.temporal.x;
-    if ((k_13 <= 1u)) {
+    uint k_14 = _group_0_binding_0_cs.temporal.x;
+    if ((k_14 <= 1u)) {
         uint _e18 = _group_0_binding_0_cs.misc.y;
         float _e19 = hash_unit(pixel_3, _e18);
         return (jitter_1 ? _e19 : 0.5);
@@ -1053,7 +1083,7 @@ float start_offset(uvec2 pixel_3) {
     float _e23 = hash_unit(pixel_3, 0u);
     float base_2 = (jitter_1 ? _e23 : 0.5);
     uint _e29 = _group_0_binding_0_cs.misc.y;
-    float _e32 = van_der_corput((_e29 / (k_13 * k_13)));
+    float _e32 = van_der_corput((_e29 / (k_14 * k_14)));
     return fract((base_2 + _e32));
 }
 
@@ -1151,16 +1181,16 @@ vec4 catmull_rom(float t_1) {
 }
 
 bool in_blocks(uvec2 id_19) {
-    uint k_14 = _group_0_binding_0_cs.temporal.x;
+    uint k_15 = _group_0_binding_0_cs.temporal.x;
     uvec4 _e7 = _group_0_binding_0_cs.counts;
-    return all(lessThan(id_19, (((_e7.xy + uvec2(k_14)) - uvec2(1u)) / uvec2(k_14))));
+    return all(lessThan(id_19, (((_e7.xy + uvec2(k_15)) - uvec2(1u)) / uvec2(k_15))));
 }
 
 uvec2 sparse_pixel(uvec2 id_20) {
-    uint k_15 = _group_0_binding_0_cs.temporal.x;
+    uint k_16 = _group_0_binding_0_cs.temporal.x;
     uint _e9 = _group_0_binding_0_cs.misc.y;
-    uvec2 _e10 = block_offset(_e9, k_15);
-    return ((id_20 * k_15) + _e10);
+    uvec2 _e10 = block_offset(_e9, k_16);
+    return ((id_20 * k_16) + _e10);
 }
 
 uint rng_seed(uvec2 pixel_6, uint path_index) {
@@ -1307,7 +1337,7 @@ float sample_hg_cos(float g_4, float u) {
 }
 
 PhaseSample sample_phase(vec3 dir_4, inout uint rng_5) {
-    float cos_theta_6 = 0.0;
+    float cos_theta_7 = 0.0;
     float pdf = 0.0;
     float _e2 = rng_next(rng_5);
     float _e3 = rng_next(rng_5);
@@ -1320,11 +1350,11 @@ PhaseSample sample_phase(vec3 dir_4, inout uint rng_5) {
         float _e28 = _group_0_binding_0_cs.phase.z;
         float g_6 = ((_e2 < _e28) ? _e24 : _e20);
         float _e31 = sample_hg_cos(g_6, _e3);
-        cos_theta_6 = _e31;
-        float _e32 = cos_theta_6;
+        cos_theta_7 = _e31;
+        float _e32 = cos_theta_7;
         float _e36 = _group_0_binding_0_cs.phase.x;
         float _e37 = phase_hg(_e32, _e36);
-        float _e38 = cos_theta_6;
+        float _e38 = cos_theta_7;
         float _e42 = _group_0_binding_0_cs.phase.y;
         float _e43 = phase_hg(_e38, _e42);
         float _e47 = _group_0_binding_0_cs.phase.z;
@@ -1332,27 +1362,27 @@ PhaseSample sample_phase(vec3 dir_4, inout uint rng_5) {
     } else {
         float _e52 = _group_0_binding_0_cs.phase.x;
         float _e53 = sample_hg_cos(_e52, _e3);
-        cos_theta_6 = _e53;
-        float _e54 = cos_theta_6;
+        cos_theta_7 = _e53;
+        float _e54 = cos_theta_7;
         float _e58 = _group_0_binding_0_cs.phase.x;
         float _e59 = phase_hg(_e54, _e58);
         pdf = _e59;
     }
-    float _e60 = cos_theta_6;
-    float _e61 = cos_theta_6;
+    float _e60 = cos_theta_7;
+    float _e61 = cos_theta_7;
     float sin_theta = sqrt(max((1.0 - (_e60 * _e61)), 0.0));
     float sign_ = ((dir_4.z >= 0.0) ? 1.0 : -1.0);
     float a_9 = (-1.0 / (sign_ + dir_4.z));
     float bb = ((dir_4.x * dir_4.y) * a_9);
     vec3 t_6 = vec3((1.0 + (((sign_ * dir_4.x) * dir_4.x) * a_9)), (sign_ * bb), (-(sign_) * dir_4.x));
     vec3 b_10 = vec3(bb, (sign_ + ((dir_4.y * dir_4.y) * a_9)), -(dir_4.y));
-    float _e109 = cos_theta_6;
-    vec3 w_5 = normalize((((t_6 * (sin_theta * cos(phi_1))) + (b_10 * (sin_theta * sin(phi_1)))) + (dir_4 * _e109)));
-    float _e113 = cos_theta_6;
+    float _e109 = cos_theta_7;
+    vec3 w_6 = normalize((((t_6 * (sin_theta * cos(phi_1))) + (b_10 * (sin_theta * sin(phi_1)))) + (dir_4 * _e109)));
+    float _e113 = cos_theta_7;
     float _e115 = phase(_e113, 1.0);
     float _e116 = pdf;
     float _e118 = pdf;
-    return PhaseSample(w_5, ((_e118 > 0.0) ? (_e115 / _e116) : 0.0));
+    return PhaseSample(w_6, ((_e118 > 0.0) ? (_e115 / _e116) : 0.0));
 }
 
 bool camera_still() {
@@ -1508,8 +1538,8 @@ vec3 sprite_rel(vec2 xz, float alt_15) {
     float rp_5 = _group_0_binding_0_cs.atmosphere.x;
     vec4 _e8 = _group_0_binding_0_cs.camera_position;
     vec2 d_21 = (xz - _e8.xz);
-    float k_16 = ((alt_15 * (alt_15 + (2.0 * rp_5))) - dot(d_21, d_21));
-    float y_2 = (k_16 / (rp_5 + sqrt(max(((rp_5 * rp_5) + k_16), 0.0))));
+    float k_17 = ((alt_15 * (alt_15 + (2.0 * rp_5))) - dot(d_21, d_21));
+    float y_2 = (k_17 / (rp_5 + sqrt(max(((rp_5 * rp_5) + k_17), 0.0))));
     return vec3(d_21.x, y_2, d_21.y);
 }
 

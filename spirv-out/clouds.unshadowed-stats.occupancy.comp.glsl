@@ -42,6 +42,7 @@ struct Frame {
     vec4 moon;
     vec4 night;
     vec4 light_model;
+    vec4 forward_lobe;
 };
 struct Roots {
     float t0_;
@@ -82,6 +83,14 @@ struct Weather {
     float cloud_type;
     float precipitation;
 };
+struct SunScattering {
+    float total;
+    float octaves;
+};
+struct ScatteredLight {
+    vec3 total;
+    vec3 octaves;
+};
 struct Stats {
     uint counters[9];
 };
@@ -94,6 +103,7 @@ struct MarchState {
     vec3 radiance;
     float transmittance;
     float depth_sum;
+    vec3 octaves;
 };
 struct Segments {
     vec2 a;
@@ -169,6 +179,7 @@ const uint AMBIENT_DIRECTIONS = 64u;
 const uint AMBIENT_STEPS = 24u;
 const uint GROUND_IRRADIANCE_SIZE = 64u;
 const uint NO_LAYER = 4u;
+const float FORWARD_LOBE_THIN = 0.1;
 const uint GROUND_IRRADIANCE_DIRECTIONS = 128u;
 const uint SHADOW_SIZE = 128u;
 const float SHADOW_HALF_EXTENT = 20000.0;

@@ -45,6 +45,7 @@ struct Frame {
     moon: vec4<f32>,                // unit direction to the moon; w = full-moon illuminance (0: no moon)
     night: vec4<f32>,               // the real sun's unit direction; w = a magnitude-0 star's illuminance (0: no stars)
     light_model: vec4<f32>,         // side light, coverage exponent, far-shadow chord (m, 0 = off), limb darkening
+    forward_lobe: vec4<f32>,        // the octaves' forward lobe through thin cloud: strength (0 = off), eccentricity, 0, 0
 }
 
 // Codes shared with the scene crate (`PhaseModel::code`, `Integration::code`, ...).
@@ -1110,7 +1111,14 @@ fn far_optical_depth(rel: vec3<f32>, p: vec3<f32>, l: Layer) -> f32 {
 // off far more slowly: as 1 / (1 + (3/4)(1 - g) tau) in two-stream theory for conservative
 // scattering (Meador and Weaver 1980), and the path tracer agrees (storm's bases were 2.3 times
 // too dark). The two forms agree to first order in tau, where clouds are thin.
-fn sun_scattering(cos_theta: f32, view_y: f32, tau: f32, far: f32, build: f32, coverage: f32) -> f32 {
+// Returns the whole and, apart, the octaves' part of it (the march gives that part a forward
+// lobe once it knows the pixel's transmittance: forward_lobe).
+struct SunScattering {
+    total: f32,
+    octaves: f32,
+}
+
+fn sun_scattering(cos_theta: f32, view_y: f32, tau: f32, far: f32, build: f32, coverage: f32) -> SunScattering {
     let a = frame.multiple_scattering.x;
     let b = frame.multiple_scattering.y;
     let c = frame.multiple_scattering.z;
@@ -1141,13 +1149,42 @@ fn sun_scattering(cos_theta: f32, view_y: f32, tau: f32, far: f32, build: f32, c
         feed *= pow(max(coverage, 1e-6), frame.light_model.y);
     }
     feed *= diffuse_limb(view_y, coverage);
-    var total = phase(cos_theta, 1.0) * exp(-tau - far) + feed * build * octave_sum;
+    var octaves_part = feed * build * octave_sum;
+    var total = phase(cos_theta, 1.0) * exp(-tau - far) + octaves_part;
     if (frame.modes.w & FLAG_BEER_POWDER) != 0u {
         // Beer-Powder (HZD): in-scattering builds up with depth into the cloud, darkening
         // the thin edges. Kept <= 1 so it only removes energy.
-        total *= 1.0 - exp(-frame.phase.w * tau);
+        let powder = 1.0 - exp(-frame.phase.w * tau);
+        total *= powder;
+        octaves_part *= powder;
     }
-    return total;
+    return SunScattering(total, octaves_part);
+}
+
+// The pixel transmittance at and above which the forward lobe has its full strength.
+const FORWARD_LOBE_THIN: f32 = 0.1;
+
+// The octaves' forward lobe through thin cloud: the factor on a pixel's octave light, given
+// the cosine between its view ray and the sun and its transmittance. The octaves' own
+// eccentricities (c^i g, c = 0.15 before this term) make their light nearly isotropic, right
+// for the diffuse light of a thick cloud but not for light that crossed a thin one: scattered
+// a few times, it still leans toward the sun (the eccentricity of n scatterings of HG(g) is
+// g^n). Against the path tracer's truth (8192 paths a pixel, 20 scenes) the octave light of
+// pixels of transmittance 0.05-0.5 was 1.70 times the truth's looking away from the sun
+// (cosine below -0.6) and 0.59 times looking toward it (above 0.6), and 1.52 and 0.49 at
+// 0.5-0.95, while in pixels below 0.05 it was 0.90-0.97 at every angle (docs/fit). A view
+// sample does not know how thin the cloud is; the pixel's transmittance, once the march
+// ends, does. So 1 + w (4 pi HG(cos, g_f) - 1): its mean over the sphere is 1 (light moved
+// between directions, none added), w = k min(T / 0.1, 1) (k: frame.forward_lobe.x, 0 = off;
+// g_f: .y). Thresholds of 0.05, 0.2 and 0.5 and g_f of 0.3-0.6 fitted within 0.0006 of
+// each other. Per pixel, not per sample: a phase function and a second accumulator.
+fn forward_lobe(cos_theta: f32, transmittance: f32) -> f32 {
+    let k = frame.forward_lobe.x;
+    if k <= 0.0 {
+        return 1.0;
+    }
+    let w = k * saturate(transmittance / FORWARD_LOBE_THIN);
+    return 1.0 + w * (4.0 * PI * phase_hg(cos_theta, frame.forward_lobe.y) - 1.0);
 }
 
 // The diffuse light leaving a thick plane-parallel layer is limb-darkened: brighter along the
@@ -1200,12 +1237,19 @@ fn height_fraction(alt: f32) -> f32 {
 }
 
 // In-scattered radiance per unit length at a view sample of layer `l`: sigma_s * density *
-// (sun + ambient), darkened toward the base of raining clouds (thesis 4.4.1).
+// (sun + ambient), darkened toward the base of raining clouds (thesis 4.4.1); and, apart,
+// the octaves' part of it.
+struct ScatteredLight {
+    total: vec3<f32>,
+    octaves: vec3<f32>,
+}
+
 fn scattered_light(rel: vec3<f32>, p: vec3<f32>, alt: f32, density: f32, view: vec3<f32>,
-                   l: Layer, counters: ptr<function, Counters>) -> vec3<f32> {
+                   l: Layer, counters: ptr<function, Counters>) -> ScatteredLight {
     let sun = frame.sun_direction.xyz;
     let h = saturate(layer_height(l, alt));
     var sun_light = vec3<f32>(0.0);
+    var octave_light = vec3<f32>(0.0);
     let weather = sample_weather(p, l);
     if !hits_ground(rel, alt, sun) {
         var tau = 0.0;
@@ -1216,10 +1260,13 @@ fn scattered_light(rel: vec3<f32>, p: vec3<f32>, alt: f32, density: f32, view: v
         }
         let s = sun_scattering(dot(view, sun), view.y, tau, far, octave_buildup(density),
                                weather.coverage);
-        sun_light = frame.sun_illuminance.rgb * sun_through_air(rel) * s;
+        let lit = frame.sun_illuminance.rgb * sun_through_air(rel);
+        sun_light = lit * s.total;
+        octave_light = lit * s.octaves;
     }
     let darkening = saturate(1.0 - frame.extinction.z * weather.precipitation * (1.0 - h));
-    return frame.extinction.x * density * (sun_light + ambient(h)) * darkening;
+    let k = frame.extinction.x * density * darkening;
+    return ScatteredLight((sun_light + ambient(h)) * k, octave_light * k);
 }
 // The lit ground under the physical sky: the sky's irradiance on it and the clouds' shadows
 // on it.
@@ -1492,6 +1539,7 @@ struct MarchState {
     radiance: vec3<f32>,
     transmittance: f32,
     depth_sum: f32,  // sum of t * (fraction of the light removed at t)
+    octaves: vec3<f32>,  // the octaves' part of `radiance` (forward_lobe)
 }
 
 // The view march (thesis alg. 5.1) of the ray through `pixel`, counting its work. Each cloud
@@ -1503,7 +1551,7 @@ fn march_pixel(pixel: vec2<u32>) -> MarchResult {
     var counters = Counters(0u, 0u, 0u, 0u);
     count(STAT_PIXELS, 1u);
 
-    var state = MarchState(vec3<f32>(0.0), 1.0, 0.0);
+    var state = MarchState(vec3<f32>(0.0), 1.0, 0.0, vec3<f32>(0.0));
     let jitter = start_offset(pixel);
     let n = layer_count();
     var marched = false;
@@ -1556,7 +1604,10 @@ fn march_pixel(pixel: vec2<u32>) -> MarchResult {
     // transmittance left (up to the threshold, 1%), least of all the sun's or the moon's disc,
     // whose radiance is 10^5 times the sky's.
     let transmittance = select(state.transmittance, 0.0, exited);
-    return MarchResult(state.radiance, transmittance, depth);
+    // The octaves' forward lobe, weighted by the transmittance the march reached.
+    let lobe = forward_lobe(dot(view, frame.sun_direction.xyz), state.transmittance);
+    let radiance = state.radiance + state.octaves * (lobe - 1.0);
+    return MarchResult(radiance, transmittance, depth);
 }
 
 // The march of the view ray's interval `span` in layer `l`, added to `state`. True when the
@@ -1618,7 +1669,8 @@ fn march_layer(view: vec3<f32>, span: Interval, l: Layer, jitter: f32,
         let sigma_t = sigma_e * density;
         let source = scattered_light(rel, p, alt, density, view, l, counters);
         let transmittance = (*state).transmittance;
-        (*state).radiance += transmittance * step_integral(source, sigma_t, dt);
+        (*state).radiance += transmittance * step_integral(source.total, sigma_t, dt);
+        (*state).octaves += transmittance * step_integral(source.octaves, sigma_t, dt);
         let step_t = exp(-sigma_t * dt);
         (*state).depth_sum += t * transmittance * (1.0 - step_t);
         (*state).transmittance = transmittance * step_t;

@@ -69,6 +69,7 @@ struct MarchState {
     radiance: vec3<f32>,
     transmittance: f32,
     depth_sum: f32,  // sum of t * (fraction of the light removed at t)
+    octaves: vec3<f32>,  // the octaves' part of `radiance` (forward_lobe)
 }
 
 // The view march (thesis alg. 5.1) of the ray through `pixel`, counting its work. Each cloud
@@ -80,7 +81,7 @@ fn march_pixel(pixel: vec2<u32>) -> MarchResult {
     var counters = Counters(0u, 0u, 0u, 0u);
     count(STAT_PIXELS, 1u);
 
-    var state = MarchState(vec3<f32>(0.0), 1.0, 0.0);
+    var state = MarchState(vec3<f32>(0.0), 1.0, 0.0, vec3<f32>(0.0));
     let jitter = start_offset(pixel);
     let n = layer_count();
     var marched = false;
@@ -133,7 +134,10 @@ fn march_pixel(pixel: vec2<u32>) -> MarchResult {
     // transmittance left (up to the threshold, 1%), least of all the sun's or the moon's disc,
     // whose radiance is 10^5 times the sky's.
     let transmittance = select(state.transmittance, 0.0, exited);
-    return MarchResult(state.radiance, transmittance, depth);
+    // The octaves' forward lobe, weighted by the transmittance the march reached.
+    let lobe = forward_lobe(dot(view, frame.sun_direction.xyz), state.transmittance);
+    let radiance = state.radiance + state.octaves * (lobe - 1.0);
+    return MarchResult(radiance, transmittance, depth);
 }
 
 // The march of the view ray's interval `span` in layer `l`, added to `state`. True when the
@@ -195,7 +199,8 @@ fn march_layer(view: vec3<f32>, span: Interval, l: Layer, jitter: f32,
         let sigma_t = sigma_e * density;
         let source = scattered_light(rel, p, alt, density, view, l, counters);
         let transmittance = (*state).transmittance;
-        (*state).radiance += transmittance * step_integral(source, sigma_t, dt);
+        (*state).radiance += transmittance * step_integral(source.total, sigma_t, dt);
+        (*state).octaves += transmittance * step_integral(source.octaves, sigma_t, dt);
         let step_t = exp(-sigma_t * dt);
         (*state).depth_sum += t * transmittance * (1.0 - step_t);
         (*state).transmittance = transmittance * step_t;

@@ -171,7 +171,8 @@ pub(crate) fn far_optical_depth(m: &Model, rel: V3, p: V3, l: &Layer) -> f64 {
 // samples the whole sun ray in the layer, so its single scattering takes no far shadow
 // (`far_direct` 0) while the side light keeps the model's (`far_side`).
 /// Sun light scattered toward the viewer per unit illuminance and unit sigma_s, summed over
-/// octaves fed through the cloud's top and sides, with the optional Beer-Powder factor.
+/// octaves fed through the cloud's top and sides, with the optional Beer-Powder factor: the
+/// whole and the octaves' part of it (the WGSL's `SunScattering`).
 pub(crate) fn sun_scattering(
     f: &Frame,
     cos_theta: f64,
@@ -180,7 +181,7 @@ pub(crate) fn sun_scattering(
     (far_direct, far_side): (f64, f64),
     build: f64,
     coverage: f64,
-) -> f64 {
+) -> (f64, f64) {
     let a = f.multiple_scattering[0];
     let b = f.multiple_scattering[1];
     let c = f.multiple_scattering[2];
@@ -205,12 +206,31 @@ pub(crate) fn sun_scattering(
         feed *= coverage.max(1e-6).powf(f.light_model[1]);
     }
     feed *= diffuse_limb(f, view_y, coverage);
-    let mut total =
-        phase(f, cos_theta, 1.0) * (-tau - far_direct).exp() + feed * build * octave_sum;
+    let mut octaves_part = feed * build * octave_sum;
+    let mut total = phase(f, cos_theta, 1.0) * (-tau - far_direct).exp() + octaves_part;
     if f.modes[3] & FLAG_BEER_POWDER != 0 {
-        total *= 1.0 - (-f.phase[3] * tau).exp();
+        let powder = 1.0 - (-f.phase[3] * tau).exp();
+        total *= powder;
+        octaves_part *= powder;
     }
-    total
+    (total, octaves_part)
+}
+
+// WGSL: lighting.wgsl::FORWARD_LOBE_THIN
+/// The pixel transmittance at and above which the forward lobe has its full strength.
+const FORWARD_LOBE_THIN: f64 = 0.1;
+
+// WGSL: lighting.wgsl::forward_lobe
+/// The factor on a pixel's octave light for the cosine between its view ray and the sun and
+/// its transmittance: `1 + w (4 pi HG(cos, g_f) - 1)`, `w = k min(T / 0.1, 1)` (lighting.wgsl
+/// says why).
+pub(crate) fn forward_lobe(f: &Frame, cos_theta: f64, transmittance: f64) -> f64 {
+    let k = f.forward_lobe[0];
+    if k <= 0.0 {
+        return 1.0;
+    }
+    let w = k * saturate(transmittance / FORWARD_LOBE_THIN);
+    1.0 + w * (4.0 * PI * phase_hg(cos_theta, f.forward_lobe[1]) - 1.0)
 }
 
 // WGSL: lighting.wgsl::diffuse_limb
@@ -252,7 +272,8 @@ pub(crate) fn ambient(f: &Frame, sky: Option<&SkyTables>, h: f64) -> V3 {
 
 // WGSL: lighting.wgsl::scattered_light
 /// In-scattered radiance per unit length at a view sample of layer `l`: sigma_s * density *
-/// (sun + ambient), darkened toward the base of raining clouds.
+/// (sun + ambient), darkened toward the base of raining clouds; and, apart, the octaves' part
+/// of it (the WGSL's `ScatteredLight`).
 // The WGSL's parameters plus the model and the light-march settings (uniforms there).
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn scattered_light(
@@ -265,11 +286,12 @@ pub(crate) fn scattered_light(
     view: V3,
     l: &Layer,
     counters: &mut Counters,
-) -> V3 {
+) -> (V3, V3) {
     let f = &m.f;
     let sun = f.sun();
     let h = saturate(layer_height(l, alt));
     let mut sun_light = V3::ZERO;
+    let mut octave_light = V3::ZERO;
     let weather = m.weather(p, l);
     if !hits_ground(f, rel, alt, sun) {
         // LIGHT_MARCH: with 0 light steps the march returns 0, as the switched-off WGSL does
@@ -277,7 +299,7 @@ pub(crate) fn scattered_light(
         let tau = sun_optical_depth(m, lm, rel, p, l, counters);
         let far = far_optical_depth(m, rel, p, l);
         let far_direct = if lm.to_layer_exit { 0.0 } else { far };
-        let s = sun_scattering(
+        let (s, octaves) = sun_scattering(
             f,
             view.dot(sun),
             view.y,
@@ -286,10 +308,13 @@ pub(crate) fn scattered_light(
             octave_buildup(f, density),
             weather.coverage,
         );
-        sun_light = f.sun_illuminance().mul_v(sun_through_air(f, m.sky(), rel)) * s;
+        let lit = f.sun_illuminance().mul_v(sun_through_air(f, m.sky(), rel));
+        sun_light = lit * s;
+        octave_light = lit * octaves;
     }
     let darkening = saturate(1.0 - f.extinction[2] * weather.precipitation * (1.0 - h));
-    (sun_light + ambient(f, m.sky(), h)) * (f.extinction[0] * density * darkening)
+    let k = f.extinction[0] * density * darkening;
+    ((sun_light + ambient(f, m.sky(), h)) * k, octave_light * k)
 }
 
 #[cfg(test)]
@@ -361,6 +386,33 @@ mod tests {
         scene.lighting.multiple_scattering.limb_darkening = 0.0;
         let off = Model::new(&scene, Medium::Clouds(&noise));
         assert_eq!(diffuse_limb(&off.f, 0.3, 1.0), 1.0);
+    }
+
+    /// The forward lobe moves a thin pixel's octave light toward the sun without adding any
+    /// (its mean over the sphere is 1), never goes negative, grows with the transmittance up
+    /// to its threshold, and is 1 through opaque cloud or when off.
+    #[test]
+    fn forward_lobe_moves_light_toward_the_sun_and_adds_none() {
+        let noise = crate::small_noise();
+        let mut scene = Scene::default();
+        scene.lighting.multiple_scattering.forward_lobe = 1.0;
+        scene.lighting.multiple_scattering.forward_lobe_g = 0.6;
+        let m = Model::new(&scene, Medium::Clouds(&noise));
+        for t in [0.05, 0.1, 0.7] {
+            let mean = integral(|c| forward_lobe(&m.f, c, t)) / (4.0 * PI);
+            assert!((mean - 1.0).abs() < 1e-6, "T {t}: mean {mean}");
+        }
+        let (ahead, behind) = (forward_lobe(&m.f, 1.0, 0.5), forward_lobe(&m.f, -1.0, 0.5));
+        assert!(
+            ahead > 1.0 && (0.0..1.0).contains(&behind),
+            "{ahead} {behind}"
+        );
+        assert!(forward_lobe(&m.f, 1.0, 0.05) < ahead);
+        assert_eq!(forward_lobe(&m.f, 1.0, 0.5), forward_lobe(&m.f, 1.0, 0.9));
+        assert_eq!(forward_lobe(&m.f, 1.0, 0.0), 1.0);
+        scene.lighting.multiple_scattering.forward_lobe = 0.0;
+        let off = Model::new(&scene, Medium::Clouds(&noise));
+        assert_eq!(forward_lobe(&off.f, 1.0, 0.5), 1.0);
     }
 
     /// Integral over the sphere of a phase function of cos(theta), by the midpoint rule in cos.

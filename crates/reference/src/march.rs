@@ -4,7 +4,7 @@
 use crate::density::{Counters, Layer, cloud_layer, layer_count};
 use crate::frame::{Frame, INTEGRATION_RIEMANN, MAX_VIEW_STEPS, hash_unit, van_der_corput};
 use crate::geometry::{Interval, RayKind, altitude_of, cloud_interval, layer_interval, view_ray};
-use crate::lighting::{LightMarch, scattered_light};
+use crate::lighting::{LightMarch, forward_lobe, scattered_light};
 use crate::math::V3;
 use crate::medium::Model;
 
@@ -119,6 +119,8 @@ struct MarchState {
     radiance: V3,
     transmittance: f64,
     depth_sum: f64,
+    /// The octaves' part of `radiance` (the forward lobe's).
+    octaves: V3,
 }
 
 /// The march of one view ray from the camera with start offset `jitter` (in steps).
@@ -132,6 +134,7 @@ pub(crate) fn march_ray(m: &Model, s: &MarchSettings, view: V3, jitter: f64) -> 
         radiance: V3::ZERO,
         transmittance: 1.0,
         depth_sum: 0.0,
+        octaves: V3::ZERO,
     };
     let mut exited_early = false;
     let spans: Vec<(u32, Interval)> = (0..layer_count(f))
@@ -174,8 +177,10 @@ pub(crate) fn march_ray(m: &Model, s: &MarchSettings, view: V3, jitter: f64) -> 
     } else {
         0.0
     };
+    // The octaves' forward lobe, weighted by the transmittance the march reached.
+    let lobe = forward_lobe(f, view.dot(f.sun()), state.transmittance);
     PixelResult {
-        radiance: state.radiance,
+        radiance: state.radiance + state.octaves * (lobe - 1.0),
         // An early exit ends the pixel: nothing behind it shows through (as the WGSL).
         transmittance: if exited_early {
             0.0
@@ -256,8 +261,10 @@ fn march_layer(
         }
         empty = 0;
         let sigma_t = sigma_e * density;
-        let source = scattered_light(m, &s.light, rel, p, alt, density, view, l, counters);
+        let (source, octaves) =
+            scattered_light(m, &s.light, rel, p, alt, density, view, l, counters);
         state.radiance += step_integral(s.integration, source, sigma_t, dt) * state.transmittance;
+        state.octaves += step_integral(s.integration, octaves, sigma_t, dt) * state.transmittance;
         let step_t = (-sigma_t * dt).exp();
         state.depth_sum += t * state.transmittance * (1.0 - step_t);
         state.transmittance *= step_t;

@@ -598,7 +598,8 @@ impl Default for Phase {
 /// power `coverage_exponent` (light leaks out of a small cloud, not out of a deck), fed
 /// through a broken layer's sides as well as its top (`side_light`), and the sun ray beyond
 /// the light march's reach is shadowed statistically (`far_chord_m`); and the octaves leaving
-/// a deck are limb-darkened toward grazing views (`limb_darkening`). The defaults are
+/// a deck are limb-darkened toward grazing views (`limb_darkening`). Seen through thin cloud
+/// the octaves' light leans toward the sun (`forward_lobe`, `forward_lobe_g`). The defaults are
 /// fitted to the path tracer's all-orders truth by `stratus fit-scattering` (docs/fit);
 /// `a > b` is allowed.
 #[derive(Serialize, Deserialize, Clone, Copy, Debug, PartialEq)]
@@ -641,25 +642,42 @@ pub struct MultipleScattering {
     /// thick layer is brighter along its normal than at grazing angles (`1 + (3/2) mu` in the
     /// Eddington approximation; Chandrasekhar 1950). 0: isotropic octaves.
     pub limb_darkening: f64,
+    /// Forward lobe of the octaves seen through thin cloud, within [0, 1]: a pixel's octave
+    /// light is scaled by `1 + w (4 pi HG(cos, forward_lobe_g) - 1)`, `cos` the cosine between
+    /// the view ray and the sun, `w = forward_lobe min(T / 0.1, 1)` and `T` the pixel's
+    /// transmittance: light that crossed a thin cloud was scattered a few times and still
+    /// leans toward the sun; through a thick one (`T` near 0) it is diffuse. Its mean over
+    /// the sphere is 1 (it moves light between directions, adding none). 0: off.
+    pub forward_lobe: f64,
+    /// The forward lobe's Henyey-Greenstein eccentricity, within [0, 0.95].
+    pub forward_lobe_g: f64,
 }
+
+/// The fitted strength of the octaves' forward lobe (docs/fit).
+const FORWARD_LOBE_FIT: f64 = 0.4;
+/// The fitted eccentricity of the octaves' forward lobe (docs/fit).
+const FORWARD_LOBE_G_FIT: f64 = 0.5;
 
 impl Default for MultipleScattering {
     /// Fitted to the GPU path tracer's all-orders truth (8192 paths a pixel, rendered on an
     /// H200; the march on lavapipe) over ten training scenes by `stratus fit-scattering`: its
     /// choice, 3 octaves with a build-up of 400 m, side light 1, coverage exponent 1, a
-    /// far-shadow chord of 8 km and limb darkening 0.5 (docs/fit; the thesis's 2 octaves of
-    /// a = b = c = 0.5 and none of the other terms before).
+    /// far-shadow chord of 8 km, limb darkening 0.5 and a forward lobe of 0.4 (g 0.5), with
+    /// the octaves' own eccentricity nearly gone (c = 0.04) (docs/fit; the thesis's 2 octaves
+    /// of a = b = c = 0.5 and none of the other terms before).
     fn default() -> Self {
         Self {
             octaves: 3,
             a: 1.2,
             b: 0.5,
-            c: 0.15,
+            c: 0.04,
             buildup_m: 400.0,
             side_light: 1.0,
             coverage_exponent: 1.0,
             far_chord_m: 8000.0,
             limb_darkening: 0.5,
+            forward_lobe: FORWARD_LOBE_FIT,
+            forward_lobe_g: FORWARD_LOBE_G_FIT,
         }
     }
 }

@@ -107,10 +107,13 @@ pub struct FrameUniforms {
     /// The fitted light model's terms beyond the octaves: side light, coverage exponent,
     /// far-shadow chord (m, 0 = off), limb darkening (`MultipleScattering`).
     pub light_model: [f32; 4],
+    /// The octaves' forward lobe through thin cloud: strength (0 = off), eccentricity, 0, 0
+    /// (`MultipleScattering::forward_lobe`).
+    pub forward_lobe: [f32; 4],
 }
 
 impl FrameUniforms {
-    /// Size of the block in bytes (39 vec4 members).
+    /// Size of the block in bytes (40 vec4 members).
     pub const SIZE: usize = std::mem::size_of::<Self>();
 
     /// `modes.w` bit: apply the Beer-Powder term.
@@ -130,7 +133,7 @@ impl FrameUniforms {
 
     /// Every member in declaration order with its WGSL type; member `i` is at offset `16 * i`.
     /// The shader-reflection test compares the WGSL struct against this list.
-    pub const MEMBERS: [(&'static str, &'static str); 39] = [
+    pub const MEMBERS: [(&'static str, &'static str); 40] = [
         ("camera_position", "vec4<f32>"),
         ("camera_forward", "vec4<f32>"),
         ("camera_right", "vec4<f32>"),
@@ -170,6 +173,7 @@ impl FrameUniforms {
         ("moon", "vec4<f32>"),
         ("night", "vec4<f32>"),
         ("light_model", "vec4<f32>"),
+        ("forward_lobe", "vec4<f32>"),
     ];
 
     /// This block with `previous`'s camera as last frame's camera (what a renderer keeping
@@ -552,6 +556,7 @@ impl Scene {
                 ms.far_chord_m as f32,
                 ms.limb_darkening as f32,
             ],
+            forward_lobe: [ms.forward_lobe as f32, ms.forward_lobe_g as f32, 0.0, 0.0],
         };
         block.with_previous_camera(&block)
     }

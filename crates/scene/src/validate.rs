@@ -308,6 +308,19 @@ pub(crate) fn check(scene: &Scene) -> Vec<Issue> {
         Incl(0.0),
         Incl(4.0),
     );
+    // Above 1 the lobe's factor would go negative behind the viewer.
+    c.float(
+        "lighting.multiple_scattering.forward_lobe",
+        ms.forward_lobe,
+        Incl(0.0),
+        Incl(1.0),
+    );
+    c.float(
+        "lighting.multiple_scattering.forward_lobe_g",
+        ms.forward_lobe_g,
+        Incl(0.0),
+        Incl(0.95),
+    );
     // 0 turns the far shadow off; a chord below 100 m would shadow like a solid deck.
     let chord = ms.far_chord_m;
     if !chord.is_finite() {

@@ -64,6 +64,8 @@ pub const PREFIT_OCTAVES: MultipleScattering = MultipleScattering {
     coverage_exponent: 0.0,
     far_chord_m: 0.0,
     limb_darkening: 0.0,
+    forward_lobe: 0.0,
+    forward_lobe_g: 0.0,
 };
 
 impl Config {

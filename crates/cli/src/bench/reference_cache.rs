@@ -69,11 +69,13 @@ fn reference_for(scene: &Scene) -> (Integrator, Scene, bool) {
 /// The light model's terms added after the cache's v2 (reset to fixed values by
 /// `reference_for` like the octaves, and ignored by every reference): left out of the key so
 /// that the truths rendered before them stay valid.
-const KEYLESS_FIELDS: [&str; 4] = [
+const KEYLESS_FIELDS: [&str; 6] = [
     "side_light = ",
     "coverage_exponent = ",
     "far_chord_m = ",
     "limb_darkening = ",
+    "forward_lobe = ",
+    "forward_lobe_g = ",
 ];
 
 /// The scene's TOML as the cache key hashes it: `s.to_toml()` without the `KEYLESS_FIELDS`.
@@ -273,11 +275,13 @@ mod tests {
                 "side_light = 0.0",
                 "coverage_exponent = 0.0",
                 "far_chord_m = 0.0",
-                "limb_darkening = 0.0"
+                "limb_darkening = 0.0",
+                "forward_lobe = 0.0",
+                "forward_lobe_g = 0.0"
             ],
             "{full}"
         );
-        assert_eq!(full.lines().count(), key.lines().count() + 4);
+        assert_eq!(full.lines().count(), key.lines().count() + 6);
     }
 
     #[test]
