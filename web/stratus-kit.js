@@ -97,7 +97,7 @@ function layoutEntry(ctx, pass, b, plan, visibility) {
 }
 
 /**
- * Runs the first frame of `plan` with `uniforms` (`FrameUniforms`, 624 bytes) and the noise set `noiseSet`, and
+ * Runs the first frame of `plan` with `uniforms` (`FrameUniforms`, 640 bytes) and the noise set `noiseSet`, and
  * returns the display image (`image`, RGBA8) with the time the GPU work took on the CPU clock.
  */
 export async function renderPlan(ctx, plan, uniforms, noiseSet) {

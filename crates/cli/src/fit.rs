@@ -6,8 +6,9 @@
 //! Procedure: for every octave count, coordinate descent over a, b and c on a 0.05 grid (0.01
 //! below 0.05) and the octaves' build-up with the sample's density
 //! (`lighting.wgsl::octave_buildup`), the side light, the coverage exponent, the far
-//! shadow's chord and the limb darkening (`lighting.wgsl::sun_scattering`,
-//! `far_optical_depth`, `diffuse_limb`) on grids of their own,
+//! shadow's chord, the limb darkening and the forward lobe's strength and eccentricity
+//! (`lighting.wgsl::sun_scattering`, `far_optical_depth`, `diffuse_limb`, `forward_lobe`) on
+//! grids of their own,
 //! minimising the mean FLIP of the training scenes against their truths; the
 //! fewest octaves whose mean is within 1% of the lowest win (each octave costs time in every
 //! light sample). Wrenninge's a <= b is not imposed: it keeps thick clouds far too dark. Every
@@ -569,7 +570,8 @@ pub fn run(args: FitArgs) -> Result<()> {
          on the CPU from each image's linear radiance (`stratus_reference::Compositor`), the \
          truth's through the air in front of the march's depth, so that the device that \
          rendered the truth and the one that marches do not round the same light to \
-         different 8-bit levels; the images show what is compared.\n\n\
+         different 8-bit levels; the images show the truth and \"after\" as they are compared \
+         (\"before\" is compared with the truth through its own depth).\n\n\
          | | N | a | b | c | build-up (m) | side light | coverage exponent | far chord (m) | limb darkening | forward lobe (g) |\n\
          |---|---|---|---|---|---|---|---|---|---|---|\n\
          | before | {} | {:.2} | {:.2} | {:.2} | {} | {:.2} | {:.2} | {} | {:.2} | {:.2} ({:.2}) |\n\

@@ -306,6 +306,8 @@ pub(crate) fn composite_image(
 pub struct Compositor {
     f: Frame,
     sky: Option<SkyTables>,
+    /// Per pixel, where the view ray enters the cloud layers (m; 0 where it meets none).
+    entry: Vec<f32>,
 }
 
 impl Compositor {
@@ -313,20 +315,58 @@ impl Compositor {
     /// clouds' shadow on the ground from `noise`, as the frame's passes do).
     pub fn new(scene: &stratus_scene::Scene, noise: &stratus_noise::NoiseSet) -> Self {
         let model = crate::medium::Model::new(scene, crate::medium::Medium::Clouds(noise));
+        let (w, h) = (model.f.counts[0], model.f.counts[1]);
+        let entry = (0..h)
+            .flat_map(|y| (0..w).map(move |x| [x, y]))
+            .map(|pixel| {
+                let span = crate::montecarlo::camera_interval(&model, view_ray(&model.f, pixel));
+                match span.kind {
+                    crate::geometry::RayKind::March => span.start as f32,
+                    _ => 0.0,
+                }
+            })
+            .collect();
         Self {
             sky: model.sky().cloned(),
             f: model.f,
+            entry,
         }
+    }
+
+    /// The frame size this composite is for (width, height).
+    pub fn size(&self) -> [u32; 2] {
+        [self.f.counts[0], self.f.counts[1]]
     }
 
     /// The display image (RGBA8, row-major) of a frame of this scene's size from its linear
     /// radiance and transmittance (4 floats a pixel) and the clouds' depth (m, one float a
-    /// pixel: where the aerial perspective in front of them ends). `None` if the slices do not
+    /// pixel: where the aerial perspective in front of them ends). Where the depth is 0 but
+    /// the pixel holds cloud (transmittance below 1: an image composited through another
+    /// image's depth, which saw no cloud there), the view ray's entry into the cloud layers
+    /// stands in for it, so that the cloud still lies behind air. `None` if the slices do not
     /// hold the frame's pixels.
     pub fn display(&self, radiance: &[f32], depth: &[f32]) -> Option<Vec<u8>> {
-        let (w, h) = (self.f.counts[0], self.f.counts[1]);
+        let [w, h] = self.size();
         let n = (w * h) as usize;
-        (radiance.len() == 4 * n && depth.len() == n)
-            .then(|| composite_image(&self.f, self.sky.as_ref(), w, h, radiance, depth))
+        if radiance.len() != 4 * n || depth.len() != n {
+            return None;
+        }
+        let depth: Vec<f32> = (0..n)
+            .map(|i| {
+                if depth[i] <= 0.0 && radiance[4 * i + 3] < 1.0 {
+                    self.entry[i]
+                } else {
+                    depth[i]
+                }
+            })
+            .collect();
+        Some(composite_image(
+            &self.f,
+            self.sky.as_ref(),
+            w,
+            h,
+            radiance,
+            &depth,
+        ))
     }
 }

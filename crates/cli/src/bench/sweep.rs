@@ -323,6 +323,8 @@ pub(crate) struct Errors {
 /// device (a GPU's truth from the cache, the CPU reference), whose own composite rounds to 8
 /// bits differently, and its depth (the path tracer's first collision, not cached) is not the
 /// march's (transmittance-weighted); what is measured is the clouds' light and transmittance.
+/// Where `frame` saw no cloud but the reference has some, the view ray's entry into the layer
+/// stands for the reference's depth ([`Compositor::display`]).
 pub(crate) fn errors(
     reference: &FrameOutput,
     frame: &FrameOutput,
@@ -341,9 +343,16 @@ pub(crate) fn errors(
         let image = display
             .display(&f.radiance, &frame.depth)
             .with_context(|| {
+                let [w, h] = display.size();
                 format!(
-                    "a {}x{} frame does not match the composite's size",
-                    f.width, f.height
+                    "composite for a {w}x{h} frame: got {} radiance floats and {} depths \
+                     (a {}x{} frame); want {} and {}",
+                    f.radiance.len(),
+                    frame.depth.len(),
+                    f.width,
+                    f.height,
+                    4 * w * h,
+                    w * h
                 )
             })?;
         Ok(FrameOutput {
