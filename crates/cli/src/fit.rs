@@ -508,7 +508,7 @@ pub fn run(args: FitArgs) -> Result<()> {
     };
     for (set, list) in [("train", &train), ("held-out", &test)] {
         for c in list.iter() {
-            let frames = [
+            let mut frames = [
                 c.truth.clone(),
                 render(&mut renderer, c, before)?,
                 render(&mut renderer, c, fit)?,
@@ -517,7 +517,6 @@ pub fn run(args: FitArgs) -> Result<()> {
             let br = brightness(&c.truth, &frames[2]);
             // The images as compared: composited on the CPU, the truth through the air in
             // front of the fitted frame's depth.
-            let mut frames = frames;
             for i in 0..frames.len() {
                 let depth = if i == 0 { 2 } else { i };
                 frames[i].image = c

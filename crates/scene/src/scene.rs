@@ -653,11 +653,6 @@ pub struct MultipleScattering {
     pub forward_lobe_g: f64,
 }
 
-/// The fitted strength of the octaves' forward lobe (docs/fit).
-const FORWARD_LOBE_FIT: f64 = 0.4;
-/// The fitted eccentricity of the octaves' forward lobe (docs/fit).
-const FORWARD_LOBE_G_FIT: f64 = 0.5;
-
 impl Default for MultipleScattering {
     /// Fitted to the GPU path tracer's all-orders truth (8192 paths a pixel, rendered on an
     /// H200; the march on lavapipe) over ten training scenes by `stratus fit-scattering`: its
@@ -676,8 +671,8 @@ impl Default for MultipleScattering {
             coverage_exponent: 1.0,
             far_chord_m: 8000.0,
             limb_darkening: 0.5,
-            forward_lobe: FORWARD_LOBE_FIT,
-            forward_lobe_g: FORWARD_LOBE_G_FIT,
+            forward_lobe: 0.4,
+            forward_lobe_g: 0.5,
         }
     }
 }

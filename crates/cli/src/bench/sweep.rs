@@ -339,7 +339,7 @@ pub(crate) fn errors(
         &Image::from_frame_radiance(frame),
         &options,
     )?;
-    let composite = |f: &FrameOutput| -> Result<FrameOutput> {
+    let composite = |f: &FrameOutput| -> Result<Image> {
         let image = display
             .display(&f.radiance, &frame.depth)
             .with_context(|| {
@@ -355,18 +355,9 @@ pub(crate) fn errors(
                     w * h
                 )
             })?;
-        Ok(FrameOutput {
-            width: f.width,
-            height: f.height,
-            image,
-            ..FrameOutput::default()
-        })
+        Ok(Image::from_display_rgba8(f.width, f.height, &image))
     };
-    let display = compare(
-        &Image::from_frame_display(&composite(reference)?),
-        &Image::from_frame_display(&composite(frame)?),
-        &options,
-    )?;
+    let display = compare(&composite(reference)?, &composite(frame)?, &options)?;
     Ok(Errors {
         flip: display.flip.mean,
         flip_p95: display.flip.p95,
