@@ -42,7 +42,7 @@ struct Frame {
     vec4 moon;
     vec4 night;
     vec4 light_model;
-    vec4 forward_lobe;
+    vec4 octave_direction;
 };
 struct Roots {
     float t0_;
@@ -538,14 +538,14 @@ float air_top() {
 }
 
 AirSample air_at(float h_km) {
-    float h_8 = (max(h_km, 0.0) * 1000.0);
+    float h_10 = (max(h_km, 0.0) * 1000.0);
     float _e9 = _group_0_binding_0_cs.air_rayleigh.w;
-    float rayleigh_density = exp((-(h_8) / _e9));
+    float rayleigh_density = exp((-(h_10) / _e9));
     float _e16 = _group_0_binding_0_cs.air_mie.z;
-    float mie_density = exp((-(h_8) / _e16));
+    float mie_density = exp((-(h_10) / _e16));
     float _e22 = _group_0_binding_0_cs.air_ozone.w;
     float _e28 = _group_0_binding_0_cs.air_misc.y;
-    float ozone_density = max((1.0 - (abs((h_8 - _e22)) / (0.5 * _e28))), 0.0);
+    float ozone_density = max((1.0 - (abs((h_10 - _e22)) / (0.5 * _e28))), 0.0);
     vec4 _e38 = _group_0_binding_0_cs.air_rayleigh;
     vec3 rayleigh = (_e38.xyz * (rayleigh_density * 1000.0));
     float _e46 = _group_0_binding_0_cs.air_mie.x;
@@ -609,26 +609,26 @@ vec4 lut_bilinear(sampler2D lut, vec2 x_3, uvec2 size) {
 vec2 transmittance_coords(float r_7, float mu_5) {
     float _e2 = air_bottom();
     float _e3 = air_top();
-    float h_9 = sqrt(max(((_e3 - _e2) * (_e3 + _e2)), 0.0));
+    float h_11 = sqrt(max(((_e3 - _e2) * (_e3 + _e2)), 0.0));
     float rho = sqrt(max(((r_7 - _e2) * (r_7 + _e2)), 0.0));
     float _e16 = distance_to_top(r_7, mu_5);
     float d_min = (_e3 - r_7);
-    float d_max = (rho + h_9);
-    return vec2(((_e16 - d_min) / max((d_max - d_min), 1e-6)), (rho / h_9));
+    float d_max = (rho + h_11);
+    return vec2(((_e16 - d_min) / max((d_max - d_min), 1e-6)), (rho / h_11));
 }
 
 vec2 transmittance_r_mu(vec2 x_4) {
     float mu_6 = 1.0;
     float _e1 = air_bottom();
     float _e2 = air_top();
-    float h_10 = sqrt(max(((_e2 - _e1) * (_e2 + _e1)), 0.0));
-    float rho_1 = (h_10 * x_4.y);
+    float h_12 = sqrt(max(((_e2 - _e1) * (_e2 + _e1)), 0.0));
+    float rho_1 = (h_12 * x_4.y);
     float r_14 = sqrt(((rho_1 * rho_1) + (_e1 * _e1)));
     float d_min_1 = (_e2 - r_14);
-    float d_max_1 = (rho_1 + h_10);
+    float d_max_1 = (rho_1 + h_12);
     float d_19 = (d_min_1 + (x_4.x * (d_max_1 - d_min_1)));
     if ((d_19 > 0.0)) {
-        mu_6 = clamp(((((h_10 * h_10) - (rho_1 * rho_1)) - (d_19 * d_19)) / ((2.0 * r_14) * d_19)), -1.0, 1.0);
+        mu_6 = clamp(((((h_12 * h_12) - (rho_1 * rho_1)) - (d_19 * d_19)) / ((2.0 * r_14) * d_19)), -1.0, 1.0);
     }
     float _e37 = mu_6;
     return vec2(r_14, _e37);
@@ -1140,7 +1140,14 @@ float diffuse_limb(float view_y, float coverage) {
     return mix(1.0, layer, _e17);
 }
 
-SunScattering sun_scattering(float cos_theta_5, float view_y_1, float tau_6, float far_1, float build, float coverage_1) {
+float vertical_anisotropy(float view_y_1, float coverage_1, float h_5) {
+    float _e6 = _group_0_binding_0_cs.octave_direction.z;
+    float _e8 = saturate(coverage_1);
+    float _e10 = saturate(h_5);
+    return (1.0 + (((_e6 * view_y_1) * _e8) * (1.0 - _e10)));
+}
+
+SunScattering sun_scattering(float cos_theta_5, float view_y_2, float tau_6, float far_1, float build, float coverage_2, float h_6) {
     float octave_sum = 0.0;
     float ka = 1.0;
     float kb = 1.0;
@@ -1152,78 +1159,79 @@ SunScattering sun_scattering(float cos_theta_5, float view_y_1, float tau_6, flo
     float a_7 = _group_0_binding_0_cs.multiple_scattering.x;
     float b_7 = _group_0_binding_0_cs.multiple_scattering.y;
     float c_8 = _group_0_binding_0_cs.multiple_scattering.z;
-    uint _e21 = _group_0_binding_0_cs.misc.x;
-    uint octaves = min(_e21, MAX_OCTAVES);
+    uint _e22 = _group_0_binding_0_cs.misc.x;
+    uint octaves = min(_e22, MAX_OCTAVES);
     bool loop_init_6 = true;
     while(true) {
         if (!loop_init_6) {
-            uint _e54 = i_12;
-            i_12 = (_e54 + 1u);
+            uint _e55 = i_12;
+            i_12 = (_e55 + 1u);
         }
         loop_init_6 = false;
-        uint _e34 = i_12;
-        if ((_e34 < octaves)) {
+        uint _e35 = i_12;
+        if ((_e35 < octaves)) {
         } else {
             break;
         }
         {
-            float _e36 = ka;
-            ka = (_e36 * a_7);
-            float _e38 = kb;
-            kb = (_e38 * b_7);
-            float _e40 = kc;
-            kc = (_e40 * c_8);
-            float _e42 = octave_sum;
-            float _e43 = ka;
-            float _e44 = kc;
-            float _e45 = phase(cos_theta_5, _e44);
-            float _e47 = kb;
-            octave_sum = (_e42 + ((_e43 * _e45) / (1.0 + (_e47 * tau_6))));
+            float _e37 = ka;
+            ka = (_e37 * a_7);
+            float _e39 = kb;
+            kb = (_e39 * b_7);
+            float _e41 = kc;
+            kc = (_e41 * c_8);
+            float _e43 = octave_sum;
+            float _e44 = ka;
+            float _e45 = kc;
+            float _e46 = phase(cos_theta_5, _e45);
+            float _e48 = kb;
+            octave_sum = (_e43 + ((_e44 * _e46) / (1.0 + (_e48 * tau_6))));
         }
     }
-    float _e59 = _group_0_binding_0_cs.sun_direction.y;
-    float _e60 = saturate(_e59);
-    float _e67 = saturate(coverage_1);
-    float side = ((sqrt(max((1.0 - (_e60 * _e60)), 0.0)) * (1.0 - _e67)) * exp(-(far_1)));
-    float _e77 = _group_0_binding_0_cs.light_model.x;
-    feed = (_e60 + (_e77 * side));
-    float _e84 = _group_0_binding_0_cs.light_model.y;
-    if ((_e84 > 0.0)) {
-        float _e87 = feed;
-        float _e93 = _group_0_binding_0_cs.light_model.y;
-        feed = (_e87 * pow(max(coverage_1, 1e-6), _e93));
+    float _e60 = _group_0_binding_0_cs.sun_direction.y;
+    float _e61 = saturate(_e60);
+    float _e68 = saturate(coverage_2);
+    float side = ((sqrt(max((1.0 - (_e61 * _e61)), 0.0)) * (1.0 - _e68)) * exp(-(far_1)));
+    float _e78 = _group_0_binding_0_cs.light_model.x;
+    feed = (_e61 + (_e78 * side));
+    float _e85 = _group_0_binding_0_cs.light_model.y;
+    if ((_e85 > 0.0)) {
+        float _e88 = feed;
+        float _e94 = _group_0_binding_0_cs.light_model.y;
+        feed = (_e88 * pow(max(coverage_2, 1e-6), _e94));
     }
-    float _e96 = feed;
-    float _e97 = diffuse_limb(view_y_1, coverage_1);
-    feed = (_e96 * _e97);
-    float _e99 = feed;
-    float _e101 = octave_sum;
-    octaves_part = ((_e99 * build) * _e101);
-    float _e105 = phase(cos_theta_5, 1.0);
-    float _e110 = octaves_part;
-    total = ((_e105 * exp((-(tau_6) - far_1))) + _e110);
-    uint _e116 = _group_0_binding_0_cs.modes.w;
-    if (((_e116 & FLAG_BEER_POWDER) != 0u)) {
-        float _e124 = _group_0_binding_0_cs.phase.w;
-        float powder = (1.0 - exp((-(_e124) * tau_6)));
-        float _e130 = total;
-        total = (_e130 * powder);
-        float _e132 = octaves_part;
-        octaves_part = (_e132 * powder);
+    float _e97 = feed;
+    float _e98 = diffuse_limb(view_y_2, coverage_2);
+    float _e99 = vertical_anisotropy(view_y_2, coverage_2, h_6);
+    feed = (_e97 * (_e98 * _e99));
+    float _e102 = feed;
+    float _e104 = octave_sum;
+    octaves_part = ((_e102 * build) * _e104);
+    float _e108 = phase(cos_theta_5, 1.0);
+    float _e113 = octaves_part;
+    total = ((_e108 * exp((-(tau_6) - far_1))) + _e113);
+    uint _e119 = _group_0_binding_0_cs.modes.w;
+    if (((_e119 & FLAG_BEER_POWDER) != 0u)) {
+        float _e127 = _group_0_binding_0_cs.phase.w;
+        float powder = (1.0 - exp((-(_e127) * tau_6)));
+        float _e133 = total;
+        total = (_e133 * powder);
+        float _e135 = octaves_part;
+        octaves_part = (_e135 * powder);
     }
-    float _e134 = total;
-    float _e135 = octaves_part;
-    return SunScattering(_e134, _e135);
+    float _e137 = total;
+    float _e138 = octaves_part;
+    return SunScattering(_e137, _e138);
 }
 
 float forward_lobe(float cos_theta_6, float transmittance) {
-    float k_13 = _group_0_binding_0_cs.forward_lobe.x;
+    float k_13 = _group_0_binding_0_cs.octave_direction.x;
     if ((k_13 <= 0.0)) {
         return 1.0;
     }
     float _e11 = saturate((transmittance / FORWARD_LOBE_THIN));
     float w_5 = (k_13 * _e11);
-    float _e17 = _group_0_binding_0_cs.forward_lobe.y;
+    float _e17 = _group_0_binding_0_cs.octave_direction.y;
     float _e18 = phase_hg(cos_theta_6, _e17);
     return (1.0 + (w_5 * ((12.566371 * _e18) - 1.0)));
 }
@@ -1683,11 +1691,11 @@ float value_noise(vec2 p_11, uint seed) {
     uvec2 i_19 = uvec2(floor(p_11));
     vec2 f_4 = fract(p_11);
     vec2 s_11 = ((f_4 * f_4) * (vec2(3.0) - (2.0 * f_4)));
-    uint h_11 = (seed * 7919u);
-    float _e17 = atlas_hash((i_19.x + h_11), i_19.y);
-    float _e23 = atlas_hash(((i_19.x + 1u) + h_11), i_19.y);
-    float _e29 = atlas_hash((i_19.x + h_11), (i_19.y + 1u));
-    float _e37 = atlas_hash(((i_19.x + 1u) + h_11), (i_19.y + 1u));
+    uint h_13 = (seed * 7919u);
+    float _e17 = atlas_hash((i_19.x + h_13), i_19.y);
+    float _e23 = atlas_hash(((i_19.x + 1u) + h_13), i_19.y);
+    float _e29 = atlas_hash((i_19.x + h_13), (i_19.y + 1u));
+    float _e37 = atlas_hash(((i_19.x + 1u) + h_13), (i_19.y + 1u));
     return mix(mix(_e17, _e23, s_11.x), mix(_e29, _e37, s_11.x), s_11.y);
 }
 
@@ -1852,22 +1860,22 @@ SpriteCandidate sprite_candidate(SpriteCell c_4, uint level, uint s_2, inout Cou
     vec2 xz_2 = ((vec2(c_4.index) + u_1.xy) * c_4.size);
     Layer _e56 = cloud_layer(0u);
     Weather _e57 = sample_weather(vec3(xz_2.x, 0.0, xz_2.y), _e56);
-    float h_12 = (0.04 + (u_1.z * (mix(0.3, 0.95, _e57.cloud_type) - 0.04)));
+    float h_14 = (0.04 + (u_1.z * (mix(0.3, 0.95, _e57.cloud_type) - 0.04)));
     float _e71 = _group_0_binding_0_cs.atmosphere.y;
     float _e75 = _group_0_binding_0_cs.atmosphere.z;
     float _e79 = _group_0_binding_0_cs.atmosphere.y;
-    float alt_17 = (_e71 + (h_12 * (_e75 - _e79)));
+    float alt_17 = (_e71 + (h_14 * (_e75 - _e79)));
     if (!(c_4.covered)) {
         vec3 _e87 = sprite_rel(xz_2, alt_17);
         float _e92 = cloud_density(vec3(xz_2.x, _e87.y, xz_2.y), alt_17, counters_15);
         density_3 = _e92;
     }
     float _e96 = density_3;
-    return SpriteCandidate(xz_2, alt_17, h_12, u_1.w, v_3.x, v_3.y, _e96, _e57.precipitation);
+    return SpriteCandidate(xz_2, alt_17, h_14, u_1.w, v_3.x, v_3.y, _e96, _e57.precipitation);
 }
 
-vec3 sprite_sky_level(float h_7) {
-    float _e1 = saturate(h_7);
+vec3 sprite_sky_level(float h_9) {
+    float _e1 = saturate(h_9);
     float x_7 = (_e1 * 4.0);
     if ((x_7 < 1.0)) {
         return mix(SKY_LEVEL0_, SKY_LEVEL1_, x_7);

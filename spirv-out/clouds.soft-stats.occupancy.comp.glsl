@@ -42,7 +42,7 @@ struct Frame {
     vec4 moon;
     vec4 night;
     vec4 light_model;
-    vec4 forward_lobe;
+    vec4 octave_direction;
 };
 struct Roots {
     float t0_;
@@ -432,11 +432,11 @@ float value_noise(vec2 p_11, uint seed) {
     uvec2 i_19 = uvec2(floor(p_11));
     vec2 f_2 = fract(p_11);
     vec2 s_7 = ((f_2 * f_2) * (vec2(3.0) - (2.0 * f_2)));
-    uint h_8 = (seed * 7919u);
-    float _e17 = atlas_hash((i_19.x + h_8), i_19.y);
-    float _e23 = atlas_hash(((i_19.x + 1u) + h_8), i_19.y);
-    float _e29 = atlas_hash((i_19.x + h_8), (i_19.y + 1u));
-    float _e37 = atlas_hash(((i_19.x + 1u) + h_8), (i_19.y + 1u));
+    uint h_10 = (seed * 7919u);
+    float _e17 = atlas_hash((i_19.x + h_10), i_19.y);
+    float _e23 = atlas_hash(((i_19.x + 1u) + h_10), i_19.y);
+    float _e29 = atlas_hash((i_19.x + h_10), (i_19.y + 1u));
+    float _e37 = atlas_hash(((i_19.x + 1u) + h_10), (i_19.y + 1u));
     return mix(mix(_e17, _e23, s_7.x), mix(_e29, _e37, s_7.x), s_7.y);
 }
 
@@ -534,8 +534,8 @@ float sprite_texture(uint tile_1, vec2 uv) {
     return _e130;
 }
 
-vec3 sprite_sky_level(float h_7) {
-    float _e1 = saturate(h_7);
+vec3 sprite_sky_level(float h_9) {
+    float _e1 = saturate(h_9);
     float x_6 = (_e1 * 4.0);
     if ((x_6 < 1.0)) {
         return mix(SKY_LEVEL0_, SKY_LEVEL1_, x_6);

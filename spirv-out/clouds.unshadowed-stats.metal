@@ -44,7 +44,7 @@ struct Frame {
     metal::float4 moon;
     metal::float4 night;
     metal::float4 light_model;
-    metal::float4 forward_lobe;
+    metal::float4 octave_direction;
 };
 struct Roots {
     float t0_;
@@ -626,14 +626,14 @@ AirSample air_at(
     float h_km,
     constant Frame& frame
 ) {
-    float h_8 = metal::max(h_km, 0.0) * 1000.0;
+    float h_10 = metal::max(h_km, 0.0) * 1000.0;
     float _e9 = frame.air_rayleigh.w;
-    float rayleigh_density = metal::exp(-(h_8) / _e9);
+    float rayleigh_density = metal::exp(-(h_10) / _e9);
     float _e16 = frame.air_mie.z;
-    float mie_density = metal::exp(-(h_8) / _e16);
+    float mie_density = metal::exp(-(h_10) / _e16);
     float _e22 = frame.air_ozone.w;
     float _e28 = frame.air_misc.y;
-    float ozone_density = metal::max(1.0 - (metal::abs(h_8 - _e22) / (0.5 * _e28)), 0.0);
+    float ozone_density = metal::max(1.0 - (metal::abs(h_10 - _e22) / (0.5 * _e28)), 0.0);
     metal::float4 _e38 = frame.air_rayleigh;
     metal::float3 rayleigh = _e38.xyz * (rayleigh_density * 1000.0);
     float _e46 = frame.air_mie.x;
@@ -729,12 +729,12 @@ metal::float2 transmittance_coords(
 ) {
     float _e2 = air_bottom(frame);
     float _e3 = air_top(frame);
-    float h_9 = metal::sqrt(metal::max((_e3 - _e2) * (_e3 + _e2), 0.0));
+    float h_11 = metal::sqrt(metal::max((_e3 - _e2) * (_e3 + _e2), 0.0));
     float rho = metal::sqrt(metal::max((r_7 - _e2) * (r_7 + _e2), 0.0));
     float _e16 = distance_to_top(r_7, mu_5, frame);
     float d_min = _e3 - r_7;
-    float d_max = rho + h_9;
-    return metal::float2((_e16 - d_min) / metal::max(d_max - d_min, 0.000001), rho / h_9);
+    float d_max = rho + h_11;
+    return metal::float2((_e16 - d_min) / metal::max(d_max - d_min, 0.000001), rho / h_11);
 }
 
 metal::float2 transmittance_r_mu(
@@ -744,14 +744,14 @@ metal::float2 transmittance_r_mu(
     float mu_6 = 1.0;
     float _e1 = air_bottom(frame);
     float _e2 = air_top(frame);
-    float h_10 = metal::sqrt(metal::max((_e2 - _e1) * (_e2 + _e1), 0.0));
-    float rho_1 = h_10 * x_4.y;
+    float h_12 = metal::sqrt(metal::max((_e2 - _e1) * (_e2 + _e1), 0.0));
+    float rho_1 = h_12 * x_4.y;
     float r_14 = metal::sqrt((rho_1 * rho_1) + (_e1 * _e1));
     float d_min_1 = _e2 - r_14;
-    float d_max_1 = rho_1 + h_10;
+    float d_max_1 = rho_1 + h_12;
     float d_19 = d_min_1 + (x_4.x * (d_max_1 - d_min_1));
     if (d_19 > 0.0) {
-        mu_6 = metal::clamp((((h_10 * h_10) - (rho_1 * rho_1)) - (d_19 * d_19)) / ((2.0 * r_14) * d_19), -1.0, 1.0);
+        mu_6 = metal::clamp((((h_12 * h_12) - (rho_1 * rho_1)) - (d_19 * d_19)) / ((2.0 * r_14) * d_19), -1.0, 1.0);
     }
     float _e37 = mu_6;
     return metal::float2(r_14, _e37);
@@ -1641,13 +1641,26 @@ float diffuse_limb(
     return metal::mix(1.0, layer, _e17);
 }
 
+float vertical_anisotropy(
+    float view_y_1,
+    float coverage_1,
+    float h_5,
+    constant Frame& frame
+) {
+    float _e6 = frame.octave_direction.z;
+    float _e8 = saturate(coverage_1);
+    float _e10 = saturate(h_5);
+    return 1.0 + (((_e6 * view_y_1) * _e8) * (1.0 - _e10));
+}
+
 SunScattering sun_scattering(
     float cos_theta_5,
-    float view_y_1,
+    float view_y_2,
     float tau_6,
     float far_1,
     float build,
-    float coverage_1,
+    float coverage_2,
+    float h_6,
     constant Frame& frame
 ) {
     float octave_sum = 0.0;
@@ -1661,71 +1674,72 @@ SunScattering sun_scattering(
     float a_8 = frame.multiple_scattering.x;
     float b_8 = frame.multiple_scattering.y;
     float c_8 = frame.multiple_scattering.z;
-    uint _e21 = frame.misc.x;
-    uint octaves = metal::min(_e21, MAX_OCTAVES);
+    uint _e22 = frame.misc.x;
+    uint octaves = metal::min(_e22, MAX_OCTAVES);
     uint2 loop_bound_7 = uint2(4294967295u);
     bool loop_init_7 = true;
     while(true) {
         if (metal::all(loop_bound_7 == uint2(0u))) { break; }
         loop_bound_7 -= uint2(loop_bound_7.y == 0u, 1u);
         if (!loop_init_7) {
-            uint _e54 = i_12;
-            i_12 = _e54 + 1u;
+            uint _e55 = i_12;
+            i_12 = _e55 + 1u;
         }
         loop_init_7 = false;
-        uint _e34 = i_12;
-        if (_e34 < octaves) {
+        uint _e35 = i_12;
+        if (_e35 < octaves) {
         } else {
             break;
         }
         {
-            float _e36 = ka;
-            ka = _e36 * a_8;
-            float _e38 = kb;
-            kb = _e38 * b_8;
-            float _e40 = kc;
-            kc = _e40 * c_8;
-            float _e42 = octave_sum;
-            float _e43 = ka;
-            float _e44 = kc;
-            float _e45 = phase(cos_theta_5, _e44, frame);
-            float _e47 = kb;
-            octave_sum = _e42 + ((_e43 * _e45) / (1.0 + (_e47 * tau_6)));
+            float _e37 = ka;
+            ka = _e37 * a_8;
+            float _e39 = kb;
+            kb = _e39 * b_8;
+            float _e41 = kc;
+            kc = _e41 * c_8;
+            float _e43 = octave_sum;
+            float _e44 = ka;
+            float _e45 = kc;
+            float _e46 = phase(cos_theta_5, _e45, frame);
+            float _e48 = kb;
+            octave_sum = _e43 + ((_e44 * _e46) / (1.0 + (_e48 * tau_6)));
         }
     }
-    float _e59 = frame.sun_direction.y;
-    float _e60 = saturate(_e59);
-    float _e67 = saturate(coverage_1);
-    float side = (metal::sqrt(metal::max(1.0 - (_e60 * _e60), 0.0)) * (1.0 - _e67)) * metal::exp(-(far_1));
-    float _e77 = frame.light_model.x;
-    feed = _e60 + (_e77 * side);
-    float _e84 = frame.light_model.y;
-    if (_e84 > 0.0) {
-        float _e87 = feed;
-        float _e93 = frame.light_model.y;
-        feed = _e87 * metal::pow(metal::max(coverage_1, 0.000001), _e93);
+    float _e60 = frame.sun_direction.y;
+    float _e61 = saturate(_e60);
+    float _e68 = saturate(coverage_2);
+    float side = (metal::sqrt(metal::max(1.0 - (_e61 * _e61), 0.0)) * (1.0 - _e68)) * metal::exp(-(far_1));
+    float _e78 = frame.light_model.x;
+    feed = _e61 + (_e78 * side);
+    float _e85 = frame.light_model.y;
+    if (_e85 > 0.0) {
+        float _e88 = feed;
+        float _e94 = frame.light_model.y;
+        feed = _e88 * metal::pow(metal::max(coverage_2, 0.000001), _e94);
     }
-    float _e96 = feed;
-    float _e97 = diffuse_limb(view_y_1, coverage_1, frame);
-    feed = _e96 * _e97;
-    float _e99 = feed;
-    float _e101 = octave_sum;
-    octaves_part = (_e99 * build) * _e101;
-    float _e105 = phase(cos_theta_5, 1.0, frame);
-    float _e110 = octaves_part;
-    total = (_e105 * metal::exp(-(tau_6) - far_1)) + _e110;
-    uint _e116 = frame.modes.w;
-    if ((_e116 & FLAG_BEER_POWDER) != 0u) {
-        float _e124 = frame.phase.w;
-        float powder = 1.0 - metal::exp(-(_e124) * tau_6);
-        float _e130 = total;
-        total = _e130 * powder;
-        float _e132 = octaves_part;
-        octaves_part = _e132 * powder;
+    float _e97 = feed;
+    float _e98 = diffuse_limb(view_y_2, coverage_2, frame);
+    float _e99 = vertical_anisotropy(view_y_2, coverage_2, h_6, frame);
+    feed = _e97 * (_e98 * _e99);
+    float _e102 = feed;
+    float _e104 = octave_sum;
+    octaves_part = (_e102 * build) * _e104;
+    float _e108 = phase(cos_theta_5, 1.0, frame);
+    float _e113 = octaves_part;
+    total = (_e108 * metal::exp(-(tau_6) - far_1)) + _e113;
+    uint _e119 = frame.modes.w;
+    if ((_e119 & FLAG_BEER_POWDER) != 0u) {
+        float _e127 = frame.phase.w;
+        float powder = 1.0 - metal::exp(-(_e127) * tau_6);
+        float _e133 = total;
+        total = _e133 * powder;
+        float _e135 = octaves_part;
+        octaves_part = _e135 * powder;
     }
-    float _e134 = total;
-    float _e135 = octaves_part;
-    return SunScattering {_e134, _e135};
+    float _e137 = total;
+    float _e138 = octaves_part;
+    return SunScattering {_e137, _e138};
 }
 
 float forward_lobe(
@@ -1733,13 +1747,13 @@ float forward_lobe(
     float transmittance,
     constant Frame& frame
 ) {
-    float k_13 = frame.forward_lobe.x;
+    float k_13 = frame.octave_direction.x;
     if (k_13 <= 0.0) {
         return 1.0;
     }
     float _e11 = saturate(transmittance / FORWARD_LOBE_THIN);
     float w_6 = k_13 * _e11;
-    float _e17 = frame.forward_lobe.y;
+    float _e17 = frame.octave_direction.y;
     float _e18 = phase_hg(cos_theta_6, _e17);
     return 1.0 + (w_6 * ((12.566371 * _e18) - 1.0));
 }
@@ -1758,19 +1772,19 @@ float octave_buildup(
 }
 
 metal::float3 ambient(
-    float h_5,
+    float h_7,
     constant Frame& frame,
     metal::texture2d<float, metal::access::sample> sky_ambient_in
 ) {
     bool _e1 = physical_sky(frame);
     if (_e1) {
-        metal::float3 _e2 = sky_ambient_light(h_5, frame, sky_ambient_in);
+        metal::float3 _e2 = sky_ambient_light(h_7, frame, sky_ambient_in);
         return _e2;
     }
     metal::float4 _e5 = frame.ambient_bottom;
     metal::float4 _e9 = frame.ambient_top;
     float _e15 = frame.ambient_bottom.w;
-    return metal::mix(_e5.xyz, _e9.xyz, h_5) * _e15;
+    return metal::mix(_e5.xyz, _e9.xyz, h_7) * _e15;
 }
 
 float height_fraction(
@@ -1821,7 +1835,7 @@ ScatteredLight scattered_light(
         float _e31 = tau_7;
         float _e32 = far_2;
         float _e33 = octave_buildup(density_2, frame);
-        SunScattering _e35 = sun_scattering(metal::dot(view, sun_4), view.y, _e31, _e32, _e33, _e19.coverage, frame);
+        SunScattering _e35 = sun_scattering(metal::dot(view, sun_4), view.y, _e31, _e32, _e33, _e19.coverage, _e12, frame);
         metal::float4 _e38 = frame.sun_illuminance;
         metal::float3 _e40 = sun_through_air(rel_3, frame, transmittance_lut_in);
         metal::float3 lit = _e38.xyz * _e40;
@@ -2939,7 +2953,7 @@ PhaseSample sample_phase(
 
 metal::float3 environment(
     metal::float3 d_13,
-    float h_6,
+    float h_8,
     constant Frame& frame,
     metal::texture2d<float, metal::access::sample> sky_view_in,
     metal::texture2d<float, metal::access::sample> sky_ambient_in
@@ -2951,7 +2965,7 @@ metal::float3 environment(
         float _e12 = frame.ambient_bottom.w;
         return (_e3 * _e6.xyz) * _e12;
     }
-    metal::float3 _e14 = ambient(h_6, frame, sky_ambient_in);
+    metal::float3 _e14 = ambient(h_8, frame, sky_ambient_in);
     return _e14;
 }
 
@@ -3330,11 +3344,11 @@ float value_noise(
     metal::uint2 i_19 = naga_f2u32(metal::floor(p_11));
     metal::float2 f_6 = metal::fract(p_11);
     metal::float2 s_12 = (f_6 * f_6) * (metal::float2(3.0) - (2.0 * f_6));
-    uint h_11 = seed * 7919u;
-    float _e17 = atlas_hash(i_19.x + h_11, i_19.y);
-    float _e23 = atlas_hash((i_19.x + 1u) + h_11, i_19.y);
-    float _e29 = atlas_hash(i_19.x + h_11, i_19.y + 1u);
-    float _e37 = atlas_hash((i_19.x + 1u) + h_11, i_19.y + 1u);
+    uint h_13 = seed * 7919u;
+    float _e17 = atlas_hash(i_19.x + h_13, i_19.y);
+    float _e23 = atlas_hash((i_19.x + 1u) + h_13, i_19.y);
+    float _e29 = atlas_hash(i_19.x + h_13, i_19.y + 1u);
+    float _e37 = atlas_hash((i_19.x + 1u) + h_13, i_19.y + 1u);
     return metal::mix(metal::mix(_e17, _e23, s_12.x), metal::mix(_e29, _e37, s_12.x), s_12.y);
 }
 
@@ -3532,24 +3546,24 @@ SpriteCandidate sprite_candidate(
     metal::float2 xz_2 = (static_cast<metal::float2>(c_4.index) + u_1.xy) * c_4.size;
     Layer _e56 = cloud_layer(0u, frame);
     Weather _e57 = sample_weather(metal::float3(xz_2.x, 0.0, xz_2.y), _e56, frame, weather_tex, noise_sampler);
-    float h_12 = 0.04 + (u_1.z * (metal::mix(0.3, 0.95, _e57.cloud_type) - 0.04));
+    float h_14 = 0.04 + (u_1.z * (metal::mix(0.3, 0.95, _e57.cloud_type) - 0.04));
     float _e71 = frame.atmosphere.y;
     float _e75 = frame.atmosphere.z;
     float _e79 = frame.atmosphere.y;
-    float alt_17 = _e71 + (h_12 * (_e75 - _e79));
+    float alt_17 = _e71 + (h_14 * (_e75 - _e79));
     if (!(c_4.covered)) {
         metal::float3 _e87 = sprite_rel(xz_2, alt_17, frame);
         float _e92 = cloud_density(metal::float3(xz_2.x, _e87.y, xz_2.y), alt_17, counters_15, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
         density_3 = _e92;
     }
     float _e96 = density_3;
-    return SpriteCandidate {xz_2, alt_17, h_12, u_1.w, v_3.x, v_3.y, _e96, _e57.precipitation};
+    return SpriteCandidate {xz_2, alt_17, h_14, u_1.w, v_3.x, v_3.y, _e96, _e57.precipitation};
 }
 
 metal::float3 sprite_sky_level(
-    float h_7
+    float h_9
 ) {
-    float _e1 = saturate(h_7);
+    float _e1 = saturate(h_9);
     float x_11 = _e1 * 4.0;
     if (x_11 < 1.0) {
         return metal::mix(SKY_LEVEL0_, SKY_LEVEL1_, x_11);

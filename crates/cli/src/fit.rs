@@ -6,9 +6,9 @@
 //! Procedure: for every octave count, coordinate descent over a, b and c on a 0.05 grid (0.01
 //! below 0.05) and the octaves' build-up with the sample's density
 //! (`lighting.wgsl::octave_buildup`), the side light, the coverage exponent, the far
-//! shadow's chord, the limb darkening and the forward lobe's strength and eccentricity
-//! (`lighting.wgsl::sun_scattering`, `far_optical_depth`, `diffuse_limb`, `forward_lobe`) on
-//! grids of their own,
+//! shadow's chord, the limb darkening, the forward lobe's strength and eccentricity and the
+//! vertical anisotropy (`lighting.wgsl::sun_scattering`, `far_optical_depth`, `diffuse_limb`,
+//! `forward_lobe`, `vertical_anisotropy`) on grids of their own,
 //! minimising the mean FLIP of the training scenes against their truths; the
 //! fewest octaves whose mean is within 1% of the lowest win (each octave costs time in every
 //! light sample). Wrenninge's a <= b is not imposed: it keeps thick clouds far too dark. Every
@@ -217,11 +217,15 @@ const FORWARD_LOBE_GRID: [f64; 9] = [0.0, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.8, 1.0
 /// The forward lobe's eccentricities tried (`MultipleScattering::forward_lobe_g`).
 const FORWARD_LOBE_G_GRID: [f64; 8] = [0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8];
 
+/// The vertical anisotropies tried (`MultipleScattering::vertical_anisotropy`; 0: off).
+const VERTICAL_ANISOTROPY_GRID: [f64; 9] = [0.0, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.8, 1.0];
+
 /// Build-ups (metres) the descent starts from.
 const DESCENT_STARTS_M: [f64; 3] = [0.0, 100.0, 400.0];
 
 /// Coordinate descent over a, b, c, the build-up, the side light, the coverage exponent, the
-/// far shadow's chord, the limb darkening and the forward lobe (strength, eccentricity) for
+/// far shadow's chord, the limb darkening, the forward lobe (strength, eccentricity) and the
+/// vertical anisotropy for
 /// `octaves`, from a = b = c = 0.5, the later terms off and each of
 /// a few build-ups (the descent alone stalled at a build-up of 600 m, 2% worse than
 /// the 300 m it missed), or with `quick` from the defaults alone: each pass tries every grid
@@ -235,7 +239,7 @@ fn descend(
     log: &mut Vec<(MultipleScattering, f64)>,
     bar: &ProgressBar,
 ) -> Result<(MultipleScattering, f64)> {
-    type Key = (u32, u32, u32, u32, u32, u32, u32, u32, u32, u32);
+    type Key = (u32, u32, u32, u32, u32, u32, u32, u32, u32, u32, u32);
     let mut cache: BTreeMap<Key, f64> = BTreeMap::new();
     let key = |m: &MultipleScattering| -> Key {
         let q = |v: f64| (v * 100.0).round() as u32;
@@ -250,6 +254,7 @@ fn descend(
             q(m.limb_darkening),
             q(m.forward_lobe),
             q(m.forward_lobe_g),
+            q(m.vertical_anisotropy),
         )
     };
     let mut score =
@@ -283,6 +288,7 @@ fn descend(
                 limb_darkening: 0.0,
                 forward_lobe: 0.0,
                 forward_lobe_g: 0.5,
+                vertical_anisotropy: 0.0,
             })
             .collect()
     };
@@ -292,7 +298,7 @@ fn descend(
         let mut best_score = score(best, log)?;
         for _round in 0..6 {
             let mut changed = false;
-            for which in 0..10 {
+            for which in 0..11 {
                 // a may exceed 1 (validate.rs says why); b and c are factors of at most 1.
                 let values = match which {
                     0 => grid(stratus_scene::MAX_OCTAVE_A),
@@ -303,6 +309,7 @@ fn descend(
                     7 => LIMB_GRID.to_vec(),
                     8 => FORWARD_LOBE_GRID.to_vec(),
                     9 => FORWARD_LOBE_G_GRID.to_vec(),
+                    10 => VERTICAL_ANISOTROPY_GRID.to_vec(),
                     _ => grid(1.0),
                 };
                 for v in values {
@@ -317,7 +324,8 @@ fn descend(
                         6 => m.far_chord_m = v,
                         7 => m.limb_darkening = v,
                         8 => m.forward_lobe = v,
-                        _ => m.forward_lobe_g = v,
+                        9 => m.forward_lobe_g = v,
+                        _ => m.vertical_anisotropy = v,
                     }
                     let s = score(m, log)?;
                     if s < best_score - 1e-9 {
@@ -346,7 +354,7 @@ fn descend(
 /// The constants of `m` in a line.
 fn describe(m: &MultipleScattering) -> String {
     format!(
-        "a {:.2} b {:.2} c {:.2} build-up {} m side light {:.2} coverage exponent {:.2} far chord {} m limb darkening {:.2} forward lobe {:.2} (g {:.2})",
+        "a {:.2} b {:.2} c {:.2} build-up {} m side light {:.2} coverage exponent {:.2} far chord {} m limb darkening {:.2} forward lobe {:.2} (g {:.2}) vertical anisotropy {:.2}",
         m.a,
         m.b,
         m.c,
@@ -356,7 +364,8 @@ fn describe(m: &MultipleScattering) -> String {
         m.far_chord_m,
         m.limb_darkening,
         m.forward_lobe,
-        m.forward_lobe_g
+        m.forward_lobe_g,
+        m.vertical_anisotropy
     )
 }
 
@@ -470,12 +479,12 @@ pub fn run(args: FitArgs) -> Result<()> {
         .with_context(|| format!("creating {}", args.out.display()))?;
     let mut csv = String::from(
         "octaves,a,b,c,buildup_m,side_light,coverage_exponent,far_chord_m,limb_darkening,\
-         forward_lobe,forward_lobe_g,train_mean_flip\n",
+         forward_lobe,forward_lobe_g,vertical_anisotropy,train_mean_flip\n",
     );
     for (m, s) in &log {
         let _ = writeln!(
             csv,
-            "{},{:.2},{:.2},{:.2},{},{:.2},{:.2},{},{:.2},{:.2},{:.2},{s:.5}",
+            "{},{:.2},{:.2},{:.2},{},{:.2},{:.2},{},{:.2},{:.2},{:.2},{:.2},{s:.5}",
             m.octaves,
             m.a,
             m.b,
@@ -486,7 +495,8 @@ pub fn run(args: FitArgs) -> Result<()> {
             m.far_chord_m,
             m.limb_darkening,
             m.forward_lobe,
-            m.forward_lobe_g
+            m.forward_lobe_g,
+            m.vertical_anisotropy
         );
     }
     std::fs::write(args.out.join("evaluations.csv"), csv)?;
@@ -553,8 +563,8 @@ pub fn run(args: FitArgs) -> Result<()> {
         "# Multiple-scattering fit\n\n\
          Written by `stratus fit-scattering --out {out} --size {w}x{h} --spp {spp} --octaves {counts}{quick}` on {device}.\n\n\
          The octaves (count N, a, b, c; Wrenninge 2013), their build-up, side light and \
-         coverage exponent, the far shadow's chord, the octaves' limb darkening and their forward \
-         lobe through thin cloud (strength, eccentricity) of the march fitted to the all-orders \
+         coverage exponent, the far shadow's chord, the octaves' limb darkening, their forward \
+         lobe through thin cloud (strength, eccentricity) and their vertical anisotropy of the march fitted to the all-orders \
          truth of the GPU path tracer ({spp} paths per pixel) over {nt} training scenes by \
          coordinate descent on a 0.05 grid (0.01 below 0.05), minimising the mean FLIP, \
          taking the fewest octaves within 1% of the lowest mean; checked on the \
@@ -563,7 +573,7 @@ pub fn run(args: FitArgs) -> Result<()> {
          right). \"Before\" is the thesis's two octaves of 0.5 in this \
          model (the octaves attenuated by 1 / (1 + b^i tau) and scaled by mu0, the cosine of \
          the sun's zenith angle, no build-up, side light, coverage exponent, far shadow, limb \
-         darkening or forward lobe). \"Brightness\" is the fitted render's mean in-scattered \
+         darkening, forward lobe or vertical anisotropy). \"Brightness\" is the fitted render's mean in-scattered \
          luminance over the truth's where the truth's transmittance is below 0.05 (dense), \
          0.05 to 0.5 and 0.5 to 0.99 (thin). FLIP is measured on display images composited \
          on the CPU from each image's linear radiance (`stratus_reference::Compositor`), the \
@@ -571,10 +581,10 @@ pub fn run(args: FitArgs) -> Result<()> {
          rendered the truth and the one that marches do not round the same light to \
          different 8-bit levels; the images show the truth and \"after\" as they are compared \
          (\"before\" is compared with the truth through its own depth).\n\n\
-         | | N | a | b | c | build-up (m) | side light | coverage exponent | far chord (m) | limb darkening | forward lobe (g) |\n\
-         |---|---|---|---|---|---|---|---|---|---|---|\n\
-         | before | {} | {:.2} | {:.2} | {:.2} | {} | {:.2} | {:.2} | {} | {:.2} | {:.2} ({:.2}) |\n\
-         | after | {} | {:.2} | {:.2} | {:.2} | {} | {:.2} | {:.2} | {} | {:.2} | {:.2} ({:.2}) |\n\n\
+         | | N | a | b | c | build-up (m) | side light | coverage exponent | far chord (m) | limb darkening | forward lobe (g) | vertical anisotropy |\n\
+         |---|---|---|---|---|---|---|---|---|---|---|---|\n\
+         | before | {} | {:.2} | {:.2} | {:.2} | {} | {:.2} | {:.2} | {} | {:.2} | {:.2} ({:.2}) | {:.2} |\n\
+         | after | {} | {:.2} | {:.2} | {:.2} | {} | {:.2} | {:.2} | {} | {:.2} | {:.2} ({:.2}) | {:.2} |\n\n\
          | scene | set | FLIP before | RMSE before | FLIP after | RMSE after | brightness after (dense / mid / thin) |\n\
          |---|---|---|---|---|---|---|\n{table}",
         before.octaves,
@@ -588,6 +598,7 @@ pub fn run(args: FitArgs) -> Result<()> {
         before.limb_darkening,
         before.forward_lobe,
         before.forward_lobe_g,
+        before.vertical_anisotropy,
         fit.octaves,
         fit.a,
         fit.b,
@@ -599,6 +610,7 @@ pub fn run(args: FitArgs) -> Result<()> {
         fit.limb_darkening,
         fit.forward_lobe,
         fit.forward_lobe_g,
+        fit.vertical_anisotropy,
         out = args.out.display(),
         spp = args.spp,
         counts = args

@@ -65,7 +65,7 @@ pub(crate) struct Frame {
     pub moon: [f64; 4],
     pub night: [f64; 4],
     pub light_model: [f64; 4],
-    pub forward_lobe: [f64; 4],
+    pub octave_direction: [f64; 4],
 }
 
 fn w(v: [f32; 4]) -> [f64; 4] {
@@ -115,7 +115,7 @@ impl Frame {
             moon: w(u.moon),
             night: w(u.night),
             light_model: w(u.light_model),
-            forward_lobe: w(u.forward_lobe),
+            octave_direction: w(u.octave_direction),
         }
     }
 

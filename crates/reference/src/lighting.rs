@@ -169,7 +169,8 @@ pub(crate) fn far_optical_depth(m: &Model, rel: V3, p: V3, l: &Layer) -> f64 {
 // WGSL: lighting.wgsl::sun_scattering
 // The WGSL passes one `far` for both: the converged march (`LightMarch::to_layer_exit`)
 // samples the whole sun ray in the layer, so its single scattering takes no far shadow
-// (`far_direct` 0) while the side light keeps the model's (`far_side`).
+// (`far_direct` 0) while the side light keeps the model's (`far_side`). The weather map's
+// coverage and the height fraction at the sample travel together (clippy's argument limit).
 /// Sun light scattered toward the viewer per unit illuminance and unit sigma_s, summed over
 /// octaves fed through the cloud's top and sides, with the optional Beer-Powder factor: the
 /// whole and the octaves' part of it (the WGSL's `SunScattering`).
@@ -180,7 +181,7 @@ pub(crate) fn sun_scattering(
     tau: f64,
     (far_direct, far_side): (f64, f64),
     build: f64,
-    coverage: f64,
+    (coverage, h): (f64, f64),
 ) -> (f64, f64) {
     let a = f.multiple_scattering[0];
     let b = f.multiple_scattering[1];
@@ -205,7 +206,7 @@ pub(crate) fn sun_scattering(
     if f.light_model[1] > 0.0 {
         feed *= coverage.max(1e-6).powf(f.light_model[1]);
     }
-    feed *= diffuse_limb(f, view_y, coverage);
+    feed *= diffuse_limb(f, view_y, coverage) * vertical_anisotropy(f, view_y, coverage, h);
     let mut octaves_part = feed * build * octave_sum;
     let mut total = phase(f, cos_theta, 1.0) * (-tau - far_direct).exp() + octaves_part;
     if f.modes[3] & FLAG_BEER_POWDER != 0 {
@@ -225,12 +226,19 @@ const FORWARD_LOBE_THIN: f64 = 0.1;
 /// its transmittance: `1 + w (4 pi HG(cos, g_f) - 1)`, `w = k min(T / 0.1, 1)` (lighting.wgsl
 /// says why).
 pub(crate) fn forward_lobe(f: &Frame, cos_theta: f64, transmittance: f64) -> f64 {
-    let k = f.forward_lobe[0];
+    let k = f.octave_direction[0];
     if k <= 0.0 {
         return 1.0;
     }
     let w = k * saturate(transmittance / FORWARD_LOBE_THIN);
-    1.0 + w * (4.0 * PI * phase_hg(cos_theta, f.forward_lobe[1]) - 1.0)
+    1.0 + w * (4.0 * PI * phase_hg(cos_theta, f.octave_direction[1]) - 1.0)
+}
+
+// WGSL: lighting.wgsl::vertical_anisotropy
+/// The octaves' vertical anisotropy at height fraction `h`: `1 + s view_y coverage (1 - h)`,
+/// brighter looking up than down in a layer lit from above (lighting.wgsl says why).
+pub(crate) fn vertical_anisotropy(f: &Frame, view_y: f64, coverage: f64, h: f64) -> f64 {
+    1.0 + f.octave_direction[2] * view_y * saturate(coverage) * (1.0 - saturate(h))
 }
 
 // WGSL: lighting.wgsl::diffuse_limb
@@ -306,7 +314,7 @@ pub(crate) fn scattered_light(
             tau,
             (far_direct, far),
             octave_buildup(f, density),
-            weather.coverage,
+            (weather.coverage, h),
         );
         let lit = f.sun_illuminance().mul_v(sun_through_air(f, m.sky(), rel));
         sun_light = lit * s;
@@ -413,6 +421,33 @@ mod tests {
         scene.lighting.multiple_scattering.forward_lobe = 0.0;
         let off = Model::new(&scene, Medium::Clouds(&noise));
         assert_eq!(forward_lobe(&off.f, 1.0, 0.5), 1.0);
+    }
+
+    /// The vertical anisotropy brightens the octaves seen looking up and darkens them looking
+    /// down by as much (its mean over the sphere is 1), most at a deck's base, not at its top
+    /// nor in clear surroundings, stays positive at its largest strength, and is 1 when off.
+    #[test]
+    fn vertical_anisotropy_favours_light_going_down_and_adds_none() {
+        let noise = crate::small_noise();
+        let mut scene = Scene::default();
+        scene.lighting.multiple_scattering.vertical_anisotropy = 1.0;
+        let m = Model::new(&scene, Medium::Clouds(&noise));
+        for h in [0.0, 0.4, 1.0] {
+            let mean = integral(|y| vertical_anisotropy(&m.f, y, 0.8, h)) / (4.0 * PI);
+            assert!((mean - 1.0).abs() < 1e-6, "h {h}: mean {mean}");
+        }
+        let (up, down) = (
+            vertical_anisotropy(&m.f, 0.5, 1.0, 0.2),
+            vertical_anisotropy(&m.f, -0.5, 1.0, 0.2),
+        );
+        assert!(up > 1.0 && down < 1.0, "{up} {down}");
+        assert!(vertical_anisotropy(&m.f, 0.5, 1.0, 0.0) > up);
+        assert_eq!(vertical_anisotropy(&m.f, -1.0, 1.0, 0.0), 0.0);
+        assert_eq!(vertical_anisotropy(&m.f, 0.5, 1.0, 1.0), 1.0);
+        assert_eq!(vertical_anisotropy(&m.f, 0.5, 0.0, 0.2), 1.0);
+        scene.lighting.multiple_scattering.vertical_anisotropy = 0.0;
+        let off = Model::new(&scene, Medium::Clouds(&noise));
+        assert_eq!(vertical_anisotropy(&off.f, 0.5, 1.0, 0.2), 1.0);
     }
 
     /// Integral over the sphere of a phase function of cos(theta), by the midpoint rule in cos.

@@ -100,13 +100,15 @@ fn source_max(s: &Scene) -> [f64; 3] {
     let li = &s.lighting;
     let ms = &li.multiple_scattering;
     // The octaves' feed peaks at sqrt(1 + s^2) (mu0 + s sin(zenith) at its best sun), times
-    // the limb darkening's peak (a view along the vertical through full coverage) and the
-    // forward lobe's (a thin pixel looking at the sun: 1 + k (4 pi HG(1, g) - 1)).
+    // the limb darkening's peak (a view along the vertical through full coverage), the
+    // forward lobe's (a thin pixel looking at the sun: 1 + k (4 pi HG(1, g) - 1)) and the
+    // vertical anisotropy's (looking straight up at a deck's base: 1 + s).
     let k = ms.limb_darkening;
     let lobe_max =
         1.0 + ms.forward_lobe * (4.0 * std::f64::consts::PI * hg_max(ms.forward_lobe_g) - 1.0);
-    let feed_max =
-        (1.0 + ms.side_light * ms.side_light).sqrt() * (1.0 + k) / (1.0 + 2.0 * k / 3.0) * lobe_max;
+    let feed_max = (1.0 + ms.side_light * ms.side_light).sqrt() * (1.0 + k) / (1.0 + 2.0 * k / 3.0)
+        * lobe_max
+        * (1.0 + ms.vertical_anisotropy);
     let mut phase_sum = 0.0;
     for i in 0..=ms.octaves.min(8) {
         let (ka, kc) = (ms.a.powi(i as i32), ms.c.powi(i as i32));
@@ -373,7 +375,7 @@ fn extreme_valid_parameters() {
             s.lighting.phase.g = 0.99;
         }),
         (
-            "8 octaves, a = 2, b = c = 1, build-up 10 km, side light 4, limb darkening 4, forward lobe 1 (g 0.95)",
+            "8 octaves, a = 2, b = c = 1, build-up 10 km, side light 4, limb darkening 4, forward lobe 1 (g 0.95), vertical anisotropy 1",
             |s| {
                 let ms = &mut s.lighting.multiple_scattering;
                 ms.octaves = 8;
@@ -386,6 +388,7 @@ fn extreme_valid_parameters() {
                 ms.limb_darkening = 4.0;
                 ms.forward_lobe = 1.0;
                 ms.forward_lobe_g = 0.95;
+                ms.vertical_anisotropy = 1.0;
             },
         ),
         ("density 1000", |s| s.clouds.density = 1000.0),

@@ -599,7 +599,9 @@ impl Default for Phase {
 /// through a broken layer's sides as well as its top (`side_light`), and the sun ray beyond
 /// the light march's reach is shadowed statistically (`far_chord_m`); and the octaves leaving
 /// a deck are limb-darkened toward grazing views (`limb_darkening`). Seen through thin cloud
-/// the octaves' light leans toward the sun (`forward_lobe`, `forward_lobe_g`). The defaults are
+/// the octaves' light leans toward the sun (`forward_lobe`, `forward_lobe_g`), and in a layer
+/// lit from above it is brighter looking up than looking down (`vertical_anisotropy`). The
+/// defaults are
 /// fitted to the path tracer's all-orders truth by `stratus fit-scattering` (docs/fit);
 /// `a > b` is allowed.
 #[derive(Serialize, Deserialize, Clone, Copy, Debug, PartialEq)]
@@ -651,28 +653,38 @@ pub struct MultipleScattering {
     pub forward_lobe: f64,
     /// The forward lobe's Henyey-Greenstein eccentricity, within [0, 0.95].
     pub forward_lobe_g: f64,
+    /// Vertical anisotropy of the octaves, within [0, 1]: they are scaled by `1 + s view_y
+    /// coverage (1 - h)`, `s` this value, `view_y` the view ray's vertical component (up
+    /// positive), `coverage` the weather map's at the sample and `h` its height fraction in
+    /// the layer. In a layer lit from above the diffuse light's net flux runs downward, so the
+    /// light going down (seen looking up) outshines the light going up (seen looking down),
+    /// most toward the layer's base, where the upward stream is only the ground's reflection.
+    /// Its mean over the sphere is 1 (it adds no light). 0: off.
+    pub vertical_anisotropy: f64,
 }
 
 impl Default for MultipleScattering {
     /// Fitted to the GPU path tracer's all-orders truth (8192 paths a pixel, rendered on an
     /// H200; the march on lavapipe) over ten training scenes by `stratus fit-scattering`: its
     /// choice, 3 octaves with a build-up of 400 m, side light 1, coverage exponent 1, a
-    /// far-shadow chord of 8 km, limb darkening 0.5 and a forward lobe of 0.4 (g 0.5), with
-    /// the octaves' own eccentricity nearly gone (c = 0.04) (docs/fit; the thesis's 2 octaves
-    /// of a = b = c = 0.5 and none of the other terms before).
+    /// far-shadow chord of 8 km, limb darkening 0.25, a forward lobe of 0.3 (g 0.6) and a
+    /// vertical anisotropy of 0.4, with the octaves' own eccentricity nearly gone (c = 0.04)
+    /// (docs/fit; the thesis's 2 octaves of a = b = c = 0.5 and none of the other terms
+    /// before).
     fn default() -> Self {
         Self {
             octaves: 3,
-            a: 1.2,
+            a: 1.15,
             b: 0.5,
             c: 0.04,
             buildup_m: 400.0,
             side_light: 1.0,
             coverage_exponent: 1.0,
             far_chord_m: 8000.0,
-            limb_darkening: 0.5,
-            forward_lobe: 0.4,
-            forward_lobe_g: 0.5,
+            limb_darkening: 0.25,
+            forward_lobe: 0.3,
+            forward_lobe_g: 0.6,
+            vertical_anisotropy: 0.4,
         }
     }
 }

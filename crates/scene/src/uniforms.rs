@@ -107,9 +107,10 @@ pub struct FrameUniforms {
     /// The fitted light model's terms beyond the octaves: side light, coverage exponent,
     /// far-shadow chord (m, 0 = off), limb darkening (`MultipleScattering`).
     pub light_model: [f32; 4],
-    /// The octaves' forward lobe through thin cloud: strength (0 = off), eccentricity, 0, 0
-    /// (`MultipleScattering::forward_lobe`).
-    pub forward_lobe: [f32; 4],
+    /// The octaves' dependence on the view direction: their forward lobe through thin cloud
+    /// (strength, 0 = off; eccentricity), their vertical anisotropy (0 = off), 0
+    /// (`MultipleScattering::forward_lobe`, `vertical_anisotropy`).
+    pub octave_direction: [f32; 4],
 }
 
 impl FrameUniforms {
@@ -173,7 +174,7 @@ impl FrameUniforms {
         ("moon", "vec4<f32>"),
         ("night", "vec4<f32>"),
         ("light_model", "vec4<f32>"),
-        ("forward_lobe", "vec4<f32>"),
+        ("octave_direction", "vec4<f32>"),
     ];
 
     /// This block with `previous`'s camera as last frame's camera (what a renderer keeping
@@ -556,7 +557,12 @@ impl Scene {
                 ms.far_chord_m as f32,
                 ms.limb_darkening as f32,
             ],
-            forward_lobe: [ms.forward_lobe as f32, ms.forward_lobe_g as f32, 0.0, 0.0],
+            octave_direction: [
+                ms.forward_lobe as f32,
+                ms.forward_lobe_g as f32,
+                ms.vertical_anisotropy as f32,
+                0.0,
+            ],
         };
         block.with_previous_camera(&block)
     }

@@ -321,6 +321,13 @@ pub(crate) fn check(scene: &Scene) -> Vec<Issue> {
         Incl(0.0),
         Incl(0.95),
     );
+    // Above 1 the factor would go negative looking straight down at a layer's base.
+    c.float(
+        "lighting.multiple_scattering.vertical_anisotropy",
+        ms.vertical_anisotropy,
+        Incl(0.0),
+        Incl(1.0),
+    );
     // 0 turns the far shadow off; a chord below 100 m would shadow like a solid deck.
     let chord = ms.far_chord_m;
     if !chord.is_finite() {

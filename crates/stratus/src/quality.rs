@@ -66,6 +66,7 @@ pub const PREFIT_OCTAVES: MultipleScattering = MultipleScattering {
     limb_darkening: 0.0,
     forward_lobe: 0.0,
     forward_lobe_g: 0.0,
+    vertical_anisotropy: 0.0,
 };
 
 impl Config {

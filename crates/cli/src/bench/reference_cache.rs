@@ -69,13 +69,14 @@ fn reference_for(scene: &Scene) -> (Integrator, Scene, bool) {
 /// The light model's terms added after the cache's v2 (reset to fixed values by
 /// `reference_for` like the octaves, and ignored by every reference): left out of the key so
 /// that the truths rendered before them stay valid.
-const KEYLESS_FIELDS: [&str; 6] = [
+const KEYLESS_FIELDS: [&str; 7] = [
     "side_light = ",
     "coverage_exponent = ",
     "far_chord_m = ",
     "limb_darkening = ",
     "forward_lobe = ",
     "forward_lobe_g = ",
+    "vertical_anisotropy = ",
 ];
 
 /// The scene's TOML as the cache key hashes it: `s.to_toml()` without the `KEYLESS_FIELDS`.
@@ -277,11 +278,12 @@ mod tests {
                 "far_chord_m = 0.0",
                 "limb_darkening = 0.0",
                 "forward_lobe = 0.0",
-                "forward_lobe_g = 0.0"
+                "forward_lobe_g = 0.0",
+                "vertical_anisotropy = 0.0"
             ],
             "{full}"
         );
-        assert_eq!(full.lines().count(), key.lines().count() + 6);
+        assert_eq!(full.lines().count(), key.lines().count() + 7);
     }
 
     #[test]
