@@ -226,8 +226,8 @@ fn forward_lobe(cos_theta: f32, transmittance: f32) -> f32 {
 // layer, a small cumulus has no one normal. The factor is 1 at mu = 2/3: it darkens grazing
 // views and brightens steep ones, and the refit raised the octaves' a with it (1.15 to 1.2).
 // Fitted k = 0.5 took the training scenes' mean FLIP from 0.0505 to 0.0486 and the presets'
-// from 0.0583 to 0.0572 (docs/fit; 0.25 since vertical_anisotropy, which takes the up-down
-// part); one abs, a division and a mix per lit sample.
+// from 0.0583 to 0.0572 (that fit's docs/fit; since vertical_anisotropy, which takes the
+// up-down part, k = 0.25 and a = 1.15); one abs, a division and a mix per lit sample.
 fn diffuse_limb(view_y: f32, coverage: f32) -> f32 {
     let k = frame.light_model.w;
     let layer = (1.0 + k * abs(view_y)) / (1.0 + 2.0 * k / 3.0);
@@ -247,8 +247,9 @@ fn diffuse_limb(view_y: f32, coverage: f32) -> f32 {
 // a camera inside it 1.2-1.3 times it looking down (`inside-layer`). Hence 1 + s view_y
 // coverage (1 - h): its mean over the sphere is 1 (no light added), a deck's (coverage) and
 // strongest at its base (1 - h, the simplest stand-in for the optical depth below the sample,
-// which the march does not know; no weight by height fitted 0.0006 worse, (1 - h)^2 no
-// better). s: frame.octave_direction.z (0 = off); one multiply-add per lit sample.
+// which the march does not know; with s held at 0.5 and the rest refit, no weight by height
+// fitted 0.0005 worse). s: frame.octave_direction.z (0 = off); one multiply-add per lit
+// sample.
 fn vertical_anisotropy(view_y: f32, coverage: f32, h: f32) -> f32 {
     return 1.0 + frame.octave_direction.z * view_y * saturate(coverage) * (1.0 - saturate(h));
 }

@@ -16,8 +16,11 @@
 //! (1 + b^i tau)` with the build-up B in [0, 1] and the feed `F = (mu0 + s (1 - cov) sin(zenith)
 //! e^(-far)) cov^e D` (`sun_scattering`; s the side light, cov the coverage in [0, 1], D the
 //! limb darkening `mix(1, (1 + k_l |v_y|) / (1 + 2 k_l / 3), cov)`, at most `(1 + k_l) / (1 +
-//! 2 k_l / 3)` for k_l >= 0), which is at most `F_max = sqrt(1 + s^2) (1 + k_l) / (1 + 2 k_l /
-//! 3)` (`max(mu0 + s sin(zenith)) = sqrt(1 + s^2)`). With `f_0 <= 1`, `f_i <= F_max`,
+//! 2 k_l / 3)` for k_l >= 0, times the vertical anisotropy `1 + s_v v_y cov (1 - h)`, at most
+//! `1 + s_v`), and per pixel the forward lobe `1 + w (4 pi HG(cos, g_f) - 1)`, at most `1 + k_f
+//! (4 pi HG(1, g_f) - 1)` (`forward_lobe`), so the octaves' factor is at most `F_max = sqrt(1 +
+//! s^2) (1 + k_l) / (1 + 2 k_l / 3) (1 + s_v) (1 + k_f (4 pi HG(1, g_f) - 1))` (`max(mu0 + s
+//! sin(zenith)) = sqrt(1 + s^2)`). With `f_0 <= 1`, `f_i <= F_max`,
 //! Beer-Powder `<= 1`, darkening `<= 1` and `p <= p_max` (the phase function's peak over all
 //! angles, at `cos = +-1`), `S <= sigma_s d L_max` with `L_max = E_sun (p_max(g) + F_max
 //! sum_{i=1..octaves} a^i p_max(c^i g)) + max(ambient_bottom, ambient_top) k`.
