@@ -601,9 +601,8 @@ impl Default for Phase {
 /// a deck are limb-darkened toward grazing views (`limb_darkening`). Seen through thin cloud
 /// the octaves' light leans toward the sun (`forward_lobe`, `forward_lobe_g`), and in a layer
 /// lit from above it is brighter looking up than looking down (`vertical_anisotropy`). The
-/// defaults are
-/// fitted to the path tracer's all-orders truth by `stratus fit-scattering` (docs/fit);
-/// `a > b` is allowed.
+/// defaults are fitted to the path tracer's all-orders truth by `stratus fit-scattering`
+/// (docs/fit); `a > b` is allowed.
 #[derive(Serialize, Deserialize, Clone, Copy, Debug, PartialEq)]
 #[serde(default, deny_unknown_fields)]
 pub struct MultipleScattering {
