@@ -1055,7 +1055,7 @@ fn view_test(root: &Path) -> Result<()> {
     let _ = std::fs::remove_dir_all(&out);
     cargo(root, &["build", "-q", "-p", "stratus-cli"])?;
     let exe = target.join("debug").join("stratus");
-    let (mut xvfb, display) = start_xvfb()?;
+    let (xvfb, display) = start_xvfb()?;
     let script = root.join("tests/view/script.toml");
     let result = Command::new(&exe)
         .args(["view", "--script"])
@@ -1069,8 +1069,7 @@ fn view_test(root: &Path) -> Result<()> {
             std::env::var_os("XDG_RUNTIME_DIR").unwrap_or_else(|| std::env::temp_dir().into()),
         )
         .status();
-    let _ = xvfb.kill();
-    let _ = xvfb.wait();
+    stop_xvfb(xvfb);
     let status = result.context("running stratus view")?;
     if !status.success() {
         bail!("stratus view --script failed ({status})");
@@ -1167,11 +1166,51 @@ fn overlay_stats(image: &stratus_compare::Image, rect: [f64; 4]) -> (f64, usize)
     ((sum2 / n.max(1.0) - mean * mean).max(0.0).sqrt(), edges)
 }
 
+/// Whether display `:n` is taken: by a lock file naming a running process, or by a socket
+/// without a lock. A lock whose process is gone (a server that was killed, which leaves its
+/// lock and socket behind) is stale: both are removed and the display is free again.
+fn display_taken(n: u32) -> bool {
+    let socket = PathBuf::from(format!("/tmp/.X11-unix/X{n}"));
+    let lock = PathBuf::from(format!("/tmp/.X{n}-lock"));
+    match std::fs::read_to_string(&lock) {
+        Ok(text) => {
+            let alive = match text.trim().parse::<u32>() {
+                Ok(pid) => Path::new(&format!("/proc/{pid}")).exists(),
+                // Not a lock we can read: leave it alone.
+                Err(_) => true,
+            };
+            if alive {
+                return true;
+            }
+            let _ = std::fs::remove_file(&lock);
+            let _ = std::fs::remove_file(&socket);
+            lock.exists() || socket.exists()
+        }
+        Err(_) => lock.exists() || socket.exists(),
+    }
+}
+
+/// Stops Xvfb with SIGTERM, so that it removes its lock file and socket (SIGKILL leaves them,
+/// and twenty runs used up every display this test tries), or kills it after 5 s.
+fn stop_xvfb(mut xvfb: std::process::Child) {
+    let _ = Command::new("kill")
+        .args(["-TERM", &xvfb.id().to_string()])
+        .status();
+    for _ in 0..50 {
+        if let Ok(Some(_)) = xvfb.try_wait() {
+            return;
+        }
+        std::thread::sleep(std::time::Duration::from_millis(100));
+    }
+    let _ = xvfb.kill();
+    let _ = xvfb.wait();
+}
+
 /// Starts Xvfb on the first free display from :90 and waits for its socket.
 fn start_xvfb() -> Result<(std::process::Child, String)> {
     for n in 90..110 {
         let socket = PathBuf::from(format!("/tmp/.X11-unix/X{n}"));
-        if socket.exists() || Path::new(&format!("/tmp/.X{n}-lock")).exists() {
+        if display_taken(n) {
             continue;
         }
         let display = format!(":{n}");
@@ -1197,7 +1236,7 @@ fn start_xvfb() -> Result<(std::process::Child, String)> {
             }
             std::thread::sleep(std::time::Duration::from_millis(100));
         }
-        let _ = child.kill();
+        stop_xvfb(child);
         bail!("Xvfb {display} did not open its socket in 10 s");
     }
     bail!("no free X display between :90 and :109")
