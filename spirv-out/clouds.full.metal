@@ -296,8 +296,8 @@ metal::float3 view_ray(
     metal::float4 _e26 = frame.camera_forward;
     metal::float4 _e30 = frame.camera_right;
     metal::float4 _e39 = frame.camera_up;
-    metal::float3 d_18 = (_e26.xyz + (_e30.xyz * ((ndc.x * tan_half) * aspect))) - (_e39.xyz * (ndc.y * tan_half));
-    return metal::normalize(d_18);
+    metal::float3 d_20 = (_e26.xyz + (_e30.xyz * ((ndc.x * tan_half) * aspect))) - (_e39.xyz * (ndc.y * tan_half));
+    return metal::normalize(d_20);
 }
 
 Roots solve_sphere(
@@ -749,9 +749,9 @@ metal::float2 transmittance_r_mu(
     float r_14 = metal::sqrt((rho_1 * rho_1) + (_e1 * _e1));
     float d_min_1 = _e2 - r_14;
     float d_max_1 = rho_1 + h_12;
-    float d_19 = d_min_1 + (x_4.x * (d_max_1 - d_min_1));
-    if (d_19 > 0.0) {
-        mu_6 = metal::clamp((((h_12 * h_12) - (rho_1 * rho_1)) - (d_19 * d_19)) / ((2.0 * r_14) * d_19), -1.0, 1.0);
+    float d_21 = d_min_1 + (x_4.x * (d_max_1 - d_min_1));
+    if (d_21 > 0.0) {
+        mu_6 = metal::clamp((((h_12 * h_12) - (rho_1 * rho_1)) - (d_21 * d_21)) / ((2.0 * r_14) * d_21), -1.0, 1.0);
     }
     float _e37 = mu_6;
     return metal::float2(r_14, _e37);
@@ -1002,16 +1002,45 @@ float sun_azimuth(
     return metal::atan2(s_5.z, s_5.x);
 }
 
-metal::float3 sky_view(
+metal::float3 sky_along(
+    metal::float3 origin_3,
     metal::float3 d_10,
+    constant Frame& frame,
+    metal::texture2d<float, metal::access::sample> transmittance_lut_in,
+    metal::texture2d<float, metal::access::sample> multiscatter_lut_in,
+    metal::texture2d<float, metal::access::sample> ground_irradiance_in
+) {
+    metal::float2 _e2 = air_ray_end(origin_3, d_10, frame);
+    metal::float4 _e5 = frame.sun_direction;
+    metal::float3 sun_2 = _e5.xyz;
+    Scattered _e9 = integrate_air(origin_3, d_10, _e2.x, SKY_VIEW_STEPS, sun_2, frame, transmittance_lut_in, multiscatter_lut_in);
+    metal::float3 _e14 = with_ground(_e9, origin_3, d_10, _e2.x, sun_2, _e2.y > 0.5, frame, transmittance_lut_in, ground_irradiance_in);
+    return _e14;
+}
+
+metal::float3 sky_from(
+    metal::float3 rel,
+    metal::float3 d_11,
+    constant Frame& frame,
+    metal::texture2d<float, metal::access::sample> transmittance_lut_in,
+    metal::texture2d<float, metal::access::sample> multiscatter_lut_in,
+    metal::texture2d<float, metal::access::sample> ground_irradiance_in
+) {
+    float _e7 = frame.atmosphere.x;
+    metal::float3 _e13 = sky_along(metal::float3(rel.x, rel.y + _e7, rel.z) * 0.001, d_11, frame, transmittance_lut_in, multiscatter_lut_in, ground_irradiance_in);
+    return _e13;
+}
+
+metal::float3 sky_view(
+    metal::float3 d_12,
     constant Frame& frame,
     metal::texture2d<float, metal::access::sample> sky_view_in
 ) {
     float delta = {};
     metal::float3 _e1 = camera_air_origin(frame);
-    float elevation_1 = metal::asin(metal::clamp(d_10.y, -1.0, 1.0));
+    float elevation_1 = metal::asin(metal::clamp(d_12.y, -1.0, 1.0));
     float _e10 = sun_azimuth(frame);
-    delta = metal::atan2(d_10.z, d_10.x) - _e10;
+    delta = metal::atan2(d_12.z, d_12.x) - _e10;
     float _e13 = delta;
     float _e15 = delta;
     delta = metal::abs(_e13 - (6.2831855 * metal::rint(_e15 / 6.2831855)));
@@ -1089,7 +1118,7 @@ metal::float4 aerial(
 }
 
 metal::float3 sun_through_air(
-    metal::float3 rel,
+    metal::float3 rel_1,
     constant Frame& frame,
     metal::texture2d<float, metal::access::sample> transmittance_lut_in
 ) {
@@ -1098,7 +1127,7 @@ metal::float3 sun_through_air(
         return metal::float3(1.0);
     }
     float _e10 = frame.atmosphere.x;
-    metal::float3 q_6 = metal::float3(rel.x, rel.y + _e10, rel.z) * 0.001;
+    metal::float3 q_6 = metal::float3(rel_1.x, rel_1.y + _e10, rel_1.z) * 0.001;
     float r_17 = metal::length(q_6);
     metal::float4 _e21 = frame.sun_direction;
     metal::float3 _e24 = sun_transmittance(r_17, metal::dot(q_6 / metal::float3(r_17), _e21.xyz), frame, transmittance_lut_in);
@@ -1417,7 +1446,7 @@ float phase(
 }
 
 float sun_optical_depth(
-    metal::float3 rel_1,
+    metal::float3 rel_2,
     metal::float3 p_6,
     Layer l_4,
     thread Counters& counters_5,
@@ -1438,7 +1467,7 @@ float sun_optical_depth(
     bool local_29 = {};
     bool local_30 = {};
     metal::float4 _e6 = frame.sun_direction;
-    metal::float3 sun_2 = _e6.xyz;
+    metal::float3 sun_3 = _e6.xyz;
     float _e11 = frame.extinction.x;
     float _e15 = frame.extinction.y;
     float sigma_t_1 = _e11 + _e15;
@@ -1465,7 +1494,7 @@ float sun_optical_depth(
             float _e38 = dist;
             float _e39 = seg;
             float s_8 = _e38 + (0.5 * _e39);
-            metal::float3 q_7 = rel_1 + (sun_2 * s_8);
+            metal::float3 q_7 = rel_2 + (sun_3 * s_8);
             float _e45 = altitude_of(q_7, frame);
             if (!((_e45 > l_4.top))) {
                 local_27 = _e45 < l_4.bottom;
@@ -1479,7 +1508,7 @@ float sun_optical_depth(
             uint _e56 = counters_5.light;
             counters_5.light = _e56 + 1u;
             float _e59 = tau_4;
-            float _e62 = layer_density(p_6 + (sun_2 * s_8), _e45, l_4, counters_5, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+            float _e62 = layer_density(p_6 + (sun_3 * s_8), _e45, l_4, counters_5, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
             float _e64 = seg;
             tau_4 = _e59 + ((_e62 * sigma_t_1) * _e64);
             float _e67 = dist;
@@ -1489,7 +1518,7 @@ float sun_optical_depth(
             seg = _e70 * growth;
         }
     }
-    float _e75 = altitude_of(rel_1, frame);
+    float _e75 = altitude_of(rel_2, frame);
     uint2 loop_bound_5 = uint2(4294967295u);
     bool loop_init_5 = true;
     while(true) {
@@ -1512,8 +1541,8 @@ float sun_optical_depth(
             if (_e82.bottom <= l_4.top) {
                 continue;
             }
-            Roots _e87 = ray_shell_from(rel_1, _e75, sun_2, _e82.bottom, frame);
-            Roots _e89 = ray_shell_from(rel_1, _e75, sun_2, _e82.top, frame);
+            Roots _e87 = ray_shell_from(rel_2, _e75, sun_3, _e82.bottom, frame);
+            Roots _e89 = ray_shell_from(rel_2, _e75, sun_3, _e82.top, frame);
             if (!(!(_e87.hit))) {
                 local_28 = !(_e89.hit);
             } else {
@@ -1539,8 +1568,8 @@ float sun_optical_depth(
             uint _e122 = counters_5.light;
             counters_5.light = _e122 + 1u;
             float _e125 = tau_4;
-            float _e130 = altitude_of(rel_1 + (sun_2 * s_9), frame);
-            float _e131 = layer_density(p_6 + (sun_2 * s_9), _e130, _e82, counters_5, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+            float _e130 = altitude_of(rel_2 + (sun_3 * s_9), frame);
+            float _e131 = layer_density(p_6 + (sun_3 * s_9), _e130, _e82, counters_5, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
             tau_4 = _e125 + ((_e131 * sigma_t_1) * (_e89.t1_ - _e87.t1_));
         }
     }
@@ -1549,7 +1578,7 @@ float sun_optical_depth(
 }
 
 float far_optical_depth(
-    metal::float3 rel_2,
+    metal::float3 rel_3,
     metal::float3 p_7,
     Layer l_5,
     constant Frame& frame,
@@ -1582,9 +1611,9 @@ float far_optical_depth(
         reach = (_e41 * (metal::pow(growth_1, steps_3) - 1.0)) / (growth_1 - 1.0);
     }
     metal::float4 _e51 = frame.sun_direction;
-    metal::float3 sun_3 = _e51.xyz;
-    float _e53 = altitude_of(rel_2, frame);
-    Roots _e55 = ray_shell_from(rel_2, _e53, sun_3, l_5.top, frame);
+    metal::float3 sun_4 = _e51.xyz;
+    float _e53 = altitude_of(rel_3, frame);
+    Roots _e55 = ray_shell_from(rel_3, _e53, sun_4, l_5.top, frame);
     float _e57 = reach;
     float len_1 = _e55.t1_ - _e57;
     if (!(!(_e55.hit))) {
@@ -1615,10 +1644,10 @@ float far_optical_depth(
             float _e77 = reach;
             uint _e78 = i_11;
             float t_5 = _e77 + (((static_cast<float>(_e78) + 0.5) * 0.25) * len_1);
-            float _e88 = altitude_of(rel_2 + (sun_3 * t_5), frame);
+            float _e88 = altitude_of(rel_3 + (sun_4 * t_5), frame);
             float _e89 = layer_height(l_5, _e88);
             float _e90 = saturate(_e89);
-            Weather _e93 = sample_weather(p_7 + (sun_3 * t_5), l_5, frame, weather_tex, noise_sampler);
+            Weather _e93 = sample_weather(p_7 + (sun_4 * t_5), l_5, frame, weather_tex, noise_sampler);
             float cov = _e93.coverage;
             float _e96 = height_signal(_e90, l_5.cloud_type, frame);
             float f_3 = metal::min(cov * _e96, 0.95);
@@ -1799,7 +1828,7 @@ float height_fraction(
 }
 
 ScatteredLight scattered_light(
-    metal::float3 rel_3,
+    metal::float3 rel_4,
     metal::float3 p_8,
     float alt_12,
     float density_2,
@@ -1820,24 +1849,24 @@ ScatteredLight scattered_light(
     float tau_7 = 0.0;
     float far_2 = 0.0;
     metal::float4 _e9 = frame.sun_direction;
-    metal::float3 sun_4 = _e9.xyz;
+    metal::float3 sun_5 = _e9.xyz;
     float _e11 = layer_height(l_6, alt_12);
     float _e12 = saturate(_e11);
     Weather _e19 = sample_weather(p_8, l_6, frame, weather_tex, noise_sampler);
-    bool _e20 = hits_ground(rel_3, alt_12, sun_4, frame);
+    bool _e20 = hits_ground(rel_4, alt_12, sun_5, frame);
     if (!(_e20)) {
         if (LIGHT_MARCH) {
-            float _e27 = sun_optical_depth(rel_3, p_8, l_6, counters_6, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+            float _e27 = sun_optical_depth(rel_4, p_8, l_6, counters_6, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
             tau_7 = _e27;
-            float _e28 = far_optical_depth(rel_3, p_8, l_6, frame, weather_tex, noise_sampler);
+            float _e28 = far_optical_depth(rel_4, p_8, l_6, frame, weather_tex, noise_sampler);
             far_2 = _e28;
         }
         float _e31 = tau_7;
         float _e32 = far_2;
         float _e33 = octave_buildup(density_2, frame);
-        SunScattering _e35 = sun_scattering(metal::dot(view, sun_4), view.y, _e31, _e32, _e33, _e19.coverage, _e12, frame);
+        SunScattering _e35 = sun_scattering(metal::dot(view, sun_5), view.y, _e31, _e32, _e33, _e19.coverage, _e12, frame);
         metal::float4 _e38 = frame.sun_illuminance;
-        metal::float3 _e40 = sun_through_air(rel_3, frame, transmittance_lut_in);
+        metal::float3 _e40 = sun_through_air(rel_4, frame, transmittance_lut_in);
         metal::float3 lit = _e38.xyz * _e40;
         sun_light = lit * _e35.total;
         octave_light = lit * _e35.octaves;
@@ -1864,14 +1893,14 @@ metal::float3 shadow_ground_point(
 }
 
 float ground_shadow(
-    metal::float3 rel_4,
+    metal::float3 rel_5,
     metal::texture2d<float, metal::access::sample> cloud_shadow_in
 ) {
-    float edge = metal::max(metal::abs(rel_4.x), metal::abs(rel_4.z)) / SHADOW_HALF_EXTENT;
+    float edge = metal::max(metal::abs(rel_5.x), metal::abs(rel_5.z)) / SHADOW_HALF_EXTENT;
     if (edge >= 1.0) {
         return 1.0;
     }
-    metal::float2 x_9 = (rel_4.xz / metal::float2(40000.0)) + metal::float2(0.5);
+    metal::float2 x_9 = (rel_5.xz / metal::float2(40000.0)) + metal::float2(0.5);
     metal::float4 _e21 = lut_bilinear(cloud_shadow_in, x_9, metal::uint2(128u));
     float t_6 = _e21.x;
     return metal::mix(t_6, 1.0, metal::smoothstep(SHADOW_FADE_START, 1.0, edge));
@@ -1905,7 +1934,7 @@ metal::float3 ground_shadow_loss(
 
 float empty_cell_exit(
     metal::float3 p_9,
-    metal::float3 d_11,
+    metal::float3 d_13,
     constant Frame& frame,
     metal::texture2d<float, metal::access::sample> occupancy_in
 ) {
@@ -1923,22 +1952,22 @@ float empty_cell_exit(
     float _e40 = frame.periods.x;
     float cell_m = _e40 / 64.0;
     metal::float2 inside = (uv_4 - static_cast<metal::float2>(cell_1)) * cell_m;
-    if (d_11.x > 0.000001) {
+    if (d_13.x > 0.000001) {
         float _e50 = exit;
-        exit = metal::min(_e50, (cell_m - inside.x) / d_11.x);
+        exit = metal::min(_e50, (cell_m - inside.x) / d_13.x);
     } else {
-        if (d_11.x < -0.000001) {
+        if (d_13.x < -0.000001) {
             float _e59 = exit;
-            exit = metal::min(_e59, inside.x / -(d_11.x));
+            exit = metal::min(_e59, inside.x / -(d_13.x));
         }
     }
-    if (d_11.z > 0.000001) {
+    if (d_13.z > 0.000001) {
         float _e68 = exit;
-        exit = metal::min(_e68, (cell_m - inside.y) / d_11.z);
+        exit = metal::min(_e68, (cell_m - inside.y) / d_13.z);
     } else {
-        if (d_11.z < -0.000001) {
+        if (d_13.z < -0.000001) {
             float _e77 = exit;
-            exit = metal::min(_e77, inside.y / -(d_11.z));
+            exit = metal::min(_e77, inside.y / -(d_13.z));
         }
     }
     float _e83 = exit;
@@ -2057,8 +2086,8 @@ bool march_layer(
         counters_7.view_steps = _e75 + 1u;
         uint _e79 = i_13;
         float t_7 = span_1.start + ((static_cast<float>(_e79) + jitter) * dt_2);
-        metal::float3 rel_7 = (view_2 * t_7) + metal::float3(0.0, cam_alt_1, 0.0);
-        metal::float3 p_14 = metal::float3(rel_7.x + cam_xz.x, rel_7.y, rel_7.z + cam_xz.y);
+        metal::float3 rel_8 = (view_2 * t_7) + metal::float3(0.0, cam_alt_1, 0.0);
+        metal::float3 p_14 = metal::float3(rel_8.x + cam_xz.x, rel_8.y, rel_8.z + cam_xz.y);
         if (empty_skip) {
             float _e97 = empty_cell_exit(p_14, view_2, frame, occupancy_in);
             if (_e97 > 0.0) {
@@ -2069,7 +2098,7 @@ bool march_layer(
                 continue;
             }
         }
-        float _e115 = altitude_of(rel_7, frame);
+        float _e115 = altitude_of(rel_8, frame);
         float _e116 = layer_density(p_14, _e115, l_7, counters_7, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
         if (_e116 <= 0.0) {
             uint _e119 = empty;
@@ -2100,7 +2129,7 @@ bool march_layer(
         }
         empty = 0u;
         float sigma_t_2 = sigma_e * _e116;
-        ScatteredLight _e145 = scattered_light(rel_7, p_14, _e115, _e116, view_2, l_7, counters_7, frame, transmittance_lut_in, sky_ambient_in, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+        ScatteredLight _e145 = scattered_light(rel_8, p_14, _e115, _e116, view_2, l_7, counters_7, frame, transmittance_lut_in, sky_ambient_in, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
         float transmittance_2 = state.transmittance;
         metal::float3 _e149 = state.radiance;
         metal::float3 _e151 = step_integral(_e145.total, sigma_t_2, dt_2, frame);
@@ -2552,7 +2581,7 @@ float rng_exponential(
 Segments layer_segments(
     metal::float3 p_10,
     float alt_13,
-    metal::float3 d_12,
+    metal::float3 d_14,
     constant Frame& frame
 ) {
     Segments s_1 = Segments {metal::float2(0.0), metal::float2(0.0), 0u};
@@ -2566,9 +2595,9 @@ Segments layer_segments(
     bool local_49 = {};
     metal::float2 _e10 = layers_span(frame);
     float bottom_2 = _e10.x;
-    Roots _e12 = ray_shell_from(p_10, alt_13, d_12, bottom_2, frame);
-    Roots _e14 = ray_shell_from(p_10, alt_13, d_12, _e10.y, frame);
-    bool _e15 = hits_ground(p_10, alt_13, d_12, frame);
+    Roots _e12 = ray_shell_from(p_10, alt_13, d_14, bottom_2, frame);
+    Roots _e14 = ray_shell_from(p_10, alt_13, d_14, _e10.y, frame);
+    bool _e15 = hits_ground(p_10, alt_13, d_14, frame);
     if (!(!(_e14.hit))) {
         local_45 = _e14.t1_ <= 0.0;
     } else {
@@ -2643,7 +2672,7 @@ Segments layer_segments(
 }
 
 float density_at(
-    metal::float3 rel_5,
+    metal::float3 rel_6,
     thread Counters& counters_9,
     constant Frame& frame,
     metal::texture3d<float, metal::access::sample> shape_tex,
@@ -2654,14 +2683,14 @@ float density_at(
 ) {
     float _e6 = frame.camera_position.x;
     float _e13 = frame.camera_position.z;
-    metal::float3 p_17 = metal::float3(rel_5.x + _e6, rel_5.y, rel_5.z + _e13);
-    float _e16 = altitude_of(rel_5, frame);
+    metal::float3 p_17 = metal::float3(rel_6.x + _e6, rel_6.y, rel_6.z + _e13);
+    float _e16 = altitude_of(rel_6, frame);
     float _e17 = cloud_density(p_17, _e16, counters_9, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
     return _e17;
 }
 
 float empty_cell_skip(
-    metal::float3 origin_3,
+    metal::float3 origin_4,
     metal::float3 dir_1,
     float t_2,
     constant Frame& frame,
@@ -2671,10 +2700,10 @@ float empty_cell_skip(
     if (_e3 > 1u) {
         return 0.0;
     }
-    metal::float3 rel_8 = origin_3 + (dir_1 * t_2);
+    metal::float3 rel_9 = origin_4 + (dir_1 * t_2);
     float _e13 = frame.camera_position.x;
     float _e20 = frame.camera_position.z;
-    metal::float3 p_18 = metal::float3(rel_8.x + _e13, rel_8.y, rel_8.z + _e20);
+    metal::float3 p_18 = metal::float3(rel_9.x + _e13, rel_9.y, rel_9.z + _e20);
     float _e23 = empty_cell_exit(p_18, dir_1, frame, occupancy_in);
     if (_e23 <= 0.0) {
         return 0.0;
@@ -2715,7 +2744,7 @@ float density_max(
 }
 
 float free_flight(
-    metal::float3 origin_4,
+    metal::float3 origin_5,
     metal::float3 dir_2,
     Segments segs,
     thread uint& rng_3,
@@ -2760,7 +2789,7 @@ float free_flight(
                 if (metal::all(loop_bound_13 == uint2(0u))) { break; }
                 loop_bound_13 -= uint2(loop_bound_13.y == 0u, 1u);
                 float _e28 = t_3;
-                float _e29 = empty_cell_skip(origin_4, dir_2, _e28, frame, occupancy_in);
+                float _e29 = empty_cell_skip(origin_5, dir_2, _e28, frame, occupancy_in);
                 if (_e29 > 0.0) {
                     float _e32 = t_3;
                     t_3 = _e32 + _e29;
@@ -2782,7 +2811,7 @@ float free_flight(
                 uint _e48 = counters_10.view_steps;
                 counters_10.view_steps = _e48 + 1u;
                 float _e51 = t_3;
-                float _e54 = density_at(origin_4 + (dir_2 * _e51), counters_10, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+                float _e54 = density_at(origin_5 + (dir_2 * _e51), counters_10, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
                 float _e55 = rng_next(rng_3);
                 if ((_e55 * _e5) < _e54) {
                     float _e58 = t_3;
@@ -2795,7 +2824,7 @@ float free_flight(
 }
 
 float transmittance_along(
-    metal::float3 origin_5,
+    metal::float3 origin_6,
     metal::float3 dir_3,
     Segments segs_1,
     thread uint& rng_4,
@@ -2842,7 +2871,7 @@ float transmittance_along(
                 if (metal::all(loop_bound_15 == uint2(0u))) { break; }
                 loop_bound_15 -= uint2(loop_bound_15.y == 0u, 1u);
                 float _e30 = t_4;
-                float _e31 = empty_cell_skip(origin_5, dir_3, _e30, frame, occupancy_in);
+                float _e31 = empty_cell_skip(origin_6, dir_3, _e30, frame, occupancy_in);
                 if (_e31 > 0.0) {
                     float _e34 = t_4;
                     t_4 = _e34 + _e31;
@@ -2864,7 +2893,7 @@ float transmittance_along(
                 uint _e50 = counters_11.light;
                 counters_11.light = _e50 + 1u;
                 float _e53 = t_4;
-                float _e56 = density_at(origin_5 + (dir_3 * _e53), counters_11, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+                float _e56 = density_at(origin_6 + (dir_3 * _e53), counters_11, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
                 float _e57 = tr;
                 tr = _e57 * (1.0 - ((sigma_t_3 * _e56) / majorant_1));
                 float _e63 = tr;
@@ -2952,21 +2981,24 @@ PhaseSample sample_phase(
 }
 
 metal::float3 environment(
-    metal::float3 d_13,
+    metal::float3 pos,
+    metal::float3 d_15,
     float h_8,
     constant Frame& frame,
-    metal::texture2d<float, metal::access::sample> sky_view_in,
-    metal::texture2d<float, metal::access::sample> sky_ambient_in
+    metal::texture2d<float, metal::access::sample> transmittance_lut_in,
+    metal::texture2d<float, metal::access::sample> multiscatter_lut_in,
+    metal::texture2d<float, metal::access::sample> sky_ambient_in,
+    metal::texture2d<float, metal::access::sample> ground_irradiance_in
 ) {
-    bool _e2 = physical_sky(frame);
-    if (_e2) {
-        metal::float3 _e3 = sky_view(d_13, frame, sky_view_in);
-        metal::float4 _e6 = frame.sun_illuminance;
-        float _e12 = frame.ambient_bottom.w;
-        return (_e3 * _e6.xyz) * _e12;
+    bool _e3 = physical_sky(frame);
+    if (_e3) {
+        metal::float3 _e4 = sky_from(pos, d_15, frame, transmittance_lut_in, multiscatter_lut_in, ground_irradiance_in);
+        metal::float4 _e7 = frame.sun_illuminance;
+        float _e13 = frame.ambient_bottom.w;
+        return (_e4 * _e7.xyz) * _e13;
     }
-    metal::float3 _e14 = ambient(h_8, frame, sky_ambient_in);
-    return _e14;
+    metal::float3 _e15 = ambient(h_8, frame, sky_ambient_in);
+    return _e15;
 }
 
 PathResult trace_path(
@@ -2976,8 +3008,9 @@ PathResult trace_path(
     thread Counters& counters_12,
     constant Frame& frame,
     metal::texture2d<float, metal::access::sample> transmittance_lut_in,
-    metal::texture2d<float, metal::access::sample> sky_view_in,
+    metal::texture2d<float, metal::access::sample> multiscatter_lut_in,
     metal::texture2d<float, metal::access::sample> sky_ambient_in,
+    metal::texture2d<float, metal::access::sample> ground_irradiance_in,
     metal::texture3d<float, metal::access::sample> shape_tex,
     metal::texture3d<float, metal::access::sample> detail_tex,
     metal::texture2d<float, metal::access::sample> weather_tex,
@@ -2990,7 +3023,7 @@ PathResult trace_path(
     bool local_51 = {};
     bool local_52 = {};
     uint max_orders = MAX_PATH_ORDERS;
-    metal::float3 pos = {};
+    metal::float3 pos_1 = {};
     metal::float3 dir_5 = {};
     float throughput = 1.0;
     uint order = 0u;
@@ -3011,7 +3044,7 @@ PathResult trace_path(
     }
     out_2.depth = _e33;
     metal::float4 _e40 = frame.sun_direction;
-    metal::float3 sun_5 = _e40.xyz;
+    metal::float3 sun_6 = _e40.xyz;
     float _e45 = frame.extinction.x;
     float _e49 = frame.extinction.y;
     float sigma_t_4 = _e45 + _e49;
@@ -3044,7 +3077,7 @@ PathResult trace_path(
         uint _e108 = frame.misc.z;
         max_orders = metal::min(_e108, MAX_PATH_ORDERS);
     }
-    pos = cam + (view_3 * _e33);
+    pos_1 = cam + (view_3 * _e33);
     dir_5 = view_3;
     uint2 loop_bound_16 = uint2(4294967295u);
     while(true) {
@@ -3054,74 +3087,75 @@ PathResult trace_path(
         throughput = _e119 * albedo;
         uint _e121 = order;
         order = _e121 + 1u;
-        metal::float3 _e124 = pos;
+        metal::float3 _e124 = pos_1;
         float _e125 = altitude_of(_e124, frame);
         float _e126 = height_fraction(_e125, frame);
-        metal::float3 _e127 = pos;
-        bool _e128 = hits_ground(_e127, _e125, sun_5, frame);
+        metal::float3 _e127 = pos_1;
+        bool _e128 = hits_ground(_e127, _e125, sun_6, frame);
         if (!(_e128)) {
-            metal::float3 _e130 = pos;
-            metal::float3 _e131 = pos;
-            Segments _e132 = layer_segments(_e131, _e125, sun_5, frame);
-            float _e133 = transmittance_along(_e130, sun_5, _e132, rng_6, counters_12, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler, occupancy_in);
+            metal::float3 _e130 = pos_1;
+            metal::float3 _e131 = pos_1;
+            Segments _e132 = layer_segments(_e131, _e125, sun_6, frame);
+            float _e133 = transmittance_along(_e130, sun_6, _e132, rng_6, counters_12, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler, occupancy_in);
             metal::float3 _e135 = out_2.radiance;
             metal::float4 _e138 = frame.sun_illuminance;
-            metal::float3 _e140 = pos;
+            metal::float3 _e140 = pos_1;
             metal::float3 _e141 = sun_through_air(_e140, frame, transmittance_lut_in);
             float _e143 = throughput;
             metal::float3 _e144 = dir_5;
-            float _e147 = phase(metal::dot(_e144, sun_5), 1.0, frame);
+            float _e147 = phase(metal::dot(_e144, sun_6), 1.0, frame);
             out_2.radiance = _e135 + ((_e138.xyz * _e141) * ((_e143 * _e147) * _e133));
         }
         metal::float3 _e152 = dir_5;
         PhaseSample _e153 = sample_phase(_e152, rng_6, frame);
-        metal::float3 _e154 = pos;
-        metal::float3 _e156 = pos;
+        metal::float3 _e154 = pos_1;
+        metal::float3 _e156 = pos_1;
         Segments _e158 = layer_segments(_e156, _e125, _e153.dir, frame);
         float _e159 = free_flight(_e154, _e153.dir, _e158, rng_6, counters_12, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler, occupancy_in);
         if (_e159 < 0.0) {
             if (ambient_on) {
                 metal::float3 _e163 = out_2.radiance;
-                metal::float3 _e165 = environment(_e153.dir, _e126, frame, sky_view_in, sky_ambient_in);
-                float _e166 = throughput;
-                out_2.radiance = _e163 + (_e165 * (_e166 * _e153.weight));
+                metal::float3 _e164 = pos_1;
+                metal::float3 _e166 = environment(_e164, _e153.dir, _e126, frame, transmittance_lut_in, multiscatter_lut_in, sky_ambient_in, ground_irradiance_in);
+                float _e167 = throughput;
+                out_2.radiance = _e163 + (_e166 * (_e167 * _e153.weight));
             }
             break;
         }
-        uint _e171 = order;
-        uint _e172 = max_orders;
-        if (_e171 >= _e172) {
+        uint _e172 = order;
+        uint _e173 = max_orders;
+        if (_e172 >= _e173) {
             break;
         }
-        float _e174 = throughput;
-        throughput = _e174 * _e153.weight;
+        float _e175 = throughput;
+        throughput = _e175 * _e153.weight;
         dir_5 = _e153.dir;
-        uint _e178 = order;
-        if (_e178 >= 3u) {
-            float _e183 = throughput;
-            local_53 = _e183 < 0.1;
+        uint _e179 = order;
+        if (_e179 >= 3u) {
+            float _e184 = throughput;
+            local_53 = _e184 < 0.1;
         } else {
             local_53 = false;
         }
-        bool _e187 = local_53;
-        if (_e187) {
-            float _e188 = rng_next(rng_6);
-            float _e189 = throughput;
-            if (_e188 >= (_e189 / 0.1)) {
+        bool _e188 = local_53;
+        if (_e188) {
+            float _e189 = rng_next(rng_6);
+            float _e190 = throughput;
+            if (_e189 >= (_e190 / 0.1)) {
                 break;
             }
             throughput = 0.1;
         }
-        float _e194 = throughput;
-        if (_e194 <= 0.0) {
+        float _e195 = throughput;
+        if (_e195 <= 0.0) {
             break;
         }
-        metal::float3 _e197 = pos;
-        metal::float3 _e198 = dir_5;
-        pos = _e197 + (_e198 * _e159);
+        metal::float3 _e198 = pos_1;
+        metal::float3 _e199 = dir_5;
+        pos_1 = _e198 + (_e199 * _e159);
     }
-    PathResult _e201 = out_2;
-    return _e201;
+    PathResult _e202 = out_2;
+    return _e202;
 }
 
 bool camera_still(
@@ -3166,7 +3200,7 @@ float luminance(
 }
 
 float basic_sun_depth(
-    metal::float3 rel_6,
+    metal::float3 rel_7,
     float alt_14,
     thread Counters& counters_13,
     constant Frame& frame,
@@ -3183,12 +3217,12 @@ float basic_sun_depth(
         return 0.0;
     }
     metal::float4 _e12 = frame.sun_direction;
-    metal::float3 sun_6 = _e12.xyz;
+    metal::float3 sun_7 = _e12.xyz;
     float rp_5 = frame.atmosphere.x;
     float top_2 = frame.atmosphere.z;
     float _e25 = frame.atmosphere.y;
     float thickness = top_2 - _e25;
-    Roots _e39 = solve_sphere(metal::dot(sun_6, metal::float3(rel_6.x, rel_6.y + rp_5, rel_6.z)), (alt_14 - top_2) * ((alt_14 + top_2) + (2.0 * rp_5)));
+    Roots _e39 = solve_sphere(metal::dot(sun_7, metal::float3(rel_7.x, rel_7.y + rp_5, rel_7.z)), (alt_14 - top_2) * ((alt_14 + top_2) + (2.0 * rp_5)));
     float length = metal::min(metal::max(_e39.t1_, 0.0), 3.0 * thickness);
     float dt_3 = length / static_cast<float>(steps_4);
     float _e51 = frame.extinction.x;
@@ -3215,7 +3249,7 @@ float basic_sun_depth(
             uint _e68 = counters_13.light;
             counters_13.light = _e68 + 1u;
             uint _e71 = i_16;
-            metal::float3 q_8 = rel_6 + (sun_6 * (static_cast<float>(_e71) * dt_3));
+            metal::float3 q_8 = rel_7 + (sun_7 * (static_cast<float>(_e71) * dt_3));
             metal::float3 p_19 = metal::float3(q_8.x + cam_xz_1.x, q_8.y, q_8.z + cam_xz_1.y);
             float _e84 = tau_8;
             float _e85 = altitude_of(q_8, frame);
@@ -3286,14 +3320,14 @@ MarchResult basic_pixel(
                     counters_14.view_steps = _e74 + 1u;
                     uint _e78 = i_17;
                     float t_9 = _e25.start + (static_cast<float>(_e78) * dt_4);
-                    metal::float3 rel_9 = (_e1 * t_9) + metal::float3(0.0, cam_alt_3, 0.0);
-                    metal::float3 p_20 = metal::float3(rel_9.x + cam_xz_2.x, rel_9.y, rel_9.z + cam_xz_2.y);
-                    float _e95 = altitude_of(rel_9, frame);
+                    metal::float3 rel_10 = (_e1 * t_9) + metal::float3(0.0, cam_alt_3, 0.0);
+                    metal::float3 p_20 = metal::float3(rel_10.x + cam_xz_2.x, rel_10.y, rel_10.z + cam_xz_2.y);
+                    float _e95 = altitude_of(rel_10, frame);
                     float _e96 = cloud_density(p_20, _e95, counters_14, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
                     if (_e96 <= 0.0) {
                         continue;
                     }
-                    float _e99 = basic_sun_depth(rel_9, _e95, counters_14, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+                    float _e99 = basic_sun_depth(rel_10, _e95, counters_14, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
                     float beer_powder = (2.0 * metal::exp(-(_e99))) * (1.0 - metal::exp(-2.0 * _e99));
                     metal::float3 _e110 = radiance_2;
                     float _e111 = transmittance_1;
@@ -3441,9 +3475,9 @@ float sprite_texture(
             float _e93 = atlas_hash(tile_1, 100u + _e91);
             float r_18 = 0.14 + (0.1 * _e93);
             metal::float2 _e98 = at;
-            float d_20 = metal::length(uv - _e98) / r_18;
+            float d_22 = metal::length(uv - _e98) / r_18;
             float _e102 = billow;
-            float _e106 = saturate(1.0 - (d_20 * d_20));
+            float _e106 = saturate(1.0 - (d_22 * d_22));
             billow = metal::max(_e102, _e106);
         }
     }
@@ -3465,10 +3499,10 @@ metal::float3 sprite_rel(
 ) {
     float rp_6 = frame.atmosphere.x;
     metal::float4 _e8 = frame.camera_position;
-    metal::float2 d_21 = xz - _e8.xz;
-    float k_18 = (alt_15 * (alt_15 + (2.0 * rp_6))) - metal::dot(d_21, d_21);
+    metal::float2 d_23 = xz - _e8.xz;
+    float k_18 = (alt_15 * (alt_15 + (2.0 * rp_6))) - metal::dot(d_23, d_23);
     float y_3 = k_18 / (rp_6 + metal::sqrt(metal::max((rp_6 * rp_6) + k_18, 0.0)));
-    return metal::float3(d_21.x, y_3, d_21.y);
+    return metal::float3(d_23.x, y_3, d_23.y);
 }
 
 SpriteCell sprite_cell(
@@ -3601,38 +3635,38 @@ metal::float2 sprite_corner(
 }
 
 metal::float3 sky_radiance(
-    metal::float3 d_14,
+    metal::float3 d_16,
     float alt_16,
     constant Frame& frame
 ) {
     metal::float4 _e4 = frame.sun_direction;
-    metal::float3 sun_7 = _e4.xyz;
+    metal::float3 sun_8 = _e4.xyz;
     metal::float4 _e8 = frame.sun_illuminance;
     metal::float3 e = _e8.xyz;
-    float _e15 = saturate((sun_7.y * 4.0) + 0.3);
-    bool _e19 = hits_ground(metal::float3(0.0, alt_16, 0.0), alt_16, d_14, frame);
+    float _e15 = saturate((sun_8.y * 4.0) + 0.3);
+    bool _e19 = hits_ground(metal::float3(0.0, alt_16, 0.0), alt_16, d_16, frame);
     if (_e19) {
         metal::float3 ground_albedo = metal::float3(0.035, 0.035, 0.03);
-        return ground_albedo * (((e * metal::max(sun_7.y, 0.0)) / metal::float3(3.1415927)) + ((0.05 * e) * _e15));
+        return ground_albedo * (((e * metal::max(sun_8.y, 0.0)) / metal::float3(3.1415927)) + ((0.05 * e) * _e15));
     }
     metal::float3 zenith = metal::float3(0.018, 0.04, 0.1);
     metal::float3 horizon_2 = metal::float3(0.07, 0.085, 0.11);
-    float _e45 = saturate(d_14.y);
+    float _e45 = saturate(d_16.y);
     metal::float3 gradient_1 = metal::mix(horizon_2, zenith, metal::sqrt(_e45));
     metal::float3 sunset = ((1.0 - (_e15 * 0.8)) * metal::pow(1.0 - _e45, 6.0)) * metal::float3(0.25, 0.1, 0.0);
-    float _e64 = phase_hg(metal::dot(d_14, sun_7), 0.76);
+    float _e64 = phase_hg(metal::dot(d_16, sun_8), 0.76);
     float glow = _e64 * 0.02;
-    float _e73 = saturate((sun_7.y * 10.0) + 1.0);
+    float _e73 = saturate((sun_8.y * 10.0) + 1.0);
     return e * (((gradient_1 * _e15) + (sunset * _e73)) + metal::float3(glow * _e15));
 }
 
 metal::float3 sun_disk(
-    metal::float3 d_15,
+    metal::float3 d_17,
     constant Frame& frame
 ) {
     float cos_r = frame.sun_direction.w;
     metal::float4 _e7 = frame.sun_direction;
-    if (metal::dot(d_15, _e7.xyz) < cos_r) {
+    if (metal::dot(d_17, _e7.xyz) < cos_r) {
         return metal::float3(0.0);
     }
     metal::float4 _e15 = frame.sun_illuminance;
@@ -3640,13 +3674,13 @@ metal::float3 sun_disk(
 }
 
 metal::float3 moon_disk(
-    metal::float3 d_16,
+    metal::float3 d_18,
     constant Frame& frame
 ) {
     bool local_60 = {};
     metal::float4 _e3 = frame.moon;
     metal::float3 m_3 = _e3.xyz;
-    float c_11 = metal::dot(d_16, m_3);
+    float c_11 = metal::dot(d_18, m_3);
     float _e9 = frame.moon.w;
     if (!((_e9 <= 0.0))) {
         local_60 = c_11 < MOON_COS_RADIUS;
@@ -3657,7 +3691,7 @@ metal::float3 moon_disk(
     if (_e18) {
         return metal::float3(0.0);
     }
-    metal::float3 offset = (d_16 - (m_3 * c_11)) / metal::float3(0.0045149517);
+    metal::float3 offset = (d_18 - (m_3 * c_11)) / metal::float3(0.0045149517);
     float x2_1 = metal::min(metal::dot(offset, offset), 1.0);
     metal::float3 normal = offset - (m_3 * metal::sqrt(1.0 - x2_1));
     metal::float4 _e36 = frame.night;
@@ -3667,7 +3701,7 @@ metal::float3 moon_disk(
 }
 
 metal::float3 stars(
-    metal::float3 d_17,
+    metal::float3 d_19,
     constant Frame& frame
 ) {
     uint face = 0u;
@@ -3679,7 +3713,7 @@ metal::float3 stars(
     if (e0_ <= 0.0) {
         return metal::float3(0.0);
     }
-    metal::float3 a_10 = metal::abs(d_17);
+    metal::float3 a_10 = metal::abs(d_19);
     if (a_10.x >= a_10.y) {
         local_61 = a_10.x >= a_10.z;
     } else {
@@ -3687,17 +3721,17 @@ metal::float3 stars(
     }
     bool _e26 = local_61;
     if (_e26) {
-        face = (d_17.x > 0.0) ? 0u : 1u;
-        uv_1 = d_17.zy;
+        face = (d_19.x > 0.0) ? 0u : 1u;
+        uv_1 = d_19.zy;
         major = a_10.x;
     } else {
         if (a_10.y >= a_10.z) {
-            face = (d_17.y > 0.0) ? 2u : 3u;
-            uv_1 = d_17.xz;
+            face = (d_19.y > 0.0) ? 2u : 3u;
+            uv_1 = d_19.xz;
             major = a_10.y;
         } else {
-            face = (d_17.z > 0.0) ? 4u : 5u;
-            uv_1 = d_17.xy;
+            face = (d_19.z > 0.0) ? 4u : 5u;
+            uv_1 = d_19.xy;
             major = a_10.z;
         }
     }
@@ -3751,7 +3785,7 @@ metal::float3 stars(
     uint _e209 = frame.counts.y;
     float pixel_angle = (2.0 * _e203) / static_cast<float>(_e209);
     metal::float3 _e212 = star;
-    float dist_1 = metal::acos(metal::clamp(metal::dot(d_17, _e212), -1.0, 1.0)) / pixel_angle;
+    float dist_1 = metal::acos(metal::clamp(metal::dot(d_19, _e212), -1.0, 1.0)) / pixel_angle;
     float weight_1 = metal::exp((-(dist_1) * dist_1) / 0.5) / 1.5707964;
     metal::float3 tint = metal::mix(metal::float3(0.8, 0.9, 1.1), metal::float3(1.15, 0.95, 0.75), h3_ * h4_);
     return tint * ((illuminance * weight_1) / (pixel_angle * pixel_angle));
@@ -3912,8 +3946,8 @@ struct multiscatter_lutInput {
     float _e18 = air_top(frame);
     float _e19 = air_bottom(frame);
     float r_20 = _e16 + (x_12.y * (_e18 - _e19));
-    metal::float3 origin_6 = metal::float3(0.0, r_20, 0.0);
-    metal::float3 sun_8 = metal::float3(metal::sqrt(metal::max(1.0 - (mu_s_7 * mu_s_7), 0.0)), mu_s_7, 0.0);
+    metal::float3 origin_7 = metal::float3(0.0, r_20, 0.0);
+    metal::float3 sun_9 = metal::float3(metal::sqrt(metal::max(1.0 - (mu_s_7 * mu_s_7), 0.0)), mu_s_7, 0.0);
     uint2 loop_bound_23 = uint2(4294967295u);
     bool loop_init_19 = true;
     while(true) {
@@ -3932,7 +3966,7 @@ struct multiscatter_lutInput {
         {
             uint _e46 = k;
             metal::float3 _e48 = fibonacci_direction(_e46, MULTISCATTER_DIRECTIONS);
-            metal::float2 _e49 = air_ray_end(origin_6, _e48, frame);
+            metal::float2 _e49 = air_ray_end(origin_7, _e48, frame);
             float dt_6 = _e49.x / 32.0;
             tau = metal::float3(0.0);
             i_1 = 0u;
@@ -3953,7 +3987,7 @@ struct multiscatter_lutInput {
                 }
                 {
                     uint _e61 = i_1;
-                    metal::float3 p_21 = origin_6 + (_e48 * (dt_6 * (static_cast<float>(_e61) + 0.5)));
+                    metal::float3 p_21 = origin_7 + (_e48 * (dt_6 * (static_cast<float>(_e61) + 0.5)));
                     float rp_7 = metal::length(p_21);
                     float _e69 = air_bottom(frame);
                     AirSample _e71 = air_at(rp_7 - _e69, frame);
@@ -3961,7 +3995,7 @@ struct multiscatter_lutInput {
                     metal::float3 t_10 = metal::exp(-((_e72 + ((0.5 * _e71.extinction) * dt_6))));
                     metal::float3 s_13 = _e71.rayleigh + metal::float3(_e71.mie);
                     metal::float3 _e84 = l2_;
-                    metal::float3 _e90 = sun_transmittance(rp_7, metal::dot(p_21 / metal::float3(rp_7), sun_8), frame, transmittance_lut_in);
+                    metal::float3 _e90 = sun_transmittance(rp_7, metal::dot(p_21 / metal::float3(rp_7), sun_9), frame, transmittance_lut_in);
                     l2_ = _e84 + ((((t_10 * s_13) * 0.07957747) * _e90) * dt_6);
                     metal::float3 _e94 = f_ms;
                     f_ms = _e94 + ((t_10 * s_13) * dt_6);
@@ -3970,10 +4004,10 @@ struct multiscatter_lutInput {
                 }
             }
             if (_e49.y > 0.5) {
-                metal::float3 g_7 = origin_6 + (_e48 * _e49.x);
+                metal::float3 g_7 = origin_7 + (_e48 * _e49.x);
                 metal::float3 _e111 = l2_;
                 metal::float3 _e112 = tau;
-                metal::float3 _e117 = ground_radiance_sun(metal::dot(metal::normalize(g_7), sun_8), frame, transmittance_lut_in);
+                metal::float3 _e117 = ground_radiance_sun(metal::dot(metal::normalize(g_7), sun_9), frame, transmittance_lut_in);
                 l2_ = _e111 + (metal::exp(-(_e112)) * _e117);
             }
         }
@@ -4005,13 +4039,9 @@ struct sky_view_lutInput {
     float _e15 = sky_view_elevation(x_13.y, _e14);
     float _e16 = sun_azimuth(frame);
     float phi_2 = _e16 + (x_13.x * PI);
-    metal::float3 d_22 = metal::float3(metal::cos(_e15) * metal::cos(phi_2), metal::sin(_e15), metal::cos(_e15) * metal::sin(phi_2));
-    metal::float2 _e29 = air_ray_end(_e11, d_22, frame);
-    metal::float4 _e32 = frame.sun_direction;
-    metal::float3 sun_9 = _e32.xyz;
-    Scattered _e36 = integrate_air(_e11, d_22, _e29.x, SKY_VIEW_STEPS, sun_9, frame, transmittance_lut_in, multiscatter_lut_in);
-    metal::float3 _e43 = with_ground(_e36, _e11, d_22, _e29.x, sun_9, _e29.y > 0.5, frame, transmittance_lut_in, ground_irradiance_in);
-    sky_view_out.write(metal::float4(_e43, 1.0), metal::uint2(id_2.xy));
+    metal::float3 d_24 = metal::float3(metal::cos(_e15) * metal::cos(phi_2), metal::sin(_e15), metal::cos(_e15) * metal::sin(phi_2));
+    metal::float3 _e31 = sky_along(_e11, d_24, frame, transmittance_lut_in, multiscatter_lut_in, ground_irradiance_in);
+    sky_view_out.write(metal::float4(_e31, 1.0), metal::uint2(id_2.xy));
     return;
 }
 
@@ -4133,7 +4163,7 @@ struct sky_ambientInput {
     float _e22 = frame.atmosphere.z;
     float alt_m = top_3 ? _e22 : _e18;
     float _e24 = air_bottom(frame);
-    metal::float3 origin_7 = metal::float3(0.0, _e24 + (alt_m * 0.001), 0.0);
+    metal::float3 origin_8 = metal::float3(0.0, _e24 + (alt_m * 0.001), 0.0);
     uint first = top_3 ? 0u : 32u;
     k_2 = first;
     uint2 loop_bound_27 = uint2(4294967295u);
@@ -4154,13 +4184,13 @@ struct sky_ambientInput {
         {
             uint _e43 = k_2;
             metal::float3 _e45 = fibonacci_direction(_e43, AMBIENT_DIRECTIONS);
-            metal::float2 _e46 = air_ray_end(origin_7, _e45, frame);
+            metal::float2 _e46 = air_ray_end(origin_8, _e45, frame);
             metal::float4 _e49 = frame.sun_direction;
             metal::float3 sun_11 = _e49.xyz;
-            Scattered _e53 = integrate_air(origin_7, _e45, _e46.x, AMBIENT_STEPS, sun_11, frame, transmittance_lut_in, multiscatter_lut_in);
+            Scattered _e53 = integrate_air(origin_8, _e45, _e46.x, AMBIENT_STEPS, sun_11, frame, transmittance_lut_in, multiscatter_lut_in);
             float w_8 = metal::abs(_e45.y);
             metal::float3 _e56 = sum_1;
-            metal::float3 _e61 = with_ground(_e53, origin_7, _e45, _e46.x, sun_11, _e46.y > 0.5, frame, transmittance_lut_in, ground_irradiance_in);
+            metal::float3 _e61 = with_ground(_e53, origin_8, _e45, _e46.x, sun_11, _e46.y > 0.5, frame, transmittance_lut_in, ground_irradiance_in);
             sum_1 = _e56 + (w_8 * _e61);
             float _e64 = weights;
             weights = _e64 + w_8;
@@ -4197,7 +4227,7 @@ struct ground_irradianceInput {
     float mu_s_9 = ((static_cast<float>(id_5.x) / 63.0) * 2.0) - 1.0;
     metal::float3 sun_12 = metal::float3(metal::sqrt(metal::max(1.0 - (mu_s_9 * mu_s_9), 0.0)), mu_s_9, 0.0);
     float _e28 = air_bottom(frame);
-    metal::float3 origin_8 = metal::float3(0.0, _e28 + 0.001, 0.0);
+    metal::float3 origin_9 = metal::float3(0.0, _e28 + 0.001, 0.0);
     uint2 loop_bound_28 = uint2(4294967295u);
     bool loop_init_24 = true;
     while(true) {
@@ -4219,9 +4249,9 @@ struct ground_irradianceInput {
             if (_e44.y <= 0.0) {
                 continue;
             }
-            metal::float2 _e48 = air_ray_end(origin_8, _e44, frame);
+            metal::float2 _e48 = air_ray_end(origin_9, _e44, frame);
             metal::float3 _e49 = sum_2;
-            Scattered _e52 = integrate_air(origin_8, _e44, _e48.x, AMBIENT_STEPS, sun_12, frame, transmittance_lut_in, multiscatter_lut_in);
+            Scattered _e52 = integrate_air(origin_9, _e44, _e48.x, AMBIENT_STEPS, sun_12, frame, transmittance_lut_in, multiscatter_lut_in);
             sum_2 = _e49 + (_e52.radiance * _e44.y);
         }
     }
@@ -4717,8 +4747,9 @@ struct pathtraceInput {
 , uint lane [[thread_index_in_threadgroup]]
 , constant Frame& frame [[user(fake0)]]
 , metal::texture2d<float, metal::access::sample> transmittance_lut_in [[user(fake0)]]
-, metal::texture2d<float, metal::access::sample> sky_view_in [[user(fake0)]]
+, metal::texture2d<float, metal::access::sample> multiscatter_lut_in [[user(fake0)]]
 , metal::texture2d<float, metal::access::sample> sky_ambient_in [[user(fake0)]]
+, metal::texture2d<float, metal::access::sample> ground_irradiance_in [[user(fake0)]]
 , metal::texture3d<float, metal::access::sample> shape_tex [[user(fake0)]]
 , metal::texture3d<float, metal::access::sample> detail_tex [[user(fake0)]]
 , metal::texture2d<float, metal::access::sample> weather_tex [[user(fake0)]]
@@ -4765,7 +4796,7 @@ struct pathtraceInput {
     uint _e44 = frame.misc.y;
     uint _e48 = rng_seed(pixel_11, (_e44 * PATHS_PER_FRAME) + lane);
     rng = _e48;
-    PathResult _e50 = trace_path(_e10, _e15, rng, counters_1, frame, transmittance_lut_in, sky_view_in, sky_ambient_in, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler, occupancy_in);
+    PathResult _e50 = trace_path(_e10, _e15, rng, counters_1, frame, transmittance_lut_in, multiscatter_lut_in, sky_ambient_in, ground_irradiance_in, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler, occupancy_in);
     float _e52 = luminance(_e50.radiance);
     bool hit = _e50.depth >= 0.0;
     lane_sums.inner[lane] = metal::float4(_e50.radiance, _e50.transmittance);
@@ -5000,8 +5031,8 @@ struct sprite_buildInput {
         float _e167 = me.alt;
         metal::float3 _e168 = sprite_rel(_e165, _e167, frame);
         float _e172 = frame.camera_position.y;
-        metal::float3 rel_10 = _e168 - metal::float3(0.0, _e172, 0.0);
-        float _e180 = saturate(metal::length(rel_10) / SPRITE_MAX_DISTANCE);
+        metal::float3 rel_11 = _e168 - metal::float3(0.0, _e172, 0.0);
+        float _e180 = saturate(metal::length(rel_11) / SPRITE_MAX_DISTANCE);
         key = 1048576.0 - metal::floor(_e180 * 1048575.0);
     }
     float _e191 = me.xz.x;
@@ -5223,10 +5254,10 @@ struct sprite_resolveInput {
     }
     count(STAT_PIXELS, 1u, stats);
     metal::float4 c_13 = sprite_radiance_in.read(metal::uint2(id_16.xy), 0);
-    metal::float4 d_23 = sprite_depth_in.read(metal::uint2(id_16.xy), 0);
+    metal::float4 d_25 = sprite_depth_in.read(metal::uint2(id_16.xy), 0);
     float _e19 = saturate(c_13.w);
     cloud_out.write(metal::float4(c_13.xyz, 1.0 - _e19), metal::uint2(id_16.xy));
-    depth_out.write(metal::float4((d_23.w > 0.0001) ? (d_23.x / d_23.w) : 0.0, 0.0, 0.0, 0.0), metal::uint2(id_16.xy));
+    depth_out.write(metal::float4((d_25.w > 0.0001) ? (d_25.x / d_25.w) : 0.0, 0.0, 0.0, 0.0), metal::uint2(id_16.xy));
     return;
 }
 

@@ -364,8 +364,8 @@ float3 view_ray(uint2 pixel_1)
     float4 _e26 = frame.camera_forward;
     float4 _e30 = frame.camera_right;
     float4 _e39 = frame.camera_up;
-    float3 d_18 = ((_e26.xyz + (_e30.xyz * ((ndc.x * tan_half) * aspect))) - (_e39.xyz * (ndc.y * tan_half)));
-    return normalize(d_18);
+    float3 d_20 = ((_e26.xyz + (_e30.xyz * ((ndc.x * tan_half) * aspect))) - (_e39.xyz * (ndc.y * tan_half)));
+    return normalize(d_20);
 }
 
 Roots ConstructRoots(float arg0, float arg1, bool arg2) {
@@ -811,9 +811,9 @@ float2 transmittance_r_mu(float2 x_4)
     float r_14 = sqrt(((rho_1 * rho_1) + (_e1 * _e1)));
     float d_min_1 = (_e2 - r_14);
     float d_max_1 = (rho_1 + h_12);
-    float d_19 = (d_min_1 + (x_4.x * (d_max_1 - d_min_1)));
-    if ((d_19 > 0.0)) {
-        mu_6 = clamp(((((h_12 * h_12) - (rho_1 * rho_1)) - (d_19 * d_19)) / ((2.0 * r_14) * d_19)), -1.0, 1.0);
+    float d_21 = (d_min_1 + (x_4.x * (d_max_1 - d_min_1)));
+    if ((d_21 > 0.0)) {
+        mu_6 = clamp(((((h_12 * h_12) - (rho_1 * rho_1)) - (d_21 * d_21)) / ((2.0 * r_14) * d_21)), -1.0, 1.0);
     }
     float _e37 = mu_6;
     return float2(r_14, _e37);
@@ -1019,14 +1019,31 @@ float sun_azimuth()
     return atan2(s_5.z, s_5.x);
 }
 
-float3 sky_view(float3 d_10)
+float3 sky_along(float3 origin_3, float3 d_10)
+{
+    const float2 _e2 = air_ray_end(origin_3, d_10);
+    float4 _e5 = frame.sun_direction;
+    float3 sun_2 = _e5.xyz;
+    const Scattered _e9 = integrate_air(origin_3, d_10, _e2.x, SKY_VIEW_STEPS, sun_2);
+    const float3 _e14 = with_ground(_e9, origin_3, d_10, _e2.x, sun_2, (_e2.y > 0.5));
+    return _e14;
+}
+
+float3 sky_from(float3 rel, float3 d_11)
+{
+    float _e7 = frame.atmosphere.x;
+    const float3 _e13 = sky_along((float3(rel.x, (rel.y + _e7), rel.z) * 0.001), d_11);
+    return _e13;
+}
+
+float3 sky_view(float3 d_12)
 {
     float delta = (float)0;
 
     const float3 _e1 = camera_air_origin();
-    float elevation_1 = asin(clamp(d_10.y, -1.0, 1.0));
+    float elevation_1 = asin(clamp(d_12.y, -1.0, 1.0));
     const float _e10 = sun_azimuth();
-    delta = (atan2(d_10.z, d_10.x) - _e10);
+    delta = (atan2(d_12.z, d_12.x) - _e10);
     float _e13 = delta;
     float _e15 = delta;
     delta = abs((_e13 - (6.2831855 * round((_e15 / 6.2831855)))));
@@ -1093,14 +1110,14 @@ float4 aerial(uint2 pixel_2, float depth_m)
     return lerp(_e76, _e77, ws);
 }
 
-float3 sun_through_air(float3 rel)
+float3 sun_through_air(float3 rel_1)
 {
     const bool _e1 = physical_sky();
     if (!(_e1)) {
         return (1.0).xxx;
     }
     float _e10 = frame.atmosphere.x;
-    float3 q_6 = (float3(rel.x, (rel.y + _e10), rel.z) * 0.001);
+    float3 q_6 = (float3(rel_1.x, (rel_1.y + _e10), rel_1.z) * 0.001);
     float r_17 = length(q_6);
     float4 _e21 = frame.sun_direction;
     const float3 _e24 = sun_transmittance(r_17, dot((q_6 / (r_17).xxx), _e21.xyz));
@@ -1386,7 +1403,7 @@ float phase(float cos_theta_4, float scale)
     }
 }
 
-float sun_optical_depth(float3 rel_1, float3 p_6, Layer l_4, inout Counters counters_5)
+float sun_optical_depth(float3 rel_2, float3 p_6, Layer l_4, inout Counters counters_5)
 {
     float seg = (float)0;
     float dist = 0.0;
@@ -1399,7 +1416,7 @@ float sun_optical_depth(float3 rel_1, float3 p_6, Layer l_4, inout Counters coun
     bool local_30 = (bool)0;
 
     float4 _e6 = frame.sun_direction;
-    float3 sun_2 = _e6.xyz;
+    float3 sun_3 = _e6.xyz;
     float _e11 = frame.extinction.x;
     float _e15 = frame.extinction.y;
     float sigma_t_1 = (_e11 + _e15);
@@ -1426,7 +1443,7 @@ float sun_optical_depth(float3 rel_1, float3 p_6, Layer l_4, inout Counters coun
             float _e38 = dist;
             float _e39 = seg;
             float s_8 = (_e38 + (0.5 * _e39));
-            float3 q_7 = (rel_1 + (sun_2 * s_8));
+            float3 q_7 = (rel_2 + (sun_3 * s_8));
             const float _e45 = altitude_of(q_7);
             if (!((_e45 > l_4.top))) {
                 local_27 = (_e45 < l_4.bottom);
@@ -1440,7 +1457,7 @@ float sun_optical_depth(float3 rel_1, float3 p_6, Layer l_4, inout Counters coun
             uint _e56 = counters_5.light;
             counters_5.light = (_e56 + 1u);
             float _e59 = tau_4;
-            const float _e62 = layer_density((p_6 + (sun_2 * s_8)), _e45, l_4, counters_5);
+            const float _e62 = layer_density((p_6 + (sun_3 * s_8)), _e45, l_4, counters_5);
             float _e64 = seg;
             tau_4 = (_e59 + ((_e62 * sigma_t_1) * _e64));
             float _e67 = dist;
@@ -1450,7 +1467,7 @@ float sun_optical_depth(float3 rel_1, float3 p_6, Layer l_4, inout Counters coun
             seg = (_e70 * growth);
         }
     }
-    const float _e75 = altitude_of(rel_1);
+    const float _e75 = altitude_of(rel_2);
     uint2 loop_bound_5 = uint2(4294967295u, 4294967295u);
     bool loop_init_5 = true;
     while(true) {
@@ -1473,8 +1490,8 @@ float sun_optical_depth(float3 rel_1, float3 p_6, Layer l_4, inout Counters coun
             if ((_e82.bottom <= l_4.top)) {
                 continue;
             }
-            const Roots _e87 = ray_shell_from(rel_1, _e75, sun_2, _e82.bottom);
-            const Roots _e89 = ray_shell_from(rel_1, _e75, sun_2, _e82.top);
+            const Roots _e87 = ray_shell_from(rel_2, _e75, sun_3, _e82.bottom);
+            const Roots _e89 = ray_shell_from(rel_2, _e75, sun_3, _e82.top);
             if (!(!(_e87.hit))) {
                 local_28 = !(_e89.hit);
             } else {
@@ -1500,8 +1517,8 @@ float sun_optical_depth(float3 rel_1, float3 p_6, Layer l_4, inout Counters coun
             uint _e122 = counters_5.light;
             counters_5.light = (_e122 + 1u);
             float _e125 = tau_4;
-            const float _e130 = altitude_of((rel_1 + (sun_2 * s_9)));
-            const float _e131 = layer_density((p_6 + (sun_2 * s_9)), _e130, _e82, counters_5);
+            const float _e130 = altitude_of((rel_2 + (sun_3 * s_9)));
+            const float _e131 = layer_density((p_6 + (sun_3 * s_9)), _e130, _e82, counters_5);
             tau_4 = (_e125 + ((_e131 * sigma_t_1) * (_e89.t1_ - _e87.t1_)));
         }
     }
@@ -1509,7 +1526,7 @@ float sun_optical_depth(float3 rel_1, float3 p_6, Layer l_4, inout Counters coun
     return _e141;
 }
 
-float far_optical_depth(float3 rel_2, float3 p_7, Layer l_5)
+float far_optical_depth(float3 rel_3, float3 p_7, Layer l_5)
 {
     bool local_31 = (bool)0;
     float reach = (float)0;
@@ -1538,9 +1555,9 @@ float far_optical_depth(float3 rel_2, float3 p_7, Layer l_5)
         reach = ((_e41 * (pow(growth_1, steps_3) - 1.0)) / (growth_1 - 1.0));
     }
     float4 _e51 = frame.sun_direction;
-    float3 sun_3 = _e51.xyz;
-    const float _e53 = altitude_of(rel_2);
-    const Roots _e55 = ray_shell_from(rel_2, _e53, sun_3, l_5.top);
+    float3 sun_4 = _e51.xyz;
+    const float _e53 = altitude_of(rel_3);
+    const Roots _e55 = ray_shell_from(rel_3, _e53, sun_4, l_5.top);
     float _e57 = reach;
     float len_1 = (_e55.t1_ - _e57);
     if (!(!(_e55.hit))) {
@@ -1571,10 +1588,10 @@ float far_optical_depth(float3 rel_2, float3 p_7, Layer l_5)
             float _e77 = reach;
             uint _e78 = i_11;
             float t_5 = (_e77 + (((float(_e78) + 0.5) * 0.25) * len_1));
-            const float _e88 = altitude_of((rel_2 + (sun_3 * t_5)));
+            const float _e88 = altitude_of((rel_3 + (sun_4 * t_5)));
             const float _e89 = layer_height(l_5, _e88);
             const float _e90 = saturate_(_e89);
-            const Weather _e93 = sample_weather((p_7 + (sun_3 * t_5)), l_5);
+            const Weather _e93 = sample_weather((p_7 + (sun_4 * t_5)), l_5);
             float cov = _e93.coverage;
             const float _e96 = height_signal(_e90, l_5.cloud_type);
             float f_3 = min((cov * _e96), 0.95);
@@ -1745,7 +1762,7 @@ ScatteredLight ConstructScatteredLight(float3 arg0, float3 arg1) {
     return ret;
 }
 
-ScatteredLight scattered_light(float3 rel_3, float3 p_8, float alt_12, float density_2, float3 view, Layer l_6, inout Counters counters_6)
+ScatteredLight scattered_light(float3 rel_4, float3 p_8, float alt_12, float density_2, float3 view, Layer l_6, inout Counters counters_6)
 {
     float3 sun_light = (0.0).xxx;
     float3 octave_light = (0.0).xxx;
@@ -1753,24 +1770,24 @@ ScatteredLight scattered_light(float3 rel_3, float3 p_8, float alt_12, float den
     float far_2 = 0.0;
 
     float4 _e9 = frame.sun_direction;
-    float3 sun_4 = _e9.xyz;
+    float3 sun_5 = _e9.xyz;
     const float _e11 = layer_height(l_6, alt_12);
     const float _e12 = saturate_(_e11);
     const Weather _e19 = sample_weather(p_8, l_6);
-    const bool _e20 = hits_ground(rel_3, alt_12, sun_4);
+    const bool _e20 = hits_ground(rel_4, alt_12, sun_5);
     if (!(_e20)) {
         if (LIGHT_MARCH) {
-            const float _e27 = sun_optical_depth(rel_3, p_8, l_6, counters_6);
+            const float _e27 = sun_optical_depth(rel_4, p_8, l_6, counters_6);
             tau_7 = _e27;
-            const float _e28 = far_optical_depth(rel_3, p_8, l_6);
+            const float _e28 = far_optical_depth(rel_4, p_8, l_6);
             far_2 = _e28;
         }
         float _e31 = tau_7;
         float _e32 = far_2;
         const float _e33 = octave_buildup(density_2);
-        const SunScattering _e35 = sun_scattering(dot(view, sun_4), view.y, _e31, _e32, _e33, _e19.coverage, _e12);
+        const SunScattering _e35 = sun_scattering(dot(view, sun_5), view.y, _e31, _e32, _e33, _e19.coverage, _e12);
         float4 _e38 = frame.sun_illuminance;
-        const float3 _e40 = sun_through_air(rel_3);
+        const float3 _e40 = sun_through_air(rel_4);
         float3 lit_ = (_e38.xyz * _e40);
         sun_light = (lit_ * _e35.total);
         octave_light = (lit_ * _e35.octaves);
@@ -1795,13 +1812,13 @@ float3 shadow_ground_point(uint2 c_2)
     return float3(xz_1.x, y_1, xz_1.y);
 }
 
-float ground_shadow(float3 rel_4)
+float ground_shadow(float3 rel_5)
 {
-    float edge = (max(abs(rel_4.x), abs(rel_4.z)) / SHADOW_HALF_EXTENT);
+    float edge = (max(abs(rel_5.x), abs(rel_5.z)) / SHADOW_HALF_EXTENT);
     if ((edge >= 1.0)) {
         return 1.0;
     }
-    float2 x_9 = ((rel_4.xz / (40000.0).xx) + (0.5).xx);
+    float2 x_9 = ((rel_5.xz / (40000.0).xx) + (0.5).xx);
     const float4 _e21 = lut_bilinear(cloud_shadow_in, x_9, (128u).xx);
     float t_6 = _e21.x;
     return lerp(t_6, 1.0, smoothstep(SHADOW_FADE_START, 1.0, edge));
@@ -1828,7 +1845,7 @@ float3 ground_shadow_loss(float3 view_1, float r_12)
     return (((1.0 - _e17) * t_view_1) * _e61);
 }
 
-float empty_cell_exit(float3 p_9, float3 d_11)
+float empty_cell_exit(float3 p_9, float3 d_13)
 {
     float exit = 1e30;
 
@@ -1845,22 +1862,22 @@ float empty_cell_exit(float3 p_9, float3 d_11)
     float _e40 = frame.periods.x;
     float cell_m = (_e40 / 64.0);
     float2 inside = ((uv_6 - float2(cell_1)) * cell_m);
-    if ((d_11.x > 1e-6)) {
+    if ((d_13.x > 1e-6)) {
         float _e50 = exit;
-        exit = min(_e50, ((cell_m - inside.x) / d_11.x));
+        exit = min(_e50, ((cell_m - inside.x) / d_13.x));
     } else {
-        if ((d_11.x < -1e-6)) {
+        if ((d_13.x < -1e-6)) {
             float _e59 = exit;
-            exit = min(_e59, (inside.x / -(d_11.x)));
+            exit = min(_e59, (inside.x / -(d_13.x)));
         }
     }
-    if ((d_11.z > 1e-6)) {
+    if ((d_13.z > 1e-6)) {
         float _e68 = exit;
-        exit = min(_e68, ((cell_m - inside.y) / d_11.z));
+        exit = min(_e68, ((cell_m - inside.y) / d_13.z));
     } else {
-        if ((d_11.z < -1e-6)) {
+        if ((d_13.z < -1e-6)) {
             float _e77 = exit;
-            exit = min(_e77, (inside.y / -(d_11.z)));
+            exit = min(_e77, (inside.y / -(d_13.z)));
         }
     }
     float _e83 = exit;
@@ -1957,8 +1974,8 @@ bool march_layer(float3 view_2, Interval span_1, Layer l_7, float jitter, inout 
         counters_7.view_steps = (_e75 + 1u);
         uint _e79 = i_13;
         float t_7 = (span_1.start + ((float(_e79) + jitter) * dt_2));
-        float3 rel_7 = ((view_2 * t_7) + float3(0.0, cam_alt_1, 0.0));
-        float3 p_14 = float3((rel_7.x + cam_xz.x), rel_7.y, (rel_7.z + cam_xz.y));
+        float3 rel_8 = ((view_2 * t_7) + float3(0.0, cam_alt_1, 0.0));
+        float3 p_14 = float3((rel_8.x + cam_xz.x), rel_8.y, (rel_8.z + cam_xz.y));
         if (empty_skip) {
             const float _e97 = empty_cell_exit(p_14, view_2);
             if ((_e97 > 0.0)) {
@@ -1969,7 +1986,7 @@ bool march_layer(float3 view_2, Interval span_1, Layer l_7, float jitter, inout 
                 continue;
             }
         }
-        const float _e115 = altitude_of(rel_7);
+        const float _e115 = altitude_of(rel_8);
         const float _e116 = layer_density(p_14, _e115, l_7, counters_7);
         if ((_e116 <= 0.0)) {
             uint _e119 = empty;
@@ -2000,7 +2017,7 @@ bool march_layer(float3 view_2, Interval span_1, Layer l_7, float jitter, inout 
         }
         empty = 0u;
         float sigma_t_2 = (sigma_e * _e116);
-        const ScatteredLight _e145 = scattered_light(rel_7, p_14, _e115, _e116, view_2, l_7, counters_7);
+        const ScatteredLight _e145 = scattered_light(rel_8, p_14, _e115, _e116, view_2, l_7, counters_7);
         float transmittance_2 = state.transmittance;
         float3 _e149 = state.radiance;
         const float3 _e151 = step_integral(_e145.total, sigma_t_2, dt_2);
@@ -2440,7 +2457,7 @@ Segments ConstructSegments(float2 arg0, float2 arg1, uint arg2) {
     return ret;
 }
 
-Segments layer_segments(float3 p_10, float alt_13, float3 d_12)
+Segments layer_segments(float3 p_10, float alt_13, float3 d_14)
 {
     Segments s_1 = ConstructSegments((0.0).xx, (0.0).xx, 0u);
     bool local_45 = (bool)0;
@@ -2454,9 +2471,9 @@ Segments layer_segments(float3 p_10, float alt_13, float3 d_12)
 
     const float2 _e10 = layers_span();
     float bottom_2 = _e10.x;
-    const Roots _e12 = ray_shell_from(p_10, alt_13, d_12, bottom_2);
-    const Roots _e14 = ray_shell_from(p_10, alt_13, d_12, _e10.y);
-    const bool _e15 = hits_ground(p_10, alt_13, d_12);
+    const Roots _e12 = ray_shell_from(p_10, alt_13, d_14, bottom_2);
+    const Roots _e14 = ray_shell_from(p_10, alt_13, d_14, _e10.y);
+    const bool _e15 = hits_ground(p_10, alt_13, d_14);
     if (!(!(_e14.hit))) {
         local_45 = (_e14.t1_ <= 0.0);
     } else {
@@ -2532,26 +2549,26 @@ Segments layer_segments(float3 p_10, float alt_13, float3 d_12)
     return segments_1;
 }
 
-float density_at(float3 rel_5, inout Counters counters_9)
+float density_at(float3 rel_6, inout Counters counters_9)
 {
     float _e6 = frame.camera_position.x;
     float _e13 = frame.camera_position.z;
-    float3 p_17 = float3((rel_5.x + _e6), rel_5.y, (rel_5.z + _e13));
-    const float _e16 = altitude_of(rel_5);
+    float3 p_17 = float3((rel_6.x + _e6), rel_6.y, (rel_6.z + _e13));
+    const float _e16 = altitude_of(rel_6);
     const float _e17 = cloud_density(p_17, _e16, counters_9);
     return _e17;
 }
 
-float empty_cell_skip(float3 origin_3, float3 dir_1, float t_2)
+float empty_cell_skip(float3 origin_4, float3 dir_1, float t_2)
 {
     const uint _e3 = layer_count();
     if ((_e3 > 1u)) {
         return 0.0;
     }
-    float3 rel_8 = (origin_3 + (dir_1 * t_2));
+    float3 rel_9 = (origin_4 + (dir_1 * t_2));
     float _e13 = frame.camera_position.x;
     float _e20 = frame.camera_position.z;
-    float3 p_18 = float3((rel_8.x + _e13), rel_8.y, (rel_8.z + _e20));
+    float3 p_18 = float3((rel_9.x + _e13), rel_9.y, (rel_9.z + _e20));
     const float _e23 = empty_cell_exit(p_18, dir_1);
     if ((_e23 <= 0.0)) {
         return 0.0;
@@ -2591,7 +2608,7 @@ float density_max()
     return clamp(_e19, 0.0, 1.0);
 }
 
-float free_flight(float3 origin_4, float3 dir_2, Segments segs, inout uint rng_3, inout Counters counters_10)
+float free_flight(float3 origin_5, float3 dir_2, Segments segs, inout uint rng_3, inout Counters counters_10)
 {
     uint k_8 = 0u;
     float t_3 = (float)0;
@@ -2626,7 +2643,7 @@ float free_flight(float3 origin_4, float3 dir_2, Segments segs, inout uint rng_3
                 if (all(loop_bound_13 == uint2(0u, 0u))) { break; }
                 loop_bound_13 -= uint2(loop_bound_13.y == 0u, 1u);
                 float _e28 = t_3;
-                const float _e29 = empty_cell_skip(origin_4, dir_2, _e28);
+                const float _e29 = empty_cell_skip(origin_5, dir_2, _e28);
                 if ((_e29 > 0.0)) {
                     float _e32 = t_3;
                     t_3 = (_e32 + _e29);
@@ -2648,7 +2665,7 @@ float free_flight(float3 origin_4, float3 dir_2, Segments segs, inout uint rng_3
                 uint _e48 = counters_10.view_steps;
                 counters_10.view_steps = (_e48 + 1u);
                 float _e51 = t_3;
-                const float _e54 = density_at((origin_4 + (dir_2 * _e51)), counters_10);
+                const float _e54 = density_at((origin_5 + (dir_2 * _e51)), counters_10);
                 const float _e55 = rng_next(rng_3);
                 if (((_e55 * _e5) < _e54)) {
                     float _e58 = t_3;
@@ -2660,7 +2677,7 @@ float free_flight(float3 origin_4, float3 dir_2, Segments segs, inout uint rng_3
     return -1.0;
 }
 
-float transmittance_along(float3 origin_5, float3 dir_3, Segments segs_1, inout uint rng_4, inout Counters counters_11)
+float transmittance_along(float3 origin_6, float3 dir_3, Segments segs_1, inout uint rng_4, inout Counters counters_11)
 {
     float tr = 1.0;
     uint k_9 = 0u;
@@ -2697,7 +2714,7 @@ float transmittance_along(float3 origin_5, float3 dir_3, Segments segs_1, inout 
                 if (all(loop_bound_15 == uint2(0u, 0u))) { break; }
                 loop_bound_15 -= uint2(loop_bound_15.y == 0u, 1u);
                 float _e30 = t_4;
-                const float _e31 = empty_cell_skip(origin_5, dir_3, _e30);
+                const float _e31 = empty_cell_skip(origin_6, dir_3, _e30);
                 if ((_e31 > 0.0)) {
                     float _e34 = t_4;
                     t_4 = (_e34 + _e31);
@@ -2719,7 +2736,7 @@ float transmittance_along(float3 origin_5, float3 dir_3, Segments segs_1, inout 
                 uint _e50 = counters_11.light;
                 counters_11.light = (_e50 + 1u);
                 float _e53 = t_4;
-                const float _e56 = density_at((origin_5 + (dir_3 * _e53)), counters_11);
+                const float _e56 = density_at((origin_6 + (dir_3 * _e53)), counters_11);
                 float _e57 = tr;
                 tr = (_e57 * (1.0 - ((sigma_t_3 * _e56) / majorant_1)));
                 float _e63 = tr;
@@ -2810,17 +2827,17 @@ PhaseSample sample_phase(float3 dir_4, inout uint rng_5)
     return phasesample;
 }
 
-float3 environment(float3 d_13, float h_8)
+float3 environment(float3 pos, float3 d_15, float h_8)
 {
-    const bool _e2 = physical_sky();
-    if (_e2) {
-        const float3 _e3 = sky_view(d_13);
-        float4 _e6 = frame.sun_illuminance;
-        float _e12 = frame.ambient_bottom.w;
-        return ((_e3 * _e6.xyz) * _e12);
+    const bool _e3 = physical_sky();
+    if (_e3) {
+        const float3 _e4 = sky_from(pos, d_15);
+        float4 _e7 = frame.sun_illuminance;
+        float _e13 = frame.ambient_bottom.w;
+        return ((_e4 * _e7.xyz) * _e13);
     }
-    const float3 _e14 = ambient(h_8);
-    return _e14;
+    const float3 _e15 = ambient(h_8);
+    return _e15;
 }
 
 PathResult ConstructPathResult(float3 arg0, float arg1, float arg2) {
@@ -2838,7 +2855,7 @@ PathResult trace_path(float3 view_3, Interval span_3, inout uint rng_6, inout Co
     bool local_51 = (bool)0;
     bool local_52 = (bool)0;
     uint max_orders = MAX_PATH_ORDERS;
-    float3 pos = (float3)0;
+    float3 pos_1 = (float3)0;
     float3 dir_5 = (float3)0;
     float throughput = 1.0;
     uint order = 0u;
@@ -2862,7 +2879,7 @@ PathResult trace_path(float3 view_3, Interval span_3, inout uint rng_6, inout Co
     }
     out_2.depth = _e33;
     float4 _e40 = frame.sun_direction;
-    float3 sun_5 = _e40.xyz;
+    float3 sun_6 = _e40.xyz;
     float _e45 = frame.extinction.x;
     float _e49 = frame.extinction.y;
     float sigma_t_4 = (_e45 + _e49);
@@ -2895,7 +2912,7 @@ PathResult trace_path(float3 view_3, Interval span_3, inout uint rng_6, inout Co
         uint _e108 = frame.misc.z;
         max_orders = min(_e108, MAX_PATH_ORDERS);
     }
-    pos = (cam + (view_3 * _e33));
+    pos_1 = (cam + (view_3 * _e33));
     dir_5 = view_3;
     uint2 loop_bound_16 = uint2(4294967295u, 4294967295u);
     while(true) {
@@ -2905,74 +2922,75 @@ PathResult trace_path(float3 view_3, Interval span_3, inout uint rng_6, inout Co
         throughput = (_e119 * albedo);
         uint _e121 = order;
         order = (_e121 + 1u);
-        float3 _e124 = pos;
+        float3 _e124 = pos_1;
         const float _e125 = altitude_of(_e124);
         const float _e126 = height_fraction(_e125);
-        float3 _e127 = pos;
-        const bool _e128 = hits_ground(_e127, _e125, sun_5);
+        float3 _e127 = pos_1;
+        const bool _e128 = hits_ground(_e127, _e125, sun_6);
         if (!(_e128)) {
-            float3 _e130 = pos;
-            float3 _e131 = pos;
-            const Segments _e132 = layer_segments(_e131, _e125, sun_5);
-            const float _e133 = transmittance_along(_e130, sun_5, _e132, rng_6, counters_12);
+            float3 _e130 = pos_1;
+            float3 _e131 = pos_1;
+            const Segments _e132 = layer_segments(_e131, _e125, sun_6);
+            const float _e133 = transmittance_along(_e130, sun_6, _e132, rng_6, counters_12);
             float3 _e135 = out_2.radiance;
             float4 _e138 = frame.sun_illuminance;
-            float3 _e140 = pos;
+            float3 _e140 = pos_1;
             const float3 _e141 = sun_through_air(_e140);
             float _e143 = throughput;
             float3 _e144 = dir_5;
-            const float _e147 = phase(dot(_e144, sun_5), 1.0);
+            const float _e147 = phase(dot(_e144, sun_6), 1.0);
             out_2.radiance = (_e135 + ((_e138.xyz * _e141) * ((_e143 * _e147) * _e133)));
         }
         float3 _e152 = dir_5;
         const PhaseSample _e153 = sample_phase(_e152, rng_6);
-        float3 _e154 = pos;
-        float3 _e156 = pos;
+        float3 _e154 = pos_1;
+        float3 _e156 = pos_1;
         const Segments _e158 = layer_segments(_e156, _e125, _e153.dir);
         const float _e159 = free_flight(_e154, _e153.dir, _e158, rng_6, counters_12);
         if ((_e159 < 0.0)) {
             if (ambient_on) {
                 float3 _e163 = out_2.radiance;
-                const float3 _e165 = environment(_e153.dir, _e126);
-                float _e166 = throughput;
-                out_2.radiance = (_e163 + (_e165 * (_e166 * _e153.weight)));
+                float3 _e164 = pos_1;
+                const float3 _e166 = environment(_e164, _e153.dir, _e126);
+                float _e167 = throughput;
+                out_2.radiance = (_e163 + (_e166 * (_e167 * _e153.weight)));
             }
             break;
         }
-        uint _e171 = order;
-        uint _e172 = max_orders;
-        if ((_e171 >= _e172)) {
+        uint _e172 = order;
+        uint _e173 = max_orders;
+        if ((_e172 >= _e173)) {
             break;
         }
-        float _e174 = throughput;
-        throughput = (_e174 * _e153.weight);
+        float _e175 = throughput;
+        throughput = (_e175 * _e153.weight);
         dir_5 = _e153.dir;
-        uint _e178 = order;
-        if ((_e178 >= 3u)) {
-            float _e183 = throughput;
-            local_53 = (_e183 < 0.1);
+        uint _e179 = order;
+        if ((_e179 >= 3u)) {
+            float _e184 = throughput;
+            local_53 = (_e184 < 0.1);
         } else {
             local_53 = false;
         }
-        bool _e187 = local_53;
-        if (_e187) {
-            const float _e188 = rng_next(rng_6);
-            float _e189 = throughput;
-            if ((_e188 >= (_e189 / 0.1))) {
+        bool _e188 = local_53;
+        if (_e188) {
+            const float _e189 = rng_next(rng_6);
+            float _e190 = throughput;
+            if ((_e189 >= (_e190 / 0.1))) {
                 break;
             }
             throughput = 0.1;
         }
-        float _e194 = throughput;
-        if ((_e194 <= 0.0)) {
+        float _e195 = throughput;
+        if ((_e195 <= 0.0)) {
             break;
         }
-        float3 _e197 = pos;
-        float3 _e198 = dir_5;
-        pos = (_e197 + (_e198 * _e159));
+        float3 _e198 = pos_1;
+        float3 _e199 = dir_5;
+        pos_1 = (_e198 + (_e199 * _e159));
     }
-    PathResult _e201 = out_2;
-    const PathResult pathresult_2 = _e201;
+    PathResult _e202 = out_2;
+    const PathResult pathresult_2 = _e202;
     return pathresult_2;
 }
 
@@ -3016,7 +3034,7 @@ float luminance(float3 c_3)
     return dot(c_3, float3(0.2126, 0.7152, 0.0722));
 }
 
-float basic_sun_depth(float3 rel_6, float alt_14, inout Counters counters_13)
+float basic_sun_depth(float3 rel_7, float alt_14, inout Counters counters_13)
 {
     float tau_8 = 0.0;
     uint i_16 = 1u;
@@ -3026,12 +3044,12 @@ float basic_sun_depth(float3 rel_6, float alt_14, inout Counters counters_13)
         return 0.0;
     }
     float4 _e12 = frame.sun_direction;
-    float3 sun_6 = _e12.xyz;
+    float3 sun_7 = _e12.xyz;
     float rp_5 = frame.atmosphere.x;
     float top_2 = frame.atmosphere.z;
     float _e25 = frame.atmosphere.y;
     float thickness = (top_2 - _e25);
-    const Roots _e39 = solve_sphere(dot(sun_6, float3(rel_6.x, (rel_6.y + rp_5), rel_6.z)), ((alt_14 - top_2) * ((alt_14 + top_2) + (2.0 * rp_5))));
+    const Roots _e39 = solve_sphere(dot(sun_7, float3(rel_7.x, (rel_7.y + rp_5), rel_7.z)), ((alt_14 - top_2) * ((alt_14 + top_2) + (2.0 * rp_5))));
     float length_ = min(max(_e39.t1_, 0.0), (3.0 * thickness));
     float dt_3 = (length_ / float(steps_4));
     float _e51 = frame.extinction.x;
@@ -3058,7 +3076,7 @@ float basic_sun_depth(float3 rel_6, float alt_14, inout Counters counters_13)
             uint _e68 = counters_13.light;
             counters_13.light = (_e68 + 1u);
             uint _e71 = i_16;
-            float3 q_8 = (rel_6 + (sun_6 * (float(_e71) * dt_3)));
+            float3 q_8 = (rel_7 + (sun_7 * (float(_e71) * dt_3)));
             float3 p_19 = float3((q_8.x + cam_xz_1.x), q_8.y, (q_8.z + cam_xz_1.y));
             float _e84 = tau_8;
             const float _e85 = altitude_of(q_8);
@@ -3122,14 +3140,14 @@ MarchResult basic_pixel(uint2 pixel_7)
                     counters_14.view_steps = (_e74 + 1u);
                     uint _e78 = i_17;
                     float t_9 = (_e25.start + (float(_e78) * dt_4));
-                    float3 rel_9 = ((_e1 * t_9) + float3(0.0, cam_alt_3, 0.0));
-                    float3 p_20 = float3((rel_9.x + cam_xz_2.x), rel_9.y, (rel_9.z + cam_xz_2.y));
-                    const float _e95 = altitude_of(rel_9);
+                    float3 rel_10 = ((_e1 * t_9) + float3(0.0, cam_alt_3, 0.0));
+                    float3 p_20 = float3((rel_10.x + cam_xz_2.x), rel_10.y, (rel_10.z + cam_xz_2.y));
+                    const float _e95 = altitude_of(rel_10);
                     const float _e96 = cloud_density(p_20, _e95, counters_14);
                     if ((_e96 <= 0.0)) {
                         continue;
                     }
-                    const float _e99 = basic_sun_depth(rel_9, _e95, counters_14);
+                    const float _e99 = basic_sun_depth(rel_10, _e95, counters_14);
                     float beer_powder = ((2.0 * exp(-(_e99))) * (1.0 - exp((-2.0 * _e99))));
                     float3 _e110 = radiance_2;
                     float _e111 = transmittance_1;
@@ -3272,9 +3290,9 @@ float sprite_texture(uint tile_1, float2 uv)
             const float _e93 = atlas_hash(tile_1, (100u + _e91));
             float r_18 = (0.14 + (0.1 * _e93));
             float2 _e98 = at;
-            float d_20 = (length((uv - _e98)) / r_18);
+            float d_22 = (length((uv - _e98)) / r_18);
             float _e102 = billow;
-            const float _e106 = saturate_((1.0 - (d_20 * d_20)));
+            const float _e106 = saturate_((1.0 - (d_22 * d_22)));
             billow = max(_e102, _e106);
         }
     }
@@ -3293,10 +3311,10 @@ float3 sprite_rel(float2 xz, float alt_15)
 {
     float rp_6 = frame.atmosphere.x;
     float4 _e8 = frame.camera_position;
-    float2 d_21 = (xz - _e8.xz);
-    float k_18 = ((alt_15 * (alt_15 + (2.0 * rp_6))) - dot(d_21, d_21));
+    float2 d_23 = (xz - _e8.xz);
+    float k_18 = ((alt_15 * (alt_15 + (2.0 * rp_6))) - dot(d_23, d_23));
     float y_3 = (k_18 / (rp_6 + sqrt(max(((rp_6 * rp_6) + k_18), 0.0))));
-    return float3(d_21.x, y_3, d_21.y);
+    return float3(d_23.x, y_3, d_23.y);
 }
 
 SpriteCell ConstructSpriteCell(int2 arg0, float arg1, bool arg2) {
@@ -3439,47 +3457,47 @@ float2 sprite_corner(uint k_11)
     return float2((_e18 ? 1.0 : -1.0), ((q_10 >= 2u) ? 1.0 : -1.0));
 }
 
-float3 sky_radiance(float3 d_14, float alt_16)
+float3 sky_radiance(float3 d_16, float alt_16)
 {
     float4 _e4 = frame.sun_direction;
-    float3 sun_7 = _e4.xyz;
+    float3 sun_8 = _e4.xyz;
     float4 _e8 = frame.sun_illuminance;
     float3 e = _e8.xyz;
-    const float _e15 = saturate_(((sun_7.y * 4.0) + 0.3));
-    const bool _e19 = hits_ground(float3(0.0, alt_16, 0.0), alt_16, d_14);
+    const float _e15 = saturate_(((sun_8.y * 4.0) + 0.3));
+    const bool _e19 = hits_ground(float3(0.0, alt_16, 0.0), alt_16, d_16);
     if (_e19) {
         float3 ground_albedo = float3(0.035, 0.035, 0.03);
-        return (ground_albedo * (((e * max(sun_7.y, 0.0)) / (3.1415927).xxx) + ((0.05 * e) * _e15)));
+        return (ground_albedo * (((e * max(sun_8.y, 0.0)) / (3.1415927).xxx) + ((0.05 * e) * _e15)));
     }
     float3 zenith = float3(0.018, 0.04, 0.1);
     float3 horizon_2 = float3(0.07, 0.085, 0.11);
-    const float _e45 = saturate_(d_14.y);
+    const float _e45 = saturate_(d_16.y);
     float3 gradient_1 = lerp(horizon_2, zenith, sqrt(_e45));
     float3 sunset = (((1.0 - (_e15 * 0.8)) * pow((1.0 - _e45), 6.0)) * float3(0.25, 0.1, 0.0));
-    const float _e64 = phase_hg(dot(d_14, sun_7), 0.76);
+    const float _e64 = phase_hg(dot(d_16, sun_8), 0.76);
     float glow = (_e64 * 0.02);
-    const float _e73 = saturate_(((sun_7.y * 10.0) + 1.0));
+    const float _e73 = saturate_(((sun_8.y * 10.0) + 1.0));
     return (e * (((gradient_1 * _e15) + (sunset * _e73)) + ((glow * _e15)).xxx));
 }
 
-float3 sun_disk(float3 d_15)
+float3 sun_disk(float3 d_17)
 {
     float cos_r = frame.sun_direction.w;
     float4 _e7 = frame.sun_direction;
-    if ((dot(d_15, _e7.xyz) < cos_r)) {
+    if ((dot(d_17, _e7.xyz) < cos_r)) {
         return (0.0).xxx;
     }
     float4 _e15 = frame.sun_illuminance;
     return (_e15.xyz / ((6.2831855 * max((1.0 - cos_r), 1e-6))).xxx);
 }
 
-float3 moon_disk(float3 d_16)
+float3 moon_disk(float3 d_18)
 {
     bool local_60 = (bool)0;
 
     float4 _e3 = frame.moon;
     float3 m_3 = _e3.xyz;
-    float c_11 = dot(d_16, m_3);
+    float c_11 = dot(d_18, m_3);
     float _e9 = frame.moon.w;
     if (!((_e9 <= 0.0))) {
         local_60 = (c_11 < MOON_COS_RADIUS);
@@ -3490,7 +3508,7 @@ float3 moon_disk(float3 d_16)
     if (_e18) {
         return (0.0).xxx;
     }
-    float3 offset = ((d_16 - (m_3 * c_11)) / (0.0045149517).xxx);
+    float3 offset = ((d_18 - (m_3 * c_11)) / (0.0045149517).xxx);
     float x2_1 = min(dot(offset, offset), 1.0);
     float3 normal = (offset - (m_3 * sqrt((1.0 - x2_1))));
     float4 _e36 = frame.night;
@@ -3499,7 +3517,7 @@ float3 moon_disk(float3 d_16)
     return (((_e46 / 6.40407e-5) * lit_1)).xxx;
 }
 
-float3 stars(float3 d_17)
+float3 stars(float3 d_19)
 {
     uint face = 0u;
     float2 uv_1 = (0.0).xx;
@@ -3511,7 +3529,7 @@ float3 stars(float3 d_17)
     if ((e0_ <= 0.0)) {
         return (0.0).xxx;
     }
-    float3 a_10 = abs(d_17);
+    float3 a_10 = abs(d_19);
     if ((a_10.x >= a_10.y)) {
         local_61 = (a_10.x >= a_10.z);
     } else {
@@ -3519,17 +3537,17 @@ float3 stars(float3 d_17)
     }
     bool _e26 = local_61;
     if (_e26) {
-        face = ((d_17.x > 0.0) ? 0u : 1u);
-        uv_1 = d_17.zy;
+        face = ((d_19.x > 0.0) ? 0u : 1u);
+        uv_1 = d_19.zy;
         major = a_10.x;
     } else {
         if ((a_10.y >= a_10.z)) {
-            face = ((d_17.y > 0.0) ? 2u : 3u);
-            uv_1 = d_17.xz;
+            face = ((d_19.y > 0.0) ? 2u : 3u);
+            uv_1 = d_19.xz;
             major = a_10.y;
         } else {
-            face = ((d_17.z > 0.0) ? 4u : 5u);
-            uv_1 = d_17.xy;
+            face = ((d_19.z > 0.0) ? 4u : 5u);
+            uv_1 = d_19.xy;
             major = a_10.z;
         }
     }
@@ -3583,7 +3601,7 @@ float3 stars(float3 d_17)
     uint _e209 = frame.counts.y;
     float pixel_angle = ((2.0 * _e203) / float(_e209));
     float3 _e212 = star;
-    float dist_1 = (acos(clamp(dot(d_17, _e212), -1.0, 1.0)) / pixel_angle);
+    float dist_1 = (acos(clamp(dot(d_19, _e212), -1.0, 1.0)) / pixel_angle);
     float weight_1 = (exp(((-(dist_1) * dist_1) / 0.5)) / 1.5707964);
     float3 tint = lerp(float3(0.8, 0.9, 1.1), float3(1.15, 0.95, 0.75), (h3_ * h4_));
     return (tint * ((illuminance * weight_1) / (pixel_angle * pixel_angle)));
@@ -3723,8 +3741,8 @@ void multiscatter_lut(uint3 id_1 : SV_DispatchThreadID)
     const float _e18 = air_top();
     const float _e19 = air_bottom();
     float r_20 = (_e16 + (x_12.y * (_e18 - _e19)));
-    float3 origin_6 = float3(0.0, r_20, 0.0);
-    float3 sun_8 = float3(sqrt(max((1.0 - (mu_s_7 * mu_s_7)), 0.0)), mu_s_7, 0.0);
+    float3 origin_7 = float3(0.0, r_20, 0.0);
+    float3 sun_9 = float3(sqrt(max((1.0 - (mu_s_7 * mu_s_7)), 0.0)), mu_s_7, 0.0);
     uint2 loop_bound_23 = uint2(4294967295u, 4294967295u);
     bool loop_init_19 = true;
     while(true) {
@@ -3743,7 +3761,7 @@ void multiscatter_lut(uint3 id_1 : SV_DispatchThreadID)
         {
             uint _e46 = k;
             const float3 _e48 = fibonacci_direction(_e46, MULTISCATTER_DIRECTIONS);
-            const float2 _e49 = air_ray_end(origin_6, _e48);
+            const float2 _e49 = air_ray_end(origin_7, _e48);
             float dt_6 = (_e49.x / 32.0);
             tau = (0.0).xxx;
             i_1 = 0u;
@@ -3764,7 +3782,7 @@ void multiscatter_lut(uint3 id_1 : SV_DispatchThreadID)
                 }
                 {
                     uint _e61 = i_1;
-                    float3 p_21 = (origin_6 + (_e48 * (dt_6 * (float(_e61) + 0.5))));
+                    float3 p_21 = (origin_7 + (_e48 * (dt_6 * (float(_e61) + 0.5))));
                     float rp_7 = length(p_21);
                     const float _e69 = air_bottom();
                     const AirSample _e71 = air_at((rp_7 - _e69));
@@ -3772,7 +3790,7 @@ void multiscatter_lut(uint3 id_1 : SV_DispatchThreadID)
                     float3 t_10 = exp(-((_e72 + ((0.5 * _e71.extinction) * dt_6))));
                     float3 s_13 = (_e71.rayleigh + (_e71.mie).xxx);
                     float3 _e84 = l2_;
-                    const float3 _e90 = sun_transmittance(rp_7, dot((p_21 / (rp_7).xxx), sun_8));
+                    const float3 _e90 = sun_transmittance(rp_7, dot((p_21 / (rp_7).xxx), sun_9));
                     l2_ = (_e84 + ((((t_10 * s_13) * 0.07957747) * _e90) * dt_6));
                     float3 _e94 = f_ms;
                     f_ms = (_e94 + ((t_10 * s_13) * dt_6));
@@ -3781,10 +3799,10 @@ void multiscatter_lut(uint3 id_1 : SV_DispatchThreadID)
                 }
             }
             if ((_e49.y > 0.5)) {
-                float3 g_7 = (origin_6 + (_e48 * _e49.x));
+                float3 g_7 = (origin_7 + (_e48 * _e49.x));
                 float3 _e111 = l2_;
                 float3 _e112 = tau;
-                const float3 _e117 = ground_radiance_sun(dot(normalize(g_7), sun_8));
+                const float3 _e117 = ground_radiance_sun(dot(normalize(g_7), sun_9));
                 l2_ = (_e111 + (exp(-(_e112)) * _e117));
             }
         }
@@ -3808,13 +3826,9 @@ void sky_view_lut(uint3 id_2 : SV_DispatchThreadID)
     const float _e15 = sky_view_elevation(x_13.y, _e14);
     const float _e16 = sun_azimuth();
     float phi_2 = (_e16 + (x_13.x * PI));
-    float3 d_22 = float3((cos(_e15) * cos(phi_2)), sin(_e15), (cos(_e15) * sin(phi_2)));
-    const float2 _e29 = air_ray_end(_e11, d_22);
-    float4 _e32 = frame.sun_direction;
-    float3 sun_9 = _e32.xyz;
-    const Scattered _e36 = integrate_air(_e11, d_22, _e29.x, SKY_VIEW_STEPS, sun_9);
-    const float3 _e43 = with_ground(_e36, _e11, d_22, _e29.x, sun_9, (_e29.y > 0.5));
-    sky_view_out[id_2.xy] = float4(_e43, 1.0);
+    float3 d_24 = float3((cos(_e15) * cos(phi_2)), sin(_e15), (cos(_e15) * sin(phi_2)));
+    const float3 _e31 = sky_along(_e11, d_24);
+    sky_view_out[id_2.xy] = float4(_e31, 1.0);
     return;
 }
 
@@ -3923,7 +3937,7 @@ void sky_ambient(uint3 id_4 : SV_DispatchThreadID)
     float _e22 = frame.atmosphere.z;
     float alt_m = (top_3 ? _e22 : _e18);
     const float _e24 = air_bottom();
-    float3 origin_7 = float3(0.0, (_e24 + (alt_m * 0.001)), 0.0);
+    float3 origin_8 = float3(0.0, (_e24 + (alt_m * 0.001)), 0.0);
     uint first = (top_3 ? 0u : 32u);
     k_2 = first;
     uint2 loop_bound_27 = uint2(4294967295u, 4294967295u);
@@ -3944,13 +3958,13 @@ void sky_ambient(uint3 id_4 : SV_DispatchThreadID)
         {
             uint _e43 = k_2;
             const float3 _e45 = fibonacci_direction(_e43, AMBIENT_DIRECTIONS);
-            const float2 _e46 = air_ray_end(origin_7, _e45);
+            const float2 _e46 = air_ray_end(origin_8, _e45);
             float4 _e49 = frame.sun_direction;
             float3 sun_11 = _e49.xyz;
-            const Scattered _e53 = integrate_air(origin_7, _e45, _e46.x, AMBIENT_STEPS, sun_11);
+            const Scattered _e53 = integrate_air(origin_8, _e45, _e46.x, AMBIENT_STEPS, sun_11);
             float w_8 = abs(_e45.y);
             float3 _e56 = sum_1;
-            const float3 _e61 = with_ground(_e53, origin_7, _e45, _e46.x, sun_11, (_e46.y > 0.5));
+            const float3 _e61 = with_ground(_e53, origin_8, _e45, _e46.x, sun_11, (_e46.y > 0.5));
             sum_1 = (_e56 + (w_8 * _e61));
             float _e64 = weights;
             weights = (_e64 + w_8);
@@ -3981,7 +3995,7 @@ void ground_irradiance(uint3 id_5 : SV_DispatchThreadID)
     float mu_s_9 = (((float(id_5.x) / 63.0) * 2.0) - 1.0);
     float3 sun_12 = float3(sqrt(max((1.0 - (mu_s_9 * mu_s_9)), 0.0)), mu_s_9, 0.0);
     const float _e28 = air_bottom();
-    float3 origin_8 = float3(0.0, (_e28 + 0.001), 0.0);
+    float3 origin_9 = float3(0.0, (_e28 + 0.001), 0.0);
     uint2 loop_bound_28 = uint2(4294967295u, 4294967295u);
     bool loop_init_24 = true;
     while(true) {
@@ -4003,9 +4017,9 @@ void ground_irradiance(uint3 id_5 : SV_DispatchThreadID)
             if ((_e44.y <= 0.0)) {
                 continue;
             }
-            const float2 _e48 = air_ray_end(origin_8, _e44);
+            const float2 _e48 = air_ray_end(origin_9, _e44);
             float3 _e49 = sum_2;
-            const Scattered _e52 = integrate_air(origin_8, _e44, _e48.x, AMBIENT_STEPS, sun_12);
+            const Scattered _e52 = integrate_air(origin_9, _e44, _e48.x, AMBIENT_STEPS, sun_12);
             sum_2 = (_e49 + (_e52.radiance * _e44.y));
         }
     }
@@ -4661,8 +4675,8 @@ void sprite_build(uint3 id_14 : SV_DispatchThreadID)
         float _e167 = me.alt;
         const float3 _e168 = sprite_rel(_e165, _e167);
         float _e172 = frame.camera_position.y;
-        float3 rel_10 = (_e168 - float3(0.0, _e172, 0.0));
-        const float _e180 = saturate_((length(rel_10) / SPRITE_MAX_DISTANCE));
+        float3 rel_11 = (_e168 - float3(0.0, _e172, 0.0));
+        const float _e180 = saturate_((length(rel_11) / SPRITE_MAX_DISTANCE));
         key = (1048576.0 - floor((_e180 * 1048575.0)));
     }
     float _e191 = me.xz.x;
@@ -4846,10 +4860,10 @@ void sprite_resolve(uint3 id_16 : SV_DispatchThreadID)
     }
     count(STAT_PIXELS, 1u);
     float4 c_13 = sprite_radiance_in.Load(int3(id_16.xy, int(0)));
-    float4 d_23 = sprite_depth_in.Load(int3(id_16.xy, int(0)));
+    float4 d_25 = sprite_depth_in.Load(int3(id_16.xy, int(0)));
     const float _e19 = saturate_(c_13.w);
     cloud_out[id_16.xy] = float4(c_13.xyz, (1.0 - _e19));
-    depth_out[id_16.xy] = float4(((d_23.w > 0.0001) ? (d_23.x / d_23.w) : 0.0), 0.0, 0.0, 0.0);
+    depth_out[id_16.xy] = float4(((d_25.w > 0.0001) ? (d_25.x / d_25.w) : 0.0), 0.0, 0.0, 0.0);
     return;
 }
 

@@ -518,9 +518,9 @@ float sprite_texture(uint tile_1, vec2 uv) {
             float _e93 = atlas_hash(tile_1, (100u + _e91));
             float r_14 = (0.14 + (0.1 * _e93));
             vec2 _e98 = at;
-            float d_18 = (length((uv - _e98)) / r_14);
+            float d_20 = (length((uv - _e98)) / r_14);
             float _e102 = billow;
-            float _e106 = saturate((1.0 - (d_18 * d_18)));
+            float _e106 = saturate((1.0 - (d_20 * d_20)));
             billow = max(_e102, _e106);
         }
     }

@@ -270,8 +270,8 @@ vec3 view_ray(uvec2 pixel_1) {
     vec4 _e26 = _group_0_binding_0_cs.camera_forward;
     vec4 _e30 = _group_0_binding_0_cs.camera_right;
     vec4 _e39 = _group_0_binding_0_cs.camera_up;
-    vec3 d_18 = ((_e26.xyz + (_e30.xyz * ((ndc.x * tan_half) * aspect))) - (_e39.xyz * (ndc.y * tan_half)));
-    return normalize(d_18);
+    vec3 d_20 = ((_e26.xyz + (_e30.xyz * ((ndc.x * tan_half) * aspect))) - (_e39.xyz * (ndc.y * tan_half)));
+    return normalize(d_20);
 }
 
 Roots solve_sphere(float b, float c) {
@@ -622,9 +622,9 @@ vec2 transmittance_r_mu(vec2 x_4) {
     float r_14 = sqrt(((rho_1 * rho_1) + (_e1 * _e1)));
     float d_min_1 = (_e2 - r_14);
     float d_max_1 = (rho_1 + h_12);
-    float d_19 = (d_min_1 + (x_4.x * (d_max_1 - d_min_1)));
-    if ((d_19 > 0.0)) {
-        mu_6 = clamp(((((h_12 * h_12) - (rho_1 * rho_1)) - (d_19 * d_19)) / ((2.0 * r_14) * d_19)), -1.0, 1.0);
+    float d_21 = (d_min_1 + (x_4.x * (d_max_1 - d_min_1)));
+    if ((d_21 > 0.0)) {
+        mu_6 = clamp(((((h_12 * h_12) - (rho_1 * rho_1)) - (d_21 * d_21)) / ((2.0 * r_14) * d_21)), -1.0, 1.0);
     }
     float _e37 = mu_6;
     return vec2(r_14, _e37);
@@ -789,13 +789,13 @@ vec3 aerial_ray(uvec2 c_1) {
     return normalize(((_e23.xyz + (_e27.xyz * ((ndc_1.x * tan_half_1) * aspect_1))) - (_e36.xyz * (ndc_1.y * tan_half_1))));
 }
 
-vec3 sun_through_air(vec3 rel) {
+vec3 sun_through_air(vec3 rel_1) {
     bool _e1 = physical_sky();
     if (!(_e1)) {
         return vec3(1.0);
     }
     float _e10 = _group_0_binding_0_cs.atmosphere.x;
-    vec3 q_6 = (vec3(rel.x, (rel.y + _e10), rel.z) * 0.001);
+    vec3 q_6 = (vec3(rel_1.x, (rel_1.y + _e10), rel_1.z) * 0.001);
     float r_17 = length(q_6);
     vec4 _e21 = _group_0_binding_0_cs.sun_direction;
     vec3 _e24 = sun_transmittance(r_17, dot((q_6 / vec3(r_17)), _e21.xyz));
@@ -1188,7 +1188,7 @@ float rng_exponential(inout uint rng_2, float sigma) {
     return (-(log((1.0 - _e2))) / sigma);
 }
 
-Segments layer_segments(vec3 p_10, float alt_13, vec3 d_12) {
+Segments layer_segments(vec3 p_10, float alt_13, vec3 d_14) {
     Segments s_1 = Segments(vec2(0.0), vec2(0.0), 0u);
     bool local_45 = false;
     vec2 a_1 = vec2(0.0);
@@ -1200,9 +1200,9 @@ Segments layer_segments(vec3 p_10, float alt_13, vec3 d_12) {
     bool local_49 = false;
     vec2 _e10 = layers_span();
     float bottom_1 = _e10.x;
-    Roots _e12 = ray_shell_from(p_10, alt_13, d_12, bottom_1);
-    Roots _e14 = ray_shell_from(p_10, alt_13, d_12, _e10.y);
-    bool _e15 = hits_ground(p_10, alt_13, d_12);
+    Roots _e12 = ray_shell_from(p_10, alt_13, d_14, bottom_1);
+    Roots _e14 = ray_shell_from(p_10, alt_13, d_14, _e10.y);
+    bool _e15 = hits_ground(p_10, alt_13, d_14);
     if (!(!(_e14.hit))) {
         local_45 = (_e14.t1_ <= 0.0);
     } else {
@@ -1492,9 +1492,9 @@ float sprite_texture(uint tile_1, vec2 uv) {
             float _e93 = atlas_hash(tile_1, (100u + _e91));
             float r_18 = (0.14 + (0.1 * _e93));
             vec2 _e98 = at;
-            float d_20 = (length((uv - _e98)) / r_18);
+            float d_22 = (length((uv - _e98)) / r_18);
             float _e102 = billow;
-            float _e106 = saturate((1.0 - (d_20 * d_20)));
+            float _e106 = saturate((1.0 - (d_22 * d_22)));
             billow = max(_e102, _e106);
         }
     }
@@ -1512,10 +1512,10 @@ float sprite_texture(uint tile_1, vec2 uv) {
 vec3 sprite_rel(vec2 xz, float alt_15) {
     float rp_5 = _group_0_binding_0_cs.atmosphere.x;
     vec4 _e8 = _group_0_binding_0_cs.camera_position;
-    vec2 d_21 = (xz - _e8.xz);
-    float k_17 = ((alt_15 * (alt_15 + (2.0 * rp_5))) - dot(d_21, d_21));
+    vec2 d_23 = (xz - _e8.xz);
+    float k_17 = ((alt_15 * (alt_15 + (2.0 * rp_5))) - dot(d_23, d_23));
     float y_2 = (k_17 / (rp_5 + sqrt(max(((rp_5 * rp_5) + k_17), 0.0))));
-    return vec3(d_21.x, y_2, d_21.y);
+    return vec3(d_23.x, y_2, d_23.y);
 }
 
 SpriteCell sprite_cell(uint cell) {
@@ -1594,43 +1594,43 @@ vec2 sprite_corner(uint k_11) {
     return vec2((_e18 ? 1.0 : -1.0), ((q_8 >= 2u) ? 1.0 : -1.0));
 }
 
-vec3 sky_radiance(vec3 d_14, float alt_16) {
+vec3 sky_radiance(vec3 d_16, float alt_16) {
     vec4 _e4 = _group_0_binding_0_cs.sun_direction;
     vec3 sun_2 = _e4.xyz;
     vec4 _e8 = _group_0_binding_0_cs.sun_illuminance;
     vec3 e = _e8.xyz;
     float _e15 = saturate(((sun_2.y * 4.0) + 0.3));
-    bool _e19 = hits_ground(vec3(0.0, alt_16, 0.0), alt_16, d_14);
+    bool _e19 = hits_ground(vec3(0.0, alt_16, 0.0), alt_16, d_16);
     if (_e19) {
         vec3 ground_albedo = vec3(0.035, 0.035, 0.03);
         return (ground_albedo * (((e * max(sun_2.y, 0.0)) / vec3(3.1415927)) + ((0.05 * e) * _e15)));
     }
     vec3 zenith = vec3(0.018, 0.04, 0.1);
     vec3 horizon_2 = vec3(0.07, 0.085, 0.11);
-    float _e45 = saturate(d_14.y);
+    float _e45 = saturate(d_16.y);
     vec3 gradient_1 = mix(horizon_2, zenith, sqrt(_e45));
     vec3 sunset = (((1.0 - (_e15 * 0.8)) * pow((1.0 - _e45), 6.0)) * vec3(0.25, 0.1, 0.0));
-    float _e64 = phase_hg(dot(d_14, sun_2), 0.76);
+    float _e64 = phase_hg(dot(d_16, sun_2), 0.76);
     float glow = (_e64 * 0.02);
     float _e73 = saturate(((sun_2.y * 10.0) + 1.0));
     return (e * (((gradient_1 * _e15) + (sunset * _e73)) + vec3((glow * _e15))));
 }
 
-vec3 sun_disk(vec3 d_15) {
+vec3 sun_disk(vec3 d_17) {
     float cos_r = _group_0_binding_0_cs.sun_direction.w;
     vec4 _e7 = _group_0_binding_0_cs.sun_direction;
-    if ((dot(d_15, _e7.xyz) < cos_r)) {
+    if ((dot(d_17, _e7.xyz) < cos_r)) {
         return vec3(0.0);
     }
     vec4 _e15 = _group_0_binding_0_cs.sun_illuminance;
     return (_e15.xyz / vec3((6.2831855 * max((1.0 - cos_r), 1e-6))));
 }
 
-vec3 moon_disk(vec3 d_16) {
+vec3 moon_disk(vec3 d_18) {
     bool local_60 = false;
     vec4 _e3 = _group_0_binding_0_cs.moon;
     vec3 m_2 = _e3.xyz;
-    float c_10 = dot(d_16, m_2);
+    float c_10 = dot(d_18, m_2);
     float _e9 = _group_0_binding_0_cs.moon.w;
     if (!((_e9 <= 0.0))) {
         local_60 = (c_10 < MOON_COS_RADIUS);
@@ -1641,7 +1641,7 @@ vec3 moon_disk(vec3 d_16) {
     if (_e18) {
         return vec3(0.0);
     }
-    vec3 offset = ((d_16 - (m_2 * c_10)) / vec3(0.0045149517));
+    vec3 offset = ((d_18 - (m_2 * c_10)) / vec3(0.0045149517));
     float x2_ = min(dot(offset, offset), 1.0);
     vec3 normal = (offset - (m_2 * sqrt((1.0 - x2_))));
     vec4 _e36 = _group_0_binding_0_cs.night;
@@ -1650,7 +1650,7 @@ vec3 moon_disk(vec3 d_16) {
     return vec3(((_e46 / 6.40407e-5) * lit));
 }
 
-vec3 stars(vec3 d_17) {
+vec3 stars(vec3 d_19) {
     uint face = 0u;
     vec2 uv_1 = vec2(0.0);
     float major = 0.0;
@@ -1660,7 +1660,7 @@ vec3 stars(vec3 d_17) {
     if ((e0_ <= 0.0)) {
         return vec3(0.0);
     }
-    vec3 a_9 = abs(d_17);
+    vec3 a_9 = abs(d_19);
     if ((a_9.x >= a_9.y)) {
         local_61 = (a_9.x >= a_9.z);
     } else {
@@ -1668,17 +1668,17 @@ vec3 stars(vec3 d_17) {
     }
     bool _e26 = local_61;
     if (_e26) {
-        face = ((d_17.x > 0.0) ? 0u : 1u);
-        uv_1 = d_17.zy;
+        face = ((d_19.x > 0.0) ? 0u : 1u);
+        uv_1 = d_19.zy;
         major = a_9.x;
     } else {
         if ((a_9.y >= a_9.z)) {
-            face = ((d_17.y > 0.0) ? 2u : 3u);
-            uv_1 = d_17.xz;
+            face = ((d_19.y > 0.0) ? 2u : 3u);
+            uv_1 = d_19.xz;
             major = a_9.y;
         } else {
-            face = ((d_17.z > 0.0) ? 4u : 5u);
-            uv_1 = d_17.xy;
+            face = ((d_19.z > 0.0) ? 4u : 5u);
+            uv_1 = d_19.xy;
             major = a_9.z;
         }
     }
@@ -1732,7 +1732,7 @@ vec3 stars(vec3 d_17) {
     uint _e209 = _group_0_binding_0_cs.counts.y;
     float pixel_angle = ((2.0 * _e203) / float(_e209));
     vec3 _e212 = star;
-    float dist_1 = (acos(clamp(dot(d_17, _e212), -1.0, 1.0)) / pixel_angle);
+    float dist_1 = (acos(clamp(dot(d_19, _e212), -1.0, 1.0)) / pixel_angle);
     float weight_1 = (exp(((-(dist_1) * dist_1) / 0.5)) / 1.5707964);
     vec3 tint = mix(vec3(0.8, 0.9, 1.1), vec3(1.15, 0.95, 0.75), (h3_ * h4_));
     return (tint * ((illuminance * weight_1) / (pixel_angle * pixel_angle)));

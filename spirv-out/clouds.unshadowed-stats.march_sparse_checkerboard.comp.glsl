@@ -287,8 +287,8 @@ vec3 view_ray(uvec2 pixel_1) {
     vec4 _e26 = _group_0_binding_0_cs.camera_forward;
     vec4 _e30 = _group_0_binding_0_cs.camera_right;
     vec4 _e39 = _group_0_binding_0_cs.camera_up;
-    vec3 d_18 = ((_e26.xyz + (_e30.xyz * ((ndc.x * tan_half) * aspect))) - (_e39.xyz * (ndc.y * tan_half)));
-    return normalize(d_18);
+    vec3 d_20 = ((_e26.xyz + (_e30.xyz * ((ndc.x * tan_half) * aspect))) - (_e39.xyz * (ndc.y * tan_half)));
+    return normalize(d_20);
 }
 
 Roots solve_sphere(float b, float c) {
@@ -639,9 +639,9 @@ vec2 transmittance_r_mu(vec2 x_4) {
     float r_14 = sqrt(((rho_1 * rho_1) + (_e1 * _e1)));
     float d_min_1 = (_e2 - r_14);
     float d_max_1 = (rho_1 + h_12);
-    float d_19 = (d_min_1 + (x_4.x * (d_max_1 - d_min_1)));
-    if ((d_19 > 0.0)) {
-        mu_6 = clamp(((((h_12 * h_12) - (rho_1 * rho_1)) - (d_19 * d_19)) / ((2.0 * r_14) * d_19)), -1.0, 1.0);
+    float d_21 = (d_min_1 + (x_4.x * (d_max_1 - d_min_1)));
+    if ((d_21 > 0.0)) {
+        mu_6 = clamp(((((h_12 * h_12) - (rho_1 * rho_1)) - (d_21 * d_21)) / ((2.0 * r_14) * d_21)), -1.0, 1.0);
     }
     float _e37 = mu_6;
     return vec2(r_14, _e37);
@@ -746,13 +746,13 @@ vec3 aerial_ray(uvec2 c_1) {
     return normalize(((_e23.xyz + (_e27.xyz * ((ndc_1.x * tan_half_1) * aspect_1))) - (_e36.xyz * (ndc_1.y * tan_half_1))));
 }
 
-vec3 sun_through_air(vec3 rel) {
+vec3 sun_through_air(vec3 rel_1) {
     bool _e1 = physical_sky();
     if (!(_e1)) {
         return vec3(1.0);
     }
     float _e10 = _group_0_binding_0_cs.atmosphere.x;
-    vec3 q_6 = (vec3(rel.x, (rel.y + _e10), rel.z) * 0.001);
+    vec3 q_6 = (vec3(rel_1.x, (rel_1.y + _e10), rel_1.z) * 0.001);
     float r_16 = length(q_6);
     vec4 _e21 = _group_0_binding_0_cs.sun_direction;
     vec3 _e24 = sun_transmittance(r_16, dot((q_6 / vec3(r_16)), _e21.xyz));
@@ -1004,7 +1004,7 @@ float phase(float cos_theta_4, float scale) {
     }
 }
 
-float sun_optical_depth(vec3 rel_1, vec3 p_6, Layer l_4, inout Counters counters_5) {
+float sun_optical_depth(vec3 rel_2, vec3 p_6, Layer l_4, inout Counters counters_5) {
     float seg = 0.0;
     float dist = 0.0;
     float tau_4 = 0.0;
@@ -1039,7 +1039,7 @@ float sun_optical_depth(vec3 rel_1, vec3 p_6, Layer l_4, inout Counters counters
             float _e38 = dist;
             float _e39 = seg;
             float s_7 = (_e38 + (0.5 * _e39));
-            vec3 q_7 = (rel_1 + (sun_2 * s_7));
+            vec3 q_7 = (rel_2 + (sun_2 * s_7));
             float _e45 = altitude_of(q_7);
             if (!((_e45 > l_4.top))) {
                 local_27 = (_e45 < l_4.bottom);
@@ -1063,7 +1063,7 @@ float sun_optical_depth(vec3 rel_1, vec3 p_6, Layer l_4, inout Counters counters
             seg = (_e70 * growth);
         }
     }
-    float _e75 = altitude_of(rel_1);
+    float _e75 = altitude_of(rel_2);
     bool loop_init_4 = true;
     while(true) {
         if (!loop_init_4) {
@@ -1083,8 +1083,8 @@ float sun_optical_depth(vec3 rel_1, vec3 p_6, Layer l_4, inout Counters counters
             if ((_e82.bottom <= l_4.top)) {
                 continue;
             }
-            Roots _e87 = ray_shell_from(rel_1, _e75, sun_2, _e82.bottom);
-            Roots _e89 = ray_shell_from(rel_1, _e75, sun_2, _e82.top);
+            Roots _e87 = ray_shell_from(rel_2, _e75, sun_2, _e82.bottom);
+            Roots _e89 = ray_shell_from(rel_2, _e75, sun_2, _e82.top);
             if (!(!(_e87.hit))) {
                 local_28 = !(_e89.hit);
             } else {
@@ -1110,7 +1110,7 @@ float sun_optical_depth(vec3 rel_1, vec3 p_6, Layer l_4, inout Counters counters
             uint _e122 = counters_5.light;
             counters_5.light = (_e122 + 1u);
             float _e125 = tau_4;
-            float _e130 = altitude_of((rel_1 + (sun_2 * s_8)));
+            float _e130 = altitude_of((rel_2 + (sun_2 * s_8)));
             float _e131 = layer_density((p_6 + (sun_2 * s_8)), _e130, _e82, counters_5);
             tau_4 = (_e125 + ((_e131 * sigma_t_1) * (_e89.t1_ - _e87.t1_)));
         }
@@ -1119,7 +1119,7 @@ float sun_optical_depth(vec3 rel_1, vec3 p_6, Layer l_4, inout Counters counters
     return _e141;
 }
 
-float far_optical_depth(vec3 rel_2, vec3 p_7, Layer l_5) {
+float far_optical_depth(vec3 rel_3, vec3 p_7, Layer l_5) {
     bool local_31 = false;
     float reach = 0.0;
     bool local_32 = false;
@@ -1147,8 +1147,8 @@ float far_optical_depth(vec3 rel_2, vec3 p_7, Layer l_5) {
     }
     vec4 _e51 = _group_0_binding_0_cs.sun_direction;
     vec3 sun_3 = _e51.xyz;
-    float _e53 = altitude_of(rel_2);
-    Roots _e55 = ray_shell_from(rel_2, _e53, sun_3, l_5.top);
+    float _e53 = altitude_of(rel_3);
+    Roots _e55 = ray_shell_from(rel_3, _e53, sun_3, l_5.top);
     float _e57 = reach;
     float len_1 = (_e55.t1_ - _e57);
     if (!(!(_e55.hit))) {
@@ -1176,7 +1176,7 @@ float far_optical_depth(vec3 rel_2, vec3 p_7, Layer l_5) {
             float _e77 = reach;
             uint _e78 = i_11;
             float t_5 = (_e77 + (((float(_e78) + 0.5) * 0.25) * len_1));
-            float _e88 = altitude_of((rel_2 + (sun_3 * t_5)));
+            float _e88 = altitude_of((rel_3 + (sun_3 * t_5)));
             float _e89 = layer_height(l_5, _e88);
             float _e90 = saturate(_e89);
             Weather _e93 = sample_weather((p_7 + (sun_3 * t_5)), l_5);
@@ -1324,7 +1324,7 @@ float height_fraction(float alt_11) {
     return _e4;
 }
 
-ScatteredLight scattered_light(vec3 rel_3, vec3 p_8, float alt_12, float density_2, vec3 view, Layer l_6, inout Counters counters_6) {
+ScatteredLight scattered_light(vec3 rel_4, vec3 p_8, float alt_12, float density_2, vec3 view, Layer l_6, inout Counters counters_6) {
     vec3 sun_light = vec3(0.0);
     vec3 octave_light = vec3(0.0);
     float tau_7 = 0.0;
@@ -1334,12 +1334,12 @@ ScatteredLight scattered_light(vec3 rel_3, vec3 p_8, float alt_12, float density
     float _e11 = layer_height(l_6, alt_12);
     float _e12 = saturate(_e11);
     Weather _e19 = sample_weather(p_8, l_6);
-    bool _e20 = hits_ground(rel_3, alt_12, sun_4);
+    bool _e20 = hits_ground(rel_4, alt_12, sun_4);
     if (!(_e20)) {
         if (LIGHT_MARCH) {
-            float _e27 = sun_optical_depth(rel_3, p_8, l_6, counters_6);
+            float _e27 = sun_optical_depth(rel_4, p_8, l_6, counters_6);
             tau_7 = _e27;
-            float _e28 = far_optical_depth(rel_3, p_8, l_6);
+            float _e28 = far_optical_depth(rel_4, p_8, l_6);
             far_2 = _e28;
         }
         float _e31 = tau_7;
@@ -1347,7 +1347,7 @@ ScatteredLight scattered_light(vec3 rel_3, vec3 p_8, float alt_12, float density
         float _e33 = octave_buildup(density_2);
         SunScattering _e35 = sun_scattering(dot(view, sun_4), view.y, _e31, _e32, _e33, _e19.coverage, _e12);
         vec4 _e38 = _group_0_binding_0_cs.sun_illuminance;
-        vec3 _e40 = sun_through_air(rel_3);
+        vec3 _e40 = sun_through_air(rel_4);
         vec3 lit = (_e38.xyz * _e40);
         sun_light = (lit * _e35.total);
         octave_light = (lit * _e35.octaves);
@@ -1370,7 +1370,7 @@ vec3 shadow_ground_point(uvec2 c_2) {
     return vec3(xz_1.x, y_1, xz_1.y);
 }
 
-float empty_cell_exit(vec3 p_9, vec3 d_11) {
+float empty_cell_exit(vec3 p_9, vec3 d_13) {
     float exit = 1e30;
     vec4 _e6 = _group_0_binding_0_cs.wind_offsets0_;
     float _e12 = _group_0_binding_0_cs.periods.x;
@@ -1385,22 +1385,22 @@ float empty_cell_exit(vec3 p_9, vec3 d_11) {
     float _e40 = _group_0_binding_0_cs.periods.x;
     float cell_m = (_e40 / 64.0);
     vec2 inside = ((uv_3 - vec2(cell_1)) * cell_m);
-    if ((d_11.x > 1e-6)) {
+    if ((d_13.x > 1e-6)) {
         float _e50 = exit;
-        exit = min(_e50, ((cell_m - inside.x) / d_11.x));
+        exit = min(_e50, ((cell_m - inside.x) / d_13.x));
     } else {
-        if ((d_11.x < -1e-6)) {
+        if ((d_13.x < -1e-6)) {
             float _e59 = exit;
-            exit = min(_e59, (inside.x / -(d_11.x)));
+            exit = min(_e59, (inside.x / -(d_13.x)));
         }
     }
-    if ((d_11.z > 1e-6)) {
+    if ((d_13.z > 1e-6)) {
         float _e68 = exit;
-        exit = min(_e68, ((cell_m - inside.y) / d_11.z));
+        exit = min(_e68, ((cell_m - inside.y) / d_13.z));
     } else {
-        if ((d_11.z < -1e-6)) {
+        if ((d_13.z < -1e-6)) {
             float _e77 = exit;
-            exit = min(_e77, (inside.y / -(d_11.z)));
+            exit = min(_e77, (inside.y / -(d_13.z)));
         }
     }
     float _e83 = exit;
@@ -1484,8 +1484,8 @@ bool march_layer(vec3 view_2, Interval span_1, Layer l_7, float jitter, inout Ma
         counters_7.view_steps = (_e75 + 1u);
         uint _e79 = i_13;
         float t_6 = (span_1.start + ((float(_e79) + jitter) * dt_1));
-        vec3 rel_7 = ((view_2 * t_6) + vec3(0.0, cam_alt, 0.0));
-        vec3 p_13 = vec3((rel_7.x + cam_xz.x), rel_7.y, (rel_7.z + cam_xz.y));
+        vec3 rel_8 = ((view_2 * t_6) + vec3(0.0, cam_alt, 0.0));
+        vec3 p_13 = vec3((rel_8.x + cam_xz.x), rel_8.y, (rel_8.z + cam_xz.y));
         if (empty_skip) {
             float _e97 = empty_cell_exit(p_13, view_2);
             if ((_e97 > 0.0)) {
@@ -1496,7 +1496,7 @@ bool march_layer(vec3 view_2, Interval span_1, Layer l_7, float jitter, inout Ma
                 continue;
             }
         }
-        float _e115 = altitude_of(rel_7);
+        float _e115 = altitude_of(rel_8);
         float _e116 = layer_density(p_13, _e115, l_7, counters_7);
         if ((_e116 <= 0.0)) {
             uint _e119 = empty;
@@ -1527,7 +1527,7 @@ bool march_layer(vec3 view_2, Interval span_1, Layer l_7, float jitter, inout Ma
         }
         empty = 0u;
         float sigma_t_2 = (sigma_e * _e116);
-        ScatteredLight _e145 = scattered_light(rel_7, p_13, _e115, _e116, view_2, l_7, counters_7);
+        ScatteredLight _e145 = scattered_light(rel_8, p_13, _e115, _e116, view_2, l_7, counters_7);
         float transmittance_2 = state.transmittance;
         vec3 _e149 = state.radiance;
         vec3 _e151 = step_integral(_e145.total, sigma_t_2, dt_1);
@@ -1887,7 +1887,7 @@ float rng_exponential(inout uint rng_2, float sigma) {
     return (-(log((1.0 - _e2))) / sigma);
 }
 
-Segments layer_segments(vec3 p_10, float alt_13, vec3 d_12) {
+Segments layer_segments(vec3 p_10, float alt_13, vec3 d_14) {
     Segments s_1 = Segments(vec2(0.0), vec2(0.0), 0u);
     bool local_45 = false;
     vec2 a_1 = vec2(0.0);
@@ -1899,9 +1899,9 @@ Segments layer_segments(vec3 p_10, float alt_13, vec3 d_12) {
     bool local_49 = false;
     vec2 _e10 = layers_span();
     float bottom_2 = _e10.x;
-    Roots _e12 = ray_shell_from(p_10, alt_13, d_12, bottom_2);
-    Roots _e14 = ray_shell_from(p_10, alt_13, d_12, _e10.y);
-    bool _e15 = hits_ground(p_10, alt_13, d_12);
+    Roots _e12 = ray_shell_from(p_10, alt_13, d_14, bottom_2);
+    Roots _e14 = ray_shell_from(p_10, alt_13, d_14, _e10.y);
+    bool _e15 = hits_ground(p_10, alt_13, d_14);
     if (!(!(_e14.hit))) {
         local_45 = (_e14.t1_ <= 0.0);
     } else {
@@ -1975,24 +1975,24 @@ Segments layer_segments(vec3 p_10, float alt_13, vec3 d_12) {
     return _e103;
 }
 
-float density_at(vec3 rel_5, inout Counters counters_9) {
+float density_at(vec3 rel_6, inout Counters counters_9) {
     float _e6 = _group_0_binding_0_cs.camera_position.x;
     float _e13 = _group_0_binding_0_cs.camera_position.z;
-    vec3 p_15 = vec3((rel_5.x + _e6), rel_5.y, (rel_5.z + _e13));
-    float _e16 = altitude_of(rel_5);
+    vec3 p_15 = vec3((rel_6.x + _e6), rel_6.y, (rel_6.z + _e13));
+    float _e16 = altitude_of(rel_6);
     float _e17 = cloud_density(p_15, _e16, counters_9);
     return _e17;
 }
 
-float empty_cell_skip(vec3 origin_3, vec3 dir_1, float t_2) {
+float empty_cell_skip(vec3 origin_4, vec3 dir_1, float t_2) {
     uint _e3 = layer_count();
     if ((_e3 > 1u)) {
         return 0.0;
     }
-    vec3 rel_8 = (origin_3 + (dir_1 * t_2));
+    vec3 rel_9 = (origin_4 + (dir_1 * t_2));
     float _e13 = _group_0_binding_0_cs.camera_position.x;
     float _e20 = _group_0_binding_0_cs.camera_position.z;
-    vec3 p_16 = vec3((rel_8.x + _e13), rel_8.y, (rel_8.z + _e20));
+    vec3 p_16 = vec3((rel_9.x + _e13), rel_9.y, (rel_9.z + _e20));
     float _e23 = empty_cell_exit(p_16, dir_1);
     if ((_e23 <= 0.0)) {
         return 0.0;
@@ -2027,7 +2027,7 @@ float density_max() {
     return clamp(_e19, 0.0, 1.0);
 }
 
-float free_flight(vec3 origin_4, vec3 dir_2, Segments segs, inout uint rng_3, inout Counters counters_10) {
+float free_flight(vec3 origin_5, vec3 dir_2, Segments segs, inout uint rng_3, inout Counters counters_10) {
     uint k_8 = 0u;
     float t_3 = 0.0;
     float _e5 = density_max();
@@ -2054,7 +2054,7 @@ float free_flight(vec3 origin_4, vec3 dir_2, Segments segs, inout uint rng_3, in
             t_3 = segs.a[_e25];
             while(true) {
                 float _e28 = t_3;
-                float _e29 = empty_cell_skip(origin_4, dir_2, _e28);
+                float _e29 = empty_cell_skip(origin_5, dir_2, _e28);
                 if ((_e29 > 0.0)) {
                     float _e32 = t_3;
                     t_3 = (_e32 + _e29);
@@ -2076,7 +2076,7 @@ float free_flight(vec3 origin_4, vec3 dir_2, Segments segs, inout uint rng_3, in
                 uint _e48 = counters_10.view_steps;
                 counters_10.view_steps = (_e48 + 1u);
                 float _e51 = t_3;
-                float _e54 = density_at((origin_4 + (dir_2 * _e51)), counters_10);
+                float _e54 = density_at((origin_5 + (dir_2 * _e51)), counters_10);
                 float _e55 = rng_next(rng_3);
                 if (((_e55 * _e5) < _e54)) {
                     float _e58 = t_3;
@@ -2088,7 +2088,7 @@ float free_flight(vec3 origin_4, vec3 dir_2, Segments segs, inout uint rng_3, in
     return -1.0;
 }
 
-float transmittance_along(vec3 origin_5, vec3 dir_3, Segments segs_1, inout uint rng_4, inout Counters counters_11) {
+float transmittance_along(vec3 origin_6, vec3 dir_3, Segments segs_1, inout uint rng_4, inout Counters counters_11) {
     float tr = 1.0;
     uint k_9 = 0u;
     float t_4 = 0.0;
@@ -2117,7 +2117,7 @@ float transmittance_along(vec3 origin_5, vec3 dir_3, Segments segs_1, inout uint
             t_4 = segs_1.a[_e27];
             while(true) {
                 float _e30 = t_4;
-                float _e31 = empty_cell_skip(origin_5, dir_3, _e30);
+                float _e31 = empty_cell_skip(origin_6, dir_3, _e30);
                 if ((_e31 > 0.0)) {
                     float _e34 = t_4;
                     t_4 = (_e34 + _e31);
@@ -2139,7 +2139,7 @@ float transmittance_along(vec3 origin_5, vec3 dir_3, Segments segs_1, inout uint
                 uint _e50 = counters_11.light;
                 counters_11.light = (_e50 + 1u);
                 float _e53 = t_4;
-                float _e56 = density_at((origin_5 + (dir_3 * _e53)), counters_11);
+                float _e56 = density_at((origin_6 + (dir_3 * _e53)), counters_11);
                 float _e57 = tr;
                 tr = (_e57 * (1.0 - ((sigma_t_3 * _e56) / majorant_1)));
                 float _e63 = tr;
@@ -2256,7 +2256,7 @@ float luminance(vec3 c_3) {
     return dot(c_3, vec3(0.2126, 0.7152, 0.0722));
 }
 
-float basic_sun_depth(vec3 rel_6, float alt_14, inout Counters counters_13) {
+float basic_sun_depth(vec3 rel_7, float alt_14, inout Counters counters_13) {
     float tau_8 = 0.0;
     uint i_16 = 1u;
     uint steps_4 = _group_0_binding_0_cs.counts.w;
@@ -2269,7 +2269,7 @@ float basic_sun_depth(vec3 rel_6, float alt_14, inout Counters counters_13) {
     float top_2 = _group_0_binding_0_cs.atmosphere.z;
     float _e25 = _group_0_binding_0_cs.atmosphere.y;
     float thickness = (top_2 - _e25);
-    Roots _e39 = solve_sphere(dot(sun_5, vec3(rel_6.x, (rel_6.y + rp_5), rel_6.z)), ((alt_14 - top_2) * ((alt_14 + top_2) + (2.0 * rp_5))));
+    Roots _e39 = solve_sphere(dot(sun_5, vec3(rel_7.x, (rel_7.y + rp_5), rel_7.z)), ((alt_14 - top_2) * ((alt_14 + top_2) + (2.0 * rp_5))));
     float length_ = min(max(_e39.t1_, 0.0), (3.0 * thickness));
     float dt_2 = (length_ / float(steps_4));
     float _e51 = _group_0_binding_0_cs.extinction.x;
@@ -2293,7 +2293,7 @@ float basic_sun_depth(vec3 rel_6, float alt_14, inout Counters counters_13) {
             uint _e68 = counters_13.light;
             counters_13.light = (_e68 + 1u);
             uint _e71 = i_16;
-            vec3 q_8 = (rel_6 + (sun_5 * (float(_e71) * dt_2)));
+            vec3 q_8 = (rel_7 + (sun_5 * (float(_e71) * dt_2)));
             vec3 p_17 = vec3((q_8.x + cam_xz_1.x), q_8.y, (q_8.z + cam_xz_1.y));
             float _e84 = tau_8;
             float _e85 = altitude_of(q_8);
@@ -2352,14 +2352,14 @@ MarchResult basic_pixel(uvec2 pixel_7) {
                     counters_14.view_steps = (_e74 + 1u);
                     uint _e78 = i_17;
                     float t_8 = (_e25.start + (float(_e78) * dt_3));
-                    vec3 rel_9 = ((_e1 * t_8) + vec3(0.0, cam_alt_2, 0.0));
-                    vec3 p_18 = vec3((rel_9.x + cam_xz_2.x), rel_9.y, (rel_9.z + cam_xz_2.y));
-                    float _e95 = altitude_of(rel_9);
+                    vec3 rel_10 = ((_e1 * t_8) + vec3(0.0, cam_alt_2, 0.0));
+                    vec3 p_18 = vec3((rel_10.x + cam_xz_2.x), rel_10.y, (rel_10.z + cam_xz_2.y));
+                    float _e95 = altitude_of(rel_10);
                     float _e96 = cloud_density(p_18, _e95, counters_14);
                     if ((_e96 <= 0.0)) {
                         continue;
                     }
-                    float _e99 = basic_sun_depth(rel_9, _e95, counters_14);
+                    float _e99 = basic_sun_depth(rel_10, _e95, counters_14);
                     float beer_powder = ((2.0 * exp(-(_e99))) * (1.0 - exp((-2.0 * _e99))));
                     vec3 _e110 = radiance_2;
                     float _e111 = transmittance_1;
@@ -2489,9 +2489,9 @@ float sprite_texture(uint tile_1, vec2 uv) {
             float _e93 = atlas_hash(tile_1, (100u + _e91));
             float r_17 = (0.14 + (0.1 * _e93));
             vec2 _e98 = at;
-            float d_20 = (length((uv - _e98)) / r_17);
+            float d_22 = (length((uv - _e98)) / r_17);
             float _e102 = billow;
-            float _e106 = saturate((1.0 - (d_20 * d_20)));
+            float _e106 = saturate((1.0 - (d_22 * d_22)));
             billow = max(_e102, _e106);
         }
     }
@@ -2509,10 +2509,10 @@ float sprite_texture(uint tile_1, vec2 uv) {
 vec3 sprite_rel(vec2 xz, float alt_15) {
     float rp_6 = _group_0_binding_0_cs.atmosphere.x;
     vec4 _e8 = _group_0_binding_0_cs.camera_position;
-    vec2 d_21 = (xz - _e8.xz);
-    float k_18 = ((alt_15 * (alt_15 + (2.0 * rp_6))) - dot(d_21, d_21));
+    vec2 d_23 = (xz - _e8.xz);
+    float k_18 = ((alt_15 * (alt_15 + (2.0 * rp_6))) - dot(d_23, d_23));
     float y_3 = (k_18 / (rp_6 + sqrt(max(((rp_6 * rp_6) + k_18), 0.0))));
-    return vec3(d_21.x, y_3, d_21.y);
+    return vec3(d_23.x, y_3, d_23.y);
 }
 
 SpriteCell sprite_cell(uint cell) {
@@ -2621,43 +2621,43 @@ vec2 sprite_corner(uint k_11) {
     return vec2((_e18 ? 1.0 : -1.0), ((q_10 >= 2u) ? 1.0 : -1.0));
 }
 
-vec3 sky_radiance(vec3 d_14, float alt_16) {
+vec3 sky_radiance(vec3 d_16, float alt_16) {
     vec4 _e4 = _group_0_binding_0_cs.sun_direction;
     vec3 sun_6 = _e4.xyz;
     vec4 _e8 = _group_0_binding_0_cs.sun_illuminance;
     vec3 e = _e8.xyz;
     float _e15 = saturate(((sun_6.y * 4.0) + 0.3));
-    bool _e19 = hits_ground(vec3(0.0, alt_16, 0.0), alt_16, d_14);
+    bool _e19 = hits_ground(vec3(0.0, alt_16, 0.0), alt_16, d_16);
     if (_e19) {
         vec3 ground_albedo = vec3(0.035, 0.035, 0.03);
         return (ground_albedo * (((e * max(sun_6.y, 0.0)) / vec3(3.1415927)) + ((0.05 * e) * _e15)));
     }
     vec3 zenith = vec3(0.018, 0.04, 0.1);
     vec3 horizon_2 = vec3(0.07, 0.085, 0.11);
-    float _e45 = saturate(d_14.y);
+    float _e45 = saturate(d_16.y);
     vec3 gradient_1 = mix(horizon_2, zenith, sqrt(_e45));
     vec3 sunset = (((1.0 - (_e15 * 0.8)) * pow((1.0 - _e45), 6.0)) * vec3(0.25, 0.1, 0.0));
-    float _e64 = phase_hg(dot(d_14, sun_6), 0.76);
+    float _e64 = phase_hg(dot(d_16, sun_6), 0.76);
     float glow = (_e64 * 0.02);
     float _e73 = saturate(((sun_6.y * 10.0) + 1.0));
     return (e * (((gradient_1 * _e15) + (sunset * _e73)) + vec3((glow * _e15))));
 }
 
-vec3 sun_disk(vec3 d_15) {
+vec3 sun_disk(vec3 d_17) {
     float cos_r = _group_0_binding_0_cs.sun_direction.w;
     vec4 _e7 = _group_0_binding_0_cs.sun_direction;
-    if ((dot(d_15, _e7.xyz) < cos_r)) {
+    if ((dot(d_17, _e7.xyz) < cos_r)) {
         return vec3(0.0);
     }
     vec4 _e15 = _group_0_binding_0_cs.sun_illuminance;
     return (_e15.xyz / vec3((6.2831855 * max((1.0 - cos_r), 1e-6))));
 }
 
-vec3 moon_disk(vec3 d_16) {
+vec3 moon_disk(vec3 d_18) {
     bool local_60 = false;
     vec4 _e3 = _group_0_binding_0_cs.moon;
     vec3 m_3 = _e3.xyz;
-    float c_11 = dot(d_16, m_3);
+    float c_11 = dot(d_18, m_3);
     float _e9 = _group_0_binding_0_cs.moon.w;
     if (!((_e9 <= 0.0))) {
         local_60 = (c_11 < MOON_COS_RADIUS);
@@ -2668,7 +2668,7 @@ vec3 moon_disk(vec3 d_16) {
     if (_e18) {
         return vec3(0.0);
     }
-    vec3 offset = ((d_16 - (m_3 * c_11)) / vec3(0.0045149517));
+    vec3 offset = ((d_18 - (m_3 * c_11)) / vec3(0.0045149517));
     float x2_1 = min(dot(offset, offset), 1.0);
     vec3 normal = (offset - (m_3 * sqrt((1.0 - x2_1))));
     vec4 _e36 = _group_0_binding_0_cs.night;
@@ -2677,7 +2677,7 @@ vec3 moon_disk(vec3 d_16) {
     return vec3(((_e46 / 6.40407e-5) * lit_1));
 }
 
-vec3 stars(vec3 d_17) {
+vec3 stars(vec3 d_19) {
     uint face = 0u;
     vec2 uv_1 = vec2(0.0);
     float major = 0.0;
@@ -2687,7 +2687,7 @@ vec3 stars(vec3 d_17) {
     if ((e0_ <= 0.0)) {
         return vec3(0.0);
     }
-    vec3 a_9 = abs(d_17);
+    vec3 a_9 = abs(d_19);
     if ((a_9.x >= a_9.y)) {
         local_61 = (a_9.x >= a_9.z);
     } else {
@@ -2695,17 +2695,17 @@ vec3 stars(vec3 d_17) {
     }
     bool _e26 = local_61;
     if (_e26) {
-        face = ((d_17.x > 0.0) ? 0u : 1u);
-        uv_1 = d_17.zy;
+        face = ((d_19.x > 0.0) ? 0u : 1u);
+        uv_1 = d_19.zy;
         major = a_9.x;
     } else {
         if ((a_9.y >= a_9.z)) {
-            face = ((d_17.y > 0.0) ? 2u : 3u);
-            uv_1 = d_17.xz;
+            face = ((d_19.y > 0.0) ? 2u : 3u);
+            uv_1 = d_19.xz;
             major = a_9.y;
         } else {
-            face = ((d_17.z > 0.0) ? 4u : 5u);
-            uv_1 = d_17.xy;
+            face = ((d_19.z > 0.0) ? 4u : 5u);
+            uv_1 = d_19.xy;
             major = a_9.z;
         }
     }
@@ -2759,7 +2759,7 @@ vec3 stars(vec3 d_17) {
     uint _e209 = _group_0_binding_0_cs.counts.y;
     float pixel_angle = ((2.0 * _e203) / float(_e209));
     vec3 _e212 = star;
-    float dist_1 = (acos(clamp(dot(d_17, _e212), -1.0, 1.0)) / pixel_angle);
+    float dist_1 = (acos(clamp(dot(d_19, _e212), -1.0, 1.0)) / pixel_angle);
     float weight_1 = (exp(((-(dist_1) * dist_1) / 0.5)) / 1.5707964);
     vec3 tint = mix(vec3(0.8, 0.9, 1.1), vec3(1.15, 0.95, 0.75), (h3_ * h4_));
     return (tint * ((illuminance * weight_1) / (pixel_angle * pixel_angle)));

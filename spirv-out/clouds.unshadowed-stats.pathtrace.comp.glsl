@@ -232,9 +232,11 @@ layout(std140, binding = 0) uniform Frame_block_0Compute { Frame _group_0_bindin
 
 layout(binding = 27) uniform sampler2D _group_0_binding_27_cs;
 
-layout(binding = 29) uniform sampler2D _group_0_binding_29_cs;
+layout(binding = 28) uniform sampler2D _group_0_binding_28_cs;
 
 layout(binding = 31) uniform sampler2D _group_0_binding_31_cs;
+
+layout(binding = 38) uniform sampler2D _group_0_binding_38_cs;
 
 layout(binding = 1) uniform sampler3D _group_0_binding_1_cs;
 
@@ -299,8 +301,8 @@ vec3 view_ray(uvec2 pixel_1) {
     vec4 _e26 = _group_0_binding_0_cs.camera_forward;
     vec4 _e30 = _group_0_binding_0_cs.camera_right;
     vec4 _e39 = _group_0_binding_0_cs.camera_up;
-    vec3 d_18 = ((_e26.xyz + (_e30.xyz * ((ndc.x * tan_half) * aspect))) - (_e39.xyz * (ndc.y * tan_half)));
-    return normalize(d_18);
+    vec3 d_20 = ((_e26.xyz + (_e30.xyz * ((ndc.x * tan_half) * aspect))) - (_e39.xyz * (ndc.y * tan_half)));
+    return normalize(d_20);
 }
 
 Roots solve_sphere(float b, float c) {
@@ -651,9 +653,9 @@ vec2 transmittance_r_mu(vec2 x_4) {
     float r_14 = sqrt(((rho_1 * rho_1) + (_e1 * _e1)));
     float d_min_1 = (_e2 - r_14);
     float d_max_1 = (rho_1 + h_12);
-    float d_19 = (d_min_1 + (x_4.x * (d_max_1 - d_min_1)));
-    if ((d_19 > 0.0)) {
-        mu_6 = clamp(((((h_12 * h_12) - (rho_1 * rho_1)) - (d_19 * d_19)) / ((2.0 * r_14) * d_19)), -1.0, 1.0);
+    float d_21 = (d_min_1 + (x_4.x * (d_max_1 - d_min_1)));
+    if ((d_21 > 0.0)) {
+        mu_6 = clamp(((((h_12 * h_12) - (rho_1 * rho_1)) - (d_21 * d_21)) / ((2.0 * r_14) * d_21)), -1.0, 1.0);
     }
     float _e37 = mu_6;
     return vec2(r_14, _e37);
@@ -672,6 +674,15 @@ vec3 sun_transmittance(float r_9, float mu_s) {
     }
     vec3 _e5 = transmittance_to_top(r_9, mu_s);
     return _e5;
+}
+
+vec3 multiscatter(float r_10, float mu_s_1) {
+    float _e6 = air_bottom();
+    float _e8 = air_top();
+    float _e9 = air_bottom();
+    vec2 x_6 = vec2(((mu_s_1 * 0.5) + 0.5), ((r_10 - _e6) / (_e8 - _e9)));
+    vec4 _e15 = lut_bilinear(_group_0_binding_28_cs, x_6, MULTISCATTER_SIZE);
+    return _e15.xyz;
 }
 
 float phase_rayleigh(float cos_theta) {
@@ -697,19 +708,92 @@ vec3 ground_radiance_sun(float mu_s_2) {
     return (((_e4 / PI) * max(mu_s_2, 0.0)) * _e13);
 }
 
+Scattered integrate_air(vec3 origin, vec3 d_7, float distance_km, uint steps, vec3 sun) {
+    vec3 radiance_1 = vec3(0.0);
+    vec3 tau_3 = vec3(0.0);
+    float t0_ = 0.0;
+    uint i_8 = 0u;
+    float cos_theta_8 = dot(d_7, sun);
+    float _e6 = phase_rayleigh(cos_theta_8);
+    float _e10 = _group_0_binding_0_cs.air_mie.w;
+    float _e11 = phase_cornette_shanks_air(cos_theta_8, _e10);
+    bool loop_init_2 = true;
+    while(true) {
+        if (!loop_init_2) {
+            uint _e79 = i_8;
+            i_8 = (_e79 + 1u);
+        }
+        loop_init_2 = false;
+        uint _e22 = i_8;
+        if ((_e22 < steps)) {
+        } else {
+            break;
+        }
+        {
+            uint _e24 = i_8;
+            float s1_ = (float((_e24 + 1u)) / float(steps));
+            float t1_ = ((distance_km * s1_) * s1_);
+            float _e32 = t0_;
+            float dt_1 = (t1_ - _e32);
+            float _e34 = t0_;
+            vec3 p_13 = (origin + (d_7 * (0.5 * (_e34 + t1_))));
+            float r_15 = length(p_13);
+            vec3 up = (p_13 / vec3(r_15));
+            float mu_s_5 = dot(up, sun);
+            float _e44 = air_bottom();
+            AirSample _e46 = air_at((r_15 - _e44));
+            vec3 _e47 = tau_3;
+            vec3 t_view = exp(-((_e47 + ((0.5 * _e46.extinction) * dt_1))));
+            vec3 _e55 = sun_transmittance(r_15, mu_s_5);
+            vec3 _e56 = multiscatter(r_15, mu_s_5);
+            vec3 inscatter = ((_e55 * ((_e46.rayleigh * _e6) + vec3((_e46.mie * _e11)))) + (_e56 * (_e46.rayleigh + vec3(_e46.mie))));
+            vec3 _e70 = radiance_1;
+            radiance_1 = (_e70 + ((t_view * inscatter) * dt_1));
+            vec3 _e74 = tau_3;
+            tau_3 = (_e74 + (_e46.extinction * dt_1));
+            t0_ = t1_;
+        }
+    }
+    vec3 _e81 = radiance_1;
+    vec3 _e82 = tau_3;
+    return Scattered(_e81, exp(-(_e82)));
+}
+
+vec3 sky_irradiance(float mu_s_3) {
+    vec2 x_7 = vec2(((mu_s_3 * 0.5) + 0.5), 0.0);
+    vec4 _e11 = lut_bilinear(_group_0_binding_38_cs, x_7, uvec2(64u, 1u));
+    return _e11.xyz;
+}
+
+vec3 ground_radiance(float mu_s_4) {
+    vec3 _e1 = ground_radiance_sun(mu_s_4);
+    float _e5 = _group_0_binding_0_cs.air_misc.z;
+    vec3 _e8 = sky_irradiance(mu_s_4);
+    return (_e1 + ((_e5 / PI) * _e8));
+}
+
+vec3 with_ground(Scattered s, vec3 origin_1, vec3 d_8, float distance_km_1, vec3 sun_1, bool ground) {
+    if (!(ground)) {
+        return s.radiance;
+    }
+    vec3 end_1 = (origin_1 + (d_8 * distance_km_1));
+    vec3 _e14 = ground_radiance(dot(normalize(end_1), sun_1));
+    return (s.radiance + (s.transmittance * _e14));
+}
+
 vec2 air_ray_end(vec3 origin_2, vec3 d_9) {
-    float r_15 = length(origin_2);
-    float mu_8 = (dot(origin_2, d_9) / r_15);
-    bool _e5 = meets_ground(r_15, mu_8);
+    float r_16 = length(origin_2);
+    float mu_8 = (dot(origin_2, d_9) / r_16);
+    bool _e5 = meets_ground(r_16, mu_8);
     if (_e5) {
-        float _e6 = distance_to_ground(r_15, mu_8);
+        float _e6 = distance_to_ground(r_16, mu_8);
         return vec2(_e6, 1.0);
     }
     float _e9 = air_top();
-    if ((r_15 > _e9)) {
+    if ((r_16 > _e9)) {
         return vec2(0.0, 0.0);
     }
-    float _e14 = distance_to_top(r_15, mu_8);
+    float _e14 = distance_to_top(r_16, mu_8);
     return vec2(_e14, 0.0);
 }
 
@@ -748,21 +832,19 @@ float sun_azimuth() {
     return atan(s_5.z, s_5.x);
 }
 
-vec3 sky_view(vec3 d_10) {
-    float delta = 0.0;
-    vec3 _e1 = camera_air_origin();
-    float elevation_1 = asin(clamp(d_10.y, -1.0, 1.0));
-    float _e10 = sun_azimuth();
-    delta = (atan(d_10.z, d_10.x) - _e10);
-    float _e13 = delta;
-    float _e15 = delta;
-    delta = abs((_e13 - (6.2831855 * roundEven((_e15 / 6.2831855)))));
-    float _e22 = delta;
-    float _e26 = horizon_elevation(_e1.y);
-    float _e27 = sky_view_v(elevation_1, _e26);
-    vec2 x_6 = vec2((_e22 / PI), _e27);
-    vec4 _e31 = lut_bilinear(_group_0_binding_29_cs, x_6, SKY_VIEW_SIZE);
-    return _e31.xyz;
+vec3 sky_along(vec3 origin_3, vec3 d_10) {
+    vec2 _e2 = air_ray_end(origin_3, d_10);
+    vec4 _e5 = _group_0_binding_0_cs.sun_direction;
+    vec3 sun_2 = _e5.xyz;
+    Scattered _e9 = integrate_air(origin_3, d_10, _e2.x, SKY_VIEW_STEPS, sun_2);
+    vec3 _e14 = with_ground(_e9, origin_3, d_10, _e2.x, sun_2, (_e2.y > 0.5));
+    return _e14;
+}
+
+vec3 sky_from(vec3 rel, vec3 d_11) {
+    float _e7 = _group_0_binding_0_cs.atmosphere.x;
+    vec3 _e13 = sky_along((vec3(rel.x, (rel.y + _e7), rel.z) * 0.001), d_11);
+    return _e13;
 }
 
 vec3 aerial_ray(uvec2 c_1) {
@@ -775,16 +857,16 @@ vec3 aerial_ray(uvec2 c_1) {
     return normalize(((_e23.xyz + (_e27.xyz * ((ndc_1.x * tan_half_1) * aspect_1))) - (_e36.xyz * (ndc_1.y * tan_half_1))));
 }
 
-vec3 sun_through_air(vec3 rel) {
+vec3 sun_through_air(vec3 rel_1) {
     bool _e1 = physical_sky();
     if (!(_e1)) {
         return vec3(1.0);
     }
     float _e10 = _group_0_binding_0_cs.atmosphere.x;
-    vec3 q_6 = (vec3(rel.x, (rel.y + _e10), rel.z) * 0.001);
-    float r_16 = length(q_6);
+    vec3 q_6 = (vec3(rel_1.x, (rel_1.y + _e10), rel_1.z) * 0.001);
+    float r_17 = length(q_6);
     vec4 _e21 = _group_0_binding_0_cs.sun_direction;
-    vec3 _e24 = sun_transmittance(r_16, dot((q_6 / vec3(r_16)), _e21.xyz));
+    vec3 _e24 = sun_transmittance(r_17, dot((q_6 / vec3(r_17)), _e21.xyz));
     return _e24;
 }
 
@@ -805,13 +887,13 @@ float layer_height(Layer l_1, float alt_7) {
 uint layer_at(float alt_8) {
     uint i_9 = 0u;
     bool local_22 = false;
-    bool loop_init_2 = true;
+    bool loop_init_3 = true;
     while(true) {
-        if (!loop_init_2) {
+        if (!loop_init_3) {
             uint _e19 = i_9;
             i_9 = (_e19 + 1u);
         }
-        loop_init_2 = false;
+        loop_init_3 = false;
         uint _e3 = i_9;
         uint _e4 = layer_count();
         if ((_e3 < _e4)) {
@@ -1033,7 +1115,7 @@ float phase(float cos_theta_4, float scale) {
     }
 }
 
-float sun_optical_depth(vec3 rel_1, vec3 p_6, Layer l_4, inout Counters counters_5) {
+float sun_optical_depth(vec3 rel_2, vec3 p_6, Layer l_4, inout Counters counters_5) {
     float seg = 0.0;
     float dist = 0.0;
     float tau_4 = 0.0;
@@ -1044,7 +1126,7 @@ float sun_optical_depth(vec3 rel_1, vec3 p_6, Layer l_4, inout Counters counters
     bool local_29 = false;
     bool local_30 = false;
     vec4 _e6 = _group_0_binding_0_cs.sun_direction;
-    vec3 sun_2 = _e6.xyz;
+    vec3 sun_3 = _e6.xyz;
     float _e11 = _group_0_binding_0_cs.extinction.x;
     float _e15 = _group_0_binding_0_cs.extinction.y;
     float sigma_t_1 = (_e11 + _e15);
@@ -1052,13 +1134,13 @@ float sun_optical_depth(vec3 rel_1, vec3 p_6, Layer l_4, inout Counters counters
     float growth = _group_0_binding_0_cs.march.y;
     float _e28 = _group_0_binding_0_cs.march.z;
     seg = _e28;
-    bool loop_init_3 = true;
+    bool loop_init_4 = true;
     while(true) {
-        if (!loop_init_3) {
+        if (!loop_init_4) {
             uint _e73 = i_10;
             i_10 = (_e73 + 1u);
         }
-        loop_init_3 = false;
+        loop_init_4 = false;
         uint _e36 = i_10;
         if ((_e36 < steps_2)) {
         } else {
@@ -1068,7 +1150,7 @@ float sun_optical_depth(vec3 rel_1, vec3 p_6, Layer l_4, inout Counters counters
             float _e38 = dist;
             float _e39 = seg;
             float s_7 = (_e38 + (0.5 * _e39));
-            vec3 q_7 = (rel_1 + (sun_2 * s_7));
+            vec3 q_7 = (rel_2 + (sun_3 * s_7));
             float _e45 = altitude_of(q_7);
             if (!((_e45 > l_4.top))) {
                 local_27 = (_e45 < l_4.bottom);
@@ -1082,7 +1164,7 @@ float sun_optical_depth(vec3 rel_1, vec3 p_6, Layer l_4, inout Counters counters
             uint _e56 = counters_5.light;
             counters_5.light = (_e56 + 1u);
             float _e59 = tau_4;
-            float _e62 = layer_density((p_6 + (sun_2 * s_7)), _e45, l_4, counters_5);
+            float _e62 = layer_density((p_6 + (sun_3 * s_7)), _e45, l_4, counters_5);
             float _e64 = seg;
             tau_4 = (_e59 + ((_e62 * sigma_t_1) * _e64));
             float _e67 = dist;
@@ -1092,14 +1174,14 @@ float sun_optical_depth(vec3 rel_1, vec3 p_6, Layer l_4, inout Counters counters
             seg = (_e70 * growth);
         }
     }
-    float _e75 = altitude_of(rel_1);
-    bool loop_init_4 = true;
+    float _e75 = altitude_of(rel_2);
+    bool loop_init_5 = true;
     while(true) {
-        if (!loop_init_4) {
+        if (!loop_init_5) {
             uint _e139 = j_1;
             j_1 = (_e139 + 1u);
         }
-        loop_init_4 = false;
+        loop_init_5 = false;
         uint _e78 = j_1;
         uint _e79 = layer_count();
         if ((_e78 < _e79)) {
@@ -1112,8 +1194,8 @@ float sun_optical_depth(vec3 rel_1, vec3 p_6, Layer l_4, inout Counters counters
             if ((_e82.bottom <= l_4.top)) {
                 continue;
             }
-            Roots _e87 = ray_shell_from(rel_1, _e75, sun_2, _e82.bottom);
-            Roots _e89 = ray_shell_from(rel_1, _e75, sun_2, _e82.top);
+            Roots _e87 = ray_shell_from(rel_2, _e75, sun_3, _e82.bottom);
+            Roots _e89 = ray_shell_from(rel_2, _e75, sun_3, _e82.top);
             if (!(!(_e87.hit))) {
                 local_28 = !(_e89.hit);
             } else {
@@ -1139,8 +1221,8 @@ float sun_optical_depth(vec3 rel_1, vec3 p_6, Layer l_4, inout Counters counters
             uint _e122 = counters_5.light;
             counters_5.light = (_e122 + 1u);
             float _e125 = tau_4;
-            float _e130 = altitude_of((rel_1 + (sun_2 * s_8)));
-            float _e131 = layer_density((p_6 + (sun_2 * s_8)), _e130, _e82, counters_5);
+            float _e130 = altitude_of((rel_2 + (sun_3 * s_8)));
+            float _e131 = layer_density((p_6 + (sun_3 * s_8)), _e130, _e82, counters_5);
             tau_4 = (_e125 + ((_e131 * sigma_t_1) * (_e89.t1_ - _e87.t1_)));
         }
     }
@@ -1148,7 +1230,7 @@ float sun_optical_depth(vec3 rel_1, vec3 p_6, Layer l_4, inout Counters counters
     return _e141;
 }
 
-float far_optical_depth(vec3 rel_2, vec3 p_7, Layer l_5) {
+float far_optical_depth(vec3 rel_3, vec3 p_7, Layer l_5) {
     bool local_31 = false;
     float reach = 0.0;
     bool local_32 = false;
@@ -1175,9 +1257,9 @@ float far_optical_depth(vec3 rel_2, vec3 p_7, Layer l_5) {
         reach = ((_e41 * (pow(growth_1, steps_3) - 1.0)) / (growth_1 - 1.0));
     }
     vec4 _e51 = _group_0_binding_0_cs.sun_direction;
-    vec3 sun_3 = _e51.xyz;
-    float _e53 = altitude_of(rel_2);
-    Roots _e55 = ray_shell_from(rel_2, _e53, sun_3, l_5.top);
+    vec3 sun_4 = _e51.xyz;
+    float _e53 = altitude_of(rel_3);
+    Roots _e55 = ray_shell_from(rel_3, _e53, sun_4, l_5.top);
     float _e57 = reach;
     float len_1 = (_e55.t1_ - _e57);
     if (!(!(_e55.hit))) {
@@ -1189,13 +1271,13 @@ float far_optical_depth(vec3 rel_2, vec3 p_7, Layer l_5) {
     if (_e68) {
         return 0.0;
     }
-    bool loop_init_5 = true;
+    bool loop_init_6 = true;
     while(true) {
-        if (!loop_init_5) {
+        if (!loop_init_6) {
             uint _e110 = i_11;
             i_11 = (_e110 + 1u);
         }
-        loop_init_5 = false;
+        loop_init_6 = false;
         uint _e74 = i_11;
         if ((_e74 < 4u)) {
         } else {
@@ -1205,10 +1287,10 @@ float far_optical_depth(vec3 rel_2, vec3 p_7, Layer l_5) {
             float _e77 = reach;
             uint _e78 = i_11;
             float t_5 = (_e77 + (((float(_e78) + 0.5) * 0.25) * len_1));
-            float _e88 = altitude_of((rel_2 + (sun_3 * t_5)));
+            float _e88 = altitude_of((rel_3 + (sun_4 * t_5)));
             float _e89 = layer_height(l_5, _e88);
             float _e90 = saturate(_e89);
-            Weather _e93 = sample_weather((p_7 + (sun_3 * t_5)), l_5);
+            Weather _e93 = sample_weather((p_7 + (sun_4 * t_5)), l_5);
             float cov = _e93.coverage;
             float _e96 = height_signal(_e90, l_5.cloud_type);
             float f_2 = min((cov * _e96), 0.95);
@@ -1248,13 +1330,13 @@ SunScattering sun_scattering(float cos_theta_5, float view_y_2, float tau_6, flo
     float c_8 = _group_0_binding_0_cs.multiple_scattering.z;
     uint _e22 = _group_0_binding_0_cs.misc.x;
     uint octaves = min(_e22, MAX_OCTAVES);
-    bool loop_init_6 = true;
+    bool loop_init_7 = true;
     while(true) {
-        if (!loop_init_6) {
+        if (!loop_init_7) {
             uint _e55 = i_12;
             i_12 = (_e55 + 1u);
         }
-        loop_init_6 = false;
+        loop_init_7 = false;
         uint _e35 = i_12;
         if ((_e35 < octaves)) {
         } else {
@@ -1353,30 +1435,30 @@ float height_fraction(float alt_11) {
     return _e4;
 }
 
-ScatteredLight scattered_light(vec3 rel_3, vec3 p_8, float alt_12, float density_2, vec3 view, Layer l_6, inout Counters counters_6) {
+ScatteredLight scattered_light(vec3 rel_4, vec3 p_8, float alt_12, float density_2, vec3 view, Layer l_6, inout Counters counters_6) {
     vec3 sun_light = vec3(0.0);
     vec3 octave_light = vec3(0.0);
     float tau_7 = 0.0;
     float far_2 = 0.0;
     vec4 _e9 = _group_0_binding_0_cs.sun_direction;
-    vec3 sun_4 = _e9.xyz;
+    vec3 sun_5 = _e9.xyz;
     float _e11 = layer_height(l_6, alt_12);
     float _e12 = saturate(_e11);
     Weather _e19 = sample_weather(p_8, l_6);
-    bool _e20 = hits_ground(rel_3, alt_12, sun_4);
+    bool _e20 = hits_ground(rel_4, alt_12, sun_5);
     if (!(_e20)) {
         if (LIGHT_MARCH) {
-            float _e27 = sun_optical_depth(rel_3, p_8, l_6, counters_6);
+            float _e27 = sun_optical_depth(rel_4, p_8, l_6, counters_6);
             tau_7 = _e27;
-            float _e28 = far_optical_depth(rel_3, p_8, l_6);
+            float _e28 = far_optical_depth(rel_4, p_8, l_6);
             far_2 = _e28;
         }
         float _e31 = tau_7;
         float _e32 = far_2;
         float _e33 = octave_buildup(density_2);
-        SunScattering _e35 = sun_scattering(dot(view, sun_4), view.y, _e31, _e32, _e33, _e19.coverage, _e12);
+        SunScattering _e35 = sun_scattering(dot(view, sun_5), view.y, _e31, _e32, _e33, _e19.coverage, _e12);
         vec4 _e38 = _group_0_binding_0_cs.sun_illuminance;
-        vec3 _e40 = sun_through_air(rel_3);
+        vec3 _e40 = sun_through_air(rel_4);
         vec3 lit = (_e38.xyz * _e40);
         sun_light = (lit * _e35.total);
         octave_light = (lit * _e35.octaves);
@@ -1399,7 +1481,7 @@ vec3 shadow_ground_point(uvec2 c_2) {
     return vec3(xz_1.x, y_1, xz_1.y);
 }
 
-float empty_cell_exit(vec3 p_9, vec3 d_11) {
+float empty_cell_exit(vec3 p_9, vec3 d_13) {
     float exit = 1e30;
     vec4 _e6 = _group_0_binding_0_cs.wind_offsets0_;
     float _e12 = _group_0_binding_0_cs.periods.x;
@@ -1414,22 +1496,22 @@ float empty_cell_exit(vec3 p_9, vec3 d_11) {
     float _e40 = _group_0_binding_0_cs.periods.x;
     float cell_m = (_e40 / 64.0);
     vec2 inside = ((uv_3 - vec2(cell_1)) * cell_m);
-    if ((d_11.x > 1e-6)) {
+    if ((d_13.x > 1e-6)) {
         float _e50 = exit;
-        exit = min(_e50, ((cell_m - inside.x) / d_11.x));
+        exit = min(_e50, ((cell_m - inside.x) / d_13.x));
     } else {
-        if ((d_11.x < -1e-6)) {
+        if ((d_13.x < -1e-6)) {
             float _e59 = exit;
-            exit = min(_e59, (inside.x / -(d_11.x)));
+            exit = min(_e59, (inside.x / -(d_13.x)));
         }
     }
-    if ((d_11.z > 1e-6)) {
+    if ((d_13.z > 1e-6)) {
         float _e68 = exit;
-        exit = min(_e68, ((cell_m - inside.y) / d_11.z));
+        exit = min(_e68, ((cell_m - inside.y) / d_13.z));
     } else {
-        if ((d_11.z < -1e-6)) {
+        if ((d_13.z < -1e-6)) {
             float _e77 = exit;
-            exit = min(_e77, (inside.y / -(d_11.z)));
+            exit = min(_e77, (inside.y / -(d_13.z)));
         }
     }
     float _e83 = exit;
@@ -1457,8 +1539,8 @@ vec3 step_integral(vec3 source, float sigma_t, float dt) {
     if ((_e6 == INTEGRATION_RIEMANN)) {
         return (source * dt);
     }
-    float x_7 = (sigma_t * dt);
-    float f_3 = ((x_7 < 0.001) ? (1.0 - (0.5 * x_7)) : ((1.0 - exp(-(x_7))) / x_7));
+    float x_8 = (sigma_t * dt);
+    float f_3 = ((x_8 < 0.001) ? (1.0 - (0.5 * x_8)) : ((1.0 - exp(-(x_8))) / x_8));
     return (source * (dt * f_3));
 }
 
@@ -1495,7 +1577,7 @@ bool march_layer(vec3 view_2, Interval span_1, Layer l_7, float jitter, inout Ma
         steps_1 = min(max(uint(ceil((span_1.length_ / _e29))), 1u), MAX_VIEW_STEPS);
     }
     uint _e37 = steps_1;
-    float dt_1 = (span_1.length_ / float(_e37));
+    float dt_2 = (span_1.length_ / float(_e37));
     float _e43 = _group_0_binding_0_cs.extinction.x;
     float _e47 = _group_0_binding_0_cs.extinction.y;
     float sigma_e = (_e43 + _e47);
@@ -1512,21 +1594,21 @@ bool march_layer(vec3 view_2, Interval span_1, Layer l_7, float jitter, inout Ma
         uint _e75 = counters_7.view_steps;
         counters_7.view_steps = (_e75 + 1u);
         uint _e79 = i_13;
-        float t_6 = (span_1.start + ((float(_e79) + jitter) * dt_1));
-        vec3 rel_7 = ((view_2 * t_6) + vec3(0.0, cam_alt, 0.0));
-        vec3 p_13 = vec3((rel_7.x + cam_xz.x), rel_7.y, (rel_7.z + cam_xz.y));
+        float t_6 = (span_1.start + ((float(_e79) + jitter) * dt_2));
+        vec3 rel_8 = ((view_2 * t_6) + vec3(0.0, cam_alt, 0.0));
+        vec3 p_14 = vec3((rel_8.x + cam_xz.x), rel_8.y, (rel_8.z + cam_xz.y));
         if (empty_skip) {
-            float _e97 = empty_cell_exit(p_13, view_2);
+            float _e97 = empty_cell_exit(p_14, view_2);
             if ((_e97 > 0.0)) {
                 uint _e106 = steps_1;
-                uint next_1 = uint(clamp(ceil(((((t_6 + _e97) - span_1.start) / dt_1) - jitter)), 0.0, float(_e106)));
+                uint next_1 = uint(clamp(ceil(((((t_6 + _e97) - span_1.start) / dt_2) - jitter)), 0.0, float(_e106)));
                 uint _e111 = i_13;
                 i_13 = max((_e111 + 1u), next_1);
                 continue;
             }
         }
-        float _e115 = altitude_of(rel_7);
-        float _e116 = layer_density(p_13, _e115, l_7, counters_7);
+        float _e115 = altitude_of(rel_8);
+        float _e116 = layer_density(p_14, _e115, l_7, counters_7);
         if ((_e116 <= 0.0)) {
             uint _e119 = empty;
             empty = (_e119 + 1u);
@@ -1556,15 +1638,15 @@ bool march_layer(vec3 view_2, Interval span_1, Layer l_7, float jitter, inout Ma
         }
         empty = 0u;
         float sigma_t_2 = (sigma_e * _e116);
-        ScatteredLight _e145 = scattered_light(rel_7, p_13, _e115, _e116, view_2, l_7, counters_7);
+        ScatteredLight _e145 = scattered_light(rel_8, p_14, _e115, _e116, view_2, l_7, counters_7);
         float transmittance_2 = state.transmittance;
         vec3 _e149 = state.radiance;
-        vec3 _e151 = step_integral(_e145.total, sigma_t_2, dt_1);
+        vec3 _e151 = step_integral(_e145.total, sigma_t_2, dt_2);
         state.radiance = (_e149 + (transmittance_2 * _e151));
         vec3 _e155 = state.octaves;
-        vec3 _e157 = step_integral(_e145.octaves, sigma_t_2, dt_1);
+        vec3 _e157 = step_integral(_e145.octaves, sigma_t_2, dt_2);
         state.octaves = (_e155 + (transmittance_2 * _e157));
-        float step_t = exp((-(sigma_t_2) * dt_1));
+        float step_t = exp((-(sigma_t_2) * dt_2));
         float _e164 = state.depth_sum;
         state.depth_sum = (_e164 + ((t_6 * transmittance_2) * (1.0 - step_t)));
         state.transmittance = (transmittance_2 * step_t);
@@ -1603,13 +1685,13 @@ MarchResult march_pixel(uvec2 pixel_4) {
     count(STAT_PIXELS, 1u);
     float _e22 = start_offset(pixel_4);
     uint _e23 = layer_count();
-    bool loop_init_7 = true;
+    bool loop_init_8 = true;
     while(true) {
-        if (!loop_init_7) {
+        if (!loop_init_8) {
             uint _e121 = k_6;
             k_6 = (_e121 + 1u);
         }
-        loop_init_7 = false;
+        loop_init_8 = false;
         uint _e36 = k_6;
         if ((_e36 < _e23)) {
         } else {
@@ -1619,13 +1701,13 @@ MarchResult march_pixel(uvec2 pixel_4) {
             next = NO_LAYER;
             span_2 = Interval(0.0, 0.0, 1u);
             i_14 = 0u;
-            bool loop_init_8 = true;
+            bool loop_init_9 = true;
             while(true) {
-                if (!loop_init_8) {
+                if (!loop_init_9) {
                     uint _e104 = i_14;
                     i_14 = (_e104 + 1u);
                 }
-                loop_init_8 = false;
+                loop_init_9 = false;
                 uint _e47 = i_14;
                 if ((_e47 < _e23)) {
                 } else {
@@ -1872,16 +1954,16 @@ vec4 history_at(vec2 q_1) {
 vec4 history_nearest(vec2 q_2) {
     uvec4 _e3 = _group_0_binding_0_cs.counts;
     ivec2 size_5 = ivec2(_e3.xy);
-    ivec2 p_14 = min(max(ivec2(roundEven(q_2)), ivec2(0)), (size_5 - ivec2(1)));
-    vec4 _e16 = texelFetch(_group_0_binding_13_cs, p_14, 0);
+    ivec2 p_15 = min(max(ivec2(roundEven(q_2)), ivec2(0)), (size_5 - ivec2(1)));
+    vec4 _e16 = texelFetch(_group_0_binding_13_cs, p_15, 0);
     return _e16;
 }
 
 vec4 meta_at(vec2 q_3) {
     uvec4 _e3 = _group_0_binding_0_cs.counts;
     ivec2 size_6 = ivec2(_e3.xy);
-    ivec2 p_15 = min(max(ivec2(roundEven(q_3)), ivec2(0)), (size_6 - ivec2(1)));
-    vec4 _e16 = texelFetch(_group_0_binding_14_cs, p_15, 0);
+    ivec2 p_16 = min(max(ivec2(roundEven(q_3)), ivec2(0)), (size_6 - ivec2(1)));
+    vec4 _e16 = texelFetch(_group_0_binding_14_cs, p_16, 0);
     return _e16;
 }
 
@@ -1924,7 +2006,7 @@ float rng_exponential(inout uint rng_2, float sigma) {
     return (-(log((1.0 - _e2))) / sigma);
 }
 
-Segments layer_segments(vec3 p_10, float alt_13, vec3 d_12) {
+Segments layer_segments(vec3 p_10, float alt_13, vec3 d_14) {
     Segments s_1 = Segments(vec2(0.0), vec2(0.0), 0u);
     bool local_45 = false;
     vec2 a_1 = vec2(0.0);
@@ -1936,9 +2018,9 @@ Segments layer_segments(vec3 p_10, float alt_13, vec3 d_12) {
     bool local_49 = false;
     vec2 _e10 = layers_span();
     float bottom_2 = _e10.x;
-    Roots _e12 = ray_shell_from(p_10, alt_13, d_12, bottom_2);
-    Roots _e14 = ray_shell_from(p_10, alt_13, d_12, _e10.y);
-    bool _e15 = hits_ground(p_10, alt_13, d_12);
+    Roots _e12 = ray_shell_from(p_10, alt_13, d_14, bottom_2);
+    Roots _e14 = ray_shell_from(p_10, alt_13, d_14, _e10.y);
+    bool _e15 = hits_ground(p_10, alt_13, d_14);
     if (!(!(_e14.hit))) {
         local_45 = (_e14.t1_ <= 0.0);
     } else {
@@ -2012,25 +2094,25 @@ Segments layer_segments(vec3 p_10, float alt_13, vec3 d_12) {
     return _e103;
 }
 
-float density_at(vec3 rel_5, inout Counters counters_9) {
+float density_at(vec3 rel_6, inout Counters counters_9) {
     float _e6 = _group_0_binding_0_cs.camera_position.x;
     float _e13 = _group_0_binding_0_cs.camera_position.z;
-    vec3 p_16 = vec3((rel_5.x + _e6), rel_5.y, (rel_5.z + _e13));
-    float _e16 = altitude_of(rel_5);
-    float _e17 = cloud_density(p_16, _e16, counters_9);
+    vec3 p_17 = vec3((rel_6.x + _e6), rel_6.y, (rel_6.z + _e13));
+    float _e16 = altitude_of(rel_6);
+    float _e17 = cloud_density(p_17, _e16, counters_9);
     return _e17;
 }
 
-float empty_cell_skip(vec3 origin_3, vec3 dir_1, float t_2) {
+float empty_cell_skip(vec3 origin_4, vec3 dir_1, float t_2) {
     uint _e3 = layer_count();
     if ((_e3 > 1u)) {
         return 0.0;
     }
-    vec3 rel_8 = (origin_3 + (dir_1 * t_2));
+    vec3 rel_9 = (origin_4 + (dir_1 * t_2));
     float _e13 = _group_0_binding_0_cs.camera_position.x;
     float _e20 = _group_0_binding_0_cs.camera_position.z;
-    vec3 p_17 = vec3((rel_8.x + _e13), rel_8.y, (rel_8.z + _e20));
-    float _e23 = empty_cell_exit(p_17, dir_1);
+    vec3 p_18 = vec3((rel_9.x + _e13), rel_9.y, (rel_9.z + _e20));
+    float _e23 = empty_cell_exit(p_18, dir_1);
     if ((_e23 <= 0.0)) {
         return 0.0;
     }
@@ -2040,13 +2122,13 @@ float empty_cell_skip(vec3 origin_3, vec3 dir_1, float t_2) {
 float density_max() {
     float m_1 = 0.0;
     uint i_15 = 0u;
-    bool loop_init_9 = true;
+    bool loop_init_10 = true;
     while(true) {
-        if (!loop_init_9) {
+        if (!loop_init_10) {
             uint _e17 = i_15;
             i_15 = (_e17 + 1u);
         }
-        loop_init_9 = false;
+        loop_init_10 = false;
         uint _e4 = i_15;
         uint _e5 = layer_count();
         if ((_e4 < _e5)) {
@@ -2064,7 +2146,7 @@ float density_max() {
     return clamp(_e19, 0.0, 1.0);
 }
 
-float free_flight(vec3 origin_4, vec3 dir_2, Segments segs, inout uint rng_3, inout Counters counters_10) {
+float free_flight(vec3 origin_5, vec3 dir_2, Segments segs, inout uint rng_3, inout Counters counters_10) {
     uint k_8 = 0u;
     float t_3 = 0.0;
     float _e5 = density_max();
@@ -2074,13 +2156,13 @@ float free_flight(vec3 origin_4, vec3 dir_2, Segments segs, inout uint rng_3, in
     if ((majorant <= 0.0)) {
         return -1.0;
     }
-    bool loop_init_10 = true;
+    bool loop_init_11 = true;
     while(true) {
-        if (!loop_init_10) {
+        if (!loop_init_11) {
             uint _e60 = k_8;
             k_8 = (_e60 + 1u);
         }
-        loop_init_10 = false;
+        loop_init_11 = false;
         uint _e21 = k_8;
         if ((_e21 < segs.count)) {
         } else {
@@ -2091,7 +2173,7 @@ float free_flight(vec3 origin_4, vec3 dir_2, Segments segs, inout uint rng_3, in
             t_3 = segs.a[_e25];
             while(true) {
                 float _e28 = t_3;
-                float _e29 = empty_cell_skip(origin_4, dir_2, _e28);
+                float _e29 = empty_cell_skip(origin_5, dir_2, _e28);
                 if ((_e29 > 0.0)) {
                     float _e32 = t_3;
                     t_3 = (_e32 + _e29);
@@ -2113,7 +2195,7 @@ float free_flight(vec3 origin_4, vec3 dir_2, Segments segs, inout uint rng_3, in
                 uint _e48 = counters_10.view_steps;
                 counters_10.view_steps = (_e48 + 1u);
                 float _e51 = t_3;
-                float _e54 = density_at((origin_4 + (dir_2 * _e51)), counters_10);
+                float _e54 = density_at((origin_5 + (dir_2 * _e51)), counters_10);
                 float _e55 = rng_next(rng_3);
                 if (((_e55 * _e5) < _e54)) {
                     float _e58 = t_3;
@@ -2125,7 +2207,7 @@ float free_flight(vec3 origin_4, vec3 dir_2, Segments segs, inout uint rng_3, in
     return -1.0;
 }
 
-float transmittance_along(vec3 origin_5, vec3 dir_3, Segments segs_1, inout uint rng_4, inout Counters counters_11) {
+float transmittance_along(vec3 origin_6, vec3 dir_3, Segments segs_1, inout uint rng_4, inout Counters counters_11) {
     float tr = 1.0;
     uint k_9 = 0u;
     float t_4 = 0.0;
@@ -2137,13 +2219,13 @@ float transmittance_along(vec3 origin_5, vec3 dir_3, Segments segs_1, inout uint
     if ((majorant_1 <= 0.0)) {
         return 1.0;
     }
-    bool loop_init_11 = true;
+    bool loop_init_12 = true;
     while(true) {
-        if (!loop_init_11) {
+        if (!loop_init_12) {
             uint _e78 = k_9;
             k_9 = (_e78 + 1u);
         }
-        loop_init_11 = false;
+        loop_init_12 = false;
         uint _e23 = k_9;
         if ((_e23 < segs_1.count)) {
         } else {
@@ -2154,7 +2236,7 @@ float transmittance_along(vec3 origin_5, vec3 dir_3, Segments segs_1, inout uint
             t_4 = segs_1.a[_e27];
             while(true) {
                 float _e30 = t_4;
-                float _e31 = empty_cell_skip(origin_5, dir_3, _e30);
+                float _e31 = empty_cell_skip(origin_6, dir_3, _e30);
                 if ((_e31 > 0.0)) {
                     float _e34 = t_4;
                     t_4 = (_e34 + _e31);
@@ -2176,7 +2258,7 @@ float transmittance_along(vec3 origin_5, vec3 dir_3, Segments segs_1, inout uint
                 uint _e50 = counters_11.light;
                 counters_11.light = (_e50 + 1u);
                 float _e53 = t_4;
-                float _e56 = density_at((origin_5 + (dir_3 * _e53)), counters_11);
+                float _e56 = density_at((origin_6 + (dir_3 * _e53)), counters_11);
                 float _e57 = tr;
                 tr = (_e57 * (1.0 - ((sigma_t_3 * _e56) / majorant_1)));
                 float _e63 = tr;
@@ -2256,16 +2338,16 @@ PhaseSample sample_phase(vec3 dir_4, inout uint rng_5) {
     return PhaseSample(w_6, ((_e118 > 0.0) ? (_e115 / _e116) : 0.0));
 }
 
-vec3 environment(vec3 d_13, float h_8) {
-    bool _e2 = physical_sky();
-    if (_e2) {
-        vec3 _e3 = sky_view(d_13);
-        vec4 _e6 = _group_0_binding_0_cs.sun_illuminance;
-        float _e12 = _group_0_binding_0_cs.ambient_bottom.w;
-        return ((_e3 * _e6.xyz) * _e12);
+vec3 environment(vec3 pos, vec3 d_15, float h_8) {
+    bool _e3 = physical_sky();
+    if (_e3) {
+        vec3 _e4 = sky_from(pos, d_15);
+        vec4 _e7 = _group_0_binding_0_cs.sun_illuminance;
+        float _e13 = _group_0_binding_0_cs.ambient_bottom.w;
+        return ((_e4 * _e7.xyz) * _e13);
     }
-    vec3 _e14 = ambient(h_8);
-    return _e14;
+    vec3 _e15 = ambient(h_8);
+    return _e15;
 }
 
 PathResult trace_path(vec3 view_3, Interval span_3, inout uint rng_6, inout Counters counters_12) {
@@ -2274,7 +2356,7 @@ PathResult trace_path(vec3 view_3, Interval span_3, inout uint rng_6, inout Coun
     bool local_51 = false;
     bool local_52 = false;
     uint max_orders = MAX_PATH_ORDERS;
-    vec3 pos = vec3(0.0);
+    vec3 pos_1 = vec3(0.0);
     vec3 dir_5 = vec3(0.0);
     float throughput = 1.0;
     uint order = 0u;
@@ -2295,7 +2377,7 @@ PathResult trace_path(vec3 view_3, Interval span_3, inout uint rng_6, inout Coun
     }
     out_2.depth = _e33;
     vec4 _e40 = _group_0_binding_0_cs.sun_direction;
-    vec3 sun_5 = _e40.xyz;
+    vec3 sun_6 = _e40.xyz;
     float _e45 = _group_0_binding_0_cs.extinction.x;
     float _e49 = _group_0_binding_0_cs.extinction.y;
     float sigma_t_4 = (_e45 + _e49);
@@ -2328,81 +2410,82 @@ PathResult trace_path(vec3 view_3, Interval span_3, inout uint rng_6, inout Coun
         uint _e108 = _group_0_binding_0_cs.misc.z;
         max_orders = min(_e108, MAX_PATH_ORDERS);
     }
-    pos = (cam + (view_3 * _e33));
+    pos_1 = (cam + (view_3 * _e33));
     dir_5 = view_3;
     while(true) {
         float _e119 = throughput;
         throughput = (_e119 * albedo);
         uint _e121 = order;
         order = (_e121 + 1u);
-        vec3 _e124 = pos;
+        vec3 _e124 = pos_1;
         float _e125 = altitude_of(_e124);
         float _e126 = height_fraction(_e125);
-        vec3 _e127 = pos;
-        bool _e128 = hits_ground(_e127, _e125, sun_5);
+        vec3 _e127 = pos_1;
+        bool _e128 = hits_ground(_e127, _e125, sun_6);
         if (!(_e128)) {
-            vec3 _e130 = pos;
-            vec3 _e131 = pos;
-            Segments _e132 = layer_segments(_e131, _e125, sun_5);
-            float _e133 = transmittance_along(_e130, sun_5, _e132, rng_6, counters_12);
+            vec3 _e130 = pos_1;
+            vec3 _e131 = pos_1;
+            Segments _e132 = layer_segments(_e131, _e125, sun_6);
+            float _e133 = transmittance_along(_e130, sun_6, _e132, rng_6, counters_12);
             vec3 _e135 = out_2.radiance;
             vec4 _e138 = _group_0_binding_0_cs.sun_illuminance;
-            vec3 _e140 = pos;
+            vec3 _e140 = pos_1;
             vec3 _e141 = sun_through_air(_e140);
             float _e143 = throughput;
             vec3 _e144 = dir_5;
-            float _e147 = phase(dot(_e144, sun_5), 1.0);
+            float _e147 = phase(dot(_e144, sun_6), 1.0);
             out_2.radiance = (_e135 + ((_e138.xyz * _e141) * ((_e143 * _e147) * _e133)));
         }
         vec3 _e152 = dir_5;
         PhaseSample _e153 = sample_phase(_e152, rng_6);
-        vec3 _e154 = pos;
-        vec3 _e156 = pos;
+        vec3 _e154 = pos_1;
+        vec3 _e156 = pos_1;
         Segments _e158 = layer_segments(_e156, _e125, _e153.dir);
         float _e159 = free_flight(_e154, _e153.dir, _e158, rng_6, counters_12);
         if ((_e159 < 0.0)) {
             if (ambient_on) {
                 vec3 _e163 = out_2.radiance;
-                vec3 _e165 = environment(_e153.dir, _e126);
-                float _e166 = throughput;
-                out_2.radiance = (_e163 + (_e165 * (_e166 * _e153.weight)));
+                vec3 _e164 = pos_1;
+                vec3 _e166 = environment(_e164, _e153.dir, _e126);
+                float _e167 = throughput;
+                out_2.radiance = (_e163 + (_e166 * (_e167 * _e153.weight)));
             }
             break;
         }
-        uint _e171 = order;
-        uint _e172 = max_orders;
-        if ((_e171 >= _e172)) {
+        uint _e172 = order;
+        uint _e173 = max_orders;
+        if ((_e172 >= _e173)) {
             break;
         }
-        float _e174 = throughput;
-        throughput = (_e174 * _e153.weight);
+        float _e175 = throughput;
+        throughput = (_e175 * _e153.weight);
         dir_5 = _e153.dir;
-        uint _e178 = order;
-        if ((_e178 >= 3u)) {
-            float _e183 = throughput;
-            local_53 = (_e183 < 0.1);
+        uint _e179 = order;
+        if ((_e179 >= 3u)) {
+            float _e184 = throughput;
+            local_53 = (_e184 < 0.1);
         } else {
             local_53 = false;
         }
-        bool _e187 = local_53;
-        if (_e187) {
-            float _e188 = rng_next(rng_6);
-            float _e189 = throughput;
-            if ((_e188 >= (_e189 / 0.1))) {
+        bool _e188 = local_53;
+        if (_e188) {
+            float _e189 = rng_next(rng_6);
+            float _e190 = throughput;
+            if ((_e189 >= (_e190 / 0.1))) {
                 break;
             }
             throughput = 0.1;
         }
-        float _e194 = throughput;
-        if ((_e194 <= 0.0)) {
+        float _e195 = throughput;
+        if ((_e195 <= 0.0)) {
             break;
         }
-        vec3 _e197 = pos;
-        vec3 _e198 = dir_5;
-        pos = (_e197 + (_e198 * _e159));
+        vec3 _e198 = pos_1;
+        vec3 _e199 = dir_5;
+        pos_1 = (_e198 + (_e199 * _e159));
     }
-    PathResult _e201 = out_2;
-    return _e201;
+    PathResult _e202 = out_2;
+    return _e202;
 }
 
 bool camera_still() {
@@ -2442,7 +2525,7 @@ float luminance(vec3 c_3) {
     return dot(c_3, vec3(0.2126, 0.7152, 0.0722));
 }
 
-float basic_sun_depth(vec3 rel_6, float alt_14, inout Counters counters_13) {
+float basic_sun_depth(vec3 rel_7, float alt_14, inout Counters counters_13) {
     float tau_8 = 0.0;
     uint i_16 = 1u;
     uint steps_4 = _group_0_binding_0_cs.counts.w;
@@ -2450,26 +2533,26 @@ float basic_sun_depth(vec3 rel_6, float alt_14, inout Counters counters_13) {
         return 0.0;
     }
     vec4 _e12 = _group_0_binding_0_cs.sun_direction;
-    vec3 sun_6 = _e12.xyz;
+    vec3 sun_7 = _e12.xyz;
     float rp_5 = _group_0_binding_0_cs.atmosphere.x;
     float top_2 = _group_0_binding_0_cs.atmosphere.z;
     float _e25 = _group_0_binding_0_cs.atmosphere.y;
     float thickness = (top_2 - _e25);
-    Roots _e39 = solve_sphere(dot(sun_6, vec3(rel_6.x, (rel_6.y + rp_5), rel_6.z)), ((alt_14 - top_2) * ((alt_14 + top_2) + (2.0 * rp_5))));
+    Roots _e39 = solve_sphere(dot(sun_7, vec3(rel_7.x, (rel_7.y + rp_5), rel_7.z)), ((alt_14 - top_2) * ((alt_14 + top_2) + (2.0 * rp_5))));
     float length_ = min(max(_e39.t1_, 0.0), (3.0 * thickness));
-    float dt_2 = (length_ / float(steps_4));
+    float dt_3 = (length_ / float(steps_4));
     float _e51 = _group_0_binding_0_cs.extinction.x;
     float _e55 = _group_0_binding_0_cs.extinction.y;
     float sigma_t_5 = (_e51 + _e55);
     vec4 _e59 = _group_0_binding_0_cs.camera_position;
     vec2 cam_xz_1 = _e59.xz;
-    bool loop_init_12 = true;
+    bool loop_init_13 = true;
     while(true) {
-        if (!loop_init_12) {
+        if (!loop_init_13) {
             uint _e90 = i_16;
             i_16 = (_e90 + 1u);
         }
-        loop_init_12 = false;
+        loop_init_13 = false;
         uint _e65 = i_16;
         if ((_e65 <= steps_4)) {
         } else {
@@ -2479,12 +2562,12 @@ float basic_sun_depth(vec3 rel_6, float alt_14, inout Counters counters_13) {
             uint _e68 = counters_13.light;
             counters_13.light = (_e68 + 1u);
             uint _e71 = i_16;
-            vec3 q_8 = (rel_6 + (sun_6 * (float(_e71) * dt_2)));
-            vec3 p_18 = vec3((q_8.x + cam_xz_1.x), q_8.y, (q_8.z + cam_xz_1.y));
+            vec3 q_8 = (rel_7 + (sun_7 * (float(_e71) * dt_3)));
+            vec3 p_19 = vec3((q_8.x + cam_xz_1.x), q_8.y, (q_8.z + cam_xz_1.y));
             float _e84 = tau_8;
             float _e85 = altitude_of(q_8);
-            float _e86 = cloud_density(p_18, _e85, counters_13);
-            tau_8 = (_e84 + ((sigma_t_5 * _e86) * dt_2));
+            float _e86 = cloud_density(p_19, _e85, counters_13);
+            tau_8 = (_e84 + ((sigma_t_5 * _e86) * dt_3));
         }
     }
     float _e93 = tau_8;
@@ -2512,7 +2595,7 @@ MarchResult basic_pixel(uvec2 pixel_7) {
         } else {
             count(STAT_MARCHED, 1u);
             uint steps_5 = _group_0_binding_0_cs.counts.z;
-            float dt_3 = (_e25.length_ / float(steps_5));
+            float dt_4 = (_e25.length_ / float(steps_5));
             float sigma_s = _group_0_binding_0_cs.extinction.x;
             float _e52 = _group_0_binding_0_cs.extinction.y;
             float sigma_t_6 = (sigma_s + _e52);
@@ -2521,13 +2604,13 @@ MarchResult basic_pixel(uvec2 pixel_7) {
             float _e66 = _group_0_binding_0_cs.phase.x;
             float _e67 = phase_hg(dot(_e1, _e60.xyz), _e66);
             vec3 sun_phase = (_e56.xyz * _e67);
-            bool loop_init_13 = true;
+            bool loop_init_14 = true;
             while(true) {
-                if (!loop_init_13) {
+                if (!loop_init_14) {
                     uint _e131 = i_17;
                     i_17 = (_e131 + 1u);
                 }
-                loop_init_13 = false;
+                loop_init_14 = false;
                 uint _e71 = i_17;
                 if ((_e71 < steps_5)) {
                 } else {
@@ -2537,20 +2620,20 @@ MarchResult basic_pixel(uvec2 pixel_7) {
                     uint _e74 = counters_14.view_steps;
                     counters_14.view_steps = (_e74 + 1u);
                     uint _e78 = i_17;
-                    float t_8 = (_e25.start + (float(_e78) * dt_3));
-                    vec3 rel_9 = ((_e1 * t_8) + vec3(0.0, cam_alt_2, 0.0));
-                    vec3 p_19 = vec3((rel_9.x + cam_xz_2.x), rel_9.y, (rel_9.z + cam_xz_2.y));
-                    float _e95 = altitude_of(rel_9);
-                    float _e96 = cloud_density(p_19, _e95, counters_14);
+                    float t_8 = (_e25.start + (float(_e78) * dt_4));
+                    vec3 rel_10 = ((_e1 * t_8) + vec3(0.0, cam_alt_2, 0.0));
+                    vec3 p_20 = vec3((rel_10.x + cam_xz_2.x), rel_10.y, (rel_10.z + cam_xz_2.y));
+                    float _e95 = altitude_of(rel_10);
+                    float _e96 = cloud_density(p_20, _e95, counters_14);
                     if ((_e96 <= 0.0)) {
                         continue;
                     }
-                    float _e99 = basic_sun_depth(rel_9, _e95, counters_14);
+                    float _e99 = basic_sun_depth(rel_10, _e95, counters_14);
                     float beer_powder = ((2.0 * exp(-(_e99))) * (1.0 - exp((-2.0 * _e99))));
                     vec3 _e110 = radiance_2;
                     float _e111 = transmittance_1;
-                    radiance_2 = (_e110 + (sun_phase * ((((beer_powder * _e111) * sigma_s) * _e96) * dt_3)));
-                    float step_t_1 = exp(((-(sigma_t_6) * _e96) * dt_3));
+                    radiance_2 = (_e110 + (sun_phase * ((((beer_powder * _e111) * sigma_s) * _e96) * dt_4)));
+                    float step_t_1 = exp(((-(sigma_t_6) * _e96) * dt_4));
                     float _e122 = depth_sum;
                     float _e123 = transmittance_1;
                     depth_sum = (_e122 + ((t_8 * _e123) * (1.0 - step_t_1)));
@@ -2604,13 +2687,13 @@ float value_fbm(vec2 p_12, uint seed_1) {
     vec2 q_4 = vec2(0.0);
     uint o = 0u;
     q_4 = p_12;
-    bool loop_init_14 = true;
+    bool loop_init_15 = true;
     while(true) {
-        if (!loop_init_14) {
+        if (!loop_init_15) {
             uint _e26 = o;
             o = (_e26 + 1u);
         }
-        loop_init_14 = false;
+        loop_init_15 = false;
         uint _e9 = o;
         if ((_e9 < 4u)) {
         } else {
@@ -2649,13 +2732,13 @@ float sprite_texture(uint tile_1, vec2 uv) {
         return (((mask * streak) * _e46) * 0.8);
     }
     uint blobs = (5u + (tile_1 % 4u));
-    bool loop_init_15 = true;
+    bool loop_init_16 = true;
     while(true) {
-        if (!loop_init_15) {
+        if (!loop_init_16) {
             uint _e108 = i_18;
             i_18 = (_e108 + 1u);
         }
-        loop_init_15 = false;
+        loop_init_16 = false;
         uint _e58 = i_18;
         if ((_e58 < blobs)) {
         } else {
@@ -2673,11 +2756,11 @@ float sprite_texture(uint tile_1, vec2 uv) {
             }
             uint _e91 = i_18;
             float _e93 = atlas_hash(tile_1, (100u + _e91));
-            float r_17 = (0.14 + (0.1 * _e93));
+            float r_18 = (0.14 + (0.1 * _e93));
             vec2 _e98 = at;
-            float d_20 = (length((uv - _e98)) / r_17);
+            float d_22 = (length((uv - _e98)) / r_18);
             float _e102 = billow;
-            float _e106 = saturate((1.0 - (d_20 * d_20)));
+            float _e106 = saturate((1.0 - (d_22 * d_22)));
             billow = max(_e102, _e106);
         }
     }
@@ -2695,10 +2778,10 @@ float sprite_texture(uint tile_1, vec2 uv) {
 vec3 sprite_rel(vec2 xz, float alt_15) {
     float rp_6 = _group_0_binding_0_cs.atmosphere.x;
     vec4 _e8 = _group_0_binding_0_cs.camera_position;
-    vec2 d_21 = (xz - _e8.xz);
-    float k_18 = ((alt_15 * (alt_15 + (2.0 * rp_6))) - dot(d_21, d_21));
+    vec2 d_23 = (xz - _e8.xz);
+    float k_18 = ((alt_15 * (alt_15 + (2.0 * rp_6))) - dot(d_23, d_23));
     float y_3 = (k_18 / (rp_6 + sqrt(max(((rp_6 * rp_6) + k_18), 0.0))));
-    return vec3(d_21.x, y_3, d_21.y);
+    return vec3(d_23.x, y_3, d_23.y);
 }
 
 SpriteCell sprite_cell(uint cell) {
@@ -2710,13 +2793,13 @@ SpriteCell sprite_cell(uint cell) {
     ivec2 local_62 = ivec2(int((cell % 8u)), int(((cell / 8u) % 8u)));
     vec4 _e15 = _group_0_binding_0_cs.camera_position;
     start_1 = (ivec2(floor((_e15.xz / vec2(12000.0)))) - ivec2(4));
-    bool loop_init_16 = true;
+    bool loop_init_17 = true;
     while(true) {
-        if (!loop_init_16) {
+        if (!loop_init_17) {
             uint _e35 = k_10;
             k_10 = (_e35 - 1u);
         }
-        loop_init_16 = false;
+        loop_init_17 = false;
         uint _e27 = k_10;
         if ((_e27 > level_1)) {
         } else {
@@ -2775,17 +2858,17 @@ SpriteCandidate sprite_candidate(SpriteCell c_4, uint level, uint s_2, inout Cou
 
 vec3 sprite_sky_level(float h_9) {
     float _e1 = saturate(h_9);
-    float x_8 = (_e1 * 4.0);
-    if ((x_8 < 1.0)) {
-        return mix(SKY_LEVEL0_, SKY_LEVEL1_, x_8);
+    float x_9 = (_e1 * 4.0);
+    if ((x_9 < 1.0)) {
+        return mix(SKY_LEVEL0_, SKY_LEVEL1_, x_9);
     }
-    if ((x_8 < 2.0)) {
-        return mix(SKY_LEVEL1_, SKY_LEVEL2_, (x_8 - 1.0));
+    if ((x_9 < 2.0)) {
+        return mix(SKY_LEVEL1_, SKY_LEVEL2_, (x_9 - 1.0));
     }
-    if ((x_8 < 3.0)) {
-        return mix(SKY_LEVEL2_, SKY_LEVEL3_, (x_8 - 2.0));
+    if ((x_9 < 3.0)) {
+        return mix(SKY_LEVEL2_, SKY_LEVEL3_, (x_9 - 2.0));
     }
-    return mix(SKY_LEVEL3_, SKY_LEVEL4_, (x_8 - 3.0));
+    return mix(SKY_LEVEL3_, SKY_LEVEL4_, (x_9 - 3.0));
 }
 
 float sprite_sun_level(float cos_angle) {
@@ -2807,43 +2890,43 @@ vec2 sprite_corner(uint k_11) {
     return vec2((_e18 ? 1.0 : -1.0), ((q_10 >= 2u) ? 1.0 : -1.0));
 }
 
-vec3 sky_radiance(vec3 d_14, float alt_16) {
+vec3 sky_radiance(vec3 d_16, float alt_16) {
     vec4 _e4 = _group_0_binding_0_cs.sun_direction;
-    vec3 sun_7 = _e4.xyz;
+    vec3 sun_8 = _e4.xyz;
     vec4 _e8 = _group_0_binding_0_cs.sun_illuminance;
     vec3 e = _e8.xyz;
-    float _e15 = saturate(((sun_7.y * 4.0) + 0.3));
-    bool _e19 = hits_ground(vec3(0.0, alt_16, 0.0), alt_16, d_14);
+    float _e15 = saturate(((sun_8.y * 4.0) + 0.3));
+    bool _e19 = hits_ground(vec3(0.0, alt_16, 0.0), alt_16, d_16);
     if (_e19) {
         vec3 ground_albedo = vec3(0.035, 0.035, 0.03);
-        return (ground_albedo * (((e * max(sun_7.y, 0.0)) / vec3(3.1415927)) + ((0.05 * e) * _e15)));
+        return (ground_albedo * (((e * max(sun_8.y, 0.0)) / vec3(3.1415927)) + ((0.05 * e) * _e15)));
     }
     vec3 zenith = vec3(0.018, 0.04, 0.1);
     vec3 horizon_2 = vec3(0.07, 0.085, 0.11);
-    float _e45 = saturate(d_14.y);
+    float _e45 = saturate(d_16.y);
     vec3 gradient_1 = mix(horizon_2, zenith, sqrt(_e45));
     vec3 sunset = (((1.0 - (_e15 * 0.8)) * pow((1.0 - _e45), 6.0)) * vec3(0.25, 0.1, 0.0));
-    float _e64 = phase_hg(dot(d_14, sun_7), 0.76);
+    float _e64 = phase_hg(dot(d_16, sun_8), 0.76);
     float glow = (_e64 * 0.02);
-    float _e73 = saturate(((sun_7.y * 10.0) + 1.0));
+    float _e73 = saturate(((sun_8.y * 10.0) + 1.0));
     return (e * (((gradient_1 * _e15) + (sunset * _e73)) + vec3((glow * _e15))));
 }
 
-vec3 sun_disk(vec3 d_15) {
+vec3 sun_disk(vec3 d_17) {
     float cos_r = _group_0_binding_0_cs.sun_direction.w;
     vec4 _e7 = _group_0_binding_0_cs.sun_direction;
-    if ((dot(d_15, _e7.xyz) < cos_r)) {
+    if ((dot(d_17, _e7.xyz) < cos_r)) {
         return vec3(0.0);
     }
     vec4 _e15 = _group_0_binding_0_cs.sun_illuminance;
     return (_e15.xyz / vec3((6.2831855 * max((1.0 - cos_r), 1e-6))));
 }
 
-vec3 moon_disk(vec3 d_16) {
+vec3 moon_disk(vec3 d_18) {
     bool local_60 = false;
     vec4 _e3 = _group_0_binding_0_cs.moon;
     vec3 m_3 = _e3.xyz;
-    float c_11 = dot(d_16, m_3);
+    float c_11 = dot(d_18, m_3);
     float _e9 = _group_0_binding_0_cs.moon.w;
     if (!((_e9 <= 0.0))) {
         local_60 = (c_11 < MOON_COS_RADIUS);
@@ -2854,7 +2937,7 @@ vec3 moon_disk(vec3 d_16) {
     if (_e18) {
         return vec3(0.0);
     }
-    vec3 offset = ((d_16 - (m_3 * c_11)) / vec3(0.0045149517));
+    vec3 offset = ((d_18 - (m_3 * c_11)) / vec3(0.0045149517));
     float x2_1 = min(dot(offset, offset), 1.0);
     vec3 normal = (offset - (m_3 * sqrt((1.0 - x2_1))));
     vec4 _e36 = _group_0_binding_0_cs.night;
@@ -2863,7 +2946,7 @@ vec3 moon_disk(vec3 d_16) {
     return vec3(((_e46 / 6.40407e-5) * lit_1));
 }
 
-vec3 stars(vec3 d_17) {
+vec3 stars(vec3 d_19) {
     uint face = 0u;
     vec2 uv_1 = vec2(0.0);
     float major = 0.0;
@@ -2873,7 +2956,7 @@ vec3 stars(vec3 d_17) {
     if ((e0_ <= 0.0)) {
         return vec3(0.0);
     }
-    vec3 a_9 = abs(d_17);
+    vec3 a_9 = abs(d_19);
     if ((a_9.x >= a_9.y)) {
         local_61 = (a_9.x >= a_9.z);
     } else {
@@ -2881,17 +2964,17 @@ vec3 stars(vec3 d_17) {
     }
     bool _e26 = local_61;
     if (_e26) {
-        face = ((d_17.x > 0.0) ? 0u : 1u);
-        uv_1 = d_17.zy;
+        face = ((d_19.x > 0.0) ? 0u : 1u);
+        uv_1 = d_19.zy;
         major = a_9.x;
     } else {
         if ((a_9.y >= a_9.z)) {
-            face = ((d_17.y > 0.0) ? 2u : 3u);
-            uv_1 = d_17.xz;
+            face = ((d_19.y > 0.0) ? 2u : 3u);
+            uv_1 = d_19.xz;
             major = a_9.y;
         } else {
-            face = ((d_17.z > 0.0) ? 4u : 5u);
-            uv_1 = d_17.xy;
+            face = ((d_19.z > 0.0) ? 4u : 5u);
+            uv_1 = d_19.xy;
             major = a_9.z;
         }
     }
@@ -2945,7 +3028,7 @@ vec3 stars(vec3 d_17) {
     uint _e209 = _group_0_binding_0_cs.counts.y;
     float pixel_angle = ((2.0 * _e203) / float(_e209));
     vec3 _e212 = star;
-    float dist_1 = (acos(clamp(dot(d_17, _e212), -1.0, 1.0)) / pixel_angle);
+    float dist_1 = (acos(clamp(dot(d_19, _e212), -1.0, 1.0)) / pixel_angle);
     float weight_1 = (exp(((-(dist_1) * dist_1) / 0.5)) / 1.5707964);
     vec3 tint = mix(vec3(0.8, 0.9, 1.1), vec3(1.15, 0.95, 0.75), (h3_ * h4_));
     return (tint * ((illuminance * weight_1) / (pixel_angle * pixel_angle)));
@@ -2997,13 +3080,13 @@ void main() {
     memoryBarrierShared();
     barrier();
     if ((lane == 0u)) {
-        bool loop_init_17 = true;
+        bool loop_init_18 = true;
         while(true) {
-            if (!loop_init_17) {
+            if (!loop_init_18) {
                 uint _e98 = i_3;
                 i_3 = (_e98 + 1u);
             }
-            loop_init_17 = false;
+            loop_init_18 = false;
             uint _e82 = i_3;
             if ((_e82 < PATHS_PER_FRAME)) {
             } else {

@@ -623,10 +623,24 @@ fn sky_view_lut(@builtin(global_invocation_id) id: vec3<u32>) {
     // Azimuth relative to the sun in [0, pi]: the sky is symmetric about the sun's vertical.
     let phi = sun_azimuth() + x.x * PI;
     let d = vec3<f32>(cos(elevation) * cos(phi), sin(elevation), cos(elevation) * sin(phi));
+    textureStore(sky_view_out, id.xy, vec4<f32>(sky_along(origin, d), 1.0));
+}
+
+// The sky's radiance (per unit sun illuminance) seen from `origin` (km, planet centre at the
+// origin) along unit `d`, the lit ground included where the ray meets it: SKY_VIEW_STEPS of
+// `integrate_air` to where the ray leaves the air. The sky-view table's texels from the
+// camera, and the path tracer's environment from a path's last collision.
+fn sky_along(origin: vec3<f32>, d: vec3<f32>) -> vec3<f32> {
     let end = air_ray_end(origin, d);
     let sun = frame.sun_direction.xyz;
     let s = integrate_air(origin, d, end.x, SKY_VIEW_STEPS, sun);
-    textureStore(sky_view_out, id.xy, vec4<f32>(with_ground(s, origin, d, end.x, sun, end.y > 0.5), 1.0));
+    return with_ground(s, origin, d, end.x, sun, end.y > 0.5);
+}
+
+// The sky's radiance (per unit sun illuminance) seen from camera-relative `rel` (m) along
+// unit `d` (`sky_along` from that point; `sun_through_air`'s coordinates).
+fn sky_from(rel: vec3<f32>, d: vec3<f32>) -> vec3<f32> {
+    return sky_along(vec3<f32>(rel.x, rel.y + frame.atmosphere.x, rel.z) * 1e-3, d);
 }
 
 // The sky's radiance (per unit sun illuminance) seen from the camera along unit `d`: the
@@ -2021,8 +2035,8 @@ fn resolve(@builtin(global_invocation_id) id: vec3<u32>) {
 // * at a collision the throughput takes the single-scattering albedo; next-event estimation
 //   to the sun; the path goes on along a phase-sampled direction, and where it leaves the
 //   layer it sees the environment (`environment`: the sky and lit ground in its direction
-//   under the physical sky, else a uniform ambient(h), h the height of the collision it
-//   left); Russian roulette on the throughput after the third order;
+//   seen from the collision it left under the physical sky, else a uniform ambient(h), h
+//   that collision's height); Russian roulette on the throughput after the third order;
 // * directions from Henyey-Greenstein (the two-lobe model samples its mixture; Cornette-Shanks
 //   samples HG(g) weighted by CS/HG).
 // The octaves, Beer-Powder and precipitation darkening are the march's approximations and are
@@ -2260,14 +2274,17 @@ fn sample_phase(dir: vec3<f32>, rng: ptr<function, u32>) -> PhaseSample {
     return PhaseSample(w, select(0.0, phase(cos_theta, 1.0) / pdf, pdf > 0.0));
 }
 
-// The light a path that leaves the clouds along unit `d` sees: under the physical sky the sky
-// and the lit ground in that direction (the sky-view table, seen from the camera's altitude:
-// the air around a layer a few kilometres up differs little), else the ambient's uniform
-// environment ambient(h). The march takes the cosine-weighted hemispheres facing the layer
-// instead (the sky-ambient table).
-fn environment(d: vec3<f32>, h: f32) -> vec3<f32> {
+// The light a path that leaves the clouds from `pos` (camera-relative, m; its last
+// collision) along unit `d` sees: under the physical sky the sky and the lit ground in that
+// direction seen from there (`sky_from`: the air between the clouds and the ground, or above
+// the clouds, lit by the sun), else the ambient's uniform environment ambient(h). Seen from
+// the camera instead (the sky-view table, as before), a path leaving a layer's base downward
+// saw the ground at once, without the kilometre or two of air below the layer, which a low
+// sun lights brightly. The march takes the cosine-weighted hemispheres facing the layer (the
+// sky-ambient table). Neither knows the clouds' shadow on that air and ground.
+fn environment(pos: vec3<f32>, d: vec3<f32>, h: f32) -> vec3<f32> {
     if physical_sky() {
-        return sky_view(d) * frame.sun_illuminance.rgb * frame.ambient_bottom.w;
+        return sky_from(pos, d) * frame.sun_illuminance.rgb * frame.ambient_bottom.w;
     }
     return ambient(h);
 }
@@ -2329,7 +2346,7 @@ fn trace_path(view: vec3<f32>, span: Interval, rng: ptr<function, u32>,
         let t = free_flight(pos, next.dir, layer_segments(pos, alt, next.dir), rng, counters);
         if t < 0.0 {
             if ambient_on {
-                out.radiance += environment(next.dir, h) * (throughput * next.weight);
+                out.radiance += environment(pos, next.dir, h) * (throughput * next.weight);
             }
             break;
         }

@@ -365,10 +365,24 @@ fn sky_view_lut(@builtin(global_invocation_id) id: vec3<u32>) {
     // Azimuth relative to the sun in [0, pi]: the sky is symmetric about the sun's vertical.
     let phi = sun_azimuth() + x.x * PI;
     let d = vec3<f32>(cos(elevation) * cos(phi), sin(elevation), cos(elevation) * sin(phi));
+    textureStore(sky_view_out, id.xy, vec4<f32>(sky_along(origin, d), 1.0));
+}
+
+// The sky's radiance (per unit sun illuminance) seen from `origin` (km, planet centre at the
+// origin) along unit `d`, the lit ground included where the ray meets it: SKY_VIEW_STEPS of
+// `integrate_air` to where the ray leaves the air. The sky-view table's texels from the
+// camera, and the path tracer's environment from a path's last collision.
+fn sky_along(origin: vec3<f32>, d: vec3<f32>) -> vec3<f32> {
     let end = air_ray_end(origin, d);
     let sun = frame.sun_direction.xyz;
     let s = integrate_air(origin, d, end.x, SKY_VIEW_STEPS, sun);
-    textureStore(sky_view_out, id.xy, vec4<f32>(with_ground(s, origin, d, end.x, sun, end.y > 0.5), 1.0));
+    return with_ground(s, origin, d, end.x, sun, end.y > 0.5);
+}
+
+// The sky's radiance (per unit sun illuminance) seen from camera-relative `rel` (m) along
+// unit `d` (`sky_along` from that point; `sun_through_air`'s coordinates).
+fn sky_from(rel: vec3<f32>, d: vec3<f32>) -> vec3<f32> {
+    return sky_along(vec3<f32>(rel.x, rel.y + frame.atmosphere.x, rel.z) * 1e-3, d);
 }
 
 // The sky's radiance (per unit sun illuminance) seen from the camera along unit `d`: the

@@ -11,8 +11,8 @@
 // * at a collision the throughput takes the single-scattering albedo; next-event estimation
 //   to the sun; the path goes on along a phase-sampled direction, and where it leaves the
 //   layer it sees the environment (`environment`: the sky and lit ground in its direction
-//   under the physical sky, else a uniform ambient(h), h the height of the collision it
-//   left); Russian roulette on the throughput after the third order;
+//   seen from the collision it left under the physical sky, else a uniform ambient(h), h
+//   that collision's height); Russian roulette on the throughput after the third order;
 // * directions from Henyey-Greenstein (the two-lobe model samples its mixture; Cornette-Shanks
 //   samples HG(g) weighted by CS/HG).
 // The octaves, Beer-Powder and precipitation darkening are the march's approximations and are
@@ -250,14 +250,17 @@ fn sample_phase(dir: vec3<f32>, rng: ptr<function, u32>) -> PhaseSample {
     return PhaseSample(w, select(0.0, phase(cos_theta, 1.0) / pdf, pdf > 0.0));
 }
 
-// The light a path that leaves the clouds along unit `d` sees: under the physical sky the sky
-// and the lit ground in that direction (the sky-view table, seen from the camera's altitude:
-// the air around a layer a few kilometres up differs little), else the ambient's uniform
-// environment ambient(h). The march takes the cosine-weighted hemispheres facing the layer
-// instead (the sky-ambient table).
-fn environment(d: vec3<f32>, h: f32) -> vec3<f32> {
+// The light a path that leaves the clouds from `pos` (camera-relative, m; its last
+// collision) along unit `d` sees: under the physical sky the sky and the lit ground in that
+// direction seen from there (`sky_from`: the air between the clouds and the ground, or above
+// the clouds, lit by the sun), else the ambient's uniform environment ambient(h). Seen from
+// the camera instead (the sky-view table, as before), a path leaving a layer's base downward
+// saw the ground at once, without the kilometre or two of air below the layer, which a low
+// sun lights brightly. The march takes the cosine-weighted hemispheres facing the layer (the
+// sky-ambient table). Neither knows the clouds' shadow on that air and ground.
+fn environment(pos: vec3<f32>, d: vec3<f32>, h: f32) -> vec3<f32> {
     if physical_sky() {
-        return sky_view(d) * frame.sun_illuminance.rgb * frame.ambient_bottom.w;
+        return sky_from(pos, d) * frame.sun_illuminance.rgb * frame.ambient_bottom.w;
     }
     return ambient(h);
 }
@@ -319,7 +322,7 @@ fn trace_path(view: vec3<f32>, span: Interval, rng: ptr<function, u32>,
         let t = free_flight(pos, next.dir, layer_segments(pos, alt, next.dir), rng, counters);
         if t < 0.0 {
             if ambient_on {
-                out.radiance += environment(next.dir, h) * (throughput * next.weight);
+                out.radiance += environment(pos, next.dir, h) * (throughput * next.weight);
             }
             break;
         }

@@ -114,8 +114,8 @@ fn gpu_path_tracer_agrees_with_the_cpu_path_tracer_through_two_layers() {
 }
 
 /// The same under the physical sky: the sun through the air at every collision, and paths
-/// that leave the clouds see the sky and lit ground in their own direction (the sky-view
-/// table; the CPU's in f64).
+/// that leave the clouds see the sky and lit ground in their own direction from their last
+/// collision (the sky-view table's integral from there; the CPU's in f64).
 #[test]
 fn gpu_path_tracer_agrees_with_the_cpu_path_tracer_under_the_physical_sky() {
     let mut s = scene();

@@ -51,6 +51,11 @@ pub struct FitArgs {
     /// about a third of the evaluations.
     #[arg(long)]
     quick: bool,
+    /// Fit nothing: measure the current defaults (with each --octaves count) against the
+    /// truths, training scenes and presets alike; "after" in the outputs is the defaults. For a
+    /// changed truth or a new scene, before deciding to refit.
+    #[arg(long)]
+    evaluate: bool,
 }
 
 /// The training scenes: variants of the presets under other suns and views, none of them a
@@ -229,13 +234,14 @@ const DESCENT_STARTS_M: [f64; 3] = [0.0, 100.0, 400.0];
 /// `octaves`, from a = b = c = 0.5, the later terms off and each of
 /// a few build-ups (the descent alone stalled at a build-up of 600 m, 2% worse than
 /// the 300 m it missed), or with `quick` from the defaults alone: each pass tries every grid
-/// value of one constant with the others held, until a pass changes nothing; the best start
-/// wins.
+/// value of one constant with the others held, until a pass changes nothing (at most
+/// `rounds` passes; 0 evaluates the start alone); the best start wins.
 fn descend(
     r: &mut dyn Backend,
     cases: &[Case],
     octaves: u32,
     quick: bool,
+    rounds: usize,
     log: &mut Vec<(MultipleScattering, f64)>,
     bar: &ProgressBar,
 ) -> Result<(MultipleScattering, f64)> {
@@ -296,7 +302,7 @@ fn descend(
     for start in starts {
         let mut best = start;
         let mut best_score = score(best, log)?;
-        for _round in 0..6 {
+        for _round in 0..rounds {
             let mut changed = false;
             for which in 0..11 {
                 // a may exceed 1 (validate.rs says why); b and c are factors of at most 1.
@@ -457,7 +463,8 @@ pub fn run(args: FitArgs) -> Result<()> {
             &mut renderer,
             &train,
             n,
-            args.quick,
+            args.quick || args.evaluate,
+            if args.evaluate { 0 } else { 6 },
             &mut log,
             &bar,
         )?);
@@ -561,7 +568,7 @@ pub fn run(args: FitArgs) -> Result<()> {
     std::fs::write(args.out.join("scenes.csv"), &scenes_csv)?;
     let readme = format!(
         "# Multiple-scattering fit\n\n\
-         Written by `stratus fit-scattering --out {out} --size {w}x{h} --spp {spp} --octaves {counts}{quick}` on {device}.\n\n\
+         Written by `stratus fit-scattering --out {out} --size {w}x{h} --spp {spp} --octaves {counts}{quick}` on {device}.\n\n{evaluated}\
          The octaves (count N, a, b, c; Wrenninge 2013), their build-up, side light and \
          coverage exponent, the far shadow's chord, the octaves' limb darkening, their forward \
          lobe through thin cloud (strength, eccentricity) and their vertical anisotropy of the march fitted to the all-orders \
@@ -619,7 +626,17 @@ pub fn run(args: FitArgs) -> Result<()> {
             .map(u32::to_string)
             .collect::<Vec<_>>()
             .join(","),
-        quick = if args.quick { " --quick" } else { "" },
+        quick = match (args.quick, args.evaluate) {
+            (_, true) => " --evaluate",
+            (true, false) => " --quick",
+            (false, false) => "",
+        },
+        evaluated = if args.evaluate {
+            "**Nothing was fitted** (`--evaluate`): \"after\" is the current defaults, measured \
+             as the fit would measure them.\n\n"
+        } else {
+            ""
+        },
         device = renderer.describe(),
         nt = train.len(),
         nh = test.len(),

@@ -50,8 +50,8 @@
 //!
 //! Under the physical sky the sun's light at a vertex is what the air leaves of it (the
 //! transmittance table there), and the environment is the sky itself, direction by direction:
-//! the sky-view table (the sky and the lit ground as seen from the camera) in the sampled
-//! direction, times the ambient strength. The real-time model takes the cosine-weighted
+//! the sky and the lit ground in the sampled direction as seen from the vertex (the sky-view
+//! table's integral, from there instead of the camera), times the ambient strength. The real-time model takes the cosine-weighted
 //! hemispheres facing the layer instead (the sky-ambient table), unoccluded: the truth here
 //! says what that costs.
 //!
@@ -382,7 +382,7 @@ pub(crate) fn trace(
                 segments: &segs,
             };
             let tr = ratio_track(m, &env, rng, c, &mut light_tentative);
-            radiance += environment(f, m.sky(), w, h) * (throughput * weight * tr);
+            radiance += environment(f, m.sky(), pos, w, h) * (throughput * weight * tr);
         }
         if order >= max_orders {
             break;
@@ -479,11 +479,12 @@ impl Accumulator {
 }
 
 // WGSL: pathtrace.wgsl::environment
-/// The light a path leaving the clouds along unit `d` sees: the sky and lit ground in that
-/// direction under the physical sky, else the uniform ambient(h).
-fn environment(f: &Frame, sky: Option<&SkyTables>, d: V3, h: f64) -> V3 {
+/// The light a path leaving the clouds from `pos` (camera-relative, m) along unit `d` sees:
+/// the sky and lit ground in that direction seen from there under the physical sky, else the
+/// uniform ambient(h).
+fn environment(f: &Frame, sky: Option<&SkyTables>, pos: V3, d: V3, h: f64) -> V3 {
     if let Some(sky) = crate::sky::physical(f, sky) {
-        return sky.sky_view(f, d).mul_v(f.sun_illuminance()) * f.ambient_bottom[3];
+        return sky.sky_from(f, pos, d).mul_v(f.sun_illuminance()) * f.ambient_bottom[3];
     }
     ambient(f, sky, h)
 }

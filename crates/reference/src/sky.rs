@@ -702,9 +702,25 @@ impl SkyTables {
             elevation.sin(),
             elevation.cos() * phi.sin(),
         );
+        texel(self.sky_along(f, origin, d), 1.0)
+    }
+
+    // WGSL: atmosphere.wgsl::sky_along
+    /// The sky's radiance (per unit sun illuminance) seen from `origin` (planet centre at the
+    /// origin) along unit `d`, the lit ground included where the ray meets it: 48 steps of
+    /// `integrate_air` to where the ray leaves the air. The sky-view table's texels from the
+    /// camera, and the path tracer's environment from a path's last collision.
+    fn sky_along(&self, f: &Frame, origin: V3, d: V3) -> V3 {
         let (length, ground) = self.air_ray_end(origin, d);
-        let s = self.integrate_air(origin, d, length, SKY_VIEW_STEPS, f.sun(), ground);
-        texel(s.radiance, 1.0)
+        self.integrate_air(origin, d, length, SKY_VIEW_STEPS, f.sun(), ground)
+            .radiance
+    }
+
+    // WGSL: atmosphere.wgsl::sky_from
+    /// The sky's radiance (per unit sun illuminance) seen from camera-relative `rel` (m) along
+    /// unit `d` (`sky_along` from that point; `sun_through_air`'s coordinates).
+    pub(crate) fn sky_from(&self, f: &Frame, rel: V3, d: V3) -> V3 {
+        self.sky_along(f, V3::new(rel.x, rel.y + f.atmosphere[0], rel.z), d)
     }
 
     // WGSL: atmosphere.wgsl::sky_view

@@ -159,6 +159,12 @@ pub(crate) fn reference(
         // v2: the GPU path tracer traces a workgroup of paths per pixel a frame (other
         // random streams than v1's one path a frame).
         h.update(b"stratus-reference-cache-v2");
+        // Under the physical sky a path leaving the clouds sees the sky from its last
+        // collision, not from the camera (the truths before that are not these scenes' truths;
+        // the others' stay valid).
+        if mc && s.atmosphere.sky == stratus_scene::SkyModel::Physical {
+            h.update(b"environment-from-the-vertex");
+        }
         h.finalize()
             .iter()
             .take(12)
