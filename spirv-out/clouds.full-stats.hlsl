@@ -210,6 +210,7 @@ static const uint MULTISCATTER_STEPS = 32u;
 static const uint SKY_VIEW_STEPS = 48u;
 static const uint AMBIENT_DIRECTIONS = 64u;
 static const uint AMBIENT_STEPS = 24u;
+static const uint SKY_AMBIENT_SUNS = 64u;
 static const uint GROUND_IRRADIANCE_SIZE = 64u;
 static const uint NO_LAYER = 4u;
 static const float FORWARD_LOBE_THIN = 0.1;
@@ -1124,15 +1125,20 @@ float3 sun_through_air(float3 rel_1)
     return _e24;
 }
 
-float3 sky_ambient_light(float h)
+float3 sky_ambient_light(float h, float3 rel_2)
 {
-    float4 _e6 = sky_ambient_in.Load(int3(uint2(0u, 0u), int(0)));
-    float3 bottom_1 = _e6.xyz;
-    float4 _e13 = sky_ambient_in.Load(int3(uint2(1u, 0u), int(0)));
-    float3 top_1 = _e13.xyz;
-    float4 _e18 = frame.sun_illuminance;
-    float _e24 = frame.ambient_bottom.w;
-    return ((lerp(bottom_1, top_1, h) * _e18.xyz) * _e24);
+    float _e7 = frame.atmosphere.x;
+    float3 q_7 = float3(rel_2.x, (rel_2.y + _e7), rel_2.z);
+    float4 _e14 = frame.sun_direction;
+    float x_9 = ((dot(normalize(q_7), _e14.xyz) * 0.5) + 0.5);
+    uint2 size_2 = uint2(64u, 2u);
+    const float4 _e27 = lut_bilinear(sky_ambient_in, float2(x_9, 0.0), size_2);
+    float3 bottom_1 = _e27.xyz;
+    const float4 _e32 = lut_bilinear(sky_ambient_in, float2(x_9, 1.0), size_2);
+    float3 top_1 = _e32.xyz;
+    float4 _e37 = frame.sun_illuminance;
+    float _e43 = frame.ambient_bottom.w;
+    return ((lerp(bottom_1, top_1, h) * _e37.xyz) * _e43);
 }
 
 float layer_height(Layer l_1, float alt_7)
@@ -1403,7 +1409,7 @@ float phase(float cos_theta_4, float scale)
     }
 }
 
-float sun_optical_depth(float3 rel_2, float3 p_6, Layer l_4, inout Counters counters_5)
+float sun_optical_depth(float3 rel_3, float3 p_6, Layer l_4, inout Counters counters_5)
 {
     float seg = (float)0;
     float dist = 0.0;
@@ -1443,8 +1449,8 @@ float sun_optical_depth(float3 rel_2, float3 p_6, Layer l_4, inout Counters coun
             float _e38 = dist;
             float _e39 = seg;
             float s_8 = (_e38 + (0.5 * _e39));
-            float3 q_7 = (rel_2 + (sun_3 * s_8));
-            const float _e45 = altitude_of(q_7);
+            float3 q_8 = (rel_3 + (sun_3 * s_8));
+            const float _e45 = altitude_of(q_8);
             if (!((_e45 > l_4.top))) {
                 local_27 = (_e45 < l_4.bottom);
             } else {
@@ -1467,7 +1473,7 @@ float sun_optical_depth(float3 rel_2, float3 p_6, Layer l_4, inout Counters coun
             seg = (_e70 * growth);
         }
     }
-    const float _e75 = altitude_of(rel_2);
+    const float _e75 = altitude_of(rel_3);
     uint2 loop_bound_5 = uint2(4294967295u, 4294967295u);
     bool loop_init_5 = true;
     while(true) {
@@ -1490,8 +1496,8 @@ float sun_optical_depth(float3 rel_2, float3 p_6, Layer l_4, inout Counters coun
             if ((_e82.bottom <= l_4.top)) {
                 continue;
             }
-            const Roots _e87 = ray_shell_from(rel_2, _e75, sun_3, _e82.bottom);
-            const Roots _e89 = ray_shell_from(rel_2, _e75, sun_3, _e82.top);
+            const Roots _e87 = ray_shell_from(rel_3, _e75, sun_3, _e82.bottom);
+            const Roots _e89 = ray_shell_from(rel_3, _e75, sun_3, _e82.top);
             if (!(!(_e87.hit))) {
                 local_28 = !(_e89.hit);
             } else {
@@ -1517,7 +1523,7 @@ float sun_optical_depth(float3 rel_2, float3 p_6, Layer l_4, inout Counters coun
             uint _e122 = counters_5.light;
             counters_5.light = (_e122 + 1u);
             float _e125 = tau_4;
-            const float _e130 = altitude_of((rel_2 + (sun_3 * s_9)));
+            const float _e130 = altitude_of((rel_3 + (sun_3 * s_9)));
             const float _e131 = layer_density((p_6 + (sun_3 * s_9)), _e130, _e82, counters_5);
             tau_4 = (_e125 + ((_e131 * sigma_t_1) * (_e89.t1_ - _e87.t1_)));
         }
@@ -1526,7 +1532,7 @@ float sun_optical_depth(float3 rel_2, float3 p_6, Layer l_4, inout Counters coun
     return _e141;
 }
 
-float far_optical_depth(float3 rel_3, float3 p_7, Layer l_5)
+float far_optical_depth(float3 rel_4, float3 p_7, Layer l_5)
 {
     bool local_31 = (bool)0;
     float reach = (float)0;
@@ -1556,8 +1562,8 @@ float far_optical_depth(float3 rel_3, float3 p_7, Layer l_5)
     }
     float4 _e51 = frame.sun_direction;
     float3 sun_4 = _e51.xyz;
-    const float _e53 = altitude_of(rel_3);
-    const Roots _e55 = ray_shell_from(rel_3, _e53, sun_4, l_5.top);
+    const float _e53 = altitude_of(rel_4);
+    const Roots _e55 = ray_shell_from(rel_4, _e53, sun_4, l_5.top);
     float _e57 = reach;
     float len_1 = (_e55.t1_ - _e57);
     if (!(!(_e55.hit))) {
@@ -1588,7 +1594,7 @@ float far_optical_depth(float3 rel_3, float3 p_7, Layer l_5)
             float _e77 = reach;
             uint _e78 = i_11;
             float t_5 = (_e77 + (((float(_e78) + 0.5) * 0.25) * len_1));
-            const float _e88 = altitude_of((rel_3 + (sun_4 * t_5)));
+            const float _e88 = altitude_of((rel_4 + (sun_4 * t_5)));
             const float _e89 = layer_height(l_5, _e88);
             const float _e90 = saturate_(_e89);
             const Weather _e93 = sample_weather((p_7 + (sun_4 * t_5)), l_5);
@@ -1733,17 +1739,17 @@ float octave_buildup(float density_1)
     return (1.0 - exp(((-((_e11 + _e15)) * density_1) * l_8)));
 }
 
-float3 ambient(float h_7)
+float3 ambient(float h_7, float3 rel_5)
 {
-    const bool _e1 = physical_sky();
-    if (_e1) {
-        const float3 _e2 = sky_ambient_light(h_7);
-        return _e2;
+    const bool _e2 = physical_sky();
+    if (_e2) {
+        const float3 _e3 = sky_ambient_light(h_7, rel_5);
+        return _e3;
     }
-    float4 _e5 = frame.ambient_bottom;
-    float4 _e9 = frame.ambient_top;
-    float _e15 = frame.ambient_bottom.w;
-    return (lerp(_e5.xyz, _e9.xyz, h_7) * _e15);
+    float4 _e6 = frame.ambient_bottom;
+    float4 _e10 = frame.ambient_top;
+    float _e16 = frame.ambient_bottom.w;
+    return (lerp(_e6.xyz, _e10.xyz, h_7) * _e16);
 }
 
 float height_fraction(float alt_11)
@@ -1762,7 +1768,7 @@ ScatteredLight ConstructScatteredLight(float3 arg0, float3 arg1) {
     return ret;
 }
 
-ScatteredLight scattered_light(float3 rel_4, float3 p_8, float alt_12, float density_2, float3 view, Layer l_6, inout Counters counters_6)
+ScatteredLight scattered_light(float3 rel_6, float3 p_8, float alt_12, float density_2, float3 view, Layer l_6, inout Counters counters_6)
 {
     float3 sun_light = (0.0).xxx;
     float3 octave_light = (0.0).xxx;
@@ -1774,12 +1780,12 @@ ScatteredLight scattered_light(float3 rel_4, float3 p_8, float alt_12, float den
     const float _e11 = layer_height(l_6, alt_12);
     const float _e12 = saturate_(_e11);
     const Weather _e19 = sample_weather(p_8, l_6);
-    const bool _e20 = hits_ground(rel_4, alt_12, sun_5);
+    const bool _e20 = hits_ground(rel_6, alt_12, sun_5);
     if (!(_e20)) {
         if (LIGHT_MARCH) {
-            const float _e27 = sun_optical_depth(rel_4, p_8, l_6, counters_6);
+            const float _e27 = sun_optical_depth(rel_6, p_8, l_6, counters_6);
             tau_7 = _e27;
-            const float _e28 = far_optical_depth(rel_4, p_8, l_6);
+            const float _e28 = far_optical_depth(rel_6, p_8, l_6);
             far_2 = _e28;
         }
         float _e31 = tau_7;
@@ -1787,7 +1793,7 @@ ScatteredLight scattered_light(float3 rel_4, float3 p_8, float alt_12, float den
         const float _e33 = octave_buildup(density_2);
         const SunScattering _e35 = sun_scattering(dot(view, sun_5), view.y, _e31, _e32, _e33, _e19.coverage, _e12);
         float4 _e38 = frame.sun_illuminance;
-        const float3 _e40 = sun_through_air(rel_4);
+        const float3 _e40 = sun_through_air(rel_6);
         float3 lit_ = (_e38.xyz * _e40);
         sun_light = (lit_ * _e35.total);
         octave_light = (lit_ * _e35.octaves);
@@ -1797,7 +1803,7 @@ ScatteredLight scattered_light(float3 rel_4, float3 p_8, float alt_12, float den
     float _e61 = frame.extinction.x;
     float k_14 = ((_e61 * density_2) * _e57);
     float3 _e64 = sun_light;
-    const float3 _e65 = ambient(_e12);
+    const float3 _e65 = ambient(_e12, rel_6);
     float3 _e68 = octave_light;
     const ScatteredLight scatteredlight = ConstructScatteredLight(((_e64 + _e65) * k_14), (_e68 * k_14));
     return scatteredlight;
@@ -1812,14 +1818,14 @@ float3 shadow_ground_point(uint2 c_2)
     return float3(xz_1.x, y_1, xz_1.y);
 }
 
-float ground_shadow(float3 rel_5)
+float ground_shadow(float3 rel_7)
 {
-    float edge = (max(abs(rel_5.x), abs(rel_5.z)) / SHADOW_HALF_EXTENT);
+    float edge = (max(abs(rel_7.x), abs(rel_7.z)) / SHADOW_HALF_EXTENT);
     if ((edge >= 1.0)) {
         return 1.0;
     }
-    float2 x_9 = ((rel_5.xz / (40000.0).xx) + (0.5).xx);
-    const float4 _e21 = lut_bilinear(cloud_shadow_in, x_9, (128u).xx);
+    float2 x_10 = ((rel_7.xz / (40000.0).xx) + (0.5).xx);
+    const float4 _e21 = lut_bilinear(cloud_shadow_in, x_10, (128u).xx);
     float t_6 = _e21.x;
     return lerp(t_6, 1.0, smoothstep(SHADOW_FADE_START, 1.0, edge));
 }
@@ -1908,8 +1914,8 @@ float3 step_integral(float3 source, float sigma_t, float dt)
     if ((_e6 == INTEGRATION_RIEMANN)) {
         return (source * dt);
     }
-    float x_10 = (sigma_t * dt);
-    float f_4 = ((x_10 < 0.001) ? (1.0 - (0.5 * x_10)) : ((1.0 - exp(-(x_10))) / x_10));
+    float x_11 = (sigma_t * dt);
+    float f_4 = ((x_11 < 0.001) ? (1.0 - (0.5 * x_11)) : ((1.0 - exp(-(x_11))) / x_11));
     return (source * (dt * f_4));
 }
 
@@ -1974,8 +1980,8 @@ bool march_layer(float3 view_2, Interval span_1, Layer l_7, float jitter, inout 
         counters_7.view_steps = (_e75 + 1u);
         uint _e79 = i_13;
         float t_7 = (span_1.start + ((float(_e79) + jitter) * dt_2));
-        float3 rel_8 = ((view_2 * t_7) + float3(0.0, cam_alt_1, 0.0));
-        float3 p_14 = float3((rel_8.x + cam_xz.x), rel_8.y, (rel_8.z + cam_xz.y));
+        float3 rel_10 = ((view_2 * t_7) + float3(0.0, cam_alt_1, 0.0));
+        float3 p_14 = float3((rel_10.x + cam_xz.x), rel_10.y, (rel_10.z + cam_xz.y));
         if (empty_skip) {
             const float _e97 = empty_cell_exit(p_14, view_2);
             if ((_e97 > 0.0)) {
@@ -1986,7 +1992,7 @@ bool march_layer(float3 view_2, Interval span_1, Layer l_7, float jitter, inout 
                 continue;
             }
         }
-        const float _e115 = altitude_of(rel_8);
+        const float _e115 = altitude_of(rel_10);
         const float _e116 = layer_density(p_14, _e115, l_7, counters_7);
         if ((_e116 <= 0.0)) {
             uint _e119 = empty;
@@ -2017,7 +2023,7 @@ bool march_layer(float3 view_2, Interval span_1, Layer l_7, float jitter, inout 
         }
         empty = 0u;
         float sigma_t_2 = (sigma_e * _e116);
-        const ScatteredLight _e145 = scattered_light(rel_8, p_14, _e115, _e116, view_2, l_7, counters_7);
+        const ScatteredLight _e145 = scattered_light(rel_10, p_14, _e115, _e116, view_2, l_7, counters_7);
         float transmittance_2 = state.transmittance;
         float3 _e149 = state.radiance;
         const float3 _e151 = step_integral(_e145.total, sigma_t_2, dt_2);
@@ -2329,9 +2335,9 @@ bool on_screen(float2 q)
     bool local_44 = (bool)0;
 
     uint4 _e3 = frame.counts;
-    float2 size_2 = float2(_e3.xy);
+    float2 size_3 = float2(_e3.xy);
     if (all((q >= (-0.5).xx))) {
-        local_44 = all((q <= (size_2 - (0.5).xx)));
+        local_44 = all((q <= (size_3 - (0.5).xx)));
     } else {
         local_44 = false;
     }
@@ -2347,12 +2353,12 @@ float4 catmull_rom(float t_1)
 float4 history_row(int2 base_1, int dy, float4 wx)
 {
     uint4 _e5 = frame.counts;
-    int2 size_3 = int2(_e5.xy);
-    int y_2 = clamp(asint(asuint(base_1.y) + asuint(dy)), int(0), asint(asuint(size_3.y) - asuint(int(1))));
-    int x0_ = clamp(asint(asuint(base_1.x) - asuint(int(1))), int(0), asint(asuint(size_3.x) - asuint(int(1))));
-    int x1_ = clamp(base_1.x, int(0), asint(asuint(size_3.x) - asuint(int(1))));
-    int x2_ = clamp(asint(asuint(base_1.x) + asuint(int(1))), int(0), asint(asuint(size_3.x) - asuint(int(1))));
-    int x3_ = clamp(asint(asuint(base_1.x) + asuint(int(2))), int(0), asint(asuint(size_3.x) - asuint(int(1))));
+    int2 size_4 = int2(_e5.xy);
+    int y_2 = clamp(asint(asuint(base_1.y) + asuint(dy)), int(0), asint(asuint(size_4.y) - asuint(int(1))));
+    int x0_ = clamp(asint(asuint(base_1.x) - asuint(int(1))), int(0), asint(asuint(size_4.x) - asuint(int(1))));
+    int x1_ = clamp(base_1.x, int(0), asint(asuint(size_4.x) - asuint(int(1))));
+    int x2_ = clamp(asint(asuint(base_1.x) + asuint(int(1))), int(0), asint(asuint(size_4.x) - asuint(int(1))));
+    int x3_ = clamp(asint(asuint(base_1.x) + asuint(int(2))), int(0), asint(asuint(size_4.x) - asuint(int(1))));
     float4 _e48 = history_in.Load(int3(int2(x0_, y_2), int(0)));
     float4 _e54 = history_in.Load(int3(int2(x1_, y_2), int(0)));
     float4 _e61 = history_in.Load(int3(int2(x2_, y_2), int(0)));
@@ -2367,8 +2373,8 @@ int2 naga_f2i32(float2 value) {
 float4 history_at(float2 q_1)
 {
     uint4 _e3 = frame.counts;
-    int2 size_4 = int2(_e3.xy);
-    float2 c_9 = clamp(q_1, (0.0).xx, float2(asint(asuint(size_4) - asuint((int(1)).xx))));
+    int2 size_5 = int2(_e3.xy);
+    float2 c_9 = clamp(q_1, (0.0).xx, float2(asint(asuint(size_5) - asuint((int(1)).xx))));
     int2 base_3 = naga_f2i32(floor(c_9));
     float2 f_5 = (c_9 - float2(base_3));
     const float4 _e18 = catmull_rom(f_5.x);
@@ -2385,8 +2391,8 @@ float4 history_at(float2 q_1)
 float4 history_nearest(float2 q_2)
 {
     uint4 _e3 = frame.counts;
-    int2 size_5 = int2(_e3.xy);
-    int2 p_15 = clamp(naga_f2i32(round(q_2)), (int(0)).xx, asint(asuint(size_5) - asuint((int(1)).xx)));
+    int2 size_6 = int2(_e3.xy);
+    int2 p_15 = clamp(naga_f2i32(round(q_2)), (int(0)).xx, asint(asuint(size_6) - asuint((int(1)).xx)));
     float4 _e16 = history_in.Load(int3(p_15, int(0)));
     return _e16;
 }
@@ -2394,8 +2400,8 @@ float4 history_nearest(float2 q_2)
 float4 meta_at(float2 q_3)
 {
     uint4 _e3 = frame.counts;
-    int2 size_6 = int2(_e3.xy);
-    int2 p_16 = clamp(naga_f2i32(round(q_3)), (int(0)).xx, asint(asuint(size_6) - asuint((int(1)).xx)));
+    int2 size_7 = int2(_e3.xy);
+    int2 p_16 = clamp(naga_f2i32(round(q_3)), (int(0)).xx, asint(asuint(size_7) - asuint((int(1)).xx)));
     float4 _e16 = meta_in.Load(int3(p_16, int(0)));
     return _e16;
 }
@@ -2549,12 +2555,12 @@ Segments layer_segments(float3 p_10, float alt_13, float3 d_14)
     return segments_1;
 }
 
-float density_at(float3 rel_6, inout Counters counters_9)
+float density_at(float3 rel_8, inout Counters counters_9)
 {
     float _e6 = frame.camera_position.x;
     float _e13 = frame.camera_position.z;
-    float3 p_17 = float3((rel_6.x + _e6), rel_6.y, (rel_6.z + _e13));
-    const float _e16 = altitude_of(rel_6);
+    float3 p_17 = float3((rel_8.x + _e6), rel_8.y, (rel_8.z + _e13));
+    const float _e16 = altitude_of(rel_8);
     const float _e17 = cloud_density(p_17, _e16, counters_9);
     return _e17;
 }
@@ -2565,10 +2571,10 @@ float empty_cell_skip(float3 origin_4, float3 dir_1, float t_2)
     if ((_e3 > 1u)) {
         return 0.0;
     }
-    float3 rel_9 = (origin_4 + (dir_1 * t_2));
+    float3 rel_11 = (origin_4 + (dir_1 * t_2));
     float _e13 = frame.camera_position.x;
     float _e20 = frame.camera_position.z;
-    float3 p_18 = float3((rel_9.x + _e13), rel_9.y, (rel_9.z + _e20));
+    float3 p_18 = float3((rel_11.x + _e13), rel_11.y, (rel_11.z + _e20));
     const float _e23 = empty_cell_exit(p_18, dir_1);
     if ((_e23 <= 0.0)) {
         return 0.0;
@@ -2836,7 +2842,7 @@ float3 environment(float3 pos, float3 d_15, float h_8)
         float _e13 = frame.ambient_bottom.w;
         return ((_e4 * _e7.xyz) * _e13);
     }
-    const float3 _e15 = ambient(h_8);
+    const float3 _e15 = ambient(h_8, pos);
     return _e15;
 }
 
@@ -3034,7 +3040,7 @@ float luminance(float3 c_3)
     return dot(c_3, float3(0.2126, 0.7152, 0.0722));
 }
 
-float basic_sun_depth(float3 rel_7, float alt_14, inout Counters counters_13)
+float basic_sun_depth(float3 rel_9, float alt_14, inout Counters counters_13)
 {
     float tau_8 = 0.0;
     uint i_16 = 1u;
@@ -3049,7 +3055,7 @@ float basic_sun_depth(float3 rel_7, float alt_14, inout Counters counters_13)
     float top_2 = frame.atmosphere.z;
     float _e25 = frame.atmosphere.y;
     float thickness = (top_2 - _e25);
-    const Roots _e39 = solve_sphere(dot(sun_7, float3(rel_7.x, (rel_7.y + rp_5), rel_7.z)), ((alt_14 - top_2) * ((alt_14 + top_2) + (2.0 * rp_5))));
+    const Roots _e39 = solve_sphere(dot(sun_7, float3(rel_9.x, (rel_9.y + rp_5), rel_9.z)), ((alt_14 - top_2) * ((alt_14 + top_2) + (2.0 * rp_5))));
     float length_ = min(max(_e39.t1_, 0.0), (3.0 * thickness));
     float dt_3 = (length_ / float(steps_4));
     float _e51 = frame.extinction.x;
@@ -3076,10 +3082,10 @@ float basic_sun_depth(float3 rel_7, float alt_14, inout Counters counters_13)
             uint _e68 = counters_13.light;
             counters_13.light = (_e68 + 1u);
             uint _e71 = i_16;
-            float3 q_8 = (rel_7 + (sun_7 * (float(_e71) * dt_3)));
-            float3 p_19 = float3((q_8.x + cam_xz_1.x), q_8.y, (q_8.z + cam_xz_1.y));
+            float3 q_9 = (rel_9 + (sun_7 * (float(_e71) * dt_3)));
+            float3 p_19 = float3((q_9.x + cam_xz_1.x), q_9.y, (q_9.z + cam_xz_1.y));
             float _e84 = tau_8;
-            const float _e85 = altitude_of(q_8);
+            const float _e85 = altitude_of(q_9);
             const float _e86 = cloud_density(p_19, _e85, counters_13);
             tau_8 = (_e84 + ((sigma_t_5 * _e86) * dt_3));
         }
@@ -3140,14 +3146,14 @@ MarchResult basic_pixel(uint2 pixel_7)
                     counters_14.view_steps = (_e74 + 1u);
                     uint _e78 = i_17;
                     float t_9 = (_e25.start + (float(_e78) * dt_4));
-                    float3 rel_10 = ((_e1 * t_9) + float3(0.0, cam_alt_3, 0.0));
-                    float3 p_20 = float3((rel_10.x + cam_xz_2.x), rel_10.y, (rel_10.z + cam_xz_2.y));
-                    const float _e95 = altitude_of(rel_10);
+                    float3 rel_12 = ((_e1 * t_9) + float3(0.0, cam_alt_3, 0.0));
+                    float3 p_20 = float3((rel_12.x + cam_xz_2.x), rel_12.y, (rel_12.z + cam_xz_2.y));
+                    const float _e95 = altitude_of(rel_12);
                     const float _e96 = cloud_density(p_20, _e95, counters_14);
                     if ((_e96 <= 0.0)) {
                         continue;
                     }
-                    const float _e99 = basic_sun_depth(rel_10, _e95, counters_14);
+                    const float _e99 = basic_sun_depth(rel_12, _e95, counters_14);
                     float beer_powder = ((2.0 * exp(-(_e99))) * (1.0 - exp((-2.0 * _e99))));
                     float3 _e110 = radiance_2;
                     float _e111 = transmittance_1;
@@ -3254,8 +3260,8 @@ float sprite_texture(uint tile_1, float2 uv)
     float mask = smoothstep(0.48, 0.36, length(c_10));
     const float _e16 = value_fbm(((uv * 6.0) + ((float(tile_1) * 13.0)).xx), tile_1);
     if ((tile_1 < 4u)) {
-        float2 q_9 = (c_10 * float2(1.0, 3.2));
-        float streak = (1.0 - smoothstep(0.05, 0.45, length(q_9)));
+        float2 q_10 = (c_10 * float2(1.0, 3.2));
+        float streak = (1.0 - smoothstep(0.05, 0.45, length(q_10)));
         const float _e40 = value_fbm(((uv * float2(3.0, 12.0)) + ((float(tile_1) * 5.0)).xx), (tile_1 + 16u));
         const float _e46 = saturate_(((_e40 * 1.6) - 0.3));
         return (((mask * streak) * _e46) * 0.8);
@@ -3422,17 +3428,17 @@ SpriteCandidate sprite_candidate(SpriteCell c_4, uint level, uint s_2, inout Cou
 float3 sprite_sky_level(float h_9)
 {
     const float _e1 = saturate_(h_9);
-    float x_11 = (_e1 * 4.0);
-    if ((x_11 < 1.0)) {
-        return lerp(SKY_LEVEL0_, SKY_LEVEL1_, x_11);
+    float x_12 = (_e1 * 4.0);
+    if ((x_12 < 1.0)) {
+        return lerp(SKY_LEVEL0_, SKY_LEVEL1_, x_12);
     }
-    if ((x_11 < 2.0)) {
-        return lerp(SKY_LEVEL1_, SKY_LEVEL2_, (x_11 - 1.0));
+    if ((x_12 < 2.0)) {
+        return lerp(SKY_LEVEL1_, SKY_LEVEL2_, (x_12 - 1.0));
     }
-    if ((x_11 < 3.0)) {
-        return lerp(SKY_LEVEL2_, SKY_LEVEL3_, (x_11 - 2.0));
+    if ((x_12 < 3.0)) {
+        return lerp(SKY_LEVEL2_, SKY_LEVEL3_, (x_12 - 2.0));
     }
-    return lerp(SKY_LEVEL3_, SKY_LEVEL4_, (x_11 - 3.0));
+    return lerp(SKY_LEVEL3_, SKY_LEVEL4_, (x_12 - 3.0));
 }
 
 float sprite_sun_level(float cos_angle)
@@ -3447,14 +3453,14 @@ float2 sprite_corner(uint k_11)
 {
     bool local_59 = (bool)0;
 
-    uint q_10 = ((k_11 >= 3u) ? ((k_11 == 3u) ? 0u : (k_11 - 2u)) : k_11);
-    if (!((q_10 == 1u))) {
-        local_59 = (q_10 == 2u);
+    uint q_11 = ((k_11 >= 3u) ? ((k_11 == 3u) ? 0u : (k_11 - 2u)) : k_11);
+    if (!((q_11 == 1u))) {
+        local_59 = (q_11 == 2u);
     } else {
         local_59 = true;
     }
     bool _e18 = local_59;
-    return float2((_e18 ? 1.0 : -1.0), ((q_10 >= 2u) ? 1.0 : -1.0));
+    return float2((_e18 ? 1.0 : -1.0), ((q_11 >= 2u) ? 1.0 : -1.0));
 }
 
 float3 sky_radiance(float3 d_16, float alt_16)
@@ -3572,25 +3578,25 @@ float3 stars(float3 d_19)
     float h4_ = (float((_e120 >> 8u)) * 5.9604645e-8);
     float2 star_st = (((float2(cell_2) + (0.15).xx) + (0.7 * float2(h1_, h2_))) / (96.0).xx);
     float _e142 = major;
-    float2 q_11 = (((star_st * 2.0) - (1.0).xx) * _e142);
+    float2 q_12 = (((star_st * 2.0) - (1.0).xx) * _e142);
     uint _e147 = face;
     if ((_e147 < 2u)) {
         float _e150 = major;
         float _e152 = major;
         uint _e153 = face;
-        star = float3(((_e153 == 0u) ? _e152 : -(_e150)), q_11.y, q_11.x);
+        star = float3(((_e153 == 0u) ? _e152 : -(_e150)), q_12.y, q_12.x);
     } else {
         uint _e160 = face;
         if ((_e160 < 4u)) {
             float _e164 = major;
             float _e166 = major;
             uint _e167 = face;
-            star = float3(q_11.x, ((_e167 == 2u) ? _e166 : -(_e164)), q_11.y);
+            star = float3(q_12.x, ((_e167 == 2u) ? _e166 : -(_e164)), q_12.y);
         } else {
             float _e175 = major;
             float _e177 = major;
             uint _e178 = face;
-            star = float3(q_11.x, q_11.y, ((_e178 == 4u) ? _e177 : -(_e175)));
+            star = float3(q_12.x, q_12.y, ((_e178 == 4u) ? _e177 : -(_e175)));
         }
     }
     float3 _e183 = star;
@@ -3735,12 +3741,12 @@ void multiscatter_lut(uint3 id_1 : SV_DispatchThreadID)
     if (any((id_1.xy >= MULTISCATTER_SIZE))) {
         return;
     }
-    float2 x_12 = (float2(id_1.xy) / float2(31.0, 31.0));
-    float mu_s_7 = ((x_12.x * 2.0) - 1.0);
+    float2 x_13 = (float2(id_1.xy) / float2(31.0, 31.0));
+    float mu_s_7 = ((x_13.x * 2.0) - 1.0);
     const float _e16 = air_bottom();
     const float _e18 = air_top();
     const float _e19 = air_bottom();
-    float r_20 = (_e16 + (x_12.y * (_e18 - _e19)));
+    float r_20 = (_e16 + (x_13.y * (_e18 - _e19)));
     float3 origin_7 = float3(0.0, r_20, 0.0);
     float3 sun_9 = float3(sqrt(max((1.0 - (mu_s_7 * mu_s_7)), 0.0)), mu_s_7, 0.0);
     uint2 loop_bound_23 = uint2(4294967295u, 4294967295u);
@@ -3820,12 +3826,12 @@ void sky_view_lut(uint3 id_2 : SV_DispatchThreadID)
     if (any((id_2.xy >= SKY_VIEW_SIZE))) {
         return;
     }
-    float2 x_13 = (float2(id_2.xy) / float2(191.0, 107.0));
+    float2 x_14 = (float2(id_2.xy) / float2(191.0, 107.0));
     const float3 _e11 = camera_air_origin();
     const float _e14 = horizon_elevation(_e11.y);
-    const float _e15 = sky_view_elevation(x_13.y, _e14);
+    const float _e15 = sky_view_elevation(x_14.y, _e14);
     const float _e16 = sun_azimuth();
-    float phi_2 = (_e16 + (x_13.x * PI));
+    float phi_2 = (_e16 + (x_14.x * PI));
     float3 d_24 = float3((cos(_e15) * cos(phi_2)), sin(_e15), (cos(_e15) * sin(phi_2)));
     const float3 _e31 = sky_along(_e11, d_24);
     sky_view_out[id_2.xy] = float4(_e31, 1.0);
@@ -3923,8 +3929,8 @@ void sky_ambient(uint3 id_4 : SV_DispatchThreadID)
     float weights = 0.0;
     uint k_2 = (uint)0;
 
-    if (!((id_4.x >= 2u))) {
-        local_1 = (id_4.y >= 1u);
+    if (!((id_4.x >= SKY_AMBIENT_SUNS))) {
+        local_1 = (id_4.y >= 2u);
     } else {
         local_1 = true;
     }
@@ -3932,12 +3938,14 @@ void sky_ambient(uint3 id_4 : SV_DispatchThreadID)
     if (_e11) {
         return;
     }
-    bool top_3 = (id_4.x == 1u);
-    float _e18 = frame.atmosphere.y;
-    float _e22 = frame.atmosphere.z;
-    float alt_m = (top_3 ? _e22 : _e18);
-    const float _e24 = air_bottom();
-    float3 origin_8 = float3(0.0, (_e24 + (alt_m * 0.001)), 0.0);
+    bool top_3 = (id_4.y == 1u);
+    float mu_s_9 = (((float(id_4.x) / 63.0) * 2.0) - 1.0);
+    float3 sun_11 = float3(sqrt(max((1.0 - (mu_s_9 * mu_s_9)), 0.0)), mu_s_9, 0.0);
+    float _e34 = frame.atmosphere.y;
+    float _e38 = frame.atmosphere.z;
+    float alt_m = (top_3 ? _e38 : _e34);
+    const float _e40 = air_bottom();
+    float3 origin_8 = float3(0.0, (_e40 + (alt_m * 0.001)), 0.0);
     uint first = (top_3 ? 0u : 32u);
     k_2 = first;
     uint2 loop_bound_27 = uint2(4294967295u, 4294967295u);
@@ -3946,33 +3954,31 @@ void sky_ambient(uint3 id_4 : SV_DispatchThreadID)
         if (all(loop_bound_27 == uint2(0u, 0u))) { break; }
         loop_bound_27 -= uint2(loop_bound_27.y == 0u, 1u);
         if (!loop_init_23) {
-            uint _e67 = k_2;
-            k_2 = (_e67 + 1u);
+            uint _e79 = k_2;
+            k_2 = (_e79 + 1u);
         }
         loop_init_23 = false;
-        uint _e40 = k_2;
-        if ((_e40 < (first + 32u))) {
+        uint _e56 = k_2;
+        if ((_e56 < (first + 32u))) {
         } else {
             break;
         }
         {
-            uint _e43 = k_2;
-            const float3 _e45 = fibonacci_direction(_e43, AMBIENT_DIRECTIONS);
-            const float2 _e46 = air_ray_end(origin_8, _e45);
-            float4 _e49 = frame.sun_direction;
-            float3 sun_11 = _e49.xyz;
-            const Scattered _e53 = integrate_air(origin_8, _e45, _e46.x, AMBIENT_STEPS, sun_11);
-            float w_8 = abs(_e45.y);
-            float3 _e56 = sum_1;
-            const float3 _e61 = with_ground(_e53, origin_8, _e45, _e46.x, sun_11, (_e46.y > 0.5));
-            sum_1 = (_e56 + (w_8 * _e61));
-            float _e64 = weights;
-            weights = (_e64 + w_8);
+            uint _e59 = k_2;
+            const float3 _e61 = fibonacci_direction(_e59, AMBIENT_DIRECTIONS);
+            const float2 _e62 = air_ray_end(origin_8, _e61);
+            const Scattered _e65 = integrate_air(origin_8, _e61, _e62.x, AMBIENT_STEPS, sun_11);
+            float w_8 = abs(_e61.y);
+            float3 _e68 = sum_1;
+            const float3 _e73 = with_ground(_e65, origin_8, _e61, _e62.x, sun_11, (_e62.y > 0.5));
+            sum_1 = (_e68 + (w_8 * _e73));
+            float _e76 = weights;
+            weights = (_e76 + w_8);
         }
     }
-    float3 _e71 = sum_1;
-    float _e72 = weights;
-    sky_ambient_out[id_4.xy] = float4((_e71 / (_e72).xxx), 1.0);
+    float3 _e83 = sum_1;
+    float _e84 = weights;
+    sky_ambient_out[id_4.xy] = float4((_e83 / (_e84).xxx), 1.0);
     return;
 }
 
@@ -3992,8 +3998,8 @@ void ground_irradiance(uint3 id_5 : SV_DispatchThreadID)
     if (_e11) {
         return;
     }
-    float mu_s_9 = (((float(id_5.x) / 63.0) * 2.0) - 1.0);
-    float3 sun_12 = float3(sqrt(max((1.0 - (mu_s_9 * mu_s_9)), 0.0)), mu_s_9, 0.0);
+    float mu_s_10 = (((float(id_5.x) / 63.0) * 2.0) - 1.0);
+    float3 sun_12 = float3(sqrt(max((1.0 - (mu_s_10 * mu_s_10)), 0.0)), mu_s_10, 0.0);
     const float _e28 = air_bottom();
     float3 origin_9 = float3(0.0, (_e28 + 0.001), 0.0);
     uint2 loop_bound_28 = uint2(4294967295u, 4294967295u);
@@ -4093,10 +4099,10 @@ void cloud_shadow(uint3 id_6 : SV_DispatchThreadID)
                     }
                     {
                         uint _e65 = k_4;
-                        float3 q_12 = (_e7 + (sun_13 * (start_2 + ((float(_e65) + 0.5) * dt_8))));
-                        float3 p_23 = float3((q_12.x + cam_xz_3.x), q_12.y, (q_12.z + cam_xz_3.y));
+                        float3 q_13 = (_e7 + (sun_13 * (start_2 + ((float(_e65) + 0.5) * dt_8))));
+                        float3 p_23 = float3((q_13.x + cam_xz_3.x), q_13.y, (q_13.z + cam_xz_3.y));
                         float _e81 = tau_2;
-                        const float _e82 = altitude_of(q_12);
+                        const float _e82 = altitude_of(q_13);
                         const float _e83 = layer_density(p_23, _e82, _e43, counters);
                         tau_2 = (_e81 + (_e83 * dt_8));
                     }
@@ -4138,9 +4144,9 @@ void occupancy(uint3 id_7 : SV_DispatchThreadID)
     if (any((id_7.xy >= (64u).xx))) {
         return;
     }
-    int2 size_7 = int2(NagaDimensions2D(weather_tex));
-    int2 lo_1 = asint(asuint(naga_div(asint(asuint(int2(id_7.xy)) * asuint(size_7)), (int(64)).xx)) - asuint((int(1)).xx));
-    int2 hi = naga_div(asint(asuint(asint(asuint(int2(id_7.xy)) + asuint((int(1)).xx))) * asuint(size_7)), (int(64)).xx);
+    int2 size_8 = int2(NagaDimensions2D(weather_tex));
+    int2 lo_1 = asint(asuint(naga_div(asint(asuint(int2(id_7.xy)) * asuint(size_8)), (int(64)).xx)) - asuint((int(1)).xx));
+    int2 hi = naga_div(asint(asuint(asint(asuint(int2(id_7.xy)) + asuint((int(1)).xx))) * asuint(size_8)), (int(64)).xx);
     y = lo_1.y;
     uint2 loop_bound_31 = uint2(4294967295u, 4294967295u);
     bool loop_init_27 = true;
@@ -4177,7 +4183,7 @@ void occupancy(uint3 id_7 : SV_DispatchThreadID)
                 {
                     int _e38 = x;
                     int _e39 = y;
-                    int2 t_12 = naga_mod(asint(asuint(naga_mod(int2(_e38, _e39), size_7)) + asuint(size_7)), size_7);
+                    int2 t_12 = naga_mod(asint(asuint(naga_mod(int2(_e38, _e39), size_8)) + asuint(size_8)), size_8);
                     float _e44 = m;
                     float4 _e47 = weather_tex.Load(int3(t_12, int(0)));
                     m = max(_e44, _e47.x);
@@ -4675,8 +4681,8 @@ void sprite_build(uint3 id_14 : SV_DispatchThreadID)
         float _e167 = me.alt;
         const float3 _e168 = sprite_rel(_e165, _e167);
         float _e172 = frame.camera_position.y;
-        float3 rel_11 = (_e168 - float3(0.0, _e172, 0.0));
-        const float _e180 = saturate_((length(rel_11) / SPRITE_MAX_DISTANCE));
+        float3 rel_13 = (_e168 - float3(0.0, _e172, 0.0));
+        const float _e180 = saturate_((length(rel_13) / SPRITE_MAX_DISTANCE));
         key = (1048576.0 - floor((_e180 * 1048575.0)));
     }
     float _e191 = me.xz.x;
@@ -4791,14 +4797,14 @@ VertexOutput_sprite_vertex sprite_vertex(uint index : SV_VertexID)
     float3 offset_1 = ((_e90 * (_e89.x * half_width_1)) + (up_2 * (_e89.y * c_12.z)));
     float3 vertex = (to_sprite + offset_1);
     float4 _e102 = frame.camera_right;
-    float x_14 = dot(vertex, _e102.xyz);
+    float x_15 = dot(vertex, _e102.xyz);
     float4 _e107 = frame.camera_up;
     float y_4 = dot(vertex, _e107.xyz);
     float4 _e112 = frame.camera_forward;
     float z_4 = dot(vertex, _e112.xyz);
     float tan_half_3 = frame.camera_position.w;
     float _e123 = frame.camera_forward.w;
-    out_.position = float4((x_14 / (tan_half_3 * _e123)), (y_4 / tan_half_3), (0.5 * z_4), z_4);
+    out_.position = float4((x_15 / (tan_half_3 * _e123)), (y_4 / tan_half_3), (0.5 * z_4), z_4);
     float2 cs = float2(cos(c_12.y), sin(c_12.y));
     float2 t_13 = float2(_e89.x, -(_e89.y));
     out_.uv = float2(((t_13.x * cs.x) - (t_13.y * cs.y)), ((t_13.x * cs.y) + (t_13.y * cs.x)));

@@ -178,6 +178,7 @@ const uint MULTISCATTER_STEPS = 32u;
 const uint SKY_VIEW_STEPS = 48u;
 const uint AMBIENT_DIRECTIONS = 64u;
 const uint AMBIENT_STEPS = 24u;
+const uint SKY_AMBIENT_SUNS = 64u;
 const uint GROUND_IRRADIANCE_SIZE = 64u;
 const uint NO_LAYER = 4u;
 const float FORWARD_LOBE_THIN = 0.1;
@@ -757,14 +758,19 @@ vec3 sun_through_air(vec3 rel_1) {
     return _e24;
 }
 
-vec3 sky_ambient_light(float h) {
-    vec4 _e6 = texelFetch(_group_0_binding_31_cs, ivec2(uvec2(0u, 0u)), 0);
-    vec3 bottom_1 = _e6.xyz;
-    vec4 _e13 = texelFetch(_group_0_binding_31_cs, ivec2(uvec2(1u, 0u)), 0);
-    vec3 top_1 = _e13.xyz;
-    vec4 _e18 = _group_0_binding_0_cs.sun_illuminance;
-    float _e24 = _group_0_binding_0_cs.ambient_bottom.w;
-    return ((mix(bottom_1, top_1, h) * _e18.xyz) * _e24);
+vec3 sky_ambient_light(float h, vec3 rel_2) {
+    float _e7 = _group_0_binding_0_cs.atmosphere.x;
+    vec3 q_7 = vec3(rel_2.x, (rel_2.y + _e7), rel_2.z);
+    vec4 _e14 = _group_0_binding_0_cs.sun_direction;
+    float x_6 = ((dot(normalize(q_7), _e14.xyz) * 0.5) + 0.5);
+    uvec2 size_2 = uvec2(64u, 2u);
+    vec4 _e27 = lut_bilinear(_group_0_binding_31_cs, vec2(x_6, 0.0), size_2);
+    vec3 bottom_1 = _e27.xyz;
+    vec4 _e32 = lut_bilinear(_group_0_binding_31_cs, vec2(x_6, 1.0), size_2);
+    vec3 top_1 = _e32.xyz;
+    vec4 _e37 = _group_0_binding_0_cs.sun_illuminance;
+    float _e43 = _group_0_binding_0_cs.ambient_bottom.w;
+    return ((mix(bottom_1, top_1, h) * _e37.xyz) * _e43);
 }
 
 float layer_height(Layer l_1, float alt_7) {
@@ -1002,7 +1008,7 @@ float phase(float cos_theta_4, float scale) {
     }
 }
 
-float sun_optical_depth(vec3 rel_2, vec3 p_6, Layer l_4, inout Counters counters_5) {
+float sun_optical_depth(vec3 rel_3, vec3 p_6, Layer l_4, inout Counters counters_5) {
     float seg = 0.0;
     float dist = 0.0;
     float tau_4 = 0.0;
@@ -1037,8 +1043,8 @@ float sun_optical_depth(vec3 rel_2, vec3 p_6, Layer l_4, inout Counters counters
             float _e38 = dist;
             float _e39 = seg;
             float s_7 = (_e38 + (0.5 * _e39));
-            vec3 q_7 = (rel_2 + (sun_2 * s_7));
-            float _e45 = altitude_of(q_7);
+            vec3 q_8 = (rel_3 + (sun_2 * s_7));
+            float _e45 = altitude_of(q_8);
             if (!((_e45 > l_4.top))) {
                 local_27 = (_e45 < l_4.bottom);
             } else {
@@ -1061,7 +1067,7 @@ float sun_optical_depth(vec3 rel_2, vec3 p_6, Layer l_4, inout Counters counters
             seg = (_e70 * growth);
         }
     }
-    float _e75 = altitude_of(rel_2);
+    float _e75 = altitude_of(rel_3);
     bool loop_init_4 = true;
     while(true) {
         if (!loop_init_4) {
@@ -1081,8 +1087,8 @@ float sun_optical_depth(vec3 rel_2, vec3 p_6, Layer l_4, inout Counters counters
             if ((_e82.bottom <= l_4.top)) {
                 continue;
             }
-            Roots _e87 = ray_shell_from(rel_2, _e75, sun_2, _e82.bottom);
-            Roots _e89 = ray_shell_from(rel_2, _e75, sun_2, _e82.top);
+            Roots _e87 = ray_shell_from(rel_3, _e75, sun_2, _e82.bottom);
+            Roots _e89 = ray_shell_from(rel_3, _e75, sun_2, _e82.top);
             if (!(!(_e87.hit))) {
                 local_28 = !(_e89.hit);
             } else {
@@ -1108,7 +1114,7 @@ float sun_optical_depth(vec3 rel_2, vec3 p_6, Layer l_4, inout Counters counters
             uint _e122 = counters_5.light;
             counters_5.light = (_e122 + 1u);
             float _e125 = tau_4;
-            float _e130 = altitude_of((rel_2 + (sun_2 * s_8)));
+            float _e130 = altitude_of((rel_3 + (sun_2 * s_8)));
             float _e131 = layer_density((p_6 + (sun_2 * s_8)), _e130, _e82, counters_5);
             tau_4 = (_e125 + ((_e131 * sigma_t_1) * (_e89.t1_ - _e87.t1_)));
         }
@@ -1117,7 +1123,7 @@ float sun_optical_depth(vec3 rel_2, vec3 p_6, Layer l_4, inout Counters counters
     return _e141;
 }
 
-float far_optical_depth(vec3 rel_3, vec3 p_7, Layer l_5) {
+float far_optical_depth(vec3 rel_4, vec3 p_7, Layer l_5) {
     bool local_31 = false;
     float reach = 0.0;
     bool local_32 = false;
@@ -1145,8 +1151,8 @@ float far_optical_depth(vec3 rel_3, vec3 p_7, Layer l_5) {
     }
     vec4 _e51 = _group_0_binding_0_cs.sun_direction;
     vec3 sun_3 = _e51.xyz;
-    float _e53 = altitude_of(rel_3);
-    Roots _e55 = ray_shell_from(rel_3, _e53, sun_3, l_5.top);
+    float _e53 = altitude_of(rel_4);
+    Roots _e55 = ray_shell_from(rel_4, _e53, sun_3, l_5.top);
     float _e57 = reach;
     float len_1 = (_e55.t1_ - _e57);
     if (!(!(_e55.hit))) {
@@ -1174,7 +1180,7 @@ float far_optical_depth(vec3 rel_3, vec3 p_7, Layer l_5) {
             float _e77 = reach;
             uint _e78 = i_11;
             float t_5 = (_e77 + (((float(_e78) + 0.5) * 0.25) * len_1));
-            float _e88 = altitude_of((rel_3 + (sun_3 * t_5)));
+            float _e88 = altitude_of((rel_4 + (sun_3 * t_5)));
             float _e89 = layer_height(l_5, _e88);
             float _e90 = saturate(_e89);
             Weather _e93 = sample_weather((p_7 + (sun_3 * t_5)), l_5);
@@ -1302,16 +1308,16 @@ float octave_buildup(float density_1) {
     return (1.0 - exp(((-((_e11 + _e15)) * density_1) * l_8)));
 }
 
-vec3 ambient(float h_7) {
-    bool _e1 = physical_sky();
-    if (_e1) {
-        vec3 _e2 = sky_ambient_light(h_7);
-        return _e2;
+vec3 ambient(float h_7, vec3 rel_5) {
+    bool _e2 = physical_sky();
+    if (_e2) {
+        vec3 _e3 = sky_ambient_light(h_7, rel_5);
+        return _e3;
     }
-    vec4 _e5 = _group_0_binding_0_cs.ambient_bottom;
-    vec4 _e9 = _group_0_binding_0_cs.ambient_top;
-    float _e15 = _group_0_binding_0_cs.ambient_bottom.w;
-    return (mix(_e5.xyz, _e9.xyz, h_7) * _e15);
+    vec4 _e6 = _group_0_binding_0_cs.ambient_bottom;
+    vec4 _e10 = _group_0_binding_0_cs.ambient_top;
+    float _e16 = _group_0_binding_0_cs.ambient_bottom.w;
+    return (mix(_e6.xyz, _e10.xyz, h_7) * _e16);
 }
 
 float height_fraction(float alt_11) {
@@ -1322,7 +1328,7 @@ float height_fraction(float alt_11) {
     return _e4;
 }
 
-ScatteredLight scattered_light(vec3 rel_4, vec3 p_8, float alt_12, float density_2, vec3 view, Layer l_6, inout Counters counters_6) {
+ScatteredLight scattered_light(vec3 rel_6, vec3 p_8, float alt_12, float density_2, vec3 view, Layer l_6, inout Counters counters_6) {
     vec3 sun_light = vec3(0.0);
     vec3 octave_light = vec3(0.0);
     float tau_7 = 0.0;
@@ -1332,12 +1338,12 @@ ScatteredLight scattered_light(vec3 rel_4, vec3 p_8, float alt_12, float density
     float _e11 = layer_height(l_6, alt_12);
     float _e12 = saturate(_e11);
     Weather _e19 = sample_weather(p_8, l_6);
-    bool _e20 = hits_ground(rel_4, alt_12, sun_4);
+    bool _e20 = hits_ground(rel_6, alt_12, sun_4);
     if (!(_e20)) {
         if (LIGHT_MARCH) {
-            float _e27 = sun_optical_depth(rel_4, p_8, l_6, counters_6);
+            float _e27 = sun_optical_depth(rel_6, p_8, l_6, counters_6);
             tau_7 = _e27;
-            float _e28 = far_optical_depth(rel_4, p_8, l_6);
+            float _e28 = far_optical_depth(rel_6, p_8, l_6);
             far_2 = _e28;
         }
         float _e31 = tau_7;
@@ -1345,7 +1351,7 @@ ScatteredLight scattered_light(vec3 rel_4, vec3 p_8, float alt_12, float density
         float _e33 = octave_buildup(density_2);
         SunScattering _e35 = sun_scattering(dot(view, sun_4), view.y, _e31, _e32, _e33, _e19.coverage, _e12);
         vec4 _e38 = _group_0_binding_0_cs.sun_illuminance;
-        vec3 _e40 = sun_through_air(rel_4);
+        vec3 _e40 = sun_through_air(rel_6);
         vec3 lit = (_e38.xyz * _e40);
         sun_light = (lit * _e35.total);
         octave_light = (lit * _e35.octaves);
@@ -1355,7 +1361,7 @@ ScatteredLight scattered_light(vec3 rel_4, vec3 p_8, float alt_12, float density
     float _e61 = _group_0_binding_0_cs.extinction.x;
     float k_14 = ((_e61 * density_2) * _e57);
     vec3 _e64 = sun_light;
-    vec3 _e65 = ambient(_e12);
+    vec3 _e65 = ambient(_e12, rel_6);
     vec3 _e68 = octave_light;
     return ScatteredLight(((_e64 + _e65) * k_14), (_e68 * k_14));
 }
@@ -1426,8 +1432,8 @@ vec3 step_integral(vec3 source, float sigma_t, float dt) {
     if ((_e6 == INTEGRATION_RIEMANN)) {
         return (source * dt);
     }
-    float x_6 = (sigma_t * dt);
-    float f_3 = ((x_6 < 0.001) ? (1.0 - (0.5 * x_6)) : ((1.0 - exp(-(x_6))) / x_6));
+    float x_7 = (sigma_t * dt);
+    float f_3 = ((x_7 < 0.001) ? (1.0 - (0.5 * x_7)) : ((1.0 - exp(-(x_7))) / x_7));
     return (source * (dt * f_3));
 }
 
@@ -1482,8 +1488,8 @@ bool march_layer(vec3 view_2, Interval span_1, Layer l_7, float jitter, inout Ma
         counters_7.view_steps = (_e75 + 1u);
         uint _e79 = i_13;
         float t_6 = (span_1.start + ((float(_e79) + jitter) * dt_1));
-        vec3 rel_8 = ((view_2 * t_6) + vec3(0.0, cam_alt, 0.0));
-        vec3 p_13 = vec3((rel_8.x + cam_xz.x), rel_8.y, (rel_8.z + cam_xz.y));
+        vec3 rel_10 = ((view_2 * t_6) + vec3(0.0, cam_alt, 0.0));
+        vec3 p_13 = vec3((rel_10.x + cam_xz.x), rel_10.y, (rel_10.z + cam_xz.y));
         if (empty_skip) {
             float _e97 = empty_cell_exit(p_13, view_2);
             if ((_e97 > 0.0)) {
@@ -1494,7 +1500,7 @@ bool march_layer(vec3 view_2, Interval span_1, Layer l_7, float jitter, inout Ma
                 continue;
             }
         }
-        float _e115 = altitude_of(rel_8);
+        float _e115 = altitude_of(rel_10);
         float _e116 = layer_density(p_13, _e115, l_7, counters_7);
         if ((_e116 <= 0.0)) {
             uint _e119 = empty;
@@ -1525,7 +1531,7 @@ bool march_layer(vec3 view_2, Interval span_1, Layer l_7, float jitter, inout Ma
         }
         empty = 0u;
         float sigma_t_2 = (sigma_e * _e116);
-        ScatteredLight _e145 = scattered_light(rel_8, p_13, _e115, _e116, view_2, l_7, counters_7);
+        ScatteredLight _e145 = scattered_light(rel_10, p_13, _e115, _e116, view_2, l_7, counters_7);
         float transmittance_2 = state.transmittance;
         vec3 _e149 = state.radiance;
         vec3 _e151 = step_integral(_e145.total, sigma_t_2, dt_1);
@@ -1792,9 +1798,9 @@ vec2 reproject(uvec2 pixel_5, float depth_2) {
 bool on_screen(vec2 q) {
     bool local_44 = false;
     uvec4 _e3 = _group_0_binding_0_cs.counts;
-    vec2 size_2 = vec2(_e3.xy);
+    vec2 size_3 = vec2(_e3.xy);
     if (all(greaterThanEqual(q, vec2(-0.5)))) {
-        local_44 = all(lessThanEqual(q, (size_2 - vec2(0.5))));
+        local_44 = all(lessThanEqual(q, (size_3 - vec2(0.5))));
     } else {
         local_44 = false;
     }
@@ -1933,11 +1939,11 @@ Segments layer_segments(vec3 p_10, float alt_13, vec3 d_14) {
     return _e103;
 }
 
-float density_at(vec3 rel_6, inout Counters counters_9) {
+float density_at(vec3 rel_8, inout Counters counters_9) {
     float _e6 = _group_0_binding_0_cs.camera_position.x;
     float _e13 = _group_0_binding_0_cs.camera_position.z;
-    vec3 p_14 = vec3((rel_6.x + _e6), rel_6.y, (rel_6.z + _e13));
-    float _e16 = altitude_of(rel_6);
+    vec3 p_14 = vec3((rel_8.x + _e6), rel_8.y, (rel_8.z + _e13));
+    float _e16 = altitude_of(rel_8);
     float _e17 = cloud_density(p_14, _e16, counters_9);
     return _e17;
 }
@@ -1947,10 +1953,10 @@ float empty_cell_skip(vec3 origin_4, vec3 dir_1, float t_2) {
     if ((_e3 > 1u)) {
         return 0.0;
     }
-    vec3 rel_9 = (origin_4 + (dir_1 * t_2));
+    vec3 rel_11 = (origin_4 + (dir_1 * t_2));
     float _e13 = _group_0_binding_0_cs.camera_position.x;
     float _e20 = _group_0_binding_0_cs.camera_position.z;
-    vec3 p_15 = vec3((rel_9.x + _e13), rel_9.y, (rel_9.z + _e20));
+    vec3 p_15 = vec3((rel_11.x + _e13), rel_11.y, (rel_11.z + _e20));
     float _e23 = empty_cell_exit(p_15, dir_1);
     if ((_e23 <= 0.0)) {
         return 0.0;
@@ -2214,7 +2220,7 @@ float luminance(vec3 c_3) {
     return dot(c_3, vec3(0.2126, 0.7152, 0.0722));
 }
 
-float basic_sun_depth(vec3 rel_7, float alt_14, inout Counters counters_13) {
+float basic_sun_depth(vec3 rel_9, float alt_14, inout Counters counters_13) {
     float tau_8 = 0.0;
     uint i_16 = 1u;
     uint steps_4 = _group_0_binding_0_cs.counts.w;
@@ -2227,7 +2233,7 @@ float basic_sun_depth(vec3 rel_7, float alt_14, inout Counters counters_13) {
     float top_2 = _group_0_binding_0_cs.atmosphere.z;
     float _e25 = _group_0_binding_0_cs.atmosphere.y;
     float thickness = (top_2 - _e25);
-    Roots _e39 = solve_sphere(dot(sun_5, vec3(rel_7.x, (rel_7.y + rp_5), rel_7.z)), ((alt_14 - top_2) * ((alt_14 + top_2) + (2.0 * rp_5))));
+    Roots _e39 = solve_sphere(dot(sun_5, vec3(rel_9.x, (rel_9.y + rp_5), rel_9.z)), ((alt_14 - top_2) * ((alt_14 + top_2) + (2.0 * rp_5))));
     float length_ = min(max(_e39.t1_, 0.0), (3.0 * thickness));
     float dt_2 = (length_ / float(steps_4));
     float _e51 = _group_0_binding_0_cs.extinction.x;
@@ -2251,10 +2257,10 @@ float basic_sun_depth(vec3 rel_7, float alt_14, inout Counters counters_13) {
             uint _e68 = counters_13.light;
             counters_13.light = (_e68 + 1u);
             uint _e71 = i_16;
-            vec3 q_8 = (rel_7 + (sun_5 * (float(_e71) * dt_2)));
-            vec3 p_16 = vec3((q_8.x + cam_xz_1.x), q_8.y, (q_8.z + cam_xz_1.y));
+            vec3 q_9 = (rel_9 + (sun_5 * (float(_e71) * dt_2)));
+            vec3 p_16 = vec3((q_9.x + cam_xz_1.x), q_9.y, (q_9.z + cam_xz_1.y));
             float _e84 = tau_8;
-            float _e85 = altitude_of(q_8);
+            float _e85 = altitude_of(q_9);
             float _e86 = cloud_density(p_16, _e85, counters_13);
             tau_8 = (_e84 + ((sigma_t_4 * _e86) * dt_2));
         }
@@ -2310,14 +2316,14 @@ MarchResult basic_pixel(uvec2 pixel_7) {
                     counters_14.view_steps = (_e74 + 1u);
                     uint _e78 = i_17;
                     float t_8 = (_e25.start + (float(_e78) * dt_3));
-                    vec3 rel_10 = ((_e1 * t_8) + vec3(0.0, cam_alt_2, 0.0));
-                    vec3 p_17 = vec3((rel_10.x + cam_xz_2.x), rel_10.y, (rel_10.z + cam_xz_2.y));
-                    float _e95 = altitude_of(rel_10);
+                    vec3 rel_12 = ((_e1 * t_8) + vec3(0.0, cam_alt_2, 0.0));
+                    vec3 p_17 = vec3((rel_12.x + cam_xz_2.x), rel_12.y, (rel_12.z + cam_xz_2.y));
+                    float _e95 = altitude_of(rel_12);
                     float _e96 = cloud_density(p_17, _e95, counters_14);
                     if ((_e96 <= 0.0)) {
                         continue;
                     }
-                    float _e99 = basic_sun_depth(rel_10, _e95, counters_14);
+                    float _e99 = basic_sun_depth(rel_12, _e95, counters_14);
                     float beer_powder = ((2.0 * exp(-(_e99))) * (1.0 - exp((-2.0 * _e99))));
                     vec3 _e110 = radiance_2;
                     float _e111 = transmittance_1;
@@ -2414,8 +2420,8 @@ float sprite_texture(uint tile_1, vec2 uv) {
     float mask = smoothstep(0.48, 0.36, length(c_9));
     float _e16 = value_fbm(((uv * 6.0) + vec2((float(tile_1) * 13.0))), tile_1);
     if ((tile_1 < 4u)) {
-        vec2 q_9 = (c_9 * vec2(1.0, 3.2));
-        float streak = (1.0 - smoothstep(0.05, 0.45, length(q_9)));
+        vec2 q_10 = (c_9 * vec2(1.0, 3.2));
+        float streak = (1.0 - smoothstep(0.05, 0.45, length(q_10)));
         float _e40 = value_fbm(((uv * vec2(3.0, 12.0)) + vec2((float(tile_1) * 5.0))), (tile_1 + 16u));
         float _e46 = saturate(((_e40 * 1.6) - 0.3));
         return (((mask * streak) * _e46) * 0.8);
@@ -2547,17 +2553,17 @@ SpriteCandidate sprite_candidate(SpriteCell c_4, uint level, uint s_2, inout Cou
 
 vec3 sprite_sky_level(float h_9) {
     float _e1 = saturate(h_9);
-    float x_7 = (_e1 * 4.0);
-    if ((x_7 < 1.0)) {
-        return mix(SKY_LEVEL0_, SKY_LEVEL1_, x_7);
+    float x_8 = (_e1 * 4.0);
+    if ((x_8 < 1.0)) {
+        return mix(SKY_LEVEL0_, SKY_LEVEL1_, x_8);
     }
-    if ((x_7 < 2.0)) {
-        return mix(SKY_LEVEL1_, SKY_LEVEL2_, (x_7 - 1.0));
+    if ((x_8 < 2.0)) {
+        return mix(SKY_LEVEL1_, SKY_LEVEL2_, (x_8 - 1.0));
     }
-    if ((x_7 < 3.0)) {
-        return mix(SKY_LEVEL2_, SKY_LEVEL3_, (x_7 - 2.0));
+    if ((x_8 < 3.0)) {
+        return mix(SKY_LEVEL2_, SKY_LEVEL3_, (x_8 - 2.0));
     }
-    return mix(SKY_LEVEL3_, SKY_LEVEL4_, (x_7 - 3.0));
+    return mix(SKY_LEVEL3_, SKY_LEVEL4_, (x_8 - 3.0));
 }
 
 float sprite_sun_level(float cos_angle) {
@@ -2569,14 +2575,14 @@ float sprite_sun_level(float cos_angle) {
 
 vec2 sprite_corner(uint k_11) {
     bool local_59 = false;
-    uint q_10 = ((k_11 >= 3u) ? ((k_11 == 3u) ? 0u : (k_11 - 2u)) : k_11);
-    if (!((q_10 == 1u))) {
-        local_59 = (q_10 == 2u);
+    uint q_11 = ((k_11 >= 3u) ? ((k_11 == 3u) ? 0u : (k_11 - 2u)) : k_11);
+    if (!((q_11 == 1u))) {
+        local_59 = (q_11 == 2u);
     } else {
         local_59 = true;
     }
     bool _e18 = local_59;
-    return vec2((_e18 ? 1.0 : -1.0), ((q_10 >= 2u) ? 1.0 : -1.0));
+    return vec2((_e18 ? 1.0 : -1.0), ((q_11 >= 2u) ? 1.0 : -1.0));
 }
 
 vec3 sky_radiance(vec3 d_16, float alt_16) {
@@ -2688,25 +2694,25 @@ vec3 stars(vec3 d_19) {
     float h4_ = (float((_e120 >> 8u)) * 5.9604645e-8);
     vec2 star_st = (((vec2(cell_2) + vec2(0.15)) + (0.7 * vec2(h1_, h2_))) / vec2(96.0));
     float _e142 = major;
-    vec2 q_11 = (((star_st * 2.0) - vec2(1.0)) * _e142);
+    vec2 q_12 = (((star_st * 2.0) - vec2(1.0)) * _e142);
     uint _e147 = face;
     if ((_e147 < 2u)) {
         float _e150 = major;
         float _e152 = major;
         uint _e153 = face;
-        star = vec3(((_e153 == 0u) ? _e152 : -(_e150)), q_11.y, q_11.x);
+        star = vec3(((_e153 == 0u) ? _e152 : -(_e150)), q_12.y, q_12.x);
     } else {
         uint _e160 = face;
         if ((_e160 < 4u)) {
             float _e164 = major;
             float _e166 = major;
             uint _e167 = face;
-            star = vec3(q_11.x, ((_e167 == 2u) ? _e166 : -(_e164)), q_11.y);
+            star = vec3(q_12.x, ((_e167 == 2u) ? _e166 : -(_e164)), q_12.y);
         } else {
             float _e175 = major;
             float _e177 = major;
             uint _e178 = face;
-            star = vec3(q_11.x, q_11.y, ((_e178 == 4u) ? _e177 : -(_e175)));
+            star = vec3(q_12.x, q_12.y, ((_e178 == 4u) ? _e177 : -(_e175)));
         }
     }
     vec3 _e183 = star;

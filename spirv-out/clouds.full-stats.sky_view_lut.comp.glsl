@@ -177,6 +177,7 @@ const uint MULTISCATTER_STEPS = 32u;
 const uint SKY_VIEW_STEPS = 48u;
 const uint AMBIENT_DIRECTIONS = 64u;
 const uint AMBIENT_STEPS = 24u;
+const uint SKY_AMBIENT_SUNS = 64u;
 const uint GROUND_IRRADIANCE_SIZE = 64u;
 const uint NO_LAYER = 4u;
 const float FORWARD_LOBE_THIN = 0.1;

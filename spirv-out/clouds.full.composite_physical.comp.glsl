@@ -177,6 +177,7 @@ const uint MULTISCATTER_STEPS = 32u;
 const uint SKY_VIEW_STEPS = 48u;
 const uint AMBIENT_DIRECTIONS = 64u;
 const uint AMBIENT_STEPS = 24u;
+const uint SKY_AMBIENT_SUNS = 64u;
 const uint GROUND_IRRADIANCE_SIZE = 64u;
 const uint NO_LAYER = 4u;
 const float FORWARD_LOBE_THIN = 0.1;
@@ -1038,12 +1039,12 @@ vec3 shadow_ground_point(uvec2 c_2) {
     return vec3(xz_1.x, y_1, xz_1.y);
 }
 
-float ground_shadow(vec3 rel_5) {
-    float edge = (max(abs(rel_5.x), abs(rel_5.z)) / SHADOW_HALF_EXTENT);
+float ground_shadow(vec3 rel_7) {
+    float edge = (max(abs(rel_7.x), abs(rel_7.z)) / SHADOW_HALF_EXTENT);
     if ((edge >= 1.0)) {
         return 1.0;
     }
-    vec2 x_7 = ((rel_5.xz / vec2(40000.0)) + vec2(0.5));
+    vec2 x_7 = ((rel_7.xz / vec2(40000.0)) + vec2(0.5));
     vec4 _e21 = lut_bilinear(_group_0_binding_40_cs, x_7, uvec2(128u));
     float t_5 = _e21.x;
     return mix(t_5, 1.0, smoothstep(SHADOW_FADE_START, 1.0, edge));

@@ -178,6 +178,7 @@ const uint MULTISCATTER_STEPS = 32u;
 const uint SKY_VIEW_STEPS = 48u;
 const uint AMBIENT_DIRECTIONS = 64u;
 const uint AMBIENT_STEPS = 24u;
+const uint SKY_AMBIENT_SUNS = 64u;
 const uint GROUND_IRRADIANCE_SIZE = 64u;
 const uint NO_LAYER = 4u;
 const float FORWARD_LOBE_THIN = 0.1;
@@ -951,7 +952,7 @@ float phase(float cos_theta_4, float scale) {
     }
 }
 
-float sun_optical_depth(vec3 rel_2, vec3 p_6, Layer l_4, inout Counters counters_5) {
+float sun_optical_depth(vec3 rel_3, vec3 p_6, Layer l_4, inout Counters counters_5) {
     float seg = 0.0;
     float dist = 0.0;
     float tau_4 = 0.0;
@@ -986,7 +987,7 @@ float sun_optical_depth(vec3 rel_2, vec3 p_6, Layer l_4, inout Counters counters
             float _e38 = dist;
             float _e39 = seg;
             float s_7 = (_e38 + (0.5 * _e39));
-            vec3 q_6 = (rel_2 + (sun_2 * s_7));
+            vec3 q_6 = (rel_3 + (sun_2 * s_7));
             float _e45 = altitude_of(q_6);
             if (!((_e45 > l_4.top))) {
                 local_27 = (_e45 < l_4.bottom);
@@ -1010,7 +1011,7 @@ float sun_optical_depth(vec3 rel_2, vec3 p_6, Layer l_4, inout Counters counters
             seg = (_e70 * growth);
         }
     }
-    float _e75 = altitude_of(rel_2);
+    float _e75 = altitude_of(rel_3);
     bool loop_init_4 = true;
     while(true) {
         if (!loop_init_4) {
@@ -1030,8 +1031,8 @@ float sun_optical_depth(vec3 rel_2, vec3 p_6, Layer l_4, inout Counters counters
             if ((_e82.bottom <= l_4.top)) {
                 continue;
             }
-            Roots _e87 = ray_shell_from(rel_2, _e75, sun_2, _e82.bottom);
-            Roots _e89 = ray_shell_from(rel_2, _e75, sun_2, _e82.top);
+            Roots _e87 = ray_shell_from(rel_3, _e75, sun_2, _e82.bottom);
+            Roots _e89 = ray_shell_from(rel_3, _e75, sun_2, _e82.top);
             if (!(!(_e87.hit))) {
                 local_28 = !(_e89.hit);
             } else {
@@ -1057,7 +1058,7 @@ float sun_optical_depth(vec3 rel_2, vec3 p_6, Layer l_4, inout Counters counters
             uint _e122 = counters_5.light;
             counters_5.light = (_e122 + 1u);
             float _e125 = tau_4;
-            float _e130 = altitude_of((rel_2 + (sun_2 * s_8)));
+            float _e130 = altitude_of((rel_3 + (sun_2 * s_8)));
             float _e131 = layer_density((p_6 + (sun_2 * s_8)), _e130, _e82, counters_5);
             tau_4 = (_e125 + ((_e131 * sigma_t_1) * (_e89.t1_ - _e87.t1_)));
         }
@@ -1066,7 +1067,7 @@ float sun_optical_depth(vec3 rel_2, vec3 p_6, Layer l_4, inout Counters counters
     return _e141;
 }
 
-float far_optical_depth(vec3 rel_3, vec3 p_7, Layer l_5) {
+float far_optical_depth(vec3 rel_4, vec3 p_7, Layer l_5) {
     bool local_31 = false;
     float reach = 0.0;
     bool local_32 = false;
@@ -1094,8 +1095,8 @@ float far_optical_depth(vec3 rel_3, vec3 p_7, Layer l_5) {
     }
     vec4 _e51 = _group_0_binding_0_cs.sun_direction;
     vec3 sun_3 = _e51.xyz;
-    float _e53 = altitude_of(rel_3);
-    Roots _e55 = ray_shell_from(rel_3, _e53, sun_3, l_5.top);
+    float _e53 = altitude_of(rel_4);
+    Roots _e55 = ray_shell_from(rel_4, _e53, sun_3, l_5.top);
     float _e57 = reach;
     float len_1 = (_e55.t1_ - _e57);
     if (!(!(_e55.hit))) {
@@ -1123,7 +1124,7 @@ float far_optical_depth(vec3 rel_3, vec3 p_7, Layer l_5) {
             float _e77 = reach;
             uint _e78 = i_11;
             float t_5 = (_e77 + (((float(_e78) + 0.5) * 0.25) * len_1));
-            float _e88 = altitude_of((rel_3 + (sun_3 * t_5)));
+            float _e88 = altitude_of((rel_4 + (sun_3 * t_5)));
             float _e89 = layer_height(l_5, _e88);
             float _e90 = saturate(_e89);
             Weather _e93 = sample_weather((p_7 + (sun_3 * t_5)), l_5);
@@ -1529,11 +1530,11 @@ Segments layer_segments(vec3 p_10, float alt_13, vec3 d_14) {
     return _e103;
 }
 
-float density_at(vec3 rel_6, inout Counters counters_9) {
+float density_at(vec3 rel_8, inout Counters counters_9) {
     float _e6 = _group_0_binding_0_cs.camera_position.x;
     float _e13 = _group_0_binding_0_cs.camera_position.z;
-    vec3 p_13 = vec3((rel_6.x + _e6), rel_6.y, (rel_6.z + _e13));
-    float _e16 = altitude_of(rel_6);
+    vec3 p_13 = vec3((rel_8.x + _e6), rel_8.y, (rel_8.z + _e13));
+    float _e16 = altitude_of(rel_8);
     float _e17 = cloud_density(p_13, _e16, counters_9);
     return _e17;
 }
@@ -1659,7 +1660,7 @@ float luminance(vec3 c_3) {
     return dot(c_3, vec3(0.2126, 0.7152, 0.0722));
 }
 
-float basic_sun_depth(vec3 rel_7, float alt_14, inout Counters counters_13) {
+float basic_sun_depth(vec3 rel_9, float alt_14, inout Counters counters_13) {
     float tau_8 = 0.0;
     uint i_16 = 1u;
     uint steps_4 = _group_0_binding_0_cs.counts.w;
@@ -1672,7 +1673,7 @@ float basic_sun_depth(vec3 rel_7, float alt_14, inout Counters counters_13) {
     float top_1 = _group_0_binding_0_cs.atmosphere.z;
     float _e25 = _group_0_binding_0_cs.atmosphere.y;
     float thickness = (top_1 - _e25);
-    Roots _e39 = solve_sphere(dot(sun_4, vec3(rel_7.x, (rel_7.y + rp_5), rel_7.z)), ((alt_14 - top_1) * ((alt_14 + top_1) + (2.0 * rp_5))));
+    Roots _e39 = solve_sphere(dot(sun_4, vec3(rel_9.x, (rel_9.y + rp_5), rel_9.z)), ((alt_14 - top_1) * ((alt_14 + top_1) + (2.0 * rp_5))));
     float length_ = min(max(_e39.t1_, 0.0), (3.0 * thickness));
     float dt_1 = (length_ / float(steps_4));
     float _e51 = _group_0_binding_0_cs.extinction.x;
@@ -1696,7 +1697,7 @@ float basic_sun_depth(vec3 rel_7, float alt_14, inout Counters counters_13) {
             uint _e68 = counters_13.light;
             counters_13.light = (_e68 + 1u);
             uint _e71 = i_16;
-            vec3 q_7 = (rel_7 + (sun_4 * (float(_e71) * dt_1)));
+            vec3 q_7 = (rel_9 + (sun_4 * (float(_e71) * dt_1)));
             vec3 p_14 = vec3((q_7.x + cam_xz.x), q_7.y, (q_7.z + cam_xz.y));
             float _e84 = tau_8;
             float _e85 = altitude_of(q_7);
@@ -1755,14 +1756,14 @@ MarchResult basic_pixel(uvec2 pixel_7) {
                     counters_14.view_steps = (_e74 + 1u);
                     uint _e78 = i_17;
                     float t_7 = (_e25.start + (float(_e78) * dt_2));
-                    vec3 rel_8 = ((_e1 * t_7) + vec3(0.0, cam_alt, 0.0));
-                    vec3 p_15 = vec3((rel_8.x + cam_xz_1.x), rel_8.y, (rel_8.z + cam_xz_1.y));
-                    float _e95 = altitude_of(rel_8);
+                    vec3 rel_10 = ((_e1 * t_7) + vec3(0.0, cam_alt, 0.0));
+                    vec3 p_15 = vec3((rel_10.x + cam_xz_1.x), rel_10.y, (rel_10.z + cam_xz_1.y));
+                    float _e95 = altitude_of(rel_10);
                     float _e96 = cloud_density(p_15, _e95, counters_14);
                     if ((_e96 <= 0.0)) {
                         continue;
                     }
-                    float _e99 = basic_sun_depth(rel_8, _e95, counters_14);
+                    float _e99 = basic_sun_depth(rel_10, _e95, counters_14);
                     float beer_powder = ((2.0 * exp(-(_e99))) * (1.0 - exp((-2.0 * _e99))));
                     vec3 _e110 = radiance_2;
                     float _e111 = transmittance_1;

@@ -177,6 +177,7 @@ const uint MULTISCATTER_STEPS = 32u;
 const uint SKY_VIEW_STEPS = 48u;
 const uint AMBIENT_DIRECTIONS = 64u;
 const uint AMBIENT_STEPS = 24u;
+const uint SKY_AMBIENT_SUNS = 64u;
 const uint GROUND_IRRADIANCE_SIZE = 64u;
 const uint NO_LAYER = 4u;
 const float FORWARD_LOBE_THIN = 0.1;
@@ -1787,8 +1788,8 @@ void main() {
     vec3 sum_1 = vec3(0.0);
     float weights = 0.0;
     uint k_2 = 0u;
-    if (!((id_4.x >= 2u))) {
-        local_1 = (id_4.y >= 1u);
+    if (!((id_4.x >= SKY_AMBIENT_SUNS))) {
+        local_1 = (id_4.y >= 2u);
     } else {
         local_1 = true;
     }
@@ -1796,44 +1797,44 @@ void main() {
     if (_e11) {
         return;
     }
-    bool top_1 = (id_4.x == 1u);
-    float _e18 = _group_0_binding_0_cs.atmosphere.y;
-    float _e22 = _group_0_binding_0_cs.atmosphere.z;
-    float alt_m = (top_1 ? _e22 : _e18);
-    float _e24 = air_bottom();
-    vec3 origin_7 = vec3(0.0, (_e24 + (alt_m * 0.001)), 0.0);
+    bool top_1 = (id_4.y == 1u);
+    float mu_s_6 = (((float(id_4.x) / 63.0) * 2.0) - 1.0);
+    vec3 sun_4 = vec3(sqrt(max((1.0 - (mu_s_6 * mu_s_6)), 0.0)), mu_s_6, 0.0);
+    float _e34 = _group_0_binding_0_cs.atmosphere.y;
+    float _e38 = _group_0_binding_0_cs.atmosphere.z;
+    float alt_m = (top_1 ? _e38 : _e34);
+    float _e40 = air_bottom();
+    vec3 origin_7 = vec3(0.0, (_e40 + (alt_m * 0.001)), 0.0);
     uint first = (top_1 ? 0u : 32u);
     k_2 = first;
     bool loop_init_9 = true;
     while(true) {
         if (!loop_init_9) {
-            uint _e67 = k_2;
-            k_2 = (_e67 + 1u);
+            uint _e79 = k_2;
+            k_2 = (_e79 + 1u);
         }
         loop_init_9 = false;
-        uint _e40 = k_2;
-        if ((_e40 < (first + 32u))) {
+        uint _e56 = k_2;
+        if ((_e56 < (first + 32u))) {
         } else {
             break;
         }
         {
-            uint _e43 = k_2;
-            vec3 _e45 = fibonacci_direction(_e43, AMBIENT_DIRECTIONS);
-            vec2 _e46 = air_ray_end(origin_7, _e45);
-            vec4 _e49 = _group_0_binding_0_cs.sun_direction;
-            vec3 sun_4 = _e49.xyz;
-            Scattered _e53 = integrate_air(origin_7, _e45, _e46.x, AMBIENT_STEPS, sun_4);
-            float w_6 = abs(_e45.y);
-            vec3 _e56 = sum_1;
-            vec3 _e61 = with_ground(_e53, origin_7, _e45, _e46.x, sun_4, (_e46.y > 0.5));
-            sum_1 = (_e56 + (w_6 * _e61));
-            float _e64 = weights;
-            weights = (_e64 + w_6);
+            uint _e59 = k_2;
+            vec3 _e61 = fibonacci_direction(_e59, AMBIENT_DIRECTIONS);
+            vec2 _e62 = air_ray_end(origin_7, _e61);
+            Scattered _e65 = integrate_air(origin_7, _e61, _e62.x, AMBIENT_STEPS, sun_4);
+            float w_6 = abs(_e61.y);
+            vec3 _e68 = sum_1;
+            vec3 _e73 = with_ground(_e65, origin_7, _e61, _e62.x, sun_4, (_e62.y > 0.5));
+            sum_1 = (_e68 + (w_6 * _e73));
+            float _e76 = weights;
+            weights = (_e76 + w_6);
         }
     }
-    vec3 _e71 = sum_1;
-    float _e72 = weights;
-    imageStore(_group_0_binding_36_cs, ivec2(id_4.xy), vec4((_e71 / vec3(_e72)), 1.0));
+    vec3 _e83 = sum_1;
+    float _e84 = weights;
+    imageStore(_group_0_binding_36_cs, ivec2(id_4.xy), vec4((_e83 / vec3(_e84)), 1.0));
     return;
 }
 

@@ -194,6 +194,7 @@ constant uint MULTISCATTER_STEPS = 32u;
 constant uint SKY_VIEW_STEPS = 48u;
 constant uint AMBIENT_DIRECTIONS = 64u;
 constant uint AMBIENT_STEPS = 24u;
+constant uint SKY_AMBIENT_SUNS = 64u;
 constant uint GROUND_IRRADIANCE_SIZE = 64u;
 constant uint NO_LAYER = 4u;
 constant float FORWARD_LOBE_THIN = 0.1;
@@ -1136,16 +1137,22 @@ metal::float3 sun_through_air(
 
 metal::float3 sky_ambient_light(
     float h,
+    metal::float3 rel_2,
     constant Frame& frame,
     metal::texture2d<float, metal::access::sample> sky_ambient_in
 ) {
-    metal::float4 _e6 = sky_ambient_in.read(metal::uint2(metal::uint2(0u, 0u)), 0);
-    metal::float3 bottom_1 = _e6.xyz;
-    metal::float4 _e13 = sky_ambient_in.read(metal::uint2(metal::uint2(1u, 0u)), 0);
-    metal::float3 top_1 = _e13.xyz;
-    metal::float4 _e18 = frame.sun_illuminance;
-    float _e24 = frame.ambient_bottom.w;
-    return (metal::mix(bottom_1, top_1, h) * _e18.xyz) * _e24;
+    float _e7 = frame.atmosphere.x;
+    metal::float3 q_7 = metal::float3(rel_2.x, rel_2.y + _e7, rel_2.z);
+    metal::float4 _e14 = frame.sun_direction;
+    float x_9 = (metal::dot(metal::normalize(q_7), _e14.xyz) * 0.5) + 0.5;
+    metal::uint2 size_2 = metal::uint2(64u, 2u);
+    metal::float4 _e27 = lut_bilinear(sky_ambient_in, metal::float2(x_9, 0.0), size_2);
+    metal::float3 bottom_1 = _e27.xyz;
+    metal::float4 _e32 = lut_bilinear(sky_ambient_in, metal::float2(x_9, 1.0), size_2);
+    metal::float3 top_1 = _e32.xyz;
+    metal::float4 _e37 = frame.sun_illuminance;
+    float _e43 = frame.ambient_bottom.w;
+    return (metal::mix(bottom_1, top_1, h) * _e37.xyz) * _e43;
 }
 
 float layer_height(
@@ -1446,7 +1453,7 @@ float phase(
 }
 
 float sun_optical_depth(
-    metal::float3 rel_2,
+    metal::float3 rel_3,
     metal::float3 p_6,
     Layer l_4,
     thread Counters& counters_5,
@@ -1494,8 +1501,8 @@ float sun_optical_depth(
             float _e38 = dist;
             float _e39 = seg;
             float s_8 = _e38 + (0.5 * _e39);
-            metal::float3 q_7 = rel_2 + (sun_3 * s_8);
-            float _e45 = altitude_of(q_7, frame);
+            metal::float3 q_8 = rel_3 + (sun_3 * s_8);
+            float _e45 = altitude_of(q_8, frame);
             if (!((_e45 > l_4.top))) {
                 local_27 = _e45 < l_4.bottom;
             } else {
@@ -1518,7 +1525,7 @@ float sun_optical_depth(
             seg = _e70 * growth;
         }
     }
-    float _e75 = altitude_of(rel_2, frame);
+    float _e75 = altitude_of(rel_3, frame);
     uint2 loop_bound_5 = uint2(4294967295u);
     bool loop_init_5 = true;
     while(true) {
@@ -1541,8 +1548,8 @@ float sun_optical_depth(
             if (_e82.bottom <= l_4.top) {
                 continue;
             }
-            Roots _e87 = ray_shell_from(rel_2, _e75, sun_3, _e82.bottom, frame);
-            Roots _e89 = ray_shell_from(rel_2, _e75, sun_3, _e82.top, frame);
+            Roots _e87 = ray_shell_from(rel_3, _e75, sun_3, _e82.bottom, frame);
+            Roots _e89 = ray_shell_from(rel_3, _e75, sun_3, _e82.top, frame);
             if (!(!(_e87.hit))) {
                 local_28 = !(_e89.hit);
             } else {
@@ -1568,7 +1575,7 @@ float sun_optical_depth(
             uint _e122 = counters_5.light;
             counters_5.light = _e122 + 1u;
             float _e125 = tau_4;
-            float _e130 = altitude_of(rel_2 + (sun_3 * s_9), frame);
+            float _e130 = altitude_of(rel_3 + (sun_3 * s_9), frame);
             float _e131 = layer_density(p_6 + (sun_3 * s_9), _e130, _e82, counters_5, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
             tau_4 = _e125 + ((_e131 * sigma_t_1) * (_e89.t1_ - _e87.t1_));
         }
@@ -1578,7 +1585,7 @@ float sun_optical_depth(
 }
 
 float far_optical_depth(
-    metal::float3 rel_3,
+    metal::float3 rel_4,
     metal::float3 p_7,
     Layer l_5,
     constant Frame& frame,
@@ -1612,8 +1619,8 @@ float far_optical_depth(
     }
     metal::float4 _e51 = frame.sun_direction;
     metal::float3 sun_4 = _e51.xyz;
-    float _e53 = altitude_of(rel_3, frame);
-    Roots _e55 = ray_shell_from(rel_3, _e53, sun_4, l_5.top, frame);
+    float _e53 = altitude_of(rel_4, frame);
+    Roots _e55 = ray_shell_from(rel_4, _e53, sun_4, l_5.top, frame);
     float _e57 = reach;
     float len_1 = _e55.t1_ - _e57;
     if (!(!(_e55.hit))) {
@@ -1644,7 +1651,7 @@ float far_optical_depth(
             float _e77 = reach;
             uint _e78 = i_11;
             float t_5 = _e77 + (((static_cast<float>(_e78) + 0.5) * 0.25) * len_1);
-            float _e88 = altitude_of(rel_3 + (sun_4 * t_5), frame);
+            float _e88 = altitude_of(rel_4 + (sun_4 * t_5), frame);
             float _e89 = layer_height(l_5, _e88);
             float _e90 = saturate(_e89);
             Weather _e93 = sample_weather(p_7 + (sun_4 * t_5), l_5, frame, weather_tex, noise_sampler);
@@ -1802,18 +1809,19 @@ float octave_buildup(
 
 metal::float3 ambient(
     float h_7,
+    metal::float3 rel_5,
     constant Frame& frame,
     metal::texture2d<float, metal::access::sample> sky_ambient_in
 ) {
-    bool _e1 = physical_sky(frame);
-    if (_e1) {
-        metal::float3 _e2 = sky_ambient_light(h_7, frame, sky_ambient_in);
-        return _e2;
+    bool _e2 = physical_sky(frame);
+    if (_e2) {
+        metal::float3 _e3 = sky_ambient_light(h_7, rel_5, frame, sky_ambient_in);
+        return _e3;
     }
-    metal::float4 _e5 = frame.ambient_bottom;
-    metal::float4 _e9 = frame.ambient_top;
-    float _e15 = frame.ambient_bottom.w;
-    return metal::mix(_e5.xyz, _e9.xyz, h_7) * _e15;
+    metal::float4 _e6 = frame.ambient_bottom;
+    metal::float4 _e10 = frame.ambient_top;
+    float _e16 = frame.ambient_bottom.w;
+    return metal::mix(_e6.xyz, _e10.xyz, h_7) * _e16;
 }
 
 float height_fraction(
@@ -1828,7 +1836,7 @@ float height_fraction(
 }
 
 ScatteredLight scattered_light(
-    metal::float3 rel_4,
+    metal::float3 rel_6,
     metal::float3 p_8,
     float alt_12,
     float density_2,
@@ -1853,12 +1861,12 @@ ScatteredLight scattered_light(
     float _e11 = layer_height(l_6, alt_12);
     float _e12 = saturate(_e11);
     Weather _e19 = sample_weather(p_8, l_6, frame, weather_tex, noise_sampler);
-    bool _e20 = hits_ground(rel_4, alt_12, sun_5, frame);
+    bool _e20 = hits_ground(rel_6, alt_12, sun_5, frame);
     if (!(_e20)) {
         if (LIGHT_MARCH) {
-            float _e27 = sun_optical_depth(rel_4, p_8, l_6, counters_6, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+            float _e27 = sun_optical_depth(rel_6, p_8, l_6, counters_6, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
             tau_7 = _e27;
-            float _e28 = far_optical_depth(rel_4, p_8, l_6, frame, weather_tex, noise_sampler);
+            float _e28 = far_optical_depth(rel_6, p_8, l_6, frame, weather_tex, noise_sampler);
             far_2 = _e28;
         }
         float _e31 = tau_7;
@@ -1866,7 +1874,7 @@ ScatteredLight scattered_light(
         float _e33 = octave_buildup(density_2, frame);
         SunScattering _e35 = sun_scattering(metal::dot(view, sun_5), view.y, _e31, _e32, _e33, _e19.coverage, _e12, frame);
         metal::float4 _e38 = frame.sun_illuminance;
-        metal::float3 _e40 = sun_through_air(rel_4, frame, transmittance_lut_in);
+        metal::float3 _e40 = sun_through_air(rel_6, frame, transmittance_lut_in);
         metal::float3 lit = _e38.xyz * _e40;
         sun_light = lit * _e35.total;
         octave_light = lit * _e35.octaves;
@@ -1876,7 +1884,7 @@ ScatteredLight scattered_light(
     float _e61 = frame.extinction.x;
     float k_14 = (_e61 * density_2) * _e57;
     metal::float3 _e64 = sun_light;
-    metal::float3 _e65 = ambient(_e12, frame, sky_ambient_in);
+    metal::float3 _e65 = ambient(_e12, rel_6, frame, sky_ambient_in);
     metal::float3 _e68 = octave_light;
     return ScatteredLight {(_e64 + _e65) * k_14, _e68 * k_14};
 }
@@ -1893,15 +1901,15 @@ metal::float3 shadow_ground_point(
 }
 
 float ground_shadow(
-    metal::float3 rel_5,
+    metal::float3 rel_7,
     metal::texture2d<float, metal::access::sample> cloud_shadow_in
 ) {
-    float edge = metal::max(metal::abs(rel_5.x), metal::abs(rel_5.z)) / SHADOW_HALF_EXTENT;
+    float edge = metal::max(metal::abs(rel_7.x), metal::abs(rel_7.z)) / SHADOW_HALF_EXTENT;
     if (edge >= 1.0) {
         return 1.0;
     }
-    metal::float2 x_9 = (rel_5.xz / metal::float2(40000.0)) + metal::float2(0.5);
-    metal::float4 _e21 = lut_bilinear(cloud_shadow_in, x_9, metal::uint2(128u));
+    metal::float2 x_10 = (rel_7.xz / metal::float2(40000.0)) + metal::float2(0.5);
+    metal::float4 _e21 = lut_bilinear(cloud_shadow_in, x_10, metal::uint2(128u));
     float t_6 = _e21.x;
     return metal::mix(t_6, 1.0, metal::smoothstep(SHADOW_FADE_START, 1.0, edge));
 }
@@ -2004,8 +2012,8 @@ metal::float3 step_integral(
     if (_e6 == INTEGRATION_RIEMANN) {
         return source * dt;
     }
-    float x_10 = sigma_t * dt;
-    float f_4 = (x_10 < 0.001) ? (1.0 - (0.5 * x_10)) : ((1.0 - metal::exp(-(x_10))) / x_10);
+    float x_11 = sigma_t * dt;
+    float f_4 = (x_11 < 0.001) ? (1.0 - (0.5 * x_11)) : ((1.0 - metal::exp(-(x_11))) / x_11);
     return source * (dt * f_4);
 }
 
@@ -2086,8 +2094,8 @@ bool march_layer(
         counters_7.view_steps = _e75 + 1u;
         uint _e79 = i_13;
         float t_7 = span_1.start + ((static_cast<float>(_e79) + jitter) * dt_2);
-        metal::float3 rel_8 = (view_2 * t_7) + metal::float3(0.0, cam_alt_1, 0.0);
-        metal::float3 p_14 = metal::float3(rel_8.x + cam_xz.x, rel_8.y, rel_8.z + cam_xz.y);
+        metal::float3 rel_10 = (view_2 * t_7) + metal::float3(0.0, cam_alt_1, 0.0);
+        metal::float3 p_14 = metal::float3(rel_10.x + cam_xz.x, rel_10.y, rel_10.z + cam_xz.y);
         if (empty_skip) {
             float _e97 = empty_cell_exit(p_14, view_2, frame, occupancy_in);
             if (_e97 > 0.0) {
@@ -2098,7 +2106,7 @@ bool march_layer(
                 continue;
             }
         }
-        float _e115 = altitude_of(rel_8, frame);
+        float _e115 = altitude_of(rel_10, frame);
         float _e116 = layer_density(p_14, _e115, l_7, counters_7, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
         if (_e116 <= 0.0) {
             uint _e119 = empty;
@@ -2129,7 +2137,7 @@ bool march_layer(
         }
         empty = 0u;
         float sigma_t_2 = sigma_e * _e116;
-        ScatteredLight _e145 = scattered_light(rel_8, p_14, _e115, _e116, view_2, l_7, counters_7, frame, transmittance_lut_in, sky_ambient_in, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+        ScatteredLight _e145 = scattered_light(rel_10, p_14, _e115, _e116, view_2, l_7, counters_7, frame, transmittance_lut_in, sky_ambient_in, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
         float transmittance_2 = state.transmittance;
         metal::float3 _e149 = state.radiance;
         metal::float3 _e151 = step_integral(_e145.total, sigma_t_2, dt_2, frame);
@@ -2430,9 +2438,9 @@ bool on_screen(
 ) {
     bool local_44 = {};
     metal::uint4 _e3 = frame.counts;
-    metal::float2 size_2 = static_cast<metal::float2>(_e3.xy);
+    metal::float2 size_3 = static_cast<metal::float2>(_e3.xy);
     if (metal::all(q >= metal::float2(-0.5))) {
-        local_44 = metal::all(q <= (size_2 - metal::float2(0.5)));
+        local_44 = metal::all(q <= (size_3 - metal::float2(0.5)));
     } else {
         local_44 = false;
     }
@@ -2454,12 +2462,12 @@ metal::float4 history_row(
     metal::texture2d<float, metal::access::sample> history_in
 ) {
     metal::uint4 _e5 = frame.counts;
-    metal::int2 size_3 = static_cast<metal::int2>(_e5.xy);
-    int y_2 = metal::clamp(as_type<int>(as_type<uint>(base_1.y) + as_type<uint>(dy)), 0, as_type<int>(as_type<uint>(size_3.y) - as_type<uint>(1)));
-    int x0_ = metal::clamp(as_type<int>(as_type<uint>(base_1.x) - as_type<uint>(1)), 0, as_type<int>(as_type<uint>(size_3.x) - as_type<uint>(1)));
-    int x1_ = metal::clamp(base_1.x, 0, as_type<int>(as_type<uint>(size_3.x) - as_type<uint>(1)));
-    int x2_ = metal::clamp(as_type<int>(as_type<uint>(base_1.x) + as_type<uint>(1)), 0, as_type<int>(as_type<uint>(size_3.x) - as_type<uint>(1)));
-    int x3_ = metal::clamp(as_type<int>(as_type<uint>(base_1.x) + as_type<uint>(2)), 0, as_type<int>(as_type<uint>(size_3.x) - as_type<uint>(1)));
+    metal::int2 size_4 = static_cast<metal::int2>(_e5.xy);
+    int y_2 = metal::clamp(as_type<int>(as_type<uint>(base_1.y) + as_type<uint>(dy)), 0, as_type<int>(as_type<uint>(size_4.y) - as_type<uint>(1)));
+    int x0_ = metal::clamp(as_type<int>(as_type<uint>(base_1.x) - as_type<uint>(1)), 0, as_type<int>(as_type<uint>(size_4.x) - as_type<uint>(1)));
+    int x1_ = metal::clamp(base_1.x, 0, as_type<int>(as_type<uint>(size_4.x) - as_type<uint>(1)));
+    int x2_ = metal::clamp(as_type<int>(as_type<uint>(base_1.x) + as_type<uint>(1)), 0, as_type<int>(as_type<uint>(size_4.x) - as_type<uint>(1)));
+    int x3_ = metal::clamp(as_type<int>(as_type<uint>(base_1.x) + as_type<uint>(2)), 0, as_type<int>(as_type<uint>(size_4.x) - as_type<uint>(1)));
     metal::float4 _e48 = history_in.read(metal::uint2(metal::int2(x0_, y_2)), 0);
     metal::float4 _e54 = history_in.read(metal::uint2(metal::int2(x1_, y_2)), 0);
     metal::float4 _e61 = history_in.read(metal::uint2(metal::int2(x2_, y_2)), 0);
@@ -2477,8 +2485,8 @@ metal::float4 history_at(
     metal::texture2d<float, metal::access::sample> history_in
 ) {
     metal::uint4 _e3 = frame.counts;
-    metal::int2 size_4 = static_cast<metal::int2>(_e3.xy);
-    metal::float2 c_9 = metal::clamp(q_1, metal::float2(0.0), static_cast<metal::float2>(as_type<metal::int2>(as_type<metal::uint2>(size_4) - as_type<metal::uint2>(metal::int2(1)))));
+    metal::int2 size_5 = static_cast<metal::int2>(_e3.xy);
+    metal::float2 c_9 = metal::clamp(q_1, metal::float2(0.0), static_cast<metal::float2>(as_type<metal::int2>(as_type<metal::uint2>(size_5) - as_type<metal::uint2>(metal::int2(1)))));
     metal::int2 base_3 = naga_f2i32(metal::floor(c_9));
     metal::float2 f_5 = c_9 - static_cast<metal::float2>(base_3);
     metal::float4 _e18 = catmull_rom(f_5.x);
@@ -2498,8 +2506,8 @@ metal::float4 history_nearest(
     metal::texture2d<float, metal::access::sample> history_in
 ) {
     metal::uint4 _e3 = frame.counts;
-    metal::int2 size_5 = static_cast<metal::int2>(_e3.xy);
-    metal::int2 p_15 = metal::clamp(naga_f2i32(metal::rint(q_2)), metal::int2(0), as_type<metal::int2>(as_type<metal::uint2>(size_5) - as_type<metal::uint2>(metal::int2(1))));
+    metal::int2 size_6 = static_cast<metal::int2>(_e3.xy);
+    metal::int2 p_15 = metal::clamp(naga_f2i32(metal::rint(q_2)), metal::int2(0), as_type<metal::int2>(as_type<metal::uint2>(size_6) - as_type<metal::uint2>(metal::int2(1))));
     metal::float4 _e16 = history_in.read(metal::uint2(p_15), 0);
     return _e16;
 }
@@ -2510,8 +2518,8 @@ metal::float4 meta_at(
     metal::texture2d<float, metal::access::sample> meta_in
 ) {
     metal::uint4 _e3 = frame.counts;
-    metal::int2 size_6 = static_cast<metal::int2>(_e3.xy);
-    metal::int2 p_16 = metal::clamp(naga_f2i32(metal::rint(q_3)), metal::int2(0), as_type<metal::int2>(as_type<metal::uint2>(size_6) - as_type<metal::uint2>(metal::int2(1))));
+    metal::int2 size_7 = static_cast<metal::int2>(_e3.xy);
+    metal::int2 p_16 = metal::clamp(naga_f2i32(metal::rint(q_3)), metal::int2(0), as_type<metal::int2>(as_type<metal::uint2>(size_7) - as_type<metal::uint2>(metal::int2(1))));
     metal::float4 _e16 = meta_in.read(metal::uint2(p_16), 0);
     return _e16;
 }
@@ -2672,7 +2680,7 @@ Segments layer_segments(
 }
 
 float density_at(
-    metal::float3 rel_6,
+    metal::float3 rel_8,
     thread Counters& counters_9,
     constant Frame& frame,
     metal::texture3d<float, metal::access::sample> shape_tex,
@@ -2683,8 +2691,8 @@ float density_at(
 ) {
     float _e6 = frame.camera_position.x;
     float _e13 = frame.camera_position.z;
-    metal::float3 p_17 = metal::float3(rel_6.x + _e6, rel_6.y, rel_6.z + _e13);
-    float _e16 = altitude_of(rel_6, frame);
+    metal::float3 p_17 = metal::float3(rel_8.x + _e6, rel_8.y, rel_8.z + _e13);
+    float _e16 = altitude_of(rel_8, frame);
     float _e17 = cloud_density(p_17, _e16, counters_9, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
     return _e17;
 }
@@ -2700,10 +2708,10 @@ float empty_cell_skip(
     if (_e3 > 1u) {
         return 0.0;
     }
-    metal::float3 rel_9 = origin_4 + (dir_1 * t_2);
+    metal::float3 rel_11 = origin_4 + (dir_1 * t_2);
     float _e13 = frame.camera_position.x;
     float _e20 = frame.camera_position.z;
-    metal::float3 p_18 = metal::float3(rel_9.x + _e13, rel_9.y, rel_9.z + _e20);
+    metal::float3 p_18 = metal::float3(rel_11.x + _e13, rel_11.y, rel_11.z + _e20);
     float _e23 = empty_cell_exit(p_18, dir_1, frame, occupancy_in);
     if (_e23 <= 0.0) {
         return 0.0;
@@ -2997,7 +3005,7 @@ metal::float3 environment(
         float _e13 = frame.ambient_bottom.w;
         return (_e4 * _e7.xyz) * _e13;
     }
-    metal::float3 _e15 = ambient(h_8, frame, sky_ambient_in);
+    metal::float3 _e15 = ambient(h_8, pos, frame, sky_ambient_in);
     return _e15;
 }
 
@@ -3200,7 +3208,7 @@ float luminance(
 }
 
 float basic_sun_depth(
-    metal::float3 rel_7,
+    metal::float3 rel_9,
     float alt_14,
     thread Counters& counters_13,
     constant Frame& frame,
@@ -3222,7 +3230,7 @@ float basic_sun_depth(
     float top_2 = frame.atmosphere.z;
     float _e25 = frame.atmosphere.y;
     float thickness = top_2 - _e25;
-    Roots _e39 = solve_sphere(metal::dot(sun_7, metal::float3(rel_7.x, rel_7.y + rp_5, rel_7.z)), (alt_14 - top_2) * ((alt_14 + top_2) + (2.0 * rp_5)));
+    Roots _e39 = solve_sphere(metal::dot(sun_7, metal::float3(rel_9.x, rel_9.y + rp_5, rel_9.z)), (alt_14 - top_2) * ((alt_14 + top_2) + (2.0 * rp_5)));
     float length = metal::min(metal::max(_e39.t1_, 0.0), 3.0 * thickness);
     float dt_3 = length / static_cast<float>(steps_4);
     float _e51 = frame.extinction.x;
@@ -3249,10 +3257,10 @@ float basic_sun_depth(
             uint _e68 = counters_13.light;
             counters_13.light = _e68 + 1u;
             uint _e71 = i_16;
-            metal::float3 q_8 = rel_7 + (sun_7 * (static_cast<float>(_e71) * dt_3));
-            metal::float3 p_19 = metal::float3(q_8.x + cam_xz_1.x, q_8.y, q_8.z + cam_xz_1.y);
+            metal::float3 q_9 = rel_9 + (sun_7 * (static_cast<float>(_e71) * dt_3));
+            metal::float3 p_19 = metal::float3(q_9.x + cam_xz_1.x, q_9.y, q_9.z + cam_xz_1.y);
             float _e84 = tau_8;
-            float _e85 = altitude_of(q_8, frame);
+            float _e85 = altitude_of(q_9, frame);
             float _e86 = cloud_density(p_19, _e85, counters_13, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
             tau_8 = _e84 + ((sigma_t_5 * _e86) * dt_3);
         }
@@ -3320,14 +3328,14 @@ MarchResult basic_pixel(
                     counters_14.view_steps = _e74 + 1u;
                     uint _e78 = i_17;
                     float t_9 = _e25.start + (static_cast<float>(_e78) * dt_4);
-                    metal::float3 rel_10 = (_e1 * t_9) + metal::float3(0.0, cam_alt_3, 0.0);
-                    metal::float3 p_20 = metal::float3(rel_10.x + cam_xz_2.x, rel_10.y, rel_10.z + cam_xz_2.y);
-                    float _e95 = altitude_of(rel_10, frame);
+                    metal::float3 rel_12 = (_e1 * t_9) + metal::float3(0.0, cam_alt_3, 0.0);
+                    metal::float3 p_20 = metal::float3(rel_12.x + cam_xz_2.x, rel_12.y, rel_12.z + cam_xz_2.y);
+                    float _e95 = altitude_of(rel_12, frame);
                     float _e96 = cloud_density(p_20, _e95, counters_14, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
                     if (_e96 <= 0.0) {
                         continue;
                     }
-                    float _e99 = basic_sun_depth(rel_10, _e95, counters_14, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+                    float _e99 = basic_sun_depth(rel_12, _e95, counters_14, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
                     float beer_powder = (2.0 * metal::exp(-(_e99))) * (1.0 - metal::exp(-2.0 * _e99));
                     metal::float3 _e110 = radiance_2;
                     float _e111 = transmittance_1;
@@ -3439,8 +3447,8 @@ float sprite_texture(
     float mask = metal::smoothstep(0.48, 0.36, metal::length(c_10));
     float _e16 = value_fbm((uv * 6.0) + metal::float2(static_cast<float>(tile_1) * 13.0), tile_1);
     if (tile_1 < 4u) {
-        metal::float2 q_9 = c_10 * metal::float2(1.0, 3.2);
-        float streak = 1.0 - metal::smoothstep(0.05, 0.45, metal::length(q_9));
+        metal::float2 q_10 = c_10 * metal::float2(1.0, 3.2);
+        float streak = 1.0 - metal::smoothstep(0.05, 0.45, metal::length(q_10));
         float _e40 = value_fbm((uv * metal::float2(3.0, 12.0)) + metal::float2(static_cast<float>(tile_1) * 5.0), tile_1 + 16u);
         float _e46 = saturate((_e40 * 1.6) - 0.3);
         return ((mask * streak) * _e46) * 0.8;
@@ -3598,17 +3606,17 @@ metal::float3 sprite_sky_level(
     float h_9
 ) {
     float _e1 = saturate(h_9);
-    float x_11 = _e1 * 4.0;
-    if (x_11 < 1.0) {
-        return metal::mix(SKY_LEVEL0_, SKY_LEVEL1_, x_11);
+    float x_12 = _e1 * 4.0;
+    if (x_12 < 1.0) {
+        return metal::mix(SKY_LEVEL0_, SKY_LEVEL1_, x_12);
     }
-    if (x_11 < 2.0) {
-        return metal::mix(SKY_LEVEL1_, SKY_LEVEL2_, x_11 - 1.0);
+    if (x_12 < 2.0) {
+        return metal::mix(SKY_LEVEL1_, SKY_LEVEL2_, x_12 - 1.0);
     }
-    if (x_11 < 3.0) {
-        return metal::mix(SKY_LEVEL2_, SKY_LEVEL3_, x_11 - 2.0);
+    if (x_12 < 3.0) {
+        return metal::mix(SKY_LEVEL2_, SKY_LEVEL3_, x_12 - 2.0);
     }
-    return metal::mix(SKY_LEVEL3_, SKY_LEVEL4_, x_11 - 3.0);
+    return metal::mix(SKY_LEVEL3_, SKY_LEVEL4_, x_12 - 3.0);
 }
 
 float sprite_sun_level(
@@ -3624,14 +3632,14 @@ metal::float2 sprite_corner(
     uint k_11
 ) {
     bool local_59 = {};
-    uint q_10 = (k_11 >= 3u) ? ((k_11 == 3u) ? 0u : (k_11 - 2u)) : k_11;
-    if (!((q_10 == 1u))) {
-        local_59 = q_10 == 2u;
+    uint q_11 = (k_11 >= 3u) ? ((k_11 == 3u) ? 0u : (k_11 - 2u)) : k_11;
+    if (!((q_11 == 1u))) {
+        local_59 = q_11 == 2u;
     } else {
         local_59 = true;
     }
     bool _e18 = local_59;
-    return metal::float2(_e18 ? 1.0 : -1.0, (q_10 >= 2u) ? 1.0 : -1.0);
+    return metal::float2(_e18 ? 1.0 : -1.0, (q_11 >= 2u) ? 1.0 : -1.0);
 }
 
 metal::float3 sky_radiance(
@@ -3756,25 +3764,25 @@ metal::float3 stars(
     float h4_ = static_cast<float>(_e120 >> 8u) * 0.000000059604645;
     metal::float2 star_st = ((static_cast<metal::float2>(cell_2) + metal::float2(0.15)) + (0.7 * metal::float2(h1_, h2_))) / metal::float2(96.0);
     float _e142 = major;
-    metal::float2 q_11 = ((star_st * 2.0) - metal::float2(1.0)) * _e142;
+    metal::float2 q_12 = ((star_st * 2.0) - metal::float2(1.0)) * _e142;
     uint _e147 = face;
     if (_e147 < 2u) {
         float _e150 = major;
         float _e152 = major;
         uint _e153 = face;
-        star = metal::float3((_e153 == 0u) ? _e152 : -(_e150), q_11.y, q_11.x);
+        star = metal::float3((_e153 == 0u) ? _e152 : -(_e150), q_12.y, q_12.x);
     } else {
         uint _e160 = face;
         if (_e160 < 4u) {
             float _e164 = major;
             float _e166 = major;
             uint _e167 = face;
-            star = metal::float3(q_11.x, (_e167 == 2u) ? _e166 : -(_e164), q_11.y);
+            star = metal::float3(q_12.x, (_e167 == 2u) ? _e166 : -(_e164), q_12.y);
         } else {
             float _e175 = major;
             float _e177 = major;
             uint _e178 = face;
-            star = metal::float3(q_11.x, q_11.y, (_e178 == 4u) ? _e177 : -(_e175));
+            star = metal::float3(q_12.x, q_12.y, (_e178 == 4u) ? _e177 : -(_e175));
         }
     }
     metal::float3 _e183 = star;
@@ -3940,12 +3948,12 @@ struct multiscatter_lutInput {
     if (metal::any(id_1.xy >= MULTISCATTER_SIZE)) {
         return;
     }
-    metal::float2 x_12 = static_cast<metal::float2>(id_1.xy) / metal::float2(31.0, 31.0);
-    float mu_s_7 = (x_12.x * 2.0) - 1.0;
+    metal::float2 x_13 = static_cast<metal::float2>(id_1.xy) / metal::float2(31.0, 31.0);
+    float mu_s_7 = (x_13.x * 2.0) - 1.0;
     float _e16 = air_bottom(frame);
     float _e18 = air_top(frame);
     float _e19 = air_bottom(frame);
-    float r_20 = _e16 + (x_12.y * (_e18 - _e19));
+    float r_20 = _e16 + (x_13.y * (_e18 - _e19));
     metal::float3 origin_7 = metal::float3(0.0, r_20, 0.0);
     metal::float3 sun_9 = metal::float3(metal::sqrt(metal::max(1.0 - (mu_s_7 * mu_s_7), 0.0)), mu_s_7, 0.0);
     uint2 loop_bound_23 = uint2(4294967295u);
@@ -4033,12 +4041,12 @@ struct sky_view_lutInput {
     if (metal::any(id_2.xy >= SKY_VIEW_SIZE)) {
         return;
     }
-    metal::float2 x_13 = static_cast<metal::float2>(id_2.xy) / metal::float2(191.0, 107.0);
+    metal::float2 x_14 = static_cast<metal::float2>(id_2.xy) / metal::float2(191.0, 107.0);
     metal::float3 _e11 = camera_air_origin(frame);
     float _e14 = horizon_elevation(_e11.y, frame);
-    float _e15 = sky_view_elevation(x_13.y, _e14);
+    float _e15 = sky_view_elevation(x_14.y, _e14);
     float _e16 = sun_azimuth(frame);
-    float phi_2 = _e16 + (x_13.x * PI);
+    float phi_2 = _e16 + (x_14.x * PI);
     metal::float3 d_24 = metal::float3(metal::cos(_e15) * metal::cos(phi_2), metal::sin(_e15), metal::cos(_e15) * metal::sin(phi_2));
     metal::float3 _e31 = sky_along(_e11, d_24, frame, transmittance_lut_in, multiscatter_lut_in, ground_irradiance_in);
     sky_view_out.write(metal::float4(_e31, 1.0), metal::uint2(id_2.xy));
@@ -4149,8 +4157,8 @@ struct sky_ambientInput {
     metal::float3 sum_1 = metal::float3(0.0);
     float weights = 0.0;
     uint k_2 = {};
-    if (!((id_4.x >= 2u))) {
-        local_1 = id_4.y >= 1u;
+    if (!((id_4.x >= SKY_AMBIENT_SUNS))) {
+        local_1 = id_4.y >= 2u;
     } else {
         local_1 = true;
     }
@@ -4158,12 +4166,14 @@ struct sky_ambientInput {
     if (_e11) {
         return;
     }
-    bool top_3 = id_4.x == 1u;
-    float _e18 = frame.atmosphere.y;
-    float _e22 = frame.atmosphere.z;
-    float alt_m = top_3 ? _e22 : _e18;
-    float _e24 = air_bottom(frame);
-    metal::float3 origin_8 = metal::float3(0.0, _e24 + (alt_m * 0.001), 0.0);
+    bool top_3 = id_4.y == 1u;
+    float mu_s_9 = ((static_cast<float>(id_4.x) / 63.0) * 2.0) - 1.0;
+    metal::float3 sun_11 = metal::float3(metal::sqrt(metal::max(1.0 - (mu_s_9 * mu_s_9), 0.0)), mu_s_9, 0.0);
+    float _e34 = frame.atmosphere.y;
+    float _e38 = frame.atmosphere.z;
+    float alt_m = top_3 ? _e38 : _e34;
+    float _e40 = air_bottom(frame);
+    metal::float3 origin_8 = metal::float3(0.0, _e40 + (alt_m * 0.001), 0.0);
     uint first = top_3 ? 0u : 32u;
     k_2 = first;
     uint2 loop_bound_27 = uint2(4294967295u);
@@ -4172,33 +4182,31 @@ struct sky_ambientInput {
         if (metal::all(loop_bound_27 == uint2(0u))) { break; }
         loop_bound_27 -= uint2(loop_bound_27.y == 0u, 1u);
         if (!loop_init_23) {
-            uint _e67 = k_2;
-            k_2 = _e67 + 1u;
+            uint _e79 = k_2;
+            k_2 = _e79 + 1u;
         }
         loop_init_23 = false;
-        uint _e40 = k_2;
-        if (_e40 < (first + 32u)) {
+        uint _e56 = k_2;
+        if (_e56 < (first + 32u)) {
         } else {
             break;
         }
         {
-            uint _e43 = k_2;
-            metal::float3 _e45 = fibonacci_direction(_e43, AMBIENT_DIRECTIONS);
-            metal::float2 _e46 = air_ray_end(origin_8, _e45, frame);
-            metal::float4 _e49 = frame.sun_direction;
-            metal::float3 sun_11 = _e49.xyz;
-            Scattered _e53 = integrate_air(origin_8, _e45, _e46.x, AMBIENT_STEPS, sun_11, frame, transmittance_lut_in, multiscatter_lut_in);
-            float w_8 = metal::abs(_e45.y);
-            metal::float3 _e56 = sum_1;
-            metal::float3 _e61 = with_ground(_e53, origin_8, _e45, _e46.x, sun_11, _e46.y > 0.5, frame, transmittance_lut_in, ground_irradiance_in);
-            sum_1 = _e56 + (w_8 * _e61);
-            float _e64 = weights;
-            weights = _e64 + w_8;
+            uint _e59 = k_2;
+            metal::float3 _e61 = fibonacci_direction(_e59, AMBIENT_DIRECTIONS);
+            metal::float2 _e62 = air_ray_end(origin_8, _e61, frame);
+            Scattered _e65 = integrate_air(origin_8, _e61, _e62.x, AMBIENT_STEPS, sun_11, frame, transmittance_lut_in, multiscatter_lut_in);
+            float w_8 = metal::abs(_e61.y);
+            metal::float3 _e68 = sum_1;
+            metal::float3 _e73 = with_ground(_e65, origin_8, _e61, _e62.x, sun_11, _e62.y > 0.5, frame, transmittance_lut_in, ground_irradiance_in);
+            sum_1 = _e68 + (w_8 * _e73);
+            float _e76 = weights;
+            weights = _e76 + w_8;
         }
     }
-    metal::float3 _e71 = sum_1;
-    float _e72 = weights;
-    sky_ambient_out.write(metal::float4(_e71 / metal::float3(_e72), 1.0), metal::uint2(id_4.xy));
+    metal::float3 _e83 = sum_1;
+    float _e84 = weights;
+    sky_ambient_out.write(metal::float4(_e83 / metal::float3(_e84), 1.0), metal::uint2(id_4.xy));
     return;
 }
 
@@ -4224,8 +4232,8 @@ struct ground_irradianceInput {
     if (_e11) {
         return;
     }
-    float mu_s_9 = ((static_cast<float>(id_5.x) / 63.0) * 2.0) - 1.0;
-    metal::float3 sun_12 = metal::float3(metal::sqrt(metal::max(1.0 - (mu_s_9 * mu_s_9), 0.0)), mu_s_9, 0.0);
+    float mu_s_10 = ((static_cast<float>(id_5.x) / 63.0) * 2.0) - 1.0;
+    metal::float3 sun_12 = metal::float3(metal::sqrt(metal::max(1.0 - (mu_s_10 * mu_s_10), 0.0)), mu_s_10, 0.0);
     float _e28 = air_bottom(frame);
     metal::float3 origin_9 = metal::float3(0.0, _e28 + 0.001, 0.0);
     uint2 loop_bound_28 = uint2(4294967295u);
@@ -4334,10 +4342,10 @@ struct cloud_shadowInput {
                     }
                     {
                         uint _e65 = k_4;
-                        metal::float3 q_12 = _e7 + (sun_13 * (start_2 + ((static_cast<float>(_e65) + 0.5) * dt_8)));
-                        metal::float3 p_23 = metal::float3(q_12.x + cam_xz_3.x, q_12.y, q_12.z + cam_xz_3.y);
+                        metal::float3 q_13 = _e7 + (sun_13 * (start_2 + ((static_cast<float>(_e65) + 0.5) * dt_8)));
+                        metal::float3 p_23 = metal::float3(q_13.x + cam_xz_3.x, q_13.y, q_13.z + cam_xz_3.y);
                         float _e81 = tau_2;
-                        float _e82 = altitude_of(q_12, frame);
+                        float _e82 = altitude_of(q_13, frame);
                         float _e83 = layer_density(p_23, _e82, _e43, counters, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
                         tau_2 = _e81 + (_e83 * dt_8);
                     }
@@ -4376,9 +4384,9 @@ struct occupancyInput {
     if (metal::any(id_7.xy >= metal::uint2(64u))) {
         return;
     }
-    metal::int2 size_7 = static_cast<metal::int2>(metal::uint2(weather_tex.get_width(), weather_tex.get_height()));
-    metal::int2 lo_1 = as_type<metal::int2>(as_type<metal::uint2>(naga_div(as_type<metal::int2>(as_type<metal::uint2>(static_cast<metal::int2>(id_7.xy)) * as_type<metal::uint2>(size_7)), metal::int2(64))) - as_type<metal::uint2>(metal::int2(1)));
-    metal::int2 hi = naga_div(as_type<metal::int2>(as_type<metal::uint2>(as_type<metal::int2>(as_type<metal::uint2>(static_cast<metal::int2>(id_7.xy)) + as_type<metal::uint2>(metal::int2(1)))) * as_type<metal::uint2>(size_7)), metal::int2(64));
+    metal::int2 size_8 = static_cast<metal::int2>(metal::uint2(weather_tex.get_width(), weather_tex.get_height()));
+    metal::int2 lo_1 = as_type<metal::int2>(as_type<metal::uint2>(naga_div(as_type<metal::int2>(as_type<metal::uint2>(static_cast<metal::int2>(id_7.xy)) * as_type<metal::uint2>(size_8)), metal::int2(64))) - as_type<metal::uint2>(metal::int2(1)));
+    metal::int2 hi = naga_div(as_type<metal::int2>(as_type<metal::uint2>(as_type<metal::int2>(as_type<metal::uint2>(static_cast<metal::int2>(id_7.xy)) + as_type<metal::uint2>(metal::int2(1)))) * as_type<metal::uint2>(size_8)), metal::int2(64));
     y = lo_1.y;
     uint2 loop_bound_31 = uint2(4294967295u);
     bool loop_init_27 = true;
@@ -4415,7 +4423,7 @@ struct occupancyInput {
                 {
                     int _e38 = x;
                     int _e39 = y;
-                    metal::int2 t_12 = naga_mod(as_type<metal::int2>(as_type<metal::uint2>(naga_mod(metal::int2(_e38, _e39), size_7)) + as_type<metal::uint2>(size_7)), size_7);
+                    metal::int2 t_12 = naga_mod(as_type<metal::int2>(as_type<metal::uint2>(naga_mod(metal::int2(_e38, _e39), size_8)) + as_type<metal::uint2>(size_8)), size_8);
                     float _e44 = m;
                     metal::float4 _e47 = weather_tex.read(metal::uint2(t_12), 0);
                     m = metal::max(_e44, _e47.x);
@@ -5031,8 +5039,8 @@ struct sprite_buildInput {
         float _e167 = me.alt;
         metal::float3 _e168 = sprite_rel(_e165, _e167, frame);
         float _e172 = frame.camera_position.y;
-        metal::float3 rel_11 = _e168 - metal::float3(0.0, _e172, 0.0);
-        float _e180 = saturate(metal::length(rel_11) / SPRITE_MAX_DISTANCE);
+        metal::float3 rel_13 = _e168 - metal::float3(0.0, _e172, 0.0);
+        float _e180 = saturate(metal::length(rel_13) / SPRITE_MAX_DISTANCE);
         key = 1048576.0 - metal::floor(_e180 * 1048575.0);
     }
     float _e191 = me.xz.x;
@@ -5163,14 +5171,14 @@ vertex sprite_vertexOutput sprite_vertex(
     metal::float3 offset_1 = (_e90 * (_e89.x * half_width_1)) + (up_2 * (_e89.y * c_12.z));
     metal::float3 vertex_ = to_sprite + offset_1;
     metal::float4 _e102 = frame.camera_right;
-    float x_14 = metal::dot(vertex_, _e102.xyz);
+    float x_15 = metal::dot(vertex_, _e102.xyz);
     metal::float4 _e107 = frame.camera_up;
     float y_4 = metal::dot(vertex_, _e107.xyz);
     metal::float4 _e112 = frame.camera_forward;
     float z_4 = metal::dot(vertex_, _e112.xyz);
     float tan_half_3 = frame.camera_position.w;
     float _e123 = frame.camera_forward.w;
-    out.position = metal::float4(x_14 / (tan_half_3 * _e123), y_4 / tan_half_3, 0.5 * z_4, z_4);
+    out.position = metal::float4(x_15 / (tan_half_3 * _e123), y_4 / tan_half_3, 0.5 * z_4, z_4);
     metal::float2 cs = metal::float2(metal::cos(c_12.y), metal::sin(c_12.y));
     metal::float2 t_13 = metal::float2(_e89.x, -(_e89.y));
     out.uv = metal::float2((t_13.x * cs.x) - (t_13.y * cs.y), (t_13.x * cs.y) + (t_13.y * cs.x));

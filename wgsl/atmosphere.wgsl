@@ -12,8 +12,9 @@
 //   elevation (denser toward the horizon). Every frame: it follows the sun and the camera.
 // - aerial perspective (32x32 froxels x 32 slices of 1 km, as a 1024x32 atlas): light
 //   scattered and transmitted between the camera and each depth. Every frame.
-// - sky ambient (2x1): the cosine-weighted mean radiance of the hemisphere below the cloud
-//   layer's bottom and above its top, the clouds' ambient light under this sky. Every frame.
+// - sky ambient (64x2): the cosine-weighted mean radiance of the hemisphere below the cloud
+//   layer's bottom and above its top by the cosine of the sun's zenith angle there, the
+//   clouds' ambient light under this sky. Computed when the air or the layer changes.
 //
 // Every table holds light per unit sun illuminance at the top of the atmosphere; the user of
 // a value multiplies by `frame.sun_illuminance`. Lengths here are kilometres (the planet's
@@ -45,6 +46,7 @@ const MULTISCATTER_STEPS: u32 = 32u;
 const SKY_VIEW_STEPS: u32 = 48u;
 const AMBIENT_DIRECTIONS: u32 = 64u;
 const AMBIENT_STEPS: u32 = 24u;
+const SKY_AMBIENT_SUNS: u32 = 64u;
 
 fn physical_sky() -> bool {
     return (frame.modes.w & FLAG_PHYSICAL_SKY) != 0u;
@@ -478,20 +480,27 @@ fn aerial_texel(c0: vec2<u32>, c1: vec2<u32>, w: vec2<f32>, z: u32) -> vec4<f32>
     return mix(a, b, w.y);
 }
 
-// Texel i (0: the cloud layer's bottom, 1: its top) holds the cosine-weighted mean radiance
-// of the hemisphere facing the layer there (from below at its bottom, from above at its top),
-// sky and lit ground, per unit sun illuminance: the irradiance through the layer's boundary
-// over pi, the clouds' ambient light. The diffuse light inside a layer is fed by the fluxes
-// through its boundaries (as the octaves' mu0 says for the sun), so the light near the horizon,
-// which crosses the layer lengthwise, counts for little. With the mean over the whole sphere a
-// dawn's deck was lit by the glow along the horizon: 2.3 times brighter than the path tracer
-// (docs/fit). A uniform environment gives the same ambient either way.
+// Texel (i, j) holds the cosine-weighted mean radiance of the hemisphere facing the cloud
+// layer at its bottom (j = 0, from below) or top (j = 1, from above), sky and lit ground, per
+// unit sun illuminance, for a sun of zenith cosine 2 i / 63 - 1 there: the irradiance through
+// the layer's boundary over pi, the clouds' ambient light. The diffuse light inside a layer is
+// fed by the fluxes through its boundaries (as the octaves' mu0 says for the sun), so the
+// light near the horizon, which crosses the layer lengthwise, counts for little. With the mean
+// over the whole sphere a dawn's deck was lit by the glow along the horizon: 2.3 times
+// brighter than the path tracer (docs/fit). A uniform environment gives the same ambient
+// either way. By the sun's angle, not for the camera's place: the sun's zenith angle changes
+// by a degree every 111 km, and a twilight sky by much more than that degree's share of its
+// light: computed above the camera, the ambient of `dusk`'s clouds toward the afterglow, tens
+// of kilometres off, was a third too dark against the path tracer's (whose paths see the sky
+// from where they leave the clouds). The table so depends on the air and the layer alone.
 @compute @workgroup_size(8, 8, 1)
 fn sky_ambient(@builtin(global_invocation_id) id: vec3<u32>) {
-    if id.x >= 2u || id.y >= 1u {
+    if id.x >= SKY_AMBIENT_SUNS || id.y >= 2u {
         return;
     }
-    let top = id.x == 1u;
+    let top = id.y == 1u;
+    let mu_s = f32(id.x) / f32(SKY_AMBIENT_SUNS - 1u) * 2.0 - 1.0;
+    let sun = vec3<f32>(sqrt(max(1.0 - mu_s * mu_s, 0.0)), mu_s, 0.0);
     let alt_m = select(frame.atmosphere.y, frame.atmosphere.z, top);
     let origin = vec3<f32>(0.0, air_bottom() + alt_m * 1e-3, 0.0);
     var sum = vec3<f32>(0.0);
@@ -502,7 +511,6 @@ fn sky_ambient(@builtin(global_invocation_id) id: vec3<u32>) {
     for (var k = first; k < first + half; k++) {
         let d = fibonacci_direction(k, AMBIENT_DIRECTIONS);
         let end = air_ray_end(origin, d);
-        let sun = frame.sun_direction.xyz;
         let s = integrate_air(origin, d, end.x, AMBIENT_STEPS, sun);
         let w = abs(d.y);
         sum += w * with_ground(s, origin, d, end.x, sun, end.y > 0.5);
@@ -522,10 +530,14 @@ fn sun_through_air(rel: vec3<f32>) -> vec3<f32> {
     return sun_transmittance(r, dot(q / r, frame.sun_direction.xyz));
 }
 
-// The clouds' ambient light at height fraction `h` of the main layer under the physical sky
-// (the sky-ambient table times the sun's illuminance and the ambient strength).
-fn sky_ambient_light(h: f32) -> vec3<f32> {
-    let bottom = textureLoad(sky_ambient_in, vec2<u32>(0u, 0u), 0).rgb;
-    let top = textureLoad(sky_ambient_in, vec2<u32>(1u, 0u), 0).rgb;
+// The clouds' ambient light at height fraction `h` of the main layer under the physical sky,
+// at camera-relative `rel` (m): the sky-ambient table at the sun's zenith cosine there, times
+// the sun's illuminance and the ambient strength.
+fn sky_ambient_light(h: f32, rel: vec3<f32>) -> vec3<f32> {
+    let q = vec3<f32>(rel.x, rel.y + frame.atmosphere.x, rel.z);
+    let x = dot(normalize(q), frame.sun_direction.xyz) * 0.5 + 0.5;
+    let size = vec2<u32>(SKY_AMBIENT_SUNS, 2u);
+    let bottom = lut_bilinear(sky_ambient_in, vec2<f32>(x, 0.0), size).rgb;
+    let top = lut_bilinear(sky_ambient_in, vec2<f32>(x, 1.0), size).rgb;
     return mix(bottom, top, h) * frame.sun_illuminance.rgb * frame.ambient_bottom.w;
 }

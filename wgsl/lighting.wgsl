@@ -270,10 +270,11 @@ fn octave_buildup(density: f32) -> f32 {
 
 // Ambient light at height fraction `h` (thesis 5.5.3): a gradient from bottom to top colour,
 // or under the physical sky the sky's cosine-weighted radiance from below the layer's bottom
-// and from above its top (the sky-ambient table).
-fn ambient(h: f32) -> vec3<f32> {
+// and from above its top (the sky-ambient table, for the sun's angle at camera-relative
+// `rel`, m).
+fn ambient(h: f32, rel: vec3<f32>) -> vec3<f32> {
     if physical_sky() {
-        return sky_ambient_light(h);
+        return sky_ambient_light(h, rel);
     }
     return mix(frame.ambient_bottom.rgb, frame.ambient_top.rgb, h) * frame.ambient_bottom.w;
 }
@@ -314,5 +315,5 @@ fn scattered_light(rel: vec3<f32>, p: vec3<f32>, alt: f32, density: f32, view: v
     }
     let darkening = saturate(1.0 - frame.extinction.z * weather.precipitation * (1.0 - h));
     let k = frame.extinction.x * density * darkening;
-    return ScatteredLight((sun_light + ambient(h)) * k, octave_light * k);
+    return ScatteredLight((sun_light + ambient(h, rel)) * k, octave_light * k);
 }

@@ -262,7 +262,7 @@ fn environment(pos: vec3<f32>, d: vec3<f32>, h: f32) -> vec3<f32> {
     if physical_sky() {
         return sky_from(pos, d) * frame.sun_illuminance.rgb * frame.ambient_bottom.w;
     }
-    return ambient(h);
+    return ambient(h, pos);
 }
 
 // One path through `pixel`'s ray over the march's interval.

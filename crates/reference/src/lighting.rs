@@ -264,10 +264,10 @@ pub(crate) fn octave_buildup(f: &Frame, density: f64) -> f64 {
 // WGSL: lighting.wgsl::ambient
 /// Ambient light at height fraction `h`: a gradient from the bottom to the top colour, or under
 /// the physical sky the sky's cosine-weighted radiance from below the layer's bottom and from
-/// above its top (the sky-ambient table).
-pub(crate) fn ambient(f: &Frame, sky: Option<&SkyTables>, h: f64) -> V3 {
+/// above its top (the sky-ambient table, for the sun's angle at camera-relative `rel`, m).
+pub(crate) fn ambient(f: &Frame, sky: Option<&SkyTables>, h: f64, rel: V3) -> V3 {
     if let Some(sky) = physical(f, sky) {
-        return sky.ambient_light(f, h);
+        return sky.ambient_light(f, h, rel);
     }
     let bottom = V3::new(
         f.ambient_bottom[0],
@@ -322,7 +322,10 @@ pub(crate) fn scattered_light(
     }
     let darkening = saturate(1.0 - f.extinction[2] * weather.precipitation * (1.0 - h));
     let k = f.extinction[0] * density * darkening;
-    ((sun_light + ambient(f, m.sky(), h)) * k, octave_light * k)
+    (
+        (sun_light + ambient(f, m.sky(), h, rel)) * k,
+        octave_light * k,
+    )
 }
 
 #[cfg(test)]

@@ -486,7 +486,7 @@ fn environment(f: &Frame, sky: Option<&SkyTables>, pos: V3, d: V3, h: f64) -> V3
     if let Some(sky) = crate::sky::physical(f, sky) {
         return sky.sky_from(f, pos, d).mul_v(f.sun_illuminance()) * f.ambient_bottom[3];
     }
-    ambient(f, sky, h)
+    ambient(f, sky, h, pos)
 }
 
 #[cfg(test)]

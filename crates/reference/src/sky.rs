@@ -46,6 +46,9 @@ const MULTISCATTER_STEPS: u32 = 32;
 const SKY_VIEW_STEPS: u32 = 48;
 const AMBIENT_DIRECTIONS: usize = 64;
 const AMBIENT_STEPS: u32 = 24;
+/// The sky-ambient table's texels along the sun's zenith cosine (per row: the layer's bottom,
+/// its top).
+pub const SKY_AMBIENT_SUNS: usize = 64;
 /// The ground-irradiance table's texels (by the sun's zenith cosine).
 pub const GROUND_IRRADIANCE_SIZE: usize = 64;
 const GROUND_IRRADIANCE_DIRECTIONS: usize = 128;
@@ -258,8 +261,9 @@ pub struct SkyTables {
     /// The sky's radiance around the camera (rgb) by (azimuth from the sun, elevation),
     /// ground included, [`SKY_VIEW_SIZE`].
     pub sky_view: Table,
-    /// Mean radiance over the sphere (rgb) at the cloud layer's bottom (texel 0) and top
-    /// (texel 1), 2x1.
+    /// Cosine-weighted mean radiance of the hemisphere facing the cloud layer (rgb) at its
+    /// bottom (row 0) and top (row 1), for a sun of zenith cosine 2 i / 63 - 1 there (column
+    /// i), [`SKY_AMBIENT_SUNS`]x2.
     pub sky_ambient: Table,
     /// In-scattered light (rgb) and mean transmittance (a) from the camera to the far end of
     /// each slice, slice z of froxel column (x, y) at texel (z * 32 + x, y): 1024x32.
@@ -297,7 +301,7 @@ impl SkyTables {
                 texels: vec![[1.0; 4]; SHADOW_SIZE * SHADOW_SIZE],
             },
             sky_view: empty(SKY_VIEW_SIZE),
-            sky_ambient: empty([2, 1]),
+            sky_ambient: empty([SKY_AMBIENT_SUNS, 2]),
             aerial: empty([AERIAL_SLICES * AERIAL_SIDE, AERIAL_SIDE]),
             timings: Vec::new(),
         };
@@ -318,7 +322,7 @@ impl SkyTables {
             Table::build(SKY_VIEW_SIZE, |x, y| sky.sky_view_texel(f, x, y))
         });
         sky.sky_ambient = timed(&mut timings, PASSES[4], || {
-            Table::build([2, 1], |x, _| sky.sky_ambient_texel(f, x))
+            Table::build([SKY_AMBIENT_SUNS, 2], |x, y| sky.sky_ambient_texel(f, x, y))
         });
         sky.aerial = timed(&mut timings, PASSES[5], || sky.aerial_table(f));
         sky.timings = timings;
@@ -833,11 +837,14 @@ impl SkyTables {
     }
 
     // WGSL: atmosphere.wgsl::sky_ambient
-    /// Sky-ambient texel `i` (0: the cloud layer's bottom, 1: its top): the cosine-weighted
-    /// mean radiance of the hemisphere facing the layer there (below its bottom, above its top),
-    /// sky and lit ground, over 32 of 64 Fibonacci directions of 24 steps.
-    fn sky_ambient_texel(&self, f: &Frame, i: usize) -> Texel {
-        let alt = if i == 1 {
+    /// Sky-ambient texel (i, j) (j = 0: the cloud layer's bottom, 1: its top): the
+    /// cosine-weighted mean radiance of the hemisphere facing the layer there (below its
+    /// bottom, above its top), sky and lit ground, over 32 of 64 Fibonacci directions of 24
+    /// steps, for a sun of zenith cosine 2 i / 63 - 1.
+    fn sky_ambient_texel(&self, f: &Frame, i: usize, j: usize) -> Texel {
+        let mu_s = i as f64 / (SKY_AMBIENT_SUNS - 1) as f64 * 2.0 - 1.0;
+        let sun = V3::new((1.0 - mu_s * mu_s).max(0.0).sqrt(), mu_s, 0.0);
+        let alt = if j == 1 {
             f.atmosphere[2]
         } else {
             f.atmosphere[1]
@@ -848,13 +855,13 @@ impl SkyTables {
         // The hemisphere facing the layer, cosine-weighted: the upper half of the Fibonacci
         // directions (they run from the zenith down) at the top, the lower at the bottom.
         let half = AMBIENT_DIRECTIONS / 2;
-        let first = if i == 1 { 0 } else { half };
+        let first = if j == 1 { 0 } else { half };
         for k in first..first + half {
             let d = V3::from_array(fibonacci_direction(k, AMBIENT_DIRECTIONS));
             let (length, ground) = self.air_ray_end(origin, d);
             let w = d.y.abs();
             sum += self
-                .integrate_air(origin, d, length, AMBIENT_STEPS, f.sun(), ground)
+                .integrate_air(origin, d, length, AMBIENT_STEPS, sun, ground)
                 .radiance
                 * w;
             weights += w;
@@ -872,11 +879,14 @@ impl SkyTables {
     }
 
     // WGSL: atmosphere.wgsl::sky_ambient_light
-    /// The clouds' ambient light at height fraction `h` of the main layer: the sky-ambient
-    /// table times the sun's illuminance and the ambient strength.
-    pub(crate) fn ambient_light(&self, f: &Frame, h: f64) -> V3 {
-        let bottom = rgb(self.sky_ambient.load(0, 0));
-        let top = rgb(self.sky_ambient.load(1, 0));
+    /// The clouds' ambient light at height fraction `h` of the main layer at camera-relative
+    /// `rel` (m): the sky-ambient table at the sun's zenith cosine there, times the sun's
+    /// illuminance and the ambient strength.
+    pub(crate) fn ambient_light(&self, f: &Frame, h: f64, rel: V3) -> V3 {
+        let q = V3::new(rel.x, rel.y + f.atmosphere[0], rel.z);
+        let x = q.normalize().dot(f.sun()) * 0.5 + 0.5;
+        let bottom = rgb(self.sky_ambient.bilinear([x, 0.0]));
+        let top = rgb(self.sky_ambient.bilinear([x, 1.0]));
         mix_v(bottom, top, h).mul_v(f.sun_illuminance()) * f.ambient_bottom[3]
     }
 }
@@ -1200,10 +1210,21 @@ mod tests {
         // A low sun: red passes, blue much less.
         let t = sun_through_air(f, Some(sky), V3::new(0.0, 1500.0, 0.0));
         assert!(t.x > 2.0 * t.z, "{t:?}");
-        let bottom = crate::lighting::ambient(f, Some(sky), 0.0);
-        let want = rgb(sky.sky_ambient.load(0, 0)).mul_v(f.sun_illuminance()) * f.ambient_bottom[3];
+        // Below the camera the sun's zenith cosine is its direction's y: the ambient is the
+        // table's bottom row there.
+        let bottom = crate::lighting::ambient(f, Some(sky), 0.0, V3::ZERO);
+        let x = f.sun().y * 0.5 + 0.5;
+        let want = rgb(sky.sky_ambient.bilinear([x, 0.0])).mul_v(f.sun_illuminance())
+            * f.ambient_bottom[3];
         assert_eq!(bottom, want);
         assert!(bottom.x > 0.0 && bottom.z > 0.0);
+        // 200 km toward the sun it stands about 1.8 degrees higher: a brighter ambient.
+        let toward = V3::new(f.sun().x, 0.0, f.sun().z).normalize() * 200_000.0;
+        let there = crate::lighting::ambient(f, Some(sky), 0.0, toward);
+        assert!(
+            there.y > 1.2 * bottom.y,
+            "{there:?} 200 km toward the sun against {bottom:?} below the camera"
+        );
 
         scene.atmosphere.sky = SkyModel::Analytic;
         let analytic = Model::new(&scene, Medium::Clouds(&noise));
