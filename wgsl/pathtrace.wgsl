@@ -314,8 +314,8 @@ fn trace_path(view: vec3<f32>, span: Interval, rng: ptr<function, u32>,
                 * (throughput * phase(dot(dir, sun), 1.0) * tr);
         }
         // The next direction, from the phase function. Its free flight also estimates the
-        // ambient (a uniform environment seen through the medium): a path that leaves the
-        // layer along it sees ambient(h). That is the expectation of the CPU path tracer's
+        // ambient (an environment seen through the medium): a path that leaves the layer along
+        // it sees `environment` (ambient(h), or the sky from there). That is the expectation of the CPU path tracer's
         // separate ratio-tracked ray toward the environment, for one tracked ray instead of
         // two per collision.
         let next = sample_phase(dir, rng);

@@ -391,6 +391,10 @@ fn air_tables_are_computed_again_only_when_the_air_changes() {
         ],
         "{climbed:?}"
     );
+    // The cloud layer moves up: its boundaries see other hemispheres of sky.
+    s.atmosphere.cloud_bottom_m += 300.0;
+    let higher = ran(&mut wgpu, &s);
+    assert!(higher.contains(&"sky-ambient".to_string()), "{higher:?}");
     s.atmosphere.air.mie_scattering *= 4.0;
     let hazier = ran(&mut wgpu, &s);
     assert!(

@@ -34,9 +34,10 @@ use crate::{bench, scene_io::parse_size};
 /// Options of `stratus fit-scattering`.
 #[derive(Args, Debug)]
 pub struct FitArgs {
-    /// Output directory for evaluations.csv, scenes.csv and README.md.
-    #[arg(long, default_value = "docs/fit")]
-    out: PathBuf,
+    /// Output directory for evaluations.csv, scenes.csv and README.md [default: docs/fit, or
+    /// target/fit-evaluate with --evaluate, which leaves the committed fit alone].
+    #[arg(long)]
+    out: Option<PathBuf>,
     /// Image size of the truths and the renders.
     #[arg(long, value_parser = parse_size, default_value = "64x36")]
     size: (u32, u32),
@@ -52,8 +53,9 @@ pub struct FitArgs {
     #[arg(long)]
     quick: bool,
     /// Fit nothing: measure the current defaults (with each --octaves count) against the
-    /// truths, training scenes and presets alike; "after" in the outputs is the defaults. For a
-    /// changed truth or a new scene, before deciding to refit.
+    /// truths, training scenes and presets alike; "after" in the outputs is the defaults (with
+    /// the count a fit would take: the fewest within 1% of the best). For a changed truth or a
+    /// new scene, before deciding to refit.
     #[arg(long)]
     evaluate: bool,
 }
@@ -482,8 +484,14 @@ pub fn run(args: FitArgs) -> Result<()> {
     // Before: the thesis's constants (the defaults until this fit).
     let before = stratus::quality::PREFIT_OCTAVES;
 
-    std::fs::create_dir_all(&args.out)
-        .with_context(|| format!("creating {}", args.out.display()))?;
+    let out_dir = args.out.clone().unwrap_or_else(|| {
+        PathBuf::from(if args.evaluate {
+            "target/fit-evaluate"
+        } else {
+            "docs/fit"
+        })
+    });
+    std::fs::create_dir_all(&out_dir).with_context(|| format!("creating {}", out_dir.display()))?;
     let mut csv = String::from(
         "octaves,a,b,c,buildup_m,side_light,coverage_exponent,far_chord_m,limb_darkening,\
          forward_lobe,forward_lobe_g,vertical_anisotropy,train_mean_flip\n",
@@ -506,14 +514,14 @@ pub fn run(args: FitArgs) -> Result<()> {
             m.vertical_anisotropy
         );
     }
-    std::fs::write(args.out.join("evaluations.csv"), csv)?;
+    std::fs::write(out_dir.join("evaluations.csv"), csv)?;
 
     let mut scenes_csv = String::from(
         "scene,set,flip_before,rmse_before,flip_after,rmse_after,\
          bright_dense,bright_mid,bright_thin\n",
     );
     let mut table = String::new();
-    let images = args.out.join("images");
+    let images = out_dir.join("images");
     std::fs::create_dir_all(&images).with_context(|| format!("creating {}", images.display()))?;
     // A brightness ratio for the table; "-" where the truth has no pixel in its bin.
     let ratio = |v: f64| {
@@ -565,7 +573,7 @@ pub fn run(args: FitArgs) -> Result<()> {
             );
         }
     }
-    std::fs::write(args.out.join("scenes.csv"), &scenes_csv)?;
+    std::fs::write(out_dir.join("scenes.csv"), &scenes_csv)?;
     let readme = format!(
         "# Multiple-scattering fit\n\n\
          Written by `stratus fit-scattering --out {out} --size {w}x{h} --spp {spp} --octaves {counts}{quick}` on {device}.\n\n{evaluated}\
@@ -618,7 +626,7 @@ pub fn run(args: FitArgs) -> Result<()> {
         fit.forward_lobe,
         fit.forward_lobe_g,
         fit.vertical_anisotropy,
-        out = args.out.display(),
+        out = out_dir.display(),
         spp = args.spp,
         counts = args
             .octaves
@@ -641,11 +649,11 @@ pub fn run(args: FitArgs) -> Result<()> {
         nt = train.len(),
         nh = test.len(),
     );
-    std::fs::write(args.out.join("README.md"), &readme)?;
+    std::fs::write(out_dir.join("README.md"), &readme)?;
     print!("{readme}");
     println!(
         "wrote {0}/README.md, {0}/scenes.csv, {0}/evaluations.csv",
-        args.out.display()
+        out_dir.display()
     );
     Ok(())
 }

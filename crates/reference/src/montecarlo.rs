@@ -51,9 +51,9 @@
 //! Under the physical sky the sun's light at a vertex is what the air leaves of it (the
 //! transmittance table there), and the environment is the sky itself, direction by direction:
 //! the sky and the lit ground in the sampled direction as seen from the vertex (the sky-view
-//! table's integral, from there instead of the camera), times the ambient strength. The real-time model takes the cosine-weighted
-//! hemispheres facing the layer instead (the sky-ambient table), unoccluded: the truth here
-//! says what that costs.
+//! table's integral, from there instead of the camera), times the ambient strength. The
+//! real-time model takes the cosine-weighted hemispheres facing the layer instead (the
+//! sky-ambient table), unoccluded: the truth here says what that costs.
 //!
 //! # Real-time-only terms the path tracer ignores
 //!
@@ -336,7 +336,8 @@ pub(crate) fn trace(
     } else {
         0.0
     };
-    // Under the physical sky the ambient is the sky's own light (the sky-ambient table).
+    // Under the physical sky the ambient is the sky's own light (the sky and ground seen from
+    // the vertex: `environment`).
     let ambient_on = f.ambient_bottom[3] > 0.0
         && (f.physical_sky()
             || f.ambient_bottom[..3].iter().any(|&v| v > 0.0)

@@ -277,9 +277,9 @@ pub enum SkyModel {
     Analytic,
     /// Rayleigh, Mie and ozone over a spherical planet (Hillaire, "A Scalable and Production
     /// Ready Sky and Atmosphere Rendering Technique", EGSR 2020): transmittance and
-    /// multiple-scattering tables and the ground's irradiance computed when the air changes,
-    /// the sky-view, sky-ambient and aerial-perspective tables when the sun or the camera does
-    /// too, the clouds' shadow map every frame, the sun's disc seen through the air and the
+    /// multiple-scattering tables, the ground's irradiance and the sky ambient computed when
+    /// the air (or the cloud layer's altitudes) changes, the sky-view and aerial-perspective
+    /// tables when the sun or the camera does too, the clouds' shadow map every frame, the sun's disc seen through the air and the
     /// ground lit by sun and sky. TOML `"physical"`.
     Physical,
 }

@@ -165,6 +165,12 @@ pub(crate) fn reference(
         if mc && s.atmosphere.sky == stratus_scene::SkyModel::Physical {
             h.update(b"environment-from-the-vertex");
         }
+        // Under the physical sky the ambient is looked up at the sun's angle at each sample
+        // (the sky-ambient table by its zenith cosine), in the converged quadrature as in the
+        // march: the quadrature truths before that are not these scenes' truths.
+        if !mc && s.atmosphere.sky == stratus_scene::SkyModel::Physical {
+            h.update(b"ambient-by-the-sun-angle-at-the-sample");
+        }
         h.finalize()
             .iter()
             .take(12)
