@@ -491,8 +491,9 @@ fn aerial_texel(c0: vec2<u32>, c1: vec2<u32>, w: vec2<f32>, z: u32) -> vec4<f32>
 // either way. By the sun's angle, not for the camera's place: the sun's zenith angle changes
 // by a degree every 111 km, and a twilight sky by much more than that degree's share of its
 // light: computed above the camera, the ambient of `dusk`'s clouds toward the afterglow, tens
-// of kilometres off, was a third to a half too dark against the path tracer's (whose paths see the sky
-// from where they leave the clouds). The table so depends on the air and the layer alone.
+// of kilometres off, was a third to a half too dark against the path tracer's (whose paths
+// see the sky from where they leave the clouds). The table so depends on the air and the
+// layer alone.
 @compute @workgroup_size(8, 8, 1)
 fn sky_ambient(@builtin(global_invocation_id) id: vec3<u32>) {
     if id.x >= SKY_AMBIENT_SUNS || id.y >= 2u {

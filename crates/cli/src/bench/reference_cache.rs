@@ -159,17 +159,16 @@ pub(crate) fn reference(
         // v2: the GPU path tracer traces a workgroup of paths per pixel a frame (other
         // random streams than v1's one path a frame).
         h.update(b"stratus-reference-cache-v2");
-        // Under the physical sky a path leaving the clouds sees the sky from its last
-        // collision, not from the camera (the truths before that are not these scenes' truths;
-        // the others' stay valid).
-        if mc && s.atmosphere.sky == stratus_scene::SkyModel::Physical {
-            h.update(b"environment-from-the-vertex");
-        }
-        // Under the physical sky the ambient is looked up at the sun's angle at each sample
-        // (the sky-ambient table by its zenith cosine), in the converged quadrature as in the
-        // march: the quadrature truths before that are not these scenes' truths.
-        if !mc && s.atmosphere.sky == stratus_scene::SkyModel::Physical {
-            h.update(b"ambient-by-the-sun-angle-at-the-sample");
+        // Under the physical sky the truths changed (those before are not these scenes'
+        // truths; the others' stay valid): a path leaving the clouds sees the sky from its last
+        // collision, not from the camera, and the converged quadrature, like the march, looks
+        // the ambient up at the sun's angle at each sample.
+        if s.atmosphere.sky == stratus_scene::SkyModel::Physical {
+            h.update(if mc {
+                b"environment-from-the-vertex".as_slice()
+            } else {
+                b"ambient-by-the-sun-angle-at-the-sample".as_slice()
+            });
         }
         h.finalize()
             .iter()
