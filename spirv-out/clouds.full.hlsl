@@ -213,6 +213,7 @@ static const uint AMBIENT_STEPS = 24u;
 static const uint SKY_AMBIENT_SUNS = 64u;
 static const uint GROUND_IRRADIANCE_SIZE = 64u;
 static const uint NO_LAYER = 4u;
+static const float DECK_POWER = 8.0;
 static const float FORWARD_LOBE_THIN = 0.1;
 static const uint GROUND_IRRADIANCE_DIRECTIONS = 128u;
 static const uint SHADOW_SIZE = 128u;
@@ -1625,6 +1626,13 @@ float vertical_anisotropy(float view_y_1, float coverage_1, float h_5)
     return (1.0 + (((_e6 * view_y_1) * _e8) * (1.0 - _e10)));
 }
 
+float deck_escape(float mu0_, float layer_coverage)
+{
+    float e = frame.octave_direction.w;
+    const float _e6 = saturate_(layer_coverage);
+    return (1.0 + ((e * pow(_e6, DECK_POWER)) * (mu0_ - 0.5)));
+}
+
 SunScattering ConstructSunScattering(float arg0, float arg1) {
     SunScattering ret = (SunScattering)0;
     ret.total = arg0;
@@ -1632,7 +1640,7 @@ SunScattering ConstructSunScattering(float arg0, float arg1) {
     return ret;
 }
 
-SunScattering sun_scattering(float cos_theta_5, float view_y_2, float tau_6, float far_1, float build, float coverage_2, float h_6)
+SunScattering sun_scattering(float cos_theta_5, float view_y_2, float tau_6, float far_1, float build, float coverage_2, float h_6, float layer_coverage_1)
 {
     float octave_sum = 0.0;
     float ka = 1.0;
@@ -1646,72 +1654,73 @@ SunScattering sun_scattering(float cos_theta_5, float view_y_2, float tau_6, flo
     float a_8 = frame.multiple_scattering.x;
     float b_8 = frame.multiple_scattering.y;
     float c_8 = frame.multiple_scattering.z;
-    uint _e22 = frame.misc.x;
-    uint octaves = min(_e22, MAX_OCTAVES);
+    uint _e23 = frame.misc.x;
+    uint octaves = min(_e23, MAX_OCTAVES);
     uint2 loop_bound_7 = uint2(4294967295u, 4294967295u);
     bool loop_init_7 = true;
     while(true) {
         if (all(loop_bound_7 == uint2(0u, 0u))) { break; }
         loop_bound_7 -= uint2(loop_bound_7.y == 0u, 1u);
         if (!loop_init_7) {
-            uint _e55 = i_12;
-            i_12 = (_e55 + 1u);
+            uint _e56 = i_12;
+            i_12 = (_e56 + 1u);
         }
         loop_init_7 = false;
-        uint _e35 = i_12;
-        if ((_e35 < octaves)) {
+        uint _e36 = i_12;
+        if ((_e36 < octaves)) {
         } else {
             break;
         }
         {
-            float _e37 = ka;
-            ka = (_e37 * a_8);
-            float _e39 = kb;
-            kb = (_e39 * b_8);
-            float _e41 = kc;
-            kc = (_e41 * c_8);
-            float _e43 = octave_sum;
-            float _e44 = ka;
-            float _e45 = kc;
-            const float _e46 = phase(cos_theta_5, _e45);
-            float _e48 = kb;
-            octave_sum = (_e43 + ((_e44 * _e46) / (1.0 + (_e48 * tau_6))));
+            float _e38 = ka;
+            ka = (_e38 * a_8);
+            float _e40 = kb;
+            kb = (_e40 * b_8);
+            float _e42 = kc;
+            kc = (_e42 * c_8);
+            float _e44 = octave_sum;
+            float _e45 = ka;
+            float _e46 = kc;
+            const float _e47 = phase(cos_theta_5, _e46);
+            float _e49 = kb;
+            octave_sum = (_e44 + ((_e45 * _e47) / (1.0 + (_e49 * tau_6))));
         }
     }
-    float _e60 = frame.sun_direction.y;
-    const float _e61 = saturate_(_e60);
-    const float _e68 = saturate_(coverage_2);
-    float side = ((sqrt(max((1.0 - (_e61 * _e61)), 0.0)) * (1.0 - _e68)) * exp(-(far_1)));
-    float _e78 = frame.light_model.x;
-    feed = (_e61 + (_e78 * side));
-    float _e85 = frame.light_model.y;
-    if ((_e85 > 0.0)) {
-        float _e88 = feed;
-        float _e94 = frame.light_model.y;
-        feed = (_e88 * pow(max(coverage_2, 1e-6), _e94));
+    float _e61 = frame.sun_direction.y;
+    const float _e62 = saturate_(_e61);
+    const float _e69 = saturate_(coverage_2);
+    float side = ((sqrt(max((1.0 - (_e62 * _e62)), 0.0)) * (1.0 - _e69)) * exp(-(far_1)));
+    float _e79 = frame.light_model.x;
+    feed = (_e62 + (_e79 * side));
+    float _e86 = frame.light_model.y;
+    if ((_e86 > 0.0)) {
+        float _e89 = feed;
+        float _e95 = frame.light_model.y;
+        feed = (_e89 * pow(max(coverage_2, 1e-6), _e95));
     }
-    float _e97 = feed;
-    const float _e98 = diffuse_limb(view_y_2, coverage_2);
-    const float _e99 = vertical_anisotropy(view_y_2, coverage_2, h_6);
-    feed = (_e97 * (_e98 * _e99));
-    float _e102 = feed;
-    float _e104 = octave_sum;
-    octaves_part = ((_e102 * build) * _e104);
-    const float _e108 = phase(cos_theta_5, 1.0);
-    float _e113 = octaves_part;
-    total = ((_e108 * exp((-(tau_6) - far_1))) + _e113);
-    uint _e119 = frame.modes.w;
-    if (((_e119 & FLAG_BEER_POWDER) != 0u)) {
-        float _e127 = frame.phase.w;
-        float powder = (1.0 - exp((-(_e127) * tau_6)));
-        float _e133 = total;
-        total = (_e133 * powder);
-        float _e135 = octaves_part;
-        octaves_part = (_e135 * powder);
+    float _e98 = feed;
+    const float _e99 = diffuse_limb(view_y_2, coverage_2);
+    const float _e100 = vertical_anisotropy(view_y_2, coverage_2, h_6);
+    const float _e102 = deck_escape(_e62, layer_coverage_1);
+    feed = (_e98 * ((_e99 * _e100) * _e102));
+    float _e105 = feed;
+    float _e107 = octave_sum;
+    octaves_part = ((_e105 * build) * _e107);
+    const float _e111 = phase(cos_theta_5, 1.0);
+    float _e116 = octaves_part;
+    total = ((_e111 * exp((-(tau_6) - far_1))) + _e116);
+    uint _e122 = frame.modes.w;
+    if (((_e122 & FLAG_BEER_POWDER) != 0u)) {
+        float _e130 = frame.phase.w;
+        float powder = (1.0 - exp((-(_e130) * tau_6)));
+        float _e136 = total;
+        total = (_e136 * powder);
+        float _e138 = octaves_part;
+        octaves_part = (_e138 * powder);
     }
-    float _e137 = total;
-    float _e138 = octaves_part;
-    const SunScattering sunscattering = ConstructSunScattering(_e137, _e138);
+    float _e140 = total;
+    float _e141 = octaves_part;
+    const SunScattering sunscattering = ConstructSunScattering(_e140, _e141);
     return sunscattering;
 }
 
@@ -1791,21 +1800,21 @@ ScatteredLight scattered_light(float3 rel_6, float3 p_8, float alt_12, float den
         float _e31 = tau_7;
         float _e32 = far_2;
         const float _e33 = octave_buildup(density_2);
-        const SunScattering _e35 = sun_scattering(dot(view, sun_5), view.y, _e31, _e32, _e33, _e19.coverage, _e12);
-        float4 _e38 = frame.sun_illuminance;
-        const float3 _e40 = sun_through_air(rel_6);
-        float3 lit_ = (_e38.xyz * _e40);
-        sun_light = (lit_ * _e35.total);
-        octave_light = (lit_ * _e35.octaves);
+        const SunScattering _e36 = sun_scattering(dot(view, sun_5), view.y, _e31, _e32, _e33, _e19.coverage, _e12, l_6.coverage);
+        float4 _e39 = frame.sun_illuminance;
+        const float3 _e41 = sun_through_air(rel_6);
+        float3 lit_ = (_e39.xyz * _e41);
+        sun_light = (lit_ * _e36.total);
+        octave_light = (lit_ * _e36.octaves);
     }
-    float _e49 = frame.extinction.z;
-    const float _e57 = saturate_((1.0 - ((_e49 * _e19.precipitation) * (1.0 - _e12))));
-    float _e61 = frame.extinction.x;
-    float k_14 = ((_e61 * density_2) * _e57);
-    float3 _e64 = sun_light;
-    const float3 _e65 = ambient(_e12, rel_6);
-    float3 _e68 = octave_light;
-    const ScatteredLight scatteredlight = ConstructScatteredLight(((_e64 + _e65) * k_14), (_e68 * k_14));
+    float _e50 = frame.extinction.z;
+    const float _e58 = saturate_((1.0 - ((_e50 * _e19.precipitation) * (1.0 - _e12))));
+    float _e62 = frame.extinction.x;
+    float k_14 = ((_e62 * density_2) * _e58);
+    float3 _e65 = sun_light;
+    const float3 _e66 = ambient(_e12, rel_6);
+    float3 _e69 = octave_light;
+    const ScatteredLight scatteredlight = ConstructScatteredLight(((_e65 + _e66) * k_14), (_e69 * k_14));
     return scatteredlight;
 }
 
@@ -3468,12 +3477,12 @@ float3 sky_radiance(float3 d_16, float alt_16)
     float4 _e4 = frame.sun_direction;
     float3 sun_8 = _e4.xyz;
     float4 _e8 = frame.sun_illuminance;
-    float3 e = _e8.xyz;
+    float3 e_1 = _e8.xyz;
     const float _e15 = saturate_(((sun_8.y * 4.0) + 0.3));
     const bool _e19 = hits_ground(float3(0.0, alt_16, 0.0), alt_16, d_16);
     if (_e19) {
         float3 ground_albedo = float3(0.035, 0.035, 0.03);
-        return (ground_albedo * (((e * max(sun_8.y, 0.0)) / (3.1415927).xxx) + ((0.05 * e) * _e15)));
+        return (ground_albedo * (((e_1 * max(sun_8.y, 0.0)) / (3.1415927).xxx) + ((0.05 * e_1) * _e15)));
     }
     float3 zenith = float3(0.018, 0.04, 0.1);
     float3 horizon_2 = float3(0.07, 0.085, 0.11);
@@ -3483,7 +3492,7 @@ float3 sky_radiance(float3 d_16, float alt_16)
     const float _e64 = phase_hg(dot(d_16, sun_8), 0.76);
     float glow = (_e64 * 0.02);
     const float _e73 = saturate_(((sun_8.y * 10.0) + 1.0));
-    return (e * (((gradient_1 * _e15) + (sunset * _e73)) + ((glow * _e15)).xxx));
+    return (e_1 * (((gradient_1 * _e15) + (sunset * _e73)) + ((glow * _e15)).xxx));
 }
 
 float3 sun_disk(float3 d_17)
@@ -3620,16 +3629,16 @@ float3 physical_composite(uint2 pixel_8, float3 view_4, float4 cloud)
     float3 radiance_3 = (float3)0;
 
     float4 _e5 = frame.sun_illuminance;
-    float3 e_1 = _e5.xyz;
+    float3 e_2 = _e5.xyz;
     const float3 _e7 = camera_air_origin();
     float r_19 = _e7.y;
     const float3 _e9 = sky_view(view_4);
-    sky = (_e9 * e_1);
+    sky = (_e9 * e_2);
     const bool _e13 = meets_ground(r_19, view_4.y);
     if (_e13) {
         float3 _e14 = sky;
         const float3 _e15 = ground_shadow_loss(view_4, r_19);
-        sky = max((_e14 - (_e15 * e_1)), (0.0).xxx);
+        sky = max((_e14 - (_e15 * e_2)), (0.0).xxx);
     } else {
         const float3 _e21 = moon_disk(view_4);
         const float3 _e22 = stars(view_4);
@@ -3651,7 +3660,7 @@ float3 physical_composite(uint2 pixel_8, float3 view_4, float4 cloud)
         float4 _e51 = depth_in.Load(int3(pixel_8, int(0)));
         const float4 _e53 = aerial(pixel_8, _e51.x);
         float3 _e54 = radiance_3;
-        radiance_3 = (_e54 + (((_e53.xyz * e_1) * (1.0 - cloud.w)) + (cloud.xyz * _e53.w)));
+        radiance_3 = (_e54 + (((_e53.xyz * e_2) * (1.0 - cloud.w)) + (cloud.xyz * _e53.w)));
     }
     float3 _e66 = radiance_3;
     return _e66;
@@ -4030,8 +4039,8 @@ void ground_irradiance(uint3 id_5 : SV_DispatchThreadID)
         }
     }
     float3 _e60 = sum_2;
-    float3 e_2 = (_e60 * 0.09817477);
-    ground_irradiance_out[id_5.xy] = float4(e_2, 1.0);
+    float3 e_3 = (_e60 * 0.09817477);
+    ground_irradiance_out[id_5.xy] = float4(e_3, 1.0);
     return;
 }
 
@@ -4822,10 +4831,10 @@ VertexOutput_sprite_vertex sprite_vertex(uint index : SV_VertexID)
     float _e192 = frame.atmosphere.y;
     const float _e195 = saturate_(((_e179 - _e183) / (_e188 - _e192)));
     float4 _e198 = frame.sun_illuminance;
-    float3 e_3 = _e198.xyz;
+    float3 e_4 = _e198.xyz;
     const float3 _e200 = sprite_sky_level(_e195);
     const float _e204 = sprite_sun_level(cos_angle_1);
-    float3 light = ((e_3 * ((_e200 * (SPRITE_SKY * _e177)) + (_e204).xxx)) * (c_12.w / PI));
+    float3 light = ((e_4 * ((_e200 * (SPRITE_SKY * _e177)) + (_e204).xxx)) * (c_12.w / PI));
     out_.colour = float4(light, b_12.w);
     out_.distance_ = length(vertex);
     SpriteVertex _e217 = out_;

@@ -197,6 +197,7 @@ constant uint AMBIENT_STEPS = 24u;
 constant uint SKY_AMBIENT_SUNS = 64u;
 constant uint GROUND_IRRADIANCE_SIZE = 64u;
 constant uint NO_LAYER = 4u;
+constant float DECK_POWER = 8.0;
 constant float FORWARD_LOBE_THIN = 0.1;
 constant uint GROUND_IRRADIANCE_DIRECTIONS = 128u;
 constant uint SHADOW_SIZE = 128u;
@@ -1689,6 +1690,16 @@ float vertical_anisotropy(
     return 1.0 + (((_e6 * view_y_1) * _e8) * (1.0 - _e10));
 }
 
+float deck_escape(
+    float mu0_,
+    float layer_coverage,
+    constant Frame& frame
+) {
+    float e = frame.octave_direction.w;
+    float _e6 = saturate(layer_coverage);
+    return 1.0 + ((e * metal::pow(_e6, DECK_POWER)) * (mu0_ - 0.5));
+}
+
 SunScattering sun_scattering(
     float cos_theta_5,
     float view_y_2,
@@ -1697,6 +1708,7 @@ SunScattering sun_scattering(
     float build,
     float coverage_2,
     float h_6,
+    float layer_coverage_1,
     constant Frame& frame
 ) {
     float octave_sum = 0.0;
@@ -1710,72 +1722,73 @@ SunScattering sun_scattering(
     float a_8 = frame.multiple_scattering.x;
     float b_8 = frame.multiple_scattering.y;
     float c_8 = frame.multiple_scattering.z;
-    uint _e22 = frame.misc.x;
-    uint octaves = metal::min(_e22, MAX_OCTAVES);
+    uint _e23 = frame.misc.x;
+    uint octaves = metal::min(_e23, MAX_OCTAVES);
     uint2 loop_bound_7 = uint2(4294967295u);
     bool loop_init_7 = true;
     while(true) {
         if (metal::all(loop_bound_7 == uint2(0u))) { break; }
         loop_bound_7 -= uint2(loop_bound_7.y == 0u, 1u);
         if (!loop_init_7) {
-            uint _e55 = i_12;
-            i_12 = _e55 + 1u;
+            uint _e56 = i_12;
+            i_12 = _e56 + 1u;
         }
         loop_init_7 = false;
-        uint _e35 = i_12;
-        if (_e35 < octaves) {
+        uint _e36 = i_12;
+        if (_e36 < octaves) {
         } else {
             break;
         }
         {
-            float _e37 = ka;
-            ka = _e37 * a_8;
-            float _e39 = kb;
-            kb = _e39 * b_8;
-            float _e41 = kc;
-            kc = _e41 * c_8;
-            float _e43 = octave_sum;
-            float _e44 = ka;
-            float _e45 = kc;
-            float _e46 = phase(cos_theta_5, _e45, frame);
-            float _e48 = kb;
-            octave_sum = _e43 + ((_e44 * _e46) / (1.0 + (_e48 * tau_6)));
+            float _e38 = ka;
+            ka = _e38 * a_8;
+            float _e40 = kb;
+            kb = _e40 * b_8;
+            float _e42 = kc;
+            kc = _e42 * c_8;
+            float _e44 = octave_sum;
+            float _e45 = ka;
+            float _e46 = kc;
+            float _e47 = phase(cos_theta_5, _e46, frame);
+            float _e49 = kb;
+            octave_sum = _e44 + ((_e45 * _e47) / (1.0 + (_e49 * tau_6)));
         }
     }
-    float _e60 = frame.sun_direction.y;
-    float _e61 = saturate(_e60);
-    float _e68 = saturate(coverage_2);
-    float side = (metal::sqrt(metal::max(1.0 - (_e61 * _e61), 0.0)) * (1.0 - _e68)) * metal::exp(-(far_1));
-    float _e78 = frame.light_model.x;
-    feed = _e61 + (_e78 * side);
-    float _e85 = frame.light_model.y;
-    if (_e85 > 0.0) {
-        float _e88 = feed;
-        float _e94 = frame.light_model.y;
-        feed = _e88 * metal::pow(metal::max(coverage_2, 0.000001), _e94);
+    float _e61 = frame.sun_direction.y;
+    float _e62 = saturate(_e61);
+    float _e69 = saturate(coverage_2);
+    float side = (metal::sqrt(metal::max(1.0 - (_e62 * _e62), 0.0)) * (1.0 - _e69)) * metal::exp(-(far_1));
+    float _e79 = frame.light_model.x;
+    feed = _e62 + (_e79 * side);
+    float _e86 = frame.light_model.y;
+    if (_e86 > 0.0) {
+        float _e89 = feed;
+        float _e95 = frame.light_model.y;
+        feed = _e89 * metal::pow(metal::max(coverage_2, 0.000001), _e95);
     }
-    float _e97 = feed;
-    float _e98 = diffuse_limb(view_y_2, coverage_2, frame);
-    float _e99 = vertical_anisotropy(view_y_2, coverage_2, h_6, frame);
-    feed = _e97 * (_e98 * _e99);
-    float _e102 = feed;
-    float _e104 = octave_sum;
-    octaves_part = (_e102 * build) * _e104;
-    float _e108 = phase(cos_theta_5, 1.0, frame);
-    float _e113 = octaves_part;
-    total = (_e108 * metal::exp(-(tau_6) - far_1)) + _e113;
-    uint _e119 = frame.modes.w;
-    if ((_e119 & FLAG_BEER_POWDER) != 0u) {
-        float _e127 = frame.phase.w;
-        float powder = 1.0 - metal::exp(-(_e127) * tau_6);
-        float _e133 = total;
-        total = _e133 * powder;
-        float _e135 = octaves_part;
-        octaves_part = _e135 * powder;
+    float _e98 = feed;
+    float _e99 = diffuse_limb(view_y_2, coverage_2, frame);
+    float _e100 = vertical_anisotropy(view_y_2, coverage_2, h_6, frame);
+    float _e102 = deck_escape(_e62, layer_coverage_1, frame);
+    feed = _e98 * ((_e99 * _e100) * _e102);
+    float _e105 = feed;
+    float _e107 = octave_sum;
+    octaves_part = (_e105 * build) * _e107;
+    float _e111 = phase(cos_theta_5, 1.0, frame);
+    float _e116 = octaves_part;
+    total = (_e111 * metal::exp(-(tau_6) - far_1)) + _e116;
+    uint _e122 = frame.modes.w;
+    if ((_e122 & FLAG_BEER_POWDER) != 0u) {
+        float _e130 = frame.phase.w;
+        float powder = 1.0 - metal::exp(-(_e130) * tau_6);
+        float _e136 = total;
+        total = _e136 * powder;
+        float _e138 = octaves_part;
+        octaves_part = _e138 * powder;
     }
-    float _e137 = total;
-    float _e138 = octaves_part;
-    return SunScattering {_e137, _e138};
+    float _e140 = total;
+    float _e141 = octaves_part;
+    return SunScattering {_e140, _e141};
 }
 
 float forward_lobe(
@@ -1872,21 +1885,21 @@ ScatteredLight scattered_light(
         float _e31 = tau_7;
         float _e32 = far_2;
         float _e33 = octave_buildup(density_2, frame);
-        SunScattering _e35 = sun_scattering(metal::dot(view, sun_5), view.y, _e31, _e32, _e33, _e19.coverage, _e12, frame);
-        metal::float4 _e38 = frame.sun_illuminance;
-        metal::float3 _e40 = sun_through_air(rel_6, frame, transmittance_lut_in);
-        metal::float3 lit = _e38.xyz * _e40;
-        sun_light = lit * _e35.total;
-        octave_light = lit * _e35.octaves;
+        SunScattering _e36 = sun_scattering(metal::dot(view, sun_5), view.y, _e31, _e32, _e33, _e19.coverage, _e12, l_6.coverage, frame);
+        metal::float4 _e39 = frame.sun_illuminance;
+        metal::float3 _e41 = sun_through_air(rel_6, frame, transmittance_lut_in);
+        metal::float3 lit = _e39.xyz * _e41;
+        sun_light = lit * _e36.total;
+        octave_light = lit * _e36.octaves;
     }
-    float _e49 = frame.extinction.z;
-    float _e57 = saturate(1.0 - ((_e49 * _e19.precipitation) * (1.0 - _e12)));
-    float _e61 = frame.extinction.x;
-    float k_14 = (_e61 * density_2) * _e57;
-    metal::float3 _e64 = sun_light;
-    metal::float3 _e65 = ambient(_e12, rel_6, frame, sky_ambient_in);
-    metal::float3 _e68 = octave_light;
-    return ScatteredLight {(_e64 + _e65) * k_14, _e68 * k_14};
+    float _e50 = frame.extinction.z;
+    float _e58 = saturate(1.0 - ((_e50 * _e19.precipitation) * (1.0 - _e12)));
+    float _e62 = frame.extinction.x;
+    float k_14 = (_e62 * density_2) * _e58;
+    metal::float3 _e65 = sun_light;
+    metal::float3 _e66 = ambient(_e12, rel_6, frame, sky_ambient_in);
+    metal::float3 _e69 = octave_light;
+    return ScatteredLight {(_e65 + _e66) * k_14, _e69 * k_14};
 }
 
 metal::float3 shadow_ground_point(
@@ -3650,12 +3663,12 @@ metal::float3 sky_radiance(
     metal::float4 _e4 = frame.sun_direction;
     metal::float3 sun_8 = _e4.xyz;
     metal::float4 _e8 = frame.sun_illuminance;
-    metal::float3 e = _e8.xyz;
+    metal::float3 e_1 = _e8.xyz;
     float _e15 = saturate((sun_8.y * 4.0) + 0.3);
     bool _e19 = hits_ground(metal::float3(0.0, alt_16, 0.0), alt_16, d_16, frame);
     if (_e19) {
         metal::float3 ground_albedo = metal::float3(0.035, 0.035, 0.03);
-        return ground_albedo * (((e * metal::max(sun_8.y, 0.0)) / metal::float3(3.1415927)) + ((0.05 * e) * _e15));
+        return ground_albedo * (((e_1 * metal::max(sun_8.y, 0.0)) / metal::float3(3.1415927)) + ((0.05 * e_1) * _e15));
     }
     metal::float3 zenith = metal::float3(0.018, 0.04, 0.1);
     metal::float3 horizon_2 = metal::float3(0.07, 0.085, 0.11);
@@ -3665,7 +3678,7 @@ metal::float3 sky_radiance(
     float _e64 = phase_hg(metal::dot(d_16, sun_8), 0.76);
     float glow = _e64 * 0.02;
     float _e73 = saturate((sun_8.y * 10.0) + 1.0);
-    return e * (((gradient_1 * _e15) + (sunset * _e73)) + metal::float3(glow * _e15));
+    return e_1 * (((gradient_1 * _e15) + (sunset * _e73)) + metal::float3(glow * _e15));
 }
 
 metal::float3 sun_disk(
@@ -3814,16 +3827,16 @@ metal::float3 physical_composite(
     metal::float3 space = {};
     metal::float3 radiance_3 = {};
     metal::float4 _e5 = frame.sun_illuminance;
-    metal::float3 e_1 = _e5.xyz;
+    metal::float3 e_2 = _e5.xyz;
     metal::float3 _e7 = camera_air_origin(frame);
     float r_19 = _e7.y;
     metal::float3 _e9 = sky_view(view_4, frame, sky_view_in);
-    sky = _e9 * e_1;
+    sky = _e9 * e_2;
     bool _e13 = meets_ground(r_19, view_4.y, frame);
     if (_e13) {
         metal::float3 _e14 = sky;
         metal::float3 _e15 = ground_shadow_loss(view_4, r_19, frame, transmittance_lut_in, cloud_shadow_in);
-        sky = metal::max(_e14 - (_e15 * e_1), metal::float3(0.0));
+        sky = metal::max(_e14 - (_e15 * e_2), metal::float3(0.0));
     } else {
         metal::float3 _e21 = moon_disk(view_4, frame);
         metal::float3 _e22 = stars(view_4, frame);
@@ -3845,7 +3858,7 @@ metal::float3 physical_composite(
         metal::float4 _e51 = depth_in.read(metal::uint2(pixel_8), 0);
         metal::float4 _e53 = aerial(pixel_8, _e51.x, frame, aerial_in);
         metal::float3 _e54 = radiance_3;
-        radiance_3 = _e54 + (((_e53.xyz * e_1) * (1.0 - cloud.w)) + (cloud.xyz * _e53.w));
+        radiance_3 = _e54 + (((_e53.xyz * e_2) * (1.0 - cloud.w)) + (cloud.xyz * _e53.w));
     }
     metal::float3 _e66 = radiance_3;
     return _e66;
@@ -4264,8 +4277,8 @@ struct ground_irradianceInput {
         }
     }
     metal::float3 _e60 = sum_2;
-    metal::float3 e_2 = _e60 * 0.09817477;
-    ground_irradiance_out.write(metal::float4(e_2, 1.0), metal::uint2(id_5.xy));
+    metal::float3 e_3 = _e60 * 0.09817477;
+    ground_irradiance_out.write(metal::float4(e_3, 1.0), metal::uint2(id_5.xy));
     return;
 }
 
@@ -5196,10 +5209,10 @@ vertex sprite_vertexOutput sprite_vertex(
     float _e192 = frame.atmosphere.y;
     float _e195 = saturate((_e179 - _e183) / (_e188 - _e192));
     metal::float4 _e198 = frame.sun_illuminance;
-    metal::float3 e_3 = _e198.xyz;
+    metal::float3 e_4 = _e198.xyz;
     metal::float3 _e200 = sprite_sky_level(_e195);
     float _e204 = sprite_sun_level(cos_angle_1);
-    metal::float3 light = (e_3 * ((_e200 * (SPRITE_SKY * _e177)) + metal::float3(_e204))) * (c_12.w / PI);
+    metal::float3 light = (e_4 * ((_e200 * (SPRITE_SKY * _e177)) + metal::float3(_e204))) * (c_12.w / PI);
     out.colour = metal::float4(light, b_12.w);
     out.distance = metal::length(vertex_);
     SpriteVertex _e217 = out;

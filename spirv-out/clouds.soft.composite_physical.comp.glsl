@@ -180,6 +180,7 @@ const uint AMBIENT_STEPS = 24u;
 const uint SKY_AMBIENT_SUNS = 64u;
 const uint GROUND_IRRADIANCE_SIZE = 64u;
 const uint NO_LAYER = 4u;
+const float DECK_POWER = 8.0;
 const float FORWARD_LOBE_THIN = 0.1;
 const uint GROUND_IRRADIANCE_DIRECTIONS = 128u;
 const uint SHADOW_SIZE = 128u;
@@ -924,7 +925,13 @@ float vertical_anisotropy(float view_y_1, float coverage_1, float h_5) {
     return (1.0 + (((_e6 * view_y_1) * _e8) * (1.0 - _e10)));
 }
 
-SunScattering sun_scattering(float cos_theta_5, float view_y_2, float tau_6, float far_1, float build, float coverage_2, float h_6) {
+float deck_escape(float mu0_, float layer_coverage) {
+    float e = _group_0_binding_0_cs.octave_direction.w;
+    float _e6 = saturate(layer_coverage);
+    return (1.0 + ((e * pow(_e6, DECK_POWER)) * (mu0_ - 0.5)));
+}
+
+SunScattering sun_scattering(float cos_theta_5, float view_y_2, float tau_6, float far_1, float build, float coverage_2, float h_6, float layer_coverage_1) {
     float octave_sum = 0.0;
     float ka = 1.0;
     float kb = 1.0;
@@ -936,69 +943,70 @@ SunScattering sun_scattering(float cos_theta_5, float view_y_2, float tau_6, flo
     float a_8 = _group_0_binding_0_cs.multiple_scattering.x;
     float b_8 = _group_0_binding_0_cs.multiple_scattering.y;
     float c_8 = _group_0_binding_0_cs.multiple_scattering.z;
-    uint _e22 = _group_0_binding_0_cs.misc.x;
-    uint octaves = min(_e22, MAX_OCTAVES);
+    uint _e23 = _group_0_binding_0_cs.misc.x;
+    uint octaves = min(_e23, MAX_OCTAVES);
     bool loop_init_3 = true;
     while(true) {
         if (!loop_init_3) {
-            uint _e55 = i_12;
-            i_12 = (_e55 + 1u);
+            uint _e56 = i_12;
+            i_12 = (_e56 + 1u);
         }
         loop_init_3 = false;
-        uint _e35 = i_12;
-        if ((_e35 < octaves)) {
+        uint _e36 = i_12;
+        if ((_e36 < octaves)) {
         } else {
             break;
         }
         {
-            float _e37 = ka;
-            ka = (_e37 * a_8);
-            float _e39 = kb;
-            kb = (_e39 * b_8);
-            float _e41 = kc;
-            kc = (_e41 * c_8);
-            float _e43 = octave_sum;
-            float _e44 = ka;
-            float _e45 = kc;
-            float _e46 = phase(cos_theta_5, _e45);
-            float _e48 = kb;
-            octave_sum = (_e43 + ((_e44 * _e46) / (1.0 + (_e48 * tau_6))));
+            float _e38 = ka;
+            ka = (_e38 * a_8);
+            float _e40 = kb;
+            kb = (_e40 * b_8);
+            float _e42 = kc;
+            kc = (_e42 * c_8);
+            float _e44 = octave_sum;
+            float _e45 = ka;
+            float _e46 = kc;
+            float _e47 = phase(cos_theta_5, _e46);
+            float _e49 = kb;
+            octave_sum = (_e44 + ((_e45 * _e47) / (1.0 + (_e49 * tau_6))));
         }
     }
-    float _e60 = _group_0_binding_0_cs.sun_direction.y;
-    float _e61 = saturate(_e60);
-    float _e68 = saturate(coverage_2);
-    float side = ((sqrt(max((1.0 - (_e61 * _e61)), 0.0)) * (1.0 - _e68)) * exp(-(far_1)));
-    float _e78 = _group_0_binding_0_cs.light_model.x;
-    feed = (_e61 + (_e78 * side));
-    float _e85 = _group_0_binding_0_cs.light_model.y;
-    if ((_e85 > 0.0)) {
-        float _e88 = feed;
-        float _e94 = _group_0_binding_0_cs.light_model.y;
-        feed = (_e88 * pow(max(coverage_2, 1e-6), _e94));
+    float _e61 = _group_0_binding_0_cs.sun_direction.y;
+    float _e62 = saturate(_e61);
+    float _e69 = saturate(coverage_2);
+    float side = ((sqrt(max((1.0 - (_e62 * _e62)), 0.0)) * (1.0 - _e69)) * exp(-(far_1)));
+    float _e79 = _group_0_binding_0_cs.light_model.x;
+    feed = (_e62 + (_e79 * side));
+    float _e86 = _group_0_binding_0_cs.light_model.y;
+    if ((_e86 > 0.0)) {
+        float _e89 = feed;
+        float _e95 = _group_0_binding_0_cs.light_model.y;
+        feed = (_e89 * pow(max(coverage_2, 1e-6), _e95));
     }
-    float _e97 = feed;
-    float _e98 = diffuse_limb(view_y_2, coverage_2);
-    float _e99 = vertical_anisotropy(view_y_2, coverage_2, h_6);
-    feed = (_e97 * (_e98 * _e99));
-    float _e102 = feed;
-    float _e104 = octave_sum;
-    octaves_part = ((_e102 * build) * _e104);
-    float _e108 = phase(cos_theta_5, 1.0);
-    float _e113 = octaves_part;
-    total = ((_e108 * exp((-(tau_6) - far_1))) + _e113);
-    uint _e119 = _group_0_binding_0_cs.modes.w;
-    if (((_e119 & FLAG_BEER_POWDER) != 0u)) {
-        float _e127 = _group_0_binding_0_cs.phase.w;
-        float powder = (1.0 - exp((-(_e127) * tau_6)));
-        float _e133 = total;
-        total = (_e133 * powder);
-        float _e135 = octaves_part;
-        octaves_part = (_e135 * powder);
+    float _e98 = feed;
+    float _e99 = diffuse_limb(view_y_2, coverage_2);
+    float _e100 = vertical_anisotropy(view_y_2, coverage_2, h_6);
+    float _e102 = deck_escape(_e62, layer_coverage_1);
+    feed = (_e98 * ((_e99 * _e100) * _e102));
+    float _e105 = feed;
+    float _e107 = octave_sum;
+    octaves_part = ((_e105 * build) * _e107);
+    float _e111 = phase(cos_theta_5, 1.0);
+    float _e116 = octaves_part;
+    total = ((_e111 * exp((-(tau_6) - far_1))) + _e116);
+    uint _e122 = _group_0_binding_0_cs.modes.w;
+    if (((_e122 & FLAG_BEER_POWDER) != 0u)) {
+        float _e130 = _group_0_binding_0_cs.phase.w;
+        float powder = (1.0 - exp((-(_e130) * tau_6)));
+        float _e136 = total;
+        total = (_e136 * powder);
+        float _e138 = octaves_part;
+        octaves_part = (_e138 * powder);
     }
-    float _e137 = total;
-    float _e138 = octaves_part;
-    return SunScattering(_e137, _e138);
+    float _e140 = total;
+    float _e141 = octaves_part;
+    return SunScattering(_e140, _e141);
 }
 
 float forward_lobe(float cos_theta_6, float transmittance) {
@@ -1632,12 +1640,12 @@ vec3 sky_radiance(vec3 d_16, float alt_16) {
     vec4 _e4 = _group_0_binding_0_cs.sun_direction;
     vec3 sun_2 = _e4.xyz;
     vec4 _e8 = _group_0_binding_0_cs.sun_illuminance;
-    vec3 e = _e8.xyz;
+    vec3 e_1 = _e8.xyz;
     float _e15 = saturate(((sun_2.y * 4.0) + 0.3));
     bool _e19 = hits_ground(vec3(0.0, alt_16, 0.0), alt_16, d_16);
     if (_e19) {
         vec3 ground_albedo = vec3(0.035, 0.035, 0.03);
-        return (ground_albedo * (((e * max(sun_2.y, 0.0)) / vec3(3.1415927)) + ((0.05 * e) * _e15)));
+        return (ground_albedo * (((e_1 * max(sun_2.y, 0.0)) / vec3(3.1415927)) + ((0.05 * e_1) * _e15)));
     }
     vec3 zenith = vec3(0.018, 0.04, 0.1);
     vec3 horizon_2 = vec3(0.07, 0.085, 0.11);
@@ -1647,7 +1655,7 @@ vec3 sky_radiance(vec3 d_16, float alt_16) {
     float _e64 = phase_hg(dot(d_16, sun_2), 0.76);
     float glow = (_e64 * 0.02);
     float _e73 = saturate(((sun_2.y * 10.0) + 1.0));
-    return (e * (((gradient_1 * _e15) + (sunset * _e73)) + vec3((glow * _e15))));
+    return (e_1 * (((gradient_1 * _e15) + (sunset * _e73)) + vec3((glow * _e15))));
 }
 
 vec3 sun_disk(vec3 d_17) {
@@ -1777,16 +1785,16 @@ vec3 physical_composite(uvec2 pixel_8, vec3 view_4, vec4 cloud) {
     vec3 space = vec3(0.0);
     vec3 radiance_3 = vec3(0.0);
     vec4 _e5 = _group_0_binding_0_cs.sun_illuminance;
-    vec3 e_1 = _e5.xyz;
+    vec3 e_2 = _e5.xyz;
     vec3 _e7 = camera_air_origin();
     float r_18 = _e7.y;
     vec3 _e9 = sky_view(view_4);
-    sky = (_e9 * e_1);
+    sky = (_e9 * e_2);
     bool _e13 = meets_ground(r_18, view_4.y);
     if (_e13) {
         vec3 _e14 = sky;
         vec3 _e15 = ground_shadow_loss(view_4, r_18);
-        sky = max((_e14 - (_e15 * e_1)), vec3(0.0));
+        sky = max((_e14 - (_e15 * e_2)), vec3(0.0));
     } else {
         vec3 _e21 = moon_disk(view_4);
         vec3 _e22 = stars(view_4);
@@ -1808,7 +1816,7 @@ vec3 physical_composite(uvec2 pixel_8, vec3 view_4, vec4 cloud) {
         vec4 _e51 = texelFetch(_group_0_binding_37_cs, ivec2(pixel_8), 0);
         vec4 _e53 = aerial(pixel_8, _e51.x);
         vec3 _e54 = radiance_3;
-        radiance_3 = (_e54 + (((_e53.xyz * e_1) * (1.0 - cloud.w)) + (cloud.xyz * _e53.w)));
+        radiance_3 = (_e54 + (((_e53.xyz * e_2) * (1.0 - cloud.w)) + (cloud.xyz * _e53.w)));
     }
     vec3 _e66 = radiance_3;
     return _e66;

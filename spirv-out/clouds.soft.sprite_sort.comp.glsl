@@ -180,6 +180,7 @@ const uint AMBIENT_STEPS = 24u;
 const uint SKY_AMBIENT_SUNS = 64u;
 const uint GROUND_IRRADIANCE_SIZE = 64u;
 const uint NO_LAYER = 4u;
+const float DECK_POWER = 8.0;
 const float FORWARD_LOBE_THIN = 0.1;
 const uint GROUND_IRRADIANCE_DIRECTIONS = 128u;
 const uint SHADOW_SIZE = 128u;

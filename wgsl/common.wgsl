@@ -45,7 +45,7 @@ struct Frame {
     moon: vec4<f32>,                // unit direction to the moon; w = full-moon illuminance (0: no moon)
     night: vec4<f32>,               // the real sun's unit direction; w = a magnitude-0 star's illuminance (0: no stars)
     light_model: vec4<f32>,         // side light, coverage exponent, far-shadow chord (m, 0 = off), limb darkening
-    octave_direction: vec4<f32>,    // the octaves' forward lobe through thin cloud (strength, 0 = off; eccentricity), vertical anisotropy (0 = off), 0
+    octave_direction: vec4<f32>,    // the octaves' forward lobe through thin cloud (strength, 0 = off; eccentricity), vertical anisotropy (0 = off), deck escape (0 = off)
 }
 
 // Codes shared with the scene crate (`PhaseModel::code`, `Integration::code`, ...).

@@ -6,9 +6,10 @@
 //! Procedure: for every octave count, coordinate descent over a, b and c on a 0.05 grid (0.01
 //! below 0.05) and the octaves' build-up with the sample's density
 //! (`lighting.wgsl::octave_buildup`), the side light, the coverage exponent, the far
-//! shadow's chord, the limb darkening, the forward lobe's strength and eccentricity and the
-//! vertical anisotropy (`lighting.wgsl::sun_scattering`, `far_optical_depth`, `diffuse_limb`,
-//! `forward_lobe`, `vertical_anisotropy`) on grids of their own,
+//! shadow's chord, the limb darkening, the forward lobe's strength and eccentricity, the
+//! vertical anisotropy and the deck escape (`lighting.wgsl::sun_scattering`,
+//! `far_optical_depth`, `diffuse_limb`, `forward_lobe`, `vertical_anisotropy`,
+//! `deck_escape`) on grids of their own,
 //! minimising the mean FLIP of the training scenes against their truths; the
 //! fewest octaves whose mean is within 1% of the lowest win (each octave costs time in every
 //! light sample). Wrenninge's a <= b is not imposed: it keeps thick clouds far too dark. Every
@@ -227,12 +228,16 @@ const FORWARD_LOBE_G_GRID: [f64; 8] = [0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8];
 /// The vertical anisotropies tried (`MultipleScattering::vertical_anisotropy`; 0: off).
 const VERTICAL_ANISOTROPY_GRID: [f64; 9] = [0.0, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.8, 1.0];
 
+/// The deck escapes tried (`MultipleScattering::deck_escape`; 0: off, 6/7: the Eddington
+/// approximation's first order for a full deck).
+const DECK_ESCAPE_GRID: [f64; 9] = [0.0, 0.25, 0.5, 0.75, 1.0, 1.25, 1.5, 1.75, 2.0];
+
 /// Build-ups (metres) the descent starts from.
 const DESCENT_STARTS_M: [f64; 3] = [0.0, 100.0, 400.0];
 
 /// Coordinate descent over a, b, c, the build-up, the side light, the coverage exponent, the
-/// far shadow's chord, the limb darkening, the forward lobe (strength, eccentricity) and the
-/// vertical anisotropy for
+/// far shadow's chord, the limb darkening, the forward lobe (strength, eccentricity), the
+/// vertical anisotropy and the deck escape for
 /// `octaves`, from a = b = c = 0.5, the later terms off and each of
 /// a few build-ups (the descent alone stalled at a build-up of 600 m, 2% worse than
 /// the 300 m it missed), or with `quick` from the defaults alone: each pass tries every grid
@@ -247,7 +252,7 @@ fn descend(
     log: &mut Vec<(MultipleScattering, f64)>,
     bar: &ProgressBar,
 ) -> Result<(MultipleScattering, f64)> {
-    type Key = (u32, u32, u32, u32, u32, u32, u32, u32, u32, u32, u32);
+    type Key = (u32, u32, u32, u32, u32, u32, u32, u32, u32, u32, u32, u32);
     let mut cache: BTreeMap<Key, f64> = BTreeMap::new();
     let key = |m: &MultipleScattering| -> Key {
         let q = |v: f64| (v * 100.0).round() as u32;
@@ -263,6 +268,7 @@ fn descend(
             q(m.forward_lobe),
             q(m.forward_lobe_g),
             q(m.vertical_anisotropy),
+            q(m.deck_escape),
         )
     };
     let mut score =
@@ -297,6 +303,7 @@ fn descend(
                 forward_lobe: 0.0,
                 forward_lobe_g: 0.5,
                 vertical_anisotropy: 0.0,
+                deck_escape: 0.0,
             })
             .collect()
     };
@@ -306,7 +313,7 @@ fn descend(
         let mut best_score = score(best, log)?;
         for _round in 0..rounds {
             let mut changed = false;
-            for which in 0..11 {
+            for which in 0..12 {
                 // a may exceed 1 (validate.rs says why); b and c are factors of at most 1.
                 let values = match which {
                     0 => grid(stratus_scene::MAX_OCTAVE_A),
@@ -318,6 +325,7 @@ fn descend(
                     8 => FORWARD_LOBE_GRID.to_vec(),
                     9 => FORWARD_LOBE_G_GRID.to_vec(),
                     10 => VERTICAL_ANISOTROPY_GRID.to_vec(),
+                    11 => DECK_ESCAPE_GRID.to_vec(),
                     _ => grid(1.0),
                 };
                 for v in values {
@@ -333,7 +341,8 @@ fn descend(
                         7 => m.limb_darkening = v,
                         8 => m.forward_lobe = v,
                         9 => m.forward_lobe_g = v,
-                        _ => m.vertical_anisotropy = v,
+                        10 => m.vertical_anisotropy = v,
+                        _ => m.deck_escape = v,
                     }
                     let s = score(m, log)?;
                     if s < best_score - 1e-9 {
@@ -362,7 +371,7 @@ fn descend(
 /// The constants of `m` in a line.
 fn describe(m: &MultipleScattering) -> String {
     format!(
-        "a {:.2} b {:.2} c {:.2} build-up {} m side light {:.2} coverage exponent {:.2} far chord {} m limb darkening {:.2} forward lobe {:.2} (g {:.2}) vertical anisotropy {:.2}",
+        "a {:.2} b {:.2} c {:.2} build-up {} m side light {:.2} coverage exponent {:.2} far chord {} m limb darkening {:.2} forward lobe {:.2} (g {:.2}) vertical anisotropy {:.2} deck escape {:.2}",
         m.a,
         m.b,
         m.c,
@@ -373,7 +382,8 @@ fn describe(m: &MultipleScattering) -> String {
         m.limb_darkening,
         m.forward_lobe,
         m.forward_lobe_g,
-        m.vertical_anisotropy
+        m.vertical_anisotropy,
+        m.deck_escape
     )
 }
 
@@ -494,12 +504,12 @@ pub fn run(args: FitArgs) -> Result<()> {
     std::fs::create_dir_all(&out_dir).with_context(|| format!("creating {}", out_dir.display()))?;
     let mut csv = String::from(
         "octaves,a,b,c,buildup_m,side_light,coverage_exponent,far_chord_m,limb_darkening,\
-         forward_lobe,forward_lobe_g,vertical_anisotropy,train_mean_flip\n",
+         forward_lobe,forward_lobe_g,vertical_anisotropy,deck_escape,train_mean_flip\n",
     );
     for (m, s) in &log {
         let _ = writeln!(
             csv,
-            "{},{:.2},{:.2},{:.2},{},{:.2},{:.2},{},{:.2},{:.2},{:.2},{:.2},{s:.5}",
+            "{},{:.2},{:.2},{:.2},{},{:.2},{:.2},{},{:.2},{:.2},{:.2},{:.2},{:.2},{s:.5}",
             m.octaves,
             m.a,
             m.b,
@@ -511,7 +521,8 @@ pub fn run(args: FitArgs) -> Result<()> {
             m.limb_darkening,
             m.forward_lobe,
             m.forward_lobe_g,
-            m.vertical_anisotropy
+            m.vertical_anisotropy,
+            m.deck_escape
         );
     }
     std::fs::write(out_dir.join("evaluations.csv"), csv)?;
@@ -579,7 +590,8 @@ pub fn run(args: FitArgs) -> Result<()> {
          Written by `stratus fit-scattering --out {out} --size {w}x{h} --spp {spp} --octaves {counts}{quick}` on {device}.\n\n{evaluated}\
          The octaves (count N, a, b, c; Wrenninge 2013), their build-up, side light and \
          coverage exponent, the far shadow's chord, the octaves' limb darkening, their forward \
-         lobe through thin cloud (strength, eccentricity) and their vertical anisotropy of the march fitted to the all-orders \
+         lobe through thin cloud (strength, eccentricity), their vertical anisotropy and their \
+         escape from a deck of the march fitted to the all-orders \
          truth of the GPU path tracer ({spp} paths per pixel) over {nt} training scenes by \
          coordinate descent on a 0.05 grid (0.01 below 0.05), minimising the mean FLIP, \
          taking the fewest octaves within 1% of the lowest mean; checked on the \
@@ -588,7 +600,7 @@ pub fn run(args: FitArgs) -> Result<()> {
          right). \"Before\" is the thesis's two octaves of 0.5 in this \
          model (the octaves attenuated by 1 / (1 + b^i tau) and scaled by mu0, the cosine of \
          the sun's zenith angle, no build-up, side light, coverage exponent, far shadow, limb \
-         darkening, forward lobe or vertical anisotropy). \"Brightness\" is the fitted render's mean in-scattered \
+         darkening, forward lobe, vertical anisotropy or deck escape). \"Brightness\" is the fitted render's mean in-scattered \
          luminance over the truth's where the truth's transmittance is below 0.05 (dense), \
          0.05 to 0.5 and 0.5 to 0.99 (thin). FLIP is measured on display images composited \
          on the CPU from each image's linear radiance (`stratus_reference::Compositor`), the \
@@ -596,10 +608,10 @@ pub fn run(args: FitArgs) -> Result<()> {
          rendered the truth and the one that marches do not round the same light to \
          different 8-bit levels; the images show the truth and \"after\" as they are compared \
          (\"before\" is compared with the truth through its own depth).\n\n\
-         | | N | a | b | c | build-up (m) | side light | coverage exponent | far chord (m) | limb darkening | forward lobe (g) | vertical anisotropy |\n\
-         |---|---|---|---|---|---|---|---|---|---|---|---|\n\
-         | before | {} | {:.2} | {:.2} | {:.2} | {} | {:.2} | {:.2} | {} | {:.2} | {:.2} ({:.2}) | {:.2} |\n\
-         | after | {} | {:.2} | {:.2} | {:.2} | {} | {:.2} | {:.2} | {} | {:.2} | {:.2} ({:.2}) | {:.2} |\n\n\
+         | | N | a | b | c | build-up (m) | side light | coverage exponent | far chord (m) | limb darkening | forward lobe (g) | vertical anisotropy | deck escape |\n\
+         |---|---|---|---|---|---|---|---|---|---|---|---|---|\n\
+         | before | {} | {:.2} | {:.2} | {:.2} | {} | {:.2} | {:.2} | {} | {:.2} | {:.2} ({:.2}) | {:.2} | {:.2} |\n\
+         | after | {} | {:.2} | {:.2} | {:.2} | {} | {:.2} | {:.2} | {} | {:.2} | {:.2} ({:.2}) | {:.2} | {:.2} |\n\n\
          | scene | set | FLIP before | RMSE before | FLIP after | RMSE after | brightness after (dense / mid / thin) |\n\
          |---|---|---|---|---|---|---|\n{table}",
         before.octaves,
@@ -614,6 +626,7 @@ pub fn run(args: FitArgs) -> Result<()> {
         before.forward_lobe,
         before.forward_lobe_g,
         before.vertical_anisotropy,
+        before.deck_escape,
         fit.octaves,
         fit.a,
         fit.b,
@@ -626,6 +639,7 @@ pub fn run(args: FitArgs) -> Result<()> {
         fit.forward_lobe,
         fit.forward_lobe_g,
         fit.vertical_anisotropy,
+        fit.deck_escape,
         out = out_dir.display(),
         spp = args.spp,
         counts = args

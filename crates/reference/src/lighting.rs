@@ -170,7 +170,8 @@ pub(crate) fn far_optical_depth(m: &Model, rel: V3, p: V3, l: &Layer) -> f64 {
 // The WGSL passes one `far` for both: the converged march (`LightMarch::to_layer_exit`)
 // samples the whole sun ray in the layer, so its single scattering takes no far shadow
 // (`far_direct` 0) while the side light keeps the model's (`far_side`). The weather map's
-// coverage and the height fraction at the sample travel together (clippy's argument limit).
+// coverage, the height fraction at the sample and its layer's coverage travel together
+// (clippy's argument limit).
 /// Sun light scattered toward the viewer per unit illuminance and unit sigma_s, summed over
 /// octaves fed through the cloud's top and sides, with the optional Beer-Powder factor: the
 /// whole and the octaves' part of it (the WGSL's `SunScattering`).
@@ -181,7 +182,7 @@ pub(crate) fn sun_scattering(
     tau: f64,
     (far_direct, far_side): (f64, f64),
     build: f64,
-    (coverage, h): (f64, f64),
+    (coverage, h, layer_coverage): (f64, f64, f64),
 ) -> (f64, f64) {
     let a = f.multiple_scattering[0];
     let b = f.multiple_scattering[1];
@@ -206,7 +207,9 @@ pub(crate) fn sun_scattering(
     if f.light_model[1] > 0.0 {
         feed *= coverage.max(1e-6).powf(f.light_model[1]);
     }
-    feed *= diffuse_limb(f, view_y, coverage) * vertical_anisotropy(f, view_y, coverage, h);
+    feed *= diffuse_limb(f, view_y, coverage)
+        * vertical_anisotropy(f, view_y, coverage, h)
+        * deck_escape(f, mu0, layer_coverage);
     let mut octaves_part = feed * build * octave_sum;
     let mut total = phase(f, cos_theta, 1.0) * (-tau - far_direct).exp() + octaves_part;
     if f.modes[3] & FLAG_BEER_POWDER != 0 {
@@ -239,6 +242,17 @@ pub(crate) fn forward_lobe(f: &Frame, cos_theta: f64, transmittance: f64) -> f64
 /// brighter looking up than down in a layer lit from above (lighting.wgsl says why).
 pub(crate) fn vertical_anisotropy(f: &Frame, view_y: f64, coverage: f64, h: f64) -> f64 {
     1.0 + f.octave_direction[2] * view_y * saturate(coverage) * (1.0 - saturate(h))
+}
+
+// WGSL: lighting.wgsl::DECK_POWER
+/// The power of the layer's coverage that weights the octaves' deck escape.
+const DECK_POWER: f64 = 8.0;
+
+// WGSL: lighting.wgsl::deck_escape
+/// The octaves' escape from a deck for a sun of zenith cosine `mu0`: `1 + e w (mu0 - 1/2)`, `w`
+/// the layer's coverage to the 8th power (lighting.wgsl says why).
+pub(crate) fn deck_escape(f: &Frame, mu0: f64, layer_coverage: f64) -> f64 {
+    1.0 + f.octave_direction[3] * saturate(layer_coverage).powf(DECK_POWER) * (mu0 - 0.5)
 }
 
 // WGSL: lighting.wgsl::diffuse_limb
@@ -314,7 +328,7 @@ pub(crate) fn scattered_light(
             tau,
             (far_direct, far),
             octave_buildup(f, density),
-            (weather.coverage, h),
+            (weather.coverage, h, l.coverage),
         );
         let lit = f.sun_illuminance().mul_v(sun_through_air(f, m.sky(), rel));
         sun_light = lit * s;
@@ -451,6 +465,27 @@ mod tests {
         scene.lighting.multiple_scattering.vertical_anisotropy = 0.0;
         let off = Model::new(&scene, Medium::Clouds(&noise));
         assert_eq!(vertical_anisotropy(&off.f, 0.5, 1.0, 0.2), 1.0);
+    }
+
+    /// The deck escape brightens a full deck's octaves under a high sun and darkens them under
+    /// a low one (1 at 60 degrees from the zenith), leaves a broken layer nearly alone, stays
+    /// positive at its largest strength, and is 1 when off.
+    #[test]
+    fn deck_escape_favours_a_high_sun_over_a_deck() {
+        let noise = crate::small_noise();
+        let mut scene = Scene::default();
+        scene.lighting.multiple_scattering.deck_escape = 2.0;
+        let m = Model::new(&scene, Medium::Clouds(&noise));
+        let (high, low) = (deck_escape(&m.f, 1.0, 1.0), deck_escape(&m.f, 0.1, 1.0));
+        assert!(high > 1.0 && (0.0..1.0).contains(&low), "{high} {low}");
+        assert_eq!(deck_escape(&m.f, 0.5, 1.0), 1.0);
+        assert_eq!(deck_escape(&m.f, 0.0, 1.0), 0.0);
+        // A layer of coverage 0.5 is weighted 1/256 as a deck.
+        assert!((deck_escape(&m.f, 1.0, 0.5) - 1.0).abs() < 0.005);
+        assert!(deck_escape(&m.f, 1.0, 0.9) > deck_escape(&m.f, 1.0, 0.8));
+        scene.lighting.multiple_scattering.deck_escape = 0.0;
+        let off = Model::new(&scene, Medium::Clouds(&noise));
+        assert_eq!(deck_escape(&off.f, 1.0, 1.0), 1.0);
     }
 
     /// Integral over the sphere of a phase function of cos(theta), by the midpoint rule in cos.

@@ -105,13 +105,15 @@ fn source_max(s: &Scene) -> [f64; 3] {
     // The octaves' feed peaks at sqrt(1 + s^2) (mu0 + s sin(zenith) at its best sun), times
     // the limb darkening's peak (a view along the vertical through full coverage), the
     // forward lobe's (a thin pixel looking at the sun: 1 + k (4 pi HG(1, g) - 1)) and the
-    // vertical anisotropy's (looking straight up at a deck's base: 1 + s).
+    // vertical anisotropy's (looking straight up at a deck's base: 1 + s) and the deck
+    // escape's (a sun at the zenith over a full deck: 1 + e / 2).
     let k = ms.limb_darkening;
     let lobe_max =
         1.0 + ms.forward_lobe * (4.0 * std::f64::consts::PI * hg_max(ms.forward_lobe_g) - 1.0);
     let feed_max = (1.0 + ms.side_light * ms.side_light).sqrt() * (1.0 + k) / (1.0 + 2.0 * k / 3.0)
         * lobe_max
-        * (1.0 + ms.vertical_anisotropy);
+        * (1.0 + ms.vertical_anisotropy)
+        * (1.0 + ms.deck_escape / 2.0);
     let mut phase_sum = 0.0;
     for i in 0..=ms.octaves.min(8) {
         let (ka, kc) = (ms.a.powi(i as i32), ms.c.powi(i as i32));
@@ -392,6 +394,7 @@ fn extreme_valid_parameters() {
                 ms.forward_lobe = 1.0;
                 ms.forward_lobe_g = 0.95;
                 ms.vertical_anisotropy = 1.0;
+                ms.deck_escape = 2.0;
             },
         ),
         ("density 1000", |s| s.clouds.density = 1000.0),

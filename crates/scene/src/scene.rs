@@ -600,8 +600,9 @@ impl Default for Phase {
 /// the light march's reach is shadowed statistically (`far_chord_m`); and the octaves leaving
 /// a deck are limb-darkened toward grazing views (`limb_darkening`). Seen through thin cloud
 /// the octaves' light leans toward the sun (`forward_lobe`, `forward_lobe_g`), and in a layer
-/// lit from above it is brighter looking up than looking down (`vertical_anisotropy`). The
-/// defaults are fitted to the path tracer's all-orders truth by `stratus fit-scattering`
+/// lit from above it is brighter looking up than looking down (`vertical_anisotropy`). A deck
+/// lets more of a high sun's diffuse light out of its base than of a low one's
+/// (`deck_escape`). The defaults are fitted to the path tracer's all-orders truth by `stratus fit-scattering`
 /// (docs/fit); `a > b` is allowed.
 #[derive(Serialize, Deserialize, Clone, Copy, Debug, PartialEq)]
 #[serde(default, deny_unknown_fields)]
@@ -660,22 +661,28 @@ pub struct MultipleScattering {
     /// most toward the layer's base, where the upward stream is only the ground's reflection.
     /// Its mean over the sphere is 1 (it adds no light). 0: off.
     pub vertical_anisotropy: f64,
+    /// The octaves' escape from a deck, within [0, 2]: they are scaled by `1 + e w (mu0 -
+    /// 1/2)`, `e` this value, `mu0` the cosine of the sun's zenith angle and `w` the layer's
+    /// coverage to the 8th power (its weight as a deck). A thick layer lets `(2/3 + mu0) /
+    /// (4/3 + (1 - g) tau)` of the flux through its top out of its base in the Eddington
+    /// approximation (Meador and Weaver 1980): steep light goes deeper before it turns. 0: off.
+    pub deck_escape: f64,
 }
 
 impl Default for MultipleScattering {
     /// Fitted to the GPU path tracer's all-orders truth (8192 paths a pixel, rendered on an
     /// H200; the march on lavapipe) over ten training scenes by `stratus fit-scattering`: its
     /// choice, 3 octaves with a build-up of 400 m, side light 1, coverage exponent 1, a
-    /// far-shadow chord of 8 km, limb darkening 0.25, a forward lobe of 0.3 (g 0.6) and a
-    /// vertical anisotropy of 0.4, with the octaves' own eccentricity nearly gone (c = 0.04)
-    /// (docs/fit; the thesis's 2 octaves of a = b = c = 0.5 and none of the other terms
-    /// before).
+    /// far-shadow chord of 8 km, limb darkening 0.25, a forward lobe of 0.3 (g 0.6), a
+    /// vertical anisotropy of 0.2 and a deck escape of 2, with the octaves' own eccentricity
+    /// small (c = 0.1) (docs/fit; the thesis's 2 octaves of a = b = c = 0.5 and none of the
+    /// other terms before).
     fn default() -> Self {
         Self {
             octaves: 3,
             a: 1.15,
             b: 0.5,
-            c: 0.04,
+            c: 0.1,
             buildup_m: 400.0,
             side_light: 1.0,
             coverage_exponent: 1.0,
@@ -683,7 +690,8 @@ impl Default for MultipleScattering {
             limb_darkening: 0.25,
             forward_lobe: 0.3,
             forward_lobe_g: 0.6,
-            vertical_anisotropy: 0.4,
+            vertical_anisotropy: 0.2,
+            deck_escape: 2.0,
         }
     }
 }

@@ -107,9 +107,10 @@ pub struct FrameUniforms {
     /// The fitted light model's terms beyond the octaves: side light, coverage exponent,
     /// far-shadow chord (m, 0 = off), limb darkening (`MultipleScattering`).
     pub light_model: [f32; 4],
-    /// The octaves' dependence on the view direction: their forward lobe through thin cloud
-    /// (strength, 0 = off; eccentricity), their vertical anisotropy (0 = off), 0
-    /// (`MultipleScattering::forward_lobe`, `vertical_anisotropy`).
+    /// The octaves' dependence on the view and sun directions: their forward lobe through
+    /// thin cloud (strength, 0 = off; eccentricity), their vertical anisotropy (0 = off), their
+    /// deck escape (0 = off) (`MultipleScattering::forward_lobe`, `vertical_anisotropy`,
+    /// `deck_escape`).
     pub octave_direction: [f32; 4],
 }
 
@@ -561,7 +562,7 @@ impl Scene {
                 ms.forward_lobe as f32,
                 ms.forward_lobe_g as f32,
                 ms.vertical_anisotropy as f32,
-                0.0,
+                ms.deck_escape as f32,
             ],
         };
         block.with_previous_camera(&block)

@@ -328,6 +328,13 @@ pub(crate) fn check(scene: &Scene) -> Vec<Issue> {
         Incl(0.0),
         Incl(1.0),
     );
+    // Above 2 the factor would go negative under a sun at the horizon over a full deck.
+    c.float(
+        "lighting.multiple_scattering.deck_escape",
+        ms.deck_escape,
+        Incl(0.0),
+        Incl(2.0),
+    );
     // 0 turns the far shadow off; a chord below 100 m would shadow like a solid deck.
     let chord = ms.far_chord_m;
     if !chord.is_finite() {

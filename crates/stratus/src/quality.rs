@@ -67,6 +67,7 @@ pub const PREFIT_OCTAVES: MultipleScattering = MultipleScattering {
     forward_lobe: 0.0,
     forward_lobe_g: 0.0,
     vertical_anisotropy: 0.0,
+    deck_escape: 0.0,
 };
 
 impl Config {

@@ -69,7 +69,7 @@ fn reference_for(scene: &Scene) -> (Integrator, Scene, bool) {
 /// The light model's terms added after the cache's v2 (reset to fixed values by
 /// `reference_for` like the octaves, and ignored by every reference): left out of the key so
 /// that the truths rendered before them stay valid.
-const KEYLESS_FIELDS: [&str; 7] = [
+const KEYLESS_FIELDS: [&str; 8] = [
     "side_light = ",
     "coverage_exponent = ",
     "far_chord_m = ",
@@ -77,6 +77,7 @@ const KEYLESS_FIELDS: [&str; 7] = [
     "forward_lobe = ",
     "forward_lobe_g = ",
     "vertical_anisotropy = ",
+    "deck_escape = ",
 ];
 
 /// The scene's TOML as the cache key hashes it: `s.to_toml()` without the `KEYLESS_FIELDS`.
@@ -290,11 +291,12 @@ mod tests {
                 "limb_darkening = 0.0",
                 "forward_lobe = 0.0",
                 "forward_lobe_g = 0.0",
-                "vertical_anisotropy = 0.0"
+                "vertical_anisotropy = 0.0",
+                "deck_escape = 0.0"
             ],
             "{full}"
         );
-        assert_eq!(full.lines().count(), key.lines().count() + 7);
+        assert_eq!(full.lines().count(), key.lines().count() + 8);
     }
 
     #[test]
