@@ -228,8 +228,8 @@ const FORWARD_LOBE_G_GRID: [f64; 8] = [0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8];
 /// The vertical anisotropies tried (`MultipleScattering::vertical_anisotropy`; 0: off).
 const VERTICAL_ANISOTROPY_GRID: [f64; 9] = [0.0, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.8, 1.0];
 
-/// The deck escapes tried (`MultipleScattering::deck_escape`; 0: off, 6/7: the Eddington
-/// approximation's first order for a full deck).
+/// The deck escapes tried (`MultipleScattering::deck_escape`; 0: off; the Eddington
+/// approximation's 6/7 lies between 0.75 and 1; 2 is the valid range's top).
 const DECK_ESCAPE_GRID: [f64; 9] = [0.0, 0.25, 0.5, 0.75, 1.0, 1.25, 1.5, 1.75, 2.0];
 
 /// Build-ups (metres) the descent starts from.

@@ -468,8 +468,8 @@ mod tests {
     }
 
     /// The deck escape brightens a full deck's octaves under a high sun and darkens them under
-    /// a low one (1 at 60 degrees from the zenith), leaves a broken layer nearly alone, stays
-    /// positive at its largest strength, and is 1 when off.
+    /// a low one (1 at 60 degrees from the zenith), leaves a broken layer nearly alone, falls
+    /// to 0 and no lower at its largest strength, and is 1 when off.
     #[test]
     fn deck_escape_favours_a_high_sun_over_a_deck() {
         let noise = crate::small_noise();
