@@ -268,11 +268,12 @@ fn vertical_anisotropy(view_y: f32, coverage: f32, h: f32) -> f32 {
 // while cumulus stayed at 0.95-0.96 at every elevation. Hence 1 + e w (mu0 - 1/2): the ratio
 // (2/3 + mu0) / (2/3 + 1/2) is 1 + (6/7)(mu0 - 1/2), here with a fitted strength e
 // (frame.octave_direction.w, 0 = off) in place of 6/7, 1 at 60 degrees from the zenith, and
-// w = layer_coverage^8 (DECK_POWER) the layer's weight as a deck: a closed layer's clouds are far wider than they are thick, a
-// broken one's are not. The weather map's coverage at the sample does not tell them apart (it
-// is high inside a cumulus as well: weighted by it, `denser cumulus` went from FLIP 0.063 to
-// 0.071), nor did the layer's coverage to the 4th power (training mean 0.0474 against 0.0453
-// for the 8th; e = 1.5, before a refit). One power and a multiply-add per lit sample.
+// w = layer_coverage^8 (DECK_POWER) the layer's weight as a deck: a closed layer's clouds are
+// far wider than they are thick, a broken one's are not. The weather map's coverage at the
+// sample does not tell them apart (it is high inside a cumulus as well: weighted by it,
+// `denser cumulus` went from FLIP 0.063 to 0.071), nor did the layer's coverage to the 4th
+// power (training mean 0.0474 against 0.0453 for the 8th; e = 1.5, before a refit). One power
+// and a multiply-add per lit sample.
 fn deck_escape(mu0: f32, layer_coverage: f32) -> f32 {
     let e = frame.octave_direction.w;
     return 1.0 + e * pow(saturate(layer_coverage), DECK_POWER) * (mu0 - 0.5);

@@ -602,8 +602,8 @@ impl Default for Phase {
 /// the octaves' light leans toward the sun (`forward_lobe`, `forward_lobe_g`), and in a layer
 /// lit from above it is brighter looking up than looking down (`vertical_anisotropy`). A deck
 /// lets more of a high sun's diffuse light out of its base than of a low one's
-/// (`deck_escape`). The defaults are fitted to the path tracer's all-orders truth by `stratus fit-scattering`
-/// (docs/fit); `a > b` is allowed.
+/// (`deck_escape`). The defaults are fitted to the path tracer's all-orders truth by `stratus
+/// fit-scattering` (docs/fit); `a > b` is allowed.
 #[derive(Serialize, Deserialize, Clone, Copy, Debug, PartialEq)]
 #[serde(default, deny_unknown_fields)]
 pub struct MultipleScattering {
@@ -671,9 +671,10 @@ pub struct MultipleScattering {
 
 impl Default for MultipleScattering {
     /// Fitted to the GPU path tracer's all-orders truth (8192 paths a pixel, rendered on an
-    /// H200; the march on lavapipe) over ten training scenes by `stratus fit-scattering`: its
-    /// choice, 3 octaves with a build-up of 400 m, side light 1, coverage exponent 1, a
-    /// far-shadow chord of 8 km, limb darkening 0.25, a forward lobe of 0.3 (g 0.6), a
+    /// H200, the six physical-sky scenes' on lavapipe; the march on lavapipe) over ten training
+    /// scenes by `stratus fit-scattering`: its choice, 3 octaves with a build-up of 400 m, side
+    /// light 1, coverage exponent 1, a far-shadow chord of 8 km, limb darkening 0.25, a forward
+    /// lobe of 0.3 (g 0.6), a
     /// vertical anisotropy of 0.2 and a deck escape of 2, with the octaves' own eccentricity
     /// small (c = 0.1) (docs/fit; the thesis's 2 octaves of a = b = c = 0.5 and none of the
     /// other terms before).
