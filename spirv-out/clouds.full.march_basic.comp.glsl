@@ -659,17 +659,17 @@ vec3 fibonacci_direction(uint k_5, uint n_1) {
 
 vec2 air_ray_end(vec3 origin_2, vec3 d_9) {
     float r_15 = length(origin_2);
-    float mu_8 = (dot(origin_2, d_9) / r_15);
-    bool _e5 = meets_ground(r_15, mu_8);
+    float mu_9 = (dot(origin_2, d_9) / r_15);
+    bool _e5 = meets_ground(r_15, mu_9);
     if (_e5) {
-        float _e6 = distance_to_ground(r_15, mu_8);
+        float _e6 = distance_to_ground(r_15, mu_9);
         return vec2(_e6, 1.0);
     }
     float _e9 = air_top();
     if ((r_15 > _e9)) {
         return vec2(0.0, 0.0);
     }
-    float _e14 = distance_to_top(r_15, mu_8);
+    float _e14 = distance_to_top(r_15, mu_9);
     return vec2(_e14, 0.0);
 }
 
@@ -716,6 +716,10 @@ vec3 aerial_ray(uvec2 c_1) {
     vec4 _e27 = _group_0_binding_0_cs.camera_right;
     vec4 _e36 = _group_0_binding_0_cs.camera_up;
     return normalize(((_e23.xyz + (_e27.xyz * ((ndc_1.x * tan_half_1) * aspect_1))) - (_e36.xyz * (ndc_1.y * tan_half_1))));
+}
+
+float sky_ambient_x(float mu_8) {
+    return (0.5 + ((0.5 * sign(mu_8)) * sqrt(abs(mu_8))));
 }
 
 float layer_height(Layer l_1, float alt_7) {

@@ -756,17 +756,17 @@ vec3 with_ground(Scattered s, vec3 origin_1, vec3 d_8, float distance_km_1, vec3
 
 vec2 air_ray_end(vec3 origin_2, vec3 d_9) {
     float r_16 = length(origin_2);
-    float mu_8 = (dot(origin_2, d_9) / r_16);
-    bool _e5 = meets_ground(r_16, mu_8);
+    float mu_9 = (dot(origin_2, d_9) / r_16);
+    bool _e5 = meets_ground(r_16, mu_9);
     if (_e5) {
-        float _e6 = distance_to_ground(r_16, mu_8);
+        float _e6 = distance_to_ground(r_16, mu_9);
         return vec2(_e6, 1.0);
     }
     float _e9 = air_top();
     if ((r_16 > _e9)) {
         return vec2(0.0, 0.0);
     }
-    float _e14 = distance_to_top(r_16, mu_8);
+    float _e14 = distance_to_top(r_16, mu_9);
     return vec2(_e14, 0.0);
 }
 
@@ -841,6 +841,10 @@ vec3 sun_through_air(vec3 rel_1) {
     vec4 _e21 = _group_0_binding_0_cs.sun_direction;
     vec3 _e24 = sun_transmittance(r_17, dot((q_6 / vec3(r_17)), _e21.xyz));
     return _e24;
+}
+
+float sky_ambient_x(float mu_8) {
+    return (0.5 + ((0.5 * sign(mu_8)) * sqrt(abs(mu_8))));
 }
 
 float layer_height(Layer l_1, float alt_7) {
@@ -1806,43 +1810,42 @@ void main() {
         return;
     }
     bool top_1 = (id_4.y == 1u);
-    float mu_s_6 = (((float(id_4.x) / 63.0) * 2.0) - 1.0);
+    float t_6 = (((float(id_4.x) / 63.0) * 2.0) - 1.0);
+    float mu_s_6 = ((sign(t_6) * t_6) * t_6);
     vec3 sun_4 = vec3(sqrt(max((1.0 - (mu_s_6 * mu_s_6)), 0.0)), mu_s_6, 0.0);
-    float _e34 = _group_0_binding_0_cs.atmosphere.y;
-    float _e38 = _group_0_binding_0_cs.atmosphere.z;
-    float alt_m = (top_1 ? _e38 : _e34);
-    float _e40 = air_bottom();
-    vec3 origin_7 = vec3(0.0, (_e40 + (alt_m * 0.001)), 0.0);
+    float _e34 = air_bottom();
+    float _e38 = _group_0_binding_0_cs.atmosphere.y;
+    vec3 origin_7 = vec3(0.0, (_e34 + (_e38 * 0.001)), 0.0);
     uint first = (top_1 ? 0u : 32u);
     k_2 = first;
     bool loop_init_9 = true;
     while(true) {
         if (!loop_init_9) {
-            uint _e79 = k_2;
-            k_2 = (_e79 + 1u);
+            uint _e77 = k_2;
+            k_2 = (_e77 + 1u);
         }
         loop_init_9 = false;
-        uint _e56 = k_2;
-        if ((_e56 < (first + 32u))) {
+        uint _e54 = k_2;
+        if ((_e54 < (first + 32u))) {
         } else {
             break;
         }
         {
-            uint _e59 = k_2;
-            vec3 _e61 = fibonacci_direction(_e59, AMBIENT_DIRECTIONS);
-            vec2 _e62 = air_ray_end(origin_7, _e61);
-            Scattered _e65 = integrate_air(origin_7, _e61, _e62.x, AMBIENT_STEPS, sun_4);
-            float w_6 = abs(_e61.y);
-            vec3 _e68 = sum_1;
-            vec3 _e73 = with_ground(_e65, origin_7, _e61, _e62.x, sun_4, (_e62.y > 0.5));
-            sum_1 = (_e68 + (w_6 * _e73));
-            float _e76 = weights;
-            weights = (_e76 + w_6);
+            uint _e57 = k_2;
+            vec3 _e59 = fibonacci_direction(_e57, AMBIENT_DIRECTIONS);
+            vec2 _e60 = air_ray_end(origin_7, _e59);
+            Scattered _e63 = integrate_air(origin_7, _e59, _e60.x, AMBIENT_STEPS, sun_4);
+            float w_6 = abs(_e59.y);
+            vec3 _e66 = sum_1;
+            vec3 _e71 = with_ground(_e63, origin_7, _e59, _e60.x, sun_4, (_e60.y > 0.5));
+            sum_1 = (_e66 + (w_6 * _e71));
+            float _e74 = weights;
+            weights = (_e74 + w_6);
         }
     }
-    vec3 _e83 = sum_1;
-    float _e84 = weights;
-    imageStore(_group_0_binding_36_cs, ivec2(id_4.xy), vec4((_e83 / vec3(_e84)), 1.0));
+    vec3 _e81 = sum_1;
+    float _e82 = weights;
+    imageStore(_group_0_binding_36_cs, ivec2(id_4.xy), vec4((_e81 / vec3(_e82)), 1.0));
     return;
 }
 

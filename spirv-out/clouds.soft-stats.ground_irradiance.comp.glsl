@@ -732,17 +732,17 @@ Scattered integrate_air(vec3 origin, vec3 d_7, float distance_km, uint steps, ve
 
 vec2 air_ray_end(vec3 origin_2, vec3 d_9) {
     float r_16 = length(origin_2);
-    float mu_8 = (dot(origin_2, d_9) / r_16);
-    bool _e5 = meets_ground(r_16, mu_8);
+    float mu_9 = (dot(origin_2, d_9) / r_16);
+    bool _e5 = meets_ground(r_16, mu_9);
     if (_e5) {
-        float _e6 = distance_to_ground(r_16, mu_8);
+        float _e6 = distance_to_ground(r_16, mu_9);
         return vec2(_e6, 1.0);
     }
     float _e9 = air_top();
     if ((r_16 > _e9)) {
         return vec2(0.0, 0.0);
     }
-    float _e14 = distance_to_top(r_16, mu_8);
+    float _e14 = distance_to_top(r_16, mu_9);
     return vec2(_e14, 0.0);
 }
 
@@ -802,6 +802,10 @@ vec3 sun_through_air(vec3 rel_1) {
     vec4 _e21 = _group_0_binding_0_cs.sun_direction;
     vec3 _e24 = sun_transmittance(r_17, dot((q_6 / vec3(r_17)), _e21.xyz));
     return _e24;
+}
+
+float sky_ambient_x(float mu_8) {
+    return (0.5 + ((0.5 * sign(mu_8)) * sqrt(abs(mu_8))));
 }
 
 float layer_height(Layer l_1, float alt_7) {

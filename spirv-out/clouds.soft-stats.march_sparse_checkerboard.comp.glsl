@@ -689,17 +689,17 @@ vec3 ground_radiance_sun(float mu_s_2) {
 
 vec2 air_ray_end(vec3 origin_2, vec3 d_9) {
     float r_15 = length(origin_2);
-    float mu_8 = (dot(origin_2, d_9) / r_15);
-    bool _e5 = meets_ground(r_15, mu_8);
+    float mu_9 = (dot(origin_2, d_9) / r_15);
+    bool _e5 = meets_ground(r_15, mu_9);
     if (_e5) {
-        float _e6 = distance_to_ground(r_15, mu_8);
+        float _e6 = distance_to_ground(r_15, mu_9);
         return vec2(_e6, 1.0);
     }
     float _e9 = air_top();
     if ((r_15 > _e9)) {
         return vec2(0.0, 0.0);
     }
-    float _e14 = distance_to_top(r_15, mu_8);
+    float _e14 = distance_to_top(r_15, mu_9);
     return vec2(_e14, 0.0);
 }
 
@@ -761,19 +761,23 @@ vec3 sun_through_air(vec3 rel_1) {
     return _e24;
 }
 
+float sky_ambient_x(float mu_8) {
+    return (0.5 + ((0.5 * sign(mu_8)) * sqrt(abs(mu_8))));
+}
+
 vec3 sky_ambient_light(float h, vec3 rel_2) {
     float _e7 = _group_0_binding_0_cs.atmosphere.x;
     vec3 q_7 = vec3(rel_2.x, (rel_2.y + _e7), rel_2.z);
     vec4 _e14 = _group_0_binding_0_cs.sun_direction;
-    float x_6 = ((dot(normalize(q_7), _e14.xyz) * 0.5) + 0.5);
+    float _e17 = sky_ambient_x(dot(normalize(q_7), _e14.xyz));
     uvec2 size_2 = uvec2(64u, 2u);
-    vec4 _e27 = lut_bilinear(_group_0_binding_31_cs, vec2(x_6, 0.0), size_2);
-    vec3 bottom_1 = _e27.xyz;
-    vec4 _e32 = lut_bilinear(_group_0_binding_31_cs, vec2(x_6, 1.0), size_2);
-    vec3 top_1 = _e32.xyz;
-    vec4 _e37 = _group_0_binding_0_cs.sun_illuminance;
-    float _e43 = _group_0_binding_0_cs.ambient_bottom.w;
-    return ((mix(bottom_1, top_1, h) * _e37.xyz) * _e43);
+    vec4 _e24 = lut_bilinear(_group_0_binding_31_cs, vec2(_e17, 0.0), size_2);
+    vec3 bottom_1 = _e24.xyz;
+    vec4 _e29 = lut_bilinear(_group_0_binding_31_cs, vec2(_e17, 1.0), size_2);
+    vec3 top_1 = _e29.xyz;
+    vec4 _e34 = _group_0_binding_0_cs.sun_illuminance;
+    float _e40 = _group_0_binding_0_cs.ambient_bottom.w;
+    return ((mix(bottom_1, top_1, h) * _e34.xyz) * _e40);
 }
 
 float layer_height(Layer l_1, float alt_7) {
@@ -1442,8 +1446,8 @@ vec3 step_integral(vec3 source, float sigma_t, float dt) {
     if ((_e6 == INTEGRATION_RIEMANN)) {
         return (source * dt);
     }
-    float x_7 = (sigma_t * dt);
-    float f_3 = ((x_7 < 0.001) ? (1.0 - (0.5 * x_7)) : ((1.0 - exp(-(x_7))) / x_7));
+    float x_6 = (sigma_t * dt);
+    float f_3 = ((x_6 < 0.001) ? (1.0 - (0.5 * x_6)) : ((1.0 - exp(-(x_6))) / x_6));
     return (source * (dt * f_3));
 }
 
@@ -2603,17 +2607,17 @@ SpriteCandidate sprite_candidate(SpriteCell c_4, uint level, uint s_2, inout Cou
 
 vec3 sprite_sky_level(float h_9) {
     float _e1 = saturate(h_9);
-    float x_8 = (_e1 * 4.0);
-    if ((x_8 < 1.0)) {
-        return mix(SKY_LEVEL0_, SKY_LEVEL1_, x_8);
+    float x_7 = (_e1 * 4.0);
+    if ((x_7 < 1.0)) {
+        return mix(SKY_LEVEL0_, SKY_LEVEL1_, x_7);
     }
-    if ((x_8 < 2.0)) {
-        return mix(SKY_LEVEL1_, SKY_LEVEL2_, (x_8 - 1.0));
+    if ((x_7 < 2.0)) {
+        return mix(SKY_LEVEL1_, SKY_LEVEL2_, (x_7 - 1.0));
     }
-    if ((x_8 < 3.0)) {
-        return mix(SKY_LEVEL2_, SKY_LEVEL3_, (x_8 - 2.0));
+    if ((x_7 < 3.0)) {
+        return mix(SKY_LEVEL2_, SKY_LEVEL3_, (x_7 - 2.0));
     }
-    return mix(SKY_LEVEL3_, SKY_LEVEL4_, (x_8 - 3.0));
+    return mix(SKY_LEVEL3_, SKY_LEVEL4_, (x_7 - 3.0));
 }
 
 float sprite_sun_level(float cos_angle) {

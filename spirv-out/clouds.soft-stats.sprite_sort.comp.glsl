@@ -334,6 +334,10 @@ float sky_view_v(float elevation, float horizon_1) {
     return (0.5 - (0.5 * sqrt(_e17)));
 }
 
+float sky_ambient_x(float mu_8) {
+    return (0.5 + ((0.5 * sign(mu_8)) * sqrt(abs(mu_8))));
+}
+
 float layer_height(Layer l_1, float alt_7) {
     return ((alt_7 - l_1.bottom) / (l_1.top - l_1.bottom));
 }

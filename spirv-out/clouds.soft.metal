@@ -942,17 +942,17 @@ metal::float2 air_ray_end(
     constant Frame& frame
 ) {
     float r_16 = metal::length(origin_2);
-    float mu_8 = metal::dot(origin_2, d_9) / r_16;
-    bool _e5 = meets_ground(r_16, mu_8, frame);
+    float mu_9 = metal::dot(origin_2, d_9) / r_16;
+    bool _e5 = meets_ground(r_16, mu_9, frame);
     if (_e5) {
-        float _e6 = distance_to_ground(r_16, mu_8, frame);
+        float _e6 = distance_to_ground(r_16, mu_9, frame);
         return metal::float2(_e6, 1.0);
     }
     float _e9 = air_top(frame);
     if (r_16 > _e9) {
         return metal::float2(0.0, 0.0);
     }
-    float _e14 = distance_to_top(r_16, mu_8, frame);
+    float _e14 = distance_to_top(r_16, mu_9, frame);
     return metal::float2(_e14, 0.0);
 }
 
@@ -1136,6 +1136,12 @@ metal::float3 sun_through_air(
     return _e24;
 }
 
+float sky_ambient_x(
+    float mu_8
+) {
+    return 0.5 + ((0.5 * metal::sign(mu_8)) * metal::sqrt(metal::abs(mu_8)));
+}
+
 metal::float3 sky_ambient_light(
     float h,
     metal::float3 rel_2,
@@ -1145,15 +1151,15 @@ metal::float3 sky_ambient_light(
     float _e7 = frame.atmosphere.x;
     metal::float3 q_7 = metal::float3(rel_2.x, rel_2.y + _e7, rel_2.z);
     metal::float4 _e14 = frame.sun_direction;
-    float x_9 = (metal::dot(metal::normalize(q_7), _e14.xyz) * 0.5) + 0.5;
+    float _e17 = sky_ambient_x(metal::dot(metal::normalize(q_7), _e14.xyz));
     metal::uint2 size_2 = metal::uint2(64u, 2u);
-    metal::float4 _e27 = lut_bilinear(sky_ambient_in, metal::float2(x_9, 0.0), size_2);
-    metal::float3 bottom_1 = _e27.xyz;
-    metal::float4 _e32 = lut_bilinear(sky_ambient_in, metal::float2(x_9, 1.0), size_2);
-    metal::float3 top_1 = _e32.xyz;
-    metal::float4 _e37 = frame.sun_illuminance;
-    float _e43 = frame.ambient_bottom.w;
-    return (metal::mix(bottom_1, top_1, h) * _e37.xyz) * _e43;
+    metal::float4 _e24 = lut_bilinear(sky_ambient_in, metal::float2(_e17, 0.0), size_2);
+    metal::float3 bottom_1 = _e24.xyz;
+    metal::float4 _e29 = lut_bilinear(sky_ambient_in, metal::float2(_e17, 1.0), size_2);
+    metal::float3 top_1 = _e29.xyz;
+    metal::float4 _e34 = frame.sun_illuminance;
+    float _e40 = frame.ambient_bottom.w;
+    return (metal::mix(bottom_1, top_1, h) * _e34.xyz) * _e40;
 }
 
 float layer_height(
@@ -1921,8 +1927,8 @@ float ground_shadow(
     if (edge >= 1.0) {
         return 1.0;
     }
-    metal::float2 x_10 = (rel_7.xz / metal::float2(40000.0)) + metal::float2(0.5);
-    metal::float4 _e21 = lut_bilinear(cloud_shadow_in, x_10, metal::uint2(128u));
+    metal::float2 x_9 = (rel_7.xz / metal::float2(40000.0)) + metal::float2(0.5);
+    metal::float4 _e21 = lut_bilinear(cloud_shadow_in, x_9, metal::uint2(128u));
     float t_6 = _e21.x;
     return metal::mix(t_6, 1.0, metal::smoothstep(SHADOW_FADE_START, 1.0, edge));
 }
@@ -2025,8 +2031,8 @@ metal::float3 step_integral(
     if (_e6 == INTEGRATION_RIEMANN) {
         return source * dt;
     }
-    float x_11 = sigma_t * dt;
-    float f_4 = (x_11 < 0.001) ? (1.0 - (0.5 * x_11)) : ((1.0 - metal::exp(-(x_11))) / x_11);
+    float x_10 = sigma_t * dt;
+    float f_4 = (x_10 < 0.001) ? (1.0 - (0.5 * x_10)) : ((1.0 - metal::exp(-(x_10))) / x_10);
     return source * (dt * f_4);
 }
 
@@ -3619,17 +3625,17 @@ metal::float3 sprite_sky_level(
     float h_9
 ) {
     float _e1 = saturate(h_9);
-    float x_12 = _e1 * 4.0;
-    if (x_12 < 1.0) {
-        return metal::mix(SKY_LEVEL0_, SKY_LEVEL1_, x_12);
+    float x_11 = _e1 * 4.0;
+    if (x_11 < 1.0) {
+        return metal::mix(SKY_LEVEL0_, SKY_LEVEL1_, x_11);
     }
-    if (x_12 < 2.0) {
-        return metal::mix(SKY_LEVEL1_, SKY_LEVEL2_, x_12 - 1.0);
+    if (x_11 < 2.0) {
+        return metal::mix(SKY_LEVEL1_, SKY_LEVEL2_, x_11 - 1.0);
     }
-    if (x_12 < 3.0) {
-        return metal::mix(SKY_LEVEL2_, SKY_LEVEL3_, x_12 - 2.0);
+    if (x_11 < 3.0) {
+        return metal::mix(SKY_LEVEL2_, SKY_LEVEL3_, x_11 - 2.0);
     }
-    return metal::mix(SKY_LEVEL3_, SKY_LEVEL4_, x_12 - 3.0);
+    return metal::mix(SKY_LEVEL3_, SKY_LEVEL4_, x_11 - 3.0);
 }
 
 float sprite_sun_level(
@@ -3961,12 +3967,12 @@ struct multiscatter_lutInput {
     if (metal::any(id_1.xy >= MULTISCATTER_SIZE)) {
         return;
     }
-    metal::float2 x_13 = static_cast<metal::float2>(id_1.xy) / metal::float2(31.0, 31.0);
-    float mu_s_7 = (x_13.x * 2.0) - 1.0;
+    metal::float2 x_12 = static_cast<metal::float2>(id_1.xy) / metal::float2(31.0, 31.0);
+    float mu_s_7 = (x_12.x * 2.0) - 1.0;
     float _e16 = air_bottom(frame);
     float _e18 = air_top(frame);
     float _e19 = air_bottom(frame);
-    float r_20 = _e16 + (x_13.y * (_e18 - _e19));
+    float r_20 = _e16 + (x_12.y * (_e18 - _e19));
     metal::float3 origin_7 = metal::float3(0.0, r_20, 0.0);
     metal::float3 sun_9 = metal::float3(metal::sqrt(metal::max(1.0 - (mu_s_7 * mu_s_7), 0.0)), mu_s_7, 0.0);
     uint2 loop_bound_23 = uint2(4294967295u);
@@ -4054,12 +4060,12 @@ struct sky_view_lutInput {
     if (metal::any(id_2.xy >= SKY_VIEW_SIZE)) {
         return;
     }
-    metal::float2 x_14 = static_cast<metal::float2>(id_2.xy) / metal::float2(191.0, 107.0);
+    metal::float2 x_13 = static_cast<metal::float2>(id_2.xy) / metal::float2(191.0, 107.0);
     metal::float3 _e11 = camera_air_origin(frame);
     float _e14 = horizon_elevation(_e11.y, frame);
-    float _e15 = sky_view_elevation(x_14.y, _e14);
+    float _e15 = sky_view_elevation(x_13.y, _e14);
     float _e16 = sun_azimuth(frame);
-    float phi_2 = _e16 + (x_14.x * PI);
+    float phi_2 = _e16 + (x_13.x * PI);
     metal::float3 d_24 = metal::float3(metal::cos(_e15) * metal::cos(phi_2), metal::sin(_e15), metal::cos(_e15) * metal::sin(phi_2));
     metal::float3 _e31 = sky_along(_e11, d_24, frame, transmittance_lut_in, multiscatter_lut_in, ground_irradiance_in);
     sky_view_out.write(metal::float4(_e31, 1.0), metal::uint2(id_2.xy));
@@ -4180,13 +4186,12 @@ struct sky_ambientInput {
         return;
     }
     bool top_3 = id_4.y == 1u;
-    float mu_s_9 = ((static_cast<float>(id_4.x) / 63.0) * 2.0) - 1.0;
+    float t_12 = ((static_cast<float>(id_4.x) / 63.0) * 2.0) - 1.0;
+    float mu_s_9 = (metal::sign(t_12) * t_12) * t_12;
     metal::float3 sun_11 = metal::float3(metal::sqrt(metal::max(1.0 - (mu_s_9 * mu_s_9), 0.0)), mu_s_9, 0.0);
-    float _e34 = frame.atmosphere.y;
-    float _e38 = frame.atmosphere.z;
-    float alt_m = top_3 ? _e38 : _e34;
-    float _e40 = air_bottom(frame);
-    metal::float3 origin_8 = metal::float3(0.0, _e40 + (alt_m * 0.001), 0.0);
+    float _e34 = air_bottom(frame);
+    float _e38 = frame.atmosphere.y;
+    metal::float3 origin_8 = metal::float3(0.0, _e34 + (_e38 * 0.001), 0.0);
     uint first = top_3 ? 0u : 32u;
     k_2 = first;
     uint2 loop_bound_27 = uint2(4294967295u);
@@ -4195,31 +4200,31 @@ struct sky_ambientInput {
         if (metal::all(loop_bound_27 == uint2(0u))) { break; }
         loop_bound_27 -= uint2(loop_bound_27.y == 0u, 1u);
         if (!loop_init_23) {
-            uint _e79 = k_2;
-            k_2 = _e79 + 1u;
+            uint _e77 = k_2;
+            k_2 = _e77 + 1u;
         }
         loop_init_23 = false;
-        uint _e56 = k_2;
-        if (_e56 < (first + 32u)) {
+        uint _e54 = k_2;
+        if (_e54 < (first + 32u)) {
         } else {
             break;
         }
         {
-            uint _e59 = k_2;
-            metal::float3 _e61 = fibonacci_direction(_e59, AMBIENT_DIRECTIONS);
-            metal::float2 _e62 = air_ray_end(origin_8, _e61, frame);
-            Scattered _e65 = integrate_air(origin_8, _e61, _e62.x, AMBIENT_STEPS, sun_11, frame, transmittance_lut_in, multiscatter_lut_in);
-            float w_8 = metal::abs(_e61.y);
-            metal::float3 _e68 = sum_1;
-            metal::float3 _e73 = with_ground(_e65, origin_8, _e61, _e62.x, sun_11, _e62.y > 0.5, frame, transmittance_lut_in, ground_irradiance_in);
-            sum_1 = _e68 + (w_8 * _e73);
-            float _e76 = weights;
-            weights = _e76 + w_8;
+            uint _e57 = k_2;
+            metal::float3 _e59 = fibonacci_direction(_e57, AMBIENT_DIRECTIONS);
+            metal::float2 _e60 = air_ray_end(origin_8, _e59, frame);
+            Scattered _e63 = integrate_air(origin_8, _e59, _e60.x, AMBIENT_STEPS, sun_11, frame, transmittance_lut_in, multiscatter_lut_in);
+            float w_8 = metal::abs(_e59.y);
+            metal::float3 _e66 = sum_1;
+            metal::float3 _e71 = with_ground(_e63, origin_8, _e59, _e60.x, sun_11, _e60.y > 0.5, frame, transmittance_lut_in, ground_irradiance_in);
+            sum_1 = _e66 + (w_8 * _e71);
+            float _e74 = weights;
+            weights = _e74 + w_8;
         }
     }
-    metal::float3 _e83 = sum_1;
-    float _e84 = weights;
-    sky_ambient_out.write(metal::float4(_e83 / metal::float3(_e84), 1.0), metal::uint2(id_4.xy));
+    metal::float3 _e81 = sum_1;
+    float _e82 = weights;
+    sky_ambient_out.write(metal::float4(_e81 / metal::float3(_e82), 1.0), metal::uint2(id_4.xy));
     return;
 }
 
@@ -4436,9 +4441,9 @@ struct occupancyInput {
                 {
                     int _e38 = x;
                     int _e39 = y;
-                    metal::int2 t_12 = naga_mod(as_type<metal::int2>(as_type<metal::uint2>(naga_mod(metal::int2(_e38, _e39), size_8)) + as_type<metal::uint2>(size_8)), size_8);
+                    metal::int2 t_13 = naga_mod(as_type<metal::int2>(as_type<metal::uint2>(naga_mod(metal::int2(_e38, _e39), size_8)) + as_type<metal::uint2>(size_8)), size_8);
                     float _e44 = m;
-                    metal::float4 _e47 = weather_tex.read(metal::uint2(t_12), 0);
+                    metal::float4 _e47 = weather_tex.read(metal::uint2(t_13), 0);
                     m = metal::max(_e44, _e47.x);
                 }
             }
@@ -5184,17 +5189,17 @@ vertex sprite_vertexOutput sprite_vertex(
     metal::float3 offset_1 = (_e90 * (_e89.x * half_width_1)) + (up_2 * (_e89.y * c_12.z));
     metal::float3 vertex_ = to_sprite + offset_1;
     metal::float4 _e102 = frame.camera_right;
-    float x_15 = metal::dot(vertex_, _e102.xyz);
+    float x_14 = metal::dot(vertex_, _e102.xyz);
     metal::float4 _e107 = frame.camera_up;
     float y_4 = metal::dot(vertex_, _e107.xyz);
     metal::float4 _e112 = frame.camera_forward;
     float z_4 = metal::dot(vertex_, _e112.xyz);
     float tan_half_3 = frame.camera_position.w;
     float _e123 = frame.camera_forward.w;
-    out.position = metal::float4(x_15 / (tan_half_3 * _e123), y_4 / tan_half_3, 0.5 * z_4, z_4);
+    out.position = metal::float4(x_14 / (tan_half_3 * _e123), y_4 / tan_half_3, 0.5 * z_4, z_4);
     metal::float2 cs = metal::float2(metal::cos(c_12.y), metal::sin(c_12.y));
-    metal::float2 t_13 = metal::float2(_e89.x, -(_e89.y));
-    out.uv = metal::float2((t_13.x * cs.x) - (t_13.y * cs.y), (t_13.x * cs.y) + (t_13.y * cs.x));
+    metal::float2 t_14 = metal::float2(_e89.x, -(_e89.y));
+    out.uv = metal::float2((t_14.x * cs.x) - (t_14.y * cs.y), (t_14.x * cs.y) + (t_14.y * cs.x));
     out.tile = naga_f2u32(c_12.x);
     metal::float4 _e160 = frame.sun_direction;
     metal::float3 sun_14 = _e160.xyz;

@@ -967,17 +967,17 @@ float3 with_ground(Scattered s, float3 origin_1, float3 d_8, float distance_km_1
 float2 air_ray_end(float3 origin_2, float3 d_9)
 {
     float r_16 = length(origin_2);
-    float mu_8 = (dot(origin_2, d_9) / r_16);
-    const bool _e5 = meets_ground(r_16, mu_8);
+    float mu_9 = (dot(origin_2, d_9) / r_16);
+    const bool _e5 = meets_ground(r_16, mu_9);
     if (_e5) {
-        const float _e6 = distance_to_ground(r_16, mu_8);
+        const float _e6 = distance_to_ground(r_16, mu_9);
         return float2(_e6, 1.0);
     }
     const float _e9 = air_top();
     if ((r_16 > _e9)) {
         return float2(0.0, 0.0);
     }
-    const float _e14 = distance_to_top(r_16, mu_8);
+    const float _e14 = distance_to_top(r_16, mu_9);
     return float2(_e14, 0.0);
 }
 
@@ -1126,20 +1126,25 @@ float3 sun_through_air(float3 rel_1)
     return _e24;
 }
 
+float sky_ambient_x(float mu_8)
+{
+    return (0.5 + ((0.5 * sign(mu_8)) * sqrt(abs(mu_8))));
+}
+
 float3 sky_ambient_light(float h, float3 rel_2)
 {
     float _e7 = frame.atmosphere.x;
     float3 q_7 = float3(rel_2.x, (rel_2.y + _e7), rel_2.z);
     float4 _e14 = frame.sun_direction;
-    float x_9 = ((dot(normalize(q_7), _e14.xyz) * 0.5) + 0.5);
+    const float _e17 = sky_ambient_x(dot(normalize(q_7), _e14.xyz));
     uint2 size_2 = uint2(64u, 2u);
-    const float4 _e27 = lut_bilinear(sky_ambient_in, float2(x_9, 0.0), size_2);
-    float3 bottom_1 = _e27.xyz;
-    const float4 _e32 = lut_bilinear(sky_ambient_in, float2(x_9, 1.0), size_2);
-    float3 top_1 = _e32.xyz;
-    float4 _e37 = frame.sun_illuminance;
-    float _e43 = frame.ambient_bottom.w;
-    return ((lerp(bottom_1, top_1, h) * _e37.xyz) * _e43);
+    const float4 _e24 = lut_bilinear(sky_ambient_in, float2(_e17, 0.0), size_2);
+    float3 bottom_1 = _e24.xyz;
+    const float4 _e29 = lut_bilinear(sky_ambient_in, float2(_e17, 1.0), size_2);
+    float3 top_1 = _e29.xyz;
+    float4 _e34 = frame.sun_illuminance;
+    float _e40 = frame.ambient_bottom.w;
+    return ((lerp(bottom_1, top_1, h) * _e34.xyz) * _e40);
 }
 
 float layer_height(Layer l_1, float alt_7)
@@ -1833,8 +1838,8 @@ float ground_shadow(float3 rel_7)
     if ((edge >= 1.0)) {
         return 1.0;
     }
-    float2 x_10 = ((rel_7.xz / (40000.0).xx) + (0.5).xx);
-    const float4 _e21 = lut_bilinear(cloud_shadow_in, x_10, (128u).xx);
+    float2 x_9 = ((rel_7.xz / (40000.0).xx) + (0.5).xx);
+    const float4 _e21 = lut_bilinear(cloud_shadow_in, x_9, (128u).xx);
     float t_6 = _e21.x;
     return lerp(t_6, 1.0, smoothstep(SHADOW_FADE_START, 1.0, edge));
 }
@@ -1923,8 +1928,8 @@ float3 step_integral(float3 source, float sigma_t, float dt)
     if ((_e6 == INTEGRATION_RIEMANN)) {
         return (source * dt);
     }
-    float x_11 = (sigma_t * dt);
-    float f_4 = ((x_11 < 0.001) ? (1.0 - (0.5 * x_11)) : ((1.0 - exp(-(x_11))) / x_11));
+    float x_10 = (sigma_t * dt);
+    float f_4 = ((x_10 < 0.001) ? (1.0 - (0.5 * x_10)) : ((1.0 - exp(-(x_10))) / x_10));
     return (source * (dt * f_4));
 }
 
@@ -3437,17 +3442,17 @@ SpriteCandidate sprite_candidate(SpriteCell c_4, uint level, uint s_2, inout Cou
 float3 sprite_sky_level(float h_9)
 {
     const float _e1 = saturate_(h_9);
-    float x_12 = (_e1 * 4.0);
-    if ((x_12 < 1.0)) {
-        return lerp(SKY_LEVEL0_, SKY_LEVEL1_, x_12);
+    float x_11 = (_e1 * 4.0);
+    if ((x_11 < 1.0)) {
+        return lerp(SKY_LEVEL0_, SKY_LEVEL1_, x_11);
     }
-    if ((x_12 < 2.0)) {
-        return lerp(SKY_LEVEL1_, SKY_LEVEL2_, (x_12 - 1.0));
+    if ((x_11 < 2.0)) {
+        return lerp(SKY_LEVEL1_, SKY_LEVEL2_, (x_11 - 1.0));
     }
-    if ((x_12 < 3.0)) {
-        return lerp(SKY_LEVEL2_, SKY_LEVEL3_, (x_12 - 2.0));
+    if ((x_11 < 3.0)) {
+        return lerp(SKY_LEVEL2_, SKY_LEVEL3_, (x_11 - 2.0));
     }
-    return lerp(SKY_LEVEL3_, SKY_LEVEL4_, (x_12 - 3.0));
+    return lerp(SKY_LEVEL3_, SKY_LEVEL4_, (x_11 - 3.0));
 }
 
 float sprite_sun_level(float cos_angle)
@@ -3750,12 +3755,12 @@ void multiscatter_lut(uint3 id_1 : SV_DispatchThreadID)
     if (any((id_1.xy >= MULTISCATTER_SIZE))) {
         return;
     }
-    float2 x_13 = (float2(id_1.xy) / float2(31.0, 31.0));
-    float mu_s_7 = ((x_13.x * 2.0) - 1.0);
+    float2 x_12 = (float2(id_1.xy) / float2(31.0, 31.0));
+    float mu_s_7 = ((x_12.x * 2.0) - 1.0);
     const float _e16 = air_bottom();
     const float _e18 = air_top();
     const float _e19 = air_bottom();
-    float r_20 = (_e16 + (x_13.y * (_e18 - _e19)));
+    float r_20 = (_e16 + (x_12.y * (_e18 - _e19)));
     float3 origin_7 = float3(0.0, r_20, 0.0);
     float3 sun_9 = float3(sqrt(max((1.0 - (mu_s_7 * mu_s_7)), 0.0)), mu_s_7, 0.0);
     uint2 loop_bound_23 = uint2(4294967295u, 4294967295u);
@@ -3835,12 +3840,12 @@ void sky_view_lut(uint3 id_2 : SV_DispatchThreadID)
     if (any((id_2.xy >= SKY_VIEW_SIZE))) {
         return;
     }
-    float2 x_14 = (float2(id_2.xy) / float2(191.0, 107.0));
+    float2 x_13 = (float2(id_2.xy) / float2(191.0, 107.0));
     const float3 _e11 = camera_air_origin();
     const float _e14 = horizon_elevation(_e11.y);
-    const float _e15 = sky_view_elevation(x_14.y, _e14);
+    const float _e15 = sky_view_elevation(x_13.y, _e14);
     const float _e16 = sun_azimuth();
-    float phi_2 = (_e16 + (x_14.x * PI));
+    float phi_2 = (_e16 + (x_13.x * PI));
     float3 d_24 = float3((cos(_e15) * cos(phi_2)), sin(_e15), (cos(_e15) * sin(phi_2)));
     const float3 _e31 = sky_along(_e11, d_24);
     sky_view_out[id_2.xy] = float4(_e31, 1.0);
@@ -3948,13 +3953,12 @@ void sky_ambient(uint3 id_4 : SV_DispatchThreadID)
         return;
     }
     bool top_3 = (id_4.y == 1u);
-    float mu_s_9 = (((float(id_4.x) / 63.0) * 2.0) - 1.0);
+    float t_12 = (((float(id_4.x) / 63.0) * 2.0) - 1.0);
+    float mu_s_9 = ((sign(t_12) * t_12) * t_12);
     float3 sun_11 = float3(sqrt(max((1.0 - (mu_s_9 * mu_s_9)), 0.0)), mu_s_9, 0.0);
-    float _e34 = frame.atmosphere.y;
-    float _e38 = frame.atmosphere.z;
-    float alt_m = (top_3 ? _e38 : _e34);
-    const float _e40 = air_bottom();
-    float3 origin_8 = float3(0.0, (_e40 + (alt_m * 0.001)), 0.0);
+    const float _e34 = air_bottom();
+    float _e38 = frame.atmosphere.y;
+    float3 origin_8 = float3(0.0, (_e34 + (_e38 * 0.001)), 0.0);
     uint first = (top_3 ? 0u : 32u);
     k_2 = first;
     uint2 loop_bound_27 = uint2(4294967295u, 4294967295u);
@@ -3963,31 +3967,31 @@ void sky_ambient(uint3 id_4 : SV_DispatchThreadID)
         if (all(loop_bound_27 == uint2(0u, 0u))) { break; }
         loop_bound_27 -= uint2(loop_bound_27.y == 0u, 1u);
         if (!loop_init_23) {
-            uint _e79 = k_2;
-            k_2 = (_e79 + 1u);
+            uint _e77 = k_2;
+            k_2 = (_e77 + 1u);
         }
         loop_init_23 = false;
-        uint _e56 = k_2;
-        if ((_e56 < (first + 32u))) {
+        uint _e54 = k_2;
+        if ((_e54 < (first + 32u))) {
         } else {
             break;
         }
         {
-            uint _e59 = k_2;
-            const float3 _e61 = fibonacci_direction(_e59, AMBIENT_DIRECTIONS);
-            const float2 _e62 = air_ray_end(origin_8, _e61);
-            const Scattered _e65 = integrate_air(origin_8, _e61, _e62.x, AMBIENT_STEPS, sun_11);
-            float w_8 = abs(_e61.y);
-            float3 _e68 = sum_1;
-            const float3 _e73 = with_ground(_e65, origin_8, _e61, _e62.x, sun_11, (_e62.y > 0.5));
-            sum_1 = (_e68 + (w_8 * _e73));
-            float _e76 = weights;
-            weights = (_e76 + w_8);
+            uint _e57 = k_2;
+            const float3 _e59 = fibonacci_direction(_e57, AMBIENT_DIRECTIONS);
+            const float2 _e60 = air_ray_end(origin_8, _e59);
+            const Scattered _e63 = integrate_air(origin_8, _e59, _e60.x, AMBIENT_STEPS, sun_11);
+            float w_8 = abs(_e59.y);
+            float3 _e66 = sum_1;
+            const float3 _e71 = with_ground(_e63, origin_8, _e59, _e60.x, sun_11, (_e60.y > 0.5));
+            sum_1 = (_e66 + (w_8 * _e71));
+            float _e74 = weights;
+            weights = (_e74 + w_8);
         }
     }
-    float3 _e83 = sum_1;
-    float _e84 = weights;
-    sky_ambient_out[id_4.xy] = float4((_e83 / (_e84).xxx), 1.0);
+    float3 _e81 = sum_1;
+    float _e82 = weights;
+    sky_ambient_out[id_4.xy] = float4((_e81 / (_e82).xxx), 1.0);
     return;
 }
 
@@ -4192,9 +4196,9 @@ void occupancy(uint3 id_7 : SV_DispatchThreadID)
                 {
                     int _e38 = x;
                     int _e39 = y;
-                    int2 t_12 = naga_mod(asint(asuint(naga_mod(int2(_e38, _e39), size_8)) + asuint(size_8)), size_8);
+                    int2 t_13 = naga_mod(asint(asuint(naga_mod(int2(_e38, _e39), size_8)) + asuint(size_8)), size_8);
                     float _e44 = m;
-                    float4 _e47 = weather_tex.Load(int3(t_12, int(0)));
+                    float4 _e47 = weather_tex.Load(int3(t_13, int(0)));
                     m = max(_e44, _e47.x);
                 }
             }
@@ -4806,17 +4810,17 @@ VertexOutput_sprite_vertex sprite_vertex(uint index : SV_VertexID)
     float3 offset_1 = ((_e90 * (_e89.x * half_width_1)) + (up_2 * (_e89.y * c_12.z)));
     float3 vertex = (to_sprite + offset_1);
     float4 _e102 = frame.camera_right;
-    float x_15 = dot(vertex, _e102.xyz);
+    float x_14 = dot(vertex, _e102.xyz);
     float4 _e107 = frame.camera_up;
     float y_4 = dot(vertex, _e107.xyz);
     float4 _e112 = frame.camera_forward;
     float z_4 = dot(vertex, _e112.xyz);
     float tan_half_3 = frame.camera_position.w;
     float _e123 = frame.camera_forward.w;
-    out_.position = float4((x_15 / (tan_half_3 * _e123)), (y_4 / tan_half_3), (0.5 * z_4), z_4);
+    out_.position = float4((x_14 / (tan_half_3 * _e123)), (y_4 / tan_half_3), (0.5 * z_4), z_4);
     float2 cs = float2(cos(c_12.y), sin(c_12.y));
-    float2 t_13 = float2(_e89.x, -(_e89.y));
-    out_.uv = float2(((t_13.x * cs.x) - (t_13.y * cs.y)), ((t_13.x * cs.y) + (t_13.y * cs.x)));
+    float2 t_14 = float2(_e89.x, -(_e89.y));
+    out_.uv = float2(((t_14.x * cs.x) - (t_14.y * cs.y)), ((t_14.x * cs.y) + (t_14.y * cs.x)));
     out_.tile = naga_f2u32(c_12.x);
     float4 _e160 = frame.sun_direction;
     float3 sun_14 = _e160.xyz;

@@ -785,17 +785,17 @@ vec3 with_ground(Scattered s, vec3 origin_1, vec3 d_8, float distance_km_1, vec3
 
 vec2 air_ray_end(vec3 origin_2, vec3 d_9) {
     float r_16 = length(origin_2);
-    float mu_8 = (dot(origin_2, d_9) / r_16);
-    bool _e5 = meets_ground(r_16, mu_8);
+    float mu_9 = (dot(origin_2, d_9) / r_16);
+    bool _e5 = meets_ground(r_16, mu_9);
     if (_e5) {
-        float _e6 = distance_to_ground(r_16, mu_8);
+        float _e6 = distance_to_ground(r_16, mu_9);
         return vec2(_e6, 1.0);
     }
     float _e9 = air_top();
     if ((r_16 > _e9)) {
         return vec2(0.0, 0.0);
     }
-    float _e14 = distance_to_top(r_16, mu_8);
+    float _e14 = distance_to_top(r_16, mu_9);
     return vec2(_e14, 0.0);
 }
 
@@ -872,19 +872,23 @@ vec3 sun_through_air(vec3 rel_1) {
     return _e24;
 }
 
+float sky_ambient_x(float mu_8) {
+    return (0.5 + ((0.5 * sign(mu_8)) * sqrt(abs(mu_8))));
+}
+
 vec3 sky_ambient_light(float h, vec3 rel_2) {
     float _e7 = _group_0_binding_0_cs.atmosphere.x;
     vec3 q_7 = vec3(rel_2.x, (rel_2.y + _e7), rel_2.z);
     vec4 _e14 = _group_0_binding_0_cs.sun_direction;
-    float x_8 = ((dot(normalize(q_7), _e14.xyz) * 0.5) + 0.5);
+    float _e17 = sky_ambient_x(dot(normalize(q_7), _e14.xyz));
     uvec2 size_2 = uvec2(64u, 2u);
-    vec4 _e27 = lut_bilinear(_group_0_binding_31_cs, vec2(x_8, 0.0), size_2);
-    vec3 bottom_1 = _e27.xyz;
-    vec4 _e32 = lut_bilinear(_group_0_binding_31_cs, vec2(x_8, 1.0), size_2);
-    vec3 top_1 = _e32.xyz;
-    vec4 _e37 = _group_0_binding_0_cs.sun_illuminance;
-    float _e43 = _group_0_binding_0_cs.ambient_bottom.w;
-    return ((mix(bottom_1, top_1, h) * _e37.xyz) * _e43);
+    vec4 _e24 = lut_bilinear(_group_0_binding_31_cs, vec2(_e17, 0.0), size_2);
+    vec3 bottom_1 = _e24.xyz;
+    vec4 _e29 = lut_bilinear(_group_0_binding_31_cs, vec2(_e17, 1.0), size_2);
+    vec3 top_1 = _e29.xyz;
+    vec4 _e34 = _group_0_binding_0_cs.sun_illuminance;
+    float _e40 = _group_0_binding_0_cs.ambient_bottom.w;
+    return ((mix(bottom_1, top_1, h) * _e34.xyz) * _e40);
 }
 
 float layer_height(Layer l_1, float alt_7) {
@@ -1553,8 +1557,8 @@ vec3 step_integral(vec3 source, float sigma_t, float dt) {
     if ((_e6 == INTEGRATION_RIEMANN)) {
         return (source * dt);
     }
-    float x_9 = (sigma_t * dt);
-    float f_3 = ((x_9 < 0.001) ? (1.0 - (0.5 * x_9)) : ((1.0 - exp(-(x_9))) / x_9));
+    float x_8 = (sigma_t * dt);
+    float f_3 = ((x_8 < 0.001) ? (1.0 - (0.5 * x_8)) : ((1.0 - exp(-(x_8))) / x_8));
     return (source * (dt * f_3));
 }
 
@@ -2872,17 +2876,17 @@ SpriteCandidate sprite_candidate(SpriteCell c_4, uint level, uint s_2, inout Cou
 
 vec3 sprite_sky_level(float h_9) {
     float _e1 = saturate(h_9);
-    float x_10 = (_e1 * 4.0);
-    if ((x_10 < 1.0)) {
-        return mix(SKY_LEVEL0_, SKY_LEVEL1_, x_10);
+    float x_9 = (_e1 * 4.0);
+    if ((x_9 < 1.0)) {
+        return mix(SKY_LEVEL0_, SKY_LEVEL1_, x_9);
     }
-    if ((x_10 < 2.0)) {
-        return mix(SKY_LEVEL1_, SKY_LEVEL2_, (x_10 - 1.0));
+    if ((x_9 < 2.0)) {
+        return mix(SKY_LEVEL1_, SKY_LEVEL2_, (x_9 - 1.0));
     }
-    if ((x_10 < 3.0)) {
-        return mix(SKY_LEVEL2_, SKY_LEVEL3_, (x_10 - 2.0));
+    if ((x_9 < 3.0)) {
+        return mix(SKY_LEVEL2_, SKY_LEVEL3_, (x_9 - 2.0));
     }
-    return mix(SKY_LEVEL3_, SKY_LEVEL4_, (x_10 - 3.0));
+    return mix(SKY_LEVEL3_, SKY_LEVEL4_, (x_9 - 3.0));
 }
 
 float sprite_sun_level(float cos_angle) {

@@ -297,8 +297,8 @@ fn octave_buildup(density: f32) -> f32 {
 }
 
 // Ambient light at height fraction `h` (thesis 5.5.3): a gradient from bottom to top colour,
-// or under the physical sky the sky's cosine-weighted radiance from below the layer's bottom
-// and from above its top (the sky-ambient table, for the sun's angle at camera-relative
+// or under the physical sky the sky's cosine-weighted radiance from below and from above,
+// seen from the layer's bottom (the sky-ambient table, for the sun's angle at camera-relative
 // `rel`, m).
 fn ambient(h: f32, rel: vec3<f32>) -> vec3<f32> {
     if physical_sky() {

@@ -277,8 +277,8 @@ pub(crate) fn octave_buildup(f: &Frame, density: f64) -> f64 {
 
 // WGSL: lighting.wgsl::ambient
 /// Ambient light at height fraction `h`: a gradient from the bottom to the top colour, or under
-/// the physical sky the sky's cosine-weighted radiance from below the layer's bottom and from
-/// above its top (the sky-ambient table, for the sun's angle at camera-relative `rel`, m).
+/// the physical sky the sky's cosine-weighted radiance from below and from above, seen from the
+/// layer's bottom (the sky-ambient table, for the sun's angle at camera-relative `rel`, m).
 pub(crate) fn ambient(f: &Frame, sky: Option<&SkyTables>, h: f64, rel: V3) -> V3 {
     if let Some(sky) = physical(f, sky) {
         return sky.ambient_light(f, h, rel);

@@ -261,9 +261,9 @@ pub struct SkyTables {
     /// The sky's radiance around the camera (rgb) by (azimuth from the sun, elevation),
     /// ground included, [`SKY_VIEW_SIZE`].
     pub sky_view: Table,
-    /// Cosine-weighted mean radiance of the hemisphere facing the cloud layer (rgb) at its
-    /// bottom (row 0) and top (row 1), for a sun of zenith cosine 2 i / 63 - 1 there (column
-    /// i), [`SKY_AMBIENT_SUNS`]x2.
+    /// Cosine-weighted mean radiance (rgb) of the lower (row 0) and upper (row 1) hemispheres
+    /// seen from the cloud layer's bottom, for a sun of zenith cosine t |t| there, t =
+    /// 2 i / 63 - 1 (column i, `sky_ambient_x`), [`SKY_AMBIENT_SUNS`]x2.
     pub sky_ambient: Table,
     /// In-scattered light (rgb) and mean transmittance (a) from the camera to the far end of
     /// each slice, slice z of froxel column (x, y) at texel (z * 32 + x, y): 1024x32.
@@ -837,23 +837,20 @@ impl SkyTables {
     }
 
     // WGSL: atmosphere.wgsl::sky_ambient
-    /// Sky-ambient texel (i, j) (j = 0: the cloud layer's bottom, 1: its top): the
-    /// cosine-weighted mean radiance of the hemisphere facing the layer there (below its
-    /// bottom, above its top), sky and lit ground, over 32 of 64 Fibonacci directions of 24
-    /// steps, for a sun of zenith cosine 2 i / 63 - 1.
+    /// Sky-ambient texel (i, j) (j = 0: from below, 1: from above): the cosine-weighted mean
+    /// radiance of the lower or upper hemisphere seen from the cloud layer's bottom (the
+    /// light from above includes the air between the layer's clouds), sky and lit ground,
+    /// over 32 of 64 Fibonacci directions of 24 steps, for a sun of zenith cosine t |t|,
+    /// t = 2 i / 63 - 1 (`sky_ambient_x`).
     fn sky_ambient_texel(&self, f: &Frame, i: usize, j: usize) -> Texel {
-        let mu_s = i as f64 / (SKY_AMBIENT_SUNS - 1) as f64 * 2.0 - 1.0;
+        let t = i as f64 / (SKY_AMBIENT_SUNS - 1) as f64 * 2.0 - 1.0;
+        let mu_s = t * t.abs();
         let sun = V3::new((1.0 - mu_s * mu_s).max(0.0).sqrt(), mu_s, 0.0);
-        let alt = if j == 1 {
-            f.atmosphere[2]
-        } else {
-            f.atmosphere[1]
-        };
-        let origin = V3::new(0.0, self.bottom() + alt, 0.0);
+        let origin = V3::new(0.0, self.bottom() + f.atmosphere[1], 0.0);
         let mut sum = V3::ZERO;
         let mut weights = 0.0;
-        // The hemisphere facing the layer, cosine-weighted: the upper half of the Fibonacci
-        // directions (they run from the zenith down) at the top, the lower at the bottom.
+        // The hemisphere, cosine-weighted: the upper half of the Fibonacci directions (they
+        // run from the zenith down) from above, the lower from below.
         let half = AMBIENT_DIRECTIONS / 2;
         let first = if j == 1 { 0 } else { half };
         for k in first..first + half {
@@ -884,11 +881,19 @@ impl SkyTables {
     /// illuminance and the ambient strength.
     pub(crate) fn ambient_light(&self, f: &Frame, h: f64, rel: V3) -> V3 {
         let q = V3::new(rel.x, rel.y + f.atmosphere[0], rel.z);
-        let x = q.normalize().dot(f.sun()) * 0.5 + 0.5;
+        let x = sky_ambient_x(q.normalize().dot(f.sun()));
         let bottom = rgb(self.sky_ambient.bilinear([x, 0.0]));
         let top = rgb(self.sky_ambient.bilinear([x, 1.0]));
         mix_v(bottom, top, h).mul_v(f.sun_illuminance()) * f.ambient_bottom[3]
     }
+}
+
+// WGSL: atmosphere.wgsl::sky_ambient_x
+/// The sky-ambient table's column coordinate (0 to 1) of a sun of zenith cosine `mu`: the square
+/// root of |mu|, so that the columns lie densest at the horizon, where the sky's light changes
+/// fastest with the sun's angle.
+pub(crate) fn sky_ambient_x(mu: f64) -> f64 {
+    0.5 + 0.5 * mu.signum() * mu.abs().sqrt()
 }
 
 // WGSL: ground.wgsl::shadow_ground_point
@@ -1213,7 +1218,7 @@ mod tests {
         // Below the camera the sun's zenith cosine is its direction's y: the ambient is the
         // table's bottom row there.
         let bottom = crate::lighting::ambient(f, Some(sky), 0.0, V3::ZERO);
-        let x = f.sun().y * 0.5 + 0.5;
+        let x = sky_ambient_x(f.sun().y);
         let want = rgb(sky.sky_ambient.bilinear([x, 0.0])).mul_v(f.sun_illuminance())
             * f.ambient_bottom[3];
         assert_eq!(bottom, want);
