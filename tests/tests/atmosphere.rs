@@ -315,10 +315,10 @@ fn physical_sky_tables_match_the_direct_integration_and_both_backends() {
 }
 
 /// The transmittance, multi-scattering and sky-ambient tables depend on the air (the last on
-/// the cloud layer's altitudes too), not the sun: a frame with another sun does not compute
-/// them again, a frame with other air does. The sky view and aerial perspective follow the
-/// sun and the camera's altitude (the froxels its orientation too), not the clouds' wind or
-/// where over the ground it is.
+/// the cloud layer's bottom too, not its top), not the sun: a frame with another sun does not
+/// compute them again, a frame with other air does. The sky view and aerial perspective follow
+/// the sun and the camera's altitude (the froxels its orientation too), not the clouds' wind
+/// or where over the ground it is.
 #[test]
 fn air_tables_are_computed_again_only_when_the_air_changes() {
     stratus_test_support::record_wgpu_log();
@@ -391,7 +391,11 @@ fn air_tables_are_computed_again_only_when_the_air_changes() {
         ],
         "{climbed:?}"
     );
-    // The cloud layer moves up: its boundaries see other hemispheres of sky.
+    // The cloud layer's top moves up: the sky ambient is seen from its bottom, which stays.
+    s.atmosphere.cloud_top_m += 300.0;
+    let thicker = ran(&mut wgpu, &s);
+    assert!(!thicker.contains(&"sky-ambient".to_string()), "{thicker:?}");
+    // The cloud layer's bottom moves up: it sees other hemispheres of sky.
     s.atmosphere.cloud_bottom_m += 300.0;
     let higher = ran(&mut wgpu, &s);
     assert!(higher.contains(&"sky-ambient".to_string()), "{higher:?}");
