@@ -25,6 +25,7 @@ use std::{collections::BTreeMap, fmt::Write as _, path::PathBuf, sync::Arc};
 use anyhow::{Context, Result};
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
+use stratus_compare::{CompareOptions, Image, compare};
 use stratus_graph::{Backend, FrameInput, FrameOutput, FramePlan};
 use stratus_noise::NoiseSet;
 use stratus_reference::Compositor;
@@ -59,6 +60,20 @@ pub struct FitArgs {
     /// new scene, before deciding to refit.
     #[arg(long)]
     evaluate: bool,
+    /// With --evaluate, only these scenes (comma-separated: presets, or training scenes by the
+    /// names of their images, e.g. `storm-deck-sun-25-deg`): their truths alone are rendered
+    /// (or loaded) and measured. A truth of 8192 paths a pixel takes 10-30 minutes a scene on
+    /// lavapipe; this renders the ones a question needs.
+    #[arg(long, value_delimiter = ',', requires = "evaluate")]
+    scenes: Vec<String>,
+    /// Render no truth: measure FLIP against the truths' display images in DIR/images (a
+    /// fit's panels, the truth leftmost, as `--out DIR` wrote them). They are exactly what the
+    /// fit compares for a change to the light model alone: the panel's truth went through
+    /// the air in front of the march's depth, which the density alone sets. For trying a
+    /// change on a machine where the truths would take hours (lavapipe: 10-30 minutes a
+    /// scene); RMSE and brightness, which need the truths' radiance, are left out.
+    #[arg(long, value_name = "DIR")]
+    display_truths: Option<PathBuf>,
 }
 
 /// The training scenes: variants of the presets under other suns and views, none of them a
@@ -129,12 +144,80 @@ fn training_scenes() -> Result<Vec<(String, Scene)>> {
     Ok(out)
 }
 
+/// The training scenes and presets that `--scenes` names (all of them when it names none); an
+/// error for a name that is neither.
+type Named = Vec<(String, Scene)>;
+fn only(names: &[String], training: Named, presets: Named) -> Result<(Named, Named)> {
+    if names.is_empty() {
+        return Ok((training, presets));
+    }
+    for n in names {
+        if !training
+            .iter()
+            .chain(&presets)
+            .any(|(name, _)| slug(name) == *n)
+        {
+            let known: Vec<String> = training
+                .iter()
+                .chain(&presets)
+                .map(|(n, _)| slug(n))
+                .collect();
+            anyhow::bail!("--scenes: no scene `{n}` (known: {})", known.join(", "));
+        }
+    }
+    let keep = |list: Named| -> Named {
+        list.into_iter()
+            .filter(|(name, _)| names.contains(&slug(name)))
+            .collect()
+    };
+    Ok((keep(training), keep(presets)))
+}
+
+/// Copies the truths the fit measured against into `dir` (for `--out docs/fit`, the committed
+/// truths the bench and the fit read where their cache lacks one) with `index.csv`, which
+/// names each file's scene.
+fn write_truths(dir: &std::path::Path, train: &[Case], test: &[Case], spp: u32) -> Result<()> {
+    std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
+    let mut index = String::from("file,scene,set,paths_per_pixel,width,height\n");
+    for (set, list) in [("train", train), ("held-out", test)] {
+        for c in list {
+            let Some(file) = &c.truth_file else {
+                continue;
+            };
+            let name = file
+                .file_name()
+                .context("a truth's cache file has no name")?;
+            let to = dir.join(name);
+            if to != *file {
+                std::fs::copy(file, &to)
+                    .with_context(|| format!("copying {} to {}", file.display(), to.display()))?;
+            }
+            let _ = writeln!(
+                index,
+                "{},\"{}\",{set},{spp},{},{}",
+                name.to_string_lossy(),
+                c.name,
+                c.truth.width,
+                c.truth.height
+            );
+        }
+    }
+    std::fs::write(dir.join("index.csv"), index)
+        .with_context(|| format!("writing {}", dir.join("index.csv").display()))
+}
+
 /// A scene to measure: its truth and the real-time render's settings.
 struct Case {
     name: String,
     scene: Scene,
     noise: Arc<NoiseSet>,
     truth: FrameOutput,
+    /// The truth's file in the reference cache (copied to `--out`/truths); none with
+    /// `--display-truths`.
+    truth_file: Option<PathBuf>,
+    /// With `--display-truths`, the truth's display image (RGBA8), which FLIP compares
+    /// instead of `truth` (then a frame of the image alone).
+    truth_display: Option<Vec<u8>>,
     /// The scene's composite on the CPU, which makes the display images the fit compares.
     display: Compositor,
 }
@@ -142,8 +225,50 @@ struct Case {
 /// FLIP (mean, display images) and RMSE (linear radiance) of `frame` against the truth of
 /// `case` (both display images composited on the CPU: [`bench::errors`]).
 fn errors(case: &Case, frame: &FrameOutput) -> Result<(f64, f64)> {
+    if let Some(truth) = &case.truth_display {
+        let options = CompareOptions {
+            exposure: 1.0,
+            ..CompareOptions::default()
+        };
+        let image = case
+            .display
+            .display(&frame.radiance, &frame.depth)
+            .context("composite of a fit's render")?;
+        let (w, h) = (frame.width, frame.height);
+        let e = compare(
+            &Image::from_display_rgba8(w, h, truth),
+            &Image::from_display_rgba8(w, h, &image),
+            &options,
+        )?;
+        return Ok((e.flip.mean, f64::NAN));
+    }
     let e = bench::errors(&case.truth, frame, &case.display)?;
     Ok((e.flip, e.rmse))
+}
+
+/// The truth's display image of `name` from a fit's panel in `dir/images` (`side_by_side`:
+/// the truth leftmost, each pixel a `zoom` x `zoom` square), `w` x `h` pixels.
+fn display_truth(dir: &std::path::Path, name: &str, w: u32, h: u32) -> Result<Vec<u8>> {
+    let path = dir.join("images").join(format!("{}.png", slug(name)));
+    let panel = image::open(&path)
+        .with_context(|| format!("reading the truth's panel {}", path.display()))?
+        .to_rgba8();
+    let zoom = panel.height() / h;
+    if zoom == 0 || panel.height() != zoom * h || panel.width() < zoom * w {
+        anyhow::bail!(
+            "{}: a {}x{} panel is not a fit's panel of {w}x{h} images (--size)",
+            path.display(),
+            panel.width(),
+            panel.height()
+        );
+    }
+    let mut out = Vec::with_capacity((4 * w * h) as usize);
+    for y in 0..h {
+        for x in 0..w {
+            out.extend_from_slice(&panel.get_pixel(x * zoom, y * zoom).0);
+        }
+    }
+    Ok(out)
 }
 
 /// The render's mean in-scattered luminance over the truth's, in bins of the truth's
@@ -423,6 +548,27 @@ fn side_by_side(frames: &[FrameOutput], zoom: u32) -> image::RgbaImage {
 
 /// Runs `stratus fit-scattering`.
 pub fn run(args: FitArgs) -> Result<()> {
+    let out_dir = args.out.clone().unwrap_or_else(|| {
+        PathBuf::from(if args.evaluate {
+            "target/fit-evaluate"
+        } else {
+            "docs/fit"
+        })
+    });
+    if let Some(dir) = &args.display_truths {
+        // The panels written there would replace the truths' images the run read.
+        let same =
+            |a: &std::path::Path, b: &std::path::Path| match (a.canonicalize(), b.canonicalize()) {
+                (Ok(a), Ok(b)) => a == b,
+                _ => a == b,
+            };
+        if same(dir, &out_dir) {
+            anyhow::bail!(
+                "--display-truths {} is --out as well: write this run elsewhere (--out)",
+                dir.display()
+            );
+        }
+    }
     let (w, h) = args.size;
     let mut renderer = stratus_backend_wgpu::Renderer::new(stratus_backend_wgpu::Options {
         api: stratus_backend_wgpu::Api::Vulkan,
@@ -447,19 +593,42 @@ pub fn run(args: FitArgs) -> Result<()> {
             let scene = scene.with_size(w, h);
             let noise = Arc::new(stratus::noise_for(&scene));
             eprintln!("truth: {name}");
-            let (truth, _) = bench::reference(&scene, &noise, args.spp, Some(&mut renderer))?;
             let display = Compositor::new(&scene, &noise);
+            if let Some(dir) = &args.display_truths {
+                let image = display_truth(dir, &name, w, h)?;
+                out.push(Case {
+                    name,
+                    scene,
+                    noise,
+                    truth: FrameOutput {
+                        width: w,
+                        height: h,
+                        image: image.clone(),
+                        ..Default::default()
+                    },
+                    truth_file: None,
+                    truth_display: Some(image),
+                    display,
+                });
+                continue;
+            }
+            let bench::Reference {
+                frame: truth, file, ..
+            } = bench::reference(&scene, &noise, args.spp, Some(&mut renderer))?;
             out.push(Case {
                 name,
                 scene,
                 noise,
                 truth,
+                truth_file: Some(file),
+                truth_display: None,
                 display,
             });
         }
         Ok(out)
     };
-    let train = cases(training_scenes()?)?;
+    let (training, held_out) = only(&args.scenes, training_scenes()?, held_out)?;
+    let train = cases(training)?;
     let test = cases(held_out)?;
 
     let bar = ProgressBar::new_spinner();
@@ -494,13 +663,6 @@ pub fn run(args: FitArgs) -> Result<()> {
     // Before: the thesis's constants (the defaults until this fit).
     let before = stratus::quality::PREFIT_OCTAVES;
 
-    let out_dir = args.out.clone().unwrap_or_else(|| {
-        PathBuf::from(if args.evaluate {
-            "target/fit-evaluate"
-        } else {
-            "docs/fit"
-        })
-    });
     std::fs::create_dir_all(&out_dir).with_context(|| format!("creating {}", out_dir.display()))?;
     let mut csv = String::from(
         "octaves,a,b,c,buildup_m,side_light,coverage_exponent,far_chord_m,limb_darkening,\
@@ -550,10 +712,14 @@ pub fn run(args: FitArgs) -> Result<()> {
                 render(&mut renderer, c, fit)?,
             ];
             let (eb, ea) = (errors(c, &frames[1])?, errors(c, &frames[2])?);
-            let br = brightness(&c.truth, &frames[2]);
+            let br = if c.truth_display.is_some() {
+                [f64::NAN; 3]
+            } else {
+                brightness(&c.truth, &frames[2])
+            };
             // The images as compared: composited on the CPU, the truth through the air in
             // front of the fitted frame's depth.
-            for i in 0..frames.len() {
+            for i in usize::from(c.truth_display.is_some())..frames.len() {
                 let depth = if i == 0 { 2 } else { i };
                 frames[i].image = c
                     .display
@@ -585,9 +751,10 @@ pub fn run(args: FitArgs) -> Result<()> {
         }
     }
     std::fs::write(out_dir.join("scenes.csv"), &scenes_csv)?;
+    write_truths(&out_dir.join("truths"), &train, &test, args.spp)?;
     let readme = format!(
         "# Multiple-scattering fit\n\n\
-         Written by `stratus fit-scattering --out {out} --size {w}x{h} --spp {spp} --octaves {counts}{quick}` on {device}.\n\n{evaluated}\
+         Written by `stratus fit-scattering --out {out} --size {w}x{h} --spp {spp} --octaves {counts}{quick}{display}` on {device}.\n\n{evaluated}\
          The octaves (count N, a, b, c; Wrenninge 2013), their build-up, side light and \
          coverage exponent, the far shadow's chord, the octaves' limb darkening, their forward \
          lobe through thin cloud (strength, eccentricity), their vertical anisotropy and their \
@@ -597,7 +764,8 @@ pub fn run(args: FitArgs) -> Result<()> {
          taking the fewest octaves within 1% of the lowest mean; checked on the \
          {nh} presets, which the fit never saw. `evaluations.csv` holds every evaluated point, \
          `scenes.csv` the table below, `images/` each scene's truth, before and after (left to \
-         right). \"Before\" is the thesis's two octaves of 0.5 in this \
+         right), `truths/` the truths themselves (the reference cache's files, which the bench \
+         and a rerun read where their cache lacks one; `index.csv` names their scenes). \"Before\" is the thesis's two octaves of 0.5 in this \
          model (the octaves attenuated by 1 / (1 + b^i tau) and scaled by mu0, the cosine of \
          the sun's zenith angle, no build-up, side light, coverage exponent, far shadow, limb \
          darkening, forward lobe, vertical anisotropy or deck escape). \"Brightness\" is the fitted render's mean in-scattered \
@@ -653,12 +821,31 @@ pub fn run(args: FitArgs) -> Result<()> {
             (true, false) => " --quick",
             (false, false) => "",
         },
-        evaluated = if args.evaluate {
-            "**Nothing was fitted** (`--evaluate`): \"after\" is the current defaults, measured \
-             as the fit would measure them.\n\n"
-        } else {
-            ""
+        evaluated = {
+            let mut e = String::new();
+            if args.evaluate {
+                e.push_str(
+                    "**Nothing was fitted** (`--evaluate`): \"after\" is the current defaults, \
+                     measured as the fit would measure them.\n\n",
+                );
+            }
+            if let Some(dir) = &args.display_truths {
+                let _ = write!(
+                    e,
+                    "**Measured against the truths' display images** (`--display-truths {}`: \
+                     the panels of the fit there, whose truths were rendered as it says), no \
+                     truth rendered: FLIP as the fit measures it; RMSE and brightness, which \
+                     need the truths' radiance, are left out (NaN, -).\n\n",
+                    dir.display()
+                );
+            }
+            e
         },
+        display = args
+            .display_truths
+            .as_ref()
+            .map(|d| format!(" --display-truths {}", d.display()))
+            .unwrap_or_default(),
         device = renderer.describe(),
         nt = train.len(),
         nh = test.len(),

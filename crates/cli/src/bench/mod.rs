@@ -37,7 +37,10 @@ mod reference_cache;
 mod report;
 mod sweep;
 
-pub(crate) use self::{reference_cache::reference, sweep::errors};
+pub(crate) use self::{
+    reference_cache::{Reference, reference},
+    sweep::errors,
+};
 
 use self::{
     chart::chart,

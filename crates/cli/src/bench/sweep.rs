@@ -262,7 +262,11 @@ fn measure_config(
     noise: &Arc<NoiseSet>,
     settings: MeasureSettings,
 ) -> Result<Row> {
-    let (reference, label) = reference(s, noise, settings.mc_spp, Some(&mut *renderer))?;
+    let super::Reference {
+        frame: reference,
+        label,
+        ..
+    } = reference(s, noise, settings.mc_spp, Some(&mut *renderer))?;
     if config.is_method() {
         return measure_method(renderer, name, s, config, preset, noise, reference, label);
     }
