@@ -246,15 +246,18 @@ fn errors(case: &Case, frame: &FrameOutput) -> Result<(f64, f64)> {
     Ok((e.flip, e.rmse))
 }
 
+/// The pixels of a fit's panels (`images/`) per image pixel, across and down.
+const PANEL_ZOOM: u32 = 4;
+
 /// The truth's display image of `name` from a fit's panel in `dir/images` (`side_by_side`:
-/// the truth leftmost, each pixel a `zoom` x `zoom` square), `w` x `h` pixels.
+/// the truth leftmost, each pixel a `PANEL_ZOOM` square), `w` x `h` pixels.
 fn display_truth(dir: &std::path::Path, name: &str, w: u32, h: u32) -> Result<Vec<u8>> {
     let path = dir.join("images").join(format!("{}.png", slug(name)));
     let panel = image::open(&path)
         .with_context(|| format!("reading the truth's panel {}", path.display()))?
         .to_rgba8();
-    let zoom = panel.height() / h;
-    if zoom == 0 || panel.height() != zoom * h || panel.width() < zoom * w {
+    let zoom = PANEL_ZOOM;
+    if panel.height() != zoom * h || panel.width() < zoom * w {
         anyhow::bail!(
             "{}: a {}x{} panel is not a fit's panel of {w}x{h} images (--size)",
             path.display(),
@@ -727,7 +730,7 @@ pub fn run(args: FitArgs) -> Result<()> {
                     .context("composite of the fit's images")?;
             }
             let path = images.join(format!("{}.png", slug(&c.name)));
-            side_by_side(&frames, 4)
+            side_by_side(&frames, PANEL_ZOOM)
                 .save(&path)
                 .with_context(|| format!("writing {}", path.display()))?;
             let _ = writeln!(
@@ -857,4 +860,73 @@ pub fn run(args: FitArgs) -> Result<()> {
         out_dir.display()
     );
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A frame of `w` x `h` whose display image is a ramp offset by `k`.
+    fn frame(w: u32, h: u32, k: u8) -> FrameOutput {
+        let image = (0..4 * w * h)
+            .map(|i| (i as u8).wrapping_mul(7).wrapping_add(k))
+            .collect();
+        FrameOutput {
+            width: w,
+            height: h,
+            image,
+            ..Default::default()
+        }
+    }
+
+    #[test]
+    fn display_truth_reads_back_the_panels_truth() {
+        let dir = std::env::temp_dir().join(format!("stratus-fit-panel-{}", std::process::id()));
+        std::fs::create_dir_all(dir.join("images")).unwrap();
+        let (w, h) = (16, 9);
+        let frames = [frame(w, h, 0), frame(w, h, 50), frame(w, h, 100)];
+        side_by_side(&frames, PANEL_ZOOM)
+            .save(
+                dir.join("images")
+                    .join(format!("{}.png", slug("storm deck, sun 25 deg"))),
+            )
+            .unwrap();
+        let got = display_truth(&dir, "storm deck, sun 25 deg", w, h).unwrap();
+        // The panel's alpha is opaque; colour from the truth, leftmost, not its neighbours.
+        let want: Vec<u8> = frames[0]
+            .image
+            .chunks(4)
+            .flat_map(|p| [p[0], p[1], p[2], 255])
+            .collect();
+        assert_eq!(got, want);
+        // Another size than the panel's is an error naming the file, not a misread.
+        let err = display_truth(&dir, "storm deck, sun 25 deg", 32, 18).unwrap_err();
+        assert!(
+            format!("{err:#}").contains("storm-deck-sun-25-deg.png"),
+            "{err:#}"
+        );
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+
+    #[test]
+    fn scenes_filter_keeps_the_named_and_rejects_unknown_names() {
+        let s = Scene::default();
+        let train = vec![("storm deck, sun 25 deg".to_string(), s.clone())];
+        let presets = vec![("storm".to_string(), s.clone()), ("noon".to_string(), s)];
+        let (t, p) = only(&["storm".to_string()], train.clone(), presets.clone()).unwrap();
+        assert!(t.is_empty());
+        assert_eq!(
+            p.iter().map(|x| x.0.as_str()).collect::<Vec<_>>(),
+            ["storm"]
+        );
+        let (t, _) = only(
+            &["storm-deck-sun-25-deg".to_string()],
+            train.clone(),
+            presets.clone(),
+        )
+        .unwrap();
+        assert_eq!(t.len(), 1);
+        let err = only(&["stormy".to_string()], train, presets).unwrap_err();
+        assert!(err.to_string().contains("`stormy`"), "{err}");
+    }
 }
