@@ -25,7 +25,7 @@ use std::{collections::BTreeMap, fmt::Write as _, path::PathBuf, sync::Arc};
 use anyhow::{Context, Result};
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
-use stratus_compare::{CompareOptions, Image, compare};
+use stratus_compare::Image;
 use stratus_graph::{Backend, FrameInput, FrameOutput, FramePlan};
 use stratus_noise::NoiseSet;
 use stratus_reference::Compositor;
@@ -215,9 +215,9 @@ struct Case {
     /// The truth's file in the reference cache (copied to `--out`/truths); none with
     /// `--display-truths`.
     truth_file: Option<PathBuf>,
-    /// With `--display-truths`, the truth's display image (RGBA8), which FLIP compares
-    /// instead of `truth` (then a frame of the image alone).
-    truth_display: Option<Vec<u8>>,
+    /// With `--display-truths`: `truth` is its display image alone (no radiance), which FLIP
+    /// compares as it is.
+    display_only: bool,
     /// The scene's composite on the CPU, which makes the display images the fit compares.
     display: Compositor,
 }
@@ -225,24 +225,13 @@ struct Case {
 /// FLIP (mean, display images) and RMSE (linear radiance) of `frame` against the truth of
 /// `case` (both display images composited on the CPU: [`bench::errors`]).
 fn errors(case: &Case, frame: &FrameOutput) -> Result<(f64, f64)> {
-    if let Some(truth) = &case.truth_display {
-        let options = CompareOptions {
-            exposure: 1.0,
-            ..CompareOptions::default()
-        };
-        let image = case
-            .display
-            .display(&frame.radiance, &frame.depth)
-            .context("composite of a fit's render")?;
-        let (w, h) = (frame.width, frame.height);
-        let e = compare(
-            &Image::from_display_rgba8(w, h, truth),
-            &Image::from_display_rgba8(w, h, &image),
-            &options,
-        )?;
-        return Ok((e.flip.mean, f64::NAN));
-    }
-    let e = bench::errors(&case.truth, frame, &case.display)?;
+    let e = if case.display_only {
+        let t = &case.truth;
+        let truth = Image::from_display_rgba8(t.width, t.height, &t.image);
+        bench::display_errors(&truth, frame, &case.display)?
+    } else {
+        bench::errors(&case.truth, frame, &case.display)?
+    };
     Ok((e.flip, e.rmse))
 }
 
@@ -606,11 +595,11 @@ pub fn run(args: FitArgs) -> Result<()> {
                     truth: FrameOutput {
                         width: w,
                         height: h,
-                        image: image.clone(),
+                        image,
                         ..Default::default()
                     },
                     truth_file: None,
-                    truth_display: Some(image),
+                    display_only: true,
                     display,
                 });
                 continue;
@@ -624,7 +613,7 @@ pub fn run(args: FitArgs) -> Result<()> {
                 noise,
                 truth,
                 truth_file: Some(file),
-                truth_display: None,
+                display_only: false,
                 display,
             });
         }
@@ -715,14 +704,14 @@ pub fn run(args: FitArgs) -> Result<()> {
                 render(&mut renderer, c, fit)?,
             ];
             let (eb, ea) = (errors(c, &frames[1])?, errors(c, &frames[2])?);
-            let br = if c.truth_display.is_some() {
+            let br = if c.display_only {
                 [f64::NAN; 3]
             } else {
                 brightness(&c.truth, &frames[2])
             };
             // The images as compared: composited on the CPU, the truth through the air in
             // front of the fitted frame's depth.
-            for i in usize::from(c.truth_display.is_some())..frames.len() {
+            for i in usize::from(c.display_only)..frames.len() {
                 let depth = if i == 0 { 2 } else { i };
                 frames[i].image = c
                     .display

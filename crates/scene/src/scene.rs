@@ -675,8 +675,8 @@ impl Default for MultipleScattering {
     /// scenes by `stratus fit-scattering`: its choice, 3 octaves with a build-up of 400 m, side
     /// light 1, coverage exponent 1, a far-shadow chord of 8 km, limb darkening 0.25, a forward
     /// lobe of 0.3 (g 0.6), a vertical anisotropy of 0.2 and a deck escape of 2, with the
-    /// octaves' own eccentricity small (c = 0.1) (docs/fit; the thesis's 2 octaves of a = b = c = 0.5 and none of the
-    /// other terms before).
+    /// octaves' own eccentricity small (c = 0.1) (docs/fit; the thesis's 2 octaves of a = b =
+    /// c = 0.5 and none of the other terms before).
     fn default() -> Self {
         Self {
             octaves: 3,

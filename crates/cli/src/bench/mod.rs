@@ -39,7 +39,7 @@ mod sweep;
 
 pub(crate) use self::{
     reference_cache::{Reference, reference},
-    sweep::errors,
+    sweep::{display_errors, errors},
 };
 
 use self::{

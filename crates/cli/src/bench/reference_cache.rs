@@ -213,19 +213,21 @@ pub(crate) fn reference(
         label: label.clone(),
         file: path.clone(),
     };
-    if let Ok(bytes) = std::fs::read(&path) {
-        if let Some(f) = decode(&bytes, w, h) {
-            return Ok(done(f));
-        }
-    }
+    // The cache, else the committed truths (copied into the cache: the fit copies its truths
+    // from there).
     let committed = PathBuf::from(COMMITTED_TRUTHS).join(&name);
-    if let Ok(bytes) = std::fs::read(&committed) {
-        if let Some(f) = decode(&bytes, w, h) {
-            // Into the cache as well: the fit copies its truths from there.
+    for file in [&path, &committed] {
+        let Ok(bytes) = std::fs::read(file) else {
+            continue;
+        };
+        let Some(f) = decode(&bytes, w, h) else {
+            continue;
+        };
+        if *file != path {
             std::fs::create_dir_all(&dir).with_context(|| format!("creating {}", dir.display()))?;
             std::fs::write(&path, &bytes).with_context(|| format!("writing {}", path.display()))?;
-            return Ok(done(f));
         }
+        return Ok(done(f));
     }
     let f = match gpu {
         Some(r) if mc => {

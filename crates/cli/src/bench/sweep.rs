@@ -334,39 +334,65 @@ pub(crate) fn errors(
     frame: &FrameOutput,
     display: &Compositor,
 ) -> Result<Errors> {
-    let options = CompareOptions {
-        exposure: 1.0,
-        ..CompareOptions::default()
-    };
     let linear = compare(
         &Image::from_frame_radiance(reference),
         &Image::from_frame_radiance(frame),
-        &options,
+        &compare_options(),
     )?;
-    let composite = |f: &FrameOutput| -> Result<Image> {
-        let image = display
-            .display(&f.radiance, &frame.depth)
-            .with_context(|| {
-                let [w, h] = display.size();
-                format!(
-                    "composite for a {w}x{h} frame: got {} radiance floats and {} depths \
-                     (a {}x{} frame); want {} and {}",
-                    f.radiance.len(),
-                    frame.depth.len(),
-                    f.width,
-                    f.height,
-                    4 * w * h,
-                    w * h
-                )
-            })?;
-        Ok(Image::from_display_rgba8(f.width, f.height, &image))
-    };
-    let display = compare(&composite(reference)?, &composite(frame)?, &options)?;
+    let reference = composite(reference, frame, display)?;
     Ok(Errors {
-        flip: display.flip.mean,
-        flip_p95: display.flip.p95,
         rmse: linear.rmse,
+        ..display_errors(&reference, frame, display)?
     })
+}
+
+/// FLIP of `frame`'s display image (composited by `display` through its own depth, as
+/// [`errors`] does) against `reference`, a display image composited the same way (the fit's
+/// panels keep its truths' so); RMSE, which needs the reference's radiance, is NaN.
+pub(crate) fn display_errors(
+    reference: &Image,
+    frame: &FrameOutput,
+    display: &Compositor,
+) -> Result<Errors> {
+    let d = compare(
+        reference,
+        &composite(frame, frame, display)?,
+        &compare_options(),
+    )?;
+    Ok(Errors {
+        flip: d.flip.mean,
+        flip_p95: d.flip.p95,
+        rmse: f64::NAN,
+    })
+}
+
+/// The errors' comparison: linear values at exposure 1.
+fn compare_options() -> CompareOptions {
+    CompareOptions {
+        exposure: 1.0,
+        ..CompareOptions::default()
+    }
+}
+
+/// The display image of `f`'s radiance, composited by `display` through the air in front of
+/// `frame`'s depth.
+fn composite(f: &FrameOutput, frame: &FrameOutput, display: &Compositor) -> Result<Image> {
+    let image = display
+        .display(&f.radiance, &frame.depth)
+        .with_context(|| {
+            let [w, h] = display.size();
+            format!(
+                "composite for a {w}x{h} frame: got {} radiance floats and {} depths \
+                 (a {}x{} frame); want {} and {}",
+                f.radiance.len(),
+                frame.depth.len(),
+                f.width,
+                f.height,
+                4 * w * h,
+                w * h
+            )
+        })?;
+    Ok(Image::from_display_rgba8(f.width, f.height, &image))
 }
 
 /// A row's counters and errors: `frame` against `reference` (times left at 0).
