@@ -39,6 +39,7 @@ struct Frame {
     float4 night;
     float4 light_model;
     float4 octave_direction;
+    float4 octave_depth;
 };
 
 struct Roots {
@@ -213,6 +214,8 @@ static const uint AMBIENT_STEPS = 24u;
 static const uint SKY_AMBIENT_SUNS = 64u;
 static const uint GROUND_IRRADIANCE_SIZE = 64u;
 static const uint NO_LAYER = 4u;
+static const uint STEEP_STEPS = 2u;
+static const float STEEP_FIRST = 8.0;
 static const float DECK_POWER = 8.0;
 static const float FORWARD_LOBE_THIN = 0.1;
 static const uint GROUND_IRRADIANCE_DIRECTIONS = 128u;
@@ -366,8 +369,8 @@ float3 view_ray(uint2 pixel_1)
     float4 _e26 = frame.camera_forward;
     float4 _e30 = frame.camera_right;
     float4 _e39 = frame.camera_up;
-    float3 d_20 = ((_e26.xyz + (_e30.xyz * ((ndc.x * tan_half) * aspect))) - (_e39.xyz * (ndc.y * tan_half)));
-    return normalize(d_20);
+    float3 d_21 = ((_e26.xyz + (_e30.xyz * ((ndc.x * tan_half) * aspect))) - (_e39.xyz * (ndc.y * tan_half)));
+    return normalize(d_21);
 }
 
 Roots ConstructRoots(float arg0, float arg1, bool arg2) {
@@ -710,14 +713,14 @@ AirSample ConstructAirSample(float3 arg0, float arg1, float3 arg2) {
 
 AirSample air_at(float h_km)
 {
-    float h_10 = (max(h_km, 0.0) * 1000.0);
+    float h_11 = (max(h_km, 0.0) * 1000.0);
     float _e9 = frame.air_rayleigh.w;
-    float rayleigh_density = exp((-(h_10) / _e9));
+    float rayleigh_density = exp((-(h_11) / _e9));
     float _e16 = frame.air_mie.z;
-    float mie_density = exp((-(h_10) / _e16));
+    float mie_density = exp((-(h_11) / _e16));
     float _e22 = frame.air_ozone.w;
     float _e28 = frame.air_misc.y;
-    float ozone_density = max((1.0 - (abs((h_10 - _e22)) / (0.5 * _e28))), 0.0);
+    float ozone_density = max((1.0 - (abs((h_11 - _e22)) / (0.5 * _e28))), 0.0);
     float4 _e38 = frame.air_rayleigh;
     float3 rayleigh = (_e38.xyz * (rayleigh_density * 1000.0));
     float _e46 = frame.air_mie.x;
@@ -794,12 +797,12 @@ float2 transmittance_coords(float r_7, float mu_5)
 {
     const float _e2 = air_bottom();
     const float _e3 = air_top();
-    float h_11 = sqrt(max(((_e3 - _e2) * (_e3 + _e2)), 0.0));
+    float h_12 = sqrt(max(((_e3 - _e2) * (_e3 + _e2)), 0.0));
     float rho = sqrt(max(((r_7 - _e2) * (r_7 + _e2)), 0.0));
     const float _e16 = distance_to_top(r_7, mu_5);
     float d_min = (_e3 - r_7);
-    float d_max = (rho + h_11);
-    return float2(((_e16 - d_min) / max((d_max - d_min), 1e-6)), (rho / h_11));
+    float d_max = (rho + h_12);
+    return float2(((_e16 - d_min) / max((d_max - d_min), 1e-6)), (rho / h_12));
 }
 
 float2 transmittance_r_mu(float2 x_4)
@@ -808,14 +811,14 @@ float2 transmittance_r_mu(float2 x_4)
 
     const float _e1 = air_bottom();
     const float _e2 = air_top();
-    float h_12 = sqrt(max(((_e2 - _e1) * (_e2 + _e1)), 0.0));
-    float rho_1 = (h_12 * x_4.y);
+    float h_13 = sqrt(max(((_e2 - _e1) * (_e2 + _e1)), 0.0));
+    float rho_1 = (h_13 * x_4.y);
     float r_14 = sqrt(((rho_1 * rho_1) + (_e1 * _e1)));
     float d_min_1 = (_e2 - r_14);
-    float d_max_1 = (rho_1 + h_12);
-    float d_21 = (d_min_1 + (x_4.x * (d_max_1 - d_min_1)));
-    if ((d_21 > 0.0)) {
-        mu_6 = clamp(((((h_12 * h_12) - (rho_1 * rho_1)) - (d_21 * d_21)) / ((2.0 * r_14) * d_21)), -1.0, 1.0);
+    float d_max_1 = (rho_1 + h_13);
+    float d_22 = (d_min_1 + (x_4.x * (d_max_1 - d_min_1)));
+    if ((d_22 > 0.0)) {
+        mu_6 = clamp(((((h_13 * h_13) - (rho_1 * rho_1)) - (d_22 * d_22)) / ((2.0 * r_14) * d_22)), -1.0, 1.0);
     }
     float _e37 = mu_6;
     return float2(r_14, _e37);
@@ -915,9 +918,9 @@ Scattered integrate_air(float3 origin, float3 d_7, float distance_km, uint steps
             float _e32 = t0_;
             float dt_1 = (t1_ - _e32);
             float _e34 = t0_;
-            float3 p_13 = (origin + (d_7 * (0.5 * (_e34 + t1_))));
-            float r_15 = length(p_13);
-            float3 up = (p_13 / (r_15).xxx);
+            float3 p_16 = (origin + (d_7 * (0.5 * (_e34 + t1_))));
+            float r_15 = length(p_16);
+            float3 up = (p_16 / (r_15).xxx);
             float mu_s_5 = dot(up, sun);
             const float _e44 = air_bottom();
             const AirSample _e46 = air_at((r_15 - _e44));
@@ -1254,7 +1257,7 @@ uint3 NagaDimensions3D(Texture3D<float4> tex)
     return ret.xyz;
 }
 
-float layer_density(float3 p_4, float alt_9, Layer l_3, inout Counters counters_3)
+float layer_density_with(float3 p_4, float alt_9, Layer l_3, bool with_detail, inout Counters counters_3)
 {
     bool local_23 = (bool)0;
     bool local_24 = (bool)0;
@@ -1262,117 +1265,130 @@ float layer_density(float3 p_4, float alt_9, Layer l_3, inout Counters counters_
     float density = (float)0;
     bool local_25 = (bool)0;
     bool local_26 = (bool)0;
+    bool local_27 = (bool)0;
     float3 detail_pos = (float3)0;
 
-    const float _e4 = layer_height(l_3, alt_9);
-    if (!((_e4 < 0.0))) {
-        local_23 = (_e4 > 1.0);
+    const float _e5 = layer_height(l_3, alt_9);
+    if (!((_e5 < 0.0))) {
+        local_23 = (_e5 > 1.0);
     } else {
         local_23 = true;
     }
-    bool _e13 = local_23;
-    if (_e13) {
+    bool _e14 = local_23;
+    if (_e14) {
         return 0.0;
     }
-    uint _e16 = counters_3.density;
-    counters_3.density = (_e16 + 1u);
-    const Weather _e19 = sample_weather(p_4, l_3);
-    const float _e21 = height_signal(_e4, _e19.cloud_type);
-    if (!((_e19.coverage <= 0.0))) {
-        local_24 = (_e21 <= 0.0);
+    uint _e17 = counters_3.density;
+    counters_3.density = (_e17 + 1u);
+    const Weather _e20 = sample_weather(p_4, l_3);
+    const float _e22 = height_signal(_e5, _e20.cloud_type);
+    if (!((_e20.coverage <= 0.0))) {
+        local_24 = (_e22 <= 0.0);
     } else {
         local_24 = true;
     }
-    bool _e31 = local_24;
-    if (_e31) {
+    bool _e32 = local_24;
+    if (_e32) {
         return 0.0;
     }
     float3 dims = float3(NagaDimensions3D(shape_tex));
-    float _e39 = frame.periods.y;
-    float3 period = (_e39 * float3(1.0, (dims.y / dims.x), 1.0));
-    float _e51 = frame.wind_offsets0_.z;
-    float _e57 = frame.wind_offsets0_.w;
-    float3 shape_pos = float3((p_4.x - _e51), alt_9, (p_4.z - _e57));
+    float _e40 = frame.periods.y;
+    float3 period = (_e40 * float3(1.0, (dims.y / dims.x), 1.0));
+    float _e52 = frame.wind_offsets0_.z;
+    float _e58 = frame.wind_offsets0_.w;
+    float3 shape_pos = float3((p_4.x - _e52), alt_9, (p_4.z - _e58));
     float4 s_7 = shape_tex.SampleLevel(noise_sampler, (shape_pos / period), 0.0);
     float low_fbm = (((s_7.y * 0.625) + (s_7.z * 0.25)) + (s_7.w * 0.125));
-    const float _e82 = remap(s_7.x, (low_fbm - 1.0), 1.0, 0.0, 1.0);
-    const float _e83 = saturate_(_e82);
-    base = (_e83 * _e21);
-    float _e86 = base;
-    const float _e93 = remap(_e86, (1.0 - _e19.coverage), 1.0, 0.0, 1.0);
-    const float _e94 = saturate_(_e93);
-    base = (_e94 * _e19.coverage);
-    float _e97 = base;
-    if ((_e97 <= 0.0)) {
+    const float _e83 = remap(s_7.x, (low_fbm - 1.0), 1.0, 0.0, 1.0);
+    const float _e84 = saturate_(_e83);
+    base = (_e84 * _e22);
+    float _e87 = base;
+    const float _e94 = remap(_e87, (1.0 - _e20.coverage), 1.0, 0.0, 1.0);
+    const float _e95 = saturate_(_e94);
+    base = (_e95 * _e20.coverage);
+    float _e98 = base;
+    if ((_e98 <= 0.0)) {
         return 0.0;
     }
-    float _e101 = base;
-    density = _e101;
+    float _e102 = base;
+    density = _e102;
     float strength = frame.erosion.x;
     float threshold = frame.erosion.y;
     if (DETAIL) {
-        local_25 = (strength > 0.0);
+        local_25 = with_detail;
     } else {
         local_25 = false;
     }
-    bool _e117 = local_25;
-    if (_e117) {
-        float _e120 = base;
-        local_26 = (_e120 < threshold);
+    bool _e116 = local_25;
+    if (_e116) {
+        local_26 = (strength > 0.0);
     } else {
         local_26 = false;
     }
-    bool _e123 = local_26;
-    if (_e123) {
-        uint _e125 = counters_3.detail;
-        counters_3.detail = (_e125 + 1u);
+    bool _e122 = local_26;
+    if (_e122) {
+        float _e125 = base;
+        local_27 = (_e125 < threshold);
+    } else {
+        local_27 = false;
+    }
+    bool _e128 = local_27;
+    if (_e128) {
+        uint _e130 = counters_3.detail;
+        counters_3.detail = (_e130 + 1u);
         detail_pos = float3(p_4.x, alt_9, p_4.z);
         if (CURL) {
-            float4 _e136 = frame.wind_offsets1_;
-            float _e142 = frame.periods.w;
-            float2 cuv = ((p_4.xz - _e136.zw) / (_e142).xx);
-            float4 _e148 = curl_tex.SampleLevel(noise_sampler, cuv, 0.0);
-            float2 curl = ((_e148.xy * 2.0) - (1.0).xx);
-            float3 _e155 = detail_pos;
-            float _e163 = frame.erosion.z;
-            detail_pos = (_e155 + (float3(curl.x, 0.0, curl.y) * (_e163 * (1.0 - _e4))));
+            float4 _e141 = frame.wind_offsets1_;
+            float _e147 = frame.periods.w;
+            float2 cuv = ((p_4.xz - _e141.zw) / (_e147).xx);
+            float4 _e153 = curl_tex.SampleLevel(noise_sampler, cuv, 0.0);
+            float2 curl = ((_e153.xy * 2.0) - (1.0).xx);
+            float3 _e160 = detail_pos;
+            float _e168 = frame.erosion.z;
+            detail_pos = (_e160 + (float3(curl.x, 0.0, curl.y) * (_e168 * (1.0 - _e5))));
         }
-        float3 _e169 = detail_pos;
-        float _e173 = frame.wind_offsets1_.x;
-        float _e177 = frame.wind_offsets1_.y;
-        detail_pos = (_e169 - float3(_e173, 0.0, _e177));
-        float3 _e183 = detail_pos;
-        float _e187 = frame.periods.z;
-        float4 dn = detail_tex.SampleLevel(noise_sampler, (_e183 / (_e187).xxx), 0.0);
+        float3 _e174 = detail_pos;
+        float _e178 = frame.wind_offsets1_.x;
+        float _e182 = frame.wind_offsets1_.y;
+        detail_pos = (_e174 - float3(_e178, 0.0, _e182));
+        float3 _e188 = detail_pos;
+        float _e192 = frame.periods.z;
+        float4 dn = detail_tex.SampleLevel(noise_sampler, (_e188 / (_e192).xxx), 0.0);
         float high_fbm = (((dn.x * 0.625) + (dn.y * 0.25)) + (dn.z * 0.125));
-        float _e206 = frame.extinction.w;
-        const float _e211 = saturate_((_e4 * 10.0));
-        const float _e213 = saturate_(((2.0 * _e206) * _e211));
-        float shape = lerp((1.0 - high_fbm), high_fbm, _e213);
-        float _e218 = base;
-        float erosion = ((strength * shape) * (1.0 - (_e218 / threshold)));
+        float _e211 = frame.extinction.w;
+        const float _e216 = saturate_((_e5 * 10.0));
+        const float _e218 = saturate_(((2.0 * _e211) * _e216));
+        float shape = lerp((1.0 - high_fbm), high_fbm, _e218);
         float _e223 = base;
-        const float _e227 = remap(_e223, erosion, 1.0, 0.0, 1.0);
-        const float _e228 = saturate_(_e227);
-        density = _e228;
+        float erosion = ((strength * shape) * (1.0 - (_e223 / threshold)));
+        float _e228 = base;
+        const float _e232 = remap(_e228, erosion, 1.0, 0.0, 1.0);
+        const float _e233 = saturate_(_e232);
+        density = _e233;
     }
-    float _e229 = density;
-    float _e233 = frame.erosion.w;
-    density = (_e229 * lerp(1.0, _e4, _e233));
-    float _e237 = density;
-    density = ((_e237 * l_3.density) * (1.0 + _e19.precipitation));
-    float _e244 = density;
-    return clamp(_e244, 0.0, 1.0);
+    float _e234 = density;
+    float _e238 = frame.erosion.w;
+    density = (_e234 * lerp(1.0, _e5, _e238));
+    float _e242 = density;
+    density = ((_e242 * l_3.density) * (1.0 + _e20.precipitation));
+    float _e249 = density;
+    return clamp(_e249, 0.0, 1.0);
 }
 
-float cloud_density(float3 p_5, float alt_10, inout Counters counters_4)
+float layer_density(float3 p_5, float alt_10, Layer l_4, inout Counters counters_4)
 {
-    const uint _e3 = layer_at(alt_10);
+    const float _e5 = layer_density_with(p_5, alt_10, l_4, true, counters_4);
+    return _e5;
+}
+
+float cloud_density(float3 p_6, float alt_11, inout Counters counters_5)
+{
+    const uint _e3 = layer_at(alt_11);
     if ((_e3 == NO_LAYER)) {
         return 0.0;
     }
     const Layer _e7 = cloud_layer(_e3);
-    const float _e8 = layer_density(p_5, alt_10, _e7, counters_4);
+    const float _e8 = layer_density(p_6, alt_11, _e7, counters_5);
     return _e8;
 }
 
@@ -1415,17 +1431,17 @@ float phase(float cos_theta_4, float scale)
     }
 }
 
-float sun_optical_depth(float3 rel_3, float3 p_6, Layer l_4, inout Counters counters_5)
+float sun_optical_depth(float3 rel_3, float3 p_7, Layer l_5, inout Counters counters_6)
 {
     float seg = (float)0;
     float dist = 0.0;
     float tau_4 = 0.0;
     uint i_10 = 0u;
-    bool local_27 = (bool)0;
-    uint j_1 = 0u;
     bool local_28 = (bool)0;
+    uint j_1 = 0u;
     bool local_29 = (bool)0;
     bool local_30 = (bool)0;
+    bool local_31 = (bool)0;
 
     float4 _e6 = frame.sun_direction;
     float3 sun_3 = _e6.xyz;
@@ -1457,19 +1473,19 @@ float sun_optical_depth(float3 rel_3, float3 p_6, Layer l_4, inout Counters coun
             float s_8 = (_e38 + (0.5 * _e39));
             float3 q_8 = (rel_3 + (sun_3 * s_8));
             const float _e45 = altitude_of(q_8);
-            if (!((_e45 > l_4.top))) {
-                local_27 = (_e45 < l_4.bottom);
+            if (!((_e45 > l_5.top))) {
+                local_28 = (_e45 < l_5.bottom);
             } else {
-                local_27 = true;
+                local_28 = true;
             }
-            bool _e54 = local_27;
+            bool _e54 = local_28;
             if (_e54) {
                 break;
             }
-            uint _e56 = counters_5.light;
-            counters_5.light = (_e56 + 1u);
+            uint _e56 = counters_6.light;
+            counters_6.light = (_e56 + 1u);
             float _e59 = tau_4;
-            const float _e62 = layer_density((p_6 + (sun_3 * s_8)), _e45, l_4, counters_5);
+            const float _e62 = layer_density((p_7 + (sun_3 * s_8)), _e45, l_5, counters_6);
             float _e64 = seg;
             tau_4 = (_e59 + ((_e62 * sigma_t_1) * _e64));
             float _e67 = dist;
@@ -1499,38 +1515,38 @@ float sun_optical_depth(float3 rel_3, float3 p_6, Layer l_4, inout Counters coun
         {
             uint _e81 = j_1;
             const Layer _e82 = cloud_layer(_e81);
-            if ((_e82.bottom <= l_4.top)) {
+            if ((_e82.bottom <= l_5.top)) {
                 continue;
             }
             const Roots _e87 = ray_shell_from(rel_3, _e75, sun_3, _e82.bottom);
             const Roots _e89 = ray_shell_from(rel_3, _e75, sun_3, _e82.top);
             if (!(!(_e87.hit))) {
-                local_28 = !(_e89.hit);
-            } else {
-                local_28 = true;
-            }
-            bool _e98 = local_28;
-            if (!(_e98)) {
-                local_29 = !((_e89.t1_ > _e87.t1_));
+                local_29 = !(_e89.hit);
             } else {
                 local_29 = true;
             }
-            bool _e107 = local_29;
-            if (!(_e107)) {
-                local_30 = (_e87.t1_ <= 0.0);
+            bool _e98 = local_29;
+            if (!(_e98)) {
+                local_30 = !((_e89.t1_ > _e87.t1_));
             } else {
                 local_30 = true;
             }
-            bool _e115 = local_30;
+            bool _e107 = local_30;
+            if (!(_e107)) {
+                local_31 = (_e87.t1_ <= 0.0);
+            } else {
+                local_31 = true;
+            }
+            bool _e115 = local_31;
             if (_e115) {
                 continue;
             }
             float s_9 = (0.5 * (_e87.t1_ + _e89.t1_));
-            uint _e122 = counters_5.light;
-            counters_5.light = (_e122 + 1u);
+            uint _e122 = counters_6.light;
+            counters_6.light = (_e122 + 1u);
             float _e125 = tau_4;
             const float _e130 = altitude_of((rel_3 + (sun_3 * s_9)));
-            const float _e131 = layer_density((p_6 + (sun_3 * s_9)), _e130, _e82, counters_5);
+            const float _e131 = layer_density((p_7 + (sun_3 * s_9)), _e130, _e82, counters_6);
             tau_4 = (_e125 + ((_e131 * sigma_t_1) * (_e89.t1_ - _e87.t1_)));
         }
     }
@@ -1538,80 +1554,176 @@ float sun_optical_depth(float3 rel_3, float3 p_6, Layer l_4, inout Counters coun
     return _e141;
 }
 
-float far_optical_depth(float3 rel_4, float3 p_7, Layer l_5)
+float steep_optical_depth(float3 rel_4, float3 p_8, Layer l_6, float3 d_13, inout Counters counters_7)
 {
-    bool local_31 = (bool)0;
-    float reach = (float)0;
-    bool local_32 = (bool)0;
+    float seg_1 = (float)0;
+    float dist_1 = 0.0;
     float tau_5 = 0.0;
     uint i_11 = 0u;
+    bool local_32 = (bool)0;
 
-    float chord = frame.light_model.z;
-    if (!((chord <= 0.0))) {
-        uint _e15 = frame.counts.w;
-        local_31 = (_e15 == 0u);
-    } else {
-        local_31 = true;
-    }
-    bool _e19 = local_31;
-    if (_e19) {
-        return 0.0;
-    }
+    float _e8 = frame.extinction.x;
+    float _e12 = frame.extinction.y;
+    float sigma_t_2 = (_e8 + _e12);
     float growth_1 = frame.march.y;
-    uint _e28 = frame.counts.w;
-    float steps_3 = float(_e28);
-    float _e33 = frame.march.z;
-    reach = (_e33 * steps_3);
-    if ((growth_1 != 1.0)) {
-        float _e41 = frame.march.z;
-        reach = ((_e41 * (pow(growth_1, steps_3) - 1.0)) / (growth_1 - 1.0));
-    }
-    float4 _e51 = frame.sun_direction;
-    float3 sun_4 = _e51.xyz;
-    const float _e53 = altitude_of(rel_4);
-    const Roots _e55 = ray_shell_from(rel_4, _e53, sun_4, l_5.top);
-    float _e57 = reach;
-    float len_1 = (_e55.t1_ - _e57);
-    if (!(!(_e55.hit))) {
-        local_32 = !((len_1 > 0.0));
-    } else {
-        local_32 = true;
-    }
-    bool _e68 = local_32;
-    if (_e68) {
-        return 0.0;
-    }
+    float _e21 = frame.march.z;
+    seg_1 = (_e21 * STEEP_FIRST);
     uint2 loop_bound_6 = uint2(4294967295u, 4294967295u);
     bool loop_init_6 = true;
     while(true) {
         if (all(loop_bound_6 == uint2(0u, 0u))) { break; }
         loop_bound_6 -= uint2(loop_bound_6.y == 0u, 1u);
         if (!loop_init_6) {
-            uint _e110 = i_11;
-            i_11 = (_e110 + 1u);
+            uint _e70 = i_11;
+            i_11 = (_e70 + 1u);
         }
         loop_init_6 = false;
-        uint _e74 = i_11;
+        uint _e31 = i_11;
+        if ((_e31 < STEEP_STEPS)) {
+        } else {
+            break;
+        }
+        {
+            float _e34 = dist_1;
+            float _e35 = seg_1;
+            float s_10 = (_e34 + (0.5 * _e35));
+            const float _e41 = altitude_of((rel_4 + (d_13 * s_10)));
+            if (!((_e41 > l_6.top))) {
+                local_32 = (_e41 < l_6.bottom);
+            } else {
+                local_32 = true;
+            }
+            bool _e50 = local_32;
+            if (_e50) {
+                break;
+            }
+            uint _e52 = counters_7.light;
+            counters_7.light = (_e52 + 1u);
+            float _e55 = tau_5;
+            const float _e59 = layer_density_with((p_8 + (d_13 * s_10)), _e41, l_6, false, counters_7);
+            float _e61 = seg_1;
+            tau_5 = (_e55 + ((_e59 * sigma_t_2) * _e61));
+            float _e64 = dist_1;
+            float _e65 = seg_1;
+            dist_1 = (_e64 + _e65);
+            float _e67 = seg_1;
+            seg_1 = (_e67 * growth_1);
+        }
+    }
+    float _e72 = tau_5;
+    return _e72;
+}
+
+float octave_optical_depth(float3 rel_5, float3 p_9, Layer l_7, float tau_6, inout Counters counters_8)
+{
+    bool local_33 = (bool)0;
+    bool local_34 = (bool)0;
+
+    const float _e10 = saturate_(((l_7.coverage - 0.8) / 0.1));
+    float _e14 = frame.octave_depth.x;
+    float m_2 = (_e14 * _e10);
+    if (!((_e10 < 0.001))) {
+        local_33 = (m_2 <= 0.0);
+    } else {
+        local_33 = true;
+    }
+    bool _e24 = local_33;
+    if (!(_e24)) {
+        uint _e31 = frame.counts.w;
+        local_34 = (_e31 == 0u);
+    } else {
+        local_34 = true;
+    }
+    bool _e35 = local_34;
+    if (_e35) {
+        return tau_6;
+    }
+    float _e41 = frame.atmosphere.x;
+    float3 up_1 = normalize(float3(rel_5.x, (rel_5.y + _e41), rel_5.z));
+    float4 _e48 = frame.sun_direction;
+    float3 sun_4 = _e48.xyz;
+    float3 d_23 = normalize((sun_4 + up_1));
+    float mu0_1 = max(dot(sun_4, up_1), 0.001);
+    const float _e55 = steep_optical_depth(rel_5, p_9, l_7, d_23, counters_8);
+    float _e59 = frame.octave_depth.y;
+    float steep = ((_e55 * _e59) * sqrt((mu0_1 / max(dot(d_23, up_1), 0.001))));
+    return lerp(tau_6, steep, m_2);
+}
+
+float far_optical_depth(float3 rel_6, float3 p_10, Layer l_8)
+{
+    bool local_35 = (bool)0;
+    float reach = (float)0;
+    bool local_36 = (bool)0;
+    float tau_7 = 0.0;
+    uint i_12 = 0u;
+
+    float chord = frame.light_model.z;
+    if (!((chord <= 0.0))) {
+        uint _e15 = frame.counts.w;
+        local_35 = (_e15 == 0u);
+    } else {
+        local_35 = true;
+    }
+    bool _e19 = local_35;
+    if (_e19) {
+        return 0.0;
+    }
+    float growth_2 = frame.march.y;
+    uint _e28 = frame.counts.w;
+    float steps_3 = float(_e28);
+    float _e33 = frame.march.z;
+    reach = (_e33 * steps_3);
+    if ((growth_2 != 1.0)) {
+        float _e41 = frame.march.z;
+        reach = ((_e41 * (pow(growth_2, steps_3) - 1.0)) / (growth_2 - 1.0));
+    }
+    float4 _e51 = frame.sun_direction;
+    float3 sun_5 = _e51.xyz;
+    const float _e53 = altitude_of(rel_6);
+    const Roots _e55 = ray_shell_from(rel_6, _e53, sun_5, l_8.top);
+    float _e57 = reach;
+    float len_1 = (_e55.t1_ - _e57);
+    if (!(!(_e55.hit))) {
+        local_36 = !((len_1 > 0.0));
+    } else {
+        local_36 = true;
+    }
+    bool _e68 = local_36;
+    if (_e68) {
+        return 0.0;
+    }
+    uint2 loop_bound_7 = uint2(4294967295u, 4294967295u);
+    bool loop_init_7 = true;
+    while(true) {
+        if (all(loop_bound_7 == uint2(0u, 0u))) { break; }
+        loop_bound_7 -= uint2(loop_bound_7.y == 0u, 1u);
+        if (!loop_init_7) {
+            uint _e110 = i_12;
+            i_12 = (_e110 + 1u);
+        }
+        loop_init_7 = false;
+        uint _e74 = i_12;
         if ((_e74 < 4u)) {
         } else {
             break;
         }
         {
             float _e77 = reach;
-            uint _e78 = i_11;
+            uint _e78 = i_12;
             float t_5 = (_e77 + (((float(_e78) + 0.5) * 0.25) * len_1));
-            const float _e88 = altitude_of((rel_4 + (sun_4 * t_5)));
-            const float _e89 = layer_height(l_5, _e88);
+            const float _e88 = altitude_of((rel_6 + (sun_5 * t_5)));
+            const float _e89 = layer_height(l_8, _e88);
             const float _e90 = saturate_(_e89);
-            const Weather _e93 = sample_weather((p_7 + (sun_4 * t_5)), l_5);
+            const Weather _e93 = sample_weather((p_10 + (sun_5 * t_5)), l_8);
             float cov = _e93.coverage;
-            const float _e96 = height_signal(_e90, l_5.cloud_type);
+            const float _e96 = height_signal(_e90, l_8.cloud_type);
             float f_3 = min((cov * _e96), 0.95);
-            float _e100 = tau_5;
-            tau_5 = (_e100 + (((0.25 * len_1) * f_3) / ((1.0 - f_3) * chord)));
+            float _e100 = tau_7;
+            tau_7 = (_e100 + (((0.25 * len_1) * f_3) / ((1.0 - f_3) * chord)));
         }
     }
-    float _e112 = tau_5;
+    float _e112 = tau_7;
     return _e112;
 }
 
@@ -1638,6 +1750,15 @@ float deck_escape(float mu0_, float layer_coverage)
     return (1.0 + ((e * pow(_e6, DECK_POWER)) * (mu0_ - 0.5)));
 }
 
+float downward_dimming(float view_y_2, float coverage_2, float h_6, float tau_v)
+{
+    float _e7 = frame.octave_depth.z;
+    const float _e12 = saturate_(coverage_2);
+    const float _e14 = saturate_(h_6);
+    float k_13 = (((_e7 * max(-(view_y_2), 0.0)) * _e12) * (1.0 - _e14));
+    return max((1.0 - ((k_13 * tau_v) / (tau_v + 1.0))), 0.0);
+}
+
 SunScattering ConstructSunScattering(float arg0, float arg1) {
     SunScattering ret = (SunScattering)0;
     ret.total = arg0;
@@ -1645,13 +1766,13 @@ SunScattering ConstructSunScattering(float arg0, float arg1) {
     return ret;
 }
 
-SunScattering sun_scattering(float cos_theta_5, float view_y_2, float tau_6, float far_1, float build, float coverage_2, float h_6, float layer_coverage_1)
+SunScattering sun_scattering(float cos_theta_5, float view_y_3, float tau_8, float tau_oct, float far_1, float build, float coverage_3, float h_7, float layer_coverage_1)
 {
     float octave_sum = 0.0;
     float ka = 1.0;
     float kb = 1.0;
     float kc = 1.0;
-    uint i_12 = 0u;
+    uint i_13 = 0u;
     float feed = (float)0;
     float octaves_part = (float)0;
     float total = (float)0;
@@ -1659,84 +1780,87 @@ SunScattering sun_scattering(float cos_theta_5, float view_y_2, float tau_6, flo
     float a_8 = frame.multiple_scattering.x;
     float b_8 = frame.multiple_scattering.y;
     float c_8 = frame.multiple_scattering.z;
-    uint _e23 = frame.misc.x;
-    uint octaves = min(_e23, MAX_OCTAVES);
-    uint2 loop_bound_7 = uint2(4294967295u, 4294967295u);
-    bool loop_init_7 = true;
+    uint _e24 = frame.misc.x;
+    uint octaves = min(_e24, MAX_OCTAVES);
+    uint2 loop_bound_8 = uint2(4294967295u, 4294967295u);
+    bool loop_init_8 = true;
     while(true) {
-        if (all(loop_bound_7 == uint2(0u, 0u))) { break; }
-        loop_bound_7 -= uint2(loop_bound_7.y == 0u, 1u);
-        if (!loop_init_7) {
-            uint _e56 = i_12;
-            i_12 = (_e56 + 1u);
+        if (all(loop_bound_8 == uint2(0u, 0u))) { break; }
+        loop_bound_8 -= uint2(loop_bound_8.y == 0u, 1u);
+        if (!loop_init_8) {
+            uint _e57 = i_13;
+            i_13 = (_e57 + 1u);
         }
-        loop_init_7 = false;
-        uint _e36 = i_12;
-        if ((_e36 < octaves)) {
+        loop_init_8 = false;
+        uint _e37 = i_13;
+        if ((_e37 < octaves)) {
         } else {
             break;
         }
         {
-            float _e38 = ka;
-            ka = (_e38 * a_8);
-            float _e40 = kb;
-            kb = (_e40 * b_8);
-            float _e42 = kc;
-            kc = (_e42 * c_8);
-            float _e44 = octave_sum;
-            float _e45 = ka;
-            float _e46 = kc;
-            const float _e47 = phase(cos_theta_5, _e46);
-            float _e49 = kb;
-            octave_sum = (_e44 + ((_e45 * _e47) / (1.0 + (_e49 * tau_6))));
+            float _e39 = ka;
+            ka = (_e39 * a_8);
+            float _e41 = kb;
+            kb = (_e41 * b_8);
+            float _e43 = kc;
+            kc = (_e43 * c_8);
+            float _e45 = octave_sum;
+            float _e46 = ka;
+            float _e47 = kc;
+            const float _e48 = phase(cos_theta_5, _e47);
+            float _e50 = kb;
+            octave_sum = (_e45 + ((_e46 * _e48) / (1.0 + (_e50 * tau_oct))));
         }
     }
-    float _e61 = frame.sun_direction.y;
-    const float _e62 = saturate_(_e61);
-    const float _e69 = saturate_(coverage_2);
-    float side = ((sqrt(max((1.0 - (_e62 * _e62)), 0.0)) * (1.0 - _e69)) * exp(-(far_1)));
-    float _e79 = frame.light_model.x;
-    feed = (_e62 + (_e79 * side));
-    float _e86 = frame.light_model.y;
-    if ((_e86 > 0.0)) {
-        float _e89 = feed;
-        float _e95 = frame.light_model.y;
-        feed = (_e89 * pow(max(coverage_2, 1e-6), _e95));
+    float _e62 = frame.sun_direction.y;
+    const float _e63 = saturate_(_e62);
+    const float _e70 = saturate_(coverage_3);
+    float side = ((sqrt(max((1.0 - (_e63 * _e63)), 0.0)) * (1.0 - _e70)) * exp(-(far_1)));
+    float _e80 = frame.light_model.x;
+    feed = (_e63 + (_e80 * side));
+    float _e87 = frame.light_model.y;
+    if ((_e87 > 0.0)) {
+        float _e90 = feed;
+        float _e96 = frame.light_model.y;
+        feed = (_e90 * pow(max(coverage_3, 1e-6), _e96));
     }
-    float _e98 = feed;
-    const float _e99 = diffuse_limb(view_y_2, coverage_2);
-    const float _e100 = vertical_anisotropy(view_y_2, coverage_2, h_6);
-    const float _e102 = deck_escape(_e62, layer_coverage_1);
-    feed = (_e98 * ((_e99 * _e100) * _e102));
-    float _e105 = feed;
-    float _e107 = octave_sum;
-    octaves_part = ((_e105 * build) * _e107);
-    const float _e111 = phase(cos_theta_5, 1.0);
-    float _e116 = octaves_part;
-    total = ((_e111 * exp((-(tau_6) - far_1))) + _e116);
-    uint _e122 = frame.modes.w;
-    if (((_e122 & FLAG_BEER_POWDER) != 0u)) {
-        float _e130 = frame.phase.w;
-        float powder = (1.0 - exp((-(_e130) * tau_6)));
-        float _e136 = total;
-        total = (_e136 * powder);
-        float _e138 = octaves_part;
-        octaves_part = (_e138 * powder);
+    float _e99 = feed;
+    const float _e100 = diffuse_limb(view_y_3, coverage_3);
+    const float _e101 = vertical_anisotropy(view_y_3, coverage_3, h_7);
+    const float _e103 = deck_escape(_e63, layer_coverage_1);
+    feed = (_e99 * ((_e100 * _e101) * _e103));
+    float _e106 = feed;
+    const float _e108 = downward_dimming(view_y_3, coverage_3, h_7, (tau_8 * _e63));
+    feed = (_e106 * _e108);
+    float _e110 = feed;
+    float _e112 = octave_sum;
+    octaves_part = ((_e110 * build) * _e112);
+    const float _e116 = phase(cos_theta_5, 1.0);
+    float _e121 = octaves_part;
+    total = ((_e116 * exp((-(tau_8) - far_1))) + _e121);
+    uint _e127 = frame.modes.w;
+    if (((_e127 & FLAG_BEER_POWDER) != 0u)) {
+        float _e135 = frame.phase.w;
+        float powder = (1.0 - exp((-(_e135) * tau_8)));
+        float _e141 = total;
+        total = (_e141 * powder);
+        float _e143 = octaves_part;
+        octaves_part = (_e143 * powder);
     }
-    float _e140 = total;
-    float _e141 = octaves_part;
-    const SunScattering sunscattering = ConstructSunScattering(_e140, _e141);
+    float _e145 = total;
+    float _e146 = octaves_part;
+    const SunScattering sunscattering = ConstructSunScattering(_e145, _e146);
     return sunscattering;
 }
 
 float forward_lobe(float cos_theta_6, float transmittance)
 {
-    float k_13 = frame.octave_direction.x;
-    if ((k_13 <= 0.0)) {
+    float k_14 = frame.octave_direction.x;
+    if ((k_14 <= 0.0)) {
         return 1.0;
     }
     const float _e11 = saturate_((transmittance / FORWARD_LOBE_THIN));
-    float w_6 = (k_13 * _e11);
+    float w_6 = (k_14 * _e11);
     float _e17 = frame.octave_direction.y;
     const float _e18 = phase_hg(cos_theta_6, _e17);
     return (1.0 + (w_6 * ((12.566371 * _e18) - 1.0)));
@@ -1744,33 +1868,33 @@ float forward_lobe(float cos_theta_6, float transmittance)
 
 float octave_buildup(float density_1)
 {
-    float l_8 = frame.multiple_scattering.w;
-    if ((l_8 <= 0.0)) {
+    float l_11 = frame.multiple_scattering.w;
+    if ((l_11 <= 0.0)) {
         return 1.0;
     }
     float _e11 = frame.extinction.x;
     float _e15 = frame.extinction.y;
-    return (1.0 - exp(((-((_e11 + _e15)) * density_1) * l_8)));
+    return (1.0 - exp(((-((_e11 + _e15)) * density_1) * l_11)));
 }
 
-float3 ambient(float h_7, float3 rel_5)
+float3 ambient(float h_8, float3 rel_7)
 {
     const bool _e2 = physical_sky();
     if (_e2) {
-        const float3 _e3 = sky_ambient_light(h_7, rel_5);
+        const float3 _e3 = sky_ambient_light(h_8, rel_7);
         return _e3;
     }
     float4 _e6 = frame.ambient_bottom;
     float4 _e10 = frame.ambient_top;
     float _e16 = frame.ambient_bottom.w;
-    return (lerp(_e6.xyz, _e10.xyz, h_7) * _e16);
+    return (lerp(_e6.xyz, _e10.xyz, h_8) * _e16);
 }
 
-float height_fraction(float alt_11)
+float height_fraction(float alt_12)
 {
-    const uint _e1 = layer_at(alt_11);
+    const uint _e1 = layer_at(alt_12);
     const Layer _e2 = cloud_layer(_e1);
-    const float _e3 = layer_height(_e2, alt_11);
+    const float _e3 = layer_height(_e2, alt_12);
     const float _e4 = saturate_(_e3);
     return _e4;
 }
@@ -1782,44 +1906,53 @@ ScatteredLight ConstructScatteredLight(float3 arg0, float3 arg1) {
     return ret;
 }
 
-ScatteredLight scattered_light(float3 rel_6, float3 p_8, float alt_12, float density_2, float3 view, Layer l_6, inout Counters counters_6)
+ScatteredLight scattered_light(float3 rel_8, float3 p_11, float alt_13, float density_2, float3 view, Layer l_9, inout Counters counters_9)
 {
     float3 sun_light = (0.0).xxx;
     float3 octave_light = (0.0).xxx;
-    float tau_7 = 0.0;
+    float tau_9 = 0.0;
     float far_2 = 0.0;
+    float tau_oct_1 = (float)0;
 
     float4 _e9 = frame.sun_direction;
-    float3 sun_5 = _e9.xyz;
-    const float _e11 = layer_height(l_6, alt_12);
+    float3 sun_6 = _e9.xyz;
+    const float _e11 = layer_height(l_9, alt_13);
     const float _e12 = saturate_(_e11);
-    const Weather _e19 = sample_weather(p_8, l_6);
-    const bool _e20 = hits_ground(rel_6, alt_12, sun_5);
+    const Weather _e19 = sample_weather(p_11, l_9);
+    const bool _e20 = hits_ground(rel_8, alt_13, sun_6);
     if (!(_e20)) {
         if (LIGHT_MARCH) {
-            const float _e27 = sun_optical_depth(rel_6, p_8, l_6, counters_6);
-            tau_7 = _e27;
-            const float _e28 = far_optical_depth(rel_6, p_8, l_6);
+            const float _e27 = sun_optical_depth(rel_8, p_11, l_9, counters_9);
+            tau_9 = _e27;
+            const float _e28 = far_optical_depth(rel_8, p_11, l_9);
             far_2 = _e28;
         }
-        float _e31 = tau_7;
-        float _e32 = far_2;
-        const float _e33 = octave_buildup(density_2);
-        const SunScattering _e36 = sun_scattering(dot(view, sun_5), view.y, _e31, _e32, _e33, _e19.coverage, _e12, l_6.coverage);
-        float4 _e39 = frame.sun_illuminance;
-        const float3 _e41 = sun_through_air(rel_6);
-        float3 lit_ = (_e39.xyz * _e41);
-        sun_light = (lit_ * _e36.total);
-        octave_light = (lit_ * _e36.octaves);
+        float _e29 = tau_9;
+        tau_oct_1 = _e29;
+        if (LIGHT_MARCH) {
+            float _e32 = tau_9;
+            const float _e33 = octave_optical_depth(rel_8, p_11, l_9, _e32, counters_9);
+            tau_oct_1 = _e33;
+        }
+        float _e36 = tau_9;
+        float _e37 = tau_oct_1;
+        float _e38 = far_2;
+        const float _e39 = octave_buildup(density_2);
+        const SunScattering _e42 = sun_scattering(dot(view, sun_6), view.y, _e36, _e37, _e38, _e39, _e19.coverage, _e12, l_9.coverage);
+        float4 _e45 = frame.sun_illuminance;
+        const float3 _e47 = sun_through_air(rel_8);
+        float3 lit_ = (_e45.xyz * _e47);
+        sun_light = (lit_ * _e42.total);
+        octave_light = (lit_ * _e42.octaves);
     }
-    float _e50 = frame.extinction.z;
-    const float _e58 = saturate_((1.0 - ((_e50 * _e19.precipitation) * (1.0 - _e12))));
-    float _e62 = frame.extinction.x;
-    float k_14 = ((_e62 * density_2) * _e58);
-    float3 _e65 = sun_light;
-    const float3 _e66 = ambient(_e12, rel_6);
-    float3 _e69 = octave_light;
-    const ScatteredLight scatteredlight = ConstructScatteredLight(((_e65 + _e66) * k_14), (_e69 * k_14));
+    float _e56 = frame.extinction.z;
+    const float _e64 = saturate_((1.0 - ((_e56 * _e19.precipitation) * (1.0 - _e12))));
+    float _e68 = frame.extinction.x;
+    float k_15 = ((_e68 * density_2) * _e64);
+    float3 _e71 = sun_light;
+    const float3 _e72 = ambient(_e12, rel_8);
+    float3 _e75 = octave_light;
+    const ScatteredLight scatteredlight = ConstructScatteredLight(((_e71 + _e72) * k_15), (_e75 * k_15));
     return scatteredlight;
 }
 
@@ -1832,13 +1965,13 @@ float3 shadow_ground_point(uint2 c_2)
     return float3(xz_1.x, y_1, xz_1.y);
 }
 
-float ground_shadow(float3 rel_7)
+float ground_shadow(float3 rel_9)
 {
-    float edge = (max(abs(rel_7.x), abs(rel_7.z)) / SHADOW_HALF_EXTENT);
+    float edge = (max(abs(rel_9.x), abs(rel_9.z)) / SHADOW_HALF_EXTENT);
     if ((edge >= 1.0)) {
         return 1.0;
     }
-    float2 x_9 = ((rel_7.xz / (40000.0).xx) + (0.5).xx);
+    float2 x_9 = ((rel_9.xz / (40000.0).xx) + (0.5).xx);
     const float4 _e21 = lut_bilinear(cloud_shadow_in, x_9, (128u).xx);
     float t_6 = _e21.x;
     return lerp(t_6, 1.0, smoothstep(SHADOW_FADE_START, 1.0, edge));
@@ -1865,39 +1998,39 @@ float3 ground_shadow_loss(float3 view_1, float r_12)
     return (((1.0 - _e17) * t_view_1) * _e61);
 }
 
-float empty_cell_exit(float3 p_9, float3 d_13)
+float empty_cell_exit(float3 p_12, float3 d_14)
 {
     float exit = 1e30;
 
     float4 _e6 = frame.wind_offsets0_;
     float _e12 = frame.periods.x;
-    float2 uv_6 = (frac(((p_9.xz - _e6.xy) / (_e12).xx)) * 64.0);
+    float2 uv_6 = (frac(((p_12.xz - _e6.xy) / (_e12).xx)) * 64.0);
     uint2 cell_1 = min(naga_f2u32(uv_6), (63u).xx);
     float4 _e23 = occupancy_in.Load(int3(cell_1, int(0)));
-    float m_2 = _e23.x;
+    float m_3 = _e23.x;
     float _e28 = frame.clouds.x;
-    if (((m_2 + (2.0 * (_e28 - 0.5))) > -0.003921569)) {
+    if (((m_3 + (2.0 * (_e28 - 0.5))) > -0.003921569)) {
         return 0.0;
     }
     float _e40 = frame.periods.x;
     float cell_m = (_e40 / 64.0);
     float2 inside = ((uv_6 - float2(cell_1)) * cell_m);
-    if ((d_13.x > 1e-6)) {
+    if ((d_14.x > 1e-6)) {
         float _e50 = exit;
-        exit = min(_e50, ((cell_m - inside.x) / d_13.x));
+        exit = min(_e50, ((cell_m - inside.x) / d_14.x));
     } else {
-        if ((d_13.x < -1e-6)) {
+        if ((d_14.x < -1e-6)) {
             float _e59 = exit;
-            exit = min(_e59, (inside.x / -(d_13.x)));
+            exit = min(_e59, (inside.x / -(d_14.x)));
         }
     }
-    if ((d_13.z > 1e-6)) {
+    if ((d_14.z > 1e-6)) {
         float _e68 = exit;
-        exit = min(_e68, ((cell_m - inside.y) / d_13.z));
+        exit = min(_e68, ((cell_m - inside.y) / d_14.z));
     } else {
-        if ((d_13.z < -1e-6)) {
+        if ((d_14.z < -1e-6)) {
             float _e77 = exit;
-            exit = min(_e77, (inside.y / -(d_13.z)));
+            exit = min(_e77, (inside.y / -(d_14.z)));
         }
     }
     float _e83 = exit;
@@ -1906,14 +2039,14 @@ float empty_cell_exit(float3 p_9, float3 d_13)
 
 void count(uint index_1, uint value)
 {
-    bool local_33 = (bool)0;
+    bool local_37 = (bool)0;
 
     if (STATS) {
-        local_33 = (value != 0u);
+        local_37 = (value != 0u);
     } else {
-        local_33 = false;
+        local_37 = false;
     }
-    bool _e8 = local_33;
+    bool _e8 = local_37;
     if (_e8) {
         uint _e12; stats.InterlockedAdd(index_1*4+0, value, _e12);
         return;
@@ -1941,8 +2074,8 @@ float start_offset(uint2 pixel_3)
 {
     uint _e4 = frame.modes.w;
     bool jitter_1 = ((_e4 & FLAG_JITTER) != 0u);
-    uint k_15 = frame.temporal.x;
-    if ((k_15 <= 1u)) {
+    uint k_16 = frame.temporal.x;
+    if ((k_16 <= 1u)) {
         uint _e18 = frame.misc.y;
         const float _e19 = hash_unit(pixel_3, _e18);
         return (jitter_1 ? _e19 : 0.5);
@@ -1950,17 +2083,17 @@ float start_offset(uint2 pixel_3)
     const float _e23 = hash_unit(pixel_3, 0u);
     float base_2 = (jitter_1 ? _e23 : 0.5);
     uint _e29 = frame.misc.y;
-    const float _e32 = van_der_corput(naga_div(_e29, (k_15 * k_15)));
+    const float _e32 = van_der_corput(naga_div(_e29, (k_16 * k_16)));
     return frac((base_2 + _e32));
 }
 
-bool march_layer(float3 view_2, Interval span_1, Layer l_7, float jitter, inout MarchState state, inout Counters counters_7)
+bool march_layer(float3 view_2, Interval span_1, Layer l_10, float jitter, inout MarchState state, inout Counters counters_10)
 {
     uint steps_1 = (uint)0;
-    uint i_13 = 0u;
+    uint i_14 = 0u;
     uint stride = 1u;
     uint empty = 0u;
-    bool local_34 = (bool)0;
+    bool local_38 = (bool)0;
 
     float cam_alt_1 = frame.camera_position.y;
     float4 _e12 = frame.camera_position;
@@ -1981,71 +2114,71 @@ bool march_layer(float3 view_2, Interval span_1, Layer l_7, float jitter, inout 
     bool dynamic_step = ((_e52 & FLAG_DYNAMIC_STEP) != 0u);
     uint _e60 = frame.modes.w;
     bool empty_skip = ((_e60 & FLAG_EMPTY_SKIP) != 0u);
-    uint2 loop_bound_8 = uint2(4294967295u, 4294967295u);
+    uint2 loop_bound_9 = uint2(4294967295u, 4294967295u);
     while(true) {
-        if (all(loop_bound_8 == uint2(0u, 0u))) { break; }
-        loop_bound_8 -= uint2(loop_bound_8.y == 0u, 1u);
-        uint _e71 = i_13;
+        if (all(loop_bound_9 == uint2(0u, 0u))) { break; }
+        loop_bound_9 -= uint2(loop_bound_9.y == 0u, 1u);
+        uint _e71 = i_14;
         uint _e72 = steps_1;
         if ((_e71 >= _e72)) {
             break;
         }
-        uint _e75 = counters_7.view_steps;
-        counters_7.view_steps = (_e75 + 1u);
-        uint _e79 = i_13;
+        uint _e75 = counters_10.view_steps;
+        counters_10.view_steps = (_e75 + 1u);
+        uint _e79 = i_14;
         float t_7 = (span_1.start + ((float(_e79) + jitter) * dt_2));
-        float3 rel_10 = ((view_2 * t_7) + float3(0.0, cam_alt_1, 0.0));
-        float3 p_14 = float3((rel_10.x + cam_xz.x), rel_10.y, (rel_10.z + cam_xz.y));
+        float3 rel_12 = ((view_2 * t_7) + float3(0.0, cam_alt_1, 0.0));
+        float3 p_17 = float3((rel_12.x + cam_xz.x), rel_12.y, (rel_12.z + cam_xz.y));
         if (empty_skip) {
-            const float _e97 = empty_cell_exit(p_14, view_2);
+            const float _e97 = empty_cell_exit(p_17, view_2);
             if ((_e97 > 0.0)) {
                 uint _e106 = steps_1;
                 uint next_1 = naga_f2u32(clamp(ceil(((((t_7 + _e97) - span_1.start) / dt_2) - jitter)), 0.0, float(_e106)));
-                uint _e111 = i_13;
-                i_13 = max((_e111 + 1u), next_1);
+                uint _e111 = i_14;
+                i_14 = max((_e111 + 1u), next_1);
                 continue;
             }
         }
-        const float _e115 = altitude_of(rel_10);
-        const float _e116 = layer_density(p_14, _e115, l_7, counters_7);
+        const float _e115 = altitude_of(rel_12);
+        const float _e116 = layer_density(p_17, _e115, l_10, counters_10);
         if ((_e116 <= 0.0)) {
             uint _e119 = empty;
             empty = (_e119 + 1u);
             if (dynamic_step) {
                 uint _e124 = empty;
-                local_34 = (_e124 >= 8u);
+                local_38 = (_e124 >= 8u);
             } else {
-                local_34 = false;
+                local_38 = false;
             }
-            bool _e128 = local_34;
+            bool _e128 = local_38;
             if (_e128) {
                 stride = 2u;
             }
-            uint _e130 = i_13;
+            uint _e130 = i_14;
             uint _e131 = stride;
-            i_13 = (_e130 + _e131);
+            i_14 = (_e130 + _e131);
             continue;
         }
         uint _e133 = stride;
         if ((_e133 > 1u)) {
-            uint _e136 = i_13;
+            uint _e136 = i_14;
             uint _e137 = stride;
-            i_13 = (_e136 - (_e137 - 1u));
+            i_14 = (_e136 - (_e137 - 1u));
             stride = 1u;
             empty = 0u;
             continue;
         }
         empty = 0u;
-        float sigma_t_2 = (sigma_e * _e116);
-        const ScatteredLight _e145 = scattered_light(rel_10, p_14, _e115, _e116, view_2, l_7, counters_7);
+        float sigma_t_3 = (sigma_e * _e116);
+        const ScatteredLight _e145 = scattered_light(rel_12, p_17, _e115, _e116, view_2, l_10, counters_10);
         float transmittance_2 = state.transmittance;
         float3 _e149 = state.radiance;
-        const float3 _e151 = step_integral(_e145.total, sigma_t_2, dt_2);
+        const float3 _e151 = step_integral(_e145.total, sigma_t_3, dt_2);
         state.radiance = (_e149 + (transmittance_2 * _e151));
         float3 _e155 = state.octaves;
-        const float3 _e157 = step_integral(_e145.octaves, sigma_t_2, dt_2);
+        const float3 _e157 = step_integral(_e145.octaves, sigma_t_3, dt_2);
         state.octaves = (_e155 + (transmittance_2 * _e157));
-        float step_t = exp((-(sigma_t_2) * dt_2));
+        float step_t = exp((-(sigma_t_3) * dt_2));
         float _e164 = state.depth_sum;
         state.depth_sum = (_e164 + ((t_7 * transmittance_2) * (1.0 - step_t)));
         state.transmittance = (transmittance_2 * step_t);
@@ -2054,8 +2187,8 @@ bool march_layer(float3 view_2, Interval span_1, Layer l_7, float jitter, inout 
         if ((_e173 < _e177)) {
             return true;
         }
-        uint _e180 = i_13;
-        i_13 = (_e180 + 1u);
+        uint _e180 = i_14;
+        i_14 = (_e180 + 1u);
     }
     return false;
 }
@@ -2088,7 +2221,7 @@ MarchResult ConstructMarchResult(float3 arg0, float arg1, float arg2) {
 
 MarchResult march_pixel(uint2 pixel_4)
 {
-    Counters counters_8 = ConstructCounters(0u, 0u, 0u, 0u);
+    Counters counters_11 = ConstructCounters(0u, 0u, 0u, 0u);
     MarchState state_1 = ConstructMarchState((0.0).xxx, 1.0, 0.0, (0.0).xxx);
     bool marched = false;
     bool ground_1 = false;
@@ -2098,13 +2231,13 @@ MarchResult march_pixel(uint2 pixel_4)
     uint k_6 = 0u;
     uint next = (uint)0;
     Interval span_2 = (Interval)0;
-    uint i_14 = (uint)0;
-    bool local_35 = (bool)0;
-    bool local_36 = (bool)0;
-    bool local_37 = (bool)0;
-    bool local_38 = (bool)0;
+    uint i_15 = (uint)0;
     bool local_39 = (bool)0;
     bool local_40 = (bool)0;
+    bool local_41 = (bool)0;
+    bool local_42 = (bool)0;
+    bool local_43 = (bool)0;
+    bool local_44 = (bool)0;
     float depth_1 = 0.0;
 
     const float3 _e1 = view_ray(pixel_4);
@@ -2112,16 +2245,16 @@ MarchResult march_pixel(uint2 pixel_4)
     count(STAT_PIXELS, 1u);
     const float _e22 = start_offset(pixel_4);
     const uint _e23 = layer_count();
-    uint2 loop_bound_9 = uint2(4294967295u, 4294967295u);
-    bool loop_init_8 = true;
+    uint2 loop_bound_10 = uint2(4294967295u, 4294967295u);
+    bool loop_init_9 = true;
     while(true) {
-        if (all(loop_bound_9 == uint2(0u, 0u))) { break; }
-        loop_bound_9 -= uint2(loop_bound_9.y == 0u, 1u);
-        if (!loop_init_8) {
+        if (all(loop_bound_10 == uint2(0u, 0u))) { break; }
+        loop_bound_10 -= uint2(loop_bound_10.y == 0u, 1u);
+        if (!loop_init_9) {
             uint _e121 = k_6;
             k_6 = (_e121 + 1u);
         }
-        loop_init_8 = false;
+        loop_init_9 = false;
         uint _e36 = k_6;
         if ((_e36 < _e23)) {
         } else {
@@ -2130,72 +2263,72 @@ MarchResult march_pixel(uint2 pixel_4)
         {
             next = NO_LAYER;
             span_2 = ConstructInterval(0.0, 0.0, 1u);
-            i_14 = 0u;
-            uint2 loop_bound_10 = uint2(4294967295u, 4294967295u);
-            bool loop_init_9 = true;
+            i_15 = 0u;
+            uint2 loop_bound_11 = uint2(4294967295u, 4294967295u);
+            bool loop_init_10 = true;
             while(true) {
-                if (all(loop_bound_10 == uint2(0u, 0u))) { break; }
-                loop_bound_10 -= uint2(loop_bound_10.y == 0u, 1u);
-                if (!loop_init_9) {
-                    uint _e104 = i_14;
-                    i_14 = (_e104 + 1u);
+                if (all(loop_bound_11 == uint2(0u, 0u))) { break; }
+                loop_bound_11 -= uint2(loop_bound_11.y == 0u, 1u);
+                if (!loop_init_10) {
+                    uint _e104 = i_15;
+                    i_15 = (_e104 + 1u);
                 }
-                loop_init_9 = false;
-                uint _e47 = i_14;
+                loop_init_10 = false;
+                uint _e47 = i_15;
                 if ((_e47 < _e23)) {
                 } else {
                     break;
                 }
                 {
-                    uint _e49 = i_14;
+                    uint _e49 = i_15;
                     const Layer _e50 = cloud_layer(_e49);
                     const Interval _e51 = layer_interval(cam_alt_2, _e1, _e50);
                     bool _e52 = ground_1;
                     if (!(_e52)) {
-                        local_35 = (_e51.kind == RAY_HITS_GROUND);
+                        local_39 = (_e51.kind == RAY_HITS_GROUND);
                     } else {
-                        local_35 = true;
+                        local_39 = true;
                     }
-                    bool _e60 = local_35;
+                    bool _e60 = local_39;
                     ground_1 = _e60;
                     float _e62 = last_start;
                     if (!((_e51.start > _e62))) {
                         float _e68 = last_start;
                         if ((_e51.start == _e68)) {
-                            uint _e72 = i_14;
+                            uint _e72 = i_15;
                             uint _e73 = last_index;
-                            local_37 = (_e72 > _e73);
+                            local_41 = (_e72 > _e73);
                         } else {
-                            local_37 = false;
+                            local_41 = false;
                         }
-                        bool _e76 = local_37;
-                        local_36 = _e76;
+                        bool _e76 = local_41;
+                        local_40 = _e76;
                     } else {
-                        local_36 = true;
+                        local_40 = true;
                     }
-                    bool after = local_36;
+                    bool after = local_40;
                     if ((_e51.kind == RAY_MARCH)) {
-                        local_38 = after;
+                        local_42 = after;
                     } else {
-                        local_38 = false;
+                        local_42 = false;
                     }
-                    bool _e85 = local_38;
+                    bool _e85 = local_42;
                     if (_e85) {
                         uint _e88 = next;
                         if (!((_e88 == NO_LAYER))) {
                             float _e96 = span_2.start;
-                            local_40 = (_e51.start < _e96);
+                            local_44 = (_e51.start < _e96);
                         } else {
-                            local_40 = true;
+                            local_44 = true;
                         }
-                        bool _e99 = local_40;
-                        local_39 = _e99;
+                        bool _e99 = local_44;
+                        local_43 = _e99;
                     } else {
-                        local_39 = false;
+                        local_43 = false;
                     }
-                    bool _e101 = local_39;
+                    bool _e101 = local_43;
                     if (_e101) {
-                        uint _e102 = i_14;
+                        uint _e102 = i_15;
                         next = _e102;
                         span_2 = _e51;
                     }
@@ -2213,7 +2346,7 @@ MarchResult march_pixel(uint2 pixel_4)
             Interval _e113 = span_2;
             uint _e114 = next;
             const Layer _e115 = cloud_layer(_e114);
-            const bool _e116 = march_layer(_e1, _e113, _e115, _e22, state_1, counters_8);
+            const bool _e116 = march_layer(_e1, _e113, _e115, _e22, state_1, counters_11);
             if (_e116) {
                 count(STAT_EXIT_TRANSMITTANCE, 1u);
                 exited = true;
@@ -2232,13 +2365,13 @@ MarchResult march_pixel(uint2 pixel_4)
             count(STAT_EXIT_MISSED, 1u);
         }
     }
-    uint _e133 = counters_8.view_steps;
+    uint _e133 = counters_11.view_steps;
     count(STAT_VIEW_STEPS, _e133);
-    uint _e136 = counters_8.density;
+    uint _e136 = counters_11.density;
     count(STAT_DENSITY, _e136);
-    uint _e139 = counters_8.detail;
+    uint _e139 = counters_11.detail;
     count(STAT_DETAIL, _e139);
-    uint _e142 = counters_8.light;
+    uint _e142 = counters_11.light;
     count(STAT_LIGHT, _e142);
     float _e146 = state_1.transmittance;
     if ((_e146 < 1.0)) {
@@ -2286,9 +2419,9 @@ uint2 block_offset(uint f, uint k_7)
 
 float2 reproject(uint2 pixel_5, float depth_2)
 {
-    bool local_41 = (bool)0;
-    bool local_42 = (bool)0;
-    bool local_43 = (bool)0;
+    bool local_45 = (bool)0;
+    bool local_46 = (bool)0;
+    bool local_47 = (bool)0;
     float3 dir = (float3)0;
 
     float4 _e4 = frame.previous_position;
@@ -2296,27 +2429,27 @@ float2 reproject(uint2 pixel_5, float depth_2)
     if (all((_e4 == _e7))) {
         float4 _e14 = frame.previous_forward;
         float4 _e17 = frame.camera_forward;
-        local_41 = all((_e14 == _e17));
+        local_45 = all((_e14 == _e17));
     } else {
-        local_41 = false;
+        local_45 = false;
     }
-    bool _e21 = local_41;
+    bool _e21 = local_45;
     if (_e21) {
         float4 _e26 = frame.previous_right;
         float4 _e29 = frame.camera_right;
-        local_42 = all((_e26 == _e29));
+        local_46 = all((_e26 == _e29));
     } else {
-        local_42 = false;
+        local_46 = false;
     }
-    bool _e33 = local_42;
+    bool _e33 = local_46;
     if (_e33) {
         float4 _e38 = frame.previous_up;
         float4 _e41 = frame.camera_up;
-        local_43 = all((_e38 == _e41));
+        local_47 = all((_e38 == _e41));
     } else {
-        local_43 = false;
+        local_47 = false;
     }
-    bool same = local_43;
+    bool same = local_47;
     if (same) {
         return float2(pixel_5);
     }
@@ -2346,16 +2479,16 @@ float2 reproject(uint2 pixel_5, float depth_2)
 
 bool on_screen(float2 q)
 {
-    bool local_44 = (bool)0;
+    bool local_48 = (bool)0;
 
     uint4 _e3 = frame.counts;
     float2 size_3 = float2(_e3.xy);
     if (all((q >= (-0.5).xx))) {
-        local_44 = all((q <= (size_3 - (0.5).xx)));
+        local_48 = all((q <= (size_3 - (0.5).xx)));
     } else {
-        local_44 = false;
+        local_48 = false;
     }
-    bool _e18 = local_44;
+    bool _e18 = local_48;
     return _e18;
 }
 
@@ -2406,8 +2539,8 @@ float4 history_nearest(float2 q_2)
 {
     uint4 _e3 = frame.counts;
     int2 size_6 = int2(_e3.xy);
-    int2 p_15 = clamp(naga_f2i32(round(q_2)), (int(0)).xx, asint(asuint(size_6) - asuint((int(1)).xx)));
-    float4 _e16 = history_in.Load(int3(p_15, int(0)));
+    int2 p_18 = clamp(naga_f2i32(round(q_2)), (int(0)).xx, asint(asuint(size_6) - asuint((int(1)).xx)));
+    float4 _e16 = history_in.Load(int3(p_18, int(0)));
     return _e16;
 }
 
@@ -2415,8 +2548,8 @@ float4 meta_at(float2 q_3)
 {
     uint4 _e3 = frame.counts;
     int2 size_7 = int2(_e3.xy);
-    int2 p_16 = clamp(naga_f2i32(round(q_3)), (int(0)).xx, asint(asuint(size_7) - asuint((int(1)).xx)));
-    float4 _e16 = meta_in.Load(int3(p_16, int(0)));
+    int2 p_19 = clamp(naga_f2i32(round(q_3)), (int(0)).xx, asint(asuint(size_7) - asuint((int(1)).xx)));
+    float4 _e16 = meta_in.Load(int3(p_19, int(0)));
     return _e16;
 }
 
@@ -2426,17 +2559,17 @@ uint2 naga_div(uint2 lhs, uint2 rhs) {
 
 bool in_blocks(uint2 id_19)
 {
-    uint k_16 = frame.temporal.x;
+    uint k_17 = frame.temporal.x;
     uint4 _e7 = frame.counts;
-    return all((id_19 < naga_div(((_e7.xy + (k_16).xx) - (1u).xx), (k_16).xx)));
+    return all((id_19 < naga_div(((_e7.xy + (k_17).xx) - (1u).xx), (k_17).xx)));
 }
 
 uint2 sparse_pixel(uint2 id_20)
 {
-    uint k_17 = frame.temporal.x;
+    uint k_18 = frame.temporal.x;
     uint _e9 = frame.misc.y;
-    const uint2 _e10 = block_offset(_e9, k_17);
-    return ((id_20 * k_17) + _e10);
+    const uint2 _e10 = block_offset(_e9, k_18);
+    return ((id_20 * k_18) + _e10);
 }
 
 void store_sparse(uint2 id_21, MarchResult r_13)
@@ -2458,8 +2591,8 @@ float rng_next(inout uint rng_1)
 {
     uint _e1 = rng_1;
     rng_1 = ((_e1 * 747796405u) + 2891336453u);
-    uint s_10 = rng_1;
-    uint word_1 = (((s_10 >> ((s_10 >> 28u) + 4u)) ^ s_10) * 277803737u);
+    uint s_11 = rng_1;
+    uint word_1 = (((s_11 >> ((s_11 >> 28u) + 4u)) ^ s_11) * 277803737u);
     return (float((((word_1 >> 22u) ^ word_1) >> 8u)) * 5.9604645e-8);
 }
 
@@ -2477,29 +2610,29 @@ Segments ConstructSegments(float2 arg0, float2 arg1, uint arg2) {
     return ret;
 }
 
-Segments layer_segments(float3 p_10, float alt_13, float3 d_14)
+Segments layer_segments(float3 p_13, float alt_14, float3 d_15)
 {
     Segments s_1 = ConstructSegments((0.0).xx, (0.0).xx, 0u);
-    bool local_45 = (bool)0;
+    bool local_49 = (bool)0;
     float2 a_1 = (0.0).xx;
     float2 b_1 = (0.0).xx;
     uint n_2 = 0u;
-    bool local_46 = (bool)0;
-    bool local_47 = (bool)0;
-    bool local_48 = (bool)0;
-    bool local_49 = (bool)0;
+    bool local_50 = (bool)0;
+    bool local_51 = (bool)0;
+    bool local_52 = (bool)0;
+    bool local_53 = (bool)0;
 
     const float2 _e10 = layers_span();
     float bottom_2 = _e10.x;
-    const Roots _e12 = ray_shell_from(p_10, alt_13, d_14, bottom_2);
-    const Roots _e14 = ray_shell_from(p_10, alt_13, d_14, _e10.y);
-    const bool _e15 = hits_ground(p_10, alt_13, d_14);
+    const Roots _e12 = ray_shell_from(p_13, alt_14, d_15, bottom_2);
+    const Roots _e14 = ray_shell_from(p_13, alt_14, d_15, _e10.y);
+    const bool _e15 = hits_ground(p_13, alt_14, d_15);
     if (!(!(_e14.hit))) {
-        local_45 = (_e14.t1_ <= 0.0);
+        local_49 = (_e14.t1_ <= 0.0);
     } else {
-        local_45 = true;
+        local_49 = true;
     }
-    bool _e25 = local_45;
+    bool _e25 = local_49;
     if (_e25) {
         Segments _e26 = s_1;
         const Segments segments = _e26;
@@ -2507,17 +2640,17 @@ Segments layer_segments(float3 p_10, float alt_13, float3 d_14)
     }
     float entry = max(_e14.t0_, 0.0);
     if (_e12.hit) {
-        local_46 = (_e12.t0_ > 0.0);
+        local_50 = (_e12.t0_ > 0.0);
     } else {
-        local_46 = false;
+        local_50 = false;
     }
-    bool _e45 = local_46;
+    bool _e45 = local_50;
     if (_e45) {
-        local_47 = (alt_13 >= bottom_2);
+        local_51 = (alt_14 >= bottom_2);
     } else {
-        local_47 = false;
+        local_51 = false;
     }
-    bool _e50 = local_47;
+    bool _e50 = local_51;
     if (_e50) {
         uint _e51 = n_2;
         a_1[min(uint(_e51), 1u)] = entry;
@@ -2526,11 +2659,11 @@ Segments layer_segments(float3 p_10, float alt_13, float3 d_14)
         uint _e56 = n_2;
         n_2 = (_e56 + uint((_e12.t0_ > entry)));
         if (!(_e15)) {
-            local_48 = (_e14.t1_ > _e12.t1_);
+            local_52 = (_e14.t1_ > _e12.t1_);
         } else {
-            local_48 = false;
+            local_52 = false;
         }
-        bool _e68 = local_48;
+        bool _e68 = local_52;
         if (_e68) {
             uint _e69 = n_2;
             a_1[min(uint(_e69), 1u)] = max(_e12.t1_, entry);
@@ -2540,13 +2673,13 @@ Segments layer_segments(float3 p_10, float alt_13, float3 d_14)
             n_2 = (_e76 + 1u);
         }
     } else {
-        if ((alt_13 < bottom_2)) {
+        if ((alt_14 < bottom_2)) {
             if (!(_e15)) {
-                local_49 = _e12.hit;
+                local_53 = _e12.hit;
             } else {
-                local_49 = false;
+                local_53 = false;
             }
-            bool _e85 = local_49;
+            bool _e85 = local_53;
             if (_e85) {
                 a_1.x = max(_e12.t1_, 0.0);
                 b_1.x = _e14.t1_;
@@ -2569,13 +2702,13 @@ Segments layer_segments(float3 p_10, float alt_13, float3 d_14)
     return segments_1;
 }
 
-float density_at(float3 rel_8, inout Counters counters_9)
+float density_at(float3 rel_10, inout Counters counters_12)
 {
     float _e6 = frame.camera_position.x;
     float _e13 = frame.camera_position.z;
-    float3 p_17 = float3((rel_8.x + _e6), rel_8.y, (rel_8.z + _e13));
-    const float _e16 = altitude_of(rel_8);
-    const float _e17 = cloud_density(p_17, _e16, counters_9);
+    float3 p_20 = float3((rel_10.x + _e6), rel_10.y, (rel_10.z + _e13));
+    const float _e16 = altitude_of(rel_10);
+    const float _e17 = cloud_density(p_20, _e16, counters_12);
     return _e17;
 }
 
@@ -2585,11 +2718,11 @@ float empty_cell_skip(float3 origin_4, float3 dir_1, float t_2)
     if ((_e3 > 1u)) {
         return 0.0;
     }
-    float3 rel_11 = (origin_4 + (dir_1 * t_2));
+    float3 rel_13 = (origin_4 + (dir_1 * t_2));
     float _e13 = frame.camera_position.x;
     float _e20 = frame.camera_position.z;
-    float3 p_18 = float3((rel_11.x + _e13), rel_11.y, (rel_11.z + _e20));
-    const float _e23 = empty_cell_exit(p_18, dir_1);
+    float3 p_21 = float3((rel_13.x + _e13), rel_13.y, (rel_13.z + _e20));
+    const float _e23 = empty_cell_exit(p_21, dir_1);
     if ((_e23 <= 0.0)) {
         return 0.0;
     }
@@ -2599,26 +2732,26 @@ float empty_cell_skip(float3 origin_4, float3 dir_1, float t_2)
 float density_max()
 {
     float m_1 = 0.0;
-    uint i_15 = 0u;
+    uint i_16 = 0u;
 
-    uint2 loop_bound_11 = uint2(4294967295u, 4294967295u);
-    bool loop_init_10 = true;
+    uint2 loop_bound_12 = uint2(4294967295u, 4294967295u);
+    bool loop_init_11 = true;
     while(true) {
-        if (all(loop_bound_11 == uint2(0u, 0u))) { break; }
-        loop_bound_11 -= uint2(loop_bound_11.y == 0u, 1u);
-        if (!loop_init_10) {
-            uint _e17 = i_15;
-            i_15 = (_e17 + 1u);
+        if (all(loop_bound_12 == uint2(0u, 0u))) { break; }
+        loop_bound_12 -= uint2(loop_bound_12.y == 0u, 1u);
+        if (!loop_init_11) {
+            uint _e17 = i_16;
+            i_16 = (_e17 + 1u);
         }
-        loop_init_10 = false;
-        uint _e4 = i_15;
+        loop_init_11 = false;
+        uint _e4 = i_16;
         const uint _e5 = layer_count();
         if ((_e4 < _e5)) {
         } else {
             break;
         }
         {
-            uint _e7 = i_15;
+            uint _e7 = i_16;
             const Layer _e8 = cloud_layer(_e7);
             float _e9 = m_1;
             m_1 = max(_e9, (_e8.density * (1.0 + _e8.precipitation)));
@@ -2628,7 +2761,7 @@ float density_max()
     return clamp(_e19, 0.0, 1.0);
 }
 
-float free_flight(float3 origin_5, float3 dir_2, Segments segs, inout uint rng_3, inout Counters counters_10)
+float free_flight(float3 origin_5, float3 dir_2, Segments segs, inout uint rng_3, inout Counters counters_13)
 {
     uint k_8 = 0u;
     float t_3 = (float)0;
@@ -2640,16 +2773,16 @@ float free_flight(float3 origin_5, float3 dir_2, Segments segs, inout uint rng_3
     if ((majorant <= 0.0)) {
         return -1.0;
     }
-    uint2 loop_bound_12 = uint2(4294967295u, 4294967295u);
-    bool loop_init_11 = true;
+    uint2 loop_bound_13 = uint2(4294967295u, 4294967295u);
+    bool loop_init_12 = true;
     while(true) {
-        if (all(loop_bound_12 == uint2(0u, 0u))) { break; }
-        loop_bound_12 -= uint2(loop_bound_12.y == 0u, 1u);
-        if (!loop_init_11) {
+        if (all(loop_bound_13 == uint2(0u, 0u))) { break; }
+        loop_bound_13 -= uint2(loop_bound_13.y == 0u, 1u);
+        if (!loop_init_12) {
             uint _e60 = k_8;
             k_8 = (_e60 + 1u);
         }
-        loop_init_11 = false;
+        loop_init_12 = false;
         uint _e21 = k_8;
         if ((_e21 < segs.count)) {
         } else {
@@ -2658,10 +2791,10 @@ float free_flight(float3 origin_5, float3 dir_2, Segments segs, inout uint rng_3
         {
             uint _e25 = k_8;
             t_3 = segs.a[min(uint(_e25), 1u)];
-            uint2 loop_bound_13 = uint2(4294967295u, 4294967295u);
+            uint2 loop_bound_14 = uint2(4294967295u, 4294967295u);
             while(true) {
-                if (all(loop_bound_13 == uint2(0u, 0u))) { break; }
-                loop_bound_13 -= uint2(loop_bound_13.y == 0u, 1u);
+                if (all(loop_bound_14 == uint2(0u, 0u))) { break; }
+                loop_bound_14 -= uint2(loop_bound_14.y == 0u, 1u);
                 float _e28 = t_3;
                 const float _e29 = empty_cell_skip(origin_5, dir_2, _e28);
                 if ((_e29 > 0.0)) {
@@ -2682,10 +2815,10 @@ float free_flight(float3 origin_5, float3 dir_2, Segments segs, inout uint rng_3
                 if ((_e42 >= segs.b[min(uint(_e44), 1u)])) {
                     break;
                 }
-                uint _e48 = counters_10.view_steps;
-                counters_10.view_steps = (_e48 + 1u);
+                uint _e48 = counters_13.view_steps;
+                counters_13.view_steps = (_e48 + 1u);
                 float _e51 = t_3;
-                const float _e54 = density_at((origin_5 + (dir_2 * _e51)), counters_10);
+                const float _e54 = density_at((origin_5 + (dir_2 * _e51)), counters_13);
                 const float _e55 = rng_next(rng_3);
                 if (((_e55 * _e5) < _e54)) {
                     float _e58 = t_3;
@@ -2697,7 +2830,7 @@ float free_flight(float3 origin_5, float3 dir_2, Segments segs, inout uint rng_3
     return -1.0;
 }
 
-float transmittance_along(float3 origin_6, float3 dir_3, Segments segs_1, inout uint rng_4, inout Counters counters_11)
+float transmittance_along(float3 origin_6, float3 dir_3, Segments segs_1, inout uint rng_4, inout Counters counters_14)
 {
     float tr = 1.0;
     uint k_9 = 0u;
@@ -2705,22 +2838,22 @@ float transmittance_along(float3 origin_6, float3 dir_3, Segments segs_1, inout 
 
     float _e8 = frame.extinction.x;
     float _e12 = frame.extinction.y;
-    float sigma_t_3 = (_e8 + _e12);
+    float sigma_t_4 = (_e8 + _e12);
     const float _e14 = density_max();
-    float majorant_1 = (sigma_t_3 * _e14);
+    float majorant_1 = (sigma_t_4 * _e14);
     if ((majorant_1 <= 0.0)) {
         return 1.0;
     }
-    uint2 loop_bound_14 = uint2(4294967295u, 4294967295u);
-    bool loop_init_12 = true;
+    uint2 loop_bound_15 = uint2(4294967295u, 4294967295u);
+    bool loop_init_13 = true;
     while(true) {
-        if (all(loop_bound_14 == uint2(0u, 0u))) { break; }
-        loop_bound_14 -= uint2(loop_bound_14.y == 0u, 1u);
-        if (!loop_init_12) {
+        if (all(loop_bound_15 == uint2(0u, 0u))) { break; }
+        loop_bound_15 -= uint2(loop_bound_15.y == 0u, 1u);
+        if (!loop_init_13) {
             uint _e78 = k_9;
             k_9 = (_e78 + 1u);
         }
-        loop_init_12 = false;
+        loop_init_13 = false;
         uint _e23 = k_9;
         if ((_e23 < segs_1.count)) {
         } else {
@@ -2729,10 +2862,10 @@ float transmittance_along(float3 origin_6, float3 dir_3, Segments segs_1, inout 
         {
             uint _e27 = k_9;
             t_4 = segs_1.a[min(uint(_e27), 1u)];
-            uint2 loop_bound_15 = uint2(4294967295u, 4294967295u);
+            uint2 loop_bound_16 = uint2(4294967295u, 4294967295u);
             while(true) {
-                if (all(loop_bound_15 == uint2(0u, 0u))) { break; }
-                loop_bound_15 -= uint2(loop_bound_15.y == 0u, 1u);
+                if (all(loop_bound_16 == uint2(0u, 0u))) { break; }
+                loop_bound_16 -= uint2(loop_bound_16.y == 0u, 1u);
                 float _e30 = t_4;
                 const float _e31 = empty_cell_skip(origin_6, dir_3, _e30);
                 if ((_e31 > 0.0)) {
@@ -2753,12 +2886,12 @@ float transmittance_along(float3 origin_6, float3 dir_3, Segments segs_1, inout 
                 if ((_e44 >= segs_1.b[min(uint(_e46), 1u)])) {
                     break;
                 }
-                uint _e50 = counters_11.light;
-                counters_11.light = (_e50 + 1u);
+                uint _e50 = counters_14.light;
+                counters_14.light = (_e50 + 1u);
                 float _e53 = t_4;
-                const float _e56 = density_at((origin_6 + (dir_3 * _e53)), counters_11);
+                const float _e56 = density_at((origin_6 + (dir_3 * _e53)), counters_14);
                 float _e57 = tr;
-                tr = (_e57 * (1.0 - ((sigma_t_3 * _e56) / majorant_1)));
+                tr = (_e57 * (1.0 - ((sigma_t_4 * _e56) / majorant_1)));
                 float _e63 = tr;
                 if ((_e63 <= 0.0)) {
                     return 0.0;
@@ -2784,8 +2917,8 @@ float sample_hg_cos(float g_4, float u)
     if ((abs(g_4) < 0.0001)) {
         return (1.0 - (2.0 * u));
     }
-    float s_11 = ((1.0 - (g_4 * g_4)) / ((1.0 - g_4) + ((2.0 * g_4) * u)));
-    return clamp((((1.0 + (g_4 * g_4)) - (s_11 * s_11)) / (2.0 * g_4)), -1.0, 1.0);
+    float s_12 = ((1.0 - (g_4 * g_4)) / ((1.0 - g_4) + ((2.0 * g_4) * u)));
+    return clamp((((1.0 + (g_4 * g_4)) - (s_12 * s_12)) / (2.0 * g_4)), -1.0, 1.0);
 }
 
 PhaseSample ConstructPhaseSample(float3 arg0, float arg1) {
@@ -2847,16 +2980,16 @@ PhaseSample sample_phase(float3 dir_4, inout uint rng_5)
     return phasesample;
 }
 
-float3 environment(float3 pos, float3 d_15, float h_8)
+float3 environment(float3 pos, float3 d_16, float h_9)
 {
     const bool _e3 = physical_sky();
     if (_e3) {
-        const float3 _e4 = sky_from(pos, d_15);
+        const float3 _e4 = sky_from(pos, d_16);
         float4 _e7 = frame.sun_illuminance;
         float _e13 = frame.ambient_bottom.w;
         return ((_e4 * _e7.xyz) * _e13);
     }
-    const float3 _e15 = ambient(h_8, pos);
+    const float3 _e15 = ambient(h_9, pos);
     return _e15;
 }
 
@@ -2868,18 +3001,18 @@ PathResult ConstructPathResult(float3 arg0, float arg1, float arg2) {
     return ret;
 }
 
-PathResult trace_path(float3 view_3, Interval span_3, inout uint rng_6, inout Counters counters_12)
+PathResult trace_path(float3 view_3, Interval span_3, inout uint rng_6, inout Counters counters_15)
 {
     PathResult out_2 = ConstructPathResult((0.0).xxx, 1.0, -1.0);
-    bool local_50 = (bool)0;
-    bool local_51 = (bool)0;
-    bool local_52 = (bool)0;
+    bool local_54 = (bool)0;
+    bool local_55 = (bool)0;
+    bool local_56 = (bool)0;
     uint max_orders = MAX_PATH_ORDERS;
     float3 pos_1 = (float3)0;
     float3 dir_5 = (float3)0;
     float throughput = 1.0;
     uint order = 0u;
-    bool local_53 = (bool)0;
+    bool local_57 = (bool)0;
 
     if ((span_3.kind != RAY_MARCH)) {
         PathResult _e13 = out_2;
@@ -2889,9 +3022,9 @@ PathResult trace_path(float3 view_3, Interval span_3, inout uint rng_6, inout Co
     float _e17 = frame.camera_position.y;
     float3 cam = float3(0.0, _e17, 0.0);
     Segments primary = ConstructSegments(float2(span_3.start, 0.0), float2((span_3.start + span_3.length_), 0.0), 1u);
-    const float _e32 = transmittance_along(cam, view_3, primary, rng_6, counters_12);
+    const float _e32 = transmittance_along(cam, view_3, primary, rng_6, counters_15);
     out_2.transmittance = _e32;
-    const float _e33 = free_flight(cam, view_3, primary, rng_6, counters_12);
+    const float _e33 = free_flight(cam, view_3, primary, rng_6, counters_15);
     if ((_e33 < 0.0)) {
         PathResult _e36 = out_2;
         const PathResult pathresult_1 = _e36;
@@ -2899,34 +3032,34 @@ PathResult trace_path(float3 view_3, Interval span_3, inout uint rng_6, inout Co
     }
     out_2.depth = _e33;
     float4 _e40 = frame.sun_direction;
-    float3 sun_6 = _e40.xyz;
+    float3 sun_7 = _e40.xyz;
     float _e45 = frame.extinction.x;
     float _e49 = frame.extinction.y;
-    float sigma_t_4 = (_e45 + _e49);
+    float sigma_t_5 = (_e45 + _e49);
     float _e54 = frame.extinction.x;
-    float albedo = ((sigma_t_4 > 0.0) ? (_e54 / sigma_t_4) : 0.0);
+    float albedo = ((sigma_t_5 > 0.0) ? (_e54 / sigma_t_5) : 0.0);
     float _e63 = frame.ambient_bottom.w;
     if ((_e63 > 0.0)) {
         const bool _e68 = physical_sky();
         if (!(_e68)) {
             float4 _e74 = frame.ambient_bottom;
-            local_51 = any((_e74.xyz > (0.0).xxx));
+            local_55 = any((_e74.xyz > (0.0).xxx));
         } else {
-            local_51 = true;
+            local_55 = true;
         }
-        bool _e81 = local_51;
+        bool _e81 = local_55;
         if (!(_e81)) {
             float4 _e87 = frame.ambient_top;
-            local_52 = any((_e87.xyz > (0.0).xxx));
+            local_56 = any((_e87.xyz > (0.0).xxx));
         } else {
-            local_52 = true;
+            local_56 = true;
         }
-        bool _e94 = local_52;
-        local_50 = _e94;
+        bool _e94 = local_56;
+        local_54 = _e94;
     } else {
-        local_50 = false;
+        local_54 = false;
     }
-    bool ambient_on = local_50;
+    bool ambient_on = local_54;
     uint _e102 = frame.misc.z;
     if ((_e102 > 0u)) {
         uint _e108 = frame.misc.z;
@@ -2934,10 +3067,10 @@ PathResult trace_path(float3 view_3, Interval span_3, inout uint rng_6, inout Co
     }
     pos_1 = (cam + (view_3 * _e33));
     dir_5 = view_3;
-    uint2 loop_bound_16 = uint2(4294967295u, 4294967295u);
+    uint2 loop_bound_17 = uint2(4294967295u, 4294967295u);
     while(true) {
-        if (all(loop_bound_16 == uint2(0u, 0u))) { break; }
-        loop_bound_16 -= uint2(loop_bound_16.y == 0u, 1u);
+        if (all(loop_bound_17 == uint2(0u, 0u))) { break; }
+        loop_bound_17 -= uint2(loop_bound_17.y == 0u, 1u);
         float _e119 = throughput;
         throughput = (_e119 * albedo);
         uint _e121 = order;
@@ -2946,19 +3079,19 @@ PathResult trace_path(float3 view_3, Interval span_3, inout uint rng_6, inout Co
         const float _e125 = altitude_of(_e124);
         const float _e126 = height_fraction(_e125);
         float3 _e127 = pos_1;
-        const bool _e128 = hits_ground(_e127, _e125, sun_6);
+        const bool _e128 = hits_ground(_e127, _e125, sun_7);
         if (!(_e128)) {
             float3 _e130 = pos_1;
             float3 _e131 = pos_1;
-            const Segments _e132 = layer_segments(_e131, _e125, sun_6);
-            const float _e133 = transmittance_along(_e130, sun_6, _e132, rng_6, counters_12);
+            const Segments _e132 = layer_segments(_e131, _e125, sun_7);
+            const float _e133 = transmittance_along(_e130, sun_7, _e132, rng_6, counters_15);
             float3 _e135 = out_2.radiance;
             float4 _e138 = frame.sun_illuminance;
             float3 _e140 = pos_1;
             const float3 _e141 = sun_through_air(_e140);
             float _e143 = throughput;
             float3 _e144 = dir_5;
-            const float _e147 = phase(dot(_e144, sun_6), 1.0);
+            const float _e147 = phase(dot(_e144, sun_7), 1.0);
             out_2.radiance = (_e135 + ((_e138.xyz * _e141) * ((_e143 * _e147) * _e133)));
         }
         float3 _e152 = dir_5;
@@ -2966,7 +3099,7 @@ PathResult trace_path(float3 view_3, Interval span_3, inout uint rng_6, inout Co
         float3 _e154 = pos_1;
         float3 _e156 = pos_1;
         const Segments _e158 = layer_segments(_e156, _e125, _e153.dir);
-        const float _e159 = free_flight(_e154, _e153.dir, _e158, rng_6, counters_12);
+        const float _e159 = free_flight(_e154, _e153.dir, _e158, rng_6, counters_15);
         if ((_e159 < 0.0)) {
             if (ambient_on) {
                 float3 _e163 = out_2.radiance;
@@ -2988,11 +3121,11 @@ PathResult trace_path(float3 view_3, Interval span_3, inout uint rng_6, inout Co
         uint _e179 = order;
         if ((_e179 >= 3u)) {
             float _e184 = throughput;
-            local_53 = (_e184 < 0.1);
+            local_57 = (_e184 < 0.1);
         } else {
-            local_53 = false;
+            local_57 = false;
         }
-        bool _e188 = local_53;
+        bool _e188 = local_57;
         if (_e188) {
             const float _e189 = rng_next(rng_6);
             float _e190 = throughput;
@@ -3016,36 +3149,36 @@ PathResult trace_path(float3 view_3, Interval span_3, inout uint rng_6, inout Co
 
 bool camera_still()
 {
-    bool local_54 = (bool)0;
-    bool local_55 = (bool)0;
-    bool local_56 = (bool)0;
+    bool local_58 = (bool)0;
+    bool local_59 = (bool)0;
+    bool local_60 = (bool)0;
 
     float4 _e2 = frame.camera_position;
     float4 _e5 = frame.previous_position;
     if (all((_e2 == _e5))) {
         float4 _e12 = frame.camera_forward;
         float4 _e15 = frame.previous_forward;
-        local_54 = all((_e12 == _e15));
+        local_58 = all((_e12 == _e15));
     } else {
-        local_54 = false;
+        local_58 = false;
     }
-    bool _e19 = local_54;
+    bool _e19 = local_58;
     if (_e19) {
         float4 _e24 = frame.camera_right;
         float4 _e28 = frame.previous_right;
-        local_55 = all((_e24.xyz == _e28.xyz));
+        local_59 = all((_e24.xyz == _e28.xyz));
     } else {
-        local_55 = false;
+        local_59 = false;
     }
-    bool _e33 = local_55;
+    bool _e33 = local_59;
     if (_e33) {
         float4 _e38 = frame.camera_up;
         float4 _e42 = frame.previous_up;
-        local_56 = all((_e38.xyz == _e42.xyz));
+        local_60 = all((_e38.xyz == _e42.xyz));
     } else {
-        local_56 = false;
+        local_60 = false;
     }
-    bool _e47 = local_56;
+    bool _e47 = local_60;
     return _e47;
 }
 
@@ -3054,67 +3187,67 @@ float luminance(float3 c_3)
     return dot(c_3, float3(0.2126, 0.7152, 0.0722));
 }
 
-float basic_sun_depth(float3 rel_9, float alt_14, inout Counters counters_13)
+float basic_sun_depth(float3 rel_11, float alt_15, inout Counters counters_16)
 {
-    float tau_8 = 0.0;
-    uint i_16 = 1u;
+    float tau_10 = 0.0;
+    uint i_17 = 1u;
 
     uint steps_4 = frame.counts.w;
     if ((steps_4 == 0u)) {
         return 0.0;
     }
     float4 _e12 = frame.sun_direction;
-    float3 sun_7 = _e12.xyz;
+    float3 sun_8 = _e12.xyz;
     float rp_5 = frame.atmosphere.x;
     float top_2 = frame.atmosphere.z;
     float _e25 = frame.atmosphere.y;
     float thickness = (top_2 - _e25);
-    const Roots _e39 = solve_sphere(dot(sun_7, float3(rel_9.x, (rel_9.y + rp_5), rel_9.z)), ((alt_14 - top_2) * ((alt_14 + top_2) + (2.0 * rp_5))));
+    const Roots _e39 = solve_sphere(dot(sun_8, float3(rel_11.x, (rel_11.y + rp_5), rel_11.z)), ((alt_15 - top_2) * ((alt_15 + top_2) + (2.0 * rp_5))));
     float length_ = min(max(_e39.t1_, 0.0), (3.0 * thickness));
     float dt_3 = (length_ / float(steps_4));
     float _e51 = frame.extinction.x;
     float _e55 = frame.extinction.y;
-    float sigma_t_5 = (_e51 + _e55);
+    float sigma_t_6 = (_e51 + _e55);
     float4 _e59 = frame.camera_position;
     float2 cam_xz_1 = _e59.xz;
-    uint2 loop_bound_17 = uint2(4294967295u, 4294967295u);
-    bool loop_init_13 = true;
+    uint2 loop_bound_18 = uint2(4294967295u, 4294967295u);
+    bool loop_init_14 = true;
     while(true) {
-        if (all(loop_bound_17 == uint2(0u, 0u))) { break; }
-        loop_bound_17 -= uint2(loop_bound_17.y == 0u, 1u);
-        if (!loop_init_13) {
-            uint _e90 = i_16;
-            i_16 = (_e90 + 1u);
+        if (all(loop_bound_18 == uint2(0u, 0u))) { break; }
+        loop_bound_18 -= uint2(loop_bound_18.y == 0u, 1u);
+        if (!loop_init_14) {
+            uint _e90 = i_17;
+            i_17 = (_e90 + 1u);
         }
-        loop_init_13 = false;
-        uint _e65 = i_16;
+        loop_init_14 = false;
+        uint _e65 = i_17;
         if ((_e65 <= steps_4)) {
         } else {
             break;
         }
         {
-            uint _e68 = counters_13.light;
-            counters_13.light = (_e68 + 1u);
-            uint _e71 = i_16;
-            float3 q_9 = (rel_9 + (sun_7 * (float(_e71) * dt_3)));
-            float3 p_19 = float3((q_9.x + cam_xz_1.x), q_9.y, (q_9.z + cam_xz_1.y));
-            float _e84 = tau_8;
+            uint _e68 = counters_16.light;
+            counters_16.light = (_e68 + 1u);
+            uint _e71 = i_17;
+            float3 q_9 = (rel_11 + (sun_8 * (float(_e71) * dt_3)));
+            float3 p_22 = float3((q_9.x + cam_xz_1.x), q_9.y, (q_9.z + cam_xz_1.y));
+            float _e84 = tau_10;
             const float _e85 = altitude_of(q_9);
-            const float _e86 = cloud_density(p_19, _e85, counters_13);
-            tau_8 = (_e84 + ((sigma_t_5 * _e86) * dt_3));
+            const float _e86 = cloud_density(p_22, _e85, counters_16);
+            tau_10 = (_e84 + ((sigma_t_6 * _e86) * dt_3));
         }
     }
-    float _e93 = tau_8;
+    float _e93 = tau_10;
     return _e93;
 }
 
 MarchResult basic_pixel(uint2 pixel_7)
 {
-    Counters counters_14 = ConstructCounters(0u, 0u, 0u, 0u);
+    Counters counters_17 = ConstructCounters(0u, 0u, 0u, 0u);
     float3 radiance_2 = (0.0).xxx;
     float transmittance_1 = 1.0;
     float depth_sum = 0.0;
-    uint i_17 = 0u;
+    uint i_18 = 0u;
     float depth_3 = 0.0;
 
     const float3 _e1 = view_ray(pixel_7);
@@ -3134,45 +3267,45 @@ MarchResult basic_pixel(uint2 pixel_7)
             float dt_4 = (_e25.length_ / float(steps_5));
             float sigma_s = frame.extinction.x;
             float _e52 = frame.extinction.y;
-            float sigma_t_6 = (sigma_s + _e52);
+            float sigma_t_7 = (sigma_s + _e52);
             float4 _e56 = frame.sun_illuminance;
             float4 _e60 = frame.sun_direction;
             float _e66 = frame.phase.x;
             const float _e67 = phase_hg(dot(_e1, _e60.xyz), _e66);
             float3 sun_phase = (_e56.xyz * _e67);
-            uint2 loop_bound_18 = uint2(4294967295u, 4294967295u);
-            bool loop_init_14 = true;
+            uint2 loop_bound_19 = uint2(4294967295u, 4294967295u);
+            bool loop_init_15 = true;
             while(true) {
-                if (all(loop_bound_18 == uint2(0u, 0u))) { break; }
-                loop_bound_18 -= uint2(loop_bound_18.y == 0u, 1u);
-                if (!loop_init_14) {
-                    uint _e131 = i_17;
-                    i_17 = (_e131 + 1u);
+                if (all(loop_bound_19 == uint2(0u, 0u))) { break; }
+                loop_bound_19 -= uint2(loop_bound_19.y == 0u, 1u);
+                if (!loop_init_15) {
+                    uint _e131 = i_18;
+                    i_18 = (_e131 + 1u);
                 }
-                loop_init_14 = false;
-                uint _e71 = i_17;
+                loop_init_15 = false;
+                uint _e71 = i_18;
                 if ((_e71 < steps_5)) {
                 } else {
                     break;
                 }
                 {
-                    uint _e74 = counters_14.view_steps;
-                    counters_14.view_steps = (_e74 + 1u);
-                    uint _e78 = i_17;
+                    uint _e74 = counters_17.view_steps;
+                    counters_17.view_steps = (_e74 + 1u);
+                    uint _e78 = i_18;
                     float t_9 = (_e25.start + (float(_e78) * dt_4));
-                    float3 rel_12 = ((_e1 * t_9) + float3(0.0, cam_alt_3, 0.0));
-                    float3 p_20 = float3((rel_12.x + cam_xz_2.x), rel_12.y, (rel_12.z + cam_xz_2.y));
-                    const float _e95 = altitude_of(rel_12);
-                    const float _e96 = cloud_density(p_20, _e95, counters_14);
+                    float3 rel_14 = ((_e1 * t_9) + float3(0.0, cam_alt_3, 0.0));
+                    float3 p_23 = float3((rel_14.x + cam_xz_2.x), rel_14.y, (rel_14.z + cam_xz_2.y));
+                    const float _e95 = altitude_of(rel_14);
+                    const float _e96 = cloud_density(p_23, _e95, counters_17);
                     if ((_e96 <= 0.0)) {
                         continue;
                     }
-                    const float _e99 = basic_sun_depth(rel_12, _e95, counters_14);
+                    const float _e99 = basic_sun_depth(rel_14, _e95, counters_17);
                     float beer_powder = ((2.0 * exp(-(_e99))) * (1.0 - exp((-2.0 * _e99))));
                     float3 _e110 = radiance_2;
                     float _e111 = transmittance_1;
                     radiance_2 = (_e110 + (sun_phase * ((((beer_powder * _e111) * sigma_s) * _e96) * dt_4)));
-                    float step_t_1 = exp(((-(sigma_t_6) * _e96) * dt_4));
+                    float step_t_1 = exp(((-(sigma_t_7) * _e96) * dt_4));
                     float _e122 = depth_sum;
                     float _e123 = transmittance_1;
                     depth_sum = (_e122 + ((t_9 * _e123) * (1.0 - step_t_1)));
@@ -3182,13 +3315,13 @@ MarchResult basic_pixel(uint2 pixel_7)
             }
         }
     }
-    uint _e136 = counters_14.view_steps;
+    uint _e136 = counters_17.view_steps;
     count(STAT_VIEW_STEPS, _e136);
-    uint _e139 = counters_14.density;
+    uint _e139 = counters_17.density;
     count(STAT_DENSITY, _e139);
-    uint _e142 = counters_14.detail;
+    uint _e142 = counters_17.detail;
     count(STAT_DETAIL, _e142);
-    uint _e145 = counters_14.light;
+    uint _e145 = counters_17.light;
     count(STAT_LIGHT, _e145);
     float _e148 = transmittance_1;
     if ((_e148 < 1.0)) {
@@ -3210,37 +3343,37 @@ float atlas_hash(uint a_2, uint b_2)
     return (float((_e4 >> 8u)) * 5.9604645e-8);
 }
 
-float value_noise(float2 p_11, uint seed)
+float value_noise(float2 p_14, uint seed)
 {
-    uint2 i_19 = naga_f2u32(floor(p_11));
-    float2 f_6 = frac(p_11);
-    float2 s_12 = ((f_6 * f_6) * ((3.0).xx - (2.0 * f_6)));
-    uint h_13 = (seed * 7919u);
-    const float _e17 = atlas_hash((i_19.x + h_13), i_19.y);
-    const float _e23 = atlas_hash(((i_19.x + 1u) + h_13), i_19.y);
-    const float _e29 = atlas_hash((i_19.x + h_13), (i_19.y + 1u));
-    const float _e37 = atlas_hash(((i_19.x + 1u) + h_13), (i_19.y + 1u));
-    return lerp(lerp(_e17, _e23, s_12.x), lerp(_e29, _e37, s_12.x), s_12.y);
+    uint2 i_20 = naga_f2u32(floor(p_14));
+    float2 f_6 = frac(p_14);
+    float2 s_13 = ((f_6 * f_6) * ((3.0).xx - (2.0 * f_6)));
+    uint h_14 = (seed * 7919u);
+    const float _e17 = atlas_hash((i_20.x + h_14), i_20.y);
+    const float _e23 = atlas_hash(((i_20.x + 1u) + h_14), i_20.y);
+    const float _e29 = atlas_hash((i_20.x + h_14), (i_20.y + 1u));
+    const float _e37 = atlas_hash(((i_20.x + 1u) + h_14), (i_20.y + 1u));
+    return lerp(lerp(_e17, _e23, s_13.x), lerp(_e29, _e37, s_13.x), s_13.y);
 }
 
-float value_fbm(float2 p_12, uint seed_1)
+float value_fbm(float2 p_15, uint seed_1)
 {
     float sum_5 = 0.0;
     float weight = 0.5;
     float2 q_4 = (float2)0;
     uint o = 0u;
 
-    q_4 = p_12;
-    uint2 loop_bound_19 = uint2(4294967295u, 4294967295u);
-    bool loop_init_15 = true;
+    q_4 = p_15;
+    uint2 loop_bound_20 = uint2(4294967295u, 4294967295u);
+    bool loop_init_16 = true;
     while(true) {
-        if (all(loop_bound_19 == uint2(0u, 0u))) { break; }
-        loop_bound_19 -= uint2(loop_bound_19.y == 0u, 1u);
-        if (!loop_init_15) {
+        if (all(loop_bound_20 == uint2(0u, 0u))) { break; }
+        loop_bound_20 -= uint2(loop_bound_20.y == 0u, 1u);
+        if (!loop_init_16) {
             uint _e26 = o;
             o = (_e26 + 1u);
         }
-        loop_init_15 = false;
+        loop_init_16 = false;
         uint _e9 = o;
         if ((_e9 < 4u)) {
         } else {
@@ -3266,7 +3399,7 @@ float value_fbm(float2 p_12, uint seed_1)
 float sprite_texture(uint tile_1, float2 uv)
 {
     float billow = 0.0;
-    uint i_18 = 0u;
+    uint i_19 = 0u;
     float2 at = (float2)0;
     float a_3 = (float)0;
 
@@ -3281,38 +3414,38 @@ float sprite_texture(uint tile_1, float2 uv)
         return (((mask * streak) * _e46) * 0.8);
     }
     uint blobs = (5u + naga_mod(tile_1, 4u));
-    uint2 loop_bound_20 = uint2(4294967295u, 4294967295u);
-    bool loop_init_16 = true;
+    uint2 loop_bound_21 = uint2(4294967295u, 4294967295u);
+    bool loop_init_17 = true;
     while(true) {
-        if (all(loop_bound_20 == uint2(0u, 0u))) { break; }
-        loop_bound_20 -= uint2(loop_bound_20.y == 0u, 1u);
-        if (!loop_init_16) {
-            uint _e108 = i_18;
-            i_18 = (_e108 + 1u);
+        if (all(loop_bound_21 == uint2(0u, 0u))) { break; }
+        loop_bound_21 -= uint2(loop_bound_21.y == 0u, 1u);
+        if (!loop_init_17) {
+            uint _e108 = i_19;
+            i_19 = (_e108 + 1u);
         }
-        loop_init_16 = false;
-        uint _e58 = i_18;
+        loop_init_17 = false;
+        uint _e58 = i_19;
         if ((_e58 < blobs)) {
         } else {
             break;
         }
         {
-            uint _e61 = i_18;
+            uint _e61 = i_19;
             const float _e63 = atlas_hash(tile_1, (2u * _e61));
-            uint _e65 = i_18;
+            uint _e65 = i_19;
             const float _e69 = atlas_hash(tile_1, ((2u * _e65) + 1u));
             float2 centre_1 = (float2(_e63, _e69) - (0.5).xx);
             at = ((0.5).xx + (centre_1 * 0.34));
             if ((tile_1 == 4u)) {
                 at.y = (0.5 + ((centre_1.y - 0.5) * 0.24));
             }
-            uint _e91 = i_18;
+            uint _e91 = i_19;
             const float _e93 = atlas_hash(tile_1, (100u + _e91));
             float r_18 = (0.14 + (0.1 * _e93));
             float2 _e98 = at;
-            float d_22 = (length((uv - _e98)) / r_18);
+            float d_24 = (length((uv - _e98)) / r_18);
             float _e102 = billow;
-            const float _e106 = saturate_((1.0 - (d_22 * d_22)));
+            const float _e106 = saturate_((1.0 - (d_24 * d_24)));
             billow = max(_e102, _e106);
         }
     }
@@ -3327,14 +3460,14 @@ float sprite_texture(uint tile_1, float2 uv)
     return _e130;
 }
 
-float3 sprite_rel(float2 xz, float alt_15)
+float3 sprite_rel(float2 xz, float alt_16)
 {
     float rp_6 = frame.atmosphere.x;
     float4 _e8 = frame.camera_position;
-    float2 d_23 = (xz - _e8.xz);
-    float k_18 = ((alt_15 * (alt_15 + (2.0 * rp_6))) - dot(d_23, d_23));
-    float y_3 = (k_18 / (rp_6 + sqrt(max(((rp_6 * rp_6) + k_18), 0.0))));
-    return float3(d_23.x, y_3, d_23.y);
+    float2 d_25 = (xz - _e8.xz);
+    float k_19 = ((alt_16 * (alt_16 + (2.0 * rp_6))) - dot(d_25, d_25));
+    float y_3 = (k_19 / (rp_6 + sqrt(max(((rp_6 * rp_6) + k_19), 0.0))));
+    return float3(d_25.x, y_3, d_25.y);
 }
 
 SpriteCell ConstructSpriteCell(int2 arg0, float arg1, bool arg2) {
@@ -3349,23 +3482,23 @@ SpriteCell sprite_cell(uint cell)
 {
     int2 start_1 = (int2)0;
     uint k_10 = 3u;
-    bool local_57 = (bool)0;
-    bool local_58 = (bool)0;
+    bool local_61 = (bool)0;
+    bool local_62 = (bool)0;
 
     uint level_1 = naga_div(cell, 64u);
-    int2 local_62 = int2(int(naga_mod(cell, 8u)), int(naga_mod(naga_div(cell, 8u), 8u)));
+    int2 local_66 = int2(int(naga_mod(cell, 8u)), int(naga_mod(naga_div(cell, 8u), 8u)));
     float4 _e15 = frame.camera_position;
     start_1 = asint(asuint(naga_f2i32(floor((_e15.xz / (12000.0).xx)))) - asuint((int(4)).xx));
-    uint2 loop_bound_21 = uint2(4294967295u, 4294967295u);
-    bool loop_init_17 = true;
+    uint2 loop_bound_22 = uint2(4294967295u, 4294967295u);
+    bool loop_init_18 = true;
     while(true) {
-        if (all(loop_bound_21 == uint2(0u, 0u))) { break; }
-        loop_bound_21 -= uint2(loop_bound_21.y == 0u, 1u);
-        if (!loop_init_17) {
+        if (all(loop_bound_22 == uint2(0u, 0u))) { break; }
+        loop_bound_22 -= uint2(loop_bound_22.y == 0u, 1u);
+        if (!loop_init_18) {
             uint _e35 = k_10;
             k_10 = (_e35 - 1u);
         }
-        loop_init_17 = false;
+        loop_init_18 = false;
         uint _e27 = k_10;
         if ((_e27 > level_1)) {
         } else {
@@ -3377,19 +3510,19 @@ SpriteCell sprite_cell(uint cell)
         }
     }
     if ((level_1 > 0u)) {
-        local_57 = all((local_62 >= (int(2)).xx));
+        local_61 = all((local_66 >= (int(2)).xx));
     } else {
-        local_57 = false;
+        local_61 = false;
     }
-    bool _e47 = local_57;
+    bool _e47 = local_61;
     if (_e47) {
-        local_58 = all((local_62 < (int(6)).xx));
+        local_62 = all((local_66 < (int(6)).xx));
     } else {
-        local_58 = false;
+        local_62 = false;
     }
-    bool covered = local_58;
+    bool covered = local_62;
     int2 _e56 = start_1;
-    const SpriteCell spritecell = ConstructSpriteCell(asint(asuint(_e56) + asuint(local_62)), (SPRITE_CELL0_ * float((1u << level_1))), covered);
+    const SpriteCell spritecell = ConstructSpriteCell(asint(asuint(_e56) + asuint(local_66)), (SPRITE_CELL0_ * float((1u << level_1))), covered);
     return spritecell;
 }
 
@@ -3406,7 +3539,7 @@ SpriteCandidate ConstructSpriteCandidate(float2 arg0, float arg1, float arg2, fl
     return ret;
 }
 
-SpriteCandidate sprite_candidate(SpriteCell c_4, uint level, uint s_2, inout Counters counters_15)
+SpriteCandidate sprite_candidate(SpriteCell c_4, uint level, uint s_2, inout Counters counters_18)
 {
     float density_3 = 0.0;
 
@@ -3424,24 +3557,24 @@ SpriteCandidate sprite_candidate(SpriteCell c_4, uint level, uint s_2, inout Cou
     float2 xz_2 = ((float2(c_4.index) + u_1.xy) * c_4.size);
     const Layer _e56 = cloud_layer(0u);
     const Weather _e57 = sample_weather(float3(xz_2.x, 0.0, xz_2.y), _e56);
-    float h_14 = (0.04 + (u_1.z * (lerp(0.3, 0.95, _e57.cloud_type) - 0.04)));
+    float h_15 = (0.04 + (u_1.z * (lerp(0.3, 0.95, _e57.cloud_type) - 0.04)));
     float _e71 = frame.atmosphere.y;
     float _e75 = frame.atmosphere.z;
     float _e79 = frame.atmosphere.y;
-    float alt_17 = (_e71 + (h_14 * (_e75 - _e79)));
+    float alt_18 = (_e71 + (h_15 * (_e75 - _e79)));
     if (!(c_4.covered)) {
-        const float3 _e87 = sprite_rel(xz_2, alt_17);
-        const float _e92 = cloud_density(float3(xz_2.x, _e87.y, xz_2.y), alt_17, counters_15);
+        const float3 _e87 = sprite_rel(xz_2, alt_18);
+        const float _e92 = cloud_density(float3(xz_2.x, _e87.y, xz_2.y), alt_18, counters_18);
         density_3 = _e92;
     }
     float _e96 = density_3;
-    const SpriteCandidate spritecandidate = ConstructSpriteCandidate(xz_2, alt_17, h_14, u_1.w, v_3.x, v_3.y, _e96, _e57.precipitation);
+    const SpriteCandidate spritecandidate = ConstructSpriteCandidate(xz_2, alt_18, h_15, u_1.w, v_3.x, v_3.y, _e96, _e57.precipitation);
     return spritecandidate;
 }
 
-float3 sprite_sky_level(float h_9)
+float3 sprite_sky_level(float h_10)
 {
-    const float _e1 = saturate_(h_9);
+    const float _e1 = saturate_(h_10);
     float x_11 = (_e1 * 4.0);
     if ((x_11 < 1.0)) {
         return lerp(SKY_LEVEL0_, SKY_LEVEL1_, x_11);
@@ -3465,109 +3598,109 @@ float sprite_sun_level(float cos_angle)
 
 float2 sprite_corner(uint k_11)
 {
-    bool local_59 = (bool)0;
+    bool local_63 = (bool)0;
 
     uint q_11 = ((k_11 >= 3u) ? ((k_11 == 3u) ? 0u : (k_11 - 2u)) : k_11);
     if (!((q_11 == 1u))) {
-        local_59 = (q_11 == 2u);
+        local_63 = (q_11 == 2u);
     } else {
-        local_59 = true;
+        local_63 = true;
     }
-    bool _e18 = local_59;
+    bool _e18 = local_63;
     return float2((_e18 ? 1.0 : -1.0), ((q_11 >= 2u) ? 1.0 : -1.0));
 }
 
-float3 sky_radiance(float3 d_16, float alt_16)
+float3 sky_radiance(float3 d_17, float alt_17)
 {
     float4 _e4 = frame.sun_direction;
-    float3 sun_8 = _e4.xyz;
+    float3 sun_9 = _e4.xyz;
     float4 _e8 = frame.sun_illuminance;
     float3 e_1 = _e8.xyz;
-    const float _e15 = saturate_(((sun_8.y * 4.0) + 0.3));
-    const bool _e19 = hits_ground(float3(0.0, alt_16, 0.0), alt_16, d_16);
+    const float _e15 = saturate_(((sun_9.y * 4.0) + 0.3));
+    const bool _e19 = hits_ground(float3(0.0, alt_17, 0.0), alt_17, d_17);
     if (_e19) {
         float3 ground_albedo = float3(0.035, 0.035, 0.03);
-        return (ground_albedo * (((e_1 * max(sun_8.y, 0.0)) / (3.1415927).xxx) + ((0.05 * e_1) * _e15)));
+        return (ground_albedo * (((e_1 * max(sun_9.y, 0.0)) / (3.1415927).xxx) + ((0.05 * e_1) * _e15)));
     }
     float3 zenith = float3(0.018, 0.04, 0.1);
     float3 horizon_2 = float3(0.07, 0.085, 0.11);
-    const float _e45 = saturate_(d_16.y);
+    const float _e45 = saturate_(d_17.y);
     float3 gradient_1 = lerp(horizon_2, zenith, sqrt(_e45));
     float3 sunset = (((1.0 - (_e15 * 0.8)) * pow((1.0 - _e45), 6.0)) * float3(0.25, 0.1, 0.0));
-    const float _e64 = phase_hg(dot(d_16, sun_8), 0.76);
+    const float _e64 = phase_hg(dot(d_17, sun_9), 0.76);
     float glow = (_e64 * 0.02);
-    const float _e73 = saturate_(((sun_8.y * 10.0) + 1.0));
+    const float _e73 = saturate_(((sun_9.y * 10.0) + 1.0));
     return (e_1 * (((gradient_1 * _e15) + (sunset * _e73)) + ((glow * _e15)).xxx));
 }
 
-float3 sun_disk(float3 d_17)
+float3 sun_disk(float3 d_18)
 {
     float cos_r = frame.sun_direction.w;
     float4 _e7 = frame.sun_direction;
-    if ((dot(d_17, _e7.xyz) < cos_r)) {
+    if ((dot(d_18, _e7.xyz) < cos_r)) {
         return (0.0).xxx;
     }
     float4 _e15 = frame.sun_illuminance;
     return (_e15.xyz / ((6.2831855 * max((1.0 - cos_r), 1e-6))).xxx);
 }
 
-float3 moon_disk(float3 d_18)
+float3 moon_disk(float3 d_19)
 {
-    bool local_60 = (bool)0;
+    bool local_64 = (bool)0;
 
     float4 _e3 = frame.moon;
-    float3 m_3 = _e3.xyz;
-    float c_11 = dot(d_18, m_3);
+    float3 m_4 = _e3.xyz;
+    float c_11 = dot(d_19, m_4);
     float _e9 = frame.moon.w;
     if (!((_e9 <= 0.0))) {
-        local_60 = (c_11 < MOON_COS_RADIUS);
+        local_64 = (c_11 < MOON_COS_RADIUS);
     } else {
-        local_60 = true;
+        local_64 = true;
     }
-    bool _e18 = local_60;
+    bool _e18 = local_64;
     if (_e18) {
         return (0.0).xxx;
     }
-    float3 offset = ((d_18 - (m_3 * c_11)) / (0.0045149517).xxx);
+    float3 offset = ((d_19 - (m_4 * c_11)) / (0.0045149517).xxx);
     float x2_1 = min(dot(offset, offset), 1.0);
-    float3 normal = (offset - (m_3 * sqrt((1.0 - x2_1))));
+    float3 normal = (offset - (m_4 * sqrt((1.0 - x2_1))));
     float4 _e36 = frame.night;
     float lit_1 = smoothstep(-0.02, 0.02, dot(normal, _e36.xyz));
     float _e46 = frame.moon.w;
     return (((_e46 / 6.40407e-5) * lit_1)).xxx;
 }
 
-float3 stars(float3 d_19)
+float3 stars(float3 d_20)
 {
     uint face = 0u;
     float2 uv_1 = (0.0).xx;
     float major = 0.0;
-    bool local_61 = (bool)0;
+    bool local_65 = (bool)0;
     float3 star = (0.0).xxx;
 
     float e0_ = frame.night.w;
     if ((e0_ <= 0.0)) {
         return (0.0).xxx;
     }
-    float3 a_10 = abs(d_19);
+    float3 a_10 = abs(d_20);
     if ((a_10.x >= a_10.y)) {
-        local_61 = (a_10.x >= a_10.z);
+        local_65 = (a_10.x >= a_10.z);
     } else {
-        local_61 = false;
+        local_65 = false;
     }
-    bool _e26 = local_61;
+    bool _e26 = local_65;
     if (_e26) {
-        face = ((d_19.x > 0.0) ? 0u : 1u);
-        uv_1 = d_19.zy;
+        face = ((d_20.x > 0.0) ? 0u : 1u);
+        uv_1 = d_20.zy;
         major = a_10.x;
     } else {
         if ((a_10.y >= a_10.z)) {
-            face = ((d_19.y > 0.0) ? 2u : 3u);
-            uv_1 = d_19.xz;
+            face = ((d_20.y > 0.0) ? 2u : 3u);
+            uv_1 = d_20.xz;
             major = a_10.y;
         } else {
-            face = ((d_19.z > 0.0) ? 4u : 5u);
-            uv_1 = d_19.xy;
+            face = ((d_20.z > 0.0) ? 4u : 5u);
+            uv_1 = d_20.xy;
             major = a_10.z;
         }
     }
@@ -3621,8 +3754,8 @@ float3 stars(float3 d_19)
     uint _e209 = frame.counts.y;
     float pixel_angle = ((2.0 * _e203) / float(_e209));
     float3 _e212 = star;
-    float dist_1 = (acos(clamp(dot(d_19, _e212), -1.0, 1.0)) / pixel_angle);
-    float weight_1 = (exp(((-(dist_1) * dist_1) / 0.5)) / 1.5707964);
+    float dist_2 = (acos(clamp(dot(d_20, _e212), -1.0, 1.0)) / pixel_angle);
+    float weight_1 = (exp(((-(dist_2) * dist_2) / 0.5)) / 1.5707964);
     float3 tint = lerp(float3(0.8, 0.9, 1.1), float3(1.15, 0.95, 0.75), (h3_ * h4_));
     return (tint * ((illuminance * weight_1) / (pixel_angle * pixel_angle)));
 }
@@ -3700,16 +3833,16 @@ void transmittance_lut(uint3 id : SV_DispatchThreadID)
     const float2 _e11 = transmittance_r_mu((float2(id.xy) / float2(255.0, 63.0)));
     const float _e14 = distance_to_top(_e11.x, _e11.y);
     float dt_5 = (_e14 / 128.0);
-    uint2 loop_bound_22 = uint2(4294967295u, 4294967295u);
-    bool loop_init_18 = true;
+    uint2 loop_bound_23 = uint2(4294967295u, 4294967295u);
+    bool loop_init_19 = true;
     while(true) {
-        if (all(loop_bound_22 == uint2(0u, 0u))) { break; }
-        loop_bound_22 -= uint2(loop_bound_22.y == 0u, 1u);
-        if (!loop_init_18) {
+        if (all(loop_bound_23 == uint2(0u, 0u))) { break; }
+        loop_bound_23 -= uint2(loop_bound_23.y == 0u, 1u);
+        if (!loop_init_19) {
             uint _e61 = i;
             i = (_e61 + 1u);
         }
-        loop_init_18 = false;
+        loop_init_19 = false;
         uint _e22 = i;
         if ((_e22 <= TRANSMITTANCE_STEPS)) {
         } else {
@@ -3762,17 +3895,17 @@ void multiscatter_lut(uint3 id_1 : SV_DispatchThreadID)
     const float _e19 = air_bottom();
     float r_20 = (_e16 + (x_12.y * (_e18 - _e19)));
     float3 origin_7 = float3(0.0, r_20, 0.0);
-    float3 sun_9 = float3(sqrt(max((1.0 - (mu_s_7 * mu_s_7)), 0.0)), mu_s_7, 0.0);
-    uint2 loop_bound_23 = uint2(4294967295u, 4294967295u);
-    bool loop_init_19 = true;
+    float3 sun_10 = float3(sqrt(max((1.0 - (mu_s_7 * mu_s_7)), 0.0)), mu_s_7, 0.0);
+    uint2 loop_bound_24 = uint2(4294967295u, 4294967295u);
+    bool loop_init_20 = true;
     while(true) {
-        if (all(loop_bound_23 == uint2(0u, 0u))) { break; }
-        loop_bound_23 -= uint2(loop_bound_23.y == 0u, 1u);
-        if (!loop_init_19) {
+        if (all(loop_bound_24 == uint2(0u, 0u))) { break; }
+        loop_bound_24 -= uint2(loop_bound_24.y == 0u, 1u);
+        if (!loop_init_20) {
             uint _e121 = k;
             k = (_e121 + 1u);
         }
-        loop_init_19 = false;
+        loop_init_20 = false;
         uint _e43 = k;
         if ((_e43 < MULTISCATTER_DIRECTIONS)) {
         } else {
@@ -3785,16 +3918,16 @@ void multiscatter_lut(uint3 id_1 : SV_DispatchThreadID)
             float dt_6 = (_e49.x / 32.0);
             tau = (0.0).xxx;
             i_1 = 0u;
-            uint2 loop_bound_24 = uint2(4294967295u, 4294967295u);
-            bool loop_init_20 = true;
+            uint2 loop_bound_25 = uint2(4294967295u, 4294967295u);
+            bool loop_init_21 = true;
             while(true) {
-                if (all(loop_bound_24 == uint2(0u, 0u))) { break; }
-                loop_bound_24 -= uint2(loop_bound_24.y == 0u, 1u);
-                if (!loop_init_20) {
+                if (all(loop_bound_25 == uint2(0u, 0u))) { break; }
+                loop_bound_25 -= uint2(loop_bound_25.y == 0u, 1u);
+                if (!loop_init_21) {
                     uint _e103 = i_1;
                     i_1 = (_e103 + 1u);
                 }
-                loop_init_20 = false;
+                loop_init_21 = false;
                 uint _e58 = i_1;
                 if ((_e58 < MULTISCATTER_STEPS)) {
                 } else {
@@ -3802,18 +3935,18 @@ void multiscatter_lut(uint3 id_1 : SV_DispatchThreadID)
                 }
                 {
                     uint _e61 = i_1;
-                    float3 p_21 = (origin_7 + (_e48 * (dt_6 * (float(_e61) + 0.5))));
-                    float rp_7 = length(p_21);
+                    float3 p_24 = (origin_7 + (_e48 * (dt_6 * (float(_e61) + 0.5))));
+                    float rp_7 = length(p_24);
                     const float _e69 = air_bottom();
                     const AirSample _e71 = air_at((rp_7 - _e69));
                     float3 _e72 = tau;
                     float3 t_10 = exp(-((_e72 + ((0.5 * _e71.extinction) * dt_6))));
-                    float3 s_13 = (_e71.rayleigh + (_e71.mie).xxx);
+                    float3 s_14 = (_e71.rayleigh + (_e71.mie).xxx);
                     float3 _e84 = l2_;
-                    const float3 _e90 = sun_transmittance(rp_7, dot((p_21 / (rp_7).xxx), sun_9));
-                    l2_ = (_e84 + ((((t_10 * s_13) * 0.07957747) * _e90) * dt_6));
+                    const float3 _e90 = sun_transmittance(rp_7, dot((p_24 / (rp_7).xxx), sun_10));
+                    l2_ = (_e84 + ((((t_10 * s_14) * 0.07957747) * _e90) * dt_6));
                     float3 _e94 = f_ms;
-                    f_ms = (_e94 + ((t_10 * s_13) * dt_6));
+                    f_ms = (_e94 + ((t_10 * s_14) * dt_6));
                     float3 _e98 = tau;
                     tau = (_e98 + (_e71.extinction * dt_6));
                 }
@@ -3822,7 +3955,7 @@ void multiscatter_lut(uint3 id_1 : SV_DispatchThreadID)
                 float3 g_7 = (origin_7 + (_e48 * _e49.x));
                 float3 _e111 = l2_;
                 float3 _e112 = tau;
-                const float3 _e117 = ground_radiance_sun(dot(normalize(g_7), sun_9));
+                const float3 _e117 = ground_radiance_sun(dot(normalize(g_7), sun_10));
                 l2_ = (_e111 + (exp(-(_e112)) * _e117));
             }
         }
@@ -3846,8 +3979,8 @@ void sky_view_lut(uint3 id_2 : SV_DispatchThreadID)
     const float _e15 = sky_view_elevation(x_13.y, _e14);
     const float _e16 = sun_azimuth();
     float phi_2 = (_e16 + (x_13.x * PI));
-    float3 d_24 = float3((cos(_e15) * cos(phi_2)), sin(_e15), (cos(_e15) * sin(phi_2)));
-    const float3 _e31 = sky_along(_e11, d_24);
+    float3 d_26 = float3((cos(_e15) * cos(phi_2)), sin(_e15), (cos(_e15) * sin(phi_2)));
+    const float3 _e31 = sky_along(_e11, d_26);
     sky_view_out[id_2.xy] = float4(_e31, 1.0);
     return;
 }
@@ -3867,21 +4000,21 @@ void aerial_perspective(uint3 id_3 : SV_DispatchThreadID)
     const float3 _e8 = camera_air_origin();
     const float2 _e9 = air_ray_end(_e8, _e7);
     float4 _e12 = frame.sun_direction;
-    float3 sun_10 = _e12.xyz;
-    float cos_theta_9 = dot(_e7, sun_10);
+    float3 sun_11 = _e12.xyz;
+    float cos_theta_9 = dot(_e7, sun_11);
     const float _e15 = phase_rayleigh(cos_theta_9);
     float _e19 = frame.air_mie.w;
     const float _e20 = phase_cornette_shanks_air(cos_theta_9, _e19);
-    uint2 loop_bound_25 = uint2(4294967295u, 4294967295u);
-    bool loop_init_21 = true;
+    uint2 loop_bound_26 = uint2(4294967295u, 4294967295u);
+    bool loop_init_22 = true;
     while(true) {
-        if (all(loop_bound_25 == uint2(0u, 0u))) { break; }
-        loop_bound_25 -= uint2(loop_bound_25.y == 0u, 1u);
-        if (!loop_init_21) {
+        if (all(loop_bound_26 == uint2(0u, 0u))) { break; }
+        loop_bound_26 -= uint2(loop_bound_26.y == 0u, 1u);
+        if (!loop_init_22) {
             uint _e122 = z;
             z = (_e122 + 1u);
         }
-        loop_init_21 = false;
+        loop_init_22 = false;
         uint _e30 = z;
         if ((_e30 < AERIAL_SLICES)) {
         } else {
@@ -3889,16 +4022,16 @@ void aerial_perspective(uint3 id_3 : SV_DispatchThreadID)
         }
         {
             k_1 = 0u;
-            uint2 loop_bound_26 = uint2(4294967295u, 4294967295u);
-            bool loop_init_22 = true;
+            uint2 loop_bound_27 = uint2(4294967295u, 4294967295u);
+            bool loop_init_23 = true;
             while(true) {
-                if (all(loop_bound_26 == uint2(0u, 0u))) { break; }
-                loop_bound_26 -= uint2(loop_bound_26.y == 0u, 1u);
-                if (!loop_init_22) {
+                if (all(loop_bound_27 == uint2(0u, 0u))) { break; }
+                loop_bound_27 -= uint2(loop_bound_27.y == 0u, 1u);
+                if (!loop_init_23) {
                     uint _e99 = k_1;
                     k_1 = (_e99 + 1u);
                 }
-                loop_init_22 = false;
+                loop_init_23 = false;
                 uint _e35 = k_1;
                 if ((_e35 < 4u)) {
                 } else {
@@ -3909,9 +4042,9 @@ void aerial_perspective(uint3 id_3 : SV_DispatchThreadID)
                     uint _e40 = k_1;
                     float t0_1 = (AERIAL_SLICE_KM * (float(_e38) + (float(_e40) / 4.0)));
                     float dt_7 = max(min(0.25, (_e9.x - t0_1)), 0.0);
-                    float3 p_22 = (_e8 + (_e7 * (t0_1 + (0.5 * dt_7))));
-                    float r_21 = length(p_22);
-                    float mu_s_8 = dot((p_22 / (r_21).xxx), sun_10);
+                    float3 p_25 = (_e8 + (_e7 * (t0_1 + (0.5 * dt_7))));
+                    float r_21 = length(p_25);
+                    float mu_s_8 = dot((p_25 / (r_21).xxx), sun_11);
                     const float _e64 = air_bottom();
                     const AirSample _e66 = air_at((r_21 - _e64));
                     float3 _e67 = tau_1;
@@ -3955,22 +4088,22 @@ void sky_ambient(uint3 id_4 : SV_DispatchThreadID)
     bool top_3 = (id_4.y == 1u);
     float t_12 = (((float(id_4.x) / 63.0) * 2.0) - 1.0);
     float mu_s_9 = ((sign(t_12) * t_12) * t_12);
-    float3 sun_11 = float3(sqrt(max((1.0 - (mu_s_9 * mu_s_9)), 0.0)), mu_s_9, 0.0);
+    float3 sun_12 = float3(sqrt(max((1.0 - (mu_s_9 * mu_s_9)), 0.0)), mu_s_9, 0.0);
     const float _e34 = air_bottom();
     float _e38 = frame.atmosphere.y;
     float3 origin_8 = float3(0.0, (_e34 + (_e38 * 0.001)), 0.0);
     uint first = (top_3 ? 0u : 32u);
     k_2 = first;
-    uint2 loop_bound_27 = uint2(4294967295u, 4294967295u);
-    bool loop_init_23 = true;
+    uint2 loop_bound_28 = uint2(4294967295u, 4294967295u);
+    bool loop_init_24 = true;
     while(true) {
-        if (all(loop_bound_27 == uint2(0u, 0u))) { break; }
-        loop_bound_27 -= uint2(loop_bound_27.y == 0u, 1u);
-        if (!loop_init_23) {
+        if (all(loop_bound_28 == uint2(0u, 0u))) { break; }
+        loop_bound_28 -= uint2(loop_bound_28.y == 0u, 1u);
+        if (!loop_init_24) {
             uint _e77 = k_2;
             k_2 = (_e77 + 1u);
         }
-        loop_init_23 = false;
+        loop_init_24 = false;
         uint _e54 = k_2;
         if ((_e54 < (first + 32u))) {
         } else {
@@ -3980,10 +4113,10 @@ void sky_ambient(uint3 id_4 : SV_DispatchThreadID)
             uint _e57 = k_2;
             const float3 _e59 = fibonacci_direction(_e57, AMBIENT_DIRECTIONS);
             const float2 _e60 = air_ray_end(origin_8, _e59);
-            const Scattered _e63 = integrate_air(origin_8, _e59, _e60.x, AMBIENT_STEPS, sun_11);
+            const Scattered _e63 = integrate_air(origin_8, _e59, _e60.x, AMBIENT_STEPS, sun_12);
             float w_8 = abs(_e59.y);
             float3 _e66 = sum_1;
-            const float3 _e71 = with_ground(_e63, origin_8, _e59, _e60.x, sun_11, (_e60.y > 0.5));
+            const float3 _e71 = with_ground(_e63, origin_8, _e59, _e60.x, sun_12, (_e60.y > 0.5));
             sum_1 = (_e66 + (w_8 * _e71));
             float _e74 = weights;
             weights = (_e74 + w_8);
@@ -4012,19 +4145,19 @@ void ground_irradiance(uint3 id_5 : SV_DispatchThreadID)
         return;
     }
     float mu_s_10 = (((float(id_5.x) / 63.0) * 2.0) - 1.0);
-    float3 sun_12 = float3(sqrt(max((1.0 - (mu_s_10 * mu_s_10)), 0.0)), mu_s_10, 0.0);
+    float3 sun_13 = float3(sqrt(max((1.0 - (mu_s_10 * mu_s_10)), 0.0)), mu_s_10, 0.0);
     const float _e28 = air_bottom();
     float3 origin_9 = float3(0.0, (_e28 + 0.001), 0.0);
-    uint2 loop_bound_28 = uint2(4294967295u, 4294967295u);
-    bool loop_init_24 = true;
+    uint2 loop_bound_29 = uint2(4294967295u, 4294967295u);
+    bool loop_init_25 = true;
     while(true) {
-        if (all(loop_bound_28 == uint2(0u, 0u))) { break; }
-        loop_bound_28 -= uint2(loop_bound_28.y == 0u, 1u);
-        if (!loop_init_24) {
+        if (all(loop_bound_29 == uint2(0u, 0u))) { break; }
+        loop_bound_29 -= uint2(loop_bound_29.y == 0u, 1u);
+        if (!loop_init_25) {
             uint _e58 = k_3;
             k_3 = (_e58 + 1u);
         }
-        loop_init_24 = false;
+        loop_init_25 = false;
         uint _e39 = k_3;
         if ((_e39 < GROUND_IRRADIANCE_DIRECTIONS)) {
         } else {
@@ -4038,7 +4171,7 @@ void ground_irradiance(uint3 id_5 : SV_DispatchThreadID)
             }
             const float2 _e48 = air_ray_end(origin_9, _e44);
             float3 _e49 = sum_2;
-            const Scattered _e52 = integrate_air(origin_9, _e44, _e48.x, AMBIENT_STEPS, sun_12);
+            const Scattered _e52 = integrate_air(origin_9, _e44, _e48.x, AMBIENT_STEPS, sun_13);
             sum_2 = (_e49 + (_e52.radiance * _e44.y));
         }
     }
@@ -4061,22 +4194,22 @@ void cloud_shadow(uint3 id_6 : SV_DispatchThreadID)
     }
     const float3 _e7 = shadow_ground_point(id_6.xy);
     float4 _e10 = frame.sun_direction;
-    float3 sun_13 = _e10.xyz;
+    float3 sun_14 = _e10.xyz;
     float rp_8 = frame.atmosphere.x;
-    float3 up_1 = normalize(float3(_e7.x, (_e7.y + rp_8), _e7.z));
-    if ((dot(up_1, sun_13) > 0.0)) {
+    float3 up_2 = normalize(float3(_e7.x, (_e7.y + rp_8), _e7.z));
+    if ((dot(up_2, sun_14) > 0.0)) {
         float4 _e29 = frame.camera_position;
         float2 cam_xz_3 = _e29.xz;
-        uint2 loop_bound_29 = uint2(4294967295u, 4294967295u);
-        bool loop_init_25 = true;
+        uint2 loop_bound_30 = uint2(4294967295u, 4294967295u);
+        bool loop_init_26 = true;
         while(true) {
-            if (all(loop_bound_29 == uint2(0u, 0u))) { break; }
-            loop_bound_29 -= uint2(loop_bound_29.y == 0u, 1u);
-            if (!loop_init_25) {
+            if (all(loop_bound_30 == uint2(0u, 0u))) { break; }
+            loop_bound_30 -= uint2(loop_bound_30.y == 0u, 1u);
+            if (!loop_init_26) {
                 uint _e90 = i_2;
                 i_2 = (_e90 + 1u);
             }
-            loop_init_25 = false;
+            loop_init_26 = false;
             uint _e39 = i_2;
             const uint _e40 = layer_count();
             if ((_e39 < _e40)) {
@@ -4086,25 +4219,25 @@ void cloud_shadow(uint3 id_6 : SV_DispatchThreadID)
             {
                 uint _e42 = i_2;
                 const Layer _e43 = cloud_layer(_e42);
-                const Roots _e46 = ray_shell_from(_e7, 0.0, sun_13, _e43.bottom);
+                const Roots _e46 = ray_shell_from(_e7, 0.0, sun_14, _e43.bottom);
                 float start_2 = max(_e46.t1_, 0.0);
-                const Roots _e52 = ray_shell_from(_e7, 0.0, sun_13, _e43.top);
+                const Roots _e52 = ray_shell_from(_e7, 0.0, sun_14, _e43.top);
                 float end_2 = _e52.t1_;
                 float dt_8 = ((end_2 - start_2) / 16.0);
                 if (!((dt_8 > 0.0))) {
                     continue;
                 }
                 k_4 = 0u;
-                uint2 loop_bound_30 = uint2(4294967295u, 4294967295u);
-                bool loop_init_26 = true;
+                uint2 loop_bound_31 = uint2(4294967295u, 4294967295u);
+                bool loop_init_27 = true;
                 while(true) {
-                    if (all(loop_bound_30 == uint2(0u, 0u))) { break; }
-                    loop_bound_30 -= uint2(loop_bound_30.y == 0u, 1u);
-                    if (!loop_init_26) {
+                    if (all(loop_bound_31 == uint2(0u, 0u))) { break; }
+                    loop_bound_31 -= uint2(loop_bound_31.y == 0u, 1u);
+                    if (!loop_init_27) {
                         uint _e87 = k_4;
                         k_4 = (_e87 + 1u);
                     }
-                    loop_init_26 = false;
+                    loop_init_27 = false;
                     uint _e62 = k_4;
                     if ((_e62 < SHADOW_STEPS)) {
                     } else {
@@ -4112,11 +4245,11 @@ void cloud_shadow(uint3 id_6 : SV_DispatchThreadID)
                     }
                     {
                         uint _e65 = k_4;
-                        float3 q_13 = (_e7 + (sun_13 * (start_2 + ((float(_e65) + 0.5) * dt_8))));
-                        float3 p_23 = float3((q_13.x + cam_xz_3.x), q_13.y, (q_13.z + cam_xz_3.y));
+                        float3 q_13 = (_e7 + (sun_14 * (start_2 + ((float(_e65) + 0.5) * dt_8))));
+                        float3 p_26 = float3((q_13.x + cam_xz_3.x), q_13.y, (q_13.z + cam_xz_3.y));
                         float _e81 = tau_2;
                         const float _e82 = altitude_of(q_13);
-                        const float _e83 = layer_density(p_23, _e82, _e43, counters);
+                        const float _e83 = layer_density(p_26, _e82, _e43, counters);
                         tau_2 = (_e81 + (_e83 * dt_8));
                     }
                 }
@@ -4125,9 +4258,9 @@ void cloud_shadow(uint3 id_6 : SV_DispatchThreadID)
     }
     float _e95 = frame.extinction.x;
     float _e99 = frame.extinction.y;
-    float sigma_t_7 = (_e95 + _e99);
+    float sigma_t_8 = (_e95 + _e99);
     float _e104 = tau_2;
-    cloud_shadow_out[id_6.xy] = float4(exp((-(sigma_t_7) * _e104)), 0.0, 0.0, 1.0);
+    cloud_shadow_out[id_6.xy] = float4(exp((-(sigma_t_8) * _e104)), 0.0, 0.0, 1.0);
     return;
 }
 
@@ -4161,16 +4294,16 @@ void occupancy(uint3 id_7 : SV_DispatchThreadID)
     int2 lo_1 = asint(asuint(naga_div(asint(asuint(int2(id_7.xy)) * asuint(size_8)), (int(64)).xx)) - asuint((int(1)).xx));
     int2 hi = naga_div(asint(asuint(asint(asuint(int2(id_7.xy)) + asuint((int(1)).xx))) * asuint(size_8)), (int(64)).xx);
     y = lo_1.y;
-    uint2 loop_bound_31 = uint2(4294967295u, 4294967295u);
-    bool loop_init_27 = true;
+    uint2 loop_bound_32 = uint2(4294967295u, 4294967295u);
+    bool loop_init_28 = true;
     while(true) {
-        if (all(loop_bound_31 == uint2(0u, 0u))) { break; }
-        loop_bound_31 -= uint2(loop_bound_31.y == 0u, 1u);
-        if (!loop_init_27) {
+        if (all(loop_bound_32 == uint2(0u, 0u))) { break; }
+        loop_bound_32 -= uint2(loop_bound_32.y == 0u, 1u);
+        if (!loop_init_28) {
             int _e54 = y;
             y = asint(asuint(_e54) + asuint(int(1)));
         }
-        loop_init_27 = false;
+        loop_init_28 = false;
         int _e30 = y;
         if ((_e30 <= hi.y)) {
         } else {
@@ -4178,16 +4311,16 @@ void occupancy(uint3 id_7 : SV_DispatchThreadID)
         }
         {
             x = lo_1.x;
-            uint2 loop_bound_32 = uint2(4294967295u, 4294967295u);
-            bool loop_init_28 = true;
+            uint2 loop_bound_33 = uint2(4294967295u, 4294967295u);
+            bool loop_init_29 = true;
             while(true) {
-                if (all(loop_bound_32 == uint2(0u, 0u))) { break; }
-                loop_bound_32 -= uint2(loop_bound_32.y == 0u, 1u);
-                if (!loop_init_28) {
+                if (all(loop_bound_33 == uint2(0u, 0u))) { break; }
+                loop_bound_33 -= uint2(loop_bound_33.y == 0u, 1u);
+                if (!loop_init_29) {
                     int _e51 = x;
                     x = asint(asuint(_e51) + asuint(int(1)));
                 }
-                loop_init_28 = false;
+                loop_init_29 = false;
                 int _e35 = x;
                 if ((_e35 <= hi.x)) {
                 } else {
@@ -4267,9 +4400,9 @@ void march_sparse_checkerboard(uint3 id_10 : SV_DispatchThreadID)
     }
     bool _e30 = local_3;
     if (_e30) {
-        uint k_19 = frame.temporal.x;
+        uint k_20 = frame.temporal.x;
         uint _e38 = frame.misc.y;
-        uint turn = naga_div(_e38, (k_19 * k_19));
+        uint turn = naga_div(_e38, (k_20 * k_20));
         const float2 _e42 = reproject(_e5, 0.0);
         if (((((id_10.x + id_10.y) + turn) & 1u) == 0u)) {
             const bool _e53 = on_screen(_e42);
@@ -4320,11 +4453,11 @@ void resolve(uint3 id_11 : SV_DispatchThreadID)
         return;
     }
     uint2 pixel_10 = id_11.xy;
-    uint k_20 = frame.temporal.x;
-    uint2 block = naga_div(pixel_10, (k_20).xx);
+    uint k_21 = frame.temporal.x;
+    uint2 block = naga_div(pixel_10, (k_21).xx);
     uint _e19 = frame.misc.y;
-    const uint2 _e20 = block_offset(_e19, k_20);
-    bool marched_1 = all((pixel_10 == ((block * k_20) + _e20)));
+    const uint2 _e20 = block_offset(_e19, k_21);
+    bool marched_1 = all((pixel_10 == ((block * k_21) + _e20)));
     float4 current = sparse_in.Load(int3(block, int(0)));
     float4 _e29 = sparse_depth_in.Load(int3(block, int(0)));
     float current_depth = _e29.x;
@@ -4387,7 +4520,7 @@ void resolve(uint3 id_11 : SV_DispatchThreadID)
     bool _e115 = local_9;
     if (_e115) {
         uint4 _e118 = frame.counts;
-        int2 blocks = int2(naga_div(((_e118.xy + (k_20).xx) - (1u).xx), (k_20).xx));
+        int2 blocks = int2(naga_div(((_e118.xy + (k_21).xx) - (1u).xx), (k_21).xx));
         int2 b_11 = int2(block);
         int x0_1 = max(asint(asuint(b_11.x) - asuint(int(1))), int(0));
         int x2_2 = min(asint(asuint(b_11.x) + asuint(int(1))), asint(asuint(blocks.x) - asuint(int(1))));
@@ -4492,16 +4625,16 @@ void pathtrace(uint3 group : SV_GroupID, uint lane : SV_GroupIndex)
     lane_moments[min(uint(lane), 31u)] = float4((_e52 * _e52), (hit ? _e50.depth : 0.0), (hit ? 1.0 : 0.0), 0.0);
     GroupMemoryBarrierWithGroupSync();
     if ((lane == 0u)) {
-        uint2 loop_bound_33 = uint2(4294967295u, 4294967295u);
-        bool loop_init_29 = true;
+        uint2 loop_bound_34 = uint2(4294967295u, 4294967295u);
+        bool loop_init_30 = true;
         while(true) {
-            if (all(loop_bound_33 == uint2(0u, 0u))) { break; }
-            loop_bound_33 -= uint2(loop_bound_33.y == 0u, 1u);
-            if (!loop_init_29) {
+            if (all(loop_bound_34 == uint2(0u, 0u))) { break; }
+            loop_bound_34 -= uint2(loop_bound_34.y == 0u, 1u);
+            if (!loop_init_30) {
                 uint _e98 = i_3;
                 i_3 = (_e98 + 1u);
             }
-            loop_init_29 = false;
+            loop_init_30 = false;
             uint _e82 = i_3;
             if ((_e82 < PATHS_PER_FRAME)) {
             } else {
@@ -4620,16 +4753,16 @@ void sprite_build(uint3 id_14 : SV_DispatchThreadID)
     uint own = naga_mod(slot, SPRITES_PER_CELL);
     const SpriteCandidate _e18 = sprite_candidate(_e6, level_2, own, counters_2);
     me = _e18;
-    uint2 loop_bound_34 = uint2(4294967295u, 4294967295u);
-    bool loop_init_30 = true;
+    uint2 loop_bound_35 = uint2(4294967295u, 4294967295u);
+    bool loop_init_31 = true;
     while(true) {
-        if (all(loop_bound_34 == uint2(0u, 0u))) { break; }
-        loop_bound_34 -= uint2(loop_bound_34.y == 0u, 1u);
-        if (!loop_init_30) {
+        if (all(loop_bound_35 == uint2(0u, 0u))) { break; }
+        loop_bound_35 -= uint2(loop_bound_35.y == 0u, 1u);
+        if (!loop_init_31) {
             uint _e38 = i_4;
             i_4 = (_e38 + 1u);
         }
-        loop_init_30 = false;
+        loop_init_31 = false;
         uint _e22 = i_4;
         if ((_e22 < SPRITES_PER_CELL)) {
         } else {
@@ -4694,8 +4827,8 @@ void sprite_build(uint3 id_14 : SV_DispatchThreadID)
         float _e167 = me.alt;
         const float3 _e168 = sprite_rel(_e165, _e167);
         float _e172 = frame.camera_position.y;
-        float3 rel_13 = (_e168 - float3(0.0, _e172, 0.0));
-        const float _e180 = saturate_((length(rel_13) / SPRITE_MAX_DISTANCE));
+        float3 rel_15 = (_e168 - float3(0.0, _e172, 0.0));
+        const float _e180 = saturate_((length(rel_15) / SPRITE_MAX_DISTANCE));
         key = (1048576.0 - floor((_e180 * 1048575.0)));
     }
     float _e191 = me.xz.x;
@@ -4725,16 +4858,16 @@ void sprite_sort(uint3 id_15 : SV_DispatchThreadID)
     uint slot_1 = id_15.x;
     float4 _e6 = sprites_in.Load(int3(uint2(slot_1, 3u), int(0)));
     float key_1 = _e6.x;
-    uint2 loop_bound_35 = uint2(4294967295u, 4294967295u);
-    bool loop_init_31 = true;
+    uint2 loop_bound_36 = uint2(4294967295u, 4294967295u);
+    bool loop_init_32 = true;
     while(true) {
-        if (all(loop_bound_35 == uint2(0u, 0u))) { break; }
-        loop_bound_35 -= uint2(loop_bound_35.y == 0u, 1u);
-        if (!loop_init_31) {
+        if (all(loop_bound_36 == uint2(0u, 0u))) { break; }
+        loop_bound_36 -= uint2(loop_bound_36.y == 0u, 1u);
+        if (!loop_init_32) {
             uint _e40 = j;
             j = (_e40 + 1u);
         }
-        loop_init_31 = false;
+        loop_init_32 = false;
         uint _e12 = j;
         if ((_e12 < SPRITE_COUNT)) {
         } else {
@@ -4804,10 +4937,10 @@ VertexOutput_sprite_vertex sprite_vertex(uint index : SV_VertexID)
     float3 _e83 = right;
     right = normalize(_e83);
     float3 _e85 = right;
-    float3 up_2 = cross(n_5, _e85);
+    float3 up_3 = cross(n_5, _e85);
     const float2 _e89 = sprite_corner(naga_mod(index, 6u));
     float3 _e90 = right;
-    float3 offset_1 = ((_e90 * (_e89.x * half_width_1)) + (up_2 * (_e89.y * c_12.z)));
+    float3 offset_1 = ((_e90 * (_e89.x * half_width_1)) + (up_3 * (_e89.y * c_12.z)));
     float3 vertex = (to_sprite + offset_1);
     float4 _e102 = frame.camera_right;
     float x_14 = dot(vertex, _e102.xyz);
@@ -4823,12 +4956,12 @@ VertexOutput_sprite_vertex sprite_vertex(uint index : SV_VertexID)
     out_.uv = float2(((t_14.x * cs.x) - (t_14.y * cs.y)), ((t_14.x * cs.y) + (t_14.y * cs.x)));
     out_.tile = naga_f2u32(c_12.x);
     float4 _e160 = frame.sun_direction;
-    float3 sun_14 = _e160.xyz;
+    float3 sun_15 = _e160.xyz;
     const float3 _e164 = sprite_rel(b_12.xz, b_12.y);
     float3 centre_2 = (_e164 - cam_1);
     float3 from_centre = (vertex - centre_2);
-    float cos_angle_1 = (dot(from_centre, sun_14) / max(length(from_centre), 0.001));
-    const float _e177 = saturate_(((sun_14.y * 4.0) + 0.3));
+    float cos_angle_1 = (dot(from_centre, sun_15) / max(length(from_centre), 0.001));
+    const float _e177 = saturate_(((sun_15.y * 4.0) + 0.3));
     const float _e179 = altitude_of((vertex + cam_1));
     float _e183 = frame.atmosphere.y;
     float _e188 = frame.atmosphere.z;
@@ -4879,10 +5012,10 @@ void sprite_resolve(uint3 id_16 : SV_DispatchThreadID)
     }
     count(STAT_PIXELS, 1u);
     float4 c_13 = sprite_radiance_in.Load(int3(id_16.xy, int(0)));
-    float4 d_25 = sprite_depth_in.Load(int3(id_16.xy, int(0)));
+    float4 d_27 = sprite_depth_in.Load(int3(id_16.xy, int(0)));
     const float _e19 = saturate_(c_13.w);
     cloud_out[id_16.xy] = float4(c_13.xyz, (1.0 - _e19));
-    depth_out[id_16.xy] = float4(((d_25.w > 0.0001) ? (d_25.x / d_25.w) : 0.0), 0.0, 0.0, 0.0);
+    depth_out[id_16.xy] = float4(((d_27.w > 0.0001) ? (d_27.x / d_27.w) : 0.0), 0.0, 0.0, 0.0);
     return;
 }
 
@@ -4897,11 +5030,11 @@ void composite(uint3 id_17 : SV_DispatchThreadID)
     }
     uint2 pixel_12 = id_17.xy;
     const float3 _e9 = view_ray(pixel_12);
-    float alt_18 = frame.camera_position.y;
+    float alt_19 = frame.camera_position.y;
     float4 cloud_1 = cloud_in.Load(int3(pixel_12, int(0)));
-    const float3 _e17 = sky_radiance(_e9, alt_18);
+    const float3 _e17 = sky_radiance(_e9, alt_19);
     background = _e17;
-    const bool _e22 = hits_ground(float3(0.0, alt_18, 0.0), alt_18, _e9);
+    const bool _e22 = hits_ground(float3(0.0, alt_19, 0.0), alt_19, _e9);
     if (!(_e22)) {
         float3 _e24 = background;
         const float3 _e25 = sun_disk(_e9);

@@ -45,6 +45,7 @@ struct Frame {
     metal::float4 night;
     metal::float4 light_model;
     metal::float4 octave_direction;
+    metal::float4 octave_depth;
 };
 struct Roots {
     float t0_;
@@ -197,6 +198,8 @@ constant uint AMBIENT_STEPS = 24u;
 constant uint SKY_AMBIENT_SUNS = 64u;
 constant uint GROUND_IRRADIANCE_SIZE = 64u;
 constant uint NO_LAYER = 4u;
+constant uint STEEP_STEPS = 2u;
+constant float STEEP_FIRST = 8.0;
 constant float DECK_POWER = 8.0;
 constant float FORWARD_LOBE_THIN = 0.1;
 constant uint GROUND_IRRADIANCE_DIRECTIONS = 128u;
@@ -298,8 +301,8 @@ metal::float3 view_ray(
     metal::float4 _e26 = frame.camera_forward;
     metal::float4 _e30 = frame.camera_right;
     metal::float4 _e39 = frame.camera_up;
-    metal::float3 d_20 = (_e26.xyz + (_e30.xyz * ((ndc.x * tan_half) * aspect))) - (_e39.xyz * (ndc.y * tan_half));
-    return metal::normalize(d_20);
+    metal::float3 d_21 = (_e26.xyz + (_e30.xyz * ((ndc.x * tan_half) * aspect))) - (_e39.xyz * (ndc.y * tan_half));
+    return metal::normalize(d_21);
 }
 
 Roots solve_sphere(
@@ -628,14 +631,14 @@ AirSample air_at(
     float h_km,
     constant Frame& frame
 ) {
-    float h_10 = metal::max(h_km, 0.0) * 1000.0;
+    float h_11 = metal::max(h_km, 0.0) * 1000.0;
     float _e9 = frame.air_rayleigh.w;
-    float rayleigh_density = metal::exp(-(h_10) / _e9);
+    float rayleigh_density = metal::exp(-(h_11) / _e9);
     float _e16 = frame.air_mie.z;
-    float mie_density = metal::exp(-(h_10) / _e16);
+    float mie_density = metal::exp(-(h_11) / _e16);
     float _e22 = frame.air_ozone.w;
     float _e28 = frame.air_misc.y;
-    float ozone_density = metal::max(1.0 - (metal::abs(h_10 - _e22) / (0.5 * _e28)), 0.0);
+    float ozone_density = metal::max(1.0 - (metal::abs(h_11 - _e22) / (0.5 * _e28)), 0.0);
     metal::float4 _e38 = frame.air_rayleigh;
     metal::float3 rayleigh = _e38.xyz * (rayleigh_density * 1000.0);
     float _e46 = frame.air_mie.x;
@@ -731,12 +734,12 @@ metal::float2 transmittance_coords(
 ) {
     float _e2 = air_bottom(frame);
     float _e3 = air_top(frame);
-    float h_11 = metal::sqrt(metal::max((_e3 - _e2) * (_e3 + _e2), 0.0));
+    float h_12 = metal::sqrt(metal::max((_e3 - _e2) * (_e3 + _e2), 0.0));
     float rho = metal::sqrt(metal::max((r_7 - _e2) * (r_7 + _e2), 0.0));
     float _e16 = distance_to_top(r_7, mu_5, frame);
     float d_min = _e3 - r_7;
-    float d_max = rho + h_11;
-    return metal::float2((_e16 - d_min) / metal::max(d_max - d_min, 0.000001), rho / h_11);
+    float d_max = rho + h_12;
+    return metal::float2((_e16 - d_min) / metal::max(d_max - d_min, 0.000001), rho / h_12);
 }
 
 metal::float2 transmittance_r_mu(
@@ -746,14 +749,14 @@ metal::float2 transmittance_r_mu(
     float mu_6 = 1.0;
     float _e1 = air_bottom(frame);
     float _e2 = air_top(frame);
-    float h_12 = metal::sqrt(metal::max((_e2 - _e1) * (_e2 + _e1), 0.0));
-    float rho_1 = h_12 * x_4.y;
+    float h_13 = metal::sqrt(metal::max((_e2 - _e1) * (_e2 + _e1), 0.0));
+    float rho_1 = h_13 * x_4.y;
     float r_14 = metal::sqrt((rho_1 * rho_1) + (_e1 * _e1));
     float d_min_1 = _e2 - r_14;
-    float d_max_1 = rho_1 + h_12;
-    float d_21 = d_min_1 + (x_4.x * (d_max_1 - d_min_1));
-    if (d_21 > 0.0) {
-        mu_6 = metal::clamp((((h_12 * h_12) - (rho_1 * rho_1)) - (d_21 * d_21)) / ((2.0 * r_14) * d_21), -1.0, 1.0);
+    float d_max_1 = rho_1 + h_13;
+    float d_22 = d_min_1 + (x_4.x * (d_max_1 - d_min_1));
+    if (d_22 > 0.0) {
+        mu_6 = metal::clamp((((h_13 * h_13) - (rho_1 * rho_1)) - (d_22 * d_22)) / ((2.0 * r_14) * d_22), -1.0, 1.0);
     }
     float _e37 = mu_6;
     return metal::float2(r_14, _e37);
@@ -873,9 +876,9 @@ Scattered integrate_air(
             float _e32 = t0_;
             float dt_1 = t1_ - _e32;
             float _e34 = t0_;
-            metal::float3 p_13 = origin + (d_7 * (0.5 * (_e34 + t1_)));
-            float r_15 = metal::length(p_13);
-            metal::float3 up = p_13 / metal::float3(r_15);
+            metal::float3 p_16 = origin + (d_7 * (0.5 * (_e34 + t1_)));
+            float r_15 = metal::length(p_16);
+            metal::float3 up = p_16 / metal::float3(r_15);
             float mu_s_5 = metal::dot(up, sun);
             float _e44 = air_bottom(frame);
             AirSample _e46 = air_at(r_15 - _e44, frame);
@@ -1273,10 +1276,11 @@ float height_signal(
     return _e9;
 }
 
-float layer_density(
+float layer_density_with(
     metal::float3 p_4,
     float alt_9,
     Layer l_3,
+    bool with_detail,
     thread Counters& counters_3,
     constant Frame& frame,
     metal::texture3d<float, metal::access::sample> shape_tex,
@@ -1291,111 +1295,119 @@ float layer_density(
     float density = {};
     bool local_25 = {};
     bool local_26 = {};
+    bool local_27 = {};
     metal::float3 detail_pos = {};
-    float _e4 = layer_height(l_3, alt_9);
-    if (!((_e4 < 0.0))) {
-        local_23 = _e4 > 1.0;
+    float _e5 = layer_height(l_3, alt_9);
+    if (!((_e5 < 0.0))) {
+        local_23 = _e5 > 1.0;
     } else {
         local_23 = true;
     }
-    bool _e13 = local_23;
-    if (_e13) {
+    bool _e14 = local_23;
+    if (_e14) {
         return 0.0;
     }
-    uint _e16 = counters_3.density;
-    counters_3.density = _e16 + 1u;
-    Weather _e19 = sample_weather(p_4, l_3, frame, weather_tex, noise_sampler);
-    float _e21 = height_signal(_e4, _e19.cloud_type, frame);
-    if (!((_e19.coverage <= 0.0))) {
-        local_24 = _e21 <= 0.0;
+    uint _e17 = counters_3.density;
+    counters_3.density = _e17 + 1u;
+    Weather _e20 = sample_weather(p_4, l_3, frame, weather_tex, noise_sampler);
+    float _e22 = height_signal(_e5, _e20.cloud_type, frame);
+    if (!((_e20.coverage <= 0.0))) {
+        local_24 = _e22 <= 0.0;
     } else {
         local_24 = true;
     }
-    bool _e31 = local_24;
-    if (_e31) {
+    bool _e32 = local_24;
+    if (_e32) {
         return 0.0;
     }
     metal::float3 dims = static_cast<metal::float3>(metal::uint3(shape_tex.get_width(), shape_tex.get_height(), shape_tex.get_depth()));
-    float _e39 = frame.periods.y;
-    metal::float3 period = _e39 * metal::float3(1.0, dims.y / dims.x, 1.0);
-    float _e51 = frame.wind_offsets0_.z;
-    float _e57 = frame.wind_offsets0_.w;
-    metal::float3 shape_pos = metal::float3(p_4.x - _e51, alt_9, p_4.z - _e57);
+    float _e40 = frame.periods.y;
+    metal::float3 period = _e40 * metal::float3(1.0, dims.y / dims.x, 1.0);
+    float _e52 = frame.wind_offsets0_.z;
+    float _e58 = frame.wind_offsets0_.w;
+    metal::float3 shape_pos = metal::float3(p_4.x - _e52, alt_9, p_4.z - _e58);
     metal::float4 s_7 = shape_tex.sample(noise_sampler, shape_pos / period, metal::level(0.0));
     float low_fbm = ((s_7.y * 0.625) + (s_7.z * 0.25)) + (s_7.w * 0.125);
-    float _e82 = remap(s_7.x, low_fbm - 1.0, 1.0, 0.0, 1.0);
-    float _e83 = saturate(_e82);
-    base = _e83 * _e21;
-    float _e86 = base;
-    float _e93 = remap(_e86, 1.0 - _e19.coverage, 1.0, 0.0, 1.0);
-    float _e94 = saturate(_e93);
-    base = _e94 * _e19.coverage;
-    float _e97 = base;
-    if (_e97 <= 0.0) {
+    float _e83 = remap(s_7.x, low_fbm - 1.0, 1.0, 0.0, 1.0);
+    float _e84 = saturate(_e83);
+    base = _e84 * _e22;
+    float _e87 = base;
+    float _e94 = remap(_e87, 1.0 - _e20.coverage, 1.0, 0.0, 1.0);
+    float _e95 = saturate(_e94);
+    base = _e95 * _e20.coverage;
+    float _e98 = base;
+    if (_e98 <= 0.0) {
         return 0.0;
     }
-    float _e101 = base;
-    density = _e101;
+    float _e102 = base;
+    density = _e102;
     float strength = frame.erosion.x;
     float threshold = frame.erosion.y;
     if (DETAIL) {
-        local_25 = strength > 0.0;
+        local_25 = with_detail;
     } else {
         local_25 = false;
     }
-    bool _e117 = local_25;
-    if (_e117) {
-        float _e120 = base;
-        local_26 = _e120 < threshold;
+    bool _e116 = local_25;
+    if (_e116) {
+        local_26 = strength > 0.0;
     } else {
         local_26 = false;
     }
-    bool _e123 = local_26;
-    if (_e123) {
-        uint _e125 = counters_3.detail;
-        counters_3.detail = _e125 + 1u;
+    bool _e122 = local_26;
+    if (_e122) {
+        float _e125 = base;
+        local_27 = _e125 < threshold;
+    } else {
+        local_27 = false;
+    }
+    bool _e128 = local_27;
+    if (_e128) {
+        uint _e130 = counters_3.detail;
+        counters_3.detail = _e130 + 1u;
         detail_pos = metal::float3(p_4.x, alt_9, p_4.z);
         if (CURL) {
-            metal::float4 _e136 = frame.wind_offsets1_;
-            float _e142 = frame.periods.w;
-            metal::float2 cuv = (p_4.xz - _e136.zw) / metal::float2(_e142);
-            metal::float4 _e148 = curl_tex.sample(noise_sampler, cuv, metal::level(0.0));
-            metal::float2 curl = (_e148.xy * 2.0) - metal::float2(1.0);
-            metal::float3 _e155 = detail_pos;
-            float _e163 = frame.erosion.z;
-            detail_pos = _e155 + (metal::float3(curl.x, 0.0, curl.y) * (_e163 * (1.0 - _e4)));
+            metal::float4 _e141 = frame.wind_offsets1_;
+            float _e147 = frame.periods.w;
+            metal::float2 cuv = (p_4.xz - _e141.zw) / metal::float2(_e147);
+            metal::float4 _e153 = curl_tex.sample(noise_sampler, cuv, metal::level(0.0));
+            metal::float2 curl = (_e153.xy * 2.0) - metal::float2(1.0);
+            metal::float3 _e160 = detail_pos;
+            float _e168 = frame.erosion.z;
+            detail_pos = _e160 + (metal::float3(curl.x, 0.0, curl.y) * (_e168 * (1.0 - _e5)));
         }
-        metal::float3 _e169 = detail_pos;
-        float _e173 = frame.wind_offsets1_.x;
-        float _e177 = frame.wind_offsets1_.y;
-        detail_pos = _e169 - metal::float3(_e173, 0.0, _e177);
-        metal::float3 _e183 = detail_pos;
-        float _e187 = frame.periods.z;
-        metal::float4 dn = detail_tex.sample(noise_sampler, _e183 / metal::float3(_e187), metal::level(0.0));
+        metal::float3 _e174 = detail_pos;
+        float _e178 = frame.wind_offsets1_.x;
+        float _e182 = frame.wind_offsets1_.y;
+        detail_pos = _e174 - metal::float3(_e178, 0.0, _e182);
+        metal::float3 _e188 = detail_pos;
+        float _e192 = frame.periods.z;
+        metal::float4 dn = detail_tex.sample(noise_sampler, _e188 / metal::float3(_e192), metal::level(0.0));
         float high_fbm = ((dn.x * 0.625) + (dn.y * 0.25)) + (dn.z * 0.125);
-        float _e206 = frame.extinction.w;
-        float _e211 = saturate(_e4 * 10.0);
-        float _e213 = saturate((2.0 * _e206) * _e211);
-        float shape = metal::mix(1.0 - high_fbm, high_fbm, _e213);
-        float _e218 = base;
-        float erosion = (strength * shape) * (1.0 - (_e218 / threshold));
+        float _e211 = frame.extinction.w;
+        float _e216 = saturate(_e5 * 10.0);
+        float _e218 = saturate((2.0 * _e211) * _e216);
+        float shape = metal::mix(1.0 - high_fbm, high_fbm, _e218);
         float _e223 = base;
-        float _e227 = remap(_e223, erosion, 1.0, 0.0, 1.0);
-        float _e228 = saturate(_e227);
-        density = _e228;
+        float erosion = (strength * shape) * (1.0 - (_e223 / threshold));
+        float _e228 = base;
+        float _e232 = remap(_e228, erosion, 1.0, 0.0, 1.0);
+        float _e233 = saturate(_e232);
+        density = _e233;
     }
-    float _e229 = density;
-    float _e233 = frame.erosion.w;
-    density = _e229 * metal::mix(1.0, _e4, _e233);
-    float _e237 = density;
-    density = (_e237 * l_3.density) * (1.0 + _e19.precipitation);
-    float _e244 = density;
-    return metal::clamp(_e244, 0.0, 1.0);
+    float _e234 = density;
+    float _e238 = frame.erosion.w;
+    density = _e234 * metal::mix(1.0, _e5, _e238);
+    float _e242 = density;
+    density = (_e242 * l_3.density) * (1.0 + _e20.precipitation);
+    float _e249 = density;
+    return metal::clamp(_e249, 0.0, 1.0);
 }
 
-float cloud_density(
+float layer_density(
     metal::float3 p_5,
     float alt_10,
+    Layer l_4,
     thread Counters& counters_4,
     constant Frame& frame,
     metal::texture3d<float, metal::access::sample> shape_tex,
@@ -1404,12 +1416,27 @@ float cloud_density(
     metal::texture2d<float, metal::access::sample> curl_tex,
     metal::sampler noise_sampler
 ) {
-    uint _e3 = layer_at(alt_10, frame);
+    float _e5 = layer_density_with(p_5, alt_10, l_4, true, counters_4, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+    return _e5;
+}
+
+float cloud_density(
+    metal::float3 p_6,
+    float alt_11,
+    thread Counters& counters_5,
+    constant Frame& frame,
+    metal::texture3d<float, metal::access::sample> shape_tex,
+    metal::texture3d<float, metal::access::sample> detail_tex,
+    metal::texture2d<float, metal::access::sample> weather_tex,
+    metal::texture2d<float, metal::access::sample> curl_tex,
+    metal::sampler noise_sampler
+) {
+    uint _e3 = layer_at(alt_11, frame);
     if (_e3 == NO_LAYER) {
         return 0.0;
     }
     Layer _e7 = cloud_layer(_e3, frame);
-    float _e8 = layer_density(p_5, alt_10, _e7, counters_4, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+    float _e8 = layer_density(p_6, alt_11, _e7, counters_5, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
     return _e8;
 }
 
@@ -1461,9 +1488,9 @@ float phase(
 
 float sun_optical_depth(
     metal::float3 rel_3,
-    metal::float3 p_6,
-    Layer l_4,
-    thread Counters& counters_5,
+    metal::float3 p_7,
+    Layer l_5,
+    thread Counters& counters_6,
     constant Frame& frame,
     metal::texture3d<float, metal::access::sample> shape_tex,
     metal::texture3d<float, metal::access::sample> detail_tex,
@@ -1475,11 +1502,11 @@ float sun_optical_depth(
     float dist = 0.0;
     float tau_4 = 0.0;
     uint i_10 = 0u;
-    bool local_27 = {};
-    uint j_1 = 0u;
     bool local_28 = {};
+    uint j_1 = 0u;
     bool local_29 = {};
     bool local_30 = {};
+    bool local_31 = {};
     metal::float4 _e6 = frame.sun_direction;
     metal::float3 sun_3 = _e6.xyz;
     float _e11 = frame.extinction.x;
@@ -1510,19 +1537,19 @@ float sun_optical_depth(
             float s_8 = _e38 + (0.5 * _e39);
             metal::float3 q_8 = rel_3 + (sun_3 * s_8);
             float _e45 = altitude_of(q_8, frame);
-            if (!((_e45 > l_4.top))) {
-                local_27 = _e45 < l_4.bottom;
+            if (!((_e45 > l_5.top))) {
+                local_28 = _e45 < l_5.bottom;
             } else {
-                local_27 = true;
+                local_28 = true;
             }
-            bool _e54 = local_27;
+            bool _e54 = local_28;
             if (_e54) {
                 break;
             }
-            uint _e56 = counters_5.light;
-            counters_5.light = _e56 + 1u;
+            uint _e56 = counters_6.light;
+            counters_6.light = _e56 + 1u;
             float _e59 = tau_4;
-            float _e62 = layer_density(p_6 + (sun_3 * s_8), _e45, l_4, counters_5, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+            float _e62 = layer_density(p_7 + (sun_3 * s_8), _e45, l_5, counters_6, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
             float _e64 = seg;
             tau_4 = _e59 + ((_e62 * sigma_t_1) * _e64);
             float _e67 = dist;
@@ -1552,38 +1579,38 @@ float sun_optical_depth(
         {
             uint _e81 = j_1;
             Layer _e82 = cloud_layer(_e81, frame);
-            if (_e82.bottom <= l_4.top) {
+            if (_e82.bottom <= l_5.top) {
                 continue;
             }
             Roots _e87 = ray_shell_from(rel_3, _e75, sun_3, _e82.bottom, frame);
             Roots _e89 = ray_shell_from(rel_3, _e75, sun_3, _e82.top, frame);
             if (!(!(_e87.hit))) {
-                local_28 = !(_e89.hit);
-            } else {
-                local_28 = true;
-            }
-            bool _e98 = local_28;
-            if (!(_e98)) {
-                local_29 = !((_e89.t1_ > _e87.t1_));
+                local_29 = !(_e89.hit);
             } else {
                 local_29 = true;
             }
-            bool _e107 = local_29;
-            if (!(_e107)) {
-                local_30 = _e87.t1_ <= 0.0;
+            bool _e98 = local_29;
+            if (!(_e98)) {
+                local_30 = !((_e89.t1_ > _e87.t1_));
             } else {
                 local_30 = true;
             }
-            bool _e115 = local_30;
+            bool _e107 = local_30;
+            if (!(_e107)) {
+                local_31 = _e87.t1_ <= 0.0;
+            } else {
+                local_31 = true;
+            }
+            bool _e115 = local_31;
             if (_e115) {
                 continue;
             }
             float s_9 = 0.5 * (_e87.t1_ + _e89.t1_);
-            uint _e122 = counters_5.light;
-            counters_5.light = _e122 + 1u;
+            uint _e122 = counters_6.light;
+            counters_6.light = _e122 + 1u;
             float _e125 = tau_4;
             float _e130 = altitude_of(rel_3 + (sun_3 * s_9), frame);
-            float _e131 = layer_density(p_6 + (sun_3 * s_9), _e130, _e82, counters_5, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+            float _e131 = layer_density(p_7 + (sun_3 * s_9), _e130, _e82, counters_6, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
             tau_4 = _e125 + ((_e131 * sigma_t_1) * (_e89.t1_ - _e87.t1_));
         }
     }
@@ -1591,85 +1618,201 @@ float sun_optical_depth(
     return _e141;
 }
 
-float far_optical_depth(
+float steep_optical_depth(
     metal::float3 rel_4,
-    metal::float3 p_7,
-    Layer l_5,
+    metal::float3 p_8,
+    Layer l_6,
+    metal::float3 d_13,
+    thread Counters& counters_7,
     constant Frame& frame,
+    metal::texture3d<float, metal::access::sample> shape_tex,
+    metal::texture3d<float, metal::access::sample> detail_tex,
     metal::texture2d<float, metal::access::sample> weather_tex,
+    metal::texture2d<float, metal::access::sample> curl_tex,
     metal::sampler noise_sampler
 ) {
-    bool local_31 = {};
-    float reach = {};
-    bool local_32 = {};
+    float seg_1 = {};
+    float dist_1 = 0.0;
     float tau_5 = 0.0;
     uint i_11 = 0u;
-    float chord = frame.light_model.z;
-    if (!((chord <= 0.0))) {
-        uint _e15 = frame.counts.w;
-        local_31 = _e15 == 0u;
-    } else {
-        local_31 = true;
-    }
-    bool _e19 = local_31;
-    if (_e19) {
-        return 0.0;
-    }
+    bool local_32 = {};
+    float _e8 = frame.extinction.x;
+    float _e12 = frame.extinction.y;
+    float sigma_t_2 = _e8 + _e12;
     float growth_1 = frame.march.y;
-    uint _e28 = frame.counts.w;
-    float steps_3 = static_cast<float>(_e28);
-    float _e33 = frame.march.z;
-    reach = _e33 * steps_3;
-    if (growth_1 != 1.0) {
-        float _e41 = frame.march.z;
-        reach = (_e41 * (metal::pow(growth_1, steps_3) - 1.0)) / (growth_1 - 1.0);
-    }
-    metal::float4 _e51 = frame.sun_direction;
-    metal::float3 sun_4 = _e51.xyz;
-    float _e53 = altitude_of(rel_4, frame);
-    Roots _e55 = ray_shell_from(rel_4, _e53, sun_4, l_5.top, frame);
-    float _e57 = reach;
-    float len_1 = _e55.t1_ - _e57;
-    if (!(!(_e55.hit))) {
-        local_32 = !((len_1 > 0.0));
-    } else {
-        local_32 = true;
-    }
-    bool _e68 = local_32;
-    if (_e68) {
-        return 0.0;
-    }
+    float _e21 = frame.march.z;
+    seg_1 = _e21 * STEEP_FIRST;
     uint2 loop_bound_6 = uint2(4294967295u);
     bool loop_init_6 = true;
     while(true) {
         if (metal::all(loop_bound_6 == uint2(0u))) { break; }
         loop_bound_6 -= uint2(loop_bound_6.y == 0u, 1u);
         if (!loop_init_6) {
-            uint _e110 = i_11;
-            i_11 = _e110 + 1u;
+            uint _e70 = i_11;
+            i_11 = _e70 + 1u;
         }
         loop_init_6 = false;
-        uint _e74 = i_11;
+        uint _e31 = i_11;
+        if (_e31 < STEEP_STEPS) {
+        } else {
+            break;
+        }
+        {
+            float _e34 = dist_1;
+            float _e35 = seg_1;
+            float s_10 = _e34 + (0.5 * _e35);
+            float _e41 = altitude_of(rel_4 + (d_13 * s_10), frame);
+            if (!((_e41 > l_6.top))) {
+                local_32 = _e41 < l_6.bottom;
+            } else {
+                local_32 = true;
+            }
+            bool _e50 = local_32;
+            if (_e50) {
+                break;
+            }
+            uint _e52 = counters_7.light;
+            counters_7.light = _e52 + 1u;
+            float _e55 = tau_5;
+            float _e59 = layer_density_with(p_8 + (d_13 * s_10), _e41, l_6, false, counters_7, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+            float _e61 = seg_1;
+            tau_5 = _e55 + ((_e59 * sigma_t_2) * _e61);
+            float _e64 = dist_1;
+            float _e65 = seg_1;
+            dist_1 = _e64 + _e65;
+            float _e67 = seg_1;
+            seg_1 = _e67 * growth_1;
+        }
+    }
+    float _e72 = tau_5;
+    return _e72;
+}
+
+float octave_optical_depth(
+    metal::float3 rel_5,
+    metal::float3 p_9,
+    Layer l_7,
+    float tau_6,
+    thread Counters& counters_8,
+    constant Frame& frame,
+    metal::texture3d<float, metal::access::sample> shape_tex,
+    metal::texture3d<float, metal::access::sample> detail_tex,
+    metal::texture2d<float, metal::access::sample> weather_tex,
+    metal::texture2d<float, metal::access::sample> curl_tex,
+    metal::sampler noise_sampler
+) {
+    bool local_33 = {};
+    bool local_34 = {};
+    float _e10 = saturate((l_7.coverage - 0.8) / 0.1);
+    float _e14 = frame.octave_depth.x;
+    float m_2 = _e14 * _e10;
+    if (!((_e10 < 0.001))) {
+        local_33 = m_2 <= 0.0;
+    } else {
+        local_33 = true;
+    }
+    bool _e24 = local_33;
+    if (!(_e24)) {
+        uint _e31 = frame.counts.w;
+        local_34 = _e31 == 0u;
+    } else {
+        local_34 = true;
+    }
+    bool _e35 = local_34;
+    if (_e35) {
+        return tau_6;
+    }
+    float _e41 = frame.atmosphere.x;
+    metal::float3 up_1 = metal::normalize(metal::float3(rel_5.x, rel_5.y + _e41, rel_5.z));
+    metal::float4 _e48 = frame.sun_direction;
+    metal::float3 sun_4 = _e48.xyz;
+    metal::float3 d_23 = metal::normalize(sun_4 + up_1);
+    float mu0_1 = metal::max(metal::dot(sun_4, up_1), 0.001);
+    float _e55 = steep_optical_depth(rel_5, p_9, l_7, d_23, counters_8, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+    float _e59 = frame.octave_depth.y;
+    float steep = (_e55 * _e59) * metal::sqrt(mu0_1 / metal::max(metal::dot(d_23, up_1), 0.001));
+    return metal::mix(tau_6, steep, m_2);
+}
+
+float far_optical_depth(
+    metal::float3 rel_6,
+    metal::float3 p_10,
+    Layer l_8,
+    constant Frame& frame,
+    metal::texture2d<float, metal::access::sample> weather_tex,
+    metal::sampler noise_sampler
+) {
+    bool local_35 = {};
+    float reach = {};
+    bool local_36 = {};
+    float tau_7 = 0.0;
+    uint i_12 = 0u;
+    float chord = frame.light_model.z;
+    if (!((chord <= 0.0))) {
+        uint _e15 = frame.counts.w;
+        local_35 = _e15 == 0u;
+    } else {
+        local_35 = true;
+    }
+    bool _e19 = local_35;
+    if (_e19) {
+        return 0.0;
+    }
+    float growth_2 = frame.march.y;
+    uint _e28 = frame.counts.w;
+    float steps_3 = static_cast<float>(_e28);
+    float _e33 = frame.march.z;
+    reach = _e33 * steps_3;
+    if (growth_2 != 1.0) {
+        float _e41 = frame.march.z;
+        reach = (_e41 * (metal::pow(growth_2, steps_3) - 1.0)) / (growth_2 - 1.0);
+    }
+    metal::float4 _e51 = frame.sun_direction;
+    metal::float3 sun_5 = _e51.xyz;
+    float _e53 = altitude_of(rel_6, frame);
+    Roots _e55 = ray_shell_from(rel_6, _e53, sun_5, l_8.top, frame);
+    float _e57 = reach;
+    float len_1 = _e55.t1_ - _e57;
+    if (!(!(_e55.hit))) {
+        local_36 = !((len_1 > 0.0));
+    } else {
+        local_36 = true;
+    }
+    bool _e68 = local_36;
+    if (_e68) {
+        return 0.0;
+    }
+    uint2 loop_bound_7 = uint2(4294967295u);
+    bool loop_init_7 = true;
+    while(true) {
+        if (metal::all(loop_bound_7 == uint2(0u))) { break; }
+        loop_bound_7 -= uint2(loop_bound_7.y == 0u, 1u);
+        if (!loop_init_7) {
+            uint _e110 = i_12;
+            i_12 = _e110 + 1u;
+        }
+        loop_init_7 = false;
+        uint _e74 = i_12;
         if (_e74 < 4u) {
         } else {
             break;
         }
         {
             float _e77 = reach;
-            uint _e78 = i_11;
+            uint _e78 = i_12;
             float t_5 = _e77 + (((static_cast<float>(_e78) + 0.5) * 0.25) * len_1);
-            float _e88 = altitude_of(rel_4 + (sun_4 * t_5), frame);
-            float _e89 = layer_height(l_5, _e88);
+            float _e88 = altitude_of(rel_6 + (sun_5 * t_5), frame);
+            float _e89 = layer_height(l_8, _e88);
             float _e90 = saturate(_e89);
-            Weather _e93 = sample_weather(p_7 + (sun_4 * t_5), l_5, frame, weather_tex, noise_sampler);
+            Weather _e93 = sample_weather(p_10 + (sun_5 * t_5), l_8, frame, weather_tex, noise_sampler);
             float cov = _e93.coverage;
-            float _e96 = height_signal(_e90, l_5.cloud_type, frame);
+            float _e96 = height_signal(_e90, l_8.cloud_type, frame);
             float f_3 = metal::min(cov * _e96, 0.95);
-            float _e100 = tau_5;
-            tau_5 = _e100 + (((0.25 * len_1) * f_3) / ((1.0 - f_3) * chord));
+            float _e100 = tau_7;
+            tau_7 = _e100 + (((0.25 * len_1) * f_3) / ((1.0 - f_3) * chord));
         }
     }
-    float _e112 = tau_5;
+    float _e112 = tau_7;
     return _e112;
 }
 
@@ -1706,14 +1849,29 @@ float deck_escape(
     return 1.0 + ((e * metal::pow(_e6, DECK_POWER)) * (mu0_ - 0.5));
 }
 
-SunScattering sun_scattering(
-    float cos_theta_5,
+float downward_dimming(
     float view_y_2,
-    float tau_6,
-    float far_1,
-    float build,
     float coverage_2,
     float h_6,
+    float tau_v,
+    constant Frame& frame
+) {
+    float _e7 = frame.octave_depth.z;
+    float _e12 = saturate(coverage_2);
+    float _e14 = saturate(h_6);
+    float k_13 = ((_e7 * metal::max(-(view_y_2), 0.0)) * _e12) * (1.0 - _e14);
+    return metal::max(1.0 - ((k_13 * tau_v) / (tau_v + 1.0)), 0.0);
+}
+
+SunScattering sun_scattering(
+    float cos_theta_5,
+    float view_y_3,
+    float tau_8,
+    float tau_oct,
+    float far_1,
+    float build,
+    float coverage_3,
+    float h_7,
     float layer_coverage_1,
     constant Frame& frame
 ) {
@@ -1721,80 +1879,83 @@ SunScattering sun_scattering(
     float ka = 1.0;
     float kb = 1.0;
     float kc = 1.0;
-    uint i_12 = 0u;
+    uint i_13 = 0u;
     float feed = {};
     float octaves_part = {};
     float total = {};
     float a_8 = frame.multiple_scattering.x;
     float b_8 = frame.multiple_scattering.y;
     float c_8 = frame.multiple_scattering.z;
-    uint _e23 = frame.misc.x;
-    uint octaves = metal::min(_e23, MAX_OCTAVES);
-    uint2 loop_bound_7 = uint2(4294967295u);
-    bool loop_init_7 = true;
+    uint _e24 = frame.misc.x;
+    uint octaves = metal::min(_e24, MAX_OCTAVES);
+    uint2 loop_bound_8 = uint2(4294967295u);
+    bool loop_init_8 = true;
     while(true) {
-        if (metal::all(loop_bound_7 == uint2(0u))) { break; }
-        loop_bound_7 -= uint2(loop_bound_7.y == 0u, 1u);
-        if (!loop_init_7) {
-            uint _e56 = i_12;
-            i_12 = _e56 + 1u;
+        if (metal::all(loop_bound_8 == uint2(0u))) { break; }
+        loop_bound_8 -= uint2(loop_bound_8.y == 0u, 1u);
+        if (!loop_init_8) {
+            uint _e57 = i_13;
+            i_13 = _e57 + 1u;
         }
-        loop_init_7 = false;
-        uint _e36 = i_12;
-        if (_e36 < octaves) {
+        loop_init_8 = false;
+        uint _e37 = i_13;
+        if (_e37 < octaves) {
         } else {
             break;
         }
         {
-            float _e38 = ka;
-            ka = _e38 * a_8;
-            float _e40 = kb;
-            kb = _e40 * b_8;
-            float _e42 = kc;
-            kc = _e42 * c_8;
-            float _e44 = octave_sum;
-            float _e45 = ka;
-            float _e46 = kc;
-            float _e47 = phase(cos_theta_5, _e46, frame);
-            float _e49 = kb;
-            octave_sum = _e44 + ((_e45 * _e47) / (1.0 + (_e49 * tau_6)));
+            float _e39 = ka;
+            ka = _e39 * a_8;
+            float _e41 = kb;
+            kb = _e41 * b_8;
+            float _e43 = kc;
+            kc = _e43 * c_8;
+            float _e45 = octave_sum;
+            float _e46 = ka;
+            float _e47 = kc;
+            float _e48 = phase(cos_theta_5, _e47, frame);
+            float _e50 = kb;
+            octave_sum = _e45 + ((_e46 * _e48) / (1.0 + (_e50 * tau_oct)));
         }
     }
-    float _e61 = frame.sun_direction.y;
-    float _e62 = saturate(_e61);
-    float _e69 = saturate(coverage_2);
-    float side = (metal::sqrt(metal::max(1.0 - (_e62 * _e62), 0.0)) * (1.0 - _e69)) * metal::exp(-(far_1));
-    float _e79 = frame.light_model.x;
-    feed = _e62 + (_e79 * side);
-    float _e86 = frame.light_model.y;
-    if (_e86 > 0.0) {
-        float _e89 = feed;
-        float _e95 = frame.light_model.y;
-        feed = _e89 * metal::pow(metal::max(coverage_2, 0.000001), _e95);
+    float _e62 = frame.sun_direction.y;
+    float _e63 = saturate(_e62);
+    float _e70 = saturate(coverage_3);
+    float side = (metal::sqrt(metal::max(1.0 - (_e63 * _e63), 0.0)) * (1.0 - _e70)) * metal::exp(-(far_1));
+    float _e80 = frame.light_model.x;
+    feed = _e63 + (_e80 * side);
+    float _e87 = frame.light_model.y;
+    if (_e87 > 0.0) {
+        float _e90 = feed;
+        float _e96 = frame.light_model.y;
+        feed = _e90 * metal::pow(metal::max(coverage_3, 0.000001), _e96);
     }
-    float _e98 = feed;
-    float _e99 = diffuse_limb(view_y_2, coverage_2, frame);
-    float _e100 = vertical_anisotropy(view_y_2, coverage_2, h_6, frame);
-    float _e102 = deck_escape(_e62, layer_coverage_1, frame);
-    feed = _e98 * ((_e99 * _e100) * _e102);
-    float _e105 = feed;
-    float _e107 = octave_sum;
-    octaves_part = (_e105 * build) * _e107;
-    float _e111 = phase(cos_theta_5, 1.0, frame);
-    float _e116 = octaves_part;
-    total = (_e111 * metal::exp(-(tau_6) - far_1)) + _e116;
-    uint _e122 = frame.modes.w;
-    if ((_e122 & FLAG_BEER_POWDER) != 0u) {
-        float _e130 = frame.phase.w;
-        float powder = 1.0 - metal::exp(-(_e130) * tau_6);
-        float _e136 = total;
-        total = _e136 * powder;
-        float _e138 = octaves_part;
-        octaves_part = _e138 * powder;
+    float _e99 = feed;
+    float _e100 = diffuse_limb(view_y_3, coverage_3, frame);
+    float _e101 = vertical_anisotropy(view_y_3, coverage_3, h_7, frame);
+    float _e103 = deck_escape(_e63, layer_coverage_1, frame);
+    feed = _e99 * ((_e100 * _e101) * _e103);
+    float _e106 = feed;
+    float _e108 = downward_dimming(view_y_3, coverage_3, h_7, tau_8 * _e63, frame);
+    feed = _e106 * _e108;
+    float _e110 = feed;
+    float _e112 = octave_sum;
+    octaves_part = (_e110 * build) * _e112;
+    float _e116 = phase(cos_theta_5, 1.0, frame);
+    float _e121 = octaves_part;
+    total = (_e116 * metal::exp(-(tau_8) - far_1)) + _e121;
+    uint _e127 = frame.modes.w;
+    if ((_e127 & FLAG_BEER_POWDER) != 0u) {
+        float _e135 = frame.phase.w;
+        float powder = 1.0 - metal::exp(-(_e135) * tau_8);
+        float _e141 = total;
+        total = _e141 * powder;
+        float _e143 = octaves_part;
+        octaves_part = _e143 * powder;
     }
-    float _e140 = total;
-    float _e141 = octaves_part;
-    return SunScattering {_e140, _e141};
+    float _e145 = total;
+    float _e146 = octaves_part;
+    return SunScattering {_e145, _e146};
 }
 
 float forward_lobe(
@@ -1802,12 +1963,12 @@ float forward_lobe(
     float transmittance,
     constant Frame& frame
 ) {
-    float k_13 = frame.octave_direction.x;
-    if (k_13 <= 0.0) {
+    float k_14 = frame.octave_direction.x;
+    if (k_14 <= 0.0) {
         return 1.0;
     }
     float _e11 = saturate(transmittance / FORWARD_LOBE_THIN);
-    float w_6 = k_13 * _e11;
+    float w_6 = k_14 * _e11;
     float _e17 = frame.octave_direction.y;
     float _e18 = phase_hg(cos_theta_6, _e17);
     return 1.0 + (w_6 * ((12.566371 * _e18) - 1.0));
@@ -1817,51 +1978,51 @@ float octave_buildup(
     float density_1,
     constant Frame& frame
 ) {
-    float l_8 = frame.multiple_scattering.w;
-    if (l_8 <= 0.0) {
+    float l_11 = frame.multiple_scattering.w;
+    if (l_11 <= 0.0) {
         return 1.0;
     }
     float _e11 = frame.extinction.x;
     float _e15 = frame.extinction.y;
-    return 1.0 - metal::exp((-((_e11 + _e15)) * density_1) * l_8);
+    return 1.0 - metal::exp((-((_e11 + _e15)) * density_1) * l_11);
 }
 
 metal::float3 ambient(
-    float h_7,
-    metal::float3 rel_5,
+    float h_8,
+    metal::float3 rel_7,
     constant Frame& frame,
     metal::texture2d<float, metal::access::sample> sky_ambient_in
 ) {
     bool _e2 = physical_sky(frame);
     if (_e2) {
-        metal::float3 _e3 = sky_ambient_light(h_7, rel_5, frame, sky_ambient_in);
+        metal::float3 _e3 = sky_ambient_light(h_8, rel_7, frame, sky_ambient_in);
         return _e3;
     }
     metal::float4 _e6 = frame.ambient_bottom;
     metal::float4 _e10 = frame.ambient_top;
     float _e16 = frame.ambient_bottom.w;
-    return metal::mix(_e6.xyz, _e10.xyz, h_7) * _e16;
+    return metal::mix(_e6.xyz, _e10.xyz, h_8) * _e16;
 }
 
 float height_fraction(
-    float alt_11,
+    float alt_12,
     constant Frame& frame
 ) {
-    uint _e1 = layer_at(alt_11, frame);
+    uint _e1 = layer_at(alt_12, frame);
     Layer _e2 = cloud_layer(_e1, frame);
-    float _e3 = layer_height(_e2, alt_11);
+    float _e3 = layer_height(_e2, alt_12);
     float _e4 = saturate(_e3);
     return _e4;
 }
 
 ScatteredLight scattered_light(
-    metal::float3 rel_6,
-    metal::float3 p_8,
-    float alt_12,
+    metal::float3 rel_8,
+    metal::float3 p_11,
+    float alt_13,
     float density_2,
     metal::float3 view,
-    Layer l_6,
-    thread Counters& counters_6,
+    Layer l_9,
+    thread Counters& counters_9,
     constant Frame& frame,
     metal::texture2d<float, metal::access::sample> transmittance_lut_in,
     metal::texture2d<float, metal::access::sample> sky_ambient_in,
@@ -1873,39 +2034,48 @@ ScatteredLight scattered_light(
 ) {
     metal::float3 sun_light = metal::float3(0.0);
     metal::float3 octave_light = metal::float3(0.0);
-    float tau_7 = 0.0;
+    float tau_9 = 0.0;
     float far_2 = 0.0;
+    float tau_oct_1 = {};
     metal::float4 _e9 = frame.sun_direction;
-    metal::float3 sun_5 = _e9.xyz;
-    float _e11 = layer_height(l_6, alt_12);
+    metal::float3 sun_6 = _e9.xyz;
+    float _e11 = layer_height(l_9, alt_13);
     float _e12 = saturate(_e11);
-    Weather _e19 = sample_weather(p_8, l_6, frame, weather_tex, noise_sampler);
-    bool _e20 = hits_ground(rel_6, alt_12, sun_5, frame);
+    Weather _e19 = sample_weather(p_11, l_9, frame, weather_tex, noise_sampler);
+    bool _e20 = hits_ground(rel_8, alt_13, sun_6, frame);
     if (!(_e20)) {
         if (LIGHT_MARCH) {
-            float _e27 = sun_optical_depth(rel_6, p_8, l_6, counters_6, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
-            tau_7 = _e27;
-            float _e28 = far_optical_depth(rel_6, p_8, l_6, frame, weather_tex, noise_sampler);
+            float _e27 = sun_optical_depth(rel_8, p_11, l_9, counters_9, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+            tau_9 = _e27;
+            float _e28 = far_optical_depth(rel_8, p_11, l_9, frame, weather_tex, noise_sampler);
             far_2 = _e28;
         }
-        float _e31 = tau_7;
-        float _e32 = far_2;
-        float _e33 = octave_buildup(density_2, frame);
-        SunScattering _e36 = sun_scattering(metal::dot(view, sun_5), view.y, _e31, _e32, _e33, _e19.coverage, _e12, l_6.coverage, frame);
-        metal::float4 _e39 = frame.sun_illuminance;
-        metal::float3 _e41 = sun_through_air(rel_6, frame, transmittance_lut_in);
-        metal::float3 lit = _e39.xyz * _e41;
-        sun_light = lit * _e36.total;
-        octave_light = lit * _e36.octaves;
+        float _e29 = tau_9;
+        tau_oct_1 = _e29;
+        if (LIGHT_MARCH) {
+            float _e32 = tau_9;
+            float _e33 = octave_optical_depth(rel_8, p_11, l_9, _e32, counters_9, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+            tau_oct_1 = _e33;
+        }
+        float _e36 = tau_9;
+        float _e37 = tau_oct_1;
+        float _e38 = far_2;
+        float _e39 = octave_buildup(density_2, frame);
+        SunScattering _e42 = sun_scattering(metal::dot(view, sun_6), view.y, _e36, _e37, _e38, _e39, _e19.coverage, _e12, l_9.coverage, frame);
+        metal::float4 _e45 = frame.sun_illuminance;
+        metal::float3 _e47 = sun_through_air(rel_8, frame, transmittance_lut_in);
+        metal::float3 lit = _e45.xyz * _e47;
+        sun_light = lit * _e42.total;
+        octave_light = lit * _e42.octaves;
     }
-    float _e50 = frame.extinction.z;
-    float _e58 = saturate(1.0 - ((_e50 * _e19.precipitation) * (1.0 - _e12)));
-    float _e62 = frame.extinction.x;
-    float k_14 = (_e62 * density_2) * _e58;
-    metal::float3 _e65 = sun_light;
-    metal::float3 _e66 = ambient(_e12, rel_6, frame, sky_ambient_in);
-    metal::float3 _e69 = octave_light;
-    return ScatteredLight {(_e65 + _e66) * k_14, _e69 * k_14};
+    float _e56 = frame.extinction.z;
+    float _e64 = saturate(1.0 - ((_e56 * _e19.precipitation) * (1.0 - _e12)));
+    float _e68 = frame.extinction.x;
+    float k_15 = (_e68 * density_2) * _e64;
+    metal::float3 _e71 = sun_light;
+    metal::float3 _e72 = ambient(_e12, rel_8, frame, sky_ambient_in);
+    metal::float3 _e75 = octave_light;
+    return ScatteredLight {(_e71 + _e72) * k_15, _e75 * k_15};
 }
 
 metal::float3 shadow_ground_point(
@@ -1920,14 +2090,14 @@ metal::float3 shadow_ground_point(
 }
 
 float ground_shadow(
-    metal::float3 rel_7,
+    metal::float3 rel_9,
     metal::texture2d<float, metal::access::sample> cloud_shadow_in
 ) {
-    float edge = metal::max(metal::abs(rel_7.x), metal::abs(rel_7.z)) / SHADOW_HALF_EXTENT;
+    float edge = metal::max(metal::abs(rel_9.x), metal::abs(rel_9.z)) / SHADOW_HALF_EXTENT;
     if (edge >= 1.0) {
         return 1.0;
     }
-    metal::float2 x_9 = (rel_7.xz / metal::float2(40000.0)) + metal::float2(0.5);
+    metal::float2 x_9 = (rel_9.xz / metal::float2(40000.0)) + metal::float2(0.5);
     metal::float4 _e21 = lut_bilinear(cloud_shadow_in, x_9, metal::uint2(128u));
     float t_6 = _e21.x;
     return metal::mix(t_6, 1.0, metal::smoothstep(SHADOW_FADE_START, 1.0, edge));
@@ -1960,41 +2130,41 @@ metal::float3 ground_shadow_loss(
 }
 
 float empty_cell_exit(
-    metal::float3 p_9,
-    metal::float3 d_13,
+    metal::float3 p_12,
+    metal::float3 d_14,
     constant Frame& frame,
     metal::texture2d<float, metal::access::sample> occupancy_in
 ) {
     float exit = 1000000000000000000000000000000.0;
     metal::float4 _e6 = frame.wind_offsets0_;
     float _e12 = frame.periods.x;
-    metal::float2 uv_4 = metal::fract((p_9.xz - _e6.xy) / metal::float2(_e12)) * 64.0;
+    metal::float2 uv_4 = metal::fract((p_12.xz - _e6.xy) / metal::float2(_e12)) * 64.0;
     metal::uint2 cell_1 = metal::min(naga_f2u32(uv_4), metal::uint2(63u));
     metal::float4 _e23 = occupancy_in.read(metal::uint2(cell_1), 0);
-    float m_2 = _e23.x;
+    float m_3 = _e23.x;
     float _e28 = frame.clouds.x;
-    if ((m_2 + (2.0 * (_e28 - 0.5))) > -0.003921569) {
+    if ((m_3 + (2.0 * (_e28 - 0.5))) > -0.003921569) {
         return 0.0;
     }
     float _e40 = frame.periods.x;
     float cell_m = _e40 / 64.0;
     metal::float2 inside = (uv_4 - static_cast<metal::float2>(cell_1)) * cell_m;
-    if (d_13.x > 0.000001) {
+    if (d_14.x > 0.000001) {
         float _e50 = exit;
-        exit = metal::min(_e50, (cell_m - inside.x) / d_13.x);
+        exit = metal::min(_e50, (cell_m - inside.x) / d_14.x);
     } else {
-        if (d_13.x < -0.000001) {
+        if (d_14.x < -0.000001) {
             float _e59 = exit;
-            exit = metal::min(_e59, inside.x / -(d_13.x));
+            exit = metal::min(_e59, inside.x / -(d_14.x));
         }
     }
-    if (d_13.z > 0.000001) {
+    if (d_14.z > 0.000001) {
         float _e68 = exit;
-        exit = metal::min(_e68, (cell_m - inside.y) / d_13.z);
+        exit = metal::min(_e68, (cell_m - inside.y) / d_14.z);
     } else {
-        if (d_13.z < -0.000001) {
+        if (d_14.z < -0.000001) {
             float _e77 = exit;
-            exit = metal::min(_e77, inside.y / -(d_13.z));
+            exit = metal::min(_e77, inside.y / -(d_14.z));
         }
     }
     float _e83 = exit;
@@ -2006,13 +2176,13 @@ void count(
     uint value,
     device Stats& stats
 ) {
-    bool local_33 = {};
+    bool local_37 = {};
     if (STATS) {
-        local_33 = value != 0u;
+        local_37 = value != 0u;
     } else {
-        local_33 = false;
+        local_37 = false;
     }
-    bool _e8 = local_33;
+    bool _e8 = local_37;
     if (_e8) {
         uint _e12 = metal::atomic_fetch_add_explicit(&stats.counters.inner[index_1], value, metal::memory_order_relaxed);
         return;
@@ -2046,8 +2216,8 @@ float start_offset(
 ) {
     uint _e4 = frame.modes.w;
     bool jitter_1 = (_e4 & FLAG_JITTER) != 0u;
-    uint k_15 = frame.temporal.x;
-    if (k_15 <= 1u) {
+    uint k_16 = frame.temporal.x;
+    if (k_16 <= 1u) {
         uint _e18 = frame.misc.y;
         float _e19 = hash_unit(pixel_3, _e18);
         return jitter_1 ? _e19 : 0.5;
@@ -2055,17 +2225,17 @@ float start_offset(
     float _e23 = hash_unit(pixel_3, 0u);
     float base_2 = jitter_1 ? _e23 : 0.5;
     uint _e29 = frame.misc.y;
-    float _e32 = van_der_corput(naga_div(_e29, k_15 * k_15));
+    float _e32 = van_der_corput(naga_div(_e29, k_16 * k_16));
     return metal::fract(base_2 + _e32);
 }
 
 bool march_layer(
     metal::float3 view_2,
     Interval span_1,
-    Layer l_7,
+    Layer l_10,
     float jitter,
     thread MarchState& state,
-    thread Counters& counters_7,
+    thread Counters& counters_10,
     constant Frame& frame,
     metal::texture2d<float, metal::access::sample> transmittance_lut_in,
     metal::texture2d<float, metal::access::sample> sky_ambient_in,
@@ -2077,10 +2247,10 @@ bool march_layer(
     metal::texture2d<float, metal::access::sample> occupancy_in
 ) {
     uint steps_1 = {};
-    uint i_13 = 0u;
+    uint i_14 = 0u;
     uint stride = 1u;
     uint empty = 0u;
-    bool local_34 = {};
+    bool local_38 = {};
     float cam_alt_1 = frame.camera_position.y;
     metal::float4 _e12 = frame.camera_position;
     metal::float2 cam_xz = _e12.xz;
@@ -2100,71 +2270,71 @@ bool march_layer(
     bool dynamic_step = (_e52 & FLAG_DYNAMIC_STEP) != 0u;
     uint _e60 = frame.modes.w;
     bool empty_skip = (_e60 & FLAG_EMPTY_SKIP) != 0u;
-    uint2 loop_bound_8 = uint2(4294967295u);
+    uint2 loop_bound_9 = uint2(4294967295u);
     while(true) {
-        if (metal::all(loop_bound_8 == uint2(0u))) { break; }
-        loop_bound_8 -= uint2(loop_bound_8.y == 0u, 1u);
-        uint _e71 = i_13;
+        if (metal::all(loop_bound_9 == uint2(0u))) { break; }
+        loop_bound_9 -= uint2(loop_bound_9.y == 0u, 1u);
+        uint _e71 = i_14;
         uint _e72 = steps_1;
         if (_e71 >= _e72) {
             break;
         }
-        uint _e75 = counters_7.view_steps;
-        counters_7.view_steps = _e75 + 1u;
-        uint _e79 = i_13;
+        uint _e75 = counters_10.view_steps;
+        counters_10.view_steps = _e75 + 1u;
+        uint _e79 = i_14;
         float t_7 = span_1.start + ((static_cast<float>(_e79) + jitter) * dt_2);
-        metal::float3 rel_10 = (view_2 * t_7) + metal::float3(0.0, cam_alt_1, 0.0);
-        metal::float3 p_14 = metal::float3(rel_10.x + cam_xz.x, rel_10.y, rel_10.z + cam_xz.y);
+        metal::float3 rel_12 = (view_2 * t_7) + metal::float3(0.0, cam_alt_1, 0.0);
+        metal::float3 p_17 = metal::float3(rel_12.x + cam_xz.x, rel_12.y, rel_12.z + cam_xz.y);
         if (empty_skip) {
-            float _e97 = empty_cell_exit(p_14, view_2, frame, occupancy_in);
+            float _e97 = empty_cell_exit(p_17, view_2, frame, occupancy_in);
             if (_e97 > 0.0) {
                 uint _e106 = steps_1;
                 uint next_1 = naga_f2u32(metal::clamp(metal::ceil((((t_7 + _e97) - span_1.start) / dt_2) - jitter), 0.0, static_cast<float>(_e106)));
-                uint _e111 = i_13;
-                i_13 = metal::max(_e111 + 1u, next_1);
+                uint _e111 = i_14;
+                i_14 = metal::max(_e111 + 1u, next_1);
                 continue;
             }
         }
-        float _e115 = altitude_of(rel_10, frame);
-        float _e116 = layer_density(p_14, _e115, l_7, counters_7, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+        float _e115 = altitude_of(rel_12, frame);
+        float _e116 = layer_density(p_17, _e115, l_10, counters_10, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
         if (_e116 <= 0.0) {
             uint _e119 = empty;
             empty = _e119 + 1u;
             if (dynamic_step) {
                 uint _e124 = empty;
-                local_34 = _e124 >= 8u;
+                local_38 = _e124 >= 8u;
             } else {
-                local_34 = false;
+                local_38 = false;
             }
-            bool _e128 = local_34;
+            bool _e128 = local_38;
             if (_e128) {
                 stride = 2u;
             }
-            uint _e130 = i_13;
+            uint _e130 = i_14;
             uint _e131 = stride;
-            i_13 = _e130 + _e131;
+            i_14 = _e130 + _e131;
             continue;
         }
         uint _e133 = stride;
         if (_e133 > 1u) {
-            uint _e136 = i_13;
+            uint _e136 = i_14;
             uint _e137 = stride;
-            i_13 = _e136 - (_e137 - 1u);
+            i_14 = _e136 - (_e137 - 1u);
             stride = 1u;
             empty = 0u;
             continue;
         }
         empty = 0u;
-        float sigma_t_2 = sigma_e * _e116;
-        ScatteredLight _e145 = scattered_light(rel_10, p_14, _e115, _e116, view_2, l_7, counters_7, frame, transmittance_lut_in, sky_ambient_in, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+        float sigma_t_3 = sigma_e * _e116;
+        ScatteredLight _e145 = scattered_light(rel_12, p_17, _e115, _e116, view_2, l_10, counters_10, frame, transmittance_lut_in, sky_ambient_in, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
         float transmittance_2 = state.transmittance;
         metal::float3 _e149 = state.radiance;
-        metal::float3 _e151 = step_integral(_e145.total, sigma_t_2, dt_2, frame);
+        metal::float3 _e151 = step_integral(_e145.total, sigma_t_3, dt_2, frame);
         state.radiance = _e149 + (transmittance_2 * _e151);
         metal::float3 _e155 = state.octaves;
-        metal::float3 _e157 = step_integral(_e145.octaves, sigma_t_2, dt_2, frame);
+        metal::float3 _e157 = step_integral(_e145.octaves, sigma_t_3, dt_2, frame);
         state.octaves = _e155 + (transmittance_2 * _e157);
-        float step_t = metal::exp(-(sigma_t_2) * dt_2);
+        float step_t = metal::exp(-(sigma_t_3) * dt_2);
         float _e164 = state.depth_sum;
         state.depth_sum = _e164 + ((t_7 * transmittance_2) * (1.0 - step_t));
         state.transmittance = transmittance_2 * step_t;
@@ -2173,8 +2343,8 @@ bool march_layer(
         if (_e173 < _e177) {
             return true;
         }
-        uint _e180 = i_13;
-        i_13 = _e180 + 1u;
+        uint _e180 = i_14;
+        i_14 = _e180 + 1u;
     }
     return false;
 }
@@ -2192,7 +2362,7 @@ MarchResult march_pixel(
     metal::texture2d<float, metal::access::sample> occupancy_in,
     device Stats& stats
 ) {
-    Counters counters_8 = Counters {0u, 0u, 0u, 0u};
+    Counters counters_11 = Counters {0u, 0u, 0u, 0u};
     MarchState state_1 = MarchState {metal::float3(0.0), 1.0, 0.0, {}, metal::float3(0.0)};
     bool marched = false;
     bool ground_1 = false;
@@ -2202,29 +2372,29 @@ MarchResult march_pixel(
     uint k_6 = 0u;
     uint next = {};
     Interval span_2 = {};
-    uint i_14 = {};
-    bool local_35 = {};
-    bool local_36 = {};
-    bool local_37 = {};
-    bool local_38 = {};
+    uint i_15 = {};
     bool local_39 = {};
     bool local_40 = {};
+    bool local_41 = {};
+    bool local_42 = {};
+    bool local_43 = {};
+    bool local_44 = {};
     float depth_1 = 0.0;
     metal::float3 _e1 = view_ray(pixel_4, frame);
     float cam_alt_2 = frame.camera_position.y;
     count(STAT_PIXELS, 1u, stats);
     float _e22 = start_offset(pixel_4, frame);
     uint _e23 = layer_count(frame);
-    uint2 loop_bound_9 = uint2(4294967295u);
-    bool loop_init_8 = true;
+    uint2 loop_bound_10 = uint2(4294967295u);
+    bool loop_init_9 = true;
     while(true) {
-        if (metal::all(loop_bound_9 == uint2(0u))) { break; }
-        loop_bound_9 -= uint2(loop_bound_9.y == 0u, 1u);
-        if (!loop_init_8) {
+        if (metal::all(loop_bound_10 == uint2(0u))) { break; }
+        loop_bound_10 -= uint2(loop_bound_10.y == 0u, 1u);
+        if (!loop_init_9) {
             uint _e121 = k_6;
             k_6 = _e121 + 1u;
         }
-        loop_init_8 = false;
+        loop_init_9 = false;
         uint _e36 = k_6;
         if (_e36 < _e23) {
         } else {
@@ -2233,72 +2403,72 @@ MarchResult march_pixel(
         {
             next = NO_LAYER;
             span_2 = Interval {0.0, 0.0, 1u};
-            i_14 = 0u;
-            uint2 loop_bound_10 = uint2(4294967295u);
-            bool loop_init_9 = true;
+            i_15 = 0u;
+            uint2 loop_bound_11 = uint2(4294967295u);
+            bool loop_init_10 = true;
             while(true) {
-                if (metal::all(loop_bound_10 == uint2(0u))) { break; }
-                loop_bound_10 -= uint2(loop_bound_10.y == 0u, 1u);
-                if (!loop_init_9) {
-                    uint _e104 = i_14;
-                    i_14 = _e104 + 1u;
+                if (metal::all(loop_bound_11 == uint2(0u))) { break; }
+                loop_bound_11 -= uint2(loop_bound_11.y == 0u, 1u);
+                if (!loop_init_10) {
+                    uint _e104 = i_15;
+                    i_15 = _e104 + 1u;
                 }
-                loop_init_9 = false;
-                uint _e47 = i_14;
+                loop_init_10 = false;
+                uint _e47 = i_15;
                 if (_e47 < _e23) {
                 } else {
                     break;
                 }
                 {
-                    uint _e49 = i_14;
+                    uint _e49 = i_15;
                     Layer _e50 = cloud_layer(_e49, frame);
                     Interval _e51 = layer_interval(cam_alt_2, _e1, _e50, frame);
                     bool _e52 = ground_1;
                     if (!(_e52)) {
-                        local_35 = _e51.kind == RAY_HITS_GROUND;
+                        local_39 = _e51.kind == RAY_HITS_GROUND;
                     } else {
-                        local_35 = true;
+                        local_39 = true;
                     }
-                    bool _e60 = local_35;
+                    bool _e60 = local_39;
                     ground_1 = _e60;
                     float _e62 = last_start;
                     if (!((_e51.start > _e62))) {
                         float _e68 = last_start;
                         if (_e51.start == _e68) {
-                            uint _e72 = i_14;
+                            uint _e72 = i_15;
                             uint _e73 = last_index;
-                            local_37 = _e72 > _e73;
+                            local_41 = _e72 > _e73;
                         } else {
-                            local_37 = false;
+                            local_41 = false;
                         }
-                        bool _e76 = local_37;
-                        local_36 = _e76;
+                        bool _e76 = local_41;
+                        local_40 = _e76;
                     } else {
-                        local_36 = true;
+                        local_40 = true;
                     }
-                    bool after = local_36;
+                    bool after = local_40;
                     if (_e51.kind == RAY_MARCH) {
-                        local_38 = after;
+                        local_42 = after;
                     } else {
-                        local_38 = false;
+                        local_42 = false;
                     }
-                    bool _e85 = local_38;
+                    bool _e85 = local_42;
                     if (_e85) {
                         uint _e88 = next;
                         if (!((_e88 == NO_LAYER))) {
                             float _e96 = span_2.start;
-                            local_40 = _e51.start < _e96;
+                            local_44 = _e51.start < _e96;
                         } else {
-                            local_40 = true;
+                            local_44 = true;
                         }
-                        bool _e99 = local_40;
-                        local_39 = _e99;
+                        bool _e99 = local_44;
+                        local_43 = _e99;
                     } else {
-                        local_39 = false;
+                        local_43 = false;
                     }
-                    bool _e101 = local_39;
+                    bool _e101 = local_43;
                     if (_e101) {
-                        uint _e102 = i_14;
+                        uint _e102 = i_15;
                         next = _e102;
                         span_2 = _e51;
                     }
@@ -2316,7 +2486,7 @@ MarchResult march_pixel(
             Interval _e113 = span_2;
             uint _e114 = next;
             Layer _e115 = cloud_layer(_e114, frame);
-            bool _e116 = march_layer(_e1, _e113, _e115, _e22, state_1, counters_8, frame, transmittance_lut_in, sky_ambient_in, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler, occupancy_in);
+            bool _e116 = march_layer(_e1, _e113, _e115, _e22, state_1, counters_11, frame, transmittance_lut_in, sky_ambient_in, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler, occupancy_in);
             if (_e116) {
                 count(STAT_EXIT_TRANSMITTANCE, 1u, stats);
                 exited = true;
@@ -2335,13 +2505,13 @@ MarchResult march_pixel(
             count(STAT_EXIT_MISSED, 1u, stats);
         }
     }
-    uint _e133 = counters_8.view_steps;
+    uint _e133 = counters_11.view_steps;
     count(STAT_VIEW_STEPS, _e133, stats);
-    uint _e136 = counters_8.density;
+    uint _e136 = counters_11.density;
     count(STAT_DENSITY, _e136, stats);
-    uint _e139 = counters_8.detail;
+    uint _e139 = counters_11.detail;
     count(STAT_DETAIL, _e139, stats);
-    uint _e142 = counters_8.light;
+    uint _e142 = counters_11.light;
     count(STAT_LIGHT, _e142, stats);
     float _e146 = state_1.transmittance;
     if (_e146 < 1.0) {
@@ -2394,36 +2564,36 @@ metal::float2 reproject(
     float depth_2,
     constant Frame& frame
 ) {
-    bool local_41 = {};
-    bool local_42 = {};
-    bool local_43 = {};
+    bool local_45 = {};
+    bool local_46 = {};
+    bool local_47 = {};
     metal::float3 dir = {};
     metal::float4 _e4 = frame.previous_position;
     metal::float4 _e7 = frame.camera_position;
     if (metal::all(_e4 == _e7)) {
         metal::float4 _e14 = frame.previous_forward;
         metal::float4 _e17 = frame.camera_forward;
-        local_41 = metal::all(_e14 == _e17);
+        local_45 = metal::all(_e14 == _e17);
     } else {
-        local_41 = false;
+        local_45 = false;
     }
-    bool _e21 = local_41;
+    bool _e21 = local_45;
     if (_e21) {
         metal::float4 _e26 = frame.previous_right;
         metal::float4 _e29 = frame.camera_right;
-        local_42 = metal::all(_e26 == _e29);
+        local_46 = metal::all(_e26 == _e29);
     } else {
-        local_42 = false;
+        local_46 = false;
     }
-    bool _e33 = local_42;
+    bool _e33 = local_46;
     if (_e33) {
         metal::float4 _e38 = frame.previous_up;
         metal::float4 _e41 = frame.camera_up;
-        local_43 = metal::all(_e38 == _e41);
+        local_47 = metal::all(_e38 == _e41);
     } else {
-        local_43 = false;
+        local_47 = false;
     }
-    bool same = local_43;
+    bool same = local_47;
     if (same) {
         return static_cast<metal::float2>(pixel_5);
     }
@@ -2455,15 +2625,15 @@ bool on_screen(
     metal::float2 q,
     constant Frame& frame
 ) {
-    bool local_44 = {};
+    bool local_48 = {};
     metal::uint4 _e3 = frame.counts;
     metal::float2 size_3 = static_cast<metal::float2>(_e3.xy);
     if (metal::all(q >= metal::float2(-0.5))) {
-        local_44 = metal::all(q <= (size_3 - metal::float2(0.5)));
+        local_48 = metal::all(q <= (size_3 - metal::float2(0.5)));
     } else {
-        local_44 = false;
+        local_48 = false;
     }
-    bool _e18 = local_44;
+    bool _e18 = local_48;
     return _e18;
 }
 
@@ -2526,8 +2696,8 @@ metal::float4 history_nearest(
 ) {
     metal::uint4 _e3 = frame.counts;
     metal::int2 size_6 = static_cast<metal::int2>(_e3.xy);
-    metal::int2 p_15 = metal::clamp(naga_f2i32(metal::rint(q_2)), metal::int2(0), as_type<metal::int2>(as_type<metal::uint2>(size_6) - as_type<metal::uint2>(metal::int2(1))));
-    metal::float4 _e16 = history_in.read(metal::uint2(p_15), 0);
+    metal::int2 p_18 = metal::clamp(naga_f2i32(metal::rint(q_2)), metal::int2(0), as_type<metal::int2>(as_type<metal::uint2>(size_6) - as_type<metal::uint2>(metal::int2(1))));
+    metal::float4 _e16 = history_in.read(metal::uint2(p_18), 0);
     return _e16;
 }
 
@@ -2538,8 +2708,8 @@ metal::float4 meta_at(
 ) {
     metal::uint4 _e3 = frame.counts;
     metal::int2 size_7 = static_cast<metal::int2>(_e3.xy);
-    metal::int2 p_16 = metal::clamp(naga_f2i32(metal::rint(q_3)), metal::int2(0), as_type<metal::int2>(as_type<metal::uint2>(size_7) - as_type<metal::uint2>(metal::int2(1))));
-    metal::float4 _e16 = meta_in.read(metal::uint2(p_16), 0);
+    metal::int2 p_19 = metal::clamp(naga_f2i32(metal::rint(q_3)), metal::int2(0), as_type<metal::int2>(as_type<metal::uint2>(size_7) - as_type<metal::uint2>(metal::int2(1))));
+    metal::float4 _e16 = meta_in.read(metal::uint2(p_19), 0);
     return _e16;
 }
 
@@ -2551,19 +2721,19 @@ bool in_blocks(
     metal::uint2 id_19,
     constant Frame& frame
 ) {
-    uint k_16 = frame.temporal.x;
+    uint k_17 = frame.temporal.x;
     metal::uint4 _e7 = frame.counts;
-    return metal::all(id_19 < naga_div((_e7.xy + metal::uint2(k_16)) - metal::uint2(1u), metal::uint2(k_16)));
+    return metal::all(id_19 < naga_div((_e7.xy + metal::uint2(k_17)) - metal::uint2(1u), metal::uint2(k_17)));
 }
 
 metal::uint2 sparse_pixel(
     metal::uint2 id_20,
     constant Frame& frame
 ) {
-    uint k_17 = frame.temporal.x;
+    uint k_18 = frame.temporal.x;
     uint _e9 = frame.misc.y;
-    metal::uint2 _e10 = block_offset(_e9, k_17);
-    return (id_20 * k_17) + _e10;
+    metal::uint2 _e10 = block_offset(_e9, k_18);
+    return (id_20 * k_18) + _e10;
 }
 
 void store_sparse(
@@ -2592,8 +2762,8 @@ float rng_next(
 ) {
     uint _e1 = rng_1;
     rng_1 = (_e1 * 747796405u) + 2891336453u;
-    uint s_10 = rng_1;
-    uint word_1 = ((s_10 >> ((s_10 >> 28u) + 4u)) ^ s_10) * 277803737u;
+    uint s_11 = rng_1;
+    uint word_1 = ((s_11 >> ((s_11 >> 28u) + 4u)) ^ s_11) * 277803737u;
     return static_cast<float>(((word_1 >> 22u) ^ word_1) >> 8u) * 0.000000059604645;
 }
 
@@ -2606,48 +2776,48 @@ float rng_exponential(
 }
 
 Segments layer_segments(
-    metal::float3 p_10,
-    float alt_13,
-    metal::float3 d_14,
+    metal::float3 p_13,
+    float alt_14,
+    metal::float3 d_15,
     constant Frame& frame
 ) {
     Segments s_1 = Segments {metal::float2(0.0), metal::float2(0.0), 0u};
-    bool local_45 = {};
+    bool local_49 = {};
     metal::float2 a_1 = metal::float2(0.0);
     metal::float2 b_1 = metal::float2(0.0);
     uint n_2 = 0u;
-    bool local_46 = {};
-    bool local_47 = {};
-    bool local_48 = {};
-    bool local_49 = {};
+    bool local_50 = {};
+    bool local_51 = {};
+    bool local_52 = {};
+    bool local_53 = {};
     metal::float2 _e10 = layers_span(frame);
     float bottom_2 = _e10.x;
-    Roots _e12 = ray_shell_from(p_10, alt_13, d_14, bottom_2, frame);
-    Roots _e14 = ray_shell_from(p_10, alt_13, d_14, _e10.y, frame);
-    bool _e15 = hits_ground(p_10, alt_13, d_14, frame);
+    Roots _e12 = ray_shell_from(p_13, alt_14, d_15, bottom_2, frame);
+    Roots _e14 = ray_shell_from(p_13, alt_14, d_15, _e10.y, frame);
+    bool _e15 = hits_ground(p_13, alt_14, d_15, frame);
     if (!(!(_e14.hit))) {
-        local_45 = _e14.t1_ <= 0.0;
+        local_49 = _e14.t1_ <= 0.0;
     } else {
-        local_45 = true;
+        local_49 = true;
     }
-    bool _e25 = local_45;
+    bool _e25 = local_49;
     if (_e25) {
         Segments _e26 = s_1;
         return _e26;
     }
     float entry = metal::max(_e14.t0_, 0.0);
     if (_e12.hit) {
-        local_46 = _e12.t0_ > 0.0;
+        local_50 = _e12.t0_ > 0.0;
     } else {
-        local_46 = false;
+        local_50 = false;
     }
-    bool _e45 = local_46;
+    bool _e45 = local_50;
     if (_e45) {
-        local_47 = alt_13 >= bottom_2;
+        local_51 = alt_14 >= bottom_2;
     } else {
-        local_47 = false;
+        local_51 = false;
     }
-    bool _e50 = local_47;
+    bool _e50 = local_51;
     if (_e50) {
         uint _e51 = n_2;
         a_1[_e51] = entry;
@@ -2656,11 +2826,11 @@ Segments layer_segments(
         uint _e56 = n_2;
         n_2 = _e56 + static_cast<uint>(_e12.t0_ > entry);
         if (!(_e15)) {
-            local_48 = _e14.t1_ > _e12.t1_;
+            local_52 = _e14.t1_ > _e12.t1_;
         } else {
-            local_48 = false;
+            local_52 = false;
         }
-        bool _e68 = local_48;
+        bool _e68 = local_52;
         if (_e68) {
             uint _e69 = n_2;
             a_1[_e69] = metal::max(_e12.t1_, entry);
@@ -2670,13 +2840,13 @@ Segments layer_segments(
             n_2 = _e76 + 1u;
         }
     } else {
-        if (alt_13 < bottom_2) {
+        if (alt_14 < bottom_2) {
             if (!(_e15)) {
-                local_49 = _e12.hit;
+                local_53 = _e12.hit;
             } else {
-                local_49 = false;
+                local_53 = false;
             }
-            bool _e85 = local_49;
+            bool _e85 = local_53;
             if (_e85) {
                 a_1.x = metal::max(_e12.t1_, 0.0);
                 b_1.x = _e14.t1_;
@@ -2699,8 +2869,8 @@ Segments layer_segments(
 }
 
 float density_at(
-    metal::float3 rel_8,
-    thread Counters& counters_9,
+    metal::float3 rel_10,
+    thread Counters& counters_12,
     constant Frame& frame,
     metal::texture3d<float, metal::access::sample> shape_tex,
     metal::texture3d<float, metal::access::sample> detail_tex,
@@ -2710,9 +2880,9 @@ float density_at(
 ) {
     float _e6 = frame.camera_position.x;
     float _e13 = frame.camera_position.z;
-    metal::float3 p_17 = metal::float3(rel_8.x + _e6, rel_8.y, rel_8.z + _e13);
-    float _e16 = altitude_of(rel_8, frame);
-    float _e17 = cloud_density(p_17, _e16, counters_9, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+    metal::float3 p_20 = metal::float3(rel_10.x + _e6, rel_10.y, rel_10.z + _e13);
+    float _e16 = altitude_of(rel_10, frame);
+    float _e17 = cloud_density(p_20, _e16, counters_12, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
     return _e17;
 }
 
@@ -2727,11 +2897,11 @@ float empty_cell_skip(
     if (_e3 > 1u) {
         return 0.0;
     }
-    metal::float3 rel_11 = origin_4 + (dir_1 * t_2);
+    metal::float3 rel_13 = origin_4 + (dir_1 * t_2);
     float _e13 = frame.camera_position.x;
     float _e20 = frame.camera_position.z;
-    metal::float3 p_18 = metal::float3(rel_11.x + _e13, rel_11.y, rel_11.z + _e20);
-    float _e23 = empty_cell_exit(p_18, dir_1, frame, occupancy_in);
+    metal::float3 p_21 = metal::float3(rel_13.x + _e13, rel_13.y, rel_13.z + _e20);
+    float _e23 = empty_cell_exit(p_21, dir_1, frame, occupancy_in);
     if (_e23 <= 0.0) {
         return 0.0;
     }
@@ -2742,25 +2912,25 @@ float density_max(
     constant Frame& frame
 ) {
     float m_1 = 0.0;
-    uint i_15 = 0u;
-    uint2 loop_bound_11 = uint2(4294967295u);
-    bool loop_init_10 = true;
+    uint i_16 = 0u;
+    uint2 loop_bound_12 = uint2(4294967295u);
+    bool loop_init_11 = true;
     while(true) {
-        if (metal::all(loop_bound_11 == uint2(0u))) { break; }
-        loop_bound_11 -= uint2(loop_bound_11.y == 0u, 1u);
-        if (!loop_init_10) {
-            uint _e17 = i_15;
-            i_15 = _e17 + 1u;
+        if (metal::all(loop_bound_12 == uint2(0u))) { break; }
+        loop_bound_12 -= uint2(loop_bound_12.y == 0u, 1u);
+        if (!loop_init_11) {
+            uint _e17 = i_16;
+            i_16 = _e17 + 1u;
         }
-        loop_init_10 = false;
-        uint _e4 = i_15;
+        loop_init_11 = false;
+        uint _e4 = i_16;
         uint _e5 = layer_count(frame);
         if (_e4 < _e5) {
         } else {
             break;
         }
         {
-            uint _e7 = i_15;
+            uint _e7 = i_16;
             Layer _e8 = cloud_layer(_e7, frame);
             float _e9 = m_1;
             m_1 = metal::max(_e9, _e8.density * (1.0 + _e8.precipitation));
@@ -2775,7 +2945,7 @@ float free_flight(
     metal::float3 dir_2,
     Segments segs,
     thread uint& rng_3,
-    thread Counters& counters_10,
+    thread Counters& counters_13,
     constant Frame& frame,
     metal::texture3d<float, metal::access::sample> shape_tex,
     metal::texture3d<float, metal::access::sample> detail_tex,
@@ -2793,16 +2963,16 @@ float free_flight(
     if (majorant <= 0.0) {
         return -1.0;
     }
-    uint2 loop_bound_12 = uint2(4294967295u);
-    bool loop_init_11 = true;
+    uint2 loop_bound_13 = uint2(4294967295u);
+    bool loop_init_12 = true;
     while(true) {
-        if (metal::all(loop_bound_12 == uint2(0u))) { break; }
-        loop_bound_12 -= uint2(loop_bound_12.y == 0u, 1u);
-        if (!loop_init_11) {
+        if (metal::all(loop_bound_13 == uint2(0u))) { break; }
+        loop_bound_13 -= uint2(loop_bound_13.y == 0u, 1u);
+        if (!loop_init_12) {
             uint _e60 = k_8;
             k_8 = _e60 + 1u;
         }
-        loop_init_11 = false;
+        loop_init_12 = false;
         uint _e21 = k_8;
         if (_e21 < segs.count) {
         } else {
@@ -2811,10 +2981,10 @@ float free_flight(
         {
             uint _e25 = k_8;
             t_3 = segs.a[_e25];
-            uint2 loop_bound_13 = uint2(4294967295u);
+            uint2 loop_bound_14 = uint2(4294967295u);
             while(true) {
-                if (metal::all(loop_bound_13 == uint2(0u))) { break; }
-                loop_bound_13 -= uint2(loop_bound_13.y == 0u, 1u);
+                if (metal::all(loop_bound_14 == uint2(0u))) { break; }
+                loop_bound_14 -= uint2(loop_bound_14.y == 0u, 1u);
                 float _e28 = t_3;
                 float _e29 = empty_cell_skip(origin_5, dir_2, _e28, frame, occupancy_in);
                 if (_e29 > 0.0) {
@@ -2835,10 +3005,10 @@ float free_flight(
                 if (_e42 >= segs.b[_e44]) {
                     break;
                 }
-                uint _e48 = counters_10.view_steps;
-                counters_10.view_steps = _e48 + 1u;
+                uint _e48 = counters_13.view_steps;
+                counters_13.view_steps = _e48 + 1u;
                 float _e51 = t_3;
-                float _e54 = density_at(origin_5 + (dir_2 * _e51), counters_10, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+                float _e54 = density_at(origin_5 + (dir_2 * _e51), counters_13, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
                 float _e55 = rng_next(rng_3);
                 if ((_e55 * _e5) < _e54) {
                     float _e58 = t_3;
@@ -2855,7 +3025,7 @@ float transmittance_along(
     metal::float3 dir_3,
     Segments segs_1,
     thread uint& rng_4,
-    thread Counters& counters_11,
+    thread Counters& counters_14,
     constant Frame& frame,
     metal::texture3d<float, metal::access::sample> shape_tex,
     metal::texture3d<float, metal::access::sample> detail_tex,
@@ -2869,22 +3039,22 @@ float transmittance_along(
     float t_4 = {};
     float _e8 = frame.extinction.x;
     float _e12 = frame.extinction.y;
-    float sigma_t_3 = _e8 + _e12;
+    float sigma_t_4 = _e8 + _e12;
     float _e14 = density_max(frame);
-    float majorant_1 = sigma_t_3 * _e14;
+    float majorant_1 = sigma_t_4 * _e14;
     if (majorant_1 <= 0.0) {
         return 1.0;
     }
-    uint2 loop_bound_14 = uint2(4294967295u);
-    bool loop_init_12 = true;
+    uint2 loop_bound_15 = uint2(4294967295u);
+    bool loop_init_13 = true;
     while(true) {
-        if (metal::all(loop_bound_14 == uint2(0u))) { break; }
-        loop_bound_14 -= uint2(loop_bound_14.y == 0u, 1u);
-        if (!loop_init_12) {
+        if (metal::all(loop_bound_15 == uint2(0u))) { break; }
+        loop_bound_15 -= uint2(loop_bound_15.y == 0u, 1u);
+        if (!loop_init_13) {
             uint _e78 = k_9;
             k_9 = _e78 + 1u;
         }
-        loop_init_12 = false;
+        loop_init_13 = false;
         uint _e23 = k_9;
         if (_e23 < segs_1.count) {
         } else {
@@ -2893,10 +3063,10 @@ float transmittance_along(
         {
             uint _e27 = k_9;
             t_4 = segs_1.a[_e27];
-            uint2 loop_bound_15 = uint2(4294967295u);
+            uint2 loop_bound_16 = uint2(4294967295u);
             while(true) {
-                if (metal::all(loop_bound_15 == uint2(0u))) { break; }
-                loop_bound_15 -= uint2(loop_bound_15.y == 0u, 1u);
+                if (metal::all(loop_bound_16 == uint2(0u))) { break; }
+                loop_bound_16 -= uint2(loop_bound_16.y == 0u, 1u);
                 float _e30 = t_4;
                 float _e31 = empty_cell_skip(origin_6, dir_3, _e30, frame, occupancy_in);
                 if (_e31 > 0.0) {
@@ -2917,12 +3087,12 @@ float transmittance_along(
                 if (_e44 >= segs_1.b[_e46]) {
                     break;
                 }
-                uint _e50 = counters_11.light;
-                counters_11.light = _e50 + 1u;
+                uint _e50 = counters_14.light;
+                counters_14.light = _e50 + 1u;
                 float _e53 = t_4;
-                float _e56 = density_at(origin_6 + (dir_3 * _e53), counters_11, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+                float _e56 = density_at(origin_6 + (dir_3 * _e53), counters_14, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
                 float _e57 = tr;
-                tr = _e57 * (1.0 - ((sigma_t_3 * _e56) / majorant_1));
+                tr = _e57 * (1.0 - ((sigma_t_4 * _e56) / majorant_1));
                 float _e63 = tr;
                 if (_e63 <= 0.0) {
                     return 0.0;
@@ -2950,8 +3120,8 @@ float sample_hg_cos(
     if (metal::abs(g_4) < 0.0001) {
         return 1.0 - (2.0 * u);
     }
-    float s_11 = (1.0 - (g_4 * g_4)) / ((1.0 - g_4) + ((2.0 * g_4) * u));
-    return metal::clamp(((1.0 + (g_4 * g_4)) - (s_11 * s_11)) / (2.0 * g_4), -1.0, 1.0);
+    float s_12 = (1.0 - (g_4 * g_4)) / ((1.0 - g_4) + ((2.0 * g_4) * u));
+    return metal::clamp(((1.0 + (g_4 * g_4)) - (s_12 * s_12)) / (2.0 * g_4), -1.0, 1.0);
 }
 
 PhaseSample sample_phase(
@@ -3009,8 +3179,8 @@ PhaseSample sample_phase(
 
 metal::float3 environment(
     metal::float3 pos,
-    metal::float3 d_15,
-    float h_8,
+    metal::float3 d_16,
+    float h_9,
     constant Frame& frame,
     metal::texture2d<float, metal::access::sample> transmittance_lut_in,
     metal::texture2d<float, metal::access::sample> multiscatter_lut_in,
@@ -3019,12 +3189,12 @@ metal::float3 environment(
 ) {
     bool _e3 = physical_sky(frame);
     if (_e3) {
-        metal::float3 _e4 = sky_from(pos, d_15, frame, transmittance_lut_in, multiscatter_lut_in, ground_irradiance_in);
+        metal::float3 _e4 = sky_from(pos, d_16, frame, transmittance_lut_in, multiscatter_lut_in, ground_irradiance_in);
         metal::float4 _e7 = frame.sun_illuminance;
         float _e13 = frame.ambient_bottom.w;
         return (_e4 * _e7.xyz) * _e13;
     }
-    metal::float3 _e15 = ambient(h_8, pos, frame, sky_ambient_in);
+    metal::float3 _e15 = ambient(h_9, pos, frame, sky_ambient_in);
     return _e15;
 }
 
@@ -3032,7 +3202,7 @@ PathResult trace_path(
     metal::float3 view_3,
     Interval span_3,
     thread uint& rng_6,
-    thread Counters& counters_12,
+    thread Counters& counters_15,
     constant Frame& frame,
     metal::texture2d<float, metal::access::sample> transmittance_lut_in,
     metal::texture2d<float, metal::access::sample> multiscatter_lut_in,
@@ -3046,15 +3216,15 @@ PathResult trace_path(
     metal::texture2d<float, metal::access::sample> occupancy_in
 ) {
     PathResult out_2 = PathResult {metal::float3(0.0), 1.0, -1.0};
-    bool local_50 = {};
-    bool local_51 = {};
-    bool local_52 = {};
+    bool local_54 = {};
+    bool local_55 = {};
+    bool local_56 = {};
     uint max_orders = MAX_PATH_ORDERS;
     metal::float3 pos_1 = {};
     metal::float3 dir_5 = {};
     float throughput = 1.0;
     uint order = 0u;
-    bool local_53 = {};
+    bool local_57 = {};
     if (span_3.kind != RAY_MARCH) {
         PathResult _e13 = out_2;
         return _e13;
@@ -3062,43 +3232,43 @@ PathResult trace_path(
     float _e17 = frame.camera_position.y;
     metal::float3 cam = metal::float3(0.0, _e17, 0.0);
     Segments primary = Segments {metal::float2(span_3.start, 0.0), metal::float2(span_3.start + span_3.length, 0.0), 1u};
-    float _e32 = transmittance_along(cam, view_3, primary, rng_6, counters_12, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler, occupancy_in);
+    float _e32 = transmittance_along(cam, view_3, primary, rng_6, counters_15, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler, occupancy_in);
     out_2.transmittance = _e32;
-    float _e33 = free_flight(cam, view_3, primary, rng_6, counters_12, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler, occupancy_in);
+    float _e33 = free_flight(cam, view_3, primary, rng_6, counters_15, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler, occupancy_in);
     if (_e33 < 0.0) {
         PathResult _e36 = out_2;
         return _e36;
     }
     out_2.depth = _e33;
     metal::float4 _e40 = frame.sun_direction;
-    metal::float3 sun_6 = _e40.xyz;
+    metal::float3 sun_7 = _e40.xyz;
     float _e45 = frame.extinction.x;
     float _e49 = frame.extinction.y;
-    float sigma_t_4 = _e45 + _e49;
+    float sigma_t_5 = _e45 + _e49;
     float _e54 = frame.extinction.x;
-    float albedo = (sigma_t_4 > 0.0) ? (_e54 / sigma_t_4) : 0.0;
+    float albedo = (sigma_t_5 > 0.0) ? (_e54 / sigma_t_5) : 0.0;
     float _e63 = frame.ambient_bottom.w;
     if (_e63 > 0.0) {
         bool _e68 = physical_sky(frame);
         if (!(_e68)) {
             metal::float4 _e74 = frame.ambient_bottom;
-            local_51 = metal::any(_e74.xyz > metal::float3(0.0));
+            local_55 = metal::any(_e74.xyz > metal::float3(0.0));
         } else {
-            local_51 = true;
+            local_55 = true;
         }
-        bool _e81 = local_51;
+        bool _e81 = local_55;
         if (!(_e81)) {
             metal::float4 _e87 = frame.ambient_top;
-            local_52 = metal::any(_e87.xyz > metal::float3(0.0));
+            local_56 = metal::any(_e87.xyz > metal::float3(0.0));
         } else {
-            local_52 = true;
+            local_56 = true;
         }
-        bool _e94 = local_52;
-        local_50 = _e94;
+        bool _e94 = local_56;
+        local_54 = _e94;
     } else {
-        local_50 = false;
+        local_54 = false;
     }
-    bool ambient_on = local_50;
+    bool ambient_on = local_54;
     uint _e102 = frame.misc.z;
     if (_e102 > 0u) {
         uint _e108 = frame.misc.z;
@@ -3106,10 +3276,10 @@ PathResult trace_path(
     }
     pos_1 = cam + (view_3 * _e33);
     dir_5 = view_3;
-    uint2 loop_bound_16 = uint2(4294967295u);
+    uint2 loop_bound_17 = uint2(4294967295u);
     while(true) {
-        if (metal::all(loop_bound_16 == uint2(0u))) { break; }
-        loop_bound_16 -= uint2(loop_bound_16.y == 0u, 1u);
+        if (metal::all(loop_bound_17 == uint2(0u))) { break; }
+        loop_bound_17 -= uint2(loop_bound_17.y == 0u, 1u);
         float _e119 = throughput;
         throughput = _e119 * albedo;
         uint _e121 = order;
@@ -3118,19 +3288,19 @@ PathResult trace_path(
         float _e125 = altitude_of(_e124, frame);
         float _e126 = height_fraction(_e125, frame);
         metal::float3 _e127 = pos_1;
-        bool _e128 = hits_ground(_e127, _e125, sun_6, frame);
+        bool _e128 = hits_ground(_e127, _e125, sun_7, frame);
         if (!(_e128)) {
             metal::float3 _e130 = pos_1;
             metal::float3 _e131 = pos_1;
-            Segments _e132 = layer_segments(_e131, _e125, sun_6, frame);
-            float _e133 = transmittance_along(_e130, sun_6, _e132, rng_6, counters_12, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler, occupancy_in);
+            Segments _e132 = layer_segments(_e131, _e125, sun_7, frame);
+            float _e133 = transmittance_along(_e130, sun_7, _e132, rng_6, counters_15, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler, occupancy_in);
             metal::float3 _e135 = out_2.radiance;
             metal::float4 _e138 = frame.sun_illuminance;
             metal::float3 _e140 = pos_1;
             metal::float3 _e141 = sun_through_air(_e140, frame, transmittance_lut_in);
             float _e143 = throughput;
             metal::float3 _e144 = dir_5;
-            float _e147 = phase(metal::dot(_e144, sun_6), 1.0, frame);
+            float _e147 = phase(metal::dot(_e144, sun_7), 1.0, frame);
             out_2.radiance = _e135 + ((_e138.xyz * _e141) * ((_e143 * _e147) * _e133));
         }
         metal::float3 _e152 = dir_5;
@@ -3138,7 +3308,7 @@ PathResult trace_path(
         metal::float3 _e154 = pos_1;
         metal::float3 _e156 = pos_1;
         Segments _e158 = layer_segments(_e156, _e125, _e153.dir, frame);
-        float _e159 = free_flight(_e154, _e153.dir, _e158, rng_6, counters_12, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler, occupancy_in);
+        float _e159 = free_flight(_e154, _e153.dir, _e158, rng_6, counters_15, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler, occupancy_in);
         if (_e159 < 0.0) {
             if (ambient_on) {
                 metal::float3 _e163 = out_2.radiance;
@@ -3160,11 +3330,11 @@ PathResult trace_path(
         uint _e179 = order;
         if (_e179 >= 3u) {
             float _e184 = throughput;
-            local_53 = _e184 < 0.1;
+            local_57 = _e184 < 0.1;
         } else {
-            local_53 = false;
+            local_57 = false;
         }
-        bool _e188 = local_53;
+        bool _e188 = local_57;
         if (_e188) {
             float _e189 = rng_next(rng_6);
             float _e190 = throughput;
@@ -3188,35 +3358,35 @@ PathResult trace_path(
 bool camera_still(
     constant Frame& frame
 ) {
-    bool local_54 = {};
-    bool local_55 = {};
-    bool local_56 = {};
+    bool local_58 = {};
+    bool local_59 = {};
+    bool local_60 = {};
     metal::float4 _e2 = frame.camera_position;
     metal::float4 _e5 = frame.previous_position;
     if (metal::all(_e2 == _e5)) {
         metal::float4 _e12 = frame.camera_forward;
         metal::float4 _e15 = frame.previous_forward;
-        local_54 = metal::all(_e12 == _e15);
+        local_58 = metal::all(_e12 == _e15);
     } else {
-        local_54 = false;
+        local_58 = false;
     }
-    bool _e19 = local_54;
+    bool _e19 = local_58;
     if (_e19) {
         metal::float4 _e24 = frame.camera_right;
         metal::float4 _e28 = frame.previous_right;
-        local_55 = metal::all(_e24.xyz == _e28.xyz);
+        local_59 = metal::all(_e24.xyz == _e28.xyz);
     } else {
-        local_55 = false;
+        local_59 = false;
     }
-    bool _e33 = local_55;
+    bool _e33 = local_59;
     if (_e33) {
         metal::float4 _e38 = frame.camera_up;
         metal::float4 _e42 = frame.previous_up;
-        local_56 = metal::all(_e38.xyz == _e42.xyz);
+        local_60 = metal::all(_e38.xyz == _e42.xyz);
     } else {
-        local_56 = false;
+        local_60 = false;
     }
-    bool _e47 = local_56;
+    bool _e47 = local_60;
     return _e47;
 }
 
@@ -3227,9 +3397,9 @@ float luminance(
 }
 
 float basic_sun_depth(
-    metal::float3 rel_9,
-    float alt_14,
-    thread Counters& counters_13,
+    metal::float3 rel_11,
+    float alt_15,
+    thread Counters& counters_16,
     constant Frame& frame,
     metal::texture3d<float, metal::access::sample> shape_tex,
     metal::texture3d<float, metal::access::sample> detail_tex,
@@ -3237,54 +3407,54 @@ float basic_sun_depth(
     metal::texture2d<float, metal::access::sample> curl_tex,
     metal::sampler noise_sampler
 ) {
-    float tau_8 = 0.0;
-    uint i_16 = 1u;
+    float tau_10 = 0.0;
+    uint i_17 = 1u;
     uint steps_4 = frame.counts.w;
     if (steps_4 == 0u) {
         return 0.0;
     }
     metal::float4 _e12 = frame.sun_direction;
-    metal::float3 sun_7 = _e12.xyz;
+    metal::float3 sun_8 = _e12.xyz;
     float rp_5 = frame.atmosphere.x;
     float top_2 = frame.atmosphere.z;
     float _e25 = frame.atmosphere.y;
     float thickness = top_2 - _e25;
-    Roots _e39 = solve_sphere(metal::dot(sun_7, metal::float3(rel_9.x, rel_9.y + rp_5, rel_9.z)), (alt_14 - top_2) * ((alt_14 + top_2) + (2.0 * rp_5)));
+    Roots _e39 = solve_sphere(metal::dot(sun_8, metal::float3(rel_11.x, rel_11.y + rp_5, rel_11.z)), (alt_15 - top_2) * ((alt_15 + top_2) + (2.0 * rp_5)));
     float length = metal::min(metal::max(_e39.t1_, 0.0), 3.0 * thickness);
     float dt_3 = length / static_cast<float>(steps_4);
     float _e51 = frame.extinction.x;
     float _e55 = frame.extinction.y;
-    float sigma_t_5 = _e51 + _e55;
+    float sigma_t_6 = _e51 + _e55;
     metal::float4 _e59 = frame.camera_position;
     metal::float2 cam_xz_1 = _e59.xz;
-    uint2 loop_bound_17 = uint2(4294967295u);
-    bool loop_init_13 = true;
+    uint2 loop_bound_18 = uint2(4294967295u);
+    bool loop_init_14 = true;
     while(true) {
-        if (metal::all(loop_bound_17 == uint2(0u))) { break; }
-        loop_bound_17 -= uint2(loop_bound_17.y == 0u, 1u);
-        if (!loop_init_13) {
-            uint _e90 = i_16;
-            i_16 = _e90 + 1u;
+        if (metal::all(loop_bound_18 == uint2(0u))) { break; }
+        loop_bound_18 -= uint2(loop_bound_18.y == 0u, 1u);
+        if (!loop_init_14) {
+            uint _e90 = i_17;
+            i_17 = _e90 + 1u;
         }
-        loop_init_13 = false;
-        uint _e65 = i_16;
+        loop_init_14 = false;
+        uint _e65 = i_17;
         if (_e65 <= steps_4) {
         } else {
             break;
         }
         {
-            uint _e68 = counters_13.light;
-            counters_13.light = _e68 + 1u;
-            uint _e71 = i_16;
-            metal::float3 q_9 = rel_9 + (sun_7 * (static_cast<float>(_e71) * dt_3));
-            metal::float3 p_19 = metal::float3(q_9.x + cam_xz_1.x, q_9.y, q_9.z + cam_xz_1.y);
-            float _e84 = tau_8;
+            uint _e68 = counters_16.light;
+            counters_16.light = _e68 + 1u;
+            uint _e71 = i_17;
+            metal::float3 q_9 = rel_11 + (sun_8 * (static_cast<float>(_e71) * dt_3));
+            metal::float3 p_22 = metal::float3(q_9.x + cam_xz_1.x, q_9.y, q_9.z + cam_xz_1.y);
+            float _e84 = tau_10;
             float _e85 = altitude_of(q_9, frame);
-            float _e86 = cloud_density(p_19, _e85, counters_13, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
-            tau_8 = _e84 + ((sigma_t_5 * _e86) * dt_3);
+            float _e86 = cloud_density(p_22, _e85, counters_16, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+            tau_10 = _e84 + ((sigma_t_6 * _e86) * dt_3);
         }
     }
-    float _e93 = tau_8;
+    float _e93 = tau_10;
     return _e93;
 }
 
@@ -3298,11 +3468,11 @@ MarchResult basic_pixel(
     metal::sampler noise_sampler,
     device Stats& stats
 ) {
-    Counters counters_14 = Counters {0u, 0u, 0u, 0u};
+    Counters counters_17 = Counters {0u, 0u, 0u, 0u};
     metal::float3 radiance_2 = metal::float3(0.0);
     float transmittance_1 = 1.0;
     float depth_sum = 0.0;
-    uint i_17 = 0u;
+    uint i_18 = 0u;
     float depth_3 = 0.0;
     metal::float3 _e1 = view_ray(pixel_7, frame);
     float cam_alt_3 = frame.camera_position.y;
@@ -3321,45 +3491,45 @@ MarchResult basic_pixel(
             float dt_4 = _e25.length / static_cast<float>(steps_5);
             float sigma_s = frame.extinction.x;
             float _e52 = frame.extinction.y;
-            float sigma_t_6 = sigma_s + _e52;
+            float sigma_t_7 = sigma_s + _e52;
             metal::float4 _e56 = frame.sun_illuminance;
             metal::float4 _e60 = frame.sun_direction;
             float _e66 = frame.phase.x;
             float _e67 = phase_hg(metal::dot(_e1, _e60.xyz), _e66);
             metal::float3 sun_phase = _e56.xyz * _e67;
-            uint2 loop_bound_18 = uint2(4294967295u);
-            bool loop_init_14 = true;
+            uint2 loop_bound_19 = uint2(4294967295u);
+            bool loop_init_15 = true;
             while(true) {
-                if (metal::all(loop_bound_18 == uint2(0u))) { break; }
-                loop_bound_18 -= uint2(loop_bound_18.y == 0u, 1u);
-                if (!loop_init_14) {
-                    uint _e131 = i_17;
-                    i_17 = _e131 + 1u;
+                if (metal::all(loop_bound_19 == uint2(0u))) { break; }
+                loop_bound_19 -= uint2(loop_bound_19.y == 0u, 1u);
+                if (!loop_init_15) {
+                    uint _e131 = i_18;
+                    i_18 = _e131 + 1u;
                 }
-                loop_init_14 = false;
-                uint _e71 = i_17;
+                loop_init_15 = false;
+                uint _e71 = i_18;
                 if (_e71 < steps_5) {
                 } else {
                     break;
                 }
                 {
-                    uint _e74 = counters_14.view_steps;
-                    counters_14.view_steps = _e74 + 1u;
-                    uint _e78 = i_17;
+                    uint _e74 = counters_17.view_steps;
+                    counters_17.view_steps = _e74 + 1u;
+                    uint _e78 = i_18;
                     float t_9 = _e25.start + (static_cast<float>(_e78) * dt_4);
-                    metal::float3 rel_12 = (_e1 * t_9) + metal::float3(0.0, cam_alt_3, 0.0);
-                    metal::float3 p_20 = metal::float3(rel_12.x + cam_xz_2.x, rel_12.y, rel_12.z + cam_xz_2.y);
-                    float _e95 = altitude_of(rel_12, frame);
-                    float _e96 = cloud_density(p_20, _e95, counters_14, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+                    metal::float3 rel_14 = (_e1 * t_9) + metal::float3(0.0, cam_alt_3, 0.0);
+                    metal::float3 p_23 = metal::float3(rel_14.x + cam_xz_2.x, rel_14.y, rel_14.z + cam_xz_2.y);
+                    float _e95 = altitude_of(rel_14, frame);
+                    float _e96 = cloud_density(p_23, _e95, counters_17, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
                     if (_e96 <= 0.0) {
                         continue;
                     }
-                    float _e99 = basic_sun_depth(rel_12, _e95, counters_14, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+                    float _e99 = basic_sun_depth(rel_14, _e95, counters_17, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
                     float beer_powder = (2.0 * metal::exp(-(_e99))) * (1.0 - metal::exp(-2.0 * _e99));
                     metal::float3 _e110 = radiance_2;
                     float _e111 = transmittance_1;
                     radiance_2 = _e110 + (sun_phase * ((((beer_powder * _e111) * sigma_s) * _e96) * dt_4));
-                    float step_t_1 = metal::exp((-(sigma_t_6) * _e96) * dt_4);
+                    float step_t_1 = metal::exp((-(sigma_t_7) * _e96) * dt_4);
                     float _e122 = depth_sum;
                     float _e123 = transmittance_1;
                     depth_sum = _e122 + ((t_9 * _e123) * (1.0 - step_t_1));
@@ -3369,13 +3539,13 @@ MarchResult basic_pixel(
             }
         }
     }
-    uint _e136 = counters_14.view_steps;
+    uint _e136 = counters_17.view_steps;
     count(STAT_VIEW_STEPS, _e136, stats);
-    uint _e139 = counters_14.density;
+    uint _e139 = counters_17.density;
     count(STAT_DENSITY, _e139, stats);
-    uint _e142 = counters_14.detail;
+    uint _e142 = counters_17.detail;
     count(STAT_DETAIL, _e142, stats);
-    uint _e145 = counters_14.light;
+    uint _e145 = counters_17.light;
     count(STAT_LIGHT, _e145, stats);
     float _e148 = transmittance_1;
     if (_e148 < 1.0) {
@@ -3399,39 +3569,39 @@ float atlas_hash(
 }
 
 float value_noise(
-    metal::float2 p_11,
+    metal::float2 p_14,
     uint seed
 ) {
-    metal::uint2 i_19 = naga_f2u32(metal::floor(p_11));
-    metal::float2 f_6 = metal::fract(p_11);
-    metal::float2 s_12 = (f_6 * f_6) * (metal::float2(3.0) - (2.0 * f_6));
-    uint h_13 = seed * 7919u;
-    float _e17 = atlas_hash(i_19.x + h_13, i_19.y);
-    float _e23 = atlas_hash((i_19.x + 1u) + h_13, i_19.y);
-    float _e29 = atlas_hash(i_19.x + h_13, i_19.y + 1u);
-    float _e37 = atlas_hash((i_19.x + 1u) + h_13, i_19.y + 1u);
-    return metal::mix(metal::mix(_e17, _e23, s_12.x), metal::mix(_e29, _e37, s_12.x), s_12.y);
+    metal::uint2 i_20 = naga_f2u32(metal::floor(p_14));
+    metal::float2 f_6 = metal::fract(p_14);
+    metal::float2 s_13 = (f_6 * f_6) * (metal::float2(3.0) - (2.0 * f_6));
+    uint h_14 = seed * 7919u;
+    float _e17 = atlas_hash(i_20.x + h_14, i_20.y);
+    float _e23 = atlas_hash((i_20.x + 1u) + h_14, i_20.y);
+    float _e29 = atlas_hash(i_20.x + h_14, i_20.y + 1u);
+    float _e37 = atlas_hash((i_20.x + 1u) + h_14, i_20.y + 1u);
+    return metal::mix(metal::mix(_e17, _e23, s_13.x), metal::mix(_e29, _e37, s_13.x), s_13.y);
 }
 
 float value_fbm(
-    metal::float2 p_12,
+    metal::float2 p_15,
     uint seed_1
 ) {
     float sum_5 = 0.0;
     float weight = 0.5;
     metal::float2 q_4 = {};
     uint o = 0u;
-    q_4 = p_12;
-    uint2 loop_bound_19 = uint2(4294967295u);
-    bool loop_init_15 = true;
+    q_4 = p_15;
+    uint2 loop_bound_20 = uint2(4294967295u);
+    bool loop_init_16 = true;
     while(true) {
-        if (metal::all(loop_bound_19 == uint2(0u))) { break; }
-        loop_bound_19 -= uint2(loop_bound_19.y == 0u, 1u);
-        if (!loop_init_15) {
+        if (metal::all(loop_bound_20 == uint2(0u))) { break; }
+        loop_bound_20 -= uint2(loop_bound_20.y == 0u, 1u);
+        if (!loop_init_16) {
             uint _e26 = o;
             o = _e26 + 1u;
         }
-        loop_init_15 = false;
+        loop_init_16 = false;
         uint _e9 = o;
         if (_e9 < 4u) {
         } else {
@@ -3459,7 +3629,7 @@ float sprite_texture(
     metal::float2 uv
 ) {
     float billow = 0.0;
-    uint i_18 = 0u;
+    uint i_19 = 0u;
     metal::float2 at = {};
     float a_3 = {};
     metal::float2 c_10 = uv - metal::float2(0.5);
@@ -3473,38 +3643,38 @@ float sprite_texture(
         return ((mask * streak) * _e46) * 0.8;
     }
     uint blobs = 5u + naga_mod(tile_1, 4u);
-    uint2 loop_bound_20 = uint2(4294967295u);
-    bool loop_init_16 = true;
+    uint2 loop_bound_21 = uint2(4294967295u);
+    bool loop_init_17 = true;
     while(true) {
-        if (metal::all(loop_bound_20 == uint2(0u))) { break; }
-        loop_bound_20 -= uint2(loop_bound_20.y == 0u, 1u);
-        if (!loop_init_16) {
-            uint _e108 = i_18;
-            i_18 = _e108 + 1u;
+        if (metal::all(loop_bound_21 == uint2(0u))) { break; }
+        loop_bound_21 -= uint2(loop_bound_21.y == 0u, 1u);
+        if (!loop_init_17) {
+            uint _e108 = i_19;
+            i_19 = _e108 + 1u;
         }
-        loop_init_16 = false;
-        uint _e58 = i_18;
+        loop_init_17 = false;
+        uint _e58 = i_19;
         if (_e58 < blobs) {
         } else {
             break;
         }
         {
-            uint _e61 = i_18;
+            uint _e61 = i_19;
             float _e63 = atlas_hash(tile_1, 2u * _e61);
-            uint _e65 = i_18;
+            uint _e65 = i_19;
             float _e69 = atlas_hash(tile_1, (2u * _e65) + 1u);
             metal::float2 centre_1 = metal::float2(_e63, _e69) - metal::float2(0.5);
             at = metal::float2(0.5) + (centre_1 * 0.34);
             if (tile_1 == 4u) {
                 at.y = 0.5 + ((centre_1.y - 0.5) * 0.24);
             }
-            uint _e91 = i_18;
+            uint _e91 = i_19;
             float _e93 = atlas_hash(tile_1, 100u + _e91);
             float r_18 = 0.14 + (0.1 * _e93);
             metal::float2 _e98 = at;
-            float d_22 = metal::length(uv - _e98) / r_18;
+            float d_24 = metal::length(uv - _e98) / r_18;
             float _e102 = billow;
-            float _e106 = saturate(1.0 - (d_22 * d_22));
+            float _e106 = saturate(1.0 - (d_24 * d_24));
             billow = metal::max(_e102, _e106);
         }
     }
@@ -3521,15 +3691,15 @@ float sprite_texture(
 
 metal::float3 sprite_rel(
     metal::float2 xz,
-    float alt_15,
+    float alt_16,
     constant Frame& frame
 ) {
     float rp_6 = frame.atmosphere.x;
     metal::float4 _e8 = frame.camera_position;
-    metal::float2 d_23 = xz - _e8.xz;
-    float k_18 = (alt_15 * (alt_15 + (2.0 * rp_6))) - metal::dot(d_23, d_23);
-    float y_3 = k_18 / (rp_6 + metal::sqrt(metal::max((rp_6 * rp_6) + k_18, 0.0)));
-    return metal::float3(d_23.x, y_3, d_23.y);
+    metal::float2 d_25 = xz - _e8.xz;
+    float k_19 = (alt_16 * (alt_16 + (2.0 * rp_6))) - metal::dot(d_25, d_25);
+    float y_3 = k_19 / (rp_6 + metal::sqrt(metal::max((rp_6 * rp_6) + k_19, 0.0)));
+    return metal::float3(d_25.x, y_3, d_25.y);
 }
 
 SpriteCell sprite_cell(
@@ -3538,22 +3708,22 @@ SpriteCell sprite_cell(
 ) {
     metal::int2 start_1 = {};
     uint k_10 = 3u;
-    bool local_57 = {};
-    bool local_58 = {};
+    bool local_61 = {};
+    bool local_62 = {};
     uint level_1 = naga_div(cell, 64u);
-    metal::int2 local_62 = metal::int2(static_cast<int>(naga_mod(cell, 8u)), static_cast<int>(naga_mod(naga_div(cell, 8u), 8u)));
+    metal::int2 local_66 = metal::int2(static_cast<int>(naga_mod(cell, 8u)), static_cast<int>(naga_mod(naga_div(cell, 8u), 8u)));
     metal::float4 _e15 = frame.camera_position;
     start_1 = as_type<metal::int2>(as_type<metal::uint2>(naga_f2i32(metal::floor(_e15.xz / metal::float2(12000.0)))) - as_type<metal::uint2>(metal::int2(4)));
-    uint2 loop_bound_21 = uint2(4294967295u);
-    bool loop_init_17 = true;
+    uint2 loop_bound_22 = uint2(4294967295u);
+    bool loop_init_18 = true;
     while(true) {
-        if (metal::all(loop_bound_21 == uint2(0u))) { break; }
-        loop_bound_21 -= uint2(loop_bound_21.y == 0u, 1u);
-        if (!loop_init_17) {
+        if (metal::all(loop_bound_22 == uint2(0u))) { break; }
+        loop_bound_22 -= uint2(loop_bound_22.y == 0u, 1u);
+        if (!loop_init_18) {
             uint _e35 = k_10;
             k_10 = _e35 - 1u;
         }
-        loop_init_17 = false;
+        loop_init_18 = false;
         uint _e27 = k_10;
         if (_e27 > level_1) {
         } else {
@@ -3565,26 +3735,26 @@ SpriteCell sprite_cell(
         }
     }
     if (level_1 > 0u) {
-        local_57 = metal::all(local_62 >= metal::int2(2));
+        local_61 = metal::all(local_66 >= metal::int2(2));
     } else {
-        local_57 = false;
+        local_61 = false;
     }
-    bool _e47 = local_57;
+    bool _e47 = local_61;
     if (_e47) {
-        local_58 = metal::all(local_62 < metal::int2(6));
+        local_62 = metal::all(local_66 < metal::int2(6));
     } else {
-        local_58 = false;
+        local_62 = false;
     }
-    bool covered = local_58;
+    bool covered = local_62;
     metal::int2 _e56 = start_1;
-    return SpriteCell {as_type<metal::int2>(as_type<metal::uint2>(_e56) + as_type<metal::uint2>(local_62)), SPRITE_CELL0_ * static_cast<float>(1u << level_1), covered};
+    return SpriteCell {as_type<metal::int2>(as_type<metal::uint2>(_e56) + as_type<metal::uint2>(local_66)), SPRITE_CELL0_ * static_cast<float>(1u << level_1), covered};
 }
 
 SpriteCandidate sprite_candidate(
     SpriteCell c_4,
     uint level,
     uint s_2,
-    thread Counters& counters_15,
+    thread Counters& counters_18,
     constant Frame& frame,
     metal::texture3d<float, metal::access::sample> shape_tex,
     metal::texture3d<float, metal::access::sample> detail_tex,
@@ -3607,24 +3777,24 @@ SpriteCandidate sprite_candidate(
     metal::float2 xz_2 = (static_cast<metal::float2>(c_4.index) + u_1.xy) * c_4.size;
     Layer _e56 = cloud_layer(0u, frame);
     Weather _e57 = sample_weather(metal::float3(xz_2.x, 0.0, xz_2.y), _e56, frame, weather_tex, noise_sampler);
-    float h_14 = 0.04 + (u_1.z * (metal::mix(0.3, 0.95, _e57.cloud_type) - 0.04));
+    float h_15 = 0.04 + (u_1.z * (metal::mix(0.3, 0.95, _e57.cloud_type) - 0.04));
     float _e71 = frame.atmosphere.y;
     float _e75 = frame.atmosphere.z;
     float _e79 = frame.atmosphere.y;
-    float alt_17 = _e71 + (h_14 * (_e75 - _e79));
+    float alt_18 = _e71 + (h_15 * (_e75 - _e79));
     if (!(c_4.covered)) {
-        metal::float3 _e87 = sprite_rel(xz_2, alt_17, frame);
-        float _e92 = cloud_density(metal::float3(xz_2.x, _e87.y, xz_2.y), alt_17, counters_15, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+        metal::float3 _e87 = sprite_rel(xz_2, alt_18, frame);
+        float _e92 = cloud_density(metal::float3(xz_2.x, _e87.y, xz_2.y), alt_18, counters_18, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
         density_3 = _e92;
     }
     float _e96 = density_3;
-    return SpriteCandidate {xz_2, alt_17, h_14, u_1.w, v_3.x, v_3.y, _e96, _e57.precipitation};
+    return SpriteCandidate {xz_2, alt_18, h_15, u_1.w, v_3.x, v_3.y, _e96, _e57.precipitation};
 }
 
 metal::float3 sprite_sky_level(
-    float h_9
+    float h_10
 ) {
-    float _e1 = saturate(h_9);
+    float _e1 = saturate(h_10);
     float x_11 = _e1 * 4.0;
     if (x_11 < 1.0) {
         return metal::mix(SKY_LEVEL0_, SKY_LEVEL1_, x_11);
@@ -3650,50 +3820,50 @@ float sprite_sun_level(
 metal::float2 sprite_corner(
     uint k_11
 ) {
-    bool local_59 = {};
+    bool local_63 = {};
     uint q_11 = (k_11 >= 3u) ? ((k_11 == 3u) ? 0u : (k_11 - 2u)) : k_11;
     if (!((q_11 == 1u))) {
-        local_59 = q_11 == 2u;
+        local_63 = q_11 == 2u;
     } else {
-        local_59 = true;
+        local_63 = true;
     }
-    bool _e18 = local_59;
+    bool _e18 = local_63;
     return metal::float2(_e18 ? 1.0 : -1.0, (q_11 >= 2u) ? 1.0 : -1.0);
 }
 
 metal::float3 sky_radiance(
-    metal::float3 d_16,
-    float alt_16,
+    metal::float3 d_17,
+    float alt_17,
     constant Frame& frame
 ) {
     metal::float4 _e4 = frame.sun_direction;
-    metal::float3 sun_8 = _e4.xyz;
+    metal::float3 sun_9 = _e4.xyz;
     metal::float4 _e8 = frame.sun_illuminance;
     metal::float3 e_1 = _e8.xyz;
-    float _e15 = saturate((sun_8.y * 4.0) + 0.3);
-    bool _e19 = hits_ground(metal::float3(0.0, alt_16, 0.0), alt_16, d_16, frame);
+    float _e15 = saturate((sun_9.y * 4.0) + 0.3);
+    bool _e19 = hits_ground(metal::float3(0.0, alt_17, 0.0), alt_17, d_17, frame);
     if (_e19) {
         metal::float3 ground_albedo = metal::float3(0.035, 0.035, 0.03);
-        return ground_albedo * (((e_1 * metal::max(sun_8.y, 0.0)) / metal::float3(3.1415927)) + ((0.05 * e_1) * _e15));
+        return ground_albedo * (((e_1 * metal::max(sun_9.y, 0.0)) / metal::float3(3.1415927)) + ((0.05 * e_1) * _e15));
     }
     metal::float3 zenith = metal::float3(0.018, 0.04, 0.1);
     metal::float3 horizon_2 = metal::float3(0.07, 0.085, 0.11);
-    float _e45 = saturate(d_16.y);
+    float _e45 = saturate(d_17.y);
     metal::float3 gradient_1 = metal::mix(horizon_2, zenith, metal::sqrt(_e45));
     metal::float3 sunset = ((1.0 - (_e15 * 0.8)) * metal::pow(1.0 - _e45, 6.0)) * metal::float3(0.25, 0.1, 0.0);
-    float _e64 = phase_hg(metal::dot(d_16, sun_8), 0.76);
+    float _e64 = phase_hg(metal::dot(d_17, sun_9), 0.76);
     float glow = _e64 * 0.02;
-    float _e73 = saturate((sun_8.y * 10.0) + 1.0);
+    float _e73 = saturate((sun_9.y * 10.0) + 1.0);
     return e_1 * (((gradient_1 * _e15) + (sunset * _e73)) + metal::float3(glow * _e15));
 }
 
 metal::float3 sun_disk(
-    metal::float3 d_17,
+    metal::float3 d_18,
     constant Frame& frame
 ) {
     float cos_r = frame.sun_direction.w;
     metal::float4 _e7 = frame.sun_direction;
-    if (metal::dot(d_17, _e7.xyz) < cos_r) {
+    if (metal::dot(d_18, _e7.xyz) < cos_r) {
         return metal::float3(0.0);
     }
     metal::float4 _e15 = frame.sun_illuminance;
@@ -3701,26 +3871,26 @@ metal::float3 sun_disk(
 }
 
 metal::float3 moon_disk(
-    metal::float3 d_18,
+    metal::float3 d_19,
     constant Frame& frame
 ) {
-    bool local_60 = {};
+    bool local_64 = {};
     metal::float4 _e3 = frame.moon;
-    metal::float3 m_3 = _e3.xyz;
-    float c_11 = metal::dot(d_18, m_3);
+    metal::float3 m_4 = _e3.xyz;
+    float c_11 = metal::dot(d_19, m_4);
     float _e9 = frame.moon.w;
     if (!((_e9 <= 0.0))) {
-        local_60 = c_11 < MOON_COS_RADIUS;
+        local_64 = c_11 < MOON_COS_RADIUS;
     } else {
-        local_60 = true;
+        local_64 = true;
     }
-    bool _e18 = local_60;
+    bool _e18 = local_64;
     if (_e18) {
         return metal::float3(0.0);
     }
-    metal::float3 offset = (d_18 - (m_3 * c_11)) / metal::float3(0.0045149517);
+    metal::float3 offset = (d_19 - (m_4 * c_11)) / metal::float3(0.0045149517);
     float x2_1 = metal::min(metal::dot(offset, offset), 1.0);
-    metal::float3 normal = offset - (m_3 * metal::sqrt(1.0 - x2_1));
+    metal::float3 normal = offset - (m_4 * metal::sqrt(1.0 - x2_1));
     metal::float4 _e36 = frame.night;
     float lit_1 = metal::smoothstep(-0.02, 0.02, metal::dot(normal, _e36.xyz));
     float _e46 = frame.moon.w;
@@ -3728,37 +3898,37 @@ metal::float3 moon_disk(
 }
 
 metal::float3 stars(
-    metal::float3 d_19,
+    metal::float3 d_20,
     constant Frame& frame
 ) {
     uint face = 0u;
     metal::float2 uv_1 = metal::float2(0.0);
     float major = 0.0;
-    bool local_61 = {};
+    bool local_65 = {};
     metal::float3 star = metal::float3(0.0);
     float e0_ = frame.night.w;
     if (e0_ <= 0.0) {
         return metal::float3(0.0);
     }
-    metal::float3 a_10 = metal::abs(d_19);
+    metal::float3 a_10 = metal::abs(d_20);
     if (a_10.x >= a_10.y) {
-        local_61 = a_10.x >= a_10.z;
+        local_65 = a_10.x >= a_10.z;
     } else {
-        local_61 = false;
+        local_65 = false;
     }
-    bool _e26 = local_61;
+    bool _e26 = local_65;
     if (_e26) {
-        face = (d_19.x > 0.0) ? 0u : 1u;
-        uv_1 = d_19.zy;
+        face = (d_20.x > 0.0) ? 0u : 1u;
+        uv_1 = d_20.zy;
         major = a_10.x;
     } else {
         if (a_10.y >= a_10.z) {
-            face = (d_19.y > 0.0) ? 2u : 3u;
-            uv_1 = d_19.xz;
+            face = (d_20.y > 0.0) ? 2u : 3u;
+            uv_1 = d_20.xz;
             major = a_10.y;
         } else {
-            face = (d_19.z > 0.0) ? 4u : 5u;
-            uv_1 = d_19.xy;
+            face = (d_20.z > 0.0) ? 4u : 5u;
+            uv_1 = d_20.xy;
             major = a_10.z;
         }
     }
@@ -3812,8 +3982,8 @@ metal::float3 stars(
     uint _e209 = frame.counts.y;
     float pixel_angle = (2.0 * _e203) / static_cast<float>(_e209);
     metal::float3 _e212 = star;
-    float dist_1 = metal::acos(metal::clamp(metal::dot(d_19, _e212), -1.0, 1.0)) / pixel_angle;
-    float weight_1 = metal::exp((-(dist_1) * dist_1) / 0.5) / 1.5707964;
+    float dist_2 = metal::acos(metal::clamp(metal::dot(d_20, _e212), -1.0, 1.0)) / pixel_angle;
+    float weight_1 = metal::exp((-(dist_2) * dist_2) / 0.5) / 1.5707964;
     metal::float3 tint = metal::mix(metal::float3(0.8, 0.9, 1.1), metal::float3(1.15, 0.95, 0.75), h3_ * h4_);
     return tint * ((illuminance * weight_1) / (pixel_angle * pixel_angle));
 }
@@ -3907,16 +4077,16 @@ struct transmittance_lutInput {
     metal::float2 _e11 = transmittance_r_mu(static_cast<metal::float2>(id.xy) / metal::float2(255.0, 63.0), frame);
     float _e14 = distance_to_top(_e11.x, _e11.y, frame);
     float dt_5 = _e14 / 128.0;
-    uint2 loop_bound_22 = uint2(4294967295u);
-    bool loop_init_18 = true;
+    uint2 loop_bound_23 = uint2(4294967295u);
+    bool loop_init_19 = true;
     while(true) {
-        if (metal::all(loop_bound_22 == uint2(0u))) { break; }
-        loop_bound_22 -= uint2(loop_bound_22.y == 0u, 1u);
-        if (!loop_init_18) {
+        if (metal::all(loop_bound_23 == uint2(0u))) { break; }
+        loop_bound_23 -= uint2(loop_bound_23.y == 0u, 1u);
+        if (!loop_init_19) {
             uint _e61 = i;
             i = _e61 + 1u;
         }
-        loop_init_18 = false;
+        loop_init_19 = false;
         uint _e22 = i;
         if (_e22 <= TRANSMITTANCE_STEPS) {
         } else {
@@ -3974,17 +4144,17 @@ struct multiscatter_lutInput {
     float _e19 = air_bottom(frame);
     float r_20 = _e16 + (x_12.y * (_e18 - _e19));
     metal::float3 origin_7 = metal::float3(0.0, r_20, 0.0);
-    metal::float3 sun_9 = metal::float3(metal::sqrt(metal::max(1.0 - (mu_s_7 * mu_s_7), 0.0)), mu_s_7, 0.0);
-    uint2 loop_bound_23 = uint2(4294967295u);
-    bool loop_init_19 = true;
+    metal::float3 sun_10 = metal::float3(metal::sqrt(metal::max(1.0 - (mu_s_7 * mu_s_7), 0.0)), mu_s_7, 0.0);
+    uint2 loop_bound_24 = uint2(4294967295u);
+    bool loop_init_20 = true;
     while(true) {
-        if (metal::all(loop_bound_23 == uint2(0u))) { break; }
-        loop_bound_23 -= uint2(loop_bound_23.y == 0u, 1u);
-        if (!loop_init_19) {
+        if (metal::all(loop_bound_24 == uint2(0u))) { break; }
+        loop_bound_24 -= uint2(loop_bound_24.y == 0u, 1u);
+        if (!loop_init_20) {
             uint _e121 = k;
             k = _e121 + 1u;
         }
-        loop_init_19 = false;
+        loop_init_20 = false;
         uint _e43 = k;
         if (_e43 < MULTISCATTER_DIRECTIONS) {
         } else {
@@ -3997,16 +4167,16 @@ struct multiscatter_lutInput {
             float dt_6 = _e49.x / 32.0;
             tau = metal::float3(0.0);
             i_1 = 0u;
-            uint2 loop_bound_24 = uint2(4294967295u);
-            bool loop_init_20 = true;
+            uint2 loop_bound_25 = uint2(4294967295u);
+            bool loop_init_21 = true;
             while(true) {
-                if (metal::all(loop_bound_24 == uint2(0u))) { break; }
-                loop_bound_24 -= uint2(loop_bound_24.y == 0u, 1u);
-                if (!loop_init_20) {
+                if (metal::all(loop_bound_25 == uint2(0u))) { break; }
+                loop_bound_25 -= uint2(loop_bound_25.y == 0u, 1u);
+                if (!loop_init_21) {
                     uint _e103 = i_1;
                     i_1 = _e103 + 1u;
                 }
-                loop_init_20 = false;
+                loop_init_21 = false;
                 uint _e58 = i_1;
                 if (_e58 < MULTISCATTER_STEPS) {
                 } else {
@@ -4014,18 +4184,18 @@ struct multiscatter_lutInput {
                 }
                 {
                     uint _e61 = i_1;
-                    metal::float3 p_21 = origin_7 + (_e48 * (dt_6 * (static_cast<float>(_e61) + 0.5)));
-                    float rp_7 = metal::length(p_21);
+                    metal::float3 p_24 = origin_7 + (_e48 * (dt_6 * (static_cast<float>(_e61) + 0.5)));
+                    float rp_7 = metal::length(p_24);
                     float _e69 = air_bottom(frame);
                     AirSample _e71 = air_at(rp_7 - _e69, frame);
                     metal::float3 _e72 = tau;
                     metal::float3 t_10 = metal::exp(-((_e72 + ((0.5 * _e71.extinction) * dt_6))));
-                    metal::float3 s_13 = _e71.rayleigh + metal::float3(_e71.mie);
+                    metal::float3 s_14 = _e71.rayleigh + metal::float3(_e71.mie);
                     metal::float3 _e84 = l2_;
-                    metal::float3 _e90 = sun_transmittance(rp_7, metal::dot(p_21 / metal::float3(rp_7), sun_9), frame, transmittance_lut_in);
-                    l2_ = _e84 + ((((t_10 * s_13) * 0.07957747) * _e90) * dt_6);
+                    metal::float3 _e90 = sun_transmittance(rp_7, metal::dot(p_24 / metal::float3(rp_7), sun_10), frame, transmittance_lut_in);
+                    l2_ = _e84 + ((((t_10 * s_14) * 0.07957747) * _e90) * dt_6);
                     metal::float3 _e94 = f_ms;
-                    f_ms = _e94 + ((t_10 * s_13) * dt_6);
+                    f_ms = _e94 + ((t_10 * s_14) * dt_6);
                     metal::float3 _e98 = tau;
                     tau = _e98 + (_e71.extinction * dt_6);
                 }
@@ -4034,7 +4204,7 @@ struct multiscatter_lutInput {
                 metal::float3 g_7 = origin_7 + (_e48 * _e49.x);
                 metal::float3 _e111 = l2_;
                 metal::float3 _e112 = tau;
-                metal::float3 _e117 = ground_radiance_sun(metal::dot(metal::normalize(g_7), sun_9), frame, transmittance_lut_in);
+                metal::float3 _e117 = ground_radiance_sun(metal::dot(metal::normalize(g_7), sun_10), frame, transmittance_lut_in);
                 l2_ = _e111 + (metal::exp(-(_e112)) * _e117);
             }
         }
@@ -4066,8 +4236,8 @@ struct sky_view_lutInput {
     float _e15 = sky_view_elevation(x_13.y, _e14);
     float _e16 = sun_azimuth(frame);
     float phi_2 = _e16 + (x_13.x * PI);
-    metal::float3 d_24 = metal::float3(metal::cos(_e15) * metal::cos(phi_2), metal::sin(_e15), metal::cos(_e15) * metal::sin(phi_2));
-    metal::float3 _e31 = sky_along(_e11, d_24, frame, transmittance_lut_in, multiscatter_lut_in, ground_irradiance_in);
+    metal::float3 d_26 = metal::float3(metal::cos(_e15) * metal::cos(phi_2), metal::sin(_e15), metal::cos(_e15) * metal::sin(phi_2));
+    metal::float3 _e31 = sky_along(_e11, d_26, frame, transmittance_lut_in, multiscatter_lut_in, ground_irradiance_in);
     sky_view_out.write(metal::float4(_e31, 1.0), metal::uint2(id_2.xy));
     return;
 }
@@ -4093,21 +4263,21 @@ struct aerial_perspectiveInput {
     metal::float3 _e8 = camera_air_origin(frame);
     metal::float2 _e9 = air_ray_end(_e8, _e7, frame);
     metal::float4 _e12 = frame.sun_direction;
-    metal::float3 sun_10 = _e12.xyz;
-    float cos_theta_9 = metal::dot(_e7, sun_10);
+    metal::float3 sun_11 = _e12.xyz;
+    float cos_theta_9 = metal::dot(_e7, sun_11);
     float _e15 = phase_rayleigh(cos_theta_9);
     float _e19 = frame.air_mie.w;
     float _e20 = phase_cornette_shanks_air(cos_theta_9, _e19);
-    uint2 loop_bound_25 = uint2(4294967295u);
-    bool loop_init_21 = true;
+    uint2 loop_bound_26 = uint2(4294967295u);
+    bool loop_init_22 = true;
     while(true) {
-        if (metal::all(loop_bound_25 == uint2(0u))) { break; }
-        loop_bound_25 -= uint2(loop_bound_25.y == 0u, 1u);
-        if (!loop_init_21) {
+        if (metal::all(loop_bound_26 == uint2(0u))) { break; }
+        loop_bound_26 -= uint2(loop_bound_26.y == 0u, 1u);
+        if (!loop_init_22) {
             uint _e122 = z;
             z = _e122 + 1u;
         }
-        loop_init_21 = false;
+        loop_init_22 = false;
         uint _e30 = z;
         if (_e30 < AERIAL_SLICES) {
         } else {
@@ -4115,16 +4285,16 @@ struct aerial_perspectiveInput {
         }
         {
             k_1 = 0u;
-            uint2 loop_bound_26 = uint2(4294967295u);
-            bool loop_init_22 = true;
+            uint2 loop_bound_27 = uint2(4294967295u);
+            bool loop_init_23 = true;
             while(true) {
-                if (metal::all(loop_bound_26 == uint2(0u))) { break; }
-                loop_bound_26 -= uint2(loop_bound_26.y == 0u, 1u);
-                if (!loop_init_22) {
+                if (metal::all(loop_bound_27 == uint2(0u))) { break; }
+                loop_bound_27 -= uint2(loop_bound_27.y == 0u, 1u);
+                if (!loop_init_23) {
                     uint _e99 = k_1;
                     k_1 = _e99 + 1u;
                 }
-                loop_init_22 = false;
+                loop_init_23 = false;
                 uint _e35 = k_1;
                 if (_e35 < 4u) {
                 } else {
@@ -4135,9 +4305,9 @@ struct aerial_perspectiveInput {
                     uint _e40 = k_1;
                     float t0_1 = AERIAL_SLICE_KM * (static_cast<float>(_e38) + (static_cast<float>(_e40) / 4.0));
                     float dt_7 = metal::max(metal::min(0.25, _e9.x - t0_1), 0.0);
-                    metal::float3 p_22 = _e8 + (_e7 * (t0_1 + (0.5 * dt_7)));
-                    float r_21 = metal::length(p_22);
-                    float mu_s_8 = metal::dot(p_22 / metal::float3(r_21), sun_10);
+                    metal::float3 p_25 = _e8 + (_e7 * (t0_1 + (0.5 * dt_7)));
+                    float r_21 = metal::length(p_25);
+                    float mu_s_8 = metal::dot(p_25 / metal::float3(r_21), sun_11);
                     float _e64 = air_bottom(frame);
                     AirSample _e66 = air_at(r_21 - _e64, frame);
                     metal::float3 _e67 = tau_1;
@@ -4188,22 +4358,22 @@ struct sky_ambientInput {
     bool top_3 = id_4.y == 1u;
     float t_12 = ((static_cast<float>(id_4.x) / 63.0) * 2.0) - 1.0;
     float mu_s_9 = (metal::sign(t_12) * t_12) * t_12;
-    metal::float3 sun_11 = metal::float3(metal::sqrt(metal::max(1.0 - (mu_s_9 * mu_s_9), 0.0)), mu_s_9, 0.0);
+    metal::float3 sun_12 = metal::float3(metal::sqrt(metal::max(1.0 - (mu_s_9 * mu_s_9), 0.0)), mu_s_9, 0.0);
     float _e34 = air_bottom(frame);
     float _e38 = frame.atmosphere.y;
     metal::float3 origin_8 = metal::float3(0.0, _e34 + (_e38 * 0.001), 0.0);
     uint first = top_3 ? 0u : 32u;
     k_2 = first;
-    uint2 loop_bound_27 = uint2(4294967295u);
-    bool loop_init_23 = true;
+    uint2 loop_bound_28 = uint2(4294967295u);
+    bool loop_init_24 = true;
     while(true) {
-        if (metal::all(loop_bound_27 == uint2(0u))) { break; }
-        loop_bound_27 -= uint2(loop_bound_27.y == 0u, 1u);
-        if (!loop_init_23) {
+        if (metal::all(loop_bound_28 == uint2(0u))) { break; }
+        loop_bound_28 -= uint2(loop_bound_28.y == 0u, 1u);
+        if (!loop_init_24) {
             uint _e77 = k_2;
             k_2 = _e77 + 1u;
         }
-        loop_init_23 = false;
+        loop_init_24 = false;
         uint _e54 = k_2;
         if (_e54 < (first + 32u)) {
         } else {
@@ -4213,10 +4383,10 @@ struct sky_ambientInput {
             uint _e57 = k_2;
             metal::float3 _e59 = fibonacci_direction(_e57, AMBIENT_DIRECTIONS);
             metal::float2 _e60 = air_ray_end(origin_8, _e59, frame);
-            Scattered _e63 = integrate_air(origin_8, _e59, _e60.x, AMBIENT_STEPS, sun_11, frame, transmittance_lut_in, multiscatter_lut_in);
+            Scattered _e63 = integrate_air(origin_8, _e59, _e60.x, AMBIENT_STEPS, sun_12, frame, transmittance_lut_in, multiscatter_lut_in);
             float w_8 = metal::abs(_e59.y);
             metal::float3 _e66 = sum_1;
-            metal::float3 _e71 = with_ground(_e63, origin_8, _e59, _e60.x, sun_11, _e60.y > 0.5, frame, transmittance_lut_in, ground_irradiance_in);
+            metal::float3 _e71 = with_ground(_e63, origin_8, _e59, _e60.x, sun_12, _e60.y > 0.5, frame, transmittance_lut_in, ground_irradiance_in);
             sum_1 = _e66 + (w_8 * _e71);
             float _e74 = weights;
             weights = _e74 + w_8;
@@ -4251,19 +4421,19 @@ struct ground_irradianceInput {
         return;
     }
     float mu_s_10 = ((static_cast<float>(id_5.x) / 63.0) * 2.0) - 1.0;
-    metal::float3 sun_12 = metal::float3(metal::sqrt(metal::max(1.0 - (mu_s_10 * mu_s_10), 0.0)), mu_s_10, 0.0);
+    metal::float3 sun_13 = metal::float3(metal::sqrt(metal::max(1.0 - (mu_s_10 * mu_s_10), 0.0)), mu_s_10, 0.0);
     float _e28 = air_bottom(frame);
     metal::float3 origin_9 = metal::float3(0.0, _e28 + 0.001, 0.0);
-    uint2 loop_bound_28 = uint2(4294967295u);
-    bool loop_init_24 = true;
+    uint2 loop_bound_29 = uint2(4294967295u);
+    bool loop_init_25 = true;
     while(true) {
-        if (metal::all(loop_bound_28 == uint2(0u))) { break; }
-        loop_bound_28 -= uint2(loop_bound_28.y == 0u, 1u);
-        if (!loop_init_24) {
+        if (metal::all(loop_bound_29 == uint2(0u))) { break; }
+        loop_bound_29 -= uint2(loop_bound_29.y == 0u, 1u);
+        if (!loop_init_25) {
             uint _e58 = k_3;
             k_3 = _e58 + 1u;
         }
-        loop_init_24 = false;
+        loop_init_25 = false;
         uint _e39 = k_3;
         if (_e39 < GROUND_IRRADIANCE_DIRECTIONS) {
         } else {
@@ -4277,7 +4447,7 @@ struct ground_irradianceInput {
             }
             metal::float2 _e48 = air_ray_end(origin_9, _e44, frame);
             metal::float3 _e49 = sum_2;
-            Scattered _e52 = integrate_air(origin_9, _e44, _e48.x, AMBIENT_STEPS, sun_12, frame, transmittance_lut_in, multiscatter_lut_in);
+            Scattered _e52 = integrate_air(origin_9, _e44, _e48.x, AMBIENT_STEPS, sun_13, frame, transmittance_lut_in, multiscatter_lut_in);
             sum_2 = _e49 + (_e52.radiance * _e44.y);
         }
     }
@@ -4309,22 +4479,22 @@ struct cloud_shadowInput {
     }
     metal::float3 _e7 = shadow_ground_point(id_6.xy, frame);
     metal::float4 _e10 = frame.sun_direction;
-    metal::float3 sun_13 = _e10.xyz;
+    metal::float3 sun_14 = _e10.xyz;
     float rp_8 = frame.atmosphere.x;
-    metal::float3 up_1 = metal::normalize(metal::float3(_e7.x, _e7.y + rp_8, _e7.z));
-    if (metal::dot(up_1, sun_13) > 0.0) {
+    metal::float3 up_2 = metal::normalize(metal::float3(_e7.x, _e7.y + rp_8, _e7.z));
+    if (metal::dot(up_2, sun_14) > 0.0) {
         metal::float4 _e29 = frame.camera_position;
         metal::float2 cam_xz_3 = _e29.xz;
-        uint2 loop_bound_29 = uint2(4294967295u);
-        bool loop_init_25 = true;
+        uint2 loop_bound_30 = uint2(4294967295u);
+        bool loop_init_26 = true;
         while(true) {
-            if (metal::all(loop_bound_29 == uint2(0u))) { break; }
-            loop_bound_29 -= uint2(loop_bound_29.y == 0u, 1u);
-            if (!loop_init_25) {
+            if (metal::all(loop_bound_30 == uint2(0u))) { break; }
+            loop_bound_30 -= uint2(loop_bound_30.y == 0u, 1u);
+            if (!loop_init_26) {
                 uint _e90 = i_2;
                 i_2 = _e90 + 1u;
             }
-            loop_init_25 = false;
+            loop_init_26 = false;
             uint _e39 = i_2;
             uint _e40 = layer_count(frame);
             if (_e39 < _e40) {
@@ -4334,25 +4504,25 @@ struct cloud_shadowInput {
             {
                 uint _e42 = i_2;
                 Layer _e43 = cloud_layer(_e42, frame);
-                Roots _e46 = ray_shell_from(_e7, 0.0, sun_13, _e43.bottom, frame);
+                Roots _e46 = ray_shell_from(_e7, 0.0, sun_14, _e43.bottom, frame);
                 float start_2 = metal::max(_e46.t1_, 0.0);
-                Roots _e52 = ray_shell_from(_e7, 0.0, sun_13, _e43.top, frame);
+                Roots _e52 = ray_shell_from(_e7, 0.0, sun_14, _e43.top, frame);
                 float end_2 = _e52.t1_;
                 float dt_8 = (end_2 - start_2) / 16.0;
                 if (!((dt_8 > 0.0))) {
                     continue;
                 }
                 k_4 = 0u;
-                uint2 loop_bound_30 = uint2(4294967295u);
-                bool loop_init_26 = true;
+                uint2 loop_bound_31 = uint2(4294967295u);
+                bool loop_init_27 = true;
                 while(true) {
-                    if (metal::all(loop_bound_30 == uint2(0u))) { break; }
-                    loop_bound_30 -= uint2(loop_bound_30.y == 0u, 1u);
-                    if (!loop_init_26) {
+                    if (metal::all(loop_bound_31 == uint2(0u))) { break; }
+                    loop_bound_31 -= uint2(loop_bound_31.y == 0u, 1u);
+                    if (!loop_init_27) {
                         uint _e87 = k_4;
                         k_4 = _e87 + 1u;
                     }
-                    loop_init_26 = false;
+                    loop_init_27 = false;
                     uint _e62 = k_4;
                     if (_e62 < SHADOW_STEPS) {
                     } else {
@@ -4360,11 +4530,11 @@ struct cloud_shadowInput {
                     }
                     {
                         uint _e65 = k_4;
-                        metal::float3 q_13 = _e7 + (sun_13 * (start_2 + ((static_cast<float>(_e65) + 0.5) * dt_8)));
-                        metal::float3 p_23 = metal::float3(q_13.x + cam_xz_3.x, q_13.y, q_13.z + cam_xz_3.y);
+                        metal::float3 q_13 = _e7 + (sun_14 * (start_2 + ((static_cast<float>(_e65) + 0.5) * dt_8)));
+                        metal::float3 p_26 = metal::float3(q_13.x + cam_xz_3.x, q_13.y, q_13.z + cam_xz_3.y);
                         float _e81 = tau_2;
                         float _e82 = altitude_of(q_13, frame);
-                        float _e83 = layer_density(p_23, _e82, _e43, counters, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+                        float _e83 = layer_density(p_26, _e82, _e43, counters, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
                         tau_2 = _e81 + (_e83 * dt_8);
                     }
                 }
@@ -4373,9 +4543,9 @@ struct cloud_shadowInput {
     }
     float _e95 = frame.extinction.x;
     float _e99 = frame.extinction.y;
-    float sigma_t_7 = _e95 + _e99;
+    float sigma_t_8 = _e95 + _e99;
     float _e104 = tau_2;
-    cloud_shadow_out.write(metal::float4(metal::exp(-(sigma_t_7) * _e104), 0.0, 0.0, 1.0), metal::uint2(id_6.xy));
+    cloud_shadow_out.write(metal::float4(metal::exp(-(sigma_t_8) * _e104), 0.0, 0.0, 1.0), metal::uint2(id_6.xy));
     return;
 }
 
@@ -4406,16 +4576,16 @@ struct occupancyInput {
     metal::int2 lo_1 = as_type<metal::int2>(as_type<metal::uint2>(naga_div(as_type<metal::int2>(as_type<metal::uint2>(static_cast<metal::int2>(id_7.xy)) * as_type<metal::uint2>(size_8)), metal::int2(64))) - as_type<metal::uint2>(metal::int2(1)));
     metal::int2 hi = naga_div(as_type<metal::int2>(as_type<metal::uint2>(as_type<metal::int2>(as_type<metal::uint2>(static_cast<metal::int2>(id_7.xy)) + as_type<metal::uint2>(metal::int2(1)))) * as_type<metal::uint2>(size_8)), metal::int2(64));
     y = lo_1.y;
-    uint2 loop_bound_31 = uint2(4294967295u);
-    bool loop_init_27 = true;
+    uint2 loop_bound_32 = uint2(4294967295u);
+    bool loop_init_28 = true;
     while(true) {
-        if (metal::all(loop_bound_31 == uint2(0u))) { break; }
-        loop_bound_31 -= uint2(loop_bound_31.y == 0u, 1u);
-        if (!loop_init_27) {
+        if (metal::all(loop_bound_32 == uint2(0u))) { break; }
+        loop_bound_32 -= uint2(loop_bound_32.y == 0u, 1u);
+        if (!loop_init_28) {
             int _e54 = y;
             y = as_type<int>(as_type<uint>(_e54) + as_type<uint>(1));
         }
-        loop_init_27 = false;
+        loop_init_28 = false;
         int _e30 = y;
         if (_e30 <= hi.y) {
         } else {
@@ -4423,16 +4593,16 @@ struct occupancyInput {
         }
         {
             x = lo_1.x;
-            uint2 loop_bound_32 = uint2(4294967295u);
-            bool loop_init_28 = true;
+            uint2 loop_bound_33 = uint2(4294967295u);
+            bool loop_init_29 = true;
             while(true) {
-                if (metal::all(loop_bound_32 == uint2(0u))) { break; }
-                loop_bound_32 -= uint2(loop_bound_32.y == 0u, 1u);
-                if (!loop_init_28) {
+                if (metal::all(loop_bound_33 == uint2(0u))) { break; }
+                loop_bound_33 -= uint2(loop_bound_33.y == 0u, 1u);
+                if (!loop_init_29) {
                     int _e51 = x;
                     x = as_type<int>(as_type<uint>(_e51) + as_type<uint>(1));
                 }
-                loop_init_28 = false;
+                loop_init_29 = false;
                 int _e35 = x;
                 if (_e35 <= hi.x) {
                 } else {
@@ -4556,9 +4726,9 @@ struct march_sparse_checkerboardInput {
     }
     bool _e30 = local_3;
     if (_e30) {
-        uint k_19 = frame.temporal.x;
+        uint k_20 = frame.temporal.x;
         uint _e38 = frame.misc.y;
-        uint turn = naga_div(_e38, k_19 * k_19);
+        uint turn = naga_div(_e38, k_20 * k_20);
         metal::float2 _e42 = reproject(_e5, 0.0, frame);
         if ((((id_10.x + id_10.y) + turn) & 1u) == 0u) {
             bool _e53 = on_screen(_e42, frame);
@@ -4629,11 +4799,11 @@ struct resolveInput {
         return;
     }
     metal::uint2 pixel_10 = id_11.xy;
-    uint k_20 = frame.temporal.x;
-    metal::uint2 block = naga_div(pixel_10, metal::uint2(k_20));
+    uint k_21 = frame.temporal.x;
+    metal::uint2 block = naga_div(pixel_10, metal::uint2(k_21));
     uint _e19 = frame.misc.y;
-    metal::uint2 _e20 = block_offset(_e19, k_20);
-    bool marched_1 = metal::all(pixel_10 == ((block * k_20) + _e20));
+    metal::uint2 _e20 = block_offset(_e19, k_21);
+    bool marched_1 = metal::all(pixel_10 == ((block * k_21) + _e20));
     metal::float4 current = sparse_in.read(metal::uint2(block), 0);
     metal::float4 _e29 = sparse_depth_in.read(metal::uint2(block), 0);
     float current_depth = _e29.x;
@@ -4696,7 +4866,7 @@ struct resolveInput {
     bool _e115 = local_9;
     if (_e115) {
         metal::uint4 _e118 = frame.counts;
-        metal::int2 blocks = static_cast<metal::int2>(naga_div((_e118.xy + metal::uint2(k_20)) - metal::uint2(1u), metal::uint2(k_20)));
+        metal::int2 blocks = static_cast<metal::int2>(naga_div((_e118.xy + metal::uint2(k_21)) - metal::uint2(1u), metal::uint2(k_21)));
         metal::int2 b_11 = static_cast<metal::int2>(block);
         int x0_1 = metal::max(as_type<int>(as_type<uint>(b_11.x) - as_type<uint>(1)), 0);
         int x2_2 = metal::min(as_type<int>(as_type<uint>(b_11.x) + as_type<uint>(1)), as_type<int>(as_type<uint>(blocks.x) - as_type<uint>(1)));
@@ -4829,16 +4999,16 @@ struct pathtraceInput {
     lane_moments.inner[lane] = metal::float4(_e52 * _e52, hit ? _e50.depth : 0.0, hit ? 1.0 : 0.0, 0.0);
     metal::threadgroup_barrier(metal::mem_flags::mem_threadgroup);
     if (lane == 0u) {
-        uint2 loop_bound_33 = uint2(4294967295u);
-        bool loop_init_29 = true;
+        uint2 loop_bound_34 = uint2(4294967295u);
+        bool loop_init_30 = true;
         while(true) {
-            if (metal::all(loop_bound_33 == uint2(0u))) { break; }
-            loop_bound_33 -= uint2(loop_bound_33.y == 0u, 1u);
-            if (!loop_init_29) {
+            if (metal::all(loop_bound_34 == uint2(0u))) { break; }
+            loop_bound_34 -= uint2(loop_bound_34.y == 0u, 1u);
+            if (!loop_init_30) {
                 uint _e98 = i_3;
                 i_3 = _e98 + 1u;
             }
-            loop_init_29 = false;
+            loop_init_30 = false;
             uint _e82 = i_3;
             if (_e82 < PATHS_PER_FRAME) {
             } else {
@@ -4983,16 +5153,16 @@ struct sprite_buildInput {
     uint own = naga_mod(slot, SPRITES_PER_CELL);
     SpriteCandidate _e18 = sprite_candidate(_e6, level_2, own, counters_2, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
     me = _e18;
-    uint2 loop_bound_34 = uint2(4294967295u);
-    bool loop_init_30 = true;
+    uint2 loop_bound_35 = uint2(4294967295u);
+    bool loop_init_31 = true;
     while(true) {
-        if (metal::all(loop_bound_34 == uint2(0u))) { break; }
-        loop_bound_34 -= uint2(loop_bound_34.y == 0u, 1u);
-        if (!loop_init_30) {
+        if (metal::all(loop_bound_35 == uint2(0u))) { break; }
+        loop_bound_35 -= uint2(loop_bound_35.y == 0u, 1u);
+        if (!loop_init_31) {
             uint _e38 = i_4;
             i_4 = _e38 + 1u;
         }
-        loop_init_30 = false;
+        loop_init_31 = false;
         uint _e22 = i_4;
         if (_e22 < SPRITES_PER_CELL) {
         } else {
@@ -5057,8 +5227,8 @@ struct sprite_buildInput {
         float _e167 = me.alt;
         metal::float3 _e168 = sprite_rel(_e165, _e167, frame);
         float _e172 = frame.camera_position.y;
-        metal::float3 rel_13 = _e168 - metal::float3(0.0, _e172, 0.0);
-        float _e180 = saturate(metal::length(rel_13) / SPRITE_MAX_DISTANCE);
+        metal::float3 rel_15 = _e168 - metal::float3(0.0, _e172, 0.0);
+        float _e180 = saturate(metal::length(rel_15) / SPRITE_MAX_DISTANCE);
         key = 1048576.0 - metal::floor(_e180 * 1048575.0);
     }
     float _e191 = me.xz.x;
@@ -5092,16 +5262,16 @@ struct sprite_sortInput {
     uint slot_1 = id_15.x;
     metal::float4 _e6 = sprites_in.read(metal::uint2(metal::uint2(slot_1, 3u)), 0);
     float key_1 = _e6.x;
-    uint2 loop_bound_35 = uint2(4294967295u);
-    bool loop_init_31 = true;
+    uint2 loop_bound_36 = uint2(4294967295u);
+    bool loop_init_32 = true;
     while(true) {
-        if (metal::all(loop_bound_35 == uint2(0u))) { break; }
-        loop_bound_35 -= uint2(loop_bound_35.y == 0u, 1u);
-        if (!loop_init_31) {
+        if (metal::all(loop_bound_36 == uint2(0u))) { break; }
+        loop_bound_36 -= uint2(loop_bound_36.y == 0u, 1u);
+        if (!loop_init_32) {
             uint _e40 = j;
             j = _e40 + 1u;
         }
-        loop_init_31 = false;
+        loop_init_32 = false;
         uint _e12 = j;
         if (_e12 < SPRITE_COUNT) {
         } else {
@@ -5183,10 +5353,10 @@ vertex sprite_vertexOutput sprite_vertex(
     metal::float3 _e83 = right;
     right = metal::normalize(_e83);
     metal::float3 _e85 = right;
-    metal::float3 up_2 = metal::cross(n_5, _e85);
+    metal::float3 up_3 = metal::cross(n_5, _e85);
     metal::float2 _e89 = sprite_corner(naga_mod(index, 6u));
     metal::float3 _e90 = right;
-    metal::float3 offset_1 = (_e90 * (_e89.x * half_width_1)) + (up_2 * (_e89.y * c_12.z));
+    metal::float3 offset_1 = (_e90 * (_e89.x * half_width_1)) + (up_3 * (_e89.y * c_12.z));
     metal::float3 vertex_ = to_sprite + offset_1;
     metal::float4 _e102 = frame.camera_right;
     float x_14 = metal::dot(vertex_, _e102.xyz);
@@ -5202,12 +5372,12 @@ vertex sprite_vertexOutput sprite_vertex(
     out.uv = metal::float2((t_14.x * cs.x) - (t_14.y * cs.y), (t_14.x * cs.y) + (t_14.y * cs.x));
     out.tile = naga_f2u32(c_12.x);
     metal::float4 _e160 = frame.sun_direction;
-    metal::float3 sun_14 = _e160.xyz;
+    metal::float3 sun_15 = _e160.xyz;
     metal::float3 _e164 = sprite_rel(b_12.xz, b_12.y, frame);
     metal::float3 centre_2 = _e164 - cam_1;
     metal::float3 from_centre = vertex_ - centre_2;
-    float cos_angle_1 = metal::dot(from_centre, sun_14) / metal::max(metal::length(from_centre), 0.001);
-    float _e177 = saturate((sun_14.y * 4.0) + 0.3);
+    float cos_angle_1 = metal::dot(from_centre, sun_15) / metal::max(metal::length(from_centre), 0.001);
+    float _e177 = saturate((sun_15.y * 4.0) + 0.3);
     float _e179 = altitude_of(vertex_ + cam_1, frame);
     float _e183 = frame.atmosphere.y;
     float _e188 = frame.atmosphere.z;
@@ -5280,10 +5450,10 @@ struct sprite_resolveInput {
     }
     count(STAT_PIXELS, 1u, stats);
     metal::float4 c_13 = sprite_radiance_in.read(metal::uint2(id_16.xy), 0);
-    metal::float4 d_25 = sprite_depth_in.read(metal::uint2(id_16.xy), 0);
+    metal::float4 d_27 = sprite_depth_in.read(metal::uint2(id_16.xy), 0);
     float _e19 = saturate(c_13.w);
     cloud_out.write(metal::float4(c_13.xyz, 1.0 - _e19), metal::uint2(id_16.xy));
-    depth_out.write(metal::float4((d_25.w > 0.0001) ? (d_25.x / d_25.w) : 0.0, 0.0, 0.0, 0.0), metal::uint2(id_16.xy));
+    depth_out.write(metal::float4((d_27.w > 0.0001) ? (d_27.x / d_27.w) : 0.0, 0.0, 0.0, 0.0), metal::uint2(id_16.xy));
     return;
 }
 
@@ -5303,11 +5473,11 @@ struct compositeInput {
     }
     metal::uint2 pixel_12 = id_17.xy;
     metal::float3 _e9 = view_ray(pixel_12, frame);
-    float alt_18 = frame.camera_position.y;
+    float alt_19 = frame.camera_position.y;
     metal::float4 cloud_1 = cloud_in.read(metal::uint2(pixel_12), 0);
-    metal::float3 _e17 = sky_radiance(_e9, alt_18, frame);
+    metal::float3 _e17 = sky_radiance(_e9, alt_19, frame);
     background = _e17;
-    bool _e22 = hits_ground(metal::float3(0.0, alt_18, 0.0), alt_18, _e9, frame);
+    bool _e22 = hits_ground(metal::float3(0.0, alt_19, 0.0), alt_19, _e9, frame);
     if (!(_e22)) {
         metal::float3 _e24 = background;
         metal::float3 _e25 = sun_disk(_e9, frame);

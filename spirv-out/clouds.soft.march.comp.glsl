@@ -44,6 +44,7 @@ struct Frame {
     vec4 night;
     vec4 light_model;
     vec4 octave_direction;
+    vec4 octave_depth;
 };
 struct Roots {
     float t0_;
@@ -181,6 +182,8 @@ const uint AMBIENT_STEPS = 24u;
 const uint SKY_AMBIENT_SUNS = 64u;
 const uint GROUND_IRRADIANCE_SIZE = 64u;
 const uint NO_LAYER = 4u;
+const uint STEEP_STEPS = 2u;
+const float STEEP_FIRST = 8.0;
 const float DECK_POWER = 8.0;
 const float FORWARD_LOBE_THIN = 0.1;
 const uint GROUND_IRRADIANCE_DIRECTIONS = 128u;
@@ -287,8 +290,8 @@ vec3 view_ray(uvec2 pixel_1) {
     vec4 _e26 = _group_0_binding_0_cs.camera_forward;
     vec4 _e30 = _group_0_binding_0_cs.camera_right;
     vec4 _e39 = _group_0_binding_0_cs.camera_up;
-    vec3 d_20 = ((_e26.xyz + (_e30.xyz * ((ndc.x * tan_half) * aspect))) - (_e39.xyz * (ndc.y * tan_half)));
-    return normalize(d_20);
+    vec3 d_21 = ((_e26.xyz + (_e30.xyz * ((ndc.x * tan_half) * aspect))) - (_e39.xyz * (ndc.y * tan_half)));
+    return normalize(d_21);
 }
 
 Roots solve_sphere(float b, float c) {
@@ -551,14 +554,14 @@ float air_top() {
 }
 
 AirSample air_at(float h_km) {
-    float h_10 = (max(h_km, 0.0) * 1000.0);
+    float h_11 = (max(h_km, 0.0) * 1000.0);
     float _e9 = _group_0_binding_0_cs.air_rayleigh.w;
-    float rayleigh_density = exp((-(h_10) / _e9));
+    float rayleigh_density = exp((-(h_11) / _e9));
     float _e16 = _group_0_binding_0_cs.air_mie.z;
-    float mie_density = exp((-(h_10) / _e16));
+    float mie_density = exp((-(h_11) / _e16));
     float _e22 = _group_0_binding_0_cs.air_ozone.w;
     float _e28 = _group_0_binding_0_cs.air_misc.y;
-    float ozone_density = max((1.0 - (abs((h_10 - _e22)) / (0.5 * _e28))), 0.0);
+    float ozone_density = max((1.0 - (abs((h_11 - _e22)) / (0.5 * _e28))), 0.0);
     vec4 _e38 = _group_0_binding_0_cs.air_rayleigh;
     vec3 rayleigh = (_e38.xyz * (rayleigh_density * 1000.0));
     float _e46 = _group_0_binding_0_cs.air_mie.x;
@@ -622,26 +625,26 @@ vec4 lut_bilinear(sampler2D lut, vec2 x_3, uvec2 size) {
 vec2 transmittance_coords(float r_7, float mu_5) {
     float _e2 = air_bottom();
     float _e3 = air_top();
-    float h_11 = sqrt(max(((_e3 - _e2) * (_e3 + _e2)), 0.0));
+    float h_12 = sqrt(max(((_e3 - _e2) * (_e3 + _e2)), 0.0));
     float rho = sqrt(max(((r_7 - _e2) * (r_7 + _e2)), 0.0));
     float _e16 = distance_to_top(r_7, mu_5);
     float d_min = (_e3 - r_7);
-    float d_max = (rho + h_11);
-    return vec2(((_e16 - d_min) / max((d_max - d_min), 1e-6)), (rho / h_11));
+    float d_max = (rho + h_12);
+    return vec2(((_e16 - d_min) / max((d_max - d_min), 1e-6)), (rho / h_12));
 }
 
 vec2 transmittance_r_mu(vec2 x_4) {
     float mu_6 = 1.0;
     float _e1 = air_bottom();
     float _e2 = air_top();
-    float h_12 = sqrt(max(((_e2 - _e1) * (_e2 + _e1)), 0.0));
-    float rho_1 = (h_12 * x_4.y);
+    float h_13 = sqrt(max(((_e2 - _e1) * (_e2 + _e1)), 0.0));
+    float rho_1 = (h_13 * x_4.y);
     float r_14 = sqrt(((rho_1 * rho_1) + (_e1 * _e1)));
     float d_min_1 = (_e2 - r_14);
-    float d_max_1 = (rho_1 + h_12);
-    float d_21 = (d_min_1 + (x_4.x * (d_max_1 - d_min_1)));
-    if ((d_21 > 0.0)) {
-        mu_6 = clamp(((((h_12 * h_12) - (rho_1 * rho_1)) - (d_21 * d_21)) / ((2.0 * r_14) * d_21)), -1.0, 1.0);
+    float d_max_1 = (rho_1 + h_13);
+    float d_22 = (d_min_1 + (x_4.x * (d_max_1 - d_min_1)));
+    if ((d_22 > 0.0)) {
+        mu_6 = clamp(((((h_13 * h_13) - (rho_1 * rho_1)) - (d_22 * d_22)) / ((2.0 * r_14) * d_22)), -1.0, 1.0);
     }
     float _e37 = mu_6;
     return vec2(r_14, _e37);
@@ -858,122 +861,134 @@ float height_signal(float h_4, float cloud_type_2) {
     return _e9;
 }
 
-float layer_density(vec3 p_4, float alt_9, Layer l_3, inout Counters counters_3) {
+float layer_density_with(vec3 p_4, float alt_9, Layer l_3, bool with_detail, inout Counters counters_3) {
     bool local_23 = false;
     bool local_24 = false;
     float base = 0.0;
     float density = 0.0;
     bool local_25 = false;
     bool local_26 = false;
+    bool local_27 = false;
     vec3 detail_pos = vec3(0.0);
-    float _e4 = layer_height(l_3, alt_9);
-    if (!((_e4 < 0.0))) {
-        local_23 = (_e4 > 1.0);
+    float _e5 = layer_height(l_3, alt_9);
+    if (!((_e5 < 0.0))) {
+        local_23 = (_e5 > 1.0);
     } else {
         local_23 = true;
     }
-    bool _e13 = local_23;
-    if (_e13) {
+    bool _e14 = local_23;
+    if (_e14) {
         return 0.0;
     }
-    uint _e16 = counters_3.density;
-    counters_3.density = (_e16 + 1u);
-    Weather _e19 = sample_weather(p_4, l_3);
-    float _e21 = height_signal(_e4, _e19.cloud_type);
-    if (!((_e19.coverage <= 0.0))) {
-        local_24 = (_e21 <= 0.0);
+    uint _e17 = counters_3.density;
+    counters_3.density = (_e17 + 1u);
+    Weather _e20 = sample_weather(p_4, l_3);
+    float _e22 = height_signal(_e5, _e20.cloud_type);
+    if (!((_e20.coverage <= 0.0))) {
+        local_24 = (_e22 <= 0.0);
     } else {
         local_24 = true;
     }
-    bool _e31 = local_24;
-    if (_e31) {
+    bool _e32 = local_24;
+    if (_e32) {
         return 0.0;
     }
     vec3 dims = vec3(uvec3(textureSize(_group_0_binding_1_cs, 0).xyz));
-    float _e39 = _group_0_binding_0_cs.periods.y;
-    vec3 period = (_e39 * vec3(1.0, (dims.y / dims.x), 1.0));
-    float _e51 = _group_0_binding_0_cs.wind_offsets0_.z;
-    float _e57 = _group_0_binding_0_cs.wind_offsets0_.w;
-    vec3 shape_pos = vec3((p_4.x - _e51), alt_9, (p_4.z - _e57));
+    float _e40 = _group_0_binding_0_cs.periods.y;
+    vec3 period = (_e40 * vec3(1.0, (dims.y / dims.x), 1.0));
+    float _e52 = _group_0_binding_0_cs.wind_offsets0_.z;
+    float _e58 = _group_0_binding_0_cs.wind_offsets0_.w;
+    vec3 shape_pos = vec3((p_4.x - _e52), alt_9, (p_4.z - _e58));
     vec4 s_6 = textureLod(_group_0_binding_1_cs, vec3((shape_pos / period)), 0.0);
     float low_fbm = (((s_6.y * 0.625) + (s_6.z * 0.25)) + (s_6.w * 0.125));
-    float _e82 = remap(s_6.x, (low_fbm - 1.0), 1.0, 0.0, 1.0);
-    float _e83 = saturate(_e82);
-    base = (_e83 * _e21);
-    float _e86 = base;
-    float _e93 = remap(_e86, (1.0 - _e19.coverage), 1.0, 0.0, 1.0);
-    float _e94 = saturate(_e93);
-    base = (_e94 * _e19.coverage);
-    float _e97 = base;
-    if ((_e97 <= 0.0)) {
+    float _e83 = remap(s_6.x, (low_fbm - 1.0), 1.0, 0.0, 1.0);
+    float _e84 = saturate(_e83);
+    base = (_e84 * _e22);
+    float _e87 = base;
+    float _e94 = remap(_e87, (1.0 - _e20.coverage), 1.0, 0.0, 1.0);
+    float _e95 = saturate(_e94);
+    base = (_e95 * _e20.coverage);
+    float _e98 = base;
+    if ((_e98 <= 0.0)) {
         return 0.0;
     }
-    float _e101 = base;
-    density = _e101;
+    float _e102 = base;
+    density = _e102;
     float strength = _group_0_binding_0_cs.erosion.x;
     float threshold = _group_0_binding_0_cs.erosion.y;
     if (DETAIL) {
-        local_25 = (strength > 0.0);
+        local_25 = with_detail;
     } else {
         local_25 = false;
     }
-    bool _e117 = local_25;
-    if (_e117) {
-        float _e120 = base;
-        local_26 = (_e120 < threshold);
+    bool _e116 = local_25;
+    if (_e116) {
+        local_26 = (strength > 0.0);
     } else {
         local_26 = false;
     }
-    bool _e123 = local_26;
-    if (_e123) {
-        uint _e125 = counters_3.detail;
-        counters_3.detail = (_e125 + 1u);
+    bool _e122 = local_26;
+    if (_e122) {
+        float _e125 = base;
+        local_27 = (_e125 < threshold);
+    } else {
+        local_27 = false;
+    }
+    bool _e128 = local_27;
+    if (_e128) {
+        uint _e130 = counters_3.detail;
+        counters_3.detail = (_e130 + 1u);
         detail_pos = vec3(p_4.x, alt_9, p_4.z);
         if (CURL) {
-            vec4 _e136 = _group_0_binding_0_cs.wind_offsets1_;
-            float _e142 = _group_0_binding_0_cs.periods.w;
-            vec2 cuv = ((p_4.xz - _e136.zw) / vec2(_e142));
-            vec4 _e148 = textureLod(_group_0_binding_4_cs, vec2(cuv), 0.0);
-            vec2 curl = ((_e148.xy * 2.0) - vec2(1.0));
-            vec3 _e155 = detail_pos;
-            float _e163 = _group_0_binding_0_cs.erosion.z;
-            detail_pos = (_e155 + (vec3(curl.x, 0.0, curl.y) * (_e163 * (1.0 - _e4))));
+            vec4 _e141 = _group_0_binding_0_cs.wind_offsets1_;
+            float _e147 = _group_0_binding_0_cs.periods.w;
+            vec2 cuv = ((p_4.xz - _e141.zw) / vec2(_e147));
+            vec4 _e153 = textureLod(_group_0_binding_4_cs, vec2(cuv), 0.0);
+            vec2 curl = ((_e153.xy * 2.0) - vec2(1.0));
+            vec3 _e160 = detail_pos;
+            float _e168 = _group_0_binding_0_cs.erosion.z;
+            detail_pos = (_e160 + (vec3(curl.x, 0.0, curl.y) * (_e168 * (1.0 - _e5))));
         }
-        vec3 _e169 = detail_pos;
-        float _e173 = _group_0_binding_0_cs.wind_offsets1_.x;
-        float _e177 = _group_0_binding_0_cs.wind_offsets1_.y;
-        detail_pos = (_e169 - vec3(_e173, 0.0, _e177));
-        vec3 _e183 = detail_pos;
-        float _e187 = _group_0_binding_0_cs.periods.z;
-        vec4 dn = textureLod(_group_0_binding_2_cs, vec3((_e183 / vec3(_e187))), 0.0);
+        vec3 _e174 = detail_pos;
+        float _e178 = _group_0_binding_0_cs.wind_offsets1_.x;
+        float _e182 = _group_0_binding_0_cs.wind_offsets1_.y;
+        detail_pos = (_e174 - vec3(_e178, 0.0, _e182));
+        vec3 _e188 = detail_pos;
+        float _e192 = _group_0_binding_0_cs.periods.z;
+        vec4 dn = textureLod(_group_0_binding_2_cs, vec3((_e188 / vec3(_e192))), 0.0);
         float high_fbm = (((dn.x * 0.625) + (dn.y * 0.25)) + (dn.z * 0.125));
-        float _e206 = _group_0_binding_0_cs.extinction.w;
-        float _e211 = saturate((_e4 * 10.0));
-        float _e213 = saturate(((2.0 * _e206) * _e211));
-        float shape = mix((1.0 - high_fbm), high_fbm, _e213);
-        float _e218 = base;
-        float erosion = ((strength * shape) * (1.0 - (_e218 / threshold)));
+        float _e211 = _group_0_binding_0_cs.extinction.w;
+        float _e216 = saturate((_e5 * 10.0));
+        float _e218 = saturate(((2.0 * _e211) * _e216));
+        float shape = mix((1.0 - high_fbm), high_fbm, _e218);
         float _e223 = base;
-        float _e227 = remap(_e223, erosion, 1.0, 0.0, 1.0);
-        float _e228 = saturate(_e227);
-        density = _e228;
+        float erosion = ((strength * shape) * (1.0 - (_e223 / threshold)));
+        float _e228 = base;
+        float _e232 = remap(_e228, erosion, 1.0, 0.0, 1.0);
+        float _e233 = saturate(_e232);
+        density = _e233;
     }
-    float _e229 = density;
-    float _e233 = _group_0_binding_0_cs.erosion.w;
-    density = (_e229 * mix(1.0, _e4, _e233));
-    float _e237 = density;
-    density = ((_e237 * l_3.density) * (1.0 + _e19.precipitation));
-    float _e244 = density;
-    return clamp(_e244, 0.0, 1.0);
+    float _e234 = density;
+    float _e238 = _group_0_binding_0_cs.erosion.w;
+    density = (_e234 * mix(1.0, _e5, _e238));
+    float _e242 = density;
+    density = ((_e242 * l_3.density) * (1.0 + _e20.precipitation));
+    float _e249 = density;
+    return clamp(_e249, 0.0, 1.0);
 }
 
-float cloud_density(vec3 p_5, float alt_10, inout Counters counters_4) {
-    uint _e3 = layer_at(alt_10);
+float layer_density(vec3 p_5, float alt_10, Layer l_4, inout Counters counters_4) {
+    float _e5 = layer_density_with(p_5, alt_10, l_4, true, counters_4);
+    return _e5;
+}
+
+float cloud_density(vec3 p_6, float alt_11, inout Counters counters_5) {
+    uint _e3 = layer_at(alt_11);
     if ((_e3 == NO_LAYER)) {
         return 0.0;
     }
     Layer _e7 = cloud_layer(_e3);
-    float _e8 = layer_density(p_5, alt_10, _e7, counters_4);
+    float _e8 = layer_density(p_6, alt_11, _e7, counters_5);
     return _e8;
 }
 
@@ -1013,16 +1028,16 @@ float phase(float cos_theta_4, float scale) {
     }
 }
 
-float sun_optical_depth(vec3 rel_3, vec3 p_6, Layer l_4, inout Counters counters_5) {
+float sun_optical_depth(vec3 rel_3, vec3 p_7, Layer l_5, inout Counters counters_6) {
     float seg = 0.0;
     float dist = 0.0;
     float tau_4 = 0.0;
     uint i_10 = 0u;
-    bool local_27 = false;
-    uint j_1 = 0u;
     bool local_28 = false;
+    uint j_1 = 0u;
     bool local_29 = false;
     bool local_30 = false;
+    bool local_31 = false;
     vec4 _e6 = _group_0_binding_0_cs.sun_direction;
     vec3 sun_2 = _e6.xyz;
     float _e11 = _group_0_binding_0_cs.extinction.x;
@@ -1050,19 +1065,19 @@ float sun_optical_depth(vec3 rel_3, vec3 p_6, Layer l_4, inout Counters counters
             float s_7 = (_e38 + (0.5 * _e39));
             vec3 q_8 = (rel_3 + (sun_2 * s_7));
             float _e45 = altitude_of(q_8);
-            if (!((_e45 > l_4.top))) {
-                local_27 = (_e45 < l_4.bottom);
+            if (!((_e45 > l_5.top))) {
+                local_28 = (_e45 < l_5.bottom);
             } else {
-                local_27 = true;
+                local_28 = true;
             }
-            bool _e54 = local_27;
+            bool _e54 = local_28;
             if (_e54) {
                 break;
             }
-            uint _e56 = counters_5.light;
-            counters_5.light = (_e56 + 1u);
+            uint _e56 = counters_6.light;
+            counters_6.light = (_e56 + 1u);
             float _e59 = tau_4;
-            float _e62 = layer_density((p_6 + (sun_2 * s_7)), _e45, l_4, counters_5);
+            float _e62 = layer_density((p_7 + (sun_2 * s_7)), _e45, l_5, counters_6);
             float _e64 = seg;
             tau_4 = (_e59 + ((_e62 * sigma_t_1) * _e64));
             float _e67 = dist;
@@ -1089,38 +1104,38 @@ float sun_optical_depth(vec3 rel_3, vec3 p_6, Layer l_4, inout Counters counters
         {
             uint _e81 = j_1;
             Layer _e82 = cloud_layer(_e81);
-            if ((_e82.bottom <= l_4.top)) {
+            if ((_e82.bottom <= l_5.top)) {
                 continue;
             }
             Roots _e87 = ray_shell_from(rel_3, _e75, sun_2, _e82.bottom);
             Roots _e89 = ray_shell_from(rel_3, _e75, sun_2, _e82.top);
             if (!(!(_e87.hit))) {
-                local_28 = !(_e89.hit);
-            } else {
-                local_28 = true;
-            }
-            bool _e98 = local_28;
-            if (!(_e98)) {
-                local_29 = !((_e89.t1_ > _e87.t1_));
+                local_29 = !(_e89.hit);
             } else {
                 local_29 = true;
             }
-            bool _e107 = local_29;
-            if (!(_e107)) {
-                local_30 = (_e87.t1_ <= 0.0);
+            bool _e98 = local_29;
+            if (!(_e98)) {
+                local_30 = !((_e89.t1_ > _e87.t1_));
             } else {
                 local_30 = true;
             }
-            bool _e115 = local_30;
+            bool _e107 = local_30;
+            if (!(_e107)) {
+                local_31 = (_e87.t1_ <= 0.0);
+            } else {
+                local_31 = true;
+            }
+            bool _e115 = local_31;
             if (_e115) {
                 continue;
             }
             float s_8 = (0.5 * (_e87.t1_ + _e89.t1_));
-            uint _e122 = counters_5.light;
-            counters_5.light = (_e122 + 1u);
+            uint _e122 = counters_6.light;
+            counters_6.light = (_e122 + 1u);
             float _e125 = tau_4;
             float _e130 = altitude_of((rel_3 + (sun_2 * s_8)));
-            float _e131 = layer_density((p_6 + (sun_2 * s_8)), _e130, _e82, counters_5);
+            float _e131 = layer_density((p_7 + (sun_2 * s_8)), _e130, _e82, counters_6);
             tau_4 = (_e125 + ((_e131 * sigma_t_1) * (_e89.t1_ - _e87.t1_)));
         }
     }
@@ -1128,75 +1143,164 @@ float sun_optical_depth(vec3 rel_3, vec3 p_6, Layer l_4, inout Counters counters
     return _e141;
 }
 
-float far_optical_depth(vec3 rel_4, vec3 p_7, Layer l_5) {
-    bool local_31 = false;
-    float reach = 0.0;
-    bool local_32 = false;
+float steep_optical_depth(vec3 rel_4, vec3 p_8, Layer l_6, vec3 d_13, inout Counters counters_7) {
+    float seg_1 = 0.0;
+    float dist_1 = 0.0;
     float tau_5 = 0.0;
     uint i_11 = 0u;
+    bool local_32 = false;
+    float _e8 = _group_0_binding_0_cs.extinction.x;
+    float _e12 = _group_0_binding_0_cs.extinction.y;
+    float sigma_t_2 = (_e8 + _e12);
+    float growth_1 = _group_0_binding_0_cs.march.y;
+    float _e21 = _group_0_binding_0_cs.march.z;
+    seg_1 = (_e21 * STEEP_FIRST);
+    bool loop_init_5 = true;
+    while(true) {
+        if (!loop_init_5) {
+            uint _e70 = i_11;
+            i_11 = (_e70 + 1u);
+        }
+        loop_init_5 = false;
+        uint _e31 = i_11;
+        if ((_e31 < STEEP_STEPS)) {
+        } else {
+            break;
+        }
+        {
+            float _e34 = dist_1;
+            float _e35 = seg_1;
+            float s_9 = (_e34 + (0.5 * _e35));
+            float _e41 = altitude_of((rel_4 + (d_13 * s_9)));
+            if (!((_e41 > l_6.top))) {
+                local_32 = (_e41 < l_6.bottom);
+            } else {
+                local_32 = true;
+            }
+            bool _e50 = local_32;
+            if (_e50) {
+                break;
+            }
+            uint _e52 = counters_7.light;
+            counters_7.light = (_e52 + 1u);
+            float _e55 = tau_5;
+            float _e59 = layer_density_with((p_8 + (d_13 * s_9)), _e41, l_6, false, counters_7);
+            float _e61 = seg_1;
+            tau_5 = (_e55 + ((_e59 * sigma_t_2) * _e61));
+            float _e64 = dist_1;
+            float _e65 = seg_1;
+            dist_1 = (_e64 + _e65);
+            float _e67 = seg_1;
+            seg_1 = (_e67 * growth_1);
+        }
+    }
+    float _e72 = tau_5;
+    return _e72;
+}
+
+float octave_optical_depth(vec3 rel_5, vec3 p_9, Layer l_7, float tau_6, inout Counters counters_8) {
+    bool local_33 = false;
+    bool local_34 = false;
+    float _e10 = saturate(((l_7.coverage - 0.8) / 0.1));
+    float _e14 = _group_0_binding_0_cs.octave_depth.x;
+    float m_2 = (_e14 * _e10);
+    if (!((_e10 < 0.001))) {
+        local_33 = (m_2 <= 0.0);
+    } else {
+        local_33 = true;
+    }
+    bool _e24 = local_33;
+    if (!(_e24)) {
+        uint _e31 = _group_0_binding_0_cs.counts.w;
+        local_34 = (_e31 == 0u);
+    } else {
+        local_34 = true;
+    }
+    bool _e35 = local_34;
+    if (_e35) {
+        return tau_6;
+    }
+    float _e41 = _group_0_binding_0_cs.atmosphere.x;
+    vec3 up = normalize(vec3(rel_5.x, (rel_5.y + _e41), rel_5.z));
+    vec4 _e48 = _group_0_binding_0_cs.sun_direction;
+    vec3 sun_3 = _e48.xyz;
+    vec3 d_23 = normalize((sun_3 + up));
+    float mu0_1 = max(dot(sun_3, up), 0.001);
+    float _e55 = steep_optical_depth(rel_5, p_9, l_7, d_23, counters_8);
+    float _e59 = _group_0_binding_0_cs.octave_depth.y;
+    float steep = ((_e55 * _e59) * sqrt((mu0_1 / max(dot(d_23, up), 0.001))));
+    return mix(tau_6, steep, m_2);
+}
+
+float far_optical_depth(vec3 rel_6, vec3 p_10, Layer l_8) {
+    bool local_35 = false;
+    float reach = 0.0;
+    bool local_36 = false;
+    float tau_7 = 0.0;
+    uint i_12 = 0u;
     float chord = _group_0_binding_0_cs.light_model.z;
     if (!((chord <= 0.0))) {
         uint _e15 = _group_0_binding_0_cs.counts.w;
-        local_31 = (_e15 == 0u);
+        local_35 = (_e15 == 0u);
     } else {
-        local_31 = true;
+        local_35 = true;
     }
-    bool _e19 = local_31;
+    bool _e19 = local_35;
     if (_e19) {
         return 0.0;
     }
-    float growth_1 = _group_0_binding_0_cs.march.y;
+    float growth_2 = _group_0_binding_0_cs.march.y;
     uint _e28 = _group_0_binding_0_cs.counts.w;
     float steps_3 = float(_e28);
     float _e33 = _group_0_binding_0_cs.march.z;
     reach = (_e33 * steps_3);
-    if ((growth_1 != 1.0)) {
+    if ((growth_2 != 1.0)) {
         float _e41 = _group_0_binding_0_cs.march.z;
-        reach = ((_e41 * (pow(growth_1, steps_3) - 1.0)) / (growth_1 - 1.0));
+        reach = ((_e41 * (pow(growth_2, steps_3) - 1.0)) / (growth_2 - 1.0));
     }
     vec4 _e51 = _group_0_binding_0_cs.sun_direction;
-    vec3 sun_3 = _e51.xyz;
-    float _e53 = altitude_of(rel_4);
-    Roots _e55 = ray_shell_from(rel_4, _e53, sun_3, l_5.top);
+    vec3 sun_4 = _e51.xyz;
+    float _e53 = altitude_of(rel_6);
+    Roots _e55 = ray_shell_from(rel_6, _e53, sun_4, l_8.top);
     float _e57 = reach;
     float len_1 = (_e55.t1_ - _e57);
     if (!(!(_e55.hit))) {
-        local_32 = !((len_1 > 0.0));
+        local_36 = !((len_1 > 0.0));
     } else {
-        local_32 = true;
+        local_36 = true;
     }
-    bool _e68 = local_32;
+    bool _e68 = local_36;
     if (_e68) {
         return 0.0;
     }
-    bool loop_init_5 = true;
+    bool loop_init_6 = true;
     while(true) {
-        if (!loop_init_5) {
-            uint _e110 = i_11;
-            i_11 = (_e110 + 1u);
+        if (!loop_init_6) {
+            uint _e110 = i_12;
+            i_12 = (_e110 + 1u);
         }
-        loop_init_5 = false;
-        uint _e74 = i_11;
+        loop_init_6 = false;
+        uint _e74 = i_12;
         if ((_e74 < 4u)) {
         } else {
             break;
         }
         {
             float _e77 = reach;
-            uint _e78 = i_11;
+            uint _e78 = i_12;
             float t_5 = (_e77 + (((float(_e78) + 0.5) * 0.25) * len_1));
-            float _e88 = altitude_of((rel_4 + (sun_3 * t_5)));
-            float _e89 = layer_height(l_5, _e88);
+            float _e88 = altitude_of((rel_6 + (sun_4 * t_5)));
+            float _e89 = layer_height(l_8, _e88);
             float _e90 = saturate(_e89);
-            Weather _e93 = sample_weather((p_7 + (sun_3 * t_5)), l_5);
+            Weather _e93 = sample_weather((p_10 + (sun_4 * t_5)), l_8);
             float cov = _e93.coverage;
-            float _e96 = height_signal(_e90, l_5.cloud_type);
+            float _e96 = height_signal(_e90, l_8.cloud_type);
             float f_2 = min((cov * _e96), 0.95);
-            float _e100 = tau_5;
-            tau_5 = (_e100 + (((0.25 * len_1) * f_2) / ((1.0 - f_2) * chord)));
+            float _e100 = tau_7;
+            tau_7 = (_e100 + (((0.25 * len_1) * f_2) / ((1.0 - f_2) * chord)));
         }
     }
-    float _e112 = tau_5;
+    float _e112 = tau_7;
     return _e112;
 }
 
@@ -1220,162 +1324,182 @@ float deck_escape(float mu0_, float layer_coverage) {
     return (1.0 + ((e * pow(_e6, DECK_POWER)) * (mu0_ - 0.5)));
 }
 
-SunScattering sun_scattering(float cos_theta_5, float view_y_2, float tau_6, float far_1, float build, float coverage_2, float h_6, float layer_coverage_1) {
+float downward_dimming(float view_y_2, float coverage_2, float h_6, float tau_v) {
+    float _e7 = _group_0_binding_0_cs.octave_depth.z;
+    float _e12 = saturate(coverage_2);
+    float _e14 = saturate(h_6);
+    float k_13 = (((_e7 * max(-(view_y_2), 0.0)) * _e12) * (1.0 - _e14));
+    return max((1.0 - ((k_13 * tau_v) / (tau_v + 1.0))), 0.0);
+}
+
+SunScattering sun_scattering(float cos_theta_5, float view_y_3, float tau_8, float tau_oct, float far_1, float build, float coverage_3, float h_7, float layer_coverage_1) {
     float octave_sum = 0.0;
     float ka = 1.0;
     float kb = 1.0;
     float kc = 1.0;
-    uint i_12 = 0u;
+    uint i_13 = 0u;
     float feed = 0.0;
     float octaves_part = 0.0;
     float total = 0.0;
     float a_7 = _group_0_binding_0_cs.multiple_scattering.x;
     float b_7 = _group_0_binding_0_cs.multiple_scattering.y;
     float c_8 = _group_0_binding_0_cs.multiple_scattering.z;
-    uint _e23 = _group_0_binding_0_cs.misc.x;
-    uint octaves = min(_e23, MAX_OCTAVES);
-    bool loop_init_6 = true;
+    uint _e24 = _group_0_binding_0_cs.misc.x;
+    uint octaves = min(_e24, MAX_OCTAVES);
+    bool loop_init_7 = true;
     while(true) {
-        if (!loop_init_6) {
-            uint _e56 = i_12;
-            i_12 = (_e56 + 1u);
+        if (!loop_init_7) {
+            uint _e57 = i_13;
+            i_13 = (_e57 + 1u);
         }
-        loop_init_6 = false;
-        uint _e36 = i_12;
-        if ((_e36 < octaves)) {
+        loop_init_7 = false;
+        uint _e37 = i_13;
+        if ((_e37 < octaves)) {
         } else {
             break;
         }
         {
-            float _e38 = ka;
-            ka = (_e38 * a_7);
-            float _e40 = kb;
-            kb = (_e40 * b_7);
-            float _e42 = kc;
-            kc = (_e42 * c_8);
-            float _e44 = octave_sum;
-            float _e45 = ka;
-            float _e46 = kc;
-            float _e47 = phase(cos_theta_5, _e46);
-            float _e49 = kb;
-            octave_sum = (_e44 + ((_e45 * _e47) / (1.0 + (_e49 * tau_6))));
+            float _e39 = ka;
+            ka = (_e39 * a_7);
+            float _e41 = kb;
+            kb = (_e41 * b_7);
+            float _e43 = kc;
+            kc = (_e43 * c_8);
+            float _e45 = octave_sum;
+            float _e46 = ka;
+            float _e47 = kc;
+            float _e48 = phase(cos_theta_5, _e47);
+            float _e50 = kb;
+            octave_sum = (_e45 + ((_e46 * _e48) / (1.0 + (_e50 * tau_oct))));
         }
     }
-    float _e61 = _group_0_binding_0_cs.sun_direction.y;
-    float _e62 = saturate(_e61);
-    float _e69 = saturate(coverage_2);
-    float side = ((sqrt(max((1.0 - (_e62 * _e62)), 0.0)) * (1.0 - _e69)) * exp(-(far_1)));
-    float _e79 = _group_0_binding_0_cs.light_model.x;
-    feed = (_e62 + (_e79 * side));
-    float _e86 = _group_0_binding_0_cs.light_model.y;
-    if ((_e86 > 0.0)) {
-        float _e89 = feed;
-        float _e95 = _group_0_binding_0_cs.light_model.y;
-        feed = (_e89 * pow(max(coverage_2, 1e-6), _e95));
+    float _e62 = _group_0_binding_0_cs.sun_direction.y;
+    float _e63 = saturate(_e62);
+    float _e70 = saturate(coverage_3);
+    float side = ((sqrt(max((1.0 - (_e63 * _e63)), 0.0)) * (1.0 - _e70)) * exp(-(far_1)));
+    float _e80 = _group_0_binding_0_cs.light_model.x;
+    feed = (_e63 + (_e80 * side));
+    float _e87 = _group_0_binding_0_cs.light_model.y;
+    if ((_e87 > 0.0)) {
+        float _e90 = feed;
+        float _e96 = _group_0_binding_0_cs.light_model.y;
+        feed = (_e90 * pow(max(coverage_3, 1e-6), _e96));
     }
-    float _e98 = feed;
-    float _e99 = diffuse_limb(view_y_2, coverage_2);
-    float _e100 = vertical_anisotropy(view_y_2, coverage_2, h_6);
-    float _e102 = deck_escape(_e62, layer_coverage_1);
-    feed = (_e98 * ((_e99 * _e100) * _e102));
-    float _e105 = feed;
-    float _e107 = octave_sum;
-    octaves_part = ((_e105 * build) * _e107);
-    float _e111 = phase(cos_theta_5, 1.0);
-    float _e116 = octaves_part;
-    total = ((_e111 * exp((-(tau_6) - far_1))) + _e116);
-    uint _e122 = _group_0_binding_0_cs.modes.w;
-    if (((_e122 & FLAG_BEER_POWDER) != 0u)) {
-        float _e130 = _group_0_binding_0_cs.phase.w;
-        float powder = (1.0 - exp((-(_e130) * tau_6)));
-        float _e136 = total;
-        total = (_e136 * powder);
-        float _e138 = octaves_part;
-        octaves_part = (_e138 * powder);
+    float _e99 = feed;
+    float _e100 = diffuse_limb(view_y_3, coverage_3);
+    float _e101 = vertical_anisotropy(view_y_3, coverage_3, h_7);
+    float _e103 = deck_escape(_e63, layer_coverage_1);
+    feed = (_e99 * ((_e100 * _e101) * _e103));
+    float _e106 = feed;
+    float _e108 = downward_dimming(view_y_3, coverage_3, h_7, (tau_8 * _e63));
+    feed = (_e106 * _e108);
+    float _e110 = feed;
+    float _e112 = octave_sum;
+    octaves_part = ((_e110 * build) * _e112);
+    float _e116 = phase(cos_theta_5, 1.0);
+    float _e121 = octaves_part;
+    total = ((_e116 * exp((-(tau_8) - far_1))) + _e121);
+    uint _e127 = _group_0_binding_0_cs.modes.w;
+    if (((_e127 & FLAG_BEER_POWDER) != 0u)) {
+        float _e135 = _group_0_binding_0_cs.phase.w;
+        float powder = (1.0 - exp((-(_e135) * tau_8)));
+        float _e141 = total;
+        total = (_e141 * powder);
+        float _e143 = octaves_part;
+        octaves_part = (_e143 * powder);
     }
-    float _e140 = total;
-    float _e141 = octaves_part;
-    return SunScattering(_e140, _e141);
+    float _e145 = total;
+    float _e146 = octaves_part;
+    return SunScattering(_e145, _e146);
 }
 
 float forward_lobe(float cos_theta_6, float transmittance) {
-    float k_13 = _group_0_binding_0_cs.octave_direction.x;
-    if ((k_13 <= 0.0)) {
+    float k_14 = _group_0_binding_0_cs.octave_direction.x;
+    if ((k_14 <= 0.0)) {
         return 1.0;
     }
     float _e11 = saturate((transmittance / FORWARD_LOBE_THIN));
-    float w_5 = (k_13 * _e11);
+    float w_5 = (k_14 * _e11);
     float _e17 = _group_0_binding_0_cs.octave_direction.y;
     float _e18 = phase_hg(cos_theta_6, _e17);
     return (1.0 + (w_5 * ((12.566371 * _e18) - 1.0)));
 }
 
 float octave_buildup(float density_1) {
-    float l_8 = _group_0_binding_0_cs.multiple_scattering.w;
-    if ((l_8 <= 0.0)) {
+    float l_11 = _group_0_binding_0_cs.multiple_scattering.w;
+    if ((l_11 <= 0.0)) {
         return 1.0;
     }
     float _e11 = _group_0_binding_0_cs.extinction.x;
     float _e15 = _group_0_binding_0_cs.extinction.y;
-    return (1.0 - exp(((-((_e11 + _e15)) * density_1) * l_8)));
+    return (1.0 - exp(((-((_e11 + _e15)) * density_1) * l_11)));
 }
 
-vec3 ambient(float h_7, vec3 rel_5) {
+vec3 ambient(float h_8, vec3 rel_7) {
     bool _e2 = physical_sky();
     if (_e2) {
-        vec3 _e3 = sky_ambient_light(h_7, rel_5);
+        vec3 _e3 = sky_ambient_light(h_8, rel_7);
         return _e3;
     }
     vec4 _e6 = _group_0_binding_0_cs.ambient_bottom;
     vec4 _e10 = _group_0_binding_0_cs.ambient_top;
     float _e16 = _group_0_binding_0_cs.ambient_bottom.w;
-    return (mix(_e6.xyz, _e10.xyz, h_7) * _e16);
+    return (mix(_e6.xyz, _e10.xyz, h_8) * _e16);
 }
 
-float height_fraction(float alt_11) {
-    uint _e1 = layer_at(alt_11);
+float height_fraction(float alt_12) {
+    uint _e1 = layer_at(alt_12);
     Layer _e2 = cloud_layer(_e1);
-    float _e3 = layer_height(_e2, alt_11);
+    float _e3 = layer_height(_e2, alt_12);
     float _e4 = saturate(_e3);
     return _e4;
 }
 
-ScatteredLight scattered_light(vec3 rel_6, vec3 p_8, float alt_12, float density_2, vec3 view, Layer l_6, inout Counters counters_6) {
+ScatteredLight scattered_light(vec3 rel_8, vec3 p_11, float alt_13, float density_2, vec3 view, Layer l_9, inout Counters counters_9) {
     vec3 sun_light = vec3(0.0);
     vec3 octave_light = vec3(0.0);
-    float tau_7 = 0.0;
+    float tau_9 = 0.0;
     float far_2 = 0.0;
+    float tau_oct_1 = 0.0;
     vec4 _e9 = _group_0_binding_0_cs.sun_direction;
-    vec3 sun_4 = _e9.xyz;
-    float _e11 = layer_height(l_6, alt_12);
+    vec3 sun_5 = _e9.xyz;
+    float _e11 = layer_height(l_9, alt_13);
     float _e12 = saturate(_e11);
-    Weather _e19 = sample_weather(p_8, l_6);
-    bool _e20 = hits_ground(rel_6, alt_12, sun_4);
+    Weather _e19 = sample_weather(p_11, l_9);
+    bool _e20 = hits_ground(rel_8, alt_13, sun_5);
     if (!(_e20)) {
         if (LIGHT_MARCH) {
-            float _e27 = sun_optical_depth(rel_6, p_8, l_6, counters_6);
-            tau_7 = _e27;
-            float _e28 = far_optical_depth(rel_6, p_8, l_6);
+            float _e27 = sun_optical_depth(rel_8, p_11, l_9, counters_9);
+            tau_9 = _e27;
+            float _e28 = far_optical_depth(rel_8, p_11, l_9);
             far_2 = _e28;
         }
-        float _e31 = tau_7;
-        float _e32 = far_2;
-        float _e33 = octave_buildup(density_2);
-        SunScattering _e36 = sun_scattering(dot(view, sun_4), view.y, _e31, _e32, _e33, _e19.coverage, _e12, l_6.coverage);
-        vec4 _e39 = _group_0_binding_0_cs.sun_illuminance;
-        vec3 _e41 = sun_through_air(rel_6);
-        vec3 lit = (_e39.xyz * _e41);
-        sun_light = (lit * _e36.total);
-        octave_light = (lit * _e36.octaves);
+        float _e29 = tau_9;
+        tau_oct_1 = _e29;
+        if (LIGHT_MARCH) {
+            float _e32 = tau_9;
+            float _e33 = octave_optical_depth(rel_8, p_11, l_9, _e32, counters_9);
+            tau_oct_1 = _e33;
+        }
+        float _e36 = tau_9;
+        float _e37 = tau_oct_1;
+        float _e38 = far_2;
+        float _e39 = octave_buildup(density_2);
+        SunScattering _e42 = sun_scattering(dot(view, sun_5), view.y, _e36, _e37, _e38, _e39, _e19.coverage, _e12, l_9.coverage);
+        vec4 _e45 = _group_0_binding_0_cs.sun_illuminance;
+        vec3 _e47 = sun_through_air(rel_8);
+        vec3 lit = (_e45.xyz * _e47);
+        sun_light = (lit * _e42.total);
+        octave_light = (lit * _e42.octaves);
     }
-    float _e50 = _group_0_binding_0_cs.extinction.z;
-    float _e58 = saturate((1.0 - ((_e50 * _e19.precipitation) * (1.0 - _e12))));
-    float _e62 = _group_0_binding_0_cs.extinction.x;
-    float k_14 = ((_e62 * density_2) * _e58);
-    vec3 _e65 = sun_light;
-    vec3 _e66 = ambient(_e12, rel_6);
-    vec3 _e69 = octave_light;
-    return ScatteredLight(((_e65 + _e66) * k_14), (_e69 * k_14));
+    float _e56 = _group_0_binding_0_cs.extinction.z;
+    float _e64 = saturate((1.0 - ((_e56 * _e19.precipitation) * (1.0 - _e12))));
+    float _e68 = _group_0_binding_0_cs.extinction.x;
+    float k_15 = ((_e68 * density_2) * _e64);
+    vec3 _e71 = sun_light;
+    vec3 _e72 = ambient(_e12, rel_8);
+    vec3 _e75 = octave_light;
+    return ScatteredLight(((_e71 + _e72) * k_15), (_e75 * k_15));
 }
 
 vec3 shadow_ground_point(uvec2 c_2) {
@@ -1386,37 +1510,37 @@ vec3 shadow_ground_point(uvec2 c_2) {
     return vec3(xz_1.x, y_1, xz_1.y);
 }
 
-float empty_cell_exit(vec3 p_9, vec3 d_13) {
+float empty_cell_exit(vec3 p_12, vec3 d_14) {
     float exit = 1e30;
     vec4 _e6 = _group_0_binding_0_cs.wind_offsets0_;
     float _e12 = _group_0_binding_0_cs.periods.x;
-    vec2 uv_3 = (fract(((p_9.xz - _e6.xy) / vec2(_e12))) * 64.0);
+    vec2 uv_3 = (fract(((p_12.xz - _e6.xy) / vec2(_e12))) * 64.0);
     uvec2 cell_1 = min(uvec2(uv_3), uvec2(63u));
     vec4 _e23 = texelFetch(_group_0_binding_11_cs, ivec2(cell_1), 0);
-    float m_2 = _e23.x;
+    float m_3 = _e23.x;
     float _e28 = _group_0_binding_0_cs.clouds.x;
-    if (((m_2 + (2.0 * (_e28 - 0.5))) > -0.003921569)) {
+    if (((m_3 + (2.0 * (_e28 - 0.5))) > -0.003921569)) {
         return 0.0;
     }
     float _e40 = _group_0_binding_0_cs.periods.x;
     float cell_m = (_e40 / 64.0);
     vec2 inside = ((uv_3 - vec2(cell_1)) * cell_m);
-    if ((d_13.x > 1e-6)) {
+    if ((d_14.x > 1e-6)) {
         float _e50 = exit;
-        exit = min(_e50, ((cell_m - inside.x) / d_13.x));
+        exit = min(_e50, ((cell_m - inside.x) / d_14.x));
     } else {
-        if ((d_13.x < -1e-6)) {
+        if ((d_14.x < -1e-6)) {
             float _e59 = exit;
-            exit = min(_e59, (inside.x / -(d_13.x)));
+            exit = min(_e59, (inside.x / -(d_14.x)));
         }
     }
-    if ((d_13.z > 1e-6)) {
+    if ((d_14.z > 1e-6)) {
         float _e68 = exit;
-        exit = min(_e68, ((cell_m - inside.y) / d_13.z));
+        exit = min(_e68, ((cell_m - inside.y) / d_14.z));
     } else {
-        if ((d_13.z < -1e-6)) {
+        if ((d_14.z < -1e-6)) {
             float _e77 = exit;
-            exit = min(_e77, (inside.y / -(d_13.z)));
+            exit = min(_e77, (inside.y / -(d_14.z)));
         }
     }
     float _e83 = exit;
@@ -1424,13 +1548,13 @@ float empty_cell_exit(vec3 p_9, vec3 d_13) {
 }
 
 void count(uint index_1, uint value) {
-    bool local_33 = false;
+    bool local_37 = false;
     if (STATS) {
-        local_33 = (value != 0u);
+        local_37 = (value != 0u);
     } else {
-        local_33 = false;
+        local_37 = false;
     }
-    bool _e8 = local_33;
+    bool _e8 = local_37;
     if (_e8) {
         uint _e12 = atomicAdd(_group_0_binding_8_cs.counters[index_1], value);
         return;
@@ -1452,8 +1576,8 @@ vec3 step_integral(vec3 source, float sigma_t, float dt) {
 float start_offset(uvec2 pixel_3) {
     uint _e4 = _group_0_binding_0_cs.modes.w;
     bool jitter_1 = ((_e4 & FLAG_JITTER) != 0u);
-    uint k_15 = _group_0_binding_0_cs.temporal.x;
-    if ((k_15 <= 1u)) {
+    uint k_16 = _group_0_binding_0_cs.temporal.x;
+    if ((k_16 <= 1u)) {
         uint _e18 = _group_0_binding_0_cs.misc.y;
         float _e19 = hash_unit(pixel_3, _e18);
         return (jitter_1 ? _e19 : 0.5);
@@ -1461,16 +1585,16 @@ float start_offset(uvec2 pixel_3) {
     float _e23 = hash_unit(pixel_3, 0u);
     float base_2 = (jitter_1 ? _e23 : 0.5);
     uint _e29 = _group_0_binding_0_cs.misc.y;
-    float _e32 = van_der_corput((_e29 / (k_15 * k_15)));
+    float _e32 = van_der_corput((_e29 / (k_16 * k_16)));
     return fract((base_2 + _e32));
 }
 
-bool march_layer(vec3 view_2, Interval span_1, Layer l_7, float jitter, inout MarchState state, inout Counters counters_7) {
+bool march_layer(vec3 view_2, Interval span_1, Layer l_10, float jitter, inout MarchState state, inout Counters counters_10) {
     uint steps_1 = 0u;
-    uint i_13 = 0u;
+    uint i_14 = 0u;
     uint stride = 1u;
     uint empty = 0u;
-    bool local_34 = false;
+    bool local_38 = false;
     float cam_alt = _group_0_binding_0_cs.camera_position.y;
     vec4 _e12 = _group_0_binding_0_cs.camera_position;
     vec2 cam_xz = _e12.xz;
@@ -1491,67 +1615,67 @@ bool march_layer(vec3 view_2, Interval span_1, Layer l_7, float jitter, inout Ma
     uint _e60 = _group_0_binding_0_cs.modes.w;
     bool empty_skip = ((_e60 & FLAG_EMPTY_SKIP) != 0u);
     while(true) {
-        uint _e71 = i_13;
+        uint _e71 = i_14;
         uint _e72 = steps_1;
         if ((_e71 >= _e72)) {
             break;
         }
-        uint _e75 = counters_7.view_steps;
-        counters_7.view_steps = (_e75 + 1u);
-        uint _e79 = i_13;
+        uint _e75 = counters_10.view_steps;
+        counters_10.view_steps = (_e75 + 1u);
+        uint _e79 = i_14;
         float t_6 = (span_1.start + ((float(_e79) + jitter) * dt_1));
-        vec3 rel_10 = ((view_2 * t_6) + vec3(0.0, cam_alt, 0.0));
-        vec3 p_13 = vec3((rel_10.x + cam_xz.x), rel_10.y, (rel_10.z + cam_xz.y));
+        vec3 rel_12 = ((view_2 * t_6) + vec3(0.0, cam_alt, 0.0));
+        vec3 p_16 = vec3((rel_12.x + cam_xz.x), rel_12.y, (rel_12.z + cam_xz.y));
         if (empty_skip) {
-            float _e97 = empty_cell_exit(p_13, view_2);
+            float _e97 = empty_cell_exit(p_16, view_2);
             if ((_e97 > 0.0)) {
                 uint _e106 = steps_1;
                 uint next_1 = uint(clamp(ceil(((((t_6 + _e97) - span_1.start) / dt_1) - jitter)), 0.0, float(_e106)));
-                uint _e111 = i_13;
-                i_13 = max((_e111 + 1u), next_1);
+                uint _e111 = i_14;
+                i_14 = max((_e111 + 1u), next_1);
                 continue;
             }
         }
-        float _e115 = altitude_of(rel_10);
-        float _e116 = layer_density(p_13, _e115, l_7, counters_7);
+        float _e115 = altitude_of(rel_12);
+        float _e116 = layer_density(p_16, _e115, l_10, counters_10);
         if ((_e116 <= 0.0)) {
             uint _e119 = empty;
             empty = (_e119 + 1u);
             if (dynamic_step) {
                 uint _e124 = empty;
-                local_34 = (_e124 >= 8u);
+                local_38 = (_e124 >= 8u);
             } else {
-                local_34 = false;
+                local_38 = false;
             }
-            bool _e128 = local_34;
+            bool _e128 = local_38;
             if (_e128) {
                 stride = 2u;
             }
-            uint _e130 = i_13;
+            uint _e130 = i_14;
             uint _e131 = stride;
-            i_13 = (_e130 + _e131);
+            i_14 = (_e130 + _e131);
             continue;
         }
         uint _e133 = stride;
         if ((_e133 > 1u)) {
-            uint _e136 = i_13;
+            uint _e136 = i_14;
             uint _e137 = stride;
-            i_13 = (_e136 - (_e137 - 1u));
+            i_14 = (_e136 - (_e137 - 1u));
             stride = 1u;
             empty = 0u;
             continue;
         }
         empty = 0u;
-        float sigma_t_2 = (sigma_e * _e116);
-        ScatteredLight _e145 = scattered_light(rel_10, p_13, _e115, _e116, view_2, l_7, counters_7);
+        float sigma_t_3 = (sigma_e * _e116);
+        ScatteredLight _e145 = scattered_light(rel_12, p_16, _e115, _e116, view_2, l_10, counters_10);
         float transmittance_2 = state.transmittance;
         vec3 _e149 = state.radiance;
-        vec3 _e151 = step_integral(_e145.total, sigma_t_2, dt_1);
+        vec3 _e151 = step_integral(_e145.total, sigma_t_3, dt_1);
         state.radiance = (_e149 + (transmittance_2 * _e151));
         vec3 _e155 = state.octaves;
-        vec3 _e157 = step_integral(_e145.octaves, sigma_t_2, dt_1);
+        vec3 _e157 = step_integral(_e145.octaves, sigma_t_3, dt_1);
         state.octaves = (_e155 + (transmittance_2 * _e157));
-        float step_t = exp((-(sigma_t_2) * dt_1));
+        float step_t = exp((-(sigma_t_3) * dt_1));
         float _e164 = state.depth_sum;
         state.depth_sum = (_e164 + ((t_6 * transmittance_2) * (1.0 - step_t)));
         state.transmittance = (transmittance_2 * step_t);
@@ -1560,14 +1684,14 @@ bool march_layer(vec3 view_2, Interval span_1, Layer l_7, float jitter, inout Ma
         if ((_e173 < _e177)) {
             return true;
         }
-        uint _e180 = i_13;
-        i_13 = (_e180 + 1u);
+        uint _e180 = i_14;
+        i_14 = (_e180 + 1u);
     }
     return false;
 }
 
 MarchResult march_pixel(uvec2 pixel_4) {
-    Counters counters_8 = Counters(0u, 0u, 0u, 0u);
+    Counters counters_11 = Counters(0u, 0u, 0u, 0u);
     MarchState state_1 = MarchState(vec3(0.0), 1.0, 0.0, vec3(0.0));
     bool marched = false;
     bool ground_1 = false;
@@ -1577,26 +1701,26 @@ MarchResult march_pixel(uvec2 pixel_4) {
     uint k_6 = 0u;
     uint next = 0u;
     Interval span_2 = Interval(0.0, 0.0, 0u);
-    uint i_14 = 0u;
-    bool local_35 = false;
-    bool local_36 = false;
-    bool local_37 = false;
-    bool local_38 = false;
+    uint i_15 = 0u;
     bool local_39 = false;
     bool local_40 = false;
+    bool local_41 = false;
+    bool local_42 = false;
+    bool local_43 = false;
+    bool local_44 = false;
     float depth_1 = 0.0;
     vec3 _e1 = view_ray(pixel_4);
     float cam_alt_1 = _group_0_binding_0_cs.camera_position.y;
     count(STAT_PIXELS, 1u);
     float _e22 = start_offset(pixel_4);
     uint _e23 = layer_count();
-    bool loop_init_7 = true;
+    bool loop_init_8 = true;
     while(true) {
-        if (!loop_init_7) {
+        if (!loop_init_8) {
             uint _e121 = k_6;
             k_6 = (_e121 + 1u);
         }
-        loop_init_7 = false;
+        loop_init_8 = false;
         uint _e36 = k_6;
         if ((_e36 < _e23)) {
         } else {
@@ -1605,69 +1729,69 @@ MarchResult march_pixel(uvec2 pixel_4) {
         {
             next = NO_LAYER;
             span_2 = Interval(0.0, 0.0, 1u);
-            i_14 = 0u;
-            bool loop_init_8 = true;
+            i_15 = 0u;
+            bool loop_init_9 = true;
             while(true) {
-                if (!loop_init_8) {
-                    uint _e104 = i_14;
-                    i_14 = (_e104 + 1u);
+                if (!loop_init_9) {
+                    uint _e104 = i_15;
+                    i_15 = (_e104 + 1u);
                 }
-                loop_init_8 = false;
-                uint _e47 = i_14;
+                loop_init_9 = false;
+                uint _e47 = i_15;
                 if ((_e47 < _e23)) {
                 } else {
                     break;
                 }
                 {
-                    uint _e49 = i_14;
+                    uint _e49 = i_15;
                     Layer _e50 = cloud_layer(_e49);
                     Interval _e51 = layer_interval(cam_alt_1, _e1, _e50);
                     bool _e52 = ground_1;
                     if (!(_e52)) {
-                        local_35 = (_e51.kind == RAY_HITS_GROUND);
+                        local_39 = (_e51.kind == RAY_HITS_GROUND);
                     } else {
-                        local_35 = true;
+                        local_39 = true;
                     }
-                    bool _e60 = local_35;
+                    bool _e60 = local_39;
                     ground_1 = _e60;
                     float _e62 = last_start;
                     if (!((_e51.start > _e62))) {
                         float _e68 = last_start;
                         if ((_e51.start == _e68)) {
-                            uint _e72 = i_14;
+                            uint _e72 = i_15;
                             uint _e73 = last_index;
-                            local_37 = (_e72 > _e73);
+                            local_41 = (_e72 > _e73);
                         } else {
-                            local_37 = false;
+                            local_41 = false;
                         }
-                        bool _e76 = local_37;
-                        local_36 = _e76;
+                        bool _e76 = local_41;
+                        local_40 = _e76;
                     } else {
-                        local_36 = true;
+                        local_40 = true;
                     }
-                    bool after = local_36;
+                    bool after = local_40;
                     if ((_e51.kind == RAY_MARCH)) {
-                        local_38 = after;
+                        local_42 = after;
                     } else {
-                        local_38 = false;
+                        local_42 = false;
                     }
-                    bool _e85 = local_38;
+                    bool _e85 = local_42;
                     if (_e85) {
                         uint _e88 = next;
                         if (!((_e88 == NO_LAYER))) {
                             float _e96 = span_2.start;
-                            local_40 = (_e51.start < _e96);
+                            local_44 = (_e51.start < _e96);
                         } else {
-                            local_40 = true;
+                            local_44 = true;
                         }
-                        bool _e99 = local_40;
-                        local_39 = _e99;
+                        bool _e99 = local_44;
+                        local_43 = _e99;
                     } else {
-                        local_39 = false;
+                        local_43 = false;
                     }
-                    bool _e101 = local_39;
+                    bool _e101 = local_43;
                     if (_e101) {
-                        uint _e102 = i_14;
+                        uint _e102 = i_15;
                         next = _e102;
                         span_2 = _e51;
                     }
@@ -1685,7 +1809,7 @@ MarchResult march_pixel(uvec2 pixel_4) {
             Interval _e113 = span_2;
             uint _e114 = next;
             Layer _e115 = cloud_layer(_e114);
-            bool _e116 = march_layer(_e1, _e113, _e115, _e22, state_1, counters_8);
+            bool _e116 = march_layer(_e1, _e113, _e115, _e22, state_1, counters_11);
             if (_e116) {
                 count(STAT_EXIT_TRANSMITTANCE, 1u);
                 exited = true;
@@ -1704,13 +1828,13 @@ MarchResult march_pixel(uvec2 pixel_4) {
             count(STAT_EXIT_MISSED, 1u);
         }
     }
-    uint _e133 = counters_8.view_steps;
+    uint _e133 = counters_11.view_steps;
     count(STAT_VIEW_STEPS, _e133);
-    uint _e136 = counters_8.density;
+    uint _e136 = counters_11.density;
     count(STAT_DENSITY, _e136);
-    uint _e139 = counters_8.detail;
+    uint _e139 = counters_11.detail;
     count(STAT_DETAIL, _e139);
-    uint _e142 = counters_8.light;
+    uint _e142 = counters_11.light;
     count(STAT_LIGHT, _e142);
     float _e146 = state_1.transmittance;
     if ((_e146 < 1.0)) {
@@ -1750,36 +1874,36 @@ uvec2 block_offset(uint f, uint k_7) {
 }
 
 vec2 reproject(uvec2 pixel_5, float depth_2) {
-    bool local_41 = false;
-    bool local_42 = false;
-    bool local_43 = false;
+    bool local_45 = false;
+    bool local_46 = false;
+    bool local_47 = false;
     vec3 dir = vec3(0.0);
     vec4 _e4 = _group_0_binding_0_cs.previous_position;
     vec4 _e7 = _group_0_binding_0_cs.camera_position;
     if (all(equal(_e4, _e7))) {
         vec4 _e14 = _group_0_binding_0_cs.previous_forward;
         vec4 _e17 = _group_0_binding_0_cs.camera_forward;
-        local_41 = all(equal(_e14, _e17));
+        local_45 = all(equal(_e14, _e17));
     } else {
-        local_41 = false;
+        local_45 = false;
     }
-    bool _e21 = local_41;
+    bool _e21 = local_45;
     if (_e21) {
         vec4 _e26 = _group_0_binding_0_cs.previous_right;
         vec4 _e29 = _group_0_binding_0_cs.camera_right;
-        local_42 = all(equal(_e26, _e29));
+        local_46 = all(equal(_e26, _e29));
     } else {
-        local_42 = false;
+        local_46 = false;
     }
-    bool _e33 = local_42;
+    bool _e33 = local_46;
     if (_e33) {
         vec4 _e38 = _group_0_binding_0_cs.previous_up;
         vec4 _e41 = _group_0_binding_0_cs.camera_up;
-        local_43 = all(equal(_e38, _e41));
+        local_47 = all(equal(_e38, _e41));
     } else {
-        local_43 = false;
+        local_47 = false;
     }
-    bool same = local_43;
+    bool same = local_47;
     if (same) {
         return vec2(pixel_5);
     }
@@ -1808,15 +1932,15 @@ vec2 reproject(uvec2 pixel_5, float depth_2) {
 }
 
 bool on_screen(vec2 q) {
-    bool local_44 = false;
+    bool local_48 = false;
     uvec4 _e3 = _group_0_binding_0_cs.counts;
     vec2 size_3 = vec2(_e3.xy);
     if (all(greaterThanEqual(q, vec2(-0.5)))) {
-        local_44 = all(lessThanEqual(q, (size_3 - vec2(0.5))));
+        local_48 = all(lessThanEqual(q, (size_3 - vec2(0.5))));
     } else {
-        local_44 = false;
+        local_48 = false;
     }
-    bool _e18 = local_44;
+    bool _e18 = local_48;
     return _e18;
 }
 
@@ -1825,16 +1949,16 @@ vec4 catmull_rom(float t_1) {
 }
 
 bool in_blocks(uvec2 id_19) {
-    uint k_16 = _group_0_binding_0_cs.temporal.x;
+    uint k_17 = _group_0_binding_0_cs.temporal.x;
     uvec4 _e7 = _group_0_binding_0_cs.counts;
-    return all(lessThan(id_19, (((_e7.xy + uvec2(k_16)) - uvec2(1u)) / uvec2(k_16))));
+    return all(lessThan(id_19, (((_e7.xy + uvec2(k_17)) - uvec2(1u)) / uvec2(k_17))));
 }
 
 uvec2 sparse_pixel(uvec2 id_20) {
-    uint k_17 = _group_0_binding_0_cs.temporal.x;
+    uint k_18 = _group_0_binding_0_cs.temporal.x;
     uint _e9 = _group_0_binding_0_cs.misc.y;
-    uvec2 _e10 = block_offset(_e9, k_17);
-    return ((id_20 * k_17) + _e10);
+    uvec2 _e10 = block_offset(_e9, k_18);
+    return ((id_20 * k_18) + _e10);
 }
 
 void store_sparse(uvec2 id_21, MarchResult r_13) {
@@ -1853,8 +1977,8 @@ uint rng_seed(uvec2 pixel_6, uint path_index) {
 float rng_next(inout uint rng_1) {
     uint _e1 = rng_1;
     rng_1 = ((_e1 * 747796405u) + 2891336453u);
-    uint s_9 = rng_1;
-    uint word_1 = (((s_9 >> ((s_9 >> 28u) + 4u)) ^ s_9) * 277803737u);
+    uint s_10 = rng_1;
+    uint word_1 = (((s_10 >> ((s_10 >> 28u) + 4u)) ^ s_10) * 277803737u);
     return (float((((word_1 >> 22u) ^ word_1) >> 8u)) * 5.9604645e-8);
 }
 
@@ -1863,44 +1987,44 @@ float rng_exponential(inout uint rng_2, float sigma) {
     return (-(log((1.0 - _e2))) / sigma);
 }
 
-Segments layer_segments(vec3 p_10, float alt_13, vec3 d_14) {
+Segments layer_segments(vec3 p_13, float alt_14, vec3 d_15) {
     Segments s_1 = Segments(vec2(0.0), vec2(0.0), 0u);
-    bool local_45 = false;
+    bool local_49 = false;
     vec2 a_1 = vec2(0.0);
     vec2 b_1 = vec2(0.0);
     uint n_2 = 0u;
-    bool local_46 = false;
-    bool local_47 = false;
-    bool local_48 = false;
-    bool local_49 = false;
+    bool local_50 = false;
+    bool local_51 = false;
+    bool local_52 = false;
+    bool local_53 = false;
     vec2 _e10 = layers_span();
     float bottom_2 = _e10.x;
-    Roots _e12 = ray_shell_from(p_10, alt_13, d_14, bottom_2);
-    Roots _e14 = ray_shell_from(p_10, alt_13, d_14, _e10.y);
-    bool _e15 = hits_ground(p_10, alt_13, d_14);
+    Roots _e12 = ray_shell_from(p_13, alt_14, d_15, bottom_2);
+    Roots _e14 = ray_shell_from(p_13, alt_14, d_15, _e10.y);
+    bool _e15 = hits_ground(p_13, alt_14, d_15);
     if (!(!(_e14.hit))) {
-        local_45 = (_e14.t1_ <= 0.0);
+        local_49 = (_e14.t1_ <= 0.0);
     } else {
-        local_45 = true;
+        local_49 = true;
     }
-    bool _e25 = local_45;
+    bool _e25 = local_49;
     if (_e25) {
         Segments _e26 = s_1;
         return _e26;
     }
     float entry = max(_e14.t0_, 0.0);
     if (_e12.hit) {
-        local_46 = (_e12.t0_ > 0.0);
+        local_50 = (_e12.t0_ > 0.0);
     } else {
-        local_46 = false;
+        local_50 = false;
     }
-    bool _e45 = local_46;
+    bool _e45 = local_50;
     if (_e45) {
-        local_47 = (alt_13 >= bottom_2);
+        local_51 = (alt_14 >= bottom_2);
     } else {
-        local_47 = false;
+        local_51 = false;
     }
-    bool _e50 = local_47;
+    bool _e50 = local_51;
     if (_e50) {
         uint _e51 = n_2;
         a_1[_e51] = entry;
@@ -1909,11 +2033,11 @@ Segments layer_segments(vec3 p_10, float alt_13, vec3 d_14) {
         uint _e56 = n_2;
         n_2 = (_e56 + uint((_e12.t0_ > entry)));
         if (!(_e15)) {
-            local_48 = (_e14.t1_ > _e12.t1_);
+            local_52 = (_e14.t1_ > _e12.t1_);
         } else {
-            local_48 = false;
+            local_52 = false;
         }
-        bool _e68 = local_48;
+        bool _e68 = local_52;
         if (_e68) {
             uint _e69 = n_2;
             a_1[_e69] = max(_e12.t1_, entry);
@@ -1923,13 +2047,13 @@ Segments layer_segments(vec3 p_10, float alt_13, vec3 d_14) {
             n_2 = (_e76 + 1u);
         }
     } else {
-        if ((alt_13 < bottom_2)) {
+        if ((alt_14 < bottom_2)) {
             if (!(_e15)) {
-                local_49 = _e12.hit;
+                local_53 = _e12.hit;
             } else {
-                local_49 = false;
+                local_53 = false;
             }
-            bool _e85 = local_49;
+            bool _e85 = local_53;
             if (_e85) {
                 a_1.x = max(_e12.t1_, 0.0);
                 b_1.x = _e14.t1_;
@@ -1951,12 +2075,12 @@ Segments layer_segments(vec3 p_10, float alt_13, vec3 d_14) {
     return _e103;
 }
 
-float density_at(vec3 rel_8, inout Counters counters_9) {
+float density_at(vec3 rel_10, inout Counters counters_12) {
     float _e6 = _group_0_binding_0_cs.camera_position.x;
     float _e13 = _group_0_binding_0_cs.camera_position.z;
-    vec3 p_14 = vec3((rel_8.x + _e6), rel_8.y, (rel_8.z + _e13));
-    float _e16 = altitude_of(rel_8);
-    float _e17 = cloud_density(p_14, _e16, counters_9);
+    vec3 p_17 = vec3((rel_10.x + _e6), rel_10.y, (rel_10.z + _e13));
+    float _e16 = altitude_of(rel_10);
+    float _e17 = cloud_density(p_17, _e16, counters_12);
     return _e17;
 }
 
@@ -1965,11 +2089,11 @@ float empty_cell_skip(vec3 origin_4, vec3 dir_1, float t_2) {
     if ((_e3 > 1u)) {
         return 0.0;
     }
-    vec3 rel_11 = (origin_4 + (dir_1 * t_2));
+    vec3 rel_13 = (origin_4 + (dir_1 * t_2));
     float _e13 = _group_0_binding_0_cs.camera_position.x;
     float _e20 = _group_0_binding_0_cs.camera_position.z;
-    vec3 p_15 = vec3((rel_11.x + _e13), rel_11.y, (rel_11.z + _e20));
-    float _e23 = empty_cell_exit(p_15, dir_1);
+    vec3 p_18 = vec3((rel_13.x + _e13), rel_13.y, (rel_13.z + _e20));
+    float _e23 = empty_cell_exit(p_18, dir_1);
     if ((_e23 <= 0.0)) {
         return 0.0;
     }
@@ -1978,22 +2102,22 @@ float empty_cell_skip(vec3 origin_4, vec3 dir_1, float t_2) {
 
 float density_max() {
     float m_1 = 0.0;
-    uint i_15 = 0u;
-    bool loop_init_9 = true;
+    uint i_16 = 0u;
+    bool loop_init_10 = true;
     while(true) {
-        if (!loop_init_9) {
-            uint _e17 = i_15;
-            i_15 = (_e17 + 1u);
+        if (!loop_init_10) {
+            uint _e17 = i_16;
+            i_16 = (_e17 + 1u);
         }
-        loop_init_9 = false;
-        uint _e4 = i_15;
+        loop_init_10 = false;
+        uint _e4 = i_16;
         uint _e5 = layer_count();
         if ((_e4 < _e5)) {
         } else {
             break;
         }
         {
-            uint _e7 = i_15;
+            uint _e7 = i_16;
             Layer _e8 = cloud_layer(_e7);
             float _e9 = m_1;
             m_1 = max(_e9, (_e8.density * (1.0 + _e8.precipitation)));
@@ -2003,7 +2127,7 @@ float density_max() {
     return clamp(_e19, 0.0, 1.0);
 }
 
-float free_flight(vec3 origin_5, vec3 dir_2, Segments segs, inout uint rng_3, inout Counters counters_10) {
+float free_flight(vec3 origin_5, vec3 dir_2, Segments segs, inout uint rng_3, inout Counters counters_13) {
     uint k_8 = 0u;
     float t_3 = 0.0;
     float _e5 = density_max();
@@ -2013,13 +2137,13 @@ float free_flight(vec3 origin_5, vec3 dir_2, Segments segs, inout uint rng_3, in
     if ((majorant <= 0.0)) {
         return -1.0;
     }
-    bool loop_init_10 = true;
+    bool loop_init_11 = true;
     while(true) {
-        if (!loop_init_10) {
+        if (!loop_init_11) {
             uint _e60 = k_8;
             k_8 = (_e60 + 1u);
         }
-        loop_init_10 = false;
+        loop_init_11 = false;
         uint _e21 = k_8;
         if ((_e21 < segs.count)) {
         } else {
@@ -2049,10 +2173,10 @@ float free_flight(vec3 origin_5, vec3 dir_2, Segments segs, inout uint rng_3, in
                 if ((_e42 >= segs.b[_e44])) {
                     break;
                 }
-                uint _e48 = counters_10.view_steps;
-                counters_10.view_steps = (_e48 + 1u);
+                uint _e48 = counters_13.view_steps;
+                counters_13.view_steps = (_e48 + 1u);
                 float _e51 = t_3;
-                float _e54 = density_at((origin_5 + (dir_2 * _e51)), counters_10);
+                float _e54 = density_at((origin_5 + (dir_2 * _e51)), counters_13);
                 float _e55 = rng_next(rng_3);
                 if (((_e55 * _e5) < _e54)) {
                     float _e58 = t_3;
@@ -2064,25 +2188,25 @@ float free_flight(vec3 origin_5, vec3 dir_2, Segments segs, inout uint rng_3, in
     return -1.0;
 }
 
-float transmittance_along(vec3 origin_6, vec3 dir_3, Segments segs_1, inout uint rng_4, inout Counters counters_11) {
+float transmittance_along(vec3 origin_6, vec3 dir_3, Segments segs_1, inout uint rng_4, inout Counters counters_14) {
     float tr = 1.0;
     uint k_9 = 0u;
     float t_4 = 0.0;
     float _e8 = _group_0_binding_0_cs.extinction.x;
     float _e12 = _group_0_binding_0_cs.extinction.y;
-    float sigma_t_3 = (_e8 + _e12);
+    float sigma_t_4 = (_e8 + _e12);
     float _e14 = density_max();
-    float majorant_1 = (sigma_t_3 * _e14);
+    float majorant_1 = (sigma_t_4 * _e14);
     if ((majorant_1 <= 0.0)) {
         return 1.0;
     }
-    bool loop_init_11 = true;
+    bool loop_init_12 = true;
     while(true) {
-        if (!loop_init_11) {
+        if (!loop_init_12) {
             uint _e78 = k_9;
             k_9 = (_e78 + 1u);
         }
-        loop_init_11 = false;
+        loop_init_12 = false;
         uint _e23 = k_9;
         if ((_e23 < segs_1.count)) {
         } else {
@@ -2112,12 +2236,12 @@ float transmittance_along(vec3 origin_6, vec3 dir_3, Segments segs_1, inout uint
                 if ((_e44 >= segs_1.b[_e46])) {
                     break;
                 }
-                uint _e50 = counters_11.light;
-                counters_11.light = (_e50 + 1u);
+                uint _e50 = counters_14.light;
+                counters_14.light = (_e50 + 1u);
                 float _e53 = t_4;
-                float _e56 = density_at((origin_6 + (dir_3 * _e53)), counters_11);
+                float _e56 = density_at((origin_6 + (dir_3 * _e53)), counters_14);
                 float _e57 = tr;
-                tr = (_e57 * (1.0 - ((sigma_t_3 * _e56) / majorant_1)));
+                tr = (_e57 * (1.0 - ((sigma_t_4 * _e56) / majorant_1)));
                 float _e63 = tr;
                 if ((_e63 <= 0.0)) {
                     return 0.0;
@@ -2142,8 +2266,8 @@ float sample_hg_cos(float g_4, float u) {
     if ((abs(g_4) < 0.0001)) {
         return (1.0 - (2.0 * u));
     }
-    float s_10 = ((1.0 - (g_4 * g_4)) / ((1.0 - g_4) + ((2.0 * g_4) * u)));
-    return clamp((((1.0 + (g_4 * g_4)) - (s_10 * s_10)) / (2.0 * g_4)), -1.0, 1.0);
+    float s_11 = ((1.0 - (g_4 * g_4)) / ((1.0 - g_4) + ((2.0 * g_4) * u)));
+    return clamp((((1.0 + (g_4 * g_4)) - (s_11 * s_11)) / (2.0 * g_4)), -1.0, 1.0);
 }
 
 PhaseSample sample_phase(vec3 dir_4, inout uint rng_5) {
@@ -2196,35 +2320,35 @@ PhaseSample sample_phase(vec3 dir_4, inout uint rng_5) {
 }
 
 bool camera_still() {
-    bool local_54 = false;
-    bool local_55 = false;
-    bool local_56 = false;
+    bool local_58 = false;
+    bool local_59 = false;
+    bool local_60 = false;
     vec4 _e2 = _group_0_binding_0_cs.camera_position;
     vec4 _e5 = _group_0_binding_0_cs.previous_position;
     if (all(equal(_e2, _e5))) {
         vec4 _e12 = _group_0_binding_0_cs.camera_forward;
         vec4 _e15 = _group_0_binding_0_cs.previous_forward;
-        local_54 = all(equal(_e12, _e15));
+        local_58 = all(equal(_e12, _e15));
     } else {
-        local_54 = false;
+        local_58 = false;
     }
-    bool _e19 = local_54;
+    bool _e19 = local_58;
     if (_e19) {
         vec4 _e24 = _group_0_binding_0_cs.camera_right;
         vec4 _e28 = _group_0_binding_0_cs.previous_right;
-        local_55 = all(equal(_e24.xyz, _e28.xyz));
+        local_59 = all(equal(_e24.xyz, _e28.xyz));
     } else {
-        local_55 = false;
+        local_59 = false;
     }
-    bool _e33 = local_55;
+    bool _e33 = local_59;
     if (_e33) {
         vec4 _e38 = _group_0_binding_0_cs.camera_up;
         vec4 _e42 = _group_0_binding_0_cs.previous_up;
-        local_56 = all(equal(_e38.xyz, _e42.xyz));
+        local_60 = all(equal(_e38.xyz, _e42.xyz));
     } else {
-        local_56 = false;
+        local_60 = false;
     }
-    bool _e47 = local_56;
+    bool _e47 = local_60;
     return _e47;
 }
 
@@ -2232,61 +2356,61 @@ float luminance(vec3 c_3) {
     return dot(c_3, vec3(0.2126, 0.7152, 0.0722));
 }
 
-float basic_sun_depth(vec3 rel_9, float alt_14, inout Counters counters_13) {
-    float tau_8 = 0.0;
-    uint i_16 = 1u;
+float basic_sun_depth(vec3 rel_11, float alt_15, inout Counters counters_16) {
+    float tau_10 = 0.0;
+    uint i_17 = 1u;
     uint steps_4 = _group_0_binding_0_cs.counts.w;
     if ((steps_4 == 0u)) {
         return 0.0;
     }
     vec4 _e12 = _group_0_binding_0_cs.sun_direction;
-    vec3 sun_5 = _e12.xyz;
+    vec3 sun_6 = _e12.xyz;
     float rp_5 = _group_0_binding_0_cs.atmosphere.x;
     float top_2 = _group_0_binding_0_cs.atmosphere.z;
     float _e25 = _group_0_binding_0_cs.atmosphere.y;
     float thickness = (top_2 - _e25);
-    Roots _e39 = solve_sphere(dot(sun_5, vec3(rel_9.x, (rel_9.y + rp_5), rel_9.z)), ((alt_14 - top_2) * ((alt_14 + top_2) + (2.0 * rp_5))));
+    Roots _e39 = solve_sphere(dot(sun_6, vec3(rel_11.x, (rel_11.y + rp_5), rel_11.z)), ((alt_15 - top_2) * ((alt_15 + top_2) + (2.0 * rp_5))));
     float length_ = min(max(_e39.t1_, 0.0), (3.0 * thickness));
     float dt_2 = (length_ / float(steps_4));
     float _e51 = _group_0_binding_0_cs.extinction.x;
     float _e55 = _group_0_binding_0_cs.extinction.y;
-    float sigma_t_4 = (_e51 + _e55);
+    float sigma_t_5 = (_e51 + _e55);
     vec4 _e59 = _group_0_binding_0_cs.camera_position;
     vec2 cam_xz_1 = _e59.xz;
-    bool loop_init_12 = true;
+    bool loop_init_13 = true;
     while(true) {
-        if (!loop_init_12) {
-            uint _e90 = i_16;
-            i_16 = (_e90 + 1u);
+        if (!loop_init_13) {
+            uint _e90 = i_17;
+            i_17 = (_e90 + 1u);
         }
-        loop_init_12 = false;
-        uint _e65 = i_16;
+        loop_init_13 = false;
+        uint _e65 = i_17;
         if ((_e65 <= steps_4)) {
         } else {
             break;
         }
         {
-            uint _e68 = counters_13.light;
-            counters_13.light = (_e68 + 1u);
-            uint _e71 = i_16;
-            vec3 q_9 = (rel_9 + (sun_5 * (float(_e71) * dt_2)));
-            vec3 p_16 = vec3((q_9.x + cam_xz_1.x), q_9.y, (q_9.z + cam_xz_1.y));
-            float _e84 = tau_8;
+            uint _e68 = counters_16.light;
+            counters_16.light = (_e68 + 1u);
+            uint _e71 = i_17;
+            vec3 q_9 = (rel_11 + (sun_6 * (float(_e71) * dt_2)));
+            vec3 p_19 = vec3((q_9.x + cam_xz_1.x), q_9.y, (q_9.z + cam_xz_1.y));
+            float _e84 = tau_10;
             float _e85 = altitude_of(q_9);
-            float _e86 = cloud_density(p_16, _e85, counters_13);
-            tau_8 = (_e84 + ((sigma_t_4 * _e86) * dt_2));
+            float _e86 = cloud_density(p_19, _e85, counters_16);
+            tau_10 = (_e84 + ((sigma_t_5 * _e86) * dt_2));
         }
     }
-    float _e93 = tau_8;
+    float _e93 = tau_10;
     return _e93;
 }
 
 MarchResult basic_pixel(uvec2 pixel_7) {
-    Counters counters_14 = Counters(0u, 0u, 0u, 0u);
+    Counters counters_17 = Counters(0u, 0u, 0u, 0u);
     vec3 radiance_2 = vec3(0.0);
     float transmittance_1 = 1.0;
     float depth_sum = 0.0;
-    uint i_17 = 0u;
+    uint i_18 = 0u;
     float depth_3 = 0.0;
     vec3 _e1 = view_ray(pixel_7);
     float cam_alt_2 = _group_0_binding_0_cs.camera_position.y;
@@ -2305,42 +2429,42 @@ MarchResult basic_pixel(uvec2 pixel_7) {
             float dt_3 = (_e25.length_ / float(steps_5));
             float sigma_s = _group_0_binding_0_cs.extinction.x;
             float _e52 = _group_0_binding_0_cs.extinction.y;
-            float sigma_t_5 = (sigma_s + _e52);
+            float sigma_t_6 = (sigma_s + _e52);
             vec4 _e56 = _group_0_binding_0_cs.sun_illuminance;
             vec4 _e60 = _group_0_binding_0_cs.sun_direction;
             float _e66 = _group_0_binding_0_cs.phase.x;
             float _e67 = phase_hg(dot(_e1, _e60.xyz), _e66);
             vec3 sun_phase = (_e56.xyz * _e67);
-            bool loop_init_13 = true;
+            bool loop_init_14 = true;
             while(true) {
-                if (!loop_init_13) {
-                    uint _e131 = i_17;
-                    i_17 = (_e131 + 1u);
+                if (!loop_init_14) {
+                    uint _e131 = i_18;
+                    i_18 = (_e131 + 1u);
                 }
-                loop_init_13 = false;
-                uint _e71 = i_17;
+                loop_init_14 = false;
+                uint _e71 = i_18;
                 if ((_e71 < steps_5)) {
                 } else {
                     break;
                 }
                 {
-                    uint _e74 = counters_14.view_steps;
-                    counters_14.view_steps = (_e74 + 1u);
-                    uint _e78 = i_17;
+                    uint _e74 = counters_17.view_steps;
+                    counters_17.view_steps = (_e74 + 1u);
+                    uint _e78 = i_18;
                     float t_8 = (_e25.start + (float(_e78) * dt_3));
-                    vec3 rel_12 = ((_e1 * t_8) + vec3(0.0, cam_alt_2, 0.0));
-                    vec3 p_17 = vec3((rel_12.x + cam_xz_2.x), rel_12.y, (rel_12.z + cam_xz_2.y));
-                    float _e95 = altitude_of(rel_12);
-                    float _e96 = cloud_density(p_17, _e95, counters_14);
+                    vec3 rel_14 = ((_e1 * t_8) + vec3(0.0, cam_alt_2, 0.0));
+                    vec3 p_20 = vec3((rel_14.x + cam_xz_2.x), rel_14.y, (rel_14.z + cam_xz_2.y));
+                    float _e95 = altitude_of(rel_14);
+                    float _e96 = cloud_density(p_20, _e95, counters_17);
                     if ((_e96 <= 0.0)) {
                         continue;
                     }
-                    float _e99 = basic_sun_depth(rel_12, _e95, counters_14);
+                    float _e99 = basic_sun_depth(rel_14, _e95, counters_17);
                     float beer_powder = ((2.0 * exp(-(_e99))) * (1.0 - exp((-2.0 * _e99))));
                     vec3 _e110 = radiance_2;
                     float _e111 = transmittance_1;
                     radiance_2 = (_e110 + (sun_phase * ((((beer_powder * _e111) * sigma_s) * _e96) * dt_3)));
-                    float step_t_1 = exp(((-(sigma_t_5) * _e96) * dt_3));
+                    float step_t_1 = exp(((-(sigma_t_6) * _e96) * dt_3));
                     float _e122 = depth_sum;
                     float _e123 = transmittance_1;
                     depth_sum = (_e122 + ((t_8 * _e123) * (1.0 - step_t_1)));
@@ -2350,13 +2474,13 @@ MarchResult basic_pixel(uvec2 pixel_7) {
             }
         }
     }
-    uint _e136 = counters_14.view_steps;
+    uint _e136 = counters_17.view_steps;
     count(STAT_VIEW_STEPS, _e136);
-    uint _e139 = counters_14.density;
+    uint _e139 = counters_17.density;
     count(STAT_DENSITY, _e139);
-    uint _e142 = counters_14.detail;
+    uint _e142 = counters_17.detail;
     count(STAT_DETAIL, _e142);
-    uint _e145 = counters_14.light;
+    uint _e145 = counters_17.light;
     count(STAT_LIGHT, _e145);
     float _e148 = transmittance_1;
     if ((_e148 < 1.0)) {
@@ -2376,31 +2500,31 @@ float atlas_hash(uint a_2, uint b_2) {
     return (float((_e4 >> 8u)) * 5.9604645e-8);
 }
 
-float value_noise(vec2 p_11, uint seed) {
-    uvec2 i_19 = uvec2(floor(p_11));
-    vec2 f_4 = fract(p_11);
-    vec2 s_11 = ((f_4 * f_4) * (vec2(3.0) - (2.0 * f_4)));
-    uint h_13 = (seed * 7919u);
-    float _e17 = atlas_hash((i_19.x + h_13), i_19.y);
-    float _e23 = atlas_hash(((i_19.x + 1u) + h_13), i_19.y);
-    float _e29 = atlas_hash((i_19.x + h_13), (i_19.y + 1u));
-    float _e37 = atlas_hash(((i_19.x + 1u) + h_13), (i_19.y + 1u));
-    return mix(mix(_e17, _e23, s_11.x), mix(_e29, _e37, s_11.x), s_11.y);
+float value_noise(vec2 p_14, uint seed) {
+    uvec2 i_20 = uvec2(floor(p_14));
+    vec2 f_4 = fract(p_14);
+    vec2 s_12 = ((f_4 * f_4) * (vec2(3.0) - (2.0 * f_4)));
+    uint h_14 = (seed * 7919u);
+    float _e17 = atlas_hash((i_20.x + h_14), i_20.y);
+    float _e23 = atlas_hash(((i_20.x + 1u) + h_14), i_20.y);
+    float _e29 = atlas_hash((i_20.x + h_14), (i_20.y + 1u));
+    float _e37 = atlas_hash(((i_20.x + 1u) + h_14), (i_20.y + 1u));
+    return mix(mix(_e17, _e23, s_12.x), mix(_e29, _e37, s_12.x), s_12.y);
 }
 
-float value_fbm(vec2 p_12, uint seed_1) {
+float value_fbm(vec2 p_15, uint seed_1) {
     float sum_5 = 0.0;
     float weight = 0.5;
     vec2 q_4 = vec2(0.0);
     uint o = 0u;
-    q_4 = p_12;
-    bool loop_init_14 = true;
+    q_4 = p_15;
+    bool loop_init_15 = true;
     while(true) {
-        if (!loop_init_14) {
+        if (!loop_init_15) {
             uint _e26 = o;
             o = (_e26 + 1u);
         }
-        loop_init_14 = false;
+        loop_init_15 = false;
         uint _e9 = o;
         if ((_e9 < 4u)) {
         } else {
@@ -2425,7 +2549,7 @@ float value_fbm(vec2 p_12, uint seed_1) {
 
 float sprite_texture(uint tile_1, vec2 uv) {
     float billow = 0.0;
-    uint i_18 = 0u;
+    uint i_19 = 0u;
     vec2 at = vec2(0.0);
     float a_3 = 0.0;
     vec2 c_9 = (uv - vec2(0.5));
@@ -2439,35 +2563,35 @@ float sprite_texture(uint tile_1, vec2 uv) {
         return (((mask * streak) * _e46) * 0.8);
     }
     uint blobs = (5u + (tile_1 % 4u));
-    bool loop_init_15 = true;
+    bool loop_init_16 = true;
     while(true) {
-        if (!loop_init_15) {
-            uint _e108 = i_18;
-            i_18 = (_e108 + 1u);
+        if (!loop_init_16) {
+            uint _e108 = i_19;
+            i_19 = (_e108 + 1u);
         }
-        loop_init_15 = false;
-        uint _e58 = i_18;
+        loop_init_16 = false;
+        uint _e58 = i_19;
         if ((_e58 < blobs)) {
         } else {
             break;
         }
         {
-            uint _e61 = i_18;
+            uint _e61 = i_19;
             float _e63 = atlas_hash(tile_1, (2u * _e61));
-            uint _e65 = i_18;
+            uint _e65 = i_19;
             float _e69 = atlas_hash(tile_1, ((2u * _e65) + 1u));
             vec2 centre_1 = (vec2(_e63, _e69) - vec2(0.5));
             at = (vec2(0.5) + (centre_1 * 0.34));
             if ((tile_1 == 4u)) {
                 at.y = (0.5 + ((centre_1.y - 0.5) * 0.24));
             }
-            uint _e91 = i_18;
+            uint _e91 = i_19;
             float _e93 = atlas_hash(tile_1, (100u + _e91));
             float r_17 = (0.14 + (0.1 * _e93));
             vec2 _e98 = at;
-            float d_22 = (length((uv - _e98)) / r_17);
+            float d_24 = (length((uv - _e98)) / r_17);
             float _e102 = billow;
-            float _e106 = saturate((1.0 - (d_22 * d_22)));
+            float _e106 = saturate((1.0 - (d_24 * d_24)));
             billow = max(_e102, _e106);
         }
     }
@@ -2482,31 +2606,31 @@ float sprite_texture(uint tile_1, vec2 uv) {
     return _e130;
 }
 
-vec3 sprite_rel(vec2 xz, float alt_15) {
+vec3 sprite_rel(vec2 xz, float alt_16) {
     float rp_6 = _group_0_binding_0_cs.atmosphere.x;
     vec4 _e8 = _group_0_binding_0_cs.camera_position;
-    vec2 d_23 = (xz - _e8.xz);
-    float k_18 = ((alt_15 * (alt_15 + (2.0 * rp_6))) - dot(d_23, d_23));
-    float y_2 = (k_18 / (rp_6 + sqrt(max(((rp_6 * rp_6) + k_18), 0.0))));
-    return vec3(d_23.x, y_2, d_23.y);
+    vec2 d_25 = (xz - _e8.xz);
+    float k_19 = ((alt_16 * (alt_16 + (2.0 * rp_6))) - dot(d_25, d_25));
+    float y_2 = (k_19 / (rp_6 + sqrt(max(((rp_6 * rp_6) + k_19), 0.0))));
+    return vec3(d_25.x, y_2, d_25.y);
 }
 
 SpriteCell sprite_cell(uint cell) {
     ivec2 start_1 = ivec2(0);
     uint k_10 = 3u;
-    bool local_57 = false;
-    bool local_58 = false;
+    bool local_61 = false;
+    bool local_62 = false;
     uint level_1 = (cell / 64u);
-    ivec2 local_62 = ivec2(int((cell % 8u)), int(((cell / 8u) % 8u)));
+    ivec2 local_66 = ivec2(int((cell % 8u)), int(((cell / 8u) % 8u)));
     vec4 _e15 = _group_0_binding_0_cs.camera_position;
     start_1 = (ivec2(floor((_e15.xz / vec2(12000.0)))) - ivec2(4));
-    bool loop_init_16 = true;
+    bool loop_init_17 = true;
     while(true) {
-        if (!loop_init_16) {
+        if (!loop_init_17) {
             uint _e35 = k_10;
             k_10 = (_e35 - 1u);
         }
-        loop_init_16 = false;
+        loop_init_17 = false;
         uint _e27 = k_10;
         if ((_e27 > level_1)) {
         } else {
@@ -2518,22 +2642,22 @@ SpriteCell sprite_cell(uint cell) {
         }
     }
     if ((level_1 > 0u)) {
-        local_57 = all(greaterThanEqual(local_62, ivec2(2)));
+        local_61 = all(greaterThanEqual(local_66, ivec2(2)));
     } else {
-        local_57 = false;
+        local_61 = false;
     }
-    bool _e47 = local_57;
+    bool _e47 = local_61;
     if (_e47) {
-        local_58 = all(lessThan(local_62, ivec2(6)));
+        local_62 = all(lessThan(local_66, ivec2(6)));
     } else {
-        local_58 = false;
+        local_62 = false;
     }
-    bool covered = local_58;
+    bool covered = local_62;
     ivec2 _e56 = start_1;
-    return SpriteCell((_e56 + local_62), (SPRITE_CELL0_ * float((1u << level_1))), covered);
+    return SpriteCell((_e56 + local_66), (SPRITE_CELL0_ * float((1u << level_1))), covered);
 }
 
-SpriteCandidate sprite_candidate(SpriteCell c_4, uint level, uint s_2, inout Counters counters_15) {
+SpriteCandidate sprite_candidate(SpriteCell c_4, uint level, uint s_2, inout Counters counters_18) {
     float density_3 = 0.0;
     uint _e10 = pcg(level);
     uint _e12 = pcg((uint(c_4.index.y) ^ _e10));
@@ -2549,22 +2673,22 @@ SpriteCandidate sprite_candidate(SpriteCell c_4, uint level, uint s_2, inout Cou
     vec2 xz_2 = ((vec2(c_4.index) + u_1.xy) * c_4.size);
     Layer _e56 = cloud_layer(0u);
     Weather _e57 = sample_weather(vec3(xz_2.x, 0.0, xz_2.y), _e56);
-    float h_14 = (0.04 + (u_1.z * (mix(0.3, 0.95, _e57.cloud_type) - 0.04)));
+    float h_15 = (0.04 + (u_1.z * (mix(0.3, 0.95, _e57.cloud_type) - 0.04)));
     float _e71 = _group_0_binding_0_cs.atmosphere.y;
     float _e75 = _group_0_binding_0_cs.atmosphere.z;
     float _e79 = _group_0_binding_0_cs.atmosphere.y;
-    float alt_17 = (_e71 + (h_14 * (_e75 - _e79)));
+    float alt_18 = (_e71 + (h_15 * (_e75 - _e79)));
     if (!(c_4.covered)) {
-        vec3 _e87 = sprite_rel(xz_2, alt_17);
-        float _e92 = cloud_density(vec3(xz_2.x, _e87.y, xz_2.y), alt_17, counters_15);
+        vec3 _e87 = sprite_rel(xz_2, alt_18);
+        float _e92 = cloud_density(vec3(xz_2.x, _e87.y, xz_2.y), alt_18, counters_18);
         density_3 = _e92;
     }
     float _e96 = density_3;
-    return SpriteCandidate(xz_2, alt_17, h_14, u_1.w, v_3.x, v_3.y, _e96, _e57.precipitation);
+    return SpriteCandidate(xz_2, alt_18, h_15, u_1.w, v_3.x, v_3.y, _e96, _e57.precipitation);
 }
 
-vec3 sprite_sky_level(float h_9) {
-    float _e1 = saturate(h_9);
+vec3 sprite_sky_level(float h_10) {
+    float _e1 = saturate(h_10);
     float x_7 = (_e1 * 4.0);
     if ((x_7 < 1.0)) {
         return mix(SKY_LEVEL0_, SKY_LEVEL1_, x_7);
@@ -2586,102 +2710,102 @@ float sprite_sun_level(float cos_angle) {
 }
 
 vec2 sprite_corner(uint k_11) {
-    bool local_59 = false;
+    bool local_63 = false;
     uint q_11 = ((k_11 >= 3u) ? ((k_11 == 3u) ? 0u : (k_11 - 2u)) : k_11);
     if (!((q_11 == 1u))) {
-        local_59 = (q_11 == 2u);
+        local_63 = (q_11 == 2u);
     } else {
-        local_59 = true;
+        local_63 = true;
     }
-    bool _e18 = local_59;
+    bool _e18 = local_63;
     return vec2((_e18 ? 1.0 : -1.0), ((q_11 >= 2u) ? 1.0 : -1.0));
 }
 
-vec3 sky_radiance(vec3 d_16, float alt_16) {
+vec3 sky_radiance(vec3 d_17, float alt_17) {
     vec4 _e4 = _group_0_binding_0_cs.sun_direction;
-    vec3 sun_6 = _e4.xyz;
+    vec3 sun_7 = _e4.xyz;
     vec4 _e8 = _group_0_binding_0_cs.sun_illuminance;
     vec3 e_1 = _e8.xyz;
-    float _e15 = saturate(((sun_6.y * 4.0) + 0.3));
-    bool _e19 = hits_ground(vec3(0.0, alt_16, 0.0), alt_16, d_16);
+    float _e15 = saturate(((sun_7.y * 4.0) + 0.3));
+    bool _e19 = hits_ground(vec3(0.0, alt_17, 0.0), alt_17, d_17);
     if (_e19) {
         vec3 ground_albedo = vec3(0.035, 0.035, 0.03);
-        return (ground_albedo * (((e_1 * max(sun_6.y, 0.0)) / vec3(3.1415927)) + ((0.05 * e_1) * _e15)));
+        return (ground_albedo * (((e_1 * max(sun_7.y, 0.0)) / vec3(3.1415927)) + ((0.05 * e_1) * _e15)));
     }
     vec3 zenith = vec3(0.018, 0.04, 0.1);
     vec3 horizon_2 = vec3(0.07, 0.085, 0.11);
-    float _e45 = saturate(d_16.y);
+    float _e45 = saturate(d_17.y);
     vec3 gradient_1 = mix(horizon_2, zenith, sqrt(_e45));
     vec3 sunset = (((1.0 - (_e15 * 0.8)) * pow((1.0 - _e45), 6.0)) * vec3(0.25, 0.1, 0.0));
-    float _e64 = phase_hg(dot(d_16, sun_6), 0.76);
+    float _e64 = phase_hg(dot(d_17, sun_7), 0.76);
     float glow = (_e64 * 0.02);
-    float _e73 = saturate(((sun_6.y * 10.0) + 1.0));
+    float _e73 = saturate(((sun_7.y * 10.0) + 1.0));
     return (e_1 * (((gradient_1 * _e15) + (sunset * _e73)) + vec3((glow * _e15))));
 }
 
-vec3 sun_disk(vec3 d_17) {
+vec3 sun_disk(vec3 d_18) {
     float cos_r = _group_0_binding_0_cs.sun_direction.w;
     vec4 _e7 = _group_0_binding_0_cs.sun_direction;
-    if ((dot(d_17, _e7.xyz) < cos_r)) {
+    if ((dot(d_18, _e7.xyz) < cos_r)) {
         return vec3(0.0);
     }
     vec4 _e15 = _group_0_binding_0_cs.sun_illuminance;
     return (_e15.xyz / vec3((6.2831855 * max((1.0 - cos_r), 1e-6))));
 }
 
-vec3 moon_disk(vec3 d_18) {
-    bool local_60 = false;
+vec3 moon_disk(vec3 d_19) {
+    bool local_64 = false;
     vec4 _e3 = _group_0_binding_0_cs.moon;
-    vec3 m_3 = _e3.xyz;
-    float c_10 = dot(d_18, m_3);
+    vec3 m_4 = _e3.xyz;
+    float c_10 = dot(d_19, m_4);
     float _e9 = _group_0_binding_0_cs.moon.w;
     if (!((_e9 <= 0.0))) {
-        local_60 = (c_10 < MOON_COS_RADIUS);
+        local_64 = (c_10 < MOON_COS_RADIUS);
     } else {
-        local_60 = true;
+        local_64 = true;
     }
-    bool _e18 = local_60;
+    bool _e18 = local_64;
     if (_e18) {
         return vec3(0.0);
     }
-    vec3 offset = ((d_18 - (m_3 * c_10)) / vec3(0.0045149517));
+    vec3 offset = ((d_19 - (m_4 * c_10)) / vec3(0.0045149517));
     float x2_ = min(dot(offset, offset), 1.0);
-    vec3 normal = (offset - (m_3 * sqrt((1.0 - x2_))));
+    vec3 normal = (offset - (m_4 * sqrt((1.0 - x2_))));
     vec4 _e36 = _group_0_binding_0_cs.night;
     float lit_1 = smoothstep(-0.02, 0.02, dot(normal, _e36.xyz));
     float _e46 = _group_0_binding_0_cs.moon.w;
     return vec3(((_e46 / 6.40407e-5) * lit_1));
 }
 
-vec3 stars(vec3 d_19) {
+vec3 stars(vec3 d_20) {
     uint face = 0u;
     vec2 uv_1 = vec2(0.0);
     float major = 0.0;
-    bool local_61 = false;
+    bool local_65 = false;
     vec3 star = vec3(0.0);
     float e0_ = _group_0_binding_0_cs.night.w;
     if ((e0_ <= 0.0)) {
         return vec3(0.0);
     }
-    vec3 a_9 = abs(d_19);
+    vec3 a_9 = abs(d_20);
     if ((a_9.x >= a_9.y)) {
-        local_61 = (a_9.x >= a_9.z);
+        local_65 = (a_9.x >= a_9.z);
     } else {
-        local_61 = false;
+        local_65 = false;
     }
-    bool _e26 = local_61;
+    bool _e26 = local_65;
     if (_e26) {
-        face = ((d_19.x > 0.0) ? 0u : 1u);
-        uv_1 = d_19.zy;
+        face = ((d_20.x > 0.0) ? 0u : 1u);
+        uv_1 = d_20.zy;
         major = a_9.x;
     } else {
         if ((a_9.y >= a_9.z)) {
-            face = ((d_19.y > 0.0) ? 2u : 3u);
-            uv_1 = d_19.xz;
+            face = ((d_20.y > 0.0) ? 2u : 3u);
+            uv_1 = d_20.xz;
             major = a_9.y;
         } else {
-            face = ((d_19.z > 0.0) ? 4u : 5u);
-            uv_1 = d_19.xy;
+            face = ((d_20.z > 0.0) ? 4u : 5u);
+            uv_1 = d_20.xy;
             major = a_9.z;
         }
     }
@@ -2735,8 +2859,8 @@ vec3 stars(vec3 d_19) {
     uint _e209 = _group_0_binding_0_cs.counts.y;
     float pixel_angle = ((2.0 * _e203) / float(_e209));
     vec3 _e212 = star;
-    float dist_1 = (acos(clamp(dot(d_19, _e212), -1.0, 1.0)) / pixel_angle);
-    float weight_1 = (exp(((-(dist_1) * dist_1) / 0.5)) / 1.5707964);
+    float dist_2 = (acos(clamp(dot(d_20, _e212), -1.0, 1.0)) / pixel_angle);
+    float weight_1 = (exp(((-(dist_2) * dist_2) / 0.5)) / 1.5707964);
     vec3 tint = mix(vec3(0.8, 0.9, 1.1), vec3(1.15, 0.95, 0.75), (h3_ * h4_));
     return (tint * ((illuminance * weight_1) / (pixel_angle * pixel_angle)));
 }

@@ -40,6 +40,7 @@ struct Frame {
     vec4 night;
     vec4 light_model;
     vec4 octave_direction;
+    vec4 octave_depth;
 };
 struct Roots {
     float t0_;
@@ -177,6 +178,8 @@ const uint AMBIENT_STEPS = 24u;
 const uint SKY_AMBIENT_SUNS = 64u;
 const uint GROUND_IRRADIANCE_SIZE = 64u;
 const uint NO_LAYER = 4u;
+const uint STEEP_STEPS = 2u;
+const float STEEP_FIRST = 8.0;
 const float DECK_POWER = 8.0;
 const float FORWARD_LOBE_THIN = 0.1;
 const uint GROUND_IRRADIANCE_DIRECTIONS = 128u;
@@ -271,8 +274,8 @@ vec3 view_ray(uvec2 pixel_1) {
     vec4 _e26 = _group_0_binding_0_vs.camera_forward;
     vec4 _e30 = _group_0_binding_0_vs.camera_right;
     vec4 _e39 = _group_0_binding_0_vs.camera_up;
-    vec3 d_20 = ((_e26.xyz + (_e30.xyz * ((ndc.x * tan_half) * aspect))) - (_e39.xyz * (ndc.y * tan_half)));
-    return normalize(d_20);
+    vec3 d_21 = ((_e26.xyz + (_e30.xyz * ((ndc.x * tan_half) * aspect))) - (_e39.xyz * (ndc.y * tan_half)));
+    return normalize(d_21);
 }
 
 Roots solve_sphere(float b, float c) {
@@ -535,14 +538,14 @@ float air_top() {
 }
 
 AirSample air_at(float h_km) {
-    float h_10 = (max(h_km, 0.0) * 1000.0);
+    float h_11 = (max(h_km, 0.0) * 1000.0);
     float _e9 = _group_0_binding_0_vs.air_rayleigh.w;
-    float rayleigh_density = exp((-(h_10) / _e9));
+    float rayleigh_density = exp((-(h_11) / _e9));
     float _e16 = _group_0_binding_0_vs.air_mie.z;
-    float mie_density = exp((-(h_10) / _e16));
+    float mie_density = exp((-(h_11) / _e16));
     float _e22 = _group_0_binding_0_vs.air_ozone.w;
     float _e28 = _group_0_binding_0_vs.air_misc.y;
-    float ozone_density = max((1.0 - (abs((h_10 - _e22)) / (0.5 * _e28))), 0.0);
+    float ozone_density = max((1.0 - (abs((h_11 - _e22)) / (0.5 * _e28))), 0.0);
     vec4 _e38 = _group_0_binding_0_vs.air_rayleigh;
     vec3 rayleigh = (_e38.xyz * (rayleigh_density * 1000.0));
     float _e46 = _group_0_binding_0_vs.air_mie.x;
@@ -606,26 +609,26 @@ vec4 lut_bilinear(sampler2D lut, vec2 x_3, uvec2 size) {
 vec2 transmittance_coords(float r_7, float mu_5) {
     float _e2 = air_bottom();
     float _e3 = air_top();
-    float h_11 = sqrt(max(((_e3 - _e2) * (_e3 + _e2)), 0.0));
+    float h_12 = sqrt(max(((_e3 - _e2) * (_e3 + _e2)), 0.0));
     float rho = sqrt(max(((r_7 - _e2) * (r_7 + _e2)), 0.0));
     float _e16 = distance_to_top(r_7, mu_5);
     float d_min = (_e3 - r_7);
-    float d_max = (rho + h_11);
-    return vec2(((_e16 - d_min) / max((d_max - d_min), 1e-6)), (rho / h_11));
+    float d_max = (rho + h_12);
+    return vec2(((_e16 - d_min) / max((d_max - d_min), 1e-6)), (rho / h_12));
 }
 
 vec2 transmittance_r_mu(vec2 x_4) {
     float mu_6 = 1.0;
     float _e1 = air_bottom();
     float _e2 = air_top();
-    float h_12 = sqrt(max(((_e2 - _e1) * (_e2 + _e1)), 0.0));
-    float rho_1 = (h_12 * x_4.y);
+    float h_13 = sqrt(max(((_e2 - _e1) * (_e2 + _e1)), 0.0));
+    float rho_1 = (h_13 * x_4.y);
     float r_14 = sqrt(((rho_1 * rho_1) + (_e1 * _e1)));
     float d_min_1 = (_e2 - r_14);
-    float d_max_1 = (rho_1 + h_12);
-    float d_21 = (d_min_1 + (x_4.x * (d_max_1 - d_min_1)));
-    if ((d_21 > 0.0)) {
-        mu_6 = clamp(((((h_12 * h_12) - (rho_1 * rho_1)) - (d_21 * d_21)) / ((2.0 * r_14) * d_21)), -1.0, 1.0);
+    float d_max_1 = (rho_1 + h_13);
+    float d_22 = (d_min_1 + (x_4.x * (d_max_1 - d_min_1)));
+    if ((d_22 > 0.0)) {
+        mu_6 = clamp(((((h_13 * h_13) - (rho_1 * rho_1)) - (d_22 * d_22)) / ((2.0 * r_14) * d_22)), -1.0, 1.0);
     }
     float _e37 = mu_6;
     return vec2(r_14, _e37);
@@ -837,110 +840,121 @@ float deck_escape(float mu0_, float layer_coverage) {
     return (1.0 + ((e * pow(_e6, DECK_POWER)) * (mu0_ - 0.5)));
 }
 
-SunScattering sun_scattering(float cos_theta_5, float view_y_2, float tau_6, float far_1, float build, float coverage_2, float h_6, float layer_coverage_1) {
+float downward_dimming(float view_y_2, float coverage_2, float h_6, float tau_v) {
+    float _e7 = _group_0_binding_0_vs.octave_depth.z;
+    float _e12 = saturate(coverage_2);
+    float _e14 = saturate(h_6);
+    float k_13 = (((_e7 * max(-(view_y_2), 0.0)) * _e12) * (1.0 - _e14));
+    return max((1.0 - ((k_13 * tau_v) / (tau_v + 1.0))), 0.0);
+}
+
+SunScattering sun_scattering(float cos_theta_5, float view_y_3, float tau_8, float tau_oct, float far_1, float build, float coverage_3, float h_7, float layer_coverage_1) {
     float octave_sum = 0.0;
     float ka = 1.0;
     float kb = 1.0;
     float kc = 1.0;
-    uint i_12 = 0u;
+    uint i_13 = 0u;
     float feed = 0.0;
     float octaves_part = 0.0;
     float total = 0.0;
     float a_7 = _group_0_binding_0_vs.multiple_scattering.x;
     float b_7 = _group_0_binding_0_vs.multiple_scattering.y;
     float c_8 = _group_0_binding_0_vs.multiple_scattering.z;
-    uint _e23 = _group_0_binding_0_vs.misc.x;
-    uint octaves = min(_e23, MAX_OCTAVES);
+    uint _e24 = _group_0_binding_0_vs.misc.x;
+    uint octaves = min(_e24, MAX_OCTAVES);
     bool loop_init_3 = true;
     while(true) {
         if (!loop_init_3) {
-            uint _e56 = i_12;
-            i_12 = (_e56 + 1u);
+            uint _e57 = i_13;
+            i_13 = (_e57 + 1u);
         }
         loop_init_3 = false;
-        uint _e36 = i_12;
-        if ((_e36 < octaves)) {
+        uint _e37 = i_13;
+        if ((_e37 < octaves)) {
         } else {
             break;
         }
         {
-            float _e38 = ka;
-            ka = (_e38 * a_7);
-            float _e40 = kb;
-            kb = (_e40 * b_7);
-            float _e42 = kc;
-            kc = (_e42 * c_8);
-            float _e44 = octave_sum;
-            float _e45 = ka;
-            float _e46 = kc;
-            float _e47 = phase(cos_theta_5, _e46);
-            float _e49 = kb;
-            octave_sum = (_e44 + ((_e45 * _e47) / (1.0 + (_e49 * tau_6))));
+            float _e39 = ka;
+            ka = (_e39 * a_7);
+            float _e41 = kb;
+            kb = (_e41 * b_7);
+            float _e43 = kc;
+            kc = (_e43 * c_8);
+            float _e45 = octave_sum;
+            float _e46 = ka;
+            float _e47 = kc;
+            float _e48 = phase(cos_theta_5, _e47);
+            float _e50 = kb;
+            octave_sum = (_e45 + ((_e46 * _e48) / (1.0 + (_e50 * tau_oct))));
         }
     }
-    float _e61 = _group_0_binding_0_vs.sun_direction.y;
-    float _e62 = saturate(_e61);
-    float _e69 = saturate(coverage_2);
-    float side = ((sqrt(max((1.0 - (_e62 * _e62)), 0.0)) * (1.0 - _e69)) * exp(-(far_1)));
-    float _e79 = _group_0_binding_0_vs.light_model.x;
-    feed = (_e62 + (_e79 * side));
-    float _e86 = _group_0_binding_0_vs.light_model.y;
-    if ((_e86 > 0.0)) {
-        float _e89 = feed;
-        float _e95 = _group_0_binding_0_vs.light_model.y;
-        feed = (_e89 * pow(max(coverage_2, 1e-6), _e95));
+    float _e62 = _group_0_binding_0_vs.sun_direction.y;
+    float _e63 = saturate(_e62);
+    float _e70 = saturate(coverage_3);
+    float side = ((sqrt(max((1.0 - (_e63 * _e63)), 0.0)) * (1.0 - _e70)) * exp(-(far_1)));
+    float _e80 = _group_0_binding_0_vs.light_model.x;
+    feed = (_e63 + (_e80 * side));
+    float _e87 = _group_0_binding_0_vs.light_model.y;
+    if ((_e87 > 0.0)) {
+        float _e90 = feed;
+        float _e96 = _group_0_binding_0_vs.light_model.y;
+        feed = (_e90 * pow(max(coverage_3, 1e-6), _e96));
     }
-    float _e98 = feed;
-    float _e99 = diffuse_limb(view_y_2, coverage_2);
-    float _e100 = vertical_anisotropy(view_y_2, coverage_2, h_6);
-    float _e102 = deck_escape(_e62, layer_coverage_1);
-    feed = (_e98 * ((_e99 * _e100) * _e102));
-    float _e105 = feed;
-    float _e107 = octave_sum;
-    octaves_part = ((_e105 * build) * _e107);
-    float _e111 = phase(cos_theta_5, 1.0);
-    float _e116 = octaves_part;
-    total = ((_e111 * exp((-(tau_6) - far_1))) + _e116);
-    uint _e122 = _group_0_binding_0_vs.modes.w;
-    if (((_e122 & FLAG_BEER_POWDER) != 0u)) {
-        float _e130 = _group_0_binding_0_vs.phase.w;
-        float powder = (1.0 - exp((-(_e130) * tau_6)));
-        float _e136 = total;
-        total = (_e136 * powder);
-        float _e138 = octaves_part;
-        octaves_part = (_e138 * powder);
+    float _e99 = feed;
+    float _e100 = diffuse_limb(view_y_3, coverage_3);
+    float _e101 = vertical_anisotropy(view_y_3, coverage_3, h_7);
+    float _e103 = deck_escape(_e63, layer_coverage_1);
+    feed = (_e99 * ((_e100 * _e101) * _e103));
+    float _e106 = feed;
+    float _e108 = downward_dimming(view_y_3, coverage_3, h_7, (tau_8 * _e63));
+    feed = (_e106 * _e108);
+    float _e110 = feed;
+    float _e112 = octave_sum;
+    octaves_part = ((_e110 * build) * _e112);
+    float _e116 = phase(cos_theta_5, 1.0);
+    float _e121 = octaves_part;
+    total = ((_e116 * exp((-(tau_8) - far_1))) + _e121);
+    uint _e127 = _group_0_binding_0_vs.modes.w;
+    if (((_e127 & FLAG_BEER_POWDER) != 0u)) {
+        float _e135 = _group_0_binding_0_vs.phase.w;
+        float powder = (1.0 - exp((-(_e135) * tau_8)));
+        float _e141 = total;
+        total = (_e141 * powder);
+        float _e143 = octaves_part;
+        octaves_part = (_e143 * powder);
     }
-    float _e140 = total;
-    float _e141 = octaves_part;
-    return SunScattering(_e140, _e141);
+    float _e145 = total;
+    float _e146 = octaves_part;
+    return SunScattering(_e145, _e146);
 }
 
 float forward_lobe(float cos_theta_6, float transmittance) {
-    float k_13 = _group_0_binding_0_vs.octave_direction.x;
-    if ((k_13 <= 0.0)) {
+    float k_14 = _group_0_binding_0_vs.octave_direction.x;
+    if ((k_14 <= 0.0)) {
         return 1.0;
     }
     float _e11 = saturate((transmittance / FORWARD_LOBE_THIN));
-    float w_4 = (k_13 * _e11);
+    float w_4 = (k_14 * _e11);
     float _e17 = _group_0_binding_0_vs.octave_direction.y;
     float _e18 = phase_hg(cos_theta_6, _e17);
     return (1.0 + (w_4 * ((12.566371 * _e18) - 1.0)));
 }
 
 float octave_buildup(float density_1) {
-    float l_8 = _group_0_binding_0_vs.multiple_scattering.w;
-    if ((l_8 <= 0.0)) {
+    float l_11 = _group_0_binding_0_vs.multiple_scattering.w;
+    if ((l_11 <= 0.0)) {
         return 1.0;
     }
     float _e11 = _group_0_binding_0_vs.extinction.x;
     float _e15 = _group_0_binding_0_vs.extinction.y;
-    return (1.0 - exp(((-((_e11 + _e15)) * density_1) * l_8)));
+    return (1.0 - exp(((-((_e11 + _e15)) * density_1) * l_11)));
 }
 
-float height_fraction(float alt_11) {
-    uint _e1 = layer_at(alt_11);
+float height_fraction(float alt_12) {
+    uint _e1 = layer_at(alt_12);
     Layer _e2 = cloud_layer(_e1);
-    float _e3 = layer_height(_e2, alt_11);
+    float _e3 = layer_height(_e2, alt_12);
     float _e4 = saturate(_e3);
     return _e4;
 }
@@ -966,8 +980,8 @@ vec3 step_integral(vec3 source, float sigma_t, float dt) {
 float start_offset(uvec2 pixel_3) {
     uint _e4 = _group_0_binding_0_vs.modes.w;
     bool jitter_1 = ((_e4 & FLAG_JITTER) != 0u);
-    uint k_14 = _group_0_binding_0_vs.temporal.x;
-    if ((k_14 <= 1u)) {
+    uint k_15 = _group_0_binding_0_vs.temporal.x;
+    if ((k_15 <= 1u)) {
         uint _e18 = _group_0_binding_0_vs.misc.y;
         float _e19 = hash_unit(pixel_3, _e18);
         return (jitter_1 ? _e19 : 0.5);
@@ -975,7 +989,7 @@ float start_offset(uvec2 pixel_3) {
     float _e23 = hash_unit(pixel_3, 0u);
     float base_2 = (jitter_1 ? _e23 : 0.5);
     uint _e29 = _group_0_binding_0_vs.misc.y;
-    float _e32 = van_der_corput((_e29 / (k_14 * k_14)));
+    float _e32 = van_der_corput((_e29 / (k_15 * k_15)));
     return fract((base_2 + _e32));
 }
 
@@ -998,36 +1012,36 @@ uvec2 block_offset(uint f, uint k_7) {
 }
 
 vec2 reproject(uvec2 pixel_5, float depth_2) {
-    bool local_41 = false;
-    bool local_42 = false;
-    bool local_43 = false;
+    bool local_45 = false;
+    bool local_46 = false;
+    bool local_47 = false;
     vec3 dir = vec3(0.0);
     vec4 _e4 = _group_0_binding_0_vs.previous_position;
     vec4 _e7 = _group_0_binding_0_vs.camera_position;
     if (all(equal(_e4, _e7))) {
         vec4 _e14 = _group_0_binding_0_vs.previous_forward;
         vec4 _e17 = _group_0_binding_0_vs.camera_forward;
-        local_41 = all(equal(_e14, _e17));
+        local_45 = all(equal(_e14, _e17));
     } else {
-        local_41 = false;
+        local_45 = false;
     }
-    bool _e21 = local_41;
+    bool _e21 = local_45;
     if (_e21) {
         vec4 _e26 = _group_0_binding_0_vs.previous_right;
         vec4 _e29 = _group_0_binding_0_vs.camera_right;
-        local_42 = all(equal(_e26, _e29));
+        local_46 = all(equal(_e26, _e29));
     } else {
-        local_42 = false;
+        local_46 = false;
     }
-    bool _e33 = local_42;
+    bool _e33 = local_46;
     if (_e33) {
         vec4 _e38 = _group_0_binding_0_vs.previous_up;
         vec4 _e41 = _group_0_binding_0_vs.camera_up;
-        local_43 = all(equal(_e38, _e41));
+        local_47 = all(equal(_e38, _e41));
     } else {
-        local_43 = false;
+        local_47 = false;
     }
-    bool same = local_43;
+    bool same = local_47;
     if (same) {
         return vec2(pixel_5);
     }
@@ -1056,15 +1070,15 @@ vec2 reproject(uvec2 pixel_5, float depth_2) {
 }
 
 bool on_screen(vec2 q) {
-    bool local_44 = false;
+    bool local_48 = false;
     uvec4 _e3 = _group_0_binding_0_vs.counts;
     vec2 size_2 = vec2(_e3.xy);
     if (all(greaterThanEqual(q, vec2(-0.5)))) {
-        local_44 = all(lessThanEqual(q, (size_2 - vec2(0.5))));
+        local_48 = all(lessThanEqual(q, (size_2 - vec2(0.5))));
     } else {
-        local_44 = false;
+        local_48 = false;
     }
-    bool _e18 = local_44;
+    bool _e18 = local_48;
     return _e18;
 }
 
@@ -1073,16 +1087,16 @@ vec4 catmull_rom(float t_1) {
 }
 
 bool in_blocks(uvec2 id_19) {
-    uint k_15 = _group_0_binding_0_vs.temporal.x;
+    uint k_16 = _group_0_binding_0_vs.temporal.x;
     uvec4 _e7 = _group_0_binding_0_vs.counts;
-    return all(lessThan(id_19, (((_e7.xy + uvec2(k_15)) - uvec2(1u)) / uvec2(k_15))));
+    return all(lessThan(id_19, (((_e7.xy + uvec2(k_16)) - uvec2(1u)) / uvec2(k_16))));
 }
 
 uvec2 sparse_pixel(uvec2 id_20) {
-    uint k_16 = _group_0_binding_0_vs.temporal.x;
+    uint k_17 = _group_0_binding_0_vs.temporal.x;
     uint _e9 = _group_0_binding_0_vs.misc.y;
-    uvec2 _e10 = block_offset(_e9, k_16);
-    return ((id_20 * k_16) + _e10);
+    uvec2 _e10 = block_offset(_e9, k_17);
+    return ((id_20 * k_17) + _e10);
 }
 
 uint rng_seed(uvec2 pixel_6, uint path_index) {
@@ -1105,44 +1119,44 @@ float rng_exponential(inout uint rng_2, float sigma) {
     return (-(log((1.0 - _e2))) / sigma);
 }
 
-Segments layer_segments(vec3 p_10, float alt_13, vec3 d_14) {
+Segments layer_segments(vec3 p_13, float alt_14, vec3 d_15) {
     Segments s_1 = Segments(vec2(0.0), vec2(0.0), 0u);
-    bool local_45 = false;
+    bool local_49 = false;
     vec2 a_1 = vec2(0.0);
     vec2 b_1 = vec2(0.0);
     uint n_2 = 0u;
-    bool local_46 = false;
-    bool local_47 = false;
-    bool local_48 = false;
-    bool local_49 = false;
+    bool local_50 = false;
+    bool local_51 = false;
+    bool local_52 = false;
+    bool local_53 = false;
     vec2 _e10 = layers_span();
     float bottom_1 = _e10.x;
-    Roots _e12 = ray_shell_from(p_10, alt_13, d_14, bottom_1);
-    Roots _e14 = ray_shell_from(p_10, alt_13, d_14, _e10.y);
-    bool _e15 = hits_ground(p_10, alt_13, d_14);
+    Roots _e12 = ray_shell_from(p_13, alt_14, d_15, bottom_1);
+    Roots _e14 = ray_shell_from(p_13, alt_14, d_15, _e10.y);
+    bool _e15 = hits_ground(p_13, alt_14, d_15);
     if (!(!(_e14.hit))) {
-        local_45 = (_e14.t1_ <= 0.0);
+        local_49 = (_e14.t1_ <= 0.0);
     } else {
-        local_45 = true;
+        local_49 = true;
     }
-    bool _e25 = local_45;
+    bool _e25 = local_49;
     if (_e25) {
         Segments _e26 = s_1;
         return _e26;
     }
     float entry = max(_e14.t0_, 0.0);
     if (_e12.hit) {
-        local_46 = (_e12.t0_ > 0.0);
+        local_50 = (_e12.t0_ > 0.0);
     } else {
-        local_46 = false;
+        local_50 = false;
     }
-    bool _e45 = local_46;
+    bool _e45 = local_50;
     if (_e45) {
-        local_47 = (alt_13 >= bottom_1);
+        local_51 = (alt_14 >= bottom_1);
     } else {
-        local_47 = false;
+        local_51 = false;
     }
-    bool _e50 = local_47;
+    bool _e50 = local_51;
     if (_e50) {
         uint _e51 = n_2;
         a_1[_e51] = entry;
@@ -1151,11 +1165,11 @@ Segments layer_segments(vec3 p_10, float alt_13, vec3 d_14) {
         uint _e56 = n_2;
         n_2 = (_e56 + uint((_e12.t0_ > entry)));
         if (!(_e15)) {
-            local_48 = (_e14.t1_ > _e12.t1_);
+            local_52 = (_e14.t1_ > _e12.t1_);
         } else {
-            local_48 = false;
+            local_52 = false;
         }
-        bool _e68 = local_48;
+        bool _e68 = local_52;
         if (_e68) {
             uint _e69 = n_2;
             a_1[_e69] = max(_e12.t1_, entry);
@@ -1165,13 +1179,13 @@ Segments layer_segments(vec3 p_10, float alt_13, vec3 d_14) {
             n_2 = (_e76 + 1u);
         }
     } else {
-        if ((alt_13 < bottom_1)) {
+        if ((alt_14 < bottom_1)) {
             if (!(_e15)) {
-                local_49 = _e12.hit;
+                local_53 = _e12.hit;
             } else {
-                local_49 = false;
+                local_53 = false;
             }
-            bool _e85 = local_49;
+            bool _e85 = local_53;
             if (_e85) {
                 a_1.x = max(_e12.t1_, 0.0);
                 b_1.x = _e14.t1_;
@@ -1195,22 +1209,22 @@ Segments layer_segments(vec3 p_10, float alt_13, vec3 d_14) {
 
 float density_max() {
     float m_1 = 0.0;
-    uint i_15 = 0u;
+    uint i_16 = 0u;
     bool loop_init_4 = true;
     while(true) {
         if (!loop_init_4) {
-            uint _e17 = i_15;
-            i_15 = (_e17 + 1u);
+            uint _e17 = i_16;
+            i_16 = (_e17 + 1u);
         }
         loop_init_4 = false;
-        uint _e4 = i_15;
+        uint _e4 = i_16;
         uint _e5 = layer_count();
         if ((_e4 < _e5)) {
         } else {
             break;
         }
         {
-            uint _e7 = i_15;
+            uint _e7 = i_16;
             Layer _e8 = cloud_layer(_e7);
             float _e9 = m_1;
             m_1 = max(_e9, (_e8.density * (1.0 + _e8.precipitation)));
@@ -1278,35 +1292,35 @@ PhaseSample sample_phase(vec3 dir_4, inout uint rng_5) {
 }
 
 bool camera_still() {
-    bool local_54 = false;
-    bool local_55 = false;
-    bool local_56 = false;
+    bool local_58 = false;
+    bool local_59 = false;
+    bool local_60 = false;
     vec4 _e2 = _group_0_binding_0_vs.camera_position;
     vec4 _e5 = _group_0_binding_0_vs.previous_position;
     if (all(equal(_e2, _e5))) {
         vec4 _e12 = _group_0_binding_0_vs.camera_forward;
         vec4 _e15 = _group_0_binding_0_vs.previous_forward;
-        local_54 = all(equal(_e12, _e15));
+        local_58 = all(equal(_e12, _e15));
     } else {
-        local_54 = false;
+        local_58 = false;
     }
-    bool _e19 = local_54;
+    bool _e19 = local_58;
     if (_e19) {
         vec4 _e24 = _group_0_binding_0_vs.camera_right;
         vec4 _e28 = _group_0_binding_0_vs.previous_right;
-        local_55 = all(equal(_e24.xyz, _e28.xyz));
+        local_59 = all(equal(_e24.xyz, _e28.xyz));
     } else {
-        local_55 = false;
+        local_59 = false;
     }
-    bool _e33 = local_55;
+    bool _e33 = local_59;
     if (_e33) {
         vec4 _e38 = _group_0_binding_0_vs.camera_up;
         vec4 _e42 = _group_0_binding_0_vs.previous_up;
-        local_56 = all(equal(_e38.xyz, _e42.xyz));
+        local_60 = all(equal(_e38.xyz, _e42.xyz));
     } else {
-        local_56 = false;
+        local_60 = false;
     }
-    bool _e47 = local_56;
+    bool _e47 = local_60;
     return _e47;
 }
 
@@ -1320,24 +1334,24 @@ float atlas_hash(uint a_2, uint b_2) {
     return (float((_e4 >> 8u)) * 5.9604645e-8);
 }
 
-float value_noise(vec2 p_11, uint seed) {
-    uvec2 i_19 = uvec2(floor(p_11));
-    vec2 f_3 = fract(p_11);
+float value_noise(vec2 p_14, uint seed) {
+    uvec2 i_20 = uvec2(floor(p_14));
+    vec2 f_3 = fract(p_14);
     vec2 s_8 = ((f_3 * f_3) * (vec2(3.0) - (2.0 * f_3)));
-    uint h_13 = (seed * 7919u);
-    float _e17 = atlas_hash((i_19.x + h_13), i_19.y);
-    float _e23 = atlas_hash(((i_19.x + 1u) + h_13), i_19.y);
-    float _e29 = atlas_hash((i_19.x + h_13), (i_19.y + 1u));
-    float _e37 = atlas_hash(((i_19.x + 1u) + h_13), (i_19.y + 1u));
+    uint h_14 = (seed * 7919u);
+    float _e17 = atlas_hash((i_20.x + h_14), i_20.y);
+    float _e23 = atlas_hash(((i_20.x + 1u) + h_14), i_20.y);
+    float _e29 = atlas_hash((i_20.x + h_14), (i_20.y + 1u));
+    float _e37 = atlas_hash(((i_20.x + 1u) + h_14), (i_20.y + 1u));
     return mix(mix(_e17, _e23, s_8.x), mix(_e29, _e37, s_8.x), s_8.y);
 }
 
-float value_fbm(vec2 p_12, uint seed_1) {
+float value_fbm(vec2 p_15, uint seed_1) {
     float sum_5 = 0.0;
     float weight = 0.5;
     vec2 q_4 = vec2(0.0);
     uint o = 0u;
-    q_4 = p_12;
+    q_4 = p_15;
     bool loop_init_5 = true;
     while(true) {
         if (!loop_init_5) {
@@ -1369,7 +1383,7 @@ float value_fbm(vec2 p_12, uint seed_1) {
 
 float sprite_texture(uint tile_1, vec2 uv) {
     float billow = 0.0;
-    uint i_18 = 0u;
+    uint i_19 = 0u;
     vec2 at = vec2(0.0);
     float a_3 = 0.0;
     vec2 c_9 = (uv - vec2(0.5));
@@ -1386,32 +1400,32 @@ float sprite_texture(uint tile_1, vec2 uv) {
     bool loop_init_6 = true;
     while(true) {
         if (!loop_init_6) {
-            uint _e108 = i_18;
-            i_18 = (_e108 + 1u);
+            uint _e108 = i_19;
+            i_19 = (_e108 + 1u);
         }
         loop_init_6 = false;
-        uint _e58 = i_18;
+        uint _e58 = i_19;
         if ((_e58 < blobs)) {
         } else {
             break;
         }
         {
-            uint _e61 = i_18;
+            uint _e61 = i_19;
             float _e63 = atlas_hash(tile_1, (2u * _e61));
-            uint _e65 = i_18;
+            uint _e65 = i_19;
             float _e69 = atlas_hash(tile_1, ((2u * _e65) + 1u));
             vec2 centre_1 = (vec2(_e63, _e69) - vec2(0.5));
             at = (vec2(0.5) + (centre_1 * 0.34));
             if ((tile_1 == 4u)) {
                 at.y = (0.5 + ((centre_1.y - 0.5) * 0.24));
             }
-            uint _e91 = i_18;
+            uint _e91 = i_19;
             float _e93 = atlas_hash(tile_1, (100u + _e91));
             float r_16 = (0.14 + (0.1 * _e93));
             vec2 _e98 = at;
-            float d_22 = (length((uv - _e98)) / r_16);
+            float d_23 = (length((uv - _e98)) / r_16);
             float _e102 = billow;
-            float _e106 = saturate((1.0 - (d_22 * d_22)));
+            float _e106 = saturate((1.0 - (d_23 * d_23)));
             billow = max(_e102, _e106);
         }
     }
@@ -1426,22 +1440,22 @@ float sprite_texture(uint tile_1, vec2 uv) {
     return _e130;
 }
 
-vec3 sprite_rel(vec2 xz, float alt_15) {
+vec3 sprite_rel(vec2 xz, float alt_16) {
     float rp_5 = _group_0_binding_0_vs.atmosphere.x;
     vec4 _e8 = _group_0_binding_0_vs.camera_position;
-    vec2 d_23 = (xz - _e8.xz);
-    float k_17 = ((alt_15 * (alt_15 + (2.0 * rp_5))) - dot(d_23, d_23));
-    float y_2 = (k_17 / (rp_5 + sqrt(max(((rp_5 * rp_5) + k_17), 0.0))));
-    return vec3(d_23.x, y_2, d_23.y);
+    vec2 d_24 = (xz - _e8.xz);
+    float k_18 = ((alt_16 * (alt_16 + (2.0 * rp_5))) - dot(d_24, d_24));
+    float y_2 = (k_18 / (rp_5 + sqrt(max(((rp_5 * rp_5) + k_18), 0.0))));
+    return vec3(d_24.x, y_2, d_24.y);
 }
 
 SpriteCell sprite_cell(uint cell) {
     ivec2 start_1 = ivec2(0);
     uint k_10 = 3u;
-    bool local_57 = false;
-    bool local_58 = false;
+    bool local_61 = false;
+    bool local_62 = false;
     uint level_1 = (cell / 64u);
-    ivec2 local_62 = ivec2(int((cell % 8u)), int(((cell / 8u) % 8u)));
+    ivec2 local_66 = ivec2(int((cell % 8u)), int(((cell / 8u) % 8u)));
     vec4 _e15 = _group_0_binding_0_vs.camera_position;
     start_1 = (ivec2(floor((_e15.xz / vec2(12000.0)))) - ivec2(4));
     bool loop_init_7 = true;
@@ -1462,23 +1476,23 @@ SpriteCell sprite_cell(uint cell) {
         }
     }
     if ((level_1 > 0u)) {
-        local_57 = all(greaterThanEqual(local_62, ivec2(2)));
+        local_61 = all(greaterThanEqual(local_66, ivec2(2)));
     } else {
-        local_57 = false;
+        local_61 = false;
     }
-    bool _e47 = local_57;
+    bool _e47 = local_61;
     if (_e47) {
-        local_58 = all(lessThan(local_62, ivec2(6)));
+        local_62 = all(lessThan(local_66, ivec2(6)));
     } else {
-        local_58 = false;
+        local_62 = false;
     }
-    bool covered = local_58;
+    bool covered = local_62;
     ivec2 _e56 = start_1;
-    return SpriteCell((_e56 + local_62), (SPRITE_CELL0_ * float((1u << level_1))), covered);
+    return SpriteCell((_e56 + local_66), (SPRITE_CELL0_ * float((1u << level_1))), covered);
 }
 
-vec3 sprite_sky_level(float h_9) {
-    float _e1 = saturate(h_9);
+vec3 sprite_sky_level(float h_10) {
+    float _e1 = saturate(h_10);
     float x_7 = (_e1 * 4.0);
     if ((x_7 < 1.0)) {
         return mix(SKY_LEVEL0_, SKY_LEVEL1_, x_7);
@@ -1500,65 +1514,65 @@ float sprite_sun_level(float cos_angle) {
 }
 
 vec2 sprite_corner(uint k_11) {
-    bool local_59 = false;
+    bool local_63 = false;
     uint q_7 = ((k_11 >= 3u) ? ((k_11 == 3u) ? 0u : (k_11 - 2u)) : k_11);
     if (!((q_7 == 1u))) {
-        local_59 = (q_7 == 2u);
+        local_63 = (q_7 == 2u);
     } else {
-        local_59 = true;
+        local_63 = true;
     }
-    bool _e18 = local_59;
+    bool _e18 = local_63;
     return vec2((_e18 ? 1.0 : -1.0), ((q_7 >= 2u) ? 1.0 : -1.0));
 }
 
-vec3 sky_radiance(vec3 d_16, float alt_16) {
+vec3 sky_radiance(vec3 d_17, float alt_17) {
     vec4 _e4 = _group_0_binding_0_vs.sun_direction;
     vec3 sun_2 = _e4.xyz;
     vec4 _e8 = _group_0_binding_0_vs.sun_illuminance;
     vec3 e_1 = _e8.xyz;
     float _e15 = saturate(((sun_2.y * 4.0) + 0.3));
-    bool _e19 = hits_ground(vec3(0.0, alt_16, 0.0), alt_16, d_16);
+    bool _e19 = hits_ground(vec3(0.0, alt_17, 0.0), alt_17, d_17);
     if (_e19) {
         vec3 ground_albedo = vec3(0.035, 0.035, 0.03);
         return (ground_albedo * (((e_1 * max(sun_2.y, 0.0)) / vec3(3.1415927)) + ((0.05 * e_1) * _e15)));
     }
     vec3 zenith = vec3(0.018, 0.04, 0.1);
     vec3 horizon_2 = vec3(0.07, 0.085, 0.11);
-    float _e45 = saturate(d_16.y);
+    float _e45 = saturate(d_17.y);
     vec3 gradient_1 = mix(horizon_2, zenith, sqrt(_e45));
     vec3 sunset = (((1.0 - (_e15 * 0.8)) * pow((1.0 - _e45), 6.0)) * vec3(0.25, 0.1, 0.0));
-    float _e64 = phase_hg(dot(d_16, sun_2), 0.76);
+    float _e64 = phase_hg(dot(d_17, sun_2), 0.76);
     float glow = (_e64 * 0.02);
     float _e73 = saturate(((sun_2.y * 10.0) + 1.0));
     return (e_1 * (((gradient_1 * _e15) + (sunset * _e73)) + vec3((glow * _e15))));
 }
 
-vec3 sun_disk(vec3 d_17) {
+vec3 sun_disk(vec3 d_18) {
     float cos_r = _group_0_binding_0_vs.sun_direction.w;
     vec4 _e7 = _group_0_binding_0_vs.sun_direction;
-    if ((dot(d_17, _e7.xyz) < cos_r)) {
+    if ((dot(d_18, _e7.xyz) < cos_r)) {
         return vec3(0.0);
     }
     vec4 _e15 = _group_0_binding_0_vs.sun_illuminance;
     return (_e15.xyz / vec3((6.2831855 * max((1.0 - cos_r), 1e-6))));
 }
 
-vec3 moon_disk(vec3 d_18) {
-    bool local_60 = false;
+vec3 moon_disk(vec3 d_19) {
+    bool local_64 = false;
     vec4 _e3 = _group_0_binding_0_vs.moon;
     vec3 m_2 = _e3.xyz;
-    float c_10 = dot(d_18, m_2);
+    float c_10 = dot(d_19, m_2);
     float _e9 = _group_0_binding_0_vs.moon.w;
     if (!((_e9 <= 0.0))) {
-        local_60 = (c_10 < MOON_COS_RADIUS);
+        local_64 = (c_10 < MOON_COS_RADIUS);
     } else {
-        local_60 = true;
+        local_64 = true;
     }
-    bool _e18 = local_60;
+    bool _e18 = local_64;
     if (_e18) {
         return vec3(0.0);
     }
-    vec3 offset = ((d_18 - (m_2 * c_10)) / vec3(0.0045149517));
+    vec3 offset = ((d_19 - (m_2 * c_10)) / vec3(0.0045149517));
     float x2_ = min(dot(offset, offset), 1.0);
     vec3 normal = (offset - (m_2 * sqrt((1.0 - x2_))));
     vec4 _e36 = _group_0_binding_0_vs.night;
@@ -1567,35 +1581,35 @@ vec3 moon_disk(vec3 d_18) {
     return vec3(((_e46 / 6.40407e-5) * lit));
 }
 
-vec3 stars(vec3 d_19) {
+vec3 stars(vec3 d_20) {
     uint face = 0u;
     vec2 uv_1 = vec2(0.0);
     float major = 0.0;
-    bool local_61 = false;
+    bool local_65 = false;
     vec3 star = vec3(0.0);
     float e0_ = _group_0_binding_0_vs.night.w;
     if ((e0_ <= 0.0)) {
         return vec3(0.0);
     }
-    vec3 a_9 = abs(d_19);
+    vec3 a_9 = abs(d_20);
     if ((a_9.x >= a_9.y)) {
-        local_61 = (a_9.x >= a_9.z);
+        local_65 = (a_9.x >= a_9.z);
     } else {
-        local_61 = false;
+        local_65 = false;
     }
-    bool _e26 = local_61;
+    bool _e26 = local_65;
     if (_e26) {
-        face = ((d_19.x > 0.0) ? 0u : 1u);
-        uv_1 = d_19.zy;
+        face = ((d_20.x > 0.0) ? 0u : 1u);
+        uv_1 = d_20.zy;
         major = a_9.x;
     } else {
         if ((a_9.y >= a_9.z)) {
-            face = ((d_19.y > 0.0) ? 2u : 3u);
-            uv_1 = d_19.xz;
+            face = ((d_20.y > 0.0) ? 2u : 3u);
+            uv_1 = d_20.xz;
             major = a_9.y;
         } else {
-            face = ((d_19.z > 0.0) ? 4u : 5u);
-            uv_1 = d_19.xy;
+            face = ((d_20.z > 0.0) ? 4u : 5u);
+            uv_1 = d_20.xy;
             major = a_9.z;
         }
     }
@@ -1649,8 +1663,8 @@ vec3 stars(vec3 d_19) {
     uint _e209 = _group_0_binding_0_vs.counts.y;
     float pixel_angle = ((2.0 * _e203) / float(_e209));
     vec3 _e212 = star;
-    float dist_1 = (acos(clamp(dot(d_19, _e212), -1.0, 1.0)) / pixel_angle);
-    float weight_1 = (exp(((-(dist_1) * dist_1) / 0.5)) / 1.5707964);
+    float dist_2 = (acos(clamp(dot(d_20, _e212), -1.0, 1.0)) / pixel_angle);
+    float weight_1 = (exp(((-(dist_2) * dist_2) / 0.5)) / 1.5707964);
     vec3 tint = mix(vec3(0.8, 0.9, 1.1), vec3(1.15, 0.95, 0.75), (h3_ * h4_));
     return (tint * ((illuminance * weight_1) / (pixel_angle * pixel_angle)));
 }

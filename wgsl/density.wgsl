@@ -140,6 +140,13 @@ fn cloud_density(p: vec3<f32>, alt: f32, counters: ptr<function, Counters>) -> f
 
 // Density in [0, 1] at world position `p` with altitude `alt` in layer `l` (0 outside it).
 fn layer_density(p: vec3<f32>, alt: f32, l: Layer, counters: ptr<function, Counters>) -> f32 {
+    return layer_density_with(p, alt, l, true, counters);
+}
+
+// layer_density, with the detail erosion only if `with_detail` (the octaves' steeper light
+// march goes without it: lighting.wgsl::steep_optical_depth).
+fn layer_density_with(p: vec3<f32>, alt: f32, l: Layer, with_detail: bool,
+                      counters: ptr<function, Counters>) -> f32 {
     let h = layer_height(l, alt); // height fraction in the layer
     if h < 0.0 || h > 1.0 {
         return 0.0;
@@ -171,7 +178,7 @@ fn layer_density(p: vec3<f32>, alt: f32, l: Layer, counters: ptr<function, Count
     var density = base;
     let strength = frame.erosion.x;
     let threshold = frame.erosion.y;
-    if DETAIL && strength > 0.0 && base < threshold {
+    if DETAIL && with_detail && strength > 0.0 && base < threshold {
         (*counters).detail += 1u;
         var detail_pos = vec3<f32>(p.x, alt, p.z);
         if CURL {

@@ -192,6 +192,20 @@ pub(crate) fn layer_density(
     l: &Layer,
     counters: &mut Counters,
 ) -> f64 {
+    layer_density_with(f, noise, p, alt, l, true, counters)
+}
+
+// WGSL: density.wgsl::layer_density_with
+/// [`layer_density`], with the detail erosion only if `with_detail`.
+pub(crate) fn layer_density_with(
+    f: &Frame,
+    noise: &NoiseSet,
+    p: V3,
+    alt: f64,
+    l: &Layer,
+    with_detail: bool,
+    counters: &mut Counters,
+) -> f64 {
     let h = layer_height(l, alt);
     if !(0.0..=1.0).contains(&h) {
         return 0.0;
@@ -232,7 +246,7 @@ pub(crate) fn layer_density(
     let mut density = base;
     let strength = f.erosion[0];
     let threshold = f.erosion[1];
-    if strength > 0.0 && base < threshold {
+    if with_detail && strength > 0.0 && base < threshold {
         counters.detail += 1;
         let mut detail_pos = V3::new(p.x, alt, p.z);
         // CURL: always compiled in here (see the module comment).

@@ -66,6 +66,7 @@ pub(crate) struct Frame {
     pub night: [f64; 4],
     pub light_model: [f64; 4],
     pub octave_direction: [f64; 4],
+    pub octave_depth: [f64; 4],
 }
 
 fn w(v: [f32; 4]) -> [f64; 4] {
@@ -116,6 +117,7 @@ impl Frame {
             night: w(u.night),
             light_model: w(u.light_model),
             octave_direction: w(u.octave_direction),
+            octave_depth: w(u.octave_depth),
         }
     }
 

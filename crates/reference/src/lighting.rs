@@ -129,6 +129,71 @@ pub(crate) fn sun_optical_depth(
     tau
 }
 
+// WGSL: lighting.wgsl::STEEP_STEPS, STEEP_FIRST
+/// The steeper light march's steps, and its first step in first light steps.
+const STEEP_STEPS: u32 = 2;
+const STEEP_FIRST: f64 = 8.0;
+
+// WGSL: lighting.wgsl::steep_optical_depth
+// Must agree: the real-time light march's first step and growth (from the uniforms, also under
+// the converged quadrature), the density without its detail erosion, one light sample each.
+/// Optical depth of `STEEP_STEPS` light steps toward unit `d` in layer `l`.
+pub(crate) fn steep_optical_depth(
+    m: &Model,
+    rel: V3,
+    p: V3,
+    l: &Layer,
+    d: V3,
+    counters: &mut Counters,
+) -> f64 {
+    let f = &m.f;
+    let sigma_t = f.extinction[0] + f.extinction[1];
+    let growth = f.march[1];
+    let mut seg = f.march[2] * STEEP_FIRST;
+    let mut dist = 0.0;
+    let mut tau = 0.0;
+    for _ in 0..STEEP_STEPS {
+        let s = dist + 0.5 * seg;
+        let alt = altitude_of(f, rel + d * s);
+        if alt > l.top || alt < l.bottom {
+            break;
+        }
+        counters.light += 1;
+        tau += m.layer_density_with(p + d * s, alt, l, false, counters) * sigma_t * seg;
+        dist += seg;
+        seg *= growth;
+    }
+    tau
+}
+
+// WGSL: lighting.wgsl::octave_optical_depth
+/// The octaves' optical depth at a sample of layer `l` whose sun ray has optical depth `tau`:
+/// in a closed deck the steeper light march mixed in (lighting.wgsl says why).
+pub(crate) fn octave_optical_depth(
+    m: &Model,
+    rel: V3,
+    p: V3,
+    l: &Layer,
+    tau: f64,
+    counters: &mut Counters,
+) -> f64 {
+    let f = &m.f;
+    let deck = saturate((l.coverage - 0.8) / 0.1);
+    let w = f.octave_depth[0] * deck;
+    // WGSL: not below a deck weight of 1e-3 (f32 rounding at a coverage of 0.8).
+    if deck < 1e-3 || w <= 0.0 || f.counts[3] == 0 {
+        return tau;
+    }
+    let up = V3::new(rel.x, rel.y + f.atmosphere[0], rel.z).normalize();
+    let sun = f.sun();
+    let d = (sun + up).normalize();
+    let mu0 = sun.dot(up).max(1e-3);
+    let steep = steep_optical_depth(m, rel, p, l, d, counters)
+        * f.octave_depth[1]
+        * (mu0 / d.dot(up).max(1e-3)).sqrt();
+    mix(tau, steep, w)
+}
+
 // WGSL: lighting.wgsl::far_optical_depth
 // Must agree: the reach is the real-time light march's (its segments' total length, from the
 // uniforms), each quarter of the stretch beyond it a mixture of the weather map's coverage
@@ -179,7 +244,7 @@ pub(crate) fn sun_scattering(
     f: &Frame,
     cos_theta: f64,
     view_y: f64,
-    tau: f64,
+    (tau, tau_oct): (f64, f64),
     (far_direct, far_side): (f64, f64),
     build: f64,
     (coverage, h, layer_coverage): (f64, f64, f64),
@@ -197,7 +262,7 @@ pub(crate) fn sun_scattering(
         kb *= b;
         kc *= c;
         // Two-stream-like fall-off of the diffuse light with depth (lighting.wgsl says why).
-        octave_sum += ka * phase(f, cos_theta, kc) / (1.0 + kb * tau);
+        octave_sum += ka * phase(f, cos_theta, kc) / (1.0 + kb * tau_oct);
     }
     // The octaves stand for the diffuse field, fed by the flux through a deck's top and a
     // broken layer's sides, and leaking out of small clouds (lighting.wgsl says why).
@@ -209,7 +274,8 @@ pub(crate) fn sun_scattering(
     }
     feed *= diffuse_limb(f, view_y, coverage)
         * vertical_anisotropy(f, view_y, coverage, h)
-        * deck_escape(f, mu0, layer_coverage);
+        * deck_escape(f, mu0, layer_coverage)
+        * downward_dimming(f, view_y, coverage, h, tau * mu0);
     let mut octaves_part = feed * build * octave_sum;
     let mut total = phase(f, cos_theta, 1.0) * (-tau - far_direct).exp() + octaves_part;
     if f.modes[3] & FLAG_BEER_POWDER != 0 {
@@ -247,6 +313,14 @@ pub(crate) fn vertical_anisotropy(f: &Frame, view_y: f64, coverage: f64, h: f64)
 // WGSL: lighting.wgsl::DECK_POWER
 /// The power of the layer's coverage that weights the octaves' deck escape.
 const DECK_POWER: f64 = 8.0;
+
+// WGSL: lighting.wgsl::downward_dimming
+/// The octaves' dimming looking down: `1 - k |view_y| coverage (1 - h) tau_v / (tau_v + 1)`
+/// for a view ray going down, clamped at 0 (lighting.wgsl says why).
+pub(crate) fn downward_dimming(f: &Frame, view_y: f64, coverage: f64, h: f64, tau_v: f64) -> f64 {
+    let k = f.octave_depth[2] * (-view_y).max(0.0) * saturate(coverage) * (1.0 - saturate(h));
+    (1.0 - k * tau_v / (tau_v + 1.0)).max(0.0)
+}
 
 // WGSL: lighting.wgsl::deck_escape
 /// The octaves' escape from a deck for a sun of zenith cosine `mu0`: `1 + e w (mu0 - 1/2)`, `w`
@@ -321,11 +395,16 @@ pub(crate) fn scattered_light(
         let tau = sun_optical_depth(m, lm, rel, p, l, counters);
         let far = far_optical_depth(m, rel, p, l);
         let far_direct = if lm.to_layer_exit { 0.0 } else { far };
+        let tau_oct = if lm.steps == 0 {
+            tau
+        } else {
+            octave_optical_depth(m, rel, p, l, tau, counters)
+        };
         let (s, octaves) = sun_scattering(
             f,
             view.dot(sun),
             view.y,
-            tau,
+            (tau, tau_oct),
             (far_direct, far),
             octave_buildup(f, density),
             (weather.coverage, h, l.coverage),
@@ -465,6 +544,58 @@ mod tests {
         scene.lighting.multiple_scattering.vertical_anisotropy = 0.0;
         let off = Model::new(&scene, Medium::Clouds(&noise));
         assert_eq!(vertical_anisotropy(&off.f, 0.5, 1.0, 0.2), 1.0);
+    }
+
+    /// The downward dimming leaves light going down, and light going up with no cloud above
+    /// or at the layer's top, alone; it dims more under more cloud, for steeper views down and
+    /// lower samples, and never below 0.
+    #[test]
+    fn downward_dimming_dims_light_going_up_under_cloud() {
+        let noise = crate::small_noise();
+        let mut scene = Scene::default();
+        scene.lighting.multiple_scattering.downward_dimming = 2.0;
+        let m = Model::new(&scene, Medium::Clouds(&noise));
+        let f = &m.f;
+        // Looking up, at a cloud's lit top (no cloud above) or at the layer's top: none.
+        assert_eq!(downward_dimming(f, 0.5, 1.0, 0.2, 10.0), 1.0);
+        assert_eq!(downward_dimming(f, -0.5, 1.0, 0.2, 0.0), 1.0);
+        assert_eq!(downward_dimming(f, -0.5, 1.0, 1.0, 10.0), 1.0);
+        // More the more cloud above, the steeper the view down and the lower the sample.
+        let under = |tau_v, view_y, h| downward_dimming(f, view_y, 1.0, h, tau_v);
+        assert!(under(1.0, -0.2, 0.2) > under(10.0, -0.2, 0.2));
+        assert!(under(10.0, -0.2, 0.2) > under(10.0, -0.6, 0.2));
+        assert!(under(10.0, -0.6, 0.8) > under(10.0, -0.6, 0.2));
+        // Clamped at 0 (2 |view_y| (1 - h) tau_v / (tau_v + 1) exceeds 1 straight down).
+        assert_eq!(under(100.0, -1.0, 0.0), 0.0);
+        scene.lighting.multiple_scattering.downward_dimming = 0.0;
+        let off = Model::new(&scene, Medium::Clouds(&noise));
+        assert_eq!(downward_dimming(&off.f, -1.0, 1.0, 0.0, 100.0), 1.0);
+    }
+
+    /// The steeper light march changes the octaves' optical depth in a closed deck only, and
+    /// costs at most its two light samples there.
+    #[test]
+    fn steep_light_is_a_closed_decks_alone() {
+        let noise = crate::small_noise();
+        let at = |coverage: f64, steep: f64| {
+            let mut scene = Scene::default();
+            scene.clouds.coverage = coverage;
+            scene.lighting.multiple_scattering.steep_light = steep;
+            let m = Model::new(&scene, Medium::Clouds(&noise));
+            let l = cloud_layers(&m.f).next().expect("the main layer");
+            let rel = V3::new(0.0, 0.5 * (l.bottom + l.top), 0.0);
+            let mut counters = Counters::default();
+            let tau = octave_optical_depth(&m, rel, rel, &l, 7.0, &mut counters);
+            (tau, counters.light)
+        };
+        assert_eq!(at(0.5, 1.0), (7.0, 0));
+        assert_eq!(at(1.0, 0.0), (7.0, 0));
+        let (deck, light) = at(1.0, 1.0);
+        assert!(deck != 7.0 && deck >= 0.0, "{deck}");
+        assert!((1..=2).contains(&light), "{light}");
+        // Half the weight, half way.
+        let (half, _) = at(1.0, 0.5);
+        assert!((half - 0.5 * (7.0 + deck)).abs() < 1e-9, "{half} {deck}");
     }
 
     /// The deck escape brightens a full deck's octaves under a high sun and darkens them under

@@ -5,7 +5,7 @@ use stratus_noise::NoiseSet;
 use stratus_scene::Scene;
 
 use crate::density::{
-    Counters, Layer, Weather, cloud_density, cloud_layers, layer_density, sample_weather,
+    Counters, Layer, Weather, cloud_density, cloud_layers, layer_density_with, sample_weather,
     uniform_weather,
 };
 use crate::frame::Frame;
@@ -333,8 +333,22 @@ impl<'a> Model<'a> {
     /// Density at world position `p` (altitude `alt`) in layer `l` (0 outside it); counts like
     /// `layer_density`. The analytic media fill the main layer only, as [`Model::density`].
     pub(crate) fn layer_density(&self, p: V3, alt: f64, l: &Layer, counters: &mut Counters) -> f64 {
+        self.layer_density_with(p, alt, l, true, counters)
+    }
+
+    /// [`Model::layer_density`], with the clouds' detail erosion only if `with_detail`.
+    pub(crate) fn layer_density_with(
+        &self,
+        p: V3,
+        alt: f64,
+        l: &Layer,
+        with_detail: bool,
+        counters: &mut Counters,
+    ) -> f64 {
         match self.medium {
-            Medium::Clouds(noise) => layer_density(&self.f, noise, p, alt, l, counters),
+            Medium::Clouds(noise) => {
+                layer_density_with(&self.f, noise, p, alt, l, with_detail, counters)
+            }
             _ => self.density(p, alt, counters),
         }
     }

@@ -380,7 +380,7 @@ fn extreme_valid_parameters() {
             s.lighting.phase.g = 0.99;
         }),
         (
-            "8 octaves, a = 2, b = c = 1, build-up 10 km, side light 4, limb darkening 4, forward lobe 1 (g 0.95), vertical anisotropy 1",
+            "8 octaves, a = 2, b = c = 1, build-up 10 km, side light 4, limb darkening 4, forward lobe 1 (g 0.95), vertical anisotropy 1, steep light 1 (scale 8), downward dimming 4",
             |s| {
                 let ms = &mut s.lighting.multiple_scattering;
                 ms.octaves = 8;
@@ -395,6 +395,9 @@ fn extreme_valid_parameters() {
                 ms.forward_lobe_g = 0.95;
                 ms.vertical_anisotropy = 1.0;
                 ms.deck_escape = 2.0;
+                ms.steep_light = 1.0;
+                ms.steep_light_scale = 8.0;
+                ms.downward_dimming = 4.0;
             },
         ),
         ("density 1000", |s| s.clouds.density = 1000.0),

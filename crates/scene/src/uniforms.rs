@@ -112,10 +112,14 @@ pub struct FrameUniforms {
     /// deck escape (0 = off) (`MultipleScattering::forward_lobe`, `vertical_anisotropy`,
     /// `deck_escape`).
     pub octave_direction: [f32; 4],
+    /// The octaves' optical depth in a closed deck and their dimming looking down: the
+    /// steeper light march's weight (0 = off) and scale, the downward dimming (0 = off), 0
+    /// (`MultipleScattering::steep_light`, `steep_light_scale`, `downward_dimming`).
+    pub octave_depth: [f32; 4],
 }
 
 impl FrameUniforms {
-    /// Size of the block in bytes (40 vec4 members).
+    /// Size of the block in bytes (41 vec4 members).
     pub const SIZE: usize = std::mem::size_of::<Self>();
 
     /// `modes.w` bit: apply the Beer-Powder term.
@@ -135,7 +139,7 @@ impl FrameUniforms {
 
     /// Every member in declaration order with its WGSL type; member `i` is at offset `16 * i`.
     /// The shader-reflection test compares the WGSL struct against this list.
-    pub const MEMBERS: [(&'static str, &'static str); 40] = [
+    pub const MEMBERS: [(&'static str, &'static str); 41] = [
         ("camera_position", "vec4<f32>"),
         ("camera_forward", "vec4<f32>"),
         ("camera_right", "vec4<f32>"),
@@ -176,6 +180,7 @@ impl FrameUniforms {
         ("night", "vec4<f32>"),
         ("light_model", "vec4<f32>"),
         ("octave_direction", "vec4<f32>"),
+        ("octave_depth", "vec4<f32>"),
     ];
 
     /// This block with `previous`'s camera as last frame's camera (what a renderer keeping
@@ -563,6 +568,12 @@ impl Scene {
                 ms.forward_lobe_g as f32,
                 ms.vertical_anisotropy as f32,
                 ms.deck_escape as f32,
+            ],
+            octave_depth: [
+                ms.steep_light as f32,
+                ms.steep_light_scale as f32,
+                ms.downward_dimming as f32,
+                0.0,
             ],
         };
         block.with_previous_camera(&block)

@@ -335,6 +335,24 @@ pub(crate) fn check(scene: &Scene) -> Vec<Issue> {
         Incl(0.0),
         Incl(2.0),
     );
+    c.float(
+        "lighting.multiple_scattering.steep_light",
+        ms.steep_light,
+        Incl(0.0),
+        Incl(1.0),
+    );
+    c.float(
+        "lighting.multiple_scattering.steep_light_scale",
+        ms.steep_light_scale,
+        Incl(0.5),
+        Incl(8.0),
+    );
+    c.float(
+        "lighting.multiple_scattering.downward_dimming",
+        ms.downward_dimming,
+        Incl(0.0),
+        Incl(8.0),
+    );
     // 0 turns the far shadow off; a chord below 100 m would shadow like a solid deck.
     let chord = ms.far_chord_m;
     if !chord.is_finite() {

@@ -146,7 +146,8 @@ fn multiple_scattering_constants_are_bounded() {
         "[lighting.multiple_scattering]\na = 2.5\nb = 0.4\noctaves = 9\nbuildup_m = -1.0\n\
          side_light = 5.0\ncoverage_exponent = -1.0\nfar_chord_m = 50.0\nlimb_darkening = -0.5\n\
          forward_lobe = 1.5\nforward_lobe_g = 0.99\nvertical_anisotropy = 1.5\n\
-         deck_escape = 2.5\n",
+         deck_escape = 2.5\nsteep_light = -0.1\nsteep_light_scale = 9.0\n\
+         downward_dimming = 9.0\n",
     );
 }
 

@@ -68,6 +68,9 @@ pub const PREFIT_OCTAVES: MultipleScattering = MultipleScattering {
     forward_lobe_g: 0.0,
     vertical_anisotropy: 0.0,
     deck_escape: 0.0,
+    steep_light: 0.0,
+    steep_light_scale: 1.0,
+    downward_dimming: 0.0,
 };
 
 impl Config {

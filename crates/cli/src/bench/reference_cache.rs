@@ -76,7 +76,7 @@ fn reference_for(scene: &Scene) -> (Integrator, Scene, bool) {
 /// The light model's terms added after the cache's v2 (reset to fixed values by
 /// `reference_for` like the octaves, and ignored by every reference): left out of the key so
 /// that the truths rendered before them stay valid.
-const KEYLESS_FIELDS: [&str; 8] = [
+const KEYLESS_FIELDS: [&str; 11] = [
     "side_light = ",
     "coverage_exponent = ",
     "far_chord_m = ",
@@ -85,6 +85,9 @@ const KEYLESS_FIELDS: [&str; 8] = [
     "forward_lobe_g = ",
     "vertical_anisotropy = ",
     "deck_escape = ",
+    "steep_light = ",
+    "steep_light_scale = ",
+    "downward_dimming = ",
 ];
 
 /// The scene's TOML as the cache key hashes it: `s.to_toml()` without the `KEYLESS_FIELDS`.
@@ -327,11 +330,14 @@ mod tests {
                 "forward_lobe = 0.0",
                 "forward_lobe_g = 0.0",
                 "vertical_anisotropy = 0.0",
-                "deck_escape = 0.0"
+                "deck_escape = 0.0",
+                "steep_light = 0.0",
+                "steep_light_scale = 1.0",
+                "downward_dimming = 0.0"
             ],
             "{full}"
         );
-        assert_eq!(full.lines().count(), key.lines().count() + 8);
+        assert_eq!(full.lines().count(), key.lines().count() + 11);
     }
 
     #[test]
