@@ -1431,13 +1431,68 @@ float phase(float cos_theta_4, float scale)
     }
 }
 
-float sun_optical_depth(float3 rel_3, float3 p_7, Layer l_5, inout Counters counters_6)
+float segment_optical_depth(float3 rel_3, float3 p_7, Layer l_5, float3 d_13, float first, uint steps_1, bool with_detail_1, inout Counters counters_6)
 {
     float seg = (float)0;
     float dist = 0.0;
     float tau_4 = 0.0;
     uint i_10 = 0u;
     bool local_28 = (bool)0;
+
+    float _e11 = frame.extinction.x;
+    float _e15 = frame.extinction.y;
+    float sigma_t_1 = (_e11 + _e15);
+    float growth = frame.march.y;
+    seg = first;
+    uint2 loop_bound_4 = uint2(4294967295u, 4294967295u);
+    bool loop_init_4 = true;
+    while(true) {
+        if (all(loop_bound_4 == uint2(0u, 0u))) { break; }
+        loop_bound_4 -= uint2(loop_bound_4.y == 0u, 1u);
+        if (!loop_init_4) {
+            uint _e65 = i_10;
+            i_10 = (_e65 + 1u);
+        }
+        loop_init_4 = false;
+        uint _e28 = i_10;
+        if ((_e28 < steps_1)) {
+        } else {
+            break;
+        }
+        {
+            float _e30 = dist;
+            float _e31 = seg;
+            float s_8 = (_e30 + (0.5 * _e31));
+            const float _e37 = altitude_of((rel_3 + (d_13 * s_8)));
+            if (!((_e37 > l_5.top))) {
+                local_28 = (_e37 < l_5.bottom);
+            } else {
+                local_28 = true;
+            }
+            bool _e46 = local_28;
+            if (_e46) {
+                break;
+            }
+            uint _e48 = counters_6.light;
+            counters_6.light = (_e48 + 1u);
+            float _e51 = tau_4;
+            const float _e54 = layer_density_with((p_7 + (d_13 * s_8)), _e37, l_5, with_detail_1, counters_6);
+            float _e56 = seg;
+            tau_4 = (_e51 + ((_e54 * sigma_t_1) * _e56));
+            float _e59 = dist;
+            float _e60 = seg;
+            dist = (_e59 + _e60);
+            float _e62 = seg;
+            seg = (_e62 * growth);
+        }
+    }
+    float _e67 = tau_4;
+    return _e67;
+}
+
+float sun_optical_depth(float3 rel_4, float3 p_8, Layer l_6, inout Counters counters_7)
+{
+    float tau_5 = (float)0;
     uint j_1 = 0u;
     bool local_29 = (bool)0;
     bool local_30 = (bool)0;
@@ -1447,194 +1502,91 @@ float sun_optical_depth(float3 rel_3, float3 p_7, Layer l_5, inout Counters coun
     float3 sun_3 = _e6.xyz;
     float _e11 = frame.extinction.x;
     float _e15 = frame.extinction.y;
-    float sigma_t_1 = (_e11 + _e15);
-    uint steps_2 = frame.counts.w;
-    float growth = frame.march.y;
-    float _e28 = frame.march.z;
-    seg = _e28;
-    uint2 loop_bound_4 = uint2(4294967295u, 4294967295u);
-    bool loop_init_4 = true;
-    while(true) {
-        if (all(loop_bound_4 == uint2(0u, 0u))) { break; }
-        loop_bound_4 -= uint2(loop_bound_4.y == 0u, 1u);
-        if (!loop_init_4) {
-            uint _e73 = i_10;
-            i_10 = (_e73 + 1u);
-        }
-        loop_init_4 = false;
-        uint _e36 = i_10;
-        if ((_e36 < steps_2)) {
-        } else {
-            break;
-        }
-        {
-            float _e38 = dist;
-            float _e39 = seg;
-            float s_8 = (_e38 + (0.5 * _e39));
-            float3 q_8 = (rel_3 + (sun_3 * s_8));
-            const float _e45 = altitude_of(q_8);
-            if (!((_e45 > l_5.top))) {
-                local_28 = (_e45 < l_5.bottom);
-            } else {
-                local_28 = true;
-            }
-            bool _e54 = local_28;
-            if (_e54) {
-                break;
-            }
-            uint _e56 = counters_6.light;
-            counters_6.light = (_e56 + 1u);
-            float _e59 = tau_4;
-            const float _e62 = layer_density((p_7 + (sun_3 * s_8)), _e45, l_5, counters_6);
-            float _e64 = seg;
-            tau_4 = (_e59 + ((_e62 * sigma_t_1) * _e64));
-            float _e67 = dist;
-            float _e68 = seg;
-            dist = (_e67 + _e68);
-            float _e70 = seg;
-            seg = (_e70 * growth);
-        }
-    }
-    const float _e75 = altitude_of(rel_3);
+    float sigma_t_2 = (_e11 + _e15);
+    float _e20 = frame.march.z;
+    uint _e24 = frame.counts.w;
+    const float _e26 = segment_optical_depth(rel_4, p_8, l_6, sun_3, _e20, _e24, true, counters_7);
+    tau_5 = _e26;
+    const float _e28 = altitude_of(rel_4);
     uint2 loop_bound_5 = uint2(4294967295u, 4294967295u);
     bool loop_init_5 = true;
     while(true) {
         if (all(loop_bound_5 == uint2(0u, 0u))) { break; }
         loop_bound_5 -= uint2(loop_bound_5.y == 0u, 1u);
         if (!loop_init_5) {
-            uint _e139 = j_1;
-            j_1 = (_e139 + 1u);
+            uint _e92 = j_1;
+            j_1 = (_e92 + 1u);
         }
         loop_init_5 = false;
-        uint _e78 = j_1;
-        const uint _e79 = layer_count();
-        if ((_e78 < _e79)) {
+        uint _e31 = j_1;
+        const uint _e32 = layer_count();
+        if ((_e31 < _e32)) {
         } else {
             break;
         }
         {
-            uint _e81 = j_1;
-            const Layer _e82 = cloud_layer(_e81);
-            if ((_e82.bottom <= l_5.top)) {
+            uint _e34 = j_1;
+            const Layer _e35 = cloud_layer(_e34);
+            if ((_e35.bottom <= l_6.top)) {
                 continue;
             }
-            const Roots _e87 = ray_shell_from(rel_3, _e75, sun_3, _e82.bottom);
-            const Roots _e89 = ray_shell_from(rel_3, _e75, sun_3, _e82.top);
-            if (!(!(_e87.hit))) {
-                local_29 = !(_e89.hit);
+            const Roots _e40 = ray_shell_from(rel_4, _e28, sun_3, _e35.bottom);
+            const Roots _e42 = ray_shell_from(rel_4, _e28, sun_3, _e35.top);
+            if (!(!(_e40.hit))) {
+                local_29 = !(_e42.hit);
             } else {
                 local_29 = true;
             }
-            bool _e98 = local_29;
-            if (!(_e98)) {
-                local_30 = !((_e89.t1_ > _e87.t1_));
+            bool _e51 = local_29;
+            if (!(_e51)) {
+                local_30 = !((_e42.t1_ > _e40.t1_));
             } else {
                 local_30 = true;
             }
-            bool _e107 = local_30;
-            if (!(_e107)) {
-                local_31 = (_e87.t1_ <= 0.0);
+            bool _e60 = local_30;
+            if (!(_e60)) {
+                local_31 = (_e40.t1_ <= 0.0);
             } else {
                 local_31 = true;
             }
-            bool _e115 = local_31;
-            if (_e115) {
+            bool _e68 = local_31;
+            if (_e68) {
                 continue;
             }
-            float s_9 = (0.5 * (_e87.t1_ + _e89.t1_));
-            uint _e122 = counters_6.light;
-            counters_6.light = (_e122 + 1u);
-            float _e125 = tau_4;
-            const float _e130 = altitude_of((rel_3 + (sun_3 * s_9)));
-            const float _e131 = layer_density((p_7 + (sun_3 * s_9)), _e130, _e82, counters_6);
-            tau_4 = (_e125 + ((_e131 * sigma_t_1) * (_e89.t1_ - _e87.t1_)));
+            float s_9 = (0.5 * (_e40.t1_ + _e42.t1_));
+            uint _e75 = counters_7.light;
+            counters_7.light = (_e75 + 1u);
+            float _e78 = tau_5;
+            const float _e83 = altitude_of((rel_4 + (sun_3 * s_9)));
+            const float _e84 = layer_density((p_8 + (sun_3 * s_9)), _e83, _e35, counters_7);
+            tau_5 = (_e78 + ((_e84 * sigma_t_2) * (_e42.t1_ - _e40.t1_)));
         }
     }
-    float _e141 = tau_4;
-    return _e141;
-}
-
-float steep_optical_depth(float3 rel_4, float3 p_8, Layer l_6, float3 d_13, inout Counters counters_7)
-{
-    float seg_1 = (float)0;
-    float dist_1 = 0.0;
-    float tau_5 = 0.0;
-    uint i_11 = 0u;
-    bool local_32 = (bool)0;
-
-    float _e8 = frame.extinction.x;
-    float _e12 = frame.extinction.y;
-    float sigma_t_2 = (_e8 + _e12);
-    float growth_1 = frame.march.y;
-    float _e21 = frame.march.z;
-    seg_1 = (_e21 * STEEP_FIRST);
-    uint2 loop_bound_6 = uint2(4294967295u, 4294967295u);
-    bool loop_init_6 = true;
-    while(true) {
-        if (all(loop_bound_6 == uint2(0u, 0u))) { break; }
-        loop_bound_6 -= uint2(loop_bound_6.y == 0u, 1u);
-        if (!loop_init_6) {
-            uint _e70 = i_11;
-            i_11 = (_e70 + 1u);
-        }
-        loop_init_6 = false;
-        uint _e31 = i_11;
-        if ((_e31 < STEEP_STEPS)) {
-        } else {
-            break;
-        }
-        {
-            float _e34 = dist_1;
-            float _e35 = seg_1;
-            float s_10 = (_e34 + (0.5 * _e35));
-            const float _e41 = altitude_of((rel_4 + (d_13 * s_10)));
-            if (!((_e41 > l_6.top))) {
-                local_32 = (_e41 < l_6.bottom);
-            } else {
-                local_32 = true;
-            }
-            bool _e50 = local_32;
-            if (_e50) {
-                break;
-            }
-            uint _e52 = counters_7.light;
-            counters_7.light = (_e52 + 1u);
-            float _e55 = tau_5;
-            const float _e59 = layer_density_with((p_8 + (d_13 * s_10)), _e41, l_6, false, counters_7);
-            float _e61 = seg_1;
-            tau_5 = (_e55 + ((_e59 * sigma_t_2) * _e61));
-            float _e64 = dist_1;
-            float _e65 = seg_1;
-            dist_1 = (_e64 + _e65);
-            float _e67 = seg_1;
-            seg_1 = (_e67 * growth_1);
-        }
-    }
-    float _e72 = tau_5;
-    return _e72;
+    float _e94 = tau_5;
+    return _e94;
 }
 
 float octave_optical_depth(float3 rel_5, float3 p_9, Layer l_7, float tau_6, inout Counters counters_8)
 {
+    bool local_32 = (bool)0;
     bool local_33 = (bool)0;
-    bool local_34 = (bool)0;
 
     const float _e10 = saturate_(((l_7.coverage - 0.8) / 0.1));
     float _e14 = frame.octave_depth.x;
     float m_2 = (_e14 * _e10);
     if (!((_e10 < 0.001))) {
-        local_33 = (m_2 <= 0.0);
+        local_32 = (m_2 <= 0.0);
+    } else {
+        local_32 = true;
+    }
+    bool _e24 = local_32;
+    if (!(_e24)) {
+        uint _e31 = frame.counts.w;
+        local_33 = (_e31 == 0u);
     } else {
         local_33 = true;
     }
-    bool _e24 = local_33;
-    if (!(_e24)) {
-        uint _e31 = frame.counts.w;
-        local_34 = (_e31 == 0u);
-    } else {
-        local_34 = true;
-    }
-    bool _e35 = local_34;
+    bool _e35 = local_33;
     if (_e35) {
         return tau_6;
     }
@@ -1644,39 +1596,40 @@ float octave_optical_depth(float3 rel_5, float3 p_9, Layer l_7, float tau_6, ino
     float3 sun_4 = _e48.xyz;
     float3 d_23 = normalize((sun_4 + up_1));
     float mu0_1 = max(dot(sun_4, up_1), 0.001);
-    const float _e55 = steep_optical_depth(rel_5, p_9, l_7, d_23, counters_8);
-    float _e59 = frame.octave_depth.y;
-    float steep = ((_e55 * _e59) * sqrt((mu0_1 / max(dot(d_23, up_1), 0.001))));
+    float _e58 = frame.march.z;
+    const float _e63 = segment_optical_depth(rel_5, p_9, l_7, d_23, (_e58 * STEEP_FIRST), STEEP_STEPS, false, counters_8);
+    float _e67 = frame.octave_depth.y;
+    float steep = ((_e63 * _e67) * sqrt((mu0_1 / max(dot(d_23, up_1), 0.001))));
     return lerp(tau_6, steep, m_2);
 }
 
 float far_optical_depth(float3 rel_6, float3 p_10, Layer l_8)
 {
-    bool local_35 = (bool)0;
+    bool local_34 = (bool)0;
     float reach = (float)0;
-    bool local_36 = (bool)0;
+    bool local_35 = (bool)0;
     float tau_7 = 0.0;
-    uint i_12 = 0u;
+    uint i_11 = 0u;
 
     float chord = frame.light_model.z;
     if (!((chord <= 0.0))) {
         uint _e15 = frame.counts.w;
-        local_35 = (_e15 == 0u);
+        local_34 = (_e15 == 0u);
     } else {
-        local_35 = true;
+        local_34 = true;
     }
-    bool _e19 = local_35;
+    bool _e19 = local_34;
     if (_e19) {
         return 0.0;
     }
-    float growth_2 = frame.march.y;
+    float growth_1 = frame.march.y;
     uint _e28 = frame.counts.w;
     float steps_3 = float(_e28);
     float _e33 = frame.march.z;
     reach = (_e33 * steps_3);
-    if ((growth_2 != 1.0)) {
+    if ((growth_1 != 1.0)) {
         float _e41 = frame.march.z;
-        reach = ((_e41 * (pow(growth_2, steps_3) - 1.0)) / (growth_2 - 1.0));
+        reach = ((_e41 * (pow(growth_1, steps_3) - 1.0)) / (growth_1 - 1.0));
     }
     float4 _e51 = frame.sun_direction;
     float3 sun_5 = _e51.xyz;
@@ -1685,32 +1638,32 @@ float far_optical_depth(float3 rel_6, float3 p_10, Layer l_8)
     float _e57 = reach;
     float len_1 = (_e55.t1_ - _e57);
     if (!(!(_e55.hit))) {
-        local_36 = !((len_1 > 0.0));
+        local_35 = !((len_1 > 0.0));
     } else {
-        local_36 = true;
+        local_35 = true;
     }
-    bool _e68 = local_36;
+    bool _e68 = local_35;
     if (_e68) {
         return 0.0;
     }
-    uint2 loop_bound_7 = uint2(4294967295u, 4294967295u);
-    bool loop_init_7 = true;
+    uint2 loop_bound_6 = uint2(4294967295u, 4294967295u);
+    bool loop_init_6 = true;
     while(true) {
-        if (all(loop_bound_7 == uint2(0u, 0u))) { break; }
-        loop_bound_7 -= uint2(loop_bound_7.y == 0u, 1u);
-        if (!loop_init_7) {
-            uint _e110 = i_12;
-            i_12 = (_e110 + 1u);
+        if (all(loop_bound_6 == uint2(0u, 0u))) { break; }
+        loop_bound_6 -= uint2(loop_bound_6.y == 0u, 1u);
+        if (!loop_init_6) {
+            uint _e110 = i_11;
+            i_11 = (_e110 + 1u);
         }
-        loop_init_7 = false;
-        uint _e74 = i_12;
+        loop_init_6 = false;
+        uint _e74 = i_11;
         if ((_e74 < 4u)) {
         } else {
             break;
         }
         {
             float _e77 = reach;
-            uint _e78 = i_12;
+            uint _e78 = i_11;
             float t_5 = (_e77 + (((float(_e78) + 0.5) * 0.25) * len_1));
             const float _e88 = altitude_of((rel_6 + (sun_5 * t_5)));
             const float _e89 = layer_height(l_8, _e88);
@@ -1772,7 +1725,7 @@ SunScattering sun_scattering(float cos_theta_5, float view_y_3, float tau_8, flo
     float ka = 1.0;
     float kb = 1.0;
     float kc = 1.0;
-    uint i_13 = 0u;
+    uint i_12 = 0u;
     float feed = (float)0;
     float octaves_part = (float)0;
     float total = (float)0;
@@ -1782,17 +1735,17 @@ SunScattering sun_scattering(float cos_theta_5, float view_y_3, float tau_8, flo
     float c_8 = frame.multiple_scattering.z;
     uint _e24 = frame.misc.x;
     uint octaves = min(_e24, MAX_OCTAVES);
-    uint2 loop_bound_8 = uint2(4294967295u, 4294967295u);
-    bool loop_init_8 = true;
+    uint2 loop_bound_7 = uint2(4294967295u, 4294967295u);
+    bool loop_init_7 = true;
     while(true) {
-        if (all(loop_bound_8 == uint2(0u, 0u))) { break; }
-        loop_bound_8 -= uint2(loop_bound_8.y == 0u, 1u);
-        if (!loop_init_8) {
-            uint _e57 = i_13;
-            i_13 = (_e57 + 1u);
+        if (all(loop_bound_7 == uint2(0u, 0u))) { break; }
+        loop_bound_7 -= uint2(loop_bound_7.y == 0u, 1u);
+        if (!loop_init_7) {
+            uint _e57 = i_12;
+            i_12 = (_e57 + 1u);
         }
-        loop_init_8 = false;
-        uint _e37 = i_13;
+        loop_init_7 = false;
+        uint _e37 = i_12;
         if ((_e37 < octaves)) {
         } else {
             break;
@@ -2039,14 +1992,14 @@ float empty_cell_exit(float3 p_12, float3 d_14)
 
 void count(uint index_1, uint value)
 {
-    bool local_37 = (bool)0;
+    bool local_36 = (bool)0;
 
     if (STATS) {
-        local_37 = (value != 0u);
+        local_36 = (value != 0u);
     } else {
-        local_37 = false;
+        local_36 = false;
     }
-    bool _e8 = local_37;
+    bool _e8 = local_36;
     if (_e8) {
         uint _e12; stats.InterlockedAdd(index_1*4+0, value, _e12);
         return;
@@ -2089,23 +2042,23 @@ float start_offset(uint2 pixel_3)
 
 bool march_layer(float3 view_2, Interval span_1, Layer l_10, float jitter, inout MarchState state, inout Counters counters_10)
 {
-    uint steps_1 = (uint)0;
-    uint i_14 = 0u;
+    uint steps_2 = (uint)0;
+    uint i_13 = 0u;
     uint stride = 1u;
     uint empty = 0u;
-    bool local_38 = (bool)0;
+    bool local_37 = (bool)0;
 
     float cam_alt_1 = frame.camera_position.y;
     float4 _e12 = frame.camera_position;
     float2 cam_xz = _e12.xz;
     uint _e17 = frame.counts.z;
-    steps_1 = _e17;
+    steps_2 = _e17;
     float _e22 = frame.march.x;
     if ((_e22 > 0.0)) {
         float _e29 = frame.march.x;
-        steps_1 = clamp(naga_f2u32(ceil((span_1.length_ / _e29))), 1u, MAX_VIEW_STEPS);
+        steps_2 = clamp(naga_f2u32(ceil((span_1.length_ / _e29))), 1u, MAX_VIEW_STEPS);
     }
-    uint _e37 = steps_1;
+    uint _e37 = steps_2;
     float dt_2 = (span_1.length_ / float(_e37));
     float _e43 = frame.extinction.x;
     float _e47 = frame.extinction.y;
@@ -2114,28 +2067,28 @@ bool march_layer(float3 view_2, Interval span_1, Layer l_10, float jitter, inout
     bool dynamic_step = ((_e52 & FLAG_DYNAMIC_STEP) != 0u);
     uint _e60 = frame.modes.w;
     bool empty_skip = ((_e60 & FLAG_EMPTY_SKIP) != 0u);
-    uint2 loop_bound_9 = uint2(4294967295u, 4294967295u);
+    uint2 loop_bound_8 = uint2(4294967295u, 4294967295u);
     while(true) {
-        if (all(loop_bound_9 == uint2(0u, 0u))) { break; }
-        loop_bound_9 -= uint2(loop_bound_9.y == 0u, 1u);
-        uint _e71 = i_14;
-        uint _e72 = steps_1;
+        if (all(loop_bound_8 == uint2(0u, 0u))) { break; }
+        loop_bound_8 -= uint2(loop_bound_8.y == 0u, 1u);
+        uint _e71 = i_13;
+        uint _e72 = steps_2;
         if ((_e71 >= _e72)) {
             break;
         }
         uint _e75 = counters_10.view_steps;
         counters_10.view_steps = (_e75 + 1u);
-        uint _e79 = i_14;
+        uint _e79 = i_13;
         float t_7 = (span_1.start + ((float(_e79) + jitter) * dt_2));
         float3 rel_12 = ((view_2 * t_7) + float3(0.0, cam_alt_1, 0.0));
         float3 p_17 = float3((rel_12.x + cam_xz.x), rel_12.y, (rel_12.z + cam_xz.y));
         if (empty_skip) {
             const float _e97 = empty_cell_exit(p_17, view_2);
             if ((_e97 > 0.0)) {
-                uint _e106 = steps_1;
+                uint _e106 = steps_2;
                 uint next_1 = naga_f2u32(clamp(ceil(((((t_7 + _e97) - span_1.start) / dt_2) - jitter)), 0.0, float(_e106)));
-                uint _e111 = i_14;
-                i_14 = max((_e111 + 1u), next_1);
+                uint _e111 = i_13;
+                i_13 = max((_e111 + 1u), next_1);
                 continue;
             }
         }
@@ -2146,24 +2099,24 @@ bool march_layer(float3 view_2, Interval span_1, Layer l_10, float jitter, inout
             empty = (_e119 + 1u);
             if (dynamic_step) {
                 uint _e124 = empty;
-                local_38 = (_e124 >= 8u);
+                local_37 = (_e124 >= 8u);
             } else {
-                local_38 = false;
+                local_37 = false;
             }
-            bool _e128 = local_38;
+            bool _e128 = local_37;
             if (_e128) {
                 stride = 2u;
             }
-            uint _e130 = i_14;
+            uint _e130 = i_13;
             uint _e131 = stride;
-            i_14 = (_e130 + _e131);
+            i_13 = (_e130 + _e131);
             continue;
         }
         uint _e133 = stride;
         if ((_e133 > 1u)) {
-            uint _e136 = i_14;
+            uint _e136 = i_13;
             uint _e137 = stride;
-            i_14 = (_e136 - (_e137 - 1u));
+            i_13 = (_e136 - (_e137 - 1u));
             stride = 1u;
             empty = 0u;
             continue;
@@ -2187,8 +2140,8 @@ bool march_layer(float3 view_2, Interval span_1, Layer l_10, float jitter, inout
         if ((_e173 < _e177)) {
             return true;
         }
-        uint _e180 = i_14;
-        i_14 = (_e180 + 1u);
+        uint _e180 = i_13;
+        i_13 = (_e180 + 1u);
     }
     return false;
 }
@@ -2231,13 +2184,13 @@ MarchResult march_pixel(uint2 pixel_4)
     uint k_6 = 0u;
     uint next = (uint)0;
     Interval span_2 = (Interval)0;
-    uint i_15 = (uint)0;
+    uint i_14 = (uint)0;
+    bool local_38 = (bool)0;
     bool local_39 = (bool)0;
     bool local_40 = (bool)0;
     bool local_41 = (bool)0;
     bool local_42 = (bool)0;
     bool local_43 = (bool)0;
-    bool local_44 = (bool)0;
     float depth_1 = 0.0;
 
     const float3 _e1 = view_ray(pixel_4);
@@ -2245,16 +2198,16 @@ MarchResult march_pixel(uint2 pixel_4)
     count(STAT_PIXELS, 1u);
     const float _e22 = start_offset(pixel_4);
     const uint _e23 = layer_count();
-    uint2 loop_bound_10 = uint2(4294967295u, 4294967295u);
-    bool loop_init_9 = true;
+    uint2 loop_bound_9 = uint2(4294967295u, 4294967295u);
+    bool loop_init_8 = true;
     while(true) {
-        if (all(loop_bound_10 == uint2(0u, 0u))) { break; }
-        loop_bound_10 -= uint2(loop_bound_10.y == 0u, 1u);
-        if (!loop_init_9) {
+        if (all(loop_bound_9 == uint2(0u, 0u))) { break; }
+        loop_bound_9 -= uint2(loop_bound_9.y == 0u, 1u);
+        if (!loop_init_8) {
             uint _e121 = k_6;
             k_6 = (_e121 + 1u);
         }
-        loop_init_9 = false;
+        loop_init_8 = false;
         uint _e36 = k_6;
         if ((_e36 < _e23)) {
         } else {
@@ -2263,72 +2216,72 @@ MarchResult march_pixel(uint2 pixel_4)
         {
             next = NO_LAYER;
             span_2 = ConstructInterval(0.0, 0.0, 1u);
-            i_15 = 0u;
-            uint2 loop_bound_11 = uint2(4294967295u, 4294967295u);
-            bool loop_init_10 = true;
+            i_14 = 0u;
+            uint2 loop_bound_10 = uint2(4294967295u, 4294967295u);
+            bool loop_init_9 = true;
             while(true) {
-                if (all(loop_bound_11 == uint2(0u, 0u))) { break; }
-                loop_bound_11 -= uint2(loop_bound_11.y == 0u, 1u);
-                if (!loop_init_10) {
-                    uint _e104 = i_15;
-                    i_15 = (_e104 + 1u);
+                if (all(loop_bound_10 == uint2(0u, 0u))) { break; }
+                loop_bound_10 -= uint2(loop_bound_10.y == 0u, 1u);
+                if (!loop_init_9) {
+                    uint _e104 = i_14;
+                    i_14 = (_e104 + 1u);
                 }
-                loop_init_10 = false;
-                uint _e47 = i_15;
+                loop_init_9 = false;
+                uint _e47 = i_14;
                 if ((_e47 < _e23)) {
                 } else {
                     break;
                 }
                 {
-                    uint _e49 = i_15;
+                    uint _e49 = i_14;
                     const Layer _e50 = cloud_layer(_e49);
                     const Interval _e51 = layer_interval(cam_alt_2, _e1, _e50);
                     bool _e52 = ground_1;
                     if (!(_e52)) {
-                        local_39 = (_e51.kind == RAY_HITS_GROUND);
+                        local_38 = (_e51.kind == RAY_HITS_GROUND);
                     } else {
-                        local_39 = true;
+                        local_38 = true;
                     }
-                    bool _e60 = local_39;
+                    bool _e60 = local_38;
                     ground_1 = _e60;
                     float _e62 = last_start;
                     if (!((_e51.start > _e62))) {
                         float _e68 = last_start;
                         if ((_e51.start == _e68)) {
-                            uint _e72 = i_15;
+                            uint _e72 = i_14;
                             uint _e73 = last_index;
-                            local_41 = (_e72 > _e73);
+                            local_40 = (_e72 > _e73);
                         } else {
-                            local_41 = false;
+                            local_40 = false;
                         }
-                        bool _e76 = local_41;
-                        local_40 = _e76;
+                        bool _e76 = local_40;
+                        local_39 = _e76;
                     } else {
-                        local_40 = true;
+                        local_39 = true;
                     }
-                    bool after = local_40;
+                    bool after = local_39;
                     if ((_e51.kind == RAY_MARCH)) {
-                        local_42 = after;
+                        local_41 = after;
                     } else {
-                        local_42 = false;
+                        local_41 = false;
                     }
-                    bool _e85 = local_42;
+                    bool _e85 = local_41;
                     if (_e85) {
                         uint _e88 = next;
                         if (!((_e88 == NO_LAYER))) {
                             float _e96 = span_2.start;
-                            local_44 = (_e51.start < _e96);
+                            local_43 = (_e51.start < _e96);
                         } else {
-                            local_44 = true;
+                            local_43 = true;
                         }
-                        bool _e99 = local_44;
-                        local_43 = _e99;
+                        bool _e99 = local_43;
+                        local_42 = _e99;
                     } else {
-                        local_43 = false;
+                        local_42 = false;
                     }
-                    bool _e101 = local_43;
+                    bool _e101 = local_42;
                     if (_e101) {
-                        uint _e102 = i_15;
+                        uint _e102 = i_14;
                         next = _e102;
                         span_2 = _e51;
                     }
@@ -2419,9 +2372,9 @@ uint2 block_offset(uint f, uint k_7)
 
 float2 reproject(uint2 pixel_5, float depth_2)
 {
+    bool local_44 = (bool)0;
     bool local_45 = (bool)0;
     bool local_46 = (bool)0;
-    bool local_47 = (bool)0;
     float3 dir = (float3)0;
 
     float4 _e4 = frame.previous_position;
@@ -2429,27 +2382,27 @@ float2 reproject(uint2 pixel_5, float depth_2)
     if (all((_e4 == _e7))) {
         float4 _e14 = frame.previous_forward;
         float4 _e17 = frame.camera_forward;
-        local_45 = all((_e14 == _e17));
+        local_44 = all((_e14 == _e17));
     } else {
-        local_45 = false;
+        local_44 = false;
     }
-    bool _e21 = local_45;
+    bool _e21 = local_44;
     if (_e21) {
         float4 _e26 = frame.previous_right;
         float4 _e29 = frame.camera_right;
-        local_46 = all((_e26 == _e29));
+        local_45 = all((_e26 == _e29));
     } else {
-        local_46 = false;
+        local_45 = false;
     }
-    bool _e33 = local_46;
+    bool _e33 = local_45;
     if (_e33) {
         float4 _e38 = frame.previous_up;
         float4 _e41 = frame.camera_up;
-        local_47 = all((_e38 == _e41));
+        local_46 = all((_e38 == _e41));
     } else {
-        local_47 = false;
+        local_46 = false;
     }
-    bool same = local_47;
+    bool same = local_46;
     if (same) {
         return float2(pixel_5);
     }
@@ -2479,16 +2432,16 @@ float2 reproject(uint2 pixel_5, float depth_2)
 
 bool on_screen(float2 q)
 {
-    bool local_48 = (bool)0;
+    bool local_47 = (bool)0;
 
     uint4 _e3 = frame.counts;
     float2 size_3 = float2(_e3.xy);
     if (all((q >= (-0.5).xx))) {
-        local_48 = all((q <= (size_3 - (0.5).xx)));
+        local_47 = all((q <= (size_3 - (0.5).xx)));
     } else {
-        local_48 = false;
+        local_47 = false;
     }
-    bool _e18 = local_48;
+    bool _e18 = local_47;
     return _e18;
 }
 
@@ -2591,8 +2544,8 @@ float rng_next(inout uint rng_1)
 {
     uint _e1 = rng_1;
     rng_1 = ((_e1 * 747796405u) + 2891336453u);
-    uint s_11 = rng_1;
-    uint word_1 = (((s_11 >> ((s_11 >> 28u) + 4u)) ^ s_11) * 277803737u);
+    uint s_10 = rng_1;
+    uint word_1 = (((s_10 >> ((s_10 >> 28u) + 4u)) ^ s_10) * 277803737u);
     return (float((((word_1 >> 22u) ^ word_1) >> 8u)) * 5.9604645e-8);
 }
 
@@ -2613,14 +2566,14 @@ Segments ConstructSegments(float2 arg0, float2 arg1, uint arg2) {
 Segments layer_segments(float3 p_13, float alt_14, float3 d_15)
 {
     Segments s_1 = ConstructSegments((0.0).xx, (0.0).xx, 0u);
-    bool local_49 = (bool)0;
+    bool local_48 = (bool)0;
     float2 a_1 = (0.0).xx;
     float2 b_1 = (0.0).xx;
     uint n_2 = 0u;
+    bool local_49 = (bool)0;
     bool local_50 = (bool)0;
     bool local_51 = (bool)0;
     bool local_52 = (bool)0;
-    bool local_53 = (bool)0;
 
     const float2 _e10 = layers_span();
     float bottom_2 = _e10.x;
@@ -2628,11 +2581,11 @@ Segments layer_segments(float3 p_13, float alt_14, float3 d_15)
     const Roots _e14 = ray_shell_from(p_13, alt_14, d_15, _e10.y);
     const bool _e15 = hits_ground(p_13, alt_14, d_15);
     if (!(!(_e14.hit))) {
-        local_49 = (_e14.t1_ <= 0.0);
+        local_48 = (_e14.t1_ <= 0.0);
     } else {
-        local_49 = true;
+        local_48 = true;
     }
-    bool _e25 = local_49;
+    bool _e25 = local_48;
     if (_e25) {
         Segments _e26 = s_1;
         const Segments segments = _e26;
@@ -2640,17 +2593,17 @@ Segments layer_segments(float3 p_13, float alt_14, float3 d_15)
     }
     float entry = max(_e14.t0_, 0.0);
     if (_e12.hit) {
-        local_50 = (_e12.t0_ > 0.0);
+        local_49 = (_e12.t0_ > 0.0);
+    } else {
+        local_49 = false;
+    }
+    bool _e45 = local_49;
+    if (_e45) {
+        local_50 = (alt_14 >= bottom_2);
     } else {
         local_50 = false;
     }
-    bool _e45 = local_50;
-    if (_e45) {
-        local_51 = (alt_14 >= bottom_2);
-    } else {
-        local_51 = false;
-    }
-    bool _e50 = local_51;
+    bool _e50 = local_50;
     if (_e50) {
         uint _e51 = n_2;
         a_1[min(uint(_e51), 1u)] = entry;
@@ -2659,11 +2612,11 @@ Segments layer_segments(float3 p_13, float alt_14, float3 d_15)
         uint _e56 = n_2;
         n_2 = (_e56 + uint((_e12.t0_ > entry)));
         if (!(_e15)) {
-            local_52 = (_e14.t1_ > _e12.t1_);
+            local_51 = (_e14.t1_ > _e12.t1_);
         } else {
-            local_52 = false;
+            local_51 = false;
         }
-        bool _e68 = local_52;
+        bool _e68 = local_51;
         if (_e68) {
             uint _e69 = n_2;
             a_1[min(uint(_e69), 1u)] = max(_e12.t1_, entry);
@@ -2675,11 +2628,11 @@ Segments layer_segments(float3 p_13, float alt_14, float3 d_15)
     } else {
         if ((alt_14 < bottom_2)) {
             if (!(_e15)) {
-                local_53 = _e12.hit;
+                local_52 = _e12.hit;
             } else {
-                local_53 = false;
+                local_52 = false;
             }
-            bool _e85 = local_53;
+            bool _e85 = local_52;
             if (_e85) {
                 a_1.x = max(_e12.t1_, 0.0);
                 b_1.x = _e14.t1_;
@@ -2732,26 +2685,26 @@ float empty_cell_skip(float3 origin_4, float3 dir_1, float t_2)
 float density_max()
 {
     float m_1 = 0.0;
-    uint i_16 = 0u;
+    uint i_15 = 0u;
 
-    uint2 loop_bound_12 = uint2(4294967295u, 4294967295u);
-    bool loop_init_11 = true;
+    uint2 loop_bound_11 = uint2(4294967295u, 4294967295u);
+    bool loop_init_10 = true;
     while(true) {
-        if (all(loop_bound_12 == uint2(0u, 0u))) { break; }
-        loop_bound_12 -= uint2(loop_bound_12.y == 0u, 1u);
-        if (!loop_init_11) {
-            uint _e17 = i_16;
-            i_16 = (_e17 + 1u);
+        if (all(loop_bound_11 == uint2(0u, 0u))) { break; }
+        loop_bound_11 -= uint2(loop_bound_11.y == 0u, 1u);
+        if (!loop_init_10) {
+            uint _e17 = i_15;
+            i_15 = (_e17 + 1u);
         }
-        loop_init_11 = false;
-        uint _e4 = i_16;
+        loop_init_10 = false;
+        uint _e4 = i_15;
         const uint _e5 = layer_count();
         if ((_e4 < _e5)) {
         } else {
             break;
         }
         {
-            uint _e7 = i_16;
+            uint _e7 = i_15;
             const Layer _e8 = cloud_layer(_e7);
             float _e9 = m_1;
             m_1 = max(_e9, (_e8.density * (1.0 + _e8.precipitation)));
@@ -2773,16 +2726,16 @@ float free_flight(float3 origin_5, float3 dir_2, Segments segs, inout uint rng_3
     if ((majorant <= 0.0)) {
         return -1.0;
     }
-    uint2 loop_bound_13 = uint2(4294967295u, 4294967295u);
-    bool loop_init_12 = true;
+    uint2 loop_bound_12 = uint2(4294967295u, 4294967295u);
+    bool loop_init_11 = true;
     while(true) {
-        if (all(loop_bound_13 == uint2(0u, 0u))) { break; }
-        loop_bound_13 -= uint2(loop_bound_13.y == 0u, 1u);
-        if (!loop_init_12) {
+        if (all(loop_bound_12 == uint2(0u, 0u))) { break; }
+        loop_bound_12 -= uint2(loop_bound_12.y == 0u, 1u);
+        if (!loop_init_11) {
             uint _e60 = k_8;
             k_8 = (_e60 + 1u);
         }
-        loop_init_12 = false;
+        loop_init_11 = false;
         uint _e21 = k_8;
         if ((_e21 < segs.count)) {
         } else {
@@ -2791,10 +2744,10 @@ float free_flight(float3 origin_5, float3 dir_2, Segments segs, inout uint rng_3
         {
             uint _e25 = k_8;
             t_3 = segs.a[min(uint(_e25), 1u)];
-            uint2 loop_bound_14 = uint2(4294967295u, 4294967295u);
+            uint2 loop_bound_13 = uint2(4294967295u, 4294967295u);
             while(true) {
-                if (all(loop_bound_14 == uint2(0u, 0u))) { break; }
-                loop_bound_14 -= uint2(loop_bound_14.y == 0u, 1u);
+                if (all(loop_bound_13 == uint2(0u, 0u))) { break; }
+                loop_bound_13 -= uint2(loop_bound_13.y == 0u, 1u);
                 float _e28 = t_3;
                 const float _e29 = empty_cell_skip(origin_5, dir_2, _e28);
                 if ((_e29 > 0.0)) {
@@ -2844,16 +2797,16 @@ float transmittance_along(float3 origin_6, float3 dir_3, Segments segs_1, inout 
     if ((majorant_1 <= 0.0)) {
         return 1.0;
     }
-    uint2 loop_bound_15 = uint2(4294967295u, 4294967295u);
-    bool loop_init_13 = true;
+    uint2 loop_bound_14 = uint2(4294967295u, 4294967295u);
+    bool loop_init_12 = true;
     while(true) {
-        if (all(loop_bound_15 == uint2(0u, 0u))) { break; }
-        loop_bound_15 -= uint2(loop_bound_15.y == 0u, 1u);
-        if (!loop_init_13) {
+        if (all(loop_bound_14 == uint2(0u, 0u))) { break; }
+        loop_bound_14 -= uint2(loop_bound_14.y == 0u, 1u);
+        if (!loop_init_12) {
             uint _e78 = k_9;
             k_9 = (_e78 + 1u);
         }
-        loop_init_13 = false;
+        loop_init_12 = false;
         uint _e23 = k_9;
         if ((_e23 < segs_1.count)) {
         } else {
@@ -2862,10 +2815,10 @@ float transmittance_along(float3 origin_6, float3 dir_3, Segments segs_1, inout 
         {
             uint _e27 = k_9;
             t_4 = segs_1.a[min(uint(_e27), 1u)];
-            uint2 loop_bound_16 = uint2(4294967295u, 4294967295u);
+            uint2 loop_bound_15 = uint2(4294967295u, 4294967295u);
             while(true) {
-                if (all(loop_bound_16 == uint2(0u, 0u))) { break; }
-                loop_bound_16 -= uint2(loop_bound_16.y == 0u, 1u);
+                if (all(loop_bound_15 == uint2(0u, 0u))) { break; }
+                loop_bound_15 -= uint2(loop_bound_15.y == 0u, 1u);
                 float _e30 = t_4;
                 const float _e31 = empty_cell_skip(origin_6, dir_3, _e30);
                 if ((_e31 > 0.0)) {
@@ -2917,8 +2870,8 @@ float sample_hg_cos(float g_4, float u)
     if ((abs(g_4) < 0.0001)) {
         return (1.0 - (2.0 * u));
     }
-    float s_12 = ((1.0 - (g_4 * g_4)) / ((1.0 - g_4) + ((2.0 * g_4) * u)));
-    return clamp((((1.0 + (g_4 * g_4)) - (s_12 * s_12)) / (2.0 * g_4)), -1.0, 1.0);
+    float s_11 = ((1.0 - (g_4 * g_4)) / ((1.0 - g_4) + ((2.0 * g_4) * u)));
+    return clamp((((1.0 + (g_4 * g_4)) - (s_11 * s_11)) / (2.0 * g_4)), -1.0, 1.0);
 }
 
 PhaseSample ConstructPhaseSample(float3 arg0, float arg1) {
@@ -3004,15 +2957,15 @@ PathResult ConstructPathResult(float3 arg0, float arg1, float arg2) {
 PathResult trace_path(float3 view_3, Interval span_3, inout uint rng_6, inout Counters counters_15)
 {
     PathResult out_2 = ConstructPathResult((0.0).xxx, 1.0, -1.0);
+    bool local_53 = (bool)0;
     bool local_54 = (bool)0;
     bool local_55 = (bool)0;
-    bool local_56 = (bool)0;
     uint max_orders = MAX_PATH_ORDERS;
     float3 pos_1 = (float3)0;
     float3 dir_5 = (float3)0;
     float throughput = 1.0;
     uint order = 0u;
-    bool local_57 = (bool)0;
+    bool local_56 = (bool)0;
 
     if ((span_3.kind != RAY_MARCH)) {
         PathResult _e13 = out_2;
@@ -3043,23 +2996,23 @@ PathResult trace_path(float3 view_3, Interval span_3, inout uint rng_6, inout Co
         const bool _e68 = physical_sky();
         if (!(_e68)) {
             float4 _e74 = frame.ambient_bottom;
-            local_55 = any((_e74.xyz > (0.0).xxx));
+            local_54 = any((_e74.xyz > (0.0).xxx));
+        } else {
+            local_54 = true;
+        }
+        bool _e81 = local_54;
+        if (!(_e81)) {
+            float4 _e87 = frame.ambient_top;
+            local_55 = any((_e87.xyz > (0.0).xxx));
         } else {
             local_55 = true;
         }
-        bool _e81 = local_55;
-        if (!(_e81)) {
-            float4 _e87 = frame.ambient_top;
-            local_56 = any((_e87.xyz > (0.0).xxx));
-        } else {
-            local_56 = true;
-        }
-        bool _e94 = local_56;
-        local_54 = _e94;
+        bool _e94 = local_55;
+        local_53 = _e94;
     } else {
-        local_54 = false;
+        local_53 = false;
     }
-    bool ambient_on = local_54;
+    bool ambient_on = local_53;
     uint _e102 = frame.misc.z;
     if ((_e102 > 0u)) {
         uint _e108 = frame.misc.z;
@@ -3067,10 +3020,10 @@ PathResult trace_path(float3 view_3, Interval span_3, inout uint rng_6, inout Co
     }
     pos_1 = (cam + (view_3 * _e33));
     dir_5 = view_3;
-    uint2 loop_bound_17 = uint2(4294967295u, 4294967295u);
+    uint2 loop_bound_16 = uint2(4294967295u, 4294967295u);
     while(true) {
-        if (all(loop_bound_17 == uint2(0u, 0u))) { break; }
-        loop_bound_17 -= uint2(loop_bound_17.y == 0u, 1u);
+        if (all(loop_bound_16 == uint2(0u, 0u))) { break; }
+        loop_bound_16 -= uint2(loop_bound_16.y == 0u, 1u);
         float _e119 = throughput;
         throughput = (_e119 * albedo);
         uint _e121 = order;
@@ -3121,11 +3074,11 @@ PathResult trace_path(float3 view_3, Interval span_3, inout uint rng_6, inout Co
         uint _e179 = order;
         if ((_e179 >= 3u)) {
             float _e184 = throughput;
-            local_57 = (_e184 < 0.1);
+            local_56 = (_e184 < 0.1);
         } else {
-            local_57 = false;
+            local_56 = false;
         }
-        bool _e188 = local_57;
+        bool _e188 = local_56;
         if (_e188) {
             const float _e189 = rng_next(rng_6);
             float _e190 = throughput;
@@ -3149,36 +3102,36 @@ PathResult trace_path(float3 view_3, Interval span_3, inout uint rng_6, inout Co
 
 bool camera_still()
 {
+    bool local_57 = (bool)0;
     bool local_58 = (bool)0;
     bool local_59 = (bool)0;
-    bool local_60 = (bool)0;
 
     float4 _e2 = frame.camera_position;
     float4 _e5 = frame.previous_position;
     if (all((_e2 == _e5))) {
         float4 _e12 = frame.camera_forward;
         float4 _e15 = frame.previous_forward;
-        local_58 = all((_e12 == _e15));
+        local_57 = all((_e12 == _e15));
     } else {
-        local_58 = false;
+        local_57 = false;
     }
-    bool _e19 = local_58;
+    bool _e19 = local_57;
     if (_e19) {
         float4 _e24 = frame.camera_right;
         float4 _e28 = frame.previous_right;
-        local_59 = all((_e24.xyz == _e28.xyz));
+        local_58 = all((_e24.xyz == _e28.xyz));
     } else {
-        local_59 = false;
+        local_58 = false;
     }
-    bool _e33 = local_59;
+    bool _e33 = local_58;
     if (_e33) {
         float4 _e38 = frame.camera_up;
         float4 _e42 = frame.previous_up;
-        local_60 = all((_e38.xyz == _e42.xyz));
+        local_59 = all((_e38.xyz == _e42.xyz));
     } else {
-        local_60 = false;
+        local_59 = false;
     }
-    bool _e47 = local_60;
+    bool _e47 = local_59;
     return _e47;
 }
 
@@ -3190,7 +3143,7 @@ float luminance(float3 c_3)
 float basic_sun_depth(float3 rel_11, float alt_15, inout Counters counters_16)
 {
     float tau_10 = 0.0;
-    uint i_17 = 1u;
+    uint i_16 = 1u;
 
     uint steps_4 = frame.counts.w;
     if ((steps_4 == 0u)) {
@@ -3210,17 +3163,17 @@ float basic_sun_depth(float3 rel_11, float alt_15, inout Counters counters_16)
     float sigma_t_6 = (_e51 + _e55);
     float4 _e59 = frame.camera_position;
     float2 cam_xz_1 = _e59.xz;
-    uint2 loop_bound_18 = uint2(4294967295u, 4294967295u);
-    bool loop_init_14 = true;
+    uint2 loop_bound_17 = uint2(4294967295u, 4294967295u);
+    bool loop_init_13 = true;
     while(true) {
-        if (all(loop_bound_18 == uint2(0u, 0u))) { break; }
-        loop_bound_18 -= uint2(loop_bound_18.y == 0u, 1u);
-        if (!loop_init_14) {
-            uint _e90 = i_17;
-            i_17 = (_e90 + 1u);
+        if (all(loop_bound_17 == uint2(0u, 0u))) { break; }
+        loop_bound_17 -= uint2(loop_bound_17.y == 0u, 1u);
+        if (!loop_init_13) {
+            uint _e90 = i_16;
+            i_16 = (_e90 + 1u);
         }
-        loop_init_14 = false;
-        uint _e65 = i_17;
+        loop_init_13 = false;
+        uint _e65 = i_16;
         if ((_e65 <= steps_4)) {
         } else {
             break;
@@ -3228,11 +3181,11 @@ float basic_sun_depth(float3 rel_11, float alt_15, inout Counters counters_16)
         {
             uint _e68 = counters_16.light;
             counters_16.light = (_e68 + 1u);
-            uint _e71 = i_17;
-            float3 q_9 = (rel_11 + (sun_8 * (float(_e71) * dt_3)));
-            float3 p_22 = float3((q_9.x + cam_xz_1.x), q_9.y, (q_9.z + cam_xz_1.y));
+            uint _e71 = i_16;
+            float3 q_8 = (rel_11 + (sun_8 * (float(_e71) * dt_3)));
+            float3 p_22 = float3((q_8.x + cam_xz_1.x), q_8.y, (q_8.z + cam_xz_1.y));
             float _e84 = tau_10;
-            const float _e85 = altitude_of(q_9);
+            const float _e85 = altitude_of(q_8);
             const float _e86 = cloud_density(p_22, _e85, counters_16);
             tau_10 = (_e84 + ((sigma_t_6 * _e86) * dt_3));
         }
@@ -3247,7 +3200,7 @@ MarchResult basic_pixel(uint2 pixel_7)
     float3 radiance_2 = (0.0).xxx;
     float transmittance_1 = 1.0;
     float depth_sum = 0.0;
-    uint i_18 = 0u;
+    uint i_17 = 0u;
     float depth_3 = 0.0;
 
     const float3 _e1 = view_ray(pixel_7);
@@ -3273,17 +3226,17 @@ MarchResult basic_pixel(uint2 pixel_7)
             float _e66 = frame.phase.x;
             const float _e67 = phase_hg(dot(_e1, _e60.xyz), _e66);
             float3 sun_phase = (_e56.xyz * _e67);
-            uint2 loop_bound_19 = uint2(4294967295u, 4294967295u);
-            bool loop_init_15 = true;
+            uint2 loop_bound_18 = uint2(4294967295u, 4294967295u);
+            bool loop_init_14 = true;
             while(true) {
-                if (all(loop_bound_19 == uint2(0u, 0u))) { break; }
-                loop_bound_19 -= uint2(loop_bound_19.y == 0u, 1u);
-                if (!loop_init_15) {
-                    uint _e131 = i_18;
-                    i_18 = (_e131 + 1u);
+                if (all(loop_bound_18 == uint2(0u, 0u))) { break; }
+                loop_bound_18 -= uint2(loop_bound_18.y == 0u, 1u);
+                if (!loop_init_14) {
+                    uint _e131 = i_17;
+                    i_17 = (_e131 + 1u);
                 }
-                loop_init_15 = false;
-                uint _e71 = i_18;
+                loop_init_14 = false;
+                uint _e71 = i_17;
                 if ((_e71 < steps_5)) {
                 } else {
                     break;
@@ -3291,7 +3244,7 @@ MarchResult basic_pixel(uint2 pixel_7)
                 {
                     uint _e74 = counters_17.view_steps;
                     counters_17.view_steps = (_e74 + 1u);
-                    uint _e78 = i_18;
+                    uint _e78 = i_17;
                     float t_9 = (_e25.start + (float(_e78) * dt_4));
                     float3 rel_14 = ((_e1 * t_9) + float3(0.0, cam_alt_3, 0.0));
                     float3 p_23 = float3((rel_14.x + cam_xz_2.x), rel_14.y, (rel_14.z + cam_xz_2.y));
@@ -3345,15 +3298,15 @@ float atlas_hash(uint a_2, uint b_2)
 
 float value_noise(float2 p_14, uint seed)
 {
-    uint2 i_20 = naga_f2u32(floor(p_14));
+    uint2 i_19 = naga_f2u32(floor(p_14));
     float2 f_6 = frac(p_14);
-    float2 s_13 = ((f_6 * f_6) * ((3.0).xx - (2.0 * f_6)));
+    float2 s_12 = ((f_6 * f_6) * ((3.0).xx - (2.0 * f_6)));
     uint h_14 = (seed * 7919u);
-    const float _e17 = atlas_hash((i_20.x + h_14), i_20.y);
-    const float _e23 = atlas_hash(((i_20.x + 1u) + h_14), i_20.y);
-    const float _e29 = atlas_hash((i_20.x + h_14), (i_20.y + 1u));
-    const float _e37 = atlas_hash(((i_20.x + 1u) + h_14), (i_20.y + 1u));
-    return lerp(lerp(_e17, _e23, s_13.x), lerp(_e29, _e37, s_13.x), s_13.y);
+    const float _e17 = atlas_hash((i_19.x + h_14), i_19.y);
+    const float _e23 = atlas_hash(((i_19.x + 1u) + h_14), i_19.y);
+    const float _e29 = atlas_hash((i_19.x + h_14), (i_19.y + 1u));
+    const float _e37 = atlas_hash(((i_19.x + 1u) + h_14), (i_19.y + 1u));
+    return lerp(lerp(_e17, _e23, s_12.x), lerp(_e29, _e37, s_12.x), s_12.y);
 }
 
 float value_fbm(float2 p_15, uint seed_1)
@@ -3364,16 +3317,16 @@ float value_fbm(float2 p_15, uint seed_1)
     uint o = 0u;
 
     q_4 = p_15;
-    uint2 loop_bound_20 = uint2(4294967295u, 4294967295u);
-    bool loop_init_16 = true;
+    uint2 loop_bound_19 = uint2(4294967295u, 4294967295u);
+    bool loop_init_15 = true;
     while(true) {
-        if (all(loop_bound_20 == uint2(0u, 0u))) { break; }
-        loop_bound_20 -= uint2(loop_bound_20.y == 0u, 1u);
-        if (!loop_init_16) {
+        if (all(loop_bound_19 == uint2(0u, 0u))) { break; }
+        loop_bound_19 -= uint2(loop_bound_19.y == 0u, 1u);
+        if (!loop_init_15) {
             uint _e26 = o;
             o = (_e26 + 1u);
         }
-        loop_init_16 = false;
+        loop_init_15 = false;
         uint _e9 = o;
         if ((_e9 < 4u)) {
         } else {
@@ -3399,7 +3352,7 @@ float value_fbm(float2 p_15, uint seed_1)
 float sprite_texture(uint tile_1, float2 uv)
 {
     float billow = 0.0;
-    uint i_19 = 0u;
+    uint i_18 = 0u;
     float2 at = (float2)0;
     float a_3 = (float)0;
 
@@ -3407,39 +3360,39 @@ float sprite_texture(uint tile_1, float2 uv)
     float mask = smoothstep(0.48, 0.36, length(c_10));
     const float _e16 = value_fbm(((uv * 6.0) + ((float(tile_1) * 13.0)).xx), tile_1);
     if ((tile_1 < 4u)) {
-        float2 q_10 = (c_10 * float2(1.0, 3.2));
-        float streak = (1.0 - smoothstep(0.05, 0.45, length(q_10)));
+        float2 q_9 = (c_10 * float2(1.0, 3.2));
+        float streak = (1.0 - smoothstep(0.05, 0.45, length(q_9)));
         const float _e40 = value_fbm(((uv * float2(3.0, 12.0)) + ((float(tile_1) * 5.0)).xx), (tile_1 + 16u));
         const float _e46 = saturate_(((_e40 * 1.6) - 0.3));
         return (((mask * streak) * _e46) * 0.8);
     }
     uint blobs = (5u + naga_mod(tile_1, 4u));
-    uint2 loop_bound_21 = uint2(4294967295u, 4294967295u);
-    bool loop_init_17 = true;
+    uint2 loop_bound_20 = uint2(4294967295u, 4294967295u);
+    bool loop_init_16 = true;
     while(true) {
-        if (all(loop_bound_21 == uint2(0u, 0u))) { break; }
-        loop_bound_21 -= uint2(loop_bound_21.y == 0u, 1u);
-        if (!loop_init_17) {
-            uint _e108 = i_19;
-            i_19 = (_e108 + 1u);
+        if (all(loop_bound_20 == uint2(0u, 0u))) { break; }
+        loop_bound_20 -= uint2(loop_bound_20.y == 0u, 1u);
+        if (!loop_init_16) {
+            uint _e108 = i_18;
+            i_18 = (_e108 + 1u);
         }
-        loop_init_17 = false;
-        uint _e58 = i_19;
+        loop_init_16 = false;
+        uint _e58 = i_18;
         if ((_e58 < blobs)) {
         } else {
             break;
         }
         {
-            uint _e61 = i_19;
+            uint _e61 = i_18;
             const float _e63 = atlas_hash(tile_1, (2u * _e61));
-            uint _e65 = i_19;
+            uint _e65 = i_18;
             const float _e69 = atlas_hash(tile_1, ((2u * _e65) + 1u));
             float2 centre_1 = (float2(_e63, _e69) - (0.5).xx);
             at = ((0.5).xx + (centre_1 * 0.34));
             if ((tile_1 == 4u)) {
                 at.y = (0.5 + ((centre_1.y - 0.5) * 0.24));
             }
-            uint _e91 = i_19;
+            uint _e91 = i_18;
             const float _e93 = atlas_hash(tile_1, (100u + _e91));
             float r_18 = (0.14 + (0.1 * _e93));
             float2 _e98 = at;
@@ -3482,23 +3435,23 @@ SpriteCell sprite_cell(uint cell)
 {
     int2 start_1 = (int2)0;
     uint k_10 = 3u;
+    bool local_60 = (bool)0;
     bool local_61 = (bool)0;
-    bool local_62 = (bool)0;
 
     uint level_1 = naga_div(cell, 64u);
-    int2 local_66 = int2(int(naga_mod(cell, 8u)), int(naga_mod(naga_div(cell, 8u), 8u)));
+    int2 local_65 = int2(int(naga_mod(cell, 8u)), int(naga_mod(naga_div(cell, 8u), 8u)));
     float4 _e15 = frame.camera_position;
     start_1 = asint(asuint(naga_f2i32(floor((_e15.xz / (12000.0).xx)))) - asuint((int(4)).xx));
-    uint2 loop_bound_22 = uint2(4294967295u, 4294967295u);
-    bool loop_init_18 = true;
+    uint2 loop_bound_21 = uint2(4294967295u, 4294967295u);
+    bool loop_init_17 = true;
     while(true) {
-        if (all(loop_bound_22 == uint2(0u, 0u))) { break; }
-        loop_bound_22 -= uint2(loop_bound_22.y == 0u, 1u);
-        if (!loop_init_18) {
+        if (all(loop_bound_21 == uint2(0u, 0u))) { break; }
+        loop_bound_21 -= uint2(loop_bound_21.y == 0u, 1u);
+        if (!loop_init_17) {
             uint _e35 = k_10;
             k_10 = (_e35 - 1u);
         }
-        loop_init_18 = false;
+        loop_init_17 = false;
         uint _e27 = k_10;
         if ((_e27 > level_1)) {
         } else {
@@ -3510,19 +3463,19 @@ SpriteCell sprite_cell(uint cell)
         }
     }
     if ((level_1 > 0u)) {
-        local_61 = all((local_66 >= (int(2)).xx));
+        local_60 = all((local_65 >= (int(2)).xx));
+    } else {
+        local_60 = false;
+    }
+    bool _e47 = local_60;
+    if (_e47) {
+        local_61 = all((local_65 < (int(6)).xx));
     } else {
         local_61 = false;
     }
-    bool _e47 = local_61;
-    if (_e47) {
-        local_62 = all((local_66 < (int(6)).xx));
-    } else {
-        local_62 = false;
-    }
-    bool covered = local_62;
+    bool covered = local_61;
     int2 _e56 = start_1;
-    const SpriteCell spritecell = ConstructSpriteCell(asint(asuint(_e56) + asuint(local_66)), (SPRITE_CELL0_ * float((1u << level_1))), covered);
+    const SpriteCell spritecell = ConstructSpriteCell(asint(asuint(_e56) + asuint(local_65)), (SPRITE_CELL0_ * float((1u << level_1))), covered);
     return spritecell;
 }
 
@@ -3598,16 +3551,16 @@ float sprite_sun_level(float cos_angle)
 
 float2 sprite_corner(uint k_11)
 {
-    bool local_63 = (bool)0;
+    bool local_62 = (bool)0;
 
-    uint q_11 = ((k_11 >= 3u) ? ((k_11 == 3u) ? 0u : (k_11 - 2u)) : k_11);
-    if (!((q_11 == 1u))) {
-        local_63 = (q_11 == 2u);
+    uint q_10 = ((k_11 >= 3u) ? ((k_11 == 3u) ? 0u : (k_11 - 2u)) : k_11);
+    if (!((q_10 == 1u))) {
+        local_62 = (q_10 == 2u);
     } else {
-        local_63 = true;
+        local_62 = true;
     }
-    bool _e18 = local_63;
-    return float2((_e18 ? 1.0 : -1.0), ((q_11 >= 2u) ? 1.0 : -1.0));
+    bool _e18 = local_62;
+    return float2((_e18 ? 1.0 : -1.0), ((q_10 >= 2u) ? 1.0 : -1.0));
 }
 
 float3 sky_radiance(float3 d_17, float alt_17)
@@ -3646,18 +3599,18 @@ float3 sun_disk(float3 d_18)
 
 float3 moon_disk(float3 d_19)
 {
-    bool local_64 = (bool)0;
+    bool local_63 = (bool)0;
 
     float4 _e3 = frame.moon;
     float3 m_4 = _e3.xyz;
     float c_11 = dot(d_19, m_4);
     float _e9 = frame.moon.w;
     if (!((_e9 <= 0.0))) {
-        local_64 = (c_11 < MOON_COS_RADIUS);
+        local_63 = (c_11 < MOON_COS_RADIUS);
     } else {
-        local_64 = true;
+        local_63 = true;
     }
-    bool _e18 = local_64;
+    bool _e18 = local_63;
     if (_e18) {
         return (0.0).xxx;
     }
@@ -3675,7 +3628,7 @@ float3 stars(float3 d_20)
     uint face = 0u;
     float2 uv_1 = (0.0).xx;
     float major = 0.0;
-    bool local_65 = (bool)0;
+    bool local_64 = (bool)0;
     float3 star = (0.0).xxx;
 
     float e0_ = frame.night.w;
@@ -3684,11 +3637,11 @@ float3 stars(float3 d_20)
     }
     float3 a_10 = abs(d_20);
     if ((a_10.x >= a_10.y)) {
-        local_65 = (a_10.x >= a_10.z);
+        local_64 = (a_10.x >= a_10.z);
     } else {
-        local_65 = false;
+        local_64 = false;
     }
-    bool _e26 = local_65;
+    bool _e26 = local_64;
     if (_e26) {
         face = ((d_20.x > 0.0) ? 0u : 1u);
         uv_1 = d_20.zy;
@@ -3725,25 +3678,25 @@ float3 stars(float3 d_20)
     float h4_ = (float((_e120 >> 8u)) * 5.9604645e-8);
     float2 star_st = (((float2(cell_2) + (0.15).xx) + (0.7 * float2(h1_, h2_))) / (96.0).xx);
     float _e142 = major;
-    float2 q_12 = (((star_st * 2.0) - (1.0).xx) * _e142);
+    float2 q_11 = (((star_st * 2.0) - (1.0).xx) * _e142);
     uint _e147 = face;
     if ((_e147 < 2u)) {
         float _e150 = major;
         float _e152 = major;
         uint _e153 = face;
-        star = float3(((_e153 == 0u) ? _e152 : -(_e150)), q_12.y, q_12.x);
+        star = float3(((_e153 == 0u) ? _e152 : -(_e150)), q_11.y, q_11.x);
     } else {
         uint _e160 = face;
         if ((_e160 < 4u)) {
             float _e164 = major;
             float _e166 = major;
             uint _e167 = face;
-            star = float3(q_12.x, ((_e167 == 2u) ? _e166 : -(_e164)), q_12.y);
+            star = float3(q_11.x, ((_e167 == 2u) ? _e166 : -(_e164)), q_11.y);
         } else {
             float _e175 = major;
             float _e177 = major;
             uint _e178 = face;
-            star = float3(q_12.x, q_12.y, ((_e178 == 4u) ? _e177 : -(_e175)));
+            star = float3(q_11.x, q_11.y, ((_e178 == 4u) ? _e177 : -(_e175)));
         }
     }
     float3 _e183 = star;
@@ -3754,8 +3707,8 @@ float3 stars(float3 d_20)
     uint _e209 = frame.counts.y;
     float pixel_angle = ((2.0 * _e203) / float(_e209));
     float3 _e212 = star;
-    float dist_2 = (acos(clamp(dot(d_20, _e212), -1.0, 1.0)) / pixel_angle);
-    float weight_1 = (exp(((-(dist_2) * dist_2) / 0.5)) / 1.5707964);
+    float dist_1 = (acos(clamp(dot(d_20, _e212), -1.0, 1.0)) / pixel_angle);
+    float weight_1 = (exp(((-(dist_1) * dist_1) / 0.5)) / 1.5707964);
     float3 tint = lerp(float3(0.8, 0.9, 1.1), float3(1.15, 0.95, 0.75), (h3_ * h4_));
     return (tint * ((illuminance * weight_1) / (pixel_angle * pixel_angle)));
 }
@@ -3833,16 +3786,16 @@ void transmittance_lut(uint3 id : SV_DispatchThreadID)
     const float2 _e11 = transmittance_r_mu((float2(id.xy) / float2(255.0, 63.0)));
     const float _e14 = distance_to_top(_e11.x, _e11.y);
     float dt_5 = (_e14 / 128.0);
-    uint2 loop_bound_23 = uint2(4294967295u, 4294967295u);
-    bool loop_init_19 = true;
+    uint2 loop_bound_22 = uint2(4294967295u, 4294967295u);
+    bool loop_init_18 = true;
     while(true) {
-        if (all(loop_bound_23 == uint2(0u, 0u))) { break; }
-        loop_bound_23 -= uint2(loop_bound_23.y == 0u, 1u);
-        if (!loop_init_19) {
+        if (all(loop_bound_22 == uint2(0u, 0u))) { break; }
+        loop_bound_22 -= uint2(loop_bound_22.y == 0u, 1u);
+        if (!loop_init_18) {
             uint _e61 = i;
             i = (_e61 + 1u);
         }
-        loop_init_19 = false;
+        loop_init_18 = false;
         uint _e22 = i;
         if ((_e22 <= TRANSMITTANCE_STEPS)) {
         } else {
@@ -3896,16 +3849,16 @@ void multiscatter_lut(uint3 id_1 : SV_DispatchThreadID)
     float r_20 = (_e16 + (x_12.y * (_e18 - _e19)));
     float3 origin_7 = float3(0.0, r_20, 0.0);
     float3 sun_10 = float3(sqrt(max((1.0 - (mu_s_7 * mu_s_7)), 0.0)), mu_s_7, 0.0);
-    uint2 loop_bound_24 = uint2(4294967295u, 4294967295u);
-    bool loop_init_20 = true;
+    uint2 loop_bound_23 = uint2(4294967295u, 4294967295u);
+    bool loop_init_19 = true;
     while(true) {
-        if (all(loop_bound_24 == uint2(0u, 0u))) { break; }
-        loop_bound_24 -= uint2(loop_bound_24.y == 0u, 1u);
-        if (!loop_init_20) {
+        if (all(loop_bound_23 == uint2(0u, 0u))) { break; }
+        loop_bound_23 -= uint2(loop_bound_23.y == 0u, 1u);
+        if (!loop_init_19) {
             uint _e121 = k;
             k = (_e121 + 1u);
         }
-        loop_init_20 = false;
+        loop_init_19 = false;
         uint _e43 = k;
         if ((_e43 < MULTISCATTER_DIRECTIONS)) {
         } else {
@@ -3918,16 +3871,16 @@ void multiscatter_lut(uint3 id_1 : SV_DispatchThreadID)
             float dt_6 = (_e49.x / 32.0);
             tau = (0.0).xxx;
             i_1 = 0u;
-            uint2 loop_bound_25 = uint2(4294967295u, 4294967295u);
-            bool loop_init_21 = true;
+            uint2 loop_bound_24 = uint2(4294967295u, 4294967295u);
+            bool loop_init_20 = true;
             while(true) {
-                if (all(loop_bound_25 == uint2(0u, 0u))) { break; }
-                loop_bound_25 -= uint2(loop_bound_25.y == 0u, 1u);
-                if (!loop_init_21) {
+                if (all(loop_bound_24 == uint2(0u, 0u))) { break; }
+                loop_bound_24 -= uint2(loop_bound_24.y == 0u, 1u);
+                if (!loop_init_20) {
                     uint _e103 = i_1;
                     i_1 = (_e103 + 1u);
                 }
-                loop_init_21 = false;
+                loop_init_20 = false;
                 uint _e58 = i_1;
                 if ((_e58 < MULTISCATTER_STEPS)) {
                 } else {
@@ -3941,12 +3894,12 @@ void multiscatter_lut(uint3 id_1 : SV_DispatchThreadID)
                     const AirSample _e71 = air_at((rp_7 - _e69));
                     float3 _e72 = tau;
                     float3 t_10 = exp(-((_e72 + ((0.5 * _e71.extinction) * dt_6))));
-                    float3 s_14 = (_e71.rayleigh + (_e71.mie).xxx);
+                    float3 s_13 = (_e71.rayleigh + (_e71.mie).xxx);
                     float3 _e84 = l2_;
                     const float3 _e90 = sun_transmittance(rp_7, dot((p_24 / (rp_7).xxx), sun_10));
-                    l2_ = (_e84 + ((((t_10 * s_14) * 0.07957747) * _e90) * dt_6));
+                    l2_ = (_e84 + ((((t_10 * s_13) * 0.07957747) * _e90) * dt_6));
                     float3 _e94 = f_ms;
-                    f_ms = (_e94 + ((t_10 * s_14) * dt_6));
+                    f_ms = (_e94 + ((t_10 * s_13) * dt_6));
                     float3 _e98 = tau;
                     tau = (_e98 + (_e71.extinction * dt_6));
                 }
@@ -4005,16 +3958,16 @@ void aerial_perspective(uint3 id_3 : SV_DispatchThreadID)
     const float _e15 = phase_rayleigh(cos_theta_9);
     float _e19 = frame.air_mie.w;
     const float _e20 = phase_cornette_shanks_air(cos_theta_9, _e19);
-    uint2 loop_bound_26 = uint2(4294967295u, 4294967295u);
-    bool loop_init_22 = true;
+    uint2 loop_bound_25 = uint2(4294967295u, 4294967295u);
+    bool loop_init_21 = true;
     while(true) {
-        if (all(loop_bound_26 == uint2(0u, 0u))) { break; }
-        loop_bound_26 -= uint2(loop_bound_26.y == 0u, 1u);
-        if (!loop_init_22) {
+        if (all(loop_bound_25 == uint2(0u, 0u))) { break; }
+        loop_bound_25 -= uint2(loop_bound_25.y == 0u, 1u);
+        if (!loop_init_21) {
             uint _e122 = z;
             z = (_e122 + 1u);
         }
-        loop_init_22 = false;
+        loop_init_21 = false;
         uint _e30 = z;
         if ((_e30 < AERIAL_SLICES)) {
         } else {
@@ -4022,16 +3975,16 @@ void aerial_perspective(uint3 id_3 : SV_DispatchThreadID)
         }
         {
             k_1 = 0u;
-            uint2 loop_bound_27 = uint2(4294967295u, 4294967295u);
-            bool loop_init_23 = true;
+            uint2 loop_bound_26 = uint2(4294967295u, 4294967295u);
+            bool loop_init_22 = true;
             while(true) {
-                if (all(loop_bound_27 == uint2(0u, 0u))) { break; }
-                loop_bound_27 -= uint2(loop_bound_27.y == 0u, 1u);
-                if (!loop_init_23) {
+                if (all(loop_bound_26 == uint2(0u, 0u))) { break; }
+                loop_bound_26 -= uint2(loop_bound_26.y == 0u, 1u);
+                if (!loop_init_22) {
                     uint _e99 = k_1;
                     k_1 = (_e99 + 1u);
                 }
-                loop_init_23 = false;
+                loop_init_22 = false;
                 uint _e35 = k_1;
                 if ((_e35 < 4u)) {
                 } else {
@@ -4092,20 +4045,20 @@ void sky_ambient(uint3 id_4 : SV_DispatchThreadID)
     const float _e34 = air_bottom();
     float _e38 = frame.atmosphere.y;
     float3 origin_8 = float3(0.0, (_e34 + (_e38 * 0.001)), 0.0);
-    uint first = (top_3 ? 0u : 32u);
-    k_2 = first;
-    uint2 loop_bound_28 = uint2(4294967295u, 4294967295u);
-    bool loop_init_24 = true;
+    uint first_1 = (top_3 ? 0u : 32u);
+    k_2 = first_1;
+    uint2 loop_bound_27 = uint2(4294967295u, 4294967295u);
+    bool loop_init_23 = true;
     while(true) {
-        if (all(loop_bound_28 == uint2(0u, 0u))) { break; }
-        loop_bound_28 -= uint2(loop_bound_28.y == 0u, 1u);
-        if (!loop_init_24) {
+        if (all(loop_bound_27 == uint2(0u, 0u))) { break; }
+        loop_bound_27 -= uint2(loop_bound_27.y == 0u, 1u);
+        if (!loop_init_23) {
             uint _e77 = k_2;
             k_2 = (_e77 + 1u);
         }
-        loop_init_24 = false;
+        loop_init_23 = false;
         uint _e54 = k_2;
-        if ((_e54 < (first + 32u))) {
+        if ((_e54 < (first_1 + 32u))) {
         } else {
             break;
         }
@@ -4148,16 +4101,16 @@ void ground_irradiance(uint3 id_5 : SV_DispatchThreadID)
     float3 sun_13 = float3(sqrt(max((1.0 - (mu_s_10 * mu_s_10)), 0.0)), mu_s_10, 0.0);
     const float _e28 = air_bottom();
     float3 origin_9 = float3(0.0, (_e28 + 0.001), 0.0);
-    uint2 loop_bound_29 = uint2(4294967295u, 4294967295u);
-    bool loop_init_25 = true;
+    uint2 loop_bound_28 = uint2(4294967295u, 4294967295u);
+    bool loop_init_24 = true;
     while(true) {
-        if (all(loop_bound_29 == uint2(0u, 0u))) { break; }
-        loop_bound_29 -= uint2(loop_bound_29.y == 0u, 1u);
-        if (!loop_init_25) {
+        if (all(loop_bound_28 == uint2(0u, 0u))) { break; }
+        loop_bound_28 -= uint2(loop_bound_28.y == 0u, 1u);
+        if (!loop_init_24) {
             uint _e58 = k_3;
             k_3 = (_e58 + 1u);
         }
-        loop_init_25 = false;
+        loop_init_24 = false;
         uint _e39 = k_3;
         if ((_e39 < GROUND_IRRADIANCE_DIRECTIONS)) {
         } else {
@@ -4200,16 +4153,16 @@ void cloud_shadow(uint3 id_6 : SV_DispatchThreadID)
     if ((dot(up_2, sun_14) > 0.0)) {
         float4 _e29 = frame.camera_position;
         float2 cam_xz_3 = _e29.xz;
-        uint2 loop_bound_30 = uint2(4294967295u, 4294967295u);
-        bool loop_init_26 = true;
+        uint2 loop_bound_29 = uint2(4294967295u, 4294967295u);
+        bool loop_init_25 = true;
         while(true) {
-            if (all(loop_bound_30 == uint2(0u, 0u))) { break; }
-            loop_bound_30 -= uint2(loop_bound_30.y == 0u, 1u);
-            if (!loop_init_26) {
+            if (all(loop_bound_29 == uint2(0u, 0u))) { break; }
+            loop_bound_29 -= uint2(loop_bound_29.y == 0u, 1u);
+            if (!loop_init_25) {
                 uint _e90 = i_2;
                 i_2 = (_e90 + 1u);
             }
-            loop_init_26 = false;
+            loop_init_25 = false;
             uint _e39 = i_2;
             const uint _e40 = layer_count();
             if ((_e39 < _e40)) {
@@ -4228,16 +4181,16 @@ void cloud_shadow(uint3 id_6 : SV_DispatchThreadID)
                     continue;
                 }
                 k_4 = 0u;
-                uint2 loop_bound_31 = uint2(4294967295u, 4294967295u);
-                bool loop_init_27 = true;
+                uint2 loop_bound_30 = uint2(4294967295u, 4294967295u);
+                bool loop_init_26 = true;
                 while(true) {
-                    if (all(loop_bound_31 == uint2(0u, 0u))) { break; }
-                    loop_bound_31 -= uint2(loop_bound_31.y == 0u, 1u);
-                    if (!loop_init_27) {
+                    if (all(loop_bound_30 == uint2(0u, 0u))) { break; }
+                    loop_bound_30 -= uint2(loop_bound_30.y == 0u, 1u);
+                    if (!loop_init_26) {
                         uint _e87 = k_4;
                         k_4 = (_e87 + 1u);
                     }
-                    loop_init_27 = false;
+                    loop_init_26 = false;
                     uint _e62 = k_4;
                     if ((_e62 < SHADOW_STEPS)) {
                     } else {
@@ -4245,10 +4198,10 @@ void cloud_shadow(uint3 id_6 : SV_DispatchThreadID)
                     }
                     {
                         uint _e65 = k_4;
-                        float3 q_13 = (_e7 + (sun_14 * (start_2 + ((float(_e65) + 0.5) * dt_8))));
-                        float3 p_26 = float3((q_13.x + cam_xz_3.x), q_13.y, (q_13.z + cam_xz_3.y));
+                        float3 q_12 = (_e7 + (sun_14 * (start_2 + ((float(_e65) + 0.5) * dt_8))));
+                        float3 p_26 = float3((q_12.x + cam_xz_3.x), q_12.y, (q_12.z + cam_xz_3.y));
                         float _e81 = tau_2;
-                        const float _e82 = altitude_of(q_13);
+                        const float _e82 = altitude_of(q_12);
                         const float _e83 = layer_density(p_26, _e82, _e43, counters);
                         tau_2 = (_e81 + (_e83 * dt_8));
                     }
@@ -4294,16 +4247,16 @@ void occupancy(uint3 id_7 : SV_DispatchThreadID)
     int2 lo_1 = asint(asuint(naga_div(asint(asuint(int2(id_7.xy)) * asuint(size_8)), (int(64)).xx)) - asuint((int(1)).xx));
     int2 hi = naga_div(asint(asuint(asint(asuint(int2(id_7.xy)) + asuint((int(1)).xx))) * asuint(size_8)), (int(64)).xx);
     y = lo_1.y;
-    uint2 loop_bound_32 = uint2(4294967295u, 4294967295u);
-    bool loop_init_28 = true;
+    uint2 loop_bound_31 = uint2(4294967295u, 4294967295u);
+    bool loop_init_27 = true;
     while(true) {
-        if (all(loop_bound_32 == uint2(0u, 0u))) { break; }
-        loop_bound_32 -= uint2(loop_bound_32.y == 0u, 1u);
-        if (!loop_init_28) {
+        if (all(loop_bound_31 == uint2(0u, 0u))) { break; }
+        loop_bound_31 -= uint2(loop_bound_31.y == 0u, 1u);
+        if (!loop_init_27) {
             int _e54 = y;
             y = asint(asuint(_e54) + asuint(int(1)));
         }
-        loop_init_28 = false;
+        loop_init_27 = false;
         int _e30 = y;
         if ((_e30 <= hi.y)) {
         } else {
@@ -4311,16 +4264,16 @@ void occupancy(uint3 id_7 : SV_DispatchThreadID)
         }
         {
             x = lo_1.x;
-            uint2 loop_bound_33 = uint2(4294967295u, 4294967295u);
-            bool loop_init_29 = true;
+            uint2 loop_bound_32 = uint2(4294967295u, 4294967295u);
+            bool loop_init_28 = true;
             while(true) {
-                if (all(loop_bound_33 == uint2(0u, 0u))) { break; }
-                loop_bound_33 -= uint2(loop_bound_33.y == 0u, 1u);
-                if (!loop_init_29) {
+                if (all(loop_bound_32 == uint2(0u, 0u))) { break; }
+                loop_bound_32 -= uint2(loop_bound_32.y == 0u, 1u);
+                if (!loop_init_28) {
                     int _e51 = x;
                     x = asint(asuint(_e51) + asuint(int(1)));
                 }
-                loop_init_29 = false;
+                loop_init_28 = false;
                 int _e35 = x;
                 if ((_e35 <= hi.x)) {
                 } else {
@@ -4625,16 +4578,16 @@ void pathtrace(uint3 group : SV_GroupID, uint lane : SV_GroupIndex)
     lane_moments[min(uint(lane), 31u)] = float4((_e52 * _e52), (hit ? _e50.depth : 0.0), (hit ? 1.0 : 0.0), 0.0);
     GroupMemoryBarrierWithGroupSync();
     if ((lane == 0u)) {
-        uint2 loop_bound_34 = uint2(4294967295u, 4294967295u);
-        bool loop_init_30 = true;
+        uint2 loop_bound_33 = uint2(4294967295u, 4294967295u);
+        bool loop_init_29 = true;
         while(true) {
-            if (all(loop_bound_34 == uint2(0u, 0u))) { break; }
-            loop_bound_34 -= uint2(loop_bound_34.y == 0u, 1u);
-            if (!loop_init_30) {
+            if (all(loop_bound_33 == uint2(0u, 0u))) { break; }
+            loop_bound_33 -= uint2(loop_bound_33.y == 0u, 1u);
+            if (!loop_init_29) {
                 uint _e98 = i_3;
                 i_3 = (_e98 + 1u);
             }
-            loop_init_30 = false;
+            loop_init_29 = false;
             uint _e82 = i_3;
             if ((_e82 < PATHS_PER_FRAME)) {
             } else {
@@ -4753,16 +4706,16 @@ void sprite_build(uint3 id_14 : SV_DispatchThreadID)
     uint own = naga_mod(slot, SPRITES_PER_CELL);
     const SpriteCandidate _e18 = sprite_candidate(_e6, level_2, own, counters_2);
     me = _e18;
-    uint2 loop_bound_35 = uint2(4294967295u, 4294967295u);
-    bool loop_init_31 = true;
+    uint2 loop_bound_34 = uint2(4294967295u, 4294967295u);
+    bool loop_init_30 = true;
     while(true) {
-        if (all(loop_bound_35 == uint2(0u, 0u))) { break; }
-        loop_bound_35 -= uint2(loop_bound_35.y == 0u, 1u);
-        if (!loop_init_31) {
+        if (all(loop_bound_34 == uint2(0u, 0u))) { break; }
+        loop_bound_34 -= uint2(loop_bound_34.y == 0u, 1u);
+        if (!loop_init_30) {
             uint _e38 = i_4;
             i_4 = (_e38 + 1u);
         }
-        loop_init_31 = false;
+        loop_init_30 = false;
         uint _e22 = i_4;
         if ((_e22 < SPRITES_PER_CELL)) {
         } else {
@@ -4858,16 +4811,16 @@ void sprite_sort(uint3 id_15 : SV_DispatchThreadID)
     uint slot_1 = id_15.x;
     float4 _e6 = sprites_in.Load(int3(uint2(slot_1, 3u), int(0)));
     float key_1 = _e6.x;
-    uint2 loop_bound_36 = uint2(4294967295u, 4294967295u);
-    bool loop_init_32 = true;
+    uint2 loop_bound_35 = uint2(4294967295u, 4294967295u);
+    bool loop_init_31 = true;
     while(true) {
-        if (all(loop_bound_36 == uint2(0u, 0u))) { break; }
-        loop_bound_36 -= uint2(loop_bound_36.y == 0u, 1u);
-        if (!loop_init_32) {
+        if (all(loop_bound_35 == uint2(0u, 0u))) { break; }
+        loop_bound_35 -= uint2(loop_bound_35.y == 0u, 1u);
+        if (!loop_init_31) {
             uint _e40 = j;
             j = (_e40 + 1u);
         }
-        loop_init_32 = false;
+        loop_init_31 = false;
         uint _e12 = j;
         if ((_e12 < SPRITE_COUNT)) {
         } else {

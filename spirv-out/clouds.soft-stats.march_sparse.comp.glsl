@@ -1028,12 +1028,62 @@ float phase(float cos_theta_4, float scale) {
     }
 }
 
-float sun_optical_depth(vec3 rel_3, vec3 p_7, Layer l_5, inout Counters counters_6) {
+float segment_optical_depth(vec3 rel_3, vec3 p_7, Layer l_5, vec3 d_13, float first, uint steps_1, bool with_detail_1, inout Counters counters_6) {
     float seg = 0.0;
     float dist = 0.0;
     float tau_4 = 0.0;
     uint i_10 = 0u;
     bool local_28 = false;
+    float _e11 = _group_0_binding_0_cs.extinction.x;
+    float _e15 = _group_0_binding_0_cs.extinction.y;
+    float sigma_t_1 = (_e11 + _e15);
+    float growth = _group_0_binding_0_cs.march.y;
+    seg = first;
+    bool loop_init_3 = true;
+    while(true) {
+        if (!loop_init_3) {
+            uint _e65 = i_10;
+            i_10 = (_e65 + 1u);
+        }
+        loop_init_3 = false;
+        uint _e28 = i_10;
+        if ((_e28 < steps_1)) {
+        } else {
+            break;
+        }
+        {
+            float _e30 = dist;
+            float _e31 = seg;
+            float s_7 = (_e30 + (0.5 * _e31));
+            float _e37 = altitude_of((rel_3 + (d_13 * s_7)));
+            if (!((_e37 > l_5.top))) {
+                local_28 = (_e37 < l_5.bottom);
+            } else {
+                local_28 = true;
+            }
+            bool _e46 = local_28;
+            if (_e46) {
+                break;
+            }
+            uint _e48 = counters_6.light;
+            counters_6.light = (_e48 + 1u);
+            float _e51 = tau_4;
+            float _e54 = layer_density_with((p_7 + (d_13 * s_7)), _e37, l_5, with_detail_1, counters_6);
+            float _e56 = seg;
+            tau_4 = (_e51 + ((_e54 * sigma_t_1) * _e56));
+            float _e59 = dist;
+            float _e60 = seg;
+            dist = (_e59 + _e60);
+            float _e62 = seg;
+            seg = (_e62 * growth);
+        }
+    }
+    float _e67 = tau_4;
+    return _e67;
+}
+
+float sun_optical_depth(vec3 rel_4, vec3 p_8, Layer l_6, inout Counters counters_7) {
+    float tau_5 = 0.0;
     uint j_1 = 0u;
     bool local_29 = false;
     bool local_30 = false;
@@ -1042,181 +1092,86 @@ float sun_optical_depth(vec3 rel_3, vec3 p_7, Layer l_5, inout Counters counters
     vec3 sun_2 = _e6.xyz;
     float _e11 = _group_0_binding_0_cs.extinction.x;
     float _e15 = _group_0_binding_0_cs.extinction.y;
-    float sigma_t_1 = (_e11 + _e15);
-    uint steps_2 = _group_0_binding_0_cs.counts.w;
-    float growth = _group_0_binding_0_cs.march.y;
-    float _e28 = _group_0_binding_0_cs.march.z;
-    seg = _e28;
-    bool loop_init_3 = true;
-    while(true) {
-        if (!loop_init_3) {
-            uint _e73 = i_10;
-            i_10 = (_e73 + 1u);
-        }
-        loop_init_3 = false;
-        uint _e36 = i_10;
-        if ((_e36 < steps_2)) {
-        } else {
-            break;
-        }
-        {
-            float _e38 = dist;
-            float _e39 = seg;
-            float s_7 = (_e38 + (0.5 * _e39));
-            vec3 q_8 = (rel_3 + (sun_2 * s_7));
-            float _e45 = altitude_of(q_8);
-            if (!((_e45 > l_5.top))) {
-                local_28 = (_e45 < l_5.bottom);
-            } else {
-                local_28 = true;
-            }
-            bool _e54 = local_28;
-            if (_e54) {
-                break;
-            }
-            uint _e56 = counters_6.light;
-            counters_6.light = (_e56 + 1u);
-            float _e59 = tau_4;
-            float _e62 = layer_density((p_7 + (sun_2 * s_7)), _e45, l_5, counters_6);
-            float _e64 = seg;
-            tau_4 = (_e59 + ((_e62 * sigma_t_1) * _e64));
-            float _e67 = dist;
-            float _e68 = seg;
-            dist = (_e67 + _e68);
-            float _e70 = seg;
-            seg = (_e70 * growth);
-        }
-    }
-    float _e75 = altitude_of(rel_3);
+    float sigma_t_2 = (_e11 + _e15);
+    float _e20 = _group_0_binding_0_cs.march.z;
+    uint _e24 = _group_0_binding_0_cs.counts.w;
+    float _e26 = segment_optical_depth(rel_4, p_8, l_6, sun_2, _e20, _e24, true, counters_7);
+    tau_5 = _e26;
+    float _e28 = altitude_of(rel_4);
     bool loop_init_4 = true;
     while(true) {
         if (!loop_init_4) {
-            uint _e139 = j_1;
-            j_1 = (_e139 + 1u);
+            uint _e92 = j_1;
+            j_1 = (_e92 + 1u);
         }
         loop_init_4 = false;
-        uint _e78 = j_1;
-        uint _e79 = layer_count();
-        if ((_e78 < _e79)) {
+        uint _e31 = j_1;
+        uint _e32 = layer_count();
+        if ((_e31 < _e32)) {
         } else {
             break;
         }
         {
-            uint _e81 = j_1;
-            Layer _e82 = cloud_layer(_e81);
-            if ((_e82.bottom <= l_5.top)) {
+            uint _e34 = j_1;
+            Layer _e35 = cloud_layer(_e34);
+            if ((_e35.bottom <= l_6.top)) {
                 continue;
             }
-            Roots _e87 = ray_shell_from(rel_3, _e75, sun_2, _e82.bottom);
-            Roots _e89 = ray_shell_from(rel_3, _e75, sun_2, _e82.top);
-            if (!(!(_e87.hit))) {
-                local_29 = !(_e89.hit);
+            Roots _e40 = ray_shell_from(rel_4, _e28, sun_2, _e35.bottom);
+            Roots _e42 = ray_shell_from(rel_4, _e28, sun_2, _e35.top);
+            if (!(!(_e40.hit))) {
+                local_29 = !(_e42.hit);
             } else {
                 local_29 = true;
             }
-            bool _e98 = local_29;
-            if (!(_e98)) {
-                local_30 = !((_e89.t1_ > _e87.t1_));
+            bool _e51 = local_29;
+            if (!(_e51)) {
+                local_30 = !((_e42.t1_ > _e40.t1_));
             } else {
                 local_30 = true;
             }
-            bool _e107 = local_30;
-            if (!(_e107)) {
-                local_31 = (_e87.t1_ <= 0.0);
+            bool _e60 = local_30;
+            if (!(_e60)) {
+                local_31 = (_e40.t1_ <= 0.0);
             } else {
                 local_31 = true;
             }
-            bool _e115 = local_31;
-            if (_e115) {
+            bool _e68 = local_31;
+            if (_e68) {
                 continue;
             }
-            float s_8 = (0.5 * (_e87.t1_ + _e89.t1_));
-            uint _e122 = counters_6.light;
-            counters_6.light = (_e122 + 1u);
-            float _e125 = tau_4;
-            float _e130 = altitude_of((rel_3 + (sun_2 * s_8)));
-            float _e131 = layer_density((p_7 + (sun_2 * s_8)), _e130, _e82, counters_6);
-            tau_4 = (_e125 + ((_e131 * sigma_t_1) * (_e89.t1_ - _e87.t1_)));
+            float s_8 = (0.5 * (_e40.t1_ + _e42.t1_));
+            uint _e75 = counters_7.light;
+            counters_7.light = (_e75 + 1u);
+            float _e78 = tau_5;
+            float _e83 = altitude_of((rel_4 + (sun_2 * s_8)));
+            float _e84 = layer_density((p_8 + (sun_2 * s_8)), _e83, _e35, counters_7);
+            tau_5 = (_e78 + ((_e84 * sigma_t_2) * (_e42.t1_ - _e40.t1_)));
         }
     }
-    float _e141 = tau_4;
-    return _e141;
-}
-
-float steep_optical_depth(vec3 rel_4, vec3 p_8, Layer l_6, vec3 d_13, inout Counters counters_7) {
-    float seg_1 = 0.0;
-    float dist_1 = 0.0;
-    float tau_5 = 0.0;
-    uint i_11 = 0u;
-    bool local_32 = false;
-    float _e8 = _group_0_binding_0_cs.extinction.x;
-    float _e12 = _group_0_binding_0_cs.extinction.y;
-    float sigma_t_2 = (_e8 + _e12);
-    float growth_1 = _group_0_binding_0_cs.march.y;
-    float _e21 = _group_0_binding_0_cs.march.z;
-    seg_1 = (_e21 * STEEP_FIRST);
-    bool loop_init_5 = true;
-    while(true) {
-        if (!loop_init_5) {
-            uint _e70 = i_11;
-            i_11 = (_e70 + 1u);
-        }
-        loop_init_5 = false;
-        uint _e31 = i_11;
-        if ((_e31 < STEEP_STEPS)) {
-        } else {
-            break;
-        }
-        {
-            float _e34 = dist_1;
-            float _e35 = seg_1;
-            float s_9 = (_e34 + (0.5 * _e35));
-            float _e41 = altitude_of((rel_4 + (d_13 * s_9)));
-            if (!((_e41 > l_6.top))) {
-                local_32 = (_e41 < l_6.bottom);
-            } else {
-                local_32 = true;
-            }
-            bool _e50 = local_32;
-            if (_e50) {
-                break;
-            }
-            uint _e52 = counters_7.light;
-            counters_7.light = (_e52 + 1u);
-            float _e55 = tau_5;
-            float _e59 = layer_density_with((p_8 + (d_13 * s_9)), _e41, l_6, false, counters_7);
-            float _e61 = seg_1;
-            tau_5 = (_e55 + ((_e59 * sigma_t_2) * _e61));
-            float _e64 = dist_1;
-            float _e65 = seg_1;
-            dist_1 = (_e64 + _e65);
-            float _e67 = seg_1;
-            seg_1 = (_e67 * growth_1);
-        }
-    }
-    float _e72 = tau_5;
-    return _e72;
+    float _e94 = tau_5;
+    return _e94;
 }
 
 float octave_optical_depth(vec3 rel_5, vec3 p_9, Layer l_7, float tau_6, inout Counters counters_8) {
+    bool local_32 = false;
     bool local_33 = false;
-    bool local_34 = false;
     float _e10 = saturate(((l_7.coverage - 0.8) / 0.1));
     float _e14 = _group_0_binding_0_cs.octave_depth.x;
     float m_2 = (_e14 * _e10);
     if (!((_e10 < 0.001))) {
-        local_33 = (m_2 <= 0.0);
+        local_32 = (m_2 <= 0.0);
+    } else {
+        local_32 = true;
+    }
+    bool _e24 = local_32;
+    if (!(_e24)) {
+        uint _e31 = _group_0_binding_0_cs.counts.w;
+        local_33 = (_e31 == 0u);
     } else {
         local_33 = true;
     }
-    bool _e24 = local_33;
-    if (!(_e24)) {
-        uint _e31 = _group_0_binding_0_cs.counts.w;
-        local_34 = (_e31 == 0u);
-    } else {
-        local_34 = true;
-    }
-    bool _e35 = local_34;
+    bool _e35 = local_33;
     if (_e35) {
         return tau_6;
     }
@@ -1226,37 +1181,38 @@ float octave_optical_depth(vec3 rel_5, vec3 p_9, Layer l_7, float tau_6, inout C
     vec3 sun_3 = _e48.xyz;
     vec3 d_23 = normalize((sun_3 + up));
     float mu0_1 = max(dot(sun_3, up), 0.001);
-    float _e55 = steep_optical_depth(rel_5, p_9, l_7, d_23, counters_8);
-    float _e59 = _group_0_binding_0_cs.octave_depth.y;
-    float steep = ((_e55 * _e59) * sqrt((mu0_1 / max(dot(d_23, up), 0.001))));
+    float _e58 = _group_0_binding_0_cs.march.z;
+    float _e63 = segment_optical_depth(rel_5, p_9, l_7, d_23, (_e58 * STEEP_FIRST), STEEP_STEPS, false, counters_8);
+    float _e67 = _group_0_binding_0_cs.octave_depth.y;
+    float steep = ((_e63 * _e67) * sqrt((mu0_1 / max(dot(d_23, up), 0.001))));
     return mix(tau_6, steep, m_2);
 }
 
 float far_optical_depth(vec3 rel_6, vec3 p_10, Layer l_8) {
-    bool local_35 = false;
+    bool local_34 = false;
     float reach = 0.0;
-    bool local_36 = false;
+    bool local_35 = false;
     float tau_7 = 0.0;
-    uint i_12 = 0u;
+    uint i_11 = 0u;
     float chord = _group_0_binding_0_cs.light_model.z;
     if (!((chord <= 0.0))) {
         uint _e15 = _group_0_binding_0_cs.counts.w;
-        local_35 = (_e15 == 0u);
+        local_34 = (_e15 == 0u);
     } else {
-        local_35 = true;
+        local_34 = true;
     }
-    bool _e19 = local_35;
+    bool _e19 = local_34;
     if (_e19) {
         return 0.0;
     }
-    float growth_2 = _group_0_binding_0_cs.march.y;
+    float growth_1 = _group_0_binding_0_cs.march.y;
     uint _e28 = _group_0_binding_0_cs.counts.w;
     float steps_3 = float(_e28);
     float _e33 = _group_0_binding_0_cs.march.z;
     reach = (_e33 * steps_3);
-    if ((growth_2 != 1.0)) {
+    if ((growth_1 != 1.0)) {
         float _e41 = _group_0_binding_0_cs.march.z;
-        reach = ((_e41 * (pow(growth_2, steps_3) - 1.0)) / (growth_2 - 1.0));
+        reach = ((_e41 * (pow(growth_1, steps_3) - 1.0)) / (growth_1 - 1.0));
     }
     vec4 _e51 = _group_0_binding_0_cs.sun_direction;
     vec3 sun_4 = _e51.xyz;
@@ -1265,29 +1221,29 @@ float far_optical_depth(vec3 rel_6, vec3 p_10, Layer l_8) {
     float _e57 = reach;
     float len_1 = (_e55.t1_ - _e57);
     if (!(!(_e55.hit))) {
-        local_36 = !((len_1 > 0.0));
+        local_35 = !((len_1 > 0.0));
     } else {
-        local_36 = true;
+        local_35 = true;
     }
-    bool _e68 = local_36;
+    bool _e68 = local_35;
     if (_e68) {
         return 0.0;
     }
-    bool loop_init_6 = true;
+    bool loop_init_5 = true;
     while(true) {
-        if (!loop_init_6) {
-            uint _e110 = i_12;
-            i_12 = (_e110 + 1u);
+        if (!loop_init_5) {
+            uint _e110 = i_11;
+            i_11 = (_e110 + 1u);
         }
-        loop_init_6 = false;
-        uint _e74 = i_12;
+        loop_init_5 = false;
+        uint _e74 = i_11;
         if ((_e74 < 4u)) {
         } else {
             break;
         }
         {
             float _e77 = reach;
-            uint _e78 = i_12;
+            uint _e78 = i_11;
             float t_5 = (_e77 + (((float(_e78) + 0.5) * 0.25) * len_1));
             float _e88 = altitude_of((rel_6 + (sun_4 * t_5)));
             float _e89 = layer_height(l_8, _e88);
@@ -1337,7 +1293,7 @@ SunScattering sun_scattering(float cos_theta_5, float view_y_3, float tau_8, flo
     float ka = 1.0;
     float kb = 1.0;
     float kc = 1.0;
-    uint i_13 = 0u;
+    uint i_12 = 0u;
     float feed = 0.0;
     float octaves_part = 0.0;
     float total = 0.0;
@@ -1346,14 +1302,14 @@ SunScattering sun_scattering(float cos_theta_5, float view_y_3, float tau_8, flo
     float c_8 = _group_0_binding_0_cs.multiple_scattering.z;
     uint _e24 = _group_0_binding_0_cs.misc.x;
     uint octaves = min(_e24, MAX_OCTAVES);
-    bool loop_init_7 = true;
+    bool loop_init_6 = true;
     while(true) {
-        if (!loop_init_7) {
-            uint _e57 = i_13;
-            i_13 = (_e57 + 1u);
+        if (!loop_init_6) {
+            uint _e57 = i_12;
+            i_12 = (_e57 + 1u);
         }
-        loop_init_7 = false;
-        uint _e37 = i_13;
+        loop_init_6 = false;
+        uint _e37 = i_12;
         if ((_e37 < octaves)) {
         } else {
             break;
@@ -1548,13 +1504,13 @@ float empty_cell_exit(vec3 p_12, vec3 d_14) {
 }
 
 void count(uint index_1, uint value) {
-    bool local_37 = false;
+    bool local_36 = false;
     if (STATS) {
-        local_37 = (value != 0u);
+        local_36 = (value != 0u);
     } else {
-        local_37 = false;
+        local_36 = false;
     }
-    bool _e8 = local_37;
+    bool _e8 = local_36;
     if (_e8) {
         uint _e12 = atomicAdd(_group_0_binding_8_cs.counters[index_1], value);
         return;
@@ -1590,22 +1546,22 @@ float start_offset(uvec2 pixel_3) {
 }
 
 bool march_layer(vec3 view_2, Interval span_1, Layer l_10, float jitter, inout MarchState state, inout Counters counters_10) {
-    uint steps_1 = 0u;
-    uint i_14 = 0u;
+    uint steps_2 = 0u;
+    uint i_13 = 0u;
     uint stride = 1u;
     uint empty = 0u;
-    bool local_38 = false;
+    bool local_37 = false;
     float cam_alt = _group_0_binding_0_cs.camera_position.y;
     vec4 _e12 = _group_0_binding_0_cs.camera_position;
     vec2 cam_xz = _e12.xz;
     uint _e17 = _group_0_binding_0_cs.counts.z;
-    steps_1 = _e17;
+    steps_2 = _e17;
     float _e22 = _group_0_binding_0_cs.march.x;
     if ((_e22 > 0.0)) {
         float _e29 = _group_0_binding_0_cs.march.x;
-        steps_1 = min(max(uint(ceil((span_1.length_ / _e29))), 1u), MAX_VIEW_STEPS);
+        steps_2 = min(max(uint(ceil((span_1.length_ / _e29))), 1u), MAX_VIEW_STEPS);
     }
-    uint _e37 = steps_1;
+    uint _e37 = steps_2;
     float dt_1 = (span_1.length_ / float(_e37));
     float _e43 = _group_0_binding_0_cs.extinction.x;
     float _e47 = _group_0_binding_0_cs.extinction.y;
@@ -1615,24 +1571,24 @@ bool march_layer(vec3 view_2, Interval span_1, Layer l_10, float jitter, inout M
     uint _e60 = _group_0_binding_0_cs.modes.w;
     bool empty_skip = ((_e60 & FLAG_EMPTY_SKIP) != 0u);
     while(true) {
-        uint _e71 = i_14;
-        uint _e72 = steps_1;
+        uint _e71 = i_13;
+        uint _e72 = steps_2;
         if ((_e71 >= _e72)) {
             break;
         }
         uint _e75 = counters_10.view_steps;
         counters_10.view_steps = (_e75 + 1u);
-        uint _e79 = i_14;
+        uint _e79 = i_13;
         float t_6 = (span_1.start + ((float(_e79) + jitter) * dt_1));
         vec3 rel_12 = ((view_2 * t_6) + vec3(0.0, cam_alt, 0.0));
         vec3 p_16 = vec3((rel_12.x + cam_xz.x), rel_12.y, (rel_12.z + cam_xz.y));
         if (empty_skip) {
             float _e97 = empty_cell_exit(p_16, view_2);
             if ((_e97 > 0.0)) {
-                uint _e106 = steps_1;
+                uint _e106 = steps_2;
                 uint next_1 = uint(clamp(ceil(((((t_6 + _e97) - span_1.start) / dt_1) - jitter)), 0.0, float(_e106)));
-                uint _e111 = i_14;
-                i_14 = max((_e111 + 1u), next_1);
+                uint _e111 = i_13;
+                i_13 = max((_e111 + 1u), next_1);
                 continue;
             }
         }
@@ -1643,24 +1599,24 @@ bool march_layer(vec3 view_2, Interval span_1, Layer l_10, float jitter, inout M
             empty = (_e119 + 1u);
             if (dynamic_step) {
                 uint _e124 = empty;
-                local_38 = (_e124 >= 8u);
+                local_37 = (_e124 >= 8u);
             } else {
-                local_38 = false;
+                local_37 = false;
             }
-            bool _e128 = local_38;
+            bool _e128 = local_37;
             if (_e128) {
                 stride = 2u;
             }
-            uint _e130 = i_14;
+            uint _e130 = i_13;
             uint _e131 = stride;
-            i_14 = (_e130 + _e131);
+            i_13 = (_e130 + _e131);
             continue;
         }
         uint _e133 = stride;
         if ((_e133 > 1u)) {
-            uint _e136 = i_14;
+            uint _e136 = i_13;
             uint _e137 = stride;
-            i_14 = (_e136 - (_e137 - 1u));
+            i_13 = (_e136 - (_e137 - 1u));
             stride = 1u;
             empty = 0u;
             continue;
@@ -1684,8 +1640,8 @@ bool march_layer(vec3 view_2, Interval span_1, Layer l_10, float jitter, inout M
         if ((_e173 < _e177)) {
             return true;
         }
-        uint _e180 = i_14;
-        i_14 = (_e180 + 1u);
+        uint _e180 = i_13;
+        i_13 = (_e180 + 1u);
     }
     return false;
 }
@@ -1701,26 +1657,26 @@ MarchResult march_pixel(uvec2 pixel_4) {
     uint k_6 = 0u;
     uint next = 0u;
     Interval span_2 = Interval(0.0, 0.0, 0u);
-    uint i_15 = 0u;
+    uint i_14 = 0u;
+    bool local_38 = false;
     bool local_39 = false;
     bool local_40 = false;
     bool local_41 = false;
     bool local_42 = false;
     bool local_43 = false;
-    bool local_44 = false;
     float depth_1 = 0.0;
     vec3 _e1 = view_ray(pixel_4);
     float cam_alt_1 = _group_0_binding_0_cs.camera_position.y;
     count(STAT_PIXELS, 1u);
     float _e22 = start_offset(pixel_4);
     uint _e23 = layer_count();
-    bool loop_init_8 = true;
+    bool loop_init_7 = true;
     while(true) {
-        if (!loop_init_8) {
+        if (!loop_init_7) {
             uint _e121 = k_6;
             k_6 = (_e121 + 1u);
         }
-        loop_init_8 = false;
+        loop_init_7 = false;
         uint _e36 = k_6;
         if ((_e36 < _e23)) {
         } else {
@@ -1729,69 +1685,69 @@ MarchResult march_pixel(uvec2 pixel_4) {
         {
             next = NO_LAYER;
             span_2 = Interval(0.0, 0.0, 1u);
-            i_15 = 0u;
-            bool loop_init_9 = true;
+            i_14 = 0u;
+            bool loop_init_8 = true;
             while(true) {
-                if (!loop_init_9) {
-                    uint _e104 = i_15;
-                    i_15 = (_e104 + 1u);
+                if (!loop_init_8) {
+                    uint _e104 = i_14;
+                    i_14 = (_e104 + 1u);
                 }
-                loop_init_9 = false;
-                uint _e47 = i_15;
+                loop_init_8 = false;
+                uint _e47 = i_14;
                 if ((_e47 < _e23)) {
                 } else {
                     break;
                 }
                 {
-                    uint _e49 = i_15;
+                    uint _e49 = i_14;
                     Layer _e50 = cloud_layer(_e49);
                     Interval _e51 = layer_interval(cam_alt_1, _e1, _e50);
                     bool _e52 = ground_1;
                     if (!(_e52)) {
-                        local_39 = (_e51.kind == RAY_HITS_GROUND);
+                        local_38 = (_e51.kind == RAY_HITS_GROUND);
                     } else {
-                        local_39 = true;
+                        local_38 = true;
                     }
-                    bool _e60 = local_39;
+                    bool _e60 = local_38;
                     ground_1 = _e60;
                     float _e62 = last_start;
                     if (!((_e51.start > _e62))) {
                         float _e68 = last_start;
                         if ((_e51.start == _e68)) {
-                            uint _e72 = i_15;
+                            uint _e72 = i_14;
                             uint _e73 = last_index;
-                            local_41 = (_e72 > _e73);
+                            local_40 = (_e72 > _e73);
                         } else {
-                            local_41 = false;
+                            local_40 = false;
                         }
-                        bool _e76 = local_41;
-                        local_40 = _e76;
+                        bool _e76 = local_40;
+                        local_39 = _e76;
                     } else {
-                        local_40 = true;
+                        local_39 = true;
                     }
-                    bool after = local_40;
+                    bool after = local_39;
                     if ((_e51.kind == RAY_MARCH)) {
-                        local_42 = after;
+                        local_41 = after;
                     } else {
-                        local_42 = false;
+                        local_41 = false;
                     }
-                    bool _e85 = local_42;
+                    bool _e85 = local_41;
                     if (_e85) {
                         uint _e88 = next;
                         if (!((_e88 == NO_LAYER))) {
                             float _e96 = span_2.start;
-                            local_44 = (_e51.start < _e96);
+                            local_43 = (_e51.start < _e96);
                         } else {
-                            local_44 = true;
+                            local_43 = true;
                         }
-                        bool _e99 = local_44;
-                        local_43 = _e99;
+                        bool _e99 = local_43;
+                        local_42 = _e99;
                     } else {
-                        local_43 = false;
+                        local_42 = false;
                     }
-                    bool _e101 = local_43;
+                    bool _e101 = local_42;
                     if (_e101) {
-                        uint _e102 = i_15;
+                        uint _e102 = i_14;
                         next = _e102;
                         span_2 = _e51;
                     }
@@ -1874,36 +1830,36 @@ uvec2 block_offset(uint f, uint k_7) {
 }
 
 vec2 reproject(uvec2 pixel_5, float depth_2) {
+    bool local_44 = false;
     bool local_45 = false;
     bool local_46 = false;
-    bool local_47 = false;
     vec3 dir = vec3(0.0);
     vec4 _e4 = _group_0_binding_0_cs.previous_position;
     vec4 _e7 = _group_0_binding_0_cs.camera_position;
     if (all(equal(_e4, _e7))) {
         vec4 _e14 = _group_0_binding_0_cs.previous_forward;
         vec4 _e17 = _group_0_binding_0_cs.camera_forward;
-        local_45 = all(equal(_e14, _e17));
+        local_44 = all(equal(_e14, _e17));
     } else {
-        local_45 = false;
+        local_44 = false;
     }
-    bool _e21 = local_45;
+    bool _e21 = local_44;
     if (_e21) {
         vec4 _e26 = _group_0_binding_0_cs.previous_right;
         vec4 _e29 = _group_0_binding_0_cs.camera_right;
-        local_46 = all(equal(_e26, _e29));
+        local_45 = all(equal(_e26, _e29));
     } else {
-        local_46 = false;
+        local_45 = false;
     }
-    bool _e33 = local_46;
+    bool _e33 = local_45;
     if (_e33) {
         vec4 _e38 = _group_0_binding_0_cs.previous_up;
         vec4 _e41 = _group_0_binding_0_cs.camera_up;
-        local_47 = all(equal(_e38, _e41));
+        local_46 = all(equal(_e38, _e41));
     } else {
-        local_47 = false;
+        local_46 = false;
     }
-    bool same = local_47;
+    bool same = local_46;
     if (same) {
         return vec2(pixel_5);
     }
@@ -1932,15 +1888,15 @@ vec2 reproject(uvec2 pixel_5, float depth_2) {
 }
 
 bool on_screen(vec2 q) {
-    bool local_48 = false;
+    bool local_47 = false;
     uvec4 _e3 = _group_0_binding_0_cs.counts;
     vec2 size_3 = vec2(_e3.xy);
     if (all(greaterThanEqual(q, vec2(-0.5)))) {
-        local_48 = all(lessThanEqual(q, (size_3 - vec2(0.5))));
+        local_47 = all(lessThanEqual(q, (size_3 - vec2(0.5))));
     } else {
-        local_48 = false;
+        local_47 = false;
     }
-    bool _e18 = local_48;
+    bool _e18 = local_47;
     return _e18;
 }
 
@@ -1977,8 +1933,8 @@ uint rng_seed(uvec2 pixel_6, uint path_index) {
 float rng_next(inout uint rng_1) {
     uint _e1 = rng_1;
     rng_1 = ((_e1 * 747796405u) + 2891336453u);
-    uint s_10 = rng_1;
-    uint word_1 = (((s_10 >> ((s_10 >> 28u) + 4u)) ^ s_10) * 277803737u);
+    uint s_9 = rng_1;
+    uint word_1 = (((s_9 >> ((s_9 >> 28u) + 4u)) ^ s_9) * 277803737u);
     return (float((((word_1 >> 22u) ^ word_1) >> 8u)) * 5.9604645e-8);
 }
 
@@ -1989,42 +1945,42 @@ float rng_exponential(inout uint rng_2, float sigma) {
 
 Segments layer_segments(vec3 p_13, float alt_14, vec3 d_15) {
     Segments s_1 = Segments(vec2(0.0), vec2(0.0), 0u);
-    bool local_49 = false;
+    bool local_48 = false;
     vec2 a_1 = vec2(0.0);
     vec2 b_1 = vec2(0.0);
     uint n_2 = 0u;
+    bool local_49 = false;
     bool local_50 = false;
     bool local_51 = false;
     bool local_52 = false;
-    bool local_53 = false;
     vec2 _e10 = layers_span();
     float bottom_2 = _e10.x;
     Roots _e12 = ray_shell_from(p_13, alt_14, d_15, bottom_2);
     Roots _e14 = ray_shell_from(p_13, alt_14, d_15, _e10.y);
     bool _e15 = hits_ground(p_13, alt_14, d_15);
     if (!(!(_e14.hit))) {
-        local_49 = (_e14.t1_ <= 0.0);
+        local_48 = (_e14.t1_ <= 0.0);
     } else {
-        local_49 = true;
+        local_48 = true;
     }
-    bool _e25 = local_49;
+    bool _e25 = local_48;
     if (_e25) {
         Segments _e26 = s_1;
         return _e26;
     }
     float entry = max(_e14.t0_, 0.0);
     if (_e12.hit) {
-        local_50 = (_e12.t0_ > 0.0);
+        local_49 = (_e12.t0_ > 0.0);
+    } else {
+        local_49 = false;
+    }
+    bool _e45 = local_49;
+    if (_e45) {
+        local_50 = (alt_14 >= bottom_2);
     } else {
         local_50 = false;
     }
-    bool _e45 = local_50;
-    if (_e45) {
-        local_51 = (alt_14 >= bottom_2);
-    } else {
-        local_51 = false;
-    }
-    bool _e50 = local_51;
+    bool _e50 = local_50;
     if (_e50) {
         uint _e51 = n_2;
         a_1[_e51] = entry;
@@ -2033,11 +1989,11 @@ Segments layer_segments(vec3 p_13, float alt_14, vec3 d_15) {
         uint _e56 = n_2;
         n_2 = (_e56 + uint((_e12.t0_ > entry)));
         if (!(_e15)) {
-            local_52 = (_e14.t1_ > _e12.t1_);
+            local_51 = (_e14.t1_ > _e12.t1_);
         } else {
-            local_52 = false;
+            local_51 = false;
         }
-        bool _e68 = local_52;
+        bool _e68 = local_51;
         if (_e68) {
             uint _e69 = n_2;
             a_1[_e69] = max(_e12.t1_, entry);
@@ -2049,11 +2005,11 @@ Segments layer_segments(vec3 p_13, float alt_14, vec3 d_15) {
     } else {
         if ((alt_14 < bottom_2)) {
             if (!(_e15)) {
-                local_53 = _e12.hit;
+                local_52 = _e12.hit;
             } else {
-                local_53 = false;
+                local_52 = false;
             }
-            bool _e85 = local_53;
+            bool _e85 = local_52;
             if (_e85) {
                 a_1.x = max(_e12.t1_, 0.0);
                 b_1.x = _e14.t1_;
@@ -2102,22 +2058,22 @@ float empty_cell_skip(vec3 origin_4, vec3 dir_1, float t_2) {
 
 float density_max() {
     float m_1 = 0.0;
-    uint i_16 = 0u;
-    bool loop_init_10 = true;
+    uint i_15 = 0u;
+    bool loop_init_9 = true;
     while(true) {
-        if (!loop_init_10) {
-            uint _e17 = i_16;
-            i_16 = (_e17 + 1u);
+        if (!loop_init_9) {
+            uint _e17 = i_15;
+            i_15 = (_e17 + 1u);
         }
-        loop_init_10 = false;
-        uint _e4 = i_16;
+        loop_init_9 = false;
+        uint _e4 = i_15;
         uint _e5 = layer_count();
         if ((_e4 < _e5)) {
         } else {
             break;
         }
         {
-            uint _e7 = i_16;
+            uint _e7 = i_15;
             Layer _e8 = cloud_layer(_e7);
             float _e9 = m_1;
             m_1 = max(_e9, (_e8.density * (1.0 + _e8.precipitation)));
@@ -2137,13 +2093,13 @@ float free_flight(vec3 origin_5, vec3 dir_2, Segments segs, inout uint rng_3, in
     if ((majorant <= 0.0)) {
         return -1.0;
     }
-    bool loop_init_11 = true;
+    bool loop_init_10 = true;
     while(true) {
-        if (!loop_init_11) {
+        if (!loop_init_10) {
             uint _e60 = k_8;
             k_8 = (_e60 + 1u);
         }
-        loop_init_11 = false;
+        loop_init_10 = false;
         uint _e21 = k_8;
         if ((_e21 < segs.count)) {
         } else {
@@ -2200,13 +2156,13 @@ float transmittance_along(vec3 origin_6, vec3 dir_3, Segments segs_1, inout uint
     if ((majorant_1 <= 0.0)) {
         return 1.0;
     }
-    bool loop_init_12 = true;
+    bool loop_init_11 = true;
     while(true) {
-        if (!loop_init_12) {
+        if (!loop_init_11) {
             uint _e78 = k_9;
             k_9 = (_e78 + 1u);
         }
-        loop_init_12 = false;
+        loop_init_11 = false;
         uint _e23 = k_9;
         if ((_e23 < segs_1.count)) {
         } else {
@@ -2266,8 +2222,8 @@ float sample_hg_cos(float g_4, float u) {
     if ((abs(g_4) < 0.0001)) {
         return (1.0 - (2.0 * u));
     }
-    float s_11 = ((1.0 - (g_4 * g_4)) / ((1.0 - g_4) + ((2.0 * g_4) * u)));
-    return clamp((((1.0 + (g_4 * g_4)) - (s_11 * s_11)) / (2.0 * g_4)), -1.0, 1.0);
+    float s_10 = ((1.0 - (g_4 * g_4)) / ((1.0 - g_4) + ((2.0 * g_4) * u)));
+    return clamp((((1.0 + (g_4 * g_4)) - (s_10 * s_10)) / (2.0 * g_4)), -1.0, 1.0);
 }
 
 PhaseSample sample_phase(vec3 dir_4, inout uint rng_5) {
@@ -2320,35 +2276,35 @@ PhaseSample sample_phase(vec3 dir_4, inout uint rng_5) {
 }
 
 bool camera_still() {
+    bool local_57 = false;
     bool local_58 = false;
     bool local_59 = false;
-    bool local_60 = false;
     vec4 _e2 = _group_0_binding_0_cs.camera_position;
     vec4 _e5 = _group_0_binding_0_cs.previous_position;
     if (all(equal(_e2, _e5))) {
         vec4 _e12 = _group_0_binding_0_cs.camera_forward;
         vec4 _e15 = _group_0_binding_0_cs.previous_forward;
-        local_58 = all(equal(_e12, _e15));
+        local_57 = all(equal(_e12, _e15));
     } else {
-        local_58 = false;
+        local_57 = false;
     }
-    bool _e19 = local_58;
+    bool _e19 = local_57;
     if (_e19) {
         vec4 _e24 = _group_0_binding_0_cs.camera_right;
         vec4 _e28 = _group_0_binding_0_cs.previous_right;
-        local_59 = all(equal(_e24.xyz, _e28.xyz));
+        local_58 = all(equal(_e24.xyz, _e28.xyz));
     } else {
-        local_59 = false;
+        local_58 = false;
     }
-    bool _e33 = local_59;
+    bool _e33 = local_58;
     if (_e33) {
         vec4 _e38 = _group_0_binding_0_cs.camera_up;
         vec4 _e42 = _group_0_binding_0_cs.previous_up;
-        local_60 = all(equal(_e38.xyz, _e42.xyz));
+        local_59 = all(equal(_e38.xyz, _e42.xyz));
     } else {
-        local_60 = false;
+        local_59 = false;
     }
-    bool _e47 = local_60;
+    bool _e47 = local_59;
     return _e47;
 }
 
@@ -2358,7 +2314,7 @@ float luminance(vec3 c_3) {
 
 float basic_sun_depth(vec3 rel_11, float alt_15, inout Counters counters_16) {
     float tau_10 = 0.0;
-    uint i_17 = 1u;
+    uint i_16 = 1u;
     uint steps_4 = _group_0_binding_0_cs.counts.w;
     if ((steps_4 == 0u)) {
         return 0.0;
@@ -2377,14 +2333,14 @@ float basic_sun_depth(vec3 rel_11, float alt_15, inout Counters counters_16) {
     float sigma_t_5 = (_e51 + _e55);
     vec4 _e59 = _group_0_binding_0_cs.camera_position;
     vec2 cam_xz_1 = _e59.xz;
-    bool loop_init_13 = true;
+    bool loop_init_12 = true;
     while(true) {
-        if (!loop_init_13) {
-            uint _e90 = i_17;
-            i_17 = (_e90 + 1u);
+        if (!loop_init_12) {
+            uint _e90 = i_16;
+            i_16 = (_e90 + 1u);
         }
-        loop_init_13 = false;
-        uint _e65 = i_17;
+        loop_init_12 = false;
+        uint _e65 = i_16;
         if ((_e65 <= steps_4)) {
         } else {
             break;
@@ -2392,11 +2348,11 @@ float basic_sun_depth(vec3 rel_11, float alt_15, inout Counters counters_16) {
         {
             uint _e68 = counters_16.light;
             counters_16.light = (_e68 + 1u);
-            uint _e71 = i_17;
-            vec3 q_9 = (rel_11 + (sun_6 * (float(_e71) * dt_2)));
-            vec3 p_19 = vec3((q_9.x + cam_xz_1.x), q_9.y, (q_9.z + cam_xz_1.y));
+            uint _e71 = i_16;
+            vec3 q_8 = (rel_11 + (sun_6 * (float(_e71) * dt_2)));
+            vec3 p_19 = vec3((q_8.x + cam_xz_1.x), q_8.y, (q_8.z + cam_xz_1.y));
             float _e84 = tau_10;
-            float _e85 = altitude_of(q_9);
+            float _e85 = altitude_of(q_8);
             float _e86 = cloud_density(p_19, _e85, counters_16);
             tau_10 = (_e84 + ((sigma_t_5 * _e86) * dt_2));
         }
@@ -2410,7 +2366,7 @@ MarchResult basic_pixel(uvec2 pixel_7) {
     vec3 radiance_2 = vec3(0.0);
     float transmittance_1 = 1.0;
     float depth_sum = 0.0;
-    uint i_18 = 0u;
+    uint i_17 = 0u;
     float depth_3 = 0.0;
     vec3 _e1 = view_ray(pixel_7);
     float cam_alt_2 = _group_0_binding_0_cs.camera_position.y;
@@ -2435,14 +2391,14 @@ MarchResult basic_pixel(uvec2 pixel_7) {
             float _e66 = _group_0_binding_0_cs.phase.x;
             float _e67 = phase_hg(dot(_e1, _e60.xyz), _e66);
             vec3 sun_phase = (_e56.xyz * _e67);
-            bool loop_init_14 = true;
+            bool loop_init_13 = true;
             while(true) {
-                if (!loop_init_14) {
-                    uint _e131 = i_18;
-                    i_18 = (_e131 + 1u);
+                if (!loop_init_13) {
+                    uint _e131 = i_17;
+                    i_17 = (_e131 + 1u);
                 }
-                loop_init_14 = false;
-                uint _e71 = i_18;
+                loop_init_13 = false;
+                uint _e71 = i_17;
                 if ((_e71 < steps_5)) {
                 } else {
                     break;
@@ -2450,7 +2406,7 @@ MarchResult basic_pixel(uvec2 pixel_7) {
                 {
                     uint _e74 = counters_17.view_steps;
                     counters_17.view_steps = (_e74 + 1u);
-                    uint _e78 = i_18;
+                    uint _e78 = i_17;
                     float t_8 = (_e25.start + (float(_e78) * dt_3));
                     vec3 rel_14 = ((_e1 * t_8) + vec3(0.0, cam_alt_2, 0.0));
                     vec3 p_20 = vec3((rel_14.x + cam_xz_2.x), rel_14.y, (rel_14.z + cam_xz_2.y));
@@ -2501,15 +2457,15 @@ float atlas_hash(uint a_2, uint b_2) {
 }
 
 float value_noise(vec2 p_14, uint seed) {
-    uvec2 i_20 = uvec2(floor(p_14));
+    uvec2 i_19 = uvec2(floor(p_14));
     vec2 f_4 = fract(p_14);
-    vec2 s_12 = ((f_4 * f_4) * (vec2(3.0) - (2.0 * f_4)));
+    vec2 s_11 = ((f_4 * f_4) * (vec2(3.0) - (2.0 * f_4)));
     uint h_14 = (seed * 7919u);
-    float _e17 = atlas_hash((i_20.x + h_14), i_20.y);
-    float _e23 = atlas_hash(((i_20.x + 1u) + h_14), i_20.y);
-    float _e29 = atlas_hash((i_20.x + h_14), (i_20.y + 1u));
-    float _e37 = atlas_hash(((i_20.x + 1u) + h_14), (i_20.y + 1u));
-    return mix(mix(_e17, _e23, s_12.x), mix(_e29, _e37, s_12.x), s_12.y);
+    float _e17 = atlas_hash((i_19.x + h_14), i_19.y);
+    float _e23 = atlas_hash(((i_19.x + 1u) + h_14), i_19.y);
+    float _e29 = atlas_hash((i_19.x + h_14), (i_19.y + 1u));
+    float _e37 = atlas_hash(((i_19.x + 1u) + h_14), (i_19.y + 1u));
+    return mix(mix(_e17, _e23, s_11.x), mix(_e29, _e37, s_11.x), s_11.y);
 }
 
 float value_fbm(vec2 p_15, uint seed_1) {
@@ -2518,13 +2474,13 @@ float value_fbm(vec2 p_15, uint seed_1) {
     vec2 q_4 = vec2(0.0);
     uint o = 0u;
     q_4 = p_15;
-    bool loop_init_15 = true;
+    bool loop_init_14 = true;
     while(true) {
-        if (!loop_init_15) {
+        if (!loop_init_14) {
             uint _e26 = o;
             o = (_e26 + 1u);
         }
-        loop_init_15 = false;
+        loop_init_14 = false;
         uint _e9 = o;
         if ((_e9 < 4u)) {
         } else {
@@ -2549,43 +2505,43 @@ float value_fbm(vec2 p_15, uint seed_1) {
 
 float sprite_texture(uint tile_1, vec2 uv) {
     float billow = 0.0;
-    uint i_19 = 0u;
+    uint i_18 = 0u;
     vec2 at = vec2(0.0);
     float a_3 = 0.0;
     vec2 c_9 = (uv - vec2(0.5));
     float mask = smoothstep(0.48, 0.36, length(c_9));
     float _e16 = value_fbm(((uv * 6.0) + vec2((float(tile_1) * 13.0))), tile_1);
     if ((tile_1 < 4u)) {
-        vec2 q_10 = (c_9 * vec2(1.0, 3.2));
-        float streak = (1.0 - smoothstep(0.05, 0.45, length(q_10)));
+        vec2 q_9 = (c_9 * vec2(1.0, 3.2));
+        float streak = (1.0 - smoothstep(0.05, 0.45, length(q_9)));
         float _e40 = value_fbm(((uv * vec2(3.0, 12.0)) + vec2((float(tile_1) * 5.0))), (tile_1 + 16u));
         float _e46 = saturate(((_e40 * 1.6) - 0.3));
         return (((mask * streak) * _e46) * 0.8);
     }
     uint blobs = (5u + (tile_1 % 4u));
-    bool loop_init_16 = true;
+    bool loop_init_15 = true;
     while(true) {
-        if (!loop_init_16) {
-            uint _e108 = i_19;
-            i_19 = (_e108 + 1u);
+        if (!loop_init_15) {
+            uint _e108 = i_18;
+            i_18 = (_e108 + 1u);
         }
-        loop_init_16 = false;
-        uint _e58 = i_19;
+        loop_init_15 = false;
+        uint _e58 = i_18;
         if ((_e58 < blobs)) {
         } else {
             break;
         }
         {
-            uint _e61 = i_19;
+            uint _e61 = i_18;
             float _e63 = atlas_hash(tile_1, (2u * _e61));
-            uint _e65 = i_19;
+            uint _e65 = i_18;
             float _e69 = atlas_hash(tile_1, ((2u * _e65) + 1u));
             vec2 centre_1 = (vec2(_e63, _e69) - vec2(0.5));
             at = (vec2(0.5) + (centre_1 * 0.34));
             if ((tile_1 == 4u)) {
                 at.y = (0.5 + ((centre_1.y - 0.5) * 0.24));
             }
-            uint _e91 = i_19;
+            uint _e91 = i_18;
             float _e93 = atlas_hash(tile_1, (100u + _e91));
             float r_17 = (0.14 + (0.1 * _e93));
             vec2 _e98 = at;
@@ -2618,19 +2574,19 @@ vec3 sprite_rel(vec2 xz, float alt_16) {
 SpriteCell sprite_cell(uint cell) {
     ivec2 start_1 = ivec2(0);
     uint k_10 = 3u;
+    bool local_60 = false;
     bool local_61 = false;
-    bool local_62 = false;
     uint level_1 = (cell / 64u);
-    ivec2 local_66 = ivec2(int((cell % 8u)), int(((cell / 8u) % 8u)));
+    ivec2 local_65 = ivec2(int((cell % 8u)), int(((cell / 8u) % 8u)));
     vec4 _e15 = _group_0_binding_0_cs.camera_position;
     start_1 = (ivec2(floor((_e15.xz / vec2(12000.0)))) - ivec2(4));
-    bool loop_init_17 = true;
+    bool loop_init_16 = true;
     while(true) {
-        if (!loop_init_17) {
+        if (!loop_init_16) {
             uint _e35 = k_10;
             k_10 = (_e35 - 1u);
         }
-        loop_init_17 = false;
+        loop_init_16 = false;
         uint _e27 = k_10;
         if ((_e27 > level_1)) {
         } else {
@@ -2642,19 +2598,19 @@ SpriteCell sprite_cell(uint cell) {
         }
     }
     if ((level_1 > 0u)) {
-        local_61 = all(greaterThanEqual(local_66, ivec2(2)));
+        local_60 = all(greaterThanEqual(local_65, ivec2(2)));
+    } else {
+        local_60 = false;
+    }
+    bool _e47 = local_60;
+    if (_e47) {
+        local_61 = all(lessThan(local_65, ivec2(6)));
     } else {
         local_61 = false;
     }
-    bool _e47 = local_61;
-    if (_e47) {
-        local_62 = all(lessThan(local_66, ivec2(6)));
-    } else {
-        local_62 = false;
-    }
-    bool covered = local_62;
+    bool covered = local_61;
     ivec2 _e56 = start_1;
-    return SpriteCell((_e56 + local_66), (SPRITE_CELL0_ * float((1u << level_1))), covered);
+    return SpriteCell((_e56 + local_65), (SPRITE_CELL0_ * float((1u << level_1))), covered);
 }
 
 SpriteCandidate sprite_candidate(SpriteCell c_4, uint level, uint s_2, inout Counters counters_18) {
@@ -2710,15 +2666,15 @@ float sprite_sun_level(float cos_angle) {
 }
 
 vec2 sprite_corner(uint k_11) {
-    bool local_63 = false;
-    uint q_11 = ((k_11 >= 3u) ? ((k_11 == 3u) ? 0u : (k_11 - 2u)) : k_11);
-    if (!((q_11 == 1u))) {
-        local_63 = (q_11 == 2u);
+    bool local_62 = false;
+    uint q_10 = ((k_11 >= 3u) ? ((k_11 == 3u) ? 0u : (k_11 - 2u)) : k_11);
+    if (!((q_10 == 1u))) {
+        local_62 = (q_10 == 2u);
     } else {
-        local_63 = true;
+        local_62 = true;
     }
-    bool _e18 = local_63;
-    return vec2((_e18 ? 1.0 : -1.0), ((q_11 >= 2u) ? 1.0 : -1.0));
+    bool _e18 = local_62;
+    return vec2((_e18 ? 1.0 : -1.0), ((q_10 >= 2u) ? 1.0 : -1.0));
 }
 
 vec3 sky_radiance(vec3 d_17, float alt_17) {
@@ -2754,17 +2710,17 @@ vec3 sun_disk(vec3 d_18) {
 }
 
 vec3 moon_disk(vec3 d_19) {
-    bool local_64 = false;
+    bool local_63 = false;
     vec4 _e3 = _group_0_binding_0_cs.moon;
     vec3 m_4 = _e3.xyz;
     float c_10 = dot(d_19, m_4);
     float _e9 = _group_0_binding_0_cs.moon.w;
     if (!((_e9 <= 0.0))) {
-        local_64 = (c_10 < MOON_COS_RADIUS);
+        local_63 = (c_10 < MOON_COS_RADIUS);
     } else {
-        local_64 = true;
+        local_63 = true;
     }
-    bool _e18 = local_64;
+    bool _e18 = local_63;
     if (_e18) {
         return vec3(0.0);
     }
@@ -2781,7 +2737,7 @@ vec3 stars(vec3 d_20) {
     uint face = 0u;
     vec2 uv_1 = vec2(0.0);
     float major = 0.0;
-    bool local_65 = false;
+    bool local_64 = false;
     vec3 star = vec3(0.0);
     float e0_ = _group_0_binding_0_cs.night.w;
     if ((e0_ <= 0.0)) {
@@ -2789,11 +2745,11 @@ vec3 stars(vec3 d_20) {
     }
     vec3 a_9 = abs(d_20);
     if ((a_9.x >= a_9.y)) {
-        local_65 = (a_9.x >= a_9.z);
+        local_64 = (a_9.x >= a_9.z);
     } else {
-        local_65 = false;
+        local_64 = false;
     }
-    bool _e26 = local_65;
+    bool _e26 = local_64;
     if (_e26) {
         face = ((d_20.x > 0.0) ? 0u : 1u);
         uv_1 = d_20.zy;
@@ -2830,25 +2786,25 @@ vec3 stars(vec3 d_20) {
     float h4_ = (float((_e120 >> 8u)) * 5.9604645e-8);
     vec2 star_st = (((vec2(cell_2) + vec2(0.15)) + (0.7 * vec2(h1_, h2_))) / vec2(96.0));
     float _e142 = major;
-    vec2 q_12 = (((star_st * 2.0) - vec2(1.0)) * _e142);
+    vec2 q_11 = (((star_st * 2.0) - vec2(1.0)) * _e142);
     uint _e147 = face;
     if ((_e147 < 2u)) {
         float _e150 = major;
         float _e152 = major;
         uint _e153 = face;
-        star = vec3(((_e153 == 0u) ? _e152 : -(_e150)), q_12.y, q_12.x);
+        star = vec3(((_e153 == 0u) ? _e152 : -(_e150)), q_11.y, q_11.x);
     } else {
         uint _e160 = face;
         if ((_e160 < 4u)) {
             float _e164 = major;
             float _e166 = major;
             uint _e167 = face;
-            star = vec3(q_12.x, ((_e167 == 2u) ? _e166 : -(_e164)), q_12.y);
+            star = vec3(q_11.x, ((_e167 == 2u) ? _e166 : -(_e164)), q_11.y);
         } else {
             float _e175 = major;
             float _e177 = major;
             uint _e178 = face;
-            star = vec3(q_12.x, q_12.y, ((_e178 == 4u) ? _e177 : -(_e175)));
+            star = vec3(q_11.x, q_11.y, ((_e178 == 4u) ? _e177 : -(_e175)));
         }
     }
     vec3 _e183 = star;
@@ -2859,8 +2815,8 @@ vec3 stars(vec3 d_20) {
     uint _e209 = _group_0_binding_0_cs.counts.y;
     float pixel_angle = ((2.0 * _e203) / float(_e209));
     vec3 _e212 = star;
-    float dist_2 = (acos(clamp(dot(d_20, _e212), -1.0, 1.0)) / pixel_angle);
-    float weight_1 = (exp(((-(dist_2) * dist_2) / 0.5)) / 1.5707964);
+    float dist_1 = (acos(clamp(dot(d_20, _e212), -1.0, 1.0)) / pixel_angle);
+    float weight_1 = (exp(((-(dist_1) * dist_1) / 0.5)) / 1.5707964);
     vec3 tint = mix(vec3(0.8, 0.9, 1.1), vec3(1.15, 0.95, 0.75), (h3_ * h4_));
     return (tint * ((illuminance * weight_1) / (pixel_angle * pixel_angle)));
 }

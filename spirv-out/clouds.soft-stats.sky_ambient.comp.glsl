@@ -988,7 +988,7 @@ SunScattering sun_scattering(float cos_theta_5, float view_y_3, float tau_8, flo
     float ka = 1.0;
     float kb = 1.0;
     float kc = 1.0;
-    uint i_13 = 0u;
+    uint i_12 = 0u;
     float feed = 0.0;
     float octaves_part = 0.0;
     float total = 0.0;
@@ -1000,11 +1000,11 @@ SunScattering sun_scattering(float cos_theta_5, float view_y_3, float tau_8, flo
     bool loop_init_4 = true;
     while(true) {
         if (!loop_init_4) {
-            uint _e57 = i_13;
-            i_13 = (_e57 + 1u);
+            uint _e57 = i_12;
+            i_12 = (_e57 + 1u);
         }
         loop_init_4 = false;
-        uint _e37 = i_13;
+        uint _e37 = i_12;
         if ((_e37 < octaves)) {
         } else {
             break;
@@ -1147,36 +1147,36 @@ uvec2 block_offset(uint f, uint k_7) {
 }
 
 vec2 reproject(uvec2 pixel_5, float depth_2) {
+    bool local_44 = false;
     bool local_45 = false;
     bool local_46 = false;
-    bool local_47 = false;
     vec3 dir = vec3(0.0);
     vec4 _e4 = _group_0_binding_0_cs.previous_position;
     vec4 _e7 = _group_0_binding_0_cs.camera_position;
     if (all(equal(_e4, _e7))) {
         vec4 _e14 = _group_0_binding_0_cs.previous_forward;
         vec4 _e17 = _group_0_binding_0_cs.camera_forward;
-        local_45 = all(equal(_e14, _e17));
+        local_44 = all(equal(_e14, _e17));
     } else {
-        local_45 = false;
+        local_44 = false;
     }
-    bool _e21 = local_45;
+    bool _e21 = local_44;
     if (_e21) {
         vec4 _e26 = _group_0_binding_0_cs.previous_right;
         vec4 _e29 = _group_0_binding_0_cs.camera_right;
-        local_46 = all(equal(_e26, _e29));
+        local_45 = all(equal(_e26, _e29));
     } else {
-        local_46 = false;
+        local_45 = false;
     }
-    bool _e33 = local_46;
+    bool _e33 = local_45;
     if (_e33) {
         vec4 _e38 = _group_0_binding_0_cs.previous_up;
         vec4 _e41 = _group_0_binding_0_cs.camera_up;
-        local_47 = all(equal(_e38, _e41));
+        local_46 = all(equal(_e38, _e41));
     } else {
-        local_47 = false;
+        local_46 = false;
     }
-    bool same = local_47;
+    bool same = local_46;
     if (same) {
         return vec2(pixel_5);
     }
@@ -1205,15 +1205,15 @@ vec2 reproject(uvec2 pixel_5, float depth_2) {
 }
 
 bool on_screen(vec2 q) {
-    bool local_48 = false;
+    bool local_47 = false;
     uvec4 _e3 = _group_0_binding_0_cs.counts;
     vec2 size_2 = vec2(_e3.xy);
     if (all(greaterThanEqual(q, vec2(-0.5)))) {
-        local_48 = all(lessThanEqual(q, (size_2 - vec2(0.5))));
+        local_47 = all(lessThanEqual(q, (size_2 - vec2(0.5))));
     } else {
-        local_48 = false;
+        local_47 = false;
     }
-    bool _e18 = local_48;
+    bool _e18 = local_47;
     return _e18;
 }
 
@@ -1256,42 +1256,42 @@ float rng_exponential(inout uint rng_2, float sigma) {
 
 Segments layer_segments(vec3 p_13, float alt_14, vec3 d_15) {
     Segments s_1 = Segments(vec2(0.0), vec2(0.0), 0u);
-    bool local_49 = false;
+    bool local_48 = false;
     vec2 a_1 = vec2(0.0);
     vec2 b_1 = vec2(0.0);
     uint n_2 = 0u;
+    bool local_49 = false;
     bool local_50 = false;
     bool local_51 = false;
     bool local_52 = false;
-    bool local_53 = false;
     vec2 _e10 = layers_span();
     float bottom_1 = _e10.x;
     Roots _e12 = ray_shell_from(p_13, alt_14, d_15, bottom_1);
     Roots _e14 = ray_shell_from(p_13, alt_14, d_15, _e10.y);
     bool _e15 = hits_ground(p_13, alt_14, d_15);
     if (!(!(_e14.hit))) {
-        local_49 = (_e14.t1_ <= 0.0);
+        local_48 = (_e14.t1_ <= 0.0);
     } else {
-        local_49 = true;
+        local_48 = true;
     }
-    bool _e25 = local_49;
+    bool _e25 = local_48;
     if (_e25) {
         Segments _e26 = s_1;
         return _e26;
     }
     float entry = max(_e14.t0_, 0.0);
     if (_e12.hit) {
-        local_50 = (_e12.t0_ > 0.0);
+        local_49 = (_e12.t0_ > 0.0);
+    } else {
+        local_49 = false;
+    }
+    bool _e45 = local_49;
+    if (_e45) {
+        local_50 = (alt_14 >= bottom_1);
     } else {
         local_50 = false;
     }
-    bool _e45 = local_50;
-    if (_e45) {
-        local_51 = (alt_14 >= bottom_1);
-    } else {
-        local_51 = false;
-    }
-    bool _e50 = local_51;
+    bool _e50 = local_50;
     if (_e50) {
         uint _e51 = n_2;
         a_1[_e51] = entry;
@@ -1300,11 +1300,11 @@ Segments layer_segments(vec3 p_13, float alt_14, vec3 d_15) {
         uint _e56 = n_2;
         n_2 = (_e56 + uint((_e12.t0_ > entry)));
         if (!(_e15)) {
-            local_52 = (_e14.t1_ > _e12.t1_);
+            local_51 = (_e14.t1_ > _e12.t1_);
         } else {
-            local_52 = false;
+            local_51 = false;
         }
-        bool _e68 = local_52;
+        bool _e68 = local_51;
         if (_e68) {
             uint _e69 = n_2;
             a_1[_e69] = max(_e12.t1_, entry);
@@ -1316,11 +1316,11 @@ Segments layer_segments(vec3 p_13, float alt_14, vec3 d_15) {
     } else {
         if ((alt_14 < bottom_1)) {
             if (!(_e15)) {
-                local_53 = _e12.hit;
+                local_52 = _e12.hit;
             } else {
-                local_53 = false;
+                local_52 = false;
             }
-            bool _e85 = local_53;
+            bool _e85 = local_52;
             if (_e85) {
                 a_1.x = max(_e12.t1_, 0.0);
                 b_1.x = _e14.t1_;
@@ -1344,22 +1344,22 @@ Segments layer_segments(vec3 p_13, float alt_14, vec3 d_15) {
 
 float density_max() {
     float m_1 = 0.0;
-    uint i_16 = 0u;
+    uint i_15 = 0u;
     bool loop_init_5 = true;
     while(true) {
         if (!loop_init_5) {
-            uint _e17 = i_16;
-            i_16 = (_e17 + 1u);
+            uint _e17 = i_15;
+            i_15 = (_e17 + 1u);
         }
         loop_init_5 = false;
-        uint _e4 = i_16;
+        uint _e4 = i_15;
         uint _e5 = layer_count();
         if ((_e4 < _e5)) {
         } else {
             break;
         }
         {
-            uint _e7 = i_16;
+            uint _e7 = i_15;
             Layer _e8 = cloud_layer(_e7);
             float _e9 = m_1;
             m_1 = max(_e9, (_e8.density * (1.0 + _e8.precipitation)));
@@ -1427,35 +1427,35 @@ PhaseSample sample_phase(vec3 dir_4, inout uint rng_5) {
 }
 
 bool camera_still() {
+    bool local_57 = false;
     bool local_58 = false;
     bool local_59 = false;
-    bool local_60 = false;
     vec4 _e2 = _group_0_binding_0_cs.camera_position;
     vec4 _e5 = _group_0_binding_0_cs.previous_position;
     if (all(equal(_e2, _e5))) {
         vec4 _e12 = _group_0_binding_0_cs.camera_forward;
         vec4 _e15 = _group_0_binding_0_cs.previous_forward;
-        local_58 = all(equal(_e12, _e15));
+        local_57 = all(equal(_e12, _e15));
     } else {
-        local_58 = false;
+        local_57 = false;
     }
-    bool _e19 = local_58;
+    bool _e19 = local_57;
     if (_e19) {
         vec4 _e24 = _group_0_binding_0_cs.camera_right;
         vec4 _e28 = _group_0_binding_0_cs.previous_right;
-        local_59 = all(equal(_e24.xyz, _e28.xyz));
+        local_58 = all(equal(_e24.xyz, _e28.xyz));
     } else {
-        local_59 = false;
+        local_58 = false;
     }
-    bool _e33 = local_59;
+    bool _e33 = local_58;
     if (_e33) {
         vec4 _e38 = _group_0_binding_0_cs.camera_up;
         vec4 _e42 = _group_0_binding_0_cs.previous_up;
-        local_60 = all(equal(_e38.xyz, _e42.xyz));
+        local_59 = all(equal(_e38.xyz, _e42.xyz));
     } else {
-        local_60 = false;
+        local_59 = false;
     }
-    bool _e47 = local_60;
+    bool _e47 = local_59;
     return _e47;
 }
 
@@ -1470,14 +1470,14 @@ float atlas_hash(uint a_2, uint b_2) {
 }
 
 float value_noise(vec2 p_14, uint seed) {
-    uvec2 i_20 = uvec2(floor(p_14));
+    uvec2 i_19 = uvec2(floor(p_14));
     vec2 f_3 = fract(p_14);
     vec2 s_8 = ((f_3 * f_3) * (vec2(3.0) - (2.0 * f_3)));
     uint h_14 = (seed * 7919u);
-    float _e17 = atlas_hash((i_20.x + h_14), i_20.y);
-    float _e23 = atlas_hash(((i_20.x + 1u) + h_14), i_20.y);
-    float _e29 = atlas_hash((i_20.x + h_14), (i_20.y + 1u));
-    float _e37 = atlas_hash(((i_20.x + 1u) + h_14), (i_20.y + 1u));
+    float _e17 = atlas_hash((i_19.x + h_14), i_19.y);
+    float _e23 = atlas_hash(((i_19.x + 1u) + h_14), i_19.y);
+    float _e29 = atlas_hash((i_19.x + h_14), (i_19.y + 1u));
+    float _e37 = atlas_hash(((i_19.x + 1u) + h_14), (i_19.y + 1u));
     return mix(mix(_e17, _e23, s_8.x), mix(_e29, _e37, s_8.x), s_8.y);
 }
 
@@ -1518,7 +1518,7 @@ float value_fbm(vec2 p_15, uint seed_1) {
 
 float sprite_texture(uint tile_1, vec2 uv) {
     float billow = 0.0;
-    uint i_19 = 0u;
+    uint i_18 = 0u;
     vec2 at = vec2(0.0);
     float a_3 = 0.0;
     vec2 c_9 = (uv - vec2(0.5));
@@ -1535,26 +1535,26 @@ float sprite_texture(uint tile_1, vec2 uv) {
     bool loop_init_7 = true;
     while(true) {
         if (!loop_init_7) {
-            uint _e108 = i_19;
-            i_19 = (_e108 + 1u);
+            uint _e108 = i_18;
+            i_18 = (_e108 + 1u);
         }
         loop_init_7 = false;
-        uint _e58 = i_19;
+        uint _e58 = i_18;
         if ((_e58 < blobs)) {
         } else {
             break;
         }
         {
-            uint _e61 = i_19;
+            uint _e61 = i_18;
             float _e63 = atlas_hash(tile_1, (2u * _e61));
-            uint _e65 = i_19;
+            uint _e65 = i_18;
             float _e69 = atlas_hash(tile_1, ((2u * _e65) + 1u));
             vec2 centre_1 = (vec2(_e63, _e69) - vec2(0.5));
             at = (vec2(0.5) + (centre_1 * 0.34));
             if ((tile_1 == 4u)) {
                 at.y = (0.5 + ((centre_1.y - 0.5) * 0.24));
             }
-            uint _e91 = i_19;
+            uint _e91 = i_18;
             float _e93 = atlas_hash(tile_1, (100u + _e91));
             float r_18 = (0.14 + (0.1 * _e93));
             vec2 _e98 = at;
@@ -1587,10 +1587,10 @@ vec3 sprite_rel(vec2 xz, float alt_16) {
 SpriteCell sprite_cell(uint cell) {
     ivec2 start_1 = ivec2(0);
     uint k_10 = 3u;
+    bool local_60 = false;
     bool local_61 = false;
-    bool local_62 = false;
     uint level_1 = (cell / 64u);
-    ivec2 local_66 = ivec2(int((cell % 8u)), int(((cell / 8u) % 8u)));
+    ivec2 local_65 = ivec2(int((cell % 8u)), int(((cell / 8u) % 8u)));
     vec4 _e15 = _group_0_binding_0_cs.camera_position;
     start_1 = (ivec2(floor((_e15.xz / vec2(12000.0)))) - ivec2(4));
     bool loop_init_8 = true;
@@ -1611,19 +1611,19 @@ SpriteCell sprite_cell(uint cell) {
         }
     }
     if ((level_1 > 0u)) {
-        local_61 = all(greaterThanEqual(local_66, ivec2(2)));
+        local_60 = all(greaterThanEqual(local_65, ivec2(2)));
+    } else {
+        local_60 = false;
+    }
+    bool _e47 = local_60;
+    if (_e47) {
+        local_61 = all(lessThan(local_65, ivec2(6)));
     } else {
         local_61 = false;
     }
-    bool _e47 = local_61;
-    if (_e47) {
-        local_62 = all(lessThan(local_66, ivec2(6)));
-    } else {
-        local_62 = false;
-    }
-    bool covered = local_62;
+    bool covered = local_61;
     ivec2 _e56 = start_1;
-    return SpriteCell((_e56 + local_66), (SPRITE_CELL0_ * float((1u << level_1))), covered);
+    return SpriteCell((_e56 + local_65), (SPRITE_CELL0_ * float((1u << level_1))), covered);
 }
 
 vec3 sprite_sky_level(float h_10) {
@@ -1649,14 +1649,14 @@ float sprite_sun_level(float cos_angle) {
 }
 
 vec2 sprite_corner(uint k_11) {
-    bool local_63 = false;
+    bool local_62 = false;
     uint q_8 = ((k_11 >= 3u) ? ((k_11 == 3u) ? 0u : (k_11 - 2u)) : k_11);
     if (!((q_8 == 1u))) {
-        local_63 = (q_8 == 2u);
+        local_62 = (q_8 == 2u);
     } else {
-        local_63 = true;
+        local_62 = true;
     }
-    bool _e18 = local_63;
+    bool _e18 = local_62;
     return vec2((_e18 ? 1.0 : -1.0), ((q_8 >= 2u) ? 1.0 : -1.0));
 }
 
@@ -1693,17 +1693,17 @@ vec3 sun_disk(vec3 d_18) {
 }
 
 vec3 moon_disk(vec3 d_19) {
-    bool local_64 = false;
+    bool local_63 = false;
     vec4 _e3 = _group_0_binding_0_cs.moon;
     vec3 m_2 = _e3.xyz;
     float c_10 = dot(d_19, m_2);
     float _e9 = _group_0_binding_0_cs.moon.w;
     if (!((_e9 <= 0.0))) {
-        local_64 = (c_10 < MOON_COS_RADIUS);
+        local_63 = (c_10 < MOON_COS_RADIUS);
     } else {
-        local_64 = true;
+        local_63 = true;
     }
-    bool _e18 = local_64;
+    bool _e18 = local_63;
     if (_e18) {
         return vec3(0.0);
     }
@@ -1720,7 +1720,7 @@ vec3 stars(vec3 d_20) {
     uint face = 0u;
     vec2 uv_1 = vec2(0.0);
     float major = 0.0;
-    bool local_65 = false;
+    bool local_64 = false;
     vec3 star = vec3(0.0);
     float e0_ = _group_0_binding_0_cs.night.w;
     if ((e0_ <= 0.0)) {
@@ -1728,11 +1728,11 @@ vec3 stars(vec3 d_20) {
     }
     vec3 a_9 = abs(d_20);
     if ((a_9.x >= a_9.y)) {
-        local_65 = (a_9.x >= a_9.z);
+        local_64 = (a_9.x >= a_9.z);
     } else {
-        local_65 = false;
+        local_64 = false;
     }
-    bool _e26 = local_65;
+    bool _e26 = local_64;
     if (_e26) {
         face = ((d_20.x > 0.0) ? 0u : 1u);
         uv_1 = d_20.zy;
@@ -1798,8 +1798,8 @@ vec3 stars(vec3 d_20) {
     uint _e209 = _group_0_binding_0_cs.counts.y;
     float pixel_angle = ((2.0 * _e203) / float(_e209));
     vec3 _e212 = star;
-    float dist_2 = (acos(clamp(dot(d_20, _e212), -1.0, 1.0)) / pixel_angle);
-    float weight_1 = (exp(((-(dist_2) * dist_2) / 0.5)) / 1.5707964);
+    float dist_1 = (acos(clamp(dot(d_20, _e212), -1.0, 1.0)) / pixel_angle);
+    float weight_1 = (exp(((-(dist_1) * dist_1) / 0.5)) / 1.5707964);
     vec3 tint = mix(vec3(0.8, 0.9, 1.1), vec3(1.15, 0.95, 0.75), (h3_ * h4_));
     return (tint * ((illuminance * weight_1) / (pixel_angle * pixel_angle)));
 }
@@ -1830,8 +1830,8 @@ void main() {
     float _e34 = air_bottom();
     float _e38 = _group_0_binding_0_cs.atmosphere.y;
     vec3 origin_7 = vec3(0.0, (_e34 + (_e38 * 0.001)), 0.0);
-    uint first = (top_1 ? 0u : 32u);
-    k_2 = first;
+    uint first_1 = (top_1 ? 0u : 32u);
+    k_2 = first_1;
     bool loop_init_9 = true;
     while(true) {
         if (!loop_init_9) {
@@ -1840,7 +1840,7 @@ void main() {
         }
         loop_init_9 = false;
         uint _e54 = k_2;
-        if ((_e54 < (first + 32u))) {
+        if ((_e54 < (first_1 + 32u))) {
         } else {
             break;
         }

@@ -438,14 +438,14 @@ float atlas_hash(uint a_2, uint b_2) {
 }
 
 float value_noise(vec2 p_14, uint seed) {
-    uvec2 i_20 = uvec2(floor(p_14));
+    uvec2 i_19 = uvec2(floor(p_14));
     vec2 f_2 = fract(p_14);
     vec2 s_7 = ((f_2 * f_2) * (vec2(3.0) - (2.0 * f_2)));
     uint h_11 = (seed * 7919u);
-    float _e17 = atlas_hash((i_20.x + h_11), i_20.y);
-    float _e23 = atlas_hash(((i_20.x + 1u) + h_11), i_20.y);
-    float _e29 = atlas_hash((i_20.x + h_11), (i_20.y + 1u));
-    float _e37 = atlas_hash(((i_20.x + 1u) + h_11), (i_20.y + 1u));
+    float _e17 = atlas_hash((i_19.x + h_11), i_19.y);
+    float _e23 = atlas_hash(((i_19.x + 1u) + h_11), i_19.y);
+    float _e29 = atlas_hash((i_19.x + h_11), (i_19.y + 1u));
+    float _e37 = atlas_hash(((i_19.x + 1u) + h_11), (i_19.y + 1u));
     return mix(mix(_e17, _e23, s_7.x), mix(_e29, _e37, s_7.x), s_7.y);
 }
 
@@ -486,7 +486,7 @@ float value_fbm(vec2 p_15, uint seed_1) {
 
 float sprite_texture(uint tile_1, vec2 uv) {
     float billow = 0.0;
-    uint i_19 = 0u;
+    uint i_18 = 0u;
     vec2 at = vec2(0.0);
     float a_3 = 0.0;
     vec2 c_5 = (uv - vec2(0.5));
@@ -503,26 +503,26 @@ float sprite_texture(uint tile_1, vec2 uv) {
     bool loop_init_1 = true;
     while(true) {
         if (!loop_init_1) {
-            uint _e108 = i_19;
-            i_19 = (_e108 + 1u);
+            uint _e108 = i_18;
+            i_18 = (_e108 + 1u);
         }
         loop_init_1 = false;
-        uint _e58 = i_19;
+        uint _e58 = i_18;
         if ((_e58 < blobs)) {
         } else {
             break;
         }
         {
-            uint _e61 = i_19;
+            uint _e61 = i_18;
             float _e63 = atlas_hash(tile_1, (2u * _e61));
-            uint _e65 = i_19;
+            uint _e65 = i_18;
             float _e69 = atlas_hash(tile_1, ((2u * _e65) + 1u));
             vec2 centre_1 = (vec2(_e63, _e69) - vec2(0.5));
             at = (vec2(0.5) + (centre_1 * 0.34));
             if ((tile_1 == 4u)) {
                 at.y = (0.5 + ((centre_1.y - 0.5) * 0.24));
             }
-            uint _e91 = i_19;
+            uint _e91 = i_18;
             float _e93 = atlas_hash(tile_1, (100u + _e91));
             float r_14 = (0.14 + (0.1 * _e93));
             vec2 _e98 = at;
@@ -566,14 +566,14 @@ float sprite_sun_level(float cos_angle) {
 }
 
 vec2 sprite_corner(uint k_11) {
-    bool local_63 = false;
+    bool local_62 = false;
     uint q_6 = ((k_11 >= 3u) ? ((k_11 == 3u) ? 0u : (k_11 - 2u)) : k_11);
     if (!((q_6 == 1u))) {
-        local_63 = (q_6 == 2u);
+        local_62 = (q_6 == 2u);
     } else {
-        local_63 = true;
+        local_62 = true;
     }
-    bool _e18 = local_63;
+    bool _e18 = local_62;
     return vec2((_e18 ? 1.0 : -1.0), ((q_6 >= 2u) ? 1.0 : -1.0));
 }
 

@@ -969,7 +969,7 @@ fn layer_density(p: vec3<f32>, alt: f32, l: Layer, counters: ptr<function, Count
 }
 
 // layer_density, with the detail erosion only if `with_detail` (the octaves' steeper light
-// march goes without it: lighting.wgsl::steep_optical_depth).
+// march goes without it: lighting.wgsl::octave_optical_depth).
 fn layer_density_with(p: vec3<f32>, alt: f32, l: Layer, with_detail: bool,
                       counters: ptr<function, Counters>) -> f32 {
     let h = layer_height(l, alt); // height fraction in the layer
@@ -1077,23 +1077,8 @@ fn phase(cos_theta: f32, scale: f32) -> f32 {
 fn sun_optical_depth(rel: vec3<f32>, p: vec3<f32>, l: Layer, counters: ptr<function, Counters>) -> f32 {
     let sun = frame.sun_direction.xyz;
     let sigma_t = frame.extinction.x + frame.extinction.y;
-    let steps = frame.counts.w;
-    let growth = frame.march.y;
-    var seg = frame.march.z;
-    var dist = 0.0;
-    var tau = 0.0;
-    for (var i = 0u; i < steps; i++) {
-        let s = dist + 0.5 * seg;
-        let q = rel + sun * s;
-        let alt = altitude_of(q);
-        if alt > l.top || alt < l.bottom {
-            break;
-        }
-        (*counters).light += 1u;
-        tau += layer_density(p + sun * s, alt, l, counters) * sigma_t * seg;
-        dist += seg;
-        seg *= growth;
-    }
+    var tau = segment_optical_depth(rel, p, l, sun, frame.march.z, frame.counts.w, true,
+                                    counters);
     let alt0 = altitude_of(rel);
     for (var j = 0u; j < layer_count(); j++) {
         let above = cloud_layer(j);
@@ -1114,35 +1099,40 @@ fn sun_optical_depth(rel: vec3<f32>, p: vec3<f32>, l: Layer, counters: ptr<funct
     return tau;
 }
 
-// The octaves' optical depth along a steeper path in a closed deck: two light steps toward
-// unit `d` (8 and 16 times the first light step: 400 and 800 m at the default 50 m) of the
-// density without its detail erosion, which shapes edges metres across while multiply
-// scattered light gathers over kilometres. Against the 6 steps of the sun's light march this
-// costs a third of the extra density evaluations, with FLIP within 0.001 on the decks it was
-// tried on (`storm` 0.0532 against 0.0523 with the erosion).
-const STEEP_STEPS: u32 = 2u;
-const STEEP_FIRST: f32 = 8.0;
-
-fn steep_optical_depth(rel: vec3<f32>, p: vec3<f32>, l: Layer, d: vec3<f32>,
-                       counters: ptr<function, Counters>) -> f32 {
+// Optical depth from `rel` (world position `p`) along unit `d` in layer `l`: `steps` segments,
+// the first `first` metres long, each the light march's growth times the one before, density
+// sampled at each segment's midpoint (its detail erosion only if `with_detail`), one light
+// sample each; the march ends where it leaves the layer. The sun's light march and the
+// octaves' steeper one.
+fn segment_optical_depth(rel: vec3<f32>, p: vec3<f32>, l: Layer, d: vec3<f32>, first: f32,
+                         steps: u32, with_detail: bool, counters: ptr<function, Counters>) -> f32 {
     let sigma_t = frame.extinction.x + frame.extinction.y;
     let growth = frame.march.y;
-    var seg = frame.march.z * STEEP_FIRST;
+    var seg = first;
     var dist = 0.0;
     var tau = 0.0;
-    for (var i = 0u; i < STEEP_STEPS; i++) {
+    for (var i = 0u; i < steps; i++) {
         let s = dist + 0.5 * seg;
         let alt = altitude_of(rel + d * s);
         if alt > l.top || alt < l.bottom {
             break;
         }
         (*counters).light += 1u;
-        tau += layer_density_with(p + d * s, alt, l, false, counters) * sigma_t * seg;
+        tau += layer_density_with(p + d * s, alt, l, with_detail, counters) * sigma_t * seg;
         dist += seg;
         seg *= growth;
     }
     return tau;
 }
+
+// The octaves' steeper light march in a closed deck (octave_optical_depth): two light steps,
+// 8 and 16 times the first light step (400 and 800 m at the default 50 m), of the density
+// without its detail erosion, which shapes edges metres across while multiply scattered light
+// gathers over kilometres. Against the 6 steps of the sun's light march this costs a third of
+// the extra density evaluations, with FLIP within 0.001 on the decks it was tried on
+// (`storm` 0.0532 against 0.0523 with the erosion).
+const STEEP_STEPS: u32 = 2u;
+const STEEP_FIRST: f32 = 8.0;
 
 // The octaves' optical depth at a sample of layer `l` whose sun ray has optical depth `tau`.
 // In a closed deck the truth's multiply scattered sun light follows the cloud above the
@@ -1169,8 +1159,9 @@ fn octave_optical_depth(rel: vec3<f32>, p: vec3<f32>, l: Layer, tau: f32,
     let sun = frame.sun_direction.xyz;
     let d = normalize(sun + up);
     let mu0 = max(dot(sun, up), 1e-3);
-    let steep = steep_optical_depth(rel, p, l, d, counters) * frame.octave_depth.y
-        * sqrt(mu0 / max(dot(d, up), 1e-3));
+    let steep = segment_optical_depth(rel, p, l, d, frame.march.z * STEEP_FIRST, STEEP_STEPS,
+                                      false, counters)
+        * frame.octave_depth.y * sqrt(mu0 / max(dot(d, up), 1e-3));
     return mix(tau, steep, m);
 }
 

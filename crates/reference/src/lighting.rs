@@ -80,8 +80,7 @@ pub(crate) fn sun_optical_depth(
     let f = &m.f;
     let sun = f.sun();
     let sigma_t = f.extinction[0] + f.extinction[1];
-    let steps = lm.steps;
-    let growth = lm.growth;
+    let (steps, growth) = (lm.steps, lm.growth);
     let mut seg = lm.first;
     if lm.to_layer_exit {
         let len = distance_to_layer_exit(f, rel, altitude_of(f, rel), sun, l);
@@ -91,20 +90,7 @@ pub(crate) fn sun_optical_depth(
             len * (growth - 1.0) / (growth.powi(steps as i32) - 1.0)
         };
     }
-    let mut dist = 0.0;
-    let mut tau = 0.0;
-    for _ in 0..steps {
-        let s = dist + 0.5 * seg;
-        let q = rel + sun * s;
-        let alt = altitude_of(f, q);
-        if alt > l.top || alt < l.bottom {
-            break;
-        }
-        counters.light += 1;
-        tau += m.layer_density(p + sun * s, alt, l, counters) * sigma_t * seg;
-        dist += seg;
-        seg *= growth;
-    }
+    let mut tau = segment_optical_depth(m, rel, p, l, sun, (seg, growth, steps), true, counters);
     let alt0 = altitude_of(f, rel);
     for above in cloud_layers(f) {
         if above.bottom <= l.top {
@@ -129,42 +115,47 @@ pub(crate) fn sun_optical_depth(
     tau
 }
 
-// WGSL: lighting.wgsl::STEEP_STEPS, STEEP_FIRST
-/// The steeper light march's steps, and its first step in first light steps.
-const STEEP_STEPS: u32 = 2;
-const STEEP_FIRST: f64 = 8.0;
-
-// WGSL: lighting.wgsl::steep_optical_depth
-// Must agree: the real-time light march's first step and growth (from the uniforms, also under
-// the converged quadrature), the density without its detail erosion, one light sample each.
-/// Optical depth of `STEEP_STEPS` light steps toward unit `d` in layer `l`.
-pub(crate) fn steep_optical_depth(
+// WGSL: lighting.wgsl::segment_optical_depth
+// Must agree: midpoint samples of segments growing by `growth`, the loop ends at the first
+// sample outside the layer, each evaluated sample counts one light sample.
+/// Optical depth from camera-relative `rel` (world position `p`) along unit `d` in layer `l`:
+/// `steps` segments, the first `first` metres long, each `growth` times the one before (the
+/// clouds' detail erosion only if `with_detail`).
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn segment_optical_depth(
     m: &Model,
     rel: V3,
     p: V3,
     l: &Layer,
     d: V3,
+    (first, growth, steps): (f64, f64, u32),
+    with_detail: bool,
     counters: &mut Counters,
 ) -> f64 {
     let f = &m.f;
     let sigma_t = f.extinction[0] + f.extinction[1];
-    let growth = f.march[1];
-    let mut seg = f.march[2] * STEEP_FIRST;
+    let mut seg = first;
     let mut dist = 0.0;
     let mut tau = 0.0;
-    for _ in 0..STEEP_STEPS {
+    for _ in 0..steps {
         let s = dist + 0.5 * seg;
         let alt = altitude_of(f, rel + d * s);
         if alt > l.top || alt < l.bottom {
             break;
         }
         counters.light += 1;
-        tau += m.layer_density_with(p + d * s, alt, l, false, counters) * sigma_t * seg;
+        tau += m.layer_density_with(p + d * s, alt, l, with_detail, counters) * sigma_t * seg;
         dist += seg;
         seg *= growth;
     }
     tau
 }
+
+// WGSL: lighting.wgsl::STEEP_STEPS, STEEP_FIRST
+/// The octaves' steeper light march: its steps, and its first step in first light steps (the
+/// real-time light march's, from the uniforms, also under the converged quadrature).
+const STEEP_STEPS: u32 = 2;
+const STEEP_FIRST: f64 = 8.0;
 
 // WGSL: lighting.wgsl::octave_optical_depth
 /// The octaves' optical depth at a sample of layer `l` whose sun ray has optical depth `tau`:
@@ -188,8 +179,16 @@ pub(crate) fn octave_optical_depth(
     let sun = f.sun();
     let d = (sun + up).normalize();
     let mu0 = sun.dot(up).max(1e-3);
-    let steep = steep_optical_depth(m, rel, p, l, d, counters)
-        * f.octave_depth[1]
+    let steep = segment_optical_depth(
+        m,
+        rel,
+        p,
+        l,
+        d,
+        (f.march[2] * STEEP_FIRST, f.march[1], STEEP_STEPS),
+        false,
+        counters,
+    ) * f.octave_depth[1]
         * (mu0 / d.dot(up).max(1e-3)).sqrt();
     mix(tau, steep, w)
 }
