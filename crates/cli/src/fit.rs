@@ -77,6 +77,46 @@ pub struct FitArgs {
     /// the committed truths or the path tracer, as without the flag.
     #[arg(long, value_name = "DIR")]
     display_truths: Option<PathBuf>,
+    /// Change a constant of the defaults before measuring (--evaluate) or descending from them
+    /// (--quick): NAME=VALUE, NAME a field of a scene file's `[lighting.multiple_scattering]`
+    /// (e.g. `limb_darkening=0.5`); repeatable. For trying a constant without a rebuild.
+    #[arg(long = "set", value_name = "NAME=VALUE")]
+    set: Vec<String>,
+}
+
+/// The defaults with `sets` (`NAME=VALUE`, fields of `[lighting.multiple_scattering]`)
+/// changed, checked as a scene file's would be.
+fn with_sets(sets: &[String]) -> Result<MultipleScattering> {
+    let base = MultipleScattering::default();
+    if sets.is_empty() {
+        return Ok(base);
+    }
+    let mut table = toml::Table::try_from(base).context("the defaults as TOML")?;
+    for set in sets {
+        let Some((name, value)) = set.split_once('=') else {
+            anyhow::bail!("--set {set}: expected NAME=VALUE, e.g. limb_darkening=0.5");
+        };
+        let name = name.trim();
+        if !table.contains_key(name) {
+            anyhow::bail!(
+                "--set {set}: `{name}` is not a field of [lighting.multiple_scattering] (those are: {})",
+                table.keys().cloned().collect::<Vec<_>>().join(", ")
+            );
+        }
+        let parsed: toml::Table = format!("v = {}", value.trim())
+            .parse()
+            .with_context(|| format!("--set {set}: `{}` is not a TOML value", value.trim()))?;
+        table.insert(name.to_string(), parsed["v"].clone());
+    }
+    let ms: MultipleScattering = table
+        .try_into()
+        .with_context(|| format!("--set {}", sets.join(" --set ")))?;
+    let mut scene = Scene::default();
+    scene.lighting.multiple_scattering = ms;
+    scene
+        .validate()
+        .map_err(|e| anyhow::anyhow!("--set {}: {e}", sets.join(" --set ")))?;
+    Ok(ms)
 }
 
 /// The training scenes: variants of the presets under other suns and views, none of them a
@@ -433,7 +473,7 @@ fn descend(
     r: &mut dyn Backend,
     cases: &[Case],
     octaves: u32,
-    quick: bool,
+    quick: Option<MultipleScattering>,
     rounds: usize,
     log: &mut Vec<(MultipleScattering, f64)>,
     bar: &ProgressBar,
@@ -471,10 +511,10 @@ fn descend(
             bar.inc(1);
             Ok(mean)
         };
-    let starts: Vec<MultipleScattering> = if quick {
+    let starts: Vec<MultipleScattering> = if let Some(defaults) = quick {
         vec![MultipleScattering {
             octaves,
-            ..MultipleScattering::default()
+            ..defaults
         }]
     } else {
         DESCENT_STARTS_M
@@ -645,6 +685,12 @@ pub fn run(args: FitArgs) -> Result<()> {
             );
         }
     }
+    if !(args.set.is_empty() || args.quick || args.evaluate) {
+        anyhow::bail!(
+            "--set changes the start of a --quick descent or what --evaluate measures; add one"
+        );
+    }
+    let defaults = with_sets(&args.set)?;
     let (w, h) = args.size;
     let mut renderer = stratus_backend_wgpu::Renderer::new(stratus_backend_wgpu::Options {
         api: stratus_backend_wgpu::Api::Vulkan,
@@ -726,7 +772,7 @@ pub fn run(args: FitArgs) -> Result<()> {
             &mut renderer,
             &train,
             n,
-            args.quick || args.evaluate,
+            (args.quick || args.evaluate).then_some(defaults),
             if args.evaluate { 0 } else { 6 },
             &mut log,
             &bar,
@@ -914,7 +960,13 @@ pub fn run(args: FitArgs) -> Result<()> {
             (_, true) => " --evaluate",
             (true, false) => " --quick",
             (false, false) => "",
-        },
+        }
+        .to_string()
+            + &args
+                .set
+                .iter()
+                .map(|s| format!(" --set {s}"))
+                .collect::<String>(),
         evaluated = {
             let mut e = String::new();
             if args.evaluate {
@@ -959,6 +1011,38 @@ pub fn run(args: FitArgs) -> Result<()> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// `--set` changes exactly the named constants, and a wrong name, a value that is no TOML
+    /// or one out of the scene file's range is an error that names it.
+    #[test]
+    fn sets_change_the_named_constants_and_refuse_bad_ones() {
+        let d = MultipleScattering::default();
+        assert_eq!(with_sets(&[]).unwrap(), d);
+        let m = with_sets(&["limb_darkening=0.5".into(), " a = 1.2".into()]).unwrap();
+        assert_eq!(
+            m,
+            MultipleScattering {
+                limb_darkening: 0.5,
+                a: 1.2,
+                ..d
+            }
+        );
+        let err = |set: &str| format!("{:#}", with_sets(&[set.to_string()]).unwrap_err());
+        let e = err("limb=0.5");
+        assert!(
+            e.contains("`limb` is not a field") && e.contains("limb_darkening"),
+            "{e}"
+        );
+        let e = err("a");
+        assert!(e.contains("expected NAME=VALUE"), "{e}");
+        let e = err("a=high");
+        assert!(e.contains("`high` is not a TOML value"), "{e}");
+        let e = err("steep_light=3");
+        assert!(
+            e.contains("--set steep_light=3") && e.contains("steep_light"),
+            "{e}"
+        );
+    }
 
     /// A frame of `w` x `h` whose display image is a ramp offset by `k`.
     fn frame(w: u32, h: u32, k: u8) -> FrameOutput {

@@ -89,6 +89,12 @@ pub struct BenchArgs {
     /// Measure nothing: redraw chart.png and chart.svg from the results.json in --out.
     #[arg(long)]
     replot: bool,
+    /// Render (or find in the cache) every reference the sweep needs and stop: no timing, no
+    /// results. For a machine with a GPU, where the all-orders truths take seconds; the cache
+    /// it fills (`$XDG_CACHE_HOME/stratus` or `target/stratus-cache`) then serves a bench run
+    /// elsewhere (the key does not name the device).
+    #[arg(long, conflicts_with = "replot")]
+    references_only: bool,
 }
 
 /// A stability case charted next to the presets: `cumulus-noon` with ten times the
@@ -193,10 +199,21 @@ pub fn run(args: BenchArgs) -> Result<()> {
         renderer.as_mut(),
         &make,
         &plan_scenes,
-        MeasureSettings { repeats, mc_spp },
+        MeasureSettings {
+            repeats,
+            mc_spp,
+            references_only: args.references_only,
+        },
         &bar,
     )?;
     bar.finish_and_clear();
+    if args.references_only {
+        println!(
+            "every reference of the sweep ({total} configurations) is in {}",
+            cache_dir().display()
+        );
+        return Ok(());
+    }
     mark_pareto(&mut rows);
 
     std::fs::create_dir_all(&args.out)

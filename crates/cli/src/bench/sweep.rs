@@ -178,6 +178,8 @@ pub(super) struct MeasureSettings {
     pub repeats: u32,
     /// Samples per pixel of the Monte Carlo references.
     pub mc_spp: u32,
+    /// Only render (or load) the references: measure nothing, return no rows.
+    pub references_only: bool,
 }
 
 /// Makes a renderer of the bench's backend; `true`: one that times every pass by submitting
@@ -214,6 +216,11 @@ pub(super) fn measure(
             let noise = noises
                 .entry((s.noise.seed, hzd))
                 .or_insert_with(|| Arc::new(stratus::noise_for(&s)));
+            if settings.references_only {
+                reference(&s, noise, settings.mc_spp, Some(&mut *renderer))?;
+                bar.inc(1);
+                continue;
+            }
             // A plan that rasterises every frame (the sprite baseline) on a renderer of its
             // own that times each pass submitted alone, dropped after
             // (`FramePlan::rasterizes_every_frame`): measured on lavapipe, a 64x36 march read
