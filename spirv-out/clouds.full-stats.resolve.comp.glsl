@@ -182,8 +182,7 @@ const uint AMBIENT_STEPS = 24u;
 const uint SKY_AMBIENT_SUNS = 64u;
 const uint GROUND_IRRADIANCE_SIZE = 64u;
 const uint NO_LAYER = 4u;
-const uint STEEP_STEPS = 2u;
-const float STEEP_FIRST = 8.0;
+const uint COLUMN_STEPS = 3u;
 const float DECK_POWER = 8.0;
 const float FORWARD_LOBE_THIN = 0.1;
 const uint GROUND_IRRADIANCE_DIRECTIONS = 128u;
@@ -1040,58 +1039,57 @@ float phase(float cos_theta_4, float scale) {
     }
 }
 
-float segment_optical_depth(vec3 rel_3, vec3 p_7, Layer l_5, vec3 d_13, float first, uint steps_1, bool with_detail_1, inout Counters counters_6) {
+float segment_optical_depth(vec3 rel_3, vec3 p_7, Layer l_5, vec3 d_13, float first, float growth, uint steps_1, bool with_detail_1, inout Counters counters_6) {
     float seg = 0.0;
     float dist = 0.0;
     float tau_4 = 0.0;
     uint i_10 = 0u;
     bool local_28 = false;
-    float _e11 = _group_0_binding_0_cs.extinction.x;
-    float _e15 = _group_0_binding_0_cs.extinction.y;
-    float sigma_t_1 = (_e11 + _e15);
-    float growth = _group_0_binding_0_cs.march.y;
+    float _e12 = _group_0_binding_0_cs.extinction.x;
+    float _e16 = _group_0_binding_0_cs.extinction.y;
+    float sigma_t_1 = (_e12 + _e16);
     seg = first;
     bool loop_init_3 = true;
     while(true) {
         if (!loop_init_3) {
-            uint _e65 = i_10;
-            i_10 = (_e65 + 1u);
+            uint _e62 = i_10;
+            i_10 = (_e62 + 1u);
         }
         loop_init_3 = false;
-        uint _e28 = i_10;
-        if ((_e28 < steps_1)) {
+        uint _e25 = i_10;
+        if ((_e25 < steps_1)) {
         } else {
             break;
         }
         {
-            float _e30 = dist;
-            float _e31 = seg;
-            float s_7 = (_e30 + (0.5 * _e31));
-            float _e37 = altitude_of((rel_3 + (d_13 * s_7)));
-            if (!((_e37 > l_5.top))) {
-                local_28 = (_e37 < l_5.bottom);
+            float _e27 = dist;
+            float _e28 = seg;
+            float s_7 = (_e27 + (0.5 * _e28));
+            float _e34 = altitude_of((rel_3 + (d_13 * s_7)));
+            if (!((_e34 > l_5.top))) {
+                local_28 = (_e34 < l_5.bottom);
             } else {
                 local_28 = true;
             }
-            bool _e46 = local_28;
-            if (_e46) {
+            bool _e43 = local_28;
+            if (_e43) {
                 break;
             }
-            uint _e48 = counters_6.light;
-            counters_6.light = (_e48 + 1u);
-            float _e51 = tau_4;
-            float _e54 = layer_density_with((p_7 + (d_13 * s_7)), _e37, l_5, with_detail_1, counters_6);
-            float _e56 = seg;
-            tau_4 = (_e51 + ((_e54 * sigma_t_1) * _e56));
-            float _e59 = dist;
-            float _e60 = seg;
-            dist = (_e59 + _e60);
-            float _e62 = seg;
-            seg = (_e62 * growth);
+            uint _e45 = counters_6.light;
+            counters_6.light = (_e45 + 1u);
+            float _e48 = tau_4;
+            float _e51 = layer_density_with((p_7 + (d_13 * s_7)), _e34, l_5, with_detail_1, counters_6);
+            float _e53 = seg;
+            tau_4 = (_e48 + ((_e51 * sigma_t_1) * _e53));
+            float _e56 = dist;
+            float _e57 = seg;
+            dist = (_e56 + _e57);
+            float _e59 = seg;
+            seg = (_e59 * growth);
         }
     }
-    float _e67 = tau_4;
-    return _e67;
+    float _e64 = tau_4;
+    return _e64;
 }
 
 float sun_optical_depth(vec3 rel_4, vec3 p_8, Layer l_6, inout Counters counters_7) {
@@ -1106,68 +1104,70 @@ float sun_optical_depth(vec3 rel_4, vec3 p_8, Layer l_6, inout Counters counters
     float _e15 = _group_0_binding_0_cs.extinction.y;
     float sigma_t_2 = (_e11 + _e15);
     float _e20 = _group_0_binding_0_cs.march.z;
-    uint _e24 = _group_0_binding_0_cs.counts.w;
-    float _e26 = segment_optical_depth(rel_4, p_8, l_6, sun_2, _e20, _e24, true, counters_7);
-    tau_5 = _e26;
-    float _e28 = altitude_of(rel_4);
+    float _e24 = _group_0_binding_0_cs.march.y;
+    uint _e28 = _group_0_binding_0_cs.counts.w;
+    float _e30 = segment_optical_depth(rel_4, p_8, l_6, sun_2, _e20, _e24, _e28, true, counters_7);
+    tau_5 = _e30;
+    float _e32 = altitude_of(rel_4);
     bool loop_init_4 = true;
     while(true) {
         if (!loop_init_4) {
-            uint _e92 = j_1;
-            j_1 = (_e92 + 1u);
+            uint _e96 = j_1;
+            j_1 = (_e96 + 1u);
         }
         loop_init_4 = false;
-        uint _e31 = j_1;
-        uint _e32 = layer_count();
-        if ((_e31 < _e32)) {
+        uint _e35 = j_1;
+        uint _e36 = layer_count();
+        if ((_e35 < _e36)) {
         } else {
             break;
         }
         {
-            uint _e34 = j_1;
-            Layer _e35 = cloud_layer(_e34);
-            if ((_e35.bottom <= l_6.top)) {
+            uint _e38 = j_1;
+            Layer _e39 = cloud_layer(_e38);
+            if ((_e39.bottom <= l_6.top)) {
                 continue;
             }
-            Roots _e40 = ray_shell_from(rel_4, _e28, sun_2, _e35.bottom);
-            Roots _e42 = ray_shell_from(rel_4, _e28, sun_2, _e35.top);
-            if (!(!(_e40.hit))) {
-                local_29 = !(_e42.hit);
+            Roots _e44 = ray_shell_from(rel_4, _e32, sun_2, _e39.bottom);
+            Roots _e46 = ray_shell_from(rel_4, _e32, sun_2, _e39.top);
+            if (!(!(_e44.hit))) {
+                local_29 = !(_e46.hit);
             } else {
                 local_29 = true;
             }
-            bool _e51 = local_29;
-            if (!(_e51)) {
-                local_30 = !((_e42.t1_ > _e40.t1_));
+            bool _e55 = local_29;
+            if (!(_e55)) {
+                local_30 = !((_e46.t1_ > _e44.t1_));
             } else {
                 local_30 = true;
             }
-            bool _e60 = local_30;
-            if (!(_e60)) {
-                local_31 = (_e40.t1_ <= 0.0);
+            bool _e64 = local_30;
+            if (!(_e64)) {
+                local_31 = (_e44.t1_ <= 0.0);
             } else {
                 local_31 = true;
             }
-            bool _e68 = local_31;
-            if (_e68) {
+            bool _e72 = local_31;
+            if (_e72) {
                 continue;
             }
-            float s_8 = (0.5 * (_e40.t1_ + _e42.t1_));
-            uint _e75 = counters_7.light;
-            counters_7.light = (_e75 + 1u);
-            float _e78 = tau_5;
-            float _e83 = altitude_of((rel_4 + (sun_2 * s_8)));
-            float _e84 = layer_density((p_8 + (sun_2 * s_8)), _e83, _e35, counters_7);
-            tau_5 = (_e78 + ((_e84 * sigma_t_2) * (_e42.t1_ - _e40.t1_)));
+            float s_8 = (0.5 * (_e44.t1_ + _e46.t1_));
+            uint _e79 = counters_7.light;
+            counters_7.light = (_e79 + 1u);
+            float _e82 = tau_5;
+            float _e87 = altitude_of((rel_4 + (sun_2 * s_8)));
+            float _e88 = layer_density((p_8 + (sun_2 * s_8)), _e87, _e39, counters_7);
+            tau_5 = (_e82 + ((_e88 * sigma_t_2) * (_e46.t1_ - _e44.t1_)));
         }
     }
-    float _e94 = tau_5;
-    return _e94;
+    float _e98 = tau_5;
+    return _e98;
 }
 
 float octave_optical_depth(vec3 rel_5, vec3 p_9, Layer l_7, float tau_6, inout Counters counters_8) {
     bool local_32 = false;
     bool local_33 = false;
+    bool local_34 = false;
     float _e10 = saturate(((l_7.coverage - 0.8) / 0.1));
     float _e14 = _group_0_binding_0_cs.octave_depth.x;
     float m_2 = (_e14 * _e10);
@@ -1189,31 +1189,34 @@ float octave_optical_depth(vec3 rel_5, vec3 p_9, Layer l_7, float tau_6, inout C
     }
     float _e41 = _group_0_binding_0_cs.atmosphere.x;
     vec3 up = normalize(vec3(rel_5.x, (rel_5.y + _e41), rel_5.z));
-    vec4 _e48 = _group_0_binding_0_cs.sun_direction;
-    vec3 sun_3 = _e48.xyz;
-    vec3 d_23 = normalize((sun_3 + up));
-    float mu0_1 = max(dot(sun_3, up), 0.001);
-    float _e58 = _group_0_binding_0_cs.march.z;
-    float _e63 = segment_optical_depth(rel_5, p_9, l_7, d_23, (_e58 * STEEP_FIRST), STEEP_STEPS, false, counters_8);
-    float _e67 = _group_0_binding_0_cs.octave_depth.y;
-    float steep = ((_e63 * _e67) * sqrt((mu0_1 / max(dot(d_23, up), 0.001))));
-    return mix(tau_6, steep, m_2);
+    float _e46 = altitude_of(rel_5);
+    Roots _e48 = ray_shell_from(rel_5, _e46, up, l_7.top);
+    if (_e48.hit) {
+        local_34 = (_e48.t1_ > 0.0);
+    } else {
+        local_34 = false;
+    }
+    bool _e57 = local_34;
+    float len_1 = (_e57 ? _e48.t1_ : 0.0);
+    float _e65 = segment_optical_depth(rel_5, p_9, l_7, up, (len_1 / 3.0), 1.0, COLUMN_STEPS, false, counters_8);
+    float _e69 = _group_0_binding_0_cs.octave_depth.y;
+    return mix(tau_6, (_e69 * _e65), m_2);
 }
 
 float far_optical_depth(vec3 rel_6, vec3 p_10, Layer l_8) {
-    bool local_34 = false;
-    float reach = 0.0;
     bool local_35 = false;
+    float reach = 0.0;
+    bool local_36 = false;
     float tau_7 = 0.0;
     uint i_11 = 0u;
     float chord = _group_0_binding_0_cs.light_model.z;
     if (!((chord <= 0.0))) {
         uint _e15 = _group_0_binding_0_cs.counts.w;
-        local_34 = (_e15 == 0u);
+        local_35 = (_e15 == 0u);
     } else {
-        local_34 = true;
+        local_35 = true;
     }
-    bool _e19 = local_34;
+    bool _e19 = local_35;
     if (_e19) {
         return 0.0;
     }
@@ -1227,17 +1230,17 @@ float far_optical_depth(vec3 rel_6, vec3 p_10, Layer l_8) {
         reach = ((_e41 * (pow(growth_1, steps_3) - 1.0)) / (growth_1 - 1.0));
     }
     vec4 _e51 = _group_0_binding_0_cs.sun_direction;
-    vec3 sun_4 = _e51.xyz;
+    vec3 sun_3 = _e51.xyz;
     float _e53 = altitude_of(rel_6);
-    Roots _e55 = ray_shell_from(rel_6, _e53, sun_4, l_8.top);
+    Roots _e55 = ray_shell_from(rel_6, _e53, sun_3, l_8.top);
     float _e57 = reach;
-    float len_1 = (_e55.t1_ - _e57);
+    float len_2 = (_e55.t1_ - _e57);
     if (!(!(_e55.hit))) {
-        local_35 = !((len_1 > 0.0));
+        local_36 = !((len_2 > 0.0));
     } else {
-        local_35 = true;
+        local_36 = true;
     }
-    bool _e68 = local_35;
+    bool _e68 = local_36;
     if (_e68) {
         return 0.0;
     }
@@ -1256,16 +1259,16 @@ float far_optical_depth(vec3 rel_6, vec3 p_10, Layer l_8) {
         {
             float _e77 = reach;
             uint _e78 = i_11;
-            float t_5 = (_e77 + (((float(_e78) + 0.5) * 0.25) * len_1));
-            float _e88 = altitude_of((rel_6 + (sun_4 * t_5)));
+            float t_5 = (_e77 + (((float(_e78) + 0.5) * 0.25) * len_2));
+            float _e88 = altitude_of((rel_6 + (sun_3 * t_5)));
             float _e89 = layer_height(l_8, _e88);
             float _e90 = saturate(_e89);
-            Weather _e93 = sample_weather((p_10 + (sun_4 * t_5)), l_8);
+            Weather _e93 = sample_weather((p_10 + (sun_3 * t_5)), l_8);
             float cov = _e93.coverage;
             float _e96 = height_signal(_e90, l_8.cloud_type);
             float f_2 = min((cov * _e96), 0.95);
             float _e100 = tau_7;
-            tau_7 = (_e100 + (((0.25 * len_1) * f_2) / ((1.0 - f_2) * chord)));
+            tau_7 = (_e100 + (((0.25 * len_2) * f_2) / ((1.0 - f_2) * chord)));
         }
     }
     float _e112 = tau_7;
@@ -1430,11 +1433,11 @@ ScatteredLight scattered_light(vec3 rel_8, vec3 p_11, float alt_13, float densit
     float far_2 = 0.0;
     float tau_oct_1 = 0.0;
     vec4 _e9 = _group_0_binding_0_cs.sun_direction;
-    vec3 sun_5 = _e9.xyz;
+    vec3 sun_4 = _e9.xyz;
     float _e11 = layer_height(l_9, alt_13);
     float _e12 = saturate(_e11);
     Weather _e19 = sample_weather(p_11, l_9);
-    bool _e20 = hits_ground(rel_8, alt_13, sun_5);
+    bool _e20 = hits_ground(rel_8, alt_13, sun_4);
     if (!(_e20)) {
         if (LIGHT_MARCH) {
             float _e27 = sun_optical_depth(rel_8, p_11, l_9, counters_9);
@@ -1453,7 +1456,7 @@ ScatteredLight scattered_light(vec3 rel_8, vec3 p_11, float alt_13, float densit
         float _e37 = tau_oct_1;
         float _e38 = far_2;
         float _e39 = octave_buildup(density_2);
-        SunScattering _e42 = sun_scattering(dot(view, sun_5), view.y, _e36, _e37, _e38, _e39, _e19.coverage, _e12, l_9.coverage);
+        SunScattering _e42 = sun_scattering(dot(view, sun_4), view.y, _e36, _e37, _e38, _e39, _e19.coverage, _e12, l_9.coverage);
         vec4 _e45 = _group_0_binding_0_cs.sun_illuminance;
         vec3 _e47 = sun_through_air(rel_8);
         vec3 lit = (_e45.xyz * _e47);
@@ -1516,13 +1519,13 @@ float empty_cell_exit(vec3 p_12, vec3 d_14) {
 }
 
 void count(uint index_1, uint value) {
-    bool local_36 = false;
+    bool local_37 = false;
     if (STATS) {
-        local_36 = (value != 0u);
+        local_37 = (value != 0u);
     } else {
-        local_36 = false;
+        local_37 = false;
     }
-    bool _e8 = local_36;
+    bool _e8 = local_37;
     if (_e8) {
         uint _e12 = atomicAdd(_group_0_binding_8_cs.counters[index_1], value);
         return;
@@ -1562,7 +1565,7 @@ bool march_layer(vec3 view_2, Interval span_1, Layer l_10, float jitter, inout M
     uint i_13 = 0u;
     uint stride = 1u;
     uint empty = 0u;
-    bool local_37 = false;
+    bool local_38 = false;
     float cam_alt = _group_0_binding_0_cs.camera_position.y;
     vec4 _e12 = _group_0_binding_0_cs.camera_position;
     vec2 cam_xz = _e12.xz;
@@ -1611,11 +1614,11 @@ bool march_layer(vec3 view_2, Interval span_1, Layer l_10, float jitter, inout M
             empty = (_e119 + 1u);
             if (dynamic_step) {
                 uint _e124 = empty;
-                local_37 = (_e124 >= 8u);
+                local_38 = (_e124 >= 8u);
             } else {
-                local_37 = false;
+                local_38 = false;
             }
-            bool _e128 = local_37;
+            bool _e128 = local_38;
             if (_e128) {
                 stride = 2u;
             }
@@ -1670,12 +1673,12 @@ MarchResult march_pixel(uvec2 pixel_4) {
     uint next = 0u;
     Interval span_2 = Interval(0.0, 0.0, 0u);
     uint i_14 = 0u;
-    bool local_38 = false;
     bool local_39 = false;
     bool local_40 = false;
     bool local_41 = false;
     bool local_42 = false;
     bool local_43 = false;
+    bool local_44 = false;
     float depth_1 = 0.0;
     vec3 _e1 = view_ray(pixel_4);
     float cam_alt_1 = _group_0_binding_0_cs.camera_position.y;
@@ -1716,11 +1719,11 @@ MarchResult march_pixel(uvec2 pixel_4) {
                     Interval _e51 = layer_interval(cam_alt_1, _e1, _e50);
                     bool _e52 = ground_1;
                     if (!(_e52)) {
-                        local_38 = (_e51.kind == RAY_HITS_GROUND);
+                        local_39 = (_e51.kind == RAY_HITS_GROUND);
                     } else {
-                        local_38 = true;
+                        local_39 = true;
                     }
-                    bool _e60 = local_38;
+                    bool _e60 = local_39;
                     ground_1 = _e60;
                     float _e62 = last_start;
                     if (!((_e51.start > _e62))) {
@@ -1728,36 +1731,36 @@ MarchResult march_pixel(uvec2 pixel_4) {
                         if ((_e51.start == _e68)) {
                             uint _e72 = i_14;
                             uint _e73 = last_index;
-                            local_40 = (_e72 > _e73);
+                            local_41 = (_e72 > _e73);
                         } else {
-                            local_40 = false;
+                            local_41 = false;
                         }
-                        bool _e76 = local_40;
-                        local_39 = _e76;
+                        bool _e76 = local_41;
+                        local_40 = _e76;
                     } else {
-                        local_39 = true;
+                        local_40 = true;
                     }
-                    bool after = local_39;
+                    bool after = local_40;
                     if ((_e51.kind == RAY_MARCH)) {
-                        local_41 = after;
+                        local_42 = after;
                     } else {
-                        local_41 = false;
+                        local_42 = false;
                     }
-                    bool _e85 = local_41;
+                    bool _e85 = local_42;
                     if (_e85) {
                         uint _e88 = next;
                         if (!((_e88 == NO_LAYER))) {
                             float _e96 = span_2.start;
-                            local_43 = (_e51.start < _e96);
+                            local_44 = (_e51.start < _e96);
                         } else {
-                            local_43 = true;
+                            local_44 = true;
                         }
-                        bool _e99 = local_43;
-                        local_42 = _e99;
+                        bool _e99 = local_44;
+                        local_43 = _e99;
                     } else {
-                        local_42 = false;
+                        local_43 = false;
                     }
-                    bool _e101 = local_42;
+                    bool _e101 = local_43;
                     if (_e101) {
                         uint _e102 = i_14;
                         next = _e102;
@@ -1842,36 +1845,36 @@ uvec2 block_offset(uint f, uint k_7) {
 }
 
 vec2 reproject(uvec2 pixel_5, float depth_2) {
-    bool local_44 = false;
     bool local_45 = false;
     bool local_46 = false;
+    bool local_47 = false;
     vec3 dir = vec3(0.0);
     vec4 _e4 = _group_0_binding_0_cs.previous_position;
     vec4 _e7 = _group_0_binding_0_cs.camera_position;
     if (all(equal(_e4, _e7))) {
         vec4 _e14 = _group_0_binding_0_cs.previous_forward;
         vec4 _e17 = _group_0_binding_0_cs.camera_forward;
-        local_44 = all(equal(_e14, _e17));
-    } else {
-        local_44 = false;
-    }
-    bool _e21 = local_44;
-    if (_e21) {
-        vec4 _e26 = _group_0_binding_0_cs.previous_right;
-        vec4 _e29 = _group_0_binding_0_cs.camera_right;
-        local_45 = all(equal(_e26, _e29));
+        local_45 = all(equal(_e14, _e17));
     } else {
         local_45 = false;
     }
-    bool _e33 = local_45;
-    if (_e33) {
-        vec4 _e38 = _group_0_binding_0_cs.previous_up;
-        vec4 _e41 = _group_0_binding_0_cs.camera_up;
-        local_46 = all(equal(_e38, _e41));
+    bool _e21 = local_45;
+    if (_e21) {
+        vec4 _e26 = _group_0_binding_0_cs.previous_right;
+        vec4 _e29 = _group_0_binding_0_cs.camera_right;
+        local_46 = all(equal(_e26, _e29));
     } else {
         local_46 = false;
     }
-    bool same = local_46;
+    bool _e33 = local_46;
+    if (_e33) {
+        vec4 _e38 = _group_0_binding_0_cs.previous_up;
+        vec4 _e41 = _group_0_binding_0_cs.camera_up;
+        local_47 = all(equal(_e38, _e41));
+    } else {
+        local_47 = false;
+    }
+    bool same = local_47;
     if (same) {
         return vec2(pixel_5);
     }
@@ -1900,15 +1903,15 @@ vec2 reproject(uvec2 pixel_5, float depth_2) {
 }
 
 bool on_screen(vec2 q) {
-    bool local_47 = false;
+    bool local_48 = false;
     uvec4 _e3 = _group_0_binding_0_cs.counts;
     vec2 size_3 = vec2(_e3.xy);
     if (all(greaterThanEqual(q, vec2(-0.5)))) {
-        local_47 = all(lessThanEqual(q, (size_3 - vec2(0.5))));
+        local_48 = all(lessThanEqual(q, (size_3 - vec2(0.5))));
     } else {
-        local_47 = false;
+        local_48 = false;
     }
-    bool _e18 = local_47;
+    bool _e18 = local_48;
     return _e18;
 }
 
@@ -2005,42 +2008,42 @@ float rng_exponential(inout uint rng_2, float sigma) {
 
 Segments layer_segments(vec3 p_13, float alt_14, vec3 d_15) {
     Segments s_1 = Segments(vec2(0.0), vec2(0.0), 0u);
-    bool local_48 = false;
+    bool local_49 = false;
     vec2 a_1 = vec2(0.0);
     vec2 b_1 = vec2(0.0);
     uint n_2 = 0u;
-    bool local_49 = false;
     bool local_50 = false;
     bool local_51 = false;
     bool local_52 = false;
+    bool local_53 = false;
     vec2 _e10 = layers_span();
     float bottom_2 = _e10.x;
     Roots _e12 = ray_shell_from(p_13, alt_14, d_15, bottom_2);
     Roots _e14 = ray_shell_from(p_13, alt_14, d_15, _e10.y);
     bool _e15 = hits_ground(p_13, alt_14, d_15);
     if (!(!(_e14.hit))) {
-        local_48 = (_e14.t1_ <= 0.0);
+        local_49 = (_e14.t1_ <= 0.0);
     } else {
-        local_48 = true;
+        local_49 = true;
     }
-    bool _e25 = local_48;
+    bool _e25 = local_49;
     if (_e25) {
         Segments _e26 = s_1;
         return _e26;
     }
     float entry = max(_e14.t0_, 0.0);
     if (_e12.hit) {
-        local_49 = (_e12.t0_ > 0.0);
-    } else {
-        local_49 = false;
-    }
-    bool _e45 = local_49;
-    if (_e45) {
-        local_50 = (alt_14 >= bottom_2);
+        local_50 = (_e12.t0_ > 0.0);
     } else {
         local_50 = false;
     }
-    bool _e50 = local_50;
+    bool _e45 = local_50;
+    if (_e45) {
+        local_51 = (alt_14 >= bottom_2);
+    } else {
+        local_51 = false;
+    }
+    bool _e50 = local_51;
     if (_e50) {
         uint _e51 = n_2;
         a_1[_e51] = entry;
@@ -2049,11 +2052,11 @@ Segments layer_segments(vec3 p_13, float alt_14, vec3 d_15) {
         uint _e56 = n_2;
         n_2 = (_e56 + uint((_e12.t0_ > entry)));
         if (!(_e15)) {
-            local_51 = (_e14.t1_ > _e12.t1_);
+            local_52 = (_e14.t1_ > _e12.t1_);
         } else {
-            local_51 = false;
+            local_52 = false;
         }
-        bool _e68 = local_51;
+        bool _e68 = local_52;
         if (_e68) {
             uint _e69 = n_2;
             a_1[_e69] = max(_e12.t1_, entry);
@@ -2065,11 +2068,11 @@ Segments layer_segments(vec3 p_13, float alt_14, vec3 d_15) {
     } else {
         if ((alt_14 < bottom_2)) {
             if (!(_e15)) {
-                local_52 = _e12.hit;
+                local_53 = _e12.hit;
             } else {
-                local_52 = false;
+                local_53 = false;
             }
-            bool _e85 = local_52;
+            bool _e85 = local_53;
             if (_e85) {
                 a_1.x = max(_e12.t1_, 0.0);
                 b_1.x = _e14.t1_;
@@ -2336,35 +2339,35 @@ PhaseSample sample_phase(vec3 dir_4, inout uint rng_5) {
 }
 
 bool camera_still() {
-    bool local_57 = false;
     bool local_58 = false;
     bool local_59 = false;
+    bool local_60 = false;
     vec4 _e2 = _group_0_binding_0_cs.camera_position;
     vec4 _e5 = _group_0_binding_0_cs.previous_position;
     if (all(equal(_e2, _e5))) {
         vec4 _e12 = _group_0_binding_0_cs.camera_forward;
         vec4 _e15 = _group_0_binding_0_cs.previous_forward;
-        local_57 = all(equal(_e12, _e15));
-    } else {
-        local_57 = false;
-    }
-    bool _e19 = local_57;
-    if (_e19) {
-        vec4 _e24 = _group_0_binding_0_cs.camera_right;
-        vec4 _e28 = _group_0_binding_0_cs.previous_right;
-        local_58 = all(equal(_e24.xyz, _e28.xyz));
+        local_58 = all(equal(_e12, _e15));
     } else {
         local_58 = false;
     }
-    bool _e33 = local_58;
-    if (_e33) {
-        vec4 _e38 = _group_0_binding_0_cs.camera_up;
-        vec4 _e42 = _group_0_binding_0_cs.previous_up;
-        local_59 = all(equal(_e38.xyz, _e42.xyz));
+    bool _e19 = local_58;
+    if (_e19) {
+        vec4 _e24 = _group_0_binding_0_cs.camera_right;
+        vec4 _e28 = _group_0_binding_0_cs.previous_right;
+        local_59 = all(equal(_e24.xyz, _e28.xyz));
     } else {
         local_59 = false;
     }
-    bool _e47 = local_59;
+    bool _e33 = local_59;
+    if (_e33) {
+        vec4 _e38 = _group_0_binding_0_cs.camera_up;
+        vec4 _e42 = _group_0_binding_0_cs.previous_up;
+        local_60 = all(equal(_e38.xyz, _e42.xyz));
+    } else {
+        local_60 = false;
+    }
+    bool _e47 = local_60;
     return _e47;
 }
 
@@ -2380,12 +2383,12 @@ float basic_sun_depth(vec3 rel_11, float alt_15, inout Counters counters_16) {
         return 0.0;
     }
     vec4 _e12 = _group_0_binding_0_cs.sun_direction;
-    vec3 sun_6 = _e12.xyz;
+    vec3 sun_5 = _e12.xyz;
     float rp_5 = _group_0_binding_0_cs.atmosphere.x;
     float top_2 = _group_0_binding_0_cs.atmosphere.z;
     float _e25 = _group_0_binding_0_cs.atmosphere.y;
     float thickness = (top_2 - _e25);
-    Roots _e39 = solve_sphere(dot(sun_6, vec3(rel_11.x, (rel_11.y + rp_5), rel_11.z)), ((alt_15 - top_2) * ((alt_15 + top_2) + (2.0 * rp_5))));
+    Roots _e39 = solve_sphere(dot(sun_5, vec3(rel_11.x, (rel_11.y + rp_5), rel_11.z)), ((alt_15 - top_2) * ((alt_15 + top_2) + (2.0 * rp_5))));
     float length_ = min(max(_e39.t1_, 0.0), (3.0 * thickness));
     float dt_2 = (length_ / float(steps_4));
     float _e51 = _group_0_binding_0_cs.extinction.x;
@@ -2409,7 +2412,7 @@ float basic_sun_depth(vec3 rel_11, float alt_15, inout Counters counters_16) {
             uint _e68 = counters_16.light;
             counters_16.light = (_e68 + 1u);
             uint _e71 = i_16;
-            vec3 q_8 = (rel_11 + (sun_6 * (float(_e71) * dt_2)));
+            vec3 q_8 = (rel_11 + (sun_5 * (float(_e71) * dt_2)));
             vec3 p_21 = vec3((q_8.x + cam_xz_1.x), q_8.y, (q_8.z + cam_xz_1.y));
             float _e84 = tau_10;
             float _e85 = altitude_of(q_8);
@@ -2605,9 +2608,9 @@ float sprite_texture(uint tile_1, vec2 uv) {
             float _e93 = atlas_hash(tile_1, (100u + _e91));
             float r_17 = (0.14 + (0.1 * _e93));
             vec2 _e98 = at;
-            float d_24 = (length((uv - _e98)) / r_17);
+            float d_23 = (length((uv - _e98)) / r_17);
             float _e102 = billow;
-            float _e106 = saturate((1.0 - (d_24 * d_24)));
+            float _e106 = saturate((1.0 - (d_23 * d_23)));
             billow = max(_e102, _e106);
         }
     }
@@ -2625,19 +2628,19 @@ float sprite_texture(uint tile_1, vec2 uv) {
 vec3 sprite_rel(vec2 xz, float alt_16) {
     float rp_6 = _group_0_binding_0_cs.atmosphere.x;
     vec4 _e8 = _group_0_binding_0_cs.camera_position;
-    vec2 d_25 = (xz - _e8.xz);
-    float k_19 = ((alt_16 * (alt_16 + (2.0 * rp_6))) - dot(d_25, d_25));
+    vec2 d_24 = (xz - _e8.xz);
+    float k_19 = ((alt_16 * (alt_16 + (2.0 * rp_6))) - dot(d_24, d_24));
     float y_3 = (k_19 / (rp_6 + sqrt(max(((rp_6 * rp_6) + k_19), 0.0))));
-    return vec3(d_25.x, y_3, d_25.y);
+    return vec3(d_24.x, y_3, d_24.y);
 }
 
 SpriteCell sprite_cell(uint cell) {
     ivec2 start_1 = ivec2(0);
     uint k_10 = 3u;
-    bool local_60 = false;
     bool local_61 = false;
+    bool local_62 = false;
     uint level_1 = (cell / 64u);
-    ivec2 local_65 = ivec2(int((cell % 8u)), int(((cell / 8u) % 8u)));
+    ivec2 local_66 = ivec2(int((cell % 8u)), int(((cell / 8u) % 8u)));
     vec4 _e15 = _group_0_binding_0_cs.camera_position;
     start_1 = (ivec2(floor((_e15.xz / vec2(12000.0)))) - ivec2(4));
     bool loop_init_16 = true;
@@ -2658,19 +2661,19 @@ SpriteCell sprite_cell(uint cell) {
         }
     }
     if ((level_1 > 0u)) {
-        local_60 = all(greaterThanEqual(local_65, ivec2(2)));
-    } else {
-        local_60 = false;
-    }
-    bool _e47 = local_60;
-    if (_e47) {
-        local_61 = all(lessThan(local_65, ivec2(6)));
+        local_61 = all(greaterThanEqual(local_66, ivec2(2)));
     } else {
         local_61 = false;
     }
-    bool covered = local_61;
+    bool _e47 = local_61;
+    if (_e47) {
+        local_62 = all(lessThan(local_66, ivec2(6)));
+    } else {
+        local_62 = false;
+    }
+    bool covered = local_62;
     ivec2 _e56 = start_1;
-    return SpriteCell((_e56 + local_65), (SPRITE_CELL0_ * float((1u << level_1))), covered);
+    return SpriteCell((_e56 + local_66), (SPRITE_CELL0_ * float((1u << level_1))), covered);
 }
 
 SpriteCandidate sprite_candidate(SpriteCell c_4, uint level, uint s_2, inout Counters counters_18) {
@@ -2726,36 +2729,36 @@ float sprite_sun_level(float cos_angle) {
 }
 
 vec2 sprite_corner(uint k_11) {
-    bool local_62 = false;
+    bool local_63 = false;
     uint q_10 = ((k_11 >= 3u) ? ((k_11 == 3u) ? 0u : (k_11 - 2u)) : k_11);
     if (!((q_10 == 1u))) {
-        local_62 = (q_10 == 2u);
+        local_63 = (q_10 == 2u);
     } else {
-        local_62 = true;
+        local_63 = true;
     }
-    bool _e18 = local_62;
+    bool _e18 = local_63;
     return vec2((_e18 ? 1.0 : -1.0), ((q_10 >= 2u) ? 1.0 : -1.0));
 }
 
 vec3 sky_radiance(vec3 d_17, float alt_17) {
     vec4 _e4 = _group_0_binding_0_cs.sun_direction;
-    vec3 sun_7 = _e4.xyz;
+    vec3 sun_6 = _e4.xyz;
     vec4 _e8 = _group_0_binding_0_cs.sun_illuminance;
     vec3 e_1 = _e8.xyz;
-    float _e15 = saturate(((sun_7.y * 4.0) + 0.3));
+    float _e15 = saturate(((sun_6.y * 4.0) + 0.3));
     bool _e19 = hits_ground(vec3(0.0, alt_17, 0.0), alt_17, d_17);
     if (_e19) {
         vec3 ground_albedo = vec3(0.035, 0.035, 0.03);
-        return (ground_albedo * (((e_1 * max(sun_7.y, 0.0)) / vec3(3.1415927)) + ((0.05 * e_1) * _e15)));
+        return (ground_albedo * (((e_1 * max(sun_6.y, 0.0)) / vec3(3.1415927)) + ((0.05 * e_1) * _e15)));
     }
     vec3 zenith = vec3(0.018, 0.04, 0.1);
     vec3 horizon_2 = vec3(0.07, 0.085, 0.11);
     float _e45 = saturate(d_17.y);
     vec3 gradient_1 = mix(horizon_2, zenith, sqrt(_e45));
     vec3 sunset = (((1.0 - (_e15 * 0.8)) * pow((1.0 - _e45), 6.0)) * vec3(0.25, 0.1, 0.0));
-    float _e64 = phase_hg(dot(d_17, sun_7), 0.76);
+    float _e64 = phase_hg(dot(d_17, sun_6), 0.76);
     float glow = (_e64 * 0.02);
-    float _e73 = saturate(((sun_7.y * 10.0) + 1.0));
+    float _e73 = saturate(((sun_6.y * 10.0) + 1.0));
     return (e_1 * (((gradient_1 * _e15) + (sunset * _e73)) + vec3((glow * _e15))));
 }
 
@@ -2770,17 +2773,17 @@ vec3 sun_disk(vec3 d_18) {
 }
 
 vec3 moon_disk(vec3 d_19) {
-    bool local_63 = false;
+    bool local_64 = false;
     vec4 _e3 = _group_0_binding_0_cs.moon;
     vec3 m_4 = _e3.xyz;
     float c_11 = dot(d_19, m_4);
     float _e9 = _group_0_binding_0_cs.moon.w;
     if (!((_e9 <= 0.0))) {
-        local_63 = (c_11 < MOON_COS_RADIUS);
+        local_64 = (c_11 < MOON_COS_RADIUS);
     } else {
-        local_63 = true;
+        local_64 = true;
     }
-    bool _e18 = local_63;
+    bool _e18 = local_64;
     if (_e18) {
         return vec3(0.0);
     }
@@ -2797,7 +2800,7 @@ vec3 stars(vec3 d_20) {
     uint face = 0u;
     vec2 uv_1 = vec2(0.0);
     float major = 0.0;
-    bool local_64 = false;
+    bool local_65 = false;
     vec3 star = vec3(0.0);
     float e0_ = _group_0_binding_0_cs.night.w;
     if ((e0_ <= 0.0)) {
@@ -2805,11 +2808,11 @@ vec3 stars(vec3 d_20) {
     }
     vec3 a_9 = abs(d_20);
     if ((a_9.x >= a_9.y)) {
-        local_64 = (a_9.x >= a_9.z);
+        local_65 = (a_9.x >= a_9.z);
     } else {
-        local_64 = false;
+        local_65 = false;
     }
-    bool _e26 = local_64;
+    bool _e26 = local_65;
     if (_e26) {
         face = ((d_20.x > 0.0) ? 0u : 1u);
         uv_1 = d_20.zy;

@@ -181,8 +181,7 @@ const uint AMBIENT_STEPS = 24u;
 const uint SKY_AMBIENT_SUNS = 64u;
 const uint GROUND_IRRADIANCE_SIZE = 64u;
 const uint NO_LAYER = 4u;
-const uint STEEP_STEPS = 2u;
-const float STEEP_FIRST = 8.0;
+const uint COLUMN_STEPS = 3u;
 const float DECK_POWER = 8.0;
 const float FORWARD_LOBE_THIN = 0.1;
 const uint GROUND_IRRADIANCE_DIRECTIONS = 128u;
@@ -1141,36 +1140,36 @@ uvec2 block_offset(uint f, uint k_7) {
 }
 
 vec2 reproject(uvec2 pixel_5, float depth_2) {
-    bool local_44 = false;
     bool local_45 = false;
     bool local_46 = false;
+    bool local_47 = false;
     vec3 dir = vec3(0.0);
     vec4 _e4 = _group_0_binding_0_cs.previous_position;
     vec4 _e7 = _group_0_binding_0_cs.camera_position;
     if (all(equal(_e4, _e7))) {
         vec4 _e14 = _group_0_binding_0_cs.previous_forward;
         vec4 _e17 = _group_0_binding_0_cs.camera_forward;
-        local_44 = all(equal(_e14, _e17));
-    } else {
-        local_44 = false;
-    }
-    bool _e21 = local_44;
-    if (_e21) {
-        vec4 _e26 = _group_0_binding_0_cs.previous_right;
-        vec4 _e29 = _group_0_binding_0_cs.camera_right;
-        local_45 = all(equal(_e26, _e29));
+        local_45 = all(equal(_e14, _e17));
     } else {
         local_45 = false;
     }
-    bool _e33 = local_45;
-    if (_e33) {
-        vec4 _e38 = _group_0_binding_0_cs.previous_up;
-        vec4 _e41 = _group_0_binding_0_cs.camera_up;
-        local_46 = all(equal(_e38, _e41));
+    bool _e21 = local_45;
+    if (_e21) {
+        vec4 _e26 = _group_0_binding_0_cs.previous_right;
+        vec4 _e29 = _group_0_binding_0_cs.camera_right;
+        local_46 = all(equal(_e26, _e29));
     } else {
         local_46 = false;
     }
-    bool same = local_46;
+    bool _e33 = local_46;
+    if (_e33) {
+        vec4 _e38 = _group_0_binding_0_cs.previous_up;
+        vec4 _e41 = _group_0_binding_0_cs.camera_up;
+        local_47 = all(equal(_e38, _e41));
+    } else {
+        local_47 = false;
+    }
+    bool same = local_47;
     if (same) {
         return vec2(pixel_5);
     }
@@ -1199,15 +1198,15 @@ vec2 reproject(uvec2 pixel_5, float depth_2) {
 }
 
 bool on_screen(vec2 q) {
-    bool local_47 = false;
+    bool local_48 = false;
     uvec4 _e3 = _group_0_binding_0_cs.counts;
     vec2 size_2 = vec2(_e3.xy);
     if (all(greaterThanEqual(q, vec2(-0.5)))) {
-        local_47 = all(lessThanEqual(q, (size_2 - vec2(0.5))));
+        local_48 = all(lessThanEqual(q, (size_2 - vec2(0.5))));
     } else {
-        local_47 = false;
+        local_48 = false;
     }
-    bool _e18 = local_47;
+    bool _e18 = local_48;
     return _e18;
 }
 
@@ -1250,42 +1249,42 @@ float rng_exponential(inout uint rng_2, float sigma) {
 
 Segments layer_segments(vec3 p_13, float alt_14, vec3 d_15) {
     Segments s_1 = Segments(vec2(0.0), vec2(0.0), 0u);
-    bool local_48 = false;
+    bool local_49 = false;
     vec2 a_1 = vec2(0.0);
     vec2 b_1 = vec2(0.0);
     uint n_2 = 0u;
-    bool local_49 = false;
     bool local_50 = false;
     bool local_51 = false;
     bool local_52 = false;
+    bool local_53 = false;
     vec2 _e10 = layers_span();
     float bottom_1 = _e10.x;
     Roots _e12 = ray_shell_from(p_13, alt_14, d_15, bottom_1);
     Roots _e14 = ray_shell_from(p_13, alt_14, d_15, _e10.y);
     bool _e15 = hits_ground(p_13, alt_14, d_15);
     if (!(!(_e14.hit))) {
-        local_48 = (_e14.t1_ <= 0.0);
+        local_49 = (_e14.t1_ <= 0.0);
     } else {
-        local_48 = true;
+        local_49 = true;
     }
-    bool _e25 = local_48;
+    bool _e25 = local_49;
     if (_e25) {
         Segments _e26 = s_1;
         return _e26;
     }
     float entry = max(_e14.t0_, 0.0);
     if (_e12.hit) {
-        local_49 = (_e12.t0_ > 0.0);
-    } else {
-        local_49 = false;
-    }
-    bool _e45 = local_49;
-    if (_e45) {
-        local_50 = (alt_14 >= bottom_1);
+        local_50 = (_e12.t0_ > 0.0);
     } else {
         local_50 = false;
     }
-    bool _e50 = local_50;
+    bool _e45 = local_50;
+    if (_e45) {
+        local_51 = (alt_14 >= bottom_1);
+    } else {
+        local_51 = false;
+    }
+    bool _e50 = local_51;
     if (_e50) {
         uint _e51 = n_2;
         a_1[_e51] = entry;
@@ -1294,11 +1293,11 @@ Segments layer_segments(vec3 p_13, float alt_14, vec3 d_15) {
         uint _e56 = n_2;
         n_2 = (_e56 + uint((_e12.t0_ > entry)));
         if (!(_e15)) {
-            local_51 = (_e14.t1_ > _e12.t1_);
+            local_52 = (_e14.t1_ > _e12.t1_);
         } else {
-            local_51 = false;
+            local_52 = false;
         }
-        bool _e68 = local_51;
+        bool _e68 = local_52;
         if (_e68) {
             uint _e69 = n_2;
             a_1[_e69] = max(_e12.t1_, entry);
@@ -1310,11 +1309,11 @@ Segments layer_segments(vec3 p_13, float alt_14, vec3 d_15) {
     } else {
         if ((alt_14 < bottom_1)) {
             if (!(_e15)) {
-                local_52 = _e12.hit;
+                local_53 = _e12.hit;
             } else {
-                local_52 = false;
+                local_53 = false;
             }
-            bool _e85 = local_52;
+            bool _e85 = local_53;
             if (_e85) {
                 a_1.x = max(_e12.t1_, 0.0);
                 b_1.x = _e14.t1_;
@@ -1421,35 +1420,35 @@ PhaseSample sample_phase(vec3 dir_4, inout uint rng_5) {
 }
 
 bool camera_still() {
-    bool local_57 = false;
     bool local_58 = false;
     bool local_59 = false;
+    bool local_60 = false;
     vec4 _e2 = _group_0_binding_0_cs.camera_position;
     vec4 _e5 = _group_0_binding_0_cs.previous_position;
     if (all(equal(_e2, _e5))) {
         vec4 _e12 = _group_0_binding_0_cs.camera_forward;
         vec4 _e15 = _group_0_binding_0_cs.previous_forward;
-        local_57 = all(equal(_e12, _e15));
-    } else {
-        local_57 = false;
-    }
-    bool _e19 = local_57;
-    if (_e19) {
-        vec4 _e24 = _group_0_binding_0_cs.camera_right;
-        vec4 _e28 = _group_0_binding_0_cs.previous_right;
-        local_58 = all(equal(_e24.xyz, _e28.xyz));
+        local_58 = all(equal(_e12, _e15));
     } else {
         local_58 = false;
     }
-    bool _e33 = local_58;
-    if (_e33) {
-        vec4 _e38 = _group_0_binding_0_cs.camera_up;
-        vec4 _e42 = _group_0_binding_0_cs.previous_up;
-        local_59 = all(equal(_e38.xyz, _e42.xyz));
+    bool _e19 = local_58;
+    if (_e19) {
+        vec4 _e24 = _group_0_binding_0_cs.camera_right;
+        vec4 _e28 = _group_0_binding_0_cs.previous_right;
+        local_59 = all(equal(_e24.xyz, _e28.xyz));
     } else {
         local_59 = false;
     }
-    bool _e47 = local_59;
+    bool _e33 = local_59;
+    if (_e33) {
+        vec4 _e38 = _group_0_binding_0_cs.camera_up;
+        vec4 _e42 = _group_0_binding_0_cs.previous_up;
+        local_60 = all(equal(_e38.xyz, _e42.xyz));
+    } else {
+        local_60 = false;
+    }
+    bool _e47 = local_60;
     return _e47;
 }
 
@@ -1581,10 +1580,10 @@ vec3 sprite_rel(vec2 xz, float alt_16) {
 SpriteCell sprite_cell(uint cell) {
     ivec2 start_1 = ivec2(0);
     uint k_10 = 3u;
-    bool local_60 = false;
     bool local_61 = false;
+    bool local_62 = false;
     uint level_1 = (cell / 64u);
-    ivec2 local_65 = ivec2(int((cell % 8u)), int(((cell / 8u) % 8u)));
+    ivec2 local_66 = ivec2(int((cell % 8u)), int(((cell / 8u) % 8u)));
     vec4 _e15 = _group_0_binding_0_cs.camera_position;
     start_1 = (ivec2(floor((_e15.xz / vec2(12000.0)))) - ivec2(4));
     bool loop_init_7 = true;
@@ -1605,19 +1604,19 @@ SpriteCell sprite_cell(uint cell) {
         }
     }
     if ((level_1 > 0u)) {
-        local_60 = all(greaterThanEqual(local_65, ivec2(2)));
-    } else {
-        local_60 = false;
-    }
-    bool _e47 = local_60;
-    if (_e47) {
-        local_61 = all(lessThan(local_65, ivec2(6)));
+        local_61 = all(greaterThanEqual(local_66, ivec2(2)));
     } else {
         local_61 = false;
     }
-    bool covered = local_61;
+    bool _e47 = local_61;
+    if (_e47) {
+        local_62 = all(lessThan(local_66, ivec2(6)));
+    } else {
+        local_62 = false;
+    }
+    bool covered = local_62;
     ivec2 _e56 = start_1;
-    return SpriteCell((_e56 + local_65), (SPRITE_CELL0_ * float((1u << level_1))), covered);
+    return SpriteCell((_e56 + local_66), (SPRITE_CELL0_ * float((1u << level_1))), covered);
 }
 
 vec3 sprite_sky_level(float h_10) {
@@ -1643,14 +1642,14 @@ float sprite_sun_level(float cos_angle) {
 }
 
 vec2 sprite_corner(uint k_11) {
-    bool local_62 = false;
+    bool local_63 = false;
     uint q_8 = ((k_11 >= 3u) ? ((k_11 == 3u) ? 0u : (k_11 - 2u)) : k_11);
     if (!((q_8 == 1u))) {
-        local_62 = (q_8 == 2u);
+        local_63 = (q_8 == 2u);
     } else {
-        local_62 = true;
+        local_63 = true;
     }
-    bool _e18 = local_62;
+    bool _e18 = local_63;
     return vec2((_e18 ? 1.0 : -1.0), ((q_8 >= 2u) ? 1.0 : -1.0));
 }
 
@@ -1687,17 +1686,17 @@ vec3 sun_disk(vec3 d_18) {
 }
 
 vec3 moon_disk(vec3 d_19) {
-    bool local_63 = false;
+    bool local_64 = false;
     vec4 _e3 = _group_0_binding_0_cs.moon;
     vec3 m_2 = _e3.xyz;
     float c_10 = dot(d_19, m_2);
     float _e9 = _group_0_binding_0_cs.moon.w;
     if (!((_e9 <= 0.0))) {
-        local_63 = (c_10 < MOON_COS_RADIUS);
+        local_64 = (c_10 < MOON_COS_RADIUS);
     } else {
-        local_63 = true;
+        local_64 = true;
     }
-    bool _e18 = local_63;
+    bool _e18 = local_64;
     if (_e18) {
         return vec3(0.0);
     }
@@ -1714,7 +1713,7 @@ vec3 stars(vec3 d_20) {
     uint face = 0u;
     vec2 uv_1 = vec2(0.0);
     float major = 0.0;
-    bool local_64 = false;
+    bool local_65 = false;
     vec3 star = vec3(0.0);
     float e0_ = _group_0_binding_0_cs.night.w;
     if ((e0_ <= 0.0)) {
@@ -1722,11 +1721,11 @@ vec3 stars(vec3 d_20) {
     }
     vec3 a_10 = abs(d_20);
     if ((a_10.x >= a_10.y)) {
-        local_64 = (a_10.x >= a_10.z);
+        local_65 = (a_10.x >= a_10.z);
     } else {
-        local_64 = false;
+        local_65 = false;
     }
-    bool _e26 = local_64;
+    bool _e26 = local_65;
     if (_e26) {
         face = ((d_20.x > 0.0) ? 0u : 1u);
         uv_1 = d_20.zy;

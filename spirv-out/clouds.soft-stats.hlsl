@@ -214,8 +214,7 @@ static const uint AMBIENT_STEPS = 24u;
 static const uint SKY_AMBIENT_SUNS = 64u;
 static const uint GROUND_IRRADIANCE_SIZE = 64u;
 static const uint NO_LAYER = 4u;
-static const uint STEEP_STEPS = 2u;
-static const float STEEP_FIRST = 8.0;
+static const uint COLUMN_STEPS = 3u;
 static const float DECK_POWER = 8.0;
 static const float FORWARD_LOBE_THIN = 0.1;
 static const uint GROUND_IRRADIANCE_DIRECTIONS = 128u;
@@ -1431,7 +1430,7 @@ float phase(float cos_theta_4, float scale)
     }
 }
 
-float segment_optical_depth(float3 rel_3, float3 p_7, Layer l_5, float3 d_13, float first, uint steps_1, bool with_detail_1, inout Counters counters_6)
+float segment_optical_depth(float3 rel_3, float3 p_7, Layer l_5, float3 d_13, float first, float growth, uint steps_1, bool with_detail_1, inout Counters counters_6)
 {
     float seg = (float)0;
     float dist = 0.0;
@@ -1439,10 +1438,9 @@ float segment_optical_depth(float3 rel_3, float3 p_7, Layer l_5, float3 d_13, fl
     uint i_10 = 0u;
     bool local_28 = (bool)0;
 
-    float _e11 = frame.extinction.x;
-    float _e15 = frame.extinction.y;
-    float sigma_t_1 = (_e11 + _e15);
-    float growth = frame.march.y;
+    float _e12 = frame.extinction.x;
+    float _e16 = frame.extinction.y;
+    float sigma_t_1 = (_e12 + _e16);
     seg = first;
     uint2 loop_bound_4 = uint2(4294967295u, 4294967295u);
     bool loop_init_4 = true;
@@ -1450,44 +1448,44 @@ float segment_optical_depth(float3 rel_3, float3 p_7, Layer l_5, float3 d_13, fl
         if (all(loop_bound_4 == uint2(0u, 0u))) { break; }
         loop_bound_4 -= uint2(loop_bound_4.y == 0u, 1u);
         if (!loop_init_4) {
-            uint _e65 = i_10;
-            i_10 = (_e65 + 1u);
+            uint _e62 = i_10;
+            i_10 = (_e62 + 1u);
         }
         loop_init_4 = false;
-        uint _e28 = i_10;
-        if ((_e28 < steps_1)) {
+        uint _e25 = i_10;
+        if ((_e25 < steps_1)) {
         } else {
             break;
         }
         {
-            float _e30 = dist;
-            float _e31 = seg;
-            float s_8 = (_e30 + (0.5 * _e31));
-            const float _e37 = altitude_of((rel_3 + (d_13 * s_8)));
-            if (!((_e37 > l_5.top))) {
-                local_28 = (_e37 < l_5.bottom);
+            float _e27 = dist;
+            float _e28 = seg;
+            float s_8 = (_e27 + (0.5 * _e28));
+            const float _e34 = altitude_of((rel_3 + (d_13 * s_8)));
+            if (!((_e34 > l_5.top))) {
+                local_28 = (_e34 < l_5.bottom);
             } else {
                 local_28 = true;
             }
-            bool _e46 = local_28;
-            if (_e46) {
+            bool _e43 = local_28;
+            if (_e43) {
                 break;
             }
-            uint _e48 = counters_6.light;
-            counters_6.light = (_e48 + 1u);
-            float _e51 = tau_4;
-            const float _e54 = layer_density_with((p_7 + (d_13 * s_8)), _e37, l_5, with_detail_1, counters_6);
-            float _e56 = seg;
-            tau_4 = (_e51 + ((_e54 * sigma_t_1) * _e56));
-            float _e59 = dist;
-            float _e60 = seg;
-            dist = (_e59 + _e60);
-            float _e62 = seg;
-            seg = (_e62 * growth);
+            uint _e45 = counters_6.light;
+            counters_6.light = (_e45 + 1u);
+            float _e48 = tau_4;
+            const float _e51 = layer_density_with((p_7 + (d_13 * s_8)), _e34, l_5, with_detail_1, counters_6);
+            float _e53 = seg;
+            tau_4 = (_e48 + ((_e51 * sigma_t_1) * _e53));
+            float _e56 = dist;
+            float _e57 = seg;
+            dist = (_e56 + _e57);
+            float _e59 = seg;
+            seg = (_e59 * growth);
         }
     }
-    float _e67 = tau_4;
-    return _e67;
+    float _e64 = tau_4;
+    return _e64;
 }
 
 float sun_optical_depth(float3 rel_4, float3 p_8, Layer l_6, inout Counters counters_7)
@@ -1504,72 +1502,74 @@ float sun_optical_depth(float3 rel_4, float3 p_8, Layer l_6, inout Counters coun
     float _e15 = frame.extinction.y;
     float sigma_t_2 = (_e11 + _e15);
     float _e20 = frame.march.z;
-    uint _e24 = frame.counts.w;
-    const float _e26 = segment_optical_depth(rel_4, p_8, l_6, sun_3, _e20, _e24, true, counters_7);
-    tau_5 = _e26;
-    const float _e28 = altitude_of(rel_4);
+    float _e24 = frame.march.y;
+    uint _e28 = frame.counts.w;
+    const float _e30 = segment_optical_depth(rel_4, p_8, l_6, sun_3, _e20, _e24, _e28, true, counters_7);
+    tau_5 = _e30;
+    const float _e32 = altitude_of(rel_4);
     uint2 loop_bound_5 = uint2(4294967295u, 4294967295u);
     bool loop_init_5 = true;
     while(true) {
         if (all(loop_bound_5 == uint2(0u, 0u))) { break; }
         loop_bound_5 -= uint2(loop_bound_5.y == 0u, 1u);
         if (!loop_init_5) {
-            uint _e92 = j_1;
-            j_1 = (_e92 + 1u);
+            uint _e96 = j_1;
+            j_1 = (_e96 + 1u);
         }
         loop_init_5 = false;
-        uint _e31 = j_1;
-        const uint _e32 = layer_count();
-        if ((_e31 < _e32)) {
+        uint _e35 = j_1;
+        const uint _e36 = layer_count();
+        if ((_e35 < _e36)) {
         } else {
             break;
         }
         {
-            uint _e34 = j_1;
-            const Layer _e35 = cloud_layer(_e34);
-            if ((_e35.bottom <= l_6.top)) {
+            uint _e38 = j_1;
+            const Layer _e39 = cloud_layer(_e38);
+            if ((_e39.bottom <= l_6.top)) {
                 continue;
             }
-            const Roots _e40 = ray_shell_from(rel_4, _e28, sun_3, _e35.bottom);
-            const Roots _e42 = ray_shell_from(rel_4, _e28, sun_3, _e35.top);
-            if (!(!(_e40.hit))) {
-                local_29 = !(_e42.hit);
+            const Roots _e44 = ray_shell_from(rel_4, _e32, sun_3, _e39.bottom);
+            const Roots _e46 = ray_shell_from(rel_4, _e32, sun_3, _e39.top);
+            if (!(!(_e44.hit))) {
+                local_29 = !(_e46.hit);
             } else {
                 local_29 = true;
             }
-            bool _e51 = local_29;
-            if (!(_e51)) {
-                local_30 = !((_e42.t1_ > _e40.t1_));
+            bool _e55 = local_29;
+            if (!(_e55)) {
+                local_30 = !((_e46.t1_ > _e44.t1_));
             } else {
                 local_30 = true;
             }
-            bool _e60 = local_30;
-            if (!(_e60)) {
-                local_31 = (_e40.t1_ <= 0.0);
+            bool _e64 = local_30;
+            if (!(_e64)) {
+                local_31 = (_e44.t1_ <= 0.0);
             } else {
                 local_31 = true;
             }
-            bool _e68 = local_31;
-            if (_e68) {
+            bool _e72 = local_31;
+            if (_e72) {
                 continue;
             }
-            float s_9 = (0.5 * (_e40.t1_ + _e42.t1_));
-            uint _e75 = counters_7.light;
-            counters_7.light = (_e75 + 1u);
-            float _e78 = tau_5;
-            const float _e83 = altitude_of((rel_4 + (sun_3 * s_9)));
-            const float _e84 = layer_density((p_8 + (sun_3 * s_9)), _e83, _e35, counters_7);
-            tau_5 = (_e78 + ((_e84 * sigma_t_2) * (_e42.t1_ - _e40.t1_)));
+            float s_9 = (0.5 * (_e44.t1_ + _e46.t1_));
+            uint _e79 = counters_7.light;
+            counters_7.light = (_e79 + 1u);
+            float _e82 = tau_5;
+            const float _e87 = altitude_of((rel_4 + (sun_3 * s_9)));
+            const float _e88 = layer_density((p_8 + (sun_3 * s_9)), _e87, _e39, counters_7);
+            tau_5 = (_e82 + ((_e88 * sigma_t_2) * (_e46.t1_ - _e44.t1_)));
         }
     }
-    float _e94 = tau_5;
-    return _e94;
+    float _e98 = tau_5;
+    return _e98;
 }
 
 float octave_optical_depth(float3 rel_5, float3 p_9, Layer l_7, float tau_6, inout Counters counters_8)
 {
     bool local_32 = (bool)0;
     bool local_33 = (bool)0;
+    bool local_34 = (bool)0;
 
     const float _e10 = saturate_(((l_7.coverage - 0.8) / 0.1));
     float _e14 = frame.octave_depth.x;
@@ -1592,33 +1592,36 @@ float octave_optical_depth(float3 rel_5, float3 p_9, Layer l_7, float tau_6, ino
     }
     float _e41 = frame.atmosphere.x;
     float3 up_1 = normalize(float3(rel_5.x, (rel_5.y + _e41), rel_5.z));
-    float4 _e48 = frame.sun_direction;
-    float3 sun_4 = _e48.xyz;
-    float3 d_23 = normalize((sun_4 + up_1));
-    float mu0_1 = max(dot(sun_4, up_1), 0.001);
-    float _e58 = frame.march.z;
-    const float _e63 = segment_optical_depth(rel_5, p_9, l_7, d_23, (_e58 * STEEP_FIRST), STEEP_STEPS, false, counters_8);
-    float _e67 = frame.octave_depth.y;
-    float steep = ((_e63 * _e67) * sqrt((mu0_1 / max(dot(d_23, up_1), 0.001))));
-    return lerp(tau_6, steep, m_2);
+    const float _e46 = altitude_of(rel_5);
+    const Roots _e48 = ray_shell_from(rel_5, _e46, up_1, l_7.top);
+    if (_e48.hit) {
+        local_34 = (_e48.t1_ > 0.0);
+    } else {
+        local_34 = false;
+    }
+    bool _e57 = local_34;
+    float len_1 = (_e57 ? _e48.t1_ : 0.0);
+    const float _e65 = segment_optical_depth(rel_5, p_9, l_7, up_1, (len_1 / 3.0), 1.0, COLUMN_STEPS, false, counters_8);
+    float _e69 = frame.octave_depth.y;
+    return lerp(tau_6, (_e69 * _e65), m_2);
 }
 
 float far_optical_depth(float3 rel_6, float3 p_10, Layer l_8)
 {
-    bool local_34 = (bool)0;
-    float reach = (float)0;
     bool local_35 = (bool)0;
+    float reach = (float)0;
+    bool local_36 = (bool)0;
     float tau_7 = 0.0;
     uint i_11 = 0u;
 
     float chord = frame.light_model.z;
     if (!((chord <= 0.0))) {
         uint _e15 = frame.counts.w;
-        local_34 = (_e15 == 0u);
+        local_35 = (_e15 == 0u);
     } else {
-        local_34 = true;
+        local_35 = true;
     }
-    bool _e19 = local_34;
+    bool _e19 = local_35;
     if (_e19) {
         return 0.0;
     }
@@ -1632,17 +1635,17 @@ float far_optical_depth(float3 rel_6, float3 p_10, Layer l_8)
         reach = ((_e41 * (pow(growth_1, steps_3) - 1.0)) / (growth_1 - 1.0));
     }
     float4 _e51 = frame.sun_direction;
-    float3 sun_5 = _e51.xyz;
+    float3 sun_4 = _e51.xyz;
     const float _e53 = altitude_of(rel_6);
-    const Roots _e55 = ray_shell_from(rel_6, _e53, sun_5, l_8.top);
+    const Roots _e55 = ray_shell_from(rel_6, _e53, sun_4, l_8.top);
     float _e57 = reach;
-    float len_1 = (_e55.t1_ - _e57);
+    float len_2 = (_e55.t1_ - _e57);
     if (!(!(_e55.hit))) {
-        local_35 = !((len_1 > 0.0));
+        local_36 = !((len_2 > 0.0));
     } else {
-        local_35 = true;
+        local_36 = true;
     }
-    bool _e68 = local_35;
+    bool _e68 = local_36;
     if (_e68) {
         return 0.0;
     }
@@ -1664,16 +1667,16 @@ float far_optical_depth(float3 rel_6, float3 p_10, Layer l_8)
         {
             float _e77 = reach;
             uint _e78 = i_11;
-            float t_5 = (_e77 + (((float(_e78) + 0.5) * 0.25) * len_1));
-            const float _e88 = altitude_of((rel_6 + (sun_5 * t_5)));
+            float t_5 = (_e77 + (((float(_e78) + 0.5) * 0.25) * len_2));
+            const float _e88 = altitude_of((rel_6 + (sun_4 * t_5)));
             const float _e89 = layer_height(l_8, _e88);
             const float _e90 = saturate_(_e89);
-            const Weather _e93 = sample_weather((p_10 + (sun_5 * t_5)), l_8);
+            const Weather _e93 = sample_weather((p_10 + (sun_4 * t_5)), l_8);
             float cov = _e93.coverage;
             const float _e96 = height_signal(_e90, l_8.cloud_type);
             float f_3 = min((cov * _e96), 0.95);
             float _e100 = tau_7;
-            tau_7 = (_e100 + (((0.25 * len_1) * f_3) / ((1.0 - f_3) * chord)));
+            tau_7 = (_e100 + (((0.25 * len_2) * f_3) / ((1.0 - f_3) * chord)));
         }
     }
     float _e112 = tau_7;
@@ -1868,11 +1871,11 @@ ScatteredLight scattered_light(float3 rel_8, float3 p_11, float alt_13, float de
     float tau_oct_1 = (float)0;
 
     float4 _e9 = frame.sun_direction;
-    float3 sun_6 = _e9.xyz;
+    float3 sun_5 = _e9.xyz;
     const float _e11 = layer_height(l_9, alt_13);
     const float _e12 = saturate_(_e11);
     const Weather _e19 = sample_weather(p_11, l_9);
-    const bool _e20 = hits_ground(rel_8, alt_13, sun_6);
+    const bool _e20 = hits_ground(rel_8, alt_13, sun_5);
     if (!(_e20)) {
         if (LIGHT_MARCH) {
             const float _e27 = sun_optical_depth(rel_8, p_11, l_9, counters_9);
@@ -1891,7 +1894,7 @@ ScatteredLight scattered_light(float3 rel_8, float3 p_11, float alt_13, float de
         float _e37 = tau_oct_1;
         float _e38 = far_2;
         const float _e39 = octave_buildup(density_2);
-        const SunScattering _e42 = sun_scattering(dot(view, sun_6), view.y, _e36, _e37, _e38, _e39, _e19.coverage, _e12, l_9.coverage);
+        const SunScattering _e42 = sun_scattering(dot(view, sun_5), view.y, _e36, _e37, _e38, _e39, _e19.coverage, _e12, l_9.coverage);
         float4 _e45 = frame.sun_illuminance;
         const float3 _e47 = sun_through_air(rel_8);
         float3 lit_ = (_e45.xyz * _e47);
@@ -1992,14 +1995,14 @@ float empty_cell_exit(float3 p_12, float3 d_14)
 
 void count(uint index_1, uint value)
 {
-    bool local_36 = (bool)0;
+    bool local_37 = (bool)0;
 
     if (STATS) {
-        local_36 = (value != 0u);
+        local_37 = (value != 0u);
     } else {
-        local_36 = false;
+        local_37 = false;
     }
-    bool _e8 = local_36;
+    bool _e8 = local_37;
     if (_e8) {
         uint _e12; stats.InterlockedAdd(index_1*4+0, value, _e12);
         return;
@@ -2046,7 +2049,7 @@ bool march_layer(float3 view_2, Interval span_1, Layer l_10, float jitter, inout
     uint i_13 = 0u;
     uint stride = 1u;
     uint empty = 0u;
-    bool local_37 = (bool)0;
+    bool local_38 = (bool)0;
 
     float cam_alt_1 = frame.camera_position.y;
     float4 _e12 = frame.camera_position;
@@ -2099,11 +2102,11 @@ bool march_layer(float3 view_2, Interval span_1, Layer l_10, float jitter, inout
             empty = (_e119 + 1u);
             if (dynamic_step) {
                 uint _e124 = empty;
-                local_37 = (_e124 >= 8u);
+                local_38 = (_e124 >= 8u);
             } else {
-                local_37 = false;
+                local_38 = false;
             }
-            bool _e128 = local_37;
+            bool _e128 = local_38;
             if (_e128) {
                 stride = 2u;
             }
@@ -2185,12 +2188,12 @@ MarchResult march_pixel(uint2 pixel_4)
     uint next = (uint)0;
     Interval span_2 = (Interval)0;
     uint i_14 = (uint)0;
-    bool local_38 = (bool)0;
     bool local_39 = (bool)0;
     bool local_40 = (bool)0;
     bool local_41 = (bool)0;
     bool local_42 = (bool)0;
     bool local_43 = (bool)0;
+    bool local_44 = (bool)0;
     float depth_1 = 0.0;
 
     const float3 _e1 = view_ray(pixel_4);
@@ -2238,11 +2241,11 @@ MarchResult march_pixel(uint2 pixel_4)
                     const Interval _e51 = layer_interval(cam_alt_2, _e1, _e50);
                     bool _e52 = ground_1;
                     if (!(_e52)) {
-                        local_38 = (_e51.kind == RAY_HITS_GROUND);
+                        local_39 = (_e51.kind == RAY_HITS_GROUND);
                     } else {
-                        local_38 = true;
+                        local_39 = true;
                     }
-                    bool _e60 = local_38;
+                    bool _e60 = local_39;
                     ground_1 = _e60;
                     float _e62 = last_start;
                     if (!((_e51.start > _e62))) {
@@ -2250,36 +2253,36 @@ MarchResult march_pixel(uint2 pixel_4)
                         if ((_e51.start == _e68)) {
                             uint _e72 = i_14;
                             uint _e73 = last_index;
-                            local_40 = (_e72 > _e73);
+                            local_41 = (_e72 > _e73);
                         } else {
-                            local_40 = false;
+                            local_41 = false;
                         }
-                        bool _e76 = local_40;
-                        local_39 = _e76;
+                        bool _e76 = local_41;
+                        local_40 = _e76;
                     } else {
-                        local_39 = true;
+                        local_40 = true;
                     }
-                    bool after = local_39;
+                    bool after = local_40;
                     if ((_e51.kind == RAY_MARCH)) {
-                        local_41 = after;
+                        local_42 = after;
                     } else {
-                        local_41 = false;
+                        local_42 = false;
                     }
-                    bool _e85 = local_41;
+                    bool _e85 = local_42;
                     if (_e85) {
                         uint _e88 = next;
                         if (!((_e88 == NO_LAYER))) {
                             float _e96 = span_2.start;
-                            local_43 = (_e51.start < _e96);
+                            local_44 = (_e51.start < _e96);
                         } else {
-                            local_43 = true;
+                            local_44 = true;
                         }
-                        bool _e99 = local_43;
-                        local_42 = _e99;
+                        bool _e99 = local_44;
+                        local_43 = _e99;
                     } else {
-                        local_42 = false;
+                        local_43 = false;
                     }
-                    bool _e101 = local_42;
+                    bool _e101 = local_43;
                     if (_e101) {
                         uint _e102 = i_14;
                         next = _e102;
@@ -2372,9 +2375,9 @@ uint2 block_offset(uint f, uint k_7)
 
 float2 reproject(uint2 pixel_5, float depth_2)
 {
-    bool local_44 = (bool)0;
     bool local_45 = (bool)0;
     bool local_46 = (bool)0;
+    bool local_47 = (bool)0;
     float3 dir = (float3)0;
 
     float4 _e4 = frame.previous_position;
@@ -2382,27 +2385,27 @@ float2 reproject(uint2 pixel_5, float depth_2)
     if (all((_e4 == _e7))) {
         float4 _e14 = frame.previous_forward;
         float4 _e17 = frame.camera_forward;
-        local_44 = all((_e14 == _e17));
-    } else {
-        local_44 = false;
-    }
-    bool _e21 = local_44;
-    if (_e21) {
-        float4 _e26 = frame.previous_right;
-        float4 _e29 = frame.camera_right;
-        local_45 = all((_e26 == _e29));
+        local_45 = all((_e14 == _e17));
     } else {
         local_45 = false;
     }
-    bool _e33 = local_45;
-    if (_e33) {
-        float4 _e38 = frame.previous_up;
-        float4 _e41 = frame.camera_up;
-        local_46 = all((_e38 == _e41));
+    bool _e21 = local_45;
+    if (_e21) {
+        float4 _e26 = frame.previous_right;
+        float4 _e29 = frame.camera_right;
+        local_46 = all((_e26 == _e29));
     } else {
         local_46 = false;
     }
-    bool same = local_46;
+    bool _e33 = local_46;
+    if (_e33) {
+        float4 _e38 = frame.previous_up;
+        float4 _e41 = frame.camera_up;
+        local_47 = all((_e38 == _e41));
+    } else {
+        local_47 = false;
+    }
+    bool same = local_47;
     if (same) {
         return float2(pixel_5);
     }
@@ -2432,16 +2435,16 @@ float2 reproject(uint2 pixel_5, float depth_2)
 
 bool on_screen(float2 q)
 {
-    bool local_47 = (bool)0;
+    bool local_48 = (bool)0;
 
     uint4 _e3 = frame.counts;
     float2 size_3 = float2(_e3.xy);
     if (all((q >= (-0.5).xx))) {
-        local_47 = all((q <= (size_3 - (0.5).xx)));
+        local_48 = all((q <= (size_3 - (0.5).xx)));
     } else {
-        local_47 = false;
+        local_48 = false;
     }
-    bool _e18 = local_47;
+    bool _e18 = local_48;
     return _e18;
 }
 
@@ -2566,14 +2569,14 @@ Segments ConstructSegments(float2 arg0, float2 arg1, uint arg2) {
 Segments layer_segments(float3 p_13, float alt_14, float3 d_15)
 {
     Segments s_1 = ConstructSegments((0.0).xx, (0.0).xx, 0u);
-    bool local_48 = (bool)0;
+    bool local_49 = (bool)0;
     float2 a_1 = (0.0).xx;
     float2 b_1 = (0.0).xx;
     uint n_2 = 0u;
-    bool local_49 = (bool)0;
     bool local_50 = (bool)0;
     bool local_51 = (bool)0;
     bool local_52 = (bool)0;
+    bool local_53 = (bool)0;
 
     const float2 _e10 = layers_span();
     float bottom_2 = _e10.x;
@@ -2581,11 +2584,11 @@ Segments layer_segments(float3 p_13, float alt_14, float3 d_15)
     const Roots _e14 = ray_shell_from(p_13, alt_14, d_15, _e10.y);
     const bool _e15 = hits_ground(p_13, alt_14, d_15);
     if (!(!(_e14.hit))) {
-        local_48 = (_e14.t1_ <= 0.0);
+        local_49 = (_e14.t1_ <= 0.0);
     } else {
-        local_48 = true;
+        local_49 = true;
     }
-    bool _e25 = local_48;
+    bool _e25 = local_49;
     if (_e25) {
         Segments _e26 = s_1;
         const Segments segments = _e26;
@@ -2593,17 +2596,17 @@ Segments layer_segments(float3 p_13, float alt_14, float3 d_15)
     }
     float entry = max(_e14.t0_, 0.0);
     if (_e12.hit) {
-        local_49 = (_e12.t0_ > 0.0);
-    } else {
-        local_49 = false;
-    }
-    bool _e45 = local_49;
-    if (_e45) {
-        local_50 = (alt_14 >= bottom_2);
+        local_50 = (_e12.t0_ > 0.0);
     } else {
         local_50 = false;
     }
-    bool _e50 = local_50;
+    bool _e45 = local_50;
+    if (_e45) {
+        local_51 = (alt_14 >= bottom_2);
+    } else {
+        local_51 = false;
+    }
+    bool _e50 = local_51;
     if (_e50) {
         uint _e51 = n_2;
         a_1[min(uint(_e51), 1u)] = entry;
@@ -2612,11 +2615,11 @@ Segments layer_segments(float3 p_13, float alt_14, float3 d_15)
         uint _e56 = n_2;
         n_2 = (_e56 + uint((_e12.t0_ > entry)));
         if (!(_e15)) {
-            local_51 = (_e14.t1_ > _e12.t1_);
+            local_52 = (_e14.t1_ > _e12.t1_);
         } else {
-            local_51 = false;
+            local_52 = false;
         }
-        bool _e68 = local_51;
+        bool _e68 = local_52;
         if (_e68) {
             uint _e69 = n_2;
             a_1[min(uint(_e69), 1u)] = max(_e12.t1_, entry);
@@ -2628,11 +2631,11 @@ Segments layer_segments(float3 p_13, float alt_14, float3 d_15)
     } else {
         if ((alt_14 < bottom_2)) {
             if (!(_e15)) {
-                local_52 = _e12.hit;
+                local_53 = _e12.hit;
             } else {
-                local_52 = false;
+                local_53 = false;
             }
-            bool _e85 = local_52;
+            bool _e85 = local_53;
             if (_e85) {
                 a_1.x = max(_e12.t1_, 0.0);
                 b_1.x = _e14.t1_;
@@ -2957,15 +2960,15 @@ PathResult ConstructPathResult(float3 arg0, float arg1, float arg2) {
 PathResult trace_path(float3 view_3, Interval span_3, inout uint rng_6, inout Counters counters_15)
 {
     PathResult out_2 = ConstructPathResult((0.0).xxx, 1.0, -1.0);
-    bool local_53 = (bool)0;
     bool local_54 = (bool)0;
     bool local_55 = (bool)0;
+    bool local_56 = (bool)0;
     uint max_orders = MAX_PATH_ORDERS;
     float3 pos_1 = (float3)0;
     float3 dir_5 = (float3)0;
     float throughput = 1.0;
     uint order = 0u;
-    bool local_56 = (bool)0;
+    bool local_57 = (bool)0;
 
     if ((span_3.kind != RAY_MARCH)) {
         PathResult _e13 = out_2;
@@ -2985,7 +2988,7 @@ PathResult trace_path(float3 view_3, Interval span_3, inout uint rng_6, inout Co
     }
     out_2.depth = _e33;
     float4 _e40 = frame.sun_direction;
-    float3 sun_7 = _e40.xyz;
+    float3 sun_6 = _e40.xyz;
     float _e45 = frame.extinction.x;
     float _e49 = frame.extinction.y;
     float sigma_t_5 = (_e45 + _e49);
@@ -2996,23 +2999,23 @@ PathResult trace_path(float3 view_3, Interval span_3, inout uint rng_6, inout Co
         const bool _e68 = physical_sky();
         if (!(_e68)) {
             float4 _e74 = frame.ambient_bottom;
-            local_54 = any((_e74.xyz > (0.0).xxx));
-        } else {
-            local_54 = true;
-        }
-        bool _e81 = local_54;
-        if (!(_e81)) {
-            float4 _e87 = frame.ambient_top;
-            local_55 = any((_e87.xyz > (0.0).xxx));
+            local_55 = any((_e74.xyz > (0.0).xxx));
         } else {
             local_55 = true;
         }
-        bool _e94 = local_55;
-        local_53 = _e94;
+        bool _e81 = local_55;
+        if (!(_e81)) {
+            float4 _e87 = frame.ambient_top;
+            local_56 = any((_e87.xyz > (0.0).xxx));
+        } else {
+            local_56 = true;
+        }
+        bool _e94 = local_56;
+        local_54 = _e94;
     } else {
-        local_53 = false;
+        local_54 = false;
     }
-    bool ambient_on = local_53;
+    bool ambient_on = local_54;
     uint _e102 = frame.misc.z;
     if ((_e102 > 0u)) {
         uint _e108 = frame.misc.z;
@@ -3032,19 +3035,19 @@ PathResult trace_path(float3 view_3, Interval span_3, inout uint rng_6, inout Co
         const float _e125 = altitude_of(_e124);
         const float _e126 = height_fraction(_e125);
         float3 _e127 = pos_1;
-        const bool _e128 = hits_ground(_e127, _e125, sun_7);
+        const bool _e128 = hits_ground(_e127, _e125, sun_6);
         if (!(_e128)) {
             float3 _e130 = pos_1;
             float3 _e131 = pos_1;
-            const Segments _e132 = layer_segments(_e131, _e125, sun_7);
-            const float _e133 = transmittance_along(_e130, sun_7, _e132, rng_6, counters_15);
+            const Segments _e132 = layer_segments(_e131, _e125, sun_6);
+            const float _e133 = transmittance_along(_e130, sun_6, _e132, rng_6, counters_15);
             float3 _e135 = out_2.radiance;
             float4 _e138 = frame.sun_illuminance;
             float3 _e140 = pos_1;
             const float3 _e141 = sun_through_air(_e140);
             float _e143 = throughput;
             float3 _e144 = dir_5;
-            const float _e147 = phase(dot(_e144, sun_7), 1.0);
+            const float _e147 = phase(dot(_e144, sun_6), 1.0);
             out_2.radiance = (_e135 + ((_e138.xyz * _e141) * ((_e143 * _e147) * _e133)));
         }
         float3 _e152 = dir_5;
@@ -3074,11 +3077,11 @@ PathResult trace_path(float3 view_3, Interval span_3, inout uint rng_6, inout Co
         uint _e179 = order;
         if ((_e179 >= 3u)) {
             float _e184 = throughput;
-            local_56 = (_e184 < 0.1);
+            local_57 = (_e184 < 0.1);
         } else {
-            local_56 = false;
+            local_57 = false;
         }
-        bool _e188 = local_56;
+        bool _e188 = local_57;
         if (_e188) {
             const float _e189 = rng_next(rng_6);
             float _e190 = throughput;
@@ -3102,36 +3105,36 @@ PathResult trace_path(float3 view_3, Interval span_3, inout uint rng_6, inout Co
 
 bool camera_still()
 {
-    bool local_57 = (bool)0;
     bool local_58 = (bool)0;
     bool local_59 = (bool)0;
+    bool local_60 = (bool)0;
 
     float4 _e2 = frame.camera_position;
     float4 _e5 = frame.previous_position;
     if (all((_e2 == _e5))) {
         float4 _e12 = frame.camera_forward;
         float4 _e15 = frame.previous_forward;
-        local_57 = all((_e12 == _e15));
-    } else {
-        local_57 = false;
-    }
-    bool _e19 = local_57;
-    if (_e19) {
-        float4 _e24 = frame.camera_right;
-        float4 _e28 = frame.previous_right;
-        local_58 = all((_e24.xyz == _e28.xyz));
+        local_58 = all((_e12 == _e15));
     } else {
         local_58 = false;
     }
-    bool _e33 = local_58;
-    if (_e33) {
-        float4 _e38 = frame.camera_up;
-        float4 _e42 = frame.previous_up;
-        local_59 = all((_e38.xyz == _e42.xyz));
+    bool _e19 = local_58;
+    if (_e19) {
+        float4 _e24 = frame.camera_right;
+        float4 _e28 = frame.previous_right;
+        local_59 = all((_e24.xyz == _e28.xyz));
     } else {
         local_59 = false;
     }
-    bool _e47 = local_59;
+    bool _e33 = local_59;
+    if (_e33) {
+        float4 _e38 = frame.camera_up;
+        float4 _e42 = frame.previous_up;
+        local_60 = all((_e38.xyz == _e42.xyz));
+    } else {
+        local_60 = false;
+    }
+    bool _e47 = local_60;
     return _e47;
 }
 
@@ -3150,12 +3153,12 @@ float basic_sun_depth(float3 rel_11, float alt_15, inout Counters counters_16)
         return 0.0;
     }
     float4 _e12 = frame.sun_direction;
-    float3 sun_8 = _e12.xyz;
+    float3 sun_7 = _e12.xyz;
     float rp_5 = frame.atmosphere.x;
     float top_2 = frame.atmosphere.z;
     float _e25 = frame.atmosphere.y;
     float thickness = (top_2 - _e25);
-    const Roots _e39 = solve_sphere(dot(sun_8, float3(rel_11.x, (rel_11.y + rp_5), rel_11.z)), ((alt_15 - top_2) * ((alt_15 + top_2) + (2.0 * rp_5))));
+    const Roots _e39 = solve_sphere(dot(sun_7, float3(rel_11.x, (rel_11.y + rp_5), rel_11.z)), ((alt_15 - top_2) * ((alt_15 + top_2) + (2.0 * rp_5))));
     float length_ = min(max(_e39.t1_, 0.0), (3.0 * thickness));
     float dt_3 = (length_ / float(steps_4));
     float _e51 = frame.extinction.x;
@@ -3182,7 +3185,7 @@ float basic_sun_depth(float3 rel_11, float alt_15, inout Counters counters_16)
             uint _e68 = counters_16.light;
             counters_16.light = (_e68 + 1u);
             uint _e71 = i_16;
-            float3 q_8 = (rel_11 + (sun_8 * (float(_e71) * dt_3)));
+            float3 q_8 = (rel_11 + (sun_7 * (float(_e71) * dt_3)));
             float3 p_22 = float3((q_8.x + cam_xz_1.x), q_8.y, (q_8.z + cam_xz_1.y));
             float _e84 = tau_10;
             const float _e85 = altitude_of(q_8);
@@ -3396,9 +3399,9 @@ float sprite_texture(uint tile_1, float2 uv)
             const float _e93 = atlas_hash(tile_1, (100u + _e91));
             float r_18 = (0.14 + (0.1 * _e93));
             float2 _e98 = at;
-            float d_24 = (length((uv - _e98)) / r_18);
+            float d_23 = (length((uv - _e98)) / r_18);
             float _e102 = billow;
-            const float _e106 = saturate_((1.0 - (d_24 * d_24)));
+            const float _e106 = saturate_((1.0 - (d_23 * d_23)));
             billow = max(_e102, _e106);
         }
     }
@@ -3417,10 +3420,10 @@ float3 sprite_rel(float2 xz, float alt_16)
 {
     float rp_6 = frame.atmosphere.x;
     float4 _e8 = frame.camera_position;
-    float2 d_25 = (xz - _e8.xz);
-    float k_19 = ((alt_16 * (alt_16 + (2.0 * rp_6))) - dot(d_25, d_25));
+    float2 d_24 = (xz - _e8.xz);
+    float k_19 = ((alt_16 * (alt_16 + (2.0 * rp_6))) - dot(d_24, d_24));
     float y_3 = (k_19 / (rp_6 + sqrt(max(((rp_6 * rp_6) + k_19), 0.0))));
-    return float3(d_25.x, y_3, d_25.y);
+    return float3(d_24.x, y_3, d_24.y);
 }
 
 SpriteCell ConstructSpriteCell(int2 arg0, float arg1, bool arg2) {
@@ -3435,11 +3438,11 @@ SpriteCell sprite_cell(uint cell)
 {
     int2 start_1 = (int2)0;
     uint k_10 = 3u;
-    bool local_60 = (bool)0;
     bool local_61 = (bool)0;
+    bool local_62 = (bool)0;
 
     uint level_1 = naga_div(cell, 64u);
-    int2 local_65 = int2(int(naga_mod(cell, 8u)), int(naga_mod(naga_div(cell, 8u), 8u)));
+    int2 local_66 = int2(int(naga_mod(cell, 8u)), int(naga_mod(naga_div(cell, 8u), 8u)));
     float4 _e15 = frame.camera_position;
     start_1 = asint(asuint(naga_f2i32(floor((_e15.xz / (12000.0).xx)))) - asuint((int(4)).xx));
     uint2 loop_bound_21 = uint2(4294967295u, 4294967295u);
@@ -3463,19 +3466,19 @@ SpriteCell sprite_cell(uint cell)
         }
     }
     if ((level_1 > 0u)) {
-        local_60 = all((local_65 >= (int(2)).xx));
-    } else {
-        local_60 = false;
-    }
-    bool _e47 = local_60;
-    if (_e47) {
-        local_61 = all((local_65 < (int(6)).xx));
+        local_61 = all((local_66 >= (int(2)).xx));
     } else {
         local_61 = false;
     }
-    bool covered = local_61;
+    bool _e47 = local_61;
+    if (_e47) {
+        local_62 = all((local_66 < (int(6)).xx));
+    } else {
+        local_62 = false;
+    }
+    bool covered = local_62;
     int2 _e56 = start_1;
-    const SpriteCell spritecell = ConstructSpriteCell(asint(asuint(_e56) + asuint(local_65)), (SPRITE_CELL0_ * float((1u << level_1))), covered);
+    const SpriteCell spritecell = ConstructSpriteCell(asint(asuint(_e56) + asuint(local_66)), (SPRITE_CELL0_ * float((1u << level_1))), covered);
     return spritecell;
 }
 
@@ -3551,38 +3554,38 @@ float sprite_sun_level(float cos_angle)
 
 float2 sprite_corner(uint k_11)
 {
-    bool local_62 = (bool)0;
+    bool local_63 = (bool)0;
 
     uint q_10 = ((k_11 >= 3u) ? ((k_11 == 3u) ? 0u : (k_11 - 2u)) : k_11);
     if (!((q_10 == 1u))) {
-        local_62 = (q_10 == 2u);
+        local_63 = (q_10 == 2u);
     } else {
-        local_62 = true;
+        local_63 = true;
     }
-    bool _e18 = local_62;
+    bool _e18 = local_63;
     return float2((_e18 ? 1.0 : -1.0), ((q_10 >= 2u) ? 1.0 : -1.0));
 }
 
 float3 sky_radiance(float3 d_17, float alt_17)
 {
     float4 _e4 = frame.sun_direction;
-    float3 sun_9 = _e4.xyz;
+    float3 sun_8 = _e4.xyz;
     float4 _e8 = frame.sun_illuminance;
     float3 e_1 = _e8.xyz;
-    const float _e15 = saturate_(((sun_9.y * 4.0) + 0.3));
+    const float _e15 = saturate_(((sun_8.y * 4.0) + 0.3));
     const bool _e19 = hits_ground(float3(0.0, alt_17, 0.0), alt_17, d_17);
     if (_e19) {
         float3 ground_albedo = float3(0.035, 0.035, 0.03);
-        return (ground_albedo * (((e_1 * max(sun_9.y, 0.0)) / (3.1415927).xxx) + ((0.05 * e_1) * _e15)));
+        return (ground_albedo * (((e_1 * max(sun_8.y, 0.0)) / (3.1415927).xxx) + ((0.05 * e_1) * _e15)));
     }
     float3 zenith = float3(0.018, 0.04, 0.1);
     float3 horizon_2 = float3(0.07, 0.085, 0.11);
     const float _e45 = saturate_(d_17.y);
     float3 gradient_1 = lerp(horizon_2, zenith, sqrt(_e45));
     float3 sunset = (((1.0 - (_e15 * 0.8)) * pow((1.0 - _e45), 6.0)) * float3(0.25, 0.1, 0.0));
-    const float _e64 = phase_hg(dot(d_17, sun_9), 0.76);
+    const float _e64 = phase_hg(dot(d_17, sun_8), 0.76);
     float glow = (_e64 * 0.02);
-    const float _e73 = saturate_(((sun_9.y * 10.0) + 1.0));
+    const float _e73 = saturate_(((sun_8.y * 10.0) + 1.0));
     return (e_1 * (((gradient_1 * _e15) + (sunset * _e73)) + ((glow * _e15)).xxx));
 }
 
@@ -3599,18 +3602,18 @@ float3 sun_disk(float3 d_18)
 
 float3 moon_disk(float3 d_19)
 {
-    bool local_63 = (bool)0;
+    bool local_64 = (bool)0;
 
     float4 _e3 = frame.moon;
     float3 m_4 = _e3.xyz;
     float c_11 = dot(d_19, m_4);
     float _e9 = frame.moon.w;
     if (!((_e9 <= 0.0))) {
-        local_63 = (c_11 < MOON_COS_RADIUS);
+        local_64 = (c_11 < MOON_COS_RADIUS);
     } else {
-        local_63 = true;
+        local_64 = true;
     }
-    bool _e18 = local_63;
+    bool _e18 = local_64;
     if (_e18) {
         return (0.0).xxx;
     }
@@ -3628,7 +3631,7 @@ float3 stars(float3 d_20)
     uint face = 0u;
     float2 uv_1 = (0.0).xx;
     float major = 0.0;
-    bool local_64 = (bool)0;
+    bool local_65 = (bool)0;
     float3 star = (0.0).xxx;
 
     float e0_ = frame.night.w;
@@ -3637,11 +3640,11 @@ float3 stars(float3 d_20)
     }
     float3 a_10 = abs(d_20);
     if ((a_10.x >= a_10.y)) {
-        local_64 = (a_10.x >= a_10.z);
+        local_65 = (a_10.x >= a_10.z);
     } else {
-        local_64 = false;
+        local_65 = false;
     }
-    bool _e26 = local_64;
+    bool _e26 = local_65;
     if (_e26) {
         face = ((d_20.x > 0.0) ? 0u : 1u);
         uv_1 = d_20.zy;
@@ -3848,7 +3851,7 @@ void multiscatter_lut(uint3 id_1 : SV_DispatchThreadID)
     const float _e19 = air_bottom();
     float r_20 = (_e16 + (x_12.y * (_e18 - _e19)));
     float3 origin_7 = float3(0.0, r_20, 0.0);
-    float3 sun_10 = float3(sqrt(max((1.0 - (mu_s_7 * mu_s_7)), 0.0)), mu_s_7, 0.0);
+    float3 sun_9 = float3(sqrt(max((1.0 - (mu_s_7 * mu_s_7)), 0.0)), mu_s_7, 0.0);
     uint2 loop_bound_23 = uint2(4294967295u, 4294967295u);
     bool loop_init_19 = true;
     while(true) {
@@ -3896,7 +3899,7 @@ void multiscatter_lut(uint3 id_1 : SV_DispatchThreadID)
                     float3 t_10 = exp(-((_e72 + ((0.5 * _e71.extinction) * dt_6))));
                     float3 s_13 = (_e71.rayleigh + (_e71.mie).xxx);
                     float3 _e84 = l2_;
-                    const float3 _e90 = sun_transmittance(rp_7, dot((p_24 / (rp_7).xxx), sun_10));
+                    const float3 _e90 = sun_transmittance(rp_7, dot((p_24 / (rp_7).xxx), sun_9));
                     l2_ = (_e84 + ((((t_10 * s_13) * 0.07957747) * _e90) * dt_6));
                     float3 _e94 = f_ms;
                     f_ms = (_e94 + ((t_10 * s_13) * dt_6));
@@ -3908,7 +3911,7 @@ void multiscatter_lut(uint3 id_1 : SV_DispatchThreadID)
                 float3 g_7 = (origin_7 + (_e48 * _e49.x));
                 float3 _e111 = l2_;
                 float3 _e112 = tau;
-                const float3 _e117 = ground_radiance_sun(dot(normalize(g_7), sun_10));
+                const float3 _e117 = ground_radiance_sun(dot(normalize(g_7), sun_9));
                 l2_ = (_e111 + (exp(-(_e112)) * _e117));
             }
         }
@@ -3932,8 +3935,8 @@ void sky_view_lut(uint3 id_2 : SV_DispatchThreadID)
     const float _e15 = sky_view_elevation(x_13.y, _e14);
     const float _e16 = sun_azimuth();
     float phi_2 = (_e16 + (x_13.x * PI));
-    float3 d_26 = float3((cos(_e15) * cos(phi_2)), sin(_e15), (cos(_e15) * sin(phi_2)));
-    const float3 _e31 = sky_along(_e11, d_26);
+    float3 d_25 = float3((cos(_e15) * cos(phi_2)), sin(_e15), (cos(_e15) * sin(phi_2)));
+    const float3 _e31 = sky_along(_e11, d_25);
     sky_view_out[id_2.xy] = float4(_e31, 1.0);
     return;
 }
@@ -3953,8 +3956,8 @@ void aerial_perspective(uint3 id_3 : SV_DispatchThreadID)
     const float3 _e8 = camera_air_origin();
     const float2 _e9 = air_ray_end(_e8, _e7);
     float4 _e12 = frame.sun_direction;
-    float3 sun_11 = _e12.xyz;
-    float cos_theta_9 = dot(_e7, sun_11);
+    float3 sun_10 = _e12.xyz;
+    float cos_theta_9 = dot(_e7, sun_10);
     const float _e15 = phase_rayleigh(cos_theta_9);
     float _e19 = frame.air_mie.w;
     const float _e20 = phase_cornette_shanks_air(cos_theta_9, _e19);
@@ -3997,7 +4000,7 @@ void aerial_perspective(uint3 id_3 : SV_DispatchThreadID)
                     float dt_7 = max(min(0.25, (_e9.x - t0_1)), 0.0);
                     float3 p_25 = (_e8 + (_e7 * (t0_1 + (0.5 * dt_7))));
                     float r_21 = length(p_25);
-                    float mu_s_8 = dot((p_25 / (r_21).xxx), sun_11);
+                    float mu_s_8 = dot((p_25 / (r_21).xxx), sun_10);
                     const float _e64 = air_bottom();
                     const AirSample _e66 = air_at((r_21 - _e64));
                     float3 _e67 = tau_1;
@@ -4041,7 +4044,7 @@ void sky_ambient(uint3 id_4 : SV_DispatchThreadID)
     bool top_3 = (id_4.y == 1u);
     float t_12 = (((float(id_4.x) / 63.0) * 2.0) - 1.0);
     float mu_s_9 = ((sign(t_12) * t_12) * t_12);
-    float3 sun_12 = float3(sqrt(max((1.0 - (mu_s_9 * mu_s_9)), 0.0)), mu_s_9, 0.0);
+    float3 sun_11 = float3(sqrt(max((1.0 - (mu_s_9 * mu_s_9)), 0.0)), mu_s_9, 0.0);
     const float _e34 = air_bottom();
     float _e38 = frame.atmosphere.y;
     float3 origin_8 = float3(0.0, (_e34 + (_e38 * 0.001)), 0.0);
@@ -4066,10 +4069,10 @@ void sky_ambient(uint3 id_4 : SV_DispatchThreadID)
             uint _e57 = k_2;
             const float3 _e59 = fibonacci_direction(_e57, AMBIENT_DIRECTIONS);
             const float2 _e60 = air_ray_end(origin_8, _e59);
-            const Scattered _e63 = integrate_air(origin_8, _e59, _e60.x, AMBIENT_STEPS, sun_12);
+            const Scattered _e63 = integrate_air(origin_8, _e59, _e60.x, AMBIENT_STEPS, sun_11);
             float w_8 = abs(_e59.y);
             float3 _e66 = sum_1;
-            const float3 _e71 = with_ground(_e63, origin_8, _e59, _e60.x, sun_12, (_e60.y > 0.5));
+            const float3 _e71 = with_ground(_e63, origin_8, _e59, _e60.x, sun_11, (_e60.y > 0.5));
             sum_1 = (_e66 + (w_8 * _e71));
             float _e74 = weights;
             weights = (_e74 + w_8);
@@ -4098,7 +4101,7 @@ void ground_irradiance(uint3 id_5 : SV_DispatchThreadID)
         return;
     }
     float mu_s_10 = (((float(id_5.x) / 63.0) * 2.0) - 1.0);
-    float3 sun_13 = float3(sqrt(max((1.0 - (mu_s_10 * mu_s_10)), 0.0)), mu_s_10, 0.0);
+    float3 sun_12 = float3(sqrt(max((1.0 - (mu_s_10 * mu_s_10)), 0.0)), mu_s_10, 0.0);
     const float _e28 = air_bottom();
     float3 origin_9 = float3(0.0, (_e28 + 0.001), 0.0);
     uint2 loop_bound_28 = uint2(4294967295u, 4294967295u);
@@ -4124,7 +4127,7 @@ void ground_irradiance(uint3 id_5 : SV_DispatchThreadID)
             }
             const float2 _e48 = air_ray_end(origin_9, _e44);
             float3 _e49 = sum_2;
-            const Scattered _e52 = integrate_air(origin_9, _e44, _e48.x, AMBIENT_STEPS, sun_13);
+            const Scattered _e52 = integrate_air(origin_9, _e44, _e48.x, AMBIENT_STEPS, sun_12);
             sum_2 = (_e49 + (_e52.radiance * _e44.y));
         }
     }
@@ -4147,10 +4150,10 @@ void cloud_shadow(uint3 id_6 : SV_DispatchThreadID)
     }
     const float3 _e7 = shadow_ground_point(id_6.xy);
     float4 _e10 = frame.sun_direction;
-    float3 sun_14 = _e10.xyz;
+    float3 sun_13 = _e10.xyz;
     float rp_8 = frame.atmosphere.x;
     float3 up_2 = normalize(float3(_e7.x, (_e7.y + rp_8), _e7.z));
-    if ((dot(up_2, sun_14) > 0.0)) {
+    if ((dot(up_2, sun_13) > 0.0)) {
         float4 _e29 = frame.camera_position;
         float2 cam_xz_3 = _e29.xz;
         uint2 loop_bound_29 = uint2(4294967295u, 4294967295u);
@@ -4172,9 +4175,9 @@ void cloud_shadow(uint3 id_6 : SV_DispatchThreadID)
             {
                 uint _e42 = i_2;
                 const Layer _e43 = cloud_layer(_e42);
-                const Roots _e46 = ray_shell_from(_e7, 0.0, sun_14, _e43.bottom);
+                const Roots _e46 = ray_shell_from(_e7, 0.0, sun_13, _e43.bottom);
                 float start_2 = max(_e46.t1_, 0.0);
-                const Roots _e52 = ray_shell_from(_e7, 0.0, sun_14, _e43.top);
+                const Roots _e52 = ray_shell_from(_e7, 0.0, sun_13, _e43.top);
                 float end_2 = _e52.t1_;
                 float dt_8 = ((end_2 - start_2) / 16.0);
                 if (!((dt_8 > 0.0))) {
@@ -4198,7 +4201,7 @@ void cloud_shadow(uint3 id_6 : SV_DispatchThreadID)
                     }
                     {
                         uint _e65 = k_4;
-                        float3 q_12 = (_e7 + (sun_14 * (start_2 + ((float(_e65) + 0.5) * dt_8))));
+                        float3 q_12 = (_e7 + (sun_13 * (start_2 + ((float(_e65) + 0.5) * dt_8))));
                         float3 p_26 = float3((q_12.x + cam_xz_3.x), q_12.y, (q_12.z + cam_xz_3.y));
                         float _e81 = tau_2;
                         const float _e82 = altitude_of(q_12);
@@ -4909,12 +4912,12 @@ VertexOutput_sprite_vertex sprite_vertex(uint index : SV_VertexID)
     out_.uv = float2(((t_14.x * cs.x) - (t_14.y * cs.y)), ((t_14.x * cs.y) + (t_14.y * cs.x)));
     out_.tile = naga_f2u32(c_12.x);
     float4 _e160 = frame.sun_direction;
-    float3 sun_15 = _e160.xyz;
+    float3 sun_14 = _e160.xyz;
     const float3 _e164 = sprite_rel(b_12.xz, b_12.y);
     float3 centre_2 = (_e164 - cam_1);
     float3 from_centre = (vertex - centre_2);
-    float cos_angle_1 = (dot(from_centre, sun_15) / max(length(from_centre), 0.001));
-    const float _e177 = saturate_(((sun_15.y * 4.0) + 0.3));
+    float cos_angle_1 = (dot(from_centre, sun_14) / max(length(from_centre), 0.001));
+    const float _e177 = saturate_(((sun_14.y * 4.0) + 0.3));
     const float _e179 = altitude_of((vertex + cam_1));
     float _e183 = frame.atmosphere.y;
     float _e188 = frame.atmosphere.z;
@@ -4965,10 +4968,10 @@ void sprite_resolve(uint3 id_16 : SV_DispatchThreadID)
     }
     count(STAT_PIXELS, 1u);
     float4 c_13 = sprite_radiance_in.Load(int3(id_16.xy, int(0)));
-    float4 d_27 = sprite_depth_in.Load(int3(id_16.xy, int(0)));
+    float4 d_26 = sprite_depth_in.Load(int3(id_16.xy, int(0)));
     const float _e19 = saturate_(c_13.w);
     cloud_out[id_16.xy] = float4(c_13.xyz, (1.0 - _e19));
-    depth_out[id_16.xy] = float4(((d_27.w > 0.0001) ? (d_27.x / d_27.w) : 0.0), 0.0, 0.0, 0.0);
+    depth_out[id_16.xy] = float4(((d_26.w > 0.0001) ? (d_26.x / d_26.w) : 0.0), 0.0, 0.0, 0.0);
     return;
 }
 

@@ -198,8 +198,7 @@ constant uint AMBIENT_STEPS = 24u;
 constant uint SKY_AMBIENT_SUNS = 64u;
 constant uint GROUND_IRRADIANCE_SIZE = 64u;
 constant uint NO_LAYER = 4u;
-constant uint STEEP_STEPS = 2u;
-constant float STEEP_FIRST = 8.0;
+constant uint COLUMN_STEPS = 3u;
 constant float DECK_POWER = 8.0;
 constant float FORWARD_LOBE_THIN = 0.1;
 constant uint GROUND_IRRADIANCE_DIRECTIONS = 128u;
@@ -1492,6 +1491,7 @@ float segment_optical_depth(
     Layer l_5,
     metal::float3 d_13,
     float first,
+    float growth,
     uint steps_1,
     bool with_detail_1,
     thread Counters& counters_6,
@@ -1507,10 +1507,9 @@ float segment_optical_depth(
     float tau_4 = 0.0;
     uint i_10 = 0u;
     bool local_28 = {};
-    float _e11 = frame.extinction.x;
-    float _e15 = frame.extinction.y;
-    float sigma_t_1 = _e11 + _e15;
-    float growth = frame.march.y;
+    float _e12 = frame.extinction.x;
+    float _e16 = frame.extinction.y;
+    float sigma_t_1 = _e12 + _e16;
     seg = first;
     uint2 loop_bound_4 = uint2(4294967295u);
     bool loop_init_4 = true;
@@ -1518,44 +1517,44 @@ float segment_optical_depth(
         if (metal::all(loop_bound_4 == uint2(0u))) { break; }
         loop_bound_4 -= uint2(loop_bound_4.y == 0u, 1u);
         if (!loop_init_4) {
-            uint _e65 = i_10;
-            i_10 = _e65 + 1u;
+            uint _e62 = i_10;
+            i_10 = _e62 + 1u;
         }
         loop_init_4 = false;
-        uint _e28 = i_10;
-        if (_e28 < steps_1) {
+        uint _e25 = i_10;
+        if (_e25 < steps_1) {
         } else {
             break;
         }
         {
-            float _e30 = dist;
-            float _e31 = seg;
-            float s_8 = _e30 + (0.5 * _e31);
-            float _e37 = altitude_of(rel_3 + (d_13 * s_8), frame);
-            if (!((_e37 > l_5.top))) {
-                local_28 = _e37 < l_5.bottom;
+            float _e27 = dist;
+            float _e28 = seg;
+            float s_8 = _e27 + (0.5 * _e28);
+            float _e34 = altitude_of(rel_3 + (d_13 * s_8), frame);
+            if (!((_e34 > l_5.top))) {
+                local_28 = _e34 < l_5.bottom;
             } else {
                 local_28 = true;
             }
-            bool _e46 = local_28;
-            if (_e46) {
+            bool _e43 = local_28;
+            if (_e43) {
                 break;
             }
-            uint _e48 = counters_6.light;
-            counters_6.light = _e48 + 1u;
-            float _e51 = tau_4;
-            float _e54 = layer_density_with(p_7 + (d_13 * s_8), _e37, l_5, with_detail_1, counters_6, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
-            float _e56 = seg;
-            tau_4 = _e51 + ((_e54 * sigma_t_1) * _e56);
-            float _e59 = dist;
-            float _e60 = seg;
-            dist = _e59 + _e60;
-            float _e62 = seg;
-            seg = _e62 * growth;
+            uint _e45 = counters_6.light;
+            counters_6.light = _e45 + 1u;
+            float _e48 = tau_4;
+            float _e51 = layer_density_with(p_7 + (d_13 * s_8), _e34, l_5, with_detail_1, counters_6, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+            float _e53 = seg;
+            tau_4 = _e48 + ((_e51 * sigma_t_1) * _e53);
+            float _e56 = dist;
+            float _e57 = seg;
+            dist = _e56 + _e57;
+            float _e59 = seg;
+            seg = _e59 * growth;
         }
     }
-    float _e67 = tau_4;
-    return _e67;
+    float _e64 = tau_4;
+    return _e64;
 }
 
 float sun_optical_depth(
@@ -1581,66 +1580,67 @@ float sun_optical_depth(
     float _e15 = frame.extinction.y;
     float sigma_t_2 = _e11 + _e15;
     float _e20 = frame.march.z;
-    uint _e24 = frame.counts.w;
-    float _e26 = segment_optical_depth(rel_4, p_8, l_6, sun_3, _e20, _e24, true, counters_7, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
-    tau_5 = _e26;
-    float _e28 = altitude_of(rel_4, frame);
+    float _e24 = frame.march.y;
+    uint _e28 = frame.counts.w;
+    float _e30 = segment_optical_depth(rel_4, p_8, l_6, sun_3, _e20, _e24, _e28, true, counters_7, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+    tau_5 = _e30;
+    float _e32 = altitude_of(rel_4, frame);
     uint2 loop_bound_5 = uint2(4294967295u);
     bool loop_init_5 = true;
     while(true) {
         if (metal::all(loop_bound_5 == uint2(0u))) { break; }
         loop_bound_5 -= uint2(loop_bound_5.y == 0u, 1u);
         if (!loop_init_5) {
-            uint _e92 = j_1;
-            j_1 = _e92 + 1u;
+            uint _e96 = j_1;
+            j_1 = _e96 + 1u;
         }
         loop_init_5 = false;
-        uint _e31 = j_1;
-        uint _e32 = layer_count(frame);
-        if (_e31 < _e32) {
+        uint _e35 = j_1;
+        uint _e36 = layer_count(frame);
+        if (_e35 < _e36) {
         } else {
             break;
         }
         {
-            uint _e34 = j_1;
-            Layer _e35 = cloud_layer(_e34, frame);
-            if (_e35.bottom <= l_6.top) {
+            uint _e38 = j_1;
+            Layer _e39 = cloud_layer(_e38, frame);
+            if (_e39.bottom <= l_6.top) {
                 continue;
             }
-            Roots _e40 = ray_shell_from(rel_4, _e28, sun_3, _e35.bottom, frame);
-            Roots _e42 = ray_shell_from(rel_4, _e28, sun_3, _e35.top, frame);
-            if (!(!(_e40.hit))) {
-                local_29 = !(_e42.hit);
+            Roots _e44 = ray_shell_from(rel_4, _e32, sun_3, _e39.bottom, frame);
+            Roots _e46 = ray_shell_from(rel_4, _e32, sun_3, _e39.top, frame);
+            if (!(!(_e44.hit))) {
+                local_29 = !(_e46.hit);
             } else {
                 local_29 = true;
             }
-            bool _e51 = local_29;
-            if (!(_e51)) {
-                local_30 = !((_e42.t1_ > _e40.t1_));
+            bool _e55 = local_29;
+            if (!(_e55)) {
+                local_30 = !((_e46.t1_ > _e44.t1_));
             } else {
                 local_30 = true;
             }
-            bool _e60 = local_30;
-            if (!(_e60)) {
-                local_31 = _e40.t1_ <= 0.0;
+            bool _e64 = local_30;
+            if (!(_e64)) {
+                local_31 = _e44.t1_ <= 0.0;
             } else {
                 local_31 = true;
             }
-            bool _e68 = local_31;
-            if (_e68) {
+            bool _e72 = local_31;
+            if (_e72) {
                 continue;
             }
-            float s_9 = 0.5 * (_e40.t1_ + _e42.t1_);
-            uint _e75 = counters_7.light;
-            counters_7.light = _e75 + 1u;
-            float _e78 = tau_5;
-            float _e83 = altitude_of(rel_4 + (sun_3 * s_9), frame);
-            float _e84 = layer_density(p_8 + (sun_3 * s_9), _e83, _e35, counters_7, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
-            tau_5 = _e78 + ((_e84 * sigma_t_2) * (_e42.t1_ - _e40.t1_));
+            float s_9 = 0.5 * (_e44.t1_ + _e46.t1_);
+            uint _e79 = counters_7.light;
+            counters_7.light = _e79 + 1u;
+            float _e82 = tau_5;
+            float _e87 = altitude_of(rel_4 + (sun_3 * s_9), frame);
+            float _e88 = layer_density(p_8 + (sun_3 * s_9), _e87, _e39, counters_7, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+            tau_5 = _e82 + ((_e88 * sigma_t_2) * (_e46.t1_ - _e44.t1_));
         }
     }
-    float _e94 = tau_5;
-    return _e94;
+    float _e98 = tau_5;
+    return _e98;
 }
 
 float octave_optical_depth(
@@ -1658,6 +1658,7 @@ float octave_optical_depth(
 ) {
     bool local_32 = {};
     bool local_33 = {};
+    bool local_34 = {};
     float _e10 = saturate((l_7.coverage - 0.8) / 0.1);
     float _e14 = frame.octave_depth.x;
     float m_2 = _e14 * _e10;
@@ -1679,15 +1680,18 @@ float octave_optical_depth(
     }
     float _e41 = frame.atmosphere.x;
     metal::float3 up_1 = metal::normalize(metal::float3(rel_5.x, rel_5.y + _e41, rel_5.z));
-    metal::float4 _e48 = frame.sun_direction;
-    metal::float3 sun_4 = _e48.xyz;
-    metal::float3 d_23 = metal::normalize(sun_4 + up_1);
-    float mu0_1 = metal::max(metal::dot(sun_4, up_1), 0.001);
-    float _e58 = frame.march.z;
-    float _e63 = segment_optical_depth(rel_5, p_9, l_7, d_23, _e58 * STEEP_FIRST, STEEP_STEPS, false, counters_8, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
-    float _e67 = frame.octave_depth.y;
-    float steep = (_e63 * _e67) * metal::sqrt(mu0_1 / metal::max(metal::dot(d_23, up_1), 0.001));
-    return metal::mix(tau_6, steep, m_2);
+    float _e46 = altitude_of(rel_5, frame);
+    Roots _e48 = ray_shell_from(rel_5, _e46, up_1, l_7.top, frame);
+    if (_e48.hit) {
+        local_34 = _e48.t1_ > 0.0;
+    } else {
+        local_34 = false;
+    }
+    bool _e57 = local_34;
+    float len_1 = _e57 ? _e48.t1_ : 0.0;
+    float _e65 = segment_optical_depth(rel_5, p_9, l_7, up_1, len_1 / 3.0, 1.0, COLUMN_STEPS, false, counters_8, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
+    float _e69 = frame.octave_depth.y;
+    return metal::mix(tau_6, _e69 * _e65, m_2);
 }
 
 float far_optical_depth(
@@ -1698,19 +1702,19 @@ float far_optical_depth(
     metal::texture2d<float, metal::access::sample> weather_tex,
     metal::sampler noise_sampler
 ) {
-    bool local_34 = {};
-    float reach = {};
     bool local_35 = {};
+    float reach = {};
+    bool local_36 = {};
     float tau_7 = 0.0;
     uint i_11 = 0u;
     float chord = frame.light_model.z;
     if (!((chord <= 0.0))) {
         uint _e15 = frame.counts.w;
-        local_34 = _e15 == 0u;
+        local_35 = _e15 == 0u;
     } else {
-        local_34 = true;
+        local_35 = true;
     }
-    bool _e19 = local_34;
+    bool _e19 = local_35;
     if (_e19) {
         return 0.0;
     }
@@ -1724,17 +1728,17 @@ float far_optical_depth(
         reach = (_e41 * (metal::pow(growth_1, steps_3) - 1.0)) / (growth_1 - 1.0);
     }
     metal::float4 _e51 = frame.sun_direction;
-    metal::float3 sun_5 = _e51.xyz;
+    metal::float3 sun_4 = _e51.xyz;
     float _e53 = altitude_of(rel_6, frame);
-    Roots _e55 = ray_shell_from(rel_6, _e53, sun_5, l_8.top, frame);
+    Roots _e55 = ray_shell_from(rel_6, _e53, sun_4, l_8.top, frame);
     float _e57 = reach;
-    float len_1 = _e55.t1_ - _e57;
+    float len_2 = _e55.t1_ - _e57;
     if (!(!(_e55.hit))) {
-        local_35 = !((len_1 > 0.0));
+        local_36 = !((len_2 > 0.0));
     } else {
-        local_35 = true;
+        local_36 = true;
     }
-    bool _e68 = local_35;
+    bool _e68 = local_36;
     if (_e68) {
         return 0.0;
     }
@@ -1756,16 +1760,16 @@ float far_optical_depth(
         {
             float _e77 = reach;
             uint _e78 = i_11;
-            float t_5 = _e77 + (((static_cast<float>(_e78) + 0.5) * 0.25) * len_1);
-            float _e88 = altitude_of(rel_6 + (sun_5 * t_5), frame);
+            float t_5 = _e77 + (((static_cast<float>(_e78) + 0.5) * 0.25) * len_2);
+            float _e88 = altitude_of(rel_6 + (sun_4 * t_5), frame);
             float _e89 = layer_height(l_8, _e88);
             float _e90 = saturate(_e89);
-            Weather _e93 = sample_weather(p_10 + (sun_5 * t_5), l_8, frame, weather_tex, noise_sampler);
+            Weather _e93 = sample_weather(p_10 + (sun_4 * t_5), l_8, frame, weather_tex, noise_sampler);
             float cov = _e93.coverage;
             float _e96 = height_signal(_e90, l_8.cloud_type, frame);
             float f_3 = metal::min(cov * _e96, 0.95);
             float _e100 = tau_7;
-            tau_7 = _e100 + (((0.25 * len_1) * f_3) / ((1.0 - f_3) * chord));
+            tau_7 = _e100 + (((0.25 * len_2) * f_3) / ((1.0 - f_3) * chord));
         }
     }
     float _e112 = tau_7;
@@ -1994,11 +1998,11 @@ ScatteredLight scattered_light(
     float far_2 = 0.0;
     float tau_oct_1 = {};
     metal::float4 _e9 = frame.sun_direction;
-    metal::float3 sun_6 = _e9.xyz;
+    metal::float3 sun_5 = _e9.xyz;
     float _e11 = layer_height(l_9, alt_13);
     float _e12 = saturate(_e11);
     Weather _e19 = sample_weather(p_11, l_9, frame, weather_tex, noise_sampler);
-    bool _e20 = hits_ground(rel_8, alt_13, sun_6, frame);
+    bool _e20 = hits_ground(rel_8, alt_13, sun_5, frame);
     if (!(_e20)) {
         if (LIGHT_MARCH) {
             float _e27 = sun_optical_depth(rel_8, p_11, l_9, counters_9, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler);
@@ -2017,7 +2021,7 @@ ScatteredLight scattered_light(
         float _e37 = tau_oct_1;
         float _e38 = far_2;
         float _e39 = octave_buildup(density_2, frame);
-        SunScattering _e42 = sun_scattering(metal::dot(view, sun_6), view.y, _e36, _e37, _e38, _e39, _e19.coverage, _e12, l_9.coverage, frame);
+        SunScattering _e42 = sun_scattering(metal::dot(view, sun_5), view.y, _e36, _e37, _e38, _e39, _e19.coverage, _e12, l_9.coverage, frame);
         metal::float4 _e45 = frame.sun_illuminance;
         metal::float3 _e47 = sun_through_air(rel_8, frame, transmittance_lut_in);
         metal::float3 lit = _e45.xyz * _e47;
@@ -2132,13 +2136,13 @@ void count(
     uint value,
     device Stats& stats
 ) {
-    bool local_36 = {};
+    bool local_37 = {};
     if (STATS) {
-        local_36 = value != 0u;
+        local_37 = value != 0u;
     } else {
-        local_36 = false;
+        local_37 = false;
     }
-    bool _e8 = local_36;
+    bool _e8 = local_37;
     if (_e8) {
         uint _e12 = metal::atomic_fetch_add_explicit(&stats.counters.inner[index_1], value, metal::memory_order_relaxed);
         return;
@@ -2206,7 +2210,7 @@ bool march_layer(
     uint i_13 = 0u;
     uint stride = 1u;
     uint empty = 0u;
-    bool local_37 = {};
+    bool local_38 = {};
     float cam_alt_1 = frame.camera_position.y;
     metal::float4 _e12 = frame.camera_position;
     metal::float2 cam_xz = _e12.xz;
@@ -2258,11 +2262,11 @@ bool march_layer(
             empty = _e119 + 1u;
             if (dynamic_step) {
                 uint _e124 = empty;
-                local_37 = _e124 >= 8u;
+                local_38 = _e124 >= 8u;
             } else {
-                local_37 = false;
+                local_38 = false;
             }
-            bool _e128 = local_37;
+            bool _e128 = local_38;
             if (_e128) {
                 stride = 2u;
             }
@@ -2329,12 +2333,12 @@ MarchResult march_pixel(
     uint next = {};
     Interval span_2 = {};
     uint i_14 = {};
-    bool local_38 = {};
     bool local_39 = {};
     bool local_40 = {};
     bool local_41 = {};
     bool local_42 = {};
     bool local_43 = {};
+    bool local_44 = {};
     float depth_1 = 0.0;
     metal::float3 _e1 = view_ray(pixel_4, frame);
     float cam_alt_2 = frame.camera_position.y;
@@ -2381,11 +2385,11 @@ MarchResult march_pixel(
                     Interval _e51 = layer_interval(cam_alt_2, _e1, _e50, frame);
                     bool _e52 = ground_1;
                     if (!(_e52)) {
-                        local_38 = _e51.kind == RAY_HITS_GROUND;
+                        local_39 = _e51.kind == RAY_HITS_GROUND;
                     } else {
-                        local_38 = true;
+                        local_39 = true;
                     }
-                    bool _e60 = local_38;
+                    bool _e60 = local_39;
                     ground_1 = _e60;
                     float _e62 = last_start;
                     if (!((_e51.start > _e62))) {
@@ -2393,36 +2397,36 @@ MarchResult march_pixel(
                         if (_e51.start == _e68) {
                             uint _e72 = i_14;
                             uint _e73 = last_index;
-                            local_40 = _e72 > _e73;
+                            local_41 = _e72 > _e73;
                         } else {
-                            local_40 = false;
+                            local_41 = false;
                         }
-                        bool _e76 = local_40;
-                        local_39 = _e76;
+                        bool _e76 = local_41;
+                        local_40 = _e76;
                     } else {
-                        local_39 = true;
+                        local_40 = true;
                     }
-                    bool after = local_39;
+                    bool after = local_40;
                     if (_e51.kind == RAY_MARCH) {
-                        local_41 = after;
+                        local_42 = after;
                     } else {
-                        local_41 = false;
+                        local_42 = false;
                     }
-                    bool _e85 = local_41;
+                    bool _e85 = local_42;
                     if (_e85) {
                         uint _e88 = next;
                         if (!((_e88 == NO_LAYER))) {
                             float _e96 = span_2.start;
-                            local_43 = _e51.start < _e96;
+                            local_44 = _e51.start < _e96;
                         } else {
-                            local_43 = true;
+                            local_44 = true;
                         }
-                        bool _e99 = local_43;
-                        local_42 = _e99;
+                        bool _e99 = local_44;
+                        local_43 = _e99;
                     } else {
-                        local_42 = false;
+                        local_43 = false;
                     }
-                    bool _e101 = local_42;
+                    bool _e101 = local_43;
                     if (_e101) {
                         uint _e102 = i_14;
                         next = _e102;
@@ -2520,36 +2524,36 @@ metal::float2 reproject(
     float depth_2,
     constant Frame& frame
 ) {
-    bool local_44 = {};
     bool local_45 = {};
     bool local_46 = {};
+    bool local_47 = {};
     metal::float3 dir = {};
     metal::float4 _e4 = frame.previous_position;
     metal::float4 _e7 = frame.camera_position;
     if (metal::all(_e4 == _e7)) {
         metal::float4 _e14 = frame.previous_forward;
         metal::float4 _e17 = frame.camera_forward;
-        local_44 = metal::all(_e14 == _e17);
-    } else {
-        local_44 = false;
-    }
-    bool _e21 = local_44;
-    if (_e21) {
-        metal::float4 _e26 = frame.previous_right;
-        metal::float4 _e29 = frame.camera_right;
-        local_45 = metal::all(_e26 == _e29);
+        local_45 = metal::all(_e14 == _e17);
     } else {
         local_45 = false;
     }
-    bool _e33 = local_45;
-    if (_e33) {
-        metal::float4 _e38 = frame.previous_up;
-        metal::float4 _e41 = frame.camera_up;
-        local_46 = metal::all(_e38 == _e41);
+    bool _e21 = local_45;
+    if (_e21) {
+        metal::float4 _e26 = frame.previous_right;
+        metal::float4 _e29 = frame.camera_right;
+        local_46 = metal::all(_e26 == _e29);
     } else {
         local_46 = false;
     }
-    bool same = local_46;
+    bool _e33 = local_46;
+    if (_e33) {
+        metal::float4 _e38 = frame.previous_up;
+        metal::float4 _e41 = frame.camera_up;
+        local_47 = metal::all(_e38 == _e41);
+    } else {
+        local_47 = false;
+    }
+    bool same = local_47;
     if (same) {
         return static_cast<metal::float2>(pixel_5);
     }
@@ -2581,15 +2585,15 @@ bool on_screen(
     metal::float2 q,
     constant Frame& frame
 ) {
-    bool local_47 = {};
+    bool local_48 = {};
     metal::uint4 _e3 = frame.counts;
     metal::float2 size_3 = static_cast<metal::float2>(_e3.xy);
     if (metal::all(q >= metal::float2(-0.5))) {
-        local_47 = metal::all(q <= (size_3 - metal::float2(0.5)));
+        local_48 = metal::all(q <= (size_3 - metal::float2(0.5)));
     } else {
-        local_47 = false;
+        local_48 = false;
     }
-    bool _e18 = local_47;
+    bool _e18 = local_48;
     return _e18;
 }
 
@@ -2738,42 +2742,42 @@ Segments layer_segments(
     constant Frame& frame
 ) {
     Segments s_1 = Segments {metal::float2(0.0), metal::float2(0.0), 0u};
-    bool local_48 = {};
+    bool local_49 = {};
     metal::float2 a_1 = metal::float2(0.0);
     metal::float2 b_1 = metal::float2(0.0);
     uint n_2 = 0u;
-    bool local_49 = {};
     bool local_50 = {};
     bool local_51 = {};
     bool local_52 = {};
+    bool local_53 = {};
     metal::float2 _e10 = layers_span(frame);
     float bottom_2 = _e10.x;
     Roots _e12 = ray_shell_from(p_13, alt_14, d_15, bottom_2, frame);
     Roots _e14 = ray_shell_from(p_13, alt_14, d_15, _e10.y, frame);
     bool _e15 = hits_ground(p_13, alt_14, d_15, frame);
     if (!(!(_e14.hit))) {
-        local_48 = _e14.t1_ <= 0.0;
+        local_49 = _e14.t1_ <= 0.0;
     } else {
-        local_48 = true;
+        local_49 = true;
     }
-    bool _e25 = local_48;
+    bool _e25 = local_49;
     if (_e25) {
         Segments _e26 = s_1;
         return _e26;
     }
     float entry = metal::max(_e14.t0_, 0.0);
     if (_e12.hit) {
-        local_49 = _e12.t0_ > 0.0;
-    } else {
-        local_49 = false;
-    }
-    bool _e45 = local_49;
-    if (_e45) {
-        local_50 = alt_14 >= bottom_2;
+        local_50 = _e12.t0_ > 0.0;
     } else {
         local_50 = false;
     }
-    bool _e50 = local_50;
+    bool _e45 = local_50;
+    if (_e45) {
+        local_51 = alt_14 >= bottom_2;
+    } else {
+        local_51 = false;
+    }
+    bool _e50 = local_51;
     if (_e50) {
         uint _e51 = n_2;
         a_1[_e51] = entry;
@@ -2782,11 +2786,11 @@ Segments layer_segments(
         uint _e56 = n_2;
         n_2 = _e56 + static_cast<uint>(_e12.t0_ > entry);
         if (!(_e15)) {
-            local_51 = _e14.t1_ > _e12.t1_;
+            local_52 = _e14.t1_ > _e12.t1_;
         } else {
-            local_51 = false;
+            local_52 = false;
         }
-        bool _e68 = local_51;
+        bool _e68 = local_52;
         if (_e68) {
             uint _e69 = n_2;
             a_1[_e69] = metal::max(_e12.t1_, entry);
@@ -2798,11 +2802,11 @@ Segments layer_segments(
     } else {
         if (alt_14 < bottom_2) {
             if (!(_e15)) {
-                local_52 = _e12.hit;
+                local_53 = _e12.hit;
             } else {
-                local_52 = false;
+                local_53 = false;
             }
-            bool _e85 = local_52;
+            bool _e85 = local_53;
             if (_e85) {
                 a_1.x = metal::max(_e12.t1_, 0.0);
                 b_1.x = _e14.t1_;
@@ -3172,15 +3176,15 @@ PathResult trace_path(
     metal::texture2d<float, metal::access::sample> occupancy_in
 ) {
     PathResult out_2 = PathResult {metal::float3(0.0), 1.0, -1.0};
-    bool local_53 = {};
     bool local_54 = {};
     bool local_55 = {};
+    bool local_56 = {};
     uint max_orders = MAX_PATH_ORDERS;
     metal::float3 pos_1 = {};
     metal::float3 dir_5 = {};
     float throughput = 1.0;
     uint order = 0u;
-    bool local_56 = {};
+    bool local_57 = {};
     if (span_3.kind != RAY_MARCH) {
         PathResult _e13 = out_2;
         return _e13;
@@ -3197,7 +3201,7 @@ PathResult trace_path(
     }
     out_2.depth = _e33;
     metal::float4 _e40 = frame.sun_direction;
-    metal::float3 sun_7 = _e40.xyz;
+    metal::float3 sun_6 = _e40.xyz;
     float _e45 = frame.extinction.x;
     float _e49 = frame.extinction.y;
     float sigma_t_5 = _e45 + _e49;
@@ -3208,23 +3212,23 @@ PathResult trace_path(
         bool _e68 = physical_sky(frame);
         if (!(_e68)) {
             metal::float4 _e74 = frame.ambient_bottom;
-            local_54 = metal::any(_e74.xyz > metal::float3(0.0));
-        } else {
-            local_54 = true;
-        }
-        bool _e81 = local_54;
-        if (!(_e81)) {
-            metal::float4 _e87 = frame.ambient_top;
-            local_55 = metal::any(_e87.xyz > metal::float3(0.0));
+            local_55 = metal::any(_e74.xyz > metal::float3(0.0));
         } else {
             local_55 = true;
         }
-        bool _e94 = local_55;
-        local_53 = _e94;
+        bool _e81 = local_55;
+        if (!(_e81)) {
+            metal::float4 _e87 = frame.ambient_top;
+            local_56 = metal::any(_e87.xyz > metal::float3(0.0));
+        } else {
+            local_56 = true;
+        }
+        bool _e94 = local_56;
+        local_54 = _e94;
     } else {
-        local_53 = false;
+        local_54 = false;
     }
-    bool ambient_on = local_53;
+    bool ambient_on = local_54;
     uint _e102 = frame.misc.z;
     if (_e102 > 0u) {
         uint _e108 = frame.misc.z;
@@ -3244,19 +3248,19 @@ PathResult trace_path(
         float _e125 = altitude_of(_e124, frame);
         float _e126 = height_fraction(_e125, frame);
         metal::float3 _e127 = pos_1;
-        bool _e128 = hits_ground(_e127, _e125, sun_7, frame);
+        bool _e128 = hits_ground(_e127, _e125, sun_6, frame);
         if (!(_e128)) {
             metal::float3 _e130 = pos_1;
             metal::float3 _e131 = pos_1;
-            Segments _e132 = layer_segments(_e131, _e125, sun_7, frame);
-            float _e133 = transmittance_along(_e130, sun_7, _e132, rng_6, counters_15, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler, occupancy_in);
+            Segments _e132 = layer_segments(_e131, _e125, sun_6, frame);
+            float _e133 = transmittance_along(_e130, sun_6, _e132, rng_6, counters_15, frame, shape_tex, detail_tex, weather_tex, curl_tex, noise_sampler, occupancy_in);
             metal::float3 _e135 = out_2.radiance;
             metal::float4 _e138 = frame.sun_illuminance;
             metal::float3 _e140 = pos_1;
             metal::float3 _e141 = sun_through_air(_e140, frame, transmittance_lut_in);
             float _e143 = throughput;
             metal::float3 _e144 = dir_5;
-            float _e147 = phase(metal::dot(_e144, sun_7), 1.0, frame);
+            float _e147 = phase(metal::dot(_e144, sun_6), 1.0, frame);
             out_2.radiance = _e135 + ((_e138.xyz * _e141) * ((_e143 * _e147) * _e133));
         }
         metal::float3 _e152 = dir_5;
@@ -3286,11 +3290,11 @@ PathResult trace_path(
         uint _e179 = order;
         if (_e179 >= 3u) {
             float _e184 = throughput;
-            local_56 = _e184 < 0.1;
+            local_57 = _e184 < 0.1;
         } else {
-            local_56 = false;
+            local_57 = false;
         }
-        bool _e188 = local_56;
+        bool _e188 = local_57;
         if (_e188) {
             float _e189 = rng_next(rng_6);
             float _e190 = throughput;
@@ -3314,35 +3318,35 @@ PathResult trace_path(
 bool camera_still(
     constant Frame& frame
 ) {
-    bool local_57 = {};
     bool local_58 = {};
     bool local_59 = {};
+    bool local_60 = {};
     metal::float4 _e2 = frame.camera_position;
     metal::float4 _e5 = frame.previous_position;
     if (metal::all(_e2 == _e5)) {
         metal::float4 _e12 = frame.camera_forward;
         metal::float4 _e15 = frame.previous_forward;
-        local_57 = metal::all(_e12 == _e15);
-    } else {
-        local_57 = false;
-    }
-    bool _e19 = local_57;
-    if (_e19) {
-        metal::float4 _e24 = frame.camera_right;
-        metal::float4 _e28 = frame.previous_right;
-        local_58 = metal::all(_e24.xyz == _e28.xyz);
+        local_58 = metal::all(_e12 == _e15);
     } else {
         local_58 = false;
     }
-    bool _e33 = local_58;
-    if (_e33) {
-        metal::float4 _e38 = frame.camera_up;
-        metal::float4 _e42 = frame.previous_up;
-        local_59 = metal::all(_e38.xyz == _e42.xyz);
+    bool _e19 = local_58;
+    if (_e19) {
+        metal::float4 _e24 = frame.camera_right;
+        metal::float4 _e28 = frame.previous_right;
+        local_59 = metal::all(_e24.xyz == _e28.xyz);
     } else {
         local_59 = false;
     }
-    bool _e47 = local_59;
+    bool _e33 = local_59;
+    if (_e33) {
+        metal::float4 _e38 = frame.camera_up;
+        metal::float4 _e42 = frame.previous_up;
+        local_60 = metal::all(_e38.xyz == _e42.xyz);
+    } else {
+        local_60 = false;
+    }
+    bool _e47 = local_60;
     return _e47;
 }
 
@@ -3370,12 +3374,12 @@ float basic_sun_depth(
         return 0.0;
     }
     metal::float4 _e12 = frame.sun_direction;
-    metal::float3 sun_8 = _e12.xyz;
+    metal::float3 sun_7 = _e12.xyz;
     float rp_5 = frame.atmosphere.x;
     float top_2 = frame.atmosphere.z;
     float _e25 = frame.atmosphere.y;
     float thickness = top_2 - _e25;
-    Roots _e39 = solve_sphere(metal::dot(sun_8, metal::float3(rel_11.x, rel_11.y + rp_5, rel_11.z)), (alt_15 - top_2) * ((alt_15 + top_2) + (2.0 * rp_5)));
+    Roots _e39 = solve_sphere(metal::dot(sun_7, metal::float3(rel_11.x, rel_11.y + rp_5, rel_11.z)), (alt_15 - top_2) * ((alt_15 + top_2) + (2.0 * rp_5)));
     float length = metal::min(metal::max(_e39.t1_, 0.0), 3.0 * thickness);
     float dt_3 = length / static_cast<float>(steps_4);
     float _e51 = frame.extinction.x;
@@ -3402,7 +3406,7 @@ float basic_sun_depth(
             uint _e68 = counters_16.light;
             counters_16.light = _e68 + 1u;
             uint _e71 = i_16;
-            metal::float3 q_8 = rel_11 + (sun_8 * (static_cast<float>(_e71) * dt_3));
+            metal::float3 q_8 = rel_11 + (sun_7 * (static_cast<float>(_e71) * dt_3));
             metal::float3 p_22 = metal::float3(q_8.x + cam_xz_1.x, q_8.y, q_8.z + cam_xz_1.y);
             float _e84 = tau_10;
             float _e85 = altitude_of(q_8, frame);
@@ -3628,9 +3632,9 @@ float sprite_texture(
             float _e93 = atlas_hash(tile_1, 100u + _e91);
             float r_18 = 0.14 + (0.1 * _e93);
             metal::float2 _e98 = at;
-            float d_24 = metal::length(uv - _e98) / r_18;
+            float d_23 = metal::length(uv - _e98) / r_18;
             float _e102 = billow;
-            float _e106 = saturate(1.0 - (d_24 * d_24));
+            float _e106 = saturate(1.0 - (d_23 * d_23));
             billow = metal::max(_e102, _e106);
         }
     }
@@ -3652,10 +3656,10 @@ metal::float3 sprite_rel(
 ) {
     float rp_6 = frame.atmosphere.x;
     metal::float4 _e8 = frame.camera_position;
-    metal::float2 d_25 = xz - _e8.xz;
-    float k_19 = (alt_16 * (alt_16 + (2.0 * rp_6))) - metal::dot(d_25, d_25);
+    metal::float2 d_24 = xz - _e8.xz;
+    float k_19 = (alt_16 * (alt_16 + (2.0 * rp_6))) - metal::dot(d_24, d_24);
     float y_3 = k_19 / (rp_6 + metal::sqrt(metal::max((rp_6 * rp_6) + k_19, 0.0)));
-    return metal::float3(d_25.x, y_3, d_25.y);
+    return metal::float3(d_24.x, y_3, d_24.y);
 }
 
 SpriteCell sprite_cell(
@@ -3664,10 +3668,10 @@ SpriteCell sprite_cell(
 ) {
     metal::int2 start_1 = {};
     uint k_10 = 3u;
-    bool local_60 = {};
     bool local_61 = {};
+    bool local_62 = {};
     uint level_1 = naga_div(cell, 64u);
-    metal::int2 local_65 = metal::int2(static_cast<int>(naga_mod(cell, 8u)), static_cast<int>(naga_mod(naga_div(cell, 8u), 8u)));
+    metal::int2 local_66 = metal::int2(static_cast<int>(naga_mod(cell, 8u)), static_cast<int>(naga_mod(naga_div(cell, 8u), 8u)));
     metal::float4 _e15 = frame.camera_position;
     start_1 = as_type<metal::int2>(as_type<metal::uint2>(naga_f2i32(metal::floor(_e15.xz / metal::float2(12000.0)))) - as_type<metal::uint2>(metal::int2(4)));
     uint2 loop_bound_21 = uint2(4294967295u);
@@ -3691,19 +3695,19 @@ SpriteCell sprite_cell(
         }
     }
     if (level_1 > 0u) {
-        local_60 = metal::all(local_65 >= metal::int2(2));
-    } else {
-        local_60 = false;
-    }
-    bool _e47 = local_60;
-    if (_e47) {
-        local_61 = metal::all(local_65 < metal::int2(6));
+        local_61 = metal::all(local_66 >= metal::int2(2));
     } else {
         local_61 = false;
     }
-    bool covered = local_61;
+    bool _e47 = local_61;
+    if (_e47) {
+        local_62 = metal::all(local_66 < metal::int2(6));
+    } else {
+        local_62 = false;
+    }
+    bool covered = local_62;
     metal::int2 _e56 = start_1;
-    return SpriteCell {as_type<metal::int2>(as_type<metal::uint2>(_e56) + as_type<metal::uint2>(local_65)), SPRITE_CELL0_ * static_cast<float>(1u << level_1), covered};
+    return SpriteCell {as_type<metal::int2>(as_type<metal::uint2>(_e56) + as_type<metal::uint2>(local_66)), SPRITE_CELL0_ * static_cast<float>(1u << level_1), covered};
 }
 
 SpriteCandidate sprite_candidate(
@@ -3776,14 +3780,14 @@ float sprite_sun_level(
 metal::float2 sprite_corner(
     uint k_11
 ) {
-    bool local_62 = {};
+    bool local_63 = {};
     uint q_10 = (k_11 >= 3u) ? ((k_11 == 3u) ? 0u : (k_11 - 2u)) : k_11;
     if (!((q_10 == 1u))) {
-        local_62 = q_10 == 2u;
+        local_63 = q_10 == 2u;
     } else {
-        local_62 = true;
+        local_63 = true;
     }
-    bool _e18 = local_62;
+    bool _e18 = local_63;
     return metal::float2(_e18 ? 1.0 : -1.0, (q_10 >= 2u) ? 1.0 : -1.0);
 }
 
@@ -3793,23 +3797,23 @@ metal::float3 sky_radiance(
     constant Frame& frame
 ) {
     metal::float4 _e4 = frame.sun_direction;
-    metal::float3 sun_9 = _e4.xyz;
+    metal::float3 sun_8 = _e4.xyz;
     metal::float4 _e8 = frame.sun_illuminance;
     metal::float3 e_1 = _e8.xyz;
-    float _e15 = saturate((sun_9.y * 4.0) + 0.3);
+    float _e15 = saturate((sun_8.y * 4.0) + 0.3);
     bool _e19 = hits_ground(metal::float3(0.0, alt_17, 0.0), alt_17, d_17, frame);
     if (_e19) {
         metal::float3 ground_albedo = metal::float3(0.035, 0.035, 0.03);
-        return ground_albedo * (((e_1 * metal::max(sun_9.y, 0.0)) / metal::float3(3.1415927)) + ((0.05 * e_1) * _e15));
+        return ground_albedo * (((e_1 * metal::max(sun_8.y, 0.0)) / metal::float3(3.1415927)) + ((0.05 * e_1) * _e15));
     }
     metal::float3 zenith = metal::float3(0.018, 0.04, 0.1);
     metal::float3 horizon_2 = metal::float3(0.07, 0.085, 0.11);
     float _e45 = saturate(d_17.y);
     metal::float3 gradient_1 = metal::mix(horizon_2, zenith, metal::sqrt(_e45));
     metal::float3 sunset = ((1.0 - (_e15 * 0.8)) * metal::pow(1.0 - _e45, 6.0)) * metal::float3(0.25, 0.1, 0.0);
-    float _e64 = phase_hg(metal::dot(d_17, sun_9), 0.76);
+    float _e64 = phase_hg(metal::dot(d_17, sun_8), 0.76);
     float glow = _e64 * 0.02;
-    float _e73 = saturate((sun_9.y * 10.0) + 1.0);
+    float _e73 = saturate((sun_8.y * 10.0) + 1.0);
     return e_1 * (((gradient_1 * _e15) + (sunset * _e73)) + metal::float3(glow * _e15));
 }
 
@@ -3830,17 +3834,17 @@ metal::float3 moon_disk(
     metal::float3 d_19,
     constant Frame& frame
 ) {
-    bool local_63 = {};
+    bool local_64 = {};
     metal::float4 _e3 = frame.moon;
     metal::float3 m_4 = _e3.xyz;
     float c_11 = metal::dot(d_19, m_4);
     float _e9 = frame.moon.w;
     if (!((_e9 <= 0.0))) {
-        local_63 = c_11 < MOON_COS_RADIUS;
+        local_64 = c_11 < MOON_COS_RADIUS;
     } else {
-        local_63 = true;
+        local_64 = true;
     }
-    bool _e18 = local_63;
+    bool _e18 = local_64;
     if (_e18) {
         return metal::float3(0.0);
     }
@@ -3860,7 +3864,7 @@ metal::float3 stars(
     uint face = 0u;
     metal::float2 uv_1 = metal::float2(0.0);
     float major = 0.0;
-    bool local_64 = {};
+    bool local_65 = {};
     metal::float3 star = metal::float3(0.0);
     float e0_ = frame.night.w;
     if (e0_ <= 0.0) {
@@ -3868,11 +3872,11 @@ metal::float3 stars(
     }
     metal::float3 a_10 = metal::abs(d_20);
     if (a_10.x >= a_10.y) {
-        local_64 = a_10.x >= a_10.z;
+        local_65 = a_10.x >= a_10.z;
     } else {
-        local_64 = false;
+        local_65 = false;
     }
-    bool _e26 = local_64;
+    bool _e26 = local_65;
     if (_e26) {
         face = (d_20.x > 0.0) ? 0u : 1u;
         uv_1 = d_20.zy;
@@ -4100,7 +4104,7 @@ struct multiscatter_lutInput {
     float _e19 = air_bottom(frame);
     float r_20 = _e16 + (x_12.y * (_e18 - _e19));
     metal::float3 origin_7 = metal::float3(0.0, r_20, 0.0);
-    metal::float3 sun_10 = metal::float3(metal::sqrt(metal::max(1.0 - (mu_s_7 * mu_s_7), 0.0)), mu_s_7, 0.0);
+    metal::float3 sun_9 = metal::float3(metal::sqrt(metal::max(1.0 - (mu_s_7 * mu_s_7), 0.0)), mu_s_7, 0.0);
     uint2 loop_bound_23 = uint2(4294967295u);
     bool loop_init_19 = true;
     while(true) {
@@ -4148,7 +4152,7 @@ struct multiscatter_lutInput {
                     metal::float3 t_10 = metal::exp(-((_e72 + ((0.5 * _e71.extinction) * dt_6))));
                     metal::float3 s_13 = _e71.rayleigh + metal::float3(_e71.mie);
                     metal::float3 _e84 = l2_;
-                    metal::float3 _e90 = sun_transmittance(rp_7, metal::dot(p_24 / metal::float3(rp_7), sun_10), frame, transmittance_lut_in);
+                    metal::float3 _e90 = sun_transmittance(rp_7, metal::dot(p_24 / metal::float3(rp_7), sun_9), frame, transmittance_lut_in);
                     l2_ = _e84 + ((((t_10 * s_13) * 0.07957747) * _e90) * dt_6);
                     metal::float3 _e94 = f_ms;
                     f_ms = _e94 + ((t_10 * s_13) * dt_6);
@@ -4160,7 +4164,7 @@ struct multiscatter_lutInput {
                 metal::float3 g_7 = origin_7 + (_e48 * _e49.x);
                 metal::float3 _e111 = l2_;
                 metal::float3 _e112 = tau;
-                metal::float3 _e117 = ground_radiance_sun(metal::dot(metal::normalize(g_7), sun_10), frame, transmittance_lut_in);
+                metal::float3 _e117 = ground_radiance_sun(metal::dot(metal::normalize(g_7), sun_9), frame, transmittance_lut_in);
                 l2_ = _e111 + (metal::exp(-(_e112)) * _e117);
             }
         }
@@ -4192,8 +4196,8 @@ struct sky_view_lutInput {
     float _e15 = sky_view_elevation(x_13.y, _e14);
     float _e16 = sun_azimuth(frame);
     float phi_2 = _e16 + (x_13.x * PI);
-    metal::float3 d_26 = metal::float3(metal::cos(_e15) * metal::cos(phi_2), metal::sin(_e15), metal::cos(_e15) * metal::sin(phi_2));
-    metal::float3 _e31 = sky_along(_e11, d_26, frame, transmittance_lut_in, multiscatter_lut_in, ground_irradiance_in);
+    metal::float3 d_25 = metal::float3(metal::cos(_e15) * metal::cos(phi_2), metal::sin(_e15), metal::cos(_e15) * metal::sin(phi_2));
+    metal::float3 _e31 = sky_along(_e11, d_25, frame, transmittance_lut_in, multiscatter_lut_in, ground_irradiance_in);
     sky_view_out.write(metal::float4(_e31, 1.0), metal::uint2(id_2.xy));
     return;
 }
@@ -4219,8 +4223,8 @@ struct aerial_perspectiveInput {
     metal::float3 _e8 = camera_air_origin(frame);
     metal::float2 _e9 = air_ray_end(_e8, _e7, frame);
     metal::float4 _e12 = frame.sun_direction;
-    metal::float3 sun_11 = _e12.xyz;
-    float cos_theta_9 = metal::dot(_e7, sun_11);
+    metal::float3 sun_10 = _e12.xyz;
+    float cos_theta_9 = metal::dot(_e7, sun_10);
     float _e15 = phase_rayleigh(cos_theta_9);
     float _e19 = frame.air_mie.w;
     float _e20 = phase_cornette_shanks_air(cos_theta_9, _e19);
@@ -4263,7 +4267,7 @@ struct aerial_perspectiveInput {
                     float dt_7 = metal::max(metal::min(0.25, _e9.x - t0_1), 0.0);
                     metal::float3 p_25 = _e8 + (_e7 * (t0_1 + (0.5 * dt_7)));
                     float r_21 = metal::length(p_25);
-                    float mu_s_8 = metal::dot(p_25 / metal::float3(r_21), sun_11);
+                    float mu_s_8 = metal::dot(p_25 / metal::float3(r_21), sun_10);
                     float _e64 = air_bottom(frame);
                     AirSample _e66 = air_at(r_21 - _e64, frame);
                     metal::float3 _e67 = tau_1;
@@ -4314,7 +4318,7 @@ struct sky_ambientInput {
     bool top_3 = id_4.y == 1u;
     float t_12 = ((static_cast<float>(id_4.x) / 63.0) * 2.0) - 1.0;
     float mu_s_9 = (metal::sign(t_12) * t_12) * t_12;
-    metal::float3 sun_12 = metal::float3(metal::sqrt(metal::max(1.0 - (mu_s_9 * mu_s_9), 0.0)), mu_s_9, 0.0);
+    metal::float3 sun_11 = metal::float3(metal::sqrt(metal::max(1.0 - (mu_s_9 * mu_s_9), 0.0)), mu_s_9, 0.0);
     float _e34 = air_bottom(frame);
     float _e38 = frame.atmosphere.y;
     metal::float3 origin_8 = metal::float3(0.0, _e34 + (_e38 * 0.001), 0.0);
@@ -4339,10 +4343,10 @@ struct sky_ambientInput {
             uint _e57 = k_2;
             metal::float3 _e59 = fibonacci_direction(_e57, AMBIENT_DIRECTIONS);
             metal::float2 _e60 = air_ray_end(origin_8, _e59, frame);
-            Scattered _e63 = integrate_air(origin_8, _e59, _e60.x, AMBIENT_STEPS, sun_12, frame, transmittance_lut_in, multiscatter_lut_in);
+            Scattered _e63 = integrate_air(origin_8, _e59, _e60.x, AMBIENT_STEPS, sun_11, frame, transmittance_lut_in, multiscatter_lut_in);
             float w_8 = metal::abs(_e59.y);
             metal::float3 _e66 = sum_1;
-            metal::float3 _e71 = with_ground(_e63, origin_8, _e59, _e60.x, sun_12, _e60.y > 0.5, frame, transmittance_lut_in, ground_irradiance_in);
+            metal::float3 _e71 = with_ground(_e63, origin_8, _e59, _e60.x, sun_11, _e60.y > 0.5, frame, transmittance_lut_in, ground_irradiance_in);
             sum_1 = _e66 + (w_8 * _e71);
             float _e74 = weights;
             weights = _e74 + w_8;
@@ -4377,7 +4381,7 @@ struct ground_irradianceInput {
         return;
     }
     float mu_s_10 = ((static_cast<float>(id_5.x) / 63.0) * 2.0) - 1.0;
-    metal::float3 sun_13 = metal::float3(metal::sqrt(metal::max(1.0 - (mu_s_10 * mu_s_10), 0.0)), mu_s_10, 0.0);
+    metal::float3 sun_12 = metal::float3(metal::sqrt(metal::max(1.0 - (mu_s_10 * mu_s_10), 0.0)), mu_s_10, 0.0);
     float _e28 = air_bottom(frame);
     metal::float3 origin_9 = metal::float3(0.0, _e28 + 0.001, 0.0);
     uint2 loop_bound_28 = uint2(4294967295u);
@@ -4403,7 +4407,7 @@ struct ground_irradianceInput {
             }
             metal::float2 _e48 = air_ray_end(origin_9, _e44, frame);
             metal::float3 _e49 = sum_2;
-            Scattered _e52 = integrate_air(origin_9, _e44, _e48.x, AMBIENT_STEPS, sun_13, frame, transmittance_lut_in, multiscatter_lut_in);
+            Scattered _e52 = integrate_air(origin_9, _e44, _e48.x, AMBIENT_STEPS, sun_12, frame, transmittance_lut_in, multiscatter_lut_in);
             sum_2 = _e49 + (_e52.radiance * _e44.y);
         }
     }
@@ -4435,10 +4439,10 @@ struct cloud_shadowInput {
     }
     metal::float3 _e7 = shadow_ground_point(id_6.xy, frame);
     metal::float4 _e10 = frame.sun_direction;
-    metal::float3 sun_14 = _e10.xyz;
+    metal::float3 sun_13 = _e10.xyz;
     float rp_8 = frame.atmosphere.x;
     metal::float3 up_2 = metal::normalize(metal::float3(_e7.x, _e7.y + rp_8, _e7.z));
-    if (metal::dot(up_2, sun_14) > 0.0) {
+    if (metal::dot(up_2, sun_13) > 0.0) {
         metal::float4 _e29 = frame.camera_position;
         metal::float2 cam_xz_3 = _e29.xz;
         uint2 loop_bound_29 = uint2(4294967295u);
@@ -4460,9 +4464,9 @@ struct cloud_shadowInput {
             {
                 uint _e42 = i_2;
                 Layer _e43 = cloud_layer(_e42, frame);
-                Roots _e46 = ray_shell_from(_e7, 0.0, sun_14, _e43.bottom, frame);
+                Roots _e46 = ray_shell_from(_e7, 0.0, sun_13, _e43.bottom, frame);
                 float start_2 = metal::max(_e46.t1_, 0.0);
-                Roots _e52 = ray_shell_from(_e7, 0.0, sun_14, _e43.top, frame);
+                Roots _e52 = ray_shell_from(_e7, 0.0, sun_13, _e43.top, frame);
                 float end_2 = _e52.t1_;
                 float dt_8 = (end_2 - start_2) / 16.0;
                 if (!((dt_8 > 0.0))) {
@@ -4486,7 +4490,7 @@ struct cloud_shadowInput {
                     }
                     {
                         uint _e65 = k_4;
-                        metal::float3 q_12 = _e7 + (sun_14 * (start_2 + ((static_cast<float>(_e65) + 0.5) * dt_8)));
+                        metal::float3 q_12 = _e7 + (sun_13 * (start_2 + ((static_cast<float>(_e65) + 0.5) * dt_8)));
                         metal::float3 p_26 = metal::float3(q_12.x + cam_xz_3.x, q_12.y, q_12.z + cam_xz_3.y);
                         float _e81 = tau_2;
                         float _e82 = altitude_of(q_12, frame);
@@ -5328,12 +5332,12 @@ vertex sprite_vertexOutput sprite_vertex(
     out.uv = metal::float2((t_14.x * cs.x) - (t_14.y * cs.y), (t_14.x * cs.y) + (t_14.y * cs.x));
     out.tile = naga_f2u32(c_12.x);
     metal::float4 _e160 = frame.sun_direction;
-    metal::float3 sun_15 = _e160.xyz;
+    metal::float3 sun_14 = _e160.xyz;
     metal::float3 _e164 = sprite_rel(b_12.xz, b_12.y, frame);
     metal::float3 centre_2 = _e164 - cam_1;
     metal::float3 from_centre = vertex_ - centre_2;
-    float cos_angle_1 = metal::dot(from_centre, sun_15) / metal::max(metal::length(from_centre), 0.001);
-    float _e177 = saturate((sun_15.y * 4.0) + 0.3);
+    float cos_angle_1 = metal::dot(from_centre, sun_14) / metal::max(metal::length(from_centre), 0.001);
+    float _e177 = saturate((sun_14.y * 4.0) + 0.3);
     float _e179 = altitude_of(vertex_ + cam_1, frame);
     float _e183 = frame.atmosphere.y;
     float _e188 = frame.atmosphere.z;
@@ -5406,10 +5410,10 @@ struct sprite_resolveInput {
     }
     count(STAT_PIXELS, 1u, stats);
     metal::float4 c_13 = sprite_radiance_in.read(metal::uint2(id_16.xy), 0);
-    metal::float4 d_27 = sprite_depth_in.read(metal::uint2(id_16.xy), 0);
+    metal::float4 d_26 = sprite_depth_in.read(metal::uint2(id_16.xy), 0);
     float _e19 = saturate(c_13.w);
     cloud_out.write(metal::float4(c_13.xyz, 1.0 - _e19), metal::uint2(id_16.xy));
-    depth_out.write(metal::float4((d_27.w > 0.0001) ? (d_27.x / d_27.w) : 0.0, 0.0, 0.0, 0.0), metal::uint2(id_16.xy));
+    depth_out.write(metal::float4((d_26.w > 0.0001) ? (d_26.x / d_26.w) : 0.0, 0.0, 0.0, 0.0), metal::uint2(id_16.xy));
     return;
 }
 

@@ -181,8 +181,7 @@ const uint AMBIENT_STEPS = 24u;
 const uint SKY_AMBIENT_SUNS = 64u;
 const uint GROUND_IRRADIANCE_SIZE = 64u;
 const uint NO_LAYER = 4u;
-const uint STEEP_STEPS = 2u;
-const float STEEP_FIRST = 8.0;
+const uint COLUMN_STEPS = 3u;
 const float DECK_POWER = 8.0;
 const float FORWARD_LOBE_THIN = 0.1;
 const uint GROUND_IRRADIANCE_DIRECTIONS = 128u;
@@ -566,14 +565,14 @@ float sprite_sun_level(float cos_angle) {
 }
 
 vec2 sprite_corner(uint k_11) {
-    bool local_62 = false;
+    bool local_63 = false;
     uint q_6 = ((k_11 >= 3u) ? ((k_11 == 3u) ? 0u : (k_11 - 2u)) : k_11);
     if (!((q_6 == 1u))) {
-        local_62 = (q_6 == 2u);
+        local_63 = (q_6 == 2u);
     } else {
-        local_62 = true;
+        local_63 = true;
     }
-    bool _e18 = local_62;
+    bool _e18 = local_63;
     return vec2((_e18 ? 1.0 : -1.0), ((q_6 >= 2u) ? 1.0 : -1.0));
 }
 

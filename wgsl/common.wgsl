@@ -46,7 +46,7 @@ struct Frame {
     night: vec4<f32>,               // the real sun's unit direction; w = a magnitude-0 star's illuminance (0: no stars)
     light_model: vec4<f32>,         // side light, coverage exponent, far-shadow chord (m, 0 = off), limb darkening
     octave_direction: vec4<f32>,    // the octaves' forward lobe through thin cloud (strength, 0 = off; eccentricity), vertical anisotropy (0 = off), deck escape (0 = off)
-    octave_depth: vec4<f32>,        // the steeper light march's weight in a closed deck (0 = off), its scale, downward dimming (0 = off), 0
+    octave_depth: vec4<f32>,        // the octaves' column's weight in a closed deck (0 = off), its scale, downward dimming (0 = off), 0
 }
 
 // Codes shared with the scene crate (`PhaseModel::code`, `Integration::code`, ...).

@@ -143,8 +143,8 @@ fn layer_density(p: vec3<f32>, alt: f32, l: Layer, counters: ptr<function, Count
     return layer_density_with(p, alt, l, true, counters);
 }
 
-// layer_density, with the detail erosion only if `with_detail` (the octaves' steeper light
-// march goes without it: lighting.wgsl::octave_optical_depth).
+// layer_density, with the detail erosion only if `with_detail` (the octaves' column goes
+// without it: lighting.wgsl::octave_optical_depth).
 fn layer_density_with(p: vec3<f32>, alt: f32, l: Layer, with_detail: bool,
                       counters: ptr<function, Counters>) -> f32 {
     let h = layer_height(l, alt); // height fraction in the layer

@@ -151,15 +151,16 @@ pub(crate) fn segment_optical_depth(
     tau
 }
 
-// WGSL: lighting.wgsl::STEEP_STEPS, STEEP_FIRST
-/// The octaves' steeper light march: its steps, and its first step in first light steps (the
-/// real-time light march's, from the uniforms, also under the converged quadrature).
-const STEEP_STEPS: u32 = 2;
-const STEEP_FIRST: f64 = 8.0;
+// WGSL: lighting.wgsl::COLUMN_STEPS
+/// The octaves' column in a closed deck: equal steps from the sample to the layer's top.
+const COLUMN_STEPS: u32 = 3;
 
 // WGSL: lighting.wgsl::octave_optical_depth
+// Must agree: the column goes straight up (away from the planet's centre) to the layer's top
+// sphere in COLUMN_STEPS equal segments of the density without detail erosion.
 /// The octaves' optical depth at a sample of layer `l` whose sun ray has optical depth `tau`:
-/// in a closed deck the steeper light march mixed in (lighting.wgsl says why).
+/// in a closed deck the scaled vertical column above the sample mixed in (lighting.wgsl says
+/// why).
 pub(crate) fn octave_optical_depth(
     m: &Model,
     rel: V3,
@@ -176,21 +177,19 @@ pub(crate) fn octave_optical_depth(
         return tau;
     }
     let up = V3::new(rel.x, rel.y + f.atmosphere[0], rel.z).normalize();
-    let sun = f.sun();
-    let d = (sun + up).normalize();
-    let mu0 = sun.dot(up).max(1e-3);
-    let steep = segment_optical_depth(
+    let top = ray_shell_from(f, rel, altitude_of(f, rel), up, l.top);
+    let len = if top.hit && top.t1 > 0.0 { top.t1 } else { 0.0 };
+    let column = segment_optical_depth(
         m,
         rel,
         p,
         l,
-        d,
-        (f.march[2] * STEEP_FIRST, f.march[1], STEEP_STEPS),
+        up,
+        (len / f64::from(COLUMN_STEPS), 1.0, COLUMN_STEPS),
         false,
         counters,
-    ) * f.octave_depth[1]
-        * (mu0 / d.dot(up).max(1e-3)).sqrt();
-    mix(tau, steep, w)
+    );
+    mix(tau, f.octave_depth[1] * column, w)
 }
 
 // WGSL: lighting.wgsl::far_optical_depth
@@ -571,10 +570,10 @@ mod tests {
         assert_eq!(downward_dimming(&off.f, -1.0, 1.0, 0.0, 100.0), 1.0);
     }
 
-    /// The steeper light march changes the octaves' optical depth in a closed deck only, and
-    /// costs at most its two light samples there.
+    /// The octaves' column changes their optical depth in a closed deck only, and costs its
+    /// light samples there (from the layer's middle every step lies inside it).
     #[test]
-    fn steep_light_is_a_closed_decks_alone() {
+    fn the_column_is_a_closed_decks_alone() {
         let noise = crate::small_noise();
         let at = |coverage: f64, steep: f64| {
             let mut scene = Scene::default();
@@ -591,7 +590,7 @@ mod tests {
         assert_eq!(at(1.0, 0.0), (7.0, 0));
         let (deck, light) = at(1.0, 1.0);
         assert!(deck != 7.0 && deck >= 0.0, "{deck}");
-        assert!((1..=2).contains(&light), "{light}");
+        assert_eq!(light, u64::from(COLUMN_STEPS), "{light}");
         // Half the weight, half way.
         let (half, _) = at(1.0, 0.5);
         assert!((half - 0.5 * (7.0 + deck)).abs() < 1e-9, "{half} {deck}");

@@ -602,8 +602,8 @@ impl Default for Phase {
 /// the octaves' light leans toward the sun (`forward_lobe`, `forward_lobe_g`), and in a layer
 /// lit from above it is brighter looking up than looking down (`vertical_anisotropy`). A deck
 /// lets more of a high sun's diffuse light out of its base than of a low one's
-/// (`deck_escape`); in a closed deck the octaves see the cloud above the sample through a
-/// steeper light march (`steep_light`, `steep_light_scale`), and looking down they dim where
+/// (`deck_escape`); in a closed deck the octaves see the column of cloud above the sample
+/// (`steep_light`, `steep_light_scale`), and looking down they dim where
 /// cloud above the sample shields it (`downward_dimming`). The defaults are fitted to the path
 /// tracer's all-orders truth by `stratus fit-scattering` (docs/fit); `a > b` is allowed.
 #[derive(Serialize, Deserialize, Clone, Copy, Debug, PartialEq)]
@@ -669,14 +669,17 @@ pub struct MultipleScattering {
     /// (4/3 + (1 - g) tau)` of the flux through its top out of its base in the Eddington
     /// approximation (Meador and Weaver 1980): steep light goes deeper before it turns. 0: off.
     pub deck_escape: f64,
-    /// The steeper light march's weight in a closed deck's octaves, within [0, 1]: their
-    /// optical depth is `mix(tau, tau_s, m w)`, `m` this value, `tau` the sun ray's, `tau_s`
-    /// that of two light steps toward `normalize(sun + up)` (8 and 16 times the first light
-    /// step) times `steep_light_scale (mu0 / d_y)^(1/2)`, and `w = (coverage - 0.8) / 0.1`
-    /// (clamped) the layer's weight as a closed deck. The truth's multiply scattered light in a
-    /// thick deck follows the cloud above the sample, which the slant sun ray passes by. 0: off.
+    /// The weight of the column above the sample in a closed deck's octaves, within [0, 1]:
+    /// their optical depth is `mix(tau, s tau_col, m w)`, `m` this value, `tau` the sun ray's,
+    /// `tau_col` that of the vertical column from the sample to the layer's top (three equal
+    /// steps of the density without detail erosion), `s` `steep_light_scale` (the diffuse
+    /// light's effective path over the vertical: 1.66 for a slab, Elsasser 1942), and `w =
+    /// (coverage - 0.8) / 0.1` (clamped) the layer's weight as a closed deck. The truth's multiply scattered light in a thick deck
+    /// follows the cloud above the sample, which the slant sun ray passes by. 0: off; 1: the
+    /// column alone in a closed deck. (The name is from its first form, a steeper light
+    /// march toward `normalize(sun + up)`.)
     pub steep_light: f64,
-    /// The scale of the steeper light march's optical depth (`steep_light`), within [0.5, 8].
+    /// The scale of the column's optical depth (`steep_light`), within [0.5, 8].
     pub steep_light_scale: f64,
     /// The octaves' dimming looking down, within [0, 8]: they are scaled by `1 - k |view_y|
     /// coverage (1 - h) tau_v / (tau_v + 1)` for a view ray going down (`k` this value,
@@ -687,15 +690,14 @@ pub struct MultipleScattering {
 }
 
 impl Default for MultipleScattering {
-    /// Fitted to the GPU path tracer's all-orders truth (8192 paths a pixel for the first ten
-    /// training scenes, rendered on an H200, the six physical-sky scenes' on lavapipe; 2048 for
-    /// the five added with the steeper light march and the downward dimming, on lavapipe; the
-    /// march on lavapipe) over fifteen training scenes by `stratus fit-scattering`: its choice,
-    /// 3 octaves with a build-up of 400 m, side light 1, coverage exponent 1, a far-shadow
-    /// chord of 8 km, limb darkening 0.25, a forward lobe of 0.3 (g 0.5), a vertical anisotropy
-    /// of 0.2, a deck escape of 2, a steeper light march of weight 0.2 (scale 3.6) and a
-    /// downward dimming of 4, with the octaves' own eccentricity small (c = 0.15) (docs/fit;
-    /// the thesis's 2 octaves of a = b = c = 0.5 and none of the other terms before).
+    /// Fitted to the GPU path tracer's all-orders truth (8192 paths a pixel, `docs/fit/truths`;
+    /// the march on lavapipe) over fifteen training scenes by `stratus fit-scattering`: 3
+    /// octaves with a build-up of 400 m, side light 1, coverage exponent 1, a far-shadow chord
+    /// of 8 km, limb darkening 0.25, a forward lobe of 0.3 (g 0.5), a vertical anisotropy of
+    /// 0.2, a deck escape of 2 and a downward dimming of 4, with the octaves' own eccentricity
+    /// small (c = 0.15), and the deck's column alone (weight 1) at 1.5 times its vertical
+    /// optical depth (docs/fit). The thesis's 2 octaves of a = b = c = 0.5 and none of the
+    /// other terms before.
     fn default() -> Self {
         Self {
             octaves: 3,
@@ -711,8 +713,8 @@ impl Default for MultipleScattering {
             forward_lobe_g: 0.5,
             vertical_anisotropy: 0.2,
             deck_escape: 2.0,
-            steep_light: 0.2,
-            steep_light_scale: 3.6,
+            steep_light: 1.0,
+            steep_light_scale: 1.5,
             downward_dimming: 4.0,
         }
     }

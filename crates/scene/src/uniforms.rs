@@ -113,7 +113,7 @@ pub struct FrameUniforms {
     /// `deck_escape`).
     pub octave_direction: [f32; 4],
     /// The octaves' optical depth in a closed deck and their dimming looking down: the
-    /// steeper light march's weight (0 = off) and scale, the downward dimming (0 = off), 0
+    /// column's weight (0 = off) and scale, the downward dimming (0 = off), 0
     /// (`MultipleScattering::steep_light`, `steep_light_scale`, `downward_dimming`).
     pub octave_depth: [f32; 4],
 }
