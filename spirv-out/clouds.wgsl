@@ -1148,8 +1148,9 @@ const COLUMN_STEPS: u32 = 3u;
 // through the sides as well (side light). Against the 8192-path truths (docs/fit) the column
 // took the training mean from 0.0525 to 0.0448 and `storm` from 0.055 to 0.044; over mu0 (the
 // direct beam's slant) it fitted 0.0522 (the storm deck under a 25-degree sun 0.047 to 0.102),
-// over mu0^(1/2) 0.0477 (both with four steps). A steeper march of two steps toward normalize(sun + up), scaled by a
-// fitted 3.6 for the column it did not reach, had fitted 0.0525 (`storm` 0.055).
+// over mu0^(1/2) 0.0477 (both with four steps). A steeper march of two steps toward
+// normalize(sun + up), scaled by a fitted 3.6 for the column it did not reach, had fitted
+// 0.0525 (`storm` 0.055).
 fn octave_optical_depth(rel: vec3<f32>, p: vec3<f32>, l: Layer, tau: f32,
                         counters: ptr<function, Counters>) -> f32 {
     let w = saturate((l.coverage - 0.8) / 0.1);

@@ -7,8 +7,8 @@
 //! below 0.05) and the octaves' build-up with the sample's density
 //! (`lighting.wgsl::octave_buildup`), the side light, the coverage exponent, the far
 //! shadow's chord, the limb darkening, the forward lobe's strength and eccentricity, the
-//! vertical anisotropy, the deck escape, the column above the sample in a deck (weight, scale) and
-//! the downward dimming (`lighting.wgsl::sun_scattering`, `far_optical_depth`,
+//! vertical anisotropy, the deck escape, the column above the sample in a deck (weight,
+//! scale) and the downward dimming (`lighting.wgsl::sun_scattering`, `far_optical_depth`,
 //! `diffuse_limb`, `forward_lobe`, `vertical_anisotropy`, `deck_escape`,
 //! `octave_optical_depth`, `downward_dimming`) on grids of their own,
 //! minimising the mean FLIP of the training scenes against their truths; the
@@ -107,6 +107,28 @@ const DESCENT_NAMES: [&str; 15] = [
     "steep_light_scale",
     "downward_dimming",
 ];
+
+/// Sets the descent's constant `which` (the index of its name in `DESCENT_NAMES`) of `m` to
+/// `v`.
+fn set_constant(m: &mut MultipleScattering, which: usize, v: f64) {
+    match which {
+        0 => m.a = v,
+        1 => m.b = v,
+        2 => m.c = v,
+        3 => m.buildup_m = v,
+        4 => m.side_light = v,
+        5 => m.coverage_exponent = v,
+        6 => m.far_chord_m = v,
+        7 => m.limb_darkening = v,
+        8 => m.forward_lobe = v,
+        9 => m.forward_lobe_g = v,
+        10 => m.vertical_anisotropy = v,
+        11 => m.deck_escape = v,
+        12 => m.steep_light = v,
+        13 => m.steep_light_scale = v,
+        _ => m.downward_dimming = v,
+    }
+}
 
 /// Which of the descent's constants `only` names (all where it is empty); an unknown name is
 /// an error that lists them.
@@ -491,7 +513,8 @@ const VERTICAL_ANISOTROPY_GRID: [f64; 9] = [0.0, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0
 /// approximation's 6/7 lies between 0.75 and 1; 2 is the valid range's top).
 const DECK_ESCAPE_GRID: [f64; 9] = [0.0, 0.25, 0.5, 0.75, 1.0, 1.25, 1.5, 1.75, 2.0];
 
-/// The deck column's weights tried (`MultipleScattering::steep_light`; 0: off, 1: the column alone).
+/// The deck column's weights tried (`MultipleScattering::steep_light`; 0: off, 1: the column
+/// alone).
 const STEEP_LIGHT_GRID: [f64; 8] = [0.0, 0.2, 0.4, 0.5, 0.6, 0.7, 0.8, 1.0];
 
 /// The deck column's scales tried (`MultipleScattering::steep_light_scale`; a slab's diffusivity
@@ -612,23 +635,7 @@ fn descend(
                 };
                 for v in values {
                     let mut m = best;
-                    match which {
-                        0 => m.a = v,
-                        1 => m.b = v,
-                        2 => m.c = v,
-                        3 => m.buildup_m = v,
-                        4 => m.side_light = v,
-                        5 => m.coverage_exponent = v,
-                        6 => m.far_chord_m = v,
-                        7 => m.limb_darkening = v,
-                        8 => m.forward_lobe = v,
-                        9 => m.forward_lobe_g = v,
-                        10 => m.vertical_anisotropy = v,
-                        11 => m.deck_escape = v,
-                        12 => m.steep_light = v,
-                        13 => m.steep_light_scale = v,
-                        _ => m.downward_dimming = v,
-                    }
+                    set_constant(&mut m, which, v);
                     let s = score(m, log)?;
                     if s < best_score - 1e-9 {
                         best = m;
@@ -1078,6 +1085,20 @@ mod tests {
             e.contains("--only octaves") && e.contains("steep_light_scale"),
             "{e}"
         );
+    }
+
+    /// The descent's indices and `DESCENT_NAMES` name the same fields: setting constant i by
+    /// index and by its name (as `--set` and `--only` take it) gives the same constants.
+    #[test]
+    fn descent_names_match_the_descents_fields() {
+        for (i, name) in DESCENT_NAMES.iter().enumerate() {
+            let mut by_index = MultipleScattering::default();
+            // Within every constant's valid range, and unlike every default.
+            let v = if *name == "far_chord_m" { 1234.0 } else { 0.7 };
+            set_constant(&mut by_index, i, v);
+            let by_name = with_sets(&[format!("{name}={v}")]).unwrap();
+            assert_eq!(by_index, by_name, "{name}");
+        }
     }
 
     /// `--set` changes exactly the named constants, and a wrong name, a value that is no TOML
