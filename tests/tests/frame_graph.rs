@@ -10,7 +10,7 @@ use std::sync::Arc;
 use stratus_backend_ash as ash_backend;
 use stratus_backend_wgpu as wgpu_backend;
 use stratus_graph::{FrameInput, FramePlan, Program, Readback, Requirements};
-use stratus_shaders::{ShaderTree, build_outputs};
+use stratus_shaders::{Languages, ShaderTree, build_outputs};
 use stratus_test_support::{assert_no_wgpu_messages, record_wgpu_log, small, small_noise};
 
 const PROBE_WGSL: &str = r#"
@@ -139,7 +139,7 @@ fn probe_program() -> Arc<Program> {
     );
     files.get_mut("graph.toml").unwrap().push_str(PROBE_GRAPH);
     let tree = ShaderTree::from_files("wgsl", files).expect("tree");
-    let outputs = build_outputs(&tree).unwrap_or_else(|e| panic!("{e}"));
+    let outputs = build_outputs(&tree, Languages::Spirv).unwrap_or_else(|e| panic!("{e}"));
     Arc::new(Program::from_files(&outputs).expect("program"))
 }
 

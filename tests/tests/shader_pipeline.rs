@@ -2,7 +2,7 @@
 
 use std::collections::BTreeMap;
 
-use stratus_shaders::{ShaderTree, build_outputs, source::MODULES_FILE};
+use stratus_shaders::{Languages, ShaderTree, build_outputs, source::MODULES_FILE};
 
 /// Compiles one broken WGSL file from `tests/broken/` as its own module and returns the
 /// diagnostics text exactly as `cargo xtask build-shaders` prints it.
@@ -17,7 +17,7 @@ fn diagnostics_of(file: &str) -> String {
         (file.to_string(), text),
     ]);
     let tree = ShaderTree::from_files("tests/broken", files).unwrap();
-    match build_outputs(&tree) {
+    match build_outputs(&tree, Languages::Spirv) {
         Ok(_) => panic!("{file} compiled, but it is meant to be broken"),
         Err(d) => d.to_string(),
     }
@@ -66,17 +66,18 @@ fn every_diagnostic_starts_with_file_line_col() {
 #[test]
 fn manifest_snapshot() {
     let tree = ShaderTree::embedded().unwrap();
-    let outputs = build_outputs(&tree).unwrap_or_else(|d| panic!("{d}"));
+    let outputs = build_outputs(&tree, Languages::Spirv).unwrap_or_else(|d| panic!("{d}"));
     let manifest: serde_json::Value = serde_json::from_slice(&outputs["manifest.json"]).unwrap();
     insta::assert_json_snapshot!(manifest, { ".wgsl_sha256" => "[sha256]" });
 }
 
-/// The committed `spirv-out/` matches what the embedded WGSL produces (the same check as
-/// `cargo xtask build-shaders --check`, so that `cargo test` alone catches a stale tree).
+/// The committed `spirv-out/` is exactly what the embedded WGSL produces, no file more (the
+/// same check as `cargo xtask build-shaders --check`, so that `cargo test` alone catches a
+/// stale tree).
 #[test]
 fn spirv_out_is_fresh() {
     let tree = ShaderTree::embedded().unwrap();
-    let outputs = build_outputs(&tree).unwrap_or_else(|d| panic!("{d}"));
+    let outputs = build_outputs(&tree, Languages::Spirv).unwrap_or_else(|d| panic!("{d}"));
     let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/../spirv-out");
     for (name, bytes) in &outputs {
         let committed = std::fs::read(format!("{dir}/{name}"))
@@ -84,6 +85,39 @@ fn spirv_out_is_fresh() {
         assert!(
             &committed == bytes,
             "spirv-out/{name} is stale; run `cargo xtask build-shaders`"
+        );
+    }
+    for entry in std::fs::read_dir(dir).unwrap() {
+        let name = entry.unwrap().file_name().to_string_lossy().into_owned();
+        assert!(
+            outputs.contains_key(&name),
+            "spirv-out/{name} is not generated (GLSL, HLSL and MSL are made on demand: \
+             `cargo xtask build-shaders --languages all`); run `cargo xtask build-shaders`"
+        );
+    }
+}
+
+/// The pinned translations in `tests/out/` (one variant in GLSL, HLSL and MSL) are what naga
+/// writes today: a translator change shows up as a diff of these files.
+#[test]
+fn pinned_translations_are_fresh() {
+    let tree = ShaderTree::embedded().unwrap();
+    let outputs = build_outputs(&tree, Languages::All).unwrap_or_else(|d| panic!("{d}"));
+    let pinned = stratus_shaders::pinned(&outputs);
+    let langs: std::collections::BTreeSet<&str> =
+        pinned.keys().filter_map(|p| p.split('/').next()).collect();
+    assert_eq!(
+        langs.into_iter().collect::<Vec<_>>(),
+        ["glsl", "hlsl", "msl"],
+        "every language is pinned"
+    );
+    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/out");
+    for (path, bytes) in &pinned {
+        let committed = std::fs::read(format!("{dir}/{path}"))
+            .unwrap_or_else(|e| panic!("tests/out/{path}: {e}; run `cargo xtask build-shaders`"));
+        assert!(
+            &committed == bytes,
+            "tests/out/{path} is stale; run `cargo xtask build-shaders`"
         );
     }
 }
@@ -219,7 +253,7 @@ fn a_graph_that_disagrees_with_the_wgsl_is_refused() {
         let mut files = tree.files.clone();
         files.insert("graph.toml".into(), text);
         let bad = ShaderTree::from_files("wgsl", files).unwrap();
-        let err = build_outputs(&bad)
+        let err = build_outputs(&bad, Languages::Spirv)
             .expect_err("a bad graph is refused")
             .to_string();
         assert!(

@@ -1,20 +1,8 @@
 //! `stratus`: render, inspect and compare volumetric clouds.
 
-mod animate;
-mod astro;
-mod bench;
-mod compare;
-mod convergence;
-mod export;
-mod fit;
-mod kit;
-mod output;
-mod render;
-mod scene_io;
-mod soak;
-mod validation;
-mod view;
-mod weather;
+use stratus_lab::{bench, export_volume as export, fit, soak};
+use stratus_tool::{animate, astro, compare, inspect, kit, render, weather};
+use stratus_viewer as view;
 
 use std::{path::PathBuf, process::ExitCode};
 
@@ -93,9 +81,9 @@ fn main() -> ExitCode {
         Command::Compare(args) => compare::run(args),
         Command::Bench(args) => bench::run(args),
         Command::FitScattering(args) => fit::run(args),
-        Command::Presets => presets(),
-        Command::Scene(SceneCommand::Check { file }) => scene_check(&file),
-        Command::Shaders => shaders(),
+        Command::Presets => inspect::presets(),
+        Command::Scene(SceneCommand::Check { file }) => inspect::scene_check(&file),
+        Command::Shaders => inspect::shaders(),
         Command::ExportVolume(args) => export::run(args),
         Command::ExportKit(args) => kit::run(args),
         Command::Soak(args) => soak::run(args),
@@ -133,55 +121,4 @@ fn quiet_headless_wsi() {
             unsafe { std::env::set_var("XDG_RUNTIME_DIR", &dir) };
         }
     }
-}
-
-fn presets() -> anyhow::Result<()> {
-    let list = stratus_scene::presets();
-    let width = list.iter().map(|p| p.name.len()).max().unwrap_or(0);
-    for p in list {
-        let default = if p.name == stratus_scene::DEFAULT_PRESET {
-            " (default)"
-        } else {
-            ""
-        };
-        println!("{:width$}  {}{default}", p.name, p.description);
-    }
-    Ok(())
-}
-
-fn scene_check(file: &std::path::Path) -> anyhow::Result<()> {
-    match stratus_scene::Scene::from_file(file) {
-        Ok(scene) => {
-            print!("{}", scene.to_toml());
-            eprintln!("{}: ok", file.display());
-            Ok(())
-        }
-        Err(e) => {
-            eprintln!("{e}");
-            anyhow::bail!("{}: {} problem(s)", file.display(), e.problems().len())
-        }
-    }
-}
-
-fn shaders() -> anyhow::Result<()> {
-    let tree = stratus_shaders::ShaderTree::embedded()?;
-    let compiled = stratus_shaders::compile_all(&tree)?;
-    for m in &compiled {
-        let entries: Vec<_> = m
-            .module
-            .entry_points
-            .iter()
-            .map(|e| e.name.as_str())
-            .collect();
-        println!(
-            "module {} ({} files): entry points {}",
-            m.spec.name,
-            m.spec.files.len(),
-            entries.join(", ")
-        );
-        for v in &m.spec.variants {
-            println!("  variant {:<18} {}", v.name, v.description);
-        }
-    }
-    Ok(())
 }

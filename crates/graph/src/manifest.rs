@@ -10,6 +10,7 @@ use std::collections::BTreeMap;
 
 use serde::{Deserialize, Serialize};
 
+pub use crate::desc::Dimension;
 use crate::desc::GraphDesc;
 
 /// The whole manifest.
@@ -110,23 +111,6 @@ impl Access {
     }
 }
 
-/// A texture's dimension.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
-pub enum Dimension {
-    /// 1D.
-    #[serde(rename = "1d")]
-    D1,
-    /// 2D.
-    #[serde(rename = "2d")]
-    D2,
-    /// 3D.
-    #[serde(rename = "3d")]
-    D3,
-    /// Cube.
-    #[serde(rename = "cube")]
-    Cube,
-}
-
 /// A bound resource.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct ResourceInfo {
@@ -203,7 +187,9 @@ pub struct VariantInfo {
     pub files: VariantFiles,
 }
 
-/// The files of one variant in `spirv-out/`.
+/// The file names of one variant's translations: the SPIR-V is committed in `spirv-out/`;
+/// GLSL, HLSL and MSL are made on demand under the same names (`cargo xtask build-shaders
+/// --languages all`, the engine kit's `shaders/`, the conformance suite).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct VariantFiles {
     /// SPIR-V binary.

@@ -13,11 +13,13 @@ use crate::{
         PREVIOUS, PassDesc, ResourceKind, TexelFormat,
     },
     manifest::{BindingKind, Dimension, ModuleManifest, ResourceInfo, VariantInfo},
+    options::PlanOptions,
     program::Program,
 };
 
 /// The largest width or height of an output image: the scene's limit, the one every backend,
 /// plan and the CLI check.
+pub use crate::error::PlanError;
 pub use stratus_scene::MAX_RESOLUTION;
 
 /// What a resource is used for, derived from the passes that bind it.
@@ -308,6 +310,8 @@ pub struct FramePlan {
     pub resources: Vec<PlanResource>,
     /// Passes in execution order.
     pub passes: Vec<Pass>,
+    /// What the plan was made from: a scene whose key differs needs another plan.
+    pub key: PlanKey,
 }
 
 impl FramePlan {
@@ -389,121 +393,7 @@ impl Requirements {
     }
 }
 
-/// Why no plan could be made.
-#[derive(Debug, thiserror::Error)]
-pub enum PlanError {
-    /// The manifest or graph is missing or unreadable.
-    #[error("the shaders are unusable ({0}); run `cargo xtask build-shaders`")]
-    Manifest(String),
-    /// No exported variant has every feature the scene uses.
-    #[error(
-        "no exported variant of module `{module}` has every feature this scene uses ({wanted}); add one to wgsl/modules.toml"
-    )]
-    NoVariant {
-        /// The module.
-        module: String,
-        /// What the scene needs.
-        wanted: String,
-    },
-    /// The image size is out of range.
-    #[error("image size {0}x{1}: width and height must be within [1, {MAX_RESOLUTION}]")]
-    Size(u32, u32),
-}
-
-/// What a plan is made for beyond the shader features: the plan options passes name in
-/// `plan = "..."`.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct PlanOptions {
-    /// Temporal upsampling block side: 1 = off, 2 = 1/4, 4 = 1/16 of the pixels marched per
-    /// frame (option `temporal` holds when > 1; extent `output/temporal` divides by it).
-    pub temporal: u32,
-    /// Empty-space skipping is on (option `empty_skip`: the occupancy grid is computed).
-    pub empty_skip: bool,
-    /// Checkerboard skipping is on (option `checkerboard`: the sparse march reads history).
-    pub checkerboard: bool,
-    /// The path tracer runs instead of the march (option `pathtrace`).
-    pub pathtrace: bool,
-    /// The basic tutorial ray marcher runs instead of the march (option `basic`).
-    pub basic: bool,
-    /// Sprite clouds are drawn instead of the march (option `sprites`).
-    pub sprites: bool,
-    /// The physical sky's tables are computed and composited (option `physical_sky`).
-    pub physical_sky: bool,
-}
-
-impl Default for PlanOptions {
-    fn default() -> Self {
-        Self {
-            temporal: 1,
-            empty_skip: false,
-            checkerboard: false,
-            pathtrace: false,
-            basic: false,
-            sprites: false,
-            physical_sky: false,
-        }
-    }
-}
-
 impl PlanOptions {
-    /// The options `scene` asks for.
-    pub fn of(scene: &Scene) -> Self {
-        Self {
-            physical_sky: scene.atmosphere.sky.is_physical(),
-            ..Self::of_clouds(scene)
-        }
-    }
-
-    /// The options of the clouds' method.
-    fn of_clouds(scene: &Scene) -> Self {
-        let q = &scene.quality;
-        // The baselines replace the march; none of its methods apply.
-        match q.method {
-            stratus_scene::Method::Volumetric => {}
-            stratus_scene::Method::Basic => {
-                return Self {
-                    basic: true,
-                    ..Self::default()
-                };
-            }
-            stratus_scene::Method::Sprites => {
-                return Self {
-                    sprites: true,
-                    ..Self::default()
-                };
-            }
-        }
-        if q.integrator == stratus_scene::Integrator::Pathtrace {
-            // The march's methods do not apply to the path tracer; it skips empty space always
-            // (exactly: only cells without cloud), so it needs the occupancy grid.
-            return Self {
-                pathtrace: true,
-                empty_skip: true,
-                ..Self::default()
-            };
-        }
-        Self {
-            temporal: q.temporal.divisor(),
-            empty_skip: q.empty_space_skip,
-            checkerboard: q.checkerboard,
-            ..Self::default()
-        }
-    }
-
-    /// Whether the plan option `name` is on.
-    pub fn is_set(&self, name: &str) -> bool {
-        match name {
-            "temporal" => self.temporal > 1,
-            "empty_skip" => self.empty_skip,
-            "checkerboard" => self.checkerboard,
-            "pathtrace" => self.pathtrace,
-            "basic" => self.basic,
-            "sprites" => self.sprites,
-            "physical_sky" => self.physical_sky,
-            _ => false,
-        }
-    }
-
     /// Whether `pass` is in a plan made with these options.
     pub fn plans(&self, pass: &PassDesc) -> bool {
         pass.plan
@@ -512,17 +402,47 @@ impl PlanOptions {
     }
 }
 
+/// Everything a frame plan is made from besides the program: the shader features, the plan
+/// options and the size. Two scenes with equal keys share one plan; a renderer compares its
+/// plan's key with each new scene's ([`FramePlan::serves`]) and makes a new plan when they
+/// differ.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PlanKey {
+    /// The shader features (which variant runs).
+    pub requirements: Requirements,
+    /// The plan options (which passes run, at what extents).
+    pub options: PlanOptions,
+    /// The output size in pixels.
+    pub size: [u32; 2],
+}
+
+impl PlanKey {
+    /// The key of `scene`'s plan (`stats`: with the work counters).
+    pub fn of(scene: &Scene, stats: bool) -> Self {
+        Self {
+            requirements: Requirements::of(scene, stats),
+            options: PlanOptions::of(scene),
+            size: scene.camera.resolution,
+        }
+    }
+}
+
 impl FramePlan {
     /// The plan for `scene` at its resolution, with the embedded shaders.
     pub fn for_scene(scene: &Scene, stats: bool) -> Result<Self, PlanError> {
-        let [w, h] = scene.camera.resolution;
-        Self::with_options(
-            &*Program::embedded()?,
-            &Requirements::of(scene, stats),
-            w,
-            h,
-            PlanOptions::of(scene),
-        )
+        Self::for_key(&*Program::embedded()?, &PlanKey::of(scene, stats))
+    }
+
+    /// The plan of `program`'s graph for `key`.
+    pub fn for_key(program: &Program, key: &PlanKey) -> Result<Self, PlanError> {
+        let [w, h] = key.size;
+        Self::with_options(program, &key.requirements, w, h, key.options)
+    }
+
+    /// Whether this plan is the one `scene` needs (same features, with or without counters
+    /// as this plan; same plan options; same size): when not, a renderer must make a new one.
+    pub fn serves(&self, scene: &Scene) -> bool {
+        self.key == PlanKey::of(scene, self.stats)
     }
 
     /// The plan of `program`'s graph for the given requirements and size, default options.
@@ -766,6 +686,11 @@ impl FramePlan {
             stats: req.0.get("STATS").is_some_and(|&s| s > 0.0),
             resources,
             passes,
+            key: PlanKey {
+                requirements: req.clone(),
+                options,
+                size: [width, height],
+            },
         })
     }
 }

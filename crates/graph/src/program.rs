@@ -9,8 +9,8 @@ use std::{
 
 use crate::{
     desc::GraphDesc,
+    error::PlanError,
     manifest::{Manifest, wgsl_name},
-    plan::PlanError,
 };
 
 include!(concat!(env!("OUT_DIR"), "/embedded.rs"));

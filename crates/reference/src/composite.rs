@@ -6,8 +6,8 @@ use rayon::prelude::*;
 
 use crate::frame::{FLAG_MOONLIT, Frame, PI, pcg, xyz};
 use crate::geometry::{hits_ground, view_ray};
-use crate::lighting::phase_hg;
 use crate::math::{V3, mix_v, saturate, smoothstep};
+use crate::phase::phase_hg;
 use crate::sky::{SkyTables, physical};
 
 // WGSL: composite.wgsl::sky_radiance

@@ -42,6 +42,7 @@ mod march;
 mod math;
 mod medium;
 pub mod montecarlo;
+mod phase;
 mod progressive;
 pub mod sky;
 mod temporal;

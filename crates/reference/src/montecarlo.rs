@@ -73,10 +73,11 @@
 use crate::density::{Counters, height_fraction};
 use crate::frame::{Frame, PI};
 use crate::geometry::{Interval, RayKind, altitude_of, hits_ground, layer_segments};
-use crate::lighting::{ambient, phase, phase_hg};
+use crate::lighting::ambient;
 use crate::march::medium_interval;
 use crate::math::V3;
 use crate::medium::Model;
+use crate::phase::{phase, phase_hg};
 use crate::sky::{SkyTables, sun_through_air};
 
 /// Scattering orders beyond which a path is cut even if "all orders" are asked for (a path in a

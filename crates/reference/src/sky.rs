@@ -24,8 +24,8 @@ use stratus_scene::FrameUniforms;
 
 use crate::atmosphere::{AtmosphereModel, fibonacci_direction};
 use crate::frame::{Frame, PI, xyz};
-use crate::lighting::phase_cornette_shanks;
 use crate::math::{V3, mix_v, saturate};
+use crate::phase::phase_cornette_shanks;
 
 // WGSL: atmosphere.wgsl (constants).
 /// Transmittance table: texels along (distance to the top, radius).

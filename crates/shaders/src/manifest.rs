@@ -20,8 +20,7 @@ use crate::{
     source::ShaderTree,
 };
 
-/// The name of the frame graph file under `wgsl/`.
-pub const GRAPH_FILE: &str = "graph.toml";
+pub use crate::source::GRAPH_FILE;
 
 /// Reflects every compiled module and, where the tree has a [`GRAPH_FILE`], checks the frame
 /// graph against that reflection and puts it in the manifest.

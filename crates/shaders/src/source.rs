@@ -13,6 +13,9 @@ use sha2::{Digest, Sha256};
 /// The name of the file under `wgsl/` that lists modules and their variants.
 pub const MODULES_FILE: &str = "modules.toml";
 
+/// The name of the frame graph file under `wgsl/`.
+pub const GRAPH_FILE: &str = "graph.toml";
+
 /// Every WGSL source file and the module list, as read from a folder or embedded at build time.
 #[derive(Clone, Debug)]
 pub struct ShaderTree {
@@ -242,7 +245,7 @@ fn read_dir_into(
         } else if path.extension().is_some_and(|x| x == "wgsl")
             || path
                 .file_name()
-                .is_some_and(|n| n == MODULES_FILE || n == crate::manifest::GRAPH_FILE)
+                .is_some_and(|n| n == MODULES_FILE || n == GRAPH_FILE)
         {
             let text = std::fs::read_to_string(&path).map_err(io(&path))?;
             let rel = path

@@ -1,5 +1,11 @@
 //! Translation of every variant to SPIR-V, GLSL, HLSL and MSL with fixed options, so that the
-//! bytes in `spirv-out/` depend only on the WGSL and the naga version.
+//! bytes depend only on the WGSL and the naga version.
+//!
+//! `spirv-out/` keeps what runs ([`Languages::Spirv`]: SPIR-V per variant, the composed WGSL
+//! and the manifest). GLSL, HLSL and MSL ([`Languages::All`]) are made on demand: by
+//! `cargo xtask build-shaders --languages all`, by the engine kit and by the conformance suite.
+//! One small set of them, the [`PINNED`] variant in every language, is committed under
+//! `tests/out/` (naga's snapshot layout) so that a translator change shows up in review.
 
 use std::collections::BTreeMap;
 
@@ -98,10 +104,59 @@ fn policies() -> naga::proc::BoundsCheckPolicies {
     naga::proc::BoundsCheckPolicies::default()
 }
 
-/// Translates one variant to all four languages. Returns `(file name, bytes)` pairs.
+/// Which translations [`build_outputs`] makes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Languages {
+    /// What `spirv-out/` keeps: SPIR-V of every variant (with the composed WGSL and the
+    /// manifest, which [`build_outputs`] always writes).
+    Spirv,
+    /// SPIR-V, GLSL (one file per entry point), HLSL and MSL of every variant.
+    All,
+}
+
+/// The `(module, variant)` whose GLSL, HLSL and MSL are committed under `tests/out/`: small,
+/// with a vertex and a fragment stage, and untouched by edits to the cloud model.
+pub const PINNED: (&str, &str) = ("present", "default");
+
+/// Where a translation of the [`PINNED`] variant lives under `tests/out/` (`glsl/…`, `hlsl/…`,
+/// `msl/…`, as naga's own snapshots are laid out), or `None` for any other file.
+pub fn pinned_path(name: &str) -> Option<String> {
+    let prefix = format!("{}.{}.", PINNED.0, PINNED.1);
+    if !name.starts_with(&prefix) {
+        return None;
+    }
+    let lang = if name.ends_with(".glsl") {
+        "glsl"
+    } else if name.ends_with(".hlsl") {
+        "hlsl"
+    } else if name.ends_with(".metal") {
+        "msl"
+    } else {
+        return None;
+    };
+    Some(format!("{lang}/{name}"))
+}
+
+/// The pinned translations among `outputs` (a [`Languages::All`] build): path under
+/// `tests/out/` -> bytes.
+pub fn pinned(outputs: &BTreeMap<String, Vec<u8>>) -> BTreeMap<String, Vec<u8>> {
+    outputs
+        .iter()
+        .filter_map(|(name, bytes)| Some((pinned_path(name)?, bytes.clone())))
+        .collect()
+}
+
+/// Whether `spirv-out/` keeps the output called `name` (SPIR-V, composed WGSL, manifest).
+pub fn is_committed(name: &str) -> bool {
+    name == "manifest.json" || name.ends_with(".spv") || name.ends_with(".wgsl")
+}
+
+/// Translates one variant to SPIR-V and, with [`Languages::All`], to GLSL, HLSL and MSL.
+/// Returns `(file name, bytes)` pairs.
 pub fn translate_variant(
     compiled: &CompiledModule,
     variant: &VariantSpec,
+    languages: Languages,
 ) -> Result<Vec<(String, Vec<u8>)>, Diagnostics> {
     let (module, info) = compiled.resolve(&variant.overrides)?;
     let name = &compiled.spec.name;
@@ -123,6 +178,9 @@ pub fn translate_variant(
         output_name(name, &variant.name, "spv"),
         bytemuck_words(&words),
     ));
+    if languages == Languages::Spirv {
+        return Ok(out);
+    }
 
     for ep in &module.entry_points {
         let text = glsl(&module, &info, ep.stage, &ep.name).map_err(|e| fail("GLSL", &e))?;
@@ -178,14 +236,19 @@ fn bytemuck_words(words: &[u32]) -> Vec<u8> {
     words.iter().flat_map(|w| w.to_le_bytes()).collect()
 }
 
-/// Everything `cargo xtask build-shaders` writes: file name -> bytes, `manifest.json` included.
-pub fn build_outputs(tree: &ShaderTree) -> Result<BTreeMap<String, Vec<u8>>, Diagnostics> {
+/// Every output of the tree in `languages`: file name -> bytes, the composed WGSL of each
+/// module and `manifest.json` included. [`Languages::Spirv`] is exactly what `spirv-out/`
+/// holds.
+pub fn build_outputs(
+    tree: &ShaderTree,
+    languages: Languages,
+) -> Result<BTreeMap<String, Vec<u8>>, Diagnostics> {
     let compiled = compile_all(tree)?;
     let mut files = BTreeMap::new();
     let mut errors = Vec::new();
     for m in &compiled {
         for v in &m.spec.variants {
-            match translate_variant(m, v) {
+            match translate_variant(m, v, languages) {
                 Ok(list) => files.extend(list),
                 Err(d) => errors.extend(d.0),
             }

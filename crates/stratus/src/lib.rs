@@ -27,7 +27,7 @@ pub mod quality;
 use std::sync::Arc;
 
 use stratus_backend_wgpu::Renderer;
-use stratus_graph::{FrameInput, Requirements};
+use stratus_graph::FrameInput;
 pub use stratus_graph::{FramePlan, PassTiming, PlanError, Program, Readback};
 use stratus_noise::{NoiseConfig, NoiseSet, ShapeSize};
 pub use stratus_scene::Scene;
@@ -69,12 +69,60 @@ pub struct Update {
     pub time_s: Option<f64>,
 }
 
+/// The frame plan and the noise textures a scene is rendered with, kept across frames and
+/// remade only when they go stale: the plan when the scene's plan key changes (its shader
+/// features, plan options such as temporal upsampling, method and sky, or its size), the
+/// noise when its seed or shape size does. Every persistent renderer (the library's
+/// [`Clouds`], the viewer on either backend) keeps one, so none can render with a stale plan.
+pub struct Prepared {
+    plan: FramePlan,
+    noise: Arc<NoiseSet>,
+    noise_settings: stratus_scene::Noise,
+}
+
+impl Prepared {
+    /// The plan (without work counters) and noise of `scene`.
+    pub fn new(scene: &Scene) -> Result<Self, PlanError> {
+        Ok(Self {
+            plan: FramePlan::for_scene(scene, false)?,
+            noise: Arc::new(noise_for(scene)),
+            noise_settings: scene.noise.clone(),
+        })
+    }
+
+    /// Makes the plan and noise `scene`'s, remaking only what is stale.
+    pub fn update(&mut self, scene: &Scene) -> Result<(), PlanError> {
+        if !self.plan.serves(scene) {
+            self.plan = FramePlan::for_scene(scene, false)?;
+        }
+        if scene.noise != self.noise_settings {
+            self.noise = Arc::new(noise_for(scene));
+            self.noise_settings = scene.noise.clone();
+        }
+        Ok(())
+    }
+
+    /// The current plan.
+    pub fn plan(&self) -> &FramePlan {
+        &self.plan
+    }
+
+    /// The current noise textures.
+    pub fn noise(&self) -> &Arc<NoiseSet> {
+        &self.noise
+    }
+
+    /// The frame of `scene` (which [`Prepared::update`] was last given) to hand a backend.
+    pub fn frame<'a>(&'a self, scene: &'a Scene) -> FrameInput<'a> {
+        FrameInput::new(&self.plan, scene, &self.noise)
+    }
+}
+
 /// Persistent volumetric clouds on an application's wgpu device.
 pub struct Clouds {
     renderer: Renderer,
     scene: Scene,
-    noise: Arc<NoiseSet>,
-    plan: FramePlan,
+    prepared: Prepared,
     /// Passes recorded in the last frame, for [`Clouds::pass_timings`].
     recorded: Vec<String>,
 }
@@ -87,13 +135,11 @@ impl Clouds {
         scene.validate()?;
         let program = Program::embedded()?;
         let renderer = Renderer::from_device(device.clone(), queue.clone(), program)?;
-        let plan = FramePlan::for_scene(&scene, false)?;
-        let noise = Arc::new(noise_for(&scene));
+        let prepared = Prepared::new(&scene)?;
         Ok(Self {
             renderer,
             scene,
-            noise,
-            plan,
+            prepared,
             recorded: Vec::new(),
         })
     }
@@ -105,7 +151,7 @@ impl Clouds {
 
     /// The current plan (variant, passes, resources).
     pub fn plan(&self) -> &FramePlan {
-        &self.plan
+        self.prepared.plan()
     }
 
     /// GPU objects created so far: a steady loop creates none after its first frame.
@@ -113,8 +159,9 @@ impl Clouds {
         self.renderer.objects_created()
     }
 
-    /// Applies a per-frame change. A new plan (variant or size) is made only when the scene's
-    /// features or size change, and new noise only when its seed or shape size does.
+    /// Applies a per-frame change. A new plan is made only when the scene's plan key changes
+    /// (its shader features, plan options such as temporal upsampling, method and sky, or its
+    /// size), and new noise only when its seed or shape size does.
     pub fn update(&mut self, update: Update) -> Result<(), Error> {
         let mut scene = update.scene.unwrap_or_else(|| self.scene.clone());
         if let Some(p) = update.camera_position {
@@ -132,14 +179,7 @@ impl Clouds {
     }
 
     fn set_scene(&mut self, scene: Scene) -> Result<(), Error> {
-        if Requirements::of(&scene, false) != Requirements::of(&self.scene, false)
-            || scene.camera.resolution != self.scene.camera.resolution
-        {
-            self.plan = FramePlan::for_scene(&scene, false)?;
-        }
-        if scene.noise != self.scene.noise {
-            self.noise = Arc::new(noise_for(&scene));
-        }
+        self.prepared.update(&scene)?;
         self.scene = scene;
         Ok(())
     }
@@ -174,7 +214,9 @@ impl Clouds {
             let scene = self.scene.clone().with_size(size[0], size[1]);
             self.set_scene(scene)?;
         }
-        let frame = FrameInput::new(&self.plan, &self.scene, &self.noise)
+        let frame = self
+            .prepared
+            .frame(&self.scene)
             .with_readback(Readback::none())
             .with_flags(&["present"]);
         self.recorded = self.renderer.record(encoder, &frame, Some(target))?;

@@ -7,8 +7,7 @@ use std::{collections::BTreeMap, path::Path};
 
 use serde::{Deserialize, Serialize};
 use stratus_scene::{
-    Animation, Integration, Keyframe, Method, MultipleScattering, PhaseModel, Scene, ShapeTexture,
-    Temporal,
+    Integration, Method, MultipleScattering, PhaseModel, Scene, ShapeTexture, Temporal,
 };
 
 /// One point of the sweep: the quality and method settings a configuration overrides.
@@ -218,8 +217,8 @@ pub struct Row {
     pub reference: String,
     /// On the scene's Pareto front of (gpu_ms, flip).
     pub pareto: bool,
-    /// Methods (temporal upsampling, cheap marching) only: on a moving camera
-    /// ([`moving_camera`]), the mean over frames of the mean FLIP against the full march of
+    /// Methods (temporal upsampling, cheap marching) only: on a moving camera (the bench's
+    /// camera move), the mean over frames of the mean FLIP against the full march of
     /// the same frame; `gpu_ms` is then the median frame of that sequence (amortised).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub motion_flip: Option<f64>,
@@ -228,39 +227,31 @@ pub struct Row {
     pub motion_flip_worst: Option<f64>,
 }
 
-/// Frames of the bench's moving-camera sequence.
-pub const MOVING_FRAMES: u32 = 48;
-
-/// `scene` with a camera move for measuring methods in motion: over [`MOVING_FRAMES`] frames
-/// at 30 per second, a pan of 0.5 degrees a frame while the camera climbs 2 m and moves 4 m
-/// forward a frame. Frame `i` is `at_time(i / 30)`.
-pub fn moving_camera(scene: &Scene) -> Scene {
-    let mut s = scene.clone();
-    let c = &scene.camera;
-    let n = f64::from(MOVING_FRAMES);
-    let (sy, cy) = c.yaw_deg.to_radians().sin_cos();
-    s.animation = Some(Animation {
-        duration_s: n / 30.0,
-        keyframes: vec![
-            Keyframe {
-                time_s: 0.0,
-                position: c.position,
-                yaw_deg: c.yaw_deg,
-                pitch_deg: c.pitch_deg,
-            },
-            Keyframe {
-                time_s: n / 30.0,
-                position: [
-                    c.position[0] + 4.0 * n * sy,
-                    c.position[1] + 2.0 * n,
-                    c.position[2] + 4.0 * n * cy,
-                ],
-                yaw_deg: c.yaw_deg + 0.5 * n,
-                pitch_deg: c.pitch_deg,
-            },
-        ],
-    });
-    s
+impl Row {
+    /// `config` on `scene` before anything is measured: every time and error zero, not on the
+    /// Pareto front.
+    pub fn unmeasured(scene: &str, config: Config, preset: bool) -> Self {
+        Self {
+            scene: scene.into(),
+            name: config.name(),
+            preset,
+            config,
+            gpu_ms: 0.0,
+            passes: BTreeMap::new(),
+            timing: String::new(),
+            time_vs_preset: 1.0,
+            view_steps_pp: 0.0,
+            light_samples_pp: 0.0,
+            samples_pp: 0.0,
+            rmse: 0.0,
+            flip: 0.0,
+            flip_p95: 0.0,
+            reference: String::new(),
+            pareto: false,
+            motion_flip: None,
+            motion_flip_worst: None,
+        }
+    }
 }
 
 /// What `results.json` holds.
@@ -282,21 +273,6 @@ pub struct Results {
 
 /// The default location of the bench's results (where `stratus bench` writes by default).
 pub const DEFAULT_RESULTS: &str = "target/stratus-bench/results.json";
-
-/// Marks the Pareto front of (gpu_ms, flip) per scene: no other row of the scene is at least
-/// as fast and at least as accurate and better in one.
-pub fn mark_pareto(rows: &mut [Row]) {
-    let keys: Vec<(String, f64, f64)> = rows
-        .iter()
-        .map(|r| (r.scene.clone(), r.gpu_ms, r.flip))
-        .collect();
-    for (i, r) in rows.iter_mut().enumerate() {
-        let (scene, t, e) = &keys[i];
-        r.pareto = !keys.iter().enumerate().any(|(j, (s, t2, e2))| {
-            j != i && s == scene && t2 <= t && e2 <= e && (t2 < t || e2 < e)
-        });
-    }
-}
 
 /// Why no configuration was picked.
 #[derive(Debug, thiserror::Error)]
@@ -463,25 +439,15 @@ mod tests {
             view_steps,
             ..base.clone()
         };
+        let preset = config == base;
         Row {
-            scene: scene.into(),
-            name: config.name(),
-            preset: config == base,
-            config,
             gpu_ms,
-            passes: BTreeMap::new(),
-            timing: String::new(),
-            time_vs_preset: 1.0,
-            view_steps_pp: 0.0,
-            light_samples_pp: 0.0,
             samples_pp: f64::from(view_steps),
             rmse: flip,
             flip,
             flip_p95: flip,
             reference: "quadrature".into(),
-            pareto: false,
-            motion_flip: None,
-            motion_flip_worst: None,
+            ..Row::unmeasured(scene, config, preset)
         }
     }
 
@@ -501,17 +467,6 @@ mod tests {
                 row("sunset", 64, 8.0, 0.05),
             ],
         }
-    }
-
-    #[test]
-    fn pareto_front_drops_dominated_rows() {
-        let mut r = results();
-        mark_pareto(&mut r.rows);
-        let front: Vec<(u32, bool)> = r.rows[..4]
-            .iter()
-            .map(|r| (r.config.view_steps, r.pareto))
-            .collect();
-        assert_eq!(front, [(8, true), (16, true), (32, false), (64, true)]);
     }
 
     #[test]

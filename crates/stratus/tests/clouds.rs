@@ -226,3 +226,118 @@ fn temporal_frames_in_the_app_texture_match_the_renderer_frame_by_frame() {
     }
     assert_no_wgpu_messages();
 }
+
+/// The scenes of a stream that switches, frame by frame, every plan option a viewer's controls
+/// change: temporal upsampling on and off, the method (basic marcher, sprites, the march), the
+/// sky (analytic, physical) and the size. Each differs from the one before in its plan key.
+fn switching_stream(w: u32, h: u32) -> Vec<(&'static str, Scene)> {
+    use stratus_scene::{Method, SkyModel, Temporal};
+    let base = Scene::preset("cumulus-noon").unwrap().with_size(w, h);
+    let with = |f: &dyn Fn(&mut Scene)| {
+        let mut s = base.clone();
+        f(&mut s);
+        s
+    };
+    vec![
+        ("march", base.clone()),
+        (
+            "temporal 1/16",
+            with(&|s| s.quality.temporal = Temporal::Sixteenth),
+        ),
+        ("basic marcher", with(&|s| s.quality.method = Method::Basic)),
+        (
+            "physical sky",
+            with(&|s| s.atmosphere.sky = SkyModel::Physical),
+        ),
+        ("sprites", with(&|s| s.quality.method = Method::Sprites)),
+        (
+            "temporal 1/4 under the physical sky",
+            with(&|s| {
+                s.quality.temporal = Temporal::Quarter;
+                s.atmosphere.sky = SkyModel::Physical;
+            }),
+        ),
+        ("march again", base.clone()),
+        ("smaller", base.clone().with_size(w / 2, h / 2)),
+    ]
+}
+
+/// A scene switched mid-stream on the library renders what a fresh `Clouds` renders for it:
+/// the plan follows the plan options (temporal, method, sky), not only the shader features and
+/// the size (a stale plan drew the old method, or the full march where 1/16 was asked for).
+#[test]
+fn switching_plan_options_mid_stream_matches_a_fresh_renderer() {
+    record_wgpu_log();
+    let (device, queue) = device();
+    let (w, h) = (40, 24);
+    let stream = switching_stream(w, h);
+    let mut clouds = Clouds::new(&device, &queue, stream[0].1.clone()).expect("clouds");
+    let mut last_key = None;
+    for (what, scene) in &stream {
+        let key = stratus_graph::PlanKey::of(scene, false);
+        assert_ne!(last_key.as_ref(), Some(&key), "{what}: the stream switches");
+        last_key = Some(key.clone());
+        let [sw, sh] = scene.camera.resolution;
+        let texture = target(&device, wgpu::TextureFormat::Rgba8Unorm, sw, sh);
+        let view = texture.create_view(&Default::default());
+        clouds
+            .update(Update {
+                scene: Some(scene.clone()),
+                ..Default::default()
+            })
+            .expect("update");
+        assert_eq!(clouds.plan().key, key, "{what}: the plan follows the scene");
+        let mut encoder = device.create_command_encoder(&Default::default());
+        clouds.render(&mut encoder, &view).expect("render");
+        queue.submit([encoder.finish()]);
+        let switched = read(&device, &queue, &texture);
+
+        let mut fresh = Clouds::new(&device, &queue, scene.clone()).expect("fresh clouds");
+        let mut encoder = device.create_command_encoder(&Default::default());
+        fresh.render(&mut encoder, &view).expect("fresh render");
+        queue.submit([encoder.finish()]);
+        assert!(
+            switched == read(&device, &queue, &texture),
+            "{what}: the switched renderer's frame differs from a fresh renderer's"
+        );
+    }
+    assert_no_wgpu_messages();
+}
+
+/// The same stream on the viewer's ash path (the ash renderer with [`stratus::Prepared`]
+/// keeping its plan and noise): every frame equals a fresh ash renderer's.
+#[test]
+fn switching_plan_options_mid_stream_on_ash_matches_a_fresh_renderer() {
+    use stratus_graph::{Backend, Readback};
+    let (w, h) = (40, 24);
+    let stream = switching_stream(w, h);
+    let options = stratus_backend_ash::Options { validation: true };
+    let mut renderer = stratus_backend_ash::Renderer::new(options).expect("ash renderer");
+    let mut prepared = stratus::Prepared::new(&stream[0].1).expect("prepared");
+    for (what, scene) in &stream {
+        prepared.update(scene).expect("update");
+        assert_eq!(
+            prepared.plan().key,
+            stratus_graph::PlanKey::of(scene, false),
+            "{what}: the plan follows the scene"
+        );
+        let switched = Backend::render(
+            &mut renderer,
+            &prepared.frame(scene).with_readback(Readback::output()),
+        )
+        .expect("render");
+        let mut fresh_renderer = stratus_backend_ash::Renderer::new(options).expect("fresh");
+        let fresh_prepared = stratus::Prepared::new(scene).expect("fresh prepared");
+        let fresh = Backend::render(
+            &mut fresh_renderer,
+            &fresh_prepared
+                .frame(scene)
+                .with_readback(Readback::output()),
+        )
+        .expect("fresh render");
+        assert!(
+            switched.image == fresh.image && switched.radiance == fresh.radiance,
+            "{what}: the switched renderer's frame differs from a fresh renderer's"
+        );
+    }
+}

@@ -19,9 +19,9 @@ pub enum Path {
     AshSpv,
     /// 3. wgpu on GL (naga's GLSL inside wgpu, Mesa's GLSL compiler).
     WgpuGl,
-    /// 4. ash, from naga's GLSL in `spirv-out/` compiled by glslangValidator.
+    /// 4. ash, from naga's GLSL (translated at test time) compiled by glslangValidator.
     AshGlsl,
-    /// 5. ash, from naga's HLSL in `spirv-out/` compiled by glslang's HLSL front end.
+    /// 5. ash, from naga's HLSL (translated at test time) compiled by glslang's HLSL front end.
     AshHlsl,
     /// 6. The CPU reference (quadrature at the scene's real-time settings).
     Cpu,
@@ -66,9 +66,11 @@ impl Path {
             Path::WgpuVulkan => "wgpu on Vulkan, from the WGSL (wgpu's own naga translation)",
             Path::AshSpv => "ash, from the committed spirv-out/<module>.<variant>.spv",
             Path::WgpuGl => "wgpu on GL (naga's GLSL inside wgpu, Mesa's GLSL compiler)",
-            Path::AshGlsl => "ash, naga's GLSL from spirv-out/ compiled by glslangValidator -V",
+            Path::AshGlsl => {
+                "ash, naga's GLSL (translated at test time) compiled by glslangValidator -V"
+            }
             Path::AshHlsl => {
-                "ash, naga's HLSL from spirv-out/ compiled by glslangValidator -D -V -e <entry> (HLSL front end), legalized by spirv-opt --legalize-hlsl"
+                "ash, naga's HLSL (translated at test time) compiled by glslangValidator -D -V -e <entry> (HLSL front end), legalized by spirv-opt --legalize-hlsl"
             }
             Path::Cpu => "the CPU reference, quadrature at the scene's real-time settings",
             Path::WebTint => {

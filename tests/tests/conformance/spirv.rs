@@ -1,10 +1,12 @@
-//! naga's GLSL and HLSL from `spirv-out/`, compiled to SPIR-V by glslangValidator, and the
-//! descriptor slots the ash backend binds for them (read from what glslang declared).
+//! naga's GLSL and HLSL, translated at test time from the embedded WGSL (`spirv-out/` keeps
+//! only the SPIR-V), compiled to SPIR-V by glslangValidator, and the descriptor slots the ash
+//! backend binds for them (read from what glslang declared).
 
 use std::{
     collections::BTreeMap,
     path::{Path, PathBuf},
     process::Command,
+    sync::OnceLock,
 };
 
 use stratus_backend_ash::{PassShader, Slot, SlotContent};
@@ -31,9 +33,9 @@ fn bound(plan: &FramePlan, b: &stratus_graph::plan::Binding) -> String {
 /// Which of naga's texts a module was compiled from.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
 pub enum Lang {
-    /// `spirv-out/<module>.<variant>.<entry>.comp.glsl`, `glslangValidator -V -S comp`.
+    /// `<module>.<variant>.<entry>.comp.glsl`, `glslangValidator -V -S comp`.
     Glsl,
-    /// `spirv-out/<module>.<variant>.hlsl`, `glslangValidator -D -V -e <entry> -S comp`, then
+    /// `<module>.<variant>.hlsl`, `glslangValidator -D -V -e <entry> -S comp`, then
     /// `spirv-opt --legalize-hlsl`.
     Hlsl,
 }
@@ -113,9 +115,40 @@ pub fn reflect(words: &[u32]) -> Result<Reflection, String> {
     Ok(out)
 }
 
-/// Where the committed shaders are.
-pub fn spirv_out() -> PathBuf {
-    crate::report::workspace_root().join("spirv-out")
+/// Every variant's GLSL, HLSL and MSL, translated once per run from the embedded WGSL, which
+/// `spirv_out_is_fresh` holds to the committed SPIR-V: file name (as the manifest names it)
+/// -> text.
+pub fn translations() -> Result<&'static BTreeMap<String, Vec<u8>>, String> {
+    static ALL: OnceLock<Result<BTreeMap<String, Vec<u8>>, String>> = OnceLock::new();
+    ALL.get_or_init(|| {
+        let tree = stratus_shaders::ShaderTree::embedded().map_err(|e| e.to_string())?;
+        stratus_shaders::build_outputs(&tree, stratus_shaders::Languages::All)
+            .map_err(|e| e.to_string())
+    })
+    .as_ref()
+    .map_err(Clone::clone)
+}
+
+/// The translation `name` as a file under `scratch` (glslang reads files), written once and
+/// renamed into place so that concurrent tests never read half of it.
+fn translation_file(name: &str, scratch: &Path) -> Result<PathBuf, String> {
+    let bytes = translations()?
+        .get(name)
+        .ok_or_else(|| format!("naga wrote no {name}"))?;
+    let dir = scratch.join("translations");
+    let path = dir.join(name);
+    if std::fs::read(&path).is_ok_and(|b| &b == bytes) {
+        return Ok(path);
+    }
+    std::fs::create_dir_all(&dir).map_err(|e| format!("creating {}: {e}", dir.display()))?;
+    let tmp = dir.join(format!(
+        "{name}.{}.{:?}.tmp",
+        std::process::id(),
+        std::thread::current().id()
+    ));
+    std::fs::write(&tmp, bytes).map_err(|e| format!("writing {}: {e}", tmp.display()))?;
+    std::fs::rename(&tmp, &path).map_err(|e| format!("renaming to {}: {e}", path.display()))?;
+    Ok(path)
 }
 
 /// Runs `tool args... -o out source`, failing with its output.
@@ -198,7 +231,6 @@ pub fn committed(plan: &FramePlan, pass: &Pass) -> Result<PassShader, String> {
 pub fn compile(plan: &FramePlan, lang: Lang, scratch: &Path) -> Result<Vec<PassShader>, String> {
     let program = Program::embedded().map_err(|e| e.to_string())?;
     std::fs::create_dir_all(scratch).map_err(|e| e.to_string())?;
-    let dir = spirv_out();
     let mut shaders = Vec::new();
     for pass in &plan.passes {
         let Some(entry_point) = compute_entry(pass) else {
@@ -221,12 +253,13 @@ pub fn compile(plan: &FramePlan, lang: Lang, scratch: &Path) -> Result<Vec<PassS
                     .glsl
                     .get(entry_point)
                     .ok_or_else(|| format!("no GLSL for entry point {entry_point}"))?;
-                let words = glslang(&["-V", "-S", "comp"], &dir.join(file), &out, false)?;
+                let source = translation_file(file, scratch)?;
+                let words = glslang(&["-V", "-S", "comp"], &source, &out, false)?;
                 let r = reflect(&words)?;
                 (words, glsl_slots(plan, pass, &r)?, entry_of(&r, &["main"])?)
             }
             Lang::Hlsl => {
-                let file = dir.join(&variant.files.hlsl);
+                let file = translation_file(&variant.files.hlsl, scratch)?;
                 let text = std::fs::read_to_string(&file)
                     .map_err(|e| format!("reading {}: {e}", file.display()))?;
                 let words = glslang(

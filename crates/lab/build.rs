@@ -1,0 +1,37 @@
+//! Embeds the fit's training scenes (`scenes/fit/*.toml`, in file-name order) so that
+//! `stratus fit-scattering` runs the same scenes from any folder and on a machine without the
+//! checkout.
+
+use std::{env, fs, path::Path};
+
+fn main() {
+    let manifest_dir = env::var("CARGO_MANIFEST_DIR").expect("cargo sets CARGO_MANIFEST_DIR");
+    let dir = Path::new(&manifest_dir).join("../../scenes/fit");
+    println!("cargo:rerun-if-changed={}", dir.display());
+    let mut files: Vec<(String, String)> = fs::read_dir(&dir)
+        .map(|entries| {
+            entries
+                .flatten()
+                .map(|e| e.path())
+                .filter(|p| p.extension().is_some_and(|x| x == "toml"))
+                .filter_map(|p| {
+                    let name = p.file_name()?.to_str()?.to_owned();
+                    let abs = fs::canonicalize(&p).ok()?.to_str()?.to_owned();
+                    Some((name, abs))
+                })
+                .collect()
+        })
+        .unwrap_or_default();
+    files.sort();
+    let mut out = String::from(
+        "/// `(file name in scenes/fit/, text)` of every training scene, in file-name order.\n\
+         pub(crate) static TRAINING_SCENES: &[(&str, &str)] = &[\n",
+    );
+    for (name, abs) in &files {
+        println!("cargo:rerun-if-changed={abs}");
+        out.push_str(&format!("    ({name:?}, include_str!({abs:?})),\n"));
+    }
+    out.push_str("];\n");
+    let out_dir = env::var("OUT_DIR").expect("cargo sets OUT_DIR");
+    fs::write(Path::new(&out_dir).join("training_scenes.rs"), out).expect("OUT_DIR is writable");
+}
