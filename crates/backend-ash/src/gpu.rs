@@ -1,6 +1,11 @@
 //! The Vulkan instance, the validation messenger, the chosen device with its compute queue,
 //! the command pool, the fence and the memory allocator: everything that lives as long as the
 //! renderer, created in [`Gpu::new`] and destroyed in reverse order in [`Gpu::destroy`].
+//!
+//! The renderer's side of it lives here too: beginning its command buffer, submitting and
+//! waiting, reading the timestamps, and tearing everything down in order (as wgpu's `gpu.rs`).
+
+use crate::*;
 
 use std::{
     ffi::{CStr, c_char, c_void},
@@ -523,6 +528,130 @@ impl Gpu {
 impl Drop for Gpu {
     fn drop(&mut self) {
         self.destroy();
+    }
+}
+
+// The renderer's command buffer: begin, submit and wait, the timestamps it read, and
+// tearing everything down in order.
+
+/// Every image format the program's graph uses and the features its passes need of it, so a
+/// device that lacks one is passed over when the device is chosen (not found out mid-frame).
+pub(crate) fn format_needs(program: &Program) -> Result<Vec<FormatNeed>, Error> {
+    let plan = FramePlan::new(program, &Requirements(Default::default()), 1, 1)
+        .map_err(|e| Error::Shader(e.to_string()))?;
+    Ok(plan
+        .resources
+        .iter()
+        .filter_map(|r| {
+            let f = r.format?;
+            Some(FormatNeed {
+                resource: r.name.clone(),
+                format: f,
+                vk_format: vk_format(f),
+                features: image_needs(r.usage, f).1,
+            })
+        })
+        .collect())
+}
+
+impl Renderer {
+    /// Resets and begins the renderer's command buffer.
+    pub(crate) fn begin(&self) -> Result<(), Error> {
+        let cb = self.gpu.command_buffer;
+        let info = vk::CommandBufferBeginInfo::default()
+            .flags(vk::CommandBufferUsageFlags::ONE_TIME_SUBMIT);
+        // SAFETY: the buffer is not pending (every submit is waited for).
+        unsafe {
+            self.gpu
+                .device
+                .reset_command_buffer(cb, vk::CommandBufferResetFlags::empty())
+                .map_err(vk("vkResetCommandBuffer"))?;
+            self.gpu
+                .device
+                .begin_command_buffer(cb, &info)
+                .map_err(vk("vkBeginCommandBuffer"))
+        }
+    }
+
+    /// Ends the command buffer, submits it and waits for the fence. Returns the milliseconds
+    /// spent waiting.
+    pub(crate) fn submit_and_wait(&self) -> Result<f64, Error> {
+        let gpu = &self.gpu;
+        let cbs = [gpu.command_buffer];
+        let submit = vk::SubmitInfo::default().command_buffers(&cbs);
+        // SAFETY: the buffer is recording; the fence is not in use by another submit.
+        unsafe {
+            gpu.device
+                .end_command_buffer(gpu.command_buffer)
+                .map_err(vk("vkEndCommandBuffer"))?;
+            gpu.device
+                .reset_fences(&[gpu.fence])
+                .map_err(vk("vkResetFences"))?;
+            gpu.device
+                .queue_submit(gpu.queue, &[submit], gpu.fence)
+                .map_err(vk("vkQueueSubmit"))?;
+            let t = Instant::now();
+            gpu.device
+                .wait_for_fences(&[gpu.fence], true, u64::MAX)
+                .map_err(vk("vkWaitForFences"))?;
+            Ok(t.elapsed().as_secs_f64() * 1e3)
+        }
+    }
+
+    /// The time of every pass that ran, from the frame's timestamp queries (all complete:
+    /// the caller waited for the fence).
+    pub(crate) fn timestamps(&self, ran: &[&Pass]) -> Result<Vec<PassTiming>, Error> {
+        let mut ticks = vec![0u64; 2 * ran.len()];
+        if ticks.is_empty() {
+            return Ok(Vec::new());
+        }
+        // SAFETY: the pool has at least one query per entry of `ticks`, all written and
+        // complete.
+        unsafe {
+            self.gpu.device.get_query_pool_results(
+                self.query_pool,
+                0,
+                &mut ticks,
+                vk::QueryResultFlags::TYPE_64 | vk::QueryResultFlags::WAIT,
+            )
+        }
+        .map_err(vk("vkGetQueryPoolResults"))?;
+        Ok(timings_from_ticks(
+            ran,
+            &ticks,
+            self.gpu.info.timestamp_period,
+            self.gpu.info.timestamp_bits,
+        ))
+    }
+
+    pub(crate) fn teardown(&mut self) {
+        if std::mem::replace(&mut self.torn_down, true) {
+            return;
+        }
+        // SAFETY: waiting first; then nothing uses the pipelines or modules.
+        unsafe {
+            let _ = self.gpu.device.device_wait_idle();
+        }
+        self.drop_state();
+        self.drop_resources();
+        let device = &self.gpu.device;
+        // SAFETY: idle (above); each object is destroyed once (drained or taken).
+        unsafe {
+            for (_, mut p) in self.pipelines.drain() {
+                p.destroy(device);
+            }
+            for (_, m) in self.modules.drain() {
+                device.destroy_shader_module(m, None);
+            }
+            device.destroy_query_pool(std::mem::take(&mut self.query_pool), None);
+        }
+        for (_, mut b) in self.readbacks.drain() {
+            b.destroy(device, &mut self.gpu.allocator);
+        }
+        if let Some(mut u) = self.uniform.take() {
+            u.destroy(device, &mut self.gpu.allocator);
+        }
+        self.gpu.destroy();
     }
 }
 

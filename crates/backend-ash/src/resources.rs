@@ -1,6 +1,12 @@
 //! GPU objects of the frame graph's resources (buffers, images and their views, created with
 //! memory from the allocator, destroyed one by one when a new plan changes them), the graph's
 //! formats and usages in Vulkan's terms, and the barrier tracker that orders their uses.
+//!
+//! The renderer's side of it lives here too: making a plan's resources (and dropping those a
+//! new plan changes), uploading the noise, the device limits a pass must fit, and reading
+//! results back (as wgpu's `resources.rs`).
+
+use crate::*;
 
 use std::collections::HashMap;
 
@@ -489,5 +495,387 @@ impl Tracker {
                 &images,
             );
         }
+    }
+}
+
+// The renderer's resources: made when a plan needs them (and dropped when a new plan changes
+// them), the noise uploaded, the device limits a pass must fit, results read back.
+
+/// The GPU side of a resource of the plan.
+pub(crate) struct Resource {
+    /// What it was made from (kept while it serves the plan).
+    pub(crate) made: Made,
+    pub(crate) object: Object,
+}
+
+pub(crate) enum Object {
+    /// The renderer's one uniform block.
+    Uniform,
+    Buffer(GpuBuffer),
+    /// One image, or two for a history pair.
+    Images(Vec<GpuImage>),
+    Sampler(vk::Sampler),
+}
+
+/// As backend-wgpu's: one mip level, the shared LOD clamp, no anisotropy.
+pub(crate) fn sampler_info(s: stratus_graph::plan::SamplerDesc) -> vk::SamplerCreateInfo<'static> {
+    use stratus_graph::desc::{AddressMode, Filter};
+    let filter = match s.filter {
+        Filter::Linear => vk::Filter::LINEAR,
+        Filter::Nearest => vk::Filter::NEAREST,
+    };
+    let address = match s.address {
+        AddressMode::Repeat => vk::SamplerAddressMode::REPEAT,
+        AddressMode::ClampToEdge => vk::SamplerAddressMode::CLAMP_TO_EDGE,
+    };
+    let [min_lod, max_lod] = stratus_graph::plan::SamplerDesc::LOD_CLAMP;
+    vk::SamplerCreateInfo::default()
+        .mag_filter(filter)
+        .min_filter(filter)
+        .mipmap_mode(vk::SamplerMipmapMode::NEAREST)
+        .address_mode_u(address)
+        .address_mode_v(address)
+        .address_mode_w(address)
+        .min_lod(min_lod)
+        .max_lod(max_lod)
+}
+
+impl Renderer {
+    /// Destroys every resource (the GPU is idle).
+    pub(crate) fn drop_resources(&mut self) {
+        let names: Vec<String> = self.resources.keys().cloned().collect();
+        for name in names {
+            self.drop_resource(&name);
+        }
+        self.noise = None;
+    }
+
+    pub(crate) fn drop_resource(&mut self, name: &str) {
+        let Some(r) = self.resources.remove(name) else {
+            return;
+        };
+        let device = &self.gpu.device;
+        match r.object {
+            Object::Uniform => {}
+            Object::Buffer(mut b) => b.destroy(device, &mut self.gpu.allocator),
+            Object::Images(list) => {
+                for mut i in list {
+                    i.destroy(device, &mut self.gpu.allocator);
+                }
+            }
+            // SAFETY: the GPU is idle.
+            Object::Sampler(s) => unsafe { device.destroy_sampler(s, None) },
+        }
+        self.tracker.remove(name);
+    }
+
+    pub(crate) fn create_resource(&mut self, made: &Made) -> Result<Object, Error> {
+        let r = &made.desc;
+        let device = &self.gpu.device;
+        let allocator = &mut *self.gpu.allocator;
+        Ok(match r.kind {
+            ResourceKind::Uniform => Object::Uniform,
+            ResourceKind::Counters => {
+                self.created += 1;
+                Object::Buffer(GpuBuffer::new(
+                    device,
+                    allocator,
+                    &r.name,
+                    r.buffer_size().max(4),
+                    vk::BufferUsageFlags::STORAGE_BUFFER
+                        | vk::BufferUsageFlags::TRANSFER_DST
+                        | vk::BufferUsageFlags::TRANSFER_SRC,
+                    MemoryLocation::GpuOnly,
+                )?)
+            }
+            ResourceKind::Sampler => {
+                let s = r
+                    .sampler
+                    .ok_or_else(|| Error::Shader(format!("sampler `{}` has no state", r.name)))?;
+                let info = sampler_info(s);
+                self.created += 1;
+                // SAFETY: valid device and info.
+                Object::Sampler(
+                    unsafe { device.create_sampler(&info, None) }.map_err(vk("vkCreateSampler"))?,
+                )
+            }
+            ResourceKind::Texture => {
+                let [width, height, depth] = made.size().map_err(Error::Shader)?;
+                let f = r
+                    .format
+                    .ok_or_else(|| Error::Shader(format!("texture `{}` has no format", r.name)))?;
+                let count = if r.lifetime == Lifetime::History {
+                    2
+                } else {
+                    1
+                };
+                let mut list = Vec::new();
+                for _ in 0..count {
+                    list.push(GpuImage::new(
+                        device,
+                        allocator,
+                        &r.name,
+                        view_type(r.dimension),
+                        vk_format(f),
+                        vk::Extent3D {
+                            width,
+                            height,
+                            depth,
+                        },
+                        image_needs(r.usage, f).0,
+                    )?);
+                    self.created += 2;
+                }
+                Object::Images(list)
+            }
+        })
+    }
+
+    /// Uploads every uploaded texture through one staging buffer, in one submission.
+    pub(crate) fn upload(&mut self, plan: &FramePlan, noise: &NoiseSet) -> Result<(), Error> {
+        let mut list = Vec::new();
+        let mut size = 0u64;
+        for r in plan.resources.iter().filter(|r| r.usage.upload) {
+            let src = r.upload.as_deref().unwrap_or_default();
+            let (_, data) = upload_data(src, noise)
+                .map_err(|e| Error::Shader(format!("resource `{}`: {e}", r.name)))?;
+            list.push((r.name.clone(), size, data));
+            size += data.len() as u64;
+        }
+        if list.is_empty() {
+            return Ok(());
+        }
+        let mut staging = GpuBuffer::new(
+            &self.gpu.device,
+            &mut self.gpu.allocator,
+            "noise staging",
+            size,
+            vk::BufferUsageFlags::TRANSFER_SRC,
+            MemoryLocation::CpuToGpu,
+        )?;
+        self.created += 1;
+        let result = (|| {
+            let mapped = staging.mapped()?;
+            for (_, offset, data) in &list {
+                let start = *offset as usize;
+                mapped[start..start + data.len()].copy_from_slice(data);
+            }
+            self.begin()?;
+            let cb = self.gpu.command_buffer;
+            let wants: Vec<(Key, Use)> = list
+                .iter()
+                .map(|(n, _, _)| ((n.clone(), 0), Use::COPY_DST))
+                .collect();
+            let device = &self.gpu.device;
+            self.tracker.barrier(device, cb, &wants);
+            for (name, offset, _) in &list {
+                let Some(Object::Images(images)) = self.resources.get(name).map(|r| &r.object)
+                else {
+                    continue;
+                };
+                let image = &images[0];
+                let region = vk::BufferImageCopy::default()
+                    .buffer_offset(*offset)
+                    .image_subresource(COLOR_LAYER)
+                    .image_extent(image.extent);
+                // SAFETY: recording; the staging buffer lives until after the wait.
+                unsafe {
+                    device.cmd_copy_buffer_to_image(
+                        cb,
+                        staging.buffer,
+                        image.image,
+                        vk::ImageLayout::TRANSFER_DST_OPTIMAL,
+                        &[region],
+                    );
+                }
+            }
+            self.submit_and_wait().map(|_| ())
+        })();
+        staging.destroy(&self.gpu.device, &mut self.gpu.allocator);
+        result
+    }
+
+    /// Records the copies a frame's readback asks for into persistent host-visible buffers
+    /// (rows tightly packed: Vulkan, unlike WebGPU, needs no 256-byte row alignment).
+    pub(crate) fn copy_readbacks(
+        &mut self,
+        frame: &FrameInput<'_>,
+    ) -> Result<Vec<(usize, Readout)>, Error> {
+        let plan = frame.plan;
+        let wanted = frame.readback.targets(plan).map_err(Error::Shader)?;
+        if wanted.is_empty() {
+            return Ok(Vec::new());
+        }
+        let mut out = Vec::new();
+        let mut copies = Vec::new();
+        for (i, readout) in wanted {
+            let r = &plan.resources[i];
+            let (size, key) = match self.resources.get(&r.name).map(|g| &g.object) {
+                Some(Object::Buffer(b)) => (b.size, (r.name.clone(), 0)),
+                Some(Object::Images(_)) => {
+                    let image = self.target(plan, i, self.frames.frame())?;
+                    let f = r
+                        .format
+                        .unwrap_or(stratus_graph::desc::TexelFormat::Rgba8Unorm);
+                    let e = image.extent;
+                    (
+                        u64::from(e.width)
+                            * u64::from(e.height)
+                            * u64::from(e.depth)
+                            * u64::from(f.texel_size()),
+                        self.key(plan, i, false),
+                    )
+                }
+                _ => {
+                    return Err(Error::Shader(format!(
+                        "readback of `{}`: it holds no data the host can read (checked by the plan)",
+                        r.name
+                    )));
+                }
+            };
+            if self.readbacks.get(&r.name).is_none_or(|b| b.size != size) {
+                if let Some(mut old) = self.readbacks.remove(&r.name) {
+                    old.destroy(&self.gpu.device, &mut self.gpu.allocator);
+                }
+                let b = GpuBuffer::new(
+                    &self.gpu.device,
+                    &mut self.gpu.allocator,
+                    "readback",
+                    size,
+                    vk::BufferUsageFlags::TRANSFER_DST,
+                    MemoryLocation::GpuToCpu,
+                )?;
+                self.created += 1;
+                self.readbacks.insert(r.name.clone(), b);
+            }
+            copies.push((i, key));
+            out.push((i, readout));
+        }
+        let cb = self.gpu.command_buffer;
+        let wants: Vec<(Key, Use)> = copies
+            .iter()
+            .map(|(i, key)| {
+                let u = if plan.resources[*i].kind == ResourceKind::Texture {
+                    Use::COPY_SRC
+                } else {
+                    Use {
+                        layout: vk::ImageLayout::UNDEFINED,
+                        ..Use::COPY_SRC
+                    }
+                };
+                (key.clone(), u)
+            })
+            .collect();
+        let device = &self.gpu.device;
+        // SAFETY: recording; every handle is alive until after the wait.
+        unsafe {
+            self.tracker.barrier(device, cb, &wants);
+            for (i, _) in &copies {
+                let r = &plan.resources[*i];
+                let dst = self.readbacks[&r.name].buffer;
+                match self.resources.get(&r.name).map(|g| &g.object) {
+                    Some(Object::Buffer(b)) => {
+                        let region = vk::BufferCopy::default().size(b.size);
+                        device.cmd_copy_buffer(cb, b.buffer, dst, &[region]);
+                    }
+                    _ => {
+                        let image = self.target(plan, *i, self.frames.frame())?;
+                        let region = vk::BufferImageCopy::default()
+                            .image_subresource(vk::ImageSubresourceLayers {
+                                aspect_mask: range(image.format).aspect_mask,
+                                ..COLOR_LAYER
+                            })
+                            .image_extent(image.extent);
+                        device.cmd_copy_image_to_buffer(
+                            cb,
+                            image.image,
+                            vk::ImageLayout::TRANSFER_SRC_OPTIMAL,
+                            dst,
+                            &[region],
+                        );
+                    }
+                }
+            }
+            let to_host = vk::MemoryBarrier::default()
+                .src_access_mask(vk::AccessFlags::TRANSFER_WRITE)
+                .dst_access_mask(vk::AccessFlags::HOST_READ);
+            device.cmd_pipeline_barrier(
+                cb,
+                vk::PipelineStageFlags::TRANSFER,
+                vk::PipelineStageFlags::HOST,
+                vk::DependencyFlags::empty(),
+                &[to_host],
+                &[],
+                &[],
+            );
+        }
+        Ok(out)
+    }
+
+    /// The image of texture resource `index` a frame of this parity writes (the current half
+    /// of a history pair).
+    pub(crate) fn target(
+        &self,
+        plan: &FramePlan,
+        index: usize,
+        parity: u64,
+    ) -> Result<&GpuImage, Error> {
+        let r = &plan.resources[index];
+        match self.resources.get(&r.name).map(|g| &g.object) {
+            Some(Object::Images(images)) => {
+                Ok(&images[history_half(parity, false).min(images.len() - 1)])
+            }
+            _ => Err(Error::Shader(format!("`{}` is not a texture", r.name))),
+        }
+    }
+
+    /// The tracker key of texture resource `index` in this frame (which half of a history
+    /// pair, `previous` or not).
+    pub(crate) fn key(&self, plan: &FramePlan, index: usize, previous: bool) -> Key {
+        let r = &plan.resources[index];
+        let half = if r.lifetime == Lifetime::History {
+            history_half(self.frames.frame(), previous)
+        } else {
+            0
+        };
+        (r.name.clone(), half)
+    }
+
+    /// Fails with [`Error::Unsupported`] where the descriptors need more samplers per stage
+    /// than the device allows, or index an array of samplers that the device cannot index:
+    /// creating such a pipeline is invalid, and crashes some drivers (lavapipe).
+    pub(crate) fn check_limits(&self, pass: &Pass, list: &[Descriptor<'_>]) -> Result<(), Error> {
+        let info = &self.gpu.info;
+        let unsupported = |reason: String| Error::Unsupported {
+            device: info.name.clone(),
+            pass: pass.name.clone(),
+            reason,
+        };
+        let samplers: u32 = list
+            .iter()
+            .filter(|d| {
+                matches!(
+                    d.ty,
+                    vk::DescriptorType::SAMPLER | vk::DescriptorType::COMBINED_IMAGE_SAMPLER
+                )
+            })
+            .map(|d| d.count)
+            .sum();
+        if samplers > info.max_stage_samplers {
+            return Err(unsupported(format!(
+                "its layout has {samplers} samplers, more than the {} per shader stage the device allows (maxPerStageDescriptorSamplers)",
+                info.max_stage_samplers
+            )));
+        }
+        if !info.sampler_array_indexing
+            && list
+                .iter()
+                .any(|d| matches!(d.content, Content::SamplerArray(n) if n > 1))
+        {
+            return Err(unsupported(
+                "it indexes an array of samplers, and the device cannot (no shaderSampledImageArrayDynamicIndexing)".into(),
+            ));
+        }
+        Ok(())
     }
 }

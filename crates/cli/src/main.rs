@@ -11,7 +11,7 @@ use clap::{Parser, Subcommand};
 /// Stratus renders physically grounded volumetric clouds from one WGSL source on wgpu (Vulkan
 /// or GL), raw Vulkan and the CPU.
 #[derive(Parser)]
-#[command(name = "stratus", version, about, long_about = None)]
+#[command(name = "stratus", version, long_about = None)]
 struct Cli {
     #[command(subcommand)]
     command: Command,
