@@ -1,53 +1,119 @@
-// Shared declarations of the `clouds` module: the per-frame uniforms, the resources, the
-// feature switches and small math helpers.
+// Generated from crates/scene/src/uniforms.rs (`frame_members!`) by `cargo xtask
+// build-shaders`; edit the declaration there, not this file.
 //
-// `Frame` mirrors `FrameUniforms` in crates/scene/src/uniforms.rs member for member (a test
-// compares naga's reflection of this struct with the Rust one). Every member is a vec4, so the
-// layout is the same under WGSL, std140 and HLSL cbuffer rules.
+// The per-frame uniform block: every member a vec4, so the layout is the same under
+// WGSL, std140 and HLSL cbuffer rules.
 
 struct Frame {
-    camera_position: vec4<f32>,     // x, altitude, z (m); w = tan(fov_y / 2)
-    camera_forward: vec4<f32>,      // unit; w = width / height
-    camera_right: vec4<f32>,        // unit; w = exposure
-    camera_up: vec4<f32>,           // unit; w = 0
-    sun_direction: vec4<f32>,       // unit, toward the sun; w = cos(sun angular radius)
-    sun_illuminance: vec4<f32>,     // linear rgb
-    atmosphere: vec4<f32>,          // planet radius, layer bottom, layer top (altitudes), cut-off distance (m)
-    clouds: vec4<f32>,              // coverage, density multiplier, cloud type, precipitation
-    erosion: vec4<f32>,             // detail strength, erosion threshold, curl strength (m), height gradient strength
-    periods: vec4<f32>,             // weather, shape (x axis), detail, curl periods (m)
-    wind_offsets0: vec4<f32>,       // weather offset xz, shape offset xz (m, wrapped by the period)
-    wind_offsets1: vec4<f32>,       // detail offset xz, curl offset xz (m, wrapped by the period)
-    extinction: vec4<f32>,          // sigma_s, sigma_a (1/m at density 1), precipitation darkening, wispy/billowy
-    phase: vec4<f32>,               // g, g2, blend (weight of the g2 lobe), powder strength
-    multiple_scattering: vec4<f32>, // a (contribution), b (extinction), c (eccentricity) per octave, w = octave build-up length (m)
-    ambient_bottom: vec4<f32>,      // linear rgb; w = ambient strength
-    ambient_top: vec4<f32>,         // linear rgb
-    march: vec4<f32>,               // step length (m, 0 = from view steps), light step growth, first light step (m), early-exit transmittance
-    counts: vec4<u32>,              // width, height, view steps, light steps
-    modes: vec4<u32>,               // phase model, integration, height model, flags
-    misc: vec4<u32>,                // octaves beyond single scattering, frame (jitter seed), path orders, extra cloud layers (0-3)
-    previous_position: vec4<f32>,   // last frame's camera (as camera_position): reprojection
-    previous_forward: vec4<f32>,    // last frame's forward; w = aspect
-    previous_right: vec4<f32>,      // last frame's right
-    previous_up: vec4<f32>,         // last frame's up
-    temporal: vec4<u32>,            // block side (1 off, 2 = 1/4, 4 = 1/16), history valid (0/1)
-    layer1: vec4<f32>,              // extra cloud layer 1: bottom, top (altitudes, m), coverage, density multiplier
-    layer1_weather: vec4<f32>,      // its cloud type, precipitation, weather-map offset xz (m, wrapped)
-    layer2: vec4<f32>,              // extra cloud layer 2 (as layer1)
+    // x, altitude, z (m); w = tan(fov_y / 2).
+    camera_position: vec4<f32>,
+    // Unit view direction; w = width / height.
+    camera_forward: vec4<f32>,
+    // Unit, image right; w = exposure.
+    camera_right: vec4<f32>,
+    // Unit, image up; w = 0.
+    camera_up: vec4<f32>,
+    // Unit vector toward the sun; w = cos(sun angular radius).
+    sun_direction: vec4<f32>,
+    // Linear rgb; w = 0.
+    sun_illuminance: vec4<f32>,
+    // Planet radius, layer bottom, layer top (altitudes, m), cut-off distance (m).
+    atmosphere: vec4<f32>,
+    // Coverage, density multiplier, cloud type, precipitation.
+    clouds: vec4<f32>,
+    // Detail strength, erosion threshold, curl strength (m), height gradient strength.
+    erosion: vec4<f32>,
+    // Weather period, shape period (x axis), detail period, curl period (m).
+    periods: vec4<f32>,
+    // Weather offset xz, shape offset xz (m), each within [0, period).
+    wind_offsets0: vec4<f32>,
+    // Detail offset xz, curl offset xz (m), each within [0, period).
+    wind_offsets1: vec4<f32>,
+    // sigma_s, sigma_a (1/m at density 1), precipitation darkening, wispy_billowy.
+    extinction: vec4<f32>,
+    // g, g2, blend, powder strength.
+    phase: vec4<f32>,
+    // a (contribution), b (extinction), c (eccentricity) attenuation per octave, octave
+    // build-up length (m).
+    multiple_scattering: vec4<f32>,
+    // Linear rgb; w = ambient strength.
+    ambient_bottom: vec4<f32>,
+    // Linear rgb; w = 0.
+    ambient_top: vec4<f32>,
+    // Step length (m, 0 = derive from view steps), light step growth, first light step (m),
+    // early-exit transmittance.
+    march: vec4<f32>,
+    // Width, height, view steps, light steps.
+    counts: vec4<u32>,
+    // Phase model ([`PhaseModel::code`](crate::PhaseModel::code)), integration
+    // ([`Integration::code`](crate::Integration::code)), height model
+    // ([`HeightModel::code`](crate::HeightModel::code)), flags
+    // ([`FrameUniforms::FLAG_BEER_POWDER`], [`FrameUniforms::FLAG_JITTER`]).
+    modes: vec4<u32>,
+    // Octaves (beyond single scattering), frame (jitter seed, path tracer's random streams),
+    // path tracer's scattering orders (0 = all), extra cloud layers (0-3).
+    misc: vec4<u32>,
+    // Last frame's camera position (as `camera_position`, w = its tan(fov_y / 2)): temporal
+    // upsampling reprojects through it. [`Scene::uniforms`] sets the current camera; a
+    // renderer that keeps history replaces it with the one it rendered last.
+    previous_position: vec4<f32>,
+    // Last frame's unit view direction; w = its width / height.
+    previous_forward: vec4<f32>,
+    // Last frame's unit image right; w = 0.
+    previous_right: vec4<f32>,
+    // Last frame's unit image up; w = 0.
+    previous_up: vec4<f32>,
+    // Temporal upsampling: block side (1 = off, 2 = 1/4, 4 = 1/16), 0, 0, 0.
+    temporal: vec4<u32>,
+    // Extra cloud layer 1 (`clouds.layers[0]`): bottom, top (altitudes, m), coverage,
+    // density multiplier; zero when absent (`misc.w` counts the extra layers).
+    layer1: vec4<f32>,
+    // Its cloud type, precipitation, and weather-map offset xz (m, within [0, period)).
+    layer1_weather: vec4<f32>,
+    // Extra cloud layer 2, as `layer1`.
+    layer2: vec4<f32>,
+    // Its weather, as `layer1_weather`.
     layer2_weather: vec4<f32>,
-    layer3: vec4<f32>,              // extra cloud layer 3 (as layer1)
+    // Extra cloud layer 3, as `layer1`.
+    layer3: vec4<f32>,
+    // Its weather, as `layer1_weather`.
     layer3_weather: vec4<f32>,
-    air_rayleigh: vec4<f32>,        // physical sky: Rayleigh scattering rgb (1/m at the ground); w = scale height (m)
-    air_mie: vec4<f32>,             // Mie scattering, absorption (1/m at the ground), scale height (m), g
-    air_ozone: vec4<f32>,           // ozone absorption rgb at its peak (1/m); w = peak altitude (m)
-    air_misc: vec4<f32>,            // atmosphere thickness (m), ozone tent width (m), ground albedo, 0
-    moon: vec4<f32>,                // unit direction to the moon; w = full-moon illuminance (0: no moon)
-    night: vec4<f32>,               // the real sun's unit direction; w = a magnitude-0 star's illuminance (0: no stars)
-    light_model: vec4<f32>,         // side light, coverage exponent, far-shadow chord (m, 0 = off), limb darkening
-    octave_direction: vec4<f32>,    // the octaves' forward lobe through thin cloud (strength, 0 = off; eccentricity), vertical anisotropy (0 = off), deck escape (0 = off)
-    octave_depth: vec4<f32>,        // the octaves' column's weight in a closed deck (0 = off), its scale, downward dimming (0 = off), 0
+    // The physical sky's air: Rayleigh scattering at the ground (rgb, 1/m); w = its scale
+    // height (m).
+    air_rayleigh: vec4<f32>,
+    // Mie scattering, Mie absorption (1/m at the ground), Mie scale height (m), Mie g.
+    air_mie: vec4<f32>,
+    // Ozone absorption at its peak (rgb, 1/m); w = the peak's altitude (m).
+    air_ozone: vec4<f32>,
+    // Thickness of the atmosphere (m), the ozone tent's full width (m), the ground's albedo,
+    // 0.
+    air_misc: vec4<f32>,
+    // The moon (physical sky with a date and place): unit direction toward it; w = the full
+    // moon's illuminance (luminance, in the units of `sun_illuminance`; 0 without a moon).
+    // Its phase follows from its direction and the real sun's (`night`).
+    moon: vec4<f32>,
+    // The real sun's unit direction (the moon's lit side faces it; `sun_direction` is the
+    // moon's when it is the key light); w = the illuminance of a magnitude-0 star, in the
+    // units of `sun_illuminance` (0: no stars).
+    night: vec4<f32>,
+    // The fitted light model's terms beyond the octaves: side light, coverage exponent,
+    // far-shadow chord (m, 0 = off), limb darkening (`MultipleScattering`).
+    light_model: vec4<f32>,
+    // The octaves' dependence on the view and sun directions: their forward lobe through
+    // thin cloud (strength, 0 = off; eccentricity), their vertical anisotropy (0 = off), their
+    // deck escape (0 = off) (`MultipleScattering::forward_lobe`, `vertical_anisotropy`,
+    // `deck_escape`).
+    octave_direction: vec4<f32>,
+    // The octaves' optical depth in a closed deck and their dimming looking down: the
+    // column's weight (0 = off) and scale, the downward dimming (0 = off), 0
+    // (`MultipleScattering::steep_light`, `steep_light_scale`, `downward_dimming`).
+    octave_depth: vec4<f32>,
 }
+// Shared declarations of the `clouds` module: the resources, the feature switches and small
+// math helpers.
+//
+// `Frame`, the per-frame uniform block, is declared once in crates/scene/src/uniforms.rs
+// (`frame_members!`) and generated into frame.wgsl, composed before this file.
 
 // Codes shared with the scene crate (`PhaseModel::code`, `Integration::code`, ...).
 const PHASE_HG: u32 = 0u;

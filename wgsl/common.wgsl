@@ -1,53 +1,8 @@
-// Shared declarations of the `clouds` module: the per-frame uniforms, the resources, the
-// feature switches and small math helpers.
+// Shared declarations of the `clouds` module: the resources, the feature switches and small
+// math helpers.
 //
-// `Frame` mirrors `FrameUniforms` in crates/scene/src/uniforms.rs member for member (a test
-// compares naga's reflection of this struct with the Rust one). Every member is a vec4, so the
-// layout is the same under WGSL, std140 and HLSL cbuffer rules.
-
-struct Frame {
-    camera_position: vec4<f32>,     // x, altitude, z (m); w = tan(fov_y / 2)
-    camera_forward: vec4<f32>,      // unit; w = width / height
-    camera_right: vec4<f32>,        // unit; w = exposure
-    camera_up: vec4<f32>,           // unit; w = 0
-    sun_direction: vec4<f32>,       // unit, toward the sun; w = cos(sun angular radius)
-    sun_illuminance: vec4<f32>,     // linear rgb
-    atmosphere: vec4<f32>,          // planet radius, layer bottom, layer top (altitudes), cut-off distance (m)
-    clouds: vec4<f32>,              // coverage, density multiplier, cloud type, precipitation
-    erosion: vec4<f32>,             // detail strength, erosion threshold, curl strength (m), height gradient strength
-    periods: vec4<f32>,             // weather, shape (x axis), detail, curl periods (m)
-    wind_offsets0: vec4<f32>,       // weather offset xz, shape offset xz (m, wrapped by the period)
-    wind_offsets1: vec4<f32>,       // detail offset xz, curl offset xz (m, wrapped by the period)
-    extinction: vec4<f32>,          // sigma_s, sigma_a (1/m at density 1), precipitation darkening, wispy/billowy
-    phase: vec4<f32>,               // g, g2, blend (weight of the g2 lobe), powder strength
-    multiple_scattering: vec4<f32>, // a (contribution), b (extinction), c (eccentricity) per octave, w = octave build-up length (m)
-    ambient_bottom: vec4<f32>,      // linear rgb; w = ambient strength
-    ambient_top: vec4<f32>,         // linear rgb
-    march: vec4<f32>,               // step length (m, 0 = from view steps), light step growth, first light step (m), early-exit transmittance
-    counts: vec4<u32>,              // width, height, view steps, light steps
-    modes: vec4<u32>,               // phase model, integration, height model, flags
-    misc: vec4<u32>,                // octaves beyond single scattering, frame (jitter seed), path orders, extra cloud layers (0-3)
-    previous_position: vec4<f32>,   // last frame's camera (as camera_position): reprojection
-    previous_forward: vec4<f32>,    // last frame's forward; w = aspect
-    previous_right: vec4<f32>,      // last frame's right
-    previous_up: vec4<f32>,         // last frame's up
-    temporal: vec4<u32>,            // block side (1 off, 2 = 1/4, 4 = 1/16), history valid (0/1)
-    layer1: vec4<f32>,              // extra cloud layer 1: bottom, top (altitudes, m), coverage, density multiplier
-    layer1_weather: vec4<f32>,      // its cloud type, precipitation, weather-map offset xz (m, wrapped)
-    layer2: vec4<f32>,              // extra cloud layer 2 (as layer1)
-    layer2_weather: vec4<f32>,
-    layer3: vec4<f32>,              // extra cloud layer 3 (as layer1)
-    layer3_weather: vec4<f32>,
-    air_rayleigh: vec4<f32>,        // physical sky: Rayleigh scattering rgb (1/m at the ground); w = scale height (m)
-    air_mie: vec4<f32>,             // Mie scattering, absorption (1/m at the ground), scale height (m), g
-    air_ozone: vec4<f32>,           // ozone absorption rgb at its peak (1/m); w = peak altitude (m)
-    air_misc: vec4<f32>,            // atmosphere thickness (m), ozone tent width (m), ground albedo, 0
-    moon: vec4<f32>,                // unit direction to the moon; w = full-moon illuminance (0: no moon)
-    night: vec4<f32>,               // the real sun's unit direction; w = a magnitude-0 star's illuminance (0: no stars)
-    light_model: vec4<f32>,         // side light, coverage exponent, far-shadow chord (m, 0 = off), limb darkening
-    octave_direction: vec4<f32>,    // the octaves' forward lobe through thin cloud (strength, 0 = off; eccentricity), vertical anisotropy (0 = off), deck escape (0 = off)
-    octave_depth: vec4<f32>,        // the octaves' column's weight in a closed deck (0 = off), its scale, downward dimming (0 = off), 0
-}
+// `Frame`, the per-frame uniform block, is declared once in crates/scene/src/uniforms.rs
+// (`frame_members!`) and generated into frame.wgsl, composed before this file.
 
 // Codes shared with the scene crate (`PhaseModel::code`, `Integration::code`, ...).
 const PHASE_HG: u32 = 0u;

@@ -122,6 +122,20 @@ fn pinned_translations_are_fresh() {
     }
 }
 
+/// `wgsl/frame.wgsl` is what the uniform block's one declaration generates (the same check as
+/// `cargo xtask build-shaders --check`): the WGSL `struct Frame` is never edited by hand.
+#[test]
+fn the_wgsl_frame_struct_is_generated_from_the_declaration() {
+    let tree = ShaderTree::embedded().unwrap();
+    for (name, text) in stratus_shaders::generated_sources() {
+        assert_eq!(
+            tree.files.get(name),
+            Some(&text),
+            "wgsl/{name} differs from its declaration; run `cargo xtask build-shaders`"
+        );
+    }
+}
+
 /// The Rust uniform block and the WGSL `Frame` struct agree member for member: same names,
 /// types, offsets and total size as naga lays the WGSL out. A drift fails here instead of
 /// drawing garbage.
@@ -140,7 +154,7 @@ fn frame_uniforms_match_the_wgsl_layout() {
         "member count"
     );
     for (i, (m, (name, ty))) in frame.members.iter().zip(FrameUniforms::MEMBERS).enumerate() {
-        assert_eq!((m.name.as_str(), m.ty.as_str()), (name, ty), "member {i}");
+        assert_eq!((m.name.as_str(), m.ty.as_str()), (*name, *ty), "member {i}");
         assert_eq!(m.offset as usize, 16 * i, "offset of {name}");
     }
 }

@@ -33,6 +33,23 @@ pub(crate) fn build_shaders(
     check: bool,
     translations: Option<&Path>,
 ) -> Result<()> {
+    // The generated WGSL (the uniform block's struct) first: the tree is read from the folder.
+    let mut problems = Vec::new();
+    for (name, text) in stratus_shaders::generated_sources() {
+        let path = wgsl.join(name);
+        if std::fs::read_to_string(&path).ok().as_deref() == Some(text.as_str()) {
+            continue;
+        }
+        if check {
+            problems.push(format!(
+                "stale (generated from crates/scene/src/uniforms.rs): {}",
+                path.display()
+            ));
+        } else {
+            std::fs::write(&path, text).with_context(|| format!("writing {}", path.display()))?;
+            println!("wrote {} (generated)", path.display());
+        }
+    }
     let tree = ShaderTree::from_dir(wgsl, &label(root, wgsl))?;
     // One build of every language: the pinned set needs GLSL, HLSL and MSL, and compiling the
     // tree (not translating it) is most of the time.
@@ -53,7 +70,6 @@ pub(crate) fn build_shaders(
         (out.to_path_buf(), committed),
         (pinned_dir, stratus_shaders::pinned(&all)),
     ];
-    let mut problems = Vec::new();
     for (dir, files) in &targets {
         problems.extend(differences(dir, files)?);
     }

@@ -1,5 +1,5 @@
-//! The CPU twin of `common.wgsl`: the `Frame` uniform block widened to f64, the mode codes and
-//! the PCG jitter hash.
+//! The CPU twin of `common.wgsl` and `frame.wgsl`: the `Frame` uniform block widened to f64
+//! (generated from the block's one declaration), the mode codes and the PCG jitter hash.
 
 use stratus_scene::FrameUniforms;
 
@@ -22,105 +22,50 @@ pub(crate) const PI: f64 = std::f64::consts::PI;
 // WGSL: common.wgsl::MAX_VIEW_STEPS (the bound in step-length mode).
 pub(crate) const MAX_VIEW_STEPS: u32 = 1024;
 
-/// `Frame` of `common.wgsl`, member for member, every f32 widened to f64 so that the CPU sees
-/// exactly the values the GPU gets (read from [`stratus_scene::Scene::uniforms`]).
-#[derive(Clone, Debug)]
-pub(crate) struct Frame {
-    pub camera_position: [f64; 4],
-    pub camera_forward: [f64; 4],
-    pub camera_right: [f64; 4],
-    pub camera_up: [f64; 4],
-    pub sun_direction: [f64; 4],
-    pub sun_illuminance: [f64; 4],
-    pub atmosphere: [f64; 4],
-    pub clouds: [f64; 4],
-    pub erosion: [f64; 4],
-    pub periods: [f64; 4],
-    pub wind_offsets0: [f64; 4],
-    pub wind_offsets1: [f64; 4],
-    pub extinction: [f64; 4],
-    pub phase: [f64; 4],
-    pub multiple_scattering: [f64; 4],
-    pub ambient_bottom: [f64; 4],
-    pub ambient_top: [f64; 4],
-    pub march: [f64; 4],
-    pub counts: [u32; 4],
-    pub modes: [u32; 4],
-    pub misc: [u32; 4],
-    pub previous_position: [f64; 4],
-    pub previous_forward: [f64; 4],
-    pub previous_right: [f64; 4],
-    pub previous_up: [f64; 4],
-    pub temporal: [u32; 4],
-    pub layer1: [f64; 4],
-    pub layer1_weather: [f64; 4],
-    pub layer2: [f64; 4],
-    pub layer2_weather: [f64; 4],
-    pub layer3: [f64; 4],
-    pub layer3_weather: [f64; 4],
-    pub air_rayleigh: [f64; 4],
-    pub air_mie: [f64; 4],
-    pub air_ozone: [f64; 4],
-    pub air_misc: [f64; 4],
-    pub moon: [f64; 4],
-    pub night: [f64; 4],
-    pub light_model: [f64; 4],
-    pub octave_direction: [f64; 4],
-    pub octave_depth: [f64; 4],
+/// The Rust type of a member kind, widened: f32 to f64, u32 kept.
+macro_rules! wide_type {
+    (vec4f) => {
+        [f64; 4]
+    };
+    (vec4u) => {
+        [u32; 4]
+    };
 }
 
-fn w(v: [f32; 4]) -> [f64; 4] {
-    v.map(f64::from)
+/// A member of the uniform block, widened.
+macro_rules! widen {
+    (vec4f, $v:expr) => {
+        $v.map(f64::from)
+    };
+    (vec4u, $v:expr) => {
+        $v
+    };
 }
+
+/// The f64 mirror of the uniform block, generated from its one declaration
+/// (`stratus_scene::frame_members!`).
+macro_rules! wide_frame {
+    ($( $(#[doc = $doc:literal])* $name:ident : $kind:ident, )*) => {
+        /// `Frame` of `wgsl/frame.wgsl`, member for member, every f32 widened to f64 so that the
+        /// CPU sees exactly the values the GPU gets (read from
+        /// [`stratus_scene::Scene::uniforms`]).
+        #[derive(Clone, Debug)]
+        pub(crate) struct Frame {
+            $( $(#[doc = $doc])* pub $name: wide_type!($kind), )*
+        }
+
+        impl Frame {
+            /// The uniform block widened to f64.
+            pub fn from_uniforms(u: &FrameUniforms) -> Self {
+                Self { $( $name: widen!($kind, u.$name), )* }
+            }
+        }
+    };
+}
+
+stratus_scene::frame_members!(wide_frame);
 
 impl Frame {
-    /// The uniform block widened to f64.
-    pub fn from_uniforms(u: &FrameUniforms) -> Self {
-        Self {
-            camera_position: w(u.camera_position),
-            camera_forward: w(u.camera_forward),
-            camera_right: w(u.camera_right),
-            camera_up: w(u.camera_up),
-            sun_direction: w(u.sun_direction),
-            sun_illuminance: w(u.sun_illuminance),
-            atmosphere: w(u.atmosphere),
-            clouds: w(u.clouds),
-            erosion: w(u.erosion),
-            periods: w(u.periods),
-            wind_offsets0: w(u.wind_offsets0),
-            wind_offsets1: w(u.wind_offsets1),
-            extinction: w(u.extinction),
-            phase: w(u.phase),
-            multiple_scattering: w(u.multiple_scattering),
-            ambient_bottom: w(u.ambient_bottom),
-            ambient_top: w(u.ambient_top),
-            march: w(u.march),
-            counts: u.counts,
-            modes: u.modes,
-            misc: u.misc,
-            previous_position: w(u.previous_position),
-            previous_forward: w(u.previous_forward),
-            previous_right: w(u.previous_right),
-            previous_up: w(u.previous_up),
-            temporal: u.temporal,
-            layer1: w(u.layer1),
-            layer1_weather: w(u.layer1_weather),
-            layer2: w(u.layer2),
-            layer2_weather: w(u.layer2_weather),
-            layer3: w(u.layer3),
-            layer3_weather: w(u.layer3_weather),
-            air_rayleigh: w(u.air_rayleigh),
-            air_mie: w(u.air_mie),
-            air_ozone: w(u.air_ozone),
-            air_misc: w(u.air_misc),
-            moon: w(u.moon),
-            night: w(u.night),
-            light_model: w(u.light_model),
-            octave_direction: w(u.octave_direction),
-            octave_depth: w(u.octave_depth),
-        }
-    }
-
     /// `frame.sun_direction.xyz`.
     pub fn sun(&self) -> V3 {
         xyz(self.sun_direction)

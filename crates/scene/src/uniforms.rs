@@ -6,120 +6,178 @@ use crate::scene::{MAX_EXTRA_LAYERS, Scene};
 /// Weather-map shift per extra layer, in periods (the golden ratio's fractional parts).
 const LAYER_SHIFT: [f64; 2] = [0.381_966, 0.618_034];
 
-/// Per-frame uniforms, std140/WGSL-uniform compatible: only 16-byte vec4 members.
+/// The one declaration of the per-frame uniform block: every member in order, with its kind
+/// (`vec4f`: `vec4<f32>`, `vec4u`: `vec4<u32>`) and what it holds. Member `i` lies at byte
+/// offset `16 * i`, the same layout under WGSL, std140 and HLSL cbuffer rules.
 ///
-/// The WGSL mirrors this struct member for member ([`FrameUniforms::MEMBERS`]); member `i`
-/// lies at byte offset `16 * i`. Build it with [`Scene::uniforms`].
-#[repr(C)]
-#[derive(Clone, Copy, Debug, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
-pub struct FrameUniforms {
-    /// x, altitude, z (m); w = tan(fov_y / 2).
-    pub camera_position: [f32; 4],
-    /// Unit view direction; w = width / height.
-    pub camera_forward: [f32; 4],
-    /// Unit, image right; w = exposure.
-    pub camera_right: [f32; 4],
-    /// Unit, image up; w = 0.
-    pub camera_up: [f32; 4],
-    /// Unit vector toward the sun; w = cos(sun angular radius).
-    pub sun_direction: [f32; 4],
-    /// Linear rgb; w = 0.
-    pub sun_illuminance: [f32; 4],
-    /// Planet radius, layer bottom, layer top (altitudes, m), cut-off distance (m).
-    pub atmosphere: [f32; 4],
-    /// Coverage, density multiplier, cloud type, precipitation.
-    pub clouds: [f32; 4],
-    /// Detail strength, erosion threshold, curl strength (m), height gradient strength.
-    pub erosion: [f32; 4],
-    /// Weather period, shape period (x axis), detail period, curl period (m).
-    pub periods: [f32; 4],
-    /// Weather offset xz, shape offset xz (m), each within [0, period).
-    pub wind_offsets0: [f32; 4],
-    /// Detail offset xz, curl offset xz (m), each within [0, period).
-    pub wind_offsets1: [f32; 4],
-    /// sigma_s, sigma_a (1/m at density 1), precipitation darkening, wispy_billowy.
-    pub extinction: [f32; 4],
-    /// g, g2, blend, powder strength.
-    pub phase: [f32; 4],
-    /// a (contribution), b (extinction), c (eccentricity) attenuation per octave, octave
-    /// build-up length (m).
-    pub multiple_scattering: [f32; 4],
-    /// Linear rgb; w = ambient strength.
-    pub ambient_bottom: [f32; 4],
-    /// Linear rgb; w = 0.
-    pub ambient_top: [f32; 4],
-    /// Step length (m, 0 = derive from view steps), light step growth, first light step (m),
-    /// early-exit transmittance.
-    pub march: [f32; 4],
-    /// Width, height, view steps, light steps.
-    pub counts: [u32; 4],
-    /// Phase model ([`PhaseModel::code`](crate::PhaseModel::code)), integration
-    /// ([`Integration::code`](crate::Integration::code)), height model
-    /// ([`HeightModel::code`](crate::HeightModel::code)), flags
-    /// ([`FrameUniforms::FLAG_BEER_POWDER`], [`FrameUniforms::FLAG_JITTER`]).
-    pub modes: [u32; 4],
-    /// Octaves (beyond single scattering), frame (jitter seed, path tracer's random streams),
-    /// path tracer's scattering orders (0 = all), extra cloud layers (0-3).
-    pub misc: [u32; 4],
-    /// Last frame's camera position (as `camera_position`, w = its tan(fov_y / 2)): temporal
-    /// upsampling reprojects through it. [`Scene::uniforms`] sets the current camera; a
-    /// renderer that keeps history replaces it with the one it rendered last.
-    pub previous_position: [f32; 4],
-    /// Last frame's unit view direction; w = its width / height.
-    pub previous_forward: [f32; 4],
-    /// Last frame's unit image right; w = 0.
-    pub previous_right: [f32; 4],
-    /// Last frame's unit image up; w = 0.
-    pub previous_up: [f32; 4],
-    /// Temporal upsampling: block side (1 = off, 2 = 1/4, 4 = 1/16), 0, 0, 0.
-    pub temporal: [u32; 4],
-    /// Extra cloud layer 1 (`clouds.layers[0]`): bottom, top (altitudes, m), coverage,
-    /// density multiplier; zero when absent (`misc.w` counts the extra layers).
-    pub layer1: [f32; 4],
-    /// Its cloud type, precipitation, and weather-map offset xz (m, within [0, period)).
-    pub layer1_weather: [f32; 4],
-    /// Extra cloud layer 2, as `layer1`.
-    pub layer2: [f32; 4],
-    /// Its weather, as `layer1_weather`.
-    pub layer2_weather: [f32; 4],
-    /// Extra cloud layer 3, as `layer1`.
-    pub layer3: [f32; 4],
-    /// Its weather, as `layer1_weather`.
-    pub layer3_weather: [f32; 4],
-    /// The physical sky's air: Rayleigh scattering at the ground (rgb, 1/m); w = its scale
-    /// height (m).
-    pub air_rayleigh: [f32; 4],
-    /// Mie scattering, Mie absorption (1/m at the ground), Mie scale height (m), Mie g.
-    pub air_mie: [f32; 4],
-    /// Ozone absorption at its peak (rgb, 1/m); w = the peak's altitude (m).
-    pub air_ozone: [f32; 4],
-    /// Thickness of the atmosphere (m), the ozone tent's full width (m), the ground's albedo,
-    /// 0.
-    pub air_misc: [f32; 4],
-    /// The moon (physical sky with a date and place): unit direction toward it; w = the full
-    /// moon's illuminance (luminance, in the units of `sun_illuminance`; 0 without a moon).
-    /// Its phase follows from its direction and the real sun's (`night`).
-    pub moon: [f32; 4],
-    /// The real sun's unit direction (the moon's lit side faces it; `sun_direction` is the
-    /// moon's when it is the key light); w = the illuminance of a magnitude-0 star, in the
-    /// units of `sun_illuminance` (0: no stars).
-    pub night: [f32; 4],
-    /// The fitted light model's terms beyond the octaves: side light, coverage exponent,
-    /// far-shadow chord (m, 0 = off), limb darkening (`MultipleScattering`).
-    pub light_model: [f32; 4],
-    /// The octaves' dependence on the view and sun directions: their forward lobe through
-    /// thin cloud (strength, 0 = off; eccentricity), their vertical anisotropy (0 = off), their
-    /// deck escape (0 = off) (`MultipleScattering::forward_lobe`, `vertical_anisotropy`,
-    /// `deck_escape`).
-    pub octave_direction: [f32; 4],
-    /// The octaves' optical depth in a closed deck and their dimming looking down: the
-    /// column's weight (0 = off) and scale, the downward dimming (0 = off), 0
-    /// (`MultipleScattering::steep_light`, `steep_light_scale`, `downward_dimming`).
-    pub octave_depth: [f32; 4],
+/// `frame_members!(generator)` calls `generator!` with the list. From it come the Rust block
+/// ([`FrameUniforms`], with [`FrameUniforms::MEMBERS`]), the WGSL `struct Frame`
+/// ([`FrameUniforms::wgsl`], written to `wgsl/frame.wgsl` by `cargo xtask build-shaders`) and the
+/// CPU reference's f64 mirror (`stratus-reference`'s `frame.rs`); a test holds the WGSL's layout
+/// to naga's reflection. A new member is added here, filled in [`Scene::uniforms`] and read
+/// where it is used.
+#[macro_export]
+macro_rules! frame_members {
+    ($generator:ident) => {
+        $generator! {
+            /// x, altitude, z (m); w = tan(fov_y / 2).
+            camera_position: vec4f,
+            /// Unit view direction; w = width / height.
+            camera_forward: vec4f,
+            /// Unit, image right; w = exposure.
+            camera_right: vec4f,
+            /// Unit, image up; w = 0.
+            camera_up: vec4f,
+            /// Unit vector toward the sun; w = cos(sun angular radius).
+            sun_direction: vec4f,
+            /// Linear rgb; w = 0.
+            sun_illuminance: vec4f,
+            /// Planet radius, layer bottom, layer top (altitudes, m), cut-off distance (m).
+            atmosphere: vec4f,
+            /// Coverage, density multiplier, cloud type, precipitation.
+            clouds: vec4f,
+            /// Detail strength, erosion threshold, curl strength (m), height gradient strength.
+            erosion: vec4f,
+            /// Weather period, shape period (x axis), detail period, curl period (m).
+            periods: vec4f,
+            /// Weather offset xz, shape offset xz (m), each within [0, period).
+            wind_offsets0: vec4f,
+            /// Detail offset xz, curl offset xz (m), each within [0, period).
+            wind_offsets1: vec4f,
+            /// sigma_s, sigma_a (1/m at density 1), precipitation darkening, wispy_billowy.
+            extinction: vec4f,
+            /// g, g2, blend, powder strength.
+            phase: vec4f,
+            /// a (contribution), b (extinction), c (eccentricity) attenuation per octave, octave
+            /// build-up length (m).
+            multiple_scattering: vec4f,
+            /// Linear rgb; w = ambient strength.
+            ambient_bottom: vec4f,
+            /// Linear rgb; w = 0.
+            ambient_top: vec4f,
+            /// Step length (m, 0 = derive from view steps), light step growth, first light step (m),
+            /// early-exit transmittance.
+            march: vec4f,
+            /// Width, height, view steps, light steps.
+            counts: vec4u,
+            /// Phase model ([`PhaseModel::code`](crate::PhaseModel::code)), integration
+            /// ([`Integration::code`](crate::Integration::code)), height model
+            /// ([`HeightModel::code`](crate::HeightModel::code)), flags
+            /// ([`FrameUniforms::FLAG_BEER_POWDER`], [`FrameUniforms::FLAG_JITTER`]).
+            modes: vec4u,
+            /// Octaves (beyond single scattering), frame (jitter seed, path tracer's random streams),
+            /// path tracer's scattering orders (0 = all), extra cloud layers (0-3).
+            misc: vec4u,
+            /// Last frame's camera position (as `camera_position`, w = its tan(fov_y / 2)): temporal
+            /// upsampling reprojects through it. [`Scene::uniforms`] sets the current camera; a
+            /// renderer that keeps history replaces it with the one it rendered last.
+            previous_position: vec4f,
+            /// Last frame's unit view direction; w = its width / height.
+            previous_forward: vec4f,
+            /// Last frame's unit image right; w = 0.
+            previous_right: vec4f,
+            /// Last frame's unit image up; w = 0.
+            previous_up: vec4f,
+            /// Temporal upsampling: block side (1 = off, 2 = 1/4, 4 = 1/16), 0, 0, 0.
+            temporal: vec4u,
+            /// Extra cloud layer 1 (`clouds.layers[0]`): bottom, top (altitudes, m), coverage,
+            /// density multiplier; zero when absent (`misc.w` counts the extra layers).
+            layer1: vec4f,
+            /// Its cloud type, precipitation, and weather-map offset xz (m, within [0, period)).
+            layer1_weather: vec4f,
+            /// Extra cloud layer 2, as `layer1`.
+            layer2: vec4f,
+            /// Its weather, as `layer1_weather`.
+            layer2_weather: vec4f,
+            /// Extra cloud layer 3, as `layer1`.
+            layer3: vec4f,
+            /// Its weather, as `layer1_weather`.
+            layer3_weather: vec4f,
+            /// The physical sky's air: Rayleigh scattering at the ground (rgb, 1/m); w = its scale
+            /// height (m).
+            air_rayleigh: vec4f,
+            /// Mie scattering, Mie absorption (1/m at the ground), Mie scale height (m), Mie g.
+            air_mie: vec4f,
+            /// Ozone absorption at its peak (rgb, 1/m); w = the peak's altitude (m).
+            air_ozone: vec4f,
+            /// Thickness of the atmosphere (m), the ozone tent's full width (m), the ground's albedo,
+            /// 0.
+            air_misc: vec4f,
+            /// The moon (physical sky with a date and place): unit direction toward it; w = the full
+            /// moon's illuminance (luminance, in the units of `sun_illuminance`; 0 without a moon).
+            /// Its phase follows from its direction and the real sun's (`night`).
+            moon: vec4f,
+            /// The real sun's unit direction (the moon's lit side faces it; `sun_direction` is the
+            /// moon's when it is the key light); w = the illuminance of a magnitude-0 star, in the
+            /// units of `sun_illuminance` (0: no stars).
+            night: vec4f,
+            /// The fitted light model's terms beyond the octaves: side light, coverage exponent,
+            /// far-shadow chord (m, 0 = off), limb darkening (`MultipleScattering`).
+            light_model: vec4f,
+            /// The octaves' dependence on the view and sun directions: their forward lobe through
+            /// thin cloud (strength, 0 = off; eccentricity), their vertical anisotropy (0 = off), their
+            /// deck escape (0 = off) (`MultipleScattering::forward_lobe`, `vertical_anisotropy`,
+            /// `deck_escape`).
+            octave_direction: vec4f,
+            /// The octaves' optical depth in a closed deck and their dimming looking down: the
+            /// column's weight (0 = off) and scale, the downward dimming (0 = off), 0
+            /// (`MultipleScattering::steep_light`, `steep_light_scale`, `downward_dimming`).
+            octave_depth: vec4f,
+        }
+    };
 }
 
+/// The Rust type of a member kind.
+macro_rules! member_type {
+    (vec4f) => {
+        [f32; 4]
+    };
+    (vec4u) => {
+        [u32; 4]
+    };
+}
+
+/// The WGSL type of a member kind.
+macro_rules! member_wgsl {
+    (vec4f) => {
+        "vec4<f32>"
+    };
+    (vec4u) => {
+        "vec4<u32>"
+    };
+}
+
+/// Per-frame uniforms, std140/WGSL-uniform compatible, as [`frame_members!`] declares them.
+macro_rules! frame_uniforms {
+    ($( $(#[doc = $doc:literal])* $name:ident : $kind:ident, )*) => {
+        /// Per-frame uniforms, std140/WGSL-uniform compatible: only 16-byte vec4 members, as
+        /// [`frame_members!`](crate::frame_members) declares them.
+        ///
+        /// The WGSL's `struct Frame` is generated from the same declaration
+        /// ([`FrameUniforms::wgsl`]); member `i` lies at byte offset `16 * i`. Build it with
+        /// [`Scene::uniforms`].
+        #[repr(C)]
+        #[derive(Clone, Copy, Debug, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+        pub struct FrameUniforms {
+            $( $(#[doc = $doc])* pub $name: member_type!($kind), )*
+        }
+
+        impl FrameUniforms {
+            /// Every member in declaration order with its WGSL type; member `i` is at offset
+            /// `16 * i`. The shader-reflection test compares the WGSL struct against this list.
+            pub const MEMBERS: &'static [(&'static str, &'static str)] =
+                &[$( (stringify!($name), member_wgsl!($kind)) ),*];
+
+            /// What each member holds (its doc comment, one line), in declaration order.
+            const DOCS: &'static [&'static [&'static str]] = &[$( &[$($doc),*] ),*];
+        }
+    };
+}
+
+frame_members!(frame_uniforms);
+
 impl FrameUniforms {
-    /// Size of the block in bytes (41 vec4 members).
+    /// Size of the block in bytes (16 bytes a member).
     pub const SIZE: usize = std::mem::size_of::<Self>();
 
     /// `modes.w` bit: apply the Beer-Powder term.
@@ -137,51 +195,29 @@ impl FrameUniforms {
     /// `modes.w` bit: the moon is the key light (`sun_direction`, `sun_illuminance`).
     pub const FLAG_MOONLIT: u32 = 1 << 6;
 
-    /// Every member in declaration order with its WGSL type; member `i` is at offset `16 * i`.
-    /// The shader-reflection test compares the WGSL struct against this list.
-    pub const MEMBERS: [(&'static str, &'static str); 41] = [
-        ("camera_position", "vec4<f32>"),
-        ("camera_forward", "vec4<f32>"),
-        ("camera_right", "vec4<f32>"),
-        ("camera_up", "vec4<f32>"),
-        ("sun_direction", "vec4<f32>"),
-        ("sun_illuminance", "vec4<f32>"),
-        ("atmosphere", "vec4<f32>"),
-        ("clouds", "vec4<f32>"),
-        ("erosion", "vec4<f32>"),
-        ("periods", "vec4<f32>"),
-        ("wind_offsets0", "vec4<f32>"),
-        ("wind_offsets1", "vec4<f32>"),
-        ("extinction", "vec4<f32>"),
-        ("phase", "vec4<f32>"),
-        ("multiple_scattering", "vec4<f32>"),
-        ("ambient_bottom", "vec4<f32>"),
-        ("ambient_top", "vec4<f32>"),
-        ("march", "vec4<f32>"),
-        ("counts", "vec4<u32>"),
-        ("modes", "vec4<u32>"),
-        ("misc", "vec4<u32>"),
-        ("previous_position", "vec4<f32>"),
-        ("previous_forward", "vec4<f32>"),
-        ("previous_right", "vec4<f32>"),
-        ("previous_up", "vec4<f32>"),
-        ("temporal", "vec4<u32>"),
-        ("layer1", "vec4<f32>"),
-        ("layer1_weather", "vec4<f32>"),
-        ("layer2", "vec4<f32>"),
-        ("layer2_weather", "vec4<f32>"),
-        ("layer3", "vec4<f32>"),
-        ("layer3_weather", "vec4<f32>"),
-        ("air_rayleigh", "vec4<f32>"),
-        ("air_mie", "vec4<f32>"),
-        ("air_ozone", "vec4<f32>"),
-        ("air_misc", "vec4<f32>"),
-        ("moon", "vec4<f32>"),
-        ("night", "vec4<f32>"),
-        ("light_model", "vec4<f32>"),
-        ("octave_direction", "vec4<f32>"),
-        ("octave_depth", "vec4<f32>"),
-    ];
+    /// The WGSL `struct Frame` of this block, as `wgsl/frame.wgsl` holds it (written by
+    /// `cargo xtask build-shaders`, which fails `--check` when the file differs).
+    pub fn wgsl() -> String {
+        let mut out = String::from(
+            "// Generated from crates/scene/src/uniforms.rs (`frame_members!`) by `cargo xtask\n\
+             // build-shaders`; edit the declaration there, not this file.\n//\n\
+             // The per-frame uniform block: every member a vec4, so the layout is the same under\n\
+             // WGSL, std140 and HLSL cbuffer rules.\n\nstruct Frame {\n",
+        );
+        for ((name, ty), doc) in Self::MEMBERS.iter().zip(Self::DOCS) {
+            for line in doc.iter() {
+                let line = line.trim();
+                if line.is_empty() {
+                    out.push_str("    //\n");
+                } else {
+                    out.push_str(&format!("    // {line}\n"));
+                }
+            }
+            out.push_str(&format!("    {name}: {ty},\n"));
+        }
+        out.push_str("}\n");
+        out
+    }
 
     /// This block with `previous`'s camera as last frame's camera (what a renderer keeping
     /// history does before uploading).

@@ -11,12 +11,14 @@
 
 pub mod compile;
 pub mod diagnostic;
+pub mod generated;
 pub mod manifest;
 pub mod source;
 pub mod translate;
 
 pub use compile::{CompiledModule, compile, compile_all};
 pub use diagnostic::{Diagnostic, Diagnostics};
+pub use generated::generated_sources;
 pub use source::{ModuleSpec, ShaderTree, VariantSpec};
 pub use stratus_graph::Manifest;
 pub use translate::{Languages, build_outputs, is_committed, pinned, pinned_path, spv_options};

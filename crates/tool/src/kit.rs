@@ -73,7 +73,7 @@ fn uniforms_json() -> Value {
             "offset": 16 * i,
             "size": 16,
         })).collect::<Vec<_>>(),
-        "note": "The meaning of each member is documented in wgsl/common.wgsl (struct Frame).",
+        "note": "The meaning of each member is documented in wgsl/frame.wgsl (struct Frame), generated from the block's one declaration (crates/scene/src/uniforms.rs).",
     })
 }
 
