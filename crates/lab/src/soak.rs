@@ -54,6 +54,18 @@ impl SoakArgs {
     fn validation(&self) -> bool {
         self.validate || stratus_tool::backends::validation()
     }
+
+    /// A renderer of the soak's backend, with validation as `--validate` or the environment
+    /// asks.
+    fn renderer(&self) -> Result<Box<dyn stratus_graph::Backend>> {
+        open(
+            self.backend,
+            &Open {
+                validation: self.validation(),
+                ..Open::default()
+            },
+        )
+    }
 }
 
 /// Fails with what wgpu logged since the last check (the ash backend returns its layer's
@@ -77,13 +89,7 @@ fn one_cycle(
     noise: &Arc<stratus_noise::NoiseSet>,
 ) -> Result<(usize, bool)> {
     let input = FrameInput::new(plan, scene, noise).with_readback(Readback::output());
-    let mut r = open(
-        args.backend,
-        &Open {
-            validation: args.validation(),
-            ..Open::default()
-        },
-    )?;
+    let mut r = args.renderer()?;
     let f = r.render(&input).map_err(|e| anyhow::anyhow!("{e}"))?;
     let validated = r.validated();
     r.finish()
@@ -240,13 +246,7 @@ pub fn run(args: SoakArgs) -> Result<()> {
     base.validate().map_err(|e| anyhow::anyhow!("{e}"))?;
     let noise = Arc::new(stratus::noise_for(&base));
     let plan = FramePlan::for_scene(&base, false)?;
-    let mut renderer = open(
-        args.backend,
-        &Open {
-            validation: args.validation(),
-            ..Open::default()
-        },
-    )?;
+    let mut renderer = args.renderer()?;
     println!(
         "soak: {} frames of {name} at {}x{} (temporal {}) on {}",
         args.frames,
@@ -311,13 +311,7 @@ pub fn run(args: SoakArgs) -> Result<()> {
         args.frames,
         args.settle,
     )?;
-    let mut fresh = open(
-        args.backend,
-        &Open {
-            validation: args.validation(),
-            ..Open::default()
-        },
-    )?;
+    let mut fresh = args.renderer()?;
     let still = settle(
         fresh.as_mut(),
         &plan,
