@@ -1,113 +1,265 @@
 // Generated from crates/scene/src/uniforms.rs (`frame_members!`) by `cargo xtask
 // build-shaders`; edit the declaration there, not this file.
 //
-// The per-frame uniform block: every member a vec4, so the layout is the same under
-// WGSL, std140 and HLSL cbuffer rules.
+// The per-frame uniform block. No member crosses a 16-byte row, so the layout is the
+// same under WGSL, std140 and HLSL cbuffer rules.
 
 struct Frame {
-    // x, altitude, z (m); w = tan(fov_y / 2).
-    camera_position: vec4<f32>,
-    // Unit view direction; w = width / height.
-    camera_forward: vec4<f32>,
-    // Unit, image right; w = exposure.
-    camera_right: vec4<f32>,
-    // Unit, image up; w = 0.
-    camera_up: vec4<f32>,
-    // Unit vector toward the sun; w = cos(sun angular radius).
-    sun_direction: vec4<f32>,
-    // Linear rgb; w = 0.
-    sun_illuminance: vec4<f32>,
-    // Planet radius, layer bottom, layer top (altitudes, m), cut-off distance (m).
-    atmosphere: vec4<f32>,
-    // Coverage, density multiplier, cloud type, precipitation.
-    clouds: vec4<f32>,
-    // Detail strength, erosion threshold, curl strength (m), height gradient strength.
-    erosion: vec4<f32>,
-    // Weather period, shape period (x axis), detail period, curl period (m).
-    periods: vec4<f32>,
-    // Weather offset xz, shape offset xz (m), each within [0, period).
-    wind_offsets0: vec4<f32>,
-    // Detail offset xz, curl offset xz (m), each within [0, period).
-    wind_offsets1: vec4<f32>,
-    // sigma_s, sigma_a (1/m at density 1), precipitation darkening, wispy_billowy.
-    extinction: vec4<f32>,
-    // g, g2, blend, powder strength.
-    phase: vec4<f32>,
-    // a (contribution), b (extinction), c (eccentricity) attenuation per octave, octave
-    // build-up length (m).
-    multiple_scattering: vec4<f32>,
-    // Linear rgb; w = ambient strength.
-    ambient_bottom: vec4<f32>,
-    // Linear rgb; w = 0.
-    ambient_top: vec4<f32>,
-    // Step length (m, 0 = derive from view steps), light step growth, first light step (m),
-    // early-exit transmittance.
-    march: vec4<f32>,
-    // Width, height, view steps, light steps.
-    counts: vec4<u32>,
-    // Phase model ([`PhaseModel::code`](crate::PhaseModel::code)), integration
-    // ([`Integration::code`](crate::Integration::code)), height model
-    // ([`HeightModel::code`](crate::HeightModel::code)), flags
-    // ([`FrameUniforms::FLAG_BEER_POWDER`], [`FrameUniforms::FLAG_JITTER`]).
-    modes: vec4<u32>,
-    // Octaves (beyond single scattering), frame (jitter seed, path tracer's random streams),
-    // path tracer's scattering orders (0 = all), extra cloud layers (0-3).
-    misc: vec4<u32>,
-    // Last frame's camera position (as `camera_position`, w = its tan(fov_y / 2)): temporal
-    // upsampling reprojects through it. [`Scene::uniforms`] sets the current camera; a
-    // renderer that keeps history replaces it with the one it rendered last.
-    previous_position: vec4<f32>,
-    // Last frame's unit view direction; w = its width / height.
-    previous_forward: vec4<f32>,
-    // Last frame's unit image right; w = 0.
-    previous_right: vec4<f32>,
-    // Last frame's unit image up; w = 0.
-    previous_up: vec4<f32>,
-    // Temporal upsampling: block side (1 = off, 2 = 1/4, 4 = 1/16), 0, 0, 0.
-    temporal: vec4<u32>,
-    // Extra cloud layer 1 (`clouds.layers[0]`): bottom, top (altitudes, m), coverage,
-    // density multiplier; zero when absent (`misc.w` counts the extra layers).
-    layer1: vec4<f32>,
-    // Its cloud type, precipitation, and weather-map offset xz (m, within [0, period)).
-    layer1_weather: vec4<f32>,
-    // Extra cloud layer 2, as `layer1`.
-    layer2: vec4<f32>,
-    // Its weather, as `layer1_weather`.
-    layer2_weather: vec4<f32>,
-    // Extra cloud layer 3, as `layer1`.
-    layer3: vec4<f32>,
-    // Its weather, as `layer1_weather`.
-    layer3_weather: vec4<f32>,
-    // The physical sky's air: Rayleigh scattering at the ground (rgb, 1/m); w = its scale
-    // height (m).
-    air_rayleigh: vec4<f32>,
-    // Mie scattering, Mie absorption (1/m at the ground), Mie scale height (m), Mie g.
-    air_mie: vec4<f32>,
-    // Ozone absorption at its peak (rgb, 1/m); w = the peak's altitude (m).
-    air_ozone: vec4<f32>,
-    // Thickness of the atmosphere (m), the ozone tent's full width (m), the ground's albedo,
-    // 0.
-    air_misc: vec4<f32>,
-    // The moon (physical sky with a date and place): unit direction toward it; w = the full
-    // moon's illuminance (luminance, in the units of `sun_illuminance`; 0 without a moon).
-    // Its phase follows from its direction and the real sun's (`night`).
-    moon: vec4<f32>,
+    // Camera position: x, altitude, z (m).
+    camera_position: vec3<f32>,
+    // tan(fov_y / 2).
+    tan_half_fov: f32,
+    // Unit view direction.
+    camera_forward: vec3<f32>,
+    // Image width / height.
+    aspect: f32,
+    // Unit, image right.
+    camera_right: vec3<f32>,
+    // Exposure (`camera.exposure`, times auto exposure's factor).
+    exposure: f32,
+    // Unit, image up.
+    camera_up: vec3<f32>,
+    // Padding (0).
+    _pad0: f32,
+    // Unit vector toward the key light (the sun; the moon under `FLAG_MOONLIT`).
+    sun_direction: vec3<f32>,
+    // cos(the sun's angular radius).
+    sun_cos_radius: f32,
+    // The key light's illuminance, linear rgb.
+    sun_illuminance: vec3<f32>,
+    // Padding (0).
+    _pad1: f32,
+    // Planet radius (m).
+    planet_radius: f32,
+    // The main cloud layer's bottom (altitude, m).
+    cloud_bottom: f32,
+    // The main cloud layer's top (altitude, m).
+    cloud_top: f32,
+    // The march's cut-off distance (m).
+    cutoff_distance: f32,
+    // The main layer's coverage.
+    coverage: f32,
+    // The main layer's density multiplier.
+    density: f32,
+    // The main layer's cloud type (`clouds.cloud_type`).
+    cloud_type: f32,
+    // The main layer's precipitation.
+    precipitation: f32,
+    // Detail-noise strength.
+    detail_strength: f32,
+    // Erosion threshold.
+    erosion_threshold: f32,
+    // Curl-noise displacement (m).
+    curl_strength: f32,
+    // Height-gradient strength.
+    height_gradient: f32,
+    // Weather-map period (m).
+    weather_period: f32,
+    // Shape-noise period along x (m).
+    shape_period: f32,
+    // Detail-noise period (m).
+    detail_period: f32,
+    // Curl-noise period (m).
+    curl_period: f32,
+    // Weather-map wind offset xz (m, within [0, period)).
+    weather_offset: vec2<f32>,
+    // Shape-noise wind offset xz (m, within [0, period)).
+    shape_offset: vec2<f32>,
+    // Detail-noise wind offset xz (m, within [0, period)).
+    detail_offset: vec2<f32>,
+    // Curl-noise wind offset xz (m, within [0, period)).
+    curl_offset: vec2<f32>,
+    // sigma_s (1/m at density 1).
+    scattering: f32,
+    // sigma_a (1/m at density 1).
+    absorption: f32,
+    // Darkening by precipitation.
+    precipitation_darkening: f32,
+    // Wispy (0) to billowy (1) erosion.
+    wispy_billowy: f32,
+    // Phase function: the first lobe's g.
+    phase_g: f32,
+    // Phase function: the second lobe's g.
+    phase_g2: f32,
+    // Phase function: the blend of the two lobes.
+    phase_blend: f32,
+    // The powder term's strength.
+    powder_strength: f32,
+    // Multiple-scattering octaves: contribution attenuation a per octave.
+    ms_contribution: f32,
+    // Multiple-scattering octaves: extinction attenuation b per octave.
+    ms_extinction: f32,
+    // Multiple-scattering octaves: eccentricity attenuation c per octave.
+    ms_eccentricity: f32,
+    // Multiple-scattering octaves: build-up length (m).
+    ms_buildup: f32,
+    // Ambient light at the layer's bottom, linear rgb.
+    ambient_bottom: vec3<f32>,
+    // Ambient strength.
+    ambient_strength: f32,
+    // Ambient light at the layer's top, linear rgb.
+    ambient_top: vec3<f32>,
+    // Padding (0).
+    _pad2: f32,
+    // View step length (m; 0 = derive it from `view_steps`).
+    step_length: f32,
+    // Growth factor of each light step over the last.
+    light_step_growth: f32,
+    // First light step (m).
+    first_light_step: f32,
+    // Transmittance below which the view march stops.
+    early_exit_transmittance: f32,
+    // Image width and height (pixels).
+    size: vec2<u32>,
+    // View steps.
+    view_steps: u32,
+    // Light steps.
+    light_steps: u32,
+    // [`PhaseModel::code`](crate::PhaseModel::code).
+    phase_model: u32,
+    // [`Integration::code`](crate::Integration::code).
+    integration: u32,
+    // [`HeightModel::code`](crate::HeightModel::code).
+    height_model: u32,
+    // `FLAG_*` bits ([`FrameUniforms::FLAG_BEER_POWDER`], ...).
+    flags: u32,
+    // Multiple-scattering octaves beyond single scattering.
+    octaves: u32,
+    // Frame index: the jitter seed and the path tracer's random streams.
+    frame_index: u32,
+    // The path tracer's scattering orders (0 = all).
+    path_orders: u32,
+    // Extra cloud layers (0-3).
+    extra_layers: u32,
+    // Last frame's camera position: temporal upsampling reprojects through last frame's
+    // camera. [`Scene::uniforms`] sets the current camera; a renderer that keeps history
+    // replaces it with the one it rendered last.
+    previous_position: vec3<f32>,
+    // Last frame's tan(fov_y / 2).
+    previous_tan_half_fov: f32,
+    // Last frame's unit view direction.
+    previous_forward: vec3<f32>,
+    // Last frame's width / height.
+    previous_aspect: f32,
+    // Last frame's unit image right.
+    previous_right: vec3<f32>,
+    // Last frame's exposure (a change of exposure, like a move, ends the history's exact
+    // reuse).
+    previous_exposure: f32,
+    // Last frame's unit image up.
+    previous_up: vec3<f32>,
+    // Padding (0).
+    _pad4: f32,
+    // Temporal upsampling's block side (1 = off, 2 = 1/4, 4 = 1/16).
+    block_side: u32,
+    // 1 when the history holds a frame to reproject (the renderer sets it), else 0.
+    history_valid: u32,
+    // Padding (0).
+    _pad5: u32,
+    // Padding (0).
+    _pad6: u32,
+    // Extra cloud layer 1 (`clouds.layers[0]`; zero when absent): bottom (altitude, m).
+    layer1_bottom: f32,
+    // Extra cloud layer 1: top (altitude, m).
+    layer1_top: f32,
+    // Extra cloud layer 1: coverage.
+    layer1_coverage: f32,
+    // Extra cloud layer 1: density multiplier.
+    layer1_density: f32,
+    // Extra cloud layer 1: cloud type.
+    layer1_cloud_type: f32,
+    // Extra cloud layer 1: precipitation.
+    layer1_precipitation: f32,
+    // Extra cloud layer 1: weather-map offset xz (m, within [0, period)).
+    layer1_weather_offset: vec2<f32>,
+    // Extra cloud layer 2 (`clouds.layers[1]`; zero when absent): bottom (altitude, m).
+    layer2_bottom: f32,
+    // Extra cloud layer 2: top (altitude, m).
+    layer2_top: f32,
+    // Extra cloud layer 2: coverage.
+    layer2_coverage: f32,
+    // Extra cloud layer 2: density multiplier.
+    layer2_density: f32,
+    // Extra cloud layer 2: cloud type.
+    layer2_cloud_type: f32,
+    // Extra cloud layer 2: precipitation.
+    layer2_precipitation: f32,
+    // Extra cloud layer 2: weather-map offset xz (m, within [0, period)).
+    layer2_weather_offset: vec2<f32>,
+    // Extra cloud layer 3 (`clouds.layers[2]`; zero when absent): bottom (altitude, m).
+    layer3_bottom: f32,
+    // Extra cloud layer 3: top (altitude, m).
+    layer3_top: f32,
+    // Extra cloud layer 3: coverage.
+    layer3_coverage: f32,
+    // Extra cloud layer 3: density multiplier.
+    layer3_density: f32,
+    // Extra cloud layer 3: cloud type.
+    layer3_cloud_type: f32,
+    // Extra cloud layer 3: precipitation.
+    layer3_precipitation: f32,
+    // Extra cloud layer 3: weather-map offset xz (m, within [0, period)).
+    layer3_weather_offset: vec2<f32>,
+    // The physical sky's air: Rayleigh scattering at the ground (rgb, 1/m).
+    rayleigh_scattering: vec3<f32>,
+    // Rayleigh scale height (m).
+    rayleigh_scale_height: f32,
+    // Mie scattering at the ground (1/m).
+    mie_scattering: f32,
+    // Mie absorption at the ground (1/m).
+    mie_absorption: f32,
+    // Mie scale height (m).
+    mie_scale_height: f32,
+    // Mie phase asymmetry g.
+    mie_g: f32,
+    // Ozone absorption at its peak (rgb, 1/m).
+    ozone_absorption: vec3<f32>,
+    // The ozone peak's altitude (m).
+    ozone_center: f32,
+    // Thickness of the atmosphere (m).
+    air_thickness: f32,
+    // The ozone tent's full width (m).
+    ozone_width: f32,
+    // The ground's albedo.
+    ground_albedo: f32,
+    // Padding (0).
+    _pad7: f32,
+    // Unit vector toward the moon (physical sky with a date and place). Its phase follows
+    // from its direction and the real sun's.
+    moon_direction: vec3<f32>,
+    // The full moon's illuminance (luminance, in the units of `sun_illuminance`; 0 without
+    // a moon).
+    moon_illuminance: f32,
     // The real sun's unit direction (the moon's lit side faces it; `sun_direction` is the
-    // moon's when it is the key light); w = the illuminance of a magnitude-0 star, in the
-    // units of `sun_illuminance` (0: no stars).
-    night: vec4<f32>,
-    // The fitted light model's terms beyond the octaves: side light, coverage exponent,
-    // far-shadow chord (m, 0 = off), limb darkening (`MultipleScattering`).
-    light_model: vec4<f32>,
-    // The octaves' dependence on the view and sun directions: their forward lobe through
-    // thin cloud (strength, 0 = off; eccentricity), their vertical anisotropy (0 = off), their
-    // deck escape (0 = off) (`MultipleScattering::forward_lobe`, `vertical_anisotropy`,
-    // `deck_escape`).
-    octave_direction: vec4<f32>,
-    // The octaves' optical depth in a closed deck and their dimming looking down: the
-    // column's weight (0 = off) and scale, the downward dimming (0 = off), 0
-    // (`MultipleScattering::steep_light`, `steep_light_scale`, `downward_dimming`).
-    octave_depth: vec4<f32>,
+    // moon's when it is the key light).
+    real_sun_direction: vec3<f32>,
+    // The illuminance of a magnitude-0 star, in the units of `sun_illuminance` (0: no
+    // stars).
+    star_illuminance: f32,
+    // Fitted light model (`MultipleScattering`): side light.
+    side_light: f32,
+    // Fitted light model: coverage exponent.
+    coverage_exponent: f32,
+    // Fitted light model: far-shadow chord (m, 0 = off).
+    far_chord: f32,
+    // Fitted light model: limb darkening.
+    limb_darkening: f32,
+    // The octaves' forward lobe through thin cloud: strength (0 = off).
+    forward_lobe: f32,
+    // The octaves' forward lobe: eccentricity.
+    forward_lobe_g: f32,
+    // The octaves' vertical anisotropy (0 = off).
+    vertical_anisotropy: f32,
+    // The octaves' escape from a deck (0 = off).
+    deck_escape: f32,
+    // The octaves' optical depth in a closed deck: the column's weight (0 = off).
+    steep_light: f32,
+    // The octaves' optical depth in a closed deck: its scale.
+    steep_light_scale: f32,
+    // The octaves' dimming looking down (0 = off).
+    downward_dimming: f32,
+    // Padding (0).
+    _pad8: f32,
 }
 // Shared declarations of the `clouds` module: the resources, the feature switches and small
 // math helpers.
@@ -180,13 +332,13 @@ fn hash_unit(pixel: vec2<u32>, frame_index: u32) -> f32 {
 
 // The view ray through the centre of pixel `pixel` (y down in the image).
 fn view_ray(pixel: vec2<u32>) -> vec3<f32> {
-    let size = vec2<f32>(frame.counts.xy);
+    let size = vec2<f32>(frame.size);
     let ndc = (vec2<f32>(pixel) + 0.5) / size * 2.0 - 1.0;
-    let tan_half = frame.camera_position.w;
-    let aspect = frame.camera_forward.w;
-    let d = frame.camera_forward.xyz
-        + frame.camera_right.xyz * (ndc.x * tan_half * aspect)
-        - frame.camera_up.xyz * (ndc.y * tan_half);
+    let tan_half = frame.tan_half_fov;
+    let aspect = frame.aspect;
+    let d = frame.camera_forward
+        + frame.camera_right * (ndc.x * tan_half * aspect)
+        - frame.camera_up * (ndc.y * tan_half);
     return normalize(d);
 }
 
@@ -219,7 +371,7 @@ fn solve_sphere(b: f32, c: f32) -> Roots {
 // Intersection of the ray from the camera (altitude `alt`) along unit `d` with the sphere of
 // altitude `radius_alt` (radius Rp + radius_alt). c = (alt - r)(alt + r + 2 Rp) exactly.
 fn ray_shell(alt: f32, d: vec3<f32>, radius_alt: f32) -> Roots {
-    let rp = frame.atmosphere.x;
+    let rp = frame.planet_radius;
     let b = d.y * (alt + rp);
     let c = (alt - radius_alt) * (alt + radius_alt + 2.0 * rp);
     return solve_sphere(b, c);
@@ -228,7 +380,7 @@ fn ray_shell(alt: f32, d: vec3<f32>, radius_alt: f32) -> Roots {
 // Altitude of a point given relative to the ground point below the camera:
 // |q|^2 - Rp^2 = x^2 + z^2 + y (y + 2 Rp) with q = p + (0, Rp, 0), divided by |q| + Rp.
 fn altitude_of(p: vec3<f32>) -> f32 {
-    let rp = frame.atmosphere.x;
+    let rp = frame.planet_radius;
     let n = p.x * p.x + p.z * p.z + p.y * (p.y + 2.0 * rp);
     let q = vec3<f32>(p.x, p.y + rp, p.z);
     return n / (length(q) + rp);
@@ -236,7 +388,7 @@ fn altitude_of(p: vec3<f32>) -> f32 {
 
 // Whether the ray from `p` (camera-relative, altitude `alt`) along unit `d` hits the ground.
 fn hits_ground(p: vec3<f32>, alt: f32, d: vec3<f32>) -> bool {
-    let rp = frame.atmosphere.x;
+    let rp = frame.planet_radius;
     let b = dot(d, vec3<f32>(p.x, p.y + rp, p.z));
     let c = alt * (alt + 2.0 * rp);
     return b < 0.0 && b * b >= c;
@@ -258,7 +410,7 @@ struct Interval {
 // inside and above the layer (thesis 5.2). Of a ray that passes down through the shell and
 // back up, the first part.
 fn shell_interval(alt: f32, d: vec3<f32>, bottom: f32, top: f32) -> Interval {
-    let cutoff = frame.atmosphere.w;
+    let cutoff = frame.cutoff_distance;
     let inner = ray_shell(alt, d, bottom);
     let outer = ray_shell(alt, d, top);
     var start = 0.0;
@@ -318,7 +470,7 @@ fn nearest_layer_interval(alt: f32, d: vec3<f32>) -> Interval {
 
 // `ray_shell` from any camera-relative point `p` of altitude `alt`.
 fn ray_shell_from(p: vec3<f32>, alt: f32, d: vec3<f32>, radius_alt: f32) -> Roots {
-    let rp = frame.atmosphere.x;
+    let rp = frame.planet_radius;
     let b = dot(d, vec3<f32>(p.x, p.y + rp, p.z));
     let c = (alt - radius_alt) * (alt + radius_alt + 2.0 * rp);
     return solve_sphere(b, c);
@@ -374,16 +526,16 @@ const AMBIENT_STEPS: u32 = 24u;
 const SKY_AMBIENT_SUNS: u32 = 64u;
 
 fn physical_sky() -> bool {
-    return (frame.modes.w & FLAG_PHYSICAL_SKY) != 0u;
+    return (frame.flags & FLAG_PHYSICAL_SKY) != 0u;
 }
 
 // Radii (km) of the ground and of the top of the atmosphere.
 fn air_bottom() -> f32 {
-    return frame.atmosphere.x * 1e-3;
+    return frame.planet_radius * 1e-3;
 }
 
 fn air_top() -> f32 {
-    return (frame.atmosphere.x + frame.air_misc.x) * 1e-3;
+    return (frame.planet_radius + frame.air_thickness) * 1e-3;
 }
 
 // The air at altitude `h_km`: Rayleigh scattering (rgb), Mie scattering and total extinction
@@ -396,13 +548,13 @@ struct AirSample {
 
 fn air_at(h_km: f32) -> AirSample {
     let h = max(h_km, 0.0) * 1000.0;
-    let rayleigh_density = exp(-h / frame.air_rayleigh.w);
-    let mie_density = exp(-h / frame.air_mie.z);
-    let ozone_density = max(1.0 - abs(h - frame.air_ozone.w) / (0.5 * frame.air_misc.y), 0.0);
-    let rayleigh = frame.air_rayleigh.rgb * (rayleigh_density * 1000.0);
-    let mie = frame.air_mie.x * mie_density * 1000.0;
-    let mie_extinction = (frame.air_mie.x + frame.air_mie.y) * mie_density * 1000.0;
-    let ozone = frame.air_ozone.rgb * (ozone_density * 1000.0);
+    let rayleigh_density = exp(-h / frame.rayleigh_scale_height);
+    let mie_density = exp(-h / frame.mie_scale_height);
+    let ozone_density = max(1.0 - abs(h - frame.ozone_center) / (0.5 * frame.ozone_width), 0.0);
+    let rayleigh = frame.rayleigh_scattering * (rayleigh_density * 1000.0);
+    let mie = frame.mie_scattering * mie_density * 1000.0;
+    let mie_extinction = (frame.mie_scattering + frame.mie_absorption) * mie_density * 1000.0;
+    let ozone = frame.ozone_absorption * (ozone_density * 1000.0);
     return AirSample(rayleigh, mie, rayleigh + vec3<f32>(mie_extinction) + ozone);
 }
 
@@ -519,7 +671,7 @@ fn fibonacci_direction(k: u32, n: u32) -> vec3<f32> {
 // multi-scattering table takes the ground as lit by the sun alone (Hillaire 2020, 5.5.2);
 // the sky's part is `ground_radiance`'s (wgsl/ground.wgsl).
 fn ground_radiance_sun(mu_s: f32) -> vec3<f32> {
-    return frame.air_misc.z / PI * max(mu_s, 0.0) * sun_transmittance(air_bottom() + 0.001, mu_s);
+    return frame.ground_albedo / PI * max(mu_s, 0.0) * sun_transmittance(air_bottom() + 0.001, mu_s);
 }
 
 // In-scattered light and transmittance along a ray from `origin` (km, planet centre at the
@@ -535,7 +687,7 @@ struct Scattered {
 fn integrate_air(origin: vec3<f32>, d: vec3<f32>, distance_km: f32, steps: u32, sun: vec3<f32>) -> Scattered {
     let cos_theta = dot(d, sun);
     let phase_r = phase_rayleigh(cos_theta);
-    let phase_m = phase_cornette_shanks_air(cos_theta, frame.air_mie.w);
+    let phase_m = phase_cornette_shanks_air(cos_theta, frame.mie_g);
     var radiance = vec3<f32>(0.0);
     var tau = vec3<f32>(0.0);
     var t0 = 0.0;
@@ -677,7 +829,7 @@ fn horizon_elevation(r: f32) -> f32 {
 
 // The sun's azimuth about the zenith (radians, from +x toward +z).
 fn sun_azimuth() -> f32 {
-    let s = frame.sun_direction.xyz;
+    let s = frame.sun_direction;
     return atan2(s.z, s.x);
 }
 
@@ -701,7 +853,7 @@ fn sky_view_lut(@builtin(global_invocation_id) id: vec3<u32>) {
 // camera, and the path tracer's environment from a path's last collision.
 fn sky_along(origin: vec3<f32>, d: vec3<f32>) -> vec3<f32> {
     let end = air_ray_end(origin, d);
-    let sun = frame.sun_direction.xyz;
+    let sun = frame.sun_direction;
     let s = integrate_air(origin, d, end.x, SKY_VIEW_STEPS, sun);
     return with_ground(s, origin, d, end.x, sun, end.y > 0.5);
 }
@@ -709,7 +861,7 @@ fn sky_along(origin: vec3<f32>, d: vec3<f32>) -> vec3<f32> {
 // The sky's radiance (per unit sun illuminance) seen from camera-relative `rel` (m) along
 // unit `d` (`sky_along` from that point; `sun_through_air`'s coordinates).
 fn sky_from(rel: vec3<f32>, d: vec3<f32>) -> vec3<f32> {
-    return sky_along(vec3<f32>(rel.x, rel.y + frame.atmosphere.x, rel.z) * 1e-3, d);
+    return sky_along(vec3<f32>(rel.x, rel.y + frame.planet_radius, rel.z) * 1e-3, d);
 }
 
 // The sky's radiance (per unit sun illuminance) seen from the camera along unit `d`: the
@@ -726,11 +878,11 @@ fn sky_view(d: vec3<f32>) -> vec3<f32> {
 // The view direction through the centre of aerial froxel column `c` (of AERIAL_SIDE^2).
 fn aerial_ray(c: vec2<u32>) -> vec3<f32> {
     let ndc = (vec2<f32>(c) + 0.5) / f32(AERIAL_SIDE) * 2.0 - 1.0;
-    let tan_half = frame.camera_position.w;
-    let aspect = frame.camera_forward.w;
-    return normalize(frame.camera_forward.xyz
-        + frame.camera_right.xyz * (ndc.x * tan_half * aspect)
-        - frame.camera_up.xyz * (ndc.y * tan_half));
+    let tan_half = frame.tan_half_fov;
+    let aspect = frame.aspect;
+    return normalize(frame.camera_forward
+        + frame.camera_right * (ndc.x * tan_half * aspect)
+        - frame.camera_up * (ndc.y * tan_half));
 }
 
 // Froxel column (x, y) marches its 32 slices in order; slice z is stored at texel
@@ -744,10 +896,10 @@ fn aerial_perspective(@builtin(global_invocation_id) id: vec3<u32>) {
     let d = aerial_ray(id.xy);
     let origin = camera_air_origin();
     let end = air_ray_end(origin, d);
-    let sun = frame.sun_direction.xyz;
+    let sun = frame.sun_direction;
     let cos_theta = dot(d, sun);
     let phase_r = phase_rayleigh(cos_theta);
-    let phase_m = phase_cornette_shanks_air(cos_theta, frame.air_mie.w);
+    let phase_m = phase_cornette_shanks_air(cos_theta, frame.mie_g);
     var radiance = vec3<f32>(0.0);
     var tau = vec3<f32>(0.0);
     // Four midpoint steps a slice, stopping where the ray leaves the air or meets the ground.
@@ -776,7 +928,7 @@ fn aerial_perspective(@builtin(global_invocation_id) id: vec3<u32>) {
 // illuminance, mean transmittance), interpolated in the froxel grid and between slices (0 m
 // is no air: nothing scattered, transmittance 1).
 fn aerial(pixel: vec2<u32>, depth_m: f32) -> vec4<f32> {
-    let uv = (vec2<f32>(pixel) + 0.5) / vec2<f32>(frame.counts.xy);
+    let uv = (vec2<f32>(pixel) + 0.5) / vec2<f32>(frame.size);
     // Froxel centres sit at (c + 0.5) / side.
     let f = clamp(uv * f32(AERIAL_SIDE) - 0.5, vec2<f32>(0.0), vec2<f32>(f32(AERIAL_SIDE - 1u)));
     let c0 = min(vec2<u32>(floor(f)), vec2<u32>(AERIAL_SIDE - 1u));
@@ -839,7 +991,7 @@ fn sky_ambient(@builtin(global_invocation_id) id: vec3<u32>) {
     let t = f32(id.x) / f32(SKY_AMBIENT_SUNS - 1u) * 2.0 - 1.0;
     let mu_s = sign(t) * t * t;
     let sun = vec3<f32>(sqrt(max(1.0 - mu_s * mu_s, 0.0)), mu_s, 0.0);
-    let origin = vec3<f32>(0.0, air_bottom() + frame.atmosphere.y * 1e-3, 0.0);
+    let origin = vec3<f32>(0.0, air_bottom() + frame.cloud_bottom * 1e-3, 0.0);
     var sum = vec3<f32>(0.0);
     var weights = 0.0;
     // Fibonacci directions run from the zenith down: the first half is the upper hemisphere.
@@ -862,9 +1014,9 @@ fn sun_through_air(rel: vec3<f32>) -> vec3<f32> {
     if !physical_sky() {
         return vec3<f32>(1.0);
     }
-    let q = vec3<f32>(rel.x, rel.y + frame.atmosphere.x, rel.z) * 1e-3;
+    let q = vec3<f32>(rel.x, rel.y + frame.planet_radius, rel.z) * 1e-3;
     let r = length(q);
-    return sun_transmittance(r, dot(q / r, frame.sun_direction.xyz));
+    return sun_transmittance(r, dot(q / r, frame.sun_direction));
 }
 
 // The sky-ambient table's column coordinate (0 to 1) of a sun of zenith cosine `mu`: the
@@ -882,12 +1034,12 @@ fn sky_ambient_x(mu: f32) -> f32 {
 // at camera-relative `rel` (m): the sky-ambient table at the sun's zenith cosine there, times
 // the sun's illuminance and the ambient strength.
 fn sky_ambient_light(h: f32, rel: vec3<f32>) -> vec3<f32> {
-    let q = vec3<f32>(rel.x, rel.y + frame.atmosphere.x, rel.z);
-    let x = sky_ambient_x(dot(normalize(q), frame.sun_direction.xyz));
+    let q = vec3<f32>(rel.x, rel.y + frame.planet_radius, rel.z);
+    let x = sky_ambient_x(dot(normalize(q), frame.sun_direction));
     let size = vec2<u32>(SKY_AMBIENT_SUNS, 2u);
     let bottom = lut_bilinear(sky_ambient_in, vec2<f32>(x, 0.0), size).rgb;
     let top = lut_bilinear(sky_ambient_in, vec2<f32>(x, 1.0), size).rgb;
-    return mix(bottom, top, h) * frame.sun_illuminance.rgb * frame.ambient_bottom.w;
+    return mix(bottom, top, h) * frame.sun_illuminance * frame.ambient_strength;
 }
 // The cloud density field (thesis alg. 4.1 with HZD's noise, weather and cloud types).
 //
@@ -910,7 +1062,7 @@ struct Counters {
 }
 
 // One cloud layer: its altitude range and its weather. Layer 0 is the scene's main layer
-// (`atmosphere`, `clouds`), layers 1-3 are the extra ones (`layer1`..`layer3`). Layers never
+// (`cloud_bottom`, `coverage`...), layers 1-3 are the extra ones (`layer1_*`..`layer3_*`). Layers never
 // overlap in altitude (the scene is validated so), so a point lies in at most one.
 struct Layer {
     bottom: f32,
@@ -926,23 +1078,25 @@ const MAX_LAYERS: u32 = 4u;
 const NO_LAYER: u32 = 4u;
 
 fn layer_count() -> u32 {
-    return 1u + min(frame.misc.w, MAX_LAYERS - 1u);
-}
-
-fn layer_from(g: vec4<f32>, w: vec4<f32>) -> Layer {
-    return Layer(g.x, g.y, g.z, g.w, w.x, w.y, w.zw);
+    return 1u + min(frame.extra_layers, MAX_LAYERS - 1u);
 }
 
 fn cloud_layer(i: u32) -> Layer {
     if i == 1u {
-        return layer_from(frame.layer1, frame.layer1_weather);
+        return Layer(frame.layer1_bottom, frame.layer1_top, frame.layer1_coverage,
+                     frame.layer1_density, frame.layer1_cloud_type, frame.layer1_precipitation,
+                     frame.layer1_weather_offset);
     } else if i == 2u {
-        return layer_from(frame.layer2, frame.layer2_weather);
+        return Layer(frame.layer2_bottom, frame.layer2_top, frame.layer2_coverage,
+                     frame.layer2_density, frame.layer2_cloud_type, frame.layer2_precipitation,
+                     frame.layer2_weather_offset);
     } else if i == 3u {
-        return layer_from(frame.layer3, frame.layer3_weather);
+        return Layer(frame.layer3_bottom, frame.layer3_top, frame.layer3_coverage,
+                     frame.layer3_density, frame.layer3_cloud_type, frame.layer3_precipitation,
+                     frame.layer3_weather_offset);
     }
-    return Layer(frame.atmosphere.y, frame.atmosphere.z, frame.clouds.x, frame.clouds.y,
-                 frame.clouds.z, frame.clouds.w, frame.wind_offsets0.xy);
+    return Layer(frame.cloud_bottom, frame.cloud_top, frame.coverage, frame.density,
+                 frame.cloud_type, frame.precipitation, frame.weather_offset);
 }
 
 // Height fraction of altitude `alt` in layer `l` (inside where it lies in [0, 1]).
@@ -963,7 +1117,7 @@ fn layer_at(alt: f32) -> u32 {
 
 // The altitudes that hold every layer: (lowest bottom, highest top).
 fn layers_span() -> vec2<f32> {
-    var span = frame.atmosphere.yz;
+    var span = vec2<f32>(frame.cloud_bottom, frame.cloud_top);
     for (var i = 1u; i < layer_count(); i++) {
         let l = cloud_layer(i);
         span = vec2<f32>(min(span.x, l.bottom), max(span.y, l.top));
@@ -979,7 +1133,7 @@ struct Weather {
 }
 
 fn sample_weather(p: vec3<f32>, l: Layer) -> Weather {
-    let uv = (p.xz - l.weather_offset) / frame.periods.x;
+    let uv = (p.xz - l.weather_offset) / frame.weather_period;
     let w = textureSampleLevel(weather_tex, noise_sampler, uv, 0.0);
     // The layer's coverage shifts the map's local coverage: 0 clears the sky, 1 fills it.
     let coverage = saturate(w.r + 2.0 * (l.coverage - 0.5));
@@ -1013,7 +1167,7 @@ fn height_cloud_types(h: f32, cloud_type: f32) -> f32 {
 }
 
 fn height_signal(h: f32, cloud_type: f32) -> f32 {
-    if frame.modes.z == HEIGHT_CLOUD_TYPES {
+    if frame.height_model == HEIGHT_CLOUD_TYPES {
         return height_cloud_types(h, cloud_type);
     }
     return height_parabola(h, cloud_type);
@@ -1052,8 +1206,8 @@ fn layer_density_with(p: vec3<f32>, alt: f32, l: Layer, with_detail: bool,
     // Base shape: Perlin-Worley remapped by low-frequency Worley FBM (HZD), isotropic texels:
     // the texture's y period is its x period scaled by its aspect (128x32x128 thesis layout).
     let dims = vec3<f32>(textureDimensions(shape_tex));
-    let period = frame.periods.y * vec3<f32>(1.0, dims.y / dims.x, 1.0);
-    let shape_pos = vec3<f32>(p.x - frame.wind_offsets0.z, alt, p.z - frame.wind_offsets0.w);
+    let period = frame.shape_period * vec3<f32>(1.0, dims.y / dims.x, 1.0);
+    let shape_pos = vec3<f32>(p.x - frame.shape_offset.x, alt, p.z - frame.shape_offset.y);
     let s = textureSampleLevel(shape_tex, noise_sampler, shape_pos / period, 0.0);
     let low_fbm = s.g * 0.625 + s.b * 0.25 + s.a * 0.125;
     var base = saturate(remap(s.r, low_fbm - 1.0, 1.0, 0.0, 1.0)) * signal;
@@ -1067,32 +1221,32 @@ fn layer_density_with(p: vec3<f32>, alt: f32, l: Layer, with_detail: bool,
     // Detail erosion at the edges only: below the threshold (thesis alg. 4.1). The amount
     // fades to zero at the threshold so the density stays continuous.
     var density = base;
-    let strength = frame.erosion.x;
-    let threshold = frame.erosion.y;
+    let strength = frame.detail_strength;
+    let threshold = frame.erosion_threshold;
     if DETAIL && with_detail && strength > 0.0 && base < threshold {
         (*counters).detail += 1u;
         var detail_pos = vec3<f32>(p.x, alt, p.z);
         if CURL {
             // Curl noise distorts the detail lookup, more at the cloud base (HZD, seed 001).
-            let cuv = (p.xz - frame.wind_offsets1.zw) / frame.periods.w;
+            let cuv = (p.xz - frame.curl_offset) / frame.curl_period;
             let curl = textureSampleLevel(curl_tex, noise_sampler, cuv, 0.0).xy * 2.0 - 1.0;
-            detail_pos = detail_pos + vec3<f32>(curl.x, 0.0, curl.y) * (frame.erosion.z * (1.0 - h));
+            detail_pos = detail_pos + vec3<f32>(curl.x, 0.0, curl.y) * (frame.curl_strength * (1.0 - h));
         }
-        detail_pos = detail_pos - vec3<f32>(frame.wind_offsets1.x, 0.0, frame.wind_offsets1.y);
-        let dn = textureSampleLevel(detail_tex, noise_sampler, detail_pos / frame.periods.z, 0.0);
+        detail_pos = detail_pos - vec3<f32>(frame.detail_offset.x, 0.0, frame.detail_offset.y);
+        let dn = textureSampleLevel(detail_tex, noise_sampler, detail_pos / frame.detail_period, 0.0);
         let high_fbm = dn.r * 0.625 + dn.g * 0.25 + dn.b * 0.125;
         // Inverted Worley is billowy, plain Worley wispy. HZD turns wispy bases into billowy
         // tops over the lowest tenth of the cloud; `wispy_billowy` scales that (0.5: HZD's
         // ramp, 0: wispy everywhere, 1: billowy almost from the base). A constant blend would
         // not do: at 0.5 it cancels the detail noise entirely.
-        let billowy = saturate(2.0 * frame.extinction.w * saturate(h * 10.0));
+        let billowy = saturate(2.0 * frame.wispy_billowy * saturate(h * 10.0));
         let shape = mix(1.0 - high_fbm, high_fbm, billowy);
         let erosion = strength * shape * (1.0 - base / threshold);
         density = saturate(remap(base, erosion, 1.0, 0.0, 1.0));
     }
 
     // Denser toward the top (thesis 4.5.1), global density and precipitation, clamp.
-    density = density * mix(1.0, h, frame.erosion.w);
+    density = density * mix(1.0, h, frame.height_gradient);
     density = density * l.density * (1.0 + weather.precipitation);
     return clamp(density, 0.0, 1.0);
 }
@@ -1116,12 +1270,12 @@ fn phase_cornette_shanks(cos_theta: f32, g: f32) -> f32 {
 
 // The scene's phase model with eccentricities scaled by `scale` (c^i for octave i).
 fn phase(cos_theta: f32, scale: f32) -> f32 {
-    let g = frame.phase.x * scale;
-    switch frame.modes.x {
+    let g = frame.phase_g * scale;
+    switch frame.phase_model {
         case PHASE_TWO_LOBE_HG: {
             // Two lobes for the silver lining (seed 001): forward g and backward g2.
-            let g2 = frame.phase.y * scale;
-            return mix(phase_hg(cos_theta, g), phase_hg(cos_theta, g2), frame.phase.z);
+            let g2 = frame.phase_g2 * scale;
+            return mix(phase_hg(cos_theta, g), phase_hg(cos_theta, g2), frame.phase_blend);
         }
         case PHASE_CORNETTE_SHANKS: {
             return phase_cornette_shanks(cos_theta, g);
@@ -1141,10 +1295,10 @@ fn phase(cos_theta: f32, scale: f32) -> f32 {
 // Toward a sun a few degrees up the light crosses tens of kilometres of layer, which the
 // march does not see: far_optical_depth stands in for that stretch.
 fn sun_optical_depth(rel: vec3<f32>, p: vec3<f32>, l: Layer, counters: ptr<function, Counters>) -> f32 {
-    let sun = frame.sun_direction.xyz;
-    let sigma_t = frame.extinction.x + frame.extinction.y;
-    var tau = segment_optical_depth(rel, p, l, sun, frame.march.z, frame.march.y,
-                                    frame.counts.w, true, counters);
+    let sun = frame.sun_direction;
+    let sigma_t = frame.scattering + frame.absorption;
+    var tau = segment_optical_depth(rel, p, l, sun, frame.first_light_step, frame.light_step_growth,
+                                    frame.light_steps, true, counters);
     let alt0 = altitude_of(rel);
     for (var j = 0u; j < layer_count(); j++) {
         let above = cloud_layer(j);
@@ -1172,7 +1326,7 @@ fn sun_optical_depth(rel: vec3<f32>, p: vec3<f32>, l: Layer, counters: ptr<funct
 fn segment_optical_depth(rel: vec3<f32>, p: vec3<f32>, l: Layer, d: vec3<f32>, first: f32,
                          growth: f32, steps: u32, with_detail: bool,
                          counters: ptr<function, Counters>) -> f32 {
-    let sigma_t = frame.extinction.x + frame.extinction.y;
+    let sigma_t = frame.scattering + frame.absorption;
     var seg = first;
     var dist = 0.0;
     var tau = 0.0;
@@ -1207,8 +1361,8 @@ const COLUMN_STEPS: u32 = 3u;
 // from the top (two-stream theory, Meador and Weaver 1980), whatever the sun's angle once the
 // direct beam is spent: diffuse light crosses a slab along an effective path about 1.66 times
 // the vertical (the diffusivity factor, Elsasser 1942). So in a deck the octaves see the
-// vertical column above the sample, to the layer's top, times s (octave_depth.y, fitted: 1.5),
-// mixed in with weight m w (m: octave_depth.x, fitted: 1, the column alone; 0 = off), w =
+// vertical column above the sample, to the layer's top, times s (steep_light_scale, fitted: 1.5),
+// mixed in with weight m w (m: steep_light, fitted: 1, the column alone; 0 = off), w =
 // (coverage - 0.8) / 0.1 clamped, the layer's weight as a closed deck (set by hand: `storm`'s
 // 0.9 gets 1, `stratocumulus-overcast`'s 0.8 none). Decks only: broken cloud's light comes in
 // through the sides as well (side light). Against the 8192-path truths (docs/fit) the column
@@ -1220,19 +1374,19 @@ const COLUMN_STEPS: u32 = 3u;
 fn octave_optical_depth(rel: vec3<f32>, p: vec3<f32>, l: Layer, tau: f32,
                         counters: ptr<function, Counters>) -> f32 {
     let w = saturate((l.coverage - 0.8) / 0.1);
-    let m = frame.octave_depth.x * w;
+    let m = frame.steep_light * w;
     // Not below a weight of 1e-3: a layer of coverage 0.8 (`stratocumulus-overcast`'s) got a
     // weight of about 1e-7 from f32 rounding on lavapipe, and the march's work for nothing.
-    if w < 1e-3 || m <= 0.0 || frame.counts.w == 0u {
+    if w < 1e-3 || m <= 0.0 || frame.light_steps == 0u {
         return tau;
     }
-    let up = normalize(vec3<f32>(rel.x, rel.y + frame.atmosphere.x, rel.z));
+    let up = normalize(vec3<f32>(rel.x, rel.y + frame.planet_radius, rel.z));
     // From inside the layer's top sphere the ray leaves it through the far root.
     let top = ray_shell_from(rel, altitude_of(rel), up, l.top);
     let len = select(0.0, top.t1, top.hit && top.t1 > 0.0);
     let column = segment_optical_depth(rel, p, l, up, len / f32(COLUMN_STEPS), 1.0,
                                        COLUMN_STEPS, false, counters);
-    return mix(tau, frame.octave_depth.y * column, m);
+    return mix(tau, frame.steep_light_scale * column, m);
 }
 
 // The far shadow: optical depth of the sun ray's stretch inside layer `l` beyond the light
@@ -1243,7 +1397,7 @@ fn octave_optical_depth(rel: vec3<f32>, p: vec3<f32>, l: Layer, tau: f32,
 // lambda)). The stretch is cut into four quarters, each its own mixture: f is the weather
 // map's coverage times the height profile at the quarter's middle (a cumulus layer's thin top
 // lets a low sun's light through; the map says where the cloud fields and the gaps between
-// them lie), lambda the fitted chord (light_model.z; 0 = off). Toward a sun a few degrees up,
+// them lie), lambda the fitted chord (far_chord; 0 = off). Toward a sun a few degrees up,
 // the light crosses tens of kilometres of layer; sampling them with five more growing light
 // steps (to about 100 km) cost 45% more density evaluations on `dawn` and made the fit's
 // training error worse (0.0570 to 0.0608, README). The weather map is a 2D texture read, not
@@ -1251,18 +1405,18 @@ fn octave_optical_depth(rel: vec3<f32>, p: vec3<f32>, l: Layer, tau: f32,
 // scattering) it took `dawn` from FLIP 0.038 to 0.026 and `sunset` from 0.070 to 0.050 over
 // the layer's mean coverage.
 fn far_optical_depth(rel: vec3<f32>, p: vec3<f32>, l: Layer) -> f32 {
-    let chord = frame.light_model.z;
-    if chord <= 0.0 || frame.counts.w == 0u {
+    let chord = frame.far_chord;
+    if chord <= 0.0 || frame.light_steps == 0u {
         // Off, or no light march: 0 light steps leave the clouds unshadowed.
         return 0.0;
     }
-    let growth = frame.march.y;
-    let steps = f32(frame.counts.w);
-    var reach = frame.march.z * steps;
+    let growth = frame.light_step_growth;
+    let steps = f32(frame.light_steps);
+    var reach = frame.first_light_step * steps;
     if growth != 1.0 {
-        reach = frame.march.z * (pow(growth, steps) - 1.0) / (growth - 1.0);
+        reach = frame.first_light_step * (pow(growth, steps) - 1.0) / (growth - 1.0);
     }
-    let sun = frame.sun_direction.xyz;
+    let sun = frame.sun_direction;
     let exit = ray_shell_from(rel, altitude_of(rel), sun, l.top);
     let len = exit.t1 - reach;
     if !exit.hit || !(len > 0.0) {
@@ -1301,10 +1455,10 @@ struct SunScattering {
 
 fn sun_scattering(cos_theta: f32, view_y: f32, tau: f32, tau_oct: f32, far: f32, build: f32,
                   coverage: f32, h: f32, layer_coverage: f32) -> SunScattering {
-    let a = frame.multiple_scattering.x;
-    let b = frame.multiple_scattering.y;
-    let c = frame.multiple_scattering.z;
-    let octaves = min(frame.misc.x, MAX_OCTAVES);
+    let a = frame.ms_contribution;
+    let b = frame.ms_extinction;
+    let c = frame.ms_eccentricity;
+    let octaves = min(frame.octaves, MAX_OCTAVES);
     var octave_sum = 0.0;
     var ka = 1.0;
     var kb = 1.0;
@@ -1322,23 +1476,23 @@ fn sun_scattering(cos_theta: f32, view_y: f32, tau: f32, tau_oct: f32, far: f32,
     // the clear share (1 - coverage) around them, unless far cloud shadows them (`far`).
     let mu0 = saturate(frame.sun_direction.y);
     let side = sqrt(max(1.0 - mu0 * mu0, 0.0)) * (1.0 - saturate(coverage)) * exp(-far);
-    var feed = mu0 + frame.light_model.x * side;
+    var feed = mu0 + frame.side_light * side;
     // Multiply scattered light leaks out of a small cloud through its sides but stays in a
     // deck: the octaves scale with the weather map's coverage (to a fitted power) as well as
     // with the local density (`build`). Against the path tracer the octaves alone lit high-sun
     // cumulus up to 1.4 times too brightly while decks stayed 7% too dark (docs/fit).
-    if frame.light_model.y > 0.0 {
-        feed *= pow(max(coverage, 1e-6), frame.light_model.y);
+    if frame.coverage_exponent > 0.0 {
+        feed *= pow(max(coverage, 1e-6), frame.coverage_exponent);
     }
     feed *= diffuse_limb(view_y, coverage) * vertical_anisotropy(view_y, coverage, h)
         * deck_escape(mu0, layer_coverage);
     feed *= downward_dimming(view_y, coverage, h, tau * mu0);
     var octaves_part = feed * build * octave_sum;
     var total = phase(cos_theta, 1.0) * exp(-tau - far) + octaves_part;
-    if (frame.modes.w & FLAG_BEER_POWDER) != 0u {
+    if (frame.flags & FLAG_BEER_POWDER) != 0u {
         // Beer-Powder (HZD): in-scattering builds up with depth into the cloud, darkening
         // the thin edges. Kept <= 1 so it only removes energy.
-        let powder = 1.0 - exp(-frame.phase.w * tau);
+        let powder = 1.0 - exp(-frame.powder_strength * tau);
         total *= powder;
         octaves_part *= powder;
     }
@@ -1359,16 +1513,16 @@ const FORWARD_LOBE_THIN: f32 = 0.1;
 // 0.5-0.95, while in pixels below 0.05 it was 0.90-0.97 at every angle (docs/fit). A view
 // sample does not know how thin the cloud is; the pixel's transmittance, once the march
 // ends, does. So 1 + w (4 pi HG(cos, g_f) - 1): its mean over the sphere is 1 (light moved
-// between directions, none added), w = k min(T / 0.1, 1) (k: frame.octave_direction.x, 0 = off;
+// between directions, none added), w = k min(T / 0.1, 1) (k: frame.forward_lobe, 0 = off;
 // g_f: .y). Thresholds of 0.05, 0.2 and 0.5 and g_f of 0.3-0.6 fitted within 0.0006 of
 // each other. Per pixel, not per sample: a phase function and a second accumulator.
 fn forward_lobe(cos_theta: f32, transmittance: f32) -> f32 {
-    let k = frame.octave_direction.x;
+    let k = frame.forward_lobe;
     if k <= 0.0 {
         return 1.0;
     }
     let w = k * saturate(transmittance / FORWARD_LOBE_THIN);
-    return 1.0 + w * (4.0 * PI * phase_hg(cos_theta, frame.octave_direction.y) - 1.0);
+    return 1.0 + w * (4.0 * PI * phase_hg(cos_theta, frame.forward_lobe_g) - 1.0);
 }
 
 // The diffuse light leaving a thick plane-parallel layer is limb-darkened: brighter along the
@@ -1377,7 +1531,7 @@ fn forward_lobe(cos_theta: f32, transmittance: f32) -> f32 {
 // the normal. The octaves know no normal, and against the path tracer (8192 paths a pixel)
 // decks seen 20-40 degrees up were darker, relative to the truth, than near the horizon
 // (`stratocumulus-overcast` 0.86-0.91 of its brightness against 0.94-1.04, `storm` 0.76-0.95
-// against 0.96-1.10). Here with a fitted strength k (light_model.w; 0 = off) in place of 3/2,
+// against 0.96-1.10). Here with a fitted strength k (limb_darkening; 0 = off) in place of 3/2,
 // normalised to keep the flux through the layer ((1 + k mu) / (1 + 2k/3)), mu = |view_y| the
 // view ray's cosine to the vertical, and weighted by the weather map's coverage: a deck is a
 // layer, a small cumulus has no one normal. The factor is 1 at mu = 2/3: it darkens grazing
@@ -1386,7 +1540,7 @@ fn forward_lobe(cos_theta: f32, transmittance: f32) -> f32 {
 // from 0.0583 to 0.0572 (that fit's docs/fit; since vertical_anisotropy, which takes the
 // up-down part, k = 0.25 and a = 1.15); one abs, a division and a mix per lit sample.
 fn diffuse_limb(view_y: f32, coverage: f32) -> f32 {
-    let k = frame.light_model.w;
+    let k = frame.limb_darkening;
     let layer = (1.0 + k * abs(view_y)) / (1.0 + 2.0 * k / 3.0);
     return mix(1.0, layer, saturate(coverage));
 }
@@ -1405,10 +1559,10 @@ fn diffuse_limb(view_y: f32, coverage: f32) -> f32 {
 // coverage (1 - h): its mean over the sphere is 1 (no light added), a deck's (coverage) and
 // strongest at its base (1 - h, the simplest stand-in for the optical depth below the sample,
 // which the march does not know; with s held at 0.5 and the rest refit, no weight by height
-// fitted 0.0005 worse). s: frame.octave_direction.z (0 = off); one multiply-add per lit
+// fitted 0.0005 worse). s: frame.vertical_anisotropy (0 = off); one multiply-add per lit
 // sample.
 fn vertical_anisotropy(view_y: f32, coverage: f32, h: f32) -> f32 {
-    return 1.0 + frame.octave_direction.z * view_y * saturate(coverage) * (1.0 - saturate(h));
+    return 1.0 + frame.vertical_anisotropy * view_y * saturate(coverage) * (1.0 - saturate(h));
 }
 
 // The octaves' dimming looking down: the factor on their light at a sample of height fraction
@@ -1419,11 +1573,11 @@ fn vertical_anisotropy(view_y: f32, coverage: f32, h: f32) -> f32 {
 // camera inside a layer saw the cloud 5-20 degrees below it at 1.15-1.25 times the truth's
 // brightness, the octaves 0.61 of the truth's luminance against its 0.46 of multiply
 // scattered light, where the vertical anisotropy is 0.97-0.99 (`inside-layer`). Hence 1 - k
-// |view_y| coverage (1 - h) tau_v / (tau_v + 1) looking down (k: octave_depth.z, fitted, 0 =
+// |view_y| coverage (1 - h) tau_v / (tau_v + 1) looking down (k: downward_dimming, fitted, 0 =
 // off), clamped at 0: the weights of the vertical anisotropy times the cloud above (0 at a
 // cloud's lit top under any sun). Looking up it is 1. One division per lit sample.
 fn downward_dimming(view_y: f32, coverage: f32, h: f32, tau_v: f32) -> f32 {
-    let k = frame.octave_depth.z * max(-view_y, 0.0) * saturate(coverage) * (1.0 - saturate(h));
+    let k = frame.downward_dimming * max(-view_y, 0.0) * saturate(coverage) * (1.0 - saturate(h));
     return max(1.0 - k * tau_v / (tau_v + 1.0), 0.0);
 }
 
@@ -1438,7 +1592,7 @@ fn downward_dimming(view_y: f32, coverage: f32, h: f32, tau_v: f32) -> f32 {
 // high sun`, `stratocumulus-overcast`), 0.97 at 40 (`storm`), 1.02 at 25 (`storm deck`),
 // while cumulus stayed at 0.95-0.96 at every elevation. Hence 1 + e w (mu0 - 1/2): the ratio
 // (2/3 + mu0) / (2/3 + 1/2) is 1 + (6/7)(mu0 - 1/2), here with a fitted strength e
-// (frame.octave_direction.w, 0 = off) in place of 6/7, 1 at 60 degrees from the zenith, and
+// (frame.deck_escape, 0 = off) in place of 6/7, 1 at 60 degrees from the zenith, and
 // w = layer_coverage^8 (DECK_POWER) the layer's weight as a deck: a closed layer's clouds are
 // far wider than they are thick, a broken one's are not. The weather map's coverage at the
 // sample does not tell them apart (it is high inside a cumulus as well: weighted by it,
@@ -1446,7 +1600,7 @@ fn downward_dimming(view_y: f32, coverage: f32, h: f32, tau_v: f32) -> f32 {
 // power (training mean 0.0474 against 0.0453 for the 8th; e = 1.5, before a refit). One power
 // and a multiply-add per lit sample.
 fn deck_escape(mu0: f32, layer_coverage: f32) -> f32 {
-    let e = frame.octave_direction.w;
+    let e = frame.deck_escape;
     return 1.0 + e * pow(saturate(layer_coverage), DECK_POWER) * (mu0 - 0.5);
 }
 
@@ -1454,17 +1608,17 @@ fn deck_escape(mu0: f32, layer_coverage: f32) -> f32 {
 const DECK_POWER: f32 = 8.0;
 
 // The share of the octaves at a sample of density `density`: 1 - exp(-sigma_t density l), l
-// the build-up length (multiple_scattering.w; 0: 1, Wrenninge's octaves everywhere). Light
+// the build-up length (ms_buildup; 0: 1, Wrenninge's octaves everywhere). Light
 // scatters many times only where there is cloud around to scatter it: against the path
 // tracer the octaves lit thin wisps and edges up to 2.5 times too brightly while the cores
 // stayed too dark (docs/fit, brightness by the truth's transmittance). The local density
 // stands for the cloud around the sample; it costs no sample.
 fn octave_buildup(density: f32) -> f32 {
-    let l = frame.multiple_scattering.w;
+    let l = frame.ms_buildup;
     if l <= 0.0 {
         return 1.0;
     }
-    return 1.0 - exp(-(frame.extinction.x + frame.extinction.y) * density * l);
+    return 1.0 - exp(-(frame.scattering + frame.absorption) * density * l);
 }
 
 // Ambient light at height fraction `h` (thesis 5.5.3): a gradient from bottom to top colour,
@@ -1475,7 +1629,7 @@ fn ambient(h: f32, rel: vec3<f32>) -> vec3<f32> {
     if physical_sky() {
         return sky_ambient_light(h, rel);
     }
-    return mix(frame.ambient_bottom.rgb, frame.ambient_top.rgb, h) * frame.ambient_bottom.w;
+    return mix(frame.ambient_bottom, frame.ambient_top, h) * frame.ambient_strength;
 }
 
 // Height fraction of altitude `alt` in the layer that holds it (ambient and precipitation
@@ -1494,7 +1648,7 @@ struct ScatteredLight {
 
 fn scattered_light(rel: vec3<f32>, p: vec3<f32>, alt: f32, density: f32, view: vec3<f32>,
                    l: Layer, counters: ptr<function, Counters>) -> ScatteredLight {
-    let sun = frame.sun_direction.xyz;
+    let sun = frame.sun_direction;
     let h = saturate(layer_height(l, alt));
     var sun_light = vec3<f32>(0.0);
     var octave_light = vec3<f32>(0.0);
@@ -1512,12 +1666,12 @@ fn scattered_light(rel: vec3<f32>, p: vec3<f32>, alt: f32, density: f32, view: v
         }
         let s = sun_scattering(dot(view, sun), view.y, tau, tau_oct, far,
                                octave_buildup(density), weather.coverage, h, l.coverage);
-        let lit = frame.sun_illuminance.rgb * sun_through_air(rel);
+        let lit = frame.sun_illuminance * sun_through_air(rel);
         sun_light = lit * s.total;
         octave_light = lit * s.octaves;
     }
-    let darkening = saturate(1.0 - frame.extinction.z * weather.precipitation * (1.0 - h));
-    let k = frame.extinction.x * density * darkening;
+    let darkening = saturate(1.0 - frame.precipitation_darkening * weather.precipitation * (1.0 - h));
+    let k = frame.scattering * density * darkening;
     return ScatteredLight((sun_light + ambient(h, rel)) * k, octave_light * k);
 }
 // The lit ground under the physical sky: the sky's irradiance on it and the clouds' shadows
@@ -1579,14 +1733,14 @@ fn sky_irradiance(mu_s: f32) -> vec3<f32> {
 
 // Light leaving the lit, diffuse ground where the sun's zenith cosine is mu_s, sun and sky.
 fn ground_radiance(mu_s: f32) -> vec3<f32> {
-    return ground_radiance_sun(mu_s) + frame.air_misc.z / PI * sky_irradiance(mu_s);
+    return ground_radiance_sun(mu_s) + frame.ground_albedo / PI * sky_irradiance(mu_s);
 }
 
 // The ground point of shadow-map texel `c`, relative to the ground below the camera (m): on
 // the planet's surface, texel i at (2 i / (size - 1) - 1) times the half extent.
 fn shadow_ground_point(c: vec2<u32>) -> vec3<f32> {
     let xz = (vec2<f32>(c) / f32(SHADOW_SIZE - 1u) * 2.0 - 1.0) * SHADOW_HALF_EXTENT;
-    let rp = frame.atmosphere.x;
+    let rp = frame.planet_radius;
     let s2 = dot(xz, xz);
     // sqrt(Rp^2 - s^2) - Rp without cancellation.
     let y = -s2 / (sqrt(max(rp * rp - s2, 0.0)) + rp);
@@ -1599,8 +1753,8 @@ fn cloud_shadow(@builtin(global_invocation_id) id: vec3<u32>) {
         return;
     }
     let rel = shadow_ground_point(id.xy);
-    let sun = frame.sun_direction.xyz;
-    let rp = frame.atmosphere.x;
+    let sun = frame.sun_direction;
+    let rp = frame.planet_radius;
     let up = normalize(vec3<f32>(rel.x, rel.y + rp, rel.z));
     var tau = 0.0;
     // Where the key light is below the ground's horizon the ground is unlit anyway.
@@ -1625,7 +1779,7 @@ fn cloud_shadow(@builtin(global_invocation_id) id: vec3<u32>) {
             }
         }
     }
-    let sigma_t = frame.extinction.x + frame.extinction.y;
+    let sigma_t = frame.scattering + frame.absorption;
     textureStore(cloud_shadow_out, id.xy, vec4<f32>(exp(-sigma_t * tau), 0.0, 0.0, 1.0));
 }
 
@@ -1655,7 +1809,7 @@ fn ground_shadow_loss(view: vec3<f32>, r: f32) -> vec3<f32> {
     let r_g = air_bottom();
     // Zenith cosines at the ground point of the view ray and of the sun (Bruneton 2008).
     let mu_g = clamp((r * view.y + t) / r_g, -1.0, 1.0);
-    let mu_s = clamp((r * frame.sun_direction.y + t * dot(view, frame.sun_direction.xyz)) / r_g, -1.0, 1.0);
+    let mu_s = clamp((r * frame.sun_direction.y + t * dot(view, frame.sun_direction)) / r_g, -1.0, 1.0);
     let t_view = min(transmittance_to_top(r_g, -mu_g) / max(transmittance_to_top(r, -view.y), vec3<f32>(1e-20)),
                      vec3<f32>(1.0));
     return (1.0 - shadow) * t_view * ground_radiance_sun(mu_s);
@@ -1696,16 +1850,16 @@ fn occupancy(@builtin(global_invocation_id) id: vec3<u32>) {
 // the cell is empty (no cloud at any altitude), else 0.
 fn empty_cell_exit(p: vec3<f32>, d: vec3<f32>) -> f32 {
     let cells = f32(OCCUPANCY_CELLS);
-    let uv = fract((p.xz - frame.wind_offsets0.xy) / frame.periods.x) * cells;
+    let uv = fract((p.xz - frame.weather_offset) / frame.weather_period) * cells;
     let cell = min(vec2<u32>(uv), vec2<u32>(OCCUPANCY_CELLS - 1u));
     let m = textureLoad(occupancy_in, cell, 0).r;
     // sample_weather's coverage: saturate(r + 2 (coverage - 0.5)); a margin of one 8-bit
     // step covers rounding in the filtered lookup.
-    if m + 2.0 * (frame.clouds.x - 0.5) > -1.0 / 255.0 {
+    if m + 2.0 * (frame.coverage - 0.5) > -1.0 / 255.0 {
         return 0.0;
     }
     // The ray's horizontal motion is linear in t: the nearer of the two cell walls it heads to.
-    let cell_m = frame.periods.x / cells;
+    let cell_m = frame.weather_period / cells;
     let inside = (uv - vec2<f32>(cell)) * cell_m; // metres from the cell's low corner
     var exit = 1e30;
     if d.x > 1e-6 {
@@ -1754,7 +1908,7 @@ fn count(index: u32, value: u32) {
 // Scattering integrated over one step of length `dt` with extinction `sigma_t`, for a source
 // `source` (radiance per unit length) that is constant over the step.
 fn step_integral(source: vec3<f32>, sigma_t: f32, dt: f32) -> vec3<f32> {
-    if frame.modes.y == INTEGRATION_RIEMANN {
+    if frame.integration == INTEGRATION_RIEMANN {
         // Naive Riemann sum: overshoots when sigma_t * dt is large (kept to show where it fails).
         return source * dt;
     }
@@ -1777,13 +1931,13 @@ struct MarchResult {
 // sequence over the pixel's successive marches (one per `block^2` frames), shifted by a fixed
 // per-pixel hash with jitter: each pixel's marches stratify its step interval.
 fn start_offset(pixel: vec2<u32>) -> f32 {
-    let jitter = (frame.modes.w & FLAG_JITTER) != 0u;
-    let k = frame.temporal.x;
+    let jitter = (frame.flags & FLAG_JITTER) != 0u;
+    let k = frame.block_side;
     if k <= 1u {
-        return select(0.5, hash_unit(pixel, frame.misc.y), jitter);
+        return select(0.5, hash_unit(pixel, frame.frame_index), jitter);
     }
     let base = select(0.5, hash_unit(pixel, 0u), jitter);
-    return fract(base + van_der_corput(frame.misc.y / (k * k)));
+    return fract(base + van_der_corput(frame.frame_index / (k * k)));
 }
 
 // What a view march has gathered so far (across layers).
@@ -1857,7 +2011,7 @@ fn march_pixel(pixel: vec2<u32>) -> MarchResult {
     // whose radiance is 10^5 times the sky's.
     let transmittance = select(state.transmittance, 0.0, exited);
     // The octaves' forward lobe, weighted by the transmittance the march reached.
-    let lobe = forward_lobe(dot(view, frame.sun_direction.xyz), state.transmittance);
+    let lobe = forward_lobe(dot(view, frame.sun_direction), state.transmittance);
     let radiance = state.radiance + state.octaves * (lobe - 1.0);
     return MarchResult(radiance, transmittance, depth);
 }
@@ -1868,14 +2022,14 @@ fn march_layer(view: vec3<f32>, span: Interval, l: Layer, jitter: f32,
                state: ptr<function, MarchState>, counters: ptr<function, Counters>) -> bool {
     let cam_alt = frame.camera_position.y;
     let cam_xz = frame.camera_position.xz;
-    var steps = frame.counts.z;
-    if frame.march.x > 0.0 {
-        steps = clamp(u32(ceil(span.length / frame.march.x)), 1u, MAX_VIEW_STEPS);
+    var steps = frame.view_steps;
+    if frame.step_length > 0.0 {
+        steps = clamp(u32(ceil(span.length / frame.step_length)), 1u, MAX_VIEW_STEPS);
     }
     let dt = span.length / f32(steps);
-    let sigma_e = frame.extinction.x + frame.extinction.y;
-    let dynamic_step = (frame.modes.w & FLAG_DYNAMIC_STEP) != 0u;
-    let empty_skip = (frame.modes.w & FLAG_EMPTY_SKIP) != 0u;
+    let sigma_e = frame.scattering + frame.absorption;
+    let dynamic_step = (frame.flags & FLAG_DYNAMIC_STEP) != 0u;
+    let empty_skip = (frame.flags & FLAG_EMPTY_SKIP) != 0u;
     // Samples lie on one grid, t_i = start + (i + jitter) dt; the cheap-march techniques
     // only choose which i to visit, so they never move a sample.
     var i = 0u;
@@ -1926,7 +2080,7 @@ fn march_layer(view: vec3<f32>, span: Interval, l: Layer, jitter: f32,
         let step_t = exp(-sigma_t * dt);
         (*state).depth_sum += t * transmittance * (1.0 - step_t);
         (*state).transmittance = transmittance * step_t;
-        if (*state).transmittance < frame.march.w {
+        if (*state).transmittance < frame.early_exit_transmittance {
             return true;
         }
         i += 1u;
@@ -1937,7 +2091,7 @@ fn march_layer(view: vec3<f32>, span: Interval, l: Layer, jitter: f32,
 // Every pixel, every frame.
 @compute @workgroup_size(8, 8, 1)
 fn march(@builtin(global_invocation_id) id: vec3<u32>) {
-    if any(id.xy >= frame.counts.xy) {
+    if any(id.xy >= frame.size) {
         return;
     }
     let r = march_pixel(id.xy);
@@ -1945,7 +2099,7 @@ fn march(@builtin(global_invocation_id) id: vec3<u32>) {
     textureStore(depth_out, id.xy, vec4<f32>(r.depth, 0.0, 0.0, 0.0));
 }
 // Temporal upsampling (thesis 6.1; Horizon Zero Dawn's 1-in-16 update). Each frame marches
-// one pixel of every k x k block (k = frame.temporal.x), visiting the block's pixels in Bayer
+// one pixel of every k x k block (k = frame.block_side), visiting the block's pixels in Bayer
 // order, each march with the next van der Corput start offset. The resolve pass rebuilds the
 // full-resolution image: the marched pixel blends into its history; every other pixel takes
 // last frame's result, reprojected through last frame's camera at the clouds' transmittance-
@@ -1993,14 +2147,23 @@ fn block_offset(f: u32, k: u32) -> vec2<u32> {
     return vec2<u32>(0u);
 }
 
+// Whether this frame's camera is last frame's: same place, orientation, field of view, aspect
+// and exposure (a moved camera restarts the path tracer's accumulation).
+fn camera_still() -> bool {
+    return all(frame.camera_position == frame.previous_position)
+        && frame.tan_half_fov == frame.previous_tan_half_fov
+        && all(frame.camera_forward == frame.previous_forward)
+        && frame.aspect == frame.previous_aspect
+        && all(frame.camera_right == frame.previous_right)
+        && frame.exposure == frame.previous_exposure
+        && all(frame.camera_up == frame.previous_up);
+}
+
 // Where the point at distance `depth` along the current view ray of `pixel` was in last
 // frame's image (pixel coordinates, centres at integers + 0.5 - 0.5 = integers). `depth` 0:
 // a point at infinity (only the direction moves). x = -1e9 when it was behind the camera.
 fn reproject(pixel: vec2<u32>, depth: f32) -> vec2<f32> {
-    let same = all(frame.previous_position == frame.camera_position)
-        && all(frame.previous_forward == frame.camera_forward)
-        && all(frame.previous_right == frame.camera_right)
-        && all(frame.previous_up == frame.camera_up);
+    let same = camera_still();
     if same {
         // A still camera reprojects exactly onto itself (no resampling blur).
         return vec2<f32>(pixel);
@@ -2008,23 +2171,23 @@ fn reproject(pixel: vec2<u32>, depth: f32) -> vec2<f32> {
     let view = view_ray(pixel);
     var dir = view;
     if depth > 0.0 {
-        dir = view * depth + (frame.camera_position.xyz - frame.previous_position.xyz);
+        dir = view * depth + (frame.camera_position - frame.previous_position);
     }
-    let z = dot(dir, frame.previous_forward.xyz);
+    let z = dot(dir, frame.previous_forward);
     if z <= 0.0 {
         return vec2<f32>(-1e9);
     }
-    let tan_half = frame.previous_position.w;
-    let aspect = frame.previous_forward.w;
+    let tan_half = frame.previous_tan_half_fov;
+    let aspect = frame.previous_aspect;
     let ndc = vec2<f32>(
-        dot(dir, frame.previous_right.xyz) / (z * tan_half * aspect),
-        -dot(dir, frame.previous_up.xyz) / (z * tan_half),
+        dot(dir, frame.previous_right) / (z * tan_half * aspect),
+        -dot(dir, frame.previous_up) / (z * tan_half),
     );
-    return (ndc * 0.5 + 0.5) * vec2<f32>(frame.counts.xy) - 0.5;
+    return (ndc * 0.5 + 0.5) * vec2<f32>(frame.size) - 0.5;
 }
 
 fn on_screen(q: vec2<f32>) -> bool {
-    let size = vec2<f32>(frame.counts.xy);
+    let size = vec2<f32>(frame.size);
     return all(q >= vec2<f32>(-0.5)) && all(q <= size - 0.5);
 }
 
@@ -2043,7 +2206,7 @@ fn catmull_rom(t: f32) -> vec4<f32> {
 // keeps the detail that bilinear resampling would blur away a little more every frame the
 // camera moves; its overshoot is clamped to the physical range.
 fn history_at(q: vec2<f32>) -> vec4<f32> {
-    let size = vec2<i32>(frame.counts.xy);
+    let size = vec2<i32>(frame.size);
     let c = clamp(q, vec2<f32>(0.0), vec2<f32>(size - 1));
     let base = vec2<i32>(floor(c));
     let f = c - vec2<f32>(base);
@@ -2059,7 +2222,7 @@ fn history_at(q: vec2<f32>) -> vec4<f32> {
 // One row (`dy` from `base`) of the Catmull-Rom footprint, weighted by `wx`; clamped at the
 // image's edges.
 fn history_row(base: vec2<i32>, dy: i32, wx: vec4<f32>) -> vec4<f32> {
-    let size = vec2<i32>(frame.counts.xy);
+    let size = vec2<i32>(frame.size);
     let y = clamp(base.y + dy, 0, size.y - 1);
     let x0 = clamp(base.x - 1, 0, size.x - 1);
     let x1 = clamp(base.x, 0, size.x - 1);
@@ -2072,13 +2235,13 @@ fn history_row(base: vec2<i32>, dy: i32, wx: vec4<f32>) -> vec4<f32> {
 }
 
 fn history_nearest(q: vec2<f32>) -> vec4<f32> {
-    let size = vec2<i32>(frame.counts.xy);
+    let size = vec2<i32>(frame.size);
     let p = clamp(vec2<i32>(round(q)), vec2<i32>(0), size - 1);
     return textureLoad(history_in, p, 0);
 }
 
 fn meta_at(q: vec2<f32>) -> vec4<f32> {
-    let size = vec2<i32>(frame.counts.xy);
+    let size = vec2<i32>(frame.size);
     let p = clamp(vec2<i32>(round(q)), vec2<i32>(0), size - 1);
     return textureLoad(meta_in, p, 0);
 }
@@ -2090,14 +2253,14 @@ fn meta_at(q: vec2<f32>) -> vec4<f32> {
 
 // Whether block `id` is inside the sparse target.
 fn in_blocks(id: vec2<u32>) -> bool {
-    let k = frame.temporal.x;
-    return all(id < (frame.counts.xy + k - 1u) / k);
+    let k = frame.block_side;
+    return all(id < (frame.size + k - 1u) / k);
 }
 
 // The pixel block `id` marches this frame.
 fn sparse_pixel(id: vec2<u32>) -> vec2<u32> {
-    let k = frame.temporal.x;
-    return id * k + block_offset(frame.misc.y, k);
+    let k = frame.block_side;
+    return id * k + block_offset(frame.frame_index, k);
 }
 
 fn store_sparse(id: vec2<u32>, r: MarchResult) {
@@ -2112,7 +2275,7 @@ fn march_sparse(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     let pixel = sparse_pixel(id.xy);
     var r = MarchResult(vec3<f32>(0.0), 1.0, 0.0);
-    if all(pixel < frame.counts.xy) {
+    if all(pixel < frame.size) {
         r = march_pixel(pixel);
     }
     store_sparse(id.xy, r);
@@ -2125,13 +2288,13 @@ fn march_sparse_checkerboard(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     let pixel = sparse_pixel(id.xy);
     var r = MarchResult(vec3<f32>(0.0), 1.0, 0.0);
-    var skip = any(pixel >= frame.counts.xy);
-    if !skip && frame.temporal.y != 0u {
+    var skip = any(pixel >= frame.size);
+    if !skip && frame.history_valid != 0u {
         // Where last frame saw clear sky in this direction (the nearest texel), skip the
         // march in every other turn of the pixel, alternating between neighbouring blocks,
         // so clouds that the wind moves in are found within two turns.
-        let k = frame.temporal.x;
-        let turn = frame.misc.y / (k * k);
+        let k = frame.block_side;
+        let turn = frame.frame_index / (k * k);
         let q = reproject(pixel, 0.0);
         if ((id.x + id.y + turn) & 1u) == 0u && on_screen(q) && history_nearest(q).a >= 1.0 {
             skip = true;
@@ -2146,13 +2309,13 @@ fn march_sparse_checkerboard(@builtin(global_invocation_id) id: vec3<u32>) {
 // The resolve pass: every pixel of the output.
 @compute @workgroup_size(8, 8, 1)
 fn resolve(@builtin(global_invocation_id) id: vec3<u32>) {
-    if any(id.xy >= frame.counts.xy) {
+    if any(id.xy >= frame.size) {
         return;
     }
     let pixel = id.xy;
-    let k = frame.temporal.x;
+    let k = frame.block_side;
     let block = pixel / k;
-    let marched = all(pixel == block * k + block_offset(frame.misc.y, k));
+    let marched = all(pixel == block * k + block_offset(frame.frame_index, k));
     let current = textureLoad(sparse_in, block, 0);
     let current_depth = textureLoad(sparse_depth_in, block, 0).r;
 
@@ -2167,7 +2330,7 @@ fn resolve(@builtin(global_invocation_id) id: vec3<u32>) {
         }
     }
     let q = reproject(pixel, depth);
-    var valid = frame.temporal.y != 0u && on_screen(q);
+    var valid = frame.history_valid != 0u && on_screen(q);
     var history = vec4<f32>(0.0, 0.0, 0.0, 1.0);
     var past = vec4<f32>(0.0);
     let moving = any(q != vec2<f32>(pixel));
@@ -2178,15 +2341,15 @@ fn resolve(@builtin(global_invocation_id) id: vec3<u32>) {
         // frame's march puts the cloud. (A still camera uncovers nothing; and this block's
         // depth is another pixel's, which at cloud edges would reject good history.)
         if moving && current_depth > 0.0 && past.x > 0.0 {
-            let expected = distance(frame.camera_position.xyz + view_ray(pixel) * current_depth,
-                frame.previous_position.xyz);
+            let expected = distance(frame.camera_position + view_ray(pixel) * current_depth,
+                frame.previous_position);
             valid = abs(past.x - expected) <= DISOCCLUSION_DEPTH * expected;
         }
     }
     if valid && moving {
         // Neighbourhood clamp: last frame's value may not leave the range of this frame's
         // marches around the pixel (3 x 3 blocks), which rejects stale, ghosting history.
-        let blocks = vec2<i32>((frame.counts.xy + k - 1u) / k);
+        let blocks = vec2<i32>((frame.size + k - 1u) / k);
         let b = vec2<i32>(block);
         let x0 = max(b.x - 1, 0);
         let x2 = min(b.x + 1, blocks.x - 1);
@@ -2255,10 +2418,10 @@ fn resolve(@builtin(global_invocation_id) id: vec3<u32>) {
 // * directions from Henyey-Greenstein (the two-lobe model samples its mixture; Cornette-Shanks
 //   samples HG(g) weighted by CS/HG).
 // The octaves, Beer-Powder and precipitation darkening are the march's approximations and are
-// not used here; `orders` (misc.z) caps the scattering orders (0 = all, up to MAX_PATH_ORDERS).
+// not used here; `orders` (path_orders) caps the scattering orders (0 = all, up to MAX_PATH_ORDERS).
 //
 // Progressive: each frame adds PATHS_PER_FRAME paths per pixel (their random streams seeded by
-// the frame, misc.y, and the lane) to the running means in `history` (radiance,
+// the frame, frame_index, and the lane) to the running means in `history` (radiance,
 // transmittance) and `history-meta` (depth, paths, mean squared luminance, paths that hit
 // cloud). A cut, a new plan or a moved camera starts over; a host that changes anything else
 // (sun, wind) cuts the history itself.
@@ -2376,7 +2539,7 @@ fn density_max() -> f32 {
 fn free_flight(origin: vec3<f32>, dir: vec3<f32>, segs: Segments, rng: ptr<function, u32>,
                counters: ptr<function, Counters>) -> f32 {
     let d_max = density_max();
-    let majorant = (frame.extinction.x + frame.extinction.y) * d_max;
+    let majorant = (frame.scattering + frame.absorption) * d_max;
     if majorant <= 0.0 {
         return -1.0;
     }
@@ -2408,7 +2571,7 @@ fn free_flight(origin: vec3<f32>, dir: vec3<f32>, segs: Segments, rng: ptr<funct
 // Ratio tracking: an unbiased estimate of the transmittance along the ray.
 fn transmittance_along(origin: vec3<f32>, dir: vec3<f32>, segs: Segments,
                        rng: ptr<function, u32>, counters: ptr<function, Counters>) -> f32 {
-    let sigma_t = frame.extinction.x + frame.extinction.y;
+    let sigma_t = frame.scattering + frame.absorption;
     let majorant = sigma_t * density_max();
     if majorant <= 0.0 {
         return 1.0;
@@ -2469,14 +2632,14 @@ fn sample_phase(dir: vec3<f32>, rng: ptr<function, u32>) -> PhaseSample {
     let phi = 2.0 * PI * rng_next(rng);
     var cos_theta = 0.0;
     var pdf = 0.0;
-    if frame.modes.x == PHASE_TWO_LOBE_HG {
-        let g = select(frame.phase.x, frame.phase.y, u_lobe < frame.phase.z);
+    if frame.phase_model == PHASE_TWO_LOBE_HG {
+        let g = select(frame.phase_g, frame.phase_g2, u_lobe < frame.phase_blend);
         cos_theta = sample_hg_cos(g, u);
-        pdf = mix(phase_hg(cos_theta, frame.phase.x), phase_hg(cos_theta, frame.phase.y),
-                  frame.phase.z);
+        pdf = mix(phase_hg(cos_theta, frame.phase_g), phase_hg(cos_theta, frame.phase_g2),
+                  frame.phase_blend);
     } else {
-        cos_theta = sample_hg_cos(frame.phase.x, u);
-        pdf = phase_hg(cos_theta, frame.phase.x);
+        cos_theta = sample_hg_cos(frame.phase_g, u);
+        pdf = phase_hg(cos_theta, frame.phase_g);
     }
     let sin_theta = sqrt(max(1.0 - cos_theta * cos_theta, 0.0));
     // An orthonormal basis around `dir` (Duff et al. 2017).
@@ -2499,7 +2662,7 @@ fn sample_phase(dir: vec3<f32>, rng: ptr<function, u32>) -> PhaseSample {
 // sky-ambient table). Neither knows the clouds' shadow on that air and ground.
 fn environment(pos: vec3<f32>, d: vec3<f32>, h: f32) -> vec3<f32> {
     if physical_sky() {
-        return sky_from(pos, d) * frame.sun_illuminance.rgb * frame.ambient_bottom.w;
+        return sky_from(pos, d) * frame.sun_illuminance * frame.ambient_strength;
     }
     return ambient(h, pos);
 }
@@ -2526,15 +2689,15 @@ fn trace_path(view: vec3<f32>, span: Interval, rng: ptr<function, u32>,
     }
     out.depth = first;
 
-    let sun = frame.sun_direction.xyz;
-    let sigma_t = frame.extinction.x + frame.extinction.y;
-    let albedo = select(0.0, frame.extinction.x / sigma_t, sigma_t > 0.0);
-    let ambient_on = frame.ambient_bottom.w > 0.0
-        && (physical_sky() || any(frame.ambient_bottom.rgb > vec3<f32>(0.0))
-            || any(frame.ambient_top.rgb > vec3<f32>(0.0)));
+    let sun = frame.sun_direction;
+    let sigma_t = frame.scattering + frame.absorption;
+    let albedo = select(0.0, frame.scattering / sigma_t, sigma_t > 0.0);
+    let ambient_on = frame.ambient_strength > 0.0
+        && (physical_sky() || any(frame.ambient_bottom > vec3<f32>(0.0))
+            || any(frame.ambient_top > vec3<f32>(0.0)));
     var max_orders = MAX_PATH_ORDERS;
-    if frame.misc.z > 0u {
-        max_orders = min(frame.misc.z, MAX_PATH_ORDERS);
+    if frame.path_orders > 0u {
+        max_orders = min(frame.path_orders, MAX_PATH_ORDERS);
     }
 
     var pos = cam + view * first;
@@ -2549,7 +2712,7 @@ fn trace_path(view: vec3<f32>, span: Interval, rng: ptr<function, u32>,
         // Next event toward the sun (a directional light).
         if !hits_ground(pos, alt, sun) {
             let tr = transmittance_along(pos, sun, layer_segments(pos, alt, sun), rng, counters);
-            out.radiance += frame.sun_illuminance.rgb * sun_through_air(pos)
+            out.radiance += frame.sun_illuminance * sun_through_air(pos)
                 * (throughput * phase(dot(dir, sun), 1.0) * tr);
         }
         // The next direction, from the phase function. Its free flight also estimates the
@@ -2584,14 +2747,6 @@ fn trace_path(view: vec3<f32>, span: Interval, rng: ptr<function, u32>,
     return out;
 }
 
-// Whether this frame's camera is last frame's (a moved camera restarts the accumulation).
-fn camera_still() -> bool {
-    return all(frame.camera_position == frame.previous_position)
-        && all(frame.camera_forward == frame.previous_forward)
-        && all(frame.camera_right.xyz == frame.previous_right.xyz)
-        && all(frame.camera_up.xyz == frame.previous_up.xyz);
-}
-
 fn luminance(c: vec3<f32>) -> f32 {
     return dot(c, vec3<f32>(0.2126, 0.7152, 0.0722));
 }
@@ -2614,7 +2769,7 @@ var<workgroup> lane_moments: array<vec4<f32>, PATHS_PER_FRAME>;
 fn pathtrace(@builtin(workgroup_id) group: vec3<u32>,
              @builtin(local_invocation_index) lane: u32) {
     // The workgroup is the pixel, so this test is uniform across it (the barriers below).
-    if any(group.xy >= frame.counts.xy) {
+    if any(group.xy >= frame.size) {
         return;
     }
     let pixel = group.xy;
@@ -2631,7 +2786,7 @@ fn pathtrace(@builtin(workgroup_id) group: vec3<u32>,
     // One path per invocation. Tracing several in a loop of one invocation gave wrong images
     // on lavapipe from about 10 paths an invocation on (8x8 blocks too dark, the same bits
     // whichever single path was kept), so a frame's paths are the workgroup's lanes.
-    var rng = rng_seed(pixel, frame.misc.y * PATHS_PER_FRAME + lane);
+    var rng = rng_seed(pixel, frame.frame_index * PATHS_PER_FRAME + lane);
     let r = trace_path(view, span, &rng, &counters);
     let l = luminance(r.radiance);
     let hit = r.depth >= 0.0;
@@ -2650,7 +2805,7 @@ fn pathtrace(@builtin(workgroup_id) group: vec3<u32>,
         }
         var mean = vec4<f32>(0.0);
         var moments = vec4<f32>(0.0);
-        if frame.temporal.y == 1u && camera_still() {
+        if frame.history_valid == 1u && camera_still() {
             mean = textureLoad(history_in, pixel, 0);
             moments = textureLoad(meta_in, pixel, 0);
         }
@@ -2689,21 +2844,21 @@ fn pathtrace(@builtin(workgroup_id) group: vec3<u32>,
 // integral, no early exit.
 
 // The optical depth toward the sun from `rel` (camera-relative, altitude `alt`) to the top of
-// the layer, at most three layer thicknesses, in `frame.counts.w` equal Riemann steps.
+// the layer, at most three layer thicknesses, in `frame.light_steps` equal Riemann steps.
 fn basic_sun_depth(rel: vec3<f32>, alt: f32, counters: ptr<function, Counters>) -> f32 {
-    let steps = frame.counts.w;
+    let steps = frame.light_steps;
     if steps == 0u {
         return 0.0;
     }
-    let sun = frame.sun_direction.xyz;
-    let rp = frame.atmosphere.x;
-    let top = frame.atmosphere.z;
-    let thickness = top - frame.atmosphere.y;
+    let sun = frame.sun_direction;
+    let rp = frame.planet_radius;
+    let top = frame.cloud_top;
+    let thickness = top - frame.cloud_bottom;
     // The sun ray's exit through the top shell, from a point at altitude `alt` (c < 0 inside).
     let exit = solve_sphere(dot(sun, vec3<f32>(rel.x, rel.y + rp, rel.z)), (alt - top) * (alt + top + 2.0 * rp));
     let length = min(max(exit.t1, 0.0), 3.0 * thickness);
     let dt = length / f32(steps);
-    let sigma_t = frame.extinction.x + frame.extinction.y;
+    let sigma_t = frame.scattering + frame.absorption;
     let cam_xz = frame.camera_position.xz;
     var tau = 0.0;
     for (var i = 1u; i <= steps; i += 1u) {
@@ -2732,11 +2887,11 @@ fn basic_pixel(pixel: vec2<u32>) -> MarchResult {
         count(STAT_EXIT_GROUND, 1u);
     } else {
         count(STAT_MARCHED, 1u);
-        let steps = frame.counts.z;
+        let steps = frame.view_steps;
         let dt = span.length / f32(steps);
-        let sigma_s = frame.extinction.x;
-        let sigma_t = sigma_s + frame.extinction.y;
-        let sun_phase = frame.sun_illuminance.rgb * phase_hg(dot(view, frame.sun_direction.xyz), frame.phase.x);
+        let sigma_s = frame.scattering;
+        let sigma_t = sigma_s + frame.absorption;
+        let sun_phase = frame.sun_illuminance * phase_hg(dot(view, frame.sun_direction), frame.phase_g);
         for (var i = 0u; i < steps; i += 1u) {
             counters.view_steps += 1u;
             let t = span.start + f32(i) * dt;
@@ -2770,7 +2925,7 @@ fn basic_pixel(pixel: vec2<u32>) -> MarchResult {
 // Every pixel, every frame (quality.method = "basic").
 @compute @workgroup_size(8, 8, 1)
 fn march_basic(@builtin(global_invocation_id) id: vec3<u32>) {
-    if any(id.xy >= frame.counts.xy) {
+    if any(id.xy >= frame.size) {
         return;
     }
     let r = basic_pixel(id.xy);
@@ -2897,7 +3052,7 @@ fn sprite_atlas(@builtin(global_invocation_id) id: vec3<u32>) {
 // `rel`) of the point at world `xz` and altitude `alt` on the curved planet: y solves
 // x^2 + z^2 + y (y + 2 Rp) = alt (alt + 2 Rp), in the form without cancellation.
 fn sprite_rel(xz: vec2<f32>, alt: f32) -> vec3<f32> {
-    let rp = frame.atmosphere.x;
+    let rp = frame.planet_radius;
     let d = xz - frame.camera_position.xz;
     let k = alt * (alt + 2.0 * rp) - dot(d, d);
     let y = k / (rp + sqrt(max(rp * rp + k, 0.0)));
@@ -2946,7 +3101,7 @@ fn sprite_candidate(c: SpriteCell, level: u32, s: u32, counters: ptr<function, C
     let xz = (vec2<f32>(c.index) + u.xy) * c.size;
     let w = sample_weather(vec3<f32>(xz.x, 0.0, xz.y), cloud_layer(0u));
     let h = 0.04 + u.z * (mix(0.3, 0.95, w.cloud_type) - 0.04);
-    let alt = frame.atmosphere.y + h * (frame.atmosphere.z - frame.atmosphere.y);
+    let alt = frame.cloud_bottom + h * (frame.cloud_top - frame.cloud_bottom);
     var density = 0.0;
     if !c.covered {
         let rel = sprite_rel(xz, alt);
@@ -2979,8 +3134,8 @@ fn sprite_build(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     count(STAT_DENSITY, counters.density);
     count(STAT_DETAIL, counters.detail);
-    let bottom = frame.atmosphere.y;
-    let thickness = frame.atmosphere.z - bottom;
+    let bottom = frame.cloud_bottom;
+    let thickness = frame.cloud_top - bottom;
     let middle = (vec2<f32>(cell.index) + 0.5) * cell.size;
     var centre = vec3<f32>(middle.x, bottom + 0.4 * thickness, middle.y);
     if sum.w > 0.0 {
@@ -3114,11 +3269,11 @@ fn sprite_vertex(@builtin(vertex_index) index: u32) -> SpriteVertex {
     let half_width = a.w;
     let facing = smoothstep(0.5 * half_width, half_width, distance);
     let to_camera = -to_sprite / max(distance, 1e-3);
-    let n = normalize(mix(-frame.camera_forward.xyz, to_camera, facing));
-    let radial = normalize(rel + vec3<f32>(0.0, frame.atmosphere.x, 0.0));
+    let n = normalize(mix(-frame.camera_forward, to_camera, facing));
+    let radial = normalize(rel + vec3<f32>(0.0, frame.planet_radius, 0.0));
     var right = cross(radial, n);
     if length(right) < 1e-3 {
-        right = frame.camera_right.xyz; // looking straight up or down at it
+        right = frame.camera_right; // looking straight up or down at it
     }
     right = normalize(right);
     let up = cross(n, right);
@@ -3127,11 +3282,11 @@ fn sprite_vertex(@builtin(vertex_index) index: u32) -> SpriteVertex {
     let vertex = to_sprite + offset;
 
     // Camera space to clip space: x right, y up, w = depth along the view (z in [0, w]).
-    let x = dot(vertex, frame.camera_right.xyz);
-    let y = dot(vertex, frame.camera_up.xyz);
-    let z = dot(vertex, frame.camera_forward.xyz);
-    let tan_half = frame.camera_position.w;
-    out.position = vec4<f32>(x / (tan_half * frame.camera_forward.w), y / tan_half, 0.5 * z, z);
+    let x = dot(vertex, frame.camera_right);
+    let y = dot(vertex, frame.camera_up);
+    let z = dot(vertex, frame.camera_forward);
+    let tan_half = frame.tan_half_fov;
+    out.position = vec4<f32>(x / (tan_half * frame.aspect), y / tan_half, 0.5 * z, z);
 
     // Texture coordinates: v down, turned by the sprite's rotation.
     let cs = vec2<f32>(cos(c.y), sin(c.y));
@@ -3140,13 +3295,13 @@ fn sprite_vertex(@builtin(vertex_index) index: u32) -> SpriteVertex {
     out.tile = u32(c.x);
 
     // Shading per vertex: C = (C_sky + C_sun) * alpha_morph.
-    let sun = frame.sun_direction.xyz;
+    let sun = frame.sun_direction;
     let centre = sprite_rel(b.xz, b.y) - cam;
     let from_centre = vertex - centre;
     let cos_angle = dot(from_centre, sun) / max(length(from_centre), 1e-3);
     let day = saturate(sun.y * 4.0 + 0.3);
-    let h = saturate((altitude_of(vertex + cam) - frame.atmosphere.y) / (frame.atmosphere.z - frame.atmosphere.y));
-    let e = frame.sun_illuminance.rgb;
+    let h = saturate((altitude_of(vertex + cam) - frame.cloud_bottom) / (frame.cloud_top - frame.cloud_bottom));
+    let e = frame.sun_illuminance;
     let light = e * (sprite_sky_level(h) * (SPRITE_SKY * day) + sprite_sun_level(cos_angle)) * (c.w / PI);
     out.colour = vec4<f32>(light, b.w);
     out.distance = length(vertex);
@@ -3171,7 +3326,7 @@ fn sprite_fragment(in: SpriteVertex) -> SpriteTargets {
 // opacity-weighted distance.
 @compute @workgroup_size(8, 8, 1)
 fn sprite_resolve(@builtin(global_invocation_id) id: vec3<u32>) {
-    if any(id.xy >= frame.counts.xy) {
+    if any(id.xy >= frame.size) {
         return;
     }
     count(STAT_PIXELS, 1u);
@@ -3192,8 +3347,8 @@ fn sprite_resolve(@builtin(global_invocation_id) id: vec3<u32>) {
 // scaled by the sun's illuminance and elevation, a forward glow around the sun, and a dark
 // ground below the horizon. Deliberately simple (DESIGN: a simple analytic sky first).
 fn sky_radiance(d: vec3<f32>, alt: f32) -> vec3<f32> {
-    let sun = frame.sun_direction.xyz;
-    let e = frame.sun_illuminance.rgb;
+    let sun = frame.sun_direction;
+    let e = frame.sun_illuminance;
     let day = saturate(sun.y * 4.0 + 0.3);
     if hits_ground(vec3<f32>(0.0, alt, 0.0), alt, d) {
         let ground_albedo = vec3<f32>(0.035, 0.035, 0.03);
@@ -3211,11 +3366,11 @@ fn sky_radiance(d: vec3<f32>, alt: f32) -> vec3<f32> {
 
 // Radiance of the sun's disk: illuminance over its solid angle 2 pi (1 - cos r).
 fn sun_disk(d: vec3<f32>) -> vec3<f32> {
-    let cos_r = frame.sun_direction.w;
-    if dot(d, frame.sun_direction.xyz) < cos_r {
+    let cos_r = frame.sun_cos_radius;
+    if dot(d, frame.sun_direction) < cos_r {
         return vec3<f32>(0.0);
     }
-    return frame.sun_illuminance.rgb / (2.0 * PI * max(1.0 - cos_r, 1e-6));
+    return frame.sun_illuminance / (2.0 * PI * max(1.0 - cos_r, 1e-6));
 }
 
 // The clouds in the physical sky: the sky-view table (the lit ground included, with the
@@ -3226,7 +3381,7 @@ fn sun_disk(d: vec3<f32>) -> vec3<f32> {
 // stands for the rest: L = a S + (1 - a) S_ap + T_ap C (Hillaire 2020, section 5.4's use of
 // the aerial-perspective volume on opaque surfaces, with partly transparent clouds).
 fn physical_composite(pixel: vec2<u32>, view: vec3<f32>, cloud: vec4<f32>) -> vec3<f32> {
-    let e = frame.sun_illuminance.rgb;
+    let e = frame.sun_illuminance;
     let r = camera_air_origin().y;
     var sky = sky_view(view) * e;
     if meets_ground(r, view.y) {
@@ -3234,7 +3389,7 @@ fn physical_composite(pixel: vec2<u32>, view: vec3<f32>, cloud: vec4<f32>) -> ve
         sky = max(sky - ground_shadow_loss(view, r) * e, vec3<f32>(0.0));
     } else {
         var space = moon_disk(view) + stars(view);
-        if (frame.modes.w & FLAG_MOONLIT) == 0u {
+        if (frame.flags & FLAG_MOONLIT) == 0u {
             space += sun_disk(view);
         }
         sky += space * transmittance_to_top(r, view.y);
@@ -3255,18 +3410,18 @@ const MOON_COS_RADIUS: f32 = 0.99998978;
 // The full moon shows almost no limb darkening, so the lit part is of even brightness; the
 // terminator is softened over 2% of the radius against aliasing.
 fn moon_disk(d: vec3<f32>) -> vec3<f32> {
-    let m = frame.moon.xyz;
+    let m = frame.moon_direction;
     let c = dot(d, m);
-    if frame.moon.w <= 0.0 || c < MOON_COS_RADIUS {
+    if frame.moon_illuminance <= 0.0 || c < MOON_COS_RADIUS {
         return vec3<f32>(0.0);
     }
     let sin_r = sqrt(1.0 - MOON_COS_RADIUS * MOON_COS_RADIUS);
     let offset = (d - m * c) / sin_r;          // in units of the disc's radius
     let x2 = min(dot(offset, offset), 1.0);
     let normal = offset - m * sqrt(1.0 - x2);  // the visible hemisphere faces the camera
-    let lit = smoothstep(-0.02, 0.02, dot(normal, frame.night.xyz));
+    let lit = smoothstep(-0.02, 0.02, dot(normal, frame.real_sun_direction));
     let solid_angle = 2.0 * PI * (1.0 - MOON_COS_RADIUS);
-    return vec3<f32>(frame.moon.w / solid_angle * lit);
+    return vec3<f32>(frame.moon_illuminance / solid_angle * lit);
 }
 
 // Stars: procedural, with the real sky's count per magnitude. The cumulative count brighter
@@ -3281,7 +3436,7 @@ const STAR_CELLS: u32 = 96u;
 const STAR_FAINTEST: f32 = 6.5;
 
 fn stars(d: vec3<f32>) -> vec3<f32> {
-    let e0 = frame.night.w;
+    let e0 = frame.star_illuminance;
     if e0 <= 0.0 {
         return vec3<f32>(0.0);
     }
@@ -3333,7 +3488,7 @@ fn stars(d: vec3<f32>) -> vec3<f32> {
     let magnitude = max(STAR_FAINTEST + log(max(h0 / p, 1e-6)) / (0.48 * log(10.0)), -1.5);
     let illuminance = e0 * pow(10.0, -0.4 * magnitude);
     // Angular size of a pixel at the image centre.
-    let pixel_angle = 2.0 * frame.camera_position.w / f32(frame.counts.y);
+    let pixel_angle = 2.0 * frame.tan_half_fov / f32(frame.size.y);
     let dist = acos(clamp(dot(d, star), -1.0, 1.0)) / pixel_angle;
     let sigma = 0.5;
     let weight = exp(-dist * dist / (2.0 * sigma * sigma)) / (2.0 * PI * sigma * sigma);
@@ -3354,14 +3509,14 @@ fn aces_fitted(x: vec3<f32>) -> vec3<f32> {
 
 // Exposure, tone curve and gamma of a pixel's radiance, to the display image.
 fn store_display(pixel: vec2<u32>, radiance: vec3<f32>) {
-    let exposed = radiance * frame.camera_right.w;
+    let exposed = radiance * frame.exposure;
     let display = pow(aces_fitted(exposed), vec3<f32>(1.0 / 2.2));
     textureStore(image_out, pixel, vec4<f32>(display, 1.0));
 }
 
 @compute @workgroup_size(8, 8, 1)
 fn composite(@builtin(global_invocation_id) id: vec3<u32>) {
-    if any(id.xy >= frame.counts.xy) {
+    if any(id.xy >= frame.size) {
         return;
     }
     let pixel = id.xy;
@@ -3378,7 +3533,7 @@ fn composite(@builtin(global_invocation_id) id: vec3<u32>) {
 // The same in the physical sky (plan option `physical_sky`).
 @compute @workgroup_size(8, 8, 1)
 fn composite_physical(@builtin(global_invocation_id) id: vec3<u32>) {
-    if any(id.xy >= frame.counts.xy) {
+    if any(id.xy >= frame.size) {
         return;
     }
     let pixel = id.xy;

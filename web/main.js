@@ -36,10 +36,10 @@ function edit(bytes, layout, { yaw, pitch, sun, sunAzimuth, width, height }) {
   const out = new Uint8Array(bytes);
   const f = new Float32Array(out.buffer);
   const u = new Uint32Array(out.buffer);
-  const counts = member(layout, 'counts') / 4;
-  u[counts] = width;
-  u[counts + 1] = height;
-  f[member(layout, 'camera_forward') / 4 + 3] = width / height;
+  const size = member(layout, 'size') / 4;
+  u[size] = width;
+  u[size + 1] = height;
+  f[member(layout, 'aspect') / 4] = width / height;
   const set = (name, v) => { const o = member(layout, name) / 4; f[o] = v[0]; f[o + 1] = v[1]; f[o + 2] = v[2]; };
   const r = Math.PI / 180;
   const [sy, cy, sp, cp] = [Math.sin(yaw * r), Math.cos(yaw * r), Math.sin(pitch * r), Math.cos(pitch * r)];

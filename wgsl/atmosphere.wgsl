@@ -49,16 +49,16 @@ const AMBIENT_STEPS: u32 = 24u;
 const SKY_AMBIENT_SUNS: u32 = 64u;
 
 fn physical_sky() -> bool {
-    return (frame.modes.w & FLAG_PHYSICAL_SKY) != 0u;
+    return (frame.flags & FLAG_PHYSICAL_SKY) != 0u;
 }
 
 // Radii (km) of the ground and of the top of the atmosphere.
 fn air_bottom() -> f32 {
-    return frame.atmosphere.x * 1e-3;
+    return frame.planet_radius * 1e-3;
 }
 
 fn air_top() -> f32 {
-    return (frame.atmosphere.x + frame.air_misc.x) * 1e-3;
+    return (frame.planet_radius + frame.air_thickness) * 1e-3;
 }
 
 // The air at altitude `h_km`: Rayleigh scattering (rgb), Mie scattering and total extinction
@@ -71,13 +71,13 @@ struct AirSample {
 
 fn air_at(h_km: f32) -> AirSample {
     let h = max(h_km, 0.0) * 1000.0;
-    let rayleigh_density = exp(-h / frame.air_rayleigh.w);
-    let mie_density = exp(-h / frame.air_mie.z);
-    let ozone_density = max(1.0 - abs(h - frame.air_ozone.w) / (0.5 * frame.air_misc.y), 0.0);
-    let rayleigh = frame.air_rayleigh.rgb * (rayleigh_density * 1000.0);
-    let mie = frame.air_mie.x * mie_density * 1000.0;
-    let mie_extinction = (frame.air_mie.x + frame.air_mie.y) * mie_density * 1000.0;
-    let ozone = frame.air_ozone.rgb * (ozone_density * 1000.0);
+    let rayleigh_density = exp(-h / frame.rayleigh_scale_height);
+    let mie_density = exp(-h / frame.mie_scale_height);
+    let ozone_density = max(1.0 - abs(h - frame.ozone_center) / (0.5 * frame.ozone_width), 0.0);
+    let rayleigh = frame.rayleigh_scattering * (rayleigh_density * 1000.0);
+    let mie = frame.mie_scattering * mie_density * 1000.0;
+    let mie_extinction = (frame.mie_scattering + frame.mie_absorption) * mie_density * 1000.0;
+    let ozone = frame.ozone_absorption * (ozone_density * 1000.0);
     return AirSample(rayleigh, mie, rayleigh + vec3<f32>(mie_extinction) + ozone);
 }
 
@@ -194,7 +194,7 @@ fn fibonacci_direction(k: u32, n: u32) -> vec3<f32> {
 // multi-scattering table takes the ground as lit by the sun alone (Hillaire 2020, 5.5.2);
 // the sky's part is `ground_radiance`'s (wgsl/ground.wgsl).
 fn ground_radiance_sun(mu_s: f32) -> vec3<f32> {
-    return frame.air_misc.z / PI * max(mu_s, 0.0) * sun_transmittance(air_bottom() + 0.001, mu_s);
+    return frame.ground_albedo / PI * max(mu_s, 0.0) * sun_transmittance(air_bottom() + 0.001, mu_s);
 }
 
 // In-scattered light and transmittance along a ray from `origin` (km, planet centre at the
@@ -210,7 +210,7 @@ struct Scattered {
 fn integrate_air(origin: vec3<f32>, d: vec3<f32>, distance_km: f32, steps: u32, sun: vec3<f32>) -> Scattered {
     let cos_theta = dot(d, sun);
     let phase_r = phase_rayleigh(cos_theta);
-    let phase_m = phase_cornette_shanks_air(cos_theta, frame.air_mie.w);
+    let phase_m = phase_cornette_shanks_air(cos_theta, frame.mie_g);
     var radiance = vec3<f32>(0.0);
     var tau = vec3<f32>(0.0);
     var t0 = 0.0;
@@ -352,7 +352,7 @@ fn horizon_elevation(r: f32) -> f32 {
 
 // The sun's azimuth about the zenith (radians, from +x toward +z).
 fn sun_azimuth() -> f32 {
-    let s = frame.sun_direction.xyz;
+    let s = frame.sun_direction;
     return atan2(s.z, s.x);
 }
 
@@ -376,7 +376,7 @@ fn sky_view_lut(@builtin(global_invocation_id) id: vec3<u32>) {
 // camera, and the path tracer's environment from a path's last collision.
 fn sky_along(origin: vec3<f32>, d: vec3<f32>) -> vec3<f32> {
     let end = air_ray_end(origin, d);
-    let sun = frame.sun_direction.xyz;
+    let sun = frame.sun_direction;
     let s = integrate_air(origin, d, end.x, SKY_VIEW_STEPS, sun);
     return with_ground(s, origin, d, end.x, sun, end.y > 0.5);
 }
@@ -384,7 +384,7 @@ fn sky_along(origin: vec3<f32>, d: vec3<f32>) -> vec3<f32> {
 // The sky's radiance (per unit sun illuminance) seen from camera-relative `rel` (m) along
 // unit `d` (`sky_along` from that point; `sun_through_air`'s coordinates).
 fn sky_from(rel: vec3<f32>, d: vec3<f32>) -> vec3<f32> {
-    return sky_along(vec3<f32>(rel.x, rel.y + frame.atmosphere.x, rel.z) * 1e-3, d);
+    return sky_along(vec3<f32>(rel.x, rel.y + frame.planet_radius, rel.z) * 1e-3, d);
 }
 
 // The sky's radiance (per unit sun illuminance) seen from the camera along unit `d`: the
@@ -401,11 +401,11 @@ fn sky_view(d: vec3<f32>) -> vec3<f32> {
 // The view direction through the centre of aerial froxel column `c` (of AERIAL_SIDE^2).
 fn aerial_ray(c: vec2<u32>) -> vec3<f32> {
     let ndc = (vec2<f32>(c) + 0.5) / f32(AERIAL_SIDE) * 2.0 - 1.0;
-    let tan_half = frame.camera_position.w;
-    let aspect = frame.camera_forward.w;
-    return normalize(frame.camera_forward.xyz
-        + frame.camera_right.xyz * (ndc.x * tan_half * aspect)
-        - frame.camera_up.xyz * (ndc.y * tan_half));
+    let tan_half = frame.tan_half_fov;
+    let aspect = frame.aspect;
+    return normalize(frame.camera_forward
+        + frame.camera_right * (ndc.x * tan_half * aspect)
+        - frame.camera_up * (ndc.y * tan_half));
 }
 
 // Froxel column (x, y) marches its 32 slices in order; slice z is stored at texel
@@ -419,10 +419,10 @@ fn aerial_perspective(@builtin(global_invocation_id) id: vec3<u32>) {
     let d = aerial_ray(id.xy);
     let origin = camera_air_origin();
     let end = air_ray_end(origin, d);
-    let sun = frame.sun_direction.xyz;
+    let sun = frame.sun_direction;
     let cos_theta = dot(d, sun);
     let phase_r = phase_rayleigh(cos_theta);
-    let phase_m = phase_cornette_shanks_air(cos_theta, frame.air_mie.w);
+    let phase_m = phase_cornette_shanks_air(cos_theta, frame.mie_g);
     var radiance = vec3<f32>(0.0);
     var tau = vec3<f32>(0.0);
     // Four midpoint steps a slice, stopping where the ray leaves the air or meets the ground.
@@ -451,7 +451,7 @@ fn aerial_perspective(@builtin(global_invocation_id) id: vec3<u32>) {
 // illuminance, mean transmittance), interpolated in the froxel grid and between slices (0 m
 // is no air: nothing scattered, transmittance 1).
 fn aerial(pixel: vec2<u32>, depth_m: f32) -> vec4<f32> {
-    let uv = (vec2<f32>(pixel) + 0.5) / vec2<f32>(frame.counts.xy);
+    let uv = (vec2<f32>(pixel) + 0.5) / vec2<f32>(frame.size);
     // Froxel centres sit at (c + 0.5) / side.
     let f = clamp(uv * f32(AERIAL_SIDE) - 0.5, vec2<f32>(0.0), vec2<f32>(f32(AERIAL_SIDE - 1u)));
     let c0 = min(vec2<u32>(floor(f)), vec2<u32>(AERIAL_SIDE - 1u));
@@ -514,7 +514,7 @@ fn sky_ambient(@builtin(global_invocation_id) id: vec3<u32>) {
     let t = f32(id.x) / f32(SKY_AMBIENT_SUNS - 1u) * 2.0 - 1.0;
     let mu_s = sign(t) * t * t;
     let sun = vec3<f32>(sqrt(max(1.0 - mu_s * mu_s, 0.0)), mu_s, 0.0);
-    let origin = vec3<f32>(0.0, air_bottom() + frame.atmosphere.y * 1e-3, 0.0);
+    let origin = vec3<f32>(0.0, air_bottom() + frame.cloud_bottom * 1e-3, 0.0);
     var sum = vec3<f32>(0.0);
     var weights = 0.0;
     // Fibonacci directions run from the zenith down: the first half is the upper hemisphere.
@@ -537,9 +537,9 @@ fn sun_through_air(rel: vec3<f32>) -> vec3<f32> {
     if !physical_sky() {
         return vec3<f32>(1.0);
     }
-    let q = vec3<f32>(rel.x, rel.y + frame.atmosphere.x, rel.z) * 1e-3;
+    let q = vec3<f32>(rel.x, rel.y + frame.planet_radius, rel.z) * 1e-3;
     let r = length(q);
-    return sun_transmittance(r, dot(q / r, frame.sun_direction.xyz));
+    return sun_transmittance(r, dot(q / r, frame.sun_direction));
 }
 
 // The sky-ambient table's column coordinate (0 to 1) of a sun of zenith cosine `mu`: the
@@ -557,10 +557,10 @@ fn sky_ambient_x(mu: f32) -> f32 {
 // at camera-relative `rel` (m): the sky-ambient table at the sun's zenith cosine there, times
 // the sun's illuminance and the ambient strength.
 fn sky_ambient_light(h: f32, rel: vec3<f32>) -> vec3<f32> {
-    let q = vec3<f32>(rel.x, rel.y + frame.atmosphere.x, rel.z);
-    let x = sky_ambient_x(dot(normalize(q), frame.sun_direction.xyz));
+    let q = vec3<f32>(rel.x, rel.y + frame.planet_radius, rel.z);
+    let x = sky_ambient_x(dot(normalize(q), frame.sun_direction));
     let size = vec2<u32>(SKY_AMBIENT_SUNS, 2u);
     let bottom = lut_bilinear(sky_ambient_in, vec2<f32>(x, 0.0), size).rgb;
     let top = lut_bilinear(sky_ambient_in, vec2<f32>(x, 1.0), size).rgb;
-    return mix(bottom, top, h) * frame.sun_illuminance.rgb * frame.ambient_bottom.w;
+    return mix(bottom, top, h) * frame.sun_illuminance * frame.ambient_strength;
 }

@@ -11,21 +11,21 @@
 // integral, no early exit.
 
 // The optical depth toward the sun from `rel` (camera-relative, altitude `alt`) to the top of
-// the layer, at most three layer thicknesses, in `frame.counts.w` equal Riemann steps.
+// the layer, at most three layer thicknesses, in `frame.light_steps` equal Riemann steps.
 fn basic_sun_depth(rel: vec3<f32>, alt: f32, counters: ptr<function, Counters>) -> f32 {
-    let steps = frame.counts.w;
+    let steps = frame.light_steps;
     if steps == 0u {
         return 0.0;
     }
-    let sun = frame.sun_direction.xyz;
-    let rp = frame.atmosphere.x;
-    let top = frame.atmosphere.z;
-    let thickness = top - frame.atmosphere.y;
+    let sun = frame.sun_direction;
+    let rp = frame.planet_radius;
+    let top = frame.cloud_top;
+    let thickness = top - frame.cloud_bottom;
     // The sun ray's exit through the top shell, from a point at altitude `alt` (c < 0 inside).
     let exit = solve_sphere(dot(sun, vec3<f32>(rel.x, rel.y + rp, rel.z)), (alt - top) * (alt + top + 2.0 * rp));
     let length = min(max(exit.t1, 0.0), 3.0 * thickness);
     let dt = length / f32(steps);
-    let sigma_t = frame.extinction.x + frame.extinction.y;
+    let sigma_t = frame.scattering + frame.absorption;
     let cam_xz = frame.camera_position.xz;
     var tau = 0.0;
     for (var i = 1u; i <= steps; i += 1u) {
@@ -54,11 +54,11 @@ fn basic_pixel(pixel: vec2<u32>) -> MarchResult {
         count(STAT_EXIT_GROUND, 1u);
     } else {
         count(STAT_MARCHED, 1u);
-        let steps = frame.counts.z;
+        let steps = frame.view_steps;
         let dt = span.length / f32(steps);
-        let sigma_s = frame.extinction.x;
-        let sigma_t = sigma_s + frame.extinction.y;
-        let sun_phase = frame.sun_illuminance.rgb * phase_hg(dot(view, frame.sun_direction.xyz), frame.phase.x);
+        let sigma_s = frame.scattering;
+        let sigma_t = sigma_s + frame.absorption;
+        let sun_phase = frame.sun_illuminance * phase_hg(dot(view, frame.sun_direction), frame.phase_g);
         for (var i = 0u; i < steps; i += 1u) {
             counters.view_steps += 1u;
             let t = span.start + f32(i) * dt;
@@ -92,7 +92,7 @@ fn basic_pixel(pixel: vec2<u32>) -> MarchResult {
 // Every pixel, every frame (quality.method = "basic").
 @compute @workgroup_size(8, 8, 1)
 fn march_basic(@builtin(global_invocation_id) id: vec3<u32>) {
-    if any(id.xy >= frame.counts.xy) {
+    if any(id.xy >= frame.size) {
         return;
     }
     let r = basic_pixel(id.xy);

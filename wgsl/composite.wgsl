@@ -9,8 +9,8 @@
 // scaled by the sun's illuminance and elevation, a forward glow around the sun, and a dark
 // ground below the horizon. Deliberately simple (DESIGN: a simple analytic sky first).
 fn sky_radiance(d: vec3<f32>, alt: f32) -> vec3<f32> {
-    let sun = frame.sun_direction.xyz;
-    let e = frame.sun_illuminance.rgb;
+    let sun = frame.sun_direction;
+    let e = frame.sun_illuminance;
     let day = saturate(sun.y * 4.0 + 0.3);
     if hits_ground(vec3<f32>(0.0, alt, 0.0), alt, d) {
         let ground_albedo = vec3<f32>(0.035, 0.035, 0.03);
@@ -28,11 +28,11 @@ fn sky_radiance(d: vec3<f32>, alt: f32) -> vec3<f32> {
 
 // Radiance of the sun's disk: illuminance over its solid angle 2 pi (1 - cos r).
 fn sun_disk(d: vec3<f32>) -> vec3<f32> {
-    let cos_r = frame.sun_direction.w;
-    if dot(d, frame.sun_direction.xyz) < cos_r {
+    let cos_r = frame.sun_cos_radius;
+    if dot(d, frame.sun_direction) < cos_r {
         return vec3<f32>(0.0);
     }
-    return frame.sun_illuminance.rgb / (2.0 * PI * max(1.0 - cos_r, 1e-6));
+    return frame.sun_illuminance / (2.0 * PI * max(1.0 - cos_r, 1e-6));
 }
 
 // The clouds in the physical sky: the sky-view table (the lit ground included, with the
@@ -43,7 +43,7 @@ fn sun_disk(d: vec3<f32>) -> vec3<f32> {
 // stands for the rest: L = a S + (1 - a) S_ap + T_ap C (Hillaire 2020, section 5.4's use of
 // the aerial-perspective volume on opaque surfaces, with partly transparent clouds).
 fn physical_composite(pixel: vec2<u32>, view: vec3<f32>, cloud: vec4<f32>) -> vec3<f32> {
-    let e = frame.sun_illuminance.rgb;
+    let e = frame.sun_illuminance;
     let r = camera_air_origin().y;
     var sky = sky_view(view) * e;
     if meets_ground(r, view.y) {
@@ -51,7 +51,7 @@ fn physical_composite(pixel: vec2<u32>, view: vec3<f32>, cloud: vec4<f32>) -> ve
         sky = max(sky - ground_shadow_loss(view, r) * e, vec3<f32>(0.0));
     } else {
         var space = moon_disk(view) + stars(view);
-        if (frame.modes.w & FLAG_MOONLIT) == 0u {
+        if (frame.flags & FLAG_MOONLIT) == 0u {
             space += sun_disk(view);
         }
         sky += space * transmittance_to_top(r, view.y);
@@ -72,18 +72,18 @@ const MOON_COS_RADIUS: f32 = 0.99998978;
 // The full moon shows almost no limb darkening, so the lit part is of even brightness; the
 // terminator is softened over 2% of the radius against aliasing.
 fn moon_disk(d: vec3<f32>) -> vec3<f32> {
-    let m = frame.moon.xyz;
+    let m = frame.moon_direction;
     let c = dot(d, m);
-    if frame.moon.w <= 0.0 || c < MOON_COS_RADIUS {
+    if frame.moon_illuminance <= 0.0 || c < MOON_COS_RADIUS {
         return vec3<f32>(0.0);
     }
     let sin_r = sqrt(1.0 - MOON_COS_RADIUS * MOON_COS_RADIUS);
     let offset = (d - m * c) / sin_r;          // in units of the disc's radius
     let x2 = min(dot(offset, offset), 1.0);
     let normal = offset - m * sqrt(1.0 - x2);  // the visible hemisphere faces the camera
-    let lit = smoothstep(-0.02, 0.02, dot(normal, frame.night.xyz));
+    let lit = smoothstep(-0.02, 0.02, dot(normal, frame.real_sun_direction));
     let solid_angle = 2.0 * PI * (1.0 - MOON_COS_RADIUS);
-    return vec3<f32>(frame.moon.w / solid_angle * lit);
+    return vec3<f32>(frame.moon_illuminance / solid_angle * lit);
 }
 
 // Stars: procedural, with the real sky's count per magnitude. The cumulative count brighter
@@ -98,7 +98,7 @@ const STAR_CELLS: u32 = 96u;
 const STAR_FAINTEST: f32 = 6.5;
 
 fn stars(d: vec3<f32>) -> vec3<f32> {
-    let e0 = frame.night.w;
+    let e0 = frame.star_illuminance;
     if e0 <= 0.0 {
         return vec3<f32>(0.0);
     }
@@ -150,7 +150,7 @@ fn stars(d: vec3<f32>) -> vec3<f32> {
     let magnitude = max(STAR_FAINTEST + log(max(h0 / p, 1e-6)) / (0.48 * log(10.0)), -1.5);
     let illuminance = e0 * pow(10.0, -0.4 * magnitude);
     // Angular size of a pixel at the image centre.
-    let pixel_angle = 2.0 * frame.camera_position.w / f32(frame.counts.y);
+    let pixel_angle = 2.0 * frame.tan_half_fov / f32(frame.size.y);
     let dist = acos(clamp(dot(d, star), -1.0, 1.0)) / pixel_angle;
     let sigma = 0.5;
     let weight = exp(-dist * dist / (2.0 * sigma * sigma)) / (2.0 * PI * sigma * sigma);
@@ -171,14 +171,14 @@ fn aces_fitted(x: vec3<f32>) -> vec3<f32> {
 
 // Exposure, tone curve and gamma of a pixel's radiance, to the display image.
 fn store_display(pixel: vec2<u32>, radiance: vec3<f32>) {
-    let exposed = radiance * frame.camera_right.w;
+    let exposed = radiance * frame.exposure;
     let display = pow(aces_fitted(exposed), vec3<f32>(1.0 / 2.2));
     textureStore(image_out, pixel, vec4<f32>(display, 1.0));
 }
 
 @compute @workgroup_size(8, 8, 1)
 fn composite(@builtin(global_invocation_id) id: vec3<u32>) {
-    if any(id.xy >= frame.counts.xy) {
+    if any(id.xy >= frame.size) {
         return;
     }
     let pixel = id.xy;
@@ -195,7 +195,7 @@ fn composite(@builtin(global_invocation_id) id: vec3<u32>) {
 // The same in the physical sky (plan option `physical_sky`).
 @compute @workgroup_size(8, 8, 1)
 fn composite_physical(@builtin(global_invocation_id) id: vec3<u32>) {
-    if any(id.xy >= frame.counts.xy) {
+    if any(id.xy >= frame.size) {
         return;
     }
     let pixel = id.xy;

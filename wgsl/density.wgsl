@@ -19,7 +19,7 @@ struct Counters {
 }
 
 // One cloud layer: its altitude range and its weather. Layer 0 is the scene's main layer
-// (`atmosphere`, `clouds`), layers 1-3 are the extra ones (`layer1`..`layer3`). Layers never
+// (`cloud_bottom`, `coverage`...), layers 1-3 are the extra ones (`layer1_*`..`layer3_*`). Layers never
 // overlap in altitude (the scene is validated so), so a point lies in at most one.
 struct Layer {
     bottom: f32,
@@ -35,23 +35,25 @@ const MAX_LAYERS: u32 = 4u;
 const NO_LAYER: u32 = 4u;
 
 fn layer_count() -> u32 {
-    return 1u + min(frame.misc.w, MAX_LAYERS - 1u);
-}
-
-fn layer_from(g: vec4<f32>, w: vec4<f32>) -> Layer {
-    return Layer(g.x, g.y, g.z, g.w, w.x, w.y, w.zw);
+    return 1u + min(frame.extra_layers, MAX_LAYERS - 1u);
 }
 
 fn cloud_layer(i: u32) -> Layer {
     if i == 1u {
-        return layer_from(frame.layer1, frame.layer1_weather);
+        return Layer(frame.layer1_bottom, frame.layer1_top, frame.layer1_coverage,
+                     frame.layer1_density, frame.layer1_cloud_type, frame.layer1_precipitation,
+                     frame.layer1_weather_offset);
     } else if i == 2u {
-        return layer_from(frame.layer2, frame.layer2_weather);
+        return Layer(frame.layer2_bottom, frame.layer2_top, frame.layer2_coverage,
+                     frame.layer2_density, frame.layer2_cloud_type, frame.layer2_precipitation,
+                     frame.layer2_weather_offset);
     } else if i == 3u {
-        return layer_from(frame.layer3, frame.layer3_weather);
+        return Layer(frame.layer3_bottom, frame.layer3_top, frame.layer3_coverage,
+                     frame.layer3_density, frame.layer3_cloud_type, frame.layer3_precipitation,
+                     frame.layer3_weather_offset);
     }
-    return Layer(frame.atmosphere.y, frame.atmosphere.z, frame.clouds.x, frame.clouds.y,
-                 frame.clouds.z, frame.clouds.w, frame.wind_offsets0.xy);
+    return Layer(frame.cloud_bottom, frame.cloud_top, frame.coverage, frame.density,
+                 frame.cloud_type, frame.precipitation, frame.weather_offset);
 }
 
 // Height fraction of altitude `alt` in layer `l` (inside where it lies in [0, 1]).
@@ -72,7 +74,7 @@ fn layer_at(alt: f32) -> u32 {
 
 // The altitudes that hold every layer: (lowest bottom, highest top).
 fn layers_span() -> vec2<f32> {
-    var span = frame.atmosphere.yz;
+    var span = vec2<f32>(frame.cloud_bottom, frame.cloud_top);
     for (var i = 1u; i < layer_count(); i++) {
         let l = cloud_layer(i);
         span = vec2<f32>(min(span.x, l.bottom), max(span.y, l.top));
@@ -88,7 +90,7 @@ struct Weather {
 }
 
 fn sample_weather(p: vec3<f32>, l: Layer) -> Weather {
-    let uv = (p.xz - l.weather_offset) / frame.periods.x;
+    let uv = (p.xz - l.weather_offset) / frame.weather_period;
     let w = textureSampleLevel(weather_tex, noise_sampler, uv, 0.0);
     // The layer's coverage shifts the map's local coverage: 0 clears the sky, 1 fills it.
     let coverage = saturate(w.r + 2.0 * (l.coverage - 0.5));
@@ -122,7 +124,7 @@ fn height_cloud_types(h: f32, cloud_type: f32) -> f32 {
 }
 
 fn height_signal(h: f32, cloud_type: f32) -> f32 {
-    if frame.modes.z == HEIGHT_CLOUD_TYPES {
+    if frame.height_model == HEIGHT_CLOUD_TYPES {
         return height_cloud_types(h, cloud_type);
     }
     return height_parabola(h, cloud_type);
@@ -161,8 +163,8 @@ fn layer_density_with(p: vec3<f32>, alt: f32, l: Layer, with_detail: bool,
     // Base shape: Perlin-Worley remapped by low-frequency Worley FBM (HZD), isotropic texels:
     // the texture's y period is its x period scaled by its aspect (128x32x128 thesis layout).
     let dims = vec3<f32>(textureDimensions(shape_tex));
-    let period = frame.periods.y * vec3<f32>(1.0, dims.y / dims.x, 1.0);
-    let shape_pos = vec3<f32>(p.x - frame.wind_offsets0.z, alt, p.z - frame.wind_offsets0.w);
+    let period = frame.shape_period * vec3<f32>(1.0, dims.y / dims.x, 1.0);
+    let shape_pos = vec3<f32>(p.x - frame.shape_offset.x, alt, p.z - frame.shape_offset.y);
     let s = textureSampleLevel(shape_tex, noise_sampler, shape_pos / period, 0.0);
     let low_fbm = s.g * 0.625 + s.b * 0.25 + s.a * 0.125;
     var base = saturate(remap(s.r, low_fbm - 1.0, 1.0, 0.0, 1.0)) * signal;
@@ -176,32 +178,32 @@ fn layer_density_with(p: vec3<f32>, alt: f32, l: Layer, with_detail: bool,
     // Detail erosion at the edges only: below the threshold (thesis alg. 4.1). The amount
     // fades to zero at the threshold so the density stays continuous.
     var density = base;
-    let strength = frame.erosion.x;
-    let threshold = frame.erosion.y;
+    let strength = frame.detail_strength;
+    let threshold = frame.erosion_threshold;
     if DETAIL && with_detail && strength > 0.0 && base < threshold {
         (*counters).detail += 1u;
         var detail_pos = vec3<f32>(p.x, alt, p.z);
         if CURL {
             // Curl noise distorts the detail lookup, more at the cloud base (HZD, seed 001).
-            let cuv = (p.xz - frame.wind_offsets1.zw) / frame.periods.w;
+            let cuv = (p.xz - frame.curl_offset) / frame.curl_period;
             let curl = textureSampleLevel(curl_tex, noise_sampler, cuv, 0.0).xy * 2.0 - 1.0;
-            detail_pos = detail_pos + vec3<f32>(curl.x, 0.0, curl.y) * (frame.erosion.z * (1.0 - h));
+            detail_pos = detail_pos + vec3<f32>(curl.x, 0.0, curl.y) * (frame.curl_strength * (1.0 - h));
         }
-        detail_pos = detail_pos - vec3<f32>(frame.wind_offsets1.x, 0.0, frame.wind_offsets1.y);
-        let dn = textureSampleLevel(detail_tex, noise_sampler, detail_pos / frame.periods.z, 0.0);
+        detail_pos = detail_pos - vec3<f32>(frame.detail_offset.x, 0.0, frame.detail_offset.y);
+        let dn = textureSampleLevel(detail_tex, noise_sampler, detail_pos / frame.detail_period, 0.0);
         let high_fbm = dn.r * 0.625 + dn.g * 0.25 + dn.b * 0.125;
         // Inverted Worley is billowy, plain Worley wispy. HZD turns wispy bases into billowy
         // tops over the lowest tenth of the cloud; `wispy_billowy` scales that (0.5: HZD's
         // ramp, 0: wispy everywhere, 1: billowy almost from the base). A constant blend would
         // not do: at 0.5 it cancels the detail noise entirely.
-        let billowy = saturate(2.0 * frame.extinction.w * saturate(h * 10.0));
+        let billowy = saturate(2.0 * frame.wispy_billowy * saturate(h * 10.0));
         let shape = mix(1.0 - high_fbm, high_fbm, billowy);
         let erosion = strength * shape * (1.0 - base / threshold);
         density = saturate(remap(base, erosion, 1.0, 0.0, 1.0));
     }
 
     // Denser toward the top (thesis 4.5.1), global density and precipitation, clamp.
-    density = density * mix(1.0, h, frame.erosion.w);
+    density = density * mix(1.0, h, frame.height_gradient);
     density = density * l.density * (1.0 + weather.precipitation);
     return clamp(density, 0.0, 1.0);
 }

@@ -1,111 +1,263 @@
 // Generated from crates/scene/src/uniforms.rs (`frame_members!`) by `cargo xtask
 // build-shaders`; edit the declaration there, not this file.
 //
-// The per-frame uniform block: every member a vec4, so the layout is the same under
-// WGSL, std140 and HLSL cbuffer rules.
+// The per-frame uniform block. No member crosses a 16-byte row, so the layout is the
+// same under WGSL, std140 and HLSL cbuffer rules.
 
 struct Frame {
-    // x, altitude, z (m); w = tan(fov_y / 2).
-    camera_position: vec4<f32>,
-    // Unit view direction; w = width / height.
-    camera_forward: vec4<f32>,
-    // Unit, image right; w = exposure.
-    camera_right: vec4<f32>,
-    // Unit, image up; w = 0.
-    camera_up: vec4<f32>,
-    // Unit vector toward the sun; w = cos(sun angular radius).
-    sun_direction: vec4<f32>,
-    // Linear rgb; w = 0.
-    sun_illuminance: vec4<f32>,
-    // Planet radius, layer bottom, layer top (altitudes, m), cut-off distance (m).
-    atmosphere: vec4<f32>,
-    // Coverage, density multiplier, cloud type, precipitation.
-    clouds: vec4<f32>,
-    // Detail strength, erosion threshold, curl strength (m), height gradient strength.
-    erosion: vec4<f32>,
-    // Weather period, shape period (x axis), detail period, curl period (m).
-    periods: vec4<f32>,
-    // Weather offset xz, shape offset xz (m), each within [0, period).
-    wind_offsets0: vec4<f32>,
-    // Detail offset xz, curl offset xz (m), each within [0, period).
-    wind_offsets1: vec4<f32>,
-    // sigma_s, sigma_a (1/m at density 1), precipitation darkening, wispy_billowy.
-    extinction: vec4<f32>,
-    // g, g2, blend, powder strength.
-    phase: vec4<f32>,
-    // a (contribution), b (extinction), c (eccentricity) attenuation per octave, octave
-    // build-up length (m).
-    multiple_scattering: vec4<f32>,
-    // Linear rgb; w = ambient strength.
-    ambient_bottom: vec4<f32>,
-    // Linear rgb; w = 0.
-    ambient_top: vec4<f32>,
-    // Step length (m, 0 = derive from view steps), light step growth, first light step (m),
-    // early-exit transmittance.
-    march: vec4<f32>,
-    // Width, height, view steps, light steps.
-    counts: vec4<u32>,
-    // Phase model ([`PhaseModel::code`](crate::PhaseModel::code)), integration
-    // ([`Integration::code`](crate::Integration::code)), height model
-    // ([`HeightModel::code`](crate::HeightModel::code)), flags
-    // ([`FrameUniforms::FLAG_BEER_POWDER`], [`FrameUniforms::FLAG_JITTER`]).
-    modes: vec4<u32>,
-    // Octaves (beyond single scattering), frame (jitter seed, path tracer's random streams),
-    // path tracer's scattering orders (0 = all), extra cloud layers (0-3).
-    misc: vec4<u32>,
-    // Last frame's camera position (as `camera_position`, w = its tan(fov_y / 2)): temporal
-    // upsampling reprojects through it. [`Scene::uniforms`] sets the current camera; a
-    // renderer that keeps history replaces it with the one it rendered last.
-    previous_position: vec4<f32>,
-    // Last frame's unit view direction; w = its width / height.
-    previous_forward: vec4<f32>,
-    // Last frame's unit image right; w = 0.
-    previous_right: vec4<f32>,
-    // Last frame's unit image up; w = 0.
-    previous_up: vec4<f32>,
-    // Temporal upsampling: block side (1 = off, 2 = 1/4, 4 = 1/16), 0, 0, 0.
-    temporal: vec4<u32>,
-    // Extra cloud layer 1 (`clouds.layers[0]`): bottom, top (altitudes, m), coverage,
-    // density multiplier; zero when absent (`misc.w` counts the extra layers).
-    layer1: vec4<f32>,
-    // Its cloud type, precipitation, and weather-map offset xz (m, within [0, period)).
-    layer1_weather: vec4<f32>,
-    // Extra cloud layer 2, as `layer1`.
-    layer2: vec4<f32>,
-    // Its weather, as `layer1_weather`.
-    layer2_weather: vec4<f32>,
-    // Extra cloud layer 3, as `layer1`.
-    layer3: vec4<f32>,
-    // Its weather, as `layer1_weather`.
-    layer3_weather: vec4<f32>,
-    // The physical sky's air: Rayleigh scattering at the ground (rgb, 1/m); w = its scale
-    // height (m).
-    air_rayleigh: vec4<f32>,
-    // Mie scattering, Mie absorption (1/m at the ground), Mie scale height (m), Mie g.
-    air_mie: vec4<f32>,
-    // Ozone absorption at its peak (rgb, 1/m); w = the peak's altitude (m).
-    air_ozone: vec4<f32>,
-    // Thickness of the atmosphere (m), the ozone tent's full width (m), the ground's albedo,
-    // 0.
-    air_misc: vec4<f32>,
-    // The moon (physical sky with a date and place): unit direction toward it; w = the full
-    // moon's illuminance (luminance, in the units of `sun_illuminance`; 0 without a moon).
-    // Its phase follows from its direction and the real sun's (`night`).
-    moon: vec4<f32>,
+    // Camera position: x, altitude, z (m).
+    camera_position: vec3<f32>,
+    // tan(fov_y / 2).
+    tan_half_fov: f32,
+    // Unit view direction.
+    camera_forward: vec3<f32>,
+    // Image width / height.
+    aspect: f32,
+    // Unit, image right.
+    camera_right: vec3<f32>,
+    // Exposure (`camera.exposure`, times auto exposure's factor).
+    exposure: f32,
+    // Unit, image up.
+    camera_up: vec3<f32>,
+    // Padding (0).
+    _pad0: f32,
+    // Unit vector toward the key light (the sun; the moon under `FLAG_MOONLIT`).
+    sun_direction: vec3<f32>,
+    // cos(the sun's angular radius).
+    sun_cos_radius: f32,
+    // The key light's illuminance, linear rgb.
+    sun_illuminance: vec3<f32>,
+    // Padding (0).
+    _pad1: f32,
+    // Planet radius (m).
+    planet_radius: f32,
+    // The main cloud layer's bottom (altitude, m).
+    cloud_bottom: f32,
+    // The main cloud layer's top (altitude, m).
+    cloud_top: f32,
+    // The march's cut-off distance (m).
+    cutoff_distance: f32,
+    // The main layer's coverage.
+    coverage: f32,
+    // The main layer's density multiplier.
+    density: f32,
+    // The main layer's cloud type (`clouds.cloud_type`).
+    cloud_type: f32,
+    // The main layer's precipitation.
+    precipitation: f32,
+    // Detail-noise strength.
+    detail_strength: f32,
+    // Erosion threshold.
+    erosion_threshold: f32,
+    // Curl-noise displacement (m).
+    curl_strength: f32,
+    // Height-gradient strength.
+    height_gradient: f32,
+    // Weather-map period (m).
+    weather_period: f32,
+    // Shape-noise period along x (m).
+    shape_period: f32,
+    // Detail-noise period (m).
+    detail_period: f32,
+    // Curl-noise period (m).
+    curl_period: f32,
+    // Weather-map wind offset xz (m, within [0, period)).
+    weather_offset: vec2<f32>,
+    // Shape-noise wind offset xz (m, within [0, period)).
+    shape_offset: vec2<f32>,
+    // Detail-noise wind offset xz (m, within [0, period)).
+    detail_offset: vec2<f32>,
+    // Curl-noise wind offset xz (m, within [0, period)).
+    curl_offset: vec2<f32>,
+    // sigma_s (1/m at density 1).
+    scattering: f32,
+    // sigma_a (1/m at density 1).
+    absorption: f32,
+    // Darkening by precipitation.
+    precipitation_darkening: f32,
+    // Wispy (0) to billowy (1) erosion.
+    wispy_billowy: f32,
+    // Phase function: the first lobe's g.
+    phase_g: f32,
+    // Phase function: the second lobe's g.
+    phase_g2: f32,
+    // Phase function: the blend of the two lobes.
+    phase_blend: f32,
+    // The powder term's strength.
+    powder_strength: f32,
+    // Multiple-scattering octaves: contribution attenuation a per octave.
+    ms_contribution: f32,
+    // Multiple-scattering octaves: extinction attenuation b per octave.
+    ms_extinction: f32,
+    // Multiple-scattering octaves: eccentricity attenuation c per octave.
+    ms_eccentricity: f32,
+    // Multiple-scattering octaves: build-up length (m).
+    ms_buildup: f32,
+    // Ambient light at the layer's bottom, linear rgb.
+    ambient_bottom: vec3<f32>,
+    // Ambient strength.
+    ambient_strength: f32,
+    // Ambient light at the layer's top, linear rgb.
+    ambient_top: vec3<f32>,
+    // Padding (0).
+    _pad2: f32,
+    // View step length (m; 0 = derive it from `view_steps`).
+    step_length: f32,
+    // Growth factor of each light step over the last.
+    light_step_growth: f32,
+    // First light step (m).
+    first_light_step: f32,
+    // Transmittance below which the view march stops.
+    early_exit_transmittance: f32,
+    // Image width and height (pixels).
+    size: vec2<u32>,
+    // View steps.
+    view_steps: u32,
+    // Light steps.
+    light_steps: u32,
+    // [`PhaseModel::code`](crate::PhaseModel::code).
+    phase_model: u32,
+    // [`Integration::code`](crate::Integration::code).
+    integration: u32,
+    // [`HeightModel::code`](crate::HeightModel::code).
+    height_model: u32,
+    // `FLAG_*` bits ([`FrameUniforms::FLAG_BEER_POWDER`], ...).
+    flags: u32,
+    // Multiple-scattering octaves beyond single scattering.
+    octaves: u32,
+    // Frame index: the jitter seed and the path tracer's random streams.
+    frame_index: u32,
+    // The path tracer's scattering orders (0 = all).
+    path_orders: u32,
+    // Extra cloud layers (0-3).
+    extra_layers: u32,
+    // Last frame's camera position: temporal upsampling reprojects through last frame's
+    // camera. [`Scene::uniforms`] sets the current camera; a renderer that keeps history
+    // replaces it with the one it rendered last.
+    previous_position: vec3<f32>,
+    // Last frame's tan(fov_y / 2).
+    previous_tan_half_fov: f32,
+    // Last frame's unit view direction.
+    previous_forward: vec3<f32>,
+    // Last frame's width / height.
+    previous_aspect: f32,
+    // Last frame's unit image right.
+    previous_right: vec3<f32>,
+    // Last frame's exposure (a change of exposure, like a move, ends the history's exact
+    // reuse).
+    previous_exposure: f32,
+    // Last frame's unit image up.
+    previous_up: vec3<f32>,
+    // Padding (0).
+    _pad4: f32,
+    // Temporal upsampling's block side (1 = off, 2 = 1/4, 4 = 1/16).
+    block_side: u32,
+    // 1 when the history holds a frame to reproject (the renderer sets it), else 0.
+    history_valid: u32,
+    // Padding (0).
+    _pad5: u32,
+    // Padding (0).
+    _pad6: u32,
+    // Extra cloud layer 1 (`clouds.layers[0]`; zero when absent): bottom (altitude, m).
+    layer1_bottom: f32,
+    // Extra cloud layer 1: top (altitude, m).
+    layer1_top: f32,
+    // Extra cloud layer 1: coverage.
+    layer1_coverage: f32,
+    // Extra cloud layer 1: density multiplier.
+    layer1_density: f32,
+    // Extra cloud layer 1: cloud type.
+    layer1_cloud_type: f32,
+    // Extra cloud layer 1: precipitation.
+    layer1_precipitation: f32,
+    // Extra cloud layer 1: weather-map offset xz (m, within [0, period)).
+    layer1_weather_offset: vec2<f32>,
+    // Extra cloud layer 2 (`clouds.layers[1]`; zero when absent): bottom (altitude, m).
+    layer2_bottom: f32,
+    // Extra cloud layer 2: top (altitude, m).
+    layer2_top: f32,
+    // Extra cloud layer 2: coverage.
+    layer2_coverage: f32,
+    // Extra cloud layer 2: density multiplier.
+    layer2_density: f32,
+    // Extra cloud layer 2: cloud type.
+    layer2_cloud_type: f32,
+    // Extra cloud layer 2: precipitation.
+    layer2_precipitation: f32,
+    // Extra cloud layer 2: weather-map offset xz (m, within [0, period)).
+    layer2_weather_offset: vec2<f32>,
+    // Extra cloud layer 3 (`clouds.layers[2]`; zero when absent): bottom (altitude, m).
+    layer3_bottom: f32,
+    // Extra cloud layer 3: top (altitude, m).
+    layer3_top: f32,
+    // Extra cloud layer 3: coverage.
+    layer3_coverage: f32,
+    // Extra cloud layer 3: density multiplier.
+    layer3_density: f32,
+    // Extra cloud layer 3: cloud type.
+    layer3_cloud_type: f32,
+    // Extra cloud layer 3: precipitation.
+    layer3_precipitation: f32,
+    // Extra cloud layer 3: weather-map offset xz (m, within [0, period)).
+    layer3_weather_offset: vec2<f32>,
+    // The physical sky's air: Rayleigh scattering at the ground (rgb, 1/m).
+    rayleigh_scattering: vec3<f32>,
+    // Rayleigh scale height (m).
+    rayleigh_scale_height: f32,
+    // Mie scattering at the ground (1/m).
+    mie_scattering: f32,
+    // Mie absorption at the ground (1/m).
+    mie_absorption: f32,
+    // Mie scale height (m).
+    mie_scale_height: f32,
+    // Mie phase asymmetry g.
+    mie_g: f32,
+    // Ozone absorption at its peak (rgb, 1/m).
+    ozone_absorption: vec3<f32>,
+    // The ozone peak's altitude (m).
+    ozone_center: f32,
+    // Thickness of the atmosphere (m).
+    air_thickness: f32,
+    // The ozone tent's full width (m).
+    ozone_width: f32,
+    // The ground's albedo.
+    ground_albedo: f32,
+    // Padding (0).
+    _pad7: f32,
+    // Unit vector toward the moon (physical sky with a date and place). Its phase follows
+    // from its direction and the real sun's.
+    moon_direction: vec3<f32>,
+    // The full moon's illuminance (luminance, in the units of `sun_illuminance`; 0 without
+    // a moon).
+    moon_illuminance: f32,
     // The real sun's unit direction (the moon's lit side faces it; `sun_direction` is the
-    // moon's when it is the key light); w = the illuminance of a magnitude-0 star, in the
-    // units of `sun_illuminance` (0: no stars).
-    night: vec4<f32>,
-    // The fitted light model's terms beyond the octaves: side light, coverage exponent,
-    // far-shadow chord (m, 0 = off), limb darkening (`MultipleScattering`).
-    light_model: vec4<f32>,
-    // The octaves' dependence on the view and sun directions: their forward lobe through
-    // thin cloud (strength, 0 = off; eccentricity), their vertical anisotropy (0 = off), their
-    // deck escape (0 = off) (`MultipleScattering::forward_lobe`, `vertical_anisotropy`,
-    // `deck_escape`).
-    octave_direction: vec4<f32>,
-    // The octaves' optical depth in a closed deck and their dimming looking down: the
-    // column's weight (0 = off) and scale, the downward dimming (0 = off), 0
-    // (`MultipleScattering::steep_light`, `steep_light_scale`, `downward_dimming`).
-    octave_depth: vec4<f32>,
+    // moon's when it is the key light).
+    real_sun_direction: vec3<f32>,
+    // The illuminance of a magnitude-0 star, in the units of `sun_illuminance` (0: no
+    // stars).
+    star_illuminance: f32,
+    // Fitted light model (`MultipleScattering`): side light.
+    side_light: f32,
+    // Fitted light model: coverage exponent.
+    coverage_exponent: f32,
+    // Fitted light model: far-shadow chord (m, 0 = off).
+    far_chord: f32,
+    // Fitted light model: limb darkening.
+    limb_darkening: f32,
+    // The octaves' forward lobe through thin cloud: strength (0 = off).
+    forward_lobe: f32,
+    // The octaves' forward lobe: eccentricity.
+    forward_lobe_g: f32,
+    // The octaves' vertical anisotropy (0 = off).
+    vertical_anisotropy: f32,
+    // The octaves' escape from a deck (0 = off).
+    deck_escape: f32,
+    // The octaves' optical depth in a closed deck: the column's weight (0 = off).
+    steep_light: f32,
+    // The octaves' optical depth in a closed deck: its scale.
+    steep_light_scale: f32,
+    // The octaves' dimming looking down (0 = off).
+    downward_dimming: f32,
+    // Padding (0).
+    _pad8: f32,
 }

@@ -7,13 +7,13 @@
 
 // The view ray through the centre of pixel `pixel` (y down in the image).
 fn view_ray(pixel: vec2<u32>) -> vec3<f32> {
-    let size = vec2<f32>(frame.counts.xy);
+    let size = vec2<f32>(frame.size);
     let ndc = (vec2<f32>(pixel) + 0.5) / size * 2.0 - 1.0;
-    let tan_half = frame.camera_position.w;
-    let aspect = frame.camera_forward.w;
-    let d = frame.camera_forward.xyz
-        + frame.camera_right.xyz * (ndc.x * tan_half * aspect)
-        - frame.camera_up.xyz * (ndc.y * tan_half);
+    let tan_half = frame.tan_half_fov;
+    let aspect = frame.aspect;
+    let d = frame.camera_forward
+        + frame.camera_right * (ndc.x * tan_half * aspect)
+        - frame.camera_up * (ndc.y * tan_half);
     return normalize(d);
 }
 
@@ -46,7 +46,7 @@ fn solve_sphere(b: f32, c: f32) -> Roots {
 // Intersection of the ray from the camera (altitude `alt`) along unit `d` with the sphere of
 // altitude `radius_alt` (radius Rp + radius_alt). c = (alt - r)(alt + r + 2 Rp) exactly.
 fn ray_shell(alt: f32, d: vec3<f32>, radius_alt: f32) -> Roots {
-    let rp = frame.atmosphere.x;
+    let rp = frame.planet_radius;
     let b = d.y * (alt + rp);
     let c = (alt - radius_alt) * (alt + radius_alt + 2.0 * rp);
     return solve_sphere(b, c);
@@ -55,7 +55,7 @@ fn ray_shell(alt: f32, d: vec3<f32>, radius_alt: f32) -> Roots {
 // Altitude of a point given relative to the ground point below the camera:
 // |q|^2 - Rp^2 = x^2 + z^2 + y (y + 2 Rp) with q = p + (0, Rp, 0), divided by |q| + Rp.
 fn altitude_of(p: vec3<f32>) -> f32 {
-    let rp = frame.atmosphere.x;
+    let rp = frame.planet_radius;
     let n = p.x * p.x + p.z * p.z + p.y * (p.y + 2.0 * rp);
     let q = vec3<f32>(p.x, p.y + rp, p.z);
     return n / (length(q) + rp);
@@ -63,7 +63,7 @@ fn altitude_of(p: vec3<f32>) -> f32 {
 
 // Whether the ray from `p` (camera-relative, altitude `alt`) along unit `d` hits the ground.
 fn hits_ground(p: vec3<f32>, alt: f32, d: vec3<f32>) -> bool {
-    let rp = frame.atmosphere.x;
+    let rp = frame.planet_radius;
     let b = dot(d, vec3<f32>(p.x, p.y + rp, p.z));
     let c = alt * (alt + 2.0 * rp);
     return b < 0.0 && b * b >= c;
@@ -85,7 +85,7 @@ struct Interval {
 // inside and above the layer (thesis 5.2). Of a ray that passes down through the shell and
 // back up, the first part.
 fn shell_interval(alt: f32, d: vec3<f32>, bottom: f32, top: f32) -> Interval {
-    let cutoff = frame.atmosphere.w;
+    let cutoff = frame.cutoff_distance;
     let inner = ray_shell(alt, d, bottom);
     let outer = ray_shell(alt, d, top);
     var start = 0.0;
@@ -145,7 +145,7 @@ fn nearest_layer_interval(alt: f32, d: vec3<f32>) -> Interval {
 
 // `ray_shell` from any camera-relative point `p` of altitude `alt`.
 fn ray_shell_from(p: vec3<f32>, alt: f32, d: vec3<f32>, radius_alt: f32) -> Roots {
-    let rp = frame.atmosphere.x;
+    let rp = frame.planet_radius;
     let b = dot(d, vec3<f32>(p.x, p.y + rp, p.z));
     let c = (alt - radius_alt) * (alt + radius_alt + 2.0 * rp);
     return solve_sphere(b, c);

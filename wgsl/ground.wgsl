@@ -57,14 +57,14 @@ fn sky_irradiance(mu_s: f32) -> vec3<f32> {
 
 // Light leaving the lit, diffuse ground where the sun's zenith cosine is mu_s, sun and sky.
 fn ground_radiance(mu_s: f32) -> vec3<f32> {
-    return ground_radiance_sun(mu_s) + frame.air_misc.z / PI * sky_irradiance(mu_s);
+    return ground_radiance_sun(mu_s) + frame.ground_albedo / PI * sky_irradiance(mu_s);
 }
 
 // The ground point of shadow-map texel `c`, relative to the ground below the camera (m): on
 // the planet's surface, texel i at (2 i / (size - 1) - 1) times the half extent.
 fn shadow_ground_point(c: vec2<u32>) -> vec3<f32> {
     let xz = (vec2<f32>(c) / f32(SHADOW_SIZE - 1u) * 2.0 - 1.0) * SHADOW_HALF_EXTENT;
-    let rp = frame.atmosphere.x;
+    let rp = frame.planet_radius;
     let s2 = dot(xz, xz);
     // sqrt(Rp^2 - s^2) - Rp without cancellation.
     let y = -s2 / (sqrt(max(rp * rp - s2, 0.0)) + rp);
@@ -77,8 +77,8 @@ fn cloud_shadow(@builtin(global_invocation_id) id: vec3<u32>) {
         return;
     }
     let rel = shadow_ground_point(id.xy);
-    let sun = frame.sun_direction.xyz;
-    let rp = frame.atmosphere.x;
+    let sun = frame.sun_direction;
+    let rp = frame.planet_radius;
     let up = normalize(vec3<f32>(rel.x, rel.y + rp, rel.z));
     var tau = 0.0;
     // Where the key light is below the ground's horizon the ground is unlit anyway.
@@ -103,7 +103,7 @@ fn cloud_shadow(@builtin(global_invocation_id) id: vec3<u32>) {
             }
         }
     }
-    let sigma_t = frame.extinction.x + frame.extinction.y;
+    let sigma_t = frame.scattering + frame.absorption;
     textureStore(cloud_shadow_out, id.xy, vec4<f32>(exp(-sigma_t * tau), 0.0, 0.0, 1.0));
 }
 
@@ -133,7 +133,7 @@ fn ground_shadow_loss(view: vec3<f32>, r: f32) -> vec3<f32> {
     let r_g = air_bottom();
     // Zenith cosines at the ground point of the view ray and of the sun (Bruneton 2008).
     let mu_g = clamp((r * view.y + t) / r_g, -1.0, 1.0);
-    let mu_s = clamp((r * frame.sun_direction.y + t * dot(view, frame.sun_direction.xyz)) / r_g, -1.0, 1.0);
+    let mu_s = clamp((r * frame.sun_direction.y + t * dot(view, frame.sun_direction)) / r_g, -1.0, 1.0);
     let t_view = min(transmittance_to_top(r_g, -mu_g) / max(transmittance_to_top(r, -view.y), vec3<f32>(1e-20)),
                      vec3<f32>(1.0));
     return (1.0 - shadow) * t_view * ground_radiance_sun(mu_s);

@@ -18,12 +18,12 @@ fn phase_cornette_shanks(cos_theta: f32, g: f32) -> f32 {
 
 // The scene's phase model with eccentricities scaled by `scale` (c^i for octave i).
 fn phase(cos_theta: f32, scale: f32) -> f32 {
-    let g = frame.phase.x * scale;
-    switch frame.modes.x {
+    let g = frame.phase_g * scale;
+    switch frame.phase_model {
         case PHASE_TWO_LOBE_HG: {
             // Two lobes for the silver lining (seed 001): forward g and backward g2.
-            let g2 = frame.phase.y * scale;
-            return mix(phase_hg(cos_theta, g), phase_hg(cos_theta, g2), frame.phase.z);
+            let g2 = frame.phase_g2 * scale;
+            return mix(phase_hg(cos_theta, g), phase_hg(cos_theta, g2), frame.phase_blend);
         }
         case PHASE_CORNETTE_SHANKS: {
             return phase_cornette_shanks(cos_theta, g);
@@ -43,10 +43,10 @@ fn phase(cos_theta: f32, scale: f32) -> f32 {
 // Toward a sun a few degrees up the light crosses tens of kilometres of layer, which the
 // march does not see: far_optical_depth stands in for that stretch.
 fn sun_optical_depth(rel: vec3<f32>, p: vec3<f32>, l: Layer, counters: ptr<function, Counters>) -> f32 {
-    let sun = frame.sun_direction.xyz;
-    let sigma_t = frame.extinction.x + frame.extinction.y;
-    var tau = segment_optical_depth(rel, p, l, sun, frame.march.z, frame.march.y,
-                                    frame.counts.w, true, counters);
+    let sun = frame.sun_direction;
+    let sigma_t = frame.scattering + frame.absorption;
+    var tau = segment_optical_depth(rel, p, l, sun, frame.first_light_step, frame.light_step_growth,
+                                    frame.light_steps, true, counters);
     let alt0 = altitude_of(rel);
     for (var j = 0u; j < layer_count(); j++) {
         let above = cloud_layer(j);
@@ -74,7 +74,7 @@ fn sun_optical_depth(rel: vec3<f32>, p: vec3<f32>, l: Layer, counters: ptr<funct
 fn segment_optical_depth(rel: vec3<f32>, p: vec3<f32>, l: Layer, d: vec3<f32>, first: f32,
                          growth: f32, steps: u32, with_detail: bool,
                          counters: ptr<function, Counters>) -> f32 {
-    let sigma_t = frame.extinction.x + frame.extinction.y;
+    let sigma_t = frame.scattering + frame.absorption;
     var seg = first;
     var dist = 0.0;
     var tau = 0.0;
@@ -109,8 +109,8 @@ const COLUMN_STEPS: u32 = 3u;
 // from the top (two-stream theory, Meador and Weaver 1980), whatever the sun's angle once the
 // direct beam is spent: diffuse light crosses a slab along an effective path about 1.66 times
 // the vertical (the diffusivity factor, Elsasser 1942). So in a deck the octaves see the
-// vertical column above the sample, to the layer's top, times s (octave_depth.y, fitted: 1.5),
-// mixed in with weight m w (m: octave_depth.x, fitted: 1, the column alone; 0 = off), w =
+// vertical column above the sample, to the layer's top, times s (steep_light_scale, fitted: 1.5),
+// mixed in with weight m w (m: steep_light, fitted: 1, the column alone; 0 = off), w =
 // (coverage - 0.8) / 0.1 clamped, the layer's weight as a closed deck (set by hand: `storm`'s
 // 0.9 gets 1, `stratocumulus-overcast`'s 0.8 none). Decks only: broken cloud's light comes in
 // through the sides as well (side light). Against the 8192-path truths (docs/fit) the column
@@ -122,19 +122,19 @@ const COLUMN_STEPS: u32 = 3u;
 fn octave_optical_depth(rel: vec3<f32>, p: vec3<f32>, l: Layer, tau: f32,
                         counters: ptr<function, Counters>) -> f32 {
     let w = saturate((l.coverage - 0.8) / 0.1);
-    let m = frame.octave_depth.x * w;
+    let m = frame.steep_light * w;
     // Not below a weight of 1e-3: a layer of coverage 0.8 (`stratocumulus-overcast`'s) got a
     // weight of about 1e-7 from f32 rounding on lavapipe, and the march's work for nothing.
-    if w < 1e-3 || m <= 0.0 || frame.counts.w == 0u {
+    if w < 1e-3 || m <= 0.0 || frame.light_steps == 0u {
         return tau;
     }
-    let up = normalize(vec3<f32>(rel.x, rel.y + frame.atmosphere.x, rel.z));
+    let up = normalize(vec3<f32>(rel.x, rel.y + frame.planet_radius, rel.z));
     // From inside the layer's top sphere the ray leaves it through the far root.
     let top = ray_shell_from(rel, altitude_of(rel), up, l.top);
     let len = select(0.0, top.t1, top.hit && top.t1 > 0.0);
     let column = segment_optical_depth(rel, p, l, up, len / f32(COLUMN_STEPS), 1.0,
                                        COLUMN_STEPS, false, counters);
-    return mix(tau, frame.octave_depth.y * column, m);
+    return mix(tau, frame.steep_light_scale * column, m);
 }
 
 // The far shadow: optical depth of the sun ray's stretch inside layer `l` beyond the light
@@ -145,7 +145,7 @@ fn octave_optical_depth(rel: vec3<f32>, p: vec3<f32>, l: Layer, tau: f32,
 // lambda)). The stretch is cut into four quarters, each its own mixture: f is the weather
 // map's coverage times the height profile at the quarter's middle (a cumulus layer's thin top
 // lets a low sun's light through; the map says where the cloud fields and the gaps between
-// them lie), lambda the fitted chord (light_model.z; 0 = off). Toward a sun a few degrees up,
+// them lie), lambda the fitted chord (far_chord; 0 = off). Toward a sun a few degrees up,
 // the light crosses tens of kilometres of layer; sampling them with five more growing light
 // steps (to about 100 km) cost 45% more density evaluations on `dawn` and made the fit's
 // training error worse (0.0570 to 0.0608, README). The weather map is a 2D texture read, not
@@ -153,18 +153,18 @@ fn octave_optical_depth(rel: vec3<f32>, p: vec3<f32>, l: Layer, tau: f32,
 // scattering) it took `dawn` from FLIP 0.038 to 0.026 and `sunset` from 0.070 to 0.050 over
 // the layer's mean coverage.
 fn far_optical_depth(rel: vec3<f32>, p: vec3<f32>, l: Layer) -> f32 {
-    let chord = frame.light_model.z;
-    if chord <= 0.0 || frame.counts.w == 0u {
+    let chord = frame.far_chord;
+    if chord <= 0.0 || frame.light_steps == 0u {
         // Off, or no light march: 0 light steps leave the clouds unshadowed.
         return 0.0;
     }
-    let growth = frame.march.y;
-    let steps = f32(frame.counts.w);
-    var reach = frame.march.z * steps;
+    let growth = frame.light_step_growth;
+    let steps = f32(frame.light_steps);
+    var reach = frame.first_light_step * steps;
     if growth != 1.0 {
-        reach = frame.march.z * (pow(growth, steps) - 1.0) / (growth - 1.0);
+        reach = frame.first_light_step * (pow(growth, steps) - 1.0) / (growth - 1.0);
     }
-    let sun = frame.sun_direction.xyz;
+    let sun = frame.sun_direction;
     let exit = ray_shell_from(rel, altitude_of(rel), sun, l.top);
     let len = exit.t1 - reach;
     if !exit.hit || !(len > 0.0) {
@@ -203,10 +203,10 @@ struct SunScattering {
 
 fn sun_scattering(cos_theta: f32, view_y: f32, tau: f32, tau_oct: f32, far: f32, build: f32,
                   coverage: f32, h: f32, layer_coverage: f32) -> SunScattering {
-    let a = frame.multiple_scattering.x;
-    let b = frame.multiple_scattering.y;
-    let c = frame.multiple_scattering.z;
-    let octaves = min(frame.misc.x, MAX_OCTAVES);
+    let a = frame.ms_contribution;
+    let b = frame.ms_extinction;
+    let c = frame.ms_eccentricity;
+    let octaves = min(frame.octaves, MAX_OCTAVES);
     var octave_sum = 0.0;
     var ka = 1.0;
     var kb = 1.0;
@@ -224,23 +224,23 @@ fn sun_scattering(cos_theta: f32, view_y: f32, tau: f32, tau_oct: f32, far: f32,
     // the clear share (1 - coverage) around them, unless far cloud shadows them (`far`).
     let mu0 = saturate(frame.sun_direction.y);
     let side = sqrt(max(1.0 - mu0 * mu0, 0.0)) * (1.0 - saturate(coverage)) * exp(-far);
-    var feed = mu0 + frame.light_model.x * side;
+    var feed = mu0 + frame.side_light * side;
     // Multiply scattered light leaks out of a small cloud through its sides but stays in a
     // deck: the octaves scale with the weather map's coverage (to a fitted power) as well as
     // with the local density (`build`). Against the path tracer the octaves alone lit high-sun
     // cumulus up to 1.4 times too brightly while decks stayed 7% too dark (docs/fit).
-    if frame.light_model.y > 0.0 {
-        feed *= pow(max(coverage, 1e-6), frame.light_model.y);
+    if frame.coverage_exponent > 0.0 {
+        feed *= pow(max(coverage, 1e-6), frame.coverage_exponent);
     }
     feed *= diffuse_limb(view_y, coverage) * vertical_anisotropy(view_y, coverage, h)
         * deck_escape(mu0, layer_coverage);
     feed *= downward_dimming(view_y, coverage, h, tau * mu0);
     var octaves_part = feed * build * octave_sum;
     var total = phase(cos_theta, 1.0) * exp(-tau - far) + octaves_part;
-    if (frame.modes.w & FLAG_BEER_POWDER) != 0u {
+    if (frame.flags & FLAG_BEER_POWDER) != 0u {
         // Beer-Powder (HZD): in-scattering builds up with depth into the cloud, darkening
         // the thin edges. Kept <= 1 so it only removes energy.
-        let powder = 1.0 - exp(-frame.phase.w * tau);
+        let powder = 1.0 - exp(-frame.powder_strength * tau);
         total *= powder;
         octaves_part *= powder;
     }
@@ -261,16 +261,16 @@ const FORWARD_LOBE_THIN: f32 = 0.1;
 // 0.5-0.95, while in pixels below 0.05 it was 0.90-0.97 at every angle (docs/fit). A view
 // sample does not know how thin the cloud is; the pixel's transmittance, once the march
 // ends, does. So 1 + w (4 pi HG(cos, g_f) - 1): its mean over the sphere is 1 (light moved
-// between directions, none added), w = k min(T / 0.1, 1) (k: frame.octave_direction.x, 0 = off;
+// between directions, none added), w = k min(T / 0.1, 1) (k: frame.forward_lobe, 0 = off;
 // g_f: .y). Thresholds of 0.05, 0.2 and 0.5 and g_f of 0.3-0.6 fitted within 0.0006 of
 // each other. Per pixel, not per sample: a phase function and a second accumulator.
 fn forward_lobe(cos_theta: f32, transmittance: f32) -> f32 {
-    let k = frame.octave_direction.x;
+    let k = frame.forward_lobe;
     if k <= 0.0 {
         return 1.0;
     }
     let w = k * saturate(transmittance / FORWARD_LOBE_THIN);
-    return 1.0 + w * (4.0 * PI * phase_hg(cos_theta, frame.octave_direction.y) - 1.0);
+    return 1.0 + w * (4.0 * PI * phase_hg(cos_theta, frame.forward_lobe_g) - 1.0);
 }
 
 // The diffuse light leaving a thick plane-parallel layer is limb-darkened: brighter along the
@@ -279,7 +279,7 @@ fn forward_lobe(cos_theta: f32, transmittance: f32) -> f32 {
 // the normal. The octaves know no normal, and against the path tracer (8192 paths a pixel)
 // decks seen 20-40 degrees up were darker, relative to the truth, than near the horizon
 // (`stratocumulus-overcast` 0.86-0.91 of its brightness against 0.94-1.04, `storm` 0.76-0.95
-// against 0.96-1.10). Here with a fitted strength k (light_model.w; 0 = off) in place of 3/2,
+// against 0.96-1.10). Here with a fitted strength k (limb_darkening; 0 = off) in place of 3/2,
 // normalised to keep the flux through the layer ((1 + k mu) / (1 + 2k/3)), mu = |view_y| the
 // view ray's cosine to the vertical, and weighted by the weather map's coverage: a deck is a
 // layer, a small cumulus has no one normal. The factor is 1 at mu = 2/3: it darkens grazing
@@ -288,7 +288,7 @@ fn forward_lobe(cos_theta: f32, transmittance: f32) -> f32 {
 // from 0.0583 to 0.0572 (that fit's docs/fit; since vertical_anisotropy, which takes the
 // up-down part, k = 0.25 and a = 1.15); one abs, a division and a mix per lit sample.
 fn diffuse_limb(view_y: f32, coverage: f32) -> f32 {
-    let k = frame.light_model.w;
+    let k = frame.limb_darkening;
     let layer = (1.0 + k * abs(view_y)) / (1.0 + 2.0 * k / 3.0);
     return mix(1.0, layer, saturate(coverage));
 }
@@ -307,10 +307,10 @@ fn diffuse_limb(view_y: f32, coverage: f32) -> f32 {
 // coverage (1 - h): its mean over the sphere is 1 (no light added), a deck's (coverage) and
 // strongest at its base (1 - h, the simplest stand-in for the optical depth below the sample,
 // which the march does not know; with s held at 0.5 and the rest refit, no weight by height
-// fitted 0.0005 worse). s: frame.octave_direction.z (0 = off); one multiply-add per lit
+// fitted 0.0005 worse). s: frame.vertical_anisotropy (0 = off); one multiply-add per lit
 // sample.
 fn vertical_anisotropy(view_y: f32, coverage: f32, h: f32) -> f32 {
-    return 1.0 + frame.octave_direction.z * view_y * saturate(coverage) * (1.0 - saturate(h));
+    return 1.0 + frame.vertical_anisotropy * view_y * saturate(coverage) * (1.0 - saturate(h));
 }
 
 // The octaves' dimming looking down: the factor on their light at a sample of height fraction
@@ -321,11 +321,11 @@ fn vertical_anisotropy(view_y: f32, coverage: f32, h: f32) -> f32 {
 // camera inside a layer saw the cloud 5-20 degrees below it at 1.15-1.25 times the truth's
 // brightness, the octaves 0.61 of the truth's luminance against its 0.46 of multiply
 // scattered light, where the vertical anisotropy is 0.97-0.99 (`inside-layer`). Hence 1 - k
-// |view_y| coverage (1 - h) tau_v / (tau_v + 1) looking down (k: octave_depth.z, fitted, 0 =
+// |view_y| coverage (1 - h) tau_v / (tau_v + 1) looking down (k: downward_dimming, fitted, 0 =
 // off), clamped at 0: the weights of the vertical anisotropy times the cloud above (0 at a
 // cloud's lit top under any sun). Looking up it is 1. One division per lit sample.
 fn downward_dimming(view_y: f32, coverage: f32, h: f32, tau_v: f32) -> f32 {
-    let k = frame.octave_depth.z * max(-view_y, 0.0) * saturate(coverage) * (1.0 - saturate(h));
+    let k = frame.downward_dimming * max(-view_y, 0.0) * saturate(coverage) * (1.0 - saturate(h));
     return max(1.0 - k * tau_v / (tau_v + 1.0), 0.0);
 }
 
@@ -340,7 +340,7 @@ fn downward_dimming(view_y: f32, coverage: f32, h: f32, tau_v: f32) -> f32 {
 // high sun`, `stratocumulus-overcast`), 0.97 at 40 (`storm`), 1.02 at 25 (`storm deck`),
 // while cumulus stayed at 0.95-0.96 at every elevation. Hence 1 + e w (mu0 - 1/2): the ratio
 // (2/3 + mu0) / (2/3 + 1/2) is 1 + (6/7)(mu0 - 1/2), here with a fitted strength e
-// (frame.octave_direction.w, 0 = off) in place of 6/7, 1 at 60 degrees from the zenith, and
+// (frame.deck_escape, 0 = off) in place of 6/7, 1 at 60 degrees from the zenith, and
 // w = layer_coverage^8 (DECK_POWER) the layer's weight as a deck: a closed layer's clouds are
 // far wider than they are thick, a broken one's are not. The weather map's coverage at the
 // sample does not tell them apart (it is high inside a cumulus as well: weighted by it,
@@ -348,7 +348,7 @@ fn downward_dimming(view_y: f32, coverage: f32, h: f32, tau_v: f32) -> f32 {
 // power (training mean 0.0474 against 0.0453 for the 8th; e = 1.5, before a refit). One power
 // and a multiply-add per lit sample.
 fn deck_escape(mu0: f32, layer_coverage: f32) -> f32 {
-    let e = frame.octave_direction.w;
+    let e = frame.deck_escape;
     return 1.0 + e * pow(saturate(layer_coverage), DECK_POWER) * (mu0 - 0.5);
 }
 
@@ -356,17 +356,17 @@ fn deck_escape(mu0: f32, layer_coverage: f32) -> f32 {
 const DECK_POWER: f32 = 8.0;
 
 // The share of the octaves at a sample of density `density`: 1 - exp(-sigma_t density l), l
-// the build-up length (multiple_scattering.w; 0: 1, Wrenninge's octaves everywhere). Light
+// the build-up length (ms_buildup; 0: 1, Wrenninge's octaves everywhere). Light
 // scatters many times only where there is cloud around to scatter it: against the path
 // tracer the octaves lit thin wisps and edges up to 2.5 times too brightly while the cores
 // stayed too dark (docs/fit, brightness by the truth's transmittance). The local density
 // stands for the cloud around the sample; it costs no sample.
 fn octave_buildup(density: f32) -> f32 {
-    let l = frame.multiple_scattering.w;
+    let l = frame.ms_buildup;
     if l <= 0.0 {
         return 1.0;
     }
-    return 1.0 - exp(-(frame.extinction.x + frame.extinction.y) * density * l);
+    return 1.0 - exp(-(frame.scattering + frame.absorption) * density * l);
 }
 
 // Ambient light at height fraction `h` (thesis 5.5.3): a gradient from bottom to top colour,
@@ -377,7 +377,7 @@ fn ambient(h: f32, rel: vec3<f32>) -> vec3<f32> {
     if physical_sky() {
         return sky_ambient_light(h, rel);
     }
-    return mix(frame.ambient_bottom.rgb, frame.ambient_top.rgb, h) * frame.ambient_bottom.w;
+    return mix(frame.ambient_bottom, frame.ambient_top, h) * frame.ambient_strength;
 }
 
 // Height fraction of altitude `alt` in the layer that holds it (ambient and precipitation
@@ -396,7 +396,7 @@ struct ScatteredLight {
 
 fn scattered_light(rel: vec3<f32>, p: vec3<f32>, alt: f32, density: f32, view: vec3<f32>,
                    l: Layer, counters: ptr<function, Counters>) -> ScatteredLight {
-    let sun = frame.sun_direction.xyz;
+    let sun = frame.sun_direction;
     let h = saturate(layer_height(l, alt));
     var sun_light = vec3<f32>(0.0);
     var octave_light = vec3<f32>(0.0);
@@ -414,11 +414,11 @@ fn scattered_light(rel: vec3<f32>, p: vec3<f32>, alt: f32, density: f32, view: v
         }
         let s = sun_scattering(dot(view, sun), view.y, tau, tau_oct, far,
                                octave_buildup(density), weather.coverage, h, l.coverage);
-        let lit = frame.sun_illuminance.rgb * sun_through_air(rel);
+        let lit = frame.sun_illuminance * sun_through_air(rel);
         sun_light = lit * s.total;
         octave_light = lit * s.octaves;
     }
-    let darkening = saturate(1.0 - frame.extinction.z * weather.precipitation * (1.0 - h));
-    let k = frame.extinction.x * density * darkening;
+    let darkening = saturate(1.0 - frame.precipitation_darkening * weather.precipitation * (1.0 - h));
+    let k = frame.scattering * density * darkening;
     return ScatteredLight((sun_light + ambient(h, rel)) * k, octave_light * k);
 }

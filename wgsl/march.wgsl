@@ -32,7 +32,7 @@ fn count(index: u32, value: u32) {
 // Scattering integrated over one step of length `dt` with extinction `sigma_t`, for a source
 // `source` (radiance per unit length) that is constant over the step.
 fn step_integral(source: vec3<f32>, sigma_t: f32, dt: f32) -> vec3<f32> {
-    if frame.modes.y == INTEGRATION_RIEMANN {
+    if frame.integration == INTEGRATION_RIEMANN {
         // Naive Riemann sum: overshoots when sigma_t * dt is large (kept to show where it fails).
         return source * dt;
     }
@@ -55,13 +55,13 @@ struct MarchResult {
 // sequence over the pixel's successive marches (one per `block^2` frames), shifted by a fixed
 // per-pixel hash with jitter: each pixel's marches stratify its step interval.
 fn start_offset(pixel: vec2<u32>) -> f32 {
-    let jitter = (frame.modes.w & FLAG_JITTER) != 0u;
-    let k = frame.temporal.x;
+    let jitter = (frame.flags & FLAG_JITTER) != 0u;
+    let k = frame.block_side;
     if k <= 1u {
-        return select(0.5, hash_unit(pixel, frame.misc.y), jitter);
+        return select(0.5, hash_unit(pixel, frame.frame_index), jitter);
     }
     let base = select(0.5, hash_unit(pixel, 0u), jitter);
-    return fract(base + van_der_corput(frame.misc.y / (k * k)));
+    return fract(base + van_der_corput(frame.frame_index / (k * k)));
 }
 
 // What a view march has gathered so far (across layers).
@@ -135,7 +135,7 @@ fn march_pixel(pixel: vec2<u32>) -> MarchResult {
     // whose radiance is 10^5 times the sky's.
     let transmittance = select(state.transmittance, 0.0, exited);
     // The octaves' forward lobe, weighted by the transmittance the march reached.
-    let lobe = forward_lobe(dot(view, frame.sun_direction.xyz), state.transmittance);
+    let lobe = forward_lobe(dot(view, frame.sun_direction), state.transmittance);
     let radiance = state.radiance + state.octaves * (lobe - 1.0);
     return MarchResult(radiance, transmittance, depth);
 }
@@ -146,14 +146,14 @@ fn march_layer(view: vec3<f32>, span: Interval, l: Layer, jitter: f32,
                state: ptr<function, MarchState>, counters: ptr<function, Counters>) -> bool {
     let cam_alt = frame.camera_position.y;
     let cam_xz = frame.camera_position.xz;
-    var steps = frame.counts.z;
-    if frame.march.x > 0.0 {
-        steps = clamp(u32(ceil(span.length / frame.march.x)), 1u, MAX_VIEW_STEPS);
+    var steps = frame.view_steps;
+    if frame.step_length > 0.0 {
+        steps = clamp(u32(ceil(span.length / frame.step_length)), 1u, MAX_VIEW_STEPS);
     }
     let dt = span.length / f32(steps);
-    let sigma_e = frame.extinction.x + frame.extinction.y;
-    let dynamic_step = (frame.modes.w & FLAG_DYNAMIC_STEP) != 0u;
-    let empty_skip = (frame.modes.w & FLAG_EMPTY_SKIP) != 0u;
+    let sigma_e = frame.scattering + frame.absorption;
+    let dynamic_step = (frame.flags & FLAG_DYNAMIC_STEP) != 0u;
+    let empty_skip = (frame.flags & FLAG_EMPTY_SKIP) != 0u;
     // Samples lie on one grid, t_i = start + (i + jitter) dt; the cheap-march techniques
     // only choose which i to visit, so they never move a sample.
     var i = 0u;
@@ -204,7 +204,7 @@ fn march_layer(view: vec3<f32>, span: Interval, l: Layer, jitter: f32,
         let step_t = exp(-sigma_t * dt);
         (*state).depth_sum += t * transmittance * (1.0 - step_t);
         (*state).transmittance = transmittance * step_t;
-        if (*state).transmittance < frame.march.w {
+        if (*state).transmittance < frame.early_exit_transmittance {
             return true;
         }
         i += 1u;
@@ -215,7 +215,7 @@ fn march_layer(view: vec3<f32>, span: Interval, l: Layer, jitter: f32,
 // Every pixel, every frame.
 @compute @workgroup_size(8, 8, 1)
 fn march(@builtin(global_invocation_id) id: vec3<u32>) {
-    if any(id.xy >= frame.counts.xy) {
+    if any(id.xy >= frame.size) {
         return;
     }
     let r = march_pixel(id.xy);

@@ -16,10 +16,10 @@
 // * directions from Henyey-Greenstein (the two-lobe model samples its mixture; Cornette-Shanks
 //   samples HG(g) weighted by CS/HG).
 // The octaves, Beer-Powder and precipitation darkening are the march's approximations and are
-// not used here; `orders` (misc.z) caps the scattering orders (0 = all, up to MAX_PATH_ORDERS).
+// not used here; `orders` (path_orders) caps the scattering orders (0 = all, up to MAX_PATH_ORDERS).
 //
 // Progressive: each frame adds PATHS_PER_FRAME paths per pixel (their random streams seeded by
-// the frame, misc.y, and the lane) to the running means in `history` (radiance,
+// the frame, frame_index, and the lane) to the running means in `history` (radiance,
 // transmittance) and `history-meta` (depth, paths, mean squared luminance, paths that hit
 // cloud). A cut, a new plan or a moved camera starts over; a host that changes anything else
 // (sun, wind) cuts the history itself.
@@ -137,7 +137,7 @@ fn density_max() -> f32 {
 fn free_flight(origin: vec3<f32>, dir: vec3<f32>, segs: Segments, rng: ptr<function, u32>,
                counters: ptr<function, Counters>) -> f32 {
     let d_max = density_max();
-    let majorant = (frame.extinction.x + frame.extinction.y) * d_max;
+    let majorant = (frame.scattering + frame.absorption) * d_max;
     if majorant <= 0.0 {
         return -1.0;
     }
@@ -169,7 +169,7 @@ fn free_flight(origin: vec3<f32>, dir: vec3<f32>, segs: Segments, rng: ptr<funct
 // Ratio tracking: an unbiased estimate of the transmittance along the ray.
 fn transmittance_along(origin: vec3<f32>, dir: vec3<f32>, segs: Segments,
                        rng: ptr<function, u32>, counters: ptr<function, Counters>) -> f32 {
-    let sigma_t = frame.extinction.x + frame.extinction.y;
+    let sigma_t = frame.scattering + frame.absorption;
     let majorant = sigma_t * density_max();
     if majorant <= 0.0 {
         return 1.0;
@@ -230,14 +230,14 @@ fn sample_phase(dir: vec3<f32>, rng: ptr<function, u32>) -> PhaseSample {
     let phi = 2.0 * PI * rng_next(rng);
     var cos_theta = 0.0;
     var pdf = 0.0;
-    if frame.modes.x == PHASE_TWO_LOBE_HG {
-        let g = select(frame.phase.x, frame.phase.y, u_lobe < frame.phase.z);
+    if frame.phase_model == PHASE_TWO_LOBE_HG {
+        let g = select(frame.phase_g, frame.phase_g2, u_lobe < frame.phase_blend);
         cos_theta = sample_hg_cos(g, u);
-        pdf = mix(phase_hg(cos_theta, frame.phase.x), phase_hg(cos_theta, frame.phase.y),
-                  frame.phase.z);
+        pdf = mix(phase_hg(cos_theta, frame.phase_g), phase_hg(cos_theta, frame.phase_g2),
+                  frame.phase_blend);
     } else {
-        cos_theta = sample_hg_cos(frame.phase.x, u);
-        pdf = phase_hg(cos_theta, frame.phase.x);
+        cos_theta = sample_hg_cos(frame.phase_g, u);
+        pdf = phase_hg(cos_theta, frame.phase_g);
     }
     let sin_theta = sqrt(max(1.0 - cos_theta * cos_theta, 0.0));
     // An orthonormal basis around `dir` (Duff et al. 2017).
@@ -260,7 +260,7 @@ fn sample_phase(dir: vec3<f32>, rng: ptr<function, u32>) -> PhaseSample {
 // sky-ambient table). Neither knows the clouds' shadow on that air and ground.
 fn environment(pos: vec3<f32>, d: vec3<f32>, h: f32) -> vec3<f32> {
     if physical_sky() {
-        return sky_from(pos, d) * frame.sun_illuminance.rgb * frame.ambient_bottom.w;
+        return sky_from(pos, d) * frame.sun_illuminance * frame.ambient_strength;
     }
     return ambient(h, pos);
 }
@@ -287,15 +287,15 @@ fn trace_path(view: vec3<f32>, span: Interval, rng: ptr<function, u32>,
     }
     out.depth = first;
 
-    let sun = frame.sun_direction.xyz;
-    let sigma_t = frame.extinction.x + frame.extinction.y;
-    let albedo = select(0.0, frame.extinction.x / sigma_t, sigma_t > 0.0);
-    let ambient_on = frame.ambient_bottom.w > 0.0
-        && (physical_sky() || any(frame.ambient_bottom.rgb > vec3<f32>(0.0))
-            || any(frame.ambient_top.rgb > vec3<f32>(0.0)));
+    let sun = frame.sun_direction;
+    let sigma_t = frame.scattering + frame.absorption;
+    let albedo = select(0.0, frame.scattering / sigma_t, sigma_t > 0.0);
+    let ambient_on = frame.ambient_strength > 0.0
+        && (physical_sky() || any(frame.ambient_bottom > vec3<f32>(0.0))
+            || any(frame.ambient_top > vec3<f32>(0.0)));
     var max_orders = MAX_PATH_ORDERS;
-    if frame.misc.z > 0u {
-        max_orders = min(frame.misc.z, MAX_PATH_ORDERS);
+    if frame.path_orders > 0u {
+        max_orders = min(frame.path_orders, MAX_PATH_ORDERS);
     }
 
     var pos = cam + view * first;
@@ -310,7 +310,7 @@ fn trace_path(view: vec3<f32>, span: Interval, rng: ptr<function, u32>,
         // Next event toward the sun (a directional light).
         if !hits_ground(pos, alt, sun) {
             let tr = transmittance_along(pos, sun, layer_segments(pos, alt, sun), rng, counters);
-            out.radiance += frame.sun_illuminance.rgb * sun_through_air(pos)
+            out.radiance += frame.sun_illuminance * sun_through_air(pos)
                 * (throughput * phase(dot(dir, sun), 1.0) * tr);
         }
         // The next direction, from the phase function. Its free flight also estimates the
@@ -345,14 +345,6 @@ fn trace_path(view: vec3<f32>, span: Interval, rng: ptr<function, u32>,
     return out;
 }
 
-// Whether this frame's camera is last frame's (a moved camera restarts the accumulation).
-fn camera_still() -> bool {
-    return all(frame.camera_position == frame.previous_position)
-        && all(frame.camera_forward == frame.previous_forward)
-        && all(frame.camera_right.xyz == frame.previous_right.xyz)
-        && all(frame.camera_up.xyz == frame.previous_up.xyz);
-}
-
 fn luminance(c: vec3<f32>) -> f32 {
     return dot(c, vec3<f32>(0.2126, 0.7152, 0.0722));
 }
@@ -375,7 +367,7 @@ var<workgroup> lane_moments: array<vec4<f32>, PATHS_PER_FRAME>;
 fn pathtrace(@builtin(workgroup_id) group: vec3<u32>,
              @builtin(local_invocation_index) lane: u32) {
     // The workgroup is the pixel, so this test is uniform across it (the barriers below).
-    if any(group.xy >= frame.counts.xy) {
+    if any(group.xy >= frame.size) {
         return;
     }
     let pixel = group.xy;
@@ -392,7 +384,7 @@ fn pathtrace(@builtin(workgroup_id) group: vec3<u32>,
     // One path per invocation. Tracing several in a loop of one invocation gave wrong images
     // on lavapipe from about 10 paths an invocation on (8x8 blocks too dark, the same bits
     // whichever single path was kept), so a frame's paths are the workgroup's lanes.
-    var rng = rng_seed(pixel, frame.misc.y * PATHS_PER_FRAME + lane);
+    var rng = rng_seed(pixel, frame.frame_index * PATHS_PER_FRAME + lane);
     let r = trace_path(view, span, &rng, &counters);
     let l = luminance(r.radiance);
     let hit = r.depth >= 0.0;
@@ -411,7 +403,7 @@ fn pathtrace(@builtin(workgroup_id) group: vec3<u32>,
         }
         var mean = vec4<f32>(0.0);
         var moments = vec4<f32>(0.0);
-        if frame.temporal.y == 1u && camera_still() {
+        if frame.history_valid == 1u && camera_still() {
             mean = textureLoad(history_in, pixel, 0);
             moments = textureLoad(meta_in, pixel, 0);
         }

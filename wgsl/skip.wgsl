@@ -34,16 +34,16 @@ fn occupancy(@builtin(global_invocation_id) id: vec3<u32>) {
 // the cell is empty (no cloud at any altitude), else 0.
 fn empty_cell_exit(p: vec3<f32>, d: vec3<f32>) -> f32 {
     let cells = f32(OCCUPANCY_CELLS);
-    let uv = fract((p.xz - frame.wind_offsets0.xy) / frame.periods.x) * cells;
+    let uv = fract((p.xz - frame.weather_offset) / frame.weather_period) * cells;
     let cell = min(vec2<u32>(uv), vec2<u32>(OCCUPANCY_CELLS - 1u));
     let m = textureLoad(occupancy_in, cell, 0).r;
     // sample_weather's coverage: saturate(r + 2 (coverage - 0.5)); a margin of one 8-bit
     // step covers rounding in the filtered lookup.
-    if m + 2.0 * (frame.clouds.x - 0.5) > -1.0 / 255.0 {
+    if m + 2.0 * (frame.coverage - 0.5) > -1.0 / 255.0 {
         return 0.0;
     }
     // The ray's horizontal motion is linear in t: the nearer of the two cell walls it heads to.
-    let cell_m = frame.periods.x / cells;
+    let cell_m = frame.weather_period / cells;
     let inside = (uv - vec2<f32>(cell)) * cell_m; // metres from the cell's low corner
     var exit = 1e30;
     if d.x > 1e-6 {

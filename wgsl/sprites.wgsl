@@ -118,7 +118,7 @@ fn sprite_atlas(@builtin(global_invocation_id) id: vec3<u32>) {
 // `rel`) of the point at world `xz` and altitude `alt` on the curved planet: y solves
 // x^2 + z^2 + y (y + 2 Rp) = alt (alt + 2 Rp), in the form without cancellation.
 fn sprite_rel(xz: vec2<f32>, alt: f32) -> vec3<f32> {
-    let rp = frame.atmosphere.x;
+    let rp = frame.planet_radius;
     let d = xz - frame.camera_position.xz;
     let k = alt * (alt + 2.0 * rp) - dot(d, d);
     let y = k / (rp + sqrt(max(rp * rp + k, 0.0)));
@@ -167,7 +167,7 @@ fn sprite_candidate(c: SpriteCell, level: u32, s: u32, counters: ptr<function, C
     let xz = (vec2<f32>(c.index) + u.xy) * c.size;
     let w = sample_weather(vec3<f32>(xz.x, 0.0, xz.y), cloud_layer(0u));
     let h = 0.04 + u.z * (mix(0.3, 0.95, w.cloud_type) - 0.04);
-    let alt = frame.atmosphere.y + h * (frame.atmosphere.z - frame.atmosphere.y);
+    let alt = frame.cloud_bottom + h * (frame.cloud_top - frame.cloud_bottom);
     var density = 0.0;
     if !c.covered {
         let rel = sprite_rel(xz, alt);
@@ -200,8 +200,8 @@ fn sprite_build(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     count(STAT_DENSITY, counters.density);
     count(STAT_DETAIL, counters.detail);
-    let bottom = frame.atmosphere.y;
-    let thickness = frame.atmosphere.z - bottom;
+    let bottom = frame.cloud_bottom;
+    let thickness = frame.cloud_top - bottom;
     let middle = (vec2<f32>(cell.index) + 0.5) * cell.size;
     var centre = vec3<f32>(middle.x, bottom + 0.4 * thickness, middle.y);
     if sum.w > 0.0 {
@@ -335,11 +335,11 @@ fn sprite_vertex(@builtin(vertex_index) index: u32) -> SpriteVertex {
     let half_width = a.w;
     let facing = smoothstep(0.5 * half_width, half_width, distance);
     let to_camera = -to_sprite / max(distance, 1e-3);
-    let n = normalize(mix(-frame.camera_forward.xyz, to_camera, facing));
-    let radial = normalize(rel + vec3<f32>(0.0, frame.atmosphere.x, 0.0));
+    let n = normalize(mix(-frame.camera_forward, to_camera, facing));
+    let radial = normalize(rel + vec3<f32>(0.0, frame.planet_radius, 0.0));
     var right = cross(radial, n);
     if length(right) < 1e-3 {
-        right = frame.camera_right.xyz; // looking straight up or down at it
+        right = frame.camera_right; // looking straight up or down at it
     }
     right = normalize(right);
     let up = cross(n, right);
@@ -348,11 +348,11 @@ fn sprite_vertex(@builtin(vertex_index) index: u32) -> SpriteVertex {
     let vertex = to_sprite + offset;
 
     // Camera space to clip space: x right, y up, w = depth along the view (z in [0, w]).
-    let x = dot(vertex, frame.camera_right.xyz);
-    let y = dot(vertex, frame.camera_up.xyz);
-    let z = dot(vertex, frame.camera_forward.xyz);
-    let tan_half = frame.camera_position.w;
-    out.position = vec4<f32>(x / (tan_half * frame.camera_forward.w), y / tan_half, 0.5 * z, z);
+    let x = dot(vertex, frame.camera_right);
+    let y = dot(vertex, frame.camera_up);
+    let z = dot(vertex, frame.camera_forward);
+    let tan_half = frame.tan_half_fov;
+    out.position = vec4<f32>(x / (tan_half * frame.aspect), y / tan_half, 0.5 * z, z);
 
     // Texture coordinates: v down, turned by the sprite's rotation.
     let cs = vec2<f32>(cos(c.y), sin(c.y));
@@ -361,13 +361,13 @@ fn sprite_vertex(@builtin(vertex_index) index: u32) -> SpriteVertex {
     out.tile = u32(c.x);
 
     // Shading per vertex: C = (C_sky + C_sun) * alpha_morph.
-    let sun = frame.sun_direction.xyz;
+    let sun = frame.sun_direction;
     let centre = sprite_rel(b.xz, b.y) - cam;
     let from_centre = vertex - centre;
     let cos_angle = dot(from_centre, sun) / max(length(from_centre), 1e-3);
     let day = saturate(sun.y * 4.0 + 0.3);
-    let h = saturate((altitude_of(vertex + cam) - frame.atmosphere.y) / (frame.atmosphere.z - frame.atmosphere.y));
-    let e = frame.sun_illuminance.rgb;
+    let h = saturate((altitude_of(vertex + cam) - frame.cloud_bottom) / (frame.cloud_top - frame.cloud_bottom));
+    let e = frame.sun_illuminance;
     let light = e * (sprite_sky_level(h) * (SPRITE_SKY * day) + sprite_sun_level(cos_angle)) * (c.w / PI);
     out.colour = vec4<f32>(light, b.w);
     out.distance = length(vertex);
@@ -392,7 +392,7 @@ fn sprite_fragment(in: SpriteVertex) -> SpriteTargets {
 // opacity-weighted distance.
 @compute @workgroup_size(8, 8, 1)
 fn sprite_resolve(@builtin(global_invocation_id) id: vec3<u32>) {
-    if any(id.xy >= frame.counts.xy) {
+    if any(id.xy >= frame.size) {
         return;
     }
     count(STAT_PIXELS, 1u);

@@ -1,5 +1,5 @@
 // Temporal upsampling (thesis 6.1; Horizon Zero Dawn's 1-in-16 update). Each frame marches
-// one pixel of every k x k block (k = frame.temporal.x), visiting the block's pixels in Bayer
+// one pixel of every k x k block (k = frame.block_side), visiting the block's pixels in Bayer
 // order, each march with the next van der Corput start offset. The resolve pass rebuilds the
 // full-resolution image: the marched pixel blends into its history; every other pixel takes
 // last frame's result, reprojected through last frame's camera at the clouds' transmittance-
@@ -47,14 +47,23 @@ fn block_offset(f: u32, k: u32) -> vec2<u32> {
     return vec2<u32>(0u);
 }
 
+// Whether this frame's camera is last frame's: same place, orientation, field of view, aspect
+// and exposure (a moved camera restarts the path tracer's accumulation).
+fn camera_still() -> bool {
+    return all(frame.camera_position == frame.previous_position)
+        && frame.tan_half_fov == frame.previous_tan_half_fov
+        && all(frame.camera_forward == frame.previous_forward)
+        && frame.aspect == frame.previous_aspect
+        && all(frame.camera_right == frame.previous_right)
+        && frame.exposure == frame.previous_exposure
+        && all(frame.camera_up == frame.previous_up);
+}
+
 // Where the point at distance `depth` along the current view ray of `pixel` was in last
 // frame's image (pixel coordinates, centres at integers + 0.5 - 0.5 = integers). `depth` 0:
 // a point at infinity (only the direction moves). x = -1e9 when it was behind the camera.
 fn reproject(pixel: vec2<u32>, depth: f32) -> vec2<f32> {
-    let same = all(frame.previous_position == frame.camera_position)
-        && all(frame.previous_forward == frame.camera_forward)
-        && all(frame.previous_right == frame.camera_right)
-        && all(frame.previous_up == frame.camera_up);
+    let same = camera_still();
     if same {
         // A still camera reprojects exactly onto itself (no resampling blur).
         return vec2<f32>(pixel);
@@ -62,23 +71,23 @@ fn reproject(pixel: vec2<u32>, depth: f32) -> vec2<f32> {
     let view = view_ray(pixel);
     var dir = view;
     if depth > 0.0 {
-        dir = view * depth + (frame.camera_position.xyz - frame.previous_position.xyz);
+        dir = view * depth + (frame.camera_position - frame.previous_position);
     }
-    let z = dot(dir, frame.previous_forward.xyz);
+    let z = dot(dir, frame.previous_forward);
     if z <= 0.0 {
         return vec2<f32>(-1e9);
     }
-    let tan_half = frame.previous_position.w;
-    let aspect = frame.previous_forward.w;
+    let tan_half = frame.previous_tan_half_fov;
+    let aspect = frame.previous_aspect;
     let ndc = vec2<f32>(
-        dot(dir, frame.previous_right.xyz) / (z * tan_half * aspect),
-        -dot(dir, frame.previous_up.xyz) / (z * tan_half),
+        dot(dir, frame.previous_right) / (z * tan_half * aspect),
+        -dot(dir, frame.previous_up) / (z * tan_half),
     );
-    return (ndc * 0.5 + 0.5) * vec2<f32>(frame.counts.xy) - 0.5;
+    return (ndc * 0.5 + 0.5) * vec2<f32>(frame.size) - 0.5;
 }
 
 fn on_screen(q: vec2<f32>) -> bool {
-    let size = vec2<f32>(frame.counts.xy);
+    let size = vec2<f32>(frame.size);
     return all(q >= vec2<f32>(-0.5)) && all(q <= size - 0.5);
 }
 
@@ -97,7 +106,7 @@ fn catmull_rom(t: f32) -> vec4<f32> {
 // keeps the detail that bilinear resampling would blur away a little more every frame the
 // camera moves; its overshoot is clamped to the physical range.
 fn history_at(q: vec2<f32>) -> vec4<f32> {
-    let size = vec2<i32>(frame.counts.xy);
+    let size = vec2<i32>(frame.size);
     let c = clamp(q, vec2<f32>(0.0), vec2<f32>(size - 1));
     let base = vec2<i32>(floor(c));
     let f = c - vec2<f32>(base);
@@ -113,7 +122,7 @@ fn history_at(q: vec2<f32>) -> vec4<f32> {
 // One row (`dy` from `base`) of the Catmull-Rom footprint, weighted by `wx`; clamped at the
 // image's edges.
 fn history_row(base: vec2<i32>, dy: i32, wx: vec4<f32>) -> vec4<f32> {
-    let size = vec2<i32>(frame.counts.xy);
+    let size = vec2<i32>(frame.size);
     let y = clamp(base.y + dy, 0, size.y - 1);
     let x0 = clamp(base.x - 1, 0, size.x - 1);
     let x1 = clamp(base.x, 0, size.x - 1);
@@ -126,13 +135,13 @@ fn history_row(base: vec2<i32>, dy: i32, wx: vec4<f32>) -> vec4<f32> {
 }
 
 fn history_nearest(q: vec2<f32>) -> vec4<f32> {
-    let size = vec2<i32>(frame.counts.xy);
+    let size = vec2<i32>(frame.size);
     let p = clamp(vec2<i32>(round(q)), vec2<i32>(0), size - 1);
     return textureLoad(history_in, p, 0);
 }
 
 fn meta_at(q: vec2<f32>) -> vec4<f32> {
-    let size = vec2<i32>(frame.counts.xy);
+    let size = vec2<i32>(frame.size);
     let p = clamp(vec2<i32>(round(q)), vec2<i32>(0), size - 1);
     return textureLoad(meta_in, p, 0);
 }
@@ -144,14 +153,14 @@ fn meta_at(q: vec2<f32>) -> vec4<f32> {
 
 // Whether block `id` is inside the sparse target.
 fn in_blocks(id: vec2<u32>) -> bool {
-    let k = frame.temporal.x;
-    return all(id < (frame.counts.xy + k - 1u) / k);
+    let k = frame.block_side;
+    return all(id < (frame.size + k - 1u) / k);
 }
 
 // The pixel block `id` marches this frame.
 fn sparse_pixel(id: vec2<u32>) -> vec2<u32> {
-    let k = frame.temporal.x;
-    return id * k + block_offset(frame.misc.y, k);
+    let k = frame.block_side;
+    return id * k + block_offset(frame.frame_index, k);
 }
 
 fn store_sparse(id: vec2<u32>, r: MarchResult) {
@@ -166,7 +175,7 @@ fn march_sparse(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     let pixel = sparse_pixel(id.xy);
     var r = MarchResult(vec3<f32>(0.0), 1.0, 0.0);
-    if all(pixel < frame.counts.xy) {
+    if all(pixel < frame.size) {
         r = march_pixel(pixel);
     }
     store_sparse(id.xy, r);
@@ -179,13 +188,13 @@ fn march_sparse_checkerboard(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     let pixel = sparse_pixel(id.xy);
     var r = MarchResult(vec3<f32>(0.0), 1.0, 0.0);
-    var skip = any(pixel >= frame.counts.xy);
-    if !skip && frame.temporal.y != 0u {
+    var skip = any(pixel >= frame.size);
+    if !skip && frame.history_valid != 0u {
         // Where last frame saw clear sky in this direction (the nearest texel), skip the
         // march in every other turn of the pixel, alternating between neighbouring blocks,
         // so clouds that the wind moves in are found within two turns.
-        let k = frame.temporal.x;
-        let turn = frame.misc.y / (k * k);
+        let k = frame.block_side;
+        let turn = frame.frame_index / (k * k);
         let q = reproject(pixel, 0.0);
         if ((id.x + id.y + turn) & 1u) == 0u && on_screen(q) && history_nearest(q).a >= 1.0 {
             skip = true;
@@ -200,13 +209,13 @@ fn march_sparse_checkerboard(@builtin(global_invocation_id) id: vec3<u32>) {
 // The resolve pass: every pixel of the output.
 @compute @workgroup_size(8, 8, 1)
 fn resolve(@builtin(global_invocation_id) id: vec3<u32>) {
-    if any(id.xy >= frame.counts.xy) {
+    if any(id.xy >= frame.size) {
         return;
     }
     let pixel = id.xy;
-    let k = frame.temporal.x;
+    let k = frame.block_side;
     let block = pixel / k;
-    let marched = all(pixel == block * k + block_offset(frame.misc.y, k));
+    let marched = all(pixel == block * k + block_offset(frame.frame_index, k));
     let current = textureLoad(sparse_in, block, 0);
     let current_depth = textureLoad(sparse_depth_in, block, 0).r;
 
@@ -221,7 +230,7 @@ fn resolve(@builtin(global_invocation_id) id: vec3<u32>) {
         }
     }
     let q = reproject(pixel, depth);
-    var valid = frame.temporal.y != 0u && on_screen(q);
+    var valid = frame.history_valid != 0u && on_screen(q);
     var history = vec4<f32>(0.0, 0.0, 0.0, 1.0);
     var past = vec4<f32>(0.0);
     let moving = any(q != vec2<f32>(pixel));
@@ -232,15 +241,15 @@ fn resolve(@builtin(global_invocation_id) id: vec3<u32>) {
         // frame's march puts the cloud. (A still camera uncovers nothing; and this block's
         // depth is another pixel's, which at cloud edges would reject good history.)
         if moving && current_depth > 0.0 && past.x > 0.0 {
-            let expected = distance(frame.camera_position.xyz + view_ray(pixel) * current_depth,
-                frame.previous_position.xyz);
+            let expected = distance(frame.camera_position + view_ray(pixel) * current_depth,
+                frame.previous_position);
             valid = abs(past.x - expected) <= DISOCCLUSION_DEPTH * expected;
         }
     }
     if valid && moving {
         // Neighbourhood clamp: last frame's value may not leave the range of this frame's
         // marches around the pixel (3 x 3 blocks), which rejects stale, ghosting history.
-        let blocks = vec2<i32>((frame.counts.xy + k - 1u) / k);
+        let blocks = vec2<i32>((frame.size + k - 1u) / k);
         let b = vec2<i32>(block);
         let x0 = max(b.x - 1, 0);
         let x2 = min(b.x + 1, blocks.x - 1);

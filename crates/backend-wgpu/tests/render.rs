@@ -149,14 +149,11 @@ fn night_shows_the_moon_and_stars() {
     let f = render(Api::Vulkan, &scene, false);
     assert_sane("night", &f);
     let u = scene.uniforms();
-    let v3 = |a: [f32; 4]| [f64::from(a[0]), f64::from(a[1]), f64::from(a[2])];
+    let v3 = |a: [f32; 3]| a.map(f64::from);
     let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-    let moon = v3(u.moon);
+    let moon = v3(u.moon_direction);
     let (fwd, right, up) = (v3(u.camera_forward), v3(u.camera_right), v3(u.camera_up));
-    let (tan_half, aspect) = (
-        f64::from(u.camera_position[3]),
-        f64::from(u.camera_forward[3]),
-    );
+    let (tan_half, aspect) = (f64::from(u.tan_half_fov), f64::from(u.aspect));
     let z = dot(moon, fwd);
     assert!(z > 0.0, "the moon is behind the camera");
     let ndc = [

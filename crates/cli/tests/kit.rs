@@ -37,17 +37,44 @@ fn the_kit_holds_what_its_readme_promises() {
     assert_eq!(golden["name"], "cumulus-noon");
     assert_eq!(golden["size"], serde_json::json!([32, 18]));
 
-    // The uniform block: 41 vec4s, as the header and the JSON say.
+    // The uniform block: 124 named members in 656 bytes, as the header and the JSON say.
     assert_eq!(read(golden["uniforms"].as_str().unwrap()).len(), 656);
     let header = String::from_utf8(read("uniforms.h")).unwrap();
     assert!(
-        header.contains("float camera_position[4];")
-            && header.contains("41 members")
-            && header.contains("== 656")
+        header.contains("float camera_position[3];")
+            && header.contains("float tan_half_fov;")
+            && header.contains("uint32_t size[2];")
+            && header.contains("124 members")
+            && header.contains("== 656"),
+        "{header}"
     );
+    let members = json("uniforms.json")["members"].as_array().unwrap().clone();
+    assert_eq!(members.len(), 124);
+    let downward = members.iter().find(|m| m["name"] == "downward_dimming");
     assert_eq!(
-        json("uniforms.json")["members"].as_array().unwrap().len(),
-        41
+        downward.map(|m| (&m["type"], &m["size"])),
+        Some((&"f32".into(), &4.into()))
+    );
+
+    // The header compiles as C11, and its static assertions (the size and every member's
+    // offset) hold under the C compiler's own layout rules, the ones an engine's C or C++
+    // code uses. `cc` is the compiler Rust links with, so it is there wherever this runs.
+    let c = dir.join("uniforms_check.c");
+    std::fs::write(
+        &c,
+        "#include \"uniforms.h\"\nint main(void) { return 0; }\n",
+    )
+    .unwrap();
+    let cc = Command::new("cc")
+        .args(["-std=c11", "-Wall", "-Werror", "-fsyntax-only"])
+        .arg(&c)
+        .current_dir(&dir)
+        .output()
+        .expect("running cc");
+    assert!(
+        cc.status.success(),
+        "uniforms.h does not compile: {}",
+        String::from_utf8_lossy(&cc.stderr)
     );
 
     // The plan: the march and the composite, dispatched over the golden's size, then the

@@ -359,7 +359,7 @@ impl FrameState {
     }
 
     /// The uniform block of `frame`: the scene's, with last frame's camera and
-    /// `temporal.y` = 1 once the history holds last frame (temporal reprojection reads both).
+    /// `history_valid` = 1 once the history holds last frame (temporal reprojection reads both).
     pub fn uniforms(&self, frame: &FrameInput<'_>) -> stratus_scene::FrameUniforms {
         let mut u = frame.scene.uniforms();
         if let Some(last) = &self.last
@@ -368,7 +368,7 @@ impl FrameState {
             && frame.plan.has_history()
         {
             u = u.with_previous_camera(last);
-            u.temporal[1] = 1;
+            u.history_valid = 1;
         }
         u
     }

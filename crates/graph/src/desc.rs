@@ -472,22 +472,25 @@ impl GraphDesc {
 }
 
 /// The bytes of the uniform block that input `input` of a computed resource names: a whole
-/// member (`sun_direction`) or one of its components (`camera_position.y`: a sky table needs
-/// the camera's altitude, not where it stands over the ground). `None` if it names neither.
+/// member (`sun_direction`) or one component of a vector member (`camera_position.y`: a sky
+/// table needs the camera's altitude, not where it stands over the ground). `None` if it names
+/// neither.
 pub fn input_bytes(input: &str) -> Option<std::ops::Range<usize>> {
-    let (member, component) = match input.split_once('.') {
+    let (name, component) = match input.split_once('.') {
         Some((m, c)) => (m, Some(c)),
         None => (input, None),
     };
-    let i = stratus_scene::FrameUniforms::MEMBERS
+    let member = stratus_scene::FrameUniforms::MEMBERS
         .iter()
-        .position(|(m, _)| *m == member)?;
-    let start = 16 * i;
+        .find(|m| m.name == name)?;
+    let start = member.offset;
     match component {
-        None => Some(start..start + 16),
+        None => Some(start..start + member.size),
         Some(c) => {
-            let k = ["x", "y", "z", "w"].iter().position(|n| *n == c)?;
-            Some(start + 4 * k..start + 4 * k + 4)
+            let k = ["x", "y", "z"][..member.components()]
+                .iter()
+                .position(|n| *n == c)?;
+            (member.components() > 1).then(|| start + 4 * k..start + 4 * k + 4)
         }
     }
 }
@@ -496,12 +499,16 @@ pub fn input_bytes(input: &str) -> Option<std::ops::Range<usize>> {
 mod tests {
     use super::*;
 
-    /// A member names its 16 bytes, a component its 4; anything else nothing.
+    /// A member names its bytes, a vector's component its 4; anything else nothing.
     #[test]
     fn inputs_name_members_or_their_components() {
-        assert_eq!(input_bytes("camera_position"), Some(0..16));
+        assert_eq!(input_bytes("camera_position"), Some(0..12));
+        assert_eq!(input_bytes("tan_half_fov"), Some(12..16));
         assert_eq!(input_bytes("camera_position.y"), Some(4..8));
-        assert_eq!(input_bytes("sun_direction.w"), Some(76..80));
+        assert_eq!(input_bytes("sun_cos_radius"), Some(76..80));
+        assert_eq!(input_bytes("sun_direction.w"), None);
+        assert_eq!(input_bytes("tan_half_fov.x"), None);
+        assert_eq!(input_bytes("weather_offset.z"), None);
         assert_eq!(input_bytes("camera_position.fov"), None);
         assert_eq!(input_bytes("air"), None);
         assert_eq!(input_bytes("sun_direction."), None);

@@ -164,8 +164,8 @@ pub fn run(args: ExportArgs) -> Result<()> {
     );
 
     let u = scene.uniforms();
-    let v3 = |a: [f32; 4]| [a[0], a[1], a[2]].map(f64::from);
-    let ambient = v3(u.ambient_bottom).map(|c| c * f64::from(u.ambient_bottom[3]));
+    let v3 = |a: [f32; 3]| a.map(f64::from);
+    let ambient = v3(u.ambient_bottom).map(|c| c * f64::from(u.ambient_strength));
     if let Some(path) = &args.json {
         let setup = json!({
             "width": args.size.0,
@@ -174,12 +174,12 @@ pub fn run(args: ExportArgs) -> Result<()> {
             "camera_forward": v3(u.camera_forward),
             "camera_right": v3(u.camera_right),
             "camera_up": v3(u.camera_up),
-            "fov_y_deg": 2.0 * f64::from(u.camera_position[3]).atan().to_degrees(),
+            "fov_y_deg": 2.0 * f64::from(u.tan_half_fov).atan().to_degrees(),
             "sun_direction": v3(u.sun_direction),
             "sun_illuminance": v3(u.sun_illuminance),
             "sky_radiance": ambient,
-            "sigma_s": f64::from(u.extinction[0]),
-            "sigma_a": f64::from(u.extinction[1]),
+            "sigma_s": f64::from(u.scattering),
+            "sigma_a": f64::from(u.absorption),
             "phase_g": scene.lighting.phase.g,
             "box_min": min,
             "box_max": max,

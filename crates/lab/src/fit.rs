@@ -781,7 +781,7 @@ pub fn run(args: FitArgs) -> Result<()> {
         .copied()
         .context("--octaves names no count")?;
     // Before: the thesis's constants (the defaults until this fit).
-    let before = stratus::quality::PREFIT_OCTAVES;
+    let before = stratus_quality::PREFIT_OCTAVES;
 
     std::fs::create_dir_all(&out_dir).with_context(|| format!("creating {}", out_dir.display()))?;
     let mut csv = String::from(

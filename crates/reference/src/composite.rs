@@ -32,7 +32,7 @@ pub(crate) fn sky_radiance(f: &Frame, d: V3, alt: f64) -> V3 {
 // WGSL: composite.wgsl::sun_disk
 /// Radiance of the sun's disk: illuminance over its solid angle.
 pub(crate) fn sun_disk(f: &Frame, d: V3) -> V3 {
-    let cos_r = f.sun_direction[3];
+    let cos_r = f.sun_cos_radius;
     if d.dot(f.sun()) < cos_r {
         return V3::ZERO;
     }
@@ -82,7 +82,7 @@ pub(crate) fn physical_composite(
         background = V3::new(b.x.max(0.0), b.y.max(0.0), b.z.max(0.0));
     } else {
         let mut space = moon_disk(f, view) + stars(f, view);
-        if f.modes[3] & FLAG_MOONLIT == 0 {
+        if f.flags & FLAG_MOONLIT == 0 {
             space += sun_disk(f, view);
         }
         background += space.mul_v(sky.transmittance_to_top(r, view.y));
@@ -107,9 +107,9 @@ const MOON_COS_RADIUS: f64 = 0.999_989_78;
 /// The full moon shows almost no limb darkening, so the lit part is evenly bright; the
 /// terminator is softened over 2% of the radius against aliasing.
 pub(crate) fn moon_disk(f: &Frame, d: V3) -> V3 {
-    let m = xyz(f.moon);
+    let m = xyz(f.moon_direction);
     let c = d.dot(m);
-    if f.moon[3] <= 0.0 || c < MOON_COS_RADIUS {
+    if f.moon_illuminance <= 0.0 || c < MOON_COS_RADIUS {
         return V3::ZERO;
     }
     let sin_r = (1.0 - MOON_COS_RADIUS * MOON_COS_RADIUS).sqrt();
@@ -117,9 +117,9 @@ pub(crate) fn moon_disk(f: &Frame, d: V3) -> V3 {
     let offset = (d - m * c) / sin_r;
     let x2 = offset.dot(offset).min(1.0);
     let normal = offset - m * (1.0 - x2).sqrt();
-    let lit = smoothstep(-0.02, 0.02, normal.dot(xyz(f.night)));
+    let lit = smoothstep(-0.02, 0.02, normal.dot(xyz(f.real_sun_direction)));
     let solid_angle = 2.0 * PI * (1.0 - MOON_COS_RADIUS);
-    V3::splat(f.moon[3] / solid_angle * lit)
+    V3::splat(f.moon_illuminance / solid_angle * lit)
 }
 
 // WGSL: composite.wgsl::STAR_CELLS, STAR_FAINTEST
@@ -196,7 +196,7 @@ pub(crate) fn star_in_cell(face: u32, cell: [u32; 2]) -> Option<Star> {
 /// a point of illuminance E0 10^(-0.4 m), splatted as a Gaussian of half a pixel over the
 /// pixels around it, so its light does not depend on the resolution.
 pub(crate) fn stars(f: &Frame, d: V3) -> V3 {
-    let e0 = f.night[3];
+    let e0 = f.star_illuminance;
     if e0 <= 0.0 {
         return V3::ZERO;
     }
@@ -216,7 +216,7 @@ pub(crate) fn stars(f: &Frame, d: V3) -> V3 {
     };
     let illuminance = e0 * 10f64.powf(-0.4 * star.magnitude);
     // Angular size of a pixel at the image centre.
-    let pixel_angle = 2.0 * f.camera_position[3] / f64::from(f.counts[1]);
+    let pixel_angle = 2.0 * f.tan_half_fov / f64::from(f.size[1]);
     let dist = d.dot(star.direction).clamp(-1.0, 1.0).acos() / pixel_angle;
     let sigma: f64 = 0.5;
     let weight = (-dist * dist / (2.0 * sigma * sigma)).exp() / (2.0 * PI * sigma * sigma);
@@ -226,7 +226,7 @@ pub(crate) fn stars(f: &Frame, d: V3) -> V3 {
 // WGSL: composite.wgsl::store_display
 /// Exposure, tone curve and gamma of a pixel's radiance, to the display's 8 bits.
 fn store_display(f: &Frame, radiance: V3) -> [u8; 4] {
-    let exposed = radiance * f.camera_right[3];
+    let exposed = radiance * f.exposure;
     let display = aces_fitted(exposed);
     let g = 1.0 / 2.2;
     [
@@ -315,7 +315,7 @@ impl Compositor {
     /// clouds' shadow on the ground from `noise`, as the frame's passes do).
     pub fn new(scene: &stratus_scene::Scene, noise: &stratus_noise::NoiseSet) -> Self {
         let model = crate::medium::Model::new(scene, crate::medium::Medium::Clouds(noise));
-        let (w, h) = (model.f.counts[0], model.f.counts[1]);
+        let (w, h) = (model.f.size[0], model.f.size[1]);
         let entry = (0..h)
             .flat_map(|y| (0..w).map(move |x| [x, y]))
             .map(|pixel| {
@@ -335,7 +335,7 @@ impl Compositor {
 
     /// The frame size this composite is for (width, height).
     pub fn size(&self) -> [u32; 2] {
-        [self.f.counts[0], self.f.counts[1]]
+        [self.f.size[0], self.f.size[1]]
     }
 
     /// The display image (RGBA8, row-major) of a frame of this scene's size from its linear

@@ -41,32 +41,47 @@ const MAX_LAYERS: u32 = 4;
 
 // WGSL: density.wgsl::layer_count
 pub(crate) fn layer_count(f: &Frame) -> u32 {
-    1 + f.misc[3].min(MAX_LAYERS - 1)
+    1 + f.extra_layers.min(MAX_LAYERS - 1)
 }
 
 // WGSL: density.wgsl::cloud_layer
 pub(crate) fn cloud_layer(f: &Frame, i: u32) -> Layer {
-    let from = |g: [f64; 4], w: [f64; 4]| Layer {
-        bottom: g[0],
-        top: g[1],
-        coverage: g[2],
-        density: g[3],
-        cloud_type: w[0],
-        precipitation: w[1],
-        weather_offset: [w[2], w[3]],
-    };
     match i {
-        1 => from(f.layer1, f.layer1_weather),
-        2 => from(f.layer2, f.layer2_weather),
-        3 => from(f.layer3, f.layer3_weather),
+        1 => Layer {
+            bottom: f.layer1_bottom,
+            top: f.layer1_top,
+            coverage: f.layer1_coverage,
+            density: f.layer1_density,
+            cloud_type: f.layer1_cloud_type,
+            precipitation: f.layer1_precipitation,
+            weather_offset: f.layer1_weather_offset,
+        },
+        2 => Layer {
+            bottom: f.layer2_bottom,
+            top: f.layer2_top,
+            coverage: f.layer2_coverage,
+            density: f.layer2_density,
+            cloud_type: f.layer2_cloud_type,
+            precipitation: f.layer2_precipitation,
+            weather_offset: f.layer2_weather_offset,
+        },
+        3 => Layer {
+            bottom: f.layer3_bottom,
+            top: f.layer3_top,
+            coverage: f.layer3_coverage,
+            density: f.layer3_density,
+            cloud_type: f.layer3_cloud_type,
+            precipitation: f.layer3_precipitation,
+            weather_offset: f.layer3_weather_offset,
+        },
         _ => Layer {
-            bottom: f.atmosphere[1],
-            top: f.atmosphere[2],
-            coverage: f.clouds[0],
-            density: f.clouds[1],
-            cloud_type: f.clouds[2],
-            precipitation: f.clouds[3],
-            weather_offset: [f.wind_offsets0[0], f.wind_offsets0[1]],
+            bottom: f.cloud_bottom,
+            top: f.cloud_top,
+            coverage: f.coverage,
+            density: f.density,
+            cloud_type: f.cloud_type,
+            precipitation: f.precipitation,
+            weather_offset: f.weather_offset,
         },
     }
 }
@@ -90,7 +105,7 @@ pub(crate) fn layer_at(f: &Frame, alt: f64) -> Option<Layer> {
 // WGSL: density.wgsl::layers_span
 /// `(lowest bottom, highest top)` of the layers.
 pub(crate) fn layers_span(f: &Frame) -> (f64, f64) {
-    cloud_layers(f).fold((f.atmosphere[1], f.atmosphere[2]), |(lo, hi), l| {
+    cloud_layers(f).fold((f.cloud_bottom, f.cloud_top), |(lo, hi), l| {
         (lo.min(l.bottom), hi.max(l.top))
     })
 }
@@ -114,8 +129,8 @@ pub(crate) struct Weather {
 // WGSL: density.wgsl::sample_weather
 pub(crate) fn sample_weather(f: &Frame, noise: &NoiseSet, p: V3, l: &Layer) -> Weather {
     let uv = [
-        (p.x - l.weather_offset[0]) / f.periods[0],
-        (p.z - l.weather_offset[1]) / f.periods[0],
+        (p.x - l.weather_offset[0]) / f.weather_period,
+        (p.z - l.weather_offset[1]) / f.weather_period,
     ];
     let w = sample2(&noise.weather, uv);
     let coverage = saturate(w[0] + 2.0 * (l.coverage - 0.5));
@@ -132,8 +147,8 @@ pub(crate) fn sample_weather(f: &Frame, noise: &NoiseSet, p: V3, l: &Layer) -> W
 pub(crate) fn uniform_weather(f: &Frame) -> Weather {
     Weather {
         coverage: 1.0,
-        cloud_type: f.clouds[2],
-        precipitation: f.clouds[3],
+        cloud_type: f.cloud_type,
+        precipitation: f.precipitation,
     }
 }
 
@@ -159,7 +174,7 @@ pub(crate) fn height_cloud_types(h: f64, cloud_type: f64) -> f64 {
 
 // WGSL: density.wgsl::height_signal
 pub(crate) fn height_signal(f: &Frame, h: f64, cloud_type: f64) -> f64 {
-    if f.modes[2] == HEIGHT_CLOUD_TYPES {
+    if f.height_model == HEIGHT_CLOUD_TYPES {
         return height_cloud_types(h, cloud_type);
     }
     height_parabola(h, cloud_type)
@@ -220,11 +235,11 @@ pub(crate) fn layer_density_with(
     // Base shape, isotropic texels: the y period is the x period times the texture's aspect.
     let [dx, dy, _] = noise.shape.size;
     let period = [
-        f.periods[1],
-        f.periods[1] * (f64::from(dy) / f64::from(dx)),
-        f.periods[1],
+        f.shape_period,
+        f.shape_period * (f64::from(dy) / f64::from(dx)),
+        f.shape_period,
     ];
-    let shape_pos = [p.x - f.wind_offsets0[2], alt, p.z - f.wind_offsets0[3]];
+    let shape_pos = [p.x - f.shape_offset[0], alt, p.z - f.shape_offset[1]];
     let s = sample3(
         &noise.shape,
         [
@@ -244,37 +259,37 @@ pub(crate) fn layer_density_with(
 
     // Detail erosion at the edges only.
     let mut density = base;
-    let strength = f.erosion[0];
-    let threshold = f.erosion[1];
+    let strength = f.detail_strength;
+    let threshold = f.erosion_threshold;
     if with_detail && strength > 0.0 && base < threshold {
         counters.detail += 1;
         let mut detail_pos = V3::new(p.x, alt, p.z);
         // CURL: always compiled in here (see the module comment).
         let cuv = [
-            (p.x - f.wind_offsets1[2]) / f.periods[3],
-            (p.z - f.wind_offsets1[3]) / f.periods[3],
+            (p.x - f.curl_offset[0]) / f.curl_period,
+            (p.z - f.curl_offset[1]) / f.curl_period,
         ];
         let c = sample2(&noise.curl, cuv);
         let curl = [c[0] * 2.0 - 1.0, c[1] * 2.0 - 1.0];
-        detail_pos += V3::new(curl[0], 0.0, curl[1]) * (f.erosion[2] * (1.0 - h));
-        detail_pos = detail_pos - V3::new(f.wind_offsets1[0], 0.0, f.wind_offsets1[1]);
+        detail_pos += V3::new(curl[0], 0.0, curl[1]) * (f.curl_strength * (1.0 - h));
+        detail_pos = detail_pos - V3::new(f.detail_offset[0], 0.0, f.detail_offset[1]);
         let dn = sample3(
             &noise.detail,
             [
-                detail_pos.x / f.periods[2],
-                detail_pos.y / f.periods[2],
-                detail_pos.z / f.periods[2],
+                detail_pos.x / f.detail_period,
+                detail_pos.y / f.detail_period,
+                detail_pos.z / f.detail_period,
             ],
         );
         let high_fbm = dn[0] * 0.625 + dn[1] * 0.25 + dn[2] * 0.125;
         // Must agree: the wispy-to-billowy ramp of the WGSL.
-        let billowy = saturate(2.0 * f.extinction[3] * saturate(h * 10.0));
+        let billowy = saturate(2.0 * f.wispy_billowy * saturate(h * 10.0));
         let shape = mix(1.0 - high_fbm, high_fbm, billowy);
         let erosion = strength * shape * (1.0 - base / threshold);
         density = saturate(remap(base, erosion, 1.0, 0.0, 1.0));
     }
 
-    density *= mix(1.0, h, f.erosion[3]);
+    density *= mix(1.0, h, f.height_gradient);
     density = density * l.density * (1.0 + weather.precipitation);
     density.clamp(0.0, 1.0)
 }

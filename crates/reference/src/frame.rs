@@ -24,21 +24,39 @@ pub(crate) const MAX_VIEW_STEPS: u32 = 1024;
 
 /// The Rust type of a member kind, widened: f32 to f64, u32 kept.
 macro_rules! wide_type {
-    (vec4f) => {
-        [f64; 4]
+    (f32) => {
+        f64
     };
-    (vec4u) => {
-        [u32; 4]
+    (u32) => {
+        u32
+    };
+    (vec2f) => {
+        [f64; 2]
+    };
+    (vec2u) => {
+        [u32; 2]
+    };
+    (vec3f) => {
+        [f64; 3]
     };
 }
 
 /// A member of the uniform block, widened.
 macro_rules! widen {
-    (vec4f, $v:expr) => {
+    (f32, $v:expr) => {
+        f64::from($v)
+    };
+    (u32, $v:expr) => {
+        $v
+    };
+    (vec2f, $v:expr) => {
         $v.map(f64::from)
     };
-    (vec4u, $v:expr) => {
+    (vec2u, $v:expr) => {
         $v
+    };
+    (vec3f, $v:expr) => {
+        $v.map(f64::from)
     };
 }
 
@@ -50,6 +68,7 @@ macro_rules! wide_frame {
         /// CPU sees exactly the values the GPU gets (read from
         /// [`stratus_scene::Scene::uniforms`]).
         #[derive(Clone, Debug)]
+        #[allow(dead_code, reason = "the mirror holds every member, read by the CPU or not")]
         pub(crate) struct Frame {
             $( $(#[doc = $doc])* pub $name: wide_type!($kind), )*
         }
@@ -66,25 +85,38 @@ macro_rules! wide_frame {
 stratus_scene::frame_members!(wide_frame);
 
 impl Frame {
-    /// `frame.sun_direction.xyz`.
+    /// `frame.sun_direction`.
     pub fn sun(&self) -> V3 {
         xyz(self.sun_direction)
     }
 
-    /// `frame.sun_illuminance.rgb`.
+    /// `frame.sun_illuminance`.
     pub fn sun_illuminance(&self) -> V3 {
         xyz(self.sun_illuminance)
+    }
+
+    // WGSL: temporal.wgsl::camera_still
+    /// Whether this frame's camera is last frame's: same place, orientation, field of view,
+    /// aspect and exposure.
+    pub fn camera_still(&self) -> bool {
+        self.camera_position == self.previous_position
+            && self.tan_half_fov == self.previous_tan_half_fov
+            && self.camera_forward == self.previous_forward
+            && self.aspect == self.previous_aspect
+            && self.camera_right == self.previous_right
+            && self.exposure == self.previous_exposure
+            && self.camera_up == self.previous_up
     }
 
     // WGSL: atmosphere.wgsl::physical_sky
     /// Whether the scene is under the physical sky (`FLAG_PHYSICAL_SKY`).
     pub fn physical_sky(&self) -> bool {
-        self.modes[3] & FLAG_PHYSICAL_SKY != 0
+        self.flags & FLAG_PHYSICAL_SKY != 0
     }
 }
 
-/// `v.xyz` of a widened vec4.
-pub(crate) fn xyz(v: [f64; 4]) -> V3 {
+/// A widened vec3 member as a [`V3`].
+pub(crate) fn xyz(v: [f64; 3]) -> V3 {
     V3::new(v[0], v[1], v[2])
 }
 

@@ -13,13 +13,13 @@ use crate::math::V3;
 // WGSL: geometry.wgsl::view_ray
 /// The view ray through the centre of `pixel` (y down in the image).
 pub(crate) fn view_ray(f: &Frame, pixel: [u32; 2]) -> V3 {
-    let size = [f64::from(f.counts[0]), f64::from(f.counts[1])];
+    let size = [f64::from(f.size[0]), f64::from(f.size[1])];
     let ndc = [
         (f64::from(pixel[0]) + 0.5) / size[0] * 2.0 - 1.0,
         (f64::from(pixel[1]) + 0.5) / size[1] * 2.0 - 1.0,
     ];
-    let tan_half = f.camera_position[3];
-    let aspect = f.camera_forward[3];
+    let tan_half = f.tan_half_fov;
+    let aspect = f.aspect;
     let forward = V3::new(
         f.camera_forward[0],
         f.camera_forward[1],
@@ -74,7 +74,7 @@ pub(crate) fn solve_sphere(b: f64, c: f64) -> Roots {
 /// Intersection of the ray from the camera (altitude `alt`) along unit `d` with the sphere of
 /// altitude `radius_alt`.
 pub(crate) fn ray_shell(f: &Frame, alt: f64, d: V3, radius_alt: f64) -> Roots {
-    let rp = f.atmosphere[0];
+    let rp = f.planet_radius;
     let b = d.y * (alt + rp);
     let c = (alt - radius_alt) * (alt + radius_alt + 2.0 * rp);
     solve_sphere(b, c)
@@ -83,7 +83,7 @@ pub(crate) fn ray_shell(f: &Frame, alt: f64, d: V3, radius_alt: f64) -> Roots {
 /// [`ray_shell`] from any camera-relative point `p` of altitude `alt` (not in the WGSL: the
 /// camera is always at `(0, alt, 0)` there).
 pub(crate) fn ray_shell_from(f: &Frame, p: V3, alt: f64, d: V3, radius_alt: f64) -> Roots {
-    let rp = f.atmosphere[0];
+    let rp = f.planet_radius;
     let b = d.dot(V3::new(p.x, p.y + rp, p.z));
     let c = (alt - radius_alt) * (alt + radius_alt + 2.0 * rp);
     solve_sphere(b, c)
@@ -92,7 +92,7 @@ pub(crate) fn ray_shell_from(f: &Frame, p: V3, alt: f64, d: V3, radius_alt: f64)
 // WGSL: geometry.wgsl::altitude_of
 /// Altitude of a camera-relative point, without cancellation.
 pub(crate) fn altitude_of(f: &Frame, p: V3) -> f64 {
-    let rp = f.atmosphere[0];
+    let rp = f.planet_radius;
     let n = p.x * p.x + p.z * p.z + p.y * (p.y + 2.0 * rp);
     let q = V3::new(p.x, p.y + rp, p.z);
     n / (q.length() + rp)
@@ -101,7 +101,7 @@ pub(crate) fn altitude_of(f: &Frame, p: V3) -> f64 {
 // WGSL: geometry.wgsl::hits_ground
 /// Whether the ray from camera-relative `p` (altitude `alt`) along unit `d` hits the ground.
 pub(crate) fn hits_ground(f: &Frame, p: V3, alt: f64, d: V3) -> bool {
-    let rp = f.atmosphere[0];
+    let rp = f.planet_radius;
     let b = d.dot(V3::new(p.x, p.y + rp, p.z));
     let c = alt * (alt + 2.0 * rp);
     b < 0.0 && b * b >= c
@@ -161,7 +161,7 @@ pub(crate) fn nearest_layer_interval(f: &Frame, alt: f64, d: V3) -> Interval {
 /// The part of the view ray inside the shell between altitudes `bottom` and `top`, cut to
 /// the cut-off distance.
 pub(crate) fn shell_interval(f: &Frame, alt: f64, d: V3, bottom: f64, top: f64) -> Interval {
-    let cutoff = f.atmosphere[3];
+    let cutoff = f.cutoff_distance;
     let inner = ray_shell(f, alt, d, bottom);
     let outer = ray_shell(f, alt, d, top);
     let mut start = 0.0;
@@ -251,7 +251,7 @@ mod tests {
     #[test]
     fn altitude_matches_the_naive_formula() {
         let f = frame();
-        let rp = f.atmosphere[0];
+        let rp = f.planet_radius;
         for p in [
             V3::new(0.0, 200.0, 0.0),
             V3::new(30_000.0, 1500.0, -20_000.0),

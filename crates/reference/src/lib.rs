@@ -196,24 +196,20 @@ impl QuadratureSettings {
         MarchSettings {
             view_steps: self.view_steps,
             light: LightMarch {
-                steps: self.light_steps.unwrap_or(f.counts[3]),
-                growth: self.light_step_growth.unwrap_or(f.march[1]),
-                first: f.march[2],
+                steps: self.light_steps.unwrap_or(f.light_steps),
+                growth: self.light_step_growth.unwrap_or(f.light_step_growth),
+                first: f.first_light_step,
                 to_layer_exit: self.light_to_layer_exit,
             },
-            jitter: self.jitter.unwrap_or(f.modes[3] & FLAG_JITTER != 0),
-            early_exit: self.early_exit.unwrap_or(f.march[3]),
+            jitter: self.jitter.unwrap_or(f.flags & FLAG_JITTER != 0),
+            early_exit: self.early_exit.unwrap_or(f.early_exit_transmittance),
             integration: match self.integration {
                 Some(Integration::Analytic) => INTEGRATION_ANALYTIC,
                 Some(Integration::Riemann) => INTEGRATION_RIEMANN,
-                None => f.modes[1],
+                None => f.integration,
             },
-            dynamic_step: self
-                .cheap_march
-                .unwrap_or(f.modes[3] & FLAG_DYNAMIC_STEP != 0),
-            empty_skip: self
-                .cheap_march
-                .unwrap_or(f.modes[3] & FLAG_EMPTY_SKIP != 0),
+            dynamic_step: self.cheap_march.unwrap_or(f.flags & FLAG_DYNAMIC_STEP != 0),
+            empty_skip: self.cheap_march.unwrap_or(f.flags & FLAG_EMPTY_SKIP != 0),
         }
     }
 }
@@ -322,7 +318,7 @@ impl<'a> Tracer<'a> {
     pub fn quadrature(&self, direction: [f64; 3], settings: &QuadratureSettings) -> RayEstimate {
         let s = settings.resolve(&self.model.f);
         let jitter = if s.jitter {
-            frame::hash_unit([0, 0], self.model.f.misc[1])
+            frame::hash_unit([0, 0], self.model.f.frame_index)
         } else {
             0.5
         };
@@ -347,7 +343,7 @@ impl<'a> Tracer<'a> {
         let mut acc = Accumulator::default();
         let mut counters = Counters::default();
         for s in 0..spp.max(1) {
-            let mut rng = Rng::new(key, u64::from(s), u64::from(self.model.f.misc[1]));
+            let mut rng = Rng::new(key, u64::from(s), u64::from(self.model.f.frame_index));
             acc.add(&trace(
                 &self.model,
                 view,
@@ -441,7 +437,7 @@ fn render_in_pool(
 /// it) with `integrator`, on the current pool.
 fn render_model(model: &Model, integrator: &Integrator, progress: bool) -> Rendering {
     let f = &model.f;
-    let (w, h) = (f.counts[0], f.counts[1]);
+    let (w, h) = (f.size[0], f.size[1]);
     let bar = if progress {
         let bar = ProgressBar::new(u64::from(h));
         if let Ok(style) = ProgressStyle::with_template(
@@ -483,7 +479,7 @@ fn render_model(model: &Model, integrator: &Integrator, progress: bool) -> Rende
                 let key = u64::from(y) * u64::from(w) + u64::from(x);
                 for s in 0..(*spp).max(1) {
                     // Must be independent of scheduling: one stream per (pixel, sample, frame).
-                    let mut rng = Rng::new(key, u64::from(s), u64::from(f.misc[1]));
+                    let mut rng = Rng::new(key, u64::from(s), u64::from(f.frame_index));
                     acc.add(&trace(model, view, &span, *orders, &mut rng, &mut counters));
                 }
                 PixelOut {

@@ -12,11 +12,11 @@ use crate::sky::{SkyTables, physical, sun_through_air};
 /// How the light march toward the sun is discretised.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct LightMarch {
-    /// Number of segments (`frame.counts.w` in the WGSL).
+    /// Number of segments (`frame.light_steps` in the WGSL).
     pub steps: u32,
-    /// Each segment is this many times longer than the previous (`frame.march.y`).
+    /// Each segment is this many times longer than the previous (`frame.light_step_growth`).
     pub growth: f64,
-    /// Length of the first segment, metres (`frame.march.z`); ignored with `to_layer_exit`.
+    /// Length of the first segment, metres (`frame.first_light_step`); ignored with `to_layer_exit`.
     pub first: f64,
     /// Not in the WGSL (converged reference): the `steps` segments cover exactly the sun ray's
     /// path to where it leaves the layer, the first one sized so that they add up to it.
@@ -49,7 +49,7 @@ pub(crate) fn sun_optical_depth(
 ) -> f64 {
     let f = &m.f;
     let sun = f.sun();
-    let sigma_t = f.extinction[0] + f.extinction[1];
+    let sigma_t = f.scattering + f.absorption;
     let (steps, growth) = (lm.steps, lm.growth);
     let mut seg = lm.first;
     if lm.to_layer_exit {
@@ -103,7 +103,7 @@ pub(crate) fn segment_optical_depth(
     counters: &mut Counters,
 ) -> f64 {
     let f = &m.f;
-    let sigma_t = f.extinction[0] + f.extinction[1];
+    let sigma_t = f.scattering + f.absorption;
     let mut seg = first;
     let mut dist = 0.0;
     let mut tau = 0.0;
@@ -141,12 +141,12 @@ pub(crate) fn octave_optical_depth(
 ) -> f64 {
     let f = &m.f;
     let deck = saturate((l.coverage - 0.8) / 0.1);
-    let w = f.octave_depth[0] * deck;
+    let w = f.steep_light * deck;
     // WGSL: not below a deck weight of 1e-3 (f32 rounding at a coverage of 0.8).
-    if deck < 1e-3 || w <= 0.0 || f.counts[3] == 0 {
+    if deck < 1e-3 || w <= 0.0 || f.light_steps == 0 {
         return tau;
     }
-    let up = V3::new(rel.x, rel.y + f.atmosphere[0], rel.z).normalize();
+    let up = V3::new(rel.x, rel.y + f.planet_radius, rel.z).normalize();
     let top = ray_shell_from(f, rel, altitude_of(f, rel), up, l.top);
     let len = if top.hit && top.t1 > 0.0 { top.t1 } else { 0.0 };
     let column = segment_optical_depth(
@@ -159,7 +159,7 @@ pub(crate) fn octave_optical_depth(
         false,
         counters,
     );
-    mix(tau, f.octave_depth[1] * column, w)
+    mix(tau, f.steep_light_scale * column, w)
 }
 
 // WGSL: lighting.wgsl::far_optical_depth
@@ -170,16 +170,16 @@ pub(crate) fn octave_optical_depth(
 /// stretch inside layer `l` beyond the light march's reach, 0 with the far shadow off.
 pub(crate) fn far_optical_depth(m: &Model, rel: V3, p: V3, l: &Layer) -> f64 {
     let f = &m.f;
-    let chord = f.light_model[2];
-    if chord <= 0.0 || f.counts[3] == 0 {
+    let chord = f.far_chord;
+    if chord <= 0.0 || f.light_steps == 0 {
         return 0.0;
     }
-    let growth = f.march[1];
-    let steps = f64::from(f.counts[3]);
+    let growth = f.light_step_growth;
+    let steps = f64::from(f.light_steps);
     let reach = if growth == 1.0 {
-        f.march[2] * steps
+        f.first_light_step * steps
     } else {
-        f.march[2] * (growth.powf(steps) - 1.0) / (growth - 1.0)
+        f.first_light_step * (growth.powf(steps) - 1.0) / (growth - 1.0)
     };
     let sun = f.sun();
     let exit = ray_shell_from(f, rel, altitude_of(f, rel), sun, l.top);
@@ -217,12 +217,12 @@ pub(crate) fn sun_scattering(
     build: f64,
     (coverage, h, layer_coverage): (f64, f64, f64),
 ) -> (f64, f64) {
-    let a = f.multiple_scattering[0];
-    let b = f.multiple_scattering[1];
-    let c = f.multiple_scattering[2];
-    // WGSL: min(frame.misc.x, MAX_OCTAVES); the plan always picks a variant with MAX_OCTAVES
+    let a = f.ms_contribution;
+    let b = f.ms_extinction;
+    let c = f.ms_eccentricity;
+    // WGSL: min(frame.octaves, MAX_OCTAVES); the plan always picks a variant with MAX_OCTAVES
     // >= the scene's octaves, and the largest variant compiles 8.
-    let octaves = f.misc[0].min(8);
+    let octaves = f.octaves.min(8);
     let mut octave_sum = 0.0;
     let (mut ka, mut kb, mut kc) = (1.0, 1.0, 1.0);
     for _ in 0..octaves {
@@ -236,9 +236,9 @@ pub(crate) fn sun_scattering(
     // broken layer's sides, and leaking out of small clouds (lighting.wgsl says why).
     let mu0 = saturate(f.sun().y);
     let side = (1.0 - mu0 * mu0).max(0.0).sqrt() * (1.0 - saturate(coverage)) * (-far_side).exp();
-    let mut feed = mu0 + f.light_model[0] * side;
-    if f.light_model[1] > 0.0 {
-        feed *= coverage.max(1e-6).powf(f.light_model[1]);
+    let mut feed = mu0 + f.side_light * side;
+    if f.coverage_exponent > 0.0 {
+        feed *= coverage.max(1e-6).powf(f.coverage_exponent);
     }
     feed *= diffuse_limb(f, view_y, coverage)
         * vertical_anisotropy(f, view_y, coverage, h)
@@ -246,8 +246,8 @@ pub(crate) fn sun_scattering(
         * downward_dimming(f, view_y, coverage, h, tau * mu0);
     let mut octaves_part = feed * build * octave_sum;
     let mut total = phase(f, cos_theta, 1.0) * (-tau - far_direct).exp() + octaves_part;
-    if f.modes[3] & FLAG_BEER_POWDER != 0 {
-        let powder = 1.0 - (-f.phase[3] * tau).exp();
+    if f.flags & FLAG_BEER_POWDER != 0 {
+        let powder = 1.0 - (-f.powder_strength * tau).exp();
         total *= powder;
         octaves_part *= powder;
     }
@@ -263,19 +263,19 @@ const FORWARD_LOBE_THIN: f64 = 0.1;
 /// its transmittance: `1 + w (4 pi HG(cos, g_f) - 1)`, `w = k min(T / 0.1, 1)` (lighting.wgsl
 /// says why).
 pub(crate) fn forward_lobe(f: &Frame, cos_theta: f64, transmittance: f64) -> f64 {
-    let k = f.octave_direction[0];
+    let k = f.forward_lobe;
     if k <= 0.0 {
         return 1.0;
     }
     let w = k * saturate(transmittance / FORWARD_LOBE_THIN);
-    1.0 + w * (4.0 * PI * phase_hg(cos_theta, f.octave_direction[1]) - 1.0)
+    1.0 + w * (4.0 * PI * phase_hg(cos_theta, f.forward_lobe_g) - 1.0)
 }
 
 // WGSL: lighting.wgsl::vertical_anisotropy
 /// The octaves' vertical anisotropy at height fraction `h`: `1 + s view_y coverage (1 - h)`,
 /// brighter looking up than down in a layer lit from above (lighting.wgsl says why).
 pub(crate) fn vertical_anisotropy(f: &Frame, view_y: f64, coverage: f64, h: f64) -> f64 {
-    1.0 + f.octave_direction[2] * view_y * saturate(coverage) * (1.0 - saturate(h))
+    1.0 + f.vertical_anisotropy * view_y * saturate(coverage) * (1.0 - saturate(h))
 }
 
 // WGSL: lighting.wgsl::DECK_POWER
@@ -286,7 +286,7 @@ const DECK_POWER: f64 = 8.0;
 /// The octaves' dimming looking down: `1 - k |view_y| coverage (1 - h) tau_v / (tau_v + 1)`
 /// for a view ray going down, clamped at 0 (lighting.wgsl says why).
 pub(crate) fn downward_dimming(f: &Frame, view_y: f64, coverage: f64, h: f64, tau_v: f64) -> f64 {
-    let k = f.octave_depth[2] * (-view_y).max(0.0) * saturate(coverage) * (1.0 - saturate(h));
+    let k = f.downward_dimming * (-view_y).max(0.0) * saturate(coverage) * (1.0 - saturate(h));
     (1.0 - k * tau_v / (tau_v + 1.0)).max(0.0)
 }
 
@@ -294,14 +294,14 @@ pub(crate) fn downward_dimming(f: &Frame, view_y: f64, coverage: f64, h: f64, ta
 /// The octaves' escape from a deck for a sun of zenith cosine `mu0`: `1 + e w (mu0 - 1/2)`, `w`
 /// the layer's coverage to the 8th power (lighting.wgsl says why).
 pub(crate) fn deck_escape(f: &Frame, mu0: f64, layer_coverage: f64) -> f64 {
-    1.0 + f.octave_direction[3] * saturate(layer_coverage).powf(DECK_POWER) * (mu0 - 0.5)
+    1.0 + f.deck_escape * saturate(layer_coverage).powf(DECK_POWER) * (mu0 - 0.5)
 }
 
 // WGSL: lighting.wgsl::diffuse_limb
 /// The octaves' limb darkening toward grazing views of a deck: `(1 + k mu) / (1 + 2k/3)`, mu =
 /// `|view_y|`, k the fitted strength, weighted by the coverage (lighting.wgsl says why).
 pub(crate) fn diffuse_limb(f: &Frame, view_y: f64, coverage: f64) -> f64 {
-    let k = f.light_model[3];
+    let k = f.limb_darkening;
     let layer = (1.0 + k * view_y.abs()) / (1.0 + 2.0 * k / 3.0);
     mix(1.0, layer, saturate(coverage))
 }
@@ -310,11 +310,11 @@ pub(crate) fn diffuse_limb(f: &Frame, view_y: f64, coverage: f64) -> f64 {
 /// The octaves' share at a sample of `density`: `1 - exp(-sigma_t density l)`, `l` the build-up
 /// length, 1 where `l` is 0 (lighting.wgsl says why).
 pub(crate) fn octave_buildup(f: &Frame, density: f64) -> f64 {
-    let l = f.multiple_scattering[3];
+    let l = f.ms_buildup;
     if l <= 0.0 {
         return 1.0;
     }
-    1.0 - (-(f.extinction[0] + f.extinction[1]) * density * l).exp()
+    1.0 - (-(f.scattering + f.absorption) * density * l).exp()
 }
 
 // WGSL: lighting.wgsl::ambient
@@ -331,7 +331,7 @@ pub(crate) fn ambient(f: &Frame, sky: Option<&SkyTables>, h: f64, rel: V3) -> V3
         f.ambient_bottom[2],
     );
     let top = V3::new(f.ambient_top[0], f.ambient_top[1], f.ambient_top[2]);
-    mix_v(bottom, top, h) * f.ambient_bottom[3]
+    mix_v(bottom, top, h) * f.ambient_strength
 }
 
 // WGSL: lighting.wgsl::scattered_light
@@ -381,8 +381,8 @@ pub(crate) fn scattered_light(
         sun_light = lit * s;
         octave_light = lit * octaves;
     }
-    let darkening = saturate(1.0 - f.extinction[2] * weather.precipitation * (1.0 - h));
-    let k = f.extinction[0] * density * darkening;
+    let darkening = saturate(1.0 - f.precipitation_darkening * weather.precipitation * (1.0 - h));
+    let k = f.scattering * density * darkening;
     (
         (sun_light + ambient(f, m.sky(), h, rel)) * k,
         octave_light * k,

@@ -11,16 +11,16 @@ use crate::medium::Model;
 /// The discretisation of one quadrature render, resolved from the scene and the settings.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct MarchSettings {
-    /// `Some(n)`: exactly `n` view steps; `None`: as the WGSL (`frame.counts.z`, or the step
-    /// length `frame.march.x` when it is > 0).
+    /// `Some(n)`: exactly `n` view steps; `None`: as the WGSL (`frame.view_steps`, or the step
+    /// length `frame.step_length` when it is > 0).
     pub view_steps: Option<u32>,
     /// The light march.
     pub light: LightMarch,
     /// Jittered start offset (`FLAG_JITTER`).
     pub jitter: bool,
-    /// Early-exit transmittance (`frame.march.w`; 0 = never).
+    /// Early-exit transmittance (`frame.early_exit_transmittance`; 0 = never).
     pub early_exit: f64,
-    /// `INTEGRATION_ANALYTIC` or `INTEGRATION_RIEMANN` (`frame.modes.y`).
+    /// `INTEGRATION_ANALYTIC` or `INTEGRATION_RIEMANN` (`frame.integration`).
     pub integration: u32,
     /// Dynamic step length (`FLAG_DYNAMIC_STEP`).
     pub dynamic_step: bool,
@@ -92,18 +92,18 @@ pub(crate) fn medium_interval(m: &Model, cam_alt: f64, view: V3, l: Option<&Laye
 /// the pixel and frame; with it, the van der Corput sequence over the pixel's marches,
 /// shifted by a per-pixel hash with jitter.
 pub(crate) fn start_offset(f: &Frame, pixel: [u32; 2], jitter: bool) -> f64 {
-    let k = f.temporal[0];
+    let k = f.block_side;
     if k <= 1 {
-        // Must agree: the same PCG hash of the pixel and the frame index (`frame.misc.y`).
+        // Must agree: the same PCG hash of the pixel and the frame index (`frame.frame_index`).
         return if jitter {
-            hash_unit(pixel, f.misc[1])
+            hash_unit(pixel, f.frame_index)
         } else {
             0.5
         };
     }
     let base = if jitter { hash_unit(pixel, 0) } else { 0.5 };
     // Differs in the last bit: the f32 sum may round where the f64 one is exact.
-    (base + van_der_corput(f.misc[1] / (k * k))).fract()
+    (base + van_der_corput(f.frame_index / (k * k))).fract()
 }
 
 // WGSL: march.wgsl::march_pixel
@@ -214,13 +214,13 @@ fn march_layer(
     // Must agree: in step-length mode ceil(length / step), clamped to [1, MAX_VIEW_STEPS].
     let steps = match s.view_steps {
         Some(n) => n.max(1),
-        None if f.march[0] > 0.0 => {
-            ((span.length / f.march[0]).ceil() as u32).clamp(1, MAX_VIEW_STEPS)
+        None if f.step_length > 0.0 => {
+            ((span.length / f.step_length).ceil() as u32).clamp(1, MAX_VIEW_STEPS)
         }
-        None => f.counts[2],
+        None => f.view_steps,
     };
     let dt = span.length / f64::from(steps);
-    let sigma_e = f.extinction[0] + f.extinction[1];
+    let sigma_e = f.scattering + f.absorption;
     // Must agree: samples on one grid t_i = start + (i + jitter) dt; the cheap-march
     // techniques choose which i to visit (stride 2 after 8 empty samples, back one on
     // entering cloud; jumps over empty occupancy cells).

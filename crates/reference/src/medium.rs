@@ -210,8 +210,8 @@ impl<'a> Model<'a> {
             Medium::Homogeneous {
                 sigma_s, sigma_a, ..
             } => {
-                f.extinction[0] = sigma_s;
-                f.extinction[1] = sigma_a;
+                f.scattering = sigma_s;
+                f.absorption = sigma_a;
                 (1.0, 1.0)
             }
             Medium::Grid(grid) => (0.0, grid.max_density()),
@@ -280,15 +280,15 @@ impl<'a> Model<'a> {
         let cells = f64::from(OCCUPANCY_CELLS);
         let fract = |x: f64| x - x.floor();
         let uv = [
-            fract((p.x - f.wind_offsets0[0]) / f.periods[0]) * cells,
-            fract((p.z - f.wind_offsets0[1]) / f.periods[0]) * cells,
+            fract((p.x - f.weather_offset[0]) / f.weather_period) * cells,
+            fract((p.z - f.weather_offset[1]) / f.weather_period) * cells,
         ];
         let cell = uv.map(|c| (c as u32).min(OCCUPANCY_CELLS - 1));
         let m = grid[(cell[1] * OCCUPANCY_CELLS + cell[0]) as usize];
-        if m + 2.0 * (f.clouds[0] - 0.5) > -1.0 / 255.0 {
+        if m + 2.0 * (f.coverage - 0.5) > -1.0 / 255.0 {
             return 0.0;
         }
-        let cell_m = f.periods[0] / cells;
+        let cell_m = f.weather_period / cells;
         let inside = [
             (uv[0] - f64::from(cell[0])) * cell_m,
             (uv[1] - f64::from(cell[1])) * cell_m,
@@ -310,7 +310,7 @@ impl<'a> Model<'a> {
             Medium::Clouds(noise) => cloud_density(&self.f, noise, p, alt, counters),
             Medium::Homogeneous { shape, .. } => {
                 let f = &self.f;
-                let h = (alt - f.atmosphere[1]) / (f.atmosphere[2] - f.atmosphere[1]);
+                let h = (alt - f.cloud_bottom) / (f.cloud_top - f.cloud_bottom);
                 if !(0.0..=1.0).contains(&h) {
                     return 0.0;
                 }

@@ -181,7 +181,7 @@ impl Model<'_> {
 
     /// Extinction at density 1.
     fn sigma_t(&self) -> f64 {
-        self.f.extinction[0] + self.f.extinction[1]
+        self.f.scattering + self.f.absorption
     }
 }
 
@@ -271,11 +271,11 @@ fn sample_hg_cos(g: f64, u: f64) -> f64 {
 /// `phase / pdf`.
 fn sample_phase(m: &Model, dir: V3, rng: &mut Rng) -> (V3, f64) {
     let f = &m.f;
-    let (g, g2, blend) = (f.phase[0], f.phase[1], f.phase[2]);
+    let (g, g2, blend) = (f.phase_g, f.phase_g2, f.phase_blend);
     let u_lobe = rng.next_f64();
     let u = rng.next_f64();
     let phi = 2.0 * PI * rng.next_f64();
-    let (cos, pdf) = match f.modes[0] {
+    let (cos, pdf) = match f.phase_model {
         crate::frame::PHASE_TWO_LOBE_HG => {
             let c = sample_hg_cos(if u_lobe < blend { g2 } else { g }, u);
             (c, (1.0 - blend) * phase_hg(c, g) + blend * phase_hg(c, g2))
@@ -333,13 +333,13 @@ pub(crate) fn trace(
     let sun = f.sun();
     let sun_e = f.sun_illuminance();
     let albedo = if m.sigma_t() > 0.0 {
-        f.extinction[0] / m.sigma_t()
+        f.scattering / m.sigma_t()
     } else {
         0.0
     };
     // Under the physical sky the ambient is the sky's own light (the sky and ground seen from
     // the vertex: `environment`).
-    let ambient_on = f.ambient_bottom[3] > 0.0
+    let ambient_on = f.ambient_strength > 0.0
         && (f.physical_sky()
             || f.ambient_bottom[..3].iter().any(|&v| v > 0.0)
             || f.ambient_top[..3].iter().any(|&v| v > 0.0));
@@ -486,7 +486,7 @@ impl Accumulator {
 /// uniform ambient(h).
 fn environment(f: &Frame, sky: Option<&SkyTables>, pos: V3, d: V3, h: f64) -> V3 {
     if let Some(sky) = crate::sky::physical(f, sky) {
-        return sky.sky_from(f, pos, d).mul_v(f.sun_illuminance()) * f.ambient_bottom[3];
+        return sky.sky_from(f, pos, d).mul_v(f.sun_illuminance()) * f.ambient_strength;
     }
     ambient(f, sky, h, pos)
 }

@@ -25,11 +25,15 @@ pub(crate) fn phase_cornette_shanks(cos_theta: f64, g: f64) -> f64 {
 // WGSL: lighting.wgsl::phase
 /// The scene's phase model with eccentricities scaled by `scale`.
 pub(crate) fn phase(f: &Frame, cos_theta: f64, scale: f64) -> f64 {
-    let g = f.phase[0] * scale;
-    match f.modes[0] {
+    let g = f.phase_g * scale;
+    match f.phase_model {
         PHASE_TWO_LOBE_HG => {
-            let g2 = f.phase[1] * scale;
-            mix(phase_hg(cos_theta, g), phase_hg(cos_theta, g2), f.phase[2])
+            let g2 = f.phase_g2 * scale;
+            mix(
+                phase_hg(cos_theta, g),
+                phase_hg(cos_theta, g2),
+                f.phase_blend,
+            )
         }
         PHASE_CORNETTE_SHANKS => phase_cornette_shanks(cos_theta, g),
         _ => phase_hg(cos_theta, g),

@@ -23,10 +23,12 @@ pub struct PathState {
 /// Whether two uniform blocks have the same camera and size (the GPU's `camera_still`).
 fn same_view(a: &FrameUniforms, b: &FrameUniforms) -> bool {
     a.camera_position == b.camera_position
+        && a.tan_half_fov == b.tan_half_fov
         && a.camera_forward == b.camera_forward
-        && a.camera_right[..3] == b.camera_right[..3]
-        && a.camera_up[..3] == b.camera_up[..3]
-        && a.counts[..2] == b.counts[..2]
+        && a.aspect == b.aspect
+        && a.camera_right == b.camera_right
+        && a.camera_up == b.camera_up
+        && a.size == b.size
 }
 
 /// One frame of the progressive path tracer: `paths` more paths per pixel.

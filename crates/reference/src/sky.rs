@@ -212,14 +212,14 @@ fn sun_azimuth(f: &Frame) -> f64 {
 fn aerial_ray(f: &Frame, c: [usize; 2]) -> V3 {
     let side = AERIAL_SIDE as f64;
     let ndc = c.map(|c| (c as f64 + 0.5) / side * 2.0 - 1.0);
-    let tan_half = f.camera_position[3];
-    let aspect = f.camera_forward[3];
+    let tan_half = f.tan_half_fov;
+    let aspect = f.aspect;
     (xyz(f.camera_forward) + xyz(f.camera_right) * (ndc[0] * tan_half * aspect)
         - xyz(f.camera_up) * (ndc[1] * tan_half))
         .normalize()
 }
 
-/// The air of a uniform block: its `air_*` members over the planet of `atmosphere.x`, as the
+/// The air of a uniform block: its air members (`rayleigh_*`, `mie_*`, `ozone_*`...) over the planet of `planet_radius`, as the
 /// direct integration's model (the ground's albedo grey).
 pub fn air_model(u: &FrameUniforms) -> AtmosphereModel {
     air_of(&Frame::from_uniforms(u))
@@ -227,18 +227,26 @@ pub fn air_model(u: &FrameUniforms) -> AtmosphereModel {
 
 fn air_of(f: &Frame) -> AtmosphereModel {
     AtmosphereModel {
-        bottom_radius_m: f.atmosphere[0],
-        top_radius_m: f.atmosphere[0] + f.air_misc[0],
-        rayleigh_scattering: [f.air_rayleigh[0], f.air_rayleigh[1], f.air_rayleigh[2]],
-        rayleigh_scale_height_m: f.air_rayleigh[3],
-        mie_scattering: f.air_mie[0],
-        mie_absorption: f.air_mie[1],
-        mie_scale_height_m: f.air_mie[2],
-        mie_g: f.air_mie[3],
-        ozone_absorption: [f.air_ozone[0], f.air_ozone[1], f.air_ozone[2]],
-        ozone_center_m: f.air_ozone[3],
-        ozone_width_m: f.air_misc[1],
-        ground_albedo: [f.air_misc[2]; 3],
+        bottom_radius_m: f.planet_radius,
+        top_radius_m: f.planet_radius + f.air_thickness,
+        rayleigh_scattering: [
+            f.rayleigh_scattering[0],
+            f.rayleigh_scattering[1],
+            f.rayleigh_scattering[2],
+        ],
+        rayleigh_scale_height_m: f.rayleigh_scale_height,
+        mie_scattering: f.mie_scattering,
+        mie_absorption: f.mie_absorption,
+        mie_scale_height_m: f.mie_scale_height,
+        mie_g: f.mie_g,
+        ozone_absorption: [
+            f.ozone_absorption[0],
+            f.ozone_absorption[1],
+            f.ozone_absorption[2],
+        ],
+        ozone_center_m: f.ozone_center,
+        ozone_width_m: f.ozone_width,
+        ground_albedo: [f.ground_albedo; 3],
     }
 }
 
@@ -483,11 +491,11 @@ impl SkyTables {
     /// clouds' optical depth (per unit extinction) of the key light's way up from a
     /// camera-relative ground point, and adds its time.
     pub(crate) fn shade(&mut self, f: &Frame, optical_depth: impl Fn(V3) -> f64 + Sync) {
-        let sigma_t = f.extinction[0] + f.extinction[1];
+        let sigma_t = f.scattering + f.absorption;
         let map = timed(&mut self.timings, PASSES[6], || {
             Table::build([SHADOW_SIZE, SHADOW_SIZE], |x, y| {
                 let rel = shadow_ground_point(f, [x, y]);
-                let up = V3::new(rel.x, rel.y + f.atmosphere[0], rel.z).normalize();
+                let up = V3::new(rel.x, rel.y + f.planet_radius, rel.z).normalize();
                 let tau = if up.dot(f.sun()) > 0.0 {
                     optical_depth(rel)
                 } else {
@@ -724,7 +732,7 @@ impl SkyTables {
     /// The sky's radiance (per unit sun illuminance) seen from camera-relative `rel` (m) along
     /// unit `d` (`sky_along` from that point; `sun_through_air`'s coordinates).
     pub(crate) fn sky_from(&self, f: &Frame, rel: V3, d: V3) -> V3 {
-        self.sky_along(f, V3::new(rel.x, rel.y + f.atmosphere[0], rel.z), d)
+        self.sky_along(f, V3::new(rel.x, rel.y + f.planet_radius, rel.z), d)
     }
 
     // WGSL: atmosphere.wgsl::sky_view
@@ -802,7 +810,7 @@ impl SkyTables {
     /// (0 m is no air: nothing scattered, transmittance 1).
     pub(crate) fn aerial(&self, f: &Frame, pixel: [u32; 2], depth_m: f64) -> Texel {
         let side = AERIAL_SIDE as f64;
-        let uv = [0, 1].map(|a| (f64::from(pixel[a]) + 0.5) / f64::from(f.counts[a]));
+        let uv = [0, 1].map(|a| (f64::from(pixel[a]) + 0.5) / f64::from(f.size[a]));
         // Froxel centres sit at (c + 0.5) / side.
         let fc = uv.map(|u| (u * side - 0.5).clamp(0.0, side - 1.0));
         let c0 = fc.map(|v| (v.floor() as usize).min(AERIAL_SIDE - 1));
@@ -846,7 +854,7 @@ impl SkyTables {
         let t = i as f64 / (SKY_AMBIENT_SUNS - 1) as f64 * 2.0 - 1.0;
         let mu_s = t * t.abs();
         let sun = V3::new((1.0 - mu_s * mu_s).max(0.0).sqrt(), mu_s, 0.0);
-        let origin = V3::new(0.0, self.bottom() + f.atmosphere[1], 0.0);
+        let origin = V3::new(0.0, self.bottom() + f.cloud_bottom, 0.0);
         let mut sum = V3::ZERO;
         let mut weights = 0.0;
         // The hemisphere, cosine-weighted: the upper half of the Fibonacci directions (they
@@ -870,7 +878,7 @@ impl SkyTables {
     /// The sun's light (per unit illuminance at the top of the air) reaching a cloud sample at
     /// camera-relative `rel` (m).
     pub(crate) fn sun_through_air(&self, f: &Frame, rel: V3) -> V3 {
-        let q = V3::new(rel.x, rel.y + f.atmosphere[0], rel.z);
+        let q = V3::new(rel.x, rel.y + f.planet_radius, rel.z);
         let r = q.length();
         self.sun_transmittance(r, (q / r).dot(f.sun()))
     }
@@ -880,11 +888,11 @@ impl SkyTables {
     /// `rel` (m): the sky-ambient table at the sun's zenith cosine there, times the sun's
     /// illuminance and the ambient strength.
     pub(crate) fn ambient_light(&self, f: &Frame, h: f64, rel: V3) -> V3 {
-        let q = V3::new(rel.x, rel.y + f.atmosphere[0], rel.z);
+        let q = V3::new(rel.x, rel.y + f.planet_radius, rel.z);
         let x = sky_ambient_x(q.normalize().dot(f.sun()));
         let bottom = rgb(self.sky_ambient.bilinear([x, 0.0]));
         let top = rgb(self.sky_ambient.bilinear([x, 1.0]));
-        mix_v(bottom, top, h).mul_v(f.sun_illuminance()) * f.ambient_bottom[3]
+        mix_v(bottom, top, h).mul_v(f.sun_illuminance()) * f.ambient_strength
     }
 }
 
@@ -902,7 +910,7 @@ pub(crate) fn sky_ambient_x(mu: f64) -> f64 {
 pub(crate) fn shadow_ground_point(f: &Frame, c: [usize; 2]) -> V3 {
     let s = |i: usize| (i as f64 / (SHADOW_SIZE - 1) as f64 * 2.0 - 1.0) * SHADOW_HALF_EXTENT_M;
     let (x, z) = (s(c[0]), s(c[1]));
-    let rp = f.atmosphere[0];
+    let rp = f.planet_radius;
     let s2 = x * x + z * z;
     V3::new(x, -s2 / ((rp * rp - s2).max(0.0).sqrt() + rp), z)
 }
@@ -1106,9 +1114,9 @@ mod tests {
         let noise = noise();
         let model = Model::new(&scene, Medium::Clouds(&noise));
         let f = &model.f;
-        assert!(f.modes[3] & crate::frame::FLAG_MOONLIT != 0);
+        assert!(f.flags & crate::frame::FLAG_MOONLIT != 0);
         let sky = model.sky().expect("tables");
-        let m = xyz(f.moon);
+        let m = xyz(f.moon_direction);
         let clear = [0.0, 0.0, 0.0, 1.0];
         let mut disc = Vec::new();
         let mut outside = Vec::new();
@@ -1152,7 +1160,7 @@ mod tests {
         };
         let all: Vec<_> = disc.iter().collect();
         let (c_lit, c_disc) = (centre(&lit), centre(&all));
-        let sun = xyz(f.night);
+        let sun = xyz(f.real_sun_direction);
         let toward = [sun.dot(xyz(f.camera_right)), -sun.dot(xyz(f.camera_up))];
         let shift = [c_lit[0] - c_disc[0], c_lit[1] - c_disc[1]];
         assert!(
@@ -1203,7 +1211,7 @@ mod tests {
             V3::new(20_000.0, 4000.0, -5000.0),
         ] {
             let got = sun_through_air(f, Some(sky), rel);
-            let p = [rel.x, rel.y + f.atmosphere[0], rel.z];
+            let p = [rel.x, rel.y + f.planet_radius, rel.z];
             let want = air.transmittance_to_top(p, f.sun().to_array());
             for c in 0..3 {
                 assert!(
@@ -1219,8 +1227,8 @@ mod tests {
         // table's bottom row there.
         let bottom = crate::lighting::ambient(f, Some(sky), 0.0, V3::ZERO);
         let x = sky_ambient_x(f.sun().y);
-        let want = rgb(sky.sky_ambient.bilinear([x, 0.0])).mul_v(f.sun_illuminance())
-            * f.ambient_bottom[3];
+        let want =
+            rgb(sky.sky_ambient.bilinear([x, 0.0])).mul_v(f.sun_illuminance()) * f.ambient_strength;
         assert_eq!(bottom, want);
         assert!(bottom.x > 0.0 && bottom.z > 0.0);
         // 200 km toward the sun it stands about 1.8 degrees higher: a brighter ambient.

@@ -11,10 +11,9 @@ use stratus_scene::{FrameUniforms, Scene};
 
 use crate::{
     COUNTER_NAMES, QuadratureSettings, composite,
-    frame::{FLAG_CHECKERBOARD, Frame},
+    frame::{FLAG_CHECKERBOARD, Frame, xyz},
     geometry::{RayKind, nearest_layer_interval, view_ray},
     march::{MarchSettings, PixelResult, march},
-    math::V3,
     medium::{Medium, Model},
 };
 
@@ -58,46 +57,38 @@ fn block_offset(f: u32, k: u32) -> [u32; 2] {
     }
 }
 
-fn v3(v: [f64; 4]) -> V3 {
-    V3::new(v[0], v[1], v[2])
-}
-
 // WGSL: temporal.wgsl::reproject
 fn reproject(f: &Frame, pixel: [u32; 2], depth: f64) -> [f64; 2] {
-    let same = f.previous_position == f.camera_position
-        && f.previous_forward == f.camera_forward
-        && f.previous_right == f.camera_right
-        && f.previous_up == f.camera_up;
-    if same {
+    if f.camera_still() {
         return pixel.map(f64::from);
     }
     let view = view_ray(f, pixel);
     let dir = if depth > 0.0 {
-        view * depth + (v3(f.camera_position) - v3(f.previous_position))
+        view * depth + (xyz(f.camera_position) - xyz(f.previous_position))
     } else {
         view
     };
-    let z = dir.dot(v3(f.previous_forward));
+    let z = dir.dot(xyz(f.previous_forward));
     if z <= 0.0 {
         return [-1e9; 2];
     }
-    let tan_half = f.previous_position[3];
-    let aspect = f.previous_forward[3];
+    let tan_half = f.previous_tan_half_fov;
+    let aspect = f.previous_aspect;
     let ndc = [
-        dir.dot(v3(f.previous_right)) / (z * tan_half * aspect),
-        -dir.dot(v3(f.previous_up)) / (z * tan_half),
+        dir.dot(xyz(f.previous_right)) / (z * tan_half * aspect),
+        -dir.dot(xyz(f.previous_up)) / (z * tan_half),
     ];
     [
-        (ndc[0] * 0.5 + 0.5) * f64::from(f.counts[0]) - 0.5,
-        (ndc[1] * 0.5 + 0.5) * f64::from(f.counts[1]) - 0.5,
+        (ndc[0] * 0.5 + 0.5) * f64::from(f.size[0]) - 0.5,
+        (ndc[1] * 0.5 + 0.5) * f64::from(f.size[1]) - 0.5,
     ]
 }
 
 fn on_screen(f: &Frame, q: [f64; 2]) -> bool {
     q[0] >= -0.5
         && q[1] >= -0.5
-        && q[0] <= f64::from(f.counts[0]) - 0.5
-        && q[1] <= f64::from(f.counts[1]) - 0.5
+        && q[0] <= f64::from(f.size[0]) - 0.5
+        && q[1] <= f64::from(f.size[1]) - 0.5
 }
 
 impl History {
@@ -174,20 +165,20 @@ pub(crate) fn render(
     state: &mut TemporalState,
 ) -> FrameOutput {
     let mut u = scene.uniforms();
-    let (w, h) = (u.counts[0], u.counts[1]);
-    let k = u.temporal[0].max(1);
+    let (w, h) = (u.size[0], u.size[1]);
+    let k = u.block_side.max(1);
     let history = state
         .history
         .take()
         .filter(|hist| hist.size == [w, h] && hist.block == k);
     if let (Some(last), Some(_)) = (&state.last, &history) {
         u = u.with_previous_camera(last);
-        u.temporal[1] = 1;
+        u.history_valid = 1;
     }
     let model = Model::with_uniforms(&u, Medium::Clouds(noise));
     let f = &model.f;
     let s: MarchSettings = settings.resolve(f);
-    let valid_history = f.temporal[1] != 0;
+    let valid_history = f.history_valid != 0;
 
     // The sparse march: one pixel per block.
     let t0 = Instant::now();
@@ -198,11 +189,11 @@ pub(crate) fn render(
             let (model, s, history) = (&model, &s, &history);
             (0..bw).map(move |bx| {
                 let f = &model.f;
-                let o = block_offset(f.misc[1], k);
+                let o = block_offset(f.frame_index, k);
                 let pixel = [bx * k + o[0], by * k + o[1]];
                 let mut skip = pixel[0] >= w || pixel[1] >= h;
-                if !skip && f.modes[3] & FLAG_CHECKERBOARD != 0 && valid_history {
-                    let turn = f.misc[1] / (k * k);
+                if !skip && f.flags & FLAG_CHECKERBOARD != 0 && valid_history {
+                    let turn = f.frame_index / (k * k);
                     let q = reproject(f, pixel, 0.0);
                     if (bx + by + turn) & 1 == 0
                         && on_screen(f, q)
@@ -244,7 +235,7 @@ pub(crate) fn render(
                 let f = &model.f;
                 let pixel = [x, y];
                 let block = [x / k, y / k];
-                let o = block_offset(f.misc[1], k);
+                let o = block_offset(f.frame_index, k);
                 let marched = x == block[0] * k + o[0] && y == block[1] * k + o[1];
                 let bi = (block[1] * bw + block[0]) as usize;
                 let current = sparse_color[bi].map(f64::from);
@@ -266,8 +257,8 @@ pub(crate) fn render(
                     hist_color = hist.color_at(q);
                     past = hist.meta_at(q);
                     if moving && current_depth > 0.0 && past[0] > 0.0 {
-                        let point = v3(f.camera_position) + view_ray(f, pixel) * current_depth;
-                        let expected = (point - v3(f.previous_position)).length();
+                        let point = xyz(f.camera_position) + view_ray(f, pixel) * current_depth;
+                        let expected = (point - xyz(f.previous_position)).length();
                         valid = (past[0] - expected).abs() <= DISOCCLUSION_DEPTH * expected;
                     }
                 }

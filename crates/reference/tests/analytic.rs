@@ -415,8 +415,8 @@ fn ambient_matches_the_real_time_term_and_its_occluded_environment() {
 
 /// The scene's phase function at `cos`, from its (f32) uniforms; independent of the crate's.
 fn scene_phase(scene: &Scene, cos: f64) -> f64 {
-    let u = scene.uniforms().phase.map(f64::from);
-    let (g, g2, blend) = (u[0], u[1], u[2]);
+    let u = scene.uniforms();
+    let [g, g2, blend] = [u.phase_g, u.phase_g2, u.phase_blend].map(f64::from);
     match scene.lighting.phase.model {
         PhaseModel::Hg => hg(cos, g),
         PhaseModel::TwoLobeHg => (1.0 - blend) * hg(cos, g) + blend * hg(cos, g2),

@@ -57,5 +57,5 @@ pub use scene::{
     Keyframe, Lighting, MAX_EXTRA_LAYERS, Method, MultipleScattering, Noise, Phase, PhaseModel,
     Quality, Scene, ShapeTexture, Sky, SkyModel, Sun, Temporal,
 };
-pub use uniforms::FrameUniforms;
+pub use uniforms::{FrameUniforms, UniformMember};
 pub use validate::{MAX_LIGHT_STEPS, MAX_OCTAVE_A, MAX_OCTAVES, MAX_RESOLUTION, MAX_VIEW_STEPS};

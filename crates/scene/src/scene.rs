@@ -101,7 +101,7 @@ pub enum Temporal {
 
 impl Temporal {
     /// Side of the pixel block one marched pixel stands for (1, 2 or 4): the frame marches
-    /// one pixel in `divisor()^2` (`FrameUniforms::temporal.x`).
+    /// one pixel in `divisor()^2` (`FrameUniforms::block_side`).
     pub const fn divisor(self) -> u32 {
         match self {
             Self::Off => 1,
@@ -365,12 +365,12 @@ pub enum HeightModel {
 }
 
 impl HeightModel {
-    /// GPU code of [`HeightModel::Parabola`] (`FrameUniforms::modes.z`).
+    /// GPU code of [`HeightModel::Parabola`] (`FrameUniforms::height_model`).
     pub const PARABOLA: u32 = 0;
-    /// GPU code of [`HeightModel::CloudTypes`] (`FrameUniforms::modes.z`).
+    /// GPU code of [`HeightModel::CloudTypes`] (`FrameUniforms::height_model`).
     pub const CLOUD_TYPES: u32 = 1;
 
-    /// The code the WGSL uses for this model (`FrameUniforms::modes.z`).
+    /// The code the WGSL uses for this model (`FrameUniforms::height_model`).
     pub const fn code(self) -> u32 {
         match self {
             Self::Parabola => Self::PARABOLA,
@@ -542,14 +542,14 @@ pub enum PhaseModel {
 }
 
 impl PhaseModel {
-    /// GPU code of [`PhaseModel::Hg`] (`FrameUniforms::modes.x`).
+    /// GPU code of [`PhaseModel::Hg`] (`FrameUniforms::phase_model`).
     pub const HG: u32 = 0;
-    /// GPU code of [`PhaseModel::TwoLobeHg`] (`FrameUniforms::modes.x`).
+    /// GPU code of [`PhaseModel::TwoLobeHg`] (`FrameUniforms::phase_model`).
     pub const TWO_LOBE_HG: u32 = 1;
-    /// GPU code of [`PhaseModel::CornetteShanks`] (`FrameUniforms::modes.x`).
+    /// GPU code of [`PhaseModel::CornetteShanks`] (`FrameUniforms::phase_model`).
     pub const CORNETTE_SHANKS: u32 = 2;
 
-    /// The code the WGSL uses for this model (`FrameUniforms::modes.x`).
+    /// The code the WGSL uses for this model (`FrameUniforms::phase_model`).
     pub const fn code(self) -> u32 {
         match self {
             Self::Hg => Self::HG,
@@ -834,12 +834,12 @@ pub enum Integration {
 }
 
 impl Integration {
-    /// GPU code of [`Integration::Analytic`] (`FrameUniforms::modes.y`).
+    /// GPU code of [`Integration::Analytic`] (`FrameUniforms::integration`).
     pub const ANALYTIC: u32 = 0;
-    /// GPU code of [`Integration::Riemann`] (`FrameUniforms::modes.y`).
+    /// GPU code of [`Integration::Riemann`] (`FrameUniforms::integration`).
     pub const RIEMANN: u32 = 1;
 
-    /// The code the WGSL uses for this method (`FrameUniforms::modes.y`).
+    /// The code the WGSL uses for this method (`FrameUniforms::integration`).
     pub const fn code(self) -> u32 {
         match self {
             Self::Analytic => Self::ANALYTIC,

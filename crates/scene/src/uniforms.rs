@@ -7,7 +7,7 @@ use crate::scene::{MAX_EXTRA_LAYERS, Scene};
 const LAYER_SHIFT: [f64; 2] = [0.381_966, 0.618_034];
 
 /// The one declaration of the per-frame uniform block: every member in order, with its kind
-/// (`vec4f`: `vec4<f32>`, `vec4u`: `vec4<u32>`) and what it holds. Member `i` lies at byte
+/// (`vec4f`: `vec4<f32>`, `vec4u`: `vec4<u32>`) and what it holds. UniformMember `i` lies at byte
 /// offset `16 * i`, the same layout under WGSL, std140 and HLSL cbuffer rules.
 ///
 /// `frame_members!(generator)` calls `generator!` with the list. From it come the Rust block
@@ -20,142 +20,339 @@ const LAYER_SHIFT: [f64; 2] = [0.381_966, 0.618_034];
 macro_rules! frame_members {
     ($generator:ident) => {
         $generator! {
-            /// x, altitude, z (m); w = tan(fov_y / 2).
-            camera_position: vec4f,
-            /// Unit view direction; w = width / height.
-            camera_forward: vec4f,
-            /// Unit, image right; w = exposure.
-            camera_right: vec4f,
-            /// Unit, image up; w = 0.
-            camera_up: vec4f,
-            /// Unit vector toward the sun; w = cos(sun angular radius).
-            sun_direction: vec4f,
-            /// Linear rgb; w = 0.
-            sun_illuminance: vec4f,
-            /// Planet radius, layer bottom, layer top (altitudes, m), cut-off distance (m).
-            atmosphere: vec4f,
-            /// Coverage, density multiplier, cloud type, precipitation.
-            clouds: vec4f,
-            /// Detail strength, erosion threshold, curl strength (m), height gradient strength.
-            erosion: vec4f,
-            /// Weather period, shape period (x axis), detail period, curl period (m).
-            periods: vec4f,
-            /// Weather offset xz, shape offset xz (m), each within [0, period).
-            wind_offsets0: vec4f,
-            /// Detail offset xz, curl offset xz (m), each within [0, period).
-            wind_offsets1: vec4f,
-            /// sigma_s, sigma_a (1/m at density 1), precipitation darkening, wispy_billowy.
-            extinction: vec4f,
-            /// g, g2, blend, powder strength.
-            phase: vec4f,
-            /// a (contribution), b (extinction), c (eccentricity) attenuation per octave, octave
-            /// build-up length (m).
-            multiple_scattering: vec4f,
-            /// Linear rgb; w = ambient strength.
-            ambient_bottom: vec4f,
-            /// Linear rgb; w = 0.
-            ambient_top: vec4f,
-            /// Step length (m, 0 = derive from view steps), light step growth, first light step (m),
-            /// early-exit transmittance.
-            march: vec4f,
-            /// Width, height, view steps, light steps.
-            counts: vec4u,
-            /// Phase model ([`PhaseModel::code`](crate::PhaseModel::code)), integration
-            /// ([`Integration::code`](crate::Integration::code)), height model
-            /// ([`HeightModel::code`](crate::HeightModel::code)), flags
-            /// ([`FrameUniforms::FLAG_BEER_POWDER`], [`FrameUniforms::FLAG_JITTER`]).
-            modes: vec4u,
-            /// Octaves (beyond single scattering), frame (jitter seed, path tracer's random streams),
-            /// path tracer's scattering orders (0 = all), extra cloud layers (0-3).
-            misc: vec4u,
-            /// Last frame's camera position (as `camera_position`, w = its tan(fov_y / 2)): temporal
-            /// upsampling reprojects through it. [`Scene::uniforms`] sets the current camera; a
-            /// renderer that keeps history replaces it with the one it rendered last.
-            previous_position: vec4f,
-            /// Last frame's unit view direction; w = its width / height.
-            previous_forward: vec4f,
-            /// Last frame's unit image right; w = 0.
-            previous_right: vec4f,
-            /// Last frame's unit image up; w = 0.
-            previous_up: vec4f,
-            /// Temporal upsampling: block side (1 = off, 2 = 1/4, 4 = 1/16), 0, 0, 0.
-            temporal: vec4u,
-            /// Extra cloud layer 1 (`clouds.layers[0]`): bottom, top (altitudes, m), coverage,
-            /// density multiplier; zero when absent (`misc.w` counts the extra layers).
-            layer1: vec4f,
-            /// Its cloud type, precipitation, and weather-map offset xz (m, within [0, period)).
-            layer1_weather: vec4f,
-            /// Extra cloud layer 2, as `layer1`.
-            layer2: vec4f,
-            /// Its weather, as `layer1_weather`.
-            layer2_weather: vec4f,
-            /// Extra cloud layer 3, as `layer1`.
-            layer3: vec4f,
-            /// Its weather, as `layer1_weather`.
-            layer3_weather: vec4f,
-            /// The physical sky's air: Rayleigh scattering at the ground (rgb, 1/m); w = its scale
-            /// height (m).
-            air_rayleigh: vec4f,
-            /// Mie scattering, Mie absorption (1/m at the ground), Mie scale height (m), Mie g.
-            air_mie: vec4f,
-            /// Ozone absorption at its peak (rgb, 1/m); w = the peak's altitude (m).
-            air_ozone: vec4f,
-            /// Thickness of the atmosphere (m), the ozone tent's full width (m), the ground's albedo,
-            /// 0.
-            air_misc: vec4f,
-            /// The moon (physical sky with a date and place): unit direction toward it; w = the full
-            /// moon's illuminance (luminance, in the units of `sun_illuminance`; 0 without a moon).
-            /// Its phase follows from its direction and the real sun's (`night`).
-            moon: vec4f,
+            /// Camera position: x, altitude, z (m).
+            camera_position: vec3f,
+            /// tan(fov_y / 2).
+            tan_half_fov: f32,
+            /// Unit view direction.
+            camera_forward: vec3f,
+            /// Image width / height.
+            aspect: f32,
+            /// Unit, image right.
+            camera_right: vec3f,
+            /// Exposure (`camera.exposure`, times auto exposure's factor).
+            exposure: f32,
+            /// Unit, image up.
+            camera_up: vec3f,
+            /// Padding (0).
+            _pad0: f32,
+            /// Unit vector toward the key light (the sun; the moon under `FLAG_MOONLIT`).
+            sun_direction: vec3f,
+            /// cos(the sun's angular radius).
+            sun_cos_radius: f32,
+            /// The key light's illuminance, linear rgb.
+            sun_illuminance: vec3f,
+            /// Padding (0).
+            _pad1: f32,
+            /// Planet radius (m).
+            planet_radius: f32,
+            /// The main cloud layer's bottom (altitude, m).
+            cloud_bottom: f32,
+            /// The main cloud layer's top (altitude, m).
+            cloud_top: f32,
+            /// The march's cut-off distance (m).
+            cutoff_distance: f32,
+            /// The main layer's coverage.
+            coverage: f32,
+            /// The main layer's density multiplier.
+            density: f32,
+            /// The main layer's cloud type (`clouds.cloud_type`).
+            cloud_type: f32,
+            /// The main layer's precipitation.
+            precipitation: f32,
+            /// Detail-noise strength.
+            detail_strength: f32,
+            /// Erosion threshold.
+            erosion_threshold: f32,
+            /// Curl-noise displacement (m).
+            curl_strength: f32,
+            /// Height-gradient strength.
+            height_gradient: f32,
+            /// Weather-map period (m).
+            weather_period: f32,
+            /// Shape-noise period along x (m).
+            shape_period: f32,
+            /// Detail-noise period (m).
+            detail_period: f32,
+            /// Curl-noise period (m).
+            curl_period: f32,
+            /// Weather-map wind offset xz (m, within [0, period)).
+            weather_offset: vec2f,
+            /// Shape-noise wind offset xz (m, within [0, period)).
+            shape_offset: vec2f,
+            /// Detail-noise wind offset xz (m, within [0, period)).
+            detail_offset: vec2f,
+            /// Curl-noise wind offset xz (m, within [0, period)).
+            curl_offset: vec2f,
+            /// sigma_s (1/m at density 1).
+            scattering: f32,
+            /// sigma_a (1/m at density 1).
+            absorption: f32,
+            /// Darkening by precipitation.
+            precipitation_darkening: f32,
+            /// Wispy (0) to billowy (1) erosion.
+            wispy_billowy: f32,
+            /// Phase function: the first lobe's g.
+            phase_g: f32,
+            /// Phase function: the second lobe's g.
+            phase_g2: f32,
+            /// Phase function: the blend of the two lobes.
+            phase_blend: f32,
+            /// The powder term's strength.
+            powder_strength: f32,
+            /// Multiple-scattering octaves: contribution attenuation a per octave.
+            ms_contribution: f32,
+            /// Multiple-scattering octaves: extinction attenuation b per octave.
+            ms_extinction: f32,
+            /// Multiple-scattering octaves: eccentricity attenuation c per octave.
+            ms_eccentricity: f32,
+            /// Multiple-scattering octaves: build-up length (m).
+            ms_buildup: f32,
+            /// Ambient light at the layer's bottom, linear rgb.
+            ambient_bottom: vec3f,
+            /// Ambient strength.
+            ambient_strength: f32,
+            /// Ambient light at the layer's top, linear rgb.
+            ambient_top: vec3f,
+            /// Padding (0).
+            _pad2: f32,
+            /// View step length (m; 0 = derive it from `view_steps`).
+            step_length: f32,
+            /// Growth factor of each light step over the last.
+            light_step_growth: f32,
+            /// First light step (m).
+            first_light_step: f32,
+            /// Transmittance below which the view march stops.
+            early_exit_transmittance: f32,
+            /// Image width and height (pixels).
+            size: vec2u,
+            /// View steps.
+            view_steps: u32,
+            /// Light steps.
+            light_steps: u32,
+            /// [`PhaseModel::code`](crate::PhaseModel::code).
+            phase_model: u32,
+            /// [`Integration::code`](crate::Integration::code).
+            integration: u32,
+            /// [`HeightModel::code`](crate::HeightModel::code).
+            height_model: u32,
+            /// `FLAG_*` bits ([`FrameUniforms::FLAG_BEER_POWDER`], ...).
+            flags: u32,
+            /// Multiple-scattering octaves beyond single scattering.
+            octaves: u32,
+            /// Frame index: the jitter seed and the path tracer's random streams.
+            frame_index: u32,
+            /// The path tracer's scattering orders (0 = all).
+            path_orders: u32,
+            /// Extra cloud layers (0-3).
+            extra_layers: u32,
+            /// Last frame's camera position: temporal upsampling reprojects through last frame's
+            /// camera. [`Scene::uniforms`] sets the current camera; a renderer that keeps history
+            /// replaces it with the one it rendered last.
+            previous_position: vec3f,
+            /// Last frame's tan(fov_y / 2).
+            previous_tan_half_fov: f32,
+            /// Last frame's unit view direction.
+            previous_forward: vec3f,
+            /// Last frame's width / height.
+            previous_aspect: f32,
+            /// Last frame's unit image right.
+            previous_right: vec3f,
+            /// Last frame's exposure (a change of exposure, like a move, ends the history's exact
+            /// reuse).
+            previous_exposure: f32,
+            /// Last frame's unit image up.
+            previous_up: vec3f,
+            /// Padding (0).
+            _pad4: f32,
+            /// Temporal upsampling's block side (1 = off, 2 = 1/4, 4 = 1/16).
+            block_side: u32,
+            /// 1 when the history holds a frame to reproject (the renderer sets it), else 0.
+            history_valid: u32,
+            /// Padding (0).
+            _pad5: u32,
+            /// Padding (0).
+            _pad6: u32,
+            /// Extra cloud layer 1 (`clouds.layers[0]`; zero when absent): bottom (altitude, m).
+            layer1_bottom: f32,
+            /// Extra cloud layer 1: top (altitude, m).
+            layer1_top: f32,
+            /// Extra cloud layer 1: coverage.
+            layer1_coverage: f32,
+            /// Extra cloud layer 1: density multiplier.
+            layer1_density: f32,
+            /// Extra cloud layer 1: cloud type.
+            layer1_cloud_type: f32,
+            /// Extra cloud layer 1: precipitation.
+            layer1_precipitation: f32,
+            /// Extra cloud layer 1: weather-map offset xz (m, within [0, period)).
+            layer1_weather_offset: vec2f,
+            /// Extra cloud layer 2 (`clouds.layers[1]`; zero when absent): bottom (altitude, m).
+            layer2_bottom: f32,
+            /// Extra cloud layer 2: top (altitude, m).
+            layer2_top: f32,
+            /// Extra cloud layer 2: coverage.
+            layer2_coverage: f32,
+            /// Extra cloud layer 2: density multiplier.
+            layer2_density: f32,
+            /// Extra cloud layer 2: cloud type.
+            layer2_cloud_type: f32,
+            /// Extra cloud layer 2: precipitation.
+            layer2_precipitation: f32,
+            /// Extra cloud layer 2: weather-map offset xz (m, within [0, period)).
+            layer2_weather_offset: vec2f,
+            /// Extra cloud layer 3 (`clouds.layers[2]`; zero when absent): bottom (altitude, m).
+            layer3_bottom: f32,
+            /// Extra cloud layer 3: top (altitude, m).
+            layer3_top: f32,
+            /// Extra cloud layer 3: coverage.
+            layer3_coverage: f32,
+            /// Extra cloud layer 3: density multiplier.
+            layer3_density: f32,
+            /// Extra cloud layer 3: cloud type.
+            layer3_cloud_type: f32,
+            /// Extra cloud layer 3: precipitation.
+            layer3_precipitation: f32,
+            /// Extra cloud layer 3: weather-map offset xz (m, within [0, period)).
+            layer3_weather_offset: vec2f,
+            /// The physical sky's air: Rayleigh scattering at the ground (rgb, 1/m).
+            rayleigh_scattering: vec3f,
+            /// Rayleigh scale height (m).
+            rayleigh_scale_height: f32,
+            /// Mie scattering at the ground (1/m).
+            mie_scattering: f32,
+            /// Mie absorption at the ground (1/m).
+            mie_absorption: f32,
+            /// Mie scale height (m).
+            mie_scale_height: f32,
+            /// Mie phase asymmetry g.
+            mie_g: f32,
+            /// Ozone absorption at its peak (rgb, 1/m).
+            ozone_absorption: vec3f,
+            /// The ozone peak's altitude (m).
+            ozone_center: f32,
+            /// Thickness of the atmosphere (m).
+            air_thickness: f32,
+            /// The ozone tent's full width (m).
+            ozone_width: f32,
+            /// The ground's albedo.
+            ground_albedo: f32,
+            /// Padding (0).
+            _pad7: f32,
+            /// Unit vector toward the moon (physical sky with a date and place). Its phase follows
+            /// from its direction and the real sun's.
+            moon_direction: vec3f,
+            /// The full moon's illuminance (luminance, in the units of `sun_illuminance`; 0 without
+            /// a moon).
+            moon_illuminance: f32,
             /// The real sun's unit direction (the moon's lit side faces it; `sun_direction` is the
-            /// moon's when it is the key light); w = the illuminance of a magnitude-0 star, in the
-            /// units of `sun_illuminance` (0: no stars).
-            night: vec4f,
-            /// The fitted light model's terms beyond the octaves: side light, coverage exponent,
-            /// far-shadow chord (m, 0 = off), limb darkening (`MultipleScattering`).
-            light_model: vec4f,
-            /// The octaves' dependence on the view and sun directions: their forward lobe through
-            /// thin cloud (strength, 0 = off; eccentricity), their vertical anisotropy (0 = off), their
-            /// deck escape (0 = off) (`MultipleScattering::forward_lobe`, `vertical_anisotropy`,
-            /// `deck_escape`).
-            octave_direction: vec4f,
-            /// The octaves' optical depth in a closed deck and their dimming looking down: the
-            /// column's weight (0 = off) and scale, the downward dimming (0 = off), 0
-            /// (`MultipleScattering::steep_light`, `steep_light_scale`, `downward_dimming`).
-            octave_depth: vec4f,
+            /// moon's when it is the key light).
+            real_sun_direction: vec3f,
+            /// The illuminance of a magnitude-0 star, in the units of `sun_illuminance` (0: no
+            /// stars).
+            star_illuminance: f32,
+            /// Fitted light model (`MultipleScattering`): side light.
+            side_light: f32,
+            /// Fitted light model: coverage exponent.
+            coverage_exponent: f32,
+            /// Fitted light model: far-shadow chord (m, 0 = off).
+            far_chord: f32,
+            /// Fitted light model: limb darkening.
+            limb_darkening: f32,
+            /// The octaves' forward lobe through thin cloud: strength (0 = off).
+            forward_lobe: f32,
+            /// The octaves' forward lobe: eccentricity.
+            forward_lobe_g: f32,
+            /// The octaves' vertical anisotropy (0 = off).
+            vertical_anisotropy: f32,
+            /// The octaves' escape from a deck (0 = off).
+            deck_escape: f32,
+            /// The octaves' optical depth in a closed deck: the column's weight (0 = off).
+            steep_light: f32,
+            /// The octaves' optical depth in a closed deck: its scale.
+            steep_light_scale: f32,
+            /// The octaves' dimming looking down (0 = off).
+            downward_dimming: f32,
+            /// Padding (0).
+            _pad8: f32,
         }
     };
 }
 
 /// The Rust type of a member kind.
 macro_rules! member_type {
-    (vec4f) => {
-        [f32; 4]
+    (f32) => {
+        f32
     };
-    (vec4u) => {
-        [u32; 4]
+    (u32) => {
+        u32
+    };
+    (vec2f) => {
+        [f32; 2]
+    };
+    (vec2u) => {
+        [u32; 2]
+    };
+    (vec3f) => {
+        [f32; 3]
     };
 }
 
-/// The WGSL type of a member kind.
+/// The WGSL type of a member kind, and its alignment under WGSL's uniform rules (std140's
+/// and HLSL's packing agree for these members: none crosses a 16-byte row).
 macro_rules! member_wgsl {
-    (vec4f) => {
-        "vec4<f32>"
+    (f32) => {
+        ("f32", 4)
     };
-    (vec4u) => {
-        "vec4<u32>"
+    (u32) => {
+        ("u32", 4)
     };
+    (vec2f) => {
+        ("vec2<f32>", 8)
+    };
+    (vec2u) => {
+        ("vec2<u32>", 8)
+    };
+    (vec3f) => {
+        ("vec3<f32>", 16)
+    };
+}
+
+/// One member of the uniform block: its name, WGSL type, byte offset and size.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct UniformMember {
+    /// The member's name, the same in Rust, WGSL and the engine kit's `uniforms.h`.
+    pub name: &'static str,
+    /// Its WGSL type (`f32`, `u32`, `vec2<f32>`, `vec2<u32>`, `vec3<f32>`).
+    pub wgsl: &'static str,
+    /// Its byte offset in the block.
+    pub offset: usize,
+    /// Its size in bytes.
+    pub size: usize,
+}
+
+impl UniformMember {
+    /// Whether the member holds u32s (else f32s).
+    pub fn is_unsigned(&self) -> bool {
+        self.wgsl.contains("u32")
+    }
+
+    /// How many scalars it holds (1 to 3).
+    pub fn components(&self) -> usize {
+        self.size / 4
+    }
 }
 
 /// Per-frame uniforms, std140/WGSL-uniform compatible, as [`frame_members!`] declares them.
 macro_rules! frame_uniforms {
     ($( $(#[doc = $doc:literal])* $name:ident : $kind:ident, )*) => {
-        /// Per-frame uniforms, std140/WGSL-uniform compatible: only 16-byte vec4 members, as
-        /// [`frame_members!`](crate::frame_members) declares them.
+        /// Per-frame uniforms, std140/WGSL-uniform compatible, as
+        /// [`frame_members!`](crate::frame_members) declares them: scalars, vec2s and vec3s
+        /// laid out so that Rust's `repr(C)` puts each where WGSL's uniform rules do (a const
+        /// check below holds every member to its WGSL alignment).
         ///
         /// The WGSL's `struct Frame` is generated from the same declaration
-        /// ([`FrameUniforms::wgsl`]); member `i` lies at byte offset `16 * i`. Build it with
-        /// [`Scene::uniforms`].
+        /// ([`FrameUniforms::wgsl`]). Build it with [`Scene::uniforms`].
         #[repr(C)]
         #[derive(Clone, Copy, Debug, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
         pub struct FrameUniforms {
@@ -163,36 +360,60 @@ macro_rules! frame_uniforms {
         }
 
         impl FrameUniforms {
-            /// Every member in declaration order with its WGSL type; member `i` is at offset
-            /// `16 * i`. The shader-reflection test compares the WGSL struct against this list.
-            pub const MEMBERS: &'static [(&'static str, &'static str)] =
-                &[$( (stringify!($name), member_wgsl!($kind)) ),*];
+            /// Every member in declaration order: name, WGSL type, offset and size. The
+            /// shader-reflection test compares the WGSL struct against this list.
+            pub const MEMBERS: &'static [UniformMember] = &[$( UniformMember {
+                name: stringify!($name),
+                wgsl: member_wgsl!($kind).0,
+                offset: std::mem::offset_of!(FrameUniforms, $name),
+                size: std::mem::size_of::<member_type!($kind)>(),
+            } ),*];
 
-            /// What each member holds (its doc comment, one line), in declaration order.
+            /// What each member holds (its doc comment), in declaration order.
             const DOCS: &'static [&'static [&'static str]] = &[$( &[$($doc),*] ),*];
+
+            /// Each member's WGSL alignment, in declaration order.
+            const ALIGN: &'static [usize] = &[$( member_wgsl!($kind).1 ),*];
         }
     };
 }
 
 frame_members!(frame_uniforms);
 
+// Rust's repr(C) packs the members back to back (4-byte alignment); WGSL aligns a vec3 to 16
+// bytes and a vec2 to 8. They agree when every member starts on its WGSL alignment and the
+// block is whole rows, which the declaration must keep (padding members fill the gaps).
+const _: () = {
+    let mut i = 0;
+    while i < FrameUniforms::MEMBERS.len() {
+        assert!(
+            FrameUniforms::MEMBERS[i]
+                .offset
+                .is_multiple_of(FrameUniforms::ALIGN[i]),
+            "a uniform member starts off its WGSL alignment: add padding before it"
+        );
+        i += 1;
+    }
+    assert!(std::mem::size_of::<FrameUniforms>().is_multiple_of(16));
+};
+
 impl FrameUniforms {
-    /// Size of the block in bytes (16 bytes a member).
+    /// Size of the block in bytes.
     pub const SIZE: usize = std::mem::size_of::<Self>();
 
-    /// `modes.w` bit: apply the Beer-Powder term.
+    /// `flags` bit: apply the Beer-Powder term.
     pub const FLAG_BEER_POWDER: u32 = 1 << 0;
-    /// `modes.w` bit: jitter the view-ray start offset per pixel.
+    /// `flags` bit: jitter the view-ray start offset per pixel.
     pub const FLAG_JITTER: u32 = 1 << 1;
-    /// `modes.w` bit: dynamic step length (double after 8 empty samples).
+    /// `flags` bit: dynamic step length (double after 8 empty samples).
     pub const FLAG_DYNAMIC_STEP: u32 = 1 << 2;
-    /// `modes.w` bit: high-transmittance checkerboard skipping (temporal only).
+    /// `flags` bit: high-transmittance checkerboard skipping (temporal only).
     pub const FLAG_CHECKERBOARD: u32 = 1 << 3;
-    /// `modes.w` bit: empty-space skipping over the weather map's occupancy grid.
+    /// `flags` bit: empty-space skipping over the weather map's occupancy grid.
     pub const FLAG_EMPTY_SKIP: u32 = 1 << 4;
-    /// `modes.w` bit: the physical sky (`atmosphere.sky = "physical"`).
+    /// `flags` bit: the physical sky (`atmosphere.sky = "physical"`).
     pub const FLAG_PHYSICAL_SKY: u32 = 1 << 5;
-    /// `modes.w` bit: the moon is the key light (`sun_direction`, `sun_illuminance`).
+    /// `flags` bit: the moon is the key light (`sun_direction`, `sun_illuminance`).
     pub const FLAG_MOONLIT: u32 = 1 << 6;
 
     /// The WGSL `struct Frame` of this block, as `wgsl/frame.wgsl` holds it (written by
@@ -201,10 +422,10 @@ impl FrameUniforms {
         let mut out = String::from(
             "// Generated from crates/scene/src/uniforms.rs (`frame_members!`) by `cargo xtask\n\
              // build-shaders`; edit the declaration there, not this file.\n//\n\
-             // The per-frame uniform block: every member a vec4, so the layout is the same under\n\
-             // WGSL, std140 and HLSL cbuffer rules.\n\nstruct Frame {\n",
+             // The per-frame uniform block. No member crosses a 16-byte row, so the layout is the\n\
+             // same under WGSL, std140 and HLSL cbuffer rules.\n\nstruct Frame {\n",
         );
-        for ((name, ty), doc) in Self::MEMBERS.iter().zip(Self::DOCS) {
+        for (member, doc) in Self::MEMBERS.iter().zip(Self::DOCS) {
             for line in doc.iter() {
                 let line = line.trim();
                 if line.is_empty() {
@@ -213,7 +434,7 @@ impl FrameUniforms {
                     out.push_str(&format!("    // {line}\n"));
                 }
             }
-            out.push_str(&format!("    {name}: {ty},\n"));
+            out.push_str(&format!("    {}: {},\n", member.name, member.wgsl));
         }
         out.push_str("}\n");
         out
@@ -223,8 +444,11 @@ impl FrameUniforms {
     /// history does before uploading).
     pub fn with_previous_camera(mut self, previous: &FrameUniforms) -> Self {
         self.previous_position = previous.camera_position;
+        self.previous_tan_half_fov = previous.tan_half_fov;
         self.previous_forward = previous.camera_forward;
+        self.previous_aspect = previous.aspect;
         self.previous_right = previous.camera_right;
+        self.previous_exposure = previous.exposure;
         self.previous_up = previous.camera_up;
         self
     }
@@ -235,8 +459,8 @@ impl FrameUniforms {
     }
 }
 
-fn v4(v: [f64; 3], w: f64) -> [f32; 4] {
-    [v[0] as f32, v[1] as f32, v[2] as f32, w as f32]
+fn v3(v: [f64; 3]) -> [f32; 3] {
+    v.map(|x| x as f32)
 }
 
 fn normalize(v: [f64; 3]) -> Option<[f64; 3]> {
@@ -441,7 +665,7 @@ impl Scene {
 
         // Extra layer k (from 1) reads the weather map shifted by k (0.382, 0.618) periods
         // (golden-ratio steps, so no two decks line up) on top of the wind.
-        let mut extra = [([0.0f32; 4], [0.0f32; 4]); MAX_EXTRA_LAYERS];
+        let mut extra = [([0.0f32; 6], [0.0f32; 2]); MAX_EXTRA_LAYERS];
         let layers = &c.layers[..c.layers.len().min(MAX_EXTRA_LAYERS)];
         for (k, l) in layers.iter().enumerate() {
             let shift = (k + 1) as f64 * c.weather_period_m;
@@ -451,17 +675,15 @@ impl Scene {
             ];
             extra[k] = (
                 [
-                    l.bottom_m as f32,
-                    l.top_m as f32,
-                    l.coverage as f32,
-                    l.density as f32,
-                ],
-                [
-                    l.cloud_type as f32,
-                    l.precipitation as f32,
-                    offset[0],
-                    offset[1],
-                ],
+                    l.bottom_m,
+                    l.top_m,
+                    l.coverage,
+                    l.density,
+                    l.cloud_type,
+                    l.precipitation,
+                ]
+                .map(|v| v as f32),
+                offset,
             );
         }
         let extra_count = layers.len();
@@ -497,120 +719,168 @@ impl Scene {
             let e = self.sun.illuminance;
             0.2126 * e[0] + 0.7152 * e[1] + 0.0722 * e[2]
         };
-        let (moon, star_mag0) = match self.moon() {
+        let (moon_direction, moon_illuminance, star_mag0) = match self.moon() {
             Some((dir, _)) => (
-                v4(dir, FULL_MOON_OVER_SUN * sun_luminance),
+                dir,
+                FULL_MOON_OVER_SUN * sun_luminance,
                 STAR_MAG0_OVER_SUN * sun_luminance,
             ),
-            None => ([0.0; 4], 0.0),
+            None => ([0.0; 3], 0.0, 0.0),
         };
         let air = &atm.air;
+        let [
+            [
+                layer1_bottom,
+                layer1_top,
+                layer1_coverage,
+                layer1_density,
+                layer1_cloud_type,
+                layer1_precipitation,
+            ],
+            [
+                layer2_bottom,
+                layer2_top,
+                layer2_coverage,
+                layer2_density,
+                layer2_cloud_type,
+                layer2_precipitation,
+            ],
+            [
+                layer3_bottom,
+                layer3_top,
+                layer3_coverage,
+                layer3_density,
+                layer3_cloud_type,
+                layer3_precipitation,
+            ],
+        ] = extra.map(|(l, _)| l);
+        let f = |v: f64| v as f32;
 
         let block = FrameUniforms {
-            camera_position: v4(cam.position, tan_half_fov),
-            camera_forward: v4(forward, aspect),
-            camera_right: v4(right, self.auto_exposure()),
-            camera_up: v4(up, 0.0),
-            sun_direction: v4(
-                key_direction,
-                self.sun.angular_radius_deg.to_radians().cos(),
-            ),
-            sun_illuminance: v4(key_illuminance, 0.0),
-            atmosphere: [
-                atm.planet_radius_m as f32,
-                atm.cloud_bottom_m as f32,
-                atm.cloud_top_m as f32,
-                q.cutoff_distance_m as f32,
-            ],
-            clouds: [
-                c.coverage as f32,
-                c.density as f32,
-                c.cloud_type as f32,
-                c.precipitation as f32,
-            ],
-            erosion: [
-                c.detail_strength as f32,
-                c.erosion_threshold as f32,
-                c.curl_strength_m as f32,
-                c.height_gradient as f32,
-            ],
-            periods: periods.map(|p| p as f32),
-            wind_offsets0: [offs[0][0], offs[0][1], offs[1][0], offs[1][1]],
-            wind_offsets1: [offs[2][0], offs[2][1], offs[3][0], offs[3][1]],
-            extinction: [
-                li.scattering as f32,
-                li.absorption as f32,
-                li.precipitation_darkening as f32,
-                c.wispy_billowy as f32,
-            ],
-            phase: [
-                li.phase.g as f32,
-                li.phase.g2 as f32,
-                li.phase.blend as f32,
-                li.powder_strength as f32,
-            ],
-            multiple_scattering: [ms.a as f32, ms.b as f32, ms.c as f32, ms.buildup_m as f32],
-            ambient_bottom: v4(li.ambient_bottom, li.ambient_strength),
-            ambient_top: v4(li.ambient_top, 0.0),
-            march: [
-                q.step_length_m.unwrap_or(0.0) as f32,
-                q.light_step_growth as f32,
-                q.first_light_step_m as f32,
-                q.early_exit_transmittance as f32,
-            ],
-            counts: [width, height, q.view_steps, q.light_steps],
-            modes: [
-                li.phase.model.code(),
-                q.integration.code(),
-                c.height_model.code(),
-                flags,
-            ],
-            misc: [ms.octaves, q.frame, q.path_orders, extra_count as u32],
-            previous_position: [0.0; 4],
-            previous_forward: [0.0; 4],
-            previous_right: [0.0; 4],
-            previous_up: [0.0; 4],
-            temporal: [q.temporal.divisor(), 0, 0, 0],
-            layer1: extra[0].0,
-            layer1_weather: extra[0].1,
-            layer2: extra[1].0,
-            layer2_weather: extra[1].1,
-            layer3: extra[2].0,
-            layer3_weather: extra[2].1,
-            air_rayleigh: v4(air.rayleigh_scattering, air.rayleigh_scale_height_m),
-            air_mie: [
-                air.mie_scattering as f32,
-                air.mie_absorption as f32,
-                air.mie_scale_height_m as f32,
-                air.mie_g as f32,
-            ],
-            air_ozone: v4(air.ozone_absorption, air.ozone_center_m),
-            air_misc: [
-                air.thickness_m as f32,
-                air.ozone_width_m as f32,
-                air.ground_albedo as f32,
-                0.0,
-            ],
-            moon,
-            night: v4(self.sun_direction(), star_mag0),
-            light_model: [
-                ms.side_light as f32,
-                ms.coverage_exponent as f32,
-                ms.far_chord_m as f32,
-                ms.limb_darkening as f32,
-            ],
-            octave_direction: [
-                ms.forward_lobe as f32,
-                ms.forward_lobe_g as f32,
-                ms.vertical_anisotropy as f32,
-                ms.deck_escape as f32,
-            ],
-            octave_depth: [
-                ms.steep_light as f32,
-                ms.steep_light_scale as f32,
-                ms.downward_dimming as f32,
-                0.0,
-            ],
+            camera_position: v3(cam.position),
+            tan_half_fov: f(tan_half_fov),
+            camera_forward: v3(forward),
+            aspect: f(aspect),
+            camera_right: v3(right),
+            exposure: f(self.auto_exposure()),
+            camera_up: v3(up),
+            _pad0: 0.0,
+            sun_direction: v3(key_direction),
+            sun_cos_radius: f(self.sun.angular_radius_deg.to_radians().cos()),
+            sun_illuminance: v3(key_illuminance),
+            _pad1: 0.0,
+            planet_radius: f(atm.planet_radius_m),
+            cloud_bottom: f(atm.cloud_bottom_m),
+            cloud_top: f(atm.cloud_top_m),
+            cutoff_distance: f(q.cutoff_distance_m),
+            coverage: f(c.coverage),
+            density: f(c.density),
+            cloud_type: f(c.cloud_type),
+            precipitation: f(c.precipitation),
+            detail_strength: f(c.detail_strength),
+            erosion_threshold: f(c.erosion_threshold),
+            curl_strength: f(c.curl_strength_m),
+            height_gradient: f(c.height_gradient),
+            weather_period: f(periods[0]),
+            shape_period: f(periods[1]),
+            detail_period: f(periods[2]),
+            curl_period: f(periods[3]),
+            weather_offset: offs[0],
+            shape_offset: offs[1],
+            detail_offset: offs[2],
+            curl_offset: offs[3],
+            scattering: f(li.scattering),
+            absorption: f(li.absorption),
+            precipitation_darkening: f(li.precipitation_darkening),
+            wispy_billowy: f(c.wispy_billowy),
+            phase_g: f(li.phase.g),
+            phase_g2: f(li.phase.g2),
+            phase_blend: f(li.phase.blend),
+            powder_strength: f(li.powder_strength),
+            ms_contribution: f(ms.a),
+            ms_extinction: f(ms.b),
+            ms_eccentricity: f(ms.c),
+            ms_buildup: f(ms.buildup_m),
+            ambient_bottom: v3(li.ambient_bottom),
+            ambient_strength: f(li.ambient_strength),
+            ambient_top: v3(li.ambient_top),
+            _pad2: 0.0,
+            step_length: f(q.step_length_m.unwrap_or(0.0)),
+            light_step_growth: f(q.light_step_growth),
+            first_light_step: f(q.first_light_step_m),
+            early_exit_transmittance: f(q.early_exit_transmittance),
+            size: [width, height],
+            view_steps: q.view_steps,
+            light_steps: q.light_steps,
+            phase_model: li.phase.model.code(),
+            integration: q.integration.code(),
+            height_model: c.height_model.code(),
+            flags,
+            octaves: ms.octaves,
+            frame_index: q.frame,
+            path_orders: q.path_orders,
+            extra_layers: extra_count as u32,
+            previous_position: [0.0; 3],
+            previous_tan_half_fov: 0.0,
+            previous_forward: [0.0; 3],
+            previous_aspect: 0.0,
+            previous_right: [0.0; 3],
+            previous_exposure: 0.0,
+            previous_up: [0.0; 3],
+            _pad4: 0.0,
+            block_side: q.temporal.divisor(),
+            history_valid: 0,
+            _pad5: 0,
+            _pad6: 0,
+            layer1_bottom,
+            layer1_top,
+            layer1_coverage,
+            layer1_density,
+            layer1_cloud_type,
+            layer1_precipitation,
+            layer1_weather_offset: extra[0].1,
+            layer2_bottom,
+            layer2_top,
+            layer2_coverage,
+            layer2_density,
+            layer2_cloud_type,
+            layer2_precipitation,
+            layer2_weather_offset: extra[1].1,
+            layer3_bottom,
+            layer3_top,
+            layer3_coverage,
+            layer3_density,
+            layer3_cloud_type,
+            layer3_precipitation,
+            layer3_weather_offset: extra[2].1,
+            rayleigh_scattering: v3(air.rayleigh_scattering),
+            rayleigh_scale_height: f(air.rayleigh_scale_height_m),
+            mie_scattering: f(air.mie_scattering),
+            mie_absorption: f(air.mie_absorption),
+            mie_scale_height: f(air.mie_scale_height_m),
+            mie_g: f(air.mie_g),
+            ozone_absorption: v3(air.ozone_absorption),
+            ozone_center: f(air.ozone_center_m),
+            air_thickness: f(air.thickness_m),
+            ozone_width: f(air.ozone_width_m),
+            ground_albedo: f(air.ground_albedo),
+            _pad7: 0.0,
+            moon_direction: v3(moon_direction),
+            moon_illuminance: f(moon_illuminance),
+            real_sun_direction: v3(self.sun_direction()),
+            star_illuminance: f(star_mag0),
+            side_light: f(ms.side_light),
+            coverage_exponent: f(ms.coverage_exponent),
+            far_chord: f(ms.far_chord_m),
+            limb_darkening: f(ms.limb_darkening),
+            forward_lobe: f(ms.forward_lobe),
+            forward_lobe_g: f(ms.forward_lobe_g),
+            vertical_anisotropy: f(ms.vertical_anisotropy),
+            deck_escape: f(ms.deck_escape),
+            steep_light: f(ms.steep_light),
+            steep_light_scale: f(ms.steep_light_scale),
+            downward_dimming: f(ms.downward_dimming),
+            _pad8: 0.0,
         };
         block.with_previous_camera(&block)
     }

@@ -210,5 +210,5 @@ fn path_tracer_with_temporal_upsampling_is_refused() {
     )
     .expect("a valid path-traced scene");
     assert_eq!(ok.quality.integrator, stratus_scene::Integrator::Pathtrace);
-    assert_eq!(ok.uniforms().misc[2], 1);
+    assert_eq!(ok.uniforms().path_orders, 1);
 }

@@ -52,17 +52,36 @@ fn the_uniforms_carry_each_layer_with_its_own_weather_offset() {
         },
     ]);
     let u = s.uniforms();
-    assert_eq!(u.misc[3], 2);
-    assert_eq!(u.layer1, [6000.0, 7000.0, 0.5, 0.3]);
-    assert_eq!(u.layer2[..3], [9000.0, 9500.0, 0.2]);
-    assert_eq!(u.layer3, [0.0; 4]);
+    assert_eq!(u.extra_layers, 2);
+    assert_eq!(
+        [
+            u.layer1_bottom,
+            u.layer1_top,
+            u.layer1_coverage,
+            u.layer1_density
+        ],
+        [6000.0, 7000.0, 0.5, 0.3]
+    );
+    assert_eq!(
+        [u.layer2_bottom, u.layer2_top, u.layer2_coverage],
+        [9000.0, 9500.0, 0.2]
+    );
+    assert_eq!(
+        [
+            u.layer3_bottom,
+            u.layer3_top,
+            u.layer3_coverage,
+            u.layer3_density
+        ],
+        [0.0; 4]
+    );
     // Offsets differ from the main layer's and from each other, within one period.
     let period = s.clouds.weather_period_m as f32;
-    let main = [u.wind_offsets0[0], u.wind_offsets0[1]];
-    let o1 = [u.layer1_weather[2], u.layer1_weather[3]];
-    let o2 = [u.layer2_weather[2], u.layer2_weather[3]];
+    let main = [u.weather_offset[0], u.weather_offset[1]];
+    let o1 = [u.layer1_weather_offset[0], u.layer1_weather_offset[1]];
+    let o2 = [u.layer2_weather_offset[0], u.layer2_weather_offset[1]];
     assert!(main != o1 && o1 != o2 && main != o2);
     assert!(o1.iter().chain(&o2).all(|&v| (0.0..period).contains(&v)));
     // Without extra layers the block is what it was.
-    assert_eq!(Scene::default().uniforms().misc[3], 0);
+    assert_eq!(Scene::default().uniforms().extra_layers, 0);
 }

@@ -89,12 +89,9 @@ fn the_physical_sky_and_its_air_load_and_bad_air_is_named() {
     assert!(s.atmosphere.sky.is_physical());
     assert_eq!(s.atmosphere.air.mie_g, 0.7);
     let u = s.uniforms();
-    assert_ne!(
-        u.modes[3] & stratus_scene::FrameUniforms::FLAG_PHYSICAL_SKY,
-        0
-    );
-    assert_eq!(u.air_mie[3], 0.7);
-    assert_eq!(u.air_misc[0], 100_000.0);
+    assert_ne!(u.flags & stratus_scene::FrameUniforms::FLAG_PHYSICAL_SKY, 0);
+    assert_eq!(u.mie_g, 0.7);
+    assert_eq!(u.air_thickness, 100_000.0);
     let text = toml::to_string(&Scene::default()).expect("serializes");
     assert!(
         !text.contains("air") && !text.contains("physical"),

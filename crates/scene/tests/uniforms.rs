@@ -22,36 +22,25 @@ fn assert_close(a: [f64; 3], b: [f64; 3]) {
     }
 }
 
+/// The members tile the block with no implicit padding (every gap is a named padding member,
+/// so a C or HLSL mirror built from the list has the same layout) and none crosses a 16-byte
+/// row (where std140 and HLSL cbuffer packing would move it).
 #[test]
-fn layout_is_vec4_aligned_and_matches_members() {
+fn members_tile_the_block_row_by_row() {
     assert_eq!(size_of::<FrameUniforms>() % 16, 0);
-    assert_eq!(FrameUniforms::SIZE, 16 * FrameUniforms::MEMBERS.len());
-    let offsets = [
-        offset_of!(FrameUniforms, camera_position),
-        offset_of!(FrameUniforms, camera_forward),
-        offset_of!(FrameUniforms, camera_right),
-        offset_of!(FrameUniforms, camera_up),
-        offset_of!(FrameUniforms, sun_direction),
-        offset_of!(FrameUniforms, sun_illuminance),
-        offset_of!(FrameUniforms, atmosphere),
-        offset_of!(FrameUniforms, clouds),
-        offset_of!(FrameUniforms, erosion),
-        offset_of!(FrameUniforms, periods),
-        offset_of!(FrameUniforms, wind_offsets0),
-        offset_of!(FrameUniforms, wind_offsets1),
-        offset_of!(FrameUniforms, extinction),
-        offset_of!(FrameUniforms, phase),
-        offset_of!(FrameUniforms, multiple_scattering),
-        offset_of!(FrameUniforms, ambient_bottom),
-        offset_of!(FrameUniforms, ambient_top),
-        offset_of!(FrameUniforms, march),
-        offset_of!(FrameUniforms, counts),
-        offset_of!(FrameUniforms, modes),
-        offset_of!(FrameUniforms, misc),
-    ];
-    for (i, offset) in offsets.into_iter().enumerate() {
-        assert_eq!(offset, 16 * i, "member {}", FrameUniforms::MEMBERS[i].0);
+    let mut end = 0;
+    for m in FrameUniforms::MEMBERS {
+        assert_eq!(m.offset, end, "a gap before {}", m.name);
+        assert_eq!(
+            m.offset / 16,
+            (m.offset + m.size - 1) / 16,
+            "{} crosses a 16-byte row",
+            m.name
+        );
+        end = m.offset + m.size;
     }
+    assert_eq!(end, FrameUniforms::SIZE);
+    assert_eq!(offset_of!(FrameUniforms, camera_position), 0);
     assert_eq!(
         Scene::default().uniforms().as_bytes().len(),
         FrameUniforms::SIZE
@@ -85,7 +74,13 @@ fn wind_offsets_wrap_after_a_million_seconds() {
                 }
             }
             let u = scene.uniforms();
-            let flat = [u.wind_offsets0, u.wind_offsets1].concat();
+            let flat = [
+                u.weather_offset,
+                u.shape_offset,
+                u.detail_offset,
+                u.curl_offset,
+            ]
+            .concat();
             for (i, o) in flat.iter().enumerate() {
                 let period = periods[i / 2] as f32;
                 assert!((0.0..period).contains(o), "{o} not in [0, {period})");
@@ -160,9 +155,9 @@ fn uniforms_carry_the_scene() {
     scene.quality.integration = Integration::Riemann;
     scene.clouds.height_model = HeightModel::CloudTypes;
     let u = scene.uniforms();
-    assert_eq!(u.counts, [640, 320, 64, 6]);
+    assert_eq!((u.size, u.view_steps, u.light_steps), ([640, 320], 64, 6));
     assert_eq!(
-        u.modes,
+        [u.phase_model, u.integration, u.height_model, u.flags],
         [
             PhaseModel::TWO_LOBE_HG,
             Integration::RIEMANN,
@@ -173,15 +168,23 @@ fn uniforms_carry_the_scene() {
                 | FrameUniforms::FLAG_PHYSICAL_SKY,
         ]
     );
-    assert_eq!(u.camera_forward[3], 2.0);
-    assert!((u.camera_position[3] - 30f32.to_radians().tan()).abs() < 1e-6);
-    assert_eq!(u.atmosphere, [6_360_000.0, 1500.0, 4000.0, 60_000.0]);
-    assert_eq!(u.march[0], 0.0, "no fixed step length");
+    assert_eq!(u.aspect, 2.0);
+    assert!((u.tan_half_fov - 30f32.to_radians().tan()).abs() < 1e-6);
     assert_eq!(
-        u.misc,
+        [
+            u.planet_radius,
+            u.cloud_bottom,
+            u.cloud_top,
+            u.cutoff_distance
+        ],
+        [6_360_000.0, 1500.0, 4000.0, 60_000.0]
+    );
+    assert_eq!(u.step_length, 0.0, "no fixed step length");
+    assert_eq!(
+        [u.octaves, u.frame_index, u.path_orders, u.extra_layers],
         [scene.lighting.multiple_scattering.octaves, 0, 0, 0]
     );
     let s = scene.sun_direction();
     assert_eq!(&u.sun_direction[..3], &s.map(|x| x as f32));
-    assert!((u.sun_direction[3] - 0.2665f32.to_radians().cos()).abs() < 1e-7);
+    assert!((u.sun_cos_radius - 0.2665f32.to_radians().cos()).abs() < 1e-7);
 }

@@ -22,8 +22,6 @@
 
 #![deny(missing_docs)]
 
-pub mod quality;
-
 use std::sync::Arc;
 
 use stratus_backend_wgpu::Renderer;

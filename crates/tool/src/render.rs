@@ -7,8 +7,8 @@ use anyhow::{Context, Result};
 use clap::{Args, ValueEnum};
 use indicatif::{ProgressBar, ProgressStyle};
 use serde_json::json;
-use stratus::quality::{DEFAULT_RESULTS, Results, auto_quality};
 use stratus_graph::{FrameInput, FrameOutput, FramePlan, Readback, output::median};
+use stratus_quality::{DEFAULT_RESULTS, Results, auto_quality};
 use stratus_reference::CpuBackend;
 use stratus_scene::{Scene, Temporal};
 

@@ -4,7 +4,7 @@
 use std::{fmt::Write as _, path::Path};
 
 use anyhow::{Context, Result};
-use stratus::quality::{Results, Row};
+use stratus_quality::{Results, Row};
 
 /// A drawing surface: the chart is drawn once on each (SVG with text, PNG without).
 trait Canvas {
@@ -293,7 +293,7 @@ fn draw(canvas: &mut dyn Canvas, results: &Results) {
 }
 
 /// A method's short label: `1/16`, `1/4 chk`, `dyn`, `skip`.
-fn method_label(c: &stratus::quality::Config) -> String {
+fn method_label(c: &stratus_quality::Config) -> String {
     let mut parts = Vec::new();
     if c.temporal != stratus_scene::Temporal::Off {
         parts.push(c.temporal.name().to_string());

@@ -26,7 +26,7 @@ use std::path::PathBuf;
 use anyhow::{Context, Result};
 use clap::{Args, ValueEnum};
 use indicatif::{ProgressBar, ProgressStyle};
-use stratus::quality::{Config, Results};
+use stratus_quality::{Config, Results};
 use stratus_scene::Scene;
 
 use stratus_tool::{
@@ -119,7 +119,7 @@ fn bench_scene(name: &str) -> Result<Scene> {
 /// Runs `stratus bench`.
 pub fn run(args: BenchArgs) -> Result<()> {
     if args.replot {
-        let results = stratus::quality::Results::load(&args.out.join("results.json"))?;
+        let results = stratus_quality::Results::load(&args.out.join("results.json"))?;
         chart::chart(&args.out, &results)?;
         println!(
             "wrote {0}/chart.png, {0}/chart.svg from {0}/results.json",

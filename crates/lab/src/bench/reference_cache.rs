@@ -10,9 +10,9 @@ use std::{fmt::Write as _, path::PathBuf, sync::Arc};
 
 use anyhow::{Context, Result};
 use sha2::{Digest, Sha256};
-use stratus::quality::PREFIT_OCTAVES;
 use stratus_graph::{Backend, FrameInput, FrameOutput, FramePlan, Readback};
 use stratus_noise::NoiseSet;
+use stratus_quality::PREFIT_OCTAVES;
 use stratus_reference::{Integrator, QuadratureSettings};
 use stratus_scene::Scene;
 

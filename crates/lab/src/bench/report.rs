@@ -4,7 +4,7 @@
 use std::{io::Write as _, path::Path};
 
 use anyhow::{Context, Result};
-use stratus::quality::{Results, Row, phase_name};
+use stratus_quality::{Results, Row, phase_name};
 
 /// Writes one CSV row per scene and configuration.
 pub(super) fn write_csv(path: &Path, rows: &[Row]) -> Result<()> {
@@ -94,7 +94,7 @@ pub(super) fn mark_pareto(rows: &mut [Row]) {
 
 #[cfg(test)]
 mod tests {
-    use stratus::quality::Config;
+    use stratus_quality::Config;
     use stratus_scene::Scene;
 
     use super::*;

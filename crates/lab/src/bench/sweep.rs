@@ -7,10 +7,10 @@ use std::{collections::BTreeMap, sync::Arc};
 
 use anyhow::{Context, Result};
 use indicatif::ProgressBar;
-use stratus::quality::{Config, Row};
 use stratus_compare::{CompareOptions, Image, compare};
 use stratus_graph::{Backend, FrameInput, FrameOutput, FramePlan, output::median};
 use stratus_noise::NoiseSet;
+use stratus_quality::{Config, Row};
 use stratus_reference::Compositor;
 use stratus_scene::{
     Animation, Integration, Keyframe, Method, PhaseModel, Scene, ShapeTexture, Temporal,
@@ -123,7 +123,7 @@ pub(super) fn sweep(base: &Config, quick: bool) -> Vec<Config> {
     // The preset before the multiple-scattering fit.
     if base.octaves > 0 {
         push(Config {
-            octaves: stratus::quality::PREFIT_OCTAVES.octaves,
+            octaves: stratus_quality::PREFIT_OCTAVES.octaves,
             prefit: true,
             ..base.clone()
         });

@@ -1,7 +1,11 @@
-//! Auto quality: the cheapest configuration whose error, as `stratus bench` measured it against
-//! the CPU reference, meets a budget. The bench's results (`results.json`) are the data; this
-//! module picks from them, so an application can choose its quality the way `stratus render
-//! --max-error` does.
+//! Quality tiers as data. `stratus bench` (the lab) sweeps configurations ([`Config`]) and
+//! writes what each cost and how far it was from the CPU reference ([`Row`], [`Results`],
+//! `results.json`); auto quality ([`auto_quality`]) picks from those results the cheapest
+//! configuration whose error meets a budget, so an application can choose its quality the way
+//! `stratus render --max-error` does. The schema lives here, apart from the renderer, so that
+//! the library does not carry the bench's data types and the lab and the tool share them.
+
+#![warn(missing_docs)]
 
 use std::{collections::BTreeMap, path::Path};
 
