@@ -156,6 +156,25 @@ pub struct Camera {
     /// sun (or moon, at night), to the power 0.75 (see [`Scene::auto_exposure`]).
     #[serde(skip_serializing_if = "std::ops::Not::not")]
     pub auto_exposure: bool,
+    /// An explicit orientation in world axes, which replaces `yaw_deg` and `pitch_deg` when
+    /// given: a host engine's camera, roll included (`stratus::HostCamera` fills it from a
+    /// view matrix).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub orientation: Option<Orientation>,
+}
+
+/// A camera's orientation (`[camera.orientation]`): three unit, mutually orthogonal vectors
+/// in world axes (X east, Y up, Z north) with right x up = forward, the handedness of
+/// [`Scene::camera_basis`].
+#[derive(Serialize, Deserialize, Clone, Copy, Debug, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct Orientation {
+    /// The view direction.
+    pub forward: [f64; 3],
+    /// The image's right.
+    pub right: [f64; 3],
+    /// The image's up.
+    pub up: [f64; 3],
 }
 
 impl Default for Camera {
@@ -168,6 +187,7 @@ impl Default for Camera {
             resolution: [800, 450],
             exposure: 1.0,
             auto_exposure: false,
+            orientation: None,
         }
     }
 }
@@ -974,6 +994,11 @@ impl Scene {
         let mut scene = Self::default();
         scene.sun.direction = Some([0.0, 1.0, 0.0]);
         scene.quality.step_length_m = Some(100.0);
+        scene.camera.orientation = Some(Orientation {
+            forward: [0.0, 0.0, 1.0],
+            right: [1.0, 0.0, 0.0],
+            up: [0.0, 1.0, 0.0],
+        });
         scene.animation = Some(Animation::default());
         scene.clouds.layers = vec![CloudLayer::default()];
         scene.sky = Sky {

@@ -602,7 +602,8 @@ impl Scene {
         self.sun_direction()[1].clamp(-1.0, 1.0).asin().to_degrees()
     }
 
-    /// The camera's unit `(forward, right, up)` vectors in world axes.
+    /// The camera's unit `(forward, right, up)` vectors in world axes: `camera.orientation`'s
+    /// when given, else from yaw and pitch:
     ///
     /// forward = `(sin yaw * cos pitch, sin pitch, cos yaw * cos pitch)`; right =
     /// `(cos yaw, 0, -sin yaw)` (always horizontal, well defined even looking straight up);
@@ -611,6 +612,9 @@ impl Scene {
     /// rotated, and both are left-handed in physical space (X east, Y up, Z north; seed 001),
     /// like Direct3D's view space.
     pub fn camera_basis(&self) -> ([f64; 3], [f64; 3], [f64; 3]) {
+        if let Some(o) = &self.camera.orientation {
+            return (o.forward, o.right, o.up);
+        }
         let (yaw, pitch) = (
             self.camera.yaw_deg.to_radians(),
             self.camera.pitch_deg.to_radians(),

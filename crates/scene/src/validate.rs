@@ -115,6 +115,59 @@ impl Checker {
         }
     }
 
+    /// A camera orientation: unit, orthogonal vectors with right x up = forward (within 1e-6:
+    /// a host's f32 matrices are orthonormal to about 1e-7).
+    fn orientation(&mut self, o: &crate::scene::Orientation) {
+        const PATHS: [&str; 3] = [
+            "camera.orientation.forward",
+            "camera.orientation.right",
+            "camera.orientation.up",
+        ];
+        let vs = [o.forward, o.right, o.up];
+        let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+        for (path, v) in PATHS.into_iter().zip(vs) {
+            if !self.finite_vec(path, &v) {
+                return;
+            }
+            if (dot(v, v).sqrt() - 1.0).abs() > 1e-6 {
+                self.push(
+                    path,
+                    nums(&v),
+                    "must be a unit vector (length 1 within 1e-6)",
+                );
+                return;
+            }
+        }
+        for (i, j) in [(0, 1), (0, 2), (1, 2)] {
+            if dot(vs[i], vs[j]).abs() > 1e-6 {
+                let (a, b) = (PATHS[i], PATHS[j]);
+                let name = &b[b.rfind('.').unwrap() + 1..];
+                self.push(
+                    a,
+                    nums(&vs[i]),
+                    format!(
+                        "must be orthogonal to {name} (dot product {:.3e})",
+                        dot(vs[i], vs[j])
+                    ),
+                );
+                return;
+            }
+        }
+        let (r, u) = (o.right, o.up);
+        let cross = [
+            r[1] * u[2] - r[2] * u[1],
+            r[2] * u[0] - r[0] * u[2],
+            r[0] * u[1] - r[1] * u[0],
+        ];
+        if dot(cross, o.forward) < 0.0 {
+            self.push(
+                PATHS[0],
+                nums(&o.forward),
+                "must be right x up (this is its opposite: a mirrored camera; a right-handed host's view matrix is converted by stratus::HostCamera)",
+            );
+        }
+    }
+
     /// A colour: every component finite and >= 0.
     fn colour(&mut self, path: &'static str, v: &[f64; 3]) {
         if self.finite_vec(path, v) && v.iter().any(|&x| x < 0.0) {
@@ -170,6 +223,9 @@ pub(crate) fn check(scene: &Scene) -> Vec<Issue> {
         );
     }
     c.positive("camera.exposure", cam.exposure);
+    if let Some(o) = &cam.orientation {
+        c.orientation(o);
+    }
 
     let sun = &scene.sun;
     c.float(

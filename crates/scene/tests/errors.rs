@@ -212,3 +212,26 @@ fn path_tracer_with_temporal_upsampling_is_refused() {
     assert_eq!(ok.quality.integrator, stratus_scene::Integrator::Pathtrace);
     assert_eq!(ok.uniforms().path_orders, 1);
 }
+
+/// A camera orientation that is not a rotation (not unit, not orthogonal, mirrored) is named.
+#[test]
+fn a_camera_orientation_must_be_a_rotation() {
+    let err = snapshot(
+        "orientation_not_unit",
+        "[camera.orientation]\nforward = [0.0, 0.0, 2.0]\nright = [1.0, 0.0, 0.0]\nup = [0.0, 1.0, 0.0]\n",
+    );
+    assert_eq!(
+        err.problems()[0].path.as_deref(),
+        Some("camera.orientation.forward")
+    );
+    let err = snapshot(
+        "orientation_not_orthogonal",
+        "[camera.orientation]\nforward = [0.0, 0.0, 1.0]\nright = [1.0, 0.0, 0.0]\nup = [0.0, 0.6, 0.8]\n",
+    );
+    assert!(err.to_string().contains("orthogonal to up"), "{err}");
+    let err = snapshot(
+        "orientation_mirrored",
+        "[camera.orientation]\nforward = [0.0, 0.0, -1.0]\nright = [1.0, 0.0, 0.0]\nup = [0.0, 1.0, 0.0]\n",
+    );
+    assert!(err.to_string().contains("mirrored"), "{err}");
+}

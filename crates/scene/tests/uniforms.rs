@@ -188,3 +188,29 @@ fn uniforms_carry_the_scene() {
     assert_eq!(&u.sun_direction[..3], &s.map(|x| x as f32));
     assert!((u.sun_cos_radius - 0.2665f32.to_radians().cos()).abs() < 1e-7);
 }
+
+/// `[camera.orientation]` replaces yaw and pitch: a file that gives the basis of a yaw and
+/// pitch makes the same uniform block, and a rolled basis reaches the block as given.
+#[test]
+fn an_orientation_replaces_yaw_and_pitch() {
+    let mut by_angles = Scene::default();
+    by_angles.camera.yaw_deg = 35.0;
+    by_angles.camera.pitch_deg = 12.0;
+    let (forward, right, up) = by_angles.camera_basis();
+    let text = format!(
+        "[camera]\nyaw_deg = -80.0\npitch_deg = 12.0\n\n[camera.orientation]\nforward = {forward:?}\nright = {right:?}\nup = {up:?}\n"
+    );
+    let by_basis = Scene::from_toml_str(&text, "basis.toml").expect("a valid orientation");
+    assert_eq!(by_basis.uniforms(), by_angles.uniforms());
+    // Rolled 90 degrees about the view axis: the image's up is the old right.
+    let mut rolled = Scene::default();
+    rolled.camera.orientation = Some(stratus_scene::Orientation {
+        forward,
+        right: up.map(|x| -x),
+        up: right,
+    });
+    rolled.validate().expect("a rolled camera is valid");
+    let u = rolled.uniforms();
+    assert_eq!(u.camera_up, right.map(|x| x as f32));
+    assert_eq!(u.camera_forward, forward.map(|x| x as f32));
+}

@@ -22,7 +22,13 @@
 
 #![deny(missing_docs)]
 
+mod camera;
+
 use std::sync::Arc;
+
+pub use camera::{HostCamera, Projection, host_from_world, world_from_host};
+/// The glam Stratus's [`HostCamera`] takes (the version Bevy 0.20 uses).
+pub use glam;
 
 use stratus_backend_wgpu::Renderer;
 use stratus_graph::FrameInput;
@@ -46,6 +52,9 @@ pub enum Error {
     /// The target texture cannot take the clouds.
     #[error("the target texture {0}")]
     Target(String),
+    /// The host's camera cannot be used (names the matrix and why).
+    #[error("the camera's {0}")]
+    Camera(String),
 }
 
 impl From<stratus_scene::SceneError> for Error {
@@ -61,8 +70,14 @@ pub struct Update {
     pub scene: Option<Scene>,
     /// Camera position `[x (east), altitude, z (north)]` in metres.
     pub camera_position: Option<[f64; 3]>,
-    /// Camera heading in degrees (0 north, 90 east) and elevation in degrees.
+    /// Camera heading in degrees (0 north, 90 east) and elevation in degrees (clears a
+    /// host camera's orientation).
     pub camera_yaw_pitch_deg: Option<[f64; 2]>,
+    /// The host engine's camera: view and projection matrices (see [`HostCamera`] for the
+    /// conventions). It sets the position, orientation and field of view; the projection's
+    /// aspect must match the target's. Not together with `camera_position` or
+    /// `camera_yaw_pitch_deg`.
+    pub camera: Option<HostCamera>,
     /// Seconds to advance the clouds' time (the wind moves them).
     pub time_s: Option<f64>,
 }
@@ -123,6 +138,8 @@ pub struct Clouds {
     prepared: Prepared,
     /// Passes recorded in the last frame, for [`Clouds::pass_timings`].
     recorded: Vec<String>,
+    /// The host camera's projection aspect, checked against the target's when rendering.
+    host_aspect: Option<f64>,
 }
 
 impl Clouds {
@@ -139,6 +156,7 @@ impl Clouds {
             scene,
             prepared,
             recorded: Vec::new(),
+            host_aspect: None,
         })
     }
 
@@ -161,6 +179,15 @@ impl Clouds {
     /// (its shader features, plan options such as temporal upsampling, method and sky, or its
     /// size), and new noise only when its seed or shape size does.
     pub fn update(&mut self, update: Update) -> Result<(), Error> {
+        if update.camera.is_some()
+            && (update.camera_position.is_some() || update.camera_yaw_pitch_deg.is_some())
+        {
+            return Err(Error::Camera(
+                "matrices came with camera_position or camera_yaw_pitch_deg in one Update: give one camera".into(),
+            ));
+        }
+        // A new scene brings its own camera; a host camera in this update applies over it.
+        let mut host_aspect = self.host_aspect.filter(|_| update.scene.is_none());
         let mut scene = update.scene.unwrap_or_else(|| self.scene.clone());
         if let Some(p) = update.camera_position {
             scene.camera.position = p;
@@ -168,12 +195,19 @@ impl Clouds {
         if let Some([yaw, pitch]) = update.camera_yaw_pitch_deg {
             scene.camera.yaw_deg = yaw;
             scene.camera.pitch_deg = pitch;
+            scene.camera.orientation = None;
+            host_aspect = None;
+        }
+        if let Some(camera) = &update.camera {
+            host_aspect = Some(camera.apply(&mut scene)?.aspect);
         }
         if let Some(dt) = update.time_s {
             scene.clouds.time_s += dt;
         }
         scene.validate()?;
-        self.set_scene(scene)
+        self.set_scene(scene)?;
+        self.host_aspect = host_aspect;
+        Ok(())
     }
 
     fn set_scene(&mut self, scene: Scene) -> Result<(), Error> {
@@ -208,6 +242,15 @@ impl Clouds {
             )));
         }
         let size = [texture.width(), texture.height()];
+        if let Some(aspect) = self.host_aspect {
+            let target = f64::from(size[0]) / f64::from(size[1]);
+            if (aspect / target - 1.0).abs() > 1e-3 {
+                return Err(Error::Camera(format!(
+                    "projection: its aspect {aspect:.4} is not the target's, {}x{} ({target:.4})",
+                    size[0], size[1]
+                )));
+            }
+        }
         if size != self.scene.camera.resolution {
             let scene = self.scene.clone().with_size(size[0], size[1]);
             self.set_scene(scene)?;
