@@ -281,3 +281,136 @@ fn a_graph_that_disagrees_with_the_wgsl_is_refused() {
         );
     }
 }
+
+/// The uniform members a function reads, with every function it calls: `frame.<member>` is
+/// an `AccessIndex` into the `frame` global.
+fn frame_members_read(
+    module: &naga::Module,
+    function: &naga::Function,
+    frame: naga::Handle<naga::GlobalVariable>,
+    out: &mut std::collections::BTreeSet<u32>,
+) {
+    for (_, e) in function.expressions.iter() {
+        if let naga::Expression::AccessIndex { base, index } = *e
+            && matches!(function.expressions[base], naga::Expression::GlobalVariable(g) if g == frame)
+        {
+            out.insert(index);
+        }
+    }
+    fn calls(block: &naga::Block, found: &mut Vec<naga::Handle<naga::Function>>) {
+        for s in block.iter() {
+            match s {
+                naga::Statement::Call { function, .. } => found.push(*function),
+                naga::Statement::Block(b) => calls(b, found),
+                naga::Statement::If { accept, reject, .. } => {
+                    calls(accept, found);
+                    calls(reject, found);
+                }
+                naga::Statement::Switch { cases, .. } => {
+                    for c in cases {
+                        calls(&c.body, found);
+                    }
+                }
+                naga::Statement::Loop {
+                    body, continuing, ..
+                } => {
+                    calls(body, found);
+                    calls(continuing, found);
+                }
+                _ => {}
+            }
+        }
+    }
+    let mut callees = Vec::new();
+    calls(&function.body, &mut callees);
+    for f in callees {
+        frame_members_read(module, &module.functions[f], frame, out);
+    }
+}
+
+/// A computed persistent resource is computed again only when one of its `inputs` changes,
+/// so every uniform member its pass reads (through any function it calls) must be among them:
+/// a member left out would leave the table stale when it changes. Read from naga's IR of the
+/// composed module, not from the text.
+#[test]
+fn computed_resources_list_every_uniform_member_their_pass_reads() {
+    let program = stratus_graph::Program::embedded().unwrap();
+    let tree = ShaderTree::embedded().unwrap();
+    let compiled = stratus_shaders::compile_all(&tree).unwrap();
+    let mut checked = 0;
+    for pass in &program.graph.passes {
+        let Some(entry) = &pass.compute else { continue };
+        let written: Vec<_> = pass
+            .bind
+            .iter()
+            .filter(|(global, _)| global.ends_with("_out"))
+            .filter_map(|(_, resource)| program.graph.resource(resource))
+            .filter(|r| !r.inputs.is_empty())
+            .collect();
+        if written.is_empty() {
+            continue;
+        }
+        let module = &compiled
+            .iter()
+            .find(|m| m.spec.name == pass.module)
+            .expect("the pass's module")
+            .module;
+        let (frame, global) = module
+            .global_variables
+            .iter()
+            .find(|(_, g)| g.name.as_deref() == Some("frame"))
+            .expect("the module binds frame");
+        let naga::TypeInner::Struct { members, .. } = &module.types[global.ty].inner else {
+            panic!("frame is not a struct");
+        };
+        let function = &module
+            .entry_points
+            .iter()
+            .find(|e| &e.name == entry)
+            .expect("the pass's entry point")
+            .function;
+        let mut read = std::collections::BTreeSet::new();
+        frame_members_read(module, function, frame, &mut read);
+        assert!(!read.is_empty(), "{}: reads no uniform member", pass.name);
+        for resource in written {
+            let listed: Vec<&str> = resource
+                .inputs
+                .iter()
+                .map(|i| i.split('.').next().unwrap())
+                .collect();
+            let missing: Vec<&str> = read
+                .iter()
+                .map(|&i| members[i as usize].name.as_deref().unwrap())
+                .filter(|m| !listed.contains(m))
+                .collect();
+            assert!(
+                missing.is_empty(),
+                "resource `{}` (pass `{}`) lists inputs {:?} but its pass also reads {missing:?}: \
+                 add them to its `inputs` in wgsl/graph.toml",
+                resource.name,
+                pass.name,
+                resource.inputs
+            );
+            // A table computed from another goes stale with it: it lists its inputs too.
+            for (_, upstream) in pass.bind.iter().filter(|(g, _)| g.ends_with("_in")) {
+                let Some(upstream) = program.graph.resource(upstream) else {
+                    continue;
+                };
+                let lacking: Vec<&String> = upstream
+                    .inputs
+                    .iter()
+                    .filter(|i| !resource.inputs.contains(i))
+                    .collect();
+                assert!(
+                    lacking.is_empty(),
+                    "resource `{}` is computed from `{}` but lacks its inputs {lacking:?}",
+                    resource.name,
+                    upstream.name
+                );
+            }
+            checked += 1;
+        }
+    }
+    // The six sky tables.
+    assert_eq!(checked, 6, "computed resources with inputs checked");
+}
