@@ -206,3 +206,57 @@ fn the_bench_tables_match_the_committed_results() {
     generated_block("docs/bench.md", "docs/bench-full.json", &full_bench_table());
     generated_block("docs/bench.md", "docs/bench-quick.json", &baselines_table());
 }
+
+/// docs/bench.md's prose on temporal upsampling: the ranges of time (against the preset's) and
+/// of motion FLIP over `cumulus-noon`, `above-clouds` and `stress-thick` at 1/16 and 1/4, and
+/// `sunset`'s time range over its temporal rows, each from docs/bench-quick.json.
+#[test]
+fn the_bench_prose_on_temporal_upsampling_matches_the_quick_results() {
+    let rows = bench_rows("docs/bench-quick.json");
+    let doc = read("docs/bench.md")
+        .split_whitespace()
+        .collect::<Vec<_>>()
+        .join(" ");
+    // "lo-hi" of `key` over the rows of `scenes` whose temporal mode `temporal` accepts.
+    let range = |scenes: &[&str], temporal: &dyn Fn(&str) -> bool, key: &str, digits: usize| {
+        let values: Vec<f64> = rows
+            .iter()
+            .filter(|r| {
+                scenes.contains(&r["scene"].as_str().unwrap())
+                    && temporal(r["config"]["temporal"].as_str().unwrap_or("off"))
+            })
+            .map(|r| f(r, key))
+            .collect();
+        assert!(!values.is_empty(), "no such rows of {scenes:?}");
+        let lo = values.iter().copied().fold(f64::INFINITY, f64::min);
+        let hi = values.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        format!("{lo:.digits$}-{hi:.digits$}")
+    };
+    let three = ["cumulus-noon", "above-clouds", "stress-thick"];
+    type Mode<'a> = &'a dyn Fn(&str) -> bool;
+    let at16: Mode = &|t| t == "1/16";
+    let at4: Mode = &|t| t == "1/4";
+    let any: Mode = &|t| t != "off";
+    let claims = [
+        format!(
+            "at {} of the time at 1/16",
+            range(&three, at16, "time_vs_preset", 2)
+        ),
+        format!("and {} at 1/4", range(&three, at4, "time_vs_preset", 2)),
+        format!(
+            "costs FLIP {} in motion at 1/16",
+            range(&three, at16, "motion_flip", 3)
+        ),
+        format!(", {} at 1/4", range(&three, at4, "motion_flip", 3)),
+        format!(
+            "({} in `docs/bench-quick.json`)",
+            range(&["sunset"], any, "time_vs_preset", 2)
+        ),
+    ];
+    for claim in claims {
+        assert!(
+            doc.contains(&claim),
+            "docs/bench.md should say {claim:?} (from docs/bench-quick.json)"
+        );
+    }
+}
