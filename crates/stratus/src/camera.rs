@@ -52,6 +52,9 @@ pub struct Projection {
     pub far: f64,
     /// Whether clip depth is reversed (1 at the near plane, 0 at the far one).
     pub reversed_z: bool,
+    /// The projection's depth terms `(A, B)`: clip depth = `B / distance - A` (row 2,
+    /// columns 2 and 3).
+    depth_terms: (f64, f64),
 }
 
 impl Projection {
@@ -60,19 +63,8 @@ impl Projection {
     /// 3), so `distance = B / (depth + A)`. Infinite where the depth is the infinite far
     /// plane's.
     pub fn view_distance(&self, depth: f64) -> f64 {
-        let (a, b) = self.depth_terms();
+        let (a, b) = self.depth_terms;
         b / (depth + a)
-    }
-
-    /// The projection's `(A, B)`, `depth = B / distance - A`.
-    fn depth_terms(&self) -> (f64, f64) {
-        let (n, f) = (self.near, self.far);
-        match (self.reversed_z, f.is_finite()) {
-            (false, true) => (f / (n - f), n * f / (n - f)),
-            (false, false) => (-1.0, -n),
-            (true, true) => (n / (f - n), n * f / (f - n)),
-            (true, false) => (0.0, n),
-        }
     }
 }
 
@@ -216,6 +208,7 @@ impl HostCamera {
             near,
             far,
             reversed_z,
+            depth_terms: (a, b),
         })
     }
 
