@@ -60,13 +60,21 @@ impl Stats {
             p(1.0)
         )
     }
+    fn quantiles(&self) -> (f64, f64, f64) {
+        let mut v = self.0.clone();
+        v.sort_by(f64::total_cmp);
+        let n = v.len();
+        let p99 = v[((0.99 * n as f64).ceil() as usize).clamp(1, n) - 1];
+        (v.iter().sum::<f64>() / n as f64, p99, v[n - 1])
+    }
     fn max(&self) -> f64 {
         self.0.iter().copied().fold(0.0, f64::max)
     }
 }
 
-#[test]
-fn sun_and_moon_agree_with_astropy() {
+/// The great-circle errors of the sun and the moon and the error of the moon's illuminated
+/// fraction over every case, with the case of the sun's and the moon's largest.
+fn position_errors() -> (Stats, Stats, Stats, (f64, String, f64, String)) {
     let cases = cases();
     assert!(cases.len() >= 500, "{} cases", cases.len());
     let (mut sun, mut moon, mut phase) = (Vec::new(), Vec::new(), Vec::new());
@@ -97,7 +105,12 @@ fn sun_and_moon_agree_with_astropy() {
         moon.push(dm);
         phase.push((stratus_astro::moon_phase(t) - f(&c["moon"]["phase"])).abs());
     }
-    let (sun, moon, phase) = (Stats(sun), Stats(moon), Stats(phase));
+    (Stats(sun), Stats(moon), Stats(phase), worst)
+}
+
+#[test]
+fn sun_and_moon_agree_with_astropy() {
+    let (sun, moon, phase, worst) = position_errors();
     println!("{}", sun.line("sun", " deg"));
     println!("{}", moon.line("moon", " deg"));
     println!("{}", phase.line("moon phase (illuminated fraction)", ""));
@@ -116,8 +129,9 @@ fn sun_and_moon_agree_with_astropy() {
     assert!(phase.max() <= PHASE, "phase off by {:.5}", phase.max());
 }
 
-#[test]
-fn sunrise_and_sunset_agree_with_astropy() {
+/// The errors of sunrise and sunset, seconds, over every case with both events, and the number
+/// of events absent from both (polar day or night).
+fn event_errors() -> (Stats, usize) {
     let mut diffs = Vec::new();
     let (mut checked, mut polar) = (0, 0);
     for c in cases().iter().filter(|c| c.get("events").is_some()) {
@@ -143,7 +157,12 @@ fn sunrise_and_sunset_agree_with_astropy() {
         }
     }
     assert!(checked >= 100, "{checked} cases with events");
-    let stats = Stats(diffs);
+    (Stats(diffs), polar)
+}
+
+#[test]
+fn sunrise_and_sunset_agree_with_astropy() {
+    let (stats, polar) = event_errors();
     println!(
         "{} ({polar} events absent from both: polar day or night)",
         stats.line("sunrise and sunset", " s")
@@ -152,5 +171,37 @@ fn sunrise_and_sunset_agree_with_astropy() {
         stats.max() <= EVENT_S,
         "an event is {:.1} s off",
         stats.max()
+    );
+}
+
+/// docs/astronomy.md's table of errors against astropy is this file's measurement.
+#[test]
+fn the_docs_table_is_this_measurement() {
+    let (sun, moon, phase, _) = position_errors();
+    let (events, _) = event_errors();
+    let row = |what: &str, s: &Stats, digits: usize, unit: &str, target: &str| {
+        let (mean, p99, max) = s.quantiles();
+        format!(
+            "| {what} | {mean:.digits$}{unit} | {p99:.digits$}{unit} | {max:.digits$}{unit} | {target} |\n"
+        )
+    };
+    let table = [
+        "| | mean | p99 | max | target |\n|---|---|---|---|---|\n".to_string(),
+        row("sun", &sun, 4, "°", &format!("{SUN_DEG}°")),
+        row("moon", &moon, 4, "°", &format!("{MOON_DEG}°")),
+        row("moon's illuminated fraction", &phase, 5, "", ""),
+        row(
+            &format!("sunrise and sunset ({} events)", events.0.len()),
+            &events,
+            1,
+            " s",
+            "",
+        ),
+    ]
+    .concat();
+    stratus_test_support::docs_block(
+        "docs/astronomy.md",
+        "cargo test -p stratus-astro --test ephemeris",
+        &table,
     );
 }

@@ -147,3 +147,36 @@ pub fn small(name: &str, w: u32, h: u32) -> Scene {
         .unwrap_or_else(|e| panic!("preset {name}: {e}"))
         .with_size(w, h)
 }
+
+/// Holds the block of the repository's `doc` (a path from the workspace root) between
+/// `<!-- generated: ID -->` and `<!-- end generated -->` to `expected`, the text a test derives
+/// from the block's source; with `STRATUS_UPDATE_DOCS=1` rewrites the block instead. This is how
+/// a table of docs/ stays what its source says: the test that computes it owns it.
+pub fn docs_block(doc: &str, id: &str, expected: &str) {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let path = root.join(doc);
+    let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("reading {doc}: {e}"));
+    let begin = format!("<!-- generated: {id} -->\n");
+    let end = "<!-- end generated -->";
+    let start = text
+        .find(&begin)
+        .unwrap_or_else(|| panic!("{doc} has no `{}`", begin.trim()))
+        + begin.len();
+    let stop = start
+        + text[start..]
+            .find(end)
+            .unwrap_or_else(|| panic!("{doc}: `{}` is not closed", begin.trim()));
+    if text[start..stop] == *expected {
+        return;
+    }
+    if std::env::var_os("STRATUS_UPDATE_DOCS").is_some() {
+        let new = format!("{}{expected}{}", &text[..start], &text[stop..]);
+        std::fs::write(&path, new).unwrap_or_else(|e| panic!("writing {doc}: {e}"));
+        return;
+    }
+    panic!(
+        "{doc}'s block `{id}` no longer matches its source; rerun the test with \
+         `STRATUS_UPDATE_DOCS=1` to rewrite it.\nexpected:\n{expected}\nfound:\n{}",
+        &text[start..stop]
+    );
+}
