@@ -107,11 +107,18 @@ pub(crate) fn fuzz(
                 );
             }
             if fuzzing {
-                done = text
-                    .lines()
-                    .find(|l| l.starts_with("Done "))
-                    .unwrap_or("Done (no summary)")
-                    .to_string();
+                // libFuzzer ends a run it finished with "Done N runs in S second(s)"; a run
+                // that exits cleanly without it did not fuzz (a harness that returns early, a
+                // flag libFuzzer ignored), and is no evidence of anything.
+                done = match text.lines().find(|l| l.starts_with("Done ")) {
+                    Some(line) => line.to_string(),
+                    None => {
+                        eprintln!("{text}");
+                        bail!(
+                            "fuzz target {target} exited without libFuzzer's \"Done N runs\" summary, so it did not fuzz"
+                        );
+                    }
+                };
             }
         }
         println!(

@@ -93,6 +93,17 @@ pub(crate) fn web_test(root: &Path) -> Result<Vec<(String, f64)>> {
     let mut flips = Vec::new();
     let mut problems = Vec::new();
     println!("web-tint ({}):", results["adapter"]);
+    // The bounds were measured on SwiftShader, which the browser is told to use: any other
+    // adapter (a real GPU, or none reporting itself) is not the path these bounds hold.
+    let architecture = results["adapter"]["architecture"].as_str().unwrap_or("");
+    if architecture != "swiftshader" {
+        bail!(
+            "web-test: the browser's WebGPU adapter is {} (from {}), not SwiftShader, which \
+             `--use-webgpu-adapter=swiftshader` asks for and the web-tint bounds were measured on",
+            results["adapter"],
+            out.join("results.json").display()
+        );
+    }
     for g in goldens {
         let name = g["name"].as_str().context("a golden without a name")?;
         let golden = stratus_compare::Image::load(&kit.join(g["image"].as_str().unwrap_or("")))?;
