@@ -289,7 +289,7 @@ impl Renderers {
                 let key = (plan.variant.clone(), passes.join(","), lang);
                 if !self.compiled.contains_key(&key) {
                     let prepared = spirv::compile(&plan, lang, &self.scratch)
-                        .and_then(|list| prepare(r, &frame, list));
+                        .and_then(|list| prepare(r, &frame, lang, list));
                     self.compiled.insert(key.clone(), prepared);
                 }
                 let p = self.compiled[&key].as_ref().map_err(|e| e.clone())?;
@@ -330,12 +330,45 @@ impl Renderers {
     }
 }
 
+/// The only passes a path may run from the committed SPIR-V instead of its own module, each with
+/// the reason the backend must give and why that is the translator's doing, not Stratus's.
+/// Any other `Unsupported` pass fails the path: a silent substitution would let a path pass
+/// without running the shaders it claims to test.
+pub const DECLARED_SUBSTITUTIONS: &[(Lang, &str, &str, &str)] = &[
+    (
+        Lang::Hlsl,
+        "march",
+        "maxPerStageDescriptorSamplers",
+        "naga's HLSL declares its sampler heap as arrays of 2048 samplers, more than lavapipe's 32 a stage; a device with a larger limit runs the pass from the HLSL",
+    ),
+    (
+        Lang::Hlsl,
+        "cloud-shadow",
+        "maxPerStageDescriptorSamplers",
+        "as `march`: the sampler heap of naga's HLSL",
+    ),
+    (
+        Lang::Hlsl,
+        "resolve",
+        "maxPerStageDescriptorSamplers",
+        "as `march`: the sampler heap of naga's HLSL",
+    ),
+    (
+        Lang::Hlsl,
+        "sprite-build",
+        "maxPerStageDescriptorSamplers",
+        "as `march`: the sampler heap of naga's HLSL",
+    ),
+];
+
 /// Renders once to find the passes whose module the device cannot bind (the backend says so
 /// with `Error::Unsupported` before creating anything), and runs those from the committed
-/// SPIR-V instead, so that the rest of the path's shaders still run.
+/// SPIR-V instead, so that the rest of the path's shaders still run; only the substitutions
+/// [`DECLARED_SUBSTITUTIONS`] lists are allowed.
 fn prepare(
     r: &mut ash_backend::Renderer,
     frame: &FrameInput<'_>,
+    lang: Lang,
     mut list: Vec<ash_backend::PassShader>,
 ) -> Result<Prepared, String> {
     let plan = frame.plan;
@@ -352,6 +385,14 @@ fn prepare(
             Err(ash_backend::Error::Unsupported { pass, reason, .. })
                 if !substituted.iter().any(|(p, _)| *p == pass) =>
             {
+                if !DECLARED_SUBSTITUTIONS
+                    .iter()
+                    .any(|(l, p, why, _)| *l == lang && *p == pass && reason.contains(why))
+                {
+                    return Err(format!(
+                        "pass `{pass}` cannot run from the {lang:?} module ({reason}), and that is not a declared substitution (DECLARED_SUBSTITUTIONS in tests/tests/conformance/paths.rs)"
+                    ));
+                }
                 // The supplied list holds the compute passes, in plan order.
                 let computes: Vec<_> = plan
                     .passes
