@@ -74,12 +74,21 @@ pub(crate) fn fuzz(
             );
         }
         let mut done = String::new();
+        let seeds = write_seeds(root, target)?;
         for extra in runs {
             let fuzzing = extra.is_empty();
             let mut cmd = Command::new(&cargo);
             cmd.current_dir(root)
                 .args(["fuzz", "run", "--fuzz-dir", "fuzz", "-s", "none", target]);
             cmd.args(&extra);
+            if fuzzing {
+                // libFuzzer writes what it finds to the first directory and reads the others:
+                // the run starts from the project's own inputs instead of from nothing.
+                let corpus = root.join("fuzz/corpus").join(target);
+                std::fs::create_dir_all(&corpus)
+                    .with_context(|| format!("creating {}", corpus.display()))?;
+                cmd.arg(&corpus).arg(&seeds.0);
+            }
             cmd.arg("--");
             if fuzzing {
                 cmd.arg(match runs_limit {
@@ -122,11 +131,101 @@ pub(crate) fn fuzz(
             }
         }
         println!(
-            "fuzz {target:12} {} regression input(s) replayed; {done}; 0 crashes",
-            inputs.len()
+            "fuzz {target:12} {} regression input(s) replayed, {} seed(s); {done}; 0 crashes",
+            inputs.len(),
+            seeds.1
         );
         rows.push(target);
     }
     println!("fuzz: {} targets, no crash", rows.len());
     Ok(())
+}
+
+/// Writes a target's seed inputs, taken from what the project commits (the scenes, the WGSL,
+/// the golden images, the METAR reports, the ephemeris test's dates), to
+/// `target/fuzz-seeds/<target>/`; returns the folder and how many seeds it holds. OpenEXR, of
+/// which nothing is committed, starts from two small images written here.
+fn write_seeds(root: &Path, target: &str) -> Result<(PathBuf, usize)> {
+    let files_in = |dir: &str, ext: &str| -> Vec<PathBuf> {
+        let mut v: Vec<PathBuf> = std::fs::read_dir(root.join(dir))
+            .map(|d| {
+                d.flatten()
+                    .map(|e| e.path())
+                    .filter(|p| p.extension().is_some_and(|x| x == ext))
+                    .collect()
+            })
+            .unwrap_or_default();
+        v.sort();
+        v
+    };
+    let read = |p: &Path| std::fs::read(p).with_context(|| format!("reading {}", p.display()));
+    let mut seeds: Vec<Vec<u8>> = Vec::new();
+    match target {
+        "scene_toml" => {
+            for p in files_in("scenes", "toml")
+                .iter()
+                .chain(&files_in("scenes/fit", "toml"))
+            {
+                seeds.push(read(p)?);
+            }
+        }
+        "wgsl" => {
+            for p in files_in("wgsl", "wgsl") {
+                seeds.push(read(&p)?);
+            }
+        }
+        "image_png" => {
+            for p in files_in("tests/golden", "png") {
+                seeds.push(read(&p)?);
+            }
+        }
+        "metar" => {
+            let text =
+                std::fs::read_to_string(root.join("crates/weather/tests/data/metar_reports.txt"))
+                    .context("reading the METAR reports")?;
+            seeds.extend(
+                text.lines()
+                    .filter(|l| !l.trim().is_empty() && !l.starts_with('#'))
+                    .map(|l| l.as_bytes().to_vec()),
+            );
+        }
+        "utc_date" => {
+            // Two bytes pick the place (see the target), then the date's text.
+            let text = std::fs::read_to_string(root.join("crates/astro/tests/data/ephemeris.json"))
+                .context("reading the ephemeris cases")?;
+            let json: serde_json::Value = serde_json::from_str(&text).context("ephemeris.json")?;
+            let cases = json["cases"]
+                .as_array()
+                .context("ephemeris.json: no cases")?;
+            for (i, c) in cases.iter().take(32).enumerate() {
+                if let Some(date) = c["date_utc"].as_str() {
+                    let mut seed = vec![(i * 37 % 256) as u8, (i * 91 % 256) as u8];
+                    seed.extend_from_slice(date.as_bytes());
+                    seeds.push(seed);
+                }
+            }
+        }
+        "image_exr" => {
+            // Nothing committed is an EXR: two small ones as Stratus writes them (linear RGBA,
+            // alpha the transmittance).
+            let scratch = crate::target_dir(root).join("fuzz-seeds/exr-scratch.exr");
+            std::fs::create_dir_all(scratch.parent().unwrap())?;
+            for (w, h) in [(1, 1), (8, 4)] {
+                let rgba: Vec<f32> = (0..w * h * 4).map(|i| i as f32 / 7.0).collect();
+                stratus_compare::Image::from_linear_rgba(w, h, rgba)
+                    .save(&scratch)
+                    .context("writing an EXR seed")?;
+                seeds.push(read(&scratch)?);
+            }
+        }
+        _ => {}
+    }
+    let dir = crate::target_dir(root).join("fuzz-seeds").join(target);
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).with_context(|| format!("creating {}", dir.display()))?;
+    for (i, seed) in seeds.iter().enumerate() {
+        std::fs::write(dir.join(format!("seed-{i:03}")), seed)
+            .with_context(|| format!("writing a seed to {}", dir.display()))?;
+    }
+    Ok((dir, seeds.len()))
 }
