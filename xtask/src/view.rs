@@ -1,5 +1,6 @@
-//! `cargo xtask view-test`: the viewer under Xvfb, driven by a script; its screenshots must
-//! differ, have contrast and show the overlay's text.
+//! `cargo xtask view-test`: the viewer under Xvfb, driven by a script, on wgpu and on ash; on
+//! each the window must present frames and the screenshots must differ, have contrast and show
+//! the overlay's text, and the two backends' clouds must be the same pixels.
 
 use std::{
     path::{Path, PathBuf},
@@ -21,6 +22,11 @@ pub(crate) const VIEW_MIN_CONTRAST: f64 = 0.03;
 /// inside the overlay's rectangle, at least this many (measured over 2000 at 480x270).
 pub(crate) const VIEW_MIN_TEXT_EDGES: usize = 300;
 
+/// Frames the window must present between the two screenshots: the script advances 24 frames
+/// from the first (0.1 s) to the second (0.9 s); under Xvfb every one presents (measured 24), and
+/// half allows a surface reconfigured for a frame or two.
+pub(crate) const VIEW_MIN_PRESENTED_BETWEEN: u64 = 12;
+
 pub(crate) fn view_test(root: &Path) -> Result<()> {
     let t = Instant::now();
     let target = target_dir(root);
@@ -28,68 +34,27 @@ pub(crate) fn view_test(root: &Path) -> Result<()> {
     let _ = std::fs::remove_dir_all(&out);
     cargo(root, &["build", "-q", "-p", "stratus-cli"])?;
     let exe = target.join("debug").join("stratus");
-    let (xvfb, display) = start_xvfb()?;
-    let script = root.join("tests/view/script.toml");
-    let result = Command::new(&exe)
-        .args(["view", "--script"])
-        .arg(&script)
-        .args(["--size", "480x270", "--vsync", "off", "--out-dir"])
-        .arg(&out)
-        .env("DISPLAY", &display)
-        .env("STRATUS_VALIDATION", "1")
-        .env(
-            "XDG_RUNTIME_DIR",
-            std::env::var_os("XDG_RUNTIME_DIR").unwrap_or_else(|| std::env::temp_dir().into()),
-        )
-        .status();
-    stop_xvfb(xvfb);
-    let status = result.context("running stratus view")?;
-    if !status.success() {
-        bail!("stratus view --script failed ({status})");
-    }
-    let shot = |name: &str| -> Result<(stratus_compare::Image, [f64; 4])> {
-        let image = stratus_compare::Image::load(&out.join(format!("{name}.png")))?;
-        let info: serde_json::Value =
-            serde_json::from_str(&std::fs::read_to_string(out.join(format!("{name}.json")))?)?;
-        let r = info["overlay_px"]
-            .as_array()
-            .with_context(|| format!("{name}.json: no overlay rectangle (overlay hidden?)"))?;
-        let r: Vec<f64> = r.iter().filter_map(serde_json::Value::as_f64).collect();
-        Ok((image, [r[0], r[1], r[2], r[3]]))
-    };
-    let path = std::fs::read_to_string(out.join("path-001.toml"))
-        .context("the recorded camera path (path-001.toml) was not written")?;
-    let keyframes = path.matches("[[animation.keyframes]]").count();
-    println!("view-test: the recorded camera path has {keyframes} keyframes");
-    let (first, r1) = shot("first")?;
-    let (second, r2) = shot("second")?;
     let mut problems = Vec::new();
-    let diff =
-        stratus_compare::compare(&first, &second, &stratus_compare::CompareOptions::default())?;
-    println!(
-        "view-test: the screenshots differ by FLIP mean {:.3}",
-        diff.flip.mean
-    );
-    if keyframes < 2 {
-        problems.push(format!("the recorded path has {keyframes} keyframes"));
+    // Each backend runs the script; their clouds must be the same pixels.
+    for backend in ["wgpu", "ash"] {
+        let dir = out.join(backend);
+        let found = run_script(root, &exe, backend, &dir)?;
+        problems.extend(found.into_iter().map(|p| format!("{backend}: {p}")));
     }
-    if diff.flip.mean < VIEW_MIN_DIFFERENCE {
-        problems.push(format!(
-            "the screenshots barely differ (FLIP mean {:.4} < {VIEW_MIN_DIFFERENCE})",
-            diff.flip.mean
-        ));
-    }
-    for (name, image, rect) in [("first", &first, r1), ("second", &second, r2)] {
-        let (contrast, edges) = overlay_stats(image, rect);
+    for name in ["first", "second"] {
+        let load = |backend: &str| {
+            stratus_compare::Image::load(&out.join(backend).join(format!("{name}.clouds.png")))
+        };
+        let (w, a) = (load("wgpu")?, load("ash")?);
+        let d = stratus_compare::compare(&w, &a, &stratus_compare::CompareOptions::default())?;
         println!(
-            "view-test: {name}: luminance std-dev {contrast:.3} outside the overlay, {edges} text edges in it"
+            "view-test: {name}: wgpu and ash clouds differ by FLIP mean {:.4} (max {:.4})",
+            d.flip.mean, d.flip.max
         );
-        if contrast < VIEW_MIN_CONTRAST {
-            problems.push(format!("{name} is flat (luminance std-dev {contrast:.4})"));
-        }
-        if edges < VIEW_MIN_TEXT_EDGES {
+        if w.rgba != a.rgba {
             problems.push(format!(
-                "{name}: no overlay text ({edges} glyph edges < {VIEW_MIN_TEXT_EDGES})"
+                "{name}: the clouds on wgpu and ash are not the same pixels (FLIP mean {:.4})",
+                d.flip.mean
             ));
         }
     }
@@ -102,6 +67,85 @@ pub(crate) fn view_test(root: &Path) -> Result<()> {
         bail!("view-test: {}", problems.join("; "));
     }
     Ok(())
+}
+
+/// Runs the viewer's script on `backend` under Xvfb into `out`, and returns what is wrong with
+/// its screenshots.
+fn run_script(root: &Path, exe: &Path, backend: &str, out: &Path) -> Result<Vec<String>> {
+    let (xvfb, display) = start_xvfb()?;
+    let script = root.join("tests/view/script.toml");
+    let result = Command::new(exe)
+        .args(["view", "--backend", backend, "--script"])
+        .arg(&script)
+        .args(["--size", "480x270", "--vsync", "off", "--out-dir"])
+        .arg(out)
+        .env("DISPLAY", &display)
+        .env("STRATUS_VALIDATION", "1")
+        .env(
+            "XDG_RUNTIME_DIR",
+            std::env::var_os("XDG_RUNTIME_DIR").unwrap_or_else(|| std::env::temp_dir().into()),
+        )
+        .status();
+    stop_xvfb(xvfb);
+    let status = result.context("running stratus view")?;
+    if !status.success() {
+        bail!("stratus view --backend {backend} --script failed ({status})");
+    }
+    let shot = |name: &str| -> Result<(stratus_compare::Image, [f64; 4], u64)> {
+        let image = stratus_compare::Image::load(&out.join(format!("{name}.png")))?;
+        let info: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(out.join(format!("{name}.json")))?)?;
+        let r = info["overlay_px"]
+            .as_array()
+            .with_context(|| format!("{name}.json: no overlay rectangle (overlay hidden?)"))?;
+        let r: Vec<f64> = r.iter().filter_map(serde_json::Value::as_f64).collect();
+        let presented = info["presented_frames"]
+            .as_u64()
+            .with_context(|| format!("{name}.json: no presented_frames"))?;
+        Ok((image, [r[0], r[1], r[2], r[3]], presented))
+    };
+    let path = std::fs::read_to_string(out.join("path-001.toml"))
+        .context("the recorded camera path (path-001.toml) was not written")?;
+    let keyframes = path.matches("[[animation.keyframes]]").count();
+    println!("view-test ({backend}): the recorded camera path has {keyframes} keyframes");
+    let (first, r1, p1) = shot("first")?;
+    let (second, r2, p2) = shot("second")?;
+    let mut problems = Vec::new();
+    let diff =
+        stratus_compare::compare(&first, &second, &stratus_compare::CompareOptions::default())?;
+    println!(
+        "view-test ({backend}): the screenshots differ by FLIP mean {:.3}; {p1} frames presented by the first, {p2} by the second",
+        diff.flip.mean
+    );
+    if keyframes < 2 {
+        problems.push(format!("the recorded path has {keyframes} keyframes"));
+    }
+    if p1 == 0 || p2 < p1 + VIEW_MIN_PRESENTED_BETWEEN {
+        problems.push(format!(
+            "the window presented {p1} frames by the first screenshot and {p2} by the second (at least one, then {VIEW_MIN_PRESENTED_BETWEEN} more)"
+        ));
+    }
+    if diff.flip.mean < VIEW_MIN_DIFFERENCE {
+        problems.push(format!(
+            "the screenshots barely differ (FLIP mean {:.4} < {VIEW_MIN_DIFFERENCE})",
+            diff.flip.mean
+        ));
+    }
+    for (name, image, rect) in [("first", &first, r1), ("second", &second, r2)] {
+        let (contrast, edges) = overlay_stats(image, rect);
+        println!(
+            "view-test ({backend}): {name}: luminance std-dev {contrast:.3} outside the overlay, {edges} text edges in it"
+        );
+        if contrast < VIEW_MIN_CONTRAST {
+            problems.push(format!("{name} is flat (luminance std-dev {contrast:.4})"));
+        }
+        if edges < VIEW_MIN_TEXT_EDGES {
+            problems.push(format!(
+                "{name}: no overlay text ({edges} glyph edges < {VIEW_MIN_TEXT_EDGES})"
+            ));
+        }
+    }
+    Ok(problems)
 }
 
 /// The luminance standard deviation outside the overlay's rectangle `[x0, y0, x1, y1]`, and

@@ -167,6 +167,7 @@ impl App {
         if let Some(t) = surface_texture {
             gpu.window.pre_present_notify();
             gpu.queue.present(t);
+            state.presented += 1;
         }
         state.timings = match (&mut gpu.clouds, ash_timings) {
             (_, Some(t)) => t,
@@ -245,6 +246,7 @@ impl App {
                     "camera": state.scene.camera,
                     "sun": state.scene.sun,
                     "clouds_time_s": state.scene.clouds.time_s,
+                    "presented_frames": state.presented,
                     "overlay_px": overlay_rect.map(|r| [
                         f64::from(r.min.x) * ppp, f64::from(r.min.y) * ppp,
                         f64::from(r.max.x) * ppp, f64::from(r.max.y) * ppp,

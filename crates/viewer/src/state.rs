@@ -29,6 +29,10 @@ pub(crate) struct ViewState {
     /// Running mean of the wall time between frames, seconds (0 before the second frame).
     pub(crate) dt_mean: f64,
     pub(crate) cpu_ms: f64,
+    /// Frames handed to the window's surface so far (a frame whose surface texture could not
+    /// be acquired renders but is not presented); screenshots record it, so that a test can
+    /// tell a viewer that shows frames from one that only renders them.
+    pub(crate) presented: u64,
     /// Wall time from the frame's start to the GPU being done with it.
     pub(crate) frame_ms: f64,
     pub(crate) timings: Vec<PassTiming>,
@@ -65,6 +69,7 @@ impl ViewState {
             message: String::new(),
             dt_mean: 0.0,
             cpu_ms: 0.0,
+            presented: 0,
             frame_ms: 0.0,
             timings: Vec::new(),
             samples_per_px: None,
