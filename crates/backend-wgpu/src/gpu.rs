@@ -141,6 +141,9 @@ impl Renderer {
             adapter: describe(&info),
             message: e.to_string(),
         })?;
+        if options.api == Api::Gl {
+            probe_gl_compute(&device, &info)?;
+        }
         let errors = Arc::new(Mutex::new(Vec::new()));
         let sink = errors.clone();
         device.on_uncaptured_error(Arc::new(move |e: wgpu::Error| {
@@ -303,6 +306,54 @@ impl Renderer {
             let n = 2 * passes;
             encoder.resolve_query_set(&q.set, 0..n, &q.resolve, 0);
             encoder.copy_buffer_to_buffer(&q.resolve, 0, &q.read, 0, u64::from(n) * 8);
+        }
+    }
+}
+
+/// Builds a one-line compute pipeline on a GL device and refuses the device if that fails. A
+/// GL adapter may report compute shaders while wgpu's GL backend translates WGSL for a GLSL
+/// version without them (NVIDIA's EGL: "The selected version doesn't support
+/// Features(COMPUTE_SHADER)"): every Stratus pipeline would then fail, so the device is
+/// refused at creation, by name, and `auto` moves on to the CPU.
+fn probe_gl_compute(device: &wgpu::Device, info: &wgpu::AdapterInfo) -> Result<(), Error> {
+    // A failed translation is an internal error in wgpu (and is logged at error level).
+    let internal = device.push_error_scope(wgpu::ErrorFilter::Internal);
+    let validation = device.push_error_scope(wgpu::ErrorFilter::Validation);
+    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+        label: Some("stratus gl compute probe"),
+        source: wgpu::ShaderSource::Wgsl(
+            "@group(0) @binding(0) var<storage, read_write> v: array<u32>;\n\
+             @compute @workgroup_size(1) fn probe() { v[0] = 1u; }"
+                .into(),
+        ),
+    });
+    let _pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+        label: Some("stratus gl compute probe"),
+        layout: None,
+        module: &module,
+        entry_point: Some("probe"),
+        compilation_options: Default::default(),
+        cache: None,
+    });
+    let failed = pollster::block_on(validation.pop());
+    let failed = failed.or(pollster::block_on(internal.pop()));
+    match failed {
+        None => Ok(()),
+        Some(e) => {
+            // wgpu's message nests its causes over several lines; the last is the reason.
+            let text = e.to_string();
+            let reason = text
+                .lines()
+                .map(str::trim)
+                .rfind(|l| !l.is_empty())
+                .unwrap_or("unknown")
+                .to_string();
+            Err(Error::NoCompute {
+                adapter: format!(
+                    "{} (a one-line compute pipeline failed: {reason})",
+                    describe(info)
+                ),
+            })
         }
     }
 }

@@ -92,3 +92,52 @@ fn a_gl_device_without_compute_is_named_and_auto_moves_on() {
     assert!(text.contains("rendering on the CPU"), "{text}");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// A GL context that reports compute shaders while wgpu translates for a GLSL version without
+/// them (llvmpipe held to GL 3.3 with its compute extension still listed: the failure NVIDIA's
+/// EGL gave the device suite, "The selected version doesn't support Features(COMPUTE_SHADER)")
+/// is refused at creation by the backend's compute probe, by name, instead of failing every
+/// pipeline later; `auto` moves on.
+#[test]
+fn a_gl_context_whose_glsl_lacks_compute_is_refused_at_creation() {
+    let old_glsl = [
+        ("MESA_GL_VERSION_OVERRIDE", "3.3"),
+        ("MESA_GLSL_VERSION_OVERRIDE", "330"),
+    ];
+    let dir = std::env::temp_dir().join(format!("stratus-glsl-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("scratch dir");
+    let out = dir.join("gl.png");
+    let out = out.to_str().expect("utf-8 path");
+    let (ok, text) = stratus_with(
+        &[
+            "render",
+            "--backend",
+            "wgpu-gl",
+            "--size",
+            "16x9",
+            "--out",
+            out,
+        ],
+        &old_glsl,
+    );
+    assert!(!ok, "{text}");
+    assert!(!text.contains("panicked"), "{text}");
+    assert!(
+        text.contains("a one-line compute pipeline failed")
+            && text.contains("COMPUTE_SHADER")
+            && text.contains("it has no compute shaders"),
+        "{text}"
+    );
+    let (ok, text) = stratus_with(
+        &["render", "--size", "16x9", "--out", out],
+        &[
+            old_glsl[0],
+            old_glsl[1],
+            ("VK_ICD_FILENAMES", "/nonexistent/icd.json"),
+            ("VK_DRIVER_FILES", "/nonexistent/icd.json"),
+        ],
+    );
+    assert!(ok, "{text}");
+    assert!(text.contains("rendering on the CPU"), "{text}");
+    let _ = std::fs::remove_dir_all(&dir);
+}

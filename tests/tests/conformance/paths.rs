@@ -124,7 +124,12 @@ fn wgpu_renderer(api: wgpu_backend::Api) -> Result<wgpu_backend::Renderer, WgpuF
         validation: true,
     })
     .map_err(|e| match e {
-        wgpu_backend::Error::NoCompute { .. } => WgpuFailure::NoCompute(e.to_string()),
+        wgpu_backend::Error::NoCompute { .. } => {
+            // The backend's compute probe failing logs wgpu's translation error: that is the
+            // refusal itself, not a message about another path.
+            let _ = logged();
+            WgpuFailure::NoCompute(e.to_string())
+        }
         e => WgpuFailure::Other(e.to_string()),
     })?;
     check_log(&format!("creating the wgpu {api:?} renderer")).map_err(WgpuFailure::Other)?;
