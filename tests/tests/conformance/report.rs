@@ -291,16 +291,17 @@ pub const GOLDEN: Thresholds = Thresholds {
     rmse: f64::INFINITY,
 };
 
-/// The golden image comparison on a device of another class. Measured on an NVIDIA H100
-/// (driver 580): FLIP mean 0.003-0.016 over the scenes, the pattern and size of the CPU
-/// reference's and SwiftShader's differences (mean up to 0.0107, p99 up to 0.057), and for the
-/// same reason: those filter textures at full precision where lavapipe quantises the filter
-/// weights. Bounds: 2.5x the H100's largest mean; the H100's p99 was not recorded, so the p99
-/// bound is 2.5x the largest p99 of the full-precision paths here (CPU and SwiftShader, 0.057).
-/// A device run that measures more replaces these numbers, not the other way round.
+/// The golden image comparison on a device of another class. Measured on two GPU models: an
+/// NVIDIA H100 (driver 580), FLIP mean 0.003-0.016 over the scenes (p99 not recorded), and an
+/// NVIDIA H200 (docs/conformance-h200.md), mean up to 0.0163 (stratocumulus-overcast) and p99
+/// up to 0.0577 (inside-layer): the pattern and size of the CPU reference's and SwiftShader's
+/// differences here (mean up to 0.0107, p99 up to 0.057), and for the same reason: those filter
+/// textures at full precision where lavapipe quantises the filter weights. Bounds: about twice
+/// the largest measured, 0.033 and 0.12. A device run that measures more replaces these
+/// numbers, not the other way round.
 pub const CROSS_DEVICE_GOLDEN: Thresholds = Thresholds {
-    flip_mean: 4e-2,
-    flip_p99: 1.5e-1,
+    flip_mean: 3.3e-2,
+    flip_p99: 1.2e-1,
     max_abs: f64::INFINITY,
     rmse: f64::INFINITY,
 };
