@@ -197,7 +197,20 @@ impl Image {
 
     /// Writes the image: `.png` (display images as 8 bits; linear ones tone-mapped with
     /// [`tonemap`] at exposure 1) or `.exr` (the raw values).
+    /// The file is complete or absent: it is written under a temporary name beside `path`
+    /// and renamed into place ([`write_atomically`]).
     pub fn save(&self, path: &Path) -> Result<(), CompareError> {
+        let werr = |message: String| CompareError::Write {
+            path: path.display().to_string(),
+            message,
+        };
+        write_atomically(path, |tmp| self.save_to(tmp, path)).map_err(|e| match e {
+            AtomicError::Io(e) => werr(e.to_string()),
+            AtomicError::Write(e) => e,
+        })
+    }
+
+    fn save_to(&self, tmp: &Path, path: &Path) -> Result<(), CompareError> {
         let werr = |message: String| CompareError::Write {
             path: path.display().to_string(),
             message,
@@ -208,7 +221,7 @@ impl Image {
             .map(str::to_ascii_lowercase);
         match ext.as_deref() {
             Some("png") => image::save_buffer(
-                path,
+                tmp,
                 &self.to_rgb8(1.0),
                 self.width,
                 self.height,
@@ -228,7 +241,7 @@ impl Image {
                 exr::image::Image::from_channels((w, self.height as usize), channels)
                     .write()
                     .non_parallel()
-                    .to_file(path)
+                    .to_file(tmp)
                     .map_err(|e| werr(e.to_string()))
             }
             _ => Err(CompareError::UnknownType(path.display().to_string())),
@@ -466,15 +479,79 @@ pub fn write_heatmap(
     height: u32,
     map: &[f32],
 ) -> Result<(), CompareError> {
-    image::save_buffer(
-        path,
-        &heatmap_rgb8(width, height, map),
-        width,
-        height,
-        image::ExtendedColorType::Rgb8,
-    )
-    .map_err(|e| CompareError::Write {
+    let werr = |message: String| CompareError::Write {
         path: path.display().to_string(),
-        message: e.to_string(),
+        message,
+    };
+    write_atomically(path, |tmp| {
+        image::save_buffer(
+            tmp,
+            &heatmap_rgb8(width, height, map),
+            width,
+            height,
+            image::ExtendedColorType::Rgb8,
+        )
+        .map_err(|e| werr(e.to_string()))
+    })
+    .map_err(|e| match e {
+        AtomicError::Io(e) => werr(e.to_string()),
+        AtomicError::Write(e) => e,
+    })
+}
+
+/// Why [`write_atomically`] failed: the writer's own error, or moving its file into place.
+#[derive(Debug)]
+pub enum AtomicError<E> {
+    /// The writer failed (its temporary file is removed).
+    Write(E),
+    /// Renaming the finished file into place failed.
+    Io(std::io::Error),
+}
+
+impl<E: std::fmt::Display> std::fmt::Display for AtomicError<E> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Self::Write(e) => e.fmt(f),
+            Self::Io(e) => write!(f, "moving the finished file into place: {e}"),
+        }
+    }
+}
+
+impl<E: std::fmt::Debug + std::fmt::Display> std::error::Error for AtomicError<E> {}
+
+/// Writes a file so that it is complete or absent, never half-written: `write` writes a
+/// temporary file beside `path` (same folder, so the rename stays on one file system; the name
+/// keeps the extension, which image writers read the format from), which is then renamed over
+/// `path` (atomic on POSIX). A process killed mid-write leaves at most a hidden `.partial` file;
+/// a failed write removes it.
+pub fn write_atomically<T, E>(
+    path: &Path,
+    write: impl FnOnce(&Path) -> Result<T, E>,
+) -> Result<T, AtomicError<E>> {
+    let name = path
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    let ext = path
+        .extension()
+        .map(|e| format!(".{}", e.to_string_lossy()))
+        .unwrap_or_default();
+    let tmp = path.with_file_name(format!(".{name}.{}.partial{ext}", std::process::id()));
+    match write(&tmp) {
+        Ok(v) => std::fs::rename(&tmp, path).map(|()| v).map_err(|e| {
+            let _ = std::fs::remove_file(&tmp);
+            AtomicError::Io(e)
+        }),
+        Err(e) => {
+            let _ = std::fs::remove_file(&tmp);
+            Err(AtomicError::Write(e))
+        }
+    }
+}
+
+/// [`write_atomically`] for bytes in memory.
+pub fn write_file_atomically(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
+    write_atomically(path, |tmp| std::fs::write(tmp, bytes)).map_err(|e| match e {
+        AtomicError::Write(e) | AtomicError::Io(e) => e,
     })
 }

@@ -3,7 +3,6 @@
 //! world, one Henyey-Greenstein lobe, no real-time-only terms, a uniform sky), and optionally the
 //! CPU reference's Monte Carlo renders of the same gridded medium (`cargo xtask mitsuba-check`).
 
-use std::io::Write;
 use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result};
@@ -139,9 +138,7 @@ pub fn write_vol(path: &Path, grid: &DensityGrid) -> Result<()> {
     for v in &grid.data {
         out.extend_from_slice(&v.to_le_bytes());
     }
-    let mut f =
-        std::fs::File::create(path).with_context(|| format!("creating {}", path.display()))?;
-    f.write_all(&out)
+    stratus_compare::write_file_atomically(path, &out)
         .with_context(|| format!("writing {}", path.display()))
 }
 
@@ -187,8 +184,11 @@ pub fn run(args: ExportArgs) -> Result<()> {
             "max_density": grid.max_density(),
             "volume": args.out,
         });
-        std::fs::write(path, serde_json::to_string_pretty(&setup)?)
-            .with_context(|| format!("writing {}", path.display()))?;
+        stratus_compare::write_file_atomically(
+            path,
+            serde_json::to_string_pretty(&setup)?.as_bytes(),
+        )
+        .with_context(|| format!("writing {}", path.display()))?;
     }
 
     if args.reference_spp > 0 {
@@ -221,8 +221,11 @@ pub fn run(args: ExportArgs) -> Result<()> {
         }
         renders.insert("spp".to_string(), json!(sub_spp * k * k));
         renders.insert("sky_radiance".to_string(), json!(ambient));
-        std::fs::write(&args.reference_out, serde_json::to_string(&renders)?)
-            .with_context(|| format!("writing {}", args.reference_out.display()))?;
+        stratus_compare::write_file_atomically(
+            &args.reference_out,
+            serde_json::to_string(&renders)?.as_bytes(),
+        )
+        .with_context(|| format!("writing {}", args.reference_out.display()))?;
         eprintln!("{}: reference renders", args.reference_out.display());
     }
     Ok(())

@@ -292,7 +292,7 @@ fn write_truths(dir: &std::path::Path, train: &[Case], test: &[Case], spp: u32) 
             );
         }
     }
-    std::fs::write(dir.join("index.csv"), index)
+    stratus_compare::write_file_atomically(&dir.join("index.csv"), index.as_bytes())
         .with_context(|| format!("writing {}", dir.join("index.csv").display()))
 }
 
@@ -811,7 +811,7 @@ pub fn run(args: FitArgs) -> Result<()> {
             m.downward_dimming
         );
     }
-    std::fs::write(out_dir.join("evaluations.csv"), csv)?;
+    stratus_compare::write_file_atomically(&out_dir.join("evaluations.csv"), csv.as_bytes())?;
 
     let mut scenes_csv = String::from(
         "scene,set,flip_before,rmse_before,flip_after,rmse_after,\
@@ -851,8 +851,8 @@ pub fn run(args: FitArgs) -> Result<()> {
                     .context("composite of the fit's images")?;
             }
             let path = images.join(format!("{}.png", slug(&c.name)));
-            side_by_side(&frames, PANEL_ZOOM)
-                .save(&path)
+            let panel = side_by_side(&frames, PANEL_ZOOM);
+            stratus_compare::write_atomically(&path, |tmp| panel.save(tmp))
                 .with_context(|| format!("writing {}", path.display()))?;
             let _ = writeln!(
                 scenes_csv,
@@ -874,7 +874,7 @@ pub fn run(args: FitArgs) -> Result<()> {
             );
         }
     }
-    std::fs::write(out_dir.join("scenes.csv"), &scenes_csv)?;
+    stratus_compare::write_file_atomically(&out_dir.join("scenes.csv"), scenes_csv.as_bytes())?;
     write_truths(&out_dir.join("truths"), &train, &test, args.spp)?;
     let readme = format!(
         "# Multiple-scattering fit\n\n\
@@ -996,7 +996,7 @@ pub fn run(args: FitArgs) -> Result<()> {
         nt = train.len(),
         nh = test.len(),
     );
-    std::fs::write(out_dir.join("README.md"), &readme)?;
+    stratus_compare::write_file_atomically(&out_dir.join("README.md"), readme.as_bytes())?;
     print!("{readme}");
     println!(
         "wrote {0}/README.md, {0}/scenes.csv, {0}/evaluations.csv",

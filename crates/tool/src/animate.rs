@@ -114,79 +114,90 @@ pub fn run(args: AnimateArgs) -> Result<()> {
     };
     let [w, h] = scene.camera.resolution;
 
-    // ffmpeg first: a missing encoder fails before any rendering.
-    let mut ffmpeg = Command::new("ffmpeg")
-        .args(["-hide_banner", "-loglevel", "error", "-y"])
-        .args([
-            "-f",
-            "rawvideo",
-            "-pix_fmt",
-            "rgba",
-            "-s",
-            &format!("{w}x{h}"),
-        ])
-        .args(["-r", &args.fps.to_string(), "-i", "-"])
-        .args(codec)
-        .arg(&args.out)
-        .stdin(Stdio::piped())
-        .spawn()
-        .context("starting ffmpeg (install it: apt-get install ffmpeg)")?;
-    let mut stdin = ffmpeg.stdin.take().context("ffmpeg's stdin")?;
+    // The video is complete or absent: ffmpeg writes a temporary file that is renamed into
+    // place once it has finished.
+    let (flips, backend) = stratus_compare::write_atomically(&args.out, |tmp| {
+        // ffmpeg first: a missing encoder fails before any rendering.
+        let mut ffmpeg = Command::new("ffmpeg")
+            .args(["-hide_banner", "-loglevel", "error", "-y"])
+            .args([
+                "-f",
+                "rawvideo",
+                "-pix_fmt",
+                "rgba",
+                "-s",
+                &format!("{w}x{h}"),
+            ])
+            .args(["-r", &args.fps.to_string(), "-i", "-"])
+            .args(codec)
+            .arg(tmp)
+            .stdin(Stdio::piped())
+            .spawn()
+            .context("starting ffmpeg (install it: apt-get install ffmpeg)")?;
+        let mut stdin = ffmpeg.stdin.take().context("ffmpeg's stdin")?;
 
-    let mut renderer = open_realtime(args.backend, false)?;
-    // A weather transition can change the plan's key (a layer's detail, the sky) mid-animation:
-    // the plan is checked against every frame's scene.
-    let mut prepared = stratus::Prepared::new(&scene)?;
-    let bar = ProgressBar::new(u64::from(frames));
-    if let Ok(style) =
-        ProgressStyle::with_template("{msg} [{elapsed_precise}] {wide_bar} {pos}/{len} frames")
-    {
-        bar.set_style(style);
-    }
-    bar.set_message("rendering");
-    let mut previous: Option<stratus_compare::Image> = None;
-    let mut flips: Vec<(f64, u32)> = Vec::new();
-    for i in 0..frames {
-        let mut s = frame_scene(&scene, i, f64::from(args.fps));
-        if let Some((from, to)) = &transition {
-            apply_transition(
-                &mut s,
-                &scene,
-                from,
-                to,
-                f64::from(i) / f64::from(args.fps),
-                seconds,
-            );
+        let mut renderer = open_realtime(args.backend, false)?;
+        // A weather transition can change the plan's key (a layer's detail, the sky) mid-animation:
+        // the plan is checked against every frame's scene.
+        let mut prepared = stratus::Prepared::new(&scene)?;
+        let bar = ProgressBar::new(u64::from(frames));
+        if let Ok(style) =
+            ProgressStyle::with_template("{msg} [{elapsed_precise}] {wide_bar} {pos}/{len} frames")
+        {
+            bar.set_style(style);
         }
-        prepared.update(&s).with_context(|| format!("frame {i}"))?;
-        let out = renderer
-            .render(&prepared.frame(&s).with_readback(Readback::output()))
-            .map_err(|e| anyhow::anyhow!("frame {i}: {e}"))?;
-        check_finite(&out).with_context(|| format!("frame {i}"))?;
-        if args.flip {
-            let image = stratus_compare::Image::from_frame_display(&out);
-            if let Some(p) = &previous {
-                let c = stratus_compare::compare(
-                    &image,
-                    p,
-                    &stratus_compare::CompareOptions::default(),
-                )
-                .map_err(|e| anyhow::anyhow!("frame {i}: {e}"))?;
-                flips.push((c.flip.mean, i));
+        bar.set_message("rendering");
+        let mut previous: Option<stratus_compare::Image> = None;
+        let mut flips: Vec<(f64, u32)> = Vec::new();
+        for i in 0..frames {
+            let mut s = frame_scene(&scene, i, f64::from(args.fps));
+            if let Some((from, to)) = &transition {
+                apply_transition(
+                    &mut s,
+                    &scene,
+                    from,
+                    to,
+                    f64::from(i) / f64::from(args.fps),
+                    seconds,
+                );
             }
-            previous = Some(image);
+            prepared.update(&s).with_context(|| format!("frame {i}"))?;
+            let out = renderer
+                .render(&prepared.frame(&s).with_readback(Readback::output()))
+                .map_err(|e| anyhow::anyhow!("frame {i}: {e}"))?;
+            check_finite(&out).with_context(|| format!("frame {i}"))?;
+            if args.flip {
+                let image = stratus_compare::Image::from_frame_display(&out);
+                if let Some(p) = &previous {
+                    let c = stratus_compare::compare(
+                        &image,
+                        p,
+                        &stratus_compare::CompareOptions::default(),
+                    )
+                    .map_err(|e| anyhow::anyhow!("frame {i}: {e}"))?;
+                    flips.push((c.flip.mean, i));
+                }
+                previous = Some(image);
+            }
+            stdin
+                .write_all(&out.image)
+                .context("writing a frame to ffmpeg")?;
+            bar.inc(1);
         }
-        stdin
-            .write_all(&out.image)
-            .context("writing a frame to ffmpeg")?;
-        bar.inc(1);
-    }
-    bar.finish_and_clear();
-    drop(stdin);
-    let status = ffmpeg.wait().context("waiting for ffmpeg")?;
-    if !status.success() {
-        bail!("ffmpeg failed ({status}) writing {}", args.out.display());
-    }
+        bar.finish_and_clear();
+        drop(stdin);
+        let status = ffmpeg.wait().context("waiting for ffmpeg")?;
+        if !status.success() {
+            bail!("ffmpeg failed ({status}) writing {}", args.out.display());
+        }
+        Ok((flips, renderer.describe()))
+    })
+    .map_err(|e| match e {
+        stratus_compare::AtomicError::Write(e) => e,
+        stratus_compare::AtomicError::Io(e) => {
+            anyhow::anyhow!("moving the video into place at {}: {e}", args.out.display())
+        }
+    })?;
     if let Some(&(worst, at)) = flips.iter().max_by(|a, b| a.0.total_cmp(&b.0)) {
         let mean = flips.iter().map(|f| f.0).sum::<f64>() / flips.len() as f64;
         println!(
@@ -199,7 +210,7 @@ pub fn run(args: AnimateArgs) -> Result<()> {
         "wrote {} ({frames} frames, {w}x{h}, {} fps, {seconds} s of scene {name}; backend {}, temporal {})",
         args.out.display(),
         args.fps,
-        renderer.describe(),
+        backend,
         scene.quality.temporal.name()
     );
     Ok(())

@@ -40,7 +40,8 @@ fn write(path: &Path, bytes: impl AsRef<[u8]>) -> Result<()> {
     if let Some(dir) = path.parent() {
         std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
     }
-    std::fs::write(path, bytes).with_context(|| format!("writing {}", path.display()))
+    stratus_compare::write_file_atomically(path, bytes.as_ref())
+        .with_context(|| format!("writing {}", path.display()))
 }
 
 /// The uniform block as a C header: the members under their WGSL names, as `float`,
@@ -330,13 +331,15 @@ pub fn run(args: KitArgs) -> Result<()> {
         let png = format!("golden/{name}.png");
         let dir = out.join("golden");
         std::fs::create_dir_all(&dir)?;
-        image::save_buffer(
-            out.join(&png),
-            &frame.image,
-            frame.width,
-            frame.height,
-            image::ExtendedColorType::Rgba8,
-        )
+        stratus_compare::write_atomically(&out.join(&png), |tmp| {
+            image::save_buffer(
+                tmp,
+                &frame.image,
+                frame.width,
+                frame.height,
+                image::ExtendedColorType::Rgba8,
+            )
+        })
         .with_context(|| format!("writing {png}"))?;
         let uniforms = format!("golden/{name}.uniforms.bin");
         write(&out.join(&uniforms), bytemuck::bytes_of(&scene.uniforms()))?;

@@ -7,20 +7,23 @@ use anyhow::{Context, Result, bail};
 use stratus_graph::FrameOutput;
 
 /// Writes the frame to `path`: `.png` gets the tone-mapped image, `.exr` the linear radiance
-/// with transmittance as alpha.
+/// with transmittance as alpha. The file is complete or absent (written under a temporary name
+/// and renamed), so a render killed mid-write leaves no half image.
 pub fn write_image(path: &Path, frame: &FrameOutput) -> Result<()> {
     let ext = path
         .extension()
         .and_then(|e| e.to_str())
         .map(str::to_ascii_lowercase);
     match ext.as_deref() {
-        Some("png") => image::save_buffer(
-            path,
-            &frame.image,
-            frame.width,
-            frame.height,
-            image::ExtendedColorType::Rgba8,
-        )
+        Some("png") => stratus_compare::write_atomically(path, |tmp| {
+            image::save_buffer(
+                tmp,
+                &frame.image,
+                frame.width,
+                frame.height,
+                image::ExtendedColorType::Rgba8,
+            )
+        })
         .with_context(|| format!("writing {}", path.display())),
         // One EXR writer for the project (deterministic bytes): the compare crate's.
         Some("exr") => stratus_compare::Image::from_frame_radiance(frame)

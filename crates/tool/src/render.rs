@@ -486,7 +486,8 @@ pub fn run(args: RenderArgs) -> Result<()> {
                 "passes": timings.iter().map(timing).collect::<Vec<_>>(),
             })).collect::<Vec<_>>(),
         });
-        std::fs::write(path, serde_json::to_string_pretty(&doc)? + "\n")
+        let text = serde_json::to_string_pretty(&doc)? + "\n";
+        stratus_compare::write_file_atomically(path, text.as_bytes())
             .with_context(|| format!("writing {}", path.display()))?;
         println!("wrote {}", path.display());
     }

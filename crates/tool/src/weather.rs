@@ -96,7 +96,8 @@ pub fn run(args: WeatherArgs) -> Result<()> {
     let text = derived.to_toml(&source);
     match &args.out {
         Some(path) => {
-            std::fs::write(path, &text).with_context(|| format!("writing {}", path.display()))?;
+            stratus_compare::write_file_atomically(path, text.as_bytes())
+                .with_context(|| format!("writing {}", path.display()))?;
             for n in &derived.notes {
                 eprintln!("{n}");
             }

@@ -27,8 +27,10 @@ pub(crate) fn save_png(
     drop(data);
     buffer.unmap();
     let rgba = to_format(&rgba, format); // the swap is its own inverse
-    image::save_buffer(path, &rgba, w, h, image::ColorType::Rgba8)
-        .with_context(|| format!("writing {}", path.display()))
+    stratus_compare::write_atomically(path, |tmp| {
+        image::save_buffer(tmp, &rgba, w, h, image::ColorType::Rgba8)
+    })
+    .with_context(|| format!("writing {}", path.display()))
 }
 
 impl App {
@@ -252,9 +254,9 @@ impl App {
                         f64::from(r.max.x) * ppp, f64::from(r.max.y) * ppp,
                     ]),
                 });
-                std::fs::write(
-                    dir.join(format!("{name}.json")),
-                    serde_json::to_string_pretty(&info)?,
+                stratus_compare::write_file_atomically(
+                    &dir.join(format!("{name}.json")),
+                    serde_json::to_string_pretty(&info)?.as_bytes(),
                 )?;
                 state.message = format!("wrote {}/{name}.png, .exr", dir.display());
                 println!("{}", state.message);

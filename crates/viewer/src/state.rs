@@ -207,13 +207,15 @@ impl ViewState {
                     animation: Some(animation.clone()),
                     ..self.scene.clone()
                 };
-                self.message = match std::fs::write(&path, scene.to_toml()) {
-                    Ok(()) => format!(
-                        "wrote {} (stratus animate --scene plays it); P replays it",
-                        path.display()
-                    ),
-                    Err(e) => format!("writing {}: {e}", path.display()),
-                };
+                self.message =
+                    match stratus_compare::write_file_atomically(&path, scene.to_toml().as_bytes())
+                    {
+                        Ok(()) => format!(
+                            "wrote {} (stratus animate --scene plays it); P replays it",
+                            path.display()
+                        ),
+                        Err(e) => format!("writing {}: {e}", path.display()),
+                    };
                 println!("{}", self.message);
                 self.recorded = Some(animation);
             }

@@ -326,12 +326,13 @@ pub(super) fn chart(out: &Path, results: &Results) -> Result<()> {
     draw(&mut svg, results);
     svg.0.push_str("</svg>\n");
     let svg_path = out.join("chart.svg");
-    std::fs::write(&svg_path, svg.0).with_context(|| format!("writing {}", svg_path.display()))?;
+    stratus_compare::write_file_atomically(&svg_path, svg.0.as_bytes())
+        .with_context(|| format!("writing {}", svg_path.display()))?;
 
     let png_path = out.join("chart.png");
-    {
+    stratus_compare::write_atomically(&png_path, |tmp| -> Result<()> {
         use plotters::prelude::*;
-        let mut backend = BitMapBackend::new(&png_path, (w, h));
+        let mut backend = BitMapBackend::new(tmp, (w, h));
         backend
             .draw_rect((0, 0), (w as i32, h as i32), &WHITE, true)
             .map_err(|e| anyhow::anyhow!("drawing {}: {e:?}", png_path.display()))?;
@@ -340,6 +341,7 @@ pub(super) fn chart(out: &Path, results: &Results) -> Result<()> {
         png.0
             .present()
             .map_err(|e| anyhow::anyhow!("writing {}: {e:?}", png_path.display()))?;
-    }
-    Ok(())
+        Ok(())
+    })
+    .map_err(|e| anyhow::anyhow!("{e}"))
 }

@@ -222,8 +222,11 @@ pub fn run(args: BenchArgs) -> Result<()> {
     };
     write_csv(&args.out.join("results.csv"), &results.rows)?;
     let json = args.out.join("results.json");
-    std::fs::write(&json, serde_json::to_string_pretty(&results)? + "\n")
-        .with_context(|| format!("writing {}", json.display()))?;
+    stratus_compare::write_file_atomically(
+        &json,
+        (serde_json::to_string_pretty(&results)? + "\n").as_bytes(),
+    )
+    .with_context(|| format!("writing {}", json.display()))?;
     chart(&args.out, &results)?;
     summary(&results);
     println!(

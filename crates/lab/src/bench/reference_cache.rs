@@ -228,7 +228,8 @@ pub(crate) fn reference(
         };
         if *file != path {
             std::fs::create_dir_all(&dir).with_context(|| format!("creating {}", dir.display()))?;
-            std::fs::write(&path, &bytes).with_context(|| format!("writing {}", path.display()))?;
+            stratus_compare::write_file_atomically(&path, &bytes)
+                .with_context(|| format!("writing {}", path.display()))?;
         }
         return Ok(done(f));
     }
@@ -249,7 +250,8 @@ pub(crate) fn reference(
         _ => stratus_reference::render(&s, noise, &integrator, false),
     };
     std::fs::create_dir_all(&dir).with_context(|| format!("creating {}", dir.display()))?;
-    std::fs::write(&path, encode(&f)).with_context(|| format!("writing {}", path.display()))?;
+    stratus_compare::write_file_atomically(&path, &encode(&f))
+        .with_context(|| format!("writing {}", path.display()))?;
     Ok(done(f))
 }
 

@@ -8,9 +8,7 @@ use stratus_quality::{Results, Row, phase_name};
 
 /// Writes one CSV row per scene and configuration.
 pub(super) fn write_csv(path: &Path, rows: &[Row]) -> Result<()> {
-    let mut f = std::io::BufWriter::new(
-        std::fs::File::create(path).with_context(|| format!("writing {}", path.display()))?,
-    );
+    let mut f: Vec<u8> = Vec::new();
     writeln!(
         f,
         "scene,config,preset,view_steps,light_steps,integration,phase,beer_powder,octaves,jitter,shape_texture,gpu_ms,march_ms,composite_ms,time_vs_preset,view_steps_pp,light_samples_pp,samples_pp,rmse,flip,flip_p95,reference,pareto"
@@ -45,7 +43,8 @@ pub(super) fn write_csv(path: &Path, rows: &[Row]) -> Result<()> {
             r.pareto
         )?;
     }
-    Ok(())
+    stratus_compare::write_file_atomically(path, &f)
+        .with_context(|| format!("writing {}", path.display()))
 }
 
 /// Prints, per scene, the front and the cheapest configuration within FLIP 0.05.
