@@ -120,6 +120,11 @@ pub(crate) fn fuzz(
                 // that exits cleanly without it did not fuzz (a harness that returns early, a
                 // flag libFuzzer ignored), and is no evidence of anything.
                 done = match text.lines().find(|l| l.starts_with("Done ")) {
+                    // "Done 0 runs": the target returned before libFuzzer ran an input.
+                    Some(line) if line.split_whitespace().nth(1) == Some("0") => {
+                        eprintln!("{text}");
+                        bail!("fuzz target {target} ran no inputs ({line})");
+                    }
                     Some(line) => line.to_string(),
                     None => {
                         eprintln!("{text}");
