@@ -220,6 +220,7 @@ fn web_tint(name: &str, reference: Option<&FrameOutput>) -> Cell {
                     flip_p99: d.flip.p99,
                     max_abs: f64::NAN,
                     rmse: f64::NAN,
+                    outliers: f64::NAN,
                     worst: "display image only".into(),
                 };
                 if let Some(t) = report::thresholds(Path::WebTint, name) {
