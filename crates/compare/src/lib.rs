@@ -163,6 +163,23 @@ impl Image {
             }
             FileKind::Exr => {
                 use exr::prelude::*;
+                // The header says how large the image is before any pixel is read: a
+                // corrupt or hostile one can declare terabytes (found by fuzzing: 686 GB),
+                // which would abort the process allocating them.
+                let meta =
+                    exr::meta::MetaData::read_from_buffered(std::io::Cursor::new(bytes), false)
+                        .map_err(|e| err(e.to_string()))?;
+                for header in meta.headers.iter() {
+                    let size = header.layer_size;
+                    let pixels = size.width().checked_mul(size.height());
+                    if pixels.is_none_or(|p| p > MAX_EXR_PIXELS) {
+                        return Err(err(format!(
+                            "its header declares {}x{} pixels, more than the {MAX_EXR_PIXELS} Stratus reads",
+                            size.width(),
+                            size.height()
+                        )));
+                    }
+                }
                 let image = read()
                     .no_deep_data()
                     .largest_resolution_level()
@@ -471,6 +488,10 @@ pub fn heatmap_rgb8(width: u32, height: u32, map: &[f32]) -> Vec<u8> {
     let img = nv_flip::FlipImageFloat::with_data(width, height, map);
     img.apply_color_lut(&nv_flip::magma_lut()).to_vec()
 }
+
+/// The largest EXR, in pixels, that [`Image::decode`] reads: 8192x8192, a gigabyte of RGBA
+/// floats (a fuzzer's memory limit is two); a larger one is refused by name, not allocated.
+pub const MAX_EXR_PIXELS: usize = 8192 * 8192;
 
 /// Writes the magma heat map of an error map as a PNG.
 pub fn write_heatmap(

@@ -156,3 +156,18 @@ fn png_and_exr_round_trip() {
     assert!(Image::load(&dir.join("a.bmp")).is_err());
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// An EXR whose header declares far more pixels than it holds (686 GB of them: the input the
+/// fuzzer found, `fuzz/regressions/image_exr/`) is refused by name instead of aborting the
+/// process on the allocation.
+#[test]
+fn an_exr_declaring_a_huge_image_is_refused_before_allocating() {
+    let bytes = include_bytes!("../../../fuzz/regressions/image_exr/huge-declared-size.exr");
+    let err = stratus_compare::Image::decode(bytes, stratus_compare::FileKind::Exr, "huge.exr")
+        .expect_err("a huge declared image is refused");
+    let text = err.to_string();
+    assert!(
+        text.contains("huge.exr") && text.contains("more than the"),
+        "{text}"
+    );
+}
