@@ -134,6 +134,14 @@ fn scenes_of(rows: &[serde_json::Value]) -> Vec<String> {
     out
 }
 
+/// "lo-hi" of `values` to `digits` decimals, as the prose writes a range.
+fn span(values: &[f64], digits: usize) -> String {
+    assert!(!values.is_empty(), "a range of no values");
+    let lo = values.iter().copied().fold(f64::INFINITY, f64::min);
+    let hi = values.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    format!("{lo:.digits$}-{hi:.digits$}")
+}
+
 fn f(r: &serde_json::Value, key: &str) -> f64 {
     r[key].as_f64().unwrap_or_else(|| panic!("{key} in {r}"))
 }
@@ -209,11 +217,6 @@ fn full_bench_prose(rows: &[serde_json::Value]) -> String {
             time.push(f(t, "gpu_ms") / f(p, "gpu_ms"));
         }
     }
-    let span = |v: &[f64], digits: usize| {
-        let lo = v.iter().copied().fold(f64::INFINITY, f64::min);
-        let hi = v.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-        format!("{lo:.digits$}-{hi:.digits$}")
-    };
     let storm = sixteenth("storm").expect("storm's 1/16 row");
     let flip_of = |changes: &[(&str, serde_json::Value)]| {
         variant(rows, "storm", changes).map_or("-".into(), |r| format!("{:.3}", f(r, "flip")))
@@ -267,11 +270,6 @@ fn baselines_prose(rows: &[serde_json::Value]) -> String {
         .iter()
         .filter_map(|s| bench_row(rows, s, &is_method("sprites")))
         .collect();
-    let range = |v: Vec<f64>| {
-        let lo = v.iter().copied().fold(f64::INFINITY, f64::min);
-        let hi = v.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-        format!("{lo:.0}-{hi:.0}")
-    };
     format!(
         "\nThe basic marcher is {} (`{lo_scene}`) to {} (`{hi_scene}`) times further from the \
          truth than the model, at {} to {} times its time. The sprites' rank sort of 4096 \
@@ -280,13 +278,17 @@ fn baselines_prose(rows: &[serde_json::Value]) -> String {
         sig2(hi),
         sig2(tlo),
         sig2(thi),
-        range(
-            sprites
+        span(
+            &sprites
                 .iter()
                 .map(|r| f(&r["passes"], "sprite-sort"))
-                .collect()
+                .collect::<Vec<_>>(),
+            0
         ),
-        range(sprites.iter().map(|r| f(r, "gpu_ms")).collect()),
+        span(
+            &sprites.iter().map(|r| f(r, "gpu_ms")).collect::<Vec<_>>(),
+            0
+        ),
     )
 }
 
@@ -367,9 +369,7 @@ fn the_bench_prose_on_temporal_upsampling_matches_the_quick_results() {
             .map(|r| f(r, key))
             .collect();
         assert!(!values.is_empty(), "no such rows of {scenes:?}");
-        let lo = values.iter().copied().fold(f64::INFINITY, f64::min);
-        let hi = values.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-        format!("{lo:.digits$}-{hi:.digits$}")
+        span(&values, digits)
     };
     let three = ["cumulus-noon", "above-clouds", "stress-thick"];
     type Mode<'a> = &'a dyn Fn(&str) -> bool;
@@ -802,9 +802,7 @@ fn the_temporal_table_matches_the_quick_results() {
             .filter(|s| keep(s))
             .map(|s| value(s))
             .collect();
-        let lo = v.iter().copied().fold(f64::INFINITY, f64::min);
-        let hi = v.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-        format!("{lo:.digits$}-{hi:.digits$}")
+        span(&v, digits)
     };
     let all = |_: &str| true;
     let not_sunset = |s: &str| s != "sunset";

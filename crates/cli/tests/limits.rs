@@ -2,7 +2,7 @@
 
 mod common;
 
-use common::{stratus, stratus_with};
+use common::{scratch, stratus, stratus_with};
 
 /// The largest accepted size on wgpu: a clear error naming the device limit before anything
 /// is allocated where the read-back would not fit (lavapipe: 4 GiB against 2 GiB), never a
@@ -50,16 +50,14 @@ fn the_largest_size_on_ash_is_checked_against_device_memory_first() {
     }
 }
 
-/// A GL device without compute shaders (llvmpipe with the compute extension masked, as
-/// NVIDIA's EGL gives wgpu) is refused by name, and `auto` moves on to the CPU saying why.
-#[test]
-fn a_gl_device_without_compute_is_named_and_auto_moves_on() {
-    let no_compute = ("MESA_EXTENSION_OVERRIDE", "-GL_ARB_compute_shader");
-    let dir = std::env::temp_dir().join(format!("stratus-limits-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).expect("scratch dir");
+/// Renders on `wgpu-gl` under the GL environment `gl`, then on `auto` with the same GL and no
+/// Vulkan driver: what each printed, after checking that the first failed without a panic and
+/// the second succeeded on the CPU.
+fn refused_gl_then_auto(name: &str, gl: &[(&str, &str)]) -> (String, String) {
+    let dir = scratch(name);
     let out = dir.join("gl.png");
     let out = out.to_str().expect("utf-8 path");
-    let (ok, text) = stratus_with(
+    let (ok, refused) = stratus_with(
         &[
             "render",
             "--backend",
@@ -69,28 +67,35 @@ fn a_gl_device_without_compute_is_named_and_auto_moves_on() {
             "--out",
             out,
         ],
-        &[no_compute],
+        gl,
     );
-    assert!(!ok, "{text}");
+    assert!(!ok, "{refused}");
+    assert!(!refused.contains("panicked"), "{refused}");
+    assert!(refused.contains("it has no compute shaders"), "{refused}");
+    let mut env = gl.to_vec();
+    env.extend([
+        ("VK_ICD_FILENAMES", "/nonexistent/icd.json"),
+        ("VK_DRIVER_FILES", "/nonexistent/icd.json"),
+    ]);
+    let (ok, auto) = stratus_with(&["render", "--size", "16x9", "--out", out], &env);
+    assert!(ok, "{auto}");
+    assert!(auto.contains("rendering on the CPU"), "{auto}");
+    (refused, auto)
+}
+
+/// A GL device without compute shaders (llvmpipe with the compute extension masked) is refused
+/// by name, and `auto` moves on to the CPU saying why.
+#[test]
+fn a_gl_device_without_compute_is_named_and_auto_moves_on() {
+    let (refused, auto) = refused_gl_then_auto(
+        "gl-no-compute",
+        &[("MESA_EXTENSION_OVERRIDE", "-GL_ARB_compute_shader")],
+    );
+    assert!(refused.contains("use the Vulkan backend"), "{refused}");
     assert!(
-        text.contains("it has no compute shaders") && text.contains("use the Vulkan backend"),
-        "{text}"
+        auto.contains("or GL device (") && auto.contains("no compute shaders"),
+        "{auto}"
     );
-    let (ok, text) = stratus_with(
-        &["render", "--size", "16x9", "--out", out],
-        &[
-            no_compute,
-            ("VK_ICD_FILENAMES", "/nonexistent/icd.json"),
-            ("VK_DRIVER_FILES", "/nonexistent/icd.json"),
-        ],
-    );
-    assert!(ok, "{text}");
-    assert!(
-        text.contains("or GL device (") && text.contains("no compute shaders"),
-        "{text}"
-    );
-    assert!(text.contains("rendering on the CPU"), "{text}");
-    let _ = std::fs::remove_dir_all(&dir);
 }
 
 /// A GL context that reports compute shaders while wgpu translates for a GLSL version without
@@ -100,44 +105,16 @@ fn a_gl_device_without_compute_is_named_and_auto_moves_on() {
 /// pipeline later; `auto` moves on.
 #[test]
 fn a_gl_context_whose_glsl_lacks_compute_is_refused_at_creation() {
-    let old_glsl = [
-        ("MESA_GL_VERSION_OVERRIDE", "3.3"),
-        ("MESA_GLSL_VERSION_OVERRIDE", "330"),
-    ];
-    let dir = std::env::temp_dir().join(format!("stratus-glsl-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).expect("scratch dir");
-    let out = dir.join("gl.png");
-    let out = out.to_str().expect("utf-8 path");
-    let (ok, text) = stratus_with(
+    let (refused, _) = refused_gl_then_auto(
+        "gl-old-glsl",
         &[
-            "render",
-            "--backend",
-            "wgpu-gl",
-            "--size",
-            "16x9",
-            "--out",
-            out,
+            ("MESA_GL_VERSION_OVERRIDE", "3.3"),
+            ("MESA_GLSL_VERSION_OVERRIDE", "330"),
         ],
-        &old_glsl,
     );
-    assert!(!ok, "{text}");
-    assert!(!text.contains("panicked"), "{text}");
     assert!(
-        text.contains("a one-line compute pipeline failed")
-            && text.contains("COMPUTE_SHADER")
-            && text.contains("it has no compute shaders"),
-        "{text}"
+        refused.contains("a one-line compute pipeline failed")
+            && refused.contains("COMPUTE_SHADER"),
+        "{refused}"
     );
-    let (ok, text) = stratus_with(
-        &["render", "--size", "16x9", "--out", out],
-        &[
-            old_glsl[0],
-            old_glsl[1],
-            ("VK_ICD_FILENAMES", "/nonexistent/icd.json"),
-            ("VK_DRIVER_FILES", "/nonexistent/icd.json"),
-        ],
-    );
-    assert!(ok, "{text}");
-    assert!(text.contains("rendering on the CPU"), "{text}");
-    let _ = std::fs::remove_dir_all(&dir);
 }

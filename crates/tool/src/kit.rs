@@ -331,16 +331,7 @@ pub fn run(args: KitArgs) -> Result<()> {
         let png = format!("golden/{name}.png");
         let dir = out.join("golden");
         std::fs::create_dir_all(&dir)?;
-        stratus_compare::write_atomically(&out.join(&png), |tmp| {
-            image::save_buffer(
-                tmp,
-                &frame.image,
-                frame.width,
-                frame.height,
-                image::ExtendedColorType::Rgba8,
-            )
-        })
-        .with_context(|| format!("writing {png}"))?;
+        crate::output::write_image(&out.join(&png), &frame)?;
         let uniforms = format!("golden/{name}.uniforms.bin");
         write(&out.join(&uniforms), bytemuck::bytes_of(&scene.uniforms()))?;
         let plan_file = format!("golden/{name}.plan.json");
