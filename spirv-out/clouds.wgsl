@@ -260,6 +260,16 @@ struct Frame {
     downward_dimming: f32,
     // Padding (0).
     _pad8: f32,
+    // The host's scene depth (`FLAG_SCENE_DEPTH`): its projection's term A. A
+    // depth d lies at distance B / (d + A) along the view axis (m).
+    scene_depth_a: f32,
+    // The scene depth's projection term B.
+    scene_depth_b: f32,
+    // The scene depth of a pixel without geometry (the far plane's: 1 standard, 0
+    // reversed Z).
+    scene_depth_clear: f32,
+    // Padding (0).
+    _pad9: f32,
 }
 // Shared declarations of the `clouds` module: the resources, the feature switches and small
 // math helpers.
@@ -282,6 +292,7 @@ const FLAG_CHECKERBOARD: u32 = 8u;  // skip clear-history pixels every other tur
 const FLAG_EMPTY_SKIP: u32 = 16u;   // jump over empty cells of the weather occupancy grid
 const FLAG_PHYSICAL_SKY: u32 = 32u; // Hillaire 2020's atmosphere behind the clouds
 const FLAG_MOONLIT: u32 = 64u;      // the key light (sun_direction, sun_illuminance) is the moon
+const FLAG_SCENE_DEPTH: u32 = 128u; // the host's scene depth is bound: the march stops at its surfaces
 
 // Feature switches. A variant in modules.toml sets these; code behind a `false` switch is
 // removed by naga before translation, so a scene that does not use a feature pays nothing.
@@ -1879,6 +1890,42 @@ fn empty_cell_exit(p: vec3<f32>, d: vec3<f32>) -> f32 {
 
 @group(0) @binding(6) var cloud_out: texture_storage_2d<rgba32float, write>; // radiance rgb, transmittance
 @group(0) @binding(7) var depth_out: texture_storage_2d<r32float, write>;    // transmittance-weighted depth (m), 0 where no cloud
+@group(0) @binding(42) var scene_depth_in: texture_2d<f32>;                  // the host's clip-space depth (FLAG_SCENE_DEPTH)
+
+// The distance along a view ray where nothing stops it.
+const NO_SURFACE: f32 = 3.0e38;
+
+// Whether the host's geometry covers `pixel` (its depth is not the far plane's).
+fn has_surface(pixel: vec2<u32>) -> bool {
+    if (frame.flags & FLAG_SCENE_DEPTH) == 0u {
+        return false;
+    }
+    return textureLoad(scene_depth_in, pixel, 0).r != frame.scene_depth_clear;
+}
+
+// The distance along the view ray `view` of `pixel` to the host's geometry (m), NO_SURFACE
+// where there is none. The depth d lies at B / (d + A) along the view axis (the projection's
+// terms); the ray is longer by 1 / cos of its angle to the axis.
+fn scene_surface(pixel: vec2<u32>, view: vec3<f32>) -> f32 {
+    if !has_surface(pixel) {
+        return NO_SURFACE;
+    }
+    let d = textureLoad(scene_depth_in, pixel, 0).r;
+    let axis = frame.scene_depth_b / (d + frame.scene_depth_a);
+    return axis / dot(view, frame.camera_forward);
+}
+
+// `s` cut at the surface at distance `surface`: shortened where the surface is inside it,
+// missed where the surface is in front of it.
+fn clip_to_surface(s: Interval, surface: f32) -> Interval {
+    if s.kind != RAY_MARCH || s.start + s.length <= surface {
+        return s;
+    }
+    if s.start >= surface {
+        return Interval(0.0, 0.0, RAY_MISSES_LAYER);
+    }
+    return Interval(s.start, surface - s.start, RAY_MARCH);
+}
 
 // Work counters (the statistics variant). Indices are named by the `stats` resource in the
 // frame graph (wgsl/graph.toml), checked against these values at build time.
@@ -1951,8 +1998,11 @@ struct MarchState {
 // The view march (thesis alg. 5.1) of the ray through `pixel`, counting its work. Each cloud
 // layer is marched on its own interval with the full step count, nearest first: the ray's
 // intervals in different layers never overlap because the layers' altitude ranges do not.
+// The host's geometry ends the ray: each interval is cut at its surface (a layer behind it is
+// not marched), so geometry inside a cloud gets the transmittance and light up to it.
 fn march_pixel(pixel: vec2<u32>) -> MarchResult {
     let view = view_ray(pixel);
+    let surface = scene_surface(pixel, view);
     let cam_alt = frame.camera_position.y;
     var counters = Counters(0u, 0u, 0u, 0u);
     count(STAT_PIXELS, 1u);
@@ -1970,7 +2020,7 @@ fn march_pixel(pixel: vec2<u32>) -> MarchResult {
         var next = NO_LAYER;
         var span = Interval(0.0, 0.0, RAY_MISSES_LAYER);
         for (var i = 0u; i < n; i++) {
-            let s = layer_interval(cam_alt, view, cloud_layer(i));
+            let s = clip_to_surface(layer_interval(cam_alt, view, cloud_layer(i)), surface);
             ground = ground || s.kind == RAY_HITS_GROUND;
             let after = s.start > last_start || (s.start == last_start && i > last_index);
             if s.kind == RAY_MARCH && after && (next == NO_LAYER || s.start < span.start) {
@@ -2111,7 +2161,7 @@ fn march(@builtin(global_invocation_id) id: vec3<u32>) {
 @group(0) @binding(15) var sparse_in: texture_2d<f32>;                          // this frame's marched pixels
 @group(0) @binding(16) var sparse_depth_in: texture_2d<f32>;                    // their depth
 @group(0) @binding(17) var history_out: texture_storage_2d<rgba32float, write>; // this frame: radiance, transmittance
-@group(0) @binding(18) var meta_out: texture_storage_2d<rgba32float, write>;    // this frame: depth, samples
+@group(0) @binding(18) var meta_out: texture_storage_2d<rgba32float, write>;    // this frame: depth, samples, 1 where the host's geometry cut the march
 
 // Samples a pixel's history averages at most: a running mean of its marches (so a still
 // camera converges to the mean over the van der Corput offsets), then an exponential blend of
@@ -2246,6 +2296,22 @@ fn meta_at(q: vec2<f32>) -> vec4<f32> {
     return textureLoad(meta_in, p, 0);
 }
 
+// Whether any texel of the Catmull-Rom footprint at `q` (history_at's 4 x 4) was cut by the
+// host's geometry last frame: resampled there, the geometry's hole in the clouds would trail
+// the geometry as a halo.
+fn footprint_cut(q: vec2<f32>) -> bool {
+    let size = vec2<i32>(frame.size);
+    let base = vec2<i32>(floor(clamp(q, vec2<f32>(0.0), vec2<f32>(size - 1))));
+    var cut = 0.0;
+    for (var dy = -1; dy <= 2; dy++) {
+        for (var dx = -1; dx <= 2; dx++) {
+            let p = clamp(base + vec2<i32>(dx, dy), vec2<i32>(0), size - 1);
+            cut = max(cut, textureLoad(meta_in, p, 0).z);
+        }
+    }
+    return cut > 0.0;
+}
+
 // The marching pass: one pixel per block (`march_sparse`), or the same with thesis 6.2.2's
 // checkerboard skipping (`march_sparse_checkerboard`). Two entry points rather than a runtime
 // switch: the skipping code alone, never run, made the whole march 2.5 times slower on
@@ -2289,10 +2355,11 @@ fn march_sparse_checkerboard(@builtin(global_invocation_id) id: vec3<u32>) {
     let pixel = sparse_pixel(id.xy);
     var r = MarchResult(vec3<f32>(0.0), 1.0, 0.0);
     var skip = any(pixel >= frame.size);
-    if !skip && frame.history_valid != 0u {
+    if !skip && frame.history_valid != 0u && !has_surface(pixel) {
         // Where last frame saw clear sky in this direction (the nearest texel), skip the
         // march in every other turn of the pixel, alternating between neighbouring blocks,
-        // so clouds that the wind moves in are found within two turns.
+        // so clouds that the wind moves in are found within two turns. (Not where the host's
+        // geometry is: its pixels are marched every frame.)
         let k = frame.block_side;
         let turn = frame.frame_index / (k * k);
         let q = reproject(pixel, 0.0);
@@ -2330,10 +2397,17 @@ fn resolve(@builtin(global_invocation_id) id: vec3<u32>) {
         }
     }
     let q = reproject(pixel, depth);
-    var valid = frame.history_valid != 0u && on_screen(q);
+    // The host's geometry: a pixel it covers is marched every frame (its march is cut at the
+    // surface, so history from any other depth would be wrong, and in front of the layer the
+    // march costs nothing), and history cut by last frame's geometry is not resampled.
+    let surface = has_surface(pixel);
+    let moving = any(q != vec2<f32>(pixel));
+    var valid = frame.history_valid != 0u && on_screen(q) && !surface;
+    if valid && (frame.flags & FLAG_SCENE_DEPTH) != 0u {
+        valid = !select(meta_at(q).z > 0.0, footprint_cut(q), moving);
+    }
     var history = vec4<f32>(0.0, 0.0, 0.0, 1.0);
     var past = vec4<f32>(0.0);
-    let moving = any(q != vec2<f32>(pixel));
     if valid {
         history = history_at(q);
         past = meta_at(q);
@@ -2396,7 +2470,7 @@ fn resolve(@builtin(global_invocation_id) id: vec3<u32>) {
         out_depth = r.depth;
     }
     textureStore(history_out, pixel, result);
-    textureStore(meta_out, pixel, vec4<f32>(out_depth, samples, 0.0, 0.0));
+    textureStore(meta_out, pixel, vec4<f32>(out_depth, samples, select(0.0, 1.0, surface), 0.0));
     textureStore(cloud_out, pixel, result);
     textureStore(depth_out, pixel, vec4<f32>(out_depth, 0.0, 0.0, 0.0));
 }
@@ -3384,7 +3458,9 @@ fn physical_composite(pixel: vec2<u32>, view: vec3<f32>, cloud: vec4<f32>) -> ve
     let e = frame.sun_illuminance;
     let r = camera_air_origin().y;
     var sky = sky_view(view) * e;
-    if meets_ground(r, view.y) {
+    if has_surface(pixel) {
+        sky = surface_radiance();
+    } else if meets_ground(r, view.y) {
         // The table's ground is lit everywhere; where the clouds shade it, less.
         sky = max(sky - ground_shadow_loss(view, r) * e, vec3<f32>(0.0));
     } else {
@@ -3507,6 +3583,16 @@ fn aces_fitted(x: vec3<f32>) -> vec3<f32> {
     return clamp((x * (a * x + b)) / (x * (c * x + d) + e), vec3<f32>(0.0), vec3<f32>(1.0));
 }
 
+// The host's geometry as the display image shows it (the CLI and examples; a host composites
+// the clouds over its own shading instead): a grey surface (albedo 0.3) facing up, lit as the
+// analytic sky's ground is.
+fn surface_radiance() -> vec3<f32> {
+    let sun = frame.sun_direction;
+    let e = frame.sun_illuminance;
+    let day = saturate(sun.y * 4.0 + 0.3);
+    return vec3<f32>(0.3) * (e * max(sun.y, 0.0) / PI + 0.05 * e * day);
+}
+
 // Exposure, tone curve and gamma of a pixel's radiance, to the display image.
 fn store_display(pixel: vec2<u32>, radiance: vec3<f32>) {
     let exposed = radiance * frame.exposure;
@@ -3524,7 +3610,9 @@ fn composite(@builtin(global_invocation_id) id: vec3<u32>) {
     let alt = frame.camera_position.y;
     let cloud = textureLoad(cloud_in, pixel, 0);
     var background = sky_radiance(view, alt);
-    if !hits_ground(vec3<f32>(0.0, alt, 0.0), alt, view) {
+    if has_surface(pixel) {
+        background = surface_radiance();
+    } else if !hits_ground(vec3<f32>(0.0, alt, 0.0), alt, view) {
         background += sun_disk(view);
     }
     store_display(pixel, background * cloud.a + cloud.rgb);

@@ -4,6 +4,7 @@
 // already tone-mapped and gamma-encoded: give it a UNORM (not sRGB) view.
 
 @group(0) @binding(0) var image_in: texture_2d<f32>;
+@group(0) @binding(1) var radiance_in: texture_2d<f32>; // the clouds: in-scattered radiance, transmittance
 
 // The triangle (-1, -1), (3, -1), (-1, 3) covers the whole viewport; no vertex buffer.
 @vertex
@@ -16,4 +17,12 @@ fn present_vertex(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32>
 @fragment
 fn present_fragment(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
     return textureLoad(image_in, vec2<u32>(position.xy), 0);
+}
+
+// The clouds' HDR output for a host's compositor: linear in-scattered radiance (premultiplied:
+// the host adds it over its own image times the transmittance), transmittance in alpha, before
+// any exposure or tone mapping (the host's own come after).
+@fragment
+fn hdr_fragment(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
+    return textureLoad(radiance_in, vec2<u32>(position.xy), 0);
 }

@@ -97,7 +97,7 @@ function layoutEntry(ctx, pass, b, plan, visibility) {
 }
 
 /**
- * Runs the first frame of `plan` with `uniforms` (`FrameUniforms`, 640 bytes) and the noise set `noiseSet`, and
+ * Runs the first frame of `plan` with `uniforms` (`FrameUniforms`, as `uniforms.json` lays it out) and the noise set `noiseSet`, and
  * returns the display image (`image`, RGBA8) with the time the GPU work took on the CPU clock.
  */
 export async function renderPlan(ctx, plan, uniforms, noiseSet) {
@@ -125,7 +125,11 @@ export async function renderPlan(ctx, plan, uniforms, noiseSet) {
     } else {
       let size = r.extent;
       let data = null;
-      if (r.upload) {
+      if (r.upload === 'scene.depth') {
+        // No host geometry: one texel, never read (FLAG_SCENE_DEPTH is off).
+        size = [1, 1, 1];
+        data = new Uint8Array(4);
+      } else if (r.upload) {
         const n = await noiseTexture(ctx, noiseSet, r.upload);
         size = n.entry.size;
         data = n.data;

@@ -19,6 +19,7 @@ const FLAG_CHECKERBOARD: u32 = 8u;  // skip clear-history pixels every other tur
 const FLAG_EMPTY_SKIP: u32 = 16u;   // jump over empty cells of the weather occupancy grid
 const FLAG_PHYSICAL_SKY: u32 = 32u; // Hillaire 2020's atmosphere behind the clouds
 const FLAG_MOONLIT: u32 = 64u;      // the key light (sun_direction, sun_illuminance) is the moon
+const FLAG_SCENE_DEPTH: u32 = 128u; // the host's scene depth is bound: the march stops at its surfaces
 
 // Feature switches. A variant in modules.toml sets these; code behind a `false` switch is
 // removed by naga before translation, so a scene that does not use a feature pays nothing.

@@ -46,7 +46,9 @@ fn physical_composite(pixel: vec2<u32>, view: vec3<f32>, cloud: vec4<f32>) -> ve
     let e = frame.sun_illuminance;
     let r = camera_air_origin().y;
     var sky = sky_view(view) * e;
-    if meets_ground(r, view.y) {
+    if has_surface(pixel) {
+        sky = surface_radiance();
+    } else if meets_ground(r, view.y) {
         // The table's ground is lit everywhere; where the clouds shade it, less.
         sky = max(sky - ground_shadow_loss(view, r) * e, vec3<f32>(0.0));
     } else {
@@ -169,6 +171,16 @@ fn aces_fitted(x: vec3<f32>) -> vec3<f32> {
     return clamp((x * (a * x + b)) / (x * (c * x + d) + e), vec3<f32>(0.0), vec3<f32>(1.0));
 }
 
+// The host's geometry as the display image shows it (the CLI and examples; a host composites
+// the clouds over its own shading instead): a grey surface (albedo 0.3) facing up, lit as the
+// analytic sky's ground is.
+fn surface_radiance() -> vec3<f32> {
+    let sun = frame.sun_direction;
+    let e = frame.sun_illuminance;
+    let day = saturate(sun.y * 4.0 + 0.3);
+    return vec3<f32>(0.3) * (e * max(sun.y, 0.0) / PI + 0.05 * e * day);
+}
+
 // Exposure, tone curve and gamma of a pixel's radiance, to the display image.
 fn store_display(pixel: vec2<u32>, radiance: vec3<f32>) {
     let exposed = radiance * frame.exposure;
@@ -186,7 +198,9 @@ fn composite(@builtin(global_invocation_id) id: vec3<u32>) {
     let alt = frame.camera_position.y;
     let cloud = textureLoad(cloud_in, pixel, 0);
     var background = sky_radiance(view, alt);
-    if !hits_ground(vec3<f32>(0.0, alt, 0.0), alt, view) {
+    if has_surface(pixel) {
+        background = surface_radiance();
+    } else if !hits_ground(vec3<f32>(0.0, alt, 0.0), alt, view) {
         background += sun_disk(view);
     }
     store_display(pixel, background * cloud.a + cloud.rgb);

@@ -260,4 +260,14 @@ struct Frame {
     downward_dimming: f32,
     // Padding (0).
     _pad8: f32,
+    // The host's scene depth (`FLAG_SCENE_DEPTH`): its projection's term A. A
+    // depth d lies at distance B / (d + A) along the view axis (m).
+    scene_depth_a: f32,
+    // The scene depth's projection term B.
+    scene_depth_b: f32,
+    // The scene depth of a pixel without geometry (the far plane's: 1 standard, 0
+    // reversed Z).
+    scene_depth_clear: f32,
+    // Padding (0).
+    _pad9: f32,
 }

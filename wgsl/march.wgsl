@@ -3,6 +3,42 @@
 
 @group(0) @binding(6) var cloud_out: texture_storage_2d<rgba32float, write>; // radiance rgb, transmittance
 @group(0) @binding(7) var depth_out: texture_storage_2d<r32float, write>;    // transmittance-weighted depth (m), 0 where no cloud
+@group(0) @binding(42) var scene_depth_in: texture_2d<f32>;                  // the host's clip-space depth (FLAG_SCENE_DEPTH)
+
+// The distance along a view ray where nothing stops it.
+const NO_SURFACE: f32 = 3.0e38;
+
+// Whether the host's geometry covers `pixel` (its depth is not the far plane's).
+fn has_surface(pixel: vec2<u32>) -> bool {
+    if (frame.flags & FLAG_SCENE_DEPTH) == 0u {
+        return false;
+    }
+    return textureLoad(scene_depth_in, pixel, 0).r != frame.scene_depth_clear;
+}
+
+// The distance along the view ray `view` of `pixel` to the host's geometry (m), NO_SURFACE
+// where there is none. The depth d lies at B / (d + A) along the view axis (the projection's
+// terms); the ray is longer by 1 / cos of its angle to the axis.
+fn scene_surface(pixel: vec2<u32>, view: vec3<f32>) -> f32 {
+    if !has_surface(pixel) {
+        return NO_SURFACE;
+    }
+    let d = textureLoad(scene_depth_in, pixel, 0).r;
+    let axis = frame.scene_depth_b / (d + frame.scene_depth_a);
+    return axis / dot(view, frame.camera_forward);
+}
+
+// `s` cut at the surface at distance `surface`: shortened where the surface is inside it,
+// missed where the surface is in front of it.
+fn clip_to_surface(s: Interval, surface: f32) -> Interval {
+    if s.kind != RAY_MARCH || s.start + s.length <= surface {
+        return s;
+    }
+    if s.start >= surface {
+        return Interval(0.0, 0.0, RAY_MISSES_LAYER);
+    }
+    return Interval(s.start, surface - s.start, RAY_MARCH);
+}
 
 // Work counters (the statistics variant). Indices are named by the `stats` resource in the
 // frame graph (wgsl/graph.toml), checked against these values at build time.
@@ -75,8 +111,11 @@ struct MarchState {
 // The view march (thesis alg. 5.1) of the ray through `pixel`, counting its work. Each cloud
 // layer is marched on its own interval with the full step count, nearest first: the ray's
 // intervals in different layers never overlap because the layers' altitude ranges do not.
+// The host's geometry ends the ray: each interval is cut at its surface (a layer behind it is
+// not marched), so geometry inside a cloud gets the transmittance and light up to it.
 fn march_pixel(pixel: vec2<u32>) -> MarchResult {
     let view = view_ray(pixel);
+    let surface = scene_surface(pixel, view);
     let cam_alt = frame.camera_position.y;
     var counters = Counters(0u, 0u, 0u, 0u);
     count(STAT_PIXELS, 1u);
@@ -94,7 +133,7 @@ fn march_pixel(pixel: vec2<u32>) -> MarchResult {
         var next = NO_LAYER;
         var span = Interval(0.0, 0.0, RAY_MISSES_LAYER);
         for (var i = 0u; i < n; i++) {
-            let s = layer_interval(cam_alt, view, cloud_layer(i));
+            let s = clip_to_surface(layer_interval(cam_alt, view, cloud_layer(i)), surface);
             ground = ground || s.kind == RAY_HITS_GROUND;
             let after = s.start > last_start || (s.start == last_start && i > last_index);
             if s.kind == RAY_MARCH && after && (next == NO_LAYER || s.start < span.start) {

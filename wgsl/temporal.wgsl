@@ -11,7 +11,7 @@
 @group(0) @binding(15) var sparse_in: texture_2d<f32>;                          // this frame's marched pixels
 @group(0) @binding(16) var sparse_depth_in: texture_2d<f32>;                    // their depth
 @group(0) @binding(17) var history_out: texture_storage_2d<rgba32float, write>; // this frame: radiance, transmittance
-@group(0) @binding(18) var meta_out: texture_storage_2d<rgba32float, write>;    // this frame: depth, samples
+@group(0) @binding(18) var meta_out: texture_storage_2d<rgba32float, write>;    // this frame: depth, samples, 1 where the host's geometry cut the march
 
 // Samples a pixel's history averages at most: a running mean of its marches (so a still
 // camera converges to the mean over the van der Corput offsets), then an exponential blend of
@@ -146,6 +146,22 @@ fn meta_at(q: vec2<f32>) -> vec4<f32> {
     return textureLoad(meta_in, p, 0);
 }
 
+// Whether any texel of the Catmull-Rom footprint at `q` (history_at's 4 x 4) was cut by the
+// host's geometry last frame: resampled there, the geometry's hole in the clouds would trail
+// the geometry as a halo.
+fn footprint_cut(q: vec2<f32>) -> bool {
+    let size = vec2<i32>(frame.size);
+    let base = vec2<i32>(floor(clamp(q, vec2<f32>(0.0), vec2<f32>(size - 1))));
+    var cut = 0.0;
+    for (var dy = -1; dy <= 2; dy++) {
+        for (var dx = -1; dx <= 2; dx++) {
+            let p = clamp(base + vec2<i32>(dx, dy), vec2<i32>(0), size - 1);
+            cut = max(cut, textureLoad(meta_in, p, 0).z);
+        }
+    }
+    return cut > 0.0;
+}
+
 // The marching pass: one pixel per block (`march_sparse`), or the same with thesis 6.2.2's
 // checkerboard skipping (`march_sparse_checkerboard`). Two entry points rather than a runtime
 // switch: the skipping code alone, never run, made the whole march 2.5 times slower on
@@ -189,10 +205,11 @@ fn march_sparse_checkerboard(@builtin(global_invocation_id) id: vec3<u32>) {
     let pixel = sparse_pixel(id.xy);
     var r = MarchResult(vec3<f32>(0.0), 1.0, 0.0);
     var skip = any(pixel >= frame.size);
-    if !skip && frame.history_valid != 0u {
+    if !skip && frame.history_valid != 0u && !has_surface(pixel) {
         // Where last frame saw clear sky in this direction (the nearest texel), skip the
         // march in every other turn of the pixel, alternating between neighbouring blocks,
-        // so clouds that the wind moves in are found within two turns.
+        // so clouds that the wind moves in are found within two turns. (Not where the host's
+        // geometry is: its pixels are marched every frame.)
         let k = frame.block_side;
         let turn = frame.frame_index / (k * k);
         let q = reproject(pixel, 0.0);
@@ -230,10 +247,17 @@ fn resolve(@builtin(global_invocation_id) id: vec3<u32>) {
         }
     }
     let q = reproject(pixel, depth);
-    var valid = frame.history_valid != 0u && on_screen(q);
+    // The host's geometry: a pixel it covers is marched every frame (its march is cut at the
+    // surface, so history from any other depth would be wrong, and in front of the layer the
+    // march costs nothing), and history cut by last frame's geometry is not resampled.
+    let surface = has_surface(pixel);
+    let moving = any(q != vec2<f32>(pixel));
+    var valid = frame.history_valid != 0u && on_screen(q) && !surface;
+    if valid && (frame.flags & FLAG_SCENE_DEPTH) != 0u {
+        valid = !select(meta_at(q).z > 0.0, footprint_cut(q), moving);
+    }
     var history = vec4<f32>(0.0, 0.0, 0.0, 1.0);
     var past = vec4<f32>(0.0);
-    let moving = any(q != vec2<f32>(pixel));
     if valid {
         history = history_at(q);
         past = meta_at(q);
@@ -296,7 +320,7 @@ fn resolve(@builtin(global_invocation_id) id: vec3<u32>) {
         out_depth = r.depth;
     }
     textureStore(history_out, pixel, result);
-    textureStore(meta_out, pixel, vec4<f32>(out_depth, samples, 0.0, 0.0));
+    textureStore(meta_out, pixel, vec4<f32>(out_depth, samples, select(0.0, 1.0, surface), 0.0));
     textureStore(cloud_out, pixel, result);
     textureStore(depth_out, pixel, vec4<f32>(out_depth, 0.0, 0.0, 0.0));
 }

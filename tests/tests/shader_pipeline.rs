@@ -200,6 +200,7 @@ fn mode_codes_and_flags_match_the_wgsl_constants() {
         ("FLAG_EMPTY_SKIP", FrameUniforms::FLAG_EMPTY_SKIP),
         ("FLAG_PHYSICAL_SKY", FrameUniforms::FLAG_PHYSICAL_SKY),
         ("FLAG_MOONLIT", FrameUniforms::FLAG_MOONLIT),
+        ("FLAG_SCENE_DEPTH", FrameUniforms::FLAG_SCENE_DEPTH),
     ];
     for (name, rust) in pairs {
         assert_eq!(constant(name), rust, "{name}");

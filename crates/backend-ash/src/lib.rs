@@ -93,6 +93,8 @@ pub struct Renderer {
     state: Option<State>,
     tracker: Tracker,
     noise: Option<Arc<NoiseSet>>,
+    /// The scene depth uploaded last.
+    scene_depth: Option<Arc<stratus_graph::SceneDepth>>,
     query_pool: vk::QueryPool,
     query_count: u32,
     readbacks: HashMap<String, GpuBuffer>,
@@ -129,6 +131,7 @@ impl Renderer {
             state: None,
             tracker: Tracker::default(),
             noise: None,
+            scene_depth: None,
             query_pool: vk::QueryPool::null(),
             query_count: 0,
             readbacks: HashMap::new(),
@@ -351,11 +354,14 @@ impl Renderer {
             .noise
             .as_ref()
             .is_some_and(|n| Arc::ptr_eq(n, frame.noise));
+        stratus_graph::backend::check_scene_depth(frame, false).map_err(Error::Shader)?;
+        // The host's scene depth changes every frame it moves; only it is uploaded then.
+        let depth_changed = frame.uploads_changed(self.noise.as_ref(), self.scene_depth.as_ref());
         let plan_changed = self
             .state
             .as_ref()
             .is_none_or(|s| &s.plan != plan || &s.shaders != shaders);
-        if !plan_changed && !noise_changed {
+        if !plan_changed && !depth_changed {
             return Ok(());
         }
         let info = &self.gpu.info;
@@ -402,7 +408,7 @@ impl Renderer {
         // Resources: keep those whose signature is unchanged.
         let mut rebuilt = false;
         for r in &plan.resources {
-            let want = Made::for_frame(r, frame.noise).map_err(Error::Shader)?;
+            let want = Made::for_frame(r, frame).map_err(Error::Shader)?;
             let keep = self
                 .resources
                 .get(&r.name)
@@ -439,9 +445,10 @@ impl Renderer {
         for name in stale {
             self.drop_resource(&name);
         }
-        if rebuilt || noise_changed {
-            self.upload(plan, frame.noise)?;
+        if rebuilt || depth_changed {
+            self.upload(plan, frame, rebuilt || noise_changed)?;
             self.noise = Some(frame.noise.clone());
+            self.scene_depth = frame.scene_depth.cloned();
         }
         if self.state.is_none() || rebuilt {
             self.drop_state();

@@ -631,13 +631,23 @@ impl Renderer {
         })
     }
 
-    /// Uploads every uploaded texture through one staging buffer, in one submission.
-    pub(crate) fn upload(&mut self, plan: &FramePlan, noise: &NoiseSet) -> Result<(), Error> {
+    /// Uploads the uploaded textures through one staging buffer, in one submission: all of
+    /// them, or with `all` false only the host's scene depth (which changes every frame it
+    /// moves; the noise does not).
+    pub(crate) fn upload(
+        &mut self,
+        plan: &FramePlan,
+        frame: &FrameInput<'_>,
+        all: bool,
+    ) -> Result<(), Error> {
         let mut list = Vec::new();
         let mut size = 0u64;
         for r in plan.resources.iter().filter(|r| r.usage.upload) {
             let src = r.upload.as_deref().unwrap_or_default();
-            let (_, data) = upload_data(src, noise)
+            if !all && src != "scene.depth" {
+                continue;
+            }
+            let (_, data) = upload_data(src, frame)
                 .map_err(|e| Error::Shader(format!("resource `{}`: {e}", r.name)))?;
             list.push((r.name.clone(), size, data));
             size += data.len() as u64;

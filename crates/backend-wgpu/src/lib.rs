@@ -76,11 +76,17 @@ pub struct Renderer {
     plan: Option<FramePlan>,
     /// Per pass of `plan`, one bind group per history parity.
     groups: Vec<Vec<wgpu::BindGroup>>,
+    /// The host's textures bound in place of a resource's own (the host's depth texture for
+    /// `scene-depth`), and whether the bind groups still bind the previous ones.
+    bound: HashMap<String, wgpu::TextureView>,
+    bound_changed: bool,
     /// Per pass of `plan`, its pipeline's key (with the graph's own target formats), made
     /// once per plan so that recording a frame builds no key.
     keys: Vec<PipelineKey>,
     uniform: Option<wgpu::Buffer>,
     noise: Option<Arc<NoiseSet>>,
+    /// The scene depth uploaded last.
+    scene_depth: Option<Arc<stratus_graph::SceneDepth>>,
     /// Frame count, history validity, computed persistent resources (the shared rules).
     frames: FrameState,
     queries: Option<Queries>,
@@ -311,8 +317,12 @@ impl Renderer {
             .noise
             .as_ref()
             .is_some_and(|n| Arc::ptr_eq(n, frame.noise));
+        stratus_graph::backend::check_scene_depth(frame, self.bound.contains_key("scene-depth"))
+            .map_err(Error::Shader)?;
+        // The host's scene depth changes every frame it moves; only it is uploaded then.
+        let depth_changed = frame.uploads_changed(self.noise.as_ref(), self.scene_depth.as_ref());
         let plan_changed = self.plan.as_ref() != Some(plan);
-        if !plan_changed && !noise_changed {
+        if !plan_changed && !depth_changed && !self.bound_changed {
             if let Some(format) = target_format {
                 // Another external target format needs its own raster pipelines.
                 for (i, pass) in plan.passes.iter().enumerate() {
@@ -338,7 +348,7 @@ impl Renderer {
         }
         let mut rebuilt = false;
         for r in &plan.resources {
-            let want = Made::for_frame(r, frame.noise).map_err(Error::Shader)?;
+            let want = Made::for_frame(r, frame).map_err(Error::Shader)?;
             let keep = self
                 .resources
                 .get(&r.name)
@@ -353,10 +363,14 @@ impl Renderer {
         }
         self.resources
             .retain(|name, _| plan.resources.iter().any(|r| &r.name == name));
-        if rebuilt || noise_changed {
+        if rebuilt || depth_changed {
+            let all = rebuilt || noise_changed;
             for r in plan.resources.iter().filter(|r| r.usage.upload) {
                 let src = r.upload.as_deref().unwrap_or_default();
-                let (size, data) = upload_data(src, frame.noise)
+                if !all && src != "scene.depth" {
+                    continue;
+                }
+                let (size, data) = upload_data(src, frame)
                     .map_err(|e| Error::Shader(format!("resource `{}`: {e}", r.name)))?;
                 let Object::Textures(t) = &self.resources[&r.name].object else {
                     continue;
@@ -373,6 +387,7 @@ impl Renderer {
                 );
             }
             self.noise = Some(frame.noise.clone());
+            self.scene_depth = frame.scene_depth.cloned();
         }
         if plan_changed || rebuilt {
             for i in 0..plan.passes.len() {
@@ -387,8 +402,30 @@ impl Renderer {
             self.build_groups(plan)?;
             self.ensure_queries(2 * plan.passes.len() as u32);
             self.plan = Some(plan.clone());
+        } else if self.bound_changed {
+            self.build_groups(plan)?;
         }
+        self.bound_changed = false;
         Ok(())
+    }
+
+    /// Binds the host's texture `view` in place of the plan's resource `resource` (the host's
+    /// depth texture for `scene-depth`; `None` unbinds it): passes read the host's texture
+    /// where it is, without a copy. The bind groups are made again when the view changes.
+    pub fn bind_host_texture(&mut self, resource: &str, view: Option<&wgpu::TextureView>) {
+        let same = match (self.bound.get(resource), view) {
+            (Some(a), Some(b)) => a == b,
+            (None, None) => true,
+            _ => false,
+        };
+        if same {
+            return;
+        }
+        match view {
+            Some(v) => self.bound.insert(resource.to_string(), v.clone()),
+            None => self.bound.remove(resource),
+        };
+        self.bound_changed = true;
     }
 
     /// Records pass `i` of the current plan, with timestamps at `query` (pair index).

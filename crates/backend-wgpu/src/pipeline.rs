@@ -215,6 +215,9 @@ impl Renderer {
                     let r = &plan.resources[b.resource];
                     let object = &self.resources[&r.name].object;
                     let resource = match object {
+                        Object::Textures(_) if self.bound.contains_key(&r.name) => {
+                            wgpu::BindingResource::TextureView(&self.bound[&r.name])
+                        }
                         Object::Buffer(buf) => buf.as_entire_binding(),
                         Object::Sampler(s) => wgpu::BindingResource::Sampler(s),
                         Object::Textures(t) => {

@@ -37,19 +37,19 @@ fn the_kit_holds_what_its_readme_promises() {
     assert_eq!(golden["name"], "cumulus-noon");
     assert_eq!(golden["size"], serde_json::json!([32, 18]));
 
-    // The uniform block: 124 named members in 656 bytes, as the header and the JSON say.
-    assert_eq!(read(golden["uniforms"].as_str().unwrap()).len(), 656);
+    // The uniform block: 128 named members in 672 bytes, as the header and the JSON say.
+    assert_eq!(read(golden["uniforms"].as_str().unwrap()).len(), 672);
     let header = String::from_utf8(read("uniforms.h")).unwrap();
     assert!(
         header.contains("float camera_position[3];")
             && header.contains("float tan_half_fov;")
             && header.contains("uint32_t size[2];")
-            && header.contains("124 members")
-            && header.contains("== 656"),
+            && header.contains("128 members")
+            && header.contains("== 672"),
         "{header}"
     );
     let members = json("uniforms.json")["members"].as_array().unwrap().clone();
-    assert_eq!(members.len(), 124);
+    assert_eq!(members.len(), 128);
     let downward = members.iter().find(|m| m["name"] == "downward_dimming");
     assert_eq!(
         downward.map(|m| (&m["type"], &m["size"])),
@@ -77,8 +77,9 @@ fn the_kit_holds_what_its_readme_promises() {
         String::from_utf8_lossy(&cc.stderr)
     );
 
-    // The plan: the march and the composite, dispatched over the golden's size, then the
-    // present pass that runs only into a host's target.
+    // The plan: the march and the composite (skipped when the host draws the HDR output),
+    // dispatched over the golden's size, then the present and HDR passes that run only into a
+    // host's target.
     let plan = json(golden["plan"].as_str().unwrap());
     let passes: Vec<&str> = plan["passes"]
         .as_array()
@@ -86,9 +87,10 @@ fn the_kit_holds_what_its_readme_promises() {
         .iter()
         .map(|p| p["name"].as_str().unwrap())
         .collect();
-    assert_eq!(passes, ["march", "composite", "present"]);
+    assert_eq!(passes, ["march", "composite", "present", "hdr"]);
     assert_eq!(plan["passes"][2]["when"], "present");
-    assert!(plan["passes"][1]["when"].is_null());
+    assert_eq!(plan["passes"][3]["when"], "hdr");
+    assert_eq!(plan["passes"][1]["when"], "!hdr");
     assert_eq!(plan["passes"][0]["dispatch"], serde_json::json!([4, 3, 1]));
     assert_eq!(plan["passes"][0]["overrides"]["DETAIL"], 1.0);
 

@@ -8,6 +8,7 @@ use stratus_noise::NoiseSet;
 use stratus_scene::Scene;
 
 use crate::{
+    depth::{NO_SCENE_DEPTH, SceneDepth},
     desc::{Lifetime, OutputRole, ResourceKind},
     named_counters,
     output::{FrameOutput, PassTiming},
@@ -138,6 +139,9 @@ pub struct FrameInput<'a> {
     /// A camera cut: last frame's history is not used (no `history` flag, temporal
     /// upsampling starts over) although it is valid.
     pub cut: bool,
+    /// The host's scene depth (the frame's size): the march stops at its surfaces. Uploaded
+    /// when a different `Arc` arrives.
+    pub scene_depth: Option<&'a Arc<SceneDepth>>,
 }
 
 impl<'a> FrameInput<'a> {
@@ -151,7 +155,31 @@ impl<'a> FrameInput<'a> {
             flags: &[],
             invalidate: &[],
             cut: false,
+            scene_depth: None,
         }
+    }
+
+    /// The same frame with the host's scene depth.
+    pub fn with_scene_depth(self, scene_depth: Option<&'a Arc<SceneDepth>>) -> Self {
+        Self {
+            scene_depth,
+            ..self
+        }
+    }
+
+    /// Whether the host data uploaded for `noise` and `scene_depth` (what a backend uploaded
+    /// last) is not this frame's, so the uploaded textures are written again.
+    pub fn uploads_changed(
+        &self,
+        noise: Option<&Arc<NoiseSet>>,
+        scene_depth: Option<&Arc<SceneDepth>>,
+    ) -> bool {
+        !noise.is_some_and(|n| Arc::ptr_eq(n, self.noise))
+            || match (scene_depth, self.scene_depth) {
+                (None, None) => false,
+                (Some(a), Some(b)) => !Arc::ptr_eq(a, b),
+                _ => true,
+            }
     }
 
     /// The same frame after a camera cut: history starts over.
@@ -362,6 +390,9 @@ impl FrameState {
     /// `history_valid` = 1 once the history holds last frame (temporal reprojection reads both).
     pub fn uniforms(&self, frame: &FrameInput<'_>) -> stratus_scene::FrameUniforms {
         let mut u = frame.scene.uniforms();
+        if let Some(depth) = frame.scene_depth {
+            depth.apply(&mut u);
+        }
         if let Some(last) = &self.last
             && self.history_frames > 0
             && !frame.cut
@@ -411,10 +442,63 @@ impl FrameState {
     }
 }
 
-/// The size (x, y, z) and RGBA8 bytes of the host data an upload names, checked against each
-/// other.
-pub fn upload_data<'n>(source: &str, noise: &'n NoiseSet) -> Result<([u32; 3], &'n [u8]), String> {
+/// Why `frame`'s scene depth cannot be rendered, if it cannot: it is not the frame's size, the
+/// scene renders with a method that does not read it (the path tracer and the baselines do
+/// not stop at the host's geometry), or its depths are in a host texture that this renderer
+/// has not bound (`host_texture`: whether it has). Every backend asks before rendering.
+pub fn check_scene_depth(frame: &FrameInput<'_>, host_texture: bool) -> Result<(), String> {
+    let Some(d) = frame.scene_depth else {
+        return Ok(());
+    };
+    if d.bytes().is_none() && !host_texture {
+        return Err(
+            "the scene depth is in the host's GPU texture, which only the wgpu library (stratus::Clouds) binds; give this renderer the depths (SceneDepth::new)".into(),
+        );
+    }
+    let [w, h] = d.size();
+    let want = frame.scene.camera.resolution;
+    if [w, h] != want {
+        return Err(format!(
+            "the scene depth is {w}x{h}, the frame {}x{}: give a depth image of the target's size",
+            want[0], want[1]
+        ));
+    }
+    let q = &frame.scene.quality;
+    if q.integrator == stratus_scene::Integrator::Pathtrace
+        || q.method != stratus_scene::Method::Volumetric
+    {
+        return Err(format!(
+            "scene depth is read by the volumetric march only; this scene renders with {} (quality.method = \"{}\"), which does not stop at the host's geometry",
+            if q.integrator == stratus_scene::Integrator::Pathtrace {
+                "the path tracer"
+            } else {
+                "a baseline method"
+            },
+            q.method.name()
+        ));
+    }
+    Ok(())
+}
+
+/// The size (x, y, z) and bytes (four a texel: RGBA8, or one f32) of the host data an
+/// upload names, checked against each other.
+pub fn upload_data<'n>(
+    source: &str,
+    frame: &FrameInput<'n>,
+) -> Result<([u32; 3], &'n [u8]), String> {
+    let noise: &'n NoiseSet = frame.noise;
     let (size, data) = match source {
+        "scene.depth" => match frame.scene_depth {
+            Some(d) => match d.bytes() {
+                Some(bytes) => {
+                    let [w, h] = d.size();
+                    ([w, h, 1], bytes)
+                }
+                // In the host's texture, bound in place of this one.
+                None => ([1, 1, 1], &NO_SCENE_DEPTH[..]),
+            },
+            None => ([1, 1, 1], &NO_SCENE_DEPTH[..]),
+        },
         "noise.shape" => (noise.shape.size, &noise.shape.data[..]),
         "noise.detail" => (noise.detail.size, &noise.detail.data[..]),
         "noise.weather" => (
@@ -430,7 +514,7 @@ pub fn upload_data<'n>(source: &str, noise: &'n NoiseSet) -> Result<([u32; 3], &
     let expected = size.iter().map(|&n| u64::from(n)).product::<u64>() * 4;
     if data.len() as u64 != expected || expected == 0 {
         return Err(format!(
-            "the {source} texture has {} bytes, {expected} expected for {}x{}x{} RGBA8",
+            "the {source} texture has {} bytes, {expected} expected for {}x{}x{} texels",
             data.len(),
             size[0],
             size[1],
@@ -452,11 +536,11 @@ pub struct Made {
 }
 
 impl Made {
-    /// What `r` needs this frame (an uploaded texture takes the size of `noise`'s data).
-    pub fn for_frame(r: &PlanResource, noise: &NoiseSet) -> Result<Self, String> {
+    /// What `r` needs this frame (an uploaded texture takes the size of its data).
+    pub fn for_frame(r: &PlanResource, frame: &FrameInput<'_>) -> Result<Self, String> {
         let uploaded = match &r.upload {
             Some(src) if r.kind == ResourceKind::Texture => Some(
-                upload_data(src, noise)
+                upload_data(src, frame)
                     .map_err(|e| format!("resource `{}`: {e}", r.name))?
                     .0,
             ),

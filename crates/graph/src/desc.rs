@@ -429,8 +429,9 @@ pub fn plan_condition_holds(condition: &str, set: &dyn Fn(&str) -> bool) -> bool
 }
 
 /// Upload sources the host provides.
-pub const UPLOADS: [&str; 5] = [
+pub const UPLOADS: [&str; 6] = [
     "frame",
+    "scene.depth",
     "noise.shape",
     "noise.detail",
     "noise.weather",

@@ -10,12 +10,14 @@
 //! - [`plan`]: a graph resolved for a plan key (features, options, size): variants, resources,
 //!   passes;
 //! - [`backend`]: the one backend trait and what every backend shares;
+//! - [`depth`]: the host's scene depth, which the march stops at;
 //! - [`output`]: what a frame hands back.
 
 #![deny(missing_docs)]
 
 pub mod backend;
 pub mod check;
+pub mod depth;
 pub mod desc;
 pub mod error;
 pub mod manifest;
@@ -25,6 +27,7 @@ pub mod plan;
 pub mod program;
 
 pub use backend::{Backend, BackendError, FrameInput, Readback};
+pub use depth::SceneDepth;
 pub use desc::{GraphDesc, GraphError};
 pub use manifest::Manifest;
 pub use options::PlanOptions;

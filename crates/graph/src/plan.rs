@@ -811,7 +811,7 @@ mod tests {
             let always: Vec<&str> = plan
                 .passes
                 .iter()
-                .filter(|p| p.when.is_none())
+                .filter(|p| p.runs(&[]))
                 .map(|p| p.name.as_str())
                 .collect();
             // Under the physical sky the cloud-shadow map after the march (its tables run
@@ -863,7 +863,7 @@ mod tests {
             let passes: Vec<(String, String)> = plan
                 .passes
                 .iter()
-                .filter(|p| p.when.is_none())
+                .filter(|p| p.runs(&[]))
                 .map(|p| (p.name.clone(), p.pipeline_name()))
                 .collect();
             (plan, passes)

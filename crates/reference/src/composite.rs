@@ -70,12 +70,15 @@ pub(crate) fn physical_composite(
     view: V3,
     cloud: [f64; 4],
     depth: f64,
+    surface: bool,
 ) -> V3 {
     let e = f.sun_illuminance();
     let r = sky.camera_air_origin(f).y;
     // The ground below the horizon is in the table; only the sky above it shows space.
     let mut background = sky.sky_view(f, view).mul_v(e);
-    if sky.meets_ground(r, view.y) {
+    if surface {
+        background = surface_radiance(f);
+    } else if sky.meets_ground(r, view.y) {
         // The table's ground is lit everywhere; where the clouds shade it, less.
         let lost = sky.ground_shadow_loss(f, view, r).mul_v(e);
         let b = background - lost;
@@ -223,6 +226,16 @@ pub(crate) fn stars(f: &Frame, d: V3) -> V3 {
     star.tint * (illuminance * weight / (pixel_angle * pixel_angle))
 }
 
+// WGSL: composite.wgsl::surface_radiance
+/// The host's geometry in the display image: a grey surface (albedo 0.3) facing up, lit as
+/// the analytic sky's ground is.
+pub(crate) fn surface_radiance(f: &Frame) -> V3 {
+    let sun = f.sun();
+    let e = f.sun_illuminance();
+    let day = (sun.y * 4.0 + 0.3).clamp(0.0, 1.0);
+    e * (0.3 * (sun.y.max(0.0) / PI + 0.05 * day))
+}
+
 // WGSL: composite.wgsl::store_display
 /// Exposure, tone curve and gamma of a pixel's radiance, to the display's 8 bits.
 fn store_display(f: &Frame, radiance: V3) -> [u8; 4] {
@@ -239,11 +252,13 @@ fn store_display(f: &Frame, radiance: V3) -> [u8; 4] {
 
 // WGSL: composite.wgsl::composite
 /// The display pixel for march output `cloud` (radiance rgb, transmittance).
-pub(crate) fn composite(f: &Frame, pixel: [u32; 2], cloud: [f64; 4]) -> [u8; 4] {
+pub(crate) fn composite(f: &Frame, pixel: [u32; 2], cloud: [f64; 4], surface: bool) -> [u8; 4] {
     let view = view_ray(f, pixel);
     let alt = f.camera_position[1];
     let mut background = sky_radiance(f, view, alt);
-    if !hits_ground(f, V3::new(0.0, alt, 0.0), alt, view) {
+    if surface {
+        background = surface_radiance(f);
+    } else if !hits_ground(f, V3::new(0.0, alt, 0.0), alt, view) {
         background += sun_disk(f, view);
     }
     store_display(
@@ -260,17 +275,19 @@ pub(crate) fn composite_physical(
     pixel: [u32; 2],
     cloud: [f64; 4],
     depth: f64,
+    surface: bool,
 ) -> [u8; 4] {
     store_display(
         f,
-        physical_composite(f, sky, pixel, view_ray(f, pixel), cloud, depth),
+        physical_composite(f, sky, pixel, view_ray(f, pixel), cloud, depth, surface),
     )
 }
 
 /// The display image of a `width` x `height` frame from its stored (f32) radiance and
 /// transmittance, 4 floats a pixel, and depth (m), one float a pixel, as the GPU's composite
 /// pass reads the march output: in the physical sky when the frame is under it (`sky`, the
-/// frame's tables, then given), else the analytic one.
+/// frame's tables, then given), else the analytic one; the host's geometry where `surface`
+/// (the frame's scene depth) covers a pixel.
 pub(crate) fn composite_image(
     f: &Frame,
     sky: Option<&SkyTables>,
@@ -278,6 +295,7 @@ pub(crate) fn composite_image(
     height: u32,
     radiance: &[f32],
     depth: &[f32],
+    surface: Option<&stratus_graph::SceneDepth>,
 ) -> Vec<u8> {
     let sky = physical(f, sky);
     (0..height)
@@ -286,9 +304,12 @@ pub(crate) fn composite_image(
             (0..width).flat_map(move |x| {
                 let i = (y * width + x) as usize;
                 let cloud = [0, 1, 2, 3].map(|c| f64::from(radiance[4 * i + c]));
+                let surface = crate::march::surface_at(f, surface, [x, y]);
                 match sky {
-                    Some(sky) => composite_physical(f, sky, [x, y], cloud, f64::from(depth[i])),
-                    None => composite(f, [x, y], cloud),
+                    Some(sky) => {
+                        composite_physical(f, sky, [x, y], cloud, f64::from(depth[i]), surface)
+                    }
+                    None => composite(f, [x, y], cloud, surface),
                 }
             })
         })
@@ -367,6 +388,7 @@ impl Compositor {
             h,
             radiance,
             &depth,
+            None,
         ))
     }
 }

@@ -18,6 +18,7 @@ pub(crate) const FLAG_CHECKERBOARD: u32 = 8;
 pub(crate) const FLAG_EMPTY_SKIP: u32 = 16;
 pub(crate) const FLAG_PHYSICAL_SKY: u32 = 32;
 pub(crate) const FLAG_MOONLIT: u32 = 64;
+pub(crate) const FLAG_SCENE_DEPTH: u32 = 128;
 pub(crate) const PI: f64 = std::f64::consts::PI;
 // WGSL: common.wgsl::MAX_VIEW_STEPS (the bound in step-length mode).
 pub(crate) const MAX_VIEW_STEPS: u32 = 1024;
@@ -167,6 +168,7 @@ mod tests {
         // The mode flags the sky reads are the scene crate's bits.
         assert_eq!(FLAG_PHYSICAL_SKY, FrameUniforms::FLAG_PHYSICAL_SKY);
         assert_eq!(FLAG_MOONLIT, FrameUniforms::FLAG_MOONLIT);
+        assert_eq!(FLAG_SCENE_DEPTH, FrameUniforms::FLAG_SCENE_DEPTH);
         assert!((0.0..1.0).contains(&u));
         assert_eq!(u * 16_777_216.0, (u * 16_777_216.0).floor());
     }

@@ -74,7 +74,8 @@ use std::time::Instant;
 
 use indicatif::{ProgressBar, ProgressStyle};
 use rayon::prelude::*;
-use stratus_graph::{FrameOutput, PassTiming};
+use std::sync::Arc;
+use stratus_graph::{FrameOutput, PassTiming, SceneDepth};
 use stratus_noise::NoiseSet;
 use stratus_scene::{Integration, Scene};
 
@@ -396,6 +397,19 @@ pub fn render(
     .output
 }
 
+/// [`render`] of the clouds in front of the host's geometry: every march stops at the surface
+/// `depth` holds (`None`: no geometry, the same as [`render`]).
+pub fn render_with_scene_depth(
+    scene: &Scene,
+    noise: &NoiseSet,
+    integrator: &Integrator,
+    progress: bool,
+    depth: Option<&Arc<SceneDepth>>,
+) -> FrameOutput {
+    let model = Model::with_scene_depth(scene.uniforms(), Medium::Clouds(noise), depth);
+    render_model(&model, integrator, progress).output
+}
+
 /// What one pixel contributes.
 #[derive(Clone, Copy, Default)]
 struct PixelOut {
@@ -535,7 +549,15 @@ fn render_model(model: &Model, integrator: &Integrator, progress: bool) -> Rende
         .collect();
 
     let t1 = Instant::now();
-    let image = composite::composite_image(f, model.sky(), w, h, &radiance, &depth);
+    let image = composite::composite_image(
+        f,
+        model.sky(),
+        w,
+        h,
+        &radiance,
+        &depth,
+        model.surface.as_deref(),
+    );
     let composite_ms = t1.elapsed().as_secs_f64() * 1e3;
     let timings = sky::in_graph_order(
         model.sky(),
@@ -626,6 +648,7 @@ impl stratus_graph::Backend for CpuBackend {
         }
         let temporal = frame.scene.quality.temporal != stratus_scene::Temporal::Off;
         let pathtrace = frame.scene.quality.integrator == stratus_scene::Integrator::Pathtrace;
+        stratus_graph::backend::check_scene_depth(frame, false)?;
         if !pathtrace {
             self.pathtrace = progressive::PathState::default();
         }
@@ -647,12 +670,24 @@ impl stratus_graph::Backend for CpuBackend {
                 if frame.cut {
                     self.temporal = temporal::TemporalState::default();
                 }
-                temporal::render(frame.scene, frame.noise, settings, &mut self.temporal)
+                temporal::render(
+                    frame.scene,
+                    frame.noise,
+                    settings,
+                    &mut self.temporal,
+                    frame.scene_depth,
+                )
             }
             _ => {
                 // A frame without temporal upsampling leaves no usable history.
                 self.temporal = temporal::TemporalState::default();
-                render(frame.scene, frame.noise, &self.integrator, self.progress)
+                render_with_scene_depth(
+                    frame.scene,
+                    frame.noise,
+                    &self.integrator,
+                    self.progress,
+                    frame.scene_depth,
+                )
             }
         };
         out.cpu_ms = t.elapsed().as_secs_f64() * 1e3;

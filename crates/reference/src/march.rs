@@ -2,11 +2,14 @@
 //! analytic or Riemann step integral, jitter, early exit and the work counters.
 
 use crate::density::{Counters, Layer, cloud_layer, layer_count};
-use crate::frame::{Frame, INTEGRATION_RIEMANN, MAX_VIEW_STEPS, hash_unit, van_der_corput};
+use crate::frame::{
+    FLAG_SCENE_DEPTH, Frame, INTEGRATION_RIEMANN, MAX_VIEW_STEPS, hash_unit, van_der_corput, xyz,
+};
 use crate::geometry::{Interval, RayKind, altitude_of, cloud_interval, layer_interval, view_ray};
 use crate::lighting::{LightMarch, forward_lobe, scattered_light};
 use crate::math::V3;
 use crate::medium::Model;
+use stratus_graph::SceneDepth;
 
 /// The discretisation of one quadrature render, resolved from the scene and the settings.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -106,11 +109,58 @@ pub(crate) fn start_offset(f: &Frame, pixel: [u32; 2], jitter: bool) -> f64 {
     (base + van_der_corput(f.frame_index / (k * k))).fract()
 }
 
+// WGSL: march.wgsl::has_surface
+/// Whether the host's geometry covers `pixel` (its depth is not the far plane's).
+pub(crate) fn has_surface(m: &Model, pixel: [u32; 2]) -> bool {
+    surface_at(&m.f, m.surface.as_deref(), pixel)
+}
+
+/// [`has_surface`] of frame `f` with scene depth `depth`.
+pub(crate) fn surface_at(f: &Frame, depth: Option<&SceneDepth>, pixel: [u32; 2]) -> bool {
+    if f.flags & FLAG_SCENE_DEPTH == 0 {
+        return false;
+    }
+    depth.is_some_and(|d| f64::from(d.depth(pixel[0], pixel[1])) != f.scene_depth_clear)
+}
+
+// WGSL: march.wgsl::scene_surface
+/// The distance along the view ray `view` of `pixel` to the host's geometry (m), infinite
+/// where there is none: the depth d lies at B / (d + A) along the view axis.
+pub(crate) fn scene_surface(m: &Model, pixel: [u32; 2], view: V3) -> f64 {
+    let Some(d) = m.surface.as_ref().filter(|_| has_surface(m, pixel)) else {
+        return f64::INFINITY;
+    };
+    let f = &m.f;
+    let axis = f.scene_depth_b / (f64::from(d.depth(pixel[0], pixel[1])) + f.scene_depth_a);
+    axis / view.dot(xyz(f.camera_forward))
+}
+
+// WGSL: march.wgsl::clip_to_surface
+/// `s` cut at the surface at distance `surface`.
+fn clip_to_surface(s: Interval, surface: f64) -> Interval {
+    if s.kind != RayKind::March || s.start + s.length <= surface {
+        return s;
+    }
+    if s.start >= surface {
+        return Interval {
+            start: 0.0,
+            length: 0.0,
+            kind: RayKind::MissesLayer,
+        };
+    }
+    Interval {
+        start: s.start,
+        length: surface - s.start,
+        kind: RayKind::March,
+    }
+}
+
 // WGSL: march.wgsl::march_pixel
-/// The march of one pixel.
+/// The march of one pixel, cut at the host's geometry.
 pub(crate) fn march(m: &Model, s: &MarchSettings, pixel: [u32; 2]) -> PixelResult {
     let view = view_ray(&m.f, pixel);
-    march_ray(m, s, view, start_offset(&m.f, pixel, s.jitter))
+    let surface = scene_surface(m, pixel, view);
+    march_ray_to(m, s, view, start_offset(&m.f, pixel, s.jitter), surface)
 }
 
 /// What a view march has gathered so far, across layers (the WGSL's `MarchState`).
@@ -127,6 +177,11 @@ struct MarchState {
 // Must agree: each layer on its own interval, nearest first by (start, index); the pixel's
 // kind is "marched" if any layer was, else "hits ground" if any layer's ray did.
 pub(crate) fn march_ray(m: &Model, s: &MarchSettings, view: V3, jitter: f64) -> PixelResult {
+    march_ray_to(m, s, view, jitter, f64::INFINITY)
+}
+
+/// [`march_ray`] ending at distance `surface` (the host's geometry).
+fn march_ray_to(m: &Model, s: &MarchSettings, view: V3, jitter: f64, surface: f64) -> PixelResult {
     let f = &m.f;
     let cam_alt = f.camera_position[1];
     let mut counters = Counters::default();
@@ -140,7 +195,8 @@ pub(crate) fn march_ray(m: &Model, s: &MarchSettings, view: V3, jitter: f64) -> 
     let spans: Vec<(u32, Interval)> = (0..layer_count(f))
         .map(|i| {
             let l = cloud_layer(f, i);
-            (i, medium_interval(m, cam_alt, view, Some(&l)))
+            let span = medium_interval(m, cam_alt, view, Some(&l));
+            (i, clip_to_surface(span, surface))
         })
         .collect();
     let ground = spans.iter().any(|(_, s)| s.kind == RayKind::HitsGround);

@@ -185,6 +185,8 @@ pub(crate) struct Model<'a> {
     /// The physical sky's tables for this frame (the GPU's `*-lut`, `sky-ambient` and
     /// `aerial-perspective` resources), under the physical sky only.
     sky: Option<SkyTables>,
+    /// The host's scene depth (`FLAG_SCENE_DEPTH`): the march stops at its surfaces.
+    pub surface: Option<std::sync::Arc<stratus_graph::SceneDepth>>,
 }
 
 impl<'a> Model<'a> {
@@ -192,6 +194,21 @@ impl<'a> Model<'a> {
     /// replaces the scene's sigma_s and sigma_a in the frame.
     pub fn new(scene: &Scene, medium: Medium<'a>) -> Self {
         Self::with_uniforms(&scene.uniforms(), medium)
+    }
+
+    /// [`Model::with_uniforms`] with the host's scene depth: its projection terms go into the
+    /// block (as every GPU backend puts them) and the march stops at its surfaces.
+    pub fn with_scene_depth(
+        mut u: stratus_scene::FrameUniforms,
+        medium: Medium<'a>,
+        depth: Option<&std::sync::Arc<stratus_graph::SceneDepth>>,
+    ) -> Self {
+        if let Some(d) = depth {
+            d.apply(&mut u);
+        }
+        let mut model = Self::with_uniforms(&u, medium);
+        model.surface = depth.cloned();
+        model
     }
 
     /// [`Model::new`] from a uniform block (a renderer's, with last frame's camera).
@@ -228,6 +245,7 @@ impl<'a> Model<'a> {
             occupancy,
             density_bounds,
             sky,
+            surface: None,
         };
         // The shadow map reads the medium, so it is made once the model stands.
         if let Some(mut sky) = model.sky.take() {

@@ -77,6 +77,7 @@ pub(crate) fn render(
         out.height,
         &out.radiance,
         &out.depth,
+        None,
     );
     out.timings = crate::sky::in_graph_order(
         model.sky(),

@@ -11,9 +11,9 @@ use stratus_scene::{FrameUniforms, Scene};
 
 use crate::{
     COUNTER_NAMES, QuadratureSettings, composite,
-    frame::{FLAG_CHECKERBOARD, Frame, xyz},
+    frame::{FLAG_CHECKERBOARD, FLAG_SCENE_DEPTH, Frame, xyz},
     geometry::{RayKind, nearest_layer_interval, view_ray},
-    march::{MarchSettings, PixelResult, march},
+    march::{MarchSettings, PixelResult, has_surface, march},
     medium::{Medium, Model},
 };
 
@@ -35,8 +35,8 @@ struct History {
     block: u32,
     /// Radiance rgb and transmittance, f32 as the GPU's rgba32float.
     color: Vec<[f32; 4]>,
-    /// Depth and sample count.
-    meta: Vec<[f32; 2]>,
+    /// Depth, sample count, and 1 where the host's geometry cut the march.
+    meta: Vec<[f32; 3]>,
 }
 
 // WGSL: temporal.wgsl::bayer2
@@ -134,12 +134,30 @@ impl History {
     }
 
     // WGSL: temporal.wgsl::meta_at
-    fn meta_at(&self, q: [f64; 2]) -> [f64; 2] {
+    fn meta_at(&self, q: [f64; 2]) -> [f64; 3] {
         let [w, h] = self.size.map(|v| v as i64);
         // WGSL's round() rounds half to even.
         let x = (q[0].round_ties_even() as i64).clamp(0, w - 1);
         let y = (q[1].round_ties_even() as i64).clamp(0, h - 1);
         self.meta[(y * w + x) as usize].map(f64::from)
+    }
+
+    // WGSL: temporal.wgsl::footprint_cut
+    /// Whether any texel of `color_at`'s 4 x 4 footprint at `q` was cut by the host's
+    /// geometry.
+    fn footprint_cut(&self, q: [f64; 2]) -> bool {
+        let [w, h] = self.size.map(|v| v as i64);
+        let base = [
+            q[0].clamp(0.0, (w - 1) as f64).floor() as i64,
+            q[1].clamp(0.0, (h - 1) as f64).floor() as i64,
+        ];
+        (-1..=2).any(|dy| {
+            (-1..=2).any(|dx| {
+                let x = (base[0] + dx).clamp(0, w - 1);
+                let y = (base[1] + dy).clamp(0, h - 1);
+                self.meta[(y * w + x) as usize][2] > 0.0
+            })
+        })
     }
 }
 
@@ -163,6 +181,7 @@ pub(crate) fn render(
     noise: &NoiseSet,
     settings: &QuadratureSettings,
     state: &mut TemporalState,
+    depth: Option<&std::sync::Arc<stratus_graph::SceneDepth>>,
 ) -> FrameOutput {
     let mut u = scene.uniforms();
     let (w, h) = (u.size[0], u.size[1]);
@@ -175,7 +194,7 @@ pub(crate) fn render(
         u = u.with_previous_camera(last);
         u.history_valid = 1;
     }
-    let model = Model::with_uniforms(&u, Medium::Clouds(noise));
+    let model = Model::with_scene_depth(u, Medium::Clouds(noise), depth);
     let f = &model.f;
     let s: MarchSettings = settings.resolve(f);
     let valid_history = f.history_valid != 0;
@@ -192,7 +211,11 @@ pub(crate) fn render(
                 let o = block_offset(f.frame_index, k);
                 let pixel = [bx * k + o[0], by * k + o[1]];
                 let mut skip = pixel[0] >= w || pixel[1] >= h;
-                if !skip && f.flags & FLAG_CHECKERBOARD != 0 && valid_history {
+                if !skip
+                    && f.flags & FLAG_CHECKERBOARD != 0
+                    && valid_history
+                    && !has_surface(model, pixel)
+                {
                     let turn = f.frame_index / (k * k);
                     let q = reproject(f, pixel, 0.0);
                     if (bx + by + turn) & 1 == 0
@@ -226,7 +249,7 @@ pub(crate) fn render(
 
     // The resolve: every pixel.
     let t1 = Instant::now();
-    let resolved: Vec<([f32; 4], [f32; 2], Option<PixelResult>)> = (0..h)
+    let resolved: Vec<([f32; 4], [f32; 3], Option<PixelResult>)> = (0..h)
         .into_par_iter()
         .flat_map_iter(|y| {
             let (model, s, history, sparse_color, sparse_depth) =
@@ -249,10 +272,23 @@ pub(crate) fn render(
                     }
                 }
                 let q = reproject(f, pixel, depth);
-                let mut valid = valid_history && on_screen(f, q);
-                let mut hist_color = [0.0, 0.0, 0.0, 1.0];
-                let mut past = [0.0; 2];
+                // The host's geometry: its pixels are marched every frame, and history its
+                // march cut is not resampled.
+                let surface = has_surface(model, pixel);
                 let moving = q[0] != f64::from(x) || q[1] != f64::from(y);
+                let mut valid = valid_history && on_screen(f, q) && !surface;
+                if valid
+                    && f.flags & FLAG_SCENE_DEPTH != 0
+                    && let Some(hist) = history
+                {
+                    valid = !if moving {
+                        hist.footprint_cut(q)
+                    } else {
+                        hist.meta_at(q)[2] > 0.0
+                    };
+                }
+                let mut hist_color = [0.0, 0.0, 0.0, 1.0];
+                let mut past = [0.0; 3];
                 if valid && let Some(hist) = history {
                     hist_color = hist.color_at(q);
                     past = hist.meta_at(q);
@@ -310,7 +346,12 @@ pub(crate) fn render(
                     remarch = Some(r);
                     (out, 1.0, d)
                 };
-                (f32x4(result), [out_depth as f32, samples as f32], remarch)
+                let cut = if surface { 1.0 } else { 0.0 };
+                (
+                    f32x4(result),
+                    [out_depth as f32, samples as f32, cut],
+                    remarch,
+                )
             })
         })
         .collect();
@@ -344,12 +385,20 @@ pub(crate) fn render(
         .collect();
 
     let color: Vec<[f32; 4]> = resolved.iter().map(|(c, _, _)| *c).collect();
-    let meta: Vec<[f32; 2]> = resolved.iter().map(|(_, m, _)| *m).collect();
+    let meta: Vec<[f32; 3]> = resolved.iter().map(|(_, m, _)| *m).collect();
     let radiance: Vec<f32> = color.iter().flatten().copied().collect();
     let depth: Vec<f32> = meta.iter().map(|m| m[0]).collect();
 
     let t2 = Instant::now();
-    let image = composite::composite_image(&model.f, model.sky(), w, h, &radiance, &depth);
+    let image = composite::composite_image(
+        &model.f,
+        model.sky(),
+        w,
+        h,
+        &radiance,
+        &depth,
+        model.surface.as_deref(),
+    );
     let composite_ms = t2.elapsed().as_secs_f64() * 1e3;
 
     state.history = Some(History {

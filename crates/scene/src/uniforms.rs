@@ -275,6 +275,16 @@ macro_rules! frame_members {
             downward_dimming: f32,
             /// Padding (0).
             _pad8: f32,
+            /// The host's scene depth (`FLAG_SCENE_DEPTH`): its projection's term A. A
+            /// depth d lies at distance B / (d + A) along the view axis (m).
+            scene_depth_a: f32,
+            /// The scene depth's projection term B.
+            scene_depth_b: f32,
+            /// The scene depth of a pixel without geometry (the far plane's: 1 standard, 0
+            /// reversed Z).
+            scene_depth_clear: f32,
+            /// Padding (0).
+            _pad9: f32,
         }
     };
 }
@@ -415,6 +425,8 @@ impl FrameUniforms {
     pub const FLAG_PHYSICAL_SKY: u32 = 1 << 5;
     /// `flags` bit: the moon is the key light (`sun_direction`, `sun_illuminance`).
     pub const FLAG_MOONLIT: u32 = 1 << 6;
+    /// `flags` bit: the host's scene depth is bound; the march stops at its surfaces.
+    pub const FLAG_SCENE_DEPTH: u32 = 1 << 7;
 
     /// The WGSL `struct Frame` of this block, as `wgsl/frame.wgsl` holds it (written by
     /// `cargo xtask build-shaders`, which fails `--check` when the file differs).
@@ -885,6 +897,10 @@ impl Scene {
             steep_light_scale: f(ms.steep_light_scale),
             downward_dimming: f(ms.downward_dimming),
             _pad8: 0.0,
+            scene_depth_a: 0.0,
+            scene_depth_b: 0.0,
+            scene_depth_clear: 0.0,
+            _pad9: 0.0,
         };
         block.with_previous_camera(&block)
     }

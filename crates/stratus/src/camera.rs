@@ -24,6 +24,7 @@
 
 use glam::dcamera::rh::proj::directx;
 use glam::{DMat4, DVec3};
+use stratus_graph::SceneDepth;
 use stratus_scene::{Orientation, Scene};
 
 use crate::Error;
@@ -65,6 +66,37 @@ impl Projection {
     pub fn view_distance(&self, depth: f64) -> f64 {
         let (a, b) = self.depth_terms;
         b / (depth + a)
+    }
+
+    /// The clip depth of a point at `distance` along the view axis (m): `B / distance - A`
+    /// (the far plane's depth for an infinite distance).
+    pub fn depth_at(&self, distance: f64) -> f64 {
+        let (a, b) = self.depth_terms;
+        if distance.is_infinite() {
+            return self.clear_depth();
+        }
+        b / distance - a
+    }
+
+    /// The depth a cleared depth buffer holds (the far plane's): 1 for standard Z, 0 for
+    /// reversed Z.
+    pub fn clear_depth(&self) -> f64 {
+        if self.reversed_z { 0.0 } else { 1.0 }
+    }
+
+    /// The host's depth buffer as Stratus's scene depth: `depth` holds one clip-space depth a
+    /// pixel of a `size` target, row-major from the top-left, written with this projection;
+    /// pixels at [`Projection::clear_depth`] hold no geometry. Errors name the argument.
+    pub fn scene_depth(&self, size: [u32; 2], depth: &[f32]) -> Result<SceneDepth, Error> {
+        let (a, b) = self.depth_terms;
+        SceneDepth::new(size, depth, [a, b], self.clear_depth() as f32).map_err(Error::Depth)
+    }
+
+    /// The scene depth of a host depth texture of `size` written with this projection (its
+    /// depths stay on the GPU).
+    pub(crate) fn texture_depth(&self, size: [u32; 2]) -> Result<SceneDepth, Error> {
+        let (a, b) = self.depth_terms;
+        SceneDepth::in_texture(size, [a, b], self.clear_depth() as f32).map_err(Error::Depth)
     }
 }
 

@@ -32,7 +32,7 @@ pub use glam;
 
 use stratus_backend_wgpu::Renderer;
 use stratus_graph::FrameInput;
-pub use stratus_graph::{FramePlan, PassTiming, PlanError, Program, Readback};
+pub use stratus_graph::{FramePlan, PassTiming, PlanError, Program, Readback, SceneDepth};
 use stratus_noise::{NoiseConfig, NoiseSet, ShapeSize};
 pub use stratus_scene::Scene;
 use stratus_scene::ShapeTexture;
@@ -55,6 +55,9 @@ pub enum Error {
     /// The host's camera cannot be used (names the matrix and why).
     #[error("the camera's {0}")]
     Camera(String),
+    /// The host's scene depth cannot be used (names what and where).
+    #[error("{0}")]
+    Depth(String),
 }
 
 impl From<stratus_scene::SceneError> for Error {
@@ -140,6 +143,18 @@ pub struct Clouds {
     recorded: Vec<String>,
     /// The host camera's projection aspect, checked against the target's when rendering.
     host_aspect: Option<f64>,
+    /// The host's scene depth, if it gave one ([`Clouds::set_depth_texture`],
+    /// [`Clouds::set_scene_depth`]).
+    depth: Option<Depth>,
+}
+
+/// Where the host's scene depth is.
+enum Depth {
+    /// Depths the host gave ([`Clouds::set_scene_depth`]), uploaded.
+    Image(Arc<SceneDepth>),
+    /// The host's depth texture, bound where it is, and what the frames are told of it (its
+    /// size and projection).
+    Texture(wgpu::TextureView, Arc<SceneDepth>),
 }
 
 impl Clouds {
@@ -157,6 +172,7 @@ impl Clouds {
             prepared,
             recorded: Vec::new(),
             host_aspect: None,
+            depth: None,
         })
     }
 
@@ -225,6 +241,48 @@ impl Clouds {
         encoder: &mut wgpu::CommandEncoder,
         target: &wgpu::TextureView,
     ) -> Result<(), Error> {
+        let format = target.texture().format();
+        if format.is_srgb() {
+            return Err(Error::Target(format!(
+                "is {format:?}, an sRGB format: the clouds are already gamma-encoded; render into a view with the UNORM format ({:?})",
+                format.remove_srgb_suffix()
+            )));
+        }
+        self.record(encoder, target, "present")
+    }
+
+    /// Records the frame into `encoder`, writing the clouds' HDR output into `target` for the
+    /// host's compositor: linear in-scattered radiance (rgb, premultiplied: the host's image
+    /// behind the clouds times alpha, plus rgb) and transmittance (alpha), with no sky,
+    /// exposure or tone curve (the host's tone mapping comes after). `target` is an
+    /// `Rgba16Float` (or `Rgba32Float`) texture with `RENDER_ATTACHMENT` usage, the frame's
+    /// size. Where the host's depth ([`Clouds::set_depth_texture`]) holds geometry in front of
+    /// the clouds, the output is (0, 0, 0, 1).
+    pub fn render_hdr(
+        &mut self,
+        encoder: &mut wgpu::CommandEncoder,
+        target: &wgpu::TextureView,
+    ) -> Result<(), Error> {
+        let format = target.texture().format();
+        if !matches!(
+            format,
+            wgpu::TextureFormat::Rgba16Float | wgpu::TextureFormat::Rgba32Float
+        ) {
+            return Err(Error::Target(format!(
+                "is {format:?}: the HDR output is linear radiance, give an Rgba16Float (or Rgba32Float) target"
+            )));
+        }
+        self.record(encoder, target, "hdr")
+    }
+
+    /// Records the frame with the host flag `flag` (`present` or `hdr`: which pass draws into
+    /// `target`).
+    fn record(
+        &mut self,
+        encoder: &mut wgpu::CommandEncoder,
+        target: &wgpu::TextureView,
+        flag: &'static str,
+    ) -> Result<(), Error> {
         let texture = target.texture();
         if !texture
             .usage()
@@ -233,13 +291,6 @@ impl Clouds {
             return Err(Error::Target(
                 "lacks RENDER_ATTACHMENT usage; create it with that usage".into(),
             ));
-        }
-        let format = texture.format();
-        if format.is_srgb() {
-            return Err(Error::Target(format!(
-                "is {format:?}, an sRGB format: the clouds are already gamma-encoded; render into a view with the UNORM format ({:?})",
-                format.remove_srgb_suffix()
-            )));
         }
         let size = [texture.width(), texture.height()];
         if let Some(aspect) = self.host_aspect {
@@ -255,12 +306,75 @@ impl Clouds {
             let scene = self.scene.clone().with_size(size[0], size[1]);
             self.set_scene(scene)?;
         }
+        let (depth, view) = match &self.depth {
+            None => (None, None),
+            Some(Depth::Image(d)) => (Some(d.clone()), None),
+            Some(Depth::Texture(view, depth)) => {
+                if depth.size() != size {
+                    return Err(Error::Depth(format!(
+                        "the depth texture is {}x{}, the target {}x{}: give a depth texture of the target's size",
+                        depth.size()[0],
+                        depth.size()[1],
+                        size[0],
+                        size[1]
+                    )));
+                }
+                (Some(depth.clone()), Some(view))
+            }
+        };
+        self.renderer.bind_host_texture("scene-depth", view);
         let frame = self
             .prepared
             .frame(&self.scene)
             .with_readback(Readback::none())
-            .with_flags(&["present"]);
+            .with_flags(std::slice::from_ref(&flag))
+            .with_scene_depth(depth.as_ref());
         self.recorded = self.renderer.record(encoder, &frame, Some(target))?;
+        Ok(())
+    }
+
+    /// The host's depth buffer for the frames to come ([`Projection::scene_depth`] makes one
+    /// from the host's depths; `None` removes it): the clouds stop at its geometry, so
+    /// geometry in front of a cloud hides it and geometry inside one is seen through the
+    /// cloud in front of it only. It must be the target's size when rendering.
+    pub fn set_scene_depth(&mut self, depth: Option<SceneDepth>) {
+        self.depth = depth.map(|d| Depth::Image(Arc::new(d)));
+    }
+
+    /// The host's depth texture for the frames to come, read on the GPU where it is (`None`
+    /// removes it): a `Depth32Float` or `Depth24Plus` texture with `TEXTURE_BINDING` usage,
+    /// the target's size, written with `projection` (standard or reversed Z, finite or
+    /// infinite far plane; [`HostCamera::projection`]). The host renders its depth before
+    /// recording the clouds. The clouds stop at its geometry, as with
+    /// [`Clouds::set_scene_depth`].
+    pub fn set_depth_texture(
+        &mut self,
+        depth: Option<(&wgpu::TextureView, Projection)>,
+    ) -> Result<(), Error> {
+        let Some((view, projection)) = depth else {
+            self.depth = None;
+            return Ok(());
+        };
+        let texture = view.texture();
+        let format = texture.format();
+        if !matches!(
+            format,
+            wgpu::TextureFormat::Depth32Float | wgpu::TextureFormat::Depth24Plus
+        ) {
+            return Err(Error::Depth(format!(
+                "the depth texture is {format:?}: give a Depth32Float or Depth24Plus texture"
+            )));
+        }
+        if !texture
+            .usage()
+            .contains(wgpu::TextureUsages::TEXTURE_BINDING)
+        {
+            return Err(Error::Depth(
+                "the depth texture lacks TEXTURE_BINDING usage: create it with that usage so the clouds can read it".into(),
+            ));
+        }
+        let depth = projection.texture_depth([texture.width(), texture.height()])?;
+        self.depth = Some(Depth::Texture(view.clone(), Arc::new(depth)));
         Ok(())
     }
 

@@ -34,3 +34,17 @@ fragment present_fragmentOutput present_fragment(
     metal::float4 _e5 = image_in.read(metal::uint2(naga_f2u32(position.xy)), 0);
     return present_fragmentOutput { _e5 };
 }
+
+
+struct hdr_fragmentInput {
+};
+struct hdr_fragmentOutput {
+    metal::float4 member_2 [[color(0)]];
+};
+fragment hdr_fragmentOutput hdr_fragment(
+  metal::float4 position_1 [[position]]
+, metal::texture2d<float, metal::access::sample> radiance_in [[user(fake0)]]
+) {
+    metal::float4 _e5 = radiance_in.read(metal::uint2(naga_f2u32(position_1.xy)), 0);
+    return hdr_fragmentOutput { _e5 };
+}

@@ -35,9 +35,20 @@ pub fn target(device: &wgpu::Device, format: wgpu::TextureFormat, w: u32, h: u32
 }
 
 /// The RGBA8 texels of `texture`.
+#[allow(dead_code, reason = "not every test reads RGBA8 targets")]
 pub fn read(device: &wgpu::Device, queue: &wgpu::Queue, texture: &wgpu::Texture) -> Vec<u8> {
+    read_texels(device, queue, texture, 4)
+}
+
+/// The texels of `texture`, `texel` bytes each, rows unpadded.
+pub fn read_texels(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    texture: &wgpu::Texture,
+    texel: u32,
+) -> Vec<u8> {
     let (w, h) = (texture.width(), texture.height());
-    let padded = (w * 4).div_ceil(256) * 256;
+    let padded = (w * texel).div_ceil(256) * 256;
     let buffer = device.create_buffer(&wgpu::BufferDescriptor {
         label: None,
         size: u64::from(padded * h),
@@ -66,6 +77,6 @@ pub fn read(device: &wgpu::Device, queue: &wgpu::Queue, texture: &wgpu::Texture)
         .expect("poll");
     let data = buffer.slice(..).get_mapped_range().expect("mapped");
     (0..h as usize)
-        .flat_map(|y| data[y * padded as usize..][..w as usize * 4].to_vec())
+        .flat_map(|y| data[y * padded as usize..][..(w * texel) as usize].to_vec())
         .collect()
 }
