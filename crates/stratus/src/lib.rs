@@ -66,7 +66,10 @@ impl From<stratus_scene::SceneError> for Error {
     }
 }
 
-/// A per-frame change: whatever is `Some` replaces the current value.
+/// A per-frame change: whatever is `Some` replaces the current value. An update that keeps
+/// the scene (no `scene`) starts the next frame: the frame index advances, so temporal
+/// upsampling marches the next pixel of each block and the jitter takes its next seed (without
+/// it, 1/16 upsampling marched the same pixel of each block every frame).
 #[derive(Clone, Debug, Default)]
 pub struct Update {
     /// A whole new scene (weather, lighting, quality...).
@@ -204,6 +207,7 @@ impl Clouds {
         }
         // A new scene brings its own camera; a host camera in this update applies over it.
         let mut host_aspect = self.host_aspect.filter(|_| update.scene.is_none());
+        let new_scene = update.scene.is_some();
         let mut scene = update.scene.unwrap_or_else(|| self.scene.clone());
         if let Some(p) = update.camera_position {
             scene.camera.position = p;
@@ -219,6 +223,9 @@ impl Clouds {
         }
         if let Some(dt) = update.time_s {
             scene.clouds.time_s += dt;
+        }
+        if !new_scene {
+            scene.quality.frame = scene.quality.frame.wrapping_add(1);
         }
         scene.validate()?;
         self.set_scene(scene)?;

@@ -153,6 +153,13 @@ fn temporal_frames_in_the_app_texture_match_the_renderer_frame_by_frame() {
             timings.iter().map(|t| t.pass.as_str()).collect::<Vec<_>>(),
             ["march", "resolve", "composite", "present"]
         );
+        // Each update is a new frame: the next pixel of each 4x4 block is marched (with the
+        // frame index left alone, the same pixel was marched every frame).
+        assert_eq!(
+            clouds.scene().quality.frame,
+            i + 1,
+            "frame index of frame {i}"
+        );
         let plan = FramePlan::for_scene(clouds.scene(), false).unwrap();
         let expected = reference
             .render(&FrameInput::new(&plan, clouds.scene(), &noise))
