@@ -61,9 +61,8 @@ fn ash_and_wgpu_are_bit_identical_on_every_preset() {
                 a.radiance.iter().any(|&v| v > 0.0) && a.image.iter().any(|&v| v > 0),
                 "{name}: an empty frame proves nothing"
             );
-            // The same passes ran on both: every pass but those into a host's target (present,
-            // hdr: they run only when the host asks for one), less computed tables still valid
-            // from before.
+            // The same passes ran on both: every pass but those only a host asks for (present,
+            // hdr, shadow), less computed tables still valid from before.
             let ran =
                 |f: &FrameOutput| f.timings.iter().map(|t| t.pass.clone()).collect::<Vec<_>>();
             assert_eq!(ran(&a), ran(&w), "{name}");
@@ -170,15 +169,15 @@ fn a_steady_loop_is_bit_identical_frame_by_frame_and_creates_nothing() {
     assert_no_wgpu_messages();
 }
 
-/// Passes that draw into a host's target (`when = "present"` or `"hdr"`): one runs in a frame
-/// whose host asks for that target.
+/// Passes that run only for a host that asks (`when = "present"`, `"hdr"`: drawing into its
+/// target; `"shadow"`: the map for its geometry).
 fn host_target_passes(plan: &FramePlan) -> usize {
     plan.passes
         .iter()
         .filter(|p| {
-            p.when
-                .as_ref()
-                .is_some_and(|c| !c.negate && (c.flag == "present" || c.flag == "hdr"))
+            p.when.as_ref().is_some_and(|c| {
+                !c.negate && matches!(c.flag.as_str(), "present" | "hdr" | "shadow")
+            })
         })
         .count()
 }

@@ -409,6 +409,25 @@ impl Renderer {
         Ok(())
     }
 
+    /// The view of texture resource `name` as the last frame left it (the current half of a
+    /// history pair), for a host that reads it in its own passes (the cloud-shadow map); `None`
+    /// where the plan has no such texture. Valid until the next frame that remakes it (a new
+    /// plan).
+    pub fn resource_view(&self, name: &str) -> Option<&wgpu::TextureView> {
+        match &self.resources.get(name)?.object {
+            Object::Textures(t) => {
+                let last = self.frames.frame().wrapping_sub(1);
+                let half = if t.len() > 1 {
+                    history_half(last, false)
+                } else {
+                    0
+                };
+                Some(&t[half].1)
+            }
+            _ => None,
+        }
+    }
+
     /// Binds the host's texture `view` in place of the plan's resource `resource` (the host's
     /// depth texture for `scene-depth`; `None` unbinds it): passes read the host's texture
     /// where it is, without a copy. The bind groups are made again when the view changes.

@@ -78,8 +78,8 @@ fn the_kit_holds_what_its_readme_promises() {
     );
 
     // The plan: the march and the composite (skipped when the host draws the HDR output),
-    // dispatched over the golden's size, then the present and HDR passes that run only into a
-    // host's target.
+    // dispatched over the golden's size, then the passes only a host asks for: present and
+    // HDR into its target, the shadow map for its geometry.
     let plan = json(golden["plan"].as_str().unwrap());
     let passes: Vec<&str> = plan["passes"]
         .as_array()
@@ -87,9 +87,13 @@ fn the_kit_holds_what_its_readme_promises() {
         .iter()
         .map(|p| p["name"].as_str().unwrap())
         .collect();
-    assert_eq!(passes, ["march", "composite", "present", "hdr"]);
+    assert_eq!(
+        passes,
+        ["march", "composite", "present", "hdr", "host-shadow"]
+    );
     assert_eq!(plan["passes"][2]["when"], "present");
     assert_eq!(plan["passes"][3]["when"], "hdr");
+    assert_eq!(plan["passes"][4]["when"], "shadow");
     assert_eq!(plan["passes"][1]["when"], "!hdr");
     assert_eq!(plan["passes"][0]["dispatch"], serde_json::json!([4, 3, 1]));
     assert_eq!(plan["passes"][0]["overrides"]["DETAIL"], 1.0);

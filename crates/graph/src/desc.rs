@@ -266,6 +266,10 @@ pub struct ResourceDesc {
     /// The host may render into its own texture here (the library's target).
     #[serde(default, skip_serializing_if = "std::ops::Not::not")]
     pub external: bool,
+    /// The host reads this texture in its own shaders (the cloud-shadow map): it is made
+    /// sampleable whatever the passes bind it as.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub host_reads: bool,
     /// Members of the uniform block a computed persistent resource is computed from: it goes
     /// stale when one of them changes (a lookup table of the air, not of the sun, is computed
     /// again only when the air changes).

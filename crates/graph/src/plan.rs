@@ -526,6 +526,7 @@ impl FramePlan {
                     lifetime: r.lifetime,
                     usage: Usage {
                         upload: r.upload.is_some() && r.kind == ResourceKind::Texture,
+                        sampled: r.host_reads,
                         ..Usage::default()
                     },
                     upload: r.upload.clone(),

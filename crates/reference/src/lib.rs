@@ -410,6 +410,33 @@ pub fn render_with_scene_depth(
     render_model(&model, integrator, progress).output
 }
 
+/// The key light's transmittance through every cloud layer toward it from each of `points`
+/// (Stratus's world: x east, altitude, z north; m), integrated with `steps` midpoint steps a
+/// layer (the GPU's shadow map takes 16; a few hundred converge). What a host's geometry
+/// below the clouds receives of the sun.
+pub fn sun_transmittance(
+    scene: &Scene,
+    noise: &NoiseSet,
+    points: &[[f64; 3]],
+    steps: u32,
+) -> Vec<f64> {
+    let model = Model::new(scene, Medium::Clouds(noise));
+    let f = &model.f;
+    let (cx, cz) = (f.camera_position[0], f.camera_position[2]);
+    let rp = f.planet_radius;
+    let sigma_t = f.scattering + f.absorption;
+    points
+        .iter()
+        .map(|&[x, alt, z]| {
+            // Camera-relative, on the planet: the point `alt` above the ground below it.
+            let (dx, dz) = (x - cx, z - cz);
+            let y = ((rp + alt).powi(2) - dx * dx - dz * dz).sqrt() - rp;
+            let tau = model.sun_optical_depth(V3::new(dx, y, dz), alt, steps.max(1));
+            (-sigma_t * tau).exp()
+        })
+        .collect()
+}
+
 /// What one pixel contributes.
 #[derive(Clone, Copy, Default)]
 struct PixelOut {

@@ -260,6 +260,13 @@ impl<'a> Model<'a> {
     /// point `rel` through every layer, 16 midpoint steps a layer (not counted: the counters
     /// measure the march).
     fn shadow_optical_depth(&self, rel: V3) -> f64 {
+        self.sun_optical_depth(rel, 0.0, crate::sky::SHADOW_STEPS)
+    }
+
+    /// The clouds' density integrated along the key light's way up from camera-relative point
+    /// `rel` at altitude `alt` (m) through every layer above it, `steps` midpoint steps a
+    /// layer (from below a layer's bottom; a point inside a layer gets the part above it).
+    pub fn sun_optical_depth(&self, rel: V3, alt: f64, steps: u32) -> f64 {
         let f = &self.f;
         let sun = f.sun();
         let cam = V3::new(f.camera_position[0], 0.0, f.camera_position[2]);
@@ -267,14 +274,14 @@ impl<'a> Model<'a> {
         let mut tau = 0.0;
         for l in cloud_layers(f) {
             // From below a shell, the far root is where the ray leaves it upward.
-            let start = ray_shell_from(f, rel, 0.0, sun, l.bottom).t1.max(0.0);
-            let end = ray_shell_from(f, rel, 0.0, sun, l.top).t1;
-            let dt = (end - start) / f64::from(crate::sky::SHADOW_STEPS);
+            let start = ray_shell_from(f, rel, alt, sun, l.bottom).t1.max(0.0);
+            let end = ray_shell_from(f, rel, alt, sun, l.top).t1;
+            let dt = (end - start) / f64::from(steps);
             // Also skips a NaN (a shell the ray does not meet).
             if dt.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
                 continue;
             }
-            for k in 0..crate::sky::SHADOW_STEPS {
+            for k in 0..steps {
                 let q = rel + sun * (start + (f64::from(k) + 0.5) * dt);
                 tau += self.layer_density(q + cam, altitude_of(f, q), &l, &mut counters) * dt;
             }

@@ -23,12 +23,16 @@
 #![deny(missing_docs)]
 
 mod camera;
+mod shadow;
 
 use std::sync::Arc;
 
 pub use camera::{HostCamera, Projection, host_from_world, world_from_host};
 /// The glam Stratus's [`HostCamera`] takes (the version Bevy 0.20 uses).
 pub use glam;
+pub use shadow::{
+    CloudShadow, SHADOW_FADE_START, SHADOW_HALF_EXTENT, SHADOW_SIZE, ShadowTransform,
+};
 
 use stratus_backend_wgpu::Renderer;
 use stratus_graph::FrameInput;
@@ -149,6 +153,8 @@ pub struct Clouds {
     /// The host's scene depth, if it gave one ([`Clouds::set_depth_texture`],
     /// [`Clouds::set_scene_depth`]).
     depth: Option<Depth>,
+    /// Whether the host reads the cloud-shadow map ([`Clouds::set_cloud_shadow`]).
+    shadow: bool,
 }
 
 /// Where the host's scene depth is.
@@ -176,6 +182,7 @@ impl Clouds {
             recorded: Vec::new(),
             host_aspect: None,
             depth: None,
+            shadow: false,
         })
     }
 
@@ -330,11 +337,12 @@ impl Clouds {
             }
         };
         self.renderer.bind_host_texture("scene-depth", view);
+        let flags = [flag, "shadow"];
         let frame = self
             .prepared
             .frame(&self.scene)
             .with_readback(Readback::none())
-            .with_flags(std::slice::from_ref(&flag))
+            .with_flags(if self.shadow { &flags[..] } else { &flags[..1] })
             .with_scene_depth(depth.as_ref());
         self.recorded = self.renderer.record(encoder, &frame, Some(target))?;
         Ok(())
@@ -383,6 +391,28 @@ impl Clouds {
         let depth = projection.texture_depth([texture.width(), texture.height()])?;
         self.depth = Some(Depth::Texture(view.clone(), Arc::new(depth)));
         Ok(())
+    }
+
+    /// Whether the frames to come compute the cloud-shadow map for the host's geometry
+    /// ([`Clouds::cloud_shadow`]; one more pass a frame, `host-shadow`).
+    pub fn set_cloud_shadow(&mut self, on: bool) {
+        self.shadow = on;
+    }
+
+    /// The cloud-shadow map the last frame computed, with the transform from the host's world
+    /// to its texels, for the host's own lighting (`stratus_cloud_shadow` in
+    /// `wgsl/host/cloud_shadow.wgsl`): the key light's transmittance through every cloud layer
+    /// on a square 40 km wide around the camera. `None` unless the last frame computed it
+    /// (turn it on with [`Clouds::set_cloud_shadow`]). The view is valid until the next frame;
+    /// fetch it every frame.
+    pub fn cloud_shadow(&self) -> Option<CloudShadow<'_>> {
+        if !self.recorded.iter().any(|p| p == "host-shadow") {
+            return None;
+        }
+        Some(CloudShadow {
+            view: self.renderer.resource_view("host-shadow")?,
+            transform: ShadowTransform::of_scene(&self.scene),
+        })
     }
 
     /// The GPU time of every pass of the last frame, once the application has submitted it

@@ -149,8 +149,8 @@ fn reversed(scene: &Scene) -> Projection {
     .unwrap()
 }
 
-/// The box hides the clouds behind it exactly (no radiance, transmittance 1) on wgpu, ash and
-/// the CPU reference; the plane inside the cloud sees more transmittance than the whole
+/// The box hides the clouds behind it exactly (no radiance, transmittance 1) on wgpu (Vulkan
+/// and GL), ash and the CPU reference; the plane inside the cloud sees more transmittance than the whole
 /// cloud's, the GPU's within 0.01 of the CPU's; the display image shows the geometry.
 #[test]
 fn geometry_hides_and_cuts_the_clouds_on_every_path() {
@@ -163,10 +163,16 @@ fn geometry_hides_and_cuts_the_clouds_on_every_path() {
     let mut ash =
         stratus_backend_ash::Renderer::new(stratus_backend_ash::Options { validation: true })
             .expect("ash renderer");
+    let mut gl = stratus_backend_wgpu::Renderer::new(stratus_backend_wgpu::Options {
+        api: stratus_backend_wgpu::Api::Gl,
+        validation: true,
+    })
+    .expect("wgpu-gl renderer");
     let mut cpu = stratus_reference::CpuBackend::default();
     let outputs = [
         ("wgpu", gpu.render(&frame).expect("wgpu")),
         ("ash", ash.render(&frame).expect("ash")),
+        ("wgpu-gl", gl.render(&frame).expect("wgpu-gl")),
         ("cpu", Backend::render(&mut cpu, &frame).expect("cpu")),
     ];
     let boxed = s.pixels(Cover::Box);
@@ -196,10 +202,10 @@ fn geometry_hides_and_cuts_the_clouds_on_every_path() {
             assert_ne!(&s.open.image[4 * i..4 * i + 4], colour, "{name}: pixel {i}");
         }
     }
-    for (name, out) in &outputs[..2] {
+    for (name, out) in &outputs[..3] {
         let err = plane
             .iter()
-            .map(|&i| (transmittance(out, i) - transmittance(&outputs[2].1, i)).abs())
+            .map(|&i| (transmittance(out, i) - transmittance(&outputs[3].1, i)).abs())
             .fold(0.0, f64::max);
         assert!(
             err <= 0.01,

@@ -354,6 +354,12 @@ pub const DECLARED_SUBSTITUTIONS: &[(Lang, &str, &str, &str)] = &[
     ),
     (
         Lang::Hlsl,
+        "host-shadow",
+        "maxPerStageDescriptorSamplers",
+        "as `march`: the sampler heap of naga's HLSL",
+    ),
+    (
+        Lang::Hlsl,
         "resolve",
         "maxPerStageDescriptorSamplers",
         "as `march`: the sampler heap of naga's HLSL",
