@@ -2,7 +2,11 @@
 //! own texture while the camera turns and climbs, then prints the median GPU time of each pass
 //! and the median CPU time per frame (recording and submitting; not waiting for the GPU).
 //!
-//! `cargo run --release -p stratus --example embed [WxH]` (default 256x144).
+//! `cargo run --release -p stratus --example embed [WxH] [--depth] [--hdr] [--shadow]`
+//! (default 256x144). `--depth` gives the clouds a host depth buffer (reversed Z) with an
+//! opaque box over a fifth of the view 400 m away; `--hdr` draws the HDR output into an
+//! Rgba16Float target instead of the display image; `--shadow` computes the cloud-shadow
+//! map for the host's geometry every frame. Each adds to the passes it costs.
 
 use std::time::Instant;
 
@@ -10,7 +14,15 @@ use stratus::{Clouds, Scene, Update};
 use stratus_graph::output::median;
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
-    let (w, h) = match std::env::args().nth(1) {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let flag = |f: &str| args.iter().any(|a| a == f);
+    if let Some(a) = args
+        .iter()
+        .find(|a| a.starts_with("--") && !["--depth", "--hdr", "--shadow"].contains(&a.as_str()))
+    {
+        return Err(format!("unknown option {a}: try WxH, --depth, --hdr, --shadow").into());
+    }
+    let (w, h): (u32, u32) = match args.iter().find(|a| !a.starts_with("--")) {
         Some(s) => {
             let (w, h) = s.split_once('x').ok_or("size must be WxH, e.g. 256x144")?;
             (w.parse()?, h.parse()?)
@@ -35,7 +47,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         mip_level_count: 1,
         sample_count: 1,
         dimension: wgpu::TextureDimension::D2,
-        format: wgpu::TextureFormat::Rgba8Unorm,
+        format: if flag("--hdr") {
+            wgpu::TextureFormat::Rgba16Float
+        } else {
+            wgpu::TextureFormat::Rgba8Unorm
+        },
         usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
         view_formats: &[],
     });
@@ -43,7 +59,31 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
 
     let scene = Scene::preset("cumulus-noon")?.with_size(w, h);
     let start = scene.camera.position;
-    let mut clouds = Clouds::new(&device, &queue, scene)?;
+    let mut clouds = Clouds::new(&device, &queue, scene.clone())?;
+    if flag("--depth") {
+        let camera = stratus::HostCamera {
+            projection: stratus::glam::dcamera::rh::proj::directx::perspective_infinite_reverse(
+                scene.camera.fov_y_deg.to_radians(),
+                f64::from(w) / f64::from(h),
+                0.1,
+            ),
+            ..stratus::HostCamera::of_scene(&scene, 0.1, f64::INFINITY)
+        };
+        let p = camera.projection()?;
+        let depth: Vec<f32> = (0..h)
+            .flat_map(|y| (0..w).map(move |x| (x, y)))
+            .map(|(x, y)| {
+                let boxed = (w / 5..2 * w / 5).contains(&x) && (h / 4..3 * h / 4).contains(&y);
+                (if boxed {
+                    p.depth_at(400.0)
+                } else {
+                    p.clear_depth()
+                }) as f32
+            })
+            .collect();
+        clouds.set_scene_depth(Some(p.scene_depth([w, h], &depth)?));
+    }
+    clouds.set_cloud_shadow(flag("--shadow"));
     let (mut cpu, mut passes) = (Vec::new(), std::collections::BTreeMap::new());
     let mut created_after_first = 0;
     for i in 0..300 {
@@ -56,7 +96,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         })?;
         let clock = Instant::now();
         let mut encoder = device.create_command_encoder(&Default::default());
-        clouds.render(&mut encoder, &view)?;
+        if flag("--hdr") {
+            clouds.render_hdr(&mut encoder, &view)?;
+        } else {
+            clouds.render(&mut encoder, &view)?;
+        }
         queue.submit([encoder.finish()]);
         cpu.push(clock.elapsed().as_secs_f64() * 1e3);
         for timing in clouds.pass_timings()? {
