@@ -41,7 +41,7 @@ use gpu_allocator::MemoryLocation;
 use stratus_graph::{
     Backend, BackendError, FrameInput, FrameOutput, FramePlan, PassTiming, Program,
     backend::{
-        FrameState, Made, Readout, cpu_wall_timings, history_half, timings_from_ticks, upload_data,
+        FrameState, Made, Readout, cpu_wall_timings, history_half, timings_from_ticks, uploads,
     },
     desc::{Lifetime, PREVIOUS, ResourceKind},
     plan::{Pass, PassKind, Requirements},
@@ -355,13 +355,13 @@ impl Renderer {
             .as_ref()
             .is_some_and(|n| Arc::ptr_eq(n, frame.noise));
         stratus_graph::backend::check_scene_depth(frame, false).map_err(Error::Shader)?;
-        // The host's scene depth changes every frame it moves; only it is uploaded then.
-        let depth_changed = frame.uploads_changed(self.noise.as_ref(), self.scene_depth.as_ref());
+        // Other host data than uploaded last (the scene depth changes every frame it moves).
+        let uploads_stale = frame.uploads_changed(self.noise.as_ref(), self.scene_depth.as_ref());
         let plan_changed = self
             .state
             .as_ref()
             .is_none_or(|s| &s.plan != plan || &s.shaders != shaders);
-        if !plan_changed && !depth_changed {
+        if !plan_changed && !uploads_stale {
             return Ok(());
         }
         let info = &self.gpu.info;
@@ -445,8 +445,8 @@ impl Renderer {
         for name in stale {
             self.drop_resource(&name);
         }
-        if rebuilt || depth_changed {
-            self.upload(plan, frame, rebuilt || noise_changed)?;
+        if rebuilt || uploads_stale {
+            self.upload(frame, rebuilt || noise_changed)?;
             self.noise = Some(frame.noise.clone());
             self.scene_depth = frame.scene_depth.cloned();
         }

@@ -631,24 +631,11 @@ impl Renderer {
         })
     }
 
-    /// Uploads the uploaded textures through one staging buffer, in one submission: all of
-    /// them, or with `all` false only the host's scene depth (which changes every frame it
-    /// moves; the noise does not).
-    pub(crate) fn upload(
-        &mut self,
-        plan: &FramePlan,
-        frame: &FrameInput<'_>,
-        all: bool,
-    ) -> Result<(), Error> {
+    /// Uploads what [`uploads`] lists through one staging buffer, in one submission.
+    pub(crate) fn upload(&mut self, frame: &FrameInput<'_>, all: bool) -> Result<(), Error> {
         let mut list = Vec::new();
         let mut size = 0u64;
-        for r in plan.resources.iter().filter(|r| r.usage.upload) {
-            let src = r.upload.as_deref().unwrap_or_default();
-            if !all && src != "scene.depth" {
-                continue;
-            }
-            let (_, data) = upload_data(src, frame)
-                .map_err(|e| Error::Shader(format!("resource `{}`: {e}", r.name)))?;
+        for (r, _, data) in uploads(frame, all).map_err(Error::Shader)? {
             list.push((r.name.clone(), size, data));
             size += data.len() as u64;
         }

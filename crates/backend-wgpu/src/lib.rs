@@ -35,7 +35,7 @@ use stratus_graph::{
     Backend, BackendError, FrameInput, FrameOutput, FramePlan, Program,
     backend::{
         DeviceClass, FrameState, Made, Readout, best_device, cpu_wall_timings, describe_device,
-        history_half, timings_from_ticks, upload_data,
+        history_half, timings_from_ticks, uploads,
     },
     desc::{Lifetime, ResourceKind},
     plan::PassKind,
@@ -319,10 +319,10 @@ impl Renderer {
             .is_some_and(|n| Arc::ptr_eq(n, frame.noise));
         stratus_graph::backend::check_scene_depth(frame, self.bound.contains_key("scene-depth"))
             .map_err(Error::Shader)?;
-        // The host's scene depth changes every frame it moves; only it is uploaded then.
-        let depth_changed = frame.uploads_changed(self.noise.as_ref(), self.scene_depth.as_ref());
+        // Other host data than uploaded last (the scene depth changes every frame it moves).
+        let uploads_stale = frame.uploads_changed(self.noise.as_ref(), self.scene_depth.as_ref());
         let plan_changed = self.plan.as_ref() != Some(plan);
-        if !plan_changed && !depth_changed && !self.bound_changed {
+        if !plan_changed && !uploads_stale && !self.bound_changed {
             if let Some(format) = target_format {
                 // Another external target format needs its own raster pipelines.
                 for (i, pass) in plan.passes.iter().enumerate() {
@@ -363,15 +363,10 @@ impl Renderer {
         }
         self.resources
             .retain(|name, _| plan.resources.iter().any(|r| &r.name == name));
-        if rebuilt || depth_changed {
-            let all = rebuilt || noise_changed;
-            for r in plan.resources.iter().filter(|r| r.usage.upload) {
-                let src = r.upload.as_deref().unwrap_or_default();
-                if !all && src != "scene.depth" {
-                    continue;
-                }
-                let (size, data) = upload_data(src, frame)
-                    .map_err(|e| Error::Shader(format!("resource `{}`: {e}", r.name)))?;
+        if rebuilt || uploads_stale {
+            for (r, size, data) in
+                uploads(frame, rebuilt || noise_changed).map_err(Error::Shader)?
+            {
                 let Object::Textures(t) = &self.resources[&r.name].object else {
                     continue;
                 };

@@ -442,6 +442,29 @@ impl FrameState {
     }
 }
 
+/// An uploaded texture to write: the resource, its size (x, y, z) and its data.
+pub type Upload<'f> = (&'f PlanResource, [u32; 3], &'f [u8]);
+
+/// The uploaded textures of `frame`'s plan to write this frame, each with its size and data:
+/// all of them when `all` (resources made again, or another noise set), else only the host's
+/// scene depth, which changes every frame it moves while the noise does not. Both backends
+/// upload what this lists.
+pub fn uploads<'f>(frame: &FrameInput<'f>, all: bool) -> Result<Vec<Upload<'f>>, String> {
+    let plan: &'f FramePlan = frame.plan;
+    plan.resources
+        .iter()
+        .filter(|r| r.usage.upload)
+        .filter_map(|r| {
+            let src = r.upload.as_deref().unwrap_or_default();
+            (all || src == "scene.depth").then(|| {
+                upload_data(src, frame)
+                    .map(|(size, data)| (r, size, data))
+                    .map_err(|e| format!("resource `{}`: {e}", r.name))
+            })
+        })
+        .collect()
+}
+
 /// Why `frame`'s scene depth cannot be rendered, if it cannot: it is not the frame's size, the
 /// scene renders with a method that does not read it (the path tracer and the baselines do
 /// not stop at the host's geometry), or its depths are in a host texture that this renderer
