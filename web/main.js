@@ -51,6 +51,51 @@ function edit(bytes, layout, { yaw, pitch, sun, sunAzimuth, width, height }) {
   return out;
 }
 
+// A tower in front of the camera and into its clouds, as the host's depth buffer: a box 600 m
+// square from the ground to 500 m above the cloud base, 5 km ahead along the camera's heading
+// (the kit's `*-tower` golden draws the same one). Reversed Z, infinite far plane, 0.1 m near
+// plane: depth = 0.1 / distance along the view axis, 0 where the ray misses. The display image
+// shows the tower as a flat grey surface; a host composites the clouds over its own shading.
+const TOWER_TERMS = [0, 0.1];
+function tower(uniformBytes, layout, width, height) {
+  const f = new Float32Array(uniformBytes.buffer);
+  const v = (name) => { const o = member(layout, name) / 4; return [f[o], f[o + 1], f[o + 2]]; };
+  const fwd = v('camera_forward');
+  const right = v('camera_right');
+  const up = v('camera_up');
+  const alt = v('camera_position')[1];
+  const tan = f[member(layout, 'tan_half_fov') / 4];
+  const aspect = width / height;
+  const hn = Math.hypot(fwd[0], fwd[2]) || 1e-9;
+  const centre = [5000 * fwd[0] / hn, 5000 * fwd[2] / hn];
+  const lo = [centre[0] - 300, -alt, centre[1] - 300];
+  const hi = [centre[0] + 300, f[member(layout, 'cloud_bottom') / 4] + 500 - alt, centre[1] + 300];
+  const depth = new Float32Array(width * height);
+  for (let y = 0; y < height; y++) {
+    for (let x = 0; x < width; x++) {
+      const sx = ((x + 0.5) / width * 2 - 1) * tan * aspect;
+      const sy = (1 - (y + 0.5) / height * 2) * tan;
+      const d = [0, 1, 2].map((k) => fwd[k] + sx * right[k] + sy * up[k]);
+      let near = 0;
+      let far = Infinity;
+      for (let k = 0; k < 3; k++) {
+        if (Math.abs(d[k]) < 1e-12) { if (lo[k] > 0 || hi[k] < 0) far = -1; continue; }
+        const a = lo[k] / d[k];
+        const b = hi[k] / d[k];
+        near = Math.max(near, Math.min(a, b));
+        far = Math.min(far, Math.max(a, b));
+      }
+      depth[y * width + x] = near <= far && near > 0 ? TOWER_TERMS[1] / near - TOWER_TERMS[0] : 0;
+    }
+  }
+  const u32 = new Uint32Array(uniformBytes.buffer);
+  u32[member(layout, 'flags') / 4] |= 128; // FLAG_SCENE_DEPTH
+  f[member(layout, 'scene_depth_a') / 4] = TOWER_TERMS[0];
+  f[member(layout, 'scene_depth_b') / 4] = TOWER_TERMS[1];
+  f[member(layout, 'scene_depth_clear') / 4] = 0;
+  return new Uint8Array(depth.buffer);
+}
+
 async function main() {
   const ctx = await loadKit(KIT);
   const layout = await (await fetch(`${KIT}/uniforms.json`)).json();
@@ -61,6 +106,7 @@ async function main() {
   let again = false;
   async function load() {
     const g = ctx.kit.goldens.find((x) => x.name === select.value);
+    $('tower').checked = Boolean(g.scene_depth);
     const plan = await (await fetch(`${KIT}/${g.plan}`)).json();
     const bytes = new Uint8Array(await (await fetch(`${KIT}/${g.uniforms}`)).arrayBuffer());
     const f = new Float32Array(bytes.buffer);
@@ -80,7 +126,10 @@ async function main() {
       const u = edit(golden.bytes, layout, {
         yaw: +$('yaw').value, pitch: +$('pitch').value, sun: +$('sun').value, sunAzimuth: golden.sunAzimuth, width, height,
       });
-      const out = await renderPlan(ctx, resize(golden.plan, width, height), u, golden.g.noise);
+      // A tower golden's bytes carry FLAG_SCENE_DEPTH: off with the tower.
+      new Uint32Array(u.buffer)[member(layout, 'flags') / 4] &= ~128;
+      const depth = $('tower').checked ? tower(u, layout, width, height) : null;
+      const out = await renderPlan(ctx, resize(golden.plan, width, height), u, golden.g.noise, depth);
       const canvas = $('view');
       canvas.width = out.width; canvas.height = out.height;
       canvas.style.width = `${Math.max(out.width, 480)}px`;
@@ -95,6 +144,7 @@ async function main() {
   select.onchange = async () => { await load(); draw(); };
   for (const id of ['yaw', 'pitch', 'sun']) $(id).oninput = draw;
   $('size').onchange = draw;
+  $('tower').onchange = draw;
   await load();
   await draw();
   window.stratusViewerReady = true;

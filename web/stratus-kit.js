@@ -99,8 +99,12 @@ function layoutEntry(ctx, pass, b, plan, visibility) {
 /**
  * Runs the first frame of `plan` with `uniforms` (`FrameUniforms`, as `uniforms.json` lays it out) and the noise set `noiseSet`, and
  * returns the display image (`image`, RGBA8) with the time the GPU work took on the CPU clock.
+ * `sceneDepth` (optional) is the host's depth buffer at the plan's size, one little-endian f32
+ * a pixel from the top-left (`Uint8Array`): the clouds stop at its geometry. The uniforms then
+ * carry FLAG_SCENE_DEPTH and the projection's terms (`scene_depth_a`, `scene_depth_b`,
+ * `scene_depth_clear`).
  */
-export async function renderPlan(ctx, plan, uniforms, noiseSet) {
+export async function renderPlan(ctx, plan, uniforms, noiseSet, sceneDepth = null) {
   const { device } = ctx;
   const T = GPU_TEXTURE_USAGE();
   const B = GPU_BUFFER_USAGE();
@@ -125,7 +129,13 @@ export async function renderPlan(ctx, plan, uniforms, noiseSet) {
     } else {
       let size = r.extent;
       let data = null;
-      if (r.upload === 'scene.depth') {
+      if (r.upload === 'scene.depth' && sceneDepth) {
+        size = [plan.width, plan.height, 1];
+        if (sceneDepth.byteLength !== size[0] * size[1] * 4) {
+          throw new Error(`the scene depth has ${sceneDepth.byteLength} bytes, not 4 x ${size[0]}x${size[1]}`);
+        }
+        data = sceneDepth;
+      } else if (r.upload === 'scene.depth') {
         // No host geometry: one texel, never read (FLAG_SCENE_DEPTH is off).
         size = [1, 1, 1];
         data = new Uint8Array(4);
@@ -254,5 +264,8 @@ export async function renderGolden(ctx, name) {
   if (!g) throw new Error(`the kit has no golden ${name}`);
   const plan = await (await fetchOk(`${ctx.base}/${g.plan}`)).json();
   const uniforms = new Uint8Array(await (await fetchOk(`${ctx.base}/${g.uniforms}`)).arrayBuffer());
-  return renderPlan(ctx, plan, uniforms, g.noise);
+  const depth = g.scene_depth
+    ? new Uint8Array(await (await fetchOk(`${ctx.base}/${g.scene_depth}`)).arrayBuffer())
+    : null;
+  return renderPlan(ctx, plan, uniforms, g.noise, depth);
 }

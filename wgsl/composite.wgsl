@@ -3,6 +3,7 @@
 
 @group(0) @binding(9) var cloud_in: texture_2d<f32>;                          // march output
 @group(0) @binding(10) var image_out: texture_storage_2d<rgba8unorm, write>; // display image
+@group(0) @binding(44) var hdr_out: texture_storage_2d<rgba16float, write>;   // HDR output, before the host's target
 @group(0) @binding(37) var depth_in: texture_2d<f32>;                         // clouds' depth (m), 0 where none
 
 // Sky radiance along unit `d` for a camera at altitude `alt`: a zenith-to-horizon gradient
@@ -43,12 +44,20 @@ fn sun_disk(d: vec3<f32>) -> vec3<f32> {
 // stands for the rest: L = a S + (1 - a) S_ap + T_ap C (Hillaire 2020, section 5.4's use of
 // the aerial-perspective volume on opaque surfaces, with partly transparent clouds).
 fn physical_composite(pixel: vec2<u32>, view: vec3<f32>, cloud: vec4<f32>) -> vec3<f32> {
+    var sky = surface_radiance();
+    if !has_surface(pixel) {
+        sky = physical_background(view);
+    }
+    return sky * cloud.a + physical_over(pixel, cloud);
+}
+
+// What shows behind the clouds where the host has no geometry: the sky-view table, the lit
+// ground below the horizon, and the sun, moon and stars above it.
+fn physical_background(view: vec3<f32>) -> vec3<f32> {
     let e = frame.sun_illuminance;
     let r = camera_air_origin().y;
     var sky = sky_view(view) * e;
-    if has_surface(pixel) {
-        sky = surface_radiance();
-    } else if meets_ground(r, view.y) {
+    if meets_ground(r, view.y) {
         // The table's ground is lit everywhere; where the clouds shade it, less.
         sky = max(sky - ground_shadow_loss(view, r) * e, vec3<f32>(0.0));
     } else {
@@ -58,12 +67,17 @@ fn physical_composite(pixel: vec2<u32>, view: vec3<f32>, cloud: vec4<f32>) -> ve
         }
         sky += space * transmittance_to_top(r, view.y);
     }
-    var radiance = sky * cloud.a;
-    if cloud.a < 1.0 {
-        let ap = aerial(pixel, textureLoad(depth_in, pixel, 0).r);
-        radiance += ap.rgb * e * (1.0 - cloud.a) + cloud.rgb * ap.a;
+    return sky;
+}
+
+// The clouds' light in front of the background, and the air between the camera and them:
+// (1 - a) S_ap + T_ap C.
+fn physical_over(pixel: vec2<u32>, cloud: vec4<f32>) -> vec3<f32> {
+    if cloud.a >= 1.0 {
+        return vec3<f32>(0.0);
     }
-    return radiance;
+    let ap = aerial(pixel, textureLoad(depth_in, pixel, 0).r);
+    return ap.rgb * frame.sun_illuminance * (1.0 - cloud.a) + cloud.rgb * ap.a;
 }
 
 // The moon's angular radius (mean, 0.259 degrees).
@@ -215,4 +229,50 @@ fn composite_physical(@builtin(global_invocation_id) id: vec3<u32>) {
     let pixel = id.xy;
     let cloud = textureLoad(cloud_in, pixel, 0);
     store_display(pixel, physical_composite(pixel, view_ray(pixel), cloud));
+}
+
+// The HDR output (`Clouds::render_hdr`): linear radiance, premultiplied (the host adds it over
+// its image times alpha), and transmittance in alpha, before any exposure or tone curve.
+// Without FLAG_HDR_SKY it is the march's radiance and transmittance as they are: the host draws
+// its own sky. With it (the host asked for the sky, `Clouds::set_hdr_sky`), wherever the host
+// has no geometry the sky is drawn behind the clouds and the pixel is opaque (alpha 0): the same
+// radiance the display image tone-maps, so a host that draws no sky of its own gets Stratus's.
+@compute @workgroup_size(8, 8, 1)
+fn hdr_composite(@builtin(global_invocation_id) id: vec3<u32>) {
+    if any(id.xy >= frame.size) {
+        return;
+    }
+    let pixel = id.xy;
+    let cloud = textureLoad(cloud_in, pixel, 0);
+    var out = cloud;
+    if (frame.flags & FLAG_HDR_SKY) != 0u && !has_surface(pixel) {
+        let view = view_ray(pixel);
+        let alt = frame.camera_position.y;
+        var background = sky_radiance(view, alt);
+        if !hits_ground(vec3<f32>(0.0, alt, 0.0), alt, view) {
+            background += sun_disk(view);
+        }
+        out = vec4<f32>(background * cloud.a + cloud.rgb, 0.0);
+    }
+    textureStore(hdr_out, pixel, out);
+}
+
+// The same in the physical sky: with FLAG_HDR_SKY the air in front of the clouds dims and
+// adds to them over the host's geometry too, as it does over the sky.
+@compute @workgroup_size(8, 8, 1)
+fn hdr_composite_physical(@builtin(global_invocation_id) id: vec3<u32>) {
+    if any(id.xy >= frame.size) {
+        return;
+    }
+    let pixel = id.xy;
+    let cloud = textureLoad(cloud_in, pixel, 0);
+    var out = cloud;
+    if (frame.flags & FLAG_HDR_SKY) != 0u {
+        if has_surface(pixel) {
+            out = vec4<f32>(physical_over(pixel, cloud), cloud.a);
+        } else {
+            out = vec4<f32>(physical_composite(pixel, view_ray(pixel), cloud), 0.0);
+        }
+    }
+    textureStore(hdr_out, pixel, out);
 }

@@ -201,6 +201,7 @@ fn mode_codes_and_flags_match_the_wgsl_constants() {
         ("FLAG_PHYSICAL_SKY", FrameUniforms::FLAG_PHYSICAL_SKY),
         ("FLAG_MOONLIT", FrameUniforms::FLAG_MOONLIT),
         ("FLAG_SCENE_DEPTH", FrameUniforms::FLAG_SCENE_DEPTH),
+        ("FLAG_HDR_SKY", FrameUniforms::FLAG_HDR_SKY),
     ];
     for (name, rust) in pairs {
         assert_eq!(constant(name), rust, "{name}");

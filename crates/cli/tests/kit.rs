@@ -79,7 +79,7 @@ fn the_kit_holds_what_its_readme_promises() {
 
     // The plan: the march and the composite (skipped when the host draws the HDR output),
     // dispatched over the golden's size, then the passes only a host asks for: present and
-    // HDR into its target, the shadow map for its geometry.
+    // HDR (composed, then drawn into its target), the shadow map for its geometry.
     let plan = json(golden["plan"].as_str().unwrap());
     let passes: Vec<&str> = plan["passes"]
         .as_array()
@@ -89,11 +89,19 @@ fn the_kit_holds_what_its_readme_promises() {
         .collect();
     assert_eq!(
         passes,
-        ["march", "composite", "present", "hdr", "host-shadow"]
+        [
+            "march",
+            "composite",
+            "present",
+            "hdr-composite",
+            "hdr",
+            "host-shadow"
+        ]
     );
     assert_eq!(plan["passes"][2]["when"], "present");
     assert_eq!(plan["passes"][3]["when"], "hdr");
-    assert_eq!(plan["passes"][4]["when"], "shadow");
+    assert_eq!(plan["passes"][4]["when"], "hdr");
+    assert_eq!(plan["passes"][5]["when"], "shadow");
     assert_eq!(plan["passes"][1]["when"], "!hdr");
     assert_eq!(plan["passes"][0]["dispatch"], serde_json::json!([4, 3, 1]));
     assert_eq!(plan["passes"][0]["overrides"]["DETAIL"], 1.0);
@@ -108,11 +116,36 @@ fn the_kit_holds_what_its_readme_promises() {
     );
     assert!(read("shaders/clouds.full.spv").starts_with(&[0x03, 0x02, 0x23, 0x07]));
     assert!(json("manifest.json")["graph"]["pass"].is_array());
+    let readme = String::from_utf8(read("README.md")).unwrap();
+    assert!(readme.contains("Running a frame"));
     assert!(
-        String::from_utf8(read("README.md"))
-            .unwrap()
-            .contains("Running a frame")
+        readme.contains("(128 named members, 672 bytes;") && !readme.contains("{BYTES}"),
+        "the README's uniform numbers"
     );
+
+    // The tower golden: the first scene with the host's depth, its uniforms saying so.
+    let tower = &kit["goldens"][1];
+    assert_eq!(tower["name"], "cumulus-noon-tower");
+    assert!(golden["scene_depth"].is_null());
+    let depth: Vec<f32> = read(tower["scene_depth"].as_str().unwrap())
+        .chunks_exact(4)
+        .map(|c| f32::from_le_bytes(c.try_into().unwrap()))
+        .collect();
+    assert_eq!(depth.len(), 32 * 18);
+    let covered = depth.iter().filter(|&&d| d > 0.0).count();
+    assert!(
+        covered > 0 && covered < depth.len(),
+        "the tower covers {covered} of {} pixels",
+        depth.len()
+    );
+    let block = read(tower["uniforms"].as_str().unwrap());
+    let word = |name: &str| {
+        let m = members.iter().find(|m| m["name"] == name).unwrap();
+        let o = m["offset"].as_u64().unwrap() as usize;
+        u32::from_le_bytes(block[o..o + 4].try_into().unwrap())
+    };
+    assert_eq!(word("flags") & 128, 128, "FLAG_SCENE_DEPTH");
+    assert_eq!(f32::from_bits(word("scene_depth_b")), 0.1);
 
     // Noise: DDS (magic, and a volume's depth) and raw bytes of the same size.
     let set = kit["noise"][0]["textures"]["noise.shape"].clone();

@@ -393,6 +393,9 @@ impl FrameState {
         if let Some(depth) = frame.scene_depth {
             depth.apply(&mut u);
         }
+        if frame.flags.contains(&"sky") {
+            u.flags |= stratus_scene::FrameUniforms::FLAG_HDR_SKY;
+        }
         if let Some(last) = &self.last
             && self.history_frames > 0
             && !frame.cut

@@ -292,6 +292,14 @@ impl SkyTables {
         &self.air
     }
 
+    /// Aerial perspective at `pixel` of a frame of `u` (its size and camera) for distance
+    /// `distance_m` along the pixel's ray: (in-scattered light per unit key-light illuminance,
+    /// mean transmittance), read from [`SkyTables::aerial`] as the shaders read theirs (the
+    /// host helper `stratus_aerial_perspective` of `wgsl/host/aerial_perspective.wgsl` too).
+    pub fn aerial_at(&self, u: &FrameUniforms, pixel: [u32; 2], distance_m: f64) -> [f64; 4] {
+        self.aerial(&Frame::from_uniforms(u), pixel, distance_m)
+    }
+
     pub(crate) fn for_frame(f: &Frame) -> Self {
         let empty = |size: [usize; 2]| Table {
             width: size[0],

@@ -427,6 +427,9 @@ impl FrameUniforms {
     pub const FLAG_MOONLIT: u32 = 1 << 6;
     /// `flags` bit: the host's scene depth is bound; the march stops at its surfaces.
     pub const FLAG_SCENE_DEPTH: u32 = 1 << 7;
+    /// `flags` bit: the HDR output carries the sky behind the clouds where the host has no
+    /// geometry (the host flag `sky`).
+    pub const FLAG_HDR_SKY: u32 = 1 << 8;
 
     /// The WGSL `struct Frame` of this block, as `wgsl/frame.wgsl` holds it (written by
     /// `cargo xtask build-shaders`, which fails `--check` when the file differs).

@@ -245,14 +245,19 @@ impl HostCamera {
     }
 
     /// The camera's position and orientation in Stratus's world axes, checked: `view` is
-    /// finite and rigid (orthonormal rotation within 1e-6, not a mirror; bottom row 0 0 0 1).
+    /// finite and rigid (orthonormal rotation within 1e-6, not a mirror; bottom row 0 0 0 1
+    /// within 1e-6, what inverting a host's f32 camera transform leaves).
     pub fn pose(&self) -> Result<([f64; 3], Orientation), Error> {
         let v = &self.view;
         if let Some(at) = non_finite(v) {
             return Err(camera_error("view", at));
         }
         let bottom = [v.x_axis.w, v.y_axis.w, v.z_axis.w, v.w_axis.w];
-        if bottom != [0.0, 0.0, 0.0, 1.0] {
+        if bottom
+            .iter()
+            .zip([0.0, 0.0, 0.0, 1.0])
+            .any(|(got, want)| (got - want).abs() > 1e-6)
+        {
             return Err(camera_error(
                 "view",
                 format!("its bottom row is {bottom:?}, not [0, 0, 0, 1]: not a rigid transform"),

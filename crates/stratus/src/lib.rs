@@ -22,11 +22,13 @@
 
 #![deny(missing_docs)]
 
+mod aerial;
 mod camera;
 mod shadow;
 
 use std::sync::Arc;
 
+pub use aerial::{AERIAL_SIDE, AERIAL_SLICE_M, AERIAL_SLICES, AerialPerspective};
 pub use camera::{HostCamera, Projection, host_from_world, world_from_host};
 /// The glam Stratus's [`HostCamera`] takes (the version Bevy 0.20 uses).
 pub use glam;
@@ -155,6 +157,8 @@ pub struct Clouds {
     depth: Option<Depth>,
     /// Whether the host reads the cloud-shadow map ([`Clouds::set_cloud_shadow`]).
     shadow: bool,
+    /// Whether the HDR output carries the sky ([`Clouds::set_hdr_sky`]).
+    hdr_sky: bool,
 }
 
 /// Where the host's scene depth is.
@@ -183,6 +187,7 @@ impl Clouds {
             host_aspect: None,
             depth: None,
             shadow: false,
+            hdr_sky: false,
         })
     }
 
@@ -268,7 +273,8 @@ impl Clouds {
     /// Records the frame into `encoder`, writing the clouds' HDR output into `target` for the
     /// host's compositor: linear in-scattered radiance (rgb, premultiplied: the host's image
     /// behind the clouds times alpha, plus rgb) and transmittance (alpha), with no sky,
-    /// exposure or tone curve (the host's tone mapping comes after). `target` is an
+    /// exposure or tone curve (the host's tone mapping comes after; [`Clouds::set_hdr_sky`]
+    /// adds the sky). `target` is an
     /// `Rgba16Float` (or `Rgba32Float`) texture with `RENDER_ATTACHMENT` usage, the frame's
     /// size. Where the host's depth ([`Clouds::set_depth_texture`]) holds geometry in front of
     /// the clouds, the output is (0, 0, 0, 1).
@@ -337,12 +343,18 @@ impl Clouds {
             }
         };
         self.renderer.bind_host_texture("scene-depth", view);
-        let flags = [flag, "shadow"];
+        let mut flags = vec![flag];
+        if self.shadow {
+            flags.push("shadow");
+        }
+        if self.hdr_sky && flag == "hdr" {
+            flags.push("sky");
+        }
         let frame = self
             .prepared
             .frame(&self.scene)
             .with_readback(Readback::none())
-            .with_flags(if self.shadow { &flags[..] } else { &flags[..1] })
+            .with_flags(&flags)
             .with_scene_depth(depth.as_ref());
         self.recorded = self.renderer.record(encoder, &frame, Some(target))?;
         Ok(())
@@ -393,6 +405,16 @@ impl Clouds {
         Ok(())
     }
 
+    /// Whether the HDR output ([`Clouds::render_hdr`]) of the frames to come carries the sky
+    /// (off by default: the host draws its own). On, wherever the host's depth holds no
+    /// geometry the sky (the scene's, physical or analytic, with the sun, moon and stars) is
+    /// drawn behind the clouds and the pixel is opaque (alpha 0): the radiance the display image
+    /// tone-maps. Over the host's geometry the output stays the clouds over it, with the air in
+    /// front of them under the physical sky. For a host with no sky of its own.
+    pub fn set_hdr_sky(&mut self, on: bool) {
+        self.hdr_sky = on;
+    }
+
     /// Whether the frames to come compute the cloud-shadow map for the host's geometry
     /// ([`Clouds::cloud_shadow`]; one more pass a frame, `host-shadow`).
     pub fn set_cloud_shadow(&mut self, on: bool) {
@@ -412,6 +434,22 @@ impl Clouds {
         Some(CloudShadow {
             view: self.renderer.resource_view("host-shadow")?,
             transform: ShadowTransform::of_scene(&self.scene),
+        })
+    }
+
+    /// The aerial-perspective table of the frames' view, for the host's own geometry
+    /// (`stratus_aerial_perspective` in `wgsl/host/aerial_perspective.wgsl`): what the air
+    /// scatters toward the camera and lets through, per pixel and distance, the haze Stratus's
+    /// clouds and sky have. `None` without the physical sky (`atmosphere.sky = "physical"`)
+    /// or before the first frame. The table follows the camera's orientation and the sun; it
+    /// is made again only when they change, so fetch the view every frame.
+    pub fn aerial_perspective(&self) -> Option<AerialPerspective<'_>> {
+        if self.recorded.is_empty() {
+            return None;
+        }
+        Some(AerialPerspective {
+            view: self.renderer.resource_view("aerial-perspective")?,
+            uniform: aerial::uniform(&self.scene),
         })
     }
 

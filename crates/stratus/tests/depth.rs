@@ -9,7 +9,7 @@ use stratus::glam::dcamera::rh::proj::directx;
 use stratus::{Clouds, HostCamera, Projection, Scene, SceneDepth};
 use stratus_graph::{Backend, FrameInput, FrameOutput, FramePlan};
 use stratus_noise::NoiseSet;
-use stratus_scene::Temporal;
+use stratus_scene::{SkyModel, Temporal};
 use stratus_test_support::{assert_no_wgpu_messages, record_wgpu_log};
 
 mod common;
@@ -610,6 +610,100 @@ fn the_library_reads_the_hosts_depth_texture_and_writes_hdr() {
         e.contains("the depth texture is 32x18, the target 64x36"),
         "{e}"
     );
+    assert_no_wgpu_messages();
+}
+
+/// ACES fitted (Narkowicz), as the composite's tone curve.
+fn aces(x: f64) -> f64 {
+    ((x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14)).clamp(0.0, 1.0)
+}
+
+/// With the sky asked for, the HDR output is the display image before its exposure and tone
+/// curve wherever the host has no geometry (opaque there: alpha 0), and the clouds over the
+/// host's geometry where it has some (the box's pixels (0, 0, 0, 1), the plane's the clouds'
+/// transmittance in front of it), under the analytic sky and the physical one.
+#[test]
+fn the_hdr_output_carries_the_sky_when_asked() {
+    record_wgpu_log();
+    let mut gpu = wgpu_renderer();
+    let s = setup(&mut gpu);
+    let projection = reversed(&s.scene);
+    let (device, queue) = common::device();
+    let hdr = common::target(&device, wgpu::TextureFormat::Rgba16Float, W, H);
+    let display = common::target(&device, wgpu::TextureFormat::Rgba8Unorm, W, H);
+    let depth = host_depth_texture(
+        &device,
+        &queue,
+        &s,
+        &projection,
+        wgpu::TextureFormat::Depth32Float,
+    );
+    let depth_view = depth.create_view(&Default::default());
+    for sky in [SkyModel::Analytic, SkyModel::Physical] {
+        let mut scene = s.scene.clone();
+        scene.atmosphere.sky = sky;
+        let exposure = f64::from(scene.uniforms().exposure);
+        let frame = |hdr_out: bool, with_sky: bool| {
+            let mut clouds = Clouds::new(&device, &queue, scene.clone()).expect("clouds");
+            clouds
+                .set_depth_texture(Some((&depth_view, projection)))
+                .expect("depth texture");
+            clouds.set_hdr_sky(with_sky);
+            let mut encoder = device.create_command_encoder(&Default::default());
+            if hdr_out {
+                let view = hdr.create_view(&Default::default());
+                clouds.render_hdr(&mut encoder, &view).expect("hdr frame");
+                queue.submit([encoder.finish()]);
+                common::read_texels(&device, &queue, &hdr, 8)
+                    .chunks_exact(2)
+                    .map(|c| f64::from(f16_to_f32(u16::from_le_bytes([c[0], c[1]]))))
+                    .collect::<Vec<f64>>()
+            } else {
+                let view = display.create_view(&Default::default());
+                clouds.render(&mut encoder, &view).expect("display frame");
+                queue.submit([encoder.finish()]);
+                common::read(&device, &queue, &display)
+                    .into_iter()
+                    .map(|b| f64::from(b) / 255.0)
+                    .collect()
+            }
+        };
+        let with_sky = frame(true, true);
+        let clouds_only = frame(true, false);
+        let shown = frame(false, false);
+        let mut worst = 0.0f64;
+        for &i in &s.pixels(Cover::Sky) {
+            assert_eq!(
+                with_sky[4 * i + 3],
+                0.0,
+                "{sky:?}: sky pixel {i} not opaque"
+            );
+            for c in 0..3 {
+                let encoded = aces(with_sky[4 * i + c] * exposure).powf(1.0 / 2.2);
+                worst = worst.max((encoded - shown[4 * i + c]).abs());
+            }
+        }
+        println!("{sky:?}: the HDR sky, tone-mapped, is at most {worst:.5} off the display image");
+        // The display image is 8-bit (half a step of rounding) and the HDR output half floats.
+        assert!(
+            worst <= 1.5 / 255.0,
+            "{sky:?}: the HDR sky, tone-mapped, is {worst:.4} off the display image"
+        );
+        for &i in &s.pixels(Cover::Box) {
+            assert_eq!(
+                &with_sky[4 * i..4 * i + 4],
+                &[0.0, 0.0, 0.0, 1.0],
+                "{sky:?}: box pixel {i}"
+            );
+        }
+        for &i in &s.pixels(Cover::Plane) {
+            assert_eq!(
+                with_sky[4 * i + 3],
+                clouds_only[4 * i + 3],
+                "{sky:?}: plane pixel {i}: the clouds' transmittance in front of it"
+            );
+        }
+    }
     assert_no_wgpu_messages();
 }
 

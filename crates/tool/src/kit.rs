@@ -12,7 +12,7 @@ use anyhow::{Context, Result};
 use clap::Args;
 use serde_json::{Value, json};
 use stratus_graph::{
-    FrameInput, FramePlan,
+    FrameInput, FramePlan, SceneDepth,
     plan::{PassKind, bound_name},
 };
 use stratus_scene::{FrameUniforms, Scene};
@@ -322,18 +322,45 @@ pub fn run(args: KitArgs) -> Result<()> {
     .context("the goldens are rendered on wgpu's Vulkan backend")?;
     let device = renderer.describe();
     let mut goldens = Vec::new();
-    for (i, (name, scene)) in scenes.iter().enumerate() {
+    // Every scene as it is, then the first with a tower in front of and into its clouds (the
+    // host's depth: `scene.depth`).
+    let tower = scenes.first().map(|(name, scene)| {
+        let depth = tower_depth(scene);
+        (
+            format!("{name}-tower"),
+            scene.clone(),
+            Some(Arc::new(depth)),
+        )
+    });
+    let runs: Vec<(String, Scene, Option<Arc<SceneDepth>>)> = scenes
+        .iter()
+        .map(|(n, s)| (n.clone(), s.clone(), None))
+        .chain(tower)
+        .collect();
+    for (i, (name, scene, depth)) in runs.iter().enumerate() {
         let noise = &noise_sets[noise_index(&noise_sets, scene)].1;
         let plan = FramePlan::for_scene(scene, false)?;
         let frame = renderer
-            .render(&FrameInput::new(&plan, scene, noise).with_cut())
+            .render(
+                &FrameInput::new(&plan, scene, noise)
+                    .with_cut()
+                    .with_scene_depth(depth.as_ref()),
+            )
             .map_err(|e| anyhow::anyhow!("{name}: {e}"))?;
         let png = format!("golden/{name}.png");
         let dir = out.join("golden");
         std::fs::create_dir_all(&dir)?;
         crate::output::write_image(&out.join(&png), &frame)?;
         let uniforms = format!("golden/{name}.uniforms.bin");
-        write(&out.join(&uniforms), bytemuck::bytes_of(&scene.uniforms()))?;
+        let mut block = scene.uniforms();
+        let mut depth_file = None;
+        if let Some(depth) = depth {
+            depth.apply(&mut block);
+            let file = format!("golden/{name}.depth.f32");
+            write(&out.join(&file), depth.bytes().unwrap_or_default())?;
+            depth_file = Some(file);
+        }
+        write(&out.join(&uniforms), bytemuck::bytes_of(&block))?;
         let plan_file = format!("golden/{name}.plan.json");
         write(
             &out.join(&plan_file),
@@ -349,8 +376,9 @@ pub fn run(args: KitArgs) -> Result<()> {
             "scene": scene_file,
             "noise": noise_sets[noise_index(&noise_sets, scene)].0,
             "size": [frame.width, frame.height],
+            "scene_depth": depth_file,
         }));
-        eprintln!("golden {}/{}: {name}", i + 1, scenes.len());
+        eprintln!("golden {}/{}: {name}", i + 1, runs.len());
     }
 
     let kit = json!({
@@ -366,7 +394,11 @@ pub fn run(args: KitArgs) -> Result<()> {
         &out.join("kit.json"),
         serde_json::to_string_pretty(&kit)? + "\n",
     )?;
-    write(&out.join("README.md"), README)?;
+    // The README's numbers come from the one uniform declaration.
+    let readme = README
+        .replace("{MEMBERS}", &FrameUniforms::MEMBERS.len().to_string())
+        .replace("{BYTES}", &FrameUniforms::SIZE.to_string());
+    write(&out.join("README.md"), readme)?;
     println!(
         "wrote the kit to {} ({} modules, {} goldens, {} shader files)",
         out.display(),
@@ -375,6 +407,61 @@ pub fn run(args: KitArgs) -> Result<()> {
         outputs.len()
     );
     Ok(())
+}
+
+/// The projection's depth terms of the tower golden: reversed Z with an infinite far plane and
+/// a 0.1 m near plane (depth = 0.1 / distance along the view axis; 0 where no geometry).
+const TOWER_DEPTH_TERMS: [f64; 2] = [0.0, 0.1];
+
+/// The host's depth of a tower in `scene`: a box 600 m square from the ground to 500 m above
+/// the cloud base, 5 km ahead of the camera along its heading, in front of and into the clouds.
+/// (The web page draws the same tower.)
+pub fn tower_depth(scene: &Scene) -> SceneDepth {
+    let [w, h] = scene.camera.resolution;
+    let (forward, right, up) = scene.camera_basis();
+    let c = scene.camera.position;
+    let heading = {
+        let (x, z) = (forward[0], forward[2]);
+        let n = (x * x + z * z).sqrt().max(1e-9);
+        [x / n, z / n]
+    };
+    let centre = [c[0] + 5000.0 * heading[0], c[2] + 5000.0 * heading[1]];
+    let lo = [centre[0] - 300.0, 0.0, centre[1] - 300.0];
+    let hi = [
+        centre[0] + 300.0,
+        scene.atmosphere.cloud_bottom_m + 500.0,
+        centre[1] + 300.0,
+    ];
+    let tan = (scene.camera.fov_y_deg.to_radians() / 2.0).tan();
+    let aspect = f64::from(w) / f64::from(h);
+    let mut depth = Vec::with_capacity((w * h) as usize);
+    for y in 0..h {
+        for x in 0..w {
+            let sx = ((f64::from(x) + 0.5) / f64::from(w) * 2.0 - 1.0) * tan * aspect;
+            let sy = (1.0 - (f64::from(y) + 0.5) / f64::from(h) * 2.0) * tan;
+            let d: [f64; 3] = std::array::from_fn(|k| forward[k] + sx * right[k] + sy * up[k]);
+            // Slabs: the ray's entry into the box, along the unnormalised direction (whose
+            // component along the view axis is 1, so the entry is the view-axis distance).
+            let (mut near, mut far) = (0.0f64, f64::INFINITY);
+            for k in 0..3 {
+                if d[k].abs() < 1e-12 {
+                    if c[k] < lo[k] || c[k] > hi[k] {
+                        far = -1.0;
+                    }
+                    continue;
+                }
+                let (a, b) = ((lo[k] - c[k]) / d[k], (hi[k] - c[k]) / d[k]);
+                near = near.max(a.min(b));
+                far = far.min(a.max(b));
+            }
+            depth.push(if near <= far && near > 0.0 {
+                (TOWER_DEPTH_TERMS[1] / near - TOWER_DEPTH_TERMS[0]) as f32
+            } else {
+                0.0
+            });
+        }
+    }
+    SceneDepth::new([w, h], &depth, TOWER_DEPTH_TERMS, 0.0).expect("finite depths in range")
 }
 
 /// The noise set a scene reads: its seed and shape texture size.
