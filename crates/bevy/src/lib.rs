@@ -442,7 +442,7 @@ fn record(
     };
     // World-from-clip with the camera at the origin: the view's rotation only.
     let mut rotation = world_from_view;
-    rotation.w_axis = glam_w_axis();
+    rotation.w_axis = stratus::glam::DVec4::W;
     let world_from_clip = rotation * host.projection.inverse();
     let position: DVec3 = world_from_view.w_axis.truncate();
     composite.draw(
@@ -465,9 +465,4 @@ fn record(
         },
     );
     Ok(())
-}
-
-/// The homogeneous origin column (no translation).
-fn glam_w_axis() -> stratus::glam::DVec4 {
-    stratus::glam::DVec4::W
 }

@@ -12,14 +12,20 @@ fn app(scene: Scene) -> App {
     app
 }
 
-/// The light follows the scene: its direction is the scene's key light's, converted to Bevy's
-/// axes (z south), and it moves when the scene's date does.
-#[test]
-fn a_light_follows_the_scenes_sun() {
+/// cumulus-noon with the real sun of Paris at 18:30 UTC on midsummer's day.
+fn paris_midsummer_evening() -> Scene {
     let mut scene = Scene::preset("cumulus-noon").unwrap();
     scene.sky.date_utc = Some("2026-06-21T18:30:00Z".parse().unwrap());
     scene.sky.latitude_deg = Some(48.85);
     scene.sky.longitude_deg = Some(2.35);
+    scene
+}
+
+/// The light follows the scene: its direction is the scene's key light's, converted to Bevy's
+/// axes (z south), and it moves when the scene's date does.
+#[test]
+fn a_light_follows_the_scenes_sun() {
+    let mut scene = paris_midsummer_evening();
     let mut app = app(scene.clone());
     let light = app
         .world_mut()
@@ -63,11 +69,7 @@ fn a_light_follows_the_scenes_sun() {
 /// had no longer decide it.
 #[test]
 fn the_scenes_sun_follows_a_light() {
-    let mut scene = Scene::preset("cumulus-noon").unwrap();
-    scene.sky.date_utc = Some("2026-06-21T18:30:00Z".parse().unwrap());
-    scene.sky.latitude_deg = Some(48.85);
-    scene.sky.longitude_deg = Some(2.35);
-    let mut app = app(scene);
+    let mut app = app(paris_midsummer_evening());
     let toward = Vec3::new(0.3, 0.8, -0.5).normalize();
     app.world_mut().spawn((
         DirectionalLight::default(),

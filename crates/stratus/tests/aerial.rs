@@ -38,89 +38,21 @@ fn probe(
     clouds: &Clouds,
     probes: &[[f32; 4]],
 ) -> Vec<[f32; 4]> {
-    use wgpu::util::DeviceExt;
     let aerial = clouds
         .aerial_perspective()
         .expect("a table under the physical sky");
-    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-        label: Some("host probe"),
-        source: wgpu::ShaderSource::Wgsl(format!("{HELPER}\n{PROBE}").into()),
-    });
-    let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-        label: Some("host probe"),
-        layout: None,
-        module: &module,
-        entry_point: Some("probe"),
-        compilation_options: Default::default(),
-        cache: None,
-    });
-    let bytes = |v: &[f32]| v.iter().flat_map(|x| x.to_le_bytes()).collect::<Vec<u8>>();
-    let uniform = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-        label: Some("aerial"),
-        contents: &bytes(&aerial.uniform),
-        usage: wgpu::BufferUsages::UNIFORM,
-    });
-    let input = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-        label: Some("probes"),
-        contents: &bytes(probes.as_flattened()),
-        usage: wgpu::BufferUsages::STORAGE,
-    });
-    let size = 16 * probes.len() as u64;
-    let output = device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some("aerial out"),
-        size,
-        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
-        mapped_at_creation: false,
-    });
-    let staging = device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some("readback"),
-        size,
-        usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
-        mapped_at_creation: false,
-    });
-    let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-        label: Some("host probe"),
-        layout: &pipeline.get_bind_group_layout(0),
-        entries: &[
-            wgpu::BindGroupEntry {
-                binding: 0,
-                resource: wgpu::BindingResource::TextureView(aerial.view),
-            },
-            wgpu::BindGroupEntry {
-                binding: 1,
-                resource: uniform.as_entire_binding(),
-            },
-            wgpu::BindGroupEntry {
-                binding: 2,
-                resource: input.as_entire_binding(),
-            },
-            wgpu::BindGroupEntry {
-                binding: 3,
-                resource: output.as_entire_binding(),
-            },
-        ],
-    });
-    let mut encoder = device.create_command_encoder(&Default::default());
-    {
-        let mut pass = encoder.begin_compute_pass(&Default::default());
-        pass.set_pipeline(&pipeline);
-        pass.set_bind_group(0, &group, &[]);
-        pass.dispatch_workgroups((probes.len() as u32).div_ceil(64), 1, 1);
-    }
-    encoder.copy_buffer_to_buffer(&output, 0, &staging, 0, size);
-    queue.submit([encoder.finish()]);
-    staging
-        .slice(..)
-        .map_async(wgpu::MapMode::Read, |r| r.expect("map"));
-    device
-        .poll(wgpu::PollType::wait_indefinitely())
-        .expect("poll");
-    let data = staging.slice(..).get_mapped_range().expect("mapped");
-    data.chunks_exact(16)
-        .map(|c| {
-            std::array::from_fn(|k| f32::from_le_bytes(c[4 * k..4 * k + 4].try_into().unwrap()))
-        })
-        .collect()
+    common::run_probe(
+        device,
+        queue,
+        &format!("{HELPER}\n{PROBE}"),
+        aerial.view,
+        &aerial.uniform,
+        probes,
+        16,
+    )
+    .chunks_exact(16)
+    .map(|c| std::array::from_fn(|k| f32::from_le_bytes(c[4 * k..4 * k + 4].try_into().unwrap())))
+    .collect()
 }
 
 /// The helper's haze at pixel centres and distances from 0 to beyond the table (35 km), on

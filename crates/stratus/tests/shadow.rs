@@ -43,89 +43,23 @@ fn probe(
     clouds: &Clouds,
     points: &[DVec3],
 ) -> Vec<f32> {
-    use wgpu::util::DeviceExt;
     let shadow = clouds.cloud_shadow().expect("a shadow map");
-    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-        label: Some("host probe"),
-        source: wgpu::ShaderSource::Wgsl(format!("{HELPER}\n{PROBE}").into()),
-    });
-    let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-        label: Some("host probe"),
-        layout: None,
-        module: &module,
-        entry_point: Some("probe"),
-        compilation_options: Default::default(),
-        cache: None,
-    });
-    let bytes = |v: &[f32]| v.iter().flat_map(|x| x.to_le_bytes()).collect::<Vec<u8>>();
-    let uniform = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-        label: Some("shadow transform"),
-        contents: &bytes(&shadow.transform.uniform()),
-        usage: wgpu::BufferUsages::UNIFORM,
-    });
-    let flat: Vec<f32> = points
+    let inputs: Vec<[f32; 4]> = points
         .iter()
-        .flat_map(|p| [p.x as f32, p.y as f32, p.z as f32, 1.0])
+        .map(|p| [p.x as f32, p.y as f32, p.z as f32, 1.0])
         .collect();
-    let input = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-        label: Some("points"),
-        contents: &bytes(&flat),
-        usage: wgpu::BufferUsages::STORAGE,
-    });
-    let size = 4 * points.len() as u64;
-    let output = device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some("shadow"),
-        size,
-        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
-        mapped_at_creation: false,
-    });
-    let staging = device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some("readback"),
-        size,
-        usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
-        mapped_at_creation: false,
-    });
-    let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-        label: Some("host probe"),
-        layout: &pipeline.get_bind_group_layout(0),
-        entries: &[
-            wgpu::BindGroupEntry {
-                binding: 0,
-                resource: wgpu::BindingResource::TextureView(shadow.view),
-            },
-            wgpu::BindGroupEntry {
-                binding: 1,
-                resource: uniform.as_entire_binding(),
-            },
-            wgpu::BindGroupEntry {
-                binding: 2,
-                resource: input.as_entire_binding(),
-            },
-            wgpu::BindGroupEntry {
-                binding: 3,
-                resource: output.as_entire_binding(),
-            },
-        ],
-    });
-    let mut encoder = device.create_command_encoder(&Default::default());
-    {
-        let mut pass = encoder.begin_compute_pass(&Default::default());
-        pass.set_pipeline(&pipeline);
-        pass.set_bind_group(0, &group, &[]);
-        pass.dispatch_workgroups((points.len() as u32).div_ceil(64), 1, 1);
-    }
-    encoder.copy_buffer_to_buffer(&output, 0, &staging, 0, size);
-    queue.submit([encoder.finish()]);
-    staging
-        .slice(..)
-        .map_async(wgpu::MapMode::Read, |r| r.expect("map"));
-    device
-        .poll(wgpu::PollType::wait_indefinitely())
-        .expect("poll");
-    let data = staging.slice(..).get_mapped_range().expect("mapped");
-    data.chunks_exact(4)
-        .map(|c| f32::from_le_bytes([c[0], c[1], c[2], c[3]]))
-        .collect()
+    common::run_probe(
+        device,
+        queue,
+        &format!("{HELPER}\n{PROBE}"),
+        shadow.view,
+        &shadow.transform.uniform(),
+        &inputs,
+        4,
+    )
+    .chunks_exact(4)
+    .map(|c| f32::from_le_bytes([c[0], c[1], c[2], c[3]]))
+    .collect()
 }
 
 /// Host points over texel centres of the map's unfaded middle, on the ground and 400 m up

@@ -80,3 +80,99 @@ pub fn read_texels(
         .flat_map(|y| data[y * padded as usize..][..(w * texel) as usize].to_vec())
         .collect()
 }
+
+/// Runs a host's probe shader: `source` (a host helper and its caller) with entry point
+/// `probe`, bound as (0) `map`, (1) the helper's uniform, (2) the inputs (a `vec4<f32>`
+/// each), (3) the outputs, one invocation an input, each writing `output_stride` bytes.
+/// Returns the outputs' bytes.
+#[allow(dead_code, reason = "not every test runs a host helper")]
+pub fn run_probe(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    source: &str,
+    map: &wgpu::TextureView,
+    uniform: &[f32],
+    inputs: &[[f32; 4]],
+    output_stride: usize,
+) -> Vec<u8> {
+    use wgpu::util::DeviceExt;
+    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+        label: Some("host probe"),
+        source: wgpu::ShaderSource::Wgsl(source.into()),
+    });
+    let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+        label: Some("host probe"),
+        layout: None,
+        module: &module,
+        entry_point: Some("probe"),
+        compilation_options: Default::default(),
+        cache: None,
+    });
+    let bytes = |v: &[f32]| v.iter().flat_map(|x| x.to_le_bytes()).collect::<Vec<u8>>();
+    let uniform = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some("helper uniform"),
+        contents: &bytes(uniform),
+        usage: wgpu::BufferUsages::UNIFORM,
+    });
+    let input = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some("probe inputs"),
+        contents: &bytes(inputs.as_flattened()),
+        usage: wgpu::BufferUsages::STORAGE,
+    });
+    let count = inputs.len();
+    let size = (count * output_stride) as u64;
+    let output = device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("probe outputs"),
+        size,
+        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+        mapped_at_creation: false,
+    });
+    let staging = device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("readback"),
+        size,
+        usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+        mapped_at_creation: false,
+    });
+    let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some("host probe"),
+        layout: &pipeline.get_bind_group_layout(0),
+        entries: &[
+            wgpu::BindGroupEntry {
+                binding: 0,
+                resource: wgpu::BindingResource::TextureView(map),
+            },
+            wgpu::BindGroupEntry {
+                binding: 1,
+                resource: uniform.as_entire_binding(),
+            },
+            wgpu::BindGroupEntry {
+                binding: 2,
+                resource: input.as_entire_binding(),
+            },
+            wgpu::BindGroupEntry {
+                binding: 3,
+                resource: output.as_entire_binding(),
+            },
+        ],
+    });
+    let mut encoder = device.create_command_encoder(&Default::default());
+    {
+        let mut pass = encoder.begin_compute_pass(&Default::default());
+        pass.set_pipeline(&pipeline);
+        pass.set_bind_group(0, &group, &[]);
+        pass.dispatch_workgroups((count as u32).div_ceil(64), 1, 1);
+    }
+    encoder.copy_buffer_to_buffer(&output, 0, &staging, 0, size);
+    queue.submit([encoder.finish()]);
+    staging
+        .slice(..)
+        .map_async(wgpu::MapMode::Read, |r| r.expect("map"));
+    device
+        .poll(wgpu::PollType::wait_indefinitely())
+        .expect("poll");
+    staging
+        .slice(..)
+        .get_mapped_range()
+        .expect("mapped")
+        .to_vec()
+}
