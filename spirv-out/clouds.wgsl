@@ -294,6 +294,7 @@ const FLAG_PHYSICAL_SKY: u32 = 32u; // Hillaire 2020's atmosphere behind the clo
 const FLAG_MOONLIT: u32 = 64u;      // the key light (sun_direction, sun_illuminance) is the moon
 const FLAG_SCENE_DEPTH: u32 = 128u; // the host's scene depth is bound: the march stops at its surfaces
 const FLAG_HDR_SKY: u32 = 256u;     // the HDR output carries the sky where the host has no geometry
+const FLAG_LIGHT_SHAFTS: u32 = 512u; // the clouds' shadows in the air (composite.wgsl::light_shafts)
 
 // Feature switches. A variant in modules.toml sets these; code behind a `false` switch is
 // removed by naga before translation, so a scene that does not use a feature pays nothing.
@@ -3475,12 +3476,16 @@ fn sun_disk(d: vec3<f32>) -> vec3<f32> {
 // transmittance a, the sky behind it shows through as a, and the air in front of the cloud
 // stands for the rest: L = a S + (1 - a) S_ap + T_ap C (Hillaire 2020, section 5.4's use of
 // the aerial-perspective volume on opaque surfaces, with partly transparent clouds).
+// With light shafts the air in front of the clouds and behind them lacks what the clouds'
+// shadows take from it (`light_shafts`).
 fn physical_composite(pixel: vec2<u32>, view: vec3<f32>, cloud: vec4<f32>) -> vec3<f32> {
+    let surface = has_surface(pixel);
+    let shafts = composite_shafts(pixel, view, cloud.a, surface);
     var sky = surface_radiance();
-    if !has_surface(pixel) {
-        sky = physical_background(view);
+    if !surface {
+        sky = max(physical_background(view) - shafts.all * frame.sun_illuminance, vec3<f32>(0.0));
     }
-    return sky * cloud.a + physical_over(pixel, cloud);
+    return sky * cloud.a + physical_over(pixel, cloud, shafts.front);
 }
 
 // What shows behind the clouds where the host has no geometry: the sky-view table, the lit
@@ -3503,13 +3508,108 @@ fn physical_background(view: vec3<f32>) -> vec3<f32> {
 }
 
 // The clouds' light in front of the background, and the air between the camera and them:
-// (1 - a) S_ap + T_ap C.
-fn physical_over(pixel: vec2<u32>, cloud: vec4<f32>) -> vec3<f32> {
+// (1 - a) S_ap + T_ap C, the air's light less `shaded` (per unit sun illuminance: what the
+// clouds' shadows take from it, `ShaftLoss::front`).
+fn physical_over(pixel: vec2<u32>, cloud: vec4<f32>, shaded: vec3<f32>) -> vec3<f32> {
     if cloud.a >= 1.0 {
         return vec3<f32>(0.0);
     }
     let ap = aerial(pixel, textureLoad(depth_in, pixel, 0).r);
-    return ap.rgb * frame.sun_illuminance * (1.0 - cloud.a) + cloud.rgb * ap.a;
+    let air = max(ap.rgb - shaded, vec3<f32>(0.0));
+    return air * frame.sun_illuminance * (1.0 - cloud.a) + cloud.rgb * ap.a;
+}
+
+// Light shafts (crepuscular rays, `atmosphere.light_shafts`). The sky-view and
+// aerial-perspective tables hold the air's light as if all of it saw the sun; where a cloud
+// shades the air between the camera and what it sees, that air scatters none of the sun's
+// light (single scattering: its multiple scattering, lit from the whole sky, stays), and the
+// shade shows as dark shafts beside the lit air between them. The loss is the sun's single
+// scattering (the tables' own terms, Hillaire 2020 eq. 11's first) times each point's shade,
+// integrated along the view ray: what Bruneton and Neyret 2008's light shafts
+// remove through a shadow volume's length, here sampled from the cloud-shadow map. A point's
+// transmittance toward the sun is the map's at its projection along the sun onto the ground:
+// exact below the cloud layers, where shafts are seen; inside them the shade thins linearly to
+// none at their top (the clouds' own march lights the air between them there). The map covers
+// 40 km around the camera, so a low sun's shafts fade where they project beyond it.
+const SHAFT_STEPS: u32 = 48u;
+const SHAFT_RANGE_KM: f32 = 32.0;   // as far as the aerial-perspective table reaches
+const SHAFT_SALT: u32 = 0x5AF7u;    // the dither's own stream of hash_unit
+
+// The sun's single scattering by the air that the clouds shade, per unit sun illuminance:
+// `front` over the ray's first `split_m` m (the clouds' depth), `all` to `end_km`.
+struct ShaftLoss {
+    front: vec3<f32>,
+    all: vec3<f32>,
+}
+
+// The shafts of the composite at `pixel` along `view` (none without FLAG_LIGHT_SHAFTS): over
+// the host's geometry the air up to the clouds' depth only, which is all of the air the
+// composite draws there; elsewhere to where the ray meets the ground or leaves the air.
+fn composite_shafts(pixel: vec2<u32>, view: vec3<f32>, alpha: f32, surface: bool) -> ShaftLoss {
+    if (frame.flags & FLAG_LIGHT_SHAFTS) == 0u || (surface && alpha >= 1.0) {
+        return ShaftLoss(vec3<f32>(0.0), vec3<f32>(0.0));
+    }
+    let depth = textureLoad(depth_in, pixel, 0).r;
+    var end_km = depth * 1e-3;
+    if !surface {
+        end_km = air_ray_end(camera_air_origin(), view).x;
+    }
+    return light_shafts(pixel, view, depth, end_km);
+}
+
+// The shade (1 - transmittance toward the sun) at camera-relative `rel` (m) between the
+// layers' lowest bottom and highest top `span` (m).
+fn shaft_shade(rel: vec3<f32>, span: vec2<f32>) -> f32 {
+    if rel.y >= span.y {
+        return 0.0;
+    }
+    let sun = frame.sun_direction;
+    let shade = 1.0 - ground_shadow(rel - sun * (rel.y / sun.y));
+    return shade * (1.0 - saturate((rel.y - span.x) / (span.y - span.x)));
+}
+
+// SHAFT_STEPS even segments over the ray's first SHAFT_RANGE_KM (and, looking up, not past the
+// layers' top), one sample a segment at a dithered place (the same for every segment of a
+// pixel, and every frame), so that the segments' banding turns to fine noise; a segment the
+// split cuts counts toward `front` by the part of it in front.
+fn light_shafts(pixel: vec2<u32>, view: vec3<f32>, split_m: f32, end_km: f32) -> ShaftLoss {
+    var loss = ShaftLoss(vec3<f32>(0.0), vec3<f32>(0.0));
+    let sun = frame.sun_direction;
+    let span = layers_span();
+    let cam_alt = max(frame.camera_position.y, 0.0);
+    var end = min(end_km, SHAFT_RANGE_KM);
+    if view.y > 0.0 {
+        end = min(end, max(span.y - cam_alt, 0.0) * 1e-3 / view.y);
+    }
+    if sun.y <= 0.0 || !(end > 0.0) {
+        return loss;
+    }
+    let origin = camera_air_origin();
+    let cos_theta = dot(view, sun);
+    let phase_r = phase_rayleigh(cos_theta);
+    let phase_m = phase_cornette_shanks_air(cos_theta, frame.mie_g);
+    let dt = end / f32(SHAFT_STEPS);
+    let offset = hash_unit(pixel, SHAFT_SALT);
+    let split_km = split_m * 1e-3;
+    var tau = vec3<f32>(0.0);
+    for (var k = 0u; k < SHAFT_STEPS; k++) {
+        let t = (f32(k) + offset) * dt;
+        let p = origin + view * t;
+        let r = length(p);
+        let air = air_at(r - air_bottom());
+        let shade = shaft_shade(view * (t * 1000.0) + vec3<f32>(0.0, cam_alt, 0.0), span);
+        if shade > 0.0 {
+            let t_view = exp(-(tau + air.extinction * (offset * dt)));
+            let single = sun_transmittance(r, dot(p / r, sun)) * (air.rayleigh * phase_r + vec3<f32>(air.mie * phase_m));
+            let lost = t_view * single * (shade * dt);
+            loss.all += lost;
+            // The segment's part in front of the split, so that the front moves smoothly
+            // with the clouds' depth (a sample flipping sides would flicker).
+            loss.front += lost * saturate((split_km - f32(k) * dt) / dt);
+        }
+        tau += air.extinction * dt;
+    }
+    return loss;
 }
 
 // The moon's angular radius (mean, 0.259 degrees).
@@ -3701,7 +3801,8 @@ fn hdr_composite_physical(@builtin(global_invocation_id) id: vec3<u32>) {
     var out = cloud;
     if (frame.flags & FLAG_HDR_SKY) != 0u {
         if has_surface(pixel) {
-            out = vec4<f32>(physical_over(pixel, cloud), cloud.a);
+            let shafts = composite_shafts(pixel, view_ray(pixel), cloud.a, true);
+            out = vec4<f32>(physical_over(pixel, cloud, shafts.front), cloud.a);
         } else {
             out = vec4<f32>(physical_composite(pixel, view_ray(pixel), cloud), 0.0);
         }

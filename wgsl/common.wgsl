@@ -21,6 +21,7 @@ const FLAG_PHYSICAL_SKY: u32 = 32u; // Hillaire 2020's atmosphere behind the clo
 const FLAG_MOONLIT: u32 = 64u;      // the key light (sun_direction, sun_illuminance) is the moon
 const FLAG_SCENE_DEPTH: u32 = 128u; // the host's scene depth is bound: the march stops at its surfaces
 const FLAG_HDR_SKY: u32 = 256u;     // the HDR output carries the sky where the host has no geometry
+const FLAG_LIGHT_SHAFTS: u32 = 512u; // the clouds' shadows in the air (composite.wgsl::light_shafts)
 
 // Feature switches. A variant in modules.toml sets these; code behind a `false` switch is
 // removed by naga before translation, so a scene that does not use a feature pays nothing.

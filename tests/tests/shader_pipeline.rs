@@ -202,6 +202,7 @@ fn mode_codes_and_flags_match_the_wgsl_constants() {
         ("FLAG_MOONLIT", FrameUniforms::FLAG_MOONLIT),
         ("FLAG_SCENE_DEPTH", FrameUniforms::FLAG_SCENE_DEPTH),
         ("FLAG_HDR_SKY", FrameUniforms::FLAG_HDR_SKY),
+        ("FLAG_LIGHT_SHAFTS", FrameUniforms::FLAG_LIGHT_SHAFTS),
     ];
     for (name, rust) in pairs {
         assert_eq!(constant(name), rust, "{name}");

@@ -4,7 +4,7 @@
 
 use rayon::prelude::*;
 
-use crate::frame::{FLAG_MOONLIT, Frame, PI, pcg, xyz};
+use crate::frame::{FLAG_LIGHT_SHAFTS, FLAG_MOONLIT, Frame, PI, pcg, xyz};
 use crate::geometry::{hits_ground, view_ray};
 use crate::math::{V3, mix_v, saturate, smoothstep};
 use crate::phase::phase_hg;
@@ -74,6 +74,10 @@ pub(crate) fn physical_composite(
 ) -> V3 {
     let e = f.sun_illuminance();
     let r = sky.camera_air_origin(f).y;
+    let alpha = cloud[3];
+    // With light shafts the air in front of the clouds and behind them lacks what the clouds'
+    // shadows take from it.
+    let (shaded_front, shaded_all) = composite_shafts(f, sky, pixel, view, alpha, depth, surface);
     // The ground below the horizon is in the table; only the sky above it shows space.
     let mut background = sky.sky_view(f, view).mul_v(e);
     if surface {
@@ -90,14 +94,44 @@ pub(crate) fn physical_composite(
         }
         background += space.mul_v(sky.transmittance_to_top(r, view.y));
     }
-    let alpha = cloud[3];
+    if !surface {
+        background = non_negative(background - shaded_all.mul_v(e));
+    }
     let mut radiance = background * alpha;
     if alpha < 1.0 {
         let ap = sky.aerial(f, pixel, depth);
-        radiance += V3::new(ap[0], ap[1], ap[2]).mul_v(e) * (1.0 - alpha)
-            + V3::new(cloud[0], cloud[1], cloud[2]) * ap[3];
+        let air = non_negative(V3::new(ap[0], ap[1], ap[2]) - shaded_front);
+        radiance += air.mul_v(e) * (1.0 - alpha) + V3::new(cloud[0], cloud[1], cloud[2]) * ap[3];
     }
     radiance
+}
+
+fn non_negative(v: V3) -> V3 {
+    V3::new(v.x.max(0.0), v.y.max(0.0), v.z.max(0.0))
+}
+
+// WGSL: composite.wgsl::composite_shafts
+/// The light shafts of the composite at `pixel` along `view` (`(front, all)`, per unit key
+/// light; none without `FLAG_LIGHT_SHAFTS`): over the host's geometry the air up to the clouds'
+/// depth `depth` (m) only, elsewhere to where the ray meets the ground or leaves the air.
+fn composite_shafts(
+    f: &Frame,
+    sky: &SkyTables,
+    pixel: [u32; 2],
+    view: V3,
+    alpha: f64,
+    depth: f64,
+    surface: bool,
+) -> (V3, V3) {
+    if f.flags & FLAG_LIGHT_SHAFTS == 0 || (surface && alpha >= 1.0) {
+        return (V3::ZERO, V3::ZERO);
+    }
+    let end = if surface {
+        depth
+    } else {
+        sky.air_ray_end(sky.camera_air_origin(f), view).0
+    };
+    sky.light_shafts(f, pixel, view, depth, end)
 }
 
 // WGSL: composite.wgsl::MOON_COS_RADIUS

@@ -27,6 +27,14 @@ use crate::frame::{Frame, PI, xyz};
 use crate::math::{V3, mix_v, saturate};
 use crate::phase::phase_cornette_shanks;
 
+// WGSL: composite.wgsl::SHAFT_STEPS, SHAFT_RANGE_KM, SHAFT_SALT
+/// Samples along a view ray of the light shafts.
+const SHAFT_STEPS: usize = 48;
+/// How far along the view ray the light shafts reach (m; the WGSL's 32 km).
+const SHAFT_RANGE_M: f64 = 32_000.0;
+/// The shafts' dither stream of `hash_unit`.
+const SHAFT_SALT: u32 = 0x5AF7;
+
 // WGSL: atmosphere.wgsl (constants).
 /// Transmittance table: texels along (distance to the top, radius).
 pub const TRANSMITTANCE_SIZE: [usize; 2] = [256, 64];
@@ -559,6 +567,73 @@ impl SkyTables {
         t_view.mul_v(self.ground_radiance_sun(mu_s)) * (1.0 - shadow)
     }
 
+    // WGSL: composite.wgsl::shaft_shade
+    /// The shade (1 - transmittance toward the key light) at camera-relative `rel` (m): the
+    /// map's at the point's projection along the light onto the ground below the layers'
+    /// lowest bottom, thinning linearly to none at their highest top (`span`, m).
+    fn shaft_shade(&self, f: &Frame, rel: V3, span: (f64, f64)) -> f64 {
+        if rel.y >= span.1 {
+            return 0.0;
+        }
+        let sun = f.sun();
+        let shade = 1.0 - self.ground_shadow(rel - sun * (rel.y / sun.y));
+        shade * (1.0 - saturate((rel.y - span.0) / (span.1 - span.0)))
+    }
+
+    // WGSL: composite.wgsl::light_shafts
+    /// Light shafts: the key light's single scattering by the air that the clouds shade along
+    /// `view` from the camera, per unit illuminance, over the ray's first `split` m (the
+    /// clouds' depth; `.0`) and to `end` m (`.1`): `SHAFT_STEPS` even segments over the first
+    /// `SHAFT_RANGE_M` (looking up, not past the layers' top), one sample a segment at the
+    /// pixel's dithered place; a segment the split cuts counts toward the front by its part in
+    /// front.
+    pub(crate) fn light_shafts(
+        &self,
+        f: &Frame,
+        pixel: [u32; 2],
+        view: V3,
+        split: f64,
+        end: f64,
+    ) -> (V3, V3) {
+        let mut front = V3::ZERO;
+        let mut all = V3::ZERO;
+        let sun = f.sun();
+        let span = crate::density::layers_span(f);
+        let cam_alt = f.camera_position[1].max(0.0);
+        let mut end = end.min(SHAFT_RANGE_M);
+        if view.y > 0.0 {
+            end = end.min((span.1 - cam_alt).max(0.0) / view.y);
+        }
+        if sun.y <= 0.0 || end.is_nan() || end <= 0.0 {
+            return (front, all);
+        }
+        let origin = self.camera_air_origin(f);
+        let cos_theta = view.dot(sun);
+        let phase_r = phase_rayleigh(cos_theta);
+        let phase_m = phase_cornette_shanks(cos_theta, self.air.mie_g);
+        let dt = end / SHAFT_STEPS as f64;
+        let offset = crate::frame::hash_unit(pixel, SHAFT_SALT);
+        let mut tau = V3::ZERO;
+        for k in 0..SHAFT_STEPS {
+            let t = (k as f64 + offset) * dt;
+            let p = origin + view * t;
+            let r = p.length();
+            let air = self.air_at(r - self.bottom());
+            let shade = self.shaft_shade(f, view * t + V3::new(0.0, cam_alt, 0.0), span);
+            if shade > 0.0 {
+                let t_view = exp_neg(tau + air.extinction * (offset * dt));
+                let single = self
+                    .sun_transmittance(r, (p / r).dot(sun))
+                    .mul_v(air.rayleigh * phase_r + V3::splat(air.mie * phase_m));
+                let lost = t_view.mul_v(single) * (shade * dt);
+                all += lost;
+                front += lost * saturate((split - k as f64 * dt) / dt);
+            }
+            tau += air.extinction * dt;
+        }
+        (front, all)
+    }
+
     // WGSL: atmosphere.wgsl::integrate_air
     /// In-scattered light and transmittance along the ray from `origin` (planet centre at the
     /// origin) along unit `d` for `distance` metres in `steps` segments whose ends go as the
@@ -623,7 +698,7 @@ impl SkyTables {
     // WGSL: atmosphere.wgsl::air_ray_end
     /// How far the ray from `origin` along `d` goes in the air and whether it ends on the
     /// ground; `(0, false)` from outside the air (no scene reaches there).
-    fn air_ray_end(&self, origin: V3, d: V3) -> (f64, bool) {
+    pub(crate) fn air_ray_end(&self, origin: V3, d: V3) -> (f64, bool) {
         let r = origin.length();
         let mu = origin.dot(d) / r;
         if self.meets_ground(r, mu) {

@@ -273,6 +273,12 @@ pub struct Atmosphere {
     /// given. Used by the physical sky.
     #[serde(skip_serializing_if = "Air::is_earth")]
     pub air: Air,
+    /// Light shafts (crepuscular rays): the clouds' shadows in the air between the camera and
+    /// what it sees, the sun's light the air no longer scatters where a cloud shades it. Off
+    /// by default (they cost one more march of the air a pixel in the composite); needs the
+    /// physical sky.
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub light_shafts: bool,
 }
 
 impl Default for Atmosphere {
@@ -283,6 +289,7 @@ impl Default for Atmosphere {
             cloud_top_m: 4000.0,
             sky: SkyModel::Analytic,
             air: Air::default(),
+            light_shafts: false,
         }
     }
 }
@@ -1008,6 +1015,7 @@ impl Scene {
         };
         // Fields left out when they hold their defaults must still be in the schema.
         scene.atmosphere.sky = SkyModel::Physical;
+        scene.atmosphere.light_shafts = true;
         scene.camera.auto_exposure = true;
         scene.atmosphere.air.ground_albedo = 0.5;
         scene

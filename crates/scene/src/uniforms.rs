@@ -430,6 +430,9 @@ impl FrameUniforms {
     /// `flags` bit: the HDR output carries the sky behind the clouds where the host has no
     /// geometry (the host flag `sky`).
     pub const FLAG_HDR_SKY: u32 = 1 << 8;
+    /// `flags` bit: light shafts, the clouds' shadows in the air
+    /// (`atmosphere.light_shafts`).
+    pub const FLAG_LIGHT_SHAFTS: u32 = 1 << 9;
 
     /// The WGSL `struct Frame` of this block, as `wgsl/frame.wgsl` holds it (written by
     /// `cargo xtask build-shaders`, which fails `--check` when the file differs).
@@ -729,6 +732,9 @@ impl Scene {
         }
         if atm.sky.is_physical() {
             flags |= FrameUniforms::FLAG_PHYSICAL_SKY;
+        }
+        if atm.light_shafts {
+            flags |= FrameUniforms::FLAG_LIGHT_SHAFTS;
         }
         let (key_direction, key_illuminance, moonlit) = self.key_light();
         if moonlit {

@@ -270,6 +270,13 @@ pub(crate) fn check(scene: &Scene) -> Vec<Issue> {
     }
 
     check_air(&mut c, &atm.air);
+    if atm.light_shafts && !atm.sky.is_physical() {
+        c.push(
+            "atmosphere.light_shafts",
+            "true".to_owned(),
+            "needs atmosphere.sky = \"physical\": the shafts are the physical air's light",
+        );
+    }
 
     let cl = &scene.clouds;
     c.unit("clouds.coverage", cl.coverage);

@@ -108,3 +108,25 @@ fn the_physical_sky_and_its_air_load_and_bad_air_is_named() {
         "{e}"
     );
 }
+
+#[test]
+fn light_shafts_load_under_the_physical_sky_and_are_refused_without_it() {
+    let s = load("[atmosphere]\nsky = \"physical\"\nlight_shafts = true\n").expect("loads");
+    assert!(s.atmosphere.light_shafts);
+    assert_ne!(
+        s.uniforms().flags & stratus_scene::FrameUniforms::FLAG_LIGHT_SHAFTS,
+        0
+    );
+    // Off by default, and then not written out.
+    let plain = load("[atmosphere]\nsky = \"physical\"\n").expect("loads");
+    assert!(!plain.atmosphere.light_shafts);
+    assert_eq!(
+        plain.uniforms().flags & stratus_scene::FrameUniforms::FLAG_LIGHT_SHAFTS,
+        0
+    );
+    let e = load("[atmosphere]\nlight_shafts = true\n").unwrap_err();
+    assert!(
+        e.contains("atmosphere.light_shafts") && e.contains("sky = \"physical\""),
+        "{e}"
+    );
+}

@@ -101,6 +101,18 @@ pub fn all() -> Vec<Case> {
             },
         ),
         stress(
+            "light-shafts",
+            "light shafts in the physical sky: the clouds' shadows in the air, looking toward a sun 24 degrees up",
+            |s| {
+                s.atmosphere.sky = stratus_scene::SkyModel::Physical;
+                s.atmosphere.light_shafts = true;
+                s.camera.auto_exposure = true;
+                s.sun.elevation_deg = 24.0;
+                s.sun.azimuth_deg = s.camera.yaw_deg + 20.0;
+                s.camera.pitch_deg = 6.0;
+            },
+        ),
+        stress(
             "method-basic",
             "baseline: the basic tutorial ray marcher (GPU only)",
             |s| s.quality.method = Method::Basic,
