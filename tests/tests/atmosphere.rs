@@ -497,3 +497,83 @@ fn light_shafts_darken_the_shaded_air_alike_on_the_gpu_and_the_cpu() {
     let (on, off) = (clear(true), clear(false));
     assert!(on == off, "shafts darken a clear sky");
 }
+
+/// A dated sky's sun moves about 0.004 degrees a second. The sky-view and aerial-perspective
+/// tables follow it once it has moved 1.7e-4 in some component of its direction (0.01 degrees,
+/// their `tolerance` in wgsl/graph.toml) from where they were computed, not every frame: the
+/// frames run them exactly when that says, and a frame on tables that lag by almost that much
+/// is within one 8-bit step of one on fresh tables, at sunset, where the sky changes fastest
+/// with the sun's angle.
+#[test]
+fn a_slowly_moving_sun_keeps_its_sky_tables_until_it_has_moved_a_hundredth_of_a_degree() {
+    const TOLERANCE: f32 = 1.7e-4;
+    stratus_test_support::record_wgpu_log();
+    let noise = Arc::new(stratus_noise::NoiseSet::generate(&NoiseConfig::default()));
+    let renderer = || {
+        stratus_backend_wgpu::Renderer::new(stratus_backend_wgpu::Options {
+            api: stratus_backend_wgpu::Api::Vulkan,
+            validation: true,
+        })
+        .expect("a Vulkan device (lavapipe)")
+    };
+    let mut wgpu = renderer();
+    let base = Scene::preset("sunset").expect("preset").with_size(128, 72);
+    assert!(base.sky.date_utc.is_some(), "sunset has a dated sky");
+    let frame = |r: &mut stratus_backend_wgpu::Renderer, s: &Scene| -> (Vec<String>, Vec<u8>) {
+        let plan = FramePlan::for_scene(s, false).expect("plan");
+        let out = r
+            .render(&FrameInput::new(&plan, s, &noise).with_readback(Readback {
+                output: true,
+                resources: Vec::new(),
+            }))
+            .expect("render");
+        (
+            out.timings.iter().map(|t| t.pass.clone()).collect(),
+            out.image,
+        )
+    };
+    let mut computed_at: Option<[f32; 3]> = None;
+    let mut refreshed = 0;
+    let mut stalest: Option<(f32, Scene, Vec<u8>)> = None;
+    for k in 0..10 {
+        let s = base.at_time(0.5 * f64::from(k));
+        let sun = s.uniforms().sun_direction;
+        let moved = computed_at.map_or(f32::INFINITY, |c| {
+            (0..3).map(|i| (sun[i] - c[i]).abs()).fold(0.0, f32::max)
+        });
+        let (ran, image) = frame(&mut wgpu, &s);
+        let expected = moved > TOLERANCE;
+        for table in ["sky-view-lut", "aerial-perspective"] {
+            assert_eq!(
+                ran.contains(&table.to_string()),
+                expected,
+                "frame {k}: the sun moved {moved:.2e} since {table} was computed: {ran:?}"
+            );
+        }
+        if expected {
+            computed_at = Some(sun);
+            refreshed += 1;
+        } else if stalest.as_ref().is_none_or(|(m, _, _)| moved > *m) {
+            stalest = Some((moved, s.clone(), image));
+        }
+    }
+    // Five seconds of sun: the tables were computed first and followed it at least once, but
+    // not every frame.
+    assert!(
+        (2..=5).contains(&refreshed),
+        "the tables were computed {refreshed} times in 10 frames"
+    );
+    let (moved, s, lagging) = stalest.expect("a frame on lagging tables");
+    let (_, fresh) = frame(&mut renderer(), &s);
+    let worst = lagging
+        .iter()
+        .zip(&fresh)
+        .map(|(a, b)| a.abs_diff(*b))
+        .max()
+        .unwrap_or(0);
+    println!("tables lagging the sun by {moved:.2e}: at most {worst} of 255 off fresh tables");
+    assert!(
+        worst <= 1,
+        "tables lagging by {moved:.2e} are {worst} of 255 off"
+    );
+}

@@ -269,6 +269,22 @@ fn a_graph_that_disagrees_with_the_wgsl_is_refused() {
             ),
             "only a computed persistent resource has `inputs`",
         ),
+        (
+            graph.replacen(
+                "tolerance = { sun_direction = 1.7e-4 }",
+                "tolerance = { camera_forward = 1.7e-4 }",
+                1,
+            ),
+            "`tolerance` names `camera_forward`, which is not one of its `inputs`",
+        ),
+        (
+            graph.replacen(
+                "tolerance = { sun_direction = 1.7e-4 }",
+                "tolerance = { sun_direction = 0.0 }",
+                1,
+            ),
+            "the tolerance of `sun_direction` is 0: it must be a finite number > 0",
+        ),
     ];
     for (text, expected) in cases {
         assert_ne!(&text, graph, "the case changes the graph");

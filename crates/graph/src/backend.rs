@@ -306,7 +306,9 @@ pub fn cpu_wall_timings(passes: &[&Pass], ms: &[f64]) -> Vec<PassTiming> {
 pub struct FrameState {
     frame: u64,
     history_frames: u64,
-    computed: std::collections::BTreeSet<String>,
+    /// Computed persistent resources that hold their results, with the uniform block of the
+    /// frame that computed them (their `inputs` are held to it).
+    computed: std::collections::BTreeMap<String, stratus_scene::FrameUniforms>,
     /// The uniform block of the last frame rendered: its camera is the next frame's
     /// `previous_*` (temporal reprojection).
     last: Option<stratus_scene::FrameUniforms>,
@@ -359,7 +361,7 @@ impl FrameState {
                 .computed_from
                 .as_ref()
                 .is_some_and(|w| std::sync::Weak::ptr_eq(w, &Arc::downgrade(frame.noise)));
-            if !self.computed.contains(&r.name)
+            if !self.computed.contains_key(&r.name)
                 || new_noise
                 || frame.invalidate.contains(&r.name.as_str())
                 || self.inputs_changed(r, frame)
@@ -371,9 +373,10 @@ impl FrameState {
     }
 
     /// Whether a uniform member that computed resource `r` is computed from (`inputs`)
-    /// differs from last frame's.
+    /// differs from the frame's that computed it: bit for bit, or by more than its
+    /// `tolerance` (so a slow drift, below it from frame to frame, still adds up to a change).
     fn inputs_changed(&self, r: &PlanResource, frame: &FrameInput<'_>) -> bool {
-        let Some(last) = &self.last else {
+        let Some(then) = self.computed.get(&r.name) else {
             return false;
         };
         if r.inputs.is_empty() {
@@ -381,8 +384,8 @@ impl FrameState {
         }
         let now = frame.scene.uniforms();
         r.inputs.iter().any(|input| {
-            crate::desc::input_bytes(input)
-                .is_some_and(|bytes| now.as_bytes()[bytes.clone()] != last.as_bytes()[bytes])
+            let tolerance = r.tolerance.get(input).copied();
+            crate::desc::input_differs(input, tolerance, now.as_bytes(), then.as_bytes())
         })
     }
 
@@ -432,7 +435,7 @@ impl FrameState {
             for r in plan.passes[i].writes() {
                 let r = &plan.resources[r];
                 if r.is_computed_persistent() {
-                    self.computed.insert(r.name.clone());
+                    self.computed.insert(r.name.clone(), *uniforms);
                     computed_any = true;
                 }
             }

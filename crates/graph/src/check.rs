@@ -378,4 +378,20 @@ fn check_resource(r: &ResourceDesc, at: &str, p: &mut Vec<String>) {
             ));
         }
     }
+    for (input, tolerance) in &r.tolerance {
+        if !r.inputs.contains(input) {
+            p.push(format!(
+                "{at}: `tolerance` names `{input}`, which is not one of its `inputs`"
+            ));
+        } else if !crate::desc::input_is_float(input) {
+            p.push(format!(
+                "{at}: `tolerance` names `{input}`, which is not made of f32 values"
+            ));
+        }
+        if !(tolerance.is_finite() && *tolerance > 0.0) {
+            p.push(format!(
+                "{at}: the tolerance of `{input}` is {tolerance}: it must be a finite number > 0"
+            ));
+        }
+    }
 }

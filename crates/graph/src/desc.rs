@@ -275,6 +275,12 @@ pub struct ResourceDesc {
     /// again only when the air changes).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub inputs: Vec<String>,
+    /// Inputs that may drift this far (in every component, from the values the resource was
+    /// computed at) before it goes stale, by name: a table of a sun that moves a few
+    /// thousandths of a degree a second need not follow every frame. Inputs not named here
+    /// must stay bit for bit.
+    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+    pub tolerance: BTreeMap<String, f64>,
 }
 
 /// How a raster pass blends into a colour target.
@@ -500,9 +506,59 @@ pub fn input_bytes(input: &str) -> Option<std::ops::Range<usize>> {
     }
 }
 
+/// Whether input `input` (as [`input_bytes`] names it) is made of f32 values.
+pub fn input_is_float(input: &str) -> bool {
+    let name = input.split_once('.').map_or(input, |(m, _)| m);
+    stratus_scene::FrameUniforms::MEMBERS
+        .iter()
+        .any(|m| m.name == name && !m.is_unsigned())
+}
+
+/// Whether input `input` of uniform blocks `now` and `then` differs: bit for bit, or, with a
+/// tolerance, by more than it in some f32 component (a NaN differs from everything).
+pub fn input_differs(input: &str, tolerance: Option<f64>, now: &[u8], then: &[u8]) -> bool {
+    let Some(bytes) = input_bytes(input) else {
+        return false;
+    };
+    let (a, b) = (&now[bytes.clone()], &then[bytes]);
+    match tolerance {
+        None => a != b,
+        Some(t) => a.chunks_exact(4).zip(b.chunks_exact(4)).any(|(a, b)| {
+            let f = |c: &[u8]| f64::from(f32::from_le_bytes([c[0], c[1], c[2], c[3]]));
+            let d = (f(a) - f(b)).abs();
+            d.is_nan() || d > t
+        }),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Without a tolerance an input differs in any bit; with one, when some component moved
+    /// by more than it (NaN always).
+    #[test]
+    fn inputs_differ_bit_for_bit_or_beyond_their_tolerance() {
+        let block = |sun: [f32; 3]| {
+            let mut u = stratus_scene::Scene::default().uniforms();
+            u.sun_direction = sun;
+            u
+        };
+        let then = block([0.0, 0.6, 0.8]);
+        let near = block([1e-4, 0.6, 0.8]);
+        let far = block([0.0, 0.6, 0.8 + 3e-4]);
+        let nan = block([f32::NAN, 0.6, 0.8]);
+        let differs = |now: &stratus_scene::FrameUniforms, t| {
+            input_differs("sun_direction", t, now.as_bytes(), then.as_bytes())
+        };
+        assert!(!differs(&then, None));
+        assert!(differs(&near, None));
+        assert!(!differs(&near, Some(1.7e-4)));
+        assert!(differs(&far, Some(1.7e-4)));
+        assert!(differs(&nan, Some(1.7e-4)));
+        assert!(input_is_float("sun_direction") && input_is_float("camera_position.y"));
+        assert!(!input_is_float("flags") && !input_is_float("no_such_member"));
+    }
 
     /// A member names its bytes, a vector's component its 4; anything else nothing.
     #[test]

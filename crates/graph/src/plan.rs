@@ -80,6 +80,8 @@ pub struct PlanResource {
     pub external: bool,
     /// Uniform members a computed persistent resource depends on (`inputs`).
     pub inputs: Vec<String>,
+    /// How far some of them may drift before it goes stale (`tolerance`).
+    pub tolerance: BTreeMap<String, f64>,
 }
 
 impl PlanResource {
@@ -538,6 +540,7 @@ impl FramePlan {
                     }),
                     external: r.external,
                     inputs: r.inputs.clone(),
+                    tolerance: r.tolerance.clone(),
                 })
             })
             .collect::<Result<_, PlanError>>()?;
