@@ -3534,6 +3534,7 @@ fn physical_over(pixel: vec2<u32>, cloud: vec4<f32>, shaded: vec3<f32>) -> vec3<
 const SHAFT_STEPS: u32 = 48u;
 const SHAFT_RANGE_KM: f32 = 32.0;   // as far as the aerial-perspective table reaches
 const SHAFT_SALT: u32 = 0x5AF7u;    // the dither's own stream of hash_unit
+const SHAFT_MIN_SUN_Y: f32 = 1e-3;  // the sun's least height (its direction's y) with shafts
 
 // The sun's single scattering by the air that the clouds shade, per unit sun illuminance:
 // `front` over the ray's first `split_m` m (the clouds' depth), `all` to `end_km`.
@@ -3581,7 +3582,9 @@ fn light_shafts(pixel: vec2<u32>, view: vec3<f32>, split_m: f32, end_km: f32) ->
     if view.y > 0.0 {
         end = min(end, max(span.y - cam_alt, 0.0) * 1e-3 / view.y);
     }
-    if sun.y <= 0.0 || !(end > 0.0) {
+    // A sun within 0.06 degrees of the horizon projects every shaded point off the map (and
+    // the projection's division would overflow).
+    if sun.y <= SHAFT_MIN_SUN_Y || !(end > 0.0) {
         return loss;
     }
     let origin = camera_air_origin();
@@ -3740,16 +3743,23 @@ fn composite(@builtin(global_invocation_id) id: vec3<u32>) {
         return;
     }
     let pixel = id.xy;
-    let view = view_ray(pixel);
-    let alt = frame.camera_position.y;
     let cloud = textureLoad(cloud_in, pixel, 0);
-    var background = sky_radiance(view, alt);
-    if has_surface(pixel) {
-        background = surface_radiance();
-    } else if !hits_ground(vec3<f32>(0.0, alt, 0.0), alt, view) {
-        background += sun_disk(view);
+    var background = surface_radiance();
+    if !has_surface(pixel) {
+        background = analytic_background(view_ray(pixel));
     }
     store_display(pixel, background * cloud.a + cloud.rgb);
+}
+
+// What shows behind the clouds in the analytic sky where the host has no geometry: the sky's
+// gradient, and the sun's disc above the horizon.
+fn analytic_background(view: vec3<f32>) -> vec3<f32> {
+    let alt = frame.camera_position.y;
+    var background = sky_radiance(view, alt);
+    if !hits_ground(vec3<f32>(0.0, alt, 0.0), alt, view) {
+        background += sun_disk(view);
+    }
+    return background;
 }
 
 // The same in the physical sky (plan option `physical_sky`).
@@ -3778,13 +3788,7 @@ fn hdr_composite(@builtin(global_invocation_id) id: vec3<u32>) {
     let cloud = textureLoad(cloud_in, pixel, 0);
     var out = cloud;
     if (frame.flags & FLAG_HDR_SKY) != 0u && !has_surface(pixel) {
-        let view = view_ray(pixel);
-        let alt = frame.camera_position.y;
-        var background = sky_radiance(view, alt);
-        if !hits_ground(vec3<f32>(0.0, alt, 0.0), alt, view) {
-            background += sun_disk(view);
-        }
-        out = vec4<f32>(background * cloud.a + cloud.rgb, 0.0);
+        out = vec4<f32>(analytic_background(view_ray(pixel)) * cloud.a + cloud.rgb, 0.0);
     }
     textureStore(hdr_out, pixel, out);
 }

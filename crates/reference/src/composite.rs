@@ -287,18 +287,27 @@ fn store_display(f: &Frame, radiance: V3) -> [u8; 4] {
 // WGSL: composite.wgsl::composite
 /// The display pixel for march output `cloud` (radiance rgb, transmittance).
 pub(crate) fn composite(f: &Frame, pixel: [u32; 2], cloud: [f64; 4], surface: bool) -> [u8; 4] {
-    let view = view_ray(f, pixel);
-    let alt = f.camera_position[1];
-    let mut background = sky_radiance(f, view, alt);
-    if surface {
-        background = surface_radiance(f);
-    } else if !hits_ground(f, V3::new(0.0, alt, 0.0), alt, view) {
-        background += sun_disk(f, view);
-    }
+    let background = if surface {
+        surface_radiance(f)
+    } else {
+        analytic_background(f, view_ray(f, pixel))
+    };
     store_display(
         f,
         background * cloud[3] + V3::new(cloud[0], cloud[1], cloud[2]),
     )
+}
+
+// WGSL: composite.wgsl::analytic_background
+/// What shows behind the clouds in the analytic sky where the host has no geometry: the sky's
+/// gradient, and the sun's disc above the horizon.
+fn analytic_background(f: &Frame, view: V3) -> V3 {
+    let alt = f.camera_position[1];
+    let mut background = sky_radiance(f, view, alt);
+    if !hits_ground(f, V3::new(0.0, alt, 0.0), alt, view) {
+        background += sun_disk(f, view);
+    }
+    background
 }
 
 // WGSL: composite.wgsl::composite_physical

@@ -27,13 +27,16 @@ use crate::frame::{Frame, PI, xyz};
 use crate::math::{V3, mix_v, saturate};
 use crate::phase::phase_cornette_shanks;
 
-// WGSL: composite.wgsl::SHAFT_STEPS, SHAFT_RANGE_KM, SHAFT_SALT
+// WGSL: composite.wgsl::SHAFT_STEPS, SHAFT_RANGE_KM, SHAFT_SALT, SHAFT_MIN_SUN_Y
 /// Samples along a view ray of the light shafts.
 const SHAFT_STEPS: usize = 48;
 /// How far along the view ray the light shafts reach (m; the WGSL's 32 km).
 const SHAFT_RANGE_M: f64 = 32_000.0;
 /// The shafts' dither stream of `hash_unit`.
 const SHAFT_SALT: u32 = 0x5AF7;
+/// The key light's least height (its direction's y) with shafts: below it every shaded point
+/// projects off the map.
+const SHAFT_MIN_SUN_Y: f64 = 1e-3;
 
 // WGSL: atmosphere.wgsl (constants).
 /// Transmittance table: texels along (distance to the top, radius).
@@ -604,7 +607,7 @@ impl SkyTables {
         if view.y > 0.0 {
             end = end.min((span.1 - cam_alt).max(0.0) / view.y);
         }
-        if sun.y <= 0.0 || end.is_nan() || end <= 0.0 {
+        if sun.y <= SHAFT_MIN_SUN_Y || end.is_nan() || end <= 0.0 {
             return (front, all);
         }
         let origin = self.camera_air_origin(f);
