@@ -440,7 +440,8 @@ fn lumas(out: &FrameOutput) -> Vec<f64> {
 /// camera and what it sees, the air scatters none of the sun's light. On the GPU and in the
 /// CPU twin alike the shafts only ever take light away, take a visible amount where the
 /// clouds' shadows lie in the air, take the same amount per pixel on both, and take none from
-/// a clear sky.
+/// a clear sky. The display image only: the HDR output's shafts over the host's geometry
+/// (`hdr_composite_physical`) have no CPU twin to hold them to.
 #[test]
 fn light_shafts_darken_the_shaded_air_alike_on_the_gpu_and_the_cpu() {
     stratus_test_support::record_wgpu_log();

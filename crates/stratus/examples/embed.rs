@@ -2,11 +2,13 @@
 //! own texture while the camera turns and climbs, then prints the median GPU time of each pass
 //! and the median CPU time per frame (recording and submitting; not waiting for the GPU).
 //!
-//! `cargo run --release -p stratus --example embed [WxH] [--depth] [--hdr] [--shadow]`
-//! (default 256x144). `--depth` gives the clouds a host depth buffer (reversed Z) with an
-//! opaque box over a fifth of the view 400 m away; `--hdr` draws the HDR output into an
-//! Rgba16Float target instead of the display image; `--shadow` computes the cloud-shadow
-//! map for the host's geometry every frame. Each adds to the passes it costs.
+//! `cargo run --release -p stratus --example embed [WxH] [--frames N] [--depth] [--hdr] [--sky]
+//! [--shadow] [--physical] [--shafts]` (default 256x144, 300 frames). `--depth` gives the
+//! clouds a host depth buffer (reversed Z) with an opaque box over a fifth of the view 400 m
+//! away; `--hdr` draws the HDR output into an Rgba16Float target instead of the display image,
+//! and `--sky` (with `--hdr`) the sky behind the clouds in it; `--shadow` computes the
+//! cloud-shadow map for the host's geometry every frame; `--physical` puts the scene under the
+//! physical sky, and `--shafts` adds its light shafts. Each adds to the passes it costs.
 
 use std::time::Instant;
 
@@ -16,13 +18,43 @@ use stratus_graph::output::median;
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let flag = |f: &str| args.iter().any(|a| a == f);
+    const FLAGS: [&str; 7] = [
+        "--depth",
+        "--hdr",
+        "--sky",
+        "--shadow",
+        "--physical",
+        "--shafts",
+        "--frames",
+    ];
     if let Some(a) = args
         .iter()
-        .find(|a| a.starts_with("--") && !["--depth", "--hdr", "--shadow"].contains(&a.as_str()))
+        .find(|a| a.starts_with("--") && !FLAGS.contains(&a.as_str()))
     {
-        return Err(format!("unknown option {a}: try WxH, --depth, --hdr, --shadow").into());
+        return Err(format!("unknown option {a}: try WxH, {}", FLAGS.join(", ")).into());
     }
-    let (w, h): (u32, u32) = match args.iter().find(|a| !a.starts_with("--")) {
+    if flag("--sky") && !flag("--hdr") {
+        return Err("--sky is the HDR output's sky: give --hdr too".into());
+    }
+    let frames: u32 = match args.iter().position(|a| a == "--frames") {
+        Some(i) => args
+            .get(i + 1)
+            .ok_or("--frames needs a count")?
+            .parse()
+            .map_err(|e| format!("--frames: {e}"))?,
+        None => 300,
+    };
+    if frames == 0 {
+        return Err("--frames must be at least 1".into());
+    }
+    let frames_value = args
+        .iter()
+        .position(|a| a == "--frames")
+        .and_then(|i| args.get(i + 1));
+    let (w, h): (u32, u32) = match args
+        .iter()
+        .find(|a| !a.starts_with("--") && Some(*a) != frames_value)
+    {
         Some(s) => {
             let (w, h) = s.split_once('x').ok_or("size must be WxH, e.g. 256x144")?;
             (w.parse()?, h.parse()?)
@@ -57,9 +89,15 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     });
     let view = target.create_view(&Default::default());
 
-    let scene = Scene::preset("cumulus-noon")?.with_size(w, h);
+    let mut scene = Scene::preset("cumulus-noon")?.with_size(w, h);
+    if flag("--physical") || flag("--shafts") {
+        scene.atmosphere.sky = stratus_scene::SkyModel::Physical;
+        scene.camera.auto_exposure = true;
+    }
+    scene.atmosphere.light_shafts = flag("--shafts");
     let start = scene.camera.position;
     let mut clouds = Clouds::new(&device, &queue, scene.clone())?;
+    clouds.set_hdr_sky(flag("--sky"));
     if flag("--depth") {
         let camera = stratus::HostCamera {
             projection: stratus::glam::dcamera::rh::proj::directx::perspective_infinite_reverse(
@@ -84,9 +122,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         clouds.set_scene_depth(Some(p.scene_depth([w, h], &depth)?));
     }
     clouds.set_cloud_shadow(flag("--shadow"));
-    let (mut cpu, mut passes) = (Vec::new(), std::collections::BTreeMap::new());
+    let (mut cpu, mut wall, mut passes) =
+        (Vec::new(), Vec::new(), std::collections::BTreeMap::new());
     let mut created_after_first = 0;
-    for i in 0..300 {
+    for i in 0..frames {
         let t = i as f64 / 60.0;
         clouds.update(Update {
             camera_position: Some([start[0], start[1] + 20.0 * t, start[2] + 50.0 * t]),
@@ -103,7 +142,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         }
         queue.submit([encoder.finish()]);
         cpu.push(clock.elapsed().as_secs_f64() * 1e3);
-        for timing in clouds.pass_timings()? {
+        // Reading the pass times waits for the GPU: the frame's wall time ends there.
+        let timings = clouds.pass_timings()?;
+        wall.push(clock.elapsed().as_secs_f64() * 1e3);
+        for timing in timings {
             passes
                 .entry(timing.pass)
                 .or_insert_with(Vec::new)
@@ -115,7 +157,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     }
     let info = adapter.get_info();
     println!(
-        "300 frames at {w}x{h} on {} ({:?}), variant {}",
+        "{frames} frames at {w}x{h} on {} ({:?}), variant {}",
         info.name,
         info.backend,
         clouds.plan().variant
@@ -128,13 +170,17 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         median(cpu)
     );
     println!(
+        "  wall per frame (record, submit, wait for the GPU), median {:.3} ms",
+        median(wall)
+    );
+    println!(
         "  GPU objects created after frame 1: {}",
         clouds.objects_created() - created_after_first
     );
     if info.device_type == wgpu::DeviceType::Cpu {
         // llvmpipe bins timestamps written while a framebuffer is bound (the present pass
         // leaves one bound) and takes them at the next flush: per-pass GPU times are not
-        // exact on a CPU driver. CPU times are unaffected; real GPUs time every pass.
+        // exact on a CPU driver. CPU and wall times are unaffected; real GPUs time every pass.
         println!("  note: a CPU driver times passes inexactly once a raster pass has run");
     }
     Ok(())
