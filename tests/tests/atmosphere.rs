@@ -38,6 +38,15 @@ fn scene() -> Scene {
     s
 }
 
+/// wgpu on Vulkan (lavapipe) with validation on.
+fn wgpu_renderer() -> stratus_backend_wgpu::Renderer {
+    stratus_backend_wgpu::Renderer::new(stratus_backend_wgpu::Options {
+        api: stratus_backend_wgpu::Api::Vulkan,
+        validation: true,
+    })
+    .expect("a Vulkan device (lavapipe)")
+}
+
 fn render(r: &mut dyn Backend, scene: &Scene, noise: &Arc<stratus_noise::NoiseSet>) -> FrameOutput {
     let plan = FramePlan::for_scene(scene, false).expect("plan");
     let readback = Readback {
@@ -103,11 +112,7 @@ fn physical_sky_tables_match_the_direct_integration_and_both_backends() {
     stratus_test_support::record_wgpu_log();
     let scene = scene();
     let noise = Arc::new(stratus_noise::NoiseSet::generate(&NoiseConfig::default()));
-    let mut wgpu = stratus_backend_wgpu::Renderer::new(stratus_backend_wgpu::Options {
-        api: stratus_backend_wgpu::Api::Vulkan,
-        validation: true,
-    })
-    .expect("a Vulkan device (lavapipe)");
+    let mut wgpu = wgpu_renderer();
     let mut ash =
         stratus_backend_ash::Renderer::new(stratus_backend_ash::Options { validation: true })
             .expect("ash on lavapipe");
@@ -323,11 +328,7 @@ fn physical_sky_tables_match_the_direct_integration_and_both_backends() {
 fn air_tables_are_computed_again_only_when_the_air_changes() {
     stratus_test_support::record_wgpu_log();
     let noise = Arc::new(stratus_noise::NoiseSet::generate(&NoiseConfig::default()));
-    let mut wgpu = stratus_backend_wgpu::Renderer::new(stratus_backend_wgpu::Options {
-        api: stratus_backend_wgpu::Api::Vulkan,
-        validation: true,
-    })
-    .expect("a Vulkan device (lavapipe)");
+    let mut wgpu = wgpu_renderer();
     let mut s = scene();
     let ran = |r: &mut stratus_backend_wgpu::Renderer, s: &Scene| -> Vec<String> {
         let plan = FramePlan::for_scene(s, false).expect("plan");
@@ -446,11 +447,7 @@ fn lumas(out: &FrameOutput) -> Vec<f64> {
 fn light_shafts_darken_the_shaded_air_alike_on_the_gpu_and_the_cpu() {
     stratus_test_support::record_wgpu_log();
     let noise = Arc::new(stratus_noise::NoiseSet::generate(&NoiseConfig::default()));
-    let mut wgpu = stratus_backend_wgpu::Renderer::new(stratus_backend_wgpu::Options {
-        api: stratus_backend_wgpu::Api::Vulkan,
-        validation: true,
-    })
-    .expect("a Vulkan device (lavapipe)");
+    let mut wgpu = wgpu_renderer();
     let mut cpu = stratus_reference::CpuBackend::default();
     let coverage = Scene::preset("noon").expect("preset").clouds.coverage;
     let darkening = |r: &mut dyn Backend| -> Vec<f64> {
@@ -510,14 +507,7 @@ fn a_slowly_moving_sun_keeps_its_sky_tables_until_it_has_moved_a_hundredth_of_a_
     const TOLERANCE: f32 = 1.7e-4;
     stratus_test_support::record_wgpu_log();
     let noise = Arc::new(stratus_noise::NoiseSet::generate(&NoiseConfig::default()));
-    let renderer = || {
-        stratus_backend_wgpu::Renderer::new(stratus_backend_wgpu::Options {
-            api: stratus_backend_wgpu::Api::Vulkan,
-            validation: true,
-        })
-        .expect("a Vulkan device (lavapipe)")
-    };
-    let mut wgpu = renderer();
+    let mut wgpu = wgpu_renderer();
     let base = Scene::preset("sunset").expect("preset").with_size(128, 72);
     assert!(base.sky.date_utc.is_some(), "sunset has a dated sky");
     let frame = |r: &mut stratus_backend_wgpu::Renderer, s: &Scene| -> (Vec<String>, Vec<u8>) {
@@ -565,7 +555,7 @@ fn a_slowly_moving_sun_keeps_its_sky_tables_until_it_has_moved_a_hundredth_of_a_
         "the tables were computed {refreshed} times in 10 frames"
     );
     let (moved, s, lagging) = stalest.expect("a frame on lagging tables");
-    let (_, fresh) = frame(&mut renderer(), &s);
+    let (_, fresh) = frame(&mut wgpu_renderer(), &s);
     let worst = lagging
         .iter()
         .zip(&fresh)

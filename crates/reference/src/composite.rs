@@ -85,8 +85,7 @@ pub(crate) fn physical_composite(
     } else if sky.meets_ground(r, view.y) {
         // The table's ground is lit everywhere; where the clouds shade it, less.
         let lost = sky.ground_shadow_loss(f, view, r).mul_v(e);
-        let b = background - lost;
-        background = V3::new(b.x.max(0.0), b.y.max(0.0), b.z.max(0.0));
+        background = non_negative(background - lost);
     } else {
         let mut space = moon_disk(f, view) + stars(f, view);
         if f.flags & FLAG_MOONLIT == 0 {
@@ -106,6 +105,7 @@ pub(crate) fn physical_composite(
     radiance
 }
 
+/// `max(v, 0)` in each channel (the WGSL's `max(v, vec3(0.0))`).
 fn non_negative(v: V3) -> V3 {
     V3::new(v.x.max(0.0), v.y.max(0.0), v.z.max(0.0))
 }

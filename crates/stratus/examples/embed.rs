@@ -36,21 +36,17 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     if flag("--sky") && !flag("--hdr") {
         return Err("--sky is the HDR output's sky: give --hdr too".into());
     }
-    let frames: u32 = match args.iter().position(|a| a == "--frames") {
-        Some(i) => args
-            .get(i + 1)
-            .ok_or("--frames needs a count")?
-            .parse()
-            .map_err(|e| format!("--frames: {e}"))?,
+    let frames_value = match args.iter().position(|a| a == "--frames") {
+        Some(i) => Some(args.get(i + 1).ok_or("--frames needs a count")?),
+        None => None,
+    };
+    let frames: u32 = match frames_value {
+        Some(v) => v.parse().map_err(|e| format!("--frames: {e}"))?,
         None => 300,
     };
     if frames == 0 {
         return Err("--frames must be at least 1".into());
     }
-    let frames_value = args
-        .iter()
-        .position(|a| a == "--frames")
-        .and_then(|i| args.get(i + 1));
     let (w, h): (u32, u32) = match args
         .iter()
         .find(|a| !a.starts_with("--") && Some(*a) != frames_value)
