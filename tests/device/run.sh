@@ -8,8 +8,9 @@
 # `.gl` holds the Vulkan and EGL loaders as .deb files where the machine has none (the device
 # tool's README says how to download them). The suite reads the goldens, snapshots and
 # spirv-out/ of this checkout (INSTA_WORKSPACE_ROOT) and judges them by the device's class
-# (tests/tests/conformance/report.rs, `DeviceClass`): on anything but lavapipe the goldens and
-# the snapshots' counters are held to the measured cross-device bounds. The results table,
+# (tests/tests/conformance/report.rs, `DeviceClass`): on anything but lavapipe the goldens are
+# held to the measured cross-device bounds and the counters to the cross-device model
+# (tests/tests/conformance/spread.rs). The results table,
 # the log and any failure images go to $OUT (the device tool brings that folder back), or to
 # target/device-out.
 set -uo pipefail
