@@ -138,3 +138,81 @@ pub fn bundle(root: &Path) -> Result<()> {
     );
     Ok(())
 }
+
+/// Where the peer harness lives, beside the checkout (it is not part of the repository).
+const PEER_BENCH: &str = "../shared/peer-bench";
+
+/// The peer's two WGSL files the harness needs (its README names them and their blob ids).
+const PEER_FILES: [&str; 2] = ["clouds_compute.wgsl", "common.wgsl"];
+
+/// `cargo xtask device-bench`: `stratus` (whose `gpu-bench` measures), and with `peer_wgsl`
+/// the peer harness and the peer's WGSL, packed into `.device/bench.tar.gz` (ignored by git:
+/// the peer's code is never committed).
+pub fn bench(root: &Path, peer_wgsl: Option<&Path>) -> Result<()> {
+    crate::cargo(root, &["build", "--release", "-p", "stratus-cli"])?;
+    let stage = crate::target_dir(root).join("device-bench");
+    let _ = std::fs::remove_dir_all(&stage);
+    let bin = stage.join("bin");
+    std::fs::create_dir_all(&bin).with_context(|| format!("creating {}", bin.display()))?;
+    copy_stripped(
+        &crate::target_dir(root).join("release/stratus"),
+        &bin.join("stratus"),
+    )?;
+    let mut parts = vec!["bin"];
+    let peer = match peer_wgsl {
+        Some(dir) => {
+            let harness = root.join(PEER_BENCH);
+            if !harness.join("Cargo.toml").is_file() {
+                bail!(
+                    "--peer-wgsl: the peer harness is not at {} (it lives beside the checkout, in ../shared)",
+                    harness.display()
+                );
+            }
+            let wgsl = stage.join("peer-wgsl");
+            std::fs::create_dir_all(&wgsl)?;
+            for f in PEER_FILES {
+                let from = dir.join(f);
+                std::fs::copy(&from, wgsl.join(f)).with_context(|| {
+                    format!(
+                        "--peer-wgsl: {} (extract it as ../shared/peer-bench/README.md says)",
+                        from.display()
+                    )
+                })?;
+            }
+            let manifest = harness.join("Cargo.toml");
+            let target = crate::target_dir(root).join("peer-bench");
+            crate::run(
+                Command::new(std::env::var("CARGO").unwrap_or_else(|_| "cargo".into()))
+                    .args(["build", "--release", "--manifest-path"])
+                    .arg(&manifest)
+                    .arg("--target-dir")
+                    .arg(&target),
+            )?;
+            copy_stripped(&target.join("release/peer-bench"), &bin.join("peer-bench"))?;
+            parts.push("peer-wgsl");
+            "the peer harness and the peer's WGSL"
+        }
+        None => "no peer (give --peer-wgsl DIR to compare with it)",
+    };
+    let out_dir = root.join(".device");
+    std::fs::create_dir_all(&out_dir)?;
+    let tarball = out_dir.join("bench.tar.gz");
+    crate::run(
+        Command::new("tar")
+            .arg("czf")
+            .arg(&tarball)
+            .arg("-C")
+            .arg(&stage)
+            .args(&parts),
+    )?;
+    let size = std::fs::metadata(&tarball)?.len();
+    println!(
+        "wrote {} ({:.1} MiB): stratus; {peer}",
+        tarball.display(),
+        size as f64 / 1048576.0,
+    );
+    println!(
+        "on the device machine, from the checkout's root (carry `.device`, and `.gl` for the Vulkan loader):\n  bash tests/device/bench.sh            # every preset, wgpu and ash, temporal off, 1/4, 1/16, 1080p and 4K\n  bash tests/device/bench.sh --presets cumulus-noon --frames 60   # options go to stratus gpu-bench"
+    );
+    Ok(())
+}

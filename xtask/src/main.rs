@@ -14,6 +14,8 @@
 //! - `fuzz`: replay the fuzz regressions, then fuzz every cargo-fuzz target for N seconds;
 //! - `device-bundle`: pack the conformance suite, the CLI, glslang and the validation layer
 //!   for a machine with a real GPU and no cargo (`tests/device/run.sh` runs it there);
+//! - `device-bench`: pack the CLI (and, given the peer's WGSL, the peer harness) for the
+//!   same machine (`tests/device/bench.sh` runs `stratus gpu-bench` there);
 //! - `ephemeris-check` (opt-in, not in CI): stratus-astro's expected values from astropy;
 //! - `mitsuba-check` (opt-in, not in CI): the CPU reference against Mitsuba 3 on a gridded
 //!   cloud (see [`mitsuba`]).
@@ -122,6 +124,16 @@ enum Task {
     /// binary, `stratus`, glslang, SPIRV-Tools, the validation layer) into
     /// `.device/bundle.tar.gz`; `tests/device/run.sh` runs it there (see its comments).
     DeviceBundle,
+    /// Pack what the GPU benchmark needs on a machine with a GPU and no cargo (`stratus`, and
+    /// with --peer-wgsl the peer harness of ../shared/peer-bench with the peer's WGSL) into
+    /// `.device/bench.tar.gz`; `tests/device/bench.sh` runs `stratus gpu-bench` there and
+    /// writes its table.
+    DeviceBench {
+        /// The peer's extracted WGSL folder (see ../shared/peer-bench/README.md; kept outside
+        /// the repository, packed into the ignored .device/ only).
+        #[arg(long)]
+        peer_wgsl: Option<PathBuf>,
+    },
     /// Opt-in, not in CI (needs the network once): install astropy in a virtual environment
     /// under target/, write the expected sun and moon positions, phases, sunrises and sunsets
     /// of random dates and places to crates/astro/tests/data/ephemeris.json, and run
@@ -191,6 +203,7 @@ fn main() -> ExitCode {
             target,
         } => fuzz::fuzz(&root, seconds, runs, &target),
         Task::DeviceBundle => device::bundle(&root),
+        Task::DeviceBench { peer_wgsl } => device::bench(&root, peer_wgsl.as_deref()),
         Task::EphemerisCheck { cases, events } => ephemeris::check(&root, cases, events),
         Task::MitsubaCheck {
             reference_spp,

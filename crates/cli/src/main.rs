@@ -1,6 +1,6 @@
 //! `stratus`: render, inspect and compare volumetric clouds.
 
-use stratus_lab::{bench, export_volume as export, fit, soak};
+use stratus_lab::{bench, export_volume as export, fit, gpu_bench, soak};
 use stratus_tool::{animate, astro, compare, inspect, kit, render, weather};
 use stratus_viewer as view;
 
@@ -48,6 +48,10 @@ enum Command {
     /// Many frames of one renderer on a looping camera path: counts non-finite values, and
     /// reports memory, GPU objects created after the first frame and drift after a stop.
     Soak(soak::SoakArgs),
+    /// What a frame costs on this GPU: every preset on each backend, temporal off, 1/4 and
+    /// 1/16, at 1080p and 4K; median GPU ms per pass and per frame, CPU ms per frame, and
+    /// density evaluations and light samples per pixel; writes results.json and table.md.
+    GpuBench(gpu_bench::GpuBenchArgs),
     /// Validate the embedded WGSL with naga and list its modules, variants and entry points.
     Shaders,
     /// Turn weather into a scene: a METAR report (cloud groups become cloud layers), a
@@ -87,6 +91,7 @@ fn main() -> ExitCode {
         Command::ExportVolume(args) => export::run(args),
         Command::ExportKit(args) => kit::run(args),
         Command::Soak(args) => soak::run(args),
+        Command::GpuBench(args) => gpu_bench::run(args),
         Command::Weather(args) => weather::run(args),
         Command::Astro(args) => astro::run(args),
         Command::View(args) => view::run(args),
