@@ -29,6 +29,56 @@ fn a_report_with_three_cloud_groups_prints_three_layers_and_checks() {
 }
 
 #[test]
+fn the_services_json_sets_the_citys_sky_and_prints_the_debug_readout() {
+    // The weather service's JSON as the seed gives it: Hangzhou, read at 20:20 local time.
+    let json = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../weather/tests/data/hangzhou.json"
+    );
+    let (ok, text) = stratus(&["weather", "--json", json, "--preset", "night"]);
+    assert!(ok, "{text}");
+    let sky = &text[text.find("[sky]").expect("a [sky] table")..];
+    for line in [
+        "date_utc = \"2023-03-24T12:20:00Z\"",
+        "latitude_deg = 30.2741",
+        "longitude_deg = 120.1551",
+    ] {
+        assert!(sky.contains(line), "{line}: {text}");
+    }
+    // The readout: city, place, time, state, sunrise and sunset, moon.
+    for part in [
+        "place: 杭州 (Hangzhou, 330100)",
+        "state: scattered",
+        "sunrise 05:59 and sunset 18:12 local",
+        "moon 10% lit",
+    ] {
+        assert!(text.contains(part), "{part}: {text}");
+    }
+    let dir = scratch("weather-json");
+    let file = dir.join("hangzhou.toml");
+    let (ok, out) = stratus(&[
+        "weather",
+        "--json",
+        json,
+        "--preset",
+        "night",
+        "--out",
+        file.to_str().unwrap(),
+    ]);
+    assert!(ok, "{out}");
+    let (ok, out) = stratus(&[
+        "render",
+        "--scene",
+        file.to_str().unwrap(),
+        "--size",
+        "32x18",
+        "--out",
+        dir.join("hz.png").to_str().unwrap(),
+    ]);
+    assert!(ok, "{out}");
+}
+
+#[test]
 fn a_malformed_report_names_the_token() {
     let (ok, text) = stratus(&["weather", "KJFK 221651Z 31012KT 10SM XYZ999"]);
     assert!(!ok, "{text}");

@@ -1,6 +1,8 @@
 //! Weather-service JSON (seed 001: a Baidu weather API response) mapped to a weather state:
 //! the condition text (`result.now.text`) picks the state, the wind class (`wind_class`, a
-//! Beaufort force such as "2级") sets the wind speed and `wind_dir` its direction.
+//! Beaufort force such as "2级") sets the wind speed and `wind_dir` its direction, and the
+//! place (`result.location`, by district code or name) with the local time of the reading
+//! (`result.now.uptime`) sets the scene's `[sky]`, so the sun and moon are the city's.
 
 use serde_json::Value;
 use stratus_scene::Scene;
@@ -63,6 +65,86 @@ const DIRECTIONS: [(&str, f64); 16] = [
     ("south", 180.0),
     ("west", 270.0),
 ];
+
+/// A city the service may name: its district code (GB/T 2260, the code the service is queried
+/// with), its names, and where it is (the city centre, degrees; GeoNames). The three the
+/// weather system is tested with.
+pub struct City {
+    /// The administrative district code (`result.location.id`).
+    pub code: &'static str,
+    /// The names the service uses (`name`, `city`) and an English one.
+    pub names: [&'static str; 3],
+    /// Latitude, degrees north.
+    pub latitude_deg: f64,
+    /// Longitude, degrees east.
+    pub longitude_deg: f64,
+    /// The offset of local (civil) time from UTC, hours: China Standard Time, the one time
+    /// zone of China, Urumqi included.
+    pub utc_offset_h: f64,
+}
+
+/// The cities the service's `location` is matched against.
+pub const CITIES: [City; 3] = [
+    City {
+        code: "330100",
+        names: ["杭州", "杭州市", "Hangzhou"],
+        latitude_deg: 30.2741,
+        longitude_deg: 120.1551,
+        utc_offset_h: 8.0,
+    },
+    City {
+        code: "330200",
+        names: ["宁波", "宁波市", "Ningbo"],
+        latitude_deg: 29.8683,
+        longitude_deg: 121.5440,
+        utc_offset_h: 8.0,
+    },
+    City {
+        code: "650100",
+        names: ["乌鲁木齐", "乌鲁木齐市", "Urumqi"],
+        latitude_deg: 43.8256,
+        longitude_deg: 87.6168,
+        utc_offset_h: 8.0,
+    },
+];
+
+/// The city `location` names, by its district code first, then by its names.
+fn city(location: &Value) -> Option<&'static City> {
+    let text = |k: &str| location.get(k).and_then(Value::as_str);
+    if let Some(id) = text("id") {
+        if let Some(c) = CITIES.iter().find(|c| c.code == id) {
+            return Some(c);
+        }
+    }
+    ["name", "city"].into_iter().filter_map(text).find_map(|n| {
+        CITIES
+            .iter()
+            .find(|c| c.names.iter().any(|m| m.eq_ignore_ascii_case(n)))
+    })
+}
+
+/// `uptime` (`YYYYMMDDhhmmss`, local time at `offset_h` hours from UTC) as a UTC instant.
+fn uptime_utc(uptime: &str, offset_h: f64) -> Result<stratus_astro::UtcDateTime, WeatherError> {
+    let bad = |why: String| {
+        json_error(format!(
+            "`result.now.uptime` = {uptime:?}: {why} (expected local time as YYYYMMDDhhmmss, e.g. \"20230324202000\")"
+        ))
+    };
+    if uptime.len() != 14 || !uptime.bytes().all(|b| b.is_ascii_digit()) {
+        return Err(bad("not 14 digits".into()));
+    }
+    let n = |r: std::ops::Range<usize>| uptime[r].parse::<u32>().expect("digits");
+    let local = stratus_astro::UtcDateTime::new(
+        n(0..4) as i32,
+        n(4..6),
+        n(6..8),
+        n(8..10),
+        n(10..12),
+        f64::from(n(12..14)),
+    )
+    .map_err(|e| bad(e.to_string()))?;
+    Ok(local.plus_seconds(-offset_h * 3600.0))
+}
 
 fn field<'a>(v: &'a Value, path: &str) -> Option<&'a Value> {
     path.split('.').try_fold(v, |v, k| v.get(k))
@@ -130,11 +212,88 @@ pub fn scene_from_service_json(json: &str, base: &Scene) -> Result<Derived, Weat
             notes.push(format!("wind direction {dir:?}: none recognised, kept"));
         }
     }
+    place(&v, now, &mut scene, &mut notes)?;
     Ok(Derived {
         scene,
         state,
         notes,
     })
+}
+
+/// The city and the reading's time, into the scene's `[sky]`: the sun (and moon) of that place
+/// at that instant, as `stratus render --date --lat --lon` sets them.
+fn place(
+    v: &Value,
+    now: &Value,
+    scene: &mut Scene,
+    notes: &mut Vec<String>,
+) -> Result<(), WeatherError> {
+    let Some(location) = field(v, "result.location") else {
+        notes.push("no `result.location`: the sun is the base scene's".into());
+        return Ok(());
+    };
+    let Some(city) = city(location) else {
+        let known: Vec<String> = CITIES
+            .iter()
+            .map(|c| format!("{} ({})", c.names[0], c.code))
+            .collect();
+        notes.push(format!(
+            "location {}: not a known city ({}): the sun is the base scene's",
+            location,
+            known.join(", ")
+        ));
+        return Ok(());
+    };
+    let Some(uptime) = now.get("uptime").and_then(Value::as_str) else {
+        notes.push(format!(
+            "place: {} ({}), but no `result.now.uptime`: without the time the sun is the base scene's",
+            city.names[0], city.code
+        ));
+        return Ok(());
+    };
+    let date = uptime_utc(uptime, city.utc_offset_h)?;
+    scene.sky = stratus_scene::Sky {
+        date_utc: Some(date),
+        latitude_deg: Some(city.latitude_deg),
+        longitude_deg: Some(city.longitude_deg),
+    };
+    // The date and place set the sun: a direction of the base scene's would contradict it.
+    scene.sun.direction = None;
+    notes.push(format!(
+        "place: {} ({}, {}) at {:.4} N, {:.4} E; reading at {uptime} local (UTC{:+}) = {date}",
+        city.names[0],
+        city.names[2],
+        city.code,
+        city.latitude_deg,
+        city.longitude_deg,
+        city.utc_offset_h
+    ));
+    // The debug readout the weather system keeps beside the render: the sun and moon of that
+    // place and time, and the day's sunrise and sunset in local time.
+    let at = stratus_astro::Place::new(city.latitude_deg, city.longitude_deg)
+        .map_err(|e| json_error(format!("{}: {e}", city.names[2])))?;
+    let sun = stratus_astro::sun(at, date);
+    let day = stratus_astro::sun_events(at, date);
+    let local = |t: Option<stratus_astro::UtcDateTime>| {
+        t.map_or("none".to_string(), |t| {
+            let (_, _, _, h, m, _) = t.plus_seconds(city.utc_offset_h * 3600.0).calendar();
+            format!("{h:02}:{m:02}")
+        })
+    };
+    notes.push(format!(
+        "sun at the reading: elevation {:.2} deg, azimuth {:.2} deg; sunrise {} and sunset {} local; moon {:.0}% lit",
+        sun.elevation_deg,
+        sun.azimuth_deg,
+        local(day.sunrise),
+        local(day.sunset),
+        100.0 * stratus_astro::moon_phase(date)
+    ));
+    if sun.elevation_deg < 0.0 && !scene.atmosphere.sky.is_physical() {
+        notes.push(
+            "the sun is down, but the base scene's analytic sky does not darken at night: take a physical-sky base (`--preset night`) for the night sky".into(),
+        );
+    }
+    Ok(())
 }
 
 #[cfg(test)]
@@ -150,6 +309,54 @@ mod tests {
         assert_eq!(d.scene.clouds.wind_speed_m_s, 2.5);
         assert_eq!(d.scene.clouds.wind_direction_deg, 135.0);
         d.scene.validate().unwrap();
+    }
+
+    #[test]
+    fn the_seed_example_places_the_sun_over_hangzhou_at_the_reading_time() {
+        let d = scene_from_service_json(SEED, &Scene::default()).unwrap();
+        assert_eq!(d.scene.sky.latitude_deg, Some(30.2741));
+        assert_eq!(d.scene.sky.longitude_deg, Some(120.1551));
+        // 20:20 in Hangzhou (UTC+8) is 12:20 UTC.
+        let expected = stratus_astro::UtcDateTime::new(2023, 3, 24, 12, 20, 0.0).unwrap();
+        let off = d.scene.sky.date_utc.unwrap().seconds_since(expected);
+        assert!(off.abs() < 1e-3, "{off} s from 2023-03-24T12:20:00Z");
+        assert!(d.notes.iter().any(|n| n.contains("杭州")), "{:?}", d.notes);
+        d.scene.validate().unwrap();
+        // After dark in Hangzhou: the sun is below the horizon.
+        assert!(d.scene.sun_elevation_deg() < 0.0);
+    }
+
+    #[test]
+    fn cities_are_found_by_code_or_name_and_unknown_ones_keep_the_base_sun() {
+        let urumqi = SEED.replace("\"id\": \"330100\"", "\"id\": \"650100\"");
+        let d = scene_from_service_json(&urumqi, &Scene::default()).unwrap();
+        assert_eq!(d.scene.sky.latitude_deg, Some(43.8256));
+        let ningbo = SEED
+            .replace("\"id\": \"330100\"", "\"id\": \"999999\"")
+            .replace("杭州", "宁波");
+        let d = scene_from_service_json(&ningbo, &Scene::default()).unwrap();
+        assert_eq!(d.scene.sky.longitude_deg, Some(121.5440));
+        let nowhere = SEED
+            .replace("\"id\": \"330100\"", "\"id\": \"999999\"")
+            .replace("杭州", "台州");
+        let d = scene_from_service_json(&nowhere, &Scene::default()).unwrap();
+        assert!(d.scene.sky.is_unset());
+        assert!(
+            d.notes.iter().any(|n| n.contains("not a known city")),
+            "{:?}",
+            d.notes
+        );
+    }
+
+    #[test]
+    fn a_bad_uptime_is_named() {
+        for bad in ["2023032420200", "2023-03-24 20:20", "20231324202000"] {
+            let e =
+                scene_from_service_json(&SEED.replace("20230324202000", bad), &Scene::default())
+                    .unwrap_err()
+                    .to_string();
+            assert!(e.contains("uptime") && e.contains(bad), "{bad}: {e}");
+        }
     }
 
     #[test]
