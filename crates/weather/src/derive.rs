@@ -4,6 +4,7 @@
 
 use stratus_scene::{CloudLayer, MAX_EXTRA_LAYERS, Scene};
 
+use crate::haze;
 use crate::metar::{CloudGroup, Convective, Cover, Intensity, Metar};
 use crate::states::{
     self, WeatherState, coverage_for_fraction, fog_density_for_visibility, fog_layer,
@@ -132,6 +133,71 @@ fn precipitation(m: &Metar) -> f64 {
         .fold(0.0, f64::max)
 }
 
+/// The aerosol of the physical sky from the report's visibility, or from a haze, smoke, dust
+/// or mist group without one. Not where a fog layer is drawn: that layer holds the visibility.
+fn haze_from_metar(m: &Metar, fog_drawn: bool, scene: &mut Scene, notes: &mut Vec<String>) {
+    let present = |codes: &[&'static str]| -> Option<&'static str> {
+        m.weather.iter().find_map(|w| {
+            (w.intensity != Intensity::InVicinity)
+                .then(|| codes.iter().find(|c| w.has(c)).copied())
+                .flatten()
+        })
+    };
+    let named = present(&["FU", "VA", "DU", "SA", "HZ", "BR", "FG"]);
+    let visibility = m.visibility_m.filter(|v| *v < haze::CLEAR_VISIBILITY_M);
+    if fog_drawn {
+        return;
+    }
+    let (v, why) = match (visibility, named) {
+        (Some(v), _) => (v, format!("visibility {v:.0} m")),
+        (None, Some(code)) => (
+            haze::HAZE_VISIBILITY_M,
+            format!(
+                "{code} without a visibility: {:.0} m",
+                haze::HAZE_VISIBILITY_M
+            ),
+        ),
+        (None, None) => return,
+    };
+    let precipitating = present(&["RA", "DZ", "SN", "SG", "PL", "GS", "GR"]).is_some();
+    let kind = match named {
+        Some("FU" | "VA") => haze::Aerosol::Smoke,
+        Some("DU" | "SA") => haze::Aerosol::Dust,
+        Some("BR" | "FG") => haze::Aerosol::Water,
+        _ if precipitating => haze::Aerosol::Water,
+        _ => haze::Aerosol::Continental,
+    };
+    apply_haze(scene, v, kind, &why, notes);
+}
+
+/// Sets `scene`'s aerosol for visibility `v` of `kind`, with a note (and one more where the
+/// scene's analytic sky will not show it).
+pub(crate) fn apply_haze(
+    scene: &mut Scene,
+    v: f64,
+    kind: haze::Aerosol,
+    why: &str,
+    notes: &mut Vec<String>,
+) {
+    match haze::hazy_air(&scene.atmosphere.air, v, kind) {
+        Some(air) => {
+            notes.push(format!(
+                "haze: {why} -> aerosol extinction {:.3e}/m at the ground ({}, single-scattering albedo {}; Koschmieder: 3.912 / extinction)",
+                air.mie_scattering + air.mie_absorption,
+                kind.name(),
+                kind.albedo()
+            ));
+            scene.atmosphere.air = air;
+            if !scene.atmosphere.sky.is_physical() {
+                notes.push(
+                    "haze: the analytic sky has no air to thicken; it shows with a physical-sky base (`--preset noon`)".into(),
+                );
+            }
+        }
+        None => notes.push(format!("haze: {why}: the air is already that hazy, kept")),
+    }
+}
+
 /// The scene for report `m`, built on `base` (its camera, sun, noise, lighting model and
 /// quality are kept).
 pub fn scene_from_metar(m: &Metar, base: &Scene) -> Derived {
@@ -176,6 +242,29 @@ pub fn scene_from_metar(m: &Metar, base: &Scene) -> Derived {
             continue;
         };
         groups.push((b, *g));
+    }
+    // A vertical visibility (`VV005`) says the sky is hidden by what hangs from the ground up:
+    // without cloud groups that height is the obscured deck's base, unless fog or mist is
+    // reported, whose ground layer (below) is the obscuration.
+    let fog_reported = m
+        .weather
+        .iter()
+        .any(|w| w.intensity != Intensity::InVicinity && (w.has("FG") || w.has("BR")));
+    if let Some(vv) = m.vertical_visibility_m {
+        if groups.is_empty() && !fog_reported {
+            notes.push(format!(
+                "VV{:03}: the sky is obscured -> an overcast base at {vv:.0} m",
+                (vv / 30.48).round()
+            ));
+            groups.push((
+                vv,
+                CloudGroup {
+                    cover: Cover::Overcast,
+                    base_m: Some(vv),
+                    convective: None,
+                },
+            ));
+        }
     }
     groups.sort_by(|a, b| a.0.total_cmp(&b.0));
     let mut merged: Vec<(f64, CloudGroup)> = Vec::new();
@@ -286,6 +375,8 @@ pub fn scene_from_metar(m: &Metar, base: &Scene) -> Derived {
             notes.push("fog: no room below the lowest layer; not drawn".into());
         }
     }
+
+    haze_from_metar(m, fog_layer_opt.is_some(), &mut scene, &mut notes);
 
     // The lowest cloud group is the main layer (its geometry is `[atmosphere]`, its weather
     // `[clouds]`); the other groups and the fog are extra layers. Fog alone keeps the state's

@@ -6,9 +6,12 @@
 //!   ground fog from its visibility.
 //! - [`scene_from_service_json`] does the same for seed 001's weather-service JSON
 //!   (condition text and Beaufort wind class).
+//! - [`haze`] turns a reported visibility, or a haze, smoke, dust or mist group, into the
+//!   physical sky's aerosol (Koschmieder).
 //! - [`states::WeatherParams::transition`] blends two states with smoothstep easing.
 
 mod derive;
+pub mod haze;
 pub mod metar;
 mod service;
 pub mod states;

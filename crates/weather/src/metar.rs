@@ -29,6 +29,10 @@ use serde::Serialize;
 
 /// Metres per foot: cloud bases and vertical visibility are reported in hundreds of feet.
 const M_PER_FT: f64 = 0.3048;
+/// The highest cloud base (or vertical visibility) a report may give, metres: above the
+/// tropopause (at most about 18 km, in the tropics) no cloud of the weather forms.
+pub const MAX_CLOUD_BASE_M: f64 = 20_000.0;
+
 /// Metres per statute mile (US and Canadian visibility).
 const M_PER_SM: f64 = 1609.344;
 /// Metres per second per knot.
@@ -644,6 +648,9 @@ fn clouds(tokens: &[Token<'_>], metar: &mut Metar) -> Result<Option<usize>, &'st
         return Ok(Some(1));
     }
     if let Some(height) = b.strip_prefix(b"VV").and_then(hundreds_of_feet) {
+        if height.is_some_and(|h| h > MAX_CLOUD_BASE_M) {
+            return Err("a vertical visibility above 20 km: no cloud or fog reaches there");
+        }
         metar.vertical_visibility_m = height;
         return Ok(Some(1));
     }
@@ -661,6 +668,11 @@ fn clouds(tokens: &[Token<'_>], metar: &mut Metar) -> Result<Option<usize>, &'st
     let Some(base_m) = hundreds_of_feet(height) else {
         return Ok(None);
     };
+    if base_m.is_some_and(|h| h > MAX_CLOUD_BASE_M) {
+        return Err(
+            "a cloud base above 20 km: no cloud forms there (the tropopause is at most about 18 km)",
+        );
+    }
     let convective = match kind {
         b"" | b"///" => None,
         b"CB" => Some(Convective::Cumulonimbus),

@@ -7,13 +7,13 @@
 use serde_json::Value;
 use stratus_scene::Scene;
 
-use crate::WeatherError;
 use crate::derive::Derived;
 use crate::states::{self};
+use crate::{WeatherError, haze};
 
 /// Condition texts (Chinese as the service sends them, and English) and their states. The
 /// first entry whose text the condition contains wins, so the specific ones come first.
-const CONDITIONS: [(&str, &str); 24] = [
+const CONDITIONS: [(&str, &str); 30] = [
     ("雷", "thunderstorm"),
     ("thunder", "thunderstorm"),
     ("雪", "snow"),
@@ -28,6 +28,12 @@ const CONDITIONS: [(&str, &str); 24] = [
     ("霾", "mist"),
     ("mist", "mist"),
     ("haze", "mist"),
+    ("沙", "mist"),
+    ("尘", "mist"),
+    ("dust", "mist"),
+    ("sand", "mist"),
+    ("烟", "mist"),
+    ("smoke", "mist"),
     ("阴", "overcast"),
     ("overcast", "overcast"),
     ("多云", "scattered"),
@@ -212,12 +218,60 @@ pub fn scene_from_service_json(json: &str, base: &Scene) -> Result<Derived, Weat
             notes.push(format!("wind direction {dir:?}: none recognised, kept"));
         }
     }
+    haze_from_json(now, &lower, &mut scene, &mut notes)?;
     place(&v, now, &mut scene, &mut notes)?;
     Ok(Derived {
         scene,
         state,
         notes,
     })
+}
+
+/// The aerosol from the reading's visibility (`result.now.vis`, metres) or, without one, from
+/// a haze, dust or smoke condition (霾, 沙, 尘, 烟).
+fn haze_from_json(
+    now: &Value,
+    condition: &str,
+    scene: &mut Scene,
+    notes: &mut Vec<String>,
+) -> Result<(), WeatherError> {
+    let has = |words: &[&str]| words.iter().any(|w| condition.contains(w));
+    let kind = if has(&["烟", "smoke"]) {
+        haze::Aerosol::Smoke
+    } else if has(&["沙", "尘", "dust", "sand"]) {
+        haze::Aerosol::Dust
+    } else if has(&[
+        "雨", "雪", "雾", "rain", "snow", "drizzle", "shower", "fog", "mist",
+    ]) {
+        haze::Aerosol::Water
+    } else {
+        haze::Aerosol::Continental
+    };
+    let named = has(&["霾", "haze", "沙", "尘", "dust", "sand", "烟", "smoke"]);
+    let visibility = match now.get("vis") {
+        None | Some(Value::Null) => None,
+        Some(v) => {
+            let m = v.as_f64().filter(|m| *m > 0.0 && m.is_finite()).ok_or_else(|| {
+                json_error(format!(
+                    "`result.now.vis` = {v}: expected the visibility in metres, a positive number"
+                ))
+            })?;
+            Some(m)
+        }
+    };
+    let (v, why) = match (visibility.filter(|v| *v < haze::CLEAR_VISIBILITY_M), named) {
+        (Some(v), _) => (v, format!("visibility {v:.0} m")),
+        (None, true) if visibility.is_none() => (
+            haze::HAZE_VISIBILITY_M,
+            format!(
+                "condition {condition:?} without a visibility: {:.0} m",
+                haze::HAZE_VISIBILITY_M
+            ),
+        ),
+        _ => return Ok(()),
+    };
+    crate::derive::apply_haze(scene, v, kind, &why, notes);
+    Ok(())
 }
 
 /// The city and the reading's time, into the scene's `[sky]`: the sun (and moon) of that place
@@ -346,6 +400,38 @@ mod tests {
             "{:?}",
             d.notes
         );
+    }
+
+    #[test]
+    fn the_readings_visibility_or_a_haze_condition_sets_the_aerosol() {
+        let with_vis = SEED.replace("\"rh\": 81,", "\"rh\": 81, \"vis\": 4000,");
+        let d = scene_from_service_json(&with_vis, &Scene::default()).unwrap();
+        assert!((haze::visibility(&d.scene.atmosphere.air) - 4000.0).abs() < 1e-6);
+        // 霾 (haze) without a visibility: the least haze it says there is.
+        let d = scene_from_service_json(&SEED.replace("多云", "霾"), &Scene::default()).unwrap();
+        assert!((haze::visibility(&d.scene.atmosphere.air) - haze::HAZE_VISIBILITY_M).abs() < 1e-6);
+        // 浮尘 (floating dust): dust aerosol.
+        let d = scene_from_service_json(&SEED.replace("多云", "浮尘"), &Scene::default()).unwrap();
+        let air = &d.scene.atmosphere.air;
+        let albedo = air.mie_scattering / (air.mie_scattering + air.mie_absorption);
+        assert!((albedo - haze::Aerosol::Dust.albedo()).abs() < 1e-12);
+        // Clear readings keep the clean air; a bad visibility is named.
+        let far = SEED.replace("\"rh\": 81,", "\"rh\": 81, \"vis\": 25000,");
+        let d = scene_from_service_json(&far, &Scene::default()).unwrap();
+        assert!(d.scene.atmosphere.air.is_earth());
+        assert!(
+            scene_from_service_json(SEED, &Scene::default())
+                .unwrap()
+                .scene
+                .atmosphere
+                .air
+                .is_earth()
+        );
+        let bad = SEED.replace("\"rh\": 81,", "\"rh\": 81, \"vis\": \"far\",");
+        let e = scene_from_service_json(&bad, &Scene::default())
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("result.now.vis"), "{e}");
     }
 
     #[test]

@@ -105,3 +105,65 @@ fn a_group_at_the_ground_is_the_main_layer() {
     assert_eq!(d.scene.clouds.layers.len(), 3);
     assert_eq!(d.scene.clouds.layers[2].bottom_m, 0.0);
 }
+
+#[test]
+fn a_reported_visibility_or_haze_group_thickens_the_air_by_koschmieder() {
+    use stratus_weather::haze;
+    // Haze at 3000 m: the air near the ground sees 3000 m, with continental aerosol.
+    let d = derive("ZSHC 240000Z 36004MPS 3000 HZ SCT040 12/08 Q1022");
+    let air = &d.scene.atmosphere.air;
+    assert!((haze::visibility(air) - 3000.0).abs() < 1e-6, "{air:?}");
+    let albedo = air.mie_scattering / (air.mie_scattering + air.mie_absorption);
+    assert!((albedo - haze::Aerosol::Continental.albedo()).abs() < 1e-12);
+    assert!(
+        d.notes
+            .iter()
+            .any(|n| n.contains("haze: visibility 3000 m")),
+        "{:?}",
+        d.notes
+    );
+    // Smoke without a visibility: the least haze FU says there is, with sooty aerosol.
+    let d = derive("KLAX 240000Z 25005KT FU SCT040 22/10 A2992");
+    let air = &d.scene.atmosphere.air;
+    assert!((haze::visibility(air) - haze::HAZE_VISIBILITY_M).abs() < 1e-6);
+    assert!(air.mie_absorption / (air.mie_scattering + air.mie_absorption) > 0.15);
+    // Rain that hides the distance: water, which hardly absorbs.
+    let d = derive("KMIA 271853Z 09012KT 2SM +TSRA BKN025CB 26/24 A2992");
+    let air = &d.scene.atmosphere.air;
+    assert!((haze::visibility(air) - 2.0 * 1609.344).abs() < 1e-6);
+    assert!(air.mie_absorption / (air.mie_scattering + air.mie_absorption) < 0.02);
+    // 10 km or more, CAVOK: the clean air is kept.
+    for report in [
+        "EGLL 240000Z 24010KT 9999 SCT040 12/08 Q1022",
+        "EGLL 240000Z 24010KT CAVOK 12/08 Q1022",
+    ] {
+        assert!(derive(report).scene.atmosphere.air.is_earth(), "{report}");
+    }
+    // Mist with room for its ground layer: the layer holds the visibility, not the air.
+    let d = derive("EGLL 240000Z 24003KT 2000 BR BKN030 08/07 Q1022");
+    assert!(d.scene.atmosphere.air.is_earth());
+    assert!(d.scene.clouds.layers.iter().any(|l| l.bottom_m == 0.0));
+}
+
+#[test]
+fn a_vertical_visibility_is_an_obscured_base_and_impossible_heights_are_refused() {
+    // Heavy snow hides the sky from 500 ft up: the deck's base is there.
+    let d = derive("CYUL 221700Z 03012KT 1/4SM +SN VV005 M05/M07 A3001");
+    assert!((d.scene.atmosphere.cloud_bottom_m - 5.0 * 30.48).abs() < 1e-6);
+    assert!(d.notes.iter().any(|n| n.contains("VV005")), "{:?}", d.notes);
+    // The snow's 400 m is in the air, as water (ice) that hardly absorbs.
+    let v = stratus_weather::haze::visibility(&d.scene.atmosphere.air);
+    assert!((v - 0.25 * 1609.344).abs() < 1e-6, "{v}");
+    // Fog with a vertical visibility keeps its ground layer as the obscuration.
+    let d = derive("EDDF 221650Z 05003KT 0200 FG VV001 02/02 Q1025");
+    assert!(d.scene.clouds.layers.iter().any(|l| l.bottom_m == 0.0));
+    for (report, token) in [
+        ("KJFK 221651Z 31012KT 10SM FEW700 12/M02 A3012", "FEW700"),
+        ("KJFK 221651Z 31012KT 1SM FG VV800 12/M02 A3012", "VV800"),
+    ] {
+        let e = scene_from_metar_text(report, &Scene::default())
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains(token) && e.contains("20 km"), "{report}: {e}");
+    }
+}

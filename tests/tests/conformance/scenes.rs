@@ -113,6 +113,20 @@ pub fn all() -> Vec<Case> {
             },
         ),
         stress(
+            "haze",
+            "3000 m of continental haze from a METAR (HZ) in the physical sky: the aerosol Koschmieder's relation gives",
+            |s| {
+                s.atmosphere.sky = stratus_scene::SkyModel::Physical;
+                s.camera.auto_exposure = true;
+                s.atmosphere.air = stratus_weather::haze::hazy_air(
+                    &s.atmosphere.air,
+                    3000.0,
+                    stratus_weather::haze::Aerosol::Continental,
+                )
+                .expect("3000 m is hazier than the clean air");
+            },
+        ),
+        stress(
             "method-basic",
             "baseline: the basic tutorial ray marcher (GPU only)",
             |s| s.quality.method = Method::Basic,
