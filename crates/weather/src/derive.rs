@@ -157,7 +157,14 @@ fn haze_from_metar(m: &Metar, fog_drawn: bool, scene: &mut Scene, notes: &mut Ve
                 haze::HAZE_VISIBILITY_M
             ),
         ),
-        (None, None) => return,
+        (None, None) => {
+            // Only the humidity, from the temperature and dew point: the clean air's aerosol
+            // grown to it.
+            if let (Some(t), Some(d)) = (m.temperature_c, m.dewpoint_c) {
+                crate::service::humid(scene, haze::relative_humidity(t, d), notes);
+            }
+            return;
+        }
     };
     let precipitating = present(&["RA", "DZ", "SN", "SG", "PL", "GS", "GR"]).is_some();
     let kind = match named {

@@ -248,30 +248,76 @@ fn haze_from_json(
         haze::Aerosol::Continental
     };
     let named = has(&["霾", "haze", "沙", "尘", "dust", "sand", "烟", "smoke"]);
-    let visibility = match now.get("vis") {
-        None | Some(Value::Null) => None,
-        Some(v) => {
-            let m = v.as_f64().filter(|m| *m > 0.0 && m.is_finite()).ok_or_else(|| {
+    // A number the reading may give, within `range`, or an error naming it.
+    let number = |key: &str, range: std::ops::RangeInclusive<f64>, what: &str| match now.get(key) {
+        None | Some(Value::Null) => Ok(None),
+        Some(v) => v
+            .as_f64()
+            .filter(|x| range.contains(x))
+            .map(Some)
+            .ok_or_else(|| {
                 json_error(format!(
-                    "`result.now.vis` = {v}: expected the visibility in metres, a positive number"
+                    "`result.now.{key}` = {v}: expected {what}, a number in {}..={}",
+                    range.start(),
+                    range.end()
                 ))
-            })?;
-            Some(m)
-        }
+            }),
     };
-    let (v, why) = match (visibility.filter(|v| *v < haze::CLEAR_VISIBILITY_M), named) {
-        (Some(v), _) => (v, format!("visibility {v:.0} m")),
-        (None, true) if visibility.is_none() => (
+    let visibility = number("vis", 1.0..=1e6, "the visibility in metres")?;
+    let rh = number("rh", 0.0..=100.0, "the relative humidity in percent")?.map(|p| p / 100.0);
+    let pm25 = number("pm25", 0.0..=5000.0, "PM2.5 in µg/m³")?;
+    let rayleigh = scene.atmosphere.air.rayleigh_scattering[1];
+    let (v, why) = match (visibility, pm25) {
+        // A measured visibility under 10 km says it all.
+        (Some(v), _) if v < haze::CLEAR_VISIBILITY_M => (v, format!("visibility {v:.0} m")),
+        // Fine particles, grown by the humidity (50% where none is given).
+        (_, Some(pm)) => {
+            let h = rh.unwrap_or(0.5);
+            let v = haze::visibility_for_pm25(pm, h, rayleigh).max(visibility.unwrap_or(0.0));
+            (
+                v,
+                format!(
+                    "PM2.5 {pm} µg/m³ at {:.0}% humidity{} -> visibility {v:.0} m ({} m²/g dry, growth {:.2})",
+                    100.0 * h,
+                    if rh.is_none() {
+                        " (none given: 50%)"
+                    } else {
+                        ""
+                    },
+                    haze::PM25_EFFICIENCY_M2_PER_G,
+                    haze::growth(h)
+                ),
+            )
+        }
+        (None, None) if named => (
             haze::HAZE_VISIBILITY_M,
             format!(
                 "condition {condition:?} without a visibility: {:.0} m",
                 haze::HAZE_VISIBILITY_M
             ),
         ),
-        _ => return Ok(()),
+        _ => {
+            // Only the humidity: the clean air's aerosol grown to it.
+            if let Some(h) = rh {
+                humid(scene, h, notes);
+            }
+            return Ok(());
+        }
     };
     crate::derive::apply_haze(scene, v, kind, &why, notes);
     Ok(())
+}
+
+/// The scene's aerosol grown to relative humidity `rh` (0-1), with a note.
+pub(crate) fn humid(scene: &mut Scene, rh: f64, notes: &mut Vec<String>) {
+    scene.atmosphere.air = haze::humid_air(&scene.atmosphere.air, rh);
+    notes.push(format!(
+        "humidity {:.0}%: the aerosol grows {:.2}x (Kasten 1969, exponent {}) -> visibility {:.0} km",
+        100.0 * rh,
+        haze::growth(rh),
+        haze::GROWTH_EXPONENT,
+        haze::visibility(&scene.atmosphere.air) / 1000.0
+    ));
 }
 
 /// The city and the reading's time, into the scene's `[sky]`: the sun (and moon) of that place
@@ -415,18 +461,37 @@ mod tests {
         let air = &d.scene.atmosphere.air;
         let albedo = air.mie_scattering / (air.mie_scattering + air.mie_absorption);
         assert!((albedo - haze::Aerosol::Dust.albedo()).abs() < 1e-12);
-        // Clear readings keep the clean air; a bad visibility is named.
+        // A clear, humid reading: the clean air's aerosol grown by 81% humidity (2.24x), still
+        // a visibility of about 120 km.
         let far = SEED.replace("\"rh\": 81,", "\"rh\": 81, \"vis\": 25000,");
-        let d = scene_from_service_json(&far, &Scene::default()).unwrap();
-        assert!(d.scene.atmosphere.air.is_earth());
-        assert!(
-            scene_from_service_json(SEED, &Scene::default())
-                .unwrap()
-                .scene
-                .atmosphere
-                .air
-                .is_earth()
-        );
+        for json in [far.as_str(), SEED] {
+            let d = scene_from_service_json(json, &Scene::default()).unwrap();
+            let air = &d.scene.atmosphere.air;
+            let grown = air.mie_scattering / stratus_scene::Air::default().mie_scattering;
+            assert!((grown - haze::growth(0.81)).abs() < 1e-12, "{grown}");
+            assert!((100e3..140e3).contains(&haze::visibility(air)));
+            assert!(
+                d.notes.iter().any(|n| n.contains("humidity 81%")),
+                "{:?}",
+                d.notes
+            );
+        }
+        // PM2.5 at the reading's humidity: Koschmieder's visibility of the grown particles.
+        let smog = SEED.replace("\"rh\": 81,", "\"rh\": 81, \"pm25\": 150,");
+        let d = scene_from_service_json(&smog, &Scene::default()).unwrap();
+        let expected = haze::visibility_for_pm25(150.0, 0.81, 13.558e-6);
+        assert!((haze::visibility(&d.scene.atmosphere.air) - expected).abs() < 1e-6);
+        assert!((3e3..5e3).contains(&expected), "{expected}");
+        // A measured visibility wins over PM2.5.
+        let both = SEED.replace("\"rh\": 81,", "\"rh\": 81, \"pm25\": 150, \"vis\": 8000,");
+        let d = scene_from_service_json(&both, &Scene::default()).unwrap();
+        assert!((haze::visibility(&d.scene.atmosphere.air) - 8000.0).abs() < 1e-6);
+        for (bad, key) in [("\"rh\": 181", "rh"), ("\"rh\": \"wet\"", "rh")] {
+            let e = scene_from_service_json(&SEED.replace("\"rh\": 81", bad), &Scene::default())
+                .unwrap_err()
+                .to_string();
+            assert!(e.contains(&format!("result.now.{key}")), "{e}");
+        }
         let bad = SEED.replace("\"rh\": 81,", "\"rh\": 81, \"vis\": \"far\",");
         let e = scene_from_service_json(&bad, &Scene::default())
             .unwrap_err()

@@ -132,12 +132,20 @@ fn a_reported_visibility_or_haze_group_thickens_the_air_by_koschmieder() {
     let air = &d.scene.atmosphere.air;
     assert!((haze::visibility(air) - 2.0 * 1609.344).abs() < 1e-6);
     assert!(air.mie_absorption / (air.mie_scattering + air.mie_absorption) < 0.02);
-    // 10 km or more, CAVOK: the clean air is kept.
+    // 10 km or more, CAVOK: the clean air, its aerosol grown by the humidity of 12/08 (77%,
+    // Magnus), still seeing over 100 km.
     for report in [
         "EGLL 240000Z 24010KT 9999 SCT040 12/08 Q1022",
         "EGLL 240000Z 24010KT CAVOK 12/08 Q1022",
     ] {
-        assert!(derive(report).scene.atmosphere.air.is_earth(), "{report}");
+        let air = derive(report).scene.atmosphere.air;
+        let grown = air.mie_scattering / stratus_scene::Air::default().mie_scattering;
+        let rh = haze::relative_humidity(12.0, 8.0);
+        assert!(
+            (grown - haze::growth(rh)).abs() < 1e-12,
+            "{report}: {grown}"
+        );
+        assert!(haze::visibility(&air) > 100e3, "{report}");
     }
     // Mist with room for its ground layer: the layer holds the visibility, not the air.
     let d = derive("EGLL 240000Z 24003KT 2000 BR BKN030 08/07 Q1022");
