@@ -1,6 +1,6 @@
 //! `stratus`: render, inspect and compare volumetric clouds.
 
-use stratus_lab::{bench, export_volume as export, fit, gpu_bench, soak};
+use stratus_lab::{bench, export_volume as export, fit, gpu_bench, measure_field, soak};
 use stratus_tool::{animate, astro, compare, inspect, kit, render, weather};
 use stratus_viewer as view;
 
@@ -52,6 +52,10 @@ enum Command {
     /// 1/16, at 1080p and 4K; median GPU ms per pass and per frame, CPU ms per frame, and
     /// density evaluations and light samples per pixel; writes results.json and table.md.
     GpuBench(gpu_bench::GpuBenchArgs),
+    /// A cloud field's statistics seen straight down: the number of clouds, the
+    /// area-perimeter dimension D and the size density's exponent b, against what real cloud
+    /// fields measure.
+    MeasureField(measure_field::MeasureFieldArgs),
     /// Validate the embedded WGSL with naga and list its modules, variants and entry points.
     Shaders,
     /// Turn weather into a scene: a METAR report (cloud groups become cloud layers), a
@@ -92,6 +96,7 @@ fn main() -> ExitCode {
         Command::ExportKit(args) => kit::run(args),
         Command::Soak(args) => soak::run(args),
         Command::GpuBench(args) => gpu_bench::run(args),
+        Command::MeasureField(args) => measure_field::run(args),
         Command::Weather(args) => weather::run(args),
         Command::Astro(args) => astro::run(args),
         Command::View(args) => view::run(args),
