@@ -82,6 +82,40 @@ pub fn moon_phase(t: UtcDateTime) -> f64 {
     ephemeris::moon_illuminated_fraction(t)
 }
 
+/// The debug readout of a place and instant (seed 001's "city, date, place, weather state,
+/// sunrise and sunset times and moon phase", less what the caller knows): the sun's elevation
+/// and azimuth, that local day's sunrise and sunset as clock times at `utc_offset_h` hours from
+/// UTC, and how much of the moon is lit.
+pub fn readout(place: Place, t: UtcDateTime, utc_offset_h: f64) -> String {
+    let s = sun(place, t);
+    let day = sun_events(place, t);
+    let clock = |e: Option<UtcDateTime>| {
+        e.map_or_else(
+            || "none".to_string(),
+            |e| {
+                let (_, _, _, h, m, _) = e.plus_seconds(utc_offset_h * 3600.0).calendar();
+                format!("{h:02}:{m:02}")
+            },
+        )
+    };
+    let zone = if utc_offset_h == 0.0 {
+        "UTC".to_string()
+    } else {
+        format!("UTC{utc_offset_h:+}")
+    };
+    let day_text = match (day.sunrise, day.sunset) {
+        (None, None) if day.always_up => "polar day".to_string(),
+        (None, None) => "polar night".to_string(),
+        (rise, set) => format!("sunrise {} and sunset {} ({zone})", clock(rise), clock(set)),
+    };
+    format!(
+        "sun elevation {:.2} deg, azimuth {:.2} deg; {day_text}; moon {:.0}% lit",
+        s.elevation_deg,
+        s.azimuth_deg,
+        100.0 * moon_phase(t)
+    )
+}
+
 /// The sun's geometric elevation at sunrise and sunset: its upper limb on the horizon, with
 /// the standard 34' of refraction and 16' of semi-diameter (-0.833 degrees, as almanacs use).
 pub const SUNRISE_ELEVATION_DEG: f64 = -0.833;

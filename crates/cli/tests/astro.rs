@@ -43,6 +43,14 @@ fn astro_prints_the_sun_moon_and_day_as_json() {
     };
     assert!(s("/sunrise_utc").starts_with("2026-06-21T01:3"), "{text}");
     assert!(s("/sunset_utc").starts_with("2026-06-21T20:0"), "{text}");
+    // The debug readout in one line: the same day on a UTC clock, and the moon.
+    let readout = s("/readout");
+    assert!(
+        readout.contains("sunrise 01:3")
+            && readout.contains("sunset 20:0")
+            && readout.contains("% lit"),
+        "{text}"
+    );
 
     // South of the Antarctic circle in June: no sunrise, said so.
     let (ok, text) = stratus(&[

@@ -49,7 +49,7 @@ fn the_services_json_sets_the_citys_sky_and_prints_the_debug_readout() {
     for part in [
         "place: 杭州 (Hangzhou, 330100)",
         "state: scattered",
-        "sunrise 05:59 and sunset 18:12 local",
+        "sunrise 05:59 and sunset 18:12 (UTC+8)",
         "moon 10% lit",
     ] {
         assert!(text.contains(part), "{part}: {text}");

@@ -53,6 +53,7 @@ pub fn run(args: AstroArgs) -> Result<()> {
             (None, None) => "polar night: the sun does not rise",
             _ => "the local solar day (UTC + longitude/15 h) holding the date",
         },
+        "readout": stratus_astro::readout(place, t, 0.0),
         "notes": "elevations are geometric (no refraction); azimuths clockwise from north; sunrise and sunset put the sun's upper limb on the horizon (geometric elevation -0.833 degrees)",
     });
     println!("{}", serde_json::to_string_pretty(&json)?);

@@ -1,4 +1,5 @@
-//! The egui overlay: pass timings, and the controls over the scene, method, quality and sky.
+//! The egui overlay: pass timings, a dated sky's readout (date, place, sun, sunrise and sunset,
+//! moon), and the controls over the scene, method, quality and sky.
 
 use crate::*;
 
@@ -52,6 +53,14 @@ impl ViewState {
                     c.pitch_deg,
                     self.speed_m_s
                 ));
+                // A dated sky: the debug readout of its date and place (seed 001's).
+                if let Some((t, place)) = self.scene.sky.when_and_where() {
+                    ui.label(format!(
+                        "{t} at {:.2}, {:.2}",
+                        place.latitude_deg, place.longitude_deg
+                    ));
+                    ui.label(stratus_astro::readout(place, t, 0.0));
+                }
                 egui::CollapsingHeader::new("controls")
                     .default_open(self.controls_open)
                     .show(ui, |ui| {

@@ -372,22 +372,11 @@ fn place(
     // place and time, and the day's sunrise and sunset in local time.
     let at = stratus_astro::Place::new(city.latitude_deg, city.longitude_deg)
         .map_err(|e| json_error(format!("{}: {e}", city.names[2])))?;
-    let sun = stratus_astro::sun(at, date);
-    let day = stratus_astro::sun_events(at, date);
-    let local = |t: Option<stratus_astro::UtcDateTime>| {
-        t.map_or("none".to_string(), |t| {
-            let (_, _, _, h, m, _) = t.plus_seconds(city.utc_offset_h * 3600.0).calendar();
-            format!("{h:02}:{m:02}")
-        })
-    };
     notes.push(format!(
-        "sun at the reading: elevation {:.2} deg, azimuth {:.2} deg; sunrise {} and sunset {} local; moon {:.0}% lit",
-        sun.elevation_deg,
-        sun.azimuth_deg,
-        local(day.sunrise),
-        local(day.sunset),
-        100.0 * stratus_astro::moon_phase(date)
+        "at the reading: {}",
+        stratus_astro::readout(at, date, city.utc_offset_h)
     ));
+    let sun = stratus_astro::sun(at, date);
     if sun.elevation_deg < 0.0 && !scene.atmosphere.sky.is_physical() {
         notes.push(
             "the sun is down, but the base scene's analytic sky does not darken at night: take a physical-sky base (`--preset night`) for the night sky".into(),
