@@ -161,7 +161,7 @@ fn haze_from_metar(m: &Metar, fog_drawn: bool, scene: &mut Scene, notes: &mut Ve
             // Only the humidity, from the temperature and dew point: the clean air's aerosol
             // grown to it.
             if let (Some(t), Some(d)) = (m.temperature_c, m.dewpoint_c) {
-                crate::service::humid(scene, haze::relative_humidity(t, d), notes);
+                haze::humid(scene, haze::relative_humidity(t, d), notes);
             }
             return;
         }
@@ -174,35 +174,7 @@ fn haze_from_metar(m: &Metar, fog_drawn: bool, scene: &mut Scene, notes: &mut Ve
         _ if precipitating => haze::Aerosol::Water,
         _ => haze::Aerosol::Continental,
     };
-    apply_haze(scene, v, kind, &why, notes);
-}
-
-/// Sets `scene`'s aerosol for visibility `v` of `kind`, with a note (and one more where the
-/// scene's analytic sky will not show it).
-pub(crate) fn apply_haze(
-    scene: &mut Scene,
-    v: f64,
-    kind: haze::Aerosol,
-    why: &str,
-    notes: &mut Vec<String>,
-) {
-    match haze::hazy_air(&scene.atmosphere.air, v, kind) {
-        Some(air) => {
-            notes.push(format!(
-                "haze: {why} -> aerosol extinction {:.3e}/m at the ground ({}, single-scattering albedo {}; Koschmieder: 3.912 / extinction)",
-                air.mie_scattering + air.mie_absorption,
-                kind.name(),
-                kind.albedo()
-            ));
-            scene.atmosphere.air = air;
-            if !scene.atmosphere.sky.is_physical() {
-                notes.push(
-                    "haze: the analytic sky has no air to thicken; it shows with a physical-sky base (`--preset noon`)".into(),
-                );
-            }
-        }
-        None => notes.push(format!("haze: {why}: the air is already that hazy, kept")),
-    }
+    haze::apply(scene, v, kind, &why, notes);
 }
 
 /// The scene for report `m`, built on `base` (its camera, sun, noise, lighting model and

@@ -2,7 +2,7 @@
 //! physical sky's aerosol (the Mie terms of `[atmosphere.air]`) so that the air near the ground
 //! has the extinction Koschmieder's relation gives for that visibility.
 
-use stratus_scene::Air;
+use stratus_scene::{Air, Scene};
 
 /// Koschmieder's constant: visibility = 3.912 / extinction, for the 2% contrast threshold at
 /// which a dark object on the horizon disappears (Koschmieder 1924; WMO's meteorological
@@ -133,6 +133,40 @@ pub fn humid_air(air: &Air, rh: f64) -> Air {
         mie_absorption: air.mie_absorption * g,
         ..air.clone()
     }
+}
+
+/// Sets `scene`'s aerosol for visibility `v` of `kind`, with a note (and one more where the
+/// scene's analytic sky will not show it).
+pub fn apply(scene: &mut Scene, v: f64, kind: Aerosol, why: &str, notes: &mut Vec<String>) {
+    match hazy_air(&scene.atmosphere.air, v, kind) {
+        Some(air) => {
+            notes.push(format!(
+                "haze: {why} -> aerosol extinction {:.3e}/m at the ground ({}, single-scattering albedo {}; Koschmieder: 3.912 / extinction)",
+                air.mie_scattering + air.mie_absorption,
+                kind.name(),
+                kind.albedo()
+            ));
+            scene.atmosphere.air = air;
+            if !scene.atmosphere.sky.is_physical() {
+                notes.push(
+                    "haze: the analytic sky has no air to thicken; it shows with a physical-sky base (`--preset noon`)".into(),
+                );
+            }
+        }
+        None => notes.push(format!("haze: {why}: the air is already that hazy, kept")),
+    }
+}
+
+/// The scene's aerosol grown to relative humidity `rh` (0-1), with a note.
+pub fn humid(scene: &mut Scene, rh: f64, notes: &mut Vec<String>) {
+    scene.atmosphere.air = humid_air(&scene.atmosphere.air, rh);
+    notes.push(format!(
+        "humidity {:.0}%: the aerosol grows {:.2}x (Kasten 1969, exponent {}) -> visibility {:.0} km",
+        100.0 * rh,
+        growth(rh),
+        GROWTH_EXPONENT,
+        visibility(&scene.atmosphere.air) / 1000.0
+    ));
 }
 
 #[cfg(test)]

@@ -299,25 +299,13 @@ fn haze_from_json(
         _ => {
             // Only the humidity: the clean air's aerosol grown to it.
             if let Some(h) = rh {
-                humid(scene, h, notes);
+                haze::humid(scene, h, notes);
             }
             return Ok(());
         }
     };
-    crate::derive::apply_haze(scene, v, kind, &why, notes);
+    haze::apply(scene, v, kind, &why, notes);
     Ok(())
-}
-
-/// The scene's aerosol grown to relative humidity `rh` (0-1), with a note.
-pub(crate) fn humid(scene: &mut Scene, rh: f64, notes: &mut Vec<String>) {
-    scene.atmosphere.air = haze::humid_air(&scene.atmosphere.air, rh);
-    notes.push(format!(
-        "humidity {:.0}%: the aerosol grows {:.2}x (Kasten 1969, exponent {}) -> visibility {:.0} km",
-        100.0 * rh,
-        haze::growth(rh),
-        haze::GROWTH_EXPONENT,
-        haze::visibility(&scene.atmosphere.air) / 1000.0
-    ));
 }
 
 /// The city and the reading's time, into the scene's `[sky]`: the sun (and moon) of that place
