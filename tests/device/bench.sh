@@ -14,24 +14,8 @@
 # none (the device tool's README says how to download them).
 set -uo pipefail
 root=$(pwd)
-if [ ! -f .device/bench.tar.gz ]; then
-    echo "error: .device/bench.tar.gz is missing: run \`cargo xtask device-bench\` and carry .device" >&2
-    exit 2
-fi
-shopt -s nullglob
-# (grep without -q: with pipefail, -q's early exit would fail ldconfig with SIGPIPE.)
-if [ -d .gl ] && ! ldconfig -p | grep libvulkan.so.1 >/dev/null; then
-    for f in .gl/*.deb; do dpkg -x "$f" /; done
-    ldconfig
-fi
-bundle=$(mktemp -d)
-tar xzf .device/bench.tar.gz -C "$bundle" || exit 2
-export PATH="$bundle/bin:$PATH"
-export XDG_RUNTIME_DIR="${XDG_RUNTIME_DIR:-$(mktemp -d)}"
-icd=/usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json
-[ -f "$icd" ] && export VK_DRIVER_FILES="$icd"
-egl=/usr/local/nvidia/share/glvnd/egl_vendor.d/10_nvidia.json
-[ -f "$egl" ] && export __EGL_VENDOR_LIBRARY_FILENAMES="$egl"
+# shellcheck source=tests/device/unpack.sh
+source "$root/tests/device/unpack.sh" bench device-bench
 out="${OUT:-$root/target/device-bench}"
 mkdir -p "$out"
 rm -f "$out/table.md" "$out/results.json"

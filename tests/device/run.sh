@@ -15,26 +15,10 @@
 # target/device-out.
 set -uo pipefail
 root=$(pwd)
-if [ ! -f .device/bundle.tar.gz ]; then
-    echo "error: .device/bundle.tar.gz is missing: run \`cargo xtask device-bundle\` and carry .device" >&2
-    exit 2
-fi
-shopt -s nullglob
-# (grep without -q: with pipefail, -q's early exit would fail ldconfig with SIGPIPE.)
-if [ -d .gl ] && ! ldconfig -p | grep libvulkan.so.1 >/dev/null; then
-    for f in .gl/*.deb; do dpkg -x "$f" /; done
-    ldconfig
-fi
-bundle=$(mktemp -d)
-tar xzf .device/bundle.tar.gz -C "$bundle" || exit 2
-export PATH="$bundle/bin:$PATH"
+# shellcheck source=tests/device/unpack.sh
+source "$root/tests/device/unpack.sh" bundle device-bundle
 export VK_LAYER_PATH="$bundle/layers"
 export INSTA_WORKSPACE_ROOT="$root" INSTA_UPDATE=no
-export XDG_RUNTIME_DIR="${XDG_RUNTIME_DIR:-$(mktemp -d)}"
-icd=/usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json
-[ -f "$icd" ] && export VK_DRIVER_FILES="$icd"
-egl=/usr/local/nvidia/share/glvnd/egl_vendor.d/10_nvidia.json
-[ -f "$egl" ] && export __EGL_VENDOR_LIBRARY_FILENAMES="$egl"
 out="${OUT:-$root/target/device-out}"
 mkdir -p "$out" "$root/target"
 # A table or failure images left by an earlier run must not pass for this run's.

@@ -13,7 +13,7 @@ use anyhow::{Context as _, Result, bail};
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
 use serde::Serialize;
-use stratus_graph::{FrameInput, FramePlan, Readback};
+use stratus_graph::{FrameInput, FramePlan, Readback, output::median};
 use stratus_scene::{Scene, Temporal};
 use stratus_tool::{
     backends::{Backend, Open, open},
@@ -97,19 +97,6 @@ fn backend(name: &str) -> Result<Backend> {
         "wgpu-gl" => Backend::WgpuGl,
         other => bail!("--backends: {other:?} is not a GPU backend (wgpu, ash, wgpu-gl)"),
     })
-}
-
-fn median(mut v: Vec<f64>) -> f64 {
-    if v.is_empty() {
-        return 0.0;
-    }
-    v.sort_by(f64::total_cmp);
-    let n = v.len();
-    if n % 2 == 1 {
-        v[n / 2]
-    } else {
-        0.5 * (v[n / 2 - 1] + v[n / 2])
-    }
 }
 
 /// Runs `stratus gpu-bench`.

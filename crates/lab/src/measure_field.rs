@@ -116,6 +116,11 @@ pub struct FieldStats {
 
 /// The 4-connected components of `mask` (`width` by `height`, row-major).
 pub fn clouds(mask: &[bool], width: usize, height: usize) -> Vec<Cloud> {
+    components(mask, width, height).0
+}
+
+/// The 4-connected components of `mask`, and each pixel's component (`usize::MAX` where clear).
+fn components(mask: &[bool], width: usize, height: usize) -> (Vec<Cloud>, Vec<usize>) {
     let mut label = vec![usize::MAX; mask.len()];
     let mut out = Vec::new();
     let mut stack = Vec::new();
@@ -158,7 +163,7 @@ pub fn clouds(mask: &[bool], width: usize, height: usize) -> Vec<Cloud> {
         }
         out.push(cloud);
     }
-    out
+    (out, label)
 }
 
 /// The least-squares slope of `y` against `x`, with its standard error (`None` with fewer than
@@ -322,7 +327,7 @@ pub fn run(args: MeasureFieldArgs) -> Result<()> {
     if mask.len() != w * h {
         bail!("the renderer read back {} pixels for {w}x{h}", mask.len());
     }
-    let all = clouds(&mask, w, h);
+    let (all, labels) = components(&mask, w, h);
     let pixel_m = args.extent_m / f64::from(args.size);
     let b = size_exponent(&all, args.min_pixels, pixel_m);
     let stats = FieldStats {
@@ -348,53 +353,22 @@ pub fn run(args: MeasureFieldArgs) -> Result<()> {
         println!("wrote {}", path.display());
     }
     if let Some(path) = &args.mask {
-        let mut label = vec![0u8; w * h];
-        // Grey for clouds the border cuts: find them again by flood from the border's pixels.
-        let cut: Vec<bool> = border_clouds(&mask, w, h);
-        for i in 0..w * h {
-            label[i] = match (mask[i], cut[i]) {
-                (false, _) => 0,
-                (true, true) => 128,
-                (true, false) => 255,
-            };
-        }
-        image::GrayImage::from_raw(w as u32, h as u32, label)
+        // White for clouds inside the square, grey for those the border cuts, black clear.
+        let grey: Vec<u8> = labels
+            .iter()
+            .map(|&l| match all.get(l) {
+                None => 0,
+                Some(c) if c.cut => 128,
+                Some(_) => 255,
+            })
+            .collect();
+        image::GrayImage::from_raw(w as u32, h as u32, grey)
             .context("mask size")?
             .save(path)
             .with_context(|| format!("writing {}", path.display()))?;
         println!("wrote {}", path.display());
     }
     Ok(())
-}
-
-/// Which cloud pixels belong to clouds that touch the border.
-fn border_clouds(mask: &[bool], w: usize, h: usize) -> Vec<bool> {
-    let mut cut = vec![false; mask.len()];
-    let mut stack: Vec<usize> = (0..w * h)
-        .filter(|&i| {
-            let (x, y) = (i % w, i / w);
-            mask[i] && (x == 0 || y == 0 || x + 1 == w || y + 1 == h)
-        })
-        .collect();
-    for &i in &stack {
-        cut[i] = true;
-    }
-    while let Some(i) = stack.pop() {
-        let (x, y) = (i % w, i / w);
-        let neighbours = [
-            (x > 0).then(|| i - 1),
-            (x + 1 < w).then(|| i + 1),
-            (y > 0).then(|| i - w),
-            (y + 1 < h).then(|| i + w),
-        ];
-        for n in neighbours.into_iter().flatten() {
-            if mask[n] && !cut[n] {
-                cut[n] = true;
-                stack.push(n);
-            }
-        }
-    }
-    cut
 }
 
 fn print_stats(s: &FieldStats, min_pixels: usize) {
