@@ -44,15 +44,18 @@ fn sun_disk(d: vec3<f32>) -> vec3<f32> {
 // stands for the rest: L = a S + (1 - a) S_ap + T_ap C (Hillaire 2020, section 5.4's use of
 // the aerial-perspective volume on opaque surfaces, with partly transparent clouds).
 // With light shafts the air in front of the clouds and behind them lacks what the clouds'
-// shadows take from it (`light_shafts`).
+// shadows take from it (`light_shafts`). The rainbow, in the rain below the clouds, adds in
+// front of them (not yet over the host's geometry).
 fn physical_composite(pixel: vec2<u32>, view: vec3<f32>, cloud: vec4<f32>) -> vec3<f32> {
     let surface = has_surface(pixel);
     let shafts = composite_shafts(pixel, view, cloud.a, surface);
     var sky = surface_radiance();
+    var bow = vec3<f32>(0.0);
     if !surface {
         sky = max(physical_background(view) - shafts.all * frame.sun_illuminance, vec3<f32>(0.0));
+        bow = rainbow_radiance(view) * frame.sun_illuminance;
     }
-    return sky * cloud.a + physical_over(pixel, cloud, shafts.front);
+    return sky * cloud.a + physical_over(pixel, cloud, shafts.front) + bow;
 }
 
 // What shows behind the clouds where the host has no geometry: the sky-view table, the lit
@@ -297,11 +300,23 @@ fn surface_radiance() -> vec3<f32> {
     return vec3<f32>(0.3) * (e * max(sun.y, 0.0) / PI + 0.05 * e * day);
 }
 
-// Exposure, tone curve and gamma of a pixel's radiance, to the display image.
+// Exposure, tone curve, saturation and gamma of a pixel's radiance, to the display image.
 fn store_display(pixel: vec2<u32>, radiance: vec3<f32>) {
     let exposed = radiance * frame.exposure;
-    let display = pow(aces_fitted(exposed), vec3<f32>(1.0 / 2.2));
+    let display = pow(saturated(aces_fitted(exposed)), vec3<f32>(1.0 / 2.2));
     textureStore(image_out, pixel, vec4<f32>(display, 1.0));
+}
+
+// The tone-mapped colour `c` with its saturation scaled by `frame.saturation` (`post.saturation`,
+// seed 001's "Saturability"): moved away from its luminance (Rec. 709 weights) by that factor,
+// within [0, 1]. At 1 it is `c` itself, bit for bit.
+fn saturated(c: vec3<f32>) -> vec3<f32> {
+    let s = frame.saturation;
+    if s == 1.0 {
+        return c;
+    }
+    let y = dot(c, vec3<f32>(0.2126, 0.7152, 0.0722));
+    return clamp(vec3<f32>(y) + (c - vec3<f32>(y)) * s, vec3<f32>(0.0), vec3<f32>(1.0));
 }
 
 @compute @workgroup_size(8, 8, 1)

@@ -268,6 +268,15 @@ struct Frame {
     // The scene depth of a pixel without geometry (the far plane's: 1 standard, 0
     // reversed Z).
     scene_depth_clear: f32,
+    // Saturation of the display image (`post.saturation`; 1 leaves it).
+    saturation: f32,
+    // The Kuwahara filter's window radius, a fraction of the image's height
+    // (`post.kuwahara_radius`; 0 without the filter).
+    kuwahara_radius: f32,
+    // The rainbow's moisture (`rainbow.moisture`; 0: no rainbow).
+    rainbow_moisture: f32,
+    // The raindrops' radius (m).
+    rainbow_drop_radius: f32,
     // Padding (0).
-    _pad9: f32,
+    _pad10: f32,
 }

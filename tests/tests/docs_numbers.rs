@@ -31,8 +31,11 @@ fn readme() -> String {
         .join(" ")
 }
 
-/// "at most FLIP 0.05 on all N presets (largest: `NAME`, VALUE)": the held-out rows of
-/// `docs/fit/scenes.csv` (the fit's evaluation of every preset), their count, bound and largest.
+/// "at most FLIP 0.05 on all N presets (largest: `NAME`, VALUE)", or where some preset is
+/// above 0.05, "at most FLIP 0.05 on K of the N presets (largest: `NAME`, VALUE); above it:
+/// `NAME` (VALUE), ...": the held-out rows of `docs/fit/scenes.csv` (the fit's evaluation of
+/// every preset), their count, bound, largest within it and every one above it, so that the
+/// README says exactly which presets the model gets wrong.
 #[test]
 fn the_accuracy_claim_matches_docs_fit_scenes_csv() {
     let csv = read("docs/fit/scenes.csv");
@@ -64,22 +67,33 @@ fn the_accuracy_claim_matches_docs_fit_scenes_csv() {
         stratus_scene::presets().len(),
         "every preset is evaluated"
     );
-    let (name, value, text) = presets
+    let (within, above): (Vec<_>, Vec<_>) = presets.iter().partition(|p| p.1 <= 0.05);
+    let (name, _, text) = within
         .iter()
         .max_by(|a, b| a.1.total_cmp(&b.1))
-        .expect("presets");
-    assert!(
-        *value <= 0.05,
-        "{name} is at FLIP {value}, above the README's 0.05"
-    );
+        .expect("presets within 0.05");
     let words = [
         "", "one", "two", "three", "four", "five", "six", "seven", "eight", "nine", "ten",
-        "eleven", "twelve",
+        "eleven", "twelve", "thirteen", "fourteen", "fifteen", "sixteen",
     ];
-    let claim = format!(
-        "at most FLIP 0.05 on all {} presets (largest: `{name}`, {text})",
-        words.get(presets.len()).copied().unwrap_or("many")
-    );
+    let word = |n: usize| words.get(n).copied().unwrap_or("many");
+    let claim = if above.is_empty() {
+        format!(
+            "at most FLIP 0.05 on all {} presets (largest: `{name}`, {text})",
+            word(presets.len())
+        )
+    } else {
+        let list: Vec<String> = above
+            .iter()
+            .map(|(n, _, t)| format!("`{n}` ({t})"))
+            .collect();
+        format!(
+            "at most FLIP 0.05 on {} of the {} presets (largest: `{name}`, {text}); above it: {}",
+            word(within.len()),
+            word(presets.len()),
+            list.join(", ")
+        )
+    };
     assert!(
         readme().contains(&claim),
         "the README should say {claim:?} (from docs/fit/scenes.csv)"

@@ -203,6 +203,7 @@ fn mode_codes_and_flags_match_the_wgsl_constants() {
         ("FLAG_SCENE_DEPTH", FrameUniforms::FLAG_SCENE_DEPTH),
         ("FLAG_HDR_SKY", FrameUniforms::FLAG_HDR_SKY),
         ("FLAG_LIGHT_SHAFTS", FrameUniforms::FLAG_LIGHT_SHAFTS),
+        ("FLAG_LEE_DIAGRAM", FrameUniforms::FLAG_LEE_DIAGRAM),
     ];
     for (name, rust) in pairs {
         assert_eq!(constant(name), rust, "{name}");
@@ -430,6 +431,6 @@ fn computed_resources_list_every_uniform_member_their_pass_reads() {
             checked += 1;
         }
     }
-    // The six sky tables.
-    assert_eq!(checked, 6, "computed resources with inputs checked");
+    // The six sky tables and the rainbow's.
+    assert_eq!(checked, 7, "computed resources with inputs checked");
 }

@@ -90,8 +90,14 @@ fn assert_sane(name: &str, f: &FrameOutput) {
     );
     // The march and the composite, and under the physical sky the cloud-shadow map and its
     // six tables unless a frame before computed them for the same air, sun and camera; not the
-    // present pass, which runs only into a host's target.
-    let passes = if name_is_physical(name) { 3..=9 } else { 2..=2 };
+    // present pass, which runs only into a host's target. The stylised presets add their
+    // Kuwahara filter.
+    let styled = usize::from(Scene::preset(name).is_ok_and(|s| s.post.kuwahara));
+    let passes = if name_is_physical(name) {
+        3 + styled..=9 + styled
+    } else {
+        2 + styled..=2 + styled
+    };
     assert!(
         passes.contains(&f.timings.len()),
         "{name}: a time for every pass that ran: {:?}",
@@ -290,5 +296,262 @@ fn gl_backend_renders() {
     assert!(
         diff < 4.0,
         "GL and Vulkan images differ by {diff} on average"
+    );
+}
+
+/// The display image's luminance (Rec. 709 weights of its 8-bit levels, 0-1), row-major.
+fn display_luminance(f: &FrameOutput) -> Vec<f64> {
+    f.image
+        .chunks(4)
+        .map(|p| {
+            (0.2126 * f64::from(p[0]) + 0.7152 * f64::from(p[1]) + 0.0722 * f64::from(p[2])) / 255.0
+        })
+        .collect()
+}
+
+/// The gradient's magnitude (central differences) of a `w` x `h` image at every inner pixel
+/// (0 on the border).
+fn gradient(l: &[f64], w: usize, h: usize) -> Vec<f64> {
+    let mut g = vec![0.0; w * h];
+    for y in 1..h - 1 {
+        for x in 1..w - 1 {
+            let gx = l[y * w + x + 1] - l[y * w + x - 1];
+            let gy = l[(y + 1) * w + x] - l[(y - 1) * w + x];
+            g[y * w + x] = 0.5 * (gx * gx + gy * gy).sqrt();
+        }
+    }
+    g
+}
+
+/// The stylised presets' Kuwahara filter does what it is for (seed 001's watercolour look):
+/// inside the unfiltered image's flat regions (the half of its pixels whose 5x5
+/// neighbourhood's largest gradient is least), the fine texture's variance (the mean square of
+/// the Laplacian, which a smooth gradient does not have) falls; at the strongest edges (the
+/// top 1% of gradients) the filtered image keeps at least 80% of the gradient (the largest
+/// within a pixel, as the filter may move an edge by one). Rendered at 256x144 with the
+/// preset's radius (1.4 texels there), and at three times it for the flattening alone: a
+/// window that wide also erases features narrower than itself, the distant clouds' thin bands
+/// at the horizon among them, whose edges are the image's strongest.
+#[test]
+fn the_kuwahara_filter_flattens_regions_and_keeps_edges() {
+    let (w, h) = (256usize, 144usize);
+    let styled = preset("kuwahara-day", w as u32, h as u32);
+    assert!(styled.post.kuwahara);
+    let mut plain = styled.clone();
+    plain.post.kuwahara = false;
+    let before = display_luminance(&render(Api::Vulkan, &plain, false));
+    let g0 = gradient(&before, w, h);
+    let inner = |i: usize| {
+        let (x, y) = (i % w, i / w);
+        x >= 3 && y >= 3 && x < w - 3 && y < h - 3
+    };
+    let around = |g: &[f64], i: usize, r: i64| {
+        let (x, y) = ((i % w) as i64, (i / w) as i64);
+        let mut out = Vec::new();
+        for dy in -r..=r {
+            for dx in -r..=r {
+                out.push(g[((y + dy) as usize) * w + (x + dx) as usize]);
+            }
+        }
+        out
+    };
+    let mut flatness: Vec<(f64, usize)> = (0..w * h)
+        .filter(|&i| inner(i))
+        .map(|i| (around(&g0, i, 2).into_iter().fold(0.0, f64::max), i))
+        .collect();
+    flatness.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let flat: Vec<usize> = flatness[..flatness.len() / 2].iter().map(|p| p.1).collect();
+    let mut strength: Vec<(f64, usize)> = (0..w * h)
+        .filter(|&i| inner(i))
+        .map(|i| (g0[i], i))
+        .collect();
+    strength.sort_by(|a, b| b.0.total_cmp(&a.0));
+    let edges: Vec<usize> = strength[..strength.len() / 100]
+        .iter()
+        .map(|p| p.1)
+        .collect();
+    let flat_variance = |l: &[f64]| {
+        flat.iter()
+            .map(|&i| {
+                let lap = 4.0 * l[i] - l[i - 1] - l[i + 1] - l[i - w] - l[i + w];
+                lap * lap
+            })
+            .sum::<f64>()
+            / flat.len() as f64
+    };
+    let v0 = flat_variance(&before);
+    let e0 = edges.iter().map(|&i| g0[i]).sum::<f64>() / edges.len() as f64;
+    for scale in [1.0, 3.0] {
+        let mut s = styled.clone();
+        s.post.kuwahara_radius *= scale;
+        let after = display_luminance(&render(Api::Vulkan, &s, false));
+        let g1 = gradient(&after, w, h);
+        let v1 = flat_variance(&after);
+        let e1 = edges
+            .iter()
+            .map(|&i| around(&g1, i, 1).into_iter().fold(0.0, f64::max))
+            .sum::<f64>()
+            / edges.len() as f64;
+        eprintln!(
+            "kuwahara radius x{scale}: flat regions' texture variance {v0:.3e} -> {v1:.3e} ({:.2}), strongest edges' gradient {e0:.4} -> {e1:.4} ({:.2})",
+            v1 / v0,
+            e1 / e0
+        );
+        assert!(
+            v1 < 0.8 * v0,
+            "x{scale}: the flat regions' texture variance went from {v0:.3e} to {v1:.3e}"
+        );
+        if scale == 1.0 {
+            assert!(
+                e1 >= 0.8 * e0,
+                "x{scale}: the strongest edges' gradient went from {e0:.4} to {e1:.4}"
+            );
+        }
+    }
+}
+
+/// Each display pixel's angle from the antisolar point (degrees) and whether its view ray is
+/// above the horizon, as the shaders' `view_ray` casts it.
+fn antisolar_angles(scene: &Scene) -> Vec<(f64, bool)> {
+    let [w, h] = scene.camera.resolution;
+    let (fw, r, u) = scene.camera_basis();
+    let tan_half = (scene.camera.fov_y_deg.to_radians() / 2.0).tan();
+    let aspect = f64::from(w) / f64::from(h);
+    let light = scene.key_light().0;
+    let mut out = Vec::new();
+    for y in 0..h {
+        for x in 0..w {
+            let nx = (f64::from(x) + 0.5) / f64::from(w) * 2.0 - 1.0;
+            let ny = (f64::from(y) + 0.5) / f64::from(h) * 2.0 - 1.0;
+            let d: [f64; 3] = std::array::from_fn(|c| {
+                fw[c] + r[c] * nx * tan_half * aspect - u[c] * ny * tan_half
+            });
+            let n = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+            let cos = -(d[0] * light[0] + d[1] * light[1] + d[2] * light[2]) / n;
+            out.push((cos.clamp(-1.0, 1.0).acos().to_degrees(), d[1] > 0.0));
+        }
+    }
+    out
+}
+
+/// The rainbow's display-image difference (the scene with its rain's bows less the same with
+/// moisture 0), red and blue, averaged in 0.25-degree rings around the antisolar point over
+/// the pixels above the horizon: `(ring's inner angle, red, blue)`.
+fn bow_rings(scene: &Scene) -> Vec<(f64, f64, f64)> {
+    let mut dry = scene.clone();
+    dry.rainbow.moisture = 0.0;
+    let wet = render(Api::Vulkan, scene, false);
+    let dry = render(Api::Vulkan, &dry, false);
+    let mut rings = vec![(0.0, 0.0, 0usize); 360];
+    for (i, (phi, sky)) in antisolar_angles(scene).into_iter().enumerate() {
+        let ring = (phi * 4.0) as usize;
+        if !sky || ring >= rings.len() {
+            continue;
+        }
+        let d = |c: usize| f64::from(wet.image[4 * i + c]) - f64::from(dry.image[4 * i + c]);
+        rings[ring].0 += d(0);
+        rings[ring].1 += d(2);
+        rings[ring].2 += 1;
+    }
+    rings
+        .into_iter()
+        .enumerate()
+        .filter(|r| r.1.2 > 0)
+        .map(|(k, (red, blue, n))| (k as f64 / 4.0, red / n as f64, blue / n as f64))
+        .collect()
+}
+
+/// The ring in `range` (degrees) where `channel` of the bows peaks.
+fn peak(
+    rings: &[(f64, f64, f64)],
+    range: std::ops::Range<f64>,
+    channel: fn(&(f64, f64, f64)) -> f64,
+) -> f64 {
+    rings
+        .iter()
+        .filter(|r| range.contains(&r.0))
+        .max_by(|a, b| channel(a).total_cmp(&channel(b)))
+        .map(|r| r.0 + 0.125)
+        .expect("rings in range")
+}
+
+/// The rainbow preset's bows where the optics puts them (Descartes's angles, Airy's widths):
+/// the primary's red ring outside its blue one, both 40-43 degrees from the antisolar point,
+/// and the secondary's order reversed at 50-54 degrees, from the Lee-diagram table and from
+/// the cheap three-wavelength path alike.
+#[test]
+fn the_rainbow_bows_lie_at_their_angles_in_their_colour_order() {
+    let mut scene = preset("rainbow", 256, 144);
+    assert!(scene.rainbow.moisture > 0.0 && scene.rainbow.lee_diagram);
+    for lee in [true, false] {
+        scene.rainbow.lee_diagram = lee;
+        let rings = bow_rings(&scene);
+        let red = |r: &(f64, f64, f64)| r.1;
+        let blue = |r: &(f64, f64, f64)| r.2;
+        let (r1, b1) = (
+            peak(&rings, 38.0..46.0, red),
+            peak(&rings, 38.0..46.0, blue),
+        );
+        let (r2, b2) = (
+            peak(&rings, 48.0..56.0, red),
+            peak(&rings, 48.0..56.0, blue),
+        );
+        let top = rings.iter().map(|r| r.1.max(r.2)).fold(0.0, f64::max);
+        eprintln!(
+            "lee_diagram {lee}: primary red {r1:.2} blue {b1:.2}, secondary red {r2:.2} blue {b2:.2} degrees; strongest ring +{top:.1} levels"
+        );
+        assert!(top >= 4.0, "the bows add only {top:.1} levels");
+        assert!(
+            r1 > b1 && (40.0..=43.0).contains(&r1) && (40.0..=43.0).contains(&b1),
+            "primary: red {r1}, blue {b1}"
+        );
+        assert!(
+            r2 < b2 && (50.0..=54.0).contains(&r2) && (50.0..=54.0).contains(&b2),
+            "secondary: red {r2}, blue {b2}"
+        );
+    }
+}
+
+/// No bow in the sky without its light: with the sun above 42 degrees no primary (it lies
+/// below the horizon; the secondary, at 51 degrees, still shows, as in nature, until the sun
+/// passes 51 and its outer light fades), with a sun at 75 degrees none at all, and none with
+/// moisture 0 or without rain (no precipitating layer). A bow shows as a pixel above the
+/// horizon that differs from the same scene's with moisture 0.
+#[test]
+fn the_rainbow_is_absent_under_a_high_sun_dry_air_or_no_rain() {
+    let base = preset("rainbow", 128, 72);
+    let mut high_sun = base.clone();
+    high_sun.sky.date_utc = "2026-09-21T11:30:00Z".parse().ok();
+    assert!(high_sun.sun_elevation_deg() > 42.0);
+    let mut tropical_noon = high_sun.clone();
+    tropical_noon.sky.latitude_deg = Some(15.0);
+    assert!(tropical_noon.sun_elevation_deg() > 74.0);
+    let mut no_rain = base.clone();
+    no_rain.clouds.precipitation = 0.0;
+    let mut bone_dry = base.clone();
+    bone_dry.rainbow.moisture = 0.0;
+    for (what, scene, within_deg) in [
+        ("a sun above 42 degrees (the primary)", high_sun, 46.0),
+        ("a sun at 75 degrees", tropical_noon, 180.0),
+        ("no rain", no_rain, 180.0),
+        ("moisture 0", bone_dry, 180.0),
+    ] {
+        let mut dry = scene.clone();
+        dry.rainbow.moisture = 0.0;
+        let a = render(Api::Vulkan, &scene, false);
+        let b = render(Api::Vulkan, &dry, false);
+        let angles = antisolar_angles(&scene);
+        let differ = (0..angles.len())
+            .filter(|&i| angles[i].1 && angles[i].0 < within_deg)
+            .filter(|&i| a.image[4 * i..4 * i + 4] != b.image[4 * i..4 * i + 4])
+            .count();
+        assert_eq!(differ, 0, "{what}: {differ} sky pixels show a bow");
+    }
+    // And the base scene does show one (the comparison can fail).
+    let mut dry = base.clone();
+    dry.rainbow.moisture = 0.0;
+    assert_ne!(
+        render(Api::Vulkan, &base, false).image,
+        render(Api::Vulkan, &dry, false).image
     );
 }

@@ -55,6 +55,11 @@ plan_options! {
     sprites: bool = false, on when |on| on;
     /// The physical sky's tables are computed and composited (option `physical_sky`).
     physical_sky: bool = false, on when |on| on;
+    /// The Kuwahara filter runs on the display image (option `kuwahara`, `post.kuwahara`).
+    kuwahara: bool = false, on when |on| on;
+    /// The rainbow's Lee-diagram table is computed (option `rainbow`: `rainbow.moisture` > 0
+    /// with `rainbow.lee_diagram`).
+    rainbow: bool = false, on when |on| on;
 }
 
 impl PlanOptions {
@@ -62,6 +67,8 @@ impl PlanOptions {
     pub fn of(scene: &Scene) -> Self {
         Self {
             physical_sky: scene.atmosphere.sky.is_physical(),
+            kuwahara: scene.post.kuwahara,
+            rainbow: scene.rainbow.moisture > 0.0 && scene.rainbow.lee_diagram,
             ..Self::of_clouds(scene)
         }
     }
@@ -123,10 +130,12 @@ mod tests {
             basic: true,
             sprites: true,
             physical_sky: true,
+            kuwahara: true,
+            rainbow: true,
         };
         for name in PLAN_OPTIONS {
             assert!(on.is_set(name), "{name} is not on when its field is");
         }
-        assert_eq!(PLAN_OPTIONS.len(), 7);
+        assert_eq!(PLAN_OPTIONS.len(), 9);
     }
 }

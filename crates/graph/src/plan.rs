@@ -819,12 +819,18 @@ mod tests {
                 .map(|p| p.name.as_str())
                 .collect();
             // Under the physical sky the cloud-shadow map after the march (its tables run
-            // only when stale: when the air, the sun or the camera changed).
+            // only when stale: when the air, the sun or the camera changed); the stylised
+            // presets' filter after the composite.
             let physical = scene.atmosphere.sky.is_physical();
             let shadow: &[&str] = if physical { &["cloud-shadow"] } else { &[] };
+            let styled: &[&str] = if scene.post.kuwahara {
+                &["kuwahara"]
+            } else {
+                &[]
+            };
             assert_eq!(
                 always,
-                [&["march"], shadow, &["composite"]].concat(),
+                [&["march"], shadow, &["composite"], styled].concat(),
                 "{}",
                 p.name
             );

@@ -49,6 +49,18 @@ pub(crate) fn aces_fitted(x: V3) -> V3 {
     V3::new(curve(x.x), curve(x.y), curve(x.z))
 }
 
+// WGSL: composite.wgsl::saturated
+/// The tone-mapped colour `c` with its saturation scaled by `saturation` (1: `c` itself).
+fn saturated(f: &Frame, c: V3) -> V3 {
+    let s = f.saturation;
+    if s == 1.0 {
+        return c;
+    }
+    let y = c.dot(V3::new(0.2126, 0.7152, 0.0722));
+    let out = V3::splat(y) + (c - V3::splat(y)) * s;
+    V3::new(saturate(out.x), saturate(out.y), saturate(out.z))
+}
+
 /// `f32 -> rgba8unorm` store conversion: clamp, scale by 255, round to nearest.
 fn unorm8(x: f64) -> u8 {
     (saturate(x) * 255.0).round() as u8
@@ -93,10 +105,12 @@ pub(crate) fn physical_composite(
         }
         background += space.mul_v(sky.transmittance_to_top(r, view.y));
     }
+    let mut bow = V3::ZERO;
     if !surface {
         background = non_negative(background - shaded_all.mul_v(e));
+        bow = sky.rainbow_radiance(f, view).mul_v(e);
     }
-    let mut radiance = background * alpha;
+    let mut radiance = background * alpha + bow;
     if alpha < 1.0 {
         let ap = sky.aerial(f, pixel, depth);
         let air = non_negative(V3::new(ap[0], ap[1], ap[2]) - shaded_front);
@@ -271,10 +285,10 @@ pub(crate) fn surface_radiance(f: &Frame) -> V3 {
 }
 
 // WGSL: composite.wgsl::store_display
-/// Exposure, tone curve and gamma of a pixel's radiance, to the display's 8 bits.
+/// Exposure, tone curve, saturation and gamma of a pixel's radiance, to the display's 8 bits.
 fn store_display(f: &Frame, radiance: V3) -> [u8; 4] {
     let exposed = radiance * f.exposure;
-    let display = aces_fitted(exposed);
+    let display = saturated(f, aces_fitted(exposed));
     let g = 1.0 / 2.2;
     [
         unorm8(display.x.powf(g)),
@@ -341,7 +355,7 @@ pub(crate) fn composite_image(
     surface: Option<&stratus_graph::SceneDepth>,
 ) -> Vec<u8> {
     let sky = physical(f, sky);
-    (0..height)
+    let image: Vec<u8> = (0..height)
         .into_par_iter()
         .flat_map_iter(|y| {
             (0..width).flat_map(move |x| {
@@ -356,7 +370,8 @@ pub(crate) fn composite_image(
                 }
             })
         })
-        .collect()
+        .collect();
+    image
 }
 
 /// The composite pass of one scene on the CPU, for any renderer's linear output: display
@@ -424,14 +439,7 @@ impl Compositor {
                 }
             })
             .collect();
-        Some(composite_image(
-            &self.f,
-            self.sky.as_ref(),
-            w,
-            h,
-            radiance,
-            &depth,
-            None,
-        ))
+        let image = composite_image(&self.f, self.sky.as_ref(), w, h, radiance, &depth, None);
+        Some(crate::post::stylise(&self.f, w, h, image, &mut Vec::new()))
     }
 }

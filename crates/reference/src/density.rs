@@ -6,7 +6,7 @@
 //! scene does not use has a zero strength, for which the switched-on code computes the same value
 //! (a curl displacement times 0, a detail branch skipped by `strength > 0`).
 
-use stratus_noise::NoiseSet;
+use stratus_noise::{NoiseSet, Texture2};
 
 use crate::frame::{Frame, HEIGHT_CLOUD_TYPES};
 use crate::math::{V3, mix, remap, saturate, smoothstep};
@@ -128,11 +128,16 @@ pub(crate) struct Weather {
 
 // WGSL: density.wgsl::sample_weather
 pub(crate) fn sample_weather(f: &Frame, noise: &NoiseSet, p: V3, l: &Layer) -> Weather {
+    sample_weather_map(f, &noise.weather, p, l)
+}
+
+/// [`sample_weather`] from the weather map alone.
+pub(crate) fn sample_weather_map(f: &Frame, map: &Texture2, p: V3, l: &Layer) -> Weather {
     let uv = [
         (p.x - l.weather_offset[0]) / f.weather_period,
         (p.z - l.weather_offset[1]) / f.weather_period,
     ];
-    let w = sample2(&noise.weather, uv);
+    let w = sample2(map, uv);
     let coverage = saturate(w[0] + 2.0 * (l.coverage - 0.5));
     let cloud_type = saturate(l.cloud_type + (w[2] - 0.5) * 0.5);
     let precipitation = l.precipitation * saturate(0.5 + w[1]);

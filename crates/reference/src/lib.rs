@@ -43,7 +43,9 @@ mod math;
 mod medium;
 pub mod montecarlo;
 mod phase;
+mod post;
 mod progressive;
+mod rainbow;
 pub mod sky;
 mod temporal;
 mod texture;
@@ -586,7 +588,7 @@ fn render_model(model: &Model, integrator: &Integrator, progress: bool) -> Rende
         model.surface.as_deref(),
     );
     let composite_ms = t1.elapsed().as_secs_f64() * 1e3;
-    let timings = sky::in_graph_order(
+    let mut timings = sky::in_graph_order(
         model.sky(),
         [PassTiming {
             pass: "march".to_string(),
@@ -599,6 +601,7 @@ fn render_model(model: &Model, integrator: &Integrator, progress: bool) -> Rende
             source: "cpu-wall",
         },
     );
+    let image = post::stylise(f, w, h, image, &mut timings);
 
     let is_mc = matches!(integrator, Integrator::MonteCarlo { .. });
     Rendering {

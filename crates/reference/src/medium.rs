@@ -250,6 +250,11 @@ impl<'a> Model<'a> {
         // The shadow map reads the medium, so it is made once the model stands.
         if let Some(mut sky) = model.sky.take() {
             sky.shade(&model.f, |rel| model.shadow_optical_depth(rel));
+            if let Medium::Clouds(noise) = &model.medium
+                && model.f.rainbow_moisture > 0.0
+            {
+                sky.weather = Some(noise.weather.clone());
+            }
             model.sky = Some(sky);
         }
         model

@@ -92,6 +92,13 @@ pub(crate) fn render(
             source: "cpu-wall",
         },
     );
+    out.image = crate::post::stylise(
+        &model.f,
+        out.width,
+        out.height,
+        std::mem::take(&mut out.image),
+        &mut out.timings,
+    );
     out
 }
 

@@ -26,6 +26,7 @@ use crate::atmosphere::{AtmosphereModel, fibonacci_direction};
 use crate::frame::{Frame, PI, xyz};
 use crate::math::{V3, mix_v, saturate};
 use crate::phase::phase_cornette_shanks;
+use crate::rainbow;
 
 // WGSL: composite.wgsl::SHAFT_STEPS, SHAFT_RANGE_KM, SHAFT_SALT, SHAFT_MIN_SUN_Y
 /// Samples along a view ray of the light shafts.
@@ -37,6 +38,18 @@ const SHAFT_SALT: u32 = 0x5AF7;
 /// The key light's least height (its direction's y) with shafts: below it every shaded point
 /// projects off the map.
 const SHAFT_MIN_SUN_Y: f64 = 1e-3;
+// WGSL: rainbow.wgsl::RAIN_STEPS, RAIN_RANGE_M, RAIN_EXTINCTION, MOISTURE_PEAK_M
+const RAIN_STEPS: usize = 32;
+const RAIN_RANGE_M: f64 = 15_000.0;
+const RAIN_EXTINCTION: f64 = 5.59e-4;
+const MOISTURE_PEAK_M: f64 = 2000.0;
+
+// WGSL: rainbow.wgsl::moisture_profile
+/// The moisture's weight at altitude `h` (m), 1 at 2 km.
+fn moisture_profile(h: f64) -> f64 {
+    let x = h.max(0.0) / MOISTURE_PEAK_M;
+    x * (1.0 - x).exp()
+}
 
 // WGSL: atmosphere.wgsl (constants).
 /// Transmittance table: texels along (distance to the top, radius).
@@ -287,6 +300,12 @@ pub struct SkyTables {
     /// In-scattered light (rgb) and mean transmittance (a) from the camera to the far end of
     /// each slice, slice z of froxel column (x, y) at texel (z * 32 + x, y): 1024x32.
     pub aerial: Table,
+    /// The rainbow's Lee-diagram row (`rainbow-lut`, 512x1) when the frame draws a rainbow
+    /// from its table.
+    pub rainbow: Option<Table>,
+    /// The weather map the rainbow's rain is read from (set with the cloud-shadow map, for a
+    /// frame with a rainbow).
+    pub(crate) weather: Option<stratus_noise::Texture2>,
     /// Wall-clock time of each table, named as the frame graph's passes ([`PASSES`]).
     pub timings: Vec<PassTiming>,
 }
@@ -330,6 +349,8 @@ impl SkyTables {
             sky_view: empty(SKY_VIEW_SIZE),
             sky_ambient: empty([SKY_AMBIENT_SUNS, 2]),
             aerial: empty([AERIAL_SLICES * AERIAL_SIDE, AERIAL_SIDE]),
+            rainbow: None,
+            weather: None,
             timings: Vec::new(),
         };
         // In the graph's order: each table reads the ones before it.
@@ -352,6 +373,15 @@ impl SkyTables {
             Table::build([SKY_AMBIENT_SUNS, 2], |x, y| sky.sky_ambient_texel(f, x, y))
         });
         sky.aerial = timed(&mut timings, PASSES[5], || sky.aerial_table(f));
+        if rainbow::uses_table(f) {
+            let sun_radius = f.sun_cos_radius.clamp(-1.0, 1.0).acos();
+            sky.rainbow = Some(Table::build([rainbow::RAINBOW_TEXELS, 1], |x, _| {
+                texel(
+                    rainbow::rainbow_lut_texel(x, f.rainbow_drop_radius, sun_radius),
+                    1.0,
+                )
+            }));
+        }
         sky.timings = timings;
         sky
     }
@@ -541,6 +571,91 @@ impl SkyTables {
         let t = self.cloud_shadow.bilinear(x)[0];
         let w = crate::math::smoothstep(SHADOW_FADE_START, 1.0, edge);
         t + (1.0 - t) * w
+    }
+
+    // WGSL: rainbow.wgsl::rainbow_phase_rgb
+    /// The bows' phase function (rgb) at `phi` (rad) from the antisolar point.
+    fn rainbow_phase_rgb(&self, f: &Frame, phi: f64) -> V3 {
+        match &self.rainbow {
+            Some(table) if f.flags & crate::frame::FLAG_LEE_DIAGRAM != 0 => {
+                let x = (phi.to_degrees() - rainbow::RAINBOW_MIN_DEG)
+                    / (rainbow::RAINBOW_MAX_DEG - rainbow::RAINBOW_MIN_DEG);
+                rgb(table.bilinear([x, 0.0]))
+            }
+            _ => rainbow::cheap_phase_rgb(f, phi),
+        }
+    }
+
+    // WGSL: rainbow.wgsl::rain_at
+    /// The rain at world point `p` under the precipitating layers above it.
+    fn rain_at(&self, f: &Frame, map: &stratus_noise::Texture2, p: V3) -> f64 {
+        crate::density::cloud_layers(f)
+            .filter(|l| l.precipitation > 0.0 && p.y < l.bottom)
+            .map(|l| {
+                let w = crate::density::sample_weather_map(f, map, p, &l);
+                w.precipitation * crate::math::smoothstep(0.35, 0.65, w.coverage)
+            })
+            .sum()
+    }
+
+    // WGSL: rainbow.wgsl::rainbow_radiance
+    /// The bows' radiance along unit `view` per unit key-light illuminance: the rain's single
+    /// scattering into them where the clouds and the air let the light through, seen through
+    /// the air and the rain in front (`RAIN_STEPS` midpoint steps).
+    pub(crate) fn rainbow_radiance(&self, f: &Frame, view: V3) -> V3 {
+        let Some(map) = self.weather.as_ref().filter(|_| f.rainbow_moisture > 0.0) else {
+            return V3::ZERO;
+        };
+        let light = f.sun();
+        let phi = (-view.dot(light)).clamp(-1.0, 1.0).acos();
+        if phi < rainbow::RAINBOW_MIN_DEG.to_radians()
+            || phi > rainbow::RAINBOW_MAX_DEG.to_radians()
+            || light.y <= SHAFT_MIN_SUN_Y
+        {
+            return V3::ZERO;
+        }
+        let cam = f.camera_position;
+        let top = crate::density::cloud_layers(f)
+            .filter(|l| l.precipitation > 0.0)
+            .map(|l| l.bottom)
+            .fold(0.0, f64::max);
+        let mut end = RAIN_RANGE_M;
+        if view.y > 0.0 {
+            end = end.min((top - cam[1]).max(0.0) / view.y);
+        } else if view.y < 0.0 {
+            end = end.min(cam[1] / -view.y);
+        }
+        if end.is_nan() || end <= 0.0 {
+            return V3::ZERO;
+        }
+        let phase = self.rainbow_phase_rgb(f, phi);
+        let origin = self.camera_air_origin(f);
+        let dt = end / RAIN_STEPS as f64;
+        let mut air_tau = V3::ZERO;
+        let mut rain_tau = 0.0;
+        let mut sum = V3::ZERO;
+        for k in 0..RAIN_STEPS {
+            let t = (k as f64 + 0.5) * dt;
+            let rel = view * t + V3::new(0.0, cam[1], 0.0);
+            let world = rel + V3::new(cam[0], 0.0, cam[2]);
+            let air = self.air_at(rel.y);
+            let beta = RAIN_EXTINCTION
+                * f.rainbow_moisture
+                * moisture_profile(rel.y)
+                * self.rain_at(f, map, world);
+            if beta > 0.0 {
+                let q = origin + view * t;
+                let r = q.length();
+                let lit = self.sun_transmittance(r, (q / r).dot(light))
+                    * self.ground_shadow(rel - light * (rel.y / light.y));
+                let seen = exp_neg(air_tau + air.extinction * (0.5 * dt))
+                    * (-(rain_tau + 0.5 * beta * dt)).exp();
+                sum += lit.mul_v(seen) * (beta * dt);
+            }
+            air_tau += air.extinction * dt;
+            rain_tau += beta * dt;
+        }
+        sum.mul_v(phase)
     }
 
     // WGSL: ground.wgsl::ground_shadow_loss

@@ -413,6 +413,13 @@ pub(crate) fn render(
         ms,
         source: "cpu-wall",
     };
+    // The sky's tables (under the physical sky) come first, as in the frame graph.
+    let mut timings = crate::sky::in_graph_order(
+        model.sky(),
+        [timing("march", march_ms), timing("resolve", resolve_ms)],
+        timing("composite", composite_ms),
+    );
+    let image = crate::post::stylise(&model.f, w, h, image, &mut timings);
     FrameOutput {
         width: w,
         height: h,
@@ -420,12 +427,7 @@ pub(crate) fn render(
         depth,
         image,
         stats: Some(stats),
-        // The sky's tables (under the physical sky) come first, as in the frame graph.
-        timings: crate::sky::in_graph_order(
-            model.sky(),
-            [timing("march", march_ms), timing("resolve", resolve_ms)],
-            timing("composite", composite_ms),
-        ),
+        timings,
         device: format!("cpu ({} threads)", rayon::current_num_threads()),
         ..Default::default()
     }

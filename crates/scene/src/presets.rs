@@ -17,6 +17,16 @@ const SOURCES: &[(&str, &str)] = &[
     ("noon", include_str!("../presets/noon.toml")),
     ("dusk", include_str!("../presets/dusk.toml")),
     ("night", include_str!("../presets/night.toml")),
+    ("kuwahara-day", include_str!("../presets/kuwahara-day.toml")),
+    (
+        "kuwahara-dusk",
+        include_str!("../presets/kuwahara-dusk.toml"),
+    ),
+    (
+        "kuwahara-night",
+        include_str!("../presets/kuwahara-night.toml"),
+    ),
+    ("rainbow", include_str!("../presets/rainbow.toml")),
 ];
 
 /// The name of the preset that [`Scene::default`](crate::Scene::default) equals and that files

@@ -31,6 +31,12 @@ pub struct Scene {
     pub lighting: Lighting,
     /// Ray-marching quality and integration method.
     pub quality: Quality,
+    /// Post effects on the display image: the stylised Kuwahara filter and saturation.
+    #[serde(skip_serializing_if = "Post::is_off")]
+    pub post: Post,
+    /// The rainbow in sunlit rain (physical sky only).
+    #[serde(skip_serializing_if = "Rainbow::is_off")]
+    pub rainbow: Rainbow,
     /// Camera keyframes and a time span for sequences (`stratus render --frames`,
     /// `stratus animate`); absent: the camera stays where `[camera]` puts it.
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -156,11 +162,94 @@ pub struct Camera {
     /// sun (or moon, at night), to the power 0.75 (see [`Scene::auto_exposure`]).
     #[serde(skip_serializing_if = "std::ops::Not::not")]
     pub auto_exposure: bool,
+    /// The least and the greatest exposure, `[min, max]` (seed 001's "exposure adapt min /
+    /// max"): the exposure the frame uses (with `auto_exposure`, after adaptation) is clamped
+    /// to it. Absent: unbounded.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub exposure_range: Option<[f64; 2]>,
     /// An explicit orientation in world axes, which replaces `yaw_deg` and `pitch_deg` when
     /// given: a host engine's camera, roll included (`stratus::HostCamera` fills it from a
     /// view matrix).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub orientation: Option<Orientation>,
+}
+
+/// Post effects on the display image (section `[post]`), after the tone curve: the seed's
+/// stylised presets. They change the display image only, never the radiance (the HDR output,
+/// the path tracer's truths and the statistics do not see them).
+#[derive(Serialize, Deserialize, Clone, Debug, PartialEq)]
+#[serde(default, deny_unknown_fields)]
+pub struct Post {
+    /// The Kuwahara filter (seed 001's "Stylized Kuwahara"): each pixel takes the mean of the
+    /// one of its four quadrant windows whose colours vary least, so flat regions turn to
+    /// even patches of colour while edges, where the windows on either side differ, stay
+    /// sharp: the look of opaque watercolour (Kuwahara et al. 1976).
+    pub kuwahara: bool,
+    /// The Kuwahara window's radius as a fraction of the image's height, within (0, 0.05]:
+    /// the filter's offsets are in UV, not pixels, so the strokes keep their size on
+    /// screen at every resolution.
+    pub kuwahara_radius: f64,
+    /// Saturation of the display image (seed 001's "Saturability"), within [0, 4]: 1 leaves
+    /// it, 0 is grey, above 1 the stylised presets' stronger colour. Each pixel's colour
+    /// moves away from its luminance (Rec. 709 weights) by this factor.
+    pub saturation: f64,
+}
+
+impl Default for Post {
+    fn default() -> Self {
+        Self {
+            kuwahara: false,
+            kuwahara_radius: 0.008,
+            saturation: 1.0,
+        }
+    }
+}
+
+impl Post {
+    /// Whether no post effect changes the image (the defaults, which a scene's TOML leaves
+    /// out).
+    pub fn is_off(&self) -> bool {
+        *self == Self::default()
+    }
+}
+
+/// The rainbow (section `[rainbow]`, seed 001's rainbow effect): the primary and secondary
+/// bows of sunlight refracted and reflected in falling raindrops, drawn where rain (below a
+/// precipitating cloud layer) is in view and sunlit. Needs the physical sky.
+#[derive(Serialize, Deserialize, Clone, Debug, PartialEq)]
+#[serde(default, deny_unknown_fields)]
+pub struct Rainbow {
+    /// The air's moisture (seed 001's `moisture`), within [0, 4]: the rain's scattering in
+    /// units of moderate rain's (3.912 / 7 km, a 7 km visibility by Koschmieder's law), so the
+    /// bow's global strength; 0 (the default) draws none. Over altitude it is weighted by a
+    /// profile that peaks at 2 km, (h / 2 km) e^(1 - h / 2 km), as the seed describes.
+    pub moisture: f64,
+    /// The raindrops' radius in micrometres (seed 001's "Moisture Drop Radius"), within
+    /// [5, 2500]: small drops (fog, 10-50) give broad, nearly white fog bows, large ones
+    /// (rain, 200-1000) narrow, saturated bows with supernumeraries inside the primary.
+    pub drop_radius_um: f64,
+    /// The Lee diagram (seed 001's "Use Lee Graph", on by default): the bows from a table
+    /// of Airy theory integrated over the visible spectrum and the sun's disc, computed once
+    /// for the drop radius. Off: the cheap path, the same theory at three wavelengths per
+    /// pixel (no table, no spectrum, no disc).
+    pub lee_diagram: bool,
+}
+
+impl Default for Rainbow {
+    fn default() -> Self {
+        Self {
+            moisture: 0.0,
+            drop_radius_um: 500.0,
+            lee_diagram: true,
+        }
+    }
+}
+
+impl Rainbow {
+    /// Whether the rainbow is left at its defaults (none drawn; a scene's TOML leaves them out).
+    pub fn is_off(&self) -> bool {
+        *self == Self::default()
+    }
 }
 
 /// A camera's orientation (`[camera.orientation]`): three unit, mutually orthogonal vectors
@@ -187,6 +276,7 @@ impl Default for Camera {
             resolution: [800, 450],
             exposure: 1.0,
             auto_exposure: false,
+            exposure_range: None,
             orientation: None,
         }
     }
@@ -1018,6 +1108,9 @@ impl Scene {
         scene.atmosphere.light_shafts = true;
         scene.camera.auto_exposure = true;
         scene.atmosphere.air.ground_albedo = 0.5;
+        scene.camera.exposure_range = Some([1.0, 1.0]);
+        scene.post.kuwahara = true;
+        scene.rainbow.moisture = 1.0;
         scene
     }
 

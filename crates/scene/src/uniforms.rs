@@ -283,8 +283,17 @@ macro_rules! frame_members {
             /// The scene depth of a pixel without geometry (the far plane's: 1 standard, 0
             /// reversed Z).
             scene_depth_clear: f32,
+            /// Saturation of the display image (`post.saturation`; 1 leaves it).
+            saturation: f32,
+            /// The Kuwahara filter's window radius, a fraction of the image's height
+            /// (`post.kuwahara_radius`; 0 without the filter).
+            kuwahara_radius: f32,
+            /// The rainbow's moisture (`rainbow.moisture`; 0: no rainbow).
+            rainbow_moisture: f32,
+            /// The raindrops' radius (m).
+            rainbow_drop_radius: f32,
             /// Padding (0).
-            _pad9: f32,
+            _pad10: f32,
         }
     };
 }
@@ -433,6 +442,9 @@ impl FrameUniforms {
     /// `flags` bit: light shafts, the clouds' shadows in the air
     /// (`atmosphere.light_shafts`).
     pub const FLAG_LIGHT_SHAFTS: u32 = 1 << 9;
+    /// `flags` bit: the rainbow from the Lee-diagram table (`rainbow.lee_diagram`), else the
+    /// cheap three-wavelength path.
+    pub const FLAG_LEE_DIAGRAM: u32 = 1 << 10;
 
     /// The WGSL `struct Frame` of this block, as `wgsl/frame.wgsl` holds it (written by
     /// `cargo xtask build-shaders`, which fails `--check` when the file differs).
@@ -568,7 +580,8 @@ impl Scene {
         (sun, self.sun.illuminance, false)
     }
 
-    /// The exposure the uniform block carries: `camera.exposure`, times with
+    /// The exposure the uniform block carries, within `camera.exposure_range` when given:
+    /// `camera.exposure`, times with
     /// `camera.auto_exposure` the ratio of the light on the ground under a sun 60 degrees
     /// high to this scene's, to the power 0.75 (partial adaptation; at most 10^7). The light on the ground of a key light of zenith
     /// cosine mu is mu T(mu) for the direct beam, T from the air's zenith optical depth and
@@ -579,7 +592,7 @@ impl Scene {
     pub fn auto_exposure(&self) -> f64 {
         let e = self.camera.exposure;
         if !self.camera.auto_exposure {
-            return e;
+            return self.bound_exposure(e);
         }
         let (dir, illuminance, _) = self.key_light();
         let luminance = |c: [f64; 3]| 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2];
@@ -589,9 +602,19 @@ impl Scene {
         let floor = 8e-9 * luminance(self.sun.illuminance);
         // Partial adaptation: the eye (and a film) makes up for a dimmer scene only in part,
         // so night stays darker than day (at full adaptation a moonlit scene looks like noon).
-        e * (day / now.max(floor))
-            .powf(AUTO_EXPOSURE_ADAPTATION)
-            .clamp(1e-3, 1e7)
+        self.bound_exposure(
+            e * (day / now.max(floor))
+                .powf(AUTO_EXPOSURE_ADAPTATION)
+                .clamp(1e-3, 1e7),
+        )
+    }
+
+    /// `exposure` within `camera.exposure_range` when one is given.
+    fn bound_exposure(&self, exposure: f64) -> f64 {
+        match self.camera.exposure_range {
+            Some([lo, hi]) => exposure.clamp(lo, hi),
+            None => exposure,
+        }
     }
 
     /// Light on the ground per unit key-light illuminance for a key light of zenith cosine
@@ -735,6 +758,9 @@ impl Scene {
         }
         if atm.light_shafts {
             flags |= FrameUniforms::FLAG_LIGHT_SHAFTS;
+        }
+        if self.rainbow.moisture > 0.0 && self.rainbow.lee_diagram {
+            flags |= FrameUniforms::FLAG_LEE_DIAGRAM;
         }
         let (key_direction, key_illuminance, moonlit) = self.key_light();
         if moonlit {
@@ -909,7 +935,15 @@ impl Scene {
             scene_depth_a: 0.0,
             scene_depth_b: 0.0,
             scene_depth_clear: 0.0,
-            _pad9: 0.0,
+            saturation: f(self.post.saturation),
+            kuwahara_radius: if self.post.kuwahara {
+                f(self.post.kuwahara_radius)
+            } else {
+                0.0
+            },
+            rainbow_moisture: f(self.rainbow.moisture),
+            rainbow_drop_radius: f(self.rainbow.drop_radius_um * 1e-6),
+            _pad10: 0.0,
         };
         block.with_previous_camera(&block)
     }

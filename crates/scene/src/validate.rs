@@ -223,6 +223,41 @@ pub(crate) fn check(scene: &Scene) -> Vec<Issue> {
         );
     }
     c.positive("camera.exposure", cam.exposure);
+    if let Some(range) = &cam.exposure_range {
+        let lo_ok = c.positive("camera.exposure_range", range[0]);
+        if lo_ok && c.positive("camera.exposure_range", range[1]) && range[0] > range[1] {
+            c.push(
+                "camera.exposure_range",
+                nums(range),
+                "must be [min, max] with min <= max",
+            );
+        }
+    }
+    let post = &scene.post;
+    c.float(
+        "post.kuwahara_radius",
+        post.kuwahara_radius,
+        Excl(0.0),
+        Incl(0.05),
+    );
+    c.float("post.saturation", post.saturation, Incl(0.0), Incl(4.0));
+    let bow = &scene.rainbow;
+    if c.float("rainbow.moisture", bow.moisture, Incl(0.0), Incl(4.0))
+        && bow.moisture > 0.0
+        && !scene.atmosphere.sky.is_physical()
+    {
+        c.push(
+            "rainbow.moisture",
+            num(bow.moisture),
+            "needs atmosphere.sky = \"physical\": the bows are drawn in the physical sky's composite",
+        );
+    }
+    c.float(
+        "rainbow.drop_radius_um",
+        bow.drop_radius_um,
+        Incl(5.0),
+        Incl(2500.0),
+    );
     if let Some(o) = &cam.orientation {
         c.orientation(o);
     }

@@ -107,3 +107,55 @@ fn from_file_reads_a_scene() {
     assert_eq!(scene.camera.resolution, [64, 32]);
     assert_eq!(scene.clouds, Scene::preset("storm").unwrap().clouds);
 }
+
+/// Seed 001's stylised presets carry its table (hour, minute, auto exposure, exposure min and
+/// max): the hour is local time in Hangzhou (UTC+8) on the seed's date, the filter and the
+/// stronger colour are on, and the exposure range keeps the seed's width, max / min, centred
+/// (geometrically) on the hour's exposure here, since the seed's units are its renderer's.
+#[test]
+fn the_kuwahara_presets_carry_the_seed_table() {
+    // name, hour, minute, auto exposure, exposure min, exposure max (seed 001, 1.3.2).
+    let table = [
+        ("kuwahara-day", 12, 0, false, 0.05, 0.28),
+        ("kuwahara-dusk", 18, 30, true, 0.20, 3.00),
+        ("kuwahara-night", 19, 0, true, 0.60, 3.00),
+    ];
+    for (name, hour, minute, auto, lo, hi) in table {
+        let mut s = Scene::preset(name).unwrap();
+        assert!(s.post.kuwahara && s.post.saturation > 1.0, "{name}");
+        assert_eq!(s.camera.auto_exposure, auto, "{name}");
+        let when = format!("2023-03-24T{:02}:{minute:02}:00Z", hour - 8);
+        assert_eq!(s.sky.date_utc, when.parse().ok(), "{name}");
+        assert_eq!(
+            (s.sky.latitude_deg, s.sky.longitude_deg),
+            (Some(30.2741), Some(120.1551))
+        );
+        let [min, max] = s.camera.exposure_range.expect(name);
+        let width = (max / min) / (hi / lo);
+        assert!(
+            (width - 1.0).abs() < 1e-3,
+            "{name}: range width {} against the seed's {}",
+            max / min,
+            hi / lo
+        );
+        let bounded = s.auto_exposure();
+        s.camera.exposure_range = None;
+        let free = s.auto_exposure();
+        let centre = (min * max).sqrt();
+        assert!(
+            (centre / free - 1.0).abs() < 1e-3,
+            "{name}: range centred on {centre}, the hour's exposure is {free}"
+        );
+        assert_eq!(bounded, free, "{name}: the range bounds its own hour");
+        // Hours later, in the dark, the exposure adapts only up to the range's top.
+        s.camera.exposure_range = Some([min, max]);
+        s.sky.date_utc = "2023-03-24T13:00:00Z".parse().ok();
+        if auto {
+            assert_eq!(
+                s.auto_exposure(),
+                max,
+                "{name}: a darker hour adapts only to the range's top"
+            );
+        }
+    }
+}

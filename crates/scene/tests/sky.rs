@@ -130,3 +130,55 @@ fn light_shafts_load_under_the_physical_sky_and_are_refused_without_it() {
         "{e}"
     );
 }
+
+/// The rainbow and the post effects: they load and reach the uniforms, leave a scene without
+/// them unchanged, and bad values are refused naming the field.
+#[test]
+fn rainbow_and_post_fields_load_and_bad_values_are_refused() {
+    let s = load(
+        "[atmosphere]\nsky = \"physical\"\n[rainbow]\nmoisture = 0.5\ndrop_radius_um = 20\n[post]\nkuwahara = true\nsaturation = 1.5\n[camera]\nexposure_range = [0.5, 2.0]\n",
+    )
+    .expect("loads");
+    let u = s.uniforms();
+    assert_eq!((u.rainbow_moisture, u.saturation), (0.5, 1.5));
+    assert!((u.rainbow_drop_radius - 20e-6).abs() < 1e-12);
+    assert!(u.kuwahara_radius > 0.0);
+    assert_ne!(u.flags & stratus_scene::FrameUniforms::FLAG_LEE_DIAGRAM, 0);
+    // Without them: nothing written out, the filter off, no table flag.
+    let plain = load("[atmosphere]\nsky = \"physical\"\n").expect("loads");
+    let text = plain.to_toml();
+    assert!(
+        !text.contains("rainbow") && !text.contains("[post]") && !text.contains("exposure_range"),
+        "{text}"
+    );
+    let u = plain.uniforms();
+    assert_eq!(
+        (u.rainbow_moisture, u.kuwahara_radius, u.saturation),
+        (0.0, 0.0, 1.0)
+    );
+    assert_eq!(u.flags & stratus_scene::FrameUniforms::FLAG_LEE_DIAGRAM, 0);
+    for (text, field) in [
+        ("[rainbow]\nmoisture = 1.0\n", "rainbow.moisture"),
+        (
+            "[atmosphere]\nsky = \"physical\"\n[rainbow]\nmoisture = -1\n",
+            "rainbow.moisture",
+        ),
+        (
+            "[atmosphere]\nsky = \"physical\"\n[rainbow]\ndrop_radius_um = 1\n",
+            "rainbow.drop_radius_um",
+        ),
+        ("[post]\nsaturation = 9\n", "post.saturation"),
+        ("[post]\nkuwahara_radius = 0\n", "post.kuwahara_radius"),
+        (
+            "[camera]\nexposure_range = [2.0, 1.0]\n",
+            "camera.exposure_range",
+        ),
+        (
+            "[camera]\nexposure_range = [0.0, 1.0]\n",
+            "camera.exposure_range",
+        ),
+    ] {
+        let e = load(text).unwrap_err();
+        assert!(e.contains(field), "{text}: {e}");
+    }
+}

@@ -366,6 +366,18 @@ pub const DECLARED_SUBSTITUTIONS: &[(Lang, &str, &str, &str)] = &[
     ),
     (
         Lang::Hlsl,
+        "composite",
+        "maxPerStageDescriptorSamplers",
+        "as `march`: the sampler heap of naga's HLSL (the physical sky's composite samples the weather map for the rainbow's rain)",
+    ),
+    (
+        Lang::Hlsl,
+        "hdr-composite",
+        "maxPerStageDescriptorSamplers",
+        "as `composite`",
+    ),
+    (
+        Lang::Hlsl,
         "sprite-build",
         "maxPerStageDescriptorSamplers",
         "as `march`: the sampler heap of naga's HLSL",

@@ -90,8 +90,15 @@ const KEYLESS_FIELDS: [&str; 11] = [
     "downward_dimming = ",
 ];
 
-/// The scene's TOML as the cache key hashes it: `s.to_toml()` without the `KEYLESS_FIELDS`.
+/// The scene's TOML as the cache key hashes it: `s.to_toml()` without the `KEYLESS_FIELDS`,
+/// and without what the path tracer does not render (the post effects, the exposure's range:
+/// the truth is the clouds' radiance; the rainbow, which the composite adds in front of them),
+/// so that a stylised preset shares its clouds' truth.
 fn key_toml(s: &Scene) -> String {
+    let mut s = s.clone();
+    s.post = stratus_scene::Post::default();
+    s.rainbow = stratus_scene::Rainbow::default();
+    s.camera.exposure_range = None;
     s.to_toml()
         .split_inclusive('\n')
         .filter(|line| !KEYLESS_FIELDS.iter().any(|k| line.starts_with(k)))
