@@ -1878,7 +1878,7 @@ fn ground_shadow_loss(view: vec3<f32>, r: f32) -> vec3<f32> {
 @group(0) @binding(46) var rainbow_lut_out: texture_storage_2d<rgba32float, write>;
 @group(0) @binding(47) var rainbow_lut_in: texture_2d<f32>;
 
-// The table: the bows' phase function (per steradian, per unit scattering of the rain, rgb for
+// The table: the bows' phase function (per steradian, per unit extinction of the rain, rgb for
 // a white sun) at angles RAINBOW_MIN_DEG to RAINBOW_MAX_DEG from the antisolar point. The
 // primary's light fills the sky inside it and the secondary's outside it; Airy theory is a
 // bow's neighbourhood's, so both fade out over the table's last RAINBOW_FADE_DEG at either end
@@ -4136,7 +4136,7 @@ const KUWAHARA_TAPS: i32 = 4;
 // a quadrant across an edge weighs next to nothing beside one on either side.
 const KUWAHARA_FLAT: f32 = 12.0;
 
-// One 8-bit level of a display texel, 0-255.
+// The 8-bit levels (0-255) of a display texel's red, green and blue.
 fn display_levels(texel: vec2<i32>) -> vec3<u32> {
     let c = round(clamp(textureLoad(unstyled_in, texel, 0).rgb, vec3<f32>(0.0), vec3<f32>(1.0)) * 255.0);
     return vec3<u32>(u32(c.x), u32(c.y), u32(c.z));

@@ -14,7 +14,7 @@ const KUWAHARA_TAPS: i32 = 4;
 // a quadrant across an edge weighs next to nothing beside one on either side.
 const KUWAHARA_FLAT: f32 = 12.0;
 
-// One 8-bit level of a display texel, 0-255.
+// The 8-bit levels (0-255) of a display texel's red, green and blue.
 fn display_levels(texel: vec2<i32>) -> vec3<u32> {
     let c = round(clamp(textureLoad(unstyled_in, texel, 0).rgb, vec3<f32>(0.0), vec3<f32>(1.0)) * 255.0);
     return vec3<u32>(u32(c.x), u32(c.y), u32(c.z));

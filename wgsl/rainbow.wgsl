@@ -20,7 +20,7 @@
 @group(0) @binding(46) var rainbow_lut_out: texture_storage_2d<rgba32float, write>;
 @group(0) @binding(47) var rainbow_lut_in: texture_2d<f32>;
 
-// The table: the bows' phase function (per steradian, per unit scattering of the rain, rgb for
+// The table: the bows' phase function (per steradian, per unit extinction of the rain, rgb for
 // a white sun) at angles RAINBOW_MIN_DEG to RAINBOW_MAX_DEG from the antisolar point. The
 // primary's light fills the sky inside it and the secondary's outside it; Airy theory is a
 // bow's neighbourhood's, so both fade out over the table's last RAINBOW_FADE_DEG at either end

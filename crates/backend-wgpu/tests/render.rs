@@ -329,7 +329,7 @@ fn gradient(l: &[f64], w: usize, h: usize) -> Vec<f64> {
 /// the Laplacian, which a smooth gradient does not have) falls; at the strongest edges (the
 /// top 1% of gradients) the filtered image keeps at least 80% of the gradient (the largest
 /// within a pixel, as the filter may move an edge by one). Rendered at 256x144 with the
-/// preset's radius (1.4 texels there), and at three times it for the flattening alone: a
+/// preset's radius (1.2 texels there), and at three times it for the flattening alone: a
 /// window that wide also erases features narrower than itself, the distant clouds' thin bands
 /// at the horizon among them, whose edges are the image's strongest.
 #[test]

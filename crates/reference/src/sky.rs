@@ -300,7 +300,7 @@ pub struct SkyTables {
     /// In-scattered light (rgb) and mean transmittance (a) from the camera to the far end of
     /// each slice, slice z of froxel column (x, y) at texel (z * 32 + x, y): 1024x32.
     pub aerial: Table,
-    /// The rainbow's Lee-diagram row (`rainbow-lut`, 512x1) when the frame draws a rainbow
+    /// The rainbow's Lee-diagram row (`rainbow-lut`, 1024x1) when the frame draws a rainbow
     /// from its table.
     pub rainbow: Option<Table>,
     /// The weather map the rainbow's rain is read from (set with the cloud-shadow map, for a

@@ -609,10 +609,12 @@ impl Scene {
         )
     }
 
-    /// `exposure` within `camera.exposure_range` when one is given.
+    /// `exposure` within `camera.exposure_range` when one is given (max then min, not
+    /// `clamp`, which panics on a range validation would refuse: a host may ask an
+    /// unvalidated scene).
     fn bound_exposure(&self, exposure: f64) -> f64 {
         match self.camera.exposure_range {
-            Some([lo, hi]) => exposure.clamp(lo, hi),
+            Some([lo, hi]) => exposure.max(lo).min(hi),
             None => exposure,
         }
     }

@@ -225,7 +225,8 @@ pub(crate) fn check(scene: &Scene) -> Vec<Issue> {
     c.positive("camera.exposure", cam.exposure);
     if let Some(range) = &cam.exposure_range {
         let lo_ok = c.positive("camera.exposure_range", range[0]);
-        if lo_ok && c.positive("camera.exposure_range", range[1]) && range[0] > range[1] {
+        let hi_ok = c.positive("camera.exposure_range", range[1]);
+        if lo_ok && hi_ok && range[0] > range[1] {
             c.push(
                 "camera.exposure_range",
                 nums(range),
