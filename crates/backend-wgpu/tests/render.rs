@@ -5,6 +5,7 @@
 use std::sync::{Arc, Mutex, OnceLock};
 
 use stratus_backend_wgpu::{Api, Options, Renderer};
+use stratus_graph::output::LUMA;
 use stratus_graph::{FrameInput, FrameOutput, FramePlan, Program};
 use stratus_noise::{NoiseConfig, NoiseSet, ShapeSize};
 use stratus_scene::{Scene, ShapeTexture};
@@ -303,9 +304,7 @@ fn gl_backend_renders() {
 fn display_luminance(f: &FrameOutput) -> Vec<f64> {
     f.image
         .chunks(4)
-        .map(|p| {
-            (0.2126 * f64::from(p[0]) + 0.7152 * f64::from(p[1]) + 0.0722 * f64::from(p[2])) / 255.0
-        })
+        .map(|p| (0..3).map(|c| LUMA[c] * f64::from(p[c])).sum::<f64>() / 255.0)
         .collect()
 }
 

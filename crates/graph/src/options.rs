@@ -68,7 +68,7 @@ impl PlanOptions {
         Self {
             physical_sky: scene.atmosphere.sky.is_physical(),
             kuwahara: scene.post.kuwahara,
-            rainbow: scene.rainbow.moisture > 0.0 && scene.rainbow.lee_diagram,
+            rainbow: scene.rainbow.uses_table(),
             ..Self::of_clouds(scene)
         }
     }

@@ -167,9 +167,10 @@ pub(crate) fn cheap_phase_rgb(f: &Frame, phi: f64) -> V3 {
     V3::new(r, g, b)
 }
 
-/// Whether the frame's rainbow reads its table.
+/// Whether the frame's rainbow reads its table (the uniforms set `FLAG_LEE_DIAGRAM` only for a
+/// scene whose `Rainbow::uses_table`).
 pub(crate) fn uses_table(f: &Frame) -> bool {
-    f.rainbow_moisture > 0.0 && f.flags & FLAG_LEE_DIAGRAM != 0
+    f.flags & FLAG_LEE_DIAGRAM != 0
 }
 
 #[cfg(test)]

@@ -576,8 +576,9 @@ impl SkyTables {
     // WGSL: rainbow.wgsl::rainbow_phase_rgb
     /// The bows' phase function (rgb) at `phi` (rad) from the antisolar point.
     fn rainbow_phase_rgb(&self, f: &Frame, phi: f64) -> V3 {
+        // The table is built exactly when the frame reads it (`rainbow::uses_table`).
         match &self.rainbow {
-            Some(table) if f.flags & crate::frame::FLAG_LEE_DIAGRAM != 0 => {
+            Some(table) => {
                 let x = (phi.to_degrees() - rainbow::RAINBOW_MIN_DEG)
                     / (rainbow::RAINBOW_MAX_DEG - rainbow::RAINBOW_MIN_DEG);
                 rgb(table.bilinear([x, 0.0]))

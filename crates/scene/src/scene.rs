@@ -250,6 +250,12 @@ impl Rainbow {
     pub fn is_off(&self) -> bool {
         *self == Self::default()
     }
+
+    /// Whether a bow is drawn from the Lee-diagram table (moisture, and `lee_diagram` on): the
+    /// frame plan then computes the table and the uniforms' `FLAG_LEE_DIAGRAM` says to read it.
+    pub fn uses_table(&self) -> bool {
+        self.moisture > 0.0 && self.lee_diagram
+    }
 }
 
 /// A camera's orientation (`[camera.orientation]`): three unit, mutually orthogonal vectors

@@ -761,7 +761,7 @@ impl Scene {
         if atm.light_shafts {
             flags |= FrameUniforms::FLAG_LIGHT_SHAFTS;
         }
-        if self.rainbow.moisture > 0.0 && self.rainbow.lee_diagram {
+        if self.rainbow.uses_table() {
             flags |= FrameUniforms::FLAG_LEE_DIAGRAM;
         }
         let (key_direction, key_illuminance, moonlit) = self.key_light();
