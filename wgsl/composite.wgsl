@@ -320,7 +320,14 @@ fn saturated(c: vec3<f32>) -> vec3<f32> {
 }
 
 @compute @workgroup_size(8, 8, 1)
-fn composite(@builtin(global_invocation_id) id: vec3<u32>) {
+fn composite(
+    @builtin(global_invocation_id) id: vec3<u32>,
+    @builtin(local_invocation_index) local: u32,
+) {
+    var flare = vec3<f32>(0.0);
+    if frame.lens_flare_intensity > 0.0 {
+        flare = shared_flare_source(local, analytic_sun());
+    }
     if any(id.xy >= frame.size) {
         return;
     }
@@ -330,7 +337,21 @@ fn composite(@builtin(global_invocation_id) id: vec3<u32>) {
     if !has_surface(pixel) {
         background = analytic_background(view_ray(pixel));
     }
-    store_display(pixel, background * cloud.a + cloud.rgb);
+    var radiance = background * cloud.a + cloud.rgb;
+    if frame.lens_flare_intensity > 0.0 {
+        radiance += lens_flare(pixel, flare);
+    }
+    store_display(pixel, radiance);
+}
+
+// The sun's illuminance reaching the camera through the analytic sky's air (which does not
+// dim it): 0 below the horizon.
+fn analytic_sun() -> vec3<f32> {
+    let alt = frame.camera_position.y;
+    if hits_ground(vec3<f32>(0.0, alt, 0.0), alt, frame.sun_direction) {
+        return vec3<f32>(0.0);
+    }
+    return frame.sun_illuminance;
 }
 
 // What shows behind the clouds in the analytic sky where the host has no geometry: the sky's
@@ -346,13 +367,26 @@ fn analytic_background(view: vec3<f32>) -> vec3<f32> {
 
 // The same in the physical sky (plan option `physical_sky`).
 @compute @workgroup_size(8, 8, 1)
-fn composite_physical(@builtin(global_invocation_id) id: vec3<u32>) {
+fn composite_physical(
+    @builtin(global_invocation_id) id: vec3<u32>,
+    @builtin(local_invocation_index) local: u32,
+) {
+    var flare = vec3<f32>(0.0);
+    if frame.lens_flare_intensity > 0.0 {
+        // The sun's light through the air to the camera: 0 below the horizon.
+        let air = sun_transmittance(camera_air_origin().y, frame.sun_direction.y);
+        flare = shared_flare_source(local, frame.sun_illuminance * air);
+    }
     if any(id.xy >= frame.size) {
         return;
     }
     let pixel = id.xy;
     let cloud = textureLoad(cloud_in, pixel, 0);
-    store_display(pixel, physical_composite(pixel, view_ray(pixel), cloud));
+    var radiance = physical_composite(pixel, view_ray(pixel), cloud);
+    if frame.lens_flare_intensity > 0.0 {
+        radiance += lens_flare(pixel, flare);
+    }
+    store_display(pixel, radiance);
 }
 
 // The HDR output (`Clouds::render_hdr`): linear radiance, premultiplied (the host adds it over

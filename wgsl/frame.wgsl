@@ -277,6 +277,6 @@ struct Frame {
     rainbow_moisture: f32,
     // The raindrops' radius (m).
     rainbow_drop_radius: f32,
-    // Padding (0).
-    _pad10: f32,
+    // The lens flare's strength (`post.lens_flare_intensity`; 0: none).
+    lens_flare_intensity: f32,
 }

@@ -92,10 +92,12 @@ fn assert_sane(name: &str, f: &FrameOutput) {
     // The march and the composite, and under the physical sky the cloud-shadow map and its
     // six tables unless a frame before computed them for the same air, sun and camera; not the
     // present pass, which runs only into a host's target. The stylised presets add their
-    // Kuwahara filter.
+    // Kuwahara filter; a rainbow from its table adds the table, unless a frame before computed
+    // it for the same drops and sun (tests share one renderer, in no fixed order).
     let styled = usize::from(Scene::preset(name).is_ok_and(|s| s.post.kuwahara));
+    let bow_table = usize::from(Scene::preset(name).is_ok_and(|s| s.rainbow.uses_table()));
     let passes = if name_is_physical(name) {
-        3 + styled..=9 + styled
+        3 + styled..=9 + styled + bow_table
     } else {
         2 + styled..=2 + styled
     };
@@ -553,4 +555,128 @@ fn the_rainbow_is_absent_under_a_high_sun_dry_air_or_no_rain() {
         render(Api::Vulkan, &base, false).image,
         render(Api::Vulkan, &dry, false).image
     );
+}
+
+/// Where the sun's centre falls on `scene`'s image, in pixels (continuous, y down), from the
+/// scene's camera alone; `None` with the sun behind the camera.
+fn sun_on_image(scene: &Scene) -> Option<[f64; 2]> {
+    let [w, h] = scene.camera.resolution;
+    let (fw, r, u) = scene.camera_basis();
+    let tan_half = (scene.camera.fov_y_deg.to_radians() / 2.0).tan();
+    let aspect = f64::from(w) / f64::from(h);
+    let sun = scene.key_light().0;
+    let dot = |a: [f64; 3]| a[0] * sun[0] + a[1] * sun[1] + a[2] * sun[2];
+    let z = dot(fw);
+    (z > 0.0).then(|| {
+        [
+            (dot(r) / (z * tan_half * aspect) * 0.5 + 0.5) * f64::from(w),
+            (-dot(u) / (z * tan_half) * 0.5 + 0.5) * f64::from(h),
+        ]
+    })
+}
+
+/// The lens flare's display-image difference (the scene less the same without flare), summed
+/// over the channels, per pixel.
+fn flare_difference(scene: &Scene) -> Vec<f64> {
+    let mut plain = scene.clone();
+    plain.post.lens_flare_intensity = 0.0;
+    let a = render(Api::Vulkan, scene, false).image;
+    let b = render(Api::Vulkan, &plain, false).image;
+    (0..a.len() / 4)
+        .map(|i| {
+            (0..3)
+                .map(|c| f64::from(a[4 * i + c]) - f64::from(b[4 * i + c]))
+                .sum()
+        })
+        .collect()
+}
+
+/// The `lens-flare` preset's flare brightens the image (a flare adds light); its ghosts lie
+/// along the line from the sun's image through the image's centre, on both sides of the centre,
+/// and its halo on a ring about the centre, on the sun's side; turned away from the sun, or with a closed deck between the camera and the sun, the image is
+/// the flareless one bit for bit.
+#[test]
+fn the_lens_flare_lies_on_the_sun_axis_and_only_while_the_sun_is_seen() {
+    let scene = preset("lens-flare", 192, 108);
+    let [w, h] = scene.camera.resolution;
+    let sun = sun_on_image(&scene).expect("the preset faces the sun");
+    assert!(
+        sun[0] > 0.0 && sun[0] < f64::from(w) && sun[1] > 0.0 && sun[1] < f64::from(h),
+        "the preset's sun {sun:?} is on screen"
+    );
+    let diff = flare_difference(&scene);
+    let (cx, cy) = (f64::from(w) / 2.0, f64::from(h) / 2.0);
+    let axis = [sun[0] - cx, sun[1] - cy];
+    let axis_len = (axis[0] * axis[0] + axis[1] * axis[1]).sqrt();
+    // Per pixel: distance from the axis and from the centre (image heights), position along
+    // the axis (1 at the sun) and the cosine between the pixel's and the sun's directions
+    // from the centre.
+    let place = |i: usize| {
+        let (x, y) = (
+            (i as u32 % w) as f64 + 0.5 - cx,
+            (i as u32 / w) as f64 + 0.5 - cy,
+        );
+        let hf = f64::from(h);
+        let off = (x * axis[1] - y * axis[0]).abs() / axis_len / hf;
+        let along = (x * axis[0] + y * axis[1]) / (axis_len * axis_len);
+        let radius = (x * x + y * y).sqrt() / hf;
+        let cos = (x * axis[0] + y * axis[1]) / (axis_len * (x * x + y * y).sqrt().max(1e-9));
+        (off, along, radius, cos)
+    };
+    let darker = diff.iter().filter(|&&d| d < 0.0).count();
+    assert_eq!(darker, 0, "the flare darkened {darker} pixels");
+    let sum = |keep: &dyn Fn((f64, f64, f64, f64)) -> bool| -> f64 {
+        (0..diff.len())
+            .filter(|&i| keep(place(i)))
+            .map(|i| diff[i].max(0.0))
+            .sum()
+    };
+    // The halo's band: its ring (0.42 image heights), red and blue fringes 0.01 either side,
+    // and six widths (0.012) of its profile beyond them.
+    let in_band = |p: (f64, f64, f64, f64)| (p.2 - 0.42).abs() < 0.01 + 6.0 * 0.012;
+    let ghosts = sum(&|p| !in_band(p));
+    // The largest ghost's reach (1.25 x its circumradius 0.11) bounds a ghost's distance from
+    // the axis.
+    let by_axis = sum(&|p| !in_band(p) && p.0 < 0.14);
+    let across = sum(&|p| !in_band(p) && p.0 < 0.14 && p.1 < -0.5);
+    // The halo away from the ghosts: on the ring's half toward the sun, none on the other.
+    let sun_side = sum(&|p| in_band(p) && p.0 >= 0.14 && p.3 > 0.0);
+    let far_side = sum(&|p| in_band(p) && p.0 >= 0.14 && p.3 <= 0.0);
+    println!(
+        "flare: ghosts {ghosts:.0} levels ({:.3} within 0.14 image heights of the axis, {:.3} \
+         of them past the centre); halo off the axis: {sun_side:.0} levels on the sun's \
+         side, {far_side:.0} on the other",
+        by_axis / ghosts,
+        across / ghosts,
+    );
+    assert!(ghosts > 200.0, "the ghosts add {ghosts} levels in all");
+    assert!(
+        by_axis / ghosts > 0.9,
+        "{:.3} of the ghosts lie by the axis",
+        by_axis / ghosts
+    );
+    assert!(
+        across / ghosts > 0.2,
+        "{:.3} of the ghosts lie past the centre",
+        across / ghosts
+    );
+    assert!(sun_side > 100.0, "the halo adds {sun_side} levels");
+    assert_eq!(far_side, 0.0, "the halo shows away from the sun");
+
+    // Turned away: the sun's disc off screen (to the left of the image).
+    let mut away = scene.clone();
+    away.camera.yaw_deg += 100.0;
+    let off = sun_on_image(&away).is_none_or(|s| s[0] < 0.0 || s[0] > f64::from(w));
+    assert!(off, "turned 100 degrees, the sun leaves the image");
+    assert!(
+        flare_difference(&away).iter().all(|&d| d == 0.0),
+        "flare with the sun off screen"
+    );
+
+    // A closed deck in front of the sun.
+    let mut overcast = scene.clone();
+    overcast.clouds.coverage = 1.0;
+    let diff = flare_difference(&overcast);
+    let flared = diff.iter().filter(|&&d| d != 0.0).count();
+    assert_eq!(flared, 0, "{flared} pixels flare through a closed deck");
 }

@@ -299,17 +299,36 @@ fn store_display(f: &Frame, radiance: V3) -> [u8; 4] {
 }
 
 // WGSL: composite.wgsl::composite
-/// The display pixel for march output `cloud` (radiance rgb, transmittance).
-pub(crate) fn composite(f: &Frame, pixel: [u32; 2], cloud: [f64; 4], surface: bool) -> [u8; 4] {
+/// The display pixel for march output `cloud` (radiance rgb, transmittance), with the lens
+/// flare of `flare` (the sun's light reaching the lens, [`crate::flare::flare_source`]).
+pub(crate) fn composite(
+    f: &Frame,
+    pixel: [u32; 2],
+    cloud: [f64; 4],
+    surface: bool,
+    flare: V3,
+) -> [u8; 4] {
     let background = if surface {
         surface_radiance(f)
     } else {
         analytic_background(f, view_ray(f, pixel))
     };
-    store_display(
-        f,
-        background * cloud[3] + V3::new(cloud[0], cloud[1], cloud[2]),
-    )
+    let mut radiance = background * cloud[3] + V3::new(cloud[0], cloud[1], cloud[2]);
+    if f.lens_flare_intensity > 0.0 {
+        radiance += crate::flare::lens_flare(f, pixel, flare);
+    }
+    store_display(f, radiance)
+}
+
+// WGSL: composite.wgsl::analytic_sun
+/// The sun's illuminance reaching the camera through the analytic sky's air: 0 below the
+/// horizon.
+fn analytic_sun(f: &Frame) -> V3 {
+    let alt = f.camera_position[1];
+    if hits_ground(f, V3::new(0.0, alt, 0.0), alt, f.sun()) {
+        return V3::ZERO;
+    }
+    f.sun_illuminance()
 }
 
 // WGSL: composite.wgsl::analytic_background
@@ -325,7 +344,8 @@ fn analytic_background(f: &Frame, view: V3) -> V3 {
 }
 
 // WGSL: composite.wgsl::composite_physical
-/// The display pixel in the physical sky, for march output `cloud` at depth `depth` (m).
+/// The display pixel in the physical sky, for march output `cloud` at depth `depth` (m), with
+/// the lens flare of `flare` (the sun's light reaching the lens).
 pub(crate) fn composite_physical(
     f: &Frame,
     sky: &SkyTables,
@@ -333,11 +353,13 @@ pub(crate) fn composite_physical(
     cloud: [f64; 4],
     depth: f64,
     surface: bool,
+    flare: V3,
 ) -> [u8; 4] {
-    store_display(
-        f,
-        physical_composite(f, sky, pixel, view_ray(f, pixel), cloud, depth, surface),
-    )
+    let mut radiance = physical_composite(f, sky, pixel, view_ray(f, pixel), cloud, depth, surface);
+    if f.lens_flare_intensity > 0.0 {
+        radiance += crate::flare::lens_flare(f, pixel, flare);
+    }
+    store_display(f, radiance)
 }
 
 /// The display image of a `width` x `height` frame from its stored (f32) radiance and
@@ -355,6 +377,25 @@ pub(crate) fn composite_image(
     surface: Option<&stratus_graph::SceneDepth>,
 ) -> Vec<u8> {
     let sky = physical(f, sky);
+    // The sun's light reaching the lens: through the air, then through the clouds (the march's
+    // transmittance) over its disc, where no geometry hides it.
+    let flare = if f.lens_flare_intensity > 0.0 {
+        let direct = match sky {
+            Some(sky) => f
+                .sun_illuminance()
+                .mul_v(sky.sun_transmittance(sky.camera_air_origin(f).y, f.sun().y)),
+            None => analytic_sun(f),
+        };
+        crate::flare::flare_source(f, direct, |[x, y]| {
+            if crate::march::surface_at(f, surface, [x, y]) {
+                0.0
+            } else {
+                f64::from(radiance[4 * (y * width + x) as usize + 3])
+            }
+        })
+    } else {
+        V3::ZERO
+    };
     let image: Vec<u8> = (0..height)
         .into_par_iter()
         .flat_map_iter(|y| {
@@ -364,9 +405,10 @@ pub(crate) fn composite_image(
                 let surface = crate::march::surface_at(f, surface, [x, y]);
                 match sky {
                     Some(sky) => {
-                        composite_physical(f, sky, [x, y], cloud, f64::from(depth[i]), surface)
+                        let depth = f64::from(depth[i]);
+                        composite_physical(f, sky, [x, y], cloud, depth, surface, flare)
                     }
-                    None => composite(f, [x, y], cloud, surface),
+                    None => composite(f, [x, y], cloud, surface, flare),
                 }
             })
         })

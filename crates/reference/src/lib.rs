@@ -35,6 +35,7 @@
 pub mod atmosphere;
 mod composite;
 mod density;
+mod flare;
 mod frame;
 mod geometry;
 mod lighting;

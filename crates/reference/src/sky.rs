@@ -473,7 +473,7 @@ impl SkyTables {
     // WGSL: atmosphere.wgsl::sun_transmittance
     /// The sun's light left at radius `r` for a sun of zenith cosine `mu_s`: 0 behind the
     /// planet.
-    fn sun_transmittance(&self, r: f64, mu_s: f64) -> V3 {
+    pub(crate) fn sun_transmittance(&self, r: f64, mu_s: f64) -> V3 {
         if self.meets_ground(r, mu_s) {
             return V3::ZERO;
         }

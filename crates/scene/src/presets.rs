@@ -27,6 +27,7 @@ const SOURCES: &[(&str, &str)] = &[
         include_str!("../presets/kuwahara-night.toml"),
     ),
     ("rainbow", include_str!("../presets/rainbow.toml")),
+    ("lens-flare", include_str!("../presets/lens-flare.toml")),
 ];
 
 /// The name of the preset that [`Scene::default`](crate::Scene::default) equals and that files

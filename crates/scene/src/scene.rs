@@ -31,7 +31,8 @@ pub struct Scene {
     pub lighting: Lighting,
     /// Ray-marching quality and integration method.
     pub quality: Quality,
-    /// Post effects on the display image: the stylised Kuwahara filter and saturation.
+    /// Post effects on the display image: the stylised Kuwahara filter, saturation and lens
+    /// flare.
     #[serde(skip_serializing_if = "Post::is_off")]
     pub post: Post,
     /// The rainbow in sunlit rain (physical sky only).
@@ -174,9 +175,10 @@ pub struct Camera {
     pub orientation: Option<Orientation>,
 }
 
-/// Post effects on the display image (section `[post]`), after the tone curve: the seed's
-/// stylised presets. They change the display image only, never the radiance (the HDR output,
-/// the path tracer's truths and the statistics do not see them).
+/// Post effects on the display image (section `[post]`): the seed's stylised presets, after
+/// the tone curve, and the camera's lens flare, added to the radiance before it. They change
+/// the display image only (the HDR output, the path tracer's truths and the statistics do not
+/// see them): a host's camera makes its own flare.
 #[derive(Serialize, Deserialize, Clone, Debug, PartialEq)]
 #[serde(default, deny_unknown_fields)]
 pub struct Post {
@@ -193,6 +195,13 @@ pub struct Post {
     /// it, 0 is grey, above 1 the stylised presets' stronger colour. Each pixel's colour
     /// moves away from its luminance (Rec. 709 weights) by this factor.
     pub saturation: f64,
+    /// Lens flare (seed 001's "Lens Flare Intensity"), within [0, 10]: 0 draws none. While
+    /// the sun's disc is on screen, the lens's ghosts (images of its hexagonal aperture) and
+    /// a halo lie along the line from the sun through the image's centre, each carrying a
+    /// fixed share of the sun's light that reaches the lens, so the air's reddening and the
+    /// clouds in front of the sun dim them; 1 is a multi-coated lens, its ghosts 1e-4 to
+    /// 4e-4 of that light each.
+    pub lens_flare_intensity: f64,
 }
 
 impl Default for Post {
@@ -201,6 +210,7 @@ impl Default for Post {
             kuwahara: false,
             kuwahara_radius: 0.008,
             saturation: 1.0,
+            lens_flare_intensity: 0.0,
         }
     }
 }

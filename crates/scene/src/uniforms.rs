@@ -292,8 +292,8 @@ macro_rules! frame_members {
             rainbow_moisture: f32,
             /// The raindrops' radius (m).
             rainbow_drop_radius: f32,
-            /// Padding (0).
-            _pad10: f32,
+            /// The lens flare's strength (`post.lens_flare_intensity`; 0: none).
+            lens_flare_intensity: f32,
         }
     };
 }
@@ -945,7 +945,7 @@ impl Scene {
             },
             rainbow_moisture: f(self.rainbow.moisture),
             rainbow_drop_radius: f(self.rainbow.drop_radius_um * 1e-6),
-            _pad10: 0.0,
+            lens_flare_intensity: f(self.post.lens_flare_intensity),
         };
         block.with_previous_camera(&block)
     }

@@ -242,6 +242,12 @@ pub(crate) fn check(scene: &Scene) -> Vec<Issue> {
         Incl(0.05),
     );
     c.float("post.saturation", post.saturation, Incl(0.0), Incl(4.0));
+    c.float(
+        "post.lens_flare_intensity",
+        post.lens_flare_intensity,
+        Incl(0.0),
+        Incl(10.0),
+    );
     let bow = &scene.rainbow;
     if c.float("rainbow.moisture", bow.moisture, Incl(0.0), Incl(4.0))
         && bow.moisture > 0.0

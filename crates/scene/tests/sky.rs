@@ -136,11 +136,12 @@ fn light_shafts_load_under_the_physical_sky_and_are_refused_without_it() {
 #[test]
 fn rainbow_and_post_fields_load_and_bad_values_are_refused() {
     let s = load(
-        "[atmosphere]\nsky = \"physical\"\n[rainbow]\nmoisture = 0.5\ndrop_radius_um = 20\n[post]\nkuwahara = true\nsaturation = 1.5\n[camera]\nexposure_range = [0.5, 2.0]\n",
+        "[atmosphere]\nsky = \"physical\"\n[rainbow]\nmoisture = 0.5\ndrop_radius_um = 20\n[post]\nkuwahara = true\nsaturation = 1.5\nlens_flare_intensity = 2.5\n[camera]\nexposure_range = [0.5, 2.0]\n",
     )
     .expect("loads");
     let u = s.uniforms();
     assert_eq!((u.rainbow_moisture, u.saturation), (0.5, 1.5));
+    assert_eq!(u.lens_flare_intensity, 2.5);
     assert!((u.rainbow_drop_radius - 20e-6).abs() < 1e-12);
     assert!(u.kuwahara_radius > 0.0);
     assert_ne!(u.flags & stratus_scene::FrameUniforms::FLAG_LEE_DIAGRAM, 0);
@@ -153,8 +154,13 @@ fn rainbow_and_post_fields_load_and_bad_values_are_refused() {
     );
     let u = plain.uniforms();
     assert_eq!(
-        (u.rainbow_moisture, u.kuwahara_radius, u.saturation),
-        (0.0, 0.0, 1.0)
+        (
+            u.rainbow_moisture,
+            u.kuwahara_radius,
+            u.saturation,
+            u.lens_flare_intensity
+        ),
+        (0.0, 0.0, 1.0, 0.0)
     );
     assert_eq!(u.flags & stratus_scene::FrameUniforms::FLAG_LEE_DIAGRAM, 0);
     for (text, field) in [
@@ -169,6 +175,14 @@ fn rainbow_and_post_fields_load_and_bad_values_are_refused() {
         ),
         ("[post]\nsaturation = 9\n", "post.saturation"),
         ("[post]\nkuwahara_radius = 0\n", "post.kuwahara_radius"),
+        (
+            "[post]\nlens_flare_intensity = -1\n",
+            "post.lens_flare_intensity",
+        ),
+        (
+            "[post]\nlens_flare_intensity = 11\n",
+            "post.lens_flare_intensity",
+        ),
         (
             "[camera]\nexposure_range = [2.0, 1.0]\n",
             "camera.exposure_range",
