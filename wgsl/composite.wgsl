@@ -52,7 +52,7 @@ fn physical_composite(pixel: vec2<u32>, view: vec3<f32>, cloud: vec4<f32>) -> ve
     var sky = surface_radiance();
     var bow = vec3<f32>(0.0);
     if !surface {
-        sky = max(physical_background(view) - shafts.all * frame.sun_illuminance, vec3<f32>(0.0));
+        sky = max(physical_background(pixel, view) - shafts.all * frame.sun_illuminance, vec3<f32>(0.0));
         bow = rainbow_radiance(view) * frame.sun_illuminance;
     }
     return sky * cloud.a + physical_over(pixel, cloud, shafts.front) + bow;
@@ -60,7 +60,7 @@ fn physical_composite(pixel: vec2<u32>, view: vec3<f32>, cloud: vec4<f32>) -> ve
 
 // What shows behind the clouds where the host has no geometry: the sky-view table, the lit
 // ground below the horizon, and the sun, moon and stars above it.
-fn physical_background(view: vec3<f32>) -> vec3<f32> {
+fn physical_background(pixel: vec2<u32>, view: vec3<f32>) -> vec3<f32> {
     let e = frame.sun_illuminance;
     let r = camera_air_origin().y;
     var sky = sky_view(view) * e;
@@ -68,7 +68,7 @@ fn physical_background(view: vec3<f32>) -> vec3<f32> {
         // The table's ground is lit everywhere; where the clouds shade it, less.
         sky = max(sky - ground_shadow_loss(view, r) * e, vec3<f32>(0.0));
     } else {
-        var space = moon_disk(view) + stars(view);
+        var space = night_sky(pixel, view);
         if (frame.flags & FLAG_MOONLIT) == 0u {
             space += sun_disk(view);
         }
@@ -183,101 +183,6 @@ fn light_shafts(pixel: vec2<u32>, view: vec3<f32>, split_m: f32, end_km: f32) ->
         tau += air.extinction * dt;
     }
     return loss;
-}
-
-// The moon's angular radius (mean, 0.259 degrees).
-const MOON_COS_RADIUS: f32 = 0.99998978;
-
-// Radiance of the moon's disc along unit `d`: the full moon's illuminance over the disc's
-// solid angle where the sun lights the moon's sphere, 0 on its night side and off the disc.
-// The full moon shows almost no limb darkening, so the lit part is of even brightness; the
-// terminator is softened over 2% of the radius against aliasing.
-fn moon_disk(d: vec3<f32>) -> vec3<f32> {
-    let m = frame.moon_direction;
-    let c = dot(d, m);
-    if frame.moon_illuminance <= 0.0 || c < MOON_COS_RADIUS {
-        return vec3<f32>(0.0);
-    }
-    let sin_r = sqrt(1.0 - MOON_COS_RADIUS * MOON_COS_RADIUS);
-    let offset = (d - m * c) / sin_r;          // in units of the disc's radius
-    let x2 = min(dot(offset, offset), 1.0);
-    let normal = offset - m * sqrt(1.0 - x2);  // the visible hemisphere faces the camera
-    let lit = smoothstep(-0.02, 0.02, dot(normal, frame.real_sun_direction));
-    let solid_angle = 2.0 * PI * (1.0 - MOON_COS_RADIUS);
-    return vec3<f32>(frame.moon_illuminance / solid_angle * lit);
-}
-
-// Stars: procedural, with the real sky's count per magnitude. The cumulative count brighter
-// than magnitude m over the whole sky is about 4800 x 10^(0.48 (m - 6)) (about 15 brighter
-// than 1, 4800 brighter than 6: the Yale Bright Star Catalogue's counts as Allen's
-// Astrophysical Quantities gives them), down to magnitude 6.5. The sky is cut into the cells
-// of a cube map, 96x96 a face; a cell holds at most one star, with the probability that gives
-// that count, at a hashed place, its magnitude from the inverse of the count. Each star is a
-// point of illuminance E0 10^(-0.4 m), splatted as a Gaussian of half a pixel over the pixels
-// around it, so its light does not depend on the resolution.
-const STAR_CELLS: u32 = 96u;
-const STAR_FAINTEST: f32 = 6.5;
-
-fn stars(d: vec3<f32>) -> vec3<f32> {
-    let e0 = frame.star_illuminance;
-    if e0 <= 0.0 {
-        return vec3<f32>(0.0);
-    }
-    // Which cube face and cell the direction falls in.
-    let a = abs(d);
-    var face = 0u;
-    var uv = vec2<f32>(0.0);
-    var major = 0.0;
-    if a.x >= a.y && a.x >= a.z {
-        face = select(1u, 0u, d.x > 0.0);
-        uv = d.zy;
-        major = a.x;
-    } else if a.y >= a.z {
-        face = select(3u, 2u, d.y > 0.0);
-        uv = d.xz;
-        major = a.y;
-    } else {
-        face = select(5u, 4u, d.z > 0.0);
-        uv = d.xy;
-        major = a.z;
-    }
-    let st = clamp((uv / major) * 0.5 + 0.5, vec2<f32>(0.0), vec2<f32>(0.999999));
-    let cell = vec2<u32>(st * f32(STAR_CELLS));
-    let id = (face * STAR_CELLS + cell.y) * STAR_CELLS + cell.x;
-    // 6 faces x 96^2 cells; stars to magnitude 6.5 number 4800 x 10^0.24.
-    let count = 4800.0 * pow(10.0, 0.48 * (STAR_FAINTEST - 6.0));
-    let p = count / f32(6u * STAR_CELLS * STAR_CELLS);
-    let h0 = f32(pcg(id ^ 0x9e3779b9u) >> 8u) * (1.0 / 16777216.0);
-    if h0 >= p {
-        return vec3<f32>(0.0);
-    }
-    let h1 = f32(pcg(id ^ 0x85ebca6bu) >> 8u) * (1.0 / 16777216.0);
-    let h2 = f32(pcg(id ^ 0xc2b2ae35u) >> 8u) * (1.0 / 16777216.0);
-    let h3 = f32(pcg(id ^ 0x27d4eb2fu) >> 8u) * (1.0 / 16777216.0);
-    let h4 = f32(pcg(id ^ 0x165667b1u) >> 8u) * (1.0 / 16777216.0);
-    // The star's direction: a hashed point of the cell, away from its edges.
-    let star_st = (vec2<f32>(cell) + 0.15 + 0.7 * vec2<f32>(h1, h2)) / f32(STAR_CELLS);
-    let q = (star_st * 2.0 - 1.0) * major;
-    var star = vec3<f32>(0.0);
-    if face < 2u {
-        star = vec3<f32>(select(-major, major, face == 0u), q.y, q.x);
-    } else if face < 4u {
-        star = vec3<f32>(q.x, select(-major, major, face == 2u), q.y);
-    } else {
-        star = vec3<f32>(q.x, q.y, select(-major, major, face == 4u));
-    }
-    star = normalize(star);
-    // h0 / p is uniform in [0, 1): N(< m) / N(< 6.5) = h, so m = 6.5 + log10(h) / 0.48.
-    let magnitude = max(STAR_FAINTEST + log(max(h0 / p, 1e-6)) / (0.48 * log(10.0)), -1.5);
-    let illuminance = e0 * pow(10.0, -0.4 * magnitude);
-    // Angular size of a pixel at the image centre.
-    let pixel_angle = 2.0 * frame.tan_half_fov / f32(frame.size.y);
-    let dist = acos(clamp(dot(d, star), -1.0, 1.0)) / pixel_angle;
-    let sigma = 0.5;
-    let weight = exp(-dist * dist / (2.0 * sigma * sigma)) / (2.0 * PI * sigma * sigma);
-    // Colour: from bluish-white to orange, as stellar temperatures run.
-    let tint = mix(vec3<f32>(0.8, 0.9, 1.1), vec3<f32>(1.15, 0.95, 0.75), h3 * h4);
-    return tint * (illuminance * weight / (pixel_angle * pixel_angle));
 }
 
 // ACES filmic curve fitted by Narkowicz (seed 001), input pre-exposed so 1 maps to ~0.8.

@@ -279,4 +279,26 @@ struct Frame {
     rainbow_drop_radius: f32,
     // The lens flare's strength (`post.lens_flare_intensity`; 0: none).
     lens_flare_intensity: f32,
+    // The world direction of the J2000 equinox (the star catalogue's x axis) at the
+    // scene's date and place (0 without them).
+    celestial_x: vec3<f32>,
+    // The stars' least Gaussian deviation (`night.star_min_radius_px`, pixels).
+    star_min_radius: f32,
+    // The world direction of the J2000 catalogue's y axis (right ascension 6 h on
+    // the equator).
+    celestial_y: vec3<f32>,
+    // The stars' growth with brightness (`night.star_radius_scale`, pixels).
+    star_radius_scale: f32,
+    // The world direction of the J2000 north celestial pole.
+    celestial_z: vec3<f32>,
+    // The bright stars' glare (`night.star_glare_scale`).
+    star_glare_scale: f32,
+    // The Milky Way's brightness (`night.milky_way_intensity`).
+    milky_way_intensity: f32,
+    // cos(the moon's angular radius), `night.moon_size` applied.
+    moon_cos_radius: f32,
+    // The stars' brightness over the real sky's (`night.star_intensity`).
+    star_intensity: f32,
+    // Padding (0).
+    _pad12: f32,
 }

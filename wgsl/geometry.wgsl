@@ -7,8 +7,13 @@
 
 // The view ray through the centre of pixel `pixel` (y down in the image).
 fn view_ray(pixel: vec2<u32>) -> vec3<f32> {
+    return view_ray_at(vec2<f32>(pixel) + 0.5);
+}
+
+// The view ray through the image point `at` (pixels, continuous: pixel p's centre is p + 0.5).
+fn view_ray_at(at: vec2<f32>) -> vec3<f32> {
     let size = vec2<f32>(frame.size);
-    let ndc = (vec2<f32>(pixel) + 0.5) / size * 2.0 - 1.0;
+    let ndc = at / size * 2.0 - 1.0;
     let tan_half = frame.tan_half_fov;
     let aspect = frame.aspect;
     let d = frame.camera_forward

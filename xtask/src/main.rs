@@ -136,8 +136,9 @@ enum Task {
     },
     /// Opt-in, not in CI (needs the network once): install astropy in a virtual environment
     /// under target/, write the expected sun and moon positions, phases, sunrises and sunsets
-    /// of random dates and places to crates/astro/tests/data/ephemeris.json, and run
-    /// stratus-astro's test against them.
+    /// of random dates and places to crates/astro/tests/data/ephemeris.json, the brightest
+    /// catalogue stars' and the galactic centre's to crates/astro/tests/data/stars.json, and
+    /// run stratus-astro's tests against them.
     EphemerisCheck {
         /// Random dates and places.
         #[arg(long, default_value_t = 600)]

@@ -31,6 +31,8 @@ fn centuries(t: UtcDateTime) -> f64 {
 pub struct Nutation {
     /// Nutation in longitude.
     pub delta_psi: f64,
+    /// Nutation in obliquity.
+    pub delta_epsilon: f64,
     /// The true obliquity of the ecliptic (mean plus nutation in obliquity).
     pub epsilon: f64,
 }
@@ -53,6 +55,7 @@ pub fn nutation(t: UtcDateTime) -> Nutation {
         + (-46.8150 * c - 0.00059 * c * c + 0.001_813 * c * c * c) / 3600.0;
     Nutation {
         delta_psi,
+        delta_epsilon: delta_eps,
         epsilon: eps0 + delta_eps,
     }
 }

@@ -11,7 +11,9 @@
 
 #![deny(missing_docs)]
 
+pub mod celestial;
 pub mod ephemeris;
+pub mod stars;
 mod time;
 
 pub use ephemeris::Horizontal;

@@ -194,8 +194,9 @@ fn night_shows_the_moon_and_stars() {
         at[1]
     );
     // Stars: peaks of the display image in the clear sky (transmittance above 0.99 over 5x5
-    // pixels) away from the moon. Measured: 12 (the preset's clouds ten minutes on, as the
-    // moon stands in a gap).
+    // pixels) away from the moon. Measured: 8 with the catalogue's stars (12 with the
+    // procedural ones before them), the bound about two thirds of it as before (the preset's
+    // clouds ten minutes on, as the moon stands in a gap).
     let clear = |x: usize, y: usize| f.radiance[(y * 256 + x) * 4 + 3] > 0.99;
     let mut stars = 0;
     for y in 2..142 {
@@ -220,7 +221,7 @@ fn night_shows_the_moon_and_stars() {
         }
     }
     eprintln!("{stars} stars in the clear sky");
-    assert!(stars >= 8, "{stars} stars");
+    assert!(stars >= 5, "{stars} stars");
 }
 
 #[test]
@@ -560,11 +561,15 @@ fn the_rainbow_is_absent_under_a_high_sun_dry_air_or_no_rain() {
 /// Where the sun's centre falls on `scene`'s image, in pixels (continuous, y down), from the
 /// scene's camera alone; `None` with the sun behind the camera.
 fn sun_on_image(scene: &Scene) -> Option<[f64; 2]> {
+    sun_on_image_of(scene, scene.key_light().0)
+}
+
+/// Where world direction `sun` falls on `scene`'s image (as [`sun_on_image`]).
+fn sun_on_image_of(scene: &Scene, sun: [f64; 3]) -> Option<[f64; 2]> {
     let [w, h] = scene.camera.resolution;
     let (fw, r, u) = scene.camera_basis();
     let tan_half = (scene.camera.fov_y_deg.to_radians() / 2.0).tan();
     let aspect = f64::from(w) / f64::from(h);
-    let sun = scene.key_light().0;
     let dot = |a: [f64; 3]| a[0] * sun[0] + a[1] * sun[1] + a[2] * sun[2];
     let z = dot(fw);
     (z > 0.0).then(|| {
@@ -679,4 +684,212 @@ fn the_lens_flare_lies_on_the_sun_axis_and_only_while_the_sun_is_seen() {
     let diff = flare_difference(&overcast);
     let flared = diff.iter().filter(|&&d| d != 0.0).count();
     assert_eq!(flared, 0, "{flared} pixels flare through a closed deck");
+}
+
+/// The world direction of the J2000 unit vector `v` in `scene`'s sky: its uniforms' celestial
+/// axes (the renderer's own rotation, from the date and place).
+fn celestial_world(scene: &Scene, v: [f64; 3]) -> [f64; 3] {
+    let u = scene.uniforms();
+    let axes = [u.celestial_x, u.celestial_y, u.celestial_z].map(|a| a.map(f64::from));
+    std::array::from_fn(|i| axes[0][i] * v[0] + axes[1][i] * v[1] + axes[2][i] * v[2])
+}
+
+/// The unit view ray through the centre of `scene`'s pixel (x, y).
+fn pixel_ray(scene: &Scene, x: f64, y: f64) -> [f64; 3] {
+    let [w, h] = scene.camera.resolution;
+    let (fw, r, u) = scene.camera_basis();
+    let tan_half = (scene.camera.fov_y_deg.to_radians() / 2.0).tan();
+    let aspect = f64::from(w) / f64::from(h);
+    let nx = (x + 0.5) / f64::from(w) * 2.0 - 1.0;
+    let ny = (y + 0.5) / f64::from(h) * 2.0 - 1.0;
+    let d: [f64; 3] =
+        std::array::from_fn(|c| fw[c] + r[c] * nx * tan_half * aspect - u[c] * ny * tan_half);
+    let n = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+    d.map(|x| x / n)
+}
+
+/// `scene` looking at world direction `d` (yaw clockwise from north, pitch up), clear.
+fn looking_at(mut scene: Scene, d: [f64; 3]) -> Scene {
+    scene.camera.yaw_deg = d[0].atan2(d[2]).to_degrees();
+    scene.camera.pitch_deg = d[1].asin().to_degrees();
+    scene.clouds.coverage = 0.0;
+    scene
+}
+
+fn angle_deg(a: [f64; 3], b: [f64; 3]) -> f64 {
+    (a[0] * b[0] + a[1] * b[1] + a[2] * b[2])
+        .clamp(-1.0, 1.0)
+        .acos()
+        .to_degrees()
+}
+
+/// The Milky Way's brightest direction on screen is the galactic centre's, within 5 degrees:
+/// a clear moonless night (15 July 2026, 25 S 25 E, the centre 69 degrees up in the east), the
+/// camera toward where the renderer's sky puts the centre, the display image with the Milky
+/// Way less the same without it (no stars in either), smoothed over 15x15 pixels.
+#[test]
+fn the_milky_way_is_brightest_toward_the_galactic_centre() {
+    let mut base = preset("night", 160, 90);
+    base.sky.date_utc = "2026-07-15T19:00:00Z".parse().ok();
+    base.sky.latitude_deg = Some(-25.0);
+    base.sky.longitude_deg = Some(25.0);
+    base.camera.fov_y_deg = 60.0;
+    base.night.star_intensity = 0.0;
+    let g = stratus_astro::celestial::equatorial_to_galactic();
+    let centre = celestial_world(&base, g[0]);
+    assert!(
+        centre[1] > 0.5,
+        "the centre stands {} up",
+        centre[1].asin().to_degrees()
+    );
+    let scene = looking_at(base, centre);
+    let mut dark = scene.clone();
+    dark.night.milky_way_intensity = 0.0;
+    let (a, b) = (
+        render(Api::Vulkan, &scene, false),
+        render(Api::Vulkan, &dark, false),
+    );
+    let (w, h) = (160usize, 90usize);
+    let diff: Vec<f64> = (0..w * h)
+        .map(|i| {
+            (0..3)
+                .map(|c| f64::from(a.image[4 * i + c]) - f64::from(b.image[4 * i + c]))
+                .sum()
+        })
+        .collect();
+    let mut best = (f64::MIN, 0, 0);
+    for y in 7..h - 7 {
+        for x in 7..w - 7 {
+            let mut s = 0.0;
+            for j in y - 7..=y + 7 {
+                for i in x - 7..=x + 7 {
+                    s += diff[j * w + i];
+                }
+            }
+            if s > best.0 {
+                best = (s, x, y);
+            }
+        }
+    }
+    let (total, x, y) = best;
+    let off = angle_deg(pixel_ray(&scene, x as f64, y as f64), centre);
+    println!("the Milky Way is brightest at ({x}, {y}), {off:.2} degrees from the galactic centre");
+    assert!(
+        total > 15.0 * 15.0 * 3.0,
+        "the Milky Way adds only {total} levels there"
+    );
+    assert!(
+        off < 5.0,
+        "brightest {off} degrees from the galactic centre"
+    );
+}
+
+/// The catalogue's stars shine where the sky puts them: on the README's Milky Way night
+/// (12 August 2026, 22:00 UTC, 46 N 8 E), looking at Vega, the brightest pixel is within a
+/// pixel and a half of where Vega's J2000 position projects through the renderer's rotation
+/// (itself within 0.02 degrees of astropy's, crates/astro/tests/stars.rs).
+#[test]
+fn catalogue_stars_shine_where_the_sky_puts_them() {
+    let mut base = preset("night", 256, 144);
+    base.sky.date_utc = "2026-08-12T22:00:00Z".parse().ok();
+    base.camera.fov_y_deg = 20.0;
+    base.night.milky_way_intensity = 0.0;
+    let vega = stratus_astro::stars::catalogue()
+        .iter()
+        .find(|s| (s.ra_deg - 279.2347).abs() < 1e-3)
+        .copied()
+        .expect("Vega");
+    let direction = celestial_world(
+        &base,
+        stratus_astro::celestial::equatorial_vector(vega.ra_deg, vega.dec_deg),
+    );
+    // Off the centre, so that the projection is tested, not only the camera's aim.
+    let mut scene = looking_at(base, direction);
+    scene.camera.yaw_deg += 3.0;
+    scene.camera.pitch_deg -= 2.0;
+    let f = render(Api::Vulkan, &scene, false);
+    let lum: Vec<u32> = f
+        .image
+        .chunks(4)
+        .map(|p| u32::from(p[0]) + u32::from(p[1]) + u32::from(p[2]))
+        .collect();
+    let brightest = (0..lum.len())
+        .max_by_key(|&i| (lum[i], usize::MAX - i))
+        .unwrap();
+    let (bx, by) = ((brightest % 256) as f64, (brightest / 256) as f64);
+    let at = sun_on_image_of(&scene, direction).expect("Vega in front");
+    println!(
+        "Vega projects to ({:.2}, {:.2}); the brightest pixel is ({bx}, {by})",
+        at[0], at[1]
+    );
+    assert!(
+        (bx + 0.5 - at[0]).abs() <= 1.5 && (by + 0.5 - at[1]).abs() <= 1.5,
+        "the brightest pixel ({bx}, {by}) is not Vega's ({:.1}, {:.1})",
+        at[0],
+        at[1]
+    );
+}
+
+/// The moon's limb is anti-aliased either way `night.moon_msaa` chooses: with the disc four
+/// times its size (about 5 pixels in radius) and exposed below white, both the spread edge and the four rotated-grid
+/// samples leave a ring of part-covered pixels between the sky and the lit disc, and the two
+/// images differ only on and around the disc.
+#[test]
+fn the_moons_limb_is_anti_aliased_by_spread_or_msaa() {
+    let mut spread = preset("night", 256, 144);
+    spread.night.moon_size = 4.0;
+    spread.clouds.coverage = 0.0;
+    // An exposure that keeps the disc below white (auto exposure clips it, and a clipped pixel
+    // shows no coverage): its radiance, the moon's illuminance over its solid angle, to 0.4.
+    let u = spread.uniforms();
+    let disc = f64::from(u.moon_illuminance)
+        / (2.0 * std::f64::consts::PI * (1.0 - f64::from(u.moon_cos_radius)));
+    spread.camera.auto_exposure = false;
+    spread.camera.exposure = 0.4 / disc;
+    let mut msaa = spread.clone();
+    msaa.night.moon_msaa = true;
+    let at = sun_on_image_of(&spread, spread.moon().expect("a moon").0).expect("in front");
+    let radius_px = (0.259f64 * 4.0).to_radians().tan()
+        / (spread.camera.fov_y_deg.to_radians() / 2.0).tan()
+        * 72.0;
+    let lum = |f: &FrameOutput| -> Vec<f64> {
+        f.image
+            .chunks(4)
+            .map(|p| f64::from(p[0]) + f64::from(p[1]) + f64::from(p[2]))
+            .collect()
+    };
+    let (a, b) = (
+        lum(&render(Api::Vulkan, &spread, false)),
+        lum(&render(Api::Vulkan, &msaa, false)),
+    );
+    let dist = |i: usize| {
+        let (x, y) = ((i % 256) as f64 + 0.5, (i / 256) as f64 + 0.5);
+        ((x - at[0]).powi(2) + (y - at[1]).powi(2)).sqrt()
+    };
+    let far_differ = (0..a.len())
+        .filter(|&i| dist(i) > radius_px + 3.0 && a[i] != b[i])
+        .count();
+    assert_eq!(far_differ, 0, "the modes differ away from the moon");
+    assert!(
+        (0..a.len()).any(|i| a[i] != b[i]),
+        "the two modes draw the same limb"
+    );
+    for (name, img) in [("spread", &a), ("msaa", &b)] {
+        let peak = (0..img.len())
+            .filter(|&i| dist(i) < radius_px)
+            .map(|i| img[i])
+            .fold(0.0, f64::max);
+        let sky = (0..img.len())
+            .filter(|&i| dist(i) > radius_px + 4.0 && dist(i) < radius_px + 8.0)
+            .map(|i| img[i])
+            .fold(0.0, f64::max);
+        let part = (0..img.len())
+            .filter(|&i| (dist(i) - radius_px).abs() < 1.5)
+            .filter(|&i| img[i] > sky + 0.1 * (peak - sky) && img[i] < sky + 0.9 * (peak - sky))
+            .count();
+        println!(
+            "{name}: {part} part-covered limb pixels (disc {radius_px:.1} px, peak {peak}, sky {sky})"
+        );
+        assert!(part >= 6, "{name}: {part} part-covered pixels on the limb");
+    }
 }

@@ -538,6 +538,10 @@ pub fn upload_data<'n>(
             [noise.curl.size[0], noise.curl.size[1], 1],
             &noise.curl.data[..],
         ),
+        "stars.catalogue" => {
+            let table = stratus_astro::stars::gpu_table();
+            (table.size, &table.bytes[..])
+        }
         other => return Err(format!("no host data called `{other}`")),
     };
     let expected = size.iter().map(|&n| u64::from(n)).product::<u64>() * 4;

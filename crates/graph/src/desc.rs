@@ -439,13 +439,14 @@ pub fn plan_condition_holds(condition: &str, set: &dyn Fn(&str) -> bool) -> bool
 }
 
 /// Upload sources the host provides.
-pub const UPLOADS: [&str; 6] = [
+pub const UPLOADS: [&str; 7] = [
     "frame",
     "scene.depth",
     "noise.shape",
     "noise.detail",
     "noise.weather",
     "noise.curl",
+    "stars.catalogue",
 ];
 
 /// Why a graph is not usable, every problem listed.

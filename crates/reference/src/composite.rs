@@ -4,9 +4,9 @@
 
 use rayon::prelude::*;
 
-use crate::frame::{FLAG_LIGHT_SHAFTS, FLAG_MOONLIT, Frame, PI, pcg, xyz};
+use crate::frame::{FLAG_LIGHT_SHAFTS, FLAG_MOONLIT, Frame, PI};
 use crate::geometry::{hits_ground, view_ray};
-use crate::math::{V3, mix_v, saturate, smoothstep};
+use crate::math::{V3, mix_v, saturate};
 use crate::phase::phase_hg;
 use crate::sky::{SkyTables, physical};
 
@@ -99,7 +99,7 @@ pub(crate) fn physical_composite(
         let lost = sky.ground_shadow_loss(f, view, r).mul_v(e);
         background = non_negative(background - lost);
     } else {
-        let mut space = moon_disk(f, view) + stars(f, view);
+        let mut space = crate::night::night_sky(f, pixel, view);
         if f.flags & FLAG_MOONLIT == 0 {
             space += sun_disk(f, view);
         }
@@ -146,132 +146,6 @@ fn composite_shafts(
         sky.air_ray_end(sky.camera_air_origin(f), view).0
     };
     sky.light_shafts(f, pixel, view, depth, end)
-}
-
-// WGSL: composite.wgsl::MOON_COS_RADIUS
-/// Cosine of the moon's mean angular radius, 0.259 degrees.
-const MOON_COS_RADIUS: f64 = 0.999_989_78;
-
-// WGSL: composite.wgsl::moon_disk
-/// Radiance of the moon's disc along unit `d`: the full moon's illuminance over the disc's
-/// solid angle where the sun lights the moon's sphere, 0 on its night side and off the disc.
-/// The full moon shows almost no limb darkening, so the lit part is evenly bright; the
-/// terminator is softened over 2% of the radius against aliasing.
-pub(crate) fn moon_disk(f: &Frame, d: V3) -> V3 {
-    let m = xyz(f.moon_direction);
-    let c = d.dot(m);
-    if f.moon_illuminance <= 0.0 || c < MOON_COS_RADIUS {
-        return V3::ZERO;
-    }
-    let sin_r = (1.0 - MOON_COS_RADIUS * MOON_COS_RADIUS).sqrt();
-    // In units of the disc's radius; the visible hemisphere faces the camera.
-    let offset = (d - m * c) / sin_r;
-    let x2 = offset.dot(offset).min(1.0);
-    let normal = offset - m * (1.0 - x2).sqrt();
-    let lit = smoothstep(-0.02, 0.02, normal.dot(xyz(f.real_sun_direction)));
-    let solid_angle = 2.0 * PI * (1.0 - MOON_COS_RADIUS);
-    V3::splat(f.moon_illuminance / solid_angle * lit)
-}
-
-// WGSL: composite.wgsl::STAR_CELLS, STAR_FAINTEST
-/// Cells along each side of a face of the stars' cube map.
-pub(crate) const STAR_CELLS: u32 = 96;
-/// The faintest star drawn (visual magnitude).
-const STAR_FAINTEST: f64 = 6.5;
-
-/// One procedural star: its unit direction, visual magnitude and colour.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) struct Star {
-    pub direction: V3,
-    pub magnitude: f64,
-    pub tint: V3,
-}
-
-/// A 24-bit hash of `id` in `[0, 1)` (exact in f32, so the GPU draws the same numbers).
-fn star_hash(id: u32, salt: u32) -> f64 {
-    f64::from(pcg(id ^ salt) >> 8) * (1.0 / 16_777_216.0)
-}
-
-/// The probability that a cell holds a star: the cumulative count to magnitude 6.5,
-/// 4800 x 10^(0.48 (6.5 - 6)), over the 6 x 96^2 cells.
-fn star_probability() -> f64 {
-    let count = 4800.0 * 10f64.powf(0.48 * (STAR_FAINTEST - 6.0));
-    count / f64::from(6 * STAR_CELLS * STAR_CELLS)
-}
-
-// The cell part of composite.wgsl::stars (the WGSL computes it inline per pixel).
-/// The star of cell `cell` of cube face `face` (0/1: +x/-x, 2/3: +y/-y, 4/5: +z/-z), if the
-/// cell holds one: at a hashed place of the cell away from its edges, its magnitude from the
-/// inverse of the cumulative count (N(< m) / N(< 6.5) = h), its colour from bluish-white to
-/// orange as stellar temperatures run.
-pub(crate) fn star_in_cell(face: u32, cell: [u32; 2]) -> Option<Star> {
-    let id = (face * STAR_CELLS + cell[1]) * STAR_CELLS + cell[0];
-    let p = star_probability();
-    let h0 = star_hash(id, 0x9e37_79b9);
-    if h0 >= p {
-        return None;
-    }
-    let h1 = star_hash(id, 0x85eb_ca6b);
-    let h2 = star_hash(id, 0xc2b2_ae35);
-    let h3 = star_hash(id, 0x27d4_eb2f);
-    let h4 = star_hash(id, 0x1656_67b1);
-    let cells = f64::from(STAR_CELLS);
-    let st = [
-        (f64::from(cell[0]) + 0.15 + 0.7 * h1) / cells,
-        (f64::from(cell[1]) + 0.15 + 0.7 * h2) / cells,
-    ];
-    // The face's point at unit distance (the WGSL scales it by the major axis, which the
-    // normalisation removes).
-    let q = st.map(|s| s * 2.0 - 1.0);
-    let sign = if face.is_multiple_of(2) { 1.0 } else { -1.0 };
-    let direction = match face / 2 {
-        0 => V3::new(sign, q[1], q[0]),
-        1 => V3::new(q[0], sign, q[1]),
-        _ => V3::new(q[0], q[1], sign),
-    }
-    .normalize();
-    let magnitude = (STAR_FAINTEST + (h0 / p).max(1e-6).ln() / (0.48 * 10f64.ln())).max(-1.5);
-    let tint = mix_v(V3::new(0.8, 0.9, 1.1), V3::new(1.15, 0.95, 0.75), h3 * h4);
-    Some(Star {
-        direction,
-        magnitude,
-        tint,
-    })
-}
-
-// WGSL: composite.wgsl::stars
-/// Stars: procedural, with the real sky's count per magnitude (about 4800 x 10^(0.48 (m - 6))
-/// brighter than m over the whole sky: the Yale Bright Star Catalogue's counts as Allen's
-/// Astrophysical Quantities gives them), down to magnitude 6.5. The sky is cut into the cells
-/// of a cube map, 96x96 a face; a cell holds at most one star ([`star_in_cell`]). Each star is
-/// a point of illuminance E0 10^(-0.4 m), splatted as a Gaussian of half a pixel over the
-/// pixels around it, so its light does not depend on the resolution.
-pub(crate) fn stars(f: &Frame, d: V3) -> V3 {
-    let e0 = f.star_illuminance;
-    if e0 <= 0.0 {
-        return V3::ZERO;
-    }
-    // Which cube face and cell the direction falls in.
-    let a = V3::new(d.x.abs(), d.y.abs(), d.z.abs());
-    let (face, uv, major) = if a.x >= a.y && a.x >= a.z {
-        (if d.x > 0.0 { 0 } else { 1 }, [d.z, d.y], a.x)
-    } else if a.y >= a.z {
-        (if d.y > 0.0 { 2 } else { 3 }, [d.x, d.z], a.y)
-    } else {
-        (if d.z > 0.0 { 4 } else { 5 }, [d.x, d.y], a.z)
-    };
-    let st = uv.map(|u| ((u / major) * 0.5 + 0.5).clamp(0.0, 0.999_999));
-    let cell = st.map(|s| (s * f64::from(STAR_CELLS)) as u32);
-    let Some(star) = star_in_cell(face, cell) else {
-        return V3::ZERO;
-    };
-    let illuminance = e0 * 10f64.powf(-0.4 * star.magnitude);
-    // Angular size of a pixel at the image centre.
-    let pixel_angle = 2.0 * f.tan_half_fov / f64::from(f.size[1]);
-    let dist = d.dot(star.direction).clamp(-1.0, 1.0).acos() / pixel_angle;
-    let sigma: f64 = 0.5;
-    let weight = (-dist * dist / (2.0 * sigma * sigma)).exp() / (2.0 * PI * sigma * sigma);
-    star.tint * (illuminance * weight / (pixel_angle * pixel_angle))
 }
 
 // WGSL: composite.wgsl::surface_radiance

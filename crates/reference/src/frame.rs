@@ -21,6 +21,7 @@ pub(crate) const FLAG_MOONLIT: u32 = 64;
 pub(crate) const FLAG_SCENE_DEPTH: u32 = 128;
 pub(crate) const FLAG_LIGHT_SHAFTS: u32 = 512;
 pub(crate) const FLAG_LEE_DIAGRAM: u32 = 1024;
+pub(crate) const FLAG_MOON_MSAA: u32 = 2048;
 pub(crate) const PI: f64 = std::f64::consts::PI;
 // WGSL: common.wgsl::MAX_VIEW_STEPS (the bound in step-length mode).
 pub(crate) const MAX_VIEW_STEPS: u32 = 1024;

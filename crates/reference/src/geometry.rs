@@ -13,11 +13,14 @@ use crate::math::V3;
 // WGSL: geometry.wgsl::view_ray
 /// The view ray through the centre of `pixel` (y down in the image).
 pub(crate) fn view_ray(f: &Frame, pixel: [u32; 2]) -> V3 {
+    view_ray_at(f, [f64::from(pixel[0]) + 0.5, f64::from(pixel[1]) + 0.5])
+}
+
+// WGSL: geometry.wgsl::view_ray_at
+/// The view ray through image point `at` (pixels, continuous: pixel p's centre is p + 0.5).
+pub(crate) fn view_ray_at(f: &Frame, at: [f64; 2]) -> V3 {
     let size = [f64::from(f.size[0]), f64::from(f.size[1])];
-    let ndc = [
-        (f64::from(pixel[0]) + 0.5) / size[0] * 2.0 - 1.0,
-        (f64::from(pixel[1]) + 0.5) / size[1] * 2.0 - 1.0,
-    ];
+    let ndc = [at[0] / size[0] * 2.0 - 1.0, at[1] / size[1] * 2.0 - 1.0];
     let tan_half = f.tan_half_fov;
     let aspect = f.aspect;
     let forward = V3::new(

@@ -43,6 +43,7 @@ mod march;
 mod math;
 mod medium;
 pub mod montecarlo;
+mod night;
 mod phase;
 mod post;
 mod progressive;

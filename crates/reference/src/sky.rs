@@ -1175,7 +1175,7 @@ mod tests {
     use stratus_scene::{Scene, SkyModel};
 
     use super::*;
-    use crate::composite::{STAR_CELLS, physical_composite, star_in_cell};
+    use crate::composite::physical_composite;
     use crate::geometry::view_ray;
     use crate::medium::{Medium, Model};
 
@@ -1369,32 +1369,6 @@ mod tests {
         assert!(
             shift[0] * toward[0] + shift[1] * toward[1] > 0.0,
             "lit part shifted by {shift:?}, the sun toward {toward:?}"
-        );
-    }
-
-    /// Over the whole sphere the cells hold the real sky's count of stars to magnitude 6.5,
-    /// about 4800 x 10^0.24 = 8340, and about 19 brighter than magnitude 1.
-    #[test]
-    fn the_stars_have_the_real_skys_count_per_magnitude() {
-        let mut all = 0;
-        let mut bright = 0;
-        for face in 0..6 {
-            for y in 0..STAR_CELLS {
-                for x in 0..STAR_CELLS {
-                    if let Some(star) = star_in_cell(face, [x, y]) {
-                        all += 1;
-                        assert!(star.magnitude <= 6.5 && star.magnitude >= -1.5);
-                        assert!((star.direction.length() - 1.0).abs() < 1e-12);
-                        bright += usize::from(star.magnitude < 1.0);
-                    }
-                }
-            }
-        }
-        // Binomial over 55296 cells: a standard deviation of about 85.
-        assert!((all as f64 - 8340.0).abs() < 400.0, "{all} stars");
-        assert!(
-            (5..=40).contains(&bright),
-            "{bright} brighter than magnitude 1"
         );
     }
 

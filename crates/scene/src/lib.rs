@@ -54,8 +54,8 @@ pub use error::{Location, Problem, ProblemKind, SceneError};
 pub use presets::{DEFAULT_PRESET, PresetInfo, presets};
 pub use scene::{
     Air, Animation, Atmosphere, Camera, CloudLayer, Clouds, HeightModel, Integration, Integrator,
-    Keyframe, Lighting, MAX_EXTRA_LAYERS, Method, MultipleScattering, Noise, Orientation, Phase,
-    PhaseModel, Post, Quality, Rainbow, Scene, ShapeTexture, Sky, SkyModel, Sun, Temporal,
+    Keyframe, Lighting, MAX_EXTRA_LAYERS, Method, MultipleScattering, Night, Noise, Orientation,
+    Phase, PhaseModel, Post, Quality, Rainbow, Scene, ShapeTexture, Sky, SkyModel, Sun, Temporal,
 };
 pub use uniforms::{FrameUniforms, UniformMember};
 pub use validate::{MAX_LIGHT_STEPS, MAX_OCTAVE_A, MAX_OCTAVES, MAX_RESOLUTION, MAX_VIEW_STEPS};

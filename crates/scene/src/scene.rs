@@ -38,6 +38,10 @@ pub struct Scene {
     /// The rainbow in sunlit rain (physical sky only).
     #[serde(skip_serializing_if = "Rainbow::is_off")]
     pub rainbow: Rainbow,
+    /// The night sky (physical sky with a date and place): the catalogue's stars, the Milky
+    /// Way and the moon's disc.
+    #[serde(skip_serializing_if = "Night::is_default")]
+    pub night: Night,
     /// Camera keyframes and a time span for sequences (`stratus render --frames`,
     /// `stratus animate`); absent: the camera stays where `[camera]` puts it.
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -265,6 +269,63 @@ impl Rainbow {
     /// frame plan then computes the table and the uniforms' `FLAG_LEE_DIAGRAM` says to read it.
     pub fn uses_table(&self) -> bool {
         self.moisture > 0.0 && self.lee_diagram
+    }
+}
+
+/// The night sky (section `[night]`, seed 001's night parameters). The stars are a real
+/// catalogue's to magnitude 6.5 (XHIP, the Extended Hipparcos Compilation, as the d3-celestial
+/// package ships it), placed for the scene's date and place; the Milky
+/// Way is a band of unresolved starlight laid out in galactic coordinates. Both show under the
+/// physical sky with a date and place, where the sky is dark enough.
+#[derive(Serialize, Deserialize, Clone, Debug, PartialEq)]
+#[serde(default, deny_unknown_fields)]
+pub struct Night {
+    /// The stars' brightness (seed 001's "Star Intensity"), within [0, 100]: their catalogue
+    /// illuminance times this; 1 (default) is the real sky's.
+    pub star_intensity: f64,
+    /// The stars' least size (seed 001's "Min Radius"): the standard deviation, in pixels, of
+    /// the Gaussian a star's light is spread over, within [0.25, 8]; default 0.5.
+    pub star_min_radius_px: f64,
+    /// How a star's size grows with its brightness (seed 001's "Radius Scale"), within [0, 4]:
+    /// the Gaussian's deviation is at least `star_min_radius_px`, and this many pixels times
+    /// the fourth root of the star's illuminance over a magnitude-6.5 star's; 0 (default)
+    /// keeps every star at the least size. The light is the same whatever the size.
+    pub star_radius_scale: f64,
+    /// The glare around bright stars (seed 001's "Glare Scale"), within [0, 10]: a wider,
+    /// faint halo (four times the star's deviation) holding 2% of its light times this;
+    /// default 1, 0 none.
+    pub star_glare_scale: f64,
+    /// The Milky Way's brightness (seed 001's "MilkyWay Intensity"), within [0, 100]: 1
+    /// (default) is the real sky's integrated starlight (Leinert et al. 1998), 0 none.
+    pub milky_way_intensity: f64,
+    /// The moon's size (seed 001's "Moon Size"), within [0.5, 8]: its disc's angular radius
+    /// over the real one (0.259 degrees); its light stays the same, spread over a larger or
+    /// smaller disc. Default 1.
+    pub moon_size: f64,
+    /// How the moon's edge is anti-aliased (seed 001's "Moon MSAA instead of Moon spread"):
+    /// false (default) spreads the limb over one pixel; true samples the disc at four points
+    /// of each pixel (a rotated grid) and averages them.
+    pub moon_msaa: bool,
+}
+
+impl Default for Night {
+    fn default() -> Self {
+        Self {
+            star_intensity: 1.0,
+            star_min_radius_px: 0.5,
+            star_radius_scale: 0.0,
+            star_glare_scale: 1.0,
+            milky_way_intensity: 1.0,
+            moon_size: 1.0,
+            moon_msaa: false,
+        }
+    }
+}
+
+impl Night {
+    /// Whether every field is at its default (a scene's TOML then leaves the section out).
+    pub fn is_default(&self) -> bool {
+        *self == Self::default()
     }
 }
 
@@ -1127,6 +1188,7 @@ impl Scene {
         scene.camera.exposure_range = Some([1.0, 1.0]);
         scene.post.kuwahara = true;
         scene.rainbow.moisture = 1.0;
+        scene.night.moon_msaa = true;
         scene
     }
 

@@ -294,6 +294,28 @@ macro_rules! frame_members {
             rainbow_drop_radius: f32,
             /// The lens flare's strength (`post.lens_flare_intensity`; 0: none).
             lens_flare_intensity: f32,
+            /// The world direction of the J2000 equinox (the star catalogue's x axis) at the
+            /// scene's date and place (0 without them).
+            celestial_x: vec3f,
+            /// The stars' least Gaussian deviation (`night.star_min_radius_px`, pixels).
+            star_min_radius: f32,
+            /// The world direction of the J2000 catalogue's y axis (right ascension 6 h on
+            /// the equator).
+            celestial_y: vec3f,
+            /// The stars' growth with brightness (`night.star_radius_scale`, pixels).
+            star_radius_scale: f32,
+            /// The world direction of the J2000 north celestial pole.
+            celestial_z: vec3f,
+            /// The bright stars' glare (`night.star_glare_scale`).
+            star_glare_scale: f32,
+            /// The Milky Way's brightness (`night.milky_way_intensity`).
+            milky_way_intensity: f32,
+            /// cos(the moon's angular radius), `night.moon_size` applied.
+            moon_cos_radius: f32,
+            /// The stars' brightness over the real sky's (`night.star_intensity`).
+            star_intensity: f32,
+            /// Padding (0).
+            _pad12: f32,
         }
     };
 }
@@ -445,6 +467,9 @@ impl FrameUniforms {
     /// `flags` bit: the rainbow from the Lee-diagram table (`rainbow.lee_diagram`), else the
     /// cheap three-wavelength path.
     pub const FLAG_LEE_DIAGRAM: u32 = 1 << 10;
+    /// `flags` bit: the moon's disc sampled at four points a pixel (`night.moon_msaa`), else
+    /// its limb spread over a pixel.
+    pub const FLAG_MOON_MSAA: u32 = 1 << 11;
 
     /// The WGSL `struct Frame` of this block, as `wgsl/frame.wgsl` holds it (written by
     /// `cargo xtask build-shaders`, which fails `--check` when the file differs).
@@ -520,6 +545,8 @@ const FULL_MOON_OVER_SUN: f64 = 2.1e-6;
 
 /// A magnitude-0 star's illuminance over the sun's: 2.54e-6 lux (Vega) against 127,000 lux.
 const STAR_MAG0_OVER_SUN: f64 = 2.0e-11;
+/// cos(the moon's mean angular radius, 0.259 degrees).
+const MOON_COS_RADIUS: f64 = 0.999_989_78;
 
 /// How far auto exposure makes up for less light: the exposure grows as (day / now) to this
 /// power (1 would make every hour as bright as noon).
@@ -764,6 +791,16 @@ impl Scene {
         if self.rainbow.uses_table() {
             flags |= FrameUniforms::FLAG_LEE_DIAGRAM;
         }
+        if self.night.moon_msaa {
+            flags |= FrameUniforms::FLAG_MOON_MSAA;
+        }
+        // The catalogue's axes in the world: from the date and place (none without them).
+        let celestial = match self.sky.when_and_where() {
+            Some((date, place)) => stratus_astro::celestial::transpose(
+                &stratus_astro::celestial::equatorial_to_world(place, date),
+            ),
+            None => [[0.0; 3]; 3],
+        };
         let (key_direction, key_illuminance, moonlit) = self.key_light();
         if moonlit {
             flags |= FrameUniforms::FLAG_MOONLIT;
@@ -946,6 +983,16 @@ impl Scene {
             rainbow_moisture: f(self.rainbow.moisture),
             rainbow_drop_radius: f(self.rainbow.drop_radius_um * 1e-6),
             lens_flare_intensity: f(self.post.lens_flare_intensity),
+            celestial_x: v3(celestial[0]),
+            star_min_radius: f(self.night.star_min_radius_px),
+            celestial_y: v3(celestial[1]),
+            star_radius_scale: f(self.night.star_radius_scale),
+            celestial_z: v3(celestial[2]),
+            star_glare_scale: f(self.night.star_glare_scale),
+            milky_way_intensity: f(self.night.milky_way_intensity),
+            moon_cos_radius: f((MOON_COS_RADIUS.acos() * self.night.moon_size).cos()),
+            star_intensity: f(self.night.star_intensity),
+            _pad12: 0.0,
         };
         block.with_previous_camera(&block)
     }

@@ -248,6 +248,38 @@ pub(crate) fn check(scene: &Scene) -> Vec<Issue> {
         Incl(0.0),
         Incl(10.0),
     );
+    let night = &scene.night;
+    c.float(
+        "night.star_intensity",
+        night.star_intensity,
+        Incl(0.0),
+        Incl(100.0),
+    );
+    c.float(
+        "night.star_min_radius_px",
+        night.star_min_radius_px,
+        Incl(0.25),
+        Incl(8.0),
+    );
+    c.float(
+        "night.star_radius_scale",
+        night.star_radius_scale,
+        Incl(0.0),
+        Incl(4.0),
+    );
+    c.float(
+        "night.star_glare_scale",
+        night.star_glare_scale,
+        Incl(0.0),
+        Incl(10.0),
+    );
+    c.float(
+        "night.milky_way_intensity",
+        night.milky_way_intensity,
+        Incl(0.0),
+        Incl(100.0),
+    );
+    c.float("night.moon_size", night.moon_size, Incl(0.5), Incl(8.0));
     let bow = &scene.rainbow;
     if c.float("rainbow.moisture", bow.moisture, Incl(0.0), Incl(4.0))
         && bow.moisture > 0.0

@@ -142,6 +142,35 @@ fn rainbow_and_post_fields_load_and_bad_values_are_refused() {
     let u = s.uniforms();
     assert_eq!((u.rainbow_moisture, u.saturation), (0.5, 1.5));
     assert_eq!(u.lens_flare_intensity, 2.5);
+    // The night sky's fields reach the uniforms; the catalogue's axes come from the date and
+    // place (a unit vector each), and are 0 without them.
+    let night = load(
+        "[atmosphere]\nsky = \"physical\"\n[sky]\ndate_utc = \"2026-08-12T22:00:00Z\"\nlatitude_deg = 46\nlongitude_deg = 8\n[night]\nstar_intensity = 2\nstar_min_radius_px = 0.75\nstar_radius_scale = 0.5\nstar_glare_scale = 3\nmilky_way_intensity = 4\nmoon_size = 2\nmoon_msaa = true\n",
+    )
+    .expect("loads");
+    let nu = night.uniforms();
+    assert_eq!(
+        (
+            nu.star_intensity,
+            nu.star_min_radius,
+            nu.star_radius_scale,
+            nu.star_glare_scale,
+            nu.milky_way_intensity
+        ),
+        (2.0, 0.75, 0.5, 3.0, 4.0)
+    );
+    assert_ne!(nu.flags & stratus_scene::FrameUniforms::FLAG_MOON_MSAA, 0);
+    let radius = |c: f32| f64::from(c).acos().to_degrees();
+    assert!((radius(nu.moon_cos_radius) - 2.0 * 0.259).abs() < 0.01);
+    for axis in [nu.celestial_x, nu.celestial_y, nu.celestial_z] {
+        let n: f32 = axis.iter().map(|a| a * a).sum();
+        assert!((n - 1.0).abs() < 1e-5, "{axis:?}");
+    }
+    assert_eq!(
+        s.uniforms().celestial_z,
+        [0.0; 3],
+        "no date and place, no sky"
+    );
     assert!((u.rainbow_drop_radius - 20e-6).abs() < 1e-12);
     assert!(u.kuwahara_radius > 0.0);
     assert_ne!(u.flags & stratus_scene::FrameUniforms::FLAG_LEE_DIAGRAM, 0);
@@ -183,6 +212,22 @@ fn rainbow_and_post_fields_load_and_bad_values_are_refused() {
             "[post]\nlens_flare_intensity = 11\n",
             "post.lens_flare_intensity",
         ),
+        ("[night]\nstar_intensity = -1\n", "night.star_intensity"),
+        (
+            "[night]\nstar_min_radius_px = 0.1\n",
+            "night.star_min_radius_px",
+        ),
+        (
+            "[night]\nstar_radius_scale = 5\n",
+            "night.star_radius_scale",
+        ),
+        ("[night]\nstar_glare_scale = -2\n", "night.star_glare_scale"),
+        (
+            "[night]\nmilky_way_intensity = 101\n",
+            "night.milky_way_intensity",
+        ),
+        ("[night]\nmoon_size = 0.1\n", "night.moon_size"),
+        ("[night]\nmoon_msaa = 1\n", "night.moon_msaa"),
         (
             "[camera]\nexposure_range = [2.0, 1.0]\n",
             "camera.exposure_range",

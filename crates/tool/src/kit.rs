@@ -307,6 +307,15 @@ pub fn run(args: KitArgs) -> Result<()> {
                 json!({"size": size, "dimension": if volume { "3d" } else { "2d" }, "format": "rgba8unorm", "raw": raw, "dds": dds_name}),
             );
         }
+        // The star catalogue's table: the same for every scene, listed with each noise set so
+        // that every upload a plan names is found in one place.
+        let stars = stratus_astro::stars::gpu_table();
+        let stars_raw = "stars/table.r32f".to_string();
+        write(&out.join(&stars_raw), &stars.bytes)?;
+        textures.insert(
+            "stars.catalogue".to_string(),
+            json!({"size": stars.size, "dimension": "2d", "format": "r32float", "raw": stars_raw}),
+        );
         noise_json.push(json!({"key": key, "textures": textures}));
         noise_sets.push((key, noise));
     }
