@@ -6,6 +6,9 @@
 //! rotation the renderer's uniforms carry), lies within 0.02 degrees of astropy's (the target
 //! is 0.1); the measured errors are printed (`--nocapture`).
 
+mod common;
+
+use common::separation;
 use serde_json::Value;
 use stratus_astro::celestial::{
     apply, equatorial_to_galactic, equatorial_to_world, equatorial_vector, transpose,
@@ -17,22 +20,6 @@ use stratus_astro::{Place, UtcDateTime};
 /// 0.0087 for the galactic centre, over 61 cases: mostly the annual aberration left out), well
 /// inside the 0.1 degrees the night sky was built to.
 const STAR_DEG: f64 = 0.02;
-
-fn separation(a: (f64, f64), b: (f64, f64)) -> f64 {
-    let v = |(el, az): (f64, f64)| {
-        let (el, az) = (el.to_radians(), az.to_radians());
-        [el.cos() * az.sin(), el.cos() * az.cos(), el.sin()]
-    };
-    let (p, q) = (v(a), v(b));
-    let dot = p[0] * q[0] + p[1] * q[1] + p[2] * q[2];
-    let cross = [
-        p[1] * q[2] - p[2] * q[1],
-        p[2] * q[0] - p[0] * q[2],
-        p[0] * q[1] - p[1] * q[0],
-    ];
-    let sin = (cross[0] * cross[0] + cross[1] * cross[1] + cross[2] * cross[2]).sqrt();
-    sin.atan2(dot).to_degrees()
-}
 
 fn f(v: &Value) -> f64 {
     v.as_f64().expect("a number")

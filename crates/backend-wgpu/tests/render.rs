@@ -53,6 +53,21 @@ fn render(api: Api, scene: &Scene, stats: bool) -> FrameOutput {
     out
 }
 
+/// The display image's brightest pixel (the sum of its channels; the first in row order on a
+/// tie), as (x, y).
+fn brightest_pixel(f: &FrameOutput) -> (f64, f64) {
+    let lum: Vec<u32> = f
+        .image
+        .chunks(4)
+        .map(|p| u32::from(p[0]) + u32::from(p[1]) + u32::from(p[2]))
+        .collect();
+    let i = (0..lum.len())
+        .max_by_key(|&i| (lum[i], usize::MAX - i))
+        .unwrap();
+    let w = f.width as usize;
+    ((i % w) as f64, (i / w) as f64)
+}
+
 fn preset(name: &str, w: u32, h: u32) -> Scene {
     Scene::preset(name).unwrap().with_size(w, h)
 }
@@ -173,16 +188,13 @@ fn night_shows_the_moon_and_stars() {
         (ndc[0] + 1.0) / 2.0 * 256.0 - 0.5,
         (ndc[1] + 1.0) / 2.0 * 144.0 - 0.5,
     ];
-    // Display luminance of every pixel.
+    let (bx, by) = brightest_pixel(&f);
+    // Display luminance of every pixel, for the stars below.
     let lum: Vec<u32> = f
         .image
         .chunks(4)
         .map(|p| u32::from(p[0]) + u32::from(p[1]) + u32::from(p[2]))
         .collect();
-    let brightest = (0..lum.len())
-        .max_by_key(|&i| (lum[i], usize::MAX - i))
-        .unwrap();
-    let (bx, by) = ((brightest % 256) as f64, (brightest / 256) as f64);
     eprintln!(
         "moon projects to ({:.1}, {:.1}); the brightest pixel is ({bx}, {by})",
         at[0], at[1]
@@ -808,15 +820,7 @@ fn catalogue_stars_shine_where_the_sky_puts_them() {
     scene.camera.yaw_deg += 3.0;
     scene.camera.pitch_deg -= 2.0;
     let f = render(Api::Vulkan, &scene, false);
-    let lum: Vec<u32> = f
-        .image
-        .chunks(4)
-        .map(|p| u32::from(p[0]) + u32::from(p[1]) + u32::from(p[2]))
-        .collect();
-    let brightest = (0..lum.len())
-        .max_by_key(|&i| (lum[i], usize::MAX - i))
-        .unwrap();
-    let (bx, by) = ((brightest % 256) as f64, (brightest / 256) as f64);
+    let (bx, by) = brightest_pixel(&f);
     let at = sun_on_image_of(&scene, direction).expect("Vega in front");
     println!(
         "Vega projects to ({:.2}, {:.2}); the brightest pixel is ({bx}, {by})",

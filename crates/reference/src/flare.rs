@@ -35,13 +35,7 @@ const GHOSTS: [(f64, f64, [f64; 3]); 6] = [
 /// The sun's image centre in pixels (continuous), `None` with the sun behind the camera.
 fn sun_image(f: &Frame) -> Option<[f64; 2]> {
     let sun = f.sun();
-    let forward = V3::new(
-        f.camera_forward[0],
-        f.camera_forward[1],
-        f.camera_forward[2],
-    );
-    let right = V3::new(f.camera_right[0], f.camera_right[1], f.camera_right[2]);
-    let up = V3::new(f.camera_up[0], f.camera_up[1], f.camera_up[2]);
+    let (forward, right, up) = f.camera_axes();
     let z = sun.dot(forward);
     if z <= 0.0 {
         return None;

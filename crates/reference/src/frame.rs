@@ -94,6 +94,15 @@ impl Frame {
         xyz(self.sun_direction)
     }
 
+    /// The camera's unit axes: forward, image right and image up.
+    pub fn camera_axes(&self) -> (V3, V3, V3) {
+        (
+            xyz(self.camera_forward),
+            xyz(self.camera_right),
+            xyz(self.camera_up),
+        )
+    }
+
     /// `frame.sun_illuminance`.
     pub fn sun_illuminance(&self) -> V3 {
         xyz(self.sun_illuminance)

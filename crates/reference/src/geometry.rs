@@ -23,13 +23,7 @@ pub(crate) fn view_ray_at(f: &Frame, at: [f64; 2]) -> V3 {
     let ndc = [at[0] / size[0] * 2.0 - 1.0, at[1] / size[1] * 2.0 - 1.0];
     let tan_half = f.tan_half_fov;
     let aspect = f.aspect;
-    let forward = V3::new(
-        f.camera_forward[0],
-        f.camera_forward[1],
-        f.camera_forward[2],
-    );
-    let right = V3::new(f.camera_right[0], f.camera_right[1], f.camera_right[2]);
-    let up = V3::new(f.camera_up[0], f.camera_up[1], f.camera_up[2]);
+    let (forward, right, up) = f.camera_axes();
     let d = forward + right * (ndc[0] * tan_half * aspect) - up * (ndc[1] * tan_half);
     d.normalize()
 }
