@@ -24,6 +24,7 @@ const FLAG_HDR_SKY: u32 = 256u;     // the HDR output carries the sky where the 
 const FLAG_LIGHT_SHAFTS: u32 = 512u; // the clouds' shadows in the air (composite.wgsl::light_shafts)
 const FLAG_LEE_DIAGRAM: u32 = 1024u; // the rainbow from its table (rainbow.wgsl), else three wavelengths
 const FLAG_MOON_MSAA: u32 = 2048u;   // the moon's disc at four samples a pixel (night.wgsl), else its edge spread
+const FLAG_SNOW: u32 = 4096u;        // the particles are snowflakes (precipitation.wgsl), else raindrops
 
 // Feature switches. A variant in modules.toml sets these; code behind a `false` switch is
 // removed by naga before translation, so a scene that does not use a feature pays nothing.

@@ -55,7 +55,16 @@ fn physical_composite(pixel: vec2<u32>, view: vec3<f32>, cloud: vec4<f32>) -> ve
         sky = max(physical_background(pixel, view) - shafts.all * frame.sun_illuminance, vec3<f32>(0.0));
         bow = rainbow_radiance(view) * frame.sun_illuminance;
     }
-    return sky * cloud.a + physical_over(pixel, cloud, shafts.front) + bow;
+    if frame.rain_shafts <= 0.0 {
+        return sky * cloud.a + physical_over(pixel, cloud, shafts.front) + bow;
+    }
+    // The rain shafts: in front of everything from below the rain's top, behind the clouds
+    // (over the sky and ground only) from above it.
+    let veil = rain_veil(pixel, view);
+    if rain_in_front() {
+        return through_rain(veil, sky * cloud.a + physical_over(pixel, cloud, shafts.front)) + bow;
+    }
+    return through_rain(veil, sky) * cloud.a + physical_over(pixel, cloud, shafts.front) + bow;
 }
 
 // What shows behind the clouds where the host has no geometry: the sky-view table, the lit
@@ -243,6 +252,14 @@ fn composite(
         background = analytic_background(view_ray(pixel));
     }
     var radiance = background * cloud.a + cloud.rgb;
+    if frame.rain_shafts > 0.0 {
+        let veil = rain_veil(pixel, view_ray(pixel));
+        if rain_in_front() {
+            radiance = through_rain(veil, radiance);
+        } else {
+            radiance = through_rain(veil, background) * cloud.a + cloud.rgb;
+        }
+    }
     if frame.lens_flare_intensity > 0.0 {
         radiance += lens_flare(pixel, flare);
     }
@@ -311,7 +328,7 @@ fn hdr_composite(@builtin(global_invocation_id) id: vec3<u32>) {
     if (frame.flags & FLAG_HDR_SKY) != 0u && !has_surface(pixel) {
         out = vec4<f32>(analytic_background(view_ray(pixel)) * cloud.a + cloud.rgb, 0.0);
     }
-    textureStore(hdr_out, pixel, out);
+    textureStore(hdr_out, pixel, rain_over_hdr(pixel, out));
 }
 
 // The same in the physical sky: with FLAG_HDR_SKY the air in front of the clouds dims and
@@ -332,5 +349,19 @@ fn hdr_composite_physical(@builtin(global_invocation_id) id: vec3<u32>) {
             out = vec4<f32>(physical_composite(pixel, view_ray(pixel), cloud), 0.0);
         }
     }
-    textureStore(hdr_out, pixel, out);
+    textureStore(hdr_out, pixel, rain_over_hdr(pixel, out));
+}
+
+// The HDR output with the rain shafts in front (premultiplied radiance, transmittance): where
+// the camera is below the rain's top the rain veils whatever the host draws behind too, so it
+// dims the transmittance; from above it the rain lies behind the clouds, over the host's own
+// background, and is left to the host. A pixel that already holds the sky (alpha 0) got it in
+// `physical_composite`; the analytic sky's gets it here.
+fn rain_over_hdr(pixel: vec2<u32>, out: vec4<f32>) -> vec4<f32> {
+    let has_sky = (frame.flags & FLAG_HDR_SKY) != 0u && !has_surface(pixel);
+    if frame.rain_shafts <= 0.0 || !rain_in_front() || (physical_sky() && has_sky) {
+        return out;
+    }
+    let veil = rain_veil(pixel, view_ray(pixel));
+    return vec4<f32>(through_rain(veil, out.rgb), out.a * veil.transmittance);
 }

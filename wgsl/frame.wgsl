@@ -299,6 +299,21 @@ struct Frame {
     moon_cos_radius: f32,
     // The stars' brightness over the real sky's (`night.star_intensity`).
     star_intensity: f32,
-    // Padding (0).
-    _pad12: f32,
+    // The rain shafts' extinction in units of heavy rain's (`precipitation.shafts`; 0:
+    // none).
+    rain_shafts: f32,
+    // The lit flash's place (world metres: x, altitude, z; [`crate::lightning`]).
+    lightning_position: vec3<f32>,
+    // The lit flash's illuminance 1 km from it, in the units of `sun_illuminance` (0:
+    // no flash this frame).
+    lightning_illuminance: f32,
+    // How far the particles have fallen and drifted (m, each within [0,
+    // `precip_box`)): they move with it through the box about the camera.
+    precip_offset: vec3<f32>,
+    // The particles' share drawn (`precipitation.particles`; 0: none).
+    precip_density: f32,
+    // The particles' velocity (m/s): their fall and the wind's drift.
+    precip_velocity: vec3<f32>,
+    // The side of the box of particles about the camera (m).
+    precip_box: f32,
 }

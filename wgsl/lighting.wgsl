@@ -387,7 +387,7 @@ fn height_fraction(alt: f32) -> f32 {
 }
 
 // In-scattered radiance per unit length at a view sample of layer `l`: sigma_s * density *
-// (sun + ambient), darkened toward the base of raining clouds (thesis 4.4.1); and, apart,
+// (sun + ambient + a lightning flash's light), darkened toward the base of raining clouds (thesis 4.4.1); and, apart,
 // the octaves' part of it.
 struct ScatteredLight {
     total: vec3<f32>,
@@ -420,5 +420,5 @@ fn scattered_light(rel: vec3<f32>, p: vec3<f32>, alt: f32, density: f32, view: v
     }
     let darkening = saturate(1.0 - frame.precipitation_darkening * weather.precipitation * (1.0 - h));
     let k = frame.scattering * density * darkening;
-    return ScatteredLight((sun_light + ambient(h, rel)) * k, octave_light * k);
+    return ScatteredLight((sun_light + ambient(h, rel) + lightning_light(rel)) * k, octave_light * k);
 }

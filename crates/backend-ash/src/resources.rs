@@ -438,12 +438,16 @@ impl Tracker {
                 continue;
             };
             let relayout = matches!(target, Target::Image(_)) && have.layout != want.layout;
-            if !(have.writes || want.writes || relayout) {
-                // Read after read in the same layout: nothing to wait for.
-                have.stage |= want.stage;
+            let read_after_read = !(have.writes || want.writes || relayout);
+            if read_after_read && have.stage.contains(want.stage) {
+                // Read after read in the same layout, at stages already ordered after the last
+                // write or layout transition: nothing to wait for.
                 have.access |= want.access;
                 continue;
             }
+            // A read at a stage the last barrier did not reach (a vertex shader reading a
+            // texture only compute passes have read since its upload) waits for the stages
+            // that did, so that it chains to that barrier's write or layout transition.
             src |= have.stage;
             dst |= want.stage;
             // Only writes need to be made available; reads need just the execution order.
@@ -478,7 +482,13 @@ impl Tracker {
                         .size(vk::WHOLE_SIZE),
                 ),
             }
-            *have = want;
+            if read_after_read {
+                // Its readers so far stay, for the barrier before the next write.
+                have.stage |= want.stage;
+                have.access |= want.access;
+            } else {
+                *have = want;
+            }
         }
         if images.is_empty() && buffers.is_empty() {
             return;

@@ -897,3 +897,169 @@ fn the_moons_limb_is_anti_aliased_by_spread_or_msaa() {
         assert!(part >= 6, "{name}: {part} part-covered pixels on the limb");
     }
 }
+
+/// A raining deck (cumulus-noon, coverage 0.6, precipitating at 1) at the first frame that shows
+/// a lightning flash within 20 degrees of the view, and nothing drawn of the rain or the flash
+/// yet (each test turns on its own).
+fn raining(w: u32, h: u32) -> Scene {
+    let mut s = preset("cumulus-noon", w, h);
+    s.clouds.coverage = 0.6;
+    s.clouds.precipitation = 1.0;
+    s.lightning.flashes_per_minute = 40.0;
+    s.clouds.time_s = stratus_scene::lightning::first_flash_in_view(&s, 20.0, 0.8)
+        .expect("a flash within the hour");
+    s.lightning.brightness = 0.0;
+    s
+}
+
+/// `a` less `b` in display luminance (levels, 0-255), per pixel.
+fn luminance_difference(a: &FrameOutput, b: &FrameOutput) -> Vec<f64> {
+    display_luminance(a)
+        .iter()
+        .zip(display_luminance(b))
+        .map(|(x, y)| (x - y) * 255.0)
+        .collect()
+}
+
+/// With no layer precipitating, `wet` (an effect of the rain on) renders `dry` (off) bit for
+/// bit: `what` needs falling rain.
+fn assert_dry_without_precipitation(dry: &Scene, wet: &Scene, what: &str) {
+    let (mut dry, mut wet) = (dry.clone(), wet.clone());
+    dry.clouds.precipitation = 0.0;
+    wet.clouds.precipitation = 0.0;
+    assert!(
+        render(Api::Vulkan, &wet, false).image == render(Api::Vulkan, &dry, false).image,
+        "{what} without a precipitating layer"
+    );
+}
+
+/// Rain's particles change the image where they fall (streaks over it), fewer where the layer
+/// precipitates less, snow's differently; a layer that does not precipitate drops none (the
+/// image is the dry one bit for bit).
+#[test]
+fn rain_and_snow_particles_fall_only_from_precipitating_layers() {
+    let dry = raining(192, 108);
+    let mut wet = dry.clone();
+    wet.precipitation.particles = 4.0;
+    let base = render(Api::Vulkan, &dry, false);
+    let rain = render(Api::Vulkan, &wet, false);
+    let streaks = |img: &FrameOutput, base: &FrameOutput| {
+        luminance_difference(img, base)
+            .iter()
+            .filter(|d| d.abs() >= 1.0)
+            .count()
+    };
+    let streaked = streaks(&rain, &base);
+    let mut lighter = wet.clone();
+    lighter.clouds.precipitation = 0.5;
+    let mut lighter_dry = dry.clone();
+    lighter_dry.clouds.precipitation = 0.5;
+    let light = streaks(
+        &render(Api::Vulkan, &lighter, false),
+        &render(Api::Vulkan, &lighter_dry, false),
+    );
+    println!(
+        "particles: precipitation 1 streaks {streaked} pixels by a level or more, 0.5 {light}"
+    );
+    assert!(
+        light < streaked,
+        "half the precipitation streaks {light} pixels, all of it {streaked}"
+    );
+    let mut snowy = wet.clone();
+    snowy.precipitation.kind = stratus_scene::PrecipitationKind::Snow;
+    let snow = render(Api::Vulkan, &snowy, false);
+    let flaked = luminance_difference(&snow, &base)
+        .iter()
+        .filter(|d| d.abs() >= 1.0)
+        .count();
+    println!("particles: snow changes {flaked} pixels");
+    assert!(
+        streaked >= 125,
+        "rain streaks {streaked} pixels (measured 250)"
+    );
+    assert!(flaked >= 45, "snow flakes {flaked} pixels (measured 93)");
+    assert_ne!(rain.image, snow.image);
+    assert_dry_without_precipitation(&dry, &wet, "particles");
+}
+
+/// Rain shafts: over the band of sky just above the horizon the rain dims the columns below the
+/// raining cells and leaves the gaps between them; no precipitation, no shafts.
+#[test]
+fn rain_shafts_hang_darker_columns_below_raining_cells() {
+    let dry = raining(192, 108);
+    let mut wet = dry.clone();
+    wet.precipitation.shafts = 1.0;
+    let base = render(Api::Vulkan, &dry, false);
+    let shafts = render(Api::Vulkan, &wet, false);
+    let diff = luminance_difference(&shafts, &base);
+    let (w, h) = (192usize, 108usize);
+    // The horizon's row: the camera's pitch below the image's centre.
+    let tan_half = (dry.camera.fov_y_deg.to_radians() / 2.0).tan();
+    let horizon =
+        (h as f64 / 2.0 * (1.0 + dry.camera.pitch_deg.to_radians().tan() / tan_half)) as usize;
+    let band = horizon - 10..horizon - 2;
+    let column: Vec<f64> = (0..w)
+        .map(|x| band.clone().map(|y| diff[y * w + x]).sum::<f64>() / band.len() as f64)
+        .collect();
+    let darkest = column.iter().copied().fold(f64::INFINITY, f64::min);
+    let brightest = column.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    let gaps = column
+        .iter()
+        .filter(|d| d.abs() < 0.25 * darkest.abs())
+        .count();
+    println!(
+        "rain shafts above the horizon (rows {band:?}): columns change by {darkest:.1} to {brightest:.1} levels; {gaps} of {w} columns by under a quarter of the darkest"
+    );
+    assert!(
+        darkest <= -20.0,
+        "the darkest column dims by {darkest:.1} levels (measured -44.9)"
+    );
+    assert!(
+        gaps >= w / 8,
+        "{gaps} columns lie between the shafts (measured 59 of 192)"
+    );
+    assert_dry_without_precipitation(&dry, &wet, "shafts");
+}
+
+/// A lightning flash brightens the image and nowhere darkens it, most about where the flash is
+/// (its light's centroid near the flash's place on the image); without it the frame is the
+/// dark one bit for bit.
+#[test]
+fn a_lightning_flash_lights_the_cloud_about_it() {
+    let dark = raining(192, 108);
+    let mut lit = dark.clone();
+    lit.lightning.brightness = 1.0;
+    let flash = stratus_scene::lightning::flash(&lit).expect("the frame has a flash");
+    let cam = lit.camera.position;
+    let to = [0, 1, 2].map(|k| flash.position[k] - cam[k]);
+    let len = (to[0] * to[0] + to[1] * to[1] + to[2] * to[2]).sqrt();
+    let at = sun_on_image_of(&lit, to.map(|v| v / len)).expect("the flash is ahead");
+    let diff = luminance_difference(
+        &render(Api::Vulkan, &lit, false),
+        &render(Api::Vulkan, &dark, false),
+    );
+    let darker = diff.iter().filter(|&&d| d < 0.0).count();
+    let total: f64 = diff.iter().map(|d| d.max(0.0)).sum();
+    let w = 192usize;
+    let centroid = (0..diff.len()).fold([0.0; 2], |c, i| {
+        let d = diff[i].max(0.0) / total;
+        [
+            c[0] + d * ((i % w) as f64 + 0.5),
+            c[1] + d * ((i / w) as f64 + 0.5),
+        ]
+    });
+    let off = (centroid[0] - at[0]).hypot(centroid[1] - at[1]) / 108.0;
+    println!(
+        "lightning: {total:.0} levels brighter in all, centroid ({:.1}, {:.1}) vs the flash at ({:.1}, {:.1}): {off:.3} image heights; {darker} pixels darker",
+        centroid[0], centroid[1], at[0], at[1]
+    );
+    assert_eq!(darker, 0, "the flash darkened {darker} pixels");
+    assert!(
+        total > 5000.0,
+        "the flash adds {total} levels (measured 24793)"
+    );
+    assert!(
+        off < 0.1,
+        "the flash light is {off:.3} image heights from it (measured 0.022)"
+    );
+}

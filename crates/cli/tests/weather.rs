@@ -184,3 +184,57 @@ fn a_hazy_report_washes_out_the_distance_under_the_physical_sky() {
         "luminance standard deviation: {hazy:.4} with haze against {clear:.4} without"
     );
 }
+
+/// The acceptance command at a small size: a Miami thunderstorm in heavy rain draws
+/// its rain (the particles and shafts its notes name) and its statistics count the flashes
+/// of 120 frames (2 s at 40 a minute, one a 1.5 s slot: at least one).
+#[test]
+fn a_thunderstorm_report_rains_and_its_statistics_count_the_flashes() {
+    let dir = scratch("weather-thunderstorm");
+    let stats = dir.join("s.json");
+    let (ok, text) = stratus(&[
+        "render",
+        "--weather",
+        "METAR KMIA 271853Z 09012KT 2SM +TSRA BKN025CB 26/24 A2992",
+        "--size",
+        "64x36",
+        "--frames",
+        "120",
+        "--stats",
+        stats.to_str().unwrap(),
+        "--out",
+        dir.join("kmia.png").to_str().unwrap(),
+    ]);
+    assert!(ok, "{text}");
+    assert!(text.contains("lightning: "), "{text}");
+    let doc: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&stats).unwrap()).unwrap();
+    let flashes = doc["lightning_flashes"]
+        .as_u64()
+        .expect("lightning_flashes");
+    let lit = doc["frames"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|f| f["lightning"].as_f64().unwrap() > 0.0)
+        .count();
+    println!("{flashes} flash(es) over {lit} of 120 frames");
+    assert!(
+        flashes >= 1 && lit >= 1,
+        "{flashes} flashes, {lit} lit frames"
+    );
+    assert!(
+        doc["median_ms"].get("precipitation").is_some(),
+        "no precipitation pass ran: {}",
+        doc["median_ms"]
+    );
+    let (ok, scene) = stratus(&[
+        "weather",
+        "METAR KMIA 271853Z 09012KT 2SM +TSRA BKN025CB 26/24 A2992",
+    ]);
+    assert!(ok, "{scene}");
+    assert!(
+        scene.contains("[precipitation]") && scene.contains("shafts = 1.0"),
+        "{scene}"
+    );
+}

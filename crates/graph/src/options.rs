@@ -60,6 +60,9 @@ plan_options! {
     /// The rainbow's Lee-diagram table is computed (option `rainbow`: `rainbow.moisture` > 0
     /// with `rainbow.lee_diagram`).
     rainbow: bool = false, on when |on| on;
+    /// Rain or snow particles are drawn over the display image (option `precipitation`:
+    /// `precipitation.particles` > 0).
+    precipitation: bool = false, on when |on| on;
 }
 
 impl PlanOptions {
@@ -69,6 +72,7 @@ impl PlanOptions {
             physical_sky: scene.atmosphere.sky.is_physical(),
             kuwahara: scene.post.kuwahara,
             rainbow: scene.rainbow.uses_table(),
+            precipitation: scene.precipitation.particles > 0.0,
             ..Self::of_clouds(scene)
         }
     }
@@ -132,10 +136,11 @@ mod tests {
             physical_sky: true,
             kuwahara: true,
             rainbow: true,
+            precipitation: true,
         };
         for name in PLAN_OPTIONS {
             assert!(on.is_set(name), "{name} is not on when its field is");
         }
-        assert_eq!(PLAN_OPTIONS.len(), 9);
+        assert_eq!(PLAN_OPTIONS.len(), 10);
     }
 }

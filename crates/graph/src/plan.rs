@@ -356,15 +356,16 @@ impl FramePlan {
             .any(|r| r.lifetime == Lifetime::History)
     }
 
-    /// Whether every frame draws a raster pass (one without a `when` condition; `present`
-    /// runs only into a host's target). On lavapipe such frames' pass timestamps are late:
+    /// Whether every frame draws a raster pass (one without a `when` condition, or only a
+    /// negated one such as the display image's `!hdr`, which a frame without flags runs;
+    /// `present` runs only into a host's target). On lavapipe such frames' pass timestamps are late:
     /// llvmpipe bins a timestamp taken with a framebuffer bound into its tiles (backend-ash's
     /// `TIMESTAMP_STAGE`), and keeps doing so for the device's later frames, so timings of
     /// these plans are taken by the wall clock.
     pub fn rasterizes_every_frame(&self) -> bool {
-        self.passes
-            .iter()
-            .any(|p| p.when.is_none() && matches!(p.kind, PassKind::Raster { .. }))
+        self.passes.iter().any(|p| {
+            p.when.as_ref().is_none_or(|w| w.negate) && matches!(p.kind, PassKind::Raster { .. })
+        })
     }
 }
 
@@ -933,13 +934,19 @@ mod tests {
         assert!(pt.has_history());
         assert_eq!(pt.passes[0].name, "occupancy");
         assert!(pt.resource("cloud-sparse").is_none());
-        // Only the sprites draw a raster pass every frame (present runs on request).
+        // Only the sprites and the rain's particles draw a raster pass every frame (present
+        // and the HDR copy run on request).
         assert!(!pt.rasterizes_every_frame());
         let (sprites, _) = names(PlanOptions {
             sprites: true,
             ..PlanOptions::default()
         });
         assert!(sprites.rasterizes_every_frame());
+        let (rain, _) = names(PlanOptions {
+            precipitation: true,
+            ..PlanOptions::default()
+        });
+        assert!(rain.rasterizes_every_frame());
         assert!(!names(PlanOptions::default()).0.rasterizes_every_frame());
     }
 

@@ -8,6 +8,7 @@ use crate::frame::{FLAG_LIGHT_SHAFTS, FLAG_MOONLIT, Frame, PI};
 use crate::geometry::{hits_ground, view_ray};
 use crate::math::{V3, mix_v, saturate};
 use crate::phase::phase_hg;
+use crate::precipitation::{Rain, rain_in_front, rain_veil, through_rain};
 use crate::sky::{SkyTables, physical};
 
 // WGSL: composite.wgsl::sky_radiance
@@ -51,7 +52,7 @@ pub(crate) fn aces_fitted(x: V3) -> V3 {
 
 // WGSL: composite.wgsl::saturated
 /// The tone-mapped colour `c` with its saturation scaled by `saturation` (1: `c` itself).
-fn saturated(f: &Frame, c: V3) -> V3 {
+pub(crate) fn saturated(f: &Frame, c: V3) -> V3 {
     let s = f.saturation;
     if s == 1.0 {
         return c;
@@ -75,6 +76,8 @@ fn unorm8(x: f64) -> u8 {
 /// stands for the rest: `L = a S + (1 - a) S_ap + T_ap C` (Hillaire 2020, section 5.4's
 /// aerial-perspective volume on opaque surfaces, with partly transparent clouds). `depth` is
 /// the clouds' depth (m) at `pixel`.
+// The WGSL pass's inputs, each a binding or a per-pixel value there.
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn physical_composite(
     f: &Frame,
     sky: &SkyTables,
@@ -83,6 +86,7 @@ pub(crate) fn physical_composite(
     cloud: [f64; 4],
     depth: f64,
     surface: bool,
+    rain: Option<&Rain>,
 ) -> V3 {
     let e = f.sun_illuminance();
     let r = sky.camera_air_origin(f).y;
@@ -110,13 +114,24 @@ pub(crate) fn physical_composite(
         background = non_negative(background - shaded_all.mul_v(e));
         bow = sky.rainbow_radiance(f, view).mul_v(e);
     }
-    let mut radiance = background * alpha + bow;
+    // The rain shafts: in front of everything from below the rain's top, behind the clouds
+    // (over the sky and ground only) from above it.
+    let veil = rain
+        .filter(|_| f.rain_shafts > 0.0)
+        .map(|rain| (rain_veil(f, rain, pixel, view), rain_in_front(f)));
+    if let Some((veil, false)) = veil {
+        background = through_rain(veil, background);
+    }
+    let mut radiance = background * alpha;
     if alpha < 1.0 {
         let ap = sky.aerial(f, pixel, depth);
         let air = non_negative(V3::new(ap[0], ap[1], ap[2]) - shaded_front);
         radiance += air.mul_v(e) * (1.0 - alpha) + V3::new(cloud[0], cloud[1], cloud[2]) * ap[3];
     }
-    radiance
+    if let Some((veil, true)) = veil {
+        radiance = through_rain(veil, radiance);
+    }
+    radiance + bow
 }
 
 /// `max(v, 0)` in each channel (the WGSL's `max(v, vec3(0.0))`).
@@ -181,13 +196,23 @@ pub(crate) fn composite(
     cloud: [f64; 4],
     surface: bool,
     flare: V3,
+    rain: Option<&Rain>,
 ) -> [u8; 4] {
     let background = if surface {
         surface_radiance(f)
     } else {
         analytic_background(f, view_ray(f, pixel))
     };
-    let mut radiance = background * cloud[3] + V3::new(cloud[0], cloud[1], cloud[2]);
+    let light = V3::new(cloud[0], cloud[1], cloud[2]);
+    let mut radiance = background * cloud[3] + light;
+    if let Some(rain) = rain.filter(|_| f.rain_shafts > 0.0) {
+        let veil = rain_veil(f, rain, pixel, view_ray(f, pixel));
+        radiance = if rain_in_front(f) {
+            through_rain(veil, radiance)
+        } else {
+            through_rain(veil, background) * cloud[3] + light
+        };
+    }
     if f.lens_flare_intensity > 0.0 {
         radiance += crate::flare::lens_flare(f, pixel, flare);
     }
@@ -220,6 +245,8 @@ fn analytic_background(f: &Frame, view: V3) -> V3 {
 // WGSL: composite.wgsl::composite_physical
 /// The display pixel in the physical sky, for march output `cloud` at depth `depth` (m), with
 /// the lens flare of `flare` (the sun's light reaching the lens).
+// The WGSL pass's inputs, each a binding or a per-pixel value there.
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn composite_physical(
     f: &Frame,
     sky: &SkyTables,
@@ -228,8 +255,10 @@ pub(crate) fn composite_physical(
     depth: f64,
     surface: bool,
     flare: V3,
+    rain: Option<&Rain>,
 ) -> [u8; 4] {
-    let mut radiance = physical_composite(f, sky, pixel, view_ray(f, pixel), cloud, depth, surface);
+    let view = view_ray(f, pixel);
+    let mut radiance = physical_composite(f, sky, pixel, view, cloud, depth, surface, rain);
     if f.lens_flare_intensity > 0.0 {
         radiance += crate::flare::lens_flare(f, pixel, flare);
     }
@@ -241,6 +270,8 @@ pub(crate) fn composite_physical(
 /// pass reads the march output: in the physical sky when the frame is under it (`sky`, the
 /// frame's tables, then given), else the analytic one; the host's geometry where `surface`
 /// (the frame's scene depth) covers a pixel.
+// The WGSL pass's inputs, each a binding or a per-pixel value there.
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn composite_image(
     f: &Frame,
     sky: Option<&SkyTables>,
@@ -249,6 +280,7 @@ pub(crate) fn composite_image(
     radiance: &[f32],
     depth: &[f32],
     surface: Option<&stratus_graph::SceneDepth>,
+    rain: Option<&Rain>,
 ) -> Vec<u8> {
     let sky = physical(f, sky);
     // The sun's light reaching the lens: through the air, then through the clouds (the march's
@@ -280,9 +312,9 @@ pub(crate) fn composite_image(
                 match sky {
                     Some(sky) => {
                         let depth = f64::from(depth[i]);
-                        composite_physical(f, sky, [x, y], cloud, depth, surface, flare)
+                        composite_physical(f, sky, [x, y], cloud, depth, surface, flare, rain)
                     }
-                    None => composite(f, [x, y], cloud, surface, flare),
+                    None => composite(f, [x, y], cloud, surface, flare, rain),
                 }
             })
         })
@@ -355,7 +387,17 @@ impl Compositor {
                 }
             })
             .collect();
-        let image = composite_image(&self.f, self.sky.as_ref(), w, h, radiance, &depth, None);
+        // The clouds' difference is what it measures: no rain.
+        let image = composite_image(
+            &self.f,
+            self.sky.as_ref(),
+            w,
+            h,
+            radiance,
+            &depth,
+            None,
+            None,
+        );
         Some(crate::post::stylise(&self.f, w, h, image, &mut Vec::new()))
     }
 }

@@ -39,13 +39,16 @@ mod flare;
 mod frame;
 mod geometry;
 mod lighting;
+mod lightning;
 mod march;
 mod math;
 mod medium;
 pub mod montecarlo;
 mod night;
+mod particles;
 mod phase;
 mod post;
+mod precipitation;
 mod progressive;
 mod rainbow;
 pub mod sky;
@@ -588,6 +591,7 @@ fn render_model(model: &Model, integrator: &Integrator, progress: bool) -> Rende
         &radiance,
         &depth,
         model.surface.as_deref(),
+        crate::precipitation::Rain::of(model).as_ref(),
     );
     let composite_ms = t1.elapsed().as_secs_f64() * 1e3;
     let mut timings = sky::in_graph_order(
@@ -603,7 +607,13 @@ fn render_model(model: &Model, integrator: &Integrator, progress: bool) -> Rende
             source: "cpu-wall",
         },
     );
-    let image = post::stylise(f, w, h, image, &mut timings);
+    let mut image = post::stylise(f, w, h, image, &mut timings);
+    crate::particles::particles_pass(
+        f,
+        crate::precipitation::Rain::of(model).as_ref(),
+        &mut image,
+        &mut timings,
+    );
 
     let is_mc = matches!(integrator, Integrator::MonteCarlo { .. });
     Rendering {

@@ -336,7 +336,7 @@ pub(crate) fn ambient(f: &Frame, sky: Option<&SkyTables>, h: f64, rel: V3) -> V3
 
 // WGSL: lighting.wgsl::scattered_light
 /// In-scattered radiance per unit length at a view sample of layer `l`: sigma_s * density *
-/// (sun + ambient), darkened toward the base of raining clouds; and, apart, the octaves' part
+/// (sun + ambient + a lightning flash's light), darkened toward the base of raining clouds; and, apart, the octaves' part
 /// of it (the WGSL's `ScatteredLight`).
 // The WGSL's parameters plus the model and the light-march settings (uniforms there).
 #[allow(clippy::too_many_arguments)]
@@ -384,7 +384,7 @@ pub(crate) fn scattered_light(
     let darkening = saturate(1.0 - f.precipitation_darkening * weather.precipitation * (1.0 - h));
     let k = f.scattering * density * darkening;
     (
-        (sun_light + ambient(f, m.sky(), h, rel)) * k,
+        (sun_light + ambient(f, m.sky(), h, rel) + crate::lightning::lightning_light(f, rel)) * k,
         octave_light * k,
     )
 }

@@ -294,6 +294,14 @@ impl<'a> Model<'a> {
         tau
     }
 
+    /// The clouds' noise (their medium only).
+    pub(crate) fn noise(&self) -> Option<&'a NoiseSet> {
+        match self.medium {
+            Medium::Clouds(noise) => Some(noise),
+            Medium::Homogeneous { .. } | Medium::Grid(_) => None,
+        }
+    }
+
     /// The physical sky's tables (`None` under the analytic sky).
     pub fn sky(&self) -> Option<&SkyTables> {
         self.sky.as_ref()

@@ -78,6 +78,7 @@ pub(crate) fn render(
         &out.radiance,
         &out.depth,
         None,
+        crate::precipitation::Rain::of(&model).as_ref(),
     );
     out.timings = crate::sky::in_graph_order(
         model.sky(),
@@ -97,6 +98,12 @@ pub(crate) fn render(
         out.width,
         out.height,
         std::mem::take(&mut out.image),
+        &mut out.timings,
+    );
+    crate::particles::particles_pass(
+        &model.f,
+        crate::precipitation::Rain::of(&model).as_ref(),
+        &mut out.image,
         &mut out.timings,
     );
     out

@@ -1234,8 +1234,16 @@ mod tests {
                 let i = (y * 64 + x) as usize;
                 let cloud = [0, 1, 2, 3].map(|c| f64::from(out.radiance[4 * i + c]));
                 let view = view_ray(f, [x, y]);
-                let l =
-                    physical_composite(f, sky, [x, y], view, cloud, f64::from(out.depth[i]), false);
+                let l = physical_composite(
+                    f,
+                    sky,
+                    [x, y],
+                    view,
+                    cloud,
+                    f64::from(out.depth[i]),
+                    false,
+                    None,
+                );
                 assert!(
                     [l.x, l.y, l.z].iter().all(|v| v.is_finite() && *v >= 0.0),
                     "{preset}: pixel ({x}, {y}) composites to {l:?}"
@@ -1326,7 +1334,16 @@ mod tests {
         for y in 0..36u32 {
             for x in 0..64u32 {
                 let view = view_ray(f, [x, y]);
-                let l = luminance(physical_composite(f, sky, [x, y], view, clear, 0.0, false));
+                let l = luminance(physical_composite(
+                    f,
+                    sky,
+                    [x, y],
+                    view,
+                    clear,
+                    0.0,
+                    false,
+                    None,
+                ));
                 if view.dot(m) >= 0.999_989_78 {
                     disc.push((x, y, l));
                 } else if view.dot(m) < 0.999_97 {

@@ -398,6 +398,7 @@ pub(crate) fn render(
         &radiance,
         &depth,
         model.surface.as_deref(),
+        crate::precipitation::Rain::of(&model).as_ref(),
     );
     let composite_ms = t2.elapsed().as_secs_f64() * 1e3;
 
@@ -419,7 +420,13 @@ pub(crate) fn render(
         [timing("march", march_ms), timing("resolve", resolve_ms)],
         timing("composite", composite_ms),
     );
-    let image = crate::post::stylise(&model.f, w, h, image, &mut timings);
+    let mut image = crate::post::stylise(&model.f, w, h, image, &mut timings);
+    crate::particles::particles_pass(
+        &model.f,
+        crate::precipitation::Rain::of(&model).as_ref(),
+        &mut image,
+        &mut timings,
+    );
     FrameOutput {
         width: w,
         height: h,

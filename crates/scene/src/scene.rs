@@ -42,6 +42,12 @@ pub struct Scene {
     /// Way and the moon's disc.
     #[serde(skip_serializing_if = "Night::is_default")]
     pub night: Night,
+    /// Falling rain or snow near the camera and the rain's shafts below raining clouds.
+    #[serde(skip_serializing_if = "Precipitation::is_off")]
+    pub precipitation: Precipitation,
+    /// Lightning inside the clouds: flashes at random but seeded times.
+    #[serde(skip_serializing_if = "Lightning::is_off")]
+    pub lightning: Lightning,
     /// Camera keyframes and a time span for sequences (`stratus render --frames`,
     /// `stratus animate`); absent: the camera stays where `[camera]` puts it.
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -325,6 +331,103 @@ impl Default for Night {
 impl Night {
     /// Whether every field is at its default (a scene's TOML then leaves the section out).
     pub fn is_default(&self) -> bool {
+        *self == Self::default()
+    }
+}
+
+/// What falls from a precipitating layer (`precipitation.kind`).
+#[derive(Serialize, Deserialize, Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
+#[serde(rename_all = "kebab-case")]
+pub enum PrecipitationKind {
+    /// Raindrops: streaks falling at about 9 m/s. TOML `"rain"`.
+    #[default]
+    Rain,
+    /// Snowflakes: soft flakes falling at about 1 m/s and swaying. TOML `"snow"`.
+    Snow,
+}
+
+impl PrecipitationKind {
+    /// The name a scene file uses.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Rain => "rain",
+            Self::Snow => "snow",
+        }
+    }
+
+    /// Fall speed (m/s): large raindrops' terminal velocity, about 9 m/s (Gunn and Kinzer
+    /// 1949), and snowflakes', 0.5-1.5 m/s (Locatelli and Hobbs 1974).
+    pub fn fall_speed_m_s(self) -> f64 {
+        match self {
+            Self::Rain => 9.0,
+            Self::Snow => 1.0,
+        }
+    }
+}
+
+/// Precipitation (section `[precipitation]`): what falls below the precipitating cloud layers
+/// (a layer's `precipitation` > 0, where the weather map has cloud above). Both effects are
+/// off by default; `stratus weather` turns them on for a report's rain or snow.
+#[derive(Serialize, Deserialize, Clone, Debug, PartialEq)]
+#[serde(default, deny_unknown_fields)]
+pub struct Precipitation {
+    /// Rain or snow.
+    pub kind: PrecipitationKind,
+    /// The particles near the camera (a raster pass over the display image), within [0, 4]:
+    /// 1 draws up to 8192 drops or flakes in a 40 m box about the camera, each where the rain
+    /// at its place (the layer's precipitation times the weather map's) is at least its share;
+    /// 0 (the default) draws none.
+    pub particles: f64,
+    /// Rain shafts (the composite), within [0, 4]: the rain's extinction below a raining cell
+    /// in units of heavy rain's, so that distant cells hang darker columns over what is behind
+    /// them; 0 (the default) draws none.
+    pub shafts: f64,
+}
+
+impl Default for Precipitation {
+    fn default() -> Self {
+        Self {
+            kind: PrecipitationKind::Rain,
+            particles: 0.0,
+            shafts: 0.0,
+        }
+    }
+}
+
+impl Precipitation {
+    /// Whether nothing is drawn and the kind is the default (a scene's TOML leaves it out).
+    pub fn is_off(&self) -> bool {
+        *self == Self::default()
+    }
+}
+
+/// Lightning (section `[lightning]`): flashes inside the main cloud layer (a cumulonimbus),
+/// each a light that lights the cloud about it through the cloud itself, at times and places
+/// drawn from `noise.seed` (the same scene and seed flash the same way). See
+/// [`crate::lightning`].
+#[derive(Serialize, Deserialize, Clone, Debug, PartialEq)]
+#[serde(default, deny_unknown_fields)]
+pub struct Lightning {
+    /// Flashes a minute within [0, 120]; 0 (the default) draws none. Ordinary thunderstorms
+    /// flash a few times a minute, severe ones tens of times (Williams et al. 1999: peaks above 60 a minute in severe Florida storms).
+    pub flashes_per_minute: f64,
+    /// The flashes' brightness within [0, 10] (1: a flash lights the cloud a kilometre away
+    /// about as the noon sun does).
+    pub brightness: f64,
+}
+
+impl Default for Lightning {
+    fn default() -> Self {
+        Self {
+            flashes_per_minute: 0.0,
+            brightness: 1.0,
+        }
+    }
+}
+
+impl Lightning {
+    /// Whether no flashes are drawn and the brightness is the default.
+    pub fn is_off(&self) -> bool {
         *self == Self::default()
     }
 }
@@ -1189,6 +1292,8 @@ impl Scene {
         scene.post.kuwahara = true;
         scene.rainbow.moisture = 1.0;
         scene.night.moon_msaa = true;
+        scene.precipitation.particles = 1.0;
+        scene.lightning.flashes_per_minute = 1.0;
         scene
     }
 

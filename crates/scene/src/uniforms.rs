@@ -6,6 +6,15 @@ use crate::scene::{MAX_EXTRA_LAYERS, Scene};
 /// Weather-map shift per extra layer, in periods (the golden ratio's fractional parts).
 const LAYER_SHIFT: [f64; 2] = [0.381_966, 0.618_034];
 
+/// A lightning flash's illuminance 1 km from it at its peak and `lightning.brightness` 1, in
+/// the units of `sun.illuminance`: about the default noon sun's (10), so that a flash in a
+/// daylit storm shows.
+const LIGHTNING_ILLUMINANCE: f64 = 60.0;
+/// The side of the box of rain or snow particles about the camera (m).
+const PRECIP_BOX_M: f64 = 40.0;
+/// The share of the clouds' wind that drifts the particles.
+const PRECIP_DRIFT: f64 = 0.3;
+
 /// The one declaration of the per-frame uniform block: every member in order, with its kind
 /// (`vec4f`: `vec4<f32>`, `vec4u`: `vec4<u32>`) and what it holds. UniformMember `i` lies at byte
 /// offset `16 * i`, the same layout under WGSL, std140 and HLSL cbuffer rules.
@@ -314,8 +323,23 @@ macro_rules! frame_members {
             moon_cos_radius: f32,
             /// The stars' brightness over the real sky's (`night.star_intensity`).
             star_intensity: f32,
-            /// Padding (0).
-            _pad12: f32,
+            /// The rain shafts' extinction in units of heavy rain's (`precipitation.shafts`; 0:
+            /// none).
+            rain_shafts: f32,
+            /// The lit flash's place (world metres: x, altitude, z; [`crate::lightning`]).
+            lightning_position: vec3f,
+            /// The lit flash's illuminance 1 km from it, in the units of `sun_illuminance` (0:
+            /// no flash this frame).
+            lightning_illuminance: f32,
+            /// How far the particles have fallen and drifted (m, each within [0,
+            /// `precip_box`)): they move with it through the box about the camera.
+            precip_offset: vec3f,
+            /// The particles' share drawn (`precipitation.particles`; 0: none).
+            precip_density: f32,
+            /// The particles' velocity (m/s): their fall and the wind's drift.
+            precip_velocity: vec3f,
+            /// The side of the box of particles about the camera (m).
+            precip_box: f32,
         }
     };
 }
@@ -470,6 +494,8 @@ impl FrameUniforms {
     /// `flags` bit: the moon's disc sampled at four points a pixel (`night.moon_msaa`), else
     /// its limb spread over a pixel.
     pub const FLAG_MOON_MSAA: u32 = 1 << 11;
+    /// `flags` bit: the particles are snowflakes (`precipitation.kind = "snow"`), else rain.
+    pub const FLAG_SNOW: u32 = 1 << 12;
 
     /// The WGSL `struct Frame` of this block, as `wgsl/frame.wgsl` holds it (written by
     /// `cargo xtask build-shaders`, which fails `--check` when the file differs).
@@ -794,6 +820,19 @@ impl Scene {
         if self.night.moon_msaa {
             flags |= FrameUniforms::FLAG_MOON_MSAA;
         }
+        if self.precipitation.kind == crate::PrecipitationKind::Snow {
+            flags |= FrameUniforms::FLAG_SNOW;
+        }
+        let flash = crate::lightning::flash(self);
+        // The particles fall at their kind's speed and drift with a share of the wind (the
+        // wind near the ground is weaker than the clouds'); their offsets wrap in f64, so
+        // hours of rain lose no precision.
+        let precip_velocity = [
+            dx * c.wind_speed_m_s * PRECIP_DRIFT,
+            -self.precipitation.kind.fall_speed_m_s(),
+            dz * c.wind_speed_m_s * PRECIP_DRIFT,
+        ];
+        let precip_offset = precip_velocity.map(|v| (v * c.time_s).rem_euclid(PRECIP_BOX_M));
         // The catalogue's axes in the world: from the date and place (none without them).
         let celestial = match self.sky.when_and_where() {
             Some((date, place)) => stratus_astro::celestial::transpose(
@@ -992,7 +1031,15 @@ impl Scene {
             milky_way_intensity: f(self.night.milky_way_intensity),
             moon_cos_radius: f((MOON_COS_RADIUS.acos() * self.night.moon_size).cos()),
             star_intensity: f(self.night.star_intensity),
-            _pad12: 0.0,
+            rain_shafts: f(self.precipitation.shafts),
+            lightning_position: v3(flash.map_or([0.0; 3], |f| f.position)),
+            lightning_illuminance: f(flash.map_or(0.0, |f| {
+                f.intensity * self.lightning.brightness * LIGHTNING_ILLUMINANCE
+            })),
+            precip_offset: v3(precip_offset),
+            precip_density: f(self.precipitation.particles),
+            precip_velocity: v3(precip_velocity),
+            precip_box: f(PRECIP_BOX_M),
         };
         block.with_previous_camera(&block)
     }

@@ -297,6 +297,27 @@ pub(crate) fn check(scene: &Scene) -> Vec<Issue> {
         Incl(5.0),
         Incl(2500.0),
     );
+    let rain = &scene.precipitation;
+    c.float(
+        "precipitation.particles",
+        rain.particles,
+        Incl(0.0),
+        Incl(4.0),
+    );
+    c.float("precipitation.shafts", rain.shafts, Incl(0.0), Incl(4.0));
+    let bolt = &scene.lightning;
+    c.float(
+        "lightning.flashes_per_minute",
+        bolt.flashes_per_minute,
+        Incl(0.0),
+        Incl(120.0),
+    );
+    c.float(
+        "lightning.brightness",
+        bolt.brightness,
+        Incl(0.0),
+        Incl(10.0),
+    );
     if let Some(o) = &cam.orientation {
         c.orientation(o);
     }

@@ -97,8 +97,9 @@ pub struct RenderArgs {
     /// --frames, the last frame.
     #[arg(long, default_value = "clouds.png")]
     out: PathBuf,
-    /// Also write the work counters, per-pass times and (one entry per frame) each frame's
-    /// pass times and CPU time as JSON to this file.
+    /// Also write the work counters, per-pass times, the lightning flashes the frames lit
+    /// (`lightning_flashes`) and (one entry per frame) each frame's pass times, CPU time and
+    /// flash light (`lightning`, 0 without one) as JSON to this file.
     #[arg(long)]
     stats: Option<PathBuf>,
     /// Render N frames with one persistent renderer, as a real-time loop does, at 60 frames a
@@ -343,6 +344,8 @@ pub fn run(args: RenderArgs) -> Result<()> {
     let bar = progress(frame_count);
     let t = Instant::now();
     let mut frames: Vec<(f64, Vec<stratus_graph::PassTiming>)> = Vec::new();
+    // Each frame's lightning flash (its number and light), if one is lit.
+    let mut flashes: Vec<Option<stratus_scene::lightning::Flash>> = Vec::new();
     let mut last: Option<(Scene, FrameOutput)> = None;
     for i in 0..frame_count {
         let s = if progressive {
@@ -370,6 +373,7 @@ pub fn run(args: RenderArgs) -> Result<()> {
             &FrameInput::new(&plan, &s, &noise).with_readback(readback),
         )?;
         frames.push((out.cpu_ms, out.timings.clone()));
+        flashes.push(stratus_scene::lightning::flash(&s));
         if let Some(dir) = &args.sequence {
             check_finite(&out).with_context(|| format!("frame {i}"))?;
             write_image(&dir.join(format!("frame_{i:04}.png")), &out)?;
@@ -414,6 +418,31 @@ pub fn run(args: RenderArgs) -> Result<()> {
         renderer.describe(),
         plan.variant
     );
+    // The distinct flashes the frames lit.
+    let lightning_flashes = {
+        let mut seen: Vec<i64> = flashes.iter().flatten().map(|f| f.index).collect();
+        seen.dedup();
+        seen.len()
+    };
+    if scene.lightning.flashes_per_minute > 0.0 {
+        let last_flash = match flashes.last().copied().flatten() {
+            Some(f) => {
+                let cam = last_scene.camera.position;
+                let [x, alt, z] = f.position;
+                format!(
+                    "; the last frame's at x {x:.0} m, altitude {alt:.0} m, z {z:.0} m ({:.1} km from the camera, light {:.2})",
+                    ((x - cam[0]).hypot(z - cam[2])).hypot(alt - cam[1]) * 1e-3,
+                    f.intensity
+                )
+            }
+            None => "; none in the last frame".into(),
+        };
+        println!(
+            "lightning: {lightning_flashes} flash(es) lit {} of {frame_count} frames ({} a minute){last_flash}",
+            flashes.iter().flatten().count(),
+            scene.lightning.flashes_per_minute
+        );
+    }
     let source = frame.timings.first().map_or("untimed", |t| t.source);
     if progressive {
         let pass_ms: f64 = frames
@@ -480,9 +509,11 @@ pub fn run(args: RenderArgs) -> Result<()> {
             "method": scene.quality.method.name(),
             "temporal": scene.quality.temporal.name(),
             "median_ms": median_per_pass(&frames),
-            "frames": frames.iter().enumerate().map(|(i, (cpu_ms, timings))| json!({
+            "lightning_flashes": lightning_flashes,
+            "frames": frames.iter().zip(&flashes).enumerate().map(|(i, ((cpu_ms, timings), flash))| json!({
                 "frame": i,
                 "cpu_ms": cpu_ms,
+                "lightning": flash.map_or(0.0, |f| f.intensity),
                 "passes": timings.iter().map(timing).collect::<Vec<_>>(),
             })).collect::<Vec<_>>(),
         });

@@ -133,6 +133,49 @@ fn precipitation(m: &Metar) -> f64 {
         .fold(0.0, f64::max)
 }
 
+/// What falls and flashes: a report's rain or snow draws its particles and (rain) its shafts
+/// below the precipitating layer, their density the layer's precipitation (the groups'
+/// intensity); a thunderstorm (TS) flashes at a rate by its intensity: 6 a minute light, 20
+/// moderate, 40 heavy (ordinary storms flash a few times a minute, severe ones tens of times:
+/// Williams et al. 1999).
+fn precipitation_and_lightning(m: &Metar, rain: f64, scene: &mut Scene, notes: &mut Vec<String>) {
+    let snow = m.weather.iter().any(|w| {
+        w.intensity != Intensity::InVicinity
+            && ["SN", "SG", "PL", "GS"].iter().any(|c| w.has(c))
+            && !w.has("RA")
+    });
+    if rain > 0.0 {
+        let p = &mut scene.precipitation;
+        p.kind = if snow {
+            stratus_scene::PrecipitationKind::Snow
+        } else {
+            stratus_scene::PrecipitationKind::Rain
+        };
+        p.particles = 1.0;
+        p.shafts = if snow { 0.0 } else { 1.0 };
+        notes.push(format!(
+            "precipitation: {} particles below the precipitating layer{}",
+            p.kind.name(),
+            if snow { "" } else { ", and rain shafts" }
+        ));
+    }
+    if let Some(ts) = m
+        .weather
+        .iter()
+        .find(|w| w.intensity != Intensity::InVicinity && w.has("TS"))
+    {
+        let rate = match ts.intensity {
+            Intensity::Light => 6.0,
+            Intensity::Heavy => 40.0,
+            _ => 20.0,
+        };
+        scene.lightning.flashes_per_minute = rate;
+        notes.push(format!(
+            "lightning: thunderstorm (TS) -> {rate} flashes a minute in the main layer"
+        ));
+    }
+}
+
 /// The aerosol of the physical sky from the report's visibility, or from a haze, smoke, dust
 /// or mist group without one. Not where a fog layer is drawn: that layer holds the visibility.
 fn haze_from_metar(m: &Metar, fog_drawn: bool, scene: &mut Scene, notes: &mut Vec<String>) {
@@ -356,6 +399,7 @@ pub fn scene_from_metar(m: &Metar, base: &Scene) -> Derived {
     }
 
     haze_from_metar(m, fog_layer_opt.is_some(), &mut scene, &mut notes);
+    precipitation_and_lightning(m, rain, &mut scene, &mut notes);
 
     // The lowest cloud group is the main layer (its geometry is `[atmosphere]`, its weather
     // `[clouds]`); the other groups and the fog are extra layers. Fog alone keeps the state's

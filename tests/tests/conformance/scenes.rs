@@ -136,6 +136,26 @@ pub fn all() -> Vec<Case> {
             "baseline: Wang 2003's sprite clouds, a raster pass (GPU only)",
             |s| s.quality.method = Method::Sprites,
         ),
+        stress(
+            "thunderstorm",
+            "a raining deck: rain shafts, rain particles (a raster pass) and a lightning flash in view, at the first frame that shows one",
+            |s| {
+                // scenes/thunderstorm.toml (docs/effects.md's picture), whose time must be the
+                // first frame with a flash in view.
+                let file = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+                    .join("../scenes/thunderstorm.toml");
+                *s = Scene::from_file(&file)
+                    .unwrap_or_else(|e| panic!("{e}"))
+                    .with_size(WIDTH, HEIGHT);
+                let mut from_zero = s.clone();
+                from_zero.clouds.time_s = 0.0;
+                assert_eq!(
+                    stratus_scene::lightning::first_flash_in_view(&from_zero, 20.0, 0.8),
+                    Some(s.clouds.time_s),
+                    "scenes/thunderstorm.toml's time_s is not its first frame with a flash in view"
+                );
+            },
+        ),
     ]);
     // A frame that rasterises leaves llvmpipe's timestamps late for the device's later frames
     // (`FramePlan::rasterizes_every_frame`): such scenes come last, after every scene whose
