@@ -133,47 +133,63 @@ fn precipitation(m: &Metar) -> f64 {
         .fold(0.0, f64::max)
 }
 
-/// What falls and flashes: a report's rain or snow draws its particles and (rain) its shafts
-/// below the precipitating layer, their density the layer's precipitation (the groups'
-/// intensity); a thunderstorm (TS) flashes at a rate by its intensity: 6 a minute light, 20
-/// moderate, 40 heavy (ordinary storms flash a few times a minute, severe ones tens of times:
-/// Williams et al. 1999).
+/// Moderate thunderstorms' flashes a minute (a report's TS without `-` or `+`, and the weather
+/// service's 雷阵雨); light ones flash 6 a minute, heavy ones 40 (ordinary storms flash a few
+/// times a minute, severe ones tens of times: Williams et al. 1999).
+pub(crate) const MODERATE_FLASHES_PER_MINUTE: f64 = 20.0;
+
+/// What falls and flashes: `falls` draws its particles and (rain) its shafts below the
+/// precipitating layer, their density that layer's precipitation; `flashes` a minute of
+/// lightning in the main layer.
+pub(crate) fn precipitate(
+    scene: &mut Scene,
+    falls: Option<stratus_scene::PrecipitationKind>,
+    flashes: Option<f64>,
+    notes: &mut Vec<String>,
+) {
+    if let Some(kind) = falls {
+        let snow = kind == stratus_scene::PrecipitationKind::Snow;
+        let p = &mut scene.precipitation;
+        p.kind = kind;
+        p.particles = 1.0;
+        p.shafts = if snow { 0.0 } else { 1.0 };
+        notes.push(format!(
+            "precipitation: {} particles below the precipitating layer{}",
+            kind.name(),
+            if snow { "" } else { ", and rain shafts" }
+        ));
+    }
+    if let Some(rate) = flashes {
+        scene.lightning.flashes_per_minute = rate;
+        notes.push(format!(
+            "lightning: thunderstorm -> {rate} flashes a minute in the main layer"
+        ));
+    }
+}
+
+/// A report's rain or snow (its precipitation `rain` > 0) and thunderstorm (TS, its rate by
+/// intensity), as [`precipitate`] draws them.
 fn precipitation_and_lightning(m: &Metar, rain: f64, scene: &mut Scene, notes: &mut Vec<String>) {
     let snow = m.weather.iter().any(|w| {
         w.intensity != Intensity::InVicinity
             && ["SN", "SG", "PL", "GS"].iter().any(|c| w.has(c))
             && !w.has("RA")
     });
-    if rain > 0.0 {
-        let p = &mut scene.precipitation;
-        p.kind = if snow {
-            stratus_scene::PrecipitationKind::Snow
-        } else {
-            stratus_scene::PrecipitationKind::Rain
-        };
-        p.particles = 1.0;
-        p.shafts = if snow { 0.0 } else { 1.0 };
-        notes.push(format!(
-            "precipitation: {} particles below the precipitating layer{}",
-            p.kind.name(),
-            if snow { "" } else { ", and rain shafts" }
-        ));
-    }
-    if let Some(ts) = m
+    let falls = (rain > 0.0).then_some(if snow {
+        stratus_scene::PrecipitationKind::Snow
+    } else {
+        stratus_scene::PrecipitationKind::Rain
+    });
+    let flashes = m
         .weather
         .iter()
         .find(|w| w.intensity != Intensity::InVicinity && w.has("TS"))
-    {
-        let rate = match ts.intensity {
+        .map(|ts| match ts.intensity {
             Intensity::Light => 6.0,
             Intensity::Heavy => 40.0,
-            _ => 20.0,
-        };
-        scene.lightning.flashes_per_minute = rate;
-        notes.push(format!(
-            "lightning: thunderstorm (TS) -> {rate} flashes a minute in the main layer"
-        ));
-    }
+            _ => MODERATE_FLASHES_PER_MINUTE,
+        });
+    precipitate(scene, falls, flashes, notes);
 }
 
 /// The aerosol of the physical sky from the report's visibility, or from a haze, smoke, dust

@@ -218,6 +218,15 @@ pub fn scene_from_service_json(json: &str, base: &Scene) -> Result<Derived, Weat
             notes.push(format!("wind direction {dir:?}: none recognised, kept"));
         }
     }
+    // Rain, snow and a thunderstorm's rain and lightning, as a report's (the condition gives no
+    // intensity: a moderate storm's rate).
+    let falls = match *name {
+        "rain" | "thunderstorm" => Some(stratus_scene::PrecipitationKind::Rain),
+        "snow" => Some(stratus_scene::PrecipitationKind::Snow),
+        _ => None,
+    };
+    let flashes = (*name == "thunderstorm").then_some(crate::derive::MODERATE_FLASHES_PER_MINUTE);
+    crate::derive::precipitate(&mut scene, falls, flashes, &mut notes);
     haze_from_json(now, &lower, &mut scene, &mut notes)?;
     place(&v, now, &mut scene, &mut notes)?;
     Ok(Derived {
@@ -502,6 +511,33 @@ mod tests {
             let d = scene_from_service_json(&json, &Scene::default()).unwrap();
             assert_eq!(d.state.name, state, "{text}");
         }
+    }
+
+    /// A thundershower rains with shafts and flashes at a moderate storm's rate; light snow
+    /// falls as flakes without shafts; a clear sky draws neither.
+    #[test]
+    fn rain_snow_and_thunder_draw_their_precipitation_and_lightning() {
+        let scene = |text: &str| {
+            scene_from_service_json(&SEED.replace("多云", text), &Scene::default())
+                .unwrap()
+                .scene
+        };
+        let storm = scene("雷阵雨");
+        assert_eq!(
+            storm.precipitation.kind,
+            stratus_scene::PrecipitationKind::Rain
+        );
+        assert!(storm.precipitation.particles > 0.0 && storm.precipitation.shafts > 0.0);
+        assert_eq!(storm.lightning.flashes_per_minute, 20.0);
+        let snow = scene("小雪");
+        assert_eq!(
+            snow.precipitation.kind,
+            stratus_scene::PrecipitationKind::Snow
+        );
+        assert!(snow.precipitation.particles > 0.0 && snow.precipitation.shafts == 0.0);
+        assert_eq!(snow.lightning.flashes_per_minute, 0.0);
+        let clear = scene("晴");
+        assert!(clear.precipitation.is_off() && clear.lightning.is_off());
     }
 
     #[test]
