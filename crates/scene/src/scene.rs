@@ -409,10 +409,12 @@ impl Precipitation {
 #[serde(default, deny_unknown_fields)]
 pub struct Lightning {
     /// Flashes a minute within [0, 120]; 0 (the default) draws none. Ordinary thunderstorms
-    /// flash a few times a minute, severe ones tens of times (Williams et al. 1999: peaks above 60 a minute in severe Florida storms).
+    /// flash a few times a minute, severe ones tens of times (Williams et al. 1999: peaks
+    /// above 60 a minute in severe Florida storms).
     pub flashes_per_minute: f64,
-    /// The flashes' brightness within [0, 10] (1: a flash lights the cloud a kilometre away
-    /// about as the noon sun does).
+    /// The flashes' brightness within [0, 10] (1: a flash's peak lights the cloud a kilometre
+    /// away six times as brightly as the default noon sun does, so that it shows in a daylit
+    /// storm; a choice, not a measurement).
     pub brightness: f64,
 }
 

@@ -7,8 +7,8 @@ use crate::scene::{MAX_EXTRA_LAYERS, Scene};
 const LAYER_SHIFT: [f64; 2] = [0.381_966, 0.618_034];
 
 /// A lightning flash's illuminance 1 km from it at its peak and `lightning.brightness` 1, in
-/// the units of `sun.illuminance`: about the default noon sun's (10), so that a flash in a
-/// daylit storm shows.
+/// the units of `sun.illuminance`: six times the default noon sun's (10), so that a flash in a
+/// daylit storm shows through its rain (chosen by eye, not measured).
 const LIGHTNING_ILLUMINANCE: f64 = 60.0;
 /// The side of the box of rain or snow particles about the camera (m).
 const PRECIP_BOX_M: f64 = 40.0;
