@@ -4095,7 +4095,13 @@ fn hdr_composite(@builtin(global_invocation_id) id: vec3<u32>) {
     let cloud = textureLoad(cloud_in, pixel, 0);
     var out = cloud;
     if (frame.flags & FLAG_HDR_SKY) != 0u && !has_surface(pixel) {
-        out = vec4<f32>(analytic_background(view_ray(pixel)) * cloud.a + cloud.rgb, 0.0);
+        let view = view_ray(pixel);
+        var background = analytic_background(view);
+        if frame.rain_shafts > 0.0 && !rain_in_front() {
+            // From above the rain's top: the rain veils the sky and ground behind the clouds.
+            background = through_rain(rain_veil(pixel, view), background);
+        }
+        out = vec4<f32>(background * cloud.a + cloud.rgb, 0.0);
     }
     textureStore(hdr_out, pixel, rain_over_hdr(pixel, out));
 }
@@ -4123,8 +4129,9 @@ fn hdr_composite_physical(@builtin(global_invocation_id) id: vec3<u32>) {
 
 // The HDR output with the rain shafts in front (premultiplied radiance, transmittance): where
 // the camera is below the rain's top the rain veils whatever the host draws behind too, so it
-// dims the transmittance; from above it the rain lies behind the clouds, over the host's own
-// background, and is left to the host. A pixel that already holds the sky (alpha 0) got it in
+// dims the transmittance; from above it the rain lies behind the clouds, over the background:
+// the sky's where the output holds it (`hdr_composite`, `physical_composite`), the host's own
+// otherwise, left to the host. A pixel that already holds the physical sky (alpha 0) got it in
 // `physical_composite`; the analytic sky's gets it here.
 fn rain_over_hdr(pixel: vec2<u32>, out: vec4<f32>) -> vec4<f32> {
     let has_sky = (frame.flags & FLAG_HDR_SKY) != 0u && !has_surface(pixel);
@@ -4544,8 +4551,8 @@ fn lens_flare(pixel: vec2<u32>, source: vec3<f32>) -> vec3<f32> {
 // (the march's ambient at the layer's bottom, and a lightning flash's) toward the camera; lit from below a dark deck
 // while the air about it sees the sky, a distant cell hangs a darker, greyer column. Heavy
 // rain's extinction is what Koschmieder's law gives for the visibility a report of heavy rain
-// carries, about 3 km (3.912 / 3 km); `rain_shafts` scales it. Midpoint steps at a dithered
-// place a pixel over the first RAIN_SHAFT_RANGE_M m of the ray below the rain's top.
+// carries, about 3 km (3.912 / 3 km); `rain_shafts` scales it. Steps at a dithered place a
+// pixel over the part of the ray below the rain's top within RAIN_SHAFT_RANGE_M m of the camera.
 const RAIN_SHAFT_EXTINCTION: f32 = 1.3e-3;
 const RAIN_SHAFT_STEPS: u32 = 24u;
 const RAIN_SHAFT_RANGE_M: f32 = 30000.0;
@@ -4765,7 +4772,9 @@ fn precip_vertex(@builtin(vertex_index) index: u32) -> PrecipVertex {
     let corner = end + across * (side * 0.5 * drawn_px);
     out.position = vec4<f32>(corner / half, 0.5, 1.0);
     out.uv = vec2<f32>(side, select(0.0, 1.0, at_tail));
-    let light = (ambient(0.0, rel) + lightning_light(rel)) * select(RAIN_GLINT, 1.0, snow);
+    // Lit where it is: camera-relative across, its altitude up (as the march's `rel`).
+    let at = rel + vec3<f32>(0.0, cam.y, 0.0);
+    let light = (ambient(0.0, at) + lightning_light(at)) * select(RAIN_GLINT, 1.0, snow);
     let alpha = opacity * clamp(width_px / drawn_px, PRECIP_MIN_COVERAGE, 1.0);
     let exposed = light * frame.exposure;
     let display = pow(saturated(aces_fitted(exposed)), vec3<f32>(1.0 / 2.2));

@@ -326,7 +326,13 @@ fn hdr_composite(@builtin(global_invocation_id) id: vec3<u32>) {
     let cloud = textureLoad(cloud_in, pixel, 0);
     var out = cloud;
     if (frame.flags & FLAG_HDR_SKY) != 0u && !has_surface(pixel) {
-        out = vec4<f32>(analytic_background(view_ray(pixel)) * cloud.a + cloud.rgb, 0.0);
+        let view = view_ray(pixel);
+        var background = analytic_background(view);
+        if frame.rain_shafts > 0.0 && !rain_in_front() {
+            // From above the rain's top: the rain veils the sky and ground behind the clouds.
+            background = through_rain(rain_veil(pixel, view), background);
+        }
+        out = vec4<f32>(background * cloud.a + cloud.rgb, 0.0);
     }
     textureStore(hdr_out, pixel, rain_over_hdr(pixel, out));
 }
@@ -354,8 +360,9 @@ fn hdr_composite_physical(@builtin(global_invocation_id) id: vec3<u32>) {
 
 // The HDR output with the rain shafts in front (premultiplied radiance, transmittance): where
 // the camera is below the rain's top the rain veils whatever the host draws behind too, so it
-// dims the transmittance; from above it the rain lies behind the clouds, over the host's own
-// background, and is left to the host. A pixel that already holds the sky (alpha 0) got it in
+// dims the transmittance; from above it the rain lies behind the clouds, over the background:
+// the sky's where the output holds it (`hdr_composite`, `physical_composite`), the host's own
+// otherwise, left to the host. A pixel that already holds the physical sky (alpha 0) got it in
 // `physical_composite`; the analytic sky's gets it here.
 fn rain_over_hdr(pixel: vec2<u32>, out: vec4<f32>) -> vec4<f32> {
     let has_sky = (frame.flags & FLAG_HDR_SKY) != 0u && !has_surface(pixel);

@@ -8,8 +8,8 @@
 // (the march's ambient at the layer's bottom, and a lightning flash's) toward the camera; lit from below a dark deck
 // while the air about it sees the sky, a distant cell hangs a darker, greyer column. Heavy
 // rain's extinction is what Koschmieder's law gives for the visibility a report of heavy rain
-// carries, about 3 km (3.912 / 3 km); `rain_shafts` scales it. Midpoint steps at a dithered
-// place a pixel over the first RAIN_SHAFT_RANGE_M m of the ray below the rain's top.
+// carries, about 3 km (3.912 / 3 km); `rain_shafts` scales it. Steps at a dithered place a
+// pixel over the part of the ray below the rain's top within RAIN_SHAFT_RANGE_M m of the camera.
 const RAIN_SHAFT_EXTINCTION: f32 = 1.3e-3;
 const RAIN_SHAFT_STEPS: u32 = 24u;
 const RAIN_SHAFT_RANGE_M: f32 = 30000.0;
@@ -229,7 +229,9 @@ fn precip_vertex(@builtin(vertex_index) index: u32) -> PrecipVertex {
     let corner = end + across * (side * 0.5 * drawn_px);
     out.position = vec4<f32>(corner / half, 0.5, 1.0);
     out.uv = vec2<f32>(side, select(0.0, 1.0, at_tail));
-    let light = (ambient(0.0, rel) + lightning_light(rel)) * select(RAIN_GLINT, 1.0, snow);
+    // Lit where it is: camera-relative across, its altitude up (as the march's `rel`).
+    let at = rel + vec3<f32>(0.0, cam.y, 0.0);
+    let light = (ambient(0.0, at) + lightning_light(at)) * select(RAIN_GLINT, 1.0, snow);
     let alpha = opacity * clamp(width_px / drawn_px, PRECIP_MIN_COVERAGE, 1.0);
     let exposed = light * frame.exposure;
     let display = pow(saturated(aces_fitted(exposed)), vec3<f32>(1.0 / 2.2));

@@ -79,7 +79,7 @@ fn particle(f: &Frame, rain: &Rain, id: u32) -> Option<Particle> {
         return None;
     }
     let tail = rel - xyz(f.precip_velocity) * PRECIP_SHUTTER_S;
-    let (right, up, forward) = f.camera_axes();
+    let (forward, right, up) = f.camera_axes();
     let t = f.tan_half_fov;
     let project = |p: V3| {
         let z = p.dot(forward);
@@ -112,7 +112,9 @@ fn particle(f: &Frame, rain: &Rain, id: u32) -> Option<Particle> {
         [0.0, -1.0]
     };
     let glint = if snow { 1.0 } else { RAIN_GLINT };
-    let light = (crate::lighting::ambient(f, rain.sky, 0.0, rel) + lightning_light(f, rel)) * glint;
+    // Lit where it is: camera-relative across, its altitude up (as the march's `rel`).
+    let at = rel + V3::new(0.0, cam.y, 0.0);
+    let light = (crate::lighting::ambient(f, rain.sky, 0.0, at) + lightning_light(f, at)) * glint;
     let exposed = light * f.exposure;
     let display = crate::composite::saturated(f, crate::composite::aces_fitted(exposed));
     let g = 1.0 / 2.2;

@@ -1,8 +1,8 @@
 //! Lightning's flashes: when and where, from the scene alone.
 //!
 //! Time is cut into slots of one mean interval (60 / `lightning.flashes_per_minute` s); each
-//! slot holds exactly one flash, at a place in it and a place in the sky drawn from
-//! `noise.seed` and the slot's number. So flashes come at the scene's rate without long
+//! slot holds exactly one flash, at a time in it and a place in the sky drawn from
+//! `noise.seed` and the slot's number (the place about the camera where it is at that time). So flashes come at the scene's rate without long
 //! droughts or bursts, and the same scene at the same time flashes the same way on every
 //! backend and every run. A flash is a few return strokes, 40-80 ms apart, each a sharp rise
 //! and a 30 ms decay (Rakov and Uman 2003, ch. 4: 3-5 strokes a flash, some tens of
@@ -79,26 +79,22 @@ pub fn flash_at(scene: &Scene, t: f64) -> Option<Flash> {
         return None;
     }
     let slot_s = 60.0 / rate;
-    let here = (t / slot_s).floor() as i64;
-    // A flash may run past its slot's end into the next.
-    for k in [here, here - 1] {
-        let (start, strokes, position) = slot_flash(scene, k, slot_s);
-        let intensity: f64 = strokes
-            .iter()
-            .map(|s| t - start - s)
-            .filter(|dt| *dt >= 0.0)
-            .map(|dt| (-dt / STROKE_DECAY_S).exp())
-            .filter(|v| *v >= STROKE_END)
-            .sum();
-        if intensity > 0.0 {
-            return Some(Flash {
-                index: k,
-                position,
-                intensity,
-            });
-        }
-    }
-    None
+    // A flash starts at least FLASH_SPAN_S before its slot's end and is over within it, so only
+    // this slot's can be lit.
+    let k = (t / slot_s).floor() as i64;
+    let (start, strokes, position) = slot_flash(scene, k, slot_s);
+    let intensity: f64 = strokes
+        .iter()
+        .map(|s| t - start - s)
+        .filter(|dt| *dt >= 0.0)
+        .map(|dt| (-dt / STROKE_DECAY_S).exp())
+        .filter(|v| *v >= STROKE_END)
+        .sum();
+    (intensity > 0.0).then_some(Flash {
+        index: k,
+        position,
+        intensity,
+    })
 }
 
 /// The flash the scene's own time lights (`clouds.time_s`).

@@ -373,7 +373,8 @@ pub fn run(args: RenderArgs) -> Result<()> {
             &FrameInput::new(&plan, &s, &noise).with_readback(readback),
         )?;
         frames.push((out.cpu_ms, out.timings.clone()));
-        flashes.push(stratus_scene::lightning::flash(&s));
+        // A flash of brightness 0 shows nothing: not counted.
+        flashes.push(stratus_scene::lightning::flash(&s).filter(|_| s.lightning.brightness > 0.0));
         if let Some(dir) = &args.sequence {
             check_finite(&out).with_context(|| format!("frame {i}"))?;
             write_image(&dir.join(format!("frame_{i:04}.png")), &out)?;
