@@ -87,17 +87,52 @@ struct Weather {
     coverage: f32,
     cloud_type: f32,
     precipitation: f32,
+    top: f32, // the cloud's top here as a fraction of the layer (1 but on convective cells)
 }
+
+// Convective cells (`clouds.convective_cells`, the map's A channel): how far the map's coverage
+// moves a cumulus layer's local share of cloud (mesoscale variation); the span of the cell
+// field's rank over which a cell's coverage rises from clear to full, wide so that the shape
+// noise carves the cell's edge in three dimensions, as a smooth coverage does in HZD's map;
+// and its dome: the cloud's top rises from CELL_EDGE_TOP of the layer at the cell's edge
+// toward the whole layer CELL_TOWER (in rank) inside it, quickly at first (a square root:
+// cumulus have steep sides and rounded tops), so that the larger a cell, the taller its cloud
+// (small humilis, large congestus). A top following the rank linearly drew spiky cones; a
+// narrow edge (0.06) drew vertical walls where the rough field crosses its threshold.
+const CELL_MESOSCALE: f32 = 0.3;
+const CELL_EDGE: f32 = 0.3;
+const CELL_EDGE_TOP: f32 = 0.1;
+const CELL_TOWER: f32 = 0.5;
+const CELL_BLUR_M: f32 = 400.0;
 
 fn sample_weather(p: vec3<f32>, l: Layer) -> Weather {
     let uv = (p.xz - l.weather_offset) / frame.weather_period;
     let w = textureSampleLevel(weather_tex, noise_sampler, uv, 0.0);
     // The layer's coverage shifts the map's local coverage: 0 clears the sky, 1 fills it.
-    let coverage = saturate(w.r + 2.0 * (l.coverage - 0.5));
+    var coverage = saturate(w.r + 2.0 * (l.coverage - 0.5));
     // The layer's cloud type is the mean; the map varies it locally (HZD: B = cloud type).
     let cloud_type = saturate(l.cloud_type + (w.b - 0.5) * 0.5);
+    var top = 1.0;
+    if frame.convective_cells > 0.0 {
+        // Cumulus stands where the cell field's rank is in the top `share` of the map: the
+        // layer's coverage, nudged by the map's. Stratiform types keep the map's coverage.
+        let cumulus = smoothstep(0.5, 0.75, cloud_type) * frame.convective_cells;
+        let share = saturate(l.coverage + CELL_MESOSCALE * (w.r - 0.5));
+        let inside = w.a - (1.0 - share);
+        coverage = mix(coverage, saturate(inside / CELL_EDGE), cumulus);
+        // The dome follows the field smoothed over CELL_BLUR_M (four taps about the point):
+        // the rough field's own peaks would stand as spikes.
+        let r = CELL_BLUR_M / frame.weather_period;
+        let blurred = 0.2 * (w.a
+            + textureSampleLevel(weather_tex, noise_sampler, uv + vec2<f32>(r, 0.0), 0.0).a
+            + textureSampleLevel(weather_tex, noise_sampler, uv - vec2<f32>(r, 0.0), 0.0).a
+            + textureSampleLevel(weather_tex, noise_sampler, uv + vec2<f32>(0.0, r), 0.0).a
+            + textureSampleLevel(weather_tex, noise_sampler, uv - vec2<f32>(0.0, r), 0.0).a);
+        let dome = saturate(min(inside, blurred - (1.0 - share)) / CELL_TOWER);
+        top = mix(1.0, mix(CELL_EDGE_TOP, 1.0, dome), cumulus);
+    }
     let precipitation = l.precipitation * saturate(0.5 + w.g);
-    return Weather(coverage, cloud_type, precipitation);
+    return Weather(coverage, cloud_type, precipitation, top);
 }
 
 // Thesis eq. 5.1: a parabola with roots at the cloud's start and top, peak 1 between them.
@@ -155,7 +190,7 @@ fn layer_density_with(p: vec3<f32>, alt: f32, l: Layer, with_detail: bool,
     }
     (*counters).density += 1u;
     let weather = sample_weather(p, l);
-    let signal = height_signal(h, weather.cloud_type);
+    let signal = height_signal(h / weather.top, weather.cloud_type);
     if weather.coverage <= 0.0 || signal <= 0.0 {
         return 0.0;
     }

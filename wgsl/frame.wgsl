@@ -99,8 +99,8 @@ struct Frame {
     ambient_strength: f32,
     // Ambient light at the layer's top, linear rgb.
     ambient_top: vec3<f32>,
-    // Padding (0).
-    _pad2: f32,
+    // The share of cumulus standing on the weather map's convective cells.
+    convective_cells: f32,
     // View step length (m; 0 = derive it from `view_steps`).
     step_length: f32,
     // Growth factor of each light step over the last.

@@ -60,3 +60,74 @@ fn measure_field_refuses_what_it_cannot_measure() {
         assert!(!ok && text.contains(says), "{args:?}: {text}");
     }
 }
+
+/// The acceptance of real cloud-field statistics: the fair-weather states, on convective
+/// cells, seen from above over 35 km at 512 px (the command's defaults), measure as real
+/// cumulus fields do: many separate clouds, an area-perimeter dimension D within [1.28, 1.42]
+/// (Lovejoy 1982: 1.35) and a size density n(L) ∝ L^-b with b within [1.6, 2.3] over at
+/// least a decade of L (Benner and Curry 1998: 1.7-2.0). The weather map alone drew 18
+/// clouds and D 1.14 for `cumulus-noon`, and 34 and D 1.13 for `scattered`.
+#[test]
+fn the_fair_weather_states_measure_as_real_cumulus_fields() {
+    let dir = scratch("measure-field-states");
+    for state in ["few", "scattered"] {
+        let json = dir.join(format!("{state}.json"));
+        let (ok, text) = stratus(&[
+            "measure-field",
+            "--state",
+            state,
+            "--json",
+            json.to_str().unwrap(),
+        ]);
+        assert!(ok, "{text}");
+        let v: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+        assert!(v["clouds"].as_u64().unwrap() >= 100, "{state}: {v}");
+        let d = v["d"]["slope"].as_f64().expect("D fitted");
+        assert!((1.28..=1.42).contains(&d), "{state}: D {d}: {v}");
+        let b = v["b"]["slope"].as_f64().expect("b fitted");
+        assert!((1.6..=2.3).contains(&b), "{state}: b {b}: {v}");
+        let range = &v["b_range_m"];
+        let decades = (range[1].as_f64().unwrap() / range[0].as_f64().unwrap()).log10();
+        assert!(
+            decades >= 1.0 - 1e-9,
+            "{state}: b over {decades} decades: {v}"
+        );
+    }
+}
+
+/// The cover curve the weather states and METAR layers invert
+/// (`stratus_weather::states::CELL_COVER_FRACTION`) is what the renderer draws: a cumulus
+/// layer on cells at coverage 0.4 and 0.7 hides the curve's share of the ground, seen
+/// straight down over 100 km (measured at 1024 px, checked here at 512).
+#[test]
+fn the_cell_cover_curve_is_what_the_renderer_draws() {
+    let dir = scratch("measure-field-cover");
+    for (i, coverage) in [(4, 0.4), (7, 0.7)] {
+        let scene = dir.join(format!("cells-{i}.toml"));
+        std::fs::write(
+            &scene,
+            format!("[clouds]\nconvective_cells = 1.0\ncoverage = {coverage}\n"),
+        )
+        .unwrap();
+        let json = dir.join(format!("cells-{i}.json"));
+        let (ok, text) = stratus(&[
+            "measure-field",
+            "--scene",
+            scene.to_str().unwrap(),
+            "--extent-m",
+            "100000",
+            "--json",
+            json.to_str().unwrap(),
+        ]);
+        assert!(ok, "{text}");
+        let v: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+        let fraction = v["cloud_fraction"].as_f64().unwrap();
+        let curve = stratus_weather::states::CELL_COVER_FRACTION[i];
+        assert!(
+            (fraction - curve).abs() < 0.01,
+            "coverage {coverage}: {fraction} drawn, the curve says {curve}"
+        );
+    }
+}

@@ -280,6 +280,79 @@ fn top_down(scene: &Scene, extent_m: f64, size: u32) -> Scene {
     s
 }
 
+/// How a field is measured: the square seen, its pixels, the cloud threshold and the smallest
+/// cloud the fits use.
+#[derive(Clone, Copy, Debug)]
+pub struct Measure {
+    /// The side of the square seen, metres.
+    pub extent_m: f64,
+    /// Pixels on a side.
+    pub size: u32,
+    /// A pixel is cloud where the transmittance straight down is below this.
+    pub threshold: f64,
+    /// The smallest cloud the fits use, pixels.
+    pub min_pixels: usize,
+}
+
+impl Default for Measure {
+    /// The command's defaults: 35 km at 512 px, threshold 0.5, clouds of 16 px or more.
+    fn default() -> Self {
+        Self {
+            extent_m: 35_000.0,
+            size: 512,
+            threshold: 0.5,
+            min_pixels: 16,
+        }
+    }
+}
+
+/// The field statistics of `scene`'s clouds seen straight down on `renderer`, with every
+/// cloud and each pixel's cloud (an index into them, or past their end where clear).
+pub fn measure(
+    renderer: &mut dyn stratus_graph::Backend,
+    scene: &Scene,
+    name: String,
+    how: &Measure,
+) -> Result<(FieldStats, Vec<Cloud>, Vec<usize>)> {
+    let view = top_down(scene, how.extent_m, how.size);
+    view.validate()
+        .map_err(|e| anyhow::anyhow!("the straight-down view of {name}: {e}"))?;
+    let noise = Arc::new(stratus::noise_for(&view));
+    let plan = FramePlan::for_scene(&view, false)?;
+    let frame = renderer
+        .render(&FrameInput::new(&plan, &view, &noise).with_readback(Readback::output()))
+        .map_err(|e| anyhow::anyhow!("{e}"))?;
+    let (w, h) = (frame.width as usize, frame.height as usize);
+    let mask: Vec<bool> = frame
+        .radiance
+        .chunks(4)
+        .map(|p| f64::from(p[3]) < how.threshold)
+        .collect();
+    if mask.len() != w * h {
+        bail!("the renderer read back {} pixels for {w}x{h}", mask.len());
+    }
+    let (all, labels) = components(&mask, w, h);
+    let pixel_m = how.extent_m / f64::from(how.size);
+    let b = size_exponent(&all, how.min_pixels, pixel_m);
+    let stats = FieldStats {
+        scene: name,
+        extent_m: how.extent_m,
+        size: how.size,
+        threshold: how.threshold,
+        cloud_fraction: mask.iter().filter(|m| **m).count() as f64 / mask.len() as f64,
+        clouds: all.iter().filter(|c| !c.cut).count(),
+        cut: all.iter().filter(|c| c.cut).count(),
+        d: dimension(&all, how.min_pixels),
+        b: b.map(|b| b.0),
+        b_range_m: b.map(|b| b.1),
+        largest_m: all
+            .iter()
+            .map(|c| (c.area as f64).sqrt() * pixel_m)
+            .fold(0.0, f64::max),
+    };
+    Ok((stats, all, labels))
+}
+
 /// Runs `stratus measure-field`.
 pub fn run(args: MeasureFieldArgs) -> Result<()> {
     if !(args.extent_m > 0.0 && args.extent_m.is_finite()) {
@@ -301,10 +374,6 @@ pub fn run(args: MeasureFieldArgs) -> Result<()> {
         s.params.apply(&mut scene);
         name = format!("{name} in the {state} state");
     }
-    let view = top_down(&scene, args.extent_m, args.size);
-    view.validate()
-        .map_err(|e| anyhow::anyhow!("the straight-down view of {name}: {e}"))?;
-    let noise = Arc::new(stratus::noise_for(&view));
     let mut renderer = open(args.backend, &Open::default()).context("opening the renderer")?;
     if std::io::stderr().is_terminal() {
         eprintln!(
@@ -314,38 +383,14 @@ pub fn run(args: MeasureFieldArgs) -> Result<()> {
             renderer.describe()
         );
     }
-    let plan = FramePlan::for_scene(&view, false)?;
-    let frame = renderer
-        .render(&FrameInput::new(&plan, &view, &noise).with_readback(Readback::output()))
-        .map_err(|e| anyhow::anyhow!("{e}"))?;
-    let (w, h) = (frame.width as usize, frame.height as usize);
-    let mask: Vec<bool> = frame
-        .radiance
-        .chunks(4)
-        .map(|p| f64::from(p[3]) < args.threshold)
-        .collect();
-    if mask.len() != w * h {
-        bail!("the renderer read back {} pixels for {w}x{h}", mask.len());
-    }
-    let (all, labels) = components(&mask, w, h);
-    let pixel_m = args.extent_m / f64::from(args.size);
-    let b = size_exponent(&all, args.min_pixels, pixel_m);
-    let stats = FieldStats {
-        scene: name,
+    let how = Measure {
         extent_m: args.extent_m,
         size: args.size,
         threshold: args.threshold,
-        cloud_fraction: mask.iter().filter(|m| **m).count() as f64 / mask.len() as f64,
-        clouds: all.iter().filter(|c| !c.cut).count(),
-        cut: all.iter().filter(|c| c.cut).count(),
-        d: dimension(&all, args.min_pixels),
-        b: b.map(|b| b.0),
-        b_range_m: b.map(|b| b.1),
-        largest_m: all
-            .iter()
-            .map(|c| (c.area as f64).sqrt() * pixel_m)
-            .fold(0.0, f64::max),
+        min_pixels: args.min_pixels,
     };
+    let (stats, all, labels) = measure(renderer.as_mut(), &scene, name, &how)?;
+    let (w, h) = (args.size as usize, args.size as usize);
     print_stats(&stats, args.min_pixels);
     if let Some(path) = &args.json {
         std::fs::write(path, serde_json::to_string_pretty(&stats)? + "\n")

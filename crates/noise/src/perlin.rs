@@ -342,6 +342,8 @@ pub(crate) struct PerlinFbm2 {
     /// Base period (octave 0).
     pub(crate) period: [u32; 2],
     octaves: Vec<PerlinGrid2>,
+    /// Amplitude of each octave over the last (0.5 for [`perlin_fbm2`]).
+    gain: f64,
 }
 
 impl PerlinFbm2 {
@@ -349,7 +351,20 @@ impl PerlinFbm2 {
         let octaves = (0..octaves)
             .map(|o| PerlinGrid2::new(octave_period(period, o), octave_seed(seed, o)))
             .collect();
-        Self { period, octaves }
+        Self {
+            period,
+            octaves,
+            gain: 0.5,
+        }
+    }
+
+    /// As [`PerlinFbm2::new`], each octave `gain` times the last's amplitude: a gain `g`
+    /// gives the field a Hurst exponent `H = -log2(g)` over its octaves (0.5: H = 1, smooth).
+    pub(crate) fn with_gain(period: [u32; 2], octaves: u32, seed: u64, gain: f64) -> Self {
+        Self {
+            gain,
+            ..Self::new(period, octaves, seed)
+        }
     }
 
     #[inline]
@@ -362,7 +377,7 @@ impl PerlinFbm2 {
             let q = p.map(|v| v * scale);
             sum += amp * grid.eval(q);
             norm += amp;
-            amp *= 0.5;
+            amp *= self.gain;
             scale *= 2.0;
         }
         if norm > 0.0 { sum / norm } else { 0.0 }

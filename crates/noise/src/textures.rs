@@ -62,6 +62,22 @@ const RAIN_COVERAGE_RAMP: [f64; 2] = [0.5, 1.0];
 const TYPE_FREQ: u32 = 2;
 const TYPE_OCTAVES: u32 = 3;
 const TYPE_GAIN: f64 = 2.5;
+/// Weather A (convective cells): a Perlin FBM whose octaves fall off by `CELL_GAIN` rather
+/// than by half, so that the field is rough on every scale it spans: its Hurst exponent is
+/// `H = -log2(CELL_GAIN)`, 0.36, and the level sets of a fractional Brownian surface are
+/// fractal, of dimension `2 - H` (Mandelbrot 1982, The Fractal Geometry of Nature, ch. 28).
+/// Its octaves span 20 to 160 cells across the map: 3 km down to 375 m over the default
+/// 60 km map; the shape noise carves finer detail. Chosen by measuring the fields it draws
+/// (`stratus measure-field` of the `few` and `scattered` states, 35 km at 512 px, seeds 0-2;
+/// docs/cloud-fields.md) against real ones: outlines of area-perimeter dimension about 1.35
+/// (Lovejoy 1982) and sizes n(L) ∝ L^-b, b 1.7-2.0 (Benner and Curry 1998). Base
+/// frequencies of 8, 12 and 16 cells drew clouds of up to 17 km and D 1.24-1.28; gains of
+/// 0.62-0.75 smoother outlines (D 1.27 for `few`); three octaves at gain 0.8 D 1.26-1.30.
+/// This one measures D 1.29-1.39 and b 1.89-2.12. The channel holds the field's rank
+/// (histogram equalised), so that the share of the map above `1 - f` is `f`.
+const CELL_FREQ: u32 = 20;
+const CELL_OCTAVES: u32 = 4;
+const CELL_GAIN: f64 = 0.78;
 
 // Seed tags: every channel draws from an independent derived seed.
 const TAG_SHAPE_PERLIN: u64 = 0x5348_0000;
@@ -72,6 +88,7 @@ const TAG_COVERAGE_PERLIN: u64 = 0x5745_0000;
 const TAG_COVERAGE_WORLEY: u64 = 0x5745_0100;
 const TAG_RAIN: u64 = 0x5745_0200;
 const TAG_TYPE: u64 = 0x5745_0300;
+const TAG_CELLS: u64 = 0x5745_0400;
 
 /// Number of noise cells along an axis of `size_axis` texels, for a noise with `freq` cells
 /// across the reference axis of `size_ref` texels: `round(freq * size_axis / size_ref)`, at
@@ -289,7 +306,10 @@ pub fn curl_texture(seed: u64, size: u32) -> Texture2 {
 ///   an independent rain field; mostly low.
 /// * B, cloud type: smooth 3-octave Perlin FBM at 2 cells across; 0 = stratus, 0.5 =
 ///   stratocumulus, 1 = cumulus.
-/// * A = 1.
+/// * A, convective cells: the rank, in [0, 1], of a rough Perlin FBM (Hurst exponent 0.36)
+///   among the texture's texels: uniform over the map, so that thresholding it at `1 - f`
+///   covers `f` of it with islands of fractal outline and power-law sizes. The renderer's
+///   `clouds.convective_cells` draws cumulus from it.
 ///
 /// The thesis' weather texture (section 4.4, table 4.2) is laid out differently (R = coverage,
 /// G = cloud height, B = start height); this crate follows HZD's layout. The thesis also scales
@@ -314,7 +334,8 @@ pub fn weather_texture(seed: u64, size: u32) -> Texture2 {
     );
     let rain = PerlinFbm2::new(cells(RAIN_FREQ), RAIN_OCTAVES, derive_seed(seed, TAG_RAIN));
     let kind = PerlinFbm2::new(cells(TYPE_FREQ), TYPE_OCTAVES, derive_seed(seed, TAG_TYPE));
-    fill2(size2, |u| {
+    let cell_rank = cell_ranks(seed, size);
+    let mut tex = fill2(size2, |u| {
         let p = cov_perlin.eval(at(u, cov_perlin.period));
         let w = cov_worley.eval(at(u, cov_worley.period));
         let coverage = perlin_worley(p, w, COVERAGE_PERLIN_GAIN, COVERAGE_RANGE);
@@ -323,7 +344,41 @@ pub fn weather_texture(seed: u64, size: u32) -> Texture2 {
             smoothstep(RAIN_COVERAGE_RAMP[0], RAIN_COVERAGE_RAMP[1], coverage) * rain_field;
         let cloud_type = (0.5 + 0.5 * TYPE_GAIN * kind.eval(at(u, kind.period))).clamp(0.0, 1.0);
         [coverage, precipitation, cloud_type, 1.0]
-    })
+    });
+    for (texel, rank) in tex.data.chunks_exact_mut(4).zip(cell_rank) {
+        texel[3] = to_unorm8(rank);
+    }
+    tex
+}
+
+/// The weather map's A channel: each texel's rank among the rough cell FBM's values, scaled
+/// to [0, 1] (ties broken by texel index, so that the result is deterministic).
+fn cell_ranks(seed: u64, size: u32) -> Vec<f64> {
+    let n = size as usize;
+    let fbm = PerlinFbm2::with_gain(
+        [axis_cells(CELL_FREQ, size, size); 2],
+        CELL_OCTAVES,
+        derive_seed(seed, TAG_CELLS),
+        CELL_GAIN,
+    );
+    let values: Vec<f64> = (0..n * n)
+        .into_par_iter()
+        .map(|i| {
+            let u = [
+                ((i % n) as f64 + 0.5) / n as f64,
+                ((i / n) as f64 + 0.5) / n as f64,
+            ];
+            fbm.eval(at(u, fbm.period))
+        })
+        .collect();
+    let mut order: Vec<usize> = (0..n * n).collect();
+    order.par_sort_unstable_by(|&a, &b| values[a].total_cmp(&values[b]).then(a.cmp(&b)));
+    let mut rank = vec![0.0; n * n];
+    let last = (n * n).saturating_sub(1).max(1) as f64;
+    for (r, &i) in order.iter().enumerate() {
+        rank[i] = r as f64 / last;
+    }
+    rank
 }
 
 #[cfg(test)]
@@ -425,6 +480,36 @@ mod tests {
             assert_eq!(t[1], to_unorm8(0.5 * v[1] / max + 0.5), "({x}, {y})");
             assert_eq!([t[2], t[3]], [128, 255]);
         }
+    }
+
+    /// The cell channel is the rough FBM's rank: uniform over the map (each tenth of the
+    /// range holds a tenth of the texels), ordered as the FBM is, and the same every time.
+    #[test]
+    fn the_cell_channel_ranks_a_rough_fbm_uniformly() {
+        let (seed, n) = (3u64, 64u32);
+        let tex = weather_texture(seed, n);
+        let a: Vec<u8> = tex.data.chunks_exact(4).map(|t| t[3]).collect();
+        let total = a.len() as f64;
+        for decile in 0..10u32 {
+            let lo = (decile * 256 / 10) as u8;
+            let hi = ((decile + 1) * 256 / 10).min(256);
+            let share = a.iter().filter(|&&v| v >= lo && u32::from(v) < hi).count() as f64 / total;
+            assert!((share - 0.1).abs() < 0.01, "decile {decile}: {share}");
+        }
+        let c = [axis_cells(CELL_FREQ, n, n); 2];
+        let fbm = PerlinFbm2::with_gain(c, CELL_OCTAVES, derive_seed(seed, TAG_CELLS), CELL_GAIN);
+        let value = |x: u32, y: u32| fbm.eval(at([centre(x, n), centre(y, n)], c));
+        for ((x0, y0), (x1, y1)) in [((0, 0), (9, 33)), ((40, 2), (7, 61)), ((5, 5), (6, 5))] {
+            let (v0, v1) = (value(x0, y0), value(x1, y1));
+            let (a0, a1) = (tex.texel(x0, y0)[3], tex.texel(x1, y1)[3]);
+            // 8-bit ranks may tie; they never invert.
+            let ordered = if v0 < v1 { a0 <= a1 } else { a0 >= a1 };
+            assert!(
+                ordered,
+                "({x0},{y0}) {v0} -> {a0}, ({x1},{y1}) {v1} -> {a1}"
+            );
+        }
+        assert_eq!(weather_texture(seed, n).data, tex.data);
     }
 
     #[test]

@@ -124,9 +124,18 @@ pub(crate) struct Weather {
     pub coverage: f64,
     pub cloud_type: f64,
     pub precipitation: f64,
+    /// The cloud's top here as a fraction of the layer (1 but on convective cells).
+    pub top: f64,
 }
 
 // WGSL: density.wgsl::sample_weather
+// WGSL: density.wgsl::CELL_MESOSCALE, CELL_EDGE, CELL_EDGE_TOP, CELL_TOWER, CELL_BLUR_M
+const CELL_MESOSCALE: f64 = 0.3;
+const CELL_EDGE: f64 = 0.3;
+const CELL_EDGE_TOP: f64 = 0.1;
+const CELL_TOWER: f64 = 0.5;
+const CELL_BLUR_M: f64 = 400.0;
+
 pub(crate) fn sample_weather(f: &Frame, noise: &NoiseSet, p: V3, l: &Layer) -> Weather {
     sample_weather_map(f, &noise.weather, p, l)
 }
@@ -138,13 +147,26 @@ pub(crate) fn sample_weather_map(f: &Frame, map: &Texture2, p: V3, l: &Layer) ->
         (p.z - l.weather_offset[1]) / f.weather_period,
     ];
     let w = sample2(map, uv);
-    let coverage = saturate(w[0] + 2.0 * (l.coverage - 0.5));
+    let mut coverage = saturate(w[0] + 2.0 * (l.coverage - 0.5));
     let cloud_type = saturate(l.cloud_type + (w[2] - 0.5) * 0.5);
+    let mut top = 1.0;
+    if f.convective_cells > 0.0 {
+        let cumulus = smoothstep(0.5, 0.75, cloud_type) * f.convective_cells;
+        let share = saturate(l.coverage + CELL_MESOSCALE * (w[0] - 0.5));
+        let inside = w[3] - (1.0 - share);
+        coverage = mix(coverage, saturate(inside / CELL_EDGE), cumulus);
+        let r = CELL_BLUR_M / f.weather_period;
+        let tap = |du: f64, dv: f64| sample2(map, [uv[0] + du, uv[1] + dv])[3];
+        let blurred = 0.2 * (w[3] + tap(r, 0.0) + tap(-r, 0.0) + tap(0.0, r) + tap(0.0, -r));
+        let dome = saturate(inside.min(blurred - (1.0 - share)) / CELL_TOWER);
+        top = mix(1.0, mix(CELL_EDGE_TOP, 1.0, dome), cumulus);
+    }
     let precipitation = l.precipitation * saturate(0.5 + w[1]);
     Weather {
         coverage,
         cloud_type,
         precipitation,
+        top,
     }
 }
 
@@ -154,6 +176,7 @@ pub(crate) fn uniform_weather(f: &Frame) -> Weather {
         coverage: 1.0,
         cloud_type: f.cloud_type,
         precipitation: f.precipitation,
+        top: 1.0,
     }
 }
 
@@ -232,7 +255,7 @@ pub(crate) fn layer_density_with(
     }
     counters.density += 1;
     let weather = sample_weather(f, noise, p, l);
-    let signal = height_signal(f, h, weather.cloud_type);
+    let signal = height_signal(f, h / weather.top, weather.cloud_type);
     if weather.coverage <= 0.0 || signal <= 0.0 {
         return 0.0;
     }

@@ -678,6 +678,11 @@ impl HeightModel {
     }
 }
 
+/// Whether a number is zero (fields serialised only when set).
+fn is_zero(v: &f64) -> bool {
+    *v == 0.0
+}
+
 /// The cloud model (section `[clouds]`).
 #[derive(Serialize, Deserialize, Clone, Debug, PartialEq)]
 #[serde(default, deny_unknown_fields)]
@@ -722,6 +727,17 @@ pub struct Clouds {
     /// wispy bases to billowy (inverted Worley) tops over the lowest tenth of a cloud, 1
     /// billowy almost from the base.
     pub wispy_billowy: f64,
+    /// Cumulus from convective cells, within [0, 1] (0, the default: off). Where the local
+    /// cloud type is cumulus, the clouds stand where the weather map's cell field (its A
+    /// channel, a rough fractal field) is above `1 - coverage`, the map's coverage only
+    /// nudging that share from place to place, each cloud the taller the larger its cell,
+    /// instead of filling the map's large coverage regions. Seen from above, such a field is
+    /// many separate clouds with fractal outlines and a power law of sizes, as real cumulus
+    /// fields are (Lovejoy 1982; Cahalan and Joseph 1989); at 0 it is the weather map's few
+    /// large regions (HZD). Values between blend the two (weather transitions); stratiform
+    /// types are unchanged.
+    #[serde(skip_serializing_if = "is_zero")]
+    pub convective_cells: f64,
     /// Extra cloud layers (`[[clouds.layers]]`, at most [`MAX_EXTRA_LAYERS`]) besides the main
     /// one that `atmosphere.cloud_bottom_m`/`cloud_top_m` and the fields above describe. Each
     /// has its own altitudes and weather over the same noise, wind and lighting; no two
@@ -788,6 +804,7 @@ impl Default for Clouds {
             curl_strength_m: 150.0,
             height_gradient: 0.5,
             wispy_billowy: 0.5,
+            convective_cells: 0.0,
             layers: Vec::new(),
         }
     }
@@ -1296,6 +1313,7 @@ impl Scene {
         scene.night.moon_msaa = true;
         scene.precipitation.particles = 1.0;
         scene.lightning.flashes_per_minute = 1.0;
+        scene.clouds.convective_cells = 1.0;
         scene
     }
 

@@ -123,8 +123,8 @@ macro_rules! frame_members {
             ambient_strength: f32,
             /// Ambient light at the layer's top, linear rgb.
             ambient_top: vec3f,
-            /// Padding (0).
-            _pad2: f32,
+            /// The share of cumulus standing on the weather map's convective cells.
+            convective_cells: f32,
             /// View step length (m; 0 = derive it from `view_steps`).
             step_length: f32,
             /// Growth factor of each light step over the last.
@@ -933,7 +933,7 @@ impl Scene {
             ambient_bottom: v3(li.ambient_bottom),
             ambient_strength: f(li.ambient_strength),
             ambient_top: v3(li.ambient_top),
-            _pad2: 0.0,
+            convective_cells: f(c.convective_cells),
             step_length: f(q.step_length_m.unwrap_or(0.0)),
             light_step_growth: f(q.light_step_growth),
             first_light_step: f(q.first_light_step_m),

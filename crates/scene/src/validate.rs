@@ -390,6 +390,7 @@ pub(crate) fn check(scene: &Scene) -> Vec<Issue> {
     c.non_negative("clouds.curl_strength_m", cl.curl_strength_m);
     c.unit("clouds.height_gradient", cl.height_gradient);
     c.unit("clouds.wispy_billowy", cl.wispy_billowy);
+    c.unit("clouds.convective_cells", cl.convective_cells);
     check_layers(&mut c, scene);
 
     if scene.noise.seed > i64::MAX as u64 {

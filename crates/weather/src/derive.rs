@@ -7,7 +7,8 @@ use stratus_scene::{CloudLayer, MAX_EXTRA_LAYERS, Scene};
 use crate::haze;
 use crate::metar::{CloudGroup, Convective, Cover, Intensity, Metar};
 use crate::states::{
-    self, WeatherState, coverage_for_fraction, fog_density_for_visibility, fog_layer,
+    self, WeatherState, cell_coverage_for_fraction, coverage_for_fraction,
+    fog_density_for_visibility, fog_layer,
 };
 
 /// A scene derived from weather observations, with what was derived from what.
@@ -334,6 +335,12 @@ pub fn scene_from_metar(m: &Metar, base: &Scene) -> Derived {
 
     let rain = precipitation(m);
     let mut layers: Vec<CloudLayer> = Vec::new();
+    // Fair-weather cumulus stand on convective cells (`clouds.convective_cells`), which
+    // apply to every cumulus-type layer of the scene: not where the report has towering
+    // cumulus or cumulonimbus, whose kilometres-tall columns the cells do not shape (each
+    // cell's column, marched in 64 steps, is a noisy curtain).
+    let towers = merged.iter().any(|(_, g)| g.convective.is_some());
+    let mut cells = false;
     for (i, (b, g)) in merged.iter().enumerate() {
         let precipitating = i == 0 && matches!(name, "rain" | "snow");
         let (thickness, cloud_type, density, kind) = cloud_kind(g, *b, precipitating);
@@ -342,11 +349,18 @@ pub fn scene_from_metar(m: &Metar, base: &Scene) -> Derived {
             top = top.min(next - GAP_M);
         }
         let (lo, hi) = g.cover.oktas();
-        let coverage = coverage_for_fraction((f64::from(lo) + f64::from(hi)) / 16.0);
+        let on_cells = kind == "cumulus" && !towers;
+        cells |= on_cells;
+        let fraction = (f64::from(lo) + f64::from(hi)) / 16.0;
+        let coverage = if on_cells {
+            cell_coverage_for_fraction(fraction)
+        } else {
+            coverage_for_fraction(fraction)
+        };
         // Precipitation falls from the lowest layer.
         let precipitation = if i == 0 { rain } else { 0.0 };
         notes.push(format!(
-            "layer {}: {}{:03}{} -> {kind} from {:.0} to {:.0} m, coverage {coverage:.2} ({lo}-{hi} oktas), type {cloud_type}, density {density}{}",
+            "layer {}: {}{:03}{} -> {kind}{} from {:.0} to {:.0} m, coverage {coverage:.2} ({lo}-{hi} oktas), type {cloud_type}, density {density}{}",
             i + 1,
             cover_name(g.cover),
             (b / 30.48).round(),
@@ -355,6 +369,7 @@ pub fn scene_from_metar(m: &Metar, base: &Scene) -> Derived {
                 Some(Convective::ToweringCumulus) => "TCU",
                 None => "",
             },
+            if on_cells { " on convective cells" } else { "" },
             b,
             top,
             if precipitation > 0.0 {
@@ -422,6 +437,7 @@ pub fn scene_from_metar(m: &Metar, base: &Scene) -> Derived {
     // main deck.
     let mut layers = layers.into_iter();
     if let Some(main) = layers.next() {
+        scene.clouds.convective_cells = if cells { 1.0 } else { 0.0 };
         scene.atmosphere.cloud_bottom_m = main.bottom_m;
         scene.atmosphere.cloud_top_m = main.top_m;
         scene.clouds.coverage = main.coverage;

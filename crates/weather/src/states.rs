@@ -38,6 +38,9 @@ pub struct WeatherParams {
     pub ambient_top: [f64; 3],
     /// Exposure multiplier (`camera.exposure`): darker skies are exposed longer.
     pub exposure: f64,
+    /// The share of cumulus on convective cells (`clouds.convective_cells`): 1 for the fair
+    /// states, whose coverage then follows [`CELL_COVER_FRACTION`], 0 for the others.
+    pub convective_cells: f64,
 }
 
 /// A named weather state.
@@ -83,15 +86,19 @@ const fn fair(coverage: f64) -> WeatherParams {
         ambient_bottom: BLUE_BOTTOM,
         ambient_top: BLUE_TOP,
         exposure: 1.0,
+        convective_cells: 1.0,
     }
 }
 
 /// Every state, from clear to stormy. Coverages follow the oktas of METAR's cover classes
-/// through [`coverage_for_fraction`] (FEW 1-2, SCT 3-4, BKN 5-7, OVC 8 eighths).
+/// (FEW 1-2, SCT 3-4, BKN 5-7, OVC 8 eighths): the fair states' cumulus, on convective
+/// cells, through [`cell_coverage_for_fraction`] of the middle of their class (few 0.37 for
+/// 0.1875, scattered and mist 0.61 for 0.4375), the others through
+/// [`coverage_for_fraction`].
 pub const STATES: [WeatherState; 10] = [
     state("clear", "no clouds, blue sky", fair(0.0)),
-    state("few", "a few fair-weather cumulus (1-2 oktas)", fair(0.28)),
-    state("scattered", "scattered cumulus (3-4 oktas)", fair(0.42)),
+    state("few", "a few fair-weather cumulus (1-2 oktas)", fair(0.37)),
+    state("scattered", "scattered cumulus (3-4 oktas)", fair(0.61)),
     state(
         "broken",
         "broken stratocumulus (5-7 oktas)",
@@ -103,6 +110,7 @@ pub const STATES: [WeatherState; 10] = [
             ambient_bottom: GREY_BOTTOM,
             ambient_top: [0.55, 0.65, 0.8],
             exposure: 1.1,
+            convective_cells: 0.0,
             ..fair(0.6)
         },
     ),
@@ -117,6 +125,7 @@ pub const STATES: [WeatherState; 10] = [
             ambient_bottom: GREY_BOTTOM,
             ambient_top: GREY_TOP,
             exposure: 1.2,
+            convective_cells: 0.0,
             ..fair(0.85)
         },
     ),
@@ -133,6 +142,7 @@ pub const STATES: [WeatherState; 10] = [
             ambient_bottom: DARK_BOTTOM,
             ambient_top: GREY_TOP,
             exposure: 1.1,
+            convective_cells: 0.0,
             ..fair(0.9)
         },
     ),
@@ -149,6 +159,7 @@ pub const STATES: [WeatherState; 10] = [
             ambient_bottom: DARK_BOTTOM,
             ambient_top: DARK_TOP,
             exposure: 1.2,
+            convective_cells: 0.0,
             ..fair(0.6)
         },
     ),
@@ -165,6 +176,7 @@ pub const STATES: [WeatherState; 10] = [
             ambient_bottom: GREY_BOTTOM,
             ambient_top: GREY_TOP,
             exposure: 1.2,
+            convective_cells: 0.0,
             ..fair(0.7)
         },
     ),
@@ -177,7 +189,7 @@ pub const STATES: [WeatherState; 10] = [
             fog_density: fog_density_for_visibility(3000.0),
             ambient_bottom: GREY_BOTTOM,
             exposure: 1.1,
-            ..fair(0.42)
+            ..fair(0.61)
         },
     ),
     state(
@@ -192,6 +204,7 @@ pub const STATES: [WeatherState; 10] = [
             ambient_bottom: [0.3, 0.32, 0.36],
             ambient_top: [0.6, 0.64, 0.7],
             exposure: 1.2,
+            convective_cells: 0.0,
             ..fair(0.9)
         },
     ),
@@ -216,15 +229,42 @@ const COVER_FRACTION: [f64; 11] = [
     0.0, 0.0, 0.057, 0.226, 0.396, 0.586, 0.769, 0.937, 0.999, 1.0, 1.0,
 ];
 
+/// Measured: the fraction of the ground a cumulus layer on convective cells
+/// (`clouds.convective_cells = 1`) hides, seen straight down, at coverage 0.0, 0.1, ..., 1.0.
+/// Command (100 km at 1024 px): `stratus measure-field --extent-m 100000 --size 1024` of the default scene
+/// (`cumulus-noon`) with `clouds.convective_cells = 1` and each coverage (a pixel is cloud
+/// where the transmittance is below 0.5). The crate's test
+/// `the_cell_cover_curve_is_what_the_renderer_draws` (crates/cli/tests) re-measures it.
+pub const CELL_COVER_FRACTION: [f64; 11] = [
+    0.0, 0.013, 0.05, 0.119, 0.213, 0.317, 0.425, 0.533, 0.64, 0.739, 0.807,
+];
+
 /// The coverage whose layer covers `fraction` of the sky (the inverse of the measured
 /// [`COVER_FRACTION`] curve, linear between its points).
 pub fn coverage_for_fraction(fraction: f64) -> f64 {
+    invert_cover(&COVER_FRACTION, fraction)
+}
+
+/// The coverage whose cumulus layer on convective cells covers `fraction` of the sky (the
+/// inverse of the measured [`CELL_COVER_FRACTION`] curve, linear between its points; 1 above
+/// its last point).
+pub fn cell_coverage_for_fraction(fraction: f64) -> f64 {
+    let f = fraction.clamp(0.0, 1.0);
+    if f >= CELL_COVER_FRACTION[10] {
+        return 1.0;
+    }
+    invert_cover(&CELL_COVER_FRACTION, f)
+}
+
+/// The coverage at which a measured cover `curve` (at coverage 0.0, 0.1, ..., 1.0) reaches
+/// `fraction`, linear between its points; 0.85 where the curve never reaches it.
+fn invert_cover(curve: &[f64; 11], fraction: f64) -> f64 {
     let f = fraction.clamp(0.0, 1.0);
     if f <= 0.0 {
         return 0.0;
     }
-    for i in 1..COVER_FRACTION.len() {
-        let (a, b) = (COVER_FRACTION[i - 1], COVER_FRACTION[i]);
+    for i in 1..curve.len() {
+        let (a, b) = (curve[i - 1], curve[i]);
         if f <= b && b > a {
             let c0 = (i - 1) as f64 / 10.0;
             return c0 + 0.1 * (f - a) / (b - a);
@@ -276,6 +316,7 @@ impl WeatherParams {
             ambient_bottom: l3(self.ambient_bottom, other.ambient_bottom),
             ambient_top: l3(self.ambient_top, other.ambient_top),
             exposure: l(self.exposure, other.exposure),
+            convective_cells: l(self.convective_cells, other.convective_cells),
         }
     }
 
@@ -327,6 +368,7 @@ impl WeatherParams {
         scene.lighting.ambient_bottom = self.ambient_bottom;
         scene.lighting.ambient_top = self.ambient_top;
         scene.camera.exposure = self.exposure;
+        scene.clouds.convective_cells = self.convective_cells;
         if self.fog_density > 0.0 && self.fog_top_m > 0.0 {
             scene
                 .clouds
@@ -413,6 +455,32 @@ mod tests {
             let c = coverage_for_fraction(i as f64 / 20.0);
             assert!(c >= last && c <= 1.0, "{c}");
             last = c;
+        }
+    }
+
+    /// The fair states stand on convective cells with the coverage that covers the middle
+    /// of their cover class by the measured cell curve; the decks do not.
+    #[test]
+    fn fair_states_cover_their_oktas_on_cells() {
+        for (name, oktas) in [("few", 1.5), ("scattered", 3.5), ("mist", 3.5)] {
+            let p = find(name).unwrap().params;
+            assert_eq!(p.convective_cells, 1.0, "{name}");
+            let want = cell_coverage_for_fraction(oktas / 8.0);
+            assert!(
+                (p.coverage - want).abs() < 0.005,
+                "{name}: {} against {want}",
+                p.coverage
+            );
+        }
+        for name in ["broken", "overcast", "rain", "thunderstorm", "fog", "snow"] {
+            assert_eq!(find(name).unwrap().params.convective_cells, 0.0, "{name}");
+        }
+        assert_eq!(cell_coverage_for_fraction(0.0), 0.0);
+        assert_eq!(cell_coverage_for_fraction(0.9), 1.0);
+        for i in 0..=16 {
+            let f = f64::from(i) / 20.0;
+            let c = cell_coverage_for_fraction(f);
+            assert!(c >= cell_coverage_for_fraction((f - 0.05).max(0.0)), "{f}");
         }
     }
 

@@ -127,6 +127,17 @@ pub fn all() -> Vec<Case> {
             },
         ),
         stress(
+            "convective-cells",
+            "the scattered weather state: cumulus on the weather map's convective cells, each cloud's dome from the cell field smoothed over four taps",
+            |s| {
+                stratus_weather::states::find("scattered")
+                    .expect("state")
+                    .params
+                    .apply(s);
+                s.camera.pitch_deg = 8.0;
+            },
+        ),
+        stress(
             "method-basic",
             "baseline: the basic tutorial ray marcher (GPU only)",
             |s| s.quality.method = Method::Basic,

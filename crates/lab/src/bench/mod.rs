@@ -21,7 +21,7 @@
 //! `stratus render --max-error` reads it) and `chart.png` / `chart.svg` (FLIP against GPU time
 //! per scene, front joined and named; the PNG has no text, the SVG names everything).
 
-use std::path::PathBuf;
+use std::{fmt::Write as _, path::PathBuf};
 
 use anyhow::{Context, Result};
 use clap::{Args, ValueEnum};
@@ -97,6 +97,78 @@ pub struct BenchArgs {
     /// elsewhere (the key does not name the device).
     #[arg(long, conflicts_with = "replot")]
     references_only: bool,
+    /// Measure only the cloud fields seen from above (`stratus measure-field`'s count, D and
+    /// b) of the cumulus presets and the fair and broken weather states, write fields.csv
+    /// and stop (about half a minute on lavapipe). A full run writes them too.
+    #[arg(long, conflicts_with_all = ["replot", "references_only"])]
+    fields_only: bool,
+}
+
+/// The cumulus presets whose fields the bench measures from above.
+const FIELD_PRESETS: [&str; 3] = ["cumulus-noon", "sunset", "above-clouds"];
+/// The weather states whose fields the bench measures (on the default scene).
+const FIELD_STATES: [&str; 3] = ["few", "scattered", "broken"];
+
+/// The cloud-field statistics (`stratus measure-field`'s defaults) of [`FIELD_PRESETS`] and
+/// [`FIELD_STATES`] on `renderer`, printed and written to `out/fields.csv`.
+fn fields(renderer: &mut dyn stratus_graph::Backend, out: &std::path::Path) -> Result<()> {
+    let how = crate::measure_field::Measure::default();
+    let mut scenes = Vec::new();
+    for p in FIELD_PRESETS {
+        scenes.push((p.to_string(), bench_scene(p)?));
+    }
+    for st in FIELD_STATES {
+        let mut s = Scene::default();
+        stratus_weather::states::find(st)
+            .map_err(|e| anyhow::anyhow!("{e}"))?
+            .params
+            .apply(&mut s);
+        scenes.push((format!("state {st}"), s));
+    }
+    let mut csv = String::from(
+        "scene,cloud_fraction,clouds,cut,largest_m,d,d_stderr,b,b_stderr,b_from_m,b_to_m\n",
+    );
+    println!(
+        "cloud fields from above ({:.0} m at {} px, cloud below transmittance {}):",
+        how.extent_m, how.size, how.threshold
+    );
+    for (name, scene) in scenes {
+        let (s, _, _) = crate::measure_field::measure(renderer, &scene, name.clone(), &how)?;
+        let opt = |v: Option<f64>| v.map(|v| format!("{v:.3}")).unwrap_or_default();
+        let _ = writeln!(
+            csv,
+            "{name},{:.3},{},{},{:.0},{},{},{},{},{},{}",
+            s.cloud_fraction,
+            s.clouds,
+            s.cut,
+            s.largest_m,
+            opt(s.d.map(|d| d.slope)),
+            opt(s.d.map(|d| d.stderr)),
+            opt(s.b.map(|b| b.slope)),
+            opt(s.b.map(|b| b.stderr)),
+            s.b_range_m
+                .map(|r| format!("{:.0}", r[0]))
+                .unwrap_or_default(),
+            s.b_range_m
+                .map(|r| format!("{:.0}", r[1]))
+                .unwrap_or_default(),
+        );
+        println!(
+            "  {name:<16} fraction {:.3}, {:>3} clouds, D {}, b {}",
+            s.cloud_fraction,
+            s.clouds,
+            s.d.map(|d| format!("{:.3} ± {:.3}", d.slope, d.stderr))
+                .unwrap_or_else(|| "-".into()),
+            s.b.map(|b| format!("{:.2} ± {:.2}", b.slope, b.stderr))
+                .unwrap_or_else(|| "-".into()),
+        );
+    }
+    std::fs::create_dir_all(out).with_context(|| format!("creating {}", out.display()))?;
+    let path = out.join("fields.csv");
+    stratus_compare::write_file_atomically(&path, csv.as_bytes())
+        .with_context(|| format!("writing {}", path.display()))?;
+    println!("wrote {}", path.display());
+    Ok(())
 }
 
 /// A stability case charted next to the presets: `cumulus-noon` with ten times the
@@ -158,6 +230,9 @@ pub fn run(args: BenchArgs) -> Result<()> {
         )
     };
     let mut renderer = make(false)?;
+    if args.fields_only {
+        return fields(renderer.as_mut(), &args.out);
+    }
     let device = renderer.describe();
     eprintln!(
         "bench on {device}: {w}x{h}, {repeats} repeats, references cached in {}",
@@ -229,6 +304,7 @@ pub fn run(args: BenchArgs) -> Result<()> {
     .with_context(|| format!("writing {}", json.display()))?;
     chart(&args.out, &results)?;
     summary(&results);
+    fields(renderer.as_mut(), &args.out)?;
     println!(
         "wrote {0}/results.csv, {0}/results.json, {0}/chart.png, {0}/chart.svg",
         args.out.display()
