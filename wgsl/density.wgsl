@@ -6,7 +6,7 @@
 
 @group(0) @binding(1) var shape_tex: texture_3d<f32>;   // RGBA8: Perlin-Worley, Worley FBM x3
 @group(0) @binding(2) var detail_tex: texture_3d<f32>;  // RGBA8: Worley FBM x3
-@group(0) @binding(3) var weather_tex: texture_2d<f32>; // RGBA8: coverage, precipitation, cloud type
+@group(0) @binding(3) var weather_tex: texture_2d<f32>; // RGBA8: coverage, precipitation, cloud type, cells
 @group(0) @binding(4) var curl_tex: texture_2d<f32>;    // RGBA8: curl xy encoded as 0.5 v + 0.5
 @group(0) @binding(5) var noise_sampler: sampler;       // linear, repeat
 
@@ -90,15 +90,17 @@ struct Weather {
     top: f32, // the cloud's top here as a fraction of the layer (1 but on convective cells)
 }
 
-// Convective cells (`clouds.convective_cells`, the map's A channel): how far the map's coverage
-// moves a cumulus layer's local share of cloud (mesoscale variation); the span of the cell
-// field's rank over which a cell's coverage rises from clear to full, wide so that the shape
-// noise carves the cell's edge in three dimensions, as a smooth coverage does in HZD's map;
-// and its dome: the cloud's top rises from CELL_EDGE_TOP of the layer at the cell's edge
-// toward the whole layer CELL_TOWER (in rank) inside it, quickly at first (a square root:
-// cumulus have steep sides and rounded tops), so that the larger a cell, the taller its cloud
-// (small humilis, large congestus). A top following the rank linearly drew spiky cones; a
-// narrow edge (0.06) drew vertical walls where the rough field crosses its threshold.
+// Convective cells (`clouds.convective_cells`, the map's A channel), for cumulus layers (type
+// 0.75 and up, fully at 1): how much the map's coverage scales a layer's local share of cloud
+// (mesoscale variation: by up to 1 +- CELL_MESOSCALE); the span of the cell field's rank over
+// which a cell's coverage rises from clear to full, wide so that the shape noise carves the
+// cell's edge in three dimensions, as a smooth coverage does in HZD's map; and its dome: the
+// cloud's top rises linearly from CELL_EDGE_TOP of the layer at the cell's edge to the whole
+// layer CELL_TOWER (in rank) inside it, after the lesser of the field and the field smoothed
+// over CELL_BLUR_M, so that the larger a cell, the taller its cloud (small humilis, large
+// congestus). Tried: a top following the rough field drew spiky cones, its square root
+// columns with flat tops; a narrow edge (0.06) drew vertical walls where the rough field
+// crosses its threshold.
 const CELL_MESOSCALE: f32 = 0.3;
 const CELL_EDGE: f32 = 0.3;
 const CELL_EDGE_TOP: f32 = 0.1;
@@ -113,11 +115,13 @@ fn sample_weather(p: vec3<f32>, l: Layer) -> Weather {
     // The layer's cloud type is the mean; the map varies it locally (HZD: B = cloud type).
     let cloud_type = saturate(l.cloud_type + (w.b - 0.5) * 0.5);
     var top = 1.0;
-    if frame.convective_cells > 0.0 {
+    // Cumulus layers only (the layer's own type: a deck of another type beside them keeps
+    // the map's coverage however its local type varies).
+    let cumulus = smoothstep(0.75, 1.0, l.cloud_type) * frame.convective_cells;
+    if cumulus > 0.0 {
         // Cumulus stands where the cell field's rank is in the top `share` of the map: the
-        // layer's coverage, nudged by the map's. Stratiform types keep the map's coverage.
-        let cumulus = smoothstep(0.5, 0.75, cloud_type) * frame.convective_cells;
-        let share = saturate(l.coverage + CELL_MESOSCALE * (w.r - 0.5));
+        // layer's coverage, scaled up or down by the map's (none at coverage 0).
+        let share = saturate(l.coverage * (1.0 + CELL_MESOSCALE * (2.0 * w.r - 1.0)));
         let inside = w.a - (1.0 - share);
         coverage = mix(coverage, saturate(inside / CELL_EDGE), cumulus);
         // The dome follows the field smoothed over CELL_BLUR_M (four taps about the point):

@@ -174,8 +174,8 @@ fn far_optical_depth(rel: vec3<f32>, p: vec3<f32>, l: Layer) -> f32 {
     for (var i = 0u; i < 4u; i++) {
         let t = reach + (f32(i) + 0.5) * 0.25 * len;
         let h = saturate(layer_height(l, altitude_of(rel + sun * t)));
-        let cov = sample_weather(p + sun * t, l).coverage;
-        let f = min(cov * height_signal(h, l.cloud_type), 0.95);
+        let w = sample_weather(p + sun * t, l);
+        let f = min(w.coverage * height_signal(h / w.top, l.cloud_type), 0.95);
         tau += 0.25 * len * f / ((1.0 - f) * chord);
     }
     return tau;

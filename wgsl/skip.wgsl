@@ -33,6 +33,11 @@ fn occupancy(@builtin(global_invocation_id) id: vec3<u32>) {
 // At world position `p` on a ray along unit `d`: the distance to the edge of p's cell if
 // the cell is empty (no cloud at any altitude), else 0.
 fn empty_cell_exit(p: vec3<f32>, d: vec3<f32>) -> f32 {
+    // The grid holds the map's coverage (R) alone: cumulus on convective cells stands where
+    // the cell field (A) says, with or without it, so no cell is known empty then.
+    if frame.convective_cells > 0.0 {
+        return 0.0;
+    }
     let cells = f32(OCCUPANCY_CELLS);
     let uv = fract((p.xz - frame.weather_offset) / frame.weather_period) * cells;
     let cell = min(vec2<u32>(uv), vec2<u32>(OCCUPANCY_CELLS - 1u));

@@ -98,12 +98,13 @@ fn the_fair_weather_states_measure_as_real_cumulus_fields() {
 
 /// The cover curve the weather states and METAR layers invert
 /// (`stratus_weather::states::CELL_COVER_FRACTION`) is what the renderer draws: a cumulus
-/// layer on cells at coverage 0.4 and 0.7 hides the curve's share of the ground, seen
+/// layer on cells at coverage 0.3, 0.4 (between which `few` inverts it) and 0.7 hides the
+/// curve's share of the ground, seen
 /// straight down over 100 km (measured at 1024 px, checked here at 512).
 #[test]
 fn the_cell_cover_curve_is_what_the_renderer_draws() {
     let dir = scratch("measure-field-cover");
-    for (i, coverage) in [(4, 0.4), (7, 0.7)] {
+    for (i, coverage) in [(3, 0.3), (4, 0.4), (7, 0.7)] {
         let scene = dir.join(format!("cells-{i}.toml"));
         std::fs::write(
             &scene,

@@ -9,7 +9,7 @@
 //! | [`shape`](shape_texture) | 128x32x128 ([`ShapeSize::Thesis`]) or 128^3 ([`ShapeSize::Hzd`]) | Perlin-Worley | Worley FBM, 4 cells | Worley FBM, 8 cells | Worley FBM, 16 cells |
 //! | [`detail`](detail_texture) | 32^3 | Worley FBM, 2 cells | Worley FBM, 4 cells | Worley FBM, 8 cells | 1 (padding) |
 //! | [`curl`](curl_texture) | 128^2 | curl x, `0.5*cx+0.5` | curl y, `0.5*cy+0.5` | 0.5 | 1 |
-//! | [`weather`](weather_texture) | 512^2 | coverage | precipitation | cloud type (0 stratus, 0.5 stratocumulus, 1 cumulus) | 1 |
+//! | [`weather`](weather_texture) | 512^2 | coverage | precipitation | cloud type (0 stratus, 0.5 stratocumulus, 1 cumulus) | convective cells: rank of a rough FBM |
 //!
 //! "Worley FBM, n cells" is the *inverted* Worley FBM ([`worley_fbm3`]) whose first octave has
 //! `n` cells across the texture's x axis. Every texture is RGBA8 UNORM, so any GPU backend can

@@ -150,9 +150,9 @@ pub(crate) fn sample_weather_map(f: &Frame, map: &Texture2, p: V3, l: &Layer) ->
     let mut coverage = saturate(w[0] + 2.0 * (l.coverage - 0.5));
     let cloud_type = saturate(l.cloud_type + (w[2] - 0.5) * 0.5);
     let mut top = 1.0;
-    if f.convective_cells > 0.0 {
-        let cumulus = smoothstep(0.5, 0.75, cloud_type) * f.convective_cells;
-        let share = saturate(l.coverage + CELL_MESOSCALE * (w[0] - 0.5));
+    let cumulus = smoothstep(0.75, 1.0, l.cloud_type) * f.convective_cells;
+    if cumulus > 0.0 {
+        let share = saturate(l.coverage * (1.0 + CELL_MESOSCALE * (2.0 * w[0] - 1.0)));
         let inside = w[3] - (1.0 - share);
         coverage = mix(coverage, saturate(inside / CELL_EDGE), cumulus);
         let r = CELL_BLUR_M / f.weather_period;

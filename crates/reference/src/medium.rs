@@ -315,6 +315,10 @@ impl<'a> Model<'a> {
             return 0.0;
         };
         let f = &self.f;
+        // WGSL: the grid knows the map's coverage alone, not the convective cells.
+        if f.convective_cells > 0.0 {
+            return 0.0;
+        }
         let cells = f64::from(OCCUPANCY_CELLS);
         let fract = |x: f64| x - x.floor();
         let uv = [

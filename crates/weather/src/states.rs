@@ -236,7 +236,7 @@ const COVER_FRACTION: [f64; 11] = [
 /// where the transmittance is below 0.5). The crate's test
 /// `the_cell_cover_curve_is_what_the_renderer_draws` (crates/cli/tests) re-measures it.
 pub const CELL_COVER_FRACTION: [f64; 11] = [
-    0.0, 0.013, 0.05, 0.119, 0.213, 0.317, 0.425, 0.533, 0.64, 0.739, 0.807,
+    0.0, 0.0, 0.03, 0.113, 0.213, 0.317, 0.424, 0.531, 0.633, 0.709, 0.763,
 ];
 
 /// The coverage whose layer covers `fraction` of the sky (the inverse of the measured

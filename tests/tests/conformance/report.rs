@@ -283,22 +283,6 @@ const PHYSICAL_SKY: Thresholds = Thresholds {
     ..WGPU_GL
 };
 
-/// Scenes whose clouds turn the second compilers' rounding into larger radiance differences
-/// with the same work (every counter identical), bounded alone: `stress-convective-cells`,
-/// measured on wgpu-gl max abs 5.39e-2 (one pixel, 0.536 against 0.590) and RMSE 4.72e-4
-/// (FLIP mean 6.1e-5, p99 1.2e-3, within the rounding bounds). Its small clouds' tops are a
-/// tenth of the layer, and a sample's density there moves with the top as 1 / top^2
-/// (`height_signal(h / top)`), a hundred times the rounding of the smoothed cell field the top
-/// follows. Bounds twice the measurement; the FLIP bounds stay the rounding ones.
-const ROUNDING_AMPLIFIED: [(&str, Thresholds); 1] = [(
-    "stress-convective-cells",
-    Thresholds {
-        max_abs: 1.1e-1,
-        rmse: 1e-3,
-        ..WGPU_GL
-    },
-)];
-
 /// Whether the suite's scene `scene` is under the physical sky (the presets and
 /// `stress-light-shafts`).
 fn physical_sky(scene: &str) -> bool {
@@ -319,14 +303,6 @@ fn physical_sky(scene: &str) -> bool {
 pub fn thresholds(path: Path, scene: &str) -> Option<Thresholds> {
     match path {
         Path::WgpuGl | Path::AshGlsl | Path::AshHlsl if physical_sky(scene) => Some(PHYSICAL_SKY),
-        Path::WgpuGl | Path::AshGlsl | Path::AshHlsl
-            if ROUNDING_AMPLIFIED.iter().any(|(s, _)| *s == scene) =>
-        {
-            ROUNDING_AMPLIFIED
-                .iter()
-                .find(|(s, _)| *s == scene)
-                .map(|(_, t)| *t)
-        }
         Path::WgpuGl => Some(WGPU_GL),
         Path::AshGlsl | Path::AshHlsl => Some(GLSLANG),
         Path::WebTint => Some(WEB_TINT),
@@ -684,14 +660,6 @@ pub fn maxima(run: &Run, markdown: bool) -> String {
                         text.push_str(&format!("; share > 0.1 {:.0e}", t.outliers));
                         for (scene, b, o) in CPU_MAX_ABS {
                             text.push_str(&format!(" (max abs {b}, share {o:.0e} on {scene})"));
-                        }
-                    }
-                    if matches!(p, Path::WgpuGl | Path::AshGlsl | Path::AshHlsl) {
-                        for (scene, t) in ROUNDING_AMPLIFIED {
-                            text.push_str(&format!(
-                                " (max abs {:.1e}, RMSE {:.1e} on {scene})",
-                                t.max_abs, t.rmse
-                            ));
                         }
                     }
                     text
