@@ -5,6 +5,11 @@ mod common;
 
 use common::{scratch, stratus};
 
+/// The `--json` file `measure-field` wrote.
+fn read_json(path: &std::path::Path) -> serde_json::Value {
+    serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap()
+}
+
 #[test]
 fn a_cumulus_field_is_measured_from_above() {
     let dir = scratch("measure-field");
@@ -26,8 +31,7 @@ fn a_cumulus_field_is_measured_from_above() {
     assert!(ok, "{text}");
     assert!(text.contains("clouds inside the square"), "{text}");
     assert!(text.contains("area-perimeter dimension D"), "{text}");
-    let v: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let v = read_json(&json);
     // Fair weather: a few tenths of the sky, and separate clouds to count.
     let fraction = v["cloud_fraction"].as_f64().unwrap();
     assert!((0.05..0.5).contains(&fraction), "{v}");
@@ -80,8 +84,7 @@ fn the_fair_weather_states_measure_as_real_cumulus_fields() {
             json.to_str().unwrap(),
         ]);
         assert!(ok, "{text}");
-        let v: serde_json::Value =
-            serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+        let v = read_json(&json);
         assert!(v["clouds"].as_u64().unwrap() >= 100, "{state}: {v}");
         let d = v["d"]["slope"].as_f64().expect("D fitted");
         assert!((1.28..=1.42).contains(&d), "{state}: D {d}: {v}");
@@ -122,8 +125,7 @@ fn the_cell_cover_curve_is_what_the_renderer_draws() {
             json.to_str().unwrap(),
         ]);
         assert!(ok, "{text}");
-        let v: serde_json::Value =
-            serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+        let v = read_json(&json);
         let fraction = v["cloud_fraction"].as_f64().unwrap();
         let curve = stratus_weather::states::CELL_COVER_FRACTION[i];
         assert!(

@@ -80,8 +80,9 @@ impl std::error::Error for NoiseError {
 /// G = precipitation, B = cloud type; A = the convective cells' rank; see
 /// [`crate::weather_texture`]).
 ///
-/// RGB images get A = 255 (with `clouds.convective_cells`, every cumulus point inside a cell). Any non-empty size is accepted (the texture need not be square or a
-/// power of two); it is the caller's job to sample it with repeat addressing. Other pixel formats
+/// RGB images get A = 255 (with `clouds.convective_cells`, every cumulus point inside a
+/// cell). Any non-empty size is accepted (the texture need not be square or a power of two);
+/// it is the caller's job to sample it with repeat addressing. Other pixel formats
 /// (grey, 16-bit, ...) are rejected with [`NoiseError::UnsupportedFormat`] rather than silently
 /// converted, because a weather map's channels carry data, not colour.
 pub fn weather_from_png(path: &Path) -> Result<Texture2, NoiseError> {

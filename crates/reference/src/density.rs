@@ -128,7 +128,6 @@ pub(crate) struct Weather {
     pub top: f64,
 }
 
-// WGSL: density.wgsl::sample_weather
 // WGSL: density.wgsl::CELL_MESOSCALE, CELL_EDGE, CELL_EDGE_TOP, CELL_TOWER, CELL_BLUR_M
 const CELL_MESOSCALE: f64 = 0.3;
 const CELL_EDGE: f64 = 0.3;
@@ -136,6 +135,7 @@ const CELL_EDGE_TOP: f64 = 0.1;
 const CELL_TOWER: f64 = 0.5;
 const CELL_BLUR_M: f64 = 400.0;
 
+// WGSL: density.wgsl::sample_weather
 pub(crate) fn sample_weather(f: &Frame, noise: &NoiseSet, p: V3, l: &Layer) -> Weather {
     sample_weather_map(f, &noise.weather, p, l)
 }

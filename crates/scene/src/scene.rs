@@ -727,15 +727,15 @@ pub struct Clouds {
     /// wispy bases to billowy (inverted Worley) tops over the lowest tenth of a cloud, 1
     /// billowy almost from the base.
     pub wispy_billowy: f64,
-    /// Cumulus from convective cells, within [0, 1] (0, the default: off). Where the local
-    /// cloud type is cumulus, the clouds stand where the weather map's cell field (its A
-    /// channel, a rough fractal field) is above `1 - coverage`, the map's coverage only
-    /// nudging that share from place to place, each cloud the taller the larger its cell,
-    /// instead of filling the map's large coverage regions. Seen from above, such a field is
-    /// many separate clouds with fractal outlines and a power law of sizes, as real cumulus
-    /// fields are (Lovejoy 1982; Cahalan and Joseph 1989); at 0 it is the weather map's few
-    /// large regions (HZD). Values between blend the two (weather transitions); stratiform
-    /// types are unchanged.
+    /// Cumulus from convective cells, within [0, 1] (0, the default: off). In a cumulus layer
+    /// (cloud type 0.75 and up, fully at 1) the clouds stand where the weather map's cell
+    /// field (its A channel, a rough fractal field) is above `1 - coverage`, the map's
+    /// coverage only scaling that share from place to place, each cloud the taller the larger
+    /// its cell, instead of filling the map's large coverage regions. Seen from above, such a
+    /// field is many separate clouds with fractal outlines and a power law of sizes, as real
+    /// cumulus fields are (Lovejoy 1982; Cahalan and Joseph 1989); at 0 it is the weather
+    /// map's few large regions (HZD). Values between blend the two (weather transitions);
+    /// layers of other types are unchanged.
     #[serde(skip_serializing_if = "is_zero")]
     pub convective_cells: f64,
     /// Extra cloud layers (`[[clouds.layers]]`, at most [`MAX_EXTRA_LAYERS`]) besides the main
