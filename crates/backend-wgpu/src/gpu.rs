@@ -345,11 +345,16 @@ fn probe_gl_compute(device: &wgpu::Device, info: &wgpu::AdapterInfo) -> Result<(
         Some(e) => {
             // wgpu's message nests its causes over several lines; the last is the reason.
             let text = e.to_string();
+            // wgpu-core words a failed translation "Internal error: <reason>": the reason is
+            // the driver's, not a fault of wgpu's, so the prefix is not shown.
             let reason = text
                 .lines()
                 .map(str::trim)
                 .rfind(|l| !l.is_empty())
-                .unwrap_or("unknown")
+                .unwrap_or("unknown");
+            let reason = reason
+                .strip_prefix("Internal error:")
+                .map_or(reason, str::trim)
                 .to_string();
             Err(Error::NoCompute {
                 adapter: format!(

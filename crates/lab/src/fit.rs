@@ -92,6 +92,23 @@ pub struct FitArgs {
     /// moving the rest.
     #[arg(long, value_delimiter = ',', value_name = "NAMES", requires = "quick")]
     only: Vec<String>,
+    /// With --evaluate: measure against the committed truths alone (`docs/fit/truths`, each
+    /// scene's at the paths per pixel its `index.csv` row records; `--spp` is not used) and
+    /// render none. A scene without a truth for this build's path tracer is an error saying
+    /// what to run. Seconds, on any machine: what CI holds the presets to.
+    #[arg(long, requires = "evaluate", conflicts_with = "display_truths")]
+    committed: bool,
+    /// Carry the committed truths (`docs/fit/truths`) over to this build's path tracer: a
+    /// truth whose key is not this build's (the tracer's code, its noise or the scene's
+    /// uniforms changed since it was traced) is compared with a fresh trace of
+    /// `--recheck-spp` paths a pixel, per 8x8 block (|z| < 4) and pooled over the cloudy
+    /// blocks (|z| < 3); where it agrees it is filed under the new key, else the command
+    /// fails naming the truths to render again. About 10 s a truth on lavapipe at 128 paths.
+    #[arg(long, conflicts_with_all = ["evaluate", "quick", "display_truths", "committed"])]
+    recheck_truths: bool,
+    /// Paths per pixel of `--recheck-truths`' fresh traces.
+    #[arg(long, default_value_t = 128, value_parser = clap::value_parser!(u32).range(2..))]
+    recheck_spp: u32,
 }
 
 /// The constants the descent moves, in its order (fields of `[lighting.multiple_scattering]`).
@@ -249,7 +266,6 @@ fn only(names: &[String], training: Named, presets: Named) -> Result<(Named, Nam
 /// names each file's scene.
 fn write_truths(dir: &std::path::Path, train: &[Case], test: &[Case], spp: u32) -> Result<()> {
     std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
-    let mut index = String::from("file,scene,set,paths_per_pixel,width,height\n");
     // A run that measured some scenes against their display images (`--display-truths`)
     // rendered no truth for them: the truths already there stay, and so do their rows.
     let written: Vec<std::ffi::OsString> = train
@@ -257,18 +273,15 @@ fn write_truths(dir: &std::path::Path, train: &[Case], test: &[Case], spp: u32) 
         .chain(test)
         .filter_map(|c| c.truth_file.as_ref()?.file_name().map(|n| n.to_os_string()))
         .collect();
-    if let Ok(old) = std::fs::read_to_string(dir.join("index.csv")) {
-        for row in old.lines().skip(1) {
-            let file = row.split(',').next().unwrap_or_default();
-            if !file.is_empty()
-                && dir.join(file).exists()
-                && !written.iter().any(|w| w.to_str() == Some(file))
-            {
-                index.push_str(row);
-                index.push('\n');
-            }
-        }
-    }
+    let mut index: Vec<bench::CommittedTruth> = match bench::read_index(dir) {
+        Ok(rows) => rows
+            .into_iter()
+            .filter(|r| {
+                dir.join(&r.file).exists() && !written.iter().any(|w| w.to_str() == Some(&r.file))
+            })
+            .collect(),
+        Err(_) => Vec::new(),
+    };
     for (set, list) in [("train", train), ("held-out", test)] {
         for c in list {
             let Some(file) = &c.truth_file else {
@@ -279,21 +292,127 @@ fn write_truths(dir: &std::path::Path, train: &[Case], test: &[Case], spp: u32) 
                 .context("a truth's cache file has no name")?;
             let to = dir.join(name);
             if to != *file {
-                std::fs::copy(file, &to)
-                    .with_context(|| format!("copying {} to {}", file.display(), to.display()))?;
+                let bytes =
+                    std::fs::read(file).with_context(|| format!("reading {}", file.display()))?;
+                stratus_compare::write_file_atomically(&to, &bytes)
+                    .with_context(|| format!("writing {}", to.display()))?;
             }
-            let _ = writeln!(
-                index,
-                "{},\"{}\",{set},{spp},{},{}",
-                name.to_string_lossy(),
-                c.name,
-                c.truth.width,
-                c.truth.height
-            );
+            index.push(bench::CommittedTruth {
+                file: name.to_string_lossy().into_owned(),
+                scene: c.name.clone(),
+                set: set.to_string(),
+                paths: spp,
+                width: c.truth.width,
+                height: c.truth.height,
+            });
         }
     }
-    stratus_compare::write_file_atomically(&dir.join("index.csv"), index.as_bytes())
-        .with_context(|| format!("writing {}", dir.join("index.csv").display()))
+    bench::write_index(dir, &index)
+}
+
+/// `--recheck-truths`: every committed truth whose key is not this build's is traced afresh
+/// with `paths` a pixel and, where the two agree within noise, filed under the new key.
+fn recheck_truths(paths: u32) -> Result<()> {
+    let dir = PathBuf::from(bench::COMMITTED_TRUTHS);
+    let mut rows = bench::read_index(&dir)?;
+    let mut renderer = open(
+        backends::Backend::Wgpu,
+        &Open {
+            validation: false,
+            ..Open::default()
+        },
+    )?;
+    eprintln!(
+        "rechecking {} truths in {} on {} with {paths} paths a pixel",
+        rows.len(),
+        dir.display(),
+        renderer.describe()
+    );
+    let presets: Vec<(String, Scene)> = stratus_scene::presets()
+        .iter()
+        .map(|p| {
+            Scene::preset(p.name)
+                .map(|s| (p.name.to_string(), s))
+                .map_err(|e| anyhow::anyhow!("{e}"))
+        })
+        .collect::<Result<_>>()?;
+    let scenes: Vec<(String, Scene)> = training_scenes()?.into_iter().chain(presets).collect();
+    let mut fresh: BTreeMap<String, FrameOutput> = BTreeMap::new();
+    let mut differ = Vec::new();
+    let old_files: Vec<String> = rows.iter().map(|r| r.file.clone()).collect();
+    for row in &mut rows {
+        let (_, scene) = scenes
+            .iter()
+            .find(|(n, _)| *n == row.scene)
+            .with_context(|| {
+                format!(
+                    "{}/index.csv: `{}` is neither a training scene nor a preset",
+                    dir.display(),
+                    row.scene
+                )
+            })?;
+        let scene = scene.clone().with_size(row.width, row.height);
+        let noise = Arc::new(stratus::noise_for(&scene));
+        let key = bench::reference_key(&scene, &noise, row.paths, true)?;
+        if key.file_name() == row.file {
+            println!("{} ({} paths): current", row.scene, row.paths);
+            continue;
+        }
+        let old_path = dir.join(&row.file);
+        let bytes =
+            std::fs::read(&old_path).with_context(|| format!("reading {}", old_path.display()))?;
+        let truth = bench::decode_truth(&bytes, row.width, row.height).with_context(|| {
+            format!(
+                "{}: not a {}x{} truth",
+                old_path.display(),
+                row.width,
+                row.height
+            )
+        })?;
+        if !fresh.contains_key(&row.scene) {
+            let f = bench::fresh_trace(renderer.as_mut(), &scene, &noise, paths)?;
+            fresh.insert(row.scene.clone(), f);
+        }
+        let r = bench::recheck(&truth, row.paths, &fresh[&row.scene])?;
+        let verdict = if r.agrees() {
+            "carried over"
+        } else {
+            "DIFFERS"
+        };
+        println!(
+            "{} ({} paths): {verdict}: {} blocks, worst |z| {:.2}, pooled z {:+.2} (fresh - truth {:+.2}%; a uniform {:.2}% would show)",
+            row.scene,
+            row.paths,
+            r.blocks,
+            r.worst_block_z,
+            r.pooled_z,
+            100.0 * r.relative,
+            100.0 * r.detectable
+        );
+        if r.agrees() {
+            let to = dir.join(key.file_name());
+            stratus_compare::write_file_atomically(&to, &bytes)
+                .with_context(|| format!("writing {}", to.display()))?;
+            row.file = key.file_name();
+        } else {
+            differ.push(format!("{} ({} paths)", row.scene, row.paths));
+        }
+    }
+    bench::write_index(&dir, &rows)?;
+    for f in old_files {
+        if !rows.iter().any(|r| r.file == f) {
+            std::fs::remove_file(dir.join(&f))
+                .with_context(|| format!("removing {}", dir.join(&f).display()))?;
+        }
+    }
+    if !differ.is_empty() {
+        anyhow::bail!(
+            "{} truths differ from a fresh trace and keep their old keys: {}; render them again (stratus fit-scattering --evaluate --scenes NAME --spp N --out docs/fit)",
+            differ.len(),
+            differ.join(", ")
+        );
+    }
+    Ok(())
 }
 
 /// A scene to measure: its truth and the real-time render's settings.
@@ -649,6 +768,9 @@ fn side_by_side(frames: &[FrameOutput], zoom: u32) -> image::RgbaImage {
 
 /// Runs `stratus fit-scattering`.
 pub fn run(args: FitArgs) -> Result<()> {
+    if args.recheck_truths {
+        return recheck_truths(args.recheck_spp);
+    }
     let out_dir = args.out.clone().unwrap_or_else(|| {
         PathBuf::from(if args.evaluate {
             "target/fit-evaluate"
@@ -727,6 +849,21 @@ pub fn run(args: FitArgs) -> Result<()> {
                     },
                     truth_file: None,
                     display_only: true,
+                    display,
+                });
+                continue;
+            }
+            if args.committed {
+                let dir = std::path::Path::new(bench::COMMITTED_TRUTHS);
+                let truth = bench::committed_truth(dir, &name, &scene, &noise)
+                    .with_context(|| format!("--committed: scene `{}`", slug(&name)))?;
+                out.push(Case {
+                    name,
+                    scene,
+                    noise,
+                    truth,
+                    truth_file: None,
+                    display_only: false,
                     display,
                 });
                 continue;

@@ -257,10 +257,14 @@ pub fn run(args: GpuBenchArgs) -> Result<()> {
         bar.finish_and_clear();
     }
     let json = args.out.join("results.json");
-    std::fs::write(&json, serde_json::to_string_pretty(&report)? + "\n")
-        .with_context(|| format!("writing {}", json.display()))?;
+    stratus_compare::write_file_atomically(
+        &json,
+        (serde_json::to_string_pretty(&report)? + "\n").as_bytes(),
+    )
+    .with_context(|| format!("writing {}", json.display()))?;
     let md = args.out.join("table.md");
-    std::fs::write(&md, table(&report)).with_context(|| format!("writing {}", md.display()))?;
+    stratus_compare::write_file_atomically(&md, table(&report).as_bytes())
+        .with_context(|| format!("writing {}", md.display()))?;
     println!("{}", table(&report));
     println!("wrote {} and {}", json.display(), md.display());
     Ok(())

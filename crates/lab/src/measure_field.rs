@@ -393,8 +393,11 @@ pub fn run(args: MeasureFieldArgs) -> Result<()> {
     let (w, h) = (args.size as usize, args.size as usize);
     print_stats(&stats, args.min_pixels);
     if let Some(path) = &args.json {
-        std::fs::write(path, serde_json::to_string_pretty(&stats)? + "\n")
-            .with_context(|| format!("writing {}", path.display()))?;
+        stratus_compare::write_file_atomically(
+            path,
+            (serde_json::to_string_pretty(&stats)? + "\n").as_bytes(),
+        )
+        .with_context(|| format!("writing {}", path.display()))?;
         println!("wrote {}", path.display());
     }
     if let Some(path) = &args.mask {
@@ -407,10 +410,11 @@ pub fn run(args: MeasureFieldArgs) -> Result<()> {
                 Some(_) => 255,
             })
             .collect();
-        image::GrayImage::from_raw(w as u32, h as u32, grey)
-            .context("mask size")?
-            .save(path)
-            .with_context(|| format!("writing {}", path.display()))?;
+        let mask = image::GrayImage::from_raw(w as u32, h as u32, grey).context("mask size")?;
+        stratus_compare::write_atomically(path, |tmp| {
+            mask.save_with_format(tmp, image::ImageFormat::Png)
+        })
+        .map_err(|e| anyhow::anyhow!("writing {}: {e}", path.display()))?;
         println!("wrote {}", path.display());
     }
     Ok(())

@@ -248,6 +248,25 @@ impl NoiseSet {
             weather: weather_texture(cfg.seed, cfg.weather_size),
         }
     }
+
+    /// SHA-256 (hex) over the four textures' sizes and bytes: what a renderer samples, for
+    /// keys of results that depend on it (the path tracer's truths).
+    pub fn sha256(&self) -> String {
+        use sha2::{Digest, Sha256};
+        let mut h = Sha256::new();
+        for (size, data) in [
+            (&self.shape.size[..], &self.shape.data),
+            (&self.detail.size[..], &self.detail.data),
+            (&self.curl.size[..], &self.curl.data),
+            (&self.weather.size[..], &self.weather.data),
+        ] {
+            for s in size {
+                h.update(s.to_le_bytes());
+            }
+            h.update(data);
+        }
+        h.finalize().iter().map(|b| format!("{b:02x}")).collect()
+    }
 }
 
 #[cfg(test)]

@@ -11,6 +11,7 @@
 
 pub mod compile;
 pub mod diagnostic;
+pub mod digest;
 pub mod generated;
 pub mod manifest;
 pub mod source;
@@ -18,6 +19,7 @@ pub mod translate;
 
 pub use compile::{CompiledModule, compile, compile_all};
 pub use diagnostic::{Diagnostic, Diagnostics};
+pub use digest::plan_digest;
 pub use generated::generated_sources;
 pub use source::{ModuleSpec, ShaderTree, VariantSpec};
 pub use stratus_graph::Manifest;

@@ -40,7 +40,10 @@ mod report;
 mod sweep;
 
 pub(crate) use self::{
-    reference_cache::{Reference, reference},
+    reference_cache::{
+        COMMITTED_TRUTHS, CommittedTruth, Reference, committed_truth, decode as decode_truth,
+        fresh_trace, read_index, recheck, reference, reference_key, write_index,
+    },
     sweep::{display_errors, errors},
 };
 

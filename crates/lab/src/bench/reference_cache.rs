@@ -6,7 +6,11 @@
 //! all-orders truth of 8192 paths a pixel is seconds on a GPU and 10-30 minutes a scene on
 //! lavapipe, so the fit's data travels with the repository.
 
-use std::{fmt::Write as _, path::PathBuf, sync::Arc};
+use std::{
+    fmt::Write as _,
+    path::{Path, PathBuf},
+    sync::Arc,
+};
 
 use anyhow::{Context, Result};
 use sha2::{Digest, Sha256};
@@ -27,7 +31,7 @@ pub(super) fn cache_dir() -> PathBuf {
 
 /// The committed truths (`<fit dir>/truths` of the published fit), relative to the working
 /// directory like the cache: read where the cache has no file of the key.
-const COMMITTED_TRUTHS: &str = "docs/fit/truths";
+pub(crate) const COMMITTED_TRUTHS: &str = "docs/fit/truths";
 
 /// The reference for `scene`: its kind and the scene it renders (fields it ignores reset, so
 /// configurations that differ only there share one reference).
@@ -58,6 +62,11 @@ fn reference_for(scene: &Scene) -> (Integrator, Scene, bool) {
         // defaults, which the multiple-scattering fit changes) so that the key stays put.
         s.lighting.multiple_scattering = PREFIT_OCTAVES;
         s.lighting.beer_powder = false;
+        let d = stratus_scene::Lighting::default();
+        s.lighting.powder_strength = d.powder_strength;
+        // The march's stand-in for rain's dark base, which the path tracer leaves to the
+        // density (precipitation raises it).
+        s.lighting.precipitation_darkening = d.precipitation_darkening;
         (Integrator::MonteCarlo { spp: 0, orders: 0 }, s, true)
     } else {
         // Single scattering: the octave constants do nothing (fixed, as above).
@@ -73,36 +82,50 @@ fn reference_for(scene: &Scene) -> (Integrator, Scene, bool) {
     }
 }
 
-/// The light model's terms added after the cache's v2 (reset to fixed values by
-/// `reference_for` like the octaves, and ignored by every reference): left out of the key so
-/// that the truths rendered before them stay valid.
-const KEYLESS_FIELDS: [&str; 11] = [
-    "side_light = ",
-    "coverage_exponent = ",
-    "far_chord_m = ",
-    "limb_darkening = ",
-    "forward_lobe = ",
-    "forward_lobe_g = ",
-    "vertical_anisotropy = ",
-    "deck_escape = ",
-    "steep_light = ",
-    "steep_light_scale = ",
-    "downward_dimming = ",
-];
-
-/// The scene's TOML as the cache key hashes it: `s.to_toml()` without the `KEYLESS_FIELDS`,
-/// and without what the path tracer does not render (the post effects, the exposure's range:
-/// the truth is the clouds' radiance; the rainbow, which the composite adds in front of them),
-/// so that a stylised preset shares its clouds' truth.
+/// The scene's TOML as the cache key hashes it: without what the path tracer does not render
+/// (the post effects, the exposure's range: the truth is the clouds' radiance; the rainbow,
+/// which the composite adds in front of them), so that a stylised preset shares its clouds'
+/// truth.
 fn key_toml(s: &Scene) -> String {
     let mut s = s.clone();
     s.post = stratus_scene::Post::default();
     s.rainbow = stratus_scene::Rainbow::default();
     s.camera.exposure_range = None;
     s.to_toml()
-        .split_inclusive('\n')
-        .filter(|line| !KEYLESS_FIELDS.iter().any(|k| line.starts_with(k)))
-        .collect()
+}
+
+/// The scene the GPU path tracer renders for `scene`'s all-orders truth: the path-traced
+/// integrator, every order.
+fn traced(scene: &Scene) -> Scene {
+    let mut s = scene.clone();
+    s.quality.integrator = stratus_scene::Integrator::Pathtrace;
+    s.quality.path_orders = 0;
+    s
+}
+
+/// What the GPU path tracer's truth of `s` (a scene of [`traced`]) depends on besides the
+/// scene's settings, hashed: what its frame plan executes (the WGSL its passes reach, compacted
+/// and compiled: [`stratus_shaders::plan_digest`]), the noise textures it samples and the
+/// uniform bytes the scene becomes. A change to any of them is another truth; a change to
+/// code the tracer does not reach is not.
+pub(crate) fn tracer_digest(s: &Scene, noise: &NoiseSet) -> Result<String> {
+    let plan = FramePlan::for_scene(s, false)?;
+    let tree = stratus_shaders::ShaderTree::embedded()
+        .map_err(|e| anyhow::anyhow!("the embedded WGSL: {e}"))?;
+    let code = stratus_shaders::plan_digest(&tree, &plan)
+        .map_err(|e| anyhow::anyhow!("hashing the path tracer's plan: {e}"))?;
+    let mut h = Sha256::new();
+    h.update(code.as_bytes());
+    h.update(noise.sha256().as_bytes());
+    h.update(s.uniforms().as_bytes());
+    Ok(hex12(&h.finalize()))
+}
+
+fn hex12(bytes: &[u8]) -> String {
+    bytes.iter().take(12).fold(String::new(), |mut acc, b| {
+        let _ = write!(acc, "{b:02x}");
+        acc
+    })
 }
 
 /// `spp` paths per pixel (rounded up to whole frames) of the GPU path tracer
@@ -117,9 +140,7 @@ pub(crate) fn pathtrace_gpu(
     progress: &dyn Fn(u32),
 ) -> Result<FrameOutput> {
     // The plan of a path-traced scene leaves out the march's methods.
-    let mut s = scene.clone();
-    s.quality.integrator = stratus_scene::Integrator::Pathtrace;
-    s.quality.path_orders = 0;
+    let s = traced(scene);
     let plan = FramePlan::for_scene(&s, false)?;
     let per_frame = plan
         .paths_per_frame()
@@ -164,6 +185,70 @@ pub(crate) struct Reference {
     pub file: PathBuf,
 }
 
+/// What names a scene's reference: the scene it renders, how, and the key of its file.
+pub(crate) struct ReferenceKey {
+    integrator: Integrator,
+    /// The scene the reference renders (fields it ignores reset).
+    scene: Scene,
+    /// An all-orders truth (else single scattering by the converged quadrature).
+    mc: bool,
+    /// The hash that names its file, `ref-<key>.bin`.
+    pub key: String,
+    /// Its kind, for reports.
+    pub label: String,
+}
+
+impl ReferenceKey {
+    /// The reference's file name in the cache and among the committed truths.
+    pub fn file_name(&self) -> String {
+        format!("ref-{}.bin", self.key)
+    }
+}
+
+/// The key of `scene`'s reference: `mc_spp` paths a pixel for an all-orders truth, on the GPU
+/// path tracer where `on_gpu`. The key hashes the normalised scene, the integrator and, for the
+/// GPU path tracer, [`tracer_digest`]: a truth rendered by another tracer, or from other noise,
+/// is another key, never silently reused. The CPU references hash the noise and the cache's
+/// version alone (their Rust is not hashed: they are cached, never committed).
+pub(crate) fn reference_key(
+    scene: &Scene,
+    noise: &NoiseSet,
+    mc_spp: u32,
+    on_gpu: bool,
+) -> Result<ReferenceKey> {
+    let (mut integrator, s, mc) = reference_for(scene);
+    if let Integrator::MonteCarlo { spp, .. } = &mut integrator {
+        *spp = mc_spp;
+    }
+    let on_gpu = mc && on_gpu;
+    let mut h = Sha256::new();
+    h.update(key_toml(&s).as_bytes());
+    h.update(format!("{integrator:?}").as_bytes());
+    if on_gpu {
+        h.update(b"gpu-pathtrace");
+        h.update(tracer_digest(&traced(&s), noise)?.as_bytes());
+    } else {
+        h.update(b"cpu-reference");
+        h.update(noise.sha256().as_bytes());
+    }
+    // v3: the tracer's code, noise and uniforms are in the key (v2 named the scene alone).
+    h.update(b"stratus-reference-cache-v3");
+    let label = if on_gpu {
+        format!("pathtrace-gpu-{mc_spp}spp")
+    } else if mc {
+        format!("montecarlo-{mc_spp}spp")
+    } else {
+        "quadrature".to_string()
+    };
+    Ok(ReferenceKey {
+        integrator,
+        scene: s,
+        mc,
+        key: hex12(&h.finalize()),
+        label,
+    })
+}
+
 /// Renders (or loads from the cache, or from the committed truths) the reference of `scene`.
 /// The all-orders truth comes from the GPU path tracer on `gpu` where one is given, else from
 /// the CPU path tracer.
@@ -173,49 +258,16 @@ pub(crate) fn reference(
     mc_spp: u32,
     gpu: Option<&mut dyn Backend>,
 ) -> Result<Reference> {
-    let (mut integrator, s, mc) = reference_for(scene);
-    if let Integrator::MonteCarlo { spp, .. } = &mut integrator {
-        *spp = mc_spp;
-    }
-    let on_gpu = mc && gpu.is_some();
-    let key = {
-        let mut h = Sha256::new();
-        h.update(key_toml(&s).as_bytes());
-        h.update(format!("{integrator:?}").as_bytes());
-        if on_gpu {
-            h.update(b"gpu-pathtrace");
-        }
-        // v2: the GPU path tracer traces a workgroup of paths per pixel a frame (other
-        // random streams than v1's one path a frame).
-        h.update(b"stratus-reference-cache-v2");
-        // Under the physical sky the truths changed (those before are not these scenes'
-        // truths; the others' stay valid): a path leaving the clouds sees the sky from its last
-        // collision, not from the camera, and the converged quadrature, like the march, looks
-        // the ambient up at the sun's angle at each sample.
-        if s.atmosphere.sky == stratus_scene::SkyModel::Physical {
-            h.update(if mc {
-                b"environment-from-the-vertex".as_slice()
-            } else {
-                b"ambient-by-the-sun-angle-at-the-sample".as_slice()
-            });
-        }
-        h.finalize()
-            .iter()
-            .take(12)
-            .fold(String::new(), |mut acc, b| {
-                let _ = write!(acc, "{b:02x}");
-                acc
-            })
-    };
-    let label = if on_gpu {
-        format!("pathtrace-gpu-{mc_spp}spp")
-    } else if mc {
-        format!("montecarlo-{mc_spp}spp")
-    } else {
-        "quadrature".to_string()
-    };
+    let rk = reference_key(scene, noise, mc_spp, gpu.is_some())?;
+    let name = rk.file_name();
+    let ReferenceKey {
+        integrator,
+        scene: s,
+        mc,
+        label,
+        ..
+    } = rk;
     let dir = cache_dir();
-    let name = format!("ref-{key}.bin");
     let path = dir.join(&name);
     let [w, h] = s.camera.resolution;
     let done = |frame: FrameOutput| Reference {
@@ -262,6 +314,207 @@ pub(crate) fn reference(
     Ok(done(f))
 }
 
+/// One row of the committed truths' `index.csv`: a truth's file and the scene it is of.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) struct CommittedTruth {
+    /// Its file in `docs/fit/truths`, `ref-<key>.bin`.
+    pub file: String,
+    /// The scene's name: a training scene's description or a preset's name.
+    pub scene: String,
+    /// `train` or `held-out`.
+    pub set: String,
+    /// Paths per pixel it was traced with.
+    pub paths: u32,
+    /// Its size.
+    pub width: u32,
+    /// Its size.
+    pub height: u32,
+}
+
+/// The first line of `index.csv`.
+pub(crate) const INDEX_HEADER: &str = "file,scene,set,paths_per_pixel,width,height";
+
+/// Reads `dir/index.csv` (the committed truths' index); a malformed row is an error naming it.
+pub(crate) fn read_index(dir: &Path) -> Result<Vec<CommittedTruth>> {
+    let path = dir.join("index.csv");
+    let text =
+        std::fs::read_to_string(&path).with_context(|| format!("reading {}", path.display()))?;
+    let mut rows = Vec::new();
+    for (n, line) in text.lines().enumerate().skip(1) {
+        let bad = || {
+            format!(
+                "{}:{}: expected {INDEX_HEADER}, got `{line}`",
+                path.display(),
+                n + 1
+            )
+        };
+        // The scene is quoted (names hold commas); the rest are plain.
+        let (file, rest) = line.split_once(",\"").with_context(bad)?;
+        let (scene, rest) = rest.split_once("\",").with_context(bad)?;
+        let f: Vec<&str> = rest.split(',').collect();
+        let [set, paths, width, height] = f[..] else {
+            anyhow::bail!(bad());
+        };
+        rows.push(CommittedTruth {
+            file: file.to_string(),
+            scene: scene.to_string(),
+            set: set.to_string(),
+            paths: paths.parse().with_context(bad)?,
+            width: width.parse().with_context(bad)?,
+            height: height.parse().with_context(bad)?,
+        });
+    }
+    Ok(rows)
+}
+
+/// Writes `rows` as `dir/index.csv`.
+pub(crate) fn write_index(dir: &Path, rows: &[CommittedTruth]) -> Result<()> {
+    let mut text = format!("{INDEX_HEADER}\n");
+    for r in rows {
+        let _ = writeln!(
+            text,
+            "{},\"{}\",{},{},{},{}",
+            r.file, r.scene, r.set, r.paths, r.width, r.height
+        );
+    }
+    let path = dir.join("index.csv");
+    stratus_compare::write_file_atomically(&path, text.as_bytes())
+        .with_context(|| format!("writing {}", path.display()))
+}
+
+/// The committed truth of `scene` (named `name` in the index) for the tracer this build
+/// holds, at the paths per pixel the index records for it: an error, saying what to run,
+/// where the index has none or has one under another key (the tracer, its noise or the
+/// scene's settings changed since it was traced).
+pub(crate) fn committed_truth(
+    dir: &Path,
+    name: &str,
+    scene: &Scene,
+    noise: &NoiseSet,
+) -> Result<FrameOutput> {
+    let rows = read_index(dir)?;
+    let Some(row) = rows
+        .iter()
+        .filter(|r| r.scene == name)
+        .max_by_key(|r| r.paths)
+    else {
+        anyhow::bail!(
+            "{}: no committed truth of `{name}`: render one (stratus fit-scattering --evaluate --scenes <its name> --spp 2048 --out docs/fit; minutes on a GPU)",
+            dir.display()
+        );
+    };
+    let key = reference_key(scene, noise, row.paths, true)?;
+    if key.file_name() != row.file {
+        anyhow::bail!(
+            "{}: the truth of `{name}` ({}, {} paths a pixel) was traced under another key than this build's ({}): the path tracer, its noise or the scene changed since. `stratus fit-scattering --recheck-truths` carries it over where a fresh trace agrees with it, else render it again",
+            dir.display(),
+            row.file,
+            row.paths,
+            key.file_name()
+        );
+    }
+    let [w, h] = key.scene.camera.resolution;
+    let path = dir.join(&row.file);
+    let bytes = std::fs::read(&path).with_context(|| format!("reading {}", path.display()))?;
+    decode(&bytes, w, h).with_context(|| {
+        format!(
+            "{}: not a {w}x{h} truth of `{name}` (index.csv names it)",
+            path.display()
+        )
+    })
+}
+
+/// The bounds of a recheck: a block's z, as the path-tracer agreement test holds the GPU and
+/// CPU tracers to (`tests/tests/path_tracer.rs`), and the pooled z of all cloudy blocks.
+const RECHECK_BLOCK_Z: f64 = 4.0;
+const RECHECK_POOLED_Z: f64 = 3.0;
+/// Blocks darker than this share of the brightest are not judged (sky at night, ground).
+const RECHECK_EMPTY: f64 = 0.02;
+
+/// How a fresh trace compares with a committed truth.
+#[derive(Clone, Debug)]
+pub(crate) struct Recheck {
+    /// The largest |z| of an 8x8 block's mean luminance.
+    pub worst_block_z: f64,
+    /// The z of all judged blocks' summed difference.
+    pub pooled_z: f64,
+    /// The summed difference over the truth's summed luminance (fresh - truth).
+    pub relative: f64,
+    /// The uniform relative bias the pooled check would just see.
+    pub detectable: f64,
+    /// Blocks judged.
+    pub blocks: usize,
+}
+
+impl Recheck {
+    /// Within noise: every block and the pool within their bounds.
+    pub fn agrees(&self) -> bool {
+        self.worst_block_z < RECHECK_BLOCK_Z && self.pooled_z.abs() < RECHECK_POOLED_Z
+    }
+}
+
+/// Compares a fresh trace (`fresh` with its `history-meta`, `fresh_paths` a pixel) with a
+/// truth of `truth_paths` a pixel, per 8x8 block of mean luminance: the truth's variance is
+/// the fresh one's scaled by the ratio of paths (it has no moments of its own).
+pub(crate) fn recheck(
+    truth: &FrameOutput,
+    truth_paths: u32,
+    fresh: &FrameOutput,
+) -> Result<Recheck> {
+    let meta = fresh
+        .resources
+        .get("history-meta")
+        .context("the fresh trace has no history-meta to estimate its noise")?;
+    let f = stratus_graph::block_means(fresh, meta, 8).context("the fresh trace's blocks")?;
+    let t = stratus_graph::block_means(truth, meta, 8).context("the truth's blocks")?;
+    let paths = meta
+        .get(4..8)
+        .map(|c| f64::from(f32::from_le_bytes([c[0], c[1], c[2], c[3]])))
+        .unwrap_or(0.0);
+    anyhow::ensure!(paths > 1.0, "the fresh trace has {paths} paths a pixel");
+    let scale = 1.0 + paths / f64::from(truth_paths.max(1));
+    let brightest = t.iter().map(|b| b.mean).fold(0.0, f64::max);
+    let (mut diff, mut var, mut total, mut blocks, mut worst) = (0.0, 0.0, 0.0, 0, 0.0f64);
+    for (a, b) in f.iter().zip(&t) {
+        if b.mean <= RECHECK_EMPTY * brightest || a.variance <= 0.0 {
+            continue;
+        }
+        let v = a.variance * scale;
+        worst = worst.max(((a.mean - b.mean) / v.sqrt()).abs());
+        diff += a.mean - b.mean;
+        var += v;
+        total += b.mean;
+        blocks += 1;
+    }
+    anyhow::ensure!(blocks > 0, "no block of the truth holds light to compare");
+    Ok(Recheck {
+        worst_block_z: worst,
+        pooled_z: diff / var.sqrt(),
+        relative: diff / total,
+        detectable: RECHECK_POOLED_Z * var.sqrt() / total,
+        blocks,
+    })
+}
+
+/// Traces `scene` afresh with `paths` a pixel on `gpu` (with the moments of its noise).
+pub(crate) fn fresh_trace(
+    gpu: &mut dyn Backend,
+    scene: &Scene,
+    noise: &Arc<NoiseSet>,
+    paths: u32,
+) -> Result<FrameOutput> {
+    let (_, s, _) = reference_for(scene);
+    let bar = indicatif::ProgressBar::new(u64::from(paths));
+    if let Ok(style) = indicatif::ProgressStyle::with_template(
+        "recheck [{elapsed_precise}] {wide_bar} {pos}/{len} paths per pixel",
+    ) {
+        bar.set_style(style);
+    }
+    let f = pathtrace_gpu(gpu, &s, noise, paths, &|i| bar.set_position(u64::from(i)))?;
+    bar.finish_and_clear();
+    Ok(f)
+}
+
 fn encode(f: &FrameOutput) -> Vec<u8> {
     let mut out = Vec::new();
     out.extend(f.width.to_le_bytes());
@@ -273,7 +526,8 @@ fn encode(f: &FrameOutput) -> Vec<u8> {
     out
 }
 
-fn decode(b: &[u8], w: u32, h: u32) -> Option<FrameOutput> {
+/// A truth's file (`encode`'s bytes) of a `w` x `h` image; `None` where it is not one.
+pub(crate) fn decode(b: &[u8], w: u32, h: u32) -> Option<FrameOutput> {
     let n = (w * h) as usize;
     if b.len() != 8 + 16 * n + 4 * n || b[0..4] != w.to_le_bytes() || b[4..8] != h.to_le_bytes() {
         return None;
@@ -318,35 +572,41 @@ fn report_noise(out: &FrameOutput) {
 mod tests {
     use super::*;
 
-    /// The key leaves out exactly the light model's later terms: a reference's scene hashes as
-    /// it did before they existed, and nothing else drops out.
-    #[test]
-    fn the_key_drops_only_the_later_light_model_terms() {
-        let (_, s, _) = reference_for(&Scene::default());
-        let full = s.to_toml();
-        let key = key_toml(&s);
-        let dropped: Vec<&str> = full
-            .lines()
-            .filter(|l| !key.lines().any(|k| k == *l))
+    /// A `w` x `h` trace of luminance `lum` everywhere with `paths` paths a pixel of per-path
+    /// variance `var` (its `history-meta`).
+    fn trace(w: u32, h: u32, lum: f32, paths: f32, var: f32) -> FrameOutput {
+        let n = (w * h) as usize;
+        let mut f = FrameOutput {
+            width: w,
+            height: h,
+            radiance: (0..n).flat_map(|_| [lum, lum, lum, 0.0]).collect(),
+            ..Default::default()
+        };
+        // second moment = var (paths - 1) / paths + lum^2 gives back `var` per path.
+        let second = var * (paths - 1.0) / paths + lum * lum;
+        let meta = (0..n)
+            .flat_map(|_| [0.0f32, paths, second, 0.0])
+            .flat_map(f32::to_le_bytes)
             .collect();
-        assert_eq!(
-            dropped,
-            [
-                "side_light = 0.0",
-                "coverage_exponent = 0.0",
-                "far_chord_m = 0.0",
-                "limb_darkening = 0.0",
-                "forward_lobe = 0.0",
-                "forward_lobe_g = 0.0",
-                "vertical_anisotropy = 0.0",
-                "deck_escape = 0.0",
-                "steep_light = 0.0",
-                "steep_light_scale = 1.0",
-                "downward_dimming = 0.0"
-            ],
-            "{full}"
-        );
-        assert_eq!(full.lines().count(), key.lines().count() + 11);
+        f.resources.insert("history-meta".into(), meta);
+        f
+    }
+
+    /// Noise alone agrees; a uniform bias the pooled check can see does not, although every
+    /// block alone is within its bound.
+    #[test]
+    fn recheck_sees_a_uniform_bias_that_no_block_shows() {
+        let truth = trace(64, 32, 1.0, 8192.0, 1.0);
+        // 128 paths of per-path variance 1: a block's mean has a standard error of
+        // 1 / sqrt(64 * 128) = 1.1%.
+        let same = recheck(&truth, 8192, &trace(64, 32, 1.0, 128.0, 1.0)).unwrap();
+        assert!(same.agrees() && same.pooled_z.abs() < 1e-9, "{same:?}");
+        // 2% brighter: each block's z is about 1.8, the 32 blocks' pooled z about 10.
+        let bright = recheck(&truth, 8192, &trace(64, 32, 1.02, 128.0, 1.0)).unwrap();
+        assert!(bright.worst_block_z < RECHECK_BLOCK_Z, "{bright:?}");
+        assert!(!bright.agrees() && bright.pooled_z > 5.0, "{bright:?}");
+        assert!((bright.relative - 0.02).abs() < 1e-6, "{bright:?}");
+        assert_eq!(bright.blocks, 32);
     }
 
     #[test]
