@@ -232,6 +232,25 @@ fn training_scenes() -> Result<Vec<(String, Scene)>> {
         .collect()
 }
 
+/// The scenes the fit never trains on: the presets, by their names, and the weather states
+/// on the default scene (`stratus weather --state NAME`), as `weather NAME`.
+fn held_out_scenes() -> Result<Vec<(String, Scene)>> {
+    let mut out: Vec<(String, Scene)> = stratus_scene::presets()
+        .iter()
+        .map(|p| {
+            Scene::preset(p.name)
+                .map(|s| (p.name.to_string(), s))
+                .map_err(|e| anyhow::anyhow!("{e}"))
+        })
+        .collect::<Result<_>>()?;
+    for state in &stratus_weather::states::STATES {
+        let mut scene = Scene::default();
+        state.params.apply(&mut scene);
+        out.push((format!("weather {}", state.name), scene));
+    }
+    Ok(out)
+}
+
 /// The training scenes and presets that `--scenes` names (all of them when it names none); an
 /// error for a name that is neither.
 type Named = Vec<(String, Scene)>;
@@ -328,15 +347,10 @@ fn recheck_truths(paths: u32) -> Result<()> {
         dir.display(),
         renderer.describe()
     );
-    let presets: Vec<(String, Scene)> = stratus_scene::presets()
-        .iter()
-        .map(|p| {
-            Scene::preset(p.name)
-                .map(|s| (p.name.to_string(), s))
-                .map_err(|e| anyhow::anyhow!("{e}"))
-        })
-        .collect::<Result<_>>()?;
-    let scenes: Vec<(String, Scene)> = training_scenes()?.into_iter().chain(presets).collect();
+    let scenes: Vec<(String, Scene)> = training_scenes()?
+        .into_iter()
+        .chain(held_out_scenes()?)
+        .collect();
     let mut fresh: BTreeMap<String, FrameOutput> = BTreeMap::new();
     let mut differ = Vec::new();
     let old_files: Vec<String> = rows.iter().map(|r| r.file.clone()).collect();
@@ -814,14 +828,7 @@ pub fn run(args: FitArgs) -> Result<()> {
         renderer.describe(),
         args.spp
     );
-    let held_out: Vec<(String, Scene)> = stratus_scene::presets()
-        .iter()
-        .map(|p| {
-            Scene::preset(p.name)
-                .map(|s| (p.name.to_string(), s))
-                .map_err(|e| anyhow::anyhow!("{e}"))
-        })
-        .collect::<Result<_>>()?;
+    let held_out = held_out_scenes()?;
     let mut cases = |list: Vec<(String, Scene)>| -> Result<Vec<Case>> {
         let mut out = Vec::new();
         for (name, scene) in list {

@@ -384,6 +384,33 @@ pub const DECLARED_SUBSTITUTIONS: &[(Lang, &str, &str, &str)] = &[
     ),
 ];
 
+/// Whether `pass` may run from the committed SPIR-V on the `lang` path for the backend's
+/// `reason`: only as [`DECLARED_SUBSTITUTIONS`] lists (that pass, that path, that reason).
+fn may_substitute(lang: Lang, pass: &str, reason: &str) -> Result<(), String> {
+    if DECLARED_SUBSTITUTIONS
+        .iter()
+        .any(|(l, p, why, _)| *l == lang && *p == pass && reason.contains(why))
+    {
+        Ok(())
+    } else {
+        Err(format!(
+            "pass `{pass}` cannot run from the {lang:?} module ({reason}), and that is not a declared substitution (DECLARED_SUBSTITUTIONS in tests/tests/conformance/paths.rs)"
+        ))
+    }
+}
+
+/// Only the declared substitutions pass: another pass, another path or another reason fails
+/// the path.
+#[test]
+fn an_undeclared_substitution_fails_the_path() {
+    let sampler_limit = "binding needs 2048 samplers: maxPerStageDescriptorSamplers is 32";
+    assert!(may_substitute(Lang::Hlsl, "march", sampler_limit).is_ok());
+    let undeclared = may_substitute(Lang::Hlsl, "pathtrace", sampler_limit).unwrap_err();
+    assert!(undeclared.contains("`pathtrace`") && undeclared.contains("not a declared"));
+    assert!(may_substitute(Lang::Glsl, "march", sampler_limit).is_err());
+    assert!(may_substitute(Lang::Hlsl, "march", "out of device memory").is_err());
+}
+
 /// Renders once to find the passes whose module the device cannot bind (the backend says so
 /// with `Error::Unsupported` before creating anything), and runs those from the committed
 /// SPIR-V instead, so that the rest of the path's shaders still run; only the substitutions
@@ -408,14 +435,7 @@ fn prepare(
             Err(ash_backend::Error::Unsupported { pass, reason, .. })
                 if !substituted.iter().any(|(p, _)| *p == pass) =>
             {
-                if !DECLARED_SUBSTITUTIONS
-                    .iter()
-                    .any(|(l, p, why, _)| *l == lang && *p == pass && reason.contains(why))
-                {
-                    return Err(format!(
-                        "pass `{pass}` cannot run from the {lang:?} module ({reason}), and that is not a declared substitution (DECLARED_SUBSTITUTIONS in tests/tests/conformance/paths.rs)"
-                    ));
-                }
+                may_substitute(lang, &pass, &reason)?;
                 // The supplied list holds the compute passes, in plan order.
                 let computes: Vec<_> = plan
                     .passes

@@ -56,6 +56,11 @@ fn reference_for(scene: &Scene) -> (Integrator, Scene, bool) {
     s.quality.frame = d.frame;
     // The baselines draw the same density: their truth is the volumetric model's.
     s.quality.method = d.method;
+    // What the composite adds in front of the clouds' radiance (the post effects, the
+    // rainbow) and the display's exposure: a stylised preset shares its clouds' truth.
+    s.post = stratus_scene::Post::default();
+    s.rainbow = stratus_scene::Rainbow::default();
+    s.camera.exposure_range = None;
     let mc = scene.lighting.multiple_scattering.octaves > 0;
     if mc {
         // Real-time-only terms the path tracer does not model, set to fixed values (not the
@@ -80,18 +85,6 @@ fn reference_for(scene: &Scene) -> (Integrator, Scene, bool) {
             false,
         )
     }
-}
-
-/// The scene's TOML as the cache key hashes it: without what the path tracer does not render
-/// (the post effects, the exposure's range: the truth is the clouds' radiance; the rainbow,
-/// which the composite adds in front of them), so that a stylised preset shares its clouds'
-/// truth.
-fn key_toml(s: &Scene) -> String {
-    let mut s = s.clone();
-    s.post = stratus_scene::Post::default();
-    s.rainbow = stratus_scene::Rainbow::default();
-    s.camera.exposure_range = None;
-    s.to_toml()
 }
 
 /// The scene the GPU path tracer renders for `scene`'s all-orders truth: the path-traced
@@ -222,7 +215,7 @@ pub(crate) fn reference_key(
     }
     let on_gpu = mc && on_gpu;
     let mut h = Sha256::new();
-    h.update(key_toml(&s).as_bytes());
+    h.update(s.to_toml().as_bytes());
     h.update(format!("{integrator:?}").as_bytes());
     if on_gpu {
         h.update(b"gpu-pathtrace");
