@@ -12,18 +12,14 @@ use std::{path::Path, process::Command};
 /// measured.
 const TABLE_ROUNDING: f64 = 5e-5;
 
-/// Runs `stratus` in the repository's root (the committed truths are found from there).
-fn stratus_in_root(args: &[&str]) -> (bool, String) {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+/// Runs `stratus` in `dir` (`--committed` finds the truths from the working directory) with
+/// its cache in `cache`: whether it succeeded, and its stdout and stderr together.
+fn stratus_in(dir: &Path, cache: &Path, args: &[&str]) -> (bool, String) {
     let out = Command::new(env!("CARGO_BIN_EXE_stratus"))
         .args(args)
-        .current_dir(&root)
+        .current_dir(dir)
         .env("XDG_RUNTIME_DIR", std::env::temp_dir())
-        // The cache is not read with --committed; kept out of the repository all the same.
-        .env(
-            "XDG_CACHE_HOME",
-            Path::new(env!("CARGO_TARGET_TMPDIR")).join("cache"),
-        )
+        .env("XDG_CACHE_HOME", cache)
         .output()
         .expect("running stratus");
     let text = format!(
@@ -32,6 +28,14 @@ fn stratus_in_root(args: &[&str]) -> (bool, String) {
         String::from_utf8_lossy(&out.stderr)
     );
     (out.status.success(), text)
+}
+
+/// Runs `stratus` in the repository's root, where the committed truths are (the cache is not
+/// read with --committed; kept out of the repository all the same).
+fn stratus_in_root(args: &[&str]) -> (bool, String) {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let cache = Path::new(env!("CARGO_TARGET_TMPDIR")).join("cache");
+    stratus_in(&root, &cache, args)
 }
 
 /// `scenes.csv`'s rows: scene, set and FLIP after (the current defaults).
@@ -120,8 +124,8 @@ fn every_preset_measures_against_its_committed_truth_as_the_table_says() {
     );
 }
 
-/// A truth filed under another key (here: none for a scene the index lacks) is refused by name
-/// rather than measured against or rendered.
+/// A truth filed under another key (here: an index row whose file is no key of this build) is
+/// refused by name rather than measured against or rendered.
 #[test]
 fn committed_evaluation_refuses_a_stale_or_missing_truth() {
     let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("accuracy-stale");
@@ -134,8 +138,10 @@ fn committed_evaluation_refuses_a_stale_or_missing_truth() {
         "file,scene,set,paths_per_pixel,width,height\nref-000000000000000000000000.bin,\"storm\",held-out,8192,64,36\n",
     )
     .unwrap();
-    let out = Command::new(env!("CARGO_BIN_EXE_stratus"))
-        .args([
+    let (ok, text) = stratus_in(
+        &dir,
+        &dir.join("cache"),
+        &[
             "fit-scattering",
             "--evaluate",
             "--committed",
@@ -145,14 +151,9 @@ fn committed_evaluation_refuses_a_stale_or_missing_truth() {
             "storm",
             "--out",
             "out",
-        ])
-        .current_dir(&dir)
-        .env("XDG_RUNTIME_DIR", std::env::temp_dir())
-        .env("XDG_CACHE_HOME", dir.join("cache"))
-        .output()
-        .expect("running stratus");
-    let text = String::from_utf8_lossy(&out.stderr);
-    assert!(!out.status.success(), "{text}");
+        ],
+    );
+    assert!(!ok, "{text}");
     assert!(
         text.contains("`storm`")
             && text.contains("another key")

@@ -329,18 +329,24 @@ fn write_truths(dir: &std::path::Path, train: &[Case], test: &[Case], spp: u32) 
     bench::write_index(dir, &index)
 }
 
-/// `--recheck-truths`: every committed truth whose key is not this build's is traced afresh
-/// with `paths` a pixel and, where the two agree within noise, filed under the new key.
-fn recheck_truths(paths: u32) -> Result<()> {
-    let dir = PathBuf::from(bench::COMMITTED_TRUTHS);
-    let mut rows = bench::read_index(&dir)?;
-    let mut renderer = open(
+/// The renderer the truths are traced and the fit measured on: the GPU path tracer on wgpu's
+/// Vulkan backend, without validation (thousands of frames).
+fn open_tracer() -> Result<Box<dyn Backend>> {
+    open(
         backends::Backend::Wgpu,
         &Open {
             validation: false,
             ..Open::default()
         },
-    )?;
+    )
+}
+
+/// `--recheck-truths`: every committed truth whose key is not this build's is traced afresh
+/// with `paths` a pixel and, where the two agree within noise, filed under the new key.
+fn recheck_truths(paths: u32) -> Result<()> {
+    let dir = PathBuf::from(bench::COMMITTED_TRUTHS);
+    let mut rows = bench::read_index(&dir)?;
+    let mut renderer = open_tracer()?;
     eprintln!(
         "rechecking {} truths in {} on {} with {paths} paths a pixel",
         rows.len(),
@@ -814,15 +820,7 @@ pub fn run(args: FitArgs) -> Result<()> {
     let defaults = with_sets(&args.set)?;
     let moves = descent_mask(&args.only)?;
     let (w, h) = args.size;
-    // The truths are the GPU path tracer's, on wgpu's Vulkan backend, without validation
-    // (thousands of frames).
-    let mut renderer = open(
-        backends::Backend::Wgpu,
-        &Open {
-            validation: false,
-            ..Open::default()
-        },
-    )?;
+    let mut renderer = open_tracer()?;
     eprintln!(
         "fit on {}: {w}x{h}, truths of {} paths per pixel (GPU path tracer)",
         renderer.describe(),

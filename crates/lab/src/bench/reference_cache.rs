@@ -287,15 +287,7 @@ pub(crate) fn reference(
     }
     let f = match gpu {
         Some(r) if mc => {
-            // Minutes on lavapipe: a bar of paths (drawn on a terminal only).
-            let bar = indicatif::ProgressBar::new(u64::from(mc_spp));
-            if let Ok(style) = indicatif::ProgressStyle::with_template(
-                "all-orders truth [{elapsed_precise}] {wide_bar} {pos}/{len} paths per pixel",
-            ) {
-                bar.set_style(style);
-            }
-            let f = pathtrace_gpu(r, &s, noise, mc_spp, &|i| bar.set_position(u64::from(i)))?;
-            bar.finish_and_clear();
+            let f = traced_with_bar(r, &s, noise, mc_spp, "all-orders truth")?;
             report_noise(&f);
             f
         }
@@ -497,13 +489,25 @@ pub(crate) fn fresh_trace(
     paths: u32,
 ) -> Result<FrameOutput> {
     let (_, s, _) = reference_for(scene);
+    traced_with_bar(gpu, &s, noise, paths, "recheck")
+}
+
+/// [`pathtrace_gpu`] with a bar of paths named `what` (minutes on lavapipe; drawn on a
+/// terminal only).
+fn traced_with_bar(
+    gpu: &mut dyn Backend,
+    s: &Scene,
+    noise: &Arc<NoiseSet>,
+    paths: u32,
+    what: &str,
+) -> Result<FrameOutput> {
     let bar = indicatif::ProgressBar::new(u64::from(paths));
-    if let Ok(style) = indicatif::ProgressStyle::with_template(
-        "recheck [{elapsed_precise}] {wide_bar} {pos}/{len} paths per pixel",
-    ) {
+    if let Ok(style) = indicatif::ProgressStyle::with_template(&format!(
+        "{what} [{{elapsed_precise}}] {{wide_bar}} {{pos}}/{{len}} paths per pixel"
+    )) {
         bar.set_style(style);
     }
-    let f = pathtrace_gpu(gpu, &s, noise, paths, &|i| bar.set_position(u64::from(i)))?;
+    let f = pathtrace_gpu(gpu, s, noise, paths, &|i| bar.set_position(u64::from(i)))?;
     bar.finish_and_clear();
     Ok(f)
 }
