@@ -5,37 +5,35 @@
 //! the README's claim is read from (`docs/fit/scenes.csv`, whose claim `docs_numbers` checks):
 //! a change that moves a preset's error fails here until the table says so.
 
-use std::{path::Path, process::Command};
+mod common;
+
+use std::path::Path;
 
 /// How far a preset's FLIP may be from the committed table's: the table's rounding (4
 /// decimals). The march and the composite are deterministic on lavapipe, where the table was
 /// measured.
 const TABLE_ROUNDING: f64 = 5e-5;
 
-/// Runs `stratus` in `dir` (`--committed` finds the truths from the working directory) with
-/// its cache in `cache`: whether it succeeded, and its stdout and stderr together.
-fn stratus_in(dir: &Path, cache: &Path, args: &[&str]) -> (bool, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_stratus"))
-        .args(args)
-        .current_dir(dir)
-        .env("XDG_RUNTIME_DIR", std::env::temp_dir())
-        .env("XDG_CACHE_HOME", cache)
-        .output()
-        .expect("running stratus");
-    let text = format!(
-        "{}{}",
-        String::from_utf8_lossy(&out.stdout),
-        String::from_utf8_lossy(&out.stderr)
-    );
-    (out.status.success(), text)
-}
-
-/// Runs `stratus` in the repository's root, where the committed truths are (the cache is not
-/// read with --committed; kept out of the repository all the same).
-fn stratus_in_root(args: &[&str]) -> (bool, String) {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
-    let cache = Path::new(env!("CARGO_TARGET_TMPDIR")).join("cache");
-    stratus_in(&root, &cache, args)
+/// `stratus fit-scattering --evaluate --committed --octaves 3 --scenes SCENES --out OUT` in
+/// `dir` (`--committed` finds the truths from the working directory), with its cache in
+/// `cache` (not read with --committed; kept out of the repository all the same).
+fn evaluate_committed(dir: &Path, cache: &Path, scenes: &str, out: &str) -> (bool, String) {
+    let cache = cache.to_str().expect("a UTF-8 cache path");
+    common::stratus_in(
+        dir,
+        &[
+            "fit-scattering",
+            "--evaluate",
+            "--committed",
+            "--octaves",
+            "3",
+            "--scenes",
+            scenes,
+            "--out",
+            out,
+        ],
+        &[("XDG_CACHE_HOME", cache)],
+    )
 }
 
 /// `scenes.csv`'s rows: scene, set and FLIP after (the current defaults).
@@ -81,17 +79,12 @@ fn every_preset_measures_against_its_committed_truth_as_the_table_says() {
     );
     // As `--scenes` spells them: `weather few` is `weather-few`.
     let slugs: Vec<String> = expected.iter().map(|s| s.replace(' ', "-")).collect();
-    let (ok, text) = stratus_in_root(&[
-        "fit-scattering",
-        "--evaluate",
-        "--committed",
-        "--octaves",
-        "3",
-        "--scenes",
+    let (ok, text) = evaluate_committed(
+        &root,
+        &Path::new(env!("CARGO_TARGET_TMPDIR")).join("cache"),
         &slugs.join(","),
-        "--out",
         out.to_str().unwrap(),
-    ]);
+    );
     assert!(ok, "{text}");
     let csv = std::fs::read_to_string(out.join("scenes.csv")).expect("scenes.csv");
     let measured = rows(&csv);
@@ -138,21 +131,7 @@ fn committed_evaluation_refuses_a_stale_or_missing_truth() {
         "file,scene,set,paths_per_pixel,width,height\nref-000000000000000000000000.bin,\"storm\",held-out,8192,64,36\n",
     )
     .unwrap();
-    let (ok, text) = stratus_in(
-        &dir,
-        &dir.join("cache"),
-        &[
-            "fit-scattering",
-            "--evaluate",
-            "--committed",
-            "--octaves",
-            "3",
-            "--scenes",
-            "storm",
-            "--out",
-            "out",
-        ],
-    );
+    let (ok, text) = evaluate_committed(&dir, &dir.join("cache"), "storm", "out");
     assert!(!ok, "{text}");
     assert!(
         text.contains("`storm`")

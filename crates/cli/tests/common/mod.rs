@@ -8,7 +8,19 @@ use std::{
 /// Runs `stratus` with `args` and the extra environment `env`: whether it succeeded, and its
 /// stdout and stderr together.
 pub fn stratus_with(args: &[&str], env: &[(&str, &str)]) -> (bool, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_stratus"))
+    run(Command::new(env!("CARGO_BIN_EXE_stratus")), args, env)
+}
+
+/// Runs `stratus` with `args` and the extra environment `env` in the working directory `dir`.
+#[allow(dead_code)] // not every test file uses it
+pub fn stratus_in(dir: &Path, args: &[&str], env: &[(&str, &str)]) -> (bool, String) {
+    let mut cmd = Command::new(env!("CARGO_BIN_EXE_stratus"));
+    cmd.current_dir(dir);
+    run(cmd, args, env)
+}
+
+fn run(mut cmd: Command, args: &[&str], env: &[(&str, &str)]) -> (bool, String) {
+    let out = cmd
         .args(args)
         .env("XDG_RUNTIME_DIR", std::env::temp_dir())
         .envs(env.iter().copied())
