@@ -236,11 +236,31 @@ impl Renderers {
         noise: &Arc<NoiseSet>,
         stats: bool,
     ) -> Result<Rendered, String> {
-        self.render_frame(path, scene, noise, stats, false)
+        self.render_frame(path, scene, noise, stats, false, &[])
+    }
+
+    /// [`Renderers::render`] with every computed persistent resource (the air's tables)
+    /// computed again, so that every pass of the plan runs in this frame: the ash/wgpu time
+    /// ratio then has a pair for each pass in every round.
+    pub fn render_every_pass(
+        &mut self,
+        path: Path,
+        scene: &Scene,
+        noise: &Arc<NoiseSet>,
+    ) -> Result<Rendered, String> {
+        let plan = FramePlan::for_scene(scene, false).map_err(|e| e.to_string())?;
+        let computed: Vec<&str> = plan
+            .resources
+            .iter()
+            .filter(|r| r.is_computed_persistent())
+            .map(|r| r.name.as_str())
+            .collect();
+        self.render_frame(path, scene, noise, false, false, &computed)
     }
 
     /// [`Renderers::render`] as a frame of a sequence: `cut` starts the history over (the
     /// first frame of a path's sequence), otherwise the renderer reprojects last frame's.
+    /// `invalidate` names computed persistent resources to compute again in this frame.
     pub fn render_frame(
         &mut self,
         path: Path,
@@ -248,9 +268,10 @@ impl Renderers {
         noise: &Arc<NoiseSet>,
         stats: bool,
         cut: bool,
+        invalidate: &[&str],
     ) -> Result<Rendered, String> {
         let plan = FramePlan::for_scene(scene, stats).map_err(|e| e.to_string())?;
-        let mut frame = FrameInput::new(&plan, scene, noise);
+        let mut frame = FrameInput::new(&plan, scene, noise).with_invalidated(invalidate);
         if cut {
             frame = frame.with_cut();
         }

@@ -116,7 +116,7 @@ fn render_path(
 ) -> Result<Vec<FrameOutput>, String> {
     (0..FRAMES)
         .map(|i| {
-            r.render_frame(path, &frame(scene, i), noise, false, i == 0)
+            r.render_frame(path, &frame(scene, i), noise, false, i == 0, &[])
                 .map(|done| done.frame)
                 .map_err(|e| format!("frame {i}: {e}"))
         })
