@@ -153,7 +153,7 @@ pub(crate) fn ci(root: &Path) -> Result<()> {
     // The browser path first: the conformance suite's `web-tint` column reads its results.
     step("web-test", || web_test(root).map(|_| ()))?;
     step("fuzz (10 s a target)", || {
-        let r = fuzz(root, 10, None, &[]);
+        let r = fuzz(root, 10, None, &[], false);
         // The sanitizer build is of no use to the steps after it; its disk is.
         let _ = std::fs::remove_dir_all(root.join("fuzz/target"));
         r

@@ -1,4 +1,5 @@
-//! `cargo xtask fuzz`: replay `fuzz/regressions`, then run every cargo-fuzz target.
+//! `cargo xtask fuzz`: replay `fuzz/regressions`, then run every cargo-fuzz target from its
+//! committed corpus (`fuzz/seeds/<target>/`) and the seeds the project's files give.
 
 use std::{
     path::{Path, PathBuf},
@@ -17,12 +18,29 @@ pub(crate) const FUZZ_TARGETS: [&str; 6] = [
     "utc_date",
 ];
 
-/// `cargo xtask fuzz --seconds N [--runs N] [--target NAME]...`.
+/// The committed corpus of `target`: the fewest inputs that reach every edge earlier runs
+/// reached, kept by `cargo xtask fuzz --update-seeds`, so that every run starts where earlier
+/// runs got to rather than from the project's files alone.
+fn committed_seeds(root: &Path, target: &str) -> PathBuf {
+    root.join("fuzz/seeds").join(target)
+}
+
+/// How many files `dir` holds (0 when it does not exist).
+fn count_files(dir: &Path) -> usize {
+    std::fs::read_dir(dir).map_or(0, |d| {
+        d.flatten()
+            .filter(|e| e.file_type().is_ok_and(|t| t.is_file()))
+            .count()
+    })
+}
+
+/// `cargo xtask fuzz --seconds N [--runs N] [--target NAME]... [--update-seeds]`.
 pub(crate) fn fuzz(
     root: &Path,
     seconds: u32,
     runs_limit: Option<u64>,
     only: &[String],
+    update_seeds: bool,
 ) -> Result<()> {
     let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
     let have = Command::new(&cargo)
@@ -75,6 +93,16 @@ pub(crate) fn fuzz(
         }
         let mut done = String::new();
         let seeds = write_seeds(root, target)?;
+        let committed = committed_seeds(root, target);
+        let committed_before = count_files(&committed);
+        if committed_before == 0 && !update_seeds {
+            bail!(
+                "{}: no committed corpus for fuzz target {target}; make one with `cargo xtask fuzz --target {target} --update-seeds` and commit it",
+                committed.display()
+            );
+        }
+        std::fs::create_dir_all(&committed)
+            .with_context(|| format!("creating {}", committed.display()))?;
         for extra in runs {
             let fuzzing = extra.is_empty();
             let mut cmd = Command::new(&cargo);
@@ -87,7 +115,7 @@ pub(crate) fn fuzz(
                 let corpus = root.join("fuzz/corpus").join(target);
                 std::fs::create_dir_all(&corpus)
                     .with_context(|| format!("creating {}", corpus.display()))?;
-                cmd.arg(&corpus).arg(&seeds.0);
+                cmd.arg(&corpus).arg(&committed).arg(&seeds.0);
             }
             cmd.arg("--");
             if fuzzing {
@@ -106,14 +134,20 @@ pub(crate) fn fuzz(
             );
             if !out.status.success() {
                 eprintln!("{text}");
-                bail!(
-                    "fuzz target {target} crashed ({}); its input is in fuzz/artifacts/{target}/",
-                    if fuzzing {
-                        "fuzzing"
-                    } else {
-                        "replaying fuzz/regressions"
-                    }
-                );
+                let doing = if fuzzing {
+                    "fuzzing"
+                } else {
+                    "replaying fuzz/regressions"
+                };
+                // libFuzzer names the input it saved; without that line the target did not
+                // crash on an input (a missing folder, a bad flag) and there is none to keep.
+                match text.lines().find(|l| l.contains("Test unit written to")) {
+                    Some(line) => bail!("fuzz target {target} crashed ({doing}): {}", line.trim()),
+                    None => bail!(
+                        "fuzz target {target} failed ({doing}, {}) without saving an input: see libFuzzer's output above",
+                        out.status
+                    ),
+                }
             }
             if fuzzing {
                 // libFuzzer ends a run it finished with "Done N runs in S second(s)"; a run
@@ -135,8 +169,17 @@ pub(crate) fn fuzz(
                 };
             }
         }
+        let updated = if update_seeds {
+            merge_into_committed(root, &cargo, target, &committed)?;
+            format!(
+                "; committed corpus {committed_before} -> {} inputs",
+                count_files(&committed)
+            )
+        } else {
+            String::new()
+        };
         println!(
-            "fuzz {target:12} {} regression input(s) replayed, {} seed(s); {done}; 0 crashes",
+            "fuzz {target:12} {} regression input(s) replayed, {committed_before} committed and {} generated seed(s); {done}; 0 crashes{updated}",
             inputs.len(),
             seeds.1
         );
@@ -144,6 +187,45 @@ pub(crate) fn fuzz(
     }
     println!("fuzz: {} targets, no crash", rows.len());
     Ok(())
+}
+
+/// Replaces the committed corpus with the smallest set of inputs, from it, this run's corpus
+/// and the generated seeds, that reaches every edge they reach: libFuzzer's greedy
+/// `-set_cover_merge=1`, over edges alone (`-use_counters=0`; hit counts would keep thousands
+/// of near-copies). Written beside it, then swapped in, so an interrupted merge leaves the old
+/// corpus.
+fn merge_into_committed(root: &Path, cargo: &str, target: &str, committed: &Path) -> Result<()> {
+    let corpus = root.join("fuzz/corpus").join(target);
+    let generated = crate::target_dir(root).join("fuzz-seeds").join(target);
+    let merged = committed.with_file_name(format!(".{target}.merging"));
+    let _ = std::fs::remove_dir_all(&merged);
+    std::fs::create_dir_all(&merged).with_context(|| format!("creating {}", merged.display()))?;
+    let out = Command::new(cargo)
+        .current_dir(root)
+        .args(["fuzz", "run", "--fuzz-dir", "fuzz", "-s", "none", target])
+        .arg(&merged)
+        .arg(committed)
+        .arg(&corpus)
+        .arg(&generated)
+        .args(["--", "-set_cover_merge=1", "-use_counters=0"])
+        .output()
+        .with_context(|| format!("running cargo fuzz run {target} -- -set_cover_merge=1"))?;
+    if !out.status.success() || count_files(&merged) == 0 {
+        eprintln!(
+            "{}{}",
+            String::from_utf8_lossy(&out.stdout),
+            String::from_utf8_lossy(&out.stderr)
+        );
+        bail!(
+            "merging fuzz target {target}'s corpus into {} failed ({}, {} inputs kept)",
+            committed.display(),
+            out.status,
+            count_files(&merged)
+        );
+    }
+    let _ = std::fs::remove_dir_all(committed);
+    std::fs::rename(&merged, committed)
+        .with_context(|| format!("renaming {} to {}", merged.display(), committed.display()))
 }
 
 /// Writes a target's seed inputs, taken from what the project commits (the scenes, the WGSL,

@@ -106,8 +106,9 @@ enum Task {
         #[arg(long, default_value_t = 8080)]
         port: u16,
     },
-    /// Replay fuzz/regressions, then fuzz every target (scene TOML, WGSL, PNG, EXR, METAR)
-    /// for N seconds each with cargo-fuzz (installed on first use); prints the runs.
+    /// Replay fuzz/regressions, then fuzz every target (scene TOML, WGSL, PNG, EXR, METAR,
+    /// UTC dates) for N seconds each with cargo-fuzz (installed on first use), starting from
+    /// its committed corpus (fuzz/seeds/<target>/) and the project's files; prints the runs.
     Fuzz {
         /// Seconds per target.
         #[arg(long, default_value_t = 60)]
@@ -119,6 +120,11 @@ enum Task {
         /// Only this target (repeatable); every target by default.
         #[arg(long, value_name = "NAME", value_parser = clap::builder::PossibleValuesParser::new(fuzz::FUZZ_TARGETS))]
         target: Vec<String>,
+        /// After fuzzing, replace the committed corpus (fuzz/seeds/<target>/) with the fewest
+        /// inputs, from it, this run's corpus and the project's files, that reach every edge
+        /// they reach (libFuzzer's -set_cover_merge=1); commit the result.
+        #[arg(long)]
+        update_seeds: bool,
     },
     /// Pack what the conformance suite needs on a machine with a GPU and no cargo (the test
     /// binary, `stratus`, glslang, SPIRV-Tools, the validation layer) into
@@ -202,7 +208,8 @@ fn main() -> ExitCode {
             seconds,
             runs,
             target,
-        } => fuzz::fuzz(&root, seconds, runs, &target),
+            update_seeds,
+        } => fuzz::fuzz(&root, seconds, runs, &target, update_seeds),
         Task::DeviceBundle => device::bundle(&root),
         Task::DeviceBench { peer_wgsl } => device::bench(&root, peer_wgsl.as_deref()),
         Task::EphemerisCheck { cases, events } => ephemeris::check(&root, cases, events),
