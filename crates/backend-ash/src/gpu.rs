@@ -587,6 +587,11 @@ impl Renderer {
             gpu.device
                 .reset_fences(&[gpu.fence])
                 .map_err(vk("vkResetFences"))?;
+            if self.injected_loss {
+                // `Backend::lose_device`: the driver's answer to a submission on a lost
+                // device, without submitting.
+                return Err(vk("vkQueueSubmit")(vk::Result::ERROR_DEVICE_LOST));
+            }
             gpu.device
                 .queue_submit(gpu.queue, &[submit], gpu.fence)
                 .map_err(vk("vkQueueSubmit"))?;

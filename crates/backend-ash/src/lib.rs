@@ -105,6 +105,8 @@ pub struct Renderer {
     torn_down: bool,
     /// The device was lost: every later frame says so at once.
     lost: Option<&'static str>,
+    /// [`Backend::lose_device`] was called: the next submission reports the loss.
+    injected_loss: bool,
     gpu: Gpu,
 }
 
@@ -140,6 +142,7 @@ impl Renderer {
             cpu_timing: false,
             torn_down: false,
             lost: None,
+            injected_loss: false,
             gpu,
         })
     }
@@ -601,6 +604,10 @@ impl Backend for Renderer {
     }
     fn validated(&self) -> bool {
         self.gpu.validation()
+    }
+    fn lose_device(&mut self) -> bool {
+        self.injected_loss = true;
+        true
     }
 }
 

@@ -154,8 +154,12 @@ impl Renderer {
         let lost = Arc::new(Mutex::new(None));
         let lost_sink = lost.clone();
         device.set_device_lost_callback(move |reason, message| {
-            *lost_sink.lock().unwrap_or_else(|e| e.into_inner()) =
-                Some(format!("{reason:?}: {message}"));
+            // wgpu gives no message for a destroyed device: the reason alone then.
+            *lost_sink.lock().unwrap_or_else(|e| e.into_inner()) = Some(if message.is_empty() {
+                format!("{reason:?}")
+            } else {
+                format!("{reason:?}: {message}")
+            });
         });
         let mut renderer = Self::build(device, queue, describe(&info), program);
         renderer.errors = Some(errors);

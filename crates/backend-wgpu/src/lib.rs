@@ -568,4 +568,8 @@ impl Backend for Renderer {
     fn validated(&self) -> bool {
         self.validation
     }
+    fn lose_device(&mut self) -> bool {
+        self.device().destroy();
+        true
+    }
 }

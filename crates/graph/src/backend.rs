@@ -225,6 +225,15 @@ pub trait Backend {
     fn validated(&self) -> bool {
         false
     }
+    /// Fault injection, for tests of what a host sees when the GPU goes away mid-sequence:
+    /// loses this renderer's device now, as a GPU hang or a driver reset would. wgpu destroys
+    /// its device (`wgpu::Device::destroy`, a real loss); on raw Vulkan a real loss cannot be
+    /// caused at will, so ash's next submission reports `VK_ERROR_DEVICE_LOST` instead of
+    /// running, and everything after it takes the path a real loss takes. Returns false
+    /// where the renderer has no device to lose (the CPU).
+    fn lose_device(&mut self) -> bool {
+        false
+    }
 }
 
 /// What kind of device an adapter is.

@@ -3,7 +3,7 @@
 
 use std::{collections::BTreeMap, io::IsTerminal as _, path::PathBuf, sync::Arc, time::Instant};
 
-use anyhow::{Context, Result};
+use anyhow::{Context, Result, bail};
 use clap::{Args, ValueEnum};
 use indicatif::{ProgressBar, ProgressStyle};
 use serde_json::json;
@@ -174,6 +174,21 @@ fn open_backend(backend: Backend, args: &RenderArgs) -> Result<Box<dyn stratus_g
     })
 }
 
+/// Fault injection for the tests of a device lost mid-sequence (`crates/cli/tests/device_loss.rs`):
+/// set to a frame number, `stratus render` loses its renderer's device just before that frame
+/// ([`stratus_graph::Backend::lose_device`]).
+pub const LOSE_DEVICE_AT_FRAME: &str = "STRATUS_LOSE_DEVICE_AT_FRAME";
+
+/// The frame [`LOSE_DEVICE_AT_FRAME`] names, if set.
+fn lose_device_at() -> Result<Option<u32>> {
+    match std::env::var(LOSE_DEVICE_AT_FRAME) {
+        Ok(v) => v.parse().map(Some).map_err(|e| {
+            anyhow::anyhow!("{LOSE_DEVICE_AT_FRAME}={v:?}: expected a frame number ({e})")
+        }),
+        Err(_) => Ok(None),
+    }
+}
+
 /// `--temporal`'s values.
 pub fn parse_temporal(s: &str) -> Result<Temporal, String> {
     s.parse()
@@ -341,6 +356,7 @@ pub fn run(args: RenderArgs) -> Result<()> {
         r.render(input).map_err(|e| anyhow::anyhow!("{e}"))
     };
 
+    let lose_at = lose_device_at()?;
     let bar = progress(frame_count);
     let t = Instant::now();
     let mut frames: Vec<(f64, Vec<stratus_graph::PassTiming>)> = Vec::new();
@@ -368,10 +384,28 @@ pub fn run(args: RenderArgs) -> Result<()> {
         } else {
             Readback::none()
         };
+        if lose_at == Some(i) && !renderer.lose_device() {
+            bail!(
+                "{LOSE_DEVICE_AT_FRAME}={i}: {} has no device to lose",
+                renderer.describe()
+            );
+        }
         let out = render(
             &mut renderer,
             &FrameInput::new(&plan, &s, &noise).with_readback(readback),
-        )?;
+        )
+        .with_context(|| {
+            let kept = match &args.sequence {
+                Some(dir) if i > 0 => {
+                    format!("; frames 0 to {} are complete in {}", i - 1, dir.display())
+                }
+                _ => String::new(),
+            };
+            format!(
+                "rendering frame {i} of frames 0 to {}{kept}",
+                frame_count - 1
+            )
+        })?;
         frames.push((out.cpu_ms, out.timings.clone()));
         // A flash of brightness 0 shows nothing: not counted.
         flashes.push(stratus_scene::lightning::flash(&s).filter(|_| s.lightning.brightness > 0.0));
