@@ -209,7 +209,9 @@ fn web_tint(name: &str, reference: Option<&FrameOutput>) -> Cell {
                     outliers: f64::NAN,
                     worst: "display image only".into(),
                 };
-                if let Some(t) = report::thresholds(Path::WebTint, name) {
+                if let Some(t) =
+                    report::thresholds(Path::WebTint, name, report::DeviceClass::Golden)
+                {
                     cell.problems.extend(t.check(&m));
                 }
                 cell.metrics = Some(m);
@@ -561,7 +563,7 @@ impl SceneResult {
                 cell.timings = f.timings.clone();
                 match Metrics::between(reference, f) {
                     Ok(m) => {
-                        if let Some(t) = report::thresholds(path, name) {
+                        if let Some(t) = report::thresholds(path, name, class) {
                             cell.problems.extend(t.check(&m));
                         }
                         cell.metrics = Some(m);

@@ -136,22 +136,56 @@ pub fn within(v: f64, max: f64) -> bool {
 }
 
 /// wgpu on GL: the same WGSL through naga's GLSL and Mesa's GLSL compiler. Rounding only.
-/// Measured (largest over the scenes): FLIP mean 2.37e-5 and p99 5.10e-4 (cumulus-noon),
-/// max abs 1.39e-2 and RMSE 1.29e-4 (stress-riemann, on a radiance of 1.29).
+/// Measured on lavapipe (largest over the scenes outside the physical sky): FLIP mean 8.85e-5
+/// and p99 1.91e-3 (stress-method-basic), max abs 1.86e-2 and RMSE 1.95e-4 (stress-riemann,
+/// on a radiance of 1.29). Bounds: max abs and RMSE about twice that; the FLIP bounds, set
+/// before the basic marcher joined the suite, are now 1.1 times its measure (lavapipe is
+/// deterministic, so that margin does not flake: a change that moves it fails, as it should).
 const WGPU_GL: Thresholds = Thresholds {
+    flip_mean: 1e-4,
+    flip_p99: 2e-3,
+    max_abs: 4e-2,
+    rmse: 4e-4,
+    outliers: f64::INFINITY,
+};
+
+/// naga's GLSL (ash-glsl) or HLSL (ash-hlsl) compiled by glslang and run by ash, on the golden
+/// device, outside the physical sky. Measured on lavapipe: FLIP 0 on every scene (the display
+/// images identical), max abs 1.79e-7 and RMSE 1.82e-8 (ash-glsl, stress-full-coverage); ash-hlsl
+/// 0 on all of them. Bounds about twice that; the FLIP bounds allow a single 8-bit flip's worth
+/// (one pixel at FLIP 0.1 is a mean of 1.1e-5 over 128x72).
+const GLSLANG_GOLDEN: Thresholds = Thresholds {
+    flip_mean: 2e-5,
+    flip_p99: 1e-4,
+    max_abs: 4e-7,
+    rmse: 4e-8,
+    outliers: f64::INFINITY,
+};
+
+/// The same under the physical sky (its tables are computed by each path's own modules):
+/// measured on lavapipe FLIP mean 5.01e-5 and p99 1.22e-3 (ash-hlsl, stress-haze), max abs
+/// 4.41e-6 (ash-hlsl, stress-light-shafts), RMSE 2.01e-7 (ash-hlsl, stress-haze). About twice.
+const GLSLANG_GOLDEN_PHYSICAL: Thresholds = Thresholds {
+    flip_mean: 1e-4,
+    flip_p99: 2.5e-3,
+    max_abs: 1e-5,
+    rmse: 4e-7,
+    outliers: f64::INFINITY,
+};
+
+/// glslang's paths on a device of another class, outside the physical sky, where the
+/// driver compiles glslang's SPIR-V and naga's differently. Measured on an NVIDIA H200
+/// (docs/conformance-h200.md): ash-hlsl max abs 3.89e-2 and RMSE 3.49e-4 (above-clouds), FLIP
+/// mean below 5e-5 on every such scene (p99 not recorded per scene); ash-glsl within 2.4e-7.
+/// Bounds: 1.3 and 1.4 times the H200's max abs and RMSE (not raised to twice without a
+/// second device's measurement), FLIP as wgpu-gl's.
+const GLSLANG_OTHER: Thresholds = Thresholds {
     flip_mean: 1e-4,
     flip_p99: 2e-3,
     max_abs: 5e-2,
     rmse: 5e-4,
     outliers: f64::INFINITY,
 };
-
-/// naga's GLSL (ash-glsl) or HLSL (ash-hlsl) compiled by glslang and run by ash. Measured: 0
-/// on every scene for all four (bit-identical to wgpu-vulkan: glslang's SPIR-V and naga's
-/// compile to the same code in lavapipe). The bound is not 0 but the rounding bound measured
-/// for wgpu-gl, the other path through a second compiler: another driver may round glslang's
-/// code differently, and a structural error is orders of magnitude above it either way.
-const GLSLANG: Thresholds = WGPU_GL;
 
 /// The CPU reference (f64) at the scene's real-time settings against the GPU (f32): the same
 /// sample positions, but a few early exits and cloud-edge samples land differently.
@@ -268,15 +302,13 @@ impl DeviceClass {
     }
 }
 
-/// The paths through a second compiler under the physical sky: its tables (computed by
-/// each path's own modules) differ by rounding, and the display image's smooth sky gradients,
-/// at the exposures of dawn and dusk (up to 53 times noon's), turn that into one-step 8-bit
-/// flips over large areas. Measured on lavapipe: FLIP mean 1.08e-3 (wgpu-gl, dusk) and 4.14e-4
-/// (ash-hlsl, noon), p99 9.83e-3 (wgpu-gl, sunset); the clouds' linear radiance stays within
-/// the rounding bounds (max abs 4.8e-7 on ash-hlsl). The FLIP bounds are about 2.5 times
-/// those; max abs and RMSE keep the rounding bounds. `stress-light-shafts` stays inside them
-/// too: FLIP mean 7.3e-4 and p99 8.3e-3 on wgpu-gl, 3.4e-4 and 5.3e-3 on ash-hlsl (2.7e-4 and
-/// 4.6e-3 with its shafts off).
+/// wgpu-gl under the physical sky (and glslang's paths there on a device of another class):
+/// its tables (computed by each path's own modules) differ by rounding, and the display
+/// image's smooth sky gradients, at the exposures of dawn and dusk (up to 53 times noon's),
+/// turn that into one-step 8-bit flips over large areas. Measured on lavapipe (wgpu-gl): FLIP
+/// mean 1.27e-3 (kuwahara-dusk), p99 9.83e-3 (sunset), max abs 2.60e-2 and RMSE 2.02e-4
+/// (stress-light-shafts); on an NVIDIA H200, ash-hlsl FLIP mean 1.68e-3 (dawn) and p99
+/// 1.06e-2 (noon). The FLIP bounds are 1.8-2.5 times those; max abs and RMSE are wgpu-gl's.
 const PHYSICAL_SKY: Thresholds = Thresholds {
     flip_mean: 3e-3,
     flip_p99: 2.5e-2,
@@ -299,12 +331,23 @@ fn physical_sky(scene: &str) -> bool {
         .any(|name| name == scene)
 }
 
-/// The bounds of paths 3-6 on `scene` against path 1 (paths 1 and 2 must be bit-identical).
-pub fn thresholds(path: Path, scene: &str) -> Option<Thresholds> {
+/// glslang's paths' bounds by device class, under the physical sky or not.
+fn glslang(class: DeviceClass, physical: bool) -> Thresholds {
+    match (class, physical) {
+        (DeviceClass::Golden, false) => GLSLANG_GOLDEN,
+        (DeviceClass::Golden, true) => GLSLANG_GOLDEN_PHYSICAL,
+        (DeviceClass::Other, false) => GLSLANG_OTHER,
+        (DeviceClass::Other, true) => PHYSICAL_SKY,
+    }
+}
+
+/// The bounds of paths 3-6 on `scene` against path 1 (paths 1 and 2 must be bit-identical),
+/// on a device of class `class`.
+pub fn thresholds(path: Path, scene: &str, class: DeviceClass) -> Option<Thresholds> {
     match path {
-        Path::WgpuGl | Path::AshGlsl | Path::AshHlsl if physical_sky(scene) => Some(PHYSICAL_SKY),
+        Path::WgpuGl if physical_sky(scene) => Some(PHYSICAL_SKY),
         Path::WgpuGl => Some(WGPU_GL),
-        Path::AshGlsl | Path::AshHlsl => Some(GLSLANG),
+        Path::AshGlsl | Path::AshHlsl => Some(glslang(class, physical_sky(scene))),
         Path::WebTint => Some(WEB_TINT),
         Path::Cpu => Some(CPU_MAX_ABS.iter().find(|(s, _, _)| *s == scene).map_or(
             CPU,
@@ -637,7 +680,7 @@ pub fn maxima(run: &Run, markdown: bool) -> String {
         };
         let bound = match p {
             Path::WgpuVulkan => Some(run.class.golden_bounds()),
-            _ => thresholds(p, ""),
+            _ => thresholds(p, "", run.class),
         };
         let label = if p == Path::WgpuVulkan {
             "wgpu-vulkan vs golden".to_string()
