@@ -21,10 +21,9 @@
 //! see only those two, so without a turn the spread is blind to the differences another
 //! compiler's or device's arithmetic makes there. The largest change of each counter over
 //! the eight runs is the scene's *spread* for that counter (for the sprite baseline, whose
-//! density samples sit at world-anchored places, each run carries the clouds by the same
-//! distance along the wind instead),
-//! committed in `counter-spread.json` (the golden device re-derives it on every run and fails
-//! if it changed; `STRATUS_UPDATE_SPREAD=1` rewrites it).
+//! density samples sit at world-anchored places, each run also carries the clouds by the same
+//! distance along the wind), committed in `counter-spread.json` (the golden device re-derives
+//! it on every run and fails if it changed; `STRATUS_UPDATE_SPREAD=1` rewrites it).
 //!
 //! A device's bound is then `CALIBRATION x spread + POISSON_FLOOR` flips, per counter: see
 //! [`bound`] for where the two constants come from.
@@ -106,8 +105,8 @@ pub fn perturbed(scene: &Scene, k: usize) -> Scene {
     s.camera.yaw_deg += d[0] * turn_deg;
     s.camera.pitch_deg += d[2] * turn_deg;
     // The sprite baseline samples density at world-anchored places (hashed in cells of the
-    // world) that no camera move shifts across the textures' weights: its clouds are carried
-    // by the same distance along the wind instead, downwind and upwind by turns. Only there:
+    // world) that no camera move shifts across the textures' weights: its clouds are also
+    // carried by the same distance along the wind, downwind and upwind by turns. Only there:
     // elsewhere a cloud move along the wind cancels the camera's move along it.
     if s.quality.method == stratus_scene::Method::Sprites && s.clouds.wind_speed_m_s > 0.0 {
         let sign = if k.is_multiple_of(2) { 1.0 } else { -1.0 };
