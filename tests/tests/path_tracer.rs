@@ -44,6 +44,15 @@ const MAX_POOLED_Z: f64 = 2.5;
 /// weaker -2.445% (z -5.44), 2% stronger +1.537% (z +3.36).
 const DETECTABLE_BIAS: f64 = 0.02;
 
+/// wgpu on Vulkan (lavapipe) with validation on.
+fn wgpu_vulkan() -> stratus_backend_wgpu::Renderer {
+    stratus_backend_wgpu::Renderer::new(stratus_backend_wgpu::Options {
+        api: stratus_backend_wgpu::Api::Vulkan,
+        validation: true,
+    })
+    .expect("a Vulkan device (lavapipe)")
+}
+
 fn noise() -> Arc<NoiseSet> {
     Arc::new(NoiseSet::generate(&NoiseConfig::default()))
 }
@@ -129,11 +138,7 @@ fn gpu_path_tracer_agrees_with_the_cpu_path_tracer() {
     // (light transport is linear in its sources). The pooled check must see both.
     for (factor, words) in [(0.98, "weaker"), (1.02, "stronger")] {
         // A renderer of its own: one renderer accumulates its paths frame after frame.
-        let mut wgpu = stratus_backend_wgpu::Renderer::new(stratus_backend_wgpu::Options {
-            api: stratus_backend_wgpu::Api::Vulkan,
-            validation: true,
-        })
-        .expect("a Vulkan device (lavapipe)");
+        let mut wgpu = wgpu_vulkan();
         let mut biased = scene.clone();
         biased.sun.illuminance = biased.sun.illuminance.map(|v| v * factor);
         biased.lighting.ambient_strength *= factor;
@@ -229,11 +234,7 @@ fn agree(scene: &Scene, spp: u32) -> Vec<stratus_reference::Block> {
     let noise = noise();
     let scene = scene.clone();
 
-    let mut wgpu = stratus_backend_wgpu::Renderer::new(stratus_backend_wgpu::Options {
-        api: stratus_backend_wgpu::Api::Vulkan,
-        validation: true,
-    })
-    .expect("a Vulkan device (lavapipe)");
+    let mut wgpu = wgpu_vulkan();
     let (w_out, w_meta) = gpu(&mut wgpu, &scene, &noise, spp);
     let log = stratus_test_support::take_wgpu_log();
     assert!(log.is_empty(), "wgpu validation: {log:?}");

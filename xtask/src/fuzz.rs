@@ -103,6 +103,8 @@ pub(crate) fn fuzz(
         }
         std::fs::create_dir_all(&committed)
             .with_context(|| format!("creating {}", committed.display()))?;
+        // What libFuzzer keeps of this target's runs (ignored by git).
+        let corpus = root.join("fuzz/corpus").join(target);
         for extra in runs {
             let fuzzing = extra.is_empty();
             let mut cmd = Command::new(&cargo);
@@ -112,7 +114,6 @@ pub(crate) fn fuzz(
             if fuzzing {
                 // libFuzzer writes what it finds to the first directory and reads the others:
                 // the run starts from the project's own inputs instead of from nothing.
-                let corpus = root.join("fuzz/corpus").join(target);
                 std::fs::create_dir_all(&corpus)
                     .with_context(|| format!("creating {}", corpus.display()))?;
                 cmd.arg(&corpus).arg(&committed).arg(&seeds.0);
@@ -170,7 +171,7 @@ pub(crate) fn fuzz(
             }
         }
         let updated = if update_seeds {
-            merge_into_committed(root, &cargo, target, &committed)?;
+            merge_into_committed(root, &cargo, target, &committed, &[&corpus, &seeds.0])?;
             format!(
                 "; committed corpus {committed_before} -> {} inputs",
                 count_files(&committed)
@@ -189,14 +190,18 @@ pub(crate) fn fuzz(
     Ok(())
 }
 
-/// Replaces the committed corpus with the smallest set of inputs, from it, this run's corpus
-/// and the generated seeds, that reaches every edge they reach: libFuzzer's greedy
-/// `-set_cover_merge=1`, over edges alone (`-use_counters=0`; hit counts would keep thousands
-/// of near-copies). Written beside it, then swapped in, so an interrupted merge leaves the old
-/// corpus.
-fn merge_into_committed(root: &Path, cargo: &str, target: &str, committed: &Path) -> Result<()> {
-    let corpus = root.join("fuzz/corpus").join(target);
-    let generated = crate::target_dir(root).join("fuzz-seeds").join(target);
+/// Replaces the committed corpus with the smallest set of inputs, from it and the folders
+/// `others` (this run's corpus, the generated seeds), that reaches every edge they reach:
+/// libFuzzer's greedy `-set_cover_merge=1`, over edges alone (`-use_counters=0`; hit counts
+/// would keep thousands of near-copies). Written beside it, then swapped in, so an
+/// interrupted merge leaves the old corpus.
+fn merge_into_committed(
+    root: &Path,
+    cargo: &str,
+    target: &str,
+    committed: &Path,
+    others: &[&Path],
+) -> Result<()> {
     let merged = committed.with_file_name(format!(".{target}.merging"));
     let _ = std::fs::remove_dir_all(&merged);
     std::fs::create_dir_all(&merged).with_context(|| format!("creating {}", merged.display()))?;
@@ -205,8 +210,7 @@ fn merge_into_committed(root: &Path, cargo: &str, target: &str, committed: &Path
         .args(["fuzz", "run", "--fuzz-dir", "fuzz", "-s", "none", target])
         .arg(&merged)
         .arg(committed)
-        .arg(&corpus)
-        .arg(&generated)
+        .args(others)
         .args(["--", "-set_cover_merge=1", "-use_counters=0"])
         .output()
         .with_context(|| format!("running cargo fuzz run {target} -- -set_cover_merge=1"))?;

@@ -154,7 +154,7 @@ const WGPU_GL: Thresholds = Thresholds {
 /// images identical), max abs 1.79e-7 and RMSE 1.82e-8 (ash-glsl, stress-full-coverage); ash-hlsl
 /// 0 on all of them. Bounds about twice that; the FLIP bounds allow a single 8-bit flip's worth
 /// (one pixel at FLIP 0.1 is a mean of 1.1e-5 over 128x72).
-const GLSLANG_GOLDEN: Thresholds = Thresholds {
+pub const GLSLANG_GOLDEN: Thresholds = Thresholds {
     flip_mean: 2e-5,
     flip_p99: 1e-4,
     max_abs: 4e-7,

@@ -12,7 +12,7 @@ use stratus_scene::{Animation, Keyframe, Scene, Temporal};
 
 use crate::{
     paths::{Path, Renderers},
-    report::{DeviceClass, Metrics, Thresholds},
+    report::{self, DeviceClass, Metrics, Thresholds},
     sanity,
     scenes::{HEIGHT, WIDTH},
 };
@@ -76,7 +76,9 @@ fn bounds(path: Path, class: DeviceClass) -> Option<Thresholds> {
         (Path::WgpuGl, _) | (Path::AshGlsl | Path::AshHlsl, DeviceClass::Other) => {
             Some(GPU_SEQUENCE)
         }
-        (Path::AshGlsl | Path::AshHlsl, DeviceClass::Golden) => Some(GLSLANG_SEQUENCE),
+        // ash-glsl and ash-hlsl on the golden device: 0 in every frame (bit-identical to
+        // wgpu-vulkan), held to the still scenes' glslang bounds there.
+        (Path::AshGlsl | Path::AshHlsl, DeviceClass::Golden) => Some(report::GLSLANG_GOLDEN),
         _ => None,
     }
 }
@@ -90,17 +92,6 @@ const GPU_SEQUENCE: Thresholds = Thresholds {
     flip_p99: 4e-3,
     max_abs: 2.5e-2,
     rmse: 2.5e-4,
-    outliers: f64::INFINITY,
-};
-
-/// ash-glsl and ash-hlsl on the golden device: measured 0 in every frame (bit-identical to
-/// wgpu-vulkan), so the still scenes' glslang bounds on that device, which a single 8-bit
-/// flip or a rounding of 1e-7 passes.
-const GLSLANG_SEQUENCE: Thresholds = Thresholds {
-    flip_mean: 2e-5,
-    flip_p99: 1e-4,
-    max_abs: 4e-7,
-    rmse: 4e-8,
     outliers: f64::INFINITY,
 };
 
