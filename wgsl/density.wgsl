@@ -139,6 +139,24 @@ fn sample_weather(p: vec3<f32>, l: Layer) -> Weather {
     return Weather(coverage, cloud_type, precipitation, top);
 }
 
+// The share of the region about `p` that layer `l`'s clouds cover, which feeds their multiply
+// scattered light (lighting.wgsl `sun_scattering`): the weather map's coverage, but on
+// convective cells the cells' share rather than their mask, which is 1 inside every cumulus.
+// Fed the mask, fair cumulus were lit as decks: against the path tracer `few` measured 1.45
+// times the truth's radiance where dense and `scattered` 1.24. The share is `sample_weather`'s,
+// recomputed here so that the weather the path tracer samples stays as it is.
+fn regional_coverage(p: vec3<f32>, l: Layer, weather: Weather) -> f32 {
+    let cumulus = smoothstep(0.75, 1.0, l.cloud_type) * frame.convective_cells;
+    if cumulus <= 0.0 {
+        return weather.coverage;
+    }
+    let uv = (p.xz - l.weather_offset) / frame.weather_period;
+    let r = textureSampleLevel(weather_tex, noise_sampler, uv, 0.0).r;
+    let map = saturate(r + 2.0 * (l.coverage - 0.5));
+    let share = saturate(l.coverage * (1.0 + CELL_MESOSCALE * (2.0 * r - 1.0)));
+    return mix(map, share, cumulus);
+}
+
 // Thesis eq. 5.1: a parabola with roots at the cloud's start and top, peak 1 between them.
 // The cloud starts at the layer bottom; its height grows with cloud type (stratus low,
 // cumulus the whole layer).

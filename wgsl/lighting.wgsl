@@ -186,8 +186,9 @@ fn far_optical_depth(rel: vec3<f32>, p: vec3<f32>, l: Layer) -> f32 {
 // contribution, b: extinction, c: eccentricity; F their feeding, below; `build` from
 // octave_buildup; `tau_oct` from octave_optical_depth, `tau` the sun ray's; fitted to the path
 // tracer, docs/fit). `far` (far_optical_depth) shadows
-// single scattering beyond the light march and the side light; `coverage` is the weather
-// map's at the sample, `view_y` the view ray's vertical component (diffuse_limb), `h` the
+// single scattering beyond the light march and the side light; `coverage` is the region's
+// cover about the sample (density.wgsl regional_coverage: the weather map's, or on convective
+// cells the cells' share), `view_y` the view ray's vertical component (diffuse_limb), `h` the
 // sample's height fraction in its layer (vertical_anisotropy), `layer_coverage` its layer's
 // coverage (deck_escape).
 // Wrenninge's octaves attenuate by exp(-b^i tau). The diffuse light deep in a thick layer falls
@@ -413,7 +414,8 @@ fn scattered_light(rel: vec3<f32>, p: vec3<f32>, alt: f32, density: f32, view: v
             tau_oct = octave_optical_depth(rel, p, l, tau, counters);
         }
         let s = sun_scattering(dot(view, sun), view.y, tau, tau_oct, far,
-                               octave_buildup(density), weather.coverage, h, l.coverage);
+                               octave_buildup(density), regional_coverage(p, l, weather), h,
+                               l.coverage);
         let lit = frame.sun_illuminance * sun_through_air(rel);
         sun_light = lit * s.total;
         octave_light = lit * s.octaves;

@@ -170,6 +170,31 @@ pub(crate) fn sample_weather_map(f: &Frame, map: &Texture2, p: V3, l: &Layer) ->
     }
 }
 
+// WGSL: density.wgsl::regional_coverage
+/// The share of the region about `p` that layer `l`'s clouds cover, which feeds their
+/// multiply scattered light: the map's coverage, but on convective cells the cells' share
+/// rather than their mask (see the WGSL for why).
+pub(crate) fn regional_coverage(
+    f: &Frame,
+    map: &Texture2,
+    p: V3,
+    l: &Layer,
+    weather: &Weather,
+) -> f64 {
+    let cumulus = smoothstep(0.75, 1.0, l.cloud_type) * f.convective_cells;
+    if cumulus <= 0.0 {
+        return weather.coverage;
+    }
+    let uv = [
+        (p.x - l.weather_offset[0]) / f.weather_period,
+        (p.z - l.weather_offset[1]) / f.weather_period,
+    ];
+    let r = sample2(map, uv)[0];
+    let coverage = saturate(r + 2.0 * (l.coverage - 0.5));
+    let share = saturate(l.coverage * (1.0 + CELL_MESOSCALE * (2.0 * r - 1.0)));
+    mix(coverage, share, cumulus)
+}
+
 /// The weather of a scene without a weather map (analytic media): the scene's global values.
 pub(crate) fn uniform_weather(f: &Frame) -> Weather {
     Weather {

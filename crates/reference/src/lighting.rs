@@ -375,7 +375,7 @@ pub(crate) fn scattered_light(
             (tau, tau_oct),
             (far_direct, far),
             octave_buildup(f, density),
-            (weather.coverage, h, l.coverage),
+            (m.regional_coverage(p, l, &weather), h, l.coverage),
         );
         let lit = f.sun_illuminance().mul_v(sun_through_air(f, m.sky(), rel));
         sun_light = lit * s;

@@ -404,6 +404,17 @@ impl<'a> Model<'a> {
         }
     }
 
+    /// The share of the region about `p` that layer `l`'s clouds cover, for their multiply
+    /// scattered light (the weather's own coverage but for clouds on convective cells).
+    pub(crate) fn regional_coverage(&self, p: V3, l: &Layer, weather: &Weather) -> f64 {
+        match self.medium {
+            Medium::Clouds(noise) => {
+                crate::density::regional_coverage(&self.f, &noise.weather, p, l, weather)
+            }
+            Medium::Homogeneous { .. } | Medium::Grid(_) => weather.coverage,
+        }
+    }
+
     /// Clips the ray interval `[t0, t1]` (ray from camera-relative `origin` along unit `d`) to
     /// the medium's support beyond the layer: the ball of a [`Shape::Sphere`].
     pub fn clip(&self, origin: V3, d: V3, t0: f64, t1: f64) -> Option<(f64, f64)> {
