@@ -27,7 +27,9 @@ pub(crate) struct MitsubaSettings {
 }
 
 /// `cargo xtask mitsuba-check`: the CPU reference's path tracer against Mitsuba 3 (scalar_rgb
-/// variant) on the same gridded medium, sun and constant sky. Mitsuba's `volpath` with
+/// variant) on the same gridded medium, sun and sky: the analytic sky's constant ambient, or
+/// the physical sky frozen at the box's centre (a latitude-longitude map and the sun after the
+/// air; docs/path-tracer.md). Mitsuba's `volpath` with
 /// `max_depth=2` is single scattering, `volpathmis` with `max_depth=-1` all orders; the reference
 /// renders `orders = 1` and `orders = 0` (its radiance plus transmittance times the sky, which
 /// the camera sees through the medium in Mitsuba). The reference averages 4x4 pixel-centre
@@ -42,6 +44,8 @@ pub(crate) struct MitsubaSettings {
 /// |---|---|---|
 /// | cumulus-noon (sun behind the camera) | 0.04% (0.8 sigma) | 0.49% (2.0 sigma) |
 /// | cumulus-noon, sun `[0.2, 0.35, 0.9]` (back-lit) | 0.28% (1.0 sigma) | 0.63% (1.7 sigma) |
+/// | noon (physical sky) | 0.13% (2.3 sigma) | 0.20% (1.5 sigma) |
+/// | sunset (physical, `--distance-m 16000`, sun 4 deg up ahead) | 0.25% (1.3 sigma) | 0.29% (1.3 sigma) |
 pub(crate) fn mitsuba_check(root: &Path, s: &MitsubaSettings) -> Result<()> {
     let t = Instant::now();
     let target = std::env::var_os("CARGO_TARGET_DIR")

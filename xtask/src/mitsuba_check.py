@@ -22,7 +22,15 @@ forward = np.array(setup["camera_forward"])
 up = np.array(setup["camera_up"])
 
 
-def scene(integrator):
+def sky():
+    # Under the physical sky, the map `export-volume` wrote (Mitsuba's lat-long convention, which
+    # the reference's `Environment` follows), else the uniform ambient.
+    if setup.get("sky_map"):
+        return {"type": "envmap", "filename": setup["sky_map"]}
+    return {"type": "constant", "radiance": {"type": "rgb", "value": setup["sky_radiance"]}}
+
+
+def scene(integrator, box=True):
     return mi.load_dict({
         "type": "scene",
         "integrator": integrator,
@@ -30,6 +38,8 @@ def scene(integrator):
             "type": "perspective",
             "fov": setup["fov_y_deg"],
             "fov_axis": "y",
+            # Mitsuba's default far clip is 10 km: a box beyond it was invisible.
+            "far_clip": 1e8,
             "to_world": T().look_at(origin=origin.tolist(), target=(origin + forward).tolist(),
                                     up=up.tolist()),
             "film": {"type": "hdrfilm", "width": w, "height": h, "pixel_format": "rgb",
@@ -39,8 +49,13 @@ def scene(integrator):
         # Mitsuba's direction is the one light travels: away from the sun.
         "sun": {"type": "directional", "direction": [-c for c in setup["sun_direction"]],
                 "irradiance": {"type": "rgb", "value": setup["sun_illuminance"]}},
-        "sky": {"type": "constant", "radiance": {"type": "rgb", "value": setup["sky_radiance"]}},
-        "box": {
+        "sky": sky(),
+        **({"box": box_shape()} if box else {}),
+    })
+
+
+def box_shape():
+    return {
             "type": "cube",
             "to_world": T().translate(((lo + hi) / 2).tolist()).scale(((hi - lo) / 2).tolist()),
             "bsdf": {"type": "null"},
@@ -52,15 +67,16 @@ def scene(integrator):
                 "scale": sigma_t,
                 "phase": {"type": "hg", "g": setup["phase_g"]},
             },
-        },
-    })
+        }
+
+
+# Mitsuba's image x runs along cross(forward, up) (look_at's "left" negated); the reference's
+# along camera_right.
+flip = np.dot(np.cross(forward, up), setup["camera_right"]) < 0
 
 
 def mitsuba_blocks(integrator):
     s = scene(integrator)
-    # Mitsuba's image x runs along cross(forward, up) (look_at's "left" negated); the
-    # reference's along camera_right.
-    flip = np.dot(np.cross(forward, up), setup["camera_right"]) < 0
     per_pass = []
     for k in range(passes):
         img = np.array(mi.render(s, seed=1000 + k, spp=spp), dtype=np.float64)[:, :, :3]
@@ -71,32 +87,106 @@ def mitsuba_blocks(integrator):
     return per_pass.mean(axis=0), per_pass.std(axis=0, ddof=1) / np.sqrt(passes)
 
 
+def background():
+    # What the camera sees with no box: the sky behind each pixel, averaged over the pixel as
+    # Mitsuba's box filter does (the reference renders the medium's light and transmittance
+    # alone; the sky it sees through is this, times the transmittance), with its blocks'
+    # standard error over the passes (the pixel's jitter over the sky's gradient). The seeds
+    # are the renders' own, so that each pass's camera rays fall where theirs do and the
+    # jitter cancels where the camera sees the sky (with other seeds, `sunset`'s horizon below
+    # its cloud measured |z| 4.9 against the renders where no cloud is).
+    s = scene({"type": "path", "max_depth": 1}, box=False)
+    imgs = []
+    for k in range(passes):
+        img = np.array(mi.render(s, seed=1000 + k, spp=spp), dtype=np.float64)[:, :, :3]
+        imgs.append(img[:, ::-1, :] if flip else img)
+    imgs = np.array(imgs)
+    per_pass = np.array([blocks(i) for i in imgs])
+    return imgs.mean(axis=0), per_pass.std(axis=0, ddof=1) / np.sqrt(passes)
+
+
+def map_lookup(env, d):
+    # The convention `Environment` (crates/reference/src/environment.rs) states, in numpy:
+    # u = atan2(x, -z) / 2pi, v = acos(y) / pi, columns centred on u = (i + 0.5) / width
+    # (wrapping around), rows on v = j / (height - 1), bilinear between them.
+    hh, ww = env.shape[:2]
+    u = np.arctan2(d[..., 0], -d[..., 2]) / (2 * np.pi)
+    u -= np.floor(u)
+    v = np.arccos(np.clip(d[..., 1], -1, 1)) / np.pi
+    x, y = u * ww - 0.5, v * (hh - 1)
+    i, j = np.floor(x).astype(int), np.minimum(np.floor(y).astype(int), hh - 2)
+    wx, wy = (x - i)[..., None], (y - j)[..., None]
+    i0, i1 = i % ww, (i + 1) % ww
+    top = env[j, i0] * (1 - wx) + env[j, i1] * wx
+    bottom = env[j + 1, i0] * (1 - wx) + env[j + 1, i1] * wx
+    return top * (1 - wy) + bottom * wy
+
+
+def check_map_convention(bg):
+    # Mitsuba reads the map as the reference does: the background it renders against the map
+    # looked up by the stated convention at Mitsuba's own pixel directions (8x8 a pixel, before
+    # the flip), per block. A mirrored or shifted map differs by the sky's own gradients, which
+    # are steepest in the sun's glow at the horizon: on `sunset` columns on u = i / width
+    # instead of their centres differ by 2% a block.
+    env = np.array(mi.Bitmap(setup["sky_map"]), dtype=np.float64)[:, :, :3]
+    tan = np.tan(np.radians(setup["fov_y_deg"]) / 2)
+    left = np.cross(forward, up)
+    left /= np.linalg.norm(left)
+    true_up = np.cross(left, forward)
+    k = 8
+    xs = (2 * (np.arange(w * k) + 0.5) / (w * k) - 1) * tan * w / h
+    ys = (1 - 2 * (np.arange(h * k) + 0.5) / (h * k)) * tan
+    d = forward + xs[None, :, None] * left + ys[:, None, None] * true_up
+    d /= np.linalg.norm(d, axis=-1, keepdims=True)
+    want = map_lookup(env, d).reshape(h, k, w, k, 3).mean(axis=(1, 3))
+    got = bg[:, ::-1, :] if flip else bg
+    rel = np.abs(blocks(got) - blocks(want)) / blocks(want)
+    passed = rel.max() < 0.005
+    print(f"the sky map as Mitsuba reads it against its stated convention: max block "
+          f"difference {100 * rel.max():.3f}% (within 0.5%: {passed})")
+    return passed
+
+
 def blocks(img):
     nby, nbx = h // block, w // block
     return img[: nby * block, : nbx * block].reshape(nby, block, nbx, block, 3).mean(axis=(1, 3))
 
 
-def reference_blocks(name):
+def reference_blocks(name, sky, sky_se):
     r = np.array(ref[name]["radiance"], dtype=np.float64).reshape(h, w, 4)
     se = np.array(ref[name]["std_error"], dtype=np.float64).reshape(h, w, 4)
-    sky = np.array(ref["sky_radiance"])
-    # The reference's radiance is the in-scattered light; the camera also sees the sky through
-    # the medium (transmittance in alpha).
-    total = r[:, :, :3] + r[:, :, 3:4] * sky
-    var = se[:, :, :3] ** 2 + (se[:, :, 3:4] * sky) ** 2
     n = block * block
     nby, nbx = h // block, w // block
+    if ref["background_included"]:
+        # Under the physical sky the reference's pixels hold the sky seen through the medium
+        # already (its own map, sub-pixel by sub-pixel, so that the sky's gradient and the
+        # cloud's edges vary together within a pixel); where the camera sees the sky, Mitsuba's
+        # own view of the map takes the place of the reference's (the two filters differ by up
+        # to 0.07% a block), weighted by the transmittance.
+        own = np.array(ref["background"], dtype=np.float64).reshape(h, w, 3)
+        total = r[:, :, :3] + r[:, :, 3:4] * (sky - own)
+        var = se[:, :, :3] ** 2
+        v = var[: nby * block, : nbx * block].reshape(nby, block, nbx, block, 3).sum(axis=(1, 3))
+        v = v / n ** 2 + (blocks(np.repeat(r[:, :, 3:4], 3, axis=2)) * sky_se) ** 2
+        return blocks(total), np.sqrt(v)
+    # The reference's radiance is the in-scattered light; the camera also sees the uniform sky
+    # through the medium (transmittance in alpha).
+    total = r[:, :, :3] + r[:, :, 3:4] * sky
+    var = se[:, :, :3] ** 2 + (se[:, :, 3:4] * sky) ** 2
     v = var[: nby * block, : nbx * block].reshape(nby, block, nbx, block, 3).sum(axis=(1, 3))
-    return blocks(total), np.sqrt(v) / n
+    # The background's own error, carried by the block's mean transmittance.
+    v = v / n ** 2 + (blocks(np.repeat(r[:, :, 3:4], 3, axis=2)) * sky_se) ** 2
+    return blocks(total), np.sqrt(v)
 
 
-ok = True
+bg, bg_se = background()
+ok = check_map_convention(bg) if setup.get("sky_map") else True
 for name, label, integrator in [
     ("single", "single scattering (volpath, max_depth=2)", {"type": "volpath", "max_depth": 2}),
     ("all", "all orders (volpathmis, max_depth=-1)", {"type": "volpathmis", "max_depth": -1}),
 ]:
     m, m_se = mitsuba_blocks(integrator)
-    r, r_se = reference_blocks(name)
+    r, r_se = reference_blocks(name, bg, bg_se)
     se = np.sqrt(m_se ** 2 + r_se ** 2)
     rel = (r - m) / m
     z = np.where(se > 0, (r - m) / np.where(se > 0, se, 1.0), 0.0)
@@ -112,7 +202,7 @@ for name, label, integrator in [
           f"{100 * rel_noise:.3f}%), mean rel diff {100 * rel.mean():+.3f}%, "
           f"max |z| {np.abs(z).max():.2f}, rms z {np.sqrt((z ** 2).mean()):.2f}")
     # The same against the cloud's own signal (how far a block is from the bare sky).
-    dev = np.abs(m - np.array(setup["sky_radiance"]))
+    dev = np.abs(m - blocks(bg))
     cloudy = dev > 0.01 * m
     if cloudy.any():
         print(f"against the cloud's signal |block - sky| (blocks {cloudy.sum() // 3}): max "

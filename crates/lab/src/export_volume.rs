@@ -1,7 +1,9 @@
 //! `stratus export-volume`: the scene's cloud density sampled on a grid, written as a Mitsuba 3
 //! `.vol` file, with the scene set up so that an independent renderer can reproduce it (flat
-//! world, one Henyey-Greenstein lobe, no real-time-only terms, a uniform sky), and optionally the
-//! CPU reference's Monte Carlo renders of the same gridded medium (`cargo xtask mitsuba-check`).
+//! world, one Henyey-Greenstein lobe, no real-time-only terms, a uniform sky or the physical
+//! sky frozen at the box's centre as a latitude-longitude map and a sun after the air), and
+//! optionally the CPU reference's Monte Carlo renders of the same gridded medium under the same
+//! light (`cargo xtask mitsuba-check`).
 
 use std::path::{Path, PathBuf};
 
@@ -9,9 +11,10 @@ use anyhow::{Context, Result};
 use clap::Args;
 use serde_json::json;
 use stratus_reference::{
-    DensityGrid, Integrator, Medium, RenderOptions, Rendering, render_medium, sample_density_grid,
+    DensityGrid, Environment, Integrator, Medium, RenderOptions, Rendering, render_medium_lit,
+    sample_density_grid,
 };
-use stratus_scene::{PhaseModel, Scene};
+use stratus_scene::{PhaseModel, Scene, SkyModel};
 
 use stratus_tool::scene_io::load_scene;
 
@@ -61,6 +64,11 @@ pub struct ExportArgs {
     /// Where the reference renders go.
     #[arg(long, default_value = "reference.json")]
     reference_out: PathBuf,
+    /// Under the physical sky, the latitude-longitude map of the sky written beside `--out`
+    /// (PFM, float RGB), WIDTHxHEIGHT: columns over the full circle, rows from the zenith to
+    /// the nadir, both included.
+    #[arg(long, default_value = "512x257", value_parser = parse_size)]
+    sky_map_size: (u32, u32),
 }
 
 fn parse_dims(s: &str) -> std::result::Result<[usize; 3], String> {
@@ -84,8 +92,9 @@ fn parse_size(s: &str) -> std::result::Result<(u32, u32), String> {
 }
 
 /// The scene made reproducible by a general-purpose volumetric path tracer: flat world, single
-/// HG lobe, no octaves, no Beer-Powder, no precipitation, uniform sky, the camera at the
-/// layer's mid-height looking level at the box.
+/// HG lobe, no octaves, no Beer-Powder, no precipitation, uniform sky (the physical sky is
+/// given separately, as an [`Environment`]), the camera at the layer's mid-height looking level
+/// at the box.
 fn check_scene(mut s: Scene, args: &ExportArgs) -> (Scene, [f64; 3], [f64; 3]) {
     s = s.with_size(args.size.0, args.size.1);
     s.atmosphere.planet_radius_m = 1e14;
@@ -142,12 +151,69 @@ pub fn write_vol(path: &Path, grid: &DensityGrid) -> Result<()> {
         .with_context(|| format!("writing {}", path.display()))
 }
 
+/// Mitsuba's PFM reader's layout: "PF", the size, -1 (little-endian), then float32 RGB rows
+/// from the image's bottom row up. The map's first row (the zenith) is the image's top.
+fn write_sky_map(path: &Path, env: &Environment) -> Result<()> {
+    let mut out = format!("PF\n{} {}\n-1.0\n", env.width, env.height).into_bytes();
+    for row in env.radiance.chunks(env.width).rev() {
+        for texel in row {
+            for c in texel {
+                out.extend_from_slice(&(*c as f32).to_le_bytes());
+            }
+        }
+    }
+    stratus_compare::write_file_atomically(path, &out)
+        .with_context(|| format!("writing {}", path.display()))
+}
+
+/// The physical sky of `scene` frozen at the box's centre (`None` under the analytic sky),
+/// and the check scene switched to the analytic sky, whose light the environment replaces.
+/// Refuses a key light below the horizon: Mitsuba's directional light would light the box
+/// from below, where the reference's ground stops it.
+fn frozen_sky(
+    scene: &Scene,
+    check: &mut Scene,
+    centre_alt: f64,
+    args: &ExportArgs,
+) -> Result<Option<Environment>> {
+    let sun = check.uniforms().sun_direction;
+    if sun[1] <= 0.0 {
+        anyhow::bail!(
+            "export-volume: the key light is {:.1} deg below the horizon: Mitsuba's directional \
+             light would light the box from below, where the reference's ground stops it; \
+             choose a scene whose sun (or moon) is up",
+            -f64::from(sun[1]).asin().to_degrees()
+        );
+    }
+    let (w, h) = args.sky_map_size;
+    if w < 4 || h < 3 {
+        anyhow::bail!("--sky-map-size {w}x{h}: at least 4x3");
+    }
+    let env = Environment::physical_sky(scene, centre_alt, w as usize, h as usize);
+    if env.is_some() {
+        check.atmosphere.sky = SkyModel::Analytic;
+    }
+    Ok(env)
+}
+
 pub fn run(args: ExportArgs) -> Result<()> {
-    let (scene, _) = load_scene(args.preset.as_deref(), args.scene.as_ref(), None)?;
-    let (scene, min, max) = check_scene(scene, &args);
+    let (original, _) = load_scene(args.preset.as_deref(), args.scene.as_ref(), None)?;
+    let (mut scene, min, max) = check_scene(original.clone(), &args);
     scene.validate().map_err(|e| anyhow::anyhow!("{e}"))?;
+    let env = frozen_sky(&original, &mut scene, 0.5 * (min[1] + max[1]), &args)?;
     let noise = stratus::noise_for(&scene);
     let grid = sample_density_grid(&scene, &noise, min, max, args.dims);
+    if grid.max_density() <= 0.0 {
+        // An empty box compares the sky with itself: every check would pass, saying nothing.
+        anyhow::bail!(
+            "export-volume: the box ({:.0?}..{:.0?} m) holds no cloud (max density 0): there \
+             would be nothing to compare; move it with --distance-m (now {} m) or widen it \
+             with --box-m",
+            min,
+            max,
+            args.distance_m
+        );
+    }
     write_vol(&args.out, &grid)?;
     eprintln!(
         "{}: {}x{}x{} cells, box {:?}..{:?} m, max density {:.4}",
@@ -163,6 +229,23 @@ pub fn run(args: ExportArgs) -> Result<()> {
     let u = scene.uniforms();
     let v3 = |a: [f32; 3]| a.map(f64::from);
     let ambient = v3(u.ambient_bottom).map(|c| c * f64::from(u.ambient_strength));
+    // Under the physical sky: its map beside the volume, and the sun after the air.
+    let (sky_map, sun_illuminance) = match &env {
+        Some(env) => {
+            let path = args.out.with_extension("sky.pfm");
+            write_sky_map(&path, env)?;
+            eprintln!(
+                "{}: the physical sky at {:.0} m, {}x{}; sun after the air {:?}",
+                path.display(),
+                0.5 * (min[1] + max[1]),
+                env.width,
+                env.height,
+                env.sun
+            );
+            (Some(path), env.sun)
+        }
+        None => (None, v3(u.sun_illuminance)),
+    };
     if let Some(path) = &args.json {
         let setup = json!({
             "width": args.size.0,
@@ -173,8 +256,9 @@ pub fn run(args: ExportArgs) -> Result<()> {
             "camera_up": v3(u.camera_up),
             "fov_y_deg": 2.0 * f64::from(u.tan_half_fov).atan().to_degrees(),
             "sun_direction": v3(u.sun_direction),
-            "sun_illuminance": v3(u.sun_illuminance),
+            "sun_illuminance": sun_illuminance,
             "sky_radiance": ambient,
+            "sky_map": sky_map,
             "sigma_s": f64::from(u.scattering),
             "sigma_a": f64::from(u.absorption),
             "phase_g": scene.lighting.phase.g,
@@ -196,10 +280,24 @@ pub fn run(args: ExportArgs) -> Result<()> {
         let k = args.supersample.max(1);
         let fine = scene.clone().with_size(args.size.0 * k, args.size.1 * k);
         let sub_spp = args.reference_spp.div_ceil(k * k).max(1);
+        // Under the physical sky the reference's pixels also get the sky seen through the
+        // medium, sub-pixel by sub-pixel: the sky's gradient at the horizon and the cloud's
+        // edges both vary within a pixel, and the product of their pixel means was 0.1-0.3%
+        // from the mean of their product (Mitsuba's). The background alone goes with them, for
+        // the check to put Mitsuba's own view of the map in its place where the camera sees
+        // it (the two filters differ by up to 0.07% a block).
+        let behind = env.as_ref().map(|env| env.behind_pixels(&fine));
+        if let Some(behind) = &behind {
+            renders.insert(
+                "background".to_string(),
+                json!(pixel_means(behind, args.size, k)),
+            );
+        }
         for (name, orders) in [("single", 1), ("all", 0)] {
-            let r = render_medium(
+            let r = render_medium_lit(
                 &fine,
                 Medium::Grid(&grid),
+                env.as_ref(),
                 &Integrator::MonteCarlo {
                     spp: sub_spp,
                     orders,
@@ -209,7 +307,7 @@ pub fn run(args: ExportArgs) -> Result<()> {
                     threads: None,
                 },
             );
-            let (radiance, std_error) = box_filter(&r, args.size, k);
+            let (radiance, std_error) = box_filter(&r, behind.as_deref(), args.size, k);
             renders.insert(
                 name.to_string(),
                 json!({
@@ -220,7 +318,7 @@ pub fn run(args: ExportArgs) -> Result<()> {
             );
         }
         renders.insert("spp".to_string(), json!(sub_spp * k * k));
-        renders.insert("sky_radiance".to_string(), json!(ambient));
+        renders.insert("background_included".to_string(), json!(env.is_some()));
         stratus_compare::write_file_atomically(
             &args.reference_out,
             serde_json::to_string(&renders)?.as_bytes(),
@@ -231,9 +329,29 @@ pub fn run(args: ExportArgs) -> Result<()> {
     Ok(())
 }
 
+/// Averages `k` x `k` sub-pixels of `values` into each pixel of a `size` image (RGB).
+fn pixel_means(values: &[[f64; 3]], size: (u32, u32), k: u32) -> Vec<f64> {
+    let (w, h, k) = (size.0 as usize, size.1 as usize, k as usize);
+    let mut mean = vec![0.0; 3 * w * h];
+    for (i, v) in values.iter().enumerate() {
+        let (x, y) = (i % (w * k), i / (w * k));
+        let o = 3 * ((y / k) * w + x / k);
+        for c in 0..3 {
+            mean[o + c] += v[c] / (k * k) as f64;
+        }
+    }
+    mean
+}
+
 /// Averages `k` x `k` sub-pixels of `r` into each pixel of a `size` image: radiance and
-/// transmittance, and their standard errors (independent sub-pixels).
-fn box_filter(r: &Rendering, size: (u32, u32), k: u32) -> (Vec<f64>, Vec<f64>) {
+/// transmittance, and their standard errors (independent sub-pixels). With `behind` (each
+/// sub-pixel's background), the radiance also gets the background times the transmittance.
+fn box_filter(
+    r: &Rendering,
+    behind: Option<&[[f64; 3]]>,
+    size: (u32, u32),
+    k: u32,
+) -> (Vec<f64>, Vec<f64>) {
     let (w, h) = (size.0 as usize, size.1 as usize);
     let (k, fw) = (k as usize, r.output.width as usize);
     let n = (k * k) as f64;
@@ -243,10 +361,16 @@ fn box_filter(r: &Rendering, size: (u32, u32), k: u32) -> (Vec<f64>, Vec<f64>) {
         for x in 0..w * k {
             let i = 4 * (y * fw + x);
             let o = 4 * ((y / k) * w + x / k);
+            let alpha = f64::from(r.output.radiance[i + 3]);
+            let alpha_se = r.std_error.as_ref().map_or(0.0, |se| f64::from(se[i + 3]));
             for c in 0..4 {
-                mean[o + c] += f64::from(r.output.radiance[i + c]) / n;
+                let bg = match behind {
+                    Some(b) if c < 3 => b[y * fw + x][c],
+                    _ => 0.0,
+                };
+                mean[o + c] += (f64::from(r.output.radiance[i + c]) + alpha * bg) / n;
                 if let Some(se) = &r.std_error {
-                    var[o + c] += (f64::from(se[i + c]) / n).powi(2);
+                    var[o + c] += (f64::from(se[i + c]) / n).powi(2) + (alpha_se * bg / n).powi(2);
                 }
             }
         }

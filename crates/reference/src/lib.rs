@@ -35,6 +35,7 @@
 pub mod atmosphere;
 mod composite;
 mod density;
+mod environment;
 mod flare;
 mod frame;
 mod geometry;
@@ -99,6 +100,7 @@ use crate::medium::Model;
 use crate::montecarlo::{Accumulator, Rng, camera_interval, trace};
 
 pub use crate::composite::Compositor;
+pub use crate::environment::Environment;
 pub use crate::medium::{DensityGrid, Medium, Shape, sample_density_grid};
 pub use crate::{progressive::PathState, temporal::TemporalState};
 
@@ -462,23 +464,32 @@ pub fn render_medium(
     integrator: &Integrator,
     options: &RenderOptions,
 ) -> Rendering {
+    render_medium_lit(scene, medium, None, integrator, options)
+}
+
+/// [`render_medium`] with `environment`, where given, for the sky's light: the Monte Carlo
+/// integrator's paths that leave the medium see its map, and its sun lights every vertex
+/// (the physical sky frozen at one point, as `stratus export-volume` gives it to Mitsuba).
+pub fn render_medium_lit(
+    scene: &Scene,
+    medium: Medium,
+    environment: Option<&Environment>,
+    integrator: &Integrator,
+    options: &RenderOptions,
+) -> Rendering {
+    let render = || {
+        let mut model = Model::new(scene, medium);
+        model.environment = environment;
+        render_model(&model, integrator, options.progress)
+    };
     match options.threads {
         Some(n) => rayon::ThreadPoolBuilder::new()
             .num_threads(n.max(1))
             .build()
             .expect("building a rayon thread pool")
-            .install(|| render_in_pool(scene, medium, integrator, options.progress)),
-        None => render_in_pool(scene, medium, integrator, options.progress),
+            .install(render),
+        None => render(),
     }
-}
-
-fn render_in_pool(
-    scene: &Scene,
-    medium: Medium,
-    integrator: &Integrator,
-    progress: bool,
-) -> Rendering {
-    render_model(&Model::new(scene, medium), integrator, progress)
 }
 
 /// Renders the frame and medium of `model` (its physical sky's tables, if any, computed with

@@ -187,6 +187,9 @@ pub(crate) struct Model<'a> {
     sky: Option<SkyTables>,
     /// The host's scene depth (`FLAG_SCENE_DEPTH`): the march stops at its surfaces.
     pub surface: Option<std::sync::Arc<stratus_graph::SceneDepth>>,
+    /// A distant environment and sun that replace the sky's for the Monte Carlo integrator
+    /// (the physical sky frozen at one point, as another renderer sees it).
+    pub environment: Option<&'a crate::environment::Environment>,
 }
 
 impl<'a> Model<'a> {
@@ -246,6 +249,7 @@ impl<'a> Model<'a> {
             density_bounds,
             sky,
             surface: None,
+            environment: None,
         };
         // The shadow map reads the medium, so it is made once the model stands.
         if let Some(mut sky) = model.sky.take() {

@@ -339,10 +339,11 @@ pub(crate) fn trace(
     };
     // Under the physical sky the ambient is the sky's own light (the sky and ground seen from
     // the vertex: `environment`).
-    let ambient_on = f.ambient_strength > 0.0
-        && (f.physical_sky()
-            || f.ambient_bottom[..3].iter().any(|&v| v > 0.0)
-            || f.ambient_top[..3].iter().any(|&v| v > 0.0));
+    let ambient_on = m.environment.is_some()
+        || f.ambient_strength > 0.0
+            && (f.physical_sky()
+                || f.ambient_bottom[..3].iter().any(|&v| v > 0.0)
+                || f.ambient_top[..3].iter().any(|&v| v > 0.0));
     let max_orders = if orders == 0 {
         MAX_ORDERS
     } else {
@@ -371,8 +372,11 @@ pub(crate) fn trace(
             };
             let tr = ratio_track(m, &shadow, rng, c, &mut light_tentative);
             // Under the physical sky, the sun's light left after the air (as the WGSL's).
-            radiance += sun_e.mul_v(sun_through_air(f, m.sky(), pos))
-                * (throughput * phase(f, dir.dot(sun), 1.0) * tr);
+            let lit = match m.environment {
+                Some(env) => V3::new(env.sun[0], env.sun[1], env.sun[2]),
+                None => sun_e.mul_v(sun_through_air(f, m.sky(), pos)),
+            };
+            radiance += lit * (throughput * phase(f, dir.dot(sun), 1.0) * tr);
         }
         // The ambient: a uniform environment of radiance ambient(h), seen through the medium.
         if ambient_on {
@@ -384,7 +388,11 @@ pub(crate) fn trace(
                 segments: &segs,
             };
             let tr = ratio_track(m, &env, rng, c, &mut light_tentative);
-            radiance += environment(f, m.sky(), pos, w, h) * (throughput * weight * tr);
+            let env_light = match m.environment {
+                Some(env) => env.along(w),
+                None => environment(f, m.sky(), pos, w, h),
+            };
+            radiance += env_light * (throughput * weight * tr);
         }
         if order >= max_orders {
             break;
