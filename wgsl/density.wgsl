@@ -144,7 +144,8 @@ fn sample_weather(p: vec3<f32>, l: Layer) -> Weather {
 // convective cells the cells' share rather than their mask, which is 1 inside every cumulus.
 // Fed the mask, fair cumulus were lit as decks: against the path tracer `few` measured 1.45
 // times the truth's radiance where dense and `scattered` 1.24. The share is `sample_weather`'s,
-// recomputed here so that the weather the path tracer samples stays as it is.
+// recomputed here rather than carried in `Weather`: the path tracer shares that struct, and a
+// new member would change its code, and with it the key of every committed truth.
 fn regional_coverage(p: vec3<f32>, l: Layer, weather: Weather) -> f32 {
     let cumulus = smoothstep(0.75, 1.0, l.cloud_type) * frame.convective_cells;
     if cumulus <= 0.0 {

@@ -227,7 +227,7 @@ fn sun_scattering(cos_theta: f32, view_y: f32, tau: f32, tau_oct: f32, far: f32,
     let side = sqrt(max(1.0 - mu0 * mu0, 0.0)) * (1.0 - saturate(coverage)) * exp(-far);
     var feed = mu0 + frame.side_light * side;
     // Multiply scattered light leaks out of a small cloud through its sides but stays in a
-    // deck: the octaves scale with the weather map's coverage (to a fitted power) as well as
+    // deck: the octaves scale with the region's coverage (to a fitted power) as well as
     // with the local density (`build`). Against the path tracer the octaves alone lit high-sun
     // cumulus up to 1.4 times too brightly while decks stayed 7% too dark (docs/fit).
     if frame.coverage_exponent > 0.0 {
@@ -282,7 +282,7 @@ fn forward_lobe(cos_theta: f32, transmittance: f32) -> f32 {
 // (`stratocumulus-overcast` 0.86-0.91 of its brightness against 0.94-1.04, `storm` 0.76-0.95
 // against 0.96-1.10). Here with a fitted strength k (limb_darkening; 0 = off) in place of 3/2,
 // normalised to keep the flux through the layer ((1 + k mu) / (1 + 2k/3)), mu = |view_y| the
-// view ray's cosine to the vertical, and weighted by the weather map's coverage: a deck is a
+// view ray's cosine to the vertical, and weighted by the region's coverage: a deck is a
 // layer, a small cumulus has no one normal. The factor is 1 at mu = 2/3: it darkens grazing
 // views and brightens steep ones, and the refit raised the octaves' a with it (1.15 to 1.2).
 // Fitted k = 0.5 took the training scenes' mean FLIP from 0.0505 to 0.0486 and the presets'

@@ -44,8 +44,9 @@ pub(crate) struct MitsubaSettings {
 /// |---|---|---|
 /// | cumulus-noon (sun behind the camera) | 0.04% (0.8 sigma) | 0.49% (2.0 sigma) |
 /// | cumulus-noon, sun `[0.2, 0.35, 0.9]` (back-lit) | 0.28% (1.0 sigma) | 0.63% (1.7 sigma) |
-/// | noon (physical sky) | 0.13% (2.3 sigma) | 0.20% (1.5 sigma) |
-/// | sunset (physical, `--distance-m 16000`, sun 4 deg up ahead) | 0.25% (1.3 sigma) | 0.29% (1.3 sigma) |
+/// | noon (physical sky) | 0.13% (2.4 sigma) | 0.20% (1.9 sigma) |
+/// | dawn (physical sky) | 0.50% (2.1 sigma) | 0.75% (3.6 sigma) |
+/// | sunset (physical, `--distance-m 16000`, sun 4 deg up ahead) | 0.25% (2.0 sigma) | 0.29% (2.0 sigma) |
 pub(crate) fn mitsuba_check(root: &Path, s: &MitsubaSettings) -> Result<()> {
     let t = Instant::now();
     let target = std::env::var_os("CARGO_TARGET_DIR")

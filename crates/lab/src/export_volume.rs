@@ -11,8 +11,8 @@ use anyhow::{Context, Result};
 use clap::Args;
 use serde_json::json;
 use stratus_reference::{
-    DensityGrid, Environment, Integrator, Medium, RenderOptions, Rendering, render_medium_lit,
-    sample_density_grid,
+    DensityGrid, Environment, Integrator, Medium, RenderOptions, Rendering, render_medium,
+    render_medium_lit, sample_density_grid,
 };
 use stratus_scene::{PhaseModel, Scene, SkyModel};
 
@@ -166,7 +166,8 @@ fn write_sky_map(path: &Path, env: &Environment) -> Result<()> {
         .with_context(|| format!("writing {}", path.display()))
 }
 
-/// The physical sky of `scene` frozen at the box's centre (`None` under the analytic sky),
+/// The physical sky of `scene` frozen at the box centre's altitude (`None` under the analytic
+/// sky),
 /// and the check scene switched to the analytic sky, whose light the environment replaces.
 /// Refuses a key light below the horizon: Mitsuba's directional light would light the box
 /// from below, where the reference's ground stops it.
@@ -186,8 +187,11 @@ fn frozen_sky(
         );
     }
     let (w, h) = args.sky_map_size;
-    if w < 4 || h < 3 {
-        anyhow::bail!("--sky-map-size {w}x{h}: at least 4x3");
+    if (w < 4 || h < 3) && scene.atmosphere.sky == SkyModel::Physical {
+        anyhow::bail!(
+            "export-volume: --sky-map-size {w}x{h}: the map needs at least 4x3 texels (columns \
+             that wrap around, rows from the zenith to the nadir and one between)"
+        );
     }
     let env = Environment::physical_sky(scene, centre_alt, w as usize, h as usize);
     if env.is_some() {
@@ -294,19 +298,24 @@ pub fn run(args: ExportArgs) -> Result<()> {
             );
         }
         for (name, orders) in [("single", 1), ("all", 0)] {
-            let r = render_medium_lit(
-                &fine,
-                Medium::Grid(&grid),
-                env.as_ref(),
-                &Integrator::MonteCarlo {
-                    spp: sub_spp,
-                    orders,
-                },
-                &RenderOptions {
-                    progress: true,
-                    threads: None,
-                },
-            );
+            let options = RenderOptions {
+                progress: true,
+                threads: None,
+            };
+            let r = match &env {
+                Some(env) => {
+                    render_medium_lit(&fine, Medium::Grid(&grid), env, sub_spp, orders, &options)
+                }
+                None => render_medium(
+                    &fine,
+                    Medium::Grid(&grid),
+                    &Integrator::MonteCarlo {
+                        spp: sub_spp,
+                        orders,
+                    },
+                    &options,
+                ),
+            };
             let (radiance, std_error) = box_filter(&r, behind.as_deref(), args.size, k);
             renders.insert(
                 name.to_string(),

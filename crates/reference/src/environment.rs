@@ -127,7 +127,7 @@ mod tests {
     /// override replaces exactly the sky's two lights.
     #[test]
     fn a_constant_environment_renders_as_the_uniform_sky() {
-        use crate::{Integrator, Medium, RenderOptions, Shape, render_medium_lit};
+        use crate::{Integrator, Medium, RenderOptions, Shape, render_medium, render_medium_lit};
         let mut scene = stratus_scene::Scene::default().with_size(8, 6);
         scene.atmosphere.planet_radius_m = 1e14;
         scene.lighting.ambient_top = scene.lighting.ambient_bottom;
@@ -140,7 +140,6 @@ mod tests {
             sigma_a: 0.0004,
             shape: Shape::Slab,
         };
-        let mc = Integrator::MonteCarlo { spp: 4, orders: 0 };
         let options = RenderOptions::default();
         let env = Environment {
             width: 4,
@@ -148,8 +147,9 @@ mod tests {
             radiance: vec![ambient; 12],
             sun: u.sun_illuminance.map(f64::from),
         };
-        let sky = render_medium_lit(&scene, medium(), None, &mc, &options);
-        let lit = render_medium_lit(&scene, medium(), Some(&env), &mc, &options);
+        let mc = Integrator::MonteCarlo { spp: 4, orders: 0 };
+        let sky = render_medium(&scene, medium(), &mc, &options);
+        let lit = render_medium_lit(&scene, medium(), &env, 4, 0, &options);
         let (a, b) = (&sky.output.radiance, &lit.output.radiance);
         assert!(a.iter().any(|v| *v > 0.0), "nothing rendered");
         for (i, (x, y)) in a.iter().zip(b).enumerate() {
@@ -160,7 +160,7 @@ mod tests {
             radiance: vec![ambient.map(|c| 2.0 * c); 12],
             ..env
         };
-        let more = render_medium_lit(&scene, medium(), Some(&brighter), &mc, &options);
+        let more = render_medium_lit(&scene, medium(), &brighter, 4, 0, &options);
         let sum = |r: &[f32]| r.chunks(4).map(|p| f64::from(p[0])).sum::<f64>();
         assert!(sum(&more.output.radiance) > sum(a) * 1.01);
     }

@@ -464,25 +464,38 @@ pub fn render_medium(
     integrator: &Integrator,
     options: &RenderOptions,
 ) -> Rendering {
-    render_medium_lit(scene, medium, None, integrator, options)
+    let render = || render_model(&Model::new(scene, medium), integrator, options.progress);
+    in_pool(options.threads, render)
 }
 
-/// [`render_medium`] with `environment`, where given, for the sky's light: the Monte Carlo
-/// integrator's paths that leave the medium see its map, and its sun lights every vertex
-/// (the physical sky frozen at one point, as `stratus export-volume` gives it to Mitsuba).
+/// The Monte Carlo integrator's render of `medium` in `scene` (`spp` paths a pixel, `orders`
+/// scattering events at most, 0 for all) under `environment` instead of the sky's light:
+/// paths that leave the medium see its map, and its sun lights every vertex (the physical sky
+/// frozen at one point, as `stratus export-volume` gives it to Mitsuba). Only the Monte Carlo
+/// integrator takes it, so it is the only one offered.
 pub fn render_medium_lit(
     scene: &Scene,
     medium: Medium,
-    environment: Option<&Environment>,
-    integrator: &Integrator,
+    environment: &Environment,
+    spp: u32,
+    orders: u32,
     options: &RenderOptions,
 ) -> Rendering {
     let render = || {
         let mut model = Model::new(scene, medium);
-        model.environment = environment;
-        render_model(&model, integrator, options.progress)
+        model.environment = Some(environment);
+        render_model(
+            &model,
+            &Integrator::MonteCarlo { spp, orders },
+            options.progress,
+        )
     };
-    match options.threads {
+    in_pool(options.threads, render)
+}
+
+/// Runs `render` on a pool of `threads` threads, or on rayon's global pool.
+fn in_pool(threads: Option<usize>, render: impl FnOnce() -> Rendering + Send) -> Rendering {
+    match threads {
         Some(n) => rayon::ThreadPoolBuilder::new()
             .num_threads(n.max(1))
             .build()

@@ -55,6 +55,11 @@
 //! real-time model takes the cosine-weighted hemispheres facing the layer instead (the
 //! sky-ambient table), unoccluded: the truth here says what that costs.
 //!
+//! A [`crate::Environment`] given to the model (`render_medium_lit`) replaces both of the sky's
+//! lights: paths that leave the medium see its map, and its sun, already through the air,
+//! lights every vertex. That is the physical sky frozen at one point, as another renderer's
+//! emitters at infinity give it (`stratus export-volume` for the Mitsuba check).
+//!
 //! # Real-time-only terms the path tracer ignores
 //!
 //! The multiple-scattering octaves (`a`, `b`, `c`; the path tracer simulates higher orders
