@@ -36,9 +36,9 @@ pub(crate) fn distance_to_layer_exit(f: &Frame, rel: V3, alt: f64, d: V3, l: &La
 
 // WGSL: lighting.wgsl::sun_optical_depth
 // Must agree: midpoint samples of segments growing by `growth`, the loop ends at the first
-// sample outside the layer, each evaluated sample counts one light sample; then one midpoint
-// sample per layer above, times the length of the sun ray's crossing.
-/// Optical depth toward the sun from camera-relative `rel` (world position `p`) in layer `l`.
+// sample outside the layer, each evaluated sample counts one light sample.
+/// Optical depth toward the sun from camera-relative `rel` (world position `p`) in layer `l`
+/// (the layers above: [`optical_depth_above`]).
 pub(crate) fn sun_optical_depth(
     m: &Model,
     lm: &LightMarch,
@@ -49,7 +49,6 @@ pub(crate) fn sun_optical_depth(
 ) -> f64 {
     let f = &m.f;
     let sun = f.sun();
-    let sigma_t = f.scattering + f.absorption;
     let (steps, growth) = (lm.steps, lm.growth);
     let mut seg = lm.first;
     if lm.to_layer_exit {
@@ -60,7 +59,24 @@ pub(crate) fn sun_optical_depth(
             len * (growth - 1.0) / (growth.powi(steps as i32) - 1.0)
         };
     }
-    let mut tau = segment_optical_depth(m, rel, p, l, sun, (seg, growth, steps), true, counters);
+    segment_optical_depth(m, rel, p, l, sun, (seg, growth, steps), true, counters)
+}
+
+// WGSL: lighting.wgsl::optical_depth_above
+// Must agree: one midpoint sample per layer above, times the length of the sun ray's crossing,
+// each counting one light sample.
+/// The sun ray's optical depth through the layers above layer `l`.
+pub(crate) fn optical_depth_above(
+    m: &Model,
+    rel: V3,
+    p: V3,
+    l: &Layer,
+    counters: &mut Counters,
+) -> f64 {
+    let f = &m.f;
+    let sun = f.sun();
+    let sigma_t = f.scattering + f.absorption;
+    let mut tau = 0.0;
     let alt0 = altitude_of(f, rel);
     for above in cloud_layers(f) {
         if above.bottom <= l.top {
@@ -128,15 +144,15 @@ const COLUMN_STEPS: u32 = 3;
 // WGSL: lighting.wgsl::octave_optical_depth
 // Must agree: the column goes straight up (away from the planet's centre) to the layer's top
 // sphere in COLUMN_STEPS equal segments of the density without detail erosion.
-/// The octaves' optical depth at a sample of layer `l` whose sun ray has optical depth `tau`:
-/// in a closed deck the scaled vertical column above the sample mixed in (lighting.wgsl says
-/// why).
+/// The octaves' optical depth at a sample of layer `l` whose sun ray has optical depth `tau`,
+/// `above` of it in the layers above: in a closed deck the scaled vertical column above the
+/// sample mixed in for the deck's own part (lighting.wgsl says why).
 pub(crate) fn octave_optical_depth(
     m: &Model,
     rel: V3,
     p: V3,
     l: &Layer,
-    tau: f64,
+    (tau, above): (f64, f64),
     counters: &mut Counters,
 ) -> f64 {
     let f = &m.f;
@@ -159,7 +175,7 @@ pub(crate) fn octave_optical_depth(
         false,
         counters,
     );
-    mix(tau, f.steep_light_scale * column, w)
+    mix(tau, f.steep_light_scale * column + above, w)
 }
 
 // WGSL: lighting.wgsl::far_optical_depth
@@ -360,13 +376,14 @@ pub(crate) fn scattered_light(
     if !hits_ground(f, rel, alt, sun) {
         // LIGHT_MARCH: with 0 light steps the march returns 0, as the switched-off WGSL does
         // (and so does its far shadow).
-        let tau = sun_optical_depth(m, lm, rel, p, l, counters);
+        let above = optical_depth_above(m, rel, p, l, counters);
+        let tau = sun_optical_depth(m, lm, rel, p, l, counters) + above;
         let far = far_optical_depth(m, rel, p, l);
         let far_direct = if lm.to_layer_exit { 0.0 } else { far };
         let tau_oct = if lm.steps == 0 {
             tau
         } else {
-            octave_optical_depth(m, rel, p, l, tau, counters)
+            octave_optical_depth(m, rel, p, l, (tau, above), counters)
         };
         let (s, octaves) = sun_scattering(
             f,
@@ -554,7 +571,7 @@ mod tests {
             let l = cloud_layers(&m.f).next().expect("the main layer");
             let rel = V3::new(0.0, 0.5 * (l.bottom + l.top), 0.0);
             let mut counters = Counters::default();
-            let tau = octave_optical_depth(&m, rel, rel, &l, 7.0, &mut counters);
+            let tau = octave_optical_depth(&m, rel, rel, &l, (7.0, 0.0), &mut counters);
             (tau, counters.light)
         };
         assert_eq!(at(0.5, 1.0), (7.0, 0));
