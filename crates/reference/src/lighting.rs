@@ -62,9 +62,12 @@ pub(crate) fn sun_optical_depth(
     segment_optical_depth(m, rel, p, l, sun, (seg, growth, steps), true, counters)
 }
 
+// WGSL: lighting.wgsl::ABOVE_SAMPLES
+const ABOVE_SAMPLES: u32 = 4;
+
 // WGSL: lighting.wgsl::optical_depth_above
-// Must agree: one midpoint sample per layer above, times the length of the sun ray's crossing,
-// each counting one light sample.
+// Must agree: ABOVE_SAMPLES midpoint samples of equal stretches of the sun ray's crossing of
+// each layer above, each counting one light sample.
 /// The sun ray's optical depth through the layers above layer `l`.
 pub(crate) fn optical_depth_above(
     m: &Model,
@@ -92,11 +95,14 @@ pub(crate) fn optical_depth_above(
         {
             continue;
         }
-        let s = 0.5 * (enter.t1 + exit.t1);
-        counters.light += 1;
-        tau += m.layer_density(p + sun * s, altitude_of(f, rel + sun * s), &above, counters)
-            * sigma_t
-            * (exit.t1 - enter.t1);
+        let step = (exit.t1 - enter.t1) / f64::from(ABOVE_SAMPLES);
+        for k in 0..ABOVE_SAMPLES {
+            let s = enter.t1 + (f64::from(k) + 0.5) * step;
+            counters.light += 1;
+            tau += m.layer_density(p + sun * s, altitude_of(f, rel + sun * s), &above, counters)
+                * sigma_t
+                * step;
+        }
     }
     tau
 }
@@ -374,8 +380,9 @@ pub(crate) fn scattered_light(
     let mut octave_light = V3::ZERO;
     let weather = m.weather(p, l);
     if !hits_ground(f, rel, alt, sun) {
-        // LIGHT_MARCH: with 0 light steps the march returns 0, as the switched-off WGSL does
-        // (and so does its far shadow).
+        // LIGHT_MARCH: with 0 light steps the layer's own march returns 0, as the switched-off
+        // WGSL does (and so does its far shadow); the layers above still shade it, as in the
+        // WGSL's shadowed variants with 0 light steps (the unshadowed variant skips them too).
         let above = optical_depth_above(m, rel, p, l, counters);
         let tau = sun_optical_depth(m, lm, rel, p, l, counters) + above;
         let far = far_optical_depth(m, rel, p, l);
@@ -572,6 +579,14 @@ mod tests {
             let rel = V3::new(0.0, 0.5 * (l.bottom + l.top), 0.0);
             let mut counters = Counters::default();
             let tau = octave_optical_depth(&m, rel, rel, &l, (7.0, 0.0), &mut counters);
+            // The layers above keep their part of the sun ray's optical depth in a deck.
+            let mut more = Counters::default();
+            let with_above = octave_optical_depth(&m, rel, rel, &l, (9.0, 2.0), &mut more);
+            let deck = steep * saturate((coverage - 0.8) / 0.1);
+            assert!(
+                (with_above - (tau + 2.0)).abs() < 1e-9 * (1.0 + tau),
+                "{with_above} {tau} (deck weight {deck})"
+            );
             (tau, counters.light)
         };
         assert_eq!(at(0.5, 1.0), (7.0, 0));

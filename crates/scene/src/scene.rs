@@ -986,13 +986,14 @@ pub struct MultipleScattering {
     /// approximation (Meador and Weaver 1980): steep light goes deeper before it turns. 0: off.
     pub deck_escape: f64,
     /// The weight of the column above the sample in a closed deck's octaves, within [0, 1]:
-    /// their optical depth is `mix(tau, s tau_col, m w)`, `m` this value, `tau` the sun ray's,
-    /// `tau_col` that of the vertical column from the sample to the layer's top (three equal
-    /// steps of the density without detail erosion), `s` `steep_light_scale` (the diffuse
+    /// their optical depth is `mix(tau, s tau_col + tau_above, m w)`, `m` this value, `tau` the
+    /// sun ray's, `tau_above` its part in the layers above, `tau_col` that of the vertical
+    /// column from the sample to the layer's top (three equal steps of the density without
+    /// detail erosion), `s` `steep_light_scale` (the diffuse
     /// light's effective path over the vertical: 1.66 for a slab, Elsasser 1942), and `w =
     /// (coverage - 0.8) / 0.1` (clamped) the layer's weight as a closed deck. The truth's multiply scattered light in a thick deck
     /// follows the cloud above the sample, which the slant sun ray passes by. 0: off; 1: the
-    /// column alone in a closed deck. (The name is from its first form, a steeper light
+    /// column (and the layers above) alone in a closed deck. (The name is from its first form, a steeper light
     /// march toward `normalize(sun + up)`.)
     pub steep_light: f64,
     /// The scale of the column's optical depth (`steep_light`), within [0.5, 8].
