@@ -4,7 +4,23 @@
 
 mod common;
 
+use std::path::Path;
+
 use common::{scratch, stratus_in};
+
+/// `stratus export-volume ARGS --dims 8x8x8` in `dir`: whether it succeeded, and its output.
+fn export(dir: &Path, args: &[&str]) -> (bool, String) {
+    let all: Vec<&str> = ["export-volume", "--dims", "8x8x8"]
+        .into_iter()
+        .chain(args.iter().copied())
+        .collect();
+    stratus_in(dir, &all, &[])
+}
+
+/// The JSON file `name` in `dir`.
+fn json(dir: &Path, name: &str) -> serde_json::Value {
+    serde_json::from_slice(&std::fs::read(dir.join(name)).unwrap()).unwrap()
+}
 
 /// The map's texels, row by row from the zenith (PFM stores the bottom row first).
 fn read_pfm(bytes: &[u8]) -> (usize, usize, Vec<[f32; 3]>) {
@@ -32,24 +48,19 @@ fn read_pfm(bytes: &[u8]) -> (usize, usize, Vec<[f32; 3]>) {
 #[test]
 fn the_physical_sky_goes_to_mitsuba_as_a_map_and_a_reddened_sun() {
     let dir = scratch("export-volume-sky");
-    let (ok, text) = stratus_in(
-        dir.as_path(),
+    let (ok, text) = export(
+        &dir,
         &[
-            "export-volume",
             "--preset",
             "noon",
-            "--dims",
-            "8x8x8",
             "--json",
             "setup.json",
             "--sky-map-size",
             "64x33",
         ],
-        &[],
     );
     assert!(ok, "{text}");
-    let setup: serde_json::Value =
-        serde_json::from_slice(&std::fs::read(dir.as_path().join("setup.json")).unwrap()).unwrap();
+    let setup = json(&dir, "setup.json");
     assert_eq!(setup["sky_map"], "volume.sky.pfm", "{setup}");
     let (w, h, sky) = read_pfm(&std::fs::read(dir.as_path().join("volume.sky.pfm")).unwrap());
     assert_eq!((w, h), (64, 33));
@@ -75,25 +86,19 @@ fn the_physical_sky_goes_to_mitsuba_as_a_map_and_a_reddened_sun() {
     );
 
     // The analytic sky stays the uniform ambient: no map.
-    let (ok, text) = stratus_in(
-        dir.as_path(),
+    let (ok, text) = export(
+        &dir,
         &[
-            "export-volume",
             "--preset",
             "cumulus-noon",
-            "--dims",
-            "8x8x8",
             "--out",
             "analytic.vol",
             "--json",
             "analytic.json",
         ],
-        &[],
     );
     assert!(ok, "{text}");
-    let setup: serde_json::Value =
-        serde_json::from_slice(&std::fs::read(dir.as_path().join("analytic.json")).unwrap())
-            .unwrap();
+    let setup = json(&dir, "analytic.json");
     assert!(setup["sky_map"].is_null(), "{setup}");
     assert!(!dir.as_path().join("analytic.sky.pfm").exists());
 }
@@ -106,11 +111,7 @@ fn a_scene_the_check_cannot_express_is_refused_by_name() {
         "base = \"cumulus-noon\"\n[sun]\nelevation_deg = -5.0\n",
     )
     .unwrap();
-    let (ok, text) = stratus_in(
-        dir.as_path(),
-        &["export-volume", "--scene", "low.toml", "--dims", "8x8x8"],
-        &[],
-    );
+    let (ok, text) = export(&dir, &["--scene", "low.toml"]);
     assert!(!ok, "{text}");
     assert!(
         text.contains("5.0 deg below the horizon") && !text.contains("panicked"),
@@ -120,11 +121,7 @@ fn a_scene_the_check_cannot_express_is_refused_by_name() {
 
     // `sunset`'s clouds are sparse: 8 km ahead the box is clear, and a clear box would compare
     // the sky with itself.
-    let (ok, text) = stratus_in(
-        dir.as_path(),
-        &["export-volume", "--preset", "sunset", "--dims", "8x8x8"],
-        &[],
-    );
+    let (ok, text) = export(&dir, &["--preset", "sunset"]);
     assert!(!ok, "{text}");
     assert!(
         text.contains("holds no cloud") && text.contains("--distance-m"),

@@ -167,8 +167,8 @@ fn write_sky_map(path: &Path, env: &Environment) -> Result<()> {
 }
 
 /// The physical sky of `scene` frozen at the box centre's altitude (`None` under the analytic
-/// sky),
-/// and the check scene switched to the analytic sky, whose light the environment replaces.
+/// sky), and the check scene switched to the analytic sky, whose light the environment
+/// replaces.
 /// Refuses a key light below the horizon: Mitsuba's directional light would light the box
 /// from below, where the reference's ground stops it.
 fn frozen_sky(
@@ -338,15 +338,20 @@ pub fn run(args: ExportArgs) -> Result<()> {
     Ok(())
 }
 
+/// Every sub-pixel of a `size` image rendered at `k` x `k` sub-pixels a pixel: its index in
+/// the fine image and its pixel's index in the image.
+fn sub_pixels(size: (u32, u32), k: u32) -> impl Iterator<Item = (usize, usize)> {
+    let (w, h, k) = (size.0 as usize, size.1 as usize, k as usize);
+    (0..h * k).flat_map(move |y| (0..w * k).map(move |x| (y * w * k + x, (y / k) * w + x / k)))
+}
+
 /// Averages `k` x `k` sub-pixels of `values` into each pixel of a `size` image (RGB).
 fn pixel_means(values: &[[f64; 3]], size: (u32, u32), k: u32) -> Vec<f64> {
-    let (w, h, k) = (size.0 as usize, size.1 as usize, k as usize);
-    let mut mean = vec![0.0; 3 * w * h];
-    for (i, v) in values.iter().enumerate() {
-        let (x, y) = (i % (w * k), i / (w * k));
-        let o = 3 * ((y / k) * w + x / k);
+    let n = f64::from(k * k);
+    let mut mean = vec![0.0; 3 * size.0 as usize * size.1 as usize];
+    for (i, o) in sub_pixels(size, k) {
         for c in 0..3 {
-            mean[o + c] += v[c] / (k * k) as f64;
+            mean[3 * o + c] += values[i][c] / n;
         }
     }
     mean
@@ -361,26 +366,21 @@ fn box_filter(
     size: (u32, u32),
     k: u32,
 ) -> (Vec<f64>, Vec<f64>) {
-    let (w, h) = (size.0 as usize, size.1 as usize);
-    let (k, fw) = (k as usize, r.output.width as usize);
-    let n = (k * k) as f64;
-    let mut mean = vec![0.0; 4 * w * h];
-    let mut var = vec![0.0; 4 * w * h];
-    for y in 0..h * k {
-        for x in 0..w * k {
-            let i = 4 * (y * fw + x);
-            let o = 4 * ((y / k) * w + x / k);
-            let alpha = f64::from(r.output.radiance[i + 3]);
-            let alpha_se = r.std_error.as_ref().map_or(0.0, |se| f64::from(se[i + 3]));
-            for c in 0..4 {
-                let bg = match behind {
-                    Some(b) if c < 3 => b[y * fw + x][c],
-                    _ => 0.0,
-                };
-                mean[o + c] += (f64::from(r.output.radiance[i + c]) + alpha * bg) / n;
-                if let Some(se) = &r.std_error {
-                    var[o + c] += (f64::from(se[i + c]) / n).powi(2) + (alpha_se * bg / n).powi(2);
-                }
+    let n = f64::from(k * k);
+    let mut mean = vec![0.0; 4 * size.0 as usize * size.1 as usize];
+    let mut var = mean.clone();
+    for (fine, pixel) in sub_pixels(size, k) {
+        let (i, o) = (4 * fine, 4 * pixel);
+        let alpha = f64::from(r.output.radiance[i + 3]);
+        let alpha_se = r.std_error.as_ref().map_or(0.0, |se| f64::from(se[i + 3]));
+        for c in 0..4 {
+            let bg = match behind {
+                Some(b) if c < 3 => b[fine][c],
+                _ => 0.0,
+            };
+            mean[o + c] += (f64::from(r.output.radiance[i + c]) + alpha * bg) / n;
+            if let Some(se) = &r.std_error {
+                var[o + c] += (f64::from(se[i + c]) / n).powi(2) + (alpha_se * bg / n).powi(2);
             }
         }
     }
