@@ -359,8 +359,10 @@ fn recheck_truths(paths: u32) -> Result<()> {
         .collect();
     let mut fresh: BTreeMap<String, FrameOutput> = BTreeMap::new();
     let mut differ = Vec::new();
-    let old_files: Vec<String> = rows.iter().map(|r| r.file.clone()).collect();
-    for row in &mut rows {
+    // The index is written after every truth filed anew, so that a run cut short (an error,
+    // an interrupt) keeps what it checked and a rerun goes on from there.
+    for i in 0..rows.len() {
+        let row = rows[i].clone();
         let (_, scene) = scenes
             .iter()
             .find(|(n, _)| *n == row.scene)
@@ -378,6 +380,18 @@ fn recheck_truths(paths: u32) -> Result<()> {
             println!("{} ({} paths): current", row.scene, row.paths);
             continue;
         }
+        // A file under this build's key is written only by this command after its check
+        // passed (in a run cut short before its index was written) or traced by this build:
+        // either way this build's truth.
+        if dir.join(key.file_name()).is_file() {
+            println!(
+                "{} ({} paths): already filed under this build's key",
+                row.scene, row.paths
+            );
+            rows[i].file = key.file_name();
+            bench::write_index(&dir, &rows)?;
+            continue;
+        }
         let old_path = dir.join(&row.file);
         let bytes =
             std::fs::read(&old_path).with_context(|| format!("reading {}", old_path.display()))?;
@@ -393,7 +407,8 @@ fn recheck_truths(paths: u32) -> Result<()> {
             let f = bench::fresh_trace(renderer.as_mut(), &scene, &noise, paths)?;
             fresh.insert(row.scene.clone(), f);
         }
-        let r = bench::recheck(&truth, row.paths, &fresh[&row.scene])?;
+        let r = bench::recheck(&truth, row.paths, &fresh[&row.scene])
+            .with_context(|| format!("rechecking `{}` ({} paths)", row.scene, row.paths))?;
         let verdict = if r.agrees() {
             "carried over"
         } else {
@@ -413,16 +428,21 @@ fn recheck_truths(paths: u32) -> Result<()> {
             let to = dir.join(key.file_name());
             stratus_compare::write_file_atomically(&to, &bytes)
                 .with_context(|| format!("writing {}", to.display()))?;
-            row.file = key.file_name();
+            rows[i].file = key.file_name();
+            bench::write_index(&dir, &rows)?;
         } else {
             differ.push(format!("{} ({} paths)", row.scene, row.paths));
         }
     }
-    bench::write_index(&dir, &rows)?;
-    for f in old_files {
-        if !rows.iter().any(|r| r.file == f) {
-            std::fs::remove_file(dir.join(&f))
-                .with_context(|| format!("removing {}", dir.join(&f).display()))?;
+    // Every truth file the index no longer names (carried-over truths' old keys) goes.
+    for entry in std::fs::read_dir(&dir).with_context(|| format!("listing {}", dir.display()))? {
+        let name = entry?.file_name().to_string_lossy().into_owned();
+        if name.starts_with("ref-")
+            && name.ends_with(".bin")
+            && !rows.iter().any(|r| r.file == name)
+        {
+            std::fs::remove_file(dir.join(&name))
+                .with_context(|| format!("removing {}", dir.join(&name).display()))?;
         }
     }
     if !differ.is_empty() {

@@ -459,6 +459,23 @@ pub(crate) fn recheck(
     anyhow::ensure!(paths > 1.0, "the fresh trace has {paths} paths a pixel");
     let scale = 1.0 + paths / f64::from(truth_paths.max(1));
     let brightest = t.iter().map(|b| b.mean).fold(0.0, f64::max);
+    if brightest <= 0.0 {
+        // A truth without clouds (`weather clear`) holds no light to weigh: it agrees exactly
+        // with a fresh trace that holds none either, and differs from one that holds any.
+        let fresh_light = f.iter().map(|b| b.mean).fold(0.0, f64::max);
+        let z = if fresh_light > 0.0 {
+            f64::INFINITY
+        } else {
+            0.0
+        };
+        return Ok(Recheck {
+            worst_block_z: z,
+            pooled_z: z,
+            relative: 0.0,
+            detectable: 0.0,
+            blocks: 0,
+        });
+    }
     let (mut diff, mut var, mut total, mut blocks, mut worst) = (0.0, 0.0, 0.0, 0, 0.0f64);
     for (a, b) in f.iter().zip(&t) {
         if b.mean <= RECHECK_EMPTY * brightest || a.variance <= 0.0 {
@@ -604,6 +621,17 @@ mod tests {
         assert!(!bright.agrees() && bright.pooled_z > 5.0, "{bright:?}");
         assert!((bright.relative - 0.02).abs() < 1e-6, "{bright:?}");
         assert_eq!(bright.blocks, 32);
+    }
+
+    /// A truth without clouds (`weather clear`) agrees with a fresh trace without them and
+    /// differs from one with any light, rather than failing the whole recheck.
+    #[test]
+    fn recheck_of_a_cloudless_truth() {
+        let empty = trace(64, 32, 0.0, 8192.0, 0.0);
+        let r = recheck(&empty, 8192, &trace(64, 32, 0.0, 128.0, 0.0)).unwrap();
+        assert!(r.agrees() && r.blocks == 0, "{r:?}");
+        let lit = recheck(&empty, 8192, &trace(64, 32, 0.01, 128.0, 1.0)).unwrap();
+        assert!(!lit.agrees(), "{lit:?}");
     }
 
     #[test]
