@@ -316,6 +316,13 @@ struct Frame {
     precip_velocity: vec3<f32>,
     // The side of the box of particles about the camera (m).
     precip_box: f32,
+    // Where a cumulonimbus anvil's top lies downwind of its tower (xz, m at the
+    // layer's top; `clouds.anvil_shear_m` along the wind's direction).
+    anvil_shear: vec2<f32>,
+    // Cumulonimbus anvils on cumulus layers, within [0, 1] (`clouds.anvil`; 0: none).
+    anvil: f32,
+    // Padding (0).
+    _pad9: f32,
 }
 // Shared declarations of the `clouds` module: the resources, the feature switches and small
 // math helpers.
@@ -1268,6 +1275,49 @@ fn regional_coverage(p: vec3<f32>, l: Layer, weather: Weather) -> f32 {
     return mix(map, share, cumulus);
 }
 
+// Cumulonimbus anvils (`clouds.anvil`; deep cumulus layers: type 0.75 and up, fully at 1, as
+// for the cells, and deeper than ANVIL_DEPTH_M.x, fully at .y, so that a fair cumulus layer
+// beside a storm keeps its domes: a towering cumulus METAR layer is 4 km deep, a
+// cumulonimbus one 8 km). A storm's updraft rises until the stable air of the tropopause stops it; there
+// the cloud spreads sideways into a flat plate many times the tower's width, carried downwind
+// by the wind aloft (Houze 2014, Cloud Dynamics, 2nd ed., ch. 8). Above ANVIL_BASE of the
+// layer the anvil's cover at a point follows the most cover the weather map has at seven
+// taps, the point and six about it at a radius rising to ANVIL_SPREAD_M at the layer's top,
+// all moved upwind by the shear's share at that height (`frame.anvil_shear`, its whole at the
+// top): the map dilated, so each tower's top spreads into a plate whose underside rises away
+// from the tower and which leans downwind. Only the map's cores spread (cover above
+// ANVIL_CORE, rising to full at 1): dilated as it is, a storm layer of coverage 0.6 became one
+// unbroken sheet seen from above. Its height profile is a slab, full between ANVIL_FULL and
+// ANVIL_FALL of the layer (the top tenth to third of an 8 km storm layer, an anvil's 1-2 km).
+// Returns (cover, profile), each 0 where there is no anvil; the density takes the greater of
+// each and its own, so a scene without anvils computes what it did before.
+const ANVIL_BASE: f32 = 0.7;
+const ANVIL_FULL: f32 = 0.8;
+const ANVIL_FALL: f32 = 0.93;
+const ANVIL_SPREAD_M: f32 = 4000.0;
+const ANVIL_CORE: f32 = 0.85;
+const ANVIL_DEPTH_M: vec2<f32> = vec2<f32>(4000.0, 6000.0);
+
+fn anvil_cover(p: vec3<f32>, h: f32, l: Layer) -> vec2<f32> {
+    let a = frame.anvil * smoothstep(0.75, 1.0, l.cloud_type)
+        * smoothstep(ANVIL_DEPTH_M.x, ANVIL_DEPTH_M.y, l.top - l.bottom);
+    if a <= 0.0 || h <= ANVIL_BASE {
+        return vec2<f32>(0.0);
+    }
+    let rise = smoothstep(ANVIL_BASE, 1.0, h);
+    let centre = (p.xz - frame.anvil_shear * rise - l.weather_offset) / frame.weather_period;
+    let r = ANVIL_SPREAD_M * rise / frame.weather_period;
+    var m = textureSampleLevel(weather_tex, noise_sampler, centre, 0.0).r;
+    for (var k = 0u; k < 6u; k++) {
+        let angle = f32(k) * (PI / 3.0);
+        let tap = centre + r * vec2<f32>(cos(angle), sin(angle));
+        m = max(m, textureSampleLevel(weather_tex, noise_sampler, tap, 0.0).r);
+    }
+    let core = saturate((saturate(m + 2.0 * (l.coverage - 0.5)) - ANVIL_CORE) / (1.0 - ANVIL_CORE));
+    let cover = core * a * smoothstep(ANVIL_BASE, ANVIL_FULL, h);
+    return vec2<f32>(cover, a * gradient(h, ANVIL_BASE, ANVIL_FULL, ANVIL_FALL, 1.0));
+}
+
 // Thesis eq. 5.1: a parabola with roots at the cloud's start and top, peak 1 between them.
 // The cloud starts at the layer bottom; its height grows with cloud type (stratus low,
 // cumulus the whole layer).
@@ -1323,8 +1373,10 @@ fn layer_density_with(p: vec3<f32>, alt: f32, l: Layer, with_detail: bool,
     }
     (*counters).density += 1u;
     let weather = sample_weather(p, l);
-    let signal = height_signal(h / weather.top, weather.cloud_type);
-    if weather.coverage <= 0.0 || signal <= 0.0 {
+    let anvil = anvil_cover(p, h, l);
+    let coverage = max(weather.coverage, anvil.x);
+    let signal = max(height_signal(h / weather.top, weather.cloud_type), anvil.y);
+    if coverage <= 0.0 || signal <= 0.0 {
         return 0.0;
     }
 
@@ -1338,7 +1390,7 @@ fn layer_density_with(p: vec3<f32>, alt: f32, l: Layer, with_detail: bool,
     var base = saturate(remap(s.r, low_fbm - 1.0, 1.0, 0.0, 1.0)) * signal;
 
     // Coverage (HZD): remap so that low coverage keeps only the densest parts, then scale.
-    base = saturate(remap(base, 1.0 - weather.coverage, 1.0, 0.0, 1.0)) * weather.coverage;
+    base = saturate(remap(base, 1.0 - coverage, 1.0, 0.0, 1.0)) * coverage;
     if base <= 0.0 {
         return 0.0;
     }
@@ -1569,7 +1621,9 @@ fn far_optical_depth(rel: vec3<f32>, p: vec3<f32>, l: Layer) -> f32 {
         let t = reach + (f32(i) + 0.5) * 0.25 * len;
         let h = saturate(layer_height(l, altitude_of(rel + sun * t)));
         let w = sample_weather(p + sun * t, l);
-        let f = min(w.coverage * height_signal(h / w.top, l.cloud_type), 0.95);
+        let anvil = anvil_cover(p + sun * t, h, l);
+        let f = min(max(w.coverage * height_signal(h / w.top, l.cloud_type), anvil.x * anvil.y),
+                    0.95);
         tau += 0.25 * len * f / ((1.0 - f) * chord);
     }
     return tau;
@@ -2297,8 +2351,9 @@ fn occupancy(@builtin(global_invocation_id) id: vec3<u32>) {
 // the cell is empty (no cloud at any altitude), else 0.
 fn empty_cell_exit(p: vec3<f32>, d: vec3<f32>) -> f32 {
     // The grid holds the map's coverage (R) alone: cumulus on convective cells stands where
-    // the cell field (A) says, with or without it, so no cell is known empty then.
-    if frame.convective_cells > 0.0 {
+    // the cell field (A) says, with or without it, and an anvil spreads kilometres beyond
+    // its tower's cell, so no cell is known empty then.
+    if frame.convective_cells > 0.0 || frame.anvil > 0.0 {
         return 0.0;
     }
     let cells = f32(OCCUPANCY_CELLS);

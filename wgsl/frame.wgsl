@@ -316,4 +316,11 @@ struct Frame {
     precip_velocity: vec3<f32>,
     // The side of the box of particles about the camera (m).
     precip_box: f32,
+    // Where a cumulonimbus anvil's top lies downwind of its tower (xz, m at the
+    // layer's top; `clouds.anvil_shear_m` along the wind's direction).
+    anvil_shear: vec2<f32>,
+    // Cumulonimbus anvils on cumulus layers, within [0, 1] (`clouds.anvil`; 0: none).
+    anvil: f32,
+    // Padding (0).
+    _pad9: f32,
 }

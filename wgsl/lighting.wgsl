@@ -192,7 +192,9 @@ fn far_optical_depth(rel: vec3<f32>, p: vec3<f32>, l: Layer) -> f32 {
         let t = reach + (f32(i) + 0.5) * 0.25 * len;
         let h = saturate(layer_height(l, altitude_of(rel + sun * t)));
         let w = sample_weather(p + sun * t, l);
-        let f = min(w.coverage * height_signal(h / w.top, l.cloud_type), 0.95);
+        let anvil = anvil_cover(p + sun * t, h, l);
+        let f = min(max(w.coverage * height_signal(h / w.top, l.cloud_type), anvil.x * anvil.y),
+                    0.95);
         tau += 0.25 * len * f / ((1.0 - f) * chord);
     }
     return tau;

@@ -34,8 +34,9 @@ fn occupancy(@builtin(global_invocation_id) id: vec3<u32>) {
 // the cell is empty (no cloud at any altitude), else 0.
 fn empty_cell_exit(p: vec3<f32>, d: vec3<f32>) -> f32 {
     // The grid holds the map's coverage (R) alone: cumulus on convective cells stands where
-    // the cell field (A) says, with or without it, so no cell is known empty then.
-    if frame.convective_cells > 0.0 {
+    // the cell field (A) says, with or without it, and an anvil spreads kilometres beyond
+    // its tower's cell, so no cell is known empty then.
+    if frame.convective_cells > 0.0 || frame.anvil > 0.0 {
         return 0.0;
     }
     let cells = f32(OCCUPANCY_CELLS);

@@ -205,6 +205,45 @@ pub(crate) fn uniform_weather(f: &Frame) -> Weather {
     }
 }
 
+// WGSL: density.wgsl::ANVIL_BASE, ANVIL_FULL, ANVIL_FALL, ANVIL_SPREAD_M, ANVIL_CORE,
+// ANVIL_DEPTH_M
+const ANVIL_BASE: f64 = 0.7;
+const ANVIL_FULL: f64 = 0.8;
+const ANVIL_FALL: f64 = 0.93;
+const ANVIL_SPREAD_M: f64 = 4000.0;
+const ANVIL_CORE: f64 = 0.7;
+const ANVIL_DEPTH_M: [f64; 2] = [4000.0, 6000.0];
+
+// WGSL: density.wgsl::anvil_cover
+/// `(cover, profile)` of a cumulonimbus anvil at `p`, height fraction `h` in layer `l`: the
+/// weather map dilated over the layer's top, moved downwind (see the WGSL for why); zeros
+/// where there is none.
+pub(crate) fn anvil_cover(f: &Frame, map: &Texture2, p: V3, h: f64, l: &Layer) -> (f64, f64) {
+    let a = f.anvil
+        * smoothstep(0.75, 1.0, l.cloud_type)
+        * smoothstep(ANVIL_DEPTH_M[0], ANVIL_DEPTH_M[1], l.top - l.bottom);
+    if a <= 0.0 || h <= ANVIL_BASE {
+        return (0.0, 0.0);
+    }
+    let rise = smoothstep(ANVIL_BASE, 1.0, h);
+    let centre = [
+        (p.x - f.anvil_shear[0] * rise - l.weather_offset[0]) / f.weather_period,
+        (p.z - f.anvil_shear[1] * rise - l.weather_offset[1]) / f.weather_period,
+    ];
+    let r = ANVIL_SPREAD_M * rise / f.weather_period;
+    let m = (0..6).fold(sample2(map, centre)[0], |m, k| {
+        let angle = f64::from(k) * (std::f64::consts::PI / 3.0);
+        let tap = [centre[0] + r * angle.cos(), centre[1] + r * angle.sin()];
+        m.max(sample2(map, tap)[0])
+    });
+    let core = saturate((saturate(m + 2.0 * (l.coverage - 0.5)) - ANVIL_CORE) / (1.0 - ANVIL_CORE));
+    let cover = core * a * smoothstep(ANVIL_BASE, ANVIL_FULL, h);
+    (
+        cover,
+        a * gradient(h, ANVIL_BASE, ANVIL_FULL, ANVIL_FALL, 1.0),
+    )
+}
+
 // WGSL: density.wgsl::height_parabola
 pub(crate) fn height_parabola(h: f64, cloud_type: f64) -> f64 {
     let height = mix(0.35, 1.0, cloud_type);
@@ -280,8 +319,10 @@ pub(crate) fn layer_density_with(
     }
     counters.density += 1;
     let weather = sample_weather(f, noise, p, l);
-    let signal = height_signal(f, h / weather.top, weather.cloud_type);
-    if weather.coverage <= 0.0 || signal <= 0.0 {
+    let (anvil, profile) = anvil_cover(f, &noise.weather, p, h, l);
+    let coverage = weather.coverage.max(anvil);
+    let signal = height_signal(f, h / weather.top, weather.cloud_type).max(profile);
+    if coverage <= 0.0 || signal <= 0.0 {
         return 0.0;
     }
 
@@ -305,7 +346,7 @@ pub(crate) fn layer_density_with(
     let mut base = saturate(remap(s[0], low_fbm - 1.0, 1.0, 0.0, 1.0)) * signal;
 
     // Coverage (HZD).
-    base = saturate(remap(base, 1.0 - weather.coverage, 1.0, 0.0, 1.0)) * weather.coverage;
+    base = saturate(remap(base, 1.0 - coverage, 1.0, 0.0, 1.0)) * coverage;
     if base <= 0.0 {
         return 0.0;
     }
@@ -365,5 +406,63 @@ mod tests {
         }
         assert!(height_cloud_types(0.3, 1.0) > 0.99);
         assert_eq!(height_cloud_types(0.5, 0.0), 0.0);
+    }
+
+    /// A map of one tower (full cover within 1.5 km of the origin, none elsewhere) under a
+    /// storm layer 1-9 km with the wind toward +x; `anvil` and `shear` as given.
+    fn storm(anvil: f64, shear: f64) -> (Frame, Texture2, Layer) {
+        let mut scene = stratus_scene::Scene::default();
+        scene.atmosphere.cloud_bottom_m = 1000.0;
+        scene.atmosphere.cloud_top_m = 9000.0;
+        scene.clouds.cloud_type = 1.0;
+        scene.clouds.coverage = 0.5;
+        scene.clouds.wind_direction_deg = 90.0;
+        scene.clouds.anvil = anvil;
+        scene.clouds.anvil_shear_m = shear;
+        let f = Frame::from_uniforms(&scene.uniforms());
+        // 64 texels over the 60 km period: about 940 m each.
+        let n = 64u32;
+        let texel_m = f.weather_period / f64::from(n);
+        let mut data = vec![0u8; (n * n * 4) as usize];
+        for y in 0..n {
+            for x in 0..n {
+                // Texel centres, wrapped so that the origin's neighbours on both sides count.
+                let d = |i: u32| {
+                    let c = (f64::from(i) + 0.5) * texel_m;
+                    c.min(f.weather_period - c)
+                };
+                if d(x).hypot(d(y)) < 1500.0 {
+                    data[((y * n + x) * 4) as usize] = 255;
+                }
+            }
+        }
+        let map = Texture2 { size: [n, n], data };
+        let l = cloud_layer(&f, 0);
+        (f, map, l)
+    }
+
+    #[test]
+    fn an_anvil_spreads_a_towers_top_downwind_and_nothing_else() {
+        let at = |x: f64, z: f64| V3::new(x, 0.0, z);
+        let (f, map, l) = storm(1.0, 6000.0);
+        // Over the tower the anvil is full at the layer's top...
+        let (cover, profile) = anvil_cover(&f, &map, at(0.0, 0.0), 0.85, &l);
+        assert!(cover > 0.99 && profile > 0.99, "{cover} {profile}");
+        // ...and none below its base, nor on a layer too shallow for one.
+        assert_eq!(anvil_cover(&f, &map, at(0.0, 0.0), 0.6, &l), (0.0, 0.0));
+        let shallow = Layer { top: 4000.0, ..l };
+        assert_eq!(
+            anvil_cover(&f, &map, at(0.0, 0.0), 0.85, &shallow),
+            (0.0, 0.0)
+        );
+        // 6 km downwind of the tower, near the top, the plate is there; 6 km upwind it is not.
+        let downwind = anvil_cover(&f, &map, at(6000.0, 0.0), 0.95, &l).0;
+        let upwind = anvil_cover(&f, &map, at(-6000.0, 0.0), 0.95, &l).0;
+        assert!(downwind > 0.9 && upwind == 0.0, "{downwind} {upwind}");
+        // Without anvils nothing changes anywhere.
+        let (f0, map0, l0) = storm(0.0, 6000.0);
+        for x in [-6000.0, 0.0, 6000.0] {
+            assert_eq!(anvil_cover(&f0, &map0, at(x, 0.0), 0.95, &l0), (0.0, 0.0));
+        }
     }
 }

@@ -215,7 +215,10 @@ pub(crate) fn far_optical_depth(m: &Model, rel: V3, p: V3, l: &Layer) -> f64 {
             let t = reach + (f64::from(i) + 0.5) * 0.25 * len;
             let h = saturate(layer_height(l, altitude_of(f, rel + sun * t)));
             let w = m.weather(p + sun * t, l);
-            let cover = (w.coverage * height_signal(f, h / w.top, l.cloud_type)).min(0.95);
+            let (anvil, profile) = m.anvil_cover(p + sun * t, h, l);
+            let cover = (w.coverage * height_signal(f, h / w.top, l.cloud_type))
+                .max(anvil * profile)
+                .min(0.95);
             0.25 * len * cover / ((1.0 - cover) * chord)
         })
         .sum()

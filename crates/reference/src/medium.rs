@@ -319,8 +319,9 @@ impl<'a> Model<'a> {
             return 0.0;
         };
         let f = &self.f;
-        // WGSL: the grid knows the map's coverage alone, not the convective cells.
-        if f.convective_cells > 0.0 {
+        // WGSL: the grid knows the map's coverage alone, not the convective cells nor the
+        // anvils spread beyond it.
+        if f.convective_cells > 0.0 || f.anvil > 0.0 {
             return 0.0;
         }
         let cells = f64::from(OCCUPANCY_CELLS);
@@ -405,6 +406,15 @@ impl<'a> Model<'a> {
         match self.medium {
             Medium::Clouds(noise) => sample_weather(&self.f, noise, p, l),
             Medium::Homogeneous { .. } | Medium::Grid(_) => uniform_weather(&self.f),
+        }
+    }
+
+    /// `(cover, profile)` of a cumulonimbus anvil at `p`, height fraction `h` in layer `l`
+    /// (zeros for analytic media, which have no anvils).
+    pub(crate) fn anvil_cover(&self, p: V3, h: f64, l: &Layer) -> (f64, f64) {
+        match self.medium {
+            Medium::Clouds(noise) => crate::density::anvil_cover(&self.f, &noise.weather, p, h, l),
+            Medium::Homogeneous { .. } | Medium::Grid(_) => (0.0, 0.0),
         }
     }
 

@@ -683,6 +683,16 @@ fn is_zero(v: &f64) -> bool {
     *v == 0.0
 }
 
+/// The default [`Clouds::anvil_shear_m`]: a storm's anvil typically streams tens of
+/// kilometres downwind; 6 km puts its leading edge well beyond the tower at the scale of a
+/// view a few tens of kilometres across.
+pub const DEFAULT_ANVIL_SHEAR_M: f64 = 6000.0;
+
+/// Whether an anvil shear is the default (serialised only when set).
+fn is_default_anvil_shear(v: &f64) -> bool {
+    *v == DEFAULT_ANVIL_SHEAR_M
+}
+
 /// The cloud model (section `[clouds]`).
 #[derive(Serialize, Deserialize, Clone, Debug, PartialEq)]
 #[serde(default, deny_unknown_fields)]
@@ -738,6 +748,19 @@ pub struct Clouds {
     /// layers of other types are unchanged.
     #[serde(skip_serializing_if = "is_zero")]
     pub convective_cells: f64,
+    /// Cumulonimbus anvils, within [0, 1] (0, the default: none). In a cumulus layer (cloud
+    /// type 0.75 and up, fully at 1) each tower's top spreads sideways over the layer's upper
+    /// part into a flat plate kilometres wider than the tower, as a storm's updraft does where
+    /// the tropopause stops it, and the plate leans downwind by [`Clouds::anvil_shear_m`].
+    /// Values between thin the anvils (weather transitions); layers of other types are
+    /// unchanged.
+    #[serde(skip_serializing_if = "is_zero")]
+    pub anvil: f64,
+    /// How far downwind of its tower an anvil's top lies (m, >= 0; along
+    /// `wind_direction_deg`): the wind aloft carries the spreading cloud. Read only where
+    /// [`Clouds::anvil`] is above 0.
+    #[serde(skip_serializing_if = "is_default_anvil_shear")]
+    pub anvil_shear_m: f64,
     /// Extra cloud layers (`[[clouds.layers]]`, at most [`MAX_EXTRA_LAYERS`]) besides the main
     /// one that `atmosphere.cloud_bottom_m`/`cloud_top_m` and the fields above describe. Each
     /// has its own altitudes and weather over the same noise, wind and lighting; no two
@@ -805,6 +828,8 @@ impl Default for Clouds {
             height_gradient: 0.5,
             wispy_billowy: 0.5,
             convective_cells: 0.0,
+            anvil: 0.0,
+            anvil_shear_m: DEFAULT_ANVIL_SHEAR_M,
             layers: Vec::new(),
         }
     }
@@ -1315,6 +1340,8 @@ impl Scene {
         scene.precipitation.particles = 1.0;
         scene.lightning.flashes_per_minute = 1.0;
         scene.clouds.convective_cells = 1.0;
+        scene.clouds.anvil = 1.0;
+        scene.clouds.anvil_shear_m = 1.0;
         scene
     }
 

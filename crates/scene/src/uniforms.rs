@@ -340,6 +340,13 @@ macro_rules! frame_members {
             precip_velocity: vec3f,
             /// The side of the box of particles about the camera (m).
             precip_box: f32,
+            /// Where a cumulonimbus anvil's top lies downwind of its tower (xz, m at the
+            /// layer's top; `clouds.anvil_shear_m` along the wind's direction).
+            anvil_shear: vec2f,
+            /// Cumulonimbus anvils on cumulus layers, within [0, 1] (`clouds.anvil`; 0: none).
+            anvil: f32,
+            /// Padding (0).
+            _pad9: f32,
         }
     };
 }
@@ -1040,6 +1047,9 @@ impl Scene {
             precip_density: f(self.precipitation.particles),
             precip_velocity: v3(precip_velocity),
             precip_box: f(PRECIP_BOX_M),
+            anvil_shear: [f(dx * c.anvil_shear_m), f(dz * c.anvil_shear_m)],
+            anvil: f(c.anvil),
+            _pad9: 0.0,
         };
         block.with_previous_camera(&block)
     }

@@ -391,6 +391,8 @@ pub(crate) fn check(scene: &Scene) -> Vec<Issue> {
     c.unit("clouds.height_gradient", cl.height_gradient);
     c.unit("clouds.wispy_billowy", cl.wispy_billowy);
     c.unit("clouds.convective_cells", cl.convective_cells);
+    c.unit("clouds.anvil", cl.anvil);
+    c.non_negative("clouds.anvil_shear_m", cl.anvil_shear_m);
     check_layers(&mut c, scene);
 
     if scene.noise.seed > i64::MAX as u64 {

@@ -438,6 +438,13 @@ pub fn scene_from_metar(m: &Metar, base: &Scene) -> Derived {
     let mut layers = layers.into_iter();
     if let Some(main) = layers.next() {
         scene.clouds.convective_cells = if cells { 1.0 } else { 0.0 };
+        // A cumulonimbus spreads into an anvil at its top. Anvils take only layers deep enough
+        // to be one (density.wgsl::anvil_cover), so a fair cumulus layer beside it keeps its
+        // domes.
+        let cb = merged
+            .iter()
+            .any(|(_, g)| g.convective == Some(Convective::Cumulonimbus));
+        scene.clouds.anvil = if cb { 1.0 } else { 0.0 };
         scene.atmosphere.cloud_bottom_m = main.bottom_m;
         scene.atmosphere.cloud_top_m = main.top_m;
         scene.clouds.coverage = main.coverage;

@@ -41,6 +41,8 @@ pub struct WeatherParams {
     /// The share of cumulus on convective cells (`clouds.convective_cells`): 1 for the fair
     /// states, whose coverage then follows [`CELL_COVER_FRACTION`], 0 for the others.
     pub convective_cells: f64,
+    /// Cumulonimbus anvils (`clouds.anvil`): 1 for the thunderstorm, 0 for the others.
+    pub anvil: f64,
 }
 
 /// A named weather state.
@@ -87,6 +89,7 @@ const fn fair(coverage: f64) -> WeatherParams {
         ambient_top: BLUE_TOP,
         exposure: 1.0,
         convective_cells: 1.0,
+        anvil: 0.0,
     }
 }
 
@@ -160,6 +163,7 @@ pub const STATES: [WeatherState; 10] = [
             ambient_top: DARK_TOP,
             exposure: 1.2,
             convective_cells: 0.0,
+            anvil: 1.0,
             ..fair(0.6)
         },
     ),
@@ -317,6 +321,7 @@ impl WeatherParams {
             ambient_top: l3(self.ambient_top, other.ambient_top),
             exposure: l(self.exposure, other.exposure),
             convective_cells: l(self.convective_cells, other.convective_cells),
+            anvil: l(self.anvil, other.anvil),
         }
     }
 
@@ -369,6 +374,7 @@ impl WeatherParams {
         scene.lighting.ambient_top = self.ambient_top;
         scene.camera.exposure = self.exposure;
         scene.clouds.convective_cells = self.convective_cells;
+        scene.clouds.anvil = self.anvil;
         if self.fog_density > 0.0 && self.fog_top_m > 0.0 {
             scene
                 .clouds

@@ -175,3 +175,27 @@ fn a_vertical_visibility_is_an_obscured_base_and_impossible_heights_are_refused(
         assert!(e.contains(token) && e.contains("20 km"), "{report}: {e}");
     }
 }
+
+#[test]
+fn a_cumulonimbus_brings_anvils_and_a_thunderstorm_without_one_does_not() {
+    // CB: anvils on; the layer is deep enough to have one (8 km) while the fair cumulus below
+    // it is not, so its domes stay (density.wgsl::anvil_cover weighs the layer's depth).
+    let d = derive("METAR LRTR 101600Z 11017KT 9999 TS VCSH FEW020 SCT045CB 18/09 Q1004=");
+    assert_eq!(d.scene.clouds.anvil, 1.0);
+    let cb = &d.scene.clouds.layers[0];
+    assert!(cb.top_m - cb.bottom_m >= 6000.0, "{cb:?}");
+    let main = &d.scene.atmosphere;
+    assert!(main.cloud_top_m - main.cloud_bottom_m <= 4000.0);
+    // Thunder heard with towering cumulus only: no anvils.
+    let d = derive("METAR LRTR 101600Z 11017KT 9999 TS FEW020 SCT045TCU 18/09 Q1004=");
+    assert_eq!(d.scene.clouds.anvil, 0.0);
+    // The thunderstorm state has them, the others do not.
+    for s in &states::STATES {
+        assert_eq!(
+            s.params.anvil,
+            f64::from(u8::from(s.name == "thunderstorm")),
+            "{}",
+            s.name
+        );
+    }
+}
