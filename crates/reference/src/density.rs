@@ -211,7 +211,7 @@ const ANVIL_BASE: f64 = 0.7;
 const ANVIL_FULL: f64 = 0.8;
 const ANVIL_FALL: f64 = 0.93;
 const ANVIL_SPREAD_M: f64 = 4000.0;
-const ANVIL_CORE: f64 = 0.7;
+const ANVIL_CORE: f64 = 0.85;
 const ANVIL_DEPTH_M: [f64; 2] = [4000.0, 6000.0];
 
 // WGSL: density.wgsl::anvil_cover
@@ -408,9 +408,9 @@ mod tests {
         assert_eq!(height_cloud_types(0.5, 0.0), 0.0);
     }
 
-    /// A map of one tower (full cover within 1.5 km of the origin, none elsewhere) under a
+    /// A map of one tower (cover `tower` within 1.5 km of the origin, none elsewhere) under a
     /// storm layer 1-9 km with the wind toward +x; `anvil` and `shear` as given.
-    fn storm(anvil: f64, shear: f64) -> (Frame, Texture2, Layer) {
+    fn storm(anvil: f64, shear: f64, tower: u8) -> (Frame, Texture2, Layer) {
         let mut scene = stratus_scene::Scene::default();
         scene.atmosphere.cloud_bottom_m = 1000.0;
         scene.atmosphere.cloud_top_m = 9000.0;
@@ -432,7 +432,7 @@ mod tests {
                     c.min(f.weather_period - c)
                 };
                 if d(x).hypot(d(y)) < 1500.0 {
-                    data[((y * n + x) * 4) as usize] = 255;
+                    data[((y * n + x) * 4) as usize] = tower;
                 }
             }
         }
@@ -444,7 +444,7 @@ mod tests {
     #[test]
     fn an_anvil_spreads_a_towers_top_downwind_and_nothing_else() {
         let at = |x: f64, z: f64| V3::new(x, 0.0, z);
-        let (f, map, l) = storm(1.0, 6000.0);
+        let (f, map, l) = storm(1.0, 6000.0, 255);
         // Over the tower the anvil is full at the layer's top...
         let (cover, profile) = anvil_cover(&f, &map, at(0.0, 0.0), 0.85, &l);
         assert!(cover > 0.99 && profile > 0.99, "{cover} {profile}");
@@ -460,9 +460,13 @@ mod tests {
         let upwind = anvil_cover(&f, &map, at(-6000.0, 0.0), 0.95, &l).0;
         assert!(downwind > 0.9 && upwind == 0.0, "{downwind} {upwind}");
         // Without anvils nothing changes anywhere.
-        let (f0, map0, l0) = storm(0.0, 6000.0);
+        let (f0, map0, l0) = storm(0.0, 6000.0, 255);
         for x in [-6000.0, 0.0, 6000.0] {
             assert_eq!(anvil_cover(&f0, &map0, at(x, 0.0), 0.95, &l0), (0.0, 0.0));
         }
+        // Only the map's cores spread (cover above ANVIL_CORE, as in the WGSL): a tower of
+        // cover 0.8 gets none.
+        let (f8, map8, l8) = storm(1.0, 6000.0, 204);
+        assert_eq!(anvil_cover(&f8, &map8, at(0.0, 0.0), 0.95, &l8).0, 0.0);
     }
 }
