@@ -207,8 +207,8 @@ pub(crate) fn uniform_weather(f: &Frame) -> Weather {
 
 // WGSL: density.wgsl::ANVIL_BASE, ANVIL_FULL, ANVIL_FALL, ANVIL_SPREAD_M, ANVIL_CORE,
 // ANVIL_DEPTH_M
-const ANVIL_BASE: f64 = 0.7;
-const ANVIL_FULL: f64 = 0.8;
+pub(crate) const ANVIL_BASE: f64 = 0.7;
+pub(crate) const ANVIL_FULL: f64 = 0.8;
 const ANVIL_FALL: f64 = 0.93;
 const ANVIL_SPREAD_M: f64 = 4000.0;
 const ANVIL_CORE: f64 = 0.85;

@@ -1,7 +1,9 @@
 //! The CPU twin of `lighting.wgsl`: the light march toward the sun, multiple-scattering
 //! octaves, ambient and precipitation darkening (its phase functions are in [`crate::phase`]).
 
-use crate::density::{Counters, Layer, cloud_layers, height_signal, layer_height};
+use crate::density::{
+    ANVIL_BASE, ANVIL_FULL, Counters, Layer, cloud_layers, height_signal, layer_height,
+};
 use crate::frame::{FLAG_BEER_POWDER, Frame, PI};
 use crate::geometry::{altitude_of, hits_ground, ray_shell_from};
 use crate::math::{V3, mix, mix_v, saturate};
@@ -186,26 +188,26 @@ pub(crate) fn octave_optical_depth(
 
 // WGSL: lighting.wgsl::far_optical_depth
 // Must agree: the reach is the real-time light march's (its segments' total length, from the
-// uniforms), each quarter of the stretch beyond it a mixture of the weather map's coverage
-// times the height signal at its middle.
+// uniforms), the stretch ends where the sun ray enters an anvil's band, each quarter of it a
+// mixture of the weather map's coverage times the height signal at its middle.
 /// The far shadow: the statistical optical depth (a binary Markov mixture's) of the sun ray's
-/// stretch inside layer `l` beyond the light march's reach, 0 with the far shadow off.
-pub(crate) fn far_optical_depth(m: &Model, rel: V3, p: V3, l: &Layer) -> f64 {
+/// stretch inside layer `l` beyond the light march's reach and short of an anvil's band
+/// (`band`, [`anvil_band_entry`]), 0 with the far shadow off.
+pub(crate) fn far_optical_depth(m: &Model, rel: V3, p: V3, l: &Layer, band: f64) -> f64 {
     let f = &m.f;
     let chord = f.far_chord;
     if chord <= 0.0 || f.light_steps == 0 {
         return 0.0;
     }
-    let growth = f.light_step_growth;
-    let steps = f64::from(f.light_steps);
-    let reach = if growth == 1.0 {
-        f.first_light_step * steps
-    } else {
-        f.first_light_step * (growth.powf(steps) - 1.0) / (growth - 1.0)
-    };
+    let reach = light_march_reach(f);
     let sun = f.sun();
     let exit = ray_shell_from(f, rel, altitude_of(f, rel), sun, l.top);
-    let len = exit.t1 - reach;
+    let end = if band >= 0.0 {
+        exit.t1.min(band.max(reach))
+    } else {
+        exit.t1
+    };
+    let len = end - reach;
     // WGSL: `!(len > 0.0)` also catches NaN.
     if !exit.hit || len.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
         return 0.0;
@@ -215,11 +217,81 @@ pub(crate) fn far_optical_depth(m: &Model, rel: V3, p: V3, l: &Layer) -> f64 {
             let t = reach + (f64::from(i) + 0.5) * 0.25 * len;
             let h = saturate(layer_height(l, altitude_of(f, rel + sun * t)));
             let w = m.weather(p + sun * t, l);
-            let (anvil, profile) = m.anvil_cover(p + sun * t, h, l);
-            let cover = (w.coverage * height_signal(f, h / w.top, l.cloud_type))
-                .max(anvil * profile)
-                .min(0.95);
+            let cover = (w.coverage * height_signal(f, h / w.top, l.cloud_type)).min(0.95);
             0.25 * len * cover / ((1.0 - cover) * chord)
+        })
+        .sum()
+}
+
+// WGSL: lighting.wgsl::ANVIL_OCTAVE_SHARE
+const ANVIL_OCTAVE_SHARE: f64 = 0.5;
+
+// WGSL: lighting.wgsl::light_march_reach
+/// The real-time light march's reach: its segments' total length (m).
+fn light_march_reach(f: &Frame) -> f64 {
+    let growth = f.light_step_growth;
+    let steps = f64::from(f.light_steps);
+    if growth == 1.0 {
+        f.first_light_step * steps
+    } else {
+        f.first_light_step * (growth.powf(steps) - 1.0) / (growth - 1.0)
+    }
+}
+
+// WGSL: lighting.wgsl::anvil_band_entry
+/// Where the sun ray from camera-relative `rel` (world position `p`) enters layer `l`'s anvil
+/// band: 0 from inside it, -1 where the layer has no anvil or the ray does not reach it.
+pub(crate) fn anvil_band_entry(m: &Model, rel: V3, p: V3, l: &Layer) -> f64 {
+    if m.anvil_cover(p, ANVIL_FULL, l).1 <= 0.0 {
+        return -1.0;
+    }
+    let f = &m.f;
+    let alt = altitude_of(f, rel);
+    let base = mix(l.bottom, l.top, ANVIL_BASE);
+    if alt >= base {
+        return 0.0;
+    }
+    let enter = ray_shell_from(f, rel, alt, f.sun(), base);
+    // WGSL: `!(enter.t1 > 0.0)` also catches NaN.
+    if !enter.hit || enter.t1.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
+        return -1.0;
+    }
+    enter.t1
+}
+
+// WGSL: lighting.wgsl::anvil_optical_depth
+// Must agree: from the later of the band's entry and the light march's reach to the layer's
+// top, ABOVE_SAMPLES midpoint samples of equal stretches, each counting one light sample.
+/// An anvil's shade: the sun ray's optical depth through layer `l`'s anvil band beyond the
+/// real-time light march's reach (`band` from [`anvil_band_entry`]).
+pub(crate) fn anvil_optical_depth(
+    m: &Model,
+    rel: V3,
+    p: V3,
+    l: &Layer,
+    band: f64,
+    counters: &mut Counters,
+) -> f64 {
+    let f = &m.f;
+    if band < 0.0 || f.light_steps == 0 {
+        return 0.0;
+    }
+    let sun = f.sun();
+    let exit = ray_shell_from(f, rel, altitude_of(f, rel), sun, l.top);
+    let start = band.max(light_march_reach(f));
+    // WGSL: `!(exit.t1 > start)` also catches NaN.
+    if !exit.hit || exit.t1.partial_cmp(&start) != Some(std::cmp::Ordering::Greater) {
+        return 0.0;
+    }
+    let sigma_t = f.scattering + f.absorption;
+    let step = (exit.t1 - start) / f64::from(ABOVE_SAMPLES);
+    (0..ABOVE_SAMPLES)
+        .map(|k| {
+            let s = start + (f64::from(k) + 0.5) * step;
+            counters.light += 1;
+            m.layer_density(p + sun * s, altitude_of(f, rel + sun * s), l, counters)
+                * sigma_t
+                * step
         })
         .sum()
 }
@@ -386,14 +458,22 @@ pub(crate) fn scattered_light(
         // LIGHT_MARCH: with 0 light steps the layer's own march returns 0, as the switched-off
         // WGSL does (and so does its far shadow); the layers above still shade it, as in the
         // WGSL's shadowed variants with 0 light steps (the unshadowed variant skips them too).
+        // The converged march samples the whole sun ray in the layer, the anvil's band too.
         let above = optical_depth_above(m, rel, p, l, counters);
-        let tau = sun_optical_depth(m, lm, rel, p, l, counters) + above;
-        let far = far_optical_depth(m, rel, p, l);
+        let band = anvil_band_entry(m, rel, p, l);
+        let anvil = if lm.to_layer_exit {
+            0.0
+        } else {
+            anvil_optical_depth(m, rel, p, l, band, counters)
+        };
+        let tau = sun_optical_depth(m, lm, rel, p, l, counters) + above + anvil;
+        let far = far_optical_depth(m, rel, p, l, band);
         let far_direct = if lm.to_layer_exit { 0.0 } else { far };
         let tau_oct = if lm.steps == 0 {
             tau
         } else {
-            octave_optical_depth(m, rel, p, l, (tau, above), counters)
+            let seen = tau - anvil * (1.0 - ANVIL_OCTAVE_SHARE);
+            octave_optical_depth(m, rel, p, l, (seen, above), counters)
         };
         let (s, octaves) = sun_scattering(
             f,
@@ -434,7 +514,76 @@ mod tests {
         let m = Model::new(&scene, Medium::Clouds(&noise));
         let l = cloud_layers(&m.f).next().expect("the main layer");
         let rel = V3::new(0.0, l.bottom + 100.0, 0.0);
-        far_optical_depth(&m, rel, rel, &l)
+        far_optical_depth(&m, rel, rel, &l, anvil_band_entry(&m, rel, rel, &l))
+    }
+
+    /// A storm layer (1-9 km, cumulus, coverage 0.6, as `weather thunderstorm`'s) under a sun
+    /// 60 degrees up, with `anvil`.
+    fn storm_model(noise: &stratus_noise::NoiseSet, anvil: f64) -> Model<'_> {
+        let mut scene = Scene::default();
+        scene.sun.elevation_deg = 60.0;
+        scene.atmosphere.cloud_bottom_m = 1000.0;
+        scene.atmosphere.cloud_top_m = 9000.0;
+        scene.clouds.coverage = 0.6;
+        scene.clouds.cloud_type = 1.0;
+        scene.clouds.anvil = anvil;
+        Model::new(&scene, Medium::Clouds(noise))
+    }
+
+    /// An anvil shades the cloud under it beyond the light march's reach: the sun ray's stretch
+    /// through its band is sampled (tens of optical depths under a plate, where the far
+    /// shadow's broken-cloud statistics gave a few), the far shadow stops where the band
+    /// begins, and a layer without an anvil takes neither.
+    #[test]
+    fn an_anvil_shades_the_cloud_under_it_beyond_the_light_march() {
+        let noise = crate::small_noise();
+        let (m, m0) = (storm_model(&noise, 1.0), storm_model(&noise, 0.0));
+        let l = cloud_layers(&m.f).next().expect("the storm layer");
+        // 3.4 km up (height fraction 0.3): the band (from 6.6 km) is 3.7 km along a sun 60
+        // degrees up, beyond the light march's 3.15 km.
+        let at = |x: f64, z: f64| V3::new(x, 3400.0, z);
+        let mut deepest: f64 = 0.0;
+        for i in -20..20 {
+            for j in -20..20 {
+                let rel = at(f64::from(i) * 1500.0, f64::from(j) * 1500.0);
+                let band = anvil_band_entry(&m, rel, rel, &l);
+                let rise = 6600.0 - altitude_of(&m.f, rel);
+                assert!(
+                    (band - rise / 60f64.to_radians().sin()).abs() < 20.0,
+                    "{band}"
+                );
+                assert!(band > light_march_reach(&m.f));
+                let mut c = Counters::default();
+                let tau = anvil_optical_depth(&m, rel, rel, &l, band, &mut c);
+                assert_eq!(
+                    c.light,
+                    u64::from(ABOVE_SAMPLES),
+                    "one light sample per band sample"
+                );
+                deepest = deepest.max(tau);
+                // Without an anvil: no band, no samples, the far shadow to the layer's top.
+                assert_eq!(anvil_band_entry(&m0, rel, rel, &l), -1.0);
+                let mut c0 = Counters::default();
+                assert_eq!(anvil_optical_depth(&m0, rel, rel, &l, -1.0, &mut c0), 0.0);
+                assert_eq!(c0.light, 0);
+                // The far shadow stops at the band: never more than without it.
+                assert!(
+                    far_optical_depth(&m, rel, rel, &l, band)
+                        <= far_optical_depth(&m, rel, rel, &l, -1.0)
+                );
+            }
+        }
+        assert!(
+            deepest > 10.0,
+            "the deepest plate's optical depth: {deepest}"
+        );
+        // Inside the band the band begins at once; where the light march reaches the layer's
+        // top there is nothing beyond it to sample.
+        let high = at(0.0, 0.0) + V3::new(0.0, 3800.0, 0.0);
+        assert_eq!(anvil_band_entry(&m, high, high, &l), 0.0);
+        let mut c = Counters::default();
+        assert_eq!(anvil_optical_depth(&m, high, high, &l, 0.0, &mut c), 0.0);
+        assert_eq!(c.light, 0);
     }
 
     /// Nothing where the light march reaches the layer's top (a high sun), more the lower the
