@@ -323,6 +323,22 @@ struct Frame {
     anvil: f32,
     // Padding (0).
     _pad9: f32,
+    // The main layer's cirrus share, within [0, 1] (`clouds.cirrus`).
+    cirrus: f32,
+    // Extra layer 1's cirrus share (`[[clouds.layers]] cirrus`; 0 where there is
+    // no such layer).
+    layer1_cirrus: f32,
+    // Extra layer 2's cirrus share.
+    layer2_cirrus: f32,
+    // Extra layer 3's cirrus share.
+    layer3_cirrus: f32,
+    // The wind's direction (unit xz, toward which it blows): cirrus fibres lie along
+    // it.
+    wind_direction: vec2<f32>,
+    // Padding (0).
+    _pad10: f32,
+    // Padding (0).
+    _pad11: f32,
 }
 // Shared declarations of the `clouds` module: the resources, the feature switches and small
 // math helpers.
@@ -1146,6 +1162,7 @@ struct Layer {
     cloud_type: f32,
     precipitation: f32,
     weather_offset: vec2<f32>, // where the layer reads the weather map (wind and its own shift)
+    cirrus: f32,               // the cirrus share (cirrus_density), 0 for water cloud
 }
 
 const MAX_LAYERS: u32 = 4u;
@@ -1159,18 +1176,18 @@ fn cloud_layer(i: u32) -> Layer {
     if i == 1u {
         return Layer(frame.layer1_bottom, frame.layer1_top, frame.layer1_coverage,
                      frame.layer1_density, frame.layer1_cloud_type, frame.layer1_precipitation,
-                     frame.layer1_weather_offset);
+                     frame.layer1_weather_offset, frame.layer1_cirrus);
     } else if i == 2u {
         return Layer(frame.layer2_bottom, frame.layer2_top, frame.layer2_coverage,
                      frame.layer2_density, frame.layer2_cloud_type, frame.layer2_precipitation,
-                     frame.layer2_weather_offset);
+                     frame.layer2_weather_offset, frame.layer2_cirrus);
     } else if i == 3u {
         return Layer(frame.layer3_bottom, frame.layer3_top, frame.layer3_coverage,
                      frame.layer3_density, frame.layer3_cloud_type, frame.layer3_precipitation,
-                     frame.layer3_weather_offset);
+                     frame.layer3_weather_offset, frame.layer3_cirrus);
     }
     return Layer(frame.cloud_bottom, frame.cloud_top, frame.coverage, frame.density,
-                 frame.cloud_type, frame.precipitation, frame.weather_offset);
+                 frame.cloud_type, frame.precipitation, frame.weather_offset, frame.cirrus);
 }
 
 // Height fraction of altitude `alt` in layer `l` (inside where it lies in [0, 1]).
@@ -1373,6 +1390,88 @@ fn layer_density_with(p: vec3<f32>, alt: f32, l: Layer, with_detail: bool,
     }
     (*counters).density += 1u;
     let weather = sample_weather(p, l);
+    var ice = 0.0;
+    if l.cirrus > 0.0 {
+        ice = cirrus_density(p, alt, h, l, weather, counters);
+        if l.cirrus >= 1.0 {
+            return ice;
+        }
+    }
+    return mix(water_density(p, alt, h, l, weather, with_detail, counters), ice, l.cirrus);
+}
+
+// Cirrus (`clouds.cirrus`, per layer): ice cloud, thin and high, whose look is fibres, streaks
+// a few hundred metres across and kilometres long lying along the wind, with fall streaks of
+// ice crystals trailing below the heads they fall from, left behind by the slower wind beneath
+// (cirrus fibratus and uncinus: WMO International Cloud Atlas, 2017; Heymsfield 1975, J.
+// Atmos. Sci. 32:799). The cumulus family's noise is read the same way in every direction and
+// heaps into domes; a thin high layer of it was a few soft blobs. Here the same textures are
+// read in the wind's frame:
+// - strands: the shape noise at CIRRUS_SCALE of its period, CIRRUS_STRETCH times longer along
+//   the wind than across, its ridges 1 - |2n - 1| (thin where it crosses its middle) widened
+//   by its Worley FBM (CIRRUS_STRANDS); the weather map's coverage remaps them as it does the
+//   other clouds, keeping their crests (thin strands) or, at full coverage, all of them (a
+//   cirrostratus veil), and is 0 where the map's is, so the empty-space skip's bound holds;
+// - fibres within them: the detail noise's ridges, CIRRUS_FIBRE_STRETCH times longer along the
+//   wind, kept between CIRRUS_RIDGE, CIRRUS_FIBRE of the density between them taken away;
+// - bends: the curl noise, read at CIRRUS_BEND_SCALE times its period, moves them sideways by
+//   up to CIRRUS_BEND_M (at 1500 m they zigzagged, at 400 m they were ruled lines);
+// - fall streaks: a fibre at height fraction h reads the noise CIRRUS_FALL_M (1 - h) further
+//   downwind than the layer's top does, so its trail leans upwind below its head.
+// The height profile is full from 0.35 to 0.75 of the layer. All chosen by eye, from below and
+// above (docs/cloud-fields.md); the CPU twin's test holds the fibres along the wind.
+const CIRRUS_STRETCH: f32 = 16.0;
+const CIRRUS_FALL_M: f32 = 3000.0;
+const CIRRUS_FIBRE: f32 = 0.95;
+const CIRRUS_RIDGE: vec2<f32> = vec2<f32>(0.55, 0.95);
+const CIRRUS_BEND_M: f32 = 800.0;
+const CIRRUS_BEND_SCALE: f32 = 4.0;
+const CIRRUS_STRANDS: f32 = 0.5;
+const CIRRUS_SCALE: f32 = 0.5;
+const CIRRUS_FIBRE_STRETCH: f32 = 30.0;
+
+fn cirrus_density(p: vec3<f32>, alt: f32, h: f32, l: Layer, weather: Weather,
+                  counters: ptr<function, Counters>) -> f32 {
+    let signal = gradient(h, 0.0, 0.35, 0.75, 1.0);
+    if weather.coverage <= 0.0 || signal <= 0.0 {
+        return 0.0;
+    }
+    (*counters).detail += 1u;
+    // The wind's frame, the curl noise bending the strands sideways.
+    let wind = frame.wind_direction;
+    let cuv = (p.xz - frame.curl_offset) / (frame.curl_period * CIRRUS_BEND_SCALE);
+    let curl = textureSampleLevel(curl_tex, noise_sampler, cuv, 0.0).xy * 2.0 - 1.0;
+    let xz = p.xz - frame.shape_offset;
+    let along = dot(xz, wind) + CIRRUS_FALL_M * (1.0 - h);
+    let across = dot(xz, vec2<f32>(-wind.y, wind.x)) + CIRRUS_BEND_M * curl.x;
+    let q = vec3<f32>(along / CIRRUS_STRETCH, alt, across);
+    let qf = vec3<f32>(along / CIRRUS_FIBRE_STRETCH, alt, across);
+
+    // Strands: the shape noise's ridges, widened by its Worley FBM; the coverage keeps their
+    // crests (thin strands) or all of them (a cirrostratus veil), as it keeps the other
+    // clouds' densest parts.
+    let dims = vec3<f32>(textureDimensions(shape_tex));
+    let period = frame.shape_period * vec3<f32>(1.0, dims.y / dims.x, 1.0);
+    let s = textureSampleLevel(shape_tex, noise_sampler, q / (period * CIRRUS_SCALE), 0.0);
+    let low_fbm = s.g * 0.625 + s.b * 0.25 + s.a * 0.125;
+    let strand = (1.0 - abs(2.0 * s.r - 1.0)) * mix(1.0, low_fbm, CIRRUS_STRANDS);
+    let base = saturate(remap(strand * signal, 1.0 - weather.coverage, 1.0, 0.0, 1.0))
+        * weather.coverage;
+    if base <= 0.0 {
+        return 0.0;
+    }
+
+    // Fibres within them: the detail noise's ridges.
+    let dn = textureSampleLevel(detail_tex, noise_sampler, qf / frame.detail_period, 0.0);
+    let ridge = 1.0 - abs(2.0 * (dn.r * 0.625 + dn.g * 0.25 + dn.b * 0.125) - 1.0);
+    let fibre = smoothstep(CIRRUS_RIDGE.x, CIRRUS_RIDGE.y, ridge);
+    return saturate(base * mix(1.0, fibre, CIRRUS_FIBRE) * l.density);
+}
+
+// The water clouds' density (the cumulus family, stratus to cumulonimbus) at `p` of layer
+// `l`, height fraction `h`, under `weather` (layer_density_with).
+fn water_density(p: vec3<f32>, alt: f32, h: f32, l: Layer, weather: Weather, with_detail: bool,
+                 counters: ptr<function, Counters>) -> f32 {
     let anvil = anvil_cover(p, h, l);
     let coverage = max(weather.coverage, anvil.x);
     let signal = max(height_signal(h / weather.top, weather.cloud_type), anvil.y);
@@ -1599,7 +1698,8 @@ fn octave_optical_depth(rel: vec3<f32>, p: vec3<f32>, l: Layer, tau: f32, above:
 // scattering) it took `dawn` from FLIP 0.038 to 0.026 and `sunset` from 0.070 to 0.050 over
 // the layer's mean coverage.
 // The stretch ends where the sun ray enters an anvil's band, at `band` (anvil_band_entry;
-// anvil_optical_depth samples the band).
+// anvil_optical_depth samples the band). A cirrus layer's share (l.cirrus) takes none: the
+// mixture's clouds are opaque, and cirrus an optical depth or so through.
 fn far_optical_depth(rel: vec3<f32>, p: vec3<f32>, l: Layer, band: f32) -> f32 {
     let chord = frame.far_chord;
     if chord <= 0.0 || frame.light_steps == 0u {
@@ -1625,7 +1725,7 @@ fn far_optical_depth(rel: vec3<f32>, p: vec3<f32>, l: Layer, band: f32) -> f32 {
         let f = min(w.coverage * height_signal(h / w.top, l.cloud_type), 0.95);
         tau += 0.25 * len * f / ((1.0 - f) * chord);
     }
-    return tau;
+    return tau * (1.0 - l.cirrus);
 }
 
 // The share of an anvil's optical depth the octaves see (anvil_optical_depth). Against

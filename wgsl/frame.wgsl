@@ -323,4 +323,20 @@ struct Frame {
     anvil: f32,
     // Padding (0).
     _pad9: f32,
+    // The main layer's cirrus share, within [0, 1] (`clouds.cirrus`).
+    cirrus: f32,
+    // Extra layer 1's cirrus share (`[[clouds.layers]] cirrus`; 0 where there is
+    // no such layer).
+    layer1_cirrus: f32,
+    // Extra layer 2's cirrus share.
+    layer2_cirrus: f32,
+    // Extra layer 3's cirrus share.
+    layer3_cirrus: f32,
+    // The wind's direction (unit xz, toward which it blows): cirrus fibres lie along
+    // it.
+    wind_direction: vec2<f32>,
+    // Padding (0).
+    _pad10: f32,
+    // Padding (0).
+    _pad11: f32,
 }

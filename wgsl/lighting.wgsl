@@ -170,7 +170,8 @@ fn octave_optical_depth(rel: vec3<f32>, p: vec3<f32>, l: Layer, tau: f32, above:
 // scattering) it took `dawn` from FLIP 0.038 to 0.026 and `sunset` from 0.070 to 0.050 over
 // the layer's mean coverage.
 // The stretch ends where the sun ray enters an anvil's band, at `band` (anvil_band_entry;
-// anvil_optical_depth samples the band).
+// anvil_optical_depth samples the band). A cirrus layer's share (l.cirrus) takes none: the
+// mixture's clouds are opaque, and cirrus an optical depth or so through.
 fn far_optical_depth(rel: vec3<f32>, p: vec3<f32>, l: Layer, band: f32) -> f32 {
     let chord = frame.far_chord;
     if chord <= 0.0 || frame.light_steps == 0u {
@@ -196,7 +197,7 @@ fn far_optical_depth(rel: vec3<f32>, p: vec3<f32>, l: Layer, band: f32) -> f32 {
         let f = min(w.coverage * height_signal(h / w.top, l.cloud_type), 0.95);
         tau += 0.25 * len * f / ((1.0 - f) * chord);
     }
-    return tau;
+    return tau * (1.0 - l.cirrus);
 }
 
 // The share of an anvil's optical depth the octaves see (anvil_optical_depth). Against

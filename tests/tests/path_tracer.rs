@@ -158,7 +158,8 @@ fn gpu_path_tracer_agrees_with_the_cpu_path_tracer() {
 }
 
 /// The same with a high deck over the clouds: paths cross the gap between layers, and the
-/// deck shadows the clouds below.
+/// deck shadows the clouds below. The deck is half cirrus, so both densities and their blend
+/// are traced.
 #[test]
 fn gpu_path_tracer_agrees_with_the_cpu_path_tracer_through_two_layers() {
     let mut s = scene();
@@ -169,6 +170,7 @@ fn gpu_path_tracer_agrees_with_the_cpu_path_tracer_through_two_layers() {
         density: 0.4,
         cloud_type: 0.2,
         precipitation: 0.0,
+        cirrus: 0.5,
     }];
     agree(&s, SPP);
 }

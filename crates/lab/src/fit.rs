@@ -66,9 +66,10 @@ pub struct FitArgs {
     /// new scene, before deciding to refit.
     #[arg(long)]
     evaluate: bool,
-    /// With --evaluate, only these scenes (comma-separated: presets, or training scenes by the
-    /// names of their images, e.g. `storm-deck-sun-25-deg`): their truths alone are rendered
-    /// (or loaded) and measured. A truth of 8192 paths a pixel takes 10-30 minutes a scene on
+    /// With --evaluate, only these scenes (comma-separated: presets, weather states as
+    /// `weather-NAME`, cloud types' scenes (`scenes/types/NAME.toml`) as `type-NAME`, or
+    /// training scenes by the names of their images, e.g. `storm-deck-sun-25-deg`): their
+    /// truths alone are rendered (or loaded) and measured. A truth of 8192 paths a pixel takes 10-30 minutes a scene on
     /// lavapipe; this renders the ones a question needs.
     #[arg(long, value_delimiter = ',', requires = "evaluate")]
     scenes: Vec<String>,
@@ -232,8 +233,10 @@ fn training_scenes() -> Result<Vec<(String, Scene)>> {
         .collect()
 }
 
-/// The scenes the fit never trains on: the presets, by their names, and the weather states
-/// on the default scene (`stratus weather --state NAME`), as `weather NAME`.
+/// The scenes the fit never trains on: the presets, by their names, the weather states on
+/// the default scene (`stratus weather --state NAME`), as `weather NAME`, and the cloud types'
+/// scenes (`scenes/types/NAME.toml`, partial scene files embedded at build time), as `type
+/// NAME`.
 fn held_out_scenes() -> Result<Vec<(String, Scene)>> {
     let mut out: Vec<(String, Scene)> = stratus_scene::presets()
         .iter()
@@ -247,6 +250,11 @@ fn held_out_scenes() -> Result<Vec<(String, Scene)>> {
         let mut scene = Scene::default();
         state.params.apply(&mut scene);
         out.push((format!("weather {}", state.name), scene));
+    }
+    for (file, text) in TYPE_SCENES {
+        let origin = format!("scenes/types/{file}");
+        let scene = Scene::from_toml_str(text, &origin).map_err(|e| anyhow::anyhow!("{e}"))?;
+        out.push((format!("type {}", file.trim_end_matches(".toml")), scene));
     }
     Ok(out)
 }

@@ -189,7 +189,8 @@ pub(crate) fn octave_optical_depth(
 // WGSL: lighting.wgsl::far_optical_depth
 // Must agree: the reach is the real-time light march's (its segments' total length, from the
 // uniforms), the stretch ends where the sun ray enters an anvil's band, each quarter of it a
-// mixture of the weather map's coverage times the height signal at its middle.
+// mixture of the weather map's coverage times the height signal at its middle; a cirrus
+// layer's share takes none.
 /// The far shadow: the statistical optical depth (a binary Markov mixture's) of the sun ray's
 /// stretch inside layer `l` beyond the light march's reach and short of an anvil's band
 /// (`band`, [`anvil_band_entry`]), 0 with the far shadow off.
@@ -220,7 +221,8 @@ pub(crate) fn far_optical_depth(m: &Model, rel: V3, p: V3, l: &Layer, band: f64)
             let cover = (w.coverage * height_signal(f, h / w.top, l.cloud_type)).min(0.95);
             0.25 * len * cover / ((1.0 - cover) * chord)
         })
-        .sum()
+        .sum::<f64>()
+        * (1.0 - l.cirrus)
 }
 
 // WGSL: lighting.wgsl::ANVIL_OCTAVE_SHARE

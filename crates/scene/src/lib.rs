@@ -54,10 +54,10 @@ mod validate;
 pub use error::{Location, Problem, ProblemKind, SceneError};
 pub use presets::{DEFAULT_PRESET, PresetInfo, presets};
 pub use scene::{
-    Air, Animation, Atmosphere, Camera, CloudLayer, Clouds, HeightModel, Integration, Integrator,
-    Keyframe, Lighting, Lightning, MAX_EXTRA_LAYERS, Method, MultipleScattering, Night, Noise,
-    Orientation, Phase, PhaseModel, Post, Precipitation, PrecipitationKind, Quality, Rainbow,
-    Scene, ShapeTexture, Sky, SkyModel, Sun, Temporal,
+    Air, Animation, Atmosphere, Camera, CloudLayer, Clouds, DEFAULT_CIRRUS_DENSITY, HeightModel,
+    Integration, Integrator, Keyframe, Lighting, Lightning, MAX_EXTRA_LAYERS, Method,
+    MultipleScattering, Night, Noise, Orientation, Phase, PhaseModel, Post, Precipitation,
+    PrecipitationKind, Quality, Rainbow, Scene, ShapeTexture, Sky, SkyModel, Sun, Temporal,
 };
 pub use uniforms::{FrameUniforms, UniformMember};
 pub use validate::{MAX_LIGHT_STEPS, MAX_OCTAVE_A, MAX_OCTAVES, MAX_RESOLUTION, MAX_VIEW_STEPS};

@@ -761,6 +761,13 @@ pub struct Clouds {
     /// [`Clouds::anvil`] is above 0.
     #[serde(skip_serializing_if = "is_default_anvil_shear")]
     pub anvil_shear_m: f64,
+    /// The main layer's cirrus share, within [0, 1] (0, the default: a water cloud of
+    /// `cloud_type`). At 1 the layer is cirrus: ice cloud in fibres kilometres long drawn out
+    /// along the wind, with fall streaks trailing below their heads, instead of the cumulus
+    /// family's heaped shapes; values between blend the two. Meant for thin, high layers
+    /// ([`DEFAULT_CIRRUS_DENSITY`] for a cirrus's optical depth).
+    #[serde(skip_serializing_if = "is_zero")]
+    pub cirrus: f64,
     /// Extra cloud layers (`[[clouds.layers]]`, at most [`MAX_EXTRA_LAYERS`]) besides the main
     /// one that `atmosphere.cloud_bottom_m`/`cloud_top_m` and the fields above describe. Each
     /// has its own altitudes and weather over the same noise, wind and lighting; no two
@@ -791,7 +798,16 @@ pub struct CloudLayer {
     pub cloud_type: f64,
     /// Precipitation within [0, 1].
     pub precipitation: f64,
+    /// Cirrus share within [0, 1] (as `clouds.cirrus`).
+    #[serde(skip_serializing_if = "is_zero")]
+    pub cirrus: f64,
 }
+
+/// A cirrus layer's density multiplier: cirrus are optically thin, their optical depth
+/// mostly 0.03-3 (thin below 0.3; Sassen and Cho 1992, J. Appl. Meteor. 31:1275). At the
+/// default scattering (0.04 per metre) the densest strands of a 1500 m layer at this
+/// multiplier are 1-2 optical depths thick straight through.
+pub const DEFAULT_CIRRUS_DENSITY: f64 = 0.04;
 
 impl Default for CloudLayer {
     /// A thin, high, stratiform deck (altostratus height).
@@ -803,6 +819,7 @@ impl Default for CloudLayer {
             density: 0.3,
             cloud_type: 0.0,
             precipitation: 0.0,
+            cirrus: 0.0,
         }
     }
 }
@@ -830,6 +847,7 @@ impl Default for Clouds {
             convective_cells: 0.0,
             anvil: 0.0,
             anvil_shear_m: DEFAULT_ANVIL_SHEAR_M,
+            cirrus: 0.0,
             layers: Vec::new(),
         }
     }
@@ -1342,6 +1360,8 @@ impl Scene {
         scene.clouds.convective_cells = 1.0;
         scene.clouds.anvil = 1.0;
         scene.clouds.anvil_shear_m = 1.0;
+        scene.clouds.cirrus = 1.0;
+        scene.clouds.layers[0].cirrus = 1.0;
         scene
     }
 

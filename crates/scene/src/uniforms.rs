@@ -347,6 +347,22 @@ macro_rules! frame_members {
             anvil: f32,
             /// Padding (0).
             _pad9: f32,
+            /// The main layer's cirrus share, within [0, 1] (`clouds.cirrus`).
+            cirrus: f32,
+            /// Extra layer 1's cirrus share (`[[clouds.layers]] cirrus`; 0 where there is
+            /// no such layer).
+            layer1_cirrus: f32,
+            /// Extra layer 2's cirrus share.
+            layer2_cirrus: f32,
+            /// Extra layer 3's cirrus share.
+            layer3_cirrus: f32,
+            /// The wind's direction (unit xz, toward which it blows): cirrus fibres lie along
+            /// it.
+            wind_direction: vec2f,
+            /// Padding (0).
+            _pad10: f32,
+            /// Padding (0).
+            _pad11: f32,
         }
     };
 }
@@ -1050,6 +1066,13 @@ impl Scene {
             anvil_shear: [f(dx * c.anvil_shear_m), f(dz * c.anvil_shear_m)],
             anvil: f(c.anvil),
             _pad9: 0.0,
+            cirrus: f(c.cirrus),
+            layer1_cirrus: f(layers.first().map_or(0.0, |l| l.cirrus)),
+            layer2_cirrus: f(layers.get(1).map_or(0.0, |l| l.cirrus)),
+            layer3_cirrus: f(layers.get(2).map_or(0.0, |l| l.cirrus)),
+            wind_direction: [f(dx), f(dz)],
+            _pad10: 0.0,
+            _pad11: 0.0,
         };
         block.with_previous_camera(&block)
     }

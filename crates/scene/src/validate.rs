@@ -393,6 +393,18 @@ pub(crate) fn check(scene: &Scene) -> Vec<Issue> {
     c.unit("clouds.convective_cells", cl.convective_cells);
     c.unit("clouds.anvil", cl.anvil);
     c.non_negative("clouds.anvil_shear_m", cl.anvil_shear_m);
+    c.unit("clouds.cirrus", cl.cirrus);
+    // The baselines draw the cumulus family alone.
+    if cl.cirrus > 0.0 && scene.quality.method != crate::Method::Volumetric {
+        c.push(
+            "clouds.cirrus",
+            num(cl.cirrus),
+            format!(
+                "quality.method = \"{}\" draws water cloud only: cirrus needs \"volumetric\"",
+                scene.quality.method.name()
+            ),
+        );
+    }
     check_layers(&mut c, scene);
 
     if scene.noise.seed > i64::MAX as u64 {
@@ -759,6 +771,12 @@ fn check_layers(c: &mut Checker, scene: &Scene) {
                 "precipitation",
                 l.precipitation,
                 (0.0..=1.0).contains(&l.precipitation),
+                "must be within [0, 1]",
+            ),
+            (
+                "cirrus",
+                l.cirrus,
+                (0.0..=1.0).contains(&l.cirrus),
                 "must be within [0, 1]",
             ),
         ];

@@ -85,3 +85,23 @@ fn the_uniforms_carry_each_layer_with_its_own_weather_offset() {
     // Without extra layers the block is what it was.
     assert_eq!(Scene::default().uniforms().extra_layers, 0);
 }
+
+#[test]
+fn cirrus_is_a_share_and_the_baselines_refuse_it() {
+    let mut s = Scene::default();
+    s.clouds.cirrus = 1.5;
+    assert!(error(&s).contains("clouds.cirrus"), "{}", error(&s));
+    s.clouds.cirrus = 1.0;
+    assert!(s.validate().is_ok());
+    s.quality.method = Method::Basic;
+    let e = error(&s);
+    assert!(
+        e.contains("clouds.cirrus") && e.contains("draws water cloud only"),
+        "{e}"
+    );
+    let e = error(&with_layers(vec![CloudLayer {
+        cirrus: -0.5,
+        ..CloudLayer::default()
+    }]));
+    assert!(e.contains("layer 1: cirrus = -0.5"), "{e}");
+}

@@ -2,7 +2,7 @@
 //! suggest, its cloud groups as cloud layers, its wind and, for fog and mist, a ground fog
 //! layer from its visibility.
 
-use stratus_scene::{CloudLayer, MAX_EXTRA_LAYERS, Scene};
+use stratus_scene::{CloudLayer, DEFAULT_CIRRUS_DENSITY, MAX_EXTRA_LAYERS, Scene};
 
 use crate::haze;
 use crate::metar::{CloudGroup, Convective, Cover, Intensity, Metar};
@@ -43,11 +43,16 @@ const MERGE_M: f64 = 150.0;
 /// Gap left between a layer's top and the next layer's base, metres.
 const GAP_M: f64 = 50.0;
 
-/// What a cloud group becomes: thickness (m), cloud type, density and a name. `precipitating`:
-/// the lowest group of a report with rain or snow, whose closed deck is nimbostratus.
-fn cloud_kind(g: &CloudGroup, base: f64, precipitating: bool) -> (f64, f64, f64, &'static str) {
+/// What a cloud group becomes: thickness (m), cloud type, density, cirrus share and a name.
+/// `precipitating`: the lowest group of a report with rain or snow, whose closed deck is
+/// nimbostratus.
+fn cloud_kind(
+    g: &CloudGroup,
+    base: f64,
+    precipitating: bool,
+) -> (f64, f64, f64, f64, &'static str) {
     let closed = matches!(g.cover, Cover::Broken | Cover::Overcast);
-    match (g.convective, base) {
+    let (thickness, cloud_type, density, name) = match (g.convective, base) {
         // Nimbostratus: thick and stratiform, its base low.
         (None, b) if precipitating && closed && b < 2000.0 => (3000.0, 0.25, 1.0, "nimbostratus"),
         // Cumulonimbus reach the tropopause; towering cumulus about half as far.
@@ -60,9 +65,18 @@ fn cloud_kind(g: &CloudGroup, base: f64, precipitating: bool) -> (f64, f64, f64,
         },
         // Middle clouds: altocumulus and altostratus, thinner water clouds.
         (None, b) if b < 6000.0 => (1000.0, 0.35, 0.6, "altocumulus/altostratus"),
-        // High clouds: ice, thin (cirrostratus-like within this model's shapes).
-        (None, _) => (600.0, 0.0, 0.25, "cirrostratus"),
-    }
+        // High clouds: ice, thin and fibrous (cirrus; closed, a cirrostratus veil). The WMO
+        // puts high clouds' bases at 5-13 km in temperate regions (International Cloud Atlas,
+        // 2017); a cirrus layer is typically 1-2 km deep (Sassen and Campbell 2001).
+        (None, _) if !closed => (1500.0, 0.0, DEFAULT_CIRRUS_DENSITY, "cirrus"),
+        (None, _) => (1500.0, 0.0, DEFAULT_CIRRUS_DENSITY, "cirrostratus"),
+    };
+    let cirrus = if matches!(name, "cirrus" | "cirrostratus") {
+        1.0
+    } else {
+        0.0
+    };
+    (thickness, cloud_type, density, cirrus, name)
 }
 
 fn cover_name(c: Cover) -> &'static str {
@@ -343,7 +357,7 @@ pub fn scene_from_metar(m: &Metar, base: &Scene) -> Derived {
     let mut cells = false;
     for (i, (b, g)) in merged.iter().enumerate() {
         let precipitating = i == 0 && matches!(name, "rain" | "snow");
-        let (thickness, cloud_type, density, kind) = cloud_kind(g, *b, precipitating);
+        let (thickness, cloud_type, density, cirrus, kind) = cloud_kind(g, *b, precipitating);
         let mut top = b + thickness;
         if let Some((next, _)) = merged.get(i + 1) {
             top = top.min(next - GAP_M);
@@ -385,6 +399,7 @@ pub fn scene_from_metar(m: &Metar, base: &Scene) -> Derived {
             density,
             cloud_type,
             precipitation,
+            cirrus,
         });
     }
     if layers.is_empty() && !matches!(name, "fog" | "mist" | "rain" | "snow" | "thunderstorm") {
@@ -451,6 +466,7 @@ pub fn scene_from_metar(m: &Metar, base: &Scene) -> Derived {
         scene.clouds.density = main.density;
         scene.clouds.cloud_type = main.cloud_type;
         scene.clouds.precipitation = main.precipitation;
+        scene.clouds.cirrus = main.cirrus;
     } else if rain > 0.0 {
         scene.clouds.precipitation = rain;
     }

@@ -199,3 +199,34 @@ fn a_cumulonimbus_brings_anvils_and_a_thunderstorm_without_one_does_not() {
         );
     }
 }
+
+#[test]
+fn high_cloud_groups_become_cirrus_and_the_others_do_not() {
+    // FEW040 cumulus (main), FEW190 altocumulus (5791 m), SCT210 cirrus (6401 m).
+    let d = derive(
+        "METAR CYMA 092000Z VRB02KT 20SM FEW040 FEW190 SCT210 10/01 A3002 RMK CF1AS2CC1 CF TR SLP190=",
+    );
+    assert_eq!(d.scene.clouds.cirrus, 0.0);
+    let [alto, cirrus] = &d.scene.clouds.layers[..] else {
+        panic!("two extra layers: {:?}", d.scene.clouds.layers);
+    };
+    assert_eq!(alto.cirrus, 0.0, "{alto:?}");
+    assert_eq!(cirrus.cirrus, 1.0, "{cirrus:?}");
+    // Thin ice: the cirrus density, 1500 m deep.
+    assert_eq!(cirrus.density, stratus_scene::DEFAULT_CIRRUS_DENSITY);
+    assert_eq!(cirrus.top_m - cirrus.bottom_m, 1500.0);
+    assert!(
+        d.notes.iter().any(|n| n.contains("-> cirrus")),
+        "{:?}",
+        d.notes
+    );
+    // A closed high deck is a cirrostratus veil, cirrus all the same; a report of high cloud
+    // alone makes the main layer cirrus.
+    let d = derive("METAR KJFK 221651Z 31012KT 10SM OVC250 12/M02 A3012=");
+    assert_eq!(d.scene.clouds.cirrus, 1.0);
+    assert!(
+        d.notes.iter().any(|n| n.contains("-> cirrostratus")),
+        "{:?}",
+        d.notes
+    );
+}

@@ -88,6 +88,7 @@ pub fn all() -> Vec<Case> {
                         density: 0.4,
                         cloud_type: 0.2,
                         precipitation: 0.0,
+                        cirrus: 0.0,
                     },
                     CloudLayer {
                         bottom_m: 600.0,
@@ -96,8 +97,25 @@ pub fn all() -> Vec<Case> {
                         density: 1.0,
                         cloud_type: 0.5,
                         precipitation: 0.3,
+                        cirrus: 0.0,
                     },
                 ];
+            },
+        ),
+        stress(
+            "cirrus",
+            "cirrus at 8-9.5 km over the cumulus, looking 30 degrees up: fibres read in the wind's frame, bent by the curl noise",
+            |s| {
+                s.camera.pitch_deg = 30.0;
+                s.clouds.layers = vec![CloudLayer {
+                    bottom_m: 8000.0,
+                    top_m: 9500.0,
+                    coverage: 0.45,
+                    density: stratus_scene::DEFAULT_CIRRUS_DENSITY,
+                    cloud_type: 0.0,
+                    precipitation: 0.0,
+                    cirrus: 1.0,
+                }];
             },
         ),
         stress(
