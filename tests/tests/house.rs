@@ -8,23 +8,10 @@ use std::{
     path::{Path, PathBuf},
 };
 
+use stratus_test_support::files_with_extension;
+
 fn workspace() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("..")
-}
-
-/// Every `.rs` file below `dir`.
-fn rust_files(dir: &Path, out: &mut Vec<PathBuf>) {
-    let Ok(entries) = std::fs::read_dir(dir) else {
-        return;
-    };
-    for e in entries.flatten() {
-        let path = e.path();
-        if path.is_dir() {
-            rust_files(&path, out);
-        } else if path.extension().is_some_and(|x| x == "rs") {
-            out.push(path);
-        }
-    }
 }
 
 /// The top-level module a source file belongs to (`None` for the crate root).
@@ -126,8 +113,7 @@ fn no_crate_has_an_import_circle_between_its_modules() {
     let mut crates_seen = 0;
     for src in sources.iter().filter(|s| s.is_dir()) {
         crates_seen += 1;
-        let mut files = Vec::new();
-        rust_files(src, &mut files);
+        let files = files_with_extension(src, "rs");
         let modules: BTreeSet<String> = files.iter().filter_map(|f| top_module(src, f)).collect();
         let mut edges: BTreeMap<String, BTreeSet<String>> = BTreeMap::new();
         for f in &files {

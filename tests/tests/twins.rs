@@ -10,6 +10,8 @@ use std::{
     path::{Path, PathBuf},
 };
 
+use stratus_test_support::files_with_extension;
+
 fn workspace() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("..")
 }
@@ -22,21 +24,6 @@ const NOT_TWINS: &[(&str, &str, &str)] = &[(
     "the validator's cap on quality.view_steps; the WGSL's is the march's bound in \
      step-length mode, whose twin is crates/reference's",
 )];
-
-/// Every file below `dir` whose name ends in `ext`.
-fn files(dir: &Path, ext: &str, out: &mut Vec<PathBuf>) {
-    let Ok(entries) = std::fs::read_dir(dir) else {
-        return;
-    };
-    for e in entries.flatten() {
-        let path = e.path();
-        if path.is_dir() {
-            files(&path, ext, out);
-        } else if path.extension().is_some_and(|x| x == ext) {
-            out.push(path);
-        }
-    }
-}
 
 /// `const NAME[: TYPE] = EXPR;` declarations in `text` (Rust's with any visibility), as (name,
 /// expression). Declarations inside `#[cfg(test)]` modules count too: a test's constant
@@ -162,8 +149,7 @@ fn numbers_reads_the_forms_the_sources_write() {
 #[test]
 fn every_rust_twin_of_a_wgsl_constant_holds_its_value() {
     let root = workspace();
-    let mut wgsl = Vec::new();
-    files(&root.join("wgsl"), "wgsl", &mut wgsl);
+    let wgsl = files_with_extension(&root.join("wgsl"), "wgsl");
     let mut shader: BTreeMap<String, (String, String)> = BTreeMap::new();
     for f in &wgsl {
         let text = std::fs::read_to_string(f).unwrap();
@@ -179,12 +165,7 @@ fn every_rust_twin_of_a_wgsl_constant_holds_its_value() {
     let mut compared = 0;
     let mut wrong = Vec::new();
     for krate in ["reference", "scene", "stratus"] {
-        let mut rust = Vec::new();
-        files(
-            &root.join("crates").join(krate).join("src"),
-            "rs",
-            &mut rust,
-        );
+        let rust = files_with_extension(&root.join("crates").join(krate).join("src"), "rs");
         for f in &rust {
             let text = std::fs::read_to_string(f).unwrap();
             for (name, expr) in consts(&text) {

@@ -1,11 +1,13 @@
 //! Helpers every Stratus test shares, written once: the recorder that turns wgpu's (and through
 //! it the Vulkan validation layer's) warnings into test failures, bit-exact frame diffs, noise
-//! generated once per seed, and small scenes. Dev-only: no renderer depends on it.
+//! generated once per seed, small scenes and the source files below a folder. Dev-only: no
+//! renderer depends on it.
 
 #![deny(missing_docs)]
 
 use std::{
     collections::HashMap,
+    path::{Path, PathBuf},
     sync::{Arc, Mutex, OnceLock},
 };
 
@@ -179,4 +181,25 @@ pub fn docs_block(doc: &str, id: &str, expected: &str) {
          `STRATUS_UPDATE_DOCS=1` to rewrite it.\nexpected:\n{expected}\nfound:\n{}",
         &text[start..stop]
     );
+}
+
+/// Every file below `dir` (recursively) whose extension is `ext` (`"rs"`, `"wgsl"`), in the
+/// order the file system lists them; none where `dir` cannot be read.
+pub fn files_with_extension(dir: &Path, ext: &str) -> Vec<PathBuf> {
+    fn walk(dir: &Path, ext: &str, out: &mut Vec<PathBuf>) {
+        let Ok(entries) = std::fs::read_dir(dir) else {
+            return;
+        };
+        for e in entries.flatten() {
+            let path = e.path();
+            if path.is_dir() {
+                walk(&path, ext, out);
+            } else if path.extension().is_some_and(|x| x == ext) {
+                out.push(path);
+            }
+        }
+    }
+    let mut out = Vec::new();
+    walk(dir, ext, &mut out);
+    out
 }
