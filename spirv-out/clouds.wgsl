@@ -335,10 +335,32 @@ struct Frame {
     // The wind's direction (unit xz, toward which it blows): cirrus fibres lie along
     // it.
     wind_direction: vec2<f32>,
-    // Padding (0).
-    _pad10: f32,
-    // Padding (0).
-    _pad11: f32,
+    // How far the wind has carried the cirrus strands along itself (m), wrapped by
+    // their period along it (CIRRUS_STRETCH * CIRRUS_SCALE shape periods): the shape
+    // offset wraps per axis, which in the wind's stretched frame is no period.
+    cirrus_strand_offset: f32,
+    // How far the wind has carried the cirrus fibres along itself (m), wrapped by
+    // CIRRUS_FIBRE_STRETCH detail periods.
+    cirrus_fibre_offset: f32,
+    // The wind's offset of the curl noise bending cirrus strands (xz, m), wrapped per
+    // axis by CIRRUS_BEND_SCALE curl periods, the period it is read at.
+    cirrus_bend_offset: vec2<f32>,
+    // How many times longer along the wind than across cellular layers' cells are
+    // (1 to CELLULAR_ROLL, from `clouds.cell_rolls`).
+    cellular_stretch: f32,
+    // How far the wind has carried the cellular layers' cells along itself (m),
+    // wrapped by `cellular_stretch` shape periods: whole periods of every layer's
+    // read, whose period is the shape's over a power of two.
+    cellular_offset: f32,
+    // The main layer's cellular share, within [0, 1] (`clouds.cellular`).
+    cellular: f32,
+    // Extra layer 1's cellular share (`[[clouds.layers]] cellular`; 0 where there
+    // is no such layer).
+    layer1_cellular: f32,
+    // Extra layer 2's cellular share.
+    layer2_cellular: f32,
+    // Extra layer 3's cellular share.
+    layer3_cellular: f32,
 }
 // Shared declarations of the `clouds` module: the resources, the feature switches and small
 // math helpers.
@@ -1163,6 +1185,7 @@ struct Layer {
     precipitation: f32,
     weather_offset: vec2<f32>, // where the layer reads the weather map (wind and its own shift)
     cirrus: f32,               // the cirrus share (cirrus_density), 0 for water cloud
+    cellular: f32,             // the cellular share (cellular_base), 0 for the shape noise's
 }
 
 const MAX_LAYERS: u32 = 4u;
@@ -1176,18 +1199,22 @@ fn cloud_layer(i: u32) -> Layer {
     if i == 1u {
         return Layer(frame.layer1_bottom, frame.layer1_top, frame.layer1_coverage,
                      frame.layer1_density, frame.layer1_cloud_type, frame.layer1_precipitation,
-                     frame.layer1_weather_offset, frame.layer1_cirrus);
+                     frame.layer1_weather_offset, frame.layer1_cirrus,
+                     frame.layer1_cellular);
     } else if i == 2u {
         return Layer(frame.layer2_bottom, frame.layer2_top, frame.layer2_coverage,
                      frame.layer2_density, frame.layer2_cloud_type, frame.layer2_precipitation,
-                     frame.layer2_weather_offset, frame.layer2_cirrus);
+                     frame.layer2_weather_offset, frame.layer2_cirrus,
+                     frame.layer2_cellular);
     } else if i == 3u {
         return Layer(frame.layer3_bottom, frame.layer3_top, frame.layer3_coverage,
                      frame.layer3_density, frame.layer3_cloud_type, frame.layer3_precipitation,
-                     frame.layer3_weather_offset, frame.layer3_cirrus);
+                     frame.layer3_weather_offset, frame.layer3_cirrus,
+                     frame.layer3_cellular);
     }
     return Layer(frame.cloud_bottom, frame.cloud_top, frame.coverage, frame.density,
-                 frame.cloud_type, frame.precipitation, frame.weather_offset, frame.cirrus);
+                 frame.cloud_type, frame.precipitation, frame.weather_offset, frame.cirrus,
+                 frame.cellular);
 }
 
 // Height fraction of altitude `alt` in layer `l` (inside where it lies in [0, 1]).
@@ -1280,16 +1307,23 @@ fn sample_weather(p: vec3<f32>, l: Layer) -> Weather {
 // times the truth's radiance where dense and `scattered` 1.24. The share is `sample_weather`'s,
 // recomputed here rather than carried in `Weather`: the path tracer shares that struct, and a
 // new member would change its code, and with it the key of every committed truth.
+// A cellular layer's cloudlets (cellular_base) cover less of the region than the map's
+// coverage c says, and never more than CELLULAR_SHARE: measured on the shape texture, the
+// share of its cells the remap keeps is within 0.08 of c squared up to that cap. Fed c, the
+// octaves lit `type altocumulus` 1.29 times the truth's radiance where dense (docs/fit-log.md).
+const CELLULAR_SHARE: f32 = 0.75;
+
 fn regional_coverage(p: vec3<f32>, l: Layer, weather: Weather) -> f32 {
+    var share = weather.coverage;
     let cumulus = smoothstep(0.75, 1.0, l.cloud_type) * frame.convective_cells;
-    if cumulus <= 0.0 {
-        return weather.coverage;
+    if cumulus > 0.0 {
+        let uv = (p.xz - l.weather_offset) / frame.weather_period;
+        let r = textureSampleLevel(weather_tex, noise_sampler, uv, 0.0).r;
+        let map = saturate(r + 2.0 * (l.coverage - 0.5));
+        let cells = saturate(l.coverage * (1.0 + CELL_MESOSCALE * (2.0 * r - 1.0)));
+        share = mix(map, cells, cumulus);
     }
-    let uv = (p.xz - l.weather_offset) / frame.weather_period;
-    let r = textureSampleLevel(weather_tex, noise_sampler, uv, 0.0).r;
-    let map = saturate(r + 2.0 * (l.coverage - 0.5));
-    let share = saturate(l.coverage * (1.0 + CELL_MESOSCALE * (2.0 * r - 1.0)));
-    return mix(map, share, cumulus);
+    return mix(share, min(share * share, CELLULAR_SHARE), l.cellular);
 }
 
 // Cumulonimbus anvils (`clouds.anvil`; deep cumulus layers: type 0.75 and up, fully at 1, as
@@ -1316,8 +1350,7 @@ const ANVIL_CORE: f32 = 0.85;
 const ANVIL_DEPTH_M: vec2<f32> = vec2<f32>(4000.0, 6000.0);
 
 fn anvil_cover(p: vec3<f32>, h: f32, l: Layer) -> vec2<f32> {
-    let a = frame.anvil * smoothstep(0.75, 1.0, l.cloud_type)
-        * smoothstep(ANVIL_DEPTH_M.x, ANVIL_DEPTH_M.y, l.top - l.bottom);
+    let a = anvil_weight(l);
     if a <= 0.0 || h <= ANVIL_BASE {
         return vec2<f32>(0.0);
     }
@@ -1333,6 +1366,13 @@ fn anvil_cover(p: vec3<f32>, h: f32, l: Layer) -> vec2<f32> {
     let core = saturate((saturate(m + 2.0 * (l.coverage - 0.5)) - ANVIL_CORE) / (1.0 - ANVIL_CORE));
     let cover = core * a * smoothstep(ANVIL_BASE, ANVIL_FULL, h);
     return vec2<f32>(cover, a * gradient(h, ANVIL_BASE, ANVIL_FULL, ANVIL_FALL, 1.0));
+}
+
+// Layer `l`'s anvil weight: `clouds.anvil` on cumulonimbus (type toward 1) deep enough
+// (ANVIL_DEPTH_M), 0 elsewhere. The anvil's profile peaks at it.
+fn anvil_weight(l: Layer) -> f32 {
+    return frame.anvil * smoothstep(0.75, 1.0, l.cloud_type)
+        * smoothstep(ANVIL_DEPTH_M.x, ANVIL_DEPTH_M.y, l.top - l.bottom);
 }
 
 // Thesis eq. 5.1: a parabola with roots at the cloud's start and top, peak 1 between them.
@@ -1436,16 +1476,16 @@ fn cirrus_density(p: vec3<f32>, alt: f32, h: f32, l: Layer, weather: Weather,
     if weather.coverage <= 0.0 || signal <= 0.0 {
         return 0.0;
     }
-    (*counters).detail += 1u;
-    // The wind's frame, the curl noise bending the strands sideways.
+    // The wind's frame, the curl noise bending the strands sideways. The wind carries the
+    // strands and fibres along itself only, by offsets the host wraps by their own periods
+    // along it (the textures' per-axis offsets, wrapped per axis, would make them jump).
     let wind = frame.wind_direction;
-    let cuv = (p.xz - frame.curl_offset) / (frame.curl_period * CIRRUS_BEND_SCALE);
+    let cuv = (p.xz - frame.cirrus_bend_offset) / (frame.curl_period * CIRRUS_BEND_SCALE);
     let curl = textureSampleLevel(curl_tex, noise_sampler, cuv, 0.0).xy * 2.0 - 1.0;
-    let xz = p.xz - frame.shape_offset;
-    let along = dot(xz, wind) + CIRRUS_FALL_M * (1.0 - h);
-    let across = dot(xz, vec2<f32>(-wind.y, wind.x)) + CIRRUS_BEND_M * curl.x;
-    let q = vec3<f32>(along / CIRRUS_STRETCH, alt, across);
-    let qf = vec3<f32>(along / CIRRUS_FIBRE_STRETCH, alt, across);
+    let along = dot(p.xz, wind) + CIRRUS_FALL_M * (1.0 - h);
+    let across = dot(p.xz, vec2<f32>(-wind.y, wind.x)) + CIRRUS_BEND_M * curl.x;
+    let q = vec3<f32>((along - frame.cirrus_strand_offset) / CIRRUS_STRETCH, alt, across);
+    let qf = vec3<f32>((along - frame.cirrus_fibre_offset) / CIRRUS_FIBRE_STRETCH, alt, across);
 
     // Strands: the shape noise's ridges, widened by its Worley FBM; the coverage keeps their
     // crests (thin strands) or all of them (a cirrostratus veil), as it keeps the other
@@ -1462,10 +1502,69 @@ fn cirrus_density(p: vec3<f32>, alt: f32, h: f32, l: Layer, weather: Weather,
     }
 
     // Fibres within them: the detail noise's ridges.
+    (*counters).detail += 1u;
     let dn = textureSampleLevel(detail_tex, noise_sampler, qf / frame.detail_period, 0.0);
     let ridge = 1.0 - abs(2.0 * (dn.r * 0.625 + dn.g * 0.25 + dn.b * 0.125) - 1.0);
     let fibre = smoothstep(CIRRUS_RIDGE.x, CIRRUS_RIDGE.y, ridge);
     return saturate(base * mix(1.0, fibre, CIRRUS_FIBRE) * l.density);
+}
+
+// Cellular layer cloud (`clouds.cellular`, per layer): stratocumulus and altocumulus are
+// fields of cloudlets, rounded masses with clear or thin gaps between them, seen from below
+// dark at their thick middles and light at their rims (WMO International Cloud Atlas, 2017).
+// A thin layer stirred by convection (warmed from below or cooled at its top) overturns in
+// cells whose width at onset is 2.016 times the layer's depth (Rayleigh-Benard convection
+// between rigid boundaries: Chandrasekhar 1961, Hydrodynamic and Hydromagnetic Stability,
+// ch. II), and cloud stands over their updrafts. Here each cell of the shape texture's
+// Worley FBM (its G channel, CELLULAR_WORLEY cells across its period) is one cloudlet:
+// - its width: the texture read at its period over k, k the power of two (at least 1) that
+//   brings a cell nearest CELLULAR_ASPECT times the layer's depth (a power of two, so that the
+//   wind's offset, wrapped by whole shape periods, is whole periods of the read);
+// - a column through the layer: one slice of the texture (at the layer's bottom), so a cell
+//   is the same cell at every height;
+// - read in the wind's frame, `frame.cellular_stretch` times longer along the wind than across
+//   (`clouds.cell_rolls`: rolls, cloud streets), the wind carrying them along itself by an
+//   offset the host wraps by that many shape periods (whole periods of the read, for any k);
+// - the channel spread over [0, 1] from CELLULAR_RANGE (its 10th and 99th percentiles);
+// - the coverage keeps the cells' middles as it keeps the other clouds' densest parts, m
+//   (0 at a cloudlet's rim, 1 at the strongest middles), but never their borders, below
+//   CELLULAR_GAP: cloudlets stay apart where the map's coverage is full (a cellular layer
+//   at coverage 1 is a deck of cloudlets, with thin lanes between them);
+// - a dome over a flat base: from the layer's bottom up to a top that rises from
+//   CELLULAR_TOP.x of the layer at the rim to CELLULAR_TOP.y at the strongest middles, both
+//   softened over CELLULAR_SOFT, the density rising as the square root of m from the rim.
+//   The base ramps up from the layer's bottom itself: a flat cut at a height inside the
+//   layer is a plane of samples whose in-or-out the devices' rounding of the altitude
+//   decides. Nor does the density level off inside: at a level it is the weather map's
+//   coverage alone, and the detail erosion's threshold on it a wall through the layer, which
+//   the devices' filtering of the map puts at different places (the CPU twin counted 0.3%
+//   more detail lookups than lavapipe with both).
+// The detail noise then erodes the rims as it does the other clouds'. Chosen by eye from
+// below and above (docs/cloud-fields.md).
+const CELLULAR_ASPECT: f32 = 2.016;
+const CELLULAR_WORLEY: f32 = 4.0;
+const CELLULAR_RANGE: vec2<f32> = vec2<f32>(0.3, 0.75);
+const CELLULAR_GAP: f32 = 0.15;
+const CELLULAR_TOP: vec2<f32> = vec2<f32>(0.35, 1.0);
+const CELLULAR_SOFT: f32 = 0.1;
+
+// The cellular cloudlets' base density at `p`, height fraction `h` of layer `l`, under the
+// weather's coverage `coverage` (> 0).
+fn cellular_base(p: vec3<f32>, h: f32, l: Layer, coverage: f32) -> f32 {
+    let width = frame.shape_period / CELLULAR_WORLEY;
+    let k = exp2(max(round(log2(width / (CELLULAR_ASPECT * (l.top - l.bottom)))), 0.0));
+    let dims = vec3<f32>(textureDimensions(shape_tex));
+    let period = frame.shape_period / k * vec3<f32>(1.0, dims.y / dims.x, 1.0);
+    // The wind's frame: rolls are cells drawn out along the wind.
+    let wind = frame.wind_direction;
+    let along = (dot(p.xz, wind) - frame.cellular_offset) / frame.cellular_stretch;
+    let q = vec3<f32>(along, l.bottom, dot(p.xz, vec2<f32>(-wind.y, wind.x)));
+    let g = textureSampleLevel(shape_tex, noise_sampler, q / period, 0.0).g;
+    let cell = saturate((g - CELLULAR_RANGE.x) / (CELLULAR_RANGE.y - CELLULAR_RANGE.x));
+    let m = saturate(remap(cell, max(1.0 - coverage, CELLULAR_GAP), 1.0, 0.0, 1.0));
+    let top = mix(CELLULAR_TOP.x, CELLULAR_TOP.y, m);
+    let dome = saturate((top - h) / CELLULAR_SOFT) * saturate(h / CELLULAR_SOFT);
+    return sqrt(m) * dome * coverage;
 }
 
 // The water clouds' density (the cumulus family, stratus to cumulonimbus) at `p` of layer
@@ -1475,21 +1574,31 @@ fn water_density(p: vec3<f32>, alt: f32, h: f32, l: Layer, weather: Weather, wit
     let anvil = anvil_cover(p, h, l);
     let coverage = max(weather.coverage, anvil.x);
     let signal = max(height_signal(h / weather.top, weather.cloud_type), anvil.y);
-    if coverage <= 0.0 || signal <= 0.0 {
+    // A cellular layer's cloudlets have their own height profile.
+    if coverage <= 0.0 || (signal <= 0.0 && l.cellular <= 0.0) {
         return 0.0;
     }
 
-    // Base shape: Perlin-Worley remapped by low-frequency Worley FBM (HZD), isotropic texels:
-    // the texture's y period is its x period scaled by its aspect (128x32x128 thesis layout).
-    let dims = vec3<f32>(textureDimensions(shape_tex));
-    let period = frame.shape_period * vec3<f32>(1.0, dims.y / dims.x, 1.0);
-    let shape_pos = vec3<f32>(p.x - frame.shape_offset.x, alt, p.z - frame.shape_offset.y);
-    let s = textureSampleLevel(shape_tex, noise_sampler, shape_pos / period, 0.0);
-    let low_fbm = s.g * 0.625 + s.b * 0.25 + s.a * 0.125;
-    var base = saturate(remap(s.r, low_fbm - 1.0, 1.0, 0.0, 1.0)) * signal;
+    var base = 0.0;
+    if l.cellular < 1.0 {
+        // Base shape: Perlin-Worley remapped by low-frequency Worley FBM (HZD), isotropic
+        // texels: the texture's y period is its x period scaled by its aspect (128x32x128
+        // thesis layout).
+        let dims = vec3<f32>(textureDimensions(shape_tex));
+        let period = frame.shape_period * vec3<f32>(1.0, dims.y / dims.x, 1.0);
+        let shape_pos = vec3<f32>(p.x - frame.shape_offset.x, alt, p.z - frame.shape_offset.y);
+        let s = textureSampleLevel(shape_tex, noise_sampler, shape_pos / period, 0.0);
+        let low_fbm = s.g * 0.625 + s.b * 0.25 + s.a * 0.125;
+        base = saturate(remap(s.r, low_fbm - 1.0, 1.0, 0.0, 1.0)) * signal;
 
-    // Coverage (HZD): remap so that low coverage keeps only the densest parts, then scale.
-    base = saturate(remap(base, 1.0 - coverage, 1.0, 0.0, 1.0)) * coverage;
+        // Coverage (HZD): remap so that low coverage keeps only the densest parts, then
+        // scale.
+        base = saturate(remap(base, 1.0 - coverage, 1.0, 0.0, 1.0)) * coverage;
+    }
+    // A cellular layer's cloudlets; a wholly cellular one reads no shape noise besides.
+    if l.cellular > 0.0 {
+        base = mix(base, cellular_base(p, h, l, coverage), l.cellular);
+    }
     if base <= 0.0 {
         return 0.0;
     }
@@ -1743,11 +1852,11 @@ fn light_march_reach() -> f32 {
     return frame.first_light_step * (pow(growth, steps) - 1.0) / (growth - 1.0);
 }
 
-// Where the sun ray from `rel` (world position `p`) enters layer `l`'s anvil band (height
+// Where the sun ray from camera-relative `rel` enters layer `l`'s anvil band (height
 // fraction ANVIL_BASE and up): 0 from inside it, -1 where the layer has no anvil or the ray
-// does not reach the band. The anvil's profile at ANVIL_FULL is the layer's anvil weight.
-fn anvil_band_entry(rel: vec3<f32>, p: vec3<f32>, l: Layer) -> f32 {
-    if anvil_cover(p, ANVIL_FULL, l).y <= 0.0 {
+// does not reach the band.
+fn anvil_band_entry(rel: vec3<f32>, l: Layer) -> f32 {
+    if anvil_weight(l) <= 0.0 {
         return -1.0;
     }
     let alt = altitude_of(rel);
@@ -2025,7 +2134,7 @@ fn scattered_light(rel: vec3<f32>, p: vec3<f32>, alt: f32, density: f32, view: v
         var anvil_tau = 0.0;
         if LIGHT_MARCH {
             above = optical_depth_above(rel, p, l, counters);
-            let band = anvil_band_entry(rel, p, l);
+            let band = anvil_band_entry(rel, l);
             anvil_tau = anvil_optical_depth(rel, p, l, band, counters);
             tau = sun_optical_depth(rel, p, l, counters) + above + anvil_tau;
             far = far_optical_depth(rel, p, l, band);

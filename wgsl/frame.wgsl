@@ -335,8 +335,30 @@ struct Frame {
     // The wind's direction (unit xz, toward which it blows): cirrus fibres lie along
     // it.
     wind_direction: vec2<f32>,
-    // Padding (0).
-    _pad10: f32,
-    // Padding (0).
-    _pad11: f32,
+    // How far the wind has carried the cirrus strands along itself (m), wrapped by
+    // their period along it (CIRRUS_STRETCH * CIRRUS_SCALE shape periods): the shape
+    // offset wraps per axis, which in the wind's stretched frame is no period.
+    cirrus_strand_offset: f32,
+    // How far the wind has carried the cirrus fibres along itself (m), wrapped by
+    // CIRRUS_FIBRE_STRETCH detail periods.
+    cirrus_fibre_offset: f32,
+    // The wind's offset of the curl noise bending cirrus strands (xz, m), wrapped per
+    // axis by CIRRUS_BEND_SCALE curl periods, the period it is read at.
+    cirrus_bend_offset: vec2<f32>,
+    // How many times longer along the wind than across cellular layers' cells are
+    // (1 to CELLULAR_ROLL, from `clouds.cell_rolls`).
+    cellular_stretch: f32,
+    // How far the wind has carried the cellular layers' cells along itself (m),
+    // wrapped by `cellular_stretch` shape periods: whole periods of every layer's
+    // read, whose period is the shape's over a power of two.
+    cellular_offset: f32,
+    // The main layer's cellular share, within [0, 1] (`clouds.cellular`).
+    cellular: f32,
+    // Extra layer 1's cellular share (`[[clouds.layers]] cellular`; 0 where there
+    // is no such layer).
+    layer1_cellular: f32,
+    // Extra layer 2's cellular share.
+    layer2_cellular: f32,
+    // Extra layer 3's cellular share.
+    layer3_cellular: f32,
 }

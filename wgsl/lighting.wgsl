@@ -215,11 +215,11 @@ fn light_march_reach() -> f32 {
     return frame.first_light_step * (pow(growth, steps) - 1.0) / (growth - 1.0);
 }
 
-// Where the sun ray from `rel` (world position `p`) enters layer `l`'s anvil band (height
+// Where the sun ray from camera-relative `rel` enters layer `l`'s anvil band (height
 // fraction ANVIL_BASE and up): 0 from inside it, -1 where the layer has no anvil or the ray
-// does not reach the band. The anvil's profile at ANVIL_FULL is the layer's anvil weight.
-fn anvil_band_entry(rel: vec3<f32>, p: vec3<f32>, l: Layer) -> f32 {
-    if anvil_cover(p, ANVIL_FULL, l).y <= 0.0 {
+// does not reach the band.
+fn anvil_band_entry(rel: vec3<f32>, l: Layer) -> f32 {
+    if anvil_weight(l) <= 0.0 {
         return -1.0;
     }
     let alt = altitude_of(rel);
@@ -497,7 +497,7 @@ fn scattered_light(rel: vec3<f32>, p: vec3<f32>, alt: f32, density: f32, view: v
         var anvil_tau = 0.0;
         if LIGHT_MARCH {
             above = optical_depth_above(rel, p, l, counters);
-            let band = anvil_band_entry(rel, p, l);
+            let band = anvil_band_entry(rel, l);
             anvil_tau = anvil_optical_depth(rel, p, l, band, counters);
             tau = sun_optical_depth(rel, p, l, counters) + above + anvil_tau;
             far = far_optical_depth(rel, p, l, band);

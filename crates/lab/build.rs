@@ -1,5 +1,6 @@
-//! Embeds the fit's training scenes (`scenes/fit/*.toml`) and the cloud types' scenes
-//! (`scenes/types/*.toml`), each in file-name order, so that `stratus fit-scattering` runs the
+//! Embeds the fit's training scenes (`scenes/fit/*.toml`), the cloud types' scenes
+//! (`scenes/types/*.toml`) and the layered scenes (`scenes/layers/*.toml`), each in file-name
+//! order, so that `stratus fit-scattering` runs the
 //! same scenes from any folder and on a machine without the checkout.
 
 use std::{env, fs, path::Path};
@@ -17,6 +18,12 @@ fn main() {
         "types",
         "TYPE_SCENES",
         "every cloud type's scene",
+    ));
+    out.push_str(&embed(
+        &manifest_dir,
+        "layers",
+        "LAYER_SCENES",
+        "every layered scene",
     ));
     let out_dir = env::var("OUT_DIR").expect("cargo sets OUT_DIR");
     fs::write(Path::new(&out_dir).join("training_scenes.rs"), out).expect("OUT_DIR is writable");

@@ -171,6 +171,7 @@ fn gpu_path_tracer_agrees_with_the_cpu_path_tracer_through_two_layers() {
         cloud_type: 0.2,
         precipitation: 0.0,
         cirrus: 0.5,
+        cellular: 0.0,
     }];
     agree(&s, SPP);
 }

@@ -59,7 +59,8 @@ fn rows(csv: &str) -> Vec<(String, String, f64)> {
 }
 
 /// Every preset, every weather state the table has a row of (`weather NAME`; a state's truth
-/// is committed with its row) and every cloud type's scene (`type NAME`), measured again
+/// is committed with its row), every cloud type's scene (`type NAME`) and layered scene
+/// (`layers NAME`), measured again
 /// against its committed truth, and the table held to what is measured.
 #[test]
 fn every_preset_measures_against_its_committed_truth_as_the_table_says() {
@@ -77,13 +78,16 @@ fn every_preset_measures_against_its_committed_truth_as_the_table_says() {
             .filter(|(s, set, _)| set == "held-out" && s.starts_with("weather "))
             .map(|(s, _, _)| s.clone()),
     );
-    // Every cloud type's scene (`scenes/types/NAME.toml`, `type NAME`): each has its truth
-    // and its row, as a preset does.
-    for e in std::fs::read_dir(root.join("scenes/types")).expect("scenes/types") {
-        let path = e.unwrap().path();
-        if path.extension().is_some_and(|x| x == "toml") {
-            let stem = path.file_stem().unwrap().to_str().unwrap().to_string();
-            expected.push(format!("type {stem}"));
+    // Every cloud type's scene (`scenes/types/NAME.toml`, `type NAME`) and layered scene
+    // (`scenes/layers/NAME.toml`, `layers NAME`): each has its truth and its row, as a preset
+    // does.
+    for (folder, label) in [("types", "type"), ("layers", "layers")] {
+        for e in std::fs::read_dir(root.join("scenes").join(folder)).expect(folder) {
+            let path = e.unwrap().path();
+            if path.extension().is_some_and(|x| x == "toml") {
+                let stem = path.file_stem().unwrap().to_str().unwrap().to_string();
+                expected.push(format!("{label} {stem}"));
+            }
         }
     }
     // As `--scenes` spells them: `weather few` is `weather-few`.

@@ -67,7 +67,8 @@ pub struct FitArgs {
     #[arg(long)]
     evaluate: bool,
     /// With --evaluate, only these scenes (comma-separated: presets, weather states as
-    /// `weather-NAME`, cloud types' scenes (`scenes/types/NAME.toml`) as `type-NAME`, or
+    /// `weather-NAME`, cloud types' scenes (`scenes/types/NAME.toml`) as `type-NAME`, layered
+    /// scenes (`scenes/layers/NAME.toml`) as `layers-NAME`, or
     /// training scenes by the names of their images, e.g. `storm-deck-sun-25-deg`): their
     /// truths alone are rendered (or loaded) and measured. A truth of 8192 paths a pixel takes 10-30 minutes a scene on
     /// lavapipe; this renders the ones a question needs.
@@ -234,9 +235,9 @@ fn training_scenes() -> Result<Vec<(String, Scene)>> {
 }
 
 /// The scenes the fit never trains on: the presets, by their names, the weather states on
-/// the default scene (`stratus weather --state NAME`), as `weather NAME`, and the cloud types'
+/// the default scene (`stratus weather --state NAME`), as `weather NAME`, the cloud types'
 /// scenes (`scenes/types/NAME.toml`, partial scene files embedded at build time), as `type
-/// NAME`.
+/// NAME`, and the layered scenes (`scenes/layers/NAME.toml`), as `layers NAME`.
 fn held_out_scenes() -> Result<Vec<(String, Scene)>> {
     let mut out: Vec<(String, Scene)> = stratus_scene::presets()
         .iter()
@@ -251,10 +252,15 @@ fn held_out_scenes() -> Result<Vec<(String, Scene)>> {
         state.params.apply(&mut scene);
         out.push((format!("weather {}", state.name), scene));
     }
-    for (file, text) in TYPE_SCENES {
-        let origin = format!("scenes/types/{file}");
-        let scene = Scene::from_toml_str(text, &origin).map_err(|e| anyhow::anyhow!("{e}"))?;
-        out.push((format!("type {}", file.trim_end_matches(".toml")), scene));
+    for (folder, label, scenes) in [
+        ("types", "type", TYPE_SCENES),
+        ("layers", "layers", LAYER_SCENES),
+    ] {
+        for (file, text) in scenes {
+            let origin = format!("scenes/{folder}/{file}");
+            let scene = Scene::from_toml_str(text, &origin).map_err(|e| anyhow::anyhow!("{e}"))?;
+            out.push((format!("{label} {}", file.trim_end_matches(".toml")), scene));
+        }
     }
     Ok(out)
 }

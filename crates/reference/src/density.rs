@@ -36,6 +36,8 @@ pub(crate) struct Layer {
     pub weather_offset: [f64; 2],
     /// The cirrus share ([`cirrus_density`]), 0 for water cloud.
     pub cirrus: f64,
+    /// The cellular share ([`cellular_base`]), 0 for the shape noise's clouds.
+    pub cellular: f64,
 }
 
 // WGSL: density.wgsl::MAX_LAYERS
@@ -58,6 +60,7 @@ pub(crate) fn cloud_layer(f: &Frame, i: u32) -> Layer {
             precipitation: f.layer1_precipitation,
             weather_offset: f.layer1_weather_offset,
             cirrus: f.layer1_cirrus,
+            cellular: f.layer1_cellular,
         },
         2 => Layer {
             bottom: f.layer2_bottom,
@@ -68,6 +71,7 @@ pub(crate) fn cloud_layer(f: &Frame, i: u32) -> Layer {
             precipitation: f.layer2_precipitation,
             weather_offset: f.layer2_weather_offset,
             cirrus: f.layer2_cirrus,
+            cellular: f.layer2_cellular,
         },
         3 => Layer {
             bottom: f.layer3_bottom,
@@ -78,6 +82,7 @@ pub(crate) fn cloud_layer(f: &Frame, i: u32) -> Layer {
             precipitation: f.layer3_precipitation,
             weather_offset: f.layer3_weather_offset,
             cirrus: f.layer3_cirrus,
+            cellular: f.layer3_cellular,
         },
         _ => Layer {
             bottom: f.cloud_bottom,
@@ -88,6 +93,7 @@ pub(crate) fn cloud_layer(f: &Frame, i: u32) -> Layer {
             precipitation: f.precipitation,
             weather_offset: f.weather_offset,
             cirrus: f.cirrus,
+            cellular: f.cellular,
         },
     }
 }
@@ -179,7 +185,8 @@ pub(crate) fn sample_weather_map(f: &Frame, map: &Texture2, p: V3, l: &Layer) ->
 // WGSL: density.wgsl::regional_coverage
 /// The share of the region about `p` that layer `l`'s clouds cover, which feeds their
 /// multiply scattered light: the map's coverage, but on convective cells the cells' share
-/// rather than their mask (see the WGSL for why).
+/// rather than their mask, and for a cellular layer the cloudlets' share (see the WGSL for
+/// why).
 pub(crate) fn regional_coverage(
     f: &Frame,
     map: &Texture2,
@@ -187,19 +194,24 @@ pub(crate) fn regional_coverage(
     l: &Layer,
     weather: &Weather,
 ) -> f64 {
+    let mut share = weather.coverage;
     let cumulus = smoothstep(0.75, 1.0, l.cloud_type) * f.convective_cells;
-    if cumulus <= 0.0 {
-        return weather.coverage;
+    if cumulus > 0.0 {
+        let uv = [
+            (p.x - l.weather_offset[0]) / f.weather_period,
+            (p.z - l.weather_offset[1]) / f.weather_period,
+        ];
+        let r = sample2(map, uv)[0];
+        let coverage = saturate(r + 2.0 * (l.coverage - 0.5));
+        let cells = saturate(l.coverage * (1.0 + CELL_MESOSCALE * (2.0 * r - 1.0)));
+        share = mix(coverage, cells, cumulus);
     }
-    let uv = [
-        (p.x - l.weather_offset[0]) / f.weather_period,
-        (p.z - l.weather_offset[1]) / f.weather_period,
-    ];
-    let r = sample2(map, uv)[0];
-    let coverage = saturate(r + 2.0 * (l.coverage - 0.5));
-    let share = saturate(l.coverage * (1.0 + CELL_MESOSCALE * (2.0 * r - 1.0)));
-    mix(coverage, share, cumulus)
+    mix(share, (share * share).min(CELLULAR_SHARE), l.cellular)
 }
+
+// WGSL: density.wgsl::CELLULAR_SHARE
+/// The most of a region a cellular layer's cloudlets cover (see the WGSL).
+const CELLULAR_SHARE: f64 = 0.75;
 
 /// The weather of a scene without a weather map (analytic media): the scene's global values.
 pub(crate) fn uniform_weather(f: &Frame) -> Weather {
@@ -220,14 +232,20 @@ const ANVIL_SPREAD_M: f64 = 4000.0;
 const ANVIL_CORE: f64 = 0.85;
 const ANVIL_DEPTH_M: [f64; 2] = [4000.0, 6000.0];
 
+// WGSL: density.wgsl::anvil_weight
+/// Layer `l`'s anvil weight: `clouds.anvil` on deep cumulonimbus, 0 elsewhere.
+pub(crate) fn anvil_weight(f: &Frame, l: &Layer) -> f64 {
+    f.anvil
+        * smoothstep(0.75, 1.0, l.cloud_type)
+        * smoothstep(ANVIL_DEPTH_M[0], ANVIL_DEPTH_M[1], l.top - l.bottom)
+}
+
 // WGSL: density.wgsl::anvil_cover
 /// `(cover, profile)` of a cumulonimbus anvil at `p`, height fraction `h` in layer `l`: the
 /// weather map dilated over the layer's top, moved downwind (see the WGSL for why); zeros
 /// where there is none.
 pub(crate) fn anvil_cover(f: &Frame, map: &Texture2, p: V3, h: f64, l: &Layer) -> (f64, f64) {
-    let a = f.anvil
-        * smoothstep(0.75, 1.0, l.cloud_type)
-        * smoothstep(ANVIL_DEPTH_M[0], ANVIL_DEPTH_M[1], l.top - l.bottom);
+    let a = anvil_weight(f, l);
     if a <= 0.0 || h <= ANVIL_BASE {
         return (0.0, 0.0);
     }
@@ -371,17 +389,17 @@ pub(crate) fn cirrus_density(
     if weather.coverage <= 0.0 || signal <= 0.0 {
         return 0.0;
     }
-    counters.detail += 1;
+    // The wind carries strands and fibres along itself by offsets wrapped by their own
+    // periods along it (see the WGSL).
     let wind = f.wind_direction;
     let cuv = [
-        (p.x - f.curl_offset[0]) / (f.curl_period * CIRRUS_BEND_SCALE),
-        (p.z - f.curl_offset[1]) / (f.curl_period * CIRRUS_BEND_SCALE),
+        (p.x - f.cirrus_bend_offset[0]) / (f.curl_period * CIRRUS_BEND_SCALE),
+        (p.z - f.cirrus_bend_offset[1]) / (f.curl_period * CIRRUS_BEND_SCALE),
     ];
     let c = sample2(&noise.curl, cuv);
     let curl_x = c[0] * 2.0 - 1.0;
-    let xz = [p.x - f.shape_offset[0], p.z - f.shape_offset[1]];
-    let along = xz[0] * wind[0] + xz[1] * wind[1] + CIRRUS_FALL_M * (1.0 - h);
-    let across = -xz[0] * wind[1] + xz[1] * wind[0] + CIRRUS_BEND_M * curl_x;
+    let along = p.x * wind[0] + p.z * wind[1] + CIRRUS_FALL_M * (1.0 - h);
+    let across = -p.x * wind[1] + p.z * wind[0] + CIRRUS_BEND_M * curl_x;
 
     let [dx, dy, _] = noise.shape.size;
     let period = [
@@ -392,7 +410,7 @@ pub(crate) fn cirrus_density(
     let s = sample3(
         &noise.shape,
         [
-            along / CIRRUS_STRETCH / period[0],
+            (along - f.cirrus_strand_offset) / CIRRUS_STRETCH / period[0],
             alt / period[1],
             across / period[2],
         ],
@@ -410,10 +428,11 @@ pub(crate) fn cirrus_density(
         return 0.0;
     }
 
+    counters.detail += 1;
     let dn = sample3(
         &noise.detail,
         [
-            along / CIRRUS_FIBRE_STRETCH / f.detail_period,
+            (along - f.cirrus_fibre_offset) / CIRRUS_FIBRE_STRETCH / f.detail_period,
             alt / f.detail_period,
             across / f.detail_period,
         ],
@@ -421,6 +440,59 @@ pub(crate) fn cirrus_density(
     let ridge = 1.0 - (2.0 * (dn[0] * 0.625 + dn[1] * 0.25 + dn[2] * 0.125) - 1.0).abs();
     let fibre = smoothstep(CIRRUS_RIDGE[0], CIRRUS_RIDGE[1], ridge);
     saturate(base * mix(1.0, fibre, CIRRUS_FIBRE) * l.density)
+}
+
+// WGSL: density.wgsl::CELLULAR_ASPECT, CELLULAR_WORLEY, CELLULAR_RANGE, CELLULAR_GAP,
+// CELLULAR_TOP, CELLULAR_SOFT
+const CELLULAR_ASPECT: f64 = 2.016;
+const CELLULAR_WORLEY: f64 = 4.0;
+const CELLULAR_RANGE: [f64; 2] = [0.3, 0.75];
+const CELLULAR_GAP: f64 = 0.15;
+const CELLULAR_TOP: [f64; 2] = [0.35, 1.0];
+const CELLULAR_SOFT: f64 = 0.1;
+
+// WGSL: density.wgsl::cellular_base
+/// The cellular cloudlets' base density at `p`, height fraction `h` of layer `l`, under the
+/// weather's coverage (> 0): one domed cloudlet on each cell of the shape texture's Worley
+/// FBM, read so that a cell is about CELLULAR_ASPECT times the layer's depth across (see the
+/// WGSL for why).
+pub(crate) fn cellular_base(
+    f: &Frame,
+    noise: &NoiseSet,
+    (p, h): (V3, f64),
+    l: &Layer,
+    coverage: f64,
+) -> f64 {
+    let width = f.shape_period / CELLULAR_WORLEY;
+    let k = (width / (CELLULAR_ASPECT * (l.top - l.bottom)))
+        .log2()
+        .round()
+        .max(0.0)
+        .exp2();
+    let [dx, dy, _] = noise.shape.size;
+    let period = f.shape_period / k;
+    let wind = f.wind_direction;
+    let along = (p.x * wind[0] + p.z * wind[1] - f.cellular_offset) / f.cellular_stretch;
+    let across = -p.x * wind[1] + p.z * wind[0];
+    let s = sample3(
+        &noise.shape,
+        [
+            along / period,
+            l.bottom / (period * (f64::from(dy) / f64::from(dx))),
+            across / period,
+        ],
+    );
+    let cell = saturate((s[1] - CELLULAR_RANGE[0]) / (CELLULAR_RANGE[1] - CELLULAR_RANGE[0]));
+    let m = saturate(remap(
+        cell,
+        (1.0 - coverage).max(CELLULAR_GAP),
+        1.0,
+        0.0,
+        1.0,
+    ));
+    let top = mix(CELLULAR_TOP[0], CELLULAR_TOP[1], m);
+    let dome = saturate((top - h) / CELLULAR_SOFT) * saturate(h / CELLULAR_SOFT);
+    m.sqrt() * dome * coverage
 }
 
 // WGSL: density.wgsl::water_density
@@ -438,31 +510,44 @@ fn water_density(
     let (anvil, profile) = anvil_cover(f, &noise.weather, p, h, l);
     let coverage = weather.coverage.max(anvil);
     let signal = height_signal(f, h / weather.top, weather.cloud_type).max(profile);
-    if coverage <= 0.0 || signal <= 0.0 {
+    // A cellular layer's cloudlets have their own height profile.
+    if coverage <= 0.0 || (signal <= 0.0 && l.cellular <= 0.0) {
         return 0.0;
     }
 
-    // Base shape, isotropic texels: the y period is the x period times the texture's aspect.
-    let [dx, dy, _] = noise.shape.size;
-    let period = [
-        f.shape_period,
-        f.shape_period * (f64::from(dy) / f64::from(dx)),
-        f.shape_period,
-    ];
-    let shape_pos = [p.x - f.shape_offset[0], alt, p.z - f.shape_offset[1]];
-    let s = sample3(
-        &noise.shape,
-        [
-            shape_pos[0] / period[0],
-            shape_pos[1] / period[1],
-            shape_pos[2] / period[2],
-        ],
-    );
-    let low_fbm = s[1] * 0.625 + s[2] * 0.25 + s[3] * 0.125;
-    let mut base = saturate(remap(s[0], low_fbm - 1.0, 1.0, 0.0, 1.0)) * signal;
+    let mut base = 0.0;
+    if l.cellular < 1.0 {
+        // Base shape, isotropic texels: the y period is the x period times the texture's
+        // aspect.
+        let [dx, dy, _] = noise.shape.size;
+        let period = [
+            f.shape_period,
+            f.shape_period * (f64::from(dy) / f64::from(dx)),
+            f.shape_period,
+        ];
+        let shape_pos = [p.x - f.shape_offset[0], alt, p.z - f.shape_offset[1]];
+        let s = sample3(
+            &noise.shape,
+            [
+                shape_pos[0] / period[0],
+                shape_pos[1] / period[1],
+                shape_pos[2] / period[2],
+            ],
+        );
+        let low_fbm = s[1] * 0.625 + s[2] * 0.25 + s[3] * 0.125;
+        base = saturate(remap(s[0], low_fbm - 1.0, 1.0, 0.0, 1.0)) * signal;
 
-    // Coverage (HZD).
-    base = saturate(remap(base, 1.0 - coverage, 1.0, 0.0, 1.0)) * coverage;
+        // Coverage (HZD).
+        base = saturate(remap(base, 1.0 - coverage, 1.0, 0.0, 1.0)) * coverage;
+    }
+    // A cellular layer's cloudlets; a wholly cellular one reads no shape noise besides.
+    if l.cellular > 0.0 {
+        base = mix(
+            base,
+            cellular_base(f, noise, (p, h), l, coverage),
+            l.cellular,
+        );
+    }
     if base <= 0.0 {
         return 0.0;
     }
@@ -557,29 +642,21 @@ mod tests {
         (f, map, l)
     }
 
-    /// The mean absolute change of a high layer's density over `step` metres along and across
-    /// the wind (toward `wind_deg`), over a 24 km square inside the layer, with its cirrus
-    /// share `cirrus`.
-    fn cirrus_variation(wind_deg: f64, cirrus: f64, step: f64) -> (f64, f64, f64) {
-        // The renderer's own textures: the fibres are the detail texture's.
+    /// The renderer's own noise textures, generated once for the tests that read them.
+    fn noise() -> &'static stratus_noise::NoiseSet {
         static NOISE: std::sync::OnceLock<stratus_noise::NoiseSet> = std::sync::OnceLock::new();
-        let noise = NOISE.get_or_init(|| stratus_noise::NoiseSet::generate(&Default::default()));
-        let mut scene = stratus_scene::Scene::default();
-        scene.atmosphere.cloud_bottom_m = 8000.0;
-        scene.atmosphere.cloud_top_m = 9500.0;
-        scene.clouds.cloud_type = 0.0;
-        scene.clouds.coverage = 0.6;
-        scene.clouds.density = stratus_scene::DEFAULT_CIRRUS_DENSITY;
-        scene.clouds.cirrus = cirrus;
-        scene.clouds.wind_direction_deg = wind_deg;
+        NOISE.get_or_init(|| stratus_noise::NoiseSet::generate(&Default::default()))
+    }
+
+    /// The mean absolute change of `scene`'s main layer's density over `step` metres along and
+    /// across its wind, at altitude `alt` over a 24 km square, and its mean density.
+    fn variation(scene: &stratus_scene::Scene, alt: f64, step: f64) -> (f64, f64, f64) {
         let f = Frame::from_uniforms(&scene.uniforms());
         let l = cloud_layer(&f, 0);
-        let (sx, sz) = wind_deg.to_radians().sin_cos();
+        let (sx, sz) = scene.clouds.wind_direction_deg.to_radians().sin_cos();
         let mut c = Counters::default();
-        // The middle of the cirrus profile; the water cloud's stratus fills the bottom quarter.
-        let alt = if cirrus > 0.0 { 8900.0 } else { 8200.0 };
         let mut at = |x: f64, z: f64| {
-            layer_density_with(&f, noise, V3::new(x, alt, z), alt, &l, true, &mut c)
+            layer_density_with(&f, noise(), V3::new(x, alt, z), alt, &l, true, &mut c)
         };
         let (mut along, mut across, mut mean, mut n) = (0.0, 0.0, 0.0, 0.0);
         for i in 0..60 {
@@ -593,6 +670,21 @@ mod tests {
             }
         }
         (along / n, across / n, mean / n)
+    }
+
+    /// [`variation`] of a high layer (wind toward `wind_deg`) with its cirrus share `cirrus`.
+    fn cirrus_variation(wind_deg: f64, cirrus: f64, step: f64) -> (f64, f64, f64) {
+        let mut scene = stratus_scene::Scene::default();
+        scene.atmosphere.cloud_bottom_m = 8000.0;
+        scene.atmosphere.cloud_top_m = 9500.0;
+        scene.clouds.cloud_type = 0.0;
+        scene.clouds.coverage = 0.6;
+        scene.clouds.density = stratus_scene::DEFAULT_CIRRUS_DENSITY;
+        scene.clouds.cirrus = cirrus;
+        scene.clouds.wind_direction_deg = wind_deg;
+        // The middle of the cirrus profile; the water cloud's stratus fills the bottom quarter.
+        let alt = if cirrus > 0.0 { 8900.0 } else { 8200.0 };
+        variation(&scene, alt, step)
     }
 
     /// Cirrus lies in fibres along the wind: its density changes over 100 m at least twice as
@@ -616,6 +708,198 @@ mod tests {
             across < 1.5 * along && along < 1.5 * across,
             "water cloud: along {along}, across {across}"
         );
+    }
+
+    /// How far a layer that `setup` makes (the wind 10 m/s toward 30 degrees) strays from
+    /// being carried by the wind: the mean absolute difference, at altitude `alt` over a 20 km
+    /// square, between the first frame and each of `times` (s) later moved back upwind, over
+    /// the first frame's mean density (which is returned first).
+    fn carried_change(setup: impl Fn(&mut stratus_scene::Scene), alt: f64) -> (f64, Vec<f64>) {
+        let noise = noise();
+        let field = |time_s: f64| {
+            let mut scene = stratus_scene::Scene::default();
+            setup(&mut scene);
+            scene.clouds.wind_direction_deg = 30.0;
+            scene.clouds.wind_speed_m_s = 10.0;
+            scene.clouds.time_s = time_s;
+            let f = Frame::from_uniforms(&scene.uniforms());
+            let l = cloud_layer(&f, 0);
+            let d = 10.0 * time_s;
+            let (sx, sz) = 30f64.to_radians().sin_cos();
+            let mut c = Counters::default();
+            let mut out = Vec::new();
+            for i in 0..40 {
+                for j in 0..40 {
+                    let (x, z) = (f64::from(i) * 500.0 - 10e3, f64::from(j) * 500.0 - 10e3);
+                    let p = V3::new(x + sx * d, alt, z + sz * d);
+                    out.push(layer_density_with(&f, noise, p, alt, &l, true, &mut c));
+                }
+            }
+            out
+        };
+        let first = field(0.0);
+        let n = first.len() as f64;
+        let mean = first.iter().sum::<f64>() / n;
+        let changes = [1500.0, 2500.0, 4000.0, 9000.0]
+            .iter()
+            .map(|&t| {
+                let later = field(t);
+                first
+                    .iter()
+                    .zip(&later)
+                    .map(|(a, b)| (a - b).abs())
+                    .sum::<f64>()
+                    / n
+                    / mean
+            })
+            .collect();
+        (mean, changes)
+    }
+
+    /// The wind carries cirrus without a jump: hours on (1500, 2500, 4000 and 9000 s), the
+    /// layer's density is the first frame's moved downwind, after the shape, detail and curl
+    /// offsets have wrapped (the shape's per-axis wrap at 1108 s and 1920 s, the strands' own
+    /// at 7680 s, the fibres' at 3600 s, the bends' at 2400 s). Read through the per-axis
+    /// shape offset, the strands jumped at the first of those.
+    #[test]
+    fn the_wind_carries_cirrus_without_a_jump() {
+        let (mean, changes) = carried_change(
+            |s| {
+                s.atmosphere.cloud_bottom_m = 8000.0;
+                s.atmosphere.cloud_top_m = 9500.0;
+                s.clouds.coverage = 0.6;
+                s.clouds.density = stratus_scene::DEFAULT_CIRRUS_DENSITY;
+                s.clouds.cirrus = 1.0;
+            },
+            8900.0,
+        );
+        assert!(mean > 1e-3, "mean density {mean}");
+        assert!(changes.iter().all(|&c| c < 1e-3), "{changes:?}");
+    }
+
+    /// The wind carries a cellular layer's cells, round or in rolls, without a jump: their
+    /// read's offset wraps by whole periods of it.
+    #[test]
+    fn the_wind_carries_cells_and_rolls_without_a_jump() {
+        for rolls in [0.0, 1.0] {
+            let (mean, changes) = carried_change(
+                |s| {
+                    s.atmosphere.cloud_bottom_m = 1000.0;
+                    s.atmosphere.cloud_top_m = 1500.0;
+                    s.clouds.coverage = 0.6;
+                    s.clouds.cloud_type = 0.5;
+                    s.clouds.cellular = 1.0;
+                    s.clouds.cell_rolls = rolls;
+                },
+                1200.0,
+            );
+            assert!(mean > 1e-3, "rolls {rolls}: mean density {mean}");
+            assert!(
+                changes.iter().all(|&c| c < 1e-3),
+                "rolls {rolls}: {changes:?}"
+            );
+        }
+    }
+
+    /// A 24 km square of layer `bottom..top` at coverage `coverage` (`cellular` its cellular
+    /// share), seen at height fraction 0.3 on a 100 m grid: the number of separate clouds
+    /// (4-connected runs of cells with density) and the share of the square they cover.
+    fn cloudlets(bottom: f64, top: f64, coverage: f64, cellular: f64) -> (usize, f64) {
+        let noise = noise();
+        let mut scene = stratus_scene::Scene::default();
+        scene.atmosphere.cloud_bottom_m = bottom;
+        scene.atmosphere.cloud_top_m = top;
+        scene.clouds.cloud_type = 0.5;
+        scene.clouds.coverage = coverage;
+        scene.clouds.cellular = cellular;
+        let f = Frame::from_uniforms(&scene.uniforms());
+        let l = cloud_layer(&f, 0);
+        let alt = mix(bottom, top, 0.3);
+        let n = 240;
+        let mut c = Counters::default();
+        let cloud: Vec<bool> = (0..n * n)
+            .map(|k| {
+                let (x, z) = ((k % n) as f64 * 100.0, (k / n) as f64 * 100.0);
+                layer_density_with(&f, noise, V3::new(x, alt, z), alt, &l, true, &mut c) > 0.0
+            })
+            .collect();
+        let mut seen = vec![false; n * n];
+        let mut count = 0;
+        for start in 0..n * n {
+            if !cloud[start] || seen[start] {
+                continue;
+            }
+            count += 1;
+            let mut stack = vec![start];
+            seen[start] = true;
+            while let Some(k) = stack.pop() {
+                let (i, j) = (k % n, k / n);
+                let near = [
+                    (i > 0).then(|| k - 1),
+                    (i + 1 < n).then(|| k + 1),
+                    (j > 0).then(|| k - n),
+                    (j + 1 < n).then(|| k + n),
+                ];
+                for m in near.into_iter().flatten() {
+                    if cloud[m] && !seen[m] {
+                        seen[m] = true;
+                        stack.push(m);
+                    }
+                }
+            }
+        }
+        let share = cloud.iter().filter(|&&c| c).count() as f64 / (n * n) as f64;
+        (count, share)
+    }
+
+    /// A cellular layer is a field of separate cloudlets where the same layer on the shape
+    /// noise is a few large clouds (measured: 124 against 19 in a 24 km square, 500 m deep at
+    /// coverage 0.6); its cells widen with the layer's depth (about CELLULAR_ASPECT times it:
+    /// 31 cloudlets 1000 m deep); and where the map's coverage is full it keeps lanes between
+    /// them (0.78 covered), where the shape noise's cloud closes into a deck.
+    #[test]
+    fn a_cellular_layer_is_a_field_of_cloudlets_as_wide_as_it_is_deep() {
+        let (cells, _) = cloudlets(1000.0, 1500.0, 0.6, 1.0);
+        let (blobs, _) = cloudlets(1000.0, 1500.0, 0.6, 0.0);
+        eprintln!("500 m deep at coverage 0.6: {cells} cloudlets, {blobs} shape-noise clouds");
+        assert!(
+            cells > 100 && cells > 4 * blobs,
+            "{cells} cloudlets, {blobs} clouds"
+        );
+        let (deep, _) = cloudlets(1000.0, 2000.0, 0.6, 1.0);
+        eprintln!("1000 m deep: {deep} cloudlets");
+        assert!((deep as f64) < 0.6 * cells as f64, "{deep} against {cells}");
+        let (_, open) = cloudlets(1000.0, 1500.0, 1.0, 1.0);
+        let (_, deck) = cloudlets(1000.0, 1500.0, 1.0, 0.0);
+        eprintln!("coverage 1: cellular covers {open:.3}, the shape noise {deck:.3}");
+        assert!(open < 0.95 && deck > 0.99, "{open} {deck}");
+    }
+
+    /// `cell_rolls` lines a cellular layer's cloudlets up along the wind: its density changes
+    /// over 300 m at least twice as fast across the wind as along it (measured: 3.2-3.5),
+    /// whichever way the wind blows, where round cells change about as fast both ways
+    /// (1.03-1.08).
+    #[test]
+    fn cell_rolls_line_the_cloudlets_up_along_the_wind() {
+        let ratio = |wind_deg: f64, rolls: f64| {
+            let mut scene = stratus_scene::Scene::default();
+            scene.atmosphere.cloud_bottom_m = 1000.0;
+            scene.atmosphere.cloud_top_m = 1500.0;
+            scene.clouds.coverage = 0.6;
+            scene.clouds.cloud_type = 0.5;
+            scene.clouds.cellular = 1.0;
+            scene.clouds.cell_rolls = rolls;
+            scene.clouds.wind_direction_deg = wind_deg;
+            let (along, across, _) = variation(&scene, 1150.0, 300.0);
+            across / along
+        };
+        for wind in [90.0, 0.0, 30.0] {
+            let rolls = ratio(wind, 1.0);
+            let round = ratio(wind, 0.0);
+            eprintln!("wind {wind}: across / along {rolls:.2} in rolls, {round:.2} round");
+            assert!(rolls > 2.0, "wind {wind}: rolls {rolls}");
+            assert!(round > 0.7 && round < 1.4, "wind {wind}: round {round}");
+        }
     }
 
     #[test]

@@ -1,9 +1,7 @@
 //! The CPU twin of `lighting.wgsl`: the light march toward the sun, multiple-scattering
 //! octaves, ambient and precipitation darkening (its phase functions are in [`crate::phase`]).
 
-use crate::density::{
-    ANVIL_BASE, ANVIL_FULL, Counters, Layer, cloud_layers, height_signal, layer_height,
-};
+use crate::density::{ANVIL_BASE, Counters, Layer, cloud_layers, height_signal, layer_height};
 use crate::frame::{FLAG_BEER_POWDER, Frame, PI};
 use crate::geometry::{altitude_of, hits_ground, ray_shell_from};
 use crate::math::{V3, mix, mix_v, saturate};
@@ -241,10 +239,10 @@ fn light_march_reach(f: &Frame) -> f64 {
 }
 
 // WGSL: lighting.wgsl::anvil_band_entry
-/// Where the sun ray from camera-relative `rel` (world position `p`) enters layer `l`'s anvil
+/// Where the sun ray from camera-relative `rel` enters layer `l`'s anvil
 /// band: 0 from inside it, -1 where the layer has no anvil or the ray does not reach it.
-pub(crate) fn anvil_band_entry(m: &Model, rel: V3, p: V3, l: &Layer) -> f64 {
-    if m.anvil_cover(p, ANVIL_FULL, l).1 <= 0.0 {
+pub(crate) fn anvil_band_entry(m: &Model, rel: V3, l: &Layer) -> f64 {
+    if m.anvil_weight(l) <= 0.0 {
         return -1.0;
     }
     let f = &m.f;
@@ -462,7 +460,7 @@ pub(crate) fn scattered_light(
         // WGSL's shadowed variants with 0 light steps (the unshadowed variant skips them too).
         // The converged march samples the whole sun ray in the layer, the anvil's band too.
         let above = optical_depth_above(m, rel, p, l, counters);
-        let band = anvil_band_entry(m, rel, p, l);
+        let band = anvil_band_entry(m, rel, l);
         let anvil = if lm.to_layer_exit {
             0.0
         } else {
@@ -516,7 +514,7 @@ mod tests {
         let m = Model::new(&scene, Medium::Clouds(&noise));
         let l = cloud_layers(&m.f).next().expect("the main layer");
         let rel = V3::new(0.0, l.bottom + 100.0, 0.0);
-        far_optical_depth(&m, rel, rel, &l, anvil_band_entry(&m, rel, rel, &l))
+        far_optical_depth(&m, rel, rel, &l, anvil_band_entry(&m, rel, &l))
     }
 
     /// A storm layer (1-9 km, cumulus, coverage 0.6, as `weather thunderstorm`'s) under a sun
@@ -548,7 +546,7 @@ mod tests {
         for i in -20..20 {
             for j in -20..20 {
                 let rel = at(f64::from(i) * 1500.0, f64::from(j) * 1500.0);
-                let band = anvil_band_entry(&m, rel, rel, &l);
+                let band = anvil_band_entry(&m, rel, &l);
                 let rise = 6600.0 - altitude_of(&m.f, rel);
                 assert!(
                     (band - rise / 60f64.to_radians().sin()).abs() < 20.0,
@@ -564,7 +562,7 @@ mod tests {
                 );
                 deepest = deepest.max(tau);
                 // Without an anvil: no band, no samples, the far shadow to the layer's top.
-                assert_eq!(anvil_band_entry(&m0, rel, rel, &l), -1.0);
+                assert_eq!(anvil_band_entry(&m0, rel, &l), -1.0);
                 let mut c0 = Counters::default();
                 assert_eq!(anvil_optical_depth(&m0, rel, rel, &l, -1.0, &mut c0), 0.0);
                 assert_eq!(c0.light, 0);
@@ -582,7 +580,7 @@ mod tests {
         // Inside the band the band begins at once; where the light march reaches the layer's
         // top there is nothing beyond it to sample.
         let high = at(0.0, 0.0) + V3::new(0.0, 3800.0, 0.0);
-        assert_eq!(anvil_band_entry(&m, high, high, &l), 0.0);
+        assert_eq!(anvil_band_entry(&m, high, &l), 0.0);
         let mut c = Counters::default();
         assert_eq!(anvil_optical_depth(&m, high, high, &l, 0.0, &mut c), 0.0);
         assert_eq!(c.light, 0);

@@ -409,12 +409,11 @@ impl<'a> Model<'a> {
         }
     }
 
-    /// `(cover, profile)` of a cumulonimbus anvil at `p`, height fraction `h` in layer `l`
-    /// (zeros for analytic media, which have no anvils).
-    pub(crate) fn anvil_cover(&self, p: V3, h: f64, l: &Layer) -> (f64, f64) {
+    /// Layer `l`'s anvil weight (0 for analytic media, which have no anvils).
+    pub(crate) fn anvil_weight(&self, l: &Layer) -> f64 {
         match self.medium {
-            Medium::Clouds(noise) => crate::density::anvil_cover(&self.f, &noise.weather, p, h, l),
-            Medium::Homogeneous { .. } | Medium::Grid(_) => (0.0, 0.0),
+            Medium::Clouds(_) => crate::density::anvil_weight(&self.f, l),
+            Medium::Homogeneous { .. } | Medium::Grid(_) => 0.0,
         }
     }
 

@@ -54,8 +54,8 @@ mod validate;
 pub use error::{Location, Problem, ProblemKind, SceneError};
 pub use presets::{DEFAULT_PRESET, PresetInfo, presets};
 pub use scene::{
-    Air, Animation, Atmosphere, Camera, CloudLayer, Clouds, DEFAULT_CIRRUS_DENSITY, HeightModel,
-    Integration, Integrator, Keyframe, Lighting, Lightning, MAX_EXTRA_LAYERS, Method,
+    Air, Animation, Atmosphere, CELLULAR_ROLL, Camera, CloudLayer, Clouds, DEFAULT_CIRRUS_DENSITY,
+    HeightModel, Integration, Integrator, Keyframe, Lighting, Lightning, MAX_EXTRA_LAYERS, Method,
     MultipleScattering, Night, Noise, Orientation, Phase, PhaseModel, Post, Precipitation,
     PrecipitationKind, Quality, Rainbow, Scene, ShapeTexture, Sky, SkyModel, Sun, Temporal,
 };

@@ -768,6 +768,20 @@ pub struct Clouds {
     /// ([`DEFAULT_CIRRUS_DENSITY`] for a cirrus's optical depth).
     #[serde(skip_serializing_if = "is_zero")]
     pub cirrus: f64,
+    /// The main layer's cellular share, within [0, 1] (0, the default: the water cloud of
+    /// `cloud_type` on the shape noise). At 1 the layer is a field of cloudlets, one on each
+    /// cell of the convection that stirs a thin layer (stratocumulus, altocumulus), each
+    /// cell about twice as wide as the layer is deep, domed over a flat base, the gaps
+    /// between them clear or thin; values between blend the two. Meant for layers up to
+    /// about 1.5 km deep.
+    #[serde(skip_serializing_if = "is_zero")]
+    pub cellular: f64,
+    /// How far the cells of cellular layers line up in rolls along the wind, within [0, 1]
+    /// (0, the default: round cells; 1: cells [`CELLULAR_ROLL`] times longer along the wind
+    /// than across, the cloud streets of a boundary layer's roll convection). Every cellular
+    /// layer of the scene takes it.
+    #[serde(skip_serializing_if = "is_zero")]
+    pub cell_rolls: f64,
     /// Extra cloud layers (`[[clouds.layers]]`, at most [`MAX_EXTRA_LAYERS`]) besides the main
     /// one that `atmosphere.cloud_bottom_m`/`cloud_top_m` and the fields above describe. Each
     /// has its own altitudes and weather over the same noise, wind and lighting; no two
@@ -801,7 +815,16 @@ pub struct CloudLayer {
     /// Cirrus share within [0, 1] (as `clouds.cirrus`).
     #[serde(skip_serializing_if = "is_zero")]
     pub cirrus: f64,
+    /// Cellular share within [0, 1] (as `clouds.cellular`).
+    #[serde(skip_serializing_if = "is_zero")]
+    pub cellular: f64,
 }
+
+/// How many times longer than wide a cellular layer's cells are at `clouds.cell_rolls` 1:
+/// rolls of boundary-layer convection lie along the mean wind, spaced two to four times the
+/// layer's depth and each many times longer (Etling and Brown 1993, Boundary-Layer Meteorol.
+/// 65:215); four was chosen by eye.
+pub const CELLULAR_ROLL: f64 = 4.0;
 
 /// A cirrus layer's density multiplier: cirrus are optically thin, their optical depth
 /// mostly 0.03-3 (thin below 0.3; Sassen and Cho 1992, J. Appl. Meteor. 31:1275). At the
@@ -820,6 +843,7 @@ impl Default for CloudLayer {
             cloud_type: 0.0,
             precipitation: 0.0,
             cirrus: 0.0,
+            cellular: 0.0,
         }
     }
 }
@@ -848,6 +872,8 @@ impl Default for Clouds {
             anvil: 0.0,
             anvil_shear_m: DEFAULT_ANVIL_SHEAR_M,
             cirrus: 0.0,
+            cellular: 0.0,
+            cell_rolls: 0.0,
             layers: Vec::new(),
         }
     }
@@ -1362,6 +1388,9 @@ impl Scene {
         scene.clouds.anvil_shear_m = 1.0;
         scene.clouds.cirrus = 1.0;
         scene.clouds.layers[0].cirrus = 1.0;
+        scene.clouds.cellular = 1.0;
+        scene.clouds.cell_rolls = 1.0;
+        scene.clouds.layers[0].cellular = 1.0;
         scene
     }
 

@@ -359,10 +359,32 @@ macro_rules! frame_members {
             /// The wind's direction (unit xz, toward which it blows): cirrus fibres lie along
             /// it.
             wind_direction: vec2f,
-            /// Padding (0).
-            _pad10: f32,
-            /// Padding (0).
-            _pad11: f32,
+            /// How far the wind has carried the cirrus strands along itself (m), wrapped by
+            /// their period along it (CIRRUS_STRETCH * CIRRUS_SCALE shape periods): the shape
+            /// offset wraps per axis, which in the wind's stretched frame is no period.
+            cirrus_strand_offset: f32,
+            /// How far the wind has carried the cirrus fibres along itself (m), wrapped by
+            /// CIRRUS_FIBRE_STRETCH detail periods.
+            cirrus_fibre_offset: f32,
+            /// The wind's offset of the curl noise bending cirrus strands (xz, m), wrapped per
+            /// axis by CIRRUS_BEND_SCALE curl periods, the period it is read at.
+            cirrus_bend_offset: vec2f,
+            /// How many times longer along the wind than across cellular layers' cells are
+            /// (1 to CELLULAR_ROLL, from `clouds.cell_rolls`).
+            cellular_stretch: f32,
+            /// How far the wind has carried the cellular layers' cells along itself (m),
+            /// wrapped by `cellular_stretch` shape periods: whole periods of every layer's
+            /// read, whose period is the shape's over a power of two.
+            cellular_offset: f32,
+            /// The main layer's cellular share, within [0, 1] (`clouds.cellular`).
+            cellular: f32,
+            /// Extra layer 1's cellular share (`[[clouds.layers]] cellular`; 0 where there
+            /// is no such layer).
+            layer1_cellular: f32,
+            /// Extra layer 2's cellular share.
+            layer2_cellular: f32,
+            /// Extra layer 3's cellular share.
+            layer3_cellular: f32,
         }
     };
 }
@@ -588,6 +610,19 @@ fn wrap_f32(x: f64, period: f64) -> f32 {
     if r >= period as f32 { 0.0 } else { r }
 }
 
+// WGSL: density.wgsl::CIRRUS_STRETCH, CIRRUS_SCALE, CIRRUS_FIBRE_STRETCH, CIRRUS_BEND_SCALE
+/// How cirrus reads its noise (see `cirrus_density` in wgsl/density.wgsl): the strands' shape
+/// noise CIRRUS_STRETCH times longer along the wind at CIRRUS_SCALE of its period, the fibres'
+/// detail noise CIRRUS_FIBRE_STRETCH times longer, the bends' curl noise at CIRRUS_BEND_SCALE
+/// times its period. The wind offsets of those reads wrap by those periods.
+const CIRRUS_STRETCH: f64 = 16.0;
+/// See [`CIRRUS_STRETCH`].
+const CIRRUS_SCALE: f64 = 0.5;
+/// See [`CIRRUS_STRETCH`].
+const CIRRUS_FIBRE_STRETCH: f64 = 30.0;
+/// See [`CIRRUS_STRETCH`].
+const CIRRUS_BEND_SCALE: f64 = 4.0;
+
 /// The full moon's illuminance over the sun's: 0.27 lux against 127,000 lux at the top of the
 /// atmosphere (Allen's Astrophysical Quantities).
 const FULL_MOON_OVER_SUN: f64 = 2.1e-6;
@@ -785,6 +820,7 @@ impl Scene {
         let (dx, dz) = c.wind_direction_deg.to_radians().sin_cos();
         let distance = c.wind_speed_m_s * c.time_s;
         let offs = periods.map(|p| [wrap_f32(dx * distance, p), wrap_f32(dz * distance, p)]);
+        let cellular_stretch = 1.0 + (crate::CELLULAR_ROLL - 1.0) * c.cell_rolls.clamp(0.0, 1.0);
 
         // Extra layer k (from 1) reads the weather map shifted by k (0.382, 0.618) periods
         // (golden-ratio steps, so no two decks line up) on top of the wind.
@@ -1071,8 +1107,21 @@ impl Scene {
             layer2_cirrus: f(layers.get(1).map_or(0.0, |l| l.cirrus)),
             layer3_cirrus: f(layers.get(2).map_or(0.0, |l| l.cirrus)),
             wind_direction: [f(dx), f(dz)],
-            _pad10: 0.0,
-            _pad11: 0.0,
+            cirrus_strand_offset: wrap_f32(
+                distance,
+                CIRRUS_STRETCH * CIRRUS_SCALE * c.shape_period_m,
+            ),
+            cirrus_fibre_offset: wrap_f32(distance, CIRRUS_FIBRE_STRETCH * c.detail_period_m),
+            cirrus_bend_offset: [
+                wrap_f32(dx * distance, CIRRUS_BEND_SCALE * c.curl_period_m),
+                wrap_f32(dz * distance, CIRRUS_BEND_SCALE * c.curl_period_m),
+            ],
+            cellular_stretch: f(cellular_stretch),
+            cellular_offset: wrap_f32(distance, cellular_stretch * c.shape_period_m),
+            cellular: f(c.cellular),
+            layer1_cellular: f(layers.first().map_or(0.0, |l| l.cellular)),
+            layer2_cellular: f(layers.get(1).map_or(0.0, |l| l.cellular)),
+            layer3_cellular: f(layers.get(2).map_or(0.0, |l| l.cellular)),
         };
         block.with_previous_camera(&block)
     }

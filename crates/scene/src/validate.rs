@@ -394,16 +394,31 @@ pub(crate) fn check(scene: &Scene) -> Vec<Issue> {
     c.unit("clouds.anvil", cl.anvil);
     c.non_negative("clouds.anvil_shear_m", cl.anvil_shear_m);
     c.unit("clouds.cirrus", cl.cirrus);
-    // The baselines draw the cumulus family alone.
-    if cl.cirrus > 0.0 && scene.quality.method != crate::Method::Volumetric {
-        c.push(
+    c.unit("clouds.cellular", cl.cellular);
+    c.unit("clouds.cell_rolls", cl.cell_rolls);
+    // The baselines draw the shape noise's water cloud alone.
+    for (field, share, what) in [
+        (
             "clouds.cirrus",
-            num(cl.cirrus),
-            format!(
-                "quality.method = \"{}\" draws water cloud only: cirrus needs \"volumetric\"",
-                scene.quality.method.name()
-            ),
-        );
+            cl.cirrus,
+            "draws water cloud only: cirrus needs",
+        ),
+        (
+            "clouds.cellular",
+            cl.cellular,
+            "draws the shape noise's clouds only: cellular layers need",
+        ),
+    ] {
+        if share > 0.0 && scene.quality.method != crate::Method::Volumetric {
+            c.push(
+                field,
+                num(share),
+                format!(
+                    "quality.method = \"{}\" {what} \"volumetric\"",
+                    scene.quality.method.name()
+                ),
+            );
+        }
     }
     check_layers(&mut c, scene);
 
@@ -777,6 +792,12 @@ fn check_layers(c: &mut Checker, scene: &Scene) {
                 "cirrus",
                 l.cirrus,
                 (0.0..=1.0).contains(&l.cirrus),
+                "must be within [0, 1]",
+            ),
+            (
+                "cellular",
+                l.cellular,
+                (0.0..=1.0).contains(&l.cellular),
                 "must be within [0, 1]",
             ),
         ];

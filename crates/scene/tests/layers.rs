@@ -105,3 +105,26 @@ fn cirrus_is_a_share_and_the_baselines_refuse_it() {
     }]));
     assert!(e.contains("layer 1: cirrus = -0.5"), "{e}");
 }
+
+/// A cellular share outside [0, 1] is refused by name, on the main layer and on an extra one,
+/// and so is a cellular main layer under a baseline method.
+#[test]
+fn cellular_is_a_share_and_the_baselines_refuse_it() {
+    let mut s = Scene::default();
+    s.clouds.cellular = 1.5;
+    let e = error(&s);
+    assert!(e.contains("clouds.cellular"), "{e}");
+    s.clouds.cellular = 1.0;
+    assert!(s.validate().is_ok());
+    s.quality.method = Method::Basic;
+    let e = error(&s);
+    assert!(
+        e.contains("clouds.cellular") && e.contains("cellular layers need"),
+        "{e}"
+    );
+    let e = error(&with_layers(vec![CloudLayer {
+        cellular: 2.0,
+        ..CloudLayer::default()
+    }]));
+    assert!(e.contains("layer 1: cellular = 2"), "{e}");
+}

@@ -51,6 +51,11 @@ pub fn plan_digest(tree: &ShaderTree, plan: &FramePlan) -> Result<String, String
         module
             .entry_points
             .retain(|ep| used.contains(&ep.name.as_str()));
+        // Compaction keeps every named constant, used or not; unnamed, the ones the entry
+        // points never read go, so a constant added for another pass leaves the digest.
+        for (_, c) in module.constants.iter_mut() {
+            c.name = None;
+        }
         naga::compact::compact(&mut module, naga::compact::KeepUnused::No);
         let info = Validator::new(naga::valid::ValidationFlags::all(), capabilities())
             .validate(&module)
@@ -92,8 +97,8 @@ mod tests {
     }
 
     /// The digest changes with what the tracer runs, and only with that: a comment, or a
-    /// function only the temporal resolve calls, leaves it; a constant of the tracer's random
-    /// numbers changes it.
+    /// function only the temporal resolve calls, or a constant it alone declares, leaves it; a
+    /// constant of the tracer's random numbers changes it.
     #[test]
     fn the_digest_sees_what_the_tracer_runs_and_nothing_else() {
         let plan = traced_plan();
@@ -113,6 +118,17 @@ mod tests {
             d,
             plan_digest(&temporal, &plan).unwrap(),
             "a function the tracer never calls"
+        );
+
+        let constant = edited(
+            "temporal.wgsl",
+            "fn ",
+            "const ONLY_FOR_THE_RESOLVE: f32 = 0.25;\nfn ",
+        );
+        assert_eq!(
+            d,
+            plan_digest(&constant, &plan).unwrap(),
+            "a constant the tracer never reads"
         );
 
         let tracer = edited("pathtrace.wgsl", "(1.0 / 16777216.0)", "(1.0 / 16777215.0)");

@@ -43,14 +43,25 @@ const MERGE_M: f64 = 150.0;
 /// Gap left between a layer's top and the next layer's base, metres.
 const GAP_M: f64 = 50.0;
 
-/// What a cloud group becomes: thickness (m), cloud type, density, cirrus share and a name.
-/// `precipitating`: the lowest group of a report with rain or snow, whose closed deck is
-/// nimbostratus.
-fn cloud_kind(
-    g: &CloudGroup,
-    base: f64,
-    precipitating: bool,
-) -> (f64, f64, f64, f64, &'static str) {
+/// What a cloud group becomes.
+struct Kind {
+    /// The layer's depth (m).
+    thickness: f64,
+    /// Cloud type within [0, 1].
+    cloud_type: f64,
+    /// Density multiplier.
+    density: f64,
+    /// Cirrus share (ice cloud in fibres).
+    cirrus: f64,
+    /// Cellular share (cloudlets on the layer's convection cells).
+    cellular: f64,
+    /// The cloud's name, for the notes.
+    name: &'static str,
+}
+
+/// What cloud group `g` based at `base` m becomes. `precipitating`: the lowest group of a
+/// report with rain or snow, whose closed deck is nimbostratus.
+fn cloud_kind(g: &CloudGroup, base: f64, precipitating: bool) -> Kind {
     let closed = matches!(g.cover, Cover::Broken | Cover::Overcast);
     let (thickness, cloud_type, density, name) = match (g.convective, base) {
         // Nimbostratus: thick and stratiform, its base low.
@@ -63,20 +74,26 @@ fn cloud_kind(
             Cover::Few | Cover::Scattered => (1500.0, 1.0, 1.0, "cumulus"),
             Cover::Broken | Cover::Overcast => (1000.0, 0.5, 1.0, "stratocumulus"),
         },
-        // Middle clouds: altocumulus and altostratus, thinner water clouds.
-        (None, b) if b < 6000.0 => (1000.0, 0.35, 0.6, "altocumulus/altostratus"),
+        // Middle clouds, thinner water clouds: altocumulus in patches, altostratus where the
+        // sky is overcast.
+        (None, b) if b < 6000.0 && g.cover == Cover::Overcast => (1000.0, 0.35, 0.6, "altostratus"),
+        (None, b) if b < 6000.0 => (1000.0, 0.35, 0.6, "altocumulus"),
         // High clouds: ice, thin and fibrous (cirrus; closed, a cirrostratus veil). The WMO
         // puts high clouds' bases at 5-13 km in temperate regions (International Cloud Atlas,
         // 2017); a cirrus layer is typically 1-2 km deep (Sassen and Campbell 2001).
         (None, _) if !closed => (1500.0, 0.0, DEFAULT_CIRRUS_DENSITY, "cirrus"),
         (None, _) => (1500.0, 0.0, DEFAULT_CIRRUS_DENSITY, "cirrostratus"),
     };
-    let cirrus = if matches!(name, "cirrus" | "cirrostratus") {
-        1.0
-    } else {
-        0.0
-    };
-    (thickness, cloud_type, density, cirrus, name)
+    let share = |yes: bool| if yes { 1.0 } else { 0.0 };
+    Kind {
+        thickness,
+        cloud_type,
+        density,
+        cirrus: share(matches!(name, "cirrus" | "cirrostratus")),
+        // Stratocumulus and altocumulus are fields of cloudlets (`clouds.cellular`).
+        cellular: share(matches!(name, "stratocumulus" | "altocumulus")),
+        name,
+    }
 }
 
 fn cover_name(c: Cover) -> &'static str {
@@ -357,7 +374,14 @@ pub fn scene_from_metar(m: &Metar, base: &Scene) -> Derived {
     let mut cells = false;
     for (i, (b, g)) in merged.iter().enumerate() {
         let precipitating = i == 0 && matches!(name, "rain" | "snow");
-        let (thickness, cloud_type, density, cirrus, kind) = cloud_kind(g, *b, precipitating);
+        let Kind {
+            thickness,
+            cloud_type,
+            density,
+            cirrus,
+            cellular,
+            name: kind,
+        } = cloud_kind(g, *b, precipitating);
         let mut top = b + thickness;
         if let Some((next, _)) = merged.get(i + 1) {
             top = top.min(next - GAP_M);
@@ -400,6 +424,7 @@ pub fn scene_from_metar(m: &Metar, base: &Scene) -> Derived {
             cloud_type,
             precipitation,
             cirrus,
+            cellular,
         });
     }
     if layers.is_empty() && !matches!(name, "fog" | "mist" | "rain" | "snow" | "thunderstorm") {
@@ -467,6 +492,7 @@ pub fn scene_from_metar(m: &Metar, base: &Scene) -> Derived {
         scene.clouds.cloud_type = main.cloud_type;
         scene.clouds.precipitation = main.precipitation;
         scene.clouds.cirrus = main.cirrus;
+        scene.clouds.cellular = main.cellular;
     } else if rain > 0.0 {
         scene.clouds.precipitation = rain;
     }

@@ -375,8 +375,10 @@ impl WeatherParams {
         scene.camera.exposure = self.exposure;
         scene.clouds.convective_cells = self.convective_cells;
         scene.clouds.anvil = self.anvil;
-        // The states' decks are water cloud, whatever the scene they are applied to was.
+        // The states' decks are the shape noise's water cloud, whatever the scene they are
+        // applied to was.
         scene.clouds.cirrus = 0.0;
+        scene.clouds.cellular = 0.0;
         if self.fog_density > 0.0 && self.fog_top_m > 0.0 {
             scene
                 .clouds
@@ -397,6 +399,7 @@ pub fn fog_layer(top_m: f64, density: f64) -> CloudLayer {
         cloud_type: 0.0,
         precipitation: 0.0,
         cirrus: 0.0,
+        cellular: 0.0,
     }
 }
 

@@ -201,6 +201,33 @@ fn a_cumulonimbus_brings_anvils_and_a_thunderstorm_without_one_does_not() {
 }
 
 #[test]
+fn layer_cloud_groups_become_cellular_and_the_others_do_not() {
+    // BKN015 stratocumulus (main), SCT100 altocumulus (3048 m), OVC150 altostratus (4572 m).
+    let d = derive("METAR EGLL 221650Z 24010KT 9999 BKN015 SCT100 OVC150 12/08 Q1012=");
+    assert_eq!(d.scene.clouds.cellular, 1.0, "stratocumulus: {:?}", d.notes);
+    let [ac, altostratus] = &d.scene.clouds.layers[..] else {
+        panic!("two extra layers: {:?}", d.scene.clouds.layers);
+    };
+    assert_eq!(ac.cellular, 1.0, "{ac:?}");
+    assert_eq!(altostratus.cellular, 0.0, "{altostratus:?}");
+    for kind in ["-> stratocumulus", "-> altocumulus", "-> altostratus"] {
+        assert!(
+            d.notes.iter().any(|n| n.contains(kind)),
+            "{kind}: {:?}",
+            d.notes
+        );
+    }
+    // Fair cumulus, stratus and nimbostratus are not.
+    for metar in [
+        "METAR KDEN 221653Z 09008KT 10SM SCT040 20/05 A3010=",
+        "METAR KSFO 221656Z 28005KT 2SM BR OVC003 12/11 A3001=",
+        "METAR EDDF 221650Z 23012KT 4000 RA OVC012 08/07 Q1003=",
+    ] {
+        assert_eq!(derive(metar).scene.clouds.cellular, 0.0, "{metar}");
+    }
+}
+
+#[test]
 fn high_cloud_groups_become_cirrus_and_the_others_do_not() {
     // FEW040 cumulus (main), FEW190 altocumulus (5791 m), SCT210 cirrus (6401 m).
     let d = derive(
@@ -211,6 +238,8 @@ fn high_cloud_groups_become_cirrus_and_the_others_do_not() {
         panic!("two extra layers: {:?}", d.scene.clouds.layers);
     };
     assert_eq!(alto.cirrus, 0.0, "{alto:?}");
+    assert_eq!(alto.cellular, 1.0, "altocumulus is cellular: {alto:?}");
+    assert_eq!(cirrus.cellular, 0.0, "{cirrus:?}");
     assert_eq!(cirrus.cirrus, 1.0, "{cirrus:?}");
     // Thin ice: the cirrus density, 1500 m deep.
     assert_eq!(cirrus.density, stratus_scene::DEFAULT_CIRRUS_DENSITY);

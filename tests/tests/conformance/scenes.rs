@@ -89,6 +89,7 @@ pub fn all() -> Vec<Case> {
                         cloud_type: 0.2,
                         precipitation: 0.0,
                         cirrus: 0.0,
+                        cellular: 0.0,
                     },
                     CloudLayer {
                         bottom_m: 600.0,
@@ -98,6 +99,7 @@ pub fn all() -> Vec<Case> {
                         cloud_type: 0.5,
                         precipitation: 0.3,
                         cirrus: 0.0,
+                        cellular: 0.0,
                     },
                 ];
             },
@@ -115,6 +117,29 @@ pub fn all() -> Vec<Case> {
                     cloud_type: 0.0,
                     precipitation: 0.0,
                     cirrus: 1.0,
+                    cellular: 0.0,
+                }];
+            },
+        ),
+        stress(
+            "cellular",
+            "stratocumulus cloudlets at 1-1.7 km under altocumulus at 4-4.5 km, looking 30 degrees up: one domed cloudlet on each Worley cell, sized by the layer's depth",
+            |s| {
+                s.camera.pitch_deg = 30.0;
+                s.atmosphere.cloud_bottom_m = 1000.0;
+                s.atmosphere.cloud_top_m = 1700.0;
+                s.clouds.coverage = 0.6;
+                s.clouds.cloud_type = 0.5;
+                s.clouds.cellular = 1.0;
+                s.clouds.layers = vec![CloudLayer {
+                    bottom_m: 4000.0,
+                    top_m: 4500.0,
+                    coverage: 0.5,
+                    density: 0.6,
+                    cloud_type: 0.35,
+                    precipitation: 0.0,
+                    cirrus: 0.0,
+                    cellular: 1.0,
                 }];
             },
         ),

@@ -57,16 +57,18 @@ pub const DIRECTIONS: [[f64; 3]; 8] = [
 ///
 /// Calibrated against the other implementations measured (128x72):
 /// - the CPU reference (f64, full-precision filtering; re-measured on every run, its worst
-///   counter in the per-measure table): at most 3.88 times the spread (storm's detail
-///   evaluations, 62 apart against a spread of 16);
+///   counter in the per-measure table): at most 5.88 times the spread (stress-cellular's
+///   detail evaluations, 694 apart against a spread of 118; before the cellular layers,
+///   3.88: storm's detail evaluations, 62 against 16);
 /// - an NVIDIA H100 (driver 580): cumulus-noon's density evaluations 66 apart, 0.96 times the
 ///   spread of 69 (the one counter that run recorded);
 /// - an NVIDIA H200 (docs/conformance-h200.md) exceeded the old relative bound by up to 0.71%
 ///   on stress-method-basic without recording which counter, which no counter's bound here
 ///   allows (see docs/conformance.md): the next device run records it.
 ///
-/// The constant is twice the largest, 7.76, rounded up.
-pub const CALIBRATION: u64 = 8;
+/// The constant is twice the largest, 11.76, rounded up (it was 8, twice 3.88, until the
+/// cellular layers' scene measured 5.88).
+pub const CALIBRATION: u64 = 12;
 
 /// Flips allowed on top, whatever the spread: a counter that no perturbed run changed (exits,
 /// usually) may still flip on a device; 3 is the 95% upper limit of a Poisson count of
