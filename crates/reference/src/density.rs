@@ -710,15 +710,14 @@ mod tests {
         );
     }
 
-    /// How far a layer that `setup` makes (the wind 10 m/s toward 30 degrees) strays from
+    /// How far `base`'s main layer (under a wind of 10 m/s toward 30 degrees) strays from
     /// being carried by the wind: the mean absolute difference, at altitude `alt` over a 20 km
-    /// square, between the first frame and each of `times` (s) later moved back upwind, over
+    /// square, between the first frame and each of four later ones (1500-9000 s) moved back upwind, over
     /// the first frame's mean density (which is returned first).
-    fn carried_change(setup: impl Fn(&mut stratus_scene::Scene), alt: f64) -> (f64, Vec<f64>) {
+    fn carried_change(base: &stratus_scene::Scene, alt: f64) -> (f64, Vec<f64>) {
         let noise = noise();
         let field = |time_s: f64| {
-            let mut scene = stratus_scene::Scene::default();
-            setup(&mut scene);
+            let mut scene = base.clone();
             scene.clouds.wind_direction_deg = 30.0;
             scene.clouds.wind_speed_m_s = 10.0;
             scene.clouds.time_s = time_s;
@@ -763,16 +762,13 @@ mod tests {
     /// shape offset, the strands jumped at the first of those.
     #[test]
     fn the_wind_carries_cirrus_without_a_jump() {
-        let (mean, changes) = carried_change(
-            |s| {
-                s.atmosphere.cloud_bottom_m = 8000.0;
-                s.atmosphere.cloud_top_m = 9500.0;
-                s.clouds.coverage = 0.6;
-                s.clouds.density = stratus_scene::DEFAULT_CIRRUS_DENSITY;
-                s.clouds.cirrus = 1.0;
-            },
-            8900.0,
-        );
+        let mut scene = stratus_scene::Scene::default();
+        scene.atmosphere.cloud_bottom_m = 8000.0;
+        scene.atmosphere.cloud_top_m = 9500.0;
+        scene.clouds.coverage = 0.6;
+        scene.clouds.density = stratus_scene::DEFAULT_CIRRUS_DENSITY;
+        scene.clouds.cirrus = 1.0;
+        let (mean, changes) = carried_change(&scene, 8900.0);
         assert!(mean > 1e-3, "mean density {mean}");
         assert!(changes.iter().all(|&c| c < 1e-3), "{changes:?}");
     }
@@ -782,17 +778,9 @@ mod tests {
     #[test]
     fn the_wind_carries_cells_and_rolls_without_a_jump() {
         for rolls in [0.0, 1.0] {
-            let (mean, changes) = carried_change(
-                |s| {
-                    s.atmosphere.cloud_bottom_m = 1000.0;
-                    s.atmosphere.cloud_top_m = 1500.0;
-                    s.clouds.coverage = 0.6;
-                    s.clouds.cloud_type = 0.5;
-                    s.clouds.cellular = 1.0;
-                    s.clouds.cell_rolls = rolls;
-                },
-                1200.0,
-            );
+            let mut scene = stratocumulus(1000.0, 1500.0, 0.6, 1.0);
+            scene.clouds.cell_rolls = rolls;
+            let (mean, changes) = carried_change(&scene, 1200.0);
             assert!(mean > 1e-3, "rolls {rolls}: mean density {mean}");
             assert!(
                 changes.iter().all(|&c| c < 1e-3),
@@ -801,17 +789,24 @@ mod tests {
         }
     }
 
-    /// A 24 km square of layer `bottom..top` at coverage `coverage` (`cellular` its cellular
-    /// share), seen at height fraction 0.3 on a 100 m grid: the number of separate clouds
-    /// (4-connected runs of cells with density) and the share of the square they cover.
-    fn cloudlets(bottom: f64, top: f64, coverage: f64, cellular: f64) -> (usize, f64) {
-        let noise = noise();
+    /// The default scene with its main layer a stratocumulus (type 0.5) at `bottom..top` m of
+    /// coverage `coverage` and cellular share `cellular`.
+    fn stratocumulus(bottom: f64, top: f64, coverage: f64, cellular: f64) -> stratus_scene::Scene {
         let mut scene = stratus_scene::Scene::default();
         scene.atmosphere.cloud_bottom_m = bottom;
         scene.atmosphere.cloud_top_m = top;
         scene.clouds.cloud_type = 0.5;
         scene.clouds.coverage = coverage;
         scene.clouds.cellular = cellular;
+        scene
+    }
+
+    /// A 24 km square of layer `bottom..top` at coverage `coverage` (`cellular` its cellular
+    /// share), seen at height fraction 0.3 on a 100 m grid: the number of separate clouds
+    /// (4-connected runs of cells with density) and the share of the square they cover.
+    fn cloudlets(bottom: f64, top: f64, coverage: f64, cellular: f64) -> (usize, f64) {
+        let noise = noise();
+        let scene = stratocumulus(bottom, top, coverage, cellular);
         let f = Frame::from_uniforms(&scene.uniforms());
         let l = cloud_layer(&f, 0);
         let alt = mix(bottom, top, 0.3);
@@ -882,12 +877,7 @@ mod tests {
     #[test]
     fn cell_rolls_line_the_cloudlets_up_along_the_wind() {
         let ratio = |wind_deg: f64, rolls: f64| {
-            let mut scene = stratus_scene::Scene::default();
-            scene.atmosphere.cloud_bottom_m = 1000.0;
-            scene.atmosphere.cloud_top_m = 1500.0;
-            scene.clouds.coverage = 0.6;
-            scene.clouds.cloud_type = 0.5;
-            scene.clouds.cellular = 1.0;
+            let mut scene = stratocumulus(1000.0, 1500.0, 0.6, 1.0);
             scene.clouds.cell_rolls = rolls;
             scene.clouds.wind_direction_deg = wind_deg;
             let (along, across, _) = variation(&scene, 1150.0, 300.0);
