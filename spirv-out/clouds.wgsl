@@ -361,6 +361,16 @@ struct Frame {
     layer2_cellular: f32,
     // Extra layer 3's cellular share.
     layer3_cellular: f32,
+    // Close-range detail's strength, within [0, 1] (`clouds.close_detail`; 0: off).
+    close_detail: f32,
+    // How many times finer than the detail noise close-range detail reads it (an
+    // integer, `clouds.close_detail_scale`).
+    close_detail_scale: f32,
+    // How far from the camera close-range detail reaches (m,
+    // `clouds.close_detail_range_m`).
+    close_detail_range: f32,
+    // The march's step within that range (m, `quality.close_step_m`).
+    close_step: f32,
 }
 // Shared declarations of the `clouds` module: the resources, the feature switches and small
 // math helpers.
@@ -1627,12 +1637,65 @@ fn water_density(p: vec3<f32>, alt: f32, h: f32, l: Layer, weather: Weather, wit
         let shape = mix(1.0 - high_fbm, high_fbm, billowy);
         let erosion = strength * shape * (1.0 - base / threshold);
         density = saturate(remap(base, erosion, 1.0, 0.0, 1.0));
+
+        // Close-range detail: the edges eroded again, finer, near the camera.
+        let near = close_detail_weight(p, alt);
+        if near > 0.0 && density > 0.0 && density < threshold {
+            (*counters).detail += 1u;
+            density = close_erosion(p, h, detail_pos, density, near, billowy, threshold);
+        }
     }
 
     // Denser toward the top (thesis 4.5.1), global density and precipitation, clamp.
     density = density * mix(1.0, h, frame.height_gradient);
     density = density * l.density * (1.0 + weather.precipitation);
     return clamp(density, 0.0, 1.0);
+}
+
+// Close-range detail (`clouds.close_detail`). The detail noise's 32 texels a tile are 37.5 m at
+// its default 1200 m period: from tens of metres its edges are blur, and a cloud's fringe
+// (density 0.05-0.4 rising over hundreds of metres, a mean free path of 60-500 m at the
+// default scattering) is a fog the camera sits in. Near the camera the edges the first erosion
+// left (density below the erosion threshold) are eroded again by the same texture read
+// `frame.close_detail_scale` times finer (an integer, so that the detail's wind offset, wrapped
+// by its period, is whole periods of this read), the lookup bent again by the curl noise read
+// as much finer over a displacement as much smaller: the fringe's haze cleared into wisps and
+// billows tens of metres across (finer ones, at a scale of 8, do not show through a fringe
+// whose mean free path is longer), in the first erosion's form (fading out at the threshold,
+// so the density stays continuous; wispy toward the base, billowy above as `wispy_billowy`
+// says). A level of detail by the distance from the camera: full to half of
+// `frame.close_detail_range`, none at it, so a cloud's look changes smoothly as the camera
+// nears it and farther clouds pay nothing; the march takes steps of `frame.close_step` within
+// that range (march.wgsl march_layer), which bounds the cost. The cores are left intact: inside
+// a cloud's core there is nothing to see but the fog of it.
+fn close_detail_weight(p: vec3<f32>, alt: f32) -> f32 {
+    let s = frame.close_detail;
+    if s <= 0.0 {
+        return 0.0;
+    }
+    let c = frame.camera_position;
+    let d = length(vec3<f32>(p.x - c.x, alt - c.y, p.z - c.z));
+    let r = frame.close_detail_range;
+    return s * (1.0 - smoothstep(0.5 * r, r, d));
+}
+
+// The density `density` (below `threshold`, after the first erosion) eroded by the finer read
+// with weight `near` (close_detail_weight): `detail_pos` is the first erosion's lookup (curl
+// and wind applied, m), `billowy` its wispy-to-billowy blend at height fraction `h`.
+fn close_erosion(p: vec3<f32>, h: f32, detail_pos: vec3<f32>, density: f32, near: f32,
+                 billowy: f32, threshold: f32) -> f32 {
+    let k = frame.close_detail_scale;
+    var pos = detail_pos;
+    if CURL {
+        let cuv = (p.xz - frame.curl_offset) * (k / frame.curl_period);
+        let curl = textureSampleLevel(curl_tex, noise_sampler, cuv, 0.0).xy * 2.0 - 1.0;
+        pos = pos + vec3<f32>(curl.x, 0.0, curl.y) * (frame.curl_strength / k * (1.0 - h));
+    }
+    let dn = textureSampleLevel(detail_tex, noise_sampler, pos * (k / frame.detail_period), 0.0);
+    let fbm = dn.r * 0.625 + dn.g * 0.25 + dn.b * 0.125;
+    let shape = mix(1.0 - fbm, fbm, billowy);
+    let erosion = near * shape * (1.0 - density / threshold);
+    return saturate(remap(density, erosion, 1.0, 0.0, 1.0));
 }
 // Light: phase functions, the light march toward the sun, multiple-scattering octaves,
 // ambient and precipitation darkening (thesis 5.5, Hillaire 2016, Wrenninge 2013).
@@ -2842,17 +2905,50 @@ fn march_pixel(pixel: vec2<u32>) -> MarchResult {
     return MarchResult(radiance, transmittance, depth);
 }
 
+// The most view steps within close-range detail's range (scene MAX_CLOSE_STEPS, which
+// validation holds `clouds.close_detail_range_m / quality.close_step_m` to).
+const MAX_CLOSE_STEPS: u32 = 256u;
+
 // The march of the view ray's interval `span` in layer `l`, added to `state`. True when the
 // transmittance fell below the early-exit threshold (the pixel is done).
+// With close-range detail on (density.wgsl close_detail_weight) the part of the interval
+// within `frame.close_detail_range` of the camera is marched first in steps of
+// `frame.close_step` (never coarser than the steps beyond it, at most MAX_CLOSE_STEPS), so
+// that its wisps metres across are sampled and not aliased into noise by steps of tens or
+// hundreds of metres; the rest of the interval keeps the step it would have had.
 fn march_layer(view: vec3<f32>, span: Interval, l: Layer, jitter: f32,
                state: ptr<function, MarchState>, counters: ptr<function, Counters>) -> bool {
-    let cam_alt = frame.camera_position.y;
-    let cam_xz = frame.camera_position.xz;
     var steps = frame.view_steps;
     if frame.step_length > 0.0 {
         steps = clamp(u32(ceil(span.length / frame.step_length)), 1u, MAX_VIEW_STEPS);
     }
+    let near = frame.close_detail_range - span.start;
+    if frame.close_detail <= 0.0 || !(near > 0.0) {
+        return march_segment(view, span.start, span.length, steps, l, jitter, state, counters);
+    }
     let dt = span.length / f32(steps);
+    let near_length = min(near, span.length);
+    let fine = max(ceil(near_length / frame.close_step), ceil(near_length / dt));
+    let near_steps = clamp(u32(fine), 1u, MAX_CLOSE_STEPS);
+    if march_segment(view, span.start, near_length, near_steps, l, jitter, state, counters) {
+        return true;
+    }
+    let rest = span.length - near_length;
+    if !(rest > 0.0) {
+        return false;
+    }
+    let far_steps = clamp(u32(ceil(rest / dt)), 1u, steps);
+    return march_segment(view, span.start + near_length, rest, far_steps, l, jitter, state,
+                         counters);
+}
+
+// The march of `steps` equal steps of the view ray from `start` over `extent` (m) in layer
+// `l`, added to `state`; true when the transmittance fell below the early-exit threshold.
+fn march_segment(view: vec3<f32>, start: f32, extent: f32, steps: u32, l: Layer, jitter: f32,
+                 state: ptr<function, MarchState>, counters: ptr<function, Counters>) -> bool {
+    let cam_alt = frame.camera_position.y;
+    let cam_xz = frame.camera_position.xz;
+    let dt = extent / f32(steps);
     let sigma_e = frame.scattering + frame.absorption;
     let dynamic_step = (frame.flags & FLAG_DYNAMIC_STEP) != 0u;
     let empty_skip = (frame.flags & FLAG_EMPTY_SKIP) != 0u;
@@ -2866,7 +2962,7 @@ fn march_layer(view: vec3<f32>, span: Interval, l: Layer, jitter: f32,
             break;
         }
         (*counters).view_steps += 1u;
-        let t = span.start + (f32(i) + jitter) * dt;
+        let t = start + (f32(i) + jitter) * dt;
         let rel = view * t + vec3<f32>(0.0, cam_alt, 0.0);
         let p = vec3<f32>(rel.x + cam_xz.x, rel.y, rel.z + cam_xz.y);
         if empty_skip {
@@ -2874,7 +2970,7 @@ fn march_layer(view: vec3<f32>, span: Interval, l: Layer, jitter: f32,
             // the cell's edge.
             let exit = empty_cell_exit(p, view);
             if exit > 0.0 {
-                let next = u32(clamp(ceil((t + exit - span.start) / dt - jitter), 0.0, f32(steps)));
+                let next = u32(clamp(ceil((t + exit - start) / dt - jitter), 0.0, f32(steps)));
                 i = max(i + 1u, next);
                 continue;
             }

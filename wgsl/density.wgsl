@@ -472,10 +472,63 @@ fn water_density(p: vec3<f32>, alt: f32, h: f32, l: Layer, weather: Weather, wit
         let shape = mix(1.0 - high_fbm, high_fbm, billowy);
         let erosion = strength * shape * (1.0 - base / threshold);
         density = saturate(remap(base, erosion, 1.0, 0.0, 1.0));
+
+        // Close-range detail: the edges eroded again, finer, near the camera.
+        let near = close_detail_weight(p, alt);
+        if near > 0.0 && density > 0.0 && density < threshold {
+            (*counters).detail += 1u;
+            density = close_erosion(p, h, detail_pos, density, near, billowy, threshold);
+        }
     }
 
     // Denser toward the top (thesis 4.5.1), global density and precipitation, clamp.
     density = density * mix(1.0, h, frame.height_gradient);
     density = density * l.density * (1.0 + weather.precipitation);
     return clamp(density, 0.0, 1.0);
+}
+
+// Close-range detail (`clouds.close_detail`). The detail noise's 32 texels a tile are 37.5 m at
+// its default 1200 m period: from tens of metres its edges are blur, and a cloud's fringe
+// (density 0.05-0.4 rising over hundreds of metres, a mean free path of 60-500 m at the
+// default scattering) is a fog the camera sits in. Near the camera the edges the first erosion
+// left (density below the erosion threshold) are eroded again by the same texture read
+// `frame.close_detail_scale` times finer (an integer, so that the detail's wind offset, wrapped
+// by its period, is whole periods of this read), the lookup bent again by the curl noise read
+// as much finer over a displacement as much smaller: the fringe's haze cleared into wisps and
+// billows tens of metres across (finer ones, at a scale of 8, do not show through a fringe
+// whose mean free path is longer), in the first erosion's form (fading out at the threshold,
+// so the density stays continuous; wispy toward the base, billowy above as `wispy_billowy`
+// says). A level of detail by the distance from the camera: full to half of
+// `frame.close_detail_range`, none at it, so a cloud's look changes smoothly as the camera
+// nears it and farther clouds pay nothing; the march takes steps of `frame.close_step` within
+// that range (march.wgsl march_layer), which bounds the cost. The cores are left intact: inside
+// a cloud's core there is nothing to see but the fog of it.
+fn close_detail_weight(p: vec3<f32>, alt: f32) -> f32 {
+    let s = frame.close_detail;
+    if s <= 0.0 {
+        return 0.0;
+    }
+    let c = frame.camera_position;
+    let d = length(vec3<f32>(p.x - c.x, alt - c.y, p.z - c.z));
+    let r = frame.close_detail_range;
+    return s * (1.0 - smoothstep(0.5 * r, r, d));
+}
+
+// The density `density` (below `threshold`, after the first erosion) eroded by the finer read
+// with weight `near` (close_detail_weight): `detail_pos` is the first erosion's lookup (curl
+// and wind applied, m), `billowy` its wispy-to-billowy blend at height fraction `h`.
+fn close_erosion(p: vec3<f32>, h: f32, detail_pos: vec3<f32>, density: f32, near: f32,
+                 billowy: f32, threshold: f32) -> f32 {
+    let k = frame.close_detail_scale;
+    var pos = detail_pos;
+    if CURL {
+        let cuv = (p.xz - frame.curl_offset) * (k / frame.curl_period);
+        let curl = textureSampleLevel(curl_tex, noise_sampler, cuv, 0.0).xy * 2.0 - 1.0;
+        pos = pos + vec3<f32>(curl.x, 0.0, curl.y) * (frame.curl_strength / k * (1.0 - h));
+    }
+    let dn = textureSampleLevel(detail_tex, noise_sampler, pos * (k / frame.detail_period), 0.0);
+    let fbm = dn.r * 0.625 + dn.g * 0.25 + dn.b * 0.125;
+    let shape = mix(1.0 - fbm, fbm, billowy);
+    let erosion = near * shape * (1.0 - density / threshold);
+    return saturate(remap(density, erosion, 1.0, 0.0, 1.0));
 }

@@ -361,4 +361,14 @@ struct Frame {
     layer2_cellular: f32,
     // Extra layer 3's cellular share.
     layer3_cellular: f32,
+    // Close-range detail's strength, within [0, 1] (`clouds.close_detail`; 0: off).
+    close_detail: f32,
+    // How many times finer than the detail noise close-range detail reads it (an
+    // integer, `clouds.close_detail_scale`).
+    close_detail_scale: f32,
+    // How far from the camera close-range detail reaches (m,
+    // `clouds.close_detail_range_m`).
+    close_detail_range: f32,
+    // The march's step within that range (m, `quality.close_step_m`).
+    close_step: f32,
 }

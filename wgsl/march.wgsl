@@ -179,17 +179,50 @@ fn march_pixel(pixel: vec2<u32>) -> MarchResult {
     return MarchResult(radiance, transmittance, depth);
 }
 
+// The most view steps within close-range detail's range (scene MAX_CLOSE_STEPS, which
+// validation holds `clouds.close_detail_range_m / quality.close_step_m` to).
+const MAX_CLOSE_STEPS: u32 = 256u;
+
 // The march of the view ray's interval `span` in layer `l`, added to `state`. True when the
 // transmittance fell below the early-exit threshold (the pixel is done).
+// With close-range detail on (density.wgsl close_detail_weight) the part of the interval
+// within `frame.close_detail_range` of the camera is marched first in steps of
+// `frame.close_step` (never coarser than the steps beyond it, at most MAX_CLOSE_STEPS), so
+// that its wisps metres across are sampled and not aliased into noise by steps of tens or
+// hundreds of metres; the rest of the interval keeps the step it would have had.
 fn march_layer(view: vec3<f32>, span: Interval, l: Layer, jitter: f32,
                state: ptr<function, MarchState>, counters: ptr<function, Counters>) -> bool {
-    let cam_alt = frame.camera_position.y;
-    let cam_xz = frame.camera_position.xz;
     var steps = frame.view_steps;
     if frame.step_length > 0.0 {
         steps = clamp(u32(ceil(span.length / frame.step_length)), 1u, MAX_VIEW_STEPS);
     }
+    let near = frame.close_detail_range - span.start;
+    if frame.close_detail <= 0.0 || !(near > 0.0) {
+        return march_segment(view, span.start, span.length, steps, l, jitter, state, counters);
+    }
     let dt = span.length / f32(steps);
+    let near_length = min(near, span.length);
+    let fine = max(ceil(near_length / frame.close_step), ceil(near_length / dt));
+    let near_steps = clamp(u32(fine), 1u, MAX_CLOSE_STEPS);
+    if march_segment(view, span.start, near_length, near_steps, l, jitter, state, counters) {
+        return true;
+    }
+    let rest = span.length - near_length;
+    if !(rest > 0.0) {
+        return false;
+    }
+    let far_steps = clamp(u32(ceil(rest / dt)), 1u, steps);
+    return march_segment(view, span.start + near_length, rest, far_steps, l, jitter, state,
+                         counters);
+}
+
+// The march of `steps` equal steps of the view ray from `start` over `extent` (m) in layer
+// `l`, added to `state`; true when the transmittance fell below the early-exit threshold.
+fn march_segment(view: vec3<f32>, start: f32, extent: f32, steps: u32, l: Layer, jitter: f32,
+                 state: ptr<function, MarchState>, counters: ptr<function, Counters>) -> bool {
+    let cam_alt = frame.camera_position.y;
+    let cam_xz = frame.camera_position.xz;
+    let dt = extent / f32(steps);
     let sigma_e = frame.scattering + frame.absorption;
     let dynamic_step = (frame.flags & FLAG_DYNAMIC_STEP) != 0u;
     let empty_skip = (frame.flags & FLAG_EMPTY_SKIP) != 0u;
@@ -203,7 +236,7 @@ fn march_layer(view: vec3<f32>, span: Interval, l: Layer, jitter: f32,
             break;
         }
         (*counters).view_steps += 1u;
-        let t = span.start + (f32(i) + jitter) * dt;
+        let t = start + (f32(i) + jitter) * dt;
         let rel = view * t + vec3<f32>(0.0, cam_alt, 0.0);
         let p = vec3<f32>(rel.x + cam_xz.x, rel.y, rel.z + cam_xz.y);
         if empty_skip {
@@ -211,7 +244,7 @@ fn march_layer(view: vec3<f32>, span: Interval, l: Layer, jitter: f32,
             // the cell's edge.
             let exit = empty_cell_exit(p, view);
             if exit > 0.0 {
-                let next = u32(clamp(ceil((t + exit - span.start) / dt - jitter), 0.0, f32(steps)));
+                let next = u32(clamp(ceil((t + exit - start) / dt - jitter), 0.0, f32(steps)));
                 i = max(i + 1u, next);
                 continue;
             }

@@ -55,8 +55,9 @@ pub use error::{Location, Problem, ProblemKind, SceneError};
 pub use presets::{DEFAULT_PRESET, PresetInfo, presets};
 pub use scene::{
     Air, Animation, Atmosphere, CELLULAR_ROLL, Camera, CloudLayer, Clouds, DEFAULT_CIRRUS_DENSITY,
-    HeightModel, Integration, Integrator, Keyframe, Lighting, Lightning, MAX_EXTRA_LAYERS, Method,
-    MultipleScattering, Night, Noise, Orientation, Phase, PhaseModel, Post, Precipitation,
+    DEFAULT_CLOSE_DETAIL_RANGE_M, DEFAULT_CLOSE_DETAIL_SCALE, DEFAULT_CLOSE_STEP_M, HeightModel,
+    Integration, Integrator, Keyframe, Lighting, Lightning, MAX_CLOSE_STEPS, MAX_EXTRA_LAYERS,
+    Method, MultipleScattering, Night, Noise, Orientation, Phase, PhaseModel, Post, Precipitation,
     PrecipitationKind, Quality, Rainbow, Scene, ShapeTexture, Sky, SkyModel, Sun, Temporal,
 };
 pub use uniforms::{FrameUniforms, UniformMember};

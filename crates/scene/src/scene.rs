@@ -693,6 +693,36 @@ fn is_default_anvil_shear(v: &f64) -> bool {
     *v == DEFAULT_ANVIL_SHEAR_M
 }
 
+/// How many times finer than the detail noise the close-range detail reads it, by default
+/// (`clouds.close_detail_scale`).
+pub const DEFAULT_CLOSE_DETAIL_SCALE: u32 = 4;
+
+/// How far from the camera the close-range detail reaches by default (m,
+/// `clouds.close_detail_range_m`): at 1080p and a 60-degree field of view a pixel is a metre
+/// across there, a ninth of the finer read's 9.4 m texels.
+pub const DEFAULT_CLOSE_DETAIL_RANGE_M: f64 = 1000.0;
+
+/// The march's step within the close-range detail's range by default (m,
+/// `quality.close_step_m`): about two of the finer read's 9.4 m texels.
+pub const DEFAULT_CLOSE_STEP_M: f64 = 20.0;
+
+/// Most view steps the march takes within the close-range detail's range
+/// (`clouds.close_detail_range_m` over `quality.close_step_m`, which validation holds to it):
+/// the bound on what close-range detail costs a ray.
+pub const MAX_CLOSE_STEPS: u32 = 256;
+
+fn is_default_close_step(v: &f64) -> bool {
+    *v == DEFAULT_CLOSE_STEP_M
+}
+
+fn is_default_close_detail_scale(v: &u32) -> bool {
+    *v == DEFAULT_CLOSE_DETAIL_SCALE
+}
+
+fn is_default_close_detail_range(v: &f64) -> bool {
+    *v == DEFAULT_CLOSE_DETAIL_RANGE_M
+}
+
 /// The cloud model (section `[clouds]`).
 #[derive(Serialize, Deserialize, Clone, Debug, PartialEq)]
 #[serde(default, deny_unknown_fields)]
@@ -782,6 +812,31 @@ pub struct Clouds {
     /// layer of the scene takes it.
     #[serde(skip_serializing_if = "is_zero")]
     pub cell_rolls: f64,
+    /// Close-range detail, within [0, 1] (0, the default: off). Near the camera the detail
+    /// noise (37.5 m texels at the default period) is blur at a metre's pixel, and a cloud's
+    /// thin fringe (density 0.05-0.4, hundreds of metres deep) a fog the camera sits in: with
+    /// this above 0 the clouds' edges are eroded a second time by the detail noise read
+    /// [`Clouds::close_detail_scale`] times finer, its lookup bent by the curl noise read as
+    /// much finer, into wisps and billows tens of metres across, with this strength; a level of detail
+    /// by distance fades it out between half of [`Clouds::close_detail_range_m`] and all of it,
+    /// and the march takes steps of `quality.close_step_m` within that range, so the cost is
+    /// bounded by the range whatever the scene. The cores of clouds are left intact, as the
+    /// first erosion leaves them.
+    #[serde(skip_serializing_if = "is_zero")]
+    pub close_detail: f64,
+    /// How many times finer than the detail noise the close-range detail reads it, an integer
+    /// within [2, 32] (4, the default: 300 m tiles of 9.4 m texels at the default detail
+    /// period; 8 was finer than the clouds' fringes show, their mean free path being tens to
+    /// hundreds of metres at the default scattering). An integer,
+    /// so that the detail's wind offset, wrapped by its period, is whole periods of the finer
+    /// read too.
+    #[serde(skip_serializing_if = "is_default_close_detail_scale")]
+    pub close_detail_scale: u32,
+    /// Distance from the camera to which the close-range detail reaches, metres (> 0;
+    /// default [`DEFAULT_CLOSE_DETAIL_RANGE_M`]): at full strength up to half of it, fading to
+    /// none at it. Read only where [`Clouds::close_detail`] is above 0.
+    #[serde(skip_serializing_if = "is_default_close_detail_range")]
+    pub close_detail_range_m: f64,
     /// Extra cloud layers (`[[clouds.layers]]`, at most [`MAX_EXTRA_LAYERS`]) besides the main
     /// one that `atmosphere.cloud_bottom_m`/`cloud_top_m` and the fields above describe. Each
     /// has its own altitudes and weather over the same noise, wind and lighting; no two
@@ -874,6 +929,9 @@ impl Default for Clouds {
             cirrus: 0.0,
             cellular: 0.0,
             cell_rolls: 0.0,
+            close_detail: 0.0,
+            close_detail_scale: DEFAULT_CLOSE_DETAIL_SCALE,
+            close_detail_range_m: DEFAULT_CLOSE_DETAIL_RANGE_M,
             layers: Vec::new(),
         }
     }
@@ -1253,6 +1311,13 @@ pub struct Quality {
     pub first_light_step_m: f64,
     /// Clouds farther than this from the camera are not marched, metres (> 0; thesis alg. 5.1).
     pub cutoff_distance_m: f64,
+    /// View step length within `clouds.close_detail_range_m` of the camera where
+    /// `clouds.close_detail` is on, metres (> 0; default [`DEFAULT_CLOSE_STEP_M`]): the
+    /// close-range detail's wisps are metres across, which the march's steps elsewhere (tens
+    /// to hundreds of metres) would alias into noise. Never coarser than the step elsewhere;
+    /// at most [`MAX_CLOSE_STEPS`] steps span the range. Read only with close-range detail on.
+    #[serde(skip_serializing_if = "is_default_close_step")]
+    pub close_step_m: f64,
     /// Stop marching once the view transmittance drops below this, within [0, 1) (0 = never).
     pub early_exit_transmittance: f64,
     /// Jitter each pixel's start offset by a fraction of a step (removes banding).
@@ -1295,6 +1360,7 @@ impl Default for Quality {
             light_step_growth: 2.0,
             first_light_step_m: 50.0,
             cutoff_distance_m: 60_000.0,
+            close_step_m: DEFAULT_CLOSE_STEP_M,
             early_exit_transmittance: 0.01,
             jitter: true,
             integration: Integration::Analytic,
@@ -1391,6 +1457,10 @@ impl Scene {
         scene.clouds.cellular = 1.0;
         scene.clouds.cell_rolls = 1.0;
         scene.clouds.layers[0].cellular = 1.0;
+        scene.clouds.close_detail = 1.0;
+        scene.clouds.close_detail_scale = 8;
+        scene.clouds.close_detail_range_m = 500.0;
+        scene.quality.close_step_m = 10.0;
         scene
     }
 

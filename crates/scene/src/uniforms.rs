@@ -385,6 +385,16 @@ macro_rules! frame_members {
             layer2_cellular: f32,
             /// Extra layer 3's cellular share.
             layer3_cellular: f32,
+            /// Close-range detail's strength, within [0, 1] (`clouds.close_detail`; 0: off).
+            close_detail: f32,
+            /// How many times finer than the detail noise close-range detail reads it (an
+            /// integer, `clouds.close_detail_scale`).
+            close_detail_scale: f32,
+            /// How far from the camera close-range detail reaches (m,
+            /// `clouds.close_detail_range_m`).
+            close_detail_range: f32,
+            /// The march's step within that range (m, `quality.close_step_m`).
+            close_step: f32,
         }
     };
 }
@@ -1122,6 +1132,10 @@ impl Scene {
             layer1_cellular: f(layers.first().map_or(0.0, |l| l.cellular)),
             layer2_cellular: f(layers.get(1).map_or(0.0, |l| l.cellular)),
             layer3_cellular: f(layers.get(2).map_or(0.0, |l| l.cellular)),
+            close_detail: f(c.close_detail),
+            close_detail_scale: c.close_detail_scale as f32,
+            close_detail_range: f(c.close_detail_range_m),
+            close_step: f(q.close_step_m),
         };
         block.with_previous_camera(&block)
     }

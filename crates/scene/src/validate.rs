@@ -396,6 +396,40 @@ pub(crate) fn check(scene: &Scene) -> Vec<Issue> {
     c.unit("clouds.cirrus", cl.cirrus);
     c.unit("clouds.cellular", cl.cellular);
     c.unit("clouds.cell_rolls", cl.cell_rolls);
+    c.unit("clouds.close_detail", cl.close_detail);
+    c.uint(
+        "clouds.close_detail_scale",
+        cl.close_detail_scale.into(),
+        2,
+        32,
+    );
+    let range_ok = c.positive("clouds.close_detail_range_m", cl.close_detail_range_m);
+    let step_ok = c.positive("quality.close_step_m", scene.quality.close_step_m);
+    // The bound on close-range detail's cost: at most MAX_CLOSE_STEPS steps span the range.
+    if cl.close_detail > 0.0 && range_ok && step_ok {
+        let steps = cl.close_detail_range_m / scene.quality.close_step_m;
+        if steps > f64::from(crate::scene::MAX_CLOSE_STEPS) {
+            c.push_pair(
+                (
+                    "quality.close_step_m",
+                    num(scene.quality.close_step_m),
+                    format!(
+                        "takes {} steps to cross clouds.close_detail_range_m; at most {} may (a longer step or a shorter range)",
+                        steps.ceil(),
+                        crate::scene::MAX_CLOSE_STEPS
+                    ),
+                ),
+                (
+                    "clouds.close_detail_range_m",
+                    num(cl.close_detail_range_m),
+                    format!(
+                        "is more than {} of quality.close_step_m",
+                        crate::scene::MAX_CLOSE_STEPS
+                    ),
+                ),
+            );
+        }
+    }
     // The baselines draw the shape noise's water cloud alone.
     for (field, share, what) in [
         (
@@ -407,6 +441,11 @@ pub(crate) fn check(scene: &Scene) -> Vec<Issue> {
             "clouds.cellular",
             cl.cellular,
             "draws the shape noise's clouds only: cellular layers need",
+        ),
+        (
+            "clouds.close_detail",
+            cl.close_detail,
+            "marches its own steps with one erosion: close-range detail needs",
         ),
     ] {
         if share > 0.0 && scene.quality.method != crate::Method::Volumetric {

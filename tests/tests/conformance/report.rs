@@ -234,13 +234,18 @@ const CPU_MAX_ABS: [(&str, f64, f64); 2] = [
 /// for wgpu-vulkan too. Through a second compiler (Mesa's GLSL compiler on wgpu-gl, glslang on
 /// ash-glsl and ash-hlsl) rounding may move a sample across a cloud's edge or an early exit,
 /// so those are bounded as measured. On the golden device (lavapipe) they count exactly alike
-/// on every scene but one: the basic marcher on wgpu-gl, density evaluations 939131 against
-/// 939099 (0.0034%; it marches every ray to the end with no early exit). On a device of
+/// on every scene but two: the basic marcher on wgpu-gl, density evaluations 939131 against
+/// 939099 (0.0034%; it marches every ray to the end with no early exit), and close-range
+/// detail on wgpu-gl (below). On a device of
 /// another class the three are held to the cross-device model instead (`spread`: on an NVIDIA
 /// H200, ash-hlsl's counters were 0.012% from wgpu-vulkan's on that scene).
 pub fn gpu_counter_bound(path: Path, scene: &str, class: DeviceClass) -> f64 {
     match (path, class) {
         (Path::WgpuGl, DeviceClass::Golden) if scene == "stress-method-basic" => 1e-4,
+        // Close-range detail adds an edge of its own (the second erosion where the first left
+        // the density below its threshold, in 20 m steps): detail evaluations 1188954 against
+        // 1188956 on wgpu-gl (1.7e-6), every other counter exact.
+        (Path::WgpuGl, DeviceClass::Golden) if scene == "stress-close-detail" => 1e-5,
         // Under the physical sky the light (and so the early exits) passes through the
         // path's own tables: noon, detail evaluations 212087 against 212086 on wgpu-gl.
         (Path::WgpuGl | Path::AshGlsl | Path::AshHlsl, DeviceClass::Golden)

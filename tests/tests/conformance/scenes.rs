@@ -144,6 +144,16 @@ pub fn all() -> Vec<Case> {
             },
         ),
         stress(
+            "close-detail",
+            "close-range detail at the edge of a cumulus's fringe at 2700 m, looking east into it: the edges eroded again by the detail noise read four times finer within 1 km, marched there in 20 m steps, the rest of each ray at its own step",
+            |s| {
+                s.camera.position = [-1800.0, 2700.0, -11750.0];
+                s.camera.yaw_deg = 90.0;
+                s.camera.pitch_deg = 0.0;
+                s.clouds.close_detail = 1.0;
+            },
+        ),
+        stress(
             "light-shafts",
             "light shafts in the physical sky: the clouds' shadows in the air, looking toward a sun 24 degrees up",
             |s| {

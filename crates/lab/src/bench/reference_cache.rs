@@ -47,6 +47,7 @@ fn reference_for(scene: &Scene) -> (Integrator, Scene, bool) {
     s.quality.early_exit_transmittance = d.early_exit_transmittance;
     s.quality.light_step_growth = d.light_step_growth;
     s.quality.first_light_step_m = d.first_light_step_m;
+    s.quality.close_step_m = d.close_step_m;
     // Cost-only and amortising methods, and the frame (which seeds the path tracer): the
     // reference of every frame of a still camera is the same image.
     s.quality.temporal = d.temporal;
