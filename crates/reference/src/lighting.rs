@@ -387,11 +387,17 @@ pub(crate) fn downward_dimming(f: &Frame, view_y: f64, coverage: f64, h: f64, ta
     (1.0 - k * tau_v / (tau_v + 1.0)).max(0.0)
 }
 
+// WGSL: lighting.wgsl::DECK_ESCAPE_MAX
+/// The most the deck escape's strength `e w` may be: the Eddington approximation's 6/7.
+const DECK_ESCAPE_MAX: f64 = 0.857142857;
+
 // WGSL: lighting.wgsl::deck_escape
 /// The octaves' escape from a deck for a sun of zenith cosine `mu0`: `1 + e w (mu0 - 1/2)`, `w`
-/// the layer's coverage to the 8th power (lighting.wgsl says why).
+/// the layer's coverage to the 8th power, `e w` at most `DECK_ESCAPE_MAX` (lighting.wgsl says
+/// why).
 pub(crate) fn deck_escape(f: &Frame, mu0: f64, layer_coverage: f64) -> f64 {
-    1.0 + f.deck_escape * saturate(layer_coverage).powf(DECK_POWER) * (mu0 - 0.5)
+    let ew = f.deck_escape * saturate(layer_coverage).powf(DECK_POWER);
+    1.0 + ew.min(DECK_ESCAPE_MAX) * (mu0 - 0.5)
 }
 
 // WGSL: lighting.wgsl::diffuse_limb
@@ -752,8 +758,9 @@ mod tests {
     }
 
     /// The deck escape brightens a full deck's octaves under a high sun and darkens them under
-    /// a low one (1 at 60 degrees from the zenith), leaves a broken layer nearly alone, falls
-    /// to 0 and no lower at its largest strength, and is 1 when off.
+    /// a low one (1 at 60 degrees from the zenith), leaves a broken layer nearly alone, is
+    /// never stronger than the Eddington ratio's 6/7 (a sun at the horizon keeps 4/7 of a full
+    /// deck's octaves, a sun overhead adds 3/7), and is 1 when off.
     #[test]
     fn deck_escape_favours_a_high_sun_over_a_deck() {
         let noise = crate::small_noise();
@@ -763,7 +770,11 @@ mod tests {
         let (high, low) = (deck_escape(&m.f, 1.0, 1.0), deck_escape(&m.f, 0.1, 1.0));
         assert!(high > 1.0 && (0.0..1.0).contains(&low), "{high} {low}");
         assert_eq!(deck_escape(&m.f, 0.5, 1.0), 1.0);
-        assert_eq!(deck_escape(&m.f, 0.0, 1.0), 0.0);
+        assert!((deck_escape(&m.f, 0.0, 1.0) - 4.0 / 7.0).abs() < 1e-8);
+        assert!((deck_escape(&m.f, 1.0, 1.0) - 10.0 / 7.0).abs() < 1e-8);
+        // Below the bound (storm's coverage 0.9: 2 x 0.9^8 = 0.861, at it) the fitted strength.
+        let w = 0.8f64.powi(8);
+        assert!((deck_escape(&m.f, 1.0, 0.8) - (1.0 + 2.0 * w * 0.5)).abs() < 1e-12);
         // A layer of coverage 0.5 is weighted 1/256 as a deck.
         assert!((deck_escape(&m.f, 1.0, 0.5) - 1.0).abs() < 0.005);
         assert!(deck_escape(&m.f, 1.0, 0.9) > deck_escape(&m.f, 1.0, 0.8));
