@@ -1408,6 +1408,18 @@ fn height_cloud_types(h: f32, cloud_type: f32) -> f32 {
     return mix(lo, cumulus, saturate(cloud_type * 2.0 - 1.0));
 }
 
+// The height fraction in layer `l` where the cloud's height profile ends under `weather`: the
+// parabola's top (or the cloud-type gradients'), times the cloud's own top on convective
+// cells. Cirrus and cellular cloud have profiles of their own: for them the layer's top.
+fn cloud_top_fraction(l: Layer, weather: Weather) -> f32 {
+    let t = weather.cloud_type;
+    var top = mix(0.35, 1.0, t);
+    if frame.height_model == HEIGHT_CLOUD_TYPES {
+        top = mix(mix(0.25, 0.65, saturate(t * 2.0)), 0.95, saturate(t * 2.0 - 1.0));
+    }
+    return mix(top * weather.top, 1.0, max(l.cirrus, l.cellular));
+}
+
 fn height_signal(h: f32, cloud_type: f32) -> f32 {
     if frame.height_model == HEIGHT_CLOUD_TYPES {
         return height_cloud_types(h, cloud_type);
@@ -1976,8 +1988,11 @@ fn anvil_optical_depth(rel: vec3<f32>, p: vec3<f32>, l: Layer, band: f32,
 // single scattering beyond the light march and the side light; `coverage` is the region's
 // cover about the sample (density.wgsl regional_coverage: the weather map's, or on convective
 // cells the cells' share), `view_y` the view ray's vertical component (diffuse_limb), `h` the
-// sample's height fraction in its layer (vertical_anisotropy), `layer_coverage` its layer's
-// coverage (deck_escape).
+// sample's height fraction in its cloud (vertical_anisotropy, downward_dimming: in its layer
+// over the profile's top, density.wgsl cloud_top_fraction; a stratus fills the lowest third of
+// its layer, and in the layer's fraction the top of `weather fog`'s ground fog was taken for
+// its base, its light looking down dimmed away: FLIP 0.114, with the cloud's 0.094),
+// `layer_coverage` its layer's coverage (deck_escape).
 // Wrenninge's octaves attenuate by exp(-b^i tau). The diffuse light deep in a thick layer falls
 // off far more slowly: as 1 / (1 + (3/4)(1 - g) tau) in two-stream theory for conservative
 // scattering (Meador and Weaver 1980), and the path tracer agrees (storm's bases were 2.3 times
@@ -2216,8 +2231,8 @@ fn scattered_light(rel: vec3<f32>, p: vec3<f32>, alt: f32, density: f32, view: v
                                            above, counters);
         }
         let s = sun_scattering(dot(view, sun), view.y, tau, tau_oct, far,
-                               octave_buildup(density), regional_coverage(p, l, weather), h,
-                               l.coverage);
+                               octave_buildup(density), regional_coverage(p, l, weather),
+                               saturate(h / cloud_top_fraction(l, weather)), l.coverage);
         let lit = frame.sun_illuminance * sun_through_air(rel);
         sun_light = lit * s.total;
         octave_light = lit * s.octaves;

@@ -243,6 +243,18 @@ fn height_cloud_types(h: f32, cloud_type: f32) -> f32 {
     return mix(lo, cumulus, saturate(cloud_type * 2.0 - 1.0));
 }
 
+// The height fraction in layer `l` where the cloud's height profile ends under `weather`: the
+// parabola's top (or the cloud-type gradients'), times the cloud's own top on convective
+// cells. Cirrus and cellular cloud have profiles of their own: for them the layer's top.
+fn cloud_top_fraction(l: Layer, weather: Weather) -> f32 {
+    let t = weather.cloud_type;
+    var top = mix(0.35, 1.0, t);
+    if frame.height_model == HEIGHT_CLOUD_TYPES {
+        top = mix(mix(0.25, 0.65, saturate(t * 2.0)), 0.95, saturate(t * 2.0 - 1.0));
+    }
+    return mix(top * weather.top, 1.0, max(l.cirrus, l.cellular));
+}
+
 fn height_signal(h: f32, cloud_type: f32) -> f32 {
     if frame.height_model == HEIGHT_CLOUD_TYPES {
         return height_cloud_types(h, cloud_type);

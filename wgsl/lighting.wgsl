@@ -277,8 +277,11 @@ fn anvil_optical_depth(rel: vec3<f32>, p: vec3<f32>, l: Layer, band: f32,
 // single scattering beyond the light march and the side light; `coverage` is the region's
 // cover about the sample (density.wgsl regional_coverage: the weather map's, or on convective
 // cells the cells' share), `view_y` the view ray's vertical component (diffuse_limb), `h` the
-// sample's height fraction in its layer (vertical_anisotropy), `layer_coverage` its layer's
-// coverage (deck_escape).
+// sample's height fraction in its cloud (vertical_anisotropy, downward_dimming: in its layer
+// over the profile's top, density.wgsl cloud_top_fraction; a stratus fills the lowest third of
+// its layer, and in the layer's fraction the top of `weather fog`'s ground fog was taken for
+// its base, its light looking down dimmed away: FLIP 0.114, with the cloud's 0.094),
+// `layer_coverage` its layer's coverage (deck_escape).
 // Wrenninge's octaves attenuate by exp(-b^i tau). The diffuse light deep in a thick layer falls
 // off far more slowly: as 1 / (1 + (3/4)(1 - g) tau) in two-stream theory for conservative
 // scattering (Meador and Weaver 1980), and the path tracer agrees (storm's bases were 2.3 times
@@ -517,8 +520,8 @@ fn scattered_light(rel: vec3<f32>, p: vec3<f32>, alt: f32, density: f32, view: v
                                            above, counters);
         }
         let s = sun_scattering(dot(view, sun), view.y, tau, tau_oct, far,
-                               octave_buildup(density), regional_coverage(p, l, weather), h,
-                               l.coverage);
+                               octave_buildup(density), regional_coverage(p, l, weather),
+                               saturate(h / cloud_top_fraction(l, weather)), l.coverage);
         let lit = frame.sun_illuminance * sun_through_air(rel);
         sun_light = lit * s.total;
         octave_light = lit * s.octaves;

@@ -288,6 +288,23 @@ pub(crate) fn height_cloud_types(h: f64, cloud_type: f64) -> f64 {
     mix(lo, cumulus, saturate(cloud_type * 2.0 - 1.0))
 }
 
+// WGSL: density.wgsl::cloud_top_fraction
+/// The height fraction in layer `l` where the cloud's height profile ends under `weather`
+/// (the layer's top for cirrus and cellular cloud).
+pub(crate) fn cloud_top_fraction(f: &Frame, l: &Layer, weather: &Weather) -> f64 {
+    let t = weather.cloud_type;
+    let top = if f.height_model == HEIGHT_CLOUD_TYPES {
+        mix(
+            mix(0.25, 0.65, saturate(t * 2.0)),
+            0.95,
+            saturate(t * 2.0 - 1.0),
+        )
+    } else {
+        mix(0.35, 1.0, t)
+    };
+    mix(top * weather.top, 1.0, l.cirrus.max(l.cellular))
+}
+
 // WGSL: density.wgsl::height_signal
 pub(crate) fn height_signal(f: &Frame, h: f64, cloud_type: f64) -> f64 {
     if f.height_model == HEIGHT_CLOUD_TYPES {
@@ -1066,6 +1083,30 @@ mod tests {
         assert!(n > 500.0, "{n} fringe points");
         assert!(on < 0.85 * off, "{off} -> {on}");
         assert!(var_on > 1.6 * var_off, "{var_off} -> {var_on}");
+    }
+
+    /// A cloud's top in its layer: the parabola's for water cloud (a stratus's at 0.35, a
+    /// cumulus's at 1), a convective cell's share of it, the cloud-type gradients' under that
+    /// model, and the layer's top for cirrus and cellular cloud, whose profiles are their own.
+    #[test]
+    fn the_cloud_top_follows_the_height_profile() {
+        let f = Frame::from_uniforms(&stratus_scene::Scene::default().uniforms());
+        let mut l = cloud_layer(&f, 0);
+        let w = |cloud_type: f64, top: f64| Weather {
+            coverage: 1.0,
+            cloud_type,
+            precipitation: 0.0,
+            top,
+        };
+        assert!((cloud_top_fraction(&f, &l, &w(0.0, 1.0)) - 0.35).abs() < 1e-12);
+        assert!((cloud_top_fraction(&f, &l, &w(1.0, 1.0)) - 1.0).abs() < 1e-12);
+        assert!((cloud_top_fraction(&f, &l, &w(1.0, 0.4)) - 0.4).abs() < 1e-12);
+        let mut types = f.clone();
+        types.height_model = HEIGHT_CLOUD_TYPES;
+        assert!((cloud_top_fraction(&types, &l, &w(0.0, 1.0)) - 0.25).abs() < 1e-12);
+        assert!((cloud_top_fraction(&types, &l, &w(0.5, 1.0)) - 0.65).abs() < 1e-12);
+        l.cirrus = 1.0;
+        assert_eq!(cloud_top_fraction(&f, &l, &w(0.0, 1.0)), 1.0);
     }
 
     /// The wind carries close-range detail without a jump: its reads are whole periods of the

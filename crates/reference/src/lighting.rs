@@ -1,7 +1,9 @@
 //! The CPU twin of `lighting.wgsl`: the light march toward the sun, multiple-scattering
 //! octaves, ambient and precipitation darkening (its phase functions are in [`crate::phase`]).
 
-use crate::density::{ANVIL_BASE, Counters, Layer, cloud_layers, height_signal, layer_height};
+use crate::density::{
+    ANVIL_BASE, Counters, Layer, cloud_layers, cloud_top_fraction, height_signal, layer_height,
+};
 use crate::frame::{FLAG_BEER_POWDER, Frame, PI};
 use crate::geometry::{altitude_of, hits_ground, ray_shell_from};
 use crate::math::{V3, mix, mix_v, saturate};
@@ -488,7 +490,11 @@ pub(crate) fn scattered_light(
             (tau, tau_oct),
             (far_direct, far),
             octave_buildup(f, density),
-            (m.regional_coverage(p, l, &weather), h, l.coverage),
+            (
+                m.regional_coverage(p, l, &weather),
+                saturate(h / cloud_top_fraction(f, l, &weather)),
+                l.coverage,
+            ),
         );
         let lit = f.sun_illuminance().mul_v(sun_through_air(f, m.sky(), rel));
         sun_light = lit * s;
