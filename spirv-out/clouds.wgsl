@@ -2937,7 +2937,7 @@ const MAX_CLOSE_STEPS: u32 = 256u;
 // transmittance fell below the early-exit threshold (the pixel is done).
 // With close-range detail on (density.wgsl close_detail_weight) the part of the interval
 // within `frame.close_detail_range` of the camera is marched first in steps of
-// `frame.close_step` (never coarser than the steps beyond it, at most MAX_CLOSE_STEPS), so
+// `frame.close_step` (at most MAX_CLOSE_STEPS of them, never coarser than the steps beyond), so
 // that its wisps metres across are sampled and not aliased into noise by steps of tens or
 // hundreds of metres; the rest of the interval keeps the step it would have had.
 fn march_layer(view: vec3<f32>, span: Interval, l: Layer, jitter: f32,
@@ -2952,8 +2952,10 @@ fn march_layer(view: vec3<f32>, span: Interval, l: Layer, jitter: f32,
     }
     let dt = span.length / f32(steps);
     let near_length = min(near, span.length);
-    let fine = max(ceil(near_length / frame.close_step), ceil(near_length / dt));
-    let near_steps = clamp(u32(fine), 1u, MAX_CLOSE_STEPS);
+    // The bound caps the close steps alone: where the ray's own steps are finer still (a short
+    // `quality.step_length_m`, a converged reference) they stay, at most `steps` of them.
+    let close = min(ceil(near_length / frame.close_step), f32(MAX_CLOSE_STEPS));
+    let near_steps = max(u32(max(close, ceil(near_length / dt))), 1u);
     if march_segment(view, span.start, near_length, near_steps, l, jitter, state, counters) {
         return true;
     }

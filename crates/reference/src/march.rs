@@ -284,10 +284,11 @@ fn march_layer(
     }
     let dt = span.length / f64::from(steps);
     let near_length = near.min(span.length);
-    let fine = (near_length / f.close_step)
+    // The bound caps the close steps alone: the ray's own finer steps stay (WGSL: march_layer).
+    let close = (near_length / f.close_step)
         .ceil()
-        .max((near_length / dt).ceil());
-    let near_steps = (fine as u32).clamp(1, MAX_CLOSE_STEPS);
+        .min(f64::from(MAX_CLOSE_STEPS));
+    let near_steps = (close.max((near_length / dt).ceil()) as u32).max(1);
     let first = (span.start, near_length, near_steps);
     if march_segment(m, s, view, first, l, jitter, state, counters) {
         return true;
@@ -387,13 +388,22 @@ mod tests {
     /// 30 km cut-off 96 steps of 312.5 m), with close-range detail `close` and the step
     /// `close_step_m` within its range: every sample counted (no early exit).
     fn steps(close: f64, close_step_m: f64) -> u64 {
+        steps_of(close, close_step_m, None)
+    }
+
+    /// As [`steps`], with `view_steps` across the interval where given (as the converged
+    /// quadrature sets them).
+    fn steps_of(close: f64, close_step_m: f64, view_steps: Option<u32>) -> u64 {
         let noise = stratus_noise::NoiseSet::generate(&Default::default());
         let mut scene = stratus_scene::Scene::preset("inside-layer").unwrap();
         scene.quality.early_exit_transmittance = 0.0;
         scene.clouds.close_detail = close;
         scene.quality.close_step_m = close_step_m;
         let m = Model::new(&scene, Medium::Clouds(&noise));
-        let s = QuadratureSettings::realtime().resolve(&m.f);
+        let mut s = QuadratureSettings::realtime().resolve(&m.f);
+        if view_steps.is_some() {
+            s.view_steps = view_steps;
+        }
         march_ray(&m, &s, V3::new(0.0, 0.0, -1.0), 0.5)
             .counters
             .view_steps
@@ -407,5 +417,14 @@ mod tests {
         assert_eq!(steps(0.0, 20.0), 96);
         assert_eq!(steps(1.0, 20.0), 50 + 93);
         assert_eq!(steps(1.0, 1.0), u64::from(MAX_CLOSE_STEPS) + 93);
+    }
+
+    /// The bound holds the close steps alone, never the ray's own: with 16384 steps of 1.83 m
+    /// across the 30 km (finer than the 20 m close step) the range keeps its 547 of them, not
+    /// MAX_CLOSE_STEPS, and the 29 km beyond take the 15838 they had.
+    #[test]
+    fn close_detail_never_coarsens_finer_steps() {
+        assert_eq!(steps_of(0.0, 20.0, Some(16384)), 16384);
+        assert_eq!(steps_of(1.0, 20.0, Some(16384)), 547 + 15838);
     }
 }

@@ -430,6 +430,15 @@ pub(crate) fn check(scene: &Scene) -> Vec<Issue> {
             );
         }
     }
+    // The second erosion reads the first's lookup and only where the first eroded: without it
+    // the close steps would cost their samples and change nothing.
+    if cl.close_detail > 0.0 && cl.detail_strength <= 0.0 {
+        c.push(
+            "clouds.close_detail",
+            num(cl.close_detail),
+            "erodes the edges a second time where the detail erosion does: it needs clouds.detail_strength > 0 (or close_detail = 0)",
+        );
+    }
     // The baselines draw the shape noise's water cloud alone.
     for (field, share, what) in [
         (

@@ -38,6 +38,22 @@ fn close_detail_fields_are_checked_by_name() {
     assert!(error(&s).contains("quality.close_step_m = 0"));
 }
 
+/// The second erosion works where the first does: with the detail erosion off it would only
+/// cost its steps, so it is refused, naming the field it needs; off, it asks nothing.
+#[test]
+fn close_detail_needs_the_detail_erosion() {
+    let mut s = on();
+    s.clouds.detail_strength = 0.0;
+    let e = error(&s);
+    assert!(
+        e.contains("clouds.close_detail = 1: erodes the edges a second time")
+            && e.contains("needs clouds.detail_strength > 0"),
+        "{e}"
+    );
+    s.clouds.close_detail = 0.0;
+    assert!(s.validate().is_ok());
+}
+
 /// More than MAX_CLOSE_STEPS steps across the range is refused, naming both fields; with close
 /// detail off the same fields pass (they are not read).
 #[test]
