@@ -33,6 +33,10 @@ pub(super) fn cache_dir() -> PathBuf {
 /// directory like the cache: read where the cache has no file of the key.
 pub(crate) const COMMITTED_TRUTHS: &str = "docs/fit/truths";
 
+/// The precipitation darkening every all-orders truth's key is made with (the march's default
+/// when the committed truths were traced; the path tracer does not read it).
+const KEYED_PRECIPITATION_DARKENING: f64 = 0.5;
+
 /// The reference for `scene`: its kind and the scene it renders (fields it ignores reset, so
 /// configurations that differ only there share one reference).
 fn reference_for(scene: &Scene) -> (Integrator, Scene, bool) {
@@ -71,8 +75,9 @@ fn reference_for(scene: &Scene) -> (Integrator, Scene, bool) {
         let d = stratus_scene::Lighting::default();
         s.lighting.powder_strength = d.powder_strength;
         // The march's stand-in for rain's dark base, which the path tracer leaves to the
-        // density (precipitation raises it).
-        s.lighting.precipitation_darkening = d.precipitation_darkening;
+        // density (precipitation raises it): a fixed value, like the octaves', so that choosing
+        // the march's default again moves no key.
+        s.lighting.precipitation_darkening = KEYED_PRECIPITATION_DARKENING;
         (Integrator::MonteCarlo { spp: 0, orders: 0 }, s, true)
     } else {
         // Single scattering: the octave constants do nothing (fixed, as above).
