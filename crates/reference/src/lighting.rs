@@ -422,6 +422,16 @@ pub(crate) fn octave_buildup(f: &Frame, density: f64) -> f64 {
     1.0 - (-(f.scattering + f.absorption) * density * l).exp()
 }
 
+// WGSL: lighting.wgsl::CELLULAR_OCTAVES
+/// The share of the octaves a wholly cellular layer's cloudlets keep (see the WGSL for why).
+const CELLULAR_OCTAVES: f64 = 0.75;
+
+// WGSL: lighting.wgsl::cellular_octaves
+/// The share of the octaves layer `l`'s clouds keep: `mix(1, CELLULAR_OCTAVES, cellular)`.
+pub(crate) fn cellular_octaves(l: &Layer) -> f64 {
+    mix(1.0, CELLULAR_OCTAVES, l.cellular)
+}
+
 // WGSL: lighting.wgsl::ambient
 /// Ambient light at height fraction `h`: a gradient from the bottom to the top colour, or under
 /// the physical sky the sky's cosine-weighted radiance from below and from above, seen from the
@@ -489,7 +499,7 @@ pub(crate) fn scattered_light(
             view.y,
             (tau, tau_oct),
             (far_direct, far),
-            octave_buildup(f, density),
+            octave_buildup(f, density) * cellular_octaves(l),
             (
                 m.regional_coverage(p, l, &weather),
                 saturate(h / cloud_top_fraction(f, l, &weather)),
