@@ -1189,7 +1189,7 @@ pub struct Lighting {
     /// precipitation p is scaled by 1 - k p (1 - h). The path tracer leaves rain's dark base to
     /// the density (precipitation raises it), so the default is chosen against its truth: 0.3,
     /// the lowest mean FLIP of `weather rain`, `weather snow` and `weather thunderstorm` over
-    /// 0.1-0.7 (docs/fit-log.md; the thesis's example 0.5 lit them 0.89-0.95 of the truth's
+    /// 0-1 (docs/fit-log.md; the thesis's example 0.5 lit them 0.89-0.95 of the truth's
     /// brightness where dense).
     pub precipitation_darkening: f64,
     /// Phase function.
