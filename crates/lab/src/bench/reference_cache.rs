@@ -37,6 +37,42 @@ pub(crate) const COMMITTED_TRUTHS: &str = "docs/fit/truths";
 /// when the committed truths were traced; the path tracer does not read it).
 const KEYED_PRECIPITATION_DARKENING: f64 = 0.5;
 
+/// The scene's TOML as the key hashes it: as the scene serialised when the committed truths
+/// were traced, so that a new default moves no key (the tracer's uniforms, hashed too, still
+/// hold every value the tracer reads). `clouds.convective_cells` was written then where it
+/// was not 0, its default until the presets moved to convective cells; it is written now
+/// where it is not 1.
+fn key_text(s: &Scene) -> String {
+    let text = s.to_toml();
+    let cells = s.clouds.convective_cells;
+    let written = |line: &str| line.starts_with("convective_cells = ");
+    let mut in_clouds = false;
+    let has_cells = text.lines().any(|line| {
+        if line.starts_with('[') {
+            in_clouds = line == "[clouds]";
+        }
+        in_clouds && written(line)
+    });
+    let mut out = String::with_capacity(text.len() + 32);
+    let mut section = "";
+    for line in text.lines() {
+        if line.starts_with('[') {
+            section = line;
+        }
+        let clouds = section == "[clouds]";
+        if clouds && written(line) && cells == 0.0 {
+            continue;
+        }
+        out.push_str(line);
+        out.push('\n');
+        // The field follows `wispy_billowy`, which is always written.
+        if clouds && line.starts_with("wispy_billowy = ") && cells != 0.0 && !has_cells {
+            let _ = writeln!(out, "convective_cells = {}", toml::Value::Float(cells));
+        }
+    }
+    out
+}
+
 /// The reference for `scene`: its kind and the scene it renders (fields it ignores reset, so
 /// configurations that differ only there share one reference).
 fn reference_for(scene: &Scene) -> (Integrator, Scene, bool) {
@@ -221,7 +257,7 @@ pub(crate) fn reference_key(
     }
     let on_gpu = mc && on_gpu;
     let mut h = Sha256::new();
-    h.update(s.to_toml().as_bytes());
+    h.update(key_text(&s).as_bytes());
     h.update(format!("{integrator:?}").as_bytes());
     if on_gpu {
         h.update(b"gpu-pathtrace");
