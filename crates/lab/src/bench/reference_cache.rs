@@ -41,18 +41,10 @@ const KEYED_PRECIPITATION_DARKENING: f64 = 0.5;
 /// were traced, so that a new default moves no key (the tracer's uniforms, hashed too, still
 /// hold every value the tracer reads). `clouds.convective_cells` was written then where it
 /// was not 0, its default until the presets moved to convective cells; it is written now
-/// where it is not 1.
+/// where it is not 1 (its `skip_serializing_if`), so a 0 is dropped and a 1 put back.
 fn key_text(s: &Scene) -> String {
     let text = s.to_toml();
     let cells = s.clouds.convective_cells;
-    let written = |line: &str| line.starts_with("convective_cells = ");
-    let mut in_clouds = false;
-    let has_cells = text.lines().any(|line| {
-        if line.starts_with('[') {
-            in_clouds = line == "[clouds]";
-        }
-        in_clouds && written(line)
-    });
     let mut out = String::with_capacity(text.len() + 32);
     let mut section = "";
     for line in text.lines() {
@@ -60,14 +52,14 @@ fn key_text(s: &Scene) -> String {
             section = line;
         }
         let clouds = section == "[clouds]";
-        if clouds && written(line) && cells == 0.0 {
+        if clouds && cells == 0.0 && line.starts_with("convective_cells = ") {
             continue;
         }
         out.push_str(line);
         out.push('\n');
-        // The field follows `wispy_billowy`, which is always written.
-        if clouds && line.starts_with("wispy_billowy = ") && cells != 0.0 && !has_cells {
-            let _ = writeln!(out, "convective_cells = {}", toml::Value::Float(cells));
+        // The field followed `wispy_billowy`, which is always written.
+        if clouds && cells == 1.0 && line.starts_with("wispy_billowy = ") {
+            out.push_str("convective_cells = 1.0\n");
         }
     }
     out
