@@ -1992,7 +1992,8 @@ fn anvil_optical_depth(rel: vec3<f32>, p: vec3<f32>, l: Layer, band: f32,
 // over the profile's top, density.wgsl cloud_top_fraction; a stratus fills the lowest third of
 // its layer, and in the layer's fraction the top of `weather fog`'s ground fog was taken for
 // its base, its light looking down dimmed away: FLIP 0.114, with the cloud's 0.094),
-// `layer_coverage` its layer's coverage (deck_escape).
+// `layer_coverage` its layer's coverage and `above` the sun ray's optical depth through the
+// layers above it (deck_escape).
 // Wrenninge's octaves attenuate by exp(-b^i tau). The diffuse light deep in a thick layer falls
 // off far more slowly: as 1 / (1 + (3/4)(1 - g) tau) in two-stream theory for conservative
 // scattering (Meador and Weaver 1980), and the path tracer agrees (storm's bases were 2.3 times
@@ -2005,7 +2006,7 @@ struct SunScattering {
 }
 
 fn sun_scattering(cos_theta: f32, view_y: f32, tau: f32, tau_oct: f32, far: f32, build: f32,
-                  coverage: f32, h: f32, layer_coverage: f32) -> SunScattering {
+                  coverage: f32, h: f32, layer_coverage: f32, above: f32) -> SunScattering {
     let a = frame.ms_contribution;
     let b = frame.ms_extinction;
     let c = frame.ms_eccentricity;
@@ -2036,7 +2037,7 @@ fn sun_scattering(cos_theta: f32, view_y: f32, tau: f32, tau_oct: f32, far: f32,
         feed *= pow(max(coverage, 1e-6), frame.coverage_exponent);
     }
     feed *= diffuse_limb(view_y, coverage) * vertical_anisotropy(view_y, coverage, h)
-        * deck_escape(mu0, layer_coverage);
+        * deck_escape(mu0, layer_coverage, above);
     feed *= downward_dimming(view_y, coverage, h, tau * mu0);
     var octaves_part = feed * build * octave_sum;
     var total = phase(cos_theta, 1.0) * exp(-tau - far) + octaves_part;
@@ -2156,13 +2157,28 @@ fn downward_dimming(view_y: f32, coverage: f32, h: f32, tau_v: f32) -> f32 {
 // ground fog of `weather fog` (coverage 1) was lit 1.34 times the truth's brightness where
 // dense, FLIP 0.149, and is 1.13 and 0.114 with the bound (`weather mist`'s 0.074 to 0.071; the
 // training scene closed to 0.92, w 0.51, 0.040 to 0.042; nothing else moved: docs/fit-log.md).
-fn deck_escape(mu0: f32, layer_coverage: f32) -> f32 {
+// Under a layer above, of optical depth `above` along the sun ray, the light that reaches the
+// deck's top is only exp(-above) the direct beam; the rest comes diffuse, from every direction
+// of the sky above it, and enters as light of zenith cosine DIFFUSE_MU does (the Eddington
+// ratio averaged over that light: (2/3 + 2/3) / (4/3 + (1 - g) tau)). So the escape takes
+// mix(DIFFUSE_MU, mu0, exp(-above)) for mu0. The ground fog under `weather fog`'s deck (a
+// sun 60 degrees up, zenith cosine 0.87, its escape 1.32) was lit 1.15 times the truth's
+// brightness where dense, FLIP 0.094; with the diffuse light's 1.14, 1.06 and 0.077
+// (`weather mist`, under broken cumulus, 0.070 to 0.072; a single layer does not move:
+// docs/fit-log.md).
+fn deck_escape(mu0: f32, layer_coverage: f32, above: f32) -> f32 {
     let e = frame.deck_escape;
-    return 1.0 + min(e * pow(saturate(layer_coverage), DECK_POWER), DECK_ESCAPE_MAX) * (mu0 - 0.5);
+    let mu = mix(DIFFUSE_MU, mu0, exp(-above));
+    return 1.0 + min(e * pow(saturate(layer_coverage), DECK_POWER), DECK_ESCAPE_MAX) * (mu - 0.5);
 }
 
 // The power of the layer's coverage that weights the octaves' deck escape (deck_escape).
 const DECK_POWER: f32 = 8.0;
+
+// The mean cosine, weighted by the flux, of light arriving alike from every direction of a
+// hemisphere (the integral of mu 2 mu over [0, 1]): the zenith cosine the deck escape takes for
+// the diffuse light that a layer above has made of the sun's.
+const DIFFUSE_MU: f32 = 0.6666667;
 
 // The most the deck escape's strength may be (deck_escape): the Eddington approximation's 6/7.
 const DECK_ESCAPE_MAX: f32 = 0.857142857;
@@ -2248,7 +2264,7 @@ fn scattered_light(rel: vec3<f32>, p: vec3<f32>, alt: f32, density: f32, view: v
         let s = sun_scattering(dot(view, sun), view.y, tau, tau_oct, far,
                                octave_buildup(density) * cellular_octaves(l),
                                regional_coverage(p, l, weather),
-                               saturate(h / cloud_top_fraction(l, weather)), l.coverage);
+                               saturate(h / cloud_top_fraction(l, weather)), l.coverage, above);
         let lit = frame.sun_illuminance * sun_through_air(rel);
         sun_light = lit * s.total;
         octave_light = lit * s.octaves;

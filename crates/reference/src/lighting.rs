@@ -314,7 +314,7 @@ pub(crate) fn sun_scattering(
     (tau, tau_oct): (f64, f64),
     (far_direct, far_side): (f64, f64),
     build: f64,
-    (coverage, h, layer_coverage): (f64, f64, f64),
+    (coverage, h, layer_coverage, above): (f64, f64, f64, f64),
 ) -> (f64, f64) {
     let a = f.ms_contribution;
     let b = f.ms_extinction;
@@ -341,7 +341,7 @@ pub(crate) fn sun_scattering(
     }
     feed *= diffuse_limb(f, view_y, coverage)
         * vertical_anisotropy(f, view_y, coverage, h)
-        * deck_escape(f, mu0, layer_coverage)
+        * deck_escape(f, mu0, layer_coverage, above)
         * downward_dimming(f, view_y, coverage, h, tau * mu0);
     let mut octaves_part = feed * build * octave_sum;
     let mut total = phase(f, cos_theta, 1.0) * (-tau - far_direct).exp() + octaves_part;
@@ -389,17 +389,24 @@ pub(crate) fn downward_dimming(f: &Frame, view_y: f64, coverage: f64, h: f64, ta
     (1.0 - k * tau_v / (tau_v + 1.0)).max(0.0)
 }
 
+// WGSL: lighting.wgsl::DIFFUSE_MU
+/// The flux-weighted mean cosine of light arriving alike from every direction of a hemisphere.
+const DIFFUSE_MU: f64 = 2.0 / 3.0;
+
 // WGSL: lighting.wgsl::DECK_ESCAPE_MAX
 /// The most the deck escape's strength `e w` may be: the Eddington approximation's 6/7.
 const DECK_ESCAPE_MAX: f64 = 0.857142857;
 
 // WGSL: lighting.wgsl::deck_escape
-/// The octaves' escape from a deck for a sun of zenith cosine `mu0`: `1 + e w (mu0 - 1/2)`, `w`
-/// the layer's coverage to the 8th power, `e w` at most `DECK_ESCAPE_MAX` (lighting.wgsl says
+/// The octaves' escape from a deck for a sun of zenith cosine `mu0`: `1 + e w (mu - 1/2)`, `w`
+/// the layer's coverage to the 8th power, `e w` at most `DECK_ESCAPE_MAX`, `mu` the zenith
+/// cosine of the light entering the deck: `mu0` for the direct beam, `DIFFUSE_MU` for what the
+/// layers above (optical depth `above` along the sun ray) have made diffuse (lighting.wgsl says
 /// why).
-pub(crate) fn deck_escape(f: &Frame, mu0: f64, layer_coverage: f64) -> f64 {
+pub(crate) fn deck_escape(f: &Frame, mu0: f64, layer_coverage: f64, above: f64) -> f64 {
     let ew = f.deck_escape * saturate(layer_coverage).powf(DECK_POWER);
-    1.0 + ew.min(DECK_ESCAPE_MAX) * (mu0 - 0.5)
+    let mu = mix(DIFFUSE_MU, mu0, (-above).exp());
+    1.0 + ew.min(DECK_ESCAPE_MAX) * (mu - 0.5)
 }
 
 // WGSL: lighting.wgsl::diffuse_limb
@@ -504,6 +511,7 @@ pub(crate) fn scattered_light(
                 m.regional_coverage(p, l, &weather),
                 saturate(h / cloud_top_fraction(f, l, &weather)),
                 l.coverage,
+                above,
             ),
         );
         let lit = f.sun_illuminance().mul_v(sun_through_air(f, m.sky(), rel));
@@ -781,26 +789,42 @@ mod tests {
     /// The deck escape brightens a full deck's octaves under a high sun and darkens them under
     /// a low one (1 at 60 degrees from the zenith), leaves a broken layer nearly alone, is
     /// never stronger than the Eddington ratio's 6/7 (a sun at the horizon keeps 4/7 of a full
-    /// deck's octaves, a sun overhead adds 3/7), and is 1 when off.
+    /// deck's octaves, a sun overhead adds 3/7), takes diffuse light's cosine under a thick
+    /// layer above, and is 1 when off.
     #[test]
     fn deck_escape_favours_a_high_sun_over_a_deck() {
         let noise = crate::small_noise();
         let mut scene = Scene::default();
         scene.lighting.multiple_scattering.deck_escape = 2.0;
         let m = Model::new(&scene, Medium::Clouds(&noise));
-        let (high, low) = (deck_escape(&m.f, 1.0, 1.0), deck_escape(&m.f, 0.1, 1.0));
+        let (high, low) = (
+            deck_escape(&m.f, 1.0, 1.0, 0.0),
+            deck_escape(&m.f, 0.1, 1.0, 0.0),
+        );
         assert!(high > 1.0 && (0.0..1.0).contains(&low), "{high} {low}");
-        assert_eq!(deck_escape(&m.f, 0.5, 1.0), 1.0);
-        assert!((deck_escape(&m.f, 0.0, 1.0) - 4.0 / 7.0).abs() < 1e-8);
-        assert!((deck_escape(&m.f, 1.0, 1.0) - 10.0 / 7.0).abs() < 1e-8);
+        assert_eq!(deck_escape(&m.f, 0.5, 1.0, 0.0), 1.0);
+        assert!((deck_escape(&m.f, 0.0, 1.0, 0.0) - 4.0 / 7.0).abs() < 1e-8);
+        assert!((deck_escape(&m.f, 1.0, 1.0, 0.0) - 10.0 / 7.0).abs() < 1e-8);
         // Below the bound (storm's coverage 0.9: 2 x 0.9^8 = 0.861, at it) the fitted strength.
         let w = 0.8f64.powi(8);
-        assert!((deck_escape(&m.f, 1.0, 0.8) - (1.0 + 2.0 * w * 0.5)).abs() < 1e-12);
+        assert!((deck_escape(&m.f, 1.0, 0.8, 0.0) - (1.0 + 2.0 * w * 0.5)).abs() < 1e-12);
         // A layer of coverage 0.5 is weighted 1/256 as a deck.
-        assert!((deck_escape(&m.f, 1.0, 0.5) - 1.0).abs() < 0.005);
-        assert!(deck_escape(&m.f, 1.0, 0.9) > deck_escape(&m.f, 1.0, 0.8));
+        assert!((deck_escape(&m.f, 1.0, 0.5, 0.0) - 1.0).abs() < 0.005);
+        assert!(deck_escape(&m.f, 1.0, 0.9, 0.0) > deck_escape(&m.f, 1.0, 0.8, 0.0));
+        // Under a thick layer above, the light entering the deck is diffuse: the sun's
+        // elevation no longer matters, and the escape is that of zenith cosine 2/3.
+        let diffuse = 1.0 + 6.0 / 7.0 * (2.0 / 3.0 - 0.5);
+        for mu0 in [0.1, 0.5, 1.0] {
+            assert!(
+                (deck_escape(&m.f, mu0, 1.0, 60.0) - diffuse).abs() < 1e-9,
+                "{mu0}"
+            );
+        }
+        let half = deck_escape(&m.f, 1.0, 1.0, std::f64::consts::LN_2);
+        assert!((half - 0.5 * (10.0 / 7.0 + diffuse)).abs() < 1e-8, "{half}");
         scene.lighting.multiple_scattering.deck_escape = 0.0;
         let off = Model::new(&scene, Medium::Clouds(&noise));
-        assert_eq!(deck_escape(&off.f, 1.0, 1.0), 1.0);
+        assert_eq!(deck_escape(&off.f, 1.0, 1.0, 0.0), 1.0);
+        assert_eq!(deck_escape(&off.f, 1.0, 1.0, 5.0), 1.0);
     }
 }
