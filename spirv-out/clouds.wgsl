@@ -2178,7 +2178,7 @@ const DECK_POWER: f32 = 8.0;
 // The mean cosine, weighted by the flux, of light arriving alike from every direction of a
 // hemisphere (the integral of mu 2 mu over [0, 1]): the zenith cosine the deck escape takes for
 // the diffuse light that a layer above has made of the sun's.
-const DIFFUSE_MU: f32 = 0.6666667;
+const DIFFUSE_MU: f32 = 2.0 / 3.0;
 
 // The most the deck escape's strength may be (deck_escape): the Eddington approximation's 6/7.
 const DECK_ESCAPE_MAX: f32 = 0.857142857;
