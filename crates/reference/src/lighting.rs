@@ -302,8 +302,8 @@ pub(crate) fn anvil_optical_depth(
 // The WGSL passes one `far` for both: the converged march (`LightMarch::to_layer_exit`)
 // samples the whole sun ray in the layer, so its single scattering takes no far shadow
 // (`far_direct` 0) while the side light keeps the model's (`far_side`). The weather map's
-// coverage, the height fraction at the sample and its layer's coverage travel together
-// (clippy's argument limit).
+// coverage, the height fraction at the sample, its layer's coverage and the sun ray's optical
+// depth through the layers above travel together (clippy's argument limit).
 /// Sun light scattered toward the viewer per unit illuminance and unit sigma_s, summed over
 /// octaves fed through the cloud's top and sides, with the optional Beer-Powder factor: the
 /// whole and the octaves' part of it (the WGSL's `SunScattering`).
