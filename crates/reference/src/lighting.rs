@@ -226,7 +226,7 @@ pub(crate) fn far_optical_depth(m: &Model, rel: V3, p: V3, l: &Layer, band: f64)
 }
 
 // WGSL: lighting.wgsl::ANVIL_OCTAVE_SHARE
-const ANVIL_OCTAVE_SHARE: f64 = 0.5;
+const ANVIL_OCTAVE_SHARE: f64 = 0.75;
 
 // WGSL: lighting.wgsl::light_march_reach
 /// The real-time light march's reach: its segments' total length (m).
