@@ -522,8 +522,14 @@ fn height_fraction(alt: f32) -> f32 {
 }
 
 // In-scattered radiance per unit length at a view sample of layer `l`: sigma_s * density *
-// (sun + ambient + a lightning flash's light), darkened toward the base of raining clouds (thesis 4.4.1); and, apart,
-// the octaves' part of it.
+// (sun + ambient + a lightning flash's light), the sun's and the flash's light darkened toward
+// the base of raining clouds (thesis 4.4.1); and, apart, the octaves' part of it. The darkening
+// stands for the light a raining cloud's heavier water load takes on its way down to the base;
+// the sky's light is not darkened, for the reason the ambient takes no occlusion: in a nearly
+// uniform environment a conservative medium's diffuse radiance stays the environment's however
+// thick the cloud (docs/fit-log.md). Darkening it as well left the rain states' shaded bases
+// darker than the truth's (`weather rain` FLIP 0.0722, `rainbow` 0.0789; with the sun's light
+// alone darkened, and the strength chosen again, 0.0606 and 0.0646).
 struct ScatteredLight {
     total: vec3<f32>,
     octaves: vec3<f32>,
@@ -562,6 +568,8 @@ fn scattered_light(rel: vec3<f32>, p: vec3<f32>, alt: f32, density: f32, view: v
         octave_light = lit * s.octaves;
     }
     let darkening = saturate(1.0 - frame.precipitation_darkening * weather.precipitation * (1.0 - h));
-    let k = frame.scattering * density * darkening;
-    return ScatteredLight((sun_light + ambient(h, rel) + lightning_light(rel)) * k, octave_light * k);
+    let k = frame.scattering * density;
+    let dark = darkening * k;
+    return ScatteredLight((sun_light + lightning_light(rel)) * dark + ambient(h, rel) * k,
+                          octave_light * dark);
 }

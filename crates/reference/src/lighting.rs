@@ -519,10 +519,13 @@ pub(crate) fn scattered_light(
         octave_light = lit * octaves;
     }
     let darkening = saturate(1.0 - f.precipitation_darkening * weather.precipitation * (1.0 - h));
-    let k = f.scattering * density * darkening;
+    // The sky's light is not darkened (lighting.wgsl::scattered_light says why).
+    let k = f.scattering * density;
+    let dark = darkening * k;
     (
-        (sun_light + ambient(f, m.sky(), h, rel) + crate::lightning::lightning_light(f, rel)) * k,
-        octave_light * k,
+        (sun_light + crate::lightning::lightning_light(f, rel)) * dark
+            + ambient(f, m.sky(), h, rel) * k,
+        octave_light * dark,
     )
 }
 

@@ -11,7 +11,7 @@
 //! # The energy bound
 //!
 //! At a sample of density `d` the in-scattered radiance per unit length is
-//! `S = sigma_s d (E_sun sum_i a^i p(cos, c^i g) f_i [powder] + ambient(h)) darkening`
+//! `S = sigma_s d (E_sun sum_i a^i p(cos, c^i g) f_i [powder] darkening + ambient(h))`
 //! (`lighting.wgsl::scattered_light`), `f_0 = e^(-tau - far)` and for the octaves `f_i = F B /
 //! (1 + b^i tau)` with the build-up B in [0, 1] and the feed `F = (mu0 + s (1 - cov) sin(zenith)
 //! e^(-far)) cov^e D` (`sun_scattering`; s the side light, cov the coverage in [0, 1], D the

@@ -1192,12 +1192,11 @@ pub struct Lighting {
     /// Multiplier of the ambient term (>= 0; thesis "ambient multiplier").
     pub ambient_strength: f64,
     /// How strongly precipitation darkens the bottom of clouds (thesis 4.4.1), within [0, 1]:
-    /// the light at a sample of height fraction h in a layer whose weather map says
-    /// precipitation p is scaled by 1 - k p (1 - h). The path tracer leaves rain's dark base to
-    /// the density (precipitation raises it), so the default is chosen against its truth: 0.3,
-    /// the lowest mean FLIP of `weather rain`, `weather snow` and `weather thunderstorm` over
-    /// 0-1 (docs/fit-log.md; the thesis's example 0.5 lit them 0.89-0.95 of the truth's
-    /// brightness where dense).
+    /// the sun's light at a sample of height fraction h in a layer whose weather map says
+    /// precipitation p is scaled by 1 - k p (1 - h) (the sky's is not). The path tracer leaves
+    /// rain's dark base to the density (precipitation raises it), so the default is chosen
+    /// against its truth: 0.6, the lowest mean FLIP of `weather rain`, `weather snow` and
+    /// `weather thunderstorm` over 0.3-0.85 (docs/fit-log.md).
     pub precipitation_darkening: f64,
     /// Phase function.
     pub phase: Phase,
@@ -1215,7 +1214,7 @@ impl Default for Lighting {
             ambient_bottom: [0.25, 0.3, 0.4],
             ambient_top: [0.6, 0.75, 1.0],
             ambient_strength: 1.0,
-            precipitation_darkening: 0.3,
+            precipitation_darkening: 0.6,
             phase: Phase::default(),
             multiple_scattering: MultipleScattering::default(),
         }
