@@ -1914,9 +1914,9 @@ fn far_optical_depth(rel: vec3<f32>, p: vec3<f32>, l: Layer, band: f32) -> f32 {
 // The share of an anvil's optical depth the octaves see (anvil_optical_depth). Against
 // `weather thunderstorm`'s truth, the one scene that chose it: shares of 0, 0.25, 0.5, 0.75
 // and 1 measured FLIP 0.190, 0.167, 0.167, 0.175 and 0.186 under a precipitation darkening of
-// 0.5, and 0.174, 0.1435, 0.136, 0.139 (0.25, 0.5, 0.75, 1) under today's 0.3, which lights
-// the cloud under the plates more and leaves more of the plates' shade to the octaves
-// (docs/fit-log.md).
+// 0.5, and 0.174, 0.1435, 0.136, 0.139 (0.25, 0.5, 0.75, 1) under 0.3, which lit the cloud
+// under the plates more and left more of the plates' shade to the octaves (docs/fit-log.md;
+// both while the darkening dimmed the sky's light too, and not swept again since).
 const ANVIL_OCTAVE_SHARE: f32 = 0.75;
 
 // The light march's reach: its segments' total length (m).
