@@ -1911,14 +1911,6 @@ fn far_optical_depth(rel: vec3<f32>, p: vec3<f32>, l: Layer, band: f32) -> f32 {
     return tau * (1.0 - l.cirrus);
 }
 
-// The share of an anvil's optical depth the octaves see (anvil_optical_depth). Against
-// `weather thunderstorm`'s truth, the one scene that chose it: shares of 0, 0.25, 0.5, 0.75
-// and 1 measured FLIP 0.190, 0.167, 0.167, 0.175 and 0.186 under a precipitation darkening of
-// 0.5, and 0.174, 0.1435, 0.136, 0.139 (0.25, 0.5, 0.75, 1) under 0.3, which lit the cloud
-// under the plates more and left more of the plates' shade to the octaves (docs/fit-log.md;
-// both while the darkening dimmed the sky's light too, and not swept again since).
-const ANVIL_OCTAVE_SHARE: f32 = 0.75;
-
 // The light march's reach: its segments' total length (m).
 fn light_march_reach() -> f32 {
     let growth = frame.light_step_growth;
@@ -1957,10 +1949,13 @@ fn anvil_band_entry(rel: vec3<f32>, l: Layer) -> f32 {
 // `weather thunderstorm` measured FLIP 0.186 against its truth, the dense cloud under the
 // anvil 1.15 times the truth's brightness (docs/fit-log.md). A plate is a slab, not broken
 // cloud: sampled, its tens of optical depths reach both (FLIP 0.186 still, but the dense
-// cloud 0.85 of the truth's brightness, RMSE 0.159 to 0.114). The octaves take
-// ANVIL_OCTAVE_SHARE of it: their light under a plate kilometres above comes around its edges
-// and through its gaps as well as through it, which an attenuation along the sun ray alone
-// does not know. Only layers with an anvil pay: four density evaluations per lit sample.
+// cloud 0.85 of the truth's brightness, RMSE 0.159 to 0.114). The octaves see all of it. A
+// share of it alone, for light that would come around the plate's edges and through its gaps,
+// had been chosen while the precipitation darkening also dimmed the sky's light (0.75: FLIP
+// 0.136 against 0.139 for all); since the darkening takes the sun's light alone, shares of
+// 0.5, 0.75, 1 and 1.25 measure 0.142, 0.126, 0.118 and 0.118 (docs/fit-log.md), so the
+// octaves take the plate's shade as single scattering does. Only layers with an anvil pay:
+// four density evaluations per lit sample.
 fn anvil_optical_depth(rel: vec3<f32>, p: vec3<f32>, l: Layer, band: f32,
                        counters: ptr<function, Counters>) -> f32 {
     if band < 0.0 || frame.light_steps == 0u {
@@ -2257,18 +2252,14 @@ fn scattered_light(rel: vec3<f32>, p: vec3<f32>, alt: f32, density: f32, view: v
         var tau = 0.0;
         var above = 0.0;
         var far = 0.0;
-        var anvil_tau = 0.0;
+        var tau_oct = 0.0;
         if LIGHT_MARCH {
             above = optical_depth_above(rel, p, l, counters);
             let band = anvil_band_entry(rel, l);
-            anvil_tau = anvil_optical_depth(rel, p, l, band, counters);
-            tau = sun_optical_depth(rel, p, l, counters) + above + anvil_tau;
+            tau = sun_optical_depth(rel, p, l, counters) + above
+                + anvil_optical_depth(rel, p, l, band, counters);
             far = far_optical_depth(rel, p, l, band);
-        }
-        var tau_oct = tau;
-        if LIGHT_MARCH {
-            tau_oct = octave_optical_depth(rel, p, l, tau - anvil_tau * (1.0 - ANVIL_OCTAVE_SHARE),
-                                           above, counters);
+            tau_oct = octave_optical_depth(rel, p, l, tau, above, counters);
         }
         let s = sun_scattering(dot(view, sun), view.y, tau, tau_oct, far,
                                octave_buildup(density) * cellular_octaves(l),

@@ -225,9 +225,6 @@ pub(crate) fn far_optical_depth(m: &Model, rel: V3, p: V3, l: &Layer, band: f64)
         * (1.0 - l.cirrus)
 }
 
-// WGSL: lighting.wgsl::ANVIL_OCTAVE_SHARE
-const ANVIL_OCTAVE_SHARE: f64 = 0.75;
-
 // WGSL: lighting.wgsl::light_march_reach
 /// The real-time light march's reach: its segments' total length (m).
 fn light_march_reach(f: &Frame) -> f64 {
@@ -497,8 +494,7 @@ pub(crate) fn scattered_light(
         let tau_oct = if lm.steps == 0 {
             tau
         } else {
-            let seen = tau - anvil * (1.0 - ANVIL_OCTAVE_SHARE);
-            octave_optical_depth(m, rel, p, l, (seen, above), counters)
+            octave_optical_depth(m, rel, p, l, (tau, above), counters)
         };
         let (s, octaves) = sun_scattering(
             f,
