@@ -453,6 +453,9 @@ pub(crate) fn ambient(f: &Frame, sky: Option<&SkyTables>, h: f64, rel: V3) -> V3
     mix_v(bottom, top, h) * f.ambient_strength
 }
 
+// WGSL: lighting.wgsl::PRECIPITATION_DEPTH
+const PRECIPITATION_DEPTH: f64 = 10.0;
+
 // WGSL: lighting.wgsl::scattered_light
 /// In-scattered radiance per unit length at a view sample of layer `l`: sigma_s * density *
 /// (sun + ambient + a lightning flash's light), darkened toward the base of raining clouds; and, apart, the octaves' part
@@ -476,6 +479,8 @@ pub(crate) fn scattered_light(
     let mut sun_light = V3::ZERO;
     let mut octave_light = V3::ZERO;
     let weather = m.weather(p, l);
+    // The share of the darkening the sun ray's cloud gives (PRECIPITATION_DEPTH).
+    let mut load = 1.0;
     if !hits_ground(f, rel, alt, sun) {
         // LIGHT_MARCH: with 0 light steps the layer's own march returns 0, as the switched-off
         // WGSL does (and so does its far shadow); the layers above still shade it, as in the
@@ -513,8 +518,10 @@ pub(crate) fn scattered_light(
         let lit = f.sun_illuminance().mul_v(sun_through_air(f, m.sky(), rel));
         sun_light = lit * s;
         octave_light = lit * octaves;
+        load = 1.0 - (-tau / PRECIPITATION_DEPTH).exp();
     }
-    let darkening = saturate(1.0 - f.precipitation_darkening * weather.precipitation * (1.0 - h));
+    let darkening =
+        saturate(1.0 - f.precipitation_darkening * weather.precipitation * (1.0 - h) * load);
     // The sky's light is not darkened (lighting.wgsl::scattered_light says why).
     let k = f.scattering * density;
     let dark = darkening * k;

@@ -1193,7 +1193,8 @@ pub struct Lighting {
     pub ambient_strength: f64,
     /// How strongly precipitation darkens the bottom of clouds (thesis 4.4.1), within [0, 1]:
     /// the sun's light at a sample of height fraction h in a layer whose weather map says
-    /// precipitation p is scaled by 1 - k p (1 - h) (the sky's is not). The path tracer leaves
+    /// precipitation p is scaled by 1 - k p (1 - h) (1 - exp(-tau / 10)), tau the sun ray's
+    /// optical depth (the sky's is not). The path tracer leaves
     /// rain's dark base to the density (precipitation raises it), so the default is chosen
     /// against its truth: 0.6, the lowest mean FLIP of `weather rain`, `weather snow` and
     /// `weather thunderstorm` over 0.3-0.85 (docs/fit-log.md).
