@@ -1193,10 +1193,11 @@ pub struct Lighting {
     pub ambient_strength: f64,
     /// How strongly precipitation darkens the bottom of clouds (thesis 4.4.1), within [0, 1]:
     /// the sun's light at a sample of height fraction h in a layer whose weather map says
-    /// precipitation p is scaled by 1 - k p (1 - h) (1 - exp(-tau / 10)), tau the sun ray's
-    /// optical depth as the light march sees it (the sky's light is not darkened; with
+    /// precipitation p is scaled by 1 - k p (1 - h) (1 - exp(-tau / D)): tau is the sun ray's
+    /// optical depth as the light march sees it, D is `PRECIPITATION_DEPTH` in lighting.wgsl
+    /// (which says how it was chosen). The sky's light is not darkened. With
     /// `quality.light_steps` 0 the layer's own cloud adds nothing to tau, so only layers above
-    /// darken it, and a single layer not at all). The path tracer leaves
+    /// darken it, and a single layer not at all. The path tracer leaves
     /// rain's dark base to the density (precipitation raises it), so the default is chosen
     /// against its truth: 0.6, the lowest mean FLIP of `weather rain`, `weather snow` and
     /// `weather thunderstorm` over 0.3-0.85 (docs/fit-log.md).
