@@ -1197,7 +1197,8 @@ pub struct Lighting {
     /// optical depth as the light march sees it, D is `PRECIPITATION_DEPTH` in lighting.wgsl
     /// (which says how it was chosen). The sky's light is not darkened. With
     /// `quality.light_steps` 0 the layer's own cloud adds nothing to tau, so only layers above
-    /// darken it, and a single layer not at all. The path tracer leaves
+    /// darken it, and a single layer only where the sun ray meets the ground (there the
+    /// darkening is full, whatever tau). The path tracer leaves
     /// rain's dark base to the density (precipitation raises it), so the default is chosen
     /// against its truth: 0.6, the lowest mean FLIP of `weather rain`, `weather snow` and
     /// `weather thunderstorm` over 0.3-0.85 (docs/fit-log.md).
